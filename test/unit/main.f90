@@ -1,0 +1,65 @@
+! SPDX-License-Identifier: MIT
+!> Runs the test suites: all, one suite (`unit SUITE`), or one test (`unit SUITE TEST`).
+program tester
+    use, intrinsic :: iso_fortran_env, only : output_unit, error_unit
+    use rollcon_testing, only : testsuite_type, new_testsuite, run_testsuite, test_counts_type
+    use test_text, only : collect_text
+    use test_ucovar, only : collect_ucovar
+    use test_disk_hand, only : collect_disk_hand
+    use test_ucon_check, only : collect_ucon_check
+    implicit none
+    type(testsuite_type), allocatable :: suites(:)
+    type(test_counts_type) :: counts
+    character(len=:), allocatable :: suite_name, test_name
+    character(len=256) :: argument
+    logical :: found
+    integer :: i
+
+    suites = [new_testsuite("text", collect_text), &
+        & new_testsuite("ucovar", collect_ucovar), &
+        & new_testsuite("disk-hand", collect_disk_hand), &
+        & new_testsuite("ucon-check", collect_ucon_check)]
+
+    if (command_argument_count() >= 1) then
+        call get_command_argument(1, argument)
+        suite_name = trim(argument)
+        if (suite_name == "--help" .or. suite_name == "-h") then
+            write(output_unit, '(a)') "usage: fpm test unit -- [SUITE [TEST]]", &
+                & "Runs every test, the tests of SUITE, or one TEST of SUITE. Suites:"
+            do i = 1, size(suites)
+                write(output_unit, '(2x, a)') suites(i)%name
+            end do
+            stop
+        end if
+    end if
+    if (command_argument_count() >= 2) then
+        call get_command_argument(2, argument)
+        test_name = trim(argument)
+    end if
+
+    found = .false.
+    do i = 1, size(suites)
+        if (allocated(suite_name)) then
+            if (suites(i)%name /= suite_name) cycle
+        end if
+        if (allocated(test_name)) then
+            call run_testsuite(suites(i), output_unit, counts, test_name, found)
+        else
+            call run_testsuite(suites(i), output_unit, counts, found=found)
+        end if
+    end do
+    if (.not. found) then
+        write(error_unit, '(a)') "tester: error: no suite or test matches the command line; " &
+            & // "run with --help for the list"
+        error stop 1
+    end if
+
+    if (counts%skipped > 0) then
+        write(output_unit, '(i0, " passed, ", i0, " failed, ", i0, " skipped")') &
+            & counts%passed, counts%failed, counts%skipped
+    else
+        write(output_unit, '(i0, " passed, ", i0, " failed")') counts%passed, counts%failed
+    end if
+    flush(output_unit)
+    if (counts%failed > 0) error stop 1
+end program tester
