@@ -27,15 +27,17 @@ contains
         text = trim(buffer)
     end function integer_to_text
 
-    !> Shortest decimal text that reads back as the same real (at most 17 digits).
+    !> Shortest decimal text that reads back as the same real (at most 17 digits): plain
+    !> notation for 1e-5 <= |value| < 1e15 ("0.1", "-2.5", "7800"), else "1.5e-300".
     pure function real_to_text(value) result(text)
         !> Value to print
         real(wp), intent(in) :: value
         character(len=:), allocatable :: text
         character(len=40) :: buffer
-        character(len=12) :: form
+        character(len=16) :: form
+        character(len=:), allocatable :: digits_text, sign
         real(wp) :: back
-        integer :: digits, stat
+        integer :: digits, stat, exponent, e
 
         if (ieee_is_nan(value)) then
             text = "NaN"
@@ -43,41 +45,43 @@ contains
         else if (.not. ieee_is_finite(value)) then
             text = merge("+Infinity", "-Infinity", value > 0.0_wp)
             return
+        else if (value == 0.0_wp) then
+            text = "0"
+            return
         end if
         do digits = 1, 17
-            write(form, '("(g0.", i0, ")")') digits
+            write(form, '("(es40.", i0, "e3)")') digits - 1
             write(buffer, form) value
             read(buffer, *, iostat=stat) back
             if (stat == 0 .and. back == value) exit
         end do
-        text = trim(adjustl(buffer))
-        text = trim_mantissa(text)
-    end function real_to_text
-
-    !> Remove trailing zeros of the mantissa: "0.1000E+01" -> "0.1E+01", "2.50" -> "2.5".
-    pure function trim_mantissa(text) result(trimmed)
-        character(len=*), intent(in) :: text
-        character(len=:), allocatable :: trimmed
-        character(len=:), allocatable :: mantissa, exponent
-        integer :: e, last
-
-        e = scan(text, "Ee")
-        if (e > 0) then
-            mantissa = text(:e - 1)
-            exponent = text(e:)
+        buffer = adjustl(buffer)
+        sign = ""
+        if (buffer(1:1) == "-") then
+            sign = "-"
+            buffer = buffer(2:)
+        end if
+        e = scan(buffer, "Ee")
+        read(buffer(e + 1:), *) exponent
+        ! digits without the point, trailing zeros removed
+        digits_text = buffer(1:1) // buffer(3:e - 1)
+        if (e == 2) digits_text = buffer(1:1)
+        do while (len(digits_text) > 1 .and. digits_text(len(digits_text):) == "0")
+            digits_text = digits_text(:len(digits_text) - 1)
+        end do
+        if (exponent >= -5 .and. exponent < 15) then
+            if (exponent < 0) then
+                text = sign // "0." // repeat("0", -exponent - 1) // digits_text
+            else if (len(digits_text) > exponent + 1) then
+                text = sign // digits_text(:exponent + 1) // "." // digits_text(exponent + 2:)
+            else
+                text = sign // digits_text // repeat("0", exponent + 1 - len(digits_text))
+            end if
         else
-            mantissa = text
-            exponent = ""
+            text = sign // digits_text(1:1)
+            if (len(digits_text) > 1) text = text // "." // digits_text(2:)
+            text = text // "e" // integer_to_text(exponent)
         end if
-        if (index(mantissa, ".") > 0) then
-            last = len_trim(mantissa)
-            do while (last > 1 .and. mantissa(last:last) == "0")
-                last = last - 1
-            end do
-            if (mantissa(last:last) == ".") last = last - 1
-            mantissa = mantissa(:last)
-        end if
-        trimmed = mantissa // exponent
-    end function trim_mantissa
+    end function real_to_text
 
 end module rollcon_text

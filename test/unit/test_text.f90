@@ -35,8 +35,12 @@ contains
             call check(error, back == values(i), "to_text does not read back: " // to_text(values(i)))
             if (allocated(error)) return
         end do
-        call check(error, to_text(0.1_wp) == "0.1" .or. to_text(0.1_wp) == "0.1000000000000000", &
-            & "0.1 prints as " // to_text(0.1_wp))
+        call check(error, to_text(0.1_wp) == "0.1" .and. to_text(-2.5_wp) == "-2.5" &
+            & .and. to_text(7800.0_wp) == "7800" .and. to_text(1.0e-300_wp) == "1e-300" &
+            & .and. to_text(0.04_wp) == "0.04" .and. to_text(-1.5e20_wp) == "-1.5e20", &
+            & "0.1, -2.5, 7800, 1e-300, 0.04, -1.5e20 print as " // to_text(0.1_wp) // ", " &
+            & // to_text(-2.5_wp) // ", " // to_text(7800.0_wp) // ", " // to_text(1.0e-300_wp) &
+            & // ", " // to_text(0.04_wp) // ", " // to_text(-1.5e20_wp))
     end subroutine test_round_trip
 
     subroutine test_special(error)

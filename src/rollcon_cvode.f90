@@ -1,0 +1,260 @@
+! SPDX-License-Identifier: MIT
+!> CVODE on the ODE form: BDF or Adams, dense Newton solves with the analytic Jacobian or
+!> CVODE's difference quotients, optional projection onto the constraints, root finding.
+module rollcon_cvode
+    use, intrinsic :: iso_c_binding, only : c_ptr, c_null_ptr, c_int, c_long, c_int64_t, &
+        & c_double, c_funloc, c_loc, c_f_pointer, c_associated
+    use rollcon_kinds, only : wp
+    use rollcon_error, only : error_type, fatal_error, stat_solver
+    use rollcon_text, only : to_text
+    use rollcon_problem, only : problem_type, method_adams
+    use rollcon_equations, only : drift_projection
+    use fsundials_context_mod, only : FSUNContext_Create, FSUNContext_Free
+    use fsundials_nvector_mod, only : N_Vector, FN_VDestroy, FN_VGetArrayPointer
+    use fsundials_matrix_mod, only : SUNMatrix, FSUNMatDestroy
+    use fsundials_linearsolver_mod, only : SUNLinearSolver, FSUNLinSolFree
+    use fnvector_serial_mod, only : FN_VMake_Serial
+    use fsunmatrix_dense_mod, only : FSUNDenseMatrix, FSUNDenseMatrix_Data
+    use fsunlinsol_dense_mod, only : FSUNLinSol_Dense
+    use fcvode_mod, only : FCVodeCreate, FCVodeInit, FCVodeSStolerances, FCVodeSetUserData, &
+        & FCVodeSetLinearSolver, FCVodeSetJacFn, FCVodeSetMaxNumSteps, FCVodeSetStopTime, &
+        & FCVode, FCVodeRootInit, FCVodeGetRootInfo, FCVodeSetProjFn, FCVodeFree, &
+        & FCVodeGetNumSteps, FCVodeGetNumRhsEvals, FCVodeGetNumJacEvals, &
+        & FCVodeGetNumLinRhsEvals, FCVodeGetNumErrTestFails, CV_BDF, CV_ADAMS, CV_NORMAL, &
+        & CV_SUCCESS, CV_ROOT_RETURN, CV_TSTOP_RETURN
+    implicit none
+    private
+
+    public :: cvode_solver_type
+
+    !> One CVODE integration of a problem
+    type :: cvode_solver_type
+        type(c_ptr) :: context = c_null_ptr
+        type(c_ptr) :: memory = c_null_ptr
+        type(N_Vector), pointer :: y => null()
+        type(SUNMatrix), pointer :: matrix => null()
+        type(SUNLinearSolver), pointer :: solver => null()
+        !> Storage behind y
+        real(c_double), allocatable :: values(:)
+    contains
+        procedure :: init
+        procedure :: advance
+        procedure :: statistics
+        procedure :: destroy
+    end type cvode_solver_type
+
+contains
+
+    !> Create CVODE for problem from (t0, y0 = (q, u)); roots: how many event functions (0-2).
+    subroutine init(self, problem, t0, y0, t_stop, roots, error)
+        class(cvode_solver_type), intent(inout), target :: self
+        type(problem_type), intent(inout), target :: problem
+        real(wp), intent(in) :: t0, y0(:), t_stop
+        integer, intent(in) :: roots
+        type(error_type), allocatable, intent(out) :: error
+        integer(c_int) :: flag, lmm
+
+        allocate(self%values(size(y0)))
+        self%values = y0
+        flag = FSUNContext_Create(c_null_ptr, self%context)
+        if (check(flag, "SUNContext_Create", error)) return
+        self%y => FN_VMake_Serial(int(size(y0), c_int64_t), self%values, self%context)
+        if (.not. associated(self%y)) then
+            call fatal_error(error, "CVODE: could not create the state vector", stat_solver)
+            return
+        end if
+        lmm = CV_BDF
+        if (problem%settings%method == method_adams) lmm = CV_ADAMS
+        self%memory = FCVodeCreate(lmm, self%context)
+        if (.not. c_associated(self%memory)) then
+            call fatal_error(error, "CVODE: CVodeCreate failed", stat_solver)
+            return
+        end if
+        flag = FCVodeInit(self%memory, c_funloc(rhs), t0, self%y)
+        if (check(flag, "CVodeInit", error)) return
+        flag = FCVodeSetUserData(self%memory, c_loc(problem))
+        if (check(flag, "CVodeSetUserData", error)) return
+        flag = FCVodeSStolerances(self%memory, problem%settings%rtol, problem%settings%atol)
+        if (check(flag, "CVodeSStolerances", error)) return
+        flag = FCVodeSetMaxNumSteps(self%memory, int(problem%settings%max_steps, c_long))
+        if (check(flag, "CVodeSetMaxNumSteps", error)) return
+        self%matrix => FSUNDenseMatrix(int(size(y0), c_int64_t), int(size(y0), c_int64_t), &
+            & self%context)
+        self%solver => FSUNLinSol_Dense(self%y, self%matrix, self%context)
+        if (.not. associated(self%matrix) .or. .not. associated(self%solver)) then
+            call fatal_error(error, "CVODE: could not create the dense linear solver", stat_solver)
+            return
+        end if
+        flag = FCVodeSetLinearSolver(self%memory, self%solver, self%matrix)
+        if (check(flag, "CVodeSetLinearSolver", error)) return
+        if (problem%settings%analytic_jacobian) then
+            flag = FCVodeSetJacFn(self%memory, c_funloc(jacobian))
+            if (check(flag, "CVodeSetJacFn", error)) return
+        end if
+        if (problem%eq%drift == drift_projection .and. problem%eq%nc > 0) then
+            flag = FCVodeSetProjFn(self%memory, c_funloc(projection))
+            if (check(flag, "CVodeSetProjFn", error)) return
+        end if
+        flag = FCVodeSetStopTime(self%memory, t_stop)
+        if (check(flag, "CVodeSetStopTime", error)) return
+        if (roots > 0) then
+            flag = FCVodeRootInit(self%memory, int(roots, c_int), c_funloc(events))
+            if (check(flag, "CVodeRootInit", error)) return
+        end if
+    end subroutine init
+
+    !> Integrate towards t_out (never past t_stop). On return y holds the state at t_reached;
+    !> root is the number of the event function that fired (0 if none).
+    subroutine advance(self, problem, t_out, t_stop, t_reached, y, root, error)
+        class(cvode_solver_type), intent(inout) :: self
+        type(problem_type), intent(inout) :: problem
+        real(wp), intent(in) :: t_out, t_stop
+        real(wp), intent(out) :: t_reached, y(:)
+        integer, intent(out) :: root
+        type(error_type), allocatable, intent(out) :: error
+        real(c_double) :: t_return(1)
+        integer(c_int) :: flag, found(2)
+
+        root = 0
+        flag = FCVodeSetStopTime(self%memory, t_stop)
+        if (check(flag, "CVodeSetStopTime", error)) return
+        flag = FCVode(self%memory, t_out, self%y, t_return, CV_NORMAL)
+        t_reached = t_return(1)
+        y = self%values
+        if (flag == CV_ROOT_RETURN) then
+            found = 0
+            flag = FCVodeGetRootInfo(self%memory, found)
+            root = findloc(found /= 0, .true., dim=1)
+            return
+        end if
+        if (flag == CV_SUCCESS .or. flag == CV_TSTOP_RETURN) return
+        if (allocated(problem%failure)) then
+            call fatal_error(error, "CVODE failed at t = " // to_text(t_reached) // " s (flag " &
+                & // to_text(int(flag)) // "): " // problem%failure%message, stat_solver)
+        else
+            call fatal_error(error, "CVODE failed at t = " // to_text(t_reached) // " s with flag " &
+                & // to_text(int(flag)) // " (see the CVODE guide's return codes)", stat_solver)
+        end if
+    end subroutine advance
+
+    !> Steps, right-hand sides (own and for difference-quotient Jacobians), Jacobians,
+    !> error-test failures.
+    subroutine statistics(self, steps, functions, jacobians, failures)
+        class(cvode_solver_type), intent(in) :: self
+        integer, intent(out) :: steps, functions, jacobians, failures
+        integer(c_long) :: count(1), extra(1)
+        integer(c_int) :: flag
+
+        flag = FCVodeGetNumSteps(self%memory, count)
+        steps = int(count(1))
+        flag = FCVodeGetNumRhsEvals(self%memory, count)
+        flag = FCVodeGetNumLinRhsEvals(self%memory, extra)
+        functions = int(count(1) + extra(1))
+        flag = FCVodeGetNumJacEvals(self%memory, count)
+        jacobians = int(count(1))
+        flag = FCVodeGetNumErrTestFails(self%memory, count)
+        failures = int(count(1))
+    end subroutine statistics
+
+    !> Free in reverse order of creation.
+    subroutine destroy(self)
+        class(cvode_solver_type), intent(inout) :: self
+        integer(c_int) :: flag
+
+        if (c_associated(self%memory)) call FCVodeFree(self%memory)
+        if (associated(self%solver)) flag = FSUNLinSolFree(self%solver)
+        if (associated(self%matrix)) call FSUNMatDestroy(self%matrix)
+        if (associated(self%y)) call FN_VDestroy(self%y)
+        if (c_associated(self%context)) flag = FSUNContext_Free(self%context)
+        self%memory = c_null_ptr
+        self%context = c_null_ptr
+        nullify(self%solver, self%matrix, self%y)
+        if (allocated(self%values)) deallocate(self%values)
+    end subroutine destroy
+
+    !> True (and error set) when a SUNDIALS call did not succeed.
+    function check(flag, routine, error) result(failed)
+        integer(c_int), intent(in) :: flag
+        character(len=*), intent(in) :: routine
+        type(error_type), allocatable, intent(out) :: error
+        logical :: failed
+
+        failed = flag /= 0
+        if (failed) call fatal_error(error, "CVODE: " // routine // " returned flag " &
+            & // to_text(int(flag)), stat_solver)
+    end function check
+
+    integer(c_int) function rhs(t, y, ydot, user_data) result(ierr) &
+            & bind(c, name="rollcon_cvode_rhs")
+        real(c_double), value :: t
+        type(N_Vector) :: y, ydot
+        type(c_ptr), value :: user_data
+        type(problem_type), pointer :: problem
+        real(c_double), pointer :: yv(:), ydv(:)
+
+        call c_f_pointer(user_data, problem)
+        yv => FN_VGetArrayPointer(y)
+        ydv => FN_VGetArrayPointer(ydot)
+        ierr = int(problem%ode_rhs(t, yv, ydv), c_int)
+    end function rhs
+
+    integer(c_int) function jacobian(t, y, fy, jac, user_data, tmp1, tmp2, tmp3) result(ierr) &
+            & bind(c, name="rollcon_cvode_jacobian")
+        real(c_double), value :: t
+        type(N_Vector) :: y, fy, tmp1, tmp2, tmp3
+        type(SUNMatrix) :: jac
+        type(c_ptr), value :: user_data
+        type(problem_type), pointer :: problem
+        real(c_double), pointer :: yv(:), data(:), matrix(:, :)
+        type(error_type), allocatable :: error
+        integer :: n
+
+        call c_f_pointer(user_data, problem)
+        yv => FN_VGetArrayPointer(y)
+        data => FSUNDenseMatrix_Data(jac)
+        call c_f_pointer(c_loc(data(1)), matrix, [size(yv), size(yv)])
+        n = problem%eq%n
+        call problem%eq%ode_jacobian(t, yv(:n), yv(n + 1:), matrix, error)
+        ierr = int(problem%keep_failure(error), c_int)
+    end function jacobian
+
+    integer(c_int) function projection(t, ycur, corr, eps_proj, err, user_data) result(ierr) &
+            & bind(c, name="rollcon_cvode_projection")
+        real(c_double), value :: t, eps_proj
+        type(N_Vector) :: ycur, corr
+        type(c_ptr), value :: err
+        type(c_ptr), value :: user_data
+        type(problem_type), pointer :: problem
+        real(c_double), pointer :: yv(:), cv(:)
+        type(error_type), allocatable :: error
+        integer :: n
+
+        call c_f_pointer(user_data, problem)
+        yv => FN_VGetArrayPointer(ycur)
+        cv => FN_VGetArrayPointer(corr)
+        n = problem%eq%n
+        ! The correction is computed exactly (one mass-weighted step), whatever eps_proj asks;
+        ! the error estimate err, when given, is left as CVODE computed it.
+        call problem%eq%project(t, yv(:n), yv(n + 1:), cv(:n), cv(n + 1:), error)
+        ierr = int(problem%keep_failure(error), c_int)
+    end function projection
+
+    integer(c_int) function events(t, y, gout, user_data) result(ierr) &
+            & bind(c, name="rollcon_cvode_events")
+        real(c_double), value :: t
+        type(N_Vector) :: y
+        real(c_double) :: gout(*)
+        type(c_ptr), value :: user_data
+        type(problem_type), pointer :: problem
+        real(c_double), pointer :: yv(:)
+        real(wp) :: g(2)
+        integer :: n
+
+        call c_f_pointer(user_data, problem)
+        yv => FN_VGetArrayPointer(y)
+        n = problem%eq%n
+        ierr = int(problem%root_values(t, yv(:n), yv(n + 1:), g), c_int)
+        gout(1:2) = g
+    end function events
+
+end module rollcon_cvode

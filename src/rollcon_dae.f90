@@ -1,0 +1,119 @@
+! SPDX-License-Identifier: MIT
+!> The DAE form for IDA (shared/DESIGN.md section 4): unknowns y = (q, u, lambda, mu),
+!>
+!>     q' - u - G^T mu = 0          (mu: one per position UCON, stabilises F = 0; GGL form)
+!>     M u' - f - C^T lambda = 0
+!>     F_k = 0                       velocity UCON k
+!>     dF_k/dq u + dF_k/dt = 0       position UCON k (its velocity form)
+!>     F_h = 0                       position UCON h (with mu_h)
+!>
+!> which has index 2 with every constraint enforced directly: no drift by construction.
+module rollcon_dae
+    use rollcon_kinds, only : wp
+    use rollcon_error, only : error_type
+    use rollcon_constraints, only : need_value, need_first, need_second, need_time
+    use rollcon_equations, only : equations_type
+    implicit none
+    private
+
+    public :: dae_size, dae_residual, dae_jacobian, dae_differential
+
+contains
+
+    !> Number of DAE unknowns: 2 n + nc + nh.
+    pure function dae_size(eq) result(size_dae)
+        type(equations_type), intent(in) :: eq
+        integer :: size_dae
+
+        size_dae = 2*eq%n + eq%nc + eq%nh
+    end function dae_size
+
+    !> 1 for differential unknowns (q, u), 0 for algebraic ones (lambda, mu): IDA's id vector.
+    pure function dae_differential(eq) result(id)
+        type(equations_type), intent(in) :: eq
+        real(wp) :: id(2*eq%n + eq%nc + eq%nh)
+
+        id = 0.0_wp
+        id(:2*eq%n) = 1.0_wp
+    end function dae_differential
+
+    !> Residual of the DAE at (t, y, y').
+    subroutine dae_residual(eq, time, y, yp, r, error)
+        type(equations_type), intent(inout) :: eq
+        real(wp), intent(in) :: time, y(:), yp(:)
+        real(wp), intent(out) :: r(:)
+        type(error_type), allocatable, intent(out) :: error
+        integer :: n, nc, needs, k, h
+
+        n = eq%n
+        nc = eq%nc
+        needs = need_value + need_first
+        if (eq%nh > 0) needs = needs + need_time
+        associate (q => y(:n), u => y(n + 1:2*n), lambda => y(2*n + 1:2*n + nc), &
+            & mu => y(2*n + nc + 1:), qp => yp(:n), up => yp(n + 1:2*n), cs => eq%constraints)
+            call cs%evaluate(eq%model, time, q, u, needs, error)
+            if (allocated(error)) return
+            call eq%assemble(time, q, u)
+            r(:n) = qp - u
+            r(n + 1:2*n) = matmul(eq%mass, up) - eq%force
+            do k = 1, nc
+                h = eq%model%holonomic_number(k)
+                if (h > 0) then
+                    r(:n) = r(:n) - mu(h)*cs%grad_q(k, :)
+                    r(n + 1:2*n) = r(n + 1:2*n) - lambda(k)*cs%grad_q(k, :)
+                    r(2*n + k) = dot_product(cs%grad_q(k, :), u) + cs%dt(k)
+                    r(2*n + nc + h) = cs%value(k)
+                else
+                    r(n + 1:2*n) = r(n + 1:2*n) - lambda(k)*cs%grad_u(k, :)
+                    r(2*n + k) = cs%value(k)
+                end if
+            end do
+        end associate
+    end subroutine dae_residual
+
+    !> Newton matrix dr/dy + cj dr/dy', analytic from the UCOSUB's first and second partials.
+    subroutine dae_jacobian(eq, time, cj, y, yp, jac, error)
+        type(equations_type), intent(inout) :: eq
+        real(wp), intent(in) :: time, cj, y(:), yp(:)
+        real(wp), intent(out) :: jac(:, :)
+        type(error_type), allocatable, intent(out) :: error
+        integer :: n, nc, k, h, j, row
+
+        n = eq%n
+        nc = eq%nc
+        associate (q => y(:n), u => y(n + 1:2*n), lambda => y(2*n + 1:2*n + nc), &
+            & mu => y(2*n + nc + 1:), up => yp(n + 1:2*n), cs => eq%constraints)
+            call cs%evaluate(eq%model, time, q, u, need_value + need_first + need_second &
+                & + need_time, error)
+            if (allocated(error)) return
+            call eq%assemble(time, q, u)
+            call eq%constraint_rows(u)
+            call eq%momentum_jacobian(q, u, up, lambda)
+            jac = 0.0_wp
+            do j = 1, n
+                jac(j, j) = cj
+                jac(j, n + j) = -1.0_wp
+            end do
+            jac(n + 1:2*n, :n) = eq%dm_dq
+            jac(n + 1:2*n, n + 1:2*n) = eq%dm_du + cj*eq%mass
+            do k = 1, nc
+                h = eq%model%holonomic_number(k)
+                row = 2*n + k
+                jac(n + 1:2*n, row) = -eq%c(k, :)
+                if (h > 0) then
+                    jac(:n, :n) = jac(:n, :n) - mu(h)*cs%hqq(:, :, k)
+                    jac(:n, 2*n + nc + h) = -cs%grad_q(k, :)
+                    do j = 1, n
+                        jac(row, j) = dot_product(cs%hqq(:, j, k), u) + cs%dt_grad_q(k, j)
+                    end do
+                    jac(row, n + 1:2*n) = cs%grad_q(k, :)
+                    jac(2*n + nc + h, :n) = cs%grad_q(k, :)
+                else
+                    jac(row, :n) = cs%grad_q(k, :)
+                    jac(row, n + 1:2*n) = cs%grad_u(k, :)
+                end if
+            end do
+        end associate
+    end subroutine dae_jacobian
+
+end module rollcon_dae

@@ -1,0 +1,337 @@
+! SPDX-License-Identifier: MIT
+!> Equations of motion of a model: the ODE form (accelerations from the saddle-point system,
+!> its Jacobian, velocity projection) shared by every formulation (shared/DESIGN.md section 4).
+!>
+!> M(q) a = f(q, u, t) + C^T lambda,  C a = gamma, where C_k = dF_k/du for a velocity UCON and
+!> dF_k/dq for a position UCON, and gamma makes the constraint's time derivative vanish.
+module rollcon_equations
+    use rollcon_kinds, only : wp
+    use rollcon_error, only : error_type
+    use rollcon_model, only : model_type
+    use rollcon_body, only : body_residual, body_mass_matrix, body_residual_jacobian, &
+        & kinetic_energy
+    use rollcon_force, only : force_and_moment
+    use rollcon_constraints, only : constraint_state_type, need_value, need_first, need_second, &
+        & need_time
+    use rollcon_lapack, only : factor_dense, solve_factored
+    implicit none
+    private
+
+    public :: equations_type, drift_none, drift_projection, drift_baumgarte
+
+    !> Drift control of the ODE form: none, projection onto the constraints, Baumgarte
+    integer, parameter :: drift_none = 0, drift_projection = 1, drift_baumgarte = 2
+
+    !> A model with the workspace its equations need (allocated once, in init)
+    type :: equations_type
+        !> The model, set up
+        type(model_type) :: model
+        !> Constraint values and partials at the last evaluation
+        type(constraint_state_type) :: constraints
+        !> drift_none, drift_projection or drift_baumgarte
+        integer :: drift = drift_projection
+        !> Baumgarte rate alpha [1/s]: F' = -alpha F (velocity), F'' = -2 alpha F' - alpha^2 F
+        real(wp) :: baumgarte_rate = 10.0_wp
+        !> Sizes: coordinates, constraints, holonomic constraints
+        integer :: n = 0, nc = 0, nh = 0
+        !> Mass matrix, applied and inertial forces f, constraint matrix C, gamma
+        real(wp), allocatable :: mass(:, :), force(:), c(:, :), gamma(:)
+        !> Applied moment about each part's centre, ground components [N m] (3, parts)
+        real(wp), allocatable :: moments(:, :)
+        !> Saddle-point matrix and its LU factors, pivots, right-hand sides
+        real(wp), allocatable :: kkt(:, :), rhs(:, :)
+        integer, allocatable :: pivots(:)
+        !> Jacobian blocks of the momentum rows d(M a - f - C^T lambda)/d(q, u)
+        real(wp), allocatable :: dm_dq(:, :), dm_du(:, :)
+    contains
+        procedure :: init
+        procedure :: accelerations
+        procedure :: ode_jacobian
+        procedure :: project
+        procedure :: energy
+        procedure :: constraint_force
+        procedure :: assemble
+        procedure :: constraint_rows
+        procedure :: momentum_jacobian
+    end type equations_type
+
+contains
+
+    !> Take a model that setup_model has prepared and size the workspace.
+    subroutine init(self, model)
+        class(equations_type), intent(inout) :: self
+        type(model_type), intent(in) :: model
+
+        self%model = model
+        self%n = model%n
+        self%nc = model%nc
+        self%nh = model%nh
+        call self%constraints%allocate(model)
+        associate (n => self%n, nc => self%nc)
+            allocate(self%mass(n, n), self%force(n), self%c(nc, n), self%gamma(nc), source=0.0_wp)
+            allocate(self%moments(3, size(model%parts)), source=0.0_wp)
+            allocate(self%kkt(n + nc, n + nc), self%rhs(n + nc, 2*n), source=0.0_wp)
+            allocate(self%pivots(n + nc), source=0)
+            allocate(self%dm_dq(n, n), self%dm_du(n, n), source=0.0_wp)
+        end associate
+    end subroutine init
+
+    !> Mass matrix and f = -(M a - f) at a = 0, part by part.
+    subroutine assemble(self, time, q, u)
+        class(equations_type), intent(inout) :: self
+        real(wp), intent(in) :: time, q(:), u(:)
+        real(wp), parameter :: zero6(6) = 0.0_wp
+        real(wp) :: applied(3)
+        integer :: p, i0
+
+        self%mass = 0.0_wp
+        do p = 1, size(self%model%parts)
+            i0 = 6*(p - 1)
+            call force_and_moment(self%model%forces, p, time, q(i0 + 1:i0 + 6), applied, &
+                & self%moments(:, p))
+            self%mass(i0 + 1:i0 + 6, i0 + 1:i0 + 6) = body_mass_matrix(self%model%parts(p), &
+                & q(i0 + 1:i0 + 6))
+            self%force(i0 + 1:i0 + 6) = -body_residual(self%model%parts(p), q(i0 + 1:i0 + 6), &
+                & u(i0 + 1:i0 + 6), zero6, applied, self%moments(:, p), self%model%gravity)
+        end do
+    end subroutine assemble
+
+    !> C (velocity UCON: dF/du; position UCON: dF/dq) and gamma, from the last evaluation.
+    subroutine constraint_rows(self, u)
+        class(equations_type), intent(inout) :: self
+        real(wp), intent(in) :: u(:)
+        real(wp) :: alpha, rate
+        integer :: k
+
+        alpha = 0.0_wp
+        if (self%drift == drift_baumgarte) alpha = self%baumgarte_rate
+        associate (cs => self%constraints)
+            do k = 1, self%nc
+                if (self%model%ucons(k)%holonomic) then
+                    self%c(k, :) = cs%grad_q(k, :)
+                    rate = dot_product(cs%grad_q(k, :), u) + cs%dt(k)
+                    self%gamma(k) = -dot_product(u, matmul(cs%hqq(:, :, k), u)) &
+                        & - 2.0_wp*dot_product(cs%dt_grad_q(k, :), u) - cs%dtt(k) &
+                        & - 2.0_wp*alpha*rate - alpha**2*cs%value(k)
+                else
+                    self%c(k, :) = cs%grad_u(k, :)
+                    self%gamma(k) = -dot_product(cs%grad_q(k, :), u) - cs%dt(k) &
+                        & - alpha*cs%value(k)
+                end if
+            end do
+        end associate
+    end subroutine constraint_rows
+
+    !> Accelerations a and multipliers lambda at (t, q, u); leaves the factored saddle-point
+    !> matrix in kkt/pivots for the Jacobian.
+    subroutine accelerations(self, time, q, u, a, lambda, error, second)
+        class(equations_type), intent(inout) :: self
+        real(wp), intent(in) :: time, q(:), u(:)
+        !> Accelerations [m/s^2, rad/s^2]
+        real(wp), intent(out) :: a(:)
+        !> Multipliers: the constraint forces' amplitudes
+        real(wp), intent(out) :: lambda(:)
+        type(error_type), allocatable, intent(out) :: error
+        !> Also evaluate second partials (needed by the Jacobian, or by position UCONs)
+        logical, intent(in), optional :: second
+        integer :: needs, n, nc
+
+        n = self%n
+        nc = self%nc
+        needs = need_value + need_first + need_time
+        if (self%nh > 0) needs = needs + need_second
+        if (present(second)) then
+            if (second .and. self%nh == 0) needs = needs + need_second
+        end if
+        call self%constraints%evaluate(self%model, time, q, u, needs, error)
+        if (allocated(error)) return
+        call self%assemble(time, q, u)
+        call self%constraint_rows(u)
+        self%kkt(:n, :n) = self%mass
+        self%kkt(:n, n + 1:) = -transpose(self%c)
+        self%kkt(n + 1:, :n) = self%c
+        self%kkt(n + 1:, n + 1:) = 0.0_wp
+        self%rhs(:n, 1) = self%force
+        self%rhs(n + 1:, 1) = self%gamma
+        call factor_dense(self%kkt, self%pivots, error)
+        if (allocated(error)) return
+        call solve_factored(self%kkt, self%pivots, self%rhs(:, 1:1), error)
+        if (allocated(error)) return
+        a = self%rhs(:n, 1)
+        lambda = self%rhs(n + 1:, 1)
+    end subroutine accelerations
+
+    !> d(M a - f - C^T lambda)/dq and /du at given a, lambda (into dm_dq, dm_du).
+    subroutine momentum_jacobian(self, q, u, a, lambda)
+        class(equations_type), intent(inout) :: self
+        real(wp), intent(in) :: q(:), u(:), a(:), lambda(:)
+        integer :: p, i0, k
+
+        self%dm_dq = 0.0_wp
+        self%dm_du = 0.0_wp
+        do p = 1, size(self%model%parts)
+            i0 = 6*(p - 1)
+            call body_residual_jacobian(self%model%parts(p), q(i0 + 1:i0 + 6), u(i0 + 1:i0 + 6), &
+                & a(i0 + 1:i0 + 6), self%moments(:, p), self%dm_dq(i0 + 1:i0 + 6, i0 + 1:i0 + 6), &
+                & self%dm_du(i0 + 1:i0 + 6, i0 + 1:i0 + 6))
+        end do
+        ! -d(C^T lambda)/dq: second partials are why ADAMS asks a UCOSUB for XMATRX (DESIGN 4)
+        do k = 1, self%nc
+            if (self%model%ucons(k)%holonomic) then
+                self%dm_dq = self%dm_dq - lambda(k)*self%constraints%hqq(:, :, k)
+            else
+                self%dm_dq = self%dm_dq - lambda(k)*transpose(self%constraints%hqu(:, :, k))
+            end if
+        end do
+    end subroutine momentum_jacobian
+
+    !> Jacobian of the ODE right-hand side (q, u)' = (u, a(q, u, t)): da/dy = -K^-1 dG/dy with
+    !> G = (M a - f - C^T lambda, C a - gamma) at fixed (a, lambda). For position UCONs the
+    !> third partials of F in dgamma/dq are not available and are left out.
+    subroutine ode_jacobian(self, time, q, u, jac, error)
+        class(equations_type), intent(inout) :: self
+        real(wp), intent(in) :: time, q(:), u(:)
+        !> d(q', u')/d(q, u), 2n x 2n
+        real(wp), intent(out) :: jac(:, :)
+        type(error_type), allocatable, intent(out) :: error
+        real(wp) :: a(self%n), lambda(self%nc), alpha
+        integer :: n, k, j
+
+        n = self%n
+        call self%accelerations(time, q, u, a, lambda, error, second=.true.)
+        if (allocated(error)) return
+        call self%momentum_jacobian(q, u, a, lambda)
+        alpha = 0.0_wp
+        if (self%drift == drift_baumgarte) alpha = self%baumgarte_rate
+        self%rhs(:n, :n) = -self%dm_dq
+        self%rhs(:n, n + 1:) = -self%dm_du
+        associate (cs => self%constraints)
+            do k = 1, self%nc
+                if (self%model%ucons(k)%holonomic) then
+                    do j = 1, n
+                        self%rhs(n + k, j) = -dot_product(cs%hqq(:, j, k), a) &
+                            & - 2.0_wp*alpha*(dot_product(cs%hqq(:, j, k), u) &
+                            & + cs%dt_grad_q(k, j)) - alpha**2*cs%grad_q(k, j)
+                        self%rhs(n + k, n + j) = -2.0_wp*dot_product(cs%hqq(:, j, k), u) &
+                            & - 2.0_wp*cs%dt_grad_q(k, j) - 2.0_wp*alpha*cs%grad_q(k, j)
+                    end do
+                else
+                    ! C a - gamma = dF/du a + dF/dq u + dF/dt + alpha F
+                    do j = 1, n
+                        self%rhs(n + k, j) = -(dot_product(cs%hqu(j, :, k), a) &
+                            & + dot_product(cs%hqq(:, j, k), u) + cs%dt_grad_q(k, j) &
+                            & + alpha*cs%grad_q(k, j))
+                        self%rhs(n + k, n + j) = -(cs%grad_q(k, j) &
+                            & + dot_product(cs%hqu(:, j, k), u) + cs%dt_grad_u(k, j) &
+                            & + alpha*cs%grad_u(k, j))
+                    end do
+                end if
+            end do
+        end associate
+        call solve_factored(self%kkt, self%pivots, self%rhs, error)
+        if (allocated(error)) return
+        jac = 0.0_wp
+        do j = 1, n
+            jac(j, n + j) = 1.0_wp
+        end do
+        jac(n + 1:, :) = self%rhs(:n, :)
+    end subroutine ode_jacobian
+
+    !> Correction (dq, du) that puts (q, u) back on the constraints: a mass-weighted least
+    !> change, one Newton step for position UCONs, exact for velocity UCONs (linear in u).
+    subroutine project(self, time, q, u, dq, du, error)
+        class(equations_type), intent(inout) :: self
+        real(wp), intent(in) :: time, q(:), u(:)
+        real(wp), intent(out) :: dq(:), du(:)
+        type(error_type), allocatable, intent(out) :: error
+        real(wp) :: qp(self%n)
+        integer :: n, k
+
+        n = self%n
+        dq = 0.0_wp
+        du = 0.0_wp
+        qp = q
+        if (self%nh > 0) then
+            call self%constraints%evaluate(self%model, time, q, u, need_value + need_first, error)
+            if (allocated(error)) return
+            call self%assemble(time, q, u)
+            self%kkt = 0.0_wp
+            self%kkt(:n, :n) = self%mass
+            self%rhs(:, 1) = 0.0_wp
+            do k = 1, self%nc
+                ! only position UCONs constrain q; the others get an identity row (nu_k = 0)
+                if (self%model%ucons(k)%holonomic) then
+                    self%kkt(:n, n + k) = -self%constraints%grad_q(k, :)
+                    self%kkt(n + k, :n) = self%constraints%grad_q(k, :)
+                    self%rhs(n + k, 1) = -self%constraints%value(k)
+                else
+                    self%kkt(n + k, n + k) = 1.0_wp
+                end if
+            end do
+            call solve_kkt(self, error)
+            if (allocated(error)) return
+            dq = self%rhs(:n, 1)
+            qp = q + dq
+        end if
+        call self%constraints%evaluate(self%model, time, qp, u, need_value + need_first &
+            & + need_time, error)
+        if (allocated(error)) return
+        call self%assemble(time, qp, u)
+        self%kkt = 0.0_wp
+        self%kkt(:n, :n) = self%mass
+        do k = 1, self%nc
+            associate (cs => self%constraints)
+                if (self%model%ucons(k)%holonomic) then
+                    self%c(k, :) = cs%grad_q(k, :)
+                    self%rhs(n + k, 1) = -(dot_product(cs%grad_q(k, :), u) + cs%dt(k))
+                else
+                    self%c(k, :) = cs%grad_u(k, :)
+                    self%rhs(n + k, 1) = -cs%value(k)
+                end if
+            end associate
+        end do
+        self%kkt(:n, n + 1:) = -transpose(self%c)
+        self%kkt(n + 1:, :n) = self%c
+        self%rhs(:n, 1) = 0.0_wp
+        call solve_kkt(self, error)
+        if (allocated(error)) return
+        du = self%rhs(:n, 1)
+    end subroutine project
+
+    !> Factor kkt and solve for rhs(:, 1).
+    subroutine solve_kkt(self, error)
+        type(equations_type), intent(inout) :: self
+        type(error_type), allocatable, intent(out) :: error
+
+        call factor_dense(self%kkt, self%pivots, error)
+        if (allocated(error)) return
+        call solve_factored(self%kkt, self%pivots, self%rhs(:, 1:1), error)
+    end subroutine solve_kkt
+
+    !> Total energy: kinetic plus gravitational potential [J].
+    pure function energy(self, q, u) result(e)
+        class(equations_type), intent(in) :: self
+        real(wp), intent(in) :: q(:), u(:)
+        real(wp) :: e
+        integer :: p, i0
+
+        e = 0.0_wp
+        do p = 1, size(self%model%parts)
+            i0 = 6*(p - 1)
+            e = e + kinetic_energy(self%model%parts(p), q(i0 + 1:i0 + 6), u(i0 + 1:i0 + 6)) &
+                & - self%model%parts(p)%mass*dot_product(self%model%gravity, q(i0 + 1:i0 + 3))
+        end do
+    end function energy
+
+    !> Constraint force on part p, ground components [N]: the translational rows of C^T lambda,
+    !> with C as left by the last accelerations call.
+    pure function constraint_force(self, p, lambda) result(force)
+        class(equations_type), intent(in) :: self
+        integer, intent(in) :: p
+        real(wp), intent(in) :: lambda(:)
+        real(wp) :: force(3)
+
+        force = matmul(lambda, self%c(:, 6*(p - 1) + 1:6*(p - 1) + 3))
+    end function constraint_force
+
+end module rollcon_equations

@@ -1,0 +1,99 @@
+! SPDX-License-Identifier: MIT
+!> Body-fixed 3-1-3 Euler angles: rotation matrix, the map from angle rates to body angular
+!> velocity, and its derivatives (shared/DESIGN.md section 3).
+module rollcon_rotation
+    use rollcon_kinds, only : wp
+    implicit none
+    private
+
+    public :: rotation_matrix, rate_matrix, rate_matrix_dtheta, rate_matrix_dphi
+    public :: rate_matrix_dtheta2, rate_matrix_dtheta_dphi, rate_matrix_dphi2, cross
+
+contains
+
+    !> R = Rz(psi) Rx(theta) Rz(phi): body components to ground components.
+    pure function rotation_matrix(psi, theta, phi) result(r)
+        !> Euler angles [rad]
+        real(wp), intent(in) :: psi, theta, phi
+        real(wp) :: r(3, 3)
+        real(wp) :: cps, sps, cth, sth, cph, sph
+
+        cps = cos(psi)
+        sps = sin(psi)
+        cth = cos(theta)
+        sth = sin(theta)
+        cph = cos(phi)
+        sph = sin(phi)
+        r(1, :) = [cps*cph - sps*cth*sph, -cps*sph - sps*cth*cph, sps*sth]
+        r(2, :) = [sps*cph + cps*cth*sph, -sps*sph + cps*cth*cph, -cps*sth]
+        r(3, :) = [sth*sph, sth*cph, cth]
+    end function rotation_matrix
+
+    !> B with omega' = B (psidot, thetadot, phidot): body components of the angular velocity.
+    !> Singular where sin(theta) = 0.
+    pure function rate_matrix(theta, phi) result(b)
+        !> Nutation and spin angles [rad]
+        real(wp), intent(in) :: theta, phi
+        real(wp) :: b(3, 3)
+
+        b(:, 1) = [sin(theta)*sin(phi), sin(theta)*cos(phi), cos(theta)]
+        b(:, 2) = [cos(phi), -sin(phi), 0.0_wp]
+        b(:, 3) = [0.0_wp, 0.0_wp, 1.0_wp]
+    end function rate_matrix
+
+    !> dB/dtheta.
+    pure function rate_matrix_dtheta(theta, phi) result(b)
+        real(wp), intent(in) :: theta, phi
+        real(wp) :: b(3, 3)
+
+        b = 0.0_wp
+        b(:, 1) = [cos(theta)*sin(phi), cos(theta)*cos(phi), -sin(theta)]
+    end function rate_matrix_dtheta
+
+    !> dB/dphi.
+    pure function rate_matrix_dphi(theta, phi) result(b)
+        real(wp), intent(in) :: theta, phi
+        real(wp) :: b(3, 3)
+
+        b = 0.0_wp
+        b(:, 1) = [sin(theta)*cos(phi), -sin(theta)*sin(phi), 0.0_wp]
+        b(:, 2) = [-sin(phi), -cos(phi), 0.0_wp]
+    end function rate_matrix_dphi
+
+    !> d2B/dtheta2.
+    pure function rate_matrix_dtheta2(theta, phi) result(b)
+        real(wp), intent(in) :: theta, phi
+        real(wp) :: b(3, 3)
+
+        b = 0.0_wp
+        b(:, 1) = [-sin(theta)*sin(phi), -sin(theta)*cos(phi), -cos(theta)]
+    end function rate_matrix_dtheta2
+
+    !> d2B/dtheta dphi.
+    pure function rate_matrix_dtheta_dphi(theta, phi) result(b)
+        real(wp), intent(in) :: theta, phi
+        real(wp) :: b(3, 3)
+
+        b = 0.0_wp
+        b(:, 1) = [cos(theta)*cos(phi), -cos(theta)*sin(phi), 0.0_wp]
+    end function rate_matrix_dtheta_dphi
+
+    !> d2B/dphi2.
+    pure function rate_matrix_dphi2(theta, phi) result(b)
+        real(wp), intent(in) :: theta, phi
+        real(wp) :: b(3, 3)
+
+        b = 0.0_wp
+        b(:, 1) = [-sin(theta)*sin(phi), -sin(theta)*cos(phi), 0.0_wp]
+        b(:, 2) = [-cos(phi), sin(phi), 0.0_wp]
+    end function rate_matrix_dphi2
+
+    !> Cross product a x b.
+    pure function cross(a, b) result(c)
+        real(wp), intent(in) :: a(3), b(3)
+        real(wp) :: c(3)
+
+        c = [a(2)*b(3) - a(3)*b(2), a(3)*b(1) - a(1)*b(3), a(1)*b(2) - a(2)*b(1)]
+    end function cross
+
+end module rollcon_rotation

@@ -1,0 +1,57 @@
+! SPDX-License-Identifier: MIT
+!> Runs a disk scene in memory for the tests.
+module motion_runs
+    use rollcon_kinds, only : wp
+    use rollcon_error, only : error_type
+    use rollcon_ucon, only : ucosub_interface
+    use rollcon_scene, only : scene_type
+    use rollcon_disk_scene, only : build_disk_problem
+    use rollcon_problem, only : problem_type
+    use rollcon_simulation, only : run_options_type, run_summary_type, history_type, simulate
+    use rollcon_disk_hand, only : rolling_disk_ucosub
+    implicit none
+    private
+
+    public :: run_in_memory, default_scene
+
+contains
+
+    !> The paper's disk, upright, at rest, IDA, no strike, no limits: tests change what they need.
+    function default_scene() result(scene)
+        type(scene_type) :: scene
+
+        scene%name = "test"
+        scene%path = "(built in the test)"
+        scene%formulation = "ida"
+        scene%method = "bdf"
+        scene%drift = "projection"
+        scene%jacobian = "analytic"
+        scene%height = "velocity"
+        scene%theta_min = -1.0_wp
+        scene%stop_on_liftoff = .false.
+    end function default_scene
+
+    !> Simulate scene with ucosub (default: the hand-checked disk) and keep every output row.
+    subroutine run_in_memory(scene, history, summary, error, ucosub)
+        type(scene_type), intent(in) :: scene
+        type(history_type), intent(out) :: history
+        type(run_summary_type), intent(out) :: summary
+        type(error_type), allocatable, intent(out) :: error
+        procedure(ucosub_interface), optional :: ucosub
+        type(problem_type), target :: problem
+        type(run_options_type) :: options
+        real(wp) :: q0(6), u0(6)
+
+        if (present(ucosub)) then
+            call build_disk_problem(scene, ucosub, problem, q0, u0, error)
+        else
+            call build_disk_problem(scene, rolling_disk_ucosub, problem, q0, u0, error)
+        end if
+        if (allocated(error)) return
+        options%end_time = scene%end_time
+        options%output_step = scene%output_step
+        options%progress = .false.
+        call simulate(problem, q0, u0, options, summary, error, history)
+    end subroutine run_in_memory
+
+end module motion_runs

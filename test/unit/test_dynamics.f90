@@ -1,0 +1,199 @@
+! SPDX-License-Identifier: MIT
+!> Tests of the rigid-body equations and the Newton matrices built from the UCOSUB's partials.
+module test_dynamics
+    use rollcon_kinds, only : wp
+    use rollcon_error, only : error_type
+    use rollcon_text, only : to_text
+    use rollcon_body, only : part_type, body_residual, body_residual_jacobian, body_mass_matrix, &
+        & kinetic_energy
+    use rollcon_problem, only : problem_type
+    use rollcon_dae, only : dae_size, dae_residual, dae_jacobian
+    use rollcon_equations, only : drift_none, drift_baumgarte
+    use rollcon_scene, only : scene_type
+    use rollcon_disk_scene, only : build_disk_problem
+    use rollcon_disk_hand, only : rolling_disk_ucosub
+    use rollcon_testing, only : unittest_type, new_unittest, check
+    implicit none
+    private
+
+    public :: collect_dynamics
+
+    !> Central differences with h = 1e-6 on O(1) functions: truncation ~h^2 = 1e-12 and
+    !> round-off ~eps/h = 2e-10 relative to the function's scale; 1e-6 leaves a margin for
+    !> the larger rates used, while a wrong term (O(1) of the scale) is far above it.
+    real(wp), parameter :: tol_fd = 1.0e-6_wp
+    real(wp), parameter :: h_fd = 1.0e-6_wp
+
+contains
+
+    subroutine collect_dynamics(tests)
+        type(unittest_type), allocatable, intent(out) :: tests(:)
+
+        allocate(tests(0))
+        tests = [new_unittest("body-jacobian-vs-fd", test_body_jacobian), &
+            & new_unittest("mass-matrix-from-energy", test_mass_matrix), &
+            & new_unittest("ode-jacobian-vs-fd", test_ode_jacobian), &
+            & new_unittest("ode-jacobian-baumgarte-vs-fd", test_ode_jacobian_baumgarte), &
+            & new_unittest("dae-jacobian-vs-fd", test_dae_jacobian)]
+    end subroutine collect_dynamics
+
+    !> A generic state of the paper's disk: tilted, turning, no angle at a special value.
+    subroutine generic_problem(problem, q, u, drift)
+        type(problem_type), intent(inout) :: problem
+        real(wp), intent(out) :: q(6), u(6)
+        integer, intent(in) :: drift
+        type(scene_type) :: scene
+        type(error_type), allocatable :: error
+
+        scene%theta = 1.1_wp
+        scene%psi = 0.4_wp
+        scene%phi = 0.7_wp
+        scene%psidot = 1.3_wp
+        scene%thetadot = -0.6_wp
+        scene%phidot = -4.0_wp
+        call build_disk_problem(scene, rolling_disk_ucosub, problem, q, u, error)
+        if (allocated(error)) error stop "generic_problem: " // error%message
+        problem%eq%drift = drift
+        call problem%prepare()
+    end subroutine generic_problem
+
+    subroutine test_body_jacobian(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(part_type) :: part
+        real(wp) :: q(6), u(6), a(6), dq(6, 6), du(6, 6), fd(6), torque(3), force(3), g(3)
+        real(wp) :: qh(6), uh(6)
+        integer :: j
+
+        part%mass = 2.0_wp
+        part%inertia = [0.3_wp, 0.5_wp, 0.7_wp]
+        q = [0.1_wp, -0.2_wp, 0.3_wp, 0.4_wp, 1.0_wp, -0.8_wp]
+        u = [0.5_wp, 0.1_wp, -0.3_wp, 1.5_wp, -0.7_wp, 2.5_wp]
+        a = [0.2_wp, -0.4_wp, 0.1_wp, 0.9_wp, 0.3_wp, -1.1_wp]
+        force = [0.0_wp, 0.0_wp, 0.0_wp]
+        torque = [0.0_wp, 0.0_wp, 0.0_wp]
+        g = [0.0_wp, 0.0_wp, -9.81_wp]
+        call body_residual_jacobian(part, q, u, a, torque, dq, du)
+        do j = 1, 6
+            qh = q
+            qh(j) = q(j) + h_fd
+            fd = body_residual(part, qh, u, a, force, torque, g)
+            qh(j) = q(j) - h_fd
+            fd = (fd - body_residual(part, qh, u, a, force, torque, g))/(2.0_wp*h_fd)
+            call check(error, dq(:, j), fd, "d(M a - f)/dq column " // to_text(j), abs_tol=tol_fd)
+            if (allocated(error)) return
+            uh = u
+            uh(j) = u(j) + h_fd
+            fd = body_residual(part, q, uh, a, force, torque, g)
+            uh(j) = u(j) - h_fd
+            fd = (fd - body_residual(part, q, uh, a, force, torque, g))/(2.0_wp*h_fd)
+            call check(error, du(:, j), fd, "d(M a - f)/du column " // to_text(j), abs_tol=tol_fd)
+            if (allocated(error)) return
+        end do
+    end subroutine test_body_jacobian
+
+    !> u^T M u = 2 T: the mass matrix and the kinetic energy are the same quadratic form.
+    subroutine test_mass_matrix(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(part_type) :: part
+        real(wp) :: q(6), u(6)
+
+        part%mass = 0.7_wp
+        part%inertia = [1.8e-3_wp, 1.8e-3_wp, 3.6e-3_wp]
+        q = [0.0_wp, 0.0_wp, 0.1_wp, 0.3_wp, 0.9_wp, 2.0_wp]
+        u = [0.1_wp, 0.2_wp, -0.1_wp, 3.0_wp, -1.0_wp, 7.0_wp]
+        call check(error, dot_product(u, matmul(body_mass_matrix(part, q), u)), &
+            & 2.0_wp*kinetic_energy(part, q, u), "u^T M u against 2 T", rel_tol=1.0e-14_wp)
+    end subroutine test_mass_matrix
+
+    !> The ODE Jacobian from the UCOSUB's partials against central differences of the
+    !> right-hand side (which solves the saddle-point system each time).
+    subroutine check_ode_jacobian(error, drift)
+        type(error_type), allocatable, intent(out) :: error
+        integer, intent(in) :: drift
+        type(problem_type), target :: problem
+        type(error_type), allocatable :: failure
+        real(wp) :: q(6), u(6), y(12), yh(12), jac(12, 12), fp(12), fm(12), scale
+        integer :: j, ierr
+
+        call generic_problem(problem, q, u, drift)
+        y = [q, u]
+        call problem%eq%ode_jacobian(0.0_wp, q, u, jac, failure)
+        if (allocated(failure)) then
+            call move_alloc(failure, error)
+            return
+        end if
+        scale = maxval(abs(jac))
+        do j = 1, 12
+            yh = y
+            yh(j) = y(j) + h_fd
+            ierr = problem%ode_rhs(0.0_wp, yh, fp)
+            yh(j) = y(j) - h_fd
+            ierr = ierr + problem%ode_rhs(0.0_wp, yh, fm)
+            call check(error, ierr == 0, "right-hand side failed")
+            if (allocated(error)) return
+            call check(error, jac(:, j), (fp - fm)/(2.0_wp*h_fd), "ODE Jacobian column " &
+                & // to_text(j), abs_tol=tol_fd*scale)
+            if (allocated(error)) return
+        end do
+    end subroutine check_ode_jacobian
+
+    subroutine test_ode_jacobian(error)
+        type(error_type), allocatable, intent(out) :: error
+
+        call check_ode_jacobian(error, drift_none)
+    end subroutine test_ode_jacobian
+
+    subroutine test_ode_jacobian_baumgarte(error)
+        type(error_type), allocatable, intent(out) :: error
+
+        call check_ode_jacobian(error, drift_baumgarte)
+    end subroutine test_ode_jacobian_baumgarte
+
+    !> IDA's Newton matrix dr/dy + cj dr/dy' against central differences of the residual.
+    subroutine test_dae_jacobian(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(problem_type), target :: problem
+        type(error_type), allocatable :: failure
+        real(wp) :: q(6), u(6), cj, scale
+        real(wp), allocatable :: y(:), yp(:), yh(:), rp(:), rm(:), jac(:, :), fd(:)
+        integer :: m, j, jj
+
+        call generic_problem(problem, q, u, drift_none)
+        m = dae_size(problem%eq)
+        allocate(y(m), yp(m), yh(m), rp(m), rm(m), fd(m), jac(m, m))
+        call problem%eq%accelerations(0.0_wp, q, u, problem%a, problem%lambda, failure)
+        if (allocated(failure)) then
+            call move_alloc(failure, error)
+            return
+        end if
+        y = [q, u, problem%lambda]
+        yp = [u, problem%a, [(0.0_wp, j = 1, problem%eq%nc)]]
+        ! perturb the rates so the test does not sit on the consistent manifold only
+        yp(1:6) = yp(1:6) + 0.05_wp
+        cj = 37.0_wp
+        call dae_jacobian(problem%eq, 0.0_wp, cj, y, yp, jac, failure)
+        if (allocated(failure)) then
+            call move_alloc(failure, error)
+            return
+        end if
+        scale = maxval(abs(jac))
+        do j = 1, m
+            yh = y
+            yh(j) = y(j) + h_fd
+            call dae_residual(problem%eq, 0.0_wp, yh, yp + merge(cj*h_fd, 0.0_wp, &
+                & [(j == jj, jj = 1, m)]), rp, failure)
+            yh(j) = y(j) - h_fd
+            call dae_residual(problem%eq, 0.0_wp, yh, yp - merge(cj*h_fd, 0.0_wp, &
+                & [(j == jj, jj = 1, m)]), rm, failure)
+            if (allocated(failure)) then
+                call move_alloc(failure, error)
+                return
+            end if
+            fd = (rp - rm)/(2.0_wp*h_fd)
+            call check(error, jac(:, j), fd, "DAE Newton matrix column " // to_text(j), &
+                & abs_tol=tol_fd*scale)
+            if (allocated(error)) return
+        end do
+    end subroutine test_dae_jacobian
+
+end module test_dynamics

@@ -1,0 +1,354 @@
+! SPDX-License-Identifier: MIT
+!> Physics of simulated motions: conserved energy, held constraints, analytic steady motions,
+!> the stability threshold and wobble frequency of upright rolling, the strike's momentum,
+!> agreement of the ODE (CVODE) and DAE (IDA) formulations.
+module test_motion
+    use rollcon_kinds, only : wp
+    use rollcon_error, only : error_type
+    use rollcon_text, only : to_text
+    use rollcon_scene, only : scene_type
+    use rollcon_disk_scene, only : disk_mass_properties
+    use rollcon_simulation, only : history_type, run_summary_type, status_stopped, &
+        & column_time, column_x, column_y, column_z, column_psi, column_theta, column_phi, &
+        & column_xdot, column_ydot, column_zdot, column_thetadot, column_fx, column_fy, &
+        & column_fz, column_residual
+    use rollcon_testing, only : unittest_type, new_unittest, check
+    use motion_runs, only : run_in_memory, default_scene
+    implicit none
+    private
+
+    public :: collect_motion
+
+    real(wp), parameter :: pi = acos(-1.0_wp)
+
+contains
+
+    subroutine collect_motion(tests)
+        type(unittest_type), allocatable, intent(out) :: tests(:)
+
+        allocate(tests(0))
+        tests = [new_unittest("energy-tipping-coin-ida", test_energy_ida), &
+            & new_unittest("energy-tipping-coin-cvode", test_energy_cvode), &
+            & new_unittest("energy-drift-shrinks-with-tolerance", test_energy_tolerance), &
+            & new_unittest("steady-circle", test_steady_circle), &
+            & new_unittest("upright-0.8-stays-upright", test_upright_stable), &
+            & new_unittest("upright-0.5-tips", test_upright_tips), &
+            & new_unittest("wobble-frequency-2-m-s", test_wobble), &
+            & new_unittest("cvode-agrees-with-ida", test_formulations_agree), &
+            & new_unittest("strike-momentum", test_strike_momentum), &
+            & new_unittest("theta-limit-stops-run", test_theta_event)]
+    end subroutine collect_motion
+
+    !> The tipping coin: upright less 0.01 rad, rolling at 0.1 m/s, no strike, 10 s.
+    function tipping_coin(formulation, rtol) result(scene)
+        character(len=*), intent(in) :: formulation
+        real(wp), intent(in) :: rtol
+        type(scene_type) :: scene
+
+        scene = default_scene()
+        scene%theta = 0.5_wp*pi - 0.01_wp
+        scene%phidot = -1.0_wp
+        scene%end_time = 10.0_wp
+        scene%output_step = 0.05_wp
+        scene%formulation = formulation
+        scene%rtol = rtol
+        scene%atol = 1.0e-2_wp*rtol
+    end function tipping_coin
+
+    !> Energy without forcing drifts by at most 1000 rtol over the tipping coin's 10 s (it
+    !> falls to theta ~ 0.12 rad and rises again: the hardest stretch for the integrators;
+    !> measured drifts are 30-150 rtol), and the constraints hold at the tolerance's level:
+    !> 100 rtol [m/s] for velocities of order 1 m/s.
+    subroutine check_energy(error, formulation)
+        type(error_type), allocatable, intent(out) :: error
+        character(len=*), intent(in) :: formulation
+        real(wp), parameter :: rtol = 1.0e-8_wp
+        type(history_type) :: history
+        type(run_summary_type) :: summary
+
+        call run_in_memory(tipping_coin(formulation, rtol), history, summary, error)
+        if (allocated(error)) return
+        call check(error, summary%t_reached, 10.0_wp, "end time", abs_tol=1.0e-12_wp)
+        if (allocated(error)) return
+        call check(error, minval(history%column(column_theta)) < 0.5_wp, &
+            & "the coin did not tip (min theta " // to_text(minval(history%column(column_theta))) &
+            & // ")")
+        if (allocated(error)) return
+        call check(error, summary%energy_drift, 0.0_wp, formulation // " energy drift", &
+            & abs_tol=1.0e3_wp*rtol)
+        if (allocated(error)) return
+        call check(error, summary%residual_max, 0.0_wp, formulation // " constraint residual", &
+            & abs_tol=1.0e2_wp*rtol)
+    end subroutine check_energy
+
+    subroutine test_energy_ida(error)
+        type(error_type), allocatable, intent(out) :: error
+
+        call check_energy(error, "ida")
+    end subroutine test_energy_ida
+
+    subroutine test_energy_cvode(error)
+        type(error_type), allocatable, intent(out) :: error
+
+        call check_energy(error, "cvode")
+    end subroutine test_energy_cvode
+
+    !> A hundredfold tighter tolerance gives at least a tenfold smaller drift, both ways.
+    subroutine test_energy_tolerance(error)
+        type(error_type), allocatable, intent(out) :: error
+        character(len=5), parameter :: formulations(2) = ["ida  ", "cvode"]
+        type(history_type) :: history
+        type(run_summary_type) :: loose, tight
+        integer :: i
+
+        do i = 1, 2
+            call run_in_memory(tipping_coin(trim(formulations(i)), 1.0e-6_wp), history, loose, &
+                & error)
+            if (allocated(error)) return
+            call run_in_memory(tipping_coin(trim(formulations(i)), 1.0e-8_wp), history, tight, &
+                & error)
+            if (allocated(error)) return
+            call check(error, tight%energy_drift < 0.1_wp*loose%energy_drift, &
+                & trim(formulations(i)) // ": drift " // to_text(tight%energy_drift) &
+                & // " at rtol 1e-8 against " // to_text(loose%energy_drift) // " at 1e-6")
+            if (allocated(error)) return
+        end do
+    end subroutine test_energy_tolerance
+
+    !> Steady motion at theta = 60 deg, phidot = -20 rad/s, psidot the slow root of
+    !> A W^2 s c - (C + m R^2) W (phidot + W c) s = m g R c (DESIGN section 5).
+    subroutine test_steady_circle(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(scene_type) :: scene
+        type(history_type) :: history
+        type(run_summary_type) :: summary
+        real(wp) :: mass, inertia(3), s, c, qa, qb, qc, root1, root2, omega, radius_path
+        real(wp) :: cx(3), cy(3), centre(2), d, distance
+        real(wp), allocatable :: px(:), py(:)
+        integer :: i, k(3)
+
+        scene = default_scene()
+        call disk_mass_properties(scene, mass, inertia)
+        scene%theta = pi/3.0_wp
+        scene%phidot = -20.0_wp
+        s = sin(scene%theta)
+        c = cos(scene%theta)
+        associate (a => inertia(1), cc => inertia(3), r => scene%radius, g => scene%gravity)
+            qa = s*c*(a - cc - mass*r**2)
+            qb = -(cc + mass*r**2)*scene%phidot*s
+            qc = -mass*g*r*c
+        end associate
+        root1 = (-qb + sqrt(qb**2 - 4.0_wp*qa*qc))/(2.0_wp*qa)
+        root2 = (-qb - sqrt(qb**2 - 4.0_wp*qa*qc))/(2.0_wp*qa)
+        omega = merge(root1, root2, abs(root1) < abs(root2))
+        scene%psidot = omega
+        scene%end_time = 5.0_wp
+        scene%output_step = 0.01_wp
+        scene%rtol = 1.0e-11_wp
+        scene%atol = 1.0e-13_wp
+        call run_in_memory(scene, history, summary, error)
+        if (allocated(error)) return
+        ! theta within 1e-8 rad: an exact steady solution, so only the integration error moves
+        ! it; at rtol 1e-11 that is ~1e-10 rad over 5 s.
+        call check(error, maxval(abs(history%column(column_theta) - pi/3.0_wp)), 0.0_wp, &
+            & "largest |theta - 60 deg| [rad]", abs_tol=1.0e-8_wp)
+        if (allocated(error)) return
+        ! Contact point G - R e_y2, on the ground.
+        px = history%column(column_x) + scene%radius*cos(history%column(column_theta)) &
+            & *sin(history%column(column_psi))
+        py = history%column(column_y) - scene%radius*cos(history%column(column_theta)) &
+            & *cos(history%column(column_psi))
+        k = [1, history%count/3, (2*history%count)/3]
+        cx = px(k)
+        cy = py(k)
+        ! circumcentre of three contact points
+        d = 2.0_wp*(cx(1)*(cy(2) - cy(3)) + cx(2)*(cy(3) - cy(1)) + cx(3)*(cy(1) - cy(2)))
+        centre(1) = ((cx(1)**2 + cy(1)**2)*(cy(2) - cy(3)) + (cx(2)**2 + cy(2)**2)*(cy(3) - cy(1)) &
+            & + (cx(3)**2 + cy(3)**2)*(cy(1) - cy(2)))/d
+        centre(2) = ((cx(1)**2 + cy(1)**2)*(cx(3) - cx(2)) + (cx(2)**2 + cy(2)**2)*(cx(1) - cx(3)) &
+            & + (cx(3)**2 + cy(3)**2)*(cx(2) - cx(1)))/d
+        radius_path = scene%radius*abs(scene%phidot/omega)
+        do i = 1, history%count
+            distance = hypot(px(i) - centre(1), py(i) - centre(2))
+            ! 1e-8 relative: the path radius is ~0.1 m; positions are integrated to ~1e-11.
+            call check(error, distance, radius_path, "contact point's distance from the " &
+                & // "circle's centre at t = " // to_text(history%rows(column_time, i)), &
+                & rel_tol=1.0e-8_wp)
+            if (allocated(error)) return
+        end do
+    end subroutine test_steady_circle
+
+    !> Upright less 0.01 rad, rolling straight in +X at speed v (phidot = -v/R).
+    function upright(speed, end_time) result(scene)
+        real(wp), intent(in) :: speed, end_time
+        type(scene_type) :: scene
+
+        scene = default_scene()
+        scene%theta = 0.5_wp*pi - 0.01_wp
+        scene%phidot = -speed/scene%radius
+        scene%end_time = end_time
+        scene%output_step = 0.01_wp
+    end function upright
+
+    !> Above the critical speed (0.572 m/s for this disk, DESIGN section 5) a small tilt stays
+    !> small: |theta - pi/2| below 5 times the initial 0.01 rad over 10 s.
+    subroutine test_upright_stable(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(history_type) :: history
+        type(run_summary_type) :: summary
+
+        call run_in_memory(upright(0.8_wp, 10.0_wp), history, summary, error)
+        if (allocated(error)) return
+        call check(error, maxval(abs(history%column(column_theta) - 0.5_wp*pi)), 0.0_wp, &
+            & "largest tilt at 0.8 m/s [rad]", abs_tol=0.05_wp)
+    end subroutine test_upright_stable
+
+    !> Below it the tilt grows: the disk leans past 0.3 rad within 10 s.
+    subroutine test_upright_tips(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(history_type) :: history
+        type(run_summary_type) :: summary
+
+        call run_in_memory(upright(0.5_wp, 10.0_wp), history, summary, error)
+        if (allocated(error)) return
+        call check(error, maxval(abs(history%column(column_theta) - 0.5_wp*pi)) > 0.3_wp, &
+            & "at 0.5 m/s the largest tilt is only " &
+            & // to_text(maxval(abs(history%column(column_theta) - 0.5_wp*pi))) // " rad")
+    end subroutine test_upright_tips
+
+    !> Small wobble of upright rolling at 2 m/s: (A + m R^2) e'' + (C (C + m R^2) W^2 / A - m g R) e
+    !> = const, W = v/R, so its angular frequency is sqrt((C (C + mR^2) W^2/A - mgR)/(A + mR^2)).
+    !> Measured from the times thetadot crosses zero downwards (maxima of theta), over 10 s,
+    !> with a 1e-4 rad tilt so that the amplitude's own frequency shift (~1e-8) does not count.
+    subroutine test_wobble(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(scene_type) :: scene
+        type(history_type) :: history
+        type(run_summary_type) :: summary
+        real(wp) :: mass, inertia(3), spin, linear, measured, t_first, t_last
+        real(wp), allocatable :: t(:), rate(:)
+        integer :: i, crossings
+
+        scene = upright(2.0_wp, 10.0_wp)
+        scene%theta = 0.5_wp*pi - 1.0e-4_wp
+        scene%output_step = 1.0e-3_wp
+        scene%rtol = 1.0e-10_wp
+        scene%atol = 1.0e-12_wp
+        call run_in_memory(scene, history, summary, error)
+        if (allocated(error)) return
+        call disk_mass_properties(scene, mass, inertia)
+        spin = 2.0_wp/scene%radius
+        associate (a => inertia(1), c => inertia(3), r => scene%radius)
+            linear = sqrt((c*(c + mass*r**2)*spin**2/a - mass*scene%gravity*r) &
+                & /(a + mass*r**2))
+        end associate
+        t = history%column(column_time)
+        rate = history%column(column_thetadot)
+        crossings = 0
+        do i = 2, size(t)
+            if (rate(i - 1) > 0.0_wp .and. rate(i) <= 0.0_wp) then
+                ! linear interpolation of the crossing: error ~ (dt w)^2 ~ 1e-4 of dt
+                t_last = t(i - 1) + (t(i) - t(i - 1))*rate(i - 1)/(rate(i - 1) - rate(i))
+                if (crossings == 0) t_first = t_last
+                crossings = crossings + 1
+            end if
+        end do
+        call check(error, crossings >= 3, "fewer than three wobbles in 10 s")
+        if (allocated(error)) return
+        measured = 2.0_wp*pi*real(crossings - 1, wp)/(t_last - t_first)
+        call check(error, measured, linear, "wobble angular frequency [rad/s]", rel_tol=5.0e-3_wp)
+    end subroutine test_wobble
+
+    !> Over the first second of the tipping coin (before it falls towards flat, where the motion
+    !> amplifies any difference some 1e5-fold), the two formulations' coordinates agree to
+    !> 1e3 rtol, for two tolerances: the difference follows the tolerance.
+    subroutine test_formulations_agree(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(history_type) :: ida, cvode
+        type(run_summary_type) :: summary
+        type(scene_type) :: scene
+        real(wp) :: rtol, difference
+        integer :: i
+
+        do i = 1, 2
+            rtol = 10.0_wp**(-6 - 2*i)
+            scene = tipping_coin("ida", rtol)
+            scene%end_time = 1.0_wp
+            call run_in_memory(scene, ida, summary, error)
+            if (allocated(error)) return
+            scene%formulation = "cvode"
+            call run_in_memory(scene, cvode, summary, error)
+            if (allocated(error)) return
+            difference = maxval(abs(ida%rows(column_x:column_phi, :ida%count) &
+                & - cvode%rows(column_x:column_phi, :cvode%count)))
+            call check(error, difference, 0.0_wp, "largest coordinate difference at rtol " &
+                & // to_text(rtol), abs_tol=1.0e3_wp*rtol)
+            if (allocated(error)) return
+        end do
+    end subroutine test_formulations_agree
+
+    !> During the strike, m dv = strike impulse + contact impulse + gravity impulse, with the
+    !> contact force from the multipliers integrated by the trapezoidal rule over 100 output
+    !> intervals (quadrature error ~ (pi h/T)^2/12 ~ 1e-4 of the impulses).
+    subroutine test_strike_momentum(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(scene_type) :: scene
+        type(history_type) :: history
+        type(run_summary_type) :: summary
+        real(wp) :: mass, inertia(3), contact(3), change(3), expected(3), dt
+        integer :: i, first, last
+
+        scene = default_scene()
+        scene%phidot = -1.0_wp
+        scene%has_strike = .true.
+        scene%strike_time = 0.01_wp
+        scene%strike_duration = 0.01_wp
+        scene%strike_impulse = 0.01_wp
+        scene%end_time = 0.03_wp
+        scene%output_step = 1.0e-4_wp
+        scene%rtol = 1.0e-10_wp
+        scene%atol = 1.0e-12_wp
+        call run_in_memory(scene, history, summary, error)
+        if (allocated(error)) return
+        call disk_mass_properties(scene, mass, inertia)
+        first = minloc(abs(history%column(column_time) - scene%strike_time), dim=1)
+        last = minloc(abs(history%column(column_time) - scene%strike_time &
+            & - scene%strike_duration), dim=1)
+        contact = 0.0_wp
+        do i = first, last - 1
+            dt = history%rows(column_time, i + 1) - history%rows(column_time, i)
+            contact = contact + 0.5_wp*dt*(history%rows(column_fx:column_fz, i) &
+                & + history%rows(column_fx:column_fz, i + 1))
+        end do
+        change = mass*(history%rows(column_xdot:column_zdot, last) &
+            & - history%rows(column_xdot:column_zdot, first))
+        expected = contact + [0.0_wp, scene%strike_impulse, &
+            & -mass*scene%gravity*scene%strike_duration]
+        call check(error, change, expected, "momentum change over the pulse [N s]", &
+            & abs_tol=1.0e-3_wp*scene%strike_impulse)
+        if (allocated(error)) return
+        call check(error, abs(change(2)) > 0.1_wp*scene%strike_impulse, &
+            & "the strike barely changed the Y momentum")
+    end subroutine test_strike_momentum
+
+    !> A theta limit stops the run cleanly with a message naming the time and the state.
+    subroutine test_theta_event(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(scene_type) :: scene
+        type(history_type) :: history
+        type(run_summary_type) :: summary
+
+        scene = tipping_coin("ida", 1.0e-8_wp)
+        scene%theta_min = 0.5_wp
+        call run_in_memory(scene, history, summary, error)
+        if (allocated(error)) return
+        call check(error, summary%status == status_stopped, "the run did not stop at the limit")
+        if (allocated(error)) return
+        call check(error, index(summary%message, "theta fell to the limit theta_min = 0.5") > 0 &
+            & .and. index(summary%message, " at t = ") > 0, "message: " // summary%message)
+        if (allocated(error)) return
+        call check(error, history%rows(column_theta, history%count), 0.5_wp, &
+            & "theta at the stop", abs_tol=1.0e-6_wp)
+    end subroutine test_theta_event
+
+end module test_motion
