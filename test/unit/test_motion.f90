@@ -6,7 +6,11 @@ module test_motion
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type
     use rollcon_text, only : to_text
-    use rollcon_scene, only : scene_type
+    use rollcon_scene, only : scene_type, read_scene
+    use rollcon_problem, only : problem_type
+    use rollcon_disk_scene, only : build_disk_problem
+    use rollcon_disk_hand, only : rolling_disk_ucosub
+    use rollcon_simulation, only : run_options_type, simulate, status_failed
     use rollcon_disk_scene, only : disk_mass_properties
     use rollcon_simulation, only : history_type, run_summary_type, status_stopped, &
         & column_time, column_x, column_y, column_z, column_psi, column_theta, column_phi, &
@@ -36,7 +40,10 @@ contains
             & new_unittest("wobble-frequency-2-m-s", test_wobble), &
             & new_unittest("cvode-agrees-with-ida", test_formulations_agree), &
             & new_unittest("strike-momentum", test_strike_momentum), &
-            & new_unittest("theta-limit-stops-run", test_theta_event)]
+            & new_unittest("theta-limit-stops-run", test_theta_event), &
+            & new_unittest("liftoff-stops-run", test_liftoff_event), &
+            & new_unittest("long-run-energy-and-no-drift-growth", test_long_run), &
+            & new_unittest("solver-failure-keeps-valid-csv", test_solver_failure)]
     end subroutine collect_motion
 
     !> The tipping coin: upright less 0.01 rad, rolling at 0.1 m/s, no strike, 10 s.
@@ -350,5 +357,102 @@ contains
         call check(error, history%rows(column_theta, history%count), 0.5_wp, &
             & "theta at the stop", abs_tol=1.0e-6_wp)
     end subroutine test_theta_event
+
+    !> Without gravity, a disk precessing near flat needs the ground to pull it: the run stops
+    !> when the normal force turns negative, naming the time and the tilt.
+    subroutine test_liftoff_event(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(scene_type) :: scene
+        type(history_type) :: history
+        type(run_summary_type) :: summary
+
+        scene = default_scene()
+        scene%gravity = 0.0_wp
+        scene%theta = pi/12.0_wp
+        scene%psidot = 10.0_wp
+        scene%phidot = -10.0_wp*cos(pi/12.0_wp)
+        scene%end_time = 2.0_wp
+        scene%stop_on_liftoff = .true.
+        call run_in_memory(scene, history, summary, error)
+        if (allocated(error)) return
+        call check(error, summary%status == status_stopped .and. &
+            & index(summary%message, "normal contact force turned negative at t = ") > 0, &
+            & "no lift-off stop; status " // to_text(summary%status))
+        if (allocated(error)) return
+        ! the root is located to the solver's tolerance on a force of order m R psidot^2 ~ 7 N
+        call check(error, history%rows(column_fz, history%count), 0.0_wp, &
+            & "normal force at the stop [N]", abs_tol=1.0e-5_wp)
+    end subroutine test_liftoff_event
+
+    !> long_run (200 s at 0.8 m/s): energy within 1000 rtol, and IDA's constraint residual in
+    !> the last 20 s no larger than ten times that of the first 20 s (no drift growth).
+    subroutine test_long_run(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(scene_type) :: scene
+        type(history_type) :: history
+        type(run_summary_type) :: summary
+        real(wp), allocatable :: t(:), residual(:)
+        real(wp) :: early, late
+
+        call read_scene("data/long_run.nml", scene, error)
+        if (allocated(error)) return
+        call run_in_memory(scene, history, summary, error)
+        if (allocated(error)) return
+        call check(error, summary%energy_drift, 0.0_wp, "energy drift over 200 s", &
+            & abs_tol=1.0e3_wp*scene%rtol)
+        if (allocated(error)) return
+        t = history%column(column_time)
+        residual = maxval(abs(history%rows(column_residual:, :history%count)), dim=1)
+        early = maxval(residual, mask=t <= 20.0_wp)
+        late = maxval(residual, mask=t >= 180.0_wp)
+        call check(error, late <= 10.0_wp*early + 1.0e-2_wp*scene%atol, "residual grew from " &
+            & // to_text(early) // " (first 20 s) to " // to_text(late) // " (last 20 s)")
+    end subroutine test_long_run
+
+    !> A run that fails (here: too few steps allowed) says so with the solver's flag and the
+    !> time reached, and the CSV holds a header and only complete, finite rows.
+    subroutine test_solver_failure(error)
+        type(error_type), allocatable, intent(out) :: error
+        character(len=*), parameter :: path = "build/test_motion_failure.csv"
+        type(scene_type) :: scene
+        type(problem_type), target :: problem
+        type(run_options_type) :: options
+        type(run_summary_type) :: summary
+        type(error_type), allocatable :: failure
+        real(wp) :: q0(6), u0(6), row(22)
+        character(len=2048) :: line
+        integer :: unit, stat, rows
+
+        scene = tipping_coin("ida", 1.0e-8_wp)
+        scene%max_steps = 200
+        scene%output_step = 0.5_wp
+        call build_disk_problem(scene, rolling_disk_ucosub, problem, q0, u0, error)
+        if (allocated(error)) return
+        options%end_time = scene%end_time
+        options%output_step = scene%output_step
+        options%csv_path = path
+        options%progress = .false.
+        call simulate(problem, q0, u0, options, summary, failure)
+        call check(error, allocated(failure) .and. summary%status == status_failed, &
+            & "the run did not fail")
+        if (allocated(error)) return
+        call check(error, index(failure%message, "IDA failed at t = ") == 1 .and. &
+            & index(failure%message, "flag -1") > 0, "message: " // failure%message)
+        if (allocated(error)) return
+        open(newunit=unit, file=path, status="old", action="read")
+        read(unit, '(a)') line
+        call check(error, index(line, "t,X,Y,Z,psi,theta,phi,Xdot,Ydot,Zdot,psidot,thetadot," &
+            & // "phidot,E,Fx,Fy,Fz,Fn,mu_needed,F1,F2,F3") == 1, "header: " // trim(line))
+        rows = 0
+        do
+            read(unit, *, iostat=stat) row
+            if (stat /= 0) exit
+            rows = rows + 1
+        end do
+        close(unit, status="delete")
+        call check(error, rows, summary%rows, "complete rows in the CSV")
+        if (allocated(error)) return
+        call check(error, rows > 1, "no rows before the failure")
+    end subroutine test_solver_failure
 
 end module test_motion
