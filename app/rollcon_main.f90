@@ -7,6 +7,7 @@ program rollcon_main
     use rollcon_cli, only : real_option_list, real_option
     use rollcon_table, only : print_table, default_state, default_radius
     use rollcon_run, only : run_scene
+    use rollcon_bench, only : bench_command
     use rollcon_simulation, only : run_summary_type, status_failed
     implicit none
     type(error_type), allocatable :: error
@@ -14,10 +15,14 @@ program rollcon_main
     real(wp) :: state(disk_nvars), radius
     character(len=:), allocatable :: command, scene, output_dir
     logical :: quiet
+    integer :: argument_index
 
     call read_command_line(error)
     if (allocated(error)) call fail(error)
     select case (command)
+    case ("bench")
+        call bench_command(argument_index + 1, error)
+        if (allocated(error)) call fail(error)
     case ("help")
         call print_help()
     case ("table")
@@ -50,6 +55,11 @@ contains
                 return
             case ("table", "run")
                 command = trim(argument)
+            case ("bench")
+                ! the rest of the command line is bench's
+                command = "bench"
+                argument_index = i
+                return
             case ("--quiet", "-q")
                 quiet = .true.
             case ("--output", "-o")
@@ -89,6 +99,7 @@ contains
         write(output_unit, '(a)') &
             & "usage: rollcon [run] [SCENE] [--output DIR] [--quiet]", &
             & "       rollcon table [--radius R] [--state XD,YD,ZD,PSI,THETA,PSID,THETAD,PHID]", &
+            & "       rollcon bench [--quick] [...]     (rollcon bench --help)", &
             & "       rollcon --help", &
             & "", &
             & "run (the default): simulate a rolling-disk scene, the paper's coin unless SCENE", &

@@ -83,7 +83,7 @@ contains
                 if (second) idrsel(3) = xmatrx_dqdq
                 if (any(idrsel /= 0)) then
                     call evaluate_ucon(ucon%ucosub, ucon%id, time, self%local_q, ucon%par, idrsel, &
-                        & scalar, array, xmatrx, error)
+                        & scalar, array, xmatrx, error, ucon%nvars)
                     if (allocated(error)) return
                     if (idrsel(1) /= 0) self%value(k) = scalar
                     if (first) then
@@ -117,7 +117,8 @@ contains
                 end if
                 if (iand(needs, need_time) /= 0) then
                     call evaluate_ucon(ucon%ucosub, ucon%id, time, self%local_q, ucon%par, &
-                        & [scalar_dt, array_dtdq, xmatrx_none], scalar, array, xmatrx, error)
+                        & [scalar_dt, array_dtdq, xmatrx_none], scalar, array, xmatrx, error, &
+                        & ucon%nvars)
                     if (allocated(error)) return
                     self%dt(k) = scalar
                     self%dt_grad_q(k, :) = 0.0_wp
@@ -131,7 +132,8 @@ contains
                     end do
                     if (ucon%holonomic) then
                         call evaluate_ucon(ucon%ucosub, ucon%id, time, self%local_q, ucon%par, &
-                            & [scalar_dtt, array_none, xmatrx_none], scalar, array, xmatrx, error)
+                            & [scalar_dtt, array_none, xmatrx_none], scalar, array, xmatrx, &
+                            & error, ucon%nvars)
                         if (allocated(error)) return
                         self%dtt(k) = scalar
                     end if

@@ -5,11 +5,12 @@ module rollcon_disk_scene
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type
     use rollcon_ucon, only : ucosub_interface
-    use rollcon_rotation, only : rotation_matrix, cross
+    use rollcon_rotation, only : cross
     use rollcon_body, only : part_type
     use rollcon_force, only : applied_force_type, profile_half_sine, frame_tilt
     use rollcon_model, only : model_type, setup_model
     use rollcon_disk_par, only : disk_par
+    use rollcon_gen_disk_height, only : disk_height_ucosub, disk_height_par
     use rollcon_equations, only : drift_none, drift_projection, drift_baumgarte
     use rollcon_problem, only : problem_type, formulation_cvode, formulation_ida, method_bdf, &
         & method_adams
@@ -73,9 +74,15 @@ contains
         call model%add_part(disk)
         model%gravity = [0.0_wp, 0.0_wp, -scene%gravity]
         model%ucosub => ucosub
-        do k = 1, 3
+        do k = 1, 2
             call model%add_ucon(k, disk_par(disk_part, scene%radius, k))
         end do
+        if (scene%height == "position") then
+            ! Z - R sin(theta) = 0 in place of its time derivative F3 (DESIGN section 5)
+            call model%add_ucon(3, disk_height_par(disk_part, scene%radius), disk_height_ucosub)
+        else
+            call model%add_ucon(3, disk_par(disk_part, scene%radius, 3))
+        end if
         if (scene%has_strike) then
             ! Horizontal, along +Y, at the top of the rim: (0, R, 0) in the tilt frame.
             strike%part = 1

@@ -94,6 +94,8 @@ contains
         !> The scene read; z, xdot, ydot, zdot exact on return
         type(scene_type), intent(inout) :: scene
         type(error_type), allocatable, intent(out) :: error
+        !> Closest start to flat that is accepted [rad]
+        real(wp), parameter :: flat_margin = 1.0e-3_wp
 
         associate (s => scene)
             call require(s%radius > 0.0_wp, "disk", "radius", "> 0 [m]", to_text(s%radius))
@@ -105,6 +107,11 @@ contains
                 & to_text(s%gravity))
             call require(s%theta > 0.0_wp .and. s%theta < pi, "initial", "theta", &
                 & "in (0, pi) [rad]", to_text(s%theta))
+            ! The 3-1-3 angles are singular where sin(theta) = 0: psi and phi are not defined
+            ! apart there, and psidot, phidot grow without bound near it (DESIGN section 3).
+            call require(sin(s%theta) >= flat_margin, "initial", "theta", "at least " &
+                & // to_text(flat_margin) // " rad from flat (0 or pi), where the 3-1-3 Euler " &
+                & // "angles are singular (sin(theta) = 0) [rad]", to_text(s%theta))
             call require(s%strike_time >= 0.0_wp, "strike", "time", ">= 0 [s]", &
                 & to_text(s%strike_time))
             call require(s%strike_duration > 0.0_wp, "strike", "duration", "> 0 [s]", &
@@ -128,6 +135,11 @@ contains
             call require_choice(s%drift, "drift", [character(len=10) :: "projection", &
                 & "baumgarte", "none"])
             call require_choice(s%jacobian, "jacobian", [character(len=10) :: "analytic", "dq"])
+            ! CVODE's projection works with BDF only (CVodeSetProjFn refuses Adams)
+            call require(.not. (s%formulation == "cvode" .and. s%method == "adams" .and. &
+                & s%drift == "projection"), "run", &
+                & "drift", "'baumgarte' or 'none' with method = 'adams' (CVODE projects only " &
+                & // "with BDF)", "'" // s%drift // "'")
             call require_choice(s%height, "height", [character(len=10) :: "velocity", &
                 & "position"])
             if (s%formulation == "ida") then

@@ -6,7 +6,8 @@ module rollcon_ucon_call
     use rollcon_text, only : to_text
     use rollcon_ucon, only : ucosub_interface, iflag_init, iflag_eval, max_ucon_vars, max_ucon_par
     use rollcon_ucovar, only : ucovar_registry_type
-    use rollcon_adams_runtime, only : begin_declaration, end_declaration, take_ucon_error
+    use rollcon_adams_runtime, only : begin_declaration, end_declaration, take_ucon_error, &
+        & has_ucon_error
     use, intrinsic :: ieee_arithmetic, only : ieee_is_finite
     implicit none
     private
@@ -46,9 +47,11 @@ contains
         call end_declaration(error)
     end subroutine declare_ucon
 
-    !> Make one evaluation call (IFLAG = 0): outputs are zeroed first, since a UCOSUB may leave
-    !> symbolically zero entries untouched; what was selected must come back finite.
-    subroutine evaluate_ucon(ucosub, id, time, q, par, idrsel, scalar, array, xmatrx, error)
+    !> Make one evaluation call (IFLAG = 0). The selected outputs are zeroed first over the
+    !> nvars declared variables, since a UCOSUB may leave symbolically zero entries untouched;
+    !> what was selected must come back finite. Entries past nvars, and outputs not selected,
+    !> are neither zeroed nor read (the hot path of every integrator evaluation).
+    subroutine evaluate_ucon(ucosub, id, time, q, par, idrsel, scalar, array, xmatrx, error, nvars)
         !> The user-written constraint
         procedure(ucosub_interface) :: ucosub
         !> UCON statement id
@@ -62,22 +65,33 @@ contains
         !> Output selectors
         integer, intent(in) :: idrsel(3)
         !> Selected scalar
-        real(wp), intent(out) :: scalar
+        real(wp), intent(inout) :: scalar
         !> Selected first partials
-        real(wp), intent(out) :: array(max_ucon_vars)
+        real(wp), intent(inout) :: array(max_ucon_vars)
         !> Selected second partials
-        real(wp), intent(out) :: xmatrx(max_ucon_vars, max_ucon_vars)
+        real(wp), intent(inout) :: xmatrx(max_ucon_vars, max_ucon_vars)
         !> Set when the routine reported an error or returned a non-finite value
         type(error_type), allocatable, intent(out) :: error
+        !> Number of declared variables (default 30: everything is zeroed and checked)
+        integer, intent(in), optional :: nvars
+        integer :: n
+        logical :: finite
 
-        scalar = 0.0_wp
-        array = 0.0_wp
-        xmatrx = 0.0_wp
+        n = max_ucon_vars
+        if (present(nvars)) n = nvars
+        if (idrsel(1) /= 0) scalar = 0.0_wp
+        if (idrsel(2) /= 0) array(:n) = 0.0_wp
+        if (idrsel(3) /= 0) xmatrx(:n, :n) = 0.0_wp
         call ucosub(id, time, q, par, size(par), idrsel, iflag_eval, scalar, array, xmatrx)
-        call take_ucon_error(error)
-        if (allocated(error)) return
-        if (.not. ieee_is_finite(scalar) .or. .not. all(ieee_is_finite(array)) &
-            & .or. .not. all(ieee_is_finite(xmatrx))) then
+        if (has_ucon_error()) then
+            call take_ucon_error(error)
+            return
+        end if
+        finite = .true.
+        if (idrsel(1) /= 0) finite = ieee_is_finite(scalar)
+        if (idrsel(2) /= 0) finite = finite .and. all(ieee_is_finite(array(:n)))
+        if (idrsel(3) /= 0) finite = finite .and. all(ieee_is_finite(xmatrx(:n, :n)))
+        if (.not. finite) then
             call ucon_error(error, id, "UCOSUB returned a non-finite value at time " &
                 & // to_text(time) // " with IDRSEL = (" // to_text(idrsel(1)) // ", " &
                 & // to_text(idrsel(2)) // ", " // to_text(idrsel(3)) // ")")

@@ -7,9 +7,11 @@ program tester
     use test_ucovar, only : collect_ucovar
     use test_disk_hand, only : collect_disk_hand
     use test_ucon_check, only : collect_ucon_check
+    use test_generated, only : collect_generated
     use test_scene, only : collect_scene
     use test_dynamics, only : collect_dynamics
     use test_motion, only : collect_motion
+    use test_extremes, only : collect_extremes
     implicit none
     type(testsuite_type), allocatable :: suites(:)
     type(test_counts_type) :: counts
@@ -22,9 +24,11 @@ program tester
         & new_testsuite("ucovar", collect_ucovar), &
         & new_testsuite("disk-hand", collect_disk_hand), &
         & new_testsuite("ucon-check", collect_ucon_check), &
+        & new_testsuite("generated", collect_generated), &
         & new_testsuite("scene", collect_scene), &
         & new_testsuite("dynamics", collect_dynamics), &
-        & new_testsuite("motion", collect_motion)]
+        & new_testsuite("motion", collect_motion), &
+        & new_testsuite("extremes", collect_extremes)]
 
     if (command_argument_count() >= 1) then
         call get_command_argument(1, argument)

@@ -10,6 +10,7 @@ module test_motion
     use rollcon_problem, only : problem_type
     use rollcon_disk_scene, only : build_disk_problem
     use rollcon_disk_hand, only : rolling_disk_ucosub
+    use rollcon_gen_rolling_disk, only : generated_disk_ucosub => rolling_disk_ucosub
     use rollcon_simulation, only : run_options_type, simulate, status_failed
     use rollcon_disk_scene, only : disk_mass_properties
     use rollcon_simulation, only : history_type, run_summary_type, status_stopped, &
@@ -43,7 +44,9 @@ contains
             & new_unittest("theta-limit-stops-run", test_theta_event), &
             & new_unittest("liftoff-stops-run", test_liftoff_event), &
             & new_unittest("long-run-energy-and-no-drift-growth", test_long_run), &
-            & new_unittest("solver-failure-keeps-valid-csv", test_solver_failure)]
+            & new_unittest("solver-failure-keeps-valid-csv", test_solver_failure), &
+            & new_unittest("position-height-matches-velocity-form", test_position_height), &
+            & new_unittest("generated-ucosub-same-trajectory", test_generated_trajectory)]
     end subroutine collect_motion
 
     !> The tipping coin: upright less 0.01 rad, rolling at 0.1 m/s, no strike, 10 s.
@@ -454,5 +457,62 @@ contains
         if (allocated(error)) return
         call check(error, rows > 1, "no rows before the failure")
     end subroutine test_solver_failure
+
+    !> The contact height as a position UCON (Z - R sin(theta) = 0, GGL form in IDA, projection
+    !> in CVODE) gives the motion of its velocity form F3, and holds Z = R sin(theta).
+    subroutine test_position_height(error)
+        type(error_type), allocatable, intent(out) :: error
+        character(len=5), parameter :: formulations(2) = ["ida  ", "cvode"]
+        type(scene_type) :: scene
+        type(history_type) :: velocity_form, position_form
+        type(run_summary_type) :: summary
+        real(wp) :: difference, height
+        integer :: i
+
+        do i = 1, 2
+            scene = tipping_coin(trim(formulations(i)), 1.0e-9_wp)
+            scene%end_time = 1.0_wp
+            call run_in_memory(scene, velocity_form, summary, error)
+            if (allocated(error)) return
+            scene%height = "position"
+            call run_in_memory(scene, position_form, summary, error)
+            if (allocated(error)) return
+            ! same motion to the integration error over 1 s (1e3 rtol, as for CVODE vs IDA)
+            difference = maxval(abs(velocity_form%rows(column_x:column_phi, :velocity_form%count) &
+                & - position_form%rows(column_x:column_phi, :position_form%count)))
+            call check(error, difference, 0.0_wp, trim(formulations(i)) // ": largest " &
+                & // "difference between the two forms", abs_tol=1.0e-6_wp)
+            if (allocated(error)) return
+            height = maxval(abs(position_form%column(column_z) - scene%radius &
+                & *sin(position_form%column(column_theta))))
+            call check(error, height, 0.0_wp, trim(formulations(i)) // ": |Z - R sin(theta)| [m]", &
+                & abs_tol=1.0e-9_wp)
+            if (allocated(error)) return
+        end do
+    end subroutine test_position_height
+
+    !> The generated rolling-disk UCOSUB drives the same motion as the hand-checked one. The two
+    !> agree to ~1e-16 per entry (generated suite), but that is enough for the adaptive
+    !> integrator to accept or reject a step differently, after which the runs differ by the
+    !> integration error: coordinates agree to 1e3 rtol over the first second, as CVODE and IDA.
+    subroutine test_generated_trajectory(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(scene_type) :: scene
+        type(history_type) :: hand, generated
+        type(run_summary_type) :: summary
+
+        scene = tipping_coin("ida", 1.0e-10_wp)
+        scene%end_time = 1.0_wp
+        call run_in_memory(scene, hand, summary, error)
+        if (allocated(error)) return
+        call run_in_memory(scene, generated, summary, error, generated_disk_ucosub)
+        if (allocated(error)) return
+        call check(error, hand%count, generated%count, "output rows")
+        if (allocated(error)) return
+        call check(error, maxval(abs(hand%rows(column_x:column_phi, :hand%count) &
+            & - generated%rows(column_x:column_phi, :generated%count))), 0.0_wp, &
+            & "largest coordinate difference, hand-checked against generated", &
+            & abs_tol=1.0e3_wp*scene%rtol)
+    end subroutine test_generated_trajectory
 
 end module test_motion

@@ -1,0 +1,259 @@
+! SPDX-License-Identifier: MIT
+!> Numerical stability at the extremes (issue: speed against accuracy): each run completes with
+!> bounded error or stops with a clear diagnostic, never a NaN. Also the benchmark's quick mode.
+module test_extremes
+    use rollcon_kinds, only : wp
+    use rollcon_error, only : error_type, stat_input
+    use rollcon_text, only : to_text
+    use rollcon_scene, only : scene_type, read_scene
+    use rollcon_simulation, only : history_type, run_summary_type, status_completed, &
+        & status_stopped, column_time, column_theta, column_psidot, column_residual
+    use rollcon_benchmark, only : benchmark_methods, benchmark_row_type, benchmark_scene, &
+        & benchmark_header, write_benchmark_row
+    use rollcon_disk_hand, only : rolling_disk_ucosub
+    use rollcon_testing, only : unittest_type, new_unittest, check
+    use motion_runs, only : run_in_memory, default_scene
+    use, intrinsic :: ieee_arithmetic, only : ieee_is_finite
+    implicit none
+    private
+
+    public :: collect_extremes
+
+    real(wp), parameter :: pi = acos(-1.0_wp)
+
+contains
+
+    subroutine collect_extremes(tests)
+        type(unittest_type), allocatable, intent(out) :: tests(:)
+
+        allocate(tests(0))
+        tests = [new_unittest("near-flat-fast-precession", test_near_flat), &
+            & new_unittest("spinning-coin", test_spinning_coin), &
+            & new_unittest("tiny-disk-1-mm", test_tiny_disk), &
+            & new_unittest("huge-disk-10-m", test_huge_disk), &
+            & new_unittest("loosest-tolerance", test_loosest), &
+            & new_unittest("tightest-tolerance", test_tightest), &
+            & new_unittest("start-near-flat-refused", test_flat_start_refused), &
+            & new_unittest("error-decreases-with-tolerance", test_error_decreases), &
+            & new_unittest("benchmark-quick-mode", test_benchmark_quick)]
+    end subroutine collect_extremes
+
+    !> Every output row finite; the run completed or stopped at a scene limit.
+    subroutine check_sane(error, history, summary, what)
+        type(error_type), allocatable, intent(out) :: error
+        type(history_type), intent(in) :: history
+        type(run_summary_type), intent(in) :: summary
+        character(len=*), intent(in) :: what
+
+        call check(error, all(ieee_is_finite(history%rows(:, :history%count))), &
+            & what // ": a non-finite value in the output")
+        if (allocated(error)) return
+        call check(error, summary%status == status_completed .or. summary%status == &
+            & status_stopped, what // ": status " // to_text(summary%status))
+    end subroutine check_sane
+
+    !> near_flat: the disk falls from 15 deg towards flat; as theta shrinks the precession rate
+    !> grows (psidot ~ theta^-1/2). With theta_min = 0.05 rad (about 3 deg) the run either
+    !> reaches it, with precession over 200 rad/s and a clear stop, or completes; energy holds.
+    subroutine test_near_flat(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(scene_type) :: scene
+        type(history_type) :: history
+        type(run_summary_type) :: summary
+
+        call read_scene("data/near_flat.nml", scene, error)
+        if (allocated(error)) return
+        scene%theta_min = 0.05_wp
+        call run_in_memory(scene, history, summary, error)
+        if (allocated(error)) return
+        call check_sane(error, history, summary, "near_flat")
+        if (allocated(error)) return
+        call check(error, minval(history%column(column_theta)) < 0.06_wp, "theta only fell to " &
+            & // to_text(minval(history%column(column_theta))))
+        if (allocated(error)) return
+        call check(error, maxval(abs(history%column(column_psidot))) > 200.0_wp, &
+            & "precession only reached " // to_text(maxval(abs(history%column(column_psidot)))))
+        if (allocated(error)) return
+        ! energy over the fall: 1e3 rtol, as for the tipping coin
+        call check(error, summary%energy_drift, 0.0_wp, "energy drift", abs_tol=1.0e3_wp*scene%rtol)
+    end subroutine test_near_flat
+
+    subroutine test_spinning_coin(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(scene_type) :: scene
+        type(history_type) :: history
+        type(run_summary_type) :: summary
+
+        call read_scene("data/spinning_coin.nml", scene, error)
+        if (allocated(error)) return
+        call run_in_memory(scene, history, summary, error)
+        if (allocated(error)) return
+        call check_sane(error, history, summary, "spinning_coin")
+        if (allocated(error)) return
+        call check(error, summary%energy_drift, 0.0_wp, "energy drift", abs_tol=1.0e3_wp*scene%rtol)
+    end subroutine test_spinning_coin
+
+    !> The coin scaled by s in every length (radius, thickness): the motion scales too, with
+    !> time by sqrt(s). Tolerances scale with the lengths (atol in metres).
+    subroutine scaled_coin(error, scale)
+        type(error_type), allocatable, intent(out) :: error
+        real(wp), intent(in) :: scale
+        type(scene_type) :: scene
+        type(history_type) :: history
+        type(run_summary_type) :: summary
+
+        scene = default_scene()
+        scene%radius = 0.1_wp*scale
+        scene%thickness = 0.003_wp*scale
+        scene%theta = 0.5_wp*pi - 0.01_wp
+        scene%phidot = -1.0_wp/sqrt(scale)
+        scene%end_time = 5.0_wp*sqrt(scale)
+        scene%output_step = 0.01_wp*sqrt(scale)
+        scene%atol = 1.0e-10_wp*scale
+        call run_in_memory(scene, history, summary, error)
+        if (allocated(error)) return
+        call check_sane(error, history, summary, "scale " // to_text(scale))
+        if (allocated(error)) return
+        call check(error, summary%energy_drift, 0.0_wp, "energy drift at scale " &
+            & // to_text(scale), abs_tol=1.0e3_wp*scene%rtol)
+        if (allocated(error)) return
+        ! residuals scale with the velocities, sqrt(scale) m/s
+        call check(error, summary%residual_max, 0.0_wp, "residual at scale " // to_text(scale), &
+            & abs_tol=1.0e2_wp*scene%rtol*sqrt(scale))
+    end subroutine scaled_coin
+
+    subroutine test_tiny_disk(error)
+        type(error_type), allocatable, intent(out) :: error
+
+        call scaled_coin(error, 1.0e-2_wp)
+    end subroutine test_tiny_disk
+
+    subroutine test_huge_disk(error)
+        type(error_type), allocatable, intent(out) :: error
+
+        call scaled_coin(error, 1.0e2_wp)
+    end subroutine test_huge_disk
+
+    !> The ladder's ends, 1e-3 and 1e-12, on the tipping coin's first 2 s, both formulations.
+    subroutine ladder_end(error, rtol)
+        type(error_type), allocatable, intent(out) :: error
+        real(wp), intent(in) :: rtol
+        character(len=5), parameter :: formulations(2) = ["ida  ", "cvode"]
+        type(scene_type) :: scene
+        type(history_type) :: history
+        type(run_summary_type) :: summary
+        integer :: i
+
+        do i = 1, 2
+            scene = default_scene()
+            scene%theta = 0.5_wp*pi - 0.01_wp
+            scene%phidot = -1.0_wp
+            scene%end_time = 2.0_wp
+            scene%formulation = trim(formulations(i))
+            scene%rtol = rtol
+            scene%atol = 1.0e-2_wp*rtol
+            call run_in_memory(scene, history, summary, error)
+            if (allocated(error)) return
+            call check_sane(error, history, summary, trim(formulations(i)) // " at rtol " &
+                & // to_text(rtol))
+            if (allocated(error)) return
+            ! residual: 100 rtol [m/s] (velocities ~0.1 m/s), floored at 1e-13 for round-off
+            call check(error, summary%residual_max, 0.0_wp, trim(formulations(i)) &
+                & // " residual at rtol " // to_text(rtol), abs_tol=max(1.0e2_wp*rtol, 1.0e-13_wp))
+            if (allocated(error)) return
+        end do
+    end subroutine ladder_end
+
+    subroutine test_loosest(error)
+        type(error_type), allocatable, intent(out) :: error
+
+        call ladder_end(error, 1.0e-3_wp)
+    end subroutine test_loosest
+
+    subroutine test_tightest(error)
+        type(error_type), allocatable, intent(out) :: error
+
+        call ladder_end(error, 1.0e-12_wp)
+    end subroutine test_tightest
+
+    !> A disk started within 1e-3 rad of flat is refused, with the reason.
+    subroutine test_flat_start_refused(error)
+        type(error_type), allocatable, intent(out) :: error
+        character(len=*), parameter :: path = "build/test_extremes_flat.nml"
+        type(scene_type) :: scene
+        type(error_type), allocatable :: found
+        integer :: unit
+
+        open(newunit=unit, file=path, status="replace", action="write")
+        write(unit, '(a)') "&initial", "    theta = 0.0005", "    psidot = 10.0", "/"
+        close(unit)
+        call read_scene(path, scene, found)
+        open(newunit=unit, file=path, status="old")
+        close(unit, status="delete")
+        if (.not. allocated(found)) then
+            call check(error, .false., "a start 5e-4 rad from flat was accepted")
+            return
+        end if
+        call check(error, found%stat == stat_input .and. index(found%message, path // ":2:") == 1 &
+            & .and. index(found%message, "'theta'") > 0 .and. &
+            & index(found%message, "Euler angles are singular") > 0, "message: " // found%message)
+    end subroutine test_flat_start_refused
+
+    !> Error against a tight reference falls as the tolerance tightens, for every method, on
+    !> fast_upright (first 2 s, rtol 1e-4, 1e-6, 1e-8): each rung at least 3x better.
+    subroutine test_error_decreases(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(scene_type) :: scene
+        type(benchmark_row_type), allocatable :: rows(:)
+        integer :: i
+
+        call read_scene("data/fast_upright.nml", scene, error)
+        if (allocated(error)) return
+        scene%end_time = 2.0_wp
+        call benchmark_scene(scene, rolling_disk_ucosub, benchmark_methods(), &
+            & [1.0e-4_wp, 1.0e-6_wp, 1.0e-8_wp], 1.0e-12_wp, 1, rows, error)
+        if (allocated(error)) return
+        do i = 1, size(rows), 3
+            call check(error, rows(i + 1)%position_error < rows(i)%position_error/3.0_wp &
+                & .and. rows(i + 2)%position_error < rows(i + 1)%position_error/3.0_wp, &
+                & trim(rows(i)%method) // ": errors " // to_text(rows(i)%position_error) // ", " &
+                & // to_text(rows(i + 1)%position_error) // ", " &
+                & // to_text(rows(i + 2)%position_error))
+            if (allocated(error)) return
+        end do
+    end subroutine test_error_decreases
+
+    !> The benchmark's quick mode (one scene, two tolerances): every method gives a row with the
+    !> CSV's columns, finite values and a completed status.
+    subroutine test_benchmark_quick(error)
+        type(error_type), allocatable, intent(out) :: error
+        character(len=*), parameter :: path = "build/test_bench/bench.csv"
+        character(len=1024) :: line
+        integer :: unit, stat, rows, commas
+
+        call execute_command_line("fpm run rollcon -- bench --quick --output build/test_bench " &
+            & // "> build/test_bench.log 2>&1", exitstat=stat)
+        call check(error, stat == 0, "rollcon bench --quick failed (build/test_bench.log)")
+        if (allocated(error)) return
+        open(newunit=unit, file=path, status="old", action="read", iostat=stat)
+        call check(error, stat == 0, path // " was not written")
+        if (allocated(error)) return
+        read(unit, '(a)') line
+        call check(error, trim(line) == benchmark_header(), "header: " // trim(line))
+        if (allocated(error)) return
+        rows = 0
+        do
+            read(unit, '(a)', iostat=stat) line
+            if (stat /= 0) exit
+            rows = rows + 1
+            commas = count([(line(stat:stat) == ",", stat = 1, len_trim(line))])
+            call check(error, commas == 10 .and. index(line, ",completed") > 0 .and. &
+                & index(line, "NaN") == 0 .and. index(line, "Infinity") == 0, "row: " // trim(line))
+            if (allocated(error)) exit
+        end do
+        close(unit)
+        if (allocated(error)) return
+        call check(error, rows, 2*size(benchmark_methods()), "rows")
+    end subroutine test_benchmark_quick
+
+end module test_extremes

@@ -1,0 +1,155 @@
+"""Every quantity ADAMS asks a UCOSUB for (shared/DESIGN.md section 2), derived symbolically.
+
+For each component F(q, t): the value F; f(t), the part of F free of the variables (the
+additive terms of the expanded F in which no variable appears); dF/dt; d2F/dt2; dF/dq_j;
+d2F/dt dq_j; and d2F/dq_i dq_j (one expression per unordered pair, written to both
+triangles). Each is simplified (never into a longer expression); zeros are dropped, so the
+routine leaves those entries untouched and the caller's zeroing stands.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import sympy
+
+from .spec import TIME, ConstraintSpec, validate
+
+__all__ = ["OUTPUTS", "Entry", "Derivatives", "derive", "table"]
+
+#: Output kinds in the order the generated code and the table list them, with their labels.
+OUTPUTS: dict[str, str] = {
+    "value": "F",
+    "time_part": "f(t)",
+    "dt": "dF/dt",
+    "dtt": "d2F/dt2",
+    "dq": "dF/dq",
+    "dtdq": "d2F/dt dq",
+    "dqdq": "d2F/dq dq",
+}
+
+#: Outputs returned through SCALAR, with their IDRSEL(1) value.
+SCALAR_SELECTORS: dict[str, int] = {"value": 1, "time_part": 2, "dt": 3, "dtt": 4}
+#: Outputs returned through ARRAY, with their IDRSEL(2) value.
+ARRAY_SELECTORS: dict[str, int] = {"dq": 1, "dtdq": 2}
+
+
+@dataclass(frozen=True)
+class Entry:
+    """One non-zero output entry.
+
+    Attributes:
+        component: 1-based constraint component.
+        output: one of :data:`OUTPUTS`.
+        row: 1-based variable index for ARRAY and XMATRX entries, 0 for SCALAR ones.
+        column: 1-based second variable index for XMATRX entries (``row <= column``), else 0.
+        expression: the simplified expression.
+    """
+
+    component: int
+    output: str
+    row: int
+    column: int
+    expression: sympy.Expr
+
+    @property
+    def multiplicity(self) -> int:
+        """How many output numbers the entry fills: 2 for an off-diagonal XMATRX pair."""
+        return 2 if self.output == "dqdq" and self.row != self.column else 1
+
+
+@dataclass(frozen=True)
+class Derivatives:
+    """The non-zero entries of every output of a spec, in a fixed order.
+
+    Attributes:
+        spec: the validated spec they were derived from.
+        entries: component by component, output kind by :data:`OUTPUTS` order, then by
+            variable index.
+    """
+
+    spec: ConstraintSpec
+    entries: tuple[Entry, ...]
+
+    def of(self, component: int, output: str) -> tuple[Entry, ...]:
+        """The non-zero entries of one output of one component."""
+        return tuple(e for e in self.entries if e.component == component and e.output == output)
+
+    def count(self, output: str | None = None) -> int:
+        """Number of non-zero output numbers (XMATRX pairs count twice), of one kind or all."""
+        return sum(e.multiplicity for e in self.entries if output in (None, e.output))
+
+
+def simplified(expression: sympy.Expr) -> sympy.Expr:
+    """SymPy's simplify, kept only when it does not lengthen the expression."""
+    if expression.is_Number or expression.is_Symbol:
+        return expression
+    return sympy.simplify(expression, ratio=1)
+
+
+def time_part(expression: sympy.Expr, variables: set[sympy.Symbol]) -> sympy.Expr:
+    """f(t): the sum of the additive terms of the expanded F in which no variable appears."""
+    terms = sympy.Add.make_args(sympy.expand(expression))
+    return sympy.Add(*[term for term in terms if not term.free_symbols & variables])
+
+
+def derive(spec: ConstraintSpec) -> Derivatives:
+    """Validate ``spec`` and derive the non-zero entries of every output of every component.
+
+    Raises:
+        ValueError: when the spec is invalid (see :func:`ucon.spec.validate`).
+    """
+    validate(spec)
+    q = [v.symbol for v in spec.variables]
+    variables = set(q)
+    entries: list[Entry] = []
+    cache: dict[sympy.Expr, sympy.Expr] = {}
+
+    def add(component: int, output: str, row: int, column: int, raw: sympy.Expr) -> None:
+        if raw not in cache:
+            cache[raw] = simplified(raw)
+        expression = cache[raw]
+        if expression != 0:
+            entries.append(Entry(component, output, row, column, expression))
+
+    for k, constraint in enumerate(spec.constraints, start=1):
+        # Simplifying F first keeps its derivatives short (a spec stated with vectors carries
+        # sin**2 + cos**2 and the like).
+        f = simplified(constraint.expression)
+        add(k, "value", 0, 0, f)
+        add(k, "time_part", 0, 0, time_part(f, variables))
+        add(k, "dt", 0, 0, sympy.diff(f, TIME))
+        add(k, "dtt", 0, 0, sympy.diff(f, TIME, 2))
+        first = [sympy.diff(f, qj) for qj in q]
+        for j, dq in enumerate(first, start=1):
+            add(k, "dq", j, 0, dq)
+        for j, dq in enumerate(first, start=1):
+            add(k, "dtdq", j, 0, sympy.diff(dq, TIME))
+        for i, dq in enumerate(first, start=1):
+            for j in range(i, len(q) + 1):
+                add(k, "dqdq", i, j, sympy.diff(dq, q[j - 1]))
+    return Derivatives(spec, tuple(entries))
+
+
+def table(derivatives: Derivatives) -> str:
+    """The table of non-zero entries, one per line, and the count by output kind."""
+    spec = derivatives.spec
+    names = [v.symbol.name for v in spec.variables]
+    lines = [
+        f"{spec.name}: {spec.ncomponents} constraint(s) over {spec.nvars} variables "
+        f"({' '.join(names)})",
+        f"{'F':<4}{'output':<11}{'entry':<22}expression",
+    ]
+    for entry in derivatives.entries:
+        if entry.output == "dqdq":
+            a, b = names[entry.row - 1], names[entry.column - 1]
+            where = f"({a}, {a})" if a == b else f"({a}, {b}) x2"
+        elif entry.row:
+            where = names[entry.row - 1]
+        else:
+            where = "-"
+        lines.append(f"F{entry.component:<3}{OUTPUTS[entry.output]:<11}{where:<22}"
+                     f"{sympy.sstr(entry.expression)}")
+    counts = " + ".join(f"{derivatives.count(kind)} {label}" for kind, label in OUTPUTS.items())
+    lines.append(f"non-zero entries: {counts} = {derivatives.count()}")
+    return "\n".join(lines) + "\n"
