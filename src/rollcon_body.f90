@@ -55,14 +55,18 @@ contains
         real(wp), intent(in) :: q(6)
         real(wp) :: m(6, 6)
         real(wp) :: b(3, 3)
-        integer :: i
+        integer :: i, j
 
         m = 0.0_wp
         do i = 1, 3
             m(i, i) = part%mass
         end do
         b = rate_matrix(q(5), q(6))
-        m(4:6, 4:6) = matmul(transpose(b), matmul(diag(part%inertia), b))
+        do j = 1, 3
+            do i = 1, 3
+                m(3 + i, 3 + j) = sum(b(:, i)*part%inertia*b(:, j))
+            end do
+        end do
     end function body_mass_matrix
 
     !> r = M a - f: zero when the part moves as the applied loads say.
@@ -156,16 +160,5 @@ contains
         end function dw
 
     end subroutine body_residual_jacobian
-
-    pure function diag(values) result(m)
-        real(wp), intent(in) :: values(:)
-        real(wp) :: m(size(values), size(values))
-        integer :: i
-
-        m = 0.0_wp
-        do i = 1, size(values)
-            m(i, i) = values(i)
-        end do
-    end function diag
 
 end module rollcon_body

@@ -43,7 +43,7 @@ contains
         real(wp), intent(in) :: time, y(:), yp(:)
         real(wp), intent(out) :: r(:)
         type(error_type), allocatable, intent(out) :: error
-        integer :: n, nc, needs, k, h
+        integer :: n, nc, needs, k, h, j
 
         n = eq%n
         nc = eq%nc
@@ -55,7 +55,10 @@ contains
             if (allocated(error)) return
             call eq%assemble(time, q, u)
             r(:n) = qp - u
-            r(n + 1:2*n) = matmul(eq%mass, up) - eq%force
+            r(n + 1:2*n) = -eq%force
+            do j = 1, n
+                r(n + 1:2*n) = r(n + 1:2*n) + eq%mass(:, j)*up(j)
+            end do
             do k = 1, nc
                 h = eq%model%holonomic_number(k)
                 if (h > 0) then

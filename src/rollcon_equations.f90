@@ -110,7 +110,7 @@ contains
                 if (self%model%ucons(k)%holonomic) then
                     self%c(k, :) = cs%grad_q(k, :)
                     rate = dot_product(cs%grad_q(k, :), u) + cs%dt(k)
-                    self%gamma(k) = -dot_product(u, matmul(cs%hqq(:, :, k), u)) &
+                    self%gamma(k) = -quadratic_form(cs%hqq(:, :, k), u) &
                         & - 2.0_wp*dot_product(cs%dt_grad_q(k, :), u) - cs%dtt(k) &
                         & - 2.0_wp*alpha*rate - alpha**2*cs%value(k)
                 else
@@ -147,10 +147,7 @@ contains
         if (allocated(error)) return
         call self%assemble(time, q, u)
         call self%constraint_rows(u)
-        self%kkt(:n, :n) = self%mass
-        self%kkt(:n, n + 1:) = -transpose(self%c)
-        self%kkt(n + 1:, :n) = self%c
-        self%kkt(n + 1:, n + 1:) = 0.0_wp
+        call fill_saddle_point(self)
         self%rhs(:n, 1) = self%force
         self%rhs(n + 1:, 1) = self%gamma
         call factor_dense(self%kkt, self%pivots, error)
@@ -165,7 +162,7 @@ contains
     subroutine momentum_jacobian(self, q, u, a, lambda)
         class(equations_type), intent(inout) :: self
         real(wp), intent(in) :: q(:), u(:), a(:), lambda(:)
-        integer :: p, i0, k
+        integer :: p, i0, k, j
 
         self%dm_dq = 0.0_wp
         self%dm_du = 0.0_wp
@@ -180,7 +177,9 @@ contains
             if (self%model%ucons(k)%holonomic) then
                 self%dm_dq = self%dm_dq - lambda(k)*self%constraints%hqq(:, :, k)
             else
-                self%dm_dq = self%dm_dq - lambda(k)*transpose(self%constraints%hqu(:, :, k))
+                do j = 1, self%n
+                    self%dm_dq(:, j) = self%dm_dq(:, j) - lambda(k)*self%constraints%hqu(j, :, k)
+                end do
             end if
         end do
     end subroutine momentum_jacobian
@@ -290,13 +289,40 @@ contains
                 end if
             end associate
         end do
-        self%kkt(:n, n + 1:) = -transpose(self%c)
-        self%kkt(n + 1:, :n) = self%c
+        call fill_saddle_point(self)
         self%rhs(:n, 1) = 0.0_wp
         call solve_kkt(self, error)
         if (allocated(error)) return
         du = self%rhs(:n, 1)
     end subroutine project
+
+    !> kkt = [M, -C^T; C, 0], element by element (no temporaries in the hot path).
+    pure subroutine fill_saddle_point(self)
+        type(equations_type), intent(inout) :: self
+        integer :: i, k, n
+
+        n = self%n
+        do i = 1, n
+            self%kkt(:n, i) = self%mass(:, i)
+            self%kkt(n + 1:, i) = self%c(:, i)
+        end do
+        do k = 1, self%nc
+            self%kkt(:n, n + k) = -self%c(k, :)
+            self%kkt(n + 1:, n + k) = 0.0_wp
+        end do
+    end subroutine fill_saddle_point
+
+    !> u^T H u for a square H.
+    pure function quadratic_form(h, u) result(value)
+        real(wp), intent(in) :: h(:, :), u(:)
+        real(wp) :: value
+        integer :: j
+
+        value = 0.0_wp
+        do j = 1, size(u)
+            value = value + u(j)*dot_product(h(:, j), u)
+        end do
+    end function quadratic_form
 
     !> Factor kkt and solve for rhs(:, 1).
     subroutine solve_kkt(self, error)

@@ -247,7 +247,8 @@ contains
         call c_f_pointer(user_data, problem)
         yv => FN_VGetArrayPointer(y)
         n = problem%eq%n
-        ierr = int(problem%root_values(t, yv(:n), yv(n + 1:2*n), g), c_int)
+        ierr = int(problem%root_values(t, yv(:n), yv(n + 1:2*n), g, &
+            & yv(2*n + 1:2*n + problem%eq%nc)), c_int)
         gout(1:2) = g
     end function events
 

@@ -9,8 +9,11 @@ module rollcon_lapack
 
     public :: solve_dense, factor_dense, solve_factored, lapack_info_error
 
+    !> Largest order factored with the unblocked routine
+    integer, parameter :: small_matrix = 64
+
     interface
-        !> LU factorisation with partial pivoting (LAPACK)
+        !> LU factorisation with partial pivoting, blocked and recursive (LAPACK)
         pure subroutine dgetrf(m, n, a, lda, ipiv, info)
             import :: wp
             integer, intent(in) :: m, n, lda
@@ -18,6 +21,15 @@ module rollcon_lapack
             integer, intent(out) :: ipiv(*)
             integer, intent(out) :: info
         end subroutine dgetrf
+
+        !> LU factorisation with partial pivoting, unblocked (LAPACK): faster for small n
+        pure subroutine dgetf2(m, n, a, lda, ipiv, info)
+            import :: wp
+            integer, intent(in) :: m, n, lda
+            real(wp), intent(inout) :: a(lda, *)
+            integer, intent(out) :: ipiv(*)
+            integer, intent(out) :: info
+        end subroutine dgetf2
 
         !> Solve with an LU factorisation from dgetrf (LAPACK)
         pure subroutine dgetrs(trans, n, nrhs, a, lda, ipiv, b, ldb, info)
@@ -49,8 +61,15 @@ contains
                 & stat_lapack)
             return
         end if
-        call dgetrf(size(a, 1), size(a, 2), a, size(a, 1), ipiv, info)
-        call lapack_info_error("dgetrf", info, error)
+        ! The saddle-point systems here are a dozen or two unknowns: LAPACK's unblocked
+        ! factorisation avoids the recursion and blocking overhead that dominates at that size.
+        if (size(a, 1) <= small_matrix) then
+            call dgetf2(size(a, 1), size(a, 2), a, size(a, 1), ipiv, info)
+            call lapack_info_error("dgetf2", info, error)
+        else
+            call dgetrf(size(a, 1), size(a, 2), a, size(a, 1), ipiv, info)
+            call lapack_info_error("dgetrf", info, error)
+        end if
     end subroutine factor_dense
 
     !> Solve A x = b with the factors from factor_dense; b is overwritten by x.

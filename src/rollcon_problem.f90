@@ -5,6 +5,7 @@ module rollcon_problem
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type
     use rollcon_equations, only : equations_type
+    use rollcon_constraints, only : need_first
     implicit none
     private
 
@@ -85,22 +86,36 @@ contains
         end associate
     end function ode_rhs
 
-    !> Event functions at (t, q, u): theta - theta_min, normal force. Also leaves lambda.
-    function root_values(self, time, q, u, g) result(ierr)
+    !> Event functions at (t, q, u): theta - theta_min, normal force. The multipliers are
+    !> given by a DAE state (IDA); otherwise they are solved for, as in a right-hand side.
+    function root_values(self, time, q, u, g, lambda) result(ierr)
         class(problem_type), intent(inout) :: self
         real(wp), intent(in) :: time, q(:), u(:)
         real(wp), intent(out) :: g(2)
+        !> Multipliers at (t, q, u), when known
+        real(wp), intent(in), optional :: lambda(:)
         integer :: ierr
         type(error_type), allocatable :: error
         real(wp) :: force(3)
 
-        call self%eq%accelerations(time, q, u, self%a, self%lambda, error)
-        ierr = self%keep_failure(error)
-        if (ierr /= 0) return
-        force = self%eq%constraint_force(self%events%part, self%lambda)
+        ierr = 0
         g(root_theta) = q(6*(self%events%part - 1) + 5) - self%events%theta_min
         g(root_liftoff) = 1.0_wp
-        if (self%events%stop_on_liftoff) g(root_liftoff) = force(3)
+        if (.not. self%events%stop_on_liftoff) return
+        if (present(lambda)) then
+            ! only C is needed: first partials, no saddle-point solve
+            call self%eq%constraints%evaluate(self%eq%model, time, q, u, need_first, error)
+            ierr = self%keep_failure(error)
+            if (ierr /= 0) return
+            call self%eq%constraint_rows(u)
+            self%lambda = lambda
+        else
+            call self%eq%accelerations(time, q, u, self%a, self%lambda, error)
+            ierr = self%keep_failure(error)
+            if (ierr /= 0) return
+        end if
+        force = self%eq%constraint_force(self%events%part, self%lambda)
+        g(root_liftoff) = force(3)
     end function root_values
 
     !> Keep the first failure; return the callback code (0 ok, -1 unrecoverable).
