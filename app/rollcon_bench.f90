@@ -13,10 +13,6 @@ module rollcon_bench
 
     public :: bench_command
 
-    !> The scenes of the full benchmark
-    character(len=*), parameter :: all_scenes(5) = [character(len=12) :: "coin", "tipping_coin", &
-        & "fast_upright", "near_flat", "long_run"]
-
 contains
 
     !> Parse the arguments after `bench`, run, write DIR/bench.csv and one plot per scene.

@@ -8,11 +8,14 @@ program rollcon_main
     use rollcon_table, only : print_table, default_state, default_radius
     use rollcon_run, only : run_scene
     use rollcon_bench, only : bench_command
-    use rollcon_simulation, only : run_summary_type, status_failed
+    use rollcon_plot, only : plot_command
+    use rollcon_animate, only : animate_command
+    use rollcon_run_vtk, only : write_run_vtk
+    use rollcon_simulation, only : run_summary_type
     implicit none
     type(error_type), allocatable :: error
     type(run_summary_type) :: summary
-    real(wp) :: state(disk_nvars), radius
+    real(wp) :: state(disk_nvars), radius, vtk_fps
     character(len=:), allocatable :: command, scene, output_dir
     logical :: quiet
     integer :: argument_index
@@ -31,6 +34,14 @@ program rollcon_main
     case ("run")
         call run_scene(scene, output_dir, rolling_disk_ucosub, quiet, summary, error)
         if (allocated(error)) call fail(error)
+        if (vtk_fps > 0.0_wp) call write_run_vtk(scene, output_dir, vtk_fps, error)
+        if (allocated(error)) call fail(error)
+    case ("plot")
+        call plot_command(scene, output_dir, error)
+        if (allocated(error)) call fail(error)
+    case ("animate")
+        call animate_command(scene, output_dir, error)
+        if (allocated(error)) call fail(error)
     end select
 
 contains
@@ -44,6 +55,7 @@ contains
         scene = "coin"
         output_dir = "output"
         quiet = .false.
+        vtk_fps = 0.0_wp
         state = default_state
         radius = default_radius
         i = 1
@@ -53,7 +65,7 @@ contains
             case ("-h", "--help", "help")
                 command = "help"
                 return
-            case ("table", "run")
+            case ("table", "run", "plot", "animate")
                 command = trim(argument)
             case ("bench")
                 ! the rest of the command line is bench's
@@ -79,6 +91,15 @@ contains
                         & stat_input)
                     return
                 end if
+            case ("--vtk")
+                i = i + 1
+                call real_option("--vtk", i, vtk_fps, error)
+                if (allocated(error)) return
+                if (.not. vtk_fps > 0.0_wp) then
+                    call fatal_error(error, "--vtk needs a positive number of frames per " &
+                        & // "second", stat_input)
+                    return
+                end if
             case ("--state")
                 i = i + 1
                 call real_option_list("--state", i, state, error)
@@ -97,7 +118,8 @@ contains
 
     subroutine print_help()
         write(output_unit, '(a)') &
-            & "usage: rollcon [run] [SCENE] [--output DIR] [--quiet]", &
+            & "usage: rollcon [run] [SCENE] [--output DIR] [--quiet] [--vtk FPS]", &
+            & "       rollcon plot|animate [CSV|SCENE] [--output DIR]", &
             & "       rollcon table [--radius R] [--state XD,YD,ZD,PSI,THETA,PSID,THETAD,PHID]", &
             & "       rollcon bench [--quick] [...]     (rollcon bench --help)", &
             & "       rollcon --help", &
@@ -108,6 +130,15 @@ contains
             & "  Writes DIR/SCENE.csv (one row per output step, flushed as the run goes; SI", &
             & "  units, radians) and DIR/SCENE.summary.txt; DIR defaults to ./output.", &
             & "  Progress goes to stderr for runs longer than a second unless --quiet.", &
+            & "  --vtk FPS    also write DIR/SCENE_vtk/SCENE.pvd, a VTK time series for", &
+            & "               ParaView: FPS frames per simulated second, each frame the", &
+            & "               output row nearest to its time (nothing is interpolated)", &
+            & "", &
+            & "plot: draw the figures of a run's CSV with gnuplot, as DIR/NAME_path.png,", &
+            & "  _theta, _rates, _energy, _residuals, _force and _friction.png, NAME the", &
+            & "  CSV's file name less .csv. A SCENE name means DIR/SCENE.csv (default coin).", &
+            & "animate: draw DIR/NAME.gif, the disk rolling, 20 frames per second (real time", &
+            & "  up to 15 s of motion, faster beyond), with gnuplot.", &
             & "", &
             & "table: evaluate the hand-checked rolling-disk UCOSUB through the ADAMS calling", &
             & "  sequence and print F and every non-zero first and second partial of its three", &

@@ -11,6 +11,17 @@ module rollcon
     use rollcon_ucon_call, only : declare_ucon, evaluate_ucon
     use rollcon_ucon_check, only : ucon_check_options_type, ucon_mismatch_type, &
         & ucon_check_result_type, check_ucon_state
+    use rollcon_gen_rolling_disk, only : generated_rolling_disk_ucosub => rolling_disk_ucosub
+    use rollcon_body, only : part_type
+    use rollcon_force, only : applied_force_type, profile_constant, profile_half_sine, &
+        & frame_body, frame_tilt
+    use rollcon_model, only : model_type, ucon_statement_type, setup_model
+    use rollcon_problem, only : problem_type, solver_settings_type, event_settings_type, &
+        & formulation_cvode, formulation_ida, method_bdf, method_adams
+    use rollcon_equations, only : equations_type, drift_none, drift_projection, drift_baumgarte
+    use rollcon_scene, only : scene_type, read_scene, scene_path
+    use rollcon_disk_scene, only : build_disk_problem, disk_initial_state, disk_mass_properties
+    use rollcon_simulation, only : run_options_type, run_summary_type, history_type, simulate
     implicit none
     public
 end module rollcon

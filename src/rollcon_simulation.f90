@@ -280,9 +280,12 @@ contains
             end select
         end function event_message
 
+        !> At most once a second of wall time: the fraction of the simulated time done, the
+        !> rate, and the time left at that rate, e.g. "rollcon: 82% of 10 s simulated
+        !> (t = 8.2 s), 14.5 simulated s per CPU s, about 0.1 s left".
         subroutine report_progress(time)
             real(wp), intent(in) :: time
-            real(wp) :: now, fraction
+            real(wp) :: now, fraction, left
 
             if (.not. options%progress) return
             now = wall_seconds()
@@ -290,11 +293,14 @@ contains
             wall_last = now
             call cpu_time(cpu_now)
             fraction = (time - options%t0)/(options%end_time - options%t0)
-            write(error_unit, '(a, f6.1, a, f7.3, a, es9.2, a, f8.1, a)') "rollcon: ", &
-                & 100.0_wp*fraction, "% (t = ", time, " s), ", &
+            left = (cpu_now - cpu_start)*(1.0_wp - fraction)/max(fraction, 1.0e-9_wp)
+            write(error_unit, '(a, g0.3, a)') "rollcon: " &
+                & // to_text(anint(1000.0_wp*fraction)/10.0_wp) // "% of " &
+                & // to_text(options%end_time - options%t0) // " s simulated (t = " &
+                & // to_text(anint(1000.0_wp*time)/1000.0_wp) // " s), ", &
                 & (time - options%t0)/max(cpu_now - cpu_start, 1.0e-9_wp), &
-                & " simulated s per CPU s, about ", &
-                & (cpu_now - cpu_start)*(1.0_wp - fraction)/max(fraction, 1.0e-9_wp), " s left"
+                & " simulated s per CPU s, about " // to_text(anint(10.0_wp*left)/10.0_wp) &
+                & // " s left"
             flush(error_unit)
         end subroutine report_progress
 

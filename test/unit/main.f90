@@ -12,6 +12,7 @@ program tester
     use test_dynamics, only : collect_dynamics
     use test_motion, only : collect_motion
     use test_extremes, only : collect_extremes
+    use test_pictures, only : collect_pictures
     implicit none
     type(testsuite_type), allocatable :: suites(:)
     type(test_counts_type) :: counts
@@ -28,7 +29,8 @@ program tester
         & new_testsuite("scene", collect_scene), &
         & new_testsuite("dynamics", collect_dynamics), &
         & new_testsuite("motion", collect_motion), &
-        & new_testsuite("extremes", collect_extremes)]
+        & new_testsuite("extremes", collect_extremes), &
+        & new_testsuite("pictures", collect_pictures)]
 
     if (command_argument_count() >= 1) then
         call get_command_argument(1, argument)
