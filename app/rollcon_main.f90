@@ -11,6 +11,8 @@ program rollcon_main
     use rollcon_plot, only : plot_command
     use rollcon_animate, only : animate_command
     use rollcon_run_vtk, only : write_run_vtk
+    use rollcon_check, only : check_command
+    use rollcon_user_library, only : user_ucosub_type, new_user_ucosub
     use rollcon_simulation, only : run_summary_type
     implicit none
     type(error_type), allocatable :: error
@@ -19,6 +21,10 @@ program rollcon_main
     character(len=:), allocatable :: command, scene, output_dir
     logical :: quiet
     integer :: argument_index
+    !> rollcon check's verdict (0 clean, 1 mismatches); run --ucosub: the user's file, loaded
+    integer :: check_status
+    character(len=:), allocatable :: ucosub_path
+    type(user_ucosub_type) :: user
 
     call read_command_line(error)
     if (allocated(error)) call fail(error)
@@ -32,7 +38,16 @@ program rollcon_main
         call print_table(state, radius, error)
         if (allocated(error)) call fail(error)
     case ("run")
-        call run_scene(scene, output_dir, rolling_disk_ucosub, quiet, summary, error)
+        if (allocated(ucosub_path)) then
+            call new_user_ucosub(user, ucosub_path, error)
+            if (allocated(error)) call fail(error)
+            if (.not. quiet) write(output_unit, '(a)') "UCOSUB: " // ucosub_path // " (" &
+                & // user%library // merge(", from the cache", ", compiled now  ", &
+                & user%from_cache) // ")"
+            call run_scene(scene, output_dir, user%ucosub, quiet, summary, error)
+        else
+            call run_scene(scene, output_dir, rolling_disk_ucosub, quiet, summary, error)
+        end if
         if (allocated(error)) call fail(error)
         if (vtk_fps > 0.0_wp) call write_run_vtk(scene, output_dir, vtk_fps, error)
         if (allocated(error)) call fail(error)
@@ -42,6 +57,14 @@ program rollcon_main
     case ("animate")
         call animate_command(scene, output_dir, error)
         if (allocated(error)) call fail(error)
+    case ("check")
+        call check_command(argument_index + 1, check_status, error)
+        ! Exit status 1 is a verdict (mismatches), 2 a failure; no backtrace, no STOP line.
+        if (allocated(error)) then
+            write(error_unit, '(a)') "rollcon: error: " // error%message
+            stop 2, quiet=.true.
+        end if
+        if (check_status /= 0) stop 1, quiet=.true.
     end select
 
 contains
@@ -72,6 +95,19 @@ contains
                 command = "bench"
                 argument_index = i
                 return
+            case ("check")
+                ! the rest of the command line is check's (app/rollcon_check.f90)
+                command = "check"
+                argument_index = i
+                return
+            case ("--ucosub")
+                i = i + 1
+                if (i > command_argument_count()) then
+                    call fatal_error(error, "--ucosub needs a file (.f, .f90 or .o)", stat_input)
+                    return
+                end if
+                call get_command_argument(i, argument)
+                ucosub_path = trim(argument)
             case ("--quiet", "-q")
                 quiet = .true.
             case ("--output", "-o")
@@ -122,6 +158,8 @@ contains
             & "       rollcon plot|animate [CSV|SCENE] [--output DIR]", &
             & "       rollcon table [--radius R] [--state XD,YD,ZD,PSI,THETA,PSID,THETAD,PHID]", &
             & "       rollcon bench [--quick] [...]     (rollcon bench --help)", &
+            & "       rollcon [run] [SCENE] --ucosub FILE      (your own UCOSUB, see below)", &
+            & "       rollcon check FILE --ucon ID:PAR1,PAR2,...  (rollcon check --help)", &
             & "       rollcon --help", &
             & "", &
             & "run (the default): simulate a rolling-disk scene, the paper's coin unless SCENE", &
@@ -130,6 +168,9 @@ contains
             & "  Writes DIR/SCENE.csv (one row per output step, flushed as the run goes; SI", &
             & "  units, radians) and DIR/SCENE.summary.txt; DIR defaults to ./output.", &
             & "  Progress goes to stderr for runs longer than a second unless --quiet.", &
+            & "  --ucosub FILE  serve the disk's no-slip UCONs with your own UCOSUB (.f, .f90", &
+            & "               or .o; PAR as in the paper: part id, 8 codes, R, component),", &
+            & "               compiled with gfortran and cached (see rollcon check --help)", &
             & "  --vtk FPS    also write DIR/SCENE_vtk/SCENE.pvd, a VTK time series for", &
             & "               ParaView: FPS frames per simulated second, each frame the", &
             & "               output row nearest to its time (nothing is interpolated)", &

@@ -30,11 +30,13 @@ module rollcon_ucon_check
 
     !> One entry found wrong
     type :: ucon_mismatch_type
-        !> Which rule: "derivative", "symmetry", "velocity-linear", "selector-0", "repeat"
+        !> Which rule: "derivative", "symmetry", "velocity-linear", "selector-0", "repeat",
+        !> "outside-block" (an entry beyond the declared variables is non-zero)
         character(len=:), allocatable :: rule
         !> Which output: "ARRAY (dF/dq)", "XMATRX (d2F/dq dq)", "SCALAR (dF/dt)", ...
         character(len=:), allocatable :: output
-        !> Row and column of the entry in q's numbering (0 when not applicable)
+        !> Row and column of the entry in q's numbering (0 when not applicable); for
+        !> "selector-0", the first entry written although not asked for
         integer :: row = 0, column = 0
         !> What the check computed and what the routine returned
         real(wp) :: expected = 0.0_wp, returned = 0.0_wp
@@ -80,7 +82,7 @@ contains
         real(wp) :: x(max_ucon_vars, max_ucon_vars), scratch(max_ucon_vars, max_ucon_vars)
         real(wp) :: f_line(-3:3), a_line(max_ucon_vars, -3:3), ft_line(-3:3), h, fd
         real(wp) :: f_again, a_again(max_ucon_vars), x_again(max_ucon_vars, max_ucon_vars)
-        integer :: n, i, j, k
+        integer :: n, i, j, k, loc(2)
 
         if (.not. allocated(result%mismatches)) allocate(result%mismatches(0))
         n = size(codes)
@@ -95,6 +97,16 @@ contains
         call evaluate_ucon(ucosub, id, time, q30, par, [scalar_dtt, array_none, xmatrx_none], &
             & ftt, scratch(:, 1), scratch, error)
         if (allocated(error)) return
+        ! Nothing beyond the declared variables: the outputs were zeroed before the call.
+        if (any(a(n + 1:) /= 0.0_wp)) then
+            i = n + findloc(a(n + 1:) /= 0.0_wp, .true., dim=1)
+            call add(result, "outside-block", "ARRAY (dF/dq)", i, 0, 0.0_wp, a(i))
+        end if
+        if (any(x /= 0.0_wp .and. .not. declared_block(n))) then
+            loc = findloc(x /= 0.0_wp .and. .not. declared_block(n), .true.)
+            call add(result, "outside-block", "XMATRX (d2F/dq dq)", loc(1), loc(2), 0.0_wp, &
+                & x(loc(1), loc(2)))
+        end if
 
         ! Same inputs, same outputs: a routine with hidden state fails here.
         call evaluate_ucon(ucosub, id, time, q30, par, [scalar_value, array_dq, xmatrx_dqdq], &
@@ -154,7 +166,7 @@ contains
         call check_rules(ucosub, id, time, q30, par, codes, x, result, error)
     end subroutine check_ucon_state
 
-    !> Symmetry, linearity in the velocities, nothing outside the declared block, selector 0.
+    !> Symmetry, linearity in the velocities, selector 0 (the declared block is checked above).
     subroutine check_rules(ucosub, id, time, q30, par, codes, x, result, error)
         procedure(ucosub_interface) :: ucosub
         integer, intent(in) :: id
@@ -166,7 +178,7 @@ contains
         real(wp), parameter :: sentinel = 12345.0_wp
         real(wp) :: scalar, array(max_ucon_vars), xmatrx(max_ucon_vars, max_ucon_vars)
         real(wp) :: scale
-        integer :: n, i, j, s
+        integer :: n, i, j, s, loc(2)
 
         n = size(codes)
         scale = maxval(abs(x(:n, :n)))
@@ -197,16 +209,26 @@ contains
                 call add(result, "selector-0", "SCALAR", 0, 0, sentinel, scalar)
             end if
             if (s /= 2 .and. any(array /= sentinel)) then
-                call add(result, "selector-0", "ARRAY", 0, 0, sentinel, &
-                    & array(findloc(array /= sentinel, .true., dim=1)))
+                i = findloc(array /= sentinel, .true., dim=1)
+                call add(result, "selector-0", "ARRAY", i, 0, sentinel, array(i))
             end if
             if (s /= 3 .and. any(xmatrx /= sentinel)) then
-                call add(result, "selector-0", "XMATRX", 0, 0, sentinel, &
-                    & xmatrx(1, 1))
+                loc = findloc(xmatrx /= sentinel, .true.)
+                call add(result, "selector-0", "XMATRX", loc(1), loc(2), sentinel, &
+                    & xmatrx(loc(1), loc(2)))
             end if
         end do
         call take_ucon_error(error)
     end subroutine check_rules
+
+    !> True for the entries of XMATRX inside the block of the n declared variables.
+    pure function declared_block(n) result(inside)
+        integer, intent(in) :: n
+        logical :: inside(max_ucon_vars, max_ucon_vars)
+
+        inside = .false.
+        inside(:n, :n) = .true.
+    end function declared_block
 
     !> IDRSEL asking for output s only (1: scalar F, 2: array dF/dq, 3: xmatrx).
     pure function selector_with(s) result(idrsel)

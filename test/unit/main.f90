@@ -13,6 +13,7 @@ program tester
     use test_motion, only : collect_motion
     use test_extremes, only : collect_extremes
     use test_pictures, only : collect_pictures
+    use test_user_ucosub, only : collect_user_ucosub
     implicit none
     type(testsuite_type), allocatable :: suites(:)
     type(test_counts_type) :: counts
@@ -30,7 +31,8 @@ program tester
         & new_testsuite("dynamics", collect_dynamics), &
         & new_testsuite("motion", collect_motion), &
         & new_testsuite("extremes", collect_extremes), &
-        & new_testsuite("pictures", collect_pictures)]
+        & new_testsuite("pictures", collect_pictures), &
+        & new_testsuite("user-ucosub", collect_user_ucosub)]
 
     if (command_argument_count() >= 1) then
         call get_command_argument(1, argument)
