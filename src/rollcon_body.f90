@@ -8,7 +8,8 @@
 module rollcon_body
     use rollcon_kinds, only : wp
     use rollcon_rotation, only : rotation_matrix, rate_matrix, rate_matrix_dtheta, &
-        & rate_matrix_dphi, rate_matrix_dtheta2, rate_matrix_dtheta_dphi, rate_matrix_dphi2, cross
+        & rate_matrix_dphi, rate_matrix_dtheta2, rate_matrix_dtheta_dphi, rate_matrix_dphi2, cross, &
+        & times, transpose_times
     implicit none
     private
 
@@ -35,7 +36,7 @@ contains
         real(wp), intent(in) :: u(6)
         real(wp) :: omega(3)
 
-        omega = matmul(rate_matrix(q(5), q(6)), u(4:6))
+        omega = times(rate_matrix(q(5), q(6)), u(4:6))
     end function body_angular_velocity
 
     !> Kinetic energy [J].
@@ -84,10 +85,10 @@ contains
         r(1:3) = part%mass*(a(1:3) - gravity) - force
         b = rate_matrix(q(5), q(6))
         rot = rotation_matrix(q(4), q(5), q(6))
-        torque_body = matmul(transpose(rot), torque)
-        omega = matmul(b, u(4:6))
-        alpha = matmul(b, a(4:6)) + rate_drift(q, u)
-        r(4:6) = matmul(transpose(b), part%inertia*alpha + cross(omega, part%inertia*omega) &
+        torque_body = transpose_times(rot, torque)
+        omega = times(b, u(4:6))
+        alpha = times(b, a(4:6)) + rate_drift(q, u)
+        r(4:6) = transpose_times(b, part%inertia*alpha + cross(omega, part%inertia*omega) &
             & - torque_body)
     end function body_residual
 
@@ -96,8 +97,8 @@ contains
         real(wp), intent(in) :: q(6), u(6)
         real(wp) :: d(3)
 
-        d = u(5)*matmul(rate_matrix_dtheta(q(5), q(6)), u(4:6)) &
-            & + u(6)*matmul(rate_matrix_dphi(q(5), q(6)), u(4:6))
+        d = u(5)*times(rate_matrix_dtheta(q(5), q(6)), u(4:6)) &
+            & + u(6)*times(rate_matrix_dphi(q(5), q(6)), u(4:6))
     end function rate_drift
 
     !> d(M a - f)/dq and d(M a - f)/du; d/da is the mass matrix. The applied moment is held at
@@ -123,29 +124,29 @@ contains
             b_pp = rate_matrix_dphi2(theta, phi)
             ur = u(4:6)
             ar = a(4:6)
-            torque_body = matmul(transpose(rotation_matrix(q(4), theta, phi)), torque)
-            omega = matmul(b, ur)
+            torque_body = transpose_times(rotation_matrix(q(4), theta, phi), torque)
+            omega = times(b, ur)
             jw = inertia*omega
-            alpha = matmul(b, ar) + u(5)*matmul(b_t, ur) + u(6)*matmul(b_p, ur)
+            alpha = times(b, ar) + u(5)*times(b_t, ur) + u(6)*times(b_p, ur)
             w = inertia*alpha + cross(omega, jw) - torque_body
 
             dr_dq = 0.0_wp
             dr_du = 0.0_wp
             ! theta
-            d_omega = matmul(b_t, ur)
-            d_alpha = matmul(b_t, ar) + u(5)*matmul(b_tt, ur) + u(6)*matmul(b_tp, ur)
-            dr_dq(4:6, 5) = matmul(transpose(b_t), w) + matmul(transpose(b), dw())
+            d_omega = times(b_t, ur)
+            d_alpha = times(b_t, ar) + u(5)*times(b_tt, ur) + u(6)*times(b_tp, ur)
+            dr_dq(4:6, 5) = transpose_times(b_t, w) + transpose_times(b, dw())
             ! phi
-            d_omega = matmul(b_p, ur)
-            d_alpha = matmul(b_p, ar) + u(5)*matmul(b_tp, ur) + u(6)*matmul(b_pp, ur)
-            dr_dq(4:6, 6) = matmul(transpose(b_p), w) + matmul(transpose(b), dw())
+            d_omega = times(b_p, ur)
+            d_alpha = times(b_p, ar) + u(5)*times(b_tp, ur) + u(6)*times(b_pp, ur)
+            dr_dq(4:6, 6) = transpose_times(b_p, w) + transpose_times(b, dw())
             ! psidot, thetadot, phidot
             do j = 1, 3
                 d_omega = b(:, j)
                 d_alpha = u(5)*b_t(:, j) + u(6)*b_p(:, j)
-                if (j == 2) d_alpha = d_alpha + matmul(b_t, ur)
-                if (j == 3) d_alpha = d_alpha + matmul(b_p, ur)
-                dr_du(4:6, 3 + j) = matmul(transpose(b), dw())
+                if (j == 2) d_alpha = d_alpha + times(b_t, ur)
+                if (j == 3) d_alpha = d_alpha + times(b_p, ur)
+                dr_du(4:6, 3 + j) = transpose_times(b, dw())
             end do
         end associate
 

@@ -79,9 +79,10 @@ contains
     !> Mass matrix and f = -(M a - f) at a = 0, part by part.
     subroutine assemble(self, time, q, u)
         class(equations_type), intent(inout) :: self
-        real(wp), intent(in) :: time, q(:), u(:)
+        real(wp), intent(in) :: time
+        real(wp), intent(in), contiguous :: q(:), u(:)
         real(wp), parameter :: zero6(6) = 0.0_wp
-        real(wp) :: applied(3)
+        real(wp) :: applied(3), part_mass(6, 6), part_residual(6)
         integer :: p, i0
 
         self%mass = 0.0_wp
@@ -89,10 +90,12 @@ contains
             i0 = 6*(p - 1)
             call force_and_moment(self%model%forces, p, time, q(i0 + 1:i0 + 6), applied, &
                 & self%moments(:, p))
-            self%mass(i0 + 1:i0 + 6, i0 + 1:i0 + 6) = body_mass_matrix(self%model%parts(p), &
-                & q(i0 + 1:i0 + 6))
-            self%force(i0 + 1:i0 + 6) = -body_residual(self%model%parts(p), q(i0 + 1:i0 + 6), &
+            ! whole fixed-size locals take the function results without heap temporaries
+            part_mass = body_mass_matrix(self%model%parts(p), q(i0 + 1:i0 + 6))
+            part_residual = body_residual(self%model%parts(p), q(i0 + 1:i0 + 6), &
                 & u(i0 + 1:i0 + 6), zero6, applied, self%moments(:, p), self%model%gravity)
+            self%mass(i0 + 1:i0 + 6, i0 + 1:i0 + 6) = part_mass
+            self%force(i0 + 1:i0 + 6) = -part_residual
         end do
     end subroutine assemble
 
@@ -161,7 +164,8 @@ contains
     !> d(M a - f - C^T lambda)/dq and /du at given a, lambda (into dm_dq, dm_du).
     subroutine momentum_jacobian(self, q, u, a, lambda)
         class(equations_type), intent(inout) :: self
-        real(wp), intent(in) :: q(:), u(:), a(:), lambda(:)
+        real(wp), intent(in), contiguous :: q(:), u(:), a(:)
+        real(wp), intent(in) :: lambda(:)
         integer :: p, i0, k, j
 
         self%dm_dq = 0.0_wp
@@ -337,7 +341,7 @@ contains
     !> Total energy: kinetic plus gravitational potential [J].
     pure function energy(self, q, u) result(e)
         class(equations_type), intent(in) :: self
-        real(wp), intent(in) :: q(:), u(:)
+        real(wp), intent(in), contiguous :: q(:), u(:)
         real(wp) :: e
         integer :: p, i0
 
@@ -357,7 +361,12 @@ contains
         real(wp), intent(in) :: lambda(:)
         real(wp) :: force(3)
 
-        force = matmul(lambda, self%c(:, 6*(p - 1) + 1:6*(p - 1) + 3))
+        integer :: k
+
+        force = 0.0_wp
+        do k = 1, size(lambda)
+            force = force + lambda(k)*self%c(k, 6*(p - 1) + 1:6*(p - 1) + 3)
+        end do
     end function constraint_force
 
 end module rollcon_equations

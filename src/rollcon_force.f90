@@ -2,7 +2,7 @@
 !> Applied forces on parts: a fixed ground direction, a time profile, a point of application.
 module rollcon_force
     use rollcon_kinds, only : wp
-    use rollcon_rotation, only : rotation_matrix, cross
+    use rollcon_rotation, only : rotation_matrix, cross, times
     implicit none
     private
 
@@ -82,7 +82,7 @@ contains
             else
                 frame = rotation_matrix(q(4), q(5), q(6))
             end if
-            arm = matmul(frame, forces(i)%point)
+            arm = times(frame, forces(i)%point)
             force = force + f
             moment = moment + cross(arm, f)
         end do

@@ -8,6 +8,7 @@ module rollcon_rotation
 
     public :: rotation_matrix, rate_matrix, rate_matrix_dtheta, rate_matrix_dphi
     public :: rate_matrix_dtheta2, rate_matrix_dtheta_dphi, rate_matrix_dphi2, cross
+    public :: times, transpose_times
 
 contains
 
@@ -87,6 +88,22 @@ contains
         b(:, 1) = [-sin(theta)*sin(phi), -sin(theta)*cos(phi), 0.0_wp]
         b(:, 2) = [-cos(phi), sin(phi), 0.0_wp]
     end function rate_matrix_dphi2
+
+    !> a v for a 3 x 3 matrix (written out: matmul may allocate a temporary in the hot path).
+    pure function times(a, v) result(w)
+        real(wp), intent(in) :: a(3, 3), v(3)
+        real(wp) :: w(3)
+
+        w = a(:, 1)*v(1) + a(:, 2)*v(2) + a(:, 3)*v(3)
+    end function times
+
+    !> a^T v for a 3 x 3 matrix.
+    pure function transpose_times(a, v) result(w)
+        real(wp), intent(in) :: a(3, 3), v(3)
+        real(wp) :: w(3)
+
+        w = [sum(a(:, 1)*v), sum(a(:, 2)*v), sum(a(:, 3)*v)]
+    end function transpose_times
 
     !> Cross product a x b.
     pure function cross(a, b) result(c)
