@@ -4,7 +4,7 @@ module rollcon_bench
     use, intrinsic :: iso_fortran_env, only : output_unit, error_unit
     use rollcon, only : wp, error_type, rolling_disk_ucosub
     use rollcon_error, only : fatal_error, stat_input, stat_io
-    use rollcon_text, only : to_text
+    use rollcon_text, only : to_text, shell_quote
     use rollcon_scene, only : scene_type, read_scene, scene_path
     use rollcon_benchmark, only : method_type, benchmark_methods, benchmark_row_type, &
         & benchmark_scene, benchmark_header, write_benchmark_row, evaluation_costs
@@ -96,7 +96,7 @@ contains
             reference_rtol = 1.0e-13_wp
         end if
 
-        call execute_command_line("mkdir -p '" // output_dir // "'", exitstat=stat)
+        call execute_command_line("mkdir -p " // shell_quote(output_dir), exitstat=stat)
         open(newunit=unit, file=output_dir // "/bench.csv", status="replace", action="write", &
             & iostat=stat)
         if (stat /= 0) then

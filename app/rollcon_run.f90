@@ -4,13 +4,11 @@ module rollcon_run
     use, intrinsic :: iso_fortran_env, only : output_unit
     use rollcon, only : wp, error_type, rolling_disk_ucosub
     use rollcon_error, only : fatal_error, stat_io, stat_input
-    use rollcon_text, only : to_text
+    use rollcon_text, only : to_text, shell_quote
     use rollcon_ucon, only : ucosub_interface
     use rollcon_scene, only : scene_type, read_scene, scene_path
-    use rollcon_disk_scene, only : build_disk_problem
-    use rollcon_problem, only : problem_type, formulation_cvode, method_adams
-    use rollcon_simulation, only : run_options_type, run_summary_type, simulate, &
-        & status_completed, status_stopped
+    use rollcon_disk_scene, only : simulate_scene
+    use rollcon_simulation, only : run_summary_type, status_completed, status_stopped
     implicit none
     private
 
@@ -31,28 +29,26 @@ contains
         type(run_summary_type), intent(out) :: summary
         type(error_type), allocatable, intent(out) :: error
         type(scene_type) :: scene
-        type(problem_type), target :: problem
-        type(run_options_type) :: options
         type(error_type), allocatable :: run_error
-        real(wp) :: q0(6), u0(6)
-        character(len=:), allocatable :: summary_path, text
+        character(len=:), allocatable :: summary_path, text, csv_path
         integer :: stat, unit
 
         call read_scene(scene_path(name), scene, error)
         if (allocated(error)) return
-        call build_disk_problem(scene, ucosub, problem, q0, u0, error)
-        if (allocated(error)) return
-        call execute_command_line("mkdir -p '" // output_dir // "'", exitstat=stat)
+        call execute_command_line("mkdir -p " // shell_quote(output_dir), exitstat=stat)
         if (stat /= 0) then
             call fatal_error(error, output_dir // ": cannot create the output folder", stat_io)
             return
         end if
-        options%end_time = scene%end_time
-        options%output_step = scene%output_step
-        options%csv_path = output_dir // "/" // scene%name // ".csv"
-        options%progress = .not. quiet
-        call simulate(problem, q0, u0, options, summary, run_error)
-        text = summary_text(scene, problem, options, summary)
+        csv_path = output_dir // "/" // scene%name // ".csv"
+        call simulate_scene(scene, ucosub, summary, run_error, csv_path=csv_path, &
+            & progress=.not. quiet)
+        if (allocated(run_error) .and. summary%rows == 0) then
+            ! refused before any integration (e.g. a UCOSUB error at set-up): nothing to sum up
+            call move_alloc(run_error, error)
+            return
+        end if
+        text = summary_text(scene, csv_path, summary)
         write(output_unit, '(a)') text
         summary_path = output_dir // "/" // scene%name // ".summary.txt"
         open(newunit=unit, file=summary_path, status="replace", action="write", iostat=stat)
@@ -63,16 +59,15 @@ contains
         if (allocated(run_error)) then
             call move_alloc(run_error, error)
             error%message = error%message // " (the " // to_text(summary%rows) &
-                & // " rows written to " // options%csv_path // " up to t = " &
+                & // " rows written to " // csv_path // " up to t = " &
                 & // to_text(summary%t_reached) // " s are valid)"
         end if
     end subroutine run_scene
 
     !> The run's summary as text.
-    function summary_text(scene, problem, options, summary) result(text)
+    function summary_text(scene, csv_path, summary) result(text)
         type(scene_type), intent(in) :: scene
-        type(problem_type), intent(in) :: problem
-        type(run_options_type), intent(in) :: options
+        character(len=*), intent(in) :: csv_path
         type(run_summary_type), intent(in) :: summary
         character(len=:), allocatable :: text
         character(len=*), parameter :: nl = new_line("a")
@@ -83,9 +78,9 @@ contains
         character(len=32) :: value
         integer :: i
 
-        if (problem%settings%formulation == formulation_cvode) then
+        if (scene%formulation == "cvode") then
             method = "CVODE (ODE form, "
-            if (problem%settings%method == method_adams) then
+            if (scene%method == "adams") then
                 method = method // "Adams, drift " // scene%drift // ")"
             else
                 method = method // "BDF, drift " // scene%drift // ")"
@@ -124,7 +119,7 @@ contains
             & // to_text(summary%failures) // nl
         write(value, '(f12.4)') summary%cpu_seconds
         text = text // "CPU time: " // trim(adjustl(value)) // " s" // nl
-        text = text // "output: " // options%csv_path // " (" // to_text(summary%rows) // " rows)"
+        text = text // "output: " // csv_path // " (" // to_text(summary%rows) // " rows)"
     end function summary_text
 
 end module rollcon_run

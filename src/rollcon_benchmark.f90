@@ -9,10 +9,10 @@ module rollcon_benchmark
     use rollcon_dae, only : dae_size, dae_residual
     use rollcon_ucon, only : ucosub_interface
     use rollcon_scene, only : scene_type
-    use rollcon_disk_scene, only : build_disk_problem
+    use rollcon_disk_scene, only : build_disk_problem, simulate_scene
     use rollcon_problem, only : problem_type
-    use rollcon_simulation, only : run_options_type, run_summary_type, history_type, simulate, &
-        & status_completed, column_time, column_x, column_z
+    use rollcon_simulation, only : run_summary_type, history_type, status_completed, column_time, &
+        & column_x, column_z
     implicit none
     private
 
@@ -188,16 +188,8 @@ contains
             type(history_type), intent(out) :: kept
             type(run_summary_type), intent(out) :: case_summary
             type(error_type), allocatable, intent(out) :: case_error
-            type(problem_type), target :: problem
-            type(run_options_type) :: options
-            real(wp) :: q0(6), u0(6)
 
-            call build_disk_problem(case_scene, ucosub, problem, q0, u0, case_error)
-            if (allocated(case_error)) return
-            options%end_time = case_scene%end_time
-            options%output_step = case_scene%output_step
-            options%progress = .false.
-            call simulate(problem, q0, u0, options, case_summary, case_error, kept)
+            call simulate_scene(case_scene, ucosub, case_summary, case_error, kept)
         end subroutine run
 
     end subroutine benchmark_scene

@@ -15,10 +15,11 @@ module rollcon_disk_scene
     use rollcon_problem, only : problem_type, formulation_cvode, formulation_ida, method_bdf, &
         & method_adams
     use rollcon_scene, only : scene_type
+    use rollcon_simulation, only : run_options_type, run_summary_type, history_type, simulate
     implicit none
     private
 
-    public :: build_disk_problem, disk_initial_state, disk_mass_properties
+    public :: build_disk_problem, disk_initial_state, disk_mass_properties, simulate_scene
 
     real(wp), parameter :: pi = acos(-1.0_wp)
     !> Part id of the disk in every disk scene
@@ -121,5 +122,32 @@ contains
         problem%events%stop_on_liftoff = scene%stop_on_liftoff
         call disk_initial_state(scene, q0, u0)
     end subroutine build_disk_problem
+
+    !> Build a disk scene's problem and simulate it over the scene's time with its output step.
+    subroutine simulate_scene(scene, ucosub, summary, error, history, csv_path, progress)
+        type(scene_type), intent(in) :: scene
+        !> The routine serving the disk's UCONs
+        procedure(ucosub_interface) :: ucosub
+        type(run_summary_type), intent(out) :: summary
+        type(error_type), allocatable, intent(out) :: error
+        !> Keep every output row here
+        type(history_type), intent(inout), optional :: history
+        !> Write the rows to this CSV
+        character(len=*), intent(in), optional :: csv_path
+        !> Progress lines on stderr (default: none)
+        logical, intent(in), optional :: progress
+        type(problem_type), target :: problem
+        type(run_options_type) :: options
+        real(wp) :: q0(6), u0(6)
+
+        call build_disk_problem(scene, ucosub, problem, q0, u0, error)
+        if (allocated(error)) return
+        options%end_time = scene%end_time
+        options%output_step = scene%output_step
+        options%progress = .false.
+        if (present(progress)) options%progress = progress
+        if (present(csv_path)) options%csv_path = csv_path
+        call simulate(problem, q0, u0, options, summary, error, history)
+    end subroutine simulate_scene
 
 end module rollcon_disk_scene

@@ -3,7 +3,7 @@
 !> status and messages turned into an error.
 module rollcon_gnuplot
     use rollcon_error, only : error_type, fatal_error, stat_io
-    use rollcon_text, only : to_text
+    use rollcon_text, only : to_text, quoted, shell_quote
     implicit none
     private
 
@@ -49,8 +49,8 @@ contains
         if (allocated(error)) return
         command_message = ""
         exit_status = 0
-        call execute_command_line("gnuplot " // shell_word(script) // " > " &
-            & // shell_word(script // ".log") // " 2>&1", wait=.true., exitstat=exit_status, &
+        call execute_command_line("gnuplot " // shell_quote(script) // " > " &
+            & // shell_quote(script // ".log") // " 2>&1", wait=.true., exitstat=exit_status, &
             & cmdstat=command_status, cmdmsg=command_message)
         if (command_status /= 0) then
             call fatal_error(error, "cannot run gnuplot on " // script // ": " &
@@ -65,21 +65,12 @@ contains
     end subroutine run_gnuplot
 
     !> A gnuplot string constant holding text: single quotes, a quote doubled.
-    pure function gnuplot_string(text) result(quoted)
+    pure function gnuplot_string(text) result(word)
         !> Any text, e.g. a file name
         character(len=*), intent(in) :: text
-        character(len=:), allocatable :: quoted
-        integer :: i
+        character(len=:), allocatable :: word
 
-        quoted = "'"
-        do i = 1, len(text)
-            if (text(i:i) == "'") then
-                quoted = quoted // "''"
-            else
-                quoted = quoted // text(i:i)
-            end if
-        end do
-        quoted = quoted // "'"
+        word = quoted(text, "''")
     end function gnuplot_string
 
     !> File name without its folder and without the extension given: ("out/coin.csv", ".csv")
@@ -110,22 +101,6 @@ contains
         if (stat == 0) close(unit, status="delete", iostat=stat)
     end subroutine remove_file
 
-    !> A word for the shell: single quotes, a quote written as '\''.
-    pure function shell_word(text) result(quoted)
-        character(len=*), intent(in) :: text
-        character(len=:), allocatable :: quoted
-        integer :: i
-
-        quoted = "'"
-        do i = 1, len(text)
-            if (text(i:i) == "'") then
-                quoted = quoted // "'\''"
-            else
-                quoted = quoted // text(i:i)
-            end if
-        end do
-        quoted = quoted // "'"
-    end function shell_word
 
     !> The first lines of a text file (at most 600 characters), joined by ' | '.
     function text_head(path) result(text)

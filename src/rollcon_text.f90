@@ -6,7 +6,7 @@ module rollcon_text
     implicit none
     private
 
-    public :: to_text
+    public :: to_text, quoted, shell_quote
 
     !> Decimal text of an integer or a real
     interface to_text
@@ -83,5 +83,35 @@ contains
             text = text // "e" // integer_to_text(exponent)
         end if
     end function real_to_text
+
+    !> text between single quotes, each quote inside written as escape: "'\''" for a POSIX
+    !> shell, "''" for gnuplot.
+    pure function quoted(text, escape) result(word)
+        !> Text to quote
+        character(len=*), intent(in) :: text
+        !> What stands for a single quote inside
+        character(len=*), intent(in) :: escape
+        character(len=:), allocatable :: word
+        integer :: i
+
+        word = "'"
+        do i = 1, len(text)
+            if (text(i:i) == "'") then
+                word = word // escape
+            else
+                word = word // text(i:i)
+            end if
+        end do
+        word = word // "'"
+    end function quoted
+
+    !> text as one word for a POSIX shell (single quotes, a quote inside written as '\'').
+    pure function shell_quote(text) result(word)
+        !> Text to quote
+        character(len=*), intent(in) :: text
+        character(len=:), allocatable :: word
+
+        word = quoted(text, "'\''")
+    end function shell_quote
 
 end module rollcon_text

@@ -29,7 +29,7 @@ module rollcon_ucovar
         !> Index of a UCON id's entry, 0 when it has none
         procedure :: find => registry_find
         !> Number of UCON statements declared
-        procedure :: size => registry_size
+        procedure :: count => registry_size
     end type ucovar_registry_type
 
 contains

@@ -11,11 +11,11 @@
 module rollcon_user_build
     use, intrinsic :: iso_fortran_env, only : int64
     use rollcon_error, only : error_type, fatal_error, stat_input, stat_io, stat_ucon
-    use rollcon_text, only : to_text
+    use rollcon_text, only : to_text, shell_quote
     use rollcon_libc, only : process_id
     use rollcon_user_shim, only : shim_source_lines
     use rollcon_user_files, only : read_bytes, write_bytes, write_lines, file_exists, &
-        & shell_quote, text_head
+        & text_head
     implicit none
     private
 

@@ -7,7 +7,7 @@ module rollcon_user_files
     implicit none
     private
 
-    public :: file_exists, read_bytes, write_bytes, write_lines, text_head, shell_quote
+    public :: file_exists, read_bytes, write_bytes, write_lines, text_head
 
 contains
 
@@ -127,22 +127,5 @@ contains
         end if
     end subroutine text_head
 
-    !> text in single quotes for a POSIX shell, each quote inside written as '\''.
-    pure function shell_quote(text) result(quoted)
-        !> Text to quote
-        character(len=*), intent(in) :: text
-        character(len=:), allocatable :: quoted
-        integer :: i
-
-        quoted = "'"
-        do i = 1, len(text)
-            if (text(i:i) == "'") then
-                quoted = quoted // "'\''"
-            else
-                quoted = quoted // text(i:i)
-            end if
-        end do
-        quoted = quoted // "'"
-    end function shell_quote
 
 end module rollcon_user_files

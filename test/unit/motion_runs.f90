@@ -5,9 +5,8 @@ module motion_runs
     use rollcon_error, only : error_type
     use rollcon_ucon, only : ucosub_interface
     use rollcon_scene, only : scene_type
-    use rollcon_disk_scene, only : build_disk_problem
-    use rollcon_problem, only : problem_type
-    use rollcon_simulation, only : run_options_type, run_summary_type, history_type, simulate
+    use rollcon_disk_scene, only : simulate_scene
+    use rollcon_simulation, only : run_summary_type, history_type
     use rollcon_disk_hand, only : rolling_disk_ucosub
     implicit none
     private
@@ -38,20 +37,12 @@ contains
         type(run_summary_type), intent(out) :: summary
         type(error_type), allocatable, intent(out) :: error
         procedure(ucosub_interface), optional :: ucosub
-        type(problem_type), target :: problem
-        type(run_options_type) :: options
-        real(wp) :: q0(6), u0(6)
 
         if (present(ucosub)) then
-            call build_disk_problem(scene, ucosub, problem, q0, u0, error)
+            call simulate_scene(scene, ucosub, summary, error, history)
         else
-            call build_disk_problem(scene, rolling_disk_ucosub, problem, q0, u0, error)
+            call simulate_scene(scene, rolling_disk_ucosub, summary, error, history)
         end if
-        if (allocated(error)) return
-        options%end_time = scene%end_time
-        options%output_step = scene%output_step
-        options%progress = .false.
-        call simulate(problem, q0, u0, options, summary, error, history)
     end subroutine run_in_memory
 
 end module motion_runs

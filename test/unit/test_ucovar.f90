@@ -43,7 +43,7 @@ contains
         call declare_ucon(rolling_disk_ucosub, 7, disk_par(4, 0.1_wp, 2), registry, error)
         if (allocated(error)) return
         k = registry%find(7)
-        call check(error, k == 1 .and. registry%size() == 1, "UCON 7 not recorded once")
+        call check(error, k == 1 .and. registry%count() == 1, "UCON 7 not recorded once")
         if (allocated(error)) return
         call check(error, all(registry%entries(k)%codes == [21, 22, 23, 14, 15, 24, 25, 26]), &
             & "codes differ from 21 22 23 14 15 24 25 26")
