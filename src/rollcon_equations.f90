@@ -52,6 +52,7 @@ module rollcon_equations
         procedure :: constraint_force
         procedure :: assemble
         procedure :: constraint_rows
+        procedure :: constraint_matrix
         procedure :: momentum_jacobian
     end type equations_type
 
@@ -106,24 +107,37 @@ contains
         real(wp) :: alpha, rate
         integer :: k
 
+        call self%constraint_matrix()
         alpha = 0.0_wp
         if (self%drift == drift_baumgarte) alpha = self%baumgarte_rate
         associate (cs => self%constraints)
             do k = 1, self%nc
                 if (self%model%ucons(k)%holonomic) then
-                    self%c(k, :) = cs%grad_q(k, :)
                     rate = dot_product(cs%grad_q(k, :), u) + cs%dt(k)
                     self%gamma(k) = -quadratic_form(cs%hqq(:, :, k), u) &
                         & - 2.0_wp*dot_product(cs%dt_grad_q(k, :), u) - cs%dtt(k) &
                         & - 2.0_wp*alpha*rate - alpha**2*cs%value(k)
                 else
-                    self%c(k, :) = cs%grad_u(k, :)
                     self%gamma(k) = -dot_product(cs%grad_q(k, :), u) - cs%dt(k) &
                         & - alpha*cs%value(k)
                 end if
             end do
         end associate
     end subroutine constraint_rows
+
+    !> C alone (velocity UCON: dF/du; position UCON: dF/dq), from first partials only.
+    subroutine constraint_matrix(self)
+        class(equations_type), intent(inout) :: self
+        integer :: k
+
+        do k = 1, self%nc
+            if (self%model%ucons(k)%holonomic) then
+                self%c(k, :) = self%constraints%grad_q(k, :)
+            else
+                self%c(k, :) = self%constraints%grad_u(k, :)
+            end if
+        end do
+    end subroutine constraint_matrix
 
     !> Accelerations a and multipliers lambda at (t, q, u); leaves the factored saddle-point
     !> matrix in kkt/pivots for the Jacobian.
@@ -280,15 +294,12 @@ contains
             & + need_time, error)
         if (allocated(error)) return
         call self%assemble(time, qp, u)
-        self%kkt = 0.0_wp
-        self%kkt(:n, :n) = self%mass
+        call self%constraint_matrix()
         do k = 1, self%nc
             associate (cs => self%constraints)
                 if (self%model%ucons(k)%holonomic) then
-                    self%c(k, :) = cs%grad_q(k, :)
                     self%rhs(n + k, 1) = -(dot_product(cs%grad_q(k, :), u) + cs%dt(k))
                 else
-                    self%c(k, :) = cs%grad_u(k, :)
                     self%rhs(n + k, 1) = -cs%value(k)
                 end if
             end associate

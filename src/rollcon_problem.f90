@@ -107,7 +107,7 @@ contains
             call self%eq%constraints%evaluate(self%eq%model, time, q, u, need_first, error)
             ierr = self%keep_failure(error)
             if (ierr /= 0) return
-            call self%eq%constraint_rows(u)
+            call self%eq%constraint_matrix()
             self%lambda = lambda
         else
             call self%eq%accelerations(time, q, u, self%a, self%lambda, error)
