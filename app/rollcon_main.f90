@@ -4,14 +4,14 @@ program rollcon_main
     use, intrinsic :: iso_fortran_env, only : output_unit, error_unit
     use rollcon, only : wp, error_type, disk_nvars, rolling_disk_ucosub
     use rollcon_error, only : fatal_error, stat_input
-    use rollcon_cli, only : real_option_list, real_option
-    use rollcon_table, only : print_table, default_state, default_radius
-    use rollcon_run, only : run_scene
-    use rollcon_bench, only : bench_command
-    use rollcon_plot, only : plot_command
-    use rollcon_animate, only : animate_command
-    use rollcon_run_vtk, only : write_run_vtk
-    use rollcon_check, only : check_command
+    use rollcon_command_line, only : real_option_list, real_option
+    use rollcon_command_table, only : print_table, default_state, default_radius
+    use rollcon_command_run, only : run_scene
+    use rollcon_command_bench, only : bench_command
+    use rollcon_command_plot, only : plot_command
+    use rollcon_command_animate, only : animate_command
+    use rollcon_command_run_vtk, only : write_run_vtk
+    use rollcon_command_check, only : check_command
     use rollcon_user_library, only : user_ucosub_type, new_user_ucosub
     use rollcon_simulation, only : run_summary_type
     implicit none
@@ -96,7 +96,7 @@ contains
                 argument_index = i
                 return
             case ("check")
-                ! the rest of the command line is check's (app/rollcon_check.f90)
+                ! the rest of the command line is check's (app/rollcon_command_check.f90)
                 command = "check"
                 argument_index = i
                 return

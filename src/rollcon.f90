@@ -3,13 +3,13 @@
 module rollcon
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type
-    use rollcon_ucon
-    use rollcon_ucovar, only : ucon_variables_type, ucovar_registry_type
+    use rollcon_ucosub_contract
+    use rollcon_ucovar_registry, only : ucon_variables_type, ucovar_registry_type
     use rollcon_adams_runtime, only : begin_declaration, end_declaration, take_ucon_error
     use rollcon_disk_par, only : disk_nvars, disk_npar, disk_codes, disk_par
-    use rollcon_disk_hand, only : rolling_disk_ucosub, rolling_disk_evaluate
+    use rollcon_disk_reference, only : rolling_disk_ucosub, rolling_disk_evaluate
     use rollcon_ucon_call, only : declare_ucon, evaluate_ucon
-    use rollcon_ucon_check, only : ucon_check_options_type, ucon_mismatch_type, &
+    use rollcon_partials_check, only : ucon_check_options_type, ucon_mismatch_type, &
         & ucon_check_result_type, check_ucon_state
     use rollcon_gen_rolling_disk, only : generated_rolling_disk_ucosub => rolling_disk_ucosub
     use rollcon_body, only : part_type
@@ -23,7 +23,7 @@ module rollcon
     use rollcon_disk_scene, only : build_disk_problem, disk_initial_state, disk_mass_properties
     use rollcon_simulation, only : run_options_type, run_summary_type, history_type, simulate
     use rollcon_user_library, only : user_ucosub_type, user_build_options_type, new_user_ucosub
-    use rollcon_user_check, only : ucon_request_type, user_check_options_type, &
+    use rollcon_ucosub_audit, only : ucon_request_type, user_check_options_type, &
         & user_check_report_type, check_user_ucosub
     implicit none
     public

@@ -22,7 +22,7 @@ def _selected(names: list[str]) -> list[ConstraintSpec]:
 
 def _orphans(root: Path, expected: set[str]) -> list[str]:
     """Generated-looking files under root that no spec generates."""
-    found = [p.relative_to(root).as_posix() for p in root.glob("src/rollcon_gen_*.f90")]
+    found = [p.relative_to(root).as_posix() for p in root.glob("src/ucosubs/generated/rollcon_gen_*.f90")]
     found += [p.relative_to(root).as_posix() for p in root.glob("ucon/adams/*/ucosub.f")]
     return sorted(path for path in found if path not in expected)
 
@@ -86,7 +86,7 @@ def parser() -> argparse.ArgumentParser:
     main = argparse.ArgumentParser(
         prog="python -m ucon",
         description="Generate ADAMS UCOSUBs from the symbolic constraints in ucon/specs/: a "
-        "free-form module src/rollcon_gen_<spec>.f90 and a fixed-form "
+        "free-form module src/ucosubs/generated/rollcon_gen_<spec>.f90 and a fixed-form "
         "ucon/adams/<spec>/ucosub.f per spec.")
     commands = main.add_subparsers(dest="command", required=True, metavar="COMMAND")
     write = commands.add_parser(

@@ -37,7 +37,7 @@ CSE_PREFIX = "cse"
 
 def module_path(spec: ConstraintSpec) -> str:
     """Path of the generated module, relative to the project root."""
-    return f"src/rollcon_gen_{spec.name}.f90"
+    return f"src/ucosubs/generated/rollcon_gen_{spec.name}.f90"
 
 
 def legacy_path(spec: ConstraintSpec) -> str:

@@ -63,7 +63,7 @@ def render_module(program: Program) -> str:
     out.add(f"module {names['module']}")
     out.add("use rollcon_kinds, only : wp", 4)
     out.add("use rollcon_text, only : to_text", 4)
-    out.add("use rollcon_ucon, only : ucovar, errmes, iflag_init, iflag_eval, scalar_none, "
+    out.add("use rollcon_ucosub_contract, only : ucovar, errmes, iflag_init, iflag_eval, scalar_none, "
             "scalar_value, scalar_time_part, scalar_dt, scalar_dtt, array_none, array_dq, "
             "array_dtdq, xmatrx_none, xmatrx_dqdq", 4)
     out.add("use, intrinsic :: ieee_arithmetic, only : ieee_is_finite", 4)
@@ -107,7 +107,7 @@ def _module_ucosub(out: _Lines, program: Program, names: dict[str, str]) -> None
     """The public UCOSUB: check PAR, declare or evaluate."""
     spec = program.spec
     out.doc(f"The {spec.title} UCOSUB, with ADAMS's calling sequence (see ucosub_interface "
-            "in rollcon_ucon). Bad PAR, IFLAG or IDRSEL are reported through ERRMES and leave "
+            "in rollcon_ucosub_contract). Bad PAR, IFLAG or IDRSEL are reported through ERRMES and leave "
             "the outputs untouched.", 4)
     out.add(f"subroutine {names['ucosub']}(id, time, q, par, npar, idrsel, iflag, scalar, "
             "array, xmatrx)", 4)

@@ -5,8 +5,8 @@ program tester
     use rollcon_testing, only : testsuite_type, new_testsuite, run_testsuite, test_counts_type
     use test_text, only : collect_text
     use test_ucovar, only : collect_ucovar
-    use test_disk_hand, only : collect_disk_hand
-    use test_ucon_check, only : collect_ucon_check
+    use test_disk_reference, only : collect_disk_reference
+    use test_partials_check, only : collect_partials_check
     use test_generated, only : collect_generated
     use test_scene, only : collect_scene
     use test_dynamics, only : collect_dynamics
@@ -24,8 +24,8 @@ program tester
 
     suites = [new_testsuite("text", collect_text), &
         & new_testsuite("ucovar", collect_ucovar), &
-        & new_testsuite("disk-hand", collect_disk_hand), &
-        & new_testsuite("ucon-check", collect_ucon_check), &
+        & new_testsuite("disk-reference", collect_disk_reference), &
+        & new_testsuite("partials-check", collect_partials_check), &
         & new_testsuite("generated", collect_generated), &
         & new_testsuite("scene", collect_scene), &
         & new_testsuite("dynamics", collect_dynamics), &

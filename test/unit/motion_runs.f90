@@ -3,11 +3,11 @@
 module motion_runs
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type
-    use rollcon_ucon, only : ucosub_interface
+    use rollcon_ucosub_contract, only : ucosub_interface
     use rollcon_scene, only : scene_type
     use rollcon_disk_scene, only : simulate_scene
     use rollcon_simulation, only : run_summary_type, history_type
-    use rollcon_disk_hand, only : rolling_disk_ucosub
+    use rollcon_disk_reference, only : rolling_disk_ucosub
     implicit none
     private
 

@@ -7,7 +7,7 @@ module picture_files
     use rollcon_scene, only : scene_type
     use rollcon_problem, only : problem_type
     use rollcon_disk_scene, only : build_disk_problem
-    use rollcon_disk_hand, only : rolling_disk_ucosub
+    use rollcon_disk_reference, only : rolling_disk_ucosub
     use rollcon_simulation, only : run_options_type, run_summary_type, history_type, simulate, &
         & csv_header
     use motion_runs, only : default_scene

@@ -11,7 +11,7 @@ module test_dynamics
     use rollcon_equations, only : drift_none, drift_baumgarte
     use rollcon_scene, only : scene_type
     use rollcon_disk_scene, only : build_disk_problem
-    use rollcon_disk_hand, only : rolling_disk_ucosub
+    use rollcon_disk_reference, only : rolling_disk_ucosub
     use rollcon_testing, only : unittest_type, new_unittest, check
     implicit none
     private

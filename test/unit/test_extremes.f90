@@ -10,7 +10,7 @@ module test_extremes
         & status_stopped, column_time, column_theta, column_psidot, column_residual
     use rollcon_benchmark, only : benchmark_methods, benchmark_row_type, benchmark_scene, &
         & benchmark_header, write_benchmark_row
-    use rollcon_disk_hand, only : rolling_disk_ucosub
+    use rollcon_disk_reference, only : rolling_disk_ucosub
     use rollcon_testing, only : unittest_type, new_unittest, check
     use motion_runs, only : run_in_memory, default_scene
     use, intrinsic :: ieee_arithmetic, only : ieee_is_finite
@@ -223,37 +223,42 @@ contains
         end do
     end subroutine test_error_decreases
 
-    !> The benchmark's quick mode (one scene, two tolerances): every method gives a row with the
-    !> CSV's columns, finite values and a completed status.
+    !> The benchmark's quick mode (tipping coin over 1 s, two tolerances, as `rollcon bench
+    !> --quick` runs it): every method gives a completed row whose CSV line has the header's
+    !> columns and finite values.
     subroutine test_benchmark_quick(error)
         type(error_type), allocatable, intent(out) :: error
-        character(len=*), parameter :: path = "build/test_bench/bench.csv"
-        character(len=1024) :: line
-        integer :: unit, stat, rows, commas
+        type(scene_type) :: scene
+        type(benchmark_row_type), allocatable :: rows(:)
+        character(len=:), allocatable :: line, header
+        integer :: i
 
-        call execute_command_line("fpm run rollcon -- bench --quick --output build/test_bench " &
-            & // "> build/test_bench.log 2>&1", exitstat=stat)
-        call check(error, stat == 0, "rollcon bench --quick failed (build/test_bench.log)")
+        call read_scene("data/tipping_coin.nml", scene, error)
         if (allocated(error)) return
-        open(newunit=unit, file=path, status="old", action="read", iostat=stat)
-        call check(error, stat == 0, path // " was not written")
+        scene%end_time = 1.0_wp
+        call benchmark_scene(scene, rolling_disk_ucosub, benchmark_methods(), &
+            & [1.0e-4_wp, 1.0e-6_wp], 1.0e-10_wp, 1, rows, error)
         if (allocated(error)) return
-        read(unit, '(a)') line
-        call check(error, trim(line) == benchmark_header(), "header: " // trim(line))
+        call check(error, size(rows), 2*size(benchmark_methods()), "rows")
         if (allocated(error)) return
-        rows = 0
-        do
-            read(unit, '(a)', iostat=stat) line
-            if (stat /= 0) exit
-            rows = rows + 1
-            commas = count([(line(stat:stat) == ",", stat = 1, len_trim(line))])
-            call check(error, commas == 10 .and. index(line, ",completed") > 0 .and. &
-                & index(line, "NaN") == 0 .and. index(line, "Infinity") == 0, "row: " // trim(line))
-            if (allocated(error)) exit
+        header = benchmark_header()
+        do i = 1, size(rows)
+            line = write_benchmark_row(rows(i))
+            call check(error, count_commas(line) == count_commas(header) &
+                & .and. index(line, ",completed") > 0 .and. index(line, "NaN") == 0 &
+                & .and. index(line, "Infinity") == 0, "row: " // line)
+            if (allocated(error)) return
         end do
-        close(unit)
-        if (allocated(error)) return
-        call check(error, rows, 2*size(benchmark_methods()), "rows")
     end subroutine test_benchmark_quick
+
+    pure integer function count_commas(text)
+        character(len=*), intent(in) :: text
+        integer :: i
+
+        count_commas = 0
+        do i = 1, len(text)
+            if (text(i:i) == ",") count_commas = count_commas + 1
+        end do
+    end function count_commas
 
 end module test_extremes

@@ -6,21 +6,21 @@ module test_generated
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type
     use rollcon_text, only : to_text
-    use rollcon_ucon, only : ucosub_interface
+    use rollcon_ucosub_contract, only : ucosub_interface
     use rollcon_ucon_call, only : evaluate_ucon, declare_ucon
-    use rollcon_ucon_check, only : ucon_check_options_type, ucon_check_result_type, &
+    use rollcon_partials_check, only : ucon_check_options_type, ucon_check_result_type, &
         & check_ucon_state
-    use rollcon_ucovar, only : ucovar_registry_type
+    use rollcon_ucovar_registry, only : ucovar_registry_type
     use rollcon_adams_runtime, only : take_ucon_error
     use rollcon_disk_par, only : disk_par
-    use rollcon_disk_hand, only : hand_disk_ucosub => rolling_disk_ucosub
+    use rollcon_disk_reference, only : hand_disk_ucosub => rolling_disk_ucosub
     use rollcon_gen_rolling_disk, only : generated_disk_ucosub => rolling_disk_ucosub
     use rollcon_testing, only : unittest_type, new_unittest, check, skip_test
     use disk_states, only : seed_random, random_disk_state
-    use test_ucon_specs, only : generated_spec_type, generated_specs, random_state, &
+    use generated_specs_list, only : generated_spec_type, generated_specs, random_state, &
         & random_parameters, spec_par
-    use test_ucon_fixed_form, only : run_fixed_form
-    use test_ucon_physics, only : test_turntable, test_sphere, test_knife_edge, test_disk_height
+    use generated_fixed_form, only : run_fixed_form
+    use generated_physics, only : test_turntable, test_sphere, test_knife_edge, test_disk_height
     use, intrinsic :: ieee_arithmetic, only : ieee_value, ieee_quiet_nan, ieee_positive_inf
     implicit none
     private
@@ -53,7 +53,7 @@ contains
             & new_unittest("knife-edge-physics", test_knife_edge), &
             & new_unittest("disk-height-physics", test_disk_height), &
             & new_unittest("fixed-form-matches-module", test_fixed_form), &
-            & new_unittest("ucon-check", test_ucon_check), &
+            & new_unittest("partials-check", test_partials_check), &
             & new_unittest("ucon-python-unittest", test_python_unittest)]
     end subroutine collect_generated
 
@@ -422,14 +422,14 @@ contains
     end subroutine run_logged
 
     !> The committed generated files are what the specs generate today.
-    subroutine test_ucon_check(error)
+    subroutine test_partials_check(error)
         type(error_type), allocatable, intent(out) :: error
 
         call require_sympy(error)
         if (allocated(error)) return
         call run_logged(error, "python3 -m ucon check", work_dir // "/ucon-check.log", &
             & "python3 -m ucon check (regenerate with: python3 -m ucon write)")
-    end subroutine test_ucon_check
+    end subroutine test_partials_check
 
     !> The generator's unit tests: bad-spec messages, determinism, tables.
     subroutine test_python_unittest(error)

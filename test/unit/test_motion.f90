@@ -9,7 +9,7 @@ module test_motion
     use rollcon_scene, only : scene_type, read_scene
     use rollcon_problem, only : problem_type
     use rollcon_disk_scene, only : build_disk_problem
-    use rollcon_disk_hand, only : rolling_disk_ucosub
+    use rollcon_disk_reference, only : rolling_disk_ucosub
     use rollcon_gen_rolling_disk, only : generated_disk_ucosub => rolling_disk_ucosub
     use rollcon_simulation, only : run_options_type, simulate, status_failed
     use rollcon_model, only : model_type, setup_model

@@ -7,7 +7,7 @@ module test_pictures
     use rollcon_text, only : to_text
     use rollcon_scene, only : scene_type
     use rollcon_simulation, only : history_type, column_time, column_x, column_z, column_phi
-    use rollcon_frames, only : frame_rows
+    use rollcon_animation_rows, only : frame_rows
     use rollcon_csv_reader, only : read_output_csv, standard_columns, name_length
     use rollcon_disk_mesh, only : contact_point, disk_point_count
     use rollcon_vtk, only : write_vtk_series, frame_file_name

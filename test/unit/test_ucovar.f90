@@ -3,12 +3,12 @@
 module test_ucovar
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type
-    use rollcon_ucon, only : ucovar
-    use rollcon_ucovar, only : ucovar_registry_type
+    use rollcon_ucosub_contract, only : ucovar
+    use rollcon_ucovar_registry, only : ucovar_registry_type
     use rollcon_ucon_call, only : declare_ucon
     use rollcon_adams_runtime, only : take_ucon_error
     use rollcon_disk_par, only : disk_par
-    use rollcon_disk_hand, only : rolling_disk_ucosub
+    use rollcon_disk_reference, only : rolling_disk_ucosub
     use rollcon_testing, only : unittest_type, new_unittest, check
     implicit none
     private

@@ -6,16 +6,16 @@ module test_user_ucosub
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type
     use rollcon_text, only : to_text
-    use rollcon_ucon, only : ucosub_interface
+    use rollcon_ucosub_contract, only : ucosub_interface
     use rollcon_disk_par, only : disk_par, disk_codes
-    use rollcon_disk_hand, only : rolling_disk_ucosub
+    use rollcon_disk_reference, only : rolling_disk_ucosub
     use rollcon_gen_rolling_disk, only : generated_disk_ucosub => rolling_disk_ucosub
     use rollcon_user_library, only : user_ucosub_type, user_build_options_type, new_user_ucosub
-    use rollcon_ucon_check, only : ucon_check_options_type, ucon_check_result_type, &
+    use rollcon_partials_check, only : ucon_check_options_type, ucon_check_result_type, &
         & check_ucon_state
-    use rollcon_user_check, only : ucon_request_type, user_check_options_type, &
+    use rollcon_ucosub_audit, only : ucon_request_type, user_check_options_type, &
         & user_check_report_type, ucon_report_type, check_user_ucosub
-    use rollcon_user_report, only : report_text, report_json
+    use rollcon_audit_report, only : report_text, report_json
     use rollcon_scene, only : scene_type, read_scene, scene_path
     use rollcon_simulation, only : history_type, run_summary_type
     use rollcon_testing, only : unittest_type, new_unittest, check

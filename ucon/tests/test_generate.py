@@ -193,7 +193,7 @@ class PrintingTest(unittest.TestCase):
     def test_file_shapes(self) -> None:
         for name in ucon.spec_names():
             files = dict(generated(name))
-            module = files[f"src/rollcon_gen_{name}.f90"].splitlines()
+            module = files[f"src/ucosubs/generated/rollcon_gen_{name}.f90"].splitlines()
             legacy = files[f"ucon/adams/{name}/ucosub.f"].splitlines()
             with self.subTest(name=name):
                 self.assertEqual(module[:2], [
@@ -216,9 +216,9 @@ class PrintingTest(unittest.TestCase):
                         self.assertIn(line[5], " &", line)
 
     def test_unused_time_is_not_passed_on(self) -> None:
-        disk = dict(generated("rolling_disk"))["src/rollcon_gen_rolling_disk.f90"]
+        disk = dict(generated("rolling_disk"))["src/ucosubs/generated/rollcon_gen_rolling_disk.f90"]
         self.assertIn("call evaluate(q, par, component,", disk)
-        table_disk = dict(generated("turntable_disk"))["src/rollcon_gen_turntable_disk.f90"]
+        table_disk = dict(generated("turntable_disk"))["src/ucosubs/generated/rollcon_gen_turntable_disk.f90"]
         self.assertIn("call evaluate(time, q, par, component,", table_disk)
 
 
@@ -266,21 +266,21 @@ class CommandLineTest(unittest.TestCase):
         with tempfile.TemporaryDirectory() as root:
             status, out, _ = self.run_main("write", "--out", root, "knife_edge")
             self.assertEqual(status, 0)
-            self.assertIn("wrote src/rollcon_gen_knife_edge.f90", out)
+            self.assertIn("wrote src/ucosubs/generated/rollcon_gen_knife_edge.f90", out)
             status, out, _ = self.run_main("write", "--out", root, "knife_edge")
             self.assertIn("unchanged ucon/adams/knife_edge/ucosub.f", out)
             status, out, _ = self.run_main("check", "--root", root, "knife_edge")
             self.assertEqual(status, 0, out)
-            path = Path(root) / "src/rollcon_gen_knife_edge.f90"
+            path = Path(root) / "src/ucosubs/generated/rollcon_gen_knife_edge.f90"
             path.write_text(path.read_text().replace("cos(psi)", "sin(psi)"))
             status, out, _ = self.run_main("check", "--root", root, "knife_edge")
             self.assertEqual(status, 1)
-            self.assertIn("+++ src/rollcon_gen_knife_edge.f90 (regenerated)", out)
+            self.assertIn("+++ src/ucosubs/generated/rollcon_gen_knife_edge.f90 (regenerated)", out)
             self.assertIn("-", out)
             path.unlink()
             status, out, _ = self.run_main("check", "--root", root, "knife_edge")
             self.assertEqual(status, 1)
-            self.assertIn("missing: src/rollcon_gen_knife_edge.f90", out)
+            self.assertIn("missing: src/ucosubs/generated/rollcon_gen_knife_edge.f90", out)
 
     def test_table(self) -> None:
         status, out, _ = self.run_main("table", "disk_height")

@@ -1,0 +1,245 @@
+! SPDX-License-Identifier: MIT
+!> `rollcon check FILE --ucon ID:PAR,...`: check a user's own UCOSUB without ADAMS.
+module rollcon_command_check
+    use, intrinsic :: iso_fortran_env, only : output_unit
+    use rollcon, only : wp, error_type
+    use rollcon_error, only : fatal_error, stat_input, stat_io
+    use rollcon_user_library, only : user_ucosub_type, new_user_ucosub
+    use rollcon_ucosub_audit, only : ucon_request_type, user_check_options_type, &
+        & user_check_report_type, check_user_ucosub, sampling_ranges
+    use rollcon_audit_report, only : report_text, report_json
+    use, intrinsic :: ieee_arithmetic, only : ieee_is_finite
+    implicit none
+    private
+
+    public :: check_command
+
+contains
+
+    !> Run the subcommand on the arguments from index first on; status is 0 when the routine
+    !> is clean, 1 when something was found (error is for what prevents the check).
+    subroutine check_command(first, status, error)
+        !> Index of the first argument after "check"
+        integer, intent(in) :: first
+        !> 0 clean, 1 mismatches
+        integer, intent(out) :: status
+        !> Bad command line, or a file that cannot be built or loaded
+        type(error_type), allocatable, intent(out) :: error
+        type(ucon_request_type), allocatable :: requests(:)
+        type(user_check_options_type) :: options
+        type(user_check_report_type) :: report
+        type(user_ucosub_type) :: user
+        character(len=:), allocatable :: path, json_path, library
+        logical :: help
+        integer :: unit, stat
+
+        status = 0
+        call read_arguments(first, path, requests, options, json_path, help, error)
+        if (allocated(error) .or. help) return
+        call new_user_ucosub(user, path, error)
+        if (allocated(error)) return
+        library = user%library // merge(" (from the cache)", " (compiled now)  ", user%from_cache)
+        call check_user_ucosub(user%ucosub, requests, options, report, error)
+        if (allocated(error)) then
+            call user%destroy()
+            return
+        end if
+        write(output_unit, '(a)') report_text(report, path, trim(library))
+        if (allocated(json_path)) then
+            open(newunit=unit, file=json_path, status="replace", action="write", iostat=stat)
+            if (stat == 0) write(unit, '(a)', iostat=stat) &
+                & report_json(report, path, user%library, user%from_cache)
+            if (stat == 0) close(unit, iostat=stat)
+            if (stat /= 0) call fatal_error(error, json_path // ": cannot write the JSON report", &
+                & stat_io)
+        end if
+        if (.not. report%clean()) status = 1
+        call user%destroy()
+    end subroutine check_command
+
+    subroutine read_arguments(first, path, requests, options, json_path, help, error)
+        integer, intent(in) :: first
+        character(len=:), allocatable, intent(out) :: path, json_path
+        type(ucon_request_type), allocatable, intent(out) :: requests(:)
+        type(user_check_options_type), intent(out) :: options
+        logical, intent(out) :: help
+        type(error_type), allocatable, intent(out) :: error
+        character(len=:), allocatable :: argument
+        type(ucon_request_type) :: request
+        integer :: i
+
+        allocate(requests(0))
+        help = .false.
+        i = first
+        do while (i <= command_argument_count())
+            argument = get_argument(i)
+            select case (argument)
+            case ("-h", "--help")
+                call print_help()
+                help = .true.
+                return
+            case ("--ucon")
+                call read_request(i + 1, request, error)
+                if (allocated(error)) return
+                requests = [requests, request]
+                i = i + 1
+            case ("--states")
+                call read_integer("--states", i + 1, 1, options%states, error)
+                if (allocated(error)) return
+                i = i + 1
+            case ("--seed")
+                call read_integer("--seed", i + 1, -huge(1), options%seed, error)
+                if (allocated(error)) return
+                i = i + 1
+            case ("--json")
+                if (i + 1 > command_argument_count()) then
+                    call fatal_error(error, "--json needs a file name", stat_input)
+                    return
+                end if
+                json_path = get_argument(i + 1)
+                i = i + 1
+            case default
+                if (argument(1:min(1, len(argument))) == "-" .or. allocated(path)) then
+                    call fatal_error(error, "check: unexpected argument '" // argument &
+                        & // "'; run 'rollcon check --help' for the usage", stat_input)
+                    return
+                end if
+                path = argument
+            end select
+            i = i + 1
+        end do
+        if (.not. allocated(path)) then
+            call fatal_error(error, "check: no UCOSUB file given; usage: rollcon check FILE " &
+                & // "--ucon ID:PAR1,PAR2,... (rollcon check --help)", stat_input)
+        else if (size(requests) == 0) then
+            call fatal_error(error, "check: no --ucon ID:PAR1,PAR2,... given; the routine is " &
+                & // "called as these UCON statements would call it", stat_input)
+        end if
+    end subroutine read_arguments
+
+    !> "ID:PAR1,PAR2,..." (or "ID" alone) as a UCON id and its constants.
+    subroutine read_request(i, request, error)
+        integer, intent(in) :: i
+        type(ucon_request_type), intent(out) :: request
+        type(error_type), allocatable, intent(out) :: error
+        character(len=:), allocatable :: text, values
+        integer :: colon, stat
+
+        if (i > command_argument_count()) then
+            call fatal_error(error, "--ucon needs ID:PAR1,PAR2,...", stat_input)
+            return
+        end if
+        text = get_argument(i)
+        colon = index(text, ":")
+        if (colon == 0) colon = len(text) + 1
+        read(text(:colon - 1), *, iostat=stat) request%id
+        if (stat /= 0 .or. verify(trim(adjustl(text(:colon - 1))), "+-0123456789") /= 0 &
+            & .or. colon == 1) then
+            call fatal_error(error, "--ucon expects ID:PAR1,PAR2,... with an integer ID, got '" &
+                & // text // "'", stat_input)
+            return
+        end if
+        values = ""
+        if (colon < len(text)) values = text(colon + 1:)
+        allocate(request%par(0))
+        if (len_trim(values) == 0) return
+        deallocate(request%par)
+        allocate(request%par(count_items(values)))
+        read(values, *, iostat=stat) request%par
+        if (stat /= 0 .or. scan(values, "/") > 0 .or. .not. all(ieee_is_finite(request%par))) then
+            call fatal_error(error, "--ucon " // text // ": PAR must be finite numbers separated " &
+                & // "by commas, got '" // values // "'", stat_input)
+        end if
+    end subroutine read_request
+
+    !> Number of comma-separated items.
+    pure function count_items(text) result(count)
+        character(len=*), intent(in) :: text
+        integer :: count
+        integer :: i
+
+        count = 1
+        do i = 1, len(text)
+            if (text(i:i) == ",") count = count + 1
+        end do
+    end function count_items
+
+    subroutine read_integer(name, i, minimum, value, error)
+        character(len=*), intent(in) :: name
+        integer, intent(in) :: i, minimum
+        integer, intent(inout) :: value
+        type(error_type), allocatable, intent(out) :: error
+        character(len=:), allocatable :: text
+        integer :: stat
+
+        stat = 1
+        if (i <= command_argument_count()) then
+            text = get_argument(i)
+            if (verify(text, "+-0123456789") == 0) read(text, *, iostat=stat) value
+        else
+            text = ""
+        end if
+        if (stat /= 0 .or. value < minimum) then
+            call fatal_error(error, name // " expects an integer >= " // trim(int_text(minimum)) &
+                & // ", got '" // text // "'", stat_input)
+        end if
+    end subroutine read_integer
+
+    pure function int_text(value) result(text)
+        integer, intent(in) :: value
+        character(len=16) :: text
+
+        write(text, '(i0)') value
+    end function int_text
+
+    function get_argument(i) result(argument)
+        integer, intent(in) :: i
+        character(len=:), allocatable :: argument
+        integer :: length
+
+        call get_command_argument(i, length=length)
+        allocate(character(len=length) :: argument)
+        if (length > 0) call get_command_argument(i, argument)
+    end function get_argument
+
+    subroutine print_help()
+        character(len=80) :: ranges(4)
+        integer :: i
+
+        ranges = sampling_ranges()
+        write(output_unit, '(a)') &
+            & "usage: rollcon check FILE --ucon ID:PAR1,PAR2,... [--ucon ...] [--states N]", &
+            & "                          [--seed S] [--json OUT]", &
+            & "", &
+            & "Check a UCOSUB written for ADAMS/Solver, without ADAMS. FILE is its source (.f", &
+            & "fixed form, compiled with -std=legacy; .f90 free form) or an object (.o, built", &
+            & "with -fPIC). It is compiled with gfortran into a shared library, cached in", &
+            & "$XDG_CACHE_HOME/rollcon (or ~/.cache/rollcon) until the file changes, and loaded.", &
+            & "Its calls to UCOVAR and ERRMES reach rollcon's versions; nothing else is linked.", &
+            & "", &
+            & "  --ucon ID:PAR1,PAR2,...  a UCON statement, UCON/ID, FUNCTION=USER(PAR1,...):", &
+            & "                 the routine is called with this ID, PAR and NPAR; repeat for", &
+            & "                 each UCON the routine serves (ids distinct, at most 30 PAR)", &
+            & "  --states N     random states per UCON (default 25)", &
+            & "  --seed S       seed of the states (default 1); a run is reproducible", &
+            & "  --json OUT     also write the report as JSON to OUT", &
+            & "", &
+            & "For each UCON: the initialisation call (IFLAG = 3) must declare the variables", &
+            & "with one UCOVAR call (at most 30, known codes, part ids that appear among the PAR", &
+            & "entries). Then, at each random state, every entry of SCALAR, ARRAY and XMATRX is", &
+            & "compared with sixth-order central differences of the routine's own lower-order", &
+            & "outputs, and the rules are checked: XMATRX symmetric, no second derivative in two", &
+            & "velocities (linear in the velocities), outputs not asked for (IDRSEL = 0) left", &
+            & "untouched, nothing beyond the declared variables, same inputs give the same", &
+            & "outputs, no NaN or Infinity, no ERRMES call. States are drawn in:"
+        do i = 1, size(ranges)
+            write(output_unit, '(a)') "  " // trim(ranges(i))
+        end do
+        write(output_unit, '(a)') &
+            & "", &
+            & "Findings of the same UCON, rule and entry are grouped: count and worst case.", &
+            & "Exit status: 0 clean, 1 mismatches found; 2 when the file cannot be built or", &
+            & "loaded or the command line is wrong (message on stderr)."
+    end subroutine print_help
+
+end module rollcon_command_check

@@ -1,0 +1,300 @@
+! SPDX-License-Identifier: MIT
+!> Checks a UCOSUB entry by entry: every partial against finite differences of its own
+!> lower-order outputs, and the rules a UCOSUB must keep (DESIGN section 2).
+module rollcon_partials_check
+    use rollcon_kinds, only : wp
+    use rollcon_error, only : error_type
+    use rollcon_ucosub_contract, only : ucosub_interface, max_ucon_vars, is_velocity_code, &
+        & scalar_none, scalar_value, scalar_dt, scalar_dtt, array_none, array_dq, array_dtdq, &
+        & xmatrx_none, xmatrx_dqdq
+    use rollcon_ucon_call, only : evaluate_ucon
+    use rollcon_adams_runtime, only : take_ucon_error
+    use, intrinsic :: ieee_arithmetic, only : ieee_is_finite
+    implicit none
+    private
+
+    public :: ucon_check_options_type, ucon_mismatch_type, ucon_check_result_type
+    public :: check_ucon_state
+
+    !> How the comparison is made
+    type :: ucon_check_options_type
+        !> Relative step: h_j = step * max(1, |q_j|) [variable units], likewise for time
+        real(wp) :: step = 1.0e-3_wp
+        !> An entry fails when |returned - difference| > rel_tol * scale, where scale is the
+        !> largest magnitude among the returned entry and the differenced values. Sixth-order
+        !> central differences with h = 1e-3 carry ~1e-18 truncation and ~1e-12 round-off
+        !> relative to that scale for trigonometric constraints, so 1e-8 leaves a wide margin
+        !> yet catches any wrong term that is not itself 1e-8 of the rest.
+        real(wp) :: rel_tol = 1.0e-8_wp
+    end type ucon_check_options_type
+
+    !> One entry found wrong
+    type :: ucon_mismatch_type
+        !> Which rule: "derivative", "symmetry", "velocity-linear", "selector-0", "repeat",
+        !> "outside-block" (an entry beyond the declared variables is non-zero)
+        character(len=:), allocatable :: rule
+        !> Which output: "ARRAY (dF/dq)", "XMATRX (d2F/dq dq)", "SCALAR (dF/dt)", ...
+        character(len=:), allocatable :: output
+        !> Row and column of the entry in q's numbering (0 when not applicable); for
+        !> "selector-0", the first entry written although not asked for
+        integer :: row = 0, column = 0
+        !> What the check computed and what the routine returned
+        real(wp) :: expected = 0.0_wp, returned = 0.0_wp
+    end type ucon_mismatch_type
+
+    !> What one check found
+    type :: ucon_check_result_type
+        !> Entries found wrong
+        type(ucon_mismatch_type), allocatable :: mismatches(:)
+        !> Number of entries compared
+        integer :: compared = 0
+        !> Largest |returned - expected| / scale over all compared entries
+        real(wp) :: worst = 0.0_wp
+    end type ucon_check_result_type
+
+    !> Sixth-order central difference weights for offsets -3..3, divided by 60 h
+    real(wp), parameter :: fd_weights(-3:3) = [-1.0_wp, 9.0_wp, -45.0_wp, 0.0_wp, 45.0_wp, &
+        & -9.0_wp, 1.0_wp] / 60.0_wp
+
+contains
+
+    !> Check every output of UCON id at one state; mismatches are appended to result.
+    subroutine check_ucon_state(ucosub, id, par, codes, time, q, options, result, error)
+        !> The routine under test
+        procedure(ucosub_interface) :: ucosub
+        !> UCON statement id
+        integer, intent(in) :: id
+        !> Constants of the UCON statement
+        real(wp), intent(in) :: par(:)
+        !> Codes the routine declared, in order (their number is the number of variables)
+        integer, intent(in) :: codes(:)
+        !> Time [s]
+        real(wp), intent(in) :: time
+        !> State: values of the declared variables
+        real(wp), intent(in) :: q(:)
+        !> Step and tolerance
+        type(ucon_check_options_type), intent(in) :: options
+        !> Findings, accumulated
+        type(ucon_check_result_type), intent(inout) :: result
+        !> Set when the routine reported an error or returned a non-finite value
+        type(error_type), allocatable, intent(out) :: error
+        real(wp) :: q30(max_ucon_vars), f, ft, ftt, a(max_ucon_vars), atq(max_ucon_vars)
+        real(wp) :: x(max_ucon_vars, max_ucon_vars), scratch(max_ucon_vars, max_ucon_vars)
+        real(wp) :: f_line(-3:3), a_line(max_ucon_vars, -3:3), ft_line(-3:3), h, fd
+        real(wp) :: f_again, a_again(max_ucon_vars), x_again(max_ucon_vars, max_ucon_vars)
+        integer :: n, i, j, k, loc(2)
+
+        if (.not. allocated(result%mismatches)) allocate(result%mismatches(0))
+        n = size(codes)
+        q30 = 0.0_wp
+        q30(:n) = q(:n)
+        call evaluate_ucon(ucosub, id, time, q30, par, [scalar_value, array_dq, xmatrx_dqdq], &
+            & f, a, x, error)
+        if (allocated(error)) return
+        call evaluate_ucon(ucosub, id, time, q30, par, [scalar_dt, array_dtdq, xmatrx_none], &
+            & ft, atq, scratch, error)
+        if (allocated(error)) return
+        call evaluate_ucon(ucosub, id, time, q30, par, [scalar_dtt, array_none, xmatrx_none], &
+            & ftt, scratch(:, 1), scratch, error)
+        if (allocated(error)) return
+        ! Nothing beyond the declared variables: the outputs were zeroed before the call.
+        if (any(a(n + 1:) /= 0.0_wp)) then
+            i = n + findloc(a(n + 1:) /= 0.0_wp, .true., dim=1)
+            call add(result, "outside-block", "ARRAY (dF/dq)", i, 0, 0.0_wp, a(i))
+        end if
+        if (any(x /= 0.0_wp .and. .not. declared_block(n))) then
+            loc = findloc(x /= 0.0_wp .and. .not. declared_block(n), .true.)
+            call add(result, "outside-block", "XMATRX (d2F/dq dq)", loc(1), loc(2), 0.0_wp, &
+                & x(loc(1), loc(2)))
+        end if
+
+        ! Same inputs, same outputs: a routine with hidden state fails here.
+        call evaluate_ucon(ucosub, id, time, q30, par, [scalar_value, array_dq, xmatrx_dqdq], &
+            & f_again, a_again, x_again, error)
+        if (allocated(error)) return
+        if (f_again /= f .or. any(a_again /= a) .or. any(x_again /= x)) then
+            call add(result, "repeat", "all outputs", 0, 0, f, f_again)
+        end if
+
+        do j = 1, n
+            h = options%step * max(1.0_wp, abs(q30(j)))
+            do k = -3, 3
+                if (k == 0) then
+                    f_line(k) = f
+                    a_line(:, k) = a
+                    cycle
+                end if
+                q30(j) = q(j) + k*h
+                call evaluate_ucon(ucosub, id, time, q30, par, [scalar_value, array_dq, &
+                    & xmatrx_none], f_line(k), a_line(:, k), scratch, error)
+                if (allocated(error)) return
+            end do
+            q30(j) = q(j)
+            fd = dot_product(fd_weights, f_line) / h
+            call compare(result, options, "ARRAY (dF/dq)", j, 0, fd, a(j), f_line)
+            do i = 1, n
+                fd = dot_product(fd_weights, a_line(i, :)) / h
+                call compare(result, options, "XMATRX (d2F/dq dq)", i, j, fd, x(i, j), &
+                    & a_line(i, :))
+            end do
+        end do
+
+        h = options%step * max(1.0_wp, abs(time))
+        do k = -3, 3
+            if (k == 0) then
+                f_line(k) = f
+                ft_line(k) = ft
+                a_line(:, k) = a
+                cycle
+            end if
+            call evaluate_ucon(ucosub, id, time + k*h, q30, par, [scalar_value, array_dq, &
+                & xmatrx_none], f_line(k), a_line(:, k), scratch, error)
+            if (allocated(error)) return
+            call evaluate_ucon(ucosub, id, time + k*h, q30, par, [scalar_dt, array_none, &
+                & xmatrx_none], ft_line(k), scratch(:, 1), scratch, error)
+            if (allocated(error)) return
+        end do
+        call compare(result, options, "SCALAR (dF/dt)", 0, 0, &
+            & dot_product(fd_weights, f_line) / h, ft, f_line)
+        call compare(result, options, "SCALAR (d2F/dt2)", 0, 0, &
+            & dot_product(fd_weights, ft_line) / h, ftt, ft_line)
+        do i = 1, n
+            call compare(result, options, "ARRAY (d2F/dt dq)", i, 0, &
+                & dot_product(fd_weights, a_line(i, :)) / h, atq(i), a_line(i, :))
+        end do
+
+        call check_rules(ucosub, id, time, q30, par, codes, x, result, error)
+    end subroutine check_ucon_state
+
+    !> Symmetry, linearity in the velocities, selector 0 (the declared block is checked above).
+    subroutine check_rules(ucosub, id, time, q30, par, codes, x, result, error)
+        procedure(ucosub_interface) :: ucosub
+        integer, intent(in) :: id
+        real(wp), intent(in) :: time, q30(:), par(:)
+        integer, intent(in) :: codes(:)
+        real(wp), intent(in) :: x(:, :)
+        type(ucon_check_result_type), intent(inout) :: result
+        type(error_type), allocatable, intent(out) :: error
+        real(wp), parameter :: sentinel = 12345.0_wp
+        real(wp) :: scalar, array(max_ucon_vars), xmatrx(max_ucon_vars, max_ucon_vars)
+        real(wp) :: scale
+        integer :: n, i, j, s, loc(2)
+
+        n = size(codes)
+        scale = maxval(abs(x(:n, :n)))
+        do j = 1, n
+            do i = j + 1, n
+                ! Both triangles must be filled with the same value; round-off of separately
+                ! computed expressions is allowed for.
+                if (abs(x(i, j) - x(j, i)) > 8.0_wp*epsilon(1.0_wp)*scale) then
+                    call add(result, "symmetry", "XMATRX (d2F/dq dq)", i, j, x(j, i), x(i, j))
+                end if
+            end do
+            do i = 1, n
+                ! A UCON must be linear in the velocities: no product of two velocities.
+                if (is_velocity_code(codes(i)) .and. is_velocity_code(codes(j)) &
+                    & .and. x(i, j) /= 0.0_wp) then
+                    call add(result, "velocity-linear", "XMATRX (d2F/dq dq)", i, j, 0.0_wp, x(i, j))
+                end if
+            end do
+        end do
+
+        ! Selector 0: each output not asked for must come back untouched.
+        do s = 1, 3
+            scalar = sentinel
+            array = sentinel
+            xmatrx = sentinel
+            call call_raw(ucosub, id, time, q30, par, selector_with(s), scalar, array, xmatrx)
+            if (s /= 1 .and. scalar /= sentinel) then
+                call add(result, "selector-0", "SCALAR", 0, 0, sentinel, scalar)
+            end if
+            if (s /= 2 .and. any(array /= sentinel)) then
+                i = findloc(array /= sentinel, .true., dim=1)
+                call add(result, "selector-0", "ARRAY", i, 0, sentinel, array(i))
+            end if
+            if (s /= 3 .and. any(xmatrx /= sentinel)) then
+                loc = findloc(xmatrx /= sentinel, .true.)
+                call add(result, "selector-0", "XMATRX", loc(1), loc(2), sentinel, &
+                    & xmatrx(loc(1), loc(2)))
+            end if
+        end do
+        call take_ucon_error(error)
+    end subroutine check_rules
+
+    !> True for the entries of XMATRX inside the block of the n declared variables.
+    pure function declared_block(n) result(inside)
+        integer, intent(in) :: n
+        logical :: inside(max_ucon_vars, max_ucon_vars)
+
+        inside = .false.
+        inside(:n, :n) = .true.
+    end function declared_block
+
+    !> IDRSEL asking for output s only (1: scalar F, 2: array dF/dq, 3: xmatrx).
+    pure function selector_with(s) result(idrsel)
+        integer, intent(in) :: s
+        integer :: idrsel(3)
+
+        idrsel = [scalar_none, array_none, xmatrx_none]
+        select case (s)
+        case (1)
+            idrsel(1) = scalar_value
+        case (2)
+            idrsel(2) = array_dq
+        case (3)
+            idrsel(3) = xmatrx_dqdq
+        end select
+    end function selector_with
+
+    !> Call without zeroing the outputs first (to see what the routine leaves alone).
+    subroutine call_raw(ucosub, id, time, q30, par, idrsel, scalar, array, xmatrx)
+        procedure(ucosub_interface) :: ucosub
+        integer, intent(in) :: id
+        real(wp), intent(in) :: time, q30(max_ucon_vars), par(:)
+        integer, intent(in) :: idrsel(3)
+        real(wp), intent(inout) :: scalar, array(max_ucon_vars)
+        real(wp), intent(inout) :: xmatrx(max_ucon_vars, max_ucon_vars)
+
+        call ucosub(id, time, q30, par, size(par), idrsel, 0, scalar, array, xmatrx)
+    end subroutine call_raw
+
+    !> Compare one returned entry with its difference quotient.
+    pure subroutine compare(result, options, output, row, column, expected, returned, line)
+        type(ucon_check_result_type), intent(inout) :: result
+        type(ucon_check_options_type), intent(in) :: options
+        character(len=*), intent(in) :: output
+        integer, intent(in) :: row, column
+        real(wp), intent(in) :: expected, returned, line(:)
+        real(wp) :: scale, deviation
+
+        scale = max(abs(returned), maxval(abs(line)), tiny(1.0_wp))
+        deviation = abs(returned - expected) / scale
+        result%compared = result%compared + 1
+        if (ieee_is_finite(deviation)) then
+            result%worst = max(result%worst, deviation)
+        else
+            result%worst = huge(1.0_wp)
+        end if
+        if (.not. (deviation <= options%rel_tol)) then
+            call add(result, "derivative", output, row, column, expected, returned)
+        end if
+    end subroutine compare
+
+    !> Append a mismatch.
+    pure subroutine add(result, rule, output, row, column, expected, returned)
+        type(ucon_check_result_type), intent(inout) :: result
+        character(len=*), intent(in) :: rule, output
+        integer, intent(in) :: row, column
+        real(wp), intent(in) :: expected, returned
+        type(ucon_mismatch_type) :: mismatch
+
+        mismatch%rule = rule
+        mismatch%output = output
+        mismatch%row = row
+        mismatch%column = column
+        mismatch%expected = expected
+        mismatch%returned = returned
+        result%mismatches = [result%mismatches, mismatch]
+    end subroutine add
+
+end module rollcon_partials_check

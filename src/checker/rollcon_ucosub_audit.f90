@@ -1,0 +1,386 @@
+! SPDX-License-Identifier: MIT
+!> Checks a user's UCOSUB as a whole: the initialisation call and UCOVAR declaration of each
+!> UCON, then check_ucon_state on random states drawn in documented ranges, with the findings
+!> grouped by UCON, rule and entry (a count and the worst case of each group).
+module rollcon_ucosub_audit
+    use, intrinsic :: iso_fortran_env, only : int64
+    use rollcon_kinds, only : wp
+    use rollcon_error, only : error_type, fatal_error, stat_input
+    use rollcon_text, only : to_text
+    use rollcon_ucosub_contract, only : ucosub_interface, max_ucon_par
+    use rollcon_ucovar_registry, only : ucovar_registry_type
+    use rollcon_ucon_call, only : declare_ucon
+    use rollcon_partials_check, only : ucon_check_options_type, ucon_check_result_type, &
+        & check_ucon_state
+    use rollcon_adams_runtime, only : take_ucon_error
+    implicit none
+    private
+
+    public :: ucon_request_type, user_check_options_type, finding_group_type, ucon_report_type
+    public :: user_check_report_type, check_user_ucosub, sampling_ranges
+
+    !> One UCON statement to check: its id and FUNCTION=USER constants
+    type :: ucon_request_type
+        integer :: id = 0
+        real(wp), allocatable :: par(:)
+    end type ucon_request_type
+
+    !> How many states, from which seed, compared how
+    type :: user_check_options_type
+        !> Random states per UCON
+        integer :: states = 25
+        !> Seed of the states; UCON id and seed fix a UCON's states
+        integer :: seed = 1
+        !> Difference step and tolerance of check_ucon_state
+        type(ucon_check_options_type) :: compare
+    end type user_check_options_type
+
+    !> Findings of one kind (same UCON, rule, output and entry), with the worst of them
+    type :: finding_group_type
+        !> "declaration", "errmes", "finite" or a rule of check_ucon_state ("derivative", ...)
+        character(len=:), allocatable :: rule
+        !> Which output ("ARRAY (dF/dq)", ...), or "UCOVAR"
+        character(len=:), allocatable :: output
+        !> Entry in the numbering of the declared variables (0 when not applicable)
+        integer :: row = 0, column = 0
+        !> In how many states it was found (1 for a declaration finding)
+        integer :: count = 0
+        !> The states it was found in
+        integer, allocatable :: states(:)
+        !> The worst case: largest |returned - expected|
+        real(wp) :: expected = 0.0_wp, returned = 0.0_wp
+        !> State of the worst case (its number, time [s] and values; 0 for the declaration)
+        integer :: state = 0
+        real(wp) :: time = 0.0_wp
+        real(wp), allocatable :: q(:)
+        !> What the routine or the checker said, for declaration, errmes and finite findings
+        character(len=:), allocatable :: message
+    end type finding_group_type
+
+    !> What was found for one UCON
+    type :: ucon_report_type
+        integer :: id = 0
+        real(wp), allocatable :: par(:)
+        !> True when the initialisation call declared its variables without a mistake
+        logical :: declared = .false.
+        !> Declared part ids and codes, in UCOVAR order
+        integer, allocatable :: parts(:), codes(:)
+        !> States checked and entries compared
+        integer :: states = 0, compared = 0
+        !> Largest relative deviation among the compared entries
+        real(wp) :: worst = 0.0_wp
+        type(finding_group_type), allocatable :: groups(:)
+    end type ucon_report_type
+
+    !> What was found for every UCON
+    type :: user_check_report_type
+        type(ucon_report_type), allocatable :: ucons(:)
+        type(user_check_options_type) :: options
+    contains
+        !> True when nothing was found
+        procedure :: clean => report_clean
+        !> Number of findings over all groups
+        procedure :: findings => report_findings
+    end type user_check_report_type
+
+    real(wp), parameter :: pi = acos(-1.0_wp)
+    !> Ranges of the random states: |X|, |Y|, |Z| [m]
+    real(wp), parameter :: position_range = 1.0_wp
+    !> |Xdot|, |Ydot|, |Zdot| [m/s]
+    real(wp), parameter :: velocity_range = 1.0_wp
+    !> |psidot|, |thetadot|, |phidot| [rad/s]
+    real(wp), parameter :: rate_range = 10.0_wp
+    !> theta stays this far from 0 and pi, the Euler-angle singularity [rad]
+    real(wp), parameter :: theta_margin = 0.05_wp
+    !> Time is drawn in [0, time_range] [s]
+    real(wp), parameter :: time_range = 10.0_wp
+
+contains
+
+    !> The ranges the states are drawn from, as lines of text (for help and reports).
+    pure function sampling_ranges() result(lines)
+        character(len=80) :: lines(4)
+
+        lines(1) = "psi, phi (codes 14, 16) in (-pi, pi) rad; theta (15) in (0.05, pi - 0.05) rad"
+        lines(2) = "X, Y, Z (11-13) in (-1, 1) m; Xdot, Ydot, Zdot (21-23) in (-1, 1) m/s"
+        lines(3) = "psidot, thetadot, phidot (24-26) in (-10, 10) rad/s"
+        lines(4) = "time in [0, 10] s; uniform, from the seed and the UCON id"
+    end function sampling_ranges
+
+    !> Declare and check every requested UCON of ucosub. Mistakes of the routine are findings
+    !> in the report; the error is only for a request that cannot be checked.
+    subroutine check_user_ucosub(ucosub, requests, options, report, error)
+        !> The routine under test
+        procedure(ucosub_interface) :: ucosub
+        !> UCON statements to check (distinct ids)
+        type(ucon_request_type), intent(in) :: requests(:)
+        !> States, seed, tolerance
+        type(user_check_options_type), intent(in) :: options
+        !> Findings
+        type(user_check_report_type), intent(out) :: report
+        !> Set when there is nothing to check, ids repeat, PAR is too long or states < 1
+        type(error_type), allocatable, intent(out) :: error
+        type(ucovar_registry_type), target :: registry
+        integer :: k
+
+        call check_requests(requests, options, error)
+        if (allocated(error)) return
+        report%options = options
+        allocate(report%ucons(size(requests)))
+        do k = 1, size(requests)
+            report%ucons(k)%id = requests(k)%id
+            report%ucons(k)%par = requests(k)%par
+            allocate(report%ucons(k)%groups(0))
+            call declare(ucosub, requests(k), registry, report%ucons(k))
+            if (report%ucons(k)%declared) call sample(ucosub, options, report%ucons(k))
+        end do
+    end subroutine check_user_ucosub
+
+    subroutine check_requests(requests, options, error)
+        type(ucon_request_type), intent(in) :: requests(:)
+        type(user_check_options_type), intent(in) :: options
+        type(error_type), allocatable, intent(out) :: error
+        integer :: k
+
+        if (size(requests) == 0) then
+            call fatal_error(error, "no UCON to check; give one or more --ucon ID:PAR1,PAR2,...", &
+                & stat_input)
+            return
+        end if
+        if (options%states < 1) then
+            call fatal_error(error, "the number of states must be at least 1, got " &
+                & // to_text(options%states), stat_input)
+            return
+        end if
+        do k = 1, size(requests)
+            if (size(requests(k)%par) > max_ucon_par) then
+                call fatal_error(error, "UCON/" // to_text(requests(k)%id) // ": " &
+                    & // to_text(size(requests(k)%par)) // " PAR entries; at most " &
+                    & // to_text(max_ucon_par), stat_input)
+                return
+            end if
+            if (any(requests(:k - 1)%id == requests(k)%id)) then
+                call fatal_error(error, "UCON/" // to_text(requests(k)%id) // " is given twice; " &
+                    & // "each UCON id once", stat_input)
+                return
+            end if
+        end do
+    end subroutine check_requests
+
+    !> The initialisation call: record what was declared, or the mistake; a part id that no
+    !> PAR entry mentions is a finding too (UCON statements name their parts in PAR).
+    subroutine declare(ucosub, request, registry, ucon)
+        procedure(ucosub_interface) :: ucosub
+        type(ucon_request_type), intent(in) :: request
+        type(ucovar_registry_type), target, intent(inout) :: registry
+        type(ucon_report_type), intent(inout) :: ucon
+        type(error_type), allocatable :: error
+        type(finding_group_type) :: group
+        integer :: i, entry
+
+        call take_ucon_error(error)
+        call declare_ucon(ucosub, request%id, request%par, registry, error)
+        if (allocated(error)) then
+            group = finding("declaration", "UCOVAR", error%message)
+            ucon%groups = [ucon%groups, group]
+            return
+        end if
+        entry = registry%find(request%id)
+        ucon%declared = .true.
+        ucon%parts = registry%entries(entry)%parts
+        ucon%codes = registry%entries(entry)%codes
+        do i = 1, size(ucon%parts)
+            if (any(ucon%parts(:i - 1) == ucon%parts(i))) cycle
+            if (any(request%par == real(ucon%parts(i), wp))) cycle
+            group = finding("declaration", "UCOVAR", "UCON/" // to_text(request%id) &
+                & // ": UCOVAR declares part id " // to_text(ucon%parts(i)) // " (variable " &
+                & // to_text(i) // "), which no PAR entry mentions; take part ids from PAR")
+            group%row = i
+            ucon%groups = [ucon%groups, group]
+        end do
+    end subroutine declare
+
+    !> check_ucon_state on options%states random states, findings grouped.
+    subroutine sample(ucosub, options, ucon)
+        procedure(ucosub_interface) :: ucosub
+        type(user_check_options_type), intent(in) :: options
+        type(ucon_report_type), intent(inout) :: ucon
+        type(ucon_check_result_type) :: result
+        type(error_type), allocatable :: error
+        type(finding_group_type) :: group
+        real(wp), allocatable :: q(:)
+        real(wp) :: time
+        integer(int64) :: random
+        integer :: s, m
+
+        random = seed_state(options%seed, ucon%id)
+        allocate(q(size(ucon%codes)))
+        do s = 1, options%states
+            call draw_state(random, ucon%codes, q, time)
+            result = ucon_check_result_type()
+            call check_ucon_state(ucosub, ucon%id, ucon%par, ucon%codes, time, q, &
+                & options%compare, result, error)
+            ucon%states = ucon%states + 1
+            ucon%compared = ucon%compared + result%compared
+            ucon%worst = max(ucon%worst, result%worst)
+            if (allocated(error)) then
+                ! evaluate_ucon reports ERRMES calls and non-finite outputs this way.
+                if (index(error%message, "non-finite value") > 0) then
+                    group = finding("finite", "all outputs", error%message)
+                else
+                    group = finding("errmes", "ERRMES", error%message)
+                end if
+                call take_ucon_error(error)
+                call record(ucon, group, s, time, q)
+            end if
+            if (.not. allocated(result%mismatches)) cycle
+            do m = 1, size(result%mismatches)
+                associate (mismatch => result%mismatches(m))
+                    group = finding(mismatch%rule, mismatch%output)
+                    group%row = mismatch%row
+                    group%column = mismatch%column
+                    group%expected = mismatch%expected
+                    group%returned = mismatch%returned
+                end associate
+                call record(ucon, group, s, time, q)
+            end do
+        end do
+    end subroutine sample
+
+    !> Add one finding at state s to its group (a new group if none matches); keep the worst.
+    subroutine record(ucon, found, s, time, q)
+        type(ucon_report_type), intent(inout) :: ucon
+        type(finding_group_type), intent(in) :: found
+        integer, intent(in) :: s
+        real(wp), intent(in) :: time, q(:)
+        integer :: g
+        logical :: worse
+
+        do g = 1, size(ucon%groups)
+            associate (group => ucon%groups(g))
+                if (group%rule /= found%rule .or. group%output /= found%output &
+                    & .or. group%row /= found%row .or. group%column /= found%column) cycle
+                ! Counted once per state: a rule may report the same entry twice in one state.
+                if (.not. any(group%states == s)) then
+                    group%count = group%count + 1
+                    group%states = [group%states, s]
+                end if
+                worse = .not. (abs(found%returned - found%expected) &
+                    & <= abs(group%returned - group%expected))
+                if (worse) call set_worst(group, found, s, time, q)
+                return
+            end associate
+        end do
+        ucon%groups = [ucon%groups, found]
+        associate (group => ucon%groups(size(ucon%groups)))
+            group%count = 1
+            group%states = [s]
+            call set_worst(group, found, s, time, q)
+        end associate
+    end subroutine record
+
+    subroutine set_worst(group, found, s, time, q)
+        type(finding_group_type), intent(inout) :: group
+        type(finding_group_type), intent(in) :: found
+        integer, intent(in) :: s
+        real(wp), intent(in) :: time, q(:)
+
+        group%expected = found%expected
+        group%returned = found%returned
+        if (allocated(found%message)) group%message = found%message
+        group%state = s
+        group%time = time
+        group%q = q
+    end subroutine set_worst
+
+    !> A finding of rule on output, counted once, with an optional message.
+    pure function finding(rule, output, message) result(group)
+        character(len=*), intent(in) :: rule, output
+        character(len=*), intent(in), optional :: message
+        type(finding_group_type) :: group
+
+        group%rule = rule
+        group%output = output
+        group%count = 1
+        if (present(message)) group%message = message
+    end function finding
+
+    !> Starting state of the generator for a seed and a UCON id (never zero).
+    pure function seed_state(seed, id) result(state)
+        integer, intent(in) :: seed, id
+        integer(int64) :: state
+        integer :: i
+
+        state = ieor(int(seed, int64), ishft(int(id, int64), 32))
+        state = ieor(state, 6755399441055744_int64)
+        do i = 1, 8
+            call xorshift(state)
+        end do
+    end function seed_state
+
+    !> One step of Marsaglia's xorshift64 (shifts 13, 7, 17): only shifts and exclusive ors,
+    !> so no integer overflow, and the same sequence on every compiler.
+    pure subroutine xorshift(state)
+        integer(int64), intent(inout) :: state
+
+        state = ieor(state, ishft(state, 13))
+        state = ieor(state, ishft(state, -7))
+        state = ieor(state, ishft(state, 17))
+    end subroutine xorshift
+
+    !> Uniform number in (0, 1) from the top 53 bits of the next state.
+    subroutine uniform(state, u)
+        integer(int64), intent(inout) :: state
+        real(wp), intent(out) :: u
+
+        call xorshift(state)
+        u = (real(ishft(state, -11), wp) + 0.5_wp) * 2.0_wp**(-53)
+    end subroutine uniform
+
+    !> A state in the documented ranges (sampling_ranges) for the declared codes.
+    subroutine draw_state(state, codes, q, time)
+        integer(int64), intent(inout) :: state
+        integer, intent(in) :: codes(:)
+        real(wp), intent(out) :: q(:), time
+        real(wp) :: u
+        integer :: i
+
+        do i = 1, size(codes)
+            call uniform(state, u)
+            select case (codes(i))
+            case (11:13)
+                q(i) = position_range*(2.0_wp*u - 1.0_wp)
+            case (14, 16)
+                q(i) = pi*(2.0_wp*u - 1.0_wp)
+            case (15)
+                q(i) = theta_margin + (pi - 2.0_wp*theta_margin)*u
+            case (21:23)
+                q(i) = velocity_range*(2.0_wp*u - 1.0_wp)
+            case default
+                q(i) = rate_range*(2.0_wp*u - 1.0_wp)
+            end select
+        end do
+        call uniform(state, u)
+        time = time_range*u
+    end subroutine draw_state
+
+    pure function report_clean(self) result(clean)
+        class(user_check_report_type), intent(in) :: self
+        logical :: clean
+
+        clean = self%findings() == 0
+    end function report_clean
+
+    pure function report_findings(self) result(count)
+        class(user_check_report_type), intent(in) :: self
+        integer :: count
+        integer :: k
+
+        count = 0
+        if (.not. allocated(self%ucons)) return
+        do k = 1, size(self%ucons)
+            count = count + sum(self%ucons(k)%groups%count)
+        end do
+    end function report_findings
+
+end module rollcon_ucosub_audit

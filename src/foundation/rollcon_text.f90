@@ -1,0 +1,117 @@
+! SPDX-License-Identifier: MIT
+!> Short decimal text of numbers, for messages and tables.
+module rollcon_text
+    use rollcon_kinds, only : wp
+    use, intrinsic :: ieee_arithmetic, only : ieee_is_finite, ieee_is_nan
+    implicit none
+    private
+
+    public :: to_text, single_quoted, shell_quote
+
+    !> Decimal text of an integer or a real
+    interface to_text
+        module procedure :: integer_to_text
+        module procedure :: real_to_text
+    end interface to_text
+
+contains
+
+    !> Shortest decimal text of an integer.
+    pure function integer_to_text(value) result(text)
+        !> Value to print
+        integer, intent(in) :: value
+        character(len=:), allocatable :: text
+        character(len=24) :: buffer
+
+        write(buffer, '(i0)') value
+        text = trim(buffer)
+    end function integer_to_text
+
+    !> Shortest decimal text that reads back as the same real (at most 17 digits): plain
+    !> notation for 1e-5 <= |value| < 1e15 ("0.1", "-2.5", "7800"), else "1.5e-300".
+    pure function real_to_text(value) result(text)
+        !> Value to print
+        real(wp), intent(in) :: value
+        character(len=:), allocatable :: text
+        character(len=40) :: buffer
+        character(len=16) :: form
+        character(len=:), allocatable :: digits_text, sign
+        real(wp) :: back
+        integer :: digits, stat, exponent, e
+
+        if (ieee_is_nan(value)) then
+            text = "NaN"
+            return
+        else if (.not. ieee_is_finite(value)) then
+            text = merge("+Infinity", "-Infinity", value > 0.0_wp)
+            return
+        else if (value == 0.0_wp) then
+            text = "0"
+            return
+        end if
+        do digits = 1, 17
+            write(form, '("(es40.", i0, "e3)")') digits - 1
+            write(buffer, form) value
+            read(buffer, *, iostat=stat) back
+            if (stat == 0 .and. back == value) exit
+        end do
+        buffer = adjustl(buffer)
+        sign = ""
+        if (buffer(1:1) == "-") then
+            sign = "-"
+            buffer = buffer(2:)
+        end if
+        e = scan(buffer, "Ee")
+        read(buffer(e + 1:), *) exponent
+        ! digits without the point, trailing zeros removed
+        digits_text = buffer(1:1) // buffer(3:e - 1)
+        if (e == 2) digits_text = buffer(1:1)
+        do while (len(digits_text) > 1 .and. digits_text(len(digits_text):) == "0")
+            digits_text = digits_text(:len(digits_text) - 1)
+        end do
+        if (exponent >= -5 .and. exponent < 15) then
+            if (exponent < 0) then
+                text = sign // "0." // repeat("0", -exponent - 1) // digits_text
+            else if (len(digits_text) > exponent + 1) then
+                text = sign // digits_text(:exponent + 1) // "." // digits_text(exponent + 2:)
+            else
+                text = sign // digits_text // repeat("0", exponent + 1 - len(digits_text))
+            end if
+        else
+            text = sign // digits_text(1:1)
+            if (len(digits_text) > 1) text = text // "." // digits_text(2:)
+            text = text // "e" // integer_to_text(exponent)
+        end if
+    end function real_to_text
+
+    !> text between single quotes, each quote inside written as escape: "'\''" for a POSIX
+    !> shell, "''" for gnuplot.
+    pure function single_quoted(text, escape) result(word)
+        !> Text to quote
+        character(len=*), intent(in) :: text
+        !> What stands for a single quote inside
+        character(len=*), intent(in) :: escape
+        character(len=:), allocatable :: word
+        integer :: i
+
+        word = "'"
+        do i = 1, len(text)
+            if (text(i:i) == "'") then
+                word = word // escape
+            else
+                word = word // text(i:i)
+            end if
+        end do
+        word = word // "'"
+    end function single_quoted
+
+    !> text as one word for a POSIX shell (single quotes, a quote inside written as '\'').
+    pure function shell_quote(text) result(word)
+        !> Text to quote
+        character(len=*), intent(in) :: text
+        character(len=:), allocatable :: word
+
+        word = single_quoted(text, "'\''")
+    end function shell_quote
+
+end module rollcon_text

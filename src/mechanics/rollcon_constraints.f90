@@ -1,0 +1,145 @@
+! SPDX-License-Identifier: MIT
+!> Evaluates every UCON of a model through its UCOSUB and scatters the answers onto the
+!> system's coordinates q and rates u.
+module rollcon_constraints
+    use rollcon_kinds, only : wp
+    use rollcon_error, only : error_type
+    use rollcon_ucosub_contract, only : max_ucon_vars, scalar_none, scalar_value, scalar_dt, scalar_dtt, &
+        & array_none, array_dq, array_dtdq, xmatrx_none, xmatrx_dqdq
+    use rollcon_ucon_call, only : evaluate_ucon
+    use rollcon_model, only : model_type
+    implicit none
+    private
+
+    public :: constraint_state_type, need_value, need_first, need_second, need_time
+
+    !> What an evaluation needs (add them): F, first partials, second partials, time partials
+    integer, parameter :: need_value = 1, need_first = 2, need_second = 4, need_time = 8
+
+    !> Constraint values and partials over the whole system (k: UCON, i/j: coordinate number)
+    type :: constraint_state_type
+        !> F_k
+        real(wp), allocatable :: value(:)
+        !> dF_k/dq_j and dF_k/du_j
+        real(wp), allocatable :: grad_q(:, :), grad_u(:, :)
+        !> dF_k/dt and d2F_k/dt2
+        real(wp), allocatable :: dt(:), dtt(:)
+        !> d2F_k/dt dq_j and d2F_k/dt du_j
+        real(wp), allocatable :: dt_grad_q(:, :), dt_grad_u(:, :)
+        !> d2F_k/dq_i dq_j (i, j, k) and d2F_k/dq_i du_j (i, j, k); d2F/du du is zero (DESIGN 2)
+        real(wp), allocatable :: hqq(:, :, :), hqu(:, :, :)
+        !> Scratch for one UCOSUB call
+        real(wp) :: local_q(max_ucon_vars) = 0.0_wp
+    contains
+        procedure :: allocate => allocate_state
+        procedure :: evaluate => evaluate_constraints
+    end type constraint_state_type
+
+contains
+
+    !> Size the arrays for a model (once, outside any hot path).
+    subroutine allocate_state(self, model)
+        class(constraint_state_type), intent(inout) :: self
+        type(model_type), intent(in) :: model
+
+        associate (n => model%n, nc => model%nc)
+            allocate(self%value(nc), self%dt(nc), self%dtt(nc), source=0.0_wp)
+            allocate(self%grad_q(nc, n), self%grad_u(nc, n), self%dt_grad_q(nc, n), &
+                & self%dt_grad_u(nc, n), source=0.0_wp)
+            allocate(self%hqq(n, n, nc), self%hqu(n, n, nc), source=0.0_wp)
+        end associate
+    end subroutine allocate_state
+
+    !> Call the UCOSUB of every UCON for what `needs` asks (a sum of need_* flags) at (t, q, u).
+    subroutine evaluate_constraints(self, model, time, q, u, needs, error)
+        class(constraint_state_type), intent(inout) :: self
+        type(model_type), intent(in) :: model
+        !> Time [s]
+        real(wp), intent(in) :: time
+        !> Coordinates and rates of the whole system
+        real(wp), intent(in) :: q(:), u(:)
+        !> Sum of need_value, need_first, need_second, need_time
+        integer, intent(in) :: needs
+        !> Set when a UCOSUB reports an error or returns a non-finite value
+        type(error_type), allocatable, intent(out) :: error
+        real(wp) :: scalar, array(max_ucon_vars), xmatrx(max_ucon_vars, max_ucon_vars)
+        integer :: k, i, j, idrsel(3)
+        logical :: first, second
+
+        first = iand(needs, need_first) /= 0
+        second = iand(needs, need_second) /= 0
+        do k = 1, model%nc
+            associate (ucon => model%ucons(k))
+                do i = 1, ucon%nvars
+                    if (ucon%velocity(i)) then
+                        self%local_q(i) = u(ucon%coordinate(i))
+                    else
+                        self%local_q(i) = q(ucon%coordinate(i))
+                    end if
+                end do
+                idrsel = [scalar_none, array_none, xmatrx_none]
+                if (iand(needs, need_value) /= 0) idrsel(1) = scalar_value
+                if (first) idrsel(2) = array_dq
+                if (second) idrsel(3) = xmatrx_dqdq
+                if (any(idrsel /= 0)) then
+                    call evaluate_ucon(ucon%ucosub, ucon%id, time, self%local_q, ucon%par, idrsel, &
+                        & scalar, array, xmatrx, error, ucon%nvars)
+                    if (allocated(error)) return
+                    if (idrsel(1) /= 0) self%value(k) = scalar
+                    if (first) then
+                        self%grad_q(k, :) = 0.0_wp
+                        self%grad_u(k, :) = 0.0_wp
+                        do i = 1, ucon%nvars
+                            if (ucon%velocity(i)) then
+                                self%grad_u(k, ucon%coordinate(i)) = array(i)
+                            else
+                                self%grad_q(k, ucon%coordinate(i)) = array(i)
+                            end if
+                        end do
+                    end if
+                    if (second) then
+                        self%hqq(:, :, k) = 0.0_wp
+                        self%hqu(:, :, k) = 0.0_wp
+                        do j = 1, ucon%nvars
+                            do i = 1, ucon%nvars
+                                if (ucon%velocity(i)) cycle
+                                associate (ci => ucon%coordinate(i), cj => ucon%coordinate(j))
+                                    if (ucon%velocity(j)) then
+                                        ! d2F/dq_i du_j, and its mirror (u_j, q_i) below
+                                        self%hqu(ci, cj, k) = xmatrx(i, j)
+                                    else
+                                        self%hqq(ci, cj, k) = xmatrx(i, j)
+                                    end if
+                                end associate
+                            end do
+                        end do
+                    end if
+                end if
+                if (iand(needs, need_time) /= 0) then
+                    call evaluate_ucon(ucon%ucosub, ucon%id, time, self%local_q, ucon%par, &
+                        & [scalar_dt, array_dtdq, xmatrx_none], scalar, array, xmatrx, error, &
+                        & ucon%nvars)
+                    if (allocated(error)) return
+                    self%dt(k) = scalar
+                    self%dt_grad_q(k, :) = 0.0_wp
+                    self%dt_grad_u(k, :) = 0.0_wp
+                    do i = 1, ucon%nvars
+                        if (ucon%velocity(i)) then
+                            self%dt_grad_u(k, ucon%coordinate(i)) = array(i)
+                        else
+                            self%dt_grad_q(k, ucon%coordinate(i)) = array(i)
+                        end if
+                    end do
+                    if (ucon%holonomic) then
+                        call evaluate_ucon(ucon%ucosub, ucon%id, time, self%local_q, ucon%par, &
+                            & [scalar_dtt, array_none, xmatrx_none], scalar, array, xmatrx, &
+                            & error, ucon%nvars)
+                        if (allocated(error)) return
+                        self%dtt(k) = scalar
+                    end if
+                end if
+            end associate
+        end do
+    end subroutine evaluate_constraints
+
+end module rollcon_constraints

@@ -1,0 +1,173 @@
+! SPDX-License-Identifier: MIT
+!> A multibody model: rigid parts, UCON statements served by one UCOSUB, applied forces, gravity.
+!>
+!> setup_model makes the initialisation call of every UCON (IFLAG = 3), validates the UCOVAR
+!> declarations and maps each declared variable onto the system's coordinates: part p's
+!> coordinate c (X, Y, Z, psi, theta, phi) is number 6 (p - 1) + c of q, and its rate the same
+!> number of u.
+module rollcon_model
+    use rollcon_kinds, only : wp
+    use rollcon_error, only : error_type, ucon_error, fatal_error, stat_input
+    use rollcon_text, only : to_text
+    use rollcon_ucosub_contract, only : ucosub_interface, max_ucon_par, is_velocity_code, code_coordinate, &
+        & code_name
+    use rollcon_ucovar_registry, only : ucovar_registry_type
+    use rollcon_ucon_call, only : declare_ucon
+    use rollcon_body, only : part_type
+    use rollcon_force, only : applied_force_type
+    implicit none
+    private
+
+    public :: model_type, ucon_statement_type, setup_model
+
+    !> One UCON/id, FUNCTION=USER(par) statement and, after setup, where its variables live
+    type :: ucon_statement_type
+        !> Statement id
+        integer :: id = 0
+        !> Constants r1, ..., r30
+        real(wp), allocatable :: par(:)
+        !> Number of declared variables
+        integer :: nvars = 0
+        !> System coordinate number of each variable
+        integer, allocatable :: coordinate(:)
+        !> True where the variable is a rate (codes 21-26)
+        logical, allocatable :: velocity(:)
+        !> True when no variable is a rate: a position (holonomic) constraint
+        logical :: holonomic = .false.
+        !> The routine serving this statement: the model's UCOSUB unless given
+        procedure(ucosub_interface), pointer, nopass :: ucosub => null()
+    end type ucon_statement_type
+
+    !> The model
+    type :: model_type
+        !> Rigid parts
+        type(part_type), allocatable :: parts(:)
+        !> UCON statements
+        type(ucon_statement_type), allocatable :: ucons(:)
+        !> The UCOSUB serving every UCON of the model
+        procedure(ucosub_interface), pointer, nopass :: ucosub => null()
+        !> Applied forces
+        type(applied_force_type), allocatable :: forces(:)
+        !> Gravitational acceleration, ground components [m/s^2]
+        real(wp) :: gravity(3) = [0.0_wp, 0.0_wp, -9.81_wp]
+        !> What the UCOSUB declared
+        type(ucovar_registry_type) :: registry
+        !> Number of coordinates (6 per part), of constraints, of holonomic constraints
+        integer :: n = 0, nc = 0, nh = 0
+        !> For each UCON, its number among the holonomic ones (0 when it is a velocity UCON)
+        integer, allocatable :: holonomic_number(:)
+    contains
+        procedure :: add_part
+        procedure :: add_ucon
+        procedure :: add_force
+    end type model_type
+
+contains
+
+    !> Append a part.
+    subroutine add_part(self, part)
+        class(model_type), intent(inout) :: self
+        type(part_type), intent(in) :: part
+
+        if (.not. allocated(self%parts)) allocate(self%parts(0))
+        self%parts = [self%parts, part]
+    end subroutine add_part
+
+    !> Append a UCON statement.
+    subroutine add_ucon(self, id, par, ucosub)
+        class(model_type), intent(inout) :: self
+        !> Statement id
+        integer, intent(in) :: id
+        !> Its constants
+        real(wp), intent(in) :: par(:)
+        !> A routine of its own (ADAMS has one UCOSUB per model; rollcon allows one per UCON)
+        procedure(ucosub_interface), optional :: ucosub
+        type(ucon_statement_type) :: ucon
+
+        ucon%id = id
+        ucon%par = par
+        if (present(ucosub)) ucon%ucosub => ucosub
+        if (.not. allocated(self%ucons)) allocate(self%ucons(0))
+        self%ucons = [self%ucons, ucon]
+    end subroutine add_ucon
+
+    !> Append an applied force.
+    subroutine add_force(self, force)
+        class(model_type), intent(inout) :: self
+        type(applied_force_type), intent(in) :: force
+
+        if (.not. allocated(self%forces)) allocate(self%forces(0))
+        self%forces = [self%forces, force]
+    end subroutine add_force
+
+    !> Initialise every UCON (IFLAG = 3), validate the declarations, map variables to coordinates.
+    subroutine setup_model(model, error)
+        type(model_type), target, intent(inout) :: model
+        type(error_type), allocatable, intent(out) :: error
+        integer :: k, i, p, entry
+
+        if (.not. allocated(model%parts)) allocate(model%parts(0))
+        if (.not. allocated(model%ucons)) allocate(model%ucons(0))
+        if (.not. allocated(model%forces)) allocate(model%forces(0))
+        if (size(model%parts) == 0) then
+            call fatal_error(error, "the model has no part", stat_input)
+            return
+        end if
+        do k = 1, size(model%ucons)
+            if (.not. associated(model%ucons(k)%ucosub)) model%ucons(k)%ucosub => model%ucosub
+            if (.not. associated(model%ucons(k)%ucosub)) then
+                call ucon_error(error, model%ucons(k)%id, "no UCOSUB serves this statement")
+                return
+            end if
+        end do
+        do i = 1, size(model%parts)
+            if (model%parts(i)%mass <= 0.0_wp .or. any(model%parts(i)%inertia <= 0.0_wp)) then
+                call fatal_error(error, "part " // to_text(model%parts(i)%id) &
+                    & // " needs a positive mass and positive principal moments", stat_input)
+                return
+            end if
+        end do
+        model%n = 6*size(model%parts)
+        model%nc = size(model%ucons)
+        model%registry = ucovar_registry_type()
+        allocate(model%holonomic_number(model%nc), source=0)
+        model%nh = 0
+        do k = 1, model%nc
+            associate (ucon => model%ucons(k))
+                if (size(ucon%par) > max_ucon_par) then
+                    call ucon_error(error, ucon%id, "has " // to_text(size(ucon%par)) &
+                        & // " constants; at most " // to_text(max_ucon_par))
+                    return
+                end if
+                if (count(model%ucons(:k)%id == ucon%id) > 1) then
+                    call ucon_error(error, ucon%id, "the id is used by two UCON statements")
+                    return
+                end if
+                call declare_ucon(ucon%ucosub, ucon%id, ucon%par, model%registry, error)
+                if (allocated(error)) return
+                entry = model%registry%find(ucon%id)
+                associate (declared => model%registry%entries(entry))
+                    ucon%nvars = size(declared%codes)
+                    ucon%velocity = is_velocity_code(declared%codes)
+                    allocate(ucon%coordinate(ucon%nvars))
+                    do i = 1, ucon%nvars
+                        p = findloc(model%parts%id, declared%parts(i), dim=1)
+                        if (p == 0) then
+                            call ucon_error(error, ucon%id, "UCOVAR variable " // to_text(i) &
+                                & // " (" // code_name(declared%codes(i)) // ") belongs to part " &
+                                & // to_text(declared%parts(i)) // ", which the model does not have")
+                            return
+                        end if
+                        ucon%coordinate(i) = 6*(p - 1) + code_coordinate(declared%codes(i))
+                    end do
+                end associate
+                ucon%holonomic = .not. any(ucon%velocity)
+                if (ucon%holonomic) then
+                    model%nh = model%nh + 1
+                    model%holonomic_number(k) = model%nh
+                end if
+            end associate
+        end do
+    end subroutine setup_model
+
+end module rollcon_model

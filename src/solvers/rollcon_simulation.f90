@@ -1,0 +1,333 @@
+! SPDX-License-Identifier: MIT
+!> Runs a problem from t0 to the end time with CVODE or IDA: output rows, events, summary.
+module rollcon_simulation
+    use, intrinsic :: iso_fortran_env, only : error_unit
+    use rollcon_kinds, only : wp
+    use rollcon_error, only : error_type
+    use rollcon_text, only : to_text
+    use rollcon_problem, only : problem_type, formulation_cvode, root_theta, root_liftoff
+    use rollcon_cvode, only : cvode_solver_type
+    use rollcon_ida, only : ida_solver_type
+    use rollcon_dae, only : dae_size
+    use rollcon_force, only : force_breakpoints
+    use rollcon_csv_writer, only : csv_writer_type
+    implicit none
+    private
+
+    public :: run_options_type, run_summary_type, history_type, simulate, csv_header
+    public :: status_completed, status_stopped, status_failed
+
+    !> Columns of the output rows (CSV and history)
+    integer, parameter, public :: column_time = 1, column_x = 2, column_y = 3, column_z = 4, &
+        & column_psi = 5, column_theta = 6, column_phi = 7, column_xdot = 8, column_ydot = 9, &
+        & column_zdot = 10, column_psidot = 11, column_thetadot = 12, column_phidot = 13, &
+        & column_energy = 14, column_fx = 15, column_fy = 16, column_fz = 17, &
+        & column_normal = 18, column_mu = 19, column_residual = 20
+
+    !> How a run ended: as planned, at an event limit, or by a failure
+    integer, parameter :: status_completed = 0, status_stopped = 1, status_failed = 2
+
+    !> Where and how often to report
+    type :: run_options_type
+        !> Start and end time, output interval [s]
+        real(wp) :: t0 = 0.0_wp, end_time = 1.0_wp, output_step = 0.01_wp
+        !> CSV file to write (none when unallocated)
+        character(len=:), allocatable :: csv_path
+        !> Progress lines on stderr for runs longer than a second
+        logical :: progress = .true.
+    end type run_options_type
+
+    !> What a run did
+    type :: run_summary_type
+        integer :: status = status_completed
+        !> Why it stopped, when it did not complete
+        character(len=:), allocatable :: message
+        !> Time reached [s]
+        real(wp) :: t_reached = 0.0_wp
+        !> Final coordinates and rates
+        real(wp), allocatable :: q(:), u(:)
+        !> Energy at the reference time (start, or end of the last force pulse) [J]
+        real(wp) :: energy_reference = 0.0_wp
+        !> Largest |E - E_reference| / |E_reference| after the reference time
+        real(wp) :: energy_drift = 0.0_wp
+        !> Largest |F_k| over the output rows
+        real(wp) :: residual_max = 0.0_wp
+        !> Integrator statistics
+        integer :: steps = 0, functions = 0, jacobians = 0, failures = 0
+        !> Output rows written
+        integer :: rows = 0
+        !> CPU time of the integration [s]
+        real(wp) :: cpu_seconds = 0.0_wp
+    end type run_summary_type
+
+    !> The output rows kept in memory (the CSV's columns), for tests and benchmarks
+    type :: history_type
+        !> rows(:, i) is output row i; only the first count rows are filled
+        real(wp), allocatable :: rows(:, :)
+        integer :: count = 0
+    contains
+        procedure :: add => history_add
+        procedure :: column => history_column
+    end type history_type
+
+contains
+
+    !> Append a row, growing the storage geometrically.
+    pure subroutine history_add(self, row)
+        class(history_type), intent(inout) :: self
+        real(wp), intent(in) :: row(:)
+        real(wp), allocatable :: grown(:, :)
+
+        if (.not. allocated(self%rows)) allocate(self%rows(size(row), 256))
+        if (self%count == size(self%rows, 2)) then
+            allocate(grown(size(row), 2*self%count))
+            grown(:, :self%count) = self%rows(:, :self%count)
+            call move_alloc(grown, self%rows)
+        end if
+        self%count = self%count + 1
+        self%rows(:, self%count) = row
+    end subroutine history_add
+
+    !> Column j over the filled rows.
+    pure function history_column(self, j) result(values)
+        class(history_type), intent(in) :: self
+        integer, intent(in) :: j
+        real(wp), allocatable :: values(:)
+
+        values = self%rows(j, :self%count)
+    end function history_column
+
+    !> Column names of the CSV: time, part 1's coordinates and rates (SI units, radians),
+    !> energy, constraint force on part 1, its normal part, the friction coefficient it needs,
+    !> and each UCON's residual.
+    function csv_header(problem) result(header)
+        type(problem_type), intent(in) :: problem
+        character(len=16), allocatable :: header(:)
+        integer :: k
+
+        header = [character(len=16) :: "t", "X", "Y", "Z", "psi", "theta", "phi", "Xdot", &
+            & "Ydot", "Zdot", "psidot", "thetadot", "phidot", "E", "Fx", "Fy", "Fz", "Fn", &
+            & "mu_needed"]
+        do k = 1, problem%eq%nc
+            header = [character(len=16) :: header, "F" // to_text(problem%eq%model%ucons(k)%id)]
+        end do
+    end function csv_header
+
+    !> Integrate problem from (q0, u0), writing a row per output time.
+    subroutine simulate(problem, q0, u0, options, summary, error, history)
+        type(problem_type), intent(inout), target :: problem
+        real(wp), intent(in) :: q0(:), u0(:)
+        type(run_options_type), intent(in) :: options
+        type(run_summary_type), intent(out) :: summary
+        !> Set on a solver or output failure; summary still describes the run so far
+        type(error_type), allocatable, intent(out) :: error
+        !> When present, every output row is also kept here
+        type(history_type), intent(inout), optional :: history
+        type(cvode_solver_type), target :: cvode
+        type(ida_solver_type), target :: ida
+        type(csv_writer_type) :: csv
+        real(wp), allocatable :: y(:), yp(:), breaks(:)
+        real(wp) :: t, t_out, t_stop, t_reference, cpu_start, cpu_now, wall_last
+        integer :: n, nc, k_output, root, n_output
+        logical :: use_cvode, have_reference
+
+        n = problem%eq%n
+        nc = problem%eq%nc
+        call problem%prepare()
+        use_cvode = problem%settings%formulation == formulation_cvode
+        breaks = force_breakpoints(problem%eq%model%forces)
+        t_reference = options%t0
+        if (size(breaks) > 0) t_reference = maxval(breaks)
+        breaks = pack(breaks, breaks > options%t0 .and. breaks < options%end_time)
+
+        if (allocated(options%csv_path)) then
+            call csv%open(options%csv_path, csv_header(problem), error)
+            if (allocated(error)) return
+        end if
+
+        ! Consistent start: accelerations and multipliers from the saddle-point system.
+        call problem%eq%accelerations(options%t0, q0, u0, problem%a, problem%lambda, error)
+        if (allocated(error)) return
+        t = options%t0
+        t_stop = next_stop(t)
+        call cpu_time(cpu_start)
+        wall_last = wall_seconds()
+        if (use_cvode) then
+            y = [q0, u0]
+            call cvode%init(problem, t, y, t_stop, 2, error)
+        else
+            allocate(y(dae_size(problem%eq)), yp(dae_size(problem%eq)), source=0.0_wp)
+            y(:2*n) = [q0, u0]
+            y(2*n + 1:2*n + nc) = problem%lambda
+            yp(:2*n) = [u0, problem%a]
+            call ida%init(problem, t, y, yp, t_stop, 2, error)
+        end if
+        if (allocated(error)) then
+            call finish()
+            return
+        end if
+        have_reference = .false.
+        call record(t, y, error)
+        if (allocated(error)) then
+            call finish()
+            return
+        end if
+
+        n_output = max(1, ceiling((options%end_time - options%t0)/options%output_step - 1.0e-9_wp))
+        k_output = 1
+        do while (k_output <= n_output)
+            t_out = min(options%t0 + k_output*options%output_step, options%end_time)
+            t_stop = next_stop(t)
+            if (use_cvode) then
+                call cvode%advance(problem, t_out, t_stop, t, y, root, error)
+            else
+                call ida%advance(problem, t_out, t_stop, t, y, yp, root, error)
+            end if
+            if (allocated(error)) then
+                summary%status = status_failed
+                summary%message = error%message
+                exit
+            end if
+            if (root /= 0) then
+                call record(t, y, error)
+                summary%status = status_stopped
+                summary%message = event_message(root, t, y)
+                exit
+            end if
+            if (t < t_out) cycle
+            call record(t, y, error)
+            if (allocated(error)) exit
+            k_output = k_output + 1
+            call report_progress(t)
+        end do
+        call finish()
+
+    contains
+
+        !> The next time the integrator must not step past: a force kink or the end.
+        function next_stop(time) result(stop_time)
+            real(wp), intent(in) :: time
+            real(wp) :: stop_time
+
+            stop_time = options%end_time
+            if (any(breaks > time)) stop_time = minval(breaks, mask=breaks > time)
+        end function next_stop
+
+        !> Write the output row at (t, y) and update the summary's measures.
+        subroutine record(time, state, error)
+            real(wp), intent(in) :: time, state(:)
+            type(error_type), allocatable, intent(out) :: error
+            real(wp) :: energy, force(3), tangential, mu
+            real(wp), allocatable :: row(:)
+            type(error_type), allocatable :: eval_error
+
+            associate (q => state(:n), u => state(n + 1:2*n))
+                call problem%eq%accelerations(time, q, u, problem%a, problem%lambda, eval_error)
+                if (allocated(eval_error)) then
+                    call move_alloc(eval_error, error)
+                    return
+                end if
+                energy = problem%eq%energy(q, u)
+                force = problem%eq%constraint_force(problem%events%part, problem%lambda)
+                tangential = norm2(force(1:2))
+                mu = 0.0_wp
+                if (force(3) > 0.0_wp) mu = tangential/force(3)
+                ! Energy is conserved once the last force pulse is over: measure drift from the
+                ! first row at or after that time.
+                if (time >= t_reference) then
+                    if (.not. have_reference) summary%energy_reference = energy
+                    have_reference = .true.
+                    if (summary%energy_reference /= 0.0_wp) then
+                        summary%energy_drift = max(summary%energy_drift, &
+                            & abs(energy - summary%energy_reference)/abs(summary%energy_reference))
+                    end if
+                end if
+                if (nc > 0) summary%residual_max = max(summary%residual_max, &
+                    & maxval(abs(problem%eq%constraints%value)))
+                summary%t_reached = time
+                summary%q = q
+                summary%u = u
+                summary%rows = summary%rows + 1
+                row = [time, q(1:6), u(1:6), energy, force, force(3), mu, &
+                    & problem%eq%constraints%value]
+                if (present(history)) call history%add(row)
+                if (csv%opened) call csv%write_row(row, error)
+            end associate
+        end subroutine record
+
+        !> Why an event stopped the run, with the time and state.
+        function event_message(root, time, state) result(message)
+            integer, intent(in) :: root
+            real(wp), intent(in) :: time, state(:)
+            character(len=:), allocatable :: message
+            integer :: i_theta
+
+            i_theta = 6*(problem%events%part - 1) + 5
+            select case (root)
+            case (root_theta)
+                message = "theta fell to the limit theta_min = " &
+                    & // to_text(problem%events%theta_min) // " rad at t = " // to_text(time) &
+                    & // " s: the disk lies nearly flat, where the 3-1-3 Euler angles become " &
+                    & // "singular (psi = " // to_text(state(i_theta - 1)) // " rad, psidot = " &
+                    & // to_text(state(n + i_theta - 1)) // " rad/s)"
+            case (root_liftoff)
+                message = "the normal contact force turned negative at t = " // to_text(time) &
+                    & // " s (theta = " // to_text(state(i_theta)) // " rad, thetadot = " &
+                    & // to_text(state(n + i_theta)) // " rad/s): the disk would leave the " &
+                    & // "ground, which a rolling constraint cannot represent"
+            case default
+                message = "event " // to_text(root) // " at t = " // to_text(time) // " s"
+            end select
+        end function event_message
+
+        !> At most once a second of wall time: the fraction of the simulated time done, the
+        !> rate, and the time left at that rate, e.g. "rollcon: 82% of 10 s simulated
+        !> (t = 8.2 s), 14.5 simulated s per CPU s, about 0.1 s left".
+        subroutine report_progress(time)
+            real(wp), intent(in) :: time
+            real(wp) :: now, fraction, left
+
+            if (.not. options%progress) return
+            now = wall_seconds()
+            if (now - wall_last < 1.0_wp) return
+            wall_last = now
+            call cpu_time(cpu_now)
+            fraction = (time - options%t0)/(options%end_time - options%t0)
+            left = (cpu_now - cpu_start)*(1.0_wp - fraction)/max(fraction, 1.0e-9_wp)
+            write(error_unit, '(a, g0.3, a)') "rollcon: " &
+                & // to_text(anint(1000.0_wp*fraction)/10.0_wp) // "% of " &
+                & // to_text(options%end_time - options%t0) // " s simulated (t = " &
+                & // to_text(anint(1000.0_wp*time)/1000.0_wp) // " s), ", &
+                & (time - options%t0)/max(cpu_now - cpu_start, 1.0e-9_wp), &
+                & " simulated s per CPU s, about " // to_text(anint(10.0_wp*left)/10.0_wp) &
+                & // " s left"
+            flush(error_unit)
+        end subroutine report_progress
+
+        subroutine finish()
+            call cpu_time(cpu_now)
+            summary%cpu_seconds = cpu_now - cpu_start
+            if (use_cvode) then
+                if (allocated(cvode%values)) call cvode%statistics(summary%steps, &
+                    & summary%functions, summary%jacobians, summary%failures)
+                call cvode%destroy()
+            else
+                if (allocated(ida%values)) call ida%statistics(summary%steps, summary%functions, &
+                    & summary%jacobians, summary%failures)
+                call ida%destroy()
+            end if
+            call csv%close()
+        end subroutine finish
+
+    end subroutine simulate
+
+    !> Wall-clock seconds since an arbitrary origin.
+    function wall_seconds() result(seconds)
+        real(wp) :: seconds
+        integer(kind=8) :: count, rate
+
+        call system_clock(count, rate)
+        seconds = real(count, wp)/real(rate, wp)
+    end function wall_seconds
+
+end module rollcon_simulation

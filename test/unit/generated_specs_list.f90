@@ -1,0 +1,161 @@
+! SPDX-License-Identifier: MIT
+!> The generated UCOSUBs as a list, with seeded random states and PAR lists for each.
+!>
+!> Not a suite: test_generated runs its tests over this list, so a new spec needs one entry
+!> here (its routine, codes and parameter ranges) to be covered by every generic test.
+module generated_specs_list
+    use rollcon_kinds, only : wp
+    use rollcon_ucosub_contract, only : ucosub_interface
+    use rollcon_gen_disk_height, only : disk_height_ucosub, disk_height_codes, disk_height_npar, &
+        & disk_height_ncomponents
+    use rollcon_gen_knife_edge, only : knife_edge_ucosub, knife_edge_codes, knife_edge_npar, &
+        & knife_edge_ncomponents
+    use rollcon_gen_rolling_disk, only : rolling_disk_ucosub, rolling_disk_codes, &
+        & rolling_disk_npar, rolling_disk_ncomponents
+    use rollcon_gen_rolling_sphere, only : rolling_sphere_ucosub, rolling_sphere_codes, &
+        & rolling_sphere_npar, rolling_sphere_ncomponents
+    use rollcon_gen_turntable_disk, only : turntable_disk_ucosub, turntable_disk_codes, &
+        & turntable_disk_npar, turntable_disk_ncomponents
+    implicit none
+    private
+
+    public :: generated_spec_type, generated_specs, random_state, random_parameters, spec_par
+
+    !> One generated routine and what a test needs to call it
+    type :: generated_spec_type
+        !> Spec name (the file stem in ucon/specs/)
+        character(len=:), allocatable :: name
+        !> The generated routine
+        procedure(ucosub_interface), pointer, nopass :: ucosub => null()
+        !> Codes it declares, in UCOVAR order
+        integer, allocatable :: codes(:)
+        !> Number of PAR entries it needs
+        integer :: npar = 0
+        !> Number of components (PAR picks one when more than 1)
+        integer :: ncomponents = 1
+        !> Kind of each physical parameter, in PAR order: "length" (log-uniform in
+        !> [1e-3, 10] m), "offset" (uniform in [-1, 1] m), "rate" (uniform in [-5, 5] rad/s)
+        character(len=6), allocatable :: parameter_kinds(:)
+    end type generated_spec_type
+
+    real(wp), parameter :: pi = acos(-1.0_wp)
+
+contains
+
+    !> Every generated routine, in spec-name order.
+    subroutine generated_specs(specs)
+        !> The list
+        type(generated_spec_type), allocatable, intent(out) :: specs(:)
+
+        allocate(specs(5))
+        specs(1)%name = "disk_height"
+        specs(1)%ucosub => disk_height_ucosub
+        specs(1)%codes = disk_height_codes
+        specs(1)%npar = disk_height_npar
+        specs(1)%ncomponents = disk_height_ncomponents
+        specs(1)%parameter_kinds = [character(len=6) :: "length"]
+        specs(2)%name = "knife_edge"
+        specs(2)%ucosub => knife_edge_ucosub
+        specs(2)%codes = knife_edge_codes
+        specs(2)%npar = knife_edge_npar
+        specs(2)%ncomponents = knife_edge_ncomponents
+        allocate(specs(2)%parameter_kinds(0))
+        specs(3)%name = "rolling_disk"
+        specs(3)%ucosub => rolling_disk_ucosub
+        specs(3)%codes = rolling_disk_codes
+        specs(3)%npar = rolling_disk_npar
+        specs(3)%ncomponents = rolling_disk_ncomponents
+        specs(3)%parameter_kinds = [character(len=6) :: "length"]
+        specs(4)%name = "rolling_sphere"
+        specs(4)%ucosub => rolling_sphere_ucosub
+        specs(4)%codes = rolling_sphere_codes
+        specs(4)%npar = rolling_sphere_npar
+        specs(4)%ncomponents = rolling_sphere_ncomponents
+        specs(4)%parameter_kinds = [character(len=6) :: "length"]
+        specs(5)%name = "turntable_disk"
+        specs(5)%ucosub => turntable_disk_ucosub
+        specs(5)%codes = turntable_disk_codes
+        specs(5)%npar = turntable_disk_npar
+        specs(5)%ncomponents = turntable_disk_ncomponents
+        specs(5)%parameter_kinds = [character(len=6) :: "length", "offset", "offset", "rate", &
+            & "rate", "rate"]
+    end subroutine generated_specs
+
+    !> State k of a series for the given codes: positions in [-2, 2] m; psi, phi in [-pi, pi];
+    !> theta within 1e-6 rad of 0 for every 4th k, of pi/2 for the next, else in (0, pi);
+    !> velocities in [-10, 10] m/s; rates log-uniform in [1e-2, 1e3] rad/s with random sign.
+    subroutine random_state(k, codes, q)
+        !> Index in the series, picks the kind of theta
+        integer, intent(in) :: k
+        !> Codes of the variables
+        integer, intent(in) :: codes(:)
+        !> Values of the variables
+        real(wp), intent(out) :: q(:)
+        real(wp) :: u(2)
+        integer :: i
+
+        do i = 1, size(codes)
+            call random_number(u)
+            select case (codes(i))
+            case (11:13)
+                q(i) = 2.0_wp*(2.0_wp*u(1) - 1.0_wp)
+            case (14, 16)
+                q(i) = pi*(2.0_wp*u(1) - 1.0_wp)
+            case (15)
+                select case (mod(k, 4))
+                case (0)
+                    q(i) = 1.0e-6_wp*(2.0_wp*u(1) - 1.0_wp)
+                case (1)
+                    q(i) = 0.5_wp*pi + 1.0e-6_wp*(2.0_wp*u(1) - 1.0_wp)
+                case default
+                    q(i) = pi*u(1)
+                end select
+            case (21:23)
+                q(i) = 10.0_wp*(2.0_wp*u(1) - 1.0_wp)
+            case default
+                q(i) = sign(10.0_wp**(-2.0_wp + 5.0_wp*u(1)), u(2) - 0.5_wp)
+            end select
+        end do
+    end subroutine random_state
+
+    !> Random physical parameters of a spec, by kind (see generated_spec_type).
+    subroutine random_parameters(spec, values)
+        !> The spec
+        type(generated_spec_type), intent(in) :: spec
+        !> One value per parameter, in PAR order
+        real(wp), allocatable, intent(out) :: values(:)
+        real(wp) :: u
+        integer :: i
+
+        allocate(values(size(spec%parameter_kinds)))
+        do i = 1, size(values)
+            call random_number(u)
+            select case (spec%parameter_kinds(i))
+            case ("length")
+                values(i) = 10.0_wp**(-3.0_wp + 4.0_wp*u)
+            case ("offset")
+                values(i) = 2.0_wp*u - 1.0_wp
+            case default
+                values(i) = 5.0_wp*(2.0_wp*u - 1.0_wp)
+            end select
+        end do
+    end subroutine random_parameters
+
+    !> PAR of one UCON statement in the layout every spec shares: part id, codes, parameters,
+    !> then the component when there are several.
+    function spec_par(spec, part, values, component) result(par)
+        !> The spec
+        type(generated_spec_type), intent(in) :: spec
+        !> Part id
+        integer, intent(in) :: part
+        !> Physical parameters, in PAR order
+        real(wp), intent(in) :: values(:)
+        !> Component (ignored for a single-component spec)
+        integer, intent(in) :: component
+        real(wp), allocatable :: par(:)
+
+        par = [real(part, wp), real(spec%codes, wp), values]
+        if (spec%ncomponents > 1) par = [par, real(component, wp)]
+    end function spec_par
+
+end module generated_specs_list

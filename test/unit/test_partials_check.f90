@@ -1,0 +1,186 @@
+! SPDX-License-Identifier: MIT
+!> Tests that the UCOSUB checker catches the mistakes people make (and passes a correct routine).
+module test_partials_check
+    use rollcon_kinds, only : wp
+    use rollcon_error, only : error_type
+    use rollcon_text, only : to_text
+    use rollcon_partials_check, only : ucon_check_options_type, ucon_check_result_type, &
+        & check_ucon_state
+    use rollcon_disk_par, only : disk_par, disk_codes
+    use rollcon_disk_reference, only : rolling_disk_ucosub
+    use rollcon_testing, only : unittest_type, new_unittest, check
+    implicit none
+    private
+
+    public :: collect_partials_check
+
+    real(wp), parameter :: generic_q(8) = [0.1_wp, 0.02_wp, -0.01_wp, 0.3_wp, 1.2_wp, 0.5_wp, &
+        & -0.2_wp, -1.0_wp]
+
+contains
+
+    !> Tests of this suite.
+    subroutine collect_partials_check(tests)
+        type(unittest_type), allocatable, intent(out) :: tests(:)
+
+        allocate(tests(0))
+        tests = [new_unittest("correct-routine-clean", test_clean), &
+            & new_unittest("sign-error-first-partial", test_sign_error), &
+            & new_unittest("wrong-selector-guard", test_wrong_guard), &
+            & new_unittest("missing-symmetric-entry", test_missing_symmetric), &
+            & new_unittest("quadratic-in-velocity", test_quadratic), &
+            & new_unittest("hidden-state", test_hidden_state)]
+    end subroutine collect_partials_check
+
+    !> Run the checker on component 2 of a disk-like routine at the generic state.
+    subroutine run_check(ucosub, result, error)
+        procedure(rolling_disk_ucosub) :: ucosub
+        type(ucon_check_result_type), intent(out) :: result
+        type(error_type), allocatable, intent(out) :: error
+        type(ucon_check_options_type) :: options
+
+        call check_ucon_state(ucosub, 1, disk_par(1, 0.1_wp, 2), disk_codes, 0.0_wp, generic_q, &
+            & options, result, error)
+    end subroutine run_check
+
+    !> Pass when the result holds a finding of rule at (row, column) (0 = any).
+    subroutine expect_finding(error, result, rule, row, column)
+        type(error_type), allocatable, intent(out) :: error
+        type(ucon_check_result_type), intent(in) :: result
+        character(len=*), intent(in) :: rule
+        integer, intent(in) :: row, column
+        integer :: i
+
+        do i = 1, size(result%mismatches)
+            associate (m => result%mismatches(i))
+                if (m%rule == rule .and. (row == 0 .or. m%row == row) &
+                    & .and. (column == 0 .or. m%column == column)) return
+            end associate
+        end do
+        call check(error, .false., "no '" // rule // "' finding at (" // to_text(row) // "," &
+            & // to_text(column) // ") among " // to_text(size(result%mismatches)) // " findings")
+    end subroutine expect_finding
+
+    subroutine test_clean(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(ucon_check_result_type) :: result
+
+        call run_check(rolling_disk_ucosub, result, error)
+        if (allocated(error)) return
+        call check(error, size(result%mismatches), 0, "findings on the hand-checked routine")
+    end subroutine test_clean
+
+    !> dF/dpsi with its sign flipped (the kind of slip the paper's section 2 shows).
+    subroutine sign_error_ucosub(id, time, q, par, npar, idrsel, iflag, scalar, array, xmatrx)
+        integer, intent(in) :: id, npar, idrsel(3), iflag
+        real(wp), intent(in) :: time, q(30), par(*)
+        real(wp), intent(inout) :: scalar, array(30), xmatrx(30, 30)
+
+        call rolling_disk_ucosub(id, time, q, par, npar, idrsel, iflag, scalar, array, xmatrx)
+        if (idrsel(2) == 1) array(4) = -array(4)
+    end subroutine sign_error_ucosub
+
+    subroutine test_sign_error(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(ucon_check_result_type) :: result
+
+        call run_check(sign_error_ucosub, result, error)
+        if (allocated(error)) return
+        call expect_finding(error, result, "derivative", 4, 0)
+    end subroutine test_sign_error
+
+    !> Second derivatives guarded by IDRSEL(3) .EQ. 0 instead of 1 (the paper's listing).
+    subroutine wrong_guard_ucosub(id, time, q, par, npar, idrsel, iflag, scalar, array, xmatrx)
+        integer, intent(in) :: id, npar, idrsel(3), iflag
+        real(wp), intent(in) :: time, q(30), par(*)
+        real(wp), intent(inout) :: scalar, array(30), xmatrx(30, 30)
+
+        call rolling_disk_ucosub(id, time, q, par, npar, [idrsel(1), idrsel(2), 1 - idrsel(3)], &
+            & iflag, scalar, array, xmatrx)
+    end subroutine wrong_guard_ucosub
+
+    subroutine test_wrong_guard(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(ucon_check_result_type) :: result
+
+        call run_check(wrong_guard_ucosub, result, error)
+        if (allocated(error)) return
+        call expect_finding(error, result, "derivative", 4, 4)
+        if (allocated(error)) return
+        call expect_finding(error, result, "selector-0", 0, 0)
+    end subroutine test_wrong_guard
+
+    !> Only the upper triangle of one mixed partial filled.
+    subroutine missing_symmetric_ucosub(id, time, q, par, npar, idrsel, iflag, scalar, array, &
+            & xmatrx)
+        integer, intent(in) :: id, npar, idrsel(3), iflag
+        real(wp), intent(in) :: time, q(30), par(*)
+        real(wp), intent(inout) :: scalar, array(30), xmatrx(30, 30)
+
+        call rolling_disk_ucosub(id, time, q, par, npar, idrsel, iflag, scalar, array, xmatrx)
+        if (idrsel(3) == 1) xmatrx(5, 4) = 0.0_wp
+    end subroutine missing_symmetric_ucosub
+
+    subroutine test_missing_symmetric(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(ucon_check_result_type) :: result
+
+        call run_check(missing_symmetric_ucosub, result, error)
+        if (allocated(error)) return
+        call expect_finding(error, result, "symmetry", 5, 4)
+    end subroutine test_missing_symmetric
+
+    !> F + psidot*thetadot with consistent partials: right derivatives, illegal constraint.
+    subroutine quadratic_ucosub(id, time, q, par, npar, idrsel, iflag, scalar, array, xmatrx)
+        integer, intent(in) :: id, npar, idrsel(3), iflag
+        real(wp), intent(in) :: time, q(30), par(*)
+        real(wp), intent(inout) :: scalar, array(30), xmatrx(30, 30)
+
+        call rolling_disk_ucosub(id, time, q, par, npar, idrsel, iflag, scalar, array, xmatrx)
+        if (iflag /= 0) return
+        if (idrsel(1) == 1) scalar = scalar + q(6)*q(7)
+        if (idrsel(2) == 1) array(6:7) = array(6:7) + [q(7), q(6)]
+        if (idrsel(3) == 1) then
+            xmatrx(6, 7) = xmatrx(6, 7) + 1.0_wp
+            xmatrx(7, 6) = xmatrx(7, 6) + 1.0_wp
+        end if
+    end subroutine quadratic_ucosub
+
+    subroutine test_quadratic(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(ucon_check_result_type) :: result
+        integer :: i
+
+        call run_check(quadratic_ucosub, result, error)
+        if (allocated(error)) return
+        call expect_finding(error, result, "velocity-linear", 6, 7)
+        if (allocated(error)) return
+        do i = 1, size(result%mismatches)
+            call check(error, result%mismatches(i)%rule /= "derivative", &
+                & "consistent partials of the quadratic term were reported as wrong")
+            if (allocated(error)) return
+        end do
+    end subroutine test_quadratic
+
+    !> A routine whose value drifts from call to call (state kept between calls).
+    subroutine hidden_state_ucosub(id, time, q, par, npar, idrsel, iflag, scalar, array, xmatrx)
+        integer, intent(in) :: id, npar, idrsel(3), iflag
+        real(wp), intent(in) :: time, q(30), par(*)
+        real(wp), intent(inout) :: scalar, array(30), xmatrx(30, 30)
+        integer, save :: calls = 0
+
+        call rolling_disk_ucosub(id, time, q, par, npar, idrsel, iflag, scalar, array, xmatrx)
+        calls = calls + 1
+        if (idrsel(1) == 1) scalar = scalar + 1.0e-3_wp*calls
+    end subroutine hidden_state_ucosub
+
+    subroutine test_hidden_state(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(ucon_check_result_type) :: result
+
+        call run_check(hidden_state_ucosub, result, error)
+        if (allocated(error)) return
+        call expect_finding(error, result, "repeat", 0, 0)
+    end subroutine test_hidden_state
+
+end module test_partials_check
