@@ -1,0 +1,216 @@
+! SPDX-License-Identifier: MIT
+!> Function expressions of ADAMS datasets: every operator and function against hand values,
+!> precedence, degrees, the smooth steps, and one refusal per kind of syntax error.
+module test_adm_expression
+    use rollcon_kinds, only : wp
+    use rollcon_error, only : error_type
+    use rollcon_adm_expression, only : expression_type, compile_expression, evaluate_expression
+    use rollcon_testing, only : unittest_type, new_unittest, check
+    use, intrinsic :: ieee_arithmetic, only : ieee_is_nan
+    implicit none
+    private
+
+    public :: collect_adm_expression
+
+    real(wp), parameter :: pi = acos(-1.0_wp)
+    !> Hand values are written to 16 digits or come from the same intrinsics: a few ulp
+    real(wp), parameter :: tol = 4.0e-15_wp
+
+contains
+
+    subroutine collect_adm_expression(tests)
+        type(unittest_type), allocatable, intent(out) :: tests(:)
+
+        allocate(tests(0))
+        tests = [new_unittest("arithmetic-and-precedence", test_precedence), &
+            & new_unittest("functions", test_functions), &
+            & new_unittest("names-any-case-and-degrees", test_names), &
+            & new_unittest("step-and-havsin", test_steps), &
+            & new_unittest("if-three-branches", test_if), &
+            & new_unittest("domain-gives-nan", test_domain), &
+            & new_unittest("unknown-name-refused", test_unknown_name), &
+            & new_unittest("syntax-errors-refused", test_syntax_errors)]
+    end subroutine collect_adm_expression
+
+    !> Value of `text` at `time`, or the compile error.
+    subroutine value_of(text, time, value, error)
+        character(len=*), intent(in) :: text
+        real(wp), intent(in) :: time
+        real(wp), intent(out) :: value
+        type(error_type), allocatable, intent(out) :: error
+        type(expression_type) :: expression
+
+        value = 0.0_wp
+        call compile_expression(text, "test.adm:1: SFORCE/1 FUNCTION", expression, error)
+        if (allocated(error)) return
+        value = evaluate_expression(expression, time)
+    end subroutine value_of
+
+    subroutine check_value(error, text, time, expected)
+        type(error_type), allocatable, intent(inout) :: error
+        character(len=*), intent(in) :: text
+        real(wp), intent(in) :: time, expected
+        real(wp) :: value
+
+        call value_of(text, time, value, error)
+        if (allocated(error)) return
+        call check(error, value, expected, text, abs_tol=tol, rel_tol=tol)
+    end subroutine check_value
+
+    subroutine test_precedence(error)
+        type(error_type), allocatable, intent(out) :: error
+
+        call check_value(error, "1 + 2*3", 0.0_wp, 7.0_wp)
+        if (allocated(error)) return
+        call check_value(error, "(1 + 2)*3", 0.0_wp, 9.0_wp)
+        if (allocated(error)) return
+        call check_value(error, "-2**2", 0.0_wp, -4.0_wp)
+        if (allocated(error)) return
+        call check_value(error, "2**3**2", 0.0_wp, 512.0_wp)
+        if (allocated(error)) return
+        call check_value(error, "2*-3 - 4/8", 0.0_wp, -6.5_wp)
+        if (allocated(error)) return
+        call check_value(error, "2**-1", 0.0_wp, 0.5_wp)
+        if (allocated(error)) return
+        call check_value(error, "(-2)**3", 0.0_wp, -8.0_wp)
+        if (allocated(error)) return
+        call check_value(error, "10 - 4 - 3", 0.0_wp, 3.0_wp)
+        if (allocated(error)) return
+        call check_value(error, "1.5E2 + 2.5D-1 + .5", 0.0_wp, 150.75_wp)
+    end subroutine test_precedence
+
+    subroutine test_functions(error)
+        type(error_type), allocatable, intent(out) :: error
+
+        call check_value(error, "SIN(0.5) + COS(0.25)", 0.0_wp, sin(0.5_wp) + cos(0.25_wp))
+        if (allocated(error)) return
+        call check_value(error, "TAN(0.3)", 0.0_wp, tan(0.3_wp))
+        if (allocated(error)) return
+        call check_value(error, "ATAN2(1, -1)", 0.0_wp, 0.75_wp*pi)
+        if (allocated(error)) return
+        call check_value(error, "EXP(1)*LOG(10)", 0.0_wp, exp(1.0_wp)*log(10.0_wp))
+        if (allocated(error)) return
+        call check_value(error, "SQRT(2) + ABS(-3)", 0.0_wp, sqrt(2.0_wp) + 3.0_wp)
+        if (allocated(error)) return
+        call check_value(error, "MIN(3, -1) + MAX(3, -1)", 0.0_wp, 2.0_wp)
+        if (allocated(error)) return
+        call check_value(error, "2*TIME + 1", 1.25_wp, 3.5_wp)
+    end subroutine test_functions
+
+    subroutine test_names(error)
+        type(error_type), allocatable, intent(out) :: error
+
+        call check_value(error, "sin(pi/6)", 0.0_wp, sin(pi/6.0_wp))
+        if (allocated(error)) return
+        call check_value(error, "Time*DtoR", 90.0_wp, 0.5_wp*pi)
+        if (allocated(error)) return
+        ! a D after a number is degrees; D with digits is a double-precision exponent
+        call check_value(error, "90D + 1D1", 0.0_wp, 0.5_wp*pi + 10.0_wp)
+        if (allocated(error)) return
+        call check_value(error, "COS(180d)", 0.0_wp, -1.0_wp)
+    end subroutine test_names
+
+    !> STEP is ADAMS's cubic h0 + (h1 - h0) s^2 (3 - 2 s), HAVSIN the haversine: both at the
+    !> ends, halfway, and with zero slope at the ends (central differences, h = 1e-6).
+    subroutine test_steps(error)
+        type(error_type), allocatable, intent(out) :: error
+        !> Slope at the ends: O(h) for the cubic (its slope is 6 a s (1 - s)), h = 1e-6
+        real(wp), parameter :: tol_slope = 1.0e-5_wp
+        character(len=*), parameter :: step = "STEP(TIME, 1, 2, 3, 6)", &
+            & havsin = "HAVSIN(TIME, 1, 2, 3, 6)"
+        real(wp) :: a, b
+
+        call check_value(error, step, 0.5_wp, 2.0_wp)
+        if (allocated(error)) return
+        call check_value(error, step, 3.5_wp, 6.0_wp)
+        if (allocated(error)) return
+        call check_value(error, step, 2.0_wp, 4.0_wp)
+        if (allocated(error)) return
+        ! s = 1/4: 2 + 4 (1/16)(3 - 1/2) = 2.625
+        call check_value(error, step, 1.5_wp, 2.625_wp)
+        if (allocated(error)) return
+        call check_value(error, havsin, 2.0_wp, 4.0_wp)
+        if (allocated(error)) return
+        ! s = 1/4: 4 + 2 sin(-pi/4)
+        call check_value(error, havsin, 1.5_wp, 4.0_wp - sqrt(2.0_wp))
+        if (allocated(error)) return
+        call value_of(step, 1.0_wp + 1.0e-6_wp, a, error)
+        if (allocated(error)) return
+        call value_of(step, 1.0_wp - 1.0e-6_wp, b, error)
+        if (allocated(error)) return
+        call check(error, (a - b)/2.0e-6_wp, 0.0_wp, "STEP slope at x0", abs_tol=tol_slope)
+        if (allocated(error)) return
+        call value_of(havsin, 3.0_wp + 1.0e-6_wp, a, error)
+        if (allocated(error)) return
+        call value_of(havsin, 3.0_wp - 1.0e-6_wp, b, error)
+        if (allocated(error)) return
+        call check(error, (a - b)/2.0e-6_wp, 0.0_wp, "HAVSIN slope at x1", abs_tol=tol_slope)
+    end subroutine test_steps
+
+    subroutine test_if(error)
+        type(error_type), allocatable, intent(out) :: error
+        character(len=*), parameter :: text = "IF(TIME - 2: 10, 20, 30*TIME)"
+
+        call check_value(error, text, 1.0_wp, 10.0_wp)
+        if (allocated(error)) return
+        call check_value(error, text, 2.0_wp, 20.0_wp)
+        if (allocated(error)) return
+        call check_value(error, text, 3.0_wp, 90.0_wp)
+        if (allocated(error)) return
+        ! nested, as a pulse is written: zero outside [2, 2.01]
+        call check_value(error, "IF(TIME-2: 0, 0, IF(TIME-2.01: SIN(PI*(TIME-2)/0.01), 0, 0))", &
+            & 2.005_wp, 1.0_wp)
+    end subroutine test_if
+
+    subroutine test_domain(error)
+        type(error_type), allocatable, intent(out) :: error
+        character(len=*), parameter :: texts(5) = [character(len=24) :: "LOG(-1)", "SQRT(-2)", &
+            & "1/(TIME - 1)", "(-2)**0.5", "STEP(TIME, 2, 0, 1, 1)"]
+        real(wp) :: value
+        integer :: i
+
+        do i = 1, size(texts)
+            call value_of(trim(texts(i)), 1.0_wp, value, error)
+            if (allocated(error)) return
+            call check(error, ieee_is_nan(value), trim(texts(i)) // " should be NaN")
+            if (allocated(error)) return
+        end do
+    end subroutine test_domain
+
+    subroutine test_unknown_name(error)
+        type(error_type), allocatable, intent(out) :: error
+        real(wp) :: value
+        type(error_type), allocatable :: refused
+
+        call value_of("2*DX(1, 2)", 0.0_wp, value, refused)
+        call check(error, allocated(refused), "DX accepted")
+        if (allocated(error)) return
+        call check(error, refused%message == "test.adm:1: SFORCE/1 FUNCTION: unknown name 'DX' " &
+            & // "(the subset has TIME, PI, DTOR, SIN, COS, TAN, ATAN2, EXP, LOG, SQRT, ABS, " &
+            & // "MIN, MAX, STEP, HAVSIN, IF) at column 3 of '2*DX(1, 2)'", refused%message)
+    end subroutine test_unknown_name
+
+    subroutine test_syntax_errors(error)
+        type(error_type), allocatable, intent(out) :: error
+        character(len=*), parameter :: texts(8) = [character(len=20) :: "", "1 +", "(1 + 2", &
+            & "SIN(1, 2)", "STEP(TIME, 1, 2)", "1 2", "IF(TIME, 1, 2, 3)", "3 $ 4"]
+        character(len=*), parameter :: expected(8) = [character(len=60) :: &
+            & "an operand is missing at column 1", "an operand is missing at column 4", &
+            & "')' expected at the end at column 7", "')' expected, found ','", &
+            & "',' expected, found ')'", "unexpected '2' at column 3", &
+            & "':' expected, found ','", "unexpected '$' at column 3"]
+        real(wp) :: value
+        type(error_type), allocatable :: refused
+        integer :: i
+
+        do i = 1, size(texts)
+            call value_of(trim(texts(i)), 0.0_wp, value, refused)
+            call check(error, allocated(refused), "'" // trim(texts(i)) // "' accepted")
+            if (allocated(error)) return
+            call check(error, index(refused%message, trim(expected(i))) > 0, refused%message)
+            if (allocated(error)) return
+            deallocate(refused)
+        end do
+    end subroutine test_syntax_errors
+
+end module test_adm_expression
