@@ -15,6 +15,7 @@ program tester
     use test_pictures, only : collect_pictures
     use test_user_ucosub, only : collect_user_ucosub
     use test_adm_expression, only : collect_adm_expression
+    use test_adm_lexer, only : collect_adm_lexer
     implicit none
     type(testsuite_type), allocatable :: suites(:)
     type(test_counts_type) :: counts
@@ -34,7 +35,8 @@ program tester
         & new_testsuite("extremes", collect_extremes), &
         & new_testsuite("pictures", collect_pictures), &
         & new_testsuite("user-ucosub", collect_user_ucosub), &
-        & new_testsuite("adm-expression", collect_adm_expression)]
+        & new_testsuite("adm-expression", collect_adm_expression), &
+        & new_testsuite("adm-lexer", collect_adm_lexer)]
 
     if (command_argument_count() >= 1) then
         call get_command_argument(1, argument)
@@ -67,7 +69,7 @@ program tester
     if (.not. found) then
         write(error_unit, '(a)') "tester: error: no suite or test matches the command line; " &
             & // "run with --help for the list"
-        error stop 1
+        stop 1, quiet=.true.
     end if
 
     if (counts%skipped > 0) then
@@ -77,5 +79,6 @@ program tester
         write(output_unit, '(i0, " passed, ", i0, " failed")') counts%passed, counts%failed
     end if
     flush(output_unit)
-    if (counts%failed > 0) error stop 1
+    ! a failure is already reported above: no backtrace, just the exit status
+    if (counts%failed > 0) stop 1, quiet=.true.
 end program tester
