@@ -16,6 +16,7 @@ program tester
     use test_user_ucosub, only : collect_user_ucosub
     use test_adm_expression, only : collect_adm_expression
     use test_adm_lexer, only : collect_adm_lexer
+    use test_adm_reader, only : collect_adm_reader
     implicit none
     type(testsuite_type), allocatable :: suites(:)
     type(test_counts_type) :: counts
@@ -36,7 +37,8 @@ program tester
         & new_testsuite("pictures", collect_pictures), &
         & new_testsuite("user-ucosub", collect_user_ucosub), &
         & new_testsuite("adm-expression", collect_adm_expression), &
-        & new_testsuite("adm-lexer", collect_adm_lexer)]
+        & new_testsuite("adm-lexer", collect_adm_lexer), &
+        & new_testsuite("adm-reader", collect_adm_reader)]
 
     if (command_argument_count() >= 1) then
         call get_command_argument(1, argument)

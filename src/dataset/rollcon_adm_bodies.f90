@@ -1,0 +1,132 @@
+! SPDX-License-Identifier: MIT
+!> Dataset statements of bodies: PART (mass, inertia, pose, initial velocities) and MARKER.
+module rollcon_adm_bodies
+    use rollcon_kinds, only : wp
+    use rollcon_error, only : error_type, fatal_error, stat_input
+    use rollcon_adm_lexer, only : adm_statement_type, adm_argument_type
+    use rollcon_adm_keywords, only : read_reals, read_integer, argument_key, arg_place
+    use rollcon_adm_model, only : adm_model_type, adm_part_type, adm_marker_type
+    implicit none
+    private
+
+    public :: read_part, read_marker
+
+    character(len=*), parameter :: part_keys(12) = [character(len=6) :: "GROUND", "MASS", &
+        & "CM", "IP", "QG", "REULER", "VX", "VY", "VZ", "WX", "WY", "WZ"]
+    character(len=*), parameter :: marker_keys(3) = [character(len=6) :: "PART", "QP", "REULER"]
+
+contains
+
+    subroutine read_part(path, where, statement, model, error)
+        character(len=*), intent(in) :: path, where
+        type(adm_statement_type), intent(in) :: statement
+        type(adm_model_type), intent(inout) :: model
+        type(error_type), allocatable, intent(out) :: error
+        type(adm_part_type) :: part
+        character(len=:), allocatable :: key, at
+        real(wp), allocatable :: values(:)
+        integer :: k, axis
+        real(wp) :: speed, rate
+
+        part%id = statement%id
+        part%line = statement%line
+        speed = model%units%length/model%units%time
+        rate = 1.0_wp/model%units%time
+        do k = 1, size(statement%arguments)
+            call argument_key(path, where, statement, k, part_keys, key, error)
+            if (allocated(error)) return
+            at = arg_place(path, where, statement%arguments(k)) // " " // key
+            select case (key)
+            case ("GROUND")
+                if (statement%arguments(k)%assigned) then
+                    call fatal_error(error, at // " takes no value", stat_input)
+                    return
+                end if
+                part%ground = .true.
+            case ("CM")
+                call read_integer(statement%arguments(k), at, part%cm, error)
+            case ("MASS")
+                call read_reals(statement%arguments(k), at, 1, 1, .false., values, error)
+                if (.not. allocated(error)) part%mass = values(1)*model%units%mass
+            case ("IP")
+                call read_reals(statement%arguments(k), at, 3, 6, .false., values, error)
+                if (allocated(error)) return
+                if (size(values) == 6) then
+                    if (any(values(4:6) /= 0.0_wp)) then
+                        call fatal_error(error, at // ": products of inertia (xy, xz, yz) are " &
+                            & // "not supported: rollcon's parts move on their principal axes; " &
+                            & // "turn the CM marker onto them and give IP=xx, yy, zz", &
+                            & stat_input)
+                        return
+                    end if
+                end if
+                part%ip = values(1:3)*model%units%mass*model%units%length**2
+            case ("QG")
+                call read_reals(statement%arguments(k), at, 3, 3, .false., values, error)
+                if (.not. allocated(error)) part%qg = values*model%units%length
+            case ("REULER")
+                call read_reals(statement%arguments(k), at, 3, 3, .true., values, error)
+                if (.not. allocated(error)) part%reuler = values
+            case ("VX", "VY", "VZ")
+                axis = iachar(key(2:2)) - iachar("X") + 1
+                call read_reals(statement%arguments(k), at, 1, 1, .false., values, error)
+                if (allocated(error)) return
+                part%velocity(axis) = values(1)*speed
+                part%velocity_given(axis) = .true.
+            case ("WX", "WY", "WZ")
+                axis = iachar(key(2:2)) - iachar("X") + 1
+                call read_reals(statement%arguments(k), at, 1, 1, .false., values, error)
+                if (allocated(error)) return
+                part%angular_velocity(axis) = values(1)*rate
+                part%angular_velocity_given(axis) = .true.
+            end select
+            if (allocated(error)) return
+        end do
+        if (any(model%parts%id == part%id)) then
+            call fatal_error(error, where // ": a second PART with this id", stat_input)
+            return
+        end if
+        model%parts = [model%parts, part]
+    end subroutine read_part
+
+    subroutine read_marker(path, where, statement, model, error)
+        character(len=*), intent(in) :: path, where
+        type(adm_statement_type), intent(in) :: statement
+        type(adm_model_type), intent(inout) :: model
+        type(error_type), allocatable, intent(out) :: error
+        type(adm_marker_type) :: marker
+        character(len=:), allocatable :: key, at
+        real(wp), allocatable :: values(:)
+        integer :: k
+
+        marker%id = statement%id
+        marker%line = statement%line
+        do k = 1, size(statement%arguments)
+            call argument_key(path, where, statement, k, marker_keys, key, error)
+            if (allocated(error)) return
+            at = arg_place(path, where, statement%arguments(k)) // " " // key
+            select case (key)
+            case ("PART")
+                call read_integer(statement%arguments(k), at, marker%part, error)
+            case ("QP")
+                call read_reals(statement%arguments(k), at, 3, 3, .false., values, error)
+                if (.not. allocated(error)) marker%qp = values*model%units%length
+            case ("REULER")
+                call read_reals(statement%arguments(k), at, 3, 3, .true., values, error)
+                if (.not. allocated(error)) marker%reuler = values
+            end select
+            if (allocated(error)) return
+        end do
+        if (marker%part == 0) then
+            call fatal_error(error, where // ": PART=id is missing (the part the marker is on)", &
+                & stat_input)
+            return
+        end if
+        if (any(model%markers%id == marker%id)) then
+            call fatal_error(error, where // ": a second MARKER with this id", stat_input)
+            return
+        end if
+        model%markers = [model%markers, marker]
+    end subroutine read_marker
+
+end module rollcon_adm_bodies

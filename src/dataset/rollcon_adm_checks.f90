@@ -1,0 +1,151 @@
+! SPDX-License-Identifier: MIT
+!> Checks a dataset as a whole once every statement is read: one ground part, the values a part
+!> needs, every reference to a part or marker, the forces' expressions, the run, and the
+!> principal-axes rule at t = 0 (a part whose CM marker's z-axis is parallel to ground z starts
+!> at the singularity of its 3-1-3 Euler angles).
+module rollcon_adm_checks
+    use rollcon_kinds, only : wp
+    use rollcon_error, only : error_type, fatal_error, stat_input
+    use rollcon_text, only : to_text
+    use rollcon_rotation, only : rotation_matrix
+    use rollcon_adm_keywords, only : place
+    use rollcon_adm_model, only : adm_model_type, adm_part_type, adm_force_type, force_sforce, &
+        & force_vforce
+    implicit none
+    private
+
+    public :: check_references, min_sin_theta
+
+    !> sin(theta) of a part's principal axes must be at least this at t = 0 (as for the scenes)
+    real(wp), parameter :: min_sin_theta = 1.0e-3_wp
+
+contains
+
+    subroutine check_references(model, error)
+        type(adm_model_type), intent(in) :: model
+        type(error_type), allocatable, intent(out) :: error
+        integer :: i
+
+        if (count(model%parts%ground) /= 1) then
+            call fatal_error(error, model%file // ": a dataset needs exactly one PART with " &
+                & // "GROUND, found " // to_text(count(model%parts%ground)), stat_input)
+            return
+        end if
+        do i = 1, size(model%markers)
+            if (.not. any(model%parts%id == model%markers(i)%part)) then
+                call fatal_error(error, place(model%file, model%markers(i)%line) // ": MARKER/" &
+                    & // to_text(model%markers(i)%id) // " PART: no PART/" &
+                    & // to_text(model%markers(i)%part), stat_input)
+                return
+            end if
+        end do
+        do i = 1, size(model%parts)
+            call check_part(model, model%parts(i), error)
+            if (allocated(error)) return
+        end do
+        do i = 1, size(model%forces)
+            call check_force(model, model%forces(i), error)
+            if (allocated(error)) return
+        end do
+        if (model%run%line == 0) call fatal_error(error, model%file // ": no SIMULATE " &
+            & // "statement (SIMULATE/DYNAMIC, END=t, STEPS=n)", stat_input)
+    end subroutine check_references
+
+    subroutine check_part(model, part, error)
+        type(adm_model_type), intent(in) :: model
+        type(adm_part_type), intent(in) :: part
+        type(error_type), allocatable, intent(out) :: error
+        character(len=:), allocatable :: where
+        real(wp) :: r(3, 3)
+        integer :: m
+
+        where = place(model%file, part%line) // ": PART/" // to_text(part%id)
+        if (part%ground) then
+            if (part%mass /= 0.0_wp .or. part%cm /= 0 .or. any(part%ip /= 0.0_wp) &
+                & .or. any(part%velocity_given) .or. any(part%angular_velocity_given)) &
+                & call fatal_error(error, where // ": the ground part takes no MASS, CM, IP or " &
+                & // "velocities", stat_input)
+            return
+        end if
+        if (.not. part%mass > 0.0_wp) then
+            call fatal_error(error, where // " MASS must be > 0 [kg], got " &
+                & // to_text(part%mass), stat_input)
+            return
+        end if
+        if (.not. all(part%ip > 0.0_wp)) then
+            call fatal_error(error, where // " IP: three principal moments > 0 [kg m^2] are " &
+                & // "needed", stat_input)
+            return
+        end if
+        ! a rigid body's principal moments satisfy the triangle inequality (equality: a lamina)
+        if (any(part%ip > (sum(part%ip) - part%ip)*(1.0_wp + 1.0e-12_wp))) then
+            call fatal_error(error, where // " IP: no rigid body has these principal moments " &
+                & // "(each must be at most the sum of the other two)", stat_input)
+            return
+        end if
+        m = marker_index(model, part%cm)
+        if (part%cm == 0 .or. m == 0) then
+            call fatal_error(error, where // " CM: a MARKER on this part must give the centre " &
+                & // "of mass (CM=id)", stat_input)
+            return
+        end if
+        if (model%markers(m)%part /= part%id) then
+            call fatal_error(error, where // " CM: MARKER/" // to_text(part%cm) // " is on PART/" &
+                & // to_text(model%markers(m)%part) // ", not on this part", stat_input)
+            return
+        end if
+        r = matmul(rotation_matrix(part%reuler(1), part%reuler(2), part%reuler(3)), &
+            & rotation_matrix(model%markers(m)%reuler(1), model%markers(m)%reuler(2), &
+            & model%markers(m)%reuler(3)))
+        if (hypot(r(1, 3), r(2, 3)) < min_sin_theta) then
+            call fatal_error(error, where // ": its CM marker (MARKER/" // to_text(part%cm) &
+                & // ") has its z-axis parallel to ground z, where the 3-1-3 Euler angles of " &
+                & // "the principal axes are singular; turn the CM marker 90 degrees about its " &
+                & // "x-axis (REULER=0, 90D, 0 more) and give IP in the turned axes (xx, zz, yy)", &
+                & stat_input)
+        end if
+    end subroutine check_part
+
+    subroutine check_force(model, force, error)
+        type(adm_model_type), intent(in) :: model
+        type(adm_force_type), intent(in) :: force
+        type(error_type), allocatable, intent(out) :: error
+        character(len=:), allocatable :: where, name
+        integer :: needed
+
+        name = merge("SFORCE", merge("VFORCE", "GFORCE", force%kind == force_vforce), &
+            & force%kind == force_sforce)
+        where = place(model%file, force%line) // ": " // name // "/" // to_text(force%id)
+        if (marker_index(model, force%i) == 0) then
+            call fatal_error(error, where // " I: a marker id is needed (I=id of an existing " &
+                & // "MARKER)", stat_input)
+            return
+        end if
+        if (force%j /= 0 .and. marker_index(model, force%j) == 0 .or. &
+            & force%rm /= 0 .and. marker_index(model, force%rm) == 0) then
+            call fatal_error(error, where // ": J, JFLOAT or RM names no MARKER", stat_input)
+            return
+        end if
+        if (force%kind == force_sforce .and. force%j == 0) then
+            call fatal_error(error, where // " J: an SFORCE acts between I and J (J=id)", &
+                & stat_input)
+            return
+        end if
+        needed = merge(1, merge(3, 6, force%kind == force_vforce), force%kind == force_sforce)
+        if (.not. all(force%given(:needed))) then
+            call fatal_error(error, where // ": " // trim(merge("FUNCTION=e          ", &
+                & merge("FX=e, FY=e, FZ=e    ", "FX..FZ and TX..TZ=e ", &
+                & force%kind == force_vforce), force%kind == force_sforce)) // " is needed", &
+                & stat_input)
+        end if
+    end subroutine check_force
+
+    pure integer function marker_index(model, id)
+        type(adm_model_type), intent(in) :: model
+        integer, intent(in) :: id
+
+        marker_index = 0
+        if (id > 0) marker_index = findloc(model%markers%id, id, dim=1)
+    end function marker_index
+
+end module rollcon_adm_checks

@@ -1,0 +1,179 @@
+! SPDX-License-Identifier: MIT
+!> Dataset statements of loads and constraints: UCON, ACCGRAV and the SFORCE, VFORCE and
+!> GFORCE statements with their function expressions.
+module rollcon_adm_loads
+    use rollcon_kinds, only : wp
+    use rollcon_error, only : error_type, fatal_error, stat_input
+    use rollcon_adm_lexer, only : adm_statement_type, adm_argument_type
+    use rollcon_adm_keywords, only : read_reals, read_integer, argument_key, arg_place, name_index
+    use rollcon_adm_expression_parser, only : compile_expression
+    use rollcon_adm_model, only : adm_model_type, adm_ucon_type, adm_force_type, force_sforce, &
+        & force_vforce, force_gforce
+    implicit none
+    private
+
+    public :: read_ucon, read_accgrav, read_force
+
+    character(len=*), parameter :: ucon_keys(1) = ["FUNCTION"]
+    character(len=*), parameter :: accgrav_keys(3) = ["IGRAV", "JGRAV", "KGRAV"]
+    character(len=*), parameter :: sforce_keys(6) = [character(len=11) :: "I", "J", &
+        & "TRANSLATION", "ROTATION", "ACTIONONLY", "FUNCTION"]
+    character(len=*), parameter :: gforce_keys(9) = [character(len=6) :: "I", "JFLOAT", "RM", &
+        & "FX", "FY", "FZ", "TX", "TY", "TZ"]
+
+contains
+
+    subroutine read_ucon(path, where, statement, model, error)
+        character(len=*), intent(in) :: path, where
+        type(adm_statement_type), intent(in) :: statement
+        type(adm_model_type), intent(inout) :: model
+        type(error_type), allocatable, intent(out) :: error
+        type(adm_ucon_type) :: ucon
+        character(len=:), allocatable :: key, at
+
+        ucon%id = statement%id
+        ucon%line = statement%line
+        if (size(statement%arguments) /= 1) then
+            call fatal_error(error, where // ": expected one argument, FUNCTION=USER(r1, ..., " &
+                & // "r30)", stat_input)
+            return
+        end if
+        call argument_key(path, where, statement, 1, ucon_keys, key, error)
+        if (allocated(error)) return
+        at = arg_place(path, where, statement%arguments(1)) // " FUNCTION"
+        call read_user_list(statement%arguments(1), at, ucon%par, error)
+        if (allocated(error)) return
+        if (any(model%ucons%id == ucon%id)) then
+            call fatal_error(error, where // ": a second UCON with this id", stat_input)
+            return
+        end if
+        model%ucons = [model%ucons, ucon]
+    end subroutine read_ucon
+
+    !> FUNCTION = USER(r1, ..., rn): 1 <= n <= 30, one number per field.
+    subroutine read_user_list(argument, at, par, error)
+        type(adm_argument_type), intent(in) :: argument
+        character(len=*), intent(in) :: at
+        real(wp), allocatable, intent(out) :: par(:)
+        type(error_type), allocatable, intent(out) :: error
+        type(adm_argument_type) :: list
+        character(len=:), allocatable :: text, inner
+        integer :: open, i, n, start
+
+        text = ""
+        if (argument%assigned .and. size(argument%values) == 1) &
+            & text = trim(adjustl(argument%values(1)%text))
+        open = index(text, "(")
+        if (open == 0 .or. text(len(text):) /= ")" .or. .not. is_user(text(:max(1, open - 1)))) &
+            & then
+            call fatal_error(error, at // ": expected USER(r1, ..., r30) (a UCON is served by " &
+                & // "the model's UCOSUB), got '" // text // "'", stat_input)
+            return
+        end if
+        inner = text(open + 1:len(text) - 1)
+        n = count([(inner(i:i) == ",", i = 1, len(inner))]) + 1
+        list%assigned = .true.
+        allocate(list%values(n))
+        start = 1
+        n = 0
+        do i = 1, len(inner) + 1
+            if (i <= len(inner)) then
+                if (inner(i:i) /= ",") cycle
+            end if
+            n = n + 1
+            list%values(n)%text = trim(adjustl(inner(start:i - 1)))
+            start = i + 1
+        end do
+        call read_reals(list, at // " USER", 1, 30, .false., par, error)
+    end subroutine read_user_list
+
+    !> USER, in any case, alone before the parenthesis.
+    pure logical function is_user(name)
+        character(len=*), intent(in) :: name
+        character(len=:), allocatable :: word
+
+        word = trim(adjustl(name))
+        is_user = len(word) == 4
+        if (is_user) is_user = (word(1:1) == "U" .or. word(1:1) == "u") .and. &
+            & (word(2:2) == "S" .or. word(2:2) == "s") .and. (word(3:3) == "E" &
+            & .or. word(3:3) == "e") .and. (word(4:4) == "R" .or. word(4:4) == "r")
+    end function is_user
+
+    subroutine read_accgrav(path, where, statement, model, error)
+        character(len=*), intent(in) :: path, where
+        type(adm_statement_type), intent(in) :: statement
+        type(adm_model_type), intent(inout) :: model
+        type(error_type), allocatable, intent(out) :: error
+        character(len=:), allocatable :: key, at
+        real(wp), allocatable :: values(:)
+        integer :: k, axis
+
+        do k = 1, size(statement%arguments)
+            call argument_key(path, where, statement, k, accgrav_keys, key, error)
+            if (allocated(error)) return
+            at = arg_place(path, where, statement%arguments(k)) // " " // key
+            call read_reals(statement%arguments(k), at, 1, 1, .false., values, error)
+            if (allocated(error)) return
+            axis = iachar(key(1:1)) - iachar("I") + 1
+            model%gravity(axis) = values(1)*model%units%length/model%units%time**2
+        end do
+    end subroutine read_accgrav
+
+    subroutine read_force(path, where, name, statement, model, error)
+        character(len=*), intent(in) :: path, where, name
+        type(adm_statement_type), intent(in) :: statement
+        type(adm_model_type), intent(inout) :: model
+        type(error_type), allocatable, intent(out) :: error
+        type(adm_force_type) :: force
+        character(len=:), allocatable :: key, at
+        integer :: k, slot
+
+        force%id = statement%id
+        force%line = statement%line
+        force%kind = merge(force_sforce, merge(force_vforce, force_gforce, name == "VFORCE"), &
+            & name == "SFORCE")
+        do k = 1, size(statement%arguments)
+            if (force%kind == force_sforce) then
+                call argument_key(path, where, statement, k, sforce_keys, key, error)
+            else if (force%kind == force_vforce) then
+                call argument_key(path, where, statement, k, gforce_keys(1:6), key, error)
+            else
+                call argument_key(path, where, statement, k, gforce_keys, key, error)
+            end if
+            if (allocated(error)) return
+            at = arg_place(path, where, statement%arguments(k)) // " " // key
+            select case (key)
+            case ("I")
+                call read_integer(statement%arguments(k), at, force%i, error)
+            case ("J", "JFLOAT")
+                call read_integer(statement%arguments(k), at, force%j, error)
+            case ("RM")
+                call read_integer(statement%arguments(k), at, force%rm, error)
+            case ("TRANSLATION", "ROTATION", "ACTIONONLY")
+                if (statement%arguments(k)%assigned) then
+                    call fatal_error(error, at // " takes no value", stat_input)
+                    return
+                end if
+                if (key == "ROTATION") force%translation = .false.
+                if (key == "ACTIONONLY") force%action_only = .true.
+            case default
+                slot = max(1, name_index(key, gforce_keys(4:9)))
+                if (.not. statement%arguments(k)%assigned .or. &
+                    & size(statement%arguments(k)%values) /= 1) then
+                    call fatal_error(error, at // ": expected one expression", stat_input)
+                    return
+                end if
+                call compile_expression(statement%arguments(k)%values(1)%text, at, &
+                    & force%functions(slot), error)
+                force%given(slot) = .true.
+            end select
+            if (allocated(error)) return
+        end do
+        if (any(model%forces%id == force%id .and. model%forces%kind == force%kind)) then
+            call fatal_error(error, where // ": a second " // name // " with this id", stat_input)
+            return
+        end if
+        model%forces = [model%forces, force]
+    end subroutine read_force
+
+end module rollcon_adm_loads

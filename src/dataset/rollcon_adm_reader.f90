@@ -1,0 +1,156 @@
+! SPDX-License-Identifier: MIT
+!> Reads an ADAMS dataset into an adm_model_type: every statement and argument of the subset
+!> checked and converted to SI, anything outside it refused with file, line, statement and what
+!> is supported. References between statements are checked by rollcon_adm_checks.
+module rollcon_adm_reader
+    use rollcon_kinds, only : wp
+    use rollcon_error, only : error_type, fatal_error, stat_input
+    use rollcon_text, only : to_text
+    use rollcon_adm_lexer, only : adm_text_type, adm_statement_type, adm_argument_type, &
+        & read_adm_text
+    use rollcon_adm_keywords, only : resolve_name, statement_names, argument_key, arg_place, &
+        & place, name_index
+    use rollcon_adm_units, only : units_type, set_unit, unit_keywords
+    use rollcon_adm_model, only : adm_model_type
+    use rollcon_adm_bodies, only : read_part, read_marker
+    use rollcon_adm_loads, only : read_ucon, read_accgrav, read_force
+    use rollcon_adm_run, only : read_simulate, read_integrator
+    use rollcon_adm_checks, only : check_references
+    implicit none
+    private
+
+    public :: read_adm
+
+
+contains
+
+    !> Read and check the dataset at `path`.
+    subroutine read_adm(path, model, error)
+        character(len=*), intent(in) :: path
+        type(adm_model_type), intent(out) :: model
+        type(error_type), allocatable, intent(out) :: error
+        type(adm_text_type) :: text
+        character(len=:), allocatable :: name
+        integer :: i
+        logical :: seen(size(statement_names))
+
+        call read_adm_text(path, text, error)
+        if (allocated(error)) return
+        model%file = path
+        model%title = text%title
+        allocate(model%parts(0), model%markers(0), model%ucons(0), model%forces(0))
+        ! UNITS first: every value of the dataset is in its units, wherever it stands
+        call read_units(text, model%units, error)
+        if (allocated(error)) return
+        seen = .false.
+        do i = 1, size(text%statements)
+            associate (statement => text%statements(i))
+                call resolve_name(statement%name, statement_names, "statement", &
+                    & place(path, statement%line), name, error)
+                if (allocated(error)) return
+                if (seen(name_index(name, statement_names)) .and. once(name)) then
+                    call fatal_error(error, place(path, statement%line) // ": a second " // name &
+                        & // " statement (a dataset has at most one)", stat_input)
+                    return
+                end if
+                seen(name_index(name, statement_names)) = .true.
+                if (name == "END") then
+                    if (i < size(text%statements)) call fatal_error(error, place(path, &
+                        & text%statements(i + 1)%line) // ": a statement after END", stat_input)
+                    exit
+                end if
+                call read_statement(path, name, statement, model, error)
+                if (allocated(error)) return
+            end associate
+        end do
+        if (allocated(error)) return
+        call check_references(model, error)
+    end subroutine read_adm
+
+    pure logical function once(name)
+        character(len=*), intent(in) :: name
+
+        once = any(name == [character(len=10) :: "ACCGRAV", "INTEGRATOR", "OUTPUT", &
+            & "SIMULATE", "UNITS"])
+    end function once
+
+    subroutine read_statement(path, name, statement, model, error)
+        character(len=*), intent(in) :: path, name
+        type(adm_statement_type), intent(in) :: statement
+        type(adm_model_type), intent(inout) :: model
+        type(error_type), allocatable, intent(out) :: error
+        character(len=:), allocatable :: where
+
+        where = place(path, statement%line) // ": " // name
+        if (needs_id(name) .neqv. statement%has_id) then
+            if (statement%has_id) then
+                call fatal_error(error, where // " takes no id (write " // name // "/ARG=...)", &
+                    & stat_input)
+            else
+                call fatal_error(error, where // " needs an id (" // name // "/id, ...)", &
+                    & stat_input)
+            end if
+            return
+        end if
+        if (statement%has_id) where = where // "/" // to_text(statement%id)
+        select case (name)
+        case ("PART")
+            call read_part(path, where, statement, model, error)
+        case ("MARKER")
+            call read_marker(path, where, statement, model, error)
+        case ("UCON")
+            call read_ucon(path, where, statement, model, error)
+        case ("ACCGRAV")
+            call read_accgrav(path, where, statement, model, error)
+        case ("SFORCE", "VFORCE", "GFORCE")
+            call read_force(path, where, name, statement, model, error)
+        case ("SIMULATE")
+            call read_simulate(path, where, statement, model%units, model%run, error)
+        case ("INTEGRATOR")
+            call read_integrator(path, where, statement, model%run, error)
+        case ("OUTPUT")
+            if (size(statement%arguments) > 0) call fatal_error(error, where // ": OUTPUT " &
+                & // "takes no argument here (rollcon writes its own CSV and summary)", &
+                & stat_input)
+        end select
+    end subroutine read_statement
+
+    pure logical function needs_id(name)
+        character(len=*), intent(in) :: name
+
+        needs_id = any(name == [character(len=10) :: "PART", "MARKER", "UCON", "SFORCE", &
+            & "VFORCE", "GFORCE"])
+    end function needs_id
+
+    subroutine read_units(text, units, error)
+        type(adm_text_type), intent(in) :: text
+        type(units_type), intent(out) :: units
+        type(error_type), allocatable, intent(out) :: error
+        character(len=:), allocatable :: name, key, where
+        integer :: i, k
+
+        do i = 1, size(text%statements)
+            call resolve_name(text%statements(i)%name, statement_names, "statement", &
+                & place(text%file, text%statements(i)%line), name, error)
+            if (allocated(error)) return
+            if (name /= "UNITS") cycle
+            where = place(text%file, text%statements(i)%line) // ": UNITS"
+            do k = 1, size(text%statements(i)%arguments)
+                associate (argument => text%statements(i)%arguments(k))
+                    call argument_key(text%file, where, text%statements(i), k, unit_keywords, &
+                        & key, error)
+                    if (allocated(error)) return
+                    if (.not. argument%assigned .or. size(argument%values) /= 1) then
+                        call fatal_error(error, arg_place(text%file, where, argument) // " " &
+                            & // key // ": expected one unit name", stat_input)
+                        return
+                    end if
+                    call set_unit(units, key, argument%values(1)%text, arg_place(text%file, &
+                        & where, argument) // " " // key, error)
+                    if (allocated(error)) return
+                end associate
+            end do
+        end do
+    end subroutine read_units
+
+end module rollcon_adm_reader
