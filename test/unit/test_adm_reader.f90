@@ -7,6 +7,8 @@ module test_adm_reader
     use rollcon_adm_model, only : adm_model_type, force_sforce, force_gforce
     use rollcon_adm_reader, only : read_adm
     use rollcon_adm_expression, only : evaluate_expression
+    use rollcon_adm_state, only : part_state, euler_angles
+    use rollcon_rotation, only : rotation_matrix, rate_matrix
     use rollcon_testing, only : unittest_type, new_unittest, check
     implicit none
     private
@@ -48,6 +50,8 @@ contains
         allocate(tests(0))
         tests = [new_unittest("coin-as-a-user-writes-it", test_coin), &
             & new_unittest("units-converted", test_units), &
+            & new_unittest("euler-angles-round-trip", test_euler_round_trip), &
+            & new_unittest("coin-initial-state", test_coin_state), &
             & new_unittest("refusals", test_refusals)]
     end subroutine collect_adm_reader
 
@@ -199,5 +203,49 @@ contains
             if (allocated(refused)) deallocate(refused)
         end do
     end subroutine test_refusals
+
+    !> Angles -> matrix -> angles on a grid away from sin(theta) = 0, every quadrant of psi, phi.
+    subroutine test_euler_round_trip(error)
+        type(error_type), allocatable, intent(out) :: error
+        !> atan2 of exact-to-rounding matrix entries: a few ulp of pi
+        real(wp), parameter :: tol_angle = 1.0e-14_wp
+        real(wp) :: angles(3)
+        integer :: i, j, k
+
+        do i = -3, 3
+            do j = 1, 5
+                do k = -3, 3
+                    angles = [0.9_wp*i, 0.5_wp*j + 0.1_wp, 0.95_wp*k]
+                    call check(error, euler_angles(rotation_matrix(angles(1), angles(2), &
+                        & angles(3))), angles, "round trip", abs_tol=tol_angle)
+                    if (allocated(error)) return
+                end do
+            end do
+        end do
+    end subroutine test_euler_round_trip
+
+    !> The coin's CM marker turned 90 degrees about x, VX = 0.1 m/s, WZ = -1 rad/s: upright
+    !> (theta = pi/2, psi = 0, axis along -Y), centre at (0, 0, R), rolling along +X with
+    !> phidot = -v/R (shared/DESIGN.md section 5).
+    subroutine test_coin_state(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(adm_model_type) :: model
+        real(wp) :: q(6), u(6)
+
+        call read_lines("coin_state.adm", coin, model, error)
+        if (allocated(error)) return
+        call part_state(model, model%parts(2), q, u)
+        call check(error, q, [0.0_wp, 0.0_wp, 0.1_wp, 0.0_wp, 0.5_wp*pi, 0.0_wp], "q", &
+            & abs_tol=tol)
+        if (allocated(error)) return
+        call check(error, u, [0.1_wp, 0.0_wp, 0.0_wp, 0.0_wp, 0.0_wp, -1.0_wp], "u", abs_tol=tol)
+        if (allocated(error)) return
+        ! any pose and angular velocity: the rates map back to the body components given
+        model%parts(2)%reuler = [0.3_wp, -1.1_wp, 2.0_wp]
+        model%parts(2)%angular_velocity = [1.5_wp, -2.0_wp, 0.25_wp]
+        call part_state(model, model%parts(2), q, u)
+        call check(error, matmul(rate_matrix(q(5), q(6)), u(4:6)), [1.5_wp, -2.0_wp, 0.25_wp], &
+            & "omega' = B u", abs_tol=tol)
+    end subroutine test_coin_state
 
 end module test_adm_reader
