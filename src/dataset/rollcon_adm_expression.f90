@@ -10,6 +10,7 @@
 !> evaluates to NaN: callers check the result with ieee_is_finite and name the expression.
 module rollcon_adm_expression
     use rollcon_kinds, only : wp
+    use rollcon_constants, only : pi
     use, intrinsic :: ieee_arithmetic, only : ieee_value, ieee_quiet_nan
     implicit none
     private
@@ -35,7 +36,6 @@ module rollcon_adm_expression
         & op_log, op_sqrt, op_abs, op_min, op_max, op_step, op_havsin]
     integer, parameter :: function_arguments(12) = [1, 1, 1, 2, 1, 1, 1, 1, 2, 2, 5, 5]
 
-    real(wp), parameter :: pi = acos(-1.0_wp)
 
     !> A compiled expression
     type :: expression_type

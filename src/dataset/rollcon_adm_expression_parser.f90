@@ -5,6 +5,7 @@
 !> expression was read and the column.
 module rollcon_adm_expression_parser
     use rollcon_kinds, only : wp
+    use rollcon_constants, only : pi
     use rollcon_error, only : error_type, fatal_error, stat_input
     use rollcon_adm_expression, only : expression_type, max_stack, op_constant, op_time, op_add, &
         & op_subtract, op_multiply, op_divide, op_power, op_negate, op_if, function_names, &
@@ -14,7 +15,6 @@ module rollcon_adm_expression_parser
 
     public :: compile_expression
 
-    real(wp), parameter :: pi = acos(-1.0_wp)
 
     !> Parser state: the text and where reading stands
     type :: parser_type

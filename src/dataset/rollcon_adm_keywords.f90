@@ -7,6 +7,7 @@
 !> expected (degrees), integers where ids are expected.
 module rollcon_adm_keywords
     use rollcon_kinds, only : wp
+    use rollcon_constants, only : degree
     use rollcon_error, only : error_type, fatal_error, stat_input
     use rollcon_text, only : to_text
     use rollcon_adm_lexer, only : adm_argument_type, adm_statement_type, is_number_text, &
@@ -24,7 +25,6 @@ module rollcon_adm_keywords
         & "END", "GFORCE", "INTEGRATOR", "MARKER", "OUTPUT", "PART", "SFORCE", "SIMULATE", &
         & "UCON", "UNITS", "VFORCE"]
 
-    real(wp), parameter :: degree = acos(-1.0_wp)/180.0_wp
 
 contains
 
