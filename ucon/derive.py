@@ -165,4 +165,9 @@ def table(derivatives: Derivatives) -> str:
                      f"{sympy.sstr(entry.expression)}")
     counts = " + ".join(f"{derivatives.count(kind)} {label}" for kind, label in OUTPUTS.items())
     lines.append(f"non-zero entries: {counts} = {derivatives.count()}")
+    components = range(1, spec.ncomponents + 1)
+    for label, test in (("time-free (no dF/dt, d2F/dt2, d2F/dt dq)", derivatives.time_free),
+                        ("holonomic (no velocity)", derivatives.holonomic)):
+        which = " ".join(f"F{k}" for k in components if test(k)) or "none"
+        lines.append(f"{label}: {which}")
     return "\n".join(lines) + "\n"

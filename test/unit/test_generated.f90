@@ -1,6 +1,7 @@
 ! SPDX-License-Identifier: MIT
 !> Tests of the generated UCOSUBs (ucon/): the disk against the hand-checked one, every spec
-!> against finite differences and its physics, the fixed form against the free form, and the
+!> against finite differences and its physics, the constants that say which outputs can be
+!> non-zero, the checks the modules share, the fixed form against the free form, and the
 !> generator's own checks (python -m ucon check, its unit tests).
 module test_generated
     use rollcon_kinds, only : wp
@@ -21,6 +22,8 @@ module test_generated
         & random_parameters, spec_par
     use generated_fixed_form, only : run_fixed_form
     use generated_physics, only : test_turntable, test_sphere, test_knife_edge, test_disk_height
+    use generated_constants, only : test_time_free, test_holonomic
+    use generated_helpers, only : test_helper_messages, test_helper_edges
     use, intrinsic :: ieee_arithmetic, only : ieee_value, ieee_quiet_nan, ieee_positive_inf
     implicit none
     private
@@ -52,6 +55,10 @@ contains
             & new_unittest("rolling-sphere-physics", test_sphere), &
             & new_unittest("knife-edge-physics", test_knife_edge), &
             & new_unittest("disk-height-physics", test_disk_height), &
+            & new_unittest("time-free-constants", test_time_free), &
+            & new_unittest("holonomic-constants", test_holonomic), &
+            & new_unittest("helper-messages", test_helper_messages), &
+            & new_unittest("helper-edges", test_helper_edges), &
             & new_unittest("fixed-form-matches-module", test_fixed_form), &
             & new_unittest("partials-check", test_partials_check), &
             & new_unittest("ucon-python-unittest", test_python_unittest)]
