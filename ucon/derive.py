@@ -15,7 +15,7 @@ import sympy
 
 from .spec import TIME, ConstraintSpec, validate
 
-__all__ = ["OUTPUTS", "Entry", "Derivatives", "derive", "table"]
+__all__ = ["OUTPUTS", "TIME_OUTPUTS", "Entry", "Derivatives", "derive", "table"]
 
 #: Output kinds in the order the generated code and the table list them, with their labels.
 OUTPUTS: dict[str, str] = {
@@ -32,6 +32,8 @@ OUTPUTS: dict[str, str] = {
 SCALAR_SELECTORS: dict[str, int] = {"value": 1, "time_part": 2, "dt": 3, "dtt": 4}
 #: Outputs returned through ARRAY, with their IDRSEL(2) value.
 ARRAY_SELECTORS: dict[str, int] = {"dq": 1, "dtdq": 2}
+#: Outputs that are identically zero when F has no explicit time.
+TIME_OUTPUTS = ("dt", "dtt", "dtdq")
 
 
 @dataclass(frozen=True)
@@ -78,6 +80,17 @@ class Derivatives:
     def count(self, output: str | None = None) -> int:
         """Number of non-zero output numbers (XMATRX pairs count twice), of one kind or all."""
         return sum(e.multiplicity for e in self.entries if output in (None, e.output))
+
+    def time_free(self, component: int) -> bool:
+        """True when F of the component has no explicit time: its dF/dt, d2F/dt2 and
+        d2F/dt dq_j are identically zero (its f(t) is then a constant, often zero)."""
+        return not any(self.of(component, kind) for kind in TIME_OUTPUTS)
+
+    def holonomic(self, component: int) -> bool:
+        """True when F of the component depends on no velocity: dF/dq_j is identically zero
+        for every velocity variable q_j, and the UCON is a position constraint."""
+        velocity = [v.is_velocity for v in self.spec.variables]
+        return not any(velocity[e.row - 1] for e in self.of(component, "dq"))
 
 
 def simplified(expression: sympy.Expr) -> sympy.Expr:
@@ -152,4 +165,9 @@ def table(derivatives: Derivatives) -> str:
                      f"{sympy.sstr(entry.expression)}")
     counts = " + ".join(f"{derivatives.count(kind)} {label}" for kind, label in OUTPUTS.items())
     lines.append(f"non-zero entries: {counts} = {derivatives.count()}")
+    components = range(1, spec.ncomponents + 1)
+    for label, test in (("time-free (no dF/dt, d2F/dt2, d2F/dt dq)", derivatives.time_free),
+                        ("holonomic (no velocity)", derivatives.holonomic)):
+        which = " ".join(f"F{k}" for k in components if test(k)) or "none"
+        lines.append(f"{label}: {which}")
     return "\n".join(lines) + "\n"

@@ -4,16 +4,27 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING
 
+import re
+
 from .derive import ARRAY_SELECTORS, SCALAR_SELECTORS
-from .messages import (IDRSEL_MESSAGE, IFLAG_MESSAGE, PART_MESSAGE, codes_range,
-                       component_message, header_lines, npar_message, parameter_message)
+from .messages import header_lines, npar_message
 from .printers import FREE_WIDTH, ModulePrinter, free_string, wrap_comment, wrap_free
 from .spec import ConstraintSpec, component_choices
 
 if TYPE_CHECKING:
     from .fortran import Program
 
-__all__ = ["render_module"]
+__all__ = ["render_module", "HELPER_MODULE", "HELPER_NAMES"]
+
+#: The hand-written module of the checks every generated module shares.
+HELPER_MODULE = "rollcon_ucosub_helpers"
+#: What a generated module may take from it (it imports those it uses).
+HELPER_NAMES = ("read_par_head", "check_parameter", "read_component", "selectors_valid",
+                "idrsel_message", "iflag_message")
+#: What a generated module may take from the contract (it imports those it uses).
+CONTRACT_NAMES = ("ucovar", "errmes", "iflag_init", "iflag_eval", "scalar_value",
+                  "scalar_time_part", "scalar_dt", "scalar_dtt", "array_dq", "array_dtdq",
+                  "xmatrx_dqdq")
 
 
 class _Lines:
@@ -43,14 +54,28 @@ def _module_names(spec: ConstraintSpec) -> dict[str, str]:
     stem = spec.name
     return {"module": f"rollcon_gen_{stem}", "ucosub": f"{stem}_ucosub", "par": f"{stem}_par",
             "nvars": f"{stem}_nvars", "npar": f"{stem}_npar",
-            "ncomponents": f"{stem}_ncomponents", "codes": f"{stem}_codes"}
+            "ncomponents": f"{stem}_ncomponents", "codes": f"{stem}_codes",
+            "time_free": f"{stem}_time_free", "holonomic": f"{stem}_holonomic",
+            "component_time_free": f"{stem}_component_time_free",
+            "component_holonomic": f"{stem}_component_holonomic"}
 
 
 def render_module(program: Program) -> str:
     """The free-form module ``rollcon_gen_<name>``, compiled into the library."""
     spec = program.spec
     names = _module_names(spec)
-    printer = ModulePrinter()
+    body = _Lines()
+    body.add("contains")
+    body.add()
+    _module_ucosub(body, program, names)
+    body.add()
+    _module_par_function(body, spec, names)
+    body.add()
+    _module_read_par(body, spec, names)
+    body.add()
+    _module_evaluate(body, program, ModulePrinter())
+    body.add()
+    body.add(f"end module {names['module']}")
     out = _Lines()
     for line in header_lines(spec):
         out.add(f"! {line}")
@@ -62,18 +87,34 @@ def render_module(program: Program) -> str:
         out.doc(f"F{k}: {constraint.meaning}", 0)
     out.add(f"module {names['module']}")
     out.add("use rollcon_kinds, only : wp", 4)
-    out.add("use rollcon_text, only : to_text", 4)
-    out.add("use rollcon_ucosub_contract, only : ucovar, errmes, iflag_init, iflag_eval, scalar_none, "
-            "scalar_value, scalar_time_part, scalar_dt, scalar_dtt, array_none, array_dq, "
-            "array_dtdq, xmatrx_none, xmatrx_dqdq", 4)
-    out.add("use, intrinsic :: ieee_arithmetic, only : ieee_is_finite", 4)
+    code = "\n".join(line for line in body.lines if not line.lstrip().startswith("!"))
+    for module, candidates in (("rollcon_ucosub_contract", CONTRACT_NAMES),
+                               (HELPER_MODULE, HELPER_NAMES)):
+        used = [name for name in candidates if re.search(rf"\b{name}\b", code)]
+        out.add(f"use {module}, only : {', '.join(used)}", 4)
     out.add("implicit none", 4)
     out.add("private", 4)
     out.add()
     out.add(f"public :: {names['ucosub']}, {names['par']}", 4)
     out.add(f"public :: {names['nvars']}, {names['npar']}, {names['ncomponents']}, "
             f"{names['codes']}", 4)
+    out.add(f"public :: {names['time_free']}, {names['component_time_free']}, "
+            f"{names['holonomic']}, {names['component_holonomic']}", 4)
     out.add()
+    _module_constants(out, program, names)
+    out.add()
+    out.lines.extend(body.lines)
+    return out.text()
+
+
+def _fortran_logicals(values: list[bool]) -> str:
+    """``[.true., .false.]``."""
+    return "[" + ", ".join(".true." if v else ".false." for v in values) + "]"
+
+
+def _module_constants(out: _Lines, program: Program, names: dict[str, str]) -> None:
+    """The sizes and codes, and what outputs can be non-zero (so a driver may skip calls)."""
+    spec = program.spec
     out.doc("Number of variables declared with UCOVAR", 4)
     out.add(f"integer, parameter :: {names['nvars']} = {spec.nvars}", 4)
     out.doc("Number of constants in FUNCTION=USER(...) (layout in the module header)", 4)
@@ -84,23 +125,26 @@ def render_module(program: Program) -> str:
             4)
     out.add(f"integer, parameter :: {names['codes']}({names['nvars']}) = ["
             + ", ".join(str(v.code) for v in spec.variables) + "]", 4)
-    out.add()
-    out.add("contains")
-    out.add()
-    _module_ucosub(out, program, names)
-    out.add()
-    _module_par_function(out, spec, names)
-    out.add()
-    _module_read_par(out, spec, names)
-    out.add()
-    _module_selectors(out)
-    out.add()
-    _module_is_whole(out)
-    out.add()
-    _module_evaluate(out, program, printer)
-    out.add()
-    out.add(f"end module {names['module']}")
-    return out.text()
+    components = range(1, spec.ncomponents + 1)
+    time_free = [program.derivatives.time_free(k) for k in components]
+    holonomic = [program.derivatives.holonomic(k) for k in components]
+    which = f" (PAR({spec.component_index}))" if spec.component_index else ""
+    out.doc("True when no component has an explicit time: dF/dt, d2F/dt2 (IDRSEL(1) = 3, 4) "
+            "and d2F/dt dq_j (IDRSEL(2) = 2) are then identically zero and need not be asked "
+            "for, and f(t) (IDRSEL(1) = 2) is a constant", 4)
+    out.add(f"logical, parameter :: {names['time_free']} = "
+            f"{'.true.' if all(time_free) else '.false.'}", 4)
+    out.doc(f"The same, for each component{which}", 4)
+    out.add(f"logical, parameter :: {names['component_time_free']}({names['ncomponents']}) = "
+            f"{_fortran_logicals(time_free)}", 4)
+    out.doc("True when no component depends on a velocity (no velocity code is declared): "
+            "every UCON of this routine is a position constraint F(q, t) = 0, and dF/dq_j is "
+            "identically zero for every velocity q_j", 4)
+    out.add(f"logical, parameter :: {names['holonomic']} = "
+            f"{'.true.' if all(holonomic) else '.false.'}", 4)
+    out.doc(f"The same, for each component{which}", 4)
+    out.add(f"logical, parameter :: {names['component_holonomic']}({names['ncomponents']}) = "
+            f"{_fortran_logicals(holonomic)}", 4)
 
 
 def _module_ucosub(out: _Lines, program: Program, names: dict[str, str]) -> None:
@@ -148,12 +192,12 @@ def _module_ucosub(out: _Lines, program: Program, names: dict[str, str]) -> None
             f"{names['nvars']}, {names['codes']})", 12)
     out.add("case (iflag_eval)", 8)
     out.add("if (.not. selectors_valid(idrsel)) then", 12)
-    out.add(f'call errmes(.true., "{IDRSEL_MESSAGE}", id, "STOP")', 16)
+    out.add('call errmes(.true., idrsel_message, id, "STOP")', 16)
     out.add("return", 16)
     out.add("end if", 12)
     out.add(f"call evaluate({_evaluate_actuals(program)})", 12)
     out.add("case default", 8)
-    out.add(f'call errmes(.true., "{IFLAG_MESSAGE}", id, "STOP")', 12)
+    out.add('call errmes(.true., iflag_message, id, "STOP")', 12)
     out.add("end select", 8)
     out.add(f"end subroutine {names['ucosub']}", 4)
 
@@ -196,7 +240,8 @@ def _module_par_function(out: _Lines, spec: ConstraintSpec, names: dict[str, str
 
 
 def _module_read_par(out: _Lines, spec: ConstraintSpec, names: dict[str, str]) -> None:
-    """``read_par``: every PAR check, in PAR order, with the message that names the entry."""
+    """``read_par``: every PAR check, in PAR order, through the shared helpers; the words of
+    the messages are the spec's."""
     several = spec.ncomponents > 1
     out.doc("Check PAR; message is allocated, and says what was expected, when PAR is wrong.", 4)
     out.add("pure subroutine read_par(par, npar, part, component, message)" if several
@@ -212,79 +257,24 @@ def _module_read_par(out: _Lines, spec: ConstraintSpec, names: dict[str, str]) -
         out.add("integer, intent(out) :: component", 8)
     out.doc("Allocated when PAR is wrong", 8)
     out.add("character(len=:), allocatable, intent(out) :: message", 8)
-    out.add("integer :: i", 8)
     out.add()
-    out.add("part = 0", 8)
     if several:
         out.add("component = 0", 8)
-    out.add(f"if (npar < {names['npar']}) then", 8)
-    out.add(f"message = {free_string(npar_message(spec) + ' ')} // to_text(npar)", 12)
-    out.add("return", 12)
-    out.add("end if", 8)
-    out.add("if (.not. is_whole(par(1)) .or. par(1) < 1.0_wp) then", 8)
-    out.add(f"message = {free_string(PART_MESSAGE + ' ')} // to_text(par(1))", 12)
-    out.add("return", 12)
-    out.add("end if", 8)
-    out.add("part = nint(par(1))", 8)
-    out.add(f"do i = 1, {names['nvars']}", 8)
-    out.add(f"if (par(1 + i) /= real({names['codes']}(i), wp)) then", 12)
-    codes = " ".join(str(v.code) for v in spec.variables)
-    out.add(f'message = "PAR(" // to_text(1 + i) // ") must be code " // '
-            f'to_text({names["codes"]}(i)) // '
-            f'{free_string(f" (codes {codes} in {codes_range(spec)}), got ")}'
-            " // to_text(par(1 + i))", 16)
-    out.add("return", 16)
-    out.add("end if", 12)
-    out.add("end do", 8)
+    calls = [f"call read_par_head(par, npar, {names['npar']}, {names['codes']}, "
+             f"{free_string(npar_message(spec))}, part, message)"]
     for parameter in spec.parameters:
-        value = f"par({parameter.index})"
-        if parameter.check == "positive":
-            condition = f".not. ieee_is_finite({value}) .or. {value} <= 0.0_wp"
-        else:
-            condition = f".not. ieee_is_finite({value})"
-        text = parameter_message(parameter.index, parameter.description, parameter.check)
-        out.add(f"if ({condition}) then", 8)
-        out.add(f"message = {free_string(text + ' ')} // to_text({value})", 12)
-        out.add("return", 12)
-        out.add("end if", 8)
+        positive = ".true." if parameter.check == "positive" else ".false."
+        calls.append(f"call check_parameter(par, {parameter.index}, "
+                     f"{free_string(parameter.description)}, {positive}, message)")
     if several:
-        value = f"par({spec.component_index})"
-        choices = ", ".join(f"{k}.0_wp" for k in range(1, spec.ncomponents + 1))
-        out.add(f"if (.not. any({value} == [{choices}])) then", 8)
-        out.add(f"message = {free_string(component_message(spec) + ' ')} // to_text({value})",
-                12)
-        out.add("return", 12)
-        out.add("end if", 8)
-        out.add(f"component = nint({value})", 8)
+        calls.append(f"call read_component(par, {spec.component_index}, "
+                     f"{names['ncomponents']}, {free_string(spec.component_meaning)}, "
+                     "component, message)")
+    for position, call in enumerate(calls):
+        if position:
+            out.add("if (allocated(message)) return", 8)
+        out.add(call, 8)
     out.add("end subroutine read_par", 4)
-
-
-def _module_selectors(out: _Lines) -> None:
-    """``selectors_valid``: IDRSEL within the table of DESIGN section 2."""
-    out.doc("True when every selector is one the contract defines.", 4)
-    out.add("pure function selectors_valid(idrsel) result(valid)", 4)
-    out.doc("Output selectors", 8)
-    out.add("integer, intent(in) :: idrsel(3)", 8)
-    out.add("logical :: valid", 8)
-    out.add()
-    out.add("valid = idrsel(1) >= scalar_none .and. idrsel(1) <= scalar_dtt "
-            ".and. idrsel(2) >= array_none .and. idrsel(2) <= array_dtdq "
-            ".and. idrsel(3) >= xmatrx_none .and. idrsel(3) <= xmatrx_dqdq", 8)
-    out.add("end function selectors_valid", 4)
-
-
-def _module_is_whole(out: _Lines) -> None:
-    """``is_whole``: the part id check."""
-    out.doc("True for a finite real with no fractional part, small enough for a default "
-            "integer.", 4)
-    out.add("elemental function is_whole(value) result(whole)", 4)
-    out.doc("Value to test", 8)
-    out.add("real(wp), intent(in) :: value", 8)
-    out.add("logical :: whole", 8)
-    out.add()
-    out.add("whole = ieee_is_finite(value)", 8)
-    out.add("if (whole) whole = abs(value) < real(huge(1), wp) .and. value == aint(value)", 8)
-    out.add("end function is_whole", 4)
 
 
 def _module_evaluate(out: _Lines, program: Program, printer: ModulePrinter) -> None:

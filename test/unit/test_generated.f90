@@ -1,6 +1,7 @@
 ! SPDX-License-Identifier: MIT
 !> Tests of the generated UCOSUBs (ucon/): the disk against the hand-checked one, every spec
-!> against finite differences and its physics, the fixed form against the free form, and the
+!> against finite differences and its physics, the constants that say which outputs can be
+!> non-zero, the checks the modules share, the fixed form against the free form, and the
 !> generator's own checks (python -m ucon check, its unit tests).
 module test_generated
     use rollcon_kinds, only : wp
@@ -21,6 +22,9 @@ module test_generated
         & random_parameters, spec_par
     use generated_fixed_form, only : run_fixed_form
     use generated_physics, only : test_turntable, test_sphere, test_knife_edge, test_disk_height
+    use generated_constants, only : test_time_free, test_holonomic
+    use generated_helpers, only : test_helper_messages, test_helper_edges
+    use generated_python, only : test_partials_check, test_python_unittest
     use, intrinsic :: ieee_arithmetic, only : ieee_value, ieee_quiet_nan, ieee_positive_inf
     implicit none
     private
@@ -52,6 +56,10 @@ contains
             & new_unittest("rolling-sphere-physics", test_sphere), &
             & new_unittest("knife-edge-physics", test_knife_edge), &
             & new_unittest("disk-height-physics", test_disk_height), &
+            & new_unittest("time-free-constants", test_time_free), &
+            & new_unittest("holonomic-constants", test_holonomic), &
+            & new_unittest("helper-messages", test_helper_messages), &
+            & new_unittest("helper-edges", test_helper_edges), &
             & new_unittest("fixed-form-matches-module", test_fixed_form), &
             & new_unittest("partials-check", test_partials_check), &
             & new_unittest("ucon-python-unittest", test_python_unittest)]
@@ -392,53 +400,5 @@ contains
             if (allocated(error)) return
         end do
     end subroutine test_fixed_form
-
-    !> Skip unless python3 with SymPy 1.14.0 (the pinned version: another one may print the
-    !> same expressions differently) is available.
-    subroutine require_sympy(error)
-        type(error_type), allocatable, intent(out) :: error
-        integer :: stat, command_stat
-
-        call execute_command_line("python3 -c ""import sys, sympy; " &
-            & // "sys.exit(sympy.__version__ != '1.14.0')"" > /dev/null 2>&1", exitstat=stat, &
-            & cmdstat=command_stat)
-        if (command_stat /= 0 .or. stat /= 0) then
-            call skip_test(error, "python3 with sympy 1.14.0 not found (pip install -r " &
-                & // "ucon/requirements.txt)")
-        end if
-    end subroutine require_sympy
-
-    !> Run a command with its output in a log file; fail naming the log if it exits non-zero.
-    subroutine run_logged(error, command, log, what)
-        type(error_type), allocatable, intent(out) :: error
-        character(len=*), intent(in) :: command, log, what
-        integer :: stat, command_stat
-
-        call execute_command_line("mkdir -p " // work_dir, exitstat=stat, cmdstat=command_stat)
-        call execute_command_line(command // " > " // log // " 2>&1", exitstat=stat, &
-            & cmdstat=command_stat)
-        call check(error, command_stat == 0 .and. stat == 0, what // " failed (exit status " &
-            & // to_text(stat) // "); see " // log)
-    end subroutine run_logged
-
-    !> The committed generated files are what the specs generate today.
-    subroutine test_partials_check(error)
-        type(error_type), allocatable, intent(out) :: error
-
-        call require_sympy(error)
-        if (allocated(error)) return
-        call run_logged(error, "python3 -m ucon check", work_dir // "/ucon-check.log", &
-            & "python3 -m ucon check (regenerate with: python3 -m ucon write)")
-    end subroutine test_partials_check
-
-    !> The generator's unit tests: bad-spec messages, determinism, tables.
-    subroutine test_python_unittest(error)
-        type(error_type), allocatable, intent(out) :: error
-
-        call require_sympy(error)
-        if (allocated(error)) return
-        call run_logged(error, "python3 -m unittest discover -s ucon/tests -t .", &
-            & work_dir // "/ucon-unittest.log", "python3 -m unittest discover -s ucon/tests")
-    end subroutine test_python_unittest
 
 end module test_generated

@@ -8,16 +8,17 @@
 !> F1: height of the rim's lowest point above the ground [m]
 module rollcon_gen_disk_height
     use rollcon_kinds, only : wp
-    use rollcon_text, only : to_text
-    use rollcon_ucosub_contract, only : ucovar, errmes, iflag_init, iflag_eval, scalar_none, &
-        & scalar_value, scalar_time_part, scalar_dt, scalar_dtt, array_none, array_dq, array_dtdq, &
-        & xmatrx_none, xmatrx_dqdq
-    use, intrinsic :: ieee_arithmetic, only : ieee_is_finite
+    use rollcon_ucosub_contract, only : ucovar, errmes, iflag_init, iflag_eval, scalar_value, &
+        & scalar_time_part, scalar_dt, scalar_dtt, array_dq, xmatrx_dqdq
+    use rollcon_ucosub_helpers, only : read_par_head, check_parameter, selectors_valid, &
+        & idrsel_message, iflag_message
     implicit none
     private
 
     public :: disk_height_ucosub, disk_height_par
     public :: disk_height_nvars, disk_height_npar, disk_height_ncomponents, disk_height_codes
+    public :: disk_height_time_free, disk_height_component_time_free, disk_height_holonomic, &
+        & disk_height_component_holonomic
 
     !> Number of variables declared with UCOVAR
     integer, parameter :: disk_height_nvars = 2
@@ -27,6 +28,18 @@ module rollcon_gen_disk_height
     integer, parameter :: disk_height_ncomponents = 1
     !> Codes of z, theta, in UCOVAR order
     integer, parameter :: disk_height_codes(disk_height_nvars) = [13, 15]
+    !> True when no component has an explicit time: dF/dt, d2F/dt2 (IDRSEL(1) = 3, 4) and d2F/dt
+    !> dq_j (IDRSEL(2) = 2) are then identically zero and need not be asked for, and f(t) (IDRSEL(1)
+    !> = 2) is a constant
+    logical, parameter :: disk_height_time_free = .true.
+    !> The same, for each component
+    logical, parameter :: disk_height_component_time_free(disk_height_ncomponents) = [.true.]
+    !> True when no component depends on a velocity (no velocity code is declared): every UCON of
+    !> this routine is a position constraint F(q, t) = 0, and dF/dq_j is identically zero for every
+    !> velocity q_j
+    logical, parameter :: disk_height_holonomic = .true.
+    !> The same, for each component
+    logical, parameter :: disk_height_component_holonomic(disk_height_ncomponents) = [.true.]
 
 contains
 
@@ -68,12 +81,12 @@ contains
                 & disk_height_nvars, disk_height_codes)
         case (iflag_eval)
             if (.not. selectors_valid(idrsel)) then
-                call errmes(.true., "IDRSEL must be (0..4, 0..2, 0..1)", id, "STOP")
+                call errmes(.true., idrsel_message, id, "STOP")
                 return
             end if
             call evaluate(q, par, idrsel, scalar, array, xmatrx)
         case default
-            call errmes(.true., "IFLAG must be 3 (initialise) or 0 (evaluate)", id, "STOP")
+            call errmes(.true., iflag_message, id, "STOP")
         end select
     end subroutine disk_height_ucosub
 
@@ -98,54 +111,13 @@ contains
         integer, intent(out) :: part
         !> Allocated when PAR is wrong
         character(len=:), allocatable, intent(out) :: message
-        integer :: i
 
-        part = 0
-        if (npar < disk_height_npar) then
-            message = "disk height needs NPAR >= 4 (part id, 2 codes, disk radius R), got " &
-                & // "NPAR = " // to_text(npar)
-            return
-        end if
-        if (.not. is_whole(par(1)) .or. par(1) < 1.0_wp) then
-            message = "PAR(1) (part id) must be a positive whole number, got " // to_text(par(1))
-            return
-        end if
-        part = nint(par(1))
-        do i = 1, disk_height_nvars
-            if (par(1 + i) /= real(disk_height_codes(i), wp)) then
-                message = "PAR(" // to_text(1 + i) // ") must be code " &
-                    & // to_text(disk_height_codes(i)) // " (codes 13 15 in PAR(2:3)), got " &
-                    & // to_text(par(1 + i))
-                return
-            end if
-        end do
-        if (.not. ieee_is_finite(par(4)) .or. par(4) <= 0.0_wp) then
-            message = "PAR(4) (disk radius R [m]) must be positive and finite, got " &
-                & // to_text(par(4))
-            return
-        end if
+        call read_par_head(par, npar, disk_height_npar, disk_height_codes, &
+            & "disk height needs NPAR >= 4 (part id, 2 codes, disk radius R), got " &
+            & // "NPAR =", part, message)
+        if (allocated(message)) return
+        call check_parameter(par, 4, "disk radius R [m]", .true., message)
     end subroutine read_par
-
-    !> True when every selector is one the contract defines.
-    pure function selectors_valid(idrsel) result(valid)
-        !> Output selectors
-        integer, intent(in) :: idrsel(3)
-        logical :: valid
-
-        valid = idrsel(1) >= scalar_none .and. idrsel(1) <= scalar_dtt &
-            & .and. idrsel(2) >= array_none .and. idrsel(2) <= array_dtdq &
-            & .and. idrsel(3) >= xmatrx_none .and. idrsel(3) <= xmatrx_dqdq
-    end function selectors_valid
-
-    !> True for a finite real with no fractional part, small enough for a default integer.
-    elemental function is_whole(value) result(whole)
-        !> Value to test
-        real(wp), intent(in) :: value
-        logical :: whole
-
-        whole = ieee_is_finite(value)
-        if (whole) whole = abs(value) < real(huge(1), wp) .and. value == aint(value)
-    end function is_whole
 
     !> Evaluate what idrsel asks for; entries that are symbolically zero are left untouched.
     pure subroutine evaluate(q, par, idrsel, scalar, array, xmatrx)

@@ -7,16 +7,17 @@
 !> F1: velocity of the contact point across the blade [m/s]
 module rollcon_gen_knife_edge
     use rollcon_kinds, only : wp
-    use rollcon_text, only : to_text
-    use rollcon_ucosub_contract, only : ucovar, errmes, iflag_init, iflag_eval, scalar_none, &
-        & scalar_value, scalar_time_part, scalar_dt, scalar_dtt, array_none, array_dq, array_dtdq, &
-        & xmatrx_none, xmatrx_dqdq
-    use, intrinsic :: ieee_arithmetic, only : ieee_is_finite
+    use rollcon_ucosub_contract, only : ucovar, errmes, iflag_init, iflag_eval, scalar_value, &
+        & scalar_time_part, scalar_dt, scalar_dtt, array_dq, xmatrx_dqdq
+    use rollcon_ucosub_helpers, only : read_par_head, selectors_valid, idrsel_message, &
+        & iflag_message
     implicit none
     private
 
     public :: knife_edge_ucosub, knife_edge_par
     public :: knife_edge_nvars, knife_edge_npar, knife_edge_ncomponents, knife_edge_codes
+    public :: knife_edge_time_free, knife_edge_component_time_free, knife_edge_holonomic, &
+        & knife_edge_component_holonomic
 
     !> Number of variables declared with UCOVAR
     integer, parameter :: knife_edge_nvars = 3
@@ -26,6 +27,18 @@ module rollcon_gen_knife_edge
     integer, parameter :: knife_edge_ncomponents = 1
     !> Codes of xdot, ydot, psi, in UCOVAR order
     integer, parameter :: knife_edge_codes(knife_edge_nvars) = [21, 22, 14]
+    !> True when no component has an explicit time: dF/dt, d2F/dt2 (IDRSEL(1) = 3, 4) and d2F/dt
+    !> dq_j (IDRSEL(2) = 2) are then identically zero and need not be asked for, and f(t) (IDRSEL(1)
+    !> = 2) is a constant
+    logical, parameter :: knife_edge_time_free = .true.
+    !> The same, for each component
+    logical, parameter :: knife_edge_component_time_free(knife_edge_ncomponents) = [.true.]
+    !> True when no component depends on a velocity (no velocity code is declared): every UCON of
+    !> this routine is a position constraint F(q, t) = 0, and dF/dq_j is identically zero for every
+    !> velocity q_j
+    logical, parameter :: knife_edge_holonomic = .false.
+    !> The same, for each component
+    logical, parameter :: knife_edge_component_holonomic(knife_edge_ncomponents) = [.false.]
 
 contains
 
@@ -67,12 +80,12 @@ contains
                 & knife_edge_codes)
         case (iflag_eval)
             if (.not. selectors_valid(idrsel)) then
-                call errmes(.true., "IDRSEL must be (0..4, 0..2, 0..1)", id, "STOP")
+                call errmes(.true., idrsel_message, id, "STOP")
                 return
             end if
             call evaluate(q, idrsel, scalar, array, xmatrx)
         case default
-            call errmes(.true., "IFLAG must be 3 (initialise) or 0 (evaluate)", id, "STOP")
+            call errmes(.true., iflag_message, id, "STOP")
         end select
     end subroutine knife_edge_ucosub
 
@@ -95,49 +108,10 @@ contains
         integer, intent(out) :: part
         !> Allocated when PAR is wrong
         character(len=:), allocatable, intent(out) :: message
-        integer :: i
 
-        part = 0
-        if (npar < knife_edge_npar) then
-            message = "knife edge needs NPAR >= 4 (part id, 3 codes), got NPAR = " &
-                & // to_text(npar)
-            return
-        end if
-        if (.not. is_whole(par(1)) .or. par(1) < 1.0_wp) then
-            message = "PAR(1) (part id) must be a positive whole number, got " // to_text(par(1))
-            return
-        end if
-        part = nint(par(1))
-        do i = 1, knife_edge_nvars
-            if (par(1 + i) /= real(knife_edge_codes(i), wp)) then
-                message = "PAR(" // to_text(1 + i) // ") must be code " &
-                    & // to_text(knife_edge_codes(i)) // " (codes 21 22 14 in PAR(2:4)), got " &
-                    & // to_text(par(1 + i))
-                return
-            end if
-        end do
+        call read_par_head(par, npar, knife_edge_npar, knife_edge_codes, &
+            & "knife edge needs NPAR >= 4 (part id, 3 codes), got NPAR =", part, message)
     end subroutine read_par
-
-    !> True when every selector is one the contract defines.
-    pure function selectors_valid(idrsel) result(valid)
-        !> Output selectors
-        integer, intent(in) :: idrsel(3)
-        logical :: valid
-
-        valid = idrsel(1) >= scalar_none .and. idrsel(1) <= scalar_dtt &
-            & .and. idrsel(2) >= array_none .and. idrsel(2) <= array_dtdq &
-            & .and. idrsel(3) >= xmatrx_none .and. idrsel(3) <= xmatrx_dqdq
-    end function selectors_valid
-
-    !> True for a finite real with no fractional part, small enough for a default integer.
-    elemental function is_whole(value) result(whole)
-        !> Value to test
-        real(wp), intent(in) :: value
-        logical :: whole
-
-        whole = ieee_is_finite(value)
-        if (whole) whole = abs(value) < real(huge(1), wp) .and. value == aint(value)
-    end function is_whole
 
     !> Evaluate what idrsel asks for; entries that are symbolically zero are left untouched.
     pure subroutine evaluate(q, idrsel, scalar, array, xmatrx)

@@ -12,16 +12,17 @@
 !> F3: Z velocity of the disk's material point at the contact [m/s]
 module rollcon_gen_rolling_disk
     use rollcon_kinds, only : wp
-    use rollcon_text, only : to_text
-    use rollcon_ucosub_contract, only : ucovar, errmes, iflag_init, iflag_eval, scalar_none, &
-        & scalar_value, scalar_time_part, scalar_dt, scalar_dtt, array_none, array_dq, array_dtdq, &
-        & xmatrx_none, xmatrx_dqdq
-    use, intrinsic :: ieee_arithmetic, only : ieee_is_finite
+    use rollcon_ucosub_contract, only : ucovar, errmes, iflag_init, iflag_eval, scalar_value, &
+        & scalar_time_part, scalar_dt, scalar_dtt, array_dq, xmatrx_dqdq
+    use rollcon_ucosub_helpers, only : read_par_head, check_parameter, read_component, &
+        & selectors_valid, idrsel_message, iflag_message
     implicit none
     private
 
     public :: rolling_disk_ucosub, rolling_disk_par
     public :: rolling_disk_nvars, rolling_disk_npar, rolling_disk_ncomponents, rolling_disk_codes
+    public :: rolling_disk_time_free, rolling_disk_component_time_free, rolling_disk_holonomic, &
+        & rolling_disk_component_holonomic
 
     !> Number of variables declared with UCOVAR
     integer, parameter :: rolling_disk_nvars = 8
@@ -32,6 +33,20 @@ module rollcon_gen_rolling_disk
     !> Codes of xdot, ydot, zdot, psi, theta, psidot, thetadot, phidot, in UCOVAR order
     integer, parameter :: rolling_disk_codes(rolling_disk_nvars) = [21, 22, 23, 14, 15, 24, 25, &
         & 26]
+    !> True when no component has an explicit time: dF/dt, d2F/dt2 (IDRSEL(1) = 3, 4) and d2F/dt
+    !> dq_j (IDRSEL(2) = 2) are then identically zero and need not be asked for, and f(t) (IDRSEL(1)
+    !> = 2) is a constant
+    logical, parameter :: rolling_disk_time_free = .true.
+    !> The same, for each component (PAR(11))
+    logical, parameter :: rolling_disk_component_time_free(rolling_disk_ncomponents) = [.true., &
+        & .true., .true.]
+    !> True when no component depends on a velocity (no velocity code is declared): every UCON of
+    !> this routine is a position constraint F(q, t) = 0, and dF/dq_j is identically zero for every
+    !> velocity q_j
+    logical, parameter :: rolling_disk_holonomic = .false.
+    !> The same, for each component (PAR(11))
+    logical, parameter :: rolling_disk_component_holonomic(rolling_disk_ncomponents) = [.false., &
+        & .false., .false.]
 
 contains
 
@@ -74,12 +89,12 @@ contains
                 & rolling_disk_nvars, rolling_disk_codes)
         case (iflag_eval)
             if (.not. selectors_valid(idrsel)) then
-                call errmes(.true., "IDRSEL must be (0..4, 0..2, 0..1)", id, "STOP")
+                call errmes(.true., idrsel_message, id, "STOP")
                 return
             end if
             call evaluate(q, par, component, idrsel, scalar, array, xmatrx)
         case default
-            call errmes(.true., "IFLAG must be 3 (initialise) or 0 (evaluate)", id, "STOP")
+            call errmes(.true., iflag_message, id, "STOP")
         end select
     end subroutine rolling_disk_ucosub
 
@@ -108,60 +123,17 @@ contains
         integer, intent(out) :: component
         !> Allocated when PAR is wrong
         character(len=:), allocatable, intent(out) :: message
-        integer :: i
 
-        part = 0
         component = 0
-        if (npar < rolling_disk_npar) then
-            message = "rolling disk needs NPAR >= 11 (part id, 8 codes, disk radius R, " &
-                & // "no-slip component), got NPAR = " // to_text(npar)
-            return
-        end if
-        if (.not. is_whole(par(1)) .or. par(1) < 1.0_wp) then
-            message = "PAR(1) (part id) must be a positive whole number, got " // to_text(par(1))
-            return
-        end if
-        part = nint(par(1))
-        do i = 1, rolling_disk_nvars
-            if (par(1 + i) /= real(rolling_disk_codes(i), wp)) then
-                message = "PAR(" // to_text(1 + i) // ") must be code " &
-                    & // to_text(rolling_disk_codes(i)) // &
-                    & " (codes 21 22 23 14 15 24 25 26 in PAR(2:9)), got " // to_text(par(1 + i))
-                return
-            end if
-        end do
-        if (.not. ieee_is_finite(par(10)) .or. par(10) <= 0.0_wp) then
-            message = "PAR(10) (disk radius R [m]) must be positive and finite, got " &
-                & // to_text(par(10))
-            return
-        end if
-        if (.not. any(par(11) == [1.0_wp, 2.0_wp, 3.0_wp])) then
-            message = "PAR(11) (no-slip component) must be 1, 2 or 3, got " // to_text(par(11))
-            return
-        end if
-        component = nint(par(11))
+        call read_par_head(par, npar, rolling_disk_npar, rolling_disk_codes, &
+            & "rolling disk needs NPAR >= 11 (part id, 8 codes, disk radius R, " &
+            & // "no-slip component), got NPAR =", part, message)
+        if (allocated(message)) return
+        call check_parameter(par, 10, "disk radius R [m]", .true., message)
+        if (allocated(message)) return
+        call read_component(par, 11, rolling_disk_ncomponents, "no-slip component", component, &
+            & message)
     end subroutine read_par
-
-    !> True when every selector is one the contract defines.
-    pure function selectors_valid(idrsel) result(valid)
-        !> Output selectors
-        integer, intent(in) :: idrsel(3)
-        logical :: valid
-
-        valid = idrsel(1) >= scalar_none .and. idrsel(1) <= scalar_dtt &
-            & .and. idrsel(2) >= array_none .and. idrsel(2) <= array_dtdq &
-            & .and. idrsel(3) >= xmatrx_none .and. idrsel(3) <= xmatrx_dqdq
-    end function selectors_valid
-
-    !> True for a finite real with no fractional part, small enough for a default integer.
-    elemental function is_whole(value) result(whole)
-        !> Value to test
-        real(wp), intent(in) :: value
-        logical :: whole
-
-        whole = ieee_is_finite(value)
-        if (whole) whole = abs(value) < real(huge(1), wp) .and. value == aint(value)
-    end function is_whole
 
     !> Evaluate what idrsel asks for; entries that are symbolically zero are left untouched.
     pure subroutine evaluate(q, par, component, idrsel, scalar, array, xmatrx)

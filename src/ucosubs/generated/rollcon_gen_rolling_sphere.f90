@@ -12,17 +12,18 @@
 !> F3: Z velocity of the sphere's material point at the contact [m/s]
 module rollcon_gen_rolling_sphere
     use rollcon_kinds, only : wp
-    use rollcon_text, only : to_text
-    use rollcon_ucosub_contract, only : ucovar, errmes, iflag_init, iflag_eval, scalar_none, &
-        & scalar_value, scalar_time_part, scalar_dt, scalar_dtt, array_none, array_dq, array_dtdq, &
-        & xmatrx_none, xmatrx_dqdq
-    use, intrinsic :: ieee_arithmetic, only : ieee_is_finite
+    use rollcon_ucosub_contract, only : ucovar, errmes, iflag_init, iflag_eval, scalar_value, &
+        & scalar_time_part, scalar_dt, scalar_dtt, array_dq, xmatrx_dqdq
+    use rollcon_ucosub_helpers, only : read_par_head, check_parameter, read_component, &
+        & selectors_valid, idrsel_message, iflag_message
     implicit none
     private
 
     public :: rolling_sphere_ucosub, rolling_sphere_par
     public :: rolling_sphere_nvars, rolling_sphere_npar, rolling_sphere_ncomponents, &
         & rolling_sphere_codes
+    public :: rolling_sphere_time_free, rolling_sphere_component_time_free, &
+        & rolling_sphere_holonomic, rolling_sphere_component_holonomic
 
     !> Number of variables declared with UCOVAR
     integer, parameter :: rolling_sphere_nvars = 7
@@ -33,6 +34,20 @@ module rollcon_gen_rolling_sphere
     !> Codes of xdot, ydot, zdot, psi, theta, thetadot, phidot, in UCOVAR order
     integer, parameter :: rolling_sphere_codes(rolling_sphere_nvars) = [21, 22, 23, 14, 15, 25, &
         & 26]
+    !> True when no component has an explicit time: dF/dt, d2F/dt2 (IDRSEL(1) = 3, 4) and d2F/dt
+    !> dq_j (IDRSEL(2) = 2) are then identically zero and need not be asked for, and f(t) (IDRSEL(1)
+    !> = 2) is a constant
+    logical, parameter :: rolling_sphere_time_free = .true.
+    !> The same, for each component (PAR(10))
+    logical, parameter :: rolling_sphere_component_time_free(rolling_sphere_ncomponents) = &
+        & [.true., .true., .true.]
+    !> True when no component depends on a velocity (no velocity code is declared): every UCON of
+    !> this routine is a position constraint F(q, t) = 0, and dF/dq_j is identically zero for every
+    !> velocity q_j
+    logical, parameter :: rolling_sphere_holonomic = .false.
+    !> The same, for each component (PAR(10))
+    logical, parameter :: rolling_sphere_component_holonomic(rolling_sphere_ncomponents) = &
+        & [.false., .false., .false.]
 
 contains
 
@@ -75,12 +90,12 @@ contains
                 & rolling_sphere_nvars, rolling_sphere_codes)
         case (iflag_eval)
             if (.not. selectors_valid(idrsel)) then
-                call errmes(.true., "IDRSEL must be (0..4, 0..2, 0..1)", id, "STOP")
+                call errmes(.true., idrsel_message, id, "STOP")
                 return
             end if
             call evaluate(q, par, component, idrsel, scalar, array, xmatrx)
         case default
-            call errmes(.true., "IFLAG must be 3 (initialise) or 0 (evaluate)", id, "STOP")
+            call errmes(.true., iflag_message, id, "STOP")
         end select
     end subroutine rolling_sphere_ucosub
 
@@ -109,60 +124,17 @@ contains
         integer, intent(out) :: component
         !> Allocated when PAR is wrong
         character(len=:), allocatable, intent(out) :: message
-        integer :: i
 
-        part = 0
         component = 0
-        if (npar < rolling_sphere_npar) then
-            message = "rolling sphere needs NPAR >= 10 (part id, 7 codes, sphere radius R, " &
-                & // "no-slip component), got NPAR = " // to_text(npar)
-            return
-        end if
-        if (.not. is_whole(par(1)) .or. par(1) < 1.0_wp) then
-            message = "PAR(1) (part id) must be a positive whole number, got " // to_text(par(1))
-            return
-        end if
-        part = nint(par(1))
-        do i = 1, rolling_sphere_nvars
-            if (par(1 + i) /= real(rolling_sphere_codes(i), wp)) then
-                message = "PAR(" // to_text(1 + i) // ") must be code " &
-                    & // to_text(rolling_sphere_codes(i)) // &
-                    & " (codes 21 22 23 14 15 25 26 in PAR(2:8)), got " // to_text(par(1 + i))
-                return
-            end if
-        end do
-        if (.not. ieee_is_finite(par(9)) .or. par(9) <= 0.0_wp) then
-            message = "PAR(9) (sphere radius R [m]) must be positive and finite, got " &
-                & // to_text(par(9))
-            return
-        end if
-        if (.not. any(par(10) == [1.0_wp, 2.0_wp, 3.0_wp])) then
-            message = "PAR(10) (no-slip component) must be 1, 2 or 3, got " // to_text(par(10))
-            return
-        end if
-        component = nint(par(10))
+        call read_par_head(par, npar, rolling_sphere_npar, rolling_sphere_codes, &
+            & "rolling sphere needs NPAR >= 10 (part id, 7 codes, sphere radius R, " &
+            & // "no-slip component), got NPAR =", part, message)
+        if (allocated(message)) return
+        call check_parameter(par, 9, "sphere radius R [m]", .true., message)
+        if (allocated(message)) return
+        call read_component(par, 10, rolling_sphere_ncomponents, "no-slip component", component, &
+            & message)
     end subroutine read_par
-
-    !> True when every selector is one the contract defines.
-    pure function selectors_valid(idrsel) result(valid)
-        !> Output selectors
-        integer, intent(in) :: idrsel(3)
-        logical :: valid
-
-        valid = idrsel(1) >= scalar_none .and. idrsel(1) <= scalar_dtt &
-            & .and. idrsel(2) >= array_none .and. idrsel(2) <= array_dtdq &
-            & .and. idrsel(3) >= xmatrx_none .and. idrsel(3) <= xmatrx_dqdq
-    end function selectors_valid
-
-    !> True for a finite real with no fractional part, small enough for a default integer.
-    elemental function is_whole(value) result(whole)
-        !> Value to test
-        real(wp), intent(in) :: value
-        logical :: whole
-
-        whole = ieee_is_finite(value)
-        if (whole) whole = abs(value) < real(huge(1), wp) .and. value == aint(value)
-    end function is_whole
 
     !> Evaluate what idrsel asks for; entries that are symbolically zero are left untouched.
     pure subroutine evaluate(q, par, component, idrsel, scalar, array, xmatrx)

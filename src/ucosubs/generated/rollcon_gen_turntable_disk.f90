@@ -17,17 +17,18 @@
 !> F3: Z slip velocity of the disk on the table at the contact [m/s]
 module rollcon_gen_turntable_disk
     use rollcon_kinds, only : wp
-    use rollcon_text, only : to_text
-    use rollcon_ucosub_contract, only : ucovar, errmes, iflag_init, iflag_eval, scalar_none, &
-        & scalar_value, scalar_time_part, scalar_dt, scalar_dtt, array_none, array_dq, array_dtdq, &
-        & xmatrx_none, xmatrx_dqdq
-    use, intrinsic :: ieee_arithmetic, only : ieee_is_finite
+    use rollcon_ucosub_contract, only : ucovar, errmes, iflag_init, iflag_eval, scalar_value, &
+        & scalar_time_part, scalar_dt, scalar_dtt, array_dq, array_dtdq, xmatrx_dqdq
+    use rollcon_ucosub_helpers, only : read_par_head, check_parameter, read_component, &
+        & selectors_valid, idrsel_message, iflag_message
     implicit none
     private
 
     public :: turntable_disk_ucosub, turntable_disk_par
     public :: turntable_disk_nvars, turntable_disk_npar, turntable_disk_ncomponents, &
         & turntable_disk_codes
+    public :: turntable_disk_time_free, turntable_disk_component_time_free, &
+        & turntable_disk_holonomic, turntable_disk_component_holonomic
 
     !> Number of variables declared with UCOVAR
     integer, parameter :: turntable_disk_nvars = 10
@@ -38,6 +39,20 @@ module rollcon_gen_turntable_disk
     !> Codes of x, y, xdot, ydot, zdot, psi, theta, psidot, thetadot, phidot, in UCOVAR order
     integer, parameter :: turntable_disk_codes(turntable_disk_nvars) = [11, 12, 21, 22, 23, 14, &
         & 15, 24, 25, 26]
+    !> True when no component has an explicit time: dF/dt, d2F/dt2 (IDRSEL(1) = 3, 4) and d2F/dt
+    !> dq_j (IDRSEL(2) = 2) are then identically zero and need not be asked for, and f(t) (IDRSEL(1)
+    !> = 2) is a constant
+    logical, parameter :: turntable_disk_time_free = .false.
+    !> The same, for each component (PAR(18))
+    logical, parameter :: turntable_disk_component_time_free(turntable_disk_ncomponents) = &
+        & [.false., .false., .true.]
+    !> True when no component depends on a velocity (no velocity code is declared): every UCON of
+    !> this routine is a position constraint F(q, t) = 0, and dF/dq_j is identically zero for every
+    !> velocity q_j
+    logical, parameter :: turntable_disk_holonomic = .false.
+    !> The same, for each component (PAR(18))
+    logical, parameter :: turntable_disk_component_holonomic(turntable_disk_ncomponents) = &
+        & [.false., .false., .false.]
 
 contains
 
@@ -80,12 +95,12 @@ contains
                 & turntable_disk_nvars, turntable_disk_codes)
         case (iflag_eval)
             if (.not. selectors_valid(idrsel)) then
-                call errmes(.true., "IDRSEL must be (0..4, 0..2, 0..1)", id, "STOP")
+                call errmes(.true., idrsel_message, id, "STOP")
                 return
             end if
             call evaluate(time, q, par, component, idrsel, scalar, array, xmatrx)
         case default
-            call errmes(.true., "IFLAG must be 3 (initialise) or 0 (evaluate)", id, "STOP")
+            call errmes(.true., iflag_message, id, "STOP")
         end select
     end subroutine turntable_disk_ucosub
 
@@ -126,86 +141,28 @@ contains
         integer, intent(out) :: component
         !> Allocated when PAR is wrong
         character(len=:), allocatable, intent(out) :: message
-        integer :: i
 
-        part = 0
         component = 0
-        if (npar < turntable_disk_npar) then
-            message = "disk on a turntable needs NPAR >= 18 (part id, 10 codes, 6 " &
-                & // "parameters, no-slip component), got NPAR = " // to_text(npar)
-            return
-        end if
-        if (.not. is_whole(par(1)) .or. par(1) < 1.0_wp) then
-            message = "PAR(1) (part id) must be a positive whole number, got " // to_text(par(1))
-            return
-        end if
-        part = nint(par(1))
-        do i = 1, turntable_disk_nvars
-            if (par(1 + i) /= real(turntable_disk_codes(i), wp)) then
-                message = "PAR(" // to_text(1 + i) // ") must be code " &
-                    & // to_text(turntable_disk_codes(i)) // &
-                    & " (codes 11 12 21 22 23 14 15 24 25 26 in PAR(2:11)), got " // to_text(par(1 &
-                    & + i))
-                return
-            end if
-        end do
-        if (.not. ieee_is_finite(par(12)) .or. par(12) <= 0.0_wp) then
-            message = "PAR(12) (disk radius R [m]) must be positive and finite, got " &
-                & // to_text(par(12))
-            return
-        end if
-        if (.not. ieee_is_finite(par(13))) then
-            message = "PAR(13) (X of the table's axis a [m]) must be finite, got " &
-                & // to_text(par(13))
-            return
-        end if
-        if (.not. ieee_is_finite(par(14))) then
-            message = "PAR(14) (Y of the table's axis b [m]) must be finite, got " &
-                & // to_text(par(14))
-            return
-        end if
-        if (.not. ieee_is_finite(par(15))) then
-            message = "PAR(15) (mean table rate Omega0 [rad/s]) must be finite, got " &
-                & // to_text(par(15))
-            return
-        end if
-        if (.not. ieee_is_finite(par(16))) then
-            message = "PAR(16) (table rate ripple amplitude Omega1 [rad/s]) must be finite, " &
-                & // "got " // to_text(par(16))
-            return
-        end if
-        if (.not. ieee_is_finite(par(17))) then
-            message = "PAR(17) (ripple angular frequency nu [rad/s]) must be finite, got " &
-                & // to_text(par(17))
-            return
-        end if
-        if (.not. any(par(18) == [1.0_wp, 2.0_wp, 3.0_wp])) then
-            message = "PAR(18) (no-slip component) must be 1, 2 or 3, got " // to_text(par(18))
-            return
-        end if
-        component = nint(par(18))
+        call read_par_head(par, npar, turntable_disk_npar, turntable_disk_codes, &
+            & "disk on a turntable needs NPAR >= 18 (part id, 10 codes, 6 " &
+            & // "parameters, no-slip component), got NPAR =", part, message)
+        if (allocated(message)) return
+        call check_parameter(par, 12, "disk radius R [m]", .true., message)
+        if (allocated(message)) return
+        call check_parameter(par, 13, "X of the table's axis a [m]", .false., message)
+        if (allocated(message)) return
+        call check_parameter(par, 14, "Y of the table's axis b [m]", .false., message)
+        if (allocated(message)) return
+        call check_parameter(par, 15, "mean table rate Omega0 [rad/s]", .false., message)
+        if (allocated(message)) return
+        call check_parameter(par, 16, "table rate ripple amplitude Omega1 [rad/s]", .false., &
+            & message)
+        if (allocated(message)) return
+        call check_parameter(par, 17, "ripple angular frequency nu [rad/s]", .false., message)
+        if (allocated(message)) return
+        call read_component(par, 18, turntable_disk_ncomponents, "no-slip component", component, &
+            & message)
     end subroutine read_par
-
-    !> True when every selector is one the contract defines.
-    pure function selectors_valid(idrsel) result(valid)
-        !> Output selectors
-        integer, intent(in) :: idrsel(3)
-        logical :: valid
-
-        valid = idrsel(1) >= scalar_none .and. idrsel(1) <= scalar_dtt &
-            & .and. idrsel(2) >= array_none .and. idrsel(2) <= array_dtdq &
-            & .and. idrsel(3) >= xmatrx_none .and. idrsel(3) <= xmatrx_dqdq
-    end function selectors_valid
-
-    !> True for a finite real with no fractional part, small enough for a default integer.
-    elemental function is_whole(value) result(whole)
-        !> Value to test
-        real(wp), intent(in) :: value
-        logical :: whole
-
-        whole = ieee_is_finite(value)
-        if (whole) whole = abs(value) < real(huge(1), wp) .and. value == aint(value)
-    end function is_whole
 
     !> Evaluate what idrsel asks for; entries that are symbolically zero are left untouched.
     pure subroutine evaluate(time, q, par, component, idrsel, scalar, array, xmatrx)
