@@ -10,6 +10,7 @@ program tester
     use test_generated, only : collect_generated
     use test_scene_files, only : collect_scene_files
     use test_scene_errors, only : collect_scene_errors
+    use test_scene_fuzz, only : collect_scene_fuzz
     use test_dynamics, only : collect_dynamics
     use test_motion, only : collect_motion
     use test_extremes, only : collect_extremes
@@ -30,6 +31,7 @@ program tester
         & new_testsuite("generated", collect_generated), &
         & new_testsuite("scene", collect_scene_files), &
         & new_testsuite("scene-errors", collect_scene_errors), &
+        & new_testsuite("scene-fuzz", collect_scene_fuzz), &
         & new_testsuite("dynamics", collect_dynamics), &
         & new_testsuite("motion", collect_motion), &
         & new_testsuite("extremes", collect_extremes), &
