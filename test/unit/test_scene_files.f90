@@ -6,6 +6,8 @@ module test_scene_files
     use rollcon_scene, only : scene_type, read_scene, scene_path, formulation_ida, &
         & formulation_cvode, method_bdf, method_adams, drift_projection, drift_baumgarte, &
         & jacobian_analytic, jacobian_dq, height_velocity, height_position
+    use rollcon_scene, only : choice_code, choice_name
+    use rollcon_scene_bytes, only : visible
     use rollcon_testing, only : unittest_type, new_unittest, check
     use scene_texts, only : read_text, expect_accepted, width
     implicit none
@@ -40,6 +42,8 @@ contains
             & new_unittest("choices-any-case", test_choices_case), &
             & new_unittest("byte-order-mark-skipped", test_byte_order_mark), &
             & new_unittest("velocity-consistent", test_velocity_consistent), &
+            & new_unittest("choice-codes-and-names", test_choice_codes), &
+            & new_unittest("visible-characters", test_visible), &
             & new_unittest("error-leaves-defaults", test_error_defaults)]
     end subroutine collect_scene_files
 
@@ -317,6 +321,34 @@ contains
             & "given velocity kept", &
             & abs_tol=tol_derived)
     end subroutine test_velocity_consistent
+
+    !> Choice names and codes convert both ways, in any case; unknown ones give 0 and "?".
+    subroutine test_choice_codes(error)
+        type(error_type), allocatable, intent(out) :: error
+
+        call check(error, choice_code("formulation", "CVode") == formulation_cvode .and. &
+            & choice_code("height", "position") == height_position .and. &
+            & choice_code("jacobian", "dq") == jacobian_dq, "codes of names")
+        if (allocated(error)) return
+        call check(error, choice_code("formulation", "rk4") == 0 .and. &
+            & choice_code("radius", "ida") == 0, "unknown name or key gives 0")
+        if (allocated(error)) return
+        call check(error, choice_name("drift", drift_baumgarte) == "baumgarte" .and. &
+            & choice_name("method", method_adams) == "adams" .and. &
+            & choice_name("method", -7) == "?", "names of codes")
+    end subroutine test_choice_codes
+
+    !> Control bytes and bytes above 127 that are not UTF-8 show as \xNN, UTF-8 characters
+    !> (2 to 4 bytes) as U+XXXX; printable ASCII as itself.
+    subroutine test_visible(error)
+        type(error_type), allocatable, intent(out) :: error
+        character(len=*), parameter :: text = achar(0) // "a=" // achar(194) // achar(160) &
+            & // achar(239) // achar(187) // achar(191) // achar(240) // achar(159) &
+            & // achar(152) // achar(128) // achar(255) // achar(9) // achar(127) // achar(206)
+
+        call check(error, visible(text) == "\x00a=U+00A0U+FEFFU+1F600\xFF\x09\x7F\xCE", &
+            & "visible: " // visible(text))
+    end subroutine test_visible
 
     !> A scene that fails holds the defaults, not the values read before the failure.
     subroutine test_error_defaults(error)
