@@ -116,8 +116,8 @@ contains
             end if
             call read_scene(scene_path(trim(argument)), scene, error)
             if (allocated(error)) return
-            if (end_time > 0.0_wp) scene%end_time = min(scene%end_time, end_time)
-            scene%output_step = min(scene%output_step, scene%end_time)
+            if (end_time > 0.0_wp) scene%run%end_time = min(scene%run%end_time, end_time)
+            scene%run%output_step = min(scene%run%output_step, scene%run%end_time)
             call evaluation_costs(scene, rolling_disk_ucosub, 20000, rhs_seconds, &
                 & residual_seconds, solve_seconds, error)
             if (allocated(error)) return

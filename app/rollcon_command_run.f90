@@ -6,7 +6,8 @@ module rollcon_command_run
     use rollcon_error, only : fatal_error, stat_io, stat_input
     use rollcon_text, only : to_text, shell_quote
     use rollcon_ucosub_contract, only : ucosub_interface
-    use rollcon_scene, only : scene_type, read_scene, scene_path
+    use rollcon_scene, only : scene_type, read_scene, scene_path, choice_name, &
+        & formulation_cvode, method_adams
     use rollcon_disk_scene, only : simulate_scene
     use rollcon_simulation, only : run_summary_type, status_completed, status_stopped
     implicit none
@@ -78,19 +79,19 @@ contains
         character(len=32) :: value
         integer :: i
 
-        if (scene%formulation == "cvode") then
+        if (scene%run%formulation == formulation_cvode) then
             method = "CVODE (ODE form, "
-            if (scene%method == "adams") then
-                method = method // "Adams, drift " // scene%drift // ")"
+            if (scene%run%method == method_adams) then
+                method = method // "Adams, drift " // choice_name("drift", scene%run%drift) // ")"
             else
-                method = method // "BDF, drift " // scene%drift // ")"
+                method = method // "BDF, drift " // choice_name("drift", scene%run%drift) // ")"
             end if
         else
             method = "IDA (DAE form, index 2)"
         end if
         text = "scene " // scene%name // " (" // scene%path // "): " // method // ", " &
-            & // scene%jacobian // " Jacobian, rtol " // to_text(scene%rtol) // ", atol " &
-            & // to_text(scene%atol) // nl
+            & // choice_name("jacobian", scene%run%jacobian) // " Jacobian, rtol " &
+            & // to_text(scene%run%rtol) // ", atol " // to_text(scene%run%atol) // nl
         select case (summary%status)
         case (status_completed)
             text = text // "status: completed at t = " // to_text(summary%t_reached) // " s" // nl

@@ -39,8 +39,8 @@ contains
         folder = output_dir // "/" // scene%name // "_vtk"
         call make_folder(folder, error)
         if (allocated(error)) return
-        call write_vtk_series(folder, scene%name, history, scene%radius, scene%thickness, fps, &
-            & frames, error)
+        call write_vtk_series(folder, scene%name, history, scene%disk%radius, &
+            & scene%disk%thickness, fps, frames, error)
         if (allocated(error)) return
         write(output_unit, '(a)') "vtk: wrote " // folder // "/" // scene%name // ".pvd (" &
             & // to_text(frames) // " frames; open it in ParaView)"

@@ -8,7 +8,7 @@ module rollcon_benchmark
     use rollcon_lapack, only : factor_dense, solve_factored
     use rollcon_dae, only : dae_size, dae_residual
     use rollcon_ucosub_contract, only : ucosub_interface
-    use rollcon_scene, only : scene_type
+    use rollcon_scene, only : scene_type, choice_code
     use rollcon_disk_scene, only : build_disk_problem, simulate_scene
     use rollcon_problem, only : problem_type
     use rollcon_simulation, only : run_summary_type, history_type, status_completed, column_time, &
@@ -170,12 +170,13 @@ contains
 
             do attempt = 1, size(factors)
                 case_scene = with_method(scene, method, reference_rtol*factors(attempt))
-                case_scene%atol = max(case_scene%atol, floors(attempt))
+                case_scene%run%atol = max(case_scene%run%atol, floors(attempt))
                 call run(case_scene, kept, summary, run_error)
                 if (.not. allocated(run_error)) then
                     if (present(progress)) write(progress, '(a)') "bench: " // trim(scene%name) &
                         & // ": reference by " // trim(method%formulation) // " at rtol " &
-                        & // to_text(case_scene%rtol) // ", atol " // to_text(case_scene%atol)
+                        & // to_text(case_scene%run%rtol) // ", atol " &
+                        & // to_text(case_scene%run%atol)
                     return
                 end if
             end do
@@ -270,13 +271,13 @@ contains
         type(scene_type) :: changed
 
         changed = scene
-        changed%formulation = trim(method%formulation)
-        changed%method = trim(method%method)
-        changed%drift = trim(method%drift)
-        changed%jacobian = trim(method%jacobian)
-        changed%rtol = rtol
-        changed%atol = 1.0e-2_wp*rtol
-        changed%max_steps = 10000000
+        changed%run%formulation = choice_code("formulation", method%formulation)
+        changed%run%method = choice_code("method", method%method)
+        changed%run%drift = choice_code("drift", method%drift)
+        changed%run%jacobian = choice_code("jacobian", method%jacobian)
+        changed%run%rtol = rtol
+        changed%run%atol = 1.0e-2_wp*rtol
+        changed%run%max_steps = 10000000
     end function with_method
 
     !> Largest distance between the centres at the output times both runs reached [m].

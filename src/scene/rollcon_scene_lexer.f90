@@ -1,6 +1,7 @@
 ! SPDX-License-Identifier: MIT
 !> Reads a namelist file as text and splits it into groups of `key = value` assignments, with
-!> line numbers, so that every mistake can be reported at its place before the namelist read.
+!> line numbers, so that every mistake can be reported at its place; rollcon_scene_values then
+!> converts each value.
 module rollcon_scene_lexer
     use rollcon_error, only : error_type, input_error
     use rollcon_text, only : to_text

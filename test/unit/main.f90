@@ -8,7 +8,9 @@ program tester
     use test_disk_reference, only : collect_disk_reference
     use test_partials_check, only : collect_partials_check
     use test_generated, only : collect_generated
-    use test_scene, only : collect_scene
+    use test_scene_files, only : collect_scene_files
+    use test_scene_errors, only : collect_scene_errors
+    use test_scene_fuzz, only : collect_scene_fuzz
     use test_dynamics, only : collect_dynamics
     use test_motion, only : collect_motion
     use test_extremes, only : collect_extremes
@@ -30,7 +32,9 @@ program tester
         & new_testsuite("disk-reference", collect_disk_reference), &
         & new_testsuite("partials-check", collect_partials_check), &
         & new_testsuite("generated", collect_generated), &
-        & new_testsuite("scene", collect_scene), &
+        & new_testsuite("scene", collect_scene_files), &
+        & new_testsuite("scene-errors", collect_scene_errors), &
+        & new_testsuite("scene-fuzz", collect_scene_fuzz), &
         & new_testsuite("dynamics", collect_dynamics), &
         & new_testsuite("motion", collect_motion), &
         & new_testsuite("extremes", collect_extremes), &

@@ -4,7 +4,8 @@ module motion_runs
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type
     use rollcon_ucosub_contract, only : ucosub_interface
-    use rollcon_scene, only : scene_type
+    use rollcon_scene, only : scene_type, formulation_ida, method_bdf, drift_projection, &
+        & jacobian_analytic, height_velocity
     use rollcon_disk_scene, only : simulate_scene
     use rollcon_simulation, only : run_summary_type, history_type
     use rollcon_disk_reference, only : rolling_disk_ucosub
@@ -21,13 +22,13 @@ contains
 
         scene%name = "test"
         scene%path = "(built in the test)"
-        scene%formulation = "ida"
-        scene%method = "bdf"
-        scene%drift = "projection"
-        scene%jacobian = "analytic"
-        scene%height = "velocity"
-        scene%theta_min = -1.0_wp
-        scene%stop_on_liftoff = .false.
+        scene%run%formulation = formulation_ida
+        scene%run%method = method_bdf
+        scene%run%drift = drift_projection
+        scene%run%jacobian = jacobian_analytic
+        scene%run%height = height_velocity
+        scene%limits%theta_min = -1.0_wp
+        scene%limits%stop_on_liftoff = .false.
     end function default_scene
 
     !> Simulate scene with ucosub (default: the hand-checked disk) and keep every output row.

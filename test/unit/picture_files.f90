@@ -37,11 +37,11 @@ contains
 
         scene = default_scene()
         scene%name = "picture"
-        scene%theta = 1.2_wp
-        scene%psidot = 2.0_wp
-        scene%phidot = -6.0_wp
-        scene%end_time = 0.5_wp
-        scene%output_step = 0.01_wp
+        scene%initial%theta = 1.2_wp
+        scene%initial%psidot = 2.0_wp
+        scene%initial%phidot = -6.0_wp
+        scene%run%end_time = 0.5_wp
+        scene%run%output_step = 0.01_wp
     end function picture_scene
 
     !> Simulate scene, writing csv_path, and keep the rows; header gets the CSV's columns.
@@ -58,8 +58,8 @@ contains
 
         call build_disk_problem(scene, rolling_disk_ucosub, problem, q0, u0, error)
         if (allocated(error)) return
-        options%end_time = scene%end_time
-        options%output_step = scene%output_step
+        options%end_time = scene%run%end_time
+        options%output_step = scene%run%output_step
         options%progress = .false.
         options%csv_path = csv_path
         header = csv_header(problem)

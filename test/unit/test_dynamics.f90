@@ -45,12 +45,12 @@ contains
         type(scene_type) :: scene
         type(error_type), allocatable :: error
 
-        scene%theta = 1.1_wp
-        scene%psi = 0.4_wp
-        scene%phi = 0.7_wp
-        scene%psidot = 1.3_wp
-        scene%thetadot = -0.6_wp
-        scene%phidot = -4.0_wp
+        scene%initial%theta = 1.1_wp
+        scene%initial%psi = 0.4_wp
+        scene%initial%phi = 0.7_wp
+        scene%initial%psidot = 1.3_wp
+        scene%initial%thetadot = -0.6_wp
+        scene%initial%phidot = -4.0_wp
         call build_disk_problem(scene, rolling_disk_ucosub, problem, q, u, error)
         if (allocated(error)) error stop "generic_problem: " // error%message
         problem%eq%drift = drift

@@ -5,7 +5,7 @@ module test_extremes
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type, stat_input
     use rollcon_text, only : to_text
-    use rollcon_scene, only : scene_type, read_scene
+    use rollcon_scene, only : scene_type, read_scene, choice_code
     use rollcon_simulation, only : history_type, run_summary_type, status_completed, &
         & status_stopped, column_time, column_theta, column_psidot, column_residual
     use rollcon_benchmark, only : benchmark_methods, benchmark_row_type, benchmark_scene, &
@@ -63,7 +63,7 @@ contains
 
         call read_scene("data/near_flat.nml", scene, error)
         if (allocated(error)) return
-        scene%theta_min = 0.05_wp
+        scene%limits%theta_min = 0.05_wp
         call run_in_memory(scene, history, summary, error)
         if (allocated(error)) return
         call check_sane(error, history, summary, "near_flat")
@@ -75,7 +75,8 @@ contains
             & "precession only reached " // to_text(maxval(abs(history%column(column_psidot)))))
         if (allocated(error)) return
         ! energy over the fall: 1e3 rtol, as for the tipping coin
-        call check(error, summary%energy_drift, 0.0_wp, "energy drift", abs_tol=1.0e3_wp*scene%rtol)
+        call check(error, summary%energy_drift, 0.0_wp, "energy drift", &
+            & abs_tol=1.0e3_wp*scene%run%rtol)
     end subroutine test_near_flat
 
     subroutine test_spinning_coin(error)
@@ -90,7 +91,8 @@ contains
         if (allocated(error)) return
         call check_sane(error, history, summary, "spinning_coin")
         if (allocated(error)) return
-        call check(error, summary%energy_drift, 0.0_wp, "energy drift", abs_tol=1.0e3_wp*scene%rtol)
+        call check(error, summary%energy_drift, 0.0_wp, "energy drift", &
+            & abs_tol=1.0e3_wp*scene%run%rtol)
     end subroutine test_spinning_coin
 
     !> The coin scaled by s in every length (radius, thickness): the motion scales too, with
@@ -103,23 +105,23 @@ contains
         type(run_summary_type) :: summary
 
         scene = default_scene()
-        scene%radius = 0.1_wp*scale
-        scene%thickness = 0.003_wp*scale
-        scene%theta = 0.5_wp*pi - 0.01_wp
-        scene%phidot = -1.0_wp/sqrt(scale)
-        scene%end_time = 5.0_wp*sqrt(scale)
-        scene%output_step = 0.01_wp*sqrt(scale)
-        scene%atol = 1.0e-10_wp*scale
+        scene%disk%radius = 0.1_wp*scale
+        scene%disk%thickness = 0.003_wp*scale
+        scene%initial%theta = 0.5_wp*pi - 0.01_wp
+        scene%initial%phidot = -1.0_wp/sqrt(scale)
+        scene%run%end_time = 5.0_wp*sqrt(scale)
+        scene%run%output_step = 0.01_wp*sqrt(scale)
+        scene%run%atol = 1.0e-10_wp*scale
         call run_in_memory(scene, history, summary, error)
         if (allocated(error)) return
         call check_sane(error, history, summary, "scale " // to_text(scale))
         if (allocated(error)) return
         call check(error, summary%energy_drift, 0.0_wp, "energy drift at scale " &
-            & // to_text(scale), abs_tol=1.0e3_wp*scene%rtol)
+            & // to_text(scale), abs_tol=1.0e3_wp*scene%run%rtol)
         if (allocated(error)) return
         ! residuals scale with the velocities, sqrt(scale) m/s
         call check(error, summary%residual_max, 0.0_wp, "residual at scale " // to_text(scale), &
-            & abs_tol=1.0e2_wp*scene%rtol*sqrt(scale))
+            & abs_tol=1.0e2_wp*scene%run%rtol*sqrt(scale))
     end subroutine scaled_coin
 
     subroutine test_tiny_disk(error)
@@ -146,12 +148,12 @@ contains
 
         do i = 1, 2
             scene = default_scene()
-            scene%theta = 0.5_wp*pi - 0.01_wp
-            scene%phidot = -1.0_wp
-            scene%end_time = 2.0_wp
-            scene%formulation = trim(formulations(i))
-            scene%rtol = rtol
-            scene%atol = 1.0e-2_wp*rtol
+            scene%initial%theta = 0.5_wp*pi - 0.01_wp
+            scene%initial%phidot = -1.0_wp
+            scene%run%end_time = 2.0_wp
+            scene%run%formulation = choice_code("formulation", formulations(i))
+            scene%run%rtol = rtol
+            scene%run%atol = 1.0e-2_wp*rtol
             call run_in_memory(scene, history, summary, error)
             if (allocated(error)) return
             call check_sane(error, history, summary, trim(formulations(i)) // " at rtol " &
@@ -209,7 +211,7 @@ contains
 
         call read_scene("data/fast_upright.nml", scene, error)
         if (allocated(error)) return
-        scene%end_time = 2.0_wp
+        scene%run%end_time = 2.0_wp
         call benchmark_scene(scene, rolling_disk_ucosub, benchmark_methods(), &
             & [1.0e-4_wp, 1.0e-6_wp, 1.0e-8_wp], 1.0e-12_wp, 1, rows, error)
         if (allocated(error)) return
@@ -235,7 +237,7 @@ contains
 
         call read_scene("data/tipping_coin.nml", scene, error)
         if (allocated(error)) return
-        scene%end_time = 1.0_wp
+        scene%run%end_time = 1.0_wp
         call benchmark_scene(scene, rolling_disk_ucosub, benchmark_methods(), &
             & [1.0e-4_wp, 1.0e-6_wp], 1.0e-10_wp, 1, rows, error)
         if (allocated(error)) return

@@ -6,7 +6,8 @@ module test_motion
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type
     use rollcon_text, only : to_text
-    use rollcon_scene, only : scene_type, read_scene
+    use rollcon_scene, only : scene_type, read_scene, choice_code, formulation_cvode, &
+        & height_position
     use rollcon_problem, only : problem_type
     use rollcon_disk_scene, only : build_disk_problem
     use rollcon_disk_reference, only : rolling_disk_ucosub
@@ -61,13 +62,13 @@ contains
         type(scene_type) :: scene
 
         scene = default_scene()
-        scene%theta = 0.5_wp*pi - 0.01_wp
-        scene%phidot = -1.0_wp
-        scene%end_time = 10.0_wp
-        scene%output_step = 0.05_wp
-        scene%formulation = formulation
-        scene%rtol = rtol
-        scene%atol = 1.0e-2_wp*rtol
+        scene%initial%theta = 0.5_wp*pi - 0.01_wp
+        scene%initial%phidot = -1.0_wp
+        scene%run%end_time = 10.0_wp
+        scene%run%output_step = 0.05_wp
+        scene%run%formulation = choice_code("formulation", formulation)
+        scene%run%rtol = rtol
+        scene%run%atol = 1.0e-2_wp*rtol
     end function tipping_coin
 
     !> Energy without forcing drifts by at most 1000 rtol over the tipping coin's 10 s (it
@@ -144,23 +145,24 @@ contains
 
         scene = default_scene()
         call disk_mass_properties(scene, mass, inertia)
-        scene%theta = pi/3.0_wp
-        scene%phidot = -20.0_wp
-        s = sin(scene%theta)
-        c = cos(scene%theta)
-        associate (a => inertia(1), cc => inertia(3), r => scene%radius, g => scene%gravity)
+        scene%initial%theta = pi/3.0_wp
+        scene%initial%phidot = -20.0_wp
+        s = sin(scene%initial%theta)
+        c = cos(scene%initial%theta)
+        associate (a => inertia(1), cc => inertia(3), r => scene%disk%radius, &
+                & g => scene%environment%gravity)
             qa = s*c*(a - cc - mass*r**2)
-            qb = -(cc + mass*r**2)*scene%phidot*s
+            qb = -(cc + mass*r**2)*scene%initial%phidot*s
             qc = -mass*g*r*c
         end associate
         root1 = (-qb + sqrt(qb**2 - 4.0_wp*qa*qc))/(2.0_wp*qa)
         root2 = (-qb - sqrt(qb**2 - 4.0_wp*qa*qc))/(2.0_wp*qa)
         omega = merge(root1, root2, abs(root1) < abs(root2))
-        scene%psidot = omega
-        scene%end_time = 5.0_wp
-        scene%output_step = 0.01_wp
-        scene%rtol = 1.0e-11_wp
-        scene%atol = 1.0e-13_wp
+        scene%initial%psidot = omega
+        scene%run%end_time = 5.0_wp
+        scene%run%output_step = 0.01_wp
+        scene%run%rtol = 1.0e-11_wp
+        scene%run%atol = 1.0e-13_wp
         call run_in_memory(scene, history, summary, error)
         if (allocated(error)) return
         ! theta within 1e-8 rad: an exact steady solution, so only the integration error moves
@@ -169,9 +171,9 @@ contains
             & "largest |theta - 60 deg| [rad]", abs_tol=1.0e-8_wp)
         if (allocated(error)) return
         ! Contact point G - R e_y2, on the ground.
-        px = history%column(column_x) + scene%radius*cos(history%column(column_theta)) &
+        px = history%column(column_x) + scene%disk%radius*cos(history%column(column_theta)) &
             & *sin(history%column(column_psi))
-        py = history%column(column_y) - scene%radius*cos(history%column(column_theta)) &
+        py = history%column(column_y) - scene%disk%radius*cos(history%column(column_theta)) &
             & *cos(history%column(column_psi))
         k = [1, history%count/3, (2*history%count)/3]
         cx = px(k)
@@ -182,7 +184,7 @@ contains
             & + (cx(3)**2 + cy(3)**2)*(cy(1) - cy(2)))/d
         centre(2) = ((cx(1)**2 + cy(1)**2)*(cx(3) - cx(2)) + (cx(2)**2 + cy(2)**2)*(cx(1) - cx(3)) &
             & + (cx(3)**2 + cy(3)**2)*(cx(2) - cx(1)))/d
-        radius_path = scene%radius*abs(scene%phidot/omega)
+        radius_path = scene%disk%radius*abs(scene%initial%phidot/omega)
         do i = 1, history%count
             distance = hypot(px(i) - centre(1), py(i) - centre(2))
             ! 1e-8 relative: the path radius is ~0.1 m; positions are integrated to ~1e-11.
@@ -199,10 +201,10 @@ contains
         type(scene_type) :: scene
 
         scene = default_scene()
-        scene%theta = 0.5_wp*pi - 0.01_wp
-        scene%phidot = -speed/scene%radius
-        scene%end_time = end_time
-        scene%output_step = 0.01_wp
+        scene%initial%theta = 0.5_wp*pi - 0.01_wp
+        scene%initial%phidot = -speed/scene%disk%radius
+        scene%run%end_time = end_time
+        scene%run%output_step = 0.01_wp
     end function upright
 
     !> Above the critical speed (0.572 m/s for this disk, DESIGN section 5) a small tilt stays
@@ -245,16 +247,16 @@ contains
         integer :: i, crossings
 
         scene = upright(2.0_wp, 10.0_wp)
-        scene%theta = 0.5_wp*pi - 1.0e-4_wp
-        scene%output_step = 1.0e-3_wp
-        scene%rtol = 1.0e-10_wp
-        scene%atol = 1.0e-12_wp
+        scene%initial%theta = 0.5_wp*pi - 1.0e-4_wp
+        scene%run%output_step = 1.0e-3_wp
+        scene%run%rtol = 1.0e-10_wp
+        scene%run%atol = 1.0e-12_wp
         call run_in_memory(scene, history, summary, error)
         if (allocated(error)) return
         call disk_mass_properties(scene, mass, inertia)
-        spin = 2.0_wp/scene%radius
-        associate (a => inertia(1), c => inertia(3), r => scene%radius)
-            linear = sqrt((c*(c + mass*r**2)*spin**2/a - mass*scene%gravity*r) &
+        spin = 2.0_wp/scene%disk%radius
+        associate (a => inertia(1), c => inertia(3), r => scene%disk%radius)
+            linear = sqrt((c*(c + mass*r**2)*spin**2/a - mass*scene%environment%gravity*r) &
                 & /(a + mass*r**2))
         end associate
         t = history%column(column_time)
@@ -288,10 +290,10 @@ contains
         do i = 1, 2
             rtol = 10.0_wp**(-6 - 2*i)
             scene = tipping_coin("ida", rtol)
-            scene%end_time = 1.0_wp
+            scene%run%end_time = 1.0_wp
             call run_in_memory(scene, ida, summary, error)
             if (allocated(error)) return
-            scene%formulation = "cvode"
+            scene%run%formulation = formulation_cvode
             call run_in_memory(scene, cvode, summary, error)
             if (allocated(error)) return
             difference = maxval(abs(ida%rows(column_x:column_phi, :ida%count) &
@@ -314,21 +316,21 @@ contains
         integer :: i, first, last
 
         scene = default_scene()
-        scene%phidot = -1.0_wp
-        scene%has_strike = .true.
-        scene%strike_time = 0.01_wp
-        scene%strike_duration = 0.01_wp
-        scene%strike_impulse = 0.01_wp
-        scene%end_time = 0.03_wp
-        scene%output_step = 1.0e-4_wp
-        scene%rtol = 1.0e-10_wp
-        scene%atol = 1.0e-12_wp
+        scene%initial%phidot = -1.0_wp
+        scene%strike%enabled = .true.
+        scene%strike%time = 0.01_wp
+        scene%strike%duration = 0.01_wp
+        scene%strike%impulse = 0.01_wp
+        scene%run%end_time = 0.03_wp
+        scene%run%output_step = 1.0e-4_wp
+        scene%run%rtol = 1.0e-10_wp
+        scene%run%atol = 1.0e-12_wp
         call run_in_memory(scene, history, summary, error)
         if (allocated(error)) return
         call disk_mass_properties(scene, mass, inertia)
-        first = minloc(abs(history%column(column_time) - scene%strike_time), dim=1)
-        last = minloc(abs(history%column(column_time) - scene%strike_time &
-            & - scene%strike_duration), dim=1)
+        first = minloc(abs(history%column(column_time) - scene%strike%time), dim=1)
+        last = minloc(abs(history%column(column_time) - scene%strike%time &
+            & - scene%strike%duration), dim=1)
         contact = 0.0_wp
         do i = first, last - 1
             dt = history%rows(column_time, i + 1) - history%rows(column_time, i)
@@ -337,12 +339,12 @@ contains
         end do
         change = mass*(history%rows(column_xdot:column_zdot, last) &
             & - history%rows(column_xdot:column_zdot, first))
-        expected = contact + [0.0_wp, scene%strike_impulse, &
-            & -mass*scene%gravity*scene%strike_duration]
+        expected = contact + [0.0_wp, scene%strike%impulse, &
+            & -mass*scene%environment%gravity*scene%strike%duration]
         call check(error, change, expected, "momentum change over the pulse [N s]", &
-            & abs_tol=1.0e-3_wp*scene%strike_impulse)
+            & abs_tol=1.0e-3_wp*scene%strike%impulse)
         if (allocated(error)) return
-        call check(error, abs(change(2)) > 0.1_wp*scene%strike_impulse, &
+        call check(error, abs(change(2)) > 0.1_wp*scene%strike%impulse, &
             & "the strike barely changed the Y momentum")
     end subroutine test_strike_momentum
 
@@ -354,7 +356,7 @@ contains
         type(run_summary_type) :: summary
 
         scene = tipping_coin("ida", 1.0e-8_wp)
-        scene%theta_min = 0.5_wp
+        scene%limits%theta_min = 0.5_wp
         call run_in_memory(scene, history, summary, error)
         if (allocated(error)) return
         call check(error, summary%status == status_stopped, "the run did not stop at the limit")
@@ -375,12 +377,12 @@ contains
         type(run_summary_type) :: summary
 
         scene = default_scene()
-        scene%gravity = 0.0_wp
-        scene%theta = pi/12.0_wp
-        scene%psidot = 10.0_wp
-        scene%phidot = -10.0_wp*cos(pi/12.0_wp)
-        scene%end_time = 2.0_wp
-        scene%stop_on_liftoff = .true.
+        scene%environment%gravity = 0.0_wp
+        scene%initial%theta = pi/12.0_wp
+        scene%initial%psidot = 10.0_wp
+        scene%initial%phidot = -10.0_wp*cos(pi/12.0_wp)
+        scene%run%end_time = 2.0_wp
+        scene%limits%stop_on_liftoff = .true.
         call run_in_memory(scene, history, summary, error)
         if (allocated(error)) return
         call check(error, summary%status == status_stopped .and. &
@@ -407,13 +409,13 @@ contains
         call run_in_memory(scene, history, summary, error)
         if (allocated(error)) return
         call check(error, summary%energy_drift, 0.0_wp, "energy drift over 200 s", &
-            & abs_tol=1.0e3_wp*scene%rtol)
+            & abs_tol=1.0e3_wp*scene%run%rtol)
         if (allocated(error)) return
         t = history%column(column_time)
         residual = maxval(abs(history%rows(column_residual:, :history%count)), dim=1)
         early = maxval(residual, mask=t <= 20.0_wp)
         late = maxval(residual, mask=t >= 180.0_wp)
-        call check(error, late <= 10.0_wp*early + 1.0e-2_wp*scene%atol, "residual grew from " &
+        call check(error, late <= 10.0_wp*early + 1.0e-2_wp*scene%run%atol, "residual grew from " &
             & // to_text(early) // " (first 20 s) to " // to_text(late) // " (last 20 s)")
     end subroutine test_long_run
 
@@ -432,12 +434,12 @@ contains
         integer :: unit, stat, rows
 
         scene = tipping_coin("ida", 1.0e-8_wp)
-        scene%max_steps = 200
-        scene%output_step = 0.5_wp
+        scene%run%max_steps = 200
+        scene%run%output_step = 0.5_wp
         call build_disk_problem(scene, rolling_disk_ucosub, problem, q0, u0, error)
         if (allocated(error)) return
-        options%end_time = scene%end_time
-        options%output_step = scene%output_step
+        options%end_time = scene%run%end_time
+        options%output_step = scene%run%output_step
         options%csv_path = path
         options%progress = .false.
         call simulate(problem, q0, u0, options, summary, failure)
@@ -476,10 +478,10 @@ contains
 
         do i = 1, 2
             scene = tipping_coin(trim(formulations(i)), 1.0e-9_wp)
-            scene%end_time = 1.0_wp
+            scene%run%end_time = 1.0_wp
             call run_in_memory(scene, velocity_form, summary, error)
             if (allocated(error)) return
-            scene%height = "position"
+            scene%run%height = height_position
             call run_in_memory(scene, position_form, summary, error)
             if (allocated(error)) return
             ! same motion to the integration error over 1 s (1e3 rtol, as for CVODE vs IDA)
@@ -488,7 +490,7 @@ contains
             call check(error, difference, 0.0_wp, trim(formulations(i)) // ": largest " &
                 & // "difference between the two forms", abs_tol=1.0e-6_wp)
             if (allocated(error)) return
-            height = maxval(abs(position_form%column(column_z) - scene%radius &
+            height = maxval(abs(position_form%column(column_z) - scene%disk%radius &
                 & *sin(position_form%column(column_theta))))
             call check(error, height, 0.0_wp, trim(formulations(i)) // ": |Z - R sin(theta)| [m]", &
                 & abs_tol=1.0e-9_wp)
@@ -507,7 +509,7 @@ contains
         type(run_summary_type) :: summary
 
         scene = tipping_coin("ida", 1.0e-10_wp)
-        scene%end_time = 1.0_wp
+        scene%run%end_time = 1.0_wp
         call run_in_memory(scene, hand, summary, error)
         if (allocated(error)) return
         call run_in_memory(scene, generated, summary, error, generated_disk_ucosub)
@@ -517,7 +519,7 @@ contains
         call check(error, maxval(abs(hand%rows(column_x:column_phi, :hand%count) &
             & - generated%rows(column_x:column_phi, :generated%count))), 0.0_wp, &
             & "largest coordinate difference, hand-checked against generated", &
-            & abs_tol=1.0e3_wp*scene%rtol)
+            & abs_tol=1.0e3_wp*scene%run%rtol)
     end subroutine test_generated_trajectory
 
     !> Two disks in one model, parts 7 and 3, six UCONs in one UCOSUB, declared in an order that
@@ -537,11 +539,11 @@ contains
         integer :: k
 
         first = tipping_coin("ida", 1.0e-10_wp)
-        first%end_time = 1.0_wp
+        first%run%end_time = 1.0_wp
         second = upright(0.8_wp, 1.0_wp)
-        second%rtol = 1.0e-10_wp
-        second%atol = 1.0e-12_wp
-        second%psi = 0.7_wp
+        second%run%rtol = 1.0e-10_wp
+        second%run%atol = 1.0e-12_wp
+        second%initial%psi = 0.7_wp
         call run_in_memory(first, history, alone(1), error)
         if (allocated(error)) return
         call run_in_memory(second, history, alone(2), error)
@@ -552,11 +554,11 @@ contains
         call model%add_part(part)
         part%id = 3
         call model%add_part(part)
-        model%gravity = [0.0_wp, 0.0_wp, -first%gravity]
+        model%gravity = [0.0_wp, 0.0_wp, -first%environment%gravity]
         model%ucosub => rolling_disk_ucosub
         do k = 1, 3
-            call model%add_ucon(10 + k, disk_par(3, second%radius, k))
-            call model%add_ucon(20 + k, disk_par(7, first%radius, k))
+            call model%add_ucon(10 + k, disk_par(3, second%disk%radius, k))
+            call model%add_ucon(20 + k, disk_par(7, first%disk%radius, k))
         end do
         call setup_model(model, error)
         if (allocated(error)) return
@@ -572,10 +574,10 @@ contains
         call simulate(problem, q, u, options, together, error)
         if (allocated(error)) return
         call check(error, together%q(1:6), alone(1)%q, "part 7 (first) coordinates", &
-            & abs_tol=1.0e3_wp*first%rtol)
+            & abs_tol=1.0e3_wp*first%run%rtol)
         if (allocated(error)) return
         call check(error, together%q(7:12), alone(2)%q, "part 3 (second) coordinates", &
-            & abs_tol=1.0e3_wp*second%rtol)
+            & abs_tol=1.0e3_wp*second%run%rtol)
     end subroutine test_two_parts
 
 end module test_motion

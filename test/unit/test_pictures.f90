@@ -103,7 +103,7 @@ contains
             & *read_back%count]), reshape(history%rows(:, :history%count), &
             & [size(header)*history%count]), "values read back", abs_tol=tol_exact)
         if (allocated(error)) return
-        call check(error, radius, scene%radius, "radius inferred from Z/sin(theta)", &
+        call check(error, radius, scene%disk%radius, "radius inferred from Z/sin(theta)", &
             & rel_tol=4.0_wp*epsilon(1.0_wp))
     end subroutine test_csv_round_trip
 
@@ -256,7 +256,7 @@ contains
             call check(error, centre, history%rows(column_x:column_z, j), "disk centre of " &
                 & // "frame " // to_text(k - 1), abs_tol=tol_centre)
             if (allocated(error)) exit
-            call check(error, vtu%points(:, size(vtu%points, 2)), contact_point(scene%radius, &
+            call check(error, vtu%points(:, size(vtu%points, 2)), contact_point(scene%disk%radius, &
                 & history%rows(column_x:column_phi, j)), "end of the contact path in frame " &
                 & // to_text(k - 1), abs_tol=tol_centre)
             if (allocated(error)) exit
@@ -349,8 +349,8 @@ contains
         scene = picture_scene()
         call run_to_csv(scene, scratch // "/picture.csv", history, header, error)
         if (allocated(error)) return
-        call write_vtk_series(scratch, "picture", history, scene%radius, scene%thickness, fps, &
-            & frames, error)
+        call write_vtk_series(scratch, "picture", history, scene%disk%radius, &
+            & scene%disk%thickness, fps, frames, error)
     end subroutine write_series
 
     !> Fail unless failure is set and its message holds text and, if given, also_text.

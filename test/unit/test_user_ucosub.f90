@@ -559,7 +559,7 @@ contains
 
         call read_scene(scene_path(name), scene, error)
         if (allocated(error)) return
-        scene%end_time = 1.0_wp
+        scene%run%end_time = 1.0_wp
         call load(disk_source, user, error)
         if (allocated(error)) return
         call run_in_memory(scene, loaded, summary, error, user%ucosub)
