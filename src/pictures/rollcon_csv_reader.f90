@@ -14,6 +14,10 @@ module rollcon_csv_reader
 
     !> Length of the column names returned
     integer, parameter, public :: name_length = 64
+    !> Largest magnitude a value may have: far beyond any quantity of a run, and small enough
+    !> that the pictures' arithmetic (gnuplot's ranges and tick steps, squares in the mesh)
+    !> cannot overflow, which it does for values near 1e308
+    real(wp), parameter, public :: largest_value = 1.0e100_wp
 
     !> The columns every output CSV starts with, in order (rollcon_simulation's csv_header);
     !> one residual column per UCON follows
@@ -24,7 +28,8 @@ module rollcon_csv_reader
 contains
 
     !> Read an output CSV: a header line starting with the standard columns, then at least one
-    !> row of as many finite numbers as there are columns, in time order. Also infers the disk
+    !> row of as many finite numbers (of magnitude at most largest_value) as there are columns,
+    !> in time order; plot, animate and the VTK series all read through it. Also infers the disk
     !> radius from the first row, R = Z/sin(theta) (the contact constraint, DESIGN.md section 5).
     subroutine read_output_csv(path, history, radius, error, names)
         !> CSV file
@@ -162,8 +167,9 @@ contains
             if (count > size(row)) cycle
             field = trim(adjustl(field))
             stat = 1
-            ! List-directed input would also take '', '/', '3*1.0' and '1 2': refuse them.
-            if (len(field) > 0 .and. scan(field, " /*") == 0) then
+            ! List-directed input would also take '', '/', '3*1.0', '1 2' and '1<tab>2':
+            ! refuse them.
+            if (len(field) > 0 .and. scan(field, " /*;" // achar(9)) == 0) then
                 read(field, *, iostat=stat) row(count)
             end if
             if (stat == 0) then
@@ -172,6 +178,12 @@ contains
             if (stat /= 0) then
                 call input_error(error, path, line_number, "", "value " // to_text(count) &
                     & // " must be a finite number, got '" // shortened(field) // "'")
+                return
+            end if
+            if (abs(row(count)) > largest_value) then
+                call input_error(error, path, line_number, "", "value " // to_text(count) &
+                    & // " must be at most " // to_text(largest_value) // " in magnitude, got " &
+                    & // shortened(field))
                 return
             end if
         end do

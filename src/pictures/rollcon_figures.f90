@@ -70,16 +70,22 @@ contains
             return
         end if
         call run_gnuplot(script_path, error)
-        if (allocated(error)) return
         do i = 1, size(figure_names)
+            if (allocated(error)) exit
             inquire(file=figure_file(csv_path, output_dir, figure_names(i)), size=size_bytes)
             if (size_bytes <= 0) then
                 call fatal_error(error, figure_file(csv_path, output_dir, figure_names(i)) &
                     & // ": gnuplot reported success but " &
                     & // "did not write this PNG file (see " // script_path // ")", stat_io)
-                return
             end if
         end do
+        if (allocated(error)) then
+            ! No figure of a failed set is left behind (gnuplot may have opened them all).
+            do i = 1, size(figure_names)
+                call remove_file(figure_file(csv_path, output_dir, figure_names(i)))
+            end do
+            return
+        end if
         call remove_file(script_path)
         call remove_file(data_path)
     end subroutine plot_output

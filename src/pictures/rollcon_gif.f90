@@ -77,11 +77,14 @@ contains
             return
         end if
         call run_gnuplot(script_path, error)
-        if (allocated(error)) return
-        inquire(file=gif_path, size=size_bytes)
-        if (size_bytes <= 0) then
-            call fatal_error(error, gif_path // ": gnuplot reported success but did not " &
-                & // "write the GIF (see " // script_path // ")", stat_io)
+        if (.not. allocated(error)) then
+            inquire(file=gif_path, size=size_bytes)
+            if (size_bytes <= 0) call fatal_error(error, gif_path // ": gnuplot reported " &
+                & // "success but did not write the GIF (see " // script_path // ")", stat_io)
+        end if
+        if (allocated(error)) then
+            ! No GIF of a failed animation is left behind.
+            call remove_file(gif_path)
             return
         end if
         frames = size(rows)
