@@ -7,6 +7,7 @@ module rollcon_csv_reader
     use rollcon_text, only : to_text
     use rollcon_simulation, only : history_type, column_z, column_theta
     use, intrinsic :: ieee_arithmetic, only : ieee_is_finite
+    use, intrinsic :: ieee_exceptions, only : ieee_set_flag, ieee_overflow, ieee_underflow
     implicit none
     private
 
@@ -88,8 +89,11 @@ contains
             return
         end if
         associate (z => history%rows(column_z, 1), theta => history%rows(column_theta, 1))
-            radius = z/sin(theta)
-            if (.not. (z > 0.0_wp .and. sin(theta) > 0.0_wp .and. ieee_is_finite(radius))) then
+            ! Divide only when the quotient is a positive length no larger than largest_value,
+            ! so no floating-point exception is raised.
+            if (z > 0.0_wp .and. sin(theta) > 0.0_wp .and. z <= sin(theta)*largest_value) then
+                radius = z/sin(theta)
+            else
                 call input_error(error, path, 2, "", "cannot infer the disk radius: " &
                     & // "Z/sin(theta) must be a positive length, got Z = " // to_text(z) &
                     & // " m, theta = " // to_text(theta) // " rad")
@@ -171,6 +175,10 @@ contains
             ! refuse them.
             if (len(field) > 0 .and. scan(field, " /*;" // achar(9)) == 0) then
                 read(field, *, iostat=stat) row(count)
+                ! Reading 1e999 or 1e-999 raises overflow or underflow: the value is refused
+                ! or read as it is, so quiet the flags (flags signalling on entry to this
+                ! procedure are restored on return).
+                call ieee_set_flag([ieee_overflow, ieee_underflow], .false.)
             end if
             if (stat == 0) then
                 if (.not. ieee_is_finite(row(count))) stat = 1
