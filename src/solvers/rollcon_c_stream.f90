@@ -19,10 +19,10 @@ module rollcon_c_stream
         !> Path, for messages
         character(len=:), allocatable :: path
     contains
-        procedure :: open => stream_open
-        procedure :: write => stream_write
-        procedure :: flush => stream_flush
-        procedure :: close => stream_close
+        procedure :: open_file => stream_open
+        procedure :: put => stream_write
+        procedure :: hand_over => stream_flush
+        procedure :: close_file => stream_close
         procedure :: is_open => stream_is_open
     end type c_stream_type
 

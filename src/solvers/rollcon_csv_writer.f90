@@ -61,7 +61,7 @@ contains
         character(len=:), allocatable :: line
         integer :: i
 
-        call self%file%open(path, error)
+        call self%file%open_file(path, error)
         if (allocated(error)) return
         self%opened = .true.
         self%path = path
@@ -111,9 +111,9 @@ contains
         type(error_type), allocatable, intent(out) :: error
 
         if (.not. self%opened) return
-        call self%file%write(self%buffer(:self%used), error)
+        call self%file%put(self%buffer(:self%used), error)
         self%used = 0
-        if (.not. allocated(error)) call self%file%flush(error)
+        if (.not. allocated(error)) call self%file%hand_over(error)
         call system_clock(self%last_flush)
     end subroutine csv_flush
 
@@ -126,7 +126,7 @@ contains
 
         if (.not. self%opened) return
         call self%flush(failure)
-        call self%file%close(close_failure)
+        call self%file%close_file(close_failure)
         self%opened = .false.
         if (.not. allocated(failure) .and. allocated(close_failure)) &
             & call move_alloc(close_failure, failure)

@@ -46,10 +46,10 @@ contains
         type(c_stream_type) :: file
         type(error_type), allocatable :: close_error
 
-        call file%open(path, error)
+        call file%open_file(path, error)
         if (allocated(error)) return
-        call file%write(text // new_line("a"), error)
-        call file%close(close_error)
+        call file%put(text // new_line("a"), error)
+        call file%close_file(close_error)
         if (.not. allocated(error) .and. allocated(close_error)) &
             & call move_alloc(close_error, error)
     end subroutine write_text_file
