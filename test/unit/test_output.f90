@@ -10,7 +10,8 @@ module test_output
     use rollcon_problem, only : problem_type
     use rollcon_disk_scene, only : build_disk_problem
     use rollcon_disk_reference, only : rolling_disk_ucosub
-    use rollcon_simulation, only : run_options_type, run_summary_type, simulate
+    use rollcon_simulation, only : run_options_type, run_summary_type, simulate, &
+        & default_max_csv_bytes
     use rollcon_scene, only : scene_type
     use rollcon_figures, only : plot_output, figure_file, figure_names
     use rollcon_gif, only : animate_output
@@ -36,6 +37,7 @@ contains
             & new_unittest("csv-buffered-then-whole", test_buffered), &
             & new_unittest("csv-extremes-read-back", test_extremes_read_back), &
             & new_unittest("huge-output-refused", test_huge_output), &
+            & new_unittest("output-limit-is-the-option", test_output_limit), &
             & new_unittest("failed-figures-leave-nothing", test_failed_figures)]
     end subroutine collect_output
 
@@ -135,6 +137,37 @@ contains
             & file_exists(options%csv_path), failure%message)
         call remove_folder(scratch)
     end subroutine test_huge_output
+
+    !> The limit is options%max_csv_bytes: 0.1 s at 0.01 s (11 rows of 22 numbers, about
+    !> 6 kB) is refused under a 1000-byte limit and runs under the default.
+    subroutine test_output_limit(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(problem_type), target :: problem
+        type(run_options_type) :: options
+        type(run_summary_type) :: summary
+        type(error_type), allocatable :: failure
+        real(wp) :: q0(6), u0(6)
+
+        call build_disk_problem(picture_scene(), rolling_disk_ucosub, problem, q0, u0, error)
+        if (allocated(error)) return
+        call make_folder(scratch)
+        options%end_time = 0.1_wp
+        options%output_step = 0.01_wp
+        options%progress = .false.
+        options%csv_path = scratch // "/limit.csv"
+        options%max_csv_bytes = 1000.0_wp
+        call simulate(problem, q0, u0, options, summary, failure)
+        call check(error, allocated(failure), "11 rows fitted in 1000 bytes")
+        if (.not. allocated(error)) call check(error, index(failure%message, "11 rows, about " &
+            & // "6050 bytes") > 0, failure%message)
+        if (.not. allocated(error)) then
+            options%max_csv_bytes = default_max_csv_bytes
+            call simulate(problem, q0, u0, options, summary, error)
+        end if
+        if (.not. allocated(error)) call check(error, summary%rows == 11_int64 .and. &
+            & line_count(file_text(options%csv_path)) == 12, "rows " // to_text(summary%rows))
+        call remove_folder(scratch)
+    end subroutine test_output_limit
 
     !> A CSV holding X = 1e308: plot and animate both refuse it, and leave no PNG or GIF.
     subroutine test_failed_figures(error)
