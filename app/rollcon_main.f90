@@ -188,7 +188,8 @@ contains
             & "  DIR/SCENE.summary.txt; DIR defaults to ./output. The run writes", &
             & "  DIR/SCENE.partial-PID.csv (written out at least once a second) and renames it", &
             & "  into place when it succeeds; a failed or interrupted run leaves that partial", &
-            & "  file (and its .partial-PID.summary.txt) and the earlier run's files as they were.", &
+            & "  file (and its .partial-PID.summary.txt), and the earlier run's files as they", &
+            & "  were.", &
             & "  --allow-large-output  run even when the CSV would pass 100 GB (refused", &
             & "               otherwise, with the row count and the bytes it would write)", &
             & "  Progress goes to stderr for runs longer than a second unless --quiet.", &

@@ -4,13 +4,14 @@
 !> the final name only when it succeeded. Every write, close, removal and rename is checked.
 module rollcon_output_files
     use, intrinsic :: iso_c_binding, only : c_int, c_char, c_null_char
+    use, intrinsic :: iso_fortran_env, only : int64
     use rollcon_error, only : error_type, fatal_error, stat_io
     use rollcon_text, only : to_text
     use rollcon_c_stream, only : c_stream_type
     implicit none
     private
 
-    public :: partial_name, write_text_file, rename_file, delete_file
+    public :: partial_name, write_text_file, rename_file, delete_file, close_checked
 
     interface
         !> POSIX getpid(2)
@@ -24,6 +25,12 @@ module rollcon_output_files
             character(kind=c_char), intent(in) :: from(*), to(*)
             integer(c_int) :: stat
         end function c_rename
+        !> POSIX close(2)
+        function c_close(descriptor) result(stat) bind(c, name="close")
+            import :: c_int
+            integer(c_int), value :: descriptor
+            integer(c_int) :: stat
+        end function c_close
     end interface
 
 contains
@@ -53,6 +60,33 @@ contains
         if (.not. allocated(error) .and. allocated(close_error)) &
             & call move_alloc(close_error, error)
     end subroutine write_text_file
+
+    !> Close a unit opened with access="stream", form="formatted", and check that the file
+    !> holds every byte written: gfortran 12 reports no error when a write or the close
+    !> fails (a full disk), so the file's size is compared with the unit's position.
+    subroutine close_checked(unit, path, error)
+        !> Unit to close
+        integer, intent(in) :: unit
+        !> Its file, for the check and the message
+        character(len=*), intent(in) :: path
+        type(error_type), allocatable, intent(out) :: error
+        integer(int64) :: position, size_bytes
+        integer :: stat, descriptor
+        integer(c_int) :: ignored
+
+        inquire(unit=unit, pos=position)
+        descriptor = fnum(unit)  ! gfortran's file descriptor of the unit
+        close(unit, iostat=stat)
+        inquire(file=path, size=size_bytes)
+        if (stat /= 0 .or. size_bytes /= position - 1) then
+            ! gfortran 12 keeps the descriptor open when its last write fails: release it,
+            ! or the filesystem stays busy until the program ends.
+            ignored = c_close(int(descriptor, c_int))
+            call fatal_error(error, path // ": write failed: the file holds " &
+                & // to_text(size_bytes) // " of the " // to_text(position - 1) &
+                & // " bytes written (is the disk full?)", stat_io)
+        end if
+    end subroutine close_checked
 
     !> Rename a file, replacing the target (atomically when both are in one folder).
     subroutine rename_file(from, to, error)

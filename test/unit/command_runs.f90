@@ -7,7 +7,8 @@ module command_runs
     implicit none
     private
 
-    public :: rollcon_program, run_rollcon, file_text, file_exists, line_count
+    public :: rollcon_program, run_rollcon, file_text, file_exists, line_count, mount_small, &
+        & unmount
 
 contains
 
@@ -48,6 +49,31 @@ contains
             & // err_path, exitstat=status, cmdstat=command_status)
         if (command_status /= 0) status = -1
     end subroutine run_rollcon
+
+    !> Mount a tmpfs of the given size (e.g. '512k') on folder (created), for tests of a full
+    !> disk; the test is skipped, with the reason, when that is not permitted (not root).
+    !> The caller unmounts it with unmount(folder).
+    subroutine mount_small(folder, size, error)
+        character(len=*), intent(in) :: folder, size
+        type(error_type), allocatable, intent(out) :: error
+        integer :: status
+
+        status = 1
+        call execute_command_line("mkdir -p " // folder // " && mount -t tmpfs -o size=" &
+            & // size // " tmpfs " // folder // " > " // folder // ".log 2>&1", &
+            & exitstat=status)
+        if (status /= 0) call skip_test(error, "cannot mount a " // size // " tmpfs (needs " &
+            & // "root and mount permission): " // file_text(folder // ".log"))
+    end subroutine mount_small
+
+    !> Unmount what mount_small mounted: retried once after a second (the kernel may still be
+    !> releasing a file just closed), then detached lazily, so no mount outlives the test.
+    subroutine unmount(folder)
+        character(len=*), intent(in) :: folder
+
+        call execute_command_line("umount " // folder // " 2> /dev/null || (sleep 1; umount " &
+            & // folder // " 2> /dev/null) || umount -l " // folder // " 2> /dev/null")
+    end subroutine unmount
 
     !> The whole text of a file, lines joined by new_line; "" when it is missing.
     function file_text(path) result(text)

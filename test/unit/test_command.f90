@@ -8,9 +8,10 @@ module test_command
     use rollcon_text, only : to_text
     use rollcon_simulation, only : history_type, column_z
     use rollcon_csv_reader, only : read_output_csv
-    use rollcon_testing, only : unittest_type, new_unittest, check, skip_test
+    use rollcon_testing, only : unittest_type, new_unittest, check
     use picture_files, only : make_folder, remove_folder, write_lines
-    use command_runs, only : rollcon_program, run_rollcon, file_text, file_exists, line_count
+    use command_runs, only : rollcon_program, run_rollcon, file_text, file_exists, line_count, &
+        & mount_small, unmount
     implicit none
     private
 
@@ -33,6 +34,7 @@ contains
             & new_unittest("extra-arguments-refused", test_extra_arguments), &
             & new_unittest("table-exponents-read-back", test_exponents), &
             & new_unittest("failed-run-keeps-earlier-files", test_failed_run), &
+            & new_unittest("interrupted-run-keeps-earlier-files", test_interrupted), &
             & new_unittest("concurrent-runs-do-not-splice", test_concurrent), &
             & new_unittest("full-disk-is-a-failure", test_full_disk)]
     end subroutine collect_command
@@ -141,6 +143,38 @@ contains
         call remove_folder(scratch)
     end subroutine test_failed_run
 
+    !> A run killed after two seconds leaves the earlier run's CSV and summary as they were
+    !> (it used to have replaced the CSV and left the old summary beside it).
+    subroutine test_interrupted(error)
+        type(error_type), allocatable, intent(out) :: error
+        character(len=:), allocatable :: program, csv, summary
+        integer :: status
+
+        call rollcon_program(program, error)
+        if (allocated(error)) return
+        call make_folder(scratch // "/short")
+        call make_folder(scratch // "/long")
+        call write_lines(scratch // "/short/s.nml", [character(len=40) :: "&run", &
+            & "end_time = 0.2", "/"])
+        call write_lines(scratch // "/long/s.nml", [character(len=40) :: "&run", &
+            & "end_time = 10000.0", "/"])
+        call run_rollcon(program, "-q " // scratch // "/short/s.nml -o " // scratch // "/out", &
+            & scratch // "/short.out", scratch // "/short.err", status)
+        csv = file_text(scratch // "/out/s.csv")
+        summary = file_text(scratch // "/out/s.summary.txt")
+        call check(error, status == 0 .and. len(csv) > 0 .and. len(summary) > 0, &
+            & "the first run failed: " // file_text(scratch // "/short.err"))
+        if (.not. allocated(error)) then
+            call run_rollcon(program, "-q " // scratch // "/long/s.nml -o " // scratch &
+                & // "/out > /dev/null 2>&1 & sleep 2; kill $!; wait", scratch // "/long.out", &
+                & scratch // "/long.err", status)
+            call check(error, file_text(scratch // "/out/s.csv") == csv .and. &
+                & file_text(scratch // "/out/s.summary.txt") == summary, "the interrupted " &
+                & // "run changed the earlier run's CSV or summary")
+        end if
+        call remove_folder(scratch)
+    end subroutine test_interrupted
+
     !> Two runs of scenes with one name into one folder at once: the CSV is one run's, whole.
     subroutine test_concurrent(error)
         type(error_type), allocatable, intent(out) :: error
@@ -181,23 +215,18 @@ contains
         type(error_type), allocatable, intent(out) :: error
         character(len=*), parameter :: mount_point = scratch // "/small"
         character(len=:), allocatable :: program, out, err
-        integer :: status, mount_status
+        integer :: status
 
         call rollcon_program(program, error)
         if (allocated(error)) return
-        call make_folder(mount_point)
-        call execute_command_line("mount -t tmpfs -o size=512k tmpfs " // mount_point &
-            & // " > " // scratch // "/mount.log 2>&1", exitstat=mount_status)
-        if (mount_status /= 0) then
-            err = file_text(scratch // "/mount.log")
+        call mount_small(mount_point, "512k", error)
+        if (allocated(error)) then
             call remove_folder(scratch)
-            call skip_test(error, "cannot mount a 512 KiB tmpfs (needs root and mount " &
-                & // "permission): " // err)
             return
         end if
         call run_rollcon(program, "-q coin -o " // mount_point, scratch // "/full.out", &
             & scratch // "/full.err", status)
-        call execute_command_line("umount " // mount_point)
+        call unmount(mount_point)
         out = file_text(scratch // "/full.out")
         err = file_text(scratch // "/full.err")
         call remove_folder(scratch)

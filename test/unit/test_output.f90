@@ -16,8 +16,10 @@ module test_output
     use rollcon_figures, only : plot_output, figure_file, figure_names
     use rollcon_gif, only : animate_output
     use rollcon_testing, only : unittest_type, new_unittest, check, skip_test
-    use picture_files, only : picture_scene, make_folder, remove_folder, write_lines
-    use command_runs, only : file_text, file_exists, line_count
+    use picture_files, only : picture_scene, make_folder, remove_folder, write_lines, run_to_csv
+    use command_runs, only : file_text, file_exists, line_count, mount_small, unmount
+    use rollcon_vtk, only : write_vtk_series
+    use rollcon_simulation, only : history_type
     implicit none
     private
 
@@ -38,7 +40,8 @@ contains
             & new_unittest("csv-extremes-read-back", test_extremes_read_back), &
             & new_unittest("huge-output-refused", test_huge_output), &
             & new_unittest("output-limit-is-the-option", test_output_limit), &
-            & new_unittest("failed-figures-leave-nothing", test_failed_figures)]
+            & new_unittest("failed-figures-leave-nothing", test_failed_figures), &
+            & new_unittest("vtk-full-disk-is-an-error", test_vtk_full_disk)]
     end subroutine collect_output
 
     !> Writing to /dev/full (every write fails with ENOSPC) is an error naming the file.
@@ -196,5 +199,35 @@ contains
             & animate_failure%message == plot_failure%message .and. .not. left, &
             & "plot: " // plot_failure%message // "; animate: " // animate_failure%message)
     end subroutine test_failed_figures
+
+    !> VTK frames that do not fit on a 64 KiB filesystem: an error naming the file (gfortran
+    !> itself reports no error when the disk is full).
+    subroutine test_vtk_full_disk(error)
+        type(error_type), allocatable, intent(out) :: error
+        character(len=*), parameter :: mount_point = scratch // "/small"
+        type(history_type) :: history
+        type(error_type), allocatable :: failure
+        character(len=16), allocatable :: header(:)
+        integer :: frames
+
+        call make_folder(scratch)
+        call run_to_csv(picture_scene(), scratch // "/vtk.csv", history, header, error)
+        if (allocated(error)) return
+        call mount_small(mount_point, "64k", error)
+        if (allocated(error)) then
+            call remove_folder(scratch)
+            return
+        end if
+        ! 0.5 s at 100 frames per second: 51 frames of about 30 kB each
+        call write_vtk_series(mount_point, "vtk", history, 0.1_wp, 0.003_wp, 100.0_wp, &
+            & frames, failure)
+        call unmount(mount_point)
+        call remove_folder(scratch)
+        call check(error, allocated(failure), "wrote " // to_text(frames) // " frames on a " &
+            & // "64 KiB filesystem without an error")
+        if (allocated(error)) return
+        call check(error, index(failure%message, mount_point // "/vtk_") == 1 .and. &
+            & index(failure%message, "write failed") > 0, failure%message)
+    end subroutine test_vtk_full_disk
 
 end module test_output
