@@ -61,6 +61,8 @@ contains
             ! refused before any integration (e.g. a UCOSUB error at set-up): nothing to keep
             call delete_file(partial_csv, cleanup_error)
             call move_alloc(run_error, error)
+            ! An output request no disk holds: the scene's end_time and output_step
+            if (error%stat == stat_input) error%message = scene%path // ": " // error%message
             return
         end if
         if (.not. allocated(run_error)) then

@@ -350,7 +350,7 @@ contains
         integer(int64), intent(out) :: n_output
         type(error_type), allocatable, intent(out) :: error
         real(wp) :: steps, bytes
-        character(len=:), allocatable :: rows
+        character(len=:), allocatable :: rows, bytes_text
 
         ! 1e-9: an end time a rounding short of a whole number of steps adds no step.
         steps = max(1.0_wp, ceiling_real((options%end_time - options%t0)/options%output_step &
@@ -358,11 +358,15 @@ contains
         bytes = (steps + 1.0_wp)*real(csv_row_bytes(columns), wp)
         n_output = 1
         rows = to_text(steps + 1.0_wp)
+        bytes_text = to_text(bytes)
         if (steps < 1.0e18_wp) rows = to_text(int(steps, int64) + 1_int64)
+        ! exact while it fits in 64 bits (huge(int64) ~ 9.2e18)
+        if (bytes < 9.0e18_wp) bytes_text = to_text((int(steps, int64) + 1_int64) &
+            & *int(csv_row_bytes(columns), int64))
         if (allocated(options%csv_path) .and. bytes > options%max_csv_bytes) then
             call fatal_error(error, "the output request (end_time " // to_text(options%end_time) &
                 & // " s, output_step " // to_text(options%output_step) // " s) means " &
-                & // rows // " rows, about " // to_text(anint(bytes)) &
+                & // rows // " rows, " // bytes_text &
                 & // " bytes of CSV, beyond the limit of " // to_text(options%max_csv_bytes) &
                 & // " bytes: raise output_step or lower end_time (or lift the limit " &
                 & // "explicitly, rollcon run --allow-large-output)", stat_input)
