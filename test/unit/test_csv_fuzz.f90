@@ -89,7 +89,11 @@ contains
             else
                 call check_history(error, k, history, radius)
             end if
-            if (allocated(error)) return
+            if (allocated(error)) then
+                ! the failing file is kept for a look
+                error%message = error%message // " (file " // path // ")"
+                return
+            end if
         end do
         call remove_folder(scratch)
         call delete(path)
