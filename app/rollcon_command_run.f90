@@ -9,7 +9,9 @@ module rollcon_command_run
     use rollcon_scene, only : scene_type, read_scene, scene_path, choice_name, &
         & formulation_cvode, method_adams
     use rollcon_disk_scene, only : simulate_scene
-    use rollcon_simulation, only : run_summary_type, status_completed, status_stopped
+    use rollcon_simulation, only : run_summary_type, status_completed, status_stopped, &
+        & status_failed, default_max_csv_bytes
+    use rollcon_output_files, only : partial_name, write_text_file, rename_file, delete_file
     implicit none
     private
 
@@ -17,8 +19,11 @@ module rollcon_command_run
 
 contains
 
-    !> Read the scene, simulate it, write output_dir/<scene>.csv and <scene>.summary.txt.
-    subroutine run_scene(name, output_dir, ucosub, quiet, summary, error)
+    !> Read the scene, simulate it, write output_dir/<scene>.csv and <scene>.summary.txt. The
+    !> run writes <scene>.partial-<pid>.csv and renames it (and its summary) into place only
+    !> when it succeeded; a failed run leaves its rows and summary under the partial name, and
+    !> the files of an earlier run untouched.
+    subroutine run_scene(name, output_dir, ucosub, quiet, summary, error, allow_large_output)
         !> Scene name ('coin') or path of a namelist file
         character(len=*), intent(in) :: name
         !> Folder for the outputs (created if missing)
@@ -29,10 +34,13 @@ contains
         logical, intent(in) :: quiet
         type(run_summary_type), intent(out) :: summary
         type(error_type), allocatable, intent(out) :: error
+        !> Lift the limit on the size of the CSV a run may plan (default: keep it)
+        logical, intent(in), optional :: allow_large_output
         type(scene_type) :: scene
-        type(error_type), allocatable :: run_error
-        character(len=:), allocatable :: summary_path, text, csv_path
-        integer :: stat, unit
+        type(error_type), allocatable :: run_error, cleanup_error
+        character(len=:), allocatable :: text, csv_path, partial_csv, partial_summary
+        real(wp) :: max_csv_bytes
+        integer :: stat
 
         call read_scene(scene_path(name), scene, error)
         if (allocated(error)) return
@@ -41,28 +49,68 @@ contains
             call fatal_error(error, output_dir // ": cannot create the output folder", stat_io)
             return
         end if
+        max_csv_bytes = default_max_csv_bytes
+        if (present(allow_large_output)) then
+            if (allow_large_output) max_csv_bytes = huge(1.0_wp)
+        end if
         csv_path = output_dir // "/" // scene%name // ".csv"
-        call simulate_scene(scene, ucosub, summary, run_error, csv_path=csv_path, &
-            & progress=.not. quiet)
+        partial_csv = partial_name(output_dir, scene%name, ".csv")
+        partial_summary = partial_name(output_dir, scene%name, ".summary.txt")
+        call simulate_scene(scene, ucosub, summary, run_error, csv_path=partial_csv, &
+            & progress=.not. quiet, max_csv_bytes=max_csv_bytes)
         if (allocated(run_error) .and. summary%rows == 0) then
-            ! refused before any integration (e.g. a UCOSUB error at set-up): nothing to sum up
+            ! refused before any integration (e.g. a UCOSUB error at set-up): nothing to keep
+            call delete_file(partial_csv, cleanup_error)
             call move_alloc(run_error, error)
+            ! An output request no disk holds: the scene's end_time and output_step
+            if (error%stat == stat_input) error%message = scene%path // ": " // error%message
             return
         end if
-        text = summary_text(scene, csv_path, summary)
-        write(output_unit, '(a)') text
-        summary_path = output_dir // "/" // scene%name // ".summary.txt"
-        open(newunit=unit, file=summary_path, status="replace", action="write", iostat=stat)
-        if (stat == 0) then
-            write(unit, '(a)') text
-            close(unit)
+        if (.not. allocated(run_error)) then
+            call place_outputs(summary_text(scene, csv_path, summary), run_error)
+            if (.not. allocated(run_error)) then
+                write(output_unit, '(a)') summary_text(scene, csv_path, summary)
+                return
+            end if
         end if
-        if (allocated(run_error)) then
-            call move_alloc(run_error, error)
+        ! The run failed, or its files could not be put in place: no "completed" anywhere.
+        summary%status = status_failed
+        summary%message = run_error%message
+        text = summary_text(scene, partial_csv, summary)
+        write(output_unit, '(a)') text
+        call write_text_file(partial_summary, text, cleanup_error)
+        call move_alloc(run_error, error)
+        if (error%stat == stat_io) then
+            error%message = error%message // " (" // partial_csv // " holds what was written " &
+                & // "before the failure)"
+        else
             error%message = error%message // " (the " // to_text(summary%rows) &
-                & // " rows written to " // csv_path // " up to t = " &
+                & // " rows written to " // partial_csv // " up to t = " &
                 & // to_text(summary%t_reached) // " s are valid)"
         end if
+        if (allocated(cleanup_error)) error%message = error%message // "; " &
+            & // cleanup_error%message
+
+    contains
+
+        !> Write the summary beside the partial CSV, remove an earlier run's summary, then
+        !> rename the CSV and the summary to their final names.
+        subroutine place_outputs(summary_text, error)
+            character(len=*), intent(in) :: summary_text
+            type(error_type), allocatable, intent(out) :: error
+            character(len=:), allocatable :: summary_path
+
+            summary_path = output_dir // "/" // scene%name // ".summary.txt"
+            call write_text_file(partial_summary, summary_text, error)
+            if (allocated(error)) return
+            ! An older run's summary must never sit beside this run's CSV.
+            call delete_file(summary_path, error)
+            if (allocated(error)) return
+            call rename_file(partial_csv, csv_path, error)
+            if (allocated(error)) return
+            call rename_file(partial_summary, summary_path, error)
+        end subroutine place_outputs
+
     end subroutine run_scene
 
     !> The run's summary as text.
@@ -103,16 +151,16 @@ contains
         if (allocated(summary%q)) then
             text = text // "final state:" // nl
             do i = 1, 6
-                write(value, '(es23.15)') summary%q(i)
+                write(value, '(es23.15e3)') summary%q(i)
                 text = text // "  " // names(i) // trim(value)
-                write(value, '(es23.15)') summary%u(i)
+                write(value, '(es23.15e3)') summary%u(i)
                 text = text // "    " // names(6 + i) // trim(value) // nl
             end do
         end if
-        write(value, '(es10.3)') summary%energy_drift
+        write(value, '(es11.3e3)') summary%energy_drift
         text = text // "energy drift: " // trim(adjustl(value)) // " (largest |E - E0|/|E0|, E0 = " &
             & // to_text(summary%energy_reference) // " J after the last applied force)" // nl
-        write(value, '(es10.3)') summary%residual_max
+        write(value, '(es11.3e3)') summary%residual_max
         text = text // "largest constraint residual: " // trim(adjustl(value)) // " m/s" // nl
         text = text // "steps " // to_text(summary%steps) // ", function evaluations " &
             & // to_text(summary%functions) // ", Jacobian evaluations " &

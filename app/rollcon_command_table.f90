@@ -26,15 +26,15 @@ contains
         real(wp) :: q(max_ucon_vars), scalar, array(max_ucon_vars)
         real(wp) :: xmatrx(max_ucon_vars, max_ucon_vars)
         integer :: component, i, j, n_value, n_first, n_second
-        character(len=*), parameter :: row_format = '(2x, a, t34, es24.16)'
+        character(len=*), parameter :: row_format = '(2x, a, t34, es25.16e3)'
 
         q = 0.0_wp
         q(:disk_nvars) = state
         write(output_unit, '(a)') "Rolling-disk UCOSUB (hand-checked), UCON/1..3, FUNCTION=USER(" &
             & // "1, 21,22,23,14,15,24,25,26, R, component)"
-        write(output_unit, '(a, es12.5, a)') "R = ", radius, " m; state:"
+        write(output_unit, '(a, es13.5e3, a)') "R = ", radius, " m; state:"
         do i = 1, disk_nvars
-            write(output_unit, '(2x, a, t14, es24.16)') code_name(disk_codes(i)), state(i)
+            write(output_unit, '(2x, a, t14, es25.16e3)') code_name(disk_codes(i)), state(i)
         end do
         write(output_unit, '(a)') "Units: F [m/s]; partials in m/s per unit of the variable."
         n_value = 0

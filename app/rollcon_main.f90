@@ -19,7 +19,7 @@ program rollcon_main
     type(run_summary_type) :: summary
     real(wp) :: state(disk_nvars), radius, vtk_fps
     character(len=:), allocatable :: command, scene, output_dir
-    logical :: quiet
+    logical :: quiet, allow_large_output
     integer :: argument_index
     !> rollcon check's verdict (0 clean, 1 mismatches); run --ucosub: the user's file, loaded
     integer :: check_status
@@ -44,9 +44,11 @@ program rollcon_main
             if (.not. quiet) write(output_unit, '(a)') "UCOSUB: " // ucosub_path // " (" &
                 & // user%library // merge(", from the cache", ", compiled now  ", &
                 & user%from_cache) // ")"
-            call run_scene(scene, output_dir, user%ucosub, quiet, summary, error)
+            call run_scene(scene, output_dir, user%ucosub, quiet, summary, error, &
+                & allow_large_output)
         else
-            call run_scene(scene, output_dir, rolling_disk_ucosub, quiet, summary, error)
+            call run_scene(scene, output_dir, rolling_disk_ucosub, quiet, summary, error, &
+                & allow_large_output)
         end if
         if (allocated(error)) call fail(error)
         if (vtk_fps > 0.0_wp) call write_run_vtk(scene, output_dir, vtk_fps, error)
@@ -72,12 +74,15 @@ contains
     subroutine read_command_line(error)
         type(error_type), allocatable, intent(out) :: error
         character(len=512) :: argument
+        !> The positional argument (scene or CSV), when one was given
+        character(len=:), allocatable :: positional
         integer :: i
 
         command = "run"
         scene = "coin"
         output_dir = "output"
         quiet = .false.
+        allow_large_output = .false.
         vtk_fps = 0.0_wp
         state = default_state
         radius = default_radius
@@ -110,6 +115,8 @@ contains
                 ucosub_path = trim(argument)
             case ("--quiet", "-q")
                 quiet = .true.
+            case ("--allow-large-output")
+                allow_large_output = .true.
             case ("--output", "-o")
                 i = i + 1
                 if (i > command_argument_count()) then
@@ -146,15 +153,27 @@ contains
                         & // "'; run 'rollcon --help' for the usage", stat_input)
                     return
                 end if
-                scene = trim(argument)
+                if (allocated(positional)) then
+                    call fatal_error(error, "unexpected argument '" // trim(argument) &
+                        & // "' after '" // positional // "': give one SCENE (or CSV); " &
+                        & // "run 'rollcon --help' for the usage", stat_input)
+                    return
+                end if
+                positional = trim(argument)
+                scene = positional
             end select
             i = i + 1
         end do
+        if (command == "table" .and. allocated(positional)) then
+            call fatal_error(error, "unexpected argument '" // positional // "': table takes " &
+                & // "only --radius and --state; run 'rollcon --help' for the usage", stat_input)
+        end if
     end subroutine read_command_line
 
     subroutine print_help()
         write(output_unit, '(a)') &
             & "usage: rollcon [run] [SCENE] [--output DIR] [--quiet] [--vtk FPS]", &
+            & "                     [--allow-large-output]", &
             & "       rollcon plot|animate [CSV|SCENE] [--output DIR]", &
             & "       rollcon table [--radius R] [--state XD,YD,ZD,PSI,THETA,PSID,THETAD,PHID]", &
             & "       rollcon bench [--quick] [...]     (rollcon bench --help)", &
@@ -165,8 +184,14 @@ contains
             & "run (the default): simulate a rolling-disk scene, the paper's coin unless SCENE", &
             & "  names another: coin, tipping_coin, steady_circle, fast_upright, spinning_coin,", &
             & "  near_flat, long_run (files data/SCENE.nml), or a path to a namelist file.", &
-            & "  Writes DIR/SCENE.csv (one row per output step, flushed as the run goes; SI", &
-            & "  units, radians) and DIR/SCENE.summary.txt; DIR defaults to ./output.", &
+            & "  Writes DIR/SCENE.csv (one row per output step; SI units, radians) and", &
+            & "  DIR/SCENE.summary.txt; DIR defaults to ./output. The run writes", &
+            & "  DIR/SCENE.partial-PID.csv (written out at least once a second) and renames it", &
+            & "  into place when it succeeds; a failed or interrupted run leaves that partial", &
+            & "  file (and its .partial-PID.summary.txt), and the earlier run's files as they", &
+            & "  were.", &
+            & "  --allow-large-output  run even when the CSV would pass 100 GB (refused", &
+            & "               otherwise, with the row count and the bytes it would write)", &
             & "  Progress goes to stderr for runs longer than a second unless --quiet.", &
             & "  --ucosub FILE  serve the disk's no-slip UCONs with your own UCOSUB (.f, .f90", &
             & "               or .o; PAR as in the paper: part id, 8 codes, R, component),", &
@@ -192,11 +217,14 @@ contains
             & "1 on bad input or a failure (the CSV rows written before it stay valid)."
     end subroutine print_help
 
+    !> A refusal or a failure: the message alone and exit status 1 (no backtrace, no STOP line;
+    !> backtraces are for real crashes).
     subroutine fail(error)
         type(error_type), intent(in) :: error
 
         write(error_unit, '(a)') "rollcon: error: " // error%message
-        error stop 1
+        flush(error_unit)
+        stop 1, quiet=.true.
     end subroutine fail
 
 end program rollcon_main

@@ -1,6 +1,7 @@
 ! SPDX-License-Identifier: MIT
 !> Short decimal text of numbers, for messages and tables.
 module rollcon_text
+    use, intrinsic :: iso_fortran_env, only : int64
     use rollcon_kinds, only : wp
     use, intrinsic :: ieee_arithmetic, only : ieee_is_finite, ieee_is_nan
     implicit none
@@ -11,6 +12,7 @@ module rollcon_text
     !> Decimal text of an integer or a real
     interface to_text
         module procedure :: integer_to_text
+        module procedure :: long_to_text
         module procedure :: real_to_text
     end interface to_text
 
@@ -26,6 +28,17 @@ contains
         write(buffer, '(i0)') value
         text = trim(buffer)
     end function integer_to_text
+
+    !> Shortest decimal text of a 64-bit integer (row and byte counts).
+    pure function long_to_text(value) result(text)
+        !> Value to print
+        integer(int64), intent(in) :: value
+        character(len=:), allocatable :: text
+        character(len=24) :: buffer
+
+        write(buffer, '(i0)') value
+        text = trim(buffer)
+    end function long_to_text
 
     !> Shortest decimal text that reads back as the same real (at most 17 digits): plain
     !> notation for 1e-5 <= |value| < 1e15 ("0.1", "-2.5", "7800"), else "1.5e-300".

@@ -7,6 +7,7 @@ module rollcon_csv_reader
     use rollcon_text, only : to_text
     use rollcon_simulation, only : history_type, column_z, column_theta
     use, intrinsic :: ieee_arithmetic, only : ieee_is_finite
+    use, intrinsic :: ieee_exceptions, only : ieee_set_flag, ieee_overflow, ieee_underflow
     implicit none
     private
 
@@ -14,6 +15,10 @@ module rollcon_csv_reader
 
     !> Length of the column names returned
     integer, parameter, public :: name_length = 64
+    !> Largest magnitude a value may have: far beyond any quantity of a run, and small enough
+    !> that the pictures' arithmetic (gnuplot's ranges and tick steps, squares in the mesh)
+    !> cannot overflow, which it does for values near 1e308
+    real(wp), parameter, public :: largest_value = 1.0e100_wp
 
     !> The columns every output CSV starts with, in order (rollcon_simulation's csv_header);
     !> one residual column per UCON follows
@@ -24,7 +29,8 @@ module rollcon_csv_reader
 contains
 
     !> Read an output CSV: a header line starting with the standard columns, then at least one
-    !> row of as many finite numbers as there are columns, in time order. Also infers the disk
+    !> row of as many finite numbers (of magnitude at most largest_value) as there are columns,
+    !> in time order; plot, animate and the VTK series all read through it. Also infers the disk
     !> radius from the first row, R = Z/sin(theta) (the contact constraint, DESIGN.md section 5).
     subroutine read_output_csv(path, history, radius, error, names)
         !> CSV file
@@ -83,8 +89,11 @@ contains
             return
         end if
         associate (z => history%rows(column_z, 1), theta => history%rows(column_theta, 1))
-            radius = z/sin(theta)
-            if (.not. (z > 0.0_wp .and. sin(theta) > 0.0_wp .and. ieee_is_finite(radius))) then
+            ! Divide only when the quotient is a positive length no larger than largest_value,
+            ! so no floating-point exception is raised.
+            if (z > 0.0_wp .and. sin(theta) > 0.0_wp .and. z <= sin(theta)*largest_value) then
+                radius = z/sin(theta)
+            else
                 call input_error(error, path, 2, "", "cannot infer the disk radius: " &
                     & // "Z/sin(theta) must be a positive length, got Z = " // to_text(z) &
                     & // " m, theta = " // to_text(theta) // " rad")
@@ -162,9 +171,14 @@ contains
             if (count > size(row)) cycle
             field = trim(adjustl(field))
             stat = 1
-            ! List-directed input would also take '', '/', '3*1.0' and '1 2': refuse them.
-            if (len(field) > 0 .and. scan(field, " /*") == 0) then
+            ! List-directed input would also take '', '/', '3*1.0', '1 2' and '1<tab>2':
+            ! refuse them.
+            if (len(field) > 0 .and. scan(field, " /*;" // achar(9)) == 0) then
                 read(field, *, iostat=stat) row(count)
+                ! Reading 1e999 or 1e-999 raises overflow or underflow: the value is refused
+                ! or read as it is, so quiet the flags (flags signalling on entry to this
+                ! procedure are restored on return).
+                call ieee_set_flag([ieee_overflow, ieee_underflow], .false.)
             end if
             if (stat == 0) then
                 if (.not. ieee_is_finite(row(count))) stat = 1
@@ -172,6 +186,12 @@ contains
             if (stat /= 0) then
                 call input_error(error, path, line_number, "", "value " // to_text(count) &
                     & // " must be a finite number, got '" // shortened(field) // "'")
+                return
+            end if
+            if (abs(row(count)) > largest_value) then
+                call input_error(error, path, line_number, "", "value " // to_text(count) &
+                    & // " must be at most " // to_text(largest_value) // " in magnitude, got " &
+                    & // shortened(field))
                 return
             end if
         end do

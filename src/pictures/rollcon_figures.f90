@@ -13,6 +13,7 @@ module rollcon_figures
     use rollcon_gnuplot, only : require_gnuplot, run_gnuplot, gnuplot_string, base_name, &
         & remove_file
     use rollcon_text, only : to_text
+    use rollcon_output_files, only : close_checked
     implicit none
     private
 
@@ -70,16 +71,22 @@ contains
             return
         end if
         call run_gnuplot(script_path, error)
-        if (allocated(error)) return
         do i = 1, size(figure_names)
+            if (allocated(error)) exit
             inquire(file=figure_file(csv_path, output_dir, figure_names(i)), size=size_bytes)
             if (size_bytes <= 0) then
                 call fatal_error(error, figure_file(csv_path, output_dir, figure_names(i)) &
                     & // ": gnuplot reported success but " &
                     & // "did not write this PNG file (see " // script_path // ")", stat_io)
-                return
             end if
         end do
+        if (allocated(error)) then
+            ! No figure of a failed set is left behind (gnuplot may have opened them all).
+            do i = 1, size(figure_names)
+                call remove_file(figure_file(csv_path, output_dir, figure_names(i)))
+            end do
+            return
+        end if
         call remove_file(script_path)
         call remove_file(data_path)
     end subroutine plot_output
@@ -115,8 +122,13 @@ contains
         first_energy = history%rows(column_energy, 1)
         last_energy = history%rows(column_energy, n)
         message = "a write failed"
-        open(newunit=unit, file=path, status="replace", action="write", iostat=stat, &
-            & iomsg=message)
+        open(newunit=unit, file=path, status="replace", action="write", access="stream", &
+            & form="formatted", iostat=stat, iomsg=message)
+        if (stat /= 0) then
+            call fatal_error(error, path // ": cannot write the plot data: " // trim(message), &
+                & stat_io)
+            return
+        end if
         do j = 1, n
             if (stat /= 0) exit
             associate (r => history%rows(:, j))
@@ -129,7 +141,8 @@ contains
             end associate
             write(unit, '(*(es24.16e3, :, 1x))', iostat=stat) row
         end do
-        if (stat == 0) close(unit, iostat=stat)
+        call close_checked(unit, path, error)
+        if (allocated(error)) return
         if (stat /= 0) call fatal_error(error, path // ": cannot write the plot data: " &
             & // trim(message), stat_io)
     end subroutine write_data

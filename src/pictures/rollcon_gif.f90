@@ -5,6 +5,7 @@ module rollcon_gif
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type, fatal_error, stat_io
     use rollcon_text, only : to_text
+    use rollcon_output_files, only : close_checked
     use rollcon_simulation, only : history_type, column_time, column_x, column_y, column_phi
     use rollcon_csv_reader, only : read_output_csv
     use rollcon_disk_mesh, only : contact_point, disk_points, face_triangle, is_marked, &
@@ -77,11 +78,14 @@ contains
             return
         end if
         call run_gnuplot(script_path, error)
-        if (allocated(error)) return
-        inquire(file=gif_path, size=size_bytes)
-        if (size_bytes <= 0) then
-            call fatal_error(error, gif_path // ": gnuplot reported success but did not " &
-                & // "write the GIF (see " // script_path // ")", stat_io)
+        if (.not. allocated(error)) then
+            inquire(file=gif_path, size=size_bytes)
+            if (size_bytes <= 0) call fatal_error(error, gif_path // ": gnuplot reported " &
+                & // "success but did not write the GIF (see " // script_path // ")", stat_io)
+        end if
+        if (allocated(error)) then
+            ! No GIF of a failed animation is left behind.
+            call remove_file(gif_path)
             return
         end if
         frames = size(rows)
@@ -102,7 +106,12 @@ contains
         real(wp) :: points(3, disk_point_count), c(3)
         integer :: unit, stat, k, i, j, ids(3), set
 
-        open(newunit=unit, file=frames_path, status="replace", action="write", iostat=stat)
+        open(newunit=unit, file=frames_path, status="replace", action="write", &
+            & access="stream", form="formatted", iostat=stat)
+        if (stat /= 0) then
+            call fatal_error(error, frames_path // ": cannot write the animation data", stat_io)
+            return
+        end if
         do k = 1, size(rows)
             if (stat /= 0) exit
             ! A disk of no thickness: at this scale the coin's 3 mm would not show.
@@ -126,19 +135,26 @@ contains
             end do
             if (stat == 0) write(unit, '(a, /)', iostat=stat) ""
         end do
-        if (stat == 0) close(unit, iostat=stat)
+        call close_checked(unit, frames_path, error)
+        if (allocated(error)) return
         if (stat /= 0) then
             call fatal_error(error, frames_path // ": cannot write the animation data", stat_io)
             return
         end if
-        open(newunit=unit, file=path_path, status="replace", action="write", iostat=stat)
+        open(newunit=unit, file=path_path, status="replace", action="write", &
+            & access="stream", form="formatted", iostat=stat)
+        if (stat /= 0) then
+            call fatal_error(error, path_path // ": cannot write the animation data", stat_io)
+            return
+        end if
         do j = 1, history%count
             if (stat /= 0) exit
             ! On the ground: the contact constraint's residual would put it a little below z = 0.
             c = contact_point(radius, history%rows(column_x:column_phi, j))
             write(unit, '(2(es16.8e3, 1x), f3.1)', iostat=stat) c(1:2), 0.0_wp
         end do
-        if (stat == 0) close(unit, iostat=stat)
+        call close_checked(unit, path_path, error)
+        if (allocated(error)) return
         if (stat /= 0) call fatal_error(error, path_path // ": cannot write the animation " &
             & // "data", stat_io)
     end subroutine write_frames

@@ -9,6 +9,7 @@ module rollcon_vtk
     use rollcon_disk_mesh, only : contact_point, disk_points, face_triangle, rim_quad, &
         & is_marked, disk_sides, disk_point_count
     use rollcon_animation_rows, only : frame_rows
+    use rollcon_output_files, only : close_checked
     use, intrinsic :: ieee_arithmetic, only : ieee_is_finite
     implicit none
     private
@@ -76,7 +77,7 @@ contains
         end do
 
         open(newunit=unit, file=folder // "/" // name // ".pvd", status="replace", &
-            & action="write", iostat=stat, iomsg=message)
+            & action="write", access="stream", form="formatted", iostat=stat, iomsg=message)
         if (stat == 0) then
             write(unit, '(a)', iostat=stat) '<?xml version="1.0"?>', '<VTKFile type=' &
                 & // '"Collection" version="0.1" byte_order="LittleEndian">', '  <Collection>'
@@ -86,7 +87,8 @@ contains
                     & // frame_file_name(name, k - 1) // '"/>'
             end do
             if (stat == 0) write(unit, '(a)', iostat=stat) '  </Collection>', '</VTKFile>'
-            close(unit)
+            call close_checked(unit, folder // "/" // name // ".pvd", error)
+            if (allocated(error)) return
         end if
         if (stat /= 0) then
             call fatal_error(error, folder // "/" // name // ".pvd: cannot write: " &
@@ -177,8 +179,8 @@ contains
         call add_cell([(first + j, j = 0, row - 1)], merge(vtk_poly_line, vtk_vertex, row > 1), &
             & colour_path)
 
-        open(newunit=unit, file=path, status="replace", action="write", iostat=stat, &
-            & iomsg=message)
+        open(newunit=unit, file=path, status="replace", action="write", access="stream", &
+            & form="formatted", iostat=stat, iomsg=message)
         if (stat == 0) then
             write(unit, '(a)', iostat=stat) '<?xml version="1.0"?>', &
                 & '<VTKFile type="UnstructuredGrid" version="0.1" byte_order="LittleEndian">', &
@@ -202,7 +204,8 @@ contains
             call write_integers(unit, "Int32", "colour", colours, stat)
             if (stat == 0) write(unit, '(a)', iostat=stat) '      </CellData>', '    </Piece>', &
                 & '  </UnstructuredGrid>', '</VTKFile>'
-            close(unit)
+            call close_checked(unit, path, error)
+            if (allocated(error)) return
         end if
         if (stat /= 0) call fatal_error(error, path // ": cannot write the VTK frame: " &
             & // trim(message), stat_io)

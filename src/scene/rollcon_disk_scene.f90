@@ -83,7 +83,8 @@ contains
     end subroutine build_disk_problem
 
     !> Build a disk scene's problem and simulate it over the scene's time with its output step.
-    subroutine simulate_scene(scene, ucosub, summary, error, history, csv_path, progress)
+    subroutine simulate_scene(scene, ucosub, summary, error, history, csv_path, progress, &
+        & max_csv_bytes)
         type(scene_type), intent(in) :: scene
         !> The routine serving the disk's UCONs
         procedure(ucosub_interface) :: ucosub
@@ -95,6 +96,8 @@ contains
         character(len=*), intent(in), optional :: csv_path
         !> Progress lines on stderr (default: none)
         logical, intent(in), optional :: progress
+        !> Largest CSV the run may plan to write [bytes] (default: rollcon_simulation's)
+        real(wp), intent(in), optional :: max_csv_bytes
         type(problem_type), target :: problem
         type(run_options_type) :: options
         real(wp) :: q0(6), u0(6)
@@ -106,6 +109,7 @@ contains
         options%progress = .false.
         if (present(progress)) options%progress = progress
         if (present(csv_path)) options%csv_path = csv_path
+        if (present(max_csv_bytes)) options%max_csv_bytes = max_csv_bytes
         call simulate(problem, q0, u0, options, summary, error, history)
     end subroutine simulate_scene
 

@@ -1,16 +1,16 @@
 ! SPDX-License-Identifier: MIT
 !> Runs a problem from t0 to the end time with CVODE or IDA: output rows, events, summary.
 module rollcon_simulation
-    use, intrinsic :: iso_fortran_env, only : error_unit
+    use, intrinsic :: iso_fortran_env, only : error_unit, int64
     use rollcon_kinds, only : wp
-    use rollcon_error, only : error_type
+    use rollcon_error, only : error_type, fatal_error, stat_input
     use rollcon_text, only : to_text
     use rollcon_problem, only : problem_type, formulation_cvode, root_theta, root_liftoff
     use rollcon_cvode, only : cvode_solver_type
     use rollcon_ida, only : ida_solver_type
     use rollcon_dae, only : dae_size
     use rollcon_force, only : force_breakpoints
-    use rollcon_csv_writer, only : csv_writer_type
+    use rollcon_csv_writer, only : csv_writer_type, csv_row_bytes
     implicit none
     private
 
@@ -26,6 +26,8 @@ module rollcon_simulation
 
     !> How a run ended: as planned, at an event limit, or by a failure
     integer, parameter :: status_completed = 0, status_stopped = 1, status_failed = 2
+    !> Default limit of a planned CSV [bytes], 100 GB: ten thousand times the coin's run
+    real(wp), parameter, public :: default_max_csv_bytes = 1.0e11_wp
 
     !> Where and how often to report
     type :: run_options_type
@@ -35,6 +37,9 @@ module rollcon_simulation
         character(len=:), allocatable :: csv_path
         !> Progress lines on stderr for runs longer than a second
         logical :: progress = .true.
+        !> Largest CSV a run may plan to write [bytes]: a request beyond it is refused before
+        !> the run (raise it to override; the default is far beyond a useful time history)
+        real(wp) :: max_csv_bytes = default_max_csv_bytes
     end type run_options_type
 
     !> What a run did
@@ -54,8 +59,8 @@ module rollcon_simulation
         real(wp) :: residual_max = 0.0_wp
         !> Integrator statistics
         integer :: steps = 0, functions = 0, jacobians = 0, failures = 0
-        !> Output rows written
-        integer :: rows = 0
+        !> Output rows written (64 bits: a long run at a fine step passes 2**31)
+        integer(int64) :: rows = 0
         !> CPU time of the integration [s]
         real(wp) :: cpu_seconds = 0.0_wp
     end type run_summary_type
@@ -128,7 +133,9 @@ contains
         type(csv_writer_type) :: csv
         real(wp), allocatable :: y(:), yp(:), breaks(:)
         real(wp) :: t, t_out, t_stop, t_reference, cpu_start, cpu_now, wall_last
-        integer :: n, nc, k_output, root, n_output
+        integer :: n, nc, root
+        integer(int64) :: k_output, n_output
+        type(error_type), allocatable :: close_error
         logical :: use_cvode, have_reference
 
         n = problem%eq%n
@@ -140,6 +147,8 @@ contains
         if (size(breaks) > 0) t_reference = maxval(breaks)
         breaks = pack(breaks, breaks > options%t0 .and. breaks < options%end_time)
 
+        call planned_rows(options, size(csv_header(problem)), n_output, error)
+        if (allocated(error)) return
         if (allocated(options%csv_path)) then
             call csv%open(options%csv_path, csv_header(problem), error)
             if (allocated(error)) return
@@ -173,10 +182,9 @@ contains
             return
         end if
 
-        n_output = max(1, ceiling((options%end_time - options%t0)/options%output_step - 1.0e-9_wp))
         k_output = 1
         do while (k_output <= n_output)
-            t_out = min(options%t0 + k_output*options%output_step, options%end_time)
+            t_out = min(options%t0 + real(k_output, wp)*options%output_step, options%end_time)
             t_stop = next_stop(t)
             if (use_cvode) then
                 call cvode%advance(problem, t_out, t_stop, t, y, root, error)
@@ -316,10 +324,69 @@ contains
                     & summary%jacobians, summary%failures)
                 call ida%destroy()
             end if
-            call csv%close()
+            ! A write or the close failing (a full disk) fails the run, unless it failed already.
+            call csv%close(close_error)
+            if (allocated(close_error)) then
+                summary%status = status_failed
+                if (.not. allocated(error)) then
+                    summary%message = close_error%message
+                    call move_alloc(close_error, error)
+                end if
+            end if
+            if (allocated(error)) then
+                summary%status = status_failed
+                summary%message = error%message
+            end if
         end subroutine finish
 
     end subroutine simulate
+
+    !> Number of output steps after the first row (64 bits); refused when the CSV they would
+    !> fill is larger than options%max_csv_bytes, or the count does not fit in 64 bits.
+    subroutine planned_rows(options, columns, n_output, error)
+        type(run_options_type), intent(in) :: options
+        !> Columns of a row
+        integer, intent(in) :: columns
+        integer(int64), intent(out) :: n_output
+        type(error_type), allocatable, intent(out) :: error
+        real(wp) :: steps, bytes
+        character(len=:), allocatable :: rows, bytes_text
+
+        ! 1e-9: an end time a rounding short of a whole number of steps adds no step.
+        steps = max(1.0_wp, ceiling_real((options%end_time - options%t0)/options%output_step &
+            & - 1.0e-9_wp))
+        bytes = (steps + 1.0_wp)*real(csv_row_bytes(columns), wp)
+        n_output = 1
+        rows = to_text(steps + 1.0_wp)
+        bytes_text = to_text(bytes)
+        if (steps < 1.0e18_wp) rows = to_text(int(steps, int64) + 1_int64)
+        ! exact while it fits in 64 bits (huge(int64) ~ 9.2e18)
+        if (bytes < 9.0e18_wp) bytes_text = to_text((int(steps, int64) + 1_int64) &
+            & *int(csv_row_bytes(columns), int64))
+        if (allocated(options%csv_path) .and. bytes > options%max_csv_bytes) then
+            call fatal_error(error, "the output request (end_time " // to_text(options%end_time) &
+                & // " s, output_step " // to_text(options%output_step) // " s) means " &
+                & // rows // " rows, " // bytes_text &
+                & // " bytes of CSV, beyond the limit of " // to_text(options%max_csv_bytes) &
+                & // " bytes: raise output_step or lower end_time (or lift the limit " &
+                & // "explicitly, rollcon run --allow-large-output)", stat_input)
+        else if (.not. steps < real(huge(n_output), wp)/2.0_wp) then
+            call fatal_error(error, "the output request (end_time " // to_text(options%end_time) &
+                & // " s, output_step " // to_text(options%output_step) // " s) means " &
+                & // rows // " rows, more than a 64-bit count holds", stat_input)
+        else
+            n_output = int(steps, int64)
+        end if
+    end subroutine planned_rows
+
+    !> ceiling of a real of any size, as a real (no integer overflow).
+    elemental function ceiling_real(x) result(c)
+        real(wp), intent(in) :: x
+        real(wp) :: c
+
+        c = aint(x)
+        if (c < x) c = c + 1.0_wp
+    end function ceiling_real
 
     !> Wall-clock seconds since an arbitrary origin.
     function wall_seconds() result(seconds)

@@ -19,6 +19,9 @@ program tester
     use test_adm_expression, only : collect_adm_expression
     use test_adm_lexer, only : collect_adm_lexer
     use test_adm_reader, only : collect_adm_reader
+    use test_output, only : collect_output
+    use test_command, only : collect_command
+    use test_csv_fuzz, only : collect_csv_fuzz
     implicit none
     type(testsuite_type), allocatable :: suites(:)
     type(test_counts_type) :: counts
@@ -42,7 +45,10 @@ program tester
         & new_testsuite("user-ucosub", collect_user_ucosub), &
         & new_testsuite("adm-expression", collect_adm_expression), &
         & new_testsuite("adm-lexer", collect_adm_lexer), &
-        & new_testsuite("adm-reader", collect_adm_reader)]
+        & new_testsuite("adm-reader", collect_adm_reader), &
+        & new_testsuite("output", collect_output), &
+        & new_testsuite("command", collect_command), &
+        & new_testsuite("csv-fuzz", collect_csv_fuzz)]
 
     if (command_argument_count() >= 1) then
         call get_command_argument(1, argument)

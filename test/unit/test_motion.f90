@@ -460,7 +460,7 @@ contains
             rows = rows + 1
         end do
         close(unit, status="delete")
-        call check(error, rows, summary%rows, "complete rows in the CSV")
+        call check(error, rows, int(summary%rows), "complete rows in the CSV")
         if (allocated(error)) return
         call check(error, rows > 1, "no rows before the failure")
     end subroutine test_solver_failure

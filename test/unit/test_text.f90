@@ -1,6 +1,7 @@
 ! SPDX-License-Identifier: MIT
 !> Tests of number formatting used in every message.
 module test_text
+    use, intrinsic :: iso_fortran_env, only : int64
     use rollcon_kinds, only : wp
     use rollcon_text, only : to_text
     use rollcon_testing, only : error_type, unittest_type, new_unittest, check
@@ -47,6 +48,10 @@ contains
         type(error_type), allocatable, intent(out) :: error
 
         call check(error, to_text(-42) == "-42", "integer text")
+        if (allocated(error)) return
+        ! Row counts pass 2**31 (issue #11, item 4): printed whole, not wrapped round.
+        call check(error, to_text(1000000000000001_int64) == "1000000000000001", &
+            & "64-bit integer text: " // to_text(1000000000000001_int64))
         if (allocated(error)) return
         call check(error, to_text(ieee_value(1.0_wp, ieee_quiet_nan)) == "NaN", "NaN text")
     end subroutine test_special

@@ -1,0 +1,239 @@
+! SPDX-License-Identifier: MIT
+!> Tests of the `rollcon` program as a user runs it: refusals (message and exit status alone),
+!> extra arguments, a full disk, a failed run beside an earlier one, concurrent runs into one
+!> folder, and numbers that read back.
+module test_command
+    use rollcon_kinds, only : wp
+    use rollcon_error, only : error_type
+    use rollcon_text, only : to_text
+    use rollcon_simulation, only : history_type, column_z
+    use rollcon_csv_reader, only : read_output_csv
+    use rollcon_testing, only : unittest_type, new_unittest, check
+    use picture_files, only : make_folder, remove_folder, write_lines
+    use command_runs, only : rollcon_program, run_rollcon, file_text, file_exists, line_count, &
+        & mount_small, unmount
+    implicit none
+    private
+
+    public :: collect_command
+
+    !> Scratch folder of the suite
+    character(len=*), parameter :: scratch = "build/test_command"
+    !> Z of an upright disk rolling fast stays R sin(theta) with theta within a few 1e-2 rad of
+    !> its start: rows of the 0.05 m disk are at least 40% off the 0.1 m disk's Z
+    real(wp), parameter :: tol_same_disk = 0.1_wp
+
+contains
+
+    !> Tests of this suite.
+    subroutine collect_command(tests)
+        type(unittest_type), allocatable, intent(out) :: tests(:)
+
+        allocate(tests(0))
+        tests = [new_unittest("refusal-is-message-alone", test_refusal), &
+            & new_unittest("extra-arguments-refused", test_extra_arguments), &
+            & new_unittest("table-exponents-read-back", test_exponents), &
+            & new_unittest("failed-run-keeps-earlier-files", test_failed_run), &
+            & new_unittest("interrupted-run-keeps-earlier-files", test_interrupted), &
+            & new_unittest("concurrent-runs-do-not-splice", test_concurrent), &
+            & new_unittest("full-disk-is-a-failure", test_full_disk)]
+    end subroutine collect_command
+
+    !> A refusal prints one line, the message, and exits 1: no backtrace, no STOP line.
+    subroutine test_refusal(error)
+        type(error_type), allocatable, intent(out) :: error
+        character(len=:), allocatable :: program, err
+        integer :: status
+
+        call rollcon_program(program, error)
+        if (allocated(error)) return
+        call make_folder(scratch)
+        call run_rollcon(program, "no_such_scene -o " // scratch // "/out", scratch &
+            & // "/refusal.out", scratch // "/refusal.err", status)
+        err = file_text(scratch // "/refusal.err")
+        call remove_folder(scratch)
+        call check(error, status == 1 .and. line_count(err) == 1 .and. index(err, &
+            & "rollcon: error: data/no_such_scene.nml: ") == 1, "exit status " &
+            & // to_text(status) // ", stderr: " // err)
+    end subroutine test_refusal
+
+    !> A second positional argument is refused and names itself, for run, plot and table.
+    subroutine test_extra_arguments(error)
+        type(error_type), allocatable, intent(out) :: error
+        character(len=*), parameter :: commands(3) = [character(len=40) :: &
+            & "coin tipping_coin", "plot a.csv b.csv", "table coin"]
+        character(len=*), parameter :: extras(3) = [character(len=12) :: "'tipping_coin'", &
+            & "'b.csv'", "'coin'"]
+        character(len=:), allocatable :: program, err
+        integer :: status, i
+
+        call rollcon_program(program, error)
+        if (allocated(error)) return
+        call make_folder(scratch)
+        do i = 1, size(commands)
+            call run_rollcon(program, trim(commands(i)) // " -o " // scratch // "/out", &
+                & scratch // "/extra.out", scratch // "/extra.err", status)
+            err = file_text(scratch // "/extra.err")
+            call check(error, status == 1 .and. line_count(err) == 1 .and. index(err, &
+                & "unexpected argument " // trim(extras(i))) > 0 .and. .not. &
+                & file_exists(scratch // "/out"), "rollcon " // trim(commands(i)) &
+                & // ": exit status " // to_text(status) // ", stderr: " // err)
+            if (allocated(error)) exit
+        end do
+        call remove_folder(scratch)
+    end subroutine test_extra_arguments
+
+    !> A number with a three-digit exponent is printed with its E, so it reads back.
+    subroutine test_exponents(error)
+        type(error_type), allocatable, intent(out) :: error
+        character(len=:), allocatable :: program, out
+        integer :: status
+
+        call rollcon_program(program, error)
+        if (allocated(error)) return
+        call make_folder(scratch)
+        call run_rollcon(program, "table --state 0.1,0.02,-0.01,0.3,1.2,1e-301,-0.2,-1", &
+            & scratch // "/table.out", scratch // "/table.err", status)
+        out = file_text(scratch // "/table.out")
+        call remove_folder(scratch)
+        call check(error, status == 0 .and. index(out, "1.0000000000000001E-301") > 0, &
+            & "psidot = 1e-301 printed as: " // out(index(out, "psidot"):min(len(out), &
+            & index(out, "psidot") + 40)))
+    end subroutine test_exponents
+
+    !> A run that fails leaves the earlier run's CSV and summary as they were, and its own
+    !> rows under a name that says they are partial.
+    subroutine test_failed_run(error)
+        type(error_type), allocatable, intent(out) :: error
+        character(len=:), allocatable :: program, csv, summary, err, partial
+        integer :: status, start
+
+        call rollcon_program(program, error)
+        if (allocated(error)) return
+        call make_folder(scratch // "/good")
+        call make_folder(scratch // "/bad")
+        call write_lines(scratch // "/good/s.nml", [character(len=40) :: "&initial", &
+            & "theta = 1.2, psidot = 2.0, phidot = -6.0", "/", "&run", "end_time = 0.2", "/"])
+        call write_lines(scratch // "/bad/s.nml", [character(len=40) :: "&initial", &
+            & "theta = 1.2, psidot = 2.0, phidot = -6.0", "/", "&run", "end_time = 5.0", &
+            & "formulation = 'ida', rtol = 1e-10", "max_steps = 20", "/"])
+        call run_rollcon(program, "-q " // scratch // "/good/s.nml -o " // scratch // "/out", &
+            & scratch // "/good.out", scratch // "/good.err", status)
+        csv = file_text(scratch // "/out/s.csv")
+        summary = file_text(scratch // "/out/s.summary.txt")
+        call check(error, status == 0 .and. len(csv) > 0 .and. index(summary, "completed") > 0, &
+            & "the first run failed: " // file_text(scratch // "/good.err"))
+        if (.not. allocated(error)) then
+            call run_rollcon(program, "-q " // scratch // "/bad/s.nml -o " // scratch &
+                & // "/out", scratch // "/bad.out", scratch // "/bad.err", status)
+            err = file_text(scratch // "/bad.err")
+            start = index(err, scratch // "/out/s.partial-")
+            partial = ""
+            if (start > 0) partial = err(start:start - 1 + index(err(start:), ".csv") + 3)
+            call check(error, status == 1 .and. file_text(scratch // "/out/s.csv") == csv &
+                & .and. file_text(scratch // "/out/s.summary.txt") == summary &
+                & .and. len(partial) > 0 .and. index(file_text(scratch // "/bad.out"), &
+                & "completed") == 0, "exit status " // to_text(status) // "; the earlier " &
+                & // "files changed or no partial CSV named: " // err)
+        end if
+        if (.not. allocated(error)) then
+            call check(error, file_exists(partial) .and. index(file_text(partial), &
+                & "t,X,Y,Z") == 1, "partial CSV " // partial // " missing or without header")
+        end if
+        call remove_folder(scratch)
+    end subroutine test_failed_run
+
+    !> A run killed after two seconds leaves the earlier run's CSV and summary as they were
+    !> (it used to have replaced the CSV and left the old summary beside it).
+    subroutine test_interrupted(error)
+        type(error_type), allocatable, intent(out) :: error
+        character(len=:), allocatable :: program, csv, summary
+        integer :: status
+
+        call rollcon_program(program, error)
+        if (allocated(error)) return
+        call make_folder(scratch // "/short")
+        call make_folder(scratch // "/long")
+        call write_lines(scratch // "/short/s.nml", [character(len=40) :: "&run", &
+            & "end_time = 0.2", "/"])
+        call write_lines(scratch // "/long/s.nml", [character(len=40) :: "&run", &
+            & "end_time = 10000.0", "/"])
+        call run_rollcon(program, "-q " // scratch // "/short/s.nml -o " // scratch // "/out", &
+            & scratch // "/short.out", scratch // "/short.err", status)
+        csv = file_text(scratch // "/out/s.csv")
+        summary = file_text(scratch // "/out/s.summary.txt")
+        call check(error, status == 0 .and. len(csv) > 0 .and. len(summary) > 0, &
+            & "the first run failed: " // file_text(scratch // "/short.err"))
+        if (.not. allocated(error)) then
+            call run_rollcon(program, "-q " // scratch // "/long/s.nml -o " // scratch &
+                & // "/out > /dev/null 2>&1 & sleep 2; kill $!; wait", scratch // "/long.out", &
+                & scratch // "/long.err", status)
+            call check(error, file_text(scratch // "/out/s.csv") == csv .and. &
+                & file_text(scratch // "/out/s.summary.txt") == summary, "the interrupted " &
+                & // "run changed the earlier run's CSV or summary")
+        end if
+        call remove_folder(scratch)
+    end subroutine test_interrupted
+
+    !> Two runs of scenes with one name into one folder at once: the CSV is one run's, whole.
+    subroutine test_concurrent(error)
+        type(error_type), allocatable, intent(out) :: error
+        character(len=:), allocatable :: program, command
+        type(history_type) :: history
+        real(wp) :: radius
+        integer :: status
+
+        call rollcon_program(program, error)
+        if (allocated(error)) return
+        call make_folder(scratch // "/a")
+        call make_folder(scratch // "/b")
+        ! Upright, rolling at 2 m/s: stable, so Z stays near the radius (0.1 m and 0.05 m).
+        call write_lines(scratch // "/a/s.nml", [character(len=48) :: "&disk", &
+            & "radius = 0.1", "/", "&initial", "phidot = -20.0", "/", "&run", &
+            & "end_time = 2.0, output_step = 0.001", "/"])
+        call write_lines(scratch // "/b/s.nml", [character(len=48) :: "&disk", &
+            & "radius = 0.05", "/", "&initial", "phidot = -40.0", "/", "&run", &
+            & "end_time = 2.0, output_step = 0.001", "/"])
+        command = "-q " // scratch // "/a/s.nml -o " // scratch // "/out > /dev/null 2>&1 & " &
+            & // program // " -q " // scratch // "/b/s.nml -o " // scratch // "/out " &
+            & // "> /dev/null 2>&1; wait"
+        call run_rollcon(program, command, scratch // "/both.out", scratch // "/both.err", &
+            & status)
+        call read_output_csv(scratch // "/out/s.csv", history, radius, error)
+        call remove_folder(scratch)
+        if (allocated(error)) return
+        call check(error, history%count == 2001 .and. all(abs(history%rows(column_z, &
+            & :history%count) - history%rows(column_z, 1)) <= tol_same_disk &
+            & *history%rows(column_z, 1)), "rows " // to_text(history%count) // " of 2001; Z " &
+            & // to_text(minval(history%rows(column_z, :history%count))) // " to " &
+            & // to_text(maxval(history%rows(column_z, :history%count))) // " m")
+    end subroutine test_concurrent
+
+    !> On a 512 KiB filesystem the coin's CSV (about 550 kB) does not fit: the run fails,
+    !> names the file and says nothing is completed.
+    subroutine test_full_disk(error)
+        type(error_type), allocatable, intent(out) :: error
+        character(len=*), parameter :: mount_point = scratch // "/small"
+        character(len=:), allocatable :: program, out, err
+        integer :: status
+
+        call rollcon_program(program, error)
+        if (allocated(error)) return
+        call mount_small(mount_point, "512k", error)
+        if (allocated(error)) then
+            call remove_folder(scratch)
+            return
+        end if
+        call run_rollcon(program, "-q coin -o " // mount_point, scratch // "/full.out", &
+            & scratch // "/full.err", status)
+        call unmount(mount_point)
+        out = file_text(scratch // "/full.out")
+        err = file_text(scratch // "/full.err")
+        call remove_folder(scratch)
+        call check(error, status == 1 .and. index(out, "completed") == 0 .and. index(err, &
+            & "rollcon: error: " // mount_point // "/coin.partial-") > 0 .and. index(err, &
+            & "No space left on device") > 0, "exit status " // to_text(status) &
+            & // "; stdout: " // out // "; stderr: " // err(max(1, index(err, "rollcon:")):))
+    end subroutine test_full_disk
+
+end module test_command

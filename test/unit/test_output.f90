@@ -1,0 +1,233 @@
+! SPDX-License-Identifier: MIT
+!> Tests of the output files: the CSV writer (buffered, every failure seen, numbers that read
+!> back), the refusal of an output request no disk holds, and no picture left by a failure.
+module test_output
+    use, intrinsic :: iso_fortran_env, only : int64
+    use rollcon_kinds, only : wp
+    use rollcon_error, only : error_type, stat_input
+    use rollcon_text, only : to_text
+    use rollcon_csv_writer, only : csv_writer_type
+    use rollcon_problem, only : problem_type
+    use rollcon_disk_scene, only : build_disk_problem
+    use rollcon_disk_reference, only : rolling_disk_ucosub
+    use rollcon_simulation, only : run_options_type, run_summary_type, simulate, &
+        & default_max_csv_bytes
+    use rollcon_scene, only : scene_type
+    use rollcon_figures, only : plot_output, figure_file, figure_names
+    use rollcon_gif, only : animate_output
+    use rollcon_testing, only : unittest_type, new_unittest, check, skip_test
+    use picture_files, only : picture_scene, make_folder, remove_folder, write_lines, run_to_csv
+    use command_runs, only : file_text, file_exists, line_count, mount_small, unmount
+    use rollcon_vtk, only : write_vtk_series
+    use rollcon_simulation, only : history_type
+    implicit none
+    private
+
+    public :: collect_output
+
+    !> Scratch folder of the suite
+    character(len=*), parameter :: scratch = "build/test_output"
+
+contains
+
+    !> Tests of this suite.
+    subroutine collect_output(tests)
+        type(unittest_type), allocatable, intent(out) :: tests(:)
+
+        allocate(tests(0))
+        tests = [new_unittest("csv-full-device-is-an-error", test_full_device), &
+            & new_unittest("csv-buffered-then-whole", test_buffered), &
+            & new_unittest("csv-extremes-read-back", test_extremes_read_back), &
+            & new_unittest("huge-output-refused", test_huge_output), &
+            & new_unittest("output-limit-is-the-option", test_output_limit), &
+            & new_unittest("failed-figures-leave-nothing", test_failed_figures), &
+            & new_unittest("vtk-full-disk-is-an-error", test_vtk_full_disk)]
+    end subroutine collect_output
+
+    !> Writing to /dev/full (every write fails with ENOSPC) is an error naming the file.
+    subroutine test_full_device(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(error_type), allocatable :: failure
+        type(csv_writer_type) :: csv
+
+        if (.not. file_exists("/dev/full")) then
+            call skip_test(error, "no /dev/full on this system")
+            return
+        end if
+        call csv%open("/dev/full", [character(len=1) :: "t", "x"], failure)
+        if (.not. allocated(failure)) call csv%write_row([0.0_wp, 1.0_wp], failure)
+        if (.not. allocated(failure)) call csv%close(failure)
+        call csv%close()
+        call check(error, allocated(failure), "writing to /dev/full reported no error")
+        if (allocated(error)) return
+        call check(error, index(failure%message, "/dev/full: write failed: ") == 1 .and. &
+            & index(failure%message, "No space left on device") > 0, failure%message)
+    end subroutine test_full_device
+
+    !> Rows stay in the buffer (no write per row) and are all in the file after close.
+    subroutine test_buffered(error)
+        type(error_type), allocatable, intent(out) :: error
+        character(len=*), parameter :: path = scratch // "/buffered.csv"
+        type(csv_writer_type) :: csv
+        integer :: i
+
+        call make_folder(scratch)
+        call csv%open(path, [character(len=1) :: "t", "x"], error)
+        do i = 1, 10
+            if (.not. allocated(error)) call csv%write_row([0.1_wp*i, -1.0_wp*i], error)
+        end do
+        if (allocated(error)) return
+        ! The wall-clock flush comes after a second at the earliest: the rows are not written.
+        call check(error, line_count(file_text(path)) == 1, "rows written one by one: " &
+            & // to_text(line_count(file_text(path))) // " lines before close")
+        call csv%close(error)
+        if (allocated(error)) return
+        call check(error, line_count(file_text(path)) == 11, "lines after close: " &
+            & // to_text(line_count(file_text(path))))
+        call remove_folder(scratch)
+    end subroutine test_buffered
+
+    !> Three-digit exponents, -0 and the extremes of the range read back exactly.
+    subroutine test_extremes_read_back(error)
+        type(error_type), allocatable, intent(out) :: error
+        character(len=*), parameter :: path = scratch // "/extremes.csv"
+        real(wp), parameter :: values(6) = [1.0e-301_wp, -1.0e-301_wp, huge(1.0_wp), &
+            & -tiny(1.0_wp), 4.9e-324_wp, 123.456_wp]
+        type(csv_writer_type) :: csv
+        character(len=200) :: header
+        real(wp) :: back(6)
+        integer :: unit, stat
+
+        call make_folder(scratch)
+        call csv%open(path, [character(len=1) :: "a", "b", "c", "d", "e", "f"], error)
+        if (.not. allocated(error)) call csv%write_row(values, error)
+        if (.not. allocated(error)) call csv%close(error)
+        if (allocated(error)) return
+        open(newunit=unit, file=path, status="old", action="read")
+        read(unit, '(a)') header
+        read(unit, *, iostat=stat) back
+        close(unit)
+        call check(error, stat == 0 .and. index(file_text(path), "E-301") > 0 .and. &
+            & all(back == values), "values read back: " // file_text(path))
+        call remove_folder(scratch)
+    end subroutine test_extremes_read_back
+
+    !> end_time 1e9 s at output_step 1e-6 s is refused before the run, with the row count
+    !> and the bytes (it used to overflow a 32-bit count and "complete" after one step).
+    subroutine test_huge_output(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(scene_type) :: scene
+        type(problem_type), target :: problem
+        type(run_options_type) :: options
+        type(run_summary_type) :: summary
+        type(error_type), allocatable :: failure
+        real(wp) :: q0(6), u0(6)
+
+        scene = picture_scene()
+        call build_disk_problem(scene, rolling_disk_ucosub, problem, q0, u0, error)
+        if (allocated(error)) return
+        call make_folder(scratch)
+        options%end_time = 1.0e9_wp
+        options%output_step = 1.0e-6_wp
+        options%progress = .false.
+        options%csv_path = scratch // "/huge.csv"
+        call simulate(problem, q0, u0, options, summary, failure)
+        call check(error, allocated(failure), "the request was not refused; t reached " &
+            & // to_text(summary%t_reached) // " s")
+        if (.not. allocated(error)) call check(error, failure%stat == stat_input .and. &
+            & index(failure%message, to_text(1000000000000001_int64) // " rows") > 0 .and. &
+            & index(failure%message, "bytes") > 0 .and. summary%rows == 0 .and. .not. &
+            & file_exists(options%csv_path), failure%message)
+        call remove_folder(scratch)
+    end subroutine test_huge_output
+
+    !> The limit is options%max_csv_bytes: 0.1 s at 0.01 s (11 rows of 22 numbers, about
+    !> 6 kB) is refused under a 1000-byte limit and runs under the default.
+    subroutine test_output_limit(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(problem_type), target :: problem
+        type(run_options_type) :: options
+        type(run_summary_type) :: summary
+        type(error_type), allocatable :: failure
+        real(wp) :: q0(6), u0(6)
+
+        call build_disk_problem(picture_scene(), rolling_disk_ucosub, problem, q0, u0, error)
+        if (allocated(error)) return
+        call make_folder(scratch)
+        options%end_time = 0.1_wp
+        options%output_step = 0.01_wp
+        options%progress = .false.
+        options%csv_path = scratch // "/limit.csv"
+        options%max_csv_bytes = 1000.0_wp
+        call simulate(problem, q0, u0, options, summary, failure)
+        call check(error, allocated(failure), "11 rows fitted in 1000 bytes")
+        if (.not. allocated(error)) call check(error, index(failure%message, "11 rows, 6050 bytes") &
+            & > 0, failure%message)
+        if (.not. allocated(error)) then
+            options%max_csv_bytes = default_max_csv_bytes
+            call simulate(problem, q0, u0, options, summary, error)
+        end if
+        if (.not. allocated(error)) call check(error, summary%rows == 11_int64 .and. &
+            & line_count(file_text(options%csv_path)) == 12, "rows " // to_text(summary%rows))
+        call remove_folder(scratch)
+    end subroutine test_output_limit
+
+    !> A CSV holding X = 1e308: plot and animate both refuse it, and leave no PNG or GIF.
+    subroutine test_failed_figures(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(error_type), allocatable :: plot_failure, animate_failure
+        character(len=*), parameter :: path = scratch // "/huge.csv"
+        integer :: frames, i
+        logical :: left
+
+        call make_folder(scratch)
+        call write_lines(path, [character(len=200) :: "t,X,Y,Z,psi,theta,phi,Xdot,Ydot,Zdot," &
+            & // "psidot,thetadot,phidot,E,Fx,Fy,Fz,Fn,mu_needed,F1", &
+            & "0,0,0,0.1,0,1.5707963267948966,0,0,0,0,0,0,0,0,0,0,0,0,0,0", &
+            & "0.1,1e308,0,0.1,0,1.5707963267948966,0,0,0,0,0,0,0,0,0,0,0,0,0,0"])
+        call plot_output(path, scratch, plot_failure)
+        call animate_output(path, scratch // "/huge.gif", frames, animate_failure)
+        left = file_exists(scratch // "/huge.gif")
+        do i = 1, size(figure_names)
+            left = left .or. file_exists(figure_file(path, scratch, figure_names(i)))
+        end do
+        call remove_folder(scratch)
+        call check(error, allocated(plot_failure) .and. allocated(animate_failure), &
+            & "plot or animate accepted X = 1e308")
+        if (allocated(error)) return
+        call check(error, index(plot_failure%message, path // ":3: ") == 1 .and. &
+            & animate_failure%message == plot_failure%message .and. .not. left, &
+            & "plot: " // plot_failure%message // "; animate: " // animate_failure%message)
+    end subroutine test_failed_figures
+
+    !> VTK frames that do not fit on a 64 KiB filesystem: an error naming the file (gfortran
+    !> itself reports no error when the disk is full).
+    subroutine test_vtk_full_disk(error)
+        type(error_type), allocatable, intent(out) :: error
+        character(len=*), parameter :: mount_point = scratch // "/small"
+        type(history_type) :: history
+        type(error_type), allocatable :: failure
+        character(len=16), allocatable :: header(:)
+        integer :: frames
+
+        call make_folder(scratch)
+        call run_to_csv(picture_scene(), scratch // "/vtk.csv", history, header, error)
+        if (allocated(error)) return
+        call mount_small(mount_point, "64k", error)
+        if (allocated(error)) then
+            call remove_folder(scratch)
+            return
+        end if
+        ! 0.5 s at 100 frames per second: 51 frames of about 30 kB each
+        call write_vtk_series(mount_point, "vtk", history, 0.1_wp, 0.003_wp, 100.0_wp, &
+            & frames, failure)
+        call unmount(mount_point)
+        call remove_folder(scratch)
+        call check(error, allocated(failure), "wrote " // to_text(frames) // " frames on a " &
+            & // "64 KiB filesystem without an error")
+        if (allocated(error)) return
+        call check(error, index(failure%message, mount_point // "/vtk_") == 1 .and. &
+            & index(failure%message, "write failed") > 0, failure%message)
+    end subroutine test_vtk_full_disk
+
+end module test_output
