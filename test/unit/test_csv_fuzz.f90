@@ -66,7 +66,7 @@ contains
         path = scratch // "/mutated.csv"
         if (memory) path = "/dev/shm/rollcon_test_csv_fuzz_" // process_text() // ".csv"
         scene = picture_scene()
-        scene%end_time = 0.03_wp
+        scene%run%end_time = 0.03_wp
         call run_to_csv(scene, base_path, history, header, error)
         if (allocated(error)) return
         call read_lines(base_path, base)
