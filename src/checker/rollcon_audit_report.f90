@@ -9,7 +9,7 @@ module rollcon_audit_report
         & sampling_ranges
     use rollcon_check_rules, only : rule_order, rule_name, rule_meaning, rule_declaration, &
         & rule_derivative, rule_symmetry, rule_velocity_linear, rule_selector_0, rule_repeat, &
-        & rule_outside_block
+        & rule_outside_block, rule_signal, rule_timeout, rule_exit
     use, intrinsic :: ieee_arithmetic, only : ieee_is_finite
     implicit none
     private
@@ -77,6 +77,8 @@ contains
             text = text // nl // "  " // to_text(ucon%states) // " states, " &
                 & // to_text(ucon%compared) // " entries compared, largest relative deviation " &
                 & // trim(adjustl(worst))
+        else if (process_ended(ucon)) then
+            text = text // "  the check of this UCON ended with its process (below)"
         else
             text = text // "  UCOVAR: no valid declaration, so no state was checked"
         end if
@@ -115,7 +117,10 @@ contains
         character(len=:), allocatable :: text
 
         text = "    " // entry_label(ucon, group)
-        if (group%state > 0) then
+        if (is_process_rule(group%code)) then
+            ! the message names the call, the state and what happened
+            text = "    " // worst_text(ucon, group) // nl
+        else if (group%state > 0) then
             text = text // ": " // to_text(group%count) // " of " // to_text(ucon%states) &
                 & // " states; worst at state " // to_text(group%state) // " (t = " &
                 & // short(group%time) // " s): " // worst_text(ucon, group) // nl
@@ -123,6 +128,26 @@ contains
             text = text // ": " // worst_text(ucon, group) // nl
         end if
     end function group_text
+
+    !> True when the check of ucon ended with its process (a crash, a timeout, a STOP).
+    pure function process_ended(ucon) result(ended)
+        type(ucon_report_type), intent(in) :: ucon
+        logical :: ended
+        integer :: g
+
+        ended = .false.
+        do g = 1, size(ucon%groups)
+            ended = ended .or. is_process_rule(ucon%groups(g)%code)
+        end do
+    end function process_ended
+
+    !> True for the rules of a child process's end.
+    elemental function is_process_rule(code) result(is_process)
+        integer, intent(in) :: code
+        logical :: is_process
+
+        is_process = code == rule_signal .or. code == rule_timeout .or. code == rule_exit
+    end function is_process_rule
 
     !> The entry of a finding, with the names of its variables: "XMATRX(5,4) = d2F/d(theta)
     !> d(psi)", "ARRAY(4) = dF/d(psi)", "SCALAR (dF/dt)", "UCOVAR".

@@ -23,7 +23,7 @@ contains
         !> How the child ended
         type(isolation_outcome_type), intent(in) :: outcome
         character(len=:), allocatable :: text
-        integer :: i
+        integer :: i, n
 
         associate (record => outcome%record)
             text = ""
@@ -59,8 +59,13 @@ contains
                 text = text // ", IDRSEL = (" // to_text(int(record%idrsel(1))) // ", " &
                     & // to_text(int(record%idrsel(2))) // ", " &
                     & // to_text(int(record%idrsel(3))) // "), TIME = " &
-                    & // to_text(real(record%time, wp)) // ", Q = ("
-                do i = 1, min(int(record%nq), size(record%q))
+                    & // to_text(real(record%time, wp))
+                n = min(int(record%nq), size(record%q))
+                ! Declared count unknown (a run): up to the last non-zero entry.
+                if (n == size(record%q)) n = max(1, findloc(record%q /= 0.0_wp, .true., dim=1, &
+                    & back=.true.))
+                text = text // ", Q(1:" // to_text(n) // ") = ("
+                do i = 1, n
                     if (i > 1) text = text // ", "
                     text = text // to_text(real(record%q(i), wp))
                 end do
@@ -89,6 +94,13 @@ contains
         do while (quoted < quoted_lines)
             read(unit, '(a)', iostat=stat) line
             if (stat /= 0) exit
+            ! gfortran's backtrace indents its "at FILE:LINE" lines with a tab
+            where_tab: block
+                integer :: i
+                do i = 1, len_trim(line)
+                    if (line(i:i) == achar(9)) line(i:i) = " "
+                end do
+            end block where_tab
             line = adjustl(line)
             useful = index(line, "Program received signal") == 1 .or. index(line, "STOP") == 1 &
                 & .or. index(line, "ERROR STOP") == 1 .or. index(line, "Fortran runtime") == 1 &
