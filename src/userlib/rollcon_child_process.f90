@@ -262,6 +262,13 @@ contains
         do
             rc = c_waitpid(pid, status, wnohang)
             if (rc == pid) exit
+            if (rc < 0) then
+                ! the child cannot be waited for (it was reaped elsewhere): say so, do not spin
+                outcome%kind = outcome_exit
+                outcome%exit_status = -1
+                outcome%record = record
+                return
+            end if
             call system_clock(clock)
             ! Read the counter through a copy: the child changes it between our reads.
             if (counter(record) /= seen_calls) then
