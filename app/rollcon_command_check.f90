@@ -6,13 +6,19 @@ module rollcon_command_check
     use rollcon_error, only : fatal_error, stat_input, stat_io
     use rollcon_user_library, only : user_ucosub_type, new_user_ucosub
     use rollcon_ucosub_audit, only : ucon_request_type, user_check_options_type, &
-        & user_check_report_type, check_user_ucosub, sampling_ranges
+        & user_check_report_type, sampling_ranges
+    use rollcon_isolated_audit, only : check_user_ucosub_isolated
+    use rollcon_ucon_option, only : read_ucon_option
     use rollcon_audit_report, only : report_text, report_json
-    use, intrinsic :: ieee_arithmetic, only : ieee_is_finite
+    use rollcon_command_line, only : real_option
+    use rollcon_child_process, only : default_call_timeout
     implicit none
     private
 
-    public :: check_command
+    public :: check_command, call_timeout_option
+
+    !> Longest time limit per call accepted [s] (a day: beyond it, no limit is meant)
+    real(wp), parameter :: longest_call_timeout = 86400.0_wp
 
 contains
 
@@ -30,16 +36,20 @@ contains
         type(user_check_report_type) :: report
         type(user_ucosub_type) :: user
         character(len=:), allocatable :: path, json_path, library
+        real(wp) :: call_timeout
         logical :: help
         integer :: unit, stat
 
         status = 0
-        call read_arguments(first, path, requests, options, json_path, help, error)
+        call read_arguments(first, path, requests, options, json_path, call_timeout, help, error)
         if (allocated(error) .or. help) return
         call new_user_ucosub(user, path, error)
         if (allocated(error)) return
         library = user%library // merge(" (from the cache)", " (compiled now)  ", user%from_cache)
-        call check_user_ucosub(user%ucosub, requests, options, report, error)
+        ! Each UCON is checked in a child process: a crash, a hang or a STOP in the routine
+        ! becomes a finding, not the end of rollcon.
+        call check_user_ucosub_isolated(user%ucosub, requests, options, call_timeout, report, &
+            & error)
         if (allocated(error)) then
             call user%destroy()
             return
@@ -57,11 +67,13 @@ contains
         call user%destroy()
     end subroutine check_command
 
-    subroutine read_arguments(first, path, requests, options, json_path, help, error)
+    subroutine read_arguments(first, path, requests, options, json_path, call_timeout, help, &
+            & error)
         integer, intent(in) :: first
         character(len=:), allocatable, intent(out) :: path, json_path
         type(ucon_request_type), allocatable, intent(out) :: requests(:)
         type(user_check_options_type), intent(out) :: options
+        real(wp), intent(out) :: call_timeout
         logical, intent(out) :: help
         type(error_type), allocatable, intent(out) :: error
         character(len=:), allocatable :: argument
@@ -70,6 +82,7 @@ contains
 
         allocate(requests(0))
         help = .false.
+        call_timeout = default_call_timeout
         i = first
         do while (i <= command_argument_count())
             argument = get_argument(i)
@@ -79,10 +92,18 @@ contains
                 help = .true.
                 return
             case ("--ucon")
-                call read_request(i + 1, request, error)
+                if (i + 1 > command_argument_count()) then
+                    call fatal_error(error, "--ucon needs ID:PAR1,PAR2,...", stat_input)
+                    return
+                end if
+                call read_ucon_option(get_argument(i + 1), request, error)
                 if (allocated(error)) return
                 requests = [requests, request]
                 i = i + 1
+            case ("--call-timeout")
+                i = i + 1
+                call call_timeout_option(i, call_timeout, error)
+                if (allocated(error)) return
             case ("--states")
                 call read_integer("--states", i + 1, 1, options%states, error)
                 if (allocated(error)) return
@@ -117,52 +138,22 @@ contains
         end if
     end subroutine read_arguments
 
-    !> "ID:PAR1,PAR2,..." (or "ID" alone) as a UCON id and its constants.
-    subroutine read_request(i, request, error)
+    !> Read argument i as the value of --call-timeout: seconds, > 0 and at most a day.
+    subroutine call_timeout_option(i, seconds, error)
+        !> Index of the argument holding the value
         integer, intent(in) :: i
-        type(ucon_request_type), intent(out) :: request
+        !> Longest one call of a user's UCOSUB may take [s]
+        real(wp), intent(out) :: seconds
+        !> Set when the value is missing, not a number, not positive or too large
         type(error_type), allocatable, intent(out) :: error
-        character(len=:), allocatable :: text, values
-        integer :: colon, stat
 
-        if (i > command_argument_count()) then
-            call fatal_error(error, "--ucon needs ID:PAR1,PAR2,...", stat_input)
-            return
+        call real_option("--call-timeout", i, seconds, error)
+        if (allocated(error)) return
+        if (.not. (seconds > 0.0_wp .and. seconds <= longest_call_timeout)) then
+            call fatal_error(error, "--call-timeout expects seconds, > 0 and at most 86400 " &
+                & // "(a day), that one call of the UCOSUB may take", stat_input)
         end if
-        text = get_argument(i)
-        colon = index(text, ":")
-        if (colon == 0) colon = len(text) + 1
-        read(text(:colon - 1), *, iostat=stat) request%id
-        if (stat /= 0 .or. verify(trim(adjustl(text(:colon - 1))), "+-0123456789") /= 0 &
-            & .or. colon == 1) then
-            call fatal_error(error, "--ucon expects ID:PAR1,PAR2,... with an integer ID, got '" &
-                & // text // "'", stat_input)
-            return
-        end if
-        values = ""
-        if (colon < len(text)) values = text(colon + 1:)
-        allocate(request%par(0))
-        if (len_trim(values) == 0) return
-        deallocate(request%par)
-        allocate(request%par(count_items(values)))
-        read(values, *, iostat=stat) request%par
-        if (stat /= 0 .or. scan(values, "/") > 0 .or. .not. all(ieee_is_finite(request%par))) then
-            call fatal_error(error, "--ucon " // text // ": PAR must be finite numbers separated " &
-                & // "by commas, got '" // values // "'", stat_input)
-        end if
-    end subroutine read_request
-
-    !> Number of comma-separated items.
-    pure function count_items(text) result(count)
-        character(len=*), intent(in) :: text
-        integer :: count
-        integer :: i
-
-        count = 1
-        do i = 1, len(text)
-            if (text(i:i) == ",") count = count + 1
-        end do
-    end function count_items
+    end subroutine call_timeout_option
 
     subroutine read_integer(name, i, minimum, value, error)
         character(len=*), intent(in) :: name
@@ -209,7 +200,7 @@ contains
         ranges = sampling_ranges()
         write(output_unit, '(a)') &
             & "usage: rollcon check FILE --ucon ID:PAR1,PAR2,... [--ucon ...] [--states N]", &
-            & "                          [--seed S] [--json OUT]", &
+            & "                          [--seed S] [--json OUT] [--call-timeout SECONDS]", &
             & "", &
             & "Check a UCOSUB written for ADAMS/Solver, without ADAMS. FILE is its source (.f", &
             & "fixed form, compiled with -std=legacy; .f90 free form) or an object (.o, built", &
@@ -219,10 +210,19 @@ contains
             & "", &
             & "  --ucon ID:PAR1,PAR2,...  a UCON statement, UCON/ID, FUNCTION=USER(PAR1,...):", &
             & "                 the routine is called with this ID, PAR and NPAR; repeat for", &
-            & "                 each UCON the routine serves (ids distinct, at most 30 PAR)", &
+            & "                 each UCON the routine serves (ids positive and distinct, one", &
+            & "                 number per comma-separated field, at most 30 PAR)", &
             & "  --states N     random states per UCON (default 25)", &
             & "  --seed S       seed of the states (default 1); a run is reproducible", &
             & "  --json OUT     also write the report as JSON to OUT", &
+            & "  --call-timeout SECONDS  longest one call of the routine may take (default 10)", &
+            & "", &
+            & "Each UCON is checked in a child process with ARRAY and XMATRX inside guarded", &
+            & "buffers: a crash (SIGFPE, SIGSEGV, ...), a call longer than the time limit or a", &
+            & "STOP in the routine ends only that process and is reported as a finding ([crash],", &
+            & "[timeout], [stop]) with the call (IFLAG, IDRSEL) and the state; a write outside", &
+            & "the declared block or outside ARRAY(30), XMATRX(30,30) is an [outside-block]", &
+            & "finding with the index written.", &
             & "", &
             & "For each UCON: the initialisation call (IFLAG = 3) must declare the variables", &
             & "with one UCOVAR call (at most 30, known codes, part ids that appear among the PAR", &

@@ -11,7 +11,9 @@ program rollcon_main
     use rollcon_command_plot, only : plot_command
     use rollcon_command_animate, only : animate_command
     use rollcon_command_run_vtk, only : write_run_vtk
-    use rollcon_command_check, only : check_command
+    use rollcon_command_check, only : check_command, call_timeout_option
+    use rollcon_command_run_isolated, only : run_user_scene
+    use rollcon_child_process, only : default_call_timeout
     use rollcon_user_library, only : user_ucosub_type, new_user_ucosub
     use rollcon_simulation, only : run_summary_type
     implicit none
@@ -25,6 +27,8 @@ program rollcon_main
     integer :: check_status
     character(len=:), allocatable :: ucosub_path
     type(user_ucosub_type) :: user
+    !> run --ucosub: longest one call of the user's routine may take [s]
+    real(wp) :: call_timeout = default_call_timeout
 
     call read_command_line(error)
     if (allocated(error)) call fail(error)
@@ -44,7 +48,8 @@ program rollcon_main
             if (.not. quiet) write(output_unit, '(a)') "UCOSUB: " // ucosub_path // " (" &
                 & // user%library // merge(", from the cache", ", compiled now  ", &
                 & user%from_cache) // ")"
-            call run_scene(scene, output_dir, user%ucosub, quiet, summary, error, &
+            ! In a child process: the user's routine cannot take rollcon down.
+            call run_user_scene(scene, output_dir, user%ucosub, quiet, call_timeout, error, &
                 & allow_large_output)
         else
             call run_scene(scene, output_dir, rolling_disk_ucosub, quiet, summary, error, &
@@ -113,6 +118,10 @@ contains
                 end if
                 call get_command_argument(i, argument)
                 ucosub_path = trim(argument)
+            case ("--call-timeout")
+                i = i + 1
+                call call_timeout_option(i, call_timeout, error)
+                if (allocated(error)) return
             case ("--quiet", "-q")
                 quiet = .true.
             case ("--allow-large-output")
@@ -195,7 +204,10 @@ contains
             & "  Progress goes to stderr for runs longer than a second unless --quiet.", &
             & "  --ucosub FILE  serve the disk's no-slip UCONs with your own UCOSUB (.f, .f90", &
             & "               or .o; PAR as in the paper: part id, 8 codes, R, component),", &
-            & "               compiled with gfortran and cached (see rollcon check --help)", &
+            & "               compiled with gfortran and cached (see rollcon check --help);", &
+            & "               the run goes in a child process, so a crash, a STOP or a", &
+            & "               call longer than --call-timeout SECONDS (default 10) of the", &
+            & "               routine ends with an error naming the UCON and the call", &
             & "  --vtk FPS    also write DIR/SCENE_vtk/SCENE.pvd, a VTK time series for", &
             & "               ParaView: FPS frames per simulated second, each frame the", &
             & "               output row nearest to its time (nothing is interpolated)", &

@@ -4,7 +4,8 @@ module rollcon_ucon_call
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type, ucon_error
     use rollcon_text, only : to_text
-    use rollcon_ucosub_contract, only : ucosub_interface, iflag_init, iflag_eval, max_ucon_vars, max_ucon_par
+    use rollcon_ucosub_contract, only : ucosub_interface, iflag_init, iflag_eval, max_ucon_vars, &
+        & max_ucon_par
     use rollcon_ucovar_registry, only : ucovar_registry_type
     use rollcon_adams_runtime, only : begin_declaration, end_declaration, take_ucon_error, &
         & has_ucon_error
@@ -12,7 +13,11 @@ module rollcon_ucon_call
     implicit none
     private
 
-    public :: declare_ucon, evaluate_ucon
+    public :: declare_ucon, evaluate_ucon, stat_non_finite
+
+    !> error%stat of evaluate_ucon when a selected output is NaN or Infinity: a UCOSUB error of
+    !> its own kind, so a checker tells it from an ERRMES call by the code, not the message
+    integer, parameter :: stat_non_finite = 51
 
 contains
 
@@ -95,6 +100,7 @@ contains
             call ucon_error(error, id, "UCOSUB returned a non-finite value at time " &
                 & // to_text(time) // " with IDRSEL = (" // to_text(idrsel(1)) // ", " &
                 & // to_text(idrsel(2)) // ", " // to_text(idrsel(3)) // ")")
+            error%stat = stat_non_finite
         end if
     end subroutine evaluate_ucon
 

@@ -7,17 +7,16 @@ module rollcon_audit_report
     use rollcon_ucosub_contract, only : code_name
     use rollcon_ucosub_audit, only : user_check_report_type, ucon_report_type, finding_group_type, &
         & sampling_ranges
+    use rollcon_check_rules, only : rule_order, rule_name, rule_meaning, rule_declaration, &
+        & rule_derivative, rule_symmetry, rule_velocity_linear, rule_selector_0, rule_repeat, &
+        & rule_outside_block, rule_signal, rule_timeout, rule_exit
     use, intrinsic :: ieee_arithmetic, only : ieee_is_finite
     implicit none
     private
 
-    public :: report_text, report_json, entry_label, rule_meaning
+    public :: report_text, report_json, entry_label
 
     character(len=*), parameter :: nl = new_line("a")
-    !> Rules in the order the text report lists them: the most telling first
-    character(len=16), parameter :: rule_order(9) = [character(len=16) :: "declaration", &
-        & "errmes", "finite", "symmetry", "velocity-linear", "selector-0", "outside-block", &
-        & "repeat", "derivative"]
     !> Outputs in the order the text report lists them (lower orders first)
     character(len=24), parameter :: output_order(10) = [character(len=24) :: "UCOVAR", &
         & "ERRMES", "all outputs", "SCALAR", "SCALAR (dF/dt)", "SCALAR (d2F/dt2)", &
@@ -78,6 +77,8 @@ contains
             text = text // nl // "  " // to_text(ucon%states) // " states, " &
                 & // to_text(ucon%compared) // " entries compared, largest relative deviation " &
                 & // trim(adjustl(worst))
+        else if (process_ended(ucon)) then
+            text = text // "  the check of this UCON ended with its process (below)"
         else
             text = text // "  UCOVAR: no valid declaration, so no state was checked"
         end if
@@ -87,13 +88,12 @@ contains
         end if
         text = text // nl // "  " // to_text(size(ucon%groups)) // " kind(s) of finding:" // nl
         do r = 1, size(rule_order)
-            if (.not. any([(ucon%groups(g)%rule == trim(rule_order(r)), &
-                & g = 1, size(ucon%groups))])) cycle
-            text = text // "  [" // trim(rule_order(r)) // "] " // rule_meaning(rule_order(r)) &
-                & // nl
+            if (.not. any(ucon%groups%code == rule_order(r))) cycle
+            text = text // "  [" // rule_name(rule_order(r)) // "] " &
+                & // rule_meaning(rule_order(r)) // nl
             do o = 1, size(output_order)
                 do g = 1, size(ucon%groups)
-                    if (ucon%groups(g)%rule /= trim(rule_order(r))) cycle
+                    if (ucon%groups(g)%code /= rule_order(r)) cycle
                     if (output_rank(ucon%groups(g)%output) /= o) cycle
                     text = text // group_text(ucon, ucon%groups(g))
                 end do
@@ -117,7 +117,10 @@ contains
         character(len=:), allocatable :: text
 
         text = "    " // entry_label(ucon, group)
-        if (group%state > 0) then
+        if (is_process_rule(group%code)) then
+            ! the message names the call, the state and what happened
+            text = "    " // worst_text(ucon, group) // nl
+        else if (group%state > 0) then
             text = text // ": " // to_text(group%count) // " of " // to_text(ucon%states) &
                 & // " states; worst at state " // to_text(group%state) // " (t = " &
                 & // short(group%time) // " s): " // worst_text(ucon, group) // nl
@@ -125,6 +128,26 @@ contains
             text = text // ": " // worst_text(ucon, group) // nl
         end if
     end function group_text
+
+    !> True when the check of ucon ended with its process (a crash, a timeout, a STOP).
+    pure function process_ended(ucon) result(ended)
+        type(ucon_report_type), intent(in) :: ucon
+        logical :: ended
+        integer :: g
+
+        ended = .false.
+        do g = 1, size(ucon%groups)
+            ended = ended .or. is_process_rule(ucon%groups(g)%code)
+        end do
+    end function process_ended
+
+    !> True for the rules of a child process's end.
+    elemental function is_process_rule(code) result(is_process)
+        integer, intent(in) :: code
+        logical :: is_process
+
+        is_process = code == rule_signal .or. code == rule_timeout .or. code == rule_exit
+    end function is_process_rule
 
     !> The entry of a finding, with the names of its variables: "XMATRX(5,4) = d2F/d(theta)
     !> d(psi)", "ARRAY(4) = dF/d(psi)", "SCALAR (dF/dt)", "UCOVAR".
@@ -136,7 +159,15 @@ contains
         character(len=:), allocatable :: label
 
         label = group%output
-        if (group%row == 0 .or. group%rule == "declaration") return
+        if (group%row == 0 .or. group%code == rule_declaration) return
+        if (group%code == rule_outside_block .and. (group%output == "ARRAY" &
+            & .or. group%output == "XMATRX")) then
+            ! the guard's finding: the index written, which has no variable name
+            label = group%output // "(" // to_text(group%row)
+            if (group%output == "XMATRX") label = label // "," // to_text(group%column)
+            label = label // ")"
+            return
+        end if
         select case (group%output)
         case ("ARRAY (dF/dq)", "ARRAY")
             label = "ARRAY(" // to_text(group%row) // ") = dF/d(" &
@@ -151,60 +182,33 @@ contains
         end select
     end function entry_label
 
-    !> What a rule asks of the routine, in a few words.
-    pure function rule_meaning(rule) result(meaning)
-        !> Rule name of a finding
-        character(len=*), intent(in) :: rule
-        character(len=:), allocatable :: meaning
-
-        select case (rule)
-        case ("derivative")
-            meaning = "differs from central differences of the routine's own outputs (ARRAY " &
-                & // "from F, XMATRX from ARRAY: fix the lowest order first)"
-        case ("symmetry")
-            meaning = "XMATRX must be symmetric: both triangles filled with the same value"
-        case ("velocity-linear")
-            meaning = "non-zero second derivative in two velocities: F is not linear in them"
-        case ("selector-0")
-            meaning = "written although IDRSEL asked for nothing there"
-        case ("repeat")
-            meaning = "the same call gave a different answer the second time"
-        case ("outside-block")
-            meaning = "non-zero entry beyond the declared variables"
-        case ("finite")
-            meaning = "a non-finite value (NaN or Infinity) was returned"
-        case ("errmes")
-            meaning = "the routine reported an error through ERRMES"
-        case ("declaration")
-            meaning = "the UCOVAR declaration is wrong"
-        case default
-            meaning = rule
-        end select
-    end function rule_meaning
-
     !> The worst case of a group in words.
     function worst_text(ucon, group) result(text)
         type(ucon_report_type), intent(in) :: ucon
         type(finding_group_type), intent(in) :: group
         character(len=:), allocatable :: text
 
-        select case (group%rule)
-        case ("derivative")
+        select case (group%code)
+        case (rule_derivative)
             text = "returned " // short(group%returned) // ", differences give " &
                 & // short(group%expected)
-        case ("symmetry")
+        case (rule_symmetry)
             text = "returned " // short(group%returned) // ", its mirror XMATRX(" &
                 & // to_text(group%column) // "," // to_text(group%row) // ") holds " &
                 & // short(group%expected)
-        case ("velocity-linear")
+        case (rule_velocity_linear)
             text = "returned " // short(group%returned) // ", must be 0"
-        case ("selector-0")
+        case (rule_selector_0)
             text = "the routine wrote " // short(group%returned) // " there"
-        case ("repeat")
+        case (rule_repeat)
             text = "F = " // short(group%expected) // " then " // short(group%returned)
-        case ("outside-block")
-            text = "returned " // short(group%returned) // " with only " &
-                & // to_text(size(ucon%codes)) // " variables declared"
+        case (rule_outside_block)
+            if (allocated(group%message)) then
+                text = group%message
+            else
+                text = "returned " // short(group%returned) // " with only " &
+                    & // to_text(size(ucon%codes)) // " variables declared"
+            end if
         case default
             text = "(no message)"
             if (allocated(group%message)) text = group%message
@@ -289,7 +293,8 @@ contains
         type(finding_group_type), intent(in) :: group
         character(len=:), allocatable :: json
 
-        json = '    {"rule": ' // json_string(group%rule) // ', "output": ' // json_string(group%output) &
+        json = '    {"rule": ' // json_string(rule_name(group%code)) // ', "code": ' &
+            & // to_text(group%code) // ', "output": ' // json_string(group%output) &
             & // ', "row": ' // to_text(group%row) // ', "column": ' // to_text(group%column) &
             & // ', "entry": ' // json_string(entry_label(ucon, group)) // ', "count": ' &
             & // to_text(group%count) // ',' // nl // '     "worst": {"state": ' &

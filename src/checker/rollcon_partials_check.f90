@@ -9,6 +9,8 @@ module rollcon_partials_check
         & xmatrx_none, xmatrx_dqdq
     use rollcon_ucon_call, only : evaluate_ucon
     use rollcon_adams_runtime, only : take_ucon_error
+    use rollcon_check_rules, only : rule_derivative, rule_symmetry, rule_velocity_linear, &
+        & rule_selector_0, rule_repeat, rule_outside_block, rule_name
     use, intrinsic :: ieee_arithmetic, only : ieee_is_finite
     implicit none
     private
@@ -30,8 +32,11 @@ module rollcon_partials_check
 
     !> One entry found wrong
     type :: ucon_mismatch_type
-        !> Which rule: "derivative", "symmetry", "velocity-linear", "selector-0", "repeat",
-        !> "outside-block" (an entry beyond the declared variables is non-zero)
+        !> Which rule (rollcon_check_rules): rule_derivative, rule_symmetry,
+        !> rule_velocity_linear, rule_selector_0, rule_repeat, rule_outside_block (an entry
+        !> beyond the declared variables is non-zero)
+        integer :: code = 0
+        !> The rule's name, for messages: rule_name(code)
         character(len=:), allocatable :: rule
         !> Which output: "ARRAY (dF/dq)", "XMATRX (d2F/dq dq)", "SCALAR (dF/dt)", ...
         character(len=:), allocatable :: output
@@ -100,11 +105,11 @@ contains
         ! Nothing beyond the declared variables: the outputs were zeroed before the call.
         if (any(a(n + 1:) /= 0.0_wp)) then
             i = n + findloc(a(n + 1:) /= 0.0_wp, .true., dim=1)
-            call add(result, "outside-block", "ARRAY (dF/dq)", i, 0, 0.0_wp, a(i))
+            call add(result, rule_outside_block, "ARRAY (dF/dq)", i, 0, 0.0_wp, a(i))
         end if
         if (any(x /= 0.0_wp .and. .not. declared_block(n))) then
             loc = findloc(x /= 0.0_wp .and. .not. declared_block(n), .true.)
-            call add(result, "outside-block", "XMATRX (d2F/dq dq)", loc(1), loc(2), 0.0_wp, &
+            call add(result, rule_outside_block, "XMATRX (d2F/dq dq)", loc(1), loc(2), 0.0_wp, &
                 & x(loc(1), loc(2)))
         end if
 
@@ -113,7 +118,7 @@ contains
             & f_again, a_again, x_again, error)
         if (allocated(error)) return
         if (f_again /= f .or. any(a_again /= a) .or. any(x_again /= x)) then
-            call add(result, "repeat", "all outputs", 0, 0, f, f_again)
+            call add(result, rule_repeat, "all outputs", 0, 0, f, f_again)
         end if
 
         do j = 1, n
@@ -187,14 +192,15 @@ contains
                 ! Both triangles must be filled with the same value; round-off of separately
                 ! computed expressions is allowed for.
                 if (abs(x(i, j) - x(j, i)) > 8.0_wp*epsilon(1.0_wp)*scale) then
-                    call add(result, "symmetry", "XMATRX (d2F/dq dq)", i, j, x(j, i), x(i, j))
+                    call add(result, rule_symmetry, "XMATRX (d2F/dq dq)", i, j, x(j, i), x(i, j))
                 end if
             end do
             do i = 1, n
                 ! A UCON must be linear in the velocities: no product of two velocities.
                 if (is_velocity_code(codes(i)) .and. is_velocity_code(codes(j)) &
                     & .and. x(i, j) /= 0.0_wp) then
-                    call add(result, "velocity-linear", "XMATRX (d2F/dq dq)", i, j, 0.0_wp, x(i, j))
+                    call add(result, rule_velocity_linear, "XMATRX (d2F/dq dq)", i, j, &
+                        & 0.0_wp, x(i, j))
                 end if
             end do
         end do
@@ -206,15 +212,15 @@ contains
             xmatrx = sentinel
             call call_raw(ucosub, id, time, q30, par, selector_with(s), scalar, array, xmatrx)
             if (s /= 1 .and. scalar /= sentinel) then
-                call add(result, "selector-0", "SCALAR", 0, 0, sentinel, scalar)
+                call add(result, rule_selector_0, "SCALAR", 0, 0, sentinel, scalar)
             end if
             if (s /= 2 .and. any(array /= sentinel)) then
                 i = findloc(array /= sentinel, .true., dim=1)
-                call add(result, "selector-0", "ARRAY", i, 0, sentinel, array(i))
+                call add(result, rule_selector_0, "ARRAY", i, 0, sentinel, array(i))
             end if
             if (s /= 3 .and. any(xmatrx /= sentinel)) then
                 loc = findloc(xmatrx /= sentinel, .true.)
-                call add(result, "selector-0", "XMATRX", loc(1), loc(2), sentinel, &
+                call add(result, rule_selector_0, "XMATRX", loc(1), loc(2), sentinel, &
                     & xmatrx(loc(1), loc(2)))
             end if
         end do
@@ -276,19 +282,21 @@ contains
             result%worst = huge(1.0_wp)
         end if
         if (.not. (deviation <= options%rel_tol)) then
-            call add(result, "derivative", output, row, column, expected, returned)
+            call add(result, rule_derivative, output, row, column, expected, returned)
         end if
     end subroutine compare
 
     !> Append a mismatch.
-    pure subroutine add(result, rule, output, row, column, expected, returned)
+    pure subroutine add(result, code, output, row, column, expected, returned)
         type(ucon_check_result_type), intent(inout) :: result
-        character(len=*), intent(in) :: rule, output
+        integer, intent(in) :: code
+        character(len=*), intent(in) :: output
         integer, intent(in) :: row, column
         real(wp), intent(in) :: expected, returned
         type(ucon_mismatch_type) :: mismatch
 
-        mismatch%rule = rule
+        mismatch%code = code
+        mismatch%rule = rule_name(code)
         mismatch%output = output
         mismatch%row = row
         mismatch%column = column

@@ -9,15 +9,21 @@ module rollcon_ucosub_audit
     use rollcon_text, only : to_text
     use rollcon_ucosub_contract, only : ucosub_interface, max_ucon_par
     use rollcon_ucovar_registry, only : ucovar_registry_type
-    use rollcon_ucon_call, only : declare_ucon
+    use rollcon_ucon_call, only : declare_ucon, stat_non_finite
+    use rollcon_check_rules, only : rule_declaration, rule_errmes, rule_finite, &
+        & rule_outside_block, rule_name
+    use rollcon_ucosub_guard, only : install_guard, guarded_ucosub, declare_guarded_count, &
+        & note_stage, take_guard_violations, guard_violation_type, violation_text
     use rollcon_partials_check, only : ucon_check_options_type, ucon_check_result_type, &
         & check_ucon_state
     use rollcon_adams_runtime, only : take_ucon_error
+    use rollcon_random_states, only : sampling_ranges, seed_state, draw_state
     implicit none
     private
 
     public :: ucon_request_type, user_check_options_type, finding_group_type, ucon_report_type
-    public :: user_check_report_type, check_user_ucosub, sampling_ranges
+    public :: user_check_report_type, check_user_ucosub, check_requests, sampling_ranges
+    public :: finding
 
     !> One UCON statement to check: its id and FUNCTION=USER constants
     type :: ucon_request_type
@@ -37,7 +43,11 @@ module rollcon_ucosub_audit
 
     !> Findings of one kind (same UCON, rule, output and entry), with the worst of them
     type :: finding_group_type
-        !> "declaration", "errmes", "finite" or a rule of check_ucon_state ("derivative", ...)
+        !> The rule (rollcon_check_rules): rule_declaration, rule_errmes, rule_finite, a rule
+        !> of check_ucon_state (rule_derivative, ...), or how an isolated check ended
+        !> (rule_signal, rule_timeout, rule_exit)
+        integer :: code = 0
+        !> The rule's name, rule_name(code), for messages
         character(len=:), allocatable :: rule
         !> Which output ("ARRAY (dF/dq)", ...), or "UCOVAR"
         character(len=:), allocatable :: output
@@ -83,32 +93,12 @@ module rollcon_ucosub_audit
         procedure :: findings => report_findings
     end type user_check_report_type
 
-    real(wp), parameter :: pi = acos(-1.0_wp)
-    !> Ranges of the random states: |X|, |Y|, |Z| [m]
-    real(wp), parameter :: position_range = 1.0_wp
-    !> |Xdot|, |Ydot|, |Zdot| [m/s]
-    real(wp), parameter :: velocity_range = 1.0_wp
-    !> |psidot|, |thetadot|, |phidot| [rad/s]
-    real(wp), parameter :: rate_range = 10.0_wp
-    !> theta stays this far from 0 and pi, the Euler-angle singularity [rad]
-    real(wp), parameter :: theta_margin = 0.05_wp
-    !> Time is drawn in [0, time_range] [s]
-    real(wp), parameter :: time_range = 10.0_wp
-
 contains
 
-    !> The ranges the states are drawn from, as lines of text (for help and reports).
-    pure function sampling_ranges() result(lines)
-        character(len=80) :: lines(4)
-
-        lines(1) = "psi, phi (codes 14, 16) in (-pi, pi) rad; theta (15) in (0.05, pi - 0.05) rad"
-        lines(2) = "X, Y, Z (11-13) in (-1, 1) m; Xdot, Ydot, Zdot (21-23) in (-1, 1) m/s"
-        lines(3) = "psidot, thetadot, phidot (24-26) in (-10, 10) rad/s"
-        lines(4) = "time in [0, 10] s; uniform, from the seed and the UCON id"
-    end function sampling_ranges
-
-    !> Declare and check every requested UCON of ucosub. Mistakes of the routine are findings
-    !> in the report; the error is only for a request that cannot be checked.
+    !> Declare and check every requested UCON of ucosub, in this process, its outputs guarded
+    !> (rollcon_ucosub_guard). Mistakes of the routine are findings in the report; the error is
+    !> only for a request that cannot be checked. A routine that may crash or hang is checked
+    !> with check_user_ucosub_isolated (rollcon_isolated_audit) instead.
     subroutine check_user_ucosub(ucosub, requests, options, report, error)
         !> The routine under test
         procedure(ucosub_interface) :: ucosub
@@ -127,18 +117,25 @@ contains
         if (allocated(error)) return
         report%options = options
         allocate(report%ucons(size(requests)))
+        call install_guard(ucosub, as_errors=.false.)
         do k = 1, size(requests)
             report%ucons(k)%id = requests(k)%id
             report%ucons(k)%par = requests(k)%par
             allocate(report%ucons(k)%groups(0))
-            call declare(ucosub, requests(k), registry, report%ucons(k))
-            if (report%ucons(k)%declared) call sample(ucosub, options, report%ucons(k))
+            call note_stage(0)
+            call declare(guarded_ucosub, requests(k), registry, report%ucons(k))
+            call record_violations(report%ucons(k), 0, 0.0_wp, [real(wp) ::])
+            if (report%ucons(k)%declared) call sample(guarded_ucosub, options, report%ucons(k))
         end do
     end subroutine check_user_ucosub
 
+    !> Check that requests can be checked: at least one, distinct ids, PAR not too long.
     subroutine check_requests(requests, options, error)
+        !> UCON statements to check
         type(ucon_request_type), intent(in) :: requests(:)
+        !> States, seed, tolerance
         type(user_check_options_type), intent(in) :: options
+        !> Set when there is nothing to check, ids repeat, PAR is too long or states < 1
         type(error_type), allocatable, intent(out) :: error
         integer :: k
 
@@ -181,7 +178,7 @@ contains
         call take_ucon_error(error)
         call declare_ucon(ucosub, request%id, request%par, registry, error)
         if (allocated(error)) then
-            group = finding("declaration", "UCOVAR", error%message)
+            group = finding(rule_declaration, "UCOVAR", error%message)
             ucon%groups = [ucon%groups, group]
             return
         end if
@@ -189,10 +186,11 @@ contains
         ucon%declared = .true.
         ucon%parts = registry%entries(entry)%parts
         ucon%codes = registry%entries(entry)%codes
+        call declare_guarded_count(request%id, size(ucon%codes))
         do i = 1, size(ucon%parts)
             if (any(ucon%parts(:i - 1) == ucon%parts(i))) cycle
             if (any(request%par == real(ucon%parts(i), wp))) cycle
-            group = finding("declaration", "UCOVAR", "UCON/" // to_text(request%id) &
+            group = finding(rule_declaration, "UCOVAR", "UCON/" // to_text(request%id) &
                 & // ": UCOVAR declares part id " // to_text(ucon%parts(i)) // " (variable " &
                 & // to_text(i) // "), which no PAR entry mentions; take part ids from PAR")
             group%row = i
@@ -217,18 +215,20 @@ contains
         allocate(q(size(ucon%codes)))
         do s = 1, options%states
             call draw_state(random, ucon%codes, q, time)
+            call note_stage(s)
             result = ucon_check_result_type()
             call check_ucon_state(ucosub, ucon%id, ucon%par, ucon%codes, time, q, &
                 & options%compare, result, error)
             ucon%states = ucon%states + 1
             ucon%compared = ucon%compared + result%compared
             ucon%worst = max(ucon%worst, result%worst)
+            call record_violations(ucon, s, time, q)
             if (allocated(error)) then
                 ! evaluate_ucon reports ERRMES calls and non-finite outputs this way.
-                if (index(error%message, "non-finite value") > 0) then
-                    group = finding("finite", "all outputs", error%message)
+                if (error%stat == stat_non_finite) then
+                    group = finding(rule_finite, "all outputs", error%message)
                 else
-                    group = finding("errmes", "ERRMES", error%message)
+                    group = finding(rule_errmes, "ERRMES", error%message)
                 end if
                 call take_ucon_error(error)
                 call record(ucon, group, s, time, q)
@@ -236,7 +236,7 @@ contains
             if (.not. allocated(result%mismatches)) cycle
             do m = 1, size(result%mismatches)
                 associate (mismatch => result%mismatches(m))
-                    group = finding(mismatch%rule, mismatch%output)
+                    group = finding(mismatch%code, mismatch%output)
                     group%row = mismatch%row
                     group%column = mismatch%column
                     group%expected = mismatch%expected
@@ -258,7 +258,7 @@ contains
 
         do g = 1, size(ucon%groups)
             associate (group => ucon%groups(g))
-                if (group%rule /= found%rule .or. group%output /= found%output &
+                if (group%code /= found%code .or. group%output /= found%output &
                     & .or. group%row /= found%row .or. group%column /= found%column) cycle
                 ! Counted once per state: a rule may report the same entry twice in one state.
                 if (.not. any(group%states == s)) then
@@ -293,76 +293,43 @@ contains
         group%q = q
     end subroutine set_worst
 
-    !> A finding of rule on output, counted once, with an optional message.
-    pure function finding(rule, output, message) result(group)
-        character(len=*), intent(in) :: rule, output
+    !> The guard's violations since the last look, as outside-block findings at state s.
+    subroutine record_violations(ucon, s, time, q)
+        type(ucon_report_type), intent(inout) :: ucon
+        integer, intent(in) :: s
+        real(wp), intent(in) :: time, q(:)
+        type(guard_violation_type), allocatable :: found(:)
+        type(finding_group_type) :: group
+        integer :: v
+
+        call take_guard_violations(found)
+        do v = 1, size(found)
+            group = finding(rule_outside_block, trim(found(v)%output), "UCON/" &
+                & // to_text(ucon%id) // ": " // violation_text(found(v)))
+            group%row = found(v)%row
+            group%column = found(v)%column
+            group%returned = found(v)%value
+            call record(ucon, group, s, time, q)
+        end do
+    end subroutine record_violations
+
+    !> A finding of rule (a code of rollcon_check_rules) on output, counted once, with an
+    !> optional message.
+    pure function finding(code, output, message) result(group)
+        !> Rule code
+        integer, intent(in) :: code
+        !> Which output
+        character(len=*), intent(in) :: output
+        !> What the routine or the checker said
         character(len=*), intent(in), optional :: message
         type(finding_group_type) :: group
 
-        group%rule = rule
+        group%code = code
+        group%rule = rule_name(code)
         group%output = output
         group%count = 1
         if (present(message)) group%message = message
     end function finding
-
-    !> Starting state of the generator for a seed and a UCON id (never zero).
-    pure function seed_state(seed, id) result(state)
-        integer, intent(in) :: seed, id
-        integer(int64) :: state
-        integer :: i
-
-        state = ieor(int(seed, int64), ishft(int(id, int64), 32))
-        state = ieor(state, 6755399441055744_int64)
-        do i = 1, 8
-            call xorshift(state)
-        end do
-    end function seed_state
-
-    !> One step of Marsaglia's xorshift64 (shifts 13, 7, 17): only shifts and exclusive ors,
-    !> so no integer overflow, and the same sequence on every compiler.
-    pure subroutine xorshift(state)
-        integer(int64), intent(inout) :: state
-
-        state = ieor(state, ishft(state, 13))
-        state = ieor(state, ishft(state, -7))
-        state = ieor(state, ishft(state, 17))
-    end subroutine xorshift
-
-    !> Uniform number in (0, 1) from the top 53 bits of the next state.
-    subroutine uniform(state, u)
-        integer(int64), intent(inout) :: state
-        real(wp), intent(out) :: u
-
-        call xorshift(state)
-        u = (real(ishft(state, -11), wp) + 0.5_wp) * 2.0_wp**(-53)
-    end subroutine uniform
-
-    !> A state in the documented ranges (sampling_ranges) for the declared codes.
-    subroutine draw_state(state, codes, q, time)
-        integer(int64), intent(inout) :: state
-        integer, intent(in) :: codes(:)
-        real(wp), intent(out) :: q(:), time
-        real(wp) :: u
-        integer :: i
-
-        do i = 1, size(codes)
-            call uniform(state, u)
-            select case (codes(i))
-            case (11:13)
-                q(i) = position_range*(2.0_wp*u - 1.0_wp)
-            case (14, 16)
-                q(i) = pi*(2.0_wp*u - 1.0_wp)
-            case (15)
-                q(i) = theta_margin + (pi - 2.0_wp*theta_margin)*u
-            case (21:23)
-                q(i) = velocity_range*(2.0_wp*u - 1.0_wp)
-            case default
-                q(i) = rate_range*(2.0_wp*u - 1.0_wp)
-            end select
-        end do
-        call uniform(state, u)
-        time = time_range*u
-    end subroutine draw_state
 
     pure function report_clean(self) result(clean)
         class(user_check_report_type), intent(in) :: self

@@ -22,6 +22,7 @@ program tester
     use test_output, only : collect_output
     use test_command, only : collect_command
     use test_csv_fuzz, only : collect_csv_fuzz
+    use test_isolation, only : collect_isolation
     implicit none
     type(testsuite_type), allocatable :: suites(:)
     type(test_counts_type) :: counts
@@ -48,7 +49,8 @@ program tester
         & new_testsuite("adm-reader", collect_adm_reader), &
         & new_testsuite("output", collect_output), &
         & new_testsuite("command", collect_command), &
-        & new_testsuite("csv-fuzz", collect_csv_fuzz)]
+        & new_testsuite("csv-fuzz", collect_csv_fuzz), &
+        & new_testsuite("isolation", collect_isolation)]
 
     if (command_argument_count() >= 1) then
         call get_command_argument(1, argument)

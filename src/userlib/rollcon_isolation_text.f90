@@ -1,0 +1,143 @@
+! SPDX-License-Identifier: MIT
+!> Words for how an isolated child ended (rollcon_child_process), the useful lines of its
+!> captured stderr, and the names of its scratch files.
+module rollcon_isolation_text
+    use rollcon_kinds, only : wp
+    use rollcon_text, only : to_text
+    use rollcon_dlopen, only : process_id
+    use rollcon_child_process, only : isolation_outcome_type, outcome_signal, outcome_timeout, &
+        & outcome_exit, signal_name
+    implicit none
+    private
+
+    public :: outcome_text, quote_stderr, scratch_path
+
+    !> Lines of the child's stderr quoted at most
+    integer, parameter :: quoted_lines = 4
+
+contains
+
+    !> "UCON/1: the UCOSUB was killed by SIGFPE (...) in call 57, IFLAG = 0, IDRSEL = (1, 1, 1),
+    !> TIME = 2.5, Q = (...), state 3": what happened and the call it happened in.
+    function outcome_text(outcome) result(text)
+        !> How the child ended
+        type(isolation_outcome_type), intent(in) :: outcome
+        character(len=:), allocatable :: text
+        integer :: i, n
+
+        associate (record => outcome%record)
+            text = ""
+            if (record%calls > 0) text = "UCON/" // to_text(int(record%ucon_id)) // ": "
+            select case (outcome%kind)
+            case (outcome_signal)
+                text = text // "the process was killed by " // signal_name(outcome%signal)
+            case (outcome_timeout)
+                text = text // "a UCOSUB call did not return within " &
+                    & // to_text(real(outcome%call_timeout, wp)) // " s, the time limit per " &
+                    & // "call (--call-timeout SECONDS); the process was killed"
+            case (outcome_exit)
+                text = text // "the process ended with exit status " &
+                    & // to_text(outcome%exit_status) // " before its work was done (a STOP, " &
+                    & // "ERROR STOP or CALL EXIT in the UCOSUB? only rollcon may end the process)"
+            case default
+                text = text // "the process finished"
+            end select
+            if (record%calls == 0) then
+                text = text // ", before the first UCOSUB call"
+                return
+            end if
+            if (record%in_call == 1) then
+                text = text // ", inside"
+            else
+                text = text // ", after"
+            end if
+            text = text // " UCOSUB call " // to_text(int(record%calls)) // ": IFLAG = " &
+                & // to_text(int(record%iflag))
+            if (record%iflag == 3) then
+                text = text // " (the initialisation call)"
+            else
+                text = text // ", IDRSEL = (" // to_text(int(record%idrsel(1))) // ", " &
+                    & // to_text(int(record%idrsel(2))) // ", " &
+                    & // to_text(int(record%idrsel(3))) // "), TIME = " &
+                    & // to_text(real(record%time, wp))
+                n = min(int(record%nq), size(record%q))
+                ! Declared count unknown (a run): up to the last non-zero entry.
+                if (n == size(record%q)) n = max(1, findloc(record%q /= 0.0_wp, .true., dim=1, &
+                    & back=.true.))
+                text = text // ", Q(1:" // to_text(n) // ") = ("
+                do i = 1, n
+                    if (i > 1) text = text // ", "
+                    text = text // to_text(real(record%q(i), wp))
+                end do
+                text = text // ")"
+                if (record%stage > 0) text = text // " (state " &
+                    & // to_text(int(record%stage)) // " of the check)"
+            end if
+        end associate
+    end function outcome_text
+
+    !> The useful lines of a child's captured stderr (what gfortran says of the signal, a STOP
+    !> message, the source line of the UCOSUB in the backtrace), as "; its stderr: ..." or "".
+    function quote_stderr(path) result(text)
+        !> File holding the child's stderr
+        character(len=*), intent(in) :: path
+        character(len=:), allocatable :: text
+        character(len=400) :: line
+        integer :: unit, stat, quoted
+        logical :: after_ucosub, useful
+
+        text = ""
+        open(newunit=unit, file=path, status="old", action="read", iostat=stat)
+        if (stat /= 0) return
+        quoted = 0
+        after_ucosub = .false.
+        do while (quoted < quoted_lines)
+            read(unit, '(a)', iostat=stat) line
+            if (stat /= 0) exit
+            ! gfortran's backtrace indents its "at FILE:LINE" lines with a tab
+            where_tab: block
+                integer :: i
+                do i = 1, len_trim(line)
+                    if (line(i:i) == achar(9)) line(i:i) = " "
+                end do
+            end block where_tab
+            line = adjustl(line)
+            useful = index(line, "Program received signal") == 1 .or. index(line, "STOP") == 1 &
+                & .or. index(line, "ERROR STOP") == 1 .or. index(line, "Fortran runtime") == 1 &
+                & .or. index(line, "At line") == 1 .or. (after_ucosub .and. index(line, "at ") == 1)
+            after_ucosub = index(line, " in ucosub_") > 0
+            if (.not. useful .or. len_trim(line) == 0) cycle
+            if (quoted == 0) then
+                text = "; its stderr: "
+            else
+                text = text // " | "
+            end if
+            text = text // trim(line)
+            quoted = quoted + 1
+        end do
+        close(unit)
+    end function quote_stderr
+
+    !> A scratch file for child number k of this process: $TMPDIR (else /tmp)
+    !> /rollcon-<what>-<pid>-<k><extension>.
+    function scratch_path(what, k, extension) result(path)
+        !> What the file is for ("check", "run")
+        character(len=*), intent(in) :: what
+        !> Number of the child
+        integer, intent(in) :: k
+        !> File name extension, with its dot
+        character(len=*), intent(in) :: extension
+        character(len=:), allocatable :: path
+        character(len=4096) :: dir
+        integer :: length, stat
+
+        call get_environment_variable("TMPDIR", dir, length, stat)
+        if (stat /= 0 .or. length == 0) then
+            dir = "/tmp"
+            length = 4
+        end if
+        path = dir(:length) // "/rollcon-" // what // "-" // to_text(process_id()) // "-" &
+            & // to_text(k) // extension
+    end function scratch_path
+
+end module rollcon_isolation_text
