@@ -24,6 +24,9 @@ module rollcon_disk_scene
     real(wp), parameter :: pi = acos(-1.0_wp)
     !> Part id of the disk in every disk scene
     integer, parameter :: disk_part = 1
+    !> Lift-off threshold as a fraction of the force scale: far above the rounding noise of a
+    !> normal force that is exactly zero (~1e-15 of the scale), far below a real lift-off
+    real(wp), parameter :: liftoff_fraction = 1.0e-6_wp
 
 contains
 
@@ -121,7 +124,31 @@ contains
         problem%events%theta_min = scene%theta_min
         problem%events%stop_on_liftoff = scene%stop_on_liftoff
         call disk_initial_state(scene, q0, u0)
+        call set_disk_scales(scene, disk%mass, problem)
     end subroutine build_disk_problem
+
+    !> The scales a disk scene's events are judged by. Force scale: the weight m g, plus
+    !> m R |omega0|^2 (the centripetal force of the initial spin, which sets the normal force
+    !> without gravity), plus the strike's peak force; a lift-off is a normal force below
+    !> -liftoff_fraction times it. The rim radius, for the height residual.
+    pure subroutine set_disk_scales(scene, mass, problem)
+        type(scene_type), intent(in) :: scene
+        !> Disk mass [kg]
+        real(wp), intent(in) :: mass
+        type(problem_type), intent(inout) :: problem
+        real(wp) :: spin_squared, force_scale
+
+        ! |omega|^2 with omega = psidot e_Z + thetadot e_x1 + phidot e_z2 (DESIGN section 3):
+        ! e_x1 is normal to both others, and e_Z . e_z2 = cos(theta)
+        spin_squared = scene%psidot**2 + scene%thetadot**2 + scene%phidot**2 &
+            & + 2.0_wp*scene%psidot*scene%phidot*cos(scene%theta)
+        force_scale = mass*(scene%gravity + scene%radius*max(spin_squared, 0.0_wp))
+        ! a half-sine pulse of impulse J over T peaks at pi J / (2 T)
+        if (scene%has_strike) force_scale = force_scale &
+            & + 0.5_wp*pi*abs(scene%strike_impulse)/scene%strike_duration
+        problem%events%liftoff_force = liftoff_fraction*force_scale
+        problem%events%contact_radius = scene%radius
+    end subroutine set_disk_scales
 
     !> Build a disk scene's problem and simulate it over the scene's time with its output step.
     subroutine simulate_scene(scene, ucosub, summary, error, history, csv_path, progress)

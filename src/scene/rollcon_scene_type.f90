@@ -76,7 +76,8 @@ module rollcon_scene_type
         real(wp) :: baumgarte_rate = 10.0_wp
         !> &run: most integrator steps, > 0
         integer :: max_steps = 500000
-        !> &limits: stop when theta falls below [rad]; >= 0 and < the initial theta
+        !> &limits: stop when theta comes within this of flat, on either side (sin(theta) <
+        !> sin(theta_min)) [rad]; >= 1e-3 and < min(theta, pi - theta) initially
         real(wp) :: theta_min = 0.05_wp
         !> &limits: stop when the normal force turns negative
         logical :: stop_on_liftoff = .true.
@@ -126,9 +127,13 @@ contains
             call require(s%baumgarte_rate > 0.0_wp, "run", "baumgarte_rate", "> 0 [1/s]", &
                 & to_text(s%baumgarte_rate))
             call require(s%max_steps > 0, "run", "max_steps", "> 0", to_text(s%max_steps))
-            call require(s%theta_min >= 0.0_wp .and. s%theta_min < s%theta, "limits", &
-                & "theta_min", ">= 0 and < the initial theta = " // to_text(s%theta) &
-                & // " [rad]", to_text(s%theta_min))
+            ! theta_min guards both sides of flat (sin(theta) = sin(theta_min)); at 0 the run
+            ! would go on into the singularity itself, where the solvers fail
+            call require(s%theta_min >= flat_margin .and. s%theta_min < min(s%theta, &
+                & pi - s%theta), "limits", "theta_min", "at least " // to_text(flat_margin) &
+                & // " (closer to flat the 3-1-3 Euler angles are singular) and less than the " &
+                & // "initial distance from flat min(theta, pi - theta) = " &
+                & // to_text(min(s%theta, pi - s%theta)) // " [rad]", to_text(s%theta_min))
             call require_choice(s%formulation, "formulation", [character(len=10) :: "ida", &
                 & "cvode"])
             call require_choice(s%method, "method", [character(len=10) :: "bdf", "adams"])
