@@ -11,6 +11,7 @@ program tester
     use test_scene, only : collect_scene
     use test_dynamics, only : collect_dynamics
     use test_motion, only : collect_motion
+    use test_events, only : collect_events
     use test_extremes, only : collect_extremes
     use test_pictures, only : collect_pictures
     use test_user_ucosub, only : collect_user_ucosub
@@ -30,6 +31,7 @@ program tester
         & new_testsuite("scene", collect_scene), &
         & new_testsuite("dynamics", collect_dynamics), &
         & new_testsuite("motion", collect_motion), &
+        & new_testsuite("events", collect_events), &
         & new_testsuite("extremes", collect_extremes), &
         & new_testsuite("pictures", collect_pictures), &
         & new_testsuite("user-ucosub", collect_user_ucosub)]

@@ -1,7 +1,7 @@
 ! SPDX-License-Identifier: MIT
 !> Physics of simulated motions: conserved energy, held constraints, analytic steady motions,
 !> the stability threshold and wobble frequency of upright rolling, the strike's momentum,
-!> agreement of the ODE (CVODE) and DAE (IDA) formulations.
+!> agreement of the ODE (CVODE) and DAE (IDA) formulations. Events and drift: test_events.
 module test_motion
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type
@@ -17,7 +17,7 @@ module test_motion
     use rollcon_disk_par, only : disk_par
     use rollcon_disk_scene, only : disk_initial_state
     use rollcon_disk_scene, only : disk_mass_properties
-    use rollcon_simulation, only : history_type, run_summary_type, status_stopped, &
+    use rollcon_simulation, only : history_type, run_summary_type, &
         & column_time, column_x, column_y, column_z, column_psi, column_theta, column_phi, &
         & column_xdot, column_ydot, column_zdot, column_thetadot, column_fx, column_fy, &
         & column_fz, column_residual
@@ -45,8 +45,6 @@ contains
             & new_unittest("wobble-frequency-2-m-s", test_wobble), &
             & new_unittest("cvode-agrees-with-ida", test_formulations_agree), &
             & new_unittest("strike-momentum", test_strike_momentum), &
-            & new_unittest("theta-limit-stops-run", test_theta_event), &
-            & new_unittest("liftoff-stops-run", test_liftoff_event), &
             & new_unittest("long-run-energy-and-no-drift-growth", test_long_run), &
             & new_unittest("solver-failure-keeps-valid-csv", test_solver_failure), &
             & new_unittest("position-height-matches-velocity-form", test_position_height), &
@@ -345,52 +343,6 @@ contains
         call check(error, abs(change(2)) > 0.1_wp*scene%strike_impulse, &
             & "the strike barely changed the Y momentum")
     end subroutine test_strike_momentum
-
-    !> A theta limit stops the run cleanly with a message naming the time and the state.
-    subroutine test_theta_event(error)
-        type(error_type), allocatable, intent(out) :: error
-        type(scene_type) :: scene
-        type(history_type) :: history
-        type(run_summary_type) :: summary
-
-        scene = tipping_coin("ida", 1.0e-8_wp)
-        scene%theta_min = 0.5_wp
-        call run_in_memory(scene, history, summary, error)
-        if (allocated(error)) return
-        call check(error, summary%status == status_stopped, "the run did not stop at the limit")
-        if (allocated(error)) return
-        call check(error, index(summary%message, "theta fell to the limit theta_min = 0.5") > 0 &
-            & .and. index(summary%message, " at t = ") > 0, "message: " // summary%message)
-        if (allocated(error)) return
-        call check(error, history%rows(column_theta, history%count), 0.5_wp, &
-            & "theta at the stop", abs_tol=1.0e-6_wp)
-    end subroutine test_theta_event
-
-    !> Without gravity, a disk precessing near flat needs the ground to pull it: the run stops
-    !> when the normal force turns negative, naming the time and the tilt.
-    subroutine test_liftoff_event(error)
-        type(error_type), allocatable, intent(out) :: error
-        type(scene_type) :: scene
-        type(history_type) :: history
-        type(run_summary_type) :: summary
-
-        scene = default_scene()
-        scene%gravity = 0.0_wp
-        scene%theta = pi/12.0_wp
-        scene%psidot = 10.0_wp
-        scene%phidot = -10.0_wp*cos(pi/12.0_wp)
-        scene%end_time = 2.0_wp
-        scene%stop_on_liftoff = .true.
-        call run_in_memory(scene, history, summary, error)
-        if (allocated(error)) return
-        call check(error, summary%status == status_stopped .and. &
-            & index(summary%message, "normal contact force turned negative at t = ") > 0, &
-            & "no lift-off stop; status " // to_text(summary%status))
-        if (allocated(error)) return
-        ! the root is located to the solver's tolerance on a force of order m R psidot^2 ~ 7 N
-        call check(error, history%rows(column_fz, history%count), 0.0_wp, &
-            & "normal force at the stop [N]", abs_tol=1.0e-5_wp)
-    end subroutine test_liftoff_event
 
     !> long_run (200 s at 0.8 m/s): energy within 1000 rtol, and IDA's constraint residual in
     !> the last 20 s no larger than ten times that of the first 20 s (no drift growth).
