@@ -11,12 +11,12 @@ module rollcon_simulation
     use rollcon_dae, only : dae_size
     use rollcon_force, only : force_breakpoints
     use rollcon_csv_writer, only : csv_writer_type
+    use rollcon_drift, only : height_residual, drift_bounds, drift_findings
     implicit none
     private
 
     public :: run_options_type, run_summary_type, history_type, simulate, csv_header
     public :: status_completed, status_stopped, status_failed, status_inaccurate
-    public :: energy_allowance, height_allowance
 
     !> Columns of the output rows (CSV and history)
     integer, parameter, public :: column_time = 1, column_x = 2, column_y = 3, column_z = 4, &
@@ -26,12 +26,9 @@ module rollcon_simulation
         & column_normal = 18, column_mu = 19, column_residual = 20
 
     !> How a run ended: as planned, at an event limit, by a failure, or at its end or a limit
-    !> with an energy or height drift beyond what its tolerances promise (judge_drift)
+    !> with an energy or height drift beyond what its tolerances promise (rollcon_drift)
     integer, parameter :: status_completed = 0, status_stopped = 1, status_failed = 2, &
         & status_inaccurate = 3
-    !> K of the drift bounds after N integrator steps (judge_drift): relative energy drift
-    !> <= K_E sqrt(N) rtol, height residual |Z - R sin(theta)| <= K_H sqrt(N) (atol + rtol R)
-    real(wp), parameter :: energy_allowance = 10.0_wp, height_allowance = 3.0_wp
     real(wp), parameter :: pi = acos(-1.0_wp)
 
     !> Where and how often to report
@@ -62,7 +59,7 @@ module rollcon_simulation
         !> Largest position-level residual |Z - R sin(theta)| of the watched part [m] (0 when
         !> the problem has no contact radius)
         real(wp) :: height_residual_max = 0.0_wp
-        !> What the tolerances allow of energy_drift and height_residual_max (judge_drift);
+        !> What the tolerances allow of energy_drift and height_residual_max (rollcon_drift);
         !> 0 when not judged
         real(wp) :: energy_bound = 0.0_wp, height_bound = 0.0_wp
         !> Integrator statistics
@@ -350,62 +347,21 @@ contains
 
     end subroutine simulate
 
-    !> Height residual Z - R sin(theta) of the watched part [m]: the position-level form of the
-    !> disk's contact, which the velocity constraint F3 holds only through its integral; 0 when
-    !> the problem has no contact radius.
-    pure function height_residual(problem, q) result(height)
-        type(problem_type), intent(in) :: problem
-        real(wp), intent(in) :: q(:)
-        real(wp) :: height(1)
-        integer :: i0
-
-        height = 0.0_wp
-        if (problem%events%contact_radius <= 0.0_wp) return
-        i0 = 6*(problem%events%part - 1)
-        height = q(i0 + 3) - problem%events%contact_radius*sin(q(i0 + 5))
-    end function height_residual
-
-    !> Judge a run that reached its end or a limit against what its tolerances promise. The
-    !> integrators keep each step's local error within rtol |y| + atol (their error test);
-    !> independent local errors add up like a random walk, to about sqrt(N) of them after N
-    !> steps, while a drift the formulation does not correct (CVODE with drift = 'none') grows
-    !> like N. Allowed: a relative energy drift of K_E sqrt(N) rtol and a height residual of
-    !> K_H sqrt(N) (atol + rtol R). Measured in sqrt(N) units (data/ scenes; tipping coin at
-    !> rtol 1e-4..1e-8 over 10-30 s; coin and long_run over 2000 s): height, sound runs <= 0.82,
-    !> drift = 'none' 4.8-7800, hence K_H = 3; energy, sound runs <= 0.93 over 10 s but 7.1 for
-    !> the coin over 2000 s under IDA (BDF's damping adds up like N), drift = 'none' 4.8-9.2
-    !> over 10 s and >= 38 over 30 s, hence K_E = 10. Beyond either bound the results are not
-    !> what was asked: status_inaccurate, with the measures and bounds in the message.
+    !> Judge a run that reached its end or a limit against what its tolerances promise
+    !> (rollcon_drift): beyond a bound its results are not what was asked, status_inaccurate,
+    !> with the measures and bounds in the message.
     subroutine judge_drift(problem, summary)
         type(problem_type), intent(in) :: problem
         type(run_summary_type), intent(inout) :: summary
         character(len=:), allocatable :: findings
-        real(wp) :: root_steps
 
         if (summary%status /= status_completed .and. summary%status /= status_stopped) return
-        root_steps = sqrt(real(max(1, summary%steps), wp))
-        findings = ""
-        associate (rtol => problem%settings%rtol, atol => problem%settings%atol, &
-            & radius => problem%events%contact_radius)
-            if (summary%energy_reference /= 0.0_wp) then
-                summary%energy_bound = energy_allowance*root_steps*rtol
-                if (.not. summary%energy_drift <= summary%energy_bound) findings = findings &
-                    & // "; energy drift " // to_text(summary%energy_drift) // " > " &
-                    & // to_text(summary%energy_bound) // " allowed"
-            end if
-            if (radius > 0.0_wp) then
-                summary%height_bound = height_allowance*root_steps*(atol + rtol*radius)
-                if (.not. summary%height_residual_max <= summary%height_bound) findings = &
-                    & findings // "; height residual |Z - R sin(theta)| " &
-                    & // to_text(summary%height_residual_max) // " m > " &
-                    & // to_text(summary%height_bound) // " m allowed"
-            end if
-        end associate
+        call drift_bounds(problem, summary%steps, summary%energy_bound, summary%height_bound)
+        ! no reference energy to be relative to: not judged
+        if (summary%energy_reference == 0.0_wp) summary%energy_bound = 0.0_wp
+        findings = drift_findings(summary%steps, summary%energy_drift, summary%energy_bound, &
+            & summary%height_residual_max, summary%height_bound)
         if (len(findings) == 0) return
-        findings = findings(3:) // " (bounds: " // to_text(energy_allowance) // " and " &
-            & // to_text(height_allowance) // " sqrt(N) local errors after N = " &
-            & // to_text(summary%steps) // " steps; use drift = 'projection', height = " &
-            & // "'position' or a tighter rtol)"
         if (summary%status == status_stopped) then
             summary%message = summary%message // "; and the results drifted: " // findings
         else

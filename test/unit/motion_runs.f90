@@ -11,7 +11,9 @@ module motion_runs
     implicit none
     private
 
-    public :: run_in_memory, default_scene
+    public :: run_in_memory, default_scene, tipping_coin
+
+    real(wp), parameter :: pi = acos(-1.0_wp)
 
 contains
 
@@ -29,6 +31,22 @@ contains
         scene%theta_min = -1.0_wp
         scene%stop_on_liftoff = .false.
     end function default_scene
+
+    !> The tipping coin: upright less 0.01 rad, rolling at 0.1 m/s, no strike, 10 s.
+    function tipping_coin(formulation, rtol) result(scene)
+        character(len=*), intent(in) :: formulation
+        real(wp), intent(in) :: rtol
+        type(scene_type) :: scene
+
+        scene = default_scene()
+        scene%theta = 0.5_wp*pi - 0.01_wp
+        scene%phidot = -1.0_wp
+        scene%end_time = 10.0_wp
+        scene%output_step = 0.05_wp
+        scene%formulation = formulation
+        scene%rtol = rtol
+        scene%atol = 1.0e-2_wp*rtol
+    end function tipping_coin
 
     !> Simulate scene with ucosub (default: the hand-checked disk) and keep every output row.
     subroutine run_in_memory(scene, history, summary, error, ucosub)
