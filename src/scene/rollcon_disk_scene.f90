@@ -24,9 +24,12 @@ module rollcon_disk_scene
     real(wp), parameter :: pi = acos(-1.0_wp)
     !> Part id of the disk in every disk scene
     integer, parameter :: disk_part = 1
-    !> Lift-off threshold as a fraction of the force scale: far above the rounding noise of a
-    !> normal force that is exactly zero (~1e-15 of the scale), far below a real lift-off
-    real(wp), parameter :: liftoff_fraction = 1.0e-6_wp
+    !> Lift-off threshold as a fraction of the force scale, at least, and per unit rtol: a
+    !> normal force that is exactly zero (steady motion without gravity) shows rounding noise
+    !> (~1e-15 of the scale) and integration noise, measured at 6e-8 to 5e-5 of the scale for
+    !> rtol 1e-8 to 1e-4 (0.5 rtol at most); the threshold stays 100 times above it and far
+    !> below a real lift-off, where the force falls by the order of the scale
+    real(wp), parameter :: liftoff_fraction = 1.0e-5_wp, liftoff_per_rtol = 100.0_wp
 
 contains
 
@@ -130,7 +133,8 @@ contains
     !> The scales a disk scene's events are judged by. Force scale: the weight m g, plus
     !> m R |omega0|^2 (the centripetal force of the initial spin, which sets the normal force
     !> without gravity), plus the strike's peak force; a lift-off is a normal force below
-    !> -liftoff_fraction times it. The rim radius, for the height residual.
+    !> -max(liftoff_fraction, liftoff_per_rtol rtol) times it. The rim radius, for the height
+    !> residual.
     pure subroutine set_disk_scales(scene, mass, problem)
         type(scene_type), intent(in) :: scene
         !> Disk mass [kg]
@@ -146,7 +150,8 @@ contains
         ! a half-sine pulse of impulse J over T peaks at pi J / (2 T)
         if (scene%has_strike) force_scale = force_scale &
             & + 0.5_wp*pi*abs(scene%strike_impulse)/scene%strike_duration
-        problem%events%liftoff_force = liftoff_fraction*force_scale
+        problem%events%liftoff_force = max(liftoff_fraction, liftoff_per_rtol*scene%rtol) &
+            & *force_scale
         problem%events%contact_radius = scene%radius
     end subroutine set_disk_scales
 
