@@ -10,7 +10,7 @@ module rollcon_command_run
         & formulation_cvode, method_adams
     use rollcon_disk_scene, only : simulate_scene
     use rollcon_simulation, only : run_summary_type, status_completed, status_stopped, &
-        & status_failed, default_max_csv_bytes
+        & status_failed, status_inaccurate, default_max_csv_bytes
     use rollcon_output_files, only : partial_name, write_text_file, rename_file, delete_file
     implicit none
     private
@@ -145,6 +145,8 @@ contains
             text = text // "status: completed at t = " // to_text(summary%t_reached) // " s" // nl
         case (status_stopped)
             text = text // "status: stopped: " // summary%message // nl
+        case (status_inaccurate)
+            text = text // "status: INACCURATE: " // summary%message // nl
         case default
             text = text // "status: FAILED: " // summary%message // nl
         end select
@@ -159,9 +161,14 @@ contains
         end if
         write(value, '(es11.3e3)') summary%energy_drift
         text = text // "energy drift: " // trim(adjustl(value)) // " (largest |E - E0|/|E0|, E0 = " &
-            & // to_text(summary%energy_reference) // " J after the last applied force)" // nl
+            & // to_text(summary%energy_reference) // " J after the last applied force)" &
+            & // allowed(summary%energy_bound, "") // nl
         write(value, '(es11.3e3)') summary%residual_max
-        text = text // "largest constraint residual: " // trim(adjustl(value)) // " m/s" // nl
+        text = text // "largest constraint residual: " // trim(adjustl(value)) &
+            & // " (F1..F3: m/s, or m for height = 'position')" // nl
+        write(value, '(es11.3e3)') summary%height_residual_max
+        text = text // "largest height residual |Z - R sin(theta)|: " // trim(adjustl(value)) &
+            & // " m" // allowed(summary%height_bound, " m") // nl
         text = text // "steps " // to_text(summary%steps) // ", function evaluations " &
             & // to_text(summary%functions) // ", Jacobian evaluations " &
             & // to_text(summary%jacobians) // ", error-test failures " &
@@ -169,6 +176,21 @@ contains
         write(value, '(f12.4)') summary%cpu_seconds
         text = text // "CPU time: " // trim(adjustl(value)) // " s" // nl
         text = text // "output: " // csv_path // " (" // to_text(summary%rows) // " rows)"
+
+    contains
+
+        !> ", allowed <bound><unit>" when the drift was judged (bound > 0).
+        function allowed(bound, unit) result(phrase)
+            real(wp), intent(in) :: bound
+            character(len=*), intent(in) :: unit
+            character(len=:), allocatable :: phrase
+
+            phrase = ""
+            if (bound <= 0.0_wp) return
+            write(value, '(es10.3e3)') bound
+            phrase = ", allowed " // trim(adjustl(value)) // unit
+        end function allowed
+
     end function summary_text
 
 end module rollcon_command_run

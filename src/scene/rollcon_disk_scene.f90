@@ -3,6 +3,7 @@
 !> a rolling-disk UCOSUB, gravity, the strike, solver settings, limits and the initial state.
 module rollcon_disk_scene
     use rollcon_kinds, only : wp
+    use rollcon_constants, only : pi
     use rollcon_error, only : error_type
     use rollcon_ucosub_contract, only : ucosub_interface
     use rollcon_body, only : part_type
@@ -21,6 +22,12 @@ module rollcon_disk_scene
 
     !> Part id of the disk in every disk scene
     integer, parameter :: disk_part = 1
+    !> Lift-off threshold as a fraction of the force scale, at least, and per unit rtol: a
+    !> normal force that is exactly zero (steady motion without gravity) shows rounding noise
+    !> (~1e-15 of the scale) and integration noise, measured at 6e-8 to 5e-5 of the scale for
+    !> rtol 1e-8 to 1e-4 (0.5 rtol at most); the threshold stays 100 times above it and far
+    !> below a real lift-off, where the force falls by the order of the scale
+    real(wp), parameter :: liftoff_fraction = 1.0e-5_wp, liftoff_per_rtol = 100.0_wp
 
 contains
 
@@ -80,7 +87,36 @@ contains
         problem%events%theta_min = scene%limits%theta_min
         problem%events%stop_on_liftoff = scene%limits%stop_on_liftoff
         call disk_initial_state(scene, q0, u0)
+        call set_disk_scales(scene, disk%mass, problem)
     end subroutine build_disk_problem
+
+    !> The scales a disk scene's events are judged by. Force scale: the weight m g, plus
+    !> m R |omega0|^2 (the centripetal force of the initial spin, which sets the normal force
+    !> without gravity), plus the strike's peak force; a lift-off is a normal force below
+    !> -max(liftoff_fraction, liftoff_per_rtol rtol) times it. The rim radius, for the height
+    !> residual.
+    pure subroutine set_disk_scales(scene, mass, problem)
+        type(scene_type), intent(in) :: scene
+        !> Disk mass [kg]
+        real(wp), intent(in) :: mass
+        type(problem_type), intent(inout) :: problem
+        real(wp) :: spin_squared, force_scale
+
+        ! |omega|^2 with omega = psidot e_Z + thetadot e_x1 + phidot e_z2 (DESIGN section 3):
+        ! e_x1 is normal to both others, and e_Z . e_z2 = cos(theta)
+        associate (i => scene%initial)
+            spin_squared = i%psidot**2 + i%thetadot**2 + i%phidot**2 &
+                & + 2.0_wp*i%psidot*i%phidot*cos(i%theta)
+        end associate
+        force_scale = mass*(scene%environment%gravity + scene%disk%radius*max(spin_squared, &
+            & 0.0_wp))
+        ! a half-sine pulse of impulse J over T peaks at pi J / (2 T)
+        if (scene%strike%enabled) force_scale = force_scale &
+            & + 0.5_wp*pi*abs(scene%strike%impulse)/scene%strike%duration
+        problem%events%liftoff_force = max(liftoff_fraction, liftoff_per_rtol*scene%run%rtol) &
+            & *force_scale
+        problem%events%contact_radius = scene%disk%radius
+    end subroutine set_disk_scales
 
     !> Build a disk scene's problem and simulate it over the scene's time with its output step.
     subroutine simulate_scene(scene, ucosub, summary, error, history, csv_path, progress, &

@@ -4,6 +4,7 @@
 !> without slip (DESIGN.md sections 5, 6), and physical bounds on what the values imply.
 module rollcon_scene_check
     use rollcon_kinds, only : wp
+    use rollcon_constants, only : pi
     use rollcon_error, only : error_type, input_error
     use rollcon_text, only : to_text
     use rollcon_scene_lexer, only : group_type
@@ -49,9 +50,14 @@ contains
                 & // "angles are singular (sin(theta) = 0) [rad]", to_text(i%theta))
             call require(r%output_step <= r%end_time, "run", "output_step", "<= end_time = " &
                 & // to_text(r%end_time) // " [s]", to_text(r%output_step))
-            call require(scene%limits%theta_min < i%theta, "limits", "theta_min", &
-                & "< the initial theta = " // to_text(i%theta) // " [rad]", &
-                & to_text(scene%limits%theta_min))
+            ! theta_min guards both sides of flat (sin(theta) = sin(theta_min)); at 0 the run
+            ! would go on into the singularity itself, where the solvers fail
+            call require(scene%limits%theta_min >= flat_margin .and. scene%limits%theta_min &
+                & < min(i%theta, pi - i%theta), "limits", "theta_min", "at least " &
+                & // to_text(flat_margin) // " (closer to flat the 3-1-3 Euler angles are " &
+                & // "singular) and less than the initial distance from flat " &
+                & // "min(theta, pi - theta) = " // to_text(min(i%theta, pi - i%theta)) &
+                & // " [rad]", to_text(scene%limits%theta_min))
             if (r%formulation == formulation_ida) then
                 call require(r%method == method_bdf, "run", "method", "'bdf' with formulation " &
                     & // "'ida' (IDA is a BDF code; 'adams' needs 'cvode')", &

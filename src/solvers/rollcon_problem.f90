@@ -17,7 +17,7 @@ module rollcon_problem
     integer, parameter :: formulation_cvode = 1, formulation_ida = 2
     !> CVODE's linear multistep methods
     integer, parameter :: method_bdf = 1, method_adams = 2
-    !> Root function numbers: theta at its minimum, normal force at zero
+    !> Root function numbers: theta at its distance limit from flat, normal force at its limit
     integer, parameter :: root_theta = 1, root_liftoff = 2
 
     !> How to integrate
@@ -32,14 +32,21 @@ module rollcon_problem
         integer :: max_steps = 500000
     end type solver_settings_type
 
-    !> When to stop a run early
+    !> What a run watches: when to stop it early, and the height residual of a disk
     type :: event_settings_type
         !> Part watched
         integer :: part = 1
-        !> Stop when theta falls below this [rad] (disabled when negative)
+        !> Stop when theta comes within theta_min of flat on either side, 0 or pi: the root of
+        !> sin(theta) - sin(theta_min) [rad] (disabled when negative)
         real(wp) :: theta_min = -1.0_wp
-        !> Stop when the normal (ground Z) component of the constraint force turns negative
+        !> Stop when the normal (ground Z) component of the constraint force falls below
+        !> -liftoff_force: a real lift-off, not the rounding noise of a force that is zero
         logical :: stop_on_liftoff = .false.
+        !> Lift-off threshold [N] >= 0, a small fraction of the scene's force scale
+        real(wp) :: liftoff_force = 0.0_wp
+        !> Rim radius of the watched part [m]: its height residual Z - R sin(theta) is
+        !> measured when > 0 (the position-level form of a disk's contact)
+        real(wp) :: contact_radius = 0.0_wp
     end type event_settings_type
 
     !> The integrators' user data
@@ -86,8 +93,9 @@ contains
         end associate
     end function ode_rhs
 
-    !> Event functions at (t, q, u): theta - theta_min, normal force. The multipliers are
-    !> given by a DAE state (IDA); otherwise they are solved for, as in a right-hand side.
+    !> Event functions at (t, q, u): sin(theta) - sin(theta_min), which guards both sides of
+    !> flat, and normal force + liftoff_force. The multipliers are given by a DAE state (IDA);
+    !> otherwise they are solved for, as in a right-hand side.
     function root_values(self, time, q, u, g, lambda) result(ierr)
         class(problem_type), intent(inout) :: self
         real(wp), intent(in) :: time, q(:), u(:)
@@ -99,7 +107,9 @@ contains
         real(wp) :: force(3)
 
         ierr = 0
-        g(root_theta) = q(6*(self%events%part - 1) + 5) - self%events%theta_min
+        g(root_theta) = 1.0_wp
+        if (self%events%theta_min >= 0.0_wp) g(root_theta) = &
+            & sin(q(6*(self%events%part - 1) + 5)) - sin(self%events%theta_min)
         g(root_liftoff) = 1.0_wp
         if (.not. self%events%stop_on_liftoff) return
         if (present(lambda)) then
@@ -115,7 +125,7 @@ contains
             if (ierr /= 0) return
         end if
         force = self%eq%constraint_force(self%events%part, self%lambda)
-        g(root_liftoff) = force(3)
+        g(root_liftoff) = force(3) + self%events%liftoff_force
     end function root_values
 
     !> Keep the first failure; return the callback code (0 ok, -1 unrecoverable).

@@ -11,11 +11,12 @@ module rollcon_simulation
     use rollcon_dae, only : dae_size
     use rollcon_force, only : force_breakpoints
     use rollcon_csv_writer, only : csv_writer_type, csv_row_bytes
+    use rollcon_drift, only : height_residual, drift_bounds, drift_findings
     implicit none
     private
 
     public :: run_options_type, run_summary_type, history_type, simulate, csv_header
-    public :: status_completed, status_stopped, status_failed
+    public :: status_completed, status_stopped, status_failed, status_inaccurate
 
     !> Columns of the output rows (CSV and history)
     integer, parameter, public :: column_time = 1, column_x = 2, column_y = 3, column_z = 4, &
@@ -24,10 +25,13 @@ module rollcon_simulation
         & column_energy = 14, column_fx = 15, column_fy = 16, column_fz = 17, &
         & column_normal = 18, column_mu = 19, column_residual = 20
 
-    !> How a run ended: as planned, at an event limit, or by a failure
-    integer, parameter :: status_completed = 0, status_stopped = 1, status_failed = 2
+    !> How a run ended: as planned, at an event limit, by a failure, or at its end or a limit
+    !> with an energy or height drift beyond what its tolerances promise (rollcon_drift)
+    integer, parameter :: status_completed = 0, status_stopped = 1, status_failed = 2, &
+        & status_inaccurate = 3
     !> Default limit of a planned CSV [bytes], 100 GB: ten thousand times the coin's run
     real(wp), parameter, public :: default_max_csv_bytes = 1.0e11_wp
+    real(wp), parameter :: pi = acos(-1.0_wp)
 
     !> Where and how often to report
     type :: run_options_type
@@ -57,6 +61,12 @@ module rollcon_simulation
         real(wp) :: energy_drift = 0.0_wp
         !> Largest |F_k| over the output rows
         real(wp) :: residual_max = 0.0_wp
+        !> Largest position-level residual |Z - R sin(theta)| of the watched part [m] (0 when
+        !> the problem has no contact radius)
+        real(wp) :: height_residual_max = 0.0_wp
+        !> What the tolerances allow of energy_drift and height_residual_max (rollcon_drift);
+        !> 0 when not judged
+        real(wp) :: energy_bound = 0.0_wp, height_bound = 0.0_wp
         !> Integrator statistics
         integer :: steps = 0, functions = 0, jacobians = 0, failures = 0
         !> Output rows written (64 bits: a long run at a fine step passes 2**31)
@@ -104,7 +114,8 @@ contains
 
     !> Column names of the CSV: time, part 1's coordinates and rates (SI units, radians),
     !> energy, constraint force on part 1, its normal part, the friction coefficient it needs,
-    !> and each UCON's residual.
+    !> each UCON's residual, and the watched part's height residual Z - R sin(theta) [m] when
+    !> the problem has a contact radius.
     function csv_header(problem) result(header)
         type(problem_type), intent(in) :: problem
         character(len=16), allocatable :: header(:)
@@ -116,6 +127,8 @@ contains
         do k = 1, problem%eq%nc
             header = [character(len=16) :: header, "F" // to_text(problem%eq%model%ucons(k)%id)]
         end do
+        if (problem%events%contact_radius > 0.0_wp) &
+            & header = [character(len=16) :: header, "height_residual"]
     end function csv_header
 
     !> Integrate problem from (q0, u0), writing a row per output time.
@@ -209,6 +222,7 @@ contains
             call report_progress(t)
         end do
         call finish()
+        if (.not. allocated(error)) call judge_drift(problem, summary)
 
     contains
 
@@ -225,7 +239,7 @@ contains
         subroutine record(time, state, error)
             real(wp), intent(in) :: time, state(:)
             type(error_type), allocatable, intent(out) :: error
-            real(wp) :: energy, force(3), tangential, mu
+            real(wp) :: energy, force(3), tangential, mu, height(1)
             real(wp), allocatable :: row(:)
             type(error_type), allocatable :: eval_error
 
@@ -252,12 +266,15 @@ contains
                 end if
                 if (nc > 0) summary%residual_max = max(summary%residual_max, &
                     & maxval(abs(problem%eq%constraints%value)))
+                height = height_residual(problem, q)
+                summary%height_residual_max = max(summary%height_residual_max, abs(height(1)))
                 summary%t_reached = time
                 summary%q = q
                 summary%u = u
                 summary%rows = summary%rows + 1
                 row = [time, q(1:6), u(1:6), energy, force, force(3), mu, &
                     & problem%eq%constraints%value]
+                if (problem%events%contact_radius > 0.0_wp) row = [row, height]
                 if (present(history)) call history%add(row)
                 if (csv%opened) call csv%write_row(row, error)
             end associate
@@ -273,13 +290,22 @@ contains
             i_theta = 6*(problem%events%part - 1) + 5
             select case (root)
             case (root_theta)
-                message = "theta fell to the limit theta_min = " &
-                    & // to_text(problem%events%theta_min) // " rad at t = " // to_text(time) &
+                if (cos(state(i_theta)) >= 0.0_wp) then
+                    message = "theta fell to the limit theta_min = " &
+                        & // to_text(problem%events%theta_min) // " rad at t = "
+                else
+                    message = "theta rose to pi - theta_min = " &
+                        & // to_text(pi - problem%events%theta_min) // " rad (the limit " &
+                        & // "theta_min = " // to_text(problem%events%theta_min) &
+                        & // " rad from flat on the theta = pi side) at t = "
+                end if
+                message = message // to_text(time) &
                     & // " s: the disk lies nearly flat, where the 3-1-3 Euler angles become " &
                     & // "singular (psi = " // to_text(state(i_theta - 1)) // " rad, psidot = " &
                     & // to_text(state(n + i_theta - 1)) // " rad/s)"
             case (root_liftoff)
-                message = "the normal contact force turned negative at t = " // to_text(time) &
+                message = "the normal contact force turned negative (below -" &
+                    & // to_text(problem%events%liftoff_force) // " N) at t = " // to_text(time) &
                     & // " s (theta = " // to_text(state(i_theta)) // " rad, thetadot = " &
                     & // to_text(state(n + i_theta)) // " rad/s): the disk would leave the " &
                     & // "ground, which a rolling constraint cannot represent"
@@ -387,6 +413,30 @@ contains
         c = aint(x)
         if (c < x) c = c + 1.0_wp
     end function ceiling_real
+
+    !> Judge a run that reached its end or a limit against what its tolerances promise
+    !> (rollcon_drift): beyond a bound its results are not what was asked, status_inaccurate,
+    !> with the measures and bounds in the message.
+    subroutine judge_drift(problem, summary)
+        type(problem_type), intent(in) :: problem
+        type(run_summary_type), intent(inout) :: summary
+        character(len=:), allocatable :: findings
+
+        if (summary%status /= status_completed .and. summary%status /= status_stopped) return
+        call drift_bounds(problem, summary%steps, summary%energy_bound, summary%height_bound)
+        ! no reference energy to be relative to: not judged
+        if (summary%energy_reference == 0.0_wp) summary%energy_bound = 0.0_wp
+        findings = drift_findings(summary%steps, summary%energy_drift, summary%energy_bound, &
+            & summary%height_residual_max, summary%height_bound)
+        if (len(findings) == 0) return
+        if (summary%status == status_stopped) then
+            summary%message = summary%message // "; and the results drifted: " // findings
+        else
+            summary%message = "the run reached t = " // to_text(summary%t_reached) &
+                & // " s but its results drifted beyond what its tolerances promise: " // findings
+        end if
+        summary%status = status_inaccurate
+    end subroutine judge_drift
 
     !> Wall-clock seconds since an arbitrary origin.
     function wall_seconds() result(seconds)

@@ -13,6 +13,8 @@ program tester
     use test_scene_fuzz, only : collect_scene_fuzz
     use test_dynamics, only : collect_dynamics
     use test_motion, only : collect_motion
+    use test_events, only : collect_events
+    use test_drift, only : collect_drift
     use test_extremes, only : collect_extremes
     use test_pictures, only : collect_pictures
     use test_user_ucosub, only : collect_user_ucosub
@@ -41,6 +43,8 @@ program tester
         & new_testsuite("scene-fuzz", collect_scene_fuzz), &
         & new_testsuite("dynamics", collect_dynamics), &
         & new_testsuite("motion", collect_motion), &
+        & new_testsuite("events", collect_events), &
+        & new_testsuite("drift", collect_drift), &
         & new_testsuite("extremes", collect_extremes), &
         & new_testsuite("pictures", collect_pictures), &
         & new_testsuite("user-ucosub", collect_user_ucosub), &

@@ -5,14 +5,16 @@ module motion_runs
     use rollcon_error, only : error_type
     use rollcon_ucosub_contract, only : ucosub_interface
     use rollcon_scene, only : scene_type, formulation_ida, method_bdf, drift_projection, &
-        & jacobian_analytic, height_velocity
+        & jacobian_analytic, height_velocity, choice_code
     use rollcon_disk_scene, only : simulate_scene
     use rollcon_simulation, only : run_summary_type, history_type
     use rollcon_disk_reference, only : rolling_disk_ucosub
     implicit none
     private
 
-    public :: run_in_memory, default_scene
+    public :: run_in_memory, default_scene, tipping_coin
+
+    real(wp), parameter :: pi = acos(-1.0_wp)
 
 contains
 
@@ -30,6 +32,22 @@ contains
         scene%limits%theta_min = -1.0_wp
         scene%limits%stop_on_liftoff = .false.
     end function default_scene
+
+    !> The tipping coin: upright less 0.01 rad, rolling at 0.1 m/s, no strike, 10 s.
+    function tipping_coin(formulation, rtol) result(scene)
+        character(len=*), intent(in) :: formulation
+        real(wp), intent(in) :: rtol
+        type(scene_type) :: scene
+
+        scene = default_scene()
+        scene%initial%theta = 0.5_wp*pi - 0.01_wp
+        scene%initial%phidot = -1.0_wp
+        scene%run%end_time = 10.0_wp
+        scene%run%output_step = 0.05_wp
+        scene%run%formulation = choice_code("formulation", formulation)
+        scene%run%rtol = rtol
+        scene%run%atol = 1.0e-2_wp*rtol
+    end function tipping_coin
 
     !> Simulate scene with ucosub (default: the hand-checked disk) and keep every output row.
     subroutine run_in_memory(scene, history, summary, error, ucosub)

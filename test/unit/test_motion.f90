@@ -1,7 +1,7 @@
 ! SPDX-License-Identifier: MIT
 !> Physics of simulated motions: conserved energy, held constraints, analytic steady motions,
 !> the stability threshold and wobble frequency of upright rolling, the strike's momentum,
-!> agreement of the ODE (CVODE) and DAE (IDA) formulations.
+!> agreement of the ODE (CVODE) and DAE (IDA) formulations. Events: test_events; drift: test_drift.
 module test_motion
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type
@@ -18,12 +18,12 @@ module test_motion
     use rollcon_disk_par, only : disk_par
     use rollcon_disk_scene, only : disk_initial_state
     use rollcon_disk_scene, only : disk_mass_properties
-    use rollcon_simulation, only : history_type, run_summary_type, status_stopped, &
+    use rollcon_simulation, only : history_type, run_summary_type, &
         & column_time, column_x, column_y, column_z, column_psi, column_theta, column_phi, &
         & column_xdot, column_ydot, column_zdot, column_thetadot, column_fx, column_fy, &
         & column_fz, column_residual
     use rollcon_testing, only : unittest_type, new_unittest, check
-    use motion_runs, only : run_in_memory, default_scene
+    use motion_runs, only : run_in_memory, default_scene, tipping_coin
     implicit none
     private
 
@@ -46,30 +46,10 @@ contains
             & new_unittest("wobble-frequency-2-m-s", test_wobble), &
             & new_unittest("cvode-agrees-with-ida", test_formulations_agree), &
             & new_unittest("strike-momentum", test_strike_momentum), &
-            & new_unittest("theta-limit-stops-run", test_theta_event), &
-            & new_unittest("liftoff-stops-run", test_liftoff_event), &
-            & new_unittest("long-run-energy-and-no-drift-growth", test_long_run), &
             & new_unittest("solver-failure-keeps-valid-csv", test_solver_failure), &
-            & new_unittest("position-height-matches-velocity-form", test_position_height), &
             & new_unittest("generated-ucosub-same-trajectory", test_generated_trajectory), &
             & new_unittest("two-parts-six-ucons", test_two_parts)]
     end subroutine collect_motion
-
-    !> The tipping coin: upright less 0.01 rad, rolling at 0.1 m/s, no strike, 10 s.
-    function tipping_coin(formulation, rtol) result(scene)
-        character(len=*), intent(in) :: formulation
-        real(wp), intent(in) :: rtol
-        type(scene_type) :: scene
-
-        scene = default_scene()
-        scene%initial%theta = 0.5_wp*pi - 0.01_wp
-        scene%initial%phidot = -1.0_wp
-        scene%run%end_time = 10.0_wp
-        scene%run%output_step = 0.05_wp
-        scene%run%formulation = choice_code("formulation", formulation)
-        scene%run%rtol = rtol
-        scene%run%atol = 1.0e-2_wp*rtol
-    end function tipping_coin
 
     !> Energy without forcing drifts by at most 1000 rtol over the tipping coin's 10 s (it
     !> falls to theta ~ 0.12 rad and rises again: the hardest stretch for the integrators;
@@ -348,77 +328,6 @@ contains
             & "the strike barely changed the Y momentum")
     end subroutine test_strike_momentum
 
-    !> A theta limit stops the run cleanly with a message naming the time and the state.
-    subroutine test_theta_event(error)
-        type(error_type), allocatable, intent(out) :: error
-        type(scene_type) :: scene
-        type(history_type) :: history
-        type(run_summary_type) :: summary
-
-        scene = tipping_coin("ida", 1.0e-8_wp)
-        scene%limits%theta_min = 0.5_wp
-        call run_in_memory(scene, history, summary, error)
-        if (allocated(error)) return
-        call check(error, summary%status == status_stopped, "the run did not stop at the limit")
-        if (allocated(error)) return
-        call check(error, index(summary%message, "theta fell to the limit theta_min = 0.5") > 0 &
-            & .and. index(summary%message, " at t = ") > 0, "message: " // summary%message)
-        if (allocated(error)) return
-        call check(error, history%rows(column_theta, history%count), 0.5_wp, &
-            & "theta at the stop", abs_tol=1.0e-6_wp)
-    end subroutine test_theta_event
-
-    !> Without gravity, a disk precessing near flat needs the ground to pull it: the run stops
-    !> when the normal force turns negative, naming the time and the tilt.
-    subroutine test_liftoff_event(error)
-        type(error_type), allocatable, intent(out) :: error
-        type(scene_type) :: scene
-        type(history_type) :: history
-        type(run_summary_type) :: summary
-
-        scene = default_scene()
-        scene%environment%gravity = 0.0_wp
-        scene%initial%theta = pi/12.0_wp
-        scene%initial%psidot = 10.0_wp
-        scene%initial%phidot = -10.0_wp*cos(pi/12.0_wp)
-        scene%run%end_time = 2.0_wp
-        scene%limits%stop_on_liftoff = .true.
-        call run_in_memory(scene, history, summary, error)
-        if (allocated(error)) return
-        call check(error, summary%status == status_stopped .and. &
-            & index(summary%message, "normal contact force turned negative at t = ") > 0, &
-            & "no lift-off stop; status " // to_text(summary%status))
-        if (allocated(error)) return
-        ! the root is located to the solver's tolerance on a force of order m R psidot^2 ~ 7 N
-        call check(error, history%rows(column_fz, history%count), 0.0_wp, &
-            & "normal force at the stop [N]", abs_tol=1.0e-5_wp)
-    end subroutine test_liftoff_event
-
-    !> long_run (200 s at 0.8 m/s): energy within 1000 rtol, and IDA's constraint residual in
-    !> the last 20 s no larger than ten times that of the first 20 s (no drift growth).
-    subroutine test_long_run(error)
-        type(error_type), allocatable, intent(out) :: error
-        type(scene_type) :: scene
-        type(history_type) :: history
-        type(run_summary_type) :: summary
-        real(wp), allocatable :: t(:), residual(:)
-        real(wp) :: early, late
-
-        call read_scene("data/long_run.nml", scene, error)
-        if (allocated(error)) return
-        call run_in_memory(scene, history, summary, error)
-        if (allocated(error)) return
-        call check(error, summary%energy_drift, 0.0_wp, "energy drift over 200 s", &
-            & abs_tol=1.0e3_wp*scene%run%rtol)
-        if (allocated(error)) return
-        t = history%column(column_time)
-        residual = maxval(abs(history%rows(column_residual:, :history%count)), dim=1)
-        early = maxval(residual, mask=t <= 20.0_wp)
-        late = maxval(residual, mask=t >= 180.0_wp)
-        call check(error, late <= 10.0_wp*early + 1.0e-2_wp*scene%run%atol, "residual grew from " &
-            & // to_text(early) // " (first 20 s) to " // to_text(late) // " (last 20 s)")
-    end subroutine test_long_run
-
     !> A run that fails (here: too few steps allowed) says so with the solver's flag and the
     !> time reached, and the CSV holds a header and only complete, finite rows.
     subroutine test_solver_failure(error)
@@ -464,39 +373,6 @@ contains
         if (allocated(error)) return
         call check(error, rows > 1, "no rows before the failure")
     end subroutine test_solver_failure
-
-    !> The contact height as a position UCON (Z - R sin(theta) = 0, GGL form in IDA, projection
-    !> in CVODE) gives the motion of its velocity form F3, and holds Z = R sin(theta).
-    subroutine test_position_height(error)
-        type(error_type), allocatable, intent(out) :: error
-        character(len=5), parameter :: formulations(2) = ["ida  ", "cvode"]
-        type(scene_type) :: scene
-        type(history_type) :: velocity_form, position_form
-        type(run_summary_type) :: summary
-        real(wp) :: difference, height
-        integer :: i
-
-        do i = 1, 2
-            scene = tipping_coin(trim(formulations(i)), 1.0e-9_wp)
-            scene%run%end_time = 1.0_wp
-            call run_in_memory(scene, velocity_form, summary, error)
-            if (allocated(error)) return
-            scene%run%height = height_position
-            call run_in_memory(scene, position_form, summary, error)
-            if (allocated(error)) return
-            ! same motion to the integration error over 1 s (1e3 rtol, as for CVODE vs IDA)
-            difference = maxval(abs(velocity_form%rows(column_x:column_phi, :velocity_form%count) &
-                & - position_form%rows(column_x:column_phi, :position_form%count)))
-            call check(error, difference, 0.0_wp, trim(formulations(i)) // ": largest " &
-                & // "difference between the two forms", abs_tol=1.0e-6_wp)
-            if (allocated(error)) return
-            height = maxval(abs(position_form%column(column_z) - scene%disk%radius &
-                & *sin(position_form%column(column_theta))))
-            call check(error, height, 0.0_wp, trim(formulations(i)) // ": |Z - R sin(theta)| [m]", &
-                & abs_tol=1.0e-9_wp)
-            if (allocated(error)) return
-        end do
-    end subroutine test_position_height
 
     !> The generated rolling-disk UCOSUB drives the same motion as the hand-checked one. The two
     !> agree to ~1e-16 per entry (generated suite), but that is enough for the adaptive

@@ -252,9 +252,9 @@ contains
             & "&initial theta = 0.0 /"], [character(len=width) :: &
             & "@:1: 'theta' in &initial must be > 0 and < 3.141592653589793 [rad], got 0.0"])
         if (allocated(error)) return
-        fragments(1) = "@: 'theta_min' in &limits must be < the initial theta = " &
-            & // to_text(0.04_wp)
-        fragments(2) = " [rad], got " // to_text(0.05_wp) // " (the default of &limits)"
+        fragments(1) = "@: 'theta_min' in &limits must be at least " // to_text(1.0e-3_wp)
+        fragments(2) = "min(theta, pi - theta) = " // to_text(0.04_wp) // " [rad], got " &
+            & // to_text(0.05_wp) // " (the default of &limits)"
         call expect_input_error(error, "theta_min", [character(len=width) :: &
             & "&initial theta = 0.04 /"], fragments)
     end subroutine test_theta_range

@@ -1,0 +1,234 @@
+! SPDX-License-Identifier: MIT
+!> Drift that tells the truth: the position-level height residual Z - R sin(theta) in the CSV
+!> and the summary, energy and height drift judged against what the tolerances promise
+!> (rollcon_drift), the two forms of the height constraint, no drift growth over a long run.
+module test_drift
+    use rollcon_kinds, only : wp
+    use rollcon_error, only : error_type
+    use rollcon_text, only : to_text
+    use rollcon_scene, only : scene_type, read_scene, choice_code
+    use rollcon_problem, only : problem_type
+    use rollcon_disk_scene, only : build_disk_problem
+    use rollcon_disk_reference, only : rolling_disk_ucosub
+    use rollcon_simulation, only : run_options_type, simulate, history_type, run_summary_type, &
+        & status_completed, status_inaccurate, column_time, column_x, column_z, column_theta, &
+        & column_phi, column_residual
+    use rollcon_testing, only : unittest_type, new_unittest, check
+    use motion_runs, only : run_in_memory, tipping_coin
+    implicit none
+    private
+
+    public :: collect_drift
+
+contains
+
+    subroutine collect_drift(tests)
+        type(unittest_type), allocatable, intent(out) :: tests(:)
+
+        allocate(tests(0))
+        tests = [new_unittest("height-residual-in-csv-and-summary", test_height_column), &
+            & new_unittest("drift-none-judged-inaccurate", test_drift_none_warned), &
+            & new_unittest("sound-run-within-drift-bounds", test_sound_run), &
+            & new_unittest("position-height-holds-z-to-atol", test_position_height_holds), &
+            & new_unittest("position-height-matches-velocity-form", test_position_height), &
+            & new_unittest("long-run-energy-and-no-drift-growth", test_long_run)]
+    end subroutine collect_drift
+
+    !> The CSV's last column is the height residual Z - R sin(theta) of each row, and the
+    !> summary's height_residual_max is its largest magnitude.
+    subroutine test_height_column(error)
+        type(error_type), allocatable, intent(out) :: error
+        character(len=*), parameter :: path = "build/test_events_height.csv"
+        !> Z and theta are printed with 17 significant digits: the residual recomputed from
+        !> them is good to ~1e-17 m
+        real(wp), parameter :: tol_printed = 1.0e-15_wp
+        type(scene_type) :: scene
+        type(problem_type), target :: problem
+        type(run_options_type) :: options
+        type(run_summary_type) :: summary
+        real(wp) :: q0(6), u0(6), row(23), largest
+        character(len=2048) :: line
+        integer :: unit, stat, rows
+
+        scene = tipping_coin("ida", 1.0e-6_wp)
+        scene%run%end_time = 2.0_wp
+        call build_disk_problem(scene, rolling_disk_ucosub, problem, q0, u0, error)
+        if (allocated(error)) return
+        options%end_time = scene%run%end_time
+        options%output_step = 0.1_wp
+        options%csv_path = path
+        options%progress = .false.
+        call simulate(problem, q0, u0, options, summary, error)
+        if (allocated(error)) return
+        open(newunit=unit, file=path, status="old", action="read")
+        read(unit, '(a)') line
+        call check(error, index(line, ",F1,F2,F3,height_residual") > 0 .and. &
+            & len_trim(line) == index(line, "height_residual") + 14, "header: " // trim(line))
+        if (allocated(error)) then
+            close(unit, status="delete")
+            return
+        end if
+        rows = 0
+        largest = 0.0_wp
+        do
+            read(unit, *, iostat=stat) row
+            if (stat /= 0) exit
+            rows = rows + 1
+            largest = max(largest, abs(row(23)))
+            call check(error, row(23), row(column_z) - scene%disk%radius*sin(row(column_theta)), &
+                & "height residual at t = " // to_text(row(column_time)), abs_tol=tol_printed)
+            if (allocated(error)) exit
+        end do
+        close(unit, status="delete")
+        if (allocated(error)) return
+        call check(error, rows, int(summary%rows), "rows read")
+        if (allocated(error)) return
+        call check(error, largest > 0.0_wp, "the velocity form's height residual is exactly 0")
+        if (allocated(error)) return
+        call check(error, summary%height_residual_max, largest, "summary's height residual [m]", &
+            & rel_tol=1.0e-12_wp)
+    end subroutine test_height_column
+
+    !> Without drift control CVODE lets the constraints wander: on the tipping coin at rtol 1e-4
+    !> the height residual grows like the number of steps N, to 7.8 sqrt(N) (atol + rtol R)
+    !> over 10 s, beyond its bound of 3 sqrt(N) (energy: 9.2 sqrt(N) rtol, just below its 10).
+    !> The run is judged inaccurate, not completed, and says why.
+    subroutine test_drift_none_warned(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(scene_type) :: scene
+        type(history_type) :: history
+        type(run_summary_type) :: summary
+
+        scene = drifting_scene()
+        call run_in_memory(scene, history, summary, error)
+        if (allocated(error)) return
+        call check(error, summary%status == status_inaccurate, "status " &
+            & // to_text(summary%status) // ", energy drift " // to_text(summary%energy_drift) &
+            & // " (bound " // to_text(summary%energy_bound) // "), height residual " &
+            & // to_text(summary%height_residual_max) // " m (bound " &
+            & // to_text(summary%height_bound) // " m)")
+        if (allocated(error)) return
+        call check(error, index(summary%message, "drifted beyond what its tolerances promise") &
+            & > 0 .and. index(summary%message, "height residual |Z - R sin(theta)| ") > 0, &
+            & "message: " // summary%message)
+    end subroutine test_drift_none_warned
+
+    !> The scene of test_drift_none_warned.
+    function drifting_scene() result(scene)
+        type(scene_type) :: scene
+
+        scene = tipping_coin("cvode", 1.0e-4_wp)
+        scene%run%drift = choice_code("drift", "none")
+    end function drifting_scene
+
+    !> The same scene with projection (0.7 and 0.12 sqrt(N) units measured) and with IDA stays
+    !> within both bounds, and they are set.
+    subroutine test_sound_run(error)
+        type(error_type), allocatable, intent(out) :: error
+        character(len=5), parameter :: formulations(2) = ["cvode", "ida  "]
+        type(scene_type) :: scene
+        type(history_type) :: history
+        type(run_summary_type) :: summary
+        integer :: i
+
+        do i = 1, 2
+            scene = drifting_scene()
+            scene%run%formulation = choice_code("formulation", trim(formulations(i)))
+            scene%run%drift = choice_code("drift", "projection")
+            call run_in_memory(scene, history, summary, error)
+            if (allocated(error)) return
+            call check(error, summary%status == status_completed .and. &
+                & summary%energy_bound > 0.0_wp .and. summary%height_bound > 0.0_wp, &
+                & trim(formulations(i)) // ": status " // to_text(summary%status) // ", bounds " &
+                & // to_text(summary%energy_bound) // ", " // to_text(summary%height_bound))
+            if (allocated(error)) return
+        end do
+    end subroutine test_sound_run
+
+    !> The position form of the height constraint holds Z = R sin(theta) to the absolute
+    !> tolerance over the tipping coin's 10 s (fall to theta ~ 0.12 rad and back), where the
+    !> velocity form lets it drift by orders of magnitude more; both within their bound.
+    subroutine test_position_height_holds(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(scene_type) :: scene
+        type(history_type) :: history
+        type(run_summary_type) :: velocity_form, position_form
+
+        scene = tipping_coin("ida", 1.0e-8_wp)
+        call run_in_memory(scene, history, velocity_form, error)
+        if (allocated(error)) return
+        scene%run%height = choice_code("height", "position")
+        call run_in_memory(scene, history, position_form, error)
+        if (allocated(error)) return
+        call check(error, velocity_form%status == status_completed .and. &
+            & position_form%status == status_completed, "status " &
+            & // to_text(velocity_form%status) // ", " // to_text(position_form%status))
+        if (allocated(error)) return
+        call check(error, position_form%height_residual_max <= scene%run%atol, "position form: " &
+            & // "|Z - R sin(theta)| " // to_text(position_form%height_residual_max) &
+            & // " m above atol")
+        if (allocated(error)) return
+        call check(error, velocity_form%height_residual_max > 10.0_wp*scene%run%atol, &
+            & "velocity form: |Z - R sin(theta)| " // to_text(velocity_form%height_residual_max) &
+            & // " m, no worse than the position form's")
+    end subroutine test_position_height_holds
+
+    !> long_run (200 s at 0.8 m/s): energy within 1000 rtol, and IDA's constraint residual in
+    !> the last 20 s no larger than ten times that of the first 20 s (no drift growth).
+    subroutine test_long_run(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(scene_type) :: scene
+        type(history_type) :: history
+        type(run_summary_type) :: summary
+        real(wp), allocatable :: t(:), residual(:)
+        real(wp) :: early, late
+
+        call read_scene("data/long_run.nml", scene, error)
+        if (allocated(error)) return
+        call run_in_memory(scene, history, summary, error)
+        if (allocated(error)) return
+        call check(error, summary%energy_drift, 0.0_wp, "energy drift over 200 s", &
+            & abs_tol=1.0e3_wp*scene%run%rtol)
+        if (allocated(error)) return
+        t = history%column(column_time)
+        residual = maxval(abs(history%rows(column_residual:, :history%count)), dim=1)
+        early = maxval(residual, mask=t <= 20.0_wp)
+        late = maxval(residual, mask=t >= 180.0_wp)
+        call check(error, late <= 10.0_wp*early + 1.0e-2_wp*scene%run%atol, "residual grew from " &
+            & // to_text(early) // " (first 20 s) to " // to_text(late) // " (last 20 s)")
+    end subroutine test_long_run
+
+    !> The contact height as a position UCON (Z - R sin(theta) = 0, GGL form in IDA, projection
+    !> in CVODE) gives the motion of its velocity form F3, and holds Z = R sin(theta).
+    subroutine test_position_height(error)
+        type(error_type), allocatable, intent(out) :: error
+        character(len=5), parameter :: formulations(2) = ["ida  ", "cvode"]
+        type(scene_type) :: scene
+        type(history_type) :: velocity_form, position_form
+        type(run_summary_type) :: summary
+        real(wp) :: difference, height
+        integer :: i
+
+        do i = 1, 2
+            scene = tipping_coin(trim(formulations(i)), 1.0e-9_wp)
+            scene%run%end_time = 1.0_wp
+            call run_in_memory(scene, velocity_form, summary, error)
+            if (allocated(error)) return
+            scene%run%height = choice_code("height", "position")
+            call run_in_memory(scene, position_form, summary, error)
+            if (allocated(error)) return
+            ! same motion to the integration error over 1 s (1e3 rtol, as for CVODE vs IDA)
+            difference = maxval(abs(velocity_form%rows(column_x:column_phi, :velocity_form%count) &
+                & - position_form%rows(column_x:column_phi, :position_form%count)))
+            call check(error, difference, 0.0_wp, trim(formulations(i)) // ": largest " &
+                & // "difference between the two forms", abs_tol=1.0e-6_wp)
+            if (allocated(error)) return
+            height = maxval(abs(position_form%column(column_z) - scene%disk%radius &
+                & *sin(position_form%column(column_theta))))
+            call check(error, height, 0.0_wp, trim(formulations(i)) // ": |Z - R sin(theta)| [m]", &
+                & abs_tol=1.0e-9_wp)
+            if (allocated(error)) return
+        end do
+    end subroutine test_position_height
+
+end module test_drift
