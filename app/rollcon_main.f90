@@ -14,6 +14,7 @@ program rollcon_main
     use rollcon_command_check, only : check_command
     use rollcon_user_library, only : user_ucosub_type, new_user_ucosub
     use rollcon_simulation, only : run_summary_type
+    use rollcon_lapack, only : use_one_blas_thread
     implicit none
     type(error_type), allocatable :: error
     type(run_summary_type) :: summary
@@ -25,7 +26,11 @@ program rollcon_main
     integer :: check_status
     character(len=:), allocatable :: ucosub_path
     type(user_ucosub_type) :: user
+    !> The threaded BLAS set to one thread ("" for reference BLAS)
+    character(len=:), allocatable :: blas_library
 
+    ! dozen-unknown systems gain nothing from BLAS threads (rollcon_lapack)
+    call use_one_blas_thread(blas_library)
     call read_command_line(error)
     if (allocated(error)) call fail(error)
     select case (command)
