@@ -115,7 +115,8 @@ contains
                         end do
                     end if
                 end if
-                if (iand(needs, need_time) /= 0) then
+                ! a time-free UCON's time partials stay at the zeros of allocate_state
+                if (iand(needs, need_time) /= 0 .and. .not. ucon%time_free) then
                     call evaluate_ucon(ucon%ucosub, ucon%id, time, self%local_q, ucon%par, &
                         & [scalar_dt, array_dtdq, xmatrx_none], scalar, array, xmatrx, error, &
                         & ucon%nvars)
