@@ -21,7 +21,8 @@ module rollcon_ida
         & FIDASetLinearSolver, FIDASetJacFn, FIDASetMaxNumSteps, FIDASetStopTime, FIDASolve, &
         & FIDARootInit, FIDAGetRootInfo, FIDASetId, FIDASetSuppressAlg, FIDAFree, &
         & FIDAGetNumSteps, FIDAGetNumResEvals, FIDAGetNumJacEvals, FIDAGetNumLinResEvals, &
-        & FIDAGetNumErrTestFails, IDA_NORMAL, IDA_SUCCESS, IDA_ROOT_RETURN, IDA_TSTOP_RETURN
+        & FIDAGetNumErrTestFails, FIDASetErrFile, IDA_NORMAL, IDA_SUCCESS, IDA_ROOT_RETURN, &
+        & IDA_TSTOP_RETURN
     implicit none
     private
 
@@ -83,6 +84,9 @@ contains
             call fatal_error(error, "IDA: IDACreate failed", stat_solver)
             return
         end if
+        ! every flag is checked and reported by rollcon: IDA prints nothing itself
+        flag = FIDASetErrFile(self%memory, c_null_ptr)
+        if (check(flag, "IDASetErrFile", error)) return
         flag = FIDAInit(self%memory, c_funloc(residual), t0, self%y, self%yp)
         if (check(flag, "IDAInit", error)) return
         flag = FIDASetUserData(self%memory, c_loc(problem))
