@@ -22,7 +22,8 @@ module rollcon_cvode
         & FCVodeGetNumSteps, FCVodeGetNumRhsEvals, FCVodeGetNumJacEvals, &
         & FCVodeGetNumLinRhsEvals, FCVodeGetNumErrTestFails, FCVodeGetDky, FCVodeSetErrFile, &
         & CV_BDF, CV_ADAMS, CV_NORMAL, &
-        & CV_SUCCESS, CV_ROOT_RETURN, CV_TSTOP_RETURN
+        & CV_SUCCESS, CV_ROOT_RETURN, CV_TSTOP_RETURN, CV_TOO_MUCH_WORK, CV_TOO_MUCH_ACC, &
+        & CV_ERR_FAILURE, CV_CONV_FAILURE
     implicit none
     private
 
@@ -157,7 +158,7 @@ contains
                 & // to_text(int(flag)) // "): " // problem%failure%message, stat_solver)
         else
             call fatal_error(error, "CVODE failed at t = " // to_text(t_reached) // " s with flag " &
-                & // to_text(int(flag)) // " (see the CVODE guide's return codes)", stat_solver)
+                & // to_text(int(flag)) // ": " // flag_meaning(flag), stat_solver)
         end if
     end subroutine advance
 
@@ -198,6 +199,26 @@ contains
         if (allocated(self%values)) deallocate(self%values)
         if (allocated(self%data%rate_values)) deallocate(self%data%rate_values)
     end subroutine destroy
+
+    !> What a failure flag of CVODE means (names of the CVODE guide), for messages: SUNDIALS
+    !> itself prints nothing (its error file is none).
+    pure function flag_meaning(flag) result(text)
+        integer(c_int), intent(in) :: flag
+        character(len=:), allocatable :: text
+
+        select case (flag)
+        case (CV_TOO_MUCH_WORK)
+            text = "CV_TOO_MUCH_WORK, max_steps internal steps taken before the next output time"
+        case (CV_TOO_MUCH_ACC)
+            text = "CV_TOO_MUCH_ACC, the tolerances ask for more accuracy than the arithmetic has"
+        case (CV_ERR_FAILURE)
+            text = "CV_ERR_FAILURE, the error test failed repeatedly or at the smallest step"
+        case (CV_CONV_FAILURE)
+            text = "CV_CONV_FAILURE, the corrector failed repeatedly or at the smallest step"
+        case default
+            text = "see the CVODE guide's return codes"
+        end select
+    end function flag_meaning
 
     !> True (and error set) when a SUNDIALS call did not succeed.
     function check(flag, routine, error) result(failed)

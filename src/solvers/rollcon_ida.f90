@@ -22,7 +22,7 @@ module rollcon_ida
         & FIDARootInit, FIDAGetRootInfo, FIDASetId, FIDASetSuppressAlg, FIDAFree, &
         & FIDAGetNumSteps, FIDAGetNumResEvals, FIDAGetNumJacEvals, FIDAGetNumLinResEvals, &
         & FIDAGetNumErrTestFails, FIDASetErrFile, IDA_NORMAL, IDA_SUCCESS, IDA_ROOT_RETURN, &
-        & IDA_TSTOP_RETURN
+        & IDA_TSTOP_RETURN, IDA_TOO_MUCH_WORK, IDA_TOO_MUCH_ACC, IDA_ERR_FAIL, IDA_CONV_FAIL
     implicit none
     private
 
@@ -150,7 +150,7 @@ contains
                 & // to_text(int(flag)) // "): " // problem%failure%message, stat_solver)
         else
             call fatal_error(error, "IDA failed at t = " // to_text(t_reached) // " s with flag " &
-                & // to_text(int(flag)) // " (see the IDA guide's return codes)", stat_solver)
+                & // to_text(int(flag)) // ": " // flag_meaning(flag), stat_solver)
         end if
     end subroutine advance
 
@@ -171,6 +171,26 @@ contains
         flag = FIDAGetNumErrTestFails(self%memory, count)
         failures = int(count(1))
     end subroutine statistics
+
+    !> What a failure flag of IDA means (names of the IDA guide), for messages: SUNDIALS
+    !> itself prints nothing (its error file is none).
+    pure function flag_meaning(flag) result(text)
+        integer(c_int), intent(in) :: flag
+        character(len=:), allocatable :: text
+
+        select case (flag)
+        case (IDA_TOO_MUCH_WORK)
+            text = "IDA_TOO_MUCH_WORK, max_steps internal steps taken before the next output time"
+        case (IDA_TOO_MUCH_ACC)
+            text = "IDA_TOO_MUCH_ACC, the tolerances ask for more accuracy than the arithmetic has"
+        case (IDA_ERR_FAIL)
+            text = "IDA_ERR_FAIL, the error test failed repeatedly or at the smallest step"
+        case (IDA_CONV_FAIL)
+            text = "IDA_CONV_FAIL, the corrector failed repeatedly or at the smallest step"
+        case default
+            text = "see the IDA guide's return codes"
+        end select
+    end function flag_meaning
 
     !> Free in reverse order of creation.
     subroutine destroy(self)
