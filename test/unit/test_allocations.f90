@@ -3,10 +3,13 @@
 !> Jacobians and projection, called alone and inside CVODE and IDA runs, make no call to
 !> malloc, calloc or realloc (counted by malloc_counter.c, which interposes them). Array
 !> temporaries, automatic arrays and reallocation on assignment all go through malloc, so
-!> these tests catch every one of them, in any build. Also: the lift-off event function
-!> costs no saddle-point solve under CVODE, and a time-free UCON is not asked for time partials.
+!> these tests catch every one of them, in any build. Also what else the hot path costs: the
+!> lift-off event function no saddle-point solve under CVODE, a time-free UCON no time-partial
+!> calls, a threaded BLAS no second thread.
 module test_allocations
-    use, intrinsic :: iso_c_binding, only : c_int, c_long
+    use, intrinsic :: iso_c_binding, only : c_int, c_long, c_ptr, c_null_ptr, c_funptr, c_char, &
+        & c_null_char, c_associated, c_f_procpointer
+    use rollcon_lapack, only : use_one_blas_thread
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type
     use rollcon_text, only : to_text
@@ -40,6 +43,22 @@ module test_allocations
             import :: c_int
             integer(c_int) :: counting
         end function malloc_counting
+
+        !> A symbol of the loaded libraries (POSIX; c_null_ptr is glibc's RTLD_DEFAULT)
+        function dlsym(handle, symbol) result(address) bind(c, name="dlsym")
+            import :: c_ptr, c_funptr, c_char
+            type(c_ptr), value :: handle
+            character(kind=c_char), intent(in) :: symbol(*)
+            type(c_funptr) :: address
+        end function dlsym
+    end interface
+
+    abstract interface
+        !> openblas_get_num_threads()
+        function get_threads_interface() result(count) bind(c)
+            import :: c_int
+            integer(c_int) :: count
+        end function get_threads_interface
     end interface
 
     !> Evaluations per measured loop: enough that a per-call allocation cannot hide
@@ -59,7 +78,8 @@ contains
             & new_unittest("cvode-run-allocates-nothing", test_cvode_run), &
             & new_unittest("ida-run-allocates-nothing", test_ida_run), &
             & new_unittest("liftoff-root-without-solve", test_liftoff_root), &
-            & new_unittest("time-free-ucon-skips-time-partials", test_time_free)]
+            & new_unittest("time-free-ucon-skips-time-partials", test_time_free), &
+            & new_unittest("blas-one-thread", test_blas_thread)]
     end subroutine collect_allocations
 
     !> The tipping coin (paper's disk, 0.01 rad off upright, 0.1 m/s), CVODE Adams + Baumgarte
@@ -276,5 +296,26 @@ contains
         call check(error, dt(2) == 0.0_wp, "time partials of a time-free UCON: " &
             & // to_text(dt(2)))
     end subroutine test_time_free
+
+    !> After use_one_blas_thread, a threaded BLAS runs one thread; reference BLAS (no threads,
+    !> nothing to set) skips.
+    subroutine test_blas_thread(error)
+        type(error_type), allocatable, intent(out) :: error
+        character(len=:), allocatable :: library
+        procedure(get_threads_interface), pointer :: get_threads
+        type(c_funptr) :: address
+
+        call use_one_blas_thread(library)
+        address = dlsym(c_null_ptr, "openblas_get_num_threads" // c_null_char)
+        if (.not. c_associated(address)) then
+            call check(error, library /= "openblas", "OpenBLAS reported set, but not loaded")
+            if (.not. allocated(error)) call skip_test(error, "the BLAS linked is not OpenBLAS " &
+                & // "(reference BLAS has no threads)")
+            return
+        end if
+        call c_f_procpointer(address, get_threads)
+        call check(error, library == "openblas" .and. get_threads() == 1, &
+            & "OpenBLAS threads after use_one_blas_thread: " // to_text(int(get_threads())))
+    end subroutine test_blas_thread
 
 end module test_allocations
