@@ -18,7 +18,7 @@ module rollcon_lapack
     private
 
     public :: factor_dense, solve_factored, lapack_info_error
-    public :: dgetf2, dgetrs, dpotrf, dpotrs
+    public :: dgetf2, dgetrs, dpotf2, dpotrs
     public :: use_one_blas_thread
 
     !> Largest order factored with the unblocked routine
@@ -54,16 +54,17 @@ module rollcon_lapack
             integer, intent(out) :: info
         end subroutine dgetrs
 
-        !> Cholesky factorisation of a symmetric positive definite matrix (LAPACK)
-        pure subroutine dpotrf(uplo, n, a, lda, info)
+        !> Cholesky factorisation of a symmetric positive definite matrix, unblocked (LAPACK):
+        !> for the 3 x 3 blocks here dpotrf's recursion costs more than the arithmetic
+        pure subroutine dpotf2(uplo, n, a, lda, info)
             import :: wp
             character(len=1), intent(in) :: uplo
             integer, intent(in) :: n, lda
             real(wp), intent(inout) :: a(lda, *)
             integer, intent(out) :: info
-        end subroutine dpotrf
+        end subroutine dpotf2
 
-        !> Solve with a Cholesky factorisation from dpotrf (LAPACK)
+        !> Solve with a Cholesky factorisation from dpotf2 (LAPACK)
         pure subroutine dpotrs(uplo, n, nrhs, a, lda, b, ldb, info)
             import :: wp
             character(len=1), intent(in) :: uplo

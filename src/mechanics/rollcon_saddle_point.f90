@@ -7,14 +7,14 @@
 !>
 !> M is block diagonal, one 6 x 6 block per part, and each block is m I (translation) beside
 !> the 3 x 3 rotational block B^T J B (principal axes at the centre of mass: no coupling). So
-!> M^-1 costs a division and a 3 x 3 Cholesky solve per part (LAPACK dpotrf/dpotrs) and only
+!> M^-1 costs a division and a 3 x 3 Cholesky solve per part (LAPACK dpotf2/dpotrs) and only
 !> the small Schur complement S is factored with pivoting (LAPACK dgetf2/dgetrs), in place of
 !> the whole (n + nc) x (n + nc) matrix. Nothing here allocates after init.
 module rollcon_saddle_point
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type, fatal_error, stat_lapack
     use rollcon_text, only : to_text
-    use rollcon_lapack, only : dgetf2, dgetrs, dpotrf, dpotrs, lapack_info_error
+    use rollcon_lapack, only : dgetf2, dgetrs, dpotf2, dpotrs, lapack_info_error
     implicit none
     private
 
@@ -85,14 +85,14 @@ contains
             i0 = 6*(p - 1)
             self%part_mass(p) = mass(i0 + 1, i0 + 1)
             self%rotational(:, :, p) = mass(i0 + 4:i0 + 6, i0 + 4:i0 + 6)
-            call dpotrf("L", 3, self%rotational(1, 1, p), 3, info)
+            call dpotf2("L", 3, self%rotational(1, 1, p), 3, info)
             if (info > 0) then
                 call fatal_error(error, "the rotational mass matrix of part number " &
                     & // to_text(p) // " is singular (Euler angles at sin(theta) " &
-                    & // "= 0?): dpotrf info " // to_text(info), stat_lapack)
+                    & // "= 0?): dpotf2 info " // to_text(info), stat_lapack)
                 return
             end if
-            call lapack_info_error("dpotrf", info, error)
+            call lapack_info_error("dpotf2", info, error)
             if (allocated(error)) return
         end do
         if (rows == 0) return
