@@ -16,6 +16,7 @@ program rollcon_main
     use rollcon_child_process, only : default_call_timeout
     use rollcon_user_library, only : user_ucosub_type, new_user_ucosub
     use rollcon_simulation, only : run_summary_type, status_inaccurate
+    use rollcon_lapack, only : use_one_blas_thread
     implicit none
     type(error_type), allocatable :: error
     type(run_summary_type) :: summary
@@ -29,7 +30,11 @@ program rollcon_main
     type(user_ucosub_type) :: user
     !> run --ucosub: longest one call of the user's routine may take [s]
     real(wp) :: call_timeout = default_call_timeout
+    !> The threaded BLAS set to one thread ("" for reference BLAS)
+    character(len=:), allocatable :: blas_library
 
+    ! dozen-unknown systems gain nothing from BLAS threads (rollcon_lapack)
+    call use_one_blas_thread(blas_library)
     call read_command_line(error)
     if (allocated(error)) call fail(error)
     select case (command)

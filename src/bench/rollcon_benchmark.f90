@@ -226,8 +226,8 @@ contains
         call cpu_time(finish)
         rhs_seconds = (finish - start)/count
         ! the same saddle-point matrix, factored and solved alone
-        n = size(problem%eq%kkt, 1)
-        matrix = problem%eq%kkt
+        n = problem%eq%n + problem%eq%nc
+        allocate(matrix(n, n))
         call problem%eq%accelerations(0.0_wp, q0, u0, problem%a, problem%lambda, error)
         if (allocated(error)) return
         matrix(:problem%eq%n, :problem%eq%n) = problem%eq%mass

@@ -1,13 +1,25 @@
 ! SPDX-License-Identifier: MIT
-!> Interface blocks for the LAPACK routines rollcon calls, and wrappers that size them.
+!> Interface blocks for the LAPACK routines rollcon calls, wrappers that size them, and the
+!> choice of one BLAS thread.
+!>
+!> Which library: fpm.toml links `lapack` and `blas`, which the system resolves (Debian: the
+!> update-alternatives of libblas.so.3 and liblapack.so.3) to reference LAPACK/BLAS or to an
+!> optimised one such as OpenBLAS. The systems solved here have a dozen unknowns: threads gain
+!> nothing on them, and an idle OpenBLAS worker that spins costs CPU time and makes timings
+!> noisy. So programs call use_one_blas_thread first; with reference BLAS (single-threaded by
+!> construction) it finds nothing to do.
 module rollcon_lapack
+    use, intrinsic :: iso_c_binding, only : c_ptr, c_null_ptr, c_funptr, c_int, c_char, &
+        & c_null_char, c_associated, c_f_procpointer
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type, fatal_error, stat_lapack
     use rollcon_text, only : to_text
     implicit none
     private
 
-    public :: solve_dense, factor_dense, solve_factored, lapack_info_error
+    public :: factor_dense, solve_factored, lapack_info_error
+    public :: dgetf2, dgetrs, dpotf2, dpotrs
+    public :: use_one_blas_thread
 
     !> Largest order factored with the unblocked routine
     integer, parameter :: small_matrix = 64
@@ -41,9 +53,71 @@ module rollcon_lapack
             real(wp), intent(inout) :: b(ldb, *)
             integer, intent(out) :: info
         end subroutine dgetrs
+
+        !> Cholesky factorisation of a symmetric positive definite matrix, unblocked (LAPACK):
+        !> for the 3 x 3 blocks here dpotrf's recursion costs more than the arithmetic
+        pure subroutine dpotf2(uplo, n, a, lda, info)
+            import :: wp
+            character(len=1), intent(in) :: uplo
+            integer, intent(in) :: n, lda
+            real(wp), intent(inout) :: a(lda, *)
+            integer, intent(out) :: info
+        end subroutine dpotf2
+
+        !> Solve with a Cholesky factorisation from dpotf2 (LAPACK)
+        pure subroutine dpotrs(uplo, n, nrhs, a, lda, b, ldb, info)
+            import :: wp
+            character(len=1), intent(in) :: uplo
+            integer, intent(in) :: n, nrhs, lda, ldb
+            real(wp), intent(in) :: a(lda, *)
+            real(wp), intent(inout) :: b(ldb, *)
+            integer, intent(out) :: info
+        end subroutine dpotrs
+    end interface
+
+    interface
+        !> The address of a symbol of the loaded libraries (POSIX; handle c_null_ptr is glibc's
+        !> RTLD_DEFAULT: search them all)
+        function dlsym(handle, symbol) result(address) bind(c, name="dlsym")
+            import :: c_ptr, c_funptr, c_char
+            type(c_ptr), value :: handle
+            character(kind=c_char), intent(in) :: symbol(*)
+            type(c_funptr) :: address
+        end function dlsym
+    end interface
+
+    abstract interface
+        !> openblas_set_num_threads(int) and mkl_set_num_threads(int)
+        subroutine set_threads_interface(count) bind(c)
+            import :: c_int
+            integer(c_int), value :: count
+        end subroutine set_threads_interface
     end interface
 
 contains
+
+    !> Run the BLAS on one thread when the linked library has threads (OpenBLAS, MKL); tell
+    !> which setter was called ("" with reference BLAS, which has no threads).
+    subroutine use_one_blas_thread(library)
+        !> "openblas", "mkl" or "" (none found: a single-threaded BLAS)
+        character(len=:), allocatable, intent(out) :: library
+        character(len=*), parameter :: setters(2) = [character(len=24) :: &
+            & "openblas_set_num_threads", "MKL_Set_Num_Threads"]
+        character(len=*), parameter :: names(2) = [character(len=8) :: "openblas", "mkl"]
+        procedure(set_threads_interface), pointer :: set_threads
+        type(c_funptr) :: address
+        integer :: i
+
+        library = ""
+        do i = 1, size(setters)
+            address = dlsym(c_null_ptr, trim(setters(i)) // c_null_char)
+            if (.not. c_associated(address)) cycle
+            call c_f_procpointer(address, set_threads)
+            call set_threads(1_c_int)
+            library = trim(names(i))
+            return
+        end do
+    end subroutine use_one_blas_thread
 
     !> Factor a square matrix in place (LU, partial pivoting).
     subroutine factor_dense(a, ipiv, error)
@@ -87,25 +161,6 @@ contains
         call dgetrs("N", size(lu, 1), size(b, 2), lu, size(lu, 1), ipiv, b, size(b, 1), info)
         call lapack_info_error("dgetrs", info, error)
     end subroutine solve_factored
-
-    !> Solve A x = b for one right-hand side; a is overwritten by its factors, b by x.
-    subroutine solve_dense(a, b, error)
-        !> Square matrix on entry, its LU factors on exit
-        real(wp), intent(inout) :: a(:, :)
-        !> Right-hand side on entry, solution on exit
-        real(wp), intent(inout) :: b(:)
-        !> Set when the matrix is singular
-        type(error_type), allocatable, intent(out) :: error
-        integer :: ipiv(size(a, 1))
-        real(wp) :: rhs(size(b), 1)
-
-        call factor_dense(a, ipiv, error)
-        if (allocated(error)) return
-        rhs(:, 1) = b
-        call solve_factored(a, ipiv, rhs, error)
-        if (allocated(error)) return
-        b = rhs(:, 1)
-    end subroutine solve_dense
 
     !> Turn a LAPACK info code into an error (nothing when info is 0).
     pure subroutine lapack_info_error(routine, info, error)

@@ -9,12 +9,12 @@ module rollcon_body
     use rollcon_kinds, only : wp
     use rollcon_rotation, only : rotation_matrix, rate_matrix, rate_matrix_dtheta, &
         & rate_matrix_dphi, rate_matrix_dtheta2, rate_matrix_dtheta_dphi, rate_matrix_dphi2, cross, &
-        & times, transpose_times
+        & times, transpose_times, rate_matrices
     implicit none
     private
 
     public :: part_type, body_residual, body_mass_matrix, body_residual_jacobian
-    public :: kinetic_energy, body_angular_velocity
+    public :: kinetic_energy, body_angular_velocity, body_mass_and_force
 
     !> A rigid part with principal (diagonal) inertia at its centre of mass
     type :: part_type
@@ -69,6 +69,42 @@ contains
             end do
         end do
     end function body_mass_matrix
+
+    !> M(q) and f = -(M a - f) at a = 0 together: what body_mass_matrix and body_residual give,
+    !> with each sine and cosine computed once and no rotation when no moment acts (the hot
+    !> path of every right-hand side and residual).
+    pure subroutine body_mass_and_force(part, q, u, force, torque, gravity, m, f)
+        type(part_type), intent(in) :: part
+        !> Coordinates and rates
+        real(wp), intent(in) :: q(6), u(6)
+        !> Applied force and moment about the centre of mass, ground components [N, N m]
+        real(wp), intent(in) :: force(3), torque(3)
+        !> Gravitational acceleration, ground components [m/s^2]
+        real(wp), intent(in) :: gravity(3)
+        !> Mass matrix and generalised forces
+        real(wp), intent(out) :: m(6, 6), f(6)
+        real(wp) :: b(3, 3), b_t(3, 3), b_p(3, 3), omega(3), drift(3), torque_body(3)
+        integer :: i, j
+
+        call rate_matrices(q(5), q(6), b, b_t, b_p)
+        m = 0.0_wp
+        do i = 1, 3
+            m(i, i) = part%mass
+        end do
+        do j = 1, 3
+            do i = 1, 3
+                m(3 + i, 3 + j) = sum(b(:, i)*part%inertia*b(:, j))
+            end do
+        end do
+        f(1:3) = part%mass*gravity + force
+        torque_body = 0.0_wp
+        if (any(torque /= 0.0_wp)) torque_body = transpose_times(rotation_matrix(q(4), q(5), &
+            & q(6)), torque)
+        omega = times(b, u(4:6))
+        drift = u(5)*times(b_t, u(4:6)) + u(6)*times(b_p, u(4:6))
+        f(4:6) = -transpose_times(b, part%inertia*drift + cross(omega, part%inertia*omega) &
+            & - torque_body)
+    end subroutine body_mass_and_force
 
     !> r = M a - f: zero when the part moves as the applied loads say.
     pure function body_residual(part, q, u, a, force, torque, gravity) result(r)

@@ -7,7 +7,7 @@ module rollcon_constraints
     use rollcon_ucosub_contract, only : max_ucon_vars, scalar_none, scalar_value, scalar_dt, scalar_dtt, &
         & array_none, array_dq, array_dtdq, xmatrx_none, xmatrx_dqdq
     use rollcon_ucon_call, only : evaluate_ucon
-    use rollcon_model, only : model_type
+    use rollcon_model, only : model_type, ucon_statement_type
     implicit none
     private
 
@@ -63,7 +63,7 @@ contains
         !> Set when a UCOSUB reports an error or returns a non-finite value
         type(error_type), allocatable, intent(out) :: error
         real(wp) :: scalar, array(max_ucon_vars), xmatrx(max_ucon_vars, max_ucon_vars)
-        integer :: k, i, j, idrsel(3)
+        integer :: k, i, idrsel(3)
         logical :: first, second
 
         first = iand(needs, need_first) /= 0
@@ -86,50 +86,19 @@ contains
                         & scalar, array, xmatrx, error, ucon%nvars)
                     if (allocated(error)) return
                     if (idrsel(1) /= 0) self%value(k) = scalar
-                    if (first) then
-                        self%grad_q(k, :) = 0.0_wp
-                        self%grad_u(k, :) = 0.0_wp
-                        do i = 1, ucon%nvars
-                            if (ucon%velocity(i)) then
-                                self%grad_u(k, ucon%coordinate(i)) = array(i)
-                            else
-                                self%grad_q(k, ucon%coordinate(i)) = array(i)
-                            end if
-                        end do
-                    end if
-                    if (second) then
-                        self%hqq(:, :, k) = 0.0_wp
-                        self%hqu(:, :, k) = 0.0_wp
-                        do j = 1, ucon%nvars
-                            do i = 1, ucon%nvars
-                                if (ucon%velocity(i)) cycle
-                                associate (ci => ucon%coordinate(i), cj => ucon%coordinate(j))
-                                    if (ucon%velocity(j)) then
-                                        ! d2F/dq_i du_j, and its mirror (u_j, q_i) below
-                                        self%hqu(ci, cj, k) = xmatrx(i, j)
-                                    else
-                                        self%hqq(ci, cj, k) = xmatrx(i, j)
-                                    end if
-                                end associate
-                            end do
-                        end do
-                    end if
+                    if (first) call scatter_row(ucon, array, self%grad_q(k, :), &
+                        & self%grad_u(k, :))
+                    if (second) call scatter_hessian(ucon, xmatrx, self%hqq(:, :, k), &
+                        & self%hqu(:, :, k))
                 end if
-                if (iand(needs, need_time) /= 0) then
+                ! a time-free UCON's time partials stay at the zeros of allocate_state
+                if (iand(needs, need_time) /= 0 .and. .not. ucon%time_free) then
                     call evaluate_ucon(ucon%ucosub, ucon%id, time, self%local_q, ucon%par, &
                         & [scalar_dt, array_dtdq, xmatrx_none], scalar, array, xmatrx, error, &
                         & ucon%nvars)
                     if (allocated(error)) return
                     self%dt(k) = scalar
-                    self%dt_grad_q(k, :) = 0.0_wp
-                    self%dt_grad_u(k, :) = 0.0_wp
-                    do i = 1, ucon%nvars
-                        if (ucon%velocity(i)) then
-                            self%dt_grad_u(k, ucon%coordinate(i)) = array(i)
-                        else
-                            self%dt_grad_q(k, ucon%coordinate(i)) = array(i)
-                        end if
-                    end do
+                    call scatter_row(ucon, array, self%dt_grad_q(k, :), self%dt_grad_u(k, :))
                     if (ucon%holonomic) then
                         call evaluate_ucon(ucon%ucosub, ucon%id, time, self%local_q, ucon%par, &
                             & [scalar_dtt, array_none, xmatrx_none], scalar, array, xmatrx, &
@@ -141,5 +110,46 @@ contains
             end associate
         end do
     end subroutine evaluate_constraints
+
+    !> Scatter a UCON's first partials (ARRAY) onto the system's coordinates and rates.
+    pure subroutine scatter_row(ucon, array, row_q, row_u)
+        type(ucon_statement_type), intent(in) :: ucon
+        real(wp), intent(in) :: array(:)
+        !> d/dq and d/du rows of the system
+        real(wp), intent(out) :: row_q(:), row_u(:)
+        integer :: i
+
+        row_q = 0.0_wp
+        row_u = 0.0_wp
+        do i = 1, ucon%nvars
+            if (ucon%velocity(i)) then
+                row_u(ucon%coordinate(i)) = array(i)
+            else
+                row_q(ucon%coordinate(i)) = array(i)
+            end if
+        end do
+    end subroutine scatter_row
+
+    !> Scatter a UCON's second partials (XMATRX) onto d2F/dq dq and d2F/dq du of the system
+    !> (d2F/du du is zero: F is linear in the rates, DESIGN section 2).
+    pure subroutine scatter_hessian(ucon, xmatrx, hqq, hqu)
+        type(ucon_statement_type), intent(in) :: ucon
+        real(wp), intent(in) :: xmatrx(:, :)
+        real(wp), intent(out) :: hqq(:, :), hqu(:, :)
+        integer :: i, j
+
+        hqq = 0.0_wp
+        hqu = 0.0_wp
+        do j = 1, ucon%nvars
+            do i = 1, ucon%nvars
+                if (ucon%velocity(i)) cycle
+                if (ucon%velocity(j)) then
+                    hqu(ucon%coordinate(i), ucon%coordinate(j)) = xmatrx(i, j)
+                else
+                    hqq(ucon%coordinate(i), ucon%coordinate(j)) = xmatrx(i, j)
+                end if
+            end do
+        end do
+    end subroutine scatter_hessian
 
 end module rollcon_constraints

@@ -8,12 +8,11 @@ module rollcon_equations
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type
     use rollcon_model, only : model_type
-    use rollcon_body, only : body_residual, body_mass_matrix, body_residual_jacobian, &
-        & kinetic_energy
+    use rollcon_body, only : body_mass_and_force, body_residual_jacobian, kinetic_energy
     use rollcon_force, only : force_and_moment
     use rollcon_constraints, only : constraint_state_type, need_value, need_first, need_second, &
         & need_time
-    use rollcon_lapack, only : factor_dense, solve_factored
+    use rollcon_saddle_point, only : saddle_point_type
     implicit none
     private
 
@@ -22,7 +21,8 @@ module rollcon_equations
     !> Drift control of the ODE form: none, projection onto the constraints, Baumgarte
     integer, parameter :: drift_none = 0, drift_projection = 1, drift_baumgarte = 2
 
-    !> A model with the workspace its equations need (allocated once, in init)
+    !> A model, its drift control, and what evaluating its equations fills (allocated once, in
+    !> init; no evaluation allocates). The saddle-point factors live in `saddle`.
     type :: equations_type
         !> The model, set up
         type(model_type) :: model
@@ -38,11 +38,18 @@ module rollcon_equations
         real(wp), allocatable :: mass(:, :), force(:), c(:, :), gamma(:)
         !> Applied moment about each part's centre, ground components [N m] (3, parts)
         real(wp), allocatable :: moments(:, :)
-        !> Saddle-point matrix and its LU factors, pivots, right-hand sides
-        real(wp), allocatable :: kkt(:, :), rhs(:, :)
-        integer, allocatable :: pivots(:)
+        !> The saddle-point system's factors, as the last accelerations call left them
+        type(saddle_point_type) :: saddle
+        !> Rows of C of the position UCONs alone (nh, n), for the position projection
+        real(wp), allocatable :: holonomic_rows(:, :)
+        !> Right-hand sides of the Jacobian's and the projection's solves: momentum rows (n, 2n)
+        !> and constraint rows (nc, 2n)
+        real(wp), allocatable :: rhs_top(:, :), rhs_bottom(:, :)
         !> Jacobian blocks of the momentum rows d(M a - f - C^T lambda)/d(q, u)
         real(wp), allocatable :: dm_dq(:, :), dm_du(:, :)
+        !> Scratch: accelerations, multipliers, projected coordinates (automatic arrays would be
+        !> allocated on the heap at every call)
+        real(wp), allocatable :: a_work(:), lambda_work(:), q_work(:)
     contains
         procedure :: init
         procedure :: accelerations
@@ -50,6 +57,7 @@ module rollcon_equations
         procedure :: project
         procedure :: energy
         procedure :: constraint_force
+        procedure :: reaction_from_accelerations
         procedure :: assemble
         procedure :: constraint_rows
         procedure :: constraint_matrix
@@ -68,35 +76,34 @@ contains
         self%nc = model%nc
         self%nh = model%nh
         call self%constraints%allocate(model)
+        call self%saddle%init(self%n, self%nc)
         associate (n => self%n, nc => self%nc)
             allocate(self%mass(n, n), self%force(n), self%c(nc, n), self%gamma(nc), source=0.0_wp)
             allocate(self%moments(3, size(model%parts)), source=0.0_wp)
-            allocate(self%kkt(n + nc, n + nc), self%rhs(n + nc, 2*n), source=0.0_wp)
-            allocate(self%pivots(n + nc), source=0)
+            allocate(self%holonomic_rows(self%nh, n), self%rhs_top(n, 2*n), &
+                & self%rhs_bottom(nc, 2*n), source=0.0_wp)
             allocate(self%dm_dq(n, n), self%dm_du(n, n), source=0.0_wp)
+            allocate(self%a_work(n), self%lambda_work(nc), self%q_work(n), source=0.0_wp)
         end associate
     end subroutine init
 
-    !> Mass matrix and f = -(M a - f) at a = 0, part by part.
+    !> Mass matrix and f = -(M a - f) at a = 0, part by part. Only the parts' diagonal blocks
+    !> are written: the others stay zero from init.
     subroutine assemble(self, time, q, u)
         class(equations_type), intent(inout) :: self
         real(wp), intent(in) :: time
-        real(wp), intent(in), contiguous :: q(:), u(:)
-        real(wp), parameter :: zero6(6) = 0.0_wp
-        real(wp) :: applied(3), part_mass(6, 6), part_residual(6)
+        real(wp), intent(in) :: q(:), u(:)
+        real(wp) :: applied(3), part_mass(6, 6), part_force(6)
         integer :: p, i0
 
-        self%mass = 0.0_wp
         do p = 1, size(self%model%parts)
             i0 = 6*(p - 1)
             call force_and_moment(self%model%forces, p, time, q(i0 + 1:i0 + 6), applied, &
                 & self%moments(:, p))
-            ! whole fixed-size locals take the function results without heap temporaries
-            part_mass = body_mass_matrix(self%model%parts(p), q(i0 + 1:i0 + 6))
-            part_residual = body_residual(self%model%parts(p), q(i0 + 1:i0 + 6), &
-                & u(i0 + 1:i0 + 6), zero6, applied, self%moments(:, p), self%model%gravity)
+            call body_mass_and_force(self%model%parts(p), q(i0 + 1:i0 + 6), u(i0 + 1:i0 + 6), &
+                & applied, self%moments(:, p), self%model%gravity, part_mass, part_force)
             self%mass(i0 + 1:i0 + 6, i0 + 1:i0 + 6) = part_mass
-            self%force(i0 + 1:i0 + 6) = -part_residual
+            self%force(i0 + 1:i0 + 6) = part_force
         end do
     end subroutine assemble
 
@@ -139,15 +146,15 @@ contains
         end do
     end subroutine constraint_matrix
 
-    !> Accelerations a and multipliers lambda at (t, q, u); leaves the factored saddle-point
-    !> matrix in kkt/pivots for the Jacobian.
+    !> Accelerations a and multipliers lambda at (t, q, u); leaves the saddle-point factors in
+    !> `saddle` for the Jacobian.
     subroutine accelerations(self, time, q, u, a, lambda, error, second)
         class(equations_type), intent(inout) :: self
         real(wp), intent(in) :: time, q(:), u(:)
         !> Accelerations [m/s^2, rad/s^2]
-        real(wp), intent(out) :: a(:)
+        real(wp), intent(out) :: a(self%n)
         !> Multipliers: the constraint forces' amplitudes
-        real(wp), intent(out) :: lambda(:)
+        real(wp), intent(out) :: lambda(self%nc)
         type(error_type), allocatable, intent(out) :: error
         !> Also evaluate second partials (needed by the Jacobian, or by position UCONs)
         logical, intent(in), optional :: second
@@ -164,22 +171,19 @@ contains
         if (allocated(error)) return
         call self%assemble(time, q, u)
         call self%constraint_rows(u)
-        call fill_saddle_point(self)
-        self%rhs(:n, 1) = self%force
-        self%rhs(n + 1:, 1) = self%gamma
-        call factor_dense(self%kkt, self%pivots, error)
+        call self%saddle%factor(self%mass, self%c, nc, error)
         if (allocated(error)) return
-        call solve_factored(self%kkt, self%pivots, self%rhs(:, 1:1), error)
-        if (allocated(error)) return
-        a = self%rhs(:n, 1)
-        lambda = self%rhs(n + 1:, 1)
+        a = self%force
+        lambda = self%gamma
+        call self%saddle%solve(self%c, a, lambda, 1, error)
     end subroutine accelerations
 
     !> d(M a - f - C^T lambda)/dq and /du at given a, lambda (into dm_dq, dm_du).
     subroutine momentum_jacobian(self, q, u, a, lambda)
         class(equations_type), intent(inout) :: self
-        real(wp), intent(in), contiguous :: q(:), u(:), a(:)
+        real(wp), intent(in) :: q(:), u(:), a(:)
         real(wp), intent(in) :: lambda(:)
+        real(wp) :: part_dq(6, 6), part_du(6, 6)
         integer :: p, i0, k, j
 
         self%dm_dq = 0.0_wp
@@ -187,8 +191,9 @@ contains
         do p = 1, size(self%model%parts)
             i0 = 6*(p - 1)
             call body_residual_jacobian(self%model%parts(p), q(i0 + 1:i0 + 6), u(i0 + 1:i0 + 6), &
-                & a(i0 + 1:i0 + 6), self%moments(:, p), self%dm_dq(i0 + 1:i0 + 6, i0 + 1:i0 + 6), &
-                & self%dm_du(i0 + 1:i0 + 6, i0 + 1:i0 + 6))
+                & a(i0 + 1:i0 + 6), self%moments(:, p), part_dq, part_du)
+            self%dm_dq(i0 + 1:i0 + 6, i0 + 1:i0 + 6) = part_dq
+            self%dm_du(i0 + 1:i0 + 6, i0 + 1:i0 + 6) = part_du
         end do
         ! -d(C^T lambda)/dq: second partials are why ADAMS asks a UCOSUB for XMATRX (DESIGN 4)
         do k = 1, self%nc
@@ -211,48 +216,59 @@ contains
         !> d(q', u')/d(q, u), 2n x 2n
         real(wp), intent(out) :: jac(:, :)
         type(error_type), allocatable, intent(out) :: error
-        real(wp) :: a(self%n), lambda(self%nc), alpha
+        integer :: n, j
+
+        n = self%n
+        call self%accelerations(time, q, u, self%a_work, self%lambda_work, error, second=.true.)
+        if (allocated(error)) return
+        call self%momentum_jacobian(q, u, self%a_work, self%lambda_work)
+        self%rhs_top(:, :n) = -self%dm_dq
+        self%rhs_top(:, n + 1:) = -self%dm_du
+        call jacobian_constraint_rows(self, u, self%a_work)
+        call self%saddle%solve(self%c, self%rhs_top, self%rhs_bottom, 2*n, error)
+        if (allocated(error)) return
+        jac = 0.0_wp
+        do j = 1, n
+            jac(j, n + j) = 1.0_wp
+        end do
+        jac(n + 1:, :) = self%rhs_top
+    end subroutine ode_jacobian
+
+    !> Constraint rows of the Jacobian's right-hand sides, -d(C a - gamma)/d(q, u) at fixed a,
+    !> into rhs_bottom.
+    subroutine jacobian_constraint_rows(self, u, a)
+        type(equations_type), intent(inout) :: self
+        real(wp), intent(in) :: u(:), a(:)
+        real(wp) :: alpha
         integer :: n, k, j
 
         n = self%n
-        call self%accelerations(time, q, u, a, lambda, error, second=.true.)
-        if (allocated(error)) return
-        call self%momentum_jacobian(q, u, a, lambda)
         alpha = 0.0_wp
         if (self%drift == drift_baumgarte) alpha = self%baumgarte_rate
-        self%rhs(:n, :n) = -self%dm_dq
-        self%rhs(:n, n + 1:) = -self%dm_du
         associate (cs => self%constraints)
             do k = 1, self%nc
                 if (self%model%ucons(k)%holonomic) then
                     do j = 1, n
-                        self%rhs(n + k, j) = -dot_product(cs%hqq(:, j, k), a) &
+                        self%rhs_bottom(k, j) = -dot_product(cs%hqq(:, j, k), a) &
                             & - 2.0_wp*alpha*(dot_product(cs%hqq(:, j, k), u) &
                             & + cs%dt_grad_q(k, j)) - alpha**2*cs%grad_q(k, j)
-                        self%rhs(n + k, n + j) = -2.0_wp*dot_product(cs%hqq(:, j, k), u) &
+                        self%rhs_bottom(k, n + j) = -2.0_wp*dot_product(cs%hqq(:, j, k), u) &
                             & - 2.0_wp*cs%dt_grad_q(k, j) - 2.0_wp*alpha*cs%grad_q(k, j)
                     end do
                 else
                     ! C a - gamma = dF/du a + dF/dq u + dF/dt + alpha F
                     do j = 1, n
-                        self%rhs(n + k, j) = -(dot_product(cs%hqu(j, :, k), a) &
+                        self%rhs_bottom(k, j) = -(dot_product(cs%hqu(j, :, k), a) &
                             & + dot_product(cs%hqq(:, j, k), u) + cs%dt_grad_q(k, j) &
                             & + alpha*cs%grad_q(k, j))
-                        self%rhs(n + k, n + j) = -(cs%grad_q(k, j) &
+                        self%rhs_bottom(k, n + j) = -(cs%grad_q(k, j) &
                             & + dot_product(cs%hqu(:, j, k), u) + cs%dt_grad_u(k, j) &
                             & + alpha*cs%grad_u(k, j))
                     end do
                 end if
             end do
         end associate
-        call solve_factored(self%kkt, self%pivots, self%rhs, error)
-        if (allocated(error)) return
-        jac = 0.0_wp
-        do j = 1, n
-            jac(j, n + j) = 1.0_wp
-        end do
-        jac(n + 1:, :) = self%rhs(:n, :)
-    end subroutine ode_jacobian
+    end subroutine jacobian_constraint_rows
 
     !> Correction (dq, du) that puts (q, u) back on the constraints: a mass-weighted least
     !> change, one Newton step for position UCONs, exact for velocity UCONs (linear in u).
@@ -261,71 +277,51 @@ contains
         real(wp), intent(in) :: time, q(:), u(:)
         real(wp), intent(out) :: dq(:), du(:)
         type(error_type), allocatable, intent(out) :: error
-        real(wp) :: qp(self%n)
-        integer :: n, k
+        integer :: n, k, h
 
         n = self%n
         dq = 0.0_wp
-        du = 0.0_wp
-        qp = q
         if (self%nh > 0) then
             call self%constraints%evaluate(self%model, time, q, u, need_value + need_first, error)
             if (allocated(error)) return
             call self%assemble(time, q, u)
-            self%kkt = 0.0_wp
-            self%kkt(:n, :n) = self%mass
-            self%rhs(:, 1) = 0.0_wp
+            ! only position UCONs constrain q: [M, -G^T; G, 0] (dq, nu) = (0, -F_h)
             do k = 1, self%nc
-                ! only position UCONs constrain q; the others get an identity row (nu_k = 0)
-                if (self%model%ucons(k)%holonomic) then
-                    self%kkt(:n, n + k) = -self%constraints%grad_q(k, :)
-                    self%kkt(n + k, :n) = self%constraints%grad_q(k, :)
-                    self%rhs(n + k, 1) = -self%constraints%value(k)
-                else
-                    self%kkt(n + k, n + k) = 1.0_wp
-                end if
+                h = self%model%holonomic_number(k)
+                if (h == 0) cycle
+                self%holonomic_rows(h, :) = self%constraints%grad_q(k, :)
+                self%rhs_bottom(h, 1) = -self%constraints%value(k)
             end do
-            call solve_kkt(self, error)
+            call self%saddle%factor(self%mass, self%holonomic_rows, self%nh, error)
             if (allocated(error)) return
-            dq = self%rhs(:n, 1)
-            qp = q + dq
+            self%rhs_top(:, 1) = 0.0_wp
+            call self%saddle%solve(self%holonomic_rows, self%rhs_top(:, 1), &
+                & self%rhs_bottom(:, 1), 1, error)
+            if (allocated(error)) return
+            dq = self%rhs_top(:, 1)
         end if
-        call self%constraints%evaluate(self%model, time, qp, u, need_value + need_first &
+        self%q_work = q + dq
+        call self%constraints%evaluate(self%model, time, self%q_work, u, need_value + need_first &
             & + need_time, error)
         if (allocated(error)) return
-        call self%assemble(time, qp, u)
+        call self%assemble(time, self%q_work, u)
         call self%constraint_matrix()
-        do k = 1, self%nc
-            associate (cs => self%constraints)
+        associate (cs => self%constraints)
+            do k = 1, self%nc
                 if (self%model%ucons(k)%holonomic) then
-                    self%rhs(n + k, 1) = -(dot_product(cs%grad_q(k, :), u) + cs%dt(k))
+                    self%rhs_bottom(k, 1) = -(dot_product(cs%grad_q(k, :), u) + cs%dt(k))
                 else
-                    self%rhs(n + k, 1) = -cs%value(k)
+                    self%rhs_bottom(k, 1) = -cs%value(k)
                 end if
-            end associate
-        end do
-        call fill_saddle_point(self)
-        self%rhs(:n, 1) = 0.0_wp
-        call solve_kkt(self, error)
+            end do
+        end associate
+        call self%saddle%factor(self%mass, self%c, self%nc, error)
         if (allocated(error)) return
-        du = self%rhs(:n, 1)
+        self%rhs_top(:, 1) = 0.0_wp
+        call self%saddle%solve(self%c, self%rhs_top(:, 1), self%rhs_bottom(:, 1), 1, error)
+        if (allocated(error)) return
+        du = self%rhs_top(:, 1)
     end subroutine project
-
-    !> kkt = [M, -C^T; C, 0], element by element (no temporaries in the hot path).
-    pure subroutine fill_saddle_point(self)
-        type(equations_type), intent(inout) :: self
-        integer :: i, k, n
-
-        n = self%n
-        do i = 1, n
-            self%kkt(:n, i) = self%mass(:, i)
-            self%kkt(n + 1:, i) = self%c(:, i)
-        end do
-        do k = 1, self%nc
-            self%kkt(:n, n + k) = -self%c(k, :)
-            self%kkt(n + 1:, n + k) = 0.0_wp
-        end do
-    end subroutine fill_saddle_point
 
     !> u^T H u for a square H.
     pure function quadratic_form(h, u) result(value)
@@ -339,20 +335,10 @@ contains
         end do
     end function quadratic_form
 
-    !> Factor kkt and solve for rhs(:, 1).
-    subroutine solve_kkt(self, error)
-        type(equations_type), intent(inout) :: self
-        type(error_type), allocatable, intent(out) :: error
-
-        call factor_dense(self%kkt, self%pivots, error)
-        if (allocated(error)) return
-        call solve_factored(self%kkt, self%pivots, self%rhs(:, 1:1), error)
-    end subroutine solve_kkt
-
     !> Total energy: kinetic plus gravitational potential [J].
     pure function energy(self, q, u) result(e)
         class(equations_type), intent(in) :: self
-        real(wp), intent(in), contiguous :: q(:), u(:)
+        real(wp), intent(in) :: q(:), u(:)
         real(wp) :: e
         integer :: p, i0
 
@@ -379,5 +365,25 @@ contains
             force = force + lambda(k)*self%c(k, 6*(p - 1) + 1:6*(p - 1) + 3)
         end do
     end function constraint_force
+
+    !> Constraint force on part p, ground components [N], from its accelerations: m a minus
+    !> gravity and the applied forces (Newton's law for the centre of mass). No UCOSUB call
+    !> and no solve: for event functions given the accelerations by the integrator.
+    pure function reaction_from_accelerations(self, p, time, q, a) result(force)
+        class(equations_type), intent(in) :: self
+        !> Part index
+        integer, intent(in) :: p
+        !> Time [s]
+        real(wp), intent(in) :: time
+        !> Coordinates and accelerations of the whole system
+        real(wp), intent(in) :: q(:), a(:)
+        real(wp) :: force(3)
+        real(wp) :: applied(3), moment(3)
+        integer :: i0
+
+        i0 = 6*(p - 1)
+        call force_and_moment(self%model%forces, p, time, q(i0 + 1:i0 + 6), applied, moment)
+        force = self%model%parts(p)%mass*(a(i0 + 1:i0 + 3) - self%model%gravity) - applied
+    end function reaction_from_accelerations
 
 end module rollcon_equations

@@ -34,6 +34,9 @@ module rollcon_model
         logical, allocatable :: velocity(:)
         !> True when no variable is a rate: a position (holonomic) constraint
         logical :: holonomic = .false.
+        !> True when F has no explicit time: dF/dt, d2F/dt2, d2F/dt dq and f(t) are identically
+        !> zero and the driver never asks for them (default false: "may depend on time", ask)
+        logical :: time_free = .false.
         !> The routine serving this statement: the model's UCOSUB unless given
         procedure(ucosub_interface), pointer, nopass :: ucosub => null()
     end type ucon_statement_type
@@ -74,7 +77,7 @@ contains
     end subroutine add_part
 
     !> Append a UCON statement.
-    subroutine add_ucon(self, id, par, ucosub)
+    subroutine add_ucon(self, id, par, ucosub, time_free)
         class(model_type), intent(inout) :: self
         !> Statement id
         integer, intent(in) :: id
@@ -82,11 +85,15 @@ contains
         real(wp), intent(in) :: par(:)
         !> A routine of its own (ADAMS has one UCOSUB per model; rollcon allows one per UCON)
         procedure(ucosub_interface), optional :: ucosub
+        !> The routine's F has no explicit time (a generated module's `<spec>_time_free`): the
+        !> time partials are then taken as zero without calling it. Default false.
+        logical, intent(in), optional :: time_free
         type(ucon_statement_type) :: ucon
 
         ucon%id = id
         ucon%par = par
         if (present(ucosub)) ucon%ucosub => ucosub
+        if (present(time_free)) ucon%time_free = time_free
         if (.not. allocated(self%ucons)) allocate(self%ucons(0))
         self%ucons = [self%ucons, ucon]
     end subroutine add_ucon

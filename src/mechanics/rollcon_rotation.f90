@@ -8,7 +8,7 @@ module rollcon_rotation
 
     public :: rotation_matrix, rate_matrix, rate_matrix_dtheta, rate_matrix_dphi
     public :: rate_matrix_dtheta2, rate_matrix_dtheta_dphi, rate_matrix_dphi2, cross
-    public :: times, transpose_times
+    public :: times, transpose_times, rate_matrices
 
 contains
 
@@ -41,6 +41,29 @@ contains
         b(:, 2) = [cos(phi), -sin(phi), 0.0_wp]
         b(:, 3) = [0.0_wp, 0.0_wp, 1.0_wp]
     end function rate_matrix
+
+    !> B, dB/dtheta and dB/dphi together, from one sine and cosine of each angle (the
+    !> right-hand side's path; the functions above give each alone).
+    pure subroutine rate_matrices(theta, phi, b, b_theta, b_phi)
+        !> Nutation and spin angles [rad]
+        real(wp), intent(in) :: theta, phi
+        !> B, dB/dtheta, dB/dphi
+        real(wp), intent(out) :: b(3, 3), b_theta(3, 3), b_phi(3, 3)
+        real(wp) :: cth, sth, cph, sph
+
+        cth = cos(theta)
+        sth = sin(theta)
+        cph = cos(phi)
+        sph = sin(phi)
+        b(:, 1) = [sth*sph, sth*cph, cth]
+        b(:, 2) = [cph, -sph, 0.0_wp]
+        b(:, 3) = [0.0_wp, 0.0_wp, 1.0_wp]
+        b_theta = 0.0_wp
+        b_theta(:, 1) = [cth*sph, cth*cph, -sth]
+        b_phi = 0.0_wp
+        b_phi(:, 1) = [sth*cph, -sth*sph, 0.0_wp]
+        b_phi(:, 2) = [-sph, -cph, 0.0_wp]
+    end subroutine rate_matrices
 
     !> dB/dtheta.
     pure function rate_matrix_dtheta(theta, phi) result(b)

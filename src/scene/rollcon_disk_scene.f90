@@ -10,6 +10,7 @@ module rollcon_disk_scene
     use rollcon_force, only : applied_force_type, profile_half_sine, frame_tilt
     use rollcon_model, only : model_type, setup_model
     use rollcon_disk_par, only : disk_par
+    use rollcon_disk_reference, only : rolling_disk_ucosub
     use rollcon_gen_disk_height, only : disk_height_ucosub, disk_height_par
     use rollcon_problem, only : problem_type
     use rollcon_scene, only : scene_type, jacobian_analytic, height_position
@@ -42,21 +43,25 @@ contains
         type(part_type) :: disk
         type(applied_force_type) :: strike
         integer :: k
+        logical :: time_free
 
         disk%id = disk_part
         call disk_mass_properties(scene, disk%mass, disk%inertia)
         call model%add_part(disk)
         model%gravity = [0.0_wp, 0.0_wp, -scene%environment%gravity]
         model%ucosub => ucosub
+        ! the hand-checked routine's F has no explicit time (DESIGN section 5): the driver
+        ! skips its time partials; any other routine is asked for them
+        time_free = associated(model%ucosub, rolling_disk_ucosub)
         do k = 1, 2
-            call model%add_ucon(k, disk_par(disk_part, scene%disk%radius, k))
+            call model%add_ucon(k, disk_par(disk_part, scene%disk%radius, k), time_free=time_free)
         end do
         if (scene%run%height == height_position) then
             ! Z - R sin(theta) = 0 in place of its time derivative F3 (DESIGN section 5)
             call model%add_ucon(3, disk_height_par(disk_part, scene%disk%radius), &
                 & disk_height_ucosub)
         else
-            call model%add_ucon(3, disk_par(disk_part, scene%disk%radius, 3))
+            call model%add_ucon(3, disk_par(disk_part, scene%disk%radius, 3), time_free=time_free)
         end if
         if (scene%strike%enabled) then
             ! Horizontal, along +Y, at the top of the rim: (0, R, 0) in the tilt frame.

@@ -20,18 +20,31 @@ module rollcon_cvode
         & FCVodeSetLinearSolver, FCVodeSetJacFn, FCVodeSetMaxNumSteps, FCVodeSetStopTime, &
         & FCVode, FCVodeRootInit, FCVodeGetRootInfo, FCVodeSetProjFn, FCVodeFree, &
         & FCVodeGetNumSteps, FCVodeGetNumRhsEvals, FCVodeGetNumJacEvals, &
-        & FCVodeGetNumLinRhsEvals, FCVodeGetNumErrTestFails, CV_BDF, CV_ADAMS, CV_NORMAL, &
-        & CV_SUCCESS, CV_ROOT_RETURN, CV_TSTOP_RETURN
+        & FCVodeGetNumLinRhsEvals, FCVodeGetNumErrTestFails, FCVodeGetDky, FCVodeSetErrFile, &
+        & CV_BDF, CV_ADAMS, CV_NORMAL, &
+        & CV_SUCCESS, CV_ROOT_RETURN, CV_TSTOP_RETURN, CV_TOO_MUCH_WORK, CV_TOO_MUCH_ACC, &
+        & CV_ERR_FAILURE, CV_CONV_FAILURE
     implicit none
     private
 
     public :: cvode_solver_type
+
+    !> What the callbacks receive as user data: the problem, and what the event function needs
+    !> to read the state's derivative off CVODE's interpolating polynomial
+    type :: callback_data_type
+        type(problem_type), pointer :: problem => null()
+        type(c_ptr) :: memory = c_null_ptr
+        !> y'(t) from CVodeGetDky, and its storage
+        type(N_Vector), pointer :: rates => null()
+        real(c_double), allocatable :: rate_values(:)
+    end type callback_data_type
 
     !> One CVODE integration of a problem
     type :: cvode_solver_type
         type(c_ptr) :: context = c_null_ptr
         type(c_ptr) :: memory = c_null_ptr
         type(N_Vector), pointer :: y => null()
+        type(callback_data_type) :: data
         type(SUNMatrix), pointer :: matrix => null()
         type(SUNLinearSolver), pointer :: solver => null()
         !> Storage behind y
@@ -70,9 +83,21 @@ contains
             call fatal_error(error, "CVODE: CVodeCreate failed", stat_solver)
             return
         end if
+        ! every flag is checked and reported by rollcon: CVODE prints nothing itself
+        flag = FCVodeSetErrFile(self%memory, c_null_ptr)
+        if (check(flag, "CVodeSetErrFile", error)) return
         flag = FCVodeInit(self%memory, c_funloc(rhs), t0, self%y)
         if (check(flag, "CVodeInit", error)) return
-        flag = FCVodeSetUserData(self%memory, c_loc(problem))
+        allocate(self%data%rate_values(size(y0)), source=0.0_wp)
+        self%data%rates => FN_VMake_Serial(int(size(y0), c_int64_t), self%data%rate_values, &
+            & self%context)
+        if (.not. associated(self%data%rates)) then
+            call fatal_error(error, "CVODE: could not create the derivative vector", stat_solver)
+            return
+        end if
+        self%data%problem => problem
+        self%data%memory = self%memory
+        flag = FCVodeSetUserData(self%memory, c_loc(self%data))
         if (check(flag, "CVodeSetUserData", error)) return
         flag = FCVodeSStolerances(self%memory, problem%settings%rtol, problem%settings%atol)
         if (check(flag, "CVodeSStolerances", error)) return
@@ -133,7 +158,7 @@ contains
                 & // to_text(int(flag)) // "): " // problem%failure%message, stat_solver)
         else
             call fatal_error(error, "CVODE failed at t = " // to_text(t_reached) // " s with flag " &
-                & // to_text(int(flag)) // " (see the CVODE guide's return codes)", stat_solver)
+                & // to_text(int(flag)) // ": " // flag_meaning(flag), stat_solver)
         end if
     end subroutine advance
 
@@ -165,12 +190,35 @@ contains
         if (associated(self%solver)) flag = FSUNLinSolFree(self%solver)
         if (associated(self%matrix)) call FSUNMatDestroy(self%matrix)
         if (associated(self%y)) call FN_VDestroy(self%y)
+        if (associated(self%data%rates)) call FN_VDestroy(self%data%rates)
         if (c_associated(self%context)) flag = FSUNContext_Free(self%context)
         self%memory = c_null_ptr
         self%context = c_null_ptr
-        nullify(self%solver, self%matrix, self%y)
+        nullify(self%solver, self%matrix, self%y, self%data%rates, self%data%problem)
+        self%data%memory = c_null_ptr
         if (allocated(self%values)) deallocate(self%values)
+        if (allocated(self%data%rate_values)) deallocate(self%data%rate_values)
     end subroutine destroy
+
+    !> What a failure flag of CVODE means (names of the CVODE guide), for messages: SUNDIALS
+    !> itself prints nothing (its error file is none).
+    pure function flag_meaning(flag) result(text)
+        integer(c_int), intent(in) :: flag
+        character(len=:), allocatable :: text
+
+        select case (flag)
+        case (CV_TOO_MUCH_WORK)
+            text = "CV_TOO_MUCH_WORK, max_steps internal steps taken before the next output time"
+        case (CV_TOO_MUCH_ACC)
+            text = "CV_TOO_MUCH_ACC, the tolerances ask for more accuracy than the arithmetic has"
+        case (CV_ERR_FAILURE)
+            text = "CV_ERR_FAILURE, the error test failed repeatedly or at the smallest step"
+        case (CV_CONV_FAILURE)
+            text = "CV_CONV_FAILURE, the corrector failed repeatedly or at the smallest step"
+        case default
+            text = "see the CVODE guide's return codes"
+        end select
+    end function flag_meaning
 
     !> True (and error set) when a SUNDIALS call did not succeed.
     function check(flag, routine, error) result(failed)
@@ -189,10 +237,12 @@ contains
         real(c_double), value :: t
         type(N_Vector) :: y, ydot
         type(c_ptr), value :: user_data
+        type(callback_data_type), pointer :: data
         type(problem_type), pointer :: problem
         real(c_double), pointer :: yv(:), ydv(:)
 
-        call c_f_pointer(user_data, problem)
+        call c_f_pointer(user_data, data)
+        problem => data%problem
         yv => FN_VGetArrayPointer(y)
         ydv => FN_VGetArrayPointer(ydot)
         ierr = int(problem%ode_rhs(t, yv, ydv), c_int)
@@ -204,15 +254,17 @@ contains
         type(N_Vector) :: y, fy, tmp1, tmp2, tmp3
         type(SUNMatrix) :: jac
         type(c_ptr), value :: user_data
+        type(callback_data_type), pointer :: data
         type(problem_type), pointer :: problem
-        real(c_double), pointer :: yv(:), data(:), matrix(:, :)
+        real(c_double), pointer :: yv(:), entries(:), matrix(:, :)
         type(error_type), allocatable :: error
         integer :: n
 
-        call c_f_pointer(user_data, problem)
+        call c_f_pointer(user_data, data)
+        problem => data%problem
         yv => FN_VGetArrayPointer(y)
-        data => FSUNDenseMatrix_Data(jac)
-        call c_f_pointer(c_loc(data(1)), matrix, [size(yv), size(yv)])
+        entries => FSUNDenseMatrix_Data(jac)
+        call c_f_pointer(c_loc(entries(1)), matrix, [size(yv), size(yv)])
         n = problem%eq%n
         call problem%eq%ode_jacobian(t, yv(:n), yv(n + 1:), matrix, error)
         ierr = int(problem%keep_failure(error), c_int)
@@ -224,12 +276,14 @@ contains
         type(N_Vector) :: ycur, corr
         type(c_ptr), value :: err
         type(c_ptr), value :: user_data
+        type(callback_data_type), pointer :: data
         type(problem_type), pointer :: problem
         real(c_double), pointer :: yv(:), cv(:)
         type(error_type), allocatable :: error
         integer :: n
 
-        call c_f_pointer(user_data, problem)
+        call c_f_pointer(user_data, data)
+        problem => data%problem
         yv => FN_VGetArrayPointer(ycur)
         cv => FN_VGetArrayPointer(corr)
         n = problem%eq%n
@@ -245,15 +299,24 @@ contains
         type(N_Vector) :: y
         real(c_double) :: gout(*)
         type(c_ptr), value :: user_data
+        type(callback_data_type), pointer :: data
         type(problem_type), pointer :: problem
         real(c_double), pointer :: yv(:)
         real(wp) :: g(2)
         integer :: n
 
-        call c_f_pointer(user_data, problem)
+        call c_f_pointer(user_data, data)
+        problem => data%problem
         yv => FN_VGetArrayPointer(y)
         n = problem%eq%n
-        ierr = int(problem%root_values(t, yv(:n), yv(n + 1:), g), c_int)
+        ! y' = (u, a) at t from CVODE's own polynomial: the normal force without a solve.
+        ! Outside the last step (the start-up check just past t0) CVODE refuses; then solve.
+        if (FCVodeGetDky(data%memory, t, 1_c_int, data%rates) == CV_SUCCESS) then
+            ierr = int(problem%root_values(t, yv(:n), yv(n + 1:), g, &
+                & a=data%rate_values(n + 1:)), c_int)
+        else
+            ierr = int(problem%root_values(t, yv(:n), yv(n + 1:), g), c_int)
+        end if
         gout(1:2) = g
     end function events
 

@@ -21,7 +21,8 @@ module rollcon_ida
         & FIDASetLinearSolver, FIDASetJacFn, FIDASetMaxNumSteps, FIDASetStopTime, FIDASolve, &
         & FIDARootInit, FIDAGetRootInfo, FIDASetId, FIDASetSuppressAlg, FIDAFree, &
         & FIDAGetNumSteps, FIDAGetNumResEvals, FIDAGetNumJacEvals, FIDAGetNumLinResEvals, &
-        & FIDAGetNumErrTestFails, IDA_NORMAL, IDA_SUCCESS, IDA_ROOT_RETURN, IDA_TSTOP_RETURN
+        & FIDAGetNumErrTestFails, FIDASetErrFile, IDA_NORMAL, IDA_SUCCESS, IDA_ROOT_RETURN, &
+        & IDA_TSTOP_RETURN, IDA_TOO_MUCH_WORK, IDA_TOO_MUCH_ACC, IDA_ERR_FAIL, IDA_CONV_FAIL
     implicit none
     private
 
@@ -83,6 +84,9 @@ contains
             call fatal_error(error, "IDA: IDACreate failed", stat_solver)
             return
         end if
+        ! every flag is checked and reported by rollcon: IDA prints nothing itself
+        flag = FIDASetErrFile(self%memory, c_null_ptr)
+        if (check(flag, "IDASetErrFile", error)) return
         flag = FIDAInit(self%memory, c_funloc(residual), t0, self%y, self%yp)
         if (check(flag, "IDAInit", error)) return
         flag = FIDASetUserData(self%memory, c_loc(problem))
@@ -146,7 +150,7 @@ contains
                 & // to_text(int(flag)) // "): " // problem%failure%message, stat_solver)
         else
             call fatal_error(error, "IDA failed at t = " // to_text(t_reached) // " s with flag " &
-                & // to_text(int(flag)) // " (see the IDA guide's return codes)", stat_solver)
+                & // to_text(int(flag)) // ": " // flag_meaning(flag), stat_solver)
         end if
     end subroutine advance
 
@@ -167,6 +171,26 @@ contains
         flag = FIDAGetNumErrTestFails(self%memory, count)
         failures = int(count(1))
     end subroutine statistics
+
+    !> What a failure flag of IDA means (names of the IDA guide), for messages: SUNDIALS
+    !> itself prints nothing (its error file is none).
+    pure function flag_meaning(flag) result(text)
+        integer(c_int), intent(in) :: flag
+        character(len=:), allocatable :: text
+
+        select case (flag)
+        case (IDA_TOO_MUCH_WORK)
+            text = "IDA_TOO_MUCH_WORK, max_steps internal steps taken before the next output time"
+        case (IDA_TOO_MUCH_ACC)
+            text = "IDA_TOO_MUCH_ACC, the tolerances ask for more accuracy than the arithmetic has"
+        case (IDA_ERR_FAIL)
+            text = "IDA_ERR_FAIL, the error test failed repeatedly or at the smallest step"
+        case (IDA_CONV_FAIL)
+            text = "IDA_CONV_FAIL, the corrector failed repeatedly or at the smallest step"
+        case default
+            text = "see the IDA guide's return codes"
+        end select
+    end function flag_meaning
 
     !> Free in reverse order of creation.
     subroutine destroy(self)

@@ -94,14 +94,18 @@ contains
     end function ode_rhs
 
     !> Event functions at (t, q, u): sin(theta) - sin(theta_min), which guards both sides of
-    !> flat, and normal force + liftoff_force. The multipliers are given by a DAE state (IDA);
-    !> otherwise they are solved for, as in a right-hand side.
-    function root_values(self, time, q, u, g, lambda) result(ierr)
+    !> flat, and normal force + liftoff_force. The normal force comes from the multipliers when
+    !> a DAE state gives them (IDA), else from the accelerations when the integrator gives them
+    !> (CVODE's interpolating polynomial: no UCOSUB call and no solve), else from a
+    !> saddle-point solve as in a right-hand side.
+    function root_values(self, time, q, u, g, lambda, a) result(ierr)
         class(problem_type), intent(inout) :: self
         real(wp), intent(in) :: time, q(:), u(:)
         real(wp), intent(out) :: g(2)
         !> Multipliers at (t, q, u), when known
         real(wp), intent(in), optional :: lambda(:)
+        !> Accelerations at (t, q, u), when known
+        real(wp), intent(in), optional :: a(:)
         integer :: ierr
         type(error_type), allocatable :: error
         real(wp) :: force(3)
@@ -118,13 +122,15 @@ contains
             ierr = self%keep_failure(error)
             if (ierr /= 0) return
             call self%eq%constraint_matrix()
-            self%lambda = lambda
+            force = self%eq%constraint_force(self%events%part, lambda)
+        else if (present(a)) then
+            force = self%eq%reaction_from_accelerations(self%events%part, time, q, a)
         else
             call self%eq%accelerations(time, q, u, self%a, self%lambda, error)
             ierr = self%keep_failure(error)
             if (ierr /= 0) return
+            force = self%eq%constraint_force(self%events%part, self%lambda)
         end if
-        force = self%eq%constraint_force(self%events%part, self%lambda)
         g(root_liftoff) = force(3) + self%events%liftoff_force
     end function root_values
 

@@ -25,6 +25,7 @@ program tester
     use test_command, only : collect_command
     use test_csv_fuzz, only : collect_csv_fuzz
     use test_isolation, only : collect_isolation
+    use test_allocations, only : collect_allocations
     implicit none
     type(testsuite_type), allocatable :: suites(:)
     type(test_counts_type) :: counts
@@ -54,7 +55,8 @@ program tester
         & new_testsuite("output", collect_output), &
         & new_testsuite("command", collect_command), &
         & new_testsuite("csv-fuzz", collect_csv_fuzz), &
-        & new_testsuite("isolation", collect_isolation)]
+        & new_testsuite("isolation", collect_isolation), &
+        & new_testsuite("allocations", collect_allocations)]
 
     if (command_argument_count() >= 1) then
         call get_command_argument(1, argument)

@@ -5,7 +5,8 @@ module test_dynamics
     use rollcon_error, only : error_type
     use rollcon_text, only : to_text
     use rollcon_body, only : part_type, body_residual, body_residual_jacobian, body_mass_matrix, &
-        & kinetic_energy
+        & kinetic_energy, body_mass_and_force
+    use rollcon_lapack, only : factor_dense, solve_factored
     use rollcon_problem, only : problem_type
     use rollcon_dae, only : dae_size, dae_residual, dae_jacobian
     use rollcon_equations, only : drift_none, drift_baumgarte
@@ -23,6 +24,9 @@ module test_dynamics
     !> the larger rates used, while a wrong term (O(1) of the scale) is far above it.
     real(wp), parameter :: tol_fd = 1.0e-6_wp
     real(wp), parameter :: h_fd = 1.0e-6_wp
+    !> Two factorisations of the same well-conditioned system (condition ~1e3): they agree to
+    !> round-off times the condition number
+    real(wp), parameter :: tol_solve = 1.0e-11_wp
 
 contains
 
@@ -34,7 +38,9 @@ contains
             & new_unittest("mass-matrix-from-energy", test_mass_matrix), &
             & new_unittest("ode-jacobian-vs-fd", test_ode_jacobian), &
             & new_unittest("ode-jacobian-baumgarte-vs-fd", test_ode_jacobian_baumgarte), &
-            & new_unittest("dae-jacobian-vs-fd", test_dae_jacobian)]
+            & new_unittest("dae-jacobian-vs-fd", test_dae_jacobian), &
+            & new_unittest("mass-and-force-vs-residual", test_mass_and_force), &
+            & new_unittest("saddle-point-vs-dense-lu", test_saddle_point)]
     end subroutine collect_dynamics
 
     !> A generic state of the paper's disk: tilted, turning, no angle at a special value.
@@ -195,5 +201,58 @@ contains
             if (allocated(error)) return
         end do
     end subroutine test_dae_jacobian
+
+    !> The right-hand side's one-pass M and f against the mass matrix and the residual at a = 0,
+    !> with an applied force and moment.
+    subroutine test_mass_and_force(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(part_type) :: part
+        real(wp) :: q(6), u(6), m(6, 6), f(6), force(3), torque(3), g(3), zero(6)
+
+        zero = 0.0_wp
+        part%mass = 2.0_wp
+        part%inertia = [0.3_wp, 0.5_wp, 0.7_wp]
+        q = [0.1_wp, -0.2_wp, 0.3_wp, 0.4_wp, 1.0_wp, -0.8_wp]
+        u = [0.5_wp, 0.1_wp, -0.3_wp, 1.5_wp, -0.7_wp, 2.5_wp]
+        force = [0.3_wp, -1.0_wp, 2.0_wp]
+        torque = [0.2_wp, 0.1_wp, -0.4_wp]
+        g = [0.0_wp, 0.0_wp, -9.81_wp]
+        call body_mass_and_force(part, q, u, force, torque, g, m, f)
+        call check(error, reshape(m, [36]), reshape(body_mass_matrix(part, q), [36]), &
+            & "mass matrix", rel_tol=1.0e-15_wp, abs_tol=1.0e-15_wp)
+        if (allocated(error)) return
+        call check(error, f, -body_residual(part, q, u, zero, force, torque, g), &
+            & "generalised forces", rel_tol=1.0e-14_wp, abs_tol=1.0e-14_wp)
+    end subroutine test_mass_and_force
+
+    !> The structured (Schur complement) saddle-point solve against LU of the whole
+    !> [M, -C^T; C, 0] matrix at a generic state: same accelerations and multipliers.
+    subroutine test_saddle_point(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(problem_type), target :: problem
+        real(wp) :: q(6), u(6), kkt(9, 9), b(9, 1)
+        integer :: pivots(9), k
+
+        call generic_problem(problem, q, u, drift_baumgarte)
+        call problem%eq%accelerations(0.0_wp, q, u, problem%a, problem%lambda, error)
+        if (allocated(error)) return
+        kkt = 0.0_wp
+        kkt(:6, :6) = problem%eq%mass
+        do k = 1, 3
+            kkt(:6, 6 + k) = -problem%eq%c(k, :)
+            kkt(6 + k, :6) = problem%eq%c(k, :)
+        end do
+        b(:6, 1) = problem%eq%force
+        b(7:, 1) = problem%eq%gamma
+        call factor_dense(kkt, pivots, error)
+        if (allocated(error)) return
+        call solve_factored(kkt, pivots, b, error)
+        if (allocated(error)) return
+        call check(error, problem%a, b(:6, 1), "accelerations", &
+            & abs_tol=tol_solve*maxval(abs(b(:6, 1))))
+        if (allocated(error)) return
+        call check(error, problem%lambda, b(7:, 1), "multipliers", &
+            & abs_tol=tol_solve*maxval(abs(b(7:, 1))))
+    end subroutine test_saddle_point
 
 end module test_dynamics

@@ -1,0 +1,40 @@
+/* SPDX-License-Identifier: MIT */
+/* Counts the calls to malloc, calloc and realloc of the whole test program, for the
+ * allocation tests (test_allocations.f90): defining these symbols in the executable
+ * interposes them for every caller (gfortran's ALLOCATE, array temporaries, libgfortran,
+ * SUNDIALS). glibc exports the real allocator as __libc_malloc & co.; elsewhere nothing is
+ * interposed and rollcon_malloc_counting() says so, and the tests skip. */
+#include <stdlib.h>
+
+static long calls = 0;
+
+#ifdef __GLIBC__
+extern void *__libc_malloc(size_t size);
+extern void *__libc_calloc(size_t count, size_t size);
+extern void *__libc_realloc(void *pointer, size_t size);
+
+void *malloc(size_t size)
+{
+    calls++;
+    return __libc_malloc(size);
+}
+
+void *calloc(size_t count, size_t size)
+{
+    calls++;
+    return __libc_calloc(count, size);
+}
+
+void *realloc(void *pointer, size_t size)
+{
+    calls++;
+    return __libc_realloc(pointer, size);
+}
+
+int rollcon_malloc_counting(void) { return 1; }
+#else
+int rollcon_malloc_counting(void) { return 0; }
+#endif
+
+/* Calls to the allocator since the program started. */
+long rollcon_malloc_count(void) { return calls; }

@@ -1,0 +1,322 @@
+! SPDX-License-Identifier: MIT
+!> The integrators' hot path allocates nothing: right-hand side, residual, root functions,
+!> Jacobians and projection, called alone and inside CVODE and IDA runs, make no call to
+!> malloc, calloc or realloc (counted by malloc_counter.c, which interposes them). Array
+!> temporaries, automatic arrays and reallocation on assignment all go through malloc, so
+!> these tests catch every one of them, in any build. Also what else the hot path costs: the
+!> lift-off event function no saddle-point solve under CVODE, a time-free UCON no time-partial
+!> calls, a threaded BLAS no second thread.
+module test_allocations
+    use, intrinsic :: iso_c_binding, only : c_int, c_long, c_ptr, c_null_ptr, c_funptr, c_char, &
+        & c_null_char, c_associated, c_f_procpointer
+    use rollcon_lapack, only : use_one_blas_thread
+    use rollcon_kinds, only : wp
+    use rollcon_error, only : error_type
+    use rollcon_text, only : to_text
+    use rollcon_problem, only : problem_type, formulation_cvode, method_adams, root_liftoff
+    use rollcon_equations, only : drift_baumgarte, drift_projection
+    use rollcon_dae, only : dae_size, dae_residual, dae_jacobian
+    use rollcon_cvode, only : cvode_solver_type
+    use rollcon_ida, only : ida_solver_type
+    use rollcon_model, only : model_type, setup_model
+    use rollcon_body, only : part_type
+    use rollcon_constraints, only : need_value, need_first, need_time
+    use rollcon_scene_type, only : scene_type
+    use rollcon_scene_keys, only : choice_code
+    use rollcon_disk_scene, only : build_disk_problem
+    use rollcon_disk_reference, only : rolling_disk_ucosub
+    use rollcon_gen_turntable_disk, only : turntable_disk_ucosub, turntable_disk_par
+    use rollcon_testing, only : unittest_type, new_unittest, check, skip_test
+    implicit none
+    private
+
+    public :: collect_allocations
+
+    interface
+        !> Calls to malloc, calloc and realloc since the program started
+        function malloc_count() result(count) bind(c, name="rollcon_malloc_count")
+            import :: c_long
+            integer(c_long) :: count
+        end function malloc_count
+
+        !> 1 when the allocator is interposed (glibc), 0 when the counts mean nothing
+        function malloc_counting() result(counting) bind(c, name="rollcon_malloc_counting")
+            import :: c_int
+            integer(c_int) :: counting
+        end function malloc_counting
+
+        !> A symbol of the loaded libraries (POSIX; c_null_ptr is glibc's RTLD_DEFAULT)
+        function dlsym(handle, symbol) result(address) bind(c, name="dlsym")
+            import :: c_ptr, c_funptr, c_char
+            type(c_ptr), value :: handle
+            character(kind=c_char), intent(in) :: symbol(*)
+            type(c_funptr) :: address
+        end function dlsym
+    end interface
+
+    abstract interface
+        !> openblas_get_num_threads()
+        function get_threads_interface() result(count) bind(c)
+            import :: c_int
+            integer(c_int) :: count
+        end function get_threads_interface
+    end interface
+
+    !> Evaluations per measured loop: enough that a per-call allocation cannot hide
+    integer, parameter :: repeats = 20
+    !> The normal force from CVODE's accelerations against the solved one at the same state:
+    !> the same quantity by Newton's law for the centre of mass, equal to round-off of the
+    !> saddle-point solve (condition ~1e3 here) on forces of ~7 N
+    real(wp), parameter :: tol_reaction = 1.0e-10_wp
+
+contains
+
+    subroutine collect_allocations(tests)
+        type(unittest_type), allocatable, intent(out) :: tests(:)
+
+        allocate(tests(0))
+        tests = [new_unittest("evaluations-allocate-nothing", test_evaluations), &
+            & new_unittest("cvode-run-allocates-nothing", test_cvode_run), &
+            & new_unittest("ida-run-allocates-nothing", test_ida_run), &
+            & new_unittest("liftoff-root-without-solve", test_liftoff_root), &
+            & new_unittest("time-free-ucon-skips-time-partials", test_time_free), &
+            & new_unittest("blas-one-thread", test_blas_thread)]
+    end subroutine collect_allocations
+
+    !> The tipping coin (paper's disk, 0.01 rad off upright, 0.1 m/s), CVODE Adams + Baumgarte
+    !> with the lift-off event on, at a generic state when `generic`.
+    subroutine coin_problem(problem, q, u, generic, error)
+        type(problem_type), intent(inout) :: problem
+        real(wp), intent(out) :: q(6), u(6)
+        logical, intent(in) :: generic
+        type(error_type), allocatable, intent(out) :: error
+        type(scene_type) :: scene
+
+        scene%run%formulation = choice_code("formulation", "cvode")
+        scene%run%method = choice_code("method", "adams")
+        scene%run%drift = choice_code("drift", "baumgarte")
+        scene%run%jacobian = choice_code("jacobian", "analytic")
+        scene%run%height = choice_code("height", "velocity")
+        scene%initial%theta = acos(-1.0_wp)/2.0_wp - 0.01_wp
+        scene%initial%phidot = -1.0_wp
+        scene%limits%stop_on_liftoff = .true.
+        scene%limits%theta_min = 0.05_wp
+        if (generic) then
+            scene%initial%theta = 1.1_wp
+            scene%initial%psi = 0.4_wp
+            scene%initial%phi = 0.7_wp
+            scene%initial%psidot = 1.3_wp
+            scene%initial%thetadot = -0.6_wp
+            scene%initial%phidot = -4.0_wp
+        end if
+        call build_disk_problem(scene, rolling_disk_ucosub, problem, q, u, error)
+        if (allocated(error)) return
+        call problem%prepare()
+    end subroutine coin_problem
+
+    !> Fails with the number of allocations when there were any (count them before building
+    !> the message: building it allocates).
+    subroutine check_none(error, calls, what)
+        type(error_type), allocatable, intent(out) :: error
+        !> Allocations counted
+        integer(c_long), intent(in) :: calls
+        character(len=*), intent(in) :: what
+
+        call check(error, calls == 0, what // " allocated " // to_text(int(calls)) // " times")
+    end subroutine check_none
+
+    subroutine test_evaluations(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(problem_type), target :: problem
+        type(error_type), allocatable :: failure
+        real(wp) :: q(6), u(6), y(12), ydot(12), jac(12, 12), g(2), dq(6), du(6)
+        real(wp), allocatable :: yd(:), ypd(:), r(:), jd(:, :)
+        integer(c_long) :: start, calls
+        integer :: i, ierr, m
+
+        if (malloc_counting() == 0) then
+            call skip_test(error, "malloc is not interposed on this C library")
+            return
+        end if
+        call coin_problem(problem, q, u, .true., error)
+        if (allocated(error)) return
+        y = [q, u]
+        m = dae_size(problem%eq)
+        allocate(yd(m), ypd(m), r(m), jd(m, m), source=0.0_wp)
+        ! one call of each first: anything allocated on a first use only is not counted
+        ierr = problem%ode_rhs(0.0_wp, y, ydot)
+        yd(:12) = y
+        yd(13:) = problem%lambda
+        ypd(:12) = ydot
+        start = malloc_count()
+        do i = 1, repeats
+            ierr = problem%ode_rhs(0.0_wp, y, ydot)
+            ierr = ierr + problem%root_values(0.0_wp, q, u, g)
+            ierr = ierr + problem%root_values(0.0_wp, q, u, g, a=ydot(7:))
+            ierr = ierr + problem%root_values(0.0_wp, q, u, g, lambda=yd(13:))
+            call problem%eq%ode_jacobian(0.0_wp, q, u, jac, failure)
+            if (allocated(failure)) exit
+            call problem%eq%project(0.0_wp, q, u, dq, du, failure)
+            if (allocated(failure)) exit
+            call dae_residual(problem%eq, 0.0_wp, yd, ypd, r, failure)
+            if (allocated(failure)) exit
+            call dae_jacobian(problem%eq, 0.0_wp, 10.0_wp, yd, ypd, jd, failure)
+            if (allocated(failure)) exit
+        end do
+        calls = malloc_count() - start
+        call check_none(error, calls, "rhs, roots, ODE Jacobian, projection, DAE residual " &
+            & // "and Jacobian, " // to_text(repeats) // " times each,")
+        if (allocated(error)) return
+        if (allocated(failure)) call move_alloc(failure, error)
+        if (allocated(error)) return
+        call check(error, ierr == 0, "a callback failed")
+    end subroutine test_evaluations
+
+    subroutine test_cvode_run(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(problem_type), target :: problem
+        type(cvode_solver_type), target :: cvode
+        real(wp) :: q(6), u(6), y(12), t
+        integer(c_long) :: start, calls
+        integer :: k, root
+
+        if (malloc_counting() == 0) then
+            call skip_test(error, "malloc is not interposed on this C library")
+            return
+        end if
+        call coin_problem(problem, q, u, .false., error)
+        if (allocated(error)) return
+        y = [q, u]
+        call cvode%init(problem, 0.0_wp, y, 2.0_wp, 2, error)
+        if (.not. allocated(error)) call cvode%advance(problem, 0.1_wp, 2.0_wp, t, y, root, error)
+        start = malloc_count()
+        do k = 2, 20
+            if (allocated(error) .or. root /= 0) exit
+            call cvode%advance(problem, 0.1_wp*k, 2.0_wp, t, y, root, error)
+        end do
+        calls = malloc_count() - start
+        if (.not. allocated(error)) call check_none(error, calls, "CVODE Adams from t = 0.1 s " &
+            & // "to " // to_text(t) // " s")
+        call cvode%destroy()
+    end subroutine test_cvode_run
+
+    subroutine test_ida_run(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(problem_type), target :: problem
+        type(ida_solver_type), target :: ida
+        real(wp) :: q(6), u(6), t
+        real(wp), allocatable :: y(:), yp(:)
+        integer(c_long) :: start, calls
+        integer :: k, root
+
+        if (malloc_counting() == 0) then
+            call skip_test(error, "malloc is not interposed on this C library")
+            return
+        end if
+        call coin_problem(problem, q, u, .false., error)
+        if (allocated(error)) return
+        problem%eq%drift = drift_projection
+        call problem%eq%accelerations(0.0_wp, q, u, problem%a, problem%lambda, error)
+        if (allocated(error)) return
+        allocate(y(dae_size(problem%eq)), yp(dae_size(problem%eq)), source=0.0_wp)
+        y(:12) = [q, u]
+        y(13:15) = problem%lambda
+        yp(:12) = [u, problem%a]
+        call ida%init(problem, 0.0_wp, y, yp, 2.0_wp, 2, error)
+        if (.not. allocated(error)) call ida%advance(problem, 0.1_wp, 2.0_wp, t, y, yp, root, &
+            & error)
+        start = malloc_count()
+        do k = 2, 20
+            if (allocated(error) .or. root /= 0) exit
+            call ida%advance(problem, 0.1_wp*k, 2.0_wp, t, y, yp, root, error)
+        end do
+        calls = malloc_count() - start
+        if (.not. allocated(error)) call check_none(error, calls, "IDA from t = 0.1 s to " &
+            & // to_text(t) // " s")
+        call ida%destroy()
+    end subroutine test_ida_run
+
+    !> The CVODE event function given the accelerations: the normal force it returns is the
+    !> one a saddle-point solve gives at the same state, and it factors nothing.
+    subroutine test_liftoff_root(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(problem_type), target :: problem
+        real(wp) :: q(6), u(6), y(12), ydot(12), g(2), force(3)
+        integer :: ierr, before
+
+        call coin_problem(problem, q, u, .true., error)
+        if (allocated(error)) return
+        y = [q, u]
+        ierr = problem%ode_rhs(0.0_wp, y, ydot)
+        force = problem%eq%constraint_force(1, problem%lambda)
+        before = problem%eq%saddle%factorisations
+        ierr = ierr + problem%root_values(0.0_wp, q, u, g, a=ydot(7:))
+        call check(error, ierr == 0 .and. problem%eq%saddle%factorisations == before, &
+            & "the event function given the accelerations factored " &
+            & // to_text(problem%eq%saddle%factorisations - before) // " saddle-point matrices")
+        if (allocated(error)) return
+        call check(error, force(3) > 1.0_wp, "normal force at the generic state, N")
+        if (allocated(error)) return
+        call check(error, g(root_liftoff), force(3), "normal force from the accelerations, N", &
+            & rel_tol=tol_reaction)
+    end subroutine test_liftoff_root
+
+    !> A UCON whose F has explicit time (the turntable) declared time-free is not asked for
+    !> time partials: they stay zero; declared as it is, they are not.
+    subroutine test_time_free(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(model_type), target :: models(2)
+        type(part_type) :: disk
+        type(problem_type) :: problems(2)
+        real(wp) :: q(6), u(6), dt(2)
+        integer :: pass
+
+        q = [0.3_wp, 0.2_wp, 0.08_wp, 0.4_wp, 1.1_wp, 0.7_wp]
+        u = [0.1_wp, -0.2_wp, 0.05_wp, 1.3_wp, -0.6_wp, -4.0_wp]
+        do pass = 1, 2
+            associate (model => models(pass), problem => problems(pass))
+                disk%mass = 0.7_wp
+                disk%inertia = [1.8e-3_wp, 1.8e-3_wp, 3.6e-3_wp]
+                call model%add_part(disk)
+                ! table turning at 0.5 + 0.2 sin(3 t) rad/s about (0.1, -0.2): dF/dt /= 0
+                call model%add_ucon(1, turntable_disk_par(1, 0.1_wp, 0.1_wp, -0.2_wp, 0.5_wp, &
+                    & 0.2_wp, 3.0_wp, 1), turntable_disk_ucosub, time_free=pass == 2)
+                call setup_model(model, error)
+                if (allocated(error)) return
+                call problem%eq%init(model)
+                call problem%eq%constraints%evaluate(problem%eq%model, 0.4_wp, q, u, need_value &
+                    & + need_first + need_time, error)
+                if (allocated(error)) return
+                dt(pass) = abs(problem%eq%constraints%dt(1)) &
+                    & + sum(abs(problem%eq%constraints%dt_grad_q(1, :)))
+            end associate
+        end do
+        call check(error, dt(1) > 1.0e-3_wp, "time partials of the turntable's F1 asked for: " &
+            & // to_text(dt(1)))
+        if (allocated(error)) return
+        call check(error, dt(2) == 0.0_wp, "time partials of a time-free UCON: " &
+            & // to_text(dt(2)))
+    end subroutine test_time_free
+
+    !> After use_one_blas_thread, a threaded BLAS runs one thread; reference BLAS (no threads,
+    !> nothing to set) skips.
+    subroutine test_blas_thread(error)
+        type(error_type), allocatable, intent(out) :: error
+        character(len=:), allocatable :: library
+        procedure(get_threads_interface), pointer :: get_threads
+        type(c_funptr) :: address
+
+        call use_one_blas_thread(library)
+        address = dlsym(c_null_ptr, "openblas_get_num_threads" // c_null_char)
+        if (.not. c_associated(address)) then
+            call check(error, library /= "openblas", "OpenBLAS reported set, but not loaded")
+            if (.not. allocated(error)) call skip_test(error, "the BLAS linked is not OpenBLAS " &
+                & // "(reference BLAS has no threads)")
+            return
+        end if
+        call c_f_procpointer(address, get_threads)
+        call check(error, library == "openblas" .and. get_threads() == 1, &
+            & "OpenBLAS threads after use_one_blas_thread: " // to_text(int(get_threads())))
+    end subroutine test_blas_thread
+
+end module test_allocations
