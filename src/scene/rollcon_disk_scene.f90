@@ -11,7 +11,9 @@ module rollcon_disk_scene
     use rollcon_model, only : model_type, setup_model
     use rollcon_disk_par, only : disk_par
     use rollcon_disk_reference, only : rolling_disk_ucosub
-    use rollcon_gen_disk_height, only : disk_height_ucosub, disk_height_par
+    use rollcon_gen_disk_height, only : disk_height_ucosub, disk_height_par, disk_height_time_free
+    use rollcon_gen_rolling_disk, only : generated_disk_ucosub => rolling_disk_ucosub, &
+        & rolling_disk_time_free
     use rollcon_problem, only : problem_type
     use rollcon_scene, only : scene_type, jacobian_analytic, height_position
     use rollcon_scene_state, only : disk_mass_properties, disk_initial_state
@@ -50,16 +52,18 @@ contains
         call model%add_part(disk)
         model%gravity = [0.0_wp, 0.0_wp, -scene%environment%gravity]
         model%ucosub => ucosub
-        ! the hand-checked routine's F has no explicit time (DESIGN section 5): the driver
-        ! skips its time partials; any other routine is asked for them
-        time_free = associated(model%ucosub, rolling_disk_ucosub)
+        ! the hand-checked routine's F has no explicit time (DESIGN section 5), nor has the
+        ! generated one's (the generator says so): the driver skips their time partials; any
+        ! other routine (a user's) is asked for them
+        time_free = associated(model%ucosub, rolling_disk_ucosub) &
+            & .or. (associated(model%ucosub, generated_disk_ucosub) .and. rolling_disk_time_free)
         do k = 1, 2
             call model%add_ucon(k, disk_par(disk_part, scene%disk%radius, k), time_free=time_free)
         end do
         if (scene%run%height == height_position) then
             ! Z - R sin(theta) = 0 in place of its time derivative F3 (DESIGN section 5)
             call model%add_ucon(3, disk_height_par(disk_part, scene%disk%radius), &
-                & disk_height_ucosub)
+                & disk_height_ucosub, time_free=disk_height_time_free)
         else
             call model%add_ucon(3, disk_par(disk_part, scene%disk%radius, 3), time_free=time_free)
         end if
