@@ -14,6 +14,7 @@ program tester
     use test_extremes, only : collect_extremes
     use test_pictures, only : collect_pictures
     use test_user_ucosub, only : collect_user_ucosub
+    use test_reduced, only : collect_reduced
     implicit none
     type(testsuite_type), allocatable :: suites(:)
     type(test_counts_type) :: counts
@@ -32,7 +33,8 @@ program tester
         & new_testsuite("motion", collect_motion), &
         & new_testsuite("extremes", collect_extremes), &
         & new_testsuite("pictures", collect_pictures), &
-        & new_testsuite("user-ucosub", collect_user_ucosub)]
+        & new_testsuite("user-ucosub", collect_user_ucosub), &
+        & new_testsuite("reduced", collect_reduced)]
 
     if (command_argument_count() >= 1) then
         call get_command_argument(1, argument)
