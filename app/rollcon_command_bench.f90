@@ -150,10 +150,11 @@ contains
             call measure_part_costs(scene, rolling_disk_ucosub, 20000, output_dir &
                 & // "/bench_scratch.csv", costs, error)
             if (allocated(error)) return
-            write(output_unit, '(a, 4(f8.3, a))') "bench: " // trim(argument) &
+            write(output_unit, '(a, 5(f8.3, a))') "bench: " // trim(argument) &
                 & // ": unit costs: right-hand side", 1.0e6_wp*costs%rhs, " us, residual", &
                 & 1.0e6_wp*costs%residual, " us, event functions", 1.0e6_wp*costs%root, &
-                & " us, output row", 1.0e6_wp*costs%output, " us"
+                & " us, output row", 1.0e6_wp*costs%output, " us, its CSV line", &
+                & 1.0e6_wp*costs%csv_line, " us"
             if (allocated(rows)) deallocate(rows)
             call benchmark_scene(scene, rolling_disk_ucosub, benchmark_methods(), tolerances, &
                 & reference_rtol, repeats, rows, error, output_unit, costs)
