@@ -292,7 +292,7 @@ contains
             & "(atol = 1e-2 rtol) it measures the CPU time (median of N runs, default 3; runs", &
             & "over a second are not repeated), steps, function and Jacobian evaluations, the", &
             & "largest distance of the disk's centre from the independent reference, the", &
-            & "disk's reduced ODE (minimal coordinates, ucon/reduced/) by CVODE BDF at rtol", &
+            & "disk's reduced ODE (minimal coordinates, ucon/reduced/) by CVODE Adams at rtol", &
             & "1e-13 [m], the largest constraint residual [m/s] and the relative energy drift.", &
             & "The reduced ODE is also the limit: every row carries the CPU time of the reduced", &
             & "ODE at the same rtol and multistep method, measured in the same run, and the", &

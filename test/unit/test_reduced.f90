@@ -329,25 +329,28 @@ contains
         end do
     end subroutine test_benchmark_ratio
 
-    !> The headline ratio takes the cheapest completed run within the target for each side.
+    !> The headline ratio takes the cheapest completed run within the target for each side,
+    !> the reduced side from either multistep method.
     subroutine test_accuracy_ratio(error)
         type(error_type), allocatable, intent(out) :: error
-        type(benchmark_row_type) :: rows(5)
+        type(benchmark_row_type) :: rows(6)
         real(wp) :: cpu, reduced_cpu
         logical :: found
 
         rows%scene = "s"
         rows(1:3)%method = "ida"
         rows(4:5)%method = "reduced-bdf"
-        rows%cpu = [1.0_wp, 2.0_wp, 4.0_wp, 0.5_wp, 1.5_wp]
-        rows%position_error = [1.0e-4_wp, 1.0e-7_wp, 1.0e-9_wp, 1.0e-5_wp, 1.0e-8_wp]
+        rows(6)%method = "reduced-adams"
+        rows%cpu = [1.0_wp, 2.0_wp, 4.0_wp, 0.5_wp, 1.5_wp, 1.2_wp]
+        rows%position_error = [1.0e-4_wp, 1.0e-7_wp, 1.0e-9_wp, 1.0e-5_wp, 1.0e-8_wp, 1.0e-9_wp]
         rows(1)%status = "completed"
         rows(2)%status = "completed"
         rows(3)%status = "completed"
         rows(4)%status = "completed"
         rows(5)%status = "completed"
+        rows(6)%status = "completed"
         call accuracy_ratio(rows, "s", "ida", 1.0e-6_wp, cpu, reduced_cpu, found)
-        call check(error, found .and. cpu == 2.0_wp .and. reduced_cpu == 1.5_wp, &
+        call check(error, found .and. cpu == 2.0_wp .and. reduced_cpu == 1.2_wp, &
             & "picked " // to_text(cpu) // " s and " // to_text(reduced_cpu) // " s")
         if (allocated(error)) return
         rows(2)%status = "failed: x"
