@@ -9,6 +9,7 @@ from pathlib import Path
 
 from . import generate_all, load_spec, load_specs, spec_names
 from .derive import derive, table
+from .reduced import reduced_files
 from .spec import ConstraintSpec
 
 #: The project root: the directory that holds ``ucon/``.
@@ -31,6 +32,8 @@ def command_write(args: argparse.Namespace) -> int:
     """Write every generated file under ``--out`` (default: the project root)."""
     root = Path(args.out) if args.out else PROJECT_ROOT
     files = generate_all(_selected(args.specs))
+    if not args.specs:
+        files.update(reduced_files())  # the benchmark's reduced disk (ucon/reduced/)
     for relative, text in files.items():
         path = root / relative
         if path.is_file() and path.read_text(encoding="utf-8") == text:
@@ -50,6 +53,8 @@ def command_check(args: argparse.Namespace) -> int:
     """Regenerate in memory and compare with the files under ``--root``; 1 on any difference."""
     root = Path(args.root) if args.root else PROJECT_ROOT
     files = generate_all(_selected(args.specs))
+    if not args.specs:
+        files.update(reduced_files())  # the benchmark's reduced disk (ucon/reduced/)
     differences = 0
     for relative, text in files.items():
         path = root / relative

@@ -1,6 +1,7 @@
 ! SPDX-License-Identifier: MIT
-!> Work-precision measurements: each way of solving a scene on a ladder of tolerances, against a
-!> tight-tolerance solution of the same scene computed by the other formulation.
+!> Work-precision measurements: each way of solving a scene on a ladder of tolerances, against an
+!> independent reference (the reduced ODE of the disk at a tight tolerance), each row with its CPU
+!> ratio to the reduced ODE at the same tolerance, measured in the same call.
 module rollcon_benchmark
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type
@@ -9,15 +10,20 @@ module rollcon_benchmark
     use rollcon_dae, only : dae_size, dae_residual
     use rollcon_ucosub_contract, only : ucosub_interface
     use rollcon_scene, only : scene_type, choice_code
-    use rollcon_disk_scene, only : build_disk_problem, simulate_scene
+    use rollcon_disk_scene, only : build_disk_problem
     use rollcon_problem, only : problem_type
     use rollcon_simulation, only : run_summary_type, history_type, status_completed, column_time, &
-        & column_x, column_z
+        & column_x, column_z, run_options_type, simulate
+    use rollcon_reduced_scene, only : simulate_reduced_scene
+    use rollcon_bench_costs, only : part_costs_type
     implicit none
     private
 
     public :: method_type, benchmark_methods, benchmark_row_type, benchmark_scene
     public :: benchmark_header, write_benchmark_row, evaluation_costs
+
+    !> The scene formulation code the benchmark gives its reduced-ODE runs (not a scene choice)
+    integer, parameter :: formulation_reduced = -1
 
     !> One way of solving: formulation, method, drift control, Jacobian
     type :: method_type
@@ -37,6 +43,14 @@ module rollcon_benchmark
         real(wp) :: position_error = 0.0_wp
         !> Largest constraint residual [m/s] and relative energy drift
         real(wp) :: residual = 0.0_wp, energy_drift = 0.0_wp
+        !> Median CPU time of the reduced ODE at the same rtol and multistep method, measured in
+        !> the same call [s], and cpu / reduced_cpu
+        real(wp) :: reduced_cpu = 0.0_wp, ratio = 0.0_wp
+        !> Event-function evaluations and output rows of the run
+        integer :: root_evaluations = 0, output_rows = 0
+        !> CPU time of the run's right-hand sides (or residuals), event functions, output rows
+        !> (counts times unit costs), and SUNDIALS' remainder with Jacobians and solves [s]
+        real(wp) :: rhs_cpu = 0.0_wp, roots_cpu = 0.0_wp, output_cpu = 0.0_wp, sundials_cpu = 0.0_wp
         !> 'completed', or why not
         character(len=:), allocatable :: status
     end type benchmark_row_type
@@ -46,7 +60,7 @@ contains
     !> The methods compared: IDA and CVODE (BDF, Adams), analytic against difference-quotient
     !> Jacobians, and each drift control of the ODE form.
     pure function benchmark_methods() result(methods)
-        type(method_type) :: methods(7)
+        type(method_type) :: methods(9)
 
         methods(1) = method_type("ida", "ida", "bdf", "projection", "analytic")
         methods(2) = method_type("ida-dq", "ida", "bdf", "projection", "dq")
@@ -57,6 +71,9 @@ contains
         ! CVODE projects only with BDF: Adams is stabilised by Baumgarte's method
         methods(7) = method_type("cvode-adams-baumgarte", "cvode", "adams", "baumgarte", &
             & "analytic")
+        ! the limit: the disk in minimal coordinates (ucon/reduced/), no constraints to keep
+        methods(8) = method_type("reduced-bdf", "reduced", "bdf", "none", "analytic")
+        methods(9) = method_type("reduced-adams", "reduced", "adams", "none", "analytic")
     end function benchmark_methods
 
     !> Header of the benchmark CSV.
@@ -64,31 +81,38 @@ contains
         character(len=:), allocatable :: header
 
         header = "scene,method,rtol,cpu_s,steps,function_evaluations,jacobian_evaluations," &
-            & // "position_error_m,residual_max,energy_drift,status"
+            & // "position_error_m,residual_max,energy_drift,reduced_cpu_s,cpu_ratio_to_reduced," &
+            & // "root_evaluations,output_rows,rhs_cpu_s,roots_cpu_s,output_cpu_s,sundials_cpu_s," &
+            & // "status"
     end function benchmark_header
 
     !> One CSV line.
     function write_benchmark_row(row) result(line)
         type(benchmark_row_type), intent(in) :: row
         character(len=:), allocatable :: line
-        character(len=160) :: numbers
+        character(len=320) :: numbers
 
-        write(numbers, '(es10.3, ",", es12.5, 3(",", i0), 3(",", es12.5))') row%rtol, row%cpu, &
-            & row%steps, row%functions, row%jacobians, row%position_error, row%residual, &
-            & row%energy_drift
+        write(numbers, '(es10.3, ",", es12.5, 3(",", i0), 5(",", es12.5), 2(",", i0), &
+            & 4(",", es12.5))') row%rtol, row%cpu, row%steps, row%functions, row%jacobians, &
+            & row%position_error, row%residual, row%energy_drift, row%reduced_cpu, row%ratio, &
+            & row%root_evaluations, row%output_rows, row%rhs_cpu, row%roots_cpu, &
+            & row%output_cpu, row%sundials_cpu
         line = trim(row%scene) // "," // trim(row%method) // "," // trim(numbers) // "," // row%status
     end function write_benchmark_row
 
-    !> Measure every method on every tolerance for one scene; rows are appended.
+    !> Measure every method on every tolerance for one scene; rows are appended. The reduced
+    !> ODE is run at every tolerance with BDF and Adams whether or not the methods name it:
+    !> each row's ratio is its CPU time over the reduced ODE's at the same rtol and with the
+    !> same multistep method, both measured here, in this call.
     subroutine benchmark_scene(scene, ucosub, methods, tolerances, reference_rtol, repeats, rows, &
-            & error, progress)
+            & error, progress, costs)
         !> The scene as read (its own solver settings are replaced)
         type(scene_type), intent(in) :: scene
         procedure(ucosub_interface) :: ucosub
         type(method_type), intent(in) :: methods(:)
         !> Relative tolerances; atol = 1e-2 rtol (positions ~0.1 m, rates ~1 rad/s)
         real(wp), intent(in) :: tolerances(:)
-        !> Tolerance of the reference solutions
+        !> Tolerance of the reference solution (the reduced ODE, Adams)
         real(wp), intent(in) :: reference_rtol
         !> Runs per measurement (CPU median); runs longer than a second are not repeated
         integer, intent(in) :: repeats
@@ -96,57 +120,36 @@ contains
         type(error_type), allocatable, intent(out) :: error
         !> Unit for a line after each measurement (none when absent)
         integer, intent(in), optional :: progress
-        type(history_type) :: reference(2), history
-        type(run_summary_type) :: summary
+        !> Unit costs of the parts of a step: when given, rows get the per-part split
+        type(part_costs_type), intent(in), optional :: costs
+        type(history_type) :: reference
         type(benchmark_row_type) :: row
-        real(wp), allocatable :: times(:)
-        integer :: m, k, r, other
+        type(benchmark_row_type), allocatable :: reduced(:, :)
+        integer :: m, k, lmm
 
         if (.not. allocated(rows)) allocate(rows(0))
-        ! reference 1: IDA (for the CVODE methods' errors); 2: CVODE BDF (for IDA's). Where
-        ! the requested tolerance is more than a formulation can meet (IDA's Newton iteration
-        ! fails near 1e-13 on some scenes), it is loosened tenfold, at most twice.
-        call reference_run(method_type("ref", "cvode", "bdf", "projection", "analytic"), &
-            & reference(2), error)
+        call reference_run(reference, error)
         if (allocated(error)) return
-        call reference_run(method_type("ref", "ida", "bdf", "projection", "analytic"), &
-            & reference(1), error)
-        if (allocated(error)) return
+        ! reduced(k, 1): BDF, reduced(k, 2): Adams, at tolerances(k)
+        allocate(reduced(size(tolerances), 2))
+        do k = 1, size(tolerances)
+            reduced(k, 1) = measure(method_type("reduced-bdf", "reduced", "bdf", "none", &
+                & "analytic"), tolerances(k), reference, ucosub, repeats)
+            reduced(k, 2) = measure(method_type("reduced-adams", "reduced", "adams", "none", &
+                & "analytic"), tolerances(k), reference, ucosub, repeats)
+        end do
         do m = 1, size(methods)
-            other = 1
-            if (methods(m)%formulation == "ida") other = 2
+            lmm = merge(2, 1, methods(m)%method == "adams")
             do k = 1, size(tolerances)
-                row%scene = scene%name
-                row%method = methods(m)%name
-                row%rtol = tolerances(k)
-                allocate(times(0))
-                do r = 1, max(1, repeats)
-                    call run(with_method(scene, methods(m), tolerances(k)), history, summary, &
-                        & error)
-                    if (allocated(error)) then
-                        ! a failed run is a measurement too: recorded, not fatal
-                        row%status = "failed: " // error%message
-                        deallocate(error)
-                        exit
-                    end if
-                    times = [times, summary%cpu_seconds]
-                    if (summary%cpu_seconds > 1.0_wp) exit
-                end do
-                if (size(times) > 0) then
-                    row%cpu = median(times)
-                    row%status = "completed"
-                    if (summary%status /= status_completed) row%status = "stopped: " &
-                        & // summary%message
+                if (methods(m)%formulation == "reduced") then
+                    row = reduced(k, lmm)
                 else
-                    row%cpu = summary%cpu_seconds
+                    row = measure(methods(m), tolerances(k), reference, ucosub, repeats)
                 end if
-                deallocate(times)
-                row%steps = summary%steps
-                row%functions = summary%functions
-                row%jacobians = summary%jacobians
-                row%residual = summary%residual_max
-                row%energy_drift = summary%energy_drift
-                row%position_error = position_error(history, reference(other))
+                row%reduced_cpu = reduced(k, lmm)%cpu
+                row%ratio = row%cpu/max(row%reduced_cpu, tiny(1.0_wp))
+                if (present(costs) .and. methods(m)%formulation /= "reduced") &
+                    & call split_costs(row, costs, methods(m)%formulation == "ida")
                 rows = [rows, row]
                 if (present(progress)) then
                     write(progress, '(a)') "bench: " // write_benchmark_row(row)
@@ -157,43 +160,125 @@ contains
 
     contains
 
-        subroutine reference_run(method, kept, run_error)
-            type(method_type), intent(in) :: method
+        !> The reduced ODE by CVODE Adams at reference_rtol (loosened tenfold at most twice if
+        !> it fails): at such tolerances Adams' high orders beat BDF's order 5. The distance of
+        !> a BDF solution at the same rtol from it is reported as the reference's uncertainty.
+        subroutine reference_run(kept, run_error)
             type(history_type), intent(out) :: kept
             type(error_type), allocatable, intent(out) :: run_error
-            ! (rtol factor, atol) tried in turn: IDA's Newton iteration can fail to converge
-            ! when atol asks for ~1e-15 m on coordinates that start at zero
-            real(wp), parameter :: factors(4) = [1.0_wp, 1.0_wp, 10.0_wp, 100.0_wp]
-            real(wp), parameter :: floors(4) = [0.0_wp, 1.0e-11_wp, 1.0e-11_wp, 1.0e-10_wp]
-            type(scene_type) :: case_scene
+            type(run_summary_type) :: summary
+            type(history_type) :: check_run
             integer :: attempt
+            real(wp) :: rtol
 
-            do attempt = 1, size(factors)
-                case_scene = with_method(scene, method, reference_rtol*factors(attempt))
-                case_scene%run%atol = max(case_scene%run%atol, floors(attempt))
-                call run(case_scene, kept, summary, run_error)
-                if (.not. allocated(run_error)) then
-                    if (present(progress)) write(progress, '(a)') "bench: " // trim(scene%name) &
-                        & // ": reference by " // trim(method%formulation) // " at rtol " &
-                        & // to_text(case_scene%run%rtol) // ", atol " &
-                        & // to_text(case_scene%run%atol)
-                    return
-                end if
+            do attempt = 0, 2
+                rtol = reference_rtol*10.0_wp**attempt
+                call simulate_reduced_scene(with_method(scene, method_type("reference", &
+                    & "reduced", "adams", "none", "analytic"), rtol), kept, summary, run_error)
+                if (allocated(run_error)) cycle
+                call simulate_reduced_scene(with_method(scene, method_type("reference", &
+                    & "reduced", "bdf", "none", "analytic"), rtol), check_run, summary, &
+                    & run_error)
+                if (allocated(run_error)) cycle
+                if (present(progress)) write(progress, '(a, es9.2, a)') "bench: " &
+                    & // trim(scene%name) // ": reference by the reduced ODE (CVODE Adams) at " &
+                    & // "rtol " // to_text(rtol) // "; BDF at that rtol differs by", &
+                    & position_error(check_run, kept), " m"
+                return
             end do
-            run_error%message = "reference solution by " // trim(method%formulation) &
-                & // " failed: " // run_error%message
+            run_error%message = "reference solution by the reduced ODE failed: " &
+                & // run_error%message
         end subroutine reference_run
 
-        subroutine run(case_scene, kept, case_summary, case_error)
-            type(scene_type), intent(in) :: case_scene
-            type(history_type), intent(out) :: kept
-            type(run_summary_type), intent(out) :: case_summary
-            type(error_type), allocatable, intent(out) :: case_error
+        !> One row: median CPU of up to repeats runs, statistics and errors of the last.
+        function measure(method, rtol, reference, ucosub, repeats) result(measured)
+            type(method_type), intent(in) :: method
+            real(wp), intent(in) :: rtol
+            type(history_type), intent(in) :: reference
+            procedure(ucosub_interface) :: ucosub
+            integer, intent(in) :: repeats
+            type(benchmark_row_type) :: measured
+            type(history_type) :: history
+            type(run_summary_type) :: summary
+            type(error_type), allocatable :: run_error
+            real(wp), allocatable :: times(:)
+            integer :: r, roots
 
-            call simulate_scene(case_scene, ucosub, case_summary, case_error, kept)
-        end subroutine run
+            measured%scene = scene%name
+            measured%method = method%name
+            measured%rtol = rtol
+            allocate(times(0))
+            roots = 0
+            do r = 1, max(1, repeats)
+                call run_case(with_method(scene, method, rtol), ucosub, history, summary, roots, &
+                    & run_error)
+                if (allocated(run_error)) then
+                    ! a failed run is a measurement too: recorded, not fatal
+                    measured%status = "failed: " // run_error%message
+                    exit
+                end if
+                times = [times, summary%cpu_seconds]
+                if (summary%cpu_seconds > 1.0_wp) exit
+            end do
+            if (size(times) > 0) then
+                measured%cpu = median(times)
+                measured%status = "completed"
+                if (summary%status /= status_completed) measured%status = "stopped: " &
+                    & // summary%message
+            else
+                measured%cpu = summary%cpu_seconds
+            end if
+            measured%steps = summary%steps
+            measured%functions = summary%functions
+            measured%jacobians = summary%jacobians
+            measured%root_evaluations = roots
+            measured%output_rows = summary%rows
+            measured%residual = summary%residual_max
+            measured%energy_drift = summary%energy_drift
+            measured%position_error = position_error(history, reference)
+        end function measure
 
     end subroutine benchmark_scene
+
+    !> One run of a case: the full model (CVODE or IDA) or the reduced ODE; roots: the event
+    !> function evaluations of a full run (0 for the reduced ODE).
+    subroutine run_case(case_scene, ucosub, history, summary, roots, error)
+        type(scene_type), intent(in) :: case_scene
+        procedure(ucosub_interface) :: ucosub
+        type(history_type), intent(out) :: history
+        type(run_summary_type), intent(out) :: summary
+        integer, intent(out) :: roots
+        type(error_type), allocatable, intent(out) :: error
+        type(problem_type), target :: problem
+        type(run_options_type) :: options
+        real(wp) :: q0(6), u0(6)
+
+        roots = 0
+        if (case_scene%run%formulation == formulation_reduced) then
+            call simulate_reduced_scene(case_scene, history, summary, error)
+            return
+        end if
+        call build_disk_problem(case_scene, ucosub, problem, q0, u0, error)
+        if (allocated(error)) return
+        options%end_time = case_scene%run%end_time
+        options%output_step = case_scene%run%output_step
+        options%progress = .false.
+        call simulate(problem, q0, u0, options, summary, error, history)
+        roots = problem%root_evaluations
+    end subroutine run_case
+
+    !> A full-model row's CPU time split by parts: counts times unit costs, SUNDIALS the rest.
+    pure subroutine split_costs(row, costs, dae)
+        type(benchmark_row_type), intent(inout) :: row
+        type(part_costs_type), intent(in) :: costs
+        !> The run was IDA's: its functions are DAE residuals
+        logical, intent(in) :: dae
+
+        row%rhs_cpu = row%functions*merge(costs%residual, costs%rhs, dae)
+        row%roots_cpu = row%root_evaluations*costs%root
+        row%output_cpu = row%output_rows*costs%output
+        row%sundials_cpu = row%cpu - row%rhs_cpu - row%roots_cpu - row%output_cpu
+    end subroutine split_costs
 
     !> CPU seconds of one ODE right-hand side, one DAE residual, and one LAPACK factor-and-solve
     !> of the saddle-point system's size (the floor of a right-hand side), each the mean of
@@ -271,7 +356,9 @@ contains
         type(scene_type) :: changed
 
         changed = scene
-        changed%run%formulation = choice_code("formulation", method%formulation)
+        changed%run%formulation = formulation_reduced
+        if (method%formulation /= "reduced") &
+            & changed%run%formulation = choice_code("formulation", method%formulation)
         changed%run%method = choice_code("method", method%method)
         changed%run%drift = choice_code("drift", method%drift)
         changed%run%jacobian = choice_code("jacobian", method%jacobian)

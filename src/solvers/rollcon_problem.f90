@@ -58,6 +58,8 @@ module rollcon_problem
         real(wp), allocatable :: a(:), lambda(:)
         !> The first failure inside a callback, for the caller to report
         type(error_type), allocatable :: failure
+        !> Event-function evaluations so far (the benchmark's per-part costs)
+        integer :: root_evaluations = 0
     contains
         procedure :: prepare
         procedure :: ode_rhs
@@ -111,6 +113,7 @@ contains
         real(wp) :: force(3)
 
         ierr = 0
+        self%root_evaluations = self%root_evaluations + 1
         g(root_theta) = 1.0_wp
         if (self%events%theta_min >= 0.0_wp) g(root_theta) = &
             & sin(q(6*(self%events%part - 1) + 5)) - sin(self%events%theta_min)

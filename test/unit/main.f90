@@ -26,6 +26,7 @@ program tester
     use test_csv_fuzz, only : collect_csv_fuzz
     use test_isolation, only : collect_isolation
     use test_allocations, only : collect_allocations
+    use test_reduced, only : collect_reduced
     implicit none
     type(testsuite_type), allocatable :: suites(:)
     type(test_counts_type) :: counts
@@ -56,7 +57,8 @@ program tester
         & new_testsuite("command", collect_command), &
         & new_testsuite("csv-fuzz", collect_csv_fuzz), &
         & new_testsuite("isolation", collect_isolation), &
-        & new_testsuite("allocations", collect_allocations)]
+        & new_testsuite("allocations", collect_allocations), &
+        & new_testsuite("reduced", collect_reduced)]
 
     if (command_argument_count() >= 1) then
         call get_command_argument(1, argument)

@@ -1,0 +1,107 @@
+! SPDX-License-Identifier: MIT
+!> Unit costs of the parts of a full-model step, measured in the running process: one ODE
+!> right-hand side, one DAE residual, one event-function evaluation, one output row (as the
+!> benchmark's runs keep it in memory) and, apart, its CSV line (what `rollcon run` adds). The benchmark multiplies them by a run's counts; what is left
+!> of the run's CPU time is SUNDIALS' own work (with the Jacobians and linear solves).
+module rollcon_bench_costs
+    use rollcon_kinds, only : wp
+    use rollcon_error, only : error_type
+    use rollcon_dae, only : dae_size, dae_residual
+    use rollcon_ucosub_contract, only : ucosub_interface
+    use rollcon_scene, only : scene_type
+    use rollcon_disk_scene, only : build_disk_problem
+    use rollcon_problem, only : problem_type
+    use rollcon_simulation, only : history_type, csv_header
+    use rollcon_csv_writer, only : csv_writer_type
+    implicit none
+    private
+
+    public :: part_costs_type, measure_part_costs
+
+    !> CPU seconds of one evaluation of each part [s]
+    type :: part_costs_type
+        real(wp) :: rhs = 0.0_wp, residual = 0.0_wp, root = 0.0_wp
+        !> One output row as the benchmark's runs make it (no file) and one CSV line of it
+        real(wp) :: output = 0.0_wp, csv_line = 0.0_wp
+    end type part_costs_type
+
+contains
+
+    !> Mean CPU time of count evaluations of each part at the scene's initial state; the
+    !> output rows' CSV lines go to scratch_csv (deleted afterwards).
+    subroutine measure_part_costs(scene, ucosub, count, scratch_csv, costs, error)
+        type(scene_type), intent(in) :: scene
+        procedure(ucosub_interface) :: ucosub
+        integer, intent(in) :: count
+        character(len=*), intent(in) :: scratch_csv
+        type(part_costs_type), intent(out) :: costs
+        type(error_type), allocatable, intent(out) :: error
+        type(problem_type), target :: problem
+        type(history_type) :: history
+        type(csv_writer_type) :: csv
+        real(wp) :: q0(6), u0(6), g(2), start, finish, checksum, energy, force(3)
+        real(wp), allocatable :: y(:), ydot(:), yd(:), ypd(:), r(:)
+        integer :: i, ierr, unit
+
+        call build_disk_problem(scene, ucosub, problem, q0, u0, error)
+        if (allocated(error)) return
+        call problem%prepare()
+        y = [q0, u0]
+        allocate(ydot(size(y)))
+        checksum = 0.0_wp
+        call cpu_time(start)
+        do i = 1, count
+            ierr = problem%ode_rhs(0.0_wp, y, ydot)
+            checksum = checksum + ydot(7)
+        end do
+        call cpu_time(finish)
+        costs%rhs = (finish - start)/count
+        allocate(yd(dae_size(problem%eq)), ypd(dae_size(problem%eq)), r(dae_size(problem%eq)), &
+            & source=0.0_wp)
+        yd(:12) = y
+        ypd(:12) = ydot
+        call cpu_time(start)
+        do i = 1, count
+            call dae_residual(problem%eq, 0.0_wp, yd, ypd, r, error)
+            if (allocated(error)) return
+            checksum = checksum + r(1)
+        end do
+        call cpu_time(finish)
+        costs%residual = (finish - start)/count
+        call cpu_time(start)
+        do i = 1, count
+            ierr = problem%root_values(0.0_wp, q0, u0, g)
+            checksum = checksum + g(2)
+        end do
+        call cpu_time(finish)
+        costs%root = (finish - start)/count
+        ! what rollcon_simulation's record does for a row: accelerations, energy, force, row
+        call cpu_time(start)
+        do i = 1, count
+            call problem%eq%accelerations(0.0_wp, q0, u0, problem%a, problem%lambda, error)
+            if (allocated(error)) return
+            energy = problem%eq%energy(q0, u0)
+            force = problem%eq%constraint_force(1, problem%lambda)
+            call history%add([0.0_wp, q0, u0, energy, force, force(3), 0.0_wp, &
+                & problem%eq%constraints%value])
+        end do
+        call cpu_time(finish)
+        costs%output = (finish - start)/count
+        ! and, for `rollcon run`, the row's CSV line
+        call csv%open(scratch_csv, csv_header(problem), error)
+        if (allocated(error)) return
+        call cpu_time(start)
+        do i = 1, count
+            call csv%write_row(history%rows(:, i), error)
+            if (allocated(error)) return
+        end do
+        call cpu_time(finish)
+        call csv%close()
+        costs%csv_line = (finish - start)/count
+        open(newunit=unit, file=scratch_csv, status="old", iostat=ierr)
+        if (ierr == 0) close(unit, status="delete")
+        ! keep the loops from being optimised away
+        if (checksum /= checksum) costs%rhs = -1.0_wp
+    end subroutine measure_part_costs
+
+end module rollcon_bench_costs
