@@ -2,10 +2,7 @@
 !> `rollcon animate`: an animated GIF of a run's output CSV, drawn headlessly by gnuplot.
 module rollcon_command_animate
     use, intrinsic :: iso_fortran_env, only : output_unit
-    use rollcon, only : error_type
-    use rollcon_text, only : to_text
-    use rollcon_gnuplot, only : base_name
-    use rollcon_gif, only : animate_output
+    use rollcon, only : error_type, to_text, base_name, animate_output
     use rollcon_command_plot, only : csv_argument, make_folder
     implicit none
     private

@@ -3,16 +3,11 @@
 !> the reduced ODE of the disk (reference and limit), with per-part and whole-process costs.
 module rollcon_command_bench
     use, intrinsic :: iso_fortran_env, only : output_unit, error_unit
-    use rollcon, only : wp, error_type, rolling_disk_ucosub
-    use rollcon_error, only : fatal_error, stat_input, stat_io
-    use rollcon_text, only : to_text, shell_quote
-    use rollcon_scene, only : scene_type, read_scene, scene_path
-    use rollcon_benchmark, only : method_type, benchmark_methods, benchmark_row_type, &
-        & benchmark_scene, benchmark_header, write_benchmark_row, evaluation_costs
-    use rollcon_bench_costs, only : part_costs_type, measure_part_costs
-    use rollcon_bench_summary, only : accuracy_line
-    use rollcon_bench_process, only : process_cost_type, measure_process
-    use rollcon_gnuplot, only : run_gnuplot, gnuplot_string
+    use rollcon, only : wp, error_type, rolling_disk_ucosub, fatal_error, stat_input, stat_io, &
+        & to_text, shell_quote, scene_type, read_scene, scene_path, method_type, &
+        & benchmark_methods, benchmark_row_type, benchmark_scene, benchmark_header, &
+        & write_benchmark_row, evaluation_costs, part_costs_type, measure_part_costs, &
+        & accuracy_line, process_cost_type, measure_process, run_gnuplot, gnuplot_string
     implicit none
     private
 
@@ -203,7 +198,8 @@ contains
         write(unit, '(a)') "set datafile separator ','", "set terminal png size 900,650", &
             & "set logscale xy", "set format x '10^{%L}'", "set format y '10^{%L}'", &
             & "set xlabel 'CPU time [s]'", &
-            & "set ylabel 'largest position error against the reduced ODE (Adams, rtol 1e-13) [m]'", &
+            & "set ylabel 'largest position error against the reduced ODE " &
+            & // "(Adams, rtol 1e-13) [m]'", &
             & "set key outside right", "set grid"
         start = 1
         do

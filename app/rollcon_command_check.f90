@@ -2,16 +2,11 @@
 !> `rollcon check FILE --ucon ID:PAR,...`: check a user's own UCOSUB without ADAMS.
 module rollcon_command_check
     use, intrinsic :: iso_fortran_env, only : output_unit
-    use rollcon, only : wp, error_type
-    use rollcon_error, only : fatal_error, stat_input, stat_io
-    use rollcon_user_library, only : user_ucosub_type, new_user_ucosub
-    use rollcon_ucosub_audit, only : ucon_request_type, user_check_options_type, &
-        & user_check_report_type, sampling_ranges
-    use rollcon_isolated_audit, only : check_user_ucosub_isolated
-    use rollcon_ucon_option, only : read_ucon_option
-    use rollcon_audit_report, only : report_text, report_json
+    use rollcon, only : wp, error_type, fatal_error, stat_input, stat_io, user_ucosub_type, &
+        & new_user_ucosub, ucon_request_type, user_check_options_type, user_check_report_type, &
+        & sampling_ranges, check_user_ucosub_isolated, read_ucon_option, report_text, report_json, &
+        & default_call_timeout
     use rollcon_command_line, only : real_option
-    use rollcon_child_process, only : default_call_timeout
     implicit none
     private
 

@@ -1,8 +1,7 @@
 ! SPDX-License-Identifier: MIT
 !> Reading option values from the command line, with messages that name the option.
 module rollcon_command_line
-    use rollcon, only : wp, error_type
-    use rollcon_error, only : fatal_error, stat_input
+    use rollcon, only : wp, error_type, fatal_error, stat_input
     use, intrinsic :: ieee_arithmetic, only : ieee_is_finite
     implicit none
     private

@@ -2,9 +2,7 @@
 !> `rollcon plot`: the PNG figures of a run's output CSV, drawn by gnuplot.
 module rollcon_command_plot
     use, intrinsic :: iso_fortran_env, only : output_unit
-    use rollcon, only : error_type
-    use rollcon_error, only : fatal_error, stat_io
-    use rollcon_figures, only : plot_output, figure_file, figure_names
+    use rollcon, only : error_type, fatal_error, stat_io, plot_output, figure_file, figure_names
     implicit none
     private
 

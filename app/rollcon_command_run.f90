@@ -2,16 +2,11 @@
 !> `rollcon run`: simulate a disk scene and write its CSV and summary.
 module rollcon_command_run
     use, intrinsic :: iso_fortran_env, only : output_unit
-    use rollcon, only : wp, error_type, rolling_disk_ucosub
-    use rollcon_error, only : fatal_error, stat_io, stat_input
-    use rollcon_text, only : to_text, shell_quote
-    use rollcon_ucosub_contract, only : ucosub_interface
-    use rollcon_scene, only : scene_type, read_scene, scene_path, choice_name, &
-        & formulation_cvode, method_adams
-    use rollcon_disk_scene, only : simulate_scene
-    use rollcon_simulation, only : run_summary_type, status_completed, status_stopped, &
-        & status_failed, status_inaccurate, default_max_csv_bytes
-    use rollcon_output_files, only : partial_name, write_text_file, rename_file, delete_file
+    use rollcon, only : wp, error_type, rolling_disk_ucosub, fatal_error, stat_io, stat_input, &
+        & to_text, shell_quote, ucosub_interface, scene_type, read_scene, scene_path, choice_name, &
+        & formulation_cvode, method_adams, simulate_scene, run_summary_type, status_completed, &
+        & status_stopped, status_failed, status_inaccurate, default_max_csv_bytes, partial_name, &
+        & write_text_file, rename_file, delete_file
     implicit none
     private
 
@@ -160,7 +155,8 @@ contains
             end do
         end if
         write(value, '(es11.3e3)') summary%energy_drift
-        text = text // "energy drift: " // trim(adjustl(value)) // " (largest |E - E0|/|E0|, E0 = " &
+        text = text // "energy drift: " // trim(adjustl(value)) &
+            & // " (largest |E - E0|/|E0|, E0 = " &
             & // to_text(summary%energy_reference) // " J after the last applied force)" &
             & // allowed(summary%energy_bound, "") // nl
         write(value, '(es11.3e3)') summary%residual_max

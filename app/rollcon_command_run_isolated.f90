@@ -5,14 +5,10 @@
 !> (rollcon_ucosub_guard), a write outside ARRAY(30) or XMATRX(30,30) being an error.
 module rollcon_command_run_isolated
     use, intrinsic :: iso_c_binding, only : c_double
-    use rollcon, only : wp, error_type
-    use rollcon_error, only : fatal_error, stat_ucon
-    use rollcon_ucosub_contract, only : ucosub_interface
-    use rollcon_simulation, only : run_summary_type
-    use rollcon_child_process, only : isolated_task_type, call_record_type, &
-        & isolation_outcome_type, run_in_child, outcome_finished
-    use rollcon_isolation_text, only : outcome_text
-    use rollcon_ucosub_guard, only : install_guard, attach_call_record, guarded_ucosub
+    use rollcon, only : wp, error_type, fatal_error, stat_ucon, ucosub_interface, &
+        & run_summary_type, isolated_task_type, call_record_type, isolation_outcome_type, &
+        & run_in_child, outcome_finished, outcome_text, install_guard, attach_call_record, &
+        & guarded_ucosub
     use rollcon_command_run, only : run_scene
     implicit none
     private

@@ -2,12 +2,8 @@
 !> `rollcon run SCENE --vtk FPS`: the run as a VTK time series for ParaView.
 module rollcon_command_run_vtk
     use, intrinsic :: iso_fortran_env, only : output_unit
-    use rollcon, only : wp, error_type
-    use rollcon_text, only : to_text
-    use rollcon_scene, only : scene_type, read_scene, scene_path
-    use rollcon_simulation, only : history_type
-    use rollcon_csv_reader, only : read_output_csv
-    use rollcon_vtk, only : write_vtk_series
+    use rollcon, only : wp, error_type, to_text, scene_type, read_scene, scene_path, history_type, &
+        & read_output_csv, write_vtk_series
     use rollcon_command_plot, only : make_folder
     implicit none
     private

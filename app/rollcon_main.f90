@@ -2,8 +2,9 @@
 !> rollcon: simulate a disk scene (default: the paper's coin) or print the UCOSUB's table.
 program rollcon_main
     use, intrinsic :: iso_fortran_env, only : output_unit, error_unit
-    use rollcon, only : wp, error_type, disk_nvars, rolling_disk_ucosub
-    use rollcon_error, only : fatal_error, stat_input
+    use rollcon, only : wp, error_type, disk_nvars, rolling_disk_ucosub, fatal_error, stat_input, &
+        & default_call_timeout, user_ucosub_type, new_user_ucosub, run_summary_type, &
+        & status_inaccurate, use_one_blas_thread
     use rollcon_command_line, only : real_option_list, real_option
     use rollcon_command_table, only : print_table, default_state, default_radius
     use rollcon_command_run, only : run_scene
@@ -13,10 +14,6 @@ program rollcon_main
     use rollcon_command_run_vtk, only : write_run_vtk
     use rollcon_command_check, only : check_command, call_timeout_option
     use rollcon_command_run_isolated, only : run_user_scene
-    use rollcon_child_process, only : default_call_timeout
-    use rollcon_user_library, only : user_ucosub_type, new_user_ucosub
-    use rollcon_simulation, only : run_summary_type, status_inaccurate
-    use rollcon_lapack, only : use_one_blas_thread
     implicit none
     type(error_type), allocatable :: error
     type(run_summary_type) :: summary

@@ -25,6 +25,33 @@ module rollcon
     use rollcon_user_library, only : user_ucosub_type, user_build_options_type, new_user_ucosub
     use rollcon_ucosub_audit, only : ucon_request_type, user_check_options_type, &
         & user_check_report_type, check_user_ucosub
+    use rollcon_audit_report, only : report_text, report_json
+    use rollcon_bench_costs, only : part_costs_type, measure_part_costs
+    use rollcon_bench_process, only : process_cost_type, measure_process
+    use rollcon_bench_summary, only : accuracy_line
+    use rollcon_benchmark, only : method_type, benchmark_methods, benchmark_row_type, &
+        & benchmark_scene, benchmark_header, write_benchmark_row, evaluation_costs
+    use rollcon_child_process, only : default_call_timeout, isolated_task_type, call_record_type, &
+        & isolation_outcome_type, run_in_child, outcome_finished
+    use rollcon_csv_reader, only : read_output_csv
+    use rollcon_disk_scene, only : simulate_scene
+    use rollcon_error, only : fatal_error, stat_input, stat_io, stat_ucon
+    use rollcon_figures, only : plot_output, figure_file, figure_names
+    use rollcon_gif, only : animate_output
+    use rollcon_gnuplot, only : base_name, run_gnuplot, gnuplot_string
+    use rollcon_isolated_audit, only : check_user_ucosub_isolated
+    use rollcon_isolation_text, only : outcome_text
+    use rollcon_lapack, only : use_one_blas_thread
+    use rollcon_output_files, only : partial_name, write_text_file, rename_file, delete_file
+    use rollcon_scene, only : choice_name
+    use rollcon_simulation, only : status_completed, status_stopped, status_failed, &
+        & status_inaccurate, default_max_csv_bytes
+    use rollcon_text, only : to_text, shell_quote
+    use rollcon_ucon_option, only : read_ucon_option
+    use rollcon_ucosub_audit, only : sampling_ranges
+    use rollcon_ucosub_contract, only : ucosub_interface
+    use rollcon_ucosub_guard, only : install_guard, attach_call_record, guarded_ucosub
+    use rollcon_vtk, only : write_vtk_series
     implicit none
     public
 end module rollcon

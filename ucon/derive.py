@@ -1,4 +1,4 @@
-"""Every quantity ADAMS asks a UCOSUB for (shared/DESIGN.md section 2), derived symbolically.
+"""Every quantity ADAMS asks a UCOSUB for (docs/design.md §2), derived symbolically.
 
 For each component F(q, t): the value F; f(t), the part of F free of the variables (the
 additive terms of the expanded F in which no variable appears); dF/dt; d2F/dt2; dF/dq_j;

@@ -1,6 +1,6 @@
 """What ADAMS and the printers accept in a spec: codes, limits, functions, reserved names.
 
-The tables :func:`ucon.spec.validate` checks a spec against (shared/DESIGN.md section 2), kept
+The tables :func:`ucon.spec.validate` checks a spec against (docs/design.md §2), kept
 apart from the spec types so that each file stays one concern.
 """
 
@@ -18,7 +18,7 @@ __all__ = [
     "RESERVED_NAMES",
 ]
 
-#: UCOVAR codes and what they stand for, with units (shared/DESIGN.md section 2).
+#: UCOVAR codes and what they stand for, with units (docs/design.md §2).
 CODE_NAMES: dict[int, tuple[str, str]] = {
     11: ("X", "m"),
     12: ("Y", "m"),

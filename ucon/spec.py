@@ -2,7 +2,7 @@
 
 A spec names its variables by ADAMS code, its parameters by PAR index (with meaning and
 units), and one or more constraint expressions F(q, t). The PAR layout is the paper's for
-every spec (shared/DESIGN.md section 5)::
+every spec (docs/design.md §5)::
 
     PAR(1)                  part id of every variable
     PAR(2 .. m+1)           the m variable codes, in declaration order

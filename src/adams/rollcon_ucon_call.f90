@@ -48,7 +48,8 @@ contains
         par_copy = 0.0_wp
         par_copy(:size(par)) = par
         call begin_declaration(registry, id)
-        call ucosub(id, 0.0_wp, q, par_copy, size(par), [0, 0, 0], iflag_init, scalar, array, xmatrx)
+        call ucosub(id, 0.0_wp, q, par_copy, size(par), [0, 0, 0], iflag_init, scalar, array, &
+            & xmatrx)
         call end_declaration(error)
     end subroutine declare_ucon
 

@@ -1,7 +1,7 @@
 ! SPDX-License-Identifier: MIT
 !> The UCOSUB/UCOVAR contract of ADAMS/Solver: calling sequence, selector codes, variable codes.
 !>
-!> Every constant ADAMS gives meaning to is named here, once (shared/DESIGN.md section 2).
+!> Every constant ADAMS gives meaning to is named here, once (docs/design.md §2).
 module rollcon_ucosub_contract
     use rollcon_kinds, only : wp
     implicit none

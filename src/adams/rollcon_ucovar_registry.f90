@@ -59,7 +59,8 @@ contains
             return
         end if
         if (nparts /= nvars) then
-            call ucon_error(error, id, "UCOVAR has NPARTS = " // to_text(nparts) // " but NVARS = " &
+            call ucon_error(error, id, "UCOVAR has NPARTS = " // to_text(nparts) &
+                & // " but NVARS = " &
                 & // to_text(nvars) // "; LPARTS and LVARS must be of equal length")
             return
         end if
@@ -76,7 +77,8 @@ contains
         do i = 1, nvars
             if (.not. is_valid_code(lvars(i))) then
                 call ucon_error(error, id, "UCOVAR variable " // to_text(i) // " has code " &
-                    & // to_text(lvars(i)) // "; expected one of 11 12 13 14 15 16 21 22 23 24 25 26")
+                    & // to_text(lvars(i)) &
+                    & // "; expected one of 11 12 13 14 15 16 21 22 23 24 25 26")
                 return
             end if
             if (lparts(i) < 1) then

@@ -1,8 +1,9 @@
 ! SPDX-License-Identifier: MIT
 !> Unit costs of the parts of a full-model step, measured in the running process: one ODE
 !> right-hand side, one DAE residual, one event-function evaluation, one output row (as the
-!> benchmark's runs keep it in memory) and, apart, its CSV line (what `rollcon run` adds). The benchmark multiplies them by a run's counts; what is left
-!> of the run's CPU time is SUNDIALS' own work (with the Jacobians and linear solves).
+!> benchmark's runs keep it in memory) and, apart, its CSV line (what `rollcon run` adds). The
+!> benchmark multiplies them by a run's counts; what is left of the run's CPU time is SUNDIALS'
+!> own work (with the Jacobians and linear solves).
 module rollcon_bench_costs
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type
@@ -13,6 +14,7 @@ module rollcon_bench_costs
     use rollcon_problem, only : problem_type
     use rollcon_simulation, only : history_type, csv_header
     use rollcon_csv_writer, only : csv_writer_type
+    use rollcon_drift, only : height_residual
     implicit none
     private
 
@@ -83,7 +85,7 @@ contains
             energy = problem%eq%energy(q0, u0)
             force = problem%eq%constraint_force(1, problem%lambda)
             call history%add([0.0_wp, q0, u0, energy, force, force(3), 0.0_wp, &
-                & problem%eq%constraints%value])
+                & problem%eq%constraints%value, height_residual(problem, q0)])
         end do
         call cpu_time(finish)
         costs%output = (finish - start)/count

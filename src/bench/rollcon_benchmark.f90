@@ -97,7 +97,8 @@ contains
             & row%position_error, row%residual, row%energy_drift, row%reduced_cpu, row%ratio, &
             & row%root_evaluations, row%output_rows, row%rhs_cpu, row%roots_cpu, &
             & row%output_cpu, row%sundials_cpu
-        line = trim(row%scene) // "," // trim(row%method) // "," // trim(numbers) // "," // row%status
+        line = trim(row%scene) // "," // trim(row%method) // "," // trim(numbers) // "," &
+            & // row%status
     end function write_benchmark_row
 
     !> Measure every method on every tolerance for one scene; rows are appended. The reduced

@@ -182,7 +182,7 @@ contains
         jacobian(8, 8) = 0.0_wp
     end subroutine reduced_jacobian
 
-    !> Kinetic plus potential energy [J] (DESIGN.md section 5).
+    !> Kinetic plus potential energy [J] (docs/design.md §5).
     pure function reduced_energy(state, par) result(energy)
         !> (theta, thetadot, psidot, omega3, psi, phi, X, Y) [rad, rad/s, m]
         real(wp), intent(in) :: state(reduced_size)

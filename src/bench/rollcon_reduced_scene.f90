@@ -45,7 +45,8 @@ contains
         reduced%max_steps = scene%run%max_steps
         reduced%theta_min = scene%limits%theta_min
         call full_to_reduced(q0, u0, y0)
-        call simulate_reduced(reduced, y0, 0.0_wp, scene%run%end_time, scene%run%output_step, history, &
+        call simulate_reduced(reduced, y0, 0.0_wp, scene%run%end_time, scene%run%output_step, &
+            & history, &
             & summary, error)
     end subroutine simulate_reduced_scene
 

@@ -1,6 +1,6 @@
 ! SPDX-License-Identifier: MIT
 !> Checks a UCOSUB entry by entry: every partial against finite differences of its own
-!> lower-order outputs, and the rules a UCOSUB must keep (DESIGN section 2).
+!> lower-order outputs, and the rules a UCOSUB must keep (docs/design.md §2).
 module rollcon_partials_check
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type

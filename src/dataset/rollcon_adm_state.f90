@@ -29,7 +29,7 @@ contains
         q(1:3) = part%qg + matmul(r_part, model%markers(m)%qp)
         q(4:6) = euler_angles(r_cm)
         u(1:3) = part%velocity
-        ! omega' = B (psidot, thetadot, phidot) solved for the rates (shared/DESIGN.md section 3)
+        ! omega' = B (psidot, thetadot, phidot) solved for the rates (docs/design.md §3)
         omega = part%angular_velocity
         associate (theta => q(5), phi => q(6))
             u(4) = (omega(1)*sin(phi) + omega(2)*cos(phi))/sin(theta)

@@ -2,13 +2,14 @@
 !> Rigid part in ADAMS coordinates: centre of mass and 3-1-3 Euler angles of the principal axes.
 !>
 !> Equations of motion M(q) a = f(q, u, t) (+ constraint forces), with q = (X, Y, Z, psi, theta,
-!> phi), u = dq/dt, a = du/dt (shared/DESIGN.md section 3). The rotational rows are Euler's
+!> phi), u = dq/dt, a = du/dt (docs/design.md §3). The rotational rows are Euler's
 !> equations J alpha' + omega' x J omega' = tau' premultiplied by B^T, where omega' = B u_rot:
 !> B^T J B is the Lagrangian mass matrix and B^T tau' the generalised moment.
 module rollcon_body
     use rollcon_kinds, only : wp
     use rollcon_rotation, only : rotation_matrix, rate_matrix, rate_matrix_dtheta, &
-        & rate_matrix_dphi, rate_matrix_dtheta2, rate_matrix_dtheta_dphi, rate_matrix_dphi2, cross, &
+        & rate_matrix_dphi, rate_matrix_dtheta2, rate_matrix_dtheta_dphi, rate_matrix_dphi2, &
+        & cross, &
         & times, transpose_times, rate_matrices
     implicit none
     private

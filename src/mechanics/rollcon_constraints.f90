@@ -4,7 +4,8 @@
 module rollcon_constraints
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type
-    use rollcon_ucosub_contract, only : max_ucon_vars, scalar_none, scalar_value, scalar_dt, scalar_dtt, &
+    use rollcon_ucosub_contract, only : max_ucon_vars, scalar_none, scalar_value, scalar_dt, &
+        & scalar_dtt, &
         & array_none, array_dq, array_dtdq, xmatrx_none, xmatrx_dqdq
     use rollcon_ucon_call, only : evaluate_ucon
     use rollcon_model, only : model_type, ucon_statement_type
@@ -26,7 +27,8 @@ module rollcon_constraints
         real(wp), allocatable :: dt(:), dtt(:)
         !> d2F_k/dt dq_j and d2F_k/dt du_j
         real(wp), allocatable :: dt_grad_q(:, :), dt_grad_u(:, :)
-        !> d2F_k/dq_i dq_j (i, j, k) and d2F_k/dq_i du_j (i, j, k); d2F/du du is zero (DESIGN 2)
+        !> d2F_k/dq_i dq_j (i, j, k) and d2F_k/dq_i du_j (i, j, k); d2F/du du is zero
+        !> (docs/design.md §2)
         real(wp), allocatable :: hqq(:, :, :), hqu(:, :, :)
         !> Scratch for one UCOSUB call
         real(wp) :: local_q(max_ucon_vars) = 0.0_wp
@@ -131,7 +133,7 @@ contains
     end subroutine scatter_row
 
     !> Scatter a UCON's second partials (XMATRX) onto d2F/dq dq and d2F/dq du of the system
-    !> (d2F/du du is zero: F is linear in the rates, DESIGN section 2).
+    !> (d2F/du du is zero: F is linear in the rates, docs/design.md §2).
     pure subroutine scatter_hessian(ucon, xmatrx, hqq, hqu)
         type(ucon_statement_type), intent(in) :: ucon
         real(wp), intent(in) :: xmatrx(:, :)

@@ -1,5 +1,5 @@
 ! SPDX-License-Identifier: MIT
-!> The DAE form for IDA (shared/DESIGN.md section 4): unknowns y = (q, u, lambda, mu),
+!> The DAE form for IDA (docs/design.md §4): unknowns y = (q, u, lambda, mu),
 !>
 !>     q' - u - G^T mu = 0          (mu: one per position UCON, stabilises F = 0; GGL form)
 !>     M u' - f - C^T lambda = 0

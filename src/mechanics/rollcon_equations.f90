@@ -1,6 +1,6 @@
 ! SPDX-License-Identifier: MIT
 !> Equations of motion of a model: the ODE form (accelerations from the saddle-point system,
-!> its Jacobian, velocity projection) shared by every formulation (shared/DESIGN.md section 4).
+!> its Jacobian, velocity projection) shared by every formulation (docs/design.md §4).
 !>
 !> M(q) a = f(q, u, t) + C^T lambda,  C a = gamma, where C_k = dF_k/du for a velocity UCON and
 !> dF_k/dq for a position UCON, and gamma makes the constraint's time derivative vanish.
@@ -195,7 +195,8 @@ contains
             self%dm_dq(i0 + 1:i0 + 6, i0 + 1:i0 + 6) = part_dq
             self%dm_du(i0 + 1:i0 + 6, i0 + 1:i0 + 6) = part_du
         end do
-        ! -d(C^T lambda)/dq: second partials are why ADAMS asks a UCOSUB for XMATRX (DESIGN 4)
+        ! -d(C^T lambda)/dq: second partials are why ADAMS asks a UCOSUB for XMATRX
+        ! (docs/design.md §4)
         do k = 1, self%nc
             if (self%model%ucons(k)%holonomic) then
                 self%dm_dq = self%dm_dq - lambda(k)*self%constraints%hqq(:, :, k)

@@ -9,7 +9,8 @@ module rollcon_model
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type, ucon_error, fatal_error, stat_input
     use rollcon_text, only : to_text
-    use rollcon_ucosub_contract, only : ucosub_interface, max_ucon_par, is_velocity_code, code_coordinate, &
+    use rollcon_ucosub_contract, only : ucosub_interface, max_ucon_par, is_velocity_code, &
+        & code_coordinate, &
         & code_name
     use rollcon_ucovar_registry, only : ucovar_registry_type
     use rollcon_ucon_call, only : declare_ucon

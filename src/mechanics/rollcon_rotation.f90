@@ -1,6 +1,6 @@
 ! SPDX-License-Identifier: MIT
 !> Body-fixed 3-1-3 Euler angles: rotation matrix, the map from angle rates to body angular
-!> velocity, and its derivatives (shared/DESIGN.md section 3).
+!> velocity, and its derivatives (docs/design.md §3).
 module rollcon_rotation
     use rollcon_kinds, only : wp
     implicit none

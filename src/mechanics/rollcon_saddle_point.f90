@@ -1,6 +1,6 @@
 ! SPDX-License-Identifier: MIT
 !> The saddle-point system of constrained motion, solved through its structure
-!> (shared/DESIGN.md section 4):
+!> (docs/design.md §4):
 !>
 !>     [M  -C^T] [a     ]   [r1]        S = C M^-1 C^T (rows x rows)
 !>     [C   0  ] [lambda] = [r2],       S lambda = r2 - C M^-1 r1,  a = M^-1 (r1 + C^T lambda).

@@ -31,7 +31,7 @@ contains
     !> Read an output CSV: a header line starting with the standard columns, then at least one
     !> row of as many finite numbers (of magnitude at most largest_value) as there are columns,
     !> in time order; plot, animate and the VTK series all read through it. Also infers the disk
-    !> radius from the first row, R = Z/sin(theta) (the contact constraint, DESIGN.md section 5).
+    !> radius from the first row, R = Z/sin(theta) (the contact constraint, docs/design.md §5).
     subroutine read_output_csv(path, history, radius, error, names)
         !> CSV file
         character(len=*), intent(in) :: path

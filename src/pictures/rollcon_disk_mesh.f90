@@ -1,6 +1,6 @@
 ! SPDX-License-Identifier: MIT
 !> The rolling disk as a picture: its contact point and a cylinder mesh in its true pose,
-!> with a marked sector on the faces so that rolling and spin show (DESIGN.md sections 3, 5).
+!> with a marked sector on the faces so that rolling and spin show (docs/design.md §3, §5).
 module rollcon_disk_mesh
     use rollcon_kinds, only : wp
     use rollcon_rotation, only : rotation_matrix
@@ -21,7 +21,7 @@ module rollcon_disk_mesh
 contains
 
     !> Contact point C = G - R e_y2 with e_y2 = (-cos(theta) sin(psi), cos(theta) cos(psi),
-    !> sin(theta)): the lowest point of the mid-plane circle (DESIGN.md section 5).
+    !> sin(theta)): the lowest point of the mid-plane circle (docs/design.md §5).
     pure function contact_point(radius, q) result(c)
         !> Disk radius [m]
         real(wp), intent(in) :: radius

@@ -52,7 +52,7 @@ contains
         call model%add_part(disk)
         model%gravity = [0.0_wp, 0.0_wp, -scene%environment%gravity]
         model%ucosub => ucosub
-        ! the hand-checked routine's F has no explicit time (DESIGN section 5), nor has the
+        ! the hand-checked routine's F has no explicit time (docs/design.md §5), nor has the
         ! generated one's (the generator says so): the driver skips their time partials; any
         ! other routine (a user's) is asked for them
         time_free = associated(model%ucosub, rolling_disk_ucosub) &
@@ -61,7 +61,7 @@ contains
             call model%add_ucon(k, disk_par(disk_part, scene%disk%radius, k), time_free=time_free)
         end do
         if (scene%run%height == height_position) then
-            ! Z - R sin(theta) = 0 in place of its time derivative F3 (DESIGN section 5)
+            ! Z - R sin(theta) = 0 in place of its time derivative F3 (docs/design.md §5)
             call model%add_ucon(3, disk_height_par(disk_part, scene%disk%radius), &
                 & disk_height_ucosub, time_free=disk_height_time_free)
         else
@@ -111,7 +111,7 @@ contains
         type(problem_type), intent(inout) :: problem
         real(wp) :: spin_squared, force_scale
 
-        ! |omega|^2 with omega = psidot e_Z + thetadot e_x1 + phidot e_z2 (DESIGN section 3):
+        ! |omega|^2 with omega = psidot e_Z + thetadot e_x1 + phidot e_z2 (docs/design.md §3):
         ! e_x1 is normal to both others, and e_Z . e_z2 = cos(theta)
         associate (i => scene%initial)
             spin_squared = i%psidot**2 + i%thetadot**2 + i%phidot**2 &

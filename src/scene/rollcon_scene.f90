@@ -1,6 +1,6 @@
 ! SPDX-License-Identifier: MIT
 !> A scene: the disk, its initial state, gravity, an optional strike, and how to run it, read
-!> from a namelist file in data/ (DESIGN.md section 6, docs/scenes.md) and checked before
+!> from a namelist file in data/ (docs/design.md §6, docs/scenes.md) and checked before
 !> anything uses it.
 module rollcon_scene
     use rollcon_error, only : error_type

@@ -1,7 +1,7 @@
 ! SPDX-License-Identifier: MIT
 !> The checks of a scene that involve more than one key: a start away from flat, an output
 !> step within the run, compatible solver choices, an initial state in contact and rolling
-!> without slip (DESIGN.md sections 5, 6), and physical bounds on what the values imply.
+!> without slip (docs/design.md §5, §6), and physical bounds on what the values imply.
 module rollcon_scene_check
     use rollcon_kinds, only : wp
     use rollcon_constants, only : pi
@@ -22,7 +22,7 @@ module rollcon_scene_check
     !> Relative tolerance of the contact and no-slip checks of a given initial state
     real(wp), parameter :: contact_tol = 1.0e-9_wp
     !> Closest start to flat that is accepted [rad]: the 3-1-3 angles are singular where
-    !> sin(theta) = 0 (DESIGN.md section 3)
+    !> sin(theta) = 0 (docs/design.md §3)
     real(wp), parameter :: flat_margin = 1.0e-3_wp
     !> Speed of light [m/s]: no speed of a Newtonian rigid body may reach it
     real(wp), parameter :: light = 299792458.0_wp

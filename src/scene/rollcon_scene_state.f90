@@ -1,6 +1,6 @@
 ! SPDX-License-Identifier: MIT
 !> What follows from a scene's values: the disk's mass properties, its angular velocity, and
-!> the one initial state in contact and rolling without slip (DESIGN.md sections 3 and 5).
+!> the one initial state in contact and rolling without slip (docs/design.md §3 and §5).
 module rollcon_scene_state
     use rollcon_kinds, only : wp
     use rollcon_scene_type, only : scene_type
@@ -14,7 +14,7 @@ module rollcon_scene_state
 contains
 
     !> Mass [kg] and principal moments (A about a diameter, C about the axis) [kg m^2] of a
-    !> uniform disk (DESIGN.md section 5).
+    !> uniform disk (docs/design.md §5).
     pure subroutine disk_mass_properties(scene, mass, inertia)
         !> Scene with the disk
         type(scene_type), intent(in) :: scene
@@ -30,8 +30,8 @@ contains
         end associate
     end subroutine disk_mass_properties
 
-    !> Angular velocity of the disk at the start, ground components [rad/s] (DESIGN.md
-    !> section 3): psidot e_Z + thetadot e_x1 + phidot e_z2.
+    !> Angular velocity of the disk at the start, ground components [rad/s] (docs/design.md
+    !> §3): psidot e_Z + thetadot e_x1 + phidot e_z2.
     pure function angular_velocity(scene) result(omega)
         !> Scene with the initial angles and rates
         type(scene_type), intent(in) :: scene

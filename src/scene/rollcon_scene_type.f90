@@ -19,10 +19,10 @@ module rollcon_scene_type
 
     !> &run jacobian: the UCOSUB's partials, or SUNDIALS' difference quotients
     integer, parameter :: jacobian_analytic = 1, jacobian_dq = 2
-    !> &run height: F3 as a velocity constraint, or Z - R sin(theta) = 0 (DESIGN.md section 5)
+    !> &run height: F3 as a velocity constraint, or Z - R sin(theta) = 0 (docs/design.md §5)
     integer, parameter :: height_velocity = 1, height_position = 2
 
-    !> &disk: a uniform disk (DESIGN.md section 5)
+    !> &disk: a uniform disk (docs/design.md §5)
     type :: scene_disk_type
         !> Radius [m]
         real(wp) :: radius = 0.1_wp

@@ -51,7 +51,8 @@ contains
         radius = 0.0_wp
         component = 0
         if (npar < disk_npar) then
-            message = "rolling disk needs NPAR >= " // to_text(disk_npar) // " (part id, 8 codes, " &
+            message = "rolling disk needs NPAR >= " // to_text(disk_npar) &
+                & // " (part id, 8 codes, " &
                 & // "R, component), got NPAR = " // to_text(npar)
             return
         end if

@@ -1,5 +1,5 @@
 ! SPDX-License-Identifier: MIT
-!> Hand-derived UCOSUB of the rolling disk's no-slip condition (shared/DESIGN.md section 5).
+!> Hand-derived UCOSUB of the rolling disk's no-slip condition (docs/design.md §5).
 !>
 !> The twin of the generated routine: written from the constraint, not from the paper's
 !> listing, and checked against finite differences and against the generator's output.
@@ -108,7 +108,7 @@ contains
         if (idrsel(3) == xmatrx_dqdq) call second_partials(q, radius, component, xmatrx)
     end subroutine rolling_disk_evaluate
 
-    !> F of one component: v_G + omega x r_GC = 0 with r_GC = -R e_y2 (DESIGN section 5).
+    !> F of one component: v_G + omega x r_GC = 0 with r_GC = -R e_y2 (docs/design.md §5).
     pure function constraint_value(q, radius, component) result(f)
         real(wp), intent(in) :: q(:)
         real(wp), intent(in) :: radius

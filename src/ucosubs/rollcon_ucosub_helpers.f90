@@ -19,7 +19,7 @@ module rollcon_ucosub_helpers
     public :: selectors_valid, is_whole, read_par_head, check_parameter, read_component
     public :: idrsel_message, iflag_message, part_message
 
-    !> Message of a call with an IDRSEL outside the table of shared/DESIGN.md section 2
+    !> Message of a call with an IDRSEL outside the table of docs/design.md §2
     character(len=*), parameter :: idrsel_message = "IDRSEL must be (0..4, 0..2, 0..1)"
     !> Message of a call with an IFLAG other than 3 or 0
     character(len=*), parameter :: iflag_message = "IFLAG must be 3 (initialise) or 0 (evaluate)"

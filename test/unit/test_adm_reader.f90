@@ -226,7 +226,7 @@ contains
 
     !> The coin's CM marker turned 90 degrees about x, VX = 0.1 m/s, WZ = -1 rad/s: upright
     !> (theta = pi/2, psi = 0, axis along -Y), centre at (0, 0, R), rolling along +X with
-    !> phidot = -v/R (shared/DESIGN.md section 5).
+    !> phidot = -v/R (docs/design.md §5).
     subroutine test_coin_state(error)
         type(error_type), allocatable, intent(out) :: error
         type(adm_model_type) :: model

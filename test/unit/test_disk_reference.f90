@@ -102,7 +102,7 @@ contains
         call check(error, total, 49, "non-zero expressions over the three components")
     end subroutine test_count
 
-    !> F against an independent vector form: v_G + omega x r_GC with omega from DESIGN section 3.
+    !> F against an independent vector form: v_G + omega x r_GC with omega from docs/design.md §3.
     subroutine test_vector_form(error)
         type(error_type), allocatable, intent(out) :: error
         ! The two forms round differently; terms are at most R * max rate, so 1e-13 of that.
@@ -143,7 +143,7 @@ contains
         c = [a(2)*b(3) - a(3)*b(2), a(3)*b(1) - a(1)*b(3), a(1)*b(2) - a(2)*b(1)]
     end function cross
 
-    !> Upright, rolling in +X at v with phidot = -v/R (DESIGN section 5): every F is zero.
+    !> Upright, rolling in +X at v with phidot = -v/R (docs/design.md §5): every F is zero.
     subroutine test_rolling_state(error)
         type(error_type), allocatable, intent(out) :: error
         real(wp), parameter :: radius = 0.1_wp, speed = 0.1_wp

@@ -111,7 +111,7 @@ contains
     !> time, under IDA at rtol 1e-8 and under CVODE at 1e-4 (noise up to 5e-5 of the force
     !> scale there). Steady motion at theta = 60 deg, phidot = -20 rad/s:
     !> A W^2 s c = (C + m R^2) W (phidot + W c) s gives W = (C + m R^2) phidot / (c (A - C -
-    !> m R^2)) (DESIGN section 5, g = 0).
+    !> m R^2)) (docs/design.md §5, g = 0).
     subroutine test_zero_gravity_circle(error)
         type(error_type), allocatable, intent(out) :: error
         character(len=5), parameter :: formulations(2) = ["ida  ", "cvode"]
@@ -129,7 +129,8 @@ contains
             scene%initial%phidot = -20.0_wp
             call disk_mass_properties(scene, mass, inertia)
             associate (a => inertia(1), c => inertia(3), r => scene%disk%radius)
-                scene%initial%psidot = (c + mass*r**2)*scene%initial%phidot/(cos(scene%initial%theta)*(a - c - mass*r**2))
+                scene%initial%psidot = (c + mass*r**2)*scene%initial%phidot &
+                    & /(cos(scene%initial%theta)*(a - c - mass*r**2))
             end associate
             scene%run%end_time = 0.5_wp
             scene%limits%stop_on_liftoff = .true.

@@ -112,7 +112,7 @@ contains
     end subroutine test_energy_tolerance
 
     !> Steady motion at theta = 60 deg, phidot = -20 rad/s, psidot the slow root of
-    !> A W^2 s c - (C + m R^2) W (phidot + W c) s = m g R c (DESIGN section 5).
+    !> A W^2 s c - (C + m R^2) W (phidot + W c) s = m g R c (docs/design.md §5).
     subroutine test_steady_circle(error)
         type(error_type), allocatable, intent(out) :: error
         type(scene_type) :: scene
@@ -187,7 +187,7 @@ contains
         scene%run%output_step = 0.01_wp
     end function upright
 
-    !> Above the critical speed (0.572 m/s for this disk, DESIGN section 5) a small tilt stays
+    !> Above the critical speed (0.572 m/s for this disk, docs/design.md §5) a small tilt stays
     !> small: |theta - pi/2| below 5 times the initial 0.01 rad over 10 s.
     subroutine test_upright_stable(error)
         type(error_type), allocatable, intent(out) :: error

@@ -152,7 +152,7 @@ contains
             & [pi/2 - 0.01_wp, 0.0_wp, -1.0_wp, 10.0_wp], "tipping_coin", abs_tol=tol_exact)
     end subroutine test_tipping_coin
 
-    !> psidot is the slow root of the steady-motion relation (DESIGN.md section 5).
+    !> psidot is the slow root of the steady-motion relation (docs/design.md §5).
     subroutine test_steady_circle(error)
         type(error_type), allocatable, intent(out) :: error
         type(scene_type) :: s

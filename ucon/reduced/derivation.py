@@ -8,7 +8,7 @@ are nonholonomic velocity constraints that KanesMethod eliminates. The vertical 
 v_C vanishes identically with Ż = R cos θ θ̇ (checked in the tests). Loads: gravity at the
 centre and the strike of the coin scene, a horizontal force F along +Y at the top of the rim
 (the point G + R e_y2, farthest from the ground), whose generalized force Kane's method forms
-from that point's partial velocities. shared/DESIGN.md §3, §5 state the conventions.
+from that point's partial velocities. docs/design.md §3, §5 state the conventions.
 
 The result is the first-order system of the reduced state
 y = (θ, θ̇, ψ̇, ω₃, ψ, φ, X, Y), its Jacobian ∂ẏ/∂y, the energy, and the maps to and from the
@@ -63,7 +63,7 @@ def derive_reduced() -> ReducedDisk:
     heading = ground.orientnew("H", "Axis", (psi, ground.z))
     tilt = heading.orientnew("T", "Axis", (theta, heading.x))
     body = tilt.orientnew("D", "Axis", (phi, tilt.z))
-    # ω = ψ̇ e_Z + θ̇ e_x1 + φ̇ e_z2 with φ̇ = ω₃ − ψ̇ cos θ (DESIGN §3)
+    # ω = ψ̇ e_Z + θ̇ e_x1 + φ̇ e_z2 with φ̇ = ω₃ − ψ̇ cos θ (docs/design.md §3)
     body.set_ang_vel(ground, u2*ground.z + u1*heading.x + (u3 - u2*cos(theta))*tilt.z)
     origin = Point("O")
     origin.set_vel(ground, 0)

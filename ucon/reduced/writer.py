@@ -109,7 +109,7 @@ def render_reduced(disk: ReducedDisk) -> str:
                     "real(wp), intent(out) :: jacobian(reduced_size, reduced_size)"],
         entries, printer)
     energy = _routine(
-        "function", "reduced_energy", "Kinetic plus potential energy [J] (DESIGN.md section 5).",
+        "function", "reduced_energy", "Kinetic plus potential energy [J] (docs/design.md §5).",
         ["state", "par"], state_in + ["real(wp) :: energy"], [("energy", disk.energy)], printer)
     energy = energy.replace("reduced_energy(state, par)", "reduced_energy(state, par) "
                             "result(energy)")

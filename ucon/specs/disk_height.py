@@ -2,12 +2,12 @@
 
 The lowest point of the disk's mid-plane circle (radius R) stays on the ground plane Z = 0.
 That point is G - R e_y2 with e_y2 = (-cos(theta) sin(psi), cos(theta) cos(psi), sin(theta))
-(DESIGN section 5), so its height is Z - R sin(theta)::
+(docs/design.md §5), so its height is Z - R sin(theta)::
 
     F = Z - R sin(theta)
 
 Displacement codes only: a position constraint, whose time derivative is the rolling disk's
-F3 = Zdot - R thetadot cos(theta). A scene may use it in place of F3 (DESIGN section 5).
+F3 = Zdot - R thetadot cos(theta). A scene may use it in place of F3 (docs/design.md §5).
 """
 
 import sympy

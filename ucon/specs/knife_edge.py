@@ -1,7 +1,7 @@
 """Knife edge: a blade on the ground plane cannot move sideways.
 
 The blade lies in the body x-y plane. Its horizontal direction is the line of nodes
-e_x1 = (cos(psi), sin(psi), 0) (DESIGN section 3), the only horizontal direction in that
+e_x1 = (cos(psi), sin(psi), 0) (docs/design.md §3), the only horizontal direction in that
 plane, whatever the tilt theta. As in the textbook knife edge (a skate or a sledge runner
 touching the ground below the centre of mass), the contact point moves with the centre of
 mass, and its velocity across the blade, along e_Z x e_x1 = (-sin(psi), cos(psi), 0), is zero::

@@ -1,4 +1,4 @@
-"""Rolling disk: no slip and no penetration at the contact point (shared/DESIGN.md section 5).
+"""Rolling disk: no slip and no penetration at the contact point (docs/design.md §5).
 
 The disk's mid-plane circle of radius R touches the ground plane Z = 0 at C. The velocity of
 the disk's material point at C is zero::
@@ -6,7 +6,7 @@ the disk's material point at C is zero::
     v_G + omega x r_GC = 0,   r_GC = -R e_y2,   e_y2 = (-cos(theta) sin(psi),
                                                         cos(theta) cos(psi), sin(theta))
 
-with omega = psidot e_Z + thetadot e_x1 + phidot e_z2 (DESIGN section 3). Expanded::
+with omega = psidot e_Z + thetadot e_x1 + phidot e_z2 (docs/design.md §3). Expanded::
 
     F1 = Xdot + R cos(psi) (phidot + psidot cos(theta)) - R thetadot sin(psi) sin(theta)
     F2 = Ydot + R sin(psi) (phidot + psidot cos(theta)) + R thetadot cos(psi) sin(theta)
@@ -26,7 +26,7 @@ psi, theta = sympy.symbols("psi theta", real=True)
 psidot, thetadot, phidot = sympy.symbols("psidot thetadot phidot", real=True)
 radius = sympy.Symbol("radius", positive=True)
 
-# Unit vectors in ground components (DESIGN section 3): the line of nodes e_x1, the disk
+# Unit vectors in ground components (docs/design.md §3): the line of nodes e_x1, the disk
 # axis e_z2, and e_y2, pointing from the contact point towards the centre.
 e_Z = sympy.Matrix([0, 0, 1])
 e_x1 = sympy.Matrix([cos(psi), sin(psi), 0])

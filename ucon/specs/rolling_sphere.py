@@ -4,7 +4,7 @@ The contact point is C = G - R e_Z. The sphere's material point at C has zero ve
 
     v_G + omega x (-R e_Z) = 0
 
-with omega = psidot e_Z + thetadot e_x1 + phidot e_z2 (DESIGN section 3), in ground components
+with omega = psidot e_Z + thetadot e_x1 + phidot e_z2 (docs/design.md §3), in ground components
 (thetadot cos(psi) + phidot sin(theta) sin(psi), thetadot sin(psi) - phidot sin(theta) cos(psi),
 psidot + phidot cos(theta)). Expanded::
 

@@ -11,7 +11,7 @@ point at C moves with the table's::
 
     v_G + omega x r_GC - Omega(t) e_Z x (r_C - c) = 0,   r_GC = -R e_y2,   r_C = r_G + r_GC
 
-with omega and e_y2 as for the rolling disk (DESIGN sections 3 and 5). The table's velocity
+with omega and e_y2 as for the rolling disk (docs/design.md §3 and §5). The table's velocity
 at C needs the centre's X and Y, so they are declared too (codes 11 12). Expanded::
 
     F1 = F1(rolling disk) + Omega(t) (Y - R cos(theta) cos(psi) - b)

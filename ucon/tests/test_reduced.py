@@ -12,7 +12,7 @@ from ucon.reduced.writer import REDUCED_MODULE_PATH, reduced_files
 
 
 class ReducedDiskTest(unittest.TestCase):
-    """Kane's equations of the rolling disk against the facts of shared/DESIGN.md §5."""
+    """Kane's equations of the rolling disk against the facts of docs/design.md §5."""
 
     @classmethod
     def setUpClass(cls) -> None:
@@ -56,7 +56,7 @@ class ReducedDiskTest(unittest.TestCase):
 
     def test_upright_critical_speed(self) -> None:
         """Straight upright rolling at speed v: the linearised lean dynamics are stable iff
-        v² > m g R³ A / (C (C + mR²)) (DESIGN §5)."""
+        v² > m g R³ A / (C (C + mR²)) (docs/design.md §5)."""
         inertia_a, inertia_c, mass, radius, gravity = PARAMETERS
         theta, theta_rate, psi_rate, spin = STATES[:4]
         lean, lean_rate, turn_rate, speed = sympy.symbols("lean lean_rate turn_rate speed",
