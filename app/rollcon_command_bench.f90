@@ -13,6 +13,20 @@ module rollcon_command_bench
 
     public :: bench_command
 
+    !> The accuracy the headline ratio is quoted at [m] (issue #13)
+    real(wp), parameter :: accuracy_target = 1.0e-6_wp
+
+    !> What `rollcon bench` was asked for
+    type :: bench_options_type
+        character(len=:), allocatable :: output_dir, scene_list
+        logical :: quick = .false.
+        integer :: repeats = 3
+        !> Cut every scene here [s] (negative: no cut)
+        real(wp) :: end_time = -1.0_wp
+        real(wp), allocatable :: tolerances(:)
+        real(wp) :: reference_rtol = 1.0e-13_wp
+    end type bench_options_type
+
 contains
 
     !> Parse the arguments after `bench`, run, write DIR/bench.csv and one plot per scene.
@@ -20,64 +34,102 @@ contains
         !> Index of the first argument after `bench`
         integer, intent(in) :: first_argument
         type(error_type), allocatable, intent(out) :: error
-        character(len=512) :: argument
-        character(len=:), allocatable :: output_dir, scene_list
-        type(benchmark_row_type), allocatable :: rows(:)
-        type(scene_type) :: scene
-        real(wp), allocatable :: tolerances(:)
-        real(wp) :: rhs_seconds, residual_seconds, solve_seconds, reference_rtol, end_time
-        type(part_costs_type) :: costs
-        type(method_type) :: methods(size(benchmark_methods()))
-        !> The accuracy the headline ratio is quoted at [m] (issue #13)
-        real(wp), parameter :: accuracy_target = 1.0e-6_wp
-        integer :: i, repeats, unit, stat, start, comma, process_unit
-        logical :: quick
+        type(bench_options_type) :: options
+        character(len=:), allocatable :: name
+        integer :: unit, stat, start, comma, process_unit
+        logical :: help
 
-        output_dir = "output"
-        quick = .false.
-        repeats = 3
-        scene_list = ""
-        end_time = -1.0_wp
+        call read_bench_options(first_argument, options, help, error)
+        if (allocated(error) .or. help) return
+        call execute_command_line("mkdir -p " // shell_quote(options%output_dir), exitstat=stat)
+        open(newunit=unit, file=options%output_dir // "/bench.csv", status="replace", &
+            & action="write", iostat=stat)
+        if (stat /= 0) then
+            call fatal_error(error, options%output_dir // "/bench.csv: cannot write", stat_io)
+            return
+        end if
+        write(unit, '(a)') benchmark_header()
+        write(output_unit, '(a)') "bench: " // machine_name()
+        process_unit = -1
+        if (.not. options%quick) then
+            open(newunit=process_unit, file=options%output_dir // "/bench_process.csv", &
+                & status="replace", action="write", iostat=stat)
+            if (stat /= 0) then
+                call fatal_error(error, options%output_dir // "/bench_process.csv: cannot " &
+                    & // "write", stat_io)
+                return
+            end if
+            write(process_unit, '(a)') "scene,wall_s,cpu_s,startup_cpu_s,integration_cpu_s," &
+                & // "reading_setup_summary_cpu_s"
+        end if
+        start = 1
+        do
+            comma = index(options%scene_list(start:), ",")
+            if (comma == 0) then
+                name = options%scene_list(start:)
+            else
+                name = options%scene_list(start:start + comma - 2)
+            end if
+            call bench_scene(name, options, unit, process_unit, error)
+            if (allocated(error)) return
+            if (comma == 0) exit
+            start = start + comma
+        end do
+        close(unit)
+        if (process_unit /= -1) close(process_unit)
+        call plot_work_precision(options%output_dir, options%scene_list, error)
+        if (allocated(error)) return
+        write(output_unit, '(a)') "bench: wrote " // options%output_dir // "/bench.csv and " &
+            & // options%output_dir // "/bench_<scene>.png"
+    end subroutine bench_command
+
+    !> The command line of `rollcon bench`; help is true when --help was asked (and printed).
+    subroutine read_bench_options(first_argument, options, help, error)
+        integer, intent(in) :: first_argument
+        type(bench_options_type), intent(out) :: options
+        logical, intent(out) :: help
+        type(error_type), allocatable, intent(out) :: error
+        character(len=512) :: argument, value
+        integer :: i, stat
+
+        help = .false.
+        options%output_dir = "output"
+        options%scene_list = ""
         i = first_argument
         do while (i <= command_argument_count())
             call get_command_argument(i, argument)
             select case (trim(argument))
             case ("-h", "--help")
                 call print_help()
+                help = .true.
                 return
             case ("--quick")
-                quick = .true.
+                options%quick = .true.
             case ("--output", "-o", "--scenes", "--repeats", "--end-time")
                 i = i + 1
                 if (i > command_argument_count()) then
                     call fatal_error(error, trim(argument) // " needs a value", stat_input)
                     return
                 end if
+                call get_command_argument(i, value)
+                stat = 0
                 select case (trim(argument))
                 case ("--output", "-o")
-                    call get_command_argument(i, argument)
-                    output_dir = trim(argument)
+                    options%output_dir = trim(value)
                 case ("--scenes")
-                    call get_command_argument(i, argument)
-                    scene_list = trim(argument)
-                case ("--repeats", "--end-time")
-                    block
-                        character(len=512) :: value
-                        call get_command_argument(i, value)
-                        if (trim(argument) == "--repeats") then
-                            read(value, *, iostat=stat) repeats
-                            if (stat == 0 .and. repeats < 1) stat = 1
-                        else
-                            read(value, *, iostat=stat) end_time
-                            if (stat == 0 .and. .not. end_time > 0.0_wp) stat = 1
-                        end if
-                        if (stat /= 0) then
-                            call fatal_error(error, trim(argument) // " expects a positive " &
-                                & // "number, got '" // trim(value) // "'", stat_input)
-                            return
-                        end if
-                    end block
+                    options%scene_list = trim(value)
+                case ("--repeats")
+                    read(value, *, iostat=stat) options%repeats
+                    if (stat == 0 .and. options%repeats < 1) stat = 1
+                case ("--end-time")
+                    read(value, *, iostat=stat) options%end_time
+                    if (stat == 0 .and. .not. options%end_time > 0.0_wp) stat = 1
                 end select
+                if (stat /= 0) then
+                    call fatal_error(error, trim(argument) // " expects a positive number, " &
+                        & // "got '" // trim(value) // "'", stat_input)
+                    return
+                end if
             case default
                 call fatal_error(error, "bench: unknown argument '" // trim(argument) &
                     & // "'; run 'rollcon bench --help'", stat_input)
@@ -85,98 +137,72 @@ contains
             end select
             i = i + 1
         end do
-
-        if (quick) then
+        if (options%quick) then
             ! one scene, two tolerances, one second: the check the test suite runs
-            if (len(scene_list) == 0) scene_list = "tipping_coin"
-            tolerances = [1.0e-4_wp, 1.0e-6_wp]
-            reference_rtol = 1.0e-10_wp
-            repeats = 1
-            if (end_time < 0.0_wp) end_time = 1.0_wp
+            if (len(options%scene_list) == 0) options%scene_list = "tipping_coin"
+            options%tolerances = [1.0e-4_wp, 1.0e-6_wp]
+            options%reference_rtol = 1.0e-10_wp
+            options%repeats = 1
+            if (options%end_time < 0.0_wp) options%end_time = 1.0_wp
         else
-            if (len(scene_list) == 0) scene_list = "coin,tipping_coin,fast_upright,near_flat," &
-                & // "long_run"
-            tolerances = [(10.0_wp**(-i), i = 3, 12)]
-            reference_rtol = 1.0e-13_wp
+            if (len(options%scene_list) == 0) options%scene_list = "coin,tipping_coin," &
+                & // "fast_upright,near_flat,long_run"
+            options%tolerances = [(10.0_wp**(-i), i = 3, 12)]
+            options%reference_rtol = 1.0e-13_wp
         end if
+    end subroutine read_bench_options
 
-        call execute_command_line("mkdir -p " // shell_quote(output_dir), exitstat=stat)
-        open(newunit=unit, file=output_dir // "/bench.csv", status="replace", action="write", &
-            & iostat=stat)
-        if (stat /= 0) then
-            call fatal_error(error, output_dir // "/bench.csv: cannot write", stat_io)
-            return
-        end if
-        write(unit, '(a)') benchmark_header()
-        write(output_unit, '(a)') "bench: " // machine_name()
-        methods = benchmark_methods()
-        process_unit = -1
-        if (.not. quick) then
-            open(newunit=process_unit, file=output_dir // "/bench_process.csv", &
-                & status="replace", action="write", iostat=stat)
-            if (stat /= 0) then
-                call fatal_error(error, output_dir // "/bench_process.csv: cannot write", stat_io)
-                return
-            end if
-            write(process_unit, '(a)') "scene,wall_s,cpu_s,startup_cpu_s,integration_cpu_s," &
-                & // "reading_setup_summary_cpu_s"
-        end if
+    !> One scene: its unit costs, every method on the tolerance ladder (rows to unit), the
+    !> headline ratio per method, and (outside --quick) the whole-process cost.
+    subroutine bench_scene(name, options, unit, process_unit, error)
+        character(len=*), intent(in) :: name
+        type(bench_options_type), intent(in) :: options
+        integer, intent(in) :: unit, process_unit
+        type(error_type), allocatable, intent(out) :: error
+        type(scene_type) :: scene
+        type(benchmark_row_type), allocatable :: rows(:)
+        type(part_costs_type) :: costs
+        type(method_type) :: methods(size(benchmark_methods()))
+        real(wp) :: rhs_seconds, residual_seconds, solve_seconds
+        integer :: i
 
-        start = 1
-        do
-            comma = index(scene_list(start:), ",")
-            if (comma == 0) then
-                argument = scene_list(start:)
-            else
-                argument = scene_list(start:start + comma - 2)
-            end if
-            call read_scene(scene_path(trim(argument)), scene, error)
-            if (allocated(error)) return
-            if (end_time > 0.0_wp) scene%run%end_time = min(scene%run%end_time, end_time)
-            scene%run%output_step = min(scene%run%output_step, scene%run%end_time)
-            call evaluation_costs(scene, rolling_disk_ucosub, 20000, rhs_seconds, &
-                & residual_seconds, solve_seconds, error)
-            if (allocated(error)) return
-            write(output_unit, '(a, 3(f8.3, a), f6.2, a)') "bench: " // trim(argument) &
-                & // ": one ODE right-hand side", 1.0e6_wp*rhs_seconds, " us, one DAE residual", &
-                & 1.0e6_wp*residual_seconds, " us, one LAPACK factor+solve of the saddle-point " &
-                & // "system", 1.0e6_wp*solve_seconds, " us (right-hand side / solve = ", &
-                & rhs_seconds/solve_seconds, ")"
-            call measure_part_costs(scene, rolling_disk_ucosub, 20000, output_dir &
-                & // "/bench_scratch.csv", costs, error)
-            if (allocated(error)) return
-            write(output_unit, '(a, 5(f8.3, a))') "bench: " // trim(argument) &
-                & // ": unit costs: right-hand side", 1.0e6_wp*costs%rhs, " us, residual", &
-                & 1.0e6_wp*costs%residual, " us, event functions", 1.0e6_wp*costs%root, &
-                & " us, output row", 1.0e6_wp*costs%output, " us, its CSV line", &
-                & 1.0e6_wp*costs%csv_line, " us"
-            if (allocated(rows)) deallocate(rows)
-            call benchmark_scene(scene, rolling_disk_ucosub, benchmark_methods(), tolerances, &
-                & reference_rtol, repeats, rows, error, output_unit, costs)
-            if (allocated(error)) return
-            do i = 1, size(rows)
-                write(unit, '(a)') write_benchmark_row(rows(i))
-            end do
-            flush(unit)
-            do i = 1, size(methods)
-                if (methods(i)%formulation == "reduced") cycle
-                write(output_unit, '(a)') accuracy_line(rows, trim(argument), &
-                    & trim(methods(i)%name), accuracy_target)
-            end do
-            if (.not. quick) then
-                call process_cost(trim(argument), output_dir, process_unit, error)
-                if (allocated(error)) return
-            end if
-            if (comma == 0) exit
-            start = start + comma
-        end do
-        close(unit)
-        if (process_unit /= -1) close(process_unit)
-        call plot_work_precision(output_dir, scene_list, error)
+        call read_scene(scene_path(name), scene, error)
         if (allocated(error)) return
-        write(output_unit, '(a)') "bench: wrote " // output_dir // "/bench.csv and " &
-            & // output_dir // "/bench_<scene>.png"
-    end subroutine bench_command
+        if (options%end_time > 0.0_wp) scene%run%end_time = min(scene%run%end_time, &
+            & options%end_time)
+        scene%run%output_step = min(scene%run%output_step, scene%run%end_time)
+        call evaluation_costs(scene, rolling_disk_ucosub, 20000, rhs_seconds, &
+            & residual_seconds, solve_seconds, error)
+        if (allocated(error)) return
+        write(output_unit, '(a, 3(f8.3, a), f6.2, a)') "bench: " // name &
+            & // ": one ODE right-hand side", 1.0e6_wp*rhs_seconds, " us, one DAE residual", &
+            & 1.0e6_wp*residual_seconds, " us, one LAPACK factor+solve of the saddle-point " &
+            & // "system", 1.0e6_wp*solve_seconds, " us (right-hand side / solve = ", &
+            & rhs_seconds/solve_seconds, ")"
+        call measure_part_costs(scene, rolling_disk_ucosub, 20000, options%output_dir &
+            & // "/bench_scratch.csv", costs, error)
+        if (allocated(error)) return
+        write(output_unit, '(a, 5(f8.3, a))') "bench: " // name &
+            & // ": unit costs: right-hand side", 1.0e6_wp*costs%rhs, " us, residual", &
+            & 1.0e6_wp*costs%residual, " us, event functions", 1.0e6_wp*costs%root, &
+            & " us, output row", 1.0e6_wp*costs%output, " us, its CSV line", &
+            & 1.0e6_wp*costs%csv_line, " us"
+        call benchmark_scene(scene, rolling_disk_ucosub, benchmark_methods(), &
+            & options%tolerances, options%reference_rtol, options%repeats, rows, error, &
+            & output_unit, costs)
+        if (allocated(error)) return
+        do i = 1, size(rows)
+            write(unit, '(a)') write_benchmark_row(rows(i))
+        end do
+        flush(unit)
+        methods = benchmark_methods()
+        do i = 1, size(methods)
+            if (methods(i)%formulation == "reduced") cycle
+            write(output_unit, '(a)') accuracy_line(rows, name, trim(methods(i)%name), &
+                & accuracy_target)
+        end do
+        if (.not. options%quick) call process_cost(name, options%output_dir, process_unit, error)
+    end subroutine bench_scene
 
     !> One log-log plot per scene: largest position error against CPU time, a curve per method
     !> (the reduced ODE's among them), drawn by gnuplot through rollcon_gnuplot.

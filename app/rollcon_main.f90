@@ -83,6 +83,8 @@ program rollcon_main
 
 contains
 
+    !> Long because it is one flat select over every option of every command (a table in
+    !> code); splitting it would scatter the options' checks.
     subroutine read_command_line(error)
         type(error_type), allocatable, intent(out) :: error
         character(len=512) :: argument

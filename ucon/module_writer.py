@@ -282,7 +282,8 @@ def _module_evaluate(out: _Lines, program: Program, printer: ModulePrinter) -> N
     spec = program.spec
     several = spec.ncomponents > 1
     out.doc("Evaluate what idrsel asks for; entries that are symbolically zero are left "
-            "untouched.", 4)
+            "untouched. Its length is that of the derived expressions: straight-line generated "
+            "code, one block per selected output.", 4)
     out.add(f"pure subroutine evaluate({_evaluate_actuals(program)})", 4)
     if program.uses_time:
         out.doc("Simulation time [s]", 8)

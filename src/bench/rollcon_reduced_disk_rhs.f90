@@ -65,7 +65,8 @@ contains
         rate(8) = -radius*(spin*t8 + t10*t9)
     end subroutine reduced_rate
 
-    !> The Jacobian d rate / d state (column-major).
+    !> The Jacobian d rate / d state (column-major); as long as its derived entries
+    !> (straight-line generated code).
     pure subroutine reduced_jacobian(state, par, strike, jacobian)
         !> (theta, thetadot, psidot, omega3, psi, phi, X, Y) [rad, rad/s, m]
         real(wp), intent(in) :: state(reduced_size)

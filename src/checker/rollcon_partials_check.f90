@@ -63,7 +63,9 @@ module rollcon_partials_check
 
 contains
 
-    !> Check every output of UCON id at one state; mismatches are appended to result.
+    !> Check every output of UCON id at one state; mismatches are appended to result. Long
+    !> because each output (F, f(t), dF/dt, d2F/dt2, ARRAY, XMATRX) has its own short check in
+    !> one sequence that shares the state's evaluations.
     subroutine check_ucon_state(ucosub, id, par, codes, time, q, options, result, error)
         !> The routine under test
         procedure(ucosub_interface) :: ucosub

@@ -51,6 +51,7 @@ module rollcon_reduced_cvode
 contains
 
     !> Integrate the reduced state y0 from t0 to end_time, a history row every output_step.
+    !> About 90 lines: CVODE's set-up calls, each checked, and the one loop over output times.
     subroutine simulate_reduced(problem, y0, t0, end_time, output_step, history, summary, error)
         type(reduced_problem_type), intent(inout), target :: problem
         !> (theta, thetadot, psidot, omega3, psi, phi, X, Y) at t0

@@ -131,7 +131,9 @@ contains
             & header = [character(len=16) :: header, "height_residual"]
     end function csv_header
 
-    !> Integrate problem from (q0, u0), writing a row per output time.
+    !> Integrate problem from (q0, u0), writing a row per output time. The host is long (about
+    !> 90 lines) because it holds the one loop over output times with its stops, events and
+    !> failures; the row, event, progress and summary work is in its internal procedures.
     subroutine simulate(problem, q0, u0, options, summary, error, history)
         type(problem_type), intent(inout), target :: problem
         real(wp), intent(in) :: q0(:), u0(:)

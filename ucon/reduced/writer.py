@@ -102,7 +102,8 @@ def render_reduced(disk: ReducedDisk) -> str:
     entries = [(f"jacobian({i + 1}, {j + 1})", disk.jacobian[i, j])
                for j in range(len(STATES)) for i in range(len(STATES))]
     jacobian = _routine(
-        "subroutine", "reduced_jacobian", "The Jacobian d rate / d state (column-major).",
+        "subroutine", "reduced_jacobian", "The Jacobian d rate / d state (column-major); as long as its derived "
+        "entries\n    !> (straight-line generated code).",
         ["state", "par", "strike", "jacobian"],
         state_in + ["!> Strike force along +Y at the top of the rim [N]",
                     "real(wp), intent(in) :: strike", "!> d rate(i) / d state(j)",

@@ -119,7 +119,9 @@ contains
         call check_parameter(par, 4, "disk radius R [m]", .true., message)
     end subroutine read_par
 
-    !> Evaluate what idrsel asks for; entries that are symbolically zero are left untouched.
+    !> Evaluate what idrsel asks for; entries that are symbolically zero are left untouched. Its
+    !> length is that of the derived expressions: straight-line generated code, one block per
+    !> selected output.
     pure subroutine evaluate(q, par, idrsel, scalar, array, xmatrx)
         !> Variables in UCOVAR order
         real(wp), intent(in) :: q(:)

@@ -113,7 +113,9 @@ contains
             & "knife edge needs NPAR >= 4 (part id, 3 codes), got NPAR =", part, message)
     end subroutine read_par
 
-    !> Evaluate what idrsel asks for; entries that are symbolically zero are left untouched.
+    !> Evaluate what idrsel asks for; entries that are symbolically zero are left untouched. Its
+    !> length is that of the derived expressions: straight-line generated code, one block per
+    !> selected output.
     pure subroutine evaluate(q, idrsel, scalar, array, xmatrx)
         !> Variables in UCOVAR order
         real(wp), intent(in) :: q(:)

@@ -135,7 +135,9 @@ contains
             & message)
     end subroutine read_par
 
-    !> Evaluate what idrsel asks for; entries that are symbolically zero are left untouched.
+    !> Evaluate what idrsel asks for; entries that are symbolically zero are left untouched. Its
+    !> length is that of the derived expressions: straight-line generated code, one block per
+    !> selected output.
     pure subroutine evaluate(q, par, component, idrsel, scalar, array, xmatrx)
         !> Variables in UCOVAR order
         real(wp), intent(in) :: q(:)
