@@ -4,12 +4,12 @@
 module rollcon_random_states
     use, intrinsic :: iso_fortran_env, only : int64
     use rollcon_kinds, only : wp
+    use rollcon_constants, only : pi
     implicit none
     private
 
     public :: sampling_ranges, seed_state, draw_state
 
-    real(wp), parameter :: pi = acos(-1.0_wp)
     !> Ranges of the random states: |X|, |Y|, |Z| [m]
     real(wp), parameter :: position_range = 1.0_wp
     !> |Xdot|, |Ydot|, |Zdot| [m/s]

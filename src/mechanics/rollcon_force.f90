@@ -2,6 +2,7 @@
 !> Applied forces on parts: a fixed ground direction, a time profile, a point of application.
 module rollcon_force
     use rollcon_kinds, only : wp
+    use rollcon_constants, only : pi
     use rollcon_rotation, only : rotation_matrix, cross, times
     implicit none
     private
@@ -15,7 +16,6 @@ module rollcon_force
     !> Rz(psi) Rx(theta) (without the spin phi), where (0, R, 0) is the top of a disk's rim
     integer, parameter :: frame_body = 1, frame_tilt = 2
 
-    real(wp), parameter :: pi = acos(-1.0_wp)
 
     !> A force of fixed ground direction acting on one part
     type :: applied_force_type

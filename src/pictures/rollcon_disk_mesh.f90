@@ -3,6 +3,7 @@
 !> with a marked sector on the faces so that rolling and spin show (docs/design.md §3, §5).
 module rollcon_disk_mesh
     use rollcon_kinds, only : wp
+    use rollcon_constants, only : pi
     use rollcon_rotation, only : rotation_matrix
     implicit none
     private
@@ -16,7 +17,6 @@ module rollcon_disk_mesh
     !> Points of the disk mesh: two rims of disk_sides points, then the two face centres
     integer, parameter, public :: disk_point_count = 2*disk_sides + 2
 
-    real(wp), parameter :: pi = acos(-1.0_wp)
 
 contains
 

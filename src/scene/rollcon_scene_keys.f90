@@ -4,6 +4,7 @@
 !> (and its component in rollcon_scene_type, its row in docs/scenes.md).
 module rollcon_scene_keys
     use rollcon_kinds, only : wp
+    use rollcon_constants, only : pi
     use rollcon_scene_lexer, only : to_lower
     use rollcon_scene_type, only : scene_type, formulation_cvode, formulation_ida, method_bdf, &
         & method_adams, drift_none, drift_projection, drift_baumgarte, jacobian_analytic, &
@@ -47,7 +48,6 @@ module rollcon_scene_keys
     real(wp), parameter :: atol_min = 1.0e-20_wp, atol_max = 1.0e3_wp
     !> Largest Baumgarte rate [1/s]: its square multiplies the drift
     real(wp), parameter :: baumgarte_max = 1.0e6_wp
-    real(wp), parameter :: pi = acos(-1.0_wp)
 
     !> One option of a choice key and its code
     type :: option_type

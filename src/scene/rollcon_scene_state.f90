@@ -3,13 +3,13 @@
 !> the one initial state in contact and rolling without slip (docs/design.md §3 and §5).
 module rollcon_scene_state
     use rollcon_kinds, only : wp
+    use rollcon_constants, only : pi
     use rollcon_scene_type, only : scene_type
     implicit none
     private
 
     public :: disk_mass_properties, angular_velocity, disk_initial_state
 
-    real(wp), parameter :: pi = acos(-1.0_wp)
 
 contains
 

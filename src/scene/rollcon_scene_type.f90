@@ -4,6 +4,7 @@
 !> A new key is a component here and one line in rollcon_scene_keys (docs/scenes.md).
 module rollcon_scene_type
     use rollcon_kinds, only : wp
+    use rollcon_constants, only : pi
     use rollcon_problem, only : formulation_cvode, formulation_ida, method_bdf, method_adams
     use rollcon_equations, only : drift_none, drift_projection, drift_baumgarte
     implicit none
@@ -15,7 +16,6 @@ module rollcon_scene_type
     public :: drift_none, drift_projection, drift_baumgarte
     public :: jacobian_analytic, jacobian_dq, height_velocity, height_position
 
-    real(wp), parameter :: pi = acos(-1.0_wp)
 
     !> &run jacobian: the UCOSUB's partials, or SUNDIALS' difference quotients
     integer, parameter :: jacobian_analytic = 1, jacobian_dq = 2

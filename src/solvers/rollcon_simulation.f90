@@ -3,6 +3,7 @@
 module rollcon_simulation
     use, intrinsic :: iso_fortran_env, only : error_unit, int64
     use rollcon_kinds, only : wp
+    use rollcon_constants, only : pi
     use rollcon_error, only : error_type, fatal_error, stat_input
     use rollcon_text, only : to_text
     use rollcon_problem, only : problem_type, formulation_cvode, root_theta, root_liftoff
@@ -31,7 +32,6 @@ module rollcon_simulation
         & status_inaccurate = 3
     !> Default limit of a planned CSV [bytes], 100 GB: ten thousand times the coin's run
     real(wp), parameter, public :: default_max_csv_bytes = 1.0e11_wp
-    real(wp), parameter :: pi = acos(-1.0_wp)
 
     !> Where and how often to report
     type :: run_options_type

@@ -2,12 +2,12 @@
 !> Seeded random states of the rolling disk for tests, including its extremes.
 module disk_states
     use rollcon_kinds, only : wp
+    use rollcon_constants, only : pi
     implicit none
     private
 
     public :: seed_random, random_disk_state
 
-    real(wp), parameter :: pi = acos(-1.0_wp)
 
 contains
 

@@ -5,6 +5,7 @@
 !> Not a suite: test_generated collects these tests.
 module generated_physics
     use rollcon_kinds, only : wp
+    use rollcon_constants, only : pi
     use rollcon_error, only : error_type
     use rollcon_text, only : to_text
     use rollcon_ucon_call, only : evaluate_ucon
@@ -19,7 +20,6 @@ module generated_physics
 
     public :: test_turntable, test_sphere, test_knife_edge, test_disk_height
 
-    real(wp), parameter :: pi = acos(-1.0_wp)
 
 contains
 

@@ -5,6 +5,7 @@
 !> here (its routine, codes and parameter ranges) to be covered by every generic test.
 module generated_specs_list
     use rollcon_kinds, only : wp
+    use rollcon_constants, only : pi
     use rollcon_ucosub_contract, only : ucosub_interface
     use rollcon_gen_disk_height, only : disk_height_ucosub, disk_height_codes, disk_height_npar, &
         & disk_height_ncomponents, disk_height_time_free, disk_height_component_time_free, disk_height_holonomic, &
@@ -51,7 +52,6 @@ module generated_specs_list
         logical, allocatable :: component_holonomic(:)
     end type generated_spec_type
 
-    real(wp), parameter :: pi = acos(-1.0_wp)
 
 contains
 

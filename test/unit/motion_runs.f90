@@ -2,6 +2,7 @@
 !> Runs a disk scene in memory for the tests.
 module motion_runs
     use rollcon_kinds, only : wp
+    use rollcon_constants, only : pi
     use rollcon_error, only : error_type
     use rollcon_ucosub_contract, only : ucosub_interface
     use rollcon_scene, only : scene_type, formulation_ida, method_bdf, drift_projection, &
@@ -14,7 +15,6 @@ module motion_runs
 
     public :: run_in_memory, default_scene, tipping_coin
 
-    real(wp), parameter :: pi = acos(-1.0_wp)
 
 contains
 

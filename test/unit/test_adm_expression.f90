@@ -3,6 +3,7 @@
 !> precedence, degrees, the smooth steps, and one refusal per kind of syntax error.
 module test_adm_expression
     use rollcon_kinds, only : wp
+    use rollcon_constants, only : pi
     use rollcon_error, only : error_type
     use rollcon_adm_expression, only : expression_type, evaluate_expression
     use rollcon_adm_expression_parser, only : compile_expression
@@ -13,7 +14,6 @@ module test_adm_expression
 
     public :: collect_adm_expression
 
-    real(wp), parameter :: pi = acos(-1.0_wp)
     !> Hand values are written to 16 digits or come from the same intrinsics: a few ulp
     real(wp), parameter :: tol = 4.0e-15_wp
 

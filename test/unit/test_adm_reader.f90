@@ -3,6 +3,7 @@
 !> and one refusal per kind with its message.
 module test_adm_reader
     use rollcon_kinds, only : wp
+    use rollcon_constants, only : pi
     use rollcon_error, only : error_type
     use rollcon_adm_model, only : adm_model_type, force_sforce, force_gforce
     use rollcon_adm_reader, only : read_adm
@@ -16,7 +17,6 @@ module test_adm_reader
     public :: collect_adm_reader
 
     character(len=*), parameter :: work_dir = "build/rollcon-test"
-    real(wp), parameter :: pi = acos(-1.0_wp)
     !> Values are decimal literals converted once: a few ulp
     real(wp), parameter :: tol = 1.0e-14_wp
 

@@ -2,6 +2,7 @@
 !> Tests of the hand-checked rolling-disk UCOSUB: derivatives, sparsity, selectors, bad PAR.
 module test_disk_reference
     use rollcon_kinds, only : wp
+    use rollcon_constants, only : pi
     use rollcon_error, only : error_type
     use rollcon_text, only : to_text
     use rollcon_ucon_call, only : evaluate_ucon
@@ -18,7 +19,6 @@ module test_disk_reference
 
     public :: collect_disk_reference
 
-    real(wp), parameter :: pi = acos(-1.0_wp)
     !> A generic state: no angle at a multiple of pi/2, all rates non-zero
     real(wp), parameter :: generic_q(8) = [0.1_wp, 0.02_wp, -0.01_wp, 0.3_wp, 1.2_wp, 0.5_wp, &
         & -0.2_wp, -1.0_wp]

@@ -3,6 +3,7 @@
 !> lift-off against a threshold (no false stop at zero gravity, a real one caught).
 module test_events
     use rollcon_kinds, only : wp
+    use rollcon_constants, only : pi
     use rollcon_error, only : error_type, stat_input
     use rollcon_text, only : to_text
     use rollcon_scene, only : scene_type, read_scene
@@ -18,7 +19,6 @@ module test_events
 
     public :: collect_events
 
-    real(wp), parameter :: pi = acos(-1.0_wp)
 
 contains
 

@@ -3,6 +3,7 @@
 !> bounded error or stops with a clear diagnostic, never a NaN. Also the benchmark's quick mode.
 module test_extremes
     use rollcon_kinds, only : wp
+    use rollcon_constants, only : pi
     use rollcon_error, only : error_type, stat_input
     use rollcon_text, only : to_text
     use rollcon_scene, only : scene_type, read_scene, choice_code
@@ -19,7 +20,6 @@ module test_extremes
 
     public :: collect_extremes
 
-    real(wp), parameter :: pi = acos(-1.0_wp)
 
 contains
 

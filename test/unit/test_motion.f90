@@ -4,6 +4,7 @@
 !> agreement of the ODE (CVODE) and DAE (IDA) formulations. Events: test_events; drift: test_drift.
 module test_motion
     use rollcon_kinds, only : wp
+    use rollcon_constants, only : pi
     use rollcon_error, only : error_type
     use rollcon_text, only : to_text
     use rollcon_scene, only : scene_type, read_scene, choice_code, formulation_cvode, &
@@ -29,7 +30,6 @@ module test_motion
 
     public :: collect_motion
 
-    real(wp), parameter :: pi = acos(-1.0_wp)
 
 contains
 

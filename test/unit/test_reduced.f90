@@ -4,6 +4,7 @@
 module test_reduced
     use, intrinsic :: ieee_arithmetic, only : ieee_is_finite
     use rollcon_kinds, only : wp
+    use rollcon_constants, only : pi
     use rollcon_error, only : error_type
     use rollcon_text, only : to_text
     use rollcon_scene, only : scene_type, read_scene, choice_code
@@ -27,7 +28,6 @@ module test_reduced
 
     public :: collect_reduced
 
-    real(wp), parameter :: pi = acos(-1.0_wp)
     ! Position tolerances at rtol 1e-10: on stable motion the global error of each solution is
     ! a few hundred local errors of ~rtol*R = 1e-11 m (measured: <= 2.4e-8 m); tol_stable leaves
     ! a factor 4. Where the motion is unstable or neutrally stable the errors grow (see each).

@@ -2,6 +2,7 @@
 !> Tests of reading scenes: the files in data/, the defaults, choices in any case.
 module test_scene_files
     use rollcon_kinds, only : wp
+    use rollcon_constants, only : pi
     use rollcon_error, only : error_type
     use rollcon_scene, only : scene_type, read_scene, scene_path, formulation_ida, &
         & formulation_cvode, method_bdf, method_adams, drift_projection, drift_baumgarte, &
@@ -15,7 +16,6 @@ module test_scene_files
 
     public :: collect_scene_files
 
-    real(wp), parameter :: pi = acos(-1.0_wp)
     !> Values read from a file are the nearest doubles of what is written: exact
     real(wp), parameter :: tol_exact = 0.0_wp
     !> Derived values (no-slip velocity, R sin(theta)): a few roundings

@@ -4,6 +4,7 @@
 !> whose values are finite and physical; never a crash.
 module test_scene_fuzz
     use rollcon_kinds, only : wp
+    use rollcon_constants, only : pi
     use rollcon_error, only : error_type, stat_input
     use rollcon_text, only : to_text
     use rollcon_scene_lexer, only : line_type, read_lines
@@ -121,7 +122,6 @@ contains
         integer, intent(in) :: m
         type(error_type), allocatable, intent(out) :: error
         type(problem_type), target :: problem
-        real(wp), parameter :: pi = acos(-1.0_wp)
         real(wp) :: mass, inertia(3), q(6), u(6), q0(6), u0(6)
         logical :: physical
 
