@@ -92,8 +92,8 @@ contains
         character(len=:), allocatable :: line
         character(len=320) :: numbers
 
-        write(numbers, '(es10.3, ",", es12.5, 3(",", i0), 5(",", es12.5), 2(",", i0), &
-            & 4(",", es12.5))') row%rtol, row%cpu, row%steps, row%functions, row%jacobians, &
+        write(numbers, '(es11.3e3, ",", es13.5e3, 3(",", i0), 5(",", es13.5e3), 2(",", i0), &
+            & 4(",", es13.5e3))') row%rtol, row%cpu, row%steps, row%functions, row%jacobians, &
             & row%position_error, row%residual, row%energy_drift, row%reduced_cpu, row%ratio, &
             & row%root_evaluations, row%output_rows, row%rhs_cpu, row%roots_cpu, &
             & row%output_cpu, row%sundials_cpu
@@ -181,7 +181,7 @@ contains
                     & "reduced", "bdf", "none", "analytic"), rtol), check_run, summary, &
                     & run_error)
                 if (allocated(run_error)) cycle
-                if (present(progress)) write(progress, '(a, es9.2, a)') "bench: " &
+                if (present(progress)) write(progress, '(a, es10.2e3, a)') "bench: " &
                     & // trim(scene%name) // ": reference by the reduced ODE (CVODE Adams) at " &
                     & // "rtol " // to_text(rtol) // "; BDF at that rtol differs by", &
                     & position_error(check_run, kept), " m"
