@@ -36,7 +36,7 @@ contains
         if (allocated(error)) return
         call disk_mass_properties(scene, mass, inertia)
         reduced%par = [inertia(1), inertia(3), mass, scene%disk%radius, scene%environment%gravity]
-        if (allocated(full%eq%model%forces)) reduced%forces = full%eq%model%forces
+        if (allocated(full%model%forces)) reduced%forces = full%model%forces
         reduced%method = method_bdf
         if (scene%run%method == method_adams) reduced%method = method_adams
         reduced%analytic_jacobian = scene%run%jacobian == jacobian_analytic

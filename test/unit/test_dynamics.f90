@@ -7,9 +7,8 @@ module test_dynamics
     use rollcon_body, only : part_type, body_residual, body_residual_jacobian, body_mass_matrix, &
         & kinetic_energy, body_mass_and_force
     use rollcon_lapack, only : factor_dense, solve_factored
-    use rollcon_problem, only : problem_type
+    use rollcon_problem, only : problem_type, drift_none, drift_baumgarte
     use rollcon_dae, only : dae_size, dae_residual, dae_jacobian
-    use rollcon_equations, only : drift_none, drift_baumgarte
     use rollcon_scene, only : scene_type
     use rollcon_disk_scene, only : build_disk_problem
     use rollcon_disk_reference, only : rolling_disk_ucosub
@@ -45,7 +44,7 @@ contains
 
     !> A generic state of the paper's disk: tilted, turning, no angle at a special value.
     subroutine generic_problem(problem, q, u, drift)
-        type(problem_type), intent(inout) :: problem
+        type(problem_type), intent(inout), target :: problem
         real(wp), intent(out) :: q(6), u(6)
         integer, intent(in) :: drift
         type(scene_type) :: scene
@@ -59,7 +58,7 @@ contains
         scene%initial%phidot = -4.0_wp
         call build_disk_problem(scene, rolling_disk_ucosub, problem, q, u, error)
         if (allocated(error)) error stop "generic_problem: " // error%message
-        problem%eq%drift = drift
+        problem%settings%drift = drift
         call problem%prepare()
     end subroutine generic_problem
 
@@ -123,7 +122,7 @@ contains
 
         call generic_problem(problem, q, u, drift)
         y = [q, u]
-        call problem%eq%ode_jacobian(0.0_wp, q, u, jac, failure)
+        call problem%eq%ode_jacobian(0.0_wp, q, u, problem%settings%baumgarte(), jac, failure)
         if (allocated(failure)) then
             call move_alloc(failure, error)
             return
@@ -167,7 +166,7 @@ contains
         call generic_problem(problem, q, u, drift_none)
         m = dae_size(problem%eq)
         allocate(y(m), yp(m), yh(m), rp(m), rm(m), fd(m), jac(m, m))
-        call problem%eq%accelerations(0.0_wp, q, u, problem%a, problem%lambda, failure)
+        call problem%accelerations(0.0_wp, q, u, failure)
         if (allocated(failure)) then
             call move_alloc(failure, error)
             return
@@ -234,7 +233,7 @@ contains
         integer :: pivots(9), k
 
         call generic_problem(problem, q, u, drift_baumgarte)
-        call problem%eq%accelerations(0.0_wp, q, u, problem%a, problem%lambda, error)
+        call problem%accelerations(0.0_wp, q, u, error)
         if (allocated(error)) return
         kkt = 0.0_wp
         kkt(:6, :6) = problem%eq%mass
