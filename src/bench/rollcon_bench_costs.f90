@@ -85,7 +85,7 @@ contains
             energy = problem%eq%energy(q0, u0)
             force = problem%eq%constraint_force(1, problem%lambda)
             call history%add([0.0_wp, q0, u0, energy, force, force(3), 0.0_wp, &
-                & problem%eq%constraints%value, height_residual(problem, q0)])
+                & problem%constraint_values(), height_residual(problem, q0)])
         end do
         call cpu_time(finish)
         costs%output = (finish - start)/count

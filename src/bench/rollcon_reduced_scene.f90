@@ -27,7 +27,7 @@ contains
         type(history_type), intent(inout) :: history
         type(run_summary_type), intent(out) :: summary
         type(error_type), allocatable, intent(out) :: error
-        type(problem_type) :: full
+        type(problem_type), target :: full
         type(reduced_problem_type), target :: reduced
         real(wp) :: q0(6), u0(6), y0(reduced_size), mass, inertia(3)
 

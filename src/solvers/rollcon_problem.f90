@@ -80,6 +80,7 @@ module rollcon_problem
         procedure :: accelerations
         procedure :: ucon_count
         procedure :: ucon_id
+        procedure :: constraint_values
         procedure :: ode_rhs
         procedure :: root_values
         procedure :: keep_failure
@@ -131,6 +132,14 @@ contains
 
         ucon_id = self%model%ucons(k)%id
     end function ucon_id
+
+    !> Each UCON's residual F_k at the last evaluation.
+    pure function constraint_values(self) result(values)
+        class(problem_type), intent(in) :: self
+        real(wp) :: values(self%eq%nc)
+
+        values = self%eq%constraints%value
+    end function constraint_values
 
     !> Size scratch arrays (once).
     subroutine prepare(self)

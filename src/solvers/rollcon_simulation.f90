@@ -65,9 +65,9 @@ module rollcon_simulation
 
 contains
 
-    !> Integrate problem from (q0, u0), writing a row per output time. The host is long (about
-    !> 90 lines) because it holds the one loop over output times with its stops, events and
-    !> failures; the row, event, progress and summary work is in its internal procedures.
+    !> Integrate problem from (q0, u0), writing a row per output time. The host holds the one
+    !> loop over output times with its stops, events and failures; the start, row, event,
+    !> progress and summary work is in its internal procedures.
     subroutine simulate(problem, q0, u0, options, summary, error, history)
         type(problem_type), intent(inout), target :: problem
         real(wp), intent(in) :: q0(:), u0(:)
@@ -110,16 +110,7 @@ contains
         t_stop = next_stop(t)
         call cpu_time(cpu_start)
         wall_last = wall_seconds()
-        if (use_cvode) then
-            y = [q0, u0]
-            call cvode%init(problem, t, y, t_stop, 2, error)
-        else
-            allocate(y(dae_size(problem%eq)), yp(dae_size(problem%eq)), source=0.0_wp)
-            y(:2*n) = [q0, u0]
-            y(2*n + 1:2*n + nc) = problem%lambda
-            yp(:2*n) = [u0, problem%a]
-            call ida%init(problem, t, y, yp, t_stop, 2, error)
-        end if
+        call start_integrator(error)
         if (allocated(error)) then
             call finish()
             return
@@ -162,6 +153,22 @@ contains
 
     contains
 
+        !> Set up CVODE on (q0, u0), or IDA on (q0, u0, lambda) with its consistent rates.
+        subroutine start_integrator(error)
+            type(error_type), allocatable, intent(out) :: error
+
+            if (use_cvode) then
+                y = [q0, u0]
+                call cvode%init(problem, t, y, t_stop, 2, error)
+            else
+                allocate(y(dae_size(problem%eq)), yp(dae_size(problem%eq)), source=0.0_wp)
+                y(:2*n) = [q0, u0]
+                y(2*n + 1:2*n + nc) = problem%lambda
+                yp(:2*n) = [u0, problem%a]
+                call ida%init(problem, t, y, yp, t_stop, 2, error)
+            end if
+        end subroutine start_integrator
+
         !> The next time the integrator must not step past: a force kink or the end.
         function next_stop(time) result(stop_time)
             real(wp), intent(in) :: time
@@ -201,7 +208,7 @@ contains
                     end if
                 end if
                 if (nc > 0) summary%residual_max = max(summary%residual_max, &
-                    & maxval(abs(problem%eq%constraints%value)))
+                    & maxval(abs(problem%constraint_values())))
                 height = height_residual(problem, q)
                 summary%height_residual_max = max(summary%height_residual_max, abs(height(1)))
                 summary%t_reached = time
@@ -209,7 +216,7 @@ contains
                 summary%u = u
                 summary%rows = summary%rows + 1
                 row = [time, q(1:6), u(1:6), energy, force, force(3), mu, &
-                    & problem%eq%constraints%value]
+                    & problem%constraint_values()]
                 if (problem%events%contact_radius > 0.0_wp) row = [row, height]
                 if (present(history)) call history%add(row)
                 if (csv%opened) call csv%write_row(row, error)

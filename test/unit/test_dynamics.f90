@@ -39,7 +39,8 @@ contains
             & new_unittest("ode-jacobian-baumgarte-vs-fd", test_ode_jacobian_baumgarte), &
             & new_unittest("dae-jacobian-vs-fd", test_dae_jacobian), &
             & new_unittest("mass-and-force-vs-residual", test_mass_and_force), &
-            & new_unittest("saddle-point-vs-dense-lu", test_saddle_point)]
+            & new_unittest("saddle-point-vs-dense-lu", test_saddle_point), &
+            & new_unittest("equations-use-problem-model", test_problem_model)]
     end subroutine collect_dynamics
 
     !> A generic state of the paper's disk: tilted, turning, no angle at a special value.
@@ -253,5 +254,37 @@ contains
         call check(error, problem%lambda, b(7:, 1), "multipliers", &
             & abs_tol=tol_solve*maxval(abs(b(7:, 1))))
     end subroutine test_saddle_point
+
+    !> The equations evaluate the problem's own model, not a copy of it: gravity changed there
+    !> after set-up changes the accelerations, affinely (a = M^-1 (f + C^T lambda) with gravity
+    !> entering f alone, and gamma free of it). The problem names its UCONs: the coin's 1, 2, 3.
+    subroutine test_problem_model(error)
+        type(error_type), allocatable, intent(out) :: error
+        !> Gravity's share of the accelerations is of order g = 9.81 m/s^2; at least a
+        !> thousandth of it shows that the change reached the equations
+        real(wp), parameter :: min_gravity_share = 1.0e-2_wp
+        type(problem_type), target :: problem
+        real(wp) :: q(6), u(6), g0(3), a(6, 3)
+        integer :: pass
+
+        call generic_problem(problem, q, u, drift_none)
+        g0 = problem%model%gravity
+        do pass = 1, 3
+            ! gravity 0, g0, 2 g0
+            problem%model%gravity = real(pass - 1, wp)*g0
+            call problem%accelerations(0.0_wp, q, u, error)
+            if (allocated(error)) return
+            a(:, pass) = problem%a
+        end do
+        call check(error, maxval(abs(a(:, 2) - a(:, 1))) > min_gravity_share, &
+            & "accelerations unchanged by the problem's gravity: the equations use a copy")
+        if (allocated(error)) return
+        call check(error, a(:, 3) - a(:, 2), a(:, 2) - a(:, 1), "gravity's share of a", &
+            & abs_tol=tol_solve*maxval(abs(a)))
+        if (allocated(error)) return
+        call check(error, problem%ucon_count() == 3 .and. all([problem%ucon_id(1), &
+            & problem%ucon_id(2), problem%ucon_id(3)] == [1, 2, 3]), "UCON count and ids " &
+            & // to_text(problem%ucon_count()))
+    end subroutine test_problem_model
 
 end module test_dynamics
