@@ -17,8 +17,9 @@ module rollcon
         & frame_body, frame_tilt
     use rollcon_model, only : model_type, ucon_statement_type, setup_model
     use rollcon_problem, only : problem_type, solver_settings_type, event_settings_type, &
-        & formulation_cvode, formulation_ida, method_bdf, method_adams
-    use rollcon_equations, only : equations_type, drift_none, drift_projection, drift_baumgarte
+        & formulation_cvode, formulation_ida, method_bdf, method_adams, drift_none, &
+        & drift_projection, drift_baumgarte
+    use rollcon_equations, only : equations_type
     use rollcon_scene, only : scene_type, read_scene, scene_path
     use rollcon_disk_scene, only : build_disk_problem, disk_initial_state, disk_mass_properties
     use rollcon_simulation, only : run_options_type, run_summary_type, history_type, simulate

@@ -80,12 +80,12 @@ contains
         ! what rollcon_simulation's record does for a row: accelerations, energy, force, row
         call cpu_time(start)
         do i = 1, count
-            call problem%eq%accelerations(0.0_wp, q0, u0, problem%a, problem%lambda, error)
+            call problem%accelerations(0.0_wp, q0, u0, error)
             if (allocated(error)) return
             energy = problem%eq%energy(q0, u0)
             force = problem%eq%constraint_force(1, problem%lambda)
             call history%add([0.0_wp, q0, u0, energy, force, force(3), 0.0_wp, &
-                & problem%eq%constraints%value, height_residual(problem, q0)])
+                & problem%constraint_values(), height_residual(problem, q0)])
         end do
         call cpu_time(finish)
         costs%output = (finish - start)/count

@@ -314,7 +314,7 @@ contains
         ! the same saddle-point matrix, factored and solved alone
         n = problem%eq%n + problem%eq%nc
         allocate(matrix(n, n))
-        call problem%eq%accelerations(0.0_wp, q0, u0, problem%a, problem%lambda, error)
+        call problem%accelerations(0.0_wp, q0, u0, error)
         if (allocated(error)) return
         matrix(:problem%eq%n, :problem%eq%n) = problem%eq%mass
         matrix(:problem%eq%n, problem%eq%n + 1:) = -transpose(problem%eq%c)

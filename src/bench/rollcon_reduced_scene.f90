@@ -27,7 +27,7 @@ contains
         type(history_type), intent(inout) :: history
         type(run_summary_type), intent(out) :: summary
         type(error_type), allocatable, intent(out) :: error
-        type(problem_type) :: full
+        type(problem_type), target :: full
         type(reduced_problem_type), target :: reduced
         real(wp) :: q0(6), u0(6), y0(reduced_size), mass, inertia(3)
 
@@ -36,7 +36,7 @@ contains
         if (allocated(error)) return
         call disk_mass_properties(scene, mass, inertia)
         reduced%par = [inertia(1), inertia(3), mass, scene%disk%radius, scene%environment%gravity]
-        if (allocated(full%eq%model%forces)) reduced%forces = full%eq%model%forces
+        if (allocated(full%model%forces)) reduced%forces = full%model%forces
         reduced%method = method_bdf
         if (scene%run%method == method_adams) reduced%method = method_adams
         reduced%analytic_jacobian = scene%run%jacobian == jacobian_analytic

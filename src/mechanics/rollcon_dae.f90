@@ -90,15 +90,15 @@ contains
                 & + need_time, error)
             if (allocated(error)) return
             call eq%assemble(time, q, u)
-            call eq%constraint_rows(u)
+            call eq%constraint_rows(u, 0.0_wp)  ! the DAE form keeps F itself: no Baumgarte terms
             call eq%momentum_jacobian(q, u, up, lambda)
             jac = 0.0_wp
             do j = 1, n
                 jac(j, j) = cj
                 jac(j, n + j) = -1.0_wp
             end do
-            jac(n + 1:2*n, :n) = eq%dm_dq
-            jac(n + 1:2*n, n + 1:2*n) = eq%dm_du + cj*eq%mass
+            jac(n + 1:2*n, :n) = eq%work%dm_dq
+            jac(n + 1:2*n, n + 1:2*n) = eq%work%dm_du + cj*eq%mass
             do k = 1, nc
                 h = eq%model%holonomic_number(k)
                 row = 2*n + k

@@ -13,43 +13,31 @@ module rollcon_equations
     use rollcon_constraints, only : constraint_state_type, need_value, need_first, need_second, &
         & need_time
     use rollcon_saddle_point, only : saddle_point_type
+    use rollcon_ode_workspace, only : ode_workspace_type
     implicit none
     private
 
-    public :: equations_type, drift_none, drift_projection, drift_baumgarte
+    public :: equations_type
 
-    !> Drift control of the ODE form: none, projection onto the constraints, Baumgarte
-    integer, parameter :: drift_none = 0, drift_projection = 1, drift_baumgarte = 2
-
-    !> A model, its drift control, and what evaluating its equations fills (allocated once, in
-    !> init; no evaluation allocates). The saddle-point factors live in `saddle`.
+    !> The equations of a model held elsewhere, and what evaluating them fills (allocated once,
+    !> in init; no evaluation allocates). The saddle-point factors live in `saddle`, the scratch
+    !> arrays in `work`. Drift control is the solver's: the Baumgarte rate in effect comes in as
+    !> an argument (0 without Baumgarte terms).
     type :: equations_type
-        !> The model, set up
-        type(model_type) :: model
+        !> The model, set up, owned by the caller of init (a target that outlives these
+        !> equations; never copied here)
+        type(model_type), pointer :: model => null()
         !> Constraint values and partials at the last evaluation
         type(constraint_state_type) :: constraints
-        !> drift_none, drift_projection or drift_baumgarte
-        integer :: drift = drift_projection
-        !> Baumgarte rate alpha [1/s]: F' = -alpha F (velocity), F'' = -2 alpha F' - alpha^2 F
-        real(wp) :: baumgarte_rate = 10.0_wp
         !> Sizes: coordinates, constraints, holonomic constraints
         integer :: n = 0, nc = 0, nh = 0
-        !> Mass matrix, applied and inertial forces f, constraint matrix C, gamma
+        !> The system as last assembled: mass matrix, applied and inertial forces f, constraint
+        !> matrix C, gamma
         real(wp), allocatable :: mass(:, :), force(:), c(:, :), gamma(:)
-        !> Applied moment about each part's centre, ground components [N m] (3, parts)
-        real(wp), allocatable :: moments(:, :)
         !> The saddle-point system's factors, as the last accelerations call left them
         type(saddle_point_type) :: saddle
-        !> Rows of C of the position UCONs alone (nh, n), for the position projection
-        real(wp), allocatable :: holonomic_rows(:, :)
-        !> Right-hand sides of the Jacobian's and the projection's solves: momentum rows (n, 2n)
-        !> and constraint rows (nc, 2n)
-        real(wp), allocatable :: rhs_top(:, :), rhs_bottom(:, :)
-        !> Jacobian blocks of the momentum rows d(M a - f - C^T lambda)/d(q, u)
-        real(wp), allocatable :: dm_dq(:, :), dm_du(:, :)
-        !> Scratch: accelerations, multipliers, projected coordinates (automatic arrays would be
-        !> allocated on the heap at every call)
-        real(wp), allocatable :: a_work(:), lambda_work(:), q_work(:)
+        !> Scratch arrays of the right-hand side, the Jacobian and the projection
+        type(ode_workspace_type) :: work
     contains
         procedure :: init
         procedure :: accelerations
@@ -61,30 +49,29 @@ module rollcon_equations
         procedure :: assemble
         procedure :: constraint_rows
         procedure :: constraint_matrix
+        procedure :: constraint_matrix_at
         procedure :: momentum_jacobian
     end type equations_type
 
 contains
 
-    !> Take a model that setup_model has prepared and size the workspace.
+    !> Refer to a model that setup_model has prepared (not a copy: the model must stay where it
+    !> is while these equations are used) and size the arrays.
     subroutine init(self, model)
         class(equations_type), intent(inout) :: self
-        type(model_type), intent(in) :: model
+        type(model_type), intent(in), target :: model
 
-        self%model = model
+        self%model => model
         self%n = model%n
         self%nc = model%nc
         self%nh = model%nh
         call self%constraints%allocate(model)
         call self%saddle%init(self%n, self%nc)
         associate (n => self%n, nc => self%nc)
+            if (allocated(self%mass)) deallocate(self%mass, self%force, self%c, self%gamma)
             allocate(self%mass(n, n), self%force(n), self%c(nc, n), self%gamma(nc), source=0.0_wp)
-            allocate(self%moments(3, size(model%parts)), source=0.0_wp)
-            allocate(self%holonomic_rows(self%nh, n), self%rhs_top(n, 2*n), &
-                & self%rhs_bottom(nc, 2*n), source=0.0_wp)
-            allocate(self%dm_dq(n, n), self%dm_du(n, n), source=0.0_wp)
-            allocate(self%a_work(n), self%lambda_work(nc), self%q_work(n), source=0.0_wp)
         end associate
+        call self%work%init(self%n, self%nc, self%nh, size(model%parts))
     end subroutine init
 
     !> Mass matrix and f = -(M a - f) at a = 0, part by part. Only the parts' diagonal blocks
@@ -99,24 +86,25 @@ contains
         do p = 1, size(self%model%parts)
             i0 = 6*(p - 1)
             call force_and_moment(self%model%forces, p, time, q(i0 + 1:i0 + 6), applied, &
-                & self%moments(:, p))
+                & self%work%moments(:, p))
             call body_mass_and_force(self%model%parts(p), q(i0 + 1:i0 + 6), u(i0 + 1:i0 + 6), &
-                & applied, self%moments(:, p), self%model%gravity, part_mass, part_force)
+                & applied, self%work%moments(:, p), self%model%gravity, part_mass, part_force)
             self%mass(i0 + 1:i0 + 6, i0 + 1:i0 + 6) = part_mass
             self%force(i0 + 1:i0 + 6) = part_force
         end do
     end subroutine assemble
 
     !> C (velocity UCON: dF/du; position UCON: dF/dq) and gamma, from the last evaluation.
-    subroutine constraint_rows(self, u)
+    subroutine constraint_rows(self, u, alpha)
         class(equations_type), intent(inout) :: self
         real(wp), intent(in) :: u(:)
-        real(wp) :: alpha, rate
+        !> Baumgarte rate in effect [1/s]: F' = -alpha F (velocity), F'' = -2 alpha F' -
+        !> alpha^2 F (position); 0 without Baumgarte terms
+        real(wp), intent(in) :: alpha
+        real(wp) :: rate
         integer :: k
 
         call self%constraint_matrix()
-        alpha = 0.0_wp
-        if (self%drift == drift_baumgarte) alpha = self%baumgarte_rate
         associate (cs => self%constraints)
             do k = 1, self%nc
                 if (self%model%ucons(k)%holonomic) then
@@ -146,11 +134,25 @@ contains
         end do
     end subroutine constraint_matrix
 
-    !> Accelerations a and multipliers lambda at (t, q, u); leaves the saddle-point factors in
-    !> `saddle` for the Jacobian.
-    subroutine accelerations(self, time, q, u, a, lambda, error, second)
+    !> C at (t, q, u) from first partials alone: no saddle-point solve (for a constraint force
+    !> from known multipliers).
+    subroutine constraint_matrix_at(self, time, q, u, error)
         class(equations_type), intent(inout) :: self
         real(wp), intent(in) :: time, q(:), u(:)
+        type(error_type), allocatable, intent(out) :: error
+
+        call self%constraints%evaluate(self%model, time, q, u, need_first, error)
+        if (allocated(error)) return
+        call self%constraint_matrix()
+    end subroutine constraint_matrix_at
+
+    !> Accelerations a and multipliers lambda at (t, q, u); leaves the saddle-point factors in
+    !> `saddle` for the Jacobian.
+    subroutine accelerations(self, time, q, u, baumgarte, a, lambda, error, second)
+        class(equations_type), intent(inout) :: self
+        real(wp), intent(in) :: time, q(:), u(:)
+        !> Baumgarte rate in effect [1/s], 0 without Baumgarte terms
+        real(wp), intent(in) :: baumgarte
         !> Accelerations [m/s^2, rad/s^2]
         real(wp), intent(out) :: a(self%n)
         !> Multipliers: the constraint forces' amplitudes
@@ -170,7 +172,7 @@ contains
         call self%constraints%evaluate(self%model, time, q, u, needs, error)
         if (allocated(error)) return
         call self%assemble(time, q, u)
-        call self%constraint_rows(u)
+        call self%constraint_rows(u, baumgarte)
         call self%saddle%factor(self%mass, self%c, nc, error)
         if (allocated(error)) return
         a = self%force
@@ -186,23 +188,24 @@ contains
         real(wp) :: part_dq(6, 6), part_du(6, 6)
         integer :: p, i0, k, j
 
-        self%dm_dq = 0.0_wp
-        self%dm_du = 0.0_wp
+        self%work%dm_dq = 0.0_wp
+        self%work%dm_du = 0.0_wp
         do p = 1, size(self%model%parts)
             i0 = 6*(p - 1)
             call body_residual_jacobian(self%model%parts(p), q(i0 + 1:i0 + 6), u(i0 + 1:i0 + 6), &
-                & a(i0 + 1:i0 + 6), self%moments(:, p), part_dq, part_du)
-            self%dm_dq(i0 + 1:i0 + 6, i0 + 1:i0 + 6) = part_dq
-            self%dm_du(i0 + 1:i0 + 6, i0 + 1:i0 + 6) = part_du
+                & a(i0 + 1:i0 + 6), self%work%moments(:, p), part_dq, part_du)
+            self%work%dm_dq(i0 + 1:i0 + 6, i0 + 1:i0 + 6) = part_dq
+            self%work%dm_du(i0 + 1:i0 + 6, i0 + 1:i0 + 6) = part_du
         end do
         ! -d(C^T lambda)/dq: second partials are why ADAMS asks a UCOSUB for XMATRX
         ! (docs/design.md §4)
         do k = 1, self%nc
             if (self%model%ucons(k)%holonomic) then
-                self%dm_dq = self%dm_dq - lambda(k)*self%constraints%hqq(:, :, k)
+                self%work%dm_dq = self%work%dm_dq - lambda(k)*self%constraints%hqq(:, :, k)
             else
                 do j = 1, self%n
-                    self%dm_dq(:, j) = self%dm_dq(:, j) - lambda(k)*self%constraints%hqu(j, :, k)
+                    self%work%dm_dq(:, j) = self%work%dm_dq(:, j) &
+                        & - lambda(k)*self%constraints%hqu(j, :, k)
                 end do
             end if
         end do
@@ -211,58 +214,61 @@ contains
     !> Jacobian of the ODE right-hand side (q, u)' = (u, a(q, u, t)): da/dy = -K^-1 dG/dy with
     !> G = (M a - f - C^T lambda, C a - gamma) at fixed (a, lambda). For position UCONs the
     !> third partials of F in dgamma/dq are not available and are left out.
-    subroutine ode_jacobian(self, time, q, u, jac, error)
+    subroutine ode_jacobian(self, time, q, u, baumgarte, jac, error)
         class(equations_type), intent(inout) :: self
         real(wp), intent(in) :: time, q(:), u(:)
+        !> Baumgarte rate in effect [1/s], 0 without Baumgarte terms
+        real(wp), intent(in) :: baumgarte
         !> d(q', u')/d(q, u), 2n x 2n
         real(wp), intent(out) :: jac(:, :)
         type(error_type), allocatable, intent(out) :: error
         integer :: n, j
 
         n = self%n
-        call self%accelerations(time, q, u, self%a_work, self%lambda_work, error, second=.true.)
-        if (allocated(error)) return
-        call self%momentum_jacobian(q, u, self%a_work, self%lambda_work)
-        self%rhs_top(:, :n) = -self%dm_dq
-        self%rhs_top(:, n + 1:) = -self%dm_du
-        call jacobian_constraint_rows(self, u, self%a_work)
-        call self%saddle%solve(self%c, self%rhs_top, self%rhs_bottom, 2*n, error)
+        associate (w => self%work)
+            call self%accelerations(time, q, u, baumgarte, w%a, w%lambda, error, second=.true.)
+            if (allocated(error)) return
+            call self%momentum_jacobian(q, u, w%a, w%lambda)
+            w%rhs_top(:, :n) = -w%dm_dq
+            w%rhs_top(:, n + 1:) = -w%dm_du
+            call jacobian_constraint_rows(self, u, w%a, baumgarte)
+            call self%saddle%solve(self%c, w%rhs_top, w%rhs_bottom, 2*n, error)
+        end associate
         if (allocated(error)) return
         jac = 0.0_wp
         do j = 1, n
             jac(j, n + j) = 1.0_wp
         end do
-        jac(n + 1:, :) = self%rhs_top
+        jac(n + 1:, :) = self%work%rhs_top
     end subroutine ode_jacobian
 
     !> Constraint rows of the Jacobian's right-hand sides, -d(C a - gamma)/d(q, u) at fixed a,
     !> into rhs_bottom.
-    subroutine jacobian_constraint_rows(self, u, a)
+    subroutine jacobian_constraint_rows(self, u, a, alpha)
         type(equations_type), intent(inout) :: self
         real(wp), intent(in) :: u(:), a(:)
-        real(wp) :: alpha
+        !> Baumgarte rate in effect [1/s], 0 without Baumgarte terms
+        real(wp), intent(in) :: alpha
         integer :: n, k, j
 
         n = self%n
-        alpha = 0.0_wp
-        if (self%drift == drift_baumgarte) alpha = self%baumgarte_rate
-        associate (cs => self%constraints)
+        associate (cs => self%constraints, rhs_bottom => self%work%rhs_bottom)
             do k = 1, self%nc
                 if (self%model%ucons(k)%holonomic) then
                     do j = 1, n
-                        self%rhs_bottom(k, j) = -dot_product(cs%hqq(:, j, k), a) &
+                        rhs_bottom(k, j) = -dot_product(cs%hqq(:, j, k), a) &
                             & - 2.0_wp*alpha*(dot_product(cs%hqq(:, j, k), u) &
                             & + cs%dt_grad_q(k, j)) - alpha**2*cs%grad_q(k, j)
-                        self%rhs_bottom(k, n + j) = -2.0_wp*dot_product(cs%hqq(:, j, k), u) &
+                        rhs_bottom(k, n + j) = -2.0_wp*dot_product(cs%hqq(:, j, k), u) &
                             & - 2.0_wp*cs%dt_grad_q(k, j) - 2.0_wp*alpha*cs%grad_q(k, j)
                     end do
                 else
                     ! C a - gamma = dF/du a + dF/dq u + dF/dt + alpha F
                     do j = 1, n
-                        self%rhs_bottom(k, j) = -(dot_product(cs%hqu(j, :, k), a) &
+                        rhs_bottom(k, j) = -(dot_product(cs%hqu(j, :, k), a) &
                             & + dot_product(cs%hqq(:, j, k), u) + cs%dt_grad_q(k, j) &
                             & + alpha*cs%grad_q(k, j))
-                        self%rhs_bottom(k, n + j) = -(cs%grad_q(k, j) &
+                        rhs_bottom(k, n + j) = -(cs%grad_q(k, j) &
                             & + dot_product(cs%hqu(:, j, k), u) + cs%dt_grad_u(k, j) &
                             & + alpha*cs%grad_u(k, j))
                     end do
@@ -290,38 +296,39 @@ contains
             do k = 1, self%nc
                 h = self%model%holonomic_number(k)
                 if (h == 0) cycle
-                self%holonomic_rows(h, :) = self%constraints%grad_q(k, :)
-                self%rhs_bottom(h, 1) = -self%constraints%value(k)
+                self%work%holonomic_rows(h, :) = self%constraints%grad_q(k, :)
+                self%work%rhs_bottom(h, 1) = -self%constraints%value(k)
             end do
-            call self%saddle%factor(self%mass, self%holonomic_rows, self%nh, error)
+            call self%saddle%factor(self%mass, self%work%holonomic_rows, self%nh, error)
             if (allocated(error)) return
-            self%rhs_top(:, 1) = 0.0_wp
-            call self%saddle%solve(self%holonomic_rows, self%rhs_top(:, 1), &
-                & self%rhs_bottom(:, 1), 1, error)
+            self%work%rhs_top(:, 1) = 0.0_wp
+            call self%saddle%solve(self%work%holonomic_rows, self%work%rhs_top(:, 1), &
+                & self%work%rhs_bottom(:, 1), 1, error)
             if (allocated(error)) return
-            dq = self%rhs_top(:, 1)
+            dq = self%work%rhs_top(:, 1)
         end if
-        self%q_work = q + dq
-        call self%constraints%evaluate(self%model, time, self%q_work, u, need_value + need_first &
+        self%work%q = q + dq
+        call self%constraints%evaluate(self%model, time, self%work%q, u, need_value + need_first &
             & + need_time, error)
         if (allocated(error)) return
-        call self%assemble(time, self%q_work, u)
+        call self%assemble(time, self%work%q, u)
         call self%constraint_matrix()
         associate (cs => self%constraints)
             do k = 1, self%nc
                 if (self%model%ucons(k)%holonomic) then
-                    self%rhs_bottom(k, 1) = -(dot_product(cs%grad_q(k, :), u) + cs%dt(k))
+                    self%work%rhs_bottom(k, 1) = -(dot_product(cs%grad_q(k, :), u) + cs%dt(k))
                 else
-                    self%rhs_bottom(k, 1) = -cs%value(k)
+                    self%work%rhs_bottom(k, 1) = -cs%value(k)
                 end if
             end do
         end associate
         call self%saddle%factor(self%mass, self%c, self%nc, error)
         if (allocated(error)) return
-        self%rhs_top(:, 1) = 0.0_wp
-        call self%saddle%solve(self%c, self%rhs_top(:, 1), self%rhs_bottom(:, 1), 1, error)
+        self%work%rhs_top(:, 1) = 0.0_wp
+        call self%saddle%solve(self%c, self%work%rhs_top(:, 1), self%work%rhs_bottom(:, 1), 1, &
+            & error)
         if (allocated(error)) return
-        du = self%rhs_top(:, 1)
+        du = self%work%rhs_top(:, 1)
     end subroutine project
 
     !> u^T H u for a square H.

@@ -38,7 +38,8 @@ contains
     subroutine build_disk_problem(scene, ucosub, problem, q0, u0, error)
         type(scene_type), intent(in) :: scene
         procedure(ucosub_interface) :: ucosub
-        type(problem_type), intent(inout) :: problem
+        !> Set up in place: its equations refer to its model
+        type(problem_type), intent(inout), target :: problem
         real(wp), intent(out) :: q0(6), u0(6)
         type(error_type), allocatable, intent(out) :: error
         type(model_type), target :: model
@@ -81,7 +82,7 @@ contains
         end if
         call setup_model(model, error)
         if (allocated(error)) return
-        call problem%eq%init(model)
+        call problem%init(model)
 
         ! the scene's choice codes are the problem's and the equations' own
         problem%settings%formulation = scene%run%formulation
@@ -90,8 +91,8 @@ contains
         problem%settings%rtol = scene%run%rtol
         problem%settings%atol = scene%run%atol
         problem%settings%max_steps = scene%run%max_steps
-        problem%eq%drift = scene%run%drift
-        problem%eq%baumgarte_rate = scene%run%baumgarte_rate
+        problem%settings%drift = scene%run%drift
+        problem%settings%baumgarte_rate = scene%run%baumgarte_rate
         problem%events%part = 1
         problem%events%theta_min = scene%limits%theta_min
         problem%events%stop_on_liftoff = scene%limits%stop_on_liftoff

@@ -6,7 +6,7 @@ module rollcon_scene_type
     use rollcon_kinds, only : wp
     use rollcon_constants, only : pi
     use rollcon_problem, only : formulation_cvode, formulation_ida, method_bdf, method_adams
-    use rollcon_equations, only : drift_none, drift_projection, drift_baumgarte
+    use rollcon_problem, only : drift_none, drift_projection, drift_baumgarte
     implicit none
     private
 

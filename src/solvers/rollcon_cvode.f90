@@ -7,8 +7,7 @@ module rollcon_cvode
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type, fatal_error, stat_solver
     use rollcon_text, only : to_text
-    use rollcon_problem, only : problem_type, method_adams
-    use rollcon_equations, only : drift_projection
+    use rollcon_problem, only : problem_type, method_adams, drift_projection
     use fsundials_context_mod, only : FSUNContext_Create, FSUNContext_Free
     use fsundials_nvector_mod, only : N_Vector, FN_VDestroy, FN_VGetArrayPointer
     use fsundials_matrix_mod, only : SUNMatrix, FSUNMatDestroy
@@ -116,7 +115,7 @@ contains
             flag = FCVodeSetJacFn(self%memory, c_funloc(jacobian))
             if (check(flag, "CVodeSetJacFn", error)) return
         end if
-        if (problem%eq%drift == drift_projection .and. problem%eq%nc > 0) then
+        if (problem%settings%drift == drift_projection .and. problem%ucon_count() > 0) then
             flag = FCVodeSetProjFn(self%memory, c_funloc(projection))
             if (check(flag, "CVodeSetProjFn", error)) return
         end if
@@ -266,7 +265,8 @@ contains
         entries => FSUNDenseMatrix_Data(jac)
         call c_f_pointer(c_loc(entries(1)), matrix, [size(yv), size(yv)])
         n = problem%eq%n
-        call problem%eq%ode_jacobian(t, yv(:n), yv(n + 1:), matrix, error)
+        call problem%eq%ode_jacobian(t, yv(:n), yv(n + 1:), problem%settings%baumgarte(), &
+            & matrix, error)
         ierr = int(problem%keep_failure(error), c_int)
     end function jacobian
 

@@ -1,22 +1,26 @@
 ! SPDX-License-Identifier: MIT
-!> What the integrators' callbacks work on: the equations, solver settings, event limits,
-!> scratch arrays, and the first failure a callback met (callbacks never print or stop).
+!> What the integrators' callbacks work on: the model (held here, once), its equations, solver
+!> settings, event limits, scratch arrays, and the first failure a callback met (callbacks
+!> never print or stop).
 module rollcon_problem
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type
+    use rollcon_model, only : model_type
     use rollcon_equations, only : equations_type
-    use rollcon_constraints, only : need_first
     implicit none
     private
 
     public :: problem_type, solver_settings_type, event_settings_type
     public :: formulation_cvode, formulation_ida, method_bdf, method_adams
+    public :: drift_none, drift_projection, drift_baumgarte
     public :: root_theta, root_liftoff
 
     !> Formulations: CVODE on the ODE form, IDA on the DAE form
     integer, parameter :: formulation_cvode = 1, formulation_ida = 2
     !> CVODE's linear multistep methods
     integer, parameter :: method_bdf = 1, method_adams = 2
+    !> Drift control of the ODE form: none, projection onto the constraints, Baumgarte
+    integer, parameter :: drift_none = 0, drift_projection = 1, drift_baumgarte = 2
     !> Root function numbers: theta at its distance limit from flat, normal force at its limit
     integer, parameter :: root_theta = 1, root_liftoff = 2
 
@@ -30,6 +34,12 @@ module rollcon_problem
         real(wp) :: rtol = 1.0e-8_wp, atol = 1.0e-10_wp
         !> Most internal steps per output interval
         integer :: max_steps = 500000
+        !> Drift control of the ODE form: drift_none, drift_projection or drift_baumgarte
+        integer :: drift = drift_projection
+        !> Baumgarte rate alpha [1/s]: F' = -alpha F (velocity), F'' = -2 alpha F' - alpha^2 F
+        real(wp) :: baumgarte_rate = 10.0_wp
+    contains
+        procedure :: baumgarte
     end type solver_settings_type
 
     !> What a run watches: when to stop it early, and the height residual of a disk
@@ -49,8 +59,12 @@ module rollcon_problem
         real(wp) :: contact_radius = 0.0_wp
     end type event_settings_type
 
-    !> The integrators' user data
+    !> The integrators' user data. `eq` refers to `model`: a problem is set up in place (init)
+    !> in a variable with the target attribute, and is not copied afterwards.
     type :: problem_type
+        !> The model, set up: the one copy
+        type(model_type) :: model
+        !> Its equations (pointing at `model`)
         type(equations_type) :: eq
         type(solver_settings_type) :: settings
         type(event_settings_type) :: events
@@ -61,13 +75,71 @@ module rollcon_problem
         !> Event-function evaluations so far (the benchmark's per-part costs)
         integer :: root_evaluations = 0
     contains
+        procedure :: init
         procedure :: prepare
+        procedure :: accelerations
+        procedure :: ucon_count
+        procedure :: ucon_id
+        procedure :: constraint_values
         procedure :: ode_rhs
         procedure :: root_values
         procedure :: keep_failure
     end type problem_type
 
 contains
+
+    !> The Baumgarte rate in effect [1/s]: baumgarte_rate with drift_baumgarte, else 0.
+    pure function baumgarte(self) result(alpha)
+        class(solver_settings_type), intent(in) :: self
+        real(wp) :: alpha
+
+        alpha = 0.0_wp
+        if (self%drift == drift_baumgarte) alpha = self%baumgarte_rate
+    end function baumgarte
+
+    !> Keep a model that setup_model has prepared (the problem's copy is the only one the
+    !> run uses: the equations refer to it) and set up its equations on it.
+    subroutine init(self, model)
+        class(problem_type), intent(inout), target :: self
+        type(model_type), intent(in) :: model
+
+        self%model = model
+        call self%eq%init(self%model)
+    end subroutine init
+
+    !> Accelerations and multipliers at (t, q, u) into self%a and self%lambda, with the
+    !> settings' drift control.
+    subroutine accelerations(self, time, q, u, error)
+        class(problem_type), intent(inout) :: self
+        real(wp), intent(in) :: time, q(:), u(:)
+        type(error_type), allocatable, intent(out) :: error
+
+        call self%eq%accelerations(time, q, u, self%settings%baumgarte(), self%a, self%lambda, &
+            & error)
+    end subroutine accelerations
+
+    !> Number of UCONs.
+    pure integer function ucon_count(self)
+        class(problem_type), intent(in) :: self
+
+        ucon_count = self%eq%nc
+    end function ucon_count
+
+    !> Identifier of the k-th UCON (as in its UCON statement).
+    pure integer function ucon_id(self, k)
+        class(problem_type), intent(in) :: self
+        integer, intent(in) :: k
+
+        ucon_id = self%model%ucons(k)%id
+    end function ucon_id
+
+    !> Each UCON's residual F_k at the last evaluation.
+    pure function constraint_values(self) result(values)
+        class(problem_type), intent(in) :: self
+        real(wp) :: values(self%eq%nc)
+
+        values = self%eq%constraints%value
+    end function constraint_values
 
     !> Size scratch arrays (once).
     subroutine prepare(self)
@@ -87,7 +159,7 @@ contains
         type(error_type), allocatable :: error
 
         associate (n => self%eq%n)
-            call self%eq%accelerations(time, y(:n), y(n + 1:), self%a, self%lambda, error)
+            call self%accelerations(time, y(:n), y(n + 1:), error)
             ierr = self%keep_failure(error)
             if (ierr /= 0) return
             ydot(:n) = y(n + 1:)
@@ -121,15 +193,14 @@ contains
         if (.not. self%events%stop_on_liftoff) return
         if (present(lambda)) then
             ! only C is needed: first partials, no saddle-point solve
-            call self%eq%constraints%evaluate(self%eq%model, time, q, u, need_first, error)
+            call self%eq%constraint_matrix_at(time, q, u, error)
             ierr = self%keep_failure(error)
             if (ierr /= 0) return
-            call self%eq%constraint_matrix()
             force = self%eq%constraint_force(self%events%part, lambda)
         else if (present(a)) then
             force = self%eq%reaction_from_accelerations(self%events%part, time, q, a)
         else
-            call self%eq%accelerations(time, q, u, self%a, self%lambda, error)
+            call self%accelerations(time, q, u, error)
             ierr = self%keep_failure(error)
             if (ierr /= 0) return
             force = self%eq%constraint_force(self%events%part, self%lambda)

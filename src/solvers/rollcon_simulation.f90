@@ -4,48 +4,36 @@ module rollcon_simulation
     use, intrinsic :: iso_fortran_env, only : error_unit, int64
     use rollcon_kinds, only : wp
     use rollcon_constants, only : pi
-    use rollcon_error, only : error_type, fatal_error, stat_input
+    use rollcon_error, only : error_type
     use rollcon_text, only : to_text
     use rollcon_problem, only : problem_type, formulation_cvode, root_theta, root_liftoff
     use rollcon_cvode, only : cvode_solver_type
     use rollcon_ida, only : ida_solver_type
     use rollcon_dae, only : dae_size
     use rollcon_force, only : force_breakpoints
-    use rollcon_csv_writer, only : csv_writer_type, csv_row_bytes
+    use rollcon_csv_writer, only : csv_writer_type
     use rollcon_drift, only : height_residual, drift_bounds, drift_findings
+    use rollcon_output_rows, only : run_options_type, default_max_csv_bytes, planned_rows, &
+        & history_type, csv_header, column_time, column_x, column_y, &
+        & column_z, column_psi, column_theta, column_phi, column_xdot, column_ydot, column_zdot, &
+        & column_psidot, column_thetadot, column_phidot, column_energy, column_fx, column_fy, &
+        & column_fz, column_normal, column_mu, column_residual
     implicit none
     private
 
     public :: run_options_type, run_summary_type, history_type, simulate, csv_header
     public :: status_completed, status_stopped, status_failed, status_inaccurate
-
-    !> Columns of the output rows (CSV and history)
-    integer, parameter, public :: column_time = 1, column_x = 2, column_y = 3, column_z = 4, &
-        & column_psi = 5, column_theta = 6, column_phi = 7, column_xdot = 8, column_ydot = 9, &
-        & column_zdot = 10, column_psidot = 11, column_thetadot = 12, column_phidot = 13, &
-        & column_energy = 14, column_fx = 15, column_fy = 16, column_fz = 17, &
-        & column_normal = 18, column_mu = 19, column_residual = 20
+    !> The output rows' limit and columns (rollcon_output_rows), for the callers of simulate
+    public :: default_max_csv_bytes
+    public :: column_time, column_x, column_y, column_z, column_psi, column_theta, column_phi, &
+        & column_xdot, column_ydot, column_zdot, column_psidot, column_thetadot, column_phidot, &
+        & column_energy, column_fx, column_fy, column_fz, column_normal, column_mu, &
+        & column_residual
 
     !> How a run ended: as planned, at an event limit, by a failure, or at its end or a limit
     !> with an energy or height drift beyond what its tolerances promise (rollcon_drift)
     integer, parameter :: status_completed = 0, status_stopped = 1, status_failed = 2, &
         & status_inaccurate = 3
-    !> Default limit of a planned CSV [bytes], 100 GB: ten thousand times the coin's run
-    real(wp), parameter, public :: default_max_csv_bytes = 1.0e11_wp
-
-    !> Where and how often to report
-    type :: run_options_type
-        !> Start and end time, output interval [s]
-        real(wp) :: t0 = 0.0_wp, end_time = 1.0_wp, output_step = 0.01_wp
-        !> CSV file to write (none when unallocated)
-        character(len=:), allocatable :: csv_path
-        !> Progress lines on stderr for runs longer than a second
-        logical :: progress = .true.
-        !> Largest CSV a run may plan to write [bytes]: a request beyond it is refused before
-        !> the run (raise it to override; the default is far beyond a useful time history)
-        real(wp) :: max_csv_bytes = default_max_csv_bytes
-    end type run_options_type
-
     !> What a run did
     type :: run_summary_type
         integer :: status = status_completed
@@ -75,65 +63,11 @@ module rollcon_simulation
         real(wp) :: cpu_seconds = 0.0_wp
     end type run_summary_type
 
-    !> The output rows kept in memory (the CSV's columns), for tests and benchmarks
-    type :: history_type
-        !> rows(:, i) is output row i; only the first count rows are filled
-        real(wp), allocatable :: rows(:, :)
-        integer :: count = 0
-    contains
-        procedure :: add => history_add
-        procedure :: column => history_column
-    end type history_type
-
 contains
 
-    !> Append a row, growing the storage geometrically.
-    pure subroutine history_add(self, row)
-        class(history_type), intent(inout) :: self
-        real(wp), intent(in) :: row(:)
-        real(wp), allocatable :: grown(:, :)
-
-        if (.not. allocated(self%rows)) allocate(self%rows(size(row), 256))
-        if (self%count == size(self%rows, 2)) then
-            allocate(grown(size(row), 2*self%count))
-            grown(:, :self%count) = self%rows(:, :self%count)
-            call move_alloc(grown, self%rows)
-        end if
-        self%count = self%count + 1
-        self%rows(:, self%count) = row
-    end subroutine history_add
-
-    !> Column j over the filled rows.
-    pure function history_column(self, j) result(values)
-        class(history_type), intent(in) :: self
-        integer, intent(in) :: j
-        real(wp), allocatable :: values(:)
-
-        values = self%rows(j, :self%count)
-    end function history_column
-
-    !> Column names of the CSV: time, part 1's coordinates and rates (SI units, radians),
-    !> energy, constraint force on part 1, its normal part, the friction coefficient it needs,
-    !> each UCON's residual, and the watched part's height residual Z - R sin(theta) [m] when
-    !> the problem has a contact radius.
-    function csv_header(problem) result(header)
-        type(problem_type), intent(in) :: problem
-        character(len=16), allocatable :: header(:)
-        integer :: k
-
-        header = [character(len=16) :: "t", "X", "Y", "Z", "psi", "theta", "phi", "Xdot", &
-            & "Ydot", "Zdot", "psidot", "thetadot", "phidot", "E", "Fx", "Fy", "Fz", "Fn", &
-            & "mu_needed"]
-        do k = 1, problem%eq%nc
-            header = [character(len=16) :: header, "F" // to_text(problem%eq%model%ucons(k)%id)]
-        end do
-        if (problem%events%contact_radius > 0.0_wp) &
-            & header = [character(len=16) :: header, "height_residual"]
-    end function csv_header
-
-    !> Integrate problem from (q0, u0), writing a row per output time. The host is long (about
-    !> 90 lines) because it holds the one loop over output times with its stops, events and
-    !> failures; the row, event, progress and summary work is in its internal procedures.
+    !> Integrate problem from (q0, u0), writing a row per output time. The host holds the one
+    !> loop over output times with its stops, events and failures; the start, row, event,
+    !> progress and summary work is in its internal procedures.
     subroutine simulate(problem, q0, u0, options, summary, error, history)
         type(problem_type), intent(inout), target :: problem
         real(wp), intent(in) :: q0(:), u0(:)
@@ -157,7 +91,7 @@ contains
         nc = problem%eq%nc
         call problem%prepare()
         use_cvode = problem%settings%formulation == formulation_cvode
-        breaks = force_breakpoints(problem%eq%model%forces)
+        breaks = force_breakpoints(problem%model%forces)
         t_reference = options%t0
         if (size(breaks) > 0) t_reference = maxval(breaks)
         breaks = pack(breaks, breaks > options%t0 .and. breaks < options%end_time)
@@ -170,22 +104,13 @@ contains
         end if
 
         ! Consistent start: accelerations and multipliers from the saddle-point system.
-        call problem%eq%accelerations(options%t0, q0, u0, problem%a, problem%lambda, error)
+        call problem%accelerations(options%t0, q0, u0, error)
         if (allocated(error)) return
         t = options%t0
         t_stop = next_stop(t)
         call cpu_time(cpu_start)
         wall_last = wall_seconds()
-        if (use_cvode) then
-            y = [q0, u0]
-            call cvode%init(problem, t, y, t_stop, 2, error)
-        else
-            allocate(y(dae_size(problem%eq)), yp(dae_size(problem%eq)), source=0.0_wp)
-            y(:2*n) = [q0, u0]
-            y(2*n + 1:2*n + nc) = problem%lambda
-            yp(:2*n) = [u0, problem%a]
-            call ida%init(problem, t, y, yp, t_stop, 2, error)
-        end if
+        call start_integrator(error)
         if (allocated(error)) then
             call finish()
             return
@@ -228,6 +153,22 @@ contains
 
     contains
 
+        !> Set up CVODE on (q0, u0), or IDA on (q0, u0, lambda) with its consistent rates.
+        subroutine start_integrator(error)
+            type(error_type), allocatable, intent(out) :: error
+
+            if (use_cvode) then
+                y = [q0, u0]
+                call cvode%init(problem, t, y, t_stop, 2, error)
+            else
+                allocate(y(dae_size(problem%eq)), yp(dae_size(problem%eq)), source=0.0_wp)
+                y(:2*n) = [q0, u0]
+                y(2*n + 1:2*n + nc) = problem%lambda
+                yp(:2*n) = [u0, problem%a]
+                call ida%init(problem, t, y, yp, t_stop, 2, error)
+            end if
+        end subroutine start_integrator
+
         !> The next time the integrator must not step past: a force kink or the end.
         function next_stop(time) result(stop_time)
             real(wp), intent(in) :: time
@@ -246,7 +187,7 @@ contains
             type(error_type), allocatable :: eval_error
 
             associate (q => state(:n), u => state(n + 1:2*n))
-                call problem%eq%accelerations(time, q, u, problem%a, problem%lambda, eval_error)
+                call problem%accelerations(time, q, u, eval_error)
                 if (allocated(eval_error)) then
                     call move_alloc(eval_error, error)
                     return
@@ -267,7 +208,7 @@ contains
                     end if
                 end if
                 if (nc > 0) summary%residual_max = max(summary%residual_max, &
-                    & maxval(abs(problem%eq%constraints%value)))
+                    & maxval(abs(problem%constraint_values())))
                 height = height_residual(problem, q)
                 summary%height_residual_max = max(summary%height_residual_max, abs(height(1)))
                 summary%t_reached = time
@@ -275,7 +216,7 @@ contains
                 summary%u = u
                 summary%rows = summary%rows + 1
                 row = [time, q(1:6), u(1:6), energy, force, force(3), mu, &
-                    & problem%eq%constraints%value]
+                    & problem%constraint_values()]
                 if (problem%events%contact_radius > 0.0_wp) row = [row, height]
                 if (present(history)) call history%add(row)
                 if (csv%opened) call csv%write_row(row, error)
@@ -368,53 +309,6 @@ contains
         end subroutine finish
 
     end subroutine simulate
-
-    !> Number of output steps after the first row (64 bits); refused when the CSV they would
-    !> fill is larger than options%max_csv_bytes, or the count does not fit in 64 bits.
-    subroutine planned_rows(options, columns, n_output, error)
-        type(run_options_type), intent(in) :: options
-        !> Columns of a row
-        integer, intent(in) :: columns
-        integer(int64), intent(out) :: n_output
-        type(error_type), allocatable, intent(out) :: error
-        real(wp) :: steps, bytes
-        character(len=:), allocatable :: rows, bytes_text
-
-        ! 1e-9: an end time a rounding short of a whole number of steps adds no step.
-        steps = max(1.0_wp, ceiling_real((options%end_time - options%t0)/options%output_step &
-            & - 1.0e-9_wp))
-        bytes = (steps + 1.0_wp)*real(csv_row_bytes(columns), wp)
-        n_output = 1
-        rows = to_text(steps + 1.0_wp)
-        bytes_text = to_text(bytes)
-        if (steps < 1.0e18_wp) rows = to_text(int(steps, int64) + 1_int64)
-        ! exact while it fits in 64 bits (huge(int64) ~ 9.2e18)
-        if (bytes < 9.0e18_wp) bytes_text = to_text((int(steps, int64) + 1_int64) &
-            & *int(csv_row_bytes(columns), int64))
-        if (allocated(options%csv_path) .and. bytes > options%max_csv_bytes) then
-            call fatal_error(error, "the output request (end_time " // to_text(options%end_time) &
-                & // " s, output_step " // to_text(options%output_step) // " s) means " &
-                & // rows // " rows, " // bytes_text &
-                & // " bytes of CSV, beyond the limit of " // to_text(options%max_csv_bytes) &
-                & // " bytes: raise output_step or lower end_time (or lift the limit " &
-                & // "explicitly, rollcon run --allow-large-output)", stat_input)
-        else if (.not. steps < real(huge(n_output), wp)/2.0_wp) then
-            call fatal_error(error, "the output request (end_time " // to_text(options%end_time) &
-                & // " s, output_step " // to_text(options%output_step) // " s) means " &
-                & // rows // " rows, more than a 64-bit count holds", stat_input)
-        else
-            n_output = int(steps, int64)
-        end if
-    end subroutine planned_rows
-
-    !> ceiling of a real of any size, as a real (no integer overflow).
-    elemental function ceiling_real(x) result(c)
-        real(wp), intent(in) :: x
-        real(wp) :: c
-
-        c = aint(x)
-        if (c < x) c = c + 1.0_wp
-    end function ceiling_real
 
     !> Judge a run that reached its end or a limit against what its tolerances promise
     !> (rollcon_drift): beyond a bound its results are not what was asked, status_inaccurate,

@@ -13,8 +13,8 @@ module test_allocations
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type
     use rollcon_text, only : to_text
-    use rollcon_problem, only : problem_type, formulation_cvode, method_adams, root_liftoff
-    use rollcon_equations, only : drift_baumgarte, drift_projection
+    use rollcon_problem, only : problem_type, formulation_cvode, method_adams, root_liftoff, &
+        & drift_baumgarte, drift_projection
     use rollcon_dae, only : dae_size, dae_residual, dae_jacobian
     use rollcon_cvode, only : cvode_solver_type
     use rollcon_ida, only : ida_solver_type
@@ -86,7 +86,7 @@ contains
     !> The tipping coin (paper's disk, 0.01 rad off upright, 0.1 m/s), CVODE Adams + Baumgarte
     !> with the lift-off event on, at a generic state when `generic`.
     subroutine coin_problem(problem, q, u, generic, error)
-        type(problem_type), intent(inout) :: problem
+        type(problem_type), intent(inout), target :: problem
         real(wp), intent(out) :: q(6), u(6)
         logical, intent(in) :: generic
         type(error_type), allocatable, intent(out) :: error
@@ -154,7 +154,8 @@ contains
             ierr = ierr + problem%root_values(0.0_wp, q, u, g)
             ierr = ierr + problem%root_values(0.0_wp, q, u, g, a=ydot(7:))
             ierr = ierr + problem%root_values(0.0_wp, q, u, g, lambda=yd(13:))
-            call problem%eq%ode_jacobian(0.0_wp, q, u, jac, failure)
+            call problem%eq%ode_jacobian(0.0_wp, q, u, problem%settings%baumgarte(), jac, &
+                & failure)
             if (allocated(failure)) exit
             call problem%eq%project(0.0_wp, q, u, dq, du, failure)
             if (allocated(failure)) exit
@@ -215,8 +216,8 @@ contains
         end if
         call coin_problem(problem, q, u, .false., error)
         if (allocated(error)) return
-        problem%eq%drift = drift_projection
-        call problem%eq%accelerations(0.0_wp, q, u, problem%a, problem%lambda, error)
+        problem%settings%drift = drift_projection
+        call problem%accelerations(0.0_wp, q, u, error)
         if (allocated(error)) return
         allocate(y(dae_size(problem%eq)), yp(dae_size(problem%eq)), source=0.0_wp)
         y(:12) = [q, u]
@@ -268,7 +269,7 @@ contains
         type(error_type), allocatable, intent(out) :: error
         type(model_type), target :: models(2)
         type(part_type) :: disk
-        type(problem_type) :: problems(2)
+        type(problem_type), target :: problems(2)
         real(wp) :: q(6), u(6), dt(2)
         integer :: pass
 
@@ -284,8 +285,8 @@ contains
                     & 0.2_wp, 3.0_wp, 1), turntable_disk_ucosub, time_free=pass == 2)
                 call setup_model(model, error)
                 if (allocated(error)) return
-                call problem%eq%init(model)
-                call problem%eq%constraints%evaluate(problem%eq%model, 0.4_wp, q, u, need_value &
+                call problem%init(model)
+                call problem%eq%constraints%evaluate(problem%model, 0.4_wp, q, u, need_value &
                     & + need_first + need_time, error)
                 if (allocated(error)) return
                 dt(pass) = abs(problem%eq%constraints%dt(1)) &

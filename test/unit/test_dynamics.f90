@@ -7,9 +7,8 @@ module test_dynamics
     use rollcon_body, only : part_type, body_residual, body_residual_jacobian, body_mass_matrix, &
         & kinetic_energy, body_mass_and_force
     use rollcon_lapack, only : factor_dense, solve_factored
-    use rollcon_problem, only : problem_type
+    use rollcon_problem, only : problem_type, drift_none, drift_baumgarte
     use rollcon_dae, only : dae_size, dae_residual, dae_jacobian
-    use rollcon_equations, only : drift_none, drift_baumgarte
     use rollcon_scene, only : scene_type
     use rollcon_disk_scene, only : build_disk_problem
     use rollcon_disk_reference, only : rolling_disk_ucosub
@@ -40,12 +39,13 @@ contains
             & new_unittest("ode-jacobian-baumgarte-vs-fd", test_ode_jacobian_baumgarte), &
             & new_unittest("dae-jacobian-vs-fd", test_dae_jacobian), &
             & new_unittest("mass-and-force-vs-residual", test_mass_and_force), &
-            & new_unittest("saddle-point-vs-dense-lu", test_saddle_point)]
+            & new_unittest("saddle-point-vs-dense-lu", test_saddle_point), &
+            & new_unittest("equations-use-problem-model", test_problem_model)]
     end subroutine collect_dynamics
 
     !> A generic state of the paper's disk: tilted, turning, no angle at a special value.
     subroutine generic_problem(problem, q, u, drift)
-        type(problem_type), intent(inout) :: problem
+        type(problem_type), intent(inout), target :: problem
         real(wp), intent(out) :: q(6), u(6)
         integer, intent(in) :: drift
         type(scene_type) :: scene
@@ -59,7 +59,7 @@ contains
         scene%initial%phidot = -4.0_wp
         call build_disk_problem(scene, rolling_disk_ucosub, problem, q, u, error)
         if (allocated(error)) error stop "generic_problem: " // error%message
-        problem%eq%drift = drift
+        problem%settings%drift = drift
         call problem%prepare()
     end subroutine generic_problem
 
@@ -123,7 +123,7 @@ contains
 
         call generic_problem(problem, q, u, drift)
         y = [q, u]
-        call problem%eq%ode_jacobian(0.0_wp, q, u, jac, failure)
+        call problem%eq%ode_jacobian(0.0_wp, q, u, problem%settings%baumgarte(), jac, failure)
         if (allocated(failure)) then
             call move_alloc(failure, error)
             return
@@ -167,7 +167,7 @@ contains
         call generic_problem(problem, q, u, drift_none)
         m = dae_size(problem%eq)
         allocate(y(m), yp(m), yh(m), rp(m), rm(m), fd(m), jac(m, m))
-        call problem%eq%accelerations(0.0_wp, q, u, problem%a, problem%lambda, failure)
+        call problem%accelerations(0.0_wp, q, u, failure)
         if (allocated(failure)) then
             call move_alloc(failure, error)
             return
@@ -234,7 +234,7 @@ contains
         integer :: pivots(9), k
 
         call generic_problem(problem, q, u, drift_baumgarte)
-        call problem%eq%accelerations(0.0_wp, q, u, problem%a, problem%lambda, error)
+        call problem%accelerations(0.0_wp, q, u, error)
         if (allocated(error)) return
         kkt = 0.0_wp
         kkt(:6, :6) = problem%eq%mass
@@ -254,5 +254,37 @@ contains
         call check(error, problem%lambda, b(7:, 1), "multipliers", &
             & abs_tol=tol_solve*maxval(abs(b(7:, 1))))
     end subroutine test_saddle_point
+
+    !> The equations evaluate the problem's own model, not a copy of it: gravity changed there
+    !> after set-up changes the accelerations, affinely (a = M^-1 (f + C^T lambda) with gravity
+    !> entering f alone, and gamma free of it). The problem names its UCONs: the coin's 1, 2, 3.
+    subroutine test_problem_model(error)
+        type(error_type), allocatable, intent(out) :: error
+        !> Gravity's share of the accelerations is of order g = 9.81 m/s^2; at least a
+        !> thousandth of it shows that the change reached the equations
+        real(wp), parameter :: min_gravity_share = 1.0e-2_wp
+        type(problem_type), target :: problem
+        real(wp) :: q(6), u(6), g0(3), a(6, 3)
+        integer :: pass
+
+        call generic_problem(problem, q, u, drift_none)
+        g0 = problem%model%gravity
+        do pass = 1, 3
+            ! gravity 0, g0, 2 g0
+            problem%model%gravity = real(pass - 1, wp)*g0
+            call problem%accelerations(0.0_wp, q, u, error)
+            if (allocated(error)) return
+            a(:, pass) = problem%a
+        end do
+        call check(error, maxval(abs(a(:, 2) - a(:, 1))) > min_gravity_share, &
+            & "accelerations unchanged by the problem's gravity: the equations use a copy")
+        if (allocated(error)) return
+        call check(error, a(:, 3) - a(:, 2), a(:, 2) - a(:, 1), "gravity's share of a", &
+            & abs_tol=tol_solve*maxval(abs(a)))
+        if (allocated(error)) return
+        call check(error, problem%ucon_count() == 3 .and. all([problem%ucon_id(1), &
+            & problem%ucon_id(2), problem%ucon_id(3)] == [1, 2, 3]), "UCON count and ids " &
+            & // to_text(problem%ucon_count()))
+    end subroutine test_problem_model
 
 end module test_dynamics

@@ -159,7 +159,7 @@ contains
         type(scene_type) :: scene
         type(history_type) :: history
         type(run_summary_type) :: summary
-        type(problem_type) :: problem
+        type(problem_type), target :: problem
         real(wp) :: q0(6), u0(6)
 
         scene = default_scene()

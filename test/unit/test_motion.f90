@@ -438,7 +438,7 @@ contains
         end do
         call setup_model(model, error)
         if (allocated(error)) return
-        call problem%eq%init(model)
+        call problem%init(model)
         problem%settings%rtol = 1.0e-10_wp
         problem%settings%atol = 1.0e-12_wp
         problem%events%theta_min = -1.0_wp

@@ -148,8 +148,8 @@ contains
         if (allocated(error)) return
         ! the right-hand side is not evaluated: rollcon_equations' array temporaries would
         ! print runtime warnings into the test log (see the dynamics suite)
-        call check(error, all(ieee_is_finite([q0, u0, problem%eq%model%parts(1)%mass, &
-            & problem%eq%model%parts(1)%inertia, problem%eq%model%gravity])), "mutation " &
+        call check(error, all(ieee_is_finite([q0, u0, problem%model%parts(1)%mass, &
+            & problem%model%parts(1)%inertia, problem%model%gravity])), "mutation " &
             & // to_text(m) // ": the problem of a clean read is not finite")
         if (allocated(error)) return
         call check(error, all(abs(q0 - q) <= 0.0_wp) .and. all(abs(u0 - u) <= 0.0_wp), &

@@ -1,0 +1,44 @@
+! SPDX-License-Identifier: MIT
+!> Scratch arrays of the ODE form's evaluations (right-hand side, Jacobian, projection), sized
+!> once so that no evaluation allocates (automatic arrays would be allocated on the heap at
+!> every call). The equations own one; nothing outside the mechanics layer reads it.
+module rollcon_ode_workspace
+    use rollcon_kinds, only : wp
+    implicit none
+    private
+
+    public :: ode_workspace_type
+
+    !> Work arrays of one set of equations
+    type :: ode_workspace_type
+        !> Applied moment about each part's centre, ground components [N m] (3, parts)
+        real(wp), allocatable :: moments(:, :)
+        !> Rows of C of the position UCONs alone (nh, n), for the position projection
+        real(wp), allocatable :: holonomic_rows(:, :)
+        !> Right-hand sides of the Jacobian's and the projection's solves: momentum rows (n, 2n)
+        !> and constraint rows (nc, 2n)
+        real(wp), allocatable :: rhs_top(:, :), rhs_bottom(:, :)
+        !> Jacobian blocks of the momentum rows d(M a - f - C^T lambda)/d(q, u)
+        real(wp), allocatable :: dm_dq(:, :), dm_du(:, :)
+        !> Accelerations, multipliers, projected coordinates
+        real(wp), allocatable :: a(:), lambda(:), q(:)
+    contains
+        procedure :: init
+    end type ode_workspace_type
+
+contains
+
+    !> Size the arrays for n coordinates, nc constraints of which nh are position UCONs, and
+    !> the given number of parts.
+    subroutine init(self, n, nc, nh, parts)
+        class(ode_workspace_type), intent(out) :: self
+        integer, intent(in) :: n, nc, nh, parts
+
+        allocate(self%moments(3, parts), source=0.0_wp)
+        allocate(self%holonomic_rows(nh, n), self%rhs_top(n, 2*n), self%rhs_bottom(nc, 2*n), &
+            & source=0.0_wp)
+        allocate(self%dm_dq(n, n), self%dm_du(n, n), source=0.0_wp)
+        allocate(self%a(n), self%lambda(nc), self%q(n), source=0.0_wp)
+    end subroutine init
+
+end module rollcon_ode_workspace
