@@ -270,7 +270,7 @@ contains
         call execute_command_line("mkdir -p " // shell_quote(output_dir // "/process"))
         call measure_process(trim(executable), scene, output_dir // "/process", cost, error)
         if (allocated(error)) return
-        write(numbers, '(5(es12.5, :, ","))') cost%wall, cost%cpu, cost%startup_cpu, &
+        write(numbers, '(5(es12.5e3, :, ","))') cost%wall, cost%cpu, cost%startup_cpu, &
             & cost%integration_cpu, cost%rest_cpu
         write(process_unit, '(a)') scene // "," // trim(numbers)
         flush(process_unit)

@@ -62,7 +62,7 @@ contains
             line = line // ": no run (or no reduced run) that close"
             return
         end if
-        write(numbers, '(es10.3, a, es10.3, a, f8.3)') cpu, " s, reduced ODE ", reduced_cpu, &
+        write(numbers, '(es10.3e3, a, es10.3e3, a, f8.3)') cpu, " s, reduced ODE ", reduced_cpu, &
             & " s, CPU ratio ", cpu/reduced_cpu
         line = line // " " // trim(adjustl(numbers))
     end function accuracy_line
