@@ -26,7 +26,8 @@ module rollcon
     use rollcon_user_library, only : user_ucosub_type, user_build_options_type, new_user_ucosub
     use rollcon_ucosub_audit, only : ucon_request_type, user_check_options_type, &
         & user_check_report_type, check_user_ucosub
-    use rollcon_audit_report, only : report_text, report_json
+    use rollcon_audit_report, only : report_text
+    use rollcon_audit_json, only : report_json
     use rollcon_bench_costs, only : part_costs_type, measure_part_costs
     use rollcon_bench_process, only : process_cost_type, measure_process
     use rollcon_bench_summary, only : accuracy_line

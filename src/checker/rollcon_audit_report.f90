@@ -1,20 +1,17 @@
 ! SPDX-License-Identifier: MIT
-!> The report of a UCOSUB check as readable text and as JSON.
+!> The report of a UCOSUB check as readable text (the JSON report: rollcon_audit_json).
 module rollcon_audit_report
-    use, intrinsic :: iso_fortran_env, only : int64
-    use rollcon_kinds, only : wp
     use rollcon_text, only : to_text
-    use rollcon_ucosub_contract, only : code_name
     use rollcon_ucosub_audit, only : user_check_report_type, ucon_report_type, finding_group_type, &
         & sampling_ranges
-    use rollcon_check_rules, only : rule_order, rule_name, rule_meaning, rule_declaration, &
-        & rule_derivative, rule_symmetry, rule_velocity_linear, rule_selector_0, rule_repeat, &
+    use rollcon_check_rules, only : rule_order, rule_name, rule_meaning, rule_derivative, &
+        & rule_symmetry, rule_velocity_linear, rule_selector_0, rule_repeat, &
         & rule_outside_block, rule_signal, rule_timeout, rule_exit
-    use, intrinsic :: ieee_arithmetic, only : ieee_is_finite
+    use rollcon_audit_words, only : entry_label, variable_name, short, real_list
     implicit none
     private
 
-    public :: report_text, report_json, entry_label
+    public :: report_text
 
     character(len=*), parameter :: nl = new_line("a")
     !> Outputs in the order the text report lists them (lower orders first)
@@ -73,7 +70,7 @@ contains
             do i = 1, size(ucon%codes)
                 text = text // " " // variable_name(ucon, i)
             end do
-            write(worst, '(es9.2)') ucon%worst
+            write(worst, '(es10.2e3)') ucon%worst
             text = text // nl // "  " // to_text(ucon%states) // " states, " &
                 & // to_text(ucon%compared) // " entries compared, largest relative deviation " &
                 & // trim(adjustl(worst))
@@ -149,39 +146,6 @@ contains
         is_process = code == rule_signal .or. code == rule_timeout .or. code == rule_exit
     end function is_process_rule
 
-    !> The entry of a finding, with the names of its variables: "XMATRX(5,4) = d2F/d(theta)
-    !> d(psi)", "ARRAY(4) = dF/d(psi)", "SCALAR (dF/dt)", "UCOVAR".
-    function entry_label(ucon, group) result(label)
-        !> The UCON (for the variable names)
-        type(ucon_report_type), intent(in) :: ucon
-        !> The finding
-        type(finding_group_type), intent(in) :: group
-        character(len=:), allocatable :: label
-
-        label = group%output
-        if (group%row == 0 .or. group%code == rule_declaration) return
-        if (group%code == rule_outside_block .and. (group%output == "ARRAY" &
-            & .or. group%output == "XMATRX")) then
-            ! the guard's finding: the index written, which has no variable name
-            label = group%output // "(" // to_text(group%row)
-            if (group%output == "XMATRX") label = label // "," // to_text(group%column)
-            label = label // ")"
-            return
-        end if
-        select case (group%output)
-        case ("ARRAY (dF/dq)", "ARRAY")
-            label = "ARRAY(" // to_text(group%row) // ") = dF/d(" &
-                & // variable_name(ucon, group%row) // ")"
-        case ("ARRAY (d2F/dt dq)")
-            label = "ARRAY(" // to_text(group%row) // ") = d2F/dt d(" &
-                & // variable_name(ucon, group%row) // ")"
-        case ("XMATRX (d2F/dq dq)", "XMATRX")
-            label = "XMATRX(" // to_text(group%row) // "," // to_text(group%column) &
-                & // ") = d2F/d(" // variable_name(ucon, group%row) // ") d(" &
-                & // variable_name(ucon, group%column) // ")"
-        end select
-    end function entry_label
-
     !> The worst case of a group in words.
     function worst_text(ucon, group) result(text)
         type(ucon_report_type), intent(in) :: ucon
@@ -215,194 +179,7 @@ contains
         end select
     end function worst_text
 
-    !> Code name of variable i, with its part when the UCON spans several parts.
-    function variable_name(ucon, i) result(name)
-        type(ucon_report_type), intent(in) :: ucon
-        integer, intent(in) :: i
-        character(len=:), allocatable :: name
-
-        if (.not. allocated(ucon%codes)) then
-            name = "q" // to_text(i)
-        else if (i < 1 .or. i > size(ucon%codes)) then
-            name = "q" // to_text(i)
-        else
-            name = code_name(ucon%codes(i))
-            if (any(ucon%parts /= ucon%parts(1))) name = name // "@" // to_text(ucon%parts(i))
-        end if
-    end function variable_name
-
-    !> The report as a JSON document (non-finite numbers as null).
-    function report_json(report, source, library, from_cache) result(json)
-        !> What the check found
-        type(user_check_report_type), intent(in) :: report
-        !> The user's file and the library built from it
-        character(len=*), intent(in) :: source, library
-        !> Whether the library came from the cache
-        logical, intent(in) :: from_cache
-        character(len=:), allocatable :: json
-        character(len=80) :: ranges(4)
-        integer :: k, i
-
-        ranges = sampling_ranges()
-        json = '{"file": ' // json_string(source) // ', "library": ' // json_string(library) &
-            & // ', "from_cache": ' // logical_json(from_cache) // ',' // nl &
-            & // ' "states": ' // to_text(report%options%states) // ', "seed": ' &
-            & // to_text(report%options%seed) // ', "rel_tol": ' &
-            & // number(report%options%compare%rel_tol) // ', "ranges": ['
-        do i = 1, size(ranges)
-            if (i > 1) json = json // ", "
-            json = json // json_string(trim(ranges(i)))
-        end do
-        json = json // '],' // nl // ' "clean": ' // logical_json(report%clean()) &
-            & // ', "findings": ' // to_text(report%findings()) // ',' // nl // ' "ucons": ['
-        do k = 1, size(report%ucons)
-            if (k > 1) json = json // ','
-            json = json // nl // ucon_json(report%ucons(k))
-        end do
-        json = json // nl // ' ]' // nl // '}'
-    end function report_json
-
-    function ucon_json(ucon) result(json)
-        type(ucon_report_type), intent(in) :: ucon
-        character(len=:), allocatable :: json
-        integer :: g, i
-
-        json = '  {"id": ' // to_text(ucon%id) // ', "par": [' // real_list(ucon%par, ",") &
-            & // '], "declared": ' // logical_json(ucon%declared)
-        if (ucon%declared) then
-            json = json // ', "parts": [' // integer_list(ucon%parts) // '], "codes": [' &
-                & // integer_list(ucon%codes) // '], "names": ['
-            do i = 1, size(ucon%codes)
-                if (i > 1) json = json // ', '
-                json = json // json_string(variable_name(ucon, i))
-            end do
-            json = json // ']'
-        end if
-        json = json // ',' // nl // '   "states": ' // to_text(ucon%states) // ', "compared": ' &
-            & // to_text(ucon%compared) // ', "worst_relative_deviation": ' // number(ucon%worst) &
-            & // ', "groups": ['
-        do g = 1, size(ucon%groups)
-            if (g > 1) json = json // ','
-            json = json // nl // group_json(ucon, ucon%groups(g))
-        end do
-        json = json // ']}'
-    end function ucon_json
-
-    function group_json(ucon, group) result(json)
-        type(ucon_report_type), intent(in) :: ucon
-        type(finding_group_type), intent(in) :: group
-        character(len=:), allocatable :: json
-
-        json = '    {"rule": ' // json_string(rule_name(group%code)) // ', "code": ' &
-            & // to_text(group%code) // ', "output": ' // json_string(group%output) &
-            & // ', "row": ' // to_text(group%row) // ', "column": ' // to_text(group%column) &
-            & // ', "entry": ' // json_string(entry_label(ucon, group)) // ', "count": ' &
-            & // to_text(group%count) // ',' // nl // '     "worst": {"state": ' &
-            & // to_text(group%state) // ', "time": ' // number(group%time) // ', "expected": ' &
-            & // number(group%expected) // ', "returned": ' // number(group%returned)
-        if (allocated(group%q)) json = json // ', "q": [' // real_list(group%q, ",") // ']'
-        if (allocated(group%message)) json = json // ', "message": ' // json_string(group%message)
-        json = json // '}}'
-    end function group_json
-
-    !> Six significant digits, for reading (the JSON report has every digit).
-    pure function short(value) result(text)
-        real(wp), intent(in) :: value
-        character(len=:), allocatable :: text
-        real(wp) :: rounded
-        integer :: shift
-
-        if (value == 0.0_wp .or. .not. ieee_is_finite(value)) then
-            text = to_text(value)
-            return
-        end if
-        shift = 5 - floor(log10(abs(value)))
-        ! An integer over an exact power of ten rounds to the nearest double of the decimal,
-        ! whose shortest text is that decimal.
-        if (shift >= 0 .and. shift <= 22) then
-            rounded = real(nint(value*10.0_wp**shift, kind=int64), wp) / 10.0_wp**shift
-        else if (shift < 0 .and. shift >= -22) then
-            rounded = real(nint(value/10.0_wp**(-shift), kind=int64), wp) * 10.0_wp**(-shift)
-        else
-            rounded = value
-        end if
-        text = to_text(rounded)
-    end function short
-
-    !> JSON string: quotes, backslashes and control characters escaped.
-    pure function json_string(text) result(json)
-        character(len=*), intent(in) :: text
-        character(len=:), allocatable :: json
-        character(len=*), parameter :: hex = "0123456789abcdef"
-        integer :: i, code
-
-        json = '"'
-        do i = 1, len(text)
-            code = iachar(text(i:i))
-            select case (code)
-            case (34, 92)
-                json = json // "\" // text(i:i)
-            case (10)
-                json = json // "\n"
-            case (0:9, 11:31)
-                json = json // "\u00" // hex(code/16 + 1:code/16 + 1) &
-                    & // hex(mod(code, 16) + 1:mod(code, 16) + 1)
-            case default
-                json = json // text(i:i)
-            end select
-        end do
-        json = json // '"'
-    end function json_string
-
-    pure function number(value) result(json)
-        real(wp), intent(in) :: value
-        character(len=:), allocatable :: json
-
-        if (ieee_is_finite(value)) then
-            json = to_text(value)
-        else
-            json = "null"
-        end if
-    end function number
-
-    pure function logical_json(value) result(json)
-        logical, intent(in) :: value
-        character(len=:), allocatable :: json
-
-        json = merge("true ", "false", value)
-        json = trim(json)
-    end function logical_json
-
-    !> Values separated by separator: "," gives JSON numbers, anything else plain text.
-    pure function real_list(values, separator) result(text)
-        real(wp), intent(in) :: values(:)
-        character(len=*), intent(in) :: separator
-        character(len=:), allocatable :: text
-        integer :: i
-
-        text = ""
-        do i = 1, size(values)
-            if (i > 1) text = text // separator
-            if (separator == ",") then
-                text = text // number(values(i))
-            else
-                text = text // to_text(values(i))
-            end if
-        end do
-    end function real_list
-
-    pure function integer_list(values) result(text)
-        integer, intent(in) :: values(:)
-        character(len=:), allocatable :: text
-        integer :: i
-
-        text = ""
-        do i = 1, size(values)
-            if (i > 1) text = text // ","
-            text = text // to_text(values(i))
-        end do
-    end function integer_list
-
+    !> Finding groups over every UCON of the report.
     pure function group_count(report) result(count)
         type(user_check_report_type), intent(in) :: report
         integer :: count

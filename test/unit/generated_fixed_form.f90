@@ -1,5 +1,6 @@
 ! SPDX-License-Identifier: MIT
-!> Runs a generated fixed-form ucosub.f outside fpm and compares it with the free-form module.
+!> Runs a generated fixed-form ucosub.f outside fpm and compares it with the free-form module
+!> (the generated suite's test fixed-form-matches-module).
 !>
 !> The file is compiled alone with `gfortran -std=legacy -c` (it must need nothing but UCOVAR
 !> and ERRMES), linked with the FORTRAN 77 driver and stub utilities of test/fixed_form/, and
@@ -12,13 +13,18 @@ module generated_fixed_form
     use rollcon_ucon_call, only : declare_ucon
     use rollcon_ucovar_registry, only : ucovar_registry_type
     use rollcon_adams_runtime, only : take_ucon_error
-    use rollcon_testing, only : check
-    use generated_specs_list, only : generated_spec_type, random_state, random_parameters, spec_par
+    use rollcon_testing, only : check, skip_test
+    use disk_states, only : seed_random
+    use generated_specs_list, only : generated_spec_type, generated_specs, random_state, &
+        & random_parameters, spec_par
     use, intrinsic :: ieee_arithmetic, only : ieee_value, ieee_quiet_nan
     implicit none
     private
 
-    public :: run_fixed_form
+    public :: test_fixed_form
+
+    !> Where the tests leave logs and build products (under fpm's build directory)
+    character(len=*), parameter :: work_dir = "build/rollcon-test"
 
     !> Every output starts as this value in driver.f (SENTIN) and here
     real(wp), parameter :: sentinel = 12345.0_wp
@@ -43,6 +49,29 @@ module generated_fixed_form
     end type printed_type
 
 contains
+
+    !> Each ucon/adams/<spec>/ucosub.f, compiled alone with gfortran -std=legacy and run by
+    !> test/fixed_form/driver.f, gives what the free-form module gives (see run_fixed_form).
+    subroutine test_fixed_form(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(generated_spec_type), allocatable :: specs(:)
+        integer :: stat, command_stat, s
+
+        call execute_command_line("gfortran --version > /dev/null 2>&1", exitstat=stat, &
+            & cmdstat=command_stat)
+        if (command_stat /= 0 .or. stat /= 0) then
+            call skip_test(error, "gfortran not found: the fixed-form ucosub.f files were not " &
+                & // "compiled")
+            return
+        end if
+        allocate(specs(0))  ! silences gfortran -Wmaybe-uninitialized
+        call generated_specs(specs)
+        call seed_random(8008)
+        do s = 1, size(specs)
+            call run_fixed_form(specs(s), work_dir // "/fixed-form/" // specs(s)%name, error)
+            if (allocated(error)) return
+        end do
+    end subroutine test_fixed_form
 
     !> Compile, run and compare one spec's ucosub.f in directory dir (created if needed).
     subroutine run_fixed_form(spec, dir, error)

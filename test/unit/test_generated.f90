@@ -16,11 +16,11 @@ module test_generated
     use rollcon_disk_par, only : disk_par
     use rollcon_disk_reference, only : hand_disk_ucosub => rolling_disk_ucosub
     use rollcon_gen_rolling_disk, only : generated_disk_ucosub => rolling_disk_ucosub
-    use rollcon_testing, only : unittest_type, new_unittest, check, skip_test
+    use rollcon_testing, only : unittest_type, new_unittest, check
     use disk_states, only : seed_random, random_disk_state
     use generated_specs_list, only : generated_spec_type, generated_specs, random_state, &
         & random_parameters, spec_par
-    use generated_fixed_form, only : run_fixed_form
+    use generated_fixed_form, only : test_fixed_form
     use generated_physics, only : test_turntable, test_sphere, test_knife_edge, test_disk_height
     use generated_constants, only : test_time_free, test_holonomic
     use generated_helpers, only : test_helper_messages, test_helper_edges
@@ -36,8 +36,6 @@ module test_generated
     !> A generic disk state: no angle at a multiple of pi/2, all rates non-zero
     real(wp), parameter :: generic_q(8) = [0.1_wp, 0.02_wp, -0.01_wp, 0.3_wp, 1.2_wp, 0.5_wp, &
         & -0.2_wp, -1.0_wp]
-    !> Where the tests leave logs and build products (under fpm's build directory)
-    character(len=*), parameter :: work_dir = "build/rollcon-test"
 
 contains
 
@@ -377,28 +375,5 @@ contains
             end if
         end do
     end subroutine test_bad_calls
-
-    !> Each ucon/adams/<spec>/ucosub.f, compiled alone with gfortran -std=legacy and run by
-    !> test/fixed_form/driver.f, gives what the free-form module gives (see run_fixed_form).
-    subroutine test_fixed_form(error)
-        type(error_type), allocatable, intent(out) :: error
-        type(generated_spec_type), allocatable :: specs(:)
-        integer :: stat, command_stat, s
-
-        call execute_command_line("gfortran --version > /dev/null 2>&1", exitstat=stat, &
-            & cmdstat=command_stat)
-        if (command_stat /= 0 .or. stat /= 0) then
-            call skip_test(error, "gfortran not found: the fixed-form ucosub.f files were not " &
-                & // "compiled")
-            return
-        end if
-        allocate(specs(0))  ! silences gfortran -Wmaybe-uninitialized
-        call generated_specs(specs)
-        call seed_random(8008)
-        do s = 1, size(specs)
-            call run_fixed_form(specs(s), work_dir // "/fixed-form/" // specs(s)%name, error)
-            if (allocated(error)) return
-        end do
-    end subroutine test_fixed_form
 
 end module test_generated

@@ -10,29 +10,24 @@ module test_user_ucosub
     use rollcon_disk_par, only : disk_par, disk_codes
     use rollcon_disk_reference, only : rolling_disk_ucosub
     use rollcon_gen_rolling_disk, only : generated_disk_ucosub => rolling_disk_ucosub
-    use rollcon_user_library, only : user_ucosub_type, user_build_options_type, new_user_ucosub
+    use rollcon_user_library, only : user_ucosub_type
     use rollcon_partials_check, only : ucon_check_options_type, ucon_check_result_type, &
         & check_ucon_state
     use rollcon_ucosub_audit, only : ucon_request_type, user_check_options_type, &
-        & user_check_report_type, ucon_report_type, check_user_ucosub
-    use rollcon_audit_report, only : report_text, report_json
+        & user_check_report_type, check_user_ucosub
     use rollcon_scene, only : scene_type, read_scene, scene_path
     use rollcon_simulation, only : history_type, run_summary_type
     use rollcon_testing, only : unittest_type, new_unittest, check
     use motion_runs, only : run_in_memory
+    use user_ucosub_support, only : faulty, disk_source, test_states, load, listing, &
+        & check_disk_file, expect_group, expect_clean, expect_in
+    use user_ucosub_reports, only : test_report, test_report_exponent
+    use user_ucosub_loading, only : test_does_not_compile, test_no_ucosub, test_missing_file, &
+        & test_free_form, test_object
     implicit none
     private
 
     public :: collect_user_ucosub
-
-    !> Cache of the libraries built by these tests
-    character(len=*), parameter :: test_cache = "build/rollcon-test-user-cache"
-    !> Faulty routines (test data)
-    character(len=*), parameter :: faulty = "test/faulty_ucosubs/"
-    !> The generated ADAMS-ready disk routine
-    character(len=*), parameter :: disk_source = "ucon/adams/rolling_disk/ucosub.f"
-    !> States per UCON: every planted mistake shows at any generic state, so a few suffice
-    integer, parameter :: test_states = 6
 
 contains
 
@@ -52,6 +47,7 @@ contains
             & new_unittest("errmes-reaches-rollcon", test_errmes), &
             & new_unittest("outside-block", test_outside_block), &
             & new_unittest("report-text-and-json", test_report), &
+            & new_unittest("report-three-digit-exponent", test_report_exponent), &
             & new_unittest("does-not-compile", test_does_not_compile), &
             & new_unittest("no-ucosub", test_no_ucosub), &
             & new_unittest("missing-file", test_missing_file), &
@@ -60,97 +56,6 @@ contains
             & new_unittest("coin-matches-hand-checked", test_trajectory_hand), &
             & new_unittest("tipping-coin-matches-generated", test_trajectory_generated)]
     end subroutine collect_user_ucosub
-
-    !> Load a file with the tests' cache.
-    subroutine load(path, user, error)
-        character(len=*), intent(in) :: path
-        type(user_ucosub_type), intent(out) :: user
-        type(error_type), allocatable, intent(out) :: error
-        type(user_build_options_type) :: options
-
-        options%cache_dir = test_cache
-        call new_user_ucosub(user, path, error, options)
-    end subroutine load
-
-    !> Load a file and check it as the disk's three UCONs (ids 1, 2, 3 = components), part id
-    !> part, radius 0.1 m.
-    subroutine check_disk_file(path, report, error, part)
-        character(len=*), intent(in) :: path
-        type(user_check_report_type), intent(out) :: report
-        type(error_type), allocatable, intent(out) :: error
-        integer, intent(in), optional :: part
-        type(user_ucosub_type) :: user
-        type(ucon_request_type) :: requests(3)
-        type(user_check_options_type) :: options
-        integer :: k, disk_part
-
-        disk_part = 1
-        if (present(part)) disk_part = part
-        call load(path, user, error)
-        if (allocated(error)) return
-        do k = 1, 3
-            requests(k)%id = k
-            requests(k)%par = disk_par(disk_part, 0.1_wp, k)
-        end do
-        options%states = test_states
-        call check_user_ucosub(user%ucosub, requests, options, report, error)
-        call user%destroy()
-    end subroutine check_disk_file
-
-    !> Pass when UCON k of the report has a group of rule on output at (row, column).
-    subroutine expect_group(error, report, k, rule, output, row, column, found)
-        type(error_type), allocatable, intent(out) :: error
-        type(user_check_report_type), intent(in) :: report
-        integer, intent(in) :: k, row, column
-        character(len=*), intent(in) :: rule, output
-        !> Index of the group
-        integer, intent(out), optional :: found
-        integer :: g
-
-        associate (ucon => report%ucons(k))
-            do g = 1, size(ucon%groups)
-                if (ucon%groups(g)%rule == rule .and. ucon%groups(g)%output == output &
-                    & .and. ucon%groups(g)%row == row .and. ucon%groups(g)%column == column) then
-                    if (present(found)) found = g
-                    return
-                end if
-            end do
-            call check(error, .false., "UCON/" // to_text(ucon%id) // ": no [" // rule // "] " &
-                & // output // " (" // to_text(row) // "," // to_text(column) // ") among " &
-                & // to_text(size(ucon%groups)) // " groups" // listing(ucon))
-        end associate
-    end subroutine expect_group
-
-    !> Pass when UCON k of the report has no group.
-    subroutine expect_clean(error, report, k)
-        type(error_type), allocatable, intent(out) :: error
-        type(user_check_report_type), intent(in) :: report
-        integer, intent(in) :: k
-
-        call check(error, size(report%ucons(k)%groups) == 0, "UCON/" &
-            & // to_text(report%ucons(k)%id) // " has findings" // listing(report%ucons(k)))
-    end subroutine expect_clean
-
-    !> The groups of a UCON, for a failure message.
-    function listing(ucon) result(text)
-        type(ucon_report_type), intent(in) :: ucon
-        character(len=:), allocatable :: text
-        integer :: g
-
-        text = ":"
-        do g = 1, size(ucon%groups)
-            text = text // " [" // ucon%groups(g)%rule // "] " // ucon%groups(g)%output // "(" &
-                & // to_text(ucon%groups(g)%row) // "," // to_text(ucon%groups(g)%column) // ")"
-        end do
-    end function listing
-
-    !> Pass when message contains part.
-    subroutine expect_in(error, message, part)
-        type(error_type), allocatable, intent(out) :: error
-        character(len=*), intent(in) :: message, part
-
-        call check(error, index(message, part) > 0, "message lacks '" // part // "': " // message)
-    end subroutine expect_in
 
     subroutine test_disk_clean(error)
         type(error_type), allocatable, intent(out) :: error
@@ -367,157 +272,6 @@ contains
             & // merge("found  ", "missing", array_found) // ", XMATRX(2,9) " &
             & // merge("found  ", "missing", xmatrx_found))
     end subroutine test_outside_block
-
-    !> The text report names the rule, the entry with its variables and the verdict; the JSON
-    !> report says the same.
-    subroutine test_report(error)
-        type(error_type), allocatable, intent(out) :: error
-        type(user_check_report_type) :: report
-        character(len=:), allocatable :: text
-
-        call check_disk_file(faulty // "sign_error.f", report, error)
-        if (allocated(error)) return
-        text = report_text(report, "sign_error.f", "lib")
-        call expect_in(error, text, "[derivative]")
-        if (allocated(error)) return
-        call expect_in(error, text, "ARRAY(5) = dF/d(theta): " // to_text(test_states) // " of " &
-            & // to_text(test_states) // " states; worst at state ")
-        if (allocated(error)) return
-        call expect_in(error, text, "verdict: MISMATCHES in 1 of 3 UCON(s)")
-        if (allocated(error)) return
-        text = report_json(report, "sign_error.f", "lib", .false.)
-        call expect_in(error, text, '"clean": false')
-        if (allocated(error)) return
-        call expect_in(error, text, '"entry": "ARRAY(5) = dF/d(theta)", "count": ' &
-            & // to_text(test_states))
-        if (allocated(error)) return
-        call check_disk_file(disk_source, report, error)
-        if (allocated(error)) return
-        call expect_in(error, report_text(report, disk_source, "lib"), "verdict: CLEAN")
-    end subroutine test_report
-
-    !> gfortran's diagnostic is passed on, and the error names the file and the typo's line.
-    subroutine test_does_not_compile(error)
-        type(error_type), allocatable, intent(out) :: error
-        type(user_ucosub_type) :: user
-        character(len=*), parameter :: path = faulty // "does_not_compile.f"
-        character(len=200) :: line
-        character(len=:), allocatable :: message
-        integer :: unit, stat, number
-
-        open(newunit=unit, file=path, action="read", status="old", iostat=stat)
-        call check(error, stat == 0, "cannot read " // path)
-        if (allocated(error)) return
-        number = 0
-        do
-            read(unit, '(a)', iostat=stat) line
-            if (stat /= 0) exit
-            number = number + 1
-            if (index(line, "XMATRIX(") > 0 .and. line(1:1) == " ") exit
-        end do
-        close(unit)
-        call load(path, user, error)
-        if (.not. allocated(error)) then
-            call user%destroy()
-            call check(error, .false., "a file that does not compile was loaded")
-            return
-        end if
-        message = error%message
-        deallocate(error)
-        call expect_in(error, message, path // ":" // to_text(number) // ": gfortran could " &
-            & // "not compile this UCOSUB")
-        if (allocated(error)) return
-        call expect_in(error, message, "xmatrix")
-    end subroutine test_does_not_compile
-
-    subroutine test_no_ucosub(error)
-        type(error_type), allocatable, intent(out) :: error
-
-        call expect_load_error(error, faulty // "no_ucosub.f", "defines no subroutine UCOSUB")
-    end subroutine test_no_ucosub
-
-    subroutine test_missing_file(error)
-        type(error_type), allocatable, intent(out) :: error
-
-        call expect_load_error(error, faulty // "not_there.f", "not_there.f: no such file")
-    end subroutine test_missing_file
-
-    !> Loading path fails with a message containing part.
-    subroutine expect_load_error(error, path, part)
-        type(error_type), allocatable, intent(out) :: error
-        character(len=*), intent(in) :: path, part
-        type(user_ucosub_type) :: user
-        character(len=:), allocatable :: message
-
-        call load(path, user, error)
-        if (.not. allocated(error)) then
-            call user%destroy()
-            call check(error, .false., path // " was loaded")
-            return
-        end if
-        message = error%message
-        deallocate(error)
-        call expect_in(error, message, part)
-    end subroutine expect_load_error
-
-    !> A .f90 file compiles as free form: a holonomic UCON, Z - PAR(2) = 0 of part PAR(1).
-    subroutine test_free_form(error)
-        type(error_type), allocatable, intent(out) :: error
-        character(len=*), parameter :: path = test_cache // "/height_ucosub.f90"
-        type(user_ucosub_type) :: user
-        type(ucon_request_type) :: request(1)
-        type(user_check_options_type) :: options
-        type(user_check_report_type) :: report
-        integer :: unit, stat
-
-        call execute_command_line("mkdir -p " // test_cache, exitstat=stat)
-        open(newunit=unit, file=path, status="replace", action="write", iostat=stat)
-        call check(error, stat == 0, "cannot write " // path)
-        if (allocated(error)) return
-        write(unit, '(a)') &
-            & "subroutine ucosub(id, time, q, par, npar, idrsel, iflag, scalar, array, xmatrx)", &
-            & "    implicit none", &
-            & "    integer, intent(in) :: id, npar, idrsel(3), iflag", &
-            & "    double precision, intent(in) :: time, q(30), par(*)", &
-            & "    double precision, intent(inout) :: scalar, array(30), xmatrx(30, 30)", &
-            & "    if (iflag == 3) then", &
-            & "        call ucovar(id, 1, [nint(par(1))], 1, [13])", &
-            & "        return", &
-            & "    end if", &
-            & "    if (idrsel(1) == 1) scalar = q(1) - par(2)", &
-            & "    if (idrsel(2) == 1) array(1) = 1.0d0", &
-            & "end subroutine ucosub"
-        close(unit)
-        call load(path, user, error)
-        if (allocated(error)) return
-        request(1)%id = 7
-        request(1)%par = [3.0_wp, 0.25_wp]
-        options%states = test_states
-        call check_user_ucosub(user%ucosub, request, options, report, error)
-        call user%destroy()
-        if (allocated(error)) return
-        call check(error, report%ucons(1)%declared .and. report%ucons(1)%codes(1) == 13 &
-            & .and. report%ucons(1)%parts(1) == 3, "declaration of the free-form routine")
-        if (allocated(error)) return
-        call expect_clean(error, report, 1)
-    end subroutine test_free_form
-
-    !> An object compiled with -fPIC is linked as it is.
-    subroutine test_object(error)
-        type(error_type), allocatable, intent(out) :: error
-        character(len=*), parameter :: object = test_cache // "/rolling_disk.o"
-        type(user_check_report_type) :: report
-        integer :: stat, command_stat
-
-        call execute_command_line("mkdir -p " // test_cache // " && gfortran -c -fPIC " &
-            & // "-std=legacy " // disk_source // " -o " // object, exitstat=stat, &
-            & cmdstat=command_stat)
-        call check(error, stat == 0 .and. command_stat == 0, "compiling " // object // " failed")
-        if (allocated(error)) return
-        call check_disk_file(object, report, error)
-        if (allocated(error)) return
-        call check(error, report%clean(), "the disk's object file has findings")
-    end subroutine test_object
 
     !> The paper's coin over its first second (upright rolling at 0.1 m/s, before the strike),
     !> served by the generated ucosub.f loaded at run time, against the built-in hand-checked
