@@ -163,7 +163,8 @@ contains
                         if (p == 0) then
                             call ucon_error(error, ucon%id, "UCOVAR variable " // to_text(i) &
                                 & // " (" // code_name(declared%codes(i)) // ") belongs to part " &
-                                & // to_text(declared%parts(i)) // ", which the model does not have")
+                                & // to_text(declared%parts(i)) &
+                                & // ", which the model does not have")
                             return
                         end if
                         ucon%coordinate(i) = 6*(p - 1) + code_coordinate(declared%codes(i))

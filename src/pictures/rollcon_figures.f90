@@ -207,7 +207,8 @@ contains
         text = text // output(prefix, "residuals") &
             & // title(name // ": constraint residuals (zero drawn at " &
             & // to_text(residual_floor) // ")") &
-            & // "set ylabel '|F_k| [m/s]; |height_residual| [m]'" // nl // "plot " // residuals // nl &
+            & // "set ylabel '|F_k| [m/s]; |height_residual| [m]'" // nl &
+            & // "plot " // residuals // nl &
             & // "unset logscale y" // nl // "set format y '% h'" // nl
         text = text // output(prefix, "force") &
             & // title(name // ": contact force on the disk") &

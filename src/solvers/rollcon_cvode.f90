@@ -156,7 +156,8 @@ contains
             call fatal_error(error, "CVODE failed at t = " // to_text(t_reached) // " s (flag " &
                 & // to_text(int(flag)) // "): " // problem%failure%message, stat_solver)
         else
-            call fatal_error(error, "CVODE failed at t = " // to_text(t_reached) // " s with flag " &
+            call fatal_error(error, "CVODE failed at t = " // to_text(t_reached) &
+                & // " s with flag " &
                 & // to_text(int(flag)) // ": " // flag_meaning(flag), stat_solver)
         end if
     end subroutine advance

@@ -256,7 +256,8 @@ contains
 
         par = disk_par(1, 0.1_wp, 1)
         par(11) = 4.0_wp
-        call expect_par_error(error, par, disk_npar, "PAR(11) (no-slip component) must be 1, 2 or 3")
+        call expect_par_error(error, par, disk_npar, &
+            & "PAR(11) (no-slip component) must be 1, 2 or 3")
         if (allocated(error)) return
         par(11) = 1.5_wp
         call expect_par_error(error, par, disk_npar, "got 1.5")

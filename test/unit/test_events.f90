@@ -103,7 +103,8 @@ contains
         call check(error, allocated(refused), "theta_min = 0 was accepted")
         if (allocated(error)) return
         call check(error, refused%stat == stat_input .and. index(refused%message, path // ":2: " &
-            & // "'theta_min' in &limits must be at least 0.001") == 1, "message: " // refused%message)
+            & // "'theta_min' in &limits must be at least 0.001") == 1, &
+            & "message: " // refused%message)
     end subroutine test_theta_min_zero
 
     !> Without gravity the normal force of a steady circle is exactly zero (m (g + Z'') = 0), so

@@ -162,8 +162,8 @@ contains
         options%max_csv_bytes = 1000.0_wp
         call simulate(problem, q0, u0, options, summary, failure)
         call check(error, allocated(failure), "11 rows fitted in 1000 bytes")
-        if (.not. allocated(error)) call check(error, index(failure%message, "11 rows, 6325 bytes") &
-            & > 0, failure%message)
+        if (.not. allocated(error)) call check(error, &
+            & index(failure%message, "11 rows, 6325 bytes") > 0, failure%message)
         if (.not. allocated(error)) then
             options%max_csv_bytes = default_max_csv_bytes
             call simulate(problem, q0, u0, options, summary, error)

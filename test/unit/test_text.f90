@@ -33,7 +33,8 @@ contains
         do i = 1, size(values)
             text = to_text(values(i))
             read(text, *) back
-            call check(error, back == values(i), "to_text does not read back: " // to_text(values(i)))
+            call check(error, back == values(i), &
+                & "to_text does not read back: " // to_text(values(i)))
             if (allocated(error)) return
         end do
         call check(error, to_text(0.1_wp) == "0.1" .and. to_text(-2.5_wp) == "-2.5" &
