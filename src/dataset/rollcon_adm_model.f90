@@ -5,6 +5,7 @@ module rollcon_adm_model
     use rollcon_kinds, only : wp
     use rollcon_adm_expression, only : expression_type
     use rollcon_adm_units, only : units_type
+    use rollcon_scene_type, only : scene_run_type
     implicit none
     private
 
@@ -43,10 +44,13 @@ module rollcon_adm_model
         real(wp) :: qp(3) = 0.0_wp, reuler(3) = 0.0_wp
     end type adm_marker_type
 
-    !> UCON/id, FUNCTION=USER(par)
+    !> UCON/id, FUNCTION=USER(par)[, ROUTINE=name]
     type :: adm_ucon_type
         integer :: id = 0, line = 0
         real(wp), allocatable :: par(:)
+        !> ROUTINE=name: a built-in UCOSUB (rollcon_ucosub_catalog) serving this UCON; empty
+        !> when not given (the model's UCOSUB serves it, as in ADAMS)
+        character(len=:), allocatable :: routine
     end type adm_ucon_type
 
     !> SFORCE, VFORCE or GFORCE: markers and up to six expressions (FUNCTION is the first)
@@ -68,10 +72,10 @@ module rollcon_adm_model
     type :: adm_run_type
         !> End time [s]; output step [s] (from STEPS or DTOUT)
         real(wp) :: end_time = 0.0_wp, output_step = 0.0_wp
-        !> Relative tolerance (INTEGRATOR ERROR)
-        real(wp) :: rtol = 1.0e-8_wp
-        !> Formulation choices, as the scenes name them
-        character(len=:), allocatable :: formulation, method, drift, jacobian
+        !> Solver settings, as a namelist scene's &run holds them (choice codes of
+        !> rollcon_scene_type; end_time and output_step are copied there too)
+        type(scene_run_type) :: settings
+        !> Line of the SIMULATE statement (0: none)
         integer :: line = 0
     end type adm_run_type
 

@@ -9,6 +9,7 @@ module rollcon_adm_run
     use rollcon_adm_keywords, only : read_reals, argument_key, arg_place, resolve_name
     use rollcon_adm_units, only : units_type
     use rollcon_adm_model, only : adm_run_type
+    use rollcon_scene_keys, only : choice_code
     implicit none
     private
 
@@ -83,6 +84,8 @@ contains
         else if (steps > 0.0_wp) then
             run%output_step = run%end_time/steps
         end if
+        run%settings%end_time = run%end_time
+        run%settings%output_step = run%output_step
     end subroutine read_simulate
 
     !> INTEGRATOR/ERROR=rtol, FORMULATION=IDA|CVODE, METHOD=BDF|ADAMS,
@@ -108,7 +111,7 @@ contains
                         & // to_text(values(1)), stat_input)
                     return
                 end if
-                run%rtol = values(1)
+                run%settings%rtol = values(1)
                 cycle
             end if
             if (.not. statement%arguments(k)%assigned .or. &
@@ -120,16 +123,20 @@ contains
                 select case (key)
                 case ("FORMULATION")
                     call resolve_name(written, formulations, "formulation", at, choice, error)
-                    if (.not. allocated(error)) run%formulation = lower(choice)
+                    if (.not. allocated(error)) run%settings%formulation = &
+                        & choice_code("formulation", lower(choice))
                 case ("METHOD")
                     call resolve_name(written, methods, "method", at, choice, error)
-                    if (.not. allocated(error)) run%method = lower(choice)
+                    if (.not. allocated(error)) run%settings%method = &
+                        & choice_code("method", lower(choice))
                 case ("DRIFT")
                     call resolve_name(written, drifts, "drift control", at, choice, error)
-                    if (.not. allocated(error)) run%drift = lower(choice)
+                    if (.not. allocated(error)) run%settings%drift = &
+                        & choice_code("drift", lower(choice))
                 case ("JACOBIAN")
                     call resolve_name(written, jacobians, "Jacobian", at, choice, error)
-                    if (.not. allocated(error)) run%jacobian = lower(choice)
+                    if (.not. allocated(error)) run%settings%jacobian = &
+                        & choice_code("jacobian", lower(choice))
                 end select
             end associate
             if (allocated(error)) return

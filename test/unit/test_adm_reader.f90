@@ -10,6 +10,7 @@ module test_adm_reader
     use rollcon_adm_expression, only : evaluate_expression
     use rollcon_adm_state, only : part_state, euler_angles
     use rollcon_rotation, only : rotation_matrix, rate_matrix
+    use rollcon_problem, only : formulation_cvode, method_adams, drift_baumgarte
     use rollcon_testing, only : unittest_type, new_unittest, check
     implicit none
     private
@@ -113,9 +114,10 @@ contains
                 & evaluate_expression(torque%functions(1), 3.0_wp) == 0.03_wp, "SFORCE")
             if (allocated(error)) return
         end associate
-        call check(error, model%run%end_time == 10.0_wp .and. model%run%rtol == 1.0e-9_wp &
-            & .and. model%run%formulation == "cvode" .and. model%run%method == "adams" &
-            & .and. model%run%drift == "baumgarte", "run")
+        call check(error, model%run%end_time == 10.0_wp .and. model%run%settings%rtol == 1.0e-9_wp &
+            & .and. model%run%settings%formulation == formulation_cvode &
+            & .and. model%run%settings%method == method_adams &
+            & .and. model%run%settings%drift == drift_baumgarte, "run")
         if (allocated(error)) return
         call check(error, model%run%output_step, 0.01_wp, "STEPS", rel_tol=tol)
     end subroutine test_coin
