@@ -62,10 +62,12 @@ contains
 
         where = place(model%file, part%line) // ": PART/" // to_text(part%id)
         if (part%ground) then
+            ! ground is the Newtonian frame, at rest: its frame is the ground frame
             if (part%mass /= 0.0_wp .or. part%cm /= 0 .or. any(part%ip /= 0.0_wp) &
-                & .or. any(part%velocity_given) .or. any(part%angular_velocity_given)) &
-                & call fatal_error(error, where // ": the ground part takes no MASS, CM, IP or " &
-                & // "velocities", stat_input)
+                & .or. any(part%velocity_given) .or. any(part%angular_velocity_given) &
+                & .or. any(part%qg /= 0.0_wp) .or. any(part%reuler /= 0.0_wp)) &
+                & call fatal_error(error, where // ": the ground part takes no MASS, CM, IP, " &
+                & // "QG, REULER or velocities (it is the ground frame, at rest)", stat_input)
             return
         end if
         if (.not. part%mass > 0.0_wp) then

@@ -174,9 +174,12 @@ contains
     !> Masses, inertias, end time and output steps out of range, with the range in the message.
     subroutine test_values(error)
         type(error_type), allocatable, intent(out) :: error
-        character(len=120) :: replaced(15)
-        character(len=400) :: expected(15)
+        character(len=120) :: replaced(16)
+        character(len=400) :: expected(16)
 
+        replaced(16) = "PART/1, GROUND, QG=0, 0, 1"
+        expected(16) = ":3: PART/1: the ground part takes no MASS, CM, IP, QG, REULER or " &
+            & // "velocities (it is the ground frame, at rest)"
         replaced(1) = "PART/2, MASS=0, CM=3, IP=2, 2, 3"
         expected(1) = ":4: PART/2 MASS must be > 0 [kg], got 0"
         replaced(2) = "PART/2, MASS=-2, CM=3, IP=2, 2, 3"
@@ -191,7 +194,8 @@ contains
             & // " rollcon's parts move on their principal axes; turn the CM marker onto" &
             & // " them and give IP=xx, yy, zz"
         replaced(6) = "PART/1, GROUND, MASS=1"
-        expected(6) = ":3: PART/1: the ground part takes no MASS, CM, IP or velocities"
+        expected(6) = ":3: PART/1: the ground part takes no MASS, CM, IP, QG, REULER or " &
+            & // "velocities (it is the ground frame, at rest)"
         replaced(7) = "SIMULATE/DYNAMIC, END=0, STEPS=10"
         expected(7) = ":11: SIMULATE END must be >= 1e-9 and <= 1000000000 [s] (as &run" &
             & // " end_time), got 0 s"
@@ -215,7 +219,7 @@ contains
             & // " write SIMULATE/DYNAMIC, END=..., STEPS=..."
         replaced(15) = "SIMULATE/DYNAMIC, STEPS=10"
         expected(15) = ":11: SIMULATE: END=t (the end time) is missing"
-        call check_refusals(error, [4, 4, 4, 4, 4, 3, 11, 11, 11, 11, 11, 11, 11, 11, 11], &
+        call check_refusals(error, [4, 4, 4, 4, 4, 3, 11, 11, 11, 11, 11, 11, 11, 11, 11, 3], &
             & replaced, expected)
     end subroutine test_values
 
