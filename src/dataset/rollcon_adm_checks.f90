@@ -7,10 +7,12 @@ module rollcon_adm_checks
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type, fatal_error, stat_input
     use rollcon_text, only : to_text
+    use rollcon_constants, only : pi, degree
     use rollcon_rotation, only : rotation_matrix
+    use rollcon_adm_state, only : euler_angles
     use rollcon_adm_keywords, only : place
-    use rollcon_adm_model, only : adm_model_type, adm_part_type, adm_force_type, force_sforce, &
-        & force_vforce
+    use rollcon_adm_model, only : adm_model_type, adm_part_type, adm_marker_type, &
+        & adm_force_type, force_sforce, force_vforce
     implicit none
     private
 
@@ -56,15 +58,16 @@ contains
         type(adm_part_type), intent(in) :: part
         type(error_type), allocatable, intent(out) :: error
         character(len=:), allocatable :: where
-        real(wp) :: r(3, 3)
         integer :: m
 
         where = place(model%file, part%line) // ": PART/" // to_text(part%id)
         if (part%ground) then
+            ! ground is the Newtonian frame, at rest: its frame is the ground frame
             if (part%mass /= 0.0_wp .or. part%cm /= 0 .or. any(part%ip /= 0.0_wp) &
-                & .or. any(part%velocity_given) .or. any(part%angular_velocity_given)) &
-                & call fatal_error(error, where // ": the ground part takes no MASS, CM, IP or " &
-                & // "velocities", stat_input)
+                & .or. any(part%velocity_given) .or. any(part%angular_velocity_given) &
+                & .or. any(part%qg /= 0.0_wp) .or. any(part%reuler /= 0.0_wp)) &
+                & call fatal_error(error, where // ": the ground part takes no MASS, CM, IP, " &
+                & // "QG, REULER or velocities (it is the ground frame, at rest)", stat_input)
             return
         end if
         if (.not. part%mass > 0.0_wp) then
@@ -84,9 +87,14 @@ contains
             return
         end if
         m = marker_index(model, part%cm)
-        if (part%cm == 0 .or. m == 0) then
+        if (part%cm == 0) then
             call fatal_error(error, where // " CM: a MARKER on this part must give the centre " &
                 & // "of mass (CM=id)", stat_input)
+            return
+        end if
+        if (m == 0) then
+            call fatal_error(error, where // " CM: no MARKER/" // to_text(part%cm) &
+                & // " (the centre-of-mass marker must be a MARKER on this part)", stat_input)
             return
         end if
         if (model%markers(m)%part /= part%id) then
@@ -94,17 +102,45 @@ contains
                 & // to_text(model%markers(m)%part) // ", not on this part", stat_input)
             return
         end if
-        r = matmul(rotation_matrix(part%reuler(1), part%reuler(2), part%reuler(3)), &
-            & rotation_matrix(model%markers(m)%reuler(1), model%markers(m)%reuler(2), &
-            & model%markers(m)%reuler(3)))
-        if (hypot(r(1, 3), r(2, 3)) < min_sin_theta) then
-            call fatal_error(error, where // ": its CM marker (MARKER/" // to_text(part%cm) &
-                & // ") has its z-axis parallel to ground z, where the 3-1-3 Euler angles of " &
-                & // "the principal axes are singular; turn the CM marker 90 degrees about its " &
-                & // "x-axis (REULER=0, 90D, 0 more) and give IP in the turned axes (xx, zz, yy)", &
-                & stat_input)
-        end if
+        call check_principal_axes(where, part, model%markers(m), error)
     end subroutine check_part
+
+    !> The principal-axes rule at t = 0 (docs/design.md §2): the CM marker's z-axis, turned by
+    !> the part's REULER and its own, must not be parallel to ground z. The fix offered turns
+    !> the CM marker 90 degrees about its own x-axis: its new z-axis is its old -y, horizontal.
+    subroutine check_principal_axes(where, part, marker, error)
+        !> "file:line: PART/id"
+        character(len=*), intent(in) :: where
+        type(adm_part_type), intent(in) :: part
+        type(adm_marker_type), intent(in) :: marker
+        type(error_type), allocatable, intent(out) :: error
+        real(wp) :: r_marker(3, 3), r(3, 3), turned(3), sin_theta
+
+        r_marker = rotation_matrix(marker%reuler(1), marker%reuler(2), marker%reuler(3))
+        r = matmul(rotation_matrix(part%reuler(1), part%reuler(2), part%reuler(3)), r_marker)
+        sin_theta = hypot(r(1, 3), r(2, 3))
+        if (sin_theta >= min_sin_theta) return
+        turned = euler_angles(matmul(r_marker, rotation_matrix(0.0_wp, 0.5_wp*pi, 0.0_wp)))
+        call fatal_error(error, where // ": the z-axis of its principal axes (its CM marker, " &
+            & // "MARKER/" // to_text(marker%id) // ", in the part's frame) is parallel to " &
+            & // "ground z at t = 0, where the 3-1-3 Euler angles are singular (sin(theta) = " &
+            & // to_text(sin_theta) // " < " // to_text(min_sin_theta) // "); turn the CM " &
+            & // "marker 90 degrees about its x-axis: MARKER/" // to_text(marker%id) &
+            & // ", REULER=" // degrees(turned(1)) // ", " // degrees(turned(2)) // ", " &
+            & // degrees(turned(3)) // ", and give IP in the turned axes (Ixx, Izz, Iyy)", &
+            & stat_input)
+    end subroutine check_principal_axes
+
+    !> An angle as a dataset writes it in degrees, rounded to 1e-9 degree: "90D".
+    pure function degrees(angle) result(text)
+        !> Angle [rad]
+        real(wp), intent(in) :: angle
+        character(len=:), allocatable :: text
+        !> Steps per degree printed (1e-9 degree): hides the last bits of the matrix products
+        real(wp), parameter :: steps = 1.0e9_wp
+
+        text = to_text(anint(angle/degree*steps)/steps) // "D"
+    end function degrees
 
     subroutine check_force(model, force, error)
         type(adm_model_type), intent(in) :: model
@@ -116,16 +152,15 @@ contains
         name = merge("SFORCE", merge("VFORCE", "GFORCE", force%kind == force_vforce), &
             & force%kind == force_sforce)
         where = place(model%file, force%line) // ": " // name // "/" // to_text(force%id)
-        if (marker_index(model, force%i) == 0) then
+        if (force%i == 0) then
             call fatal_error(error, where // " I: a marker id is needed (I=id of an existing " &
                 & // "MARKER)", stat_input)
             return
         end if
-        if (force%j /= 0 .and. marker_index(model, force%j) == 0 .or. &
-            & force%rm /= 0 .and. marker_index(model, force%rm) == 0) then
-            call fatal_error(error, where // ": J, JFLOAT or RM names no MARKER", stat_input)
-            return
-        end if
+        call require_marker(force%i, "I")
+        call require_marker(force%j, trim(merge("J     ", "JFLOAT", force%kind == force_sforce)))
+        call require_marker(force%rm, "RM")
+        if (allocated(error)) return
         if (force%kind == force_sforce .and. force%j == 0) then
             call fatal_error(error, where // " J: an SFORCE acts between I and J (J=id)", &
                 & stat_input)
@@ -138,6 +173,19 @@ contains
                 & force%kind == force_vforce), force%kind == force_sforce)) // " is needed", &
                 & stat_input)
         end if
+
+    contains
+
+        !> A marker id given (not 0) must name a MARKER.
+        subroutine require_marker(id, key)
+            integer, intent(in) :: id
+            character(len=*), intent(in) :: key
+
+            if (allocated(error) .or. id == 0) return
+            if (marker_index(model, id) == 0) call fatal_error(error, where // " " // key &
+                & // ": no MARKER/" // to_text(id), stat_input)
+        end subroutine require_marker
+
     end subroutine check_force
 
     pure integer function marker_index(model, id)

@@ -55,7 +55,8 @@ contains
         end do
         if (count == 1) return
         if (count == 0) then
-            call fatal_error(error, where // ": '" // trim(written) // "' is not a " // what &
+            call fatal_error(error, where // ": '" // trim(written) // "' is not " &
+                & // trim(merge("an", "a ", scan(what(1:1), "AEIOaeio") > 0)) // " " // what &
                 & // " of the supported subset (" // joined(allowed) // ")", stat_input)
         else
             call fatal_error(error, where // ": '" // trim(written) // "' is ambiguous: it may " &
@@ -176,9 +177,8 @@ contains
         character(len=:), allocatable :: other
         integer :: j
 
-        call resolve_name(statement%arguments(k)%keyword, allowed, &
-            & trim(where(index(where, ": ", back=.true.) + 2:)) // " argument", &
-            & arg_place(path, where, statement%arguments(k)), key, error)
+        call resolve_name(statement%arguments(k)%keyword, allowed, statement_of(where) &
+            & // " argument", arg_place(path, where, statement%arguments(k)), key, error)
         if (allocated(error)) return
         do j = 1, k - 1
             call resolve_name(statement%arguments(j)%keyword, allowed, "argument", where, &
@@ -191,6 +191,15 @@ contains
             end if
         end do
     end subroutine argument_key
+
+    !> The statement's name in "file:line: STATEMENT/id": "STATEMENT".
+    pure function statement_of(where) result(name)
+        character(len=*), intent(in) :: where
+        character(len=:), allocatable :: name
+
+        name = where(index(where, ": ", back=.true.) + 2:)
+        if (index(name, "/") > 0) name = name(:index(name, "/") - 1)
+    end function statement_of
 
     !> "file:line: STATEMENT/id" with the argument's own line.
     pure function arg_place(path, where, argument) result(text)

@@ -16,6 +16,7 @@ module rollcon_adm_reader
     use rollcon_adm_loads, only : read_ucon, read_accgrav, read_force
     use rollcon_adm_run, only : read_simulate, read_integrator
     use rollcon_adm_checks, only : check_references
+    use rollcon_adm_outside, only : outside_reason
     implicit none
     private
 
@@ -45,8 +46,7 @@ contains
         seen = .false.
         do i = 1, size(text%statements)
             associate (statement => text%statements(i))
-                call resolve_name(statement%name, statement_names, "statement", &
-                    & place(path, statement%line), name, error)
+                call statement_name(path, statement, name, error)
                 if (allocated(error)) return
                 if (seen(name_index(name, statement_names)) .and. once(name)) then
                     call fatal_error(error, place(path, statement%line) // ": a second " // name &
@@ -109,11 +109,29 @@ contains
         case ("INTEGRATOR")
             call read_integrator(path, where, statement, model%run, error)
         case ("OUTPUT")
-            if (size(statement%arguments) > 0) call fatal_error(error, where // ": OUTPUT " &
-                & // "takes no argument here (rollcon writes its own CSV and summary)", &
-                & stat_input)
+            if (size(statement%arguments) > 0) call fatal_error(error, arg_place(path, where, &
+                & statement%arguments(1)) // ": '" // statement%arguments(1)%keyword &
+                & // "' is not supported: OUTPUT takes no argument in rollcon (supported: none), " &
+                & // "which writes its own outputs (a CSV of every part's coordinates, the " &
+                & // "energy and every UCON's residual and multiplier, and a summary)", stat_input)
         end select
     end subroutine read_statement
+
+    !> The supported statement `statement` names (a unique prefix, any case); a refusal says
+    !> why for a well-known statement outside the subset (rollcon_adm_outside).
+    subroutine statement_name(path, statement, name, error)
+        character(len=*), intent(in) :: path
+        type(adm_statement_type), intent(in) :: statement
+        character(len=:), allocatable, intent(out) :: name
+        type(error_type), allocatable, intent(out) :: error
+        character(len=:), allocatable :: reason
+
+        call resolve_name(statement%name, statement_names, "statement", &
+            & place(path, statement%line), name, error)
+        if (.not. allocated(error)) return
+        reason = outside_reason(statement%name)
+        if (len(reason) > 0) error%message = error%message // "; " // reason
+    end subroutine statement_name
 
     pure logical function needs_id(name)
         character(len=*), intent(in) :: name
@@ -122,33 +140,37 @@ contains
             & "VFORCE", "GFORCE"])
     end function needs_id
 
+    !> UNITS, read before any other statement. SYSTEM sets all four units; FORCE, MASS, LENGTH
+    !> and TIME given beside it override its choice, wherever they stand in the statement.
     subroutine read_units(text, units, error)
         type(adm_text_type), intent(in) :: text
         type(units_type), intent(out) :: units
         type(error_type), allocatable, intent(out) :: error
         character(len=:), allocatable :: name, key, where
-        integer :: i, k
+        integer :: i, k, pass
 
         do i = 1, size(text%statements)
-            call resolve_name(text%statements(i)%name, statement_names, "statement", &
-                & place(text%file, text%statements(i)%line), name, error)
+            call statement_name(text%file, text%statements(i), name, error)
             if (allocated(error)) return
             if (name /= "UNITS") cycle
             where = place(text%file, text%statements(i)%line) // ": UNITS"
-            do k = 1, size(text%statements(i)%arguments)
-                associate (argument => text%statements(i)%arguments(k))
-                    call argument_key(text%file, where, text%statements(i), k, unit_keywords, &
-                        & key, error)
-                    if (allocated(error)) return
-                    if (.not. argument%assigned .or. size(argument%values) /= 1) then
-                        call fatal_error(error, arg_place(text%file, where, argument) // " " &
-                            & // key // ": expected one unit name", stat_input)
-                        return
-                    end if
-                    call set_unit(units, key, argument%values(1)%text, arg_place(text%file, &
-                        & where, argument) // " " // key, error)
-                    if (allocated(error)) return
-                end associate
+            do pass = 1, 2
+                do k = 1, size(text%statements(i)%arguments)
+                    associate (argument => text%statements(i)%arguments(k))
+                        call argument_key(text%file, where, text%statements(i), k, &
+                            & unit_keywords, key, error)
+                        if (allocated(error)) return
+                        if ((key == "SYSTEM") .neqv. (pass == 1)) cycle
+                        if (.not. argument%assigned .or. size(argument%values) /= 1) then
+                            call fatal_error(error, arg_place(text%file, where, argument) &
+                                & // " " // key // ": expected one unit name", stat_input)
+                            return
+                        end if
+                        call set_unit(units, key, argument%values(1)%text, &
+                            & arg_place(text%file, where, argument) // " " // key, error)
+                        if (allocated(error)) return
+                    end associate
+                end do
             end do
         end do
     end subroutine read_units

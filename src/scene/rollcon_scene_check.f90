@@ -9,15 +9,15 @@ module rollcon_scene_check
     use rollcon_text, only : to_text
     use rollcon_scene_lexer, only : group_type
     use rollcon_scene_bytes, only : visible
-    use rollcon_scene_type, only : scene_type, formulation_ida, formulation_cvode, method_bdf, &
-        & method_adams, drift_projection
+    use rollcon_scene_type, only : scene_type, scene_run_type, formulation_ida, &
+        & formulation_cvode, method_bdf, method_adams, drift_projection
     use rollcon_scene_keys, only : choice_name
     use rollcon_scene_state, only : disk_mass_properties, angular_velocity, disk_initial_state
     use, intrinsic :: ieee_arithmetic, only : ieee_is_finite
     implicit none
     private
 
-    public :: check_scene, key_line
+    public :: check_scene, key_line, run_choice_rule
 
     !> Relative tolerance of the contact and no-slip checks of a given initial state
     real(wp), parameter :: contact_tol = 1.0e-9_wp
@@ -43,6 +43,7 @@ contains
         !> The scene read; z, xdot, ydot, zdot exact on return
         type(scene_type), intent(inout) :: scene
         type(error_type), allocatable, intent(out) :: error
+        character(len=:), allocatable :: key, expected, got
 
         associate (i => scene%initial, r => scene%run)
             call require(sin(i%theta) >= flat_margin, "initial", "theta", "at least " &
@@ -58,18 +59,8 @@ contains
                 & // "singular) and less than the initial distance from flat " &
                 & // "min(theta, pi - theta) = " // to_text(min(i%theta, pi - i%theta)) &
                 & // " [rad]", to_text(scene%limits%theta_min))
-            if (r%formulation == formulation_ida) then
-                call require(r%method == method_bdf, "run", "method", "'bdf' with formulation " &
-                    & // "'ida' (IDA is a BDF code; 'adams' needs 'cvode')", &
-                    & "'" // choice_name("method", r%method) // "'")
-                call require(r%drift == drift_projection, "run", "drift", "left out with " &
-                    & // "formulation 'ida' (IDA has no drift; 'baumgarte' and 'none' are for " &
-                    & // "'cvode')", "'" // choice_name("drift", r%drift) // "'")
-            end if
-            ! CVODE's projection works with BDF only (CVodeSetProjFn refuses Adams)
-            call require(.not. (r%formulation == formulation_cvode .and. r%method == method_adams &
-                & .and. r%drift == drift_projection), "run", "drift", "'baumgarte' or 'none' " &
-                & // "with method = 'adams' (CVODE projects only with BDF)", "'projection'")
+            call run_choice_rule(r, key, expected, got)
+            call require(len(key) == 0, "run", key, expected, got)
         end associate
         if (allocated(error)) return
         call check_contact(path, groups, scene, error)
@@ -89,6 +80,36 @@ contains
         end subroutine require
 
     end subroutine check_scene
+
+    !> The first rule on the solver choices of &run that run breaks (key empty when none): the
+    !> key at fault, what it must be and what it is. Shared by the scenes and the datasets'
+    !> INTEGRATOR statement (rollcon_adm_run), so both refuse the same combinations.
+    subroutine run_choice_rule(run, key, expected, got)
+        type(scene_run_type), intent(in) :: run
+        !> 'method' or 'drift', "" when the choices go together
+        character(len=:), allocatable, intent(out) :: key
+        !> What the key must be, and its value quoted
+        character(len=:), allocatable, intent(out) :: expected, got
+
+        key = ""
+        expected = ""
+        got = ""
+        if (run%formulation == formulation_ida .and. run%method /= method_bdf) then
+            key = "method"
+            expected = "'bdf' with formulation 'ida' (IDA is a BDF code; 'adams' needs 'cvode')"
+        else if (run%formulation == formulation_ida .and. run%drift /= drift_projection) then
+            key = "drift"
+            expected = "left out with formulation 'ida' (IDA has no drift; 'baumgarte' and " &
+                & // "'none' are for 'cvode')"
+        else if (run%formulation == formulation_cvode .and. run%method == method_adams &
+                & .and. run%drift == drift_projection) then
+            ! CVODE's projection works with BDF only (CVodeSetProjFn refuses Adams)
+            key = "drift"
+            expected = "'baumgarte' or 'none' with method = 'adams' (CVODE projects only with BDF)"
+        end if
+        if (len(key) > 0) got = "'" // choice_name(key, merge(run%method, run%drift, &
+            & key == "method")) // "'"
+    end subroutine run_choice_rule
 
     !> An input error at the line of key, or naming the default when the key is not given.
     subroutine key_error(path, groups, group, key, text, error)

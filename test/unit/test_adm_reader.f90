@@ -166,8 +166,8 @@ contains
         replaced(3) = ", VX=0.1, W=-1"
         expected(3) = file // "6: PART/2: 'W' is ambiguous: it may be WX, WY, WZ; write more"
         replaced(4) = "MARKER/3, PART=2"
-        expected(4) = file // "4: PART/2: its CM marker (MARKER/3) has its z-axis parallel to " &
-            & // "ground z"
+        expected(4) = file // "4: PART/2: the z-axis of its principal axes (its CM marker, " &
+            & // "MARKER/3, in the part's frame) is parallel to ground z"
         replaced(5) = "MARKER/3, PART=2, REULER=0, 90, 0"
         expected(5) = ""
         replaced(6) = "UCON/1, FUNCTION=USER(2, 21,,23, 0.1, 1)"
@@ -175,7 +175,7 @@ contains
         replaced(7) = "ACCGRAV/KGRAV=-9.81D"
         expected(7) = file // "12: ACCGRAV KGRAV: '-9.81D': D (degrees) is for angles only"
         replaced(8) = "VFORCE/6, I=4, JFLOAT=8, RM=5, FX=0, FZ=0"
-        expected(8) = file // "13: VFORCE/6: J, JFLOAT or RM names no MARKER"
+        expected(8) = file // "13: VFORCE/6 JFLOAT: no MARKER/8"
         replaced(9) = "SIM/STATICS, END=10"
         expected(9) = file // "16: SIMULATE: 'STATICS' is not a SIMULATE argument"
         replaced(10) = "SIM/DYN, END=10"
@@ -185,7 +185,8 @@ contains
         replaced(12) = ", VX=0.1, WZ=-1, WZ=2"
         expected(12) = file // "6: PART/2: WZ is given twice"
         replaced(13) = "OUTPUT/REQSAVE"
-        expected(13) = file // "18: OUTPUT: OUTPUT takes no argument here"
+        expected(13) = file // "18: OUTPUT: 'REQSAVE' is not supported: OUTPUT takes no " &
+            & // "argument"
         replaced(14) = "UCON/1, FUNCTION=USER(2, 21)"
         expected(14) = file // "11: UCON/1: a second UCON with this id"
         do i = 1, n

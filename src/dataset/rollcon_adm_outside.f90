@@ -1,0 +1,54 @@
+! SPDX-License-Identifier: MIT
+!> Why a statement of the ADAMS/Solver language outside rollcon's subset is refused: the
+!> reason added to the refusal of a well-known statement, so the message says what to write
+!> instead. A statement not listed here is refused with the list of supported ones alone.
+module rollcon_adm_outside
+    use rollcon_adm_lexer, only : upper_case
+    implicit none
+    private
+
+    public :: outside_reason
+
+    !> Kinds of statement outside the subset, each with its reason
+    integer, parameter :: kinds = 6
+    character(len=*), parameter :: reasons(kinds) = [character(len=150) :: &
+        & "rollcon's only constraints are UCONs: state this one as a UCON served by a UCOSUB " &
+        & // "(ucon/ generates one from a SymPy statement)", &
+        & "prescribed motions are not in the subset", &
+        & "force elements other than SFORCE, VFORCE and GFORCE are not in the subset: write " &
+        & // "the force as one of them with a FUNCTION expression", &
+        & "rollcon writes its own outputs (a CSV of every part, the energy and every UCON, a " &
+        & // "summary, pictures)", &
+        & "system and data elements are not in the subset: FUNCTION expressions depend on " &
+        & // "TIME only", &
+        & "rollcon's bodies are rigid PARTs"]
+    !> Statement names and the kind of each
+    character(len=*), parameter :: names(24) = [character(len=12) :: "JOINT", "JPRIM", &
+        & "COUPLER", "GEAR", "PTCV", "CVCV", "MOTION", "BEAM", "BUSHING", "FIELD", &
+        & "SPRINGDAMPER", "FRICTION", "CONTACT", "REQUEST", "MREQUEST", "GRAPHICS", "RESULTS", &
+        & "VARIABLE", "DIFF", "ARRAY", "SPLINE", "STRING", "FLEX_BODY", "POINT_MASS"]
+    integer, parameter :: kind_of(size(names)) = [1, 1, 1, 1, 1, 1, 2, 3, 3, 3, 3, 3, 3, 4, &
+        & 4, 4, 4, 5, 5, 5, 5, 5, 6, 6]
+
+contains
+
+    !> The reason a statement written `written` (any case; an abbreviation of at least three
+    !> letters counts) is outside the subset; "" when it is not a listed one.
+    pure function outside_reason(written) result(reason)
+        character(len=*), intent(in) :: written
+        character(len=:), allocatable :: reason
+        character(len=:), allocatable :: name
+        integer :: i
+
+        reason = ""
+        name = trim(upper_case(written))
+        if (len(name) < 3) return
+        do i = 1, size(names)
+            if (index(trim(names(i)), name) == 1) then
+                reason = trim(reasons(kind_of(i)))
+                return
+            end if
+        end do
+    end function outside_reason
+
+end module rollcon_adm_outside

@@ -1,0 +1,325 @@
+! SPDX-License-Identifier: MIT
+!> The dataset reader's refusals: one table per kind, each case a one-line change of a
+!> dataset that reads cleanly (adm_datasets) and the exact message it must give.
+module test_adm_refusals
+    use rollcon_error, only : error_type
+    use rollcon_testing, only : unittest_type, new_unittest
+    use adm_datasets, only : check_refusals
+    implicit none
+    private
+
+    public :: collect_adm_refusals
+
+    !> The supported statements, as a refusal lists them
+    character(len=*), parameter :: supported = &
+        & "(ACCGRAV, END, GFORCE, INTEGRATOR, MARKER, OUTPUT, PART, SFORCE, SIMULATE," &
+        & // " UCON, UNITS, VFORCE)"
+    !> The built-in UCOSUBs, as a refusal lists them
+    character(len=*), parameter :: builtin = &
+        & "(disk, rolling_disk, disk_height, knife_edge, rolling_sphere, turntable_disk)"
+
+contains
+
+    subroutine collect_adm_refusals(tests)
+        type(unittest_type), allocatable, intent(out) :: tests(:)
+
+        allocate(tests(0))
+        tests = [new_unittest("statements-outside-the-subset", test_statements), &
+            & new_unittest("keyword-refusals", test_keywords), &
+            & new_unittest("references", test_references), &
+            & new_unittest("duplicate-ids", test_duplicates), &
+            & new_unittest("values-out-of-range", test_values), &
+            & new_unittest("ucon-refusals", test_ucons), &
+            & new_unittest("integrator-refusals", test_integrator), &
+            & new_unittest("principal-axes-at-start", test_principal_axes)]
+    end subroutine collect_adm_refusals
+
+    !> Statements outside the subset, ambiguous, misplaced, repeated, with or without an id.
+    subroutine test_statements(error)
+        type(error_type), allocatable, intent(out) :: error
+        character(len=120) :: replaced(13)
+        character(len=400) :: expected(13)
+
+        replaced(1) = "JOINT/9, REVOLUTE, I=3, J=4"
+        expected(1) = ":7: 'JOINT' is not a statement of the supported subset " // supported &
+            & // "; rollcon's only constraints are UCONs: state this one as a UCON served" &
+            & // " by a UCOSUB (ucon/ generates one from a SymPy statement)"
+        replaced(2) = "motion/1, joint=9"
+        expected(2) = ":7: 'MOTION' is not a statement of the supported subset " // supported &
+            & // "; prescribed motions are not in the subset"
+        replaced(3) = "REQ/1, DISPLACEMENT, I=3"
+        expected(3) = ":7: 'REQ' is not a statement of the supported subset " // supported &
+            & // "; rollcon writes its own outputs (a CSV of every part, the energy and" &
+            & // " every UCON, a summary, pictures)"
+        replaced(4) = "BUSHING/1, I=3, J=4"
+        expected(4) = ":7: 'BUSHING' is not a statement of the supported subset " // supported &
+            & // "; force elements other than SFORCE, VFORCE and GFORCE are not in the" &
+            & // " subset: write the force as one of them with a FUNCTION expression"
+        replaced(5) = "VARIABLE/1, FUNCTION=TIME"
+        expected(5) = ":7: 'VARIABLE' is not a statement of the supported subset " // supported &
+            & // "; system and data elements are not in the subset: FUNCTION expressions" &
+            & // " depend on TIME only"
+        replaced(6) = "FLEX_BODY/1"
+        expected(6) = ":7: 'FLEX_BODY' is not a statement of the supported subset " // supported &
+            & // "; rollcon's bodies are rigid PARTs"
+        replaced(7) = "FOO/1"
+        expected(7) = ":7: 'FOO' is not a statement of the supported subset " // supported
+        replaced(8) = "S/1, I=3"
+        expected(8) = ":7: 'S' is ambiguous: it may be SFORCE, SIMULATE; write more of the name"
+        replaced(9) = "END|PART/6, MASS=1"
+        expected(9) = ":15: a statement after END"
+        replaced(10) = "INTEGRATOR/ERROR=1e-8|INTEG/ERROR=1e-9"
+        expected(10) = ":13: a second INTEGRATOR statement (a dataset has at most one)"
+        replaced(11) = "ACCGRAV/1, KGRAV=-9.81"
+        expected(11) = ":9: ACCGRAV takes no id (write ACCGRAV/ARG=...)"
+        replaced(12) = "MARKER, PART=1"
+        expected(12) = ":7: MARKER needs an id (MARKER/id, ...)"
+        replaced(13) = "OUTPUT/REQSAVE"
+        expected(13) = ":13: OUTPUT: 'REQSAVE' is not supported: OUTPUT takes no argument in" &
+            & // " rollcon (supported: none), which writes its own outputs (a CSV of every" &
+            & // " part's coordinates, the energy and every UCON's residual and multiplier," &
+            & // " and a summary)"
+        call check_refusals(error, [7, 7, 7, 7, 7, 7, 7, 7, 14, 12, 9, 7, 13], replaced, expected)
+    end subroutine test_statements
+
+    !> Unknown, ambiguous, repeated keywords and values of the wrong form.
+    subroutine test_keywords(error)
+        type(error_type), allocatable, intent(out) :: error
+        character(len=120) :: replaced(13)
+        character(len=400) :: expected(13)
+
+        replaced(1) = "PART/2, MASS=1, CM=3, IP=2, 2, 3, DENSITY=7800"
+        expected(1) = ":4: PART/2: 'DENSITY' is not a PART argument of the supported subset" &
+            & // " (GROUND, MASS, CM, IP, QG, REULER, VX, VY, VZ, WX, WY, WZ)"
+        replaced(2) = "INTEGRATOR/HMAX=0.1"
+        expected(2) = ":12: INTEGRATOR: 'HMAX' is not an INTEGRATOR argument of the supported" &
+            & // " subset (ERROR, RTOL, ATOL, MAXSTEPS, BAUMGARTE, FORMULATION, METHOD," &
+            & // " DRIFT, JACOBIAN)"
+        replaced(3) = ", QG=0, 0, 1, W=1"
+        expected(3) = ":5: PART/2: 'W' is ambiguous: it may be WX, WY, WZ; write more of the name"
+        replaced(4) = "INTEGRATOR/M=10"
+        expected(4) = ":12: INTEGRATOR: 'M' is ambiguous: it may be MAXSTEPS, METHOD; write more" &
+            & // " of the name"
+        replaced(5) = ", QG=0, 0, 1, VX=0.5, VX=1"
+        expected(5) = ":5: PART/2: VX is given twice"
+        replaced(6) = "PART/1, GROUND=1"
+        expected(6) = ":3: PART/1 GROUND takes no value"
+        replaced(7) = ", QG=0, 0"
+        expected(7) = ":5: PART/2 QG: expected 3 numbers, got 2"
+        replaced(8) = "PART/2, MASS=heavy, CM=3, IP=2, 2, 3"
+        expected(8) = ":4: PART/2 MASS: 'heavy' is not a number (expected 1 number)"
+        replaced(9) = "PART/2, MASS=1D, CM=3, IP=2, 2, 3"
+        expected(9) = ":4: PART/2 MASS: '1D': D (degrees) is for angles only"
+        replaced(10) = "MARKER/3, PART=2.5, REULER=0D, 90D, 0D"
+        expected(10) = ":6: MARKER/3 PART: expected an id (a positive integer), got '2.5'"
+        replaced(11) = "UNITS/LENGTH=FURLONG"
+        expected(11) = ":2: UNITS LENGTH: 'FURLONG' is not a length unit of the supported subset" &
+            & // " (METER, MILLIMETER, CENTIMETER, KILOMETER, INCH, FOOT)"
+        replaced(12) = "SIM/STATICS, END=1"
+        expected(12) = ":11: SIMULATE: 'STATICS' is not a SIMULATE argument of the supported" &
+            & // " subset (DYNAMIC, END, STEPS, DTOUT)"
+        replaced(13) = "INTEGRATOR/FORM=ode"
+        expected(13) = ":12: INTEGRATOR FORMULATION: 'ode' is not a formulation of the supported" &
+            & // " subset (IDA, CVODE)"
+        call check_refusals(error, [4, 12, 5, 12, 5, 3, 5, 4, 4, 6, 2, 11, 12], replaced, expected)
+    end subroutine test_keywords
+
+    !> References to parts and markers that do not exist, a CM marker on another part, no ground.
+    subroutine test_references(error)
+        type(error_type), allocatable, intent(out) :: error
+        character(len=120) :: replaced(10)
+        character(len=400) :: expected(10)
+
+        replaced(1) = "MARKER/3, PART=9, REULER=0D, 90D, 0D"
+        expected(1) = ":6: MARKER/3 PART: no PART/9"
+        replaced(2) = "PART/2, MASS=1, CM=8, IP=2, 2, 3"
+        expected(2) = ":4: PART/2 CM: no MARKER/8 (the centre-of-mass marker must be a MARKER on" &
+            & // " this part)"
+        replaced(3) = "PART/2, MASS=1, CM=4, IP=2, 2, 3"
+        expected(3) = ":4: PART/2 CM: MARKER/4 is on PART/1, not on this part"
+        replaced(4) = "PART/2, MASS=1, IP=2, 2, 3"
+        expected(4) = ":4: PART/2 CM: a MARKER on this part must give the centre of mass (CM=id)"
+        replaced(5) = "SFORCE/5, I=9, J=4, TRANSLATION, FUNCTION=TIME"
+        expected(5) = ":10: SFORCE/5 I: no MARKER/9"
+        replaced(6) = "SFORCE/5, I=3, J=9, TRANSLATION, FUNCTION=TIME"
+        expected(6) = ":10: SFORCE/5 J: no MARKER/9"
+        replaced(7) = "SFORCE/5, I=3, TRANSLATION, FUNCTION=TIME"
+        expected(7) = ":10: SFORCE/5 J: an SFORCE acts between I and J (J=id)"
+        replaced(8) = "MARKER/4"
+        expected(8) = ":7: MARKER/4: PART=id is missing (the part the marker is on)"
+        replaced(9) = "! no ground"
+        expected(9) = ": a dataset needs exactly one PART with GROUND, found 0"
+        replaced(10) = "! no SIMULATE"
+        expected(10) = ": no SIMULATE statement (SIMULATE/DYNAMIC, END=t, STEPS=n)"
+        call check_refusals(error, [6, 4, 4, 4, 10, 10, 10, 7, 3, 11], replaced, expected)
+    end subroutine test_references
+
+    !> A second statement of a kind with an id already used.
+    subroutine test_duplicates(error)
+        type(error_type), allocatable, intent(out) :: error
+        character(len=120) :: replaced(4)
+        character(len=400) :: expected(4)
+
+        replaced(1) = "PART/1, MASS=1, CM=3, IP=2, 2, 3"
+        expected(1) = ":4: PART/1: a second PART with this id"
+        replaced(2) = "MARKER/3, PART=1"
+        expected(2) = ":7: MARKER/3: a second MARKER with this id"
+        replaced(3) = "UCON/1, FUNCTION=USER(1)|UCON/1, FUNCTION=USER(2)"
+        expected(3) = ":9: UCON/1: a second UCON with this id"
+        replaced(4) = "SFORCE/5, I=3, J=4, FUNCTION=TIME|SFORCE/5, I=3, J=4, FUNCTION=1"
+        expected(4) = ":11: SFORCE/5: a second SFORCE with this id"
+        call check_refusals(error, [4, 7, 8, 10], replaced, expected)
+    end subroutine test_duplicates
+
+    !> Masses, inertias, end time and output steps out of range, with the range in the message.
+    subroutine test_values(error)
+        type(error_type), allocatable, intent(out) :: error
+        character(len=120) :: replaced(16)
+        character(len=400) :: expected(16)
+
+        replaced(16) = "PART/1, GROUND, QG=0, 0, 1"
+        expected(16) = ":3: PART/1: the ground part takes no MASS, CM, IP, QG, REULER or " &
+            & // "velocities (it is the ground frame, at rest)"
+        replaced(1) = "PART/2, MASS=0, CM=3, IP=2, 2, 3"
+        expected(1) = ":4: PART/2 MASS must be > 0 [kg], got 0"
+        replaced(2) = "PART/2, MASS=-2, CM=3, IP=2, 2, 3"
+        expected(2) = ":4: PART/2 MASS must be > 0 [kg], got -2"
+        replaced(3) = "PART/2, MASS=1, CM=3, IP=1, 1, 3"
+        expected(3) = ":4: PART/2 IP: no rigid body has these principal moments (each must be at" &
+            & // " most the sum of the other two)"
+        replaced(4) = "PART/2, MASS=1, CM=3, IP=0, 2, 3"
+        expected(4) = ":4: PART/2 IP: three principal moments > 0 [kg m^2] are needed"
+        replaced(5) = "PART/2, MASS=1, CM=3, IP=2, 2, 3, 0.1, 0, 0"
+        expected(5) = ":4: PART/2 IP: products of inertia (xy, xz, yz) are not supported:" &
+            & // " rollcon's parts move on their principal axes; turn the CM marker onto" &
+            & // " them and give IP=xx, yy, zz"
+        replaced(6) = "PART/1, GROUND, MASS=1"
+        expected(6) = ":3: PART/1: the ground part takes no MASS, CM, IP, QG, REULER or " &
+            & // "velocities (it is the ground frame, at rest)"
+        replaced(7) = "SIMULATE/DYNAMIC, END=0, STEPS=10"
+        expected(7) = ":11: SIMULATE END must be >= 1e-9 and <= 1000000000 [s] (as &run" &
+            & // " end_time), got 0 s"
+        replaced(8) = "SIMULATE/DYNAMIC, END=-1, STEPS=10"
+        expected(8) = ":11: SIMULATE END must be >= 1e-9 and <= 1000000000 [s] (as &run" &
+            & // " end_time), got -1 s"
+        replaced(9) = "SIMULATE/DYNAMIC, END=1, STEPS=10.5"
+        expected(9) = ":11: SIMULATE STEPS must be a whole number of output steps >= 1, got 10.5"
+        replaced(10) = "SIMULATE/DYNAMIC, END=1, STEPS=0"
+        expected(10) = ":11: SIMULATE STEPS must be a whole number of output steps >= 1, got 0"
+        replaced(11) = "SIMULATE/DYNAMIC, END=1, STEPS=1e10"
+        expected(11) = ":11: SIMULATE STEPS gives an output step of 1e-10 s; it must be >= 1e-9" &
+            & // " and <= 1000000000 [s] (as &run output_step)"
+        replaced(12) = "SIMULATE/DYNAMIC, END=1, STEPS=10, DTOUT=0.1"
+        expected(12) = ":11: SIMULATE: give one of STEPS=n and DTOUT=dt"
+        replaced(13) = "SIMULATE/DYNAMIC, END=1, DTOUT=2"
+        expected(13) = ":11: SIMULATE DTOUT must be <= END = 1 s (as &run output_step <=" &
+            & // " end_time), got 2 s"
+        replaced(14) = "SIMULATE/END=1, STEPS=10"
+        expected(14) = ":11: SIMULATE: only SIMULATE/DYNAMIC is supported (a dynamic analysis);" &
+            & // " write SIMULATE/DYNAMIC, END=..., STEPS=..."
+        replaced(15) = "SIMULATE/DYNAMIC, STEPS=10"
+        expected(15) = ":11: SIMULATE: END=t (the end time) is missing"
+        call check_refusals(error, [4, 4, 4, 4, 4, 3, 11, 11, 11, 11, 11, 11, 11, 11, 11, 3], &
+            & replaced, expected)
+    end subroutine test_values
+
+    !> UCON: an unknown ROUTINE, too many or no constants, FUNCTION missing or not USER(...).
+    subroutine test_ucons(error)
+        type(error_type), allocatable, intent(out) :: error
+        character(len=120) :: replaced(7)
+        character(len=400) :: expected(7)
+
+        replaced(1) = "UCON/1, FUNCTION=USER(2, 21, 1), ROUTINE=my_lib::ucosub"
+        expected(1) = ":8: UCON/1 ROUTINE: 'my_lib::ucosub' is not a built-in UCOSUB " // builtin &
+            & // "; a routine of your own is given with rollcon run MODEL.adm --ucosub FILE"
+        replaced(2) = "UCON/1, FUNCTION=USER(2, 21, 1), ROUTINE"
+        expected(2) = ":8: UCON/1 ROUTINE: expected the name of a built-in UCOSUB " // builtin
+        replaced(3) = "UCON/1," &
+            & // " FUNCTION=USER(1,2,3,4,5,6,7,8,9,10,11,12,13,14,15,16,17,18,19,20,21,22,23" &
+            & // ",24,25,26,27,28,29,30,31)"
+        expected(3) = ":8: UCON/1 FUNCTION USER: expected from 1 to 30 numbers, got 31"
+        replaced(4) = "UCON/1, FUNCTION=USER()"
+        expected(4) = ":8: UCON/1 FUNCTION: USER() holds no constant; a UCON passes 1 to 30" &
+            & // " constants to its UCOSUB (PAR)"
+        replaced(5) = "UCON/1, ROUTINE=disk"
+        expected(5) = ":8: UCON/1: FUNCTION=USER(r1, ..., r30) is missing (the constants passed" &
+            & // " to the UCOSUB as PAR)"
+        replaced(6) = "UCON/1, FUNCTION=2*TIME"
+        expected(6) = ":8: UCON/1 FUNCTION: expected USER(r1, ..., r30) (a UCON is served by the" &
+            & // " model's UCOSUB), got '2*TIME'"
+        replaced(7) = "UCON/1, FUNCTION=USER(2, x, 1)"
+        expected(7) = ":8: UCON/1 FUNCTION USER: 'x' is not a number (expected from 1 to 30" &
+            & // " numbers)"
+        call check_refusals(error, [8, 8, 8, 8, 8, 8, 8], replaced, expected)
+    end subroutine test_ucons
+
+    !> INTEGRATOR values outside the ranges of the scenes' &run keys, and the scenes' rule on the
+    !> solver choices.
+    subroutine test_integrator(error)
+        type(error_type), allocatable, intent(out) :: error
+        character(len=120) :: replaced(11)
+        character(len=400) :: expected(11)
+
+        replaced(1) = "INTEGRATOR/ERROR=2"
+        expected(1) = ":12: INTEGRATOR ERROR must be >= 1e-15 and < 1 (as &run rtol), got 2"
+        replaced(2) = "INTEGRATOR/RTOL=0"
+        expected(2) = ":12: INTEGRATOR RTOL must be >= 1e-15 and < 1 (as &run rtol), got 0"
+        replaced(3) = "INTEGRATOR/ATOL=1e-30"
+        expected(3) = ":12: INTEGRATOR ATOL must be >= 1e-20 and <= 1000 (as &run atol), got" &
+            & // " 1e-30"
+        replaced(4) = "INTEGRATOR/MAXSTEPS=0"
+        expected(4) = ":12: INTEGRATOR MAXSTEPS must be a whole number >= 1 and <= 2147483647" &
+            & // " (as &run max_steps), got 0"
+        replaced(5) = "INTEGRATOR/MAXSTEPS=10.5"
+        expected(5) = ":12: INTEGRATOR MAXSTEPS must be a whole number >= 1 and <= 2147483647" &
+            & // " (as &run max_steps), got 10.5"
+        replaced(6) = "INTEGRATOR/BAUMGARTE=0"
+        expected(6) = ":12: INTEGRATOR BAUMGARTE must be > 0 and <= 1000000 [1/s] (as &run" &
+            & // " baumgarte_rate), got 0"
+        replaced(7) = "INTEGRATOR/ERROR=1e-8, RTOL=1e-8"
+        expected(7) = ":12: INTEGRATOR RTOL: give ERROR or RTOL, not both (ERROR sets RTOL)"
+        replaced(8) = "INTEGRATOR/METHOD=ADAMS"
+        expected(8) = ":12: INTEGRATOR METHOD must be 'bdf' with formulation 'ida' (IDA is a BDF" &
+            & // " code; 'adams' needs 'cvode'), got 'adams'"
+        replaced(9) = "INTEGRATOR/FORM=CVODE|, METHOD=ADAMS"
+        expected(9) = ":12: INTEGRATOR DRIFT must be 'baumgarte' or 'none' with method = 'adams'" &
+            & // " (CVODE projects only with BDF), got 'projection' (DRIFT not given: the" &
+            & // " default)"
+        replaced(10) = "INTEGRATOR/FORM=CVODE, METH=ADAMS|, DRIFT=PROJ"
+        expected(10) = ":13: INTEGRATOR DRIFT must be 'baumgarte' or 'none' with method = 'adams'" &
+            & // " (CVODE projects only with BDF), got 'projection'"
+        replaced(11) = "INTEGRATOR/DRIFT=NONE"
+        expected(11) = ":12: INTEGRATOR DRIFT must be left out with formulation 'ida' (IDA has no" &
+            & // " drift; 'baumgarte' and 'none' are for 'cvode'), got 'none'"
+        call check_refusals(error, [12, 12, 12, 12, 12, 12, 12, 12, 12, 12, 12], replaced, expected)
+    end subroutine test_integrator
+
+    !> The principal-axes rule at t = 0: a CM marker not turned, and a part's REULER that turns a
+    !> turned CM marker back; the message names the part and the CM marker's REULER that fixes it.
+    subroutine test_principal_axes(error)
+        type(error_type), allocatable, intent(out) :: error
+        character(len=120) :: replaced(3)
+        character(len=400) :: expected(3)
+
+        replaced(1) = "MARKER/3, PART=2"
+        expected(1) = ":4: PART/2: the z-axis of its principal axes (its CM marker, MARKER/3, in" &
+            & // " the part's frame) is parallel to ground z at t = 0, where the 3-1-3" &
+            & // " Euler angles are singular (sin(theta) = 0 < 0.001); turn the CM marker" &
+            & // " 90 degrees about its x-axis: MARKER/3, REULER=0D, 90D, 0D, and give IP" &
+            & // " in the turned axes (Ixx, Izz, Iyy)"
+        replaced(2) = ", QG=0, 0, 1, VX=0.5, REULER=0D, -90D, 0D"
+        expected(2) = ":4: PART/2: the z-axis of its principal axes (its CM marker, MARKER/3, in" &
+            & // " the part's frame) is parallel to ground z at t = 0, where the 3-1-3" &
+            & // " Euler angles are singular (sin(theta) = *); turn the CM marker 90" &
+            & // " degrees about its x-axis: MARKER/3, REULER=0D, 180D, 0D, and give IP in" &
+            & // " the turned axes (Ixx, Izz, Iyy)"
+        replaced(3) = "MARKER/3, PART=2, REULER=45D, 0.01D, 0D"
+        expected(3) = ":4: PART/2: the z-axis of its principal axes (its CM marker, MARKER/3, in" &
+            & // " the part's frame) is parallel to ground z at t = 0, where the 3-1-3" &
+            & // " Euler angles are singular (sin(theta) = *); turn the CM marker 90" &
+            & // " degrees about its x-axis: MARKER/3, REULER=45D, 90.01D, 0D, and give IP" &
+            & // " in the turned axes (Ixx, Izz, Iyy)"
+        call check_refusals(error, [6, 5, 6], replaced, expected)
+    end subroutine test_principal_axes
+
+end module test_adm_refusals
