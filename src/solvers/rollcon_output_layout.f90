@@ -33,6 +33,8 @@ module rollcon_output_layout
     !> The contact's additions, in column order
     character(len=*), parameter :: contact_names(6) = [character(len=15) :: "Fx", "Fy", "Fz", &
         & "Fn", "mu_needed", "height_residual"]
+    !> Column of the time, in every layout
+    integer, parameter, public :: time_column = 1
     !> Contact columns, numbered as in contact_names
     integer, parameter, public :: contact_fx = 1, contact_fy = 2, contact_fz = 3, &
         & contact_normal = 4, contact_mu = 5, contact_height = 6

@@ -45,6 +45,8 @@ module rollcon_output_rows
     contains
         procedure :: add => history_add
         procedure :: column => history_column
+        procedure :: part_values => history_part_values
+        procedure :: part_state => history_part_state
     end type history_type
 
 contains
@@ -74,15 +76,40 @@ contains
         values = self%rows(j, :self%count)
     end function history_column
 
+    !> Quantity c (coord_x ... coord_phidot) of the p-th part (model order) over the filled
+    !> rows.
+    pure function history_part_values(self, p, c) result(values)
+        class(history_type), intent(in) :: self
+        integer, intent(in) :: p, c
+        real(wp), allocatable :: values(:)
+
+        values = self%rows(self%layout%part_column(p, c), :self%count)
+    end function history_part_values
+
+    !> The 12 coordinates and rates (X ... phi, Xdot ... phidot) of the p-th part (model order)
+    !> in row i.
+    pure function history_part_state(self, p, i) result(state)
+        class(history_type), intent(in) :: self
+        integer, intent(in) :: p, i
+        real(wp) :: state(12)
+
+        state = self%rows(self%layout%part_column(p, 1):self%layout%part_column(p, 12), i)
+    end function history_part_state
+
     !> The layout of a problem's output rows: its parts and UCONs in model order, and the
     !> contact columns when it has a watched contact.
     pure function output_layout(problem) result(layout)
         type(problem_type), intent(in) :: problem
         type(output_layout_type) :: layout
-        integer :: k
+        integer :: part_ids(size(problem%model%parts)), ucon_ids(problem%ucon_count()), k
 
-        layout = new_output_layout(problem%model%parts%id, [(problem%ucon_id(k), &
-            & k = 1, problem%ucon_count())], problem%events%has_contact)
+        do k = 1, size(part_ids)
+            part_ids(k) = problem%model%parts(k)%id
+        end do
+        do k = 1, size(ucon_ids)
+            ucon_ids(k) = problem%ucon_id(k)
+        end do
+        layout = new_output_layout(part_ids, ucon_ids, problem%events%has_contact)
     end function output_layout
 
     !> The output row at (time, q, u), in the columns of layout (output_layout(problem)), with

@@ -94,7 +94,7 @@ contains
         type(output_layout_type) :: layout
         real(wp), allocatable :: y(:), yp(:), breaks(:)
         real(wp) :: t, t_out, t_stop, t_reference, cpu_start, cpu_now, wall_last
-        integer :: n, nc, root
+        integer :: n, nc, root, k
         integer(int64) :: k_output, n_output
         type(error_type), allocatable :: close_error
         logical :: use_cvode, have_reference
@@ -108,7 +108,9 @@ contains
         summary%layout = layout
         allocate(summary%ucon_residual_max(nc), source=0.0_wp)
         allocate(summary%ucon_position(nc))
-        if (nc > 0) summary%ucon_position = problem%model%ucons%holonomic
+        do k = 1, nc
+            summary%ucon_position(k) = problem%model%ucons(k)%holonomic
+        end do
         if (present(history)) history%layout = layout
         use_cvode = problem%settings%formulation == formulation_cvode
         breaks = force_breakpoints(problem%model%forces)
