@@ -123,9 +123,9 @@ contains
             call check(error, free, expected, "part " // to_text(free_id) // " at t = " &
                 & // to_text(t(i)), abs_tol=tol_motion)
             if (allocated(error)) return
-            call check(error, history%rows(layout%multiplier_column(1):layout%multiplier_column(3), &
-                & i), [0.0_wp, 0.0_wp, weight], "lambda_11..13 [N] at t = " // to_text(t(i)), &
-                & abs_tol=tol_force)
+            call check(error, history%rows(layout%multiplier_column(1) &
+                & :layout%multiplier_column(3), i), [0.0_wp, 0.0_wp, weight], &
+                & "lambda_11..13 [N] at t = " // to_text(t(i)), abs_tol=tol_force)
             if (allocated(error)) return
         end do
         call check(error, history%column(layout%energy_column()), &
