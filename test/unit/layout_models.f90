@@ -4,7 +4,9 @@
 !> 1 m/s under three no-slip UCONs (11, 12, 13); part 5 is a free body with no UCON, thrown up
 !> and sideways while spinning about its principal z-axis, which lies horizontal.
 module layout_models
+    use, intrinsic :: ieee_arithmetic, only : ieee_value, ieee_quiet_nan
     use rollcon_kinds, only : wp
+    use rollcon_ucosub_contract, only : ucosub_interface
     use rollcon_constants, only : pi
     use rollcon_error, only : error_type, fatal_error, stat_io
     use rollcon_body, only : part_type
@@ -17,7 +19,7 @@ module layout_models
     implicit none
     private
 
-    public :: two_part_problem, read_csv
+    public :: two_part_problem, read_csv, failing_disk_ucosub
 
     !> Part ids
     integer, parameter, public :: disk_id = 2, free_id = 5
@@ -43,13 +45,17 @@ contains
     !> that neither part reaches), and its start: the disk upright at (0, 0, R) rolling along
     !> +X (phidot = -v/R, docs/design.md §5), the free body at free_start with free_velocity
     !> and phidot = free_spin (theta = pi/2: the spin is about the body z-axis).
-    subroutine two_part_problem(problem, q0, u0, error)
+    subroutine two_part_problem(problem, q0, u0, error, ucosub, ucon_parts)
         type(problem_type), intent(inout), target :: problem
         real(wp), allocatable, intent(out) :: q0(:), u0(:)
         type(error_type), allocatable, intent(out) :: error
+        !> The routine serving the UCONs (default: the hand-checked disk routine)
+        procedure(ucosub_interface), optional :: ucosub
+        !> The part id each UCON's PAR names (default: the disk's)
+        integer, intent(in), optional :: ucon_parts(3)
         type(model_type), target :: model
         type(part_type) :: disk, free
-        integer :: k
+        integer :: k, parts(3)
 
         disk%id = disk_id
         disk%mass = density*pi*disk_radius**2*disk_thickness
@@ -61,9 +67,16 @@ contains
         call model%add_part(disk)
         call model%add_part(free)
         model%gravity = [0.0_wp, 0.0_wp, -gravity]
+        parts = disk_id
+        if (present(ucon_parts)) parts = ucon_parts
         do k = 1, 3
-            call model%add_ucon(10 + k, disk_par(disk_id, disk_radius, k), rolling_disk_ucosub, &
-                & time_free=.true.)
+            if (present(ucosub)) then
+                call model%add_ucon(10 + k, disk_par(parts(k), disk_radius, k), ucosub, &
+                    & time_free=.true.)
+            else
+                call model%add_ucon(10 + k, disk_par(parts(k), disk_radius, k), &
+                    & rolling_disk_ucosub, time_free=.true.)
+            end if
         end do
         call setup_model(model, error)
         if (allocated(error)) return
@@ -73,6 +86,24 @@ contains
         u0 = [disk_speed, 0.0_wp, 0.0_wp, 0.0_wp, 0.0_wp, -disk_speed/disk_radius, &
             & free_velocity, 0.0_wp, 0.0_wp, free_spin]
     end subroutine two_part_problem
+
+    !> The disk routine, except that UCON 13 returns F = NaN after t = 0.25 s.
+    subroutine failing_disk_ucosub(id, time, q, par, npar, idrsel, iflag, scalar, array, xmatrx)
+        integer, intent(in) :: id
+        real(wp), intent(in) :: time
+        real(wp), intent(in) :: q(30)
+        real(wp), intent(in) :: par(*)
+        integer, intent(in) :: npar
+        integer, intent(in) :: idrsel(3)
+        integer, intent(in) :: iflag
+        real(wp), intent(inout) :: scalar
+        real(wp), intent(inout) :: array(30)
+        real(wp), intent(inout) :: xmatrx(30, 30)
+
+        call rolling_disk_ucosub(id, time, q, par, npar, idrsel, iflag, scalar, array, xmatrx)
+        if (iflag == 0 .and. id == 13 .and. time > 0.25_wp .and. idrsel(1) == 1) &
+            & scalar = ieee_value(scalar, ieee_quiet_nan)
+    end subroutine failing_disk_ucosub
 
     !> Read a CSV written by a run: its header names and its rows; the file is deleted.
     subroutine read_csv(path, names, history, error)

@@ -18,7 +18,7 @@ module test_layout
     use rollcon_summary_text, only : run_summary_text
     use rollcon_testing, only : unittest_type, new_unittest, check
     use layout_models, only : two_part_problem, disk_id, free_id, disk_radius, disk_speed, &
-        & free_spin, free_start, free_velocity, gravity, read_csv
+        & free_spin, free_start, free_velocity, gravity, read_csv, failing_disk_ucosub
     use layout_headers, only : test_good_headers, test_bad_headers
     implicit none
     private
@@ -46,6 +46,7 @@ contains
             & new_unittest("theta-limit-names-the-part", test_theta_limit_part), &
             & new_unittest("liftoff-only-with-contact", test_liftoff_only_with_contact), &
             & new_unittest("contact-part-checked", test_contact_checked), &
+            & new_unittest("failures-name-the-ucon", test_failures_name_ucon), &
             & new_unittest("summary-text-any-model", test_summary_text), &
             & new_unittest("read-layout-good-headers", test_good_headers), &
             & new_unittest("read-layout-bad-headers", test_bad_headers)]
@@ -243,6 +244,34 @@ contains
         call check(error, failure%message == "the contact of part 2 needs a rim radius > 0 " &
             & // "[m], got 0", "message: " // failure%message)
     end subroutine test_contact_checked
+
+    !> In the two-part model, a UCON whose PAR names a part the model lacks is refused at
+    !> set-up, and a UCOSUB returning NaN during the run fails it: both messages name the UCON.
+    subroutine test_failures_name_ucon(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(problem_type), target :: refused, failing
+        type(run_options_type) :: options
+        type(run_summary_type) :: summary
+        type(error_type), allocatable :: failure
+        real(wp), allocatable :: q0(:), u0(:)
+
+        call two_part_problem(refused, q0, u0, failure, ucon_parts=[disk_id, 9, disk_id])
+        call check(error, allocated(failure), "a UCON on the missing part 9 was accepted")
+        if (allocated(error)) return
+        call check(error, index(failure%message, "UCON/12: UCOVAR variable 1 (") == 1 .and. &
+            & index(failure%message, "belongs to part 9, which the model does not have") > 0, &
+            & "message: " // failure%message)
+        if (allocated(error)) return
+        call two_part_problem(failing, q0, u0, error, ucosub=failing_disk_ucosub)
+        if (allocated(error)) return
+        options%end_time = 1.0_wp
+        options%progress = .false.
+        call simulate(failing, q0, u0, options, summary, failure)
+        call check(error, allocated(failure), "a UCOSUB returning NaN did not fail the run")
+        if (allocated(error)) return
+        call check(error, index(failure%message, "UCON/13: UCOSUB returned a non-finite value") &
+            & > 0, "message: " // failure%message)
+    end subroutine test_failures_name_ucon
 
     !> The summary names every part and UCON, and prints the height residual only with a
     !> contact and "none" for a model without UCONs.
