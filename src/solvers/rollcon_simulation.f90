@@ -94,7 +94,7 @@ contains
         type(output_layout_type) :: layout
         real(wp), allocatable :: y(:), yp(:), breaks(:)
         real(wp) :: t, t_out, t_stop, t_reference, cpu_start, cpu_now, wall_last
-        integer :: n, nc, root, k
+        integer :: n, nc, root
         integer(int64) :: k_output, n_output
         type(error_type), allocatable :: close_error
         logical :: use_cvode, have_reference
@@ -104,14 +104,7 @@ contains
         call check_events(problem, error)
         if (allocated(error)) return
         call problem%prepare()
-        layout = output_layout(problem)
-        summary%layout = layout
-        allocate(summary%ucon_residual_max(nc), source=0.0_wp)
-        allocate(summary%ucon_position(nc))
-        do k = 1, nc
-            summary%ucon_position(k) = problem%model%ucons(k)%holonomic
-        end do
-        if (present(history)) history%layout = layout
+        call start_measures()
         use_cvode = problem%settings%formulation == formulation_cvode
         breaks = force_breakpoints(problem%model%forces)
         t_reference = options%t0
@@ -174,6 +167,20 @@ contains
         if (.not. allocated(error)) call judge_drift(problem, summary)
 
     contains
+
+        !> The rows' layout, in the summary and the history; no UCON residual measured yet.
+        subroutine start_measures()
+            integer :: k
+
+            layout = output_layout(problem)
+            summary%layout = layout
+            allocate(summary%ucon_residual_max(nc), source=0.0_wp)
+            allocate(summary%ucon_position(nc))
+            do k = 1, nc
+                summary%ucon_position(k) = problem%model%ucons(k)%holonomic
+            end do
+            if (present(history)) history%layout = layout
+        end subroutine start_measures
 
         !> Set up CVODE on (q0, u0), or IDA on (q0, u0, lambda) with its consistent rates.
         subroutine start_integrator(error)
