@@ -4,9 +4,9 @@ module rollcon_command_run
     use, intrinsic :: iso_fortran_env, only : output_unit
     use rollcon, only : wp, error_type, rolling_disk_ucosub, fatal_error, stat_io, stat_input, &
         & to_text, shell_quote, ucosub_interface, scene_type, read_scene, scene_path, choice_name, &
-        & formulation_cvode, method_adams, simulate_scene, run_summary_type, status_completed, &
-        & status_stopped, status_failed, status_inaccurate, default_max_csv_bytes, partial_name, &
-        & write_text_file, rename_file, delete_file
+        & formulation_cvode, method_adams, simulate_scene, run_summary_type, &
+        & status_failed, default_max_csv_bytes, partial_name, write_text_file, rename_file, &
+        & delete_file, run_summary_text
     implicit none
     private
 
@@ -108,19 +108,14 @@ contains
 
     end subroutine run_scene
 
-    !> The run's summary as text.
+    !> The run's summary as text: the scene and its integrator settings, then what every run
+    !> reports (rollcon_summary_text).
     function summary_text(scene, csv_path, summary) result(text)
         type(scene_type), intent(in) :: scene
         character(len=*), intent(in) :: csv_path
         type(run_summary_type), intent(in) :: summary
         character(len=:), allocatable :: text
-        character(len=*), parameter :: nl = new_line("a")
         character(len=:), allocatable :: method
-        character(len=16), parameter :: names(12) = [character(len=16) :: "X [m]", "Y [m]", &
-            & "Z [m]", "psi [rad]", "theta [rad]", "phi [rad]", "Xdot [m/s]", "Ydot [m/s]", &
-            & "Zdot [m/s]", "psidot [rad/s]", "thetadot [rad/s]", "phidot [rad/s]"]
-        character(len=32) :: value
-        integer :: i
 
         if (scene%run%formulation == formulation_cvode) then
             method = "CVODE (ODE form, "
@@ -132,61 +127,10 @@ contains
         else
             method = "IDA (DAE form, index 2)"
         end if
-        text = "scene " // scene%name // " (" // scene%path // "): " // method // ", " &
-            & // choice_name("jacobian", scene%run%jacobian) // " Jacobian, rtol " &
-            & // to_text(scene%run%rtol) // ", atol " // to_text(scene%run%atol) // nl
-        select case (summary%status)
-        case (status_completed)
-            text = text // "status: completed at t = " // to_text(summary%t_reached) // " s" // nl
-        case (status_stopped)
-            text = text // "status: stopped: " // summary%message // nl
-        case (status_inaccurate)
-            text = text // "status: INACCURATE: " // summary%message // nl
-        case default
-            text = text // "status: FAILED: " // summary%message // nl
-        end select
-        if (allocated(summary%q)) then
-            text = text // "final state:" // nl
-            do i = 1, 6
-                write(value, '(es23.15e3)') summary%q(i)
-                text = text // "  " // names(i) // trim(value)
-                write(value, '(es23.15e3)') summary%u(i)
-                text = text // "    " // names(6 + i) // trim(value) // nl
-            end do
-        end if
-        write(value, '(es11.3e3)') summary%energy_drift
-        text = text // "energy drift: " // trim(adjustl(value)) &
-            & // " (largest |E - E0|/|E0|, E0 = " &
-            & // to_text(summary%energy_reference) // " J after the last applied force)" &
-            & // allowed(summary%energy_bound, "") // nl
-        write(value, '(es11.3e3)') summary%residual_max
-        text = text // "largest constraint residual: " // trim(adjustl(value)) &
-            & // " (F1..F3: m/s, or m for height = 'position')" // nl
-        write(value, '(es11.3e3)') summary%height_residual_max
-        text = text // "largest height residual |Z - R sin(theta)|: " // trim(adjustl(value)) &
-            & // " m" // allowed(summary%height_bound, " m") // nl
-        text = text // "steps " // to_text(summary%steps) // ", function evaluations " &
-            & // to_text(summary%functions) // ", Jacobian evaluations " &
-            & // to_text(summary%jacobians) // ", error-test failures " &
-            & // to_text(summary%failures) // nl
-        write(value, '(f12.4)') summary%cpu_seconds
-        text = text // "CPU time: " // trim(adjustl(value)) // " s" // nl
-        text = text // "output: " // csv_path // " (" // to_text(summary%rows) // " rows)"
-
-    contains
-
-        !> ", allowed <bound><unit>" when the drift was judged (bound > 0).
-        function allowed(bound, unit) result(phrase)
-            real(wp), intent(in) :: bound
-            character(len=*), intent(in) :: unit
-            character(len=:), allocatable :: phrase
-
-            phrase = ""
-            if (bound <= 0.0_wp) return
-            write(value, '(es10.3e3)') bound
-            phrase = ", allowed " // trim(adjustl(value)) // unit
-        end function allowed
-
+        text = run_summary_text("scene " // scene%name // " (" // scene%path // "): " // method &
+            & // ", " // choice_name("jacobian", scene%run%jacobian) // " Jacobian, rtol " &
+            & // to_text(scene%run%rtol) // ", atol " // to_text(scene%run%atol), csv_path, &
+            & summary)
     end function summary_text
 
 end module rollcon_command_run

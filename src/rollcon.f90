@@ -24,6 +24,8 @@ module rollcon
     use rollcon_disk_scene, only : build_disk_problem, disk_initial_state, disk_mass_properties
     use rollcon_simulation, only : run_options_type, run_summary_type, history_type, simulate
     use rollcon_output_layout, only : output_layout_type, new_output_layout, read_layout
+    use rollcon_output_rows, only : output_layout
+    use rollcon_summary_text, only : run_summary_text
     use rollcon_ucosub_catalog, only : find_builtin_ucosub, builtin_ucosub_names
     use rollcon_user_library, only : user_ucosub_type, user_build_options_type, new_user_ucosub
     use rollcon_ucosub_audit, only : ucon_request_type, user_check_options_type, &

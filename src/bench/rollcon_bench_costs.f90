@@ -12,9 +12,10 @@ module rollcon_bench_costs
     use rollcon_scene, only : scene_type
     use rollcon_disk_scene, only : build_disk_problem
     use rollcon_problem, only : problem_type
-    use rollcon_simulation, only : history_type, csv_header
+    use rollcon_simulation, only : history_type
+    use rollcon_output_layout, only : output_layout_type
+    use rollcon_output_rows, only : output_layout, output_row
     use rollcon_csv_writer, only : csv_writer_type
-    use rollcon_drift, only : height_residual
     implicit none
     private
 
@@ -41,13 +42,17 @@ contains
         type(problem_type), target :: problem
         type(history_type) :: history
         type(csv_writer_type) :: csv
-        real(wp) :: q0(6), u0(6), g(2), start, finish, checksum, energy, force(3)
+        type(output_layout_type) :: layout
+        real(wp) :: q0(6), u0(6), start, finish, checksum
+        real(wp), allocatable :: g(:)
         real(wp), allocatable :: y(:), ydot(:), yd(:), ypd(:), r(:)
         integer :: i, ierr, unit
 
         call build_disk_problem(scene, ucosub, problem, q0, u0, error)
         if (allocated(error)) return
         call problem%prepare()
+        layout = output_layout(problem)
+        allocate(g(problem%root_count()))
         y = [q0, u0]
         allocate(ydot(size(y)))
         checksum = 0.0_wp
@@ -73,24 +78,21 @@ contains
         call cpu_time(start)
         do i = 1, count
             ierr = problem%root_values(0.0_wp, q0, u0, g)
-            checksum = checksum + g(2)
+            checksum = checksum + sum(g)
         end do
         call cpu_time(finish)
         costs%root = (finish - start)/count
-        ! what rollcon_simulation's record does for a row: accelerations, energy, force, row
+        ! what rollcon_simulation's record does for a row: accelerations, then the row
         call cpu_time(start)
         do i = 1, count
             call problem%accelerations(0.0_wp, q0, u0, error)
             if (allocated(error)) return
-            energy = problem%eq%energy(q0, u0)
-            force = problem%eq%constraint_force(1, problem%lambda)
-            call history%add([0.0_wp, q0, u0, energy, force, force(3), 0.0_wp, &
-                & problem%constraint_values(), height_residual(problem, q0)])
+            call history%add(output_row(problem, layout, 0.0_wp, q0, u0))
         end do
         call cpu_time(finish)
         costs%output = (finish - start)/count
         ! and, for `rollcon run`, the row's CSV line
-        call csv%open(scratch_csv, csv_header(problem), error)
+        call csv%open(scratch_csv, layout%header(), error)
         if (allocated(error)) return
         call cpu_time(start)
         do i = 1, count

@@ -12,8 +12,9 @@ module rollcon_benchmark
     use rollcon_scene, only : scene_type, choice_code
     use rollcon_disk_scene, only : build_disk_problem
     use rollcon_problem, only : problem_type
-    use rollcon_simulation, only : run_summary_type, history_type, status_completed, column_time, &
-        & column_x, column_z, run_options_type, simulate
+    use rollcon_simulation, only : run_summary_type, history_type, status_completed, &
+        & run_options_type, simulate
+    use rollcon_output_layout, only : coord_x, coord_z
     use rollcon_reduced_scene, only : simulate_reduced_scene
     use rollcon_bench_costs, only : part_costs_type
     implicit none
@@ -368,7 +369,8 @@ contains
         changed%run%max_steps = 10000000
     end function with_method
 
-    !> Largest distance between the centres at the output times both runs reached [m].
+    !> Largest distance between the centres of the first part at the output times both runs
+    !> reached [m].
     pure function position_error(run, reference) result(distance)
         type(history_type), intent(in) :: run, reference
         real(wp) :: distance
@@ -376,11 +378,15 @@ contains
 
         n = min(run%count, reference%count)
         distance = 0.0_wp
-        do i = 1, n
-            if (abs(run%rows(column_time, i) - reference%rows(column_time, i)) > 1.0e-9_wp) exit
-            distance = max(distance, norm2(run%rows(column_x:column_z, i) &
-                & - reference%rows(column_x:column_z, i)))
-        end do
+        associate (a => run%layout, b => reference%layout)
+            do i = 1, n
+                ! column 1 is the time in every layout
+                if (abs(run%rows(1, i) - reference%rows(1, i)) > 1.0e-9_wp) exit
+                distance = max(distance, norm2(run%rows(a%part_column(1, coord_x) &
+                    & :a%part_column(1, coord_z), i) - reference%rows(b%part_column(1, coord_x) &
+                    & :b%part_column(1, coord_z), i)))
+            end do
+        end associate
     end function position_error
 
     !> Median of a few values.

@@ -23,7 +23,8 @@ contains
     !> ('analytic' or 'dq'), rtol, atol and max_steps.
     subroutine simulate_reduced_scene(scene, history, summary, error)
         type(scene_type), intent(in) :: scene
-        !> Output rows: time, q, u, energy (rollcon_simulation's first 14 columns)
+        !> Output rows in the layout of one part without UCONs (time, q, u, energy): the first
+        !> 14 columns of the full model's rows
         type(history_type), intent(inout) :: history
         type(run_summary_type), intent(out) :: summary
         type(error_type), allocatable, intent(out) :: error

@@ -93,7 +93,7 @@ contains
         problem%settings%max_steps = scene%run%max_steps
         problem%settings%drift = scene%run%drift
         problem%settings%baumgarte_rate = scene%run%baumgarte_rate
-        problem%events%part = 1
+        problem%events%part = 1  ! the disk is the model's only part
         problem%events%theta_min = scene%limits%theta_min
         problem%events%stop_on_liftoff = scene%limits%stop_on_liftoff
         call disk_initial_state(scene, q0, u0)
@@ -125,6 +125,7 @@ contains
             & + 0.5_wp*pi*abs(scene%strike%impulse)/scene%strike%duration
         problem%events%liftoff_force = max(liftoff_fraction, liftoff_per_rtol*scene%run%rtol) &
             & *force_scale
+        problem%events%has_contact = .true.
         problem%events%contact_radius = scene%disk%radius
     end subroutine set_disk_scales
 

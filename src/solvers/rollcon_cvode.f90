@@ -57,12 +57,12 @@ module rollcon_cvode
 
 contains
 
-    !> Create CVODE for problem from (t0, y0 = (q, u)); roots: how many event functions (0-2).
-    subroutine init(self, problem, t0, y0, t_stop, roots, error)
+    !> Create CVODE for problem from (t0, y0 = (q, u)), watching the problem's event
+    !> functions (problem%root_count() of them).
+    subroutine init(self, problem, t0, y0, t_stop, error)
         class(cvode_solver_type), intent(inout), target :: self
         type(problem_type), intent(inout), target :: problem
         real(wp), intent(in) :: t0, y0(:), t_stop
-        integer, intent(in) :: roots
         type(error_type), allocatable, intent(out) :: error
         integer(c_int) :: flag, lmm
 
@@ -121,8 +121,9 @@ contains
         end if
         flag = FCVodeSetStopTime(self%memory, t_stop)
         if (check(flag, "CVodeSetStopTime", error)) return
-        if (roots > 0) then
-            flag = FCVodeRootInit(self%memory, int(roots, c_int), c_funloc(events))
+        if (problem%root_count() > 0) then
+            flag = FCVodeRootInit(self%memory, int(problem%root_count(), c_int), &
+                & c_funloc(events))
             if (check(flag, "CVodeRootInit", error)) return
         end if
     end subroutine init
@@ -137,7 +138,8 @@ contains
         integer, intent(out) :: root
         type(error_type), allocatable, intent(out) :: error
         real(c_double) :: t_return(1)
-        integer(c_int) :: flag, found(2)
+        integer(c_int) :: flag
+        integer(c_int), allocatable :: found(:)
 
         root = 0
         flag = FCVodeSetStopTime(self%memory, t_stop)
@@ -146,7 +148,7 @@ contains
         t_reached = t_return(1)
         y = self%values
         if (flag == CV_ROOT_RETURN) then
-            found = 0
+            allocate(found(problem%root_count()), source=0_c_int)
             flag = FCVodeGetRootInfo(self%memory, found)
             root = findloc(found /= 0, .true., dim=1)
             return
@@ -303,22 +305,21 @@ contains
         type(callback_data_type), pointer :: data
         type(problem_type), pointer :: problem
         real(c_double), pointer :: yv(:)
-        real(wp) :: g(2)
-        integer :: n
+        integer :: n, nroots
 
         call c_f_pointer(user_data, data)
         problem => data%problem
         yv => FN_VGetArrayPointer(y)
         n = problem%eq%n
+        nroots = problem%root_count()
         ! y' = (u, a) at t from CVODE's own polynomial: the normal force without a solve.
         ! Outside the last step (the start-up check just past t0) CVODE refuses; then solve.
         if (FCVodeGetDky(data%memory, t, 1_c_int, data%rates) == CV_SUCCESS) then
-            ierr = int(problem%root_values(t, yv(:n), yv(n + 1:), g, &
+            ierr = int(problem%root_values(t, yv(:n), yv(n + 1:), gout(:nroots), &
                 & a=data%rate_values(n + 1:)), c_int)
         else
-            ierr = int(problem%root_values(t, yv(:n), yv(n + 1:), g), c_int)
+            ierr = int(problem%root_values(t, yv(:n), yv(n + 1:), gout(:nroots)), c_int)
         end if
-        gout(1:2) = g
     end function events
 
 end module rollcon_cvode

@@ -28,7 +28,7 @@ contains
 
     !> Height residual Z - R sin(theta) of the watched part [m]: the position-level form of the
     !> disk's contact, which the velocity constraint F3 holds only through its integral; 0 when
-    !> the problem has no contact radius.
+    !> the problem has no watched contact.
     pure function height_residual(problem, q) result(height)
         type(problem_type), intent(in) :: problem
         !> Coordinates of every part
@@ -37,13 +37,13 @@ contains
         integer :: i0
 
         height = 0.0_wp
-        if (problem%events%contact_radius <= 0.0_wp) return
+        if (.not. problem%events%has_contact) return
         i0 = 6*(problem%events%part - 1)
         height = q(i0 + 3) - problem%events%contact_radius*sin(q(i0 + 5))
     end function height_residual
 
     !> The bounds after steps integrator steps: relative energy drift [-], height residual [m]
-    !> (0 when the problem has no contact radius).
+    !> (0 when the problem has no watched contact).
     pure subroutine drift_bounds(problem, steps, energy_bound, height_bound)
         type(problem_type), intent(in) :: problem
         integer, intent(in) :: steps
@@ -55,7 +55,8 @@ contains
             & radius => problem%events%contact_radius)
             energy_bound = energy_allowance*root_steps*rtol
             height_bound = 0.0_wp
-            if (radius > 0.0_wp) height_bound = height_allowance*root_steps*(atol + rtol*radius)
+            if (problem%events%has_contact) height_bound = height_allowance*root_steps &
+                & *(atol + rtol*radius)
         end associate
     end subroutine drift_bounds
 

@@ -47,12 +47,12 @@ module rollcon_ida
 
 contains
 
-    !> Create IDA from consistent (t0, y0, yp0).
-    subroutine init(self, problem, t0, y0, yp0, t_stop, roots, error)
+    !> Create IDA from consistent (t0, y0, yp0), watching the problem's event functions
+    !> (problem%root_count() of them).
+    subroutine init(self, problem, t0, y0, yp0, t_stop, error)
         class(ida_solver_type), intent(inout), target :: self
         type(problem_type), intent(inout), target :: problem
         real(wp), intent(in) :: t0, y0(:), yp0(:), t_stop
-        integer, intent(in) :: roots
         type(error_type), allocatable, intent(out) :: error
         integer(c_int) :: flag
         integer(c_int64_t) :: n
@@ -114,8 +114,9 @@ contains
         end if
         flag = FIDASetStopTime(self%memory, t_stop)
         if (check(flag, "IDASetStopTime", error)) return
-        if (roots > 0) then
-            flag = FIDARootInit(self%memory, int(roots, c_int), c_funloc(events))
+        if (problem%root_count() > 0) then
+            flag = FIDARootInit(self%memory, int(problem%root_count(), c_int), &
+                & c_funloc(events))
             if (check(flag, "IDARootInit", error)) return
         end if
     end subroutine init
@@ -129,7 +130,8 @@ contains
         integer, intent(out) :: root
         type(error_type), allocatable, intent(out) :: error
         real(c_double) :: t_return(1)
-        integer(c_int) :: flag, found(2)
+        integer(c_int) :: flag
+        integer(c_int), allocatable :: found(:)
 
         root = 0
         flag = FIDASetStopTime(self%memory, t_stop)
@@ -139,7 +141,7 @@ contains
         y = self%values
         yp = self%rates
         if (flag == IDA_ROOT_RETURN) then
-            found = 0
+            allocate(found(problem%root_count()), source=0_c_int)
             flag = FIDAGetRootInfo(self%memory, found)
             root = findloc(found /= 0, .true., dim=1)
             return
@@ -265,15 +267,14 @@ contains
         type(c_ptr), value :: user_data
         type(problem_type), pointer :: problem
         real(c_double), pointer :: yv(:)
-        real(wp) :: g(2)
-        integer :: n
+        integer :: n, nroots
 
         call c_f_pointer(user_data, problem)
         yv => FN_VGetArrayPointer(y)
         n = problem%eq%n
-        ierr = int(problem%root_values(t, yv(:n), yv(n + 1:2*n), g, &
+        nroots = problem%root_count()
+        ierr = int(problem%root_values(t, yv(:n), yv(n + 1:2*n), gout(:nroots), &
             & yv(2*n + 1:2*n + problem%eq%nc)), c_int)
-        gout(1:2) = g
     end function events
 
 end module rollcon_ida

@@ -33,6 +33,8 @@ module rollcon_output_layout
     !> The contact's additions, in column order
     character(len=*), parameter :: contact_names(6) = [character(len=15) :: "Fx", "Fy", "Fz", &
         & "Fn", "mu_needed", "height_residual"]
+    !> Column of the time, in every layout
+    integer, parameter, public :: time_column = 1
     !> Contact columns, numbered as in contact_names
     integer, parameter, public :: contact_fx = 1, contact_fy = 2, contact_fz = 3, &
         & contact_normal = 4, contact_mu = 5, contact_height = 6
@@ -206,19 +208,25 @@ contains
         first_f = 3 + 12*nparts
         nucons = 0
         do column = first_f, size(names)
-            if (names(column)(1:2) /= "F_") exit
+            if (index(names(column), "F_") /= 1) exit
             nucons = nucons + 1
         end do
         allocate(ucon_ids(nucons))
         do k = 1, nucons
             call suffix_id(names(first_f + k - 1), "F_", ucon_ids(k))
+            if (ucon_ids(k) < 0) then
+                message = "column " // to_text(first_f + k - 1) // " must be F_<UCON id>, got '" &
+                    & // trim(names(first_f + k - 1)) // "'"
+                return
+            end if
         end do
         contact = size(names) == first_f - 1 + 2*nucons + size(contact_names)
         layout = new_output_layout(part_ids, ucon_ids, contact)
         if (size(names) /= layout%columns()) then
             message = "expected " // to_text(layout%columns()) // " columns for " &
-                & // to_text(nparts) // " parts and " // to_text(nucons) // " UCONs, got " &
-                & // to_text(size(names))
+                & // counted(nparts, "part") // " and " // counted(nucons, "UCON") &
+                & // " (and " // to_text(layout%columns() + size(contact_names)) &
+                & // " with the contact columns), got " // to_text(size(names))
             return
         end if
         names_match: block
@@ -234,6 +242,16 @@ contains
             end do
         end block names_match
     end subroutine read_layout
+
+    !> "1 part", "2 parts".
+    pure function counted(count, noun) result(text)
+        integer, intent(in) :: count
+        character(len=*), intent(in) :: noun
+        character(len=:), allocatable :: text
+
+        text = to_text(count) // " " // noun
+        if (count /= 1) text = text // "s"
+    end function counted
 
     !> The whole number after prefix in name (prefix "X_", name "X_12": 12); -1 when name is not
     !> prefix followed by digits.

@@ -1,7 +1,8 @@
 ! SPDX-License-Identifier: MIT
 !> The output rows of a run: where and how often they are written, how many a request plans
-!> (refused beyond a size limit), their columns, the CSV header naming them, and the rows kept
-!> in memory (history) for tests and benchmarks. What fills a row is rollcon_simulation's.
+!> (refused beyond a size limit), the layout of a problem's rows (rollcon_output_layout, the one
+!> place that says which quantity sits in which column), what fills a row, and the rows kept in
+!> memory (history) for tests and benchmarks.
 module rollcon_output_rows
     use, intrinsic :: iso_fortran_env, only : int64
     use rollcon_kinds, only : wp
@@ -9,10 +10,14 @@ module rollcon_output_rows
     use rollcon_text, only : to_text
     use rollcon_problem, only : problem_type
     use rollcon_csv_writer, only : csv_row_bytes
+    use rollcon_drift, only : height_residual
+    use rollcon_output_layout, only : output_layout_type, new_output_layout, contact_fx, &
+        & contact_fz, contact_normal, contact_mu, contact_height, coord_x, coord_phi, &
+        & coord_xdot, coord_phidot
     implicit none
     private
 
-    public :: run_options_type, planned_rows, history_type, csv_header
+    public :: run_options_type, planned_rows, history_type, output_layout, output_row
 
     !> Default limit of a planned CSV [bytes], 100 GB: ten thousand times the coin's run
     real(wp), parameter, public :: default_max_csv_bytes = 1.0e11_wp
@@ -30,21 +35,18 @@ module rollcon_output_rows
         real(wp) :: max_csv_bytes = default_max_csv_bytes
     end type run_options_type
 
-    !> Columns of the output rows (CSV and history)
-    integer, parameter, public :: column_time = 1, column_x = 2, column_y = 3, column_z = 4, &
-        & column_psi = 5, column_theta = 6, column_phi = 7, column_xdot = 8, column_ydot = 9, &
-        & column_zdot = 10, column_psidot = 11, column_thetadot = 12, column_phidot = 13, &
-        & column_energy = 14, column_fx = 15, column_fy = 16, column_fz = 17, &
-        & column_normal = 18, column_mu = 19, column_residual = 20
-
-    !> The output rows kept in memory (the CSV's columns), for tests and benchmarks
+    !> The output rows kept in memory (the CSV's rows), for tests and benchmarks
     type :: history_type
+        !> What the columns hold (set by the run that fills the rows)
+        type(output_layout_type) :: layout
         !> rows(:, i) is output row i; only the first count rows are filled
         real(wp), allocatable :: rows(:, :)
         integer :: count = 0
     contains
         procedure :: add => history_add
         procedure :: column => history_column
+        procedure :: part_values => history_part_values
+        procedure :: part_state => history_part_state
     end type history_type
 
 contains
@@ -74,25 +76,79 @@ contains
         values = self%rows(j, :self%count)
     end function history_column
 
-    !> Column names of the CSV: time, part 1's coordinates and rates (SI units, radians),
-    !> energy, constraint force on part 1, its normal part, the friction coefficient it needs,
-    !> each UCON's residual, and the watched part's height residual Z - R sin(theta) [m] when
-    !> the problem has a contact radius.
-    function csv_header(problem) result(header)
+    !> Quantity c (coord_x ... coord_phidot) of the p-th part (model order) over the filled
+    !> rows.
+    pure function history_part_values(self, p, c) result(values)
+        class(history_type), intent(in) :: self
+        integer, intent(in) :: p, c
+        real(wp), allocatable :: values(:)
+
+        values = self%rows(self%layout%part_column(p, c), :self%count)
+    end function history_part_values
+
+    !> The 12 coordinates and rates (X ... phi, Xdot ... phidot) of the p-th part (model order)
+    !> in row i.
+    pure function history_part_state(self, p, i) result(state)
+        class(history_type), intent(in) :: self
+        integer, intent(in) :: p, i
+        real(wp) :: state(12)
+
+        state = self%rows(self%layout%part_column(p, 1):self%layout%part_column(p, 12), i)
+    end function history_part_state
+
+    !> The layout of a problem's output rows: its parts and UCONs in model order, and the
+    !> contact columns when it has a watched contact.
+    pure function output_layout(problem) result(layout)
         type(problem_type), intent(in) :: problem
-        character(len=16), allocatable :: header(:)
-        integer :: k
+        type(output_layout_type) :: layout
+        integer :: part_ids(size(problem%model%parts)), ucon_ids(problem%ucon_count()), k
 
-        header = [character(len=16) :: "t", "X", "Y", "Z", "psi", "theta", "phi", "Xdot", &
-            & "Ydot", "Zdot", "psidot", "thetadot", "phidot", "E", "Fx", "Fy", "Fz", "Fn", &
-            & "mu_needed"]
-        do k = 1, problem%ucon_count()
-            header = [character(len=16) :: header, "F" // to_text(problem%ucon_id(k))]
+        do k = 1, size(part_ids)
+            part_ids(k) = problem%model%parts(k)%id
         end do
-        if (problem%events%contact_radius > 0.0_wp) &
-            & header = [character(len=16) :: header, "height_residual"]
-    end function csv_header
+        do k = 1, size(ucon_ids)
+            ucon_ids(k) = problem%ucon_id(k)
+        end do
+        layout = new_output_layout(part_ids, ucon_ids, problem%events%has_contact)
+    end function output_layout
 
+    !> The output row at (time, q, u), in the columns of layout (output_layout(problem)), with
+    !> the energy, each UCON's residual and multiplier as the last accelerations call left
+    !> them at this state, and for a contact the constraint force on the part in contact, its
+    !> normal part, the friction coefficient rolling needs (tangential / normal, 0 when the
+    !> normal force is not positive) and the height residual.
+    pure function output_row(problem, layout, time, q, u) result(row)
+        type(problem_type), intent(in) :: problem
+        type(output_layout_type), intent(in) :: layout
+        !> Time [s]
+        real(wp), intent(in) :: time
+        !> Coordinates and rates of every part [m, rad, m/s, rad/s]
+        real(wp), intent(in) :: q(:), u(:)
+        real(wp) :: row(layout%columns())
+        real(wp) :: force(3), height(1)
+        integer :: p, k, i0
+
+        row(1) = time
+        do p = 1, size(layout%part_ids)
+            i0 = 6*(p - 1)
+            row(layout%part_column(p, coord_x):layout%part_column(p, coord_phi)) = q(i0 + 1:i0 + 6)
+            row(layout%part_column(p, coord_xdot):layout%part_column(p, coord_phidot)) &
+                & = u(i0 + 1:i0 + 6)
+        end do
+        row(layout%energy_column()) = problem%eq%energy(q, u)
+        do k = 1, size(layout%ucon_ids)
+            row(layout%residual_column(k)) = problem%eq%constraints%value(k)
+            row(layout%multiplier_column(k)) = problem%lambda(k)
+        end do
+        if (.not. layout%contact) return
+        force = problem%eq%constraint_force(problem%events%part, problem%lambda)
+        height = height_residual(problem, q)
+        row(layout%contact_column(contact_fx):layout%contact_column(contact_fz)) = force
+        row(layout%contact_column(contact_normal)) = force(3)
+        row(layout%contact_column(contact_mu)) = 0.0_wp
+        if (force(3) > 0.0_wp) row(layout%contact_column(contact_mu)) = norm2(force(1:2))/force(3)
+        row(layout%contact_column(contact_height)) = height(1)
+    end function output_row
 
     !> Number of output steps after the first row (64 bits); refused when the CSV they would
     !> fill is larger than options%max_csv_bytes, or the count does not fit in 64 bits.

@@ -13,7 +13,6 @@ module rollcon_problem
     public :: problem_type, solver_settings_type, event_settings_type
     public :: formulation_cvode, formulation_ida, method_bdf, method_adams
     public :: drift_none, drift_projection, drift_baumgarte
-    public :: root_theta, root_liftoff
 
     !> Formulations: CVODE on the ODE form, IDA on the DAE form
     integer, parameter :: formulation_cvode = 1, formulation_ida = 2
@@ -21,9 +20,6 @@ module rollcon_problem
     integer, parameter :: method_bdf = 1, method_adams = 2
     !> Drift control of the ODE form: none, projection onto the constraints, Baumgarte
     integer, parameter :: drift_none = 0, drift_projection = 1, drift_baumgarte = 2
-    !> Root function numbers: theta at its distance limit from flat, normal force at its limit
-    integer, parameter :: root_theta = 1, root_liftoff = 2
-
     !> How to integrate
     type :: solver_settings_type
         integer :: formulation = formulation_ida
@@ -42,21 +38,28 @@ module rollcon_problem
         procedure :: baumgarte
     end type solver_settings_type
 
-    !> What a run watches: when to stop it early, and the height residual of a disk
+    !> What a run watches: when to stop it early, and the watched contact of a disk scene
     type :: event_settings_type
-        !> Part watched
-        integer :: part = 1
-        !> Stop when theta comes within theta_min of flat on either side, 0 or pi: the root of
-        !> sin(theta) - sin(theta_min) [rad] (disabled when negative)
+        !> Stop when any part's theta comes within theta_min of flat on either side, 0 or pi:
+        !> one root of sin(theta) - sin(theta_min) per part [rad] (disabled when negative)
         real(wp) :: theta_min = -1.0_wp
-        !> Stop when the normal (ground Z) component of the constraint force falls below
-        !> -liftoff_force: a real lift-off, not the rounding noise of a force that is zero
+        !> The model has a watched contact (the disk scenes): the part `part` touches the
+        !> ground as a rim of radius contact_radius. Then, and only then, the rows carry the
+        !> contact columns, the height residual is measured and the lift-off may be watched.
+        logical :: has_contact = .false.
+        !> Index (model order) of the part in contact
+        integer :: part = 1
+        !> Stop when the normal (ground Z) component of the constraint force on the part in
+        !> contact falls below -liftoff_force: a real lift-off, not the rounding noise of a
+        !> force that is zero (only with has_contact)
         logical :: stop_on_liftoff = .false.
         !> Lift-off threshold [N] >= 0, a small fraction of the scene's force scale
         real(wp) :: liftoff_force = 0.0_wp
-        !> Rim radius of the watched part [m]: its height residual Z - R sin(theta) is
-        !> measured when > 0 (the position-level form of a disk's contact)
+        !> Rim radius of the part in contact [m] > 0: its height residual Z - R sin(theta)
+        !> is the position-level form of a disk's contact
         real(wp) :: contact_radius = 0.0_wp
+    contains
+        procedure :: watches_liftoff
     end type event_settings_type
 
     !> The integrators' user data. `eq` refers to `model`: a problem is set up in place (init)
@@ -82,6 +85,8 @@ module rollcon_problem
         procedure :: ucon_id
         procedure :: constraint_values
         procedure :: ode_rhs
+        procedure :: root_count
+        procedure :: theta_root_part
         procedure :: root_values
         procedure :: keep_failure
     end type problem_type
@@ -167,15 +172,45 @@ contains
         end associate
     end function ode_rhs
 
-    !> Event functions at (t, q, u): sin(theta) - sin(theta_min), which guards both sides of
-    !> flat, and normal force + liftoff_force. The normal force comes from the multipliers when
-    !> a DAE state gives them (IDA), else from the accelerations when the integrator gives them
-    !> (CVODE's interpolating polynomial: no UCOSUB call and no solve), else from a
+    !> The lift-off is watched: asked for, and the model has a contact.
+    pure logical function watches_liftoff(self)
+        class(event_settings_type), intent(in) :: self
+
+        watches_liftoff = self%has_contact .and. self%stop_on_liftoff
+    end function watches_liftoff
+
+    !> Number of event functions: one theta limit per part (when theta_min >= 0), then the
+    !> lift-off of the part in contact (when watched).
+    pure integer function root_count(self)
+        class(problem_type), intent(in) :: self
+
+        root_count = 0
+        if (self%events%theta_min >= 0.0_wp) root_count = size(self%model%parts)
+        if (self%events%watches_liftoff()) root_count = root_count + 1
+    end function root_count
+
+    !> Index (model order) of the part whose theta limit is event function `root`; 0 when
+    !> `root` is the lift-off.
+    pure integer function theta_root_part(self, root)
+        class(problem_type), intent(in) :: self
+        integer, intent(in) :: root
+
+        theta_root_part = 0
+        if (self%events%theta_min >= 0.0_wp .and. root <= size(self%model%parts)) &
+            & theta_root_part = root
+    end function theta_root_part
+
+    !> Event functions at (t, q, u), root_count() of them: for every part p,
+    !> sin(theta_p) - sin(theta_min), which guards both sides of flat; then the normal force
+    !> on the part in contact + liftoff_force. The normal force comes from the multipliers
+    !> when a DAE state gives them (IDA), else from the accelerations when the integrator
+    !> gives them (CVODE's interpolating polynomial: no UCOSUB call and no solve), else from a
     !> saddle-point solve as in a right-hand side.
     function root_values(self, time, q, u, g, lambda, a) result(ierr)
         class(problem_type), intent(inout) :: self
         real(wp), intent(in) :: time, q(:), u(:)
-        real(wp), intent(out) :: g(2)
+        !> Event function values, root_count() of them
+        real(wp), intent(out) :: g(:)
         !> Multipliers at (t, q, u), when known
         real(wp), intent(in), optional :: lambda(:)
         !> Accelerations at (t, q, u), when known
@@ -183,14 +218,18 @@ contains
         integer :: ierr
         type(error_type), allocatable :: error
         real(wp) :: force(3)
+        integer :: p, nroots
 
         ierr = 0
         self%root_evaluations = self%root_evaluations + 1
-        g(root_theta) = 1.0_wp
-        if (self%events%theta_min >= 0.0_wp) g(root_theta) = &
-            & sin(q(6*(self%events%part - 1) + 5)) - sin(self%events%theta_min)
-        g(root_liftoff) = 1.0_wp
-        if (.not. self%events%stop_on_liftoff) return
+        nroots = 0
+        if (self%events%theta_min >= 0.0_wp) then
+            do p = 1, size(self%model%parts)
+                g(p) = sin(q(6*(p - 1) + 5)) - sin(self%events%theta_min)
+            end do
+            nroots = size(self%model%parts)
+        end if
+        if (.not. self%events%watches_liftoff()) return
         if (present(lambda)) then
             ! only C is needed: first partials, no saddle-point solve
             call self%eq%constraint_matrix_at(time, q, u, error)
@@ -205,7 +244,7 @@ contains
             if (ierr /= 0) return
             force = self%eq%constraint_force(self%events%part, self%lambda)
         end if
-        g(root_liftoff) = force(3) + self%events%liftoff_force
+        g(nroots + 1) = force(3) + self%events%liftoff_force
     end function root_values
 
     !> Keep the first failure; return the callback code (0 ok, -1 unrecoverable).

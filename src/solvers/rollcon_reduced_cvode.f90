@@ -1,7 +1,8 @@
 ! SPDX-License-Identifier: MIT
 !> CVODE on the rolling disk's reduced ODE (ucon/reduced/, rollcon_reduced_disk_rhs): the same
 !> method, tolerances, Jacobian choice and force stops as the full CVODE runs, output rows at
-!> the same times and in the same columns (time, q, u, energy) as rollcon_simulation's history.
+!> the same times and in the layout of a one-part model without UCONs (rollcon_output_layout:
+!> time, the disk's q and u, energy), the first columns of the full model's rows.
 module rollcon_reduced_cvode
     use, intrinsic :: iso_c_binding, only : c_ptr, c_null_ptr, c_int, c_long, c_int64_t, &
         & c_double, c_funloc, c_loc, c_f_pointer, c_associated
@@ -12,6 +13,8 @@ module rollcon_reduced_cvode
     use rollcon_force, only : applied_force_type, force_and_moment, force_breakpoints
     use rollcon_problem, only : method_bdf, method_adams
     use rollcon_simulation, only : run_summary_type, history_type, status_failed, status_stopped
+    use rollcon_output_layout, only : new_output_layout, coord_x, coord_phi, coord_xdot, &
+        & coord_phidot
     use rollcon_reduced_disk_rhs, only : reduced_size, reduced_rate, reduced_jacobian, &
         & reduced_energy, reduced_to_full
     use fsundials_context_mod, only : FSUNContext_Create, FSUNContext_Free
@@ -46,6 +49,8 @@ module rollcon_reduced_cvode
         integer :: max_steps = 500000
         !> Stop when theta falls below this [rad] (disabled when negative)
         real(wp) :: theta_min = -1.0_wp
+        !> Part id of the disk, for the rows' column names
+        integer :: part_id = 1
     end type reduced_problem_type
 
 contains
@@ -78,6 +83,8 @@ contains
         ! energy is conserved once the last pulse is over (as in rollcon_simulation)
         t_reference = maxval([t0, breaks])
         breaks = pack(breaks, breaks > t0 .and. breaks < end_time)
+        history%layout = new_output_layout([problem%part_id], [integer ::], .false.)
+        summary%layout = history%layout
         memory = c_null_ptr
         nullify(y, matrix, solver)
         values = y0
@@ -156,6 +163,7 @@ contains
         subroutine record(time)
             real(wp), intent(in) :: time
             real(wp) :: q(6), u(6), energy
+            real(wp), allocatable :: row(:)
 
             call reduced_to_full(values, problem%par, q, u)
             energy = reduced_energy(values, problem%par)
@@ -169,7 +177,14 @@ contains
             summary%q = q
             summary%u = u
             summary%rows = summary%rows + 1
-            call history%add([time, q, u, energy])
+            associate (layout => history%layout)
+                allocate(row(layout%columns()))
+                row(1) = time
+                row(layout%part_column(1, coord_x):layout%part_column(1, coord_phi)) = q
+                row(layout%part_column(1, coord_xdot):layout%part_column(1, coord_phidot)) = u
+                row(layout%energy_column()) = energy
+            end associate
+            call history%add(row)
         end subroutine record
 
         subroutine statistics()

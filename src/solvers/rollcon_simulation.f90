@@ -3,32 +3,35 @@
 module rollcon_simulation
     use, intrinsic :: iso_fortran_env, only : error_unit, int64
     use rollcon_kinds, only : wp
-    use rollcon_constants, only : pi
-    use rollcon_error, only : error_type
+    use rollcon_error, only : error_type, fatal_error, stat_input
     use rollcon_text, only : to_text
-    use rollcon_problem, only : problem_type, formulation_cvode, root_theta, root_liftoff
+    use rollcon_problem, only : problem_type, formulation_cvode
     use rollcon_cvode, only : cvode_solver_type
     use rollcon_ida, only : ida_solver_type
     use rollcon_dae, only : dae_size
     use rollcon_force, only : force_breakpoints
     use rollcon_csv_writer, only : csv_writer_type
     use rollcon_drift, only : height_residual, drift_bounds, drift_findings
+    use rollcon_output_layout, only : output_layout_type
     use rollcon_output_rows, only : run_options_type, default_max_csv_bytes, planned_rows, &
-        & history_type, csv_header, column_time, column_x, column_y, &
-        & column_z, column_psi, column_theta, column_phi, column_xdot, column_ydot, column_zdot, &
-        & column_psidot, column_thetadot, column_phidot, column_energy, column_fx, column_fy, &
-        & column_fz, column_normal, column_mu, column_residual
+        & history_type, output_layout, output_row
+    use rollcon_event_message, only : event_message
     implicit none
     private
 
-    public :: run_options_type, run_summary_type, history_type, simulate, csv_header
+    public :: run_options_type, run_summary_type, history_type, simulate
     public :: status_completed, status_stopped, status_failed, status_inaccurate
-    !> The output rows' limit and columns (rollcon_output_rows), for the callers of simulate
-    public :: default_max_csv_bytes
-    public :: column_time, column_x, column_y, column_z, column_psi, column_theta, column_phi, &
-        & column_xdot, column_ydot, column_zdot, column_psidot, column_thetadot, column_phidot, &
-        & column_energy, column_fx, column_fy, column_fz, column_normal, column_mu, &
-        & column_residual
+    !> The output rows' limit and layout (rollcon_output_rows), for the callers of simulate
+    public :: default_max_csv_bytes, output_layout
+    !> Deprecated: the columns of the disk scenes' rows (one part, three UCONs, the contact)
+    !> and csv_header, kept only so that src/pictures and its tests build until they ask
+    !> rollcon_output_layout; the pictures helper removes them. Every other user asks the layout.
+    public :: csv_header
+    integer, parameter, public :: column_time = 1, column_x = 2, column_y = 3, column_z = 4, &
+        & column_psi = 5, column_theta = 6, column_phi = 7, column_xdot = 8, column_ydot = 9, &
+        & column_zdot = 10, column_psidot = 11, column_thetadot = 12, column_phidot = 13, &
+        & column_energy = 14, column_residual = 15, column_fx = 21, column_fy = 22, &
+        & column_fz = 23, column_normal = 24, column_mu = 25
 
     !> How a run ended: as planned, at an event limit, by a failure, or at its end or a limit
     !> with an energy or height drift beyond what its tolerances promise (rollcon_drift)
@@ -47,10 +50,18 @@ module rollcon_simulation
         real(wp) :: energy_reference = 0.0_wp
         !> Largest |E - E_reference| / |E_reference| after the reference time
         real(wp) :: energy_drift = 0.0_wp
-        !> Largest |F_k| over the output rows
+        !> What the rows hold: the parts and UCONs (their ids, in model order) and whether the
+        !> model has a watched contact
+        type(output_layout_type) :: layout
+        !> Largest |F_k| over the output rows and every UCON (the UCON's own unit)
         real(wp) :: residual_max = 0.0_wp
-        !> Largest position-level residual |Z - R sin(theta)| of the watched part [m] (0 when
-        !> the problem has no contact radius)
+        !> Largest |F_k| over the output rows, for each UCON (model order)
+        real(wp), allocatable :: ucon_residual_max(:)
+        !> For each UCON: a position-level (holonomic) one, F in its coordinates' units; else a
+        !> velocity-level one, F in their units per second
+        logical, allocatable :: ucon_position(:)
+        !> Largest position-level residual |Z - R sin(theta)| of the part in contact [m] (0
+        !> when the problem has no watched contact)
         real(wp) :: height_residual_max = 0.0_wp
         !> What the tolerances allow of energy_drift and height_residual_max (rollcon_drift);
         !> 0 when not judged
@@ -80,6 +91,7 @@ contains
         type(cvode_solver_type), target :: cvode
         type(ida_solver_type), target :: ida
         type(csv_writer_type) :: csv
+        type(output_layout_type) :: layout
         real(wp), allocatable :: y(:), yp(:), breaks(:)
         real(wp) :: t, t_out, t_stop, t_reference, cpu_start, cpu_now, wall_last
         integer :: n, nc, root
@@ -89,17 +101,20 @@ contains
 
         n = problem%eq%n
         nc = problem%eq%nc
+        call check_events(problem, error)
+        if (allocated(error)) return
         call problem%prepare()
+        call start_measures()
         use_cvode = problem%settings%formulation == formulation_cvode
         breaks = force_breakpoints(problem%model%forces)
         t_reference = options%t0
         if (size(breaks) > 0) t_reference = maxval(breaks)
         breaks = pack(breaks, breaks > options%t0 .and. breaks < options%end_time)
 
-        call planned_rows(options, size(csv_header(problem)), n_output, error)
+        call planned_rows(options, layout%columns(), n_output, error)
         if (allocated(error)) return
         if (allocated(options%csv_path)) then
-            call csv%open(options%csv_path, csv_header(problem), error)
+            call csv%open(options%csv_path, layout%header(), error)
             if (allocated(error)) return
         end if
 
@@ -139,7 +154,7 @@ contains
             if (root /= 0) then
                 call record(t, y, error)
                 summary%status = status_stopped
-                summary%message = event_message(root, t, y)
+                summary%message = event_message(problem, root, t, y(:n), y(n + 1:2*n))
                 exit
             end if
             if (t < t_out) cycle
@@ -153,19 +168,33 @@ contains
 
     contains
 
+        !> The rows' layout, in the summary and the history; no UCON residual measured yet.
+        subroutine start_measures()
+            integer :: k
+
+            layout = output_layout(problem)
+            summary%layout = layout
+            allocate(summary%ucon_residual_max(nc), source=0.0_wp)
+            allocate(summary%ucon_position(nc))
+            do k = 1, nc
+                summary%ucon_position(k) = problem%model%ucons(k)%holonomic
+            end do
+            if (present(history)) history%layout = layout
+        end subroutine start_measures
+
         !> Set up CVODE on (q0, u0), or IDA on (q0, u0, lambda) with its consistent rates.
         subroutine start_integrator(error)
             type(error_type), allocatable, intent(out) :: error
 
             if (use_cvode) then
                 y = [q0, u0]
-                call cvode%init(problem, t, y, t_stop, 2, error)
+                call cvode%init(problem, t, y, t_stop, error)
             else
                 allocate(y(dae_size(problem%eq)), yp(dae_size(problem%eq)), source=0.0_wp)
                 y(:2*n) = [q0, u0]
                 y(2*n + 1:2*n + nc) = problem%lambda
                 yp(:2*n) = [u0, problem%a]
-                call ida%init(problem, t, y, yp, t_stop, 2, error)
+                call ida%init(problem, t, y, yp, t_stop, error)
             end if
         end subroutine start_integrator
 
@@ -182,7 +211,7 @@ contains
         subroutine record(time, state, error)
             real(wp), intent(in) :: time, state(:)
             type(error_type), allocatable, intent(out) :: error
-            real(wp) :: energy, force(3), tangential, mu, height(1)
+            real(wp) :: energy, height(1)
             real(wp), allocatable :: row(:)
             type(error_type), allocatable :: eval_error
 
@@ -192,11 +221,8 @@ contains
                     call move_alloc(eval_error, error)
                     return
                 end if
-                energy = problem%eq%energy(q, u)
-                force = problem%eq%constraint_force(problem%events%part, problem%lambda)
-                tangential = norm2(force(1:2))
-                mu = 0.0_wp
-                if (force(3) > 0.0_wp) mu = tangential/force(3)
+                row = output_row(problem, layout, time, q, u)
+                energy = row(layout%energy_column())
                 ! Energy is conserved once the last force pulse is over: measure drift from the
                 ! first row at or after that time.
                 if (time >= t_reference) then
@@ -207,55 +233,21 @@ contains
                             & abs(energy - summary%energy_reference)/abs(summary%energy_reference))
                     end if
                 end if
-                if (nc > 0) summary%residual_max = max(summary%residual_max, &
-                    & maxval(abs(problem%constraint_values())))
+                if (nc > 0) then
+                    summary%ucon_residual_max = max(summary%ucon_residual_max, &
+                        & abs(problem%constraint_values()))
+                    summary%residual_max = maxval(summary%ucon_residual_max)
+                end if
                 height = height_residual(problem, q)
                 summary%height_residual_max = max(summary%height_residual_max, abs(height(1)))
                 summary%t_reached = time
                 summary%q = q
                 summary%u = u
                 summary%rows = summary%rows + 1
-                row = [time, q(1:6), u(1:6), energy, force, force(3), mu, &
-                    & problem%constraint_values()]
-                if (problem%events%contact_radius > 0.0_wp) row = [row, height]
                 if (present(history)) call history%add(row)
                 if (csv%opened) call csv%write_row(row, error)
             end associate
         end subroutine record
-
-        !> Why an event stopped the run, with the time and state.
-        function event_message(root, time, state) result(message)
-            integer, intent(in) :: root
-            real(wp), intent(in) :: time, state(:)
-            character(len=:), allocatable :: message
-            integer :: i_theta
-
-            i_theta = 6*(problem%events%part - 1) + 5
-            select case (root)
-            case (root_theta)
-                if (cos(state(i_theta)) >= 0.0_wp) then
-                    message = "theta fell to the limit theta_min = " &
-                        & // to_text(problem%events%theta_min) // " rad at t = "
-                else
-                    message = "theta rose to pi - theta_min = " &
-                        & // to_text(pi - problem%events%theta_min) // " rad (the limit " &
-                        & // "theta_min = " // to_text(problem%events%theta_min) &
-                        & // " rad from flat on the theta = pi side) at t = "
-                end if
-                message = message // to_text(time) &
-                    & // " s: the disk lies nearly flat, where the 3-1-3 Euler angles become " &
-                    & // "singular (psi = " // to_text(state(i_theta - 1)) // " rad, psidot = " &
-                    & // to_text(state(n + i_theta - 1)) // " rad/s)"
-            case (root_liftoff)
-                message = "the normal contact force turned negative (below -" &
-                    & // to_text(problem%events%liftoff_force) // " N) at t = " // to_text(time) &
-                    & // " s (theta = " // to_text(state(i_theta)) // " rad, thetadot = " &
-                    & // to_text(state(n + i_theta)) // " rad/s): the disk would leave the " &
-                    & // "ground, which a rolling constraint cannot represent"
-            case default
-                message = "event " // to_text(root) // " at t = " // to_text(time) // " s"
-            end select
-        end function event_message
 
         !> At most once a second of wall time: the fraction of the simulated time done, the
         !> rate, and the time left at that rate, e.g. "rollcon: 82% of 10 s simulated
@@ -309,6 +301,35 @@ contains
         end subroutine finish
 
     end subroutine simulate
+
+    !> Deprecated (pictures helper removes): the column names of a problem's rows, as
+    !> output_layout(problem)%header().
+    pure function csv_header(problem) result(header)
+        type(problem_type), intent(in) :: problem
+        character(len=16), allocatable :: header(:)
+        type(output_layout_type) :: layout
+
+        layout = output_layout(problem)
+        header = layout%header()
+    end function csv_header
+
+    !> A watched contact needs a part in contact among the model's parts and a rim radius.
+    subroutine check_events(problem, error)
+        type(problem_type), intent(in) :: problem
+        type(error_type), allocatable, intent(out) :: error
+
+        if (.not. problem%events%has_contact) return
+        if (problem%events%part < 1 .or. problem%events%part > size(problem%model%parts)) then
+            call fatal_error(error, "the part in contact is number " &
+                & // to_text(problem%events%part) // " in model order; the model has " &
+                & // to_text(size(problem%model%parts)) // " parts", stat_input)
+        else if (.not. problem%events%contact_radius > 0.0_wp) then
+            call fatal_error(error, "the contact of part " &
+                & // to_text(problem%model%parts(problem%events%part)%id) &
+                & // " needs a rim radius > 0 [m], got " &
+                & // to_text(problem%events%contact_radius), stat_input)
+        end if
+    end subroutine check_events
 
     !> Judge a run that reached its end or a limit against what its tolerances promise
     !> (rollcon_drift): beyond a bound its results are not what was asked, status_inaccurate,

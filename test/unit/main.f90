@@ -29,6 +29,7 @@ program tester
     use test_isolation, only : collect_isolation
     use test_allocations, only : collect_allocations
     use test_reduced, only : collect_reduced
+    use test_layout, only : collect_layout
     implicit none
     type(testsuite_type), allocatable :: suites(:)
     type(test_counts_type) :: counts
@@ -62,7 +63,8 @@ program tester
         & new_testsuite("csv-fuzz", collect_csv_fuzz), &
         & new_testsuite("isolation", collect_isolation), &
         & new_testsuite("allocations", collect_allocations), &
-        & new_testsuite("reduced", collect_reduced)]
+        & new_testsuite("reduced", collect_reduced), &
+        & new_testsuite("layout", collect_layout)]
 
     if (command_argument_count() >= 1) then
         call get_command_argument(1, argument)

@@ -10,7 +10,8 @@ module motion_run_variants
     use rollcon_disk_reference, only : rolling_disk_ucosub
     use rollcon_gen_rolling_disk, only : generated_disk_ucosub => rolling_disk_ucosub
     use rollcon_simulation, only : run_options_type, simulate, status_failed, history_type, &
-        & run_summary_type, column_x, column_phi
+        & run_summary_type
+    use rollcon_output_layout, only : coord_x, coord_phi
     use rollcon_testing, only : check
     use motion_runs, only : run_in_memory, tipping_coin
     implicit none
@@ -75,6 +76,7 @@ contains
         type(scene_type) :: scene
         type(history_type) :: hand, generated
         type(run_summary_type) :: summary
+        integer :: x, phi
 
         scene = tipping_coin("ida", 1.0e-10_wp)
         scene%run%end_time = 1.0_wp
@@ -84,8 +86,10 @@ contains
         if (allocated(error)) return
         call check(error, hand%count, generated%count, "output rows")
         if (allocated(error)) return
-        call check(error, maxval(abs(hand%rows(column_x:column_phi, :hand%count) &
-            & - generated%rows(column_x:column_phi, :generated%count))), 0.0_wp, &
+        x = hand%layout%part_column(1, coord_x)
+        phi = hand%layout%part_column(1, coord_phi)
+        call check(error, maxval(abs(hand%rows(x:phi, :hand%count) &
+            & - generated%rows(x:phi, :generated%count))), 0.0_wp, &
             & "largest coordinate difference, hand-checked against generated", &
             & abs_tol=1.0e3_wp*scene%run%rtol)
     end subroutine test_generated_trajectory

@@ -13,7 +13,7 @@ module test_allocations
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type
     use rollcon_text, only : to_text
-    use rollcon_problem, only : problem_type, formulation_cvode, method_adams, root_liftoff, &
+    use rollcon_problem, only : problem_type, formulation_cvode, method_adams, &
         & drift_baumgarte, drift_projection
     use rollcon_dae, only : dae_size, dae_residual, dae_jacobian
     use rollcon_cvode, only : cvode_solver_type
@@ -188,7 +188,7 @@ contains
         call coin_problem(problem, q, u, .false., error)
         if (allocated(error)) return
         y = [q, u]
-        call cvode%init(problem, 0.0_wp, y, 2.0_wp, 2, error)
+        call cvode%init(problem, 0.0_wp, y, 2.0_wp, error)
         if (.not. allocated(error)) call cvode%advance(problem, 0.1_wp, 2.0_wp, t, y, root, error)
         start = malloc_count()
         do k = 2, 20
@@ -223,7 +223,7 @@ contains
         y(:12) = [q, u]
         y(13:15) = problem%lambda
         yp(:12) = [u, problem%a]
-        call ida%init(problem, 0.0_wp, y, yp, 2.0_wp, 2, error)
+        call ida%init(problem, 0.0_wp, y, yp, 2.0_wp, error)
         if (.not. allocated(error)) call ida%advance(problem, 0.1_wp, 2.0_wp, t, y, yp, root, &
             & error)
         start = malloc_count()
@@ -259,7 +259,7 @@ contains
         if (allocated(error)) return
         call check(error, force(3) > 1.0_wp, "normal force at the generic state, N")
         if (allocated(error)) return
-        call check(error, g(root_liftoff) - problem%events%liftoff_force, force(3), &
+        call check(error, g(problem%root_count()) - problem%events%liftoff_force, force(3), &
             & "normal force from the accelerations, N", rel_tol=tol_reaction)
     end subroutine test_liftoff_root
 

@@ -138,7 +138,8 @@ contains
         end if
         if (.not. allocated(error)) then
             call check(error, file_exists(partial) .and. index(file_text(partial), &
-                & "t,X,Y,Z") == 1, "partial CSV " // partial // " missing or without header")
+                & "t,X_1,Y_1,Z_1,") == 1, "partial CSV " // partial &
+                & // " missing or without header")
         end if
         call remove_folder(scratch)
     end subroutine test_failed_run

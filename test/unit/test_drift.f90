@@ -11,8 +11,9 @@ module test_drift
     use rollcon_disk_scene, only : build_disk_problem
     use rollcon_disk_reference, only : rolling_disk_ucosub
     use rollcon_simulation, only : run_options_type, simulate, history_type, run_summary_type, &
-        & status_completed, status_inaccurate, column_time, column_x, column_z, column_theta, &
-        & column_phi, column_residual
+        & status_completed, status_inaccurate
+    use rollcon_output_layout, only : output_layout_type, read_layout, name_length, time_column, &
+        & coord_x, coord_z, coord_theta, coord_phi, contact_height
     use rollcon_testing, only : unittest_type, new_unittest, check
     use motion_runs, only : run_in_memory, tipping_coin
     implicit none
@@ -46,9 +47,13 @@ contains
         type(problem_type), target :: problem
         type(run_options_type) :: options
         type(run_summary_type) :: summary
-        real(wp) :: q0(6), u0(6), row(23), largest
+        real(wp) :: q0(6), u0(6), largest
+        real(wp), allocatable :: row(:)
+        type(output_layout_type) :: layout
+        character(len=name_length), allocatable :: names(:)
+        character(len=:), allocatable :: message
         character(len=2048) :: line
-        integer :: unit, stat, rows
+        integer :: unit, stat, rows, z, theta, height
 
         scene = tipping_coin("ida", 1.0e-6_wp)
         scene%run%end_time = 2.0_wp
@@ -62,21 +67,31 @@ contains
         if (allocated(error)) return
         open(newunit=unit, file=path, status="old", action="read")
         read(unit, '(a)') line
-        call check(error, index(line, ",F1,F2,F3,height_residual") > 0 .and. &
-            & len_trim(line) == index(line, "height_residual") + 14, "header: " // trim(line))
+        ! the header names the layout of a disk scene: one part, three UCONs, the contact last
+        allocate(names(count([(line(stat:stat) == ",", stat = 1, len_trim(line))]) + 1))
+        read(line, *) names
+        call read_layout(names, layout, message)
+        if (allocated(message)) call check(error, .false., "header: " // message)
+        if (.not. allocated(error)) call check(error, layout%contact .and. &
+            & size(layout%ucon_ids) == 3 .and. names(size(names)) == "height_residual", &
+            & "header: " // trim(line))
         if (allocated(error)) then
             close(unit, status="delete")
             return
         end if
+        allocate(row(layout%columns()))
+        z = layout%part_column(1, coord_z)
+        theta = layout%part_column(1, coord_theta)
+        height = layout%contact_column(contact_height)
         rows = 0
         largest = 0.0_wp
         do
             read(unit, *, iostat=stat) row
             if (stat /= 0) exit
             rows = rows + 1
-            largest = max(largest, abs(row(23)))
-            call check(error, row(23), row(column_z) - scene%disk%radius*sin(row(column_theta)), &
-                & "height residual at t = " // to_text(row(column_time)), abs_tol=tol_printed)
+            largest = max(largest, abs(row(height)))
+            call check(error, row(height), row(z) - scene%disk%radius*sin(row(theta)), &
+                & "height residual at t = " // to_text(row(time_column)), abs_tol=tol_printed)
             if (allocated(error)) exit
         end do
         close(unit, status="delete")
@@ -190,8 +205,10 @@ contains
         call check(error, summary%energy_drift, 0.0_wp, "energy drift over 200 s", &
             & abs_tol=1.0e3_wp*scene%run%rtol)
         if (allocated(error)) return
-        t = history%column(column_time)
-        residual = maxval(abs(history%rows(column_residual:, :history%count)), dim=1)
+        t = history%column(time_column)
+        residual = maxval(abs(history%rows(history%layout%residual_column(1) &
+            & :history%layout%residual_column(size(history%layout%ucon_ids)), &
+            & :history%count)), dim=1)
         early = maxval(residual, mask=t <= 20.0_wp)
         late = maxval(residual, mask=t >= 180.0_wp)
         call check(error, late <= 10.0_wp*early + 1.0e-2_wp*scene%run%atol, "residual grew from " &
@@ -207,7 +224,7 @@ contains
         type(history_type) :: velocity_form, position_form
         type(run_summary_type) :: summary
         real(wp) :: difference, height
-        integer :: i
+        integer :: i, x, phi
 
         do i = 1, 2
             scene = tipping_coin(trim(formulations(i)), 1.0e-9_wp)
@@ -218,13 +235,15 @@ contains
             call run_in_memory(scene, position_form, summary, error)
             if (allocated(error)) return
             ! same motion to the integration error over 1 s (1e3 rtol, as for CVODE vs IDA)
-            difference = maxval(abs(velocity_form%rows(column_x:column_phi, :velocity_form%count) &
-                & - position_form%rows(column_x:column_phi, :position_form%count)))
+            x = velocity_form%layout%part_column(1, coord_x)
+            phi = velocity_form%layout%part_column(1, coord_phi)
+            difference = maxval(abs(velocity_form%rows(x:phi, :velocity_form%count) &
+                & - position_form%rows(x:phi, :position_form%count)))
             call check(error, difference, 0.0_wp, trim(formulations(i)) // ": largest " &
                 & // "difference between the two forms", abs_tol=1.0e-6_wp)
             if (allocated(error)) return
-            height = maxval(abs(position_form%column(column_z) - scene%disk%radius &
-                & *sin(position_form%column(column_theta))))
+            height = maxval(abs(position_form%part_values(1, coord_z) - scene%disk%radius &
+                & *sin(position_form%part_values(1, coord_theta))))
             call check(error, height, 0.0_wp, trim(formulations(i)) // ": |Z - R sin(theta)| [m]", &
                 & abs_tol=1.0e-9_wp)
             if (allocated(error)) return

@@ -11,7 +11,8 @@ module test_events
     use rollcon_disk_scene, only : build_disk_problem, disk_mass_properties
     use rollcon_disk_reference, only : rolling_disk_ucosub
     use rollcon_simulation, only : history_type, run_summary_type, status_completed, &
-        & status_stopped, column_z, column_theta, column_fz
+        & status_stopped
+    use rollcon_output_layout, only : coord_z, coord_theta, contact_fz
     use rollcon_testing, only : unittest_type, new_unittest, check
     use motion_runs, only : run_in_memory, default_scene, tipping_coin
     implicit none
@@ -50,7 +51,8 @@ contains
             & .and. index(summary%message, " at t = ") > 0, "message: " // summary%message)
         if (allocated(error)) return
         ! the root of sin(theta) - sin(0.5) is located to the solver's tolerance
-        call check(error, history%rows(column_theta, history%count), 0.5_wp, &
+        call check(error, history%rows(history%layout%part_column(1, coord_theta), &
+            & history%count), 0.5_wp, &
             & "theta at the stop", abs_tol=1.0e-6_wp)
     end subroutine test_theta_event
 
@@ -77,11 +79,13 @@ contains
         call check(error, index(summary%message, "theta rose to pi - theta_min") == 1 .and. &
             & index(summary%message, "on the theta = pi side") > 0, "message: " // summary%message)
         if (allocated(error)) return
-        call check(error, history%rows(column_theta, history%count), pi - scene%limits%theta_min, &
+        call check(error, history%rows(history%layout%part_column(1, coord_theta), &
+            & history%count), pi - scene%limits%theta_min, &
             & "theta at the stop", abs_tol=tol_root)
         if (allocated(error)) return
-        call check(error, minval(history%column(column_z)) > 0.0_wp, "the centre went below " &
-            & // "the floor: Z = " // to_text(minval(history%column(column_z))) // " m")
+        call check(error, minval(history%part_values(1, coord_z)) > 0.0_wp, &
+            & "the centre went below " &
+            & // "the floor: Z = " // to_text(minval(history%part_values(1, coord_z))) // " m")
     end subroutine test_theta_near_pi
 
     !> theta_min = 0 would let the run go on into the singularity, where the solvers fail
@@ -144,7 +148,8 @@ contains
                 & abs_tol=0.0_wp)
             if (allocated(error)) return
             ! theta stays at 60 deg to the integration error: 100 rtol over 0.5 s
-            call check(error, maxval(abs(history%column(column_theta) - pi/3.0_wp)), 0.0_wp, &
+            call check(error, maxval(abs(history%part_values(1, coord_theta) - pi/3.0_wp)), &
+                & 0.0_wp, &
                 & trim(formulations(i)) // ": largest |theta - 60 deg| [rad]", &
                 & abs_tol=1.0e2_wp*tolerances(i))
             if (allocated(error)) return
@@ -182,7 +187,7 @@ contains
             & problem%events%liftoff_force < tol_force, "lift-off threshold " &
             & // to_text(problem%events%liftoff_force) // " N: not a small positive force")
         if (allocated(error)) return
-        call check(error, history%rows(column_fz, history%count), &
+        call check(error, history%rows(history%layout%contact_column(contact_fz), history%count), &
             & -problem%events%liftoff_force, "normal force at the stop [N]", abs_tol=tol_force)
     end subroutine test_liftoff_event
 

@@ -8,7 +8,8 @@ module test_extremes
     use rollcon_text, only : to_text
     use rollcon_scene, only : scene_type, read_scene, choice_code
     use rollcon_simulation, only : history_type, run_summary_type, status_completed, &
-        & status_stopped, column_time, column_theta, column_psidot, column_residual
+        & status_stopped
+    use rollcon_output_layout, only : coord_theta, coord_psidot
     use rollcon_benchmark, only : benchmark_methods, benchmark_row_type, benchmark_scene, &
         & benchmark_header, write_benchmark_row
     use rollcon_disk_reference, only : rolling_disk_ucosub
@@ -68,11 +69,12 @@ contains
         if (allocated(error)) return
         call check_sane(error, history, summary, "near_flat")
         if (allocated(error)) return
-        call check(error, minval(history%column(column_theta)) < 0.06_wp, "theta only fell to " &
-            & // to_text(minval(history%column(column_theta))))
+        call check(error, minval(history%part_values(1, coord_theta)) < 0.06_wp, &
+            & "theta only fell to " // to_text(minval(history%part_values(1, coord_theta))))
         if (allocated(error)) return
-        call check(error, maxval(abs(history%column(column_psidot))) > 200.0_wp, &
-            & "precession only reached " // to_text(maxval(abs(history%column(column_psidot)))))
+        call check(error, maxval(abs(history%part_values(1, coord_psidot))) > 200.0_wp, &
+            & "precession only reached " &
+            & // to_text(maxval(abs(history%part_values(1, coord_psidot)))))
         if (allocated(error)) return
         ! energy over the fall: 1e3 rtol, as for the tipping coin
         call check(error, summary%energy_drift, 0.0_wp, "energy drift", &

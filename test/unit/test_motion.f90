@@ -17,10 +17,9 @@ module test_motion
     use rollcon_disk_par, only : disk_par
     use rollcon_disk_scene, only : disk_initial_state
     use rollcon_disk_scene, only : disk_mass_properties
-    use rollcon_simulation, only : history_type, run_summary_type, &
-        & column_time, column_x, column_y, column_z, column_psi, column_theta, column_phi, &
-        & column_xdot, column_ydot, column_zdot, column_thetadot, column_fx, column_fy, &
-        & column_fz, column_residual
+    use rollcon_simulation, only : history_type, run_summary_type
+    use rollcon_output_layout, only : time_column, coord_x, coord_y, coord_psi, coord_theta, &
+        & coord_phi, coord_xdot, coord_zdot, coord_thetadot, contact_fx, contact_fz
     use rollcon_testing, only : unittest_type, new_unittest, check
     use motion_runs, only : run_in_memory, default_scene, tipping_coin
     use motion_run_variants, only : test_solver_failure, test_generated_trajectory
@@ -64,9 +63,9 @@ contains
         if (allocated(error)) return
         call check(error, summary%t_reached, 10.0_wp, "end time", abs_tol=1.0e-12_wp)
         if (allocated(error)) return
-        call check(error, minval(history%column(column_theta)) < 0.5_wp, &
-            & "the coin did not tip (min theta " // to_text(minval(history%column(column_theta))) &
-            & // ")")
+        call check(error, minval(history%part_values(1, coord_theta)) < 0.5_wp, &
+            & "the coin did not tip (min theta " &
+            & // to_text(minval(history%part_values(1, coord_theta))) // ")")
         if (allocated(error)) return
         call check(error, summary%energy_drift, 0.0_wp, formulation // " energy drift", &
             & abs_tol=1.0e3_wp*rtol)
@@ -145,14 +144,14 @@ contains
         if (allocated(error)) return
         ! theta within 1e-8 rad: an exact steady solution, so only the integration error moves
         ! it; at rtol 1e-11 that is ~1e-10 rad over 5 s.
-        call check(error, maxval(abs(history%column(column_theta) - pi/3.0_wp)), 0.0_wp, &
+        call check(error, maxval(abs(history%part_values(1, coord_theta) - pi/3.0_wp)), 0.0_wp, &
             & "largest |theta - 60 deg| [rad]", abs_tol=1.0e-8_wp)
         if (allocated(error)) return
         ! Contact point G - R e_y2, on the ground.
-        px = history%column(column_x) + scene%disk%radius*cos(history%column(column_theta)) &
-            & *sin(history%column(column_psi))
-        py = history%column(column_y) - scene%disk%radius*cos(history%column(column_theta)) &
-            & *cos(history%column(column_psi))
+        px = history%part_values(1, coord_x) + scene%disk%radius &
+            & *cos(history%part_values(1, coord_theta))*sin(history%part_values(1, coord_psi))
+        py = history%part_values(1, coord_y) - scene%disk%radius &
+            & *cos(history%part_values(1, coord_theta))*cos(history%part_values(1, coord_psi))
         k = [1, history%count/3, (2*history%count)/3]
         cx = px(k)
         cy = py(k)
@@ -167,7 +166,7 @@ contains
             distance = hypot(px(i) - centre(1), py(i) - centre(2))
             ! 1e-8 relative: the path radius is ~0.1 m; positions are integrated to ~1e-11.
             call check(error, distance, radius_path, "contact point's distance from the " &
-                & // "circle's centre at t = " // to_text(history%rows(column_time, i)), &
+                & // "circle's centre at t = " // to_text(history%rows(time_column, i)), &
                 & rel_tol=1.0e-8_wp)
             if (allocated(error)) return
         end do
@@ -194,7 +193,7 @@ contains
 
         call run_in_memory(upright(0.8_wp, 10.0_wp), history, summary, error)
         if (allocated(error)) return
-        call check(error, maxval(abs(history%column(column_theta) - 0.5_wp*pi)), 0.0_wp, &
+        call check(error, maxval(abs(history%part_values(1, coord_theta) - 0.5_wp*pi)), 0.0_wp, &
             & "largest tilt at 0.8 m/s [rad]", abs_tol=0.05_wp)
     end subroutine test_upright_stable
 
@@ -206,9 +205,9 @@ contains
 
         call run_in_memory(upright(0.5_wp, 10.0_wp), history, summary, error)
         if (allocated(error)) return
-        call check(error, maxval(abs(history%column(column_theta) - 0.5_wp*pi)) > 0.3_wp, &
+        call check(error, maxval(abs(history%part_values(1, coord_theta) - 0.5_wp*pi)) > 0.3_wp, &
             & "at 0.5 m/s the largest tilt is only " &
-            & // to_text(maxval(abs(history%column(column_theta) - 0.5_wp*pi))) // " rad")
+            & // to_text(maxval(abs(history%part_values(1, coord_theta) - 0.5_wp*pi))) // " rad")
     end subroutine test_upright_tips
 
     !> Small wobble of upright rolling at 2 m/s: (A + m R^2) e'' + (C (C + m R^2) W^2 / A - m g R) e
@@ -237,8 +236,8 @@ contains
             linear = sqrt((c*(c + mass*r**2)*spin**2/a - mass*scene%environment%gravity*r) &
                 & /(a + mass*r**2))
         end associate
-        t = history%column(column_time)
-        rate = history%column(column_thetadot)
+        t = history%column(time_column)
+        rate = history%part_values(1, coord_thetadot)
         crossings = 0
         do i = 2, size(t)
             if (rate(i - 1) > 0.0_wp .and. rate(i) <= 0.0_wp) then
@@ -262,8 +261,8 @@ contains
         type(history_type) :: ida, cvode
         type(run_summary_type) :: summary
         type(scene_type) :: scene
-        real(wp) :: rtol, difference
-        integer :: i
+        real(wp) :: rtol, difference, a(12), b(12)
+        integer :: i, k
 
         do i = 1, 2
             rtol = 10.0_wp**(-6 - 2*i)
@@ -274,8 +273,12 @@ contains
             scene%run%formulation = formulation_cvode
             call run_in_memory(scene, cvode, summary, error)
             if (allocated(error)) return
-            difference = maxval(abs(ida%rows(column_x:column_phi, :ida%count) &
-                & - cvode%rows(column_x:column_phi, :cvode%count)))
+            difference = 0.0_wp
+            do k = 1, min(ida%count, cvode%count)
+                a = ida%part_state(1, k)
+                b = cvode%part_state(1, k)
+                difference = max(difference, maxval(abs(a(:6) - b(:6))))
+            end do
             call check(error, difference, 0.0_wp, "largest coordinate difference at rtol " &
                 & // to_text(rtol), abs_tol=1.0e3_wp*rtol)
             if (allocated(error)) return
@@ -291,7 +294,7 @@ contains
         type(history_type) :: history
         type(run_summary_type) :: summary
         real(wp) :: mass, inertia(3), contact(3), change(3), expected(3), dt
-        integer :: i, first, last
+        integer :: i, first, last, fx, fz, xdot, zdot
 
         scene = default_scene()
         scene%initial%phidot = -1.0_wp
@@ -306,17 +309,19 @@ contains
         call run_in_memory(scene, history, summary, error)
         if (allocated(error)) return
         call disk_mass_properties(scene, mass, inertia)
-        first = minloc(abs(history%column(column_time) - scene%strike%time), dim=1)
-        last = minloc(abs(history%column(column_time) - scene%strike%time &
+        fx = history%layout%contact_column(contact_fx)
+        fz = history%layout%contact_column(contact_fz)
+        xdot = history%layout%part_column(1, coord_xdot)
+        zdot = history%layout%part_column(1, coord_zdot)
+        first = minloc(abs(history%column(time_column) - scene%strike%time), dim=1)
+        last = minloc(abs(history%column(time_column) - scene%strike%time &
             & - scene%strike%duration), dim=1)
         contact = 0.0_wp
         do i = first, last - 1
-            dt = history%rows(column_time, i + 1) - history%rows(column_time, i)
-            contact = contact + 0.5_wp*dt*(history%rows(column_fx:column_fz, i) &
-                & + history%rows(column_fx:column_fz, i + 1))
+            dt = history%rows(time_column, i + 1) - history%rows(time_column, i)
+            contact = contact + 0.5_wp*dt*(history%rows(fx:fz, i) + history%rows(fx:fz, i + 1))
         end do
-        change = mass*(history%rows(column_xdot:column_zdot, last) &
-            & - history%rows(column_xdot:column_zdot, first))
+        change = mass*(history%rows(xdot:zdot, last) - history%rows(xdot:zdot, first))
         expected = contact + [0.0_wp, scene%strike%impulse, &
             & -mass*scene%environment%gravity*scene%strike%duration]
         call check(error, change, expected, "momentum change over the pulse [N s]", &

@@ -11,8 +11,8 @@ module test_reduced
     use rollcon_problem, only : problem_type
     use rollcon_disk_scene, only : build_disk_problem, disk_mass_properties
     use rollcon_disk_reference, only : rolling_disk_ucosub
-    use rollcon_simulation, only : history_type, run_summary_type, column_time, column_x, &
-        & column_z, column_theta, column_energy
+    use rollcon_simulation, only : history_type, run_summary_type
+    use rollcon_output_layout, only : time_column, coord_x, coord_z, coord_theta
     use rollcon_reduced_disk_rhs, only : reduced_size, reduced_rate, reduced_jacobian, &
         & reduced_energy, reduced_to_full, full_to_reduced
     use rollcon_reduced_scene, only : simulate_reduced_scene
@@ -223,7 +223,7 @@ contains
         type(scene_type) :: scene
         type(history_type) :: full, reduced
         type(run_summary_type) :: summary
-        real(wp) :: distance, energy_error, height_error, worst
+        real(wp) :: distance, energy_error, height_error, worst, a(12), b(12)
         integer :: f, i, n
 
         call read_scene("data/" // name // ".nml", scene, error)
@@ -246,19 +246,21 @@ contains
             energy_error = 0.0_wp
             height_error = 0.0_wp
             do i = 1, n
-                call check(error, full%rows(column_time, i), reduced%rows(column_time, i), &
+                call check(error, full%rows(time_column, i), reduced%rows(time_column, i), &
                     & name // ": output times", abs_tol=1.0e-12_wp)
                 if (allocated(error)) return
-                if (full%rows(column_time, i) <= horizon .and. norm2(full%rows(column_x:column_z, &
-                    & i) - reduced%rows(column_x:column_z, i)) > distance) then
-                    distance = norm2(full%rows(column_x:column_z, i) &
-                        & - reduced%rows(column_x:column_z, i))
-                    worst = full%rows(column_time, i)
+                a = full%part_state(1, i)
+                b = reduced%part_state(1, i)
+                if (full%rows(time_column, i) <= horizon &
+                    & .and. norm2(a(coord_x:coord_z) - b(coord_x:coord_z)) > distance) then
+                    distance = norm2(a(coord_x:coord_z) - b(coord_x:coord_z))
+                    worst = full%rows(time_column, i)
                 end if
-                energy_error = max(energy_error, abs(full%rows(column_energy, i) &
-                    & - reduced%rows(column_energy, i))/abs(reduced%rows(column_energy, 1)))
-                height_error = max(height_error, abs(full%rows(column_z, i) &
-                    & - scene%disk%radius*sin(full%rows(column_theta, i))))
+                energy_error = max(energy_error, abs(full%rows(full%layout%energy_column(), i) &
+                    & - reduced%rows(reduced%layout%energy_column(), i)) &
+                    & /abs(reduced%rows(reduced%layout%energy_column(), 1)))
+                height_error = max(height_error, abs(a(coord_z) &
+                    & - scene%disk%radius*sin(a(coord_theta))))
             end do
             call check(error, distance <= tol_position, name // ": " // trim(formulations(f)) &
                 & // " centre differs from the reduced ODE's by " // to_text(distance) &
