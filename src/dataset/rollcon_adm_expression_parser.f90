@@ -1,5 +1,5 @@
 ! SPDX-License-Identifier: MIT
-!> Compiles a dataset function expression into the stack program of rollcon_adm_expression, by
+!> Compiles a dataset function expression into the stack program of rollcon_expression, by
 !> recursive descent: sum := product {(+|-) product}; product := signed {(*|/) signed};
 !> signed := (+|-) signed | power; power := primary [** signed]. A syntax error names where the
 !> expression was read and the column.
@@ -7,7 +7,7 @@ module rollcon_adm_expression_parser
     use rollcon_kinds, only : wp
     use rollcon_constants, only : pi
     use rollcon_error, only : error_type, fatal_error, stat_input
-    use rollcon_adm_expression, only : expression_type, max_stack, op_constant, op_time, op_add, &
+    use rollcon_expression, only : expression_type, max_stack, op_constant, op_time, op_add, &
         & op_subtract, op_multiply, op_divide, op_power, op_negate, op_if, function_names, &
         & function_codes, function_arguments
     implicit none

@@ -5,7 +5,7 @@ module test_adm_expression
     use rollcon_kinds, only : wp
     use rollcon_constants, only : pi
     use rollcon_error, only : error_type
-    use rollcon_adm_expression, only : expression_type, evaluate_expression
+    use rollcon_expression, only : expression_type, evaluate_expression
     use rollcon_adm_expression_parser, only : compile_expression
     use rollcon_testing, only : unittest_type, new_unittest, check
     use, intrinsic :: ieee_arithmetic, only : ieee_is_nan

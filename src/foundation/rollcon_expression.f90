@@ -8,7 +8,7 @@
 !> `HAVSIN(x, x0, h0, x1, h1)` (haversine step) and `IF(e: neg, zero, pos)`. Names are read in
 !> any case. A value outside a function's domain (LOG of a negative number, STEP with x1 <= x0)
 !> evaluates to NaN: callers check the result with ieee_is_finite and name the expression.
-module rollcon_adm_expression
+module rollcon_expression
     use rollcon_kinds, only : wp
     use rollcon_constants, only : pi
     use, intrinsic :: ieee_arithmetic, only : ieee_value, ieee_quiet_nan
@@ -182,4 +182,4 @@ contains
         nan = ieee_value(nan, ieee_quiet_nan)
     end function nan
 
-end module rollcon_adm_expression
+end module rollcon_expression
