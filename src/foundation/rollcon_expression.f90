@@ -1,13 +1,18 @@
 ! SPDX-License-Identifier: MIT
 !> Function expressions of an ADAMS dataset (`FUNCTION = e`) as small stack programs, evaluated
-!> at any time with no allocation (rollcon_adm_expression_parser compiles them).
+!> at any time and state with no allocation (rollcon_adm_expression_parser compiles them).
 !>
 !> The subset: numbers (with `D` after a number for degrees), `TIME`, `PI`, `DTOR`; `+ - * /`
 !> and `**` (right-associative, binding tighter than a sign, as in Fortran); the functions
 !> `SIN COS TAN ATAN2 EXP LOG SQRT ABS MIN MAX`, `STEP(x, x0, h0, x1, h1)` (cubic step),
-!> `HAVSIN(x, x0, h0, x1, h1)` (haversine step) and `IF(e: neg, zero, pos)`. Names are read in
-!> any case. A value outside a function's domain (LOG of a negative number, STEP with x1 <= x0)
-!> evaluates to NaN: callers check the result with ieee_is_finite and name the expression.
+!> `HAVSIN(x, x0, h0, x1, h1)` (haversine step) and `IF(e: neg, zero, pos)`; and the state
+!> functions of one marker i, measured from ground in ground axes: `DX(i) DY(i) DZ(i)`
+!> (position), `VX(i) VY(i) VZ(i)` (velocity), `WX(i) WY(i) WZ(i)` (angular velocity),
+!> `PSI(i) THETA(i) PHI(i)` (body 3-1-3 angles of the marker's axes). Names are read in any
+!> case. A compiled expression lists its state functions as inputs (marker id, quantity); the
+!> caller computes their values and passes them in that order. A value outside a function's
+!> domain (LOG of a negative number, STEP with x1 <= x0) evaluates to NaN: callers check the
+!> result with ieee_is_finite and name the expression.
 module rollcon_expression
     use rollcon_kinds, only : wp
     use rollcon_constants, only : pi
@@ -15,19 +20,23 @@ module rollcon_expression
     implicit none
     private
 
-    public :: expression_type, evaluate_expression, max_stack
-    public :: op_constant, op_time, op_add, op_subtract, op_multiply, op_divide, op_power, &
-        & op_negate, op_step, op_havsin, op_if
+    public :: expression_type, expression_input_type, evaluate_expression, switching_times
+    public :: max_stack, max_inputs
+    public :: op_constant, op_time, op_input, op_add, op_subtract, op_multiply, op_divide, &
+        & op_power, op_negate, op_step, op_havsin, op_if
     public :: function_names, function_codes, function_arguments
+    public :: quantity_names, quantity_dx, quantity_vx, quantity_wx, quantity_psi
 
     !> Deepest stack a compiled expression may need
     integer, parameter :: max_stack = 64
+    !> Most distinct state functions one expression may use
+    integer, parameter :: max_inputs = 32
 
     ! operation codes of the stack program
     integer, parameter :: op_constant = 1, op_time = 2, op_add = 3, op_subtract = 4, &
         & op_multiply = 5, op_divide = 6, op_power = 7, op_negate = 8, op_sin = 9, op_cos = 10, &
         & op_tan = 11, op_exp = 12, op_log = 13, op_sqrt = 14, op_abs = 15, op_atan2 = 16, &
-        & op_min = 17, op_max = 18, op_step = 19, op_havsin = 20, op_if = 21
+        & op_min = 17, op_max = 18, op_step = 19, op_havsin = 20, op_if = 21, op_input = 22
 
     !> Function names, their operation codes and argument counts (IF is parsed apart)
     character(len=*), parameter :: function_names(12) = [character(len=6) :: "SIN", "COS", &
@@ -36,6 +45,20 @@ module rollcon_expression
         & op_log, op_sqrt, op_abs, op_min, op_max, op_step, op_havsin]
     integer, parameter :: function_arguments(12) = [1, 1, 1, 2, 1, 1, 1, 1, 2, 2, 5, 5]
 
+    !> State functions of one marker; quantity code k is quantity_names(k). DX..DZ [length],
+    !> VX..VZ [length/time], WX..WZ [rad/time], PSI, THETA, PHI [rad], in dataset units
+    character(len=*), parameter :: quantity_names(12) = [character(len=5) :: "DX", "DY", "DZ", &
+        & "VX", "VY", "VZ", "WX", "WY", "WZ", "PSI", "THETA", "PHI"]
+    !> First code of each group of three (x, y, z or psi, theta, phi follow in order)
+    integer, parameter :: quantity_dx = 1, quantity_vx = 4, quantity_wx = 7, quantity_psi = 10
+
+    !> One state function an expression reads
+    type :: expression_input_type
+        !> Marker id (as in the dataset)
+        integer :: marker = 0
+        !> Quantity code (quantity_names)
+        integer :: quantity = 0
+    end type expression_input_type
 
     !> A compiled expression
     type :: expression_type
@@ -43,21 +66,28 @@ module rollcon_expression
         character(len=:), allocatable :: text
         !> Operation codes, in order
         integer, allocatable :: op(:)
-        !> The constant of each op_constant operation (0 elsewhere)
+        !> The constant of each op_constant operation; for op_input, the input's number
+        !> (0 elsewhere)
         real(wp), allocatable :: constant(:)
+        !> The state functions read, in the order their values are passed
+        type(expression_input_type), allocatable :: inputs(:)
         !> True when the expression depends on TIME
         logical :: uses_time = .false.
     end type expression_type
 
 contains
 
-    !> Value of the expression at `time` [s]; NaN outside a function's domain.
-    pure function evaluate_expression(expression, time) result(value)
+    !> Value of the expression at `time` with its inputs' values; NaN outside a function's
+    !> domain, and where an input is read that is not given.
+    pure function evaluate_expression(expression, time, inputs) result(value)
         type(expression_type), intent(in) :: expression
+        !> Time, in the expression's units
         real(wp), intent(in) :: time
+        !> Values of expression%inputs, in that order, in the expression's units
+        real(wp), intent(in), optional :: inputs(:)
         real(wp) :: value
         real(wp) :: stack(max_stack)
-        integer :: i, top
+        integer :: i, top, k
 
         top = 0
         do i = 1, size(expression%op)
@@ -68,6 +98,13 @@ contains
             case (op_time)
                 top = top + 1
                 stack(top) = time
+            case (op_input)
+                top = top + 1
+                k = nint(expression%constant(i))
+                stack(top) = nan()
+                if (present(inputs)) then
+                    if (k <= size(inputs)) stack(top) = inputs(k)
+                end if
             case (op_negate)
                 stack(top) = -stack(top)
             case (op_sin:op_abs)
@@ -80,17 +117,119 @@ contains
                 stack(top) = smooth_step(expression%op(i) == op_havsin, stack(top:top + 4))
             case (op_if)
                 top = top - 3
-                if (stack(top) < 0.0_wp) then
-                    stack(top) = stack(top + 1)
-                else if (stack(top) > 0.0_wp) then
-                    stack(top) = stack(top + 3)
-                else
-                    stack(top) = stack(top + 2)
-                end if
+                stack(top) = if_branch(stack(top:top + 3))
             end select
         end do
         value = stack(1)
     end function evaluate_expression
+
+    !> IF(e: negative, zero, positive) from its four values.
+    pure function if_branch(arguments) result(y)
+        real(wp), intent(in) :: arguments(4)
+        real(wp) :: y
+
+        if (arguments(1) < 0.0_wp) then
+            y = arguments(2)
+        else if (arguments(1) > 0.0_wp) then
+            y = arguments(4)
+        else
+            y = arguments(3)
+        end if
+    end function if_branch
+
+    !> The times at which the expression switches: where the condition of an IF, or the
+    !> argument of a STEP or HAVSIN, is a TIME - c (any a TIME + b, a /= 0, of constants)
+    !> and crosses zero, x0 or x1 (constants). A switch on anything else (a state function, a
+    !> product of TIME) is not found. In the expression's time units, in the order the program
+    !> meets them (an inner IF before the IF around it).
+    pure function switching_times(expression) result(times)
+        type(expression_type), intent(in) :: expression
+        real(wp), allocatable :: times(:)
+        !> Each pending value as slope*TIME + offset when `affine` (slope 0: a constant)
+        real(wp) :: slope(max_stack), offset(max_stack)
+        logical :: affine(max_stack)
+        integer :: i, top, op, arity
+
+        allocate(times(0))
+        top = 0
+        do i = 1, size(expression%op)
+            op = expression%op(i)
+            select case (op)
+            case (op_constant, op_time, op_input)
+                top = top + 1
+                affine(top) = op /= op_input
+                slope(top) = merge(1.0_wp, 0.0_wp, op == op_time)
+                offset(top) = merge(expression%constant(i), 0.0_wp, op == op_constant)
+                cycle
+            case (op_negate)
+                slope(top) = -slope(top)
+                offset(top) = -offset(top)
+                cycle
+            case (op_sin:op_abs)
+                arity = 1
+            case (op_step, op_havsin)
+                arity = 5
+                if (affine(top - 4) .and. slope(top - 4) /= 0.0_wp .and. affine(top - 3) &
+                    & .and. slope(top - 3) == 0.0_wp .and. affine(top - 1) &
+                    & .and. slope(top - 1) == 0.0_wp) times = [times, &
+                    & (offset(top - 3) - offset(top - 4))/slope(top - 4), &
+                    & (offset(top - 1) - offset(top - 4))/slope(top - 4)]
+            case (op_if)
+                arity = 4
+                if (affine(top - 3) .and. slope(top - 3) /= 0.0_wp) &
+                    & times = [times, -offset(top - 3)/slope(top - 3)]
+            case default
+                arity = 2
+            end select
+            top = top - arity + 1
+            call combine(op, arity, slope(top:top + arity - 1), offset(top:top + arity - 1), &
+                & affine(top:top + arity - 1))
+        end do
+    end function switching_times
+
+    !> The affine form of an operation's result from its arguments' (first element on return).
+    pure subroutine combine(op, arity, slope, offset, affine)
+        integer, intent(in) :: op, arity
+        real(wp), intent(inout) :: slope(arity), offset(arity)
+        logical, intent(inout) :: affine(arity)
+        real(wp) :: values(5)
+
+        if (all(affine) .and. all(slope == 0.0_wp)) then
+            ! constants only: fold
+            values(:arity) = offset
+            select case (op)
+            case (op_sin:op_abs)
+                offset(1) = unary(op, values(1))
+            case (op_step, op_havsin)
+                offset(1) = smooth_step(op == op_havsin, values(:5))
+            case (op_if)
+                offset(1) = if_branch(values(:4))
+            case default
+                offset(1) = binary(op, values(1), values(2))
+            end select
+            return
+        end if
+        affine(1) = all(affine) .and. arity == 2
+        if (.not. affine(1)) return
+        select case (op)
+        case (op_add)
+            slope(1) = slope(1) + slope(2)
+            offset(1) = offset(1) + offset(2)
+        case (op_subtract)
+            slope(1) = slope(1) - slope(2)
+            offset(1) = offset(1) - offset(2)
+        case (op_multiply)
+            affine(1) = slope(1) == 0.0_wp .or. slope(2) == 0.0_wp
+            slope(1) = slope(1)*offset(2) + slope(2)*offset(1)
+            offset(1) = offset(1)*offset(2)
+        case (op_divide)
+            affine(1) = slope(2) == 0.0_wp .and. offset(2) /= 0.0_wp
+            if (affine(1)) slope(1) = slope(1)/offset(2)
+            if (affine(1)) offset(1) = offset(1)/offset(2)
+        case default
+            affine(1) = .false.
+        end select
+    end subroutine combine
 
     pure function unary(op, x) result(y)
         integer, intent(in) :: op
