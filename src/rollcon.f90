@@ -25,6 +25,7 @@ module rollcon
     use rollcon_simulation, only : run_options_type, run_summary_type, history_type, simulate
     use rollcon_output_layout, only : output_layout_type, new_output_layout, read_layout
     use rollcon_ucosub_catalog, only : find_builtin_ucosub, builtin_ucosub_names
+    use rollcon_adm_build, only : build_adm_problem, adm_theta_min
     use rollcon_user_library, only : user_ucosub_type, user_build_options_type, new_user_ucosub
     use rollcon_ucosub_audit, only : ucon_request_type, user_check_options_type, &
         & user_check_report_type, check_user_ucosub
