@@ -22,6 +22,7 @@ program tester
     use test_adm_lexer, only : collect_adm_lexer
     use test_adm_reader, only : collect_adm_reader
     use test_adm_build, only : collect_adm_build
+    use test_adm_forces, only : collect_adm_forces
     use test_output, only : collect_output
     use test_command, only : collect_command
     use test_csv_fuzz, only : collect_csv_fuzz
@@ -54,6 +55,7 @@ program tester
         & new_testsuite("adm-expression", collect_adm_expression), &
         & new_testsuite("adm-lexer", collect_adm_lexer), &
         & new_testsuite("adm-reader", collect_adm_reader), &
+        & new_testsuite("adm-forces", collect_adm_forces), &
         & new_testsuite("adm-build", collect_adm_build), &
         & new_testsuite("output", collect_output), &
         & new_testsuite("command", collect_command), &
