@@ -7,6 +7,8 @@ module rollcon_adm_loads
     use rollcon_adm_lexer, only : adm_statement_type, adm_argument_type
     use rollcon_adm_keywords, only : read_reals, read_integer, argument_key, arg_place, name_index
     use rollcon_adm_expression_parser, only : compile_expression
+    use rollcon_ucosub_contract, only : ucosub_interface
+    use rollcon_ucosub_catalog, only : find_builtin_ucosub, builtin_ucosub_names
     use rollcon_adm_model, only : adm_model_type, adm_ucon_type, adm_force_type, force_sforce, &
         & force_vforce, force_gforce
     implicit none
@@ -14,7 +16,7 @@ module rollcon_adm_loads
 
     public :: read_ucon, read_accgrav, read_force
 
-    character(len=*), parameter :: ucon_keys(1) = ["FUNCTION"]
+    character(len=*), parameter :: ucon_keys(2) = [character(len=8) :: "FUNCTION", "ROUTINE"]
     character(len=*), parameter :: accgrav_keys(3) = ["IGRAV", "JGRAV", "KGRAV"]
     character(len=*), parameter :: sforce_keys(6) = [character(len=11) :: "I", "J", &
         & "TRANSLATION", "ROTATION", "ACTIONONLY", "FUNCTION"]
@@ -23,6 +25,8 @@ module rollcon_adm_loads
 
 contains
 
+    !> UCON/id, FUNCTION=USER(r1, ..., r30)[, ROUTINE=name]: name, in any case, is a built-in
+    !> UCOSUB (rollcon_ucosub_catalog); without it the model's UCOSUB serves the UCON.
     subroutine read_ucon(path, where, statement, model, error)
         character(len=*), intent(in) :: path, where
         type(adm_statement_type), intent(in) :: statement
@@ -30,25 +34,58 @@ contains
         type(error_type), allocatable, intent(out) :: error
         type(adm_ucon_type) :: ucon
         character(len=:), allocatable :: key, at
+        integer :: k
 
         ucon%id = statement%id
         ucon%line = statement%line
-        if (size(statement%arguments) /= 1) then
-            call fatal_error(error, where // ": expected one argument, FUNCTION=USER(r1, ..., " &
-                & // "r30)", stat_input)
+        do k = 1, size(statement%arguments)
+            call argument_key(path, where, statement, k, ucon_keys, key, error)
+            if (allocated(error)) return
+            at = arg_place(path, where, statement%arguments(k)) // " " // key
+            if (key == "FUNCTION") then
+                call read_user_list(statement%arguments(k), at, ucon%par, error)
+            else
+                call read_routine(statement%arguments(k), at, ucon%routine, error)
+            end if
+            if (allocated(error)) return
+        end do
+        if (.not. allocated(ucon%par)) then
+            call fatal_error(error, where // ": FUNCTION=USER(r1, ..., r30) is missing (the " &
+                & // "constants passed to the UCOSUB as PAR)", stat_input)
             return
         end if
-        call argument_key(path, where, statement, 1, ucon_keys, key, error)
-        if (allocated(error)) return
-        at = arg_place(path, where, statement%arguments(1)) // " FUNCTION"
-        call read_user_list(statement%arguments(1), at, ucon%par, error)
-        if (allocated(error)) return
+        if (.not. allocated(ucon%routine)) ucon%routine = ""
         if (any(model%ucons%id == ucon%id)) then
             call fatal_error(error, where // ": a second UCON with this id", stat_input)
             return
         end if
         model%ucons = [model%ucons, ucon]
     end subroutine read_ucon
+
+    !> ROUTINE = name of a built-in UCOSUB; anything else refused with the list.
+    subroutine read_routine(argument, at, routine, error)
+        type(adm_argument_type), intent(in) :: argument
+        character(len=*), intent(in) :: at
+        character(len=:), allocatable, intent(out) :: routine
+        type(error_type), allocatable, intent(out) :: error
+        procedure(ucosub_interface), pointer :: ucosub
+        logical :: time_free, found
+
+        found = .false.
+        if (argument%assigned .and. size(argument%values) == 1) then
+            routine = trim(adjustl(argument%values(1)%text))
+            call find_builtin_ucosub(routine, ucosub, time_free, found)
+        end if
+        if (found) return
+        if (allocated(routine)) then
+            call fatal_error(error, at // ": '" // routine // "' is not a built-in UCOSUB (" &
+                & // builtin_ucosub_names() // "); a routine of your own is given with " &
+                & // "rollcon run MODEL.adm --ucosub FILE", stat_input)
+        else
+            call fatal_error(error, at // ": expected the name of a built-in UCOSUB (" &
+                & // builtin_ucosub_names() // ")", stat_input)
+        end if
+    end subroutine read_routine
 
     !> FUNCTION = USER(r1, ..., rn): 1 <= n <= 30, one number per field.
     subroutine read_user_list(argument, at, par, error)
@@ -71,6 +108,11 @@ contains
             return
         end if
         inner = text(open + 1:len(text) - 1)
+        if (len_trim(inner) == 0) then
+            call fatal_error(error, at // ": USER() holds no constant; a UCON passes 1 to 30 " &
+                & // "constants to its UCOSUB (PAR)", stat_input)
+            return
+        end if
         n = count([(inner(i:i) == ",", i = 1, len(inner))]) + 1
         list%assigned = .true.
         allocate(list%values(n))
