@@ -2,6 +2,7 @@
 !> A dataset becomes a problem that runs: data/coin.adm against data/coin.nml (the same
 !> equations, so the same history bit for bit and the same stops), a disk and a sphere from one
 !> dataset (data/disk_and_sphere.adm), and the refusals of build_adm_problem.
+!> (The two-part run's checks are in adm_build_two_parts.)
 module test_adm_build
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type
@@ -17,7 +18,8 @@ module test_adm_build
     use rollcon_adm_model, only : adm_model_type
     use rollcon_adm_reader, only : read_adm
     use rollcon_adm_build, only : build_adm_problem, adm_theta_min
-    use adm_build_support, only : write_lines, read_lines_model
+    use adm_build_support, only : read_lines_model
+    use adm_build_two_parts, only : test_disk_and_sphere
     use rollcon_testing, only : unittest_type, new_unittest, check
     implicit none
     private
@@ -47,7 +49,8 @@ contains
             & new_unittest("coin-adm-model", test_coin_model), &
             & new_unittest("no-routine-refused", test_no_routine), &
             & new_unittest("builtin-in-millimetres-refused", test_builtin_units), &
-            & new_unittest("missing-marker-refused", test_missing_marker)]
+            & new_unittest("missing-marker-refused", test_missing_marker), &
+            & new_unittest("disk-and-sphere", test_disk_and_sphere)]
     end subroutine collect_adm_build
 
     !> The problem of data/coin.adm with the hand-checked disk routine.
