@@ -18,7 +18,8 @@ module rollcon_adm_build
     use rollcon_expression, only : quantity_names
     use rollcon_body, only : part_type
     use rollcon_marker, only : marker_type
-    use rollcon_marker_force, only : kind_translation, kind_rotation, kind_vector, kind_general
+    use rollcon_marker_force, only : kind_translation, kind_rotation, kind_vector, &
+        & kind_general, marker_force_values
     use rollcon_force, only : applied_force_type, profile_statement
     use rollcon_model, only : model_type, setup_model
     use rollcon_problem, only : problem_type
@@ -26,6 +27,7 @@ module rollcon_adm_build
     use rollcon_adm_keywords, only : place
     use rollcon_adm_model, only : adm_model_type, adm_force_type, force_sforce, force_vforce
     use rollcon_adm_state, only : part_state
+    use, intrinsic :: ieee_arithmetic, only : ieee_is_finite
     implicit none
     private
 
@@ -98,7 +100,37 @@ contains
             p = p + 1
             call part_state(adm, adm%parts(i), q0(6*p - 5:6*p), u0(6*p - 5:6*p))
         end do
+        call check_forces_at_start(adm, problem, q0, u0, error)
     end subroutine build_adm_problem
+
+    !> Every force expression finite at the start (t = 0): a NaN or infinity there (a LOG of a
+    !> negative number, a division by zero) is refused with the statement and key, not left for
+    !> the integrator to fail on.
+    subroutine check_forces_at_start(adm, problem, q0, u0, error)
+        type(adm_model_type), intent(in) :: adm
+        type(problem_type), intent(in) :: problem
+        real(wp), intent(in) :: q0(:), u0(:)
+        type(error_type), allocatable, intent(out) :: error
+        character(len=*), parameter :: names(3) = ["SFORCE", "VFORCE", "GFORCE"]
+        real(wp) :: values(6)
+        character(len=:), allocatable :: key
+        integer :: i, k
+
+        do i = 1, size(adm%forces)
+            values = marker_force_values(problem%model%forces(i)%statement, 0.0_wp, q0, u0)
+            do k = 1, 6
+                if (ieee_is_finite(values(k))) cycle
+                key = slot_names(k)
+                if (adm%forces(i)%kind == force_sforce) key = "FUNCTION"
+                call fatal_error(error, place(adm%file, adm%forces(i)%line) // ": " &
+                    & // names(adm%forces(i)%kind) // "/" // to_text(adm%forces(i)%id) // " " &
+                    & // key // ": the expression is not finite at t = 0 (" &
+                    & // to_text(values(k)) // "): a function outside its domain, or a " &
+                    & // "division by zero", stat_input)
+                return
+            end do
+        end do
+    end subroutine check_forces_at_start
 
     !> Each UCON with its routine: ROUTINE=name, else the model's; built-in routines only with
     !> lengths in metres.

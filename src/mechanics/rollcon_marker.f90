@@ -43,7 +43,7 @@ contains
         real(wp), intent(in) :: q(:), u(:)
         real(wp), intent(out) :: position(3), velocity(3), axes(3, 3), omega(3)
         real(wp) :: rotation(3, 3), arm(3)
-        integer :: i0
+        integer :: i0, k
 
         if (marker%part == 0) then
             position = marker%point
@@ -56,7 +56,10 @@ contains
         rotation = rotation_matrix(q(i0 + 4), q(i0 + 5), q(i0 + 6))
         arm = times(rotation, marker%point)
         position = q(i0 + 1:i0 + 3) + arm
-        axes = matmul(rotation, marker%axes)
+        ! column by column: matmul may allocate a temporary, and this is the hot path
+        do k = 1, 3
+            axes(:, k) = times(rotation, marker%axes(:, k))
+        end do
         omega = times(rotation, body_angular_velocity(q(i0 + 1:i0 + 6), u(i0 + 1:i0 + 6)))
         velocity = u(i0 + 1:i0 + 3) + cross(omega, arm)
     end subroutine marker_motion

@@ -17,8 +17,9 @@ module rollcon_marker_force
     use rollcon_kinds, only : wp
     use rollcon_rotation, only : times, cross
     use rollcon_expression, only : expression_type, evaluate_expression, max_inputs, &
-        & quantity_dx, quantity_vx, quantity_wx, quantity_psi
+        & quantity_vx, quantity_wx, quantity_psi
     use rollcon_marker, only : marker_type, marker_motion, marker_quantity
+    use, intrinsic :: ieee_arithmetic, only : ieee_value, ieee_quiet_nan
     implicit none
     private
 
@@ -82,20 +83,20 @@ contains
 
         do k = 1, size(values)
             associate (input => expression%inputs(k))
-                slot = 1
+                slot = 0
                 do m = 1, size(self%markers)
                     if (self%markers(m)%id == input%marker) slot = m
                 end do
-                if (input%quantity >= quantity_psi) then
-                    scale = 1.0_wp
-                else if (input%quantity >= quantity_wx) then
-                    scale = self%time_unit
-                else if (input%quantity >= quantity_vx) then
-                    scale = self%time_unit/self%length_unit
-                else if (input%quantity >= quantity_dx) then
-                    scale = 1.0_wp/self%length_unit
-                end if
-                values(k) = scale*marker_quantity(self%markers(slot), input%quantity, q, u)
+                scale = 1.0_wp
+                if (input%quantity < quantity_psi) scale = 1.0_wp/self%length_unit
+                if (input%quantity < quantity_psi .and. input%quantity >= quantity_wx) &
+                    & scale = self%time_unit
+                if (input%quantity < quantity_wx .and. input%quantity >= quantity_vx) &
+                    & scale = self%time_unit/self%length_unit
+                ! a marker the force was not given (the builder gives every one): NaN
+                values(k) = ieee_value(scale, ieee_quiet_nan)
+                if (slot > 0) values(k) = scale*marker_quantity(self%markers(slot), &
+                    & input%quantity, q, u)
             end associate
         end do
     end subroutine input_values
@@ -127,7 +128,8 @@ contains
             if (self%action_only) then
                 line = axes_j(:, 3)
             else
-                line = (r_i - r_j)/norm2(r_i - r_j)
+                line = r_i - r_j
+                line = line/norm2(line)
             end if
             f = values(1)*line
             if (on_i) call add_load(p, q, r_i, f, force, moment)
@@ -154,9 +156,12 @@ contains
         integer, intent(in) :: p
         real(wp), intent(in) :: q(:), r(3), f(3)
         real(wp), intent(inout) :: force(3), moment(3)
+        real(wp) :: arm(3)
 
         force = force + f
-        moment = moment + cross(r - q(6*(p - 1) + 1:6*(p - 1) + 3), f)
+        ! through a local array: an expression of a section would be a heap temporary
+        arm = r - q(6*(p - 1) + 1:6*(p - 1) + 3)
+        moment = moment + cross(arm, f)
     end subroutine add_load
 
 end module rollcon_marker_force

@@ -9,6 +9,7 @@ module test_adm_build
     use rollcon_text, only : to_text
     use rollcon_ucosub_contract, only : ucosub_interface
     use rollcon_disk_reference, only : rolling_disk_ucosub
+    use rollcon_ucosub_catalog, only : builtin_ucosub_names
     use rollcon_force, only : force_breakpoints
     use rollcon_problem, only : problem_type, formulation_ida
     use rollcon_scene, only : scene_type, read_scene
@@ -50,6 +51,7 @@ contains
             & new_unittest("no-routine-refused", test_no_routine), &
             & new_unittest("builtin-in-millimetres-refused", test_builtin_units), &
             & new_unittest("missing-marker-refused", test_missing_marker), &
+            & new_unittest("force-not-finite-refused", test_force_not_finite), &
             & new_unittest("disk-and-sphere", test_disk_and_sphere)]
     end subroutine collect_adm_build
 
@@ -193,9 +195,9 @@ contains
         call check(error, allocated(refused), "built without a routine")
         if (allocated(error)) return
         call check(error, refused%message == "data/coin.adm:38: UCON/1: no UCOSUB serves this " &
-            & // "UCON: name a built-in routine with ROUTINE=name (disk, rolling_disk, " &
-            & // "disk_height, knife_edge, rolling_sphere, turntable_disk) or give the model's " &
-            & // "UCOSUB (rollcon run MODEL.adm --ucosub FILE|NAME)", refused%message)
+            & // "UCON: name a built-in routine with ROUTINE=name (" // builtin_ucosub_names() &
+            & // ") or give the model's UCOSUB (rollcon run MODEL.adm --ucosub FILE|NAME)", &
+            & refused%message)
     end subroutine test_no_routine
 
     !> The coin in millimetres, served by the built-in disk routine: refused (it takes PAR in
@@ -242,5 +244,27 @@ contains
         call check(error, refused%message == "build/rollcon-test/coin_marker.adm:51: GFORCE/5 " &
             & // "TX: THETA(7): no MARKER/7 in the dataset", refused%message)
     end subroutine test_missing_marker
+
+    !> A force expression that is NaN at the start (LOG of DZ - 1 < 0): refused with the
+    !> statement and key.
+    subroutine test_force_not_finite(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(adm_model_type) :: adm
+        type(problem_type), target :: problem
+        real(wp), allocatable :: q0(:), u0(:)
+        type(error_type), allocatable :: refused
+        procedure(ucosub_interface), pointer :: disk
+
+        call read_lines_model("coin_nan.adm", "GFORCE/5, I=3, JFLOAT=2, RM=1, FX=0, FZ=0, TY=0", &
+            & "GFORCE/5, I=3, JFLOAT=2, RM=1, FX=LOG(DZ(3) - 1), FZ=0, TY=0", adm, error)
+        if (allocated(error)) return
+        disk => rolling_disk_ucosub
+        call build_adm_problem(adm, disk, problem, q0, u0, refused)
+        call check(error, allocated(refused), "built with a NaN force")
+        if (allocated(error)) return
+        call check(error, refused%message == "build/rollcon-test/coin_nan.adm:51: GFORCE/5 FX: " &
+            & // "the expression is not finite at t = 0 (NaN): a function outside its domain, " &
+            & // "or a division by zero", refused%message)
+    end subroutine test_force_not_finite
 
 end module test_adm_build

@@ -14,7 +14,8 @@ module test_adm_forces
         & kind_vector, kind_general
     use rollcon_force, only : applied_force_type, force_and_moment, force_breakpoints, &
         & pulse_stops, profile_statement, profile_half_sine
-    use rollcon_testing, only : unittest_type, new_unittest, check
+    use rollcon_testing, only : unittest_type, new_unittest, check, skip_test
+    use, intrinsic :: iso_c_binding, only : c_int, c_long
     implicit none
     private
 
@@ -31,6 +32,20 @@ module test_adm_forces
     real(wp), parameter :: u(12) = [0.5_wp, -0.2_wp, 0.1_wp, 0.7_wp, -0.3_wp, 1.2_wp, &
         & 0.0_wp, 0.0_wp, 0.0_wp, 0.0_wp, 0.0_wp, 0.0_wp]
 
+    interface
+        !> Calls to malloc, calloc and realloc so far (malloc_counter.c)
+        function malloc_count() result(count) bind(c, name="rollcon_malloc_count")
+            import :: c_long
+            integer(c_long) :: count
+        end function malloc_count
+
+        !> 1 when the allocator is interposed, 0 when the counts mean nothing
+        function malloc_counting() result(counting) bind(c, name="rollcon_malloc_counting")
+            import :: c_int
+            integer(c_int) :: counting
+        end function malloc_counting
+    end interface
+
 contains
 
     subroutine collect_adm_forces(tests)
@@ -45,7 +60,8 @@ contains
             & new_unittest("vforce", test_vforce), &
             & new_unittest("gforce", test_gforce), &
             & new_unittest("units-of-an-expression", test_units), &
-            & new_unittest("breakpoints", test_breakpoints)]
+            & new_unittest("breakpoints", test_breakpoints), &
+            & new_unittest("loads-allocate-nothing", test_no_allocation)]
     end subroutine collect_adm_forces
 
     !> A marker of part 1 at (0.1, -0.2, 0.3) in its principal axes, its axes turned by 0.2 rad
@@ -305,5 +321,38 @@ contains
         call check(error, pulse_stops(60.0_wp, 120.0_wp), [(60.0_wp + 3.0_wp*k, k = 0, 20)], &
             & "pulse_stops", abs_tol=tol)
     end subroutine test_breakpoints
+
+    !> The loads of force statements, evaluated as every right-hand side does, call malloc
+    !> not once: the expressions' inputs live in a fixed array (at most max_inputs).
+    subroutine test_no_allocation(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(applied_force_type) :: forces(2)
+        real(wp) :: f(3), m(3), total
+        integer(c_long) :: before
+        integer :: k
+
+        if (malloc_counting() == 0) then
+            call skip_test(error, "malloc is not interposed on this C library")
+            return
+        end if
+        forces(1) = statement_force(kind_general, [character(len=40) :: &
+            & "2*DX(5) + VX(5) + TIME + WZ(5)", "PSI(5)", "0", "THETA(5)*STEP(TIME, 1, 0, 2, 1)", &
+            & "0", "PHI(5)"])
+        forces(1)%statement%i = marker_type(id=1, part=2)
+        forces(1)%statement%markers = [marker_type(id=5, part=1, point=[0.1_wp, 0.0_wp, &
+            & 0.0_wp])]
+        forces(2) = statement_force(kind_translation, ["-3*(DX(5) - DX(6))"])
+        forces(2)%statement%i = marker_type(id=5, part=1, point=[0.1_wp, 0.0_wp, 0.0_wp])
+        forces(2)%statement%j = marker_type(id=6, part=2)
+        forces(2)%statement%markers = [forces(2)%statement%i, forces(2)%statement%j]
+        total = 0.0_wp
+        before = malloc_count()
+        do k = 1, 100
+            call force_and_moment(forces, 1 + mod(k, 2), 0.01_wp*k, q, u, f, m)
+            total = total + sum(f) + sum(m)
+        end do
+        call check(error, malloc_count() - before == 0_c_long, "force_and_moment allocated " &
+            & // "(total " // merge("finite    ", "not finite", abs(total) < huge(total)) // ")")
+    end subroutine test_no_allocation
 
 end module test_adm_forces
