@@ -31,7 +31,7 @@ module rollcon_adm_build
     implicit none
     private
 
-    public :: build_adm_problem, adm_theta_min, adm_marker
+    public :: build_adm_problem, adm_theta_min
 
     !> The theta limit of every part of a dataset's model [rad]: a run stops when a part's
     !> principal axes come this close to the Euler-angle singularity (theta = 0 or pi), as the
