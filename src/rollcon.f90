@@ -27,6 +27,7 @@ module rollcon
     use rollcon_output_rows, only : output_layout
     use rollcon_summary_text, only : run_summary_text
     use rollcon_ucosub_catalog, only : find_builtin_ucosub, builtin_ucosub_names
+    use rollcon_adm_build, only : build_adm_problem, adm_theta_min
     use rollcon_user_library, only : user_ucosub_type, user_build_options_type, new_user_ucosub
     use rollcon_ucosub_audit, only : ucon_request_type, user_check_options_type, &
         & user_check_report_type, check_user_ucosub

@@ -1,29 +1,24 @@
 ! SPDX-License-Identifier: MIT
-!> Compiles a dataset function expression into the stack program of rollcon_adm_expression, by
+!> Compiles a dataset function expression into the stack program of rollcon_expression, by
 !> recursive descent: sum := product {(+|-) product}; product := signed {(*|/) signed};
 !> signed := (+|-) signed | power; power := primary [** signed]. A syntax error names where the
-!> expression was read and the column.
+!> expression was read and the column. A state function takes one marker id, DX(i); the forms
+!> with J (measured from another marker) or K (in another marker's axes) are refused. Whether
+!> the marker exists is checked where the dataset's markers are known (rollcon_adm_build).
 module rollcon_adm_expression_parser
     use rollcon_kinds, only : wp
     use rollcon_constants, only : pi
     use rollcon_error, only : error_type, fatal_error, stat_input
-    use rollcon_adm_expression, only : expression_type, max_stack, op_constant, op_time, op_add, &
-        & op_subtract, op_multiply, op_divide, op_power, op_negate, op_if, function_names, &
-        & function_codes, function_arguments
+    use rollcon_expression, only : expression_type, expression_input_type, max_stack, &
+        & max_inputs, op_time, op_input, op_add, op_subtract, op_multiply, op_divide, op_power, &
+        & op_negate, op_if, function_names, function_codes, function_arguments, quantity_names
+    use rollcon_adm_expression_scan, only : parser_type, emit, emit_constant, expect, peek, &
+        & here, skip_blanks, skip_digits, read_name, is_digit, is_letter, column_text, &
+        & exponent_follows
     implicit none
     private
 
     public :: compile_expression
-
-
-    !> Parser state: the text and where reading stands
-    type :: parser_type
-        character(len=:), allocatable :: text
-        integer :: at = 1
-        integer, allocatable :: op(:)
-        real(wp), allocatable :: constant(:)
-        integer :: count = 0, depth = 0, deepest = 0
-    end type parser_type
 
 contains
 
@@ -39,7 +34,8 @@ contains
         character(len=:), allocatable :: problem
 
         parser%text = text
-        allocate(parser%op(max(8, len(text))), parser%constant(max(8, len(text))))
+        allocate(parser%op(max(8, len(text))), parser%constant(max(8, len(text))), &
+            & parser%inputs(0))
         problem = ""
         call parse_sum(parser, problem)
         if (len(problem) == 0) then
@@ -57,6 +53,7 @@ contains
         expression%text = trim(adjustl(text))
         expression%op = parser%op(:parser%count)
         expression%constant = parser%constant(:parser%count)
+        expression%inputs = parser%inputs
         expression%uses_time = any(expression%op == op_time)
     end subroutine compile_expression
 
@@ -168,9 +165,17 @@ contains
             if (trim(function_names(i)) == name) k = i
         end do
         if (k == 0) then
+            do i = 1, size(quantity_names)
+                if (trim(quantity_names(i)) == name) k = i
+            end do
+            if (k > 0) then
+                call parse_state_function(p, name, k, problem)
+                return
+            end if
             p%at = p%at - len(name)
             problem = "unknown name '" // name // "' (the subset has TIME, PI, DTOR, SIN, " &
-                & // "COS, TAN, ATAN2, EXP, LOG, SQRT, ABS, MIN, MAX, STEP, HAVSIN, IF)"
+                & // "COS, TAN, ATAN2, EXP, LOG, SQRT, ABS, MIN, MAX, STEP, HAVSIN, IF and " &
+                & // "the state functions DX DY DZ VX VY VZ WX WY WZ PSI THETA PHI of one marker)"
             return
         end if
         call expect(p, "(", problem)
@@ -190,6 +195,56 @@ contains
         end if
         call emit(p, function_codes(k), 1 - function_arguments(k))
     end subroutine parse_call
+
+    !> NAME(i): the quantity of marker i, measured from ground in ground axes; an input of
+    !> the expression (one per distinct marker and quantity).
+    subroutine parse_state_function(p, name, quantity, problem)
+        type(parser_type), intent(inout) :: p
+        character(len=*), intent(in) :: name
+        integer, intent(in) :: quantity
+        character(len=:), allocatable, intent(inout) :: problem
+        integer :: first, id, stat, k, slot
+
+        call expect(p, "(", problem)
+        if (len(problem) > 0) then
+            problem = problem // " (" // name // " is written " // name // "(i), i a marker id)"
+            return
+        end if
+        call skip_blanks(p)
+        first = p%at
+        call skip_digits(p)
+        id = 0
+        stat = 1
+        if (p%at > first) read(p%text(first:p%at - 1), *, iostat=stat) id
+        if (stat /= 0 .or. id <= 0) then
+            p%at = first
+            problem = name // "(i) takes a marker id (a whole number > 0)"
+            return
+        end if
+        if (peek(p) == ",") then
+            problem = name // "(i, ...): only the one-marker form " // name // "(i) is " &
+                & // "supported, measured from ground in ground axes (a J or K marker, from or " &
+                & // "in another marker, is not)"
+            return
+        end if
+        call expect(p, ")", problem)
+        if (len(problem) > 0) return
+        slot = 0
+        do k = 1, size(p%inputs)
+            if (p%inputs(k)%marker == id .and. p%inputs(k)%quantity == quantity) slot = k
+        end do
+        if (slot == 0) then
+            if (size(p%inputs) == max_inputs) then
+                problem = "more than 32 different state functions in one expression"
+                return
+            end if
+            p%inputs = [p%inputs, expression_input_type(marker=id, quantity=quantity)]
+            slot = size(p%inputs)
+        end if
+        ! the input's number rides in the constant slot of its operation
+        call emit_constant(p, real(slot, wp))
+        p%op(p%count) = op_input
+    end subroutine parse_state_function
 
     recursive subroutine parse_if(p, problem)
         type(parser_type), intent(inout) :: p
@@ -246,130 +301,5 @@ contains
         end if
         call emit_constant(p, value)
     end subroutine parse_number
-
-    !> After E or D: digits, or a sign and digits, make an exponent.
-    pure logical function exponent_follows(p)
-        type(parser_type), intent(in) :: p
-        integer :: k
-
-        k = p%at + 1
-        if (k <= len(p%text)) then
-            if (p%text(k:k) == "+" .or. p%text(k:k) == "-") k = k + 1
-        end if
-        exponent_follows = .false.
-        if (k <= len(p%text)) exponent_follows = is_digit(p%text(k:k))
-    end function exponent_follows
-
-    subroutine emit_constant(p, value)
-        type(parser_type), intent(inout) :: p
-        real(wp), intent(in) :: value
-
-        call emit(p, op_constant, 1)
-        p%constant(p%count) = value
-    end subroutine emit_constant
-
-    !> Append an operation that changes the stack depth by `change`.
-    subroutine emit(p, op, change)
-        type(parser_type), intent(inout) :: p
-        integer, intent(in) :: op, change
-
-        if (p%count == size(p%op)) then
-            p%op = [p%op, p%op]
-            p%constant = [p%constant, p%constant]
-        end if
-        p%count = p%count + 1
-        p%op(p%count) = op
-        p%constant(p%count) = 0.0_wp
-        p%depth = p%depth + change
-        p%deepest = max(p%deepest, p%depth)
-    end subroutine emit
-
-    subroutine expect(p, c, problem)
-        type(parser_type), intent(inout) :: p
-        character, intent(in) :: c
-        character(len=:), allocatable, intent(inout) :: problem
-
-        if (peek(p) == c) then
-            p%at = p%at + 1
-        else if (p%at > len(p%text)) then
-            problem = "'" // c // "' expected at the end"
-        else
-            problem = "'" // c // "' expected, found '" // p%text(p%at:p%at) // "'"
-        end if
-    end subroutine expect
-
-    !> The next non-blank character (a blank at the end of the text).
-    character function peek(p)
-        type(parser_type), intent(inout) :: p
-
-        call skip_blanks(p)
-        peek = here(p)
-    end function peek
-
-    pure character function here(p)
-        type(parser_type), intent(in) :: p
-
-        here = " "
-        if (p%at <= len(p%text)) here = p%text(p%at:p%at)
-    end function here
-
-    subroutine skip_blanks(p)
-        type(parser_type), intent(inout) :: p
-
-        do while (p%at <= len(p%text))
-            if (p%text(p%at:p%at) /= " " .and. p%text(p%at:p%at) /= achar(9)) exit
-            p%at = p%at + 1
-        end do
-    end subroutine skip_blanks
-
-    subroutine skip_digits(p)
-        type(parser_type), intent(inout) :: p
-
-        do while (p%at <= len(p%text))
-            if (.not. is_digit(p%text(p%at:p%at))) exit
-            p%at = p%at + 1
-        end do
-    end subroutine skip_digits
-
-    !> A name (letters, digits, underscores), upper-cased.
-    function read_name(p) result(name)
-        type(parser_type), intent(inout) :: p
-        character(len=:), allocatable :: name
-        integer :: first, i
-
-        first = p%at
-        do while (p%at <= len(p%text))
-            if (.not. (is_letter(p%text(p%at:p%at)) .or. is_digit(p%text(p%at:p%at)) &
-                & .or. p%text(p%at:p%at) == "_")) exit
-            p%at = p%at + 1
-        end do
-        name = p%text(first:p%at - 1)
-        do i = 1, len(name)
-            if (name(i:i) >= "a" .and. name(i:i) <= "z") name(i:i) = achar(iachar(name(i:i)) - 32)
-        end do
-    end function read_name
-
-    pure logical function is_digit(c)
-        character, intent(in) :: c
-
-        is_digit = c >= "0" .and. c <= "9"
-    end function is_digit
-
-    pure logical function is_letter(c)
-        character, intent(in) :: c
-
-        is_letter = (c >= "A" .and. c <= "Z") .or. (c >= "a" .and. c <= "z")
-    end function is_letter
-
-    function column_text(p) result(text)
-        type(parser_type), intent(in) :: p
-        character(len=:), allocatable :: text
-        character(len=12) :: buffer
-        integer :: leading
-
-        leading = len(p%text) - len(adjustl(p%text))
-        write(buffer, '(i0)') max(1, min(p%at, len(p%text) + 1) - leading)
-        text = trim(buffer)
-    end function column_text
 
 end module rollcon_adm_expression_parser

@@ -3,7 +3,7 @@
 !> parts, markers, UCON statements, forces with their expressions, gravity and the run.
 module rollcon_adm_model
     use rollcon_kinds, only : wp
-    use rollcon_adm_expression, only : expression_type
+    use rollcon_expression, only : expression_type
     use rollcon_adm_units, only : units_type
     use rollcon_scene_type, only : scene_run_type
     implicit none

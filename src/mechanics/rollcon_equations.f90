@@ -85,7 +85,7 @@ contains
 
         do p = 1, size(self%model%parts)
             i0 = 6*(p - 1)
-            call force_and_moment(self%model%forces, p, time, q(i0 + 1:i0 + 6), applied, &
+            call force_and_moment(self%model%forces, p, time, q, u, applied, &
                 & self%work%moments(:, p))
             call body_mass_and_force(self%model%parts(p), q(i0 + 1:i0 + 6), u(i0 + 1:i0 + 6), &
                 & applied, self%work%moments(:, p), self%model%gravity, part_mass, part_force)
@@ -377,20 +377,20 @@ contains
     !> Constraint force on part p, ground components [N], from its accelerations: m a minus
     !> gravity and the applied forces (Newton's law for the centre of mass). No UCOSUB call
     !> and no solve: for event functions given the accelerations by the integrator.
-    pure function reaction_from_accelerations(self, p, time, q, a) result(force)
+    pure function reaction_from_accelerations(self, p, time, q, u, a) result(force)
         class(equations_type), intent(in) :: self
         !> Part index
         integer, intent(in) :: p
         !> Time [s]
         real(wp), intent(in) :: time
-        !> Coordinates and accelerations of the whole system
-        real(wp), intent(in) :: q(:), a(:)
+        !> Coordinates, rates and accelerations of the whole system
+        real(wp), intent(in) :: q(:), u(:), a(:)
         real(wp) :: force(3)
         real(wp) :: applied(3), moment(3)
         integer :: i0
 
         i0 = 6*(p - 1)
-        call force_and_moment(self%model%forces, p, time, q(i0 + 1:i0 + 6), applied, moment)
+        call force_and_moment(self%model%forces, p, time, q, u, applied, moment)
         force = self%model%parts(p)%mass*(a(i0 + 1:i0 + 3) - self%model%gravity) - applied
     end function reaction_from_accelerations
 

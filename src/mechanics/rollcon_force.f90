@@ -1,17 +1,25 @@
 ! SPDX-License-Identifier: MIT
-!> Applied forces on parts: a fixed ground direction, a time profile, a point of application.
+!> Applied forces on parts: a fixed ground direction, a time profile, a point of application;
+!> or a dataset's force statement between markers (rollcon_marker_force), whose magnitudes are
+!> expressions of time and state.
 module rollcon_force
     use rollcon_kinds, only : wp
     use rollcon_constants, only : pi
     use rollcon_rotation, only : rotation_matrix, cross, times
+    use rollcon_expression, only : switching_times
+    use rollcon_marker_force, only : marker_force_type, marker_force_loads
     implicit none
     private
 
-    public :: applied_force_type, force_and_moment, force_breakpoints
-    public :: profile_constant, profile_half_sine, frame_body, frame_tilt
+    public :: applied_force_type, force_and_moment, force_breakpoints, pulse_stops
+    public :: profile_constant, profile_half_sine, profile_statement, frame_body, frame_tilt
 
-    !> Time profiles: constant magnitude, or one half-sine pulse carrying a given impulse
-    integer, parameter :: profile_constant = 1, profile_half_sine = 2
+    !> Time profiles: constant magnitude, one half-sine pulse carrying a given impulse, or a
+    !> force statement's expressions (`statement`: markers, directions and magnitudes)
+    integer, parameter :: profile_constant = 1, profile_half_sine = 2, profile_statement = 3
+    !> Stops inside each pulse: the integrator stops at pulse_points + 1 equally spaced times
+    !> from a pulse's start to its end (force_breakpoints)
+    integer, parameter :: pulse_points = 20
     !> Frames the application point is given in: the body's principal axes, or the tilt frame
     !> Rz(psi) Rx(theta) (without the spin phi), where (0, R, 0) is the top of a disk's rim
     integer, parameter :: frame_body = 1, frame_tilt = 2
@@ -33,6 +41,8 @@ module rollcon_force
         integer :: frame = frame_body
         !> Point of application relative to the centre of mass, in that frame [m]
         real(wp) :: point(3) = 0.0_wp
+        !> profile_statement: the force statement (the fields above are then not used)
+        type(marker_force_type) :: statement
     end type applied_force_type
 
 contains
@@ -57,30 +67,36 @@ contains
     end function force_magnitude
 
     !> Sum of the forces on part p and their moment about its centre, ground components.
-    pure subroutine force_and_moment(forces, p, time, q, force, moment)
+    pure subroutine force_and_moment(forces, p, time, q, u, force, moment)
         !> All applied forces of the model
         type(applied_force_type), intent(in) :: forces(:)
         !> Part index
         integer, intent(in) :: p
         !> Time [s]
         real(wp), intent(in) :: time
-        !> The part's coordinates [m, rad]
-        real(wp), intent(in) :: q(6)
+        !> Coordinates and rates of all parts [m, rad, m/s, rad/s] (part p's coordinates are
+        !> q(6 (p - 1) + 1 : 6 p)); the rates are read by force statements only
+        real(wp), intent(in) :: q(:), u(:)
         !> Resultant force [N] and moment about the centre of mass [N m]
         real(wp), intent(out) :: force(3), moment(3)
         real(wp) :: f(3), arm(3), frame(3, 3)
-        integer :: i
+        integer :: i, i0
 
         force = 0.0_wp
         moment = 0.0_wp
+        i0 = 6*(p - 1)
         do i = 1, size(forces)
+            if (forces(i)%profile == profile_statement) then
+                call marker_force_loads(forces(i)%statement, p, time, q, u, force, moment)
+                cycle
+            end if
             if (forces(i)%part /= p) cycle
             f = force_magnitude(forces(i), time)*forces(i)%direction
             if (all(f == 0.0_wp)) cycle
             if (forces(i)%frame == frame_tilt) then
-                frame = rotation_matrix(q(4), q(5), 0.0_wp)
+                frame = rotation_matrix(q(i0 + 4), q(i0 + 5), 0.0_wp)
             else
-                frame = rotation_matrix(q(4), q(5), q(6))
+                frame = rotation_matrix(q(i0 + 4), q(i0 + 5), q(i0 + 6))
             end if
             arm = times(frame, forces(i)%point)
             force = force + f
@@ -88,23 +104,57 @@ contains
         end do
     end subroutine force_and_moment
 
-    !> Times the integrator must stop at: the ends of each pulse and points inside it. An
-    !> implicit step that jumps over a pulse samples the force only where it is zero, and a
-    !> step-size limit set between steps takes effect only after the next step; stopping at
-    !> pulse_points points per pulse resolves its shape whatever the step size was.
+    !> Times the integrator must stop at [s]. An implicit step that jumps over a pulse samples
+    !> the force only where it is zero, and a step-size limit set between steps takes effect
+    !> only after the next step; stopping at points inside a pulse resolves its shape whatever
+    !> the step size was. One rule for both kinds of force: a half-sine pulse stops at
+    !> pulse_stops(start, start + duration); a force statement at every switching time of each
+    !> of its expressions (an IF, STEP or HAVSIN on TIME - c: switching_times) and, when an
+    !> expression switches at two times or more, at pulse_stops(first, last). Each time once.
     pure function force_breakpoints(forces) result(times)
         type(applied_force_type), intent(in) :: forces(:)
         real(wp), allocatable :: times(:)
-        integer, parameter :: pulse_points = 20
+        real(wp), allocatable :: switches(:)
         integer :: i, k
 
         allocate(times(0))
         do i = 1, size(forces)
             if (forces(i)%profile == profile_half_sine) then
-                times = [times, (forces(i)%start + k*forces(i)%duration/pulse_points, &
-                    & k = 0, pulse_points)]
+                call add_new(times, pulse_stops(forces(i)%start, &
+                    & forces(i)%start + forces(i)%duration))
+            else if (forces(i)%profile == profile_statement) then
+                associate (statement => forces(i)%statement)
+                    do k = 1, size(statement%functions)
+                        if (.not. statement%given(k)) cycle
+                        switches = switching_times(statement%functions(k))*statement%time_unit
+                        call add_new(times, switches)
+                        if (size(switches) < 2) cycle
+                        if (maxval(switches) > minval(switches)) call add_new(times, &
+                            & pulse_stops(minval(switches), maxval(switches)))
+                    end do
+                end associate
             end if
         end do
     end function force_breakpoints
+
+    !> pulse_points + 1 equally spaced times from first to last [s], both included exactly.
+    pure function pulse_stops(first, last) result(times)
+        real(wp), intent(in) :: first, last
+        real(wp) :: times(pulse_points + 1)
+        integer :: k
+
+        times = [(first + k*(last - first)/pulse_points, k = 0, pulse_points - 1), last]
+    end function pulse_stops
+
+    !> Append to times those of more that it does not hold yet.
+    pure subroutine add_new(times, more)
+        real(wp), allocatable, intent(inout) :: times(:)
+        real(wp), intent(in) :: more(:)
+        integer :: k
+
+        do k = 1, size(more)
+            if (.not. any(times == more(k))) times = [times, more(k)]
+        end do
+    end subroutine add_new
 
 end module rollcon_force

@@ -237,7 +237,7 @@ contains
             if (ierr /= 0) return
             force = self%eq%constraint_force(self%events%part, lambda)
         else if (present(a)) then
-            force = self%eq%reaction_from_accelerations(self%events%part, time, q, a)
+            force = self%eq%reaction_from_accelerations(self%events%part, time, q, u, a)
         else
             call self%accelerations(time, q, u, error)
             ierr = self%keep_failure(error)

@@ -233,11 +233,12 @@ contains
         type(reduced_problem_type), intent(in) :: problem
         real(wp), intent(in) :: time, state(reduced_size)
         real(wp) :: strike, force(3), moment(3)
+        integer :: k
 
         strike = 0.0_wp
         if (size(problem%forces) == 0) return
         call force_and_moment(problem%forces, 1, time, [0.0_wp, 0.0_wp, 0.0_wp, state(5), &
-            & state(1), state(6)], force, moment)
+            & state(1), state(6)], [(0.0_wp, k = 1, 6)], force, moment)
         strike = force(2)
     end function strike_at
 

@@ -23,6 +23,8 @@ program tester
     use test_adm_reader, only : collect_adm_reader
     use test_adm_refusals, only : collect_adm_refusals
     use test_adm_statements, only : collect_adm_statements
+    use test_adm_build, only : collect_adm_build
+    use test_adm_forces, only : collect_adm_forces
     use test_output, only : collect_output
     use test_command, only : collect_command
     use test_csv_fuzz, only : collect_csv_fuzz
@@ -58,6 +60,8 @@ program tester
         & new_testsuite("adm-reader", collect_adm_reader), &
         & new_testsuite("adm-refusals", collect_adm_refusals), &
         & new_testsuite("adm-statements", collect_adm_statements), &
+        & new_testsuite("adm-forces", collect_adm_forces), &
+        & new_testsuite("adm-build", collect_adm_build), &
         & new_testsuite("output", collect_output), &
         & new_testsuite("command", collect_command), &
         & new_testsuite("csv-fuzz", collect_csv_fuzz), &

@@ -1,11 +1,12 @@
 ! SPDX-License-Identifier: MIT
 !> Function expressions of ADAMS datasets: every operator and function against hand values,
-!> precedence, degrees, the smooth steps, and one refusal per kind of syntax error.
+!> precedence, degrees, the smooth steps, state functions as inputs, the switching times found
+!> for breakpoints, and one refusal per kind of syntax error.
 module test_adm_expression
     use rollcon_kinds, only : wp
     use rollcon_constants, only : pi
     use rollcon_error, only : error_type
-    use rollcon_adm_expression, only : expression_type, evaluate_expression
+    use rollcon_expression, only : expression_type, evaluate_expression, switching_times
     use rollcon_adm_expression_parser, only : compile_expression
     use rollcon_testing, only : unittest_type, new_unittest, check
     use, intrinsic :: ieee_arithmetic, only : ieee_is_nan
@@ -29,6 +30,9 @@ contains
             & new_unittest("step-and-havsin", test_steps), &
             & new_unittest("if-three-branches", test_if), &
             & new_unittest("domain-gives-nan", test_domain), &
+            & new_unittest("state-functions-as-inputs", test_state_functions), &
+            & new_unittest("state-function-forms-refused", test_state_function_refusals), &
+            & new_unittest("switching-times", test_switching_times), &
             & new_unittest("unknown-name-refused", test_unknown_name), &
             & new_unittest("syntax-errors-refused", test_syntax_errors)]
     end subroutine collect_adm_expression
@@ -178,17 +182,124 @@ contains
         end do
     end subroutine test_domain
 
+    !> Each state function is an input (marker id, quantity), listed once however often it is
+    !> read, in the order first read; its value comes from the caller's array.
+    subroutine test_state_functions(error)
+        type(error_type), allocatable, intent(out) :: error
+        character(len=*), parameter :: names(12) = [character(len=5) :: "DX", "DY", "DZ", &
+            & "VX", "VY", "VZ", "WX", "WY", "WZ", "PSI", "THETA", "PHI"]
+        type(expression_type) :: expression
+        integer :: k
+
+        call compile_expression("dx(3) + 2*Theta(3) - VX(14)*DX(3) + TIME", "test.adm:1: " &
+            & // "GFORCE/1 FX", expression, error)
+        if (allocated(error)) return
+        call check(error, size(expression%inputs) == 3, "three distinct inputs")
+        if (allocated(error)) return
+        call check(error, all(expression%inputs%marker == [3, 3, 14]) &
+            & .and. all(expression%inputs%quantity == [1, 11, 4]), "markers and quantities")
+        if (allocated(error)) return
+        ! 0.5 + 2*0.25 - 4*0.5 + 10
+        call check(error, evaluate_expression(expression, 10.0_wp, [0.5_wp, 0.25_wp, 4.0_wp]), &
+            & 9.0_wp, "value from the inputs", abs_tol=tol)
+        if (allocated(error)) return
+        call check(error, ieee_is_nan(evaluate_expression(expression, 10.0_wp)), &
+            & "inputs not given: NaN")
+        if (allocated(error)) return
+        do k = 1, size(names)
+            call compile_expression(trim(names(k)) // "( 7 )", "test.adm:1: GFORCE/1 FX", &
+                & expression, error)
+            if (allocated(error)) return
+            call check(error, size(expression%inputs) == 1, names(k))
+            if (allocated(error)) return
+            call check(error, expression%inputs(1)%marker == 7 &
+                & .and. expression%inputs(1)%quantity == k, names(k))
+            if (allocated(error)) return
+            call check(error, evaluate_expression(expression, 0.0_wp, [-1.5_wp]), -1.5_wp, &
+                & names(k), abs_tol=tol)
+            if (allocated(error)) return
+        end do
+    end subroutine test_state_functions
+
+    subroutine test_state_function_refusals(error)
+        type(error_type), allocatable, intent(out) :: error
+        character(len=*), parameter :: texts(4) = [character(len=16) :: "DX(1, 2)", &
+            & "PSI(3,2,1)", "VZ(a)", "WX 3"]
+        character(len=*), parameter :: expected(4) = [character(len=240) :: &
+            & "test.adm:1: SFORCE/1 FUNCTION: DX(i, ...): only the one-marker form DX(i) is " &
+            & // "supported, measured from ground in ground axes (a J or K marker, from or in " &
+            & // "another marker, is not) at column 5 of 'DX(1, 2)'", &
+            & "test.adm:1: SFORCE/1 FUNCTION: PSI(i, ...): only the one-marker form PSI(i) is " &
+            & // "supported, measured from ground in ground axes (a J or K marker, from or in " &
+            & // "another marker, is not) at column 6 of 'PSI(3,2,1)'", &
+            & "test.adm:1: SFORCE/1 FUNCTION: VZ(i) takes a marker id (a whole number > 0) at " &
+            & // "column 4 of 'VZ(a)'", &
+            & "test.adm:1: SFORCE/1 FUNCTION: '(' expected, found '3' (WX is written WX(i), i " &
+            & // "a marker id) at column 4 of 'WX 3'"]
+        real(wp) :: value
+        type(error_type), allocatable :: refused
+        integer :: i
+
+        do i = 1, size(texts)
+            call value_of(trim(texts(i)), 0.0_wp, value, refused)
+            call check(error, allocated(refused), "'" // trim(texts(i)) // "' accepted")
+            if (allocated(error)) return
+            call check(error, refused%message == trim(expected(i)), refused%message)
+            if (allocated(error)) return
+            deallocate(refused)
+        end do
+    end subroutine test_state_function_refusals
+
+    !> IF, STEP and HAVSIN switching on TIME - c (or a TIME + b) give their switching times
+    !> exactly as -b/a, inner ones first; a switch on a state function or a non-affine TIME
+    !> is not one.
+    subroutine test_switching_times(error)
+        type(error_type), allocatable, intent(out) :: error
+        character(len=*), parameter :: texts(7) = [character(len=64) :: &
+            & "IF(TIME-2: 0, 0, IF(TIME-2.01: SIN(PI*(TIME-2)/0.01), 0, 0))", &
+            & "STEP(TIME, 1, 0, 3, 5) + 1", "HAVSIN(-(1 - TIME)/2, 0.5, 0, 1, 1)", &
+            & "IF(2*TIME - 10**-1: 1, 0, 0)", "IF(DX(1) - 2: 0, 0, 1)", &
+            & "STEP(TIME*TIME, 1, 0, 2, 1)", "STEP(TIME, DX(2), 0, 2, 1)"]
+        integer, parameter :: counts(7) = [2, 2, 2, 1, 0, 0, 0]
+        real(wp), parameter :: expected(7) = [2.01_wp, 2.0_wp, 1.0_wp, 3.0_wp, 2.0_wp, 3.0_wp, &
+            & 0.05_wp]
+        type(expression_type) :: expression
+        real(wp), allocatable :: times(:)
+        integer :: i, first
+
+        first = 1
+        do i = 1, size(texts)
+            call compile_expression(trim(texts(i)), "test.adm:1: SFORCE/1 FUNCTION", &
+                & expression, error)
+            if (allocated(error)) return
+            times = switching_times(expression)
+            call check(error, size(times) == counts(i), trim(texts(i)) // ": count")
+            if (allocated(error)) return
+            if (counts(i) == 0) cycle
+            call check(error, times, expected(first:first + counts(i) - 1), trim(texts(i)), &
+                & abs_tol=tol)
+            if (allocated(error)) return
+            first = first + counts(i)
+        end do
+        ! exactly, as the breakpoints of coin.adm and coin.nml must agree
+        call compile_expression(trim(texts(1)), "x", expression, error)
+        if (allocated(error)) return
+        times = switching_times(expression)
+        call check(error, times(1) == 2.01_wp .and. times(2) == 2.0_wp, "exact switching times")
+    end subroutine test_switching_times
+
     subroutine test_unknown_name(error)
         type(error_type), allocatable, intent(out) :: error
         real(wp) :: value
         type(error_type), allocatable :: refused
 
-        call value_of("2*DX(1, 2)", 0.0_wp, value, refused)
-        call check(error, allocated(refused), "DX accepted")
+        call value_of("2*VM(1, 2)", 0.0_wp, value, refused)
+        call check(error, allocated(refused), "VM accepted")
         if (allocated(error)) return
-        call check(error, refused%message == "test.adm:1: SFORCE/1 FUNCTION: unknown name 'DX' " &
+        call check(error, refused%message == "test.adm:1: SFORCE/1 FUNCTION: unknown name 'VM' " &
             & // "(the subset has TIME, PI, DTOR, SIN, COS, TAN, ATAN2, EXP, LOG, SQRT, ABS, " &
-            & // "MIN, MAX, STEP, HAVSIN, IF) at column 3 of '2*DX(1, 2)'", refused%message)
+            & // "MIN, MAX, STEP, HAVSIN, IF and the state functions DX DY DZ VX VY VZ WX WY " &
+            & // "WZ PSI THETA PHI of one marker) at column 3 of '2*VM(1, 2)'", refused%message)
     end subroutine test_unknown_name
 
     subroutine test_syntax_errors(error)

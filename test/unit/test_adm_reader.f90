@@ -7,7 +7,7 @@ module test_adm_reader
     use rollcon_error, only : error_type
     use rollcon_adm_model, only : adm_model_type, force_sforce, force_gforce
     use rollcon_adm_reader, only : read_adm
-    use rollcon_adm_expression, only : evaluate_expression
+    use rollcon_expression, only : evaluate_expression
     use rollcon_adm_state, only : part_state, euler_angles
     use rollcon_rotation, only : rotation_matrix, rate_matrix
     use rollcon_problem, only : formulation_cvode, method_adams, drift_baumgarte

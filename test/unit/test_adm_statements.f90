@@ -8,7 +8,7 @@ module test_adm_statements
     use rollcon_constants, only : pi, degree
     use rollcon_error, only : error_type
     use rollcon_adm_model, only : adm_model_type, force_sforce, force_vforce, force_gforce
-    use rollcon_adm_expression, only : evaluate_expression
+    use rollcon_expression, only : evaluate_expression
     use rollcon_adm_state, only : part_state
     use rollcon_scene_type, only : scene_run_type, formulation_cvode, formulation_ida, &
         & method_bdf, method_adams, drift_projection, drift_baumgarte, drift_none, &

@@ -1,0 +1,167 @@
+! SPDX-License-Identifier: MIT
+!> Forces between markers with expression magnitudes, as ADAMS's SFORCE, VFORCE and GFORCE
+!> statements state them (docs/datasets-model.md):
+!>
+!> - translational SFORCE: the value along the line from J to I, on I at its origin (positive
+!>   pushes I away from J); the reaction on J at J's origin;
+!> - rotational SFORCE: a torque of the value about J's z axis on I's part; the reaction on J's;
+!> - ACTIONONLY: on I only (translational: along J's z axis);
+!> - VFORCE: (FX, FY, FZ) in RM's axes at I's origin; the reaction on JFLOAT's part at the same
+!>   point;
+!> - GFORCE: the same, and the torque (TX, TY, TZ) in RM's axes; the reaction on JFLOAT's part.
+!>
+!> The expressions are in the dataset's units: their TIME and state functions are converted
+!> from SI before evaluation and their values to N and N m after (time_unit, length_unit,
+!> force_unit: the size of a dataset unit in SI). A load on ground (part 0) is not applied.
+module rollcon_marker_force
+    use rollcon_kinds, only : wp
+    use rollcon_rotation, only : times, cross
+    use rollcon_expression, only : expression_type, evaluate_expression, max_inputs, &
+        & quantity_vx, quantity_wx, quantity_psi
+    use rollcon_marker, only : marker_type, marker_motion, marker_quantity
+    use, intrinsic :: ieee_arithmetic, only : ieee_value, ieee_quiet_nan
+    implicit none
+    private
+
+    public :: marker_force_type, marker_force_loads, marker_force_values
+    public :: kind_translation, kind_rotation, kind_vector, kind_general
+
+    !> Kinds: SFORCE translational or rotational, VFORCE, GFORCE
+    integer, parameter :: kind_translation = 1, kind_rotation = 2, kind_vector = 3, &
+        & kind_general = 4
+
+    !> One force statement
+    type :: marker_force_type
+        integer :: kind = kind_translation
+        !> Leave out the reaction (SFORCE ACTIONONLY)
+        logical :: action_only = .false.
+        !> The marker it acts at, the reaction marker (J or JFLOAT; a ground marker when none),
+        !> the marker of the components' axes (RM; ground axes when none)
+        type(marker_type) :: i, j, rm
+        !> FX, FY, FZ, TX, TY, TZ (an SFORCE's FUNCTION in the first), dataset units
+        type(expression_type) :: functions(6)
+        !> Which of them are given (the rest are zero)
+        logical :: given(6) = .false.
+        !> Every marker the expressions read, by id
+        type(marker_type), allocatable :: markers(:)
+        !> Size of the dataset's time [s], length [m] and force [N] units
+        real(wp) :: time_unit = 1.0_wp, length_unit = 1.0_wp, force_unit = 1.0_wp
+    end type marker_force_type
+
+contains
+
+    !> The six expression values at (t, q, u), in SI: force [N] (1:3) and torque [N m] (4:6).
+    pure function marker_force_values(self, time, q, u) result(values)
+        type(marker_force_type), intent(in) :: self
+        !> Time [s]
+        real(wp), intent(in) :: time
+        !> Coordinates and rates of all parts
+        real(wp), intent(in) :: q(:), u(:)
+        real(wp) :: values(6)
+        real(wp) :: inputs(max_inputs)
+        integer :: k, n
+
+        values = 0.0_wp
+        do k = 1, 6
+            if (.not. self%given(k)) cycle
+            n = size(self%functions(k)%inputs)
+            call input_values(self, self%functions(k), q, u, inputs(:n))
+            values(k) = evaluate_expression(self%functions(k), time/self%time_unit, inputs(:n))
+        end do
+        values(1:3) = values(1:3)*self%force_unit
+        values(4:6) = values(4:6)*(self%force_unit*self%length_unit)
+    end function marker_force_values
+
+    !> The state functions an expression reads, in the dataset's units.
+    pure subroutine input_values(self, expression, q, u, values)
+        type(marker_force_type), intent(in) :: self
+        type(expression_type), intent(in) :: expression
+        real(wp), intent(in) :: q(:), u(:)
+        real(wp), intent(out) :: values(:)
+        real(wp) :: scale
+        integer :: k, m, slot
+
+        do k = 1, size(values)
+            associate (input => expression%inputs(k))
+                slot = 0
+                do m = 1, size(self%markers)
+                    if (self%markers(m)%id == input%marker) slot = m
+                end do
+                scale = 1.0_wp
+                if (input%quantity < quantity_psi) scale = 1.0_wp/self%length_unit
+                if (input%quantity < quantity_psi .and. input%quantity >= quantity_wx) &
+                    & scale = self%time_unit
+                if (input%quantity < quantity_wx .and. input%quantity >= quantity_vx) &
+                    & scale = self%time_unit/self%length_unit
+                ! a marker the force was not given (the builder gives every one): NaN
+                values(k) = ieee_value(scale, ieee_quiet_nan)
+                if (slot > 0) values(k) = scale*marker_quantity(self%markers(slot), &
+                    & input%quantity, q, u)
+            end associate
+        end do
+    end subroutine input_values
+
+    !> Add this force's loads on part p to force [N] and moment about p's centre of mass
+    !> [N m], ground components.
+    pure subroutine marker_force_loads(self, p, time, q, u, force, moment)
+        type(marker_force_type), intent(in) :: self
+        !> Part index
+        integer, intent(in) :: p
+        !> Time [s]
+        real(wp), intent(in) :: time
+        !> Coordinates and rates of all parts
+        real(wp), intent(in) :: q(:), u(:)
+        real(wp), intent(inout) :: force(3), moment(3)
+        real(wp) :: values(6), r_i(3), r_j(3), axes_j(3, 3), axes_rm(3, 3)
+        real(wp) :: f(3), torque(3), line(3), r(3), v(3), w(3)
+        logical :: on_i, on_j
+
+        on_i = self%i%part == p
+        on_j = self%j%part == p .and. .not. self%action_only
+        if (.not. (on_i .or. on_j)) return
+        values = marker_force_values(self, time, q, u)
+        ! the markers' velocities and angular velocities are not needed here
+        call marker_motion(self%i, q, u, r_i, v, axes_rm, w)
+        call marker_motion(self%j, q, u, r_j, v, axes_j, w)
+        select case (self%kind)
+        case (kind_translation)
+            if (self%action_only) then
+                line = axes_j(:, 3)
+            else
+                line = r_i - r_j
+                line = line/norm2(line)
+            end if
+            f = values(1)*line
+            if (on_i) call add_load(p, q, r_i, f, force, moment)
+            if (on_j) call add_load(p, q, r_j, -f, force, moment)
+        case (kind_rotation)
+            ! the value is a torque: its unit is force times length
+            torque = values(1)*self%length_unit*axes_j(:, 3)
+            if (on_i) moment = moment + torque
+            if (on_j) moment = moment - torque
+        case default
+            call marker_motion(self%rm, q, u, r, v, axes_rm, w)
+            f = times(axes_rm, values(1:3))
+            torque = times(axes_rm, values(4:6))
+            ! VFORCE and GFORCE: the reaction acts at I's origin on JFLOAT's part
+            if (on_i) call add_load(p, q, r_i, f, force, moment)
+            if (on_i) moment = moment + torque
+            if (on_j) call add_load(p, q, r_i, -f, force, moment)
+            if (on_j) moment = moment - torque
+        end select
+    end subroutine marker_force_loads
+
+    !> A force f at ground point r on part p: the force, and its moment about p's centre.
+    pure subroutine add_load(p, q, r, f, force, moment)
+        integer, intent(in) :: p
+        real(wp), intent(in) :: q(:), r(3), f(3)
+        real(wp), intent(inout) :: force(3), moment(3)
+        real(wp) :: arm(3)
+
+        force = force + f
+        ! through a local array: an expression of a section would be a heap temporary
+        arm = r - q(6*(p - 1) + 1:6*(p - 1) + 3)
+        moment = moment + cross(arm, f)
+    end subroutine add_load
+
+end module rollcon_marker_force
