@@ -27,6 +27,7 @@ program tester
     use test_isolation, only : collect_isolation
     use test_allocations, only : collect_allocations
     use test_reduced, only : collect_reduced
+    use test_ucosub_catalog, only : collect_ucosub_catalog
     implicit none
     type(testsuite_type), allocatable :: suites(:)
     type(test_counts_type) :: counts
@@ -58,7 +59,8 @@ program tester
         & new_testsuite("csv-fuzz", collect_csv_fuzz), &
         & new_testsuite("isolation", collect_isolation), &
         & new_testsuite("allocations", collect_allocations), &
-        & new_testsuite("reduced", collect_reduced)]
+        & new_testsuite("reduced", collect_reduced), &
+        & new_testsuite("ucosub-catalog", collect_ucosub_catalog)]
 
     if (command_argument_count() >= 1) then
         call get_command_argument(1, argument)
