@@ -24,7 +24,8 @@ module rollcon
     use rollcon_disk_scene, only : build_disk_problem, disk_initial_state, disk_mass_properties
     use rollcon_simulation, only : run_options_type, run_summary_type, history_type, simulate
     use rollcon_output_layout, only : output_layout_type, new_output_layout, read_layout
-    use rollcon_ucosub_catalog, only : find_builtin_ucosub, builtin_ucosub_names
+    use rollcon_ucosub_catalog, only : find_builtin_ucosub, builtin_ucosub_names, &
+        & builtin_ucosub_par, builtin_ucosub_summary
     use rollcon_user_library, only : user_ucosub_type, user_build_options_type, new_user_ucosub
     use rollcon_ucosub_audit, only : ucon_request_type, user_check_options_type, &
         & user_check_report_type, check_user_ucosub
@@ -56,6 +57,10 @@ module rollcon
     use rollcon_ucosub_contract, only : ucosub_interface
     use rollcon_ucosub_guard, only : install_guard, attach_call_record, guarded_ucosub
     use rollcon_vtk, only : write_vtk_series
+    ! the library API of docs/library.md: the coordinates of a part in the output layout
+    use rollcon_output_layout, only : coord_x, coord_y, coord_z, coord_psi, coord_theta, &
+        & coord_phi, coord_xdot, coord_ydot, coord_zdot, coord_psidot, coord_thetadot, &
+        & coord_phidot
     implicit none
     public
 end module rollcon

@@ -193,11 +193,11 @@ def validate(spec: ConstraintSpec) -> None:
     """Check that ``spec`` states a constraint ADAMS accepts and the generator can print.
 
     Raises:
-        ValueError: naming the spec and the offending item, for: a malformed or taken name, no or more
-            than 30 variables, an unknown or repeated code, a parameter at the wrong PAR index,
-            more than 30 PAR entries, a symbol that is not a declared variable, parameter or
-            the time, a function the printers do not support, a constraint that is not linear
-            in the velocities (ADAMS's rule), or a declared symbol no constraint uses.
+        ValueError: naming the spec and the offending item, for: a malformed or taken name,
+            no or more than 30 variables, an unknown or repeated code, a parameter at the wrong
+            PAR index, more than 30 PAR entries, a symbol that is not a declared variable,
+            parameter or the time, a function the printers do not support, a constraint that is
+            not linear in the velocities (ADAMS's rule), or a declared symbol no constraint uses.
     """
     where = f"spec '{spec.name}'"
     if not isinstance(spec.name, str) or not _SPEC_NAME.match(spec.name):
