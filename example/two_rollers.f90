@@ -18,6 +18,7 @@
 !> every UCON residual stays small. It prints the comparison and exits with status 1 when a
 !> check fails, 77 when the history's rows are not those of the output layout.
 program two_rollers
+    use, intrinsic :: iso_fortran_env, only : error_unit
     use rollcon, only : wp, error_type, model_type, part_type, applied_force_type, &
         & profile_half_sine, setup_model, problem_type, formulation_ida, formulation_cvode, &
         & run_options_type, run_summary_type, history_type, simulate, status_completed, &
@@ -87,7 +88,9 @@ contains
         model%gravity = [0.0_wp, 0.0_wp, -gravity]
 
         call find_builtin_ucosub("disk", disk_routine, disk_time_free, found)
+        if (.not. found) call fail("no built-in routine 'disk'")
         call find_builtin_ucosub("rolling_sphere", sphere_routine, sphere_time_free, found)
+        if (.not. found) call fail("no built-in routine 'rolling_sphere'")
         do k = 1, 3
             call builtin_ucosub_par("disk", disk_id, [disk_radius], k, par, error)
             if (allocated(error)) return
@@ -101,7 +104,8 @@ contains
         call model%add_ucon(23, sphere_height_par(sphere_id, sphere_radius), &
             & sphere_height_ucosub, time_free=.true.)
 
-        ! the push acts at the sphere's centre (point 0 in its body axes) along ground +X
+        ! the push acts on the sphere (the second part added: part numbers are model order) at
+        ! its centre (point 0 in its body axes), along ground +X
         push%part = 2
         push%direction = [1.0_wp, 0.0_wp, 0.0_wp]
         push%profile = profile_half_sine
@@ -246,7 +250,7 @@ contains
     subroutine fail(message)
         character(len=*), intent(in) :: message
 
-        write(*, '(a)') "two_rollers: error: " // message
+        write(error_unit, '(a)') "two_rollers: error: " // message
         stop 1, quiet=.true.
     end subroutine fail
 
