@@ -1,7 +1,7 @@
 ! SPDX-License-Identifier: MIT
 !> The built-in UCOSUBs by name, as a dataset's `UCON/id, ..., ROUTINE=name`,
 !> `rollcon run MODEL.adm --ucosub NAME` or a library caller names them: `disk`, the
-!> hand-checked rolling disk (rollcon_disk_reference, listed here by hand), then every generated
+!> hand-checked rolling disk (rollcon_disk_reference, listed here by hand), and every generated
 !> spec under its spec name, taken from the generated catalog rollcon_gen_catalog (so a new spec
 !> is served as soon as `python -m ucon write` has run). Names are read in any case.
 !>
@@ -24,8 +24,8 @@ module rollcon_ucosub_catalog
     public :: find_builtin_ucosub, builtin_ucosub_names, builtin_ucosub_par
     public :: builtin_ucosub_summary
 
-    !> Name of the hand-checked disk routine
-    character(len=*), parameter :: hand_disk_name = "disk"
+    !> Name of the hand-checked disk routine, and of the generated routine of the same constraint
+    character(len=*), parameter :: hand_disk_name = "disk", generated_twin = "rolling_disk"
     !> Number of no-slip components of the hand-checked disk routine (PAR(11))
     integer, parameter :: hand_disk_components = 3
     !> What lookup returns for the hand-checked routine, and for a name that is not built in
@@ -60,14 +60,17 @@ contains
         end select
     end subroutine find_builtin_ucosub
 
-    !> The names as a list for messages: "disk, disk_height, knife_edge, ..." (the hand-checked
-    !> disk, then the generated specs in alphabetical order).
+    !> The names as a list for messages: "disk, rolling_disk, disk_height, ...": the two disk
+    !> routines first (the hand-checked one and its generated twin, as the list has always
+    !> begun), then every other generated routine in the generated catalog's (alphabetical) order.
     pure function builtin_ucosub_names() result(list)
         character(len=:), allocatable :: list
         integer :: i
 
         list = hand_disk_name
+        if (lookup(generated_twin) > 0) list = list // ", " // generated_twin
         do i = 1, generated_count
+            if (generated_names(i) == generated_twin) cycle
             list = list // ", " // trim(generated_names(i))
         end do
     end function builtin_ucosub_names
