@@ -26,8 +26,9 @@ module rollcon
     use rollcon_output_layout, only : output_layout_type, new_output_layout, read_layout
     use rollcon_output_rows, only : output_layout
     use rollcon_summary_text, only : run_summary_text
-    use rollcon_ucosub_catalog, only : find_builtin_ucosub, builtin_ucosub_names
     use rollcon_adm_build, only : build_adm_problem, adm_theta_min
+    use rollcon_ucosub_catalog, only : find_builtin_ucosub, builtin_ucosub_names, &
+        & builtin_ucosub_par, builtin_ucosub_summary
     use rollcon_user_library, only : user_ucosub_type, user_build_options_type, new_user_ucosub
     use rollcon_ucosub_audit, only : ucon_request_type, user_check_options_type, &
         & user_check_report_type, check_user_ucosub
@@ -59,6 +60,10 @@ module rollcon
     use rollcon_ucosub_contract, only : ucosub_interface
     use rollcon_ucosub_guard, only : install_guard, attach_call_record, guarded_ucosub
     use rollcon_vtk, only : write_vtk_series
+    ! the library API of docs/library.md: the coordinates of a part in the output layout
+    use rollcon_output_layout, only : coord_x, coord_y, coord_z, coord_psi, coord_theta, &
+        & coord_phi, coord_xdot, coord_ydot, coord_zdot, coord_psidot, coord_thetadot, &
+        & coord_phidot
     implicit none
     public
 end module rollcon

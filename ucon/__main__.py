@@ -8,6 +8,7 @@ import sys
 from pathlib import Path
 
 from . import generate_all, load_spec, load_specs, spec_names
+from .catalog_writer import catalog_files
 from .derive import derive, table
 from .reduced import reduced_files
 from .spec import ConstraintSpec
@@ -21,6 +22,16 @@ def _selected(names: list[str]) -> list[ConstraintSpec]:
     return [load_spec(name) for name in names] if names else load_specs()
 
 
+def _files(names: list[str]) -> dict[str, str]:
+    """The files of the specs named (each spec's two files), or, with no name, of every spec
+    plus the catalog of all of them and the benchmark's reduced disk (ucon/reduced/)."""
+    files = generate_all(_selected(names))
+    if not names:
+        files.update(catalog_files(load_specs()))
+        files.update(reduced_files())
+    return files
+
+
 def _orphans(root: Path, expected: set[str]) -> list[str]:
     """Generated-looking files under root that no spec generates."""
     found = [p.relative_to(root).as_posix() for p in root.glob("src/ucosubs/generated/rollcon_gen_*.f90")]
@@ -31,9 +42,7 @@ def _orphans(root: Path, expected: set[str]) -> list[str]:
 def command_write(args: argparse.Namespace) -> int:
     """Write every generated file under ``--out`` (default: the project root)."""
     root = Path(args.out) if args.out else PROJECT_ROOT
-    files = generate_all(_selected(args.specs))
-    if not args.specs:
-        files.update(reduced_files())  # the benchmark's reduced disk (ucon/reduced/)
+    files = _files(args.specs)
     for relative, text in files.items():
         path = root / relative
         if path.is_file() and path.read_text(encoding="utf-8") == text:
@@ -52,9 +61,7 @@ def command_write(args: argparse.Namespace) -> int:
 def command_check(args: argparse.Namespace) -> int:
     """Regenerate in memory and compare with the files under ``--root``; 1 on any difference."""
     root = Path(args.root) if args.root else PROJECT_ROOT
-    files = generate_all(_selected(args.specs))
-    if not args.specs:
-        files.update(reduced_files())  # the benchmark's reduced disk (ucon/reduced/)
+    files = _files(args.specs)
     differences = 0
     for relative, text in files.items():
         path = root / relative
@@ -92,12 +99,13 @@ def parser() -> argparse.ArgumentParser:
         prog="python -m ucon",
         description="Generate ADAMS UCOSUBs from the symbolic constraints in ucon/specs/: a "
         "free-form module src/ucosubs/generated/rollcon_gen_<spec>.f90 and a fixed-form "
-        "ucon/adams/<spec>/ucosub.f per spec.")
+        "ucon/adams/<spec>/ucosub.f per spec, and the catalog of them all, "
+        "src/ucosubs/generated/rollcon_gen_catalog.f90.")
     commands = main.add_subparsers(dest="command", required=True, metavar="COMMAND")
     write = commands.add_parser(
         "write", help="regenerate every generated file",
-        description="Regenerate the files of every spec (or of the SPECs given). Files whose "
-        "text is unchanged are left alone.")
+        description="Regenerate the files of every spec and the catalog (or only the files "
+        "of the SPECs given). Files whose text is unchanged are left alone.")
     write.add_argument("specs", nargs="*", metavar="SPEC", help="spec name (default: all)")
     write.add_argument("--out", metavar="DIR",
                        help="write under DIR instead of the project root")

@@ -21,7 +21,7 @@ from dataclasses import dataclass
 import sympy
 
 from .rules import (CODE_NAMES, MAX_PAR, MAX_SPEC_NAME, MAX_VARIABLES, PARAMETER_CHECKS,
-                    RESERVED_NAMES, SUPPORTED_FUNCTIONS)
+                    RESERVED_NAMES, RESERVED_SPEC_NAMES, SUPPORTED_FUNCTIONS)
 
 __all__ = [
     "TIME",
@@ -193,11 +193,11 @@ def validate(spec: ConstraintSpec) -> None:
     """Check that ``spec`` states a constraint ADAMS accepts and the generator can print.
 
     Raises:
-        ValueError: naming the spec and the offending item, for: a malformed name, no or more
-            than 30 variables, an unknown or repeated code, a parameter at the wrong PAR index,
-            more than 30 PAR entries, a symbol that is not a declared variable, parameter or
-            the time, a function the printers do not support, a constraint that is not linear
-            in the velocities (ADAMS's rule), or a declared symbol no constraint uses.
+        ValueError: naming the spec and the offending item, for: a malformed or taken name,
+            no or more than 30 variables, an unknown or repeated code, a parameter at the wrong
+            PAR index, more than 30 PAR entries, a symbol that is not a declared variable,
+            parameter or the time, a function the printers do not support, a constraint that is
+            not linear in the velocities (ADAMS's rule), or a declared symbol no constraint uses.
     """
     where = f"spec '{spec.name}'"
     if not isinstance(spec.name, str) or not _SPEC_NAME.match(spec.name):
@@ -206,6 +206,9 @@ def validate(spec: ConstraintSpec) -> None:
     if len(spec.name) > MAX_SPEC_NAME:
         raise ValueError(f"{where}: name has {len(spec.name)} characters; at most "
                          f"{MAX_SPEC_NAME} keep the header of ucosub.f within column 72")
+    if spec.name in RESERVED_SPEC_NAMES:
+        raise ValueError(f"{where}: the name is taken ({RESERVED_SPEC_NAMES[spec.name]}); "
+                         "choose another")
     _validate_text(spec, where)
     _validate_variables(spec, where)
     _validate_parameters(spec, where)

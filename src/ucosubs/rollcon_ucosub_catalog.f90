@@ -1,24 +1,35 @@
 ! SPDX-License-Identifier: MIT
-!> The built-in UCOSUBs by name, as a dataset's `UCON/id, ..., ROUTINE=name` or
-!> `rollcon run MODEL.adm --ucosub NAME` names them: `disk`, the hand-checked rolling disk
-!> (rollcon_disk_reference), and every generated spec under its spec name (`rolling_disk`,
-!> `disk_height`, `knife_edge`, `rolling_sphere`, `turntable_disk`). Names are read in any case.
+!> The built-in UCOSUBs by name, as a dataset's `UCON/id, ..., ROUTINE=name`,
+!> `rollcon run MODEL.adm --ucosub NAME` or a library caller names them: `disk`, the
+!> hand-checked rolling disk (rollcon_disk_reference, listed here by hand), and every generated
+!> spec under its spec name, taken from the generated catalog rollcon_gen_catalog (so a new spec
+!> is served as soon as `python -m ucon write` has run). Names are read in any case.
+!>
+!> Every built-in routine reads the same PAR layout: the part id, the UCOVAR codes it
+!> declares, its physical parameters, then the component when it has several;
+!> builtin_ucosub_par builds that list.
 module rollcon_ucosub_catalog
+    use rollcon_kinds, only : wp
+    use rollcon_error, only : error_type, fatal_error, stat_input
+    use rollcon_text, only : to_text
     use rollcon_ucosub_contract, only : ucosub_interface
+    use rollcon_disk_par, only : disk_npar, disk_codes
     use rollcon_disk_reference, only : hand_disk_ucosub => rolling_disk_ucosub
-    use rollcon_gen_disk_height, only : disk_height_ucosub, disk_height_time_free
-    use rollcon_gen_knife_edge, only : knife_edge_ucosub, knife_edge_time_free
-    use rollcon_gen_rolling_disk, only : rolling_disk_ucosub, rolling_disk_time_free
-    use rollcon_gen_rolling_sphere, only : rolling_sphere_ucosub, rolling_sphere_time_free
-    use rollcon_gen_turntable_disk, only : turntable_disk_ucosub, turntable_disk_time_free
+    use rollcon_gen_catalog, only : generated_count, generated_names, generated_npar, &
+        & generated_ncomponents, generated_time_free, generated_routine, generated_codes, &
+        & generated_summary
     implicit none
     private
 
-    public :: find_builtin_ucosub, builtin_ucosub_names
+    public :: find_builtin_ucosub, builtin_ucosub_names, builtin_ucosub_par
+    public :: builtin_ucosub_summary
 
-    !> The names, in the order they are listed
-    character(len=*), parameter :: names(6) = [character(len=14) :: "disk", "rolling_disk", &
-        & "disk_height", "knife_edge", "rolling_sphere", "turntable_disk"]
+    !> Name of the hand-checked disk routine, and of the generated routine of the same constraint
+    character(len=*), parameter :: hand_disk_name = "disk", generated_twin = "rolling_disk"
+    !> Number of no-slip components of the hand-checked disk routine (PAR(11))
+    integer, parameter :: hand_disk_components = 3
+    !> What lookup returns for the hand-checked routine, and for a name that is not built in
+    integer, parameter :: entry_hand_disk = 0, entry_unknown = -1
 
 contains
 
@@ -30,45 +41,132 @@ contains
         !> Its F has no explicit time: the driver need not ask for time partials
         logical, intent(out) :: time_free
         logical, intent(out) :: found
+        integer :: entry
 
         ucosub => null()
         time_free = .false.
-        found = .true.
-        select case (lower_case(trim(name)))
-        case ("disk")
+        entry = lookup(name)
+        found = entry /= entry_unknown
+        select case (entry)
+        case (entry_unknown)
+            return
+        case (entry_hand_disk)
             ! the hand-checked routine's F has no explicit time (docs/design.md §5)
             ucosub => hand_disk_ucosub
             time_free = .true.
-        case ("rolling_disk")
-            ucosub => rolling_disk_ucosub
-            time_free = rolling_disk_time_free
-        case ("disk_height")
-            ucosub => disk_height_ucosub
-            time_free = disk_height_time_free
-        case ("knife_edge")
-            ucosub => knife_edge_ucosub
-            time_free = knife_edge_time_free
-        case ("rolling_sphere")
-            ucosub => rolling_sphere_ucosub
-            time_free = rolling_sphere_time_free
-        case ("turntable_disk")
-            ucosub => turntable_disk_ucosub
-            time_free = turntable_disk_time_free
         case default
-            found = .false.
+            call generated_routine(entry, ucosub)
+            time_free = generated_time_free(entry)
         end select
     end subroutine find_builtin_ucosub
 
-    !> The names as a list for messages: "disk, rolling_disk, ...".
+    !> The names as a list for messages: "disk, rolling_disk, disk_height, ...": the two disk
+    !> routines first (the hand-checked one and its generated twin, as the list has always
+    !> begun), then every other generated routine in the generated catalog's (alphabetical) order.
     pure function builtin_ucosub_names() result(list)
         character(len=:), allocatable :: list
         integer :: i
 
-        list = trim(names(1))
-        do i = 2, size(names)
-            list = list // ", " // trim(names(i))
+        list = hand_disk_name
+        if (lookup(generated_twin) > 0) list = list // ", " // generated_twin
+        do i = 1, generated_count
+            if (generated_names(i) == generated_twin) cycle
+            list = list // ", " // trim(generated_names(i))
         end do
     end function builtin_ucosub_names
+
+    !> One line on what the built-in routine called name enforces; empty when there is none.
+    pure function builtin_ucosub_summary(name) result(summary)
+        character(len=*), intent(in) :: name
+        character(len=:), allocatable :: summary
+        integer :: entry
+
+        entry = lookup(name)
+        select case (entry)
+        case (entry_unknown)
+            summary = ""
+        case (entry_hand_disk)
+            summary = "The seed paper's rolling disk, hand-checked (docs/ucosub-disk.md): no " &
+                & // "slip, no penetration at the contact."
+        case default
+            summary = generated_summary(entry)
+        end select
+    end function builtin_ucosub_summary
+
+    !> The PAR list of one UCON served by the built-in routine called name: the part id, the
+    !> routine's codes, the physical parameters in its order (units as its module documents:
+    !> SI lengths [m] and rates [rad/s]), then the component when the routine has several.
+    !> Refused (stat_input) for an unknown name, the wrong number of parameters or a component
+    !> out of range; nothing else is checked here (the routine checks its PAR when declared).
+    pure subroutine builtin_ucosub_par(name, part, parameters, component, par, error)
+        !> Name of the routine (any case)
+        character(len=*), intent(in) :: name
+        !> Id of the part whose variables the UCON constrains
+        integer, intent(in) :: part
+        !> Physical parameters, in the routine's PAR order (e.g. the radius [m])
+        real(wp), intent(in) :: parameters(:)
+        !> Which component, 1 to the routine's number of components (1 when it has one)
+        integer, intent(in) :: component
+        !> The constants of FUNCTION=USER(...)
+        real(wp), allocatable, intent(out) :: par(:)
+        type(error_type), allocatable, intent(out) :: error
+        integer, allocatable :: codes(:)
+        integer :: entry, npar, ncomponents, nparameters
+
+        entry = lookup(name)
+        select case (entry)
+        case (entry_unknown)
+            call fatal_error(error, "no built-in UCOSUB is called '" // trim(name) &
+                & // "'; the built-in routines are " // builtin_ucosub_names(), stat_input)
+            return
+        case (entry_hand_disk)
+            codes = disk_codes
+            npar = disk_npar
+            ncomponents = hand_disk_components
+        case default
+            codes = generated_codes(entry)
+            npar = generated_npar(entry)
+            ncomponents = generated_ncomponents(entry)
+        end select
+        nparameters = npar - 1 - size(codes)
+        if (ncomponents > 1) nparameters = nparameters - 1
+        if (size(parameters) /= nparameters) then
+            call fatal_error(error, "the built-in UCOSUB '" // trim(name) // "' takes " &
+                & // to_text(nparameters) // " physical parameter(s) (PAR(" &
+                & // to_text(2 + size(codes)) // ") on), got " // to_text(size(parameters)), &
+                & stat_input)
+            return
+        end if
+        if (component < 1 .or. component > ncomponents) then
+            call fatal_error(error, "the built-in UCOSUB '" // trim(name) // "' has " &
+                & // to_text(ncomponents) // " component(s); component must be 1 to " &
+                & // to_text(ncomponents) // ", got " // to_text(component), stat_input)
+            return
+        end if
+        par = [real(part, wp), real(codes, wp), parameters]
+        if (ncomponents > 1) par = [par, real(component, wp)]
+    end subroutine builtin_ucosub_par
+
+    !> entry_hand_disk, the generated catalog's entry number, or entry_unknown.
+    pure integer function lookup(name)
+        character(len=*), intent(in) :: name
+        character(len=:), allocatable :: key
+        integer :: i
+
+        key = lower_case(trim(adjustl(name)))
+        lookup = entry_unknown
+        if (key == hand_disk_name) then
+            lookup = entry_hand_disk
+            return
+        end if
+        ! a loop, not findloc: gfortran 12's findloc on character arrays misbehaves
+        do i = 1, generated_count
+            if (key == trim(generated_names(i))) then
+                lookup = i
+                return
+            end if
+        end do
+    end function lookup
 
     !> text with A-Z turned to a-z.
     pure function lower_case(text) result(lower)

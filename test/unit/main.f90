@@ -32,6 +32,7 @@ program tester
     use test_allocations, only : collect_allocations
     use test_reduced, only : collect_reduced
     use test_layout, only : collect_layout
+    use test_ucosub_catalog, only : collect_ucosub_catalog
     implicit none
     type(testsuite_type), allocatable :: suites(:)
     type(test_counts_type) :: counts
@@ -68,7 +69,8 @@ program tester
         & new_testsuite("isolation", collect_isolation), &
         & new_testsuite("allocations", collect_allocations), &
         & new_testsuite("reduced", collect_reduced), &
-        & new_testsuite("layout", collect_layout)]
+        & new_testsuite("layout", collect_layout), &
+        & new_testsuite("ucosub-catalog", collect_ucosub_catalog)]
 
     if (command_argument_count() >= 1) then
         call get_command_argument(1, argument)
