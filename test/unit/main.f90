@@ -17,6 +17,7 @@ program tester
     use test_drift, only : collect_drift
     use test_extremes, only : collect_extremes
     use test_pictures, only : collect_pictures
+    use test_part_shapes, only : collect_part_shapes
     use test_user_ucosub, only : collect_user_ucosub
     use test_adm_expression, only : collect_adm_expression
     use test_adm_lexer, only : collect_adm_lexer
@@ -49,6 +50,7 @@ program tester
         & new_testsuite("drift", collect_drift), &
         & new_testsuite("extremes", collect_extremes), &
         & new_testsuite("pictures", collect_pictures), &
+        & new_testsuite("part-shapes", collect_part_shapes), &
         & new_testsuite("user-ucosub", collect_user_ucosub), &
         & new_testsuite("adm-expression", collect_adm_expression), &
         & new_testsuite("adm-lexer", collect_adm_lexer), &
