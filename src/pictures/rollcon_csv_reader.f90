@@ -109,8 +109,8 @@ contains
         if (.not. allocated(message)) return
         ! The one-part header of the runs before the per-part layout (issue #14): say so.
         if (count > 1) then
-            if (names(1) == "t" .and. names(2) == "X") message = message // " (a CSV of an older rollcon, whose " &
-                & // "columns did not name the part: run the scene again)"
+            if (names(1) == "t" .and. names(2) == "X") message = message // " (a CSV of an " &
+                & // "older rollcon, whose columns did not name the part: run the scene again)"
         end if
         call input_error(error, path, 1, "", "not the header 'rollcon run' writes: " // message)
     end subroutine check_header

@@ -269,6 +269,7 @@ contains
             & // to_text(z_high + 0.1_wp*extent) // "]" // nl &
             & // "set xyplane at " // to_text(z_low) // nl // "set grid xtics ytics" // nl &
             & // "set pm3d depthorder" // nl &
+            & // "set pm3d lighting primary 0.4 specular 0.0" // nl &
             & // "array frame_time[" // to_text(size(rows)) // "] = [" // times // "]" // nl &
             & // "array last_row[" // to_text(size(rows)) // "] = [" // last_rows // "]" // nl &
             & // "do for [k = 1:" // to_text(size(rows)) // "] {" // nl &

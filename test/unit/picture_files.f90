@@ -14,7 +14,8 @@ module picture_files
     implicit none
     private
 
-    public :: picture_scene, disk_run, two_part_run, write_run, make_folder, remove_folder, write_lines
+    public :: picture_scene, disk_run, two_part_run, write_run, make_folder, remove_folder, &
+        & write_lines
     public :: vtu_piece_type, read_vtu, read_pvd, command_available
 
     !> Disk radius and thickness of the hand-made runs [m]
