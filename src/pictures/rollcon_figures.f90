@@ -248,7 +248,9 @@ contains
                 & // to_text(drift_column + 1 + k) // " with lines lw 1.2 title " &
                 & // gnuplot_string("|F_" // to_text(run%layout%ucon_ids(k)) // "|")
         end do
-        if (nucons == 0) curves = " NaN title 'no UCON'"
+        ! gnuplot refuses a plot with no defined point: a model without UCONs gets a flat line
+        if (nucons == 0) curves = " " // data // " using 1:(" // to_text(residual_floor) &
+            & // ") with lines title 'no UCON'"
         text = text // output(prefix, "residuals") &
             & // title(name // ": UCON residuals (zero drawn at " // to_text(residual_floor) &
             & // ")") // "set ylabel '|F_k| (each UCON in its own unit)'" // nl &
@@ -260,7 +262,7 @@ contains
                 & // to_text(drift_column + 1 + nucons + k) // " with lines lw 1.2 title " &
                 & // gnuplot_string("λ_" // to_text(run%layout%ucon_ids(k)))
         end do
-        if (nucons == 0) curves = " NaN title 'no UCON'"
+        if (nucons == 0) curves = " " // data // " using 1:(0) with lines title 'no UCON'"
         text = text // output(prefix, "multipliers") &
             & // title(name // ": UCON multipliers (the constraint forces' size)") &
             & // "set ylabel 'λ_k [N s/m velocity UCON; N position UCON]'" // nl &

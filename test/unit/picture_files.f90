@@ -14,7 +14,7 @@ module picture_files
     implicit none
     private
 
-    public :: picture_scene, disk_run, two_part_run, write_run, make_folder, remove_folder, &
+    public :: picture_scene, disk_run, two_part_run, falling_run, write_run, make_folder, remove_folder, &
         & write_lines
     public :: vtu_piece_type, read_vtu, read_pvd, command_available
 
@@ -136,6 +136,27 @@ contains
             call run%history%add(row)
         end do
     end function two_part_run
+
+    !> A model of one part (id 2, the ellipsoid ellipsoid_axes) and no UCON, falling freely from
+    !> Z = 1 m and turning about its body z axis.
+    function falling_run() result(run)
+        type(run_record_type) :: run
+        real(wp), parameter :: g = 9.81_wp
+        real(wp) :: row(14), t
+        integer :: j
+
+        run%layout = new_output_layout([2], [integer ::], .false.)
+        allocate(run%shapes(1))
+        run%shapes(1)%id = 2
+        run%shapes(1)%kind = shape_ellipsoid
+        run%shapes(1)%semi_axes = ellipsoid_axes
+        do j = 1, run_rows
+            t = row_step*real(j - 1, wp)
+            row = [t, 0.0_wp, 0.0_wp, 1.0_wp - 0.5_wp*g*t**2, 0.0_wp, 1.0_wp, 3.0_wp*t, &
+                & 0.0_wp, 0.0_wp, -g*t, 0.0_wp, 0.0_wp, 3.0_wp, 1.0_wp]
+            call run%history%add(row)
+        end do
+    end function falling_run
 
     !> Write a run's CSV as `rollcon run` does (the layout's header, 17 significant digits),
     !> and, when parts is true, its part shapes beside it (DIR/NAME.parts).

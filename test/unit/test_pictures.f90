@@ -15,8 +15,8 @@ module test_pictures
     use rollcon_gif, only : animate_output
     use rollcon_gnuplot, only : gnuplot_available
     use rollcon_testing, only : unittest_type, new_unittest, check, skip_test
-    use picture_files, only : disk_run, two_part_run, write_run, make_folder, remove_folder, &
-        & write_lines
+    use picture_files, only : disk_run, two_part_run, falling_run, write_run, make_folder, &
+        & remove_folder, write_lines
     implicit none
     private
 
@@ -41,6 +41,7 @@ contains
             & new_unittest("csv-bad-rows", test_csv_rows), &
             & new_unittest("plot-disk-scene-figures", test_plot_disk), &
             & new_unittest("plot-two-part-figures", test_plot_model), &
+            & new_unittest("plot-model-without-ucon", test_plot_no_ucon), &
             & new_unittest("plot-missing-csv", test_plot_missing), &
             & new_unittest("plot-malformed-csv", test_plot_malformed), &
             & new_unittest("animate-writes-gif", test_gif)]
@@ -194,6 +195,14 @@ contains
 
         call plot_and_check(error, two_part_run(), "two", model_figure_names)
     end subroutine test_plot_model
+
+    !> A model without UCONs gets the same figures, its residuals and multipliers flat lines
+    !> labelled 'no UCON' (gnuplot refuses a plot of no point; skipped without gnuplot).
+    subroutine test_plot_no_ucon(error)
+        type(error_type), allocatable, intent(out) :: error
+
+        call plot_and_check(error, falling_run(), "falling", model_figure_names)
+    end subroutine test_plot_no_ucon
 
     !> Plot a run written as scratch/name.csv (with its .parts) and check the files: the names
     !> expected, each a PNG file.
