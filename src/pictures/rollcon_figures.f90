@@ -185,7 +185,6 @@ contains
     end subroutine write_model_data
 
     !> The gnuplot script of the model figures (data columns as write_model_data writes them).
-    !> Long because it is the figures' text, one figure after the other.
     pure function model_script(name, prefix, data_path, run) result(text)
         !> The run's name, the figures' path less _<figure>.png, the data file
         character(len=*), intent(in) :: name, prefix, data_path
@@ -193,48 +192,87 @@ contains
         character(len=:), allocatable :: text
         character(len=*), parameter :: nl = new_line("a")
         character(len=*), parameter :: angle_names(3) = [character(len=5) :: "ψ", "θ", "φ"]
-        character(len=:), allocatable :: data, curves
-        integer :: p, k, c, nparts, nucons, drift_column
+        character(len=:), allocatable :: data
+        integer :: c
 
         data = gnuplot_string(data_path)
-        nparts = size(run%layout%part_ids)
-        nucons = size(run%layout%ucon_ids)
-        drift_column = 2 + 6*nparts
-        text = figure_preamble(name)
-        curves = ""
-        do p = 1, nparts
-            curves = curves // merge(", ", "  ", p > 1) // data // " using " &
-                & // to_text(column(p, 1)) // ":" // to_text(column(p, 2)) &
-                & // " with lines lw 1.5 title " // part_title(p, " centre of mass")
-        end do
-        text = text // output(prefix, "path") &
+        text = figure_preamble(name) // output(prefix, "path") &
             & // title(name // ": paths of the centres of mass (equal axes)") &
             & // "set xlabel 'X [m]'" // nl // "set ylabel 'Y [m]'" // nl &
-            & // "set size ratio -1" // nl // "plot" // curves // nl &
+            & // "set size ratio -1" // nl &
+            & // "plot" // part_curves(data, run, 1, 2, " centre of mass") // nl &
             & // "set size noratio" // nl // "set xlabel 't [s]'" // nl
-        curves = ""
-        do p = 1, nparts
-            curves = curves // merge(", ", "  ", p > 1) // data // " using 1:" &
-                & // to_text(column(p, 3)) // " with lines lw 1.5 title " // part_title(p, "")
-        end do
         text = text // output(prefix, "height") &
             & // title(name // ": height Z of the centres of mass") &
-            & // "set ylabel 'Z [m]'" // nl // "plot" // curves // nl
+            & // "set ylabel 'Z [m]'" // nl // "plot" // part_curves(data, run, 0, 3, "") // nl
         text = text // output(prefix, "angles") &
             & // "set multiplot layout 3,1 title " // gnuplot_string(name // ": Euler angles " &
             & // "ψ, θ, φ (body-fixed 3-1-3, not wrapped)") // nl // "unset title" // nl
         do c = 1, 3
-            curves = ""
-            do p = 1, nparts
-                curves = curves // merge(", ", "  ", p > 1) // data // " using 1:" &
-                    & // to_text(column(p, 3 + c)) // " with lines lw 1.5 title " &
-                    & // part_title(p, "")
-            end do
             text = text // "set ylabel '" // trim(angle_names(c)) // " [rad]'" // nl &
-                & // "plot" // curves // nl
+                & // "plot" // part_curves(data, run, 0, 3 + c, "") // nl
         end do
-        text = text // "unset multiplot" // nl
-        text = text // output(prefix, "energy") &
+        text = text // "unset multiplot" // nl // ucon_figures(name, prefix, data, run)
+    end function model_script
+
+    !> The curves of a quantity of every part, for a plot command: data column x against data
+    !> column y of each part's X, Y, Z, psi, theta, phi (1 .. 6; 0 is t), titled 'part <id>'
+    !> and what.
+    pure function part_curves(data, run, x, y, what) result(curves)
+        character(len=*), intent(in) :: data
+        type(run_record_type), intent(in) :: run
+        integer, intent(in) :: x, y
+        character(len=*), intent(in) :: what
+        character(len=:), allocatable :: curves
+        integer :: p
+
+        curves = ""
+        do p = 1, size(run%layout%part_ids)
+            curves = curves // merge(", ", "  ", p > 1) // data // " using " &
+                & // to_text(column(p, x)) // ":" // to_text(column(p, y)) &
+                & // " with lines lw 1.5 title " &
+                & // gnuplot_string("part " // to_text(run%layout%part_ids(p)) // what)
+        end do
+    contains
+        !> Data column of part p's coordinate c (write_model_data); t for c = 0.
+        pure integer function column(p, c)
+            integer, intent(in) :: p, c
+
+            column = 1
+            if (c > 0) column = 1 + 6*(p - 1) + c
+        end function column
+    end function part_curves
+
+    !> The energy, residual and multiplier figures of the model figures.
+    pure function ucon_figures(name, prefix, data, run) result(text)
+        !> The run's name, the figures' path less _<figure>.png, the data file as a gnuplot
+        !> string
+        character(len=*), intent(in) :: name, prefix, data
+        type(run_record_type), intent(in) :: run
+        character(len=:), allocatable :: text
+        character(len=*), parameter :: nl = new_line("a")
+        character(len=:), allocatable :: residuals, multipliers
+        integer :: k, nucons, drift_column
+
+        nucons = size(run%layout%ucon_ids)
+        drift_column = 2 + 6*size(run%layout%part_ids)
+        residuals = ""
+        multipliers = ""
+        do k = 1, nucons
+            residuals = residuals // merge(", ", "  ", k > 1) // data // " using 1:" &
+                & // to_text(drift_column + 1 + k) // " with lines lw 1.2 title " &
+                & // gnuplot_string("|F_" // to_text(run%layout%ucon_ids(k)) // "|")
+            multipliers = multipliers // merge(", ", "  ", k > 1) // data // " using 1:" &
+                & // to_text(drift_column + 1 + nucons + k) // " with lines lw 1.2 title " &
+                & // gnuplot_string("λ_" // to_text(run%layout%ucon_ids(k)))
+        end do
+        ! gnuplot refuses a plot with no defined point: a model without UCONs gets flat lines
+        if (nucons == 0) then
+            residuals = " " // data // " using 1:(" // to_text(residual_floor) &
+                & // ") with lines title 'no UCON'"
+            multipliers = " " // data // " using 1:(0) with lines title 'no UCON'"
+        end if
+        text = output(prefix, "energy") &
             & // title(name // ": energy drift (an applied force changes E on purpose)") &
             & // "set ylabel 'relative change of E'" // nl // "set logscale y" // nl &
             & // "set format y '%.0e'" // nl &
@@ -242,49 +280,15 @@ contains
             & // "lw 1.5 title '|E - E(start)|/|E(start)|', " // data // " using 1:" &
             & // to_text(drift_column + 1) // " with lines lw 1.5 title '|E - E(end)|/|E(end)|'" &
             & // nl
-        curves = ""
-        do k = 1, nucons
-            curves = curves // merge(", ", "  ", k > 1) // data // " using 1:" &
-                & // to_text(drift_column + 1 + k) // " with lines lw 1.2 title " &
-                & // gnuplot_string("|F_" // to_text(run%layout%ucon_ids(k)) // "|")
-        end do
-        ! gnuplot refuses a plot with no defined point: a model without UCONs gets a flat line
-        if (nucons == 0) curves = " " // data // " using 1:(" // to_text(residual_floor) &
-            & // ") with lines title 'no UCON'"
         text = text // output(prefix, "residuals") &
             & // title(name // ": UCON residuals (zero drawn at " // to_text(residual_floor) &
             & // ")") // "set ylabel '|F_k| (each UCON in its own unit)'" // nl &
-            & // "plot" // curves // nl &
+            & // "plot" // residuals // nl &
             & // "unset logscale y" // nl // "set format y '% h'" // nl
-        curves = ""
-        do k = 1, nucons
-            curves = curves // merge(", ", "  ", k > 1) // data // " using 1:" &
-                & // to_text(drift_column + 1 + nucons + k) // " with lines lw 1.2 title " &
-                & // gnuplot_string("λ_" // to_text(run%layout%ucon_ids(k)))
-        end do
-        if (nucons == 0) curves = " " // data // " using 1:(0) with lines title 'no UCON'"
         text = text // output(prefix, "multipliers") &
             & // title(name // ": UCON multipliers (the constraint forces' size)") &
             & // "set ylabel 'λ_k [N s/m velocity UCON; N position UCON]'" // nl &
-            & // "plot" // curves // nl // "unset output" // nl
-
-    contains
-
-        !> Data column of part p's coordinate c (1 X ... 6 phi).
-        pure integer function column(p, c)
-            integer, intent(in) :: p, c
-
-            column = 1 + 6*(p - 1) + c
-        end function column
-
-        !> The legend of part p: 'part <id><what>'.
-        pure function part_title(p, what) result(word)
-            integer, intent(in) :: p
-            character(len=*), intent(in) :: what
-            character(len=:), allocatable :: word
-
-            word = gnuplot_string("part " // to_text(run%layout%part_ids(p)) // what)
-        end function part_title
-    end function model_script
+            & // "plot" // multipliers // nl // "unset output" // nl
+    end function ucon_figures
 
 end module rollcon_figures
