@@ -226,7 +226,7 @@ contains
         character(len=:), allocatable :: text
         character(len=*), parameter :: nl = new_line("a")
         real(wp) :: low(2), high(2), z_low, z_high, extent
-        character(len=:), allocatable :: times, last_rows, parts, set
+        character(len=:), allocatable :: times, last_rows, parts, set, optimize, shading
         character(len=32) :: buffer
         integer :: k, p
 
@@ -254,11 +254,20 @@ contains
             last_rows = last_rows // merge(", ", "  ", k > 1) // to_text(rows(k) - 1)
         end do
         parts = to_text(size(run%shapes))
+        ! An ellipsoid is shaded (pm3d lighting) so that its shape reads in 3-D; gnuplot's GIF
+        ! palette optimisation blackens shaded facets, so it is kept for disks alone (unshaded,
+        ! as their faces are flat).
+        optimize = "optimize "
+        shading = ""
+        if (any(run%shapes%kind /= shape_disk)) then
+            optimize = ""
+            shading = "set pm3d lighting primary 0.4 specular 0.0" // nl
+        end if
         ! data set of part p's surface in frame k (write_frames)
         set = "(3*(" // parts // "*(k - 1) + p - 1))"
         text = "# Animation of " // name // ", written by rollcon animate." // nl &
             & // "set terminal gif animate delay " // to_text(100/gif_fps) // " loop 0 " &
-            & // "optimize size " // gif_size // " font 'DejaVu Sans,8'" // nl &
+            & // optimize // "size " // gif_size // " font 'DejaVu Sans,8'" // nl &
             & // "set output " // gnuplot_string(gif_path) // nl &
             & // "unset key" // nl // "unset colorbox" // nl &
             & // "set view 60, 12, 1.9" // nl // "set view equal xyz" // nl &
@@ -269,7 +278,7 @@ contains
             & // to_text(z_high + 0.1_wp*extent) // "]" // nl &
             & // "set xyplane at " // to_text(z_low) // nl // "set grid xtics ytics" // nl &
             & // "set pm3d depthorder" // nl &
-            & // "set pm3d lighting primary 0.4 specular 0.0" // nl &
+            & // shading &
             & // "array frame_time[" // to_text(size(rows)) // "] = [" // times // "]" // nl &
             & // "array last_row[" // to_text(size(rows)) // "] = [" // last_rows // "]" // nl &
             & // "do for [k = 1:" // to_text(size(rows)) // "] {" // nl &
