@@ -50,8 +50,8 @@ contains
         call write_vtk_series(folder, name, run, fps, frames, error)
         if (allocated(error)) return
         write(output_unit, '(a)') "vtk: wrote " // folder // "/" // name // ".pvd (" &
-            & // to_text(frames) // " frames, " // to_text(size(run%shapes)) &
-            & // merge(" part ", " parts", size(run%shapes) == 1) // "; open it in ParaView)"
+            & // to_text(frames) // " frames, " // to_text(size(run%shapes)) // " part" &
+            & // trim(merge("s", " ", size(run%shapes) /= 1)) // "; open it in ParaView)"
     end subroutine write_csv_vtk
 
 end module rollcon_command_run_vtk
