@@ -145,16 +145,18 @@ contains
 
     !> The one call a run makes: the shapes of model's parts (part_shapes_of) written beside its
     !> CSV, as parts_path(csv_path).
-    subroutine write_model_shapes(csv_path, model, error, disk_radius, disk_thickness)
+    subroutine write_model_shapes(csv_path, model, error, disk_radius, disk_thickness, disk_part)
         !> The run's CSV (its final name)
         character(len=*), intent(in) :: csv_path
         type(model_type), intent(in) :: model
         type(error_type), allocatable, intent(out) :: error
-        !> Radius and thickness of the disk, part 1 [m] (the disk scenes)
+        !> Radius and thickness of the disk [m] (the disk scenes)
         real(wp), intent(in), optional :: disk_radius, disk_thickness
+        !> Which part (model order) is the disk; default 1
+        integer, intent(in), optional :: disk_part
         type(part_shape_type), allocatable :: shapes(:)
 
-        call part_shapes_of(model, shapes, error, disk_radius, disk_thickness)
+        call part_shapes_of(model, shapes, error, disk_radius, disk_thickness, disk_part)
         if (allocated(error)) return
         call write_part_shapes(parts_path(csv_path), shapes, error)
     end subroutine write_model_shapes
