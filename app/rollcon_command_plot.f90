@@ -2,7 +2,7 @@
 !> `rollcon plot`: the PNG figures of a run's output CSV, drawn by gnuplot.
 module rollcon_command_plot
     use, intrinsic :: iso_fortran_env, only : output_unit
-    use rollcon, only : error_type, fatal_error, stat_io, plot_output, figure_file, figure_names
+    use rollcon, only : error_type, fatal_error, stat_io, plot_output
     implicit none
     private
 
@@ -17,17 +17,16 @@ contains
         !> Folder for the PNG files (created if missing)
         character(len=*), intent(in) :: output_dir
         type(error_type), allocatable, intent(out) :: error
-        character(len=:), allocatable :: csv_path
+        character(len=:), allocatable :: csv_path, files(:)
         integer :: i
 
         call make_folder(output_dir, error)
         if (allocated(error)) return
         csv_path = csv_argument(argument, output_dir)
-        call plot_output(csv_path, output_dir, error)
+        call plot_output(csv_path, output_dir, error, files)
         if (allocated(error)) return
-        do i = 1, size(figure_names)
-            write(output_unit, '(a)') "plot: wrote " // figure_file(csv_path, output_dir, &
-                & figure_names(i))
+        do i = 1, size(files)
+            write(output_unit, '(a)') "plot: wrote " // trim(files(i))
         end do
     end subroutine plot_command
 

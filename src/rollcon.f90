@@ -42,9 +42,12 @@ module rollcon
     use rollcon_child_process, only : default_call_timeout, isolated_task_type, call_record_type, &
         & isolation_outcome_type, run_in_child, outcome_finished
     use rollcon_csv_reader, only : read_output_csv
+    use rollcon_part_shapes, only : part_shape_type, part_shapes_of, write_model_shapes, &
+        & write_part_shapes, read_part_shapes, parts_path, shape_disk, shape_ellipsoid
+    use rollcon_run_record, only : run_record_type, read_run
     use rollcon_disk_scene, only : simulate_scene
     use rollcon_error, only : fatal_error, stat_input, stat_io, stat_ucon
-    use rollcon_figures, only : plot_output, figure_file, figure_names
+    use rollcon_figures, only : plot_output, figure_file, figure_names, model_figure_names
     use rollcon_gif, only : animate_output
     use rollcon_gnuplot, only : base_name, run_gnuplot, gnuplot_string
     use rollcon_isolated_audit, only : check_user_ucosub_isolated

@@ -1,54 +1,44 @@
 ! SPDX-License-Identifier: MIT
-!> Reads back the CSV that `rollcon run` writes, checking its header and every value, for the
-!> plots and animations.
+!> Reads back the CSV that `rollcon run` writes, checking its header (through the output layout,
+!> rollcon_output_layout) and every value, for the plots, animations and VTK series.
 module rollcon_csv_reader
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type, fatal_error, input_error, stat_io
     use rollcon_text, only : to_text
-    use rollcon_simulation, only : history_type, column_z, column_theta
+    use rollcon_simulation, only : history_type
+    use rollcon_output_layout, only : output_layout_type, read_layout, name_length
     use, intrinsic :: ieee_arithmetic, only : ieee_is_finite
     use, intrinsic :: ieee_exceptions, only : ieee_set_flag, ieee_overflow, ieee_underflow
     implicit none
     private
 
-    public :: read_output_csv, standard_columns
+    public :: read_output_csv
 
-    !> Length of the column names returned
-    integer, parameter, public :: name_length = 64
     !> Largest magnitude a value may have: far beyond any quantity of a run, and small enough
     !> that the pictures' arithmetic (gnuplot's ranges and tick steps, squares in the mesh)
     !> cannot overflow, which it does for values near 1e308
     real(wp), parameter, public :: largest_value = 1.0e100_wp
 
-    !> The columns every output CSV starts with, in order (rollcon_simulation's csv_header);
-    !> one residual column per UCON follows
-    character(len=*), parameter :: standard_columns(19) = [character(len=9) :: "t", "X", "Y", &
-        & "Z", "psi", "theta", "phi", "Xdot", "Ydot", "Zdot", "psidot", "thetadot", "phidot", &
-        & "E", "Fx", "Fy", "Fz", "Fn", "mu_needed"]
-
 contains
 
-    !> Read an output CSV: a header line starting with the standard columns, then at least one
-    !> row of as many finite numbers (of magnitude at most largest_value) as there are columns,
-    !> in time order; plot, animate and the VTK series all read through it. Also infers the disk
-    !> radius from the first row, R = Z/sin(theta) (the contact constraint, docs/design.md §5).
-    subroutine read_output_csv(path, history, radius, error, names)
+    !> Read an output CSV: a header line that the output layout reads (t, then X_<id> ...
+    !> phidot_<id> per part, E, F_<id> and lambda_<id> per UCON, and the contact columns of a
+    !> disk scene), then at least one row of as many finite numbers (of magnitude at most
+    !> largest_value) as there are columns, in time order. Plot, animate and the VTK series all
+    !> read through it.
+    subroutine read_output_csv(path, layout, history, error)
         !> CSV file
         character(len=*), intent(in) :: path
+        !> Its columns: which parts and UCONs, and whether the contact columns are there
+        type(output_layout_type), intent(out) :: layout
         !> Its rows, column by column as in the file
         type(history_type), intent(out) :: history
-        !> Disk radius [m]
-        real(wp), intent(out) :: radius
         type(error_type), allocatable, intent(out) :: error
-        !> The column names of the header (cut to name_length characters)
-        character(len=name_length), allocatable, intent(out), optional :: names(:)
         character(len=:), allocatable :: line
         character(len=256) :: message
         real(wp), allocatable :: row(:)
-        integer :: unit, stat, columns, line_number
+        integer :: unit, stat, line_number
 
-        radius = 0.0_wp
-        columns = 0
         open(newunit=unit, file=path, status="old", action="read", iostat=stat, iomsg=message)
         if (stat /= 0) then
             call fatal_error(error, path // ": cannot open (expected an output CSV of " &
@@ -59,11 +49,10 @@ contains
         if (stat /= 0) then
             call input_error(error, path, 1, "", "expected a header line, found an empty file")
         else
-            call check_header(path, line, columns, error)
-            if (present(names) .and. .not. allocated(error)) call split_header(line, names)
+            call check_header(path, line, layout, error)
         end if
         line_number = 1
-        allocate(row(columns))
+        if (.not. allocated(error)) allocate(row(layout%columns()))
         do while (.not. allocated(error))
             call read_line(unit, line, stat)
             if (stat /= 0) exit
@@ -83,58 +72,17 @@ contains
         end do
         close(unit)
         if (allocated(error)) return
-        if (history%count == 0) then
-            call input_error(error, path, line_number, "", "expected at least one row of " &
-                & // "numbers after the header, found none")
-            return
-        end if
-        associate (z => history%rows(column_z, 1), theta => history%rows(column_theta, 1))
-            ! Divide only when the quotient is a positive length no larger than largest_value,
-            ! so no floating-point exception is raised.
-            if (z > 0.0_wp .and. sin(theta) > 0.0_wp .and. z <= sin(theta)*largest_value) then
-                radius = z/sin(theta)
-            else
-                call input_error(error, path, 2, "", "cannot infer the disk radius: " &
-                    & // "Z/sin(theta) must be a positive length, got Z = " // to_text(z) &
-                    & // " m, theta = " // to_text(theta) // " rad")
-            end if
-        end associate
+        if (history%count == 0) call input_error(error, path, line_number, "", "expected at " &
+            & // "least one row of numbers after the header, found none")
     end subroutine read_output_csv
 
-    !> Check the header line and count its columns.
-    subroutine check_header(path, line, columns, error)
+    !> The layout of the header line, or an error naming the file, line 1 and the reason.
+    subroutine check_header(path, line, layout, error)
         character(len=*), intent(in) :: path, line
-        integer, intent(out) :: columns
+        type(output_layout_type), intent(out) :: layout
         type(error_type), allocatable, intent(out) :: error
-        character(len=:), allocatable :: field, expected
-        integer :: start, i
-        logical :: matches
-
-        expected = trim(standard_columns(1))
-        do i = 2, size(standard_columns)
-            expected = expected // "," // trim(standard_columns(i))
-        end do
-        columns = 0
-        matches = .true.
-        start = 1
-        do while (start <= len(line) + 1)
-            call next_field(line, start, field)
-            columns = columns + 1
-            if (columns <= size(standard_columns)) then
-                matches = matches .and. field == trim(standard_columns(columns))
-            end if
-        end do
-        if (.not. matches .or. columns < size(standard_columns)) then
-            call input_error(error, path, 1, "", "the header must start with " // expected &
-                & // " (the columns 'rollcon run' writes), got '" // shortened(line) // "'")
-        end if
-    end subroutine check_header
-
-    !> The comma-separated names of a header line.
-    subroutine split_header(line, names)
-        character(len=*), intent(in) :: line
-        character(len=name_length), allocatable, intent(out) :: names(:)
-        character(len=:), allocatable :: field
+        character(len=name_length), allocatable :: names(:)
+        character(len=:), allocatable :: field, message
         integer :: start, count
 
         count = 0
@@ -142,6 +90,12 @@ contains
         do while (start <= len(line) + 1)
             call next_field(line, start, field)
             count = count + 1
+            if (len_trim(adjustl(field)) > name_length) then
+                call input_error(error, path, 1, "", "column " // to_text(count) // " of the " &
+                    & // "header is not a column name 'rollcon run' writes (longer than " &
+                    & // to_text(name_length) // " characters): '" // shortened(field) // "'")
+                return
+            end if
         end do
         allocate(names(count))
         count = 0
@@ -151,7 +105,15 @@ contains
             count = count + 1
             names(count) = trim(adjustl(field))
         end do
-    end subroutine split_header
+        call read_layout(names, layout, message)
+        if (.not. allocated(message)) return
+        ! The one-part header of the runs before the per-part layout (issue #14): say so.
+        if (count > 1) then
+            if (names(1) == "t" .and. names(2) == "X") message = message // " (a CSV of an " &
+                & // "older rollcon, whose columns did not name the part: run the scene again)"
+        end if
+        call input_error(error, path, 1, "", "not the header 'rollcon run' writes: " // message)
+    end subroutine check_header
 
     !> Read the comma-separated numbers of one row.
     subroutine parse_row(path, line_number, line, row, error)

@@ -1,15 +1,16 @@
 ! SPDX-License-Identifier: MIT
-!> The plots of a run, as PNG files drawn by gnuplot from an output CSV: paths on the ground,
-!> theta, the precession and spin rates, energy drift, constraint residuals, contact force and
-!> the friction coefficient it needs.
+!> The plots of a run, as PNG files drawn by gnuplot from an output CSV. A disk scene's CSV
+!> gets the disk's figures (paths on the ground, theta, the precession and spin rates, energy
+!> drift, constraint residuals, contact force and the friction coefficient it needs, through
+!> rollcon_disk_figures); any other model's gets a set for any parts (paths and heights of the
+!> centres of mass, Euler angles, energy drift, UCON residuals and multipliers).
 module rollcon_figures
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type, fatal_error, stat_io
-    use rollcon_simulation, only : history_type, column_time, column_x, column_y, column_phi, &
-        & column_theta, column_psidot, column_phidot, column_energy, column_fx, column_fy, &
-        & column_fz, column_mu, column_residual
-    use rollcon_csv_reader, only : read_output_csv, name_length
-    use rollcon_disk_mesh, only : contact_point
+    use rollcon_run_record, only : run_record_type, read_run, is_disk_scene
+    use rollcon_output_layout, only : coord_x, coord_phi
+    use rollcon_disk_figures, only : disk_figure_names, write_disk_data, disk_script
+    use rollcon_figure_text, only : drift, residual_floor, title, output, figure_preamble
     use rollcon_gnuplot, only : require_gnuplot, run_gnuplot, gnuplot_string, base_name, &
         & remove_file
     use rollcon_text, only : to_text
@@ -17,53 +18,54 @@ module rollcon_figures
     implicit none
     private
 
-    public :: plot_output, figure_file
+    public :: plot_output, figure_file, figure_names, model_figure_names, figures_of
 
-    !> The figures, each written as DIR/<base>_<name>.png
-    character(len=*), parameter, public :: figure_names(7) = [character(len=9) :: "path", &
-        & "theta", "rates", "energy", "residuals", "force", "friction"]
-
-    !> Relative energy drifts below round-off are drawn at this level (a log axis has no zero)
-    real(wp), parameter :: drift_floor = epsilon(1.0_wp)
-    !> Constraint residuals below this are drawn at it [m/s] (a log axis has no zero)
-    real(wp), parameter :: residual_floor = 1.0e-20_wp
-    !> Columns of the data file written for gnuplot, before one |F_k| column per UCON
-    integer, parameter :: data_columns = 13
+    !> The figures of a disk scene, each written as DIR/<base>_<name>.png
+    character(len=*), parameter :: figure_names(7) = disk_figure_names
+    !> The figures of any other model, each written as DIR/<base>_<name>.png
+    character(len=*), parameter :: model_figure_names(6) = [character(len=11) :: "path", &
+        & "height", "angles", "energy", "residuals", "multipliers"]
 
 contains
 
     !> Draw the figures of an output CSV into output_dir (which must exist), as
-    !> output_dir/<base>_<figure>.png, <base> the CSV's file name less '.csv'. The gnuplot
-    !> script and its data (<base>_plots.gp, .dat) are removed when gnuplot succeeds and kept
-    !> when it fails.
-    subroutine plot_output(csv_path, output_dir, error)
-        !> Output CSV of `rollcon run`
+    !> output_dir/<base>_<figure>.png, <base> the CSV's file name less '.csv': figure_names for a
+    !> disk scene's CSV, model_figure_names for any other. The gnuplot script and its data
+    !> (<base>_plots.gp, .dat) are removed when gnuplot succeeds and kept when it fails.
+    subroutine plot_output(csv_path, output_dir, error, files)
+        !> Output CSV of `rollcon run` (its part shapes beside it, rollcon_run_record)
         character(len=*), intent(in) :: csv_path
-        !> Folder for the PNG files, figure_file(csv_path, output_dir, figure_names(i))
+        !> Folder for the PNG files
         character(len=*), intent(in) :: output_dir
         type(error_type), allocatable, intent(out) :: error
-        type(history_type) :: history
-        character(len=name_length), allocatable :: names(:)
-        character(len=:), allocatable :: prefix, data_path, script_path
-        real(wp) :: radius
-        integer :: i, unit, stat, size_bytes
+        !> The PNG files written
+        character(len=:), allocatable, intent(out), optional :: files(:)
+        type(run_record_type) :: run
+        character(len=:), allocatable :: prefix, data_path, script_path, names(:), text
+        integer :: i, unit, stat, size_bytes, length
 
-        call read_output_csv(csv_path, history, radius, error, names)
+        call read_run(csv_path, run, error)
         if (allocated(error)) return
         call require_gnuplot(error)
         if (allocated(error)) return
         prefix = output_dir // "/" // base_name(csv_path, ".csv")
         data_path = prefix // "_plots.dat"
         script_path = prefix // "_plots.gp"
-        do i = 1, size(figure_names)
-            call remove_file(figure_file(csv_path, output_dir, figure_names(i)))
-        end do
-        call write_data(data_path, history, radius, error)
+        call remove_figures(csv_path, output_dir)
+        names = figures_of(run)
+        if (is_disk_scene(run)) then
+            call write_disk_data(data_path, run, error)
+            if (.not. allocated(error)) text = disk_script(base_name(csv_path, ".csv"), prefix, &
+                & data_path, run)
+        else
+            call write_model_data(data_path, run, error)
+            if (.not. allocated(error)) text = model_script(base_name(csv_path, ".csv"), &
+                & prefix, data_path, run)
+        end if
         if (allocated(error)) return
         open(newunit=unit, file=script_path, status="replace", action="write", iostat=stat)
         if (stat == 0) then
-            write(unit, '(a)', iostat=stat) script(base_name(csv_path, ".csv"), prefix, &
-                & data_path, names(column_residual:))
+            write(unit, '(a)', iostat=stat) text
             close(unit)
         end if
         if (stat /= 0) then
@@ -71,25 +73,59 @@ contains
             return
         end if
         call run_gnuplot(script_path, error)
-        do i = 1, size(figure_names)
+        do i = 1, size(names)
             if (allocated(error)) exit
-            inquire(file=figure_file(csv_path, output_dir, figure_names(i)), size=size_bytes)
+            inquire(file=figure_file(csv_path, output_dir, names(i)), size=size_bytes)
             if (size_bytes <= 0) then
-                call fatal_error(error, figure_file(csv_path, output_dir, figure_names(i)) &
+                call fatal_error(error, figure_file(csv_path, output_dir, names(i)) &
                     & // ": gnuplot reported success but " &
                     & // "did not write this PNG file (see " // script_path // ")", stat_io)
             end if
         end do
         if (allocated(error)) then
             ! No figure of a failed set is left behind (gnuplot may have opened them all).
-            do i = 1, size(figure_names)
-                call remove_file(figure_file(csv_path, output_dir, figure_names(i)))
-            end do
+            call remove_figures(csv_path, output_dir)
             return
         end if
         call remove_file(script_path)
         call remove_file(data_path)
+        if (present(files)) then
+            length = 0
+            do i = 1, size(names)
+                length = max(length, len(figure_file(csv_path, output_dir, names(i))))
+            end do
+            allocate(character(len=length) :: files(size(names)))
+            do i = 1, size(names)
+                files(i) = figure_file(csv_path, output_dir, names(i))
+            end do
+        end if
     end subroutine plot_output
+
+    !> The names of the figures of a run: figure_names for a disk scene, else
+    !> model_figure_names.
+    pure function figures_of(run) result(names)
+        type(run_record_type), intent(in) :: run
+        character(len=:), allocatable :: names(:)
+
+        if (is_disk_scene(run)) then
+            names = figure_names
+        else
+            names = model_figure_names
+        end if
+    end function figures_of
+
+    !> Remove every figure either set may have left for this CSV.
+    subroutine remove_figures(csv_path, output_dir)
+        character(len=*), intent(in) :: csv_path, output_dir
+        integer :: i
+
+        do i = 1, size(figure_names)
+            call remove_file(figure_file(csv_path, output_dir, figure_names(i)))
+        end do
+        do i = 1, size(model_figure_names)
+            call remove_file(figure_file(csv_path, output_dir, model_figure_names(i)))
+        end do
+    end subroutine remove_figures
 
     !> The PNG file of a figure: output_dir/<base>_<figure>.png, <base> the CSV's file name
     !> less '.csv'.
@@ -98,29 +134,26 @@ contains
         character(len=*), intent(in) :: csv_path
         !> Folder of the figures
         character(len=*), intent(in) :: output_dir
-        !> One of figure_names
+        !> One of figure_names or model_figure_names
         character(len=*), intent(in) :: figure
         character(len=:), allocatable :: path
 
         path = output_dir // "/" // base_name(csv_path, ".csv") // "_" // trim(figure) // ".png"
     end function figure_file
 
-    !> The data the figures need, one row per output row: t, X, Y, contact x, y, theta, psidot,
-    !> phidot, |E - E(t0)|/|E(t0)|, |E - E(t_end)|/|E(t_end)|, normal and tangential force,
-    !> mu_needed, then |F_k| for each UCON.
-    subroutine write_data(path, history, radius, error)
+    !> The data of the model figures, one row per output row: t; X, Y, Z, psi, theta, phi of
+    !> each part; |E - E(t0)|/|E(t0)|, |E - E(t_end)|/|E(t_end)|; |F_k| of each UCON (at least
+    !> residual_floor); lambda_k of each UCON.
+    subroutine write_model_data(path, run, error)
         character(len=*), intent(in) :: path
-        type(history_type), intent(in) :: history
-        real(wp), intent(in) :: radius
+        type(run_record_type), intent(in) :: run
         type(error_type), allocatable, intent(out) :: error
-        real(wp) :: c(3), first_energy, last_energy
         real(wp), allocatable :: row(:)
         character(len=256) :: message
-        integer :: unit, stat, j, n
+        integer :: unit, stat, j, p, n, nucons
 
-        n = history%count
-        first_energy = history%rows(column_energy, 1)
-        last_energy = history%rows(column_energy, n)
+        n = run%history%count
+        nucons = size(run%layout%ucon_ids)
         message = "a write failed"
         open(newunit=unit, file=path, status="replace", action="write", access="stream", &
             & form="formatted", iostat=stat, iomsg=message)
@@ -129,114 +162,133 @@ contains
                 & stat_io)
             return
         end if
-        do j = 1, n
-            if (stat /= 0) exit
-            associate (r => history%rows(:, j))
-                c = contact_point(radius, r(column_x:column_phi))
-                row = [r(column_time), r(column_x), r(column_y), c(1:2), r(column_theta), &
-                    & r(column_psidot), r(column_phidot), drift(r(column_energy), first_energy), &
-                    & drift(r(column_energy), last_energy), r(column_fz), &
-                    & norm2(r(column_fx:column_fy)), r(column_mu), &
-                    & max(abs(r(column_residual:)), residual_floor)]
-            end associate
-            write(unit, '(*(es24.16e3, :, 1x))', iostat=stat) row
-        end do
+        associate (rows => run%history%rows, energy => run%layout%energy_column())
+            do j = 1, n
+                if (stat /= 0) exit
+                row = [rows(1, j)]
+                do p = 1, size(run%layout%part_ids)
+                    row = [row, rows(run%layout%part_column(p, coord_x):run%layout%part_column(p, &
+                        & coord_phi), j)]
+                end do
+                row = [row, drift(rows(energy, j), rows(energy, 1)), drift(rows(energy, j), &
+                    & rows(energy, n))]
+                if (nucons > 0) row = [row, max(abs(rows(run%layout%residual_column(1): &
+                    & run%layout%residual_column(nucons), j)), residual_floor), &
+                    & rows(run%layout%multiplier_column(1):run%layout%multiplier_column(nucons), j)]
+                write(unit, '(*(es24.16e3, :, 1x))', iostat=stat) row
+            end do
+        end associate
         call close_checked(unit, path, error)
         if (allocated(error)) return
         if (stat /= 0) call fatal_error(error, path // ": cannot write the plot data: " &
             & // trim(message), stat_io)
-    end subroutine write_data
+    end subroutine write_model_data
 
-    !> Relative change of the energy from a reference, at least drift_floor.
-    pure function drift(energy, reference) result(relative)
-        real(wp), intent(in) :: energy, reference
-        real(wp) :: relative
-
-        relative = drift_floor
-        if (reference /= 0.0_wp) relative = max(abs(energy - reference)/abs(reference), &
-            & drift_floor)
-    end function drift
-
-    !> The gnuplot script drawing every figure from the data file.
-    function script(name, prefix, data_path, residual_names) result(text)
+    !> The gnuplot script of the model figures (data columns as write_model_data writes them).
+    pure function model_script(name, prefix, data_path, run) result(text)
+        !> The run's name, the figures' path less _<figure>.png, the data file
         character(len=*), intent(in) :: name, prefix, data_path
-        !> Header names of the residual columns
-        character(len=*), intent(in) :: residual_names(:)
+        type(run_record_type), intent(in) :: run
         character(len=:), allocatable :: text
         character(len=*), parameter :: nl = new_line("a")
-        character(len=:), allocatable :: data, residuals
-        integer :: k
+        character(len=*), parameter :: angle_names(3) = [character(len=5) :: "ψ", "θ", "φ"]
+        character(len=:), allocatable :: data
+        integer :: c
 
         data = gnuplot_string(data_path)
-        text = "# Figures of " // name // ", written by rollcon plot." // nl &
-            & // "set terminal pngcairo size 800,500 font 'DejaVu Sans,10' noenhanced" // nl &
-            & // "set grid" // nl // "set key tmargin center horizontal" // nl &
-            & // "set xlabel 't [s]'" // nl
-        text = text // output(prefix, "path") &
-            & // title(name // ": paths on the ground (equal axes)") &
+        text = figure_preamble(name) // output(prefix, "path") &
+            & // title(name // ": paths of the centres of mass (equal axes)") &
             & // "set xlabel 'X [m]'" // nl // "set ylabel 'Y [m]'" // nl &
             & // "set size ratio -1" // nl &
-            & // "plot " // data // " using 4:5 with lines lw 1.5 title 'contact point', " &
-            & // data // " using 2:3 with lines lw 1.5 title 'centre'" // nl &
+            & // "plot" // part_curves(data, run, 1, 2, " centre of mass") // nl &
             & // "set size noratio" // nl // "set xlabel 't [s]'" // nl
-        text = text // output(prefix, "theta") &
-            & // title(name // ": tilt θ (π/2 upright, 0 and π flat)") &
-            & // "set ylabel 'θ [rad]'" // nl &
-            & // "plot " // data // " using 1:6 with lines lw 1.5 title 'θ', pi/2 with " &
-            & // "lines dashtype 2 lc 'gray40' title 'upright'" // nl
-        text = text // output(prefix, "rates") &
-            & // title(name // ": precession and spin rates") &
-            & // "set ylabel 'rate [rad/s]'" // nl &
-            & // "plot " // data // " using 1:7 with lines lw 1.5 title 'dψ/dt (precession)', " &
-            & // data // " using 1:8 with lines lw 1.5 title 'dφ/dt (spin)'" // nl
-        text = text // output(prefix, "energy") &
-            & // title(name // ": energy drift (a push changes E on purpose)") &
+        text = text // output(prefix, "height") &
+            & // title(name // ": height Z of the centres of mass") &
+            & // "set ylabel 'Z [m]'" // nl // "plot" // part_curves(data, run, 0, 3, "") // nl
+        text = text // output(prefix, "angles") &
+            & // "set multiplot layout 3,1 title " // gnuplot_string(name // ": Euler angles " &
+            & // "ψ, θ, φ (body-fixed 3-1-3, not wrapped)") // nl // "unset title" // nl
+        do c = 1, 3
+            text = text // "set ylabel '" // trim(angle_names(c)) // " [rad]'" // nl &
+                & // "plot" // part_curves(data, run, 0, 3 + c, "") // nl
+        end do
+        text = text // "unset multiplot" // nl // ucon_figures(name, prefix, data, run)
+    end function model_script
+
+    !> The curves of a quantity of every part, for a plot command: data column x against data
+    !> column y of each part's X, Y, Z, psi, theta, phi (1 .. 6; 0 is t), titled 'part <id>'
+    !> and what.
+    pure function part_curves(data, run, x, y, what) result(curves)
+        character(len=*), intent(in) :: data
+        type(run_record_type), intent(in) :: run
+        integer, intent(in) :: x, y
+        character(len=*), intent(in) :: what
+        character(len=:), allocatable :: curves
+        integer :: p
+
+        curves = ""
+        do p = 1, size(run%layout%part_ids)
+            curves = curves // merge(", ", "  ", p > 1) // data // " using " &
+                & // to_text(column(p, x)) // ":" // to_text(column(p, y)) &
+                & // " with lines lw 1.5 title " &
+                & // gnuplot_string("part " // to_text(run%layout%part_ids(p)) // what)
+        end do
+    contains
+        !> Data column of part p's coordinate c (write_model_data); t for c = 0.
+        pure integer function column(p, c)
+            integer, intent(in) :: p, c
+
+            column = 1
+            if (c > 0) column = 1 + 6*(p - 1) + c
+        end function column
+    end function part_curves
+
+    !> The energy, residual and multiplier figures of the model figures.
+    pure function ucon_figures(name, prefix, data, run) result(text)
+        !> The run's name, the figures' path less _<figure>.png, the data file as a gnuplot
+        !> string
+        character(len=*), intent(in) :: name, prefix, data
+        type(run_record_type), intent(in) :: run
+        character(len=:), allocatable :: text
+        character(len=*), parameter :: nl = new_line("a")
+        character(len=:), allocatable :: residuals, multipliers
+        integer :: k, nucons, drift_column
+
+        nucons = size(run%layout%ucon_ids)
+        drift_column = 2 + 6*size(run%layout%part_ids)
+        residuals = ""
+        multipliers = ""
+        do k = 1, nucons
+            residuals = residuals // merge(", ", "  ", k > 1) // data // " using 1:" &
+                & // to_text(drift_column + 1 + k) // " with lines lw 1.2 title " &
+                & // gnuplot_string("|F_" // to_text(run%layout%ucon_ids(k)) // "|")
+            multipliers = multipliers // merge(", ", "  ", k > 1) // data // " using 1:" &
+                & // to_text(drift_column + 1 + nucons + k) // " with lines lw 1.2 title " &
+                & // gnuplot_string("λ_" // to_text(run%layout%ucon_ids(k)))
+        end do
+        ! gnuplot refuses a plot with no defined point: a model without UCONs gets flat lines
+        if (nucons == 0) then
+            residuals = " " // data // " using 1:(" // to_text(residual_floor) &
+                & // ") with lines title 'no UCON'"
+            multipliers = " " // data // " using 1:(0) with lines title 'no UCON'"
+        end if
+        text = output(prefix, "energy") &
+            & // title(name // ": energy drift (an applied force changes E on purpose)") &
             & // "set ylabel 'relative change of E'" // nl // "set logscale y" // nl &
             & // "set format y '%.0e'" // nl &
-            & // "plot " // data // " using 1:9 with lines lw 1.5 title " &
-            & // "'|E - E(start)|/|E(start)|', " &
-            & // data // " using 1:10 with lines lw 1.5 title '|E - E(end)|/|E(end)|'" // nl
-        residuals = ""
-        do k = 1, size(residual_names)
-            if (k > 1) residuals = residuals // ", "
-            residuals = residuals // data // " using 1:" // to_text(data_columns + k) &
-                & // " with lines lw 1.2 title " // gnuplot_string("|" // trim(residual_names(k)) &
-                & // "|")
-        end do
-        if (size(residual_names) == 0) residuals = "NaN title 'no constraint'"
+            & // "plot " // data // " using 1:" // to_text(drift_column) // " with lines " &
+            & // "lw 1.5 title '|E - E(start)|/|E(start)|', " // data // " using 1:" &
+            & // to_text(drift_column + 1) // " with lines lw 1.5 title '|E - E(end)|/|E(end)|'" &
+            & // nl
         text = text // output(prefix, "residuals") &
-            & // title(name // ": constraint residuals (zero drawn at " &
-            & // to_text(residual_floor) // ")") &
-            & // "set ylabel '|F_k| [m/s]; |height_residual| [m]'" // nl &
-            & // "plot " // residuals // nl &
+            & // title(name // ": UCON residuals (zero drawn at " // to_text(residual_floor) &
+            & // ")") // "set ylabel '|F_k| (each UCON in its own unit)'" // nl &
+            & // "plot" // residuals // nl &
             & // "unset logscale y" // nl // "set format y '% h'" // nl
-        text = text // output(prefix, "force") &
-            & // title(name // ": contact force on the disk") &
-            & // "set ylabel 'force [N]'" // nl &
-            & // "plot " // data // " using 1:11 with lines lw 1.5 title 'normal', " &
-            & // data // " using 1:12 with lines lw 1.5 title 'tangential'" // nl
-        text = text // output(prefix, "friction") &
-            & // title(name // ": friction coefficient needed to roll (|tangential|/normal)") &
-            & // "set ylabel 'μ needed'" // nl &
-            & // "plot " // data // " using 1:13 with lines lw 1.5 title 'μ needed'" // nl &
-            & // "unset output" // nl
-    end function script
-
-    !> The line that sets a figure's title.
-    function title(text) result(line)
-        character(len=*), intent(in) :: text
-        character(len=:), allocatable :: line
-
-        line = "set title " // gnuplot_string(text) // new_line("a")
-    end function title
-
-    !> The line that starts a figure's file.
-    function output(prefix, figure) result(line)
-        character(len=*), intent(in) :: prefix, figure
-        character(len=:), allocatable :: line
-
-        line = "set output " // gnuplot_string(prefix // "_" // figure // ".png") &
-            & // new_line("a")
-    end function output
+        text = text // output(prefix, "multipliers") &
+            & // title(name // ": UCON multipliers (the constraint forces' size)") &
+            & // "set ylabel 'λ_k [N s/m velocity UCON; N position UCON]'" // nl &
+            & // "plot" // multipliers // nl // "unset output" // nl
+    end function ucon_figures
 
 end module rollcon_figures

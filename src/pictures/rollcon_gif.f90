@@ -1,15 +1,21 @@
 ! SPDX-License-Identifier: MIT
-!> An animated GIF of a run, drawn headlessly by gnuplot from an output CSV: the disk in its
-!> pose with a marked sector, over the ground, with the contact path so far.
+!> An animated GIF of a run, drawn headlessly by gnuplot from an output CSV: every part in its
+!> pose (a disk with a marked sector, any other part as its inertia ellipsoid with a marked
+!> lune), over the ground, with each part's path so far (a disk's contact point, another part's
+!> centre of mass).
 module rollcon_gif
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type, fatal_error, stat_io
     use rollcon_text, only : to_text
     use rollcon_output_files, only : close_checked
-    use rollcon_simulation, only : history_type, column_time, column_x, column_y, column_phi
-    use rollcon_csv_reader, only : read_output_csv
-    use rollcon_disk_mesh, only : contact_point, disk_points, face_triangle, is_marked, &
-        & disk_sides, disk_point_count
+    use rollcon_output_layout, only : coord_z
+    use rollcon_run_record, only : run_record_type, read_run, pose, path_point, ground_bounds
+    use rollcon_part_shapes, only : shape_disk, shape_extent
+    use rollcon_disk_mesh, only : disk_points, face_triangle, is_marked, disk_sides, &
+        & disk_point_count
+    use rollcon_ellipsoid_mesh, only : ellipsoid_points, ellipsoid_triangle, &
+        & is_marked_triangle, equator_point, ellipsoid_point_count, ellipsoid_triangle_count, &
+        & ellipsoid_sides
     use rollcon_animation_rows, only : frame_rows
     use rollcon_gnuplot, only : require_gnuplot, run_gnuplot, gnuplot_string, base_name, &
         & remove_file
@@ -24,19 +30,22 @@ module rollcon_gif
     integer, parameter, public :: max_frames = 300
     !> Size of the picture [pixels]
     character(len=*), parameter :: gif_size = "480,360"
-    !> Margin round the motion, in disk radii
+    !> Margin round the motion, in the largest part's half size
     real(wp), parameter :: margin = 1.3_wp
-    !> Colours (RGB) of the disk, its marked sector, its rim and the contact path
+    !> Colours (RGB) of a part, its marked sector or lune, its rim or equator and its path
     character(len=*), parameter :: colour_face = "#8FA6BF", colour_sector = "#E8871E", &
         & colour_rim = "#2C3E50", colour_path = "#C0392B"
+    !> Format of a point in the data files
+    character(len=*), parameter :: point_format = '(2(es16.8e3, 1x), es16.8e3)'
 
 contains
 
     !> Draw the animation of an output CSV as gif_path: gif_fps frames per second, in real time
     !> up to max_frames/gif_fps seconds of motion and faster beyond (max_frames frames); each
-    !> frame is the output row nearest to its time (rollcon_animation_rows). The gnuplot script and
-    !> its data (gif_path less '.gif' + '_gif.gp', '_gif.dat', '_gif_path.dat') are removed
-    !> when gnuplot succeeds and kept when it fails.
+    !> frame is the output row nearest to its time (rollcon_animation_rows). The parts' shapes
+    !> come from the .parts file beside the CSV (rollcon_run_record). The gnuplot script and its
+    !> data (gif_path less '.gif' + '_gif.gp', '_gif.dat', '_gif_path.dat') are removed when
+    !> gnuplot succeeds and kept when it fails.
     subroutine animate_output(csv_path, gif_path, frames, error)
         !> Output CSV of `rollcon run`
         character(len=*), intent(in) :: csv_path
@@ -45,14 +54,14 @@ contains
         !> Number of frames drawn
         integer, intent(out) :: frames
         type(error_type), allocatable, intent(out) :: error
-        type(history_type) :: history
+        type(run_record_type) :: run
         integer, allocatable :: rows(:)
         character(len=:), allocatable :: prefix, script_path, frames_path, path_path
-        real(wp) :: radius, duration, interval
+        real(wp) :: duration, interval
         integer :: unit, stat, size_bytes
 
         frames = 0
-        call read_output_csv(csv_path, history, radius, error)
+        call read_run(csv_path, run, error)
         if (allocated(error)) return
         call require_gnuplot(error)
         if (allocated(error)) return
@@ -61,16 +70,17 @@ contains
         script_path = prefix // "_gif.gp"
         frames_path = prefix // "_gif.dat"
         path_path = prefix // "_gif_path.dat"
-        duration = history%rows(column_time, history%count) - history%rows(column_time, 1)
+        duration = run%history%rows(1, run%history%count) - run%history%rows(1, 1)
         interval = max(1.0_wp/gif_fps, duration/(max_frames - 1))
-        rows = frame_rows(history%column(column_time), interval)
-        call write_frames(frames_path, path_path, history, rows, radius, error)
+        rows = frame_rows(run%history%column(1), interval)
+        call write_frames(frames_path, run, rows, error)
+        if (.not. allocated(error)) call write_paths(path_path, run, error)
         if (allocated(error)) return
         call remove_file(gif_path)
         open(newunit=unit, file=script_path, status="replace", action="write", iostat=stat)
         if (stat == 0) then
             write(unit, '(a)', iostat=stat) script(base_name(csv_path, ".csv"), gif_path, &
-                & frames_path, path_path, history, rows, radius)
+                & frames_path, path_path, run, rows)
             close(unit)
         end if
         if (stat /= 0) then
@@ -94,130 +104,199 @@ contains
         call remove_file(path_path)
     end subroutine animate_output
 
-    !> The data of the frames: for frame k, data set 3k - 3 holds the disk's face as
-    !> triangles (x, y, z) outside the marked sector, data set 3k - 2 those inside it, and data
-    !> set 3k - 1 its rim as a closed line; and the contact point of every row in a second file.
-    subroutine write_frames(frames_path, path_path, history, rows, radius, error)
-        character(len=*), intent(in) :: frames_path, path_path
-        type(history_type), intent(in) :: history
+    !> The data of the frames: for frame k and part p (CSV order), of P parts, data set
+    !> 3 (P (k - 1) + p - 1) holds the part's surface as triangles (x, y, z) outside its marked
+    !> sector or lune, the next data set those inside it, and the next its rim (a disk) or
+    !> equator (an ellipsoid) as a closed line.
+    subroutine write_frames(path, run, rows, error)
+        character(len=*), intent(in) :: path
+        type(run_record_type), intent(in) :: run
         integer, intent(in) :: rows(:)
-        real(wp), intent(in) :: radius
         type(error_type), allocatable, intent(out) :: error
-        real(wp) :: points(3, disk_point_count), c(3)
-        integer :: unit, stat, k, i, j, ids(3), set
+        integer :: unit, stat, k, p
 
-        open(newunit=unit, file=frames_path, status="replace", action="write", &
-            & access="stream", form="formatted", iostat=stat)
+        open(newunit=unit, file=path, status="replace", action="write", access="stream", &
+            & form="formatted", iostat=stat)
         if (stat /= 0) then
-            call fatal_error(error, frames_path // ": cannot write the animation data", stat_io)
+            call fatal_error(error, path // ": cannot write the animation data", stat_io)
             return
         end if
         do k = 1, size(rows)
-            if (stat /= 0) exit
-            ! A disk of no thickness: at this scale the coin's 3 mm would not show.
-            points = disk_points(radius, 0.0_wp, history%rows(column_x:column_phi, rows(k)))
-            do set = 1, 2
-                ! Set 1 is the face outside the marked sector, set 2 the sector.
-                do i = 1, disk_sides
-                    if (is_marked(i) .neqv. set == 2) cycle
-                    ids = face_triangle(1, i) + 1
-                    do j = 1, 3
-                        if (stat == 0) write(unit, '(2(es16.8e3, 1x), es16.8e3)', &
-                            & iostat=stat) points(:, ids(j))
-                    end do
-                    if (stat == 0) write(unit, '(a)', iostat=stat) ""
+            do p = 1, size(run%shapes)
+                if (stat /= 0) exit
+                if (run%shapes(p)%kind == shape_disk) then
+                    call write_disk(unit, run%shapes(p)%radius, pose(run, p, rows(k)), stat)
+                else
+                    call write_ellipsoid(unit, run%shapes(p)%semi_axes, pose(run, p, rows(k)), &
+                        & stat)
+                end if
+            end do
+        end do
+        call close_checked(unit, path, error)
+        if (allocated(error)) return
+        if (stat /= 0) call fatal_error(error, path // ": cannot write the animation data", &
+            & stat_io)
+    end subroutine write_frames
+
+    !> A disk's three data sets (face, sector, rim), of no thickness: at the scale of a motion
+    !> a coin's 3 mm would not show.
+    subroutine write_disk(unit, radius, q, stat)
+        integer, intent(in) :: unit
+        real(wp), intent(in) :: radius, q(6)
+        integer, intent(inout) :: stat
+        real(wp) :: points(3, disk_point_count)
+        integer :: set, i, j, ids(3)
+
+        points = disk_points(radius, 0.0_wp, q)
+        do set = 1, 2
+            do i = 1, disk_sides
+                if (is_marked(i) .neqv. set == 2) cycle
+                ids = face_triangle(1, i) + 1
+                do j = 1, 3
+                    if (stat == 0) write(unit, point_format, iostat=stat) points(:, ids(j))
                 end do
                 if (stat == 0) write(unit, '(a)', iostat=stat) ""
             end do
-            do i = 0, disk_sides
-                if (stat == 0) write(unit, '(2(es16.8e3, 1x), es16.8e3)', iostat=stat) &
-                    & points(:, modulo(i, disk_sides) + 1)
+            if (stat == 0) write(unit, '(a)', iostat=stat) ""
+        end do
+        do i = 0, disk_sides
+            if (stat == 0) write(unit, point_format, iostat=stat) &
+                & points(:, modulo(i, disk_sides) + 1)
+        end do
+        if (stat == 0) write(unit, '(a, /)', iostat=stat) ""
+    end subroutine write_disk
+
+    !> An ellipsoid's three data sets (surface, lune, equator).
+    subroutine write_ellipsoid(unit, semi_axes, q, stat)
+        integer, intent(in) :: unit
+        real(wp), intent(in) :: semi_axes(3), q(6)
+        integer, intent(inout) :: stat
+        real(wp) :: points(3, ellipsoid_point_count)
+        integer :: set, t, j, ids(3)
+
+        points = ellipsoid_points(semi_axes, q)
+        do set = 1, 2
+            do t = 1, ellipsoid_triangle_count
+                if (is_marked_triangle(t) .neqv. set == 2) cycle
+                ids = ellipsoid_triangle(t) + 1
+                do j = 1, 3
+                    if (stat == 0) write(unit, point_format, iostat=stat) points(:, ids(j))
+                end do
+                if (stat == 0) write(unit, '(a)', iostat=stat) ""
+            end do
+            if (stat == 0) write(unit, '(a)', iostat=stat) ""
+        end do
+        do t = 1, ellipsoid_sides + 1
+            if (stat == 0) write(unit, point_format, iostat=stat) &
+                & points(:, equator_point(t) + 1)
+        end do
+        if (stat == 0) write(unit, '(a, /)', iostat=stat) ""
+    end subroutine write_ellipsoid
+
+    !> The path of every part over every row, data set p - 1 for part p.
+    subroutine write_paths(path, run, error)
+        character(len=*), intent(in) :: path
+        type(run_record_type), intent(in) :: run
+        type(error_type), allocatable, intent(out) :: error
+        integer :: unit, stat, p, j
+
+        open(newunit=unit, file=path, status="replace", action="write", access="stream", &
+            & form="formatted", iostat=stat)
+        if (stat /= 0) then
+            call fatal_error(error, path // ": cannot write the animation data", stat_io)
+            return
+        end if
+        do p = 1, size(run%shapes)
+            do j = 1, run%history%count
+                if (stat == 0) write(unit, point_format, iostat=stat) path_point(run, p, j)
             end do
             if (stat == 0) write(unit, '(a, /)', iostat=stat) ""
         end do
-        call close_checked(unit, frames_path, error)
+        call close_checked(unit, path, error)
         if (allocated(error)) return
-        if (stat /= 0) then
-            call fatal_error(error, frames_path // ": cannot write the animation data", stat_io)
-            return
-        end if
-        open(newunit=unit, file=path_path, status="replace", action="write", &
-            & access="stream", form="formatted", iostat=stat)
-        if (stat /= 0) then
-            call fatal_error(error, path_path // ": cannot write the animation data", stat_io)
-            return
-        end if
-        do j = 1, history%count
-            if (stat /= 0) exit
-            ! On the ground: the contact constraint's residual would put it a little below z = 0.
-            c = contact_point(radius, history%rows(column_x:column_phi, j))
-            write(unit, '(2(es16.8e3, 1x), f3.1)', iostat=stat) c(1:2), 0.0_wp
-        end do
-        call close_checked(unit, path_path, error)
-        if (allocated(error)) return
-        if (stat /= 0) call fatal_error(error, path_path // ": cannot write the animation " &
-            & // "data", stat_io)
-    end subroutine write_frames
+        if (stat /= 0) call fatal_error(error, path // ": cannot write the animation data", &
+            & stat_io)
+    end subroutine write_paths
 
     !> The gnuplot script drawing the frames, with fixed axes round the whole motion.
-    function script(name, gif_path, frames_path, path_path, history, rows, radius) result(text)
+    function script(name, gif_path, frames_path, path_path, run, rows) result(text)
         character(len=*), intent(in) :: name, gif_path, frames_path, path_path
-        type(history_type), intent(in) :: history
+        type(run_record_type), intent(in) :: run
         integer, intent(in) :: rows(:)
-        real(wp), intent(in) :: radius
         character(len=:), allocatable :: text
         character(len=*), parameter :: nl = new_line("a")
-        real(wp) :: low(2), high(2), c(3)
-        character(len=:), allocatable :: times, last_rows
+        real(wp) :: low(2), high(2), z_low, z_high, extent
+        character(len=:), allocatable :: times, last_rows, parts, set, optimize, shading
         character(len=32) :: buffer
-        integer :: j, k
+        integer :: k, p
 
-        low = history%rows(column_x:column_y, 1)
-        high = low
-        do j = 1, history%count
-            c = contact_point(radius, history%rows(column_x:column_phi, j))
-            low = min(low, c(1:2), history%rows(column_x:column_y, j))
-            high = max(high, c(1:2), history%rows(column_x:column_y, j))
+        call ground_bounds(run, low, high)
+        extent = maxval(shape_extent(run%shapes))
+        low = low - margin*extent
+        high = high + margin*extent
+        z_low = 0.0_wp
+        z_high = 0.0_wp
+        do p = 1, size(run%shapes)
+            associate (z => run%history%rows(run%layout%part_column(p, coord_z), &
+                & :run%history%count))
+                z_low = min(z_low, minval(z) - shape_extent(run%shapes(p)))
+                z_high = max(z_high, maxval(z) + shape_extent(run%shapes(p)))
+            end associate
         end do
-        low = low - margin*radius
-        high = high + margin*radius
         times = ""
         last_rows = ""
         do k = 1, size(rows)
-            write(buffer, '(f0.3)') history%rows(column_time, rows(k))
+            write(buffer, '(f0.3)') run%history%rows(1, rows(k))
             buffer = adjustl(buffer)
             if (buffer(1:1) == ".") buffer = "0" // buffer
+            if (buffer(1:2) == "-.") buffer = "-0" // buffer(2:)
             times = times // merge(", ", "  ", k > 1) // trim(buffer)
             last_rows = last_rows // merge(", ", "  ", k > 1) // to_text(rows(k) - 1)
         end do
+        parts = to_text(size(run%shapes))
+        ! An ellipsoid is shaded (pm3d lighting) so that its shape reads in 3-D; gnuplot's GIF
+        ! palette optimisation blackens shaded facets, so it is kept for disks alone (unshaded,
+        ! as their faces are flat).
+        optimize = "optimize "
+        shading = ""
+        if (any(run%shapes%kind /= shape_disk)) then
+            optimize = ""
+            shading = "set pm3d lighting primary 0.4 specular 0.0" // nl
+        end if
+        ! data set of part p's surface in frame k (write_frames)
+        set = "(3*(" // parts // "*(k - 1) + p - 1))"
         text = "# Animation of " // name // ", written by rollcon animate." // nl &
             & // "set terminal gif animate delay " // to_text(100/gif_fps) // " loop 0 " &
-            & // "optimize size " // gif_size // " font 'DejaVu Sans,8'" // nl &
+            & // optimize // "size " // gif_size // " font 'DejaVu Sans,8'" // nl &
             & // "set output " // gnuplot_string(gif_path) // nl &
             & // "unset key" // nl // "unset colorbox" // nl &
             & // "set view 60, 12, 1.9" // nl // "set view equal xyz" // nl &
             & // "set origin 0, 0.06" // nl // "set border 15" // nl // "unset ztics" // nl &
             & // "set xrange [" // to_text(low(1)) // ":" // to_text(high(1)) // "]" // nl &
             & // "set yrange [" // to_text(low(2)) // ":" // to_text(high(2)) // "]" // nl &
-            & // "set zrange [" // to_text(-0.05_wp*radius) // ":" // to_text(2.1_wp*radius) &
-            & // "]" // nl &
-            & // "set xyplane at 0" // nl // "set grid xtics ytics" // nl &
+            & // "set zrange [" // to_text(z_low - 0.05_wp*extent) // ":" &
+            & // to_text(z_high + 0.1_wp*extent) // "]" // nl &
+            & // "set xyplane at " // to_text(z_low) // nl // "set grid xtics ytics" // nl &
             & // "set pm3d depthorder" // nl &
+            & // shading &
             & // "array frame_time[" // to_text(size(rows)) // "] = [" // times // "]" // nl &
             & // "array last_row[" // to_text(size(rows)) // "] = [" // last_rows // "]" // nl &
             & // "do for [k = 1:" // to_text(size(rows)) // "] {" // nl &
             & // "    set label 1 sprintf(" &
             & // gnuplot_string(name // "   t = %5.2f s   (X, Y in m)") &
             & // ", frame_time[k]) at screen 0.04, 0.93" // nl &
-            & // "    splot " // gnuplot_string(path_path) // " every ::0::last_row[k] " &
-            & // "using 1:2:3 with lines lw 2 lc rgb '" // colour_path // "', \" // nl &
-            & // "        " // gnuplot_string(frames_path) // " index (3*k - 3) using " &
-            & // "1:2:3 with polygons fillstyle solid 1.0 fillcolor rgb '" // colour_face &
-            & // "', \" // nl // "        " // gnuplot_string(frames_path) // " index (3*k - 2) " &
-            & // "using 1:2:3 with polygons fillstyle solid 1.0 fillcolor rgb '" &
-            & // colour_sector // "', \" // nl &
-            & // "        " // gnuplot_string(frames_path) // " index (3*k - 1) using " &
-            & // "1:2:3 with lines lw 1.5 lc rgb '" // colour_rim // "'" // nl &
+            & // "    splot for [p = 1:" // parts // "] " // gnuplot_string(path_path) &
+            & // " index (p - 1) every ::0::last_row[k] using 1:2:3 with lines lw 2 lc rgb '" &
+            & // colour_path // "', \" // nl &
+            & // "        for [p = 1:" // parts // "] " // gnuplot_string(frames_path) &
+            & // " index " // set // " using 1:2:3 with polygons fillstyle solid 1.0 " &
+            & // "fillcolor rgb '" // colour_face // "', \" // nl &
+            & // "        for [p = 1:" // parts // "] " // gnuplot_string(frames_path) &
+            & // " index (" // set // " + 1) using 1:2:3 with polygons fillstyle solid 1.0 " &
+            & // "fillcolor rgb '" // colour_sector // "', \" // nl &
+            & // "        for [p = 1:" // parts // "] " // gnuplot_string(frames_path) &
+            & // " index (" // set // " + 2) using 1:2:3 with lines lw 1.5 lc rgb '" &
+            & // colour_rim // "'" // nl &
             & // "}" // nl // "unset output" // nl
     end function script
 

@@ -1,13 +1,17 @@
 ! SPDX-License-Identifier: MIT
 !> An animation for ParaView: a VTK time series (a .pvd collection of XML unstructured-grid
-!> .vtu frames) of the disk in its true pose, the ground and the contact path so far.
+!> .vtu frames) of every part in its true pose (a disk as a cylinder, any other part as its
+!> inertia ellipsoid), the ground and each part's path so far.
 module rollcon_vtk
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type, fatal_error, stat_io, stat_input
     use rollcon_text, only : to_text
-    use rollcon_simulation, only : history_type, column_time, column_x, column_phi
-    use rollcon_disk_mesh, only : contact_point, disk_points, face_triangle, rim_quad, &
-        & is_marked, disk_sides, disk_point_count
+    use rollcon_run_record, only : run_record_type, pose, path_point, ground_bounds
+    use rollcon_part_shapes, only : shape_disk, shape_extent
+    use rollcon_disk_mesh, only : disk_points, face_triangle, rim_quad, is_marked, disk_sides, &
+        & disk_point_count
+    use rollcon_ellipsoid_mesh, only : ellipsoid_points, ellipsoid_triangle, is_marked_triangle, &
+        & ellipsoid_point_count, ellipsoid_triangle_count
     use rollcon_animation_rows, only : frame_rows
     use rollcon_output_files, only : close_checked
     use, intrinsic :: ieee_arithmetic, only : ieee_is_finite
@@ -16,34 +20,43 @@ module rollcon_vtk
 
     public :: write_vtk_series, frame_file_name
 
-    !> Values of the cell data array "colour": ground, disk, marked sector of the disk's
-    !> faces, contact path
+    !> Values of the cell data array "colour": ground, part, marked sector (disk faces) or lune
+    !> (ellipsoid), path
     integer, parameter, public :: colour_ground = 0, colour_disk = 1, colour_sector = 2, &
         & colour_path = 3
+    !> Value of the cell data array "part" on the ground's piece (a part's piece holds its id)
+    integer, parameter, public :: ground_part = -1
 
     !> VTK cell types
     integer, parameter :: vtk_vertex = 1, vtk_poly_line = 4, vtk_triangle = 5, vtk_quad = 9
-    !> Margin of the ground square around the motion, in disk radii
+    !> Margin of the ground square around the motion, in the largest part's half size
     real(wp), parameter :: ground_margin = 2.0_wp
 
     !> Integers per line in the connectivity, offsets, types and colour arrays
     integer, parameter :: per_line = 20
 
+    !> One piece of a frame: points and cells
+    type :: piece_type
+        real(wp), allocatable :: points(:, :)
+        integer, allocatable :: connectivity(:), offsets(:), types(:), colours(:)
+        !> Part id of the piece's cells (ground_part for the ground)
+        integer :: part = ground_part
+    end type piece_type
+
 contains
 
     !> Write folder/name.pvd and one folder/name_NNNN.vtu per frame, with a frame every 1/fps
     !> seconds of simulated time: each frame is the output row nearest to that time (nothing is
-    !> interpolated; see rollcon_animation_rows), and the .pvd gives it that row's time. Frame files
-    !> left by an earlier, longer series are removed. The folder must exist.
-    subroutine write_vtk_series(folder, name, history, radius, thickness, fps, frames, error)
+    !> interpolated; see rollcon_animation_rows), and the .pvd gives it that row's time. A frame
+    !> holds one piece per part, in the CSV's order, then one for the ground. Frame files left by
+    !> an earlier, longer series are removed. The folder must exist.
+    subroutine write_vtk_series(folder, name, run, fps, frames, error)
         !> Folder of the series
         character(len=*), intent(in) :: folder
         !> Base name of the files
         character(len=*), intent(in) :: name
-        !> Output rows, as rollcon_simulation keeps them
-        type(history_type), intent(in) :: history
-        !> Disk radius and thickness [m]
-        real(wp), intent(in) :: radius, thickness
+        !> The run: rows and part shapes
+        type(run_record_type), intent(in) :: run
         !> Frames per second of simulated time [1/s], > 0
         real(wp), intent(in) :: fps
         !> Number of frames written
@@ -62,16 +75,16 @@ contains
                 & // "number of frames per second, got " // to_text(fps), stat_input)
             return
         end if
-        if (history%count < 1 .or. .not. (radius > 0.0_wp .and. thickness > 0.0_wp)) then
+        if (run%history%count < 1 .or. .not. allocated(run%shapes)) then
             call fatal_error(error, "VTK output " // folder // "/" // name // ": needs at " &
-                & // "least one output row and a positive radius and thickness", stat_input)
+                & // "least one output row and the shape of every part", stat_input)
             return
         end if
-        rows = frame_rows(history%column(column_time), 1.0_wp/fps)
-        ground = ground_square(history, radius)
+        rows = frame_rows(run%history%column(1), 1.0_wp/fps)
+        ground = ground_square(run)
         do k = 1, size(rows)
-            call write_frame(folder // "/" // frame_file_name(name, k - 1), history, rows(k), &
-                & radius, thickness, ground, error)
+            call write_frame(folder // "/" // frame_file_name(name, k - 1), run, rows(k), &
+                & ground, error)
             if (allocated(error)) return
             frames = k
         end do
@@ -83,7 +96,7 @@ contains
                 & // '"Collection" version="0.1" byte_order="LittleEndian">', '  <Collection>'
             do k = 1, size(rows)
                 if (stat == 0) write(unit, '(a)', iostat=stat) '    <DataSet timestep="' &
-                    & // to_text(history%rows(column_time, rows(k))) // '" file="' &
+                    & // to_text(run%history%rows(1, rows(k))) // '" file="' &
                     & // frame_file_name(name, k - 1) // '"/>'
             end do
             if (stat == 0) write(unit, '(a)', iostat=stat) '  </Collection>', '</VTKFile>'
@@ -121,64 +134,84 @@ contains
         file = name // "_" // trim(digits) // ".vtu"
     end function frame_file_name
 
-    !> The ground square at Z = 0 around every centre and contact point of the run, corners
+    !> The ground square at Z = 0 around every part's centre and path of the run, corners
     !> counter-clockwise seen from above [m].
-    pure function ground_square(history, radius) result(corners)
-        type(history_type), intent(in) :: history
-        real(wp), intent(in) :: radius
+    pure function ground_square(run) result(corners)
+        type(run_record_type), intent(in) :: run
         real(wp) :: corners(3, 4)
-        real(wp) :: low(2), high(2), c(3), middle(2), half
-        integer :: j
+        real(wp) :: low(2), high(2), middle(2), half
 
-        low = history%rows(column_x:column_x + 1, 1)
-        high = low
-        do j = 1, history%count
-            c = contact_point(radius, history%rows(column_x:column_phi, j))
-            low = min(low, c(1:2), history%rows(column_x:column_x + 1, j))
-            high = max(high, c(1:2), history%rows(column_x:column_x + 1, j))
-        end do
+        call ground_bounds(run, low, high)
         middle = 0.5_wp*(low + high)
-        half = 0.5_wp*maxval(high - low) + ground_margin*radius
+        half = 0.5_wp*maxval(high - low) + ground_margin*maxval(shape_extent(run%shapes))
         corners(:, 1) = [middle(1) - half, middle(2) - half, 0.0_wp]
         corners(:, 2) = [middle(1) + half, middle(2) - half, 0.0_wp]
         corners(:, 3) = [middle(1) + half, middle(2) + half, 0.0_wp]
         corners(:, 4) = [middle(1) - half, middle(2) + half, 0.0_wp]
     end function ground_square
 
-    !> One frame: the disk at output row `row`, the ground, and the contact path of rows 1..row.
-    subroutine write_frame(path, history, row, radius, thickness, ground, error)
-        character(len=*), intent(in) :: path
-        type(history_type), intent(in) :: history
-        integer, intent(in) :: row
-        real(wp), intent(in) :: radius, thickness, ground(3, 4)
-        type(error_type), allocatable, intent(out) :: error
-        real(wp) :: points(3, disk_point_count + 4 + row)
-        integer, allocatable :: connectivity(:), offsets(:), types(:), colours(:)
-        character(len=256) :: message
-        integer :: unit, stat, i, j, first
+    !> The piece of part p at output row `row`: its mesh, then its path over rows 1..row.
+    pure function part_piece(run, p, row) result(piece)
+        type(run_record_type), intent(in) :: run
+        integer, intent(in) :: p, row
+        type(piece_type) :: piece
+        integer :: i, j, first
 
-        points(:, :disk_point_count) = disk_points(radius, thickness, &
-            & history%rows(column_x:column_phi, row))
-        points(:, disk_point_count + 1:disk_point_count + 4) = ground
+        piece%part = run%layout%part_ids(p)
+        allocate(piece%connectivity(0), piece%offsets(0), piece%types(0), piece%colours(0))
+        associate (shape => run%shapes(p))
+            if (shape%kind == shape_disk) then
+                first = disk_point_count
+                allocate(piece%points(3, first + row))
+                piece%points(:, :first) = disk_points(shape%radius, shape%thickness, &
+                    & pose(run, p, row))
+                do i = 1, disk_sides
+                    call add_cell(piece, [face_triangle(1, i)], vtk_triangle, &
+                        & merge(colour_sector, colour_disk, is_marked(i)))
+                    call add_cell(piece, [face_triangle(2, i)], vtk_triangle, &
+                        & merge(colour_sector, colour_disk, is_marked(i)))
+                    call add_cell(piece, [rim_quad(i)], vtk_quad, colour_disk)
+                end do
+            else
+                first = ellipsoid_point_count
+                allocate(piece%points(3, first + row))
+                piece%points(:, :first) = ellipsoid_points(shape%semi_axes, pose(run, p, row))
+                do i = 1, ellipsoid_triangle_count
+                    call add_cell(piece, [ellipsoid_triangle(i)], vtk_triangle, &
+                        & merge(colour_sector, colour_disk, is_marked_triangle(i)))
+                end do
+            end if
+        end associate
         do j = 1, row
-            points(:, disk_point_count + 4 + j) = contact_point(radius, &
-                & history%rows(column_x:column_phi, j))
+            piece%points(:, first + j) = path_point(run, p, j)
         end do
+        call add_cell(piece, [(first + j, j = 0, row - 1)], merge(vtk_poly_line, vtk_vertex, &
+            & row > 1), colour_path)
+    end function part_piece
 
-        allocate(connectivity(0), offsets(0), types(0), colours(0))
-        do i = 1, disk_sides
-            call add_cell([face_triangle(1, i)], vtk_triangle, &
-                & merge(colour_sector, colour_disk, is_marked(i)))
-            call add_cell([face_triangle(2, i)], vtk_triangle, &
-                & merge(colour_sector, colour_disk, is_marked(i)))
-            call add_cell([rim_quad(i)], vtk_quad, colour_disk)
-        end do
-        call add_cell([(disk_point_count + i, i = 0, 3)], vtk_quad, colour_ground)
-        first = disk_point_count + 4
+    !> Append a cell of the given zero-based point indices, type and colour.
+    pure subroutine add_cell(piece, ids, type, colour)
+        type(piece_type), intent(inout) :: piece
+        integer, intent(in) :: ids(:), type, colour
+
+        piece%connectivity = [piece%connectivity, ids]
+        piece%offsets = [piece%offsets, size(piece%connectivity)]
+        piece%types = [piece%types, type]
+        piece%colours = [piece%colours, colour]
+    end subroutine add_cell
+
+    !> One frame: every part at output row `row` with its path of rows 1..row, then the ground.
+    subroutine write_frame(path, run, row, ground, error)
+        character(len=*), intent(in) :: path
+        type(run_record_type), intent(in) :: run
+        integer, intent(in) :: row
+        real(wp), intent(in) :: ground(3, 4)
+        type(error_type), allocatable, intent(out) :: error
+        type(piece_type) :: piece
+        character(len=256) :: message
+        integer :: unit, stat, p
+
         message = "a write failed"
-        call add_cell([(first + j, j = 0, row - 1)], merge(vtk_poly_line, vtk_vertex, row > 1), &
-            & colour_path)
-
         open(newunit=unit, file=path, status="replace", action="write", access="stream", &
             & form="formatted", iostat=stat, iomsg=message)
         if (stat == 0) then
@@ -186,43 +219,51 @@ contains
                 & '<VTKFile type="UnstructuredGrid" version="0.1" byte_order="LittleEndian">', &
                 & '  <UnstructuredGrid>', '    <FieldData>', '      <DataArray type="Float64"' &
                 & // ' Name="TimeValue" NumberOfTuples="1" format="ascii">' &
-                & // to_text(history%rows(column_time, row)) // '</DataArray>', &
-                & '    </FieldData>', '    <Piece NumberOfPoints="' // to_text(size(points, 2)) &
-                & // '" NumberOfCells="' // to_text(size(types)) // '">', '      <Points>', &
-                & '        <DataArray type="Float64" NumberOfComponents="3" format="ascii">'
-            do j = 1, size(points, 2)
-                if (stat == 0) write(unit, '(8x, 2(es24.16e3, 1x), es24.16e3)', iostat=stat) &
-                    & points(:, j)
+                & // to_text(run%history%rows(1, row)) // '</DataArray>', '    </FieldData>'
+            do p = 1, size(run%shapes)
+                piece = part_piece(run, p, row)
+                call write_piece(unit, piece, stat)
             end do
-            if (stat == 0) write(unit, '(a)', iostat=stat) '        </DataArray>', &
-                & '      </Points>', '      <Cells>'
-            call write_integers(unit, "Int64", "connectivity", connectivity, stat)
-            call write_integers(unit, "Int64", "offsets", offsets, stat)
-            call write_integers(unit, "UInt8", "types", types, stat)
-            if (stat == 0) write(unit, '(a)', iostat=stat) '      </Cells>', &
-                & '      <CellData Scalars="colour">'
-            call write_integers(unit, "Int32", "colour", colours, stat)
-            if (stat == 0) write(unit, '(a)', iostat=stat) '      </CellData>', '    </Piece>', &
-                & '  </UnstructuredGrid>', '</VTKFile>'
+            piece = piece_type(ground, [0, 1, 2, 3], [4], [vtk_quad], [colour_ground], &
+                & ground_part)
+            call write_piece(unit, piece, stat)
+            if (stat == 0) write(unit, '(a)', iostat=stat) '  </UnstructuredGrid>', '</VTKFile>'
             call close_checked(unit, path, error)
             if (allocated(error)) return
         end if
         if (stat /= 0) call fatal_error(error, path // ": cannot write the VTK frame: " &
             & // trim(message), stat_io)
-
-    contains
-
-        !> Append a cell of the given zero-based point indices, type and colour.
-        subroutine add_cell(ids, type, colour)
-            integer, intent(in) :: ids(:), type, colour
-
-            connectivity = [connectivity, ids]
-            offsets = [offsets, size(connectivity)]
-            types = [types, type]
-            colours = [colours, colour]
-        end subroutine add_cell
-
     end subroutine write_frame
+
+    !> One <Piece>: points, cells, and the cell data "colour" and "part"; nothing once stat is
+    !> non-zero.
+    subroutine write_piece(unit, piece, stat)
+        integer, intent(in) :: unit
+        type(piece_type), intent(in) :: piece
+        integer, intent(inout) :: stat
+        integer :: j
+
+        if (stat /= 0) return
+        write(unit, '(a)', iostat=stat) '    <Piece NumberOfPoints="' &
+            & // to_text(size(piece%points, 2)) // '" NumberOfCells="' &
+            & // to_text(size(piece%types)) // '">', '      <Points>', &
+            & '        <DataArray type="Float64" NumberOfComponents="3" format="ascii">'
+        do j = 1, size(piece%points, 2)
+            if (stat == 0) write(unit, '(8x, 2(es24.16e3, 1x), es24.16e3)', iostat=stat) &
+                & piece%points(:, j)
+        end do
+        if (stat == 0) write(unit, '(a)', iostat=stat) '        </DataArray>', &
+            & '      </Points>', '      <Cells>'
+        call write_integers(unit, "Int64", "connectivity", piece%connectivity, stat)
+        call write_integers(unit, "Int64", "offsets", piece%offsets, stat)
+        call write_integers(unit, "UInt8", "types", piece%types, stat)
+        if (stat == 0) write(unit, '(a)', iostat=stat) '      </Cells>', &
+            & '      <CellData Scalars="colour">'
+        call write_integers(unit, "Int32", "colour", piece%colours, stat)
+        call write_integers(unit, "Int32", "part", [(piece%part, j = 1, size(piece%types))], &
+            & stat)
+        if (stat == 0) write(unit, '(a)', iostat=stat) '      </CellData>', '    </Piece>'
+    end subroutine write_piece
 
     !> A DataArray of integers, per_line to a line; nothing once stat is non-zero.
     subroutine write_integers(unit, type, name, values, stat)

@@ -17,6 +17,8 @@ program tester
     use test_drift, only : collect_drift
     use test_extremes, only : collect_extremes
     use test_pictures, only : collect_pictures
+    use test_part_shapes, only : collect_part_shapes
+    use test_picture_vtk, only : collect_picture_vtk
     use test_user_ucosub, only : collect_user_ucosub
     use test_adm_expression, only : collect_adm_expression
     use test_adm_lexer, only : collect_adm_lexer
@@ -55,6 +57,8 @@ program tester
         & new_testsuite("drift", collect_drift), &
         & new_testsuite("extremes", collect_extremes), &
         & new_testsuite("pictures", collect_pictures), &
+        & new_testsuite("part-shapes", collect_part_shapes), &
+        & new_testsuite("picture-vtk", collect_picture_vtk), &
         & new_testsuite("user-ucosub", collect_user_ucosub), &
         & new_testsuite("adm-expression", collect_adm_expression), &
         & new_testsuite("adm-lexer", collect_adm_lexer), &

@@ -1,33 +1,43 @@
 ! SPDX-License-Identifier: MIT
-!> Helpers of the picture tests: a short run written to a CSV, scratch folders under build/,
-!> and a reader of the VTK files we write that counts what they hold.
+!> Helpers of the picture tests: hand-made runs written as an output CSV through the output
+!> layout (a disk scene's, with its contact columns, and a model of two parts), scratch folders
+!> under build/, and a reader of the VTK files we write that counts what they hold.
 module picture_files
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type, fatal_error
+    use rollcon_output_layout, only : new_output_layout, name_length, coord_x, contact_fx, &
+        & contact_fy, contact_fz, contact_normal, contact_mu, contact_height
+    use rollcon_part_shapes, only : write_part_shapes, parts_path, shape_disk, shape_ellipsoid
+    use rollcon_run_record, only : run_record_type
     use rollcon_scene, only : scene_type
-    use rollcon_problem, only : problem_type
-    use rollcon_disk_scene, only : build_disk_problem
-    use rollcon_disk_reference, only : rolling_disk_ucosub
-    use rollcon_simulation, only : run_options_type, run_summary_type, history_type, simulate, &
-        & csv_header
     use motion_runs, only : default_scene
     implicit none
     private
 
-    public :: picture_scene, run_to_csv, make_folder, remove_folder, write_lines
-    public :: vtu_contents_type, read_vtu, read_pvd, command_available
+    public :: picture_scene, disk_run, two_part_run, falling_run, write_run, make_folder, remove_folder, &
+        & write_lines
+    public :: vtu_piece_type, read_vtu, read_pvd, command_available
 
-    !> What a .vtu file declares and holds
-    type :: vtu_contents_type
+    !> Disk radius and thickness of the hand-made runs [m]
+    real(wp), parameter, public :: disk_radius = 0.1_wp, disk_thickness = 0.003_wp
+    !> Semi-axes of the two-part run's ellipsoid, part 7 [m]
+    real(wp), parameter, public :: ellipsoid_axes(3) = [0.05_wp, 0.04_wp, 0.03_wp]
+    !> Rows of the hand-made runs: 0 to 0.5 s every 0.01 s
+    integer, parameter, public :: run_rows = 51
+    !> Time between rows [s]
+    real(wp), parameter :: row_step = 0.01_wp
+
+    !> What one <Piece> of a .vtu file declares and holds
+    type :: vtu_piece_type
         !> NumberOfPoints and NumberOfCells of the piece
         integer :: declared_points = -1, declared_cells = -1
-        !> Values in the Points, connectivity, offsets, types and colour arrays
+        !> Values in the Points, connectivity, offsets, types, colour and part arrays
         integer :: point_values = 0, connectivity_values = 0, offset_values = 0, &
-            & type_values = 0, colour_values = 0
-        !> The points, the connectivity and the offsets
+            & type_values = 0, colour_values = 0, part_values = 0
+        !> The points, the connectivity, the offsets and the part ids of the cells
         real(wp), allocatable :: points(:, :)
-        integer, allocatable :: connectivity(:), offsets(:)
-    end type vtu_contents_type
+        integer, allocatable :: connectivity(:), offsets(:), parts(:)
+    end type vtu_piece_type
 
 contains
 
@@ -44,27 +54,134 @@ contains
         scene%run%output_step = 0.01_wp
     end function picture_scene
 
-    !> Simulate scene, writing csv_path, and keep the rows; header gets the CSV's columns.
-    subroutine run_to_csv(scene, csv_path, history, header, error)
-        type(scene_type), intent(in) :: scene
-        character(len=*), intent(in) :: csv_path
-        type(history_type), intent(out) :: history
-        character(len=16), allocatable, intent(out) :: header(:)
-        type(error_type), allocatable, intent(out) :: error
-        type(problem_type), target :: problem
-        type(run_options_type) :: options
-        type(run_summary_type) :: summary
-        real(wp) :: q0(6), u0(6)
+    !> A disk scene's run (the contact columns, UCONs 1, 2, 3): the disk of radius disk_radius
+    !> at constant tilt theta = 1.2 rad precessing at 2 rad/s and spinning at -6 rad/s, its
+    !> contact point on a circle of radius 0.3 m and its centre at Z = R sin(theta), as the
+    !> contact requires. Energy, residuals, multipliers and forces are smooth made-up numbers.
+    function disk_run() result(run)
+        type(run_record_type) :: run
+        real(wp), parameter :: theta = 1.2_wp, omega = 2.0_wp, spin = -6.0_wp, circle = 0.3_wp
+        real(wp) :: row(26), t, psi, e_y2(3), e_y2_dot(3)
+        integer :: j, k
 
-        call build_disk_problem(scene, rolling_disk_ucosub, problem, q0, u0, error)
-        if (allocated(error)) return
-        options%end_time = scene%run%end_time
-        options%output_step = scene%run%output_step
-        options%progress = .false.
-        options%csv_path = csv_path
-        header = csv_header(problem)
-        call simulate(problem, q0, u0, options, summary, error, history)
-    end subroutine run_to_csv
+        run%layout = new_output_layout([1], [1, 2, 3], .true.)
+        allocate(run%shapes(1))
+        run%shapes(1)%id = 1
+        run%shapes(1)%kind = shape_disk
+        run%shapes(1)%radius = disk_radius
+        run%shapes(1)%thickness = disk_thickness
+        do j = 1, run_rows
+            t = row_step*real(j - 1, wp)
+            psi = omega*t
+            e_y2 = [-cos(theta)*sin(psi), cos(theta)*cos(psi), sin(theta)]
+            e_y2_dot = omega*[-cos(theta)*cos(psi), -cos(theta)*sin(psi), 0.0_wp]
+            row = 0.0_wp
+            row(1) = t
+            associate (c => run%layout%part_column(1, coord_x))
+                row(c:c + 2) = circle*[sin(psi), 1.0_wp - cos(psi), 0.0_wp] + disk_radius*e_y2
+                row(c + 3:c + 5) = [psi, theta, spin*t]
+                row(c + 6:c + 8) = circle*omega*[cos(psi), sin(psi), 0.0_wp] &
+                    & + disk_radius*e_y2_dot
+                row(c + 9:c + 11) = [omega, 0.0_wp, spin]
+            end associate
+            row(run%layout%energy_column()) = 0.7_wp + 1.0e-9_wp*t
+            do k = 1, 3
+                row(run%layout%residual_column(k)) = 1.0e-10_wp*sin(real(k, wp)*t)
+                row(run%layout%multiplier_column(k)) = 0.5_wp*real(k, wp)*cos(t)
+            end do
+            row(run%layout%contact_column(contact_fx)) = -0.3_wp*sin(psi)
+            row(run%layout%contact_column(contact_fy)) = 0.3_wp*cos(psi)
+            row(run%layout%contact_column(contact_fz)) = 7.2_wp
+            row(run%layout%contact_column(contact_normal)) = 7.2_wp
+            row(run%layout%contact_column(contact_mu)) = 0.3_wp/7.2_wp
+            row(run%layout%contact_column(contact_height)) = 1.0e-12_wp*t
+            call run%history%add(row)
+        end do
+    end function disk_run
+
+    !> A model of two parts and two UCONs (ids 3 and 5), no contact columns: part 1 a disk
+    !> rolling upright along X at 0.2 m/s, part 7 the ellipsoid ellipsoid_axes circling the
+    !> origin at 2 rad/s while it bobs, nods and spins.
+    function two_part_run() result(run)
+        type(run_record_type) :: run
+        real(wp) :: row(2 + 24 + 4), t
+        integer :: j, c
+
+        run%layout = new_output_layout([1, 7], [3, 5], .false.)
+        allocate(run%shapes(2))
+        run%shapes(1)%id = 1
+        run%shapes(1)%kind = shape_disk
+        run%shapes(1)%radius = disk_radius
+        run%shapes(1)%thickness = disk_thickness
+        run%shapes(2)%id = 7
+        run%shapes(2)%kind = shape_ellipsoid
+        run%shapes(2)%semi_axes = ellipsoid_axes
+        do j = 1, run_rows
+            t = row_step*real(j - 1, wp)
+            row = 0.0_wp
+            row(1) = t
+            c = run%layout%part_column(1, coord_x)
+            row(c:c + 11) = [0.2_wp*t, 0.0_wp, disk_radius, 0.0_wp, 2.0_wp*atan(1.0_wp), &
+                & -2.0_wp*t, 0.2_wp, 0.0_wp, 0.0_wp, 0.0_wp, 0.0_wp, -2.0_wp]
+            c = run%layout%part_column(2, coord_x)
+            row(c:c + 5) = [0.3_wp*cos(2.0_wp*t), 0.3_wp*sin(2.0_wp*t), &
+                & 0.2_wp + 0.05_wp*sin(3.0_wp*t), 2.0_wp*t, 1.0_wp + 0.2_wp*sin(t), 5.0_wp*t]
+            row(c + 6:c + 11) = [-0.6_wp*sin(2.0_wp*t), 0.6_wp*cos(2.0_wp*t), &
+                & 0.15_wp*cos(3.0_wp*t), 2.0_wp, 0.2_wp*cos(t), 5.0_wp]
+            row(run%layout%energy_column()) = 1.5_wp - 2.0e-9_wp*t
+            row(run%layout%residual_column(1)) = 3.0e-11_wp*t
+            row(run%layout%residual_column(2)) = 0.0_wp
+            row(run%layout%multiplier_column(1)) = -0.4_wp
+            row(run%layout%multiplier_column(2)) = 1.2_wp*sin(t)
+            call run%history%add(row)
+        end do
+    end function two_part_run
+
+    !> A model of one part (id 2, the ellipsoid ellipsoid_axes) and no UCON, falling freely from
+    !> Z = 1 m and turning about its body z axis.
+    function falling_run() result(run)
+        type(run_record_type) :: run
+        real(wp), parameter :: g = 9.81_wp
+        real(wp) :: row(14), t
+        integer :: j
+
+        run%layout = new_output_layout([2], [integer ::], .false.)
+        allocate(run%shapes(1))
+        run%shapes(1)%id = 2
+        run%shapes(1)%kind = shape_ellipsoid
+        run%shapes(1)%semi_axes = ellipsoid_axes
+        do j = 1, run_rows
+            t = row_step*real(j - 1, wp)
+            row = [t, 0.0_wp, 0.0_wp, 1.0_wp - 0.5_wp*g*t**2, 0.0_wp, 1.0_wp, 3.0_wp*t, &
+                & 0.0_wp, 0.0_wp, -g*t, 0.0_wp, 0.0_wp, 3.0_wp, 1.0_wp]
+            call run%history%add(row)
+        end do
+    end function falling_run
+
+    !> Write a run's CSV as `rollcon run` does (the layout's header, 17 significant digits),
+    !> and, when parts is true, its part shapes beside it (DIR/NAME.parts).
+    subroutine write_run(csv_path, run, parts, error)
+        character(len=*), intent(in) :: csv_path
+        type(run_record_type), intent(in) :: run
+        logical, intent(in) :: parts
+        type(error_type), allocatable, intent(out) :: error
+        character(len=:), allocatable :: header
+        character(len=name_length), allocatable :: names(:)
+        integer :: unit, j, k
+
+        names = run%layout%header()
+        header = trim(names(1))
+        do k = 2, size(names)
+            header = header // "," // trim(names(k))
+        end do
+        open(newunit=unit, file=csv_path, status="replace", action="write")
+        write(unit, '(a)') header
+        do j = 1, run%history%count
+            write(unit, '(*(es24.16e3, :, ","))') run%history%rows(:, j)
+        end do
+        close(unit)
+        if (parts) call write_part_shapes(parts_path(csv_path), run%shapes, error)
+    end subroutine write_run
 
     !> True when a shell command (e.g. 'python3') is on the PATH.
     function command_available(name) result(available)
@@ -129,18 +246,20 @@ contains
         close(unit)
     end subroutine read_pvd
 
-    !> Read a .vtu frame: the piece's declared sizes and every value of its data arrays.
+    !> Read a .vtu frame: each piece's declared sizes and every value of its data arrays.
     !> Relies on our layout: each DataArray's start and end tag on a line of its own.
-    subroutine read_vtu(path, vtu, error)
+    subroutine read_vtu(path, pieces, error)
         character(len=*), intent(in) :: path
-        type(vtu_contents_type), intent(out) :: vtu
+        type(vtu_piece_type), allocatable, intent(out) :: pieces(:)
         type(error_type), allocatable, intent(out) :: error
         character(len=512) :: line
         character(len=:), allocatable :: name, values
         real(wp), allocatable :: numbers(:)
+        type(vtu_piece_type) :: piece
         integer :: unit, stat, count
         logical :: in_piece
 
+        allocate(pieces(0))
         open(newunit=unit, file=path, status="old", action="read", iostat=stat)
         if (stat /= 0) then
             call fatal_error(error, path // ": cannot open")
@@ -152,8 +271,13 @@ contains
             if (stat /= 0) exit
             if (index(line, "<Piece") > 0) then
                 in_piece = .true.
-                vtu%declared_points = nint(real_attribute(line, "NumberOfPoints"))
-                vtu%declared_cells = nint(real_attribute(line, "NumberOfCells"))
+                piece = vtu_piece_type()
+                piece%declared_points = nint(real_attribute(line, "NumberOfPoints"))
+                piece%declared_cells = nint(real_attribute(line, "NumberOfCells"))
+            end if
+            if (index(line, "</Piece>") > 0) then
+                in_piece = .false.
+                pieces = [pieces, piece]
             end if
             if (.not. in_piece .or. index(line, "<DataArray") == 0) cycle
             name = text_attribute(line, "Name")
@@ -173,18 +297,21 @@ contains
             end if
             select case (name)
             case ("Points")
-                vtu%point_values = count
-                vtu%points = reshape(numbers, [3, count/3])
+                piece%point_values = count
+                piece%points = reshape(numbers, [3, count/3])
             case ("connectivity")
-                vtu%connectivity_values = count
-                vtu%connectivity = nint(numbers)
+                piece%connectivity_values = count
+                piece%connectivity = nint(numbers)
             case ("offsets")
-                vtu%offset_values = count
-                vtu%offsets = nint(numbers)
+                piece%offset_values = count
+                piece%offsets = nint(numbers)
             case ("types")
-                vtu%type_values = count
+                piece%type_values = count
             case ("colour")
-                vtu%colour_values = count
+                piece%colour_values = count
+            case ("part")
+                piece%part_values = count
+                piece%parts = nint(numbers)
             end select
             deallocate(numbers)
         end do

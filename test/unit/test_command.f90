@@ -6,7 +6,8 @@ module test_command
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type
     use rollcon_text, only : to_text
-    use rollcon_simulation, only : history_type, column_z
+    use rollcon_simulation, only : history_type
+    use rollcon_output_layout, only : output_layout_type, coord_z
     use rollcon_csv_reader, only : read_output_csv
     use rollcon_testing, only : unittest_type, new_unittest, check
     use picture_files, only : make_folder, remove_folder, write_lines
@@ -181,8 +182,8 @@ contains
         type(error_type), allocatable, intent(out) :: error
         character(len=:), allocatable :: program, command
         type(history_type) :: history
-        real(wp) :: radius
-        integer :: status
+        type(output_layout_type) :: layout
+        integer :: status, z
 
         call rollcon_program(program, error)
         if (allocated(error)) return
@@ -200,14 +201,15 @@ contains
             & // "> /dev/null 2>&1; wait"
         call run_rollcon(program, command, scratch // "/both.out", scratch // "/both.err", &
             & status)
-        call read_output_csv(scratch // "/out/s.csv", history, radius, error)
+        call read_output_csv(scratch // "/out/s.csv", layout, history, error)
         call remove_folder(scratch)
         if (allocated(error)) return
-        call check(error, history%count == 2001 .and. all(abs(history%rows(column_z, &
-            & :history%count) - history%rows(column_z, 1)) <= tol_same_disk &
-            & *history%rows(column_z, 1)), "rows " // to_text(history%count) // " of 2001; Z " &
-            & // to_text(minval(history%rows(column_z, :history%count))) // " to " &
-            & // to_text(maxval(history%rows(column_z, :history%count))) // " m")
+        z = layout%part_column(1, coord_z)
+        call check(error, history%count == 2001 .and. all(abs(history%rows(z, &
+            & :history%count) - history%rows(z, 1)) <= tol_same_disk &
+            & *history%rows(z, 1)), "rows " // to_text(history%count) // " of 2001; Z " &
+            & // to_text(minval(history%rows(z, :history%count))) // " to " &
+            & // to_text(maxval(history%rows(z, :history%count))) // " m")
     end subroutine test_concurrent
 
     !> On a 512 KiB filesystem the coin's CSV (about 550 kB) does not fit: the run fails,

@@ -1,17 +1,19 @@
 ! SPDX-License-Identifier: MIT
-!> Fuzz test of the CSV reader: seeded mutations of a CSV written by a real run (bytes
+!> Fuzz test of the CSV reader: seeded mutations of a disk scene's CSV (bytes
 !> flipped, lines cut, duplicated, swapped, deleted, numbers replaced by extremes), each of
 !> which must be refused cleanly (an error naming the file and line) or read cleanly (finite
-!> values of bounded size, times in order, a positive radius); never a crash or a hang.
+!> values of bounded size, times in order, a layout of the disk's columns); never a crash or a
+!> hang.
 module test_csv_fuzz
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type
     use rollcon_text, only : to_text
-    use rollcon_simulation, only : history_type, column_time
+    use rollcon_simulation, only : history_type
+    use rollcon_output_layout, only : output_layout_type
     use rollcon_csv_reader, only : read_output_csv, largest_value
-    use rollcon_scene, only : scene_type
+    use rollcon_run_record, only : run_record_type
     use rollcon_testing, only : unittest_type, new_unittest, check
-    use picture_files, only : picture_scene, run_to_csv, make_folder, remove_folder
+    use picture_files, only : disk_run, write_run, make_folder, remove_folder
     use, intrinsic :: ieee_arithmetic, only : ieee_is_finite
     implicit none
     private
@@ -50,13 +52,12 @@ contains
         type(error_type), allocatable, intent(out) :: error
         character(len=*), parameter :: base_path = scratch // "/base.csv"
         character(len=:), allocatable :: path
-        type(scene_type) :: scene
+        type(run_record_type) :: run
+        type(output_layout_type) :: layout
         type(history_type) :: history
         type(line_type), allocatable :: base(:), lines(:)
-        character(len=16), allocatable :: header(:)
         type(error_type), allocatable :: failure
         integer, allocatable :: seed_values(:)
-        real(wp) :: radius
         integer :: k, n_seed, refused
         logical :: memory
 
@@ -65,9 +66,10 @@ contains
         inquire(file="/dev/shm/.", exist=memory)
         path = scratch // "/mutated.csv"
         if (memory) path = "/dev/shm/rollcon_test_csv_fuzz_" // process_text() // ".csv"
-        scene = picture_scene()
-        scene%run%end_time = 0.03_wp
-        call run_to_csv(scene, base_path, history, header, error)
+        ! four rows: 0 to 0.03 s
+        run = disk_run()
+        run%history%count = 4
+        call write_run(base_path, run, .false., error)
         if (allocated(error)) return
         call read_lines(base_path, base)
         call random_seed(size=n_seed)
@@ -79,7 +81,7 @@ contains
             lines = base
             call mutate(lines)
             call write_file(path, lines)
-            call read_output_csv(path, history, radius, failure)
+            call read_output_csv(path, layout, history, failure)
             if (allocated(failure)) then
                 refused = refused + 1
                 call check(error, index(failure%message, path // ":") == 1 .and. &
@@ -87,7 +89,7 @@ contains
                     & == 0, "case " // to_text(k) // ": refusal without file:line: " &
                     & // failure%message)
             else
-                call check_history(error, k, history, radius)
+                call check_history(error, k, layout, history)
             end if
             if (allocated(error)) then
                 ! the failing file is kept for a look
@@ -102,12 +104,13 @@ contains
             & // to_text(cases) // " mutated files refused")
     end subroutine test_mutations
 
-    !> A history read cleanly: finite values within bounds, times in order, a radius.
-    subroutine check_history(error, k, history, radius)
+    !> A history read cleanly: finite values within bounds, times in order, and a layout of
+    !> the columns a disk scene writes (a mutation that changes a name is refused).
+    subroutine check_history(error, k, layout, history)
         type(error_type), allocatable, intent(out) :: error
         integer, intent(in) :: k
+        type(output_layout_type), intent(in) :: layout
         type(history_type), intent(in) :: history
-        real(wp), intent(in) :: radius
 
         associate (rows => history%rows(:, :history%count))
             call check(error, history%count >= 1 .and. all(ieee_is_finite(rows)) .and. &
@@ -115,12 +118,13 @@ contains
                 & // ": accepted a value that is not finite or beyond " &
                 & // to_text(largest_value))
             if (allocated(error)) return
-            call check(error, all(rows(column_time, 2:) >= rows(column_time, &
-                & :history%count - 1)), "case " // to_text(k) // ": times out of order")
+            call check(error, all(rows(1, 2:) >= rows(1, :history%count - 1)), "case " &
+                & // to_text(k) // ": times out of order")
             if (allocated(error)) return
         end associate
-        call check(error, ieee_is_finite(radius) .and. radius > 0.0_wp, "case " // to_text(k) &
-            & // ": radius " // to_text(radius))
+        call check(error, all(layout%part_ids == [1]) .and. size(layout%ucon_ids) == 3 .and. &
+            & layout%contact .and. size(history%rows, 1) == layout%columns(), "case " &
+            & // to_text(k) // ": a layout other than the disk scene's was accepted")
     end subroutine check_history
 
     !> One to three random mutations.

@@ -18,10 +18,11 @@ module test_output
     use rollcon_figures, only : plot_output, figure_file, figure_names
     use rollcon_gif, only : animate_output
     use rollcon_testing, only : unittest_type, new_unittest, check, skip_test
-    use picture_files, only : picture_scene, make_folder, remove_folder, write_lines, run_to_csv
+    use picture_files, only : picture_scene, make_folder, remove_folder, write_lines, disk_run, &
+        & write_run
+    use rollcon_run_record, only : run_record_type, read_run
     use command_runs, only : file_text, file_exists, line_count, mount_small, unmount
     use rollcon_vtk, only : write_vtk_series
-    use rollcon_simulation, only : history_type
     implicit none
     private
 
@@ -192,10 +193,11 @@ contains
         logical :: left
 
         call make_folder(scratch)
-        call write_lines(path, [character(len=200) :: "t,X,Y,Z,psi,theta,phi,Xdot,Ydot,Zdot," &
-            & // "psidot,thetadot,phidot,E,Fx,Fy,Fz,Fn,mu_needed,F1", &
-            & "0,0,0,0.1,0,1.5707963267948966,0,0,0,0,0,0,0,0,0,0,0,0,0,0", &
-            & "0.1,1e308,0,0.1,0,1.5707963267948966,0,0,0,0,0,0,0,0,0,0,0,0,0,0"])
+        call write_lines(path, [character(len=200) :: "t,X_1,Y_1,Z_1,psi_1,theta_1,phi_1," &
+            & // "Xdot_1,Ydot_1,Zdot_1,psidot_1,thetadot_1,phidot_1,E,F_1,lambda_1,Fx,Fy,Fz,Fn," &
+            & // "mu_needed,height_residual", &
+            & "0,0,0,0.1,0,1.5707963267948966,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0", &
+            & "0.1,1e308,0,0.1,0,1.5707963267948966,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0"])
         call plot_output(path, scratch, plot_failure)
         call animate_output(path, scratch // "/huge.gif", frames, animate_failure)
         left = file_exists(scratch // "/huge.gif")
@@ -216,13 +218,13 @@ contains
     subroutine test_vtk_full_disk(error)
         type(error_type), allocatable, intent(out) :: error
         character(len=*), parameter :: mount_point = scratch // "/small"
-        type(history_type) :: history
+        type(run_record_type) :: run
         type(error_type), allocatable :: failure
-        character(len=16), allocatable :: header(:)
         integer :: frames
 
         call make_folder(scratch)
-        call run_to_csv(picture_scene(), scratch // "/vtk.csv", history, header, error)
+        call write_run(scratch // "/vtk.csv", disk_run(), .true., error)
+        if (.not. allocated(error)) call read_run(scratch // "/vtk.csv", run, error)
         if (allocated(error)) return
         call mount_small(mount_point, "64k", error)
         if (allocated(error)) then
@@ -230,8 +232,7 @@ contains
             return
         end if
         ! 0.5 s at 100 frames per second: 51 frames of about 30 kB each
-        call write_vtk_series(mount_point, "vtk", history, 0.1_wp, 0.003_wp, 100.0_wp, &
-            & frames, failure)
+        call write_vtk_series(mount_point, "vtk", run, 100.0_wp, frames, failure)
         call unmount(mount_point)
         call remove_folder(scratch)
         call check(error, allocated(failure), "wrote " // to_text(frames) // " frames on a " &

@@ -1,22 +1,22 @@
 ! SPDX-License-Identifier: MIT
-!> Tests of the pictures of a run: frame choice, reading the CSV back (and refusing a bad one),
-!> the VTK time series for ParaView, and the gnuplot PNG figures and GIF.
+!> Tests of the pictures of a run: frame choice, reading the CSV back through the output layout
+!> (and refusing a bad one), and the gnuplot PNG figures and GIF, for a disk scene's CSV and
+!> for a model of two parts (a disk and an ellipsoid). The VTK series: test_picture_vtk.
 module test_pictures
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type
     use rollcon_text, only : to_text
-    use rollcon_scene, only : scene_type
-    use rollcon_simulation, only : history_type, column_time, column_x, column_z, column_phi
+    use rollcon_simulation, only : history_type
+    use rollcon_output_layout, only : output_layout_type, read_layout, name_length
     use rollcon_animation_rows, only : frame_rows
-    use rollcon_csv_reader, only : read_output_csv, standard_columns, name_length
-    use rollcon_disk_mesh, only : contact_point, disk_point_count
-    use rollcon_vtk, only : write_vtk_series, frame_file_name
-    use rollcon_figures, only : plot_output, figure_file, figure_names
+    use rollcon_csv_reader, only : read_output_csv
+    use rollcon_run_record, only : run_record_type
+    use rollcon_figures, only : plot_output, figure_file, figure_names, model_figure_names
     use rollcon_gif, only : animate_output
     use rollcon_gnuplot, only : gnuplot_available
     use rollcon_testing, only : unittest_type, new_unittest, check, skip_test
-    use picture_files, only : picture_scene, run_to_csv, make_folder, remove_folder, &
-        & write_lines, vtu_contents_type, read_vtu, read_pvd, command_available
+    use picture_files, only : disk_run, two_part_run, falling_run, write_run, make_folder, &
+        & remove_folder, write_lines
     implicit none
     private
 
@@ -26,10 +26,6 @@ module test_pictures
     character(len=*), parameter :: scratch = "build/test_pictures"
     !> The CSV carries 17 significant digits: values read back are the values written
     real(wp), parameter :: tol_exact = 0.0_wp
-    !> Mean of the disk's mesh points against its centre: a few roundings of 1 m [m]
-    real(wp), parameter :: tol_centre = 1.0e-12_wp
-    !> Frame rate of the VTK tests [1/s]: 0.5 s of motion gives 6 frames
-    real(wp), parameter :: fps = 10.0_wp
 
 contains
 
@@ -39,14 +35,13 @@ contains
 
         allocate(tests(0))
         tests = [new_unittest("frame-rows-nearest-once", test_frame_rows), &
-            & new_unittest("csv-reads-back-a-run", test_csv_round_trip), &
+            & new_unittest("csv-reads-back-two-parts", test_csv_round_trip), &
             & new_unittest("csv-missing-file", test_csv_missing), &
             & new_unittest("csv-bad-header", test_csv_header), &
             & new_unittest("csv-bad-rows", test_csv_rows), &
-            & new_unittest("vtk-frames-are-xml", test_vtk_xml), &
-            & new_unittest("vtk-declared-sizes", test_vtk_sizes), &
-            & new_unittest("vtk-disk-centre-and-path", test_vtk_centre), &
-            & new_unittest("plot-writes-pngs", test_plot_pngs), &
+            & new_unittest("plot-disk-scene-figures", test_plot_disk), &
+            & new_unittest("plot-two-part-figures", test_plot_model), &
+            & new_unittest("plot-model-without-ucon", test_plot_no_ucon), &
             & new_unittest("plot-missing-csv", test_plot_missing), &
             & new_unittest("plot-malformed-csv", test_plot_malformed), &
             & new_unittest("animate-writes-gif", test_gif)]
@@ -73,64 +68,91 @@ contains
             & "nearest rows to 0, 0.25, 0.5, 0.75, 1: " // to_text(size(rows)) // " frames")
     end subroutine test_frame_rows
 
-    !> The reader gives back what simulate wrote, and its standard columns are simulate's.
+    !> The reader gives back the layout and every value of a two-part CSV.
     subroutine test_csv_round_trip(error)
         type(error_type), allocatable, intent(out) :: error
-        type(history_type) :: history, read_back
-        type(scene_type) :: scene
-        character(len=16), allocatable :: header(:)
-        character(len=name_length), allocatable :: names(:)
-        real(wp) :: radius
-        integer :: i
+        type(run_record_type) :: written
+        type(output_layout_type) :: layout
+        type(history_type) :: read_back
 
         call make_folder(scratch)
-        scene = picture_scene()
-        call run_to_csv(scene, scratch // "/round.csv", history, header, error)
-        if (.not. allocated(error)) call read_output_csv(scratch // "/round.csv", read_back, &
-            & radius, error, names)
+        written = two_part_run()
+        call write_run(scratch // "/round.csv", written, .false., error)
+        if (.not. allocated(error)) call read_output_csv(scratch // "/round.csv", layout, &
+            & read_back, error)
         call remove_folder(scratch)
         if (allocated(error)) return
-        do i = 1, size(standard_columns)
-            call check(error, header(i) == standard_columns(i) .and. names(i) == header(i), &
-                & "column " // to_text(i) // ": simulate writes " // trim(header(i)) &
-                & // ", the reader expects " // trim(standard_columns(i)))
-            if (allocated(error)) return
-        end do
-        call check(error, read_back%count == history%count .and. size(names) == size(header), &
-            & "rows or columns read back: " // to_text(read_back%count))
+        call check(error, all(layout%part_ids == [1, 7]) .and. all(layout%ucon_ids == [3, 5]) &
+            & .and. .not. layout%contact, "layout read back: parts " &
+            & // to_text(size(layout%part_ids)) // ", UCONs " // to_text(size(layout%ucon_ids)))
         if (allocated(error)) return
-        call check(error, reshape(read_back%rows(:, :read_back%count), [size(header) &
-            & *read_back%count]), reshape(history%rows(:, :history%count), &
-            & [size(header)*history%count]), "values read back", abs_tol=tol_exact)
+        call check(error, read_back%count == written%history%count .and. &
+            & size(read_back%rows, 1) == layout%columns(), "rows or columns read back: " &
+            & // to_text(read_back%count))
         if (allocated(error)) return
-        call check(error, radius, scene%disk%radius, "radius inferred from Z/sin(theta)", &
-            & rel_tol=4.0_wp*epsilon(1.0_wp))
+        call check(error, reshape(read_back%rows(:, :read_back%count), [layout%columns() &
+            & *read_back%count]), reshape(written%history%rows(:, :read_back%count), &
+            & [layout%columns()*read_back%count]), "values read back", abs_tol=tol_exact)
     end subroutine test_csv_round_trip
 
     !> A missing CSV: the message names the file.
     subroutine test_csv_missing(error)
         type(error_type), allocatable, intent(out) :: error
         type(error_type), allocatable :: failure
+        type(output_layout_type) :: layout
         type(history_type) :: history
-        real(wp) :: radius
 
-        call read_output_csv("build/no-such-run.csv", history, radius, failure)
+        call read_output_csv("build/no-such-run.csv", layout, history, failure)
         call expect_message(error, failure, "build/no-such-run.csv: cannot open")
     end subroutine test_csv_missing
 
-    !> A header that does not start with the standard columns.
+    !> Headers that are not the layout's, each refused at line 1 with the reason: the output
+    !> layout's own (its count of columns asked from read_layout itself, whose wording is its
+    !> module's), a hint for the one-part header of older runs, a name too long for a column.
     subroutine test_csv_header(error)
         type(error_type), allocatable, intent(out) :: error
+        character(len=*), parameter :: path = scratch // "/header.csv"
+        character(len=*), parameter :: part = "X_1,Y_1,Z_1,psi_1,theta_1,phi_1,Xdot_1,Ydot_1," &
+            & // "Zdot_1,psidot_1,thetadot_1,phidot_1"
+        character(len=*), parameter :: prefix = "not the header 'rollcon run' writes: "
+        character(len=200) :: headers(5), expected(5)
         type(error_type), allocatable :: failure
+        type(output_layout_type) :: layout
         type(history_type) :: history
-        real(wp) :: radius
+        character(len=:), allocatable :: count_reason
+        character(len=name_length), allocatable :: names(:)
+        integer :: i
 
+        names = [character(len=name_length) :: "t", "X_1", "Y_1", "Z_1", "psi_1", "theta_1", &
+            & "phi_1", "Xdot_1", "Ydot_1", "Zdot_1", "psidot_1", "thetadot_1", "phidot_1", "E", &
+            & "F_1", "lambda_1", "F_2"]
+        call read_layout(names, layout, count_reason)
+        call check(error, allocated(count_reason), "read_layout accepted 17 columns for one " &
+            & // "part and one UCON")
+        if (allocated(error)) return
+        headers = [character(len=200) :: "time,X,Y", &
+            & "t,X,Y,Z,psi,theta,phi,Xdot,Ydot,Zdot,psidot,thetadot,phidot,E,Fx", &
+            & "t," // part // ",E,F_1,lambda_1,F_2", &
+            & "t," // part // ",E,F_1,lambda_2", &
+            & "t," // part // "," // repeat("E", 40)]
+        expected = [character(len=200) :: prefix // "column 1 must be t, got 'time'", &
+            & prefix // "column 2 must be X_<part id>, got 'X' (a CSV of an older rollcon, whose " &
+            & // "columns did not name the part: run the scene again)", &
+            & prefix // count_reason, &
+            & prefix // "column 16 must be lambda_1, got 'lambda_2'", &
+            & "column 14 of the header is not a column name 'rollcon run' writes (longer " &
+            & // "than 32 characters): '" // repeat("E", 40) // "'"]
         call make_folder(scratch)
-        call write_lines(scratch // "/header.csv", [character(len=40) :: "time,X,Y", "0,0,0"])
-        call read_output_csv(scratch // "/header.csv", history, radius, failure)
+        do i = 1, size(headers)
+            call write_lines(path, [character(len=200) :: headers(i), "0"])
+            call read_output_csv(path, layout, history, failure)
+            call check(error, allocated(failure), "header " // to_text(i) // " accepted")
+            if (allocated(error)) exit
+            call check(error, failure%message == path // ":1: " // trim(expected(i)), &
+                & "header " // to_text(i) // ": " // failure%message)
+            if (allocated(error)) exit
+        end do
         call remove_folder(scratch)
-        call expect_message(error, failure, scratch // "/header.csv:1:", &
-            & "header must start with t,X,Y,Z,psi")
     end subroutine test_csv_header
 
     !> Rows with too few values, a NaN, a word, or no rows at all.
@@ -141,137 +163,65 @@ contains
         character(len=400) :: lines(3)
         character(len=60) :: bad(3), expected(3)
         type(error_type), allocatable :: failure
+        type(output_layout_type) :: layout
         type(history_type) :: history
-        real(wp) :: radius
         integer :: i
 
-        header = "t,X,Y,Z,psi,theta,phi,Xdot,Ydot,Zdot,psidot,thetadot,phidot,E,Fx,Fy,Fz,Fn," &
-            & // "mu_needed,F1"
-        good = "0,0,0,0.1,0,1.5707963267948966,0,0,0,0,0,0,0,0,0,0,0,0,0,0"
-        bad = [character(len=60) :: "1,2,3", "0.1,0,0,0.1,0,1.57,0,0,0,0,0,0,0,0,0,0,0,0,NaN,0", &
-            & "0.1,0,0,0.1,x,1.57,0,0,0,0,0,0,0,0,0,0,0,0,0,0"]
-        expected = [character(len=60) :: ":3: expected 20 comma-separated values", &
-            & ":3: value 19 must be a finite number", ":3: value 5 must be a finite number"]
+        header = "t,X_1,Y_1,Z_1,psi_1,theta_1,phi_1,Xdot_1,Ydot_1,Zdot_1,psidot_1,thetadot_1," &
+            & // "phidot_1,E,F_1,lambda_1"
+        good = "0,0,0,0.1,0,1.5707963267948966,0,0,0,0,0,0,0,0,0,0"
+        bad = [character(len=60) :: "1,2,3", "0.1,0,0,0.1,0,1.57,0,0,0,0,0,0,0,0,NaN,0", &
+            & "0.1,0,0,0.1,x,1.57,0,0,0,0,0,0,0,0,0,0"]
+        expected = [character(len=60) :: ":3: expected 16 comma-separated values", &
+            & ":3: value 15 must be a finite number", ":3: value 5 must be a finite number"]
         call make_folder(scratch)
         do i = 1, size(bad)
             lines(1) = header
             lines(2) = good
             lines(3) = bad(i)
             call write_lines(path, lines)
-            call read_output_csv(path, history, radius, failure)
+            call read_output_csv(path, layout, history, failure)
             call expect_message(error, failure, path // trim(expected(i)))
             if (allocated(error)) exit
         end do
         if (.not. allocated(error)) then
             call write_lines(path, lines(1:1))
-            call read_output_csv(path, history, radius, failure)
+            call read_output_csv(path, layout, history, failure)
             call expect_message(error, failure, path // ":1:", "at least one row")
         end if
         call remove_folder(scratch)
     end subroutine test_csv_rows
 
-    !> Every file of the series parses as XML (Python's parser; skipped without python3).
-    subroutine test_vtk_xml(error)
+    !> A disk scene's CSV gets the disk's seven figures, non-empty PNG files (skipped without
+    !> gnuplot).
+    subroutine test_plot_disk(error)
         type(error_type), allocatable, intent(out) :: error
-        type(scene_type) :: scene
-        type(history_type) :: history
-        character(len=:), allocatable :: files
-        integer :: frames, k, stat
 
-        if (.not. command_available("python3")) then
-            call skip_test(error, "python3 not found: the XML check needs its xml.etree")
-            return
-        end if
-        call write_series(scene, history, frames, error)
-        if (allocated(error)) return
-        files = scratch // "/picture.pvd"
-        do k = 0, frames - 1
-            files = files // " " // scratch // "/" // frame_file_name("picture", k)
-        end do
-        call execute_command_line("python3 -c ""import sys, xml.etree.ElementTree as E; " &
-            & // "[E.parse(f) for f in sys.argv[1:]]"" " // files // " 2> /dev/null", &
-            & exitstat=stat)
-        call remove_folder(scratch)
-        call check(error, stat == 0, "Python's XML parser refused a file of the series " &
-            & // "(exit status " // to_text(stat) // ")")
-    end subroutine test_vtk_xml
+        call plot_and_check(error, disk_run(), "disk", figure_names)
+    end subroutine test_plot_disk
 
-    !> Each frame holds as many points and cells as it declares, and its cells are consistent.
-    subroutine test_vtk_sizes(error)
+    !> A model of two parts gets the figures for any parts (skipped without gnuplot).
+    subroutine test_plot_model(error)
         type(error_type), allocatable, intent(out) :: error
-        type(scene_type) :: scene
-        type(history_type) :: history
-        type(vtu_contents_type) :: vtu
-        integer :: frames, k
 
-        call write_series(scene, history, frames, error)
-        if (.not. allocated(error)) call check(error, frames == 6, "frames of 0.5 s at " &
-            & // to_text(fps) // " per s: " // to_text(frames))
-        do k = 0, frames - 1
-            if (allocated(error)) exit
-            call read_vtu(scratch // "/" // frame_file_name("picture", k), vtu, error)
-            if (allocated(error)) exit
-            associate (n => vtu%declared_points, m => vtu%declared_cells)
-                call check(error, n > 0 .and. m > 0 .and. vtu%point_values == 3*n &
-                    & .and. vtu%offset_values == m .and. vtu%type_values == m &
-                    & .and. vtu%colour_values == m, "frame " // to_text(k) // " declares " &
-                    & // to_text(n) // " points and " // to_text(m) // " cells but holds " &
-                    & // to_text(vtu%point_values) // " coordinates, " &
-                    & // to_text(vtu%offset_values) // " offsets, " // to_text(vtu%type_values) &
-                    & // " types, " // to_text(vtu%colour_values) // " colours")
-                if (allocated(error)) exit
-                call check(error, vtu%connectivity_values == vtu%offsets(m) &
-                    & .and. all(vtu%connectivity >= 0 .and. vtu%connectivity < n), &
-                    & "frame " // to_text(k) // ": connectivity does not match the offsets " &
-                    & // "or points outside the frame")
-            end associate
-        end do
-        call remove_folder(scratch)
-    end subroutine test_vtk_sizes
+        call plot_and_check(error, two_part_run(), "two", model_figure_names)
+    end subroutine test_plot_model
 
-    !> In frame k the mean of the disk's mesh points is the centre of the row at the frame's
-    !> time, and the contact path ends at that row's contact point, on the ground.
-    subroutine test_vtk_centre(error)
+    !> A model without UCONs gets the same figures, its residuals and multipliers flat lines
+    !> labelled 'no UCON' (gnuplot refuses a plot of no point; skipped without gnuplot).
+    subroutine test_plot_no_ucon(error)
         type(error_type), allocatable, intent(out) :: error
-        type(scene_type) :: scene
-        type(history_type) :: history
-        type(vtu_contents_type) :: vtu
-        real(wp), allocatable :: times(:)
-        character(len=64), allocatable :: files(:)
-        real(wp) :: centre(3)
-        integer :: frames, k, j
 
-        call write_series(scene, history, frames, error)
-        if (.not. allocated(error)) call read_pvd(scratch // "/picture.pvd", times, files, error)
-        if (.not. allocated(error)) call check(error, size(times) == frames, "data sets in " &
-            & // "the .pvd: " // to_text(size(times)))
-        do k = 1, size(times)
-            if (allocated(error)) exit
-            j = findloc(history%rows(column_time, :history%count), times(k), dim=1)
-            call check(error, j > 0, "no output row at the time of frame " // to_text(k - 1))
-            if (allocated(error)) exit
-            call read_vtu(scratch // "/" // trim(files(k)), vtu, error)
-            if (allocated(error)) exit
-            centre = sum(vtu%points(:, :disk_point_count), dim=2)/disk_point_count
-            call check(error, centre, history%rows(column_x:column_z, j), "disk centre of " &
-                & // "frame " // to_text(k - 1), abs_tol=tol_centre)
-            if (allocated(error)) exit
-            call check(error, vtu%points(:, size(vtu%points, 2)), contact_point(scene%disk%radius, &
-                & history%rows(column_x:column_phi, j)), "end of the contact path in frame " &
-                & // to_text(k - 1), abs_tol=tol_centre)
-            if (allocated(error)) exit
-            call check(error, abs(vtu%points(3, size(vtu%points, 2))) < 1.0e-8_wp, &
-                & "the contact path is off the ground in frame " // to_text(k - 1))
-        end do
-        call remove_folder(scratch)
-    end subroutine test_vtk_centre
+        call plot_and_check(error, falling_run(), "falling", model_figure_names)
+    end subroutine test_plot_no_ucon
 
-    !> The figures of a short run are non-empty PNG files (skipped without gnuplot).
-    subroutine test_plot_pngs(error)
+    !> Plot a run written as scratch/name.csv (with its .parts) and check the files: the names
+    !> expected, each a PNG file.
+    subroutine plot_and_check(error, run, name, expected)
         type(error_type), allocatable, intent(out) :: error
-        type(history_type) :: history
-        character(len=16), allocatable :: header(:)
-        character(len=:), allocatable :: file
+        type(run_record_type), intent(in) :: run
+        character(len=*), intent(in) :: name, expected(:)
+        character(len=:), allocatable :: files(:), csv
         integer :: i
 
         if (.not. gnuplot_available()) then
@@ -279,16 +229,19 @@ contains
             return
         end if
         call make_folder(scratch)
-        call run_to_csv(picture_scene(), scratch // "/picture.csv", history, header, error)
-        if (.not. allocated(error)) call plot_output(scratch // "/picture.csv", scratch, error)
-        do i = 1, size(figure_names)
+        csv = scratch // "/" // name // ".csv"
+        call write_run(csv, run, .true., error)
+        if (.not. allocated(error)) call plot_output(csv, scratch, error, files)
+        if (.not. allocated(error)) call check(error, size(files) == size(expected), &
+            & to_text(size(files)) // " figures, expected " // to_text(size(expected)))
+        do i = 1, size(expected)
             if (allocated(error)) exit
-            file = figure_file(scratch // "/picture.csv", scratch, figure_names(i))
-            call check(error, file_starts_with(file, achar(137) // "PNG"), file &
-                & // " is missing or not a PNG file")
+            call check(error, files(i) == figure_file(csv, scratch, expected(i)) .and. &
+                & file_starts_with(files(i), achar(137) // "PNG"), figure_file(csv, scratch, &
+                & expected(i)) // " is missing or not a PNG file")
         end do
         call remove_folder(scratch)
-    end subroutine test_plot_pngs
+    end subroutine plot_and_check
 
     !> plot on a missing CSV names the file; no gnuplot needed, reading fails first.
     subroutine test_plot_missing(error)
@@ -310,48 +263,34 @@ contains
         call plot_output(scratch // "/bad.csv", scratch, failure)
         inquire(file=figure_file(scratch // "/bad.csv", scratch, "path"), exist=exists)
         call remove_folder(scratch)
-        call expect_message(error, failure, scratch // "/bad.csv:1:", "header must start with")
+        call expect_message(error, failure, scratch // "/bad.csv:1:", "not the header")
         if (.not. allocated(error)) call check(error, .not. exists, "a figure was written")
     end subroutine test_plot_malformed
 
-    !> The animation of a short run is a GIF with a frame every 0.05 s (skipped without
-    !> gnuplot).
+    !> The animations of a disk scene and of the two-part model are GIFs with a frame every
+    !> 0.05 s (skipped without gnuplot).
     subroutine test_gif(error)
         type(error_type), allocatable, intent(out) :: error
-        type(history_type) :: history
-        character(len=16), allocatable :: header(:)
-        integer :: frames
+        integer :: frames, i
+        character(len=4), parameter :: names(2) = ["disk", "two "]
 
         if (.not. gnuplot_available()) then
             call skip_test(error, "gnuplot not found (Debian gnuplot-nox; bash .ci/setup)")
             return
         end if
         call make_folder(scratch)
-        call run_to_csv(picture_scene(), scratch // "/picture.csv", history, header, error)
-        if (.not. allocated(error)) call animate_output(scratch // "/picture.csv", &
-            & scratch // "/picture.gif", frames, error)
-        if (.not. allocated(error)) call check(error, file_starts_with(scratch &
-            & // "/picture.gif", "GIF89a") .and. frames == 11, "GIF of 0.5 s: " &
-            & // to_text(frames) // " frames, expected 11")
+        do i = 1, 2
+            if (i == 1) call write_run(scratch // "/disk.csv", disk_run(), .true., error)
+            if (i == 2) call write_run(scratch // "/two.csv", two_part_run(), .true., error)
+            if (.not. allocated(error)) call animate_output(scratch // "/" // trim(names(i)) &
+                & // ".csv", scratch // "/" // trim(names(i)) // ".gif", frames, error)
+            if (.not. allocated(error)) call check(error, file_starts_with(scratch // "/" &
+                & // trim(names(i)) // ".gif", "GIF89a") .and. frames == 11, "GIF of 0.5 s (" &
+                & // trim(names(i)) // "): " // to_text(frames) // " frames, expected 11")
+            if (allocated(error)) exit
+        end do
         call remove_folder(scratch)
     end subroutine test_gif
-
-    !> Run the picture scene and write its VTK series into the scratch folder.
-    subroutine write_series(scene, history, frames, error)
-        type(scene_type), intent(out) :: scene
-        type(history_type), intent(out) :: history
-        integer, intent(out) :: frames
-        type(error_type), allocatable, intent(out) :: error
-        character(len=16), allocatable :: header(:)
-
-        frames = 0
-        call make_folder(scratch)
-        scene = picture_scene()
-        call run_to_csv(scene, scratch // "/picture.csv", history, header, error)
-        if (allocated(error)) return
-        call write_vtk_series(scratch, "picture", history, scene%disk%radius, &
-            & scene%disk%thickness, fps, frames, error)
-    end subroutine write_series
 
     !> Fail unless failure is set and its message holds text and, if given, also_text.
     subroutine expect_message(error, failure, text, also_text)

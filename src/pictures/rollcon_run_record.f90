@@ -1,0 +1,192 @@
+! SPDX-License-Identifier: MIT
+!> A run as its pictures see it: the CSV's layout and rows, and the shape of every part, from
+!> the .parts file beside the CSV (rollcon_part_shapes) or, for a disk scene's CSV without one,
+!> the disk radius recovered from the contact (docs/pictures.md).
+module rollcon_run_record
+    use rollcon_kinds, only : wp
+    use rollcon_error, only : error_type, fatal_error, input_error, stat_io
+    use rollcon_text, only : to_text
+    use rollcon_simulation, only : history_type
+    use rollcon_output_layout, only : output_layout_type, coord_x, coord_z, coord_theta, coord_phi
+    use rollcon_csv_reader, only : read_output_csv, largest_value
+    use rollcon_part_shapes, only : part_shape_type, read_part_shapes, parts_path, shape_disk
+    use rollcon_disk_mesh, only : contact_point
+    implicit none
+    private
+
+    public :: run_record_type, read_run, pose, is_disk_scene, path_point, ground_bounds
+
+    !> A run's output, ready to draw
+    type :: run_record_type
+        !> The CSV's columns
+        type(output_layout_type) :: layout
+        !> Its rows
+        type(history_type) :: history
+        !> Shape of each part, in the layout's (model) order
+        type(part_shape_type), allocatable :: shapes(:)
+        !> Where the shapes came from: the .parts file, or the CSV's first row (a disk scene
+        !> without one)
+        character(len=:), allocatable :: shapes_source
+    end type run_record_type
+
+contains
+
+    !> Read a run's CSV and its part shapes. When DIR/NAME.parts is missing, a CSV with the
+    !> contact columns and one part is drawn as a disk of radius R = Z/sin(theta) from its first
+    !> row (the contact constraint, docs/design.md §5) and no thickness; any other CSV is refused,
+    !> naming the missing file.
+    subroutine read_run(csv_path, run, error)
+        !> Output CSV of `rollcon run`
+        character(len=*), intent(in) :: csv_path
+        type(run_record_type), intent(out) :: run
+        type(error_type), allocatable, intent(out) :: error
+        type(part_shape_type), allocatable :: shapes(:)
+        character(len=:), allocatable :: parts
+        logical :: exists
+
+        call read_output_csv(csv_path, run%layout, run%history, error)
+        if (allocated(error)) return
+        parts = parts_path(csv_path)
+        inquire(file=parts, exist=exists)
+        if (exists) then
+            call read_part_shapes(parts, shapes, error)
+            if (allocated(error)) return
+            call match_shapes(parts, shapes, run%layout, run%shapes, error)
+            run%shapes_source = parts
+        else if (run%layout%contact .and. size(run%layout%part_ids) == 1) then
+            call disk_from_contact(csv_path, run, error)
+            run%shapes_source = csv_path // " (radius from Z/sin(theta) of the first row)"
+        else
+            call fatal_error(error, parts // ": missing: the shapes of the parts of " // csv_path &
+                & // " (written by rollcon run beside the CSV) are needed to draw them; " &
+                & // "only a disk scene's CSV, with its contact columns, is drawn without it", &
+                & stat_io)
+        end if
+    end subroutine read_run
+
+    !> The shapes in the layout's order: one for every part of the CSV, none more.
+    subroutine match_shapes(path, shapes, layout, ordered, error)
+        character(len=*), intent(in) :: path
+        type(part_shape_type), intent(in) :: shapes(:)
+        type(output_layout_type), intent(in) :: layout
+        type(part_shape_type), allocatable, intent(out) :: ordered(:)
+        type(error_type), allocatable, intent(out) :: error
+        integer :: p, s
+
+        allocate(ordered(size(layout%part_ids)))
+        do s = 1, size(shapes)
+            if (layout%part_index(shapes(s)%id) == 0) then
+                call input_error(error, path, 0, "", "describes part " // to_text(shapes(s)%id) &
+                    & // ", which the CSV does not hold (parts " // id_list(layout%part_ids) &
+                    & // "): the file belongs to another run")
+                return
+            end if
+            ordered(layout%part_index(shapes(s)%id)) = shapes(s)
+        end do
+        do p = 1, size(layout%part_ids)
+            if (any(shapes%id == layout%part_ids(p))) cycle
+            call input_error(error, path, 0, "", "has no shape for part " &
+                & // to_text(layout%part_ids(p)) // " of the CSV (parts " &
+                & // id_list(layout%part_ids) // ")")
+            return
+        end do
+    end subroutine match_shapes
+
+    !> The disk of a disk scene's CSV: R = Z/sin(theta) of the first row.
+    subroutine disk_from_contact(csv_path, run, error)
+        character(len=*), intent(in) :: csv_path
+        type(run_record_type), intent(inout) :: run
+        type(error_type), allocatable, intent(out) :: error
+
+        allocate(run%shapes(1))
+        run%shapes(1)%id = run%layout%part_ids(1)
+        run%shapes(1)%kind = shape_disk
+        associate (z => run%history%rows(run%layout%part_column(1, coord_z), 1), &
+            & theta => run%history%rows(run%layout%part_column(1, coord_theta), 1))
+            ! Divide only when the quotient is a positive length no larger than largest_value,
+            ! so no floating-point exception is raised.
+            if (z > 0.0_wp .and. sin(theta) > 0.0_wp .and. z <= sin(theta)*largest_value) then
+                run%shapes(1)%radius = z/sin(theta)
+            else
+                call input_error(error, csv_path, 2, "", "cannot infer the disk radius (no " &
+                    & // "part shapes file beside the CSV): Z/sin(theta) must be a positive " &
+                    & // "length, got Z = " // to_text(z) // " m, theta = " // to_text(theta) &
+                    & // " rad")
+            end if
+        end associate
+    end subroutine disk_from_contact
+
+    !> X, Y, Z [m], psi, theta, phi [rad] of part p (layout order) in output row j.
+    pure function pose(run, p, j) result(q)
+        type(run_record_type), intent(in) :: run
+        integer, intent(in) :: p, j
+        real(wp) :: q(6)
+
+        q = run%history%rows(run%layout%part_column(p, coord_x):run%layout%part_column(p, &
+            & coord_phi), j)
+    end function pose
+
+    !> The point whose path the pictures draw for part p at output row j [m]: a disk's contact
+    !> point (docs/design.md §5), any other part's centre of mass.
+    pure function path_point(run, p, j) result(point)
+        type(run_record_type), intent(in) :: run
+        integer, intent(in) :: p, j
+        real(wp) :: point(3)
+
+        if (run%shapes(p)%kind == shape_disk) then
+            point = contact_point(run%shapes(p)%radius, pose(run, p, j))
+        else
+            point = run%history%rows(run%layout%part_column(p, coord_x):run%layout%part_column(p, &
+                & coord_z), j)
+        end if
+    end function path_point
+
+    !> The smallest X-Y box holding every part's centre and path point over the whole run [m].
+    pure subroutine ground_bounds(run, low, high)
+        type(run_record_type), intent(in) :: run
+        real(wp), intent(out) :: low(2), high(2)
+        real(wp) :: point(3)
+        integer :: p, j
+
+        low = run%history%rows(run%layout%part_column(1, coord_x):run%layout%part_column(1, &
+            & coord_x) + 1, 1)
+        high = low
+        do p = 1, size(run%layout%part_ids)
+            do j = 1, run%history%count
+                point = path_point(run, p, j)
+                low = min(low, point(1:2), pose_xy(p, j))
+                high = max(high, point(1:2), pose_xy(p, j))
+            end do
+        end do
+    contains
+        pure function pose_xy(p, j) result(xy)
+            integer, intent(in) :: p, j
+            real(wp) :: xy(2)
+
+            xy = run%history%rows(run%layout%part_column(p, coord_x):run%layout%part_column(p, &
+                & coord_x) + 1, j)
+        end function pose_xy
+    end subroutine ground_bounds
+
+    !> True for the CSV of a disk scene: the contact columns, and part 1 drawn as a disk.
+    pure logical function is_disk_scene(run)
+        type(run_record_type), intent(in) :: run
+
+        is_disk_scene = run%layout%contact .and. size(run%shapes) >= 1
+        if (is_disk_scene) is_disk_scene = run%shapes(1)%kind == shape_disk
+    end function is_disk_scene
+
+    !> "1, 2, 7"
+    pure function id_list(ids) result(text)
+        integer, intent(in) :: ids(:)
+        character(len=:), allocatable :: text
+        integer :: i
+
+        text = ""
+        do i = 1, size(ids)
+            if (i > 1) text = text // ", "
+            text = text // to_text(ids(i))
+        end do
+    end function id_list
+
+end module rollcon_run_record
