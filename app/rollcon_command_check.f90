@@ -4,7 +4,7 @@ module rollcon_command_check
     use, intrinsic :: iso_fortran_env, only : output_unit
     use rollcon, only : wp, error_type, fatal_error, stat_input, stat_io, user_ucosub_type, &
         & new_user_ucosub, ucon_request_type, user_check_options_type, user_check_report_type, &
-        & sampling_ranges, check_user_ucosub_isolated, read_ucon_option, report_text, report_json, &
+        & sampling_ranges, check_user_ucosub_isolated, adm_model_type, read_adm, read_ucon_option, report_text, report_json, &
         & default_call_timeout
     use rollcon_command_line, only : real_option
     implicit none
@@ -95,6 +95,14 @@ contains
                 if (allocated(error)) return
                 requests = [requests, request]
                 i = i + 1
+            case ("--model")
+                if (i + 1 > command_argument_count()) then
+                    call fatal_error(error, "--model needs a dataset (MODEL.adm)", stat_input)
+                    return
+                end if
+                call model_requests(get_argument(i + 1), requests, error)
+                if (allocated(error)) return
+                i = i + 1
             case ("--call-timeout")
                 i = i + 1
                 call call_timeout_option(i, call_timeout, error)
@@ -128,10 +136,37 @@ contains
             call fatal_error(error, "check: no UCOSUB file given; usage: rollcon check FILE " &
                 & // "--ucon ID:PAR1,PAR2,... (rollcon check --help)", stat_input)
         else if (size(requests) == 0) then
-            call fatal_error(error, "check: no --ucon ID:PAR1,PAR2,... given; the routine is " &
-                & // "called as these UCON statements would call it", stat_input)
+            call fatal_error(error, "check: no --ucon ID:PAR1,PAR2,... or --model MODEL.adm " &
+                & // "given; the routine is called as these UCON statements would call it", &
+                & stat_input)
         end if
     end subroutine read_arguments
+
+    !> The UCON statements of a dataset that its own UCOSUB serves (those naming no ROUTINE),
+    !> appended to requests.
+    subroutine model_requests(path, requests, error)
+        character(len=*), intent(in) :: path
+        type(ucon_request_type), allocatable, intent(inout) :: requests(:)
+        type(error_type), allocatable, intent(out) :: error
+        type(adm_model_type) :: adm
+        type(ucon_request_type) :: request
+        integer :: k, found
+
+        call read_adm(path, adm, error)
+        if (allocated(error)) return
+        found = 0
+        do k = 1, size(adm%ucons)
+            if (allocated(adm%ucons(k)%routine)) then
+                if (len(adm%ucons(k)%routine) > 0) cycle
+            end if
+            request%id = adm%ucons(k)%id
+            request%par = adm%ucons(k)%par
+            requests = [requests, request]
+            found = found + 1
+        end do
+        if (found == 0) call fatal_error(error, path // ": no UCON statement is served by the " &
+            & // "model's UCOSUB (each names a built-in ROUTINE): nothing to check", stat_input)
+    end subroutine model_requests
 
     !> Read argument i as the value of --call-timeout: seconds, > 0 and at most a day.
     subroutine call_timeout_option(i, seconds, error)
@@ -196,6 +231,7 @@ contains
         write(output_unit, '(a)') &
             & "usage: rollcon check FILE --ucon ID:PAR1,PAR2,... [--ucon ...] [--states N]", &
             & "                          [--seed S] [--json OUT] [--call-timeout SECONDS]", &
+            & "       rollcon check FILE --model MODEL.adm [...]", &
             & "", &
             & "Check a UCOSUB written for ADAMS/Solver, without ADAMS. FILE is its source (.f", &
             & "fixed form, compiled with -std=legacy; .f90 free form) or an object (.o, built", &
@@ -207,6 +243,8 @@ contains
             & "                 the routine is called with this ID, PAR and NPAR; repeat for", &
             & "                 each UCON the routine serves (ids positive and distinct, one", &
             & "                 number per comma-separated field, at most 30 PAR)", &
+            & "  --model MODEL.adm  every UCON of an ADAMS dataset that names no ROUTINE (those", &
+            & "                 the model's own UCOSUB serves), with its id and PAR", &
             & "  --states N     random states per UCON (default 25)", &
             & "  --seed S       seed of the states (default 1); a run is reproducible", &
             & "  --json OUT     also write the report as JSON to OUT", &

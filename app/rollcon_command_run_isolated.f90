@@ -66,10 +66,12 @@ contains
         type(call_record_type), pointer, intent(in) :: record
         type(error_type), allocatable, intent(out) :: error
         type(run_summary_type) :: summary
+        procedure(ucosub_interface), pointer :: guarded
 
         call attach_call_record(record)
         call install_guard(self%ucosub, as_errors=.true.)
-        call run_scene(self%name, self%output_dir, guarded_ucosub, self%quiet, summary, error, &
+        guarded => guarded_ucosub
+        call run_scene(self%name, self%output_dir, guarded, self%quiet, summary, error, &
             & self%allow_large_output)
     end subroutine run_scene_task
 

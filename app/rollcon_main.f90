@@ -2,9 +2,10 @@
 !> rollcon: simulate a disk scene (default: the paper's coin) or print the UCOSUB's table.
 program rollcon_main
     use, intrinsic :: iso_fortran_env, only : output_unit, error_unit
-    use rollcon, only : wp, error_type, disk_nvars, rolling_disk_ucosub, fatal_error, stat_input, &
+    use rollcon, only : wp, error_type, disk_nvars, fatal_error, stat_input, &
         & default_call_timeout, user_ucosub_type, new_user_ucosub, run_summary_type, &
-        & status_inaccurate, use_one_blas_thread
+        & status_inaccurate, use_one_blas_thread, ucosub_interface, find_builtin_ucosub, &
+        & builtin_ucosub_names
     use rollcon_command_line, only : real_option_list, real_option
     use rollcon_command_table, only : print_table, default_state, default_radius
     use rollcon_command_run, only : run_scene
@@ -25,6 +26,7 @@ program rollcon_main
     integer :: check_status
     character(len=:), allocatable :: ucosub_path
     type(user_ucosub_type) :: user
+    procedure(ucosub_interface), pointer :: builtin => null()
     !> run --ucosub: longest one call of the user's routine may take [s]
     real(wp) :: call_timeout = default_call_timeout
     !> The threaded BLAS set to one thread ("" for reference BLAS)
@@ -44,17 +46,18 @@ program rollcon_main
         call print_table(state, radius, error)
         if (allocated(error)) call fail(error)
     case ("run")
-        if (allocated(ucosub_path)) then
+        call choose_ucosub(error)
+        if (allocated(error)) call fail(error)
+        if (allocated(ucosub_path) .and. .not. associated(builtin)) then
             call new_user_ucosub(user, ucosub_path, error)
             if (allocated(error)) call fail(error)
             if (.not. quiet) write(output_unit, '(a)') "UCOSUB: " // ucosub_path // " (" &
                 & // user%library // merge(", from the cache", ", compiled now  ", &
                 & user%from_cache) // ")"
-            ! In a child process: the user's routine cannot take rollcon down.
             call run_user_scene(scene, output_dir, user%ucosub, quiet, call_timeout, error, &
                 & allow_large_output)
         else
-            call run_scene(scene, output_dir, rolling_disk_ucosub, quiet, summary, error, &
+            call run_scene(scene, output_dir, builtin, quiet, summary, error, &
                 & allow_large_output)
         end if
         if (allocated(error)) call fail(error)
@@ -82,6 +85,21 @@ program rollcon_main
     end select
 
 contains
+
+    !> --ucosub NAME names a built-in routine when no file NAME exists: builtin points at it
+    !> (null otherwise: no --ucosub, or a file to compile and run apart).
+    subroutine choose_ucosub(error)
+        type(error_type), allocatable, intent(out) :: error
+        logical :: exists, time_free, found
+
+        builtin => null()
+        if (.not. allocated(ucosub_path)) return
+        inquire(file=ucosub_path, exist=exists)
+        if (exists) return
+        call find_builtin_ucosub(ucosub_path, builtin, time_free, found)
+        if (.not. found) call fatal_error(error, "--ucosub " // ucosub_path // ": no such file, " &
+            & // "and not a built-in routine (" // builtin_ucosub_names() // ")", stat_input)
+    end subroutine choose_ucosub
 
     !> Long because it is one flat select over every option of every command (a table in
     !> code); splitting it would scatter the options' checks.

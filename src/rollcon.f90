@@ -21,12 +21,15 @@ module rollcon
         & drift_projection, drift_baumgarte
     use rollcon_equations, only : equations_type
     use rollcon_scene, only : scene_type, read_scene, scene_path
+    use rollcon_scene_type, only : scene_run_type
     use rollcon_disk_scene, only : build_disk_problem, disk_initial_state, disk_mass_properties
     use rollcon_simulation, only : run_options_type, run_summary_type, history_type, simulate
     use rollcon_output_layout, only : output_layout_type, new_output_layout, read_layout
     use rollcon_output_rows, only : output_layout
     use rollcon_summary_text, only : run_summary_text
     use rollcon_adm_build, only : build_adm_problem, adm_theta_min
+    use rollcon_adm_model, only : adm_model_type
+    use rollcon_adm_reader, only : read_adm
     use rollcon_ucosub_catalog, only : find_builtin_ucosub, builtin_ucosub_names, &
         & builtin_ucosub_par, builtin_ucosub_summary
     use rollcon_user_library, only : user_ucosub_type, user_build_options_type, new_user_ucosub

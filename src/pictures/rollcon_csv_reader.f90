@@ -72,6 +72,7 @@ contains
         end do
         close(unit)
         if (allocated(error)) return
+        history%layout = layout
         if (history%count == 0) call input_error(error, path, line_number, "", "expected at " &
             & // "least one row of numbers after the header, found none")
     end subroutine read_output_csv

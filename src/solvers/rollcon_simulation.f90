@@ -23,15 +23,6 @@ module rollcon_simulation
     public :: status_completed, status_stopped, status_failed, status_inaccurate
     !> The output rows' limit and layout (rollcon_output_rows), for the callers of simulate
     public :: default_max_csv_bytes, output_layout
-    !> Deprecated: the columns of the disk scenes' rows (one part, three UCONs, the contact)
-    !> and csv_header, kept only so that src/pictures and its tests build until they ask
-    !> rollcon_output_layout; the pictures helper removes them. Every other user asks the layout.
-    public :: csv_header
-    integer, parameter, public :: column_time = 1, column_x = 2, column_y = 3, column_z = 4, &
-        & column_psi = 5, column_theta = 6, column_phi = 7, column_xdot = 8, column_ydot = 9, &
-        & column_zdot = 10, column_psidot = 11, column_thetadot = 12, column_phidot = 13, &
-        & column_energy = 14, column_residual = 15, column_fx = 21, column_fy = 22, &
-        & column_fz = 23, column_normal = 24, column_mu = 25
 
     !> How a run ended: as planned, at an event limit, by a failure, or at its end or a limit
     !> with an energy or height drift beyond what its tolerances promise (rollcon_drift)
@@ -301,17 +292,6 @@ contains
         end subroutine finish
 
     end subroutine simulate
-
-    !> Deprecated (pictures helper removes): the column names of a problem's rows, as
-    !> output_layout(problem)%header().
-    pure function csv_header(problem) result(header)
-        type(problem_type), intent(in) :: problem
-        character(len=16), allocatable :: header(:)
-        type(output_layout_type) :: layout
-
-        layout = output_layout(problem)
-        header = layout%header()
-    end function csv_header
 
     !> A watched contact needs a part in contact among the model's parts and a rim radius.
     subroutine check_events(problem, error)
