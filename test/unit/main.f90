@@ -27,6 +27,7 @@ program tester
     use test_adm_statements, only : collect_adm_statements
     use test_adm_build, only : collect_adm_build
     use test_adm_forces, only : collect_adm_forces
+    use test_dataset_command, only : collect_dataset_command
     use test_output, only : collect_output
     use test_command, only : collect_command
     use test_csv_fuzz, only : collect_csv_fuzz
@@ -74,7 +75,8 @@ program tester
         & new_testsuite("allocations", collect_allocations), &
         & new_testsuite("reduced", collect_reduced), &
         & new_testsuite("layout", collect_layout), &
-        & new_testsuite("ucosub-catalog", collect_ucosub_catalog)]
+        & new_testsuite("ucosub-catalog", collect_ucosub_catalog), &
+        & new_testsuite("dataset-command", collect_dataset_command)]
 
     if (command_argument_count() >= 1) then
         call get_command_argument(1, argument)

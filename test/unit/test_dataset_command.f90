@@ -1,0 +1,208 @@
+! SPDX-License-Identifier: MIT
+!> Tests of `rollcon run MODEL.adm` as an ADAMS user runs it: the coin's dataset gives the
+!> coin scene's rows, with the hand routine named on the command line or the user's own
+!> ucosub.f compiled and run apart; the model's routine checked with `check --model`; a dataset
+!> of two parts run, plotted and animated; refusals of a missing or unknown routine.
+module test_dataset_command
+    use rollcon_kinds, only : wp
+    use rollcon_error, only : error_type
+    use rollcon_text, only : to_text
+    use rollcon_output_layout, only : output_layout_type, coord_x, coord_phidot
+    use rollcon_simulation, only : history_type
+    use rollcon_csv_reader, only : read_output_csv
+    use rollcon_testing, only : unittest_type, new_unittest, check
+    use picture_files, only : make_folder, remove_folder
+    use command_runs, only : rollcon_program, run_rollcon, file_text, file_exists, line_count
+    implicit none
+    private
+
+    public :: collect_dataset_command
+
+    !> Scratch folder of the suite
+    character(len=*), parameter :: scratch = "build/test_dataset_command"
+    !> The generated rolling disk's ADAMS-ready routine: a user's ucosub.f
+    character(len=*), parameter :: user_file = "ucon/adams/rolling_disk/ucosub.f"
+    !> The user's fixed-form routine and the hand routine compute the same no-slip constraint
+    !> with other arithmetic (and the user's is asked for the time partials the hand routine
+    !> skips), so the integrators take other steps: the rows agree to the run's accuracy, not to
+    !> round-off. The coin's motion after the strike amplifies small differences (it tips and
+    !> recovers twice a second): measured on the release build, the centre paths of the two
+    !> routines differ by 8.9e-5 m over the 10 s, and those of rtol 1e-8 and 1e-9 by 1.7e-4 m.
+    !> 2e-3 m is ten times that, and a hundred times below the 0.25 m the centre swerves: a
+    !> routine with a wrong entry puts the disk on another path
+    real(wp), parameter :: tol_other_routine = 2.0e-3_wp
+
+contains
+
+    !> Tests of this suite.
+    subroutine collect_dataset_command(tests)
+        type(unittest_type), allocatable, intent(out) :: tests(:)
+
+        tests = [new_unittest("coin-adm-is-coin-nml", test_coin_adm), &
+            & new_unittest("user-ucosub-file", test_user_file), &
+            & new_unittest("check-model-routine", test_check_model), &
+            & new_unittest("two-parts-run-and-pictures", test_two_parts), &
+            & new_unittest("routine-refusals", test_refusals)]
+    end subroutine collect_dataset_command
+
+    !> `run data/coin.adm --ucosub disk` writes the rows `run coin` writes, bit for bit, under
+    !> the dataset's part id, with its summary and part shapes.
+    subroutine test_coin_adm(error)
+        type(error_type), allocatable, intent(out) :: error
+        character(len=:), allocatable :: program, summary
+        type(output_layout_type) :: adm_layout, nml_layout
+        type(history_type) :: adm_rows, nml_rows
+        integer :: status_adm, status_nml
+
+        call rollcon_program(program, error)
+        if (allocated(error)) return
+        call make_folder(scratch)
+        call run_rollcon(program, "run data/coin.adm --ucosub disk -q -o " // scratch // "/adm", &
+            & scratch // "/adm.out", scratch // "/adm.err", status_adm)
+        call run_rollcon(program, "run coin -q -o " // scratch // "/nml", scratch // "/nml.out", &
+            & scratch // "/nml.err", status_nml)
+        summary = file_text(scratch // "/adm/coin.summary.txt")
+        call check(error, status_adm == 0 .and. status_nml == 0 .and. index(summary, &
+            & "dataset coin (data/coin.adm): IDA") == 1 .and. index(summary, &
+            & "status: completed at t = 10 s") > 0 .and. file_exists(scratch &
+            & // "/adm/coin.parts"), "exit statuses " // to_text(status_adm) // ", " &
+            & // to_text(status_nml) // "; summary: " // summary)
+        if (.not. allocated(error)) call read_output_csv(scratch // "/adm/coin.csv", adm_layout, &
+            & adm_rows, error)
+        if (.not. allocated(error)) call read_output_csv(scratch // "/nml/coin.csv", nml_layout, &
+            & nml_rows, error)
+        call remove_folder(scratch)
+        if (allocated(error)) return
+        call check(error, adm_layout%part_ids(1) == 2 .and. nml_layout%part_ids(1) == 1 &
+            & .and. adm_rows%count == 1001 .and. adm_rows%count == nml_rows%count, &
+            & "part ids and row counts")
+        if (allocated(error)) return
+        ! t, the part's 12 columns and E: the same equations, the same stops, the same steps
+        call check(error, all(adm_rows%rows(:adm_layout%energy_column(), :adm_rows%count) &
+            & == nml_rows%rows(:nml_layout%energy_column(), :nml_rows%count)), &
+            & "data/coin.adm's rows differ from data/coin.nml's")
+    end subroutine test_coin_adm
+
+    !> The ADAMS user's own ucosub.f, compiled and run in a child process, serves the dataset's
+    !> UCONs: its rows are the built-in routine's to the run's accuracy.
+    subroutine test_user_file(error)
+        type(error_type), allocatable, intent(out) :: error
+        character(len=:), allocatable :: program
+        type(output_layout_type) :: user_layout, own_layout
+        type(history_type) :: user_rows, own_rows
+        integer :: status_user, status_own
+        real(wp) :: distance
+
+        call rollcon_program(program, error)
+        if (allocated(error)) return
+        call make_folder(scratch)
+        call run_rollcon(program, "run data/coin.adm --ucosub " // user_file // " -q -o " &
+            & // scratch // "/user", scratch // "/user.out", scratch // "/user.err", status_user)
+        call run_rollcon(program, "run data/coin.adm --ucosub disk -q -o " // scratch &
+            & // "/own", scratch // "/own.out", scratch // "/own.err", status_own)
+        call check(error, status_user == 0 .and. status_own == 0, "exit statuses " &
+            & // to_text(status_user) // ", " // to_text(status_own) // "; stderr: " &
+            & // file_text(scratch // "/user.err"))
+        if (.not. allocated(error)) call read_output_csv(scratch // "/user/coin.csv", &
+            & user_layout, user_rows, error)
+        if (.not. allocated(error)) call read_output_csv(scratch // "/own/coin.csv", own_layout, &
+            & own_rows, error)
+        call remove_folder(scratch)
+        if (allocated(error)) return
+        call check(error, user_rows%count == own_rows%count, "row counts " &
+            & // to_text(user_rows%count) // ", " // to_text(own_rows%count))
+        if (allocated(error)) return
+        associate (x => user_layout%part_column(1, coord_x))
+            distance = maxval(abs(user_rows%rows(x:x + 2, :user_rows%count) &
+                & - own_rows%rows(x:x + 2, :own_rows%count)))
+        end associate
+        call check(error, distance < tol_other_routine, "the centre paths differ by " &
+            & // to_text(distance) // " m")
+    end subroutine test_user_file
+
+    !> `check FILE --model MODEL.adm` checks every UCON the model's routine serves, with the
+    !> dataset's ids and PAR.
+    subroutine test_check_model(error)
+        type(error_type), allocatable, intent(out) :: error
+        character(len=:), allocatable :: program, out
+        integer :: status
+
+        call rollcon_program(program, error)
+        if (allocated(error)) return
+        call make_folder(scratch)
+        call run_rollcon(program, "check " // user_file // " --model data/coin.adm --states 5", &
+            & scratch // "/check.out", scratch // "/check.err", status)
+        out = file_text(scratch // "/check.out")
+        call remove_folder(scratch)
+        call check(error, status == 0 .and. index(out, "UCON/1  PAR = 2, 21, 22, 23, 14, 15, " &
+            & // "24, 25, 26, 0.1, 1") > 0 .and. index(out, "UCON/3  PAR = 2,") > 0 .and. &
+            & index(out, "verdict: CLEAN: 3 UCON(s) checked") > 0, "exit status " &
+            & // to_text(status) // ", report: " // out)
+    end subroutine test_check_model
+
+    !> A dataset of two parts with built-in routines named by ROUTINE= runs with no --ucosub;
+    !> its CSV holds both parts, and plot and animate draw it.
+    subroutine test_two_parts(error)
+        type(error_type), allocatable, intent(out) :: error
+        character(len=:), allocatable :: program, folder
+        type(output_layout_type) :: layout
+        type(history_type) :: rows
+        integer :: status_run, status_plot, status_animate
+
+        call rollcon_program(program, error)
+        if (allocated(error)) return
+        folder = scratch // "/two"
+        call make_folder(scratch)
+        call run_rollcon(program, "run data/disk_and_sphere.adm -q -o " // folder, scratch &
+            & // "/run.out", scratch // "/run.err", status_run)
+        call run_rollcon(program, "plot " // folder // "/disk_and_sphere.csv -o " // folder, &
+            & scratch // "/plot.out", scratch // "/plot.err", status_plot)
+        call run_rollcon(program, "animate " // folder // "/disk_and_sphere.csv -o " // folder, &
+            & scratch // "/animate.out", scratch // "/animate.err", status_animate)
+        call check(error, status_run == 0 .and. status_plot == 0 .and. status_animate == 0 &
+            & .and. file_exists(folder // "/disk_and_sphere_path.png") .and. file_exists(folder &
+            & // "/disk_and_sphere.gif"), "exit statuses " // to_text(status_run) // ", " &
+            & // to_text(status_plot) // ", " // to_text(status_animate) // "; stderr: " &
+            & // file_text(scratch // "/run.err") // file_text(scratch // "/plot.err") &
+            & // file_text(scratch // "/animate.err"))
+        if (.not. allocated(error)) call read_output_csv(folder // "/disk_and_sphere.csv", &
+            & layout, rows, error)
+        call remove_folder(scratch)
+        if (allocated(error)) return
+        call check(error, all(layout%part_ids == [2, 3]) .and. size(layout%ucon_ids) == 6 &
+            & .and. .not. layout%contact .and. layout%part_column(2, coord_phidot) == 25, &
+            & "layout of the two parts")
+    end subroutine test_two_parts
+
+    !> A UCON served by no routine, and an unknown routine name, are refused in one line with
+    !> exit status 1, naming the UCON (file and line) or the name, and what is available.
+    subroutine test_refusals(error)
+        type(error_type), allocatable, intent(out) :: error
+        character(len=*), parameter :: names = "(disk, rolling_disk, disk_height, knife_edge, " &
+            & // "rolling_sphere, turntable_disk)"
+        character(len=:), allocatable :: program, no_routine, unknown
+        integer :: status_none, status_unknown
+
+        call rollcon_program(program, error)
+        if (allocated(error)) return
+        call make_folder(scratch)
+        call run_rollcon(program, "run data/coin.adm -q -o " // scratch // "/none", scratch &
+            & // "/none.out", scratch // "/none.err", status_none)
+        call run_rollcon(program, "run data/coin.adm --ucosub no_such_routine -q -o " &
+            & // scratch // "/unknown", scratch // "/unknown.out", scratch // "/unknown.err", &
+            & status_unknown)
+        no_routine = file_text(scratch // "/none.err")
+        unknown = file_text(scratch // "/unknown.err")
+        call check(error, status_none == 1 .and. line_count(no_routine) == 1 .and. &
+            & index(no_routine, "rollcon: error: data/coin.adm:38: UCON/1: no UCOSUB serves " &
+            & // "this UCON: name a built-in routine with ROUTINE=name " // names) == 1 .and. &
+            & .not. file_exists(scratch // "/none/coin.csv"), "exit status " &
+            & // to_text(status_none) // ", stderr: " // no_routine)
+        if (.not. allocated(error)) call check(error, status_unknown == 1 .and. &
+            & line_count(unknown) == 1 .and. index(unknown, "rollcon: error: --ucosub " &
+            & // "no_such_routine: no such file, and not a built-in routine " // names) == 1, &
+            & "exit status " // to_text(status_unknown) // ", stderr: " // unknown)
+        call remove_folder(scratch)
+    end subroutine test_refusals
+
+end module test_dataset_command
