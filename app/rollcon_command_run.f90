@@ -37,7 +37,7 @@ contains
         character(len=*), intent(in) :: output_dir
         !> The routine given with --ucosub (null: none). A scene: it serves the disk's UCONs
         !> (default: the hand-checked routine). A dataset: it serves every UCON that names no
-        !> ROUTINE (default: none, each UCON must name one).
+        !> ROUTINE (default: the same hand-checked rolling-disk routine, named `disk`).
         procedure(ucosub_interface), pointer, intent(in) :: ucosub
         !> No progress lines
         logical, intent(in) :: quiet
@@ -111,11 +111,18 @@ contains
         type(run_job_type), intent(out) :: job
         type(error_type), allocatable, intent(out) :: error
         type(adm_model_type) :: adm
+        procedure(ucosub_interface), pointer :: hand_disk
         integer :: slash
 
         call read_adm(path, adm, error)
         if (allocated(error)) return
-        call build_adm_problem(adm, ucosub, problem, q0, u0, error)
+        if (associated(ucosub)) then
+            call build_adm_problem(adm, ucosub, problem, q0, u0, error)
+        else
+            ! rollcon's own UCOSUB, as for the scenes: the hand-checked rolling disk
+            hand_disk => rolling_disk_ucosub
+            call build_adm_problem(adm, hand_disk, problem, q0, u0, error)
+        end if
         if (allocated(error)) return
         slash = index(path, "/", back=.true.)
         job%name = path(slash + 1:len_trim(path) - 4)

@@ -213,8 +213,10 @@ contains
             & "       rollcon plot|animate [CSV|SCENE] [--output DIR]", &
             & "       rollcon table [--radius R] [--state XD,YD,ZD,PSI,THETA,PSID,THETAD,PHID]", &
             & "       rollcon bench [--quick] [...]     (rollcon bench --help)", &
+            & "       rollcon [run] MODEL.adm [--ucosub FILE|NAME] [...]  (an ADAMS dataset)", &
             & "       rollcon [run] [SCENE] --ucosub FILE      (your own UCOSUB, see below)", &
             & "       rollcon check FILE --ucon ID:PAR1,PAR2,...  (rollcon check --help)", &
+            & "       rollcon check FILE --model MODEL.adm", &
             & "       rollcon --help", &
             & "", &
             & "run (the default): simulate a rolling-disk scene, the paper's coin unless SCENE", &
@@ -226,6 +228,12 @@ contains
             & "  into place when it succeeds; a failed or interrupted run leaves that partial", &
             & "  file (and its .partial-PID.summary.txt), and the earlier run's files as they", &
             & "  were.", &
+            & "  MODEL.adm: an ADAMS dataset (docs/datasets.md): parts, markers, UCONs, forces,", &
+            & "  gravity and the run, any number of parts; outputs DIR/MODEL.csv (every part's", &
+            & "  12 coordinates named by part id, E, each UCON's residual and multiplier),", &
+            & "  DIR/MODEL.summary.txt and DIR/MODEL.parts (the parts' shapes for the pictures).", &
+            & "  A UCON naming ROUTINE=NAME is served by that built-in routine; the others by", &
+            & "  the model's UCOSUB: --ucosub FILE|NAME, or rollcon's hand-checked disk.", &
             & "  --allow-large-output  run even when the CSV would pass 100 GB (refused", &
             & "               otherwise, with the row count and the bytes it would write)", &
             & "  Progress goes to stderr for runs longer than a second unless --quiet.", &
@@ -235,15 +243,22 @@ contains
             & "               the run goes in a child process, so a crash, a STOP or a", &
             & "               call longer than --call-timeout SECONDS (default 10) of the", &
             & "               routine ends with an error naming the UCON and the call", &
+            & "  --ucosub NAME  a built-in routine instead (when no file NAME exists): disk,", &
+            & "               rolling_disk, disk_height, knife_edge, rolling_sphere,", &
+            & "               turntable_disk", &
             & "  --vtk FPS    also write DIR/SCENE_vtk/SCENE.pvd, a VTK time series for", &
             & "               ParaView: FPS frames per simulated second, each frame the", &
             & "               output row nearest to its time (nothing is interpolated)", &
             & "", &
-            & "plot: draw the figures of a run's CSV with gnuplot, as DIR/NAME_path.png,", &
-            & "  _theta, _rates, _energy, _residuals, _force and _friction.png, NAME the", &
-            & "  CSV's file name less .csv. A SCENE name means DIR/SCENE.csv (default coin).", &
-            & "animate: draw DIR/NAME.gif, the disk rolling, 20 frames per second (real time", &
-            & "  up to 15 s of motion, faster beyond), with gnuplot.", &
+            & "plot: draw the figures of a run's CSV with gnuplot, NAME the CSV's file name less", &
+            & "  .csv. A disk scene: DIR/NAME_path.png, _theta, _rates, _energy, _residuals,", &
+            & "  _force and _friction.png. Any other model: DIR/NAME_path.png, _height,", &
+            & "  _angles, _energy, _residuals and _multipliers.png, every part and UCON by id.", &
+            & "  A SCENE name means DIR/SCENE.csv (default coin). The parts' shapes come from", &
+            & "  DIR/NAME.parts, which run writes beside the CSV (docs/pictures.md).", &
+            & "animate: draw DIR/NAME.gif, every part moving (a disk as a disk, other parts as", &
+            & "  their inertia ellipsoids), 20 frames per second (real time up to 15 s of", &
+            & "  motion, faster beyond), with gnuplot.", &
             & "", &
             & "table: evaluate the hand-checked rolling-disk UCOSUB through the ADAMS calling", &
             & "  sequence and print F and every non-zero first and second partial of its three", &
