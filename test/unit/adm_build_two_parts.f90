@@ -68,7 +68,7 @@ contains
         if (allocated(error)) return
         associate (q => summary%q(7:12), u => summary%u(7:12))
             ! straight at constant speed: X = v t, Y, Z and the velocity unchanged
-            call check(error, [q(1:3), u(1:3)], [sphere_speed*2.0_wp, 0.5_wp, sphere_radius, &
+            call check(error, [q(1:3), u(1:3)], [sphere_speed*2.0_wp, -0.5_wp, sphere_radius, &
                 & sphere_speed, 0.0_wp, 0.0_wp], "sphere's centre at t = 2 s", abs_tol=tol_sphere)
             if (allocated(error)) return
             ! omega = psidot e_Z + thetadot e_x1 + phidot e_z2 (DESIGN section 3): v/r about +Y
