@@ -9,7 +9,7 @@ module rollcon_command_run
         & default_max_csv_bytes, partial_name, write_text_file, rename_file, delete_file, &
         & run_summary_text, problem_type, run_options_type, simulate, build_disk_problem, &
         & scene_run_type, adm_model_type, read_adm, build_adm_problem, part_shape_type, &
-        & part_shapes_of, write_part_shapes
+        & part_shapes_of, write_part_shapes, lower_case
     implicit none
     private
 
@@ -70,7 +70,7 @@ contains
 
         n = len_trim(name)
         is_dataset = .false.
-        if (n > 4) is_dataset = lower(name(n - 3:n)) == ".adm"
+        if (n > 4) is_dataset = lower_case(name(n - 3:n)) == ".adm"
     end function is_dataset
 
     !> A namelist scene's problem: the disk, with ucosub (or the hand-checked routine).
@@ -243,16 +243,5 @@ contains
             & // to_text(run%rtol) // ", atol " // to_text(run%atol)
     end function settings_text
 
-    !> text with A-Z turned to a-z.
-    pure function lower(text) result(low)
-        character(len=*), intent(in) :: text
-        character(len=len(text)) :: low
-        integer :: i
-
-        low = text
-        do i = 1, len(text)
-            if (text(i:i) >= "A" .and. text(i:i) <= "Z") low(i:i) = achar(iachar(text(i:i)) + 32)
-        end do
-    end function lower
 
 end module rollcon_command_run

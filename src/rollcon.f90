@@ -60,7 +60,7 @@ module rollcon
     use rollcon_scene, only : choice_name
     use rollcon_simulation, only : status_completed, status_stopped, status_failed, &
         & status_inaccurate, default_max_csv_bytes
-    use rollcon_text, only : to_text, shell_quote
+    use rollcon_text, only : to_text, shell_quote, lower_case
     use rollcon_ucon_option, only : read_ucon_option
     use rollcon_ucosub_audit, only : sampling_ranges
     use rollcon_ucosub_contract, only : ucosub_interface

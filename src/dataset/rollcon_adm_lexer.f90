@@ -9,7 +9,7 @@
 !> expression, as in ADAMS. Every argument keeps the line it started on, for messages.
 module rollcon_adm_lexer
     use rollcon_error, only : error_type, fatal_error, stat_input
-    use rollcon_text, only : to_text
+    use rollcon_text, only : to_text, upper_case
     implicit none
     private
 
@@ -380,15 +380,5 @@ contains
         is_integer_text = len(t) > 0 .and. verify(t, "+-0123456789") == 0
     end function is_integer_text
 
-    pure function upper_case(text) result(upper)
-        character(len=*), intent(in) :: text
-        character(len=len(text)) :: upper
-        integer :: i
-
-        upper = text
-        do i = 1, len(text)
-            if (text(i:i) >= "a" .and. text(i:i) <= "z") upper(i:i) = achar(iachar(text(i:i)) - 32)
-        end do
-    end function upper_case
 
 end module rollcon_adm_lexer

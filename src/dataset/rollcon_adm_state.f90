@@ -4,7 +4,7 @@
 !> part's VX, VY, VZ (ground axes) and WX, WY, WZ (CM marker axes).
 module rollcon_adm_state
     use rollcon_kinds, only : wp
-    use rollcon_rotation, only : rotation_matrix
+    use rollcon_rotation, only : rotation_matrix, euler_angles
     use rollcon_adm_model, only : adm_model_type, adm_part_type
     implicit none
     private
@@ -37,23 +37,5 @@ contains
             u(6) = omega(3) - u(4)*cos(theta)
         end associate
     end subroutine part_state
-
-    !> Body-fixed 3-1-3 Euler angles (psi, theta, phi) of R = Rz(psi) Rx(theta) Rz(phi), theta
-    !> in [0, pi]; where sin(theta) = 0 only psi + phi (or psi - phi) is defined, and phi = 0.
-    pure function euler_angles(r) result(angles)
-        real(wp), intent(in) :: r(3, 3)
-        real(wp) :: angles(3)
-        real(wp) :: sin_theta
-
-        sin_theta = hypot(r(1, 3), r(2, 3))
-        angles(2) = atan2(sin_theta, r(3, 3))
-        if (sin_theta > 0.0_wp) then
-            angles(1) = atan2(r(1, 3), -r(2, 3))
-            angles(3) = atan2(r(3, 1), r(3, 2))
-        else
-            angles(1) = atan2(r(2, 1), r(1, 1))
-            angles(3) = 0.0_wp
-        end if
-    end function euler_angles
 
 end module rollcon_adm_state

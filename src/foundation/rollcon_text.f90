@@ -1,5 +1,5 @@
 ! SPDX-License-Identifier: MIT
-!> Short decimal text of numbers, for messages and tables.
+!> Short decimal text of numbers, for messages and tables; ASCII case of names.
 module rollcon_text
     use, intrinsic :: iso_fortran_env, only : int64
     use rollcon_kinds, only : wp
@@ -7,7 +7,7 @@ module rollcon_text
     implicit none
     private
 
-    public :: to_text, single_quoted, shell_quote
+    public :: to_text, single_quoted, shell_quote, lower_case, upper_case
 
     !> Decimal text of an integer or a real
     interface to_text
@@ -126,5 +126,31 @@ contains
 
         word = single_quoted(text, "'\''")
     end function shell_quote
+
+    !> text with A-Z turned to a-z (ASCII).
+    pure function lower_case(text) result(lower)
+        character(len=*), intent(in) :: text
+        character(len=len(text)) :: lower
+        integer :: i, code
+
+        lower = text
+        do i = 1, len(text)
+            code = iachar(text(i:i))
+            if (code >= iachar("A") .and. code <= iachar("Z")) lower(i:i) = achar(code + 32)
+        end do
+    end function lower_case
+
+    !> text with a-z turned to A-Z (ASCII).
+    pure function upper_case(text) result(upper)
+        character(len=*), intent(in) :: text
+        character(len=len(text)) :: upper
+        integer :: i, code
+
+        upper = text
+        do i = 1, len(text)
+            code = iachar(text(i:i))
+            if (code >= iachar("a") .and. code <= iachar("z")) upper(i:i) = achar(code - 32)
+        end do
+    end function upper_case
 
 end module rollcon_text

@@ -8,13 +8,13 @@
 !> a ground marker (part 0) is fixed in ground.
 module rollcon_marker
     use rollcon_kinds, only : wp
-    use rollcon_rotation, only : rotation_matrix, times, cross
+    use rollcon_rotation, only : rotation_matrix, times, cross, euler_angles
     use rollcon_body, only : body_angular_velocity
     use rollcon_expression, only : quantity_dx, quantity_vx, quantity_wx, quantity_psi
     implicit none
     private
 
-    public :: marker_type, marker_motion, marker_quantity, euler_angles_of
+    public :: marker_type, marker_motion, marker_quantity
 
     !> A marker
     type :: marker_type
@@ -82,7 +82,7 @@ contains
         call marker_motion(marker, q, u, position, velocity, axes, omega)
         k = mod(quantity - 1, 3) + 1
         if (quantity >= quantity_psi) then
-            angles = euler_angles_of(axes)
+            angles = euler_angles(axes)
             value = angles(k)
         else if (quantity >= quantity_wx) then
             value = omega(k)
@@ -94,24 +94,5 @@ contains
             value = 0.0_wp
         end if
     end function marker_quantity
-
-    !> Body-fixed 3-1-3 Euler angles (psi, theta, phi) of R = Rz(psi) Rx(theta) Rz(phi) [rad]:
-    !> theta in [0, pi], psi and phi in (-pi, pi]; where sin(theta) = 0 only psi + phi (or
-    !> psi - phi) is defined, and phi = 0.
-    pure function euler_angles_of(r) result(angles)
-        real(wp), intent(in) :: r(3, 3)
-        real(wp) :: angles(3)
-        real(wp) :: sin_theta
-
-        sin_theta = hypot(r(1, 3), r(2, 3))
-        angles(2) = atan2(sin_theta, r(3, 3))
-        if (sin_theta > 0.0_wp) then
-            angles(1) = atan2(r(1, 3), -r(2, 3))
-            angles(3) = atan2(r(3, 1), r(3, 2))
-        else
-            angles(1) = atan2(r(2, 1), r(1, 1))
-            angles(3) = 0.0_wp
-        end if
-    end function euler_angles_of
 
 end module rollcon_marker

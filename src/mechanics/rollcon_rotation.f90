@@ -8,7 +8,7 @@ module rollcon_rotation
 
     public :: rotation_matrix, rate_matrix, rate_matrix_dtheta, rate_matrix_dphi
     public :: rate_matrix_dtheta2, rate_matrix_dtheta_dphi, rate_matrix_dphi2, cross
-    public :: times, transpose_times, rate_matrices
+    public :: times, transpose_times, rate_matrices, euler_angles
 
 contains
 
@@ -135,5 +135,24 @@ contains
 
         c = [a(2)*b(3) - a(3)*b(2), a(3)*b(1) - a(1)*b(3), a(1)*b(2) - a(2)*b(1)]
     end function cross
+
+    !> Body-fixed 3-1-3 Euler angles (psi, theta, phi) of R = Rz(psi) Rx(theta) Rz(phi) [rad]:
+    !> theta in [0, pi], psi and phi in (-pi, pi]; where sin(theta) = 0 only psi + phi (or
+    !> psi - phi) is defined, and phi = 0.
+    pure function euler_angles(r) result(angles)
+        real(wp), intent(in) :: r(3, 3)
+        real(wp) :: angles(3)
+        real(wp) :: sin_theta
+
+        sin_theta = hypot(r(1, 3), r(2, 3))
+        angles(2) = atan2(sin_theta, r(3, 3))
+        if (sin_theta > 0.0_wp) then
+            angles(1) = atan2(r(1, 3), -r(2, 3))
+            angles(3) = atan2(r(3, 1), r(3, 2))
+        else
+            angles(1) = atan2(r(2, 1), r(1, 1))
+            angles(3) = 0.0_wp
+        end if
+    end function euler_angles
 
 end module rollcon_rotation

@@ -4,7 +4,7 @@
 !> converts each value.
 module rollcon_scene_lexer
     use rollcon_error, only : error_type, input_error
-    use rollcon_text, only : to_text
+    use rollcon_text, only : to_text, to_lower => lower_case
     implicit none
     private
 
@@ -374,17 +374,5 @@ contains
         tokens(n) = token
     end subroutine push
 
-    !> Lowercase copy of an ASCII string.
-    pure function to_lower(text) result(lower)
-        character(len=*), intent(in) :: text
-        character(len=len(text)) :: lower
-        integer :: i, code
-
-        lower = text
-        do i = 1, len(text)
-            code = iachar(text(i:i))
-            if (code >= iachar("A") .and. code <= iachar("Z")) lower(i:i) = achar(code + 32)
-        end do
-    end function to_lower
 
 end module rollcon_scene_lexer

@@ -11,7 +11,7 @@
 module rollcon_ucosub_catalog
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type, fatal_error, stat_input
-    use rollcon_text, only : to_text
+    use rollcon_text, only : to_text, lower_case
     use rollcon_ucosub_contract, only : ucosub_interface
     use rollcon_disk_par, only : disk_npar, disk_codes
     use rollcon_disk_reference, only : hand_disk_ucosub => rolling_disk_ucosub
@@ -168,16 +168,5 @@ contains
         end do
     end function lookup
 
-    !> text with A-Z turned to a-z.
-    pure function lower_case(text) result(lower)
-        character(len=*), intent(in) :: text
-        character(len=len(text)) :: lower
-        integer :: i
-
-        lower = text
-        do i = 1, len(text)
-            if (text(i:i) >= "A" .and. text(i:i) <= "Z") lower(i:i) = achar(iachar(text(i:i)) + 32)
-        end do
-    end function lower_case
 
 end module rollcon_ucosub_catalog

@@ -11,7 +11,7 @@
 module rollcon_user_build
     use, intrinsic :: iso_fortran_env, only : int64
     use rollcon_error, only : error_type, fatal_error, stat_input, stat_io, stat_ucon
-    use rollcon_text, only : to_text, shell_quote
+    use rollcon_text, only : to_text, shell_quote, lower_case
     use rollcon_dlopen, only : process_id
     use rollcon_user_shim, only : shim_source_lines
     use rollcon_user_files, only : read_bytes, write_bytes, write_lines, file_exists, &
@@ -67,7 +67,7 @@ contains
         kind = 0
         dot = index(path, ".", back=.true.)
         if (dot == 0 .or. dot < index(path, "/", back=.true.)) return
-        extension = lowercase(path(dot + 1:))
+        extension = lower_case(path(dot + 1:))
         select case (extension)
         case ("f", "for", "f77")
             kind = kind_fixed
@@ -274,7 +274,7 @@ contains
             call mix(trim(shim_source_lines(i)) // achar(10), fnv, sdbm)
         end do
         write(buffer, '(z8.8, z8.8)') fnv, sdbm
-        key = lowercase(buffer)
+        key = lower_case(buffer)
     end function content_key
 
     !> Feed bytes to both hashes (each kept below 2**32).
@@ -300,15 +300,5 @@ contains
         extension = path(index(path, ".", back=.true.):)
     end function extension_of
 
-    pure function lowercase(text) result(lower)
-        character(len=*), intent(in) :: text
-        character(len=len(text)) :: lower
-        integer :: i
-
-        lower = text
-        do i = 1, len(text)
-            if (text(i:i) >= "A" .and. text(i:i) <= "Z") lower(i:i) = achar(iachar(text(i:i)) + 32)
-        end do
-    end function lowercase
 
 end module rollcon_user_build

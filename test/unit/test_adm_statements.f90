@@ -14,6 +14,7 @@ module test_adm_statements
         & method_bdf, method_adams, drift_projection, drift_baumgarte, drift_none, &
         & jacobian_analytic, jacobian_dq
     use rollcon_ucosub_catalog, only : builtin_ucosub_names
+    use rollcon_text, only : upper_case
     use rollcon_testing, only : unittest_type, new_unittest, check
     use adm_datasets, only : read_dataset
     implicit none
@@ -204,10 +205,10 @@ contains
             name = trim(adjustl(names(:comma - 1)))
             names = names(comma + 1:)
             lines = base_run()
-            lines(7) = "UCON/1, FUNCTION=USER(1), ROUTINE=" // upper(name)
+            lines(7) = "UCON/1, FUNCTION=USER(1), ROUTINE=" // upper_case(name)
             call read_dataset("routine.adm", lines, model, error)
             if (allocated(error)) return
-            call check(error, model%ucons(1)%routine == upper(name), name)
+            call check(error, model%ucons(1)%routine == upper_case(name), name)
             if (allocated(error)) return
             count = count + 1
         end do
@@ -215,16 +216,6 @@ contains
         call check(error, count >= 6, "built-in routines tried")
     end subroutine test_ucon_routines
 
-    pure function upper(text) result(big)
-        character(len=*), intent(in) :: text
-        character(len=len(text)) :: big
-        integer :: i
-
-        big = text
-        do i = 1, len(text)
-            if (text(i:i) >= "a" .and. text(i:i) <= "z") big(i:i) = achar(iachar(text(i:i)) - 32)
-        end do
-    end function upper
 
     !> SYSTEM sets all four units, the others override it wherever they stand.
     subroutine test_units_system(error)

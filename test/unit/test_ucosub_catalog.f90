@@ -17,6 +17,7 @@ module test_ucosub_catalog
         & generated_npar, generated_ncomponents, generated_time_free, generated_routine
     use rollcon_ucosub_catalog, only : find_builtin_ucosub, builtin_ucosub_names, &
         & builtin_ucosub_par, builtin_ucosub_summary
+    use rollcon_text, only : upper_case
     use rollcon_testing, only : unittest_type, new_unittest, check
     implicit none
     private
@@ -288,17 +289,5 @@ contains
         end do
     end subroutine test_names_every_spec
 
-    !> text with a-z turned to A-Z.
-    pure function upper_case(text) result(upper)
-        character(len=*), intent(in) :: text
-        character(len=len_trim(text)) :: upper
-        integer :: i
-
-        upper = text
-        do i = 1, len(upper)
-            if (upper(i:i) >= "a" .and. upper(i:i) <= "z") upper(i:i) = achar(iachar(upper(i:i)) &
-                & - 32)
-        end do
-    end function upper_case
 
 end module test_ucosub_catalog
