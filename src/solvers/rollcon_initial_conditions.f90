@@ -372,7 +372,7 @@ contains
         else if (rank < m .and. count(involved) == 1) then
             call fatal_error(error, "initial conditions: " // ucon_list(problem, level, involved) &
                 & // " cannot be met at " // level%name // " level with the values marked " &
-                & // "exact held (none of its free variables is left): " &
+                & // "exact held (none of its variables is free): " &
                 & // residual_list(problem, level, involved), stat_input)
         else if (rank < m) then
             call fatal_error(error, "initial conditions: " // ucon_list(problem, level, involved) &

@@ -14,6 +14,8 @@ module test_initial_conditions
     use ic_models, only : coin_problem, coin_start, ucon_noslip, ucon_height, coin_radius, &
         & coin_rho
     use ic_scene_starts, only : test_scene_starts, test_scene_velocities
+    use ic_datasets, only : test_exact_read, test_exact_refused, test_dataset_exact, &
+        & test_dataset_run
     use rollcon_testing, only : unittest_type, new_unittest, check
     implicit none
     private
@@ -45,7 +47,11 @@ contains
             & new_unittest("no-convergence", test_no_convergence), &
             & new_unittest("held-ucon-unmet", test_held_ucon_unmet), &
             & new_unittest("scene-starts", test_scene_starts), &
-            & new_unittest("scene-velocities", test_scene_velocities)]
+            & new_unittest("scene-velocities", test_scene_velocities), &
+            & new_unittest("exact-keyword-read", test_exact_read), &
+            & new_unittest("exact-keyword-refused", test_exact_refused), &
+            & new_unittest("dataset-exact-held", test_dataset_exact), &
+            & new_unittest("dataset-run-report", test_dataset_run)]
     end subroutine collect_initial_conditions
 
     !> The coin with F1, F2 and the height Z - R sin(theta) as a position UCON.
