@@ -7,8 +7,8 @@
 !> may make before they count as the same constraint.
 module rollcon_least_squares
     use rollcon_kinds, only : wp
-    use rollcon_error, only : error_type
-    use rollcon_lapack, only : lapack_info_error
+    use rollcon_error, only : error_type, fatal_error, stat_lapack
+    use rollcon_text, only : to_text
     implicit none
     private
 
@@ -69,11 +69,11 @@ contains
         work_b(:m, 1) = b
         allocate(s(min(m, n)))
         call dgelss(m, n, 1, work_a, m, work_b, ldb, s, rcond, rank, query, -1, info)
-        call lapack_info_error("dgelss", info, error)
+        call svd_info_error("dgelss", info, error)
         if (allocated(error)) return
         allocate(work(max(1, int(query(1)))))
         call dgelss(m, n, 1, work_a, m, work_b, ldb, s, rcond, rank, work, size(work), info)
-        call lapack_info_error("dgelss", info, error)
+        call svd_info_error("dgelss", info, error)
         if (allocated(error)) return
         x = work_b(:n, 1)
     end subroutine minimum_norm_solve
@@ -104,15 +104,30 @@ contains
         work_a = a
         allocate(s(min(m, n)), source=0.0_wp)
         call dgesvd("A", "N", m, n, work_a, m, s, u, m, vt, 1, query, -1, info)
-        call lapack_info_error("dgesvd", info, error)
+        call svd_info_error("dgesvd", info, error)
         if (allocated(error)) return
         allocate(work(max(1, int(query(1)))))
         call dgesvd("A", "N", m, n, work_a, m, s, u, m, vt, 1, work, size(work), info)
-        call lapack_info_error("dgesvd", info, error)
+        call svd_info_error("dgesvd", info, error)
         if (allocated(error)) return
         if (s(1) > 0.0_wp) rank = count(s > rcond*s(1))
         null = u(:, rank + 1:)
     end subroutine left_null_space
+
+    !> Turn the info of an SVD routine into an error (nothing when info is 0).
+    pure subroutine svd_info_error(routine, info, error)
+        character(len=*), intent(in) :: routine
+        integer, intent(in) :: info
+        type(error_type), allocatable, intent(out) :: error
+
+        if (info < 0) then
+            call fatal_error(error, routine // ": argument " // to_text(-info) // " is invalid", &
+                & stat_lapack)
+        else if (info > 0) then
+            call fatal_error(error, routine // ": the singular value decomposition did not " &
+                & // "converge (" // to_text(info) // " superdiagonals left)", stat_lapack)
+        end if
+    end subroutine svd_info_error
 
     !> The m x m identity.
     pure function identity(m) result(eye)
