@@ -32,6 +32,10 @@ module rollcon_initial_conditions
     !> Most least-squares steps on the velocity rows: one solves them (F is linear in u), a
     !> second removes rounding; more means they cannot be met
     integer, parameter :: max_velocity_steps = 3
+    !> Largest change of any Euler angle in one Gauss-Newton step [rad], ADAMS's IC/ALIMIT
+    !> default (30 degrees): a longer step is shortened along its direction, so that a poor
+    !> start cannot jump across the Euler-angle singularity or to another branch
+    real(wp), parameter :: angle_limit = 0.5235987755982988_wp
 
     !> How the analysis runs
     type :: ic_options_type
@@ -138,6 +142,7 @@ contains
             if (met .or. report%newton_iterations >= options%max_iterations) exit
             call least_change(level, free, weight, dq, error)
             if (allocated(error)) return
+            call limit_angles(dq)
             report%newton_iterations = report%newton_iterations + 1
             ! a least-squares stationary point (contradictory rows): no further progress
             stalled = all(abs(dq) <= 4.0_wp*epsilon(1.0_wp)*max(abs(q), 1.0_wp))
@@ -186,6 +191,19 @@ contains
         report%velocity_residual = maxval(abs(level%residual))
         call verdict(level, free, weight, met, report%velocity_steps, error)
     end subroutine velocity_level
+
+    !> Shorten dq along its direction so that no Euler angle changes by more than angle_limit.
+    pure subroutine limit_angles(dq)
+        real(wp), intent(inout) :: dq(:)
+        real(wp) :: largest
+        integer :: p
+
+        largest = 0.0_wp
+        do p = 1, size(dq)/6
+            largest = max(largest, maxval(abs(dq(6*p - 2:6*p))))
+        end do
+        if (largest > angle_limit) dq = dq*(angle_limit/largest)
+    end subroutine limit_angles
 
     !> The numbers (model order) of the position UCONs.
     pure function holonomic_ucons(problem) result(list)

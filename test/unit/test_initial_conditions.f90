@@ -46,6 +46,7 @@ contains
             & new_unittest("contradictory-heights", test_contradictory_heights), &
             & new_unittest("no-convergence", test_no_convergence), &
             & new_unittest("held-ucon-unmet", test_held_ucon_unmet), &
+            & new_unittest("angle-step-limited", test_angle_limit), &
             & new_unittest("scene-starts", test_scene_starts), &
             & new_unittest("scene-velocities", test_scene_velocities), &
             & new_unittest("exact-keyword-read", test_exact_read), &
@@ -324,6 +325,35 @@ contains
         call check(error, index(refused%message, "initial conditions: UCON/3 cannot be met at " &
             & // "position level with the values marked exact held") == 1, refused%message)
     end subroutine test_held_ucon_unmet
+
+    !> Z held at R/2, theta free from 1.5 rad, where dF/dtheta = -R cos(theta) is small: the
+    !> full Newton step (-7 rad) would land on another branch (theta = pi/6 - 2 pi); steps of
+    !> at most 30 degrees reach the branch in (0, pi) below the start, theta = pi/6.
+    subroutine test_angle_limit(error)
+        type(error_type), allocatable, intent(out) :: error
+        !> |F| <= 0.01 (atol + rtol s) ~ 1.1e-11 m at convergence (s ~ 0.095 m) bounds the
+        !> error of theta by 1.1e-11/(R cos(pi/6)) ~ 1.3e-10 rad; 1e-9 rad is above that
+        real(wp), parameter :: tol_theta = 1.0e-9_wp
+        type(problem_type), target :: problem
+        type(ic_report_type) :: report
+        type(ic_options_type) :: options
+        real(wp) :: q(6), u(6)
+
+        call height_coin(problem, error)
+        if (allocated(error)) return
+        call coin_start(q, u)
+        q(3) = 0.5_wp*coin_radius
+        q(5) = 1.5_wp
+        u = 0.0_wp
+        options = ic_options_of(problem)
+        options%exact_q(3) = .true.
+        call analyse_initial_conditions(problem, 0.0_wp, q, u, options, report, error)
+        if (allocated(error)) return
+        call check(error, q(5), asin(0.5_wp), "theta", abs_tol=tol_theta)
+        if (allocated(error)) return
+        call check(error, report%newton_iterations > 2, "steps limited: " &
+            & // to_text(report%newton_iterations) // " iterations")
+    end subroutine test_angle_limit
 
     !> The number written after `key` in `text` (NaN when there is none).
     function number_after(text, key) result(value)
