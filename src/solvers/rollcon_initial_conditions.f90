@@ -150,6 +150,7 @@ contains
             if (stalled) then
                 call position_rows(problem, time, q, u, options, level, error)
                 if (allocated(error)) return
+                met = all(abs(level%residual) <= level%tolerance)
                 exit
             end if
         end do
