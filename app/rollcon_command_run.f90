@@ -9,7 +9,8 @@ module rollcon_command_run
         & default_max_csv_bytes, partial_name, write_text_file, rename_file, delete_file, &
         & run_summary_text, problem_type, run_options_type, simulate, build_disk_problem, &
         & scene_run_type, adm_model_type, read_adm, build_adm_problem, part_shape_type, &
-        & part_shapes_of, write_part_shapes, lower_case
+        & part_shapes_of, write_part_shapes, lower_case, ic_report_type, ic_report_text, &
+        & analyse_initial_conditions, adm_ic_options
     implicit none
     private
 
@@ -51,7 +52,7 @@ contains
         real(wp) :: max_csv_bytes
 
         if (is_dataset(name)) then
-            call prepare_dataset(name, ucosub, problem, q0, u0, job, error)
+            call prepare_dataset(name, ucosub, quiet, problem, q0, u0, job, error)
         else
             call prepare_scene(name, ucosub, problem, q0, u0, job, error)
         end if
@@ -102,15 +103,18 @@ contains
             & disk_thickness=scene%disk%thickness, disk_part=1)
     end subroutine prepare_scene
 
-    !> A dataset's problem: its parts, UCONs (ROUTINE= or ucosub), forces and run.
-    subroutine prepare_dataset(path, ucosub, problem, q0, u0, job, error)
+    !> A dataset's problem: its parts, UCONs (ROUTINE= or ucosub), forces and run; its start
+    !> made consistent by the initial-conditions analysis, whose report is printed unless quiet.
+    subroutine prepare_dataset(path, ucosub, quiet, problem, q0, u0, job, error)
         character(len=*), intent(in) :: path
         procedure(ucosub_interface), pointer, intent(in) :: ucosub
+        logical, intent(in) :: quiet
         type(problem_type), intent(inout), target :: problem
         real(wp), allocatable, intent(out) :: q0(:), u0(:)
         type(run_job_type), intent(out) :: job
         type(error_type), allocatable, intent(out) :: error
         type(adm_model_type) :: adm
+        type(ic_report_type) :: report
         procedure(ucosub_interface), pointer :: hand_disk
         integer :: slash
 
@@ -124,6 +128,14 @@ contains
             call build_adm_problem(adm, hand_disk, problem, q0, u0, error)
         end if
         if (allocated(error)) return
+        ! as ADAMS before a dynamic run: the least change that meets every UCON
+        call analyse_initial_conditions(problem, 0.0_wp, q0, u0, adm_ic_options(adm, problem), &
+            & report, error)
+        if (allocated(error)) then
+            error%message = path // ": " // error%message
+            return
+        end if
+        if (.not. quiet) write(output_unit, '(a)') ic_report_text(report)
         slash = index(path, "/", back=.true.)
         job%name = path(slash + 1:len_trim(path) - 4)
         job%path = path

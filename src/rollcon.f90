@@ -30,6 +30,10 @@ module rollcon
     use rollcon_adm_build, only : build_adm_problem, adm_theta_min
     use rollcon_adm_model, only : adm_model_type
     use rollcon_adm_reader, only : read_adm
+    use rollcon_initial_conditions, only : ic_options_type, ic_options_of, &
+        & analyse_initial_conditions
+    use rollcon_ic_report, only : ic_change_type, ic_report_type, ic_report_text
+    use rollcon_adm_initial, only : adm_ic_options
     use rollcon_ucosub_catalog, only : find_builtin_ucosub, builtin_ucosub_names, &
         & builtin_ucosub_par, builtin_ucosub_summary
     use rollcon_user_library, only : user_ucosub_type, user_build_options_type, new_user_ucosub

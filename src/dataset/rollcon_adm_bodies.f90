@@ -3,7 +3,7 @@
 module rollcon_adm_bodies
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type, fatal_error, stat_input
-    use rollcon_adm_lexer, only : adm_statement_type, adm_argument_type
+    use rollcon_adm_lexer, only : adm_statement_type, adm_argument_type, upper_case
     use rollcon_adm_keywords, only : read_reals, read_integer, argument_key, arg_place
     use rollcon_adm_model, only : adm_model_type, adm_part_type, adm_marker_type
     implicit none
@@ -11,8 +11,11 @@ module rollcon_adm_bodies
 
     public :: read_part, read_marker
 
-    character(len=*), parameter :: part_keys(12) = [character(len=6) :: "GROUND", "MASS", &
-        & "CM", "IP", "QG", "REULER", "VX", "VY", "VZ", "WX", "WY", "WZ"]
+    character(len=*), parameter :: part_keys(13) = [character(len=6) :: "GROUND", "MASS", &
+        & "CM", "IP", "QG", "REULER", "VX", "VY", "VZ", "WX", "WY", "WZ", "EXACT"]
+    !> The coordinates EXACT may name, in the order of a part's q (X, Y, Z, psi, theta, phi)
+    character(len=*), parameter :: exact_names(6) = [character(len=5) :: "X", "Y", "Z", "PSI", &
+        & "THETA", "PHI"]
     character(len=*), parameter :: marker_keys(3) = [character(len=6) :: "PART", "QP", "REULER"]
 
 contains
@@ -79,6 +82,8 @@ contains
                 if (allocated(error)) return
                 part%angular_velocity(axis) = values(1)*rate
                 part%angular_velocity_given(axis) = .true.
+            case ("EXACT")
+                call read_exact(statement%arguments(k), at, part%exact, error)
             end select
             if (allocated(error)) return
         end do
@@ -88,6 +93,38 @@ contains
         end if
         model%parts = [model%parts, part]
     end subroutine read_part
+
+    !> EXACT=c1:...:c6, each c one of X, Y, Z, PSI, THETA, PHI (any case, any order, as ADAMS).
+    pure subroutine read_exact(argument, at, exact, error)
+        type(adm_argument_type), intent(in) :: argument
+        character(len=*), intent(in) :: at
+        logical, intent(inout) :: exact(6)
+        type(error_type), allocatable, intent(out) :: error
+        character(len=:), allocatable :: text, word
+        integer :: start, colon, c
+
+        if (.not. argument%assigned .or. size(argument%values) /= 1) then
+            call fatal_error(error, at // ": expected names of coordinates separated by " &
+                & // "colons, from X, Y, Z, PSI, THETA, PHI (EXACT=X:Y:PSI)", stat_input)
+            return
+        end if
+        text = upper_case(trim(adjustl(argument%values(1)%text))) // ":"
+        start = 1
+        do while (start <= len(text))
+            colon = start + index(text(start:), ":") - 1
+            word = trim(adjustl(text(start:colon - 1)))
+            do c = 1, size(exact_names)
+                if (word == trim(exact_names(c))) exit
+            end do
+            if (c > size(exact_names)) then
+                call fatal_error(error, at // ": '" // word // "' is not a coordinate; " &
+                    & // "expected X, Y, Z, PSI, THETA or PHI, separated by colons", stat_input)
+                return
+            end if
+            exact(c) = .true.
+            start = colon + 1
+        end do
+    end subroutine read_exact
 
     subroutine read_marker(path, where, statement, model, error)
         character(len=*), intent(in) :: path, where

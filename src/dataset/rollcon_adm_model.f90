@@ -33,6 +33,9 @@ module rollcon_adm_model
         !> marker axes [rad/s]; only the components given (the rest are left to the model)
         real(wp) :: velocity(3) = 0.0_wp, angular_velocity(3) = 0.0_wp
         logical :: velocity_given(3) = .false., angular_velocity_given(3) = .false.
+        !> EXACT=X:Y:Z:PSI:THETA:PHI: the principal axes' coordinates the initial-conditions
+        !> analysis must hold as given (X, Y, Z, psi, theta, phi; docs/initial-conditions.md)
+        logical :: exact(6) = .false.
     end type adm_part_type
 
     !> MARKER/id

@@ -36,6 +36,7 @@ program tester
     use test_reduced, only : collect_reduced
     use test_layout, only : collect_layout
     use test_ucosub_catalog, only : collect_ucosub_catalog
+    use test_initial_conditions, only : collect_initial_conditions
     implicit none
     type(testsuite_type), allocatable :: suites(:)
     type(test_counts_type) :: counts
@@ -76,7 +77,8 @@ program tester
         & new_testsuite("reduced", collect_reduced), &
         & new_testsuite("layout", collect_layout), &
         & new_testsuite("ucosub-catalog", collect_ucosub_catalog), &
-        & new_testsuite("dataset-command", collect_dataset_command)]
+        & new_testsuite("dataset-command", collect_dataset_command), &
+        & new_testsuite("initial-conditions", collect_initial_conditions)]
 
     if (command_argument_count() >= 1) then
         call get_command_argument(1, argument)

@@ -90,7 +90,7 @@ contains
 
         replaced(1) = "PART/2, MASS=1, CM=3, IP=2, 2, 3, DENSITY=7800"
         expected(1) = ":4: PART/2: 'DENSITY' is not a PART argument of the supported subset" &
-            & // " (GROUND, MASS, CM, IP, QG, REULER, VX, VY, VZ, WX, WY, WZ)"
+            & // " (GROUND, MASS, CM, IP, QG, REULER, VX, VY, VZ, WX, WY, WZ, EXACT)"
         replaced(2) = "INTEGRATOR/HMAX=0.1"
         expected(2) = ":12: INTEGRATOR: 'HMAX' is not an INTEGRATOR argument of the supported" &
             & // " subset (ERROR, RTOL, ATOL, MAXSTEPS, BAUMGARTE, FORMULATION, METHOD," &

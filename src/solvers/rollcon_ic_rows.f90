@@ -1,0 +1,194 @@
+! SPDX-License-Identifier: MIT
+!> The rows of one level of the initial-conditions analysis (positions or velocities): their
+!> tolerances, the least weighted change that meets them, and the verdict on what is left
+!> (docs/initial-conditions.md).
+module rollcon_ic_rows
+    use rollcon_kinds, only : wp
+    use rollcon_error, only : error_type, fatal_error, stat_input
+    use rollcon_text, only : to_text
+    use rollcon_least_squares, only : minimum_norm_solve, left_null_space
+    implicit none
+    private
+
+    public :: level_type, tolerance, least_change, verdict
+    public :: ic_fraction, ic_rcond
+
+    !> A UCON is met when |F_k| <= ic_fraction (atol + rtol s_k), s_k the size of the terms of
+    !> F_k (sum over its variables of |dF_k/dx_j x_j|, plus the rest of F): a hundredth of the
+    !> error the integrator allows a state in one step, so the start is as good as exact to it
+    real(wp), parameter :: ic_fraction = 1.0e-2_wp
+    !> Rank threshold on unit rows: sqrt(machine epsilon). Two constraint normals closer than
+    !> 1.5e-8 rad count as one (a Newton step across them would be amplified 1e8 times)
+    real(wp), parameter :: ic_rcond = 1.4901161193847656e-8_wp
+    !> A UCON takes part in a dependency when its entry in a left null vector of the rows
+    !> exceeds this (the entries of uninvolved rows are rounding, ~1e-16)
+    real(wp), parameter :: involvement = 1.0e-6_wp
+    !> One level's rows (position or velocity): what is solved and what it is called
+    type :: level_type
+        character(len=:), allocatable :: name
+        !> UCON number (model order) and UCON statement id of each row
+        integer, allocatable :: ucon(:), ids(:)
+        !> Rows over the system's coordinates (or rates), residuals, tolerances
+        real(wp), allocatable :: rows(:, :), residual(:), tolerance(:)
+    end type level_type
+
+contains
+
+    !> ic_fraction (atol + rtol s), s = sum |row_j x_j| + |residual - row . x| (the size of the
+    !> terms that F adds up).
+    pure real(wp) function tolerance(atol, rtol, row, x, residual)
+        !> The run's tolerances [state units, -]
+        real(wp), intent(in) :: atol, rtol
+        real(wp), intent(in) :: row(:), x(:), residual
+
+        tolerance = ic_fraction*(atol + rtol*(sum(abs(row*x)) &
+            & + abs(residual - dot_product(row, x))))
+    end function tolerance
+
+    !> The rows restricted to the free columns, scaled by the weights and to unit length (a row
+    !> with nothing free left stays zero).
+    pure subroutine unit_rows(level, free, weight, a, row_scale)
+        type(level_type), intent(in) :: level
+        logical, intent(in) :: free(:)
+        real(wp), intent(in) :: weight(:)
+        real(wp), allocatable, intent(out) :: a(:, :)
+        !> 1 / length of each scaled row (1 for a zero row)
+        real(wp), allocatable, intent(out) :: row_scale(:)
+        real(wp) :: length
+        integer :: i, j, col
+
+        allocate(a(size(level%ucon), count(free)), row_scale(size(level%ucon)))
+        col = 0
+        do j = 1, size(free)
+            if (.not. free(j)) cycle
+            col = col + 1
+            a(:, col) = level%rows(:, j)*weight(j)
+        end do
+        do i = 1, size(a, 1)
+            length = norm2(a(i, :))
+            row_scale(i) = 1.0_wp
+            ! a row that only the held values carry is no row at all for the solve
+            if (length <= ic_rcond*norm2(level%rows(i, :)*weight)) then
+                a(i, :) = 0.0_wp
+            else
+                row_scale(i) = 1.0_wp/length
+                a(i, :) = a(i, :)*row_scale(i)
+            end if
+        end do
+    end subroutine unit_rows
+
+    !> The least weighted change dx of the free values that minimises the scaled residuals.
+    subroutine least_change(level, free, weight, dx, error)
+        type(level_type), intent(in) :: level
+        logical, intent(in) :: free(:)
+        real(wp), intent(in) :: weight(:)
+        real(wp), allocatable, intent(out) :: dx(:)
+        type(error_type), allocatable, intent(out) :: error
+        real(wp), allocatable :: a(:, :), row_scale(:), y(:)
+        integer :: rank, j, col
+
+        call unit_rows(level, free, weight, a, row_scale)
+        allocate(y(size(a, 2)), dx(size(free)))
+        call minimum_norm_solve(a, -level%residual*row_scale, ic_rcond, y, rank, error)
+        if (allocated(error)) return
+        dx = 0.0_wp
+        col = 0
+        do j = 1, size(free)
+            if (.not. free(j)) cycle
+            col = col + 1
+            dx(j) = y(col)*weight(j)
+        end do
+    end subroutine least_change
+
+    !> Refuse what the rows left. Met: redundant when the rows over every column (the
+    !> integrators' matrix) are dependent. Not met: contradictory when the rows over the free
+    !> columns are dependent (one UCON alone: its free columns are gone), else no convergence.
+    subroutine verdict(level, free, weight, met, steps, error)
+        type(level_type), intent(in) :: level
+        logical, intent(in) :: free(:)
+        real(wp), intent(in) :: weight(:)
+        logical, intent(in) :: met
+        integer, intent(in) :: steps
+        type(error_type), allocatable, intent(out) :: error
+        real(wp), allocatable :: a(:, :), row_scale(:), null(:, :)
+        logical, allocatable :: involved(:)
+        integer :: rank, i, m
+
+        m = size(level%ucon)
+        if (met) then
+            call unit_rows(level, spread(.true., 1, size(free)), weight, a, row_scale)
+        else
+            call unit_rows(level, free, weight, a, row_scale)
+        end if
+        call left_null_space(a, ic_rcond, rank, null, error)
+        if (allocated(error)) return
+        allocate(involved(m))
+        do i = 1, m
+            involved(i) = any(abs(null(i, :)) > involvement)
+        end do
+        if (rank < m .and. met) then
+            call fatal_error(error, "initial conditions: " // ucon_list(level, involved) &
+                & // " are redundant at " // level%name // " level: their rows are linearly " &
+                & // "dependent (rank " // to_text(rank) // " of " // to_text(m) &
+                & // "), so their multipliers are not unique and no integrator can solve the " &
+                & // "model; remove the UCON that repeats the others", stat_input)
+        else if (rank < m .and. count(involved) == 1) then
+            call fatal_error(error, "initial conditions: " // ucon_list(level, involved) &
+                & // " cannot be met at " // level%name // " level with the values marked " &
+                & // "exact held (none of its variables is free): " &
+                & // residual_list(level, involved), stat_input)
+        else if (rank < m) then
+            call fatal_error(error, "initial conditions: " // ucon_list(level, involved) &
+                & // " are contradictory at " // level%name // " level: their rows are " &
+                & // "linearly dependent (rank " // to_text(rank) // " of " // to_text(m) &
+                & // " over the values not marked exact) and no " // level%name &
+                & // " meets them all; least-squares residuals after " // to_text(steps) &
+                & // " step(s): " // residual_list(level, involved), stat_input)
+        else if (.not. met) then
+            call fatal_error(error, "initial conditions: the " // level%name // " UCONs are " &
+                & // "not met after " // to_text(steps) // " step(s) (no convergence): " &
+                & // residual_list(level, abs(level%residual) > level%tolerance), &
+                & stat_input)
+        end if
+    end subroutine verdict
+
+    !> "UCON/3 and UCON/4" (or "UCON/1, UCON/3 and UCON/4") for the flagged rows.
+    pure function ucon_list(level, flagged) result(text)
+        type(level_type), intent(in) :: level
+        logical, intent(in) :: flagged(:)
+        character(len=:), allocatable :: text
+        integer :: i, seen, total
+
+        text = ""
+        seen = 0
+        total = count(flagged)
+        do i = 1, size(flagged)
+            if (.not. flagged(i)) cycle
+            seen = seen + 1
+            if (seen > 1 .and. seen == total) then
+                text = text // " and "
+            else if (seen > 1) then
+                text = text // ", "
+            end if
+            text = text // "UCON/" // to_text(level%ids(i))
+        end do
+    end function ucon_list
+
+    !> "UCON/3 |F| = 0.05 (tolerance 1.1e-11), ..." for the flagged rows.
+    pure function residual_list(level, flagged) result(text)
+        type(level_type), intent(in) :: level
+        logical, intent(in) :: flagged(:)
+        character(len=:), allocatable :: text
+        integer :: i
+
+        text = ""
+        do i = 1, size(flagged)
+            if (.not. flagged(i)) cycle
+            if (len(text) > 0) text = text // ", "
+            text = text // "UCON/" // to_text(level%ids(i)) &
+                & // " |F| = " // to_text(abs(level%residual(i))) // " (tolerance " &
+                & // to_text(level%tolerance(i)) // ")"
+        end do
+    end function residual_list
+
+end module rollcon_ic_rows

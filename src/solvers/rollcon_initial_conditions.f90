@@ -1,0 +1,302 @@
+! SPDX-License-Identifier: MIT
+!> Initial-conditions analysis, as ADAMS does before a dynamic run (docs/initial-conditions.md):
+!> move a start (q, u) by the least weighted amount that satisfies every UCON.
+!>
+!> 1. Positions: Gauss-Newton on the position UCONs F_h(q, t) = 0, each step the minimum-norm
+!>    least-squares solution of G dq = -F (G = dF_h/dq, the UCOSUBs' own first partials).
+!> 2. Velocities: the minimum-norm least-squares solution of C du = -r, where C holds dF/du of
+!>    every velocity UCON and dF/dq of every position UCON (its velocity form), and r their
+!>    residuals; F is linear in u, so one step solves it (a second one only mops up rounding).
+!> Weights: a part's translations count in metres and its angles times rho, the RMS distance
+!> of its mass from its centre of mass, sqrt((J1 + J2 + J3)/(2 m)): a turn of d rad counts as
+!> the rho d metres a typical point of the part moves. Rates likewise. Values marked exact are
+!> held: their columns are removed. Rows are scaled to unit length before each solve (LAPACK
+!> dgelss, rcond below), so that rank and least squares are judged by the constraints'
+!> geometry, not by their units.
+!> Refusals (stat_input), naming the UCONs: redundant (dependent rows, all met: the
+!> integrators' saddle-point matrix would be singular), contradictory (dependent rows, not all
+!> met), no convergence (independent rows still unmet after max_iterations).
+module rollcon_initial_conditions
+    use rollcon_kinds, only : wp
+    use rollcon_error, only : error_type, fatal_error, stat_input
+    use rollcon_text, only : to_text
+    use rollcon_ic_rows, only : level_type, tolerance, least_change, verdict, ic_fraction
+    use rollcon_constraints, only : need_value, need_first, need_time
+    use rollcon_problem, only : problem_type
+    use rollcon_ic_report, only : ic_change_type, ic_report_type
+    implicit none
+    private
+
+    public :: ic_options_type, ic_options_of, analyse_initial_conditions
+
+    !> Most least-squares steps on the velocity rows: one solves them (F is linear in u), a
+    !> second removes rounding; more means they cannot be met
+    integer, parameter :: max_velocity_steps = 3
+    !> Largest change of any Euler angle in one Gauss-Newton step [rad], ADAMS's IC/ALIMIT
+    !> default (30 degrees): a longer step is shortened along its direction, so that a poor
+    !> start cannot jump across the Euler-angle singularity or to another branch
+    real(wp), parameter :: angle_limit = 0.5235987755982988_wp
+
+    !> How the analysis runs
+    type :: ic_options_type
+        !> Coordinates and rates held as given (system numbering; not allocated: none)
+        logical, allocatable :: exact_q(:), exact_u(:)
+        !> Tolerances of the run [-, state units] (see ic_fraction)
+        real(wp) :: rtol = 1.0e-8_wp, atol = 1.0e-10_wp
+        !> Most Gauss-Newton iterations on the position UCONs (ADAMS's IC MAXIT default)
+        integer :: max_iterations = 25
+    end type ic_options_type
+
+contains
+
+    !> Options for a problem: its run's tolerances, nothing exact.
+    pure function ic_options_of(problem) result(options)
+        type(problem_type), intent(in) :: problem
+        type(ic_options_type) :: options
+
+        options%rtol = problem%settings%rtol
+        options%atol = problem%settings%atol
+        allocate(options%exact_q(problem%model%n), options%exact_u(problem%model%n), &
+            & source=.false.)
+    end function ic_options_of
+
+    !> Move (q, u) onto the UCONs of a set-up problem by the least weighted change.
+    subroutine analyse_initial_conditions(problem, time, q, u, options, report, error)
+        !> Set up (problem%init); its constraint state is used as scratch
+        type(problem_type), intent(inout), target :: problem
+        !> Time of the start [s]
+        real(wp), intent(in) :: time
+        !> Coordinates and rates of every part [m, rad, m/s, rad/s]: the start on entry, the
+        !> consistent start on exit (unchanged when the analysis refuses)
+        real(wp), intent(inout) :: q(:), u(:)
+        type(ic_options_type), intent(in) :: options
+        type(ic_report_type), intent(out) :: report
+        type(error_type), allocatable, intent(out) :: error
+        real(wp), allocatable :: q_new(:), u_new(:), weight(:)
+        logical, allocatable :: free_q(:), free_u(:)
+        integer :: n
+
+        n = problem%model%n
+        if (size(q) /= n .or. size(u) /= n) then
+            call fatal_error(error, "initial conditions: q and u need " // to_text(n) &
+                & // " values each (6 per part), got " // to_text(size(q)) // " and " &
+                & // to_text(size(u)), stat_input)
+            return
+        end if
+        weight = column_scales(problem)
+        allocate(free_q(n), free_u(n), source=.true.)
+        if (allocated(options%exact_q)) free_q = .not. options%exact_q
+        if (allocated(options%exact_u)) free_u = .not. options%exact_u
+        q_new = q
+        u_new = u
+        call position_level(problem, time, q_new, u_new, options, free_q, weight, report, error)
+        if (allocated(error)) return
+        call velocity_level(problem, time, q_new, u_new, options, free_u, weight, report, error)
+        if (allocated(error)) return
+        call list_changes(problem, q, q_new, u, u_new, options%atol, report)
+        q = q_new
+        u = u_new
+    end subroutine analyse_initial_conditions
+
+    !> The column scale of each coordinate: 1 for a translation, 1/rho_p for an angle (the
+    !> solve's unknowns are then metres for both; see the module's header).
+    pure function column_scales(problem) result(scale)
+        type(problem_type), intent(in) :: problem
+        real(wp) :: scale(problem%model%n)
+        real(wp) :: rho
+        integer :: p
+
+        do p = 1, size(problem%model%parts)
+            associate (part => problem%model%parts(p))
+                rho = sqrt(sum(part%inertia)/(2.0_wp*part%mass))
+                scale(6*p - 5:6*p - 3) = 1.0_wp
+                scale(6*p - 2:6*p) = 1.0_wp/rho
+            end associate
+        end do
+    end function column_scales
+
+    !> Gauss-Newton on the position UCONs, then the verdict on them.
+    subroutine position_level(problem, time, q, u, options, free, weight, report, error)
+        type(problem_type), intent(inout), target :: problem
+        real(wp), intent(in) :: time
+        real(wp), intent(inout) :: q(:)
+        real(wp), intent(in) :: u(:)
+        type(ic_options_type), intent(in) :: options
+        logical, intent(in) :: free(:)
+        real(wp), intent(in) :: weight(:)
+        type(ic_report_type), intent(inout) :: report
+        type(error_type), allocatable, intent(out) :: error
+        type(level_type) :: level
+        real(wp), allocatable :: dq(:)
+        logical :: met, stalled
+
+        level%name = "position"
+        level%ucon = holonomic_ucons(problem)
+        level%ids = problem%model%ucons(level%ucon)%id
+        report%position_rows = size(level%ucon)
+        if (size(level%ucon) == 0) return
+        do
+            call position_rows(problem, time, q, u, options, level, error)
+            if (allocated(error)) return
+            met = all(abs(level%residual) <= level%tolerance)
+            if (met .or. report%newton_iterations >= options%max_iterations) exit
+            call least_change(level, free, weight, dq, error)
+            if (allocated(error)) return
+            call limit_angles(dq)
+            report%newton_iterations = report%newton_iterations + 1
+            ! a least-squares stationary point (contradictory rows): no further progress
+            stalled = all(abs(dq) <= 4.0_wp*epsilon(1.0_wp)*max(abs(q), 1.0_wp))
+            q = q + dq
+            if (stalled) then
+                call position_rows(problem, time, q, u, options, level, error)
+                if (allocated(error)) return
+                met = all(abs(level%residual) <= level%tolerance)
+                exit
+            end if
+        end do
+        report%position_residual = maxval(abs(level%residual))
+        call verdict(level, free, weight, met, report%newton_iterations, error)
+    end subroutine position_level
+
+    !> Least-squares steps on every UCON's velocity row, then the verdict on them.
+    subroutine velocity_level(problem, time, q, u, options, free, weight, report, error)
+        type(problem_type), intent(inout), target :: problem
+        real(wp), intent(in) :: time
+        real(wp), intent(in) :: q(:)
+        real(wp), intent(inout) :: u(:)
+        type(ic_options_type), intent(in) :: options
+        logical, intent(in) :: free(:)
+        real(wp), intent(in) :: weight(:)
+        type(ic_report_type), intent(inout) :: report
+        type(error_type), allocatable, intent(out) :: error
+        type(level_type) :: level
+        real(wp), allocatable :: du(:)
+        logical :: met
+        integer :: k
+
+        level%name = "velocity"
+        level%ucon = [(k, k = 1, problem%model%nc)]
+        level%ids = problem%model%ucons%id
+        report%velocity_rows = size(level%ucon)
+        if (size(level%ucon) == 0) return
+        do
+            call velocity_rows(problem, time, q, u, options, level, error)
+            if (allocated(error)) return
+            met = all(abs(level%residual) <= level%tolerance)
+            if (met .or. report%velocity_steps >= max_velocity_steps) exit
+            call least_change(level, free, weight, du, error)
+            if (allocated(error)) return
+            report%velocity_steps = report%velocity_steps + 1
+            u = u + du
+        end do
+        report%velocity_residual = maxval(abs(level%residual))
+        call verdict(level, free, weight, met, report%velocity_steps, error)
+    end subroutine velocity_level
+
+    !> Shorten dq along its direction so that no Euler angle changes by more than angle_limit.
+    pure subroutine limit_angles(dq)
+        real(wp), intent(inout) :: dq(:)
+        real(wp) :: largest
+        integer :: p
+
+        largest = 0.0_wp
+        do p = 1, size(dq)/6
+            largest = max(largest, maxval(abs(dq(6*p - 2:6*p))))
+        end do
+        if (largest > angle_limit) dq = dq*(angle_limit/largest)
+    end subroutine limit_angles
+
+    !> The numbers (model order) of the position UCONs.
+    pure function holonomic_ucons(problem) result(list)
+        type(problem_type), intent(in) :: problem
+        integer, allocatable :: list(:)
+        integer :: k
+
+        allocate(list(0))
+        do k = 1, problem%model%nc
+            if (problem%model%ucons(k)%holonomic) list = [list, k]
+        end do
+    end function holonomic_ucons
+
+    !> Rows dF_h/dq, residuals F_h and tolerances of the position UCONs at (t, q).
+    subroutine position_rows(problem, time, q, u, options, level, error)
+        type(problem_type), intent(inout), target :: problem
+        real(wp), intent(in) :: time, q(:), u(:)
+        type(ic_options_type), intent(in) :: options
+        type(level_type), intent(inout) :: level
+        type(error_type), allocatable, intent(out) :: error
+        integer :: i, m
+
+        m = size(level%ucon)
+        call problem%eq%constraints%evaluate(problem%model, time, q, u, need_value + need_first, &
+            & error)
+        if (allocated(error)) return
+        if (.not. allocated(level%rows)) allocate(level%rows(m, size(q)), level%residual(m), &
+            & level%tolerance(m))
+        associate (cs => problem%eq%constraints)
+            do i = 1, m
+                level%rows(i, :) = cs%grad_q(level%ucon(i), :)
+                level%residual(i) = cs%value(level%ucon(i))
+                level%tolerance(i) = tolerance(options%atol, options%rtol, level%rows(i, :), q, &
+                    & level%residual(i))
+            end do
+        end associate
+    end subroutine position_rows
+
+    !> Every UCON's velocity row at (t, q, u): dF/du and F for a velocity UCON, dF/dq and
+    !> dF/dq u + dF/dt for a position UCON; and their tolerances.
+    subroutine velocity_rows(problem, time, q, u, options, level, error)
+        type(problem_type), intent(inout), target :: problem
+        real(wp), intent(in) :: time, q(:), u(:)
+        type(ic_options_type), intent(in) :: options
+        type(level_type), intent(inout) :: level
+        type(error_type), allocatable, intent(out) :: error
+        integer :: k, m
+
+        m = size(level%ucon)
+        call problem%eq%constraints%evaluate(problem%model, time, q, u, need_value + need_first &
+            & + need_time, error)
+        if (allocated(error)) return
+        if (.not. allocated(level%rows)) allocate(level%rows(m, size(u)), level%residual(m), &
+            & level%tolerance(m))
+        associate (cs => problem%eq%constraints)
+            do k = 1, m
+                if (problem%model%ucons(k)%holonomic) then
+                    level%rows(k, :) = cs%grad_q(k, :)
+                    level%residual(k) = dot_product(cs%grad_q(k, :), u) + cs%dt(k)
+                else
+                    level%rows(k, :) = cs%grad_u(k, :)
+                    level%residual(k) = cs%value(k)
+                end if
+                level%tolerance(k) = tolerance(options%atol, options%rtol, level%rows(k, :), u, &
+                    & level%residual(k))
+            end do
+        end associate
+    end subroutine velocity_rows
+
+    !> The values that moved by more than ic_fraction atol, positions then rates.
+    pure subroutine list_changes(problem, q_old, q_new, u_old, u_new, atol, report)
+        type(problem_type), intent(in) :: problem
+        real(wp), intent(in) :: q_old(:), q_new(:), u_old(:), u_new(:), atol
+        type(ic_report_type), intent(inout) :: report
+        integer :: j, p, c
+
+        allocate(report%changes(0))
+        do j = 1, 2*size(q_old)
+            p = (mod(j - 1, size(q_old)))/6 + 1
+            c = mod(j - 1, 6) + 1
+            if (j <= size(q_old)) then
+                if (abs(q_new(j) - q_old(j)) <= ic_fraction*atol) cycle
+                report%changes = [report%changes, ic_change_type(problem%model%parts(p)%id, c, &
+                    & q_old(j), q_new(j))]
+            else
+                associate (i => j - size(q_old))
+                    if (abs(u_new(i) - u_old(i)) <= ic_fraction*atol) cycle
+                    report%changes = [report%changes, ic_change_type( &
+                        & problem%model%parts(p)%id, c + 6, u_old(i), u_new(i))]
+                end associate
+            end if
+        end do
+    end subroutine list_changes
+
+end module rollcon_initial_conditions
