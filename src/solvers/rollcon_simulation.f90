@@ -16,6 +16,7 @@ module rollcon_simulation
     use rollcon_output_rows, only : run_options_type, default_max_csv_bytes, planned_rows, &
         & history_type, output_layout, output_row
     use rollcon_event_message, only : event_message
+    use rollcon_rebase_step, only : rebase_part, needs_rebasing
     implicit none
     private
 
@@ -57,6 +58,9 @@ module rollcon_simulation
         !> What the tolerances allow of energy_drift and height_residual_max (rollcon_drift);
         !> 0 when not judged
         real(wp) :: energy_bound = 0.0_wp, height_bound = 0.0_wp
+        !> For each part (model order), its re-basings (docs/rebasing.md): the final q and u
+        !> are in the principal axes turned that many times
+        integer, allocatable :: rebasings(:)
         !> Integrator statistics
         integer :: steps = 0, functions = 0, jacobians = 0, failures = 0
         !> Output rows written (64 bits: a long run at a fine step passes 2**31)
@@ -83,7 +87,8 @@ contains
         type(ida_solver_type), target :: ida
         type(csv_writer_type) :: csv
         type(output_layout_type) :: layout
-        real(wp), allocatable :: y(:), yp(:), breaks(:)
+        real(wp), allocatable :: y(:), yp(:), breaks(:), q_start(:), u_start(:)
+        character(len=:), allocatable :: refusal
         real(wp) :: t, t_out, t_stop, t_reference, cpu_start, cpu_now, wall_last
         integer :: n, nc, root
         integer(int64) :: k_output, n_output
@@ -96,6 +101,10 @@ contains
         if (allocated(error)) return
         call problem%prepare()
         call start_measures()
+        q_start = q0
+        u_start = u0
+        call rebase_at_start(refusal, error)
+        if (allocated(error) .or. allocated(refusal)) return
         use_cvode = problem%settings%formulation == formulation_cvode
         breaks = force_breakpoints(problem%model%forces)
         t_reference = options%t0
@@ -110,7 +119,7 @@ contains
         end if
 
         ! Consistent start: accelerations and multipliers from the saddle-point system.
-        call problem%accelerations(options%t0, q0, u0, error)
+        call problem%accelerations(options%t0, q_start, u_start, error)
         if (allocated(error)) return
         t = options%t0
         t_stop = next_stop(t)
@@ -142,7 +151,16 @@ contains
                 summary%message = error%message
                 exit
             end if
-            if (root /= 0) then
+            if (root /= 0 .and. rebases()) then
+                call rebase_fired(refusal, error)
+                if (allocated(error)) exit
+                if (allocated(refusal)) then
+                    call record(t, y, error)
+                    summary%status = status_stopped
+                    summary%message = refusal
+                    exit
+                end if
+            else if (root /= 0) then
                 call record(t, y, error)
                 summary%status = status_stopped
                 summary%message = event_message(problem, root, t, y(:n), y(n + 1:2*n))
@@ -158,6 +176,83 @@ contains
         if (.not. allocated(error)) call judge_drift(problem, summary)
 
     contains
+
+        !> Every event function that fired is a theta limit of a model that re-bases.
+        logical function rebases()
+            integer, allocatable :: fired(:)
+            integer :: r
+
+            rebases = problem%events%rebase
+            if (.not. rebases) return
+            if (use_cvode) then
+                fired = cvode%fired
+            else
+                fired = ida%fired
+            end if
+            do r = 1, size(fired)
+                if (fired(r) /= 0 .and. problem%theta_root_part(r) == 0) rebases = .false.
+            end do
+        end function rebases
+
+        !> Re-base every part below the threshold at the start (before the first row): a
+        !> refusal stops the run there, with no row.
+        subroutine rebase_at_start(refusal, error)
+            character(len=:), allocatable, intent(out) :: refusal
+            type(error_type), allocatable, intent(out) :: error
+            integer :: p
+
+            if (.not. problem%events%rebase) return
+            do p = 1, size(problem%model%parts)
+                if (.not. needs_rebasing(problem, p, q_start)) cycle
+                call rebase_part(problem, p, options%t0, q_start, u_start, refusal, error)
+                if (allocated(error) .or. allocated(refusal)) exit
+            end do
+            summary%rebasings = problem%bases
+            if (allocated(error)) then
+                summary%status = status_failed
+                summary%message = error%message
+            else if (allocated(refusal)) then
+                summary%status = status_stopped
+                summary%message = refusal
+            end if
+        end subroutine rebase_at_start
+
+        !> Re-base the parts whose theta limit fired at (t, y), then start the integrator
+        !> again from the same physical state in the new coordinates: CVODE from (q, u), IDA
+        !> from (q, u, lambda) with y' = (u, a) from the saddle-point system (mu = 0).
+        subroutine rebase_fired(refusal, error)
+            character(len=:), allocatable, intent(out) :: refusal
+            type(error_type), allocatable, intent(out) :: error
+            integer, allocatable :: fired(:)
+            real(wp), allocatable :: q(:), u(:)
+            integer :: r
+
+            if (use_cvode) then
+                fired = cvode%fired
+            else
+                fired = ida%fired
+            end if
+            q = y(:n)
+            u = y(n + 1:2*n)
+            do r = 1, size(fired)
+                if (fired(r) == 0) cycle
+                call rebase_part(problem, problem%theta_root_part(r), t, q, u, refusal, error)
+                if (allocated(error) .or. allocated(refusal)) return
+            end do
+            call problem%accelerations(t, q, u, error)
+            if (allocated(error)) return
+            if (use_cvode) then
+                y = [q, u]
+                call cvode%reinit(t, y, error)
+            else
+                y = 0.0_wp
+                y(:2*n) = [q, u]
+                y(2*n + 1:2*n + nc) = problem%lambda
+                yp = 0.0_wp
+                yp(:2*n) = [u, problem%a]
+                call ida%reinit(t, y, yp, error)
+            end if
+        end subroutine rebase_fired
 
         !> The rows' layout, in the summary and the history; no UCON residual measured yet.
         subroutine start_measures()
@@ -178,13 +273,13 @@ contains
             type(error_type), allocatable, intent(out) :: error
 
             if (use_cvode) then
-                y = [q0, u0]
+                y = [q_start, u_start]
                 call cvode%init(problem, t, y, t_stop, error)
             else
                 allocate(y(dae_size(problem%eq)), yp(dae_size(problem%eq)), source=0.0_wp)
-                y(:2*n) = [q0, u0]
+                y(:2*n) = [q_start, u_start]
                 y(2*n + 1:2*n + nc) = problem%lambda
-                yp(:2*n) = [u0, problem%a]
+                yp(:2*n) = [u_start, problem%a]
                 call ida%init(problem, t, y, yp, t_stop, error)
             end if
         end subroutine start_integrator
@@ -265,6 +360,7 @@ contains
         end subroutine report_progress
 
         subroutine finish()
+            summary%rebasings = problem%bases
             call cpu_time(cpu_now)
             summary%cpu_seconds = cpu_now - cpu_start
             if (use_cvode) then
