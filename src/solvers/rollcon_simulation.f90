@@ -11,7 +11,9 @@ module rollcon_simulation
     use rollcon_dae, only : dae_size
     use rollcon_force, only : force_breakpoints
     use rollcon_csv_writer, only : csv_writer_type
-    use rollcon_drift, only : height_residual, drift_bounds, drift_findings
+    use rollcon_drift, only : height_residual
+    use rollcon_run_summary, only : run_summary_type, status_completed, status_stopped, &
+        & status_failed, status_inaccurate, judge_drift
     use rollcon_output_layout, only : output_layout_type
     use rollcon_output_rows, only : run_options_type, default_max_csv_bytes, planned_rows, &
         & history_type, output_layout, output_row
@@ -21,53 +23,11 @@ module rollcon_simulation
     private
 
     public :: run_options_type, run_summary_type, history_type, simulate
+    !> How a run ended and what it did (rollcon_run_summary), for the callers of simulate
     public :: status_completed, status_stopped, status_failed, status_inaccurate
     !> The output rows' limit and layout (rollcon_output_rows), for the callers of simulate
     public :: default_max_csv_bytes, output_layout
 
-    !> How a run ended: as planned, at an event limit, by a failure, or at its end or a limit
-    !> with an energy or height drift beyond what its tolerances promise (rollcon_drift)
-    integer, parameter :: status_completed = 0, status_stopped = 1, status_failed = 2, &
-        & status_inaccurate = 3
-    !> What a run did
-    type :: run_summary_type
-        integer :: status = status_completed
-        !> Why it stopped, when it did not complete
-        character(len=:), allocatable :: message
-        !> Time reached [s]
-        real(wp) :: t_reached = 0.0_wp
-        !> Final coordinates and rates
-        real(wp), allocatable :: q(:), u(:)
-        !> Energy at the reference time (start, or end of the last force pulse) [J]
-        real(wp) :: energy_reference = 0.0_wp
-        !> Largest |E - E_reference| / |E_reference| after the reference time
-        real(wp) :: energy_drift = 0.0_wp
-        !> What the rows hold: the parts and UCONs (their ids, in model order) and whether the
-        !> model has a watched contact
-        type(output_layout_type) :: layout
-        !> Largest |F_k| over the output rows and every UCON (the UCON's own unit)
-        real(wp) :: residual_max = 0.0_wp
-        !> Largest |F_k| over the output rows, for each UCON (model order)
-        real(wp), allocatable :: ucon_residual_max(:)
-        !> For each UCON: a position-level (holonomic) one, F in its coordinates' units; else a
-        !> velocity-level one, F in their units per second
-        logical, allocatable :: ucon_position(:)
-        !> Largest position-level residual |Z - R sin(theta)| of the part in contact [m] (0
-        !> when the problem has no watched contact)
-        real(wp) :: height_residual_max = 0.0_wp
-        !> What the tolerances allow of energy_drift and height_residual_max (rollcon_drift);
-        !> 0 when not judged
-        real(wp) :: energy_bound = 0.0_wp, height_bound = 0.0_wp
-        !> For each part (model order), its re-basings (docs/rebasing.md): the final q and u
-        !> are in the principal axes turned that many times
-        integer, allocatable :: rebasings(:)
-        !> Integrator statistics
-        integer :: steps = 0, functions = 0, jacobians = 0, failures = 0
-        !> Output rows written (64 bits: a long run at a fine step passes 2**31)
-        integer(int64) :: rows = 0
-        !> CPU time of the integration [s]
-        real(wp) :: cpu_seconds = 0.0_wp
-    end type run_summary_type
 
 contains
 
@@ -89,6 +49,8 @@ contains
         type(output_layout_type) :: layout
         real(wp), allocatable :: y(:), yp(:), breaks(:), q_start(:), u_start(:)
         character(len=:), allocatable :: refusal
+        !> Integrator counters of the segments before the last re-initialisation
+        integer :: earlier(4)
         real(wp) :: t, t_out, t_stop, t_reference, cpu_start, cpu_now, wall_last
         integer :: n, nc, root
         integer(int64) :: k_output, n_output
@@ -103,6 +65,7 @@ contains
         call start_measures()
         q_start = q0
         u_start = u0
+        earlier = 0
         call rebase_at_start(refusal, error)
         if (allocated(error) .or. allocated(refusal)) return
         use_cvode = problem%settings%formulation == formulation_cvode
@@ -151,7 +114,13 @@ contains
                 summary%message = error%message
                 exit
             end if
-            if (root /= 0 .and. rebases()) then
+            if (root /= 0) then
+                if (.not. rebases()) then
+                    call record(t, y, error)
+                    summary%status = status_stopped
+                    summary%message = event_message(problem, root, t, y(:n), y(n + 1:2*n))
+                    exit
+                end if
                 call rebase_fired(refusal, error)
                 if (allocated(error)) exit
                 if (allocated(refusal)) then
@@ -160,11 +129,6 @@ contains
                     summary%message = refusal
                     exit
                 end if
-            else if (root /= 0) then
-                call record(t, y, error)
-                summary%status = status_stopped
-                summary%message = event_message(problem, root, t, y(:n), y(n + 1:2*n))
-                exit
             end if
             if (t < t_out) cycle
             call record(t, y, error)
@@ -241,6 +205,7 @@ contains
             end do
             call problem%accelerations(t, q, u, error)
             if (allocated(error)) return
+            call add_statistics(earlier)
             if (use_cvode) then
                 y = [q, u]
                 call cvode%reinit(t, y, error)
@@ -359,17 +324,34 @@ contains
             flush(error_unit)
         end subroutine report_progress
 
+        !> Add the integrator's counters (steps, functions, Jacobians, failures) since its last
+        !> (re-)initialisation to counts.
+        subroutine add_statistics(counts)
+            integer, intent(inout) :: counts(4)
+            integer :: now(4)
+
+            now = 0
+            if (use_cvode) then
+                if (allocated(cvode%values)) call cvode%statistics(now(1), now(2), now(3), now(4))
+            else
+                if (allocated(ida%values)) call ida%statistics(now(1), now(2), now(3), now(4))
+            end if
+            counts = counts + now
+        end subroutine add_statistics
+
         subroutine finish()
             summary%rebasings = problem%bases
             call cpu_time(cpu_now)
             summary%cpu_seconds = cpu_now - cpu_start
+            ! a re-initialisation restarts the counters: the run's are the segments' sums
+            call add_statistics(earlier)
+            summary%steps = earlier(1)
+            summary%functions = earlier(2)
+            summary%jacobians = earlier(3)
+            summary%failures = earlier(4)
             if (use_cvode) then
-                if (allocated(cvode%values)) call cvode%statistics(summary%steps, &
-                    & summary%functions, summary%jacobians, summary%failures)
                 call cvode%destroy()
             else
-                if (allocated(ida%values)) call ida%statistics(summary%steps, summary%functions, &
-                    & summary%jacobians, summary%failures)
                 call ida%destroy()
             end if
             ! A write or the close failing (a full disk) fails the run, unless it failed already.
@@ -406,30 +388,6 @@ contains
                 & // to_text(problem%events%contact_radius), stat_input)
         end if
     end subroutine check_events
-
-    !> Judge a run that reached its end or a limit against what its tolerances promise
-    !> (rollcon_drift): beyond a bound its results are not what was asked, status_inaccurate,
-    !> with the measures and bounds in the message.
-    subroutine judge_drift(problem, summary)
-        type(problem_type), intent(in) :: problem
-        type(run_summary_type), intent(inout) :: summary
-        character(len=:), allocatable :: findings
-
-        if (summary%status /= status_completed .and. summary%status /= status_stopped) return
-        call drift_bounds(problem, summary%steps, summary%energy_bound, summary%height_bound)
-        ! no reference energy to be relative to: not judged
-        if (summary%energy_reference == 0.0_wp) summary%energy_bound = 0.0_wp
-        findings = drift_findings(summary%steps, summary%energy_drift, summary%energy_bound, &
-            & summary%height_residual_max, summary%height_bound)
-        if (len(findings) == 0) return
-        if (summary%status == status_stopped) then
-            summary%message = summary%message // "; and the results drifted: " // findings
-        else
-            summary%message = "the run reached t = " // to_text(summary%t_reached) &
-                & // " s but its results drifted beyond what its tolerances promise: " // findings
-        end if
-        summary%status = status_inaccurate
-    end subroutine judge_drift
 
     !> Wall-clock seconds since an arbitrary origin.
     function wall_seconds() result(seconds)
