@@ -17,6 +17,7 @@ module rollcon_rebasing
     private
 
     public :: basis_turn, rebased_state, rebased_inertia, to_new_basis, euler_angles_near
+    public :: own_axes_rotation
 
     !> The turn of a re-basing: its columns are the new principal axes in the old ones
     !> (new x = old x, new y = -old z, new z = old y: 90 degrees about body x)
@@ -73,6 +74,23 @@ contains
 
         w = transpose_times(basis_turn, v)
     end function to_new_basis
+
+    !> The rotation of a part's own principal axes (its CM marker's, basis 0) from the
+    !> rotation R of basis number `basis` (a CSV's basis_<id>): R (basis_turn^T)^basis, for
+    !> whoever draws a part in its own axes from a re-based row. The turn has order 4.
+    pure function own_axes_rotation(r, basis) result(own)
+        !> Rotation of the principal axes of the basis, body to ground
+        real(wp), intent(in) :: r(3, 3)
+        !> Number of the basis, >= 0
+        integer, intent(in) :: basis
+        real(wp) :: own(3, 3)
+        integer :: k
+
+        own = r
+        do k = 1, modulo(basis, 4)
+            own = matmul(own, transpose(basis_turn))
+        end do
+    end function own_axes_rotation
 
     !> The 3-1-3 angles (psi, theta, phi) of R = Rz(psi) Rx(theta) Rz(phi) [rad], theta in
     !> [0, pi], psi and phi the values within pi of psi_near and phi_near. R must be away from

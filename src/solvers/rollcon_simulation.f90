@@ -66,8 +66,6 @@ contains
         q_start = q0
         u_start = u0
         earlier = 0
-        call rebase_at_start(refusal, error)
-        if (allocated(error) .or. allocated(refusal)) return
         use_cvode = problem%settings%formulation == formulation_cvode
         breaks = force_breakpoints(problem%model%forces)
         t_reference = options%t0
@@ -81,12 +79,17 @@ contains
             if (allocated(error)) return
         end if
 
+        call cpu_time(cpu_start)
+        call rebase_at_start(refusal, error)
+        if (allocated(error)) then
+            call finish()
+            return
+        end if
         ! Consistent start: accelerations and multipliers from the saddle-point system.
         call problem%accelerations(options%t0, q_start, u_start, error)
         if (allocated(error)) return
         t = options%t0
         t_stop = next_stop(t)
-        call cpu_time(cpu_start)
         wall_last = wall_seconds()
         call start_integrator(error)
         if (allocated(error)) then
@@ -95,7 +98,9 @@ contains
         end if
         have_reference = .false.
         call record(t, y, error)
-        if (allocated(error)) then
+        if (allocated(error) .or. allocated(refusal)) then
+            if (allocated(refusal)) summary%status = status_stopped
+            if (allocated(refusal)) summary%message = refusal
             call finish()
             return
         end if
@@ -158,27 +163,19 @@ contains
             end do
         end function rebases
 
-        !> Re-base every part below the threshold at the start (before the first row): a
-        !> refusal stops the run there, with no row.
+        !> Re-base every part at or below the threshold at the start, before the first row: a
+        !> refusal stops the run after that row (the start as given).
         subroutine rebase_at_start(refusal, error)
             character(len=:), allocatable, intent(out) :: refusal
             type(error_type), allocatable, intent(out) :: error
             integer :: p
 
-            if (.not. problem%events%rebase) return
+            if (.not. problem%events%rebase .or. problem%events%theta_min < 0.0_wp) return
             do p = 1, size(problem%model%parts)
                 if (.not. needs_rebasing(problem, p, q_start)) cycle
                 call rebase_part(problem, p, options%t0, q_start, u_start, refusal, error)
-                if (allocated(error) .or. allocated(refusal)) exit
+                if (allocated(error) .or. allocated(refusal)) return
             end do
-            summary%rebasings = problem%bases
-            if (allocated(error)) then
-                summary%status = status_failed
-                summary%message = error%message
-            else if (allocated(refusal)) then
-                summary%status = status_stopped
-                summary%message = refusal
-            end if
         end subroutine rebase_at_start
 
         !> Re-base the parts whose theta limit fired at (t, y), then start the integrator

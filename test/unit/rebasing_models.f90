@@ -16,7 +16,7 @@ module rebasing_models
     implicit none
     private
 
-    public :: run_dataset, tumbling_sphere, spinning_sphere, falling_disk
+    public :: run_dataset, tumbling_sphere, spinning_sphere, falling_disk, sphere_near_flat
     public :: sphere_radius, sphere_speed, sphere_end
 
     !> Sphere radius [m], speed of its centre along +X [m/s], end of its runs [s]: 10 rad/s,
@@ -48,6 +48,21 @@ contains
             & // ", VX=0.5, WX=10" // nl // "MARKER/21, PART=2, REULER=90D, 90D, 0D" // nl &
             & // tail(formulation)
     end function tumbling_sphere
+
+    !> The tumbling sphere starting with its body z 2 degrees from ground +Z (REULER 90D, 2D,
+    !> 0D: theta = 0.035 rad, below the threshold sin(0.05 rad), above the dataset's refusal
+    !> at sin(theta) < 0.001), for 1 s.
+    function sphere_near_flat(formulation) result(text)
+        character(len=*), intent(in) :: formulation
+        character(len=:), allocatable :: text
+
+        text = "sphere near flat" // nl // "UNITS/SYSTEM=SI" // nl // "PART/1, GROUND" // nl &
+            & // "PART/2, MASS=1, CM=21, IP=1.0E-3, 0.9E-3, 0.8E-3, QG=0, 0, 0.05" // nl &
+            & // ", VX=0.5, WX=10" // nl // "MARKER/21, PART=2, REULER=90D, 2D, 0D" // nl &
+            & // "ACCGRAV/KGRAV=-9.81" // nl // sphere_ucons &
+            & // "SIMULATE/DYNAMIC, END=1, DTOUT=0.05" // nl &
+            & // "INTEGRATOR/FORMULATION=" // formulation // ", ERROR=1.0E-10" // nl // "END"
+    end function sphere_near_flat
 
     !> The same sphere with its spin axis as body z (REULER 0D, 90D, 0D: body z along ground
     !> -Y, so the spin of 10 rad/s about ground +Y is WZ = -10): theta stays pi/2.

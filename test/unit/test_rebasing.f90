@@ -11,7 +11,7 @@ module test_rebasing
     use rollcon_text, only : to_text
     use rollcon_rotation, only : rotation_matrix, rate_matrix, times
     use rollcon_body, only : part_type, kinetic_energy
-    use rollcon_rebasing, only : rebased_state, rebased_inertia, basis_turn
+    use rollcon_rebasing, only : rebased_state, rebased_inertia, basis_turn, own_axes_rotation
     use rollcon_simulation, only : run_summary_type, history_type, status_completed, &
         & status_stopped, status_inaccurate
     use rollcon_summary_text, only : run_summary_text
@@ -19,9 +19,10 @@ module test_rebasing
         & name_length, coord_x, coord_z, coord_xdot, coord_zdot, coord_theta
     use rollcon_csv_reader, only : read_output_csv
     use rollcon_output_files, only : delete_file
+    use rollcon_run_record, only : run_record_type, pose
     use rollcon_testing, only : unittest_type, new_unittest, check
     use rebasing_models, only : run_dataset, tumbling_sphere, spinning_sphere, falling_disk, &
-        & sphere_end
+        & sphere_end, sphere_near_flat
     implicit none
     private
 
@@ -61,7 +62,9 @@ contains
             & new_unittest("sphere-hundred-rebasings-cvode", test_sphere_cvode), &
             & new_unittest("disk-routine-refused-ida", test_disk_ida), &
             & new_unittest("disk-routine-refused-cvode", test_disk_cvode), &
-            & new_unittest("basis-columns", test_basis_columns)]
+            & new_unittest("start-below-threshold", test_start_below), &
+            & new_unittest("basis-columns", test_basis_columns), &
+            & new_unittest("pictures-own-axes", test_pictures_pose)]
     end subroutine collect_rebasing
 
     !> Near the singularity (theta = 0.04 rad, and pi - 0.04), the new coordinates give the
@@ -87,6 +90,9 @@ contains
             omega_new = times(r_new, times(rate_matrix(q_new(5), q_new(6)), u_new(4:6)))
             call check(error, reshape(r_new, [9]), reshape(matmul(r_old, basis_turn), [9]), &
                 & "R_new = R_old T", abs_tol=tol_maths)
+            if (allocated(error)) return
+            call check(error, reshape(own_axes_rotation(r_new, 5), [9]), reshape(r_old, [9]), &
+                & "the own axes' rotation from basis 5 = 1 (mod 4)", abs_tol=tol_maths)
             if (allocated(error)) return
             call check(error, omega_new, omega_old, "angular velocity in ground", &
                 & abs_tol=tol_maths*10.0_wp)
@@ -241,6 +247,49 @@ contains
         call check(error, sin(summary%q(5)), sin(0.05_wp), "sin(theta) at the stop", &
             & abs_tol=1.0e-6_wp)
     end subroutine disk_refused
+
+    !> A sphere starting 2 degrees from flat is re-based before its first row: that row is in
+    !> basis 1, its theta near pi/2, its centre and energy the start's, and it rolls on.
+    subroutine test_start_below(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(run_summary_type) :: summary
+        type(history_type) :: rows
+        real(wp), allocatable :: basis(:), theta(:), x(:)
+
+        call run_dataset("near-flat", sphere_near_flat("IDA"), summary, rows, error)
+        if (allocated(error)) return
+        basis = rows%column(rows%layout%basis_column(1))
+        theta = rows%part_values(1, coord_theta)
+        x = rows%part_values(1, coord_x)
+        call check(error, summary%status == status_completed .and. basis(1) == 1.0_wp &
+            & .and. abs(cos(theta(1))) <= sin(0.05_wp) .and. summary%rebasings(1) >= 1, &
+            & "status " // to_text(summary%status) // ", first basis " // to_text(basis(1)) &
+            & // ", first theta " // to_text(theta(1)))
+        if (allocated(error)) return
+        call check(error, x(rows%count), 0.5_wp, "X after 1 s at 0.5 m/s [m]", &
+            & abs_tol=tol_centre)
+    end subroutine test_start_below
+
+    !> The pictures draw a part in its own axes from a re-based row: the pose of a row in
+    !> basis 1 has the rotation of the state before the re-basing.
+    subroutine test_pictures_pose(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(run_record_type) :: run
+        real(wp) :: q_old(6), u_old(6), q_new(6), u_new(6), drawn(6)
+
+        q_old = [0.1_wp, -0.2_wp, 0.3_wp, 7.0_wp, 0.04_wp, -13.0_wp]
+        u_old = [0.4_wp, 0.5_wp, -0.6_wp, 1.3_wp, -0.7_wp, 2.9_wp]
+        call rebased_state(q_old, u_old, q_new, u_new)
+        run%layout = new_output_layout([4], [integer ::], .false., .true.)
+        run%history%layout = run%layout
+        call run%history%add([0.0_wp, q_new, u_new, 1.0_wp, 1.0_wp])
+        drawn = pose(run, 1, 1)
+        call check(error, reshape(rotation_matrix(drawn(4), drawn(5), drawn(6)), [9]), &
+            & reshape(rotation_matrix(q_old(4), q_old(5), q_old(6)), [9]), &
+            & "the drawn rotation is the own axes'", abs_tol=tol_maths)
+        if (allocated(error)) return
+        call check(error, drawn(1:3), q_old(1:3), "the drawn centre", abs_tol=0.0_wp)
+    end subroutine test_pictures_pose
 
     !> The basis columns close the header, after the contact columns, and read back.
     subroutine test_basis_columns(error)
