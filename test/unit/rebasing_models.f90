@@ -32,21 +32,32 @@ module rebasing_models
         & // "UCON/3, FUNCTION=USER(2, 21, 22, 23, 14, 15, 25, 26, 0.05, 3), " &
         & // "ROUTINE=rolling_sphere" // nl
 
+    !> A push of 0.2 N along ground +X from t = 0.3 s to 0.5 s at a point fixed in the sphere,
+    !> MARKER/22, at the top of the sphere at t = 0 (QP in the part's frame, which is ground's
+    !> at the start), after the tumbling sphere's first re-basing (at t = 0.15 s): the force's
+    !> point must be turned with the axes. The reaction is on ground (not applied).
+    character(len=*), parameter :: push_statements = "MARKER/1, PART=1" // nl &
+        & // "MARKER/22, PART=2, QP=0, 0, 0.1" // nl &
+        & // "VFORCE/5, I=22, JFLOAT=1, RM=1, FY=0, FZ=0" // nl &
+        & // ", FX=IF(TIME - 0.3: 0, 0.2, IF(TIME - 0.5: 0.2, 0, 0))" // nl
+
 contains
 
     !> The tumbling sphere: principal moments 1.0e-3, 0.9e-3, 0.8e-3 kg m^2 (the spin about
     !> the largest, a stable rotation), CM marker x along ground +Y (REULER 90D, 90D, 0D: body
     !> z along ground +X, theta = pi/2), rolling along +X at 0.5 m/s: a spin of v/r = 10 rad/s
     !> about ground +Y, the CM marker's x (WX = 10). Body y and z turn in the XZ plane.
-    function tumbling_sphere(formulation) result(text)
+    function tumbling_sphere(formulation, pushed) result(text)
         !> IDA or CVODE
         character(len=*), intent(in) :: formulation
+        !> With the push (push_statements); default false
+        logical, intent(in), optional :: pushed
         character(len=:), allocatable :: text
 
         text = "tumbling sphere" // nl // "UNITS/SYSTEM=SI" // nl // "PART/1, GROUND" // nl &
             & // "PART/2, MASS=1, CM=21, IP=1.0E-3, 0.9E-3, 0.8E-3, QG=0, 0, 0.05" // nl &
             & // ", VX=0.5, WX=10" // nl // "MARKER/21, PART=2, REULER=90D, 90D, 0D" // nl &
-            & // tail(formulation)
+            & // tail(formulation, pushed)
     end function tumbling_sphere
 
     !> The tumbling sphere starting with its body z 2 degrees from ground +Z (REULER 90D, 2D,
@@ -66,22 +77,29 @@ contains
 
     !> The same sphere with its spin axis as body z (REULER 0D, 90D, 0D: body z along ground
     !> -Y, so the spin of 10 rad/s about ground +Y is WZ = -10): theta stays pi/2.
-    function spinning_sphere(formulation) result(text)
+    function spinning_sphere(formulation, pushed) result(text)
         character(len=*), intent(in) :: formulation
+        logical, intent(in), optional :: pushed
         character(len=:), allocatable :: text
 
         text = "spinning sphere" // nl // "UNITS/SYSTEM=SI" // nl // "PART/1, GROUND" // nl &
             & // "PART/2, MASS=1, CM=21, IP=0.9E-3, 0.8E-3, 1.0E-3, QG=0, 0, 0.05" // nl &
             & // ", VX=0.5, WZ=-10" // nl // "MARKER/21, PART=2, REULER=0D, 90D, 0D" // nl &
-            & // tail(formulation)
+            & // tail(formulation, pushed)
     end function spinning_sphere
 
-    !> Gravity, the sphere's UCONs, the run of sphere_end s at 0.05 s and the formulation.
-    function tail(formulation) result(text)
+    !> Gravity, the sphere's UCONs, the push when asked, the run of sphere_end s at 0.05 s and
+    !> the formulation.
+    function tail(formulation, pushed) result(text)
         character(len=*), intent(in) :: formulation
+        logical, intent(in), optional :: pushed
         character(len=:), allocatable :: text
 
-        text = "ACCGRAV/KGRAV=-9.81" // nl // sphere_ucons &
+        text = ""
+        if (present(pushed)) then
+            if (pushed) text = push_statements
+        end if
+        text = text // "ACCGRAV/KGRAV=-9.81" // nl // sphere_ucons &
             & // "SIMULATE/DYNAMIC, END=20, DTOUT=0.05" // nl &
             & // "INTEGRATOR/FORMULATION=" // formulation // ", ERROR=1.0E-10" // nl // "END"
     end function tail
