@@ -90,6 +90,8 @@ contains
         end associate
         problem%events%part = 1
         problem%events%theta_min = adm_theta_min
+        ! a dataset's parts are re-based at the theta limit, not stopped (docs/rebasing.md)
+        problem%events%rebase = .true.
         ! no contact is known to the driver: no lift-off watch, no height residual
         problem%events%stop_on_liftoff = .false.
         problem%events%contact_radius = 0.0_wp

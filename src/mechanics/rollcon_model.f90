@@ -15,7 +15,9 @@ module rollcon_model
     use rollcon_ucovar_registry, only : ucovar_registry_type
     use rollcon_ucon_call, only : declare_ucon
     use rollcon_body, only : part_type
-    use rollcon_force, only : applied_force_type
+    use rollcon_force, only : applied_force_type, profile_statement, frame_tilt
+    use rollcon_marker, only : marker_type
+    use rollcon_rebasing, only : rebased_inertia, to_new_basis
     implicit none
     private
 
@@ -64,6 +66,7 @@ module rollcon_model
         procedure :: add_part
         procedure :: add_ucon
         procedure :: add_force
+        procedure :: turn_part_axes
     end type model_type
 
 contains
@@ -107,6 +110,59 @@ contains
         if (.not. allocated(self%forces)) allocate(self%forces(0))
         self%forces = [self%forces, force]
     end subroutine add_force
+
+    !> Re-base part p (model order) on its principal axes turned by rollcon_rebasing's
+    !> basis_turn: its principal moments permuted, and every body-fixed quantity of the part
+    !> (the markers of force statements, the points of fixed-direction forces) given in the
+    !> new axes. A CM marker then no longer has the part's principal axes (its angles are
+    !> computed from its axes). A force applied in a disk's tilt frame cannot be turned: refused.
+    subroutine turn_part_axes(self, p, error)
+        class(model_type), intent(inout) :: self
+        integer, intent(in) :: p
+        type(error_type), allocatable, intent(out) :: error
+        integer :: i, k
+
+        do i = 1, size(self%forces)
+            associate (force => self%forces(i))
+                if (force%profile == profile_statement) then
+                    call turn_marker(force%statement%i)
+                    call turn_marker(force%statement%j)
+                    call turn_marker(force%statement%rm)
+                    if (allocated(force%statement%markers)) then
+                        do k = 1, size(force%statement%markers)
+                            call turn_marker(force%statement%markers(k))
+                        end do
+                    end if
+                else if (force%part == p) then
+                    if (force%frame == frame_tilt) then
+                        call fatal_error(error, "part " // to_text(self%parts(p)%id) &
+                            & // " cannot be re-based: force " // to_text(i) &
+                            & // " is applied in its tilt frame, which has no meaning in " &
+                            & // "other principal axes", stat_input)
+                        return
+                    end if
+                    force%point = to_new_basis(force%point)
+                end if
+            end associate
+        end do
+        self%parts(p)%inertia = rebased_inertia(self%parts(p)%inertia)
+
+    contains
+
+        !> A marker of part p in the new axes.
+        subroutine turn_marker(marker)
+            type(marker_type), intent(inout) :: marker
+            integer :: axis
+
+            if (marker%part /= p) return
+            marker%point = to_new_basis(marker%point)
+            do axis = 1, 3
+                marker%axes(:, axis) = to_new_basis(marker%axes(:, axis))
+            end do
+            marker%principal = .false.
+        end subroutine turn_marker
+
+    end subroutine turn_part_axes
 
     !> Initialise every UCON (IFLAG = 3), validate the declarations, map variables to coordinates.
     subroutine setup_model(model, error)

@@ -11,6 +11,9 @@ module rollcon_run_record
     use rollcon_csv_reader, only : read_output_csv, largest_value
     use rollcon_part_shapes, only : part_shape_type, read_part_shapes, parts_path, shape_disk
     use rollcon_disk_mesh, only : contact_point
+    use rollcon_rotation, only : rotation_matrix
+    use rollcon_marker, only : euler_angles_of
+    use rollcon_rebasing, only : own_axes_rotation
     implicit none
     private
 
@@ -116,14 +119,24 @@ contains
         end associate
     end subroutine disk_from_contact
 
-    !> X, Y, Z [m], psi, theta, phi [rad] of part p (layout order) in output row j.
+    !> X, Y, Z [m], psi, theta, phi [rad] of part p (layout order) in output row j; the angles
+    !> of the part's own principal axes (its CM marker's, in which its shape is given) also
+    !> in a row after a re-basing.
     pure function pose(run, p, j) result(q)
         type(run_record_type), intent(in) :: run
         integer, intent(in) :: p, j
         real(wp) :: q(6)
 
+        integer :: basis
+
         q = run%history%rows(run%layout%part_column(p, coord_x):run%layout%part_column(p, &
             & coord_phi), j)
+        if (.not. run%layout%bases) return
+        ! a re-based row: the angles of the part's own axes, in which its shape is given
+        ! (docs/rebasing.md)
+        basis = nint(run%history%rows(run%layout%basis_column(p), j))
+        if (basis /= 0) q(4:6) = euler_angles_of(own_axes_rotation(rotation_matrix(q(4), &
+            & q(5), q(6)), basis))
     end function pose
 
     !> The point whose path the pictures draw for part p at output row j [m]: a disk's contact

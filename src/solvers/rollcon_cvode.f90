@@ -20,6 +20,7 @@ module rollcon_cvode
         & FCVode, FCVodeRootInit, FCVodeGetRootInfo, FCVodeSetProjFn, FCVodeFree, &
         & FCVodeGetNumSteps, FCVodeGetNumRhsEvals, FCVodeGetNumJacEvals, &
         & FCVodeGetNumLinRhsEvals, FCVodeGetNumErrTestFails, FCVodeGetDky, FCVodeSetErrFile, &
+        & FCVodeReInit, &
         & CV_BDF, CV_ADAMS, CV_NORMAL, &
         & CV_SUCCESS, CV_ROOT_RETURN, CV_TSTOP_RETURN, CV_TOO_MUCH_WORK, CV_TOO_MUCH_ACC, &
         & CV_ERR_FAILURE, CV_CONV_FAILURE
@@ -48,8 +49,11 @@ module rollcon_cvode
         type(SUNLinearSolver), pointer :: solver => null()
         !> Storage behind y
         real(c_double), allocatable :: values(:)
+        !> After a root return: non-zero for every event function that fired (its direction)
+        integer(c_int), allocatable :: fired(:)
     contains
         procedure :: init
+        procedure :: reinit
         procedure :: advance
         procedure :: statistics
         procedure :: destroy
@@ -128,6 +132,19 @@ contains
         end if
     end subroutine init
 
+    !> Start again from (t0, y0 = (q, u)) with the settings, tolerances, callbacks and event
+    !> functions of init: after a re-basing has changed the coordinates (CVodeReInit).
+    subroutine reinit(self, t0, y0, error)
+        class(cvode_solver_type), intent(inout) :: self
+        real(wp), intent(in) :: t0, y0(:)
+        type(error_type), allocatable, intent(out) :: error
+        integer(c_int) :: flag
+
+        self%values(:) = y0
+        flag = FCVodeReInit(self%memory, t0, self%y)
+        if (check(flag, "CVodeReInit", error)) return
+    end subroutine reinit
+
     !> Integrate towards t_out (never past t_stop). On return y holds the state at t_reached;
     !> root is the number of the event function that fired (0 if none).
     subroutine advance(self, problem, t_out, t_stop, t_reached, y, root, error)
@@ -139,7 +156,6 @@ contains
         type(error_type), allocatable, intent(out) :: error
         real(c_double) :: t_return(1)
         integer(c_int) :: flag
-        integer(c_int), allocatable :: found(:)
 
         root = 0
         flag = FCVodeSetStopTime(self%memory, t_stop)
@@ -148,9 +164,10 @@ contains
         t_reached = t_return(1)
         y = self%values
         if (flag == CV_ROOT_RETURN) then
-            allocate(found(problem%root_count()), source=0_c_int)
-            flag = FCVodeGetRootInfo(self%memory, found)
-            root = findloc(found /= 0, .true., dim=1)
+            if (allocated(self%fired)) deallocate(self%fired)
+            allocate(self%fired(problem%root_count()), source=0_c_int)
+            flag = FCVodeGetRootInfo(self%memory, self%fired)
+            root = findloc(self%fired /= 0, .true., dim=1)
             return
         end if
         if (flag == CV_SUCCESS .or. flag == CV_TSTOP_RETURN) return
@@ -200,6 +217,7 @@ contains
         self%data%memory = c_null_ptr
         if (allocated(self%values)) deallocate(self%values)
         if (allocated(self%data%rate_values)) deallocate(self%data%rate_values)
+        if (allocated(self%fired)) deallocate(self%fired)
     end subroutine destroy
 
     !> What a failure flag of CVODE means (names of the CVODE guide), for messages: SUNDIALS

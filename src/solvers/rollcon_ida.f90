@@ -19,7 +19,7 @@ module rollcon_ida
     use fsunlinsol_dense_mod, only : FSUNLinSol_Dense
     use fida_mod, only : FIDACreate, FIDAInit, FIDASVtolerances, FIDASetUserData, &
         & FIDASetLinearSolver, FIDASetJacFn, FIDASetMaxNumSteps, FIDASetStopTime, FIDASolve, &
-        & FIDARootInit, FIDAGetRootInfo, FIDASetId, FIDASetSuppressAlg, FIDAFree, &
+        & FIDARootInit, FIDAGetRootInfo, FIDASetId, FIDASetSuppressAlg, FIDAFree, FIDAReInit, &
         & FIDAGetNumSteps, FIDAGetNumResEvals, FIDAGetNumJacEvals, FIDAGetNumLinResEvals, &
         & FIDAGetNumErrTestFails, FIDASetErrFile, IDA_NORMAL, IDA_SUCCESS, IDA_ROOT_RETURN, &
         & IDA_TSTOP_RETURN, IDA_TOO_MUCH_WORK, IDA_TOO_MUCH_ACC, IDA_ERR_FAIL, IDA_CONV_FAIL
@@ -38,8 +38,11 @@ module rollcon_ida
         type(N_Vector), pointer :: tolerances => null()
         !> Storage behind y, y', the id vector and the absolute tolerances
         real(c_double), allocatable :: values(:), rates(:), kinds(:), absolute(:)
+        !> After a root return: non-zero for every event function that fired (its direction)
+        integer(c_int), allocatable :: fired(:)
     contains
         procedure :: init
+        procedure :: reinit
         procedure :: advance
         procedure :: statistics
         procedure :: destroy
@@ -121,6 +124,20 @@ contains
         end if
     end subroutine init
 
+    !> Start again from consistent (t0, y0, yp0) with the settings, tolerances, callbacks and
+    !> event functions of init: after a re-basing has changed the coordinates (IDAReInit).
+    subroutine reinit(self, t0, y0, yp0, error)
+        class(ida_solver_type), intent(inout) :: self
+        real(wp), intent(in) :: t0, y0(:), yp0(:)
+        type(error_type), allocatable, intent(out) :: error
+        integer(c_int) :: flag
+
+        self%values(:) = y0
+        self%rates(:) = yp0
+        flag = FIDAReInit(self%memory, t0, self%y, self%yp)
+        if (check(flag, "IDAReInit", error)) return
+    end subroutine reinit
+
     !> Integrate towards t_out (never past t_stop); y, yp at t_reached; root fired (0 if none).
     subroutine advance(self, problem, t_out, t_stop, t_reached, y, yp, root, error)
         class(ida_solver_type), intent(inout) :: self
@@ -131,7 +148,6 @@ contains
         type(error_type), allocatable, intent(out) :: error
         real(c_double) :: t_return(1)
         integer(c_int) :: flag
-        integer(c_int), allocatable :: found(:)
 
         root = 0
         flag = FIDASetStopTime(self%memory, t_stop)
@@ -141,9 +157,10 @@ contains
         y = self%values
         yp = self%rates
         if (flag == IDA_ROOT_RETURN) then
-            allocate(found(problem%root_count()), source=0_c_int)
-            flag = FIDAGetRootInfo(self%memory, found)
-            root = findloc(found /= 0, .true., dim=1)
+            if (allocated(self%fired)) deallocate(self%fired)
+            allocate(self%fired(problem%root_count()), source=0_c_int)
+            flag = FIDAGetRootInfo(self%memory, self%fired)
+            root = findloc(self%fired /= 0, .true., dim=1)
             return
         end if
         if (flag == IDA_SUCCESS .or. flag == IDA_TSTOP_RETURN) return
@@ -210,6 +227,7 @@ contains
         self%memory = c_null_ptr
         self%context = c_null_ptr
         nullify(self%solver, self%matrix, self%y, self%yp, self%id, self%tolerances)
+        if (allocated(self%fired)) deallocate(self%fired)
     end subroutine destroy
 
     function check(flag, routine, error) result(failed)

@@ -14,7 +14,10 @@
 !>   UCON in m/s, N for a position UCON in m);
 !> - for a model with a watched contact (the disk scenes), the contact's own additions: the
 !>   constraint force on the watched part `Fx Fy Fz` [N], its normal part `Fn` [N], the friction
-!>   coefficient it needs `mu_needed` [-] and the height residual `height_residual` [m].
+!>   coefficient it needs `mu_needed` [-] and the height residual `height_residual` [m];
+!> - for a model whose parts may be re-based (datasets, docs/rebasing.md), for every part in
+!>   model order `basis_<id>`: the number of the principal basis its coordinates are in at
+!>   that row (0 for the CM marker's own axes, then 1, 2, ... after each re-basing) [-].
 !> With one part, the part's coordinates are columns 2 to 13 and the energy column 14, whatever
 !> its id.
 module rollcon_output_layout
@@ -49,8 +52,10 @@ module rollcon_output_layout
         integer, allocatable :: part_ids(:)
         !> UCON ids, in model order
         integer, allocatable :: ucon_ids(:)
-        !> True when the rows end with the contact columns
+        !> True when the rows carry the contact columns
         logical :: contact = .false.
+        !> True when the rows end with a basis column per part (a model that re-bases)
+        logical :: bases = .false.
     contains
         procedure :: columns
         procedure :: part_column
@@ -58,6 +63,7 @@ module rollcon_output_layout
         procedure :: residual_column
         procedure :: multiplier_column
         procedure :: contact_column
+        procedure :: basis_column
         procedure :: header
         procedure :: part_index
     end type output_layout_type
@@ -65,16 +71,19 @@ module rollcon_output_layout
 contains
 
     !> The layout of a model's rows.
-    pure function new_output_layout(part_ids, ucon_ids, contact) result(layout)
+    pure function new_output_layout(part_ids, ucon_ids, contact, bases) result(layout)
         !> Part ids and UCON ids, in model order
         integer, intent(in) :: part_ids(:), ucon_ids(:)
-        !> Rows end with the contact columns
+        !> Rows carry the contact columns
         logical, intent(in) :: contact
+        !> Rows end with a basis column per part (default false)
+        logical, intent(in), optional :: bases
         type(output_layout_type) :: layout
 
         layout%part_ids = part_ids
         layout%ucon_ids = ucon_ids
         layout%contact = contact
+        if (present(bases)) layout%bases = bases
     end function new_output_layout
 
     !> Number of columns.
@@ -83,6 +92,7 @@ contains
 
         columns = 2 + 12*size(self%part_ids) + 2*size(self%ucon_ids)
         if (self%contact) columns = columns + size(contact_names)
+        if (self%bases) columns = columns + size(self%part_ids)
     end function columns
 
     !> Column of quantity c (coord_x ... coord_phidot) of the p-th part (model order).
@@ -125,6 +135,17 @@ contains
         if (self%contact) contact_column = self%energy_column() + 2*size(self%ucon_ids) + j
     end function contact_column
 
+    !> Column of the basis number of the p-th part (model order); 0 without basis columns.
+    pure integer function basis_column(self, p)
+        class(output_layout_type), intent(in) :: self
+        integer, intent(in) :: p
+
+        basis_column = 0
+        if (.not. self%bases) return
+        basis_column = self%energy_column() + 2*size(self%ucon_ids) + p
+        if (self%contact) basis_column = basis_column + size(contact_names)
+    end function basis_column
+
     !> Index (model order) of the part with this id; 0 when there is none.
     pure integer function part_index(self, id)
         class(output_layout_type), intent(in) :: self
@@ -164,6 +185,11 @@ contains
                 names(self%contact_column(k)) = contact_names(k)
             end do
         end if
+        if (self%bases) then
+            do p = 1, size(self%part_ids)
+                names(self%basis_column(p)) = "basis_" // to_text(self%part_ids(p))
+            end do
+        end if
     end function header
 
     !> The layout a header describes; message is allocated, saying what was expected at which
@@ -173,9 +199,9 @@ contains
         character(len=*), intent(in) :: names(:)
         type(output_layout_type), intent(out) :: layout
         character(len=:), allocatable, intent(out) :: message
-        integer :: nparts, nucons, column, first_f, p, k, id
+        integer :: nparts, nucons, column, first_f, p, k, id, extra
         integer, allocatable :: part_ids(:), ucon_ids(:)
-        logical :: contact
+        logical :: contact, bases
 
         if (size(names) < 1) then
             message = "expected a header starting with t, found no column"
@@ -220,13 +246,18 @@ contains
                 return
             end if
         end do
-        contact = size(names) == first_f - 1 + 2*nucons + size(contact_names)
-        layout = new_output_layout(part_ids, ucon_ids, contact)
+        ! the basis columns, when present, are the last nparts and start with basis_
+        bases = index(names(size(names)), "basis_") == 1
+        extra = size(names) - (first_f - 1 + 2*nucons)
+        if (bases) extra = extra - nparts
+        contact = extra == size(contact_names)
+        layout = new_output_layout(part_ids, ucon_ids, contact, bases)
         if (size(names) /= layout%columns()) then
             message = "expected " // to_text(layout%columns()) // " columns for " &
                 & // counted(nparts, "part") // " and " // counted(nucons, "UCON") &
                 & // " (and " // to_text(layout%columns() + size(contact_names)) &
                 & // " with the contact columns), got " // to_text(size(names))
+            if (bases) message = message // " (the basis columns counted)"
             return
         end if
         names_match: block

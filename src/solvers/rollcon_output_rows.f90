@@ -96,8 +96,9 @@ contains
         state = self%rows(self%layout%part_column(p, 1):self%layout%part_column(p, 12), i)
     end function history_part_state
 
-    !> The layout of a problem's output rows: its parts and UCONs in model order, and the
-    !> contact columns when it has a watched contact.
+    !> The layout of a problem's output rows: its parts and UCONs in model order, the
+    !> contact columns when it has a watched contact, and a basis column per part when its
+    !> parts may be re-based.
     pure function output_layout(problem) result(layout)
         type(problem_type), intent(in) :: problem
         type(output_layout_type) :: layout
@@ -109,14 +110,16 @@ contains
         do k = 1, size(ucon_ids)
             ucon_ids(k) = problem%ucon_id(k)
         end do
-        layout = new_output_layout(part_ids, ucon_ids, problem%events%has_contact)
+        layout = new_output_layout(part_ids, ucon_ids, problem%events%has_contact, &
+            & problem%events%rebase)
     end function output_layout
 
     !> The output row at (time, q, u), in the columns of layout (output_layout(problem)), with
     !> the energy, each UCON's residual and multiplier as the last accelerations call left
     !> them at this state, and for a contact the constraint force on the part in contact, its
     !> normal part, the friction coefficient rolling needs (tangential / normal, 0 when the
-    !> normal force is not positive) and the height residual.
+    !> normal force is not positive) and the height residual, and each part's basis number
+    !> when the layout has them.
     pure function output_row(problem, layout, time, q, u) result(row)
         type(problem_type), intent(in) :: problem
         type(output_layout_type), intent(in) :: layout
@@ -140,6 +143,11 @@ contains
             row(layout%residual_column(k)) = problem%eq%constraints%value(k)
             row(layout%multiplier_column(k)) = problem%lambda(k)
         end do
+        if (layout%bases) then
+            do p = 1, size(layout%part_ids)
+                row(layout%basis_column(p)) = real(problem%bases(p), wp)
+            end do
+        end if
         if (.not. layout%contact) return
         force = problem%eq%constraint_force(problem%events%part, problem%lambda)
         height = height_residual(problem, q)

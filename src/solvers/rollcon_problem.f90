@@ -6,6 +6,8 @@ module rollcon_problem
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type
     use rollcon_model, only : model_type
+    use rollcon_body, only : part_type
+    use rollcon_force, only : applied_force_type
     use rollcon_equations, only : equations_type
     implicit none
     private
@@ -43,6 +45,10 @@ module rollcon_problem
         !> Stop when any part's theta comes within theta_min of flat on either side, 0 or pi:
         !> one root of sin(theta) - sin(theta_min) per part [rad] (disabled when negative)
         real(wp) :: theta_min = -1.0_wp
+        !> At the theta limit, re-base the part on its principal axes turned by 90 degrees and
+        !> go on (docs/rebasing.md) instead of stopping: a dataset's model. A disk scene keeps
+        !> its theta_min as a stop (false, the default).
+        logical :: rebase = .false.
         !> The model has a watched contact (the disk scenes): the part `part` touches the
         !> ground as a rim of radius contact_radius. Then, and only then, the rows carry the
         !> contact columns, the height residual is measured and the lift-off may be watched.
@@ -77,6 +83,14 @@ module rollcon_problem
         type(error_type), allocatable :: failure
         !> Event-function evaluations so far (the benchmark's per-part costs)
         integer :: root_evaluations = 0
+        !> For each part (model order), the number of the principal basis its coordinates are
+        !> in: 0 for its own axes, then one more at each re-basing of the run
+        integer, allocatable :: bases(:)
+        !> The parts and forces in their own principal axes, as prepare found them: a run that
+        !> re-based parts leaves the model turned (its last state is in the turned bases);
+        !> the next prepare gives the model back its own axes
+        type(part_type), allocatable :: own_parts(:)
+        type(applied_force_type), allocatable :: own_forces(:)
     contains
         procedure :: init
         procedure :: prepare
@@ -146,13 +160,26 @@ contains
         values = self%eq%constraints%value
     end function constraint_values
 
-    !> Size scratch arrays (once).
+    !> Size scratch arrays (once); every part in its own principal axes (basis 0).
     subroutine prepare(self)
         class(problem_type), intent(inout) :: self
+
+        if (allocated(self%bases) .and. allocated(self%own_parts)) then
+            if (any(self%bases /= 0)) then
+                self%model%parts = self%own_parts
+                self%model%forces = self%own_forces
+            end if
+        end if
+        if (self%events%rebase) then
+            self%own_parts = self%model%parts
+            self%own_forces = self%model%forces
+        end if
 
         if (allocated(self%a)) deallocate(self%a)
         if (allocated(self%lambda)) deallocate(self%lambda)
         allocate(self%a(self%eq%n), self%lambda(self%eq%nc), source=0.0_wp)
+        if (allocated(self%bases)) deallocate(self%bases)
+        allocate(self%bases(size(self%model%parts)), source=0)
     end subroutine prepare
 
     !> y' = (u, a) for y = (q, u); ierr 0 on success, -1 on failure (kept in self%failure).

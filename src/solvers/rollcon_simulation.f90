@@ -11,59 +11,23 @@ module rollcon_simulation
     use rollcon_dae, only : dae_size
     use rollcon_force, only : force_breakpoints
     use rollcon_csv_writer, only : csv_writer_type
-    use rollcon_drift, only : height_residual, drift_bounds, drift_findings
+    use rollcon_drift, only : height_residual
+    use rollcon_run_summary, only : run_summary_type, status_completed, status_stopped, &
+        & status_failed, status_inaccurate, judge_drift
     use rollcon_output_layout, only : output_layout_type
     use rollcon_output_rows, only : run_options_type, default_max_csv_bytes, planned_rows, &
         & history_type, output_layout, output_row
     use rollcon_event_message, only : event_message
+    use rollcon_rebase_step, only : rebase_part, needs_rebasing
     implicit none
     private
 
     public :: run_options_type, run_summary_type, history_type, simulate
+    !> How a run ended and what it did (rollcon_run_summary), for the callers of simulate
     public :: status_completed, status_stopped, status_failed, status_inaccurate
     !> The output rows' limit and layout (rollcon_output_rows), for the callers of simulate
     public :: default_max_csv_bytes, output_layout
 
-    !> How a run ended: as planned, at an event limit, by a failure, or at its end or a limit
-    !> with an energy or height drift beyond what its tolerances promise (rollcon_drift)
-    integer, parameter :: status_completed = 0, status_stopped = 1, status_failed = 2, &
-        & status_inaccurate = 3
-    !> What a run did
-    type :: run_summary_type
-        integer :: status = status_completed
-        !> Why it stopped, when it did not complete
-        character(len=:), allocatable :: message
-        !> Time reached [s]
-        real(wp) :: t_reached = 0.0_wp
-        !> Final coordinates and rates
-        real(wp), allocatable :: q(:), u(:)
-        !> Energy at the reference time (start, or end of the last force pulse) [J]
-        real(wp) :: energy_reference = 0.0_wp
-        !> Largest |E - E_reference| / |E_reference| after the reference time
-        real(wp) :: energy_drift = 0.0_wp
-        !> What the rows hold: the parts and UCONs (their ids, in model order) and whether the
-        !> model has a watched contact
-        type(output_layout_type) :: layout
-        !> Largest |F_k| over the output rows and every UCON (the UCON's own unit)
-        real(wp) :: residual_max = 0.0_wp
-        !> Largest |F_k| over the output rows, for each UCON (model order)
-        real(wp), allocatable :: ucon_residual_max(:)
-        !> For each UCON: a position-level (holonomic) one, F in its coordinates' units; else a
-        !> velocity-level one, F in their units per second
-        logical, allocatable :: ucon_position(:)
-        !> Largest position-level residual |Z - R sin(theta)| of the part in contact [m] (0
-        !> when the problem has no watched contact)
-        real(wp) :: height_residual_max = 0.0_wp
-        !> What the tolerances allow of energy_drift and height_residual_max (rollcon_drift);
-        !> 0 when not judged
-        real(wp) :: energy_bound = 0.0_wp, height_bound = 0.0_wp
-        !> Integrator statistics
-        integer :: steps = 0, functions = 0, jacobians = 0, failures = 0
-        !> Output rows written (64 bits: a long run at a fine step passes 2**31)
-        integer(int64) :: rows = 0
-        !> CPU time of the integration [s]
-        real(wp) :: cpu_seconds = 0.0_wp
-    end type run_summary_type
 
 contains
 
@@ -83,7 +47,10 @@ contains
         type(ida_solver_type), target :: ida
         type(csv_writer_type) :: csv
         type(output_layout_type) :: layout
-        real(wp), allocatable :: y(:), yp(:), breaks(:)
+        real(wp), allocatable :: y(:), yp(:), breaks(:), q_start(:), u_start(:)
+        character(len=:), allocatable :: refusal
+        !> Integrator counters of the segments before the last re-initialisation
+        integer :: earlier(4)
         real(wp) :: t, t_out, t_stop, t_reference, cpu_start, cpu_now, wall_last
         integer :: n, nc, root
         integer(int64) :: k_output, n_output
@@ -96,6 +63,9 @@ contains
         if (allocated(error)) return
         call problem%prepare()
         call start_measures()
+        q_start = q0
+        u_start = u0
+        earlier = 0
         use_cvode = problem%settings%formulation == formulation_cvode
         breaks = force_breakpoints(problem%model%forces)
         t_reference = options%t0
@@ -109,12 +79,17 @@ contains
             if (allocated(error)) return
         end if
 
+        call cpu_time(cpu_start)
+        call rebase_at_start(refusal, error)
+        if (allocated(error)) then
+            call finish()
+            return
+        end if
         ! Consistent start: accelerations and multipliers from the saddle-point system.
-        call problem%accelerations(options%t0, q0, u0, error)
+        call problem%accelerations(options%t0, q_start, u_start, error)
         if (allocated(error)) return
         t = options%t0
         t_stop = next_stop(t)
-        call cpu_time(cpu_start)
         wall_last = wall_seconds()
         call start_integrator(error)
         if (allocated(error)) then
@@ -123,7 +98,9 @@ contains
         end if
         have_reference = .false.
         call record(t, y, error)
-        if (allocated(error)) then
+        if (allocated(error) .or. allocated(refusal)) then
+            if (allocated(refusal)) summary%status = status_stopped
+            if (allocated(refusal)) summary%message = refusal
             call finish()
             return
         end if
@@ -143,10 +120,20 @@ contains
                 exit
             end if
             if (root /= 0) then
-                call record(t, y, error)
-                summary%status = status_stopped
-                summary%message = event_message(problem, root, t, y(:n), y(n + 1:2*n))
-                exit
+                if (.not. rebases()) then
+                    call record(t, y, error)
+                    summary%status = status_stopped
+                    summary%message = event_message(problem, root, t, y(:n), y(n + 1:2*n))
+                    exit
+                end if
+                call rebase_fired(refusal, error)
+                if (allocated(error)) exit
+                if (allocated(refusal)) then
+                    call record(t, y, error)
+                    summary%status = status_stopped
+                    summary%message = refusal
+                    exit
+                end if
             end if
             if (t < t_out) cycle
             call record(t, y, error)
@@ -158,6 +145,76 @@ contains
         if (.not. allocated(error)) call judge_drift(problem, summary)
 
     contains
+
+        !> Every event function that fired is a theta limit of a model that re-bases.
+        logical function rebases()
+            integer, allocatable :: fired(:)
+            integer :: r
+
+            rebases = problem%events%rebase
+            if (.not. rebases) return
+            if (use_cvode) then
+                fired = cvode%fired
+            else
+                fired = ida%fired
+            end if
+            do r = 1, size(fired)
+                if (fired(r) /= 0 .and. problem%theta_root_part(r) == 0) rebases = .false.
+            end do
+        end function rebases
+
+        !> Re-base every part at or below the threshold at the start, before the first row: a
+        !> refusal stops the run after that row (the start as given).
+        subroutine rebase_at_start(refusal, error)
+            character(len=:), allocatable, intent(out) :: refusal
+            type(error_type), allocatable, intent(out) :: error
+            integer :: p
+
+            if (.not. problem%events%rebase .or. problem%events%theta_min < 0.0_wp) return
+            do p = 1, size(problem%model%parts)
+                if (.not. needs_rebasing(problem, p, q_start)) cycle
+                call rebase_part(problem, p, options%t0, q_start, u_start, refusal, error)
+                if (allocated(error) .or. allocated(refusal)) return
+            end do
+        end subroutine rebase_at_start
+
+        !> Re-base the parts whose theta limit fired at (t, y), then start the integrator
+        !> again from the same physical state in the new coordinates: CVODE from (q, u), IDA
+        !> from (q, u, lambda) with y' = (u, a) from the saddle-point system (mu = 0).
+        subroutine rebase_fired(refusal, error)
+            character(len=:), allocatable, intent(out) :: refusal
+            type(error_type), allocatable, intent(out) :: error
+            integer, allocatable :: fired(:)
+            real(wp), allocatable :: q(:), u(:)
+            integer :: r
+
+            if (use_cvode) then
+                fired = cvode%fired
+            else
+                fired = ida%fired
+            end if
+            q = y(:n)
+            u = y(n + 1:2*n)
+            do r = 1, size(fired)
+                if (fired(r) == 0) cycle
+                call rebase_part(problem, problem%theta_root_part(r), t, q, u, refusal, error)
+                if (allocated(error) .or. allocated(refusal)) return
+            end do
+            call problem%accelerations(t, q, u, error)
+            if (allocated(error)) return
+            call add_statistics(earlier)
+            if (use_cvode) then
+                y = [q, u]
+                call cvode%reinit(t, y, error)
+            else
+                y = 0.0_wp
+                y(:2*n) = [q, u]
+                y(2*n + 1:2*n + nc) = problem%lambda
+                yp = 0.0_wp
+                yp(:2*n) = [u, problem%a]
+                call ida%reinit(t, y, yp, error)
+            end if
+        end subroutine rebase_fired
 
         !> The rows' layout, in the summary and the history; no UCON residual measured yet.
         subroutine start_measures()
@@ -178,13 +235,13 @@ contains
             type(error_type), allocatable, intent(out) :: error
 
             if (use_cvode) then
-                y = [q0, u0]
+                y = [q_start, u_start]
                 call cvode%init(problem, t, y, t_stop, error)
             else
                 allocate(y(dae_size(problem%eq)), yp(dae_size(problem%eq)), source=0.0_wp)
-                y(:2*n) = [q0, u0]
+                y(:2*n) = [q_start, u_start]
                 y(2*n + 1:2*n + nc) = problem%lambda
-                yp(:2*n) = [u0, problem%a]
+                yp(:2*n) = [u_start, problem%a]
                 call ida%init(problem, t, y, yp, t_stop, error)
             end if
         end subroutine start_integrator
@@ -264,16 +321,34 @@ contains
             flush(error_unit)
         end subroutine report_progress
 
+        !> Add the integrator's counters (steps, functions, Jacobians, failures) since its last
+        !> (re-)initialisation to counts.
+        subroutine add_statistics(counts)
+            integer, intent(inout) :: counts(4)
+            integer :: now(4)
+
+            now = 0
+            if (use_cvode) then
+                if (allocated(cvode%values)) call cvode%statistics(now(1), now(2), now(3), now(4))
+            else
+                if (allocated(ida%values)) call ida%statistics(now(1), now(2), now(3), now(4))
+            end if
+            counts = counts + now
+        end subroutine add_statistics
+
         subroutine finish()
+            summary%rebasings = problem%bases
             call cpu_time(cpu_now)
             summary%cpu_seconds = cpu_now - cpu_start
+            ! a re-initialisation restarts the counters: the run's are the segments' sums
+            call add_statistics(earlier)
+            summary%steps = earlier(1)
+            summary%functions = earlier(2)
+            summary%jacobians = earlier(3)
+            summary%failures = earlier(4)
             if (use_cvode) then
-                if (allocated(cvode%values)) call cvode%statistics(summary%steps, &
-                    & summary%functions, summary%jacobians, summary%failures)
                 call cvode%destroy()
             else
-                if (allocated(ida%values)) call ida%statistics(summary%steps, summary%functions, &
-                    & summary%jacobians, summary%failures)
                 call ida%destroy()
             end if
             ! A write or the close failing (a full disk) fails the run, unless it failed already.
@@ -310,30 +385,6 @@ contains
                 & // to_text(problem%events%contact_radius), stat_input)
         end if
     end subroutine check_events
-
-    !> Judge a run that reached its end or a limit against what its tolerances promise
-    !> (rollcon_drift): beyond a bound its results are not what was asked, status_inaccurate,
-    !> with the measures and bounds in the message.
-    subroutine judge_drift(problem, summary)
-        type(problem_type), intent(in) :: problem
-        type(run_summary_type), intent(inout) :: summary
-        character(len=:), allocatable :: findings
-
-        if (summary%status /= status_completed .and. summary%status /= status_stopped) return
-        call drift_bounds(problem, summary%steps, summary%energy_bound, summary%height_bound)
-        ! no reference energy to be relative to: not judged
-        if (summary%energy_reference == 0.0_wp) summary%energy_bound = 0.0_wp
-        findings = drift_findings(summary%steps, summary%energy_drift, summary%energy_bound, &
-            & summary%height_residual_max, summary%height_bound)
-        if (len(findings) == 0) return
-        if (summary%status == status_stopped) then
-            summary%message = summary%message // "; and the results drifted: " // findings
-        else
-            summary%message = "the run reached t = " // to_text(summary%t_reached) &
-                & // " s but its results drifted beyond what its tolerances promise: " // findings
-        end if
-        summary%status = status_inaccurate
-    end subroutine judge_drift
 
     !> Wall-clock seconds since an arbitrary origin.
     function wall_seconds() result(seconds)

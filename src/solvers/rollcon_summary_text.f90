@@ -1,8 +1,9 @@
 ! SPDX-License-Identifier: MIT
 !> A run's summary as text, for any model: a setting line given by the caller (a scene's or a
 !> dataset's), the status, the final state of every part named by its id, the energy drift, the
-!> largest residual of every UCON, the height residual of a watched contact, the integrator's
-!> counters, the CPU time and the output file.
+!> largest residual of every UCON, the re-basings of every part (a model that re-bases), the
+!> height residual of a watched contact, the integrator's counters, the CPU time and the output
+!> file.
 module rollcon_summary_text
     use rollcon_kinds, only : wp
     use rollcon_text, only : to_text
@@ -46,6 +47,7 @@ contains
             & // " (largest |E - E0|/|E0|, E0 = " // to_text(summary%energy_reference) &
             & // " J after the last applied force)" // allowed(summary%energy_bound, "") // nl
         text = text // residual_lines(summary)
+        text = text // rebasing_line(summary)
         if (summary%layout%contact) text = text &
             & // "largest height residual |Z - R sin(theta)|: " &
             & // scientific(summary%height_residual_max) // " m" &
@@ -107,6 +109,24 @@ contains
             end if
         end do
     end function residual_lines
+
+    !> "re-basings of the principal axes: part 1: 0, part 2: 104" for a model whose parts may be
+    !> re-based (docs/rebasing.md); nothing for one that stops at its theta limit.
+    function rebasing_line(summary) result(text)
+        type(run_summary_type), intent(in) :: summary
+        character(len=:), allocatable :: text
+        integer :: p
+
+        text = ""
+        if (.not. summary%layout%bases .or. .not. allocated(summary%rebasings)) return
+        text = "re-basings of the principal axes (docs/rebasing.md):"
+        do p = 1, size(summary%rebasings)
+            if (p > 1) text = text // ","
+            text = text // " part " // to_text(summary%layout%part_ids(p)) // ": " &
+                & // to_text(summary%rebasings(p))
+        end do
+        text = text // nl
+    end function rebasing_line
 
     !> ", allowed <bound><unit>" when the drift was judged (bound > 0).
     function allowed(bound, unit) result(phrase)

@@ -37,6 +37,7 @@ program tester
     use test_layout, only : collect_layout
     use test_ucosub_catalog, only : collect_ucosub_catalog
     use test_initial_conditions, only : collect_initial_conditions
+    use test_rebasing, only : collect_rebasing
     implicit none
     type(testsuite_type), allocatable :: suites(:)
     type(test_counts_type) :: counts
@@ -78,7 +79,8 @@ program tester
         & new_testsuite("layout", collect_layout), &
         & new_testsuite("ucosub-catalog", collect_ucosub_catalog), &
         & new_testsuite("dataset-command", collect_dataset_command), &
-        & new_testsuite("initial-conditions", collect_initial_conditions)]
+        & new_testsuite("initial-conditions", collect_initial_conditions), &
+        & new_testsuite("rebasing", collect_rebasing)]
 
     if (command_argument_count() >= 1) then
         call get_command_argument(1, argument)
