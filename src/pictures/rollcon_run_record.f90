@@ -11,8 +11,7 @@ module rollcon_run_record
     use rollcon_csv_reader, only : read_output_csv, largest_value
     use rollcon_part_shapes, only : part_shape_type, read_part_shapes, parts_path, shape_disk
     use rollcon_disk_mesh, only : contact_point
-    use rollcon_rotation, only : rotation_matrix
-    use rollcon_marker, only : euler_angles_of
+    use rollcon_rotation, only : rotation_matrix, euler_angles
     use rollcon_rebasing, only : own_axes_rotation
     implicit none
     private
@@ -135,7 +134,7 @@ contains
         ! a re-based row: the angles of the part's own axes, in which its shape is given
         ! (docs/rebasing.md)
         basis = nint(run%history%rows(run%layout%basis_column(p), j))
-        if (basis /= 0) q(4:6) = euler_angles_of(own_axes_rotation(rotation_matrix(q(4), &
+        if (basis /= 0) q(4:6) = euler_angles(own_axes_rotation(rotation_matrix(q(4), &
             & q(5), q(6)), basis))
     end function pose
 

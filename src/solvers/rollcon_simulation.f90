@@ -3,7 +3,7 @@
 module rollcon_simulation
     use, intrinsic :: iso_fortran_env, only : error_unit, int64
     use rollcon_kinds, only : wp
-    use rollcon_error, only : error_type, fatal_error, stat_input
+    use rollcon_error, only : error_type, fatal_error, stat_input, stat_ucon
     use rollcon_text, only : to_text
     use rollcon_problem, only : problem_type, formulation_cvode
     use rollcon_cvode, only : cvode_solver_type
@@ -98,9 +98,9 @@ contains
         end if
         have_reference = .false.
         call record(t, y, error)
-        if (allocated(error) .or. allocated(refusal)) then
-            if (allocated(refusal)) summary%status = status_stopped
-            if (allocated(refusal)) summary%message = refusal
+        ! a re-basing refused: the run cannot go on as asked, a failure (docs/rebasing.md)
+        if (allocated(refusal)) call fatal_error(error, refusal, stat_ucon)
+        if (allocated(error)) then
             call finish()
             return
         end if
@@ -130,8 +130,7 @@ contains
                 if (allocated(error)) exit
                 if (allocated(refusal)) then
                     call record(t, y, error)
-                    summary%status = status_stopped
-                    summary%message = refusal
+                    if (.not. allocated(error)) call fatal_error(error, refusal, stat_ucon)
                     exit
                 end if
             end if
