@@ -6,12 +6,13 @@ module rollcon_force
     use rollcon_kinds, only : wp
     use rollcon_constants, only : pi
     use rollcon_rotation, only : rotation_matrix, cross, times
-    use rollcon_expression, only : switching_times
+    use rollcon_expression, only : switching_times, evaluate_expression, max_inputs
     use rollcon_marker_force, only : marker_force_type, marker_force_loads
     implicit none
     private
 
     public :: applied_force_type, force_and_moment, force_breakpoints, pulse_stops
+    public :: forces_idle_after
     public :: profile_constant, profile_half_sine, profile_statement, frame_body, frame_tilt
 
     !> Time profiles: constant magnitude, one half-sine pulse carrying a given impulse, or a
@@ -136,6 +137,50 @@ contains
             end if
         end do
     end function force_breakpoints
+
+    !> True when no force acts after time (up to end_time), so that the energy is conserved
+    !> there: a constant force is zero, a pulse has ended, and a force statement's expressions
+    !> are zero at idle_samples times spread over (time, end_time] for two unrelated sets of
+    !> values of the state functions they read. A sampled check, conservative in one
+    !> direction only: an expression that is zero at every sample but not in between (a pulse
+    !> falling between samples) would pass, which no expression of one switching time can be.
+    pure logical function forces_idle_after(forces, time, end_time) result(idle)
+        type(applied_force_type), intent(in) :: forces(:)
+        !> From this time [s] to end_time [s]
+        real(wp), intent(in) :: time, end_time
+        integer, parameter :: idle_samples = 16
+        ! two sets of state-function values with no relation to each other or to a threshold
+        real(wp), parameter :: sample_inputs(2) = [0.7310585786300049_wp, -1.3862943611198906_wp]
+        real(wp) :: t, inputs(max_inputs)
+        integer :: i, k, j, set
+
+        idle = .true.
+        do i = 1, size(forces)
+            select case (forces(i)%profile)
+            case (profile_half_sine)
+                idle = forces(i)%impulse == 0.0_wp &
+                    & .or. forces(i)%start + forces(i)%duration <= time
+            case (profile_statement)
+                associate (statement => forces(i)%statement)
+                    do k = 1, size(statement%functions)
+                        if (.not. statement%given(k)) cycle
+                        do set = 1, size(sample_inputs)
+                            inputs = sample_inputs(set)
+                            do j = 1, idle_samples
+                                t = time + (end_time - time)*real(j, wp)/idle_samples
+                                if (evaluate_expression(statement%functions(k), &
+                                    & t/statement%time_unit, inputs(:size( &
+                                    & statement%functions(k)%inputs))) /= 0.0_wp) idle = .false.
+                            end do
+                        end do
+                    end do
+                end associate
+            case default
+                idle = forces(i)%magnitude == 0.0_wp
+            end select
+            if (.not. idle) return
+        end do
+    end function forces_idle_after
 
     !> pulse_points + 1 equally spaced times from first to last [s], both included exactly.
     pure function pulse_stops(first, last) result(times)

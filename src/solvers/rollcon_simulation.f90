@@ -9,7 +9,7 @@ module rollcon_simulation
     use rollcon_cvode, only : cvode_solver_type
     use rollcon_ida, only : ida_solver_type
     use rollcon_dae, only : dae_size
-    use rollcon_force, only : force_breakpoints
+    use rollcon_force, only : force_breakpoints, forces_idle_after
     use rollcon_csv_writer, only : csv_writer_type
     use rollcon_drift, only : height_residual
     use rollcon_run_summary, only : run_summary_type, status_completed, status_stopped, &
@@ -70,6 +70,8 @@ contains
         breaks = force_breakpoints(problem%model%forces)
         t_reference = options%t0
         if (size(breaks) > 0) t_reference = maxval(breaks)
+        summary%energy_conserved = forces_idle_after(problem%model%forces, t_reference, &
+            & options%end_time)
         breaks = pack(breaks, breaks > options%t0 .and. breaks < options%end_time)
 
         call planned_rows(options, layout%columns(), n_output, error)

@@ -45,7 +45,10 @@ contains
         text = text // final_state(summary)
         text = text // "energy drift: " // scientific(summary%energy_drift) &
             & // " (largest |E - E0|/|E0|, E0 = " // to_text(summary%energy_reference) &
-            & // " J after the last applied force)" // allowed(summary%energy_bound, "") // nl
+            & // " J after the last applied force)" // allowed(summary%energy_bound, "")
+        if (.not. summary%energy_conserved) text = text &
+            & // "; not judged: an applied force acts until the end and does work"
+        text = text // nl
         text = text // residual_lines(summary)
         text = text // rebasing_line(summary)
         if (summary%layout%contact) text = text &

@@ -52,7 +52,8 @@ contains
             & new_unittest("builtin-in-millimetres-refused", test_builtin_units), &
             & new_unittest("missing-marker-refused", test_missing_marker), &
             & new_unittest("force-not-finite-refused", test_force_not_finite), &
-            & new_unittest("disk-and-sphere", test_disk_and_sphere)]
+            & new_unittest("disk-and-sphere", test_disk_and_sphere), &
+            & new_unittest("working-force-not-judged", test_working_force)]
     end subroutine collect_adm_build
 
     !> The problem of data/coin.adm with the hand-checked disk routine.
@@ -266,5 +267,48 @@ contains
             & // "the expression is not finite at t = 0 (NaN): a function outside its domain, " &
             & // "or a division by zero", refused%message)
     end subroutine test_force_not_finite
+
+    !> A force acting until the end does work: the energy is then not conserved and its change
+    !> is not judged as drift (the run completes, not INACCURATE); the coin's strike, which ends
+    !> at 2.01 s, leaves the energy judged after it.
+    subroutine test_working_force(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(adm_model_type) :: adm
+        type(problem_type), target :: pushed, struck
+        type(run_options_type) :: options
+        type(run_summary_type) :: summary_pushed, summary_struck
+        real(wp), allocatable :: q0(:), u0(:)
+        procedure(ucosub_interface), pointer :: disk
+
+        disk => rolling_disk_ucosub
+        ! 0.05 N along +X at the centre throughout; the drift is measured after the strike's end
+        ! (2.01 s), and the push's work over the 0.09 s left, F v dt ~ 5e-4 J of the coin's
+        ! 0.73 J, is far beyond any drift bound
+        call read_lines_model("pushed.adm", "GFORCE/5, I=3, JFLOAT=2, RM=1, FX=0, FZ=0, TY=0", &
+            & "GFORCE/5, I=3, JFLOAT=2, RM=1, FX=0.05, FZ=0, TY=0", adm, error)
+        if (allocated(error)) return
+        call build_adm_problem(adm, disk, pushed, q0, u0, error)
+        if (allocated(error)) return
+        options%end_time = 2.1_wp
+        options%output_step = 0.01_wp
+        options%progress = .false.
+        call simulate(pushed, q0, u0, options, summary_pushed, error)
+        if (allocated(error)) return
+        call read_adm("data/coin.adm", adm, error)
+        if (allocated(error)) return
+        call build_adm_problem(adm, disk, struck, q0, u0, error)
+        if (allocated(error)) return
+        call simulate(struck, q0, u0, options, summary_struck, error)
+        if (allocated(error)) return
+        call check(error, .not. summary_pushed%energy_conserved .and. summary_pushed%status &
+            & == status_completed .and. summary_pushed%energy_bound == 0.0_wp &
+            & .and. summary_pushed%energy_drift > 1.0e-4_wp, "pushed: energy conserved " &
+            & // merge("T", "F", summary_pushed%energy_conserved) // ", status " &
+            & // to_text(summary_pushed%status) // ", drift " &
+            & // to_text(summary_pushed%energy_drift))
+        if (allocated(error)) return
+        call check(error, summary_struck%energy_conserved .and. summary_struck%energy_bound &
+            & > 0.0_wp, "struck: the energy after the strike is judged")
+    end subroutine test_working_force
 
 end module test_adm_build
