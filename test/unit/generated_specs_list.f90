@@ -19,6 +19,10 @@ module generated_specs_list
         & knife_edge_npar, knife_edge_ncomponents, knife_edge_time_free, &
         & knife_edge_component_time_free, knife_edge_holonomic, &
         & knife_edge_component_holonomic
+    use rollcon_gen_planar_hold, only : planar_hold_ucosub, planar_hold_codes, &
+        & planar_hold_npar, planar_hold_ncomponents, planar_hold_time_free, &
+        & planar_hold_component_time_free, planar_hold_holonomic, &
+        & planar_hold_component_holonomic
     use rollcon_gen_rolling_disk, only : rolling_disk_ucosub, rolling_disk_codes, &
         & rolling_disk_npar, rolling_disk_ncomponents, rolling_disk_time_free, &
         & rolling_disk_component_time_free, rolling_disk_holonomic, &
@@ -76,11 +80,11 @@ contains
         type(generated_spec_type), allocatable, intent(out) :: specs(:)
         integer :: i
 
-        allocate(specs(7))
+        allocate(specs(8))
         do i = 1, size(specs)
             specs(i)%component_meaning = "no-slip component"
         end do
-        specs(1)%component_meaning = "sled component"
+        specs(4)%component_meaning = "hold component"
         specs(1)%name = "chaplygin_sled"
         specs(1)%ucosub => chaplygin_sled_ucosub
         specs(1)%codes = chaplygin_sled_codes
@@ -90,7 +94,7 @@ contains
         specs(1)%component_time_free = chaplygin_sled_component_time_free
         specs(1)%holonomic = chaplygin_sled_holonomic
         specs(1)%component_holonomic = chaplygin_sled_component_holonomic
-        specs(1)%parameter_kinds = [character(len=6) :: "offset", "offset"]
+        specs(1)%parameter_kinds = [character(len=6) :: "offset"]
         specs(2)%name = "disk_height"
         specs(2)%ucosub => disk_height_ucosub
         specs(2)%codes = disk_height_codes
@@ -111,46 +115,56 @@ contains
         specs(3)%holonomic = knife_edge_holonomic
         specs(3)%component_holonomic = knife_edge_component_holonomic
         allocate(specs(3)%parameter_kinds(0))
-        specs(4)%name = "rolling_disk"
-        specs(4)%ucosub => rolling_disk_ucosub
-        specs(4)%codes = rolling_disk_codes
-        specs(4)%npar = rolling_disk_npar
-        specs(4)%ncomponents = rolling_disk_ncomponents
-        specs(4)%time_free = rolling_disk_time_free
-        specs(4)%component_time_free = rolling_disk_component_time_free
-        specs(4)%holonomic = rolling_disk_holonomic
-        specs(4)%component_holonomic = rolling_disk_component_holonomic
-        specs(4)%parameter_kinds = [character(len=6) :: "length"]
-        specs(5)%name = "rolling_sphere"
-        specs(5)%ucosub => rolling_sphere_ucosub
-        specs(5)%codes = rolling_sphere_codes
-        specs(5)%npar = rolling_sphere_npar
-        specs(5)%ncomponents = rolling_sphere_ncomponents
-        specs(5)%time_free = rolling_sphere_time_free
-        specs(5)%component_time_free = rolling_sphere_component_time_free
-        specs(5)%holonomic = rolling_sphere_holonomic
-        specs(5)%component_holonomic = rolling_sphere_component_holonomic
+        specs(4)%name = "planar_hold"
+        specs(4)%ucosub => planar_hold_ucosub
+        specs(4)%codes = planar_hold_codes
+        specs(4)%npar = planar_hold_npar
+        specs(4)%ncomponents = planar_hold_ncomponents
+        specs(4)%time_free = planar_hold_time_free
+        specs(4)%component_time_free = planar_hold_component_time_free
+        specs(4)%holonomic = planar_hold_holonomic
+        specs(4)%component_holonomic = planar_hold_component_holonomic
+        specs(4)%parameter_kinds = [character(len=6) :: "offset"]
+        specs(5)%name = "rolling_disk"
+        specs(5)%ucosub => rolling_disk_ucosub
+        specs(5)%codes = rolling_disk_codes
+        specs(5)%npar = rolling_disk_npar
+        specs(5)%ncomponents = rolling_disk_ncomponents
+        specs(5)%time_free = rolling_disk_time_free
+        specs(5)%component_time_free = rolling_disk_component_time_free
+        specs(5)%holonomic = rolling_disk_holonomic
+        specs(5)%component_holonomic = rolling_disk_component_holonomic
         specs(5)%parameter_kinds = [character(len=6) :: "length"]
-        specs(6)%name = "turntable_ball"
-        specs(6)%ucosub => turntable_ball_ucosub
-        specs(6)%codes = turntable_ball_codes
-        specs(6)%npar = turntable_ball_npar
-        specs(6)%ncomponents = turntable_ball_ncomponents
-        specs(6)%time_free = turntable_ball_time_free
-        specs(6)%component_time_free = turntable_ball_component_time_free
-        specs(6)%holonomic = turntable_ball_holonomic
-        specs(6)%component_holonomic = turntable_ball_component_holonomic
-        specs(6)%parameter_kinds = [character(len=6) :: "length", "rate", "offset", "offset"]
-        specs(7)%name = "turntable_disk"
-        specs(7)%ucosub => turntable_disk_ucosub
-        specs(7)%codes = turntable_disk_codes
-        specs(7)%npar = turntable_disk_npar
-        specs(7)%ncomponents = turntable_disk_ncomponents
-        specs(7)%time_free = turntable_disk_time_free
-        specs(7)%component_time_free = turntable_disk_component_time_free
-        specs(7)%holonomic = turntable_disk_holonomic
-        specs(7)%component_holonomic = turntable_disk_component_holonomic
-        specs(7)%parameter_kinds = [character(len=6) :: "length", "offset", "offset", "rate", &
+        specs(6)%name = "rolling_sphere"
+        specs(6)%ucosub => rolling_sphere_ucosub
+        specs(6)%codes = rolling_sphere_codes
+        specs(6)%npar = rolling_sphere_npar
+        specs(6)%ncomponents = rolling_sphere_ncomponents
+        specs(6)%time_free = rolling_sphere_time_free
+        specs(6)%component_time_free = rolling_sphere_component_time_free
+        specs(6)%holonomic = rolling_sphere_holonomic
+        specs(6)%component_holonomic = rolling_sphere_component_holonomic
+        specs(6)%parameter_kinds = [character(len=6) :: "length"]
+        specs(7)%name = "turntable_ball"
+        specs(7)%ucosub => turntable_ball_ucosub
+        specs(7)%codes = turntable_ball_codes
+        specs(7)%npar = turntable_ball_npar
+        specs(7)%ncomponents = turntable_ball_ncomponents
+        specs(7)%time_free = turntable_ball_time_free
+        specs(7)%component_time_free = turntable_ball_component_time_free
+        specs(7)%holonomic = turntable_ball_holonomic
+        specs(7)%component_holonomic = turntable_ball_component_holonomic
+        specs(7)%parameter_kinds = [character(len=6) :: "length", "rate", "offset", "offset"]
+        specs(8)%name = "turntable_disk"
+        specs(8)%ucosub => turntable_disk_ucosub
+        specs(8)%codes = turntable_disk_codes
+        specs(8)%npar = turntable_disk_npar
+        specs(8)%ncomponents = turntable_disk_ncomponents
+        specs(8)%time_free = turntable_disk_time_free
+        specs(8)%component_time_free = turntable_disk_component_time_free
+        specs(8)%holonomic = turntable_disk_holonomic
+        specs(8)%component_holonomic = turntable_disk_component_holonomic
+        specs(8)%parameter_kinds = [character(len=6) :: "length", "offset", "offset", "rate", &
             & "rate", "rate"]
     end subroutine generated_specs
 

@@ -36,6 +36,7 @@ program tester
     use test_reduced, only : collect_reduced
     use test_layout, only : collect_layout
     use test_ucosub_catalog, only : collect_ucosub_catalog
+    use test_models, only : collect_models
     implicit none
     type(testsuite_type), allocatable :: suites(:)
     type(test_counts_type) :: counts
@@ -76,6 +77,7 @@ program tester
         & new_testsuite("reduced", collect_reduced), &
         & new_testsuite("layout", collect_layout), &
         & new_testsuite("ucosub-catalog", collect_ucosub_catalog), &
+        & new_testsuite("models", collect_models), &
         & new_testsuite("dataset-command", collect_dataset_command)]
 
     if (command_argument_count() >= 1) then
