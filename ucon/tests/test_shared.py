@@ -108,7 +108,8 @@ class OutputConstantsTest(unittest.TestCase):
                     "knife_edge": ([True], [False]),
                     "disk_height": ([True], [True]),
                     "turntable_ball": ([True] * 3, [False] * 3),
-                    "chaplygin_sled": ([True] * 4, [False, True, True, True])}
+                    "chaplygin_sled": ([True], [False]),
+                    "planar_hold": ([True] * 3, [True] * 3)}
         self.assertEqual(sorted(expected), ucon.spec_names())
         for name, (time_free, holonomic) in expected.items():
             derivatives = derived(name)
