@@ -7,20 +7,37 @@ module generated_specs_list
     use rollcon_kinds, only : wp
     use rollcon_constants, only : pi
     use rollcon_ucosub_contract, only : ucosub_interface
-    use rollcon_gen_disk_height, only : disk_height_ucosub, disk_height_codes, disk_height_npar, &
-        & disk_height_ncomponents, disk_height_time_free, disk_height_component_time_free, disk_height_holonomic, &
+    use rollcon_gen_chaplygin_sled, only : chaplygin_sled_ucosub, chaplygin_sled_codes, &
+        & chaplygin_sled_npar, chaplygin_sled_ncomponents, chaplygin_sled_time_free, &
+        & chaplygin_sled_component_time_free, chaplygin_sled_holonomic, &
+        & chaplygin_sled_component_holonomic
+    use rollcon_gen_disk_height, only : disk_height_ucosub, disk_height_codes, &
+        & disk_height_npar, disk_height_ncomponents, disk_height_time_free, &
+        & disk_height_component_time_free, disk_height_holonomic, &
         & disk_height_component_holonomic
-    use rollcon_gen_knife_edge, only : knife_edge_ucosub, knife_edge_codes, knife_edge_npar, &
-        & knife_edge_ncomponents, knife_edge_time_free, knife_edge_component_time_free, knife_edge_holonomic, &
+    use rollcon_gen_knife_edge, only : knife_edge_ucosub, knife_edge_codes, &
+        & knife_edge_npar, knife_edge_ncomponents, knife_edge_time_free, &
+        & knife_edge_component_time_free, knife_edge_holonomic, &
         & knife_edge_component_holonomic
-    use rollcon_gen_rolling_disk, only : rolling_disk_ucosub, rolling_disk_codes, rolling_disk_npar, &
-        & rolling_disk_ncomponents, rolling_disk_time_free, rolling_disk_component_time_free, rolling_disk_holonomic, &
+    use rollcon_gen_planar_hold, only : planar_hold_ucosub, planar_hold_codes, &
+        & planar_hold_npar, planar_hold_ncomponents, planar_hold_time_free, &
+        & planar_hold_component_time_free, planar_hold_holonomic, &
+        & planar_hold_component_holonomic
+    use rollcon_gen_rolling_disk, only : rolling_disk_ucosub, rolling_disk_codes, &
+        & rolling_disk_npar, rolling_disk_ncomponents, rolling_disk_time_free, &
+        & rolling_disk_component_time_free, rolling_disk_holonomic, &
         & rolling_disk_component_holonomic
-    use rollcon_gen_rolling_sphere, only : rolling_sphere_ucosub, rolling_sphere_codes, rolling_sphere_npar, &
-        & rolling_sphere_ncomponents, rolling_sphere_time_free, rolling_sphere_component_time_free, rolling_sphere_holonomic, &
+    use rollcon_gen_rolling_sphere, only : rolling_sphere_ucosub, rolling_sphere_codes, &
+        & rolling_sphere_npar, rolling_sphere_ncomponents, rolling_sphere_time_free, &
+        & rolling_sphere_component_time_free, rolling_sphere_holonomic, &
         & rolling_sphere_component_holonomic
-    use rollcon_gen_turntable_disk, only : turntable_disk_ucosub, turntable_disk_codes, turntable_disk_npar, &
-        & turntable_disk_ncomponents, turntable_disk_time_free, turntable_disk_component_time_free, turntable_disk_holonomic, &
+    use rollcon_gen_turntable_ball, only : turntable_ball_ucosub, turntable_ball_codes, &
+        & turntable_ball_npar, turntable_ball_ncomponents, turntable_ball_time_free, &
+        & turntable_ball_component_time_free, turntable_ball_holonomic, &
+        & turntable_ball_component_holonomic
+    use rollcon_gen_turntable_disk, only : turntable_disk_ucosub, turntable_disk_codes, &
+        & turntable_disk_npar, turntable_disk_ncomponents, turntable_disk_time_free, &
+        & turntable_disk_component_time_free, turntable_disk_holonomic, &
         & turntable_disk_component_holonomic
     implicit none
     private
@@ -42,6 +59,8 @@ module generated_specs_list
         !> Kind of each physical parameter, in PAR order: "length" (log-uniform in
         !> [1e-3, 10] m), "offset" (uniform in [-1, 1] m), "rate" (uniform in [-5, 5] rad/s)
         character(len=6), allocatable :: parameter_kinds(:)
+        !> What PAR's last entry picks, as the routine's messages name it
+        character(len=:), allocatable :: component_meaning
         !> <spec>_time_free: no component has an explicit time
         logical :: time_free = .false.
         !> <spec>_component_time_free: the same, per component
@@ -59,58 +78,93 @@ contains
     subroutine generated_specs(specs)
         !> The list
         type(generated_spec_type), allocatable, intent(out) :: specs(:)
+        integer :: i
 
-        allocate(specs(5))
-        specs(1)%name = "disk_height"
-        specs(1)%ucosub => disk_height_ucosub
-        specs(1)%codes = disk_height_codes
-        specs(1)%npar = disk_height_npar
-        specs(1)%ncomponents = disk_height_ncomponents
-        specs(1)%time_free = disk_height_time_free
-        specs(1)%component_time_free = disk_height_component_time_free
-        specs(1)%holonomic = disk_height_holonomic
-        specs(1)%component_holonomic = disk_height_component_holonomic
-        specs(1)%parameter_kinds = [character(len=6) :: "length"]
-        specs(2)%name = "knife_edge"
-        specs(2)%ucosub => knife_edge_ucosub
-        specs(2)%codes = knife_edge_codes
-        specs(2)%npar = knife_edge_npar
-        specs(2)%ncomponents = knife_edge_ncomponents
-        specs(2)%time_free = knife_edge_time_free
-        specs(2)%component_time_free = knife_edge_component_time_free
-        specs(2)%holonomic = knife_edge_holonomic
-        specs(2)%component_holonomic = knife_edge_component_holonomic
-        allocate(specs(2)%parameter_kinds(0))
-        specs(3)%name = "rolling_disk"
-        specs(3)%ucosub => rolling_disk_ucosub
-        specs(3)%codes = rolling_disk_codes
-        specs(3)%npar = rolling_disk_npar
-        specs(3)%ncomponents = rolling_disk_ncomponents
-        specs(3)%time_free = rolling_disk_time_free
-        specs(3)%component_time_free = rolling_disk_component_time_free
-        specs(3)%holonomic = rolling_disk_holonomic
-        specs(3)%component_holonomic = rolling_disk_component_holonomic
-        specs(3)%parameter_kinds = [character(len=6) :: "length"]
-        specs(4)%name = "rolling_sphere"
-        specs(4)%ucosub => rolling_sphere_ucosub
-        specs(4)%codes = rolling_sphere_codes
-        specs(4)%npar = rolling_sphere_npar
-        specs(4)%ncomponents = rolling_sphere_ncomponents
-        specs(4)%time_free = rolling_sphere_time_free
-        specs(4)%component_time_free = rolling_sphere_component_time_free
-        specs(4)%holonomic = rolling_sphere_holonomic
-        specs(4)%component_holonomic = rolling_sphere_component_holonomic
-        specs(4)%parameter_kinds = [character(len=6) :: "length"]
-        specs(5)%name = "turntable_disk"
-        specs(5)%ucosub => turntable_disk_ucosub
-        specs(5)%codes = turntable_disk_codes
-        specs(5)%npar = turntable_disk_npar
-        specs(5)%ncomponents = turntable_disk_ncomponents
-        specs(5)%time_free = turntable_disk_time_free
-        specs(5)%component_time_free = turntable_disk_component_time_free
-        specs(5)%holonomic = turntable_disk_holonomic
-        specs(5)%component_holonomic = turntable_disk_component_holonomic
-        specs(5)%parameter_kinds = [character(len=6) :: "length", "offset", "offset", "rate", &
+        allocate(specs(8))
+        do i = 1, size(specs)
+            specs(i)%component_meaning = "no-slip component"
+        end do
+        specs(4)%component_meaning = "hold component"
+        specs(1)%name = "chaplygin_sled"
+        specs(1)%ucosub => chaplygin_sled_ucosub
+        specs(1)%codes = chaplygin_sled_codes
+        specs(1)%npar = chaplygin_sled_npar
+        specs(1)%ncomponents = chaplygin_sled_ncomponents
+        specs(1)%time_free = chaplygin_sled_time_free
+        specs(1)%component_time_free = chaplygin_sled_component_time_free
+        specs(1)%holonomic = chaplygin_sled_holonomic
+        specs(1)%component_holonomic = chaplygin_sled_component_holonomic
+        specs(1)%parameter_kinds = [character(len=6) :: "offset"]
+        specs(2)%name = "disk_height"
+        specs(2)%ucosub => disk_height_ucosub
+        specs(2)%codes = disk_height_codes
+        specs(2)%npar = disk_height_npar
+        specs(2)%ncomponents = disk_height_ncomponents
+        specs(2)%time_free = disk_height_time_free
+        specs(2)%component_time_free = disk_height_component_time_free
+        specs(2)%holonomic = disk_height_holonomic
+        specs(2)%component_holonomic = disk_height_component_holonomic
+        specs(2)%parameter_kinds = [character(len=6) :: "length"]
+        specs(3)%name = "knife_edge"
+        specs(3)%ucosub => knife_edge_ucosub
+        specs(3)%codes = knife_edge_codes
+        specs(3)%npar = knife_edge_npar
+        specs(3)%ncomponents = knife_edge_ncomponents
+        specs(3)%time_free = knife_edge_time_free
+        specs(3)%component_time_free = knife_edge_component_time_free
+        specs(3)%holonomic = knife_edge_holonomic
+        specs(3)%component_holonomic = knife_edge_component_holonomic
+        allocate(specs(3)%parameter_kinds(0))
+        specs(4)%name = "planar_hold"
+        specs(4)%ucosub => planar_hold_ucosub
+        specs(4)%codes = planar_hold_codes
+        specs(4)%npar = planar_hold_npar
+        specs(4)%ncomponents = planar_hold_ncomponents
+        specs(4)%time_free = planar_hold_time_free
+        specs(4)%component_time_free = planar_hold_component_time_free
+        specs(4)%holonomic = planar_hold_holonomic
+        specs(4)%component_holonomic = planar_hold_component_holonomic
+        specs(4)%parameter_kinds = [character(len=6) :: "offset"]
+        specs(5)%name = "rolling_disk"
+        specs(5)%ucosub => rolling_disk_ucosub
+        specs(5)%codes = rolling_disk_codes
+        specs(5)%npar = rolling_disk_npar
+        specs(5)%ncomponents = rolling_disk_ncomponents
+        specs(5)%time_free = rolling_disk_time_free
+        specs(5)%component_time_free = rolling_disk_component_time_free
+        specs(5)%holonomic = rolling_disk_holonomic
+        specs(5)%component_holonomic = rolling_disk_component_holonomic
+        specs(5)%parameter_kinds = [character(len=6) :: "length"]
+        specs(6)%name = "rolling_sphere"
+        specs(6)%ucosub => rolling_sphere_ucosub
+        specs(6)%codes = rolling_sphere_codes
+        specs(6)%npar = rolling_sphere_npar
+        specs(6)%ncomponents = rolling_sphere_ncomponents
+        specs(6)%time_free = rolling_sphere_time_free
+        specs(6)%component_time_free = rolling_sphere_component_time_free
+        specs(6)%holonomic = rolling_sphere_holonomic
+        specs(6)%component_holonomic = rolling_sphere_component_holonomic
+        specs(6)%parameter_kinds = [character(len=6) :: "length"]
+        specs(7)%name = "turntable_ball"
+        specs(7)%ucosub => turntable_ball_ucosub
+        specs(7)%codes = turntable_ball_codes
+        specs(7)%npar = turntable_ball_npar
+        specs(7)%ncomponents = turntable_ball_ncomponents
+        specs(7)%time_free = turntable_ball_time_free
+        specs(7)%component_time_free = turntable_ball_component_time_free
+        specs(7)%holonomic = turntable_ball_holonomic
+        specs(7)%component_holonomic = turntable_ball_component_holonomic
+        specs(7)%parameter_kinds = [character(len=6) :: "length", "rate", "offset", "offset"]
+        specs(8)%name = "turntable_disk"
+        specs(8)%ucosub => turntable_disk_ucosub
+        specs(8)%codes = turntable_disk_codes
+        specs(8)%npar = turntable_disk_npar
+        specs(8)%ncomponents = turntable_disk_ncomponents
+        specs(8)%time_free = turntable_disk_time_free
+        specs(8)%component_time_free = turntable_disk_component_time_free
+        specs(8)%holonomic = turntable_disk_holonomic
+        specs(8)%component_holonomic = turntable_disk_component_holonomic
+        specs(8)%parameter_kinds = [character(len=6) :: "length", "offset", "offset", "rate", &
             & "rate", "rate"]
     end subroutine generated_specs
 

@@ -38,6 +38,7 @@ program tester
     use test_ucosub_catalog, only : collect_ucosub_catalog
     use test_initial_conditions, only : collect_initial_conditions
     use test_rebasing, only : collect_rebasing
+    use test_models, only : collect_models
     implicit none
     type(testsuite_type), allocatable :: suites(:)
     type(test_counts_type) :: counts
@@ -80,7 +81,9 @@ program tester
         & new_testsuite("ucosub-catalog", collect_ucosub_catalog), &
         & new_testsuite("dataset-command", collect_dataset_command), &
         & new_testsuite("initial-conditions", collect_initial_conditions), &
-        & new_testsuite("rebasing", collect_rebasing)]
+        & new_testsuite("rebasing", collect_rebasing), &
+        & new_testsuite("models", collect_models), &
+        & new_testsuite("dataset-command", collect_dataset_command)]
 
     if (command_argument_count() >= 1) then
         call get_command_argument(1, argument)

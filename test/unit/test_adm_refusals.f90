@@ -16,7 +16,8 @@ module test_adm_refusals
         & // " UCON, UNITS, VFORCE)"
     !> The built-in UCOSUBs, as a refusal lists them
     character(len=*), parameter :: builtin = &
-        & "(disk, rolling_disk, disk_height, knife_edge, rolling_sphere, turntable_disk)"
+        & "(disk, rolling_disk, chaplygin_sled, disk_height, knife_edge, planar_hold," &
+        & // " rolling_sphere, turntable_ball, turntable_disk)"
 
 contains
 

@@ -179,8 +179,9 @@ contains
     !> by rollcon's own routine, the hand-checked disk, as a scene's are.
     subroutine test_refusals(error)
         type(error_type), allocatable, intent(out) :: error
-        character(len=*), parameter :: names = "(disk, rolling_disk, disk_height, knife_edge, " &
-            & // "rolling_sphere, turntable_disk)"
+        character(len=*), parameter :: names = "(disk, rolling_disk, chaplygin_sled, " &
+            & // "disk_height, knife_edge, planar_hold, rolling_sphere, turntable_ball, " &
+            & // "turntable_disk)"
         character(len=:), allocatable :: program, unknown, summary
         integer :: status_default, status_unknown
 

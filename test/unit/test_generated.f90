@@ -369,8 +369,8 @@ contains
             if (specs(s)%ncomponents > 1) then
                 par(size(par)) = real(specs(s)%ncomponents + 1, wp)
                 call expect_rejected(error, specs(s)%ucosub, specs(s)%name, par, 0, &
-                    & [1, 1, 1], "PAR(" // to_text(size(par)) // ") (no-slip component) " &
-                    & // "must be")
+                    & [1, 1, 1], "PAR(" // to_text(size(par)) // ") (" &
+                    & // specs(s)%component_meaning // ") must be")
                 if (allocated(error)) return
             end if
         end do

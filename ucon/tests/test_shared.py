@@ -106,7 +106,10 @@ class OutputConstantsTest(unittest.TestCase):
                     "rolling_sphere": ([True] * 3, [False] * 3),
                     "turntable_disk": ([False, False, True], [False] * 3),
                     "knife_edge": ([True], [False]),
-                    "disk_height": ([True], [True])}
+                    "disk_height": ([True], [True]),
+                    "turntable_ball": ([True] * 3, [False] * 3),
+                    "chaplygin_sled": ([True], [False]),
+                    "planar_hold": ([True] * 3, [True] * 3)}
         self.assertEqual(sorted(expected), ucon.spec_names())
         for name, (time_free, holonomic) in expected.items():
             derivatives = derived(name)

@@ -6,14 +6,20 @@
 !> rollcon_ucosub_catalog serves them by name beside the hand-checked disk routine.
 module rollcon_gen_catalog
     use rollcon_ucosub_contract, only : ucosub_interface
+    use rollcon_gen_chaplygin_sled, only : chaplygin_sled_ucosub, chaplygin_sled_npar, &
+        & chaplygin_sled_ncomponents, chaplygin_sled_codes, chaplygin_sled_time_free
     use rollcon_gen_disk_height, only : disk_height_ucosub, disk_height_npar, &
         & disk_height_ncomponents, disk_height_codes, disk_height_time_free
     use rollcon_gen_knife_edge, only : knife_edge_ucosub, knife_edge_npar, knife_edge_ncomponents, &
         & knife_edge_codes, knife_edge_time_free
+    use rollcon_gen_planar_hold, only : planar_hold_ucosub, planar_hold_npar, &
+        & planar_hold_ncomponents, planar_hold_codes, planar_hold_time_free
     use rollcon_gen_rolling_disk, only : rolling_disk_ucosub, rolling_disk_npar, &
         & rolling_disk_ncomponents, rolling_disk_codes, rolling_disk_time_free
     use rollcon_gen_rolling_sphere, only : rolling_sphere_ucosub, rolling_sphere_npar, &
         & rolling_sphere_ncomponents, rolling_sphere_codes, rolling_sphere_time_free
+    use rollcon_gen_turntable_ball, only : turntable_ball_ucosub, turntable_ball_npar, &
+        & turntable_ball_ncomponents, turntable_ball_codes, turntable_ball_time_free
     use rollcon_gen_turntable_disk, only : turntable_disk_ucosub, turntable_disk_npar, &
         & turntable_disk_ncomponents, turntable_disk_codes, turntable_disk_time_free
     implicit none
@@ -24,37 +30,49 @@ module rollcon_gen_catalog
     public :: generated_routine, generated_codes, generated_summary
 
     !> Number of generated routines
-    integer, parameter :: generated_count = 5
+    integer, parameter :: generated_count = 8
     !> Their names: the spec names of ucon/specs/, in alphabetical order
     character(len=*), parameter :: generated_names(generated_count) = [character(len=14) :: &
+        & "chaplygin_sled", &
         & "disk_height", &
         & "knife_edge", &
+        & "planar_hold", &
         & "rolling_disk", &
         & "rolling_sphere", &
+        & "turntable_ball", &
         & "turntable_disk"]
     !> Number of constants in FUNCTION=USER(...) each routine needs (PAR layout: part id, the codes,
     !> the physical parameters, then the component when there are several)
     integer, parameter :: generated_npar(generated_count) = [ &
+        & chaplygin_sled_npar, &
         & disk_height_npar, &
         & knife_edge_npar, &
+        & planar_hold_npar, &
         & rolling_disk_npar, &
         & rolling_sphere_npar, &
+        & turntable_ball_npar, &
         & turntable_disk_npar]
     !> Number of constraint components of each (UCON statements sharing the routine, told apart by
     !> the last PAR entry when more than one)
     integer, parameter :: generated_ncomponents(generated_count) = [ &
+        & chaplygin_sled_ncomponents, &
         & disk_height_ncomponents, &
         & knife_edge_ncomponents, &
+        & planar_hold_ncomponents, &
         & rolling_disk_ncomponents, &
         & rolling_sphere_ncomponents, &
+        & turntable_ball_ncomponents, &
         & turntable_disk_ncomponents]
     !> True for a routine whose F has no explicit time: the driver need not ask for the time
     !> partials
     logical, parameter :: generated_time_free(generated_count) = [ &
+        & chaplygin_sled_time_free, &
         & disk_height_time_free, &
         & knife_edge_time_free, &
+        & planar_hold_time_free, &
         & rolling_disk_time_free, &
         & rolling_sphere_time_free, &
+        & turntable_ball_time_free, &
         & turntable_disk_time_free]
 
 contains
@@ -68,14 +86,20 @@ contains
 
         select case (index)
         case (1)
-            ucosub => disk_height_ucosub
+            ucosub => chaplygin_sled_ucosub
         case (2)
-            ucosub => knife_edge_ucosub
+            ucosub => disk_height_ucosub
         case (3)
-            ucosub => rolling_disk_ucosub
+            ucosub => knife_edge_ucosub
         case (4)
-            ucosub => rolling_sphere_ucosub
+            ucosub => planar_hold_ucosub
         case (5)
+            ucosub => rolling_disk_ucosub
+        case (6)
+            ucosub => rolling_sphere_ucosub
+        case (7)
+            ucosub => turntable_ball_ucosub
+        case (8)
             ucosub => turntable_disk_ucosub
         case default
             ucosub => null()
@@ -91,14 +115,20 @@ contains
 
         select case (index)
         case (1)
-            codes = disk_height_codes
+            codes = chaplygin_sled_codes
         case (2)
-            codes = knife_edge_codes
+            codes = disk_height_codes
         case (3)
-            codes = rolling_disk_codes
+            codes = knife_edge_codes
         case (4)
-            codes = rolling_sphere_codes
+            codes = planar_hold_codes
         case (5)
+            codes = rolling_disk_codes
+        case (6)
+            codes = rolling_sphere_codes
+        case (7)
+            codes = turntable_ball_codes
+        case (8)
             codes = turntable_disk_codes
         case default
             codes = [integer ::]
@@ -114,16 +144,25 @@ contains
 
         select case (index)
         case (1)
-            summary = "The lowest point of the disk's rim stays on the ground plane."
+            summary = "No velocity across the blade at its contact point, a distance a " &
+                & // "behind the centre of mass."
         case (2)
-            summary = "The blade's contact point has no velocity across the blade."
+            summary = "The lowest point of the disk's rim stays on the ground plane."
         case (3)
+            summary = "The blade's contact point has no velocity across the blade."
+        case (4)
+            summary = "The body stays level: centre of mass at the height h, body y vertical."
+        case (5)
             summary = "No slip, no penetration: the disk's material point at the contact has " &
                 & // "zero velocity."
-        case (4)
+        case (6)
             summary = "No slip, no penetration: the sphere's material point at the contact " &
                 & // "has zero velocity."
-        case (5)
+        case (7)
+            summary = "No slip on a table turning at a constant rate Omega about a fixed " &
+                & // "vertical axis: the sphere's material point at the contact moves with " &
+                & // "the table's."
+        case (8)
             summary = "No slip on a table turning about a vertical axis at the rate Omega0 + " &
                 & // "Omega1 sin(nu t): the disk's material point at the contact moves with " &
                 & // "the table's."
