@@ -9,6 +9,7 @@ module rollcon_problem
     use rollcon_body, only : part_type
     use rollcon_force, only : applied_force_type
     use rollcon_equations, only : equations_type
+    use rollcon_constraints, only : need_value
     implicit none
     private
 
@@ -103,6 +104,7 @@ module rollcon_problem
         procedure :: theta_root_part
         procedure :: root_values
         procedure :: keep_failure
+        procedure :: ucons_do_no_work
     end type problem_type
 
 contains
@@ -285,5 +287,43 @@ contains
         ierr = -1
         if (.not. allocated(self%failure)) call move_alloc(error, self%failure)
     end function keep_failure
+
+    !> True when the UCONs do no work at the start (t, q), so that they leave the energy
+    !> alone: every velocity UCON's F vanishes at zero rates (F = C(q) u: every term carries a
+    !> rate, as for a disk rolling on fixed ground) and no position UCON changes with time alone
+    !> (F at t and at t + 1 s equal). A moving constraint (a turntable, a driven motion) fails
+    !> this, and its constraint forces do work. The check is made at the one state given; a
+    !> UCOSUB that cannot be evaluated at zero rates leaves the answer true (the run itself
+    !> then reports its error). The UCONs are evaluated, so call this before the run's first
+    !> evaluation.
+    function ucons_do_no_work(self, time, q) result(no_work)
+        class(problem_type), intent(inout) :: self
+        real(wp), intent(in) :: time, q(:)
+        logical :: no_work
+        !> A homogeneous form gives exact zeros (every term is a product with a rate that is 0),
+        !> and a time-free one the same value twice; a moving constraint's terms are of the size
+        !> of its motion, many orders above this
+        real(wp), parameter :: tol_work = 1.0e-12_wp
+        real(wp) :: still(size(q)), now(self%eq%nc)
+        type(error_type), allocatable :: error
+        integer :: k
+
+        no_work = .true.
+        if (self%eq%nc == 0) return
+        still = 0.0_wp
+        call self%eq%constraints%evaluate(self%model, time, q, still, need_value, error)
+        if (allocated(error)) return
+        now = self%eq%constraints%value
+        call self%eq%constraints%evaluate(self%model, time + 1.0_wp, q, still, need_value, error)
+        if (allocated(error)) return
+        do k = 1, self%eq%nc
+            if (self%model%ucons(k)%holonomic) then
+                if (abs(self%eq%constraints%value(k) - now(k)) > tol_work) no_work = .false.
+            else
+                if (abs(now(k)) > tol_work .or. abs(self%eq%constraints%value(k)) > tol_work) &
+                    & no_work = .false.
+            end if
+        end do
+    end function ucons_do_no_work
 
 end module rollcon_problem

@@ -32,7 +32,8 @@ module rollcon_run_summary
         !> Largest |E - E_reference| / |E_reference| after the reference time
         real(wp) :: energy_drift = 0.0_wp
         !> False when an applied force acts after the reference time (rollcon_force
-        !> forces_idle_after): the energy is then not conserved, and its drift not judged
+        !> forces_idle_after) or a UCON moves (problem%ucons_do_no_work): the energy is then not
+        !> conserved, and its drift not judged
         logical :: energy_conserved = .true.
         !> What the rows hold: the parts and UCONs (their ids, in model order) and whether the
         !> model has a watched contact

@@ -70,8 +70,11 @@ contains
         breaks = force_breakpoints(problem%model%forces)
         t_reference = options%t0
         if (size(breaks) > 0) t_reference = maxval(breaks)
+        ! forces acting after the reference, or moving constraints, do work: no drift to judge
         summary%energy_conserved = forces_idle_after(problem%model%forces, t_reference, &
             & options%end_time)
+        if (summary%energy_conserved) summary%energy_conserved = &
+            & problem%ucons_do_no_work(options%t0, q0)
         breaks = pack(breaks, breaks > options%t0 .and. breaks < options%end_time)
 
         call planned_rows(options, layout%columns(), n_output, error)

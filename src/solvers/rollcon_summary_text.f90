@@ -47,7 +47,8 @@ contains
             & // " (largest |E - E0|/|E0|, E0 = " // to_text(summary%energy_reference) &
             & // " J after the last applied force)" // allowed(summary%energy_bound, "")
         if (.not. summary%energy_conserved) text = text &
-            & // "; not judged: an applied force acts until the end and does work"
+            & // "; not judged: an applied force acting until the end, or a moving " &
+            & // "constraint, does work"
         text = text // nl
         text = text // residual_lines(summary)
         text = text // rebasing_line(summary)

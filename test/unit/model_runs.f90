@@ -32,15 +32,13 @@ contains
 
     !> Run data/<name>.adm on the given formulation to end_time [s] (the dataset's end when
     !> absent), with rtol = atol = tolerance when present (the dataset's otherwise). The run
-    !> must reach its end; completed is required unless accept_drift_verdict is true (CVODE's
-    !> energy-drift judge, see docs/models.md).
-    subroutine run_model(name, formulation, run, error, end_time, tolerance, accept_drift_verdict)
+    !> must reach its end, completed.
+    subroutine run_model(name, formulation, run, error, end_time, tolerance)
         character(len=*), intent(in) :: name
         integer, intent(in) :: formulation
         type(model_run_type), intent(out) :: run
         type(error_type), allocatable, intent(out) :: error
         real(wp), intent(in), optional :: end_time, tolerance
-        logical, intent(in), optional :: accept_drift_verdict
         type(adm_model_type) :: adm
         type(problem_type), target :: problem
         type(run_options_type) :: options
@@ -69,9 +67,6 @@ contains
         call simulate(problem, q0, u0, options, run%summary, error, run%history)
         if (allocated(error)) return
         completed = run%summary%status == status_completed
-        if (present(accept_drift_verdict)) then
-            if (accept_drift_verdict) completed = .true.
-        end if
         call check(error, completed .and. abs(run%summary%t_reached - options%end_time) &
             & <= 1.0e-9_wp*options%end_time, name // ": the run stopped at t = " &
             & // to_text(run%summary%t_reached) // " s, status " // to_text(run%summary%status))
