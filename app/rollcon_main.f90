@@ -244,8 +244,7 @@ contains
             & "               call longer than --call-timeout SECONDS (default 10) of the", &
             & "               routine ends with an error naming the UCON and the call", &
             & "  --ucosub NAME  a built-in routine instead (when no file NAME exists): disk,", &
-            & "               rolling_disk, disk_height, knife_edge, rolling_sphere,", &
-            & "               turntable_disk", &
+            & "               rolling_disk, and the other generated specs (docs/generator.md)", &
             & "  --vtk FPS    also write DIR/SCENE_vtk/SCENE.pvd, a VTK time series for", &
             & "               ParaView: FPS frames per simulated second, each frame the", &
             & "               output row nearest to its time (nothing is interpolated)", &
