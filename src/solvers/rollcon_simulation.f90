@@ -168,7 +168,7 @@ contains
         end function rebases
 
         !> Re-base every part at or below the threshold at the start, before the first row: a
-        !> refusal stops the run after that row (the start as given).
+        !> refusal fails the run after that row (the start as given).
         subroutine rebase_at_start(refusal, error)
             character(len=:), allocatable, intent(out) :: refusal
             type(error_type), allocatable, intent(out) :: error
