@@ -7,7 +7,7 @@ module rollcon_text
     implicit none
     private
 
-    public :: to_text, single_quoted, shell_quote, lower_case, upper_case
+    public :: to_text, single_quoted, shell_quote, lower_case, upper_case, unquoted
 
     !> Decimal text of an integer or a real
     interface to_text
@@ -152,5 +152,17 @@ contains
             if (code >= iachar("a") .and. code <= iachar("z")) upper(i:i) = achar(code - 32)
         end do
     end function upper_case
+
+    !> A namelist value without its enclosing quotes (single or double), as it was written.
+    pure function unquoted(value) result(text)
+        character(len=*), intent(in) :: value
+        character(len=:), allocatable :: text
+
+        text = value
+        if (len(text) >= 2) then
+            if (scan(text(1:1), "'""") > 0 .and. text(len(text):) == text(1:1)) &
+                & text = text(2:len(text) - 1)
+        end if
+    end function unquoted
 
 end module rollcon_text

@@ -95,6 +95,7 @@ contains
                 & real_key("initial", "psidot", i%psidot, "rad/s", -rate_max, rate_max), &
                 & real_key("initial", "thetadot", i%thetadot, "rad/s", -rate_max, rate_max), &
                 & real_key("initial", "phidot", i%phidot, "rad/s", -rate_max, rate_max), &
+                & real_key("initial", "speed", i%speed, "m/s", -light, light), &
                 & real_key("initial", "x", i%x, "m", -position_max, position_max), &
                 & real_key("initial", "y", i%y, "m", -position_max, position_max), &
                 & real_key("initial", "z", i%z, "m", -position_max, position_max), &

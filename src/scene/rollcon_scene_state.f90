@@ -9,6 +9,7 @@ module rollcon_scene_state
     private
 
     public :: disk_mass_properties, angular_velocity, disk_initial_state
+    public :: upright_critical_speed
 
 
 contains
@@ -29,6 +30,19 @@ contains
             inertia(3) = 0.5_wp*mass*r**2
         end associate
     end subroutine disk_mass_properties
+
+    !> The speed [m/s] above which straight upright rolling is stable (docs/design.md §5):
+    !> v^2 = m g R^3 A / (C (C + m R^2)); g R/3 for a thin disk. 0 without gravity.
+    pure real(wp) function upright_critical_speed(scene) result(speed)
+        type(scene_type), intent(in) :: scene
+        real(wp) :: mass, inertia(3)
+
+        call disk_mass_properties(scene, mass, inertia)
+        associate (r => scene%disk%radius, g => scene%environment%gravity, a => inertia(1), &
+                & c => inertia(3))
+            speed = sqrt(mass*g*r**3*a/(c*(c + mass*r**2)))
+        end associate
+    end function upright_critical_speed
 
     !> Angular velocity of the disk at the start, ground components [rad/s] (docs/design.md
     !> §3): psidot e_Z + thetadot e_x1 + phidot e_z2.

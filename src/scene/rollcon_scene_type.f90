@@ -44,6 +44,9 @@ module rollcon_scene_type
         real(wp) :: psi = 0.0_wp, theta = pi/2, phi = 0.0_wp
         !> Euler-angle rates [rad/s]
         real(wp) :: psidot = 0.0_wp, thetadot = 0.0_wp, phidot = 0.0_wp
+        !> Rolling speed [m/s] of the centre along the heading (cos psi, sin psi, 0), when
+        !> given instead of phidot: phidot = -speed/radius - psidot cos(theta)
+        real(wp) :: speed = 0.0_wp
         !> Centre position [m]; z is R sin(theta) after a read, given or not
         real(wp) :: x = 0.0_wp, y = 0.0_wp, z = 0.0_wp
         !> Centre velocity [m/s]; the no-slip value after a read, given or not

@@ -13,7 +13,7 @@ module rollcon_scene_values
     implicit none
     private
 
-    public :: store_values, range_text, in_range, choice_text
+    public :: store_values, range_text, in_range, choice_text, is_real_text
 
 contains
 

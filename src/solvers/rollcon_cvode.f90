@@ -43,6 +43,8 @@ module rollcon_cvode
     type :: cvode_solver_type
         type(c_ptr) :: context = c_null_ptr
         type(c_ptr) :: memory = c_null_ptr
+        !> The flag of the last failed step (0 when none failed)
+        integer :: failed_flag = 0
         type(N_Vector), pointer :: y => null()
         type(callback_data_type) :: data
         type(SUNMatrix), pointer :: matrix => null()
@@ -171,6 +173,7 @@ contains
             return
         end if
         if (flag == CV_SUCCESS .or. flag == CV_TSTOP_RETURN) return
+        self%failed_flag = int(flag)
         if (allocated(problem%failure)) then
             call fatal_error(error, "CVODE failed at t = " // to_text(t_reached) // " s (flag " &
                 & // to_text(int(flag)) // "): " // problem%failure%message, stat_solver)

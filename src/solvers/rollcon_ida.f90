@@ -32,6 +32,8 @@ module rollcon_ida
     type :: ida_solver_type
         type(c_ptr) :: context = c_null_ptr
         type(c_ptr) :: memory = c_null_ptr
+        !> The flag of the last failed step (0 when none failed)
+        integer :: failed_flag = 0
         type(N_Vector), pointer :: y => null(), yp => null(), id => null()
         type(SUNMatrix), pointer :: matrix => null()
         type(SUNLinearSolver), pointer :: solver => null()
@@ -164,6 +166,7 @@ contains
             return
         end if
         if (flag == IDA_SUCCESS .or. flag == IDA_TSTOP_RETURN) return
+        self%failed_flag = int(flag)
         if (allocated(problem%failure)) then
             call fatal_error(error, "IDA failed at t = " // to_text(t_reached) // " s (flag " &
                 & // to_text(int(flag)) // "): " // problem%failure%message, stat_solver)

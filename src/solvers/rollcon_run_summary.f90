@@ -13,16 +13,24 @@ module rollcon_run_summary
 
     public :: run_summary_type, judge_drift
     public :: status_completed, status_stopped, status_failed, status_inaccurate
+    public :: limit_none, limit_theta, limit_liftoff
 
     !> How a run ended: as planned, at an event limit, by a failure, or at its end or a limit
     !> with an energy or height drift beyond what its tolerances promise (rollcon_drift)
     integer, parameter :: status_completed = 0, status_stopped = 1, status_failed = 2, &
         & status_inaccurate = 3
+    !> Which limit stopped a run: none, a part's theta limit (&limits theta_min, the Euler
+    !> singularity), or the lift-off of the part in contact
+    integer, parameter :: limit_none = 0, limit_theta = 1, limit_liftoff = 2
     !> What a run did
     type :: run_summary_type
         integer :: status = status_completed
         !> Why it stopped, when it did not complete
         character(len=:), allocatable :: message
+        !> The limit that stopped it (status_stopped): limit_theta or limit_liftoff
+        integer :: limit = limit_none
+        !> SUNDIALS' flag when the integrator failed (status_failed), else 0
+        integer :: solver_flag = 0
         !> Time reached [s]
         real(wp) :: t_reached = 0.0_wp
         !> Final coordinates and rates

@@ -3,6 +3,7 @@
 module rollcon_simulation
     use, intrinsic :: iso_fortran_env, only : error_unit, int64
     use rollcon_kinds, only : wp
+    use rollcon_clock, only : wall_seconds
     use rollcon_error, only : error_type, fatal_error, stat_input, stat_ucon
     use rollcon_text, only : to_text
     use rollcon_problem, only : problem_type, formulation_cvode
@@ -13,7 +14,7 @@ module rollcon_simulation
     use rollcon_csv_writer, only : csv_writer_type
     use rollcon_drift, only : height_residual
     use rollcon_run_summary, only : run_summary_type, status_completed, status_stopped, &
-        & status_failed, status_inaccurate, judge_drift
+        & status_failed, status_inaccurate, judge_drift, limit_none, limit_theta, limit_liftoff
     use rollcon_output_layout, only : output_layout_type
     use rollcon_output_rows, only : run_options_type, default_max_csv_bytes, planned_rows, &
         & history_type, output_layout, output_row
@@ -25,6 +26,7 @@ module rollcon_simulation
     public :: run_options_type, run_summary_type, history_type, simulate
     !> How a run ended and what it did (rollcon_run_summary), for the callers of simulate
     public :: status_completed, status_stopped, status_failed, status_inaccurate
+    public :: limit_none, limit_theta, limit_liftoff
     !> The output rows' limit and layout (rollcon_output_rows), for the callers of simulate
     public :: default_max_csv_bytes, output_layout
 
@@ -122,6 +124,7 @@ contains
             if (allocated(error)) then
                 summary%status = status_failed
                 summary%message = error%message
+                summary%solver_flag = merge(cvode%failed_flag, ida%failed_flag, use_cvode)
                 exit
             end if
             if (root /= 0) then
@@ -129,6 +132,8 @@ contains
                     call record(t, y, error)
                     summary%status = status_stopped
                     summary%message = event_message(problem, root, t, y(:n), y(n + 1:2*n))
+                    summary%limit = limit_liftoff
+                    if (problem%theta_root_part(root) > 0) summary%limit = limit_theta
                     exit
                 end if
                 call rebase_fired(refusal, error)
@@ -389,14 +394,5 @@ contains
                 & // to_text(problem%events%contact_radius), stat_input)
         end if
     end subroutine check_events
-
-    !> Wall-clock seconds since an arbitrary origin.
-    function wall_seconds() result(seconds)
-        real(wp) :: seconds
-        integer(kind=8) :: count, rate
-
-        call system_clock(count, rate)
-        seconds = real(count, wp)/real(rate, wp)
-    end function wall_seconds
 
 end module rollcon_simulation

@@ -1,0 +1,123 @@
+! SPDX-License-Identifier: MIT
+!> What a study records of each case (docs/studies.md): how the run ended, and measures
+!> taken over its output rows and from its summary.
+module rollcon_study_measures
+    use rollcon_kinds, only : wp
+    use rollcon_constants, only : pi
+    use rollcon_simulation, only : run_summary_type, history_type, status_completed, &
+        & status_stopped, status_failed, status_inaccurate, limit_theta, limit_liftoff
+    use rollcon_output_layout, only : coord_theta, contact_normal, contact_mu
+    implicit none
+    private
+
+    public :: case_result_type, measure_names, measure_units, measure_index, measure_case
+    public :: outcome_words, outcome_completed, outcome_theta_limit, outcome_liftoff, &
+        & outcome_inaccurate, outcome_failed, outcome_refused
+
+    !> How a case ended: completed; stopped by the theta limit or by lift-off; reached its end
+    !> or a limit with results beyond what its tolerances promise; failed (the integrator or
+    !> the UCOSUB); refused (its scene does not read, e.g. a value out of range)
+    integer, parameter :: outcome_completed = 1, outcome_theta_limit = 2, outcome_liftoff = 3, &
+        & outcome_inaccurate = 4, outcome_failed = 5, outcome_refused = 6
+    character(len=*), parameter :: outcome_words(6) = [character(len=11) :: "completed", &
+        & "theta_limit", "liftoff", "inaccurate", "failed", "refused"]
+
+    !> Measures, in CSV column order, and their units. Over the output rows of the part in
+    !> contact: theta's least and largest value, the largest tilt from upright |pi/2 - theta|,
+    !> the largest friction coefficient rolling needs, the least normal force and the first
+    !> time it is negative; from the summary: the time reached, the energy drift (relative),
+    !> the largest UCON residual, the integrator steps; and the case's CPU time.
+    character(len=*), parameter :: measure_names(11) = [character(len=13) :: "t_reached", &
+        & "theta_min", "theta_max", "tilt_max", "mu_max", "fn_min", "t_fn_negative", &
+        & "energy_drift", "residual_max", "steps", "cpu_s"]
+    character(len=*), parameter :: measure_units(11) = [character(len=5) :: "s", "rad", "rad", &
+        & "rad", "-", "N", "s", "-", "", "-", "s"]
+    integer, parameter :: i_t_reached = 1, i_theta_min = 2, i_theta_max = 3, i_tilt_max = 4, &
+        & i_mu_max = 5, i_fn_min = 6, i_t_fn_negative = 7, i_energy_drift = 8, &
+        & i_residual_max = 9, i_steps = 10, i_cpu = 11
+
+    !> What a study records of one case
+    type :: case_result_type
+        integer :: outcome = outcome_refused
+        !> SUNDIALS' flag of a failed case, else 0
+        integer :: flag = 0
+        !> The measures, measure_names order
+        real(wp) :: values(size(measure_names)) = 0.0_wp
+        !> Whether each measure has a value (none for a refused case, no t_fn_negative when
+        !> the normal force never turned negative, no contact measures without a contact)
+        logical :: known(size(measure_names)) = .false.
+        !> The class its rules give it
+        character(len=:), allocatable :: class
+        !> Why it did not complete ("" when it did)
+        character(len=:), allocatable :: message
+    end type case_result_type
+
+contains
+
+    !> Index of a measure by name, 0 when there is none of that name.
+    pure integer function measure_index(name) result(k)
+        character(len=*), intent(in) :: name
+
+        do k = 1, size(measure_names)
+            if (measure_names(k) == name) return
+        end do
+        k = 0
+    end function measure_index
+
+    !> The measures of a case that ran, from its summary and output rows.
+    pure subroutine measure_case(summary, history, cpu_seconds, result)
+        type(run_summary_type), intent(in) :: summary
+        type(history_type), intent(in) :: history
+        real(wp), intent(in) :: cpu_seconds
+        type(case_result_type), intent(inout) :: result
+        real(wp), allocatable :: theta(:), fn(:), t(:)
+        integer :: first
+
+        select case (summary%status)
+        case (status_completed)
+            result%outcome = outcome_completed
+        case (status_stopped)
+            result%outcome = merge(outcome_theta_limit, outcome_liftoff, &
+                & summary%limit == limit_theta)
+        case (status_inaccurate)
+            result%outcome = outcome_inaccurate
+        case default
+            result%outcome = outcome_failed
+        end select
+        result%flag = summary%solver_flag
+        result%message = ""
+        if (summary%status /= status_completed .and. allocated(summary%message)) &
+            & result%message = summary%message
+        call put(i_t_reached, summary%t_reached)
+        call put(i_energy_drift, summary%energy_drift)
+        call put(i_residual_max, summary%residual_max)
+        call put(i_steps, real(summary%steps, wp))
+        call put(i_cpu, cpu_seconds)
+        if (history%count == 0) return
+        associate (layout => history%layout, n => history%count)
+            theta = history%rows(layout%part_column(1, coord_theta), :n)
+            call put(i_theta_min, minval(theta))
+            call put(i_theta_max, maxval(theta))
+            call put(i_tilt_max, maxval(abs(pi/2 - theta)))
+            if (.not. layout%contact) return
+            t = history%rows(1, :n)
+            fn = history%rows(layout%contact_column(contact_normal), :n)
+            call put(i_mu_max, maxval(history%rows(layout%contact_column(contact_mu), :n)))
+            call put(i_fn_min, minval(fn))
+            first = findloc(fn < 0.0_wp, .true., dim=1)
+            if (first > 0) call put(i_t_fn_negative, t(first))
+        end associate
+
+    contains
+
+        pure subroutine put(k, value)
+            integer, intent(in) :: k
+            real(wp), intent(in) :: value
+
+            result%values(k) = value
+            result%known(k) = .true.
+        end subroutine put
+
+    end subroutine measure_case
+
+end module rollcon_study_measures

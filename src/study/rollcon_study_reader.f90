@@ -1,0 +1,216 @@
+! SPDX-License-Identifier: MIT
+!> Reads a study file (docs/studies.md): namelist groups as in a scene file, read by the
+!> scene's own lexer so that every mistake is reported with file, line and key. The base
+!> scene is read and checked too, with the parameters at both ends of their ranges.
+module rollcon_study_reader
+    use rollcon_kinds, only : wp
+    use rollcon_error, only : error_type, input_error
+    use rollcon_text, only : to_text, unquoted
+    use rollcon_scene_lexer, only : group_type, assignment_type, read_lines, scan_groups
+    use rollcon_scene_bytes, only : check_bytes, visible
+    use rollcon_scene, only : scene_type, scene_path, read_scene_lines, scene_override_type
+    use rollcon_study_type, only : study_type, study_parameter_type, sampling_grid, &
+        & sampling_random
+    use rollcon_study_parameters, only : read_parameter
+    use rollcon_study_rules, only : read_rules, read_map
+    implicit none
+    private
+
+    public :: read_study
+
+    !> Groups of a study file
+    character(len=*), parameter :: study_groups(*) = [character(len=8) :: "study", "grid", &
+        & "random", "classify", "map"]
+
+contains
+
+    !> Read and check a study file and its base scene.
+    subroutine read_study(path, study, error)
+        character(len=*), intent(in) :: path
+        type(study_type), intent(out) :: study
+        type(error_type), allocatable, intent(out) :: error
+        type(group_type), allocatable :: groups(:)
+        character(len=:), allocatable :: file
+        integer :: g
+
+        file = visible(path)
+        study%path = path
+        study%name = path(index(path, "/", back=.true.) + 1:)
+        if (index(study%name, ".nml", back=.true.) == len(study%name) - 3 &
+            & .and. len(study%name) > 4) study%name = study%name(:len(study%name) - 4)
+        study%title = study%name
+        block
+            use rollcon_scene_lexer, only : line_type
+            type(line_type), allocatable :: lines(:)
+            call read_lines(path, lines, error)
+            if (allocated(error)) return
+            call check_bytes(path, lines, error)
+            if (allocated(error)) return
+            call scan_groups(file, lines, study_groups, groups, error)
+            if (allocated(error)) return
+        end block
+        g = group_index(groups, "study")
+        if (g == 0) then
+            call input_error(error, file, 0, "", "has no &study group; a study names its base " &
+                & // "scene there: &study scene = 'data/coin.nml' /")
+            return
+        end if
+        call read_study_group(file, groups(g), study, error)
+        if (allocated(error)) return
+        call read_sampling(file, groups, study, error)
+        if (allocated(error)) return
+        g = group_index(groups, "classify")
+        call read_rules(file, groups, g, study, error)
+        if (allocated(error)) return
+        g = group_index(groups, "map")
+        call read_map(file, groups, g, study, error)
+        if (allocated(error)) return
+        call check_ends(file, study, error)
+    end subroutine read_study
+
+    !> &study: scene (required) and title.
+    subroutine read_study_group(file, group, study, error)
+        character(len=*), intent(in) :: file
+        type(group_type), intent(in) :: group
+        type(study_type), intent(inout) :: study
+        type(error_type), allocatable, intent(out) :: error
+        integer :: k
+
+        do k = 1, size(group%assignments)
+            associate (a => group%assignments(k))
+                select case (a%key)
+                case ("scene")
+                    study%scene_path = scene_path(unquoted(a%value))
+                    call read_lines(study%scene_path, study%scene_lines, error)
+                    if (allocated(error)) then
+                        error%message = file // ":" // to_text(a%line) // ": 'scene': " &
+                            & // error%message
+                        return
+                    end if
+                case ("title")
+                    study%title = unquoted(a%value)
+                case default
+                    call input_error(error, file, a%line, a%key, "is not a key of &study; " &
+                        & // "its keys are scene, title")
+                    return
+                end select
+            end associate
+        end do
+        if (.not. allocated(study%scene_path)) then
+            call input_error(error, file, group%line, "scene", "is missing in &study: the " &
+                & // "base scene, a path or a name in data/ (scene = 'coin')")
+        end if
+    end subroutine read_study_group
+
+    !> &grid or &random (one of them): the parameters, and the samples and seed of &random.
+    subroutine read_sampling(file, groups, study, error)
+        character(len=*), intent(in) :: file
+        type(group_type), intent(in) :: groups(:)
+        type(study_type), intent(inout) :: study
+        type(error_type), allocatable, intent(out) :: error
+        type(study_parameter_type) :: parameter
+        integer :: g, gr, k
+
+        g = group_index(groups, "grid")
+        gr = group_index(groups, "random")
+        if (g > 0 .and. gr > 0) then
+            call input_error(error, file, groups(gr)%line, "", "&grid (line " &
+                & // to_text(groups(g)%line) // ") and &random both choose the cases; give one")
+            return
+        else if (g == 0 .and. gr == 0) then
+            call input_error(error, file, 0, "", "has neither &grid nor &random: a study " &
+                & // "varies scene keys, e.g. &grid disk%thickness = '0.003 0.2 12' /")
+            return
+        end if
+        study%sampling = sampling_grid
+        if (gr > 0) then
+            study%sampling = sampling_random
+            g = gr
+        end if
+        allocate(study%parameters(0))
+        study%seed = 1
+        do k = 1, size(groups(g)%assignments)
+            associate (a => groups(g)%assignments(k))
+                if (study%sampling == sampling_random .and. (a%key == "samples" &
+                    & .or. a%key == "seed")) then
+                    call read_count(file, a, study, error)
+                else
+                    call read_parameter(file, groups(g)%name, a, study%sampling, parameter, &
+                        & error)
+                    if (.not. allocated(error)) study%parameters = [study%parameters, parameter]
+                end if
+            end associate
+            if (allocated(error)) return
+        end do
+        if (size(study%parameters) == 0) then
+            call input_error(error, file, groups(g)%line, "", "&" // groups(g)%name &
+                & // " varies no scene key; give group%key = '...', e.g. " &
+                & // "initial%speed = '0.4 1.0 61'")
+        else if (study%sampling == sampling_random .and. study%samples == 0) then
+            call input_error(error, file, groups(g)%line, "samples", "is missing in &random: " &
+                & // "the number of cases to draw (at least 1)")
+        end if
+    end subroutine read_sampling
+
+    !> samples (at least 1) or seed of &random.
+    subroutine read_count(file, a, study, error)
+        character(len=*), intent(in) :: file
+        type(assignment_type), intent(in) :: a
+        type(study_type), intent(inout) :: study
+        type(error_type), allocatable, intent(out) :: error
+        integer :: value, stat
+
+        read(a%value, *, iostat=stat) value
+        if (stat /= 0 .or. verify(a%value, "+-0123456789") /= 0) then
+            call input_error(error, file, a%line, a%key, "must be a whole number, got " &
+                & // a%value)
+        else if (a%key == "samples" .and. value < 1) then
+            call input_error(error, file, a%line, a%key, "must be at least 1 (the number of " &
+                & // "cases to draw), got " // a%value)
+        else if (a%key == "samples") then
+            study%samples = value
+        else
+            study%seed = value
+        end if
+    end subroutine read_count
+
+    !> The base scene must read with every parameter at its lower end, and at its upper end.
+    subroutine check_ends(file, study, error)
+        character(len=*), intent(in) :: file
+        type(study_type), intent(in) :: study
+        type(error_type), allocatable, intent(out) :: error
+        type(scene_override_type) :: overrides(size(study%parameters))
+        type(scene_type) :: scene
+        integer :: end, k
+
+        do end = 1, 2
+            do k = 1, size(study%parameters)
+                associate (p => study%parameters(k))
+                    overrides(k)%group = p%group
+                    overrides(k)%key = p%key
+                    overrides(k)%value = to_text(merge(p%lower, p%upper, end == 1))
+                end associate
+            end do
+            call read_scene_lines(study%scene_path, study%scene_lines, scene, error, overrides)
+            if (allocated(error)) then
+                error%message = file // ": the base scene " // study%scene_path // " with the " &
+                    & // "parameters at their " // trim(merge("lower", "upper", end == 1)) &
+                    & // " ends is refused: " // error%message
+                return
+            end if
+        end do
+    end subroutine check_ends
+
+    pure integer function group_index(groups, name) result(g)
+        type(group_type), intent(in) :: groups(:)
+        character(len=*), intent(in) :: name
+
+        do g = 1, size(groups)
+            if (groups(g)%name == name) return
+        end do
+        g = 0
+    end function group_index
+
+    !> A value without its quotes.
+
+end module rollcon_study_reader

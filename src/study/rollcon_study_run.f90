@@ -1,0 +1,234 @@
+! SPDX-License-Identifier: MIT
+!> Running a study (docs/studies.md): its plan (every case's parameters, and which cases the
+!> CSV already holds), one case run as the ordinary simulation of its scene, and the rows
+!> appended as cases end. A case that fails or is refused is a row like any other: it never
+!> stops the study. The loop over cases is the caller's: in one process (run_study) or
+!> handed out to MPI ranks by the program (app/rollcon_sweep_mpi.f90).
+module rollcon_study_run
+    use, intrinsic :: iso_fortran_env, only : error_unit
+    use rollcon_kinds, only : wp
+    use rollcon_clock, only : wall_seconds
+    use rollcon_error, only : error_type, fatal_error, stat_io
+    use rollcon_text, only : to_text
+    use rollcon_scene, only : scene_type, read_scene_lines, scene_override_type
+    use rollcon_disk_scene, only : simulate_scene
+    use rollcon_disk_reference, only : rolling_disk_ucosub
+    use rollcon_simulation, only : run_summary_type, history_type
+    use rollcon_study_type, only : study_type
+    use rollcon_study_parameters, only : case_count, case_values, value_text
+    use rollcon_study_measures, only : case_result_type, outcome_refused, outcome_failed, &
+        & measure_case
+    use rollcon_study_rules, only : classify
+    use rollcon_study_csv, only : study_header, study_row, case_key, read_done_cases
+    implicit none
+    private
+
+    public :: study_plan_type, plan_study, run_case, append_row, run_study
+    public :: study_progress_type
+
+    !> Every case of a study, and which are still to run
+    type :: study_plan_type
+        !> texts(k, i): parameter k of case i as its scene and its row take it
+        character(len=:), allocatable :: texts(:, :)
+        !> The case is in the CSV already
+        logical, allocatable :: done(:)
+        !> Rows of the CSV that are not cases of this study (the study file changed)
+        integer :: foreign = 0
+    contains
+        procedure :: pending
+    end type study_plan_type
+
+    !> Counts for the progress lines and the closing summary
+    type :: study_progress_type
+        integer :: total = 0, skipped = 0, done = 0, failed = 0
+        real(wp) :: started = 0.0_wp, last = 0.0_wp
+        logical :: quiet = .false.
+    contains
+        procedure :: start => progress_start
+        procedure :: add => progress_add
+    end type study_progress_type
+
+contains
+
+    !> The plan of a study whose rows go to csv_path: the cases' parameters, and those the CSV
+    !> holds already (by parameters, not order: rollcon_study_csv). A new CSV gets its header.
+    subroutine plan_study(study, csv_path, plan, error)
+        type(study_type), intent(in) :: study
+        character(len=*), intent(in) :: csv_path
+        type(study_plan_type), intent(out) :: plan
+        type(error_type), allocatable, intent(out) :: error
+        real(wp), allocatable :: values(:, :)
+        integer, allocatable :: rows(:)
+        character(len=:), allocatable :: keys(:), own(:)
+        integer :: n, i, k, r, width
+
+        call case_values(study, values)
+        n = case_count(study)
+        width = 1
+        do i = 1, n
+            do k = 1, size(study%parameters)
+                width = max(width, len(value_text(study%parameters(k), values(k, i))))
+            end do
+        end do
+        allocate(character(len=width) :: plan%texts(size(study%parameters), n))
+        do i = 1, n
+            do k = 1, size(study%parameters)
+                plan%texts(k, i) = value_text(study%parameters(k), values(k, i))
+            end do
+        end do
+        allocate(plan%done(n), source=.false.)
+        call read_done_cases(csv_path, study, rows, keys, error)
+        if (allocated(error)) return
+        if (size(keys) == 0) then
+            call append_row(csv_path, study_header(study), error)
+            return
+        end if
+        allocate(character(len=(width + 1)*size(study%parameters)) :: own(n))
+        do i = 1, n
+            own(i) = case_key(plan%texts(:, i))
+        end do
+        do r = 1, size(keys)
+            i = rows(r)
+            if (i >= 1 .and. i <= n) then
+                if (own(i) == keys(r)) then
+                    plan%done(i) = .true.
+                    cycle
+                end if
+            end if
+            i = findloc_key(own, keys(r))
+            if (i > 0) then
+                plan%done(i) = .true.
+            else
+                plan%foreign = plan%foreign + 1
+            end if
+        end do
+    end subroutine plan_study
+
+    !> The cases still to run, in case order.
+    pure function pending(self) result(cases)
+        class(study_plan_type), intent(in) :: self
+        integer, allocatable :: cases(:)
+        integer :: i
+
+        cases = pack([(i, i = 1, size(self%done))], .not. self%done)
+    end function pending
+
+    !> Run case i: its scene is the base scene with the case's parameters set; it runs as
+    !> `rollcon run` would run it, with the hand-checked disk UCOSUB. Returns its CSV row.
+    subroutine run_case(study, plan, i, row, result)
+        type(study_type), intent(in) :: study
+        type(study_plan_type), intent(in) :: plan
+        integer, intent(in) :: i
+        character(len=:), allocatable, intent(out) :: row
+        type(case_result_type), intent(out) :: result
+        type(scene_override_type) :: overrides(size(study%parameters))
+        type(scene_type) :: scene
+        type(run_summary_type) :: summary
+        type(history_type) :: history
+        type(error_type), allocatable :: error
+        real(wp) :: cpu_start, cpu_end
+        integer :: k
+
+        call cpu_time(cpu_start)
+        do k = 1, size(study%parameters)
+            overrides(k)%group = study%parameters(k)%group
+            overrides(k)%key = study%parameters(k)%key
+            overrides(k)%value = trim(plan%texts(k, i))
+        end do
+        call read_scene_lines(study%scene_path, study%scene_lines, scene, error, overrides)
+        if (allocated(error)) then
+            result%outcome = outcome_refused
+            result%message = error%message
+        else
+            call simulate_scene(scene, rolling_disk_ucosub, summary, error, history=history)
+            call cpu_time(cpu_end)
+            call measure_case(summary, history, cpu_end - cpu_start, result)
+            if (allocated(error)) then
+                result%outcome = outcome_failed
+                result%message = error%message
+            end if
+        end if
+        result%class = classify(study, result)
+        row = study_row(i, plan%texts(:, i), result)
+    end subroutine run_case
+
+    !> Append one line to the CSV and flush it: a row is in the file when its case ends.
+    subroutine append_row(path, line, error)
+        character(len=*), intent(in) :: path, line
+        type(error_type), allocatable, intent(out) :: error
+        integer :: unit, stat
+        character(len=256) :: message
+
+        open(newunit=unit, file=path, position="append", action="write", status="unknown", &
+            & iostat=stat, iomsg=message)
+        if (stat == 0) write(unit, "(a)", iostat=stat, iomsg=message) line
+        if (stat == 0) flush(unit, iostat=stat, iomsg=message)
+        if (stat /= 0) call fatal_error(error, path // ": cannot write: " // trim(message), &
+            & stat_io)
+        close(unit)
+    end subroutine append_row
+
+    !> Run every pending case in this process, in case order.
+    subroutine run_study(study, csv_path, plan, progress, error)
+        type(study_type), intent(in) :: study
+        character(len=*), intent(in) :: csv_path
+        type(study_plan_type), intent(in) :: plan
+        type(study_progress_type), intent(inout) :: progress
+        type(error_type), allocatable, intent(out) :: error
+        type(case_result_type) :: result
+        character(len=:), allocatable :: row
+        integer, allocatable :: cases(:)
+        integer :: j
+
+        cases = plan%pending()
+        do j = 1, size(cases)
+            call run_case(study, plan, cases(j), row, result)
+            call append_row(csv_path, row, error)
+            if (allocated(error)) return
+            call progress%add(result%outcome == outcome_failed)
+        end do
+    end subroutine run_study
+
+    pure integer function findloc_key(keys, key) result(i)
+        character(len=*), intent(in) :: keys(:), key
+
+        do i = 1, size(keys)
+            if (keys(i) == key) return
+        end do
+        i = 0
+    end function findloc_key
+
+    !> Start counting: total cases, those skipped as already done.
+    subroutine progress_start(self, total, skipped, quiet)
+        class(study_progress_type), intent(inout) :: self
+        integer, intent(in) :: total, skipped
+        logical, intent(in) :: quiet
+
+        self%total = total
+        self%skipped = skipped
+        self%quiet = quiet
+        self%started = wall_seconds()
+        self%last = self%started
+    end subroutine progress_start
+
+    !> One more case ended; a progress line on stderr at most every 5 s of wall time.
+    subroutine progress_add(self, failed)
+        class(study_progress_type), intent(inout) :: self
+        logical, intent(in) :: failed
+        real(wp) :: now, rate
+        integer :: left
+
+        self%done = self%done + 1
+        if (failed) self%failed = self%failed + 1
+        now = wall_seconds()
+        if (self%quiet .or. now - self%last < 5.0_wp) return
+        self%last = now
+        left = self%total - self%skipped - self%done
+        rate = real(self%done, wp)/max(now - self%started, 1.0e-9_wp)
+        write(error_unit, "(a)") "sweep: " // to_text(self%skipped + self%done) // " of " &
+            & // to_text(self%total) // " cases done (" // to_text(self%failed) &
+            & // " failed), " // to_text(nint(now - self%started)) // " s so far, about " &
+            & // to_text(nint(left/rate)) // " s to go"
+    end subroutine progress_add
+
+end module rollcon_study_run
