@@ -15,6 +15,7 @@ program rollcon_main
     use rollcon_command_run_vtk, only : write_run_vtk
     use rollcon_command_check, only : check_command, call_timeout_option
     use rollcon_command_run_isolated, only : run_user_scene
+    use rollcon_command_sweep, only : sweep_command
     implicit none
     type(error_type), allocatable :: error
     type(run_summary_type) :: summary
@@ -24,6 +25,8 @@ program rollcon_main
     integer :: argument_index
     !> rollcon check's verdict (0 clean, 1 mismatches); run --ucosub: the user's file, loaded
     integer :: check_status
+    !> rollcon sweep: 0 when every case is in the CSV
+    integer :: sweep_status
     character(len=:), allocatable :: ucosub_path
     type(user_ucosub_type) :: user
     procedure(ucosub_interface), pointer :: builtin => null()
@@ -42,6 +45,10 @@ program rollcon_main
         if (allocated(error)) call fail(error)
     case ("help")
         call print_help()
+    case ("sweep")
+        call sweep_command(argument_index + 1, sweep_status, error)
+        if (allocated(error)) call fail(error)
+        if (sweep_status /= 0) stop 1, quiet=.true.
     case ("table")
         call print_table(state, radius, error)
         if (allocated(error)) call fail(error)
@@ -137,6 +144,11 @@ contains
                 command = "check"
                 argument_index = i
                 return
+            case ("sweep")
+                ! the rest of the command line is sweep's (app/rollcon_command_sweep.f90)
+                command = "sweep"
+                argument_index = i
+                return
             case ("--ucosub")
                 i = i + 1
                 if (i > command_argument_count()) then
@@ -217,6 +229,8 @@ contains
             & "       rollcon [run] [SCENE] --ucosub FILE      (your own UCOSUB, see below)", &
             & "       rollcon check FILE --ucon ID:PAR1,PAR2,...  (rollcon check --help)", &
             & "       rollcon check FILE --model MODEL.adm", &
+            & "       [mpirun -np N] rollcon sweep STUDY.nml [--output DIR]  (a parameter", &
+            & "               study, one CSV row per case, and its map: rollcon sweep --help)", &
             & "       rollcon --help", &
             & "", &
             & "run (the default): simulate a rolling-disk scene, the paper's coin unless SCENE", &

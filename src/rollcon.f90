@@ -70,6 +70,14 @@ module rollcon
     use rollcon_ucosub_contract, only : ucosub_interface
     use rollcon_ucosub_guard, only : install_guard, attach_call_record, guarded_ucosub
     use rollcon_vtk, only : write_vtk_series
+    ! parameter studies (docs/studies.md); the MPI loop is the program's
+    use rollcon_study_type, only : study_type
+    use rollcon_study_reader, only : read_study
+    use rollcon_study_parameters, only : case_count
+    use rollcon_study_measures, only : case_result_type, outcome_failed, outcome_refused
+    use rollcon_study_run, only : study_plan_type, study_progress_type, plan_cases, plan_study, &
+        & run_case, append_row, run_study
+    use rollcon_scene_state, only : upright_critical_speed
     ! the library API of docs/library.md: the coordinates of a part in the output layout
     use rollcon_output_layout, only : coord_x, coord_y, coord_z, coord_psi, coord_theta, &
         & coord_phi, coord_xdot, coord_ydot, coord_zdot, coord_psidot, coord_thetadot, &

@@ -103,6 +103,7 @@ contains
         type(scene_override_type), intent(in) :: overrides(:)
         type(group_type), allocatable, intent(inout) :: groups(:)
         type(assignment_type) :: assignment
+        type(group_type) :: added
         integer :: k, g, a
 
         do k = 1, size(overrides)
@@ -111,11 +112,19 @@ contains
                 if (groups(a)%name == overrides(k)%group) g = a
             end do
             if (g == 0) then
-                groups = [groups, group_type(overrides(k)%group, 1, [assignment_type ::])]
+                added%name = overrides(k)%group
+                added%line = 1
+                allocate(added%assignments(0))
+                groups = [groups, added]
+                deallocate(added%assignments)
                 g = size(groups)
             end if
-            assignment = assignment_type(overrides(k)%key, overrides(k)%value, .false., &
-                & groups(g)%line)
+            ! component by component: gfortran 12 loses deferred-length components passed to
+            ! a structure constructor
+            assignment%key = overrides(k)%key
+            assignment%value = overrides(k)%value
+            assignment%quoted = .false.
+            assignment%line = groups(g)%line
             do a = size(groups(g)%assignments), 1, -1
                 if (groups(g)%assignments(a)%key == overrides(k)%key) exit
             end do

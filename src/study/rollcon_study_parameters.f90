@@ -35,7 +35,7 @@ contains
         type(key_type), allocatable :: keys(:)
         character(len=:), allocatable :: words(:), form
         real(wp) :: ends(2)
-        integer :: cut, k, want
+        integer :: cut, k, want, e
 
         call bind_keys(scene, keys)
         cut = index(a%key, "%")
@@ -67,21 +67,21 @@ contains
                     & // a%value)
                 return
             end if
-            do k = 1, 2
-                if (.not. is_real_text(trim(words(k)))) then
+            do e = 1, 2
+                if (.not. is_real_text(trim(words(e)))) then
                     call input_error(error, file, a%line, a%key, "takes " // trim(form) &
-                        & // ": '" // trim(words(k)) // "' is not a number")
+                        & // ": '" // trim(words(e)) // "' is not a number")
                     return
                 end if
-                read(words(k), *) ends(k)
-                if (.not. in_range(key, ends(k))) then
+                read(words(e), *) ends(e)
+                if (.not. in_range(key, ends(e))) then
                     call input_error(error, file, a%line, a%key, "must be " // range_text(key) &
-                        & // " (the scene key's range), got " // trim(words(k)))
+                        & // " (the scene key's range), got " // trim(words(e)))
                     return
                 end if
-                if (key%kind == kind_integer .and. ends(k) /= aint(ends(k))) then
+                if (key%kind == kind_integer .and. ends(e) /= aint(ends(e))) then
                     call input_error(error, file, a%line, a%key, "is a whole number, got " &
-                        & // trim(words(k)))
+                        & // trim(words(e)))
                     return
                 end if
             end do

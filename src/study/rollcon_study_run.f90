@@ -23,7 +23,7 @@ module rollcon_study_run
     implicit none
     private
 
-    public :: study_plan_type, plan_study, run_case, append_row, run_study
+    public :: study_plan_type, plan_cases, plan_study, run_case, append_row, run_study
     public :: study_progress_type
 
     !> Every case of a study, and which are still to run
@@ -36,6 +36,7 @@ module rollcon_study_run
         integer :: foreign = 0
     contains
         procedure :: pending
+        procedure :: case_texts
     end type study_plan_type
 
     !> Counts for the progress lines and the closing summary
@@ -50,17 +51,12 @@ module rollcon_study_run
 
 contains
 
-    !> The plan of a study whose rows go to csv_path: the cases' parameters, and those the CSV
-    !> holds already (by parameters, not order: rollcon_study_csv). A new CSV gets its header.
-    subroutine plan_study(study, csv_path, plan, error)
+    !> Every case's parameters, none done yet (what a worker rank needs).
+    subroutine plan_cases(study, plan)
         type(study_type), intent(in) :: study
-        character(len=*), intent(in) :: csv_path
         type(study_plan_type), intent(out) :: plan
-        type(error_type), allocatable, intent(out) :: error
         real(wp), allocatable :: values(:, :)
-        integer, allocatable :: rows(:)
-        character(len=:), allocatable :: keys(:), own(:)
-        integer :: n, i, k, r, width
+        integer :: n, i, k, width
 
         call case_values(study, values)
         n = case_count(study)
@@ -77,15 +73,30 @@ contains
             end do
         end do
         allocate(plan%done(n), source=.false.)
+    end subroutine plan_cases
+
+    !> The plan of a study whose rows go to csv_path: the cases' parameters, and those the CSV
+    !> holds already (by parameters, not order: rollcon_study_csv). A new CSV gets its header.
+    subroutine plan_study(study, csv_path, plan, error)
+        type(study_type), intent(in) :: study
+        character(len=*), intent(in) :: csv_path
+        type(study_plan_type), intent(out) :: plan
+        type(error_type), allocatable, intent(out) :: error
+        integer, allocatable :: rows(:)
+        character(len=:), allocatable :: keys(:), own(:)
+        integer :: n, i, r
+
+        call plan_cases(study, plan)
+        n = size(plan%done)
         call read_done_cases(csv_path, study, rows, keys, error)
         if (allocated(error)) return
         if (size(keys) == 0) then
             call append_row(csv_path, study_header(study), error)
             return
         end if
-        allocate(character(len=(width + 1)*size(study%parameters)) :: own(n))
+        allocate(character(len=(len(plan%texts) + 1)*size(study%parameters)) :: own(n))
         do i = 1, n
-            own(i) = case_key(plan%texts(:, i))
+            own(i) = case_key(plan%case_texts(i))
         end do
         do r = 1, size(keys)
             i = rows(r)
@@ -112,6 +123,19 @@ contains
 
         cases = pack([(i, i = 1, size(self%done))], .not. self%done)
     end function pending
+
+    !> The parameter texts of case i. Copied element by element: gfortran 12 passes a
+    !> section plan%texts(:, i) of the deferred-length array as its first column.
+    pure function case_texts(self, i) result(texts)
+        class(study_plan_type), intent(in) :: self
+        integer, intent(in) :: i
+        character(len=len(self%texts)) :: texts(size(self%texts, 1))
+        integer :: k
+
+        do k = 1, size(texts)
+            texts(k) = self%texts(k, i)
+        end do
+    end function case_texts
 
     !> Run case i: its scene is the base scene with the case's parameters set; it runs as
     !> `rollcon run` would run it, with the hand-checked disk UCOSUB. Returns its CSV row.
@@ -149,7 +173,7 @@ contains
             end if
         end if
         result%class = classify(study, result)
-        row = study_row(i, plan%texts(:, i), result)
+        row = study_row(i, plan%case_texts(i), result)
     end subroutine run_case
 
     !> Append one line to the CSV and flush it: a row is in the file when its case ends.

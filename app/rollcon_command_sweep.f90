@@ -1,0 +1,187 @@
+! SPDX-License-Identifier: MIT
+!> `rollcon sweep STUDY.nml [--output DIR] [--quiet]`: run a parameter study (docs/studies.md)
+!> on one process or under mpirun, writing DIR/STUDY.csv as cases end, then its map.
+module rollcon_command_sweep
+    use, intrinsic :: iso_fortran_env, only : output_unit, error_unit
+    use mpi_f08, only : MPI_Init, MPI_Finalize, MPI_Bcast, MPI_INTEGER, MPI_COMM_WORLD
+    use rollcon, only : error_type, fatal_error, stat_input, to_text, study_type, read_study, &
+        & study_plan_type, study_progress_type, plan_cases, plan_study, case_count
+    use rollcon_command_plot, only : make_folder
+    use rollcon_sweep_mpi, only : sweep_ranks, rank_of_world, size_of_world
+    implicit none
+    private
+
+    public :: sweep_command
+
+contains
+
+    !> Run the command whose arguments start at argument `first`. error is set on rank 0
+    !> only; the other ranks return with status 1 when the study could not run.
+    subroutine sweep_command(first, status, error)
+        integer, intent(in) :: first
+        !> 0 when every case of the study is in the CSV, 1 otherwise
+        integer, intent(out) :: status
+        type(error_type), allocatable, intent(out) :: error
+        character(len=:), allocatable :: study_path, output_dir, csv_path
+        type(study_type) :: study
+        type(study_plan_type) :: plan
+        type(study_progress_type) :: progress
+        logical :: quiet, help
+        integer :: go, rank
+
+        status = 1
+        call read_arguments(first, study_path, output_dir, quiet, help, error)
+        if (allocated(error)) return
+        if (help) then
+            call print_sweep_help()
+            status = 0
+            return
+        end if
+        call make_folder(output_dir, error)
+        if (allocated(error)) return
+        call MPI_Init()
+        rank = rank_of_world()
+        call read_study(study_path, study, error)
+        if (.not. allocated(error)) then
+            csv_path = output_dir // "/" // study%name // ".csv"
+            if (rank == 0) then
+                call plan_study(study, csv_path, plan, error)
+            else
+                call plan_cases(study, plan)
+            end if
+        end if
+        go = merge(1, 0, .not. allocated(error))
+        call MPI_Bcast(go, 1, MPI_INTEGER, 0, MPI_COMM_WORLD)
+        if (go == 1) then
+            if (rank == 0) call announce(study, plan, csv_path, quiet, progress)
+            call sweep_ranks(study, csv_path, plan, progress, error)
+        end if
+        call MPI_Finalize()
+        if (rank /= 0) then
+            if (allocated(error)) deallocate(error)
+            if (go == 1) status = 0
+            return
+        end if
+        if (go == 0 .and. .not. allocated(error)) call fatal_error(error, "the study " &
+            & // study_path // " could not start on every rank", stat_input)
+        if (allocated(error)) return
+        call close_study(study, plan, csv_path, progress)
+        status = 0
+    end subroutine sweep_command
+
+    !> The opening line: cases, those already done, ranks.
+    subroutine announce(study, plan, csv_path, quiet, progress)
+        type(study_type), intent(in) :: study
+        type(study_plan_type), intent(in) :: plan
+        character(len=*), intent(in) :: csv_path
+        logical, intent(in) :: quiet
+        type(study_progress_type), intent(inout) :: progress
+        integer :: done, ranks
+
+        done = count(plan%done)
+        ranks = size_of_world()
+        call progress%start(case_count(study), done, quiet)
+        if (quiet) return
+        write(output_unit, "(a)") "sweep: " // study%path // ": " // to_text(case_count(study)) &
+            & // " cases, " // to_text(done) // " of them in " // csv_path // " already; " &
+            & // trim(rank_text(ranks))
+        flush(output_unit)
+    end subroutine announce
+
+    pure function rank_text(ranks) result(text)
+        integer, intent(in) :: ranks
+        character(len=:), allocatable :: text
+
+        if (ranks == 1) then
+            text = "1 process runs them"
+        else
+            text = to_text(ranks) // " ranks: a coordinator and " // to_text(ranks - 1) &
+                & // " workers"
+        end if
+    end function rank_text
+
+    !> The closing lines: what ran, what the CSV holds.
+    subroutine close_study(study, plan, csv_path, progress)
+        type(study_type), intent(in) :: study
+        type(study_plan_type), intent(in) :: plan
+        character(len=*), intent(in) :: csv_path
+        type(study_progress_type), intent(in) :: progress
+
+        write(output_unit, "(a)") "sweep: " // to_text(progress%done) // " cases run now (" &
+            & // to_text(progress%failed) // " failed), " // to_text(progress%skipped) &
+            & // " from an earlier run: all " // to_text(case_count(study)) // " in " // csv_path
+        if (plan%foreign > 0) write(output_unit, "(a)") "sweep: " // csv_path // " also holds " &
+            & // to_text(plan%foreign) // " rows that are not cases of " // study%path &
+            & // " (the study changed); they are kept"
+    end subroutine close_study
+
+    subroutine read_arguments(first, study_path, output_dir, quiet, help, error)
+        integer, intent(in) :: first
+        character(len=:), allocatable, intent(out) :: study_path, output_dir
+        logical, intent(out) :: quiet, help
+        type(error_type), allocatable, intent(out) :: error
+        character(len=512) :: argument
+        integer :: i
+
+        output_dir = "output"
+        quiet = .false.
+        help = .false.
+        i = first
+        do while (i <= command_argument_count())
+            call get_command_argument(i, argument)
+            select case (trim(argument))
+            case ("-h", "--help")
+                help = .true.
+                return
+            case ("--quiet", "-q")
+                quiet = .true.
+            case ("--output", "-o")
+                i = i + 1
+                if (i > command_argument_count()) then
+                    call fatal_error(error, "sweep: --output needs a folder", stat_input)
+                    return
+                end if
+                call get_command_argument(i, argument)
+                output_dir = trim(argument)
+            case default
+                if (argument(1:1) == "-" .or. allocated(study_path)) then
+                    call fatal_error(error, "sweep: unexpected argument '" // trim(argument) &
+                        & // "'; run 'rollcon sweep --help' for the usage", stat_input)
+                    return
+                end if
+                study_path = trim(argument)
+            end select
+            i = i + 1
+        end do
+        if (.not. allocated(study_path)) call fatal_error(error, "sweep: give a study file " &
+            & // "(data/upright_stability.nml, for one); run 'rollcon sweep --help'", stat_input)
+    end subroutine read_arguments
+
+    subroutine print_sweep_help()
+        write(output_unit, "(a)") &
+            & "usage: rollcon sweep STUDY.nml [--output DIR] [--quiet]", &
+            & "       mpirun --oversubscribe -np N rollcon sweep STUDY.nml [...]", &
+            & "", &
+            & "Run a parameter study (docs/studies.md): the study file names a base scene, the", &
+            & "scene keys to vary (&grid 'from to count', or &random 'from to' samples), the", &
+            & "rules that class each case (&classify) and the map's axes (&map). Every case", &
+            & "is the ordinary simulation of its scene.", &
+            & "", &
+            & "Writes DIR/STUDY.csv (DIR defaults to ./output): one row per case, written and", &
+            & "flushed as the case ends, with its parameters, outcome (completed, theta_limit,", &
+            & "liftoff, inaccurate, failed, refused), class, SUNDIALS' flag when it failed, and", &
+            & "measures: t_reached [s], theta_min, theta_max, tilt_max [rad], mu_max [-],", &
+            & "fn_min [N], t_fn_negative [s], energy_drift [-], residual_max, steps, cpu_s [s].", &
+            & "A case that fails is recorded; it never stops the study. Run the same command", &
+            & "again to resume: cases already in the CSV (same parameters) are skipped.", &
+            & "", &
+            & "Under mpirun, rank 0 hands out the cases and writes the rows, the other ranks run", &
+            & "cases; rank 0 sleeps between messages, so start one rank more than cores", &
+            & "(--oversubscribe). The rows do not depend on the number of ranks, except cpu_s.", &
+            & "As root, mpirun needs OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1", &
+            & "(.ci/env sets them).", &
+            & "", &
+            & "Exit status: 0 when every case is in the CSV, 1 on bad input or a failure."
+    end subroutine print_sweep_help
+
+end module rollcon_command_sweep
