@@ -67,6 +67,10 @@ contains
         if (allocated(error)) return
         call close_study(study, plan, csv_path, progress)
         status = 0
+        ! nothing of what was asked ran: a mistake in the study, not a result
+        if (progress%refused > 0 .and. progress%refused == case_count(study)) call fatal_error( &
+            & error, "every case of " // study_path // " was refused: its parameters do not " &
+            & // "make a scene that reads (the messages are in " // csv_path // ")", stat_input)
     end subroutine sweep_command
 
     !> The opening line: cases, those already done, ranks.
@@ -108,8 +112,9 @@ contains
         type(study_progress_type), intent(in) :: progress
 
         write(output_unit, "(a)") "sweep: " // to_text(progress%done) // " cases run now (" &
-            & // to_text(progress%failed) // " failed), " // to_text(progress%skipped) &
-            & // " from an earlier run: all " // to_text(case_count(study)) // " in " // csv_path
+            & // to_text(progress%failed) // " failed, " // to_text(progress%refused) &
+            & // " refused), " // to_text(progress%skipped) // " from an earlier run: all " &
+            & // to_text(case_count(study)) // " in " // csv_path
         if (plan%foreign > 0) write(output_unit, "(a)") "sweep: " // csv_path // " also holds " &
             & // to_text(plan%foreign) // " rows that are not cases of " // study%path &
             & // " (the study changed); they are kept"

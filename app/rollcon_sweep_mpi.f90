@@ -12,7 +12,7 @@ module rollcon_sweep_mpi
     use mpi_f08, only : MPI_Comm_rank, MPI_Comm_size, MPI_COMM_WORLD, MPI_Send, MPI_Recv, &
         & MPI_Iprobe, MPI_Status, MPI_INTEGER, MPI_CHARACTER, MPI_ANY_SOURCE, MPI_ANY_TAG
     use rollcon, only : study_type, study_plan_type, study_progress_type, case_result_type, &
-        & error_type, run_case, append_row, run_study, outcome_failed
+        & error_type, run_case, append_row, run_study
     implicit none
     private
 
@@ -90,7 +90,7 @@ contains
                     & status)
                 if (.not. allocated(error)) call append_row(csv_path, row, error)
                 deallocate(row)
-                call progress%add(header(2) == outcome_failed)
+                call progress%add(header(2))
             end if
             ! after a write failure no new case is handed out: the workers stop
             if (next <= size(cases) .and. .not. allocated(error)) then

@@ -31,7 +31,7 @@ module rollcon_run_summary
         integer :: limit = limit_none
         !> SUNDIALS' flag when the integrator failed (status_failed), else 0
         integer :: solver_flag = 0
-        !> Time reached [s]
+        !> Time reached [s]: of the last output row, or where the integrator failed
         real(wp) :: t_reached = 0.0_wp
         !> Final coordinates and rates
         real(wp), allocatable :: q(:), u(:)

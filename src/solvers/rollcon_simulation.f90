@@ -125,6 +125,8 @@ contains
                 summary%status = status_failed
                 summary%message = error%message
                 summary%solver_flag = merge(cvode%failed_flag, ida%failed_flag, use_cvode)
+                ! where the integrator got to, past the last row
+                summary%t_reached = max(summary%t_reached, t)
                 exit
             end if
             if (root /= 0) then

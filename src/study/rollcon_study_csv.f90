@@ -82,7 +82,7 @@ contains
         type(error_type), allocatable, intent(out) :: error
         character(len=:), allocatable :: text, header
         character(len=:), allocatable :: fields(:)
-        integer :: start, stop, rows, row, np, complete, stat, width
+        integer :: start, stop, rows, row, np, complete, stat, width, k
 
         np = size(study%parameters)
         allocate(cases(0))
@@ -122,7 +122,12 @@ contains
             end if
             read(fields(1), *, iostat=stat) cases(row)
             if (stat /= 0) cases(row) = 0
-            keys(row) = case_key(fields(2:np + 1))
+            ! element by element: gfortran 12 passes a section of a deferred-length array
+            ! to an assumed-length dummy as the wrong elements
+            keys(row) = ""
+            do k = 2, np + 1
+                keys(row) = trim(keys(row)) // trim(fields(k)) // ";"
+            end do
         end do
     end subroutine read_done_cases
 

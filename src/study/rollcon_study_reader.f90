@@ -1,14 +1,14 @@
 ! SPDX-License-Identifier: MIT
 !> Reads a study file (docs/studies.md): namelist groups as in a scene file, read by the
 !> scene's own lexer so that every mistake is reported with file, line and key. The base
-!> scene is read and checked too, with the parameters at both ends of their ranges.
+!> scene is read and checked too.
 module rollcon_study_reader
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type, input_error
     use rollcon_text, only : to_text, unquoted
     use rollcon_scene_lexer, only : group_type, assignment_type, read_lines, scan_groups
     use rollcon_scene_bytes, only : check_bytes, visible
-    use rollcon_scene, only : scene_type, scene_path, read_scene_lines, scene_override_type
+    use rollcon_scene, only : scene_type, scene_path, read_scene_lines
     use rollcon_study_type, only : study_type, study_parameter_type, sampling_grid, &
         & sampling_random
     use rollcon_study_parameters, only : read_parameter
@@ -65,7 +65,7 @@ contains
         g = group_index(groups, "map")
         call read_map(file, groups, g, study, error)
         if (allocated(error)) return
-        call check_ends(file, study, error)
+        call check_base_scene(file, study, error)
     end subroutine read_study
 
     !> &study: scene (required) and title.
@@ -74,6 +74,7 @@ contains
         type(group_type), intent(in) :: group
         type(study_type), intent(inout) :: study
         type(error_type), allocatable, intent(out) :: error
+        character(len=:), allocatable :: message
         integer :: k
 
         do k = 1, size(group%assignments)
@@ -83,8 +84,9 @@ contains
                     study%scene_path = scene_path(unquoted(a%value))
                     call read_lines(study%scene_path, study%scene_lines, error)
                     if (allocated(error)) then
-                        error%message = file // ":" // to_text(a%line) // ": 'scene': " &
-                            & // error%message
+                        message = error%message
+                        call input_error(error, file, a%line, "scene", "names a base scene " &
+                            & // "that cannot be read: " // message)
                         return
                     end if
                 case ("title")
@@ -174,32 +176,18 @@ contains
         end if
     end subroutine read_count
 
-    !> The base scene must read with every parameter at its lower end, and at its upper end.
-    subroutine check_ends(file, study, error)
+    !> The base scene must read as it is. A case whose parameters make it unreadable (a
+    !> check across keys fails) is refused on its own, as a row (rollcon_study_run).
+    subroutine check_base_scene(file, study, error)
         character(len=*), intent(in) :: file
         type(study_type), intent(in) :: study
         type(error_type), allocatable, intent(out) :: error
-        type(scene_override_type) :: overrides(size(study%parameters))
         type(scene_type) :: scene
-        integer :: end, k
 
-        do end = 1, 2
-            do k = 1, size(study%parameters)
-                associate (p => study%parameters(k))
-                    overrides(k)%group = p%group
-                    overrides(k)%key = p%key
-                    overrides(k)%value = to_text(merge(p%lower, p%upper, end == 1))
-                end associate
-            end do
-            call read_scene_lines(study%scene_path, study%scene_lines, scene, error, overrides)
-            if (allocated(error)) then
-                error%message = file // ": the base scene " // study%scene_path // " with the " &
-                    & // "parameters at their " // trim(merge("lower", "upper", end == 1)) &
-                    & // " ends is refused: " // error%message
-                return
-            end if
-        end do
-    end subroutine check_ends
+        call read_scene_lines(study%scene_path, study%scene_lines, scene, error)
+        if (allocated(error)) error%message = file // ": its base scene is refused: " &
+            & // error%message
+    end subroutine check_base_scene
 
     pure integer function group_index(groups, name) result(g)
         type(group_type), intent(in) :: groups(:)

@@ -41,9 +41,10 @@ module rollcon_study_run
 
     !> Counts for the progress lines and the closing summary
     type :: study_progress_type
-        integer :: total = 0, skipped = 0, done = 0, failed = 0
+        integer :: total = 0, skipped = 0, done = 0, failed = 0, refused = 0
         real(wp) :: started = 0.0_wp, last = 0.0_wp
-        logical :: quiet = .false.
+        !> No progress lines (until start says otherwise)
+        logical :: quiet = .true.
     contains
         procedure :: start => progress_start
         procedure :: add => progress_add
@@ -209,7 +210,7 @@ contains
             call run_case(study, plan, cases(j), row, result)
             call append_row(csv_path, row, error)
             if (allocated(error)) return
-            call progress%add(result%outcome == outcome_failed)
+            call progress%add(result%outcome)
         end do
     end subroutine run_study
 
@@ -235,15 +236,17 @@ contains
         self%last = self%started
     end subroutine progress_start
 
-    !> One more case ended; a progress line on stderr at most every 5 s of wall time.
-    subroutine progress_add(self, failed)
+    !> One more case ended with this outcome (rollcon_study_measures); a progress line on
+    !> stderr at most every 5 s of wall time.
+    subroutine progress_add(self, outcome)
         class(study_progress_type), intent(inout) :: self
-        logical, intent(in) :: failed
+        integer, intent(in) :: outcome
         real(wp) :: now, rate
         integer :: left
 
         self%done = self%done + 1
-        if (failed) self%failed = self%failed + 1
+        if (outcome == outcome_failed) self%failed = self%failed + 1
+        if (outcome == outcome_refused) self%refused = self%refused + 1
         now = wall_seconds()
         if (self%quiet .or. now - self%last < 5.0_wp) return
         self%last = now
@@ -251,7 +254,8 @@ contains
         rate = real(self%done, wp)/max(now - self%started, 1.0e-9_wp)
         write(error_unit, "(a)") "sweep: " // to_text(self%skipped + self%done) // " of " &
             & // to_text(self%total) // " cases done (" // to_text(self%failed) &
-            & // " failed), " // to_text(nint(now - self%started)) // " s so far, about " &
+            & // " failed, " // to_text(self%refused) // " refused), " &
+            & // to_text(nint(now - self%started)) // " s so far, about " &
             & // to_text(nint(left/rate)) // " s to go"
     end subroutine progress_add
 

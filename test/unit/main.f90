@@ -39,6 +39,8 @@ program tester
     use test_initial_conditions, only : collect_initial_conditions
     use test_rebasing, only : collect_rebasing
     use test_models, only : collect_models
+    use test_study_file, only : collect_study_file
+    use test_study_run, only : collect_study_run
     implicit none
     type(testsuite_type), allocatable :: suites(:)
     type(test_counts_type) :: counts
@@ -83,7 +85,8 @@ program tester
         & new_testsuite("initial-conditions", collect_initial_conditions), &
         & new_testsuite("rebasing", collect_rebasing), &
         & new_testsuite("models", collect_models), &
-        & new_testsuite("dataset-command", collect_dataset_command)]
+        & new_testsuite("study-file", collect_study_file), &
+        & new_testsuite("study-run", collect_study_run)]
 
     if (command_argument_count() >= 1) then
         call get_command_argument(1, argument)

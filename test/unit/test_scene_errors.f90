@@ -43,6 +43,7 @@ contains
             & new_unittest("z-off-contact", test_z_contact), &
             & new_unittest("velocity-slips", test_velocity_slips), &
             & new_unittest("velocity-incomplete", test_velocity_incomplete), &
+            & new_unittest("speed-with-phidot", test_speed_with_phidot), &
             & new_unittest("huge-values-refused", test_huge_values), &
             & new_unittest("faster-than-light-refused", test_speed_of_light), &
             & new_unittest("tiny-values-refused", test_tiny_values), &
@@ -305,6 +306,14 @@ contains
             & "rolling without slip it is 0 [m/s]"])
     end subroutine test_velocity_incomplete
 
+    !> speed and phidot both set the spin: one of them.
+    subroutine test_speed_with_phidot(error)
+        type(error_type), allocatable, intent(out) :: error
+
+        call expect_input_error(error, "speed_phidot", [character(len=width) :: &
+            & "&initial", "  phidot = -1.0", "  speed = 0.1", "/"], [character(len=width) :: &
+            & "@:3: 'speed' in &initial cannot be given with 'phidot' (line 2)"])
+    end subroutine test_speed_with_phidot
 
     !> Huge finite values (issue #11, item 7) are refused at their key, with the bound.
     subroutine test_huge_values(error)

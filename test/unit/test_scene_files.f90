@@ -42,6 +42,7 @@ contains
             & new_unittest("choices-any-case", test_choices_case), &
             & new_unittest("byte-order-mark-skipped", test_byte_order_mark), &
             & new_unittest("velocity-consistent", test_velocity_consistent), &
+            & new_unittest("speed-sets-spin", test_speed_key), &
             & new_unittest("choice-codes-and-names", test_choice_codes), &
             & new_unittest("visible-characters", test_visible), &
             & new_unittest("error-leaves-defaults", test_error_defaults)]
@@ -321,6 +322,24 @@ contains
             & "given velocity kept", &
             & abs_tol=tol_derived)
     end subroutine test_velocity_consistent
+
+    !> &initial speed sets phidot so that the centre rolls at that speed along the heading
+    !> (cos psi, sin psi), whatever psidot and thetadot are.
+    subroutine test_speed_key(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(scene_type) :: s
+        real(wp) :: v(3)
+
+        call expect_accepted("speed", [character(len=width) :: "&initial", &
+            & "psi = 0.7, theta = 1.1, psidot = 2.5, thetadot = -0.4, speed = 0.8", "/"], s, error)
+        if (allocated(error)) return
+        v = no_slip_velocity(s)
+        call check(error, v(1)*cos(0.7_wp) + v(2)*sin(0.7_wp), 0.8_wp, "speed along the heading", &
+            & abs_tol=tol_derived)
+        if (allocated(error)) return
+        call check(error, s%initial%phidot, -0.8_wp/s%disk%radius - 2.5_wp*cos(1.1_wp), &
+            & "phidot from speed", abs_tol=tol_derived)
+    end subroutine test_speed_key
 
     !> Choice names and codes convert both ways, in any case; unknown ones give 0 and "?".
     subroutine test_choice_codes(error)

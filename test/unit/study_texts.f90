@@ -1,0 +1,57 @@
+! SPDX-License-Identifier: MIT
+!> Study files written by the tests under build/, read back, and their errors checked.
+module study_texts
+    use rollcon_error, only : error_type, stat_input
+    use rollcon_study_type, only : study_type
+    use rollcon_study_reader, only : read_study
+    use rollcon_testing, only : check
+    implicit none
+    private
+
+    public :: write_study, expect_study_error
+
+contains
+
+    !> Write lines (trailing blanks removed) to build/NAME.nml; path is that file.
+    subroutine write_study(name, lines, path)
+        character(len=*), intent(in) :: name, lines(:)
+        character(len=:), allocatable, intent(out) :: path
+        integer :: unit, i
+
+        path = "build/" // name // ".nml"
+        open(newunit=unit, file=path, status="replace", action="write")
+        do i = 1, size(lines)
+            write(unit, "(a)") trim(lines(i))
+        end do
+        close(unit)
+    end subroutine write_study
+
+    !> Reading lines as a study must fail with an input error whose message holds every
+    !> fragment; a leading '@' in a fragment stands for the file's path.
+    subroutine expect_study_error(error, name, lines, fragments)
+        type(error_type), allocatable, intent(out) :: error
+        character(len=*), intent(in) :: name, lines(:), fragments(:)
+        type(study_type) :: study
+        type(error_type), allocatable :: found
+        character(len=:), allocatable :: path, fragment
+        integer :: i
+
+        call write_study(name, lines, path)
+        call read_study(path, study, found)
+        if (.not. allocated(found)) then
+            call check(error, .false., name // ": no error reported")
+            return
+        end if
+        call check(error, found%stat == stat_input, name // ": stat is not stat_input: " &
+            & // found%message)
+        if (allocated(error)) return
+        do i = 1, size(fragments)
+            fragment = trim(fragments(i))
+            if (fragment(1:1) == "@") fragment = path // fragment(2:)
+            call check(error, index(found%message, fragment) > 0, name // ": message '" &
+                & // found%message // "' lacks '" // fragment // "'")
+            if (allocated(error)) return
+        end do
+    end subroutine expect_study_error
+
+end module study_texts

@@ -1,0 +1,281 @@
+! SPDX-License-Identifier: MIT
+!> Tests of running a study in the library (docs/studies.md): a case's scene is the base scene
+!> with its parameters set; failed and refused cases are rows and the study goes on; the rows
+!> do not depend on the order the cases run in; a rerun after an interruption completes the
+!> CSV without running again what it holds; the classes of the upright-stability study
+!> change at the analytic critical speed of docs/design.md §5.
+module test_study_run
+    use rollcon_kinds, only : wp
+    use rollcon_error, only : error_type
+    use rollcon_text, only : to_text
+    use rollcon_scene, only : scene_type, read_scene_lines, scene_override_type
+    use rollcon_scene_state, only : upright_critical_speed
+    use rollcon_study_type, only : study_type
+    use rollcon_study_reader, only : read_study
+    use rollcon_study_measures, only : case_result_type
+    use rollcon_study_run, only : study_plan_type, study_progress_type, plan_cases, plan_study, &
+        & run_case, append_row, run_study
+    use rollcon_testing, only : unittest_type, new_unittest, check
+    use study_texts, only : write_study
+    use study_rows, only : csv_rows, without_cpu, sorted, remove_file, cut_after
+    implicit none
+    private
+
+    public :: collect_study_run
+
+    !> The test issue's bound: the simulated boundary of the upright-stability classes lies
+    !> within 2 % of the analytic critical speed (measured: within 1 %, docs/studies.md)
+    real(wp), parameter :: tol_boundary = 0.02_wp
+    !> Speeds tried around the critical speed: +-4 % in steps of 0.5 %, so the boundary is
+    !> located to 0.25 % of vc, well inside the bound
+    real(wp), parameter :: speed_span = 0.04_wp
+    integer, parameter :: speed_count = 17
+
+contains
+
+    !> Tests of this suite.
+    subroutine collect_study_run(tests)
+        type(unittest_type), allocatable, intent(out) :: tests(:)
+
+        tests = [new_unittest("overrides-replace-and-add", test_overrides), &
+            & new_unittest("failed-and-refused-recorded", test_failures), &
+            & new_unittest("rows-independent-of-order", test_order), &
+            & new_unittest("resume-after-cut", test_resume), &
+            & new_unittest("other-study-csv-refused", test_other_header), &
+            & new_unittest("stability-boundary", test_boundary)]
+    end subroutine collect_study_run
+
+    !> An override replaces a key of the file, adds one to a group, and adds a group: an
+    !> added &strike enables the strike.
+    subroutine test_overrides(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(study_type) :: study
+        type(scene_type) :: scene
+        character(len=:), allocatable :: path
+
+        call write_study("test_study_overrides", [character(len=40) :: "&study", &
+            & "    scene = 'data/upright.nml' /", "&grid", "    disk%radius = '0.1 0.1 1' /"], &
+            & path)
+        call read_study(path, study, error)
+        if (allocated(error)) return
+        call read_scene_lines(study%scene_path, study%scene_lines, scene, error, &
+            & [override("disk", "thickness", "0.02"), override("disk", "radius", "0.15"), &
+            & override("strike", "impulse", "0.03")])
+        if (allocated(error)) return
+        call check(error, scene%disk%thickness == 0.02_wp .and. scene%disk%radius == 0.15_wp &
+            & .and. scene%disk%density == 7800.0_wp, "disk keys replaced or kept")
+        if (allocated(error)) return
+        call check(error, scene%strike%enabled .and. scene%strike%impulse == 0.03_wp, &
+            & "the added &strike is enabled with its impulse")
+        if (allocated(error)) return
+        ! the file's speed, 0.7 m/s, now on a disk of radius 0.15 m
+        call check(error, abs(scene%initial%phidot + 0.7_wp/0.15_wp) < 1.0e-14_wp, &
+            & "phidot follows the overridden radius")
+    end subroutine test_overrides
+
+    !> A case the integrator fails (max_steps 1: CV_TOO_MUCH_WORK, flag -1) and cases whose
+    !> scene is refused (theta below theta_min) are rows; the study runs every case.
+    subroutine test_failures(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(study_type) :: study
+        type(study_plan_type) :: plan
+        type(study_progress_type) :: progress
+        character(len=:), allocatable :: path, csv
+        character(len=:), allocatable :: rows(:)
+
+        call write_study("test_study_failures", [character(len=60) :: "&study", &
+            & "    scene = 'data/upright.nml' /", "&grid", "    run%max_steps = '1 5001 2'", &
+            & "    initial%theta = '0.03 1.5 2' /"], path)
+        call read_study(path, study, error)
+        if (allocated(error)) return
+        csv = "build/test_study_failures.csv"
+        call remove_file(csv)
+        call plan_study(study, csv, plan, error)
+        if (allocated(error)) return
+        call run_study(study, csv, plan, progress, error)
+        if (allocated(error)) return
+        rows = csv_rows(csv)
+        call check(error, size(rows) == 5, "header and 4 rows, got " // to_text(size(rows)))
+        if (allocated(error)) return
+        call check(error, index(rows(2), "1,1,0.03,refused,refused,0,") == 1 .and. &
+            & index(rows(2), "'theta_min' in &limits") > 0, "case 1 refused: " // trim(rows(2)))
+        if (allocated(error)) return
+        call check(error, index(rows(3), "2,1,1.5,failed,failed,-1,") == 1 .and. &
+            & index(rows(3), "CV_TOO_MUCH_WORK") > 0, "case 2 failed with flag -1: " &
+            & // trim(rows(3)))
+        if (allocated(error)) return
+        call check(error, index(rows(5), "4,5001,1.5,completed,") == 1, "case 4 completed: " &
+            & // trim(rows(5)))
+        if (allocated(error)) return
+        call check(error, progress%done == 4 .and. progress%failed == 1 .and. &
+            & progress%refused == 2, "progress counts")
+    end subroutine test_failures
+
+    !> The cases run backwards give the rows they give forwards, but for cpu_s.
+    subroutine test_order(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(study_type) :: study
+        type(study_plan_type) :: plan
+        type(study_progress_type) :: progress
+        type(case_result_type) :: result
+        character(len=:), allocatable :: forward, backward, row
+        integer :: i
+
+        call small_study(study, error)
+        if (allocated(error)) return
+        forward = "build/test_study_forward.csv"
+        backward = "build/test_study_backward.csv"
+        call remove_file(forward)
+        call remove_file(backward)
+        call plan_study(study, forward, plan, error)
+        if (allocated(error)) return
+        call run_study(study, forward, plan, progress, error)
+        if (allocated(error)) return
+        call plan_study(study, backward, plan, error)
+        if (allocated(error)) return
+        do i = size(plan%done), 1, -1
+            call run_case(study, plan, i, row, result)
+            call append_row(backward, row, error)
+            if (allocated(error)) return
+        end do
+        call check(error, same_rows(forward, backward), "rows differ with the order of cases")
+    end subroutine test_order
+
+    !> A CSV cut after two rows and half a third (a run killed while writing) is completed
+    !> by a rerun: the half row is dropped, the two are not run again, and the rows are those
+    !> of an uninterrupted run.
+    subroutine test_resume(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(study_type) :: study
+        type(study_plan_type) :: plan
+        type(study_progress_type) :: progress
+        character(len=:), allocatable :: whole, cut
+
+        call small_study(study, error)
+        if (allocated(error)) return
+        whole = "build/test_study_whole.csv"
+        cut = "build/test_study_cut.csv"
+        call remove_file(whole)
+        call plan_study(study, whole, plan, error)
+        if (allocated(error)) return
+        call run_study(study, whole, plan, progress, error)
+        if (allocated(error)) return
+        call cut_after(whole, cut, 3, 20)
+        call plan_study(study, cut, plan, error)
+        if (allocated(error)) return
+        call check(error, count(plan%done) == 2 .and. plan%done(1) .and. plan%done(2), &
+            & "the two whole rows count as done, the cut one not: " // to_text(count(plan%done)) &
+            & // " done")
+        if (allocated(error)) return
+        call run_study(study, cut, plan, progress, error)
+        if (allocated(error)) return
+        call check(error, same_rows(whole, cut), "the resumed CSV differs from a whole run")
+    end subroutine test_resume
+
+    !> A CSV of another study is not appended to.
+    subroutine test_other_header(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(study_type) :: study
+        type(study_plan_type) :: plan
+        type(error_type), allocatable :: found
+        character(len=:), allocatable :: csv
+
+        call small_study(study, error)
+        if (allocated(error)) return
+        csv = "build/test_study_other.csv"
+        call remove_file(csv)
+        call append_row(csv, "case,disk%radius,outcome", error)
+        if (allocated(error)) return
+        call plan_study(study, csv, plan, found)
+        call check(error, allocated(found), "no error for another study's CSV")
+        if (allocated(error)) return
+        call check(error, index(found%message, csv // ":1: the header is not this study's") &
+            & == 1, "message: " // found%message)
+    end subroutine test_other_header
+
+    !> At three thicknesses, the shipped study's classes change from falls to stays_upright
+    !> once, between neighbouring speeds whose midpoint is within 2 % of the analytic vc.
+    subroutine test_boundary(error)
+        type(error_type), allocatable, intent(out) :: error
+        real(wp), parameter :: thicknesses(3) = [0.01_wp, 0.1_wp, 0.2_wp]
+        type(study_type) :: study
+        type(study_plan_type) :: plan
+        type(case_result_type) :: result
+        type(scene_type) :: scene
+        character(len=:), allocatable :: row
+        character(len=16) :: classes(speed_count)
+        real(wp) :: vc, speeds(speed_count), boundary
+        integer :: t, i, first_up
+
+        call read_study("data/upright_stability.nml", study, error)
+        if (allocated(error)) return
+        do t = 1, size(thicknesses)
+            call read_scene_lines(study%scene_path, study%scene_lines, scene, error, &
+                & [override("disk", "thickness", to_text(thicknesses(t)))])
+            if (allocated(error)) return
+            vc = upright_critical_speed(scene)
+            study%parameters(1)%lower = thicknesses(t)
+            study%parameters(1)%upper = thicknesses(t)
+            study%parameters(1)%count = 1
+            study%parameters(2)%lower = (1.0_wp - speed_span)*vc
+            study%parameters(2)%upper = (1.0_wp + speed_span)*vc
+            study%parameters(2)%count = speed_count
+            call plan_cases(study, plan)
+            do i = 1, speed_count
+                call run_case(study, plan, i, row, result)
+                classes(i) = result%class
+                read(plan%texts(2, i), *) speeds(i)
+            end do
+            first_up = findloc(classes == "stays_upright", .true., dim=1)
+            call check(error, first_up > 1 .and. all(classes(:first_up - 1) == "falls") .and. &
+                & all(classes(first_up:) == "stays_upright"), "thickness " &
+                & // to_text(thicknesses(t)) // ": classes do not change once from falls to " &
+                & // "stays_upright over speeds " // to_text(speeds(1)) // " to " &
+                & // to_text(speeds(speed_count)))
+            if (allocated(error)) return
+            boundary = 0.5_wp*(speeds(first_up - 1) + speeds(first_up))
+            call check(error, abs(boundary/vc - 1.0_wp) <= tol_boundary, "thickness " &
+                & // to_text(thicknesses(t)) // ": boundary " // to_text(boundary) &
+                & // " m/s, analytic " // to_text(vc) // " m/s")
+            if (allocated(error)) return
+        end do
+    end subroutine test_boundary
+
+    !> Six cases of the no-slip study's scene (its strike makes the rows differ).
+    subroutine small_study(study, error)
+        type(study_type), intent(out) :: study
+        type(error_type), allocatable, intent(out) :: error
+        character(len=:), allocatable :: path
+
+        call write_study("test_study_small", [character(len=60) :: "&study", &
+            & "    scene = 'data/struck_rolling.nml' /", "&grid", &
+            & "    strike%impulse = '0.01 0.03 3'", "    initial%speed = '0.8 1.2 2' /", &
+            & "&classify", "    steep = 'mu_max > 0.2' /"], path)
+        call read_study(path, study, error)
+    end subroutine small_study
+
+    !> The two CSVs hold the same rows, sorted, but for their CPU times.
+    logical function same_rows(a, b)
+        character(len=*), intent(in) :: a, b
+        character(len=:), allocatable :: rows_a(:), rows_b(:)
+        integer :: i
+
+        rows_a = sorted(without_cpu(csv_rows(a)))
+        rows_b = sorted(without_cpu(csv_rows(b)))
+        same_rows = size(rows_a) == size(rows_b)
+        if (.not. same_rows) return
+        do i = 1, size(rows_a)
+            same_rows = same_rows .and. rows_a(i) == rows_b(i)
+        end do
+    end function same_rows
+
+    function override(group, key, value) result(item)
+        character(len=*), intent(in) :: group, key, value
+        type(scene_override_type) :: item
+
+        item%group = group
+        item%key = key
+        item%value = value
+    end function override
+
+end module test_study_run
