@@ -82,7 +82,7 @@ contains
         type(error_type), allocatable, intent(out) :: error
         character(len=:), allocatable :: text, header
         character(len=:), allocatable :: fields(:)
-        integer :: start, stop, rows, row, np, complete, stat
+        integer :: start, stop, rows, row, np, complete, stat, length
 
         np = size(study%parameters)
         allocate(cases(0))
@@ -107,7 +107,8 @@ contains
         rows = count_of(text, lf) - 1
         deallocate(cases, keys)
         allocate(cases(rows))
-        allocate(character(len=longest_line(text)) :: keys(rows))
+        length = longest_line(text)
+        allocate(character(len=length) :: keys(rows))
         do row = 1, rows
             start = stop + 1
             stop = start - 1 + index(text(start:), lf)

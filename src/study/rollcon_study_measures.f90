@@ -65,7 +65,7 @@ contains
     end function measure_index
 
     !> The measures of a case that ran, from its summary and output rows.
-    pure subroutine measure_case(summary, history, cpu_seconds, result)
+    subroutine measure_case(summary, history, cpu_seconds, result)
         type(run_summary_type), intent(in) :: summary
         type(history_type), intent(in) :: history
         real(wp), intent(in) :: cpu_seconds
@@ -110,7 +110,7 @@ contains
 
     contains
 
-        pure subroutine put(k, value)
+        subroutine put(k, value)
             integer, intent(in) :: k
             real(wp), intent(in) :: value
 
