@@ -103,6 +103,7 @@ contains
         type(scene_override_type), intent(in) :: overrides(:)
         type(group_type), allocatable, intent(inout) :: groups(:)
         type(assignment_type) :: assignment
+        type(group_type) :: added
         integer :: k, g, a
 
         do k = 1, size(overrides)
@@ -110,12 +111,19 @@ contains
             do a = 1, size(groups)
                 if (groups(a)%name == overrides(k)%group) g = a
             end do
+            ! component by component: gfortran 12 gives a structure constructor empty
+            ! deferred-length strings when they come from components of an array element
             if (g == 0) then
-                groups = [groups, group_type(overrides(k)%group, 1, [assignment_type ::])]
+                added%name = overrides(k)%group
+                added%line = 1
+                added%assignments = [assignment_type ::]
+                groups = [groups, added]
                 g = size(groups)
             end if
-            assignment = assignment_type(overrides(k)%key, overrides(k)%value, .false., &
-                & groups(g)%line)
+            assignment%key = overrides(k)%key
+            assignment%value = overrides(k)%value
+            assignment%quoted = .false.
+            assignment%line = groups(g)%line
             do a = size(groups(g)%assignments), 1, -1
                 if (groups(g)%assignments(a)%key == overrides(k)%key) exit
             end do
