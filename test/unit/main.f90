@@ -39,6 +39,7 @@ program tester
     use test_initial_conditions, only : collect_initial_conditions
     use test_rebasing, only : collect_rebasing
     use test_models, only : collect_models
+    use test_study_map, only : collect_study_map
     implicit none
     type(testsuite_type), allocatable :: suites(:)
     type(test_counts_type) :: counts
@@ -83,6 +84,7 @@ program tester
         & new_testsuite("initial-conditions", collect_initial_conditions), &
         & new_testsuite("rebasing", collect_rebasing), &
         & new_testsuite("models", collect_models), &
+        & new_testsuite("study-map", collect_study_map), &
         & new_testsuite("dataset-command", collect_dataset_command)]
 
     if (command_argument_count() >= 1) then
