@@ -197,9 +197,13 @@ contains
         type(study_type), intent(in) :: study
         character(len=*), intent(in) :: png_path
         type(map_cases_type), intent(in) :: cases
-        character(len=:), allocatable :: text
+        character(len=:), allocatable :: text, grid
         real(wp) :: x_range(2), y_range(2)
 
+        ! white lines over the cells of a grid; grey ones behind random points
+        grid = "set grid back lc rgb '#d0d0d0' lw 0.5"
+        if (half_cell(study, study%map%x) > 0.0_wp .and. half_cell(study, study%map%y) &
+            & > 0.0_wp) grid = "set grid front lc rgb '#ffffff' lw 0.5"
         x_range = axis_range(study, study%map%x, cases%x)
         y_range = axis_range(study, study%map%y, cases%y)
         text = "# Map of the study " // name_of(study%path) // ", drawn by rollcon from its " &
@@ -212,8 +216,9 @@ contains
             & // gnuplot_string(axis_label(study%parameters(study%map%y))) // nl &
             & // "set xrange [" // to_text(x_range(1)) // ":" // to_text(x_range(2)) // "]" &
             & // nl // "set yrange [" // to_text(y_range(1)) // ":" // to_text(y_range(2)) &
-            & // "]" // nl // "set tics out" // nl // "set grid front lc rgb '#ffffff' lw 0.5" &
-            & // nl // "set key outside right top vertical Left reverse samplen 2" // nl
+            & // "]" // nl // "set format x '% g'" // nl // "set format y '% g'" // nl &
+            & // "set tics out" // nl // grid // nl &
+            & // "set key tmargin center horizontal Left reverse samplen 2" // nl
     end function map_settings
 
     !> The plot command: one element per class that occurs (filled cells of the grid's
@@ -224,7 +229,7 @@ contains
         type(map_cases_type), intent(in) :: cases
         !> The script has the critical speed curve
         logical, intent(in) :: curve
-        character(len=:), allocatable :: text, style
+        character(len=:), allocatable :: text, style, colour
         real(wp) :: half_x, half_y
         integer :: k, n
 
@@ -234,18 +239,19 @@ contains
         n = 0
         do k = 1, size(classes)
             if (.not. any(cases%class == k)) cycle
+            colour = "rgb '" // class_colour(study, classes, k) // "'"
             if (half_x > 0.0_wp .and. half_y > 0.0_wp) then
+                ! a border of the cell's colour closes the seams between neighbouring cells
                 style = "using 1:2:(" // to_text(half_x) // "):(" // to_text(half_y) &
-                    & // ") with boxxyerror fill solid 1.0 noborder"
+                    & // ") with boxxyerror lc " // colour // " fill solid 1.0 border lc " &
+                    & // colour
             else
                 style = "using 1:2 with points pt " &
                     & // to_text(point_types(modulo(n, size(point_types)) + 1)) // " ps " &
-                    & // to_text(point_size(size(cases%class)))
+                    & // to_text(point_size(size(cases%class))) // " lc " // colour
             end if
             if (n > 0) text = text // ", \" // nl // "    "
-            text = text &
-                & // "$class_" // to_text(k) // " " // style // " lc rgb '" &
-                & // class_colour(study, classes, k) // "' title " &
+            text = text // "$class_" // to_text(k) // " " // style // " title " &
                 & // gnuplot_string(trim(classes(k)) // " (" &
                 & // to_text(count(cases%class == k)) // ")")
             n = n + 1
