@@ -56,6 +56,7 @@ module rollcon
     use rollcon_error, only : fatal_error, stat_input, stat_io, stat_ucon
     use rollcon_figures, only : plot_output, figure_file, figure_names, model_figure_names
     use rollcon_gif, only : animate_output
+    use rollcon_study_map, only : draw_study_map
     use rollcon_gnuplot, only : base_name, run_gnuplot, gnuplot_string
     use rollcon_isolated_audit, only : check_user_ucosub_isolated
     use rollcon_isolation_text, only : outcome_text

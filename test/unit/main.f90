@@ -41,6 +41,7 @@ program tester
     use test_models, only : collect_models
     use test_study_file, only : collect_study_file
     use test_study_run, only : collect_study_run
+    use test_study_map, only : collect_study_map
     implicit none
     type(testsuite_type), allocatable :: suites(:)
     type(test_counts_type) :: counts
@@ -86,7 +87,8 @@ program tester
         & new_testsuite("rebasing", collect_rebasing), &
         & new_testsuite("models", collect_models), &
         & new_testsuite("study-file", collect_study_file), &
-        & new_testsuite("study-run", collect_study_run)]
+        & new_testsuite("study-run", collect_study_run), &
+        & new_testsuite("study-map", collect_study_map)]
 
     if (command_argument_count() >= 1) then
         call get_command_argument(1, argument)
