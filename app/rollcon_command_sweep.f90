@@ -5,7 +5,7 @@ module rollcon_command_sweep
     use, intrinsic :: iso_fortran_env, only : output_unit, error_unit
     use mpi_f08, only : MPI_Init, MPI_Finalize, MPI_Bcast, MPI_INTEGER, MPI_COMM_WORLD
     use rollcon, only : error_type, fatal_error, stat_input, to_text, study_type, read_study, &
-        & study_plan_type, study_progress_type, plan_cases, plan_study, case_count
+        & study_plan_type, study_progress_type, plan_cases, plan_study, case_count, draw_study_map
     use rollcon_command_plot, only : make_folder
     use rollcon_sweep_mpi, only : sweep_ranks, rank_of_world, size_of_world
     implicit none
@@ -26,11 +26,11 @@ contains
         type(study_type) :: study
         type(study_plan_type) :: plan
         type(study_progress_type) :: progress
-        logical :: quiet, help
+        logical :: quiet, help, map
         integer :: go, rank
 
         status = 1
-        call read_arguments(first, study_path, output_dir, quiet, help, error)
+        call read_arguments(first, study_path, output_dir, quiet, help, map, error)
         if (allocated(error)) return
         if (help) then
             call print_sweep_help()
@@ -66,11 +66,21 @@ contains
             & // study_path // " could not start on every rank", stat_input)
         if (allocated(error)) return
         call close_study(study, plan, csv_path, progress)
-        status = 0
         ! nothing of what was asked ran: a mistake in the study, not a result
-        if (progress%refused > 0 .and. progress%refused == case_count(study)) call fatal_error( &
-            & error, "every case of " // study_path // " was refused: its parameters do not " &
-            & // "make a scene that reads (the messages are in " // csv_path // ")", stat_input)
+        if (progress%refused > 0 .and. progress%refused == case_count(study)) then
+            call fatal_error(error, "every case of " // study_path // " was refused: its " &
+                & // "parameters do not make a scene that reads (the messages are in " &
+                & // csv_path // ")", stat_input)
+            return
+        end if
+        if (map .and. study%map%x > 0) then
+            call draw_study_map(study, csv_path, output_dir // "/" // study%name // ".png", &
+                & error)
+            if (allocated(error)) return
+            if (.not. quiet) write(output_unit, "(a)") "sweep: map " // output_dir // "/" &
+                & // study%name // ".png"
+        end if
+        status = 0
     end subroutine sweep_command
 
     !> The opening line: cases, those already done, ranks.
@@ -120,10 +130,10 @@ contains
             & // " (the study changed); they are kept"
     end subroutine close_study
 
-    subroutine read_arguments(first, study_path, output_dir, quiet, help, error)
+    subroutine read_arguments(first, study_path, output_dir, quiet, help, map, error)
         integer, intent(in) :: first
         character(len=:), allocatable, intent(out) :: study_path, output_dir
-        logical, intent(out) :: quiet, help
+        logical, intent(out) :: quiet, help, map
         type(error_type), allocatable, intent(out) :: error
         character(len=512) :: argument
         integer :: i
@@ -131,6 +141,7 @@ contains
         output_dir = "output"
         quiet = .false.
         help = .false.
+        map = .true.
         i = first
         do while (i <= command_argument_count())
             call get_command_argument(i, argument)
@@ -140,6 +151,8 @@ contains
                 return
             case ("--quiet", "-q")
                 quiet = .true.
+            case ("--no-map")
+                map = .false.
             case ("--output", "-o")
                 i = i + 1
                 if (i > command_argument_count()) then
@@ -164,7 +177,7 @@ contains
 
     subroutine print_sweep_help()
         write(output_unit, "(a)") &
-            & "usage: rollcon sweep STUDY.nml [--output DIR] [--quiet]", &
+            & "usage: rollcon sweep STUDY.nml [--output DIR] [--quiet] [--no-map]", &
             & "       mpirun --oversubscribe -np N rollcon sweep STUDY.nml [...]", &
             & "", &
             & "Run a parameter study (docs/studies.md): the study file names a base scene, the", &
@@ -179,6 +192,8 @@ contains
             & "fn_min [N], t_fn_negative [s], energy_drift [-], residual_max, steps, cpu_s [s].", &
             & "A case that fails is recorded; it never stops the study. Run the same command", &
             & "again to resume: cases already in the CSV (same parameters) are skipped.", &
+            & "Then draws the map, DIR/STUDY.png (and its gnuplot script DIR/STUDY.gp): every", &
+            & "case at its two parameters (&map x and y), coloured by class (--no-map: none).", &
             & "", &
             & "Under mpirun, rank 0 hands out the cases and writes the rows, the other ranks run", &
             & "cases; rank 0 sleeps between messages, so start one rank more than cores", &
