@@ -11,7 +11,7 @@ module rollcon_command_bench
     implicit none
     private
 
-    public :: bench_command
+    public :: bench_command, machine_name
 
     !> The accuracy the headline ratio is quoted at [m] (issue #13)
     real(wp), parameter :: accuracy_target = 1.0e-6_wp

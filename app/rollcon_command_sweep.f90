@@ -4,7 +4,7 @@
 module rollcon_command_sweep
     use, intrinsic :: iso_fortran_env, only : output_unit, error_unit
     use mpi_f08, only : MPI_Init, MPI_Finalize, MPI_Bcast, MPI_INTEGER, MPI_COMM_WORLD
-    use rollcon, only : error_type, fatal_error, stat_input, to_text, study_type, read_study, &
+    use rollcon, only : wp, error_type, fatal_error, stat_input, to_text, study_type, read_study, &
         & study_plan_type, study_progress_type, plan_cases, plan_study, case_count, draw_study_map
     use rollcon_command_plot, only : make_folder
     use rollcon_sweep_mpi, only : sweep_ranks, rank_of_world, size_of_world
@@ -125,6 +125,10 @@ contains
             & // to_text(progress%failed) // " failed, " // to_text(progress%refused) &
             & // " refused), " // to_text(progress%skipped) // " from an earlier run: all " &
             & // to_text(case_count(study)) // " in " // csv_path
+        if (progress%coordinator_cpu > 0.0_wp .and. progress%done > 0) write(output_unit, "(a)") &
+            & "sweep: the coordinator used " // to_text(real(nint(progress%coordinator_cpu &
+            & *1.0e3_wp), wp)/1.0e3_wp) // " s of CPU, " // to_text(nint(1.0e6_wp &
+            & *progress%coordinator_cpu/progress%done)) // " us a row"
         if (plan%foreign > 0) write(output_unit, "(a)") "sweep: " // csv_path // " also holds " &
             & // to_text(plan%foreign) // " rows that are not cases of " // study%path &
             & // " (the study changed); they are kept"

@@ -16,6 +16,7 @@ program rollcon_main
     use rollcon_command_check, only : check_command, call_timeout_option
     use rollcon_command_run_isolated, only : run_user_scene
     use rollcon_command_sweep, only : sweep_command
+    use rollcon_command_bench_sweep, only : bench_sweep_command
     implicit none
     type(error_type), allocatable :: error
     type(run_summary_type) :: summary
@@ -41,7 +42,11 @@ program rollcon_main
     if (allocated(error)) call fail(error)
     select case (command)
     case ("bench")
-        call bench_command(argument_index + 1, error)
+        if (bench_sweep()) then
+            call bench_sweep_command(argument_index + 2, error)
+        else
+            call bench_command(argument_index + 1, error)
+        end if
         if (allocated(error)) call fail(error)
     case ("help")
         call print_help()
@@ -92,6 +97,16 @@ program rollcon_main
     end select
 
 contains
+
+    !> `rollcon bench sweep`: the scaling benchmark of studies, not the work-precision one.
+    logical function bench_sweep()
+        character(len=16) :: word
+
+        bench_sweep = .false.
+        if (argument_index + 1 > command_argument_count()) return
+        call get_command_argument(argument_index + 1, word)
+        bench_sweep = word == "sweep"
+    end function bench_sweep
 
     !> --ucosub NAME names a built-in routine when no file NAME exists: builtin points at it
     !> (null otherwise: no --ucosub, or a file to compile and run apart).
@@ -225,6 +240,7 @@ contains
             & "       rollcon plot|animate [CSV|SCENE] [--output DIR]", &
             & "       rollcon table [--radius R] [--state XD,YD,ZD,PSI,THETA,PSID,THETAD,PHID]", &
             & "       rollcon bench [--quick] [...]     (rollcon bench --help)", &
+            & "       rollcon bench sweep [...]         (rollcon bench sweep --help)", &
             & "       rollcon [run] MODEL.adm [--ucosub FILE|NAME] [...]  (an ADAMS dataset)", &
             & "       rollcon [run] [SCENE] --ucosub FILE      (your own UCOSUB, see below)", &
             & "       rollcon check FILE --ucon ID:PAR1,PAR2,...  (rollcon check --help)", &

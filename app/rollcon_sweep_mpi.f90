@@ -1,8 +1,9 @@
 ! SPDX-License-Identifier: MIT
 !> A study's cases handed out over MPI (mpi_f08): rank 0 coordinates, every other rank runs
-!> cases. A worker asks for a case when it is free and sends back the case's CSV row; the
-!> coordinator writes each row as it arrives (flushed) and answers with the next pending case,
-!> or with 0 when none is left. Cases whose cost differs by 100x then keep every worker busy,
+!> cases. A worker says it is ready, then runs the cases it is sent and sends back each case's
+!> CSV row; the coordinator writes each row as it arrives (flushed) and sends the next pending
+!> case, keeping each worker one case ahead, or 0 (stop) once the worker holds none and none
+!> is left. Cases whose cost differs by 100x then keep every worker busy,
 !> and the rows do not depend on the number of ranks (only their order does). Between messages
 !> the coordinator sleeps (1 ms polls), so it takes a core only briefly: start it beside as
 !> many workers as there are cores (mpirun --oversubscribe -np CORES+1). On one rank, the
@@ -11,7 +12,7 @@ module rollcon_sweep_mpi
     use, intrinsic :: iso_c_binding, only : c_int
     use mpi_f08, only : MPI_Comm_rank, MPI_Comm_size, MPI_COMM_WORLD, MPI_Send, MPI_Recv, &
         & MPI_Iprobe, MPI_Status, MPI_INTEGER, MPI_CHARACTER, MPI_ANY_SOURCE, MPI_ANY_TAG
-    use rollcon, only : study_type, study_plan_type, study_progress_type, case_result_type, &
+    use rollcon, only : wp, study_type, study_plan_type, study_progress_type, case_result_type, &
         & error_type, run_case, append_row, run_study
     implicit none
     private
@@ -21,6 +22,8 @@ module rollcon_sweep_mpi
     !> Message tags: a worker is free (no data), a case's outcome and row length, the row, a
     !> case to run (0: stop)
     integer, parameter :: tag_ready = 1, tag_result = 2, tag_row = 3, tag_case = 4
+    !> Cases a worker holds at most (the one it runs and the next)
+    integer, parameter :: queue_depth = 2
 
     interface
         !> POSIX usleep: the coordinator's pause between polls
@@ -58,22 +61,27 @@ contains
         end if
     end subroutine sweep_ranks
 
-    !> Rank 0: hand out the pending cases, write the rows that come back.
+    !> Rank 0: hand out the pending cases, write the rows that come back. A worker is kept
+    !> `queue_depth` cases ahead (it finds its next case waiting when it sends a row), so the
+    !> coordinator's polling adds nothing to a worker's time.
     subroutine coordinate(csv_path, plan, progress, error)
         character(len=*), intent(in) :: csv_path
         type(study_plan_type), intent(in) :: plan
         type(study_progress_type), intent(inout) :: progress
         type(error_type), allocatable, intent(out) :: error
         type(MPI_Status) :: status
-        integer, allocatable :: cases(:)
+        integer, allocatable :: cases(:), held(:)
         character(len=:), allocatable :: row
-        integer :: next, active, header(3), source, dummy
+        integer :: next, stopped, header(3), source, dummy, k
         logical :: waiting
+        real(wp) :: cpu_start, cpu_end
 
+        call cpu_time(cpu_start)
         cases = plan%pending()
         next = 1
-        active = size_of_world() - 1
-        do while (active > 0)
+        stopped = 0
+        allocate(held(size_of_world() - 1), source=0)
+        do while (stopped < size(held))
             call MPI_Iprobe(MPI_ANY_SOURCE, MPI_ANY_TAG, MPI_COMM_WORLD, waiting, status)
             if (.not. waiting) then
                 dummy = usleep(1000_c_int)
@@ -88,19 +96,25 @@ contains
                 allocate(character(len=header(3)) :: row)
                 call MPI_Recv(row, header(3), MPI_CHARACTER, source, tag_row, MPI_COMM_WORLD, &
                     & status)
+                held(source) = held(source) - 1
                 if (.not. allocated(error)) call append_row(csv_path, row, error)
                 deallocate(row)
                 call progress%add(header(2))
             end if
-            ! after a write failure no new case is handed out: the workers stop
-            if (next <= size(cases) .and. .not. allocated(error)) then
+            ! fill the worker's queue; after a write failure no new case is handed out
+            do k = held(source) + 1, queue_depth
+                if (next > size(cases) .or. allocated(error)) exit
                 call MPI_Send(cases(next), 1, MPI_INTEGER, source, tag_case, MPI_COMM_WORLD)
                 next = next + 1
-            else
+                held(source) = held(source) + 1
+            end do
+            if (held(source) == 0) then
                 call MPI_Send(0, 1, MPI_INTEGER, source, tag_case, MPI_COMM_WORLD)
-                active = active - 1
+                stopped = stopped + 1
             end if
         end do
+        call cpu_time(cpu_end)
+        progress%coordinator_cpu = cpu_end - cpu_start
     end subroutine coordinate
 
     !> A worker rank: ask for cases, run them, send their rows, until told to stop.

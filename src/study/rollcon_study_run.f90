@@ -42,6 +42,9 @@ module rollcon_study_run
     !> Counts for the progress lines and the closing summary
     type :: study_progress_type
         integer :: total = 0, skipped = 0, done = 0, failed = 0, refused = 0
+        !> CPU time the coordinating rank spent handing out cases and writing rows [s] (0 when
+        !> one process ran the cases)
+        real(wp) :: coordinator_cpu = 0.0_wp
         real(wp) :: started = 0.0_wp, last = 0.0_wp
         !> No progress lines (until start says otherwise)
         logical :: quiet = .true.
