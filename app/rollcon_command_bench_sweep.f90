@@ -27,7 +27,7 @@ contains
         type(study_type) :: study
         integer, parameter :: ranks(3) = [1, 2, 3]
         real(wp) :: wall(size(ranks)), bytes_per_case
-        integer :: k, unit, stat
+        integer :: k, unit, stat, row_us
 
         call read_options(first, study_path, output_dir, error)
         if (allocated(error) .or. .not. allocated(study_path)) return
@@ -60,8 +60,8 @@ contains
             end associate
         end do
         close(unit)
-        call print_at_scale(study, wall, bytes_per_case, coordinator_row_us(output_dir &
-            & // "/ranks3.log"))
+        row_us = coordinator_row_us(output_dir // "/ranks3.log")
+        call print_at_scale(study, wall, bytes_per_case, row_us)
         write(output_unit, "(a)") "bench sweep: wrote " // output_dir // "/sweep_scaling.csv"
     end subroutine bench_sweep_command
 
@@ -117,8 +117,32 @@ contains
             & "  1e6 such cases: " // fixed(core_hours, 1) // " core-hours, " &
             & // to_text(nint(cases_at_scale*bytes_per_case/1.0e6_wp)) // " MB of CSV; on 128 " &
             & // "workers (129 ranks) " // fixed(60.0_wp*core_hours/128.0_wp/ &
-            & (wall(1)/(2.0_wp*wall(3))), 1) // " min at the efficiency measured on 2"
+            & (wall(1)/(2.0_wp*wall(3))), 1) // " min at the efficiency measured on 2", &
+            & "  the coordinator spent " // to_text(row_us) // " us of CPU a row (polling " &
+            & // "included): one coordinator serves up to " // to_text(nint(1.0e6_wp/ &
+            & max(row_us, 1))) // " rows/s; 128 workers ask " // to_text(nint(128.0_wp*per_hour &
+            & /3600.0_wp)) // " rows/s"
     end subroutine print_at_scale
+
+    !> The coordinator's microseconds of CPU a row, from the closing line of a sweep's log.
+    integer function coordinator_row_us(log) result(us)
+        character(len=*), intent(in) :: log
+        character(len=512) :: line
+        integer :: unit, stat, cut, start
+
+        us = 0
+        open(newunit=unit, file=log, status="old", action="read", iostat=stat)
+        if (stat /= 0) return
+        do
+            read(unit, "(a)", iostat=stat) line
+            if (stat /= 0) exit
+            cut = index(line, " us a row")
+            if (cut == 0) cycle
+            start = index(line(:cut - 1), " ", back=.true.)
+            read(line(start + 1:cut - 1), *, iostat=stat) us
+        end do
+        close(unit)
+    end function coordinator_row_us
 
     subroutine read_options(first, study_path, output_dir, error)
         integer, intent(in) :: first
