@@ -118,8 +118,8 @@ contains
             & // to_text(nint(cases_at_scale*bytes_per_case/1.0e6_wp)) // " MB of CSV; on 128 " &
             & // "workers (129 ranks) " // fixed(60.0_wp*core_hours/128.0_wp/ &
             & (wall(1)/(2.0_wp*wall(3))), 1) // " min at the efficiency measured on 2", &
-            & "  the coordinator spent " // to_text(row_us) // " us of CPU a row (polling " &
-            & // "included): one coordinator serves up to " // to_text(nint(1.0e6_wp/ &
+            & "  the coordinator spent " // to_text(row_us) // " us of CPU a row on messages " &
+            & // "and rows: one coordinator serves up to " // to_text(nint(1.0e6_wp/ &
             & max(row_us, 1))) // " rows/s; 128 workers ask " // to_text(nint(128.0_wp*per_hour &
             & /3600.0_wp)) // " rows/s"
     end subroutine print_at_scale

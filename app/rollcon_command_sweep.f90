@@ -126,9 +126,9 @@ contains
             & // " refused), " // to_text(progress%skipped) // " from an earlier run: all " &
             & // to_text(case_count(study)) // " in " // csv_path
         if (progress%coordinator_cpu > 0.0_wp .and. progress%done > 0) write(output_unit, "(a)") &
-            & "sweep: the coordinator used " // to_text(real(nint(progress%coordinator_cpu &
-            & *1.0e3_wp), wp)/1.0e3_wp) // " s of CPU, " // to_text(nint(1.0e6_wp &
-            & *progress%coordinator_cpu/progress%done)) // " us a row"
+            & "sweep: the coordinator spent " // to_text(real(nint(progress%coordinator_cpu &
+            & *1.0e3_wp), wp)/1.0e3_wp) // " s of CPU on messages and rows, " &
+            & // to_text(nint(1.0e6_wp*progress%coordinator_cpu/progress%done)) // " us a row"
         if (plan%foreign > 0) write(output_unit, "(a)") "sweep: " // csv_path // " also holds " &
             & // to_text(plan%foreign) // " rows that are not cases of " // study%path &
             & // " (the study changed); they are kept"

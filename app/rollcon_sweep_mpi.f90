@@ -13,7 +13,7 @@ module rollcon_sweep_mpi
     use mpi_f08, only : MPI_Comm_rank, MPI_Comm_size, MPI_COMM_WORLD, MPI_Send, MPI_Recv, &
         & MPI_Iprobe, MPI_Status, MPI_INTEGER, MPI_CHARACTER, MPI_ANY_SOURCE, MPI_ANY_TAG
     use rollcon, only : wp, study_type, study_plan_type, study_progress_type, case_result_type, &
-        & error_type, run_case, append_row, run_study
+        & error_type, run_case, run_study, row_file_type
     implicit none
     private
 
@@ -63,7 +63,10 @@ contains
 
     !> Rank 0: hand out the pending cases, write the rows that come back. A worker is kept
     !> `queue_depth` cases ahead (it finds its next case waiting when it sends a row), so the
-    !> coordinator's polling adds nothing to a worker's time.
+    !> coordinator's polling adds nothing to a worker's time. The CPU time spent on messages
+    !> (receiving, writing the row, sending) goes to progress%coordinator_cpu. If the CSV
+    !> cannot be opened or written, no case is handed out (the workers are told to stop) and
+    !> error says why.
     subroutine coordinate(csv_path, plan, progress, error)
         character(len=*), intent(in) :: csv_path
         type(study_plan_type), intent(in) :: plan
@@ -72,11 +75,12 @@ contains
         type(MPI_Status) :: status
         integer, allocatable :: cases(:), held(:)
         character(len=:), allocatable :: row
+        type(row_file_type) :: file
         integer :: next, stopped, header(3), source, dummy, k
         logical :: waiting
-        real(wp) :: cpu_start, cpu_end
+        real(wp) :: handling_start, handling_end
 
-        call cpu_time(cpu_start)
+        call file%open(csv_path, error)
         cases = plan%pending()
         next = 1
         stopped = 0
@@ -87,6 +91,7 @@ contains
                 dummy = usleep(1000_c_int)
                 cycle
             end if
+            call cpu_time(handling_start)
             source = status%MPI_SOURCE
             if (status%MPI_TAG == tag_ready) then
                 call MPI_Recv(dummy, 0, MPI_INTEGER, source, tag_ready, MPI_COMM_WORLD, status)
@@ -97,7 +102,7 @@ contains
                 call MPI_Recv(row, header(3), MPI_CHARACTER, source, tag_row, MPI_COMM_WORLD, &
                     & status)
                 held(source) = held(source) - 1
-                if (.not. allocated(error)) call append_row(csv_path, row, error)
+                if (.not. allocated(error)) call file%write(row, error)
                 deallocate(row)
                 call progress%add(header(2))
             end if
@@ -112,9 +117,10 @@ contains
                 call MPI_Send(0, 1, MPI_INTEGER, source, tag_case, MPI_COMM_WORLD)
                 stopped = stopped + 1
             end if
+            call cpu_time(handling_end)
+            progress%coordinator_cpu = progress%coordinator_cpu + handling_end - handling_start
         end do
-        call cpu_time(cpu_end)
-        progress%coordinator_cpu = cpu_end - cpu_start
+        call file%close()
     end subroutine coordinate
 
     !> A worker rank: ask for cases, run them, send their rows, until told to stop.

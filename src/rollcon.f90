@@ -77,7 +77,7 @@ module rollcon
     use rollcon_study_parameters, only : case_count
     use rollcon_study_measures, only : case_result_type, outcome_failed, outcome_refused
     use rollcon_study_run, only : study_plan_type, study_progress_type, plan_cases, plan_study, &
-        & run_case, append_row, run_study
+        & run_case, append_row, run_study, row_file_type
     use rollcon_scene_state, only : upright_critical_speed
     ! the library API of docs/library.md: the coordinates of a part in the output layout
     use rollcon_output_layout, only : coord_x, coord_y, coord_z, coord_psi, coord_theta, &

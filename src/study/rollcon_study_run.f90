@@ -24,6 +24,7 @@ module rollcon_study_run
     private
 
     public :: study_plan_type, plan_cases, plan_study, run_case, append_row, run_study
+    public :: row_file_type
     public :: study_progress_type
 
     !> Every case of a study, and which are still to run
@@ -39,11 +40,21 @@ module rollcon_study_run
         procedure :: case_texts
     end type study_plan_type
 
+    !> A CSV kept open while rows are appended, each flushed as it is written
+    type :: row_file_type
+        integer :: unit = -1
+        character(len=:), allocatable :: path
+    contains
+        procedure :: open => row_file_open
+        procedure :: write => row_file_write
+        procedure :: close => row_file_close
+    end type row_file_type
+
     !> Counts for the progress lines and the closing summary
     type :: study_progress_type
         integer :: total = 0, skipped = 0, done = 0, failed = 0, refused = 0
-        !> CPU time the coordinating rank spent handing out cases and writing rows [s] (0 when
-        !> one process ran the cases)
+        !> CPU time the coordinating rank spent on messages: receiving rows, writing them,
+        !> handing out cases [s] (0 when one process ran the cases)
         real(wp) :: coordinator_cpu = 0.0_wp
         real(wp) :: started = 0.0_wp, last = 0.0_wp
         !> No progress lines (until start says otherwise)
@@ -180,20 +191,54 @@ contains
         row = study_row(i, plan%case_texts(i), result)
     end subroutine run_case
 
-    !> Append one line to the CSV and flush it: a row is in the file when its case ends.
+    !> Open the CSV for appending rows (created when missing).
+    subroutine row_file_open(self, path, error)
+        class(row_file_type), intent(inout) :: self
+        character(len=*), intent(in) :: path
+        type(error_type), allocatable, intent(out) :: error
+        integer :: stat
+        character(len=256) :: message
+
+        self%path = path
+        open(newunit=self%unit, file=path, position="append", action="write", &
+            & status="unknown", iostat=stat, iomsg=message)
+        if (stat /= 0) then
+            self%unit = -1
+            call fatal_error(error, path // ": cannot write: " // trim(message), stat_io)
+        end if
+    end subroutine row_file_open
+
+    !> Write one line and flush it: a row is in the file when its case ends.
+    subroutine row_file_write(self, line, error)
+        class(row_file_type), intent(inout) :: self
+        character(len=*), intent(in) :: line
+        type(error_type), allocatable, intent(out) :: error
+        integer :: stat
+        character(len=256) :: message
+
+        write(self%unit, "(a)", iostat=stat, iomsg=message) line
+        if (stat == 0) flush(self%unit, iostat=stat, iomsg=message)
+        if (stat /= 0) call fatal_error(error, self%path // ": cannot write: " &
+            & // trim(message), stat_io)
+    end subroutine row_file_write
+
+    subroutine row_file_close(self)
+        class(row_file_type), intent(inout) :: self
+
+        if (self%unit /= -1) close(self%unit)
+        self%unit = -1
+    end subroutine row_file_close
+
+    !> Append one line to the CSV and flush it (opening and closing the file).
     subroutine append_row(path, line, error)
         character(len=*), intent(in) :: path, line
         type(error_type), allocatable, intent(out) :: error
-        integer :: unit, stat
-        character(len=256) :: message
+        type(row_file_type) :: file
 
-        open(newunit=unit, file=path, position="append", action="write", status="unknown", &
-            & iostat=stat, iomsg=message)
-        if (stat == 0) write(unit, "(a)", iostat=stat, iomsg=message) line
-        if (stat == 0) flush(unit, iostat=stat, iomsg=message)
-        if (stat /= 0) call fatal_error(error, path // ": cannot write: " // trim(message), &
-            & stat_io)
-        close(unit)
+        call file%open(path, error)
+        if (allocated(error)) return
+        call file%write(line, error)
+        call file%close()
     end subroutine append_row
 
     !> Run every pending case in this process, in case order.
@@ -204,17 +249,21 @@ contains
         type(study_progress_type), intent(inout) :: progress
         type(error_type), allocatable, intent(out) :: error
         type(case_result_type) :: result
+        type(row_file_type) :: file
         character(len=:), allocatable :: row
         integer, allocatable :: cases(:)
         integer :: j
 
+        call file%open(csv_path, error)
+        if (allocated(error)) return
         cases = plan%pending()
         do j = 1, size(cases)
             call run_case(study, plan, cases(j), row, result)
-            call append_row(csv_path, row, error)
-            if (allocated(error)) return
+            call file%write(row, error)
+            if (allocated(error)) exit
             call progress%add(result%outcome)
         end do
+        call file%close()
     end subroutine run_study
 
     pure integer function findloc_key(keys, key) result(i)
