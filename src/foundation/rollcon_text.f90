@@ -7,7 +7,7 @@ module rollcon_text
     implicit none
     private
 
-    public :: to_text, single_quoted, shell_quote, lower_case, upper_case, unquoted
+    public :: to_text, single_quoted, shell_quote, lower_case, upper_case, unquoted, comma_list
 
     !> Decimal text of an integer or a real
     interface to_text
@@ -164,5 +164,18 @@ contains
                 & text = text(2:len(text) - 1)
         end if
     end function unquoted
+
+    !> The words, trimmed, separated by ", " (for messages that list what is allowed).
+    pure function comma_list(words) result(text)
+        character(len=*), intent(in) :: words(:)
+        character(len=:), allocatable :: text
+        integer :: k
+
+        text = ""
+        do k = 1, size(words)
+            if (k > 1) text = text // ", "
+            text = text // trim(words(k))
+        end do
+    end function comma_list
 
 end module rollcon_text

@@ -5,9 +5,9 @@ module rollcon_study_map_cases
     use, intrinsic :: ieee_arithmetic, only : ieee_is_finite
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type, fatal_error, stat_io, stat_input
-    use rollcon_text, only : to_text
+    use rollcon_text, only : to_text, comma_list
     use rollcon_study_type, only : study_type
-    use rollcon_study_csv, only : study_header
+    use rollcon_study_csv, only : study_header, read_csv_text, split_fields
     use rollcon_study_measures, only : outcome_words, outcome_failed, outcome_refused
     implicit none
     private
@@ -124,8 +124,7 @@ contains
         integer :: np
 
         np = size(study%parameters)
-        ! the fields up to the class hold neither commas nor quotes: the quoted message is last
-        call leading_fields(row, np + 3, fields)
+        call split_fields(row, fields)
         if (size(fields) < np + 3) then
             call fatal_error(error, "a row of " // to_text(size(fields)) // " fields before " &
                 & // "the message; the header has " // to_text(np + 3) // " up to the class", &
@@ -138,30 +137,9 @@ contains
         if (allocated(error)) return
         class = findloc(classes, trim(fields(np + 3)), dim=1)
         if (class == 0) call fatal_error(error, "class '" // trim(fields(np + 3)) // "' is " &
-            & // "not one of the study's (" // joined(classes) // "): was the CSV written " &
+            & // "not one of the study's (" // comma_list(classes) // "): was the CSV written " &
             & // "with other &classify rules?", stat_input)
     end subroutine read_case
-
-    !> The first n comma-separated fields of a row (fewer when the row has fewer).
-    pure subroutine leading_fields(row, n, fields)
-        character(len=*), intent(in) :: row
-        integer, intent(in) :: n
-        character(len=:), allocatable, intent(out) :: fields(:)
-        integer :: k, start, comma
-
-        allocate(character(len=len(row)) :: fields(n))
-        start = 1
-        do k = 1, n
-            if (start > len(row) + 1) then
-                fields = fields(:k - 1)
-                return
-            end if
-            comma = index(row(start:), ",")
-            if (comma == 0) comma = len(row) - start + 2
-            fields(k) = row(start:start + comma - 2)
-            start = start + comma
-        end do
-    end subroutine leading_fields
 
     !> A parameter's value in a field: a finite number.
     pure subroutine read_value(field, value, error)
@@ -178,31 +156,20 @@ contains
             & // "parameter '" // trim(field) // "' is not a finite number", stat_input)
     end subroutine read_value
 
-    !> The whole file as text, carriage returns dropped.
+    !> The whole CSV (rollcon_study_csv), carriage returns dropped; a missing file is an error.
     subroutine read_text(path, text, error)
         character(len=*), intent(in) :: path
         character(len=:), allocatable, intent(out) :: text
         type(error_type), allocatable, intent(out) :: error
-        character(len=256) :: message
-        logical :: exists
-        integer :: unit, stat, bytes, j, n
+        integer :: j, n
 
-        inquire(file=path, exist=exists, size=bytes)
-        if (.not. exists) then
-            call fatal_error(error, path // ": cannot open the study's CSV: no such file", &
-                & stat_io)
+        call read_csv_text(path, text, error)
+        if (allocated(error)) then
+            error%message = error%message // " (the study's CSV)"
             return
         end if
-        allocate(character(len=max(bytes, 0)) :: text)
-        message = "cannot read"
-        open(newunit=unit, file=path, access="stream", form="unformatted", action="read", &
-            & status="old", iostat=stat, iomsg=message)
-        if (stat == 0) then
-            if (bytes > 0) read(unit, iostat=stat, iomsg=message) text
-            close(unit)
-        end if
-        if (stat /= 0) then
-            call fatal_error(error, path // ": cannot read the study's CSV: " // trim(message), &
+        if (.not. allocated(text)) then
+            call fatal_error(error, path // ": cannot open the study's CSV: no such file", &
                 & stat_io)
             return
         end if
@@ -221,18 +188,5 @@ contains
 
         same_text = len(text) == len(other) .and. text == other
     end function same_text
-
-    !> The names, trimmed and separated by commas.
-    pure function joined(names) result(text)
-        character(len=*), intent(in) :: names(:)
-        character(len=:), allocatable :: text
-        integer :: k
-
-        text = ""
-        do k = 1, size(names)
-            if (k > 1) text = text // ", "
-            text = text // trim(names(k))
-        end do
-    end function joined
 
 end module rollcon_study_map_cases

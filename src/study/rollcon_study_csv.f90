@@ -13,7 +13,7 @@ module rollcon_study_csv
     implicit none
     private
 
-    public :: study_header, study_row, case_key, read_done_cases
+    public :: study_header, study_row, case_key, read_done_cases, read_csv_text, split_fields
 
     character(len=*), parameter :: lf = achar(10)
 
@@ -87,7 +87,7 @@ contains
         np = size(study%parameters)
         allocate(cases(0))
         allocate(character(len=0) :: keys(0))
-        call read_bytes(path, text, error)
+        call read_csv_text(path, text, error)
         if (allocated(error) .or. .not. allocated(text)) return
         header = study_header(study)
         complete = index(text, lf, back=.true.)
@@ -132,7 +132,7 @@ contains
     end subroutine read_done_cases
 
     !> The whole file as bytes; text unallocated when the file does not exist.
-    subroutine read_bytes(path, text, error)
+    subroutine read_csv_text(path, text, error)
         character(len=*), intent(in) :: path
         character(len=:), allocatable, intent(out) :: text
         type(error_type), allocatable, intent(out) :: error
@@ -150,7 +150,7 @@ contains
         if (stat /= 0) call fatal_error(error, path // ": cannot read: " // trim(message), &
             & stat_io)
         close(unit)
-    end subroutine read_bytes
+    end subroutine read_csv_text
 
     !> Write text as the whole file (the rows kept, without a last line cut short).
     subroutine cut_file(path, text, error)

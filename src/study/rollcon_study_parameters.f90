@@ -4,7 +4,7 @@
 module rollcon_study_parameters
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type, input_error
-    use rollcon_text, only : to_text, unquoted
+    use rollcon_text, only : to_text, unquoted, comma_list
     use rollcon_scene_lexer, only : assignment_type
     use rollcon_scene_type, only : scene_type
     use rollcon_scene_keys, only : key_type, bind_keys, find_key, scene_groups, kind_real, &
@@ -45,7 +45,7 @@ contains
             call input_error(error, file, a%line, a%key, "in &" // group_name // " is not a " &
                 & // "scene key; a parameter is group%key of a scene file (docs/scenes.md), " &
                 & // "e.g. disk%thickness, initial%speed, strike%impulse; groups: " &
-                & // group_list())
+                & // comma_list(scene_groups))
             return
         end if
         associate (key => keys(k))
@@ -223,15 +223,5 @@ contains
             words = [character(len=len(text)) :: words, text(start:j - 1)]
         end do
     end subroutine split_words
-
-    pure function group_list() result(list)
-        character(len=:), allocatable :: list
-        integer :: k
-
-        list = trim(scene_groups(1))
-        do k = 2, size(scene_groups)
-            list = list // ", " // trim(scene_groups(k))
-        end do
-    end function group_list
 
 end module rollcon_study_parameters

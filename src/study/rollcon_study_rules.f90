@@ -5,7 +5,7 @@
 module rollcon_study_rules
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type, input_error
-    use rollcon_text, only : to_text, unquoted
+    use rollcon_text, only : to_text, unquoted, comma_list
     use rollcon_scene_lexer, only : group_type
     use rollcon_scene_values, only : is_real_text
     use rollcon_study_type, only : study_type, study_rule_type, relation_words, &
@@ -59,7 +59,7 @@ contains
                 if (measure_index(rule%measure) == 0) then
                     call input_error(error, file, a%line, a%key, "reads 'measure relation " &
                         & // "number'; '" // rule%measure // "' is not a measure; measures " &
-                        & // "are " // measure_list())
+                        & // "are " // comma_list(measure_names))
                     return
                 end if
                 r = 0
@@ -203,15 +203,5 @@ contains
             list = list // parameter_name(study, k)
         end do
     end function parameter_list
-
-    pure function measure_list() result(list)
-        character(len=:), allocatable :: list
-        integer :: k
-
-        list = trim(measure_names(1))
-        do k = 2, size(measure_names)
-            list = list // ", " // trim(measure_names(k))
-        end do
-    end function measure_list
 
 end module rollcon_study_rules

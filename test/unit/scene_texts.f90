@@ -7,7 +7,7 @@ module scene_texts
     implicit none
     private
 
-    public :: read_text, expect_input_error, expect_accepted, width
+    public :: read_text, expect_input_error, check_input_error, expect_accepted, width
 
     !> Width of the lines of a test file
     integer, parameter :: width = 100
@@ -41,10 +41,21 @@ contains
         character(len=*), intent(in) :: name, lines(:), fragments(:)
         type(scene_type) :: scene
         type(error_type), allocatable :: found
-        character(len=:), allocatable :: path, fragment
-        integer :: i
+        character(len=:), allocatable :: path
 
         call read_text(name, lines, scene, found, path)
+        call check_input_error(error, name, found, path, fragments)
+    end subroutine expect_input_error
+
+    !> found must be an input error whose message holds every fragment; a leading '@' in a
+    !> fragment stands for path, the file read.
+    subroutine check_input_error(error, name, found, path, fragments)
+        type(error_type), allocatable, intent(out) :: error
+        character(len=*), intent(in) :: name, path, fragments(:)
+        type(error_type), allocatable, intent(in) :: found
+        character(len=:), allocatable :: fragment
+        integer :: i
+
         if (.not. allocated(found)) then
             call check(error, .false., name // ": no error reported")
             return
@@ -59,7 +70,7 @@ contains
                 & // found%message // "' lacks '" // fragment // "'")
             if (allocated(error)) return
         end do
-    end subroutine expect_input_error
+    end subroutine check_input_error
 
     !> Reading lines must succeed.
     subroutine expect_accepted(name, lines, scene, error)

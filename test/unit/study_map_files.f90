@@ -16,7 +16,7 @@ module study_map_files
     private
 
     public :: have_gnuplot, grid_study, grid_point, count_classes, measures, png_file, &
-        & text_file, block_size, read_block, expect_message
+        & block_size, read_block, expect_message
 
     !> Scratch folder of the study map tests
     character(len=*), parameter, public :: scratch = "build/test_study_map"
@@ -140,25 +140,6 @@ contains
         is_png = stat == 0 .and. head == achar(137) // "PNG" // achar(13) // achar(10) &
             & // achar(26) // achar(10)
     end function png_file
-
-    !> The whole text of a file ("" when it cannot be read).
-    function text_file(path) result(text)
-        character(len=*), intent(in) :: path
-        character(len=:), allocatable :: text
-        integer :: unit, stat, bytes
-
-        text = ""
-        inquire(file=path, size=bytes)
-        if (bytes <= 0) return
-        open(newunit=unit, file=path, access="stream", form="unformatted", status="old", &
-            & action="read", iostat=stat)
-        if (stat /= 0) return
-        deallocate(text)
-        allocate(character(len=bytes) :: text)
-        read(unit, iostat=stat) text
-        close(unit)
-        if (stat /= 0) text = ""
-    end function text_file
 
     !> Lines of the script's inline data block $name (-1 when there is none).
     function block_size(script, name) result(lines)

@@ -1,10 +1,10 @@
 ! SPDX-License-Identifier: MIT
 !> Study files written by the tests under build/, read back, and their errors checked.
 module study_texts
-    use rollcon_error, only : error_type, stat_input
+    use rollcon_error, only : error_type
     use rollcon_study_type, only : study_type
     use rollcon_study_reader, only : read_study
-    use rollcon_testing, only : check
+    use scene_texts, only : check_input_error
     implicit none
     private
 
@@ -33,25 +33,11 @@ contains
         character(len=*), intent(in) :: name, lines(:), fragments(:)
         type(study_type) :: study
         type(error_type), allocatable :: found
-        character(len=:), allocatable :: path, fragment
-        integer :: i
+        character(len=:), allocatable :: path
 
         call write_study(name, lines, path)
         call read_study(path, study, found)
-        if (.not. allocated(found)) then
-            call check(error, .false., name // ": no error reported")
-            return
-        end if
-        call check(error, found%stat == stat_input, name // ": stat is not stat_input: " &
-            & // found%message)
-        if (allocated(error)) return
-        do i = 1, size(fragments)
-            fragment = trim(fragments(i))
-            if (fragment(1:1) == "@") fragment = path // fragment(2:)
-            call check(error, index(found%message, fragment) > 0, name // ": message '" &
-                & // found%message // "' lacks '" // fragment // "'")
-            if (allocated(error)) return
-        end do
+        call check_input_error(error, name, found, path, fragments)
     end subroutine expect_study_error
 
 end module study_texts

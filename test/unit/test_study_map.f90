@@ -15,8 +15,9 @@ module test_study_map
     use rollcon_study_map, only : draw_study_map, map_script_path, curve_points, curve_title
     use rollcon_testing, only : unittest_type, new_unittest, check
     use picture_files, only : make_folder, remove_folder, write_lines
+    use command_runs, only : text_file => file_text
     use study_map_files, only : scratch, width, thickness_range, failed_case, refused_case, &
-        & have_gnuplot, grid_study, grid_point, count_classes, measures, png_file, text_file, &
+        & have_gnuplot, grid_study, grid_point, count_classes, measures, png_file, &
         & block_size, read_block, expect_message
     implicit none
     private
