@@ -9,14 +9,14 @@ module rollcon_adm_keywords
     use rollcon_kinds, only : wp
     use rollcon_constants, only : degree
     use rollcon_error, only : error_type, fatal_error, stat_input
-    use rollcon_text, only : to_text
+    use rollcon_text, only : to_text, comma_list
     use rollcon_adm_lexer, only : adm_argument_type, adm_statement_type, is_number_text, &
         & upper_case
     use, intrinsic :: ieee_arithmetic, only : ieee_is_finite
     implicit none
     private
 
-    public :: resolve_name, read_reals, read_integer, joined, argument_key, arg_place, place
+    public :: resolve_name, read_reals, read_integer, argument_key, arg_place, place
     public :: name_index
     public :: statement_names
 
@@ -57,25 +57,12 @@ contains
         if (count == 0) then
             call fatal_error(error, where // ": '" // trim(written) // "' is not " &
                 & // trim(merge("an", "a ", scan(what(1:1), "AEIOaeio") > 0)) // " " // what &
-                & // " of the supported subset (" // joined(allowed) // ")", stat_input)
+                & // " of the supported subset (" // comma_list(allowed) // ")", stat_input)
         else
             call fatal_error(error, where // ": '" // trim(written) // "' is ambiguous: it may " &
                 & // "be " // trim(adjustl(matches(2:))) // "; write more of the name", stat_input)
         end if
     end subroutine resolve_name
-
-    !> The names joined by ", ".
-    pure function joined(names) result(text)
-        character(len=*), intent(in) :: names(:)
-        character(len=:), allocatable :: text
-        integer :: i
-
-        text = ""
-        do i = 1, size(names)
-            if (i > 1) text = text // ", "
-            text = text // trim(names(i))
-        end do
-    end function joined
 
     !> The argument's values as reals: between `least` and `most` of them; angles accept `D`
     !> (degrees, converted to radians). The message names the keyword and what was expected.

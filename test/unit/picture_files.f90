@@ -5,6 +5,7 @@
 module picture_files
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type, fatal_error
+    use rollcon_testing, only : check
     use rollcon_output_layout, only : new_output_layout, name_length, coord_x, contact_fx, &
         & contact_fy, contact_fz, contact_normal, contact_mu, contact_height
     use rollcon_part_shapes, only : write_part_shapes, parts_path, shape_disk, shape_ellipsoid
@@ -16,7 +17,7 @@ module picture_files
 
     public :: picture_scene, disk_run, two_part_run, falling_run, write_run, make_folder, remove_folder, &
         & write_lines
-    public :: vtu_piece_type, read_vtu, read_pvd, command_available
+    public :: vtu_piece_type, read_vtu, read_pvd, command_available, expect_message
 
     !> Disk radius and thickness of the hand-made runs [m]
     real(wp), parameter, public :: disk_radius = 0.1_wp, disk_thickness = 0.003_wp
@@ -357,5 +358,21 @@ contains
         read(text, *, iostat=stat) value
         if (stat /= 0) value = -1.0_wp
     end function real_attribute
+
+    !> Fail unless failure is set and its message holds text and, if given, also_text.
+    subroutine expect_message(error, failure, text, also_text)
+        type(error_type), allocatable, intent(out) :: error
+        type(error_type), allocatable, intent(in) :: failure
+        character(len=*), intent(in) :: text
+        character(len=*), intent(in), optional :: also_text
+
+        call check(error, allocated(failure), "no error reported")
+        if (allocated(error)) return
+        call check(error, index(failure%message, text) > 0, "message '" // failure%message &
+            & // "' lacks '" // text // "'")
+        if (allocated(error) .or. .not. present(also_text)) return
+        call check(error, index(failure%message, also_text) > 0, "message '" &
+            & // failure%message // "' lacks '" // also_text // "'")
+    end subroutine expect_message
 
 end module picture_files

@@ -16,7 +16,7 @@ module study_map_files
     private
 
     public :: have_gnuplot, grid_study, grid_point, count_classes, measures, png_file, &
-        & block_size, read_block, expect_message
+        & block_size, read_block
 
     !> Scratch folder of the study map tests
     character(len=*), parameter, public :: scratch = "build/test_study_map"
@@ -186,21 +186,5 @@ contains
         close(unit)
         if (present(found)) found = n
     end subroutine read_block
-
-    !> The failure happened and its message holds text (and also_text).
-    subroutine expect_message(error, failure, text, also_text)
-        type(error_type), allocatable, intent(out) :: error
-        type(error_type), allocatable, intent(in) :: failure
-        character(len=*), intent(in) :: text
-        character(len=*), intent(in), optional :: also_text
-
-        call check(error, allocated(failure), "no error reported")
-        if (allocated(error)) return
-        call check(error, index(failure%message, text) > 0, "message '" // failure%message &
-            & // "' lacks '" // text // "'")
-        if (allocated(error) .or. .not. present(also_text)) return
-        call check(error, index(failure%message, also_text) > 0, "message '" &
-            & // failure%message // "' lacks '" // also_text // "'")
-    end subroutine expect_message
 
 end module study_map_files

@@ -16,7 +16,7 @@ module test_pictures
     use rollcon_gnuplot, only : gnuplot_available
     use rollcon_testing, only : unittest_type, new_unittest, check, skip_test
     use picture_files, only : disk_run, two_part_run, falling_run, write_run, make_folder, &
-        & remove_folder, write_lines
+        & remove_folder, write_lines, expect_message
     implicit none
     private
 
@@ -291,22 +291,6 @@ contains
         end do
         call remove_folder(scratch)
     end subroutine test_gif
-
-    !> Fail unless failure is set and its message holds text and, if given, also_text.
-    subroutine expect_message(error, failure, text, also_text)
-        type(error_type), allocatable, intent(out) :: error
-        type(error_type), allocatable, intent(in) :: failure
-        character(len=*), intent(in) :: text
-        character(len=*), intent(in), optional :: also_text
-
-        call check(error, allocated(failure), "no error reported")
-        if (allocated(error)) return
-        call check(error, index(failure%message, text) > 0, "message '" // failure%message &
-            & // "' lacks '" // text // "'")
-        if (allocated(error) .or. .not. present(also_text)) return
-        call check(error, index(failure%message, also_text) > 0, "message '" &
-            & // failure%message // "' lacks '" // also_text // "'")
-    end subroutine expect_message
 
     !> True when the file exists and starts with the given bytes.
     function file_starts_with(path, magic) result(starts)

@@ -14,11 +14,11 @@ module test_study_map
     use rollcon_study_csv, only : study_header
     use rollcon_study_map, only : draw_study_map, map_script_path, curve_points, curve_title
     use rollcon_testing, only : unittest_type, new_unittest, check
-    use picture_files, only : make_folder, remove_folder, write_lines
+    use picture_files, only : make_folder, remove_folder, write_lines, expect_message
     use command_runs, only : text_file => file_text
     use study_map_files, only : scratch, width, thickness_range, failed_case, refused_case, &
         & have_gnuplot, grid_study, grid_point, count_classes, measures, png_file, &
-        & block_size, read_block, expect_message
+        & block_size, read_block
     implicit none
     private
 
