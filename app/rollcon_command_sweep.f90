@@ -73,6 +73,8 @@ contains
                 & // csv_path // ")", stat_input)
             return
         end if
+        if (map .and. study%map%x == 0 .and. .not. quiet) write(output_unit, "(a)") "sweep: no " &
+            & // "map: the study varies one parameter, a map needs two"
         if (map .and. study%map%x > 0) then
             call draw_study_map(study, csv_path, output_dir // "/" // study%name // ".png", &
                 & error)
