@@ -186,8 +186,9 @@ contains
             & "usage: rollcon sweep STUDY.nml [--output DIR] [--quiet] [--no-map]", &
             & "       mpirun --oversubscribe -np N rollcon sweep STUDY.nml [...]", &
             & "", &
-            & "Run a parameter study (docs/studies.md): the study file names a base scene, the", &
-            & "scene keys to vary (&grid 'from to count', or &random 'from to' samples), the", &
+            & "Run a parameter study (docs/studies.md): the study file names a base scene (or", &
+            & "an ADAMS dataset, .adm), the keys to vary (&grid 'from to count', or &random", &
+            & "'from to' samples; group%key of a scene, statement%id%keyword of a dataset), the", &
             & "rules that class each case (&classify) and the map's axes (&map). Every case", &
             & "is the ordinary simulation of its scene.", &
             & "", &

@@ -17,6 +17,7 @@ module rollcon_adm_reader
     use rollcon_adm_run, only : read_simulate, read_integrator
     use rollcon_adm_checks, only : check_references
     use rollcon_adm_outside, only : outside_reason
+    use rollcon_adm_overrides, only : adm_override_type, apply_adm_overrides
     implicit none
     private
 
@@ -25,11 +26,13 @@ module rollcon_adm_reader
 
 contains
 
-    !> Read and check the dataset at `path`.
-    subroutine read_adm(path, model, error)
+    !> Read and check the dataset at `path`, with overrides (rollcon_adm_overrides) set first.
+    subroutine read_adm(path, model, error, overrides)
         character(len=*), intent(in) :: path
         type(adm_model_type), intent(out) :: model
         type(error_type), allocatable, intent(out) :: error
+        !> Values set apart from the file
+        type(adm_override_type), intent(in), optional :: overrides(:)
         type(adm_text_type) :: text
         character(len=:), allocatable :: name
         integer :: i
@@ -37,6 +40,10 @@ contains
 
         call read_adm_text(path, text, error)
         if (allocated(error)) return
+        if (present(overrides)) then
+            call override(text, overrides, error)
+            if (allocated(error)) return
+        end if
         model%file = path
         model%title = text%title
         allocate(model%parts(0), model%markers(0), model%ucons(0), model%forces(0))
@@ -132,6 +139,23 @@ contains
         reason = outside_reason(statement%name)
         if (len(reason) > 0) error%message = error%message // "; " // reason
     end subroutine statement_name
+
+    !> Apply overrides, each statement named in full (abbreviations resolved).
+    subroutine override(text, overrides, error)
+        type(adm_text_type), intent(inout) :: text
+        type(adm_override_type), intent(in) :: overrides(:)
+        type(error_type), allocatable, intent(out) :: error
+        character(len=:), allocatable :: name
+        character(len=len(statement_names)) :: names(size(text%statements))
+        integer :: i
+
+        do i = 1, size(text%statements)
+            call statement_name(text%file, text%statements(i), name, error)
+            if (allocated(error)) return
+            names(i) = name
+        end do
+        call apply_adm_overrides(text, names, overrides, error)
+    end subroutine override
 
     pure logical function needs_id(name)
         character(len=*), intent(in) :: name

@@ -12,6 +12,7 @@ module rollcon_study_parameters
     use rollcon_scene_values, only : in_range, range_text, is_real_text
     use rollcon_study_type, only : study_type, study_parameter_type, sampling_grid, &
         & sampling_random
+    use rollcon_study_dataset, only : read_dataset_parameter
     implicit none
     private
 
@@ -25,28 +26,38 @@ contains
 
     !> One parameter line of &grid or &random: its key must be a numeric scene key, its range
     !> within the key's allowed range and not empty.
-    subroutine read_parameter(file, group_name, a, sampling, parameter, error)
+    subroutine read_parameter(file, group_name, a, sampling, dataset, parameter, error)
         character(len=*), intent(in) :: file, group_name
         type(assignment_type), intent(in) :: a
         integer, intent(in) :: sampling
+        !> The study's base is a dataset: the key names a dataset value (rollcon_study_dataset)
+        logical, intent(in) :: dataset
         type(study_parameter_type), intent(out) :: parameter
         type(error_type), allocatable, intent(out) :: error
         type(scene_type), target :: scene
         type(key_type), allocatable :: keys(:)
         character(len=:), allocatable :: words(:), form
         real(wp) :: ends(2)
-        integer :: cut, k, want, e
+        integer :: k, want, e
 
-        call bind_keys(scene, keys)
-        cut = index(a%key, "%")
-        k = 0
-        if (cut > 1) k = find_key(keys, a%key(:cut - 1), a%key(cut + 1:))
-        if (k == 0) then
-            call input_error(error, file, a%line, a%key, "in &" // group_name // " is not a " &
-                & // "scene key; a parameter is group%key of a scene file (docs/scenes.md), " &
-                & // "e.g. disk%thickness, initial%speed, strike%impulse; groups: " &
-                & // comma_list(scene_groups))
-            return
+        if (dataset) then
+            ! any number: the dataset's reader checks each case's value
+            call read_dataset_parameter(file, group_name, a, parameter, error)
+            if (allocated(error)) return
+            allocate(keys(1))
+            keys(1)%group = parameter%group
+            keys(1)%name = parameter%key
+            k = 1
+        else
+            call bind_keys(scene, keys)
+            k = scene_key(keys, a%key)
+            if (k == 0) then
+                call input_error(error, file, a%line, a%key, "in &" // group_name // " is not " &
+                    & // "a scene key; a parameter is group%key of a scene file " &
+                    & // "(docs/scenes.md), e.g. disk%thickness, initial%speed, " &
+                    & // "strike%impulse; groups: " // comma_list(scene_groups))
+                return
+            end if
         end if
         associate (key => keys(k))
             if (key%kind /= kind_real .and. key%kind /= kind_integer) then
@@ -85,9 +96,11 @@ contains
                     return
                 end if
             end do
-            parameter%group = trim(key%group)
-            parameter%key = trim(key%name)
-            parameter%unit = trim(key%unit)
+            if (.not. dataset) then
+                parameter%group = trim(key%group)
+                parameter%key = trim(key%name)
+                parameter%unit = trim(key%unit)
+            end if
             parameter%lower = ends(1)
             parameter%upper = ends(2)
             parameter%line = a%line
@@ -100,6 +113,17 @@ contains
             end if
         end associate
     end subroutine read_parameter
+
+    !> Index of the scene key `group%key` in the table, 0 when there is none.
+    pure integer function scene_key(keys, text) result(k)
+        type(key_type), intent(in) :: keys(:)
+        character(len=*), intent(in) :: text
+        integer :: cut
+
+        cut = index(text, "%")
+        k = 0
+        if (cut > 1) k = find_key(keys, text(:cut - 1), text(cut + 1:))
+    end function scene_key
 
     !> The count of a grid line: at least 1; 1 takes the one value from = to; an integer
     !> key's points must be whole numbers.

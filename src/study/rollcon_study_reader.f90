@@ -13,6 +13,7 @@ module rollcon_study_reader
         & sampling_random
     use rollcon_study_parameters, only : read_parameter
     use rollcon_study_rules, only : read_rules, read_map
+    use rollcon_study_dataset, only : check_dataset_parameters
     implicit none
     private
 
@@ -68,7 +69,7 @@ contains
         call check_base_scene(file, study, error)
     end subroutine read_study
 
-    !> &study: scene (required) and title.
+    !> &study: scene (required: a namelist scene, or an ADAMS dataset ending in .adm) and title.
     subroutine read_study_group(file, group, study, error)
         character(len=*), intent(in) :: file
         type(group_type), intent(in) :: group
@@ -82,6 +83,8 @@ contains
                 select case (a%key)
                 case ("scene")
                     study%scene_path = scene_path(unquoted(a%value))
+                    study%dataset = index(study%scene_path, ".adm", back=.true.) &
+                        & == len(study%scene_path) - 3
                     call read_lines(study%scene_path, study%scene_lines, error)
                     if (allocated(error)) then
                         message = error%message
@@ -137,8 +140,8 @@ contains
                     & .or. a%key == "seed")) then
                     call read_count(file, a, study, error)
                 else
-                    call read_parameter(file, groups(g)%name, a, study%sampling, parameter, &
-                        & error)
+                    call read_parameter(file, groups(g)%name, a, study%sampling, study%dataset, &
+                        & parameter, error)
                     if (.not. allocated(error)) study%parameters = [study%parameters, parameter]
                 end if
             end associate
@@ -184,6 +187,10 @@ contains
         type(error_type), allocatable, intent(out) :: error
         type(scene_type) :: scene
 
+        if (study%dataset) then
+            call check_dataset_parameters(file, study, error)
+            return
+        end if
         call read_scene_lines(study%scene_path, study%scene_lines, scene, error)
         if (allocated(error)) error%message = file // ": its base scene is refused: " &
             & // error%message

@@ -19,6 +19,7 @@ module rollcon_study_run
     use rollcon_study_measures, only : case_result_type, outcome_refused, outcome_failed, &
         & measure_case
     use rollcon_study_rules, only : classify
+    use rollcon_study_dataset, only : simulate_dataset_case, dataset_override
     use rollcon_study_csv, only : study_header, study_row, case_key, read_done_cases
     implicit none
     private
@@ -152,8 +153,8 @@ contains
         end do
     end function case_texts
 
-    !> Run case i: its scene is the base scene with the case's parameters set; it runs as
-    !> `rollcon run` would run it, with the hand-checked disk UCOSUB. Returns its CSV row.
+    !> Run case i: its scene (or dataset) is the base with the case's parameters set; it runs
+    !> as `rollcon run` would run it, with the hand-checked disk UCOSUB. Returns its CSV row.
     subroutine run_case(study, plan, i, row, result)
         type(study_type), intent(in) :: study
         type(study_plan_type), intent(in) :: plan
@@ -167,6 +168,7 @@ contains
         type(error_type), allocatable :: error
         real(wp) :: cpu_start, cpu_end
         integer :: k
+        logical :: refused
 
         call cpu_time(cpu_start)
         do k = 1, size(study%parameters)
@@ -174,12 +176,22 @@ contains
             overrides(k)%key = study%parameters(k)%key
             overrides(k)%value = trim(plan%texts(k, i))
         end do
-        call read_scene_lines(study%scene_path, study%scene_lines, scene, error, overrides)
-        if (allocated(error)) then
+        refused = .true.
+        if (study%dataset) then
+            call simulate_dataset_case(study%scene_path, [(dataset_override(study%parameters(k), &
+                & trim(plan%texts(k, i))), k = 1, size(study%parameters))], summary, history, &
+                & error, refused)
+        else
+            call read_scene_lines(study%scene_path, study%scene_lines, scene, error, overrides)
+            if (.not. allocated(error)) then
+                refused = .false.
+                call simulate_scene(scene, rolling_disk_ucosub, summary, error, history=history)
+            end if
+        end if
+        if (refused) then
             result%outcome = outcome_refused
             result%message = error%message
         else
-            call simulate_scene(scene, rolling_disk_ucosub, summary, error, history=history)
             call cpu_time(cpu_end)
             call measure_case(summary, history, cpu_end - cpu_start, result)
             if (allocated(error)) then

@@ -61,6 +61,8 @@ module rollcon_study_type
         !> set (rollcon_scene's overrides)
         character(len=:), allocatable :: scene_path
         type(line_type), allocatable :: scene_lines(:)
+        !> The base is an ADAMS dataset (.adm), not a namelist scene (rollcon_study_dataset)
+        logical :: dataset = .false.
         integer :: sampling = sampling_grid
         !> Random samples and the seed they are drawn with
         integer :: samples = 0, seed = 0

@@ -38,7 +38,8 @@ contains
             & new_unittest("scene-missing-or-unreadable", test_scene_missing), &
             & new_unittest("grid-and-random", test_grid_and_random), &
             & new_unittest("bad-rules", test_bad_rules), &
-            & new_unittest("bad-map", test_bad_map)]
+            & new_unittest("bad-map", test_bad_map), &
+            & new_unittest("dataset-parameters", test_dataset_parameters)]
     end subroutine collect_study_file
 
     !> The two studies of data/ read with their parameters, case counts, rules and maps.
@@ -267,5 +268,36 @@ contains
             & "    curve = 'critical_speed' /"], [character(len=60) :: "@:6: 'curve'", &
             & "y = 'initial%speed'"])
     end subroutine test_bad_map
+
+    !> A dataset study's parameters name statement, id, keyword and element; one the dataset
+    !> does not have is refused with the study's line and key and the dataset's reason.
+    subroutine test_dataset_parameters(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(study_type) :: study
+        character(len=:), allocatable :: path
+        character(len=60), parameter :: adm_head(2) = [character(len=60) :: "&study", &
+            & "    scene = 'data/coin.adm' /"]
+
+        call write_study("test_study_adm", [character(len=60) :: adm_head, "&grid", &
+            & "    part%2%vx = '0.1 0.2 2'", "    marker%3%qp%3 = '0 0.01 2'", &
+            & "    accgrav%kgrav = '-9.81 -5 2' /"], path)
+        call read_study(path, study, error)
+        if (allocated(error)) return
+        call check(error, study%dataset .and. study%parameters(2)%group == "marker%3" .and. &
+            & study%parameters(2)%key == "qp%3" .and. study%parameters(3)%group == "accgrav", &
+            & "dataset parameters read")
+        if (allocated(error)) return
+        call expect_study_error(error, "test_study_adm_part", [character(len=60) :: adm_head, &
+            & "&grid", "    part%7%vx = '0.1 0.2 2' /"], [character(len=60) :: &
+            & "@:4: 'part%7%vx'", "PART/7 VX(1): the dataset has no such statement"])
+        if (allocated(error)) return
+        call expect_study_error(error, "test_study_adm_element", [character(len=60) :: &
+            & adm_head, "&grid", "    marker%3%qp%4 = '0 1 2' /"], [character(len=60) :: &
+            & "@:4: 'marker%3%qp%4'", "the argument has 3 value(s)"])
+        if (allocated(error)) return
+        call expect_study_error(error, "test_study_adm_form", [character(len=60) :: adm_head, &
+            & "&grid", "    vx = '0 1 2' /"], [character(len=60) :: "@:4: 'vx'", &
+            & "statement%id%keyword"])
+    end subroutine test_dataset_parameters
 
 end module test_study_file

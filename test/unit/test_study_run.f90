@@ -12,7 +12,12 @@ module test_study_run
     use rollcon_scene_state, only : upright_critical_speed
     use rollcon_study_type, only : study_type
     use rollcon_study_reader, only : read_study
-    use rollcon_study_measures, only : case_result_type
+    use rollcon_study_measures, only : case_result_type, outcome_completed, measure_index
+    use rollcon_scene, only : read_scene
+    use rollcon_disk_scene, only : simulate_scene
+    use rollcon_disk_reference, only : rolling_disk_ucosub
+    use rollcon_simulation, only : run_summary_type, history_type
+    use rollcon_output_layout, only : coord_theta
     use rollcon_study_run, only : study_plan_type, study_progress_type, plan_cases, plan_study, &
         & run_case, append_row, run_study
     use rollcon_testing, only : unittest_type, new_unittest, check
@@ -42,7 +47,8 @@ contains
             & new_unittest("rows-independent-of-order", test_order), &
             & new_unittest("resume-after-cut", test_resume), &
             & new_unittest("other-study-csv-refused", test_other_header), &
-            & new_unittest("stability-boundary", test_boundary)]
+            & new_unittest("stability-boundary", test_boundary), &
+            & new_unittest("dataset-base", test_dataset)]
     end subroutine collect_study_run
 
     !> An override replaces a key of the file, adds one to a group, and adds a group: an
@@ -240,6 +246,46 @@ contains
             if (allocated(error)) return
         end do
     end subroutine test_boundary
+
+    !> A study of data/coin.adm: its case at the dataset's own gravity is the coin scene's run
+    !> (coin.adm gives coin.nml's rows bit for bit, docs/datasets.md), so its theta_min is the
+    !> scene's to the last bit; at another gravity it differs.
+    subroutine test_dataset(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(study_type) :: study
+        type(study_plan_type) :: plan
+        type(case_result_type) :: result
+        type(scene_type) :: scene
+        type(run_summary_type) :: summary
+        type(history_type) :: history
+        character(len=:), allocatable :: path, row
+        real(wp) :: scene_theta_min, case_theta_min(2)
+        integer :: i
+
+        call write_study("test_study_dataset", [character(len=60) :: "&study", &
+            & "    scene = 'data/coin.adm' /", "&grid", "    accgrav%kgrav = '-9.81 -5 2' /"], &
+            & path)
+        call read_study(path, study, error)
+        if (allocated(error)) return
+        call plan_cases(study, plan)
+        do i = 1, 2
+            call run_case(study, plan, i, row, result)
+            call check(error, result%outcome == outcome_completed, "case " // to_text(i) &
+                & // ": " // trim(row))
+            if (allocated(error)) return
+            case_theta_min(i) = result%values(measure_index("theta_min"))
+        end do
+        call read_scene("data/coin.nml", scene, error)
+        if (allocated(error)) return
+        call simulate_scene(scene, rolling_disk_ucosub, summary, error, history=history)
+        if (allocated(error)) return
+        scene_theta_min = minval(history%rows(history%layout%part_column(1, coord_theta), &
+            & :history%count))
+        call check(error, case_theta_min(1) == scene_theta_min, "the dataset case's theta_min " &
+            & // to_text(case_theta_min(1)) // " is not the scene's " // to_text(scene_theta_min))
+        if (allocated(error)) return
+        call check(error, case_theta_min(2) /= scene_theta_min, "gravity changed nothing")
+    end subroutine test_dataset
 
     !> Six cases of the no-slip study's scene (its strike makes the rows differ).
     subroutine small_study(study, error)
