@@ -17,7 +17,8 @@ module picture_files
 
     public :: picture_scene, disk_run, two_part_run, falling_run, write_run, make_folder, remove_folder, &
         & write_lines
-    public :: vtu_piece_type, read_vtu, read_pvd, command_available, expect_message
+    public :: vtu_piece_type, read_vtu, read_pvd, command_available, expect_message, &
+        & file_starts_with
 
     !> Disk radius and thickness of the hand-made runs [m]
     real(wp), parameter, public :: disk_radius = 0.1_wp, disk_thickness = 0.003_wp
@@ -374,5 +375,21 @@ contains
         call check(error, index(failure%message, also_text) > 0, "message '" &
             & // failure%message // "' lacks '" // also_text // "'")
     end subroutine expect_message
+
+    !> True when the file exists and starts with the given bytes.
+    function file_starts_with(path, magic) result(starts)
+        character(len=*), intent(in) :: path, magic
+        logical :: starts
+        character(len=len(magic)) :: head
+        integer :: unit, stat
+
+        starts = .false.
+        open(newunit=unit, file=path, access="stream", form="unformatted", status="old", &
+            & action="read", iostat=stat)
+        if (stat /= 0) return
+        read(unit, iostat=stat) head
+        close(unit)
+        starts = stat == 0 .and. head == magic
+    end function file_starts_with
 
 end module picture_files

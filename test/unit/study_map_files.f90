@@ -11,7 +11,7 @@ module study_map_files
     use rollcon_study_csv, only : study_header
     use rollcon_gnuplot, only : gnuplot_available
     use rollcon_testing, only : check, skip_test
-    use picture_files, only : make_folder, write_lines
+    use picture_files, only : make_folder, write_lines, file_starts_with
     implicit none
     private
 
@@ -124,21 +124,13 @@ contains
         fields = ",10,1.5,1.6,0.07,0.12,3.1,,1e-9,2e-12,812,0.41"
     end function measures
 
-    !> The file exists, is not empty and starts with the PNG signature.
+    !> The file exists and starts with the PNG signature.
     function png_file(path) result(is_png)
         character(len=*), intent(in) :: path
         logical :: is_png
-        character(len=8) :: head
-        integer :: unit, stat
 
-        is_png = .false.
-        open(newunit=unit, file=path, access="stream", form="unformatted", status="old", &
-            & action="read", iostat=stat)
-        if (stat /= 0) return
-        read(unit, iostat=stat) head
-        close(unit)
-        is_png = stat == 0 .and. head == achar(137) // "PNG" // achar(13) // achar(10) &
-            & // achar(26) // achar(10)
+        is_png = file_starts_with(path, achar(137) // "PNG" // achar(13) // achar(10) &
+            & // achar(26) // achar(10))
     end function png_file
 
     !> Lines of the script's inline data block $name (-1 when there is none).

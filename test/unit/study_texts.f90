@@ -5,6 +5,7 @@ module study_texts
     use rollcon_study_type, only : study_type
     use rollcon_study_reader, only : read_study
     use scene_texts, only : check_input_error
+    use picture_files, only : write_lines
     implicit none
     private
 
@@ -16,14 +17,9 @@ contains
     subroutine write_study(name, lines, path)
         character(len=*), intent(in) :: name, lines(:)
         character(len=:), allocatable, intent(out) :: path
-        integer :: unit, i
 
         path = "build/" // name // ".nml"
-        open(newunit=unit, file=path, status="replace", action="write")
-        do i = 1, size(lines)
-            write(unit, "(a)") trim(lines(i))
-        end do
-        close(unit)
+        call write_lines(path, lines)
     end subroutine write_study
 
     !> Reading lines as a study must fail with an input error whose message holds every

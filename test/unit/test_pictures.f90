@@ -16,7 +16,7 @@ module test_pictures
     use rollcon_gnuplot, only : gnuplot_available
     use rollcon_testing, only : unittest_type, new_unittest, check, skip_test
     use picture_files, only : disk_run, two_part_run, falling_run, write_run, make_folder, &
-        & remove_folder, write_lines, expect_message
+        & remove_folder, write_lines, expect_message, file_starts_with
     implicit none
     private
 
@@ -291,21 +291,5 @@ contains
         end do
         call remove_folder(scratch)
     end subroutine test_gif
-
-    !> True when the file exists and starts with the given bytes.
-    function file_starts_with(path, magic) result(starts)
-        character(len=*), intent(in) :: path, magic
-        logical :: starts
-        character(len=len(magic)) :: head
-        integer :: unit, stat
-
-        starts = .false.
-        open(newunit=unit, file=path, access="stream", form="unformatted", status="old", &
-            & action="read", iostat=stat)
-        if (stat /= 0) return
-        read(unit, iostat=stat) head
-        close(unit)
-        starts = stat == 0 .and. head == magic
-    end function file_starts_with
 
 end module test_pictures
