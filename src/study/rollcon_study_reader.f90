@@ -43,6 +43,12 @@ contains
         block
             use rollcon_scene_lexer, only : line_type
             type(line_type), allocatable :: lines(:)
+            logical :: exists
+            inquire(file=path, exist=exists)
+            if (.not. exists) then
+                call input_error(error, file, 0, "", "no such study file")
+                return
+            end if
             call read_lines(path, lines, error)
             if (allocated(error)) return
             call check_bytes(path, lines, error)

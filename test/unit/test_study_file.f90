@@ -28,6 +28,7 @@ contains
         tests = [new_unittest("shipped-studies", test_shipped), &
             & new_unittest("grid-order-and-values", test_grid), &
             & new_unittest("random-samples-reproducible", test_random), &
+            & new_unittest("missing-study-file", test_missing_file), &
             & new_unittest("unknown-key", test_unknown_key), &
             & new_unittest("unknown-group", test_unknown_group), &
             & new_unittest("not-a-scene-key", test_not_scene_key), &
@@ -115,6 +116,18 @@ contains
         call check(error, all(first(1, :) >= 0.001_wp .and. first(1, :) <= 0.05_wp) .and. &
             & all(first(2, :) >= 0.2_wp .and. first(2, :) <= 2.0_wp), "a sample out of range")
     end subroutine test_random
+
+    subroutine test_missing_file(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(study_type) :: study
+        type(error_type), allocatable :: found
+
+        call read_study("build/no_such_study.nml", study, found)
+        call check(error, allocated(found), "no error for a missing study file")
+        if (allocated(error)) return
+        call check(error, found%message == "build/no_such_study.nml: no such study file", &
+            & "message: " // found%message)
+    end subroutine test_missing_file
 
     subroutine test_unknown_key(error)
         type(error_type), allocatable, intent(out) :: error
