@@ -88,6 +88,7 @@ contains
         type(study_progress_type) :: progress
         character(len=:), allocatable :: path, csv
         character(len=:), allocatable :: rows(:)
+        real(wp) :: t_reached
 
         call write_study("test_study_failures", [character(len=60) :: "&study", &
             & "    scene = 'data/upright.nml' /", "&grid", "    run%max_steps = '1 5001 2'", &
@@ -109,6 +110,11 @@ contains
         call check(error, index(rows(3), "2,1,1.5,failed,failed,-1,") == 1 .and. &
             & index(rows(3), "CV_TOO_MUCH_WORK") > 0, "case 2 failed with flag -1: " &
             & // trim(rows(3)))
+        if (allocated(error)) return
+        ! the time reached is where CVODE gave up: past the start, before the first row
+        read(rows(3)(len("2,1,1.5,failed,failed,-1,") + 1:), *) t_reached
+        call check(error, t_reached > 0.0_wp .and. t_reached < 0.01_wp, "case 2: t_reached " &
+            & // to_text(t_reached) // " s is not where the integrator failed")
         if (allocated(error)) return
         call check(error, index(rows(5), "4,5001,1.5,completed,") == 1, "case 4 completed: " &
             & // trim(rows(5)))
