@@ -2,16 +2,18 @@
 !> `rollcon bench`: work-precision of every way of solving, on a ladder of tolerances, against
 !> the reduced ODE of the disk (reference and limit), with per-part and whole-process costs.
 module rollcon_command_bench
-    use, intrinsic :: iso_fortran_env, only : output_unit, error_unit
-    use rollcon, only : wp, error_type, rolling_disk_ucosub, fatal_error, stat_input, stat_io, &
-        & to_text, shell_quote, scene_type, read_scene, scene_path, method_type, &
-        & benchmark_methods, benchmark_row_type, benchmark_scene, benchmark_header, &
-        & write_benchmark_row, evaluation_costs, part_costs_type, measure_part_costs, &
-        & accuracy_line, process_cost_type, measure_process, run_gnuplot, gnuplot_string
+    use, intrinsic :: iso_fortran_env, only : output_unit
+    use rollcon, only : wp, error_type, fatal_error, stat_input, stat_io, to_text, job_type, &
+        & load_job, method_type, benchmark_methods, benchmark_row_type, benchmark_scene, &
+        & benchmark_header, write_benchmark_row, evaluation_costs, part_costs_type, &
+        & measure_part_costs, accuracy_line, process_cost_type, measure_process, &
+        & plot_work_precision, machine_name
+    use rollcon_cli, only : cli_request_type
+    use rollcon_app_files, only : make_folder
     implicit none
     private
 
-    public :: bench_command, machine_name
+    public :: bench_command
 
     !> The accuracy the headline ratio is quoted at [m] (issue #13)
     real(wp), parameter :: accuracy_target = 1.0e-6_wp
@@ -29,19 +31,22 @@ module rollcon_command_bench
 
 contains
 
-    !> Parse the arguments after `bench`, run, write DIR/bench.csv and one plot per scene.
-    subroutine bench_command(first_argument, error)
-        !> Index of the first argument after `bench`
-        integer, intent(in) :: first_argument
+    !> Run the benchmark: DIR/bench.csv and one plot per scene.
+    subroutine bench_command(request, error)
+        type(cli_request_type), intent(in) :: request
         type(error_type), allocatable, intent(out) :: error
         type(bench_options_type) :: options
         character(len=:), allocatable :: name
         integer :: unit, stat, start, comma, process_unit
-        logical :: help
 
-        call read_bench_options(first_argument, options, help, error)
-        if (allocated(error) .or. help) return
-        call execute_command_line("mkdir -p " // shell_quote(options%output_dir), exitstat=stat)
+        if (request%has("--help")) then
+            call print_help()
+            return
+        end if
+        call read_bench_options(request, options, error)
+        if (allocated(error)) return
+        call make_folder(options%output_dir, error)
+        if (allocated(error)) return
         open(newunit=unit, file=options%output_dir // "/bench.csv", status="replace", &
             & action="write", iostat=stat)
         if (stat /= 0) then
@@ -83,60 +88,25 @@ contains
             & // options%output_dir // "/bench_<scene>.png"
     end subroutine bench_command
 
-    !> The command line of `rollcon bench`; help is true when --help was asked (and printed).
-    subroutine read_bench_options(first_argument, options, help, error)
-        integer, intent(in) :: first_argument
+    !> The options of `rollcon bench`, checked.
+    subroutine read_bench_options(request, options, error)
+        type(cli_request_type), intent(in) :: request
         type(bench_options_type), intent(out) :: options
-        logical, intent(out) :: help
         type(error_type), allocatable, intent(out) :: error
-        character(len=512) :: argument, value
-        integer :: i, stat
+        integer :: i
 
-        help = .false.
-        options%output_dir = "output"
-        options%scene_list = ""
-        i = first_argument
-        do while (i <= command_argument_count())
-            call get_command_argument(i, argument)
-            select case (trim(argument))
-            case ("-h", "--help")
-                call print_help()
-                help = .true.
-                return
-            case ("--quick")
-                options%quick = .true.
-            case ("--output", "-o", "--scenes", "--repeats", "--end-time")
-                i = i + 1
-                if (i > command_argument_count()) then
-                    call fatal_error(error, trim(argument) // " needs a value", stat_input)
-                    return
-                end if
-                call get_command_argument(i, value)
-                stat = 0
-                select case (trim(argument))
-                case ("--output", "-o")
-                    options%output_dir = trim(value)
-                case ("--scenes")
-                    options%scene_list = trim(value)
-                case ("--repeats")
-                    read(value, *, iostat=stat) options%repeats
-                    if (stat == 0 .and. options%repeats < 1) stat = 1
-                case ("--end-time")
-                    read(value, *, iostat=stat) options%end_time
-                    if (stat == 0 .and. .not. options%end_time > 0.0_wp) stat = 1
-                end select
-                if (stat /= 0) then
-                    call fatal_error(error, trim(argument) // " expects a positive number, " &
-                        & // "got '" // trim(value) // "'", stat_input)
-                    return
-                end if
-            case default
-                call fatal_error(error, "bench: unknown argument '" // trim(argument) &
-                    & // "'; run 'rollcon bench --help'", stat_input)
-                return
-            end select
-            i = i + 1
-        end do
+        options%output_dir = request%text("--output", "output")
+        options%scene_list = request%text("--scenes", "")
+        options%quick = request%has("--quick")
+        call request%integer_value("--repeats", options%repeats, 3, 1, error)
+        if (allocated(error)) return
+        call request%real_value("--end-time", options%end_time, -1.0_wp, error)
+        if (allocated(error)) return
+        if (request%has("--end-time") .and. .not. options%end_time > 0.0_wp) then
+            call fatal_error(error, "--end-time expects a positive number, got '" &
+                & // request%text("--end-time", "") // "'", stat_input)
+            return
+        end if
         if (options%quick) then
             ! one scene, two tolerances, one second: the check the test suite runs
             if (len(options%scene_list) == 0) options%scene_list = "tipping_coin"
@@ -159,37 +129,37 @@ contains
         type(bench_options_type), intent(in) :: options
         integer, intent(in) :: unit, process_unit
         type(error_type), allocatable, intent(out) :: error
-        type(scene_type) :: scene
+        type(job_type) :: job
         type(benchmark_row_type), allocatable :: rows(:)
         type(part_costs_type) :: costs
         type(method_type) :: methods(size(benchmark_methods()))
         real(wp) :: rhs_seconds, residual_seconds, solve_seconds
         integer :: i
 
-        call read_scene(scene_path(name), scene, error)
+        call load_job(name, job, error)
         if (allocated(error)) return
-        if (options%end_time > 0.0_wp) scene%run%end_time = min(scene%run%end_time, &
-            & options%end_time)
-        scene%run%output_step = min(scene%run%output_step, scene%run%end_time)
-        call evaluation_costs(scene, rolling_disk_ucosub, 20000, rhs_seconds, &
-            & residual_seconds, solve_seconds, error)
+        associate (settings => job%source%settings)
+            if (options%end_time > 0.0_wp) settings%end_time = min(settings%end_time, &
+                & options%end_time)
+            settings%output_step = min(settings%output_step, settings%end_time)
+        end associate
+        call evaluation_costs(job, 20000, rhs_seconds, residual_seconds, solve_seconds, error)
         if (allocated(error)) return
         write(output_unit, '(a, 3(f8.3, a), f6.2, a)') "bench: " // name &
             & // ": one ODE right-hand side", 1.0e6_wp*rhs_seconds, " us, one DAE residual", &
             & 1.0e6_wp*residual_seconds, " us, one LAPACK factor+solve of the saddle-point " &
             & // "system", 1.0e6_wp*solve_seconds, " us (right-hand side / solve = ", &
             & rhs_seconds/solve_seconds, ")"
-        call measure_part_costs(scene, rolling_disk_ucosub, 20000, options%output_dir &
-            & // "/bench_scratch.csv", costs, error)
+        call measure_part_costs(job, 20000, options%output_dir // "/bench_scratch.csv", costs, &
+            & error)
         if (allocated(error)) return
         write(output_unit, '(a, 5(f8.3, a))') "bench: " // name &
             & // ": unit costs: right-hand side", 1.0e6_wp*costs%rhs, " us, residual", &
             & 1.0e6_wp*costs%residual, " us, event functions", 1.0e6_wp*costs%root, &
             & " us, output row", 1.0e6_wp*costs%output, " us, its CSV line", &
             & 1.0e6_wp*costs%csv_line, " us"
-        call benchmark_scene(scene, rolling_disk_ucosub, benchmark_methods(), &
-            & options%tolerances, options%reference_rtol, options%repeats, rows, error, &
-            & output_unit, costs)
+        call benchmark_scene(job, benchmark_methods(), options%tolerances, &
+            & options%reference_rtol, options%repeats, rows, error, output_unit, costs)
         if (allocated(error)) return
         do i = 1, size(rows)
             write(unit, '(a)') write_benchmark_row(rows(i))
@@ -204,59 +174,6 @@ contains
         if (.not. options%quick) call process_cost(name, options%output_dir, process_unit, error)
     end subroutine bench_scene
 
-    !> One log-log plot per scene: largest position error against CPU time, a curve per method
-    !> (the reduced ODE's among them), drawn by gnuplot through rollcon_gnuplot.
-    subroutine plot_work_precision(output_dir, scene_list, error)
-        character(len=*), intent(in) :: output_dir, scene_list
-        type(error_type), allocatable, intent(out) :: error
-        type(method_type) :: methods(size(benchmark_methods()))
-        character(len=:), allocatable :: script_path, scene, csv
-        integer :: unit, stat, m, start, comma
-
-        methods = benchmark_methods()
-        script_path = output_dir // "/bench.gp"
-        csv = gnuplot_string(output_dir // "/bench.csv")
-        open(newunit=unit, file=script_path, status="replace", action="write", iostat=stat)
-        if (stat /= 0) then
-            call fatal_error(error, script_path // ": cannot write", stat_io)
-            return
-        end if
-        write(unit, '(a)') "set datafile separator ','", "set terminal png size 900,650", &
-            & "set logscale xy", "set format x '10^{%L}'", "set format y '10^{%L}'", &
-            & "set xlabel 'CPU time [s]'", &
-            & "set ylabel 'largest position error against the reduced ODE " &
-            & // "(Adams, rtol 1e-13) [m]'", &
-            & "set key outside right", "set grid"
-        start = 1
-        do
-            comma = index(scene_list(start:), ",")
-            if (comma == 0) then
-                scene = scene_list(start:)
-            else
-                scene = scene_list(start:start + comma - 2)
-            end if
-            write(unit, '(a)') "set output " // gnuplot_string(output_dir // "/bench_" // scene &
-                & // ".png"), "set title " // gnuplot_string("work-precision: " // scene &
-                & // " (tolerances 1e-3 to 1e-12)") // " noenhanced"
-            do m = 1, size(methods)
-                write(unit, '(a)', advance="no") merge("plot ", "     ", m == 1) // csv &
-                    & // " using (strcol(1) eq " // gnuplot_string(scene) // " && strcol(2) eq " &
-                    & // gnuplot_string(trim(methods(m)%name)) // " ? $4 : 1/0):" &
-                    & // "($8 > 0 ? $8 : 1/0) with linespoints title " &
-                    & // gnuplot_string(trim(methods(m)%name)) // " noenhanced"
-                if (m < size(methods)) then
-                    write(unit, '(a)') ", \"
-                else
-                    write(unit, '(a)') ""
-                end if
-            end do
-            if (comma == 0) exit
-            start = start + comma
-        end do
-        close(unit)
-        call run_gnuplot(script_path, error)
-    end subroutine plot_work_precision
-
     !> Time `rollcon run SCENE` as a child process; print it and add a line to process_unit.
     subroutine process_cost(scene, output_dir, process_unit, error)
         character(len=*), intent(in) :: scene, output_dir
@@ -267,7 +184,8 @@ contains
         character(len=200) :: numbers
 
         call get_command_argument(0, executable)
-        call execute_command_line("mkdir -p " // shell_quote(output_dir // "/process"))
+        call make_folder(output_dir // "/process", error)
+        if (allocated(error)) return
         call measure_process(trim(executable), scene, output_dir // "/process", cost, error)
         if (allocated(error)) return
         write(numbers, '(5(es13.5e3, :, ","))') cost%wall, cost%cpu, cost%startup_cpu, &
@@ -279,28 +197,6 @@ contains
             & cost%startup_cpu, " s + integration with output rows", cost%integration_cpu, &
             & " s + scene reading, set-up and summary", cost%rest_cpu, " s"
     end subroutine process_cost
-
-    !> CPU model and core count, for the record.
-    function machine_name() result(name)
-        character(len=:), allocatable :: name
-        character(len=256) :: line
-        integer :: unit, stat, cores
-
-        name = "unknown CPU"
-        cores = 0
-        open(newunit=unit, file="/proc/cpuinfo", status="old", action="read", iostat=stat)
-        if (stat /= 0) return
-        do
-            read(unit, '(a)', iostat=stat) line
-            if (stat /= 0) exit
-            if (index(line, "model name") == 1) then
-                name = trim(adjustl(line(index(line, ":") + 1:)))
-                cores = cores + 1
-            end if
-        end do
-        close(unit)
-        name = name // ", " // to_text(cores) // " cores"
-    end function machine_name
 
     subroutine print_help()
         write(output_unit, '(a)') &

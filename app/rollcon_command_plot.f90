@@ -1,63 +1,63 @@
 ! SPDX-License-Identifier: MIT
-!> `rollcon plot`: the PNG figures of a run's output CSV, drawn by gnuplot.
+!> `rollcon plot` and `rollcon animate`: the PNG figures and the animated GIF of a run's CSV,
+!> drawn by gnuplot, beside the CSV unless --output names another folder.
 module rollcon_command_plot
     use, intrinsic :: iso_fortran_env, only : output_unit
-    use rollcon, only : error_type, fatal_error, stat_io, plot_output
+    use rollcon, only : error_type, to_text, plot_output, animate_output
+    use rollcon_cli, only : cli_request_type
+    use rollcon_app_files, only : make_folder, file_stem, folder_of, csv_argument
     implicit none
     private
 
-    public :: plot_command, csv_argument, make_folder
+    public :: plot_command, animate_command, pictures_of
 
 contains
 
-    !> Draw the figures of a CSV into output_dir and list the files written.
-    subroutine plot_command(argument, output_dir, error)
-        !> A CSV file, or a scene name meaning output_dir/<name>.csv
-        character(len=*), intent(in) :: argument
-        !> Folder for the PNG files (created if missing)
-        character(len=*), intent(in) :: output_dir
+    !> The CSV the command names (a CSV, or a scene name meaning output/<name>.csv) and the
+    !> folder for its pictures (--output, else the CSV's own folder), made when missing.
+    subroutine pictures_of(request, csv_path, folder, error)
+        type(cli_request_type), intent(in) :: request
+        character(len=:), allocatable, intent(out) :: csv_path, folder
         type(error_type), allocatable, intent(out) :: error
-        character(len=:), allocatable :: csv_path, files(:)
+        character(len=:), allocatable :: argument
+
+        argument = request%positional
+        if (len(argument) == 0) argument = "coin"
+        csv_path = csv_argument(argument, request%text("--output", "output"))
+        folder = request%text("--output", folder_of(csv_path))
+        call make_folder(folder, error)
+    end subroutine pictures_of
+
+    !> Draw the figures of a CSV and list the files written.
+    subroutine plot_command(request, error)
+        type(cli_request_type), intent(in) :: request
+        type(error_type), allocatable, intent(out) :: error
+        character(len=:), allocatable :: csv_path, folder, files(:)
         integer :: i
 
-        call make_folder(output_dir, error)
+        call pictures_of(request, csv_path, folder, error)
         if (allocated(error)) return
-        csv_path = csv_argument(argument, output_dir)
-        call plot_output(csv_path, output_dir, error, files)
+        call plot_output(csv_path, folder, error, files)
         if (allocated(error)) return
         do i = 1, size(files)
             write(output_unit, '(a)') "plot: wrote " // trim(files(i))
         end do
     end subroutine plot_command
 
-    !> The CSV an argument names: itself when it ends in '.csv', else output_dir/<name>.csv
-    !> (so `rollcon plot coin` plots the coin's run).
-    pure function csv_argument(argument, output_dir) result(path)
-        !> Command-line argument, and the output folder
-        character(len=*), intent(in) :: argument, output_dir
-        character(len=:), allocatable :: path
-
-        path = output_dir // "/" // argument // ".csv"
-        if (len(argument) >= 4) then
-            if (argument(len(argument) - 3:) == ".csv") path = argument
-        end if
-    end function csv_argument
-
-    !> Create a folder and its parents, if missing.
-    subroutine make_folder(folder, error)
-        !> Folder to create; a name holding a single quote is refused
-        character(len=*), intent(in) :: folder
+    !> Draw FOLDER/<base>.gif from a CSV, <base> its file name less '.csv'.
+    subroutine animate_command(request, error)
+        type(cli_request_type), intent(in) :: request
         type(error_type), allocatable, intent(out) :: error
-        integer :: stat, command_stat
+        character(len=:), allocatable :: csv_path, folder, gif_path
+        integer :: frames
 
-        stat = 1
-        command_stat = 1
-        if (index(folder, "'") == 0) then
-            call execute_command_line("mkdir -p '" // folder // "'", exitstat=stat, &
-                & cmdstat=command_stat)
-        end if
-        if (stat /= 0 .or. command_stat /= 0) call fatal_error(error, folder &
-            & // ": cannot create the output folder", stat_io)
-    end subroutine make_folder
+        call pictures_of(request, csv_path, folder, error)
+        if (allocated(error)) return
+        gif_path = folder // "/" // file_stem(csv_path, ".csv") // ".gif"
+        call animate_output(csv_path, gif_path, frames, error)
+        if (allocated(error)) return
+        write(output_unit, '(a)') "animate: wrote " // gif_path // " (" // to_text(frames) &
+            & // " frames)"
+    end subroutine animate_command
 
 end module rollcon_command_plot

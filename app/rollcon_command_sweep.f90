@@ -6,7 +6,8 @@ module rollcon_command_sweep
     use mpi_f08, only : MPI_Init, MPI_Finalize, MPI_Bcast, MPI_INTEGER, MPI_COMM_WORLD
     use rollcon, only : wp, error_type, fatal_error, stat_input, to_text, study_type, read_study, &
         & study_plan_type, study_progress_type, plan_cases, plan_study, case_count, draw_study_map
-    use rollcon_command_plot, only : make_folder
+    use rollcon_cli, only : cli_request_type
+    use rollcon_app_files, only : make_folder
     use rollcon_sweep_mpi, only : sweep_ranks, rank_of_world, size_of_world
     implicit none
     private
@@ -15,10 +16,10 @@ module rollcon_command_sweep
 
 contains
 
-    !> Run the command whose arguments start at argument `first`. error is set on rank 0
+    !> Run the study the command names. error is set on rank 0
     !> only; the other ranks return with status 1 when the study could not run.
-    subroutine sweep_command(first, status, error)
-        integer, intent(in) :: first
+    subroutine sweep_command(request, status, error)
+        type(cli_request_type), intent(in) :: request
         !> 0 when every case of the study is in the CSV, 1 otherwise
         integer, intent(out) :: status
         type(error_type), allocatable, intent(out) :: error
@@ -26,15 +27,22 @@ contains
         type(study_type) :: study
         type(study_plan_type) :: plan
         type(study_progress_type) :: progress
-        logical :: quiet, help, map
+        logical :: quiet, map
         integer :: go, rank
 
-        status = 1
-        call read_arguments(first, study_path, output_dir, quiet, help, map, error)
-        if (allocated(error)) return
-        if (help) then
+        status = 0
+        if (request%has("--help")) then
             call print_sweep_help()
-            status = 0
+            return
+        end if
+        status = 1
+        study_path = request%positional
+        output_dir = request%text("--output", "output")
+        quiet = request%has("--quiet")
+        map = .not. request%has("--no-map")
+        if (len(study_path) == 0) then
+            call fatal_error(error, "sweep: give a study file (data/upright_stability.nml, for " &
+                & // "one); run 'rollcon sweep --help'", stat_input)
             return
         end if
         call make_folder(output_dir, error)
@@ -135,51 +143,6 @@ contains
             & // to_text(plan%foreign) // " rows that are not cases of " // study%path &
             & // " (the study changed); they are kept"
     end subroutine close_study
-
-    subroutine read_arguments(first, study_path, output_dir, quiet, help, map, error)
-        integer, intent(in) :: first
-        character(len=:), allocatable, intent(out) :: study_path, output_dir
-        logical, intent(out) :: quiet, help, map
-        type(error_type), allocatable, intent(out) :: error
-        character(len=512) :: argument
-        integer :: i
-
-        output_dir = "output"
-        quiet = .false.
-        help = .false.
-        map = .true.
-        i = first
-        do while (i <= command_argument_count())
-            call get_command_argument(i, argument)
-            select case (trim(argument))
-            case ("-h", "--help")
-                help = .true.
-                return
-            case ("--quiet", "-q")
-                quiet = .true.
-            case ("--no-map")
-                map = .false.
-            case ("--output", "-o")
-                i = i + 1
-                if (i > command_argument_count()) then
-                    call fatal_error(error, "sweep: --output needs a folder", stat_input)
-                    return
-                end if
-                call get_command_argument(i, argument)
-                output_dir = trim(argument)
-            case default
-                if (argument(1:1) == "-" .or. allocated(study_path)) then
-                    call fatal_error(error, "sweep: unexpected argument '" // trim(argument) &
-                        & // "'; run 'rollcon sweep --help' for the usage", stat_input)
-                    return
-                end if
-                study_path = trim(argument)
-            end select
-            i = i + 1
-        end do
-        if (.not. allocated(study_path)) call fatal_error(error, "sweep: give a study file " &
-            & // "(data/upright_stability.nml, for one); run 'rollcon sweep --help'", stat_input)
-    end subroutine read_arguments
 
     subroutine print_sweep_help()
         write(output_unit, "(a)") &

@@ -2,12 +2,14 @@
 !> `rollcon table`: the rolling-disk UCOSUB's value and non-zero partials at one state.
 module rollcon_command_table
     use, intrinsic :: iso_fortran_env, only : output_unit
-    use rollcon, only : wp, error_type, disk_par, disk_codes, disk_nvars, max_ucon_vars, &
-        & code_name, rolling_disk_ucosub, evaluate_ucon, declare_ucon, ucovar_registry_type
+    use rollcon, only : wp, error_type, fatal_error, stat_input, disk_par, disk_codes, &
+        & disk_nvars, max_ucon_vars, code_name, rolling_disk_ucosub, evaluate_ucon, &
+        & declare_ucon, ucovar_registry_type
+    use rollcon_cli, only : cli_request_type
     implicit none
     private
 
-    public :: print_table, default_state, default_radius
+    public :: table_command
 
     !> The documented default state: tilted, turning, all rates non-zero, so that every
     !> non-zero expression shows (Xdot, Ydot, Zdot [m/s], psi, theta [rad], rates [rad/s])
@@ -17,6 +19,25 @@ module rollcon_command_table
     real(wp), parameter :: default_radius = 0.1_wp
 
 contains
+
+    !> --radius R [m] and --state Xdot,Ydot,Zdot,psi,theta,psidot,thetadot,phidot, then the
+    !> table.
+    subroutine table_command(request, error)
+        type(cli_request_type), intent(in) :: request
+        type(error_type), allocatable, intent(out) :: error
+        real(wp) :: state(disk_nvars), radius
+
+        call request%real_value("--radius", radius, default_radius, error)
+        if (allocated(error)) return
+        if (.not. (radius > 0.0_wp .and. radius < huge(1.0_wp))) then
+            call fatal_error(error, "--radius must be a positive finite length [m]", stat_input)
+            return
+        end if
+        state = default_state
+        call request%real_list("--state", state, error)
+        if (allocated(error)) return
+        call print_table(state, radius, error)
+    end subroutine table_command
 
     !> Print F and every non-zero first and second partial of the three components.
     subroutine print_table(state, radius, error)

@@ -25,7 +25,8 @@ __all__ = [
     "fixed_string",
 ]
 
-#: Preferred and hard line lengths of the free-form module (shared/STYLE.md).
+#: Preferred and hard line lengths of the free-form module (the project's Fortran style: 100, and
+#: gfortran's free-form limit of 132).
 FREE_WIDTH = 100
 #: Last column of a fixed-form statement.
 FIXED_WIDTH = 72

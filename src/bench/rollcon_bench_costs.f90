@@ -9,9 +9,8 @@ module rollcon_bench_costs
     use rollcon_error, only : error_type
     use rollcon_dae, only : dae_size, dae_residual
     use rollcon_ucosub_contract, only : ucosub_interface
-    use rollcon_scene, only : scene_type
-    use rollcon_disk_scene, only : build_disk_problem
     use rollcon_problem, only : problem_type
+    use rollcon_job, only : job_type
     use rollcon_simulation, only : history_type
     use rollcon_output_layout, only : output_layout_type
     use rollcon_output_rows, only : output_layout, output_row
@@ -30,11 +29,10 @@ module rollcon_bench_costs
 
 contains
 
-    !> Mean CPU time of count evaluations of each part at the scene's initial state; the
-    !> output rows' CSV lines go to scratch_csv (deleted afterwards).
-    subroutine measure_part_costs(scene, ucosub, count, scratch_csv, costs, error)
-        type(scene_type), intent(in) :: scene
-        procedure(ucosub_interface) :: ucosub
+    !> Mean CPU time of count evaluations of each part at the job's start (its model built with
+    !> its routine); the output rows' CSV lines go to scratch_csv (deleted afterwards).
+    subroutine measure_part_costs(job, count, scratch_csv, costs, error)
+        type(job_type), intent(inout) :: job
         integer, intent(in) :: count
         character(len=*), intent(in) :: scratch_csv
         type(part_costs_type), intent(out) :: costs
@@ -43,14 +41,19 @@ contains
         type(history_type) :: history
         type(csv_writer_type) :: csv
         type(output_layout_type) :: layout
-        real(wp) :: q0(6), u0(6), start, finish, checksum
-        real(wp), allocatable :: g(:)
+        procedure(ucosub_interface), pointer :: routine
+        real(wp) :: start, finish, checksum
+        real(wp), allocatable :: g(:), q0(:), u0(:)
         real(wp), allocatable :: y(:), ydot(:), yd(:), ypd(:), r(:)
-        integer :: i, ierr, unit
+        character(len=:), allocatable :: report
+        integer :: i, ierr, unit, n
 
-        call build_disk_problem(scene, ucosub, problem, q0, u0, error)
+        routine => job%routine
+        call job%source%build(routine, problem, q0, u0, report, error)
         if (allocated(error)) return
-        call problem%prepare()
+        call problem%prepare(error)
+        if (allocated(error)) return
+        n = size(q0)
         layout = output_layout(problem)
         allocate(g(problem%root_count()))
         y = [q0, u0]
@@ -59,14 +62,14 @@ contains
         call cpu_time(start)
         do i = 1, count
             ierr = problem%ode_rhs(0.0_wp, y, ydot)
-            checksum = checksum + ydot(7)
+            checksum = checksum + ydot(n + 1)
         end do
         call cpu_time(finish)
         costs%rhs = (finish - start)/count
         allocate(yd(dae_size(problem%eq)), ypd(dae_size(problem%eq)), r(dae_size(problem%eq)), &
             & source=0.0_wp)
-        yd(:12) = y
-        ypd(:12) = ydot
+        yd(:2*n) = y
+        ypd(:2*n) = ydot
         call cpu_time(start)
         do i = 1, count
             call dae_residual(problem%eq, 0.0_wp, yd, ypd, r, error)

@@ -4,16 +4,19 @@
 !> ratio to the reduced ODE at the same tolerance, measured in the same call.
 module rollcon_benchmark
     use rollcon_kinds, only : wp
-    use rollcon_error, only : error_type
+    use rollcon_error, only : error_type, fatal_error, stat_input
     use rollcon_text, only : to_text
     use rollcon_lapack, only : factor_dense, solve_factored
     use rollcon_dae, only : dae_size, dae_residual
     use rollcon_ucosub_contract, only : ucosub_interface
-    use rollcon_scene, only : scene_type, choice_code
-    use rollcon_disk_scene, only : build_disk_problem
+    use rollcon_run_settings, only : run_settings_type
+    use rollcon_run_keys, only : choice_code
+    use rollcon_scene, only : scene_type
+    use rollcon_scene_source, only : scene_source_type
     use rollcon_problem, only : problem_type
-    use rollcon_simulation, only : run_summary_type, history_type, status_completed, &
-        & run_options_type, simulate
+    use rollcon_simulation, only : run_summary_type, history_type, status_completed
+    use rollcon_job, only : job_type
+    use rollcon_run_job, only : run_job, job_result_type
     use rollcon_output_layout, only : coord_x, coord_z
     use rollcon_reduced_scene, only : simulate_reduced_scene
     use rollcon_bench_costs, only : part_costs_type
@@ -21,7 +24,7 @@ module rollcon_benchmark
     private
 
     public :: method_type, benchmark_methods, benchmark_row_type, benchmark_scene
-    public :: benchmark_header, write_benchmark_row, evaluation_costs
+    public :: benchmark_header, write_benchmark_row, evaluation_costs, bench_scene_of
 
     !> The scene formulation code the benchmark gives its reduced-ODE runs (not a scene choice)
     integer, parameter :: formulation_reduced = -1
@@ -102,15 +105,32 @@ contains
             & // row%status
     end function write_benchmark_row
 
-    !> Measure every method on every tolerance for one scene; rows are appended. The reduced
-    !> ODE is run at every tolerance with BDF and Adams whether or not the methods name it:
-    !> each row's ratio is its CPU time over the reduced ODE's at the same rtol and with the
-    !> same multistep method, both measured here, in this call.
-    subroutine benchmark_scene(scene, ucosub, methods, tolerances, reference_rtol, repeats, rows, &
+    !> The disk scene a job runs, with the job's settings (the benchmark's reference is the
+    !> disk's reduced ODE: it takes disk scenes only).
+    subroutine bench_scene_of(job, scene, error)
+        type(job_type), intent(in) :: job
+        type(scene_type), intent(out) :: scene
+        type(error_type), allocatable, intent(out) :: error
+
+        select type (source => job%source)
+        type is (scene_source_type)
+            scene = source%scene
+            scene%run%run_settings_type = source%settings
+        class default
+            call fatal_error(error, source%path // ": the benchmark compares with the disk's " &
+                & // "reduced ODE and takes disk scenes only, not a " // source%kind, stat_input)
+        end select
+    end subroutine bench_scene_of
+
+    !> Measure every method on every tolerance for one scene's job (load_job); rows are
+    !> appended. Every row of the full model is a run of the job (run_job) with the method's
+    !> settings. The reduced ODE is run at every tolerance with BDF and Adams whether or not the
+    !> methods name it: each row's ratio is its CPU time over the reduced ODE's at the same rtol
+    !> and with the same multistep method, both measured here, in this call.
+    subroutine benchmark_scene(job, methods, tolerances, reference_rtol, repeats, rows, &
             & error, progress, costs)
-        !> The scene as read (its own solver settings are replaced)
-        type(scene_type), intent(in) :: scene
-        procedure(ucosub_interface) :: ucosub
+        !> A disk scene's job, as loaded (its own solver settings are replaced)
+        type(job_type), intent(in) :: job
         type(method_type), intent(in) :: methods(:)
         !> Relative tolerances; atol = 1e-2 rtol (positions ~0.1 m, rates ~1 rad/s)
         real(wp), intent(in) :: tolerances(:)
@@ -127,18 +147,21 @@ contains
         type(history_type) :: reference
         type(benchmark_row_type) :: row
         type(benchmark_row_type), allocatable :: reduced(:, :)
+        type(scene_type) :: scene
         integer :: m, k, lmm
 
         if (.not. allocated(rows)) allocate(rows(0))
+        call bench_scene_of(job, scene, error)
+        if (allocated(error)) return
         call reference_run(reference, error)
         if (allocated(error)) return
         ! reduced(k, 1): BDF, reduced(k, 2): Adams, at tolerances(k)
         allocate(reduced(size(tolerances), 2))
         do k = 1, size(tolerances)
             reduced(k, 1) = measure(method_type("reduced-bdf", "reduced", "bdf", "none", &
-                & "analytic"), tolerances(k), reference, ucosub, repeats)
+                & "analytic"), tolerances(k), reference, repeats)
             reduced(k, 2) = measure(method_type("reduced-adams", "reduced", "adams", "none", &
-                & "analytic"), tolerances(k), reference, ucosub, repeats)
+                & "analytic"), tolerances(k), reference, repeats)
         end do
         do m = 1, size(methods)
             lmm = merge(2, 1, methods(m)%method == "adams")
@@ -146,7 +169,7 @@ contains
                 if (methods(m)%formulation == "reduced") then
                     row = reduced(k, lmm)
                 else
-                    row = measure(methods(m), tolerances(k), reference, ucosub, repeats)
+                    row = measure(methods(m), tolerances(k), reference, repeats)
                 end if
                 row%reduced_cpu = reduced(k, lmm)%cpu
                 row%ratio = row%cpu/max(row%reduced_cpu, tiny(1.0_wp))
@@ -193,11 +216,10 @@ contains
         end subroutine reference_run
 
         !> One row: median CPU of up to repeats runs, statistics and errors of the last.
-        function measure(method, rtol, reference, ucosub, repeats) result(measured)
+        function measure(method, rtol, reference, repeats) result(measured)
             type(method_type), intent(in) :: method
             real(wp), intent(in) :: rtol
             type(history_type), intent(in) :: reference
-            procedure(ucosub_interface) :: ucosub
             integer, intent(in) :: repeats
             type(benchmark_row_type) :: measured
             type(history_type) :: history
@@ -212,8 +234,7 @@ contains
             allocate(times(0))
             roots = 0
             do r = 1, max(1, repeats)
-                call run_case(with_method(scene, method, rtol), ucosub, history, summary, roots, &
-                    & run_error)
+                call run_case(job, scene, method, rtol, history, summary, roots, run_error)
                 if (allocated(run_error)) then
                     ! a failed run is a measurement too: recorded, not fatal
                     measured%status = "failed: " // run_error%message
@@ -242,31 +263,35 @@ contains
 
     end subroutine benchmark_scene
 
-    !> One run of a case: the full model (CVODE or IDA) or the reduced ODE; roots: the event
-    !> function evaluations of a full run (0 for the reduced ODE).
-    subroutine run_case(case_scene, ucosub, history, summary, roots, error)
-        type(scene_type), intent(in) :: case_scene
-        procedure(ucosub_interface) :: ucosub
+    !> One run of a case: the job with the method's settings at rtol (run_job, no files) or
+    !> the scene's reduced ODE; roots: the event-function evaluations of a full run (0 for the
+    !> reduced ODE).
+    subroutine run_case(job, scene, method, rtol, history, summary, roots, error)
+        type(job_type), intent(in) :: job
+        type(scene_type), intent(in) :: scene
+        type(method_type), intent(in) :: method
+        real(wp), intent(in) :: rtol
         type(history_type), intent(out) :: history
         type(run_summary_type), intent(out) :: summary
         integer, intent(out) :: roots
         type(error_type), allocatable, intent(out) :: error
-        type(problem_type), target :: problem
-        type(run_options_type) :: options
-        real(wp) :: q0(6), u0(6)
+        type(job_type) :: row_job
+        type(job_result_type) :: ran
+        type(scene_type) :: changed
 
         roots = 0
-        if (case_scene%run%formulation == formulation_reduced) then
-            call simulate_reduced_scene(case_scene, history, summary, error)
+        if (method%formulation == "reduced") then
+            call simulate_reduced_scene(with_method(scene, method, rtol), history, summary, error)
             return
         end if
-        call build_disk_problem(case_scene, ucosub, problem, q0, u0, error)
-        if (allocated(error)) return
-        options%end_time = case_scene%run%end_time
-        options%output_step = case_scene%run%output_step
-        options%progress = .false.
-        call simulate(problem, q0, u0, options, summary, error, history)
-        roots = problem%root_evaluations
+        row_job = job
+        row_job%output_dir = ""
+        row_job%quiet = .true.
+        changed = with_method(scene, method, rtol)
+        row_job%source%settings = changed%run%run_settings_type
+        call run_job(row_job, ran, error, history)
+        summary = ran%summary
+        roots = summary%root_evaluations
     end subroutine run_case
 
     !> A full-model row's CPU time split by parts: counts times unit costs, SUNDIALS the rest.
@@ -284,23 +309,26 @@ contains
 
     !> CPU seconds of one ODE right-hand side, one DAE residual, and one LAPACK factor-and-solve
     !> of the saddle-point system's size (the floor of a right-hand side), each the mean of
-    !> count calls at the scene's initial state, measured in the same run.
-    subroutine evaluation_costs(scene, ucosub, count, rhs_seconds, residual_seconds, &
-            & solve_seconds, error)
-        type(scene_type), intent(in) :: scene
-        procedure(ucosub_interface) :: ucosub
+    !> count calls at the job's start, measured in the same run.
+    subroutine evaluation_costs(job, count, rhs_seconds, residual_seconds, solve_seconds, error)
+        type(job_type), intent(inout) :: job
         integer, intent(in) :: count
         real(wp), intent(out) :: rhs_seconds, residual_seconds, solve_seconds
         type(error_type), allocatable, intent(out) :: error
         type(problem_type), target :: problem
-        real(wp) :: q0(6), u0(6), start, finish, checksum
+        procedure(ucosub_interface), pointer :: routine
+        real(wp) :: start, finish, checksum
+        real(wp), allocatable :: q0(:), u0(:)
         real(wp), allocatable :: y(:), ydot(:), yd(:), ypd(:), r(:), matrix(:, :), lu(:, :), b(:, :)
+        character(len=:), allocatable :: report
         integer, allocatable :: pivots(:)
         integer :: i, ierr, n
 
-        call build_disk_problem(scene, ucosub, problem, q0, u0, error)
+        routine => job%routine
+        call job%source%build(routine, problem, q0, u0, report, error)
         if (allocated(error)) return
-        call problem%prepare()
+        call problem%prepare(error)
+        if (allocated(error)) return
         y = [q0, u0]
         allocate(ydot(size(y)))
         ierr = problem%ode_rhs(0.0_wp, y, ydot)
@@ -308,7 +336,7 @@ contains
         call cpu_time(start)
         do i = 1, count
             ierr = problem%ode_rhs(0.0_wp, y, ydot)
-            checksum = checksum + ydot(7)
+            checksum = checksum + ydot(size(q0) + 1)
         end do
         call cpu_time(finish)
         rhs_seconds = (finish - start)/count
@@ -336,8 +364,8 @@ contains
         solve_seconds = (finish - start)/count
         allocate(yd(dae_size(problem%eq)), ypd(dae_size(problem%eq)), r(dae_size(problem%eq)), &
             & source=0.0_wp)
-        yd(:12) = y
-        ypd(:12) = ydot
+        yd(:size(y)) = y
+        ypd(:size(y)) = ydot
         call cpu_time(start)
         do i = 1, count
             call dae_residual(problem%eq, 0.0_wp, yd, ypd, r, error)

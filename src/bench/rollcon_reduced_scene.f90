@@ -5,10 +5,10 @@
 module rollcon_reduced_scene
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type
-    use rollcon_scene, only : scene_type, jacobian_analytic
+    use rollcon_scene, only : scene_type
     use rollcon_disk_scene, only : build_disk_problem, disk_mass_properties
     use rollcon_disk_reference, only : rolling_disk_ucosub
-    use rollcon_problem, only : problem_type, method_bdf, method_adams
+    use rollcon_problem, only : problem_type
     use rollcon_simulation, only : run_summary_type, history_type
     use rollcon_reduced_cvode, only : reduced_problem_type, simulate_reduced
     use rollcon_reduced_disk_rhs, only : reduced_size, full_to_reduced
@@ -38,12 +38,8 @@ contains
         call disk_mass_properties(scene, mass, inertia)
         reduced%par = [inertia(1), inertia(3), mass, scene%disk%radius, scene%environment%gravity]
         if (allocated(full%model%forces)) reduced%forces = full%model%forces
-        reduced%method = method_bdf
-        if (scene%run%method == method_adams) reduced%method = method_adams
-        reduced%analytic_jacobian = scene%run%jacobian == jacobian_analytic
-        reduced%rtol = scene%run%rtol
-        reduced%atol = scene%run%atol
-        reduced%max_steps = scene%run%max_steps
+        ! CVODE with the scene's method, Jacobian, tolerances and step limit
+        reduced%settings = scene%run%run_settings_type
         reduced%theta_min = scene%limits%theta_min
         call full_to_reduced(q0, u0, y0)
         call simulate_reduced(reduced, y0, 0.0_wp, scene%run%end_time, scene%run%output_step, &

@@ -1,15 +1,16 @@
 ! SPDX-License-Identifier: MIT
-!> The plots of a run, as PNG files drawn by gnuplot from an output CSV. A disk scene's CSV
-!> gets the disk's figures (paths on the ground, theta, the precession and spin rates, energy
-!> drift, constraint residuals, contact force and the friction coefficient it needs, through
-!> rollcon_disk_figures); any other model's gets a set for any parts (paths and heights of the
-!> centres of mass, Euler angles, energy drift, UCON residuals and multipliers).
+!> The plots of a run, as PNG files drawn by gnuplot from an output CSV. The CSV of one part
+!> rolling on a rim, with its rim contact's columns (a disk scene's), gets the contact's figures
+!> (paths on the ground, theta, the precession and spin rates, energy drift, constraint
+!> residuals, contact force and the friction coefficient it needs: rollcon_contact_figures);
+!> any other model's gets a set for any parts (paths and heights of the centres of mass, Euler
+!> angles, energy drift, UCON residuals and multipliers).
 module rollcon_figures
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type, fatal_error, stat_io
-    use rollcon_run_record, only : run_record_type, read_run, is_disk_scene
+    use rollcon_run_record, only : run_record_type, read_run, rolls_on_rim
     use rollcon_output_layout, only : coord_x, coord_phi
-    use rollcon_disk_figures, only : disk_figure_names, write_disk_data, disk_script
+    use rollcon_contact_figures, only : contact_figure_names, write_contact_data, contact_script
     use rollcon_figure_text, only : drift, residual_floor, title, output, figure_preamble
     use rollcon_gnuplot, only : require_gnuplot, run_gnuplot, gnuplot_string, base_name, &
         & remove_file
@@ -20,8 +21,8 @@ module rollcon_figures
 
     public :: plot_output, figure_file, figure_names, model_figure_names, figures_of
 
-    !> The figures of a disk scene, each written as DIR/<base>_<name>.png
-    character(len=*), parameter :: figure_names(7) = disk_figure_names
+    !> The figures of a part rolling on a rim, each written as DIR/<base>_<name>.png
+    character(len=*), parameter :: figure_names(7) = contact_figure_names
     !> The figures of any other model, each written as DIR/<base>_<name>.png
     character(len=*), parameter :: model_figure_names(6) = [character(len=11) :: "path", &
         & "height", "angles", "energy", "residuals", "multipliers"]
@@ -29,8 +30,8 @@ module rollcon_figures
 contains
 
     !> Draw the figures of an output CSV into output_dir (which must exist), as
-    !> output_dir/<base>_<figure>.png, <base> the CSV's file name less '.csv': figure_names for a
-    !> disk scene's CSV, model_figure_names for any other. The gnuplot script and its data
+    !> output_dir/<base>_<figure>.png, <base> the CSV's file name less '.csv': figure_names for
+    !> the CSV of a part rolling on a rim, model_figure_names for any other. The gnuplot script and its data
     !> (<base>_plots.gp, .dat) are removed when gnuplot succeeds and kept when it fails.
     subroutine plot_output(csv_path, output_dir, error, files)
         !> Output CSV of `rollcon run` (its part shapes beside it, rollcon_run_record)
@@ -53,10 +54,10 @@ contains
         script_path = prefix // "_plots.gp"
         call remove_figures(csv_path, output_dir)
         names = figures_of(run)
-        if (is_disk_scene(run)) then
-            call write_disk_data(data_path, run, error)
-            if (.not. allocated(error)) text = disk_script(base_name(csv_path, ".csv"), prefix, &
-                & data_path, run)
+        if (rolls_on_rim(run)) then
+            call write_contact_data(data_path, run, error)
+            if (.not. allocated(error)) text = contact_script(base_name(csv_path, ".csv"), &
+                & prefix, data_path, run)
         else
             call write_model_data(data_path, run, error)
             if (.not. allocated(error)) text = model_script(base_name(csv_path, ".csv"), &
@@ -107,7 +108,7 @@ contains
         type(run_record_type), intent(in) :: run
         character(len=:), allocatable :: names(:)
 
-        if (is_disk_scene(run)) then
+        if (rolls_on_rim(run)) then
             names = figure_names
         else
             names = model_figure_names

@@ -1,7 +1,8 @@
 ! SPDX-License-Identifier: MIT
 !> A run as its pictures see it: the CSV's layout and rows, and the shape of every part, from
-!> the .parts file beside the CSV (rollcon_part_shapes) or, for a disk scene's CSV without one,
-!> the disk radius recovered from the contact (docs/pictures.md).
+!> the .parts file beside the CSV (rollcon_part_shapes) or, for the CSV of one part rolling on
+!> a rim (a rim contact's columns, rollcon_contact_watch) without one, the rim's radius
+!> recovered from the contact (docs/pictures.md).
 module rollcon_run_record
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type, fatal_error, input_error, stat_io
@@ -11,12 +12,13 @@ module rollcon_run_record
     use rollcon_csv_reader, only : read_output_csv, largest_value
     use rollcon_part_shapes, only : part_shape_type, read_part_shapes, parts_path, shape_disk
     use rollcon_disk_mesh, only : contact_point
+    use rollcon_contact_watch, only : contact_names
     use rollcon_rotation, only : rotation_matrix, euler_angles
     use rollcon_rebasing, only : own_axes_rotation
     implicit none
     private
 
-    public :: run_record_type, read_run, pose, is_disk_scene, path_point, ground_bounds
+    public :: run_record_type, read_run, pose, rolls_on_rim, path_point, ground_bounds
 
     !> A run's output, ready to draw
     type :: run_record_type
@@ -55,13 +57,13 @@ contains
             if (allocated(error)) return
             call match_shapes(parts, shapes, run%layout, run%shapes, error)
             run%shapes_source = parts
-        else if (run%layout%contact .and. size(run%layout%part_ids) == 1) then
+        else if (has_contact_columns(run%layout) .and. size(run%layout%part_ids) == 1) then
             call disk_from_contact(csv_path, run, error)
             run%shapes_source = csv_path // " (radius from Z/sin(theta) of the first row)"
         else
             call fatal_error(error, parts // ": missing: the shapes of the parts of " // csv_path &
                 & // " (written by rollcon run beside the CSV) are needed to draw them; " &
-                & // "only a disk scene's CSV, with its contact columns, is drawn without it", &
+                & // "only a CSV of one part with a rim contact's columns is drawn without it", &
                 & stat_io)
         end if
     end subroutine read_run
@@ -126,14 +128,15 @@ contains
         integer, intent(in) :: p, j
         real(wp) :: q(6)
 
-        integer :: basis
+        integer :: basis, column
 
         q = run%history%rows(run%layout%part_column(p, coord_x):run%layout%part_column(p, &
             & coord_phi), j)
-        if (.not. run%layout%bases) return
+        column = run%layout%column("basis_" // to_text(run%layout%part_ids(p)))
+        if (column == 0) return
         ! a re-based row: the angles of the part's own axes, in which its shape is given
         ! (docs/rebasing.md)
-        basis = nint(run%history%rows(run%layout%basis_column(p), j))
+        basis = nint(run%history%rows(column, j))
         if (basis /= 0) q(4:6) = euler_angles(own_axes_rotation(rotation_matrix(q(4), &
             & q(5), q(6)), basis))
     end function pose
@@ -180,13 +183,26 @@ contains
         end function pose_xy
     end subroutine ground_bounds
 
-    !> True for the CSV of a disk scene: the contact columns, and part 1 drawn as a disk.
-    pure logical function is_disk_scene(run)
+    !> True for the CSV of a part rolling on a rim: a rim contact's columns (its force, the
+    !> friction it needs, its height residual: rollcon_contact_watch), and part 1 drawn as a
+    !> disk. Such a run gets the contact's figures (rollcon_contact_figures).
+    pure logical function rolls_on_rim(run)
         type(run_record_type), intent(in) :: run
 
-        is_disk_scene = run%layout%contact .and. size(run%shapes) >= 1
-        if (is_disk_scene) is_disk_scene = run%shapes(1)%kind == shape_disk
-    end function is_disk_scene
+        rolls_on_rim = has_contact_columns(run%layout) .and. size(run%shapes) >= 1
+        if (rolls_on_rim) rolls_on_rim = run%shapes(1)%kind == shape_disk
+    end function rolls_on_rim
+
+    !> The layout has every column of a rim contact.
+    pure logical function has_contact_columns(layout)
+        type(output_layout_type), intent(in) :: layout
+        integer :: k
+
+        has_contact_columns = .true.
+        do k = 1, size(contact_names)
+            if (layout%column(trim(contact_names(k))) == 0) has_contact_columns = .false.
+        end do
+    end function has_contact_columns
 
     !> "1, 2, 7"
     pure function id_list(ids) result(text)

@@ -5,8 +5,8 @@ module rollcon_study_measures
     use rollcon_kinds, only : wp
     use rollcon_constants, only : pi
     use rollcon_simulation, only : run_summary_type, history_type, status_completed, &
-        & status_stopped, status_failed, status_inaccurate, limit_theta, limit_liftoff
-    use rollcon_output_layout, only : coord_theta, contact_normal, contact_mu
+        & status_stopped, status_failed, status_inaccurate
+    use rollcon_output_layout, only : coord_theta
     implicit none
     private
 
@@ -71,14 +71,14 @@ contains
         real(wp), intent(in) :: cpu_seconds
         type(case_result_type), intent(inout) :: result
         real(wp), allocatable :: theta(:), fn(:), t(:)
-        integer :: first
+        integer :: first, normal, needed
 
         select case (summary%status)
         case (status_completed)
             result%outcome = outcome_completed
         case (status_stopped)
-            result%outcome = merge(outcome_theta_limit, outcome_liftoff, &
-                & summary%limit == limit_theta)
+            ! the watch that stopped the run names its limit (rollcon_watch)
+            result%outcome = merge(outcome_liftoff, outcome_theta_limit, summary%limit == "liftoff")
         case (status_inaccurate)
             result%outcome = outcome_inaccurate
         case default
@@ -99,10 +99,13 @@ contains
             call put(i_theta_min, minval(theta))
             call put(i_theta_max, maxval(theta))
             call put(i_tilt_max, maxval(abs(pi/2 - theta)))
-            if (.not. layout%contact) return
+            ! the contact's measures, when a rim contact is watched (rollcon_contact_watch)
+            normal = layout%column("Fn")
+            needed = layout%column("mu_needed")
+            if (normal == 0 .or. needed == 0) return
             t = history%rows(1, :n)
-            fn = history%rows(layout%contact_column(contact_normal), :n)
-            call put(i_mu_max, maxval(history%rows(layout%contact_column(contact_mu), :n)))
+            fn = history%rows(normal, :n)
+            call put(i_mu_max, maxval(history%rows(needed, :n)))
             call put(i_fn_min, minval(fn))
             first = findloc(fn < 0.0_wp, .true., dim=1)
             if (first > 0) call put(i_t_fn_negative, t(first))

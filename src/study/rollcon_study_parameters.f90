@@ -5,11 +5,11 @@ module rollcon_study_parameters
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type, input_error
     use rollcon_text, only : to_text, unquoted, comma_list
-    use rollcon_scene_lexer, only : assignment_type
+    use rollcon_namelist_lexer, only : assignment_type
     use rollcon_scene_type, only : scene_type
-    use rollcon_scene_keys, only : key_type, bind_keys, find_key, scene_groups, kind_real, &
-        & kind_integer
-    use rollcon_scene_values, only : in_range, range_text, is_real_text
+    use rollcon_keys, only : key_type, find_key, kind_real, kind_integer
+    use rollcon_scene_keys, only : bind_keys, scene_groups
+    use rollcon_key_values, only : in_range, range_text, is_real_text
     use rollcon_study_type, only : study_type, study_parameter_type, sampling_grid, &
         & sampling_random
     use rollcon_study_dataset, only : read_dataset_parameter

@@ -6,9 +6,10 @@ module rollcon_study_reader
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type, input_error
     use rollcon_text, only : to_text, unquoted
-    use rollcon_scene_lexer, only : group_type, assignment_type, read_lines, scan_groups
-    use rollcon_scene_bytes, only : check_bytes, visible
+    use rollcon_namelist_lexer, only : group_type, assignment_type, read_lines, scan_groups
+    use rollcon_namelist_bytes, only : check_bytes, visible
     use rollcon_scene, only : scene_type, scene_path, read_scene_lines
+    use rollcon_load, only : is_dataset
     use rollcon_study_type, only : study_type, study_parameter_type, sampling_grid, &
         & sampling_random
     use rollcon_study_parameters, only : read_parameter
@@ -41,7 +42,7 @@ contains
             & .and. len(study%name) > 4) study%name = study%name(:len(study%name) - 4)
         study%title = study%name
         block
-            use rollcon_scene_lexer, only : line_type
+            use rollcon_namelist_lexer, only : line_type
             type(line_type), allocatable :: lines(:)
             logical :: exists
             inquire(file=path, exist=exists)
@@ -88,9 +89,10 @@ contains
             associate (a => group%assignments(k))
                 select case (a%key)
                 case ("scene")
-                    study%scene_path = scene_path(unquoted(a%value))
-                    study%dataset = index(study%scene_path, ".adm", back=.true.) &
-                        & == len(study%scene_path) - 3
+                    ! a dataset is a path as given; a scene may be a name (coin: data/coin.nml)
+                    study%dataset = is_dataset(unquoted(a%value))
+                    study%scene_path = unquoted(a%value)
+                    if (.not. study%dataset) study%scene_path = scene_path(study%scene_path)
                     call read_lines(study%scene_path, study%scene_lines, error)
                     if (allocated(error)) then
                         message = error%message

@@ -6,8 +6,8 @@ module rollcon_study_rules
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type, input_error
     use rollcon_text, only : to_text, unquoted, comma_list
-    use rollcon_scene_lexer, only : group_type
-    use rollcon_scene_values, only : is_real_text
+    use rollcon_namelist_lexer, only : group_type
+    use rollcon_key_values, only : is_real_text
     use rollcon_study_type, only : study_type, study_rule_type, relation_words, &
         & relation_less, relation_less_equal, relation_greater, relation_greater_equal
     use rollcon_study_measures, only : case_result_type, measure_names, measure_index, &

@@ -10,16 +10,15 @@ module rollcon_study_run
     use rollcon_clock, only : wall_seconds
     use rollcon_error, only : error_type, fatal_error, stat_io
     use rollcon_text, only : to_text
-    use rollcon_scene, only : scene_type, read_scene_lines, scene_override_type
-    use rollcon_disk_scene, only : simulate_scene
-    use rollcon_disk_reference, only : rolling_disk_ucosub
-    use rollcon_simulation, only : run_summary_type, history_type
+    use rollcon_simulation, only : history_type
+    use rollcon_job, only : job_type
+    use rollcon_load, only : load_job, input_override_type
+    use rollcon_run_job, only : run_job, job_result_type
     use rollcon_study_type, only : study_type
     use rollcon_study_parameters, only : case_count, case_values, value_text
     use rollcon_study_measures, only : case_result_type, outcome_refused, outcome_failed, &
         & measure_case
     use rollcon_study_rules, only : classify
-    use rollcon_study_dataset, only : simulate_dataset_case, dataset_override
     use rollcon_study_csv, only : study_header, study_row, case_key, read_done_cases
     implicit none
     private
@@ -153,47 +152,40 @@ contains
         end do
     end function case_texts
 
-    !> Run case i: its scene (or dataset) is the base with the case's parameters set; it runs
-    !> as `rollcon run` would run it, with the hand-checked disk UCOSUB. Returns its CSV row.
+    !> Run case i: its scene (or dataset) is the base with the case's parameters set; it is
+    !> loaded and run as `rollcon run` loads and runs an input (rollcon_load, rollcon_run_job),
+    !> with the hand-checked disk UCOSUB, no files, quiet. Returns its CSV row.
     subroutine run_case(study, plan, i, row, result)
         type(study_type), intent(in) :: study
         type(study_plan_type), intent(in) :: plan
         integer, intent(in) :: i
         character(len=:), allocatable, intent(out) :: row
         type(case_result_type), intent(out) :: result
-        type(scene_override_type) :: overrides(size(study%parameters))
-        type(scene_type) :: scene
-        type(run_summary_type) :: summary
+        type(input_override_type) :: overrides(size(study%parameters))
+        type(job_type) :: job
+        type(job_result_type) :: ran
         type(history_type) :: history
         type(error_type), allocatable :: error
         real(wp) :: cpu_start, cpu_end
         integer :: k
-        logical :: refused
 
         call cpu_time(cpu_start)
         do k = 1, size(study%parameters)
-            overrides(k)%group = study%parameters(k)%group
-            overrides(k)%key = study%parameters(k)%key
+            overrides(k)%name = study%parameters(k)%group // "%" // study%parameters(k)%key
             overrides(k)%value = trim(plan%texts(k, i))
         end do
-        refused = .true.
-        if (study%dataset) then
-            call simulate_dataset_case(study%scene_path, [(dataset_override(study%parameters(k), &
-                & trim(plan%texts(k, i))), k = 1, size(study%parameters))], summary, history, &
-                & error, refused)
-        else
-            call read_scene_lines(study%scene_path, study%scene_lines, scene, error, overrides)
-            if (.not. allocated(error)) then
-                refused = .false.
-                call simulate_scene(scene, rolling_disk_ucosub, summary, error, history=history)
-            end if
+        call load_job(study%scene_path, job, error, overrides=overrides)
+        if (.not. allocated(error)) then
+            job%output_dir = ""
+            job%quiet = .true.
+            call run_job(job, ran, error, history)
         end if
-        if (refused) then
+        if (.not. ran%started) then
             result%outcome = outcome_refused
             result%message = error%message
         else
             call cpu_time(cpu_end)
-            call measure_case(summary, history, cpu_end - cpu_start, result)
+            call measure_case(ran%summary, history, cpu_end - cpu_start, result)
             if (allocated(error)) then
                 result%outcome = outcome_failed
                 result%message = error%message

@@ -3,7 +3,7 @@
 !> by seeded random samples), the rules that class each case, and how its map is drawn.
 module rollcon_study_type
     use rollcon_kinds, only : wp
-    use rollcon_scene_lexer, only : line_type
+    use rollcon_namelist_lexer, only : line_type
     implicit none
     private
 

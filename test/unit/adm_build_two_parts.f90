@@ -71,7 +71,7 @@ contains
             call check(error, [q(1:3), u(1:3)], [sphere_speed*2.0_wp, -0.5_wp, sphere_radius, &
                 & sphere_speed, 0.0_wp, 0.0_wp], "sphere's centre at t = 2 s", abs_tol=tol_sphere)
             if (allocated(error)) return
-            ! omega = psidot e_Z + thetadot e_x1 + phidot e_z2 (DESIGN section 3): v/r about +Y
+            ! omega = psidot e_Z + thetadot e_x1 + phidot e_z2 (docs/design.md §3): v/r about +Y
             omega = u(4)*[0.0_wp, 0.0_wp, 1.0_wp] + u(5)*[cos(q(4)), sin(q(4)), 0.0_wp] &
                 & + u(6)*[sin(q(5))*sin(q(4)), -sin(q(5))*cos(q(4)), cos(q(5))]
             call check(error, omega, [0.0_wp, sphere_speed/sphere_radius, 0.0_wp], &

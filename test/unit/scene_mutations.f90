@@ -3,7 +3,7 @@
 !> duplicated, swapped or dropped, numbers replaced by extremes.
 module scene_mutations
     use rollcon_kinds, only : wp
-    use rollcon_scene_lexer, only : line_type
+    use rollcon_namelist_lexer, only : line_type
     implicit none
     private
 

@@ -76,7 +76,7 @@ contains
     end function marker_on_part_1
 
     !> DX..DZ from the rotation; VX..VZ as the position's central difference along the motion;
-    !> WX..WZ from omega = psidot e_Z + thetadot e_x1 + phidot e_z2 (DESIGN section 3);
+    !> WX..WZ from omega = psidot e_Z + thetadot e_x1 + phidot e_z2 (docs/design.md §3);
     !> PSI, THETA, PHI of axes R(q) Rz(0.2) = Rz(psi) Rx(theta) Rz(phi + 0.2).
     subroutine test_state_functions(error)
         type(error_type), allocatable, intent(out) :: error

@@ -14,7 +14,7 @@ module test_isolation
         & user_check_report_type, check_user_ucosub
     use rollcon_isolated_audit, only : check_user_ucosub_isolated
     use rollcon_audit_report, only : report_text
-    use rollcon_ucon_option, only : read_ucon_option
+    use rollcon_ucon_request, only : read_ucon_request
     use rollcon_check_rules, only : rule_signal, rule_timeout, rule_exit, rule_outside_block, &
         & rule_errmes, rule_finite, rule_name
     use rollcon_testing, only : unittest_type, new_unittest, check
@@ -283,23 +283,23 @@ contains
         integer :: i
 
         do i = 1, size(refused)
-            call read_ucon_option(trim(refused(i)), request, error)
+            call read_ucon_request(trim(refused(i)), request, error)
             if (.not. allocated(error)) then
                 call check(error, .false., "--ucon " // trim(refused(i)) // " was accepted")
                 return
             end if
             deallocate(error)
         end do
-        call read_ucon_option("1:1,21,,23", request, refusal)
+        call read_ucon_request("1:1,21,,23", request, refusal)
         call expect_in(error, refusal%message, "PAR(3) must be one finite decimal number")
         if (allocated(error)) return
-        call read_ucon_option("12: 3, -0.5,1.0e-3,+2E2", request, error)
+        call read_ucon_request("12: 3, -0.5,1.0e-3,+2E2", request, error)
         if (allocated(error)) return
         call check(error, request%id == 12 .and. size(request%par) == 4, "id or size of PAR")
         if (allocated(error)) return
         call check(error, request%par, [3.0_wp, -0.5_wp, 1.0e-3_wp, 200.0_wp], "PAR")
         if (allocated(error)) return
-        call read_ucon_option("7", request, error)
+        call read_ucon_request("7", request, error)
         if (allocated(error)) return
         call check(error, request%id == 7 .and. size(request%par) == 0, "ID alone")
     end subroutine test_ucon_option

@@ -8,7 +8,7 @@ module test_scene_files
         & formulation_cvode, method_bdf, method_adams, drift_projection, drift_baumgarte, &
         & jacobian_analytic, jacobian_dq, height_velocity, height_position
     use rollcon_scene, only : choice_code, choice_name
-    use rollcon_scene_bytes, only : visible
+    use rollcon_namelist_bytes, only : visible
     use rollcon_testing, only : unittest_type, new_unittest, check
     use scene_texts, only : read_text, expect_accepted, width
     implicit none

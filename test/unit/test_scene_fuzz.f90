@@ -7,7 +7,7 @@ module test_scene_fuzz
     use rollcon_constants, only : pi
     use rollcon_error, only : error_type, stat_input
     use rollcon_text, only : to_text
-    use rollcon_scene_lexer, only : line_type, read_lines
+    use rollcon_namelist_lexer, only : line_type, read_lines
     use rollcon_scene, only : scene_type, read_scene, read_scene_lines
     use rollcon_scene_state, only : disk_mass_properties, disk_initial_state
     use rollcon_disk_scene, only : build_disk_problem

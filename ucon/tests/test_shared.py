@@ -20,7 +20,7 @@ from ucon.spec import TIME, Constraint, ConstraintSpec, Parameter, Variable
 from ucon.tests.test_generate import derivatives as derived
 
 #: The hand-written module every generated module uses.
-HELPER_PATH = PROJECT_ROOT / "src/ucosubs/rollcon_ucosub_helpers.f90"
+HELPER_PATH = PROJECT_ROOT / "src/adams/rollcon_ucosub_helpers.f90"
 
 x, xdot, psi = sympy.symbols("x xdot psi", real=True)
 rate = sympy.Symbol("rate", real=True)

@@ -1,0 +1,68 @@
+! SPDX-License-Identifier: MIT
+!> The program's own file names: an output folder made when missing, a file's stem, and the
+!> CSV a command's argument names.
+module rollcon_app_files
+    use rollcon, only : error_type, fatal_error, stat_io
+    implicit none
+    private
+
+    public :: make_folder, file_stem, folder_of, csv_argument
+
+contains
+
+    !> Create a folder and its parents, if missing.
+    subroutine make_folder(folder, error)
+        !> Folder to create; a name holding a single quote is refused
+        character(len=*), intent(in) :: folder
+        type(error_type), allocatable, intent(out) :: error
+        integer :: stat, command_stat
+
+        stat = 1
+        command_stat = 1
+        if (index(folder, "'") == 0) then
+            call execute_command_line("mkdir -p '" // folder // "'", exitstat=stat, &
+                & cmdstat=command_stat)
+        end if
+        if (stat /= 0 .or. command_stat /= 0) call fatal_error(error, folder &
+            & // ": cannot create the output folder", stat_io)
+    end subroutine make_folder
+
+    !> The file name of path without its folder and without extension (when it ends so):
+    !> file_stem("out/coin.csv", ".csv") is "coin".
+    pure function file_stem(path, extension) result(stem)
+        character(len=*), intent(in) :: path, extension
+        character(len=:), allocatable :: stem
+        integer :: n
+
+        stem = path(index(path, "/", back=.true.) + 1:)
+        n = len(stem) - len(extension)
+        if (n > 0 .and. len(extension) > 0) then
+            if (stem(n + 1:) == extension) stem = stem(:n)
+        end if
+    end function file_stem
+
+    !> The folder of a file ("." for a bare name).
+    pure function folder_of(path) result(folder)
+        character(len=*), intent(in) :: path
+        character(len=:), allocatable :: folder
+        integer :: slash
+
+        slash = index(path, "/", back=.true.)
+        folder = "."
+        if (slash > 1) folder = path(:slash - 1)
+        if (slash == 1) folder = "/"
+    end function folder_of
+
+    !> The CSV an argument names: itself when it ends in '.csv', else output_dir/<name>.csv
+    !> (so `rollcon plot coin` plots the coin's run).
+    pure function csv_argument(argument, output_dir) result(path)
+        character(len=*), intent(in) :: argument, output_dir
+        character(len=:), allocatable :: path
+
+        path = output_dir // "/" // argument // ".csv"
+        if (len(argument) >= 4) then
+            if (argument(len(argument) - 3:) == ".csv") path = argument
+        end if
+    end function csv_argument
+
+end module rollcon_app_files

@@ -1,0 +1,205 @@
+! SPDX-License-Identifier: MIT
+!> The rolling disk's reduced ODE (ucon/reduced/, rollcon_reduced_disk_rhs) as a system CVODE
+!> integrates (rollcon_cvode, the same integrator as the full model's): the same method,
+!> tolerances, Jacobian choice and force stops as the full CVODE runs, output rows at the same
+!> times and in the layout of a one-part model without UCONs (rollcon_output_layout: time, the
+!> disk's q and u, energy), the first columns of the full model's rows.
+module rollcon_reduced_cvode
+    use, intrinsic :: ieee_arithmetic, only : ieee_is_finite
+    use rollcon_kinds, only : wp
+    use rollcon_error, only : error_type
+    use rollcon_text, only : to_text
+    use rollcon_force, only : applied_force_type, force_and_moment, force_breakpoints
+    use rollcon_run_settings, only : run_settings_type
+    use rollcon_dynamic_system, only : dynamic_system_type
+    use rollcon_cvode, only : cvode_integrator_type
+    use rollcon_simulation, only : run_summary_type, history_type, status_failed, status_stopped
+    use rollcon_output_layout, only : new_output_layout, coord_x, coord_phi, coord_xdot, &
+        & coord_phidot
+    use rollcon_reduced_disk_rhs, only : reduced_size, reduced_rate, reduced_jacobian, &
+        & reduced_energy, reduced_to_full
+    implicit none
+    private
+
+    public :: reduced_problem_type, simulate_reduced
+
+    !> The reduced disk with its loads and solver settings
+    type, extends(dynamic_system_type) :: reduced_problem_type
+        !> (A, C, m, R, g) [kg m^2, kg m^2, kg, m, m/s^2]
+        real(wp) :: par(5) = 0.0_wp
+        !> Strike forces: along +Y at the top of the rim (rollcon_force's profiles)
+        type(applied_force_type), allocatable :: forces(:)
+        !> Method, Jacobian, tolerances and step limit (the full model's run settings)
+        type(run_settings_type) :: settings
+        !> Stop when theta falls below this [rad] (disabled when negative)
+        real(wp) :: theta_min = -1.0_wp
+        !> Part id of the disk, for the rows' column names
+        integer :: part_id = 1
+    contains
+        procedure :: ode_rhs
+        procedure :: ode_jacobian
+        procedure :: root_count
+        procedure :: roots
+    end type reduced_problem_type
+
+contains
+
+    !> Integrate the reduced state y0 from t0 to end_time, a history row every output_step.
+    subroutine simulate_reduced(problem, y0, t0, end_time, output_step, history, summary, error)
+        type(reduced_problem_type), intent(inout), target :: problem
+        !> (theta, thetadot, psidot, omega3, psi, phi, X, Y) at t0
+        real(wp), intent(in) :: y0(reduced_size)
+        !> Start, end, output interval [s]
+        real(wp), intent(in) :: t0, end_time, output_step
+        type(history_type), intent(inout) :: history
+        type(run_summary_type), intent(out) :: summary
+        type(error_type), allocatable, intent(out) :: error
+        type(cvode_integrator_type), target :: cvode
+        real(wp) :: values(reduced_size), unused(reduced_size)
+        real(wp), allocatable :: breaks(:)
+        real(wp) :: t, t_out, start, finish, t_reference
+        integer :: k_output, n_output, root
+        logical :: have_reference
+
+        if (.not. allocated(problem%forces)) allocate(problem%forces(0))
+        breaks = force_breakpoints(problem%forces)
+        ! energy is conserved once the last pulse is over (as in rollcon_simulation)
+        t_reference = maxval([t0, breaks])
+        breaks = pack(breaks, breaks > t0 .and. breaks < end_time)
+        history%layout = new_output_layout([problem%part_id], [integer ::])
+        summary%layout = history%layout
+        values = y0
+        unused = 0.0_wp
+        have_reference = .false.
+        t = t0
+        call record(t)
+        call cpu_time(start)
+        call cvode%start(problem, problem%settings, t0, values, unused, next_stop(t), error)
+        n_output = max(1, ceiling((end_time - t0)/output_step - 1.0e-9_wp))
+        k_output = 1
+        do while (k_output <= n_output .and. .not. allocated(error))
+            t_out = min(t0 + k_output*output_step, end_time)
+            call cvode%advance(t_out, next_stop(t), t, values, unused, root, error)
+            if (allocated(error)) then
+                summary%status = status_failed
+                error%message = "reduced ODE: " // error%message
+                summary%message = error%message
+                exit
+            end if
+            if (root /= 0) then
+                call record(t)
+                summary%status = status_stopped
+                summary%message = "theta fell to " // to_text(problem%theta_min) // " rad at t = " &
+                    & // to_text(t) // " s"
+                exit
+            end if
+            if (t < t_out) cycle
+            call record(t)
+            k_output = k_output + 1
+        end do
+        call cpu_time(finish)
+        summary%cpu_seconds = finish - start
+        associate (counts => cvode%statistics())
+            summary%steps = counts%steps
+            summary%functions = counts%functions
+            summary%jacobians = counts%jacobians
+        end associate
+        call cvode%destroy()
+
+    contains
+
+        !> The next time not to step past: a pulse stop or the end.
+        pure function next_stop(time) result(stop_time)
+            real(wp), intent(in) :: time
+            real(wp) :: stop_time
+
+            stop_time = end_time
+            if (any(breaks > time)) stop_time = minval(breaks, mask=breaks > time)
+        end function next_stop
+
+        !> A history row (t, q, u, E) and the summary's energy drift (after every pulse).
+        subroutine record(time)
+            real(wp), intent(in) :: time
+            real(wp) :: q(6), u(6), energy
+            real(wp), allocatable :: row(:)
+
+            call reduced_to_full(values, problem%par, q, u)
+            energy = reduced_energy(values, problem%par)
+            if (time >= t_reference) then
+                if (.not. have_reference) summary%energy_reference = energy
+                have_reference = .true.
+                summary%energy_drift = max(summary%energy_drift, &
+                    & abs(energy - summary%energy_reference)/abs(summary%energy_reference))
+            end if
+            summary%t_reached = time
+            summary%q = q
+            summary%u = u
+            summary%rows = summary%rows + 1
+            associate (layout => history%layout)
+                allocate(row(layout%columns()))
+                row(1) = time
+                row(layout%part_column(1, coord_x):layout%part_column(1, coord_phi)) = q
+                row(layout%part_column(1, coord_xdot):layout%part_column(1, coord_phidot)) = u
+                row(layout%energy_column()) = energy
+            end associate
+            call history%add(row)
+        end subroutine record
+
+    end subroutine simulate_reduced
+
+    !> The strike force along +Y at time t [N] (rollcon_force's profile, the model's forces).
+    pure function strike_at(problem, time, state) result(strike)
+        class(reduced_problem_type), intent(in) :: problem
+        real(wp), intent(in) :: time, state(reduced_size)
+        real(wp) :: strike, force(3), moment(3)
+        integer :: k
+
+        strike = 0.0_wp
+        if (size(problem%forces) == 0) return
+        call force_and_moment(problem%forces, 1, time, [0.0_wp, 0.0_wp, 0.0_wp, state(5), &
+            & state(1), state(6)], [(0.0_wp, k = 1, 6)], force, moment)
+        strike = force(2)
+    end function strike_at
+
+    !> y' of the reduced ODE; a flat disk (sin theta = 0) is outside it: recoverable (1),
+    !> CVODE cuts the step.
+    integer function ode_rhs(self, time, y, ydot) result(ierr)
+        class(reduced_problem_type), intent(inout) :: self
+        real(wp), intent(in) :: time, y(:)
+        real(wp), intent(out) :: ydot(:)
+
+        call reduced_rate(y, self%par, strike_at(self, time, y), ydot)
+        ierr = 0
+        if (.not. all(ieee_is_finite(ydot))) ierr = 1
+    end function ode_rhs
+
+    !> The generated Jacobian of the reduced ODE.
+    integer function ode_jacobian(self, time, y, matrix) result(ierr)
+        class(reduced_problem_type), intent(inout) :: self
+        real(wp), intent(in) :: time, y(:)
+        real(wp), intent(out) :: matrix(:, :)
+
+        call reduced_jacobian(y, self%par, strike_at(self, time, y), matrix)
+        ierr = 0
+        if (.not. all(ieee_is_finite(matrix))) ierr = 1
+    end function ode_jacobian
+
+    !> The theta limit, when set.
+    integer function root_count(self)
+        class(reduced_problem_type), intent(in) :: self
+
+        root_count = merge(1, 0, self%theta_min >= 0.0_wp)
+    end function root_count
+
+    !> theta - theta_min.
+    integer function roots(self, time, y, g, ydot) result(ierr)
+        class(reduced_problem_type), intent(inout) :: self
+        real(wp), intent(in) :: time, y(:)
+        real(wp), intent(out) :: g(:)
+        real(wp), intent(in), optional :: ydot(:)
+
+        g(1) = y(1) - self%theta_min
+        ierr = 0
+    end function roots
+
+end module rollcon_reduced_cvode

@@ -1,0 +1,148 @@
+! SPDX-License-Identifier: MIT
+!> A UCON statement as the checker takes it (`rollcon check --ucon`), "ID:PAR1,PAR2,...", read
+!> strictly: a positive integer id, then one decimal number per comma-separated field. (The
+!> option itself is the program's; the text's format and its checks are the checker's, so that
+!> they are tested and fuzzed in the library.) Fortran's list-directed read is not
+!> used on the list: it takes "2*1" as two ones, ";" and "/" as separators or terminators
+!> and an empty field as "leave unchanged".
+module rollcon_ucon_request
+    use rollcon_kinds, only : wp
+    use rollcon_error, only : error_type, fatal_error, stat_input
+    use rollcon_text, only : to_text
+    use rollcon_ucosub_contract, only : max_ucon_par
+    use rollcon_ucosub_audit, only : ucon_request_type
+    use, intrinsic :: ieee_arithmetic, only : ieee_is_finite
+    implicit none
+    private
+
+    public :: read_ucon_request, is_decimal_number
+
+contains
+
+    !> "ID:PAR1,PAR2,..." (or "ID" alone) as a UCON id and its constants.
+    subroutine read_ucon_request(text, request, error)
+        !> The statement's text
+        character(len=*), intent(in) :: text
+        !> The UCON statement
+        type(ucon_request_type), intent(out) :: request
+        !> Set when the id is not a positive integer or a field is not one finite number
+        type(error_type), allocatable, intent(out) :: error
+        character(len=:), allocatable :: id_text, field
+        integer :: colon, stat, start, finish, k
+
+        colon = index(text, ":")
+        if (colon == 0) colon = len(text) + 1
+        id_text = trim(adjustl(text(:colon - 1)))
+        stat = 1
+        if (len(id_text) > 0 .and. len(id_text) <= 9 .and. verify(id_text, "0123456789") == 0) &
+            & read(id_text, *, iostat=stat) request%id
+        if (stat /= 0 .or. request%id < 1) then
+            call fatal_error(error, "--ucon '" // text // "': the UCON id must be a positive " &
+                & // "integer (digits only), got '" // id_text // "'; expected ID:PAR1,PAR2,...", &
+                & stat_input)
+            return
+        end if
+        allocate(request%par(0))
+        if (colon >= len(text)) then
+            if (colon == len(text)) call fatal_error(error, "--ucon '" // text // "': nothing " &
+                & // "after ':'; give the constants (ID:PAR1,PAR2,...) or the id alone", &
+                & stat_input)
+            return
+        end if
+        start = colon + 1
+        k = 0
+        do
+            finish = index(text(start:), ",")
+            if (finish == 0) then
+                finish = len(text)
+            else
+                finish = start + finish - 2
+            end if
+            k = k + 1
+            field = trim(adjustl(text(start:finish)))
+            call read_field(text, k, field, request%par, error)
+            if (allocated(error)) return
+            if (finish >= len(text)) exit
+            start = finish + 2
+            if (start > len(text)) then
+                call fatal_error(error, "--ucon '" // text // "': PAR(" // to_text(k + 1) &
+                    & // ") is empty (a trailing comma); one number per field", stat_input)
+                return
+            end if
+        end do
+        if (size(request%par) > max_ucon_par) then
+            call fatal_error(error, "--ucon '" // text // "': " // to_text(size(request%par)) &
+                & // " constants; at most " // to_text(max_ucon_par), stat_input)
+        end if
+    end subroutine read_ucon_request
+
+    !> Field k of the list as one finite number, appended to par.
+    subroutine read_field(text, k, field, par, error)
+        character(len=*), intent(in) :: text, field
+        integer, intent(in) :: k
+        real(wp), allocatable, intent(inout) :: par(:)
+        type(error_type), allocatable, intent(out) :: error
+        real(wp) :: value
+        integer :: stat
+
+        stat = 1
+        if (is_decimal_number(field)) read(field, *, iostat=stat) value
+        if (stat == 0) then
+            if (.not. ieee_is_finite(value)) stat = 1
+        end if
+        if (stat /= 0) then
+            call fatal_error(error, "--ucon '" // text // "': PAR(" // to_text(k) // ") must " &
+                & // "be one finite decimal number (such as 21, -0.5 or 1.0e-3), got '" &
+                & // field // "'; fields are separated by commas", stat_input)
+            return
+        end if
+        par = [par, value]
+    end subroutine read_field
+
+    !> True for [sign] digits [. digits] [e|E [sign] digits] with at least one mantissa digit,
+    !> and nothing else (no blanks, repeat counts, separators, D exponents, inf or nan).
+    pure function is_decimal_number(text) result(valid)
+        !> Candidate text
+        character(len=*), intent(in) :: text
+        logical :: valid
+        integer :: i, mantissa_digits, exponent_digits
+
+        valid = .false.
+        i = 1
+        if (len(text) == 0) return
+        if (scan(text(1:1), "+-") == 1) i = 2
+        mantissa_digits = 0
+        do while (i <= len(text))
+            if (verify(text(i:i), "0123456789") /= 0) exit
+            mantissa_digits = mantissa_digits + 1
+            i = i + 1
+        end do
+        if (i <= len(text)) then
+            if (text(i:i) == ".") then
+                i = i + 1
+                do while (i <= len(text))
+                    if (verify(text(i:i), "0123456789") /= 0) exit
+                    mantissa_digits = mantissa_digits + 1
+                    i = i + 1
+                end do
+            end if
+        end if
+        if (mantissa_digits == 0) return
+        if (i <= len(text)) then
+            if (scan(text(i:i), "eE") /= 1) return
+            i = i + 1
+            if (i <= len(text)) then
+                if (scan(text(i:i), "+-") == 1) i = i + 1
+            end if
+            exponent_digits = 0
+            do while (i <= len(text))
+                if (verify(text(i:i), "0123456789") /= 0) return
+                exponent_digits = exponent_digits + 1
+                i = i + 1
+            end do
+            if (exponent_digits == 0) return
+        end if
+        valid = .true.
+    end function is_decimal_number
+
+end module rollcon_ucon_request

@@ -1,0 +1,305 @@
+! SPDX-License-Identifier: MIT
+!> A dataset as a problem to simulate (docs/datasets-model.md): its parts (ground is not one),
+!> UCONs with their routines, gravity, force statements between body-fixed markers, solver
+!> settings, the theta limit and the initial state.
+!>
+!> A part's principal axes are its CM marker's axes, and its inertia is the IP written there
+!> (docs/design.md §2). A UCON is served by the built-in routine its ROUTINE= names
+!> (rollcon_ucosub_catalog), else by the model's routine (the `--ucosub` one). PAR values are
+!> passed exactly as written, as ADAMS passes them; the built-in routines take lengths in
+!> metres, so one of them serving a dataset whose length unit is not the metre is refused.
+module rollcon_adm_build
+    use rollcon_kinds, only : wp
+    use rollcon_error, only : error_type, fatal_error, stat_input
+    use rollcon_text, only : to_text
+    use rollcon_rotation, only : rotation_matrix
+    use rollcon_ucosub_contract, only : ucosub_interface
+    use rollcon_ucosub_catalog, only : find_builtin_ucosub, builtin_ucosub_names
+    use rollcon_expression, only : quantity_names
+    use rollcon_body, only : part_type
+    use rollcon_marker, only : marker_type
+    use rollcon_marker_force, only : kind_translation, kind_rotation, kind_vector, &
+        & kind_general, marker_force_values
+    use rollcon_force, only : applied_force_type, profile_statement
+    use rollcon_model, only : model_type, setup_model
+    use rollcon_problem, only : problem_type
+    use rollcon_theta_watch, only : new_theta_watch
+    use rollcon_adm_keywords, only : place
+    use rollcon_adm_model, only : adm_model_type, adm_force_type, force_sforce, force_vforce
+    use rollcon_adm_state, only : part_state
+    use, intrinsic :: ieee_arithmetic, only : ieee_is_finite
+    implicit none
+    private
+
+    public :: build_adm_problem, adm_theta_min
+
+    !> The theta limit of every part of a dataset's model [rad]: a run re-bases a part whose
+    !> principal axes come this close to the Euler-angle singularity (theta = 0 or pi), the
+    !> namelist scenes' default theta_min (a dataset has no key for it; docs/rebasing.md)
+    real(wp), parameter :: adm_theta_min = 0.05_wp
+    !> Names of the expression slots of each kind of force statement
+    character(len=*), parameter :: slot_names(6) = [character(len=2) :: "FX", "FY", "FZ", &
+        & "TX", "TY", "TZ"]
+
+contains
+
+    !> The problem of a dataset, set up in place, and its initial state.
+    subroutine build_adm_problem(adm, default_ucosub, problem, q0, u0, error)
+        !> The dataset, read and checked (rollcon_adm_reader)
+        type(adm_model_type), intent(in) :: adm
+        !> The routine serving every UCON that names no ROUTINE (ADAMS's one UCOSUB per model);
+        !> absent or null: each UCON must name one
+        procedure(ucosub_interface), pointer, intent(in), optional :: default_ucosub
+        !> Set up in place: its equations refer to its model
+        type(problem_type), intent(inout), target :: problem
+        !> Coordinates and rates of all parts, in model order [m, rad, m/s, rad/s]
+        real(wp), allocatable, intent(out) :: q0(:), u0(:)
+        type(error_type), allocatable, intent(out) :: error
+        type(model_type) :: model
+        procedure(ucosub_interface), pointer :: fallback
+        integer :: i, p
+
+        fallback => null()
+        if (present(default_ucosub)) fallback => default_ucosub
+        allocate(model%parts(0), model%ucons(0), model%forces(0))
+        do i = 1, size(adm%parts)
+            if (adm%parts(i)%ground) cycle
+            call model%add_part(part_type(id=adm%parts(i)%id, mass=adm%parts(i)%mass, &
+                & inertia=adm%parts(i)%ip))
+        end do
+        call add_ucons(adm, fallback, model, error)
+        if (allocated(error)) return
+        do i = 1, size(adm%forces)
+            call add_force_statement(adm, adm%forces(i), model, error)
+            if (allocated(error)) return
+        end do
+        model%gravity = adm%gravity
+        call setup_model(model, error)
+        if (allocated(error)) return
+        call problem%init(model)
+        problem%settings = adm%run%settings
+        ! a dataset's parts are re-based at the theta limit, not stopped (docs/rebasing.md)
+        call problem%add_watch(new_theta_watch(adm_theta_min, rebase=.true.))
+        allocate(q0(6*size(model%parts)), u0(6*size(model%parts)))
+        p = 0
+        do i = 1, size(adm%parts)
+            if (adm%parts(i)%ground) cycle
+            p = p + 1
+            call part_state(adm, adm%parts(i), q0(6*p - 5:6*p), u0(6*p - 5:6*p))
+        end do
+        call check_forces_at_start(adm, problem, q0, u0, error)
+    end subroutine build_adm_problem
+
+    !> Every force expression finite at the start (t = 0): a NaN or infinity there (a LOG of a
+    !> negative number, a division by zero) is refused with the statement and key, not left for
+    !> the integrator to fail on.
+    subroutine check_forces_at_start(adm, problem, q0, u0, error)
+        type(adm_model_type), intent(in) :: adm
+        type(problem_type), intent(in) :: problem
+        real(wp), intent(in) :: q0(:), u0(:)
+        type(error_type), allocatable, intent(out) :: error
+        character(len=*), parameter :: names(3) = ["SFORCE", "VFORCE", "GFORCE"]
+        real(wp) :: values(6)
+        character(len=:), allocatable :: key
+        integer :: i, k
+
+        do i = 1, size(adm%forces)
+            values = marker_force_values(problem%model%forces(i)%statement, 0.0_wp, q0, u0)
+            do k = 1, 6
+                if (ieee_is_finite(values(k))) cycle
+                key = slot_names(k)
+                if (adm%forces(i)%kind == force_sforce) key = "FUNCTION"
+                call fatal_error(error, place(adm%file, adm%forces(i)%line) // ": " &
+                    & // names(adm%forces(i)%kind) // "/" // to_text(adm%forces(i)%id) // " " &
+                    & // key // ": the expression is not finite at t = 0 (" &
+                    & // to_text(values(k)) // "): a function outside its domain, or a " &
+                    & // "division by zero", stat_input)
+                return
+            end do
+        end do
+    end subroutine check_forces_at_start
+
+    !> Each UCON with its routine: ROUTINE=name, else the model's; built-in routines only with
+    !> lengths in metres.
+    subroutine add_ucons(adm, fallback, model, error)
+        type(adm_model_type), intent(in) :: adm
+        procedure(ucosub_interface), pointer, intent(in) :: fallback
+        type(model_type), intent(inout) :: model
+        type(error_type), allocatable, intent(out) :: error
+        procedure(ucosub_interface), pointer :: routine
+        character(len=:), allocatable :: where, name
+        logical :: time_free, found
+        integer :: k
+
+        do k = 1, size(adm%ucons)
+            associate (ucon => adm%ucons(k))
+                where = place(adm%file, ucon%line) // ": UCON/" // to_text(ucon%id)
+                name = ""
+                if (allocated(ucon%routine)) name = trim(ucon%routine)
+                if (len(name) > 0) then
+                    call find_builtin_ucosub(name, routine, time_free, found)
+                    if (.not. found) then
+                        call fatal_error(error, where // " ROUTINE=" // name // ": no built-in " &
+                            & // "UCOSUB has this name (built-ins: " // builtin_ucosub_names() &
+                            & // ")", stat_input)
+                        return
+                    end if
+                else if (associated(fallback)) then
+                    routine => fallback
+                    name = builtin_name(fallback, time_free)
+                    found = len(name) > 0
+                else
+                    call fatal_error(error, where // ": no UCOSUB serves this UCON: name a " &
+                        & // "built-in routine with ROUTINE=name (" // builtin_ucosub_names() &
+                        & // ") or give the model's UCOSUB (rollcon run MODEL.adm --ucosub " &
+                        & // "FILE|NAME)", stat_input)
+                    return
+                end if
+                if (found .and. adm%units%length /= 1.0_wp) then
+                    call fatal_error(error, where // ": the built-in routine '" // name &
+                        & // "' takes PAR lengths in metres, and PAR is passed as written, but " &
+                        & // "the dataset's length unit is " // to_text(adm%units%length) &
+                        & // " m; write the dataset in metres (UNITS/LENGTH=METER) or serve " &
+                        & // "the UCON with a UCOSUB of your own", stat_input)
+                    return
+                end if
+                call model%add_ucon(ucon%id, ucon%par, routine, time_free=time_free .and. found)
+            end associate
+        end do
+    end subroutine add_ucons
+
+    !> The catalog name of a built-in routine ("" for any other) and whether its F is free of
+    !> time.
+    function builtin_name(routine, time_free) result(name)
+        procedure(ucosub_interface), pointer, intent(in) :: routine
+        logical, intent(out) :: time_free
+        character(len=:), allocatable :: name
+        procedure(ucosub_interface), pointer :: candidate
+        character(len=:), allocatable :: names
+        integer :: start, comma
+        logical :: found
+
+        names = builtin_ucosub_names() // ","
+        start = 1
+        time_free = .false.
+        name = ""
+        do while (start < len(names))
+            comma = start + index(names(start:), ",") - 1
+            call find_builtin_ucosub(trim(adjustl(names(start:comma - 1))), candidate, &
+                & time_free, found)
+            if (found .and. associated(routine, candidate)) then
+                name = trim(adjustl(names(start:comma - 1)))
+                return
+            end if
+            start = comma + 1
+        end do
+        time_free = .false.
+    end function builtin_name
+
+    !> A force statement as a force between body-fixed markers.
+    subroutine add_force_statement(adm, statement, model, error)
+        type(adm_model_type), intent(in) :: adm
+        type(adm_force_type), intent(in) :: statement
+        type(model_type), intent(inout) :: model
+        type(error_type), allocatable, intent(out) :: error
+        type(applied_force_type) :: force
+        character(len=:), allocatable :: where, key
+        integer :: k, n, m
+
+        force%profile = profile_statement
+        associate (s => force%statement)
+            if (statement%kind == force_sforce) then
+                s%kind = merge(kind_translation, kind_rotation, statement%translation)
+                where = place(adm%file, statement%line) // ": SFORCE/" // to_text(statement%id)
+            else if (statement%kind == force_vforce) then
+                s%kind = kind_vector
+                where = place(adm%file, statement%line) // ": VFORCE/" // to_text(statement%id)
+            else
+                s%kind = kind_general
+                where = place(adm%file, statement%line) // ": GFORCE/" // to_text(statement%id)
+            end if
+            s%action_only = statement%action_only
+            s%i = adm_marker(adm, statement%i)
+            if (statement%j /= 0) s%j = adm_marker(adm, statement%j)
+            if (statement%rm /= 0) s%rm = adm_marker(adm, statement%rm)
+            s%functions = statement%functions
+            s%given = statement%given
+            s%time_unit = adm%units%time
+            s%length_unit = adm%units%length
+            s%force_unit = adm%units%force
+            allocate(s%markers(0))
+            do k = 1, 6
+                if (.not. statement%given(k)) cycle
+                key = slot_names(k)
+                if (statement%kind == force_sforce) key = "FUNCTION"
+                do n = 1, size(statement%functions(k)%inputs)
+                    associate (input => statement%functions(k)%inputs(n))
+                        m = marker_index(adm, input%marker)
+                        if (m == 0) then
+                            call fatal_error(error, where // " " // key // ": " &
+                                & // trim(quantity_names(input%quantity)) // "(" &
+                                & // to_text(input%marker) // "): no MARKER/" &
+                                & // to_text(input%marker) // " in the dataset", stat_input)
+                            return
+                        end if
+                        if (.not. any(s%markers%id == input%marker)) &
+                            & s%markers = [s%markers, adm_marker(adm, input%marker)]
+                    end associate
+                end do
+            end do
+        end associate
+        call model%add_force(force)
+    end subroutine add_force_statement
+
+    !> Marker `id` of the dataset as the model holds it: its part's index among the non-ground
+    !> parts (0: ground), its origin and axes in that part's principal axes (ground: in ground).
+    function adm_marker(adm, id) result(marker)
+        type(adm_model_type), intent(in) :: adm
+        !> Marker id (it exists: the reader checked the references)
+        integer, intent(in) :: id
+        type(marker_type) :: marker
+        real(wp) :: r_part(3, 3), r_cm(3, 3), r_marker(3, 3)
+        integer :: m, p, c, i
+
+        m = marker_index(adm, id)
+        p = findloc(adm%parts%id, adm%markers(m)%part, dim=1)
+        marker%id = id
+        associate (point => adm%markers(m)%qp, angles => adm%markers(m)%reuler, &
+            & part => adm%parts(p))
+            r_marker = rotation_matrix(angles(1), angles(2), angles(3))
+            if (part%ground) then
+                r_part = rotation_matrix(part%reuler(1), part%reuler(2), part%reuler(3))
+                marker%point = part%qg + matmul(r_part, point)
+                marker%axes = matmul(r_part, r_marker)
+                return
+            end if
+            marker%part = count(.not. adm%parts(:p)%ground)
+            c = marker_index(adm, part%cm)
+            r_cm = rotation_matrix(adm%markers(c)%reuler(1), adm%markers(c)%reuler(2), &
+                & adm%markers(c)%reuler(3))
+            ! principal axes = the CM marker's: coordinates in them are R_cm^T times the part's
+            marker%point = matmul(transpose(r_cm), point - adm%markers(c)%qp)
+            marker%axes = matmul(transpose(r_cm), r_marker)
+            marker%principal = c == m
+            if (marker%principal) then
+                marker%axes = 0.0_wp
+                do i = 1, 3
+                    marker%axes(i, i) = 1.0_wp
+                end do
+            end if
+        end associate
+    end function adm_marker
+
+    !> Position of marker `id` in the dataset's list (0: none).
+    pure integer function marker_index(adm, id)
+        type(adm_model_type), intent(in) :: adm
+        integer, intent(in) :: id
+        integer :: k
+
+        marker_index = 0
+        do k = 1, size(adm%markers)
+            if (adm%markers(k)%id == id) marker_index = k
+        end do
+    end function marker_index
+
+end module rollcon_adm_build

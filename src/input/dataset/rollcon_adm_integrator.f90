@@ -1,0 +1,171 @@
+! SPDX-License-Identifier: MIT
+!> The INTEGRATOR statement: the tolerance and the solver choices of the run settings. Every
+!> keyword maps to one run key, and its value is checked against that key's range or options
+!> in the run settings' one table (rollcon_run_keys); the choices together obey its rule
+!> (run_choice_rule). Nothing here restates a bound.
+!>
+!> ADAMS's keyword: ERROR = e (sets RTOL, and ATOL unless ATOL is given). rollcon's own:
+!> RTOL, ATOL [SI state units], MAXSTEPS (most steps per output interval), BAUMGARTE (rate
+!> [1/s]), FORMULATION = IDA | CVODE, METHOD = BDF | ADAMS, DRIFT = PROJECTION | BAUMGARTE |
+!> NONE, JACOBIAN = ANALYTIC | DQ.
+module rollcon_adm_integrator
+    use rollcon_kinds, only : wp
+    use rollcon_error, only : error_type, fatal_error, stat_input
+    use rollcon_text, only : to_text
+    use rollcon_adm_lexer, only : adm_statement_type, upper_case
+    use rollcon_adm_keywords, only : read_reals, argument_key, arg_place, resolve_name, &
+        & name_index, place
+    use rollcon_adm_model, only : adm_run_type
+    use rollcon_run_settings, only : run_settings_type
+    use rollcon_keys, only : key_type, find_key, kind_integer, kind_choice
+    use rollcon_run_keys, only : bind_run_keys, run_choice_rule
+    use rollcon_key_values, only : in_range, range_text
+    implicit none
+    private
+
+    public :: read_integrator, integrator_keys
+
+    !> The keywords of INTEGRATOR
+    character(len=*), parameter :: integrator_keys(9) = [character(len=11) :: "ERROR", &
+        & "RTOL", "ATOL", "MAXSTEPS", "BAUMGARTE", "FORMULATION", "METHOD", "DRIFT", "JACOBIAN"]
+    !> The &run key each keyword sets (ERROR: rtol, and atol unless ATOL is given)
+    character(len=*), parameter :: run_keys(9) = [character(len=14) :: "rtol", "rtol", &
+        & "atol", "max_steps", "baumgarte_rate", "formulation", "method", "drift", "jacobian"]
+
+contains
+
+    !> Read INTEGRATOR into run%settings, then check the choices together.
+    subroutine read_integrator(path, where, statement, run, error)
+        !> Dataset file, for messages
+        character(len=*), intent(in) :: path
+        !> "file:line: INTEGRATOR"
+        character(len=*), intent(in) :: where
+        type(adm_statement_type), intent(in) :: statement
+        type(adm_run_type), intent(inout) :: run
+        type(error_type), allocatable, intent(out) :: error
+        type(run_settings_type), target :: settings
+        type(key_type), allocatable :: keys(:)
+        character(len=:), allocatable :: key, at
+        integer :: lines(size(integrator_keys)), k, slot
+        real(wp) :: error_value
+
+        ! the table's pointers write into settings, which starts as the settings so far
+        settings = run%settings
+        keys = bind_run_keys(settings)
+        lines = 0
+        error_value = 0.0_wp
+        do k = 1, size(statement%arguments)
+            call argument_key(path, where, statement, k, integrator_keys, key, error)
+            if (allocated(error)) return
+            at = arg_place(path, where, statement%arguments(k)) // " " // key
+            slot = name_index(key, integrator_keys)
+            lines(slot) = statement%arguments(k)%line
+            associate (entry => keys(find_key(keys, "run", trim(run_keys(slot)))))
+                if (entry%kind == kind_choice) then
+                    call store_choice(statement, k, at, entry, error)
+                else
+                    call store_number(statement, k, at, entry, error)
+                    if (key == "ERROR" .and. .not. allocated(error)) error_value = entry%real_value
+                end if
+            end associate
+            if (allocated(error)) return
+        end do
+        if (lines(1) > 0 .and. lines(2) > 0) then
+            call fatal_error(error, place(path, lines(2)) // where(index(where, ": ", &
+                & back=.true.):) // " RTOL: give ERROR or RTOL, not both (ERROR sets RTOL)", &
+                & stat_input)
+            return
+        end if
+        if (lines(1) > 0 .and. lines(3) == 0) then
+            ! ERROR is ADAMS's one tolerance: it bounds the absolute error too
+            associate (entry => keys(find_key(keys, "run", "atol")))
+                if (.not. in_range(entry, error_value)) then
+                    call fatal_error(error, place(path, lines(1)) // where(index(where, ": ", &
+                        & back=.true.):) // " ERROR sets ATOL too (no ATOL given), so it must " &
+                        & // "be " // range_text(entry) // " (as &run atol), got " &
+                        & // to_text(error_value), stat_input)
+                    return
+                end if
+                entry%real_value = error_value
+            end associate
+        end if
+        run%settings = settings
+        call check_choices(path, where, statement%line, lines, run, error)
+    end subroutine read_integrator
+
+    !> A number for a real or integer &run key, within the key's range.
+    subroutine store_number(statement, k, at, entry, error)
+        type(adm_statement_type), intent(in) :: statement
+        integer, intent(in) :: k
+        !> "file:line: INTEGRATOR KEYWORD"
+        character(len=*), intent(in) :: at
+        type(key_type), intent(inout) :: entry
+        type(error_type), allocatable, intent(out) :: error
+        real(wp), allocatable :: values(:)
+        character(len=:), allocatable :: expected
+        logical :: whole
+
+        call read_reals(statement%arguments(k), at, 1, 1, .false., values, error)
+        if (allocated(error)) return
+        whole = entry%kind /= kind_integer .or. values(1) == aint(values(1))
+        if (.not. (whole .and. in_range(entry, values(1)))) then
+            expected = range_text(entry)
+            if (entry%kind == kind_integer) expected = "a whole number " // expected
+            call fatal_error(error, at // " must be " // expected // " (as &run " &
+                & // trim(entry%name) // "), got " // to_text(values(1)), stat_input)
+            return
+        end if
+        if (entry%kind == kind_integer) then
+            entry%integer_value = nint(values(1))
+        else
+            entry%real_value = values(1)
+        end if
+    end subroutine store_number
+
+    !> One of the options of a choice &run key, in any case, abbreviated to a unique prefix.
+    subroutine store_choice(statement, k, at, entry, error)
+        type(adm_statement_type), intent(in) :: statement
+        integer, intent(in) :: k
+        character(len=*), intent(in) :: at
+        type(key_type), intent(inout) :: entry
+        type(error_type), allocatable, intent(out) :: error
+        character(len=len(entry%options(1)%name)) :: names(size(entry%options))
+        character(len=:), allocatable :: choice
+        integer :: j
+
+        if (.not. statement%arguments(k)%assigned .or. &
+            & size(statement%arguments(k)%values) /= 1) then
+            call fatal_error(error, at // ": expected one name", stat_input)
+            return
+        end if
+        do j = 1, size(names)
+            names(j) = upper_case(entry%options(j)%name)
+        end do
+        call resolve_name(statement%arguments(k)%values(1)%text, names, trim(entry%name), at, &
+            & choice, error)
+        if (allocated(error)) return
+        entry%integer_value = entry%options(name_index(choice, names))%code
+    end subroutine store_choice
+
+    !> The scenes' rule on the solver choices, its message at the keyword's line.
+    subroutine check_choices(path, where, line, lines, run, error)
+        character(len=*), intent(in) :: path, where
+        !> Line of the statement, and of each keyword given (0: not given)
+        integer, intent(in) :: line, lines(:)
+        type(adm_run_type), intent(in) :: run
+        type(error_type), allocatable, intent(out) :: error
+        character(len=:), allocatable :: key, expected, got, keyword, given
+        integer :: slot
+
+        call run_choice_rule(run%settings, key, expected, got)
+        if (len(key) == 0) return
+        slot = name_index(key, run_keys)
+        keyword = trim(integrator_keys(slot))
+        given = ""
+        if (lines(slot) == 0) given = " (" // keyword // " not given: the default)"
+        call fatal_error(error, place(path, merge(lines(slot), line, lines(slot) > 0)) &
+            & // where(index(where, ": ", back=.true.):) // " " // keyword // " must be " &
+            & // expected // ", got " // got // given, stat_input)
+    end subroutine check_choices
+
+end module rollcon_adm_integrator

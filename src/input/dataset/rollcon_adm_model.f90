@@ -1,0 +1,96 @@
+! SPDX-License-Identifier: MIT
+!> What a dataset states, in SI units and radians, before it becomes a model to simulate:
+!> parts, markers, UCON statements, forces with their expressions, gravity and the run.
+module rollcon_adm_model
+    use rollcon_kinds, only : wp
+    use rollcon_expression, only : expression_type
+    use rollcon_adm_units, only : units_type
+    use rollcon_run_settings, only : run_settings_type
+    implicit none
+    private
+
+    public :: adm_part_type, adm_marker_type, adm_ucon_type, adm_force_type, adm_run_type
+    public :: adm_model_type, force_sforce, force_vforce, force_gforce
+
+    !> Kinds of force statement
+    integer, parameter :: force_sforce = 1, force_vforce = 2, force_gforce = 3
+
+    !> PART/id
+    type :: adm_part_type
+        integer :: id = 0
+        !> Line of the statement
+        integer :: line = 0
+        logical :: ground = .false.
+        !> Mass [kg]
+        real(wp) :: mass = 0.0_wp
+        !> Centre-of-mass marker id
+        integer :: cm = 0
+        !> Principal moments about the CM marker's axes [kg m^2]
+        real(wp) :: ip(3) = 0.0_wp
+        !> Part frame in ground: origin [m] and 3-1-3 Euler angles [rad]
+        real(wp) :: qg(3) = 0.0_wp, reuler(3) = 0.0_wp
+        !> Initial velocity of the CM marker, ground axes [m/s], and angular velocity, CM
+        !> marker axes [rad/s]; only the components given (the rest are left to the model)
+        real(wp) :: velocity(3) = 0.0_wp, angular_velocity(3) = 0.0_wp
+        logical :: velocity_given(3) = .false., angular_velocity_given(3) = .false.
+        !> EXACT=X:Y:Z:PSI:THETA:PHI: the principal axes' coordinates the initial-conditions
+        !> analysis must hold as given (X, Y, Z, psi, theta, phi; docs/initial-conditions.md)
+        logical :: exact(6) = .false.
+    end type adm_part_type
+
+    !> MARKER/id
+    type :: adm_marker_type
+        integer :: id = 0, line = 0
+        !> Part the marker is fixed on
+        integer :: part = 0
+        !> Origin [m] and 3-1-3 Euler angles [rad] in the part frame
+        real(wp) :: qp(3) = 0.0_wp, reuler(3) = 0.0_wp
+    end type adm_marker_type
+
+    !> UCON/id, FUNCTION=USER(par)[, ROUTINE=name]
+    type :: adm_ucon_type
+        integer :: id = 0, line = 0
+        real(wp), allocatable :: par(:)
+        !> ROUTINE=name: a built-in UCOSUB (rollcon_ucosub_catalog) serving this UCON; empty
+        !> when not given (the model's UCOSUB serves it, as in ADAMS)
+        character(len=:), allocatable :: routine
+    end type adm_ucon_type
+
+    !> SFORCE, VFORCE or GFORCE: markers and up to six expressions (FUNCTION is the first)
+    type :: adm_force_type
+        integer :: kind = force_sforce
+        integer :: id = 0, line = 0
+        !> Marker the force acts at, reaction marker (0: none), marker of the axes (0: ground)
+        integer :: i = 0, j = 0, rm = 0
+        !> SFORCE: translational (along I-J) or rotational (about the J z-axis)
+        logical :: translation = .true.
+        !> SFORCE: the reaction on J is left out
+        logical :: action_only = .false.
+        !> FX, FY, FZ, TX, TY, TZ (SFORCE: FUNCTION in the first); in dataset units
+        type(expression_type) :: functions(6)
+        logical :: given(6) = .false.
+    end type adm_force_type
+
+    !> SIMULATE and INTEGRATOR
+    type :: adm_run_type
+        !> End time [s] and output step [s] (SIMULATE's END, and STEPS or DTOUT), and the
+        !> solver settings (INTEGRATOR), in the run settings' one type (rollcon_run_settings)
+        type(run_settings_type) :: settings
+        !> Line of the SIMULATE statement (0: none)
+        integer :: line = 0
+    end type adm_run_type
+
+    !> A whole dataset
+    type :: adm_model_type
+        character(len=:), allocatable :: file, title
+        type(units_type) :: units
+        type(adm_part_type), allocatable :: parts(:)
+        type(adm_marker_type), allocatable :: markers(:)
+        type(adm_ucon_type), allocatable :: ucons(:)
+        type(adm_force_type), allocatable :: forces(:)
+        !> Gravitational acceleration, ground axes [m/s^2] (zero without ACCGRAV)
+        real(wp) :: gravity(3) = 0.0_wp
+        type(adm_run_type) :: run
+    end type adm_model_type
+
+end module rollcon_adm_model

@@ -1,0 +1,134 @@
+! SPDX-License-Identifier: MIT
+!> Turns a disk scene into a problem: the disk as a rigid part, three no-slip UCONs served by
+!> a rolling-disk UCOSUB, gravity, the strike, solver settings, limits and the initial state.
+module rollcon_disk_scene
+    use rollcon_kinds, only : wp
+    use rollcon_constants, only : pi
+    use rollcon_error, only : error_type
+    use rollcon_ucosub_contract, only : ucosub_interface
+    use rollcon_body, only : part_type
+    use rollcon_force, only : applied_force_type, profile_half_sine, frame_tilt
+    use rollcon_model, only : model_type, setup_model
+    use rollcon_disk_par, only : disk_par
+    use rollcon_disk_reference, only : rolling_disk_ucosub
+    use rollcon_gen_disk_height, only : disk_height_ucosub, disk_height_par, disk_height_time_free
+    use rollcon_gen_rolling_disk, only : generated_disk_ucosub => rolling_disk_ucosub, &
+        & rolling_disk_time_free
+    use rollcon_problem, only : problem_type
+    use rollcon_theta_watch, only : theta_watch_type, new_theta_watch
+    use rollcon_contact_watch, only : contact_watch_type
+    use rollcon_scene, only : scene_type, height_position
+    use rollcon_scene_state, only : disk_mass_properties, disk_initial_state
+    implicit none
+    private
+
+    public :: build_disk_problem, disk_initial_state, disk_mass_properties
+
+    !> Part id of the disk in every disk scene (and its place in model order)
+    integer, parameter, public :: disk_part = 1
+    !> Lift-off threshold as a fraction of the force scale, at least, and per unit rtol: a
+    !> normal force that is exactly zero (steady motion without gravity) shows rounding noise
+    !> (~1e-15 of the scale) and integration noise, measured at 6e-8 to 5e-5 of the scale for
+    !> rtol 1e-8 to 1e-4 (0.5 rtol at most); the threshold stays 100 times above it and far
+    !> below a real lift-off, where the force falls by the order of the scale
+    real(wp), parameter :: liftoff_fraction = 1.0e-5_wp, liftoff_per_rtol = 100.0_wp
+
+contains
+
+    !> Model, settings and limits of a disk scene, with ucosub serving the three no-slip UCONs.
+    subroutine build_disk_problem(scene, ucosub, problem, q0, u0, error)
+        type(scene_type), intent(in) :: scene
+        !> The routine of the no-slip UCONs
+        procedure(ucosub_interface) :: ucosub
+        !> Set up in place: its equations refer to its model
+        type(problem_type), intent(inout), target :: problem
+        real(wp), intent(out) :: q0(6), u0(6)
+        type(error_type), allocatable, intent(out) :: error
+        type(model_type), target :: model
+        type(part_type) :: disk
+        type(applied_force_type) :: strike
+        integer :: k
+        logical :: time_free
+
+        disk%id = disk_part
+        call disk_mass_properties(scene, disk%mass, disk%inertia)
+        call model%add_part(disk)
+        model%gravity = [0.0_wp, 0.0_wp, -scene%environment%gravity]
+        model%ucosub => ucosub
+        ! the hand-checked routine's F has no explicit time (docs/design.md §5), nor has the
+        ! generated one's (the generator says so): the driver skips their time partials; any
+        ! other routine (a user's) is asked for them
+        time_free = associated(model%ucosub, rolling_disk_ucosub) &
+            & .or. (associated(model%ucosub, generated_disk_ucosub) .and. rolling_disk_time_free)
+        do k = 1, 2
+            call model%add_ucon(k, disk_par(disk_part, scene%disk%radius, k), time_free=time_free)
+        end do
+        if (scene%run%height == height_position) then
+            ! Z - R sin(theta) = 0 in place of its time derivative F3 (docs/design.md §5)
+            call model%add_ucon(3, disk_height_par(disk_part, scene%disk%radius), &
+                & disk_height_ucosub, time_free=disk_height_time_free)
+        else
+            call model%add_ucon(3, disk_par(disk_part, scene%disk%radius, 3), time_free=time_free)
+        end if
+        if (scene%strike%enabled) then
+            ! Horizontal, along +Y, at the top of the rim: (0, R, 0) in the tilt frame.
+            strike%part = 1
+            strike%direction = [0.0_wp, 1.0_wp, 0.0_wp]
+            strike%profile = profile_half_sine
+            strike%start = scene%strike%time
+            strike%duration = scene%strike%duration
+            strike%impulse = scene%strike%impulse
+            strike%frame = frame_tilt
+            strike%point = [0.0_wp, scene%disk%radius, 0.0_wp]
+            call model%add_force(strike)
+        end if
+        call setup_model(model, error)
+        if (allocated(error)) return
+        call problem%init(model)
+        problem%settings = scene%run%run_settings_type
+        ! what the disk scene watches: its theta limit (a stop, in the disk's words), then its
+        ! contact with the ground; the rows' contact columns and the lift-off come from there
+        call problem%add_watch(disk_theta_watch(scene))
+        call problem%add_watch(disk_contact_watch(scene, disk%mass))
+        call disk_initial_state(scene, q0, u0)
+    end subroutine build_disk_problem
+
+    !> The disk's theta limit: a stop at &limits theta_min, worded for the disk.
+    function disk_theta_watch(scene) result(watch)
+        type(scene_type), intent(in) :: scene
+        type(theta_watch_type) :: watch
+
+        watch = new_theta_watch(scene%limits%theta_min, rebase=.false.)
+        watch%worded_part = disk_part
+        watch%flat_words = "the disk lies nearly flat"
+    end function disk_theta_watch
+
+    !> The disk's rim on the ground, with the scale its lift-off is judged by. Force scale: the
+    !> weight m g, plus m R |omega0|^2 (the centripetal force of the initial spin, which sets
+    !> the normal force without gravity), plus the strike's peak force; a lift-off is a normal
+    !> force below -max(liftoff_fraction, liftoff_per_rtol rtol) times it.
+    pure function disk_contact_watch(scene, mass) result(watch)
+        type(scene_type), intent(in) :: scene
+        !> Disk mass [kg]
+        real(wp), intent(in) :: mass
+        type(contact_watch_type) :: watch
+        real(wp) :: spin_squared, force_scale
+
+        ! |omega|^2 with omega = psidot e_Z + thetadot e_x1 + phidot e_z2 (docs/design.md §3):
+        ! e_x1 is normal to both others, and e_Z . e_z2 = cos(theta)
+        associate (i => scene%initial)
+            spin_squared = i%psidot**2 + i%thetadot**2 + i%phidot**2 &
+                & + 2.0_wp*i%psidot*i%phidot*cos(i%theta)
+        end associate
+        force_scale = mass*(scene%environment%gravity + scene%disk%radius*max(spin_squared, &
+            & 0.0_wp))
+        ! a half-sine pulse of impulse J over T peaks at pi J / (2 T)
+        if (scene%strike%enabled) force_scale = force_scale &
+            & + 0.5_wp*pi*abs(scene%strike%impulse)/scene%strike%duration
+        watch%part = disk_part
+        watch%radius = scene%disk%radius
+        watch%stop_on_liftoff = scene%limits%stop_on_liftoff
+        watch%liftoff_force = max(liftoff_fraction, liftoff_per_rtol*scene%run%rtol)*force_scale
+    end function disk_contact_watch
+
+end module rollcon_disk_scene

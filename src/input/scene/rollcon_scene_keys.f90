@@ -1,0 +1,80 @@
+! SPDX-License-Identifier: MIT
+!> The table of every key a scene file may hold (rollcon_keys): its group, kind, unit, allowed
+!> range or choices, and where its value goes in a scene_type. The &run keys are the run
+!> settings' own table (rollcon_run_keys) plus the contact's `height`. Adding a key is one line
+!> in bind_keys (and its component in rollcon_scene_type, its row in docs/scenes.md).
+module rollcon_scene_keys
+    use rollcon_kinds, only : wp
+    use rollcon_constants, only : pi
+    use rollcon_keys, only : key_type, option_type, real_key, logical_key, choice_key
+    use rollcon_run_keys, only : bind_run_keys, time_min, time_max
+    use rollcon_scene_type, only : scene_type, height_velocity, height_position
+    implicit none
+    private
+
+    public :: bind_keys, scene_groups
+
+    !> Groups of a scene file, in the order the documentation gives them
+    character(len=*), parameter :: scene_groups(*) = [character(len=11) :: "disk", &
+        & "environment", "initial", "strike", "run", "limits"]
+
+    !> Speed of light [m/s]: the bound of every speed, rigid-body mechanics being Newtonian
+    real(wp), parameter :: light = 299792458.0_wp
+    !> Largest length [m] (1000 km) and smallest (1 um): beyond, a rigid disk with SI
+    !> tolerances is not a meaningful model
+    real(wp), parameter :: length_max = 1.0e6_wp, length_min = 1.0e-6_wp
+    !> Largest position [m]: a start 1e9 m away still resolves 1e-7 m in a double
+    real(wp), parameter :: position_max = 1.0e9_wp
+    !> Largest angle [rad]: sin and cos of 1e6 rad still resolve 1e-10 rad
+    real(wp), parameter :: angle_max = 1.0e6_wp
+    !> Largest rate [rad/s]
+    real(wp), parameter :: rate_max = 1.0e6_wp
+    !> Densities [kg/m^3]: lighter than air is not a disk; 1e5 is four times osmium's
+    real(wp), parameter :: density_min = 1.0e-3_wp, density_max = 1.0e5_wp
+    !> Largest gravity [m/s^2], 36 times the Sun's surface gravity
+    real(wp), parameter :: gravity_max = 1.0e4_wp
+    !> Largest impulse [N s]
+    real(wp), parameter :: impulse_max = 1.0e9_wp
+
+contains
+
+    !> The table of keys, each pointing into scene; the pointers live as long as scene.
+    subroutine bind_keys(scene, keys)
+        !> The scene the values go to
+        type(scene_type), target, intent(inout) :: scene
+        type(key_type), allocatable, intent(out) :: keys(:)
+
+        associate (d => scene%disk, i => scene%initial, s => scene%strike, r => scene%run, &
+                & l => scene%limits)
+            keys = [ &
+                & real_key("disk", "radius", d%radius, "m", length_min, length_max), &
+                & real_key("disk", "thickness", d%thickness, "m", length_min, length_max), &
+                & real_key("disk", "density", d%density, "kg/m^3", density_min, density_max), &
+                & real_key("environment", "gravity", scene%environment%gravity, "m/s^2", &
+                & 0.0_wp, gravity_max), &
+                & real_key("initial", "psi", i%psi, "rad", -angle_max, angle_max), &
+                & real_key("initial", "theta", i%theta, "rad", 0.0_wp, pi, .true., .true.), &
+                & real_key("initial", "phi", i%phi, "rad", -angle_max, angle_max), &
+                & real_key("initial", "psidot", i%psidot, "rad/s", -rate_max, rate_max), &
+                & real_key("initial", "thetadot", i%thetadot, "rad/s", -rate_max, rate_max), &
+                & real_key("initial", "phidot", i%phidot, "rad/s", -rate_max, rate_max), &
+                & real_key("initial", "speed", i%speed, "m/s", -light, light), &
+                & real_key("initial", "x", i%x, "m", -position_max, position_max), &
+                & real_key("initial", "y", i%y, "m", -position_max, position_max), &
+                & real_key("initial", "z", i%z, "m", -position_max, position_max), &
+                & real_key("initial", "xdot", i%xdot, "m/s", -light, light), &
+                & real_key("initial", "ydot", i%ydot, "m/s", -light, light), &
+                & real_key("initial", "zdot", i%zdot, "m/s", -light, light), &
+                & real_key("strike", "time", s%time, "s", 0.0_wp, time_max), &
+                & real_key("strike", "duration", s%duration, "s", time_min, time_max), &
+                & real_key("strike", "impulse", s%impulse, "N s", -impulse_max, impulse_max), &
+                & bind_run_keys(r%run_settings_type), &
+                & choice_key("run", "height", r%height, [option_type("velocity", &
+                & height_velocity), option_type("position", height_position)]), &
+                & real_key("limits", "theta_min", l%theta_min, "rad", 0.0_wp, pi, &
+                & upper_open=.true.), &
+                & logical_key("limits", "stop_on_liftoff", l%stop_on_liftoff)]
+        end associate
+    end subroutine bind_keys
+
+end module rollcon_scene_keys

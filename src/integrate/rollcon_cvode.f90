@@ -1,0 +1,325 @@
+! SPDX-License-Identifier: MIT
+!> CVODE on a system's ODE form: BDF or Adams, dense Newton solves with the system's Jacobian or
+!> CVODE's difference quotients, the system's projection when it asks for one, root finding.
+module rollcon_cvode
+    use, intrinsic :: iso_c_binding, only : c_ptr, c_null_ptr, c_int, c_long, c_int64_t, &
+        & c_double, c_funloc, c_loc, c_f_pointer, c_associated
+    use rollcon_kinds, only : wp
+    use rollcon_error, only : error_type, fatal_error, stat_solver
+    use rollcon_text, only : to_text
+    use rollcon_run_settings, only : run_settings_type, method_adams
+    use rollcon_dynamic_system, only : dynamic_system_type
+    use rollcon_integrator, only : integrator_type, integrator_statistics_type, solver_failure
+    use fsundials_context_mod, only : FSUNContext_Create, FSUNContext_Free
+    use fsundials_nvector_mod, only : N_Vector, FN_VDestroy, FN_VGetArrayPointer
+    use fsundials_matrix_mod, only : SUNMatrix, FSUNMatDestroy
+    use fsundials_linearsolver_mod, only : SUNLinearSolver, FSUNLinSolFree
+    use fnvector_serial_mod, only : FN_VMake_Serial
+    use fsunmatrix_dense_mod, only : FSUNDenseMatrix, FSUNDenseMatrix_Data
+    use fsunlinsol_dense_mod, only : FSUNLinSol_Dense
+    use fcvode_mod, only : FCVodeCreate, FCVodeInit, FCVodeSStolerances, FCVodeSetUserData, &
+        & FCVodeSetLinearSolver, FCVodeSetJacFn, FCVodeSetMaxNumSteps, FCVodeSetStopTime, &
+        & FCVode, FCVodeRootInit, FCVodeGetRootInfo, FCVodeSetProjFn, FCVodeFree, &
+        & FCVodeGetNumSteps, FCVodeGetNumRhsEvals, FCVodeGetNumJacEvals, &
+        & FCVodeGetNumLinRhsEvals, FCVodeGetNumErrTestFails, FCVodeGetNumGEvals, FCVodeGetDky, &
+        & FCVodeSetErrFile, &
+        & FCVodeReInit, &
+        & CV_BDF, CV_ADAMS, CV_NORMAL, &
+        & CV_SUCCESS, CV_ROOT_RETURN, CV_TSTOP_RETURN, CV_TOO_MUCH_WORK, CV_TOO_MUCH_ACC, &
+        & CV_ERR_FAILURE, CV_CONV_FAILURE
+    implicit none
+    private
+
+    public :: cvode_integrator_type
+
+    !> What the callbacks receive as user data: the system, and what the event function needs
+    !> to read the state's derivative off CVODE's interpolating polynomial
+    type :: callback_data_type
+        class(dynamic_system_type), pointer :: system => null()
+        type(c_ptr) :: memory = c_null_ptr
+        !> y'(t) from CVodeGetDky, and its storage
+        type(N_Vector), pointer :: rates => null()
+        real(c_double), allocatable :: rate_values(:)
+    end type callback_data_type
+
+    !> One CVODE integration of a system's ODE form
+    type, extends(integrator_type) :: cvode_integrator_type
+        type(c_ptr) :: context = c_null_ptr
+        type(c_ptr) :: memory = c_null_ptr
+        type(N_Vector), pointer :: y => null()
+        type(callback_data_type) :: data
+        type(SUNMatrix), pointer :: matrix => null()
+        type(SUNLinearSolver), pointer :: solver => null()
+        !> Storage behind y
+        real(c_double), allocatable :: values(:)
+    contains
+        procedure :: start
+        procedure :: restart
+        procedure :: advance
+        procedure :: statistics
+        procedure :: destroy
+    end type cvode_integrator_type
+
+contains
+
+    !> Create CVODE for system from (t0, y0) with the settings' method, tolerances, step limit
+    !> and Jacobian, watching the system's event functions (yp0 is not used).
+    subroutine start(self, system, settings, t0, y0, yp0, t_stop, error)
+        class(cvode_integrator_type), intent(inout), target :: self
+        class(dynamic_system_type), intent(inout), target :: system
+        type(run_settings_type), intent(in) :: settings
+        real(wp), intent(in) :: t0, y0(:), yp0(:), t_stop
+        type(error_type), allocatable, intent(out) :: error
+        integer(c_int) :: flag, lmm
+
+        allocate(self%values(size(y0)))
+        self%values = y0
+        flag = FSUNContext_Create(c_null_ptr, self%context)
+        if (check(flag, "SUNContext_Create", error)) return
+        self%y => FN_VMake_Serial(int(size(y0), c_int64_t), self%values, self%context)
+        if (.not. associated(self%y)) then
+            call fatal_error(error, "CVODE: could not create the state vector", stat_solver)
+            return
+        end if
+        lmm = CV_BDF
+        if (settings%method == method_adams) lmm = CV_ADAMS
+        self%memory = FCVodeCreate(lmm, self%context)
+        if (.not. c_associated(self%memory)) then
+            call fatal_error(error, "CVODE: CVodeCreate failed", stat_solver)
+            return
+        end if
+        ! every flag is checked and reported by rollcon: CVODE prints nothing itself
+        flag = FCVodeSetErrFile(self%memory, c_null_ptr)
+        if (check(flag, "CVodeSetErrFile", error)) return
+        flag = FCVodeInit(self%memory, c_funloc(rhs), t0, self%y)
+        if (check(flag, "CVodeInit", error)) return
+        allocate(self%data%rate_values(size(y0)), source=0.0_wp)
+        self%data%rates => FN_VMake_Serial(int(size(y0), c_int64_t), self%data%rate_values, &
+            & self%context)
+        if (.not. associated(self%data%rates)) then
+            call fatal_error(error, "CVODE: could not create the derivative vector", stat_solver)
+            return
+        end if
+        self%data%system => system
+        self%data%memory = self%memory
+        flag = FCVodeSetUserData(self%memory, c_loc(self%data))
+        if (check(flag, "CVodeSetUserData", error)) return
+        flag = FCVodeSStolerances(self%memory, settings%rtol, settings%atol)
+        if (check(flag, "CVodeSStolerances", error)) return
+        flag = FCVodeSetMaxNumSteps(self%memory, int(settings%max_steps, c_long))
+        if (check(flag, "CVodeSetMaxNumSteps", error)) return
+        self%matrix => FSUNDenseMatrix(int(size(y0), c_int64_t), int(size(y0), c_int64_t), &
+            & self%context)
+        self%solver => FSUNLinSol_Dense(self%y, self%matrix, self%context)
+        if (.not. associated(self%matrix) .or. .not. associated(self%solver)) then
+            call fatal_error(error, "CVODE: could not create the dense linear solver", stat_solver)
+            return
+        end if
+        flag = FCVodeSetLinearSolver(self%memory, self%solver, self%matrix)
+        if (check(flag, "CVodeSetLinearSolver", error)) return
+        if (settings%analytic_jacobian()) then
+            flag = FCVodeSetJacFn(self%memory, c_funloc(jacobian))
+            if (check(flag, "CVodeSetJacFn", error)) return
+        end if
+        if (system%projects()) then
+            flag = FCVodeSetProjFn(self%memory, c_funloc(projection))
+            if (check(flag, "CVodeSetProjFn", error)) return
+        end if
+        flag = FCVodeSetStopTime(self%memory, t_stop)
+        if (check(flag, "CVodeSetStopTime", error)) return
+        if (system%root_count() > 0) then
+            flag = FCVodeRootInit(self%memory, int(system%root_count(), c_int), &
+                & c_funloc(events))
+            if (check(flag, "CVodeRootInit", error)) return
+        end if
+        if (allocated(self%fired)) deallocate(self%fired)
+        allocate(self%fired(system%root_count()), source=0_c_int)
+        self%failed_flag = 0
+    end subroutine start
+
+    !> Start again from (t0, y0) with the settings, tolerances, callbacks and event functions of
+    !> start: after a re-basing has changed the coordinates (CVodeReInit).
+    subroutine restart(self, t0, y0, yp0, error)
+        class(cvode_integrator_type), intent(inout) :: self
+        real(wp), intent(in) :: t0, y0(:), yp0(:)
+        type(error_type), allocatable, intent(out) :: error
+        integer(c_int) :: flag
+
+        self%values(:) = y0
+        flag = FCVodeReInit(self%memory, t0, self%y)
+        if (check(flag, "CVodeReInit", error)) return
+    end subroutine restart
+
+    !> Integrate towards t_out (never past t_stop); y at t_reached (yp is left as it was).
+    subroutine advance(self, t_out, t_stop, t_reached, y, yp, root, error)
+        class(cvode_integrator_type), intent(inout) :: self
+        real(wp), intent(in) :: t_out, t_stop
+        real(wp), intent(out) :: t_reached
+        real(wp), intent(inout) :: y(:), yp(:)
+        integer, intent(out) :: root
+        type(error_type), allocatable, intent(out) :: error
+        real(c_double) :: t_return(1)
+        integer(c_int) :: flag
+
+        root = 0
+        flag = FCVodeSetStopTime(self%memory, t_stop)
+        if (check(flag, "CVodeSetStopTime", error)) return
+        flag = FCVode(self%memory, t_out, self%y, t_return, CV_NORMAL)
+        t_reached = t_return(1)
+        y = self%values
+        if (flag == CV_ROOT_RETURN) then
+            flag = FCVodeGetRootInfo(self%memory, self%fired)
+            root = findloc(self%fired /= 0, .true., dim=1)
+            return
+        end if
+        if (flag == CV_SUCCESS .or. flag == CV_TSTOP_RETURN) return
+        self%failed_flag = int(flag)
+        call solver_failure(error, "CVODE", t_reached, int(flag), flag_meaning(flag), &
+            & self%data%system)
+    end subroutine advance
+
+    !> Steps, right-hand sides (own and for difference-quotient Jacobians), Jacobians,
+    !> error-test failures.
+    function statistics(self) result(counts)
+        class(cvode_integrator_type), intent(in) :: self
+        type(integrator_statistics_type) :: counts
+        integer(c_long) :: count(1), extra(1)
+        integer(c_int) :: flag
+
+        if (.not. c_associated(self%memory)) return
+        flag = FCVodeGetNumSteps(self%memory, count)
+        counts%steps = int(count(1))
+        flag = FCVodeGetNumRhsEvals(self%memory, count)
+        flag = FCVodeGetNumLinRhsEvals(self%memory, extra)
+        counts%functions = int(count(1) + extra(1))
+        flag = FCVodeGetNumJacEvals(self%memory, count)
+        counts%jacobians = int(count(1))
+        flag = FCVodeGetNumErrTestFails(self%memory, count)
+        counts%failures = int(count(1))
+        flag = FCVodeGetNumGEvals(self%memory, count)
+        counts%roots = int(count(1))
+    end function statistics
+
+    !> Free in reverse order of creation.
+    subroutine destroy(self)
+        class(cvode_integrator_type), intent(inout) :: self
+        integer(c_int) :: flag
+
+        if (c_associated(self%memory)) call FCVodeFree(self%memory)
+        if (associated(self%solver)) flag = FSUNLinSolFree(self%solver)
+        if (associated(self%matrix)) call FSUNMatDestroy(self%matrix)
+        if (associated(self%y)) call FN_VDestroy(self%y)
+        if (associated(self%data%rates)) call FN_VDestroy(self%data%rates)
+        if (c_associated(self%context)) flag = FSUNContext_Free(self%context)
+        self%memory = c_null_ptr
+        self%context = c_null_ptr
+        nullify(self%solver, self%matrix, self%y, self%data%rates, self%data%system)
+        self%data%memory = c_null_ptr
+        if (allocated(self%values)) deallocate(self%values)
+        if (allocated(self%data%rate_values)) deallocate(self%data%rate_values)
+        if (allocated(self%fired)) deallocate(self%fired)
+    end subroutine destroy
+
+    !> What a failure flag of CVODE means (names of the CVODE guide), for messages: SUNDIALS
+    !> itself prints nothing (its error file is none).
+    pure function flag_meaning(flag) result(text)
+        integer(c_int), intent(in) :: flag
+        character(len=:), allocatable :: text
+
+        select case (flag)
+        case (CV_TOO_MUCH_WORK)
+            text = "CV_TOO_MUCH_WORK, max_steps internal steps taken before the next output time"
+        case (CV_TOO_MUCH_ACC)
+            text = "CV_TOO_MUCH_ACC, the tolerances ask for more accuracy than the arithmetic has"
+        case (CV_ERR_FAILURE)
+            text = "CV_ERR_FAILURE, the error test failed repeatedly or at the smallest step"
+        case (CV_CONV_FAILURE)
+            text = "CV_CONV_FAILURE, the corrector failed repeatedly or at the smallest step"
+        case default
+            text = "see the CVODE guide's return codes"
+        end select
+    end function flag_meaning
+
+    !> True (and error set) when a SUNDIALS call did not succeed.
+    function check(flag, routine, error) result(failed)
+        integer(c_int), intent(in) :: flag
+        character(len=*), intent(in) :: routine
+        type(error_type), allocatable, intent(out) :: error
+        logical :: failed
+
+        failed = flag /= 0
+        if (failed) call fatal_error(error, "CVODE: " // routine // " returned flag " &
+            & // to_text(int(flag)), stat_solver)
+    end function check
+
+    integer(c_int) function rhs(t, y, ydot, user_data) result(ierr) &
+            & bind(c, name="rollcon_cvode_rhs")
+        real(c_double), value :: t
+        type(N_Vector) :: y, ydot
+        type(c_ptr), value :: user_data
+        type(callback_data_type), pointer :: data
+        real(c_double), pointer :: yv(:), ydv(:)
+
+        call c_f_pointer(user_data, data)
+        yv => FN_VGetArrayPointer(y)
+        ydv => FN_VGetArrayPointer(ydot)
+        ierr = int(data%system%ode_rhs(t, yv, ydv), c_int)
+    end function rhs
+
+    integer(c_int) function jacobian(t, y, fy, jac, user_data, tmp1, tmp2, tmp3) result(ierr) &
+            & bind(c, name="rollcon_cvode_jacobian")
+        real(c_double), value :: t
+        type(N_Vector) :: y, fy, tmp1, tmp2, tmp3
+        type(SUNMatrix) :: jac
+        type(c_ptr), value :: user_data
+        type(callback_data_type), pointer :: data
+        real(c_double), pointer :: yv(:), entries(:), matrix(:, :)
+
+        call c_f_pointer(user_data, data)
+        yv => FN_VGetArrayPointer(y)
+        entries => FSUNDenseMatrix_Data(jac)
+        call c_f_pointer(c_loc(entries(1)), matrix, [size(yv), size(yv)])
+        ierr = int(data%system%ode_jacobian(t, yv, matrix), c_int)
+    end function jacobian
+
+    integer(c_int) function projection(t, ycur, corr, eps_proj, err, user_data) result(ierr) &
+            & bind(c, name="rollcon_cvode_projection")
+        real(c_double), value :: t, eps_proj
+        type(N_Vector) :: ycur, corr
+        type(c_ptr), value :: err
+        type(c_ptr), value :: user_data
+        type(callback_data_type), pointer :: data
+        real(c_double), pointer :: yv(:), cv(:)
+
+        call c_f_pointer(user_data, data)
+        yv => FN_VGetArrayPointer(ycur)
+        cv => FN_VGetArrayPointer(corr)
+        ! The correction is the system's (exact, whatever eps_proj asks); the error estimate
+        ! err, when given, is left as CVODE computed it.
+        ierr = int(data%system%project(t, yv, cv), c_int)
+    end function projection
+
+    integer(c_int) function events(t, y, gout, user_data) result(ierr) &
+            & bind(c, name="rollcon_cvode_events")
+        real(c_double), value :: t
+        type(N_Vector) :: y
+        real(c_double) :: gout(*)
+        type(c_ptr), value :: user_data
+        type(callback_data_type), pointer :: data
+        real(c_double), pointer :: yv(:)
+        integer :: nroots
+
+        call c_f_pointer(user_data, data)
+        yv => FN_VGetArrayPointer(y)
+        nroots = data%system%root_count()
+        ! y' at t from CVODE's own polynomial: the system need not evaluate its right-hand
+        ! side. Outside the last step (the start-up check just past t0) CVODE refuses; then
+        ! the system works it out itself.
+        if (FCVodeGetDky(data%memory, t, 1_c_int, data%rates) == CV_SUCCESS) then
+            ierr = int(data%system%roots(t, yv, gout(:nroots), data%rate_values), c_int)
+        else
+            ierr = int(data%system%roots(t, yv, gout(:nroots)), c_int)
+        end if
+    end function events
+
+end module rollcon_cvode

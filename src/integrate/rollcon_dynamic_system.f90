@@ -1,0 +1,128 @@
+! SPDX-License-Identifier: MIT
+!> What an integrator integrates: an ODE y' = f(t, y) for CVODE or a DAE F(t, y, y') = 0 for
+!> IDA, their Newton matrices, an optional projection onto constraints, and event functions.
+!> A system implements the form its integrator asks for; the defaults refuse (a callback code
+!> of -1, unrecoverable). Callbacks never print or stop: a failure is kept by the system and
+!> read by the integrator through `failure_text` for its message.
+!>
+!> Callback codes, as SUNDIALS reads them: 0 success, > 0 recoverable (the integrator cuts the
+!> step), < 0 unrecoverable.
+module rollcon_dynamic_system
+    use rollcon_kinds, only : wp
+    implicit none
+    private
+
+    public :: dynamic_system_type
+
+    type, abstract :: dynamic_system_type
+    contains
+        procedure :: ode_rhs
+        procedure :: ode_jacobian
+        procedure :: projects
+        procedure :: project
+        procedure :: dae_residual
+        procedure :: dae_jacobian
+        procedure :: dae_differential
+        procedure :: root_count
+        procedure :: roots
+        procedure :: failure_text
+    end type dynamic_system_type
+
+contains
+
+    !> y' = f(t, y).
+    integer function ode_rhs(self, time, y, ydot) result(ierr)
+        class(dynamic_system_type), intent(inout) :: self
+        real(wp), intent(in) :: time, y(:)
+        real(wp), intent(out) :: ydot(:)
+
+        ydot = 0.0_wp
+        ierr = -1
+    end function ode_rhs
+
+    !> The Newton matrix df/dy at (t, y), column-major, size(y) square.
+    integer function ode_jacobian(self, time, y, matrix) result(ierr)
+        class(dynamic_system_type), intent(inout) :: self
+        real(wp), intent(in) :: time, y(:)
+        real(wp), intent(out) :: matrix(:, :)
+
+        matrix = 0.0_wp
+        ierr = -1
+    end function ode_jacobian
+
+    !> The system keeps its states on a constraint manifold by projection (CVODE's projection
+    !> interface) when true.
+    logical function projects(self)
+        class(dynamic_system_type), intent(in) :: self
+
+        projects = .false.
+    end function projects
+
+    !> The correction that takes y onto the constraints: y + correction satisfies them.
+    integer function project(self, time, y, correction) result(ierr)
+        class(dynamic_system_type), intent(inout) :: self
+        real(wp), intent(in) :: time, y(:)
+        real(wp), intent(out) :: correction(:)
+
+        correction = 0.0_wp
+        ierr = -1
+    end function project
+
+    !> F(t, y, y').
+    integer function dae_residual(self, time, y, yp, residual) result(ierr)
+        class(dynamic_system_type), intent(inout) :: self
+        real(wp), intent(in) :: time, y(:), yp(:)
+        real(wp), intent(out) :: residual(:)
+
+        residual = 0.0_wp
+        ierr = -1
+    end function dae_residual
+
+    !> The Newton matrix dF/dy + cj dF/dy'.
+    integer function dae_jacobian(self, time, cj, y, yp, matrix) result(ierr)
+        class(dynamic_system_type), intent(inout) :: self
+        real(wp), intent(in) :: time, cj, y(:), yp(:)
+        real(wp), intent(out) :: matrix(:, :)
+
+        matrix = 0.0_wp
+        ierr = -1
+    end function dae_jacobian
+
+    !> For each component of a DAE state: 1 differential, 0 algebraic (IDASetId).
+    function dae_differential(self, n) result(kinds)
+        class(dynamic_system_type), intent(in) :: self
+        !> Size of the DAE state
+        integer, intent(in) :: n
+        real(wp) :: kinds(n)
+
+        kinds = 1.0_wp
+    end function dae_differential
+
+    !> Number of event functions (0: none).
+    integer function root_count(self)
+        class(dynamic_system_type), intent(in) :: self
+
+        root_count = 0
+    end function root_count
+
+    !> The event functions at (t, y): root_count() values. ydot is y' when the integrator
+    !> knows it without a call of the system (CVODE's interpolating polynomial).
+    integer function roots(self, time, y, g, ydot) result(ierr)
+        class(dynamic_system_type), intent(inout) :: self
+        real(wp), intent(in) :: time, y(:)
+        real(wp), intent(out) :: g(:)
+        real(wp), intent(in), optional :: ydot(:)
+
+        g = 0.0_wp
+        ierr = -1
+    end function roots
+
+    !> What made a callback fail, when it kept a reason ("" when none).
+    function failure_text(self) result(text)
+        class(dynamic_system_type), intent(in) :: self
+        character(len=:), allocatable :: text
+
+        text = ""
+    end function failure_text
+
+end module rollcon_dynamic_system

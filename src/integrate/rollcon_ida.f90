@@ -1,0 +1,302 @@
+! SPDX-License-Identifier: MIT
+!> IDA on a system's DAE form: its algebraic components (a model's multipliers) excluded from
+!> the error test, dense Newton solves with the system's Jacobian or IDA's difference quotients.
+module rollcon_ida
+    use, intrinsic :: iso_c_binding, only : c_ptr, c_null_ptr, c_int, c_long, c_int64_t, &
+        & c_double, c_funloc, c_loc, c_f_pointer, c_associated
+    use rollcon_kinds, only : wp
+    use rollcon_error, only : error_type, fatal_error, stat_solver
+    use rollcon_text, only : to_text
+    use rollcon_run_settings, only : run_settings_type
+    use rollcon_dynamic_system, only : dynamic_system_type
+    use rollcon_integrator, only : integrator_type, integrator_statistics_type, solver_failure
+    use fsundials_context_mod, only : FSUNContext_Create, FSUNContext_Free
+    use fsundials_types_mod, only : SUNTRUE
+    use fsundials_nvector_mod, only : N_Vector, FN_VDestroy, FN_VGetArrayPointer
+    use fsundials_matrix_mod, only : SUNMatrix, FSUNMatDestroy
+    use fsundials_linearsolver_mod, only : SUNLinearSolver, FSUNLinSolFree
+    use fnvector_serial_mod, only : FN_VMake_Serial
+    use fsunmatrix_dense_mod, only : FSUNDenseMatrix, FSUNDenseMatrix_Data
+    use fsunlinsol_dense_mod, only : FSUNLinSol_Dense
+    use fida_mod, only : FIDACreate, FIDAInit, FIDASVtolerances, FIDASetUserData, &
+        & FIDASetLinearSolver, FIDASetJacFn, FIDASetMaxNumSteps, FIDASetStopTime, FIDASolve, &
+        & FIDARootInit, FIDAGetRootInfo, FIDASetId, FIDASetSuppressAlg, FIDAFree, FIDAReInit, &
+        & FIDAGetNumSteps, FIDAGetNumResEvals, FIDAGetNumJacEvals, FIDAGetNumLinResEvals, &
+        & FIDAGetNumErrTestFails, FIDAGetNumGEvals, FIDASetErrFile, IDA_NORMAL, IDA_SUCCESS, &
+        & IDA_ROOT_RETURN, &
+        & IDA_TSTOP_RETURN, IDA_TOO_MUCH_WORK, IDA_TOO_MUCH_ACC, IDA_ERR_FAIL, IDA_CONV_FAIL
+    implicit none
+    private
+
+    public :: ida_integrator_type
+
+    !> What the callbacks receive as user data
+    type :: callback_data_type
+        class(dynamic_system_type), pointer :: system => null()
+    end type callback_data_type
+
+    !> One IDA integration of a system's DAE form
+    type, extends(integrator_type) :: ida_integrator_type
+        type(c_ptr) :: context = c_null_ptr
+        type(c_ptr) :: memory = c_null_ptr
+        type(callback_data_type) :: data
+        type(N_Vector), pointer :: y => null(), yp => null(), id => null()
+        type(SUNMatrix), pointer :: matrix => null()
+        type(SUNLinearSolver), pointer :: solver => null()
+        type(N_Vector), pointer :: tolerances => null()
+        !> Storage behind y, y', the id vector and the absolute tolerances
+        real(c_double), allocatable :: values(:), rates(:), kinds(:), absolute(:)
+    contains
+        procedure :: start
+        procedure :: restart
+        procedure :: advance
+        procedure :: statistics
+        procedure :: destroy
+    end type ida_integrator_type
+
+contains
+
+    !> Create IDA for system from consistent (t0, y0, yp0) with the settings' tolerances, step
+    !> limit and Jacobian, watching the system's event functions.
+    subroutine start(self, system, settings, t0, y0, yp0, t_stop, error)
+        class(ida_integrator_type), intent(inout), target :: self
+        class(dynamic_system_type), intent(inout), target :: system
+        type(run_settings_type), intent(in) :: settings
+        real(wp), intent(in) :: t0, y0(:), yp0(:), t_stop
+        type(error_type), allocatable, intent(out) :: error
+        integer(c_int) :: flag
+        integer(c_int64_t) :: n
+
+        n = size(y0)
+        self%values = y0
+        self%rates = yp0
+        self%kinds = system%dae_differential(size(y0))
+        ! The algebraic components (a model's multipliers: forces, not states) are out of the
+        ! error test, and their absolute tolerance is set on their own scale (1e-3 of the
+        ! largest at the start) so that Newton's convergence test does not ask them for digits
+        ! an index-2 DAE cannot give (with atol on them, IDA fails to converge at tight
+        ! tolerances).
+        self%absolute = merge(settings%atol, &
+            & max(1.0e-3_wp*maxval(abs(y0), mask=self%kinds == 0.0_wp), settings%atol), &
+            & self%kinds == 1.0_wp)
+        flag = FSUNContext_Create(c_null_ptr, self%context)
+        if (check(flag, "SUNContext_Create", error)) return
+        self%y => FN_VMake_Serial(n, self%values, self%context)
+        self%yp => FN_VMake_Serial(n, self%rates, self%context)
+        self%id => FN_VMake_Serial(n, self%kinds, self%context)
+        self%tolerances => FN_VMake_Serial(n, self%absolute, self%context)
+        if (.not. (associated(self%y) .and. associated(self%yp) .and. associated(self%id) &
+            & .and. associated(self%tolerances))) then
+            call fatal_error(error, "IDA: could not create the state vectors", stat_solver)
+            return
+        end if
+        self%memory = FIDACreate(self%context)
+        if (.not. c_associated(self%memory)) then
+            call fatal_error(error, "IDA: IDACreate failed", stat_solver)
+            return
+        end if
+        ! every flag is checked and reported by rollcon: IDA prints nothing itself
+        flag = FIDASetErrFile(self%memory, c_null_ptr)
+        if (check(flag, "IDASetErrFile", error)) return
+        flag = FIDAInit(self%memory, c_funloc(residual), t0, self%y, self%yp)
+        if (check(flag, "IDAInit", error)) return
+        self%data%system => system
+        flag = FIDASetUserData(self%memory, c_loc(self%data))
+        if (check(flag, "IDASetUserData", error)) return
+        flag = FIDASVtolerances(self%memory, settings%rtol, self%tolerances)
+        if (check(flag, "IDASVtolerances", error)) return
+        flag = FIDASetMaxNumSteps(self%memory, int(settings%max_steps, c_long))
+        if (check(flag, "IDASetMaxNumSteps", error)) return
+        ! Index 2: the algebraic components are kept out of the local error test.
+        flag = FIDASetId(self%memory, self%id)
+        if (check(flag, "IDASetId", error)) return
+        flag = FIDASetSuppressAlg(self%memory, SUNTRUE)
+        if (check(flag, "IDASetSuppressAlg", error)) return
+        self%matrix => FSUNDenseMatrix(n, n, self%context)
+        self%solver => FSUNLinSol_Dense(self%y, self%matrix, self%context)
+        if (.not. associated(self%matrix) .or. .not. associated(self%solver)) then
+            call fatal_error(error, "IDA: could not create the dense linear solver", stat_solver)
+            return
+        end if
+        flag = FIDASetLinearSolver(self%memory, self%solver, self%matrix)
+        if (check(flag, "IDASetLinearSolver", error)) return
+        if (settings%analytic_jacobian()) then
+            flag = FIDASetJacFn(self%memory, c_funloc(jacobian))
+            if (check(flag, "IDASetJacFn", error)) return
+        end if
+        flag = FIDASetStopTime(self%memory, t_stop)
+        if (check(flag, "IDASetStopTime", error)) return
+        if (system%root_count() > 0) then
+            flag = FIDARootInit(self%memory, int(system%root_count(), c_int), &
+                & c_funloc(events))
+            if (check(flag, "IDARootInit", error)) return
+        end if
+        if (allocated(self%fired)) deallocate(self%fired)
+        allocate(self%fired(system%root_count()), source=0_c_int)
+        self%failed_flag = 0
+    end subroutine start
+
+    !> Start again from consistent (t0, y0, yp0) with the settings, tolerances, callbacks and
+    !> event functions of start: after a re-basing has changed the coordinates (IDAReInit).
+    subroutine restart(self, t0, y0, yp0, error)
+        class(ida_integrator_type), intent(inout) :: self
+        real(wp), intent(in) :: t0, y0(:), yp0(:)
+        type(error_type), allocatable, intent(out) :: error
+        integer(c_int) :: flag
+
+        self%values(:) = y0
+        self%rates(:) = yp0
+        flag = FIDAReInit(self%memory, t0, self%y, self%yp)
+        if (check(flag, "IDAReInit", error)) return
+    end subroutine restart
+
+    !> Integrate towards t_out (never past t_stop); y, yp at t_reached; root fired (0 if none).
+    subroutine advance(self, t_out, t_stop, t_reached, y, yp, root, error)
+        class(ida_integrator_type), intent(inout) :: self
+        real(wp), intent(in) :: t_out, t_stop
+        real(wp), intent(out) :: t_reached
+        real(wp), intent(inout) :: y(:), yp(:)
+        integer, intent(out) :: root
+        type(error_type), allocatable, intent(out) :: error
+        real(c_double) :: t_return(1)
+        integer(c_int) :: flag
+
+        root = 0
+        flag = FIDASetStopTime(self%memory, t_stop)
+        if (check(flag, "IDASetStopTime", error)) return
+        flag = FIDASolve(self%memory, t_out, t_return, self%y, self%yp, IDA_NORMAL)
+        t_reached = t_return(1)
+        y = self%values
+        yp = self%rates
+        if (flag == IDA_ROOT_RETURN) then
+            flag = FIDAGetRootInfo(self%memory, self%fired)
+            root = findloc(self%fired /= 0, .true., dim=1)
+            return
+        end if
+        if (flag == IDA_SUCCESS .or. flag == IDA_TSTOP_RETURN) return
+        self%failed_flag = int(flag)
+        call solver_failure(error, "IDA", t_reached, int(flag), flag_meaning(flag), &
+            & self%data%system)
+    end subroutine advance
+
+    !> Steps, residuals (own and for difference-quotient Jacobians), Jacobians, test failures.
+    function statistics(self) result(counts)
+        class(ida_integrator_type), intent(in) :: self
+        type(integrator_statistics_type) :: counts
+        integer(c_long) :: count(1), extra(1)
+        integer(c_int) :: flag
+
+        if (.not. c_associated(self%memory)) return
+        flag = FIDAGetNumSteps(self%memory, count)
+        counts%steps = int(count(1))
+        flag = FIDAGetNumResEvals(self%memory, count)
+        flag = FIDAGetNumLinResEvals(self%memory, extra)
+        counts%functions = int(count(1) + extra(1))
+        flag = FIDAGetNumJacEvals(self%memory, count)
+        counts%jacobians = int(count(1))
+        flag = FIDAGetNumErrTestFails(self%memory, count)
+        counts%failures = int(count(1))
+        flag = FIDAGetNumGEvals(self%memory, count)
+        counts%roots = int(count(1))
+    end function statistics
+
+    !> What a failure flag of IDA means (names of the IDA guide), for messages: SUNDIALS
+    !> itself prints nothing (its error file is none).
+    pure function flag_meaning(flag) result(text)
+        integer(c_int), intent(in) :: flag
+        character(len=:), allocatable :: text
+
+        select case (flag)
+        case (IDA_TOO_MUCH_WORK)
+            text = "IDA_TOO_MUCH_WORK, max_steps internal steps taken before the next output time"
+        case (IDA_TOO_MUCH_ACC)
+            text = "IDA_TOO_MUCH_ACC, the tolerances ask for more accuracy than the arithmetic has"
+        case (IDA_ERR_FAIL)
+            text = "IDA_ERR_FAIL, the error test failed repeatedly or at the smallest step"
+        case (IDA_CONV_FAIL)
+            text = "IDA_CONV_FAIL, the corrector failed repeatedly or at the smallest step"
+        case default
+            text = "see the IDA guide's return codes"
+        end select
+    end function flag_meaning
+
+    !> Free in reverse order of creation.
+    subroutine destroy(self)
+        class(ida_integrator_type), intent(inout) :: self
+        integer(c_int) :: flag
+
+        if (c_associated(self%memory)) call FIDAFree(self%memory)
+        if (associated(self%solver)) flag = FSUNLinSolFree(self%solver)
+        if (associated(self%matrix)) call FSUNMatDestroy(self%matrix)
+        if (associated(self%tolerances)) call FN_VDestroy(self%tolerances)
+        if (associated(self%id)) call FN_VDestroy(self%id)
+        if (associated(self%yp)) call FN_VDestroy(self%yp)
+        if (associated(self%y)) call FN_VDestroy(self%y)
+        if (c_associated(self%context)) flag = FSUNContext_Free(self%context)
+        self%memory = c_null_ptr
+        self%context = c_null_ptr
+        nullify(self%solver, self%matrix, self%y, self%yp, self%id, self%tolerances, &
+            & self%data%system)
+        if (allocated(self%fired)) deallocate(self%fired)
+    end subroutine destroy
+
+    function check(flag, routine, error) result(failed)
+        integer(c_int), intent(in) :: flag
+        character(len=*), intent(in) :: routine
+        type(error_type), allocatable, intent(out) :: error
+        logical :: failed
+
+        failed = flag /= 0
+        if (failed) call fatal_error(error, "IDA: " // routine // " returned flag " &
+            & // to_text(int(flag)), stat_solver)
+    end function check
+
+    integer(c_int) function residual(t, y, yp, r, user_data) result(ierr) &
+            & bind(c, name="rollcon_ida_residual")
+        real(c_double), value :: t
+        type(N_Vector) :: y, yp, r
+        type(c_ptr), value :: user_data
+        type(callback_data_type), pointer :: data
+        real(c_double), pointer :: yv(:), ypv(:), rv(:)
+
+        call c_f_pointer(user_data, data)
+        yv => FN_VGetArrayPointer(y)
+        ypv => FN_VGetArrayPointer(yp)
+        rv => FN_VGetArrayPointer(r)
+        ierr = int(data%system%dae_residual(t, yv, ypv, rv), c_int)
+    end function residual
+
+    integer(c_int) function jacobian(t, cj, y, yp, r, jac, user_data, tmp1, tmp2, tmp3) &
+            & result(ierr) bind(c, name="rollcon_ida_jacobian")
+        real(c_double), value :: t, cj
+        type(N_Vector) :: y, yp, r, tmp1, tmp2, tmp3
+        type(SUNMatrix) :: jac
+        type(c_ptr), value :: user_data
+        type(callback_data_type), pointer :: data
+        real(c_double), pointer :: yv(:), ypv(:), entries(:), matrix(:, :)
+
+        call c_f_pointer(user_data, data)
+        yv => FN_VGetArrayPointer(y)
+        ypv => FN_VGetArrayPointer(yp)
+        entries => FSUNDenseMatrix_Data(jac)
+        call c_f_pointer(c_loc(entries(1)), matrix, [size(yv), size(yv)])
+        ierr = int(data%system%dae_jacobian(t, cj, yv, ypv, matrix), c_int)
+    end function jacobian
+
+    integer(c_int) function events(t, y, yp, gout, user_data) result(ierr) &
+            & bind(c, name="rollcon_ida_events")
+        real(c_double), value :: t
+        type(N_Vector) :: y, yp
+        real(c_double) :: gout(*)
+        type(c_ptr), value :: user_data
+        type(callback_data_type), pointer :: data
+        real(c_double), pointer :: yv(:)
+        integer :: nroots
+
+        call c_f_pointer(user_data, data)
+        yv => FN_VGetArrayPointer(y)
+        nroots = data%system%root_count()
+        ierr = int(data%system%roots(t, yv, gout(:nroots)), c_int)
+    end function events
+
+end module rollcon_ida

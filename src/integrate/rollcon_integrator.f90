@@ -1,0 +1,127 @@
+! SPDX-License-Identifier: MIT
+!> The integrator interface a run drives: set up on a system from a start, advance to a time
+!> (never past a stop time), start again after the state was changed from outside (a
+!> re-basing), counters, and the flag and message of a failure. CVODE (rollcon_cvode) and IDA
+!> (rollcon_ida) extend it; a run never asks which one it has.
+module rollcon_integrator
+    use, intrinsic :: iso_c_binding, only : c_int
+    use rollcon_kinds, only : wp
+    use rollcon_error, only : error_type, fatal_error, stat_solver
+    use rollcon_text, only : to_text
+    use rollcon_run_settings, only : run_settings_type
+    use rollcon_dynamic_system, only : dynamic_system_type
+    implicit none
+    private
+
+    public :: integrator_type, integrator_statistics_type, solver_failure
+
+    !> What an integrator did since it was set up or last started again
+    type :: integrator_statistics_type
+        !> Internal steps, evaluations of the right-hand side or residual (their own and those
+        !> of difference-quotient Jacobians), Newton-matrix evaluations, error-test failures,
+        !> event-function evaluations
+        integer :: steps = 0, functions = 0, jacobians = 0, failures = 0, roots = 0
+    contains
+        procedure :: add => statistics_add
+    end type integrator_statistics_type
+
+    type, abstract :: integrator_type
+        !> The flag of the last failed step (0 when none failed)
+        integer :: failed_flag = 0
+        !> After a root return: non-zero for every event function that fired (its direction)
+        integer(c_int), allocatable :: fired(:)
+    contains
+        procedure(start_interface), deferred :: start
+        procedure(restart_interface), deferred :: restart
+        procedure(advance_interface), deferred :: advance
+        procedure(statistics_interface), deferred :: statistics
+        procedure(destroy_interface), deferred :: destroy
+    end type integrator_type
+
+    abstract interface
+        !> Set up on system from (t0, y0) (and y0' for a DAE), every setting from settings,
+        !> watching the system's event functions; never step past t_stop.
+        subroutine start_interface(self, system, settings, t0, y0, yp0, t_stop, error)
+            import :: integrator_type, dynamic_system_type, run_settings_type, wp, error_type
+            class(integrator_type), intent(inout), target :: self
+            class(dynamic_system_type), intent(inout), target :: system
+            type(run_settings_type), intent(in) :: settings
+            real(wp), intent(in) :: t0, y0(:), yp0(:), t_stop
+            type(error_type), allocatable, intent(out) :: error
+        end subroutine start_interface
+
+        !> Start again from (t0, y0, yp0) with everything else as set up: the state was changed
+        !> from outside (its coordinates re-based).
+        subroutine restart_interface(self, t0, y0, yp0, error)
+            import :: integrator_type, wp, error_type
+            class(integrator_type), intent(inout) :: self
+            real(wp), intent(in) :: t0, y0(:), yp0(:)
+            type(error_type), allocatable, intent(out) :: error
+        end subroutine restart_interface
+
+        !> Integrate towards t_out, never past t_stop. On return y (and yp for a DAE) hold the
+        !> state at t_reached; root is the number of the first event function that fired (0
+        !> when none did, fired() says which did).
+        subroutine advance_interface(self, t_out, t_stop, t_reached, y, yp, root, error)
+            import :: integrator_type, wp, error_type
+            class(integrator_type), intent(inout) :: self
+            real(wp), intent(in) :: t_out, t_stop
+            real(wp), intent(out) :: t_reached
+            real(wp), intent(inout) :: y(:), yp(:)
+            integer, intent(out) :: root
+            type(error_type), allocatable, intent(out) :: error
+        end subroutine advance_interface
+
+        !> Counters since set-up or the last restart.
+        function statistics_interface(self) result(counts)
+            import :: integrator_type, integrator_statistics_type
+            class(integrator_type), intent(in) :: self
+            type(integrator_statistics_type) :: counts
+        end function statistics_interface
+
+        !> Free what start made; the integrator can be started again.
+        subroutine destroy_interface(self)
+            import :: integrator_type
+            class(integrator_type), intent(inout) :: self
+        end subroutine destroy_interface
+    end interface
+
+contains
+
+    !> Sum of two sets of counters (a run's segments between restarts).
+    pure subroutine statistics_add(self, other)
+        class(integrator_statistics_type), intent(inout) :: self
+        type(integrator_statistics_type), intent(in) :: other
+
+        self%steps = self%steps + other%steps
+        self%functions = self%functions + other%functions
+        self%jacobians = self%jacobians + other%jacobians
+        self%failures = self%failures + other%failures
+        self%roots = self%roots + other%roots
+    end subroutine statistics_add
+
+    !> The error of a failed step: "<name> failed at t = ... s with flag F: <meaning>", or with
+    !> the system's own reason when a callback kept one.
+    subroutine solver_failure(error, name, time, flag, meaning, system)
+        type(error_type), allocatable, intent(out) :: error
+        !> "CVODE" or "IDA"
+        character(len=*), intent(in) :: name
+        !> Where it failed [s]
+        real(wp), intent(in) :: time
+        integer, intent(in) :: flag
+        !> The flag's meaning, in the guide's names
+        character(len=*), intent(in) :: meaning
+        class(dynamic_system_type), intent(in) :: system
+        character(len=:), allocatable :: reason
+
+        reason = system%failure_text()
+        if (len(reason) > 0) then
+            call fatal_error(error, name // " failed at t = " // to_text(time) // " s (flag " &
+                & // to_text(flag) // "): " // reason, stat_solver)
+        else
+            call fatal_error(error, name // " failed at t = " // to_text(time) // " s with flag " &
+                & // to_text(flag) // ": " // meaning, stat_solver)
+        end if
+    end subroutine solver_failure
+
+end module rollcon_integrator

@@ -1,0 +1,85 @@
+! SPDX-License-Identifier: MIT
+!> How to integrate a run: the one settings type that a scene's &run, a dataset's INTEGRATOR and
+!> SIMULATE, a study's parameters and the benchmark's methods all fill (their keys: the table of
+!> rollcon_run_keys), with the integer codes of its choices and the settings in words.
+module rollcon_run_settings
+    use rollcon_kinds, only : wp
+    use rollcon_text, only : to_text
+    implicit none
+    private
+
+    public :: run_settings_type
+    public :: formulation_cvode, formulation_ida, method_bdf, method_adams
+    public :: drift_none, drift_projection, drift_baumgarte, jacobian_analytic, jacobian_dq
+
+    !> Formulations: CVODE on the ODE form, IDA on the DAE form (docs/design.md §4)
+    integer, parameter :: formulation_cvode = 1, formulation_ida = 2
+    !> CVODE's linear multistep methods
+    integer, parameter :: method_bdf = 1, method_adams = 2
+    !> Drift control of the ODE form: none, projection onto the constraints, Baumgarte
+    integer, parameter :: drift_none = 0, drift_projection = 1, drift_baumgarte = 2
+    !> Newton matrices: from the UCOSUBs' partials, or SUNDIALS' difference quotients
+    integer, parameter :: jacobian_analytic = 1, jacobian_dq = 2
+
+    !> How to integrate, and over which times
+    type :: run_settings_type
+        !> End time and output step [s]
+        real(wp) :: end_time = 10.0_wp, output_step = 0.01_wp
+        !> formulation_ida (DAE) or formulation_cvode (ODE)
+        integer :: formulation = formulation_ida
+        !> method_bdf or method_adams (CVODE only)
+        integer :: method = method_bdf
+        !> drift_projection, drift_baumgarte or drift_none (the last two CVODE only)
+        integer :: drift = drift_projection
+        !> jacobian_analytic or jacobian_dq
+        integer :: jacobian = jacobian_analytic
+        !> Relative and absolute tolerances [-, state units]
+        real(wp) :: rtol = 1.0e-8_wp, atol = 1.0e-10_wp
+        !> Baumgarte rate alpha [1/s]: F' = -alpha F (velocity), F'' = -2 alpha F' - alpha^2 F
+        real(wp) :: baumgarte_rate = 10.0_wp
+        !> Most internal steps per output interval
+        integer :: max_steps = 500000
+    contains
+        procedure :: baumgarte
+        procedure :: analytic_jacobian
+        procedure :: text
+    end type run_settings_type
+
+contains
+
+    !> The Baumgarte rate in effect [1/s]: baumgarte_rate with drift_baumgarte, else 0.
+    pure function baumgarte(self) result(alpha)
+        class(run_settings_type), intent(in) :: self
+        real(wp) :: alpha
+
+        alpha = 0.0_wp
+        if (self%drift == drift_baumgarte) alpha = self%baumgarte_rate
+    end function baumgarte
+
+    !> Newton matrices from the UCOSUBs' partials (else SUNDIALS' difference quotients).
+    pure logical function analytic_jacobian(self)
+        class(run_settings_type), intent(in) :: self
+
+        analytic_jacobian = self%jacobian == jacobian_analytic
+    end function analytic_jacobian
+
+    !> The integrator settings in words: "IDA (DAE form, index 2), analytic Jacobian, rtol
+    !> 1e-8, atol 1e-10".
+    function text(self) result(words)
+        class(run_settings_type), intent(in) :: self
+        character(len=:), allocatable :: words
+        character(len=*), parameter :: drifts(0:2) = [character(len=10) :: "none", &
+            & "projection", "baumgarte"]
+
+        if (self%formulation == formulation_cvode) then
+            words = "CVODE (ODE form, " &
+                & // trim(merge("Adams", "BDF  ", self%method == method_adams)) // ", drift " &
+                & // trim(drifts(self%drift)) // ")"
+        else
+            words = "IDA (DAE form, index 2)"
+        end if
+        words = words // ", " // trim(merge("analytic", "dq      ", self%analytic_jacobian())) &
+            & // " Jacobian, rtol " // to_text(self%rtol) // ", atol " // to_text(self%atol)
+    end function text
+
+end module rollcon_run_settings

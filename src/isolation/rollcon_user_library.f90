@@ -1,0 +1,111 @@
+! SPDX-License-Identifier: MIT
+!> A user's own UCOSUB, loaded at run time: built into a cached shared library (with the shim
+!> that serves its UCOVAR and ERRMES calls), opened with dlopen, and handed out as a procedure
+!> pointer with ADAMS's calling sequence (ucosub_interface).
+!>
+!>     type(user_ucosub_type) :: user
+!>     call new_user_ucosub(user, "my_ucosub.f", error)
+!>     if (allocated(error)) return
+!>     call declare_ucon(user%ucosub, 1, par, registry, error)
+!>
+!> Only the file the caller names is ever compiled or loaded.
+module rollcon_user_library
+    use, intrinsic :: iso_c_binding, only : c_ptr, c_funptr, c_null_ptr, c_associated, &
+        & c_f_procpointer
+    use rollcon_error, only : error_type, fatal_error, stat_ucon
+    use rollcon_ucosub_contract, only : ucosub_interface
+    use rollcon_dlopen, only : open_library, library_symbol, close_library, last_library_error
+    use rollcon_user_shim, only : install_host_hooks
+    use rollcon_user_build, only : user_build_options_type, build_user_library
+    implicit none
+    private
+
+    public :: user_ucosub_type, user_build_options_type, new_user_ucosub, load_user_ucosub, &
+        & ucosub_symbol
+
+    !> Symbol of an external subroutine UCOSUB compiled by gfortran
+    character(len=*), parameter :: ucosub_symbol = "ucosub_"
+
+    !> A loaded UCOSUB; call destroy when done (ucosub dangles afterwards)
+    type :: user_ucosub_type
+        !> The file the user named
+        character(len=:), allocatable :: source
+        !> The shared library it was built into
+        character(len=:), allocatable :: library
+        !> True when the library came from the cache, false when built by this call
+        logical :: from_cache = .false.
+        !> The routine, ready to pass wherever a procedure(ucosub_interface) is expected
+        procedure(ucosub_interface), pointer, nopass :: ucosub => null()
+        !> dlopen handle
+        type(c_ptr) :: handle = c_null_ptr
+    contains
+        !> Close the library
+        procedure :: destroy => user_ucosub_destroy
+    end type user_ucosub_type
+
+contains
+
+    !> Build (or find in the cache) and load the UCOSUB of a user's file.
+    subroutine new_user_ucosub(self, path, error, options)
+        !> The loaded routine
+        type(user_ucosub_type), intent(out) :: self
+        !> The user's file: .f (fixed form, compiled with -std=legacy), .f90 (free form) or .o
+        character(len=*), intent(in) :: path
+        !> Set when the file is missing, does not compile, cannot be loaded or has no UCOSUB;
+        !> the message names the file (and the line gfortran complains about)
+        type(error_type), allocatable, intent(out) :: error
+        !> Cache folder and compiler; defaults: $XDG_CACHE_HOME/rollcon or ~/.cache/rollcon,
+        !> gfortran
+        type(user_build_options_type), intent(in), optional :: options
+        type(user_build_options_type) :: build_options
+
+        if (present(options)) build_options = options
+        self%source = path
+        call build_user_library(path, build_options, self%library, self%from_cache, error)
+        if (allocated(error)) return
+        call load_user_ucosub(self, error)
+    end subroutine new_user_ucosub
+
+    !> Load the UCOSUB of self%library, the library built from self%source (build_user_library):
+    !> a child process that runs a user's routine loads it itself, so that nothing of it is
+    !> ever mapped into the process that writes the outputs.
+    subroutine load_user_ucosub(self, error)
+        type(user_ucosub_type), intent(inout) :: self
+        type(error_type), allocatable, intent(out) :: error
+        type(c_funptr) :: address
+
+        self%handle = open_library(self%library)
+        if (.not. c_associated(self%handle)) then
+            call fatal_error(error, self%source // ": the shared library built from it cannot be " &
+                & // "loaded (" // last_library_error() // "); a routine may call only UCOVAR, " &
+                & // "ERRMES and what it defines itself", stat_ucon)
+            return
+        end if
+        call install_host_hooks(self%handle, self%library, error)
+        if (allocated(error)) then
+            call self%destroy()
+            return
+        end if
+        address = library_symbol(self%handle, ucosub_symbol)
+        if (.not. c_associated(address)) then
+            call fatal_error(error, self%source // ": defines no subroutine UCOSUB (symbol '" &
+                & // ucosub_symbol // "' not found: " // last_library_error() // "); check the " &
+                & // "name in its SUBROUTINE statement, and that UCOSUB is an external " &
+                & // "subroutine, not inside a module", stat_ucon)
+            call self%destroy()
+            return
+        end if
+        ! The symbol is gfortran's external UCOSUB, whose calling convention is ucosub_interface.
+        call c_f_procpointer(address, self%ucosub)
+    end subroutine load_user_ucosub
+
+    !> Close the library; the routine must not be called afterwards.
+    subroutine user_ucosub_destroy(self)
+        !> The loaded routine
+        class(user_ucosub_type), intent(inout) :: self
+
+        nullify(self%ucosub)
+        call close_library(self%handle)
+    end subroutine user_ucosub_destroy
+
+end module rollcon_user_library

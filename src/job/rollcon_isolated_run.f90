@@ -1,0 +1,287 @@
+! SPDX-License-Identifier: MIT
+!> A job whose routine is a user's file: the routine never runs in this process. This process
+!> compiles the file into the cache (rollcon_user_build), then a child process
+!> (rollcon_child_process) loads the library, builds the model, makes the start consistent and
+!> simulates, every call of the routine guarded and timed (rollcon_ucosub_guard). The child
+!> only computes: it sends what it finds on a pipe (rollcon_frames) — the report of the start,
+!> the parts' shapes, the rows' layout, each row, the summary — and this process writes every
+!> output and keeps every clock. A child that crashes, overruns a call or stops leaves the rows
+!> it sent; a host that is killed takes the child with it (PR_SET_PDEATHSIG), and the child has
+!> no file to write.
+module rollcon_isolated_run
+    use, intrinsic :: iso_c_binding, only : c_double
+    use, intrinsic :: iso_fortran_env, only : output_unit
+    use rollcon_kinds, only : wp
+    use rollcon_error, only : error_type, fatal_error, stat_ucon
+    use rollcon_text, only : to_text
+    use rollcon_ucosub_contract, only : ucosub_interface
+    use rollcon_wire, only : wire_writer_type, wire_reader_type
+    use rollcon_output_layout, only : output_layout_type
+    use rollcon_row_sink, only : row_sink_type
+    use rollcon_problem, only : problem_type
+    use rollcon_part_shapes, only : part_shape_type
+    use rollcon_run_wire, only : pack_summary, unpack_summary, pack_layout, unpack_layout, &
+        & pack_shapes, unpack_shapes
+    use rollcon_progress, only : progress_type
+    use rollcon_csv_writer, only : csv_writer_type
+    use rollcon_simulation, only : run_options_type, run_summary_type, history_type, simulate, &
+        & status_failed
+    use rollcon_child_process, only : isolated_task_type, stream_receiver_type, &
+        & call_record_type, isolation_outcome_type, run_in_child, outcome_finished
+    use rollcon_frames, only : send_frame, frame_buffer_type
+    use rollcon_isolation_text, only : outcome_text
+    use rollcon_ucosub_guard, only : install_guard, attach_call_record, guarded_ucosub
+    use rollcon_user_build, only : build_user_library
+    use rollcon_user_library, only : user_ucosub_type, load_user_ucosub
+    use rollcon_job, only : job_type
+    implicit none
+    private
+
+    public :: run_isolated
+
+    !> Kinds of frame the child sends
+    integer, parameter :: frame_report = 1, frame_shapes = 2, frame_started = 3, &
+        & frame_layout = 4, frame_row = 5, frame_summary = 6
+
+    !> The child's work
+    type, extends(isolated_task_type) :: job_task_type
+        type(job_type) :: job
+        type(run_options_type) :: options
+        !> The shared library built from the user's file
+        character(len=:), allocatable :: library
+    contains
+        procedure :: run => run_task
+    end type job_task_type
+
+    !> In the child: the rows go to the pipe
+    type, extends(row_sink_type) :: pipe_sink_type
+        integer :: fd = -1
+    contains
+        procedure :: open => pipe_open
+        procedure :: put => pipe_put
+    end type pipe_sink_type
+
+    !> In this process: what the child sent, written and kept as it comes
+    type, extends(stream_receiver_type) :: job_receiver_type
+        type(frame_buffer_type) :: frames
+        logical :: quiet = .false.
+        type(output_layout_type) :: layout
+        logical :: has_layout = .false., started = .false., has_summary = .false.
+        type(part_shape_type), allocatable :: shapes(:)
+        type(run_summary_type) :: summary
+        !> Rows received, and the time of the last [s]
+        integer :: rows = 0
+        real(wp) :: t_last = 0.0_wp
+        type(csv_writer_type) :: csv
+        character(len=:), allocatable :: csv_path
+        type(history_type), pointer :: history => null()
+        type(progress_type) :: progress
+        real(wp) :: t0 = 0.0_wp, end_time = 1.0_wp
+        !> The first failure here (a write of the CSV, a frame that does not read)
+        type(error_type), allocatable :: failure
+    contains
+        procedure :: receive
+        procedure :: take_frame
+    end type job_receiver_type
+
+contains
+
+    !> Run job, whose routine is job%user_file, in a child process (see the module's header).
+    subroutine run_isolated(job, options, summary, shapes, started, error, history)
+        type(job_type), intent(in) :: job
+        type(run_options_type), intent(in) :: options
+        type(run_summary_type), intent(out) :: summary
+        type(part_shape_type), allocatable, intent(out) :: shapes(:)
+        logical, intent(out) :: started
+        type(error_type), allocatable, intent(out) :: error
+        type(history_type), intent(inout), target, optional :: history
+        type(job_task_type) :: task
+        type(job_receiver_type) :: receiver
+        type(isolation_outcome_type) :: outcome
+        logical :: from_cache
+
+        started = .false.
+        allocate(shapes(0))
+        call build_user_library(job%user_file, job%build_options, task%library, from_cache, &
+            & error)
+        if (allocated(error)) return
+        if (.not. job%quiet) write(output_unit, '(a)') "UCOSUB: " // job%user_file // " (" &
+            & // task%library // trim(merge(", from the cache", ", compiled now  ", &
+            & from_cache)) // ")"
+        task%job = job
+        task%options = options
+        ! the child writes no file: this process keeps the rows
+        if (allocated(task%options%csv_path)) deallocate(task%options%csv_path)
+        task%options%progress = .false.
+        receiver%quiet = job%quiet
+        if (allocated(options%csv_path)) receiver%csv_path = options%csv_path
+        if (present(history)) receiver%history => history
+        call receiver%progress%start(options%progress, options%t0, options%end_time, wall=.true.)
+        call run_in_child(task, real(job%call_timeout, c_double), outcome, error, &
+            & receiver=receiver)
+        call conclude(receiver, outcome, summary, error)
+        started = receiver%started
+        if (allocated(receiver%shapes)) shapes = receiver%shapes
+    end subroutine run_isolated
+
+    !> The run's summary from what the child sent and how it ended: its own summary when it
+    !> finished, else a failure at the last row received, naming the call it ended in.
+    subroutine conclude(receiver, outcome, summary, error)
+        type(job_receiver_type), intent(inout) :: receiver
+        type(isolation_outcome_type), intent(in) :: outcome
+        type(run_summary_type), intent(out) :: summary
+        type(error_type), allocatable, intent(inout) :: error
+        type(error_type), allocatable :: close_error
+
+        call receiver%csv%close(close_error)
+        if (.not. allocated(receiver%failure) .and. allocated(close_error)) &
+            & call move_alloc(close_error, receiver%failure)
+        if (receiver%has_summary) summary = receiver%summary
+        if (.not. receiver%has_summary) then
+            summary%status = status_failed
+            summary%layout = receiver%layout
+            summary%t_reached = receiver%t_last
+            summary%message = "the run did not complete"
+        end if
+        summary%rows = receiver%rows
+        if (outcome%kind /= outcome_finished .and. .not. allocated(error)) then
+            call fatal_error(error, outcome_text(outcome) // "; the run did not complete", &
+                & stat_ucon)
+        end if
+        if (allocated(receiver%failure) .and. .not. allocated(error)) &
+            & call move_alloc(receiver%failure, error)
+        if (allocated(error)) then
+            summary%status = status_failed
+            summary%message = error%message
+        end if
+    end subroutine conclude
+
+    !> In the child: load the routine, guard it, build, make the start consistent and
+    !> simulate, sending everything to the host.
+    subroutine run_task(self, record, error)
+        class(job_task_type), intent(inout) :: self
+        type(call_record_type), pointer, intent(in) :: record
+        type(error_type), allocatable, intent(out) :: error
+        type(user_ucosub_type) :: user
+        type(problem_type), target :: problem
+        type(pipe_sink_type) :: sink
+        type(run_summary_type) :: summary
+        type(part_shape_type), allocatable :: shapes(:)
+        type(wire_writer_type) :: wire
+        type(error_type), allocatable :: send_error
+        procedure(ucosub_interface), pointer :: guarded
+        real(wp), allocatable :: q0(:), u0(:)
+        character(len=:), allocatable :: report
+
+        call attach_call_record(record)
+        user%source = self%job%user_file
+        user%library = self%library
+        call load_user_ucosub(user, error)
+        if (allocated(error)) return
+        call install_guard(user%ucosub, as_errors=.true.)
+        guarded => guarded_ucosub
+        call self%job%source%build(guarded, problem, q0, u0, report, error)
+        if (allocated(error)) return
+        call send_frame(self%stream_fd, frame_report, report, error)
+        if (allocated(error)) return
+        call self%job%source%shapes(problem, shapes, error)
+        if (allocated(error)) return
+        call pack_shapes(wire, shapes)
+        call send_frame(self%stream_fd, frame_shapes, wire%packed(), error)
+        if (allocated(error)) return
+        call send_frame(self%stream_fd, frame_started, "", error)
+        if (allocated(error)) return
+        sink%fd = self%stream_fd
+        call simulate(problem, q0, u0, self%options, summary, error, sink=sink)
+        wire = wire_writer_type()
+        call pack_summary(wire, summary)
+        call send_frame(self%stream_fd, frame_summary, wire%packed(), send_error)
+        if (.not. allocated(error) .and. allocated(send_error)) call move_alloc(send_error, error)
+    end subroutine run_task
+
+    subroutine pipe_open(self, layout, error)
+        class(pipe_sink_type), intent(inout) :: self
+        type(output_layout_type), intent(in) :: layout
+        type(error_type), allocatable, intent(out) :: error
+        type(wire_writer_type) :: wire
+
+        call pack_layout(wire, layout)
+        call send_frame(self%fd, frame_layout, wire%packed(), error)
+    end subroutine pipe_open
+
+    !> A row as its doubles' bytes.
+    subroutine pipe_put(self, row, error)
+        class(pipe_sink_type), intent(inout) :: self
+        real(wp), intent(in) :: row(:)
+        type(error_type), allocatable, intent(out) :: error
+        character(len=8*size(row)) :: bytes
+
+        bytes = transfer(row, bytes)
+        call send_frame(self%fd, frame_row, bytes, error)
+    end subroutine pipe_put
+
+    !> Bytes from the child: every whole frame in them taken.
+    subroutine receive(self, bytes)
+        class(job_receiver_type), intent(inout) :: self
+        character(len=*), intent(in) :: bytes
+        character(len=:), allocatable :: payload
+        integer :: kind
+        logical :: found
+
+        call self%frames%add(bytes)
+        do
+            call self%frames%next(kind, payload, found)
+            if (.not. found) exit
+            call self%take_frame(kind, payload)
+        end do
+    end subroutine receive
+
+    !> One frame from the child.
+    subroutine take_frame(self, kind, payload)
+        class(job_receiver_type), intent(inout) :: self
+        integer, intent(in) :: kind
+        character(len=*), intent(in) :: payload
+        type(wire_reader_type) :: wire
+        type(error_type), allocatable :: error
+        real(wp), allocatable :: row(:)
+
+        wire%bytes = payload
+        select case (kind)
+        case (frame_report)
+            if (.not. self%quiet .and. len(payload) > 0) write(output_unit, '(a)') payload
+        case (frame_shapes)
+            call unpack_shapes(wire, self%shapes)
+        case (frame_started)
+            self%started = .true.
+        case (frame_layout)
+            call unpack_layout(wire, self%layout)
+            self%has_layout = .not. wire%failed
+            if (associated(self%history)) self%history%layout = self%layout
+            if (allocated(self%csv_path)) call self%csv%open(self%csv_path, &
+                & self%layout%header(), error)
+        case (frame_row)
+            if (.not. self%has_layout .or. len(payload) /= 8*self%layout%columns()) then
+                wire%failed = .true.
+            else
+                allocate(row(self%layout%columns()))
+                row = transfer(payload, row)
+                self%rows = self%rows + 1
+                self%t_last = row(1)
+                if (associated(self%history)) call self%history%add(row)
+                if (self%csv%opened) call self%csv%write_row(row, error)
+                call self%progress%report(row(1))
+            end if
+        case (frame_summary)
+            call unpack_summary(wire, self%summary)
+            self%has_summary = .not. wire%failed
+        case default
+            wire%failed = .true.
+        end select
+        if (wire%failed .and. .not. allocated(error)) call fatal_error(error, "the child " &
+            & // "process sent a message of kind " // to_text(kind) // " that does not read", &
+            & stat_ucon)
+        if (allocated(error) .and. .not. allocated(self%failure)) &
+            & call move_alloc(error, self%failure)
+    end subroutine take_frame
+
+end module rollcon_isolated_run

@@ -1,0 +1,57 @@
+! SPDX-License-Identifier: MIT
+!> A job: what any input becomes before it runs (docs/design.md §1, "One route"). A namelist
+!> scene, a dataset, a study's case, a benchmark's row and a model built in code are each a
+!> model source (rollcon_model_source) with its run settings; the job adds which routine serves
+!> the UCONs that name none of their own (the hand-checked disk, a built-in routine by name, or
+!> a user's file run in a child process), where its outputs go and how it reports. load_job
+!> makes a job of a path; run_job (rollcon_run_job) runs any job.
+module rollcon_job
+    use rollcon_kinds, only : wp
+    use rollcon_ucosub_contract, only : ucosub_interface
+    use rollcon_disk_reference, only : rolling_disk_ucosub
+    use rollcon_model_source, only : model_source_type
+    use rollcon_output_rows, only : default_max_csv_bytes
+    use rollcon_child_process, only : default_call_timeout
+    use rollcon_user_build, only : user_build_options_type
+    implicit none
+    private
+
+    public :: job_type, new_job
+
+    type :: job_type
+        !> What to build and run
+        class(model_source_type), allocatable :: source
+        !> The routine of the UCONs that name none (ADAMS's one UCOSUB per model): a built-in
+        !> routine, rollcon's hand-checked disk unless the job says otherwise
+        procedure(ucosub_interface), pointer, nopass :: routine => rolling_disk_ucosub
+        !> ... or a user's file (.f, .f90, .o), compiled, cached and run in a child process
+        !> ("" for none): the child computes, this process writes every output
+        character(len=:), allocatable :: user_file
+        !> How a user's file is compiled and where the cache is
+        type(user_build_options_type) :: build_options
+        !> Longest one call of a user's routine may take [s]
+        real(wp) :: call_timeout = real(default_call_timeout, wp)
+        !> Folder of the outputs (DIR/NAME.csv, .summary.txt, .parts); "" for none: the rows
+        !> go only to the caller's history
+        character(len=:), allocatable :: output_dir
+        !> No progress lines and no report of the start's analysis
+        logical :: quiet = .false.
+        !> Largest CSV the run may plan [bytes]
+        real(wp) :: max_csv_bytes = default_max_csv_bytes
+    end type job_type
+
+contains
+
+    !> A job of a source: the hand-checked disk serves its UCONs, no outputs but the
+    !> caller's history, quiet.
+    function new_job(source) result(job)
+        class(model_source_type), intent(in) :: source
+        type(job_type) :: job
+
+        allocate(job%source, source=source)
+        job%user_file = ""
+        job%output_dir = ""
+        job%quiet = .true.
+    end function new_job
+
+end module rollcon_job

@@ -1,0 +1,154 @@
+! SPDX-License-Identifier: MIT
+!> The figures of a run of one part rolling on a rim, the columns of its rim contact among its
+!> rows (rollcon_contact_watch): paths of the centre and the contact point, theta, the
+!> precession and spin rates, energy drift, constraint residuals with the height residual, the
+!> contact force and the friction coefficient it needs.
+module rollcon_contact_figures
+    use rollcon_kinds, only : wp
+    use rollcon_error, only : error_type, fatal_error, stat_io
+    use rollcon_text, only : to_text
+    use rollcon_output_layout, only : coord_x, coord_y, coord_theta, coord_psidot, &
+        & coord_phidot
+    use rollcon_run_record, only : run_record_type, path_point
+    use rollcon_figure_text, only : drift, residual_floor, title, output, figure_preamble
+    use rollcon_gnuplot, only : gnuplot_string
+    use rollcon_output_files, only : close_checked
+    implicit none
+    private
+
+    public :: write_contact_data, contact_script
+
+    !> The figures, each written as DIR/<base>_<name>.png
+    character(len=*), parameter, public :: contact_figure_names(7) = [character(len=11) :: "path", &
+        & "theta", "rates", "energy", "residuals", "force", "friction"]
+    !> Columns of the data file written for gnuplot, before one |F_k| column per UCON and the
+    !> height residual
+    integer, parameter :: data_columns = 13
+
+contains
+
+    !> The data the figures need, one row per output row: t, X, Y, contact x, y, theta, psidot,
+    !> phidot, |E - E(t0)|/|E(t0)|, |E - E(t_end)|/|E(t_end)|, normal and tangential force,
+    !> mu_needed, then |F_k| for each UCON and |height_residual| (at least residual_floor).
+    subroutine write_contact_data(path, run, error)
+        !> Data file to write
+        character(len=*), intent(in) :: path
+        !> A run of one part on a rim (rollcon_run_record's rolls_on_rim)
+        type(run_record_type), intent(in) :: run
+        type(error_type), allocatable, intent(out) :: error
+        real(wp) :: c(3), first_energy, last_energy
+        real(wp), allocatable :: row(:)
+        character(len=256) :: message
+        integer :: unit, stat, j, k, n, fx, fy, fz, mu, height
+
+        n = run%history%count
+        fx = run%layout%column("Fx")
+        fy = run%layout%column("Fy")
+        fz = run%layout%column("Fz")
+        mu = run%layout%column("mu_needed")
+        height = run%layout%column("height_residual")
+        associate (layout => run%layout)
+            first_energy = run%history%rows(layout%energy_column(), 1)
+            last_energy = run%history%rows(layout%energy_column(), n)
+            message = "a write failed"
+            open(newunit=unit, file=path, status="replace", action="write", access="stream", &
+                & form="formatted", iostat=stat, iomsg=message)
+            if (stat /= 0) then
+                call fatal_error(error, path // ": cannot write the plot data: " &
+                    & // trim(message), stat_io)
+                return
+            end if
+            do j = 1, n
+                if (stat /= 0) exit
+                associate (r => run%history%rows(:, j))
+                    c = path_point(run, 1, j)
+                    row = [r(1), r(layout%part_column(1, coord_x)), &
+                        & r(layout%part_column(1, coord_y)), c(1:2), &
+                        & r(layout%part_column(1, coord_theta)), &
+                        & r(layout%part_column(1, coord_psidot)), &
+                        & r(layout%part_column(1, coord_phidot)), &
+                        & drift(r(layout%energy_column()), first_energy), &
+                        & drift(r(layout%energy_column()), last_energy), &
+                        & r(fz), norm2([r(fx), r(fy)]), r(mu), &
+                        & [(max(abs(r(layout%residual_column(k))), residual_floor), &
+                        & k = 1, size(layout%ucon_ids))], &
+                        & max(abs(r(height)), residual_floor)]
+                end associate
+                write(unit, '(*(es24.16e3, :, 1x))', iostat=stat) row
+            end do
+        end associate
+        call close_checked(unit, path, error)
+        if (allocated(error)) return
+        if (stat /= 0) call fatal_error(error, path // ": cannot write the plot data: " &
+            & // trim(message), stat_io)
+    end subroutine write_contact_data
+
+    !> The gnuplot script drawing every figure from the data file. Long because it is the
+    !> figures' text, one figure after the other.
+    pure function contact_script(name, prefix, data_path, run) result(text)
+        !> The run's name, the figures' path less _<figure>.png, the data file
+        character(len=*), intent(in) :: name, prefix, data_path
+        type(run_record_type), intent(in) :: run
+        character(len=:), allocatable :: text
+        character(len=*), parameter :: nl = new_line("a")
+        character(len=:), allocatable :: data, residuals
+        integer :: k, nucons
+
+        data = gnuplot_string(data_path)
+        text = figure_preamble(name)
+        text = text // output(prefix, "path") &
+            & // title(name // ": paths on the ground (equal axes)") &
+            & // "set xlabel 'X [m]'" // nl // "set ylabel 'Y [m]'" // nl &
+            & // "set size ratio -1" // nl &
+            & // "plot " // data // " using 4:5 with lines lw 1.5 title 'contact point', " &
+            & // data // " using 2:3 with lines lw 1.5 title 'centre'" // nl &
+            & // "set size noratio" // nl // "set xlabel 't [s]'" // nl
+        text = text // output(prefix, "theta") &
+            & // title(name // ": tilt θ (π/2 upright, 0 and π flat)") &
+            & // "set ylabel 'θ [rad]'" // nl &
+            & // "plot " // data // " using 1:6 with lines lw 1.5 title 'θ', pi/2 with " &
+            & // "lines dashtype 2 lc 'gray40' title 'upright'" // nl
+        text = text // output(prefix, "rates") &
+            & // title(name // ": precession and spin rates") &
+            & // "set ylabel 'rate [rad/s]'" // nl &
+            & // "plot " // data // " using 1:7 with lines lw 1.5 title 'dψ/dt (precession)', " &
+            & // data // " using 1:8 with lines lw 1.5 title 'dφ/dt (spin)'" // nl
+        text = text // output(prefix, "energy") &
+            & // title(name // ": energy drift (a push changes E on purpose)") &
+            & // "set ylabel 'relative change of E'" // nl // "set logscale y" // nl &
+            & // "set format y '%.0e'" // nl &
+            & // "plot " // data // " using 1:9 with lines lw 1.5 title " &
+            & // "'|E - E(start)|/|E(start)|', " &
+            & // data // " using 1:10 with lines lw 1.5 title '|E - E(end)|/|E(end)|'" // nl
+        residuals = ""
+        nucons = size(run%layout%ucon_ids)
+        do k = 1, nucons + 1
+            if (k > 1) residuals = residuals // ", "
+            residuals = residuals // data // " using 1:" // to_text(data_columns + k) &
+                & // " with lines lw 1.2 title "
+            if (k <= nucons) then
+                residuals = residuals // gnuplot_string("|F_" &
+                    & // to_text(run%layout%ucon_ids(k)) // "|")
+            else
+                residuals = residuals // "'|height_residual|'"
+            end if
+        end do
+        text = text // output(prefix, "residuals") &
+            & // title(name // ": constraint residuals (zero drawn at " &
+            & // to_text(residual_floor) // ")") &
+            & // "set ylabel '|F_k| [m/s]; |height_residual| [m]'" // nl &
+            & // "plot " // residuals // nl &
+            & // "unset logscale y" // nl // "set format y '% h'" // nl
+        text = text // output(prefix, "force") &
+            & // title(name // ": contact force on the disk") &
+            & // "set ylabel 'force [N]'" // nl &
+            & // "plot " // data // " using 1:11 with lines lw 1.5 title 'normal', " &
+            & // data // " using 1:12 with lines lw 1.5 title 'tangential'" // nl
+        text = text // output(prefix, "friction") &
+            & // title(name // ": friction coefficient needed to roll (|tangential|/normal)") &
+            & // "set ylabel 'μ needed'" // nl &
+            & // "plot " // data // " using 1:13 with lines lw 1.5 title 'μ needed'" // nl &
+            & // "unset output" // nl
+    end function contact_script
+
+end module rollcon_contact_figures

@@ -1,0 +1,201 @@
+! SPDX-License-Identifier: MIT
+!> The output rows of a run: where and how often they are written, how many a request plans
+!> (refused beyond a size limit), the layout of a problem's rows (rollcon_output_layout, the one
+!> place that says which quantity sits in which column), what fills a row, and the rows kept in
+!> memory (history) for tests and benchmarks.
+module rollcon_output_rows
+    use, intrinsic :: iso_fortran_env, only : int64
+    use rollcon_kinds, only : wp
+    use rollcon_error, only : error_type, fatal_error, stat_input
+    use rollcon_text, only : to_text
+    use rollcon_problem, only : problem_type
+    use rollcon_csv_writer, only : csv_row_bytes
+    use rollcon_output_layout, only : output_layout_type, new_output_layout, name_length, &
+        & coord_x, coord_phi, coord_xdot, coord_phidot
+    implicit none
+    private
+
+    public :: run_options_type, planned_rows, history_type, output_layout, output_row
+
+    !> Default limit of a planned CSV [bytes], 100 GB: ten thousand times the coin's run
+    real(wp), parameter, public :: default_max_csv_bytes = 1.0e11_wp
+
+    !> Where and how often to report
+    type :: run_options_type
+        !> Start and end time, output interval [s]
+        real(wp) :: t0 = 0.0_wp, end_time = 1.0_wp, output_step = 0.01_wp
+        !> CSV file to write (none when unallocated)
+        character(len=:), allocatable :: csv_path
+        !> Progress lines on stderr for runs longer than a second
+        logical :: progress = .true.
+        !> Largest CSV a run may plan to write [bytes]: a request beyond it is refused before
+        !> the run (raise it to override; the default is far beyond a useful time history)
+        real(wp) :: max_csv_bytes = default_max_csv_bytes
+    end type run_options_type
+
+    !> The output rows kept in memory (the CSV's rows), for tests and benchmarks
+    type :: history_type
+        !> What the columns hold (set by the run that fills the rows)
+        type(output_layout_type) :: layout
+        !> rows(:, i) is output row i; only the first count rows are filled
+        real(wp), allocatable :: rows(:, :)
+        integer :: count = 0
+    contains
+        procedure :: add => history_add
+        procedure :: column => history_column
+        procedure :: part_values => history_part_values
+        procedure :: part_state => history_part_state
+    end type history_type
+
+contains
+
+    !> Append a row, growing the storage geometrically.
+    pure subroutine history_add(self, row)
+        class(history_type), intent(inout) :: self
+        real(wp), intent(in) :: row(:)
+        real(wp), allocatable :: grown(:, :)
+
+        if (.not. allocated(self%rows)) allocate(self%rows(size(row), 256))
+        if (self%count == size(self%rows, 2)) then
+            allocate(grown(size(row), 2*self%count))
+            grown(:, :self%count) = self%rows(:, :self%count)
+            call move_alloc(grown, self%rows)
+        end if
+        self%count = self%count + 1
+        self%rows(:, self%count) = row
+    end subroutine history_add
+
+    !> Column j over the filled rows.
+    pure function history_column(self, j) result(values)
+        class(history_type), intent(in) :: self
+        integer, intent(in) :: j
+        real(wp), allocatable :: values(:)
+
+        values = self%rows(j, :self%count)
+    end function history_column
+
+    !> Quantity c (coord_x ... coord_phidot) of the p-th part (model order) over the filled
+    !> rows.
+    pure function history_part_values(self, p, c) result(values)
+        class(history_type), intent(in) :: self
+        integer, intent(in) :: p, c
+        real(wp), allocatable :: values(:)
+
+        values = self%rows(self%layout%part_column(p, c), :self%count)
+    end function history_part_values
+
+    !> The 12 coordinates and rates (X ... phi, Xdot ... phidot) of the p-th part (model order)
+    !> in row i.
+    pure function history_part_state(self, p, i) result(state)
+        class(history_type), intent(in) :: self
+        integer, intent(in) :: p, i
+        real(wp) :: state(12)
+
+        state = self%rows(self%layout%part_column(p, 1):self%layout%part_column(p, 12), i)
+    end function history_part_state
+
+    !> The layout of a problem's output rows: its parts and UCONs in model order, then the
+    !> columns of its watches in watch order.
+    function output_layout(problem) result(layout)
+        type(problem_type), intent(in) :: problem
+        type(output_layout_type) :: layout
+        integer :: part_ids(size(problem%model%parts)), ucon_ids(problem%ucon_count()), k
+        character(len=name_length), allocatable :: extra(:), names(:)
+
+        do k = 1, size(part_ids)
+            part_ids(k) = problem%model%parts(k)%id
+        end do
+        do k = 1, size(ucon_ids)
+            ucon_ids(k) = problem%ucon_id(k)
+        end do
+        allocate(extra(0))
+        do k = 1, size(problem%watches)
+            call problem%watches(k)%watch%column_names(problem%eq, names)
+            extra = [extra, names]
+        end do
+        layout = new_output_layout(part_ids, ucon_ids, extra)
+    end function output_layout
+
+    !> The output row at (time, q, u), in the columns of layout (output_layout(problem)), with
+    !> the energy, each UCON's residual and multiplier as the last accelerations call left
+    !> them at this state, and each watch's columns (the watches take their measures here).
+    !> The problem is prepared (problem%prepare).
+    function output_row(problem, layout, time, q, u) result(row)
+        type(problem_type), intent(inout) :: problem
+        type(output_layout_type), intent(in) :: layout
+        !> Time [s]
+        real(wp), intent(in) :: time
+        !> Coordinates and rates of every part [m, rad, m/s, rad/s]
+        real(wp), intent(in) :: q(:), u(:)
+        real(wp) :: row(layout%columns())
+        integer :: p, k, i0, first, count
+
+        row(1) = time
+        do p = 1, size(layout%part_ids)
+            i0 = 6*(p - 1)
+            row(layout%part_column(p, coord_x):layout%part_column(p, coord_phi)) = q(i0 + 1:i0 + 6)
+            row(layout%part_column(p, coord_xdot):layout%part_column(p, coord_phidot)) &
+                & = u(i0 + 1:i0 + 6)
+        end do
+        row(layout%energy_column()) = problem%eq%energy(q, u)
+        do k = 1, size(layout%ucon_ids)
+            row(layout%residual_column(k)) = problem%eq%constraints%value(k)
+            row(layout%multiplier_column(k)) = problem%lambda(k)
+        end do
+        first = layout%energy_column() + 2*size(layout%ucon_ids) + 1
+        do k = 1, size(problem%watches)
+            count = problem%watch_columns(k)
+            call problem%watches(k)%watch%fill_columns(problem%eq, time, q, u, problem%lambda, &
+                & row(first:first + count - 1))
+            first = first + count
+        end do
+    end function output_row
+
+    !> Number of output steps after the first row (64 bits); refused when the CSV they would
+    !> fill is larger than options%max_csv_bytes, or the count does not fit in 64 bits.
+    subroutine planned_rows(options, columns, n_output, error)
+        type(run_options_type), intent(in) :: options
+        !> Columns of a row
+        integer, intent(in) :: columns
+        integer(int64), intent(out) :: n_output
+        type(error_type), allocatable, intent(out) :: error
+        real(wp) :: steps, bytes
+        character(len=:), allocatable :: rows, bytes_text
+
+        ! 1e-9: an end time a rounding short of a whole number of steps adds no step.
+        steps = max(1.0_wp, ceiling_real((options%end_time - options%t0)/options%output_step &
+            & - 1.0e-9_wp))
+        bytes = (steps + 1.0_wp)*real(csv_row_bytes(columns), wp)
+        n_output = 1
+        rows = to_text(steps + 1.0_wp)
+        bytes_text = to_text(bytes)
+        if (steps < 1.0e18_wp) rows = to_text(int(steps, int64) + 1_int64)
+        ! exact while it fits in 64 bits (huge(int64) ~ 9.2e18)
+        if (bytes < 9.0e18_wp) bytes_text = to_text((int(steps, int64) + 1_int64) &
+            & *int(csv_row_bytes(columns), int64))
+        if (allocated(options%csv_path) .and. bytes > options%max_csv_bytes) then
+            call fatal_error(error, "the output request (end_time " // to_text(options%end_time) &
+                & // " s, output_step " // to_text(options%output_step) // " s) means " &
+                & // rows // " rows, " // bytes_text &
+                & // " bytes of CSV, beyond the limit of " // to_text(options%max_csv_bytes) &
+                & // " bytes: raise output_step or lower end_time (or lift the limit " &
+                & // "explicitly, rollcon run --allow-large-output)", stat_input)
+        else if (.not. steps < real(huge(n_output), wp)/2.0_wp) then
+            call fatal_error(error, "the output request (end_time " // to_text(options%end_time) &
+                & // " s, output_step " // to_text(options%output_step) // " s) means " &
+                & // rows // " rows, more than a 64-bit count holds", stat_input)
+        else
+            n_output = int(steps, int64)
+        end if
+    end subroutine planned_rows
+
+    !> ceiling of a real of any size, as a real (no integer overflow).
+    elemental function ceiling_real(x) result(c)
+        real(wp), intent(in) :: x
+        real(wp) :: c
+
+        c = aint(x)
+        if (c < x) c = c + 1.0_wp
+    end function ceiling_real
+
+end module rollcon_output_rows

@@ -1,0 +1,391 @@
+! SPDX-License-Identifier: MIT
+!> A model as the integrators see it (rollcon_dynamic_system): the model (held here, once), its
+!> equations, the run settings, the watches of the run, scratch arrays, and the first failure a
+!> callback met (callbacks never print or stop). The ODE state is y = (q, u); the DAE state is
+!> y = (q, u, lambda, mu) with y' = (u, a, 0, 0) (docs/design.md §4).
+module rollcon_problem
+    use rollcon_kinds, only : wp
+    use rollcon_error, only : error_type
+    use rollcon_model, only : model_type
+    use rollcon_equations, only : equations_type
+    use rollcon_constraints, only : need_value
+    use rollcon_dae, only : dae_size, dae_differential_kinds => dae_differential, &
+        & residual_of_dae => dae_residual, jacobian_of_dae => dae_jacobian
+    use rollcon_run_settings, only : run_settings_type, formulation_cvode, drift_projection
+    use rollcon_dynamic_system, only : dynamic_system_type
+    use rollcon_watch, only : watch_type, watch_slot_type
+    use rollcon_output_layout, only : name_length
+    implicit none
+    private
+
+    public :: problem_type
+
+    type, extends(dynamic_system_type) :: problem_type
+        !> The model, set up: the one copy
+        type(model_type) :: model
+        !> Its equations (pointing at `model`)
+        type(equations_type) :: eq
+        type(run_settings_type) :: settings
+        !> What the run watches besides parts, UCONs and forces, in order: their event
+        !> functions and their columns follow one another in this order
+        type(watch_slot_type), allocatable :: watches(:)
+        !> The number of columns each watch adds (set by prepare)
+        integer, allocatable :: watch_columns(:)
+        !> Scratch: accelerations and multipliers
+        real(wp), allocatable :: a(:), lambda(:)
+        !> The first failure inside a callback, for the caller to report
+        type(error_type), allocatable :: failure
+    contains
+        procedure :: init
+        procedure :: add_watch
+        procedure :: prepare
+        procedure :: accelerations
+        procedure :: ucon_count
+        procedure :: ucon_id
+        procedure :: constraint_values
+        procedure :: state_size
+        procedure :: pack_state
+        procedure :: ode_rhs
+        procedure :: ode_jacobian
+        procedure :: projects
+        procedure :: project
+        procedure :: dae_residual
+        procedure :: dae_jacobian
+        procedure :: dae_differential
+        procedure :: root_count
+        procedure :: roots
+        procedure :: root_values
+        procedure :: root_owner
+        procedure :: keep_failure
+        procedure :: failure_text
+        procedure :: ucons_do_no_work
+    end type problem_type
+
+contains
+
+    !> Keep a model that setup_model has prepared (the problem's copy is the only one the
+    !> run uses: the equations refer to it) and set up its equations on it; no watches yet.
+    subroutine init(self, model)
+        class(problem_type), intent(inout), target :: self
+        type(model_type), intent(in) :: model
+
+        self%model = model
+        call self%eq%init(self%model)
+        if (allocated(self%watches)) deallocate(self%watches)
+        allocate(self%watches(0))
+    end subroutine init
+
+    !> Watch this too (after the watches added before it).
+    subroutine add_watch(self, watch)
+        class(problem_type), intent(inout) :: self
+        class(watch_type), intent(in) :: watch
+        type(watch_slot_type), allocatable :: grown(:)
+        integer :: k
+
+        if (.not. allocated(self%watches)) allocate(self%watches(0))
+        allocate(grown(size(self%watches) + 1))
+        do k = 1, size(self%watches)
+            call move_alloc(self%watches(k)%watch, grown(k)%watch)
+        end do
+        allocate(grown(size(grown))%watch, source=watch)
+        call move_alloc(grown, self%watches)
+    end subroutine add_watch
+
+    !> Before a run: size scratch arrays, prepare every watch (it may refuse the model).
+    subroutine prepare(self, error)
+        class(problem_type), intent(inout) :: self
+        type(error_type), allocatable, intent(out) :: error
+        character(len=name_length), allocatable :: names(:)
+        integer :: k
+
+        if (allocated(self%a)) deallocate(self%a)
+        if (allocated(self%lambda)) deallocate(self%lambda)
+        allocate(self%a(self%eq%n), self%lambda(self%eq%nc), source=0.0_wp)
+        if (allocated(self%failure)) deallocate(self%failure)
+        if (.not. allocated(self%watches)) allocate(self%watches(0))
+        if (allocated(self%watch_columns)) deallocate(self%watch_columns)
+        allocate(self%watch_columns(size(self%watches)))
+        do k = 1, size(self%watches)
+            call self%watches(k)%watch%prepare(self%eq, self%settings, error)
+            if (allocated(error)) return
+            call self%watches(k)%watch%column_names(self%eq, names)
+            self%watch_columns(k) = size(names)
+        end do
+    end subroutine prepare
+
+    !> Accelerations and multipliers at (t, q, u) into self%a and self%lambda, with the
+    !> settings' drift control.
+    subroutine accelerations(self, time, q, u, error)
+        class(problem_type), intent(inout) :: self
+        real(wp), intent(in) :: time, q(:), u(:)
+        type(error_type), allocatable, intent(out) :: error
+
+        call self%eq%accelerations(time, q, u, self%settings%baumgarte(), self%a, self%lambda, &
+            & error)
+    end subroutine accelerations
+
+    !> Number of UCONs.
+    pure integer function ucon_count(self)
+        class(problem_type), intent(in) :: self
+
+        ucon_count = self%eq%nc
+    end function ucon_count
+
+    !> Identifier of the k-th UCON (as in its UCON statement).
+    pure integer function ucon_id(self, k)
+        class(problem_type), intent(in) :: self
+        integer, intent(in) :: k
+
+        ucon_id = self%model%ucons(k)%id
+    end function ucon_id
+
+    !> Each UCON's residual F_k at the last evaluation.
+    pure function constraint_values(self) result(values)
+        class(problem_type), intent(in) :: self
+        real(wp) :: values(self%eq%nc)
+
+        values = self%eq%constraints%value
+    end function constraint_values
+
+    !> Size of the integrator's state: 2n for the ODE form, the DAE's size for IDA.
+    pure integer function state_size(self)
+        class(problem_type), intent(in) :: self
+
+        if (self%settings%formulation == formulation_cvode) then
+            state_size = 2*self%eq%n
+        else
+            state_size = dae_size(self%eq)
+        end if
+    end function state_size
+
+    !> The integrator's state at (q, u) with the accelerations and multipliers of the last
+    !> accelerations call: y = (q, u) for CVODE; y = (q, u, lambda, 0), y' = (u, a, 0, 0) for
+    !> IDA (mu = 0: the GGL multipliers vanish on a consistent state).
+    pure subroutine pack_state(self, q, u, y, yp)
+        class(problem_type), intent(in) :: self
+        real(wp), intent(in) :: q(:), u(:)
+        real(wp), intent(out) :: y(:), yp(:)
+
+        associate (n => self%eq%n, nc => self%eq%nc)
+            y = 0.0_wp
+            yp = 0.0_wp
+            y(:n) = q
+            y(n + 1:2*n) = u
+            if (self%settings%formulation == formulation_cvode) return
+            y(2*n + 1:2*n + nc) = self%lambda
+            yp(:n) = u
+            yp(n + 1:2*n) = self%a
+        end associate
+    end subroutine pack_state
+
+    !> y' = (u, a) for y = (q, u); ierr 0 on success, -1 on failure (kept in self%failure).
+    integer function ode_rhs(self, time, y, ydot) result(ierr)
+        class(problem_type), intent(inout) :: self
+        real(wp), intent(in) :: time, y(:)
+        real(wp), intent(out) :: ydot(:)
+        type(error_type), allocatable :: error
+
+        associate (n => self%eq%n)
+            call self%accelerations(time, y(:n), y(n + 1:), error)
+            ierr = self%keep_failure(error)
+            if (ierr /= 0) return
+            ydot(:n) = y(n + 1:)
+            ydot(n + 1:) = self%a
+        end associate
+    end function ode_rhs
+
+    !> The ODE form's Newton matrix from the UCOSUBs' partials.
+    integer function ode_jacobian(self, time, y, matrix) result(ierr)
+        class(problem_type), intent(inout) :: self
+        real(wp), intent(in) :: time, y(:)
+        real(wp), intent(out) :: matrix(:, :)
+        type(error_type), allocatable :: error
+
+        associate (n => self%eq%n)
+            call self%eq%ode_jacobian(time, y(:n), y(n + 1:), self%settings%baumgarte(), matrix, &
+                & error)
+        end associate
+        ierr = self%keep_failure(error)
+    end function ode_jacobian
+
+    !> Projection onto the constraints, when the settings ask for it and there are UCONs.
+    logical function projects(self)
+        class(problem_type), intent(in) :: self
+
+        projects = self%settings%drift == drift_projection .and. self%eq%nc > 0
+    end function projects
+
+    !> The mass-weighted correction onto the constraints (exact, one step).
+    integer function project(self, time, y, correction) result(ierr)
+        class(problem_type), intent(inout) :: self
+        real(wp), intent(in) :: time, y(:)
+        real(wp), intent(out) :: correction(:)
+        type(error_type), allocatable :: error
+
+        associate (n => self%eq%n)
+            call self%eq%project(time, y(:n), y(n + 1:), correction(:n), correction(n + 1:), error)
+        end associate
+        ierr = self%keep_failure(error)
+    end function project
+
+    integer function dae_residual(self, time, y, yp, residual) result(ierr)
+        class(problem_type), intent(inout) :: self
+        real(wp), intent(in) :: time, y(:), yp(:)
+        real(wp), intent(out) :: residual(:)
+        type(error_type), allocatable :: error
+
+        call residual_of_dae(self%eq, time, y, yp, residual, error)
+        ierr = self%keep_failure(error)
+    end function dae_residual
+
+    integer function dae_jacobian(self, time, cj, y, yp, matrix) result(ierr)
+        class(problem_type), intent(inout) :: self
+        real(wp), intent(in) :: time, cj, y(:), yp(:)
+        real(wp), intent(out) :: matrix(:, :)
+        type(error_type), allocatable :: error
+
+        call jacobian_of_dae(self%eq, time, cj, y, yp, matrix, error)
+        ierr = self%keep_failure(error)
+    end function dae_jacobian
+
+    !> q and u differential, the multipliers algebraic.
+    function dae_differential(self, n) result(kinds)
+        class(problem_type), intent(in) :: self
+        integer, intent(in) :: n
+        real(wp) :: kinds(n)
+
+        kinds = dae_differential_kinds(self%eq)
+    end function dae_differential
+
+    !> Number of event functions: every watch's, in watch order.
+    integer function root_count(self)
+        class(problem_type), intent(in) :: self
+        integer :: k
+
+        root_count = 0
+        if (.not. allocated(self%watches)) return
+        do k = 1, size(self%watches)
+            root_count = root_count + self%watches(k)%watch%root_count(self%eq)
+        end do
+    end function root_count
+
+    !> The event functions at a state of the integrator: (q, u) for CVODE, with its
+    !> interpolated y' when given; (q, u, lambda, mu) for IDA.
+    integer function roots(self, time, y, g, ydot) result(ierr)
+        class(problem_type), intent(inout) :: self
+        real(wp), intent(in) :: time, y(:)
+        real(wp), intent(out) :: g(:)
+        real(wp), intent(in), optional :: ydot(:)
+
+        associate (n => self%eq%n, nc => self%eq%nc)
+            if (size(y) > 2*n) then
+                ierr = self%root_values(time, y(:n), y(n + 1:2*n), g, lambda=y(2*n + 1:2*n + nc))
+            else if (present(ydot)) then
+                ierr = self%root_values(time, y(:n), y(n + 1:2*n), g, a=ydot(n + 1:2*n))
+            else
+                ierr = self%root_values(time, y(:n), y(n + 1:2*n), g)
+            end if
+        end associate
+    end function roots
+
+    !> Every watch's event functions at (t, q, u), root_count() of them; lambda or a when the
+    !> integrator knows them (rollcon_watch).
+    function root_values(self, time, q, u, g, lambda, a) result(ierr)
+        class(problem_type), intent(inout) :: self
+        real(wp), intent(in) :: time, q(:), u(:)
+        real(wp), intent(out) :: g(:)
+        real(wp), intent(in), optional :: lambda(:), a(:)
+        integer :: ierr
+        type(error_type), allocatable :: error
+        integer :: k, first, count
+
+        ierr = 0
+        first = 1
+        do k = 1, size(self%watches)
+            count = self%watches(k)%watch%root_count(self%eq)
+            if (count == 0) cycle
+            call self%watches(k)%watch%roots(self%eq, self%settings, time, q, u, &
+                & g(first:first + count - 1), error, lambda, a)
+            ierr = self%keep_failure(error)
+            if (ierr /= 0) return
+            first = first + count
+        end do
+    end function root_values
+
+    !> The watch whose event function `root` is (in root_values' order), and its own number
+    !> there.
+    pure subroutine root_owner(self, root, watch, k)
+        class(problem_type), intent(in) :: self
+        integer, intent(in) :: root
+        integer, intent(out) :: watch, k
+        integer :: count
+
+        k = root
+        do watch = 1, size(self%watches)
+            count = self%watches(watch)%watch%root_count(self%eq)
+            if (k <= count) return
+            k = k - count
+        end do
+        watch = 0
+    end subroutine root_owner
+
+    !> Keep the first failure; return the callback code (0 ok, -1 unrecoverable).
+    function keep_failure(self, error) result(ierr)
+        class(problem_type), intent(inout) :: self
+        type(error_type), allocatable, intent(inout) :: error
+        integer :: ierr
+
+        ierr = 0
+        if (.not. allocated(error)) return
+        ierr = -1
+        if (.not. allocated(self%failure)) call move_alloc(error, self%failure)
+    end function keep_failure
+
+    !> The first failure a callback kept ("" when none).
+    function failure_text(self) result(text)
+        class(problem_type), intent(in) :: self
+        character(len=:), allocatable :: text
+
+        text = ""
+        if (allocated(self%failure)) text = self%failure%message
+    end function failure_text
+
+    !> True when the UCONs do no work at the start (t, q), so that they leave the energy
+    !> alone: every velocity UCON's F vanishes at zero rates (F = C(q) u: every term carries a
+    !> rate, as for a rolling contact on fixed ground) and no position UCON changes with time
+    !> alone (F at t and at t + 1 s equal). A moving constraint (a turntable, a driven motion)
+    !> fails this, and its constraint forces do work. The check is made at the one state given;
+    !> a UCOSUB that cannot be evaluated at zero rates leaves the answer true (the run itself
+    !> then reports its error). The UCONs are evaluated, so call this before the run's first
+    !> evaluation.
+    function ucons_do_no_work(self, time, q) result(no_work)
+        class(problem_type), intent(inout) :: self
+        real(wp), intent(in) :: time, q(:)
+        logical :: no_work
+        !> A homogeneous form gives exact zeros (every term is a product with a rate that is 0),
+        !> and a time-free one the same value twice; a moving constraint's terms are of the size
+        !> of its motion, many orders above this
+        real(wp), parameter :: tol_work = 1.0e-12_wp
+        real(wp) :: still(size(q)), now(self%eq%nc)
+        type(error_type), allocatable :: error
+        integer :: k
+
+        no_work = .true.
+        if (self%eq%nc == 0) return
+        still = 0.0_wp
+        call self%eq%constraints%evaluate(self%model, time, q, still, need_value, error)
+        if (allocated(error)) return
+        now = self%eq%constraints%value
+        call self%eq%constraints%evaluate(self%model, time + 1.0_wp, q, still, need_value, error)
+        if (allocated(error)) return
+        do k = 1, self%eq%nc
+            if (self%model%ucons(k)%holonomic) then
+                if (abs(self%eq%constraints%value(k) - now(k)) > tol_work) no_work = .false.
+            else
+                if (abs(now(k)) > tol_work .or. abs(self%eq%constraints%value(k)) > tol_work) &
+                    & no_work = .false.
+            end if
+        end do
+    end function ucons_do_no_work
+
+end module rollcon_problem

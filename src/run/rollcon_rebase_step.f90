@@ -1,0 +1,109 @@
+! SPDX-License-Identifier: MIT
+!> One re-basing of a part during a run (docs/rebasing.md): the UCOSUB contract checked (every
+!> UCON on the part gives the same F at the same physical state in both bases), the model's
+!> part turned (rollcon_model's turn_part_axes) and its coordinates and rates replaced by those
+!> of the turned basis (rollcon_rebasing). The integrator's re-initialisation is the caller's.
+module rollcon_rebase_step
+    use rollcon_kinds, only : wp
+    use rollcon_error, only : error_type
+    use rollcon_text, only : to_text
+    use rollcon_problem, only : problem_type
+    use rollcon_constraints, only : need_value, need_first
+    use rollcon_rebasing, only : rebased_state
+    implicit none
+    private
+
+    public :: rebase_part, basis_rtol_floor
+
+    !> Least relative tolerance of the comparison of F in two bases [-]: a routine indifferent
+    !> to the basis computes its terms from the sines and cosines of other angles, each term
+    !> to a few rounding errors, summed over at most 30 variables: 1e3 eps of the terms' sizes
+    real(wp), parameter :: basis_rtol_floor = 1.0e3_wp*epsilon(1.0_wp)
+
+contains
+
+    !> Re-base part p (model order) at (time, q, u). Before anything changes, every UCON on the
+    !> part is evaluated at the same physical state in both bases: when some F differs by more
+    !> than atol + max(rtol, basis_rtol_floor) s_k (s_k: the sizes of F's terms, below), the
+    !> part is not re-based and `refusal` names the part, the UCON and the time. Otherwise the
+    !> model's part is turned and q and u hold the new basis's values (the caller counts the
+    !> re-basing). A UCOSUB's own failure is an error.
+    subroutine rebase_part(problem, p, time, q, u, refusal, error)
+        type(problem_type), intent(inout) :: problem
+        !> Part index (model order)
+        integer, intent(in) :: p
+        !> Time [s]
+        real(wp), intent(in) :: time
+        !> Coordinates and rates of all parts [m, rad, m/s, rad/s]
+        real(wp), intent(inout) :: q(:), u(:)
+        !> Why the part cannot be re-based (unallocated when it was)
+        character(len=:), allocatable, intent(out) :: refusal
+        type(error_type), allocatable, intent(out) :: error
+        real(wp), allocatable :: q_new(:), u_new(:), f_old(:), f_new(:), scale(:)
+        real(wp) :: allowed
+        integer :: i0, k
+
+        i0 = 6*(p - 1)
+        q_new = q
+        u_new = u
+        call rebased_state(q(i0 + 1:i0 + 6), u(i0 + 1:i0 + 6), q_new(i0 + 1:i0 + 6), &
+            & u_new(i0 + 1:i0 + 6))
+        if (problem%eq%nc > 0) then
+            associate (constraints => problem%eq%constraints)
+                call constraints%evaluate(problem%model, time, q, u, need_value + need_first, &
+                    & error)
+                if (allocated(error)) return
+                f_old = constraints%value
+                scale = term_sizes(problem, q, u)
+                call constraints%evaluate(problem%model, time, q_new, u_new, need_value, error)
+                if (allocated(error)) return
+                f_new = constraints%value
+            end associate
+            do k = 1, problem%eq%nc
+                associate (ucon => problem%model%ucons(k))
+                    if (.not. any(ucon%coordinate > i0 .and. ucon%coordinate <= i0 + 6)) cycle
+                    allowed = problem%settings%atol &
+                        & + max(problem%settings%rtol, basis_rtol_floor)*scale(k)
+                    if (abs(f_new(k) - f_old(k)) <= allowed) cycle
+                    refusal = "part " // to_text(problem%model%parts(p)%id) &
+                        & // ": its principal axes cannot be re-based at t = " // to_text(time) &
+                        & // " s (theta = " // to_text(q(i0 + 5)) // " rad): UCON " &
+                        & // to_text(ucon%id) // " gives F = " // to_text(f_old(k)) &
+                        & // " in the old basis and " // to_text(f_new(k)) &
+                        & // " in the turned one (allowed difference " // to_text(allowed) &
+                        & // "): its UCOSUB depends on which principal axis is which " &
+                        & // "(docs/rebasing.md)"
+                    return
+                end associate
+            end do
+        end if
+        call problem%model%turn_part_axes(p, error)
+        if (allocated(error)) return
+        q = q_new
+        u = u_new
+    end subroutine rebase_part
+
+    !> The size s_k of each UCON's F at (q, u), in F's unit, from the last evaluation's first
+    !> partials: |F| + sum_j |dF/du_j u_j| + sum over translations |dF/dq_j q_j| + sum over
+    !> angles |dF/dq_j| (1 rad). For a velocity UCON (linear in the rates) the middle sum is
+    !> the sizes of its rate terms.
+    function term_sizes(problem, q, u) result(sizes)
+        type(problem_type), intent(in) :: problem
+        real(wp), intent(in) :: q(:), u(:)
+        real(wp) :: sizes(problem%eq%nc)
+        integer :: j
+
+        associate (c => problem%eq%constraints)
+            sizes = abs(c%value)
+            do j = 1, size(q)
+                sizes = sizes + abs(c%grad_u(:, j)*u(j))
+                if (mod(j - 1, 6) < 3) then
+                    sizes = sizes + abs(c%grad_q(:, j)*q(j))
+                else
+                    sizes = sizes + abs(c%grad_q(:, j))
+                end if
+            end do
+        end associate
+    end function term_sizes
+
+end module rollcon_rebase_step

@@ -1,0 +1,412 @@
+! SPDX-License-Identifier: MIT
+!> Runs a problem from t0 to the end time with its integrator (CVODE or IDA, through
+!> rollcon_integrator): output rows, the watches' events (stop, or re-base a part), the summary.
+!> The driver knows parts, UCONs, forces and watches; what a model watches is the watches'.
+module rollcon_simulation
+    use, intrinsic :: iso_fortran_env, only : int64
+    use rollcon_kinds, only : wp
+    use rollcon_error, only : error_type, fatal_error, stat_ucon
+    use rollcon_text, only : to_text
+    use rollcon_force, only : force_breakpoints, forces_idle_after
+    use rollcon_integrator, only : integrator_type, integrator_statistics_type
+    use rollcon_integrator_choice, only : new_integrator
+    use rollcon_problem, only : problem_type
+    use rollcon_watch, only : watch_event_type, watch_measure_type, action_rebase
+    use rollcon_csv_writer, only : csv_writer_type
+    use rollcon_row_sink, only : row_sink_type
+    use rollcon_progress, only : progress_type
+    use rollcon_run_summary, only : run_summary_type, status_completed, status_stopped, &
+        & status_failed, status_inaccurate, judge_drift
+    use rollcon_output_layout, only : output_layout_type
+    use rollcon_output_rows, only : run_options_type, default_max_csv_bytes, planned_rows, &
+        & history_type, output_layout, output_row
+    use rollcon_rebase_step, only : rebase_part
+    implicit none
+    private
+
+    public :: run_options_type, run_summary_type, history_type, simulate
+    !> How a run ended and what it did (rollcon_run_summary), for the callers of simulate
+    public :: status_completed, status_stopped, status_failed, status_inaccurate
+    !> The output rows' limit and layout (rollcon_output_rows), for the callers of simulate
+    public :: default_max_csv_bytes, output_layout
+
+    !> A run in progress: what the steps of simulate share
+    type :: simulation_type
+        type(problem_type), pointer :: problem => null()
+        class(integrator_type), allocatable :: integrator
+        type(run_options_type) :: options
+        type(output_layout_type) :: layout
+        type(csv_writer_type) :: csv
+        !> The integrator's state and its derivative (IDA), the time
+        real(wp), allocatable :: y(:), yp(:)
+        real(wp) :: t = 0.0_wp
+        !> Force kinks the integrator must not step over
+        real(wp), allocatable :: breaks(:)
+        !> Energy drift is measured from the first row at or after this time [s]
+        real(wp) :: t_reference = 0.0_wp
+        logical :: have_reference = .false.
+        !> Counters of the integrator's segments before its last restart
+        type(integrator_statistics_type) :: earlier
+        !> Re-basings of each part (model order)
+        integer, allocatable :: bases(:)
+        real(wp) :: cpu_start = 0.0_wp
+        !> Progress lines on stderr (options%progress)
+        type(progress_type) :: progress
+    contains
+        procedure :: begin
+        procedure :: start_integrator
+        procedure :: next_stop
+        procedure :: record
+        procedure :: handle_events
+        procedure :: rebase
+        procedure :: rebase_at_start
+        procedure :: count_rebasing
+        procedure :: finish
+    end type simulation_type
+
+contains
+
+    !> Integrate problem from (q0, u0), writing a row per output time to the CSV of options,
+    !> to history and to sink (each when given). The loop over output times with its stops,
+    !> events and failures is here; start, rows, events and the end are simulation_type's.
+    subroutine simulate(problem, q0, u0, options, summary, error, history, sink)
+        type(problem_type), intent(inout), target :: problem
+        real(wp), intent(in) :: q0(:), u0(:)
+        type(run_options_type), intent(in) :: options
+        type(run_summary_type), intent(out) :: summary
+        !> Set on a solver or output failure; summary still describes the run so far
+        type(error_type), allocatable, intent(out) :: error
+        !> When present, every output row is also kept here
+        type(history_type), intent(inout), optional :: history
+        !> When present, every output row is also handed to it
+        class(row_sink_type), intent(inout), optional :: sink
+        type(simulation_type) :: run
+        real(wp) :: t_out
+        integer :: root
+        integer(int64) :: k_output, n_output
+        logical :: stop_here
+
+        call run%begin(problem, q0, u0, options, summary, n_output, error, history, sink)
+        if (allocated(error)) then
+            call run%finish(summary, error)
+            return
+        end if
+        k_output = 1
+        do while (k_output <= n_output)
+            t_out = min(options%t0 + real(k_output, wp)*options%output_step, options%end_time)
+            call run%integrator%advance(t_out, run%next_stop(run%t), run%t, run%y, run%yp, root, &
+                & error)
+            if (allocated(error)) then
+                summary%status = status_failed
+                summary%message = error%message
+                summary%solver_flag = run%integrator%failed_flag
+                ! where the integrator got to, past the last row
+                summary%t_reached = max(summary%t_reached, run%t)
+                exit
+            end if
+            if (root /= 0) then
+                call run%handle_events(summary, stop_here, error, history, sink)
+                if (stop_here .or. allocated(error)) exit
+            end if
+            if (run%t < t_out) cycle
+            call run%record(summary, error, history, sink)
+            if (allocated(error)) exit
+            k_output = k_output + 1
+            call run%progress%report(run%t)
+        end do
+        call run%finish(summary, error)
+        if (.not. allocated(error)) call judge_drift(summary, problem%settings%rtol)
+    end subroutine simulate
+
+    !> Everything before the first step: the watches prepared, the layout, what the summary
+    !> measures, the planned rows (refused beyond the size limit), the CSV opened, parts
+    !> re-based at the start when they must be, a consistent start (accelerations and
+    !> multipliers from the saddle-point system), the integrator set up and the first row.
+    subroutine begin(self, problem, q0, u0, options, summary, n_output, error, history, sink)
+        class(simulation_type), intent(inout) :: self
+        type(problem_type), intent(inout), target :: problem
+        real(wp), intent(in) :: q0(:), u0(:)
+        type(run_options_type), intent(in) :: options
+        type(run_summary_type), intent(inout) :: summary
+        integer(int64), intent(out) :: n_output
+        type(error_type), allocatable, intent(out) :: error
+        type(history_type), intent(inout), optional :: history
+        class(row_sink_type), intent(inout), optional :: sink
+        real(wp), allocatable :: q(:), u(:)
+        character(len=:), allocatable :: refusal
+        integer :: k
+
+        self%problem => problem
+        self%options = options
+        n_output = 0
+        call problem%prepare(error)
+        if (allocated(error)) return
+        self%layout = output_layout(problem)
+        summary%layout = self%layout
+        allocate(summary%ucon_residual_max(problem%eq%nc), source=0.0_wp)
+        allocate(summary%ucon_position(problem%eq%nc))
+        do k = 1, problem%eq%nc
+            summary%ucon_position(k) = problem%model%ucons(k)%holonomic
+        end do
+        if (present(history)) history%layout = self%layout
+        allocate(self%bases(size(problem%model%parts)), source=0)
+        self%breaks = force_breakpoints(problem%model%forces)
+        self%t_reference = options%t0
+        if (size(self%breaks) > 0) self%t_reference = maxval(self%breaks)
+        ! forces acting after the reference, or moving constraints, do work: no drift to judge
+        summary%energy_conserved = forces_idle_after(problem%model%forces, self%t_reference, &
+            & options%end_time)
+        if (summary%energy_conserved) summary%energy_conserved = &
+            & problem%ucons_do_no_work(options%t0, q0)
+        self%breaks = pack(self%breaks, self%breaks > options%t0 .and. self%breaks &
+            & < options%end_time)
+        call planned_rows(options, self%layout%columns(), n_output, error)
+        if (allocated(error)) return
+        if (allocated(options%csv_path)) then
+            call self%csv%open(options%csv_path, self%layout%header(), error)
+            if (allocated(error)) return
+        end if
+        if (present(sink)) then
+            call sink%open(self%layout, error)
+            if (allocated(error)) return
+        end if
+        call cpu_time(self%cpu_start)
+        q = q0
+        u = u0
+        call self%rebase_at_start(q, u, refusal, error)
+        if (allocated(error)) return
+        call self%start_integrator(q, u, error)
+        if (allocated(error)) return
+        call self%record(summary, error, history, sink)
+        ! a re-basing refused: the run cannot go on as asked, a failure (docs/rebasing.md)
+        if (allocated(refusal) .and. .not. allocated(error)) call fatal_error(error, refusal, &
+            & stat_ucon)
+    end subroutine begin
+
+    !> The consistent start at (options%t0, q, u) and the integrator set up on it.
+    subroutine start_integrator(self, q, u, error)
+        class(simulation_type), intent(inout) :: self
+        real(wp), intent(in) :: q(:), u(:)
+        type(error_type), allocatable, intent(out) :: error
+
+        associate (problem => self%problem)
+            call problem%accelerations(self%options%t0, q, u, error)
+            if (allocated(error)) return
+            self%t = self%options%t0
+            call self%progress%start(self%options%progress, self%options%t0, &
+                & self%options%end_time)
+            allocate(self%y(problem%state_size()), self%yp(problem%state_size()))
+            call problem%pack_state(q, u, self%y, self%yp)
+            call new_integrator(problem%settings, self%integrator)
+            call self%integrator%start(problem, problem%settings, self%t, self%y, self%yp, &
+                & self%next_stop(self%t), error)
+        end associate
+    end subroutine start_integrator
+
+    !> The next time the integrator must not step past: a force kink or the end.
+    pure function next_stop(self, time) result(stop_time)
+        class(simulation_type), intent(in) :: self
+        real(wp), intent(in) :: time
+        real(wp) :: stop_time
+
+        stop_time = self%options%end_time
+        if (any(self%breaks > time)) stop_time = minval(self%breaks, mask=self%breaks > time)
+    end function next_stop
+
+    !> Write the output row at the current state and update the summary's measures.
+    subroutine record(self, summary, error, history, sink)
+        class(simulation_type), intent(inout) :: self
+        type(run_summary_type), intent(inout) :: summary
+        type(error_type), allocatable, intent(out) :: error
+        type(history_type), intent(inout), optional :: history
+        class(row_sink_type), intent(inout), optional :: sink
+        real(wp) :: energy
+        real(wp), allocatable :: row(:)
+        integer :: n
+
+        n = self%problem%eq%n
+        associate (problem => self%problem, q => self%y(:n), u => self%y(n + 1:2*n), &
+                & time => self%t)
+            call problem%accelerations(time, q, u, error)
+            if (allocated(error)) return
+            row = output_row(problem, self%layout, time, q, u)
+            energy = row(self%layout%energy_column())
+            ! Energy is conserved once the last force pulse is over: measure drift from the
+            ! first row at or after that time.
+            if (time >= self%t_reference) then
+                if (.not. self%have_reference) summary%energy_reference = energy
+                self%have_reference = .true.
+                if (summary%energy_reference /= 0.0_wp) then
+                    summary%energy_drift = max(summary%energy_drift, &
+                        & abs(energy - summary%energy_reference)/abs(summary%energy_reference))
+                end if
+            end if
+            if (problem%eq%nc > 0) then
+                summary%ucon_residual_max = max(summary%ucon_residual_max, &
+                    & abs(problem%constraint_values()))
+                summary%residual_max = maxval(summary%ucon_residual_max)
+            end if
+            summary%t_reached = time
+            summary%q = q
+            summary%u = u
+            summary%rows = summary%rows + 1
+            if (present(history)) call history%add(row)
+            if (self%csv%opened) call self%csv%write_row(row, error)
+            if (allocated(error)) return
+            if (present(sink)) call sink%put(row, error)
+        end associate
+    end subroutine record
+
+    !> Event functions fired at the current state: each watch says what to do. When every one
+    !> re-bases a part, the parts are re-based and the integrator starts again; otherwise the
+    !> run records the row there and stops with the first stopping event's message.
+    subroutine handle_events(self, summary, stop_here, error, history, sink)
+        class(simulation_type), intent(inout) :: self
+        type(run_summary_type), intent(inout) :: summary
+        logical, intent(out) :: stop_here
+        type(error_type), allocatable, intent(out) :: error
+        type(history_type), intent(inout), optional :: history
+        class(row_sink_type), intent(inout), optional :: sink
+        type(watch_event_type), allocatable :: events(:)
+        character(len=:), allocatable :: refusal
+        integer :: r, w, k, n, stopping
+
+        n = self%problem%eq%n
+        allocate(events(0))
+        stopping = 0
+        do r = 1, size(self%integrator%fired)
+            if (self%integrator%fired(r) == 0) cycle
+            call self%problem%root_owner(r, w, k)
+            events = [events, self%problem%watches(w)%watch%fired(self%problem%eq, k, self%t, &
+                & self%y(:n), self%y(n + 1:2*n))]
+            if (events(size(events))%action /= action_rebase .and. stopping == 0) &
+                & stopping = size(events)
+        end do
+        stop_here = stopping > 0
+        if (stop_here) then
+            call self%record(summary, error, history, sink)
+            summary%status = status_stopped
+            summary%message = events(stopping)%message
+            summary%limit = events(stopping)%limit
+            return
+        end if
+        call self%rebase([(events(k)%part, k = 1, size(events))], refusal, error)
+        if (allocated(error)) return
+        if (allocated(refusal)) then
+            stop_here = .true.
+            call self%record(summary, error, history, sink)
+            if (.not. allocated(error)) call fatal_error(error, refusal, stat_ucon)
+        end if
+    end subroutine handle_events
+
+    !> Re-base the given parts at the current state (rollcon_rebase_step), then start the
+    !> integrator again from the same physical state in the new coordinates: y' from the
+    !> saddle-point system for IDA (mu = 0).
+    subroutine rebase(self, parts, refusal, error)
+        class(simulation_type), intent(inout) :: self
+        !> Parts to re-base (model order)
+        integer, intent(in) :: parts(:)
+        character(len=:), allocatable, intent(out) :: refusal
+        type(error_type), allocatable, intent(out) :: error
+        real(wp), allocatable :: q(:), u(:)
+        integer :: k, n
+
+        n = self%problem%eq%n
+        q = self%y(:n)
+        u = self%y(n + 1:2*n)
+        do k = 1, size(parts)
+            call rebase_part(self%problem, parts(k), self%t, q, u, refusal, error)
+            if (allocated(error) .or. allocated(refusal)) return
+            call self%count_rebasing(parts(k))
+        end do
+        call self%problem%accelerations(self%t, q, u, error)
+        if (allocated(error)) return
+        call self%earlier%add(self%integrator%statistics())
+        call self%problem%pack_state(q, u, self%y, self%yp)
+        call self%integrator%restart(self%t, self%y, self%yp, error)
+    end subroutine rebase
+
+    !> Before the first row: re-base every part a watch wants re-based at the start (a part at
+    !> or below the threshold of a watch that re-bases there). A refusal fails the run after
+    !> that row (the start as given).
+    subroutine rebase_at_start(self, q, u, refusal, error)
+        class(simulation_type), intent(inout) :: self
+        real(wp), intent(inout) :: q(:), u(:)
+        character(len=:), allocatable, intent(out) :: refusal
+        type(error_type), allocatable, intent(out) :: error
+        integer, allocatable :: parts(:)
+        integer :: w, k
+
+        do w = 1, size(self%problem%watches)
+            parts = self%problem%watches(w)%watch%parts_to_rebase(self%problem%eq, q)
+            do k = 1, size(parts)
+                call rebase_part(self%problem, parts(k), self%options%t0, q, u, refusal, error)
+                if (allocated(error) .or. allocated(refusal)) return
+                call self%count_rebasing(parts(k))
+            end do
+        end do
+    end subroutine rebase_at_start
+
+    !> One more re-basing of part p (model order), told to every watch.
+    subroutine count_rebasing(self, p)
+        class(simulation_type), intent(inout) :: self
+        integer, intent(in) :: p
+        integer :: w
+
+        self%bases(p) = self%bases(p) + 1
+        do w = 1, size(self%problem%watches)
+            call self%problem%watches(w)%watch%part_rebased(p)
+        end do
+    end subroutine count_rebasing
+
+    !> The summary's counters, CPU time, re-basings and the watches' measures and lines; the
+    !> integrator freed; the CSV closed (its failure, a full disk, fails the run unless it
+    !> failed already).
+    subroutine finish(self, summary, error)
+        class(simulation_type), intent(inout) :: self
+        type(run_summary_type), intent(inout) :: summary
+        type(error_type), allocatable, intent(inout) :: error
+        type(error_type), allocatable :: close_error
+        type(watch_measure_type), allocatable :: taken(:)
+        real(wp) :: cpu_now
+        integer :: k
+
+        if (allocated(self%bases)) summary%rebasings = self%bases
+        call cpu_time(cpu_now)
+        summary%cpu_seconds = cpu_now - self%cpu_start
+        if (allocated(self%integrator)) then
+            ! a restart zeroes the counters: the run's are the segments' sums
+            call self%earlier%add(self%integrator%statistics())
+            call self%integrator%destroy()
+        end if
+        summary%steps = self%earlier%steps
+        summary%functions = self%earlier%functions
+        summary%jacobians = self%earlier%jacobians
+        summary%failures = self%earlier%failures
+        summary%root_evaluations = self%earlier%roots
+        allocate(summary%measures(0))
+        summary%watch_lines = ""
+        associate (problem => self%problem)
+            do k = 1, size(problem%watches)
+                taken = problem%watches(k)%watch%measures(problem%eq, problem%settings, &
+                    & summary%steps)
+                summary%measures = [summary%measures, taken]
+                summary%watch_lines = summary%watch_lines &
+                    & // problem%watches(k)%watch%summary_lines(problem%eq)
+            end do
+        end associate
+        call self%csv%close(close_error)
+        if (allocated(close_error)) then
+            summary%status = status_failed
+            if (.not. allocated(error)) then
+                summary%message = close_error%message
+                call move_alloc(close_error, error)
+            end if
+        end if
+        if (allocated(error)) then
+            summary%status = status_failed
+            summary%message = error%message
+        end if
+    end subroutine finish
+
+end module rollcon_simulation

@@ -1,0 +1,164 @@
+! SPDX-License-Identifier: MIT
+!> A run's summary as text, for any model: a setting line given by the caller (a scene's or a
+!> dataset's), the status, the final state of every part named by its id, the energy drift, the
+!> largest residual of every UCON, the watches' lines and measures (the re-basings of a model
+!> that re-bases, the height residual of a rim contact), the integrator's counters, the CPU
+!> time and the output file.
+module rollcon_summary_text
+    use rollcon_kinds, only : wp
+    use rollcon_text, only : to_text
+    use rollcon_run_summary, only : run_summary_type, status_completed, status_stopped, &
+        & status_inaccurate
+    implicit none
+    private
+
+    public :: run_summary_text
+
+    !> The 12 quantities of a part with their units, in the order of q and u
+    character(len=16), parameter :: quantity_names(12) = [character(len=16) :: "X [m]", &
+        & "Y [m]", "Z [m]", "psi [rad]", "theta [rad]", "phi [rad]", "Xdot [m/s]", &
+        & "Ydot [m/s]", "Zdot [m/s]", "psidot [rad/s]", "thetadot [rad/s]", "phidot [rad/s]"]
+    character(len=*), parameter :: nl = new_line("a")
+
+contains
+
+    !> The summary of a run as lines of text (no final new line).
+    function run_summary_text(setting, csv_path, summary) result(text)
+        !> First line: what was run and how (e.g. "scene coin (data/coin.nml): IDA ...")
+        character(len=*), intent(in) :: setting
+        !> The CSV the rows went to
+        character(len=*), intent(in) :: csv_path
+        type(run_summary_type), intent(in) :: summary
+        character(len=:), allocatable :: text
+
+        text = setting // nl
+        select case (summary%status)
+        case (status_completed)
+            text = text // "status: completed at t = " // to_text(summary%t_reached) // " s" // nl
+        case (status_stopped)
+            text = text // "status: stopped: " // summary%message // nl
+        case (status_inaccurate)
+            text = text // "status: INACCURATE: " // summary%message // nl
+        case default
+            text = text // "status: FAILED: " // summary%message // nl
+        end select
+        text = text // final_state(summary)
+        text = text // "energy drift: " // scientific(summary%energy_drift) &
+            & // " (largest |E - E0|/|E0|, E0 = " // to_text(summary%energy_reference) &
+            & // " J after the last applied force)" // allowed(summary%energy_bound, "")
+        if (.not. summary%energy_conserved) text = text &
+            & // "; not judged: an applied force acting until the end, or a moving " &
+            & // "constraint, does work"
+        text = text // nl
+        text = text // residual_lines(summary)
+        if (allocated(summary%watch_lines)) text = text // summary%watch_lines
+        text = text // measure_lines(summary)
+        text = text // "steps " // to_text(summary%steps) // ", function evaluations " &
+            & // to_text(summary%functions) // ", Jacobian evaluations " &
+            & // to_text(summary%jacobians) // ", error-test failures " &
+            & // to_text(summary%failures) // nl
+        text = text // "CPU time: " // fixed(summary%cpu_seconds) // " s" // nl
+        text = text // "output: " // csv_path // " (" // to_text(summary%rows) // " rows)"
+    end function run_summary_text
+
+    !> "final state of part <id>:" and its coordinates beside their rates, for every part.
+    function final_state(summary) result(text)
+        type(run_summary_type), intent(in) :: summary
+        character(len=:), allocatable :: text
+        character(len=32) :: value
+        integer :: p, i, i0
+
+        text = ""
+        if (.not. allocated(summary%q) .or. .not. allocated(summary%layout%part_ids)) return
+        do p = 1, size(summary%layout%part_ids)
+            text = text // "final state of part " // to_text(summary%layout%part_ids(p)) // ":" &
+                & // nl
+            i0 = 6*(p - 1)
+            do i = 1, 6
+                write(value, '(es23.15e3)') summary%q(i0 + i)
+                text = text // "  " // quantity_names(i) // trim(value)
+                write(value, '(es23.15e3)') summary%u(i0 + i)
+                text = text // "    " // quantity_names(6 + i) // trim(value) // nl
+            end do
+        end do
+    end function final_state
+
+    !> The largest residual over the rows and UCONs, then each UCON's with its level.
+    function residual_lines(summary) result(text)
+        type(run_summary_type), intent(in) :: summary
+        character(len=:), allocatable :: text
+        integer :: k
+
+        if (.not. allocated(summary%ucon_residual_max)) then
+            text = ""
+            return
+        end if
+        if (size(summary%ucon_residual_max) == 0) then
+            text = "largest constraint residual: none (the model has no UCON)" // nl
+            return
+        end if
+        text = "largest constraint residual: " // scientific(summary%residual_max) &
+            & // " (velocity level: its coordinates' units per s; position level: their units)" &
+            & // nl
+        do k = 1, size(summary%ucon_residual_max)
+            text = text // "  UCON " // to_text(summary%layout%ucon_ids(k)) // ": " &
+                & // scientific(summary%ucon_residual_max(k))
+            if (summary%ucon_position(k)) then
+                text = text // " (position level)" // nl
+            else
+                text = text // " (velocity level)" // nl
+            end if
+        end do
+    end function residual_lines
+
+    !> Each watch measure: "largest height residual |Z - R sin(theta)|: 1.2E-09 m, allowed
+    !> 3.4E-08 m".
+    function measure_lines(summary) result(text)
+        type(run_summary_type), intent(in) :: summary
+        character(len=:), allocatable :: text
+        integer :: k
+
+        text = ""
+        if (.not. allocated(summary%measures)) return
+        do k = 1, size(summary%measures)
+            associate (m => summary%measures(k))
+                text = text // m%label // ": " // scientific(m%value) // " " // m%unit &
+                    & // allowed(m%bound, " " // m%unit) // nl
+            end associate
+        end do
+    end function measure_lines
+
+    !> ", allowed <bound><unit>" when the drift was judged (bound > 0).
+    function allowed(bound, unit) result(phrase)
+        real(wp), intent(in) :: bound
+        character(len=*), intent(in) :: unit
+        character(len=:), allocatable :: phrase
+        character(len=32) :: value
+
+        phrase = ""
+        if (bound <= 0.0_wp) return
+        write(value, '(es10.3e3)') bound
+        phrase = ", allowed " // trim(adjustl(value)) // unit
+    end function allowed
+
+    !> A measure in 4 significant digits, with a three-digit exponent kept (1.982E-08).
+    function scientific(x) result(text)
+        real(wp), intent(in) :: x
+        character(len=:), allocatable :: text
+        character(len=32) :: value
+
+        write(value, '(es11.3e3)') x
+        text = trim(adjustl(value))
+    end function scientific
+
+    !> A time in seconds with 4 decimals.
+    function fixed(x) result(text)
+        real(wp), intent(in) :: x
+        character(len=:), allocatable :: text
+        character(len=32) :: value
+
+        write(value, '(f12.4)') x
+        text = trim(adjustl(value))
+    end function fixed
+
+end module rollcon_summary_text
