@@ -159,8 +159,9 @@ contains
             ! refused before any row (e.g. a UCOSUB error at set-up): nothing to keep
             call delete_file(files%partial_csv, cleanup_error)
             call move_alloc(run_error, error)
-            ! an output request no disk holds: the input's end time and output step
-            if (error%stat == stat_input .and. len(job%source%path) > 0) &
+            ! the simulation's own refusal, an output request no disk holds: the input's end
+            ! time and output step
+            if (result%started .and. error%stat == stat_input .and. len(job%source%path) > 0) &
                 & error%message = job%source%path // ": " // error%message
             return
         end if

@@ -7,6 +7,7 @@ module rollcon_csv_reader
     use rollcon_text, only : to_text
     use rollcon_simulation, only : history_type
     use rollcon_output_layout, only : output_layout_type, read_layout, name_length
+    use rollcon_contact_watch, only : contact_names
     use, intrinsic :: ieee_arithmetic, only : ieee_is_finite
     use, intrinsic :: ieee_exceptions, only : ieee_set_flag, ieee_overflow, ieee_underflow
     implicit none
@@ -106,7 +107,9 @@ contains
             count = count + 1
             names(count) = trim(adjustl(field))
         end do
-        call read_layout(names, layout, message)
+        ! the watches' columns rollcon writes: a rim contact's, a part's principal basis
+        call read_layout(names, layout, message, [character(len=name_length) :: contact_names, &
+            & "basis_<id>"])
         if (.not. allocated(message)) return
         ! The one-part header of the runs before the per-part layout (issue #14): say so.
         if (count > 1) then

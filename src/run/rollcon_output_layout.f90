@@ -183,12 +183,16 @@ contains
     end function header
 
     !> The layout a header describes; message is allocated, saying what was expected at which
-    !> column, when the names are not a header this module writes.
-    pure subroutine read_layout(names, layout, message)
+    !> column, when the names are not a header this module writes. With known, each column after
+    !> the multipliers must be one of its names, where a name ending in "<id>" stands for that
+    !> prefix with the id of any of the header's parts ("basis_<id>").
+    pure subroutine read_layout(names, layout, message, known)
         !> Column names, as read
         character(len=*), intent(in) :: names(:)
         type(output_layout_type), intent(out) :: layout
         character(len=:), allocatable, intent(out) :: message
+        !> The watches' columns a reader knows (default: any names)
+        character(len=*), intent(in), optional :: known(:)
         integer :: nparts, nucons, column, first_f, p, k, id, extra
         integer, allocatable :: part_ids(:), ucon_ids(:)
 
@@ -242,7 +246,7 @@ contains
                 & // " (a residual and a multiplier each), got " // to_text(size(names))
             return
         end if
-        ! the watches' columns: any names, each once
+        ! the watches' columns: names each once, and of those known when the reader says
         do column = size(names) - extra + 1, size(names)
             if (len_trim(names(column)) == 0 .or. &
                 & findloc(names(:column - 1), names(column), dim=1) > 0) then
@@ -250,6 +254,11 @@ contains
                     & // trim(names(column)) // "'"
                 return
             end if
+            if (.not. present(known)) cycle
+            if (is_known(names(column), known, part_ids)) cycle
+            message = "column " // to_text(column) // " must be one of " &
+                & // known_list(known) // ", got '" // trim(names(column)) // "'"
+            return
         end do
         layout = new_output_layout(part_ids, ucon_ids, names(size(names) - extra + 1:))
         names_match: block
@@ -265,6 +274,37 @@ contains
             end do
         end block names_match
     end subroutine read_layout
+
+    !> name is one of known, "<id>" at the end of one standing for any of the part ids.
+    pure logical function is_known(name, known, part_ids)
+        character(len=*), intent(in) :: name, known(:)
+        integer, intent(in) :: part_ids(:)
+        integer :: k, p, cut
+
+        is_known = .true.
+        do k = 1, size(known)
+            if (name == known(k)) return
+            cut = index(known(k), "<id>")
+            if (cut == 0) cycle
+            do p = 1, size(part_ids)
+                if (name == known(k)(:cut - 1) // to_text(part_ids(p))) return
+            end do
+        end do
+        is_known = .false.
+    end function is_known
+
+    !> "Fx, Fy, ..., basis_<id>".
+    pure function known_list(known) result(text)
+        character(len=*), intent(in) :: known(:)
+        character(len=:), allocatable :: text
+        integer :: k
+
+        text = ""
+        do k = 1, size(known)
+            if (k > 1) text = text // ", "
+            text = text // trim(known(k))
+        end do
+    end function known_list
 
     !> "1 part", "2 parts".
     pure function counted(count, noun) result(text)

@@ -100,7 +100,7 @@ contains
         type(problem_type), intent(in) :: problem
         type(output_layout_type) :: layout
         integer :: part_ids(size(problem%model%parts)), ucon_ids(problem%ucon_count()), k
-        character(len=name_length), allocatable :: extra(:), names(:)
+        character(len=name_length), allocatable :: extra(:), names(:), grown(:)
 
         do k = 1, size(part_ids)
             part_ids(k) = problem%model%parts(k)%id
@@ -111,7 +111,11 @@ contains
         allocate(extra(0))
         do k = 1, size(problem%watches)
             call problem%watches(k)%watch%column_names(problem%eq, names)
-            extra = [extra, names]
+            ! element by element: gfortran 12 gives an array constructor of these a wrong length
+            allocate(grown(size(extra) + size(names)))
+            grown(:size(extra)) = extra
+            grown(size(extra) + 1:) = names
+            call move_alloc(grown, extra)
         end do
         layout = new_output_layout(part_ids, ucon_ids, extra)
     end function output_layout

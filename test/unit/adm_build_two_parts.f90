@@ -58,8 +58,8 @@ contains
             & .and. all(problem%model%parts%id == [2, 3]) .and. size(q0) == 12, &
             & "two parts, six UCONs")
         if (allocated(error)) return
-        options%end_time = adm%run%end_time
-        options%output_step = adm%run%output_step
+        options%end_time = adm%run%settings%end_time
+        options%output_step = adm%run%settings%output_step
         options%progress = .false.
         call simulate(problem, q0, u0, options, summary, error, history)
         if (allocated(error)) return

@@ -7,6 +7,7 @@ module layout_headers
     use rollcon_text, only : to_text
     use rollcon_output_layout, only : output_layout_type, new_output_layout, read_layout, &
         & name_length
+    use rollcon_contact_watch, only : contact_names
     use rollcon_testing, only : check
     implicit none
     private
@@ -31,11 +32,11 @@ contains
         character(len=:), allocatable :: message
         integer :: i
 
-        layouts = [new_output_layout([2, 5], [11, 12, 13], .false.), &
-            & new_output_layout([1], [1, 2, 3], .true.), &
-            & new_output_layout([7], [integer ::], .false.), &
-            & new_output_layout([1], [integer ::], .true.), &
-            & new_output_layout([3, 40, 10], [9], .true.)]
+        layouts = [new_output_layout([2, 5], [11, 12, 13]), &
+            & new_output_layout([1], [1, 2, 3], contact_names), &
+            & new_output_layout([7], [integer ::]), &
+            & new_output_layout([1], [integer ::], contact_names), &
+            & new_output_layout([3, 40, 10], [9], contact_names)]
         do i = 1, size(layouts)
             call read_layout(layouts(i)%header(), read_back, message)
             if (allocated(message)) then
@@ -48,7 +49,7 @@ contains
             if (allocated(error)) return
             call check(error, all(read_back%part_ids == layouts(i)%part_ids) &
                 & .and. all(read_back%ucon_ids == layouts(i)%ucon_ids) &
-                & .and. (read_back%contact .eqv. layouts(i)%contact) &
+                & .and. all(read_back%extra == layouts(i)%extra) &
                 & .and. read_back%columns() == layouts(i)%columns(), "layout " // to_text(i) &
                 & // ": read back differently")
             if (allocated(error)) return
@@ -59,7 +60,8 @@ contains
             return
         end if
         call check(error, size(read_back%part_ids) == 1 .and. size(read_back%ucon_ids) == 3 &
-            & .and. read_back%contact .and. read_back%columns() == 26, "disk header read as " &
+            & .and. read_back%column("Fn") == 24 .and. read_back%columns() == 26, &
+            & "disk header read as " &
             & // to_text(size(read_back%part_ids)) // " parts, " &
             & // to_text(size(read_back%ucon_ids)) // " UCONs")
         if (allocated(error)) return
@@ -73,9 +75,9 @@ contains
         character(len=name_length), allocatable :: one_part(:), two_parts(:)
         type(output_layout_type) :: layout
 
-        layout = new_output_layout([1], [1], .false.)
+        layout = new_output_layout([1], [1])
         one_part = layout%header()
-        layout = new_output_layout([2, 5], [integer ::], .false.)
+        layout = new_output_layout([2, 5], [integer ::])
         two_parts = layout%header()
         call refused([character(len=name_length) ::], &
             & "expected a header starting with t, found no column", error)
@@ -91,8 +93,12 @@ contains
         call refused([character(len=name_length) :: one_part(:14), "F_a", "lambda_1"], &
             & "column 15 must be F_<UCON id>, got 'F_a'", error)
         if (allocated(error)) return
-        call refused([character(len=name_length) :: one_part, "x"], "expected 16 columns for " &
-            & // "1 part and 1 UCON (and 22 with the contact columns), got 17", error)
+        call refused([character(len=name_length) :: one_part, "x"], "column 17 must be one " &
+            & // "of Fx, Fy, Fz, Fn, mu_needed, height_residual, basis_<id>, got 'x'", error)
+        if (allocated(error)) return
+        call refused([character(len=name_length) :: one_part, "basis_7"], "column 17 must be " &
+            & // "one of Fx, Fy, Fz, Fn, mu_needed, height_residual, basis_<id>, got 'basis_7'", &
+            & error)
         if (allocated(error)) return
         call refused([character(len=name_length) :: one_part(:15), "lambda_2"], &
             & "column 16 must be lambda_1, got 'lambda_2'", error)
@@ -108,7 +114,8 @@ contains
         type(output_layout_type) :: layout
         character(len=:), allocatable :: message
 
-        call read_layout(names, layout, message)
+        call read_layout(names, layout, message, [character(len=name_length) :: contact_names, &
+            & "basis_<id>"])
         call check(error, allocated(message), "accepted: " // expected)
         if (allocated(error)) return
         call check(error, message == expected, "message '" // message // "', expected '" &

@@ -12,6 +12,7 @@ module layout_models
     use rollcon_body, only : part_type
     use rollcon_model, only : model_type, setup_model
     use rollcon_problem, only : problem_type
+    use rollcon_theta_watch, only : new_theta_watch
     use rollcon_disk_par, only : disk_par
     use rollcon_disk_reference, only : rolling_disk_ucosub
     use rollcon_simulation, only : history_type
@@ -81,7 +82,7 @@ contains
         call setup_model(model, error)
         if (allocated(error)) return
         call problem%init(model)
-        problem%events%theta_min = 0.05_wp
+        call problem%add_watch(new_theta_watch(0.05_wp, rebase=.false.))
         q0 = [0.0_wp, 0.0_wp, disk_radius, 0.0_wp, 0.5_wp*pi, 0.0_wp, free_start]
         u0 = [disk_speed, 0.0_wp, 0.0_wp, 0.0_wp, 0.0_wp, -disk_speed/disk_radius, &
             & free_velocity, 0.0_wp, 0.0_wp, free_spin]

@@ -5,7 +5,8 @@ module model_runs
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type
     use rollcon_text, only : to_text
-    use rollcon_problem, only : problem_type, formulation_cvode, formulation_ida
+    use rollcon_problem, only : problem_type
+    use rollcon_run_settings, only : formulation_cvode, formulation_ida
     use rollcon_simulation, only : run_options_type, run_summary_type, history_type, simulate, &
         & status_completed
     use rollcon_adm_model, only : adm_model_type
@@ -60,9 +61,9 @@ contains
         end if
         run%mass = problem%model%parts(1)%mass
         run%inertia = problem%model%parts(1)%inertia
-        options%end_time = adm%run%end_time
+        options%end_time = adm%run%settings%end_time
         if (present(end_time)) options%end_time = end_time
-        options%output_step = adm%run%output_step
+        options%output_step = adm%run%settings%output_step
         options%progress = .false.
         call simulate(problem, q0, u0, options, run%summary, error, run%history)
         if (allocated(error)) return

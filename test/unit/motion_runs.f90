@@ -7,7 +7,9 @@ module motion_runs
     use rollcon_ucosub_contract, only : ucosub_interface
     use rollcon_scene, only : scene_type, formulation_ida, method_bdf, drift_projection, &
         & jacobian_analytic, height_velocity, choice_code
-    use rollcon_disk_scene, only : simulate_scene
+    use rollcon_scene_source, only : new_scene_source
+    use rollcon_job, only : job_type, new_job
+    use rollcon_run_job, only : run_job, job_result_type
     use rollcon_simulation, only : run_summary_type, history_type
     use rollcon_disk_reference, only : rolling_disk_ucosub
     implicit none
@@ -49,19 +51,21 @@ contains
         scene%run%atol = 1.0e-2_wp*rtol
     end function tipping_coin
 
-    !> Simulate scene with ucosub (default: the hand-checked disk) and keep every output row.
+    !> Run scene as a job (run_job, no files) with ucosub (default: the hand-checked disk) and
+    !> keep every output row.
     subroutine run_in_memory(scene, history, summary, error, ucosub)
         type(scene_type), intent(in) :: scene
         type(history_type), intent(out) :: history
         type(run_summary_type), intent(out) :: summary
         type(error_type), allocatable, intent(out) :: error
         procedure(ucosub_interface), optional :: ucosub
+        type(job_type) :: job
+        type(job_result_type) :: result
 
-        if (present(ucosub)) then
-            call simulate_scene(scene, ucosub, summary, error, history)
-        else
-            call simulate_scene(scene, rolling_disk_ucosub, summary, error, history)
-        end if
+        job = new_job(new_scene_source(scene))
+        if (present(ucosub)) job%routine => ucosub
+        call run_job(job, result, error, history)
+        summary = result%summary
     end subroutine run_in_memory
 
 end module motion_runs

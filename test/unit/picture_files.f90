@@ -6,8 +6,8 @@ module picture_files
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type, fatal_error
     use rollcon_testing, only : check
-    use rollcon_output_layout, only : new_output_layout, name_length, coord_x, contact_fx, &
-        & contact_fy, contact_fz, contact_normal, contact_mu, contact_height
+    use rollcon_output_layout, only : new_output_layout, name_length, coord_x
+    use rollcon_contact_watch, only : contact_names
     use rollcon_part_shapes, only : write_part_shapes, parts_path, shape_disk, shape_ellipsoid
     use rollcon_run_record, only : run_record_type
     use rollcon_scene, only : scene_type
@@ -66,7 +66,7 @@ contains
         real(wp) :: row(26), t, psi, e_y2(3), e_y2_dot(3)
         integer :: j, k
 
-        run%layout = new_output_layout([1], [1, 2, 3], .true.)
+        run%layout = new_output_layout([1], [1, 2, 3], contact_names)
         allocate(run%shapes(1))
         run%shapes(1)%id = 1
         run%shapes(1)%kind = shape_disk
@@ -91,12 +91,12 @@ contains
                 row(run%layout%residual_column(k)) = 1.0e-10_wp*sin(real(k, wp)*t)
                 row(run%layout%multiplier_column(k)) = 0.5_wp*real(k, wp)*cos(t)
             end do
-            row(run%layout%contact_column(contact_fx)) = -0.3_wp*sin(psi)
-            row(run%layout%contact_column(contact_fy)) = 0.3_wp*cos(psi)
-            row(run%layout%contact_column(contact_fz)) = 7.2_wp
-            row(run%layout%contact_column(contact_normal)) = 7.2_wp
-            row(run%layout%contact_column(contact_mu)) = 0.3_wp/7.2_wp
-            row(run%layout%contact_column(contact_height)) = 1.0e-12_wp*t
+            row(run%layout%column("Fx")) = -0.3_wp*sin(psi)
+            row(run%layout%column("Fy")) = 0.3_wp*cos(psi)
+            row(run%layout%column("Fz")) = 7.2_wp
+            row(run%layout%column("Fn")) = 7.2_wp
+            row(run%layout%column("mu_needed")) = 0.3_wp/7.2_wp
+            row(run%layout%column("height_residual")) = 1.0e-12_wp*t
             call run%history%add(row)
         end do
     end function disk_run
@@ -109,7 +109,7 @@ contains
         real(wp) :: row(2 + 24 + 4), t
         integer :: j, c
 
-        run%layout = new_output_layout([1, 7], [3, 5], .false.)
+        run%layout = new_output_layout([1, 7], [3, 5])
         allocate(run%shapes(2))
         run%shapes(1)%id = 1
         run%shapes(1)%kind = shape_disk
@@ -147,7 +147,7 @@ contains
         real(wp) :: row(14), t
         integer :: j
 
-        run%layout = new_output_layout([2], [integer ::], .false.)
+        run%layout = new_output_layout([2], [integer ::])
         allocate(run%shapes(1))
         run%shapes(1)%id = 2
         run%shapes(1)%kind = shape_ellipsoid

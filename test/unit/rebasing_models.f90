@@ -149,8 +149,8 @@ contains
         if (allocated(error)) return
         call build_adm_problem(adm, problem=problem, q0=q0, u0=u0, error=error)
         if (allocated(error)) return
-        options%end_time = adm%run%end_time
-        options%output_step = adm%run%output_step
+        options%end_time = adm%run%settings%end_time
+        options%output_step = adm%run%settings%output_step
         options%progress = .false.
         if (present(csv_path)) options%csv_path = csv_path
         call simulate(problem, q0, u0, options, summary, error, history)

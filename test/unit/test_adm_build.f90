@@ -11,7 +11,9 @@ module test_adm_build
     use rollcon_disk_reference, only : rolling_disk_ucosub
     use rollcon_ucosub_catalog, only : builtin_ucosub_names
     use rollcon_force, only : force_breakpoints
-    use rollcon_problem, only : problem_type, formulation_ida
+    use rollcon_problem, only : problem_type
+    use rollcon_theta_watch, only : theta_watch_type
+    use rollcon_run_settings, only : formulation_ida
     use rollcon_scene, only : scene_type, read_scene
     use rollcon_disk_scene, only : build_disk_problem
     use rollcon_simulation, only : run_options_type, run_summary_type, history_type, simulate, &
@@ -177,8 +179,16 @@ contains
                 & abs_tol=0.0_wp)
             if (allocated(error)) return
         end associate
-        call check(error, problem%events%theta_min == adm_theta_min &
-            & .and. .not. problem%events%stop_on_liftoff, "events")
+        ! one watch: every part's theta limit, re-basing there (no contact, no lift-off)
+        call check(error, size(problem%watches) == 1 .and. problem%root_count() == 1, "watches")
+        if (allocated(error)) return
+        select type (watch => problem%watches(1)%watch)
+        type is (theta_watch_type)
+            call check(error, watch%theta_min == adm_theta_min .and. watch%rebase, &
+                & "the theta watch: re-basing at adm_theta_min")
+        class default
+            call check(error, .false., "the watch is not a theta watch")
+        end select
     end subroutine test_coin_model
 
     !> A UCON without ROUTINE= and no model routine: refused, naming the UCON, its line and the

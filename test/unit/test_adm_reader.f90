@@ -10,7 +10,7 @@ module test_adm_reader
     use rollcon_expression, only : evaluate_expression
     use rollcon_adm_state, only : part_state, euler_angles
     use rollcon_rotation, only : rotation_matrix, rate_matrix
-    use rollcon_problem, only : formulation_cvode, method_adams, drift_baumgarte
+    use rollcon_run_settings, only : formulation_cvode, method_adams, drift_baumgarte
     use rollcon_testing, only : unittest_type, new_unittest, check
     implicit none
     private
@@ -114,12 +114,12 @@ contains
                 & evaluate_expression(torque%functions(1), 3.0_wp) == 0.03_wp, "SFORCE")
             if (allocated(error)) return
         end associate
-        call check(error, model%run%end_time == 10.0_wp .and. model%run%settings%rtol == 1.0e-9_wp &
+        call check(error, model%run%settings%end_time == 10.0_wp .and. model%run%settings%rtol == 1.0e-9_wp &
             & .and. model%run%settings%formulation == formulation_cvode &
             & .and. model%run%settings%method == method_adams &
             & .and. model%run%settings%drift == drift_baumgarte, "run")
         if (allocated(error)) return
-        call check(error, model%run%output_step, 0.01_wp, "STEPS", rel_tol=tol)
+        call check(error, model%run%settings%output_step, 0.01_wp, "STEPS", rel_tol=tol)
     end subroutine test_coin
 
     !> CGS: lengths in cm, masses in g, times in s; one hour of end time in HOUR units.
@@ -140,7 +140,7 @@ contains
         call read_lines("mm_test.adm", lines, model, error)
         if (allocated(error)) return
         call check(error, [model%parts(2)%velocity(1), model%parts(2)%angular_velocity(3), &
-            & model%run%end_time], [0.1e-3_wp/60.0_wp, -1.0_wp/60.0_wp, 600.0_wp], &
+            & model%run%settings%end_time], [0.1e-3_wp/60.0_wp, -1.0_wp/60.0_wp, 600.0_wp], &
             & "mm and minutes to SI", rel_tol=tol)
     end subroutine test_units
 

@@ -104,10 +104,10 @@ contains
         if (allocated(error)) return
         call check_forces(error, model)
         if (allocated(error)) return
-        associate (run => model%run, settings => model%run%settings)
-            call check(error, [run%end_time, run%output_step, settings%end_time, &
-                & settings%output_step, settings%rtol, settings%atol, settings%baumgarte_rate], &
-                & [2.0_wp, 0.5_wp, 2.0_wp, 0.5_wp, 1.0e-7_wp, 1.0e-7_wp, 20.0_wp], &
+        associate (settings => model%run%settings)
+            call check(error, [settings%end_time, settings%output_step, settings%rtol, &
+                & settings%atol, settings%baumgarte_rate], &
+                & [2.0_wp, 0.5_wp, 1.0e-7_wp, 1.0e-7_wp, 20.0_wp], &
                 & "SIMULATE and INTEGRATOR values", abs_tol=tol)
             if (allocated(error)) return
             call check(error, settings%formulation == formulation_cvode .and. settings%method &
@@ -232,7 +232,7 @@ contains
             & rel_tol=tol)
         if (allocated(error)) return
         ! one hour of end time, one minute per output step
-        call check(error, [model%run%end_time, model%run%output_step], [60.0_wp, 6.0_wp], &
+        call check(error, [model%run%settings%end_time, model%run%settings%output_step], [60.0_wp, 6.0_wp], &
             & "SIMULATE in minutes", rel_tol=tol)
     end subroutine test_units_system
 

@@ -13,16 +13,18 @@ module test_allocations
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type
     use rollcon_text, only : to_text
-    use rollcon_problem, only : problem_type, formulation_cvode, method_adams, &
+    use rollcon_problem, only : problem_type
+    use rollcon_run_settings, only : formulation_cvode, formulation_ida, method_adams, &
         & drift_baumgarte, drift_projection
     use rollcon_dae, only : dae_size, dae_residual, dae_jacobian
-    use rollcon_cvode, only : cvode_solver_type
-    use rollcon_ida, only : ida_solver_type
+    use rollcon_cvode, only : cvode_integrator_type
+    use rollcon_ida, only : ida_integrator_type
+    use rollcon_contact_watch, only : contact_watch_type
     use rollcon_model, only : model_type, setup_model
     use rollcon_body, only : part_type
     use rollcon_constraints, only : need_value, need_first, need_time
     use rollcon_scene_type, only : scene_type
-    use rollcon_scene_keys, only : choice_code
+    use rollcon_run_keys, only : choice_code
     use rollcon_disk_scene, only : build_disk_problem
     use rollcon_disk_reference, only : rolling_disk_ucosub
     use rollcon_gen_turntable_disk, only : turntable_disk_ucosub, turntable_disk_par
@@ -111,7 +113,7 @@ contains
         end if
         call build_disk_problem(scene, rolling_disk_ucosub, problem, q, u, error)
         if (allocated(error)) return
-        call problem%prepare()
+        call problem%prepare(error)
     end subroutine coin_problem
 
     !> Fails with the number of allocations when there were any (count them before building
@@ -176,8 +178,8 @@ contains
     subroutine test_cvode_run(error)
         type(error_type), allocatable, intent(out) :: error
         type(problem_type), target :: problem
-        type(cvode_solver_type), target :: cvode
-        real(wp) :: q(6), u(6), y(12), t
+        type(cvode_integrator_type), target :: cvode
+        real(wp) :: q(6), u(6), y(12), yp(12), t
         integer(c_long) :: start, calls
         integer :: k, root
 
@@ -188,12 +190,13 @@ contains
         call coin_problem(problem, q, u, .false., error)
         if (allocated(error)) return
         y = [q, u]
-        call cvode%init(problem, 0.0_wp, y, 2.0_wp, error)
-        if (.not. allocated(error)) call cvode%advance(problem, 0.1_wp, 2.0_wp, t, y, root, error)
+        yp = 0.0_wp
+        call cvode%start(problem, problem%settings, 0.0_wp, y, yp, 2.0_wp, error)
+        if (.not. allocated(error)) call cvode%advance(0.1_wp, 2.0_wp, t, y, yp, root, error)
         start = malloc_count()
         do k = 2, 20
             if (allocated(error) .or. root /= 0) exit
-            call cvode%advance(problem, 0.1_wp*k, 2.0_wp, t, y, root, error)
+            call cvode%advance(0.1_wp*k, 2.0_wp, t, y, yp, root, error)
         end do
         calls = malloc_count() - start
         if (.not. allocated(error)) call check_none(error, calls, "CVODE Adams from t = 0.1 s " &
@@ -204,7 +207,7 @@ contains
     subroutine test_ida_run(error)
         type(error_type), allocatable, intent(out) :: error
         type(problem_type), target :: problem
-        type(ida_solver_type), target :: ida
+        type(ida_integrator_type), target :: ida
         real(wp) :: q(6), u(6), t
         real(wp), allocatable :: y(:), yp(:)
         integer(c_long) :: start, calls
@@ -217,19 +220,17 @@ contains
         call coin_problem(problem, q, u, .false., error)
         if (allocated(error)) return
         problem%settings%drift = drift_projection
+        problem%settings%formulation = formulation_ida
         call problem%accelerations(0.0_wp, q, u, error)
         if (allocated(error)) return
-        allocate(y(dae_size(problem%eq)), yp(dae_size(problem%eq)), source=0.0_wp)
-        y(:12) = [q, u]
-        y(13:15) = problem%lambda
-        yp(:12) = [u, problem%a]
-        call ida%init(problem, 0.0_wp, y, yp, 2.0_wp, error)
-        if (.not. allocated(error)) call ida%advance(problem, 0.1_wp, 2.0_wp, t, y, yp, root, &
-            & error)
+        allocate(y(problem%state_size()), yp(problem%state_size()))
+        call problem%pack_state(q, u, y, yp)
+        call ida%start(problem, problem%settings, 0.0_wp, y, yp, 2.0_wp, error)
+        if (.not. allocated(error)) call ida%advance(0.1_wp, 2.0_wp, t, y, yp, root, error)
         start = malloc_count()
         do k = 2, 20
             if (allocated(error) .or. root /= 0) exit
-            call ida%advance(problem, 0.1_wp*k, 2.0_wp, t, y, yp, root, error)
+            call ida%advance(0.1_wp*k, 2.0_wp, t, y, yp, root, error)
         end do
         calls = malloc_count() - start
         if (.not. allocated(error)) call check_none(error, calls, "IDA from t = 0.1 s to " &
@@ -259,8 +260,13 @@ contains
         if (allocated(error)) return
         call check(error, force(3) > 1.0_wp, "normal force at the generic state, N")
         if (allocated(error)) return
-        call check(error, g(problem%root_count()) - problem%events%liftoff_force, force(3), &
-            & "normal force from the accelerations, N", rel_tol=tol_reaction)
+        select type (contact => problem%watches(2)%watch)
+        type is (contact_watch_type)
+            call check(error, g(problem%root_count()) - contact%liftoff_force, force(3), &
+                & "normal force from the accelerations, N", rel_tol=tol_reaction)
+        class default
+            call check(error, .false., "the disk scene's second watch is not its contact")
+        end select
     end subroutine test_liftoff_root
 
     !> A UCON whose F has explicit time (the turntable) declared time-free is not asked for

@@ -123,7 +123,7 @@ contains
             if (allocated(error)) return
         end associate
         call check(error, all(layout%part_ids == [1]) .and. size(layout%ucon_ids) == 3 .and. &
-            & layout%contact .and. size(history%rows, 1) == layout%columns(), "case " &
+            & layout%column("Fn") > 0 .and. size(history%rows, 1) == layout%columns(), "case " &
             & // to_text(k) // ": a layout other than the disk scene's was accepted")
     end subroutine check_history
 

@@ -170,7 +170,7 @@ contains
         call remove_folder(scratch)
         if (allocated(error)) return
         call check(error, all(layout%part_ids == [2, 3]) .and. size(layout%ucon_ids) == 6 &
-            & .and. .not. layout%contact .and. layout%part_column(2, coord_phidot) == 25, &
+            & .and. layout%column("Fn") == 0 .and. layout%part_column(2, coord_phidot) == 25, &
             & "layout of the two parts")
     end subroutine test_two_parts
 

@@ -7,7 +7,8 @@ module test_dynamics
     use rollcon_body, only : part_type, body_residual, body_residual_jacobian, body_mass_matrix, &
         & kinetic_energy, body_mass_and_force
     use rollcon_lapack, only : factor_dense, solve_factored
-    use rollcon_problem, only : problem_type, drift_none, drift_baumgarte
+    use rollcon_problem, only : problem_type
+    use rollcon_run_settings, only : drift_none, drift_baumgarte
     use rollcon_dae, only : dae_size, dae_residual, dae_jacobian
     use rollcon_scene, only : scene_type
     use rollcon_disk_scene, only : build_disk_problem
@@ -60,7 +61,8 @@ contains
         call build_disk_problem(scene, rolling_disk_ucosub, problem, q, u, error)
         if (allocated(error)) error stop "generic_problem: " // error%message
         problem%settings%drift = drift
-        call problem%prepare()
+        call problem%prepare(error)
+        if (allocated(error)) error stop "generic_problem: " // error%message
     end subroutine generic_problem
 
     subroutine test_body_jacobian(error)

@@ -8,11 +8,12 @@ module test_events
     use rollcon_text, only : to_text
     use rollcon_scene, only : scene_type, read_scene
     use rollcon_problem, only : problem_type
+    use rollcon_contact_watch, only : contact_watch_type
     use rollcon_disk_scene, only : build_disk_problem, disk_mass_properties
     use rollcon_disk_reference, only : rolling_disk_ucosub
     use rollcon_simulation, only : history_type, run_summary_type, status_completed, &
         & status_stopped
-    use rollcon_output_layout, only : coord_z, coord_theta, contact_fz
+    use rollcon_output_layout, only : coord_z, coord_theta
     use rollcon_testing, only : unittest_type, new_unittest, check
     use motion_runs, only : run_in_memory, default_scene, tipping_coin
     implicit none
@@ -183,12 +184,17 @@ contains
         if (allocated(error)) return
         call build_disk_problem(scene, rolling_disk_ucosub, problem, q0, u0, error)
         if (allocated(error)) return
-        call check(error, problem%events%liftoff_force > 0.0_wp .and. &
-            & problem%events%liftoff_force < tol_force, "lift-off threshold " &
-            & // to_text(problem%events%liftoff_force) // " N: not a small positive force")
-        if (allocated(error)) return
-        call check(error, history%rows(history%layout%contact_column(contact_fz), history%count), &
-            & -problem%events%liftoff_force, "normal force at the stop [N]", abs_tol=tol_force)
+        select type (contact => problem%watches(2)%watch)
+        type is (contact_watch_type)
+            call check(error, contact%liftoff_force > 0.0_wp .and. &
+                & contact%liftoff_force < tol_force, "lift-off threshold " &
+                & // to_text(contact%liftoff_force) // " N: not a small positive force")
+            if (allocated(error)) return
+            call check(error, history%rows(history%layout%column("Fz"), history%count), &
+                & -contact%liftoff_force, "normal force at the stop [N]", abs_tol=tol_force)
+        class default
+            call check(error, .false., "the disk scene's second watch is not its contact")
+        end select
     end subroutine test_liftoff_event
 
 end module test_events

@@ -13,6 +13,8 @@ module test_extremes
     use rollcon_benchmark, only : benchmark_methods, benchmark_row_type, benchmark_scene, &
         & benchmark_header, write_benchmark_row
     use rollcon_disk_reference, only : rolling_disk_ucosub
+    use rollcon_job, only : job_type
+    use rollcon_load, only : load_job
     use rollcon_testing, only : unittest_type, new_unittest, check
     use motion_runs, only : run_in_memory, default_scene
     use, intrinsic :: ieee_arithmetic, only : ieee_is_finite
@@ -207,14 +209,14 @@ contains
     !> fast_upright (first 2 s, rtol 1e-4, 1e-6, 1e-8): each rung at least 3x better.
     subroutine test_error_decreases(error)
         type(error_type), allocatable, intent(out) :: error
-        type(scene_type) :: scene
+        type(job_type) :: job
         type(benchmark_row_type), allocatable :: rows(:)
         integer :: i
 
-        call read_scene("data/fast_upright.nml", scene, error)
+        call load_job("fast_upright", job, error)
         if (allocated(error)) return
-        scene%run%end_time = 2.0_wp
-        call benchmark_scene(scene, rolling_disk_ucosub, benchmark_methods(), &
+        job%source%settings%end_time = 2.0_wp
+        call benchmark_scene(job, benchmark_methods(), &
             & [1.0e-4_wp, 1.0e-6_wp, 1.0e-8_wp], 1.0e-12_wp, 1, rows, error)
         if (allocated(error)) return
         do i = 1, size(rows), 3
@@ -232,15 +234,15 @@ contains
     !> columns and finite values.
     subroutine test_benchmark_quick(error)
         type(error_type), allocatable, intent(out) :: error
-        type(scene_type) :: scene
+        type(job_type) :: job
         type(benchmark_row_type), allocatable :: rows(:)
         character(len=:), allocatable :: line, header
         integer :: i
 
-        call read_scene("data/tipping_coin.nml", scene, error)
+        call load_job("tipping_coin", job, error)
         if (allocated(error)) return
-        scene%run%end_time = 1.0_wp
-        call benchmark_scene(scene, rolling_disk_ucosub, benchmark_methods(), &
+        job%source%settings%end_time = 1.0_wp
+        call benchmark_scene(job, benchmark_methods(), &
             & [1.0e-4_wp, 1.0e-6_wp], 1.0e-10_wp, 1, rows, error)
         if (allocated(error)) return
         call check(error, size(rows), 2*size(benchmark_methods()), "rows")

@@ -9,13 +9,16 @@ module test_layout
     use rollcon_constants, only : pi
     use rollcon_error, only : error_type
     use rollcon_text, only : to_text
-    use rollcon_problem, only : problem_type, formulation_cvode, formulation_ida
+    use rollcon_problem, only : problem_type
+    use rollcon_run_settings, only : formulation_cvode, formulation_ida
     use rollcon_simulation, only : run_options_type, run_summary_type, history_type, simulate, &
         & status_completed, status_stopped
     use rollcon_output_layout, only : output_layout_type, new_output_layout, read_layout, &
         & name_length, time_column, coord_x, coord_y, coord_z, coord_psi, coord_theta, &
         & coord_phi, coord_xdot, coord_zdot, coord_phidot
     use rollcon_summary_text, only : run_summary_text
+    use rollcon_theta_watch, only : new_theta_watch
+    use rollcon_contact_watch, only : contact_watch_type
     use rollcon_testing, only : unittest_type, new_unittest, check
     use layout_models, only : two_part_problem, disk_id, free_id, disk_radius, disk_speed, &
         & free_spin, free_start, free_velocity, gravity, read_csv, failing_disk_ucosub
@@ -102,7 +105,7 @@ contains
         call check(error, size(names) == 32 .and. names(layout%part_column(1, coord_x)) == "X_2" &
             & .and. names(layout%part_column(2, coord_phidot)) == "phidot_5" &
             & .and. names(26) == "E" .and. names(27) == "F_11" .and. names(32) == "lambda_13" &
-            & .and. .not. layout%contact .and. layout%contact_column(1) == 0, &
+            & .and. layout%column("Fn") == 0, &
             & "layout: " // to_text(size(names)) // " columns, " // trim(names(2)) // " ... " &
             & // trim(names(size(names))))
         if (allocated(error)) return
@@ -179,7 +182,7 @@ contains
 
         call two_part_problem(problem, q0, u0, error)
         if (allocated(error)) return
-        problem%events%theta_min = 0.1_wp
+        problem%watches(1)%watch = new_theta_watch(0.1_wp, rebase=.false.)
         q0(6 + coord_theta) = merge(0.5_wp, pi - 0.5_wp, side == 1)
         u0(7:12) = [0.0_wp, 0.0_wp, 0.0_wp, 0.0_wp, merge(-1.0_wp, 1.0_wp, side == 1), 0.0_wp]
         options%end_time = 1.0_wp
@@ -194,31 +197,36 @@ contains
         call check(error, summary%t_reached, 0.4_wp, "time of the limit [s]", abs_tol=tol_root)
     end subroutine check_theta_side
 
-    !> A model without a contact has one event function per part, and none for the lift-off
-    !> even when stop_on_liftoff asks for it; a disk scene's contact adds it.
+    !> A model without a contact watch has one event function per part (its theta watch), none
+    !> for the lift-off; a rim contact that stops on lift-off adds one, after them.
     subroutine test_liftoff_only_with_contact(error)
         type(error_type), allocatable, intent(out) :: error
         type(problem_type), target :: problem
+        type(contact_watch_type) :: contact
         real(wp), allocatable :: q0(:), u0(:)
+        integer :: watch, k
 
         call two_part_problem(problem, q0, u0, error)
         if (allocated(error)) return
-        problem%events%theta_min = 0.1_wp
-        problem%events%stop_on_liftoff = .true.
         call check(error, problem%root_count(), 2, "event functions without a contact")
         if (allocated(error)) return
-        problem%events%has_contact = .true.
-        problem%events%contact_radius = disk_radius
+        contact%radius = disk_radius
+        contact%stop_on_liftoff = .true.
+        call problem%add_watch(contact)
         call check(error, problem%root_count(), 3, "event functions with the disk's contact")
         if (allocated(error)) return
-        call check(error, problem%theta_root_part(2) == 2 .and. problem%theta_root_part(3) == 0, &
-            & "event 2 is the second part's theta, event 3 the lift-off")
+        call problem%root_owner(2, watch, k)
+        call check(error, watch == 1 .and. k == 2, "event 2 is the theta watch's second part")
+        if (allocated(error)) return
+        call problem%root_owner(3, watch, k)
+        call check(error, watch == 2 .and. k == 1, "event 3 is the contact's lift-off")
     end subroutine test_liftoff_only_with_contact
 
     !> A watched contact must name one of the model's parts and a rim radius.
     subroutine test_contact_checked(error)
         type(error_type), allocatable, intent(out) :: error
         type(problem_type), target :: problem
+        type(contact_watch_type) :: contact
         type(run_options_type) :: options
         type(run_summary_type) :: summary
         type(error_type), allocatable :: failure
@@ -227,17 +235,18 @@ contains
         call two_part_problem(problem, q0, u0, error)
         if (allocated(error)) return
         options%progress = .false.
-        problem%events%has_contact = .true.
-        problem%events%part = 3
-        problem%events%contact_radius = disk_radius
+        contact%part = 3
+        contact%radius = disk_radius
+        call problem%add_watch(contact)
         call simulate(problem, q0, u0, options, summary, failure)
         call check(error, allocated(failure), "a contact on part number 3 of 2 was accepted")
         if (allocated(error)) return
         call check(error, failure%message == "the part in contact is number 3 in model " &
             & // "order; the model has 2 parts", "message: " // failure%message)
         if (allocated(error)) return
-        problem%events%part = 1
-        problem%events%contact_radius = 0.0_wp
+        contact%part = 1
+        contact%radius = 0.0_wp
+        problem%watches(2)%watch = contact
         call simulate(problem, q0, u0, options, summary, failure)
         call check(error, allocated(failure), "a contact without a radius was accepted")
         if (allocated(error)) return
@@ -281,7 +290,7 @@ contains
         character(len=:), allocatable :: text
         integer :: k
 
-        summary%layout = new_output_layout([2, 5], [11, 12, 13], .false.)
+        summary%layout = new_output_layout([2, 5], [11, 12, 13])
         summary%q = [(real(k, wp), k = 1, 12)]
         summary%u = -summary%q
         summary%ucon_residual_max = [1.0e-9_wp, 2.0e-9_wp, 3.0e-12_wp]
@@ -298,8 +307,11 @@ contains
             & .and. index(text, "  UCON 13: 3.000E-012 (position level)") > 0 &
             & .and. index(text, "height residual") == 0, "summary: " // text)
         if (allocated(error)) return
-        summary%layout%contact = .true.
-        summary%height_residual_max = 4.0e-9_wp
+        allocate(summary%measures(1))
+        summary%measures(1)%name = "height_residual"
+        summary%measures(1)%label = "largest height residual |Z - R sin(theta)|"
+        summary%measures(1)%unit = "m"
+        summary%measures(1)%value = 4.0e-9_wp
         summary%layout%ucon_ids = [integer ::]
         summary%ucon_residual_max = [real(wp) ::]
         text = run_summary_text("scene", "out.csv", summary)

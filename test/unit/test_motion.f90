@@ -19,7 +19,7 @@ module test_motion
     use rollcon_disk_scene, only : disk_mass_properties
     use rollcon_simulation, only : history_type, run_summary_type
     use rollcon_output_layout, only : time_column, coord_x, coord_y, coord_psi, coord_theta, &
-        & coord_phi, coord_xdot, coord_zdot, coord_thetadot, contact_fx, contact_fz
+        & coord_phi, coord_xdot, coord_zdot, coord_thetadot
     use rollcon_testing, only : unittest_type, new_unittest, check
     use motion_runs, only : run_in_memory, default_scene, tipping_coin
     use motion_run_variants, only : test_solver_failure, test_generated_trajectory
@@ -309,8 +309,8 @@ contains
         call run_in_memory(scene, history, summary, error)
         if (allocated(error)) return
         call disk_mass_properties(scene, mass, inertia)
-        fx = history%layout%contact_column(contact_fx)
-        fz = history%layout%contact_column(contact_fz)
+        fx = history%layout%column("Fx")
+        fz = history%layout%column("Fz")
         xdot = history%layout%part_column(1, coord_xdot)
         zdot = history%layout%part_column(1, coord_zdot)
         first = minloc(abs(history%column(time_column) - scene%strike%time), dim=1)
@@ -374,7 +374,6 @@ contains
         call problem%init(model)
         problem%settings%rtol = 1.0e-10_wp
         problem%settings%atol = 1.0e-12_wp
-        problem%events%theta_min = -1.0_wp
         call disk_initial_state(first, q(1:6), u(1:6))
         call disk_initial_state(second, q(7:12), u(7:12))
         options%end_time = 1.0_wp

@@ -270,7 +270,7 @@ contains
         call remove_folder(scratch)
         call expect_error(error, scratch // "/two.parts: missing: the shapes of the parts of " &
             & // scratch // "/two.csv (written by rollcon run beside the CSV) are needed to " &
-            & // "draw them; only a disk scene's CSV, with its contact columns, is drawn " &
+            & // "draw them; only a CSV of one part with a rim contact's columns is drawn " &
             & // "without it")
     end subroutine test_missing_parts
 

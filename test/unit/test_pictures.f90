@@ -14,6 +14,7 @@ module test_pictures
     use rollcon_figures, only : plot_output, figure_file, figure_names, model_figure_names
     use rollcon_gif, only : animate_output
     use rollcon_gnuplot, only : gnuplot_available
+    use rollcon_contact_watch, only : contact_names
     use rollcon_testing, only : unittest_type, new_unittest, check, skip_test
     use picture_files, only : disk_run, two_part_run, falling_run, write_run, make_folder, &
         & remove_folder, write_lines, expect_message, file_starts_with
@@ -83,7 +84,7 @@ contains
         call remove_folder(scratch)
         if (allocated(error)) return
         call check(error, all(layout%part_ids == [1, 7]) .and. all(layout%ucon_ids == [3, 5]) &
-            & .and. .not. layout%contact, "layout read back: parts " &
+            & .and. layout%column("Fn") == 0, "layout read back: parts " &
             & // to_text(size(layout%part_ids)) // ", UCONs " // to_text(size(layout%ucon_ids)))
         if (allocated(error)) return
         call check(error, read_back%count == written%history%count .and. &
@@ -126,7 +127,8 @@ contains
         names = [character(len=name_length) :: "t", "X_1", "Y_1", "Z_1", "psi_1", "theta_1", &
             & "phi_1", "Xdot_1", "Ydot_1", "Zdot_1", "psidot_1", "thetadot_1", "phidot_1", "E", &
             & "F_1", "lambda_1", "F_2"]
-        call read_layout(names, layout, count_reason)
+        call read_layout(names, layout, count_reason, [character(len=name_length) :: &
+            & contact_names, "basis_<id>"])
         call check(error, allocated(count_reason), "read_layout accepted 17 columns for one " &
             & // "part and one UCON")
         if (allocated(error)) return

@@ -20,6 +20,7 @@ module test_rebasing
     use rollcon_csv_reader, only : read_output_csv
     use rollcon_output_files, only : delete_file
     use rollcon_run_record, only : run_record_type, pose
+    use rollcon_contact_watch, only : contact_names
     use rollcon_testing, only : unittest_type, new_unittest, check
     use rebasing_models, only : run_dataset, tumbling_sphere, spinning_sphere, falling_disk, &
         & sphere_end, sphere_near_flat
@@ -228,15 +229,15 @@ contains
         call read_output_csv(csv_path, layout, rows, error)
         call delete_file(csv_path, delete_error)
         if (allocated(error)) return
-        call check(error, layout%bases .and. layout%basis_column(1) == layout%columns(), &
+        call check(error, layout%column("basis_2") == layout%columns(), &
             & "the CSV ends with the basis column")
         if (allocated(error)) return
         names = layout%header()
-        basis = rows%column(layout%basis_column(1))
-        call check(error, names(layout%basis_column(1)) == "basis_2" .and. basis(1) == 0.0_wp &
+        basis = rows%column(layout%column("basis_2"))
+        call check(error, names(layout%column("basis_2")) == "basis_2" .and. basis(1) == 0.0_wp &
             & .and. basis(size(basis)) == real(count, wp) .and. all(basis(2:) >= &
             & basis(:size(basis) - 1)), "basis_2 from 0 up to " // to_text(count) // ", got " &
-            & // names(layout%basis_column(1)) // " from " // to_text(basis(1)) // " to " &
+            & // names(layout%column("basis_2")) // " from " // to_text(basis(1)) // " to " &
             & // to_text(basis(size(basis))))
     end subroutine check_basis_column
 
@@ -291,7 +292,7 @@ contains
 
         call run_dataset("near-flat", sphere_near_flat("IDA"), summary, rows, error)
         if (allocated(error)) return
-        basis = rows%column(rows%layout%basis_column(1))
+        basis = rows%column(rows%layout%column("basis_" // to_text(rows%layout%part_ids(1))))
         theta = rows%part_values(1, coord_theta)
         x = rows%part_values(1, coord_x)
         call check(error, summary%status == status_completed .and. basis(1) == 1.0_wp &
@@ -313,7 +314,7 @@ contains
         q_old = [0.1_wp, -0.2_wp, 0.3_wp, 7.0_wp, 0.04_wp, -13.0_wp]
         u_old = [0.4_wp, 0.5_wp, -0.6_wp, 1.3_wp, -0.7_wp, 2.9_wp]
         call rebased_state(q_old, u_old, q_new, u_new)
-        run%layout = new_output_layout([4], [integer ::], .false., .true.)
+        run%layout = new_output_layout([4], [integer ::], ["basis_4"])
         run%history%layout = run%layout
         call run%history%add([0.0_wp, q_new, u_new, 1.0_wp, 1.0_wp])
         drawn = pose(run, 1, 1)
@@ -332,8 +333,9 @@ contains
         character(len=:), allocatable :: message
         integer :: i
 
-        layouts = [new_output_layout([2, 5], [11, 12], .false., .true.), &
-            & new_output_layout([1], [1, 2, 3], .true., .true.)]
+        layouts = [new_output_layout([2, 5], [11, 12], [character(len=name_length) :: &
+            & "basis_2", "basis_5"]), new_output_layout([1], [1, 2, 3], &
+            & [character(len=name_length) :: contact_names, "basis_1"])]
         do i = 1, size(layouts)
             names = layouts(i)%header()
             call check(error, names(size(names)) == "basis_" &
@@ -346,7 +348,7 @@ contains
                 call check(error, .false., "read_layout: " // message)
                 return
             end if
-            call check(error, read_back%bases .and. read_back%contact .eqv. layouts(i)%contact &
+            call check(error, all(read_back%extra == layouts(i)%extra) &
                 & .and. all(read_back%part_ids == layouts(i)%part_ids) &
                 & .and. all(read_back%ucon_ids == layouts(i)%ucon_ids), "layout read back")
             if (allocated(error)) return

@@ -20,6 +20,8 @@ module test_reduced
         & benchmark_scene
     use rollcon_bench_costs, only : part_costs_type, measure_part_costs
     use rollcon_bench_summary, only : accuracy_ratio
+    use rollcon_job, only : job_type
+    use rollcon_load, only : load_job
     use rollcon_testing, only : unittest_type, new_unittest, check
     use motion_runs, only : run_in_memory
     use disk_states, only : seed_random
@@ -83,7 +85,8 @@ contains
         scene%run%drift = choice_code("drift", "none")
         call build_disk_problem(scene, rolling_disk_ucosub, problem, q0, u0, error)
         if (allocated(error)) return
-        call problem%prepare()
+        call problem%prepare(error)
+        if (allocated(error)) return
         force = 0.5_wp*pi*scene%strike%impulse/scene%strike%duration
         call seed_random(13)
         do k = 1, 20
@@ -282,20 +285,19 @@ contains
     subroutine test_benchmark_ratio(error)
         type(error_type), allocatable, intent(out) :: error
         real(wp), parameter :: tol = 1.0e-12_wp  ! one division and three subtractions
-        type(scene_type) :: scene
+        type(job_type) :: job
         type(benchmark_row_type), allocatable :: rows(:)
         type(method_type) :: all_methods(9)
         type(part_costs_type) :: costs
         integer :: i, j
 
-        call read_scene("data/tipping_coin.nml", scene, error)
+        call load_job("tipping_coin", job, error)
         if (allocated(error)) return
-        scene%run%end_time = 0.5_wp
-        call measure_part_costs(scene, rolling_disk_ucosub, 100, &
-            & "build/test_reduced_costs.csv", costs, error)
+        job%source%settings%end_time = 0.5_wp
+        call measure_part_costs(job, 100, "build/test_reduced_costs.csv", costs, error)
         if (allocated(error)) return
         all_methods = benchmark_methods()
-        call benchmark_scene(scene, rolling_disk_ucosub, [all_methods(1), all_methods(3), &
+        call benchmark_scene(job, [all_methods(1), all_methods(3), &
             & all_methods(7), all_methods(8)], [1.0e-5_wp, 1.0e-7_wp], 1.0e-10_wp, 1, rows, &
             & error, costs=costs)
         if (allocated(error)) return

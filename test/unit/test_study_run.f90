@@ -14,7 +14,9 @@ module test_study_run
     use rollcon_study_reader, only : read_study
     use rollcon_study_measures, only : case_result_type, outcome_completed, measure_index
     use rollcon_scene, only : read_scene
-    use rollcon_disk_scene, only : simulate_scene
+    use rollcon_job, only : job_type
+    use rollcon_load, only : load_job
+    use rollcon_run_job, only : run_job, job_result_type
     use rollcon_disk_reference, only : rolling_disk_ucosub
     use rollcon_simulation, only : run_summary_type, history_type
     use rollcon_output_layout, only : coord_theta
@@ -261,8 +263,8 @@ contains
         type(study_type) :: study
         type(study_plan_type) :: plan
         type(case_result_type) :: result
-        type(scene_type) :: scene
-        type(run_summary_type) :: summary
+        type(job_type) :: job
+        type(job_result_type) :: ran
         type(history_type) :: history
         character(len=:), allocatable :: path, row
         real(wp) :: scene_theta_min, case_theta_min(2)
@@ -281,9 +283,11 @@ contains
             if (allocated(error)) return
             case_theta_min(i) = result%values(measure_index("theta_min"))
         end do
-        call read_scene("data/coin.nml", scene, error)
+        call load_job("coin", job, error)
         if (allocated(error)) return
-        call simulate_scene(scene, rolling_disk_ucosub, summary, error, history=history)
+        job%output_dir = ""
+        job%quiet = .true.
+        call run_job(job, ran, error, history)
         if (allocated(error)) return
         scene_theta_min = minval(history%rows(history%layout%part_column(1, coord_theta), &
             & :history%count))

@@ -9,8 +9,7 @@ module rollcon_scene
     use rollcon_text, only : to_text
     use rollcon_namelist_bytes, only : check_bytes, visible
     use rollcon_keys, only : key_type
-    use rollcon_scene_keys, only : bind_keys, scene_groups
-    use rollcon_run_keys, only : choice_code, choice_name
+    use rollcon_scene_keys, only : bind_keys, scene_groups, choice_code, choice_name
     use rollcon_key_values, only : store_values
     use rollcon_scene_check, only : check_scene, key_line
     use rollcon_scene_type, only : scene_type, formulation_cvode, formulation_ida, method_bdf, &

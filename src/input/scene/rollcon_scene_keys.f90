@@ -6,13 +6,14 @@
 module rollcon_scene_keys
     use rollcon_kinds, only : wp
     use rollcon_constants, only : pi
-    use rollcon_keys, only : key_type, option_type, real_key, logical_key, choice_key
+    use rollcon_keys, only : key_type, option_type, real_key, logical_key, choice_key, &
+        & option_code, option_name
     use rollcon_run_keys, only : bind_run_keys, time_min, time_max
     use rollcon_scene_type, only : scene_type, height_velocity, height_position
     implicit none
     private
 
-    public :: bind_keys, scene_groups
+    public :: bind_keys, scene_groups, choice_code, choice_name
 
     !> Groups of a scene file, in the order the documentation gives them
     character(len=*), parameter :: scene_groups(*) = [character(len=11) :: "disk", &
@@ -76,5 +77,29 @@ contains
                 & logical_key("limits", "stop_on_liftoff", l%stop_on_liftoff)]
         end associate
     end subroutine bind_keys
+
+    !> Code of the option named word (any case) of the &run choice key name of a scene
+    !> ('formulation', 'cvode'; 'height', 'position'), 0 when none.
+    function choice_code(name, word) result(code)
+        character(len=*), intent(in) :: name, word
+        integer :: code
+        type(scene_type), target :: scene
+        type(key_type), allocatable :: keys(:)
+
+        call bind_keys(scene, keys)
+        code = option_code(keys, "run", name, word)
+    end function choice_code
+
+    !> Name of the option with this code of the &run choice key name of a scene, "?" when none.
+    function choice_name(name, code) result(word)
+        character(len=*), intent(in) :: name
+        integer, intent(in) :: code
+        character(len=:), allocatable :: word
+        type(scene_type), target :: scene
+        type(key_type), allocatable :: keys(:)
+
+        call bind_keys(scene, keys)
+        word = option_name(keys, "run", name, code)
+    end function choice_name
 
 end module rollcon_scene_keys
