@@ -129,7 +129,10 @@ contains
             argument = get_argument(i)
             if (argument(1:min(1, len(argument))) == "-" .and. len(argument) > 1) then
                 spec = option_index(argument)
-                if (spec == 0 .or. .not. takes(spec, request%command)) then
+                if (spec > 0) then
+                    if (.not. takes(spec, request%command)) spec = 0
+                end if
+                if (spec == 0) then
                     call fatal_error(error, "unknown option '" // argument // "' for rollcon " &
                         & // request%command // "; run 'rollcon " // help_command(request) &
                         & // "--help' for the usage", stat_input)
@@ -154,9 +157,13 @@ contains
         type(cli_request_type), intent(in) :: request
         character(len=:), allocatable :: text
 
-        text = ""
-        if (request%command /= "run" .and. request%command /= "help") &
-            & text = request%command // " "
+        ! the commands with a help of their own; the others are in the main help
+        select case (request%command)
+        case ("check", "bench", "bench sweep", "sweep")
+            text = request%command // " "
+        case default
+            text = ""
+        end select
     end function help_command
 
     !> Option spec (an index into options) given at argument i, with its value when it takes

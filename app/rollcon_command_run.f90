@@ -6,7 +6,7 @@ module rollcon_command_run
     use rollcon, only : wp, error_type, fatal_error, stat_input, to_text, job_type, load_job, &
         & run_job, job_result_type, status_inaccurate, run_record_type, read_run, &
         & write_vtk_series
-    use rollcon_cli, only : cli_request_type
+    use rollcon_cli, only : cli_request_type, command_names
     use rollcon_app_files, only : make_folder, file_stem
     implicit none
     private
@@ -40,7 +40,12 @@ contains
         name = request%positional
         if (len(name) == 0) name = "coin"
         call load_job(name, job, error, ucosub=request%text("--ucosub", ""))
-        if (allocated(error)) return
+        if (allocated(error)) then
+            ! a bare word that names no scene may be a command mistyped
+            if (scan(name, "/.") == 0) error%message = error%message // "; and '" // name &
+                & // "' is not a command (" // command_names() // ")"
+            return
+        end if
         job%output_dir = request%text("--output", "output")
         job%quiet = request%has("--quiet")
         if (request%has("--allow-large-output")) job%max_csv_bytes = huge(1.0_wp)

@@ -39,12 +39,16 @@ program rollcon_main
         else
             call run_command(request, status, error)
         end if
-    case ("table")
-        call table_command(request, error)
-    case ("plot")
-        call plot_command(request, error)
-    case ("animate")
-        call animate_command(request, error)
+    case ("table", "plot", "animate")
+        if (request%has("--help")) then
+            call print_help()
+        else if (request%command == "table") then
+            call table_command(request, error)
+        else if (request%command == "plot") then
+            call plot_command(request, error)
+        else
+            call animate_command(request, error)
+        end if
     case ("check")
         call check_command(request, status, error)
         ! exit status 1 is a verdict (findings), 2 a failure
@@ -70,12 +74,12 @@ contains
             & "       rollcon bench [--quick] [...]     (rollcon bench --help)", &
             & "       rollcon bench sweep [...]         (rollcon bench sweep --help)", &
             & "       rollcon [run] MODEL.adm [--ucosub FILE|NAME] [...]  (an ADAMS dataset)", &
-            & "       rollcon [run] [SCENE] --ucosub FILE      (your own UCOSUB, see below)", &
+            & "       rollcon [run] [SCENE] --ucosub FILE|NAME  (your own UCOSUB, see below)", &
             & "       rollcon check FILE --ucon ID:PAR1,PAR2,...  (rollcon check --help)", &
             & "       rollcon check FILE --model MODEL.adm", &
             & "       [mpirun -np N] rollcon sweep STUDY.nml [--output DIR]  (a parameter", &
             & "               study, one CSV row per case, and its map: rollcon sweep --help)", &
-            & "       rollcon --help", &
+            & "       rollcon --help | --version", &
             & "", &
             & "run (the default): simulate a rolling-disk scene, the paper's coin unless SCENE", &
             & "  names another: coin, tipping_coin, steady_circle, fast_upright, spinning_coin,", &
@@ -95,11 +99,13 @@ contains
             & "  --allow-large-output  run even when the CSV would pass 100 GB (refused", &
             & "               otherwise, with the row count and the bytes it would write)", &
             & "  Progress goes to stderr for runs longer than a second unless --quiet.", &
-            & "  --ucosub FILE  serve the disk's no-slip UCONs with your own UCOSUB (.f, .f90", &
-            & "               or .o; PAR as in the paper: part id, 8 codes, R, component),", &
+            & "  --ucosub FILE  serve the disk's no-slip UCONs (a scene) or the UCONs naming no", &
+            & "               ROUTINE (a dataset) with your own UCOSUB (.f, .f90 or .o; a", &
+            & "               scene's PAR as in the paper: part id, 8 codes, R, component),", &
             & "               compiled with gfortran and cached (see rollcon check --help);", &
-            & "               the run goes in a child process, so a crash, a STOP or a", &
-            & "               call longer than --call-timeout SECONDS (default 10) of the", &
+            & "               your routine runs in a child process that only computes (this", &
+            & "               process writes every output), so a crash, a STOP or a call", &
+            & "               longer than --call-timeout SECONDS (default 10) of the", &
             & "               routine ends with an error naming the UCON and the call", &
             & "  --ucosub NAME  a built-in routine instead (when no file NAME exists): disk,", &
             & "               rolling_disk, and the other generated specs (docs/generator.md)", &

@@ -11,7 +11,8 @@
 !> - Gravity 9.81 m/s^2 along -Z; a push on the sphere's centre along +X, a half-sine pulse of
 !>   0.5 N s over 20 ms at t = 0.5 s.
 !>
-!> It integrates 2 s with IDA and with CVODE, reads the results from the history through the
+!> It makes the model a job (new_model_source, new_job) and runs it as rollcon runs any input
+!> (run_job), 2 s with IDA and with CVODE, reads the results from the history through the
 !> output layout, and checks them against what the physics says: the disk keeps its speed;
 !> the push raises the sphere's speed by J / (m + I/R^2) = J / (1.4 m); the energy rises by
 !> what the push gives the sphere; the multipliers of the two height UCONs are the weights;
@@ -20,10 +21,11 @@
 program two_rollers
     use, intrinsic :: iso_fortran_env, only : error_unit
     use rollcon, only : wp, error_type, model_type, part_type, applied_force_type, &
-        & profile_half_sine, setup_model, problem_type, formulation_ida, formulation_cvode, &
-        & run_options_type, run_summary_type, history_type, simulate, status_completed, &
-        & output_layout_type, new_output_layout, find_builtin_ucosub, builtin_ucosub_par, &
-        & ucosub_interface, use_one_blas_thread, coord_xdot, coord_ydot
+        & profile_half_sine, setup_model, run_settings_type, formulation_ida, formulation_cvode, &
+        & run_summary_type, history_type, status_completed, job_type, new_job, &
+        & new_model_source, run_job, job_result_type, output_layout_type, &
+        & find_builtin_ucosub, builtin_ucosub_par, ucosub_interface, use_one_blas_thread, &
+        & coord_xdot, coord_ydot
     use sphere_height, only : sphere_height_ucosub, sphere_height_par
     implicit none
 
@@ -133,25 +135,26 @@ contains
         integer, intent(in) :: formulation
         character(len=*), intent(in) :: label
         integer, intent(inout) :: failures
-        type(problem_type), target :: problem
-        type(run_options_type) :: options
+        type(run_settings_type) :: settings
+        type(job_type) :: job
+        type(job_result_type) :: result
         type(run_summary_type) :: summary
         type(history_type) :: history
         type(output_layout_type) :: layout
         type(error_type), allocatable :: error
         real(wp) :: q0(12), u0(12)
-        integer :: k
 
-        call problem%init(model)
-        problem%settings%formulation = formulation
-        problem%settings%rtol = 1.0e-8_wp
-        problem%settings%atol = 1.0e-10_wp
-        options%end_time = 2.0_wp
-        options%output_step = 0.01_wp
-        options%progress = .false.
+        settings%formulation = formulation
+        settings%rtol = 1.0e-8_wp
+        settings%atol = 1.0e-10_wp
+        settings%end_time = 2.0_wp
+        settings%output_step = 0.01_wp
         call initial_state(q0, u0)
-        call simulate(problem, q0, u0, options, summary, error, history)
+        ! the one route of every run: a job of the model, run (no files: the rows go to history)
+        job = new_job(new_model_source("two_rollers", model, q0, u0, settings))
+        call run_job(job, result, error, history)
         if (allocated(error)) call fail(label // ": " // error%message)
+        summary = result%summary
         if (summary%status /= status_completed) call fail(label // ": the run did not " &
             & // "complete: " // summary%message)
         ! the columns of the rows (t, each part's 12 coordinates, E, F_<id>, lambda_<id>): the

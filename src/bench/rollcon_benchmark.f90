@@ -126,7 +126,9 @@ contains
     !> appended. Every row of the full model is a run of the job (run_job) with the method's
     !> settings. The reduced ODE is run at every tolerance with BDF and Adams whether or not the
     !> methods name it: each row's ratio is its CPU time over the reduced ODE's at the same rtol
-    !> and with the same multistep method, both measured here, in this call.
+    !> and with the same multistep method, both measured here, in this call. Long because its
+    !> two internal procedures (the reference run, one measurement) share the scene, the job
+    !> and the progress unit of the host.
     subroutine benchmark_scene(job, methods, tolerances, reference_rtol, repeats, rows, &
             & error, progress, costs)
         !> A disk scene's job, as loaded (its own solver settings are replaced)

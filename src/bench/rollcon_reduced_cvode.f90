@@ -45,6 +45,8 @@ module rollcon_reduced_cvode
 contains
 
     !> Integrate the reduced state y0 from t0 to end_time, a history row every output_step.
+    !> About 100 lines: the one loop over output times, and its internal procedures (the next
+    !> force stop, a row) that share its state.
     subroutine simulate_reduced(problem, y0, t0, end_time, output_step, history, summary, error)
         type(reduced_problem_type), intent(inout), target :: problem
         !> (theta, thetadot, psidot, omega3, psi, phi, X, Y) at t0

@@ -246,20 +246,8 @@ contains
                 & // " (a residual and a multiplier each), got " // to_text(size(names))
             return
         end if
-        ! the watches' columns: names each once, and of those known when the reader says
-        do column = size(names) - extra + 1, size(names)
-            if (len_trim(names(column)) == 0 .or. &
-                & findloc(names(:column - 1), names(column), dim=1) > 0) then
-                message = "column " // to_text(column) // " must have a name of its own, got '" &
-                    & // trim(names(column)) // "'"
-                return
-            end if
-            if (.not. present(known)) cycle
-            if (is_known(names(column), known, part_ids)) cycle
-            message = "column " // to_text(column) // " must be one of " &
-                & // known_list(known) // ", got '" // trim(names(column)) // "'"
-            return
-        end do
+        call check_extra(names, size(names) - extra + 1, part_ids, message, known)
+        if (allocated(message)) return
         layout = new_output_layout(part_ids, ucon_ids, names(size(names) - extra + 1:))
         names_match: block
             character(len=name_length), allocatable :: expected(:)
@@ -274,6 +262,29 @@ contains
             end do
         end block names_match
     end subroutine read_layout
+
+    !> The watches' columns, names(first:): each name once, and one of known when given.
+    pure subroutine check_extra(names, first, part_ids, message, known)
+        character(len=*), intent(in) :: names(:)
+        integer, intent(in) :: first, part_ids(:)
+        character(len=:), allocatable, intent(out) :: message
+        character(len=*), intent(in), optional :: known(:)
+        integer :: column
+
+        do column = first, size(names)
+            if (len_trim(names(column)) == 0 .or. &
+                & findloc(names(:column - 1), names(column), dim=1) > 0) then
+                message = "column " // to_text(column) // " must have a name of its own, got '" &
+                    & // trim(names(column)) // "'"
+                return
+            end if
+            if (.not. present(known)) cycle
+            if (is_known(names(column), known, part_ids)) cycle
+            message = "column " // to_text(column) // " must be one of " &
+                & // known_list(known) // ", got '" // trim(names(column)) // "'"
+            return
+        end do
+    end subroutine check_extra
 
     !> name is one of known, "<id>" at the end of one standing for any of the part ids.
     pure logical function is_known(name, known, part_ids)

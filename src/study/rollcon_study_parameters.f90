@@ -25,7 +25,8 @@ module rollcon_study_parameters
 contains
 
     !> One parameter line of &grid or &random: its key must be a numeric scene key, its range
-    !> within the key's allowed range and not empty.
+    !> within the key's allowed range and not empty. About 85 lines: one refusal after another,
+    !> each with its own message, in the order a reader meets them.
     subroutine read_parameter(file, group_name, a, sampling, dataset, parameter, error)
         character(len=*), intent(in) :: file, group_name
         type(assignment_type), intent(in) :: a

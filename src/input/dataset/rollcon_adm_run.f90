@@ -26,7 +26,8 @@ module rollcon_adm_run
 
 contains
 
-    !> SIMULATE/DYNAMIC, END=t, STEPS=n or DTOUT=dt (t, dt in the dataset's time unit).
+    !> SIMULATE/DYNAMIC, END=t, STEPS=n or DTOUT=dt (t, dt in the dataset's time unit). About 90
+    !> lines with its internal set_times, which shares the keywords' lines for its messages.
     subroutine read_simulate(path, where, statement, units, run, error)
         !> Dataset file, for messages
         character(len=*), intent(in) :: path
