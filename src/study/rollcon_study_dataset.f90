@@ -10,7 +10,7 @@ module rollcon_study_dataset
     use rollcon_text, only : to_text, upper_case
     use rollcon_namelist_lexer, only : assignment_type
     use rollcon_adm_model, only : adm_model_type
-    use rollcon_adm_reader, only : read_adm
+    use rollcon_adm_reader, only : read_adm_lines
     use rollcon_adm_overrides, only : adm_override_type, parse_override_name
     use rollcon_study_type, only : study_type, study_parameter_type
     implicit none
@@ -58,7 +58,7 @@ contains
         character(len=:), allocatable :: message
         integer :: k
 
-        call read_adm(study%scene_path, adm, error)
+        call read_adm_lines(study%scene_path, study%scene_lines, adm, error)
         if (allocated(error)) then
             message = error%message
             call input_error(error, file, 0, "", "its base dataset is refused: " // message)
@@ -66,8 +66,8 @@ contains
         end if
         do k = 1, size(study%parameters)
             associate (p => study%parameters(k))
-                call read_adm(study%scene_path, adm, error, [dataset_override(p, &
-                    & to_text(p%lower))])
+                call read_adm_lines(study%scene_path, study%scene_lines, adm, error, &
+                    & [dataset_override(p, to_text(p%lower))])
                 if (allocated(error)) then
                     message = error%message
                     call input_error(error, file, p%line, p%group // "%" // p%key, "at " &

@@ -1,12 +1,14 @@
 /* SPDX-License-Identifier: MIT */
-/* Counts the calls to malloc, calloc and realloc of the whole test program, for the
- * allocation tests (test_allocations.f90): defining these symbols in the executable
- * interposes them for every caller (gfortran's ALLOCATE, array temporaries, libgfortran,
- * SUNDIALS). glibc exports the real allocator as __libc_malloc & co.; elsewhere nothing is
- * interposed and rollcon_malloc_counting() says so, and the tests skip. */
+/* Counts the calls to malloc, calloc and realloc of the whole test program and the bytes they
+ * ask for, for the allocation tests (test_allocations.f90, test_adm_text.f90): defining these
+ * symbols in the executable interposes them for every caller (gfortran's ALLOCATE, array
+ * temporaries, libgfortran, SUNDIALS). glibc exports the real allocator as __libc_malloc &
+ * co.; elsewhere nothing is interposed and rollcon_malloc_counting() says so, and the tests
+ * skip. */
 #include <stdlib.h>
 
 static long calls = 0;
+static long long bytes = 0;
 
 #ifdef __GLIBC__
 extern void *__libc_malloc(size_t size);
@@ -16,18 +18,21 @@ extern void *__libc_realloc(void *pointer, size_t size);
 void *malloc(size_t size)
 {
     calls++;
+    bytes += (long long)size;
     return __libc_malloc(size);
 }
 
 void *calloc(size_t count, size_t size)
 {
     calls++;
+    bytes += (long long)(count * size);
     return __libc_calloc(count, size);
 }
 
 void *realloc(void *pointer, size_t size)
 {
     calls++;
+    bytes += (long long)size;
     return __libc_realloc(pointer, size);
 }
 
@@ -38,3 +43,7 @@ int rollcon_malloc_counting(void) { return 0; }
 
 /* Calls to the allocator since the program started. */
 long rollcon_malloc_count(void) { return calls; }
+
+/* Bytes asked of the allocator since the program started (a realloc counts its new size):
+ * a list grown by concatenation asks for quadratically many (test_adm_text.f90). */
+long long rollcon_malloc_bytes(void) { return bytes; }

@@ -5,7 +5,8 @@ module rollcon_adm_bodies
     use rollcon_error, only : error_type, fatal_error, stat_input
     use rollcon_adm_lexer, only : adm_statement_type, adm_argument_type, upper_case
     use rollcon_adm_keywords, only : read_reals, read_integer, argument_key, arg_place
-    use rollcon_adm_model, only : adm_model_type, adm_part_type, adm_marker_type
+    use rollcon_adm_units, only : units_type
+    use rollcon_adm_model, only : adm_part_type, adm_marker_type
     implicit none
     private
 
@@ -20,12 +21,14 @@ module rollcon_adm_bodies
 
 contains
 
-    subroutine read_part(path, where, statement, model, error)
+    !> PART/id as read (whether its id is new is the reader's to check).
+    subroutine read_part(path, where, statement, units, part, error)
         character(len=*), intent(in) :: path, where
         type(adm_statement_type), intent(in) :: statement
-        type(adm_model_type), intent(inout) :: model
+        !> The dataset's units
+        type(units_type), intent(in) :: units
+        type(adm_part_type), intent(out) :: part
         type(error_type), allocatable, intent(out) :: error
-        type(adm_part_type) :: part
         character(len=:), allocatable :: key, at
         real(wp), allocatable :: values(:)
         integer :: k, axis
@@ -33,8 +36,8 @@ contains
 
         part%id = statement%id
         part%line = statement%line
-        speed = model%units%length/model%units%time
-        rate = 1.0_wp/model%units%time
+        speed = units%length/units%time
+        rate = 1.0_wp/units%time
         do k = 1, size(statement%arguments)
             call argument_key(path, where, statement, k, part_keys, key, error)
             if (allocated(error)) return
@@ -50,7 +53,7 @@ contains
                 call read_integer(statement%arguments(k), at, part%cm, error)
             case ("MASS")
                 call read_reals(statement%arguments(k), at, 1, 1, .false., values, error)
-                if (.not. allocated(error)) part%mass = values(1)*model%units%mass
+                if (.not. allocated(error)) part%mass = values(1)*units%mass
             case ("IP")
                 call read_reals(statement%arguments(k), at, 3, 6, .false., values, error)
                 if (allocated(error)) return
@@ -63,10 +66,10 @@ contains
                         return
                     end if
                 end if
-                part%ip = values(1:3)*model%units%mass*model%units%length**2
+                part%ip = values(1:3)*units%mass*units%length**2
             case ("QG")
                 call read_reals(statement%arguments(k), at, 3, 3, .false., values, error)
-                if (.not. allocated(error)) part%qg = values*model%units%length
+                if (.not. allocated(error)) part%qg = values*units%length
             case ("REULER")
                 call read_reals(statement%arguments(k), at, 3, 3, .true., values, error)
                 if (.not. allocated(error)) part%reuler = values
@@ -87,11 +90,6 @@ contains
             end select
             if (allocated(error)) return
         end do
-        if (any(model%parts%id == part%id)) then
-            call fatal_error(error, where // ": a second PART with this id", stat_input)
-            return
-        end if
-        model%parts = [model%parts, part]
     end subroutine read_part
 
     !> EXACT=c1:...:c6, each c one of X, Y, Z, PSI, THETA, PHI (any case, any order, as ADAMS).
@@ -126,12 +124,14 @@ contains
         end do
     end subroutine read_exact
 
-    subroutine read_marker(path, where, statement, model, error)
+    !> MARKER/id as read (whether its id is new is the reader's to check).
+    subroutine read_marker(path, where, statement, units, marker, error)
         character(len=*), intent(in) :: path, where
         type(adm_statement_type), intent(in) :: statement
-        type(adm_model_type), intent(inout) :: model
+        !> The dataset's units
+        type(units_type), intent(in) :: units
+        type(adm_marker_type), intent(out) :: marker
         type(error_type), allocatable, intent(out) :: error
-        type(adm_marker_type) :: marker
         character(len=:), allocatable :: key, at
         real(wp), allocatable :: values(:)
         integer :: k
@@ -147,7 +147,7 @@ contains
                 call read_integer(statement%arguments(k), at, marker%part, error)
             case ("QP")
                 call read_reals(statement%arguments(k), at, 3, 3, .false., values, error)
-                if (.not. allocated(error)) marker%qp = values*model%units%length
+                if (.not. allocated(error)) marker%qp = values*units%length
             case ("REULER")
                 call read_reals(statement%arguments(k), at, 3, 3, .true., values, error)
                 if (.not. allocated(error)) marker%reuler = values
@@ -159,11 +159,6 @@ contains
                 & stat_input)
             return
         end if
-        if (any(model%markers%id == marker%id)) then
-            call fatal_error(error, where // ": a second MARKER with this id", stat_input)
-            return
-        end if
-        model%markers = [model%markers, marker]
     end subroutine read_marker
 
 end module rollcon_adm_bodies

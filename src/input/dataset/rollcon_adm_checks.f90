@@ -13,6 +13,8 @@ module rollcon_adm_checks
     use rollcon_adm_keywords, only : place
     use rollcon_adm_model, only : adm_model_type, adm_part_type, adm_marker_type, &
         & adm_force_type, force_sforce, force_vforce
+    use rollcon_adm_ids, only : id_index_type, new_id_index
+    use, intrinsic :: iso_fortran_env, only : int64
     implicit none
     private
 
@@ -23,18 +25,29 @@ module rollcon_adm_checks
 
 contains
 
+    !> The checks of the whole dataset, in time linear in its statements (each reference found
+    !> through an index of the ids).
     subroutine check_references(model, error)
         type(adm_model_type), intent(in) :: model
         type(error_type), allocatable, intent(out) :: error
-        integer :: i
+        type(id_index_type) :: parts, markers
+        integer :: i, previous
 
+        parts = new_id_index(size(model%parts))
+        do i = 1, size(model%parts)
+            call parts%add(int(model%parts(i)%id, int64), i, previous)
+        end do
+        markers = new_id_index(size(model%markers))
+        do i = 1, size(model%markers)
+            call markers%add(int(model%markers(i)%id, int64), i, previous)
+        end do
         if (count(model%parts%ground) /= 1) then
             call fatal_error(error, model%file // ": a dataset needs exactly one PART with " &
                 & // "GROUND, found " // to_text(count(model%parts%ground)), stat_input)
             return
         end if
         do i = 1, size(model%markers)
-            if (.not. any(model%parts%id == model%markers(i)%part)) then
+            if (parts%find(int(model%markers(i)%part, int64)) == 0) then
                 call fatal_error(error, place(model%file, model%markers(i)%line) // ": MARKER/" &
                     & // to_text(model%markers(i)%id) // " PART: no PART/" &
                     & // to_text(model%markers(i)%part), stat_input)
@@ -42,19 +55,21 @@ contains
             end if
         end do
         do i = 1, size(model%parts)
-            call check_part(model, model%parts(i), error)
+            call check_part(model, markers, model%parts(i), error)
             if (allocated(error)) return
         end do
         do i = 1, size(model%forces)
-            call check_force(model, model%forces(i), error)
+            call check_force(model, markers, model%forces(i), error)
             if (allocated(error)) return
         end do
         if (model%run%line == 0) call fatal_error(error, model%file // ": no SIMULATE " &
             & // "statement (SIMULATE/DYNAMIC, END=t, STEPS=n)", stat_input)
     end subroutine check_references
 
-    subroutine check_part(model, part, error)
+    subroutine check_part(model, markers, part, error)
         type(adm_model_type), intent(in) :: model
+        !> Positions of the markers by id
+        type(id_index_type), intent(in) :: markers
         type(adm_part_type), intent(in) :: part
         type(error_type), allocatable, intent(out) :: error
         character(len=:), allocatable :: where
@@ -86,7 +101,7 @@ contains
                 & // "(each must be at most the sum of the other two)", stat_input)
             return
         end if
-        m = marker_index(model, part%cm)
+        m = markers%find(int(part%cm, int64))
         if (part%cm == 0) then
             call fatal_error(error, where // " CM: a MARKER on this part must give the centre " &
                 & // "of mass (CM=id)", stat_input)
@@ -142,8 +157,10 @@ contains
         text = to_text(anint(angle/degree*steps)/steps) // "D"
     end function degrees
 
-    subroutine check_force(model, force, error)
+    subroutine check_force(model, markers, force, error)
         type(adm_model_type), intent(in) :: model
+        !> Positions of the markers by id
+        type(id_index_type), intent(in) :: markers
         type(adm_force_type), intent(in) :: force
         type(error_type), allocatable, intent(out) :: error
         character(len=:), allocatable :: where, name
@@ -182,18 +199,10 @@ contains
             character(len=*), intent(in) :: key
 
             if (allocated(error) .or. id == 0) return
-            if (marker_index(model, id) == 0) call fatal_error(error, where // " " // key &
+            if (markers%find(int(id, int64)) == 0) call fatal_error(error, where // " " // key &
                 & // ": no MARKER/" // to_text(id), stat_input)
         end subroutine require_marker
 
     end subroutine check_force
-
-    pure integer function marker_index(model, id)
-        type(adm_model_type), intent(in) :: model
-        integer, intent(in) :: id
-
-        marker_index = 0
-        if (id > 0) marker_index = findloc(model%markers%id, id, dim=1)
-    end function marker_index
 
 end module rollcon_adm_checks

@@ -7,14 +7,30 @@
 !> field that is a plain number continues the list of the assignment before it (`QG = 0, 0, 1`);
 !> any other field is a conditional argument (`GROUND`, `DYNAMIC`). A backslash ends an
 !> expression, as in ADAMS. Every argument keeps the line it started on, for messages.
+!>
+!> The file is ASCII text: a UTF-8 byte-order mark at its start is skipped, a tab or the
+!> carriage return of a CRLF line end is a blank, and a non-ASCII character is allowed inside a
+!> `!` comment only (as in a scene file, rollcon_namelist_bytes). Reading takes time linear in
+!> the size of the file, however its statements are split over lines.
 module rollcon_adm_lexer
     use rollcon_error, only : error_type, fatal_error, stat_input
     use rollcon_text, only : to_text, upper_case
+    use rollcon_namelist_lexer, only : line_type
+    use rollcon_namelist_bytes, only : visible, utf8_length
     implicit none
     private
 
     public :: adm_argument_type, adm_statement_type, adm_text_type, read_adm_text, is_number_text
+    public :: lex_adm_lines, read_dataset_lines, max_line_length
     public :: upper_case
+
+    !> Longest line a dataset may hold [characters]
+    integer, parameter :: max_line_length = 4095
+    !> The UTF-8 encoding of U+FEFF, the byte-order mark
+    character(len=*), parameter :: byte_order_mark = achar(239) // achar(187) // achar(191)
+    !> What a field of a statement is (split_arguments)
+    integer, parameter :: field_empty = 0, field_assignment = 1, field_value = 2, &
+        & field_conditional = 3
 
     !> The value of one list entry or expression, as written
     type :: adm_value_type
@@ -61,120 +77,222 @@ contains
         character(len=*), intent(in) :: path
         type(adm_text_type), intent(out) :: dataset
         type(error_type), allocatable, intent(out) :: error
-        character(len=:), allocatable :: text
-        integer, allocatable :: line_of(:)
-        integer :: unit, stat, line, start_line
-        character(len=4096) :: buffer
-        character(len=256) :: message
+        type(line_type), allocatable :: lines(:)
 
-        dataset%file = path
-        dataset%title = ""
-        allocate(dataset%statements(0))
-        open(newunit=unit, file=path, status="old", action="read", iostat=stat, iomsg=message)
+        call read_dataset_lines(path, lines, error)
+        if (allocated(error)) then
+            dataset%file = path
+            dataset%title = ""
+            allocate(dataset%statements(0))
+            return
+        end if
+        call lex_adm_lines(path, lines, dataset, error)
+    end subroutine read_adm_text
+
+    !> Every line of the file at `path`, as it is (any length, without its line end).
+    subroutine read_dataset_lines(path, lines, error)
+        character(len=*), intent(in) :: path
+        type(line_type), allocatable, intent(out) :: lines(:)
+        type(error_type), allocatable, intent(out) :: error
+        type(line_type), allocatable :: grown(:)
+        character(len=:), allocatable :: text
+        character(len=256) :: chunk, message
+        integer :: unit, stat, got, n
+
+        open(newunit=unit, file=path, status="old", action="read", form="formatted", &
+            & access="sequential", iostat=stat, iomsg=message)
         if (stat /= 0) then
             call fatal_error(error, path // ": cannot open the dataset: " // trim(message), &
                 & stat_input)
             return
         end if
-        text = ""
-        allocate(line_of(0))
-        start_line = 0
-        line = 0
+        allocate(lines(64))
+        n = 0
         do
-            read(unit, '(a)', iostat=stat) buffer
-            if (stat /= 0) exit
-            line = line + 1
-            if (len_trim(buffer) == len(buffer)) then
-                call fatal_error(error, path // ":" // to_text(line) // ": line longer than " &
-                    & // to_text(len(buffer) - 1) // " characters", stat_input)
-                exit
+            text = ""
+            do
+                read(unit, "(a)", advance="no", size=got, iostat=stat) chunk
+                text = text // chunk(:got)
+                if (stat /= 0) exit
+            end do
+            if (is_iostat_end(stat) .and. len(text) == 0) exit
+            if (stat /= 0 .and. .not. is_iostat_eor(stat) .and. .not. is_iostat_end(stat)) then
+                call fatal_error(error, path // ":" // to_text(n + 1) // ": cannot read this " &
+                    & // "line", stat_input)
+                close(unit)
+                return
             end if
-            call check_characters(path, line, buffer, error)
+            if (n == size(lines)) then
+                allocate(grown(2*n))
+                grown(:n) = lines
+                call move_alloc(grown, lines)
+            end if
+            n = n + 1
+            lines(n)%text = text
+            if (is_iostat_end(stat)) exit
+        end do
+        close(unit)
+        lines = lines(:n)
+    end subroutine read_dataset_lines
+
+    !> The statements of a dataset's lines (read from `path`, which messages name). Each line
+    !> is looked at once and each statement's text is joined once: the time is linear in the
+    !> size of the dataset.
+    subroutine lex_adm_lines(path, lines, dataset, error)
+        character(len=*), intent(in) :: path
+        !> The lines of the file, without line ends
+        type(line_type), intent(in) :: lines(:)
+        type(adm_text_type), intent(out) :: dataset
+        type(error_type), allocatable, intent(out) :: error
+        !> The lines as statements see them: comments dropped, tabs and carriage returns blank
+        type(line_type), allocatable :: kept(:)
+        type(adm_statement_type), allocatable :: statements(:)
+        integer :: i, first, count
+
+        dataset%file = path
+        dataset%title = ""
+        allocate(kept(size(lines)), statements(16))
+        count = 0
+        first = 0
+        do i = 1, size(lines)
+            call check_line(path, i, lines(i)%text, kept(i)%text, error)
             if (allocated(error)) exit
-            if (line == 1) then
-                dataset%title = trim(buffer)
+            if (i == 1) then
+                ! the title, whatever it holds (comments are not dropped from it)
+                dataset%title = trim(kept(1)%text)
+                kept(1)%text = ""
                 cycle
             end if
-            call strip_comment(buffer)
-            if (len_trim(buffer) == 0) cycle
-            if (buffer(first_nonblank(buffer):first_nonblank(buffer)) == ",") then
-                if (start_line == 0) then
-                    call fatal_error(error, path // ":" // to_text(line) // ": a continuation " &
+            if (len_trim(kept(i)%text) == 0) cycle
+            if (kept(i)%text(first_nonblank(kept(i)%text):first_nonblank(kept(i)%text)) &
+                & == ",") then
+                if (first == 0) then
+                    call fatal_error(error, path // ":" // to_text(i) // ": a continuation " &
                         & // "line (starting with ',') with no statement before it", stat_input)
                     exit
                 end if
             else
-                if (start_line > 0) call add_statement(dataset, text, line_of, start_line, error)
+                if (first > 0) call add_statement(path, kept, first, i - 1, statements, count, &
+                    & error)
                 if (allocated(error)) exit
-                text = ""
-                deallocate(line_of)
-                allocate(line_of(0))
-                start_line = line
+                first = i
             end if
-            if (start_line /= line .and. len_trim(text) > 0) then
-                ! a comma that ends a line and one that opens the next are one separator
-                if (text(len_trim(text):len_trim(text)) == ",") &
-                    & buffer(first_nonblank(buffer):first_nonblank(buffer)) = " "
-            end if
-            line_of = [line_of, spread(line, 1, len_trim(buffer) + 1)]
-            text = text // trim(buffer) // " "
         end do
-        close(unit)
-        if (allocated(error)) return
-        if (stat > 0) then
-            call fatal_error(error, path // ":" // to_text(line + 1) // ": cannot read this line", &
-                & stat_input)
+        if (.not. allocated(error) .and. first > 0) call add_statement(path, kept, first, &
+            & size(lines), statements, count, error)
+        dataset%statements = statements(:count)
+    end subroutine lex_adm_lines
+
+    !> Check the bytes of line `line` and give the text statements read from it (`kept`): a
+    !> UTF-8 byte-order mark at the start of the file is skipped; tab (a blank) and the
+    !> carriage return of a CRLF line end are the only control characters; a non-ASCII
+    !> character is allowed in a comment only. Messages show a character visibly (`\x00`,
+    !> `U+00E9`), never raw.
+    subroutine check_line(path, line, text, kept, error)
+        character(len=*), intent(in) :: path, text
+        integer, intent(in) :: line
+        character(len=:), allocatable, intent(out) :: kept
+        type(error_type), allocatable, intent(out) :: error
+        character(len=:), allocatable :: where
+        integer :: j, code, comment
+
+        kept = text
+        if (line == 1 .and. index(text, byte_order_mark) == 1) kept = text(len(byte_order_mark) &
+            & + 1:)
+        where = path // ":" // to_text(line) // ": "
+        if (len_trim(kept) > max_line_length) then
+            call fatal_error(error, where // "line longer than " // to_text(max_line_length) &
+                & // " characters", stat_input)
             return
         end if
-        if (start_line > 0) call add_statement(dataset, text, line_of, start_line, error)
-    end subroutine read_adm_text
-
-    !> A character a dataset cannot hold (control or non-ASCII) is refused by its code.
-    subroutine check_characters(path, line, buffer, error)
-        character(len=*), intent(in) :: path, buffer
-        integer, intent(in) :: line
-        type(error_type), allocatable, intent(out) :: error
-        integer :: i, code
-
-        do i = 1, len_trim(buffer)
-            code = iachar(buffer(i:i))
-            if (code == 9) cycle
-            if (code < 32 .or. code > 126) then
-                call fatal_error(error, path // ":" // to_text(line) // ": column " // to_text(i) &
-                    & // ": character code " // to_text(code) // " (datasets are plain ASCII)", &
-                    & stat_input)
+        ! the title has no comment: all of it is text
+        comment = 0
+        if (line > 1) comment = index(kept, "!")
+        do j = 1, len_trim(kept)
+            code = iachar(kept(j:j))
+            if (code == 9 .or. code == 13) then
+                kept(j:j) = " "
+            else if (code < 32 .or. code == 127) then
+                call fatal_error(error, where // "control character " // visible(kept(j:j)) &
+                    & // " at column " // to_text(j) // "; a dataset is text (a tab is a " &
+                    & // "blank)", stat_input)
+                return
+            else if (code > 127 .and. (comment == 0 .or. j < comment)) then
+                call fatal_error(error, where // "non-ASCII character " &
+                    & // visible(kept(j:j + utf8_length(kept(j:)) - 1)) // " at column " &
+                    & // to_text(j) // "; outside comments a dataset is ASCII (a byte-order " &
+                    & // "mark is allowed at the start only)", stat_input)
                 return
             end if
         end do
-    end subroutine check_characters
+        if (comment > 0) kept = kept(:comment - 1)
+    end subroutine check_line
 
-    subroutine strip_comment(buffer)
-        character(len=*), intent(inout) :: buffer
-        integer :: k
-
-        k = index(buffer, "!")
-        if (k > 0) buffer(k:) = ""
-    end subroutine strip_comment
-
+    !> Position of the first character that is not a blank (0: none).
     pure integer function first_nonblank(text)
         character(len=*), intent(in) :: text
 
-        first_nonblank = verify(text, " " // achar(9))
+        first_nonblank = verify(text, " ")
     end function first_nonblank
 
-    !> Split one statement's text (its lines joined) into name, id and arguments.
-    subroutine add_statement(dataset, text, line_of, start_line, error)
-        type(adm_text_type), intent(inout) :: dataset
-        character(len=*), intent(in) :: text
-        integer, intent(in) :: line_of(:), start_line
+    !> Lines first..last (blank ones skipped) joined as one statement, split into name, id and
+    !> arguments, and appended to statements(:count), which grows by doubling.
+    subroutine add_statement(path, kept, first, last, statements, count, error)
+        character(len=*), intent(in) :: path
+        type(line_type), intent(in) :: kept(:)
+        integer, intent(in) :: first, last
+        type(adm_statement_type), allocatable, intent(inout) :: statements(:)
+        integer, intent(inout) :: count
         type(error_type), allocatable, intent(out) :: error
-        type(adm_statement_type) :: statement
+        type(adm_statement_type), allocatable :: grown(:)
+        character(len=:), allocatable :: text
+        integer, allocatable :: line_of(:)
+        character :: last_char
+        integer :: i, n, at, c
+
+        n = 0
+        do i = first, last
+            if (len_trim(kept(i)%text) > 0) n = n + len_trim(kept(i)%text) + 1
+        end do
+        allocate(character(len=n) :: text)
+        allocate(line_of(n))
+        at = 0
+        last_char = " "
+        do i = first, last
+            n = len_trim(kept(i)%text)
+            if (n == 0) cycle
+            text(at + 1:at + n + 1) = kept(i)%text(:n) // " "
+            line_of(at + 1:at + n + 1) = i
+            if (i > first .and. last_char == ",") then
+                ! a comma that ends a line and one that opens the next are one separator
+                c = at + first_nonblank(kept(i)%text)
+                text(c:c) = " "
+            end if
+            c = len_trim(text(at + 1:at + n))
+            if (c > 0) last_char = text(at + c:at + c)
+            at = at + n + 1
+        end do
+        if (count == size(statements)) then
+            allocate(grown(2*count))
+            grown(:count) = statements
+            call move_alloc(grown, statements)
+        end if
+        call split_statement(path, text, line_of, first, statements(count + 1), error)
+        if (allocated(error)) return
+        count = count + 1
+    end subroutine add_statement
+
+    !> Split one statement's text (its lines joined) into name, id and arguments.
+    subroutine split_statement(path, text, line_of, start_line, statement, error)
+        character(len=*), intent(in) :: path, text
+        integer, intent(in) :: line_of(:), start_line
+        type(adm_statement_type), intent(out) :: statement
+        type(error_type), allocatable, intent(out) :: error
         character(len=:), allocatable :: where
         integer :: slash, first, comma, stat
 
-        where = dataset%file // ":" // to_text(start_line) // ": "
+        where = path // ":" // to_text(start_line) // ": "
         statement%line = start_line
-        allocate(statement%arguments(0))
         slash = index(text, "/")
         comma = index(text, ",")
         if (slash == 0 .or. (comma > 0 .and. comma < slash)) slash = min(len(text) + 1, &
@@ -205,64 +323,101 @@ contains
             end if
         end if
         call split_arguments(text, line_of, first, where // statement%name, statement, error)
-        if (allocated(error)) return
-        dataset%statements = [dataset%statements, statement]
-    end subroutine add_statement
+    end subroutine split_statement
 
-    !> The arguments from position `first` on.
+    !> The arguments from position `first` on. The fields are found and classed first, then
+    !> every argument and list is allocated once at its size: linear in the statement's length.
     subroutine split_arguments(text, line_of, first, where, statement, error)
         character(len=*), intent(in) :: text, where
         integer, intent(in) :: line_of(:), first
         type(adm_statement_type), intent(inout) :: statement
         type(error_type), allocatable, intent(out) :: error
-        type(adm_argument_type) :: argument
         character(len=:), allocatable :: field
-        integer :: start, finish, equals, n
+        !> Each field's place in the text, kind, and argument (the one a value belongs to)
+        integer, allocatable :: starts(:), finishes(:), kinds(:), argument_of(:), filled(:)
+        integer :: start, finish, n, k, a, last, equals
 
+        n = count([(text(k:k) == ",", k = first, len(text))]) + 1
+        allocate(starts(n), finishes(n), kinds(n), argument_of(n))
+        ! pass 1: each field's place, kind and argument; refusals in the order of the text
+        n = 0
+        a = 0
+        last = 0
         start = first
         do while (start <= len(text))
             call next_field(text, start, finish, error, where)
             if (allocated(error)) return
-            field = trim(adjustl(text(start:finish - 1)))
-            if (len(field) > 0) then
-                if (field(len(field):len(field)) == "\") field = trim(field(:len(field) - 1))
-            end if
-            n = size(statement%arguments)
-            equals = top_level_equals(field)
+            field = field_text(text(start:finish - 1))
+            n = n + 1
+            starts(n) = start
+            finishes(n) = finish
             if (len(field) == 0) then
+                kinds(n) = field_empty
                 if (finish <= len(text)) then
                     call fatal_error(error, line_text(where, line_of, start) // ": an empty " &
                         & // "argument (two commas in a row)", stat_input)
                     return
                 end if
-            else if (equals > 0) then
-                argument%keyword = upper_case(trim(field(:equals - 1)))
-                argument%assigned = .true.
-                argument%line = line_of(min(start, size(line_of)))
-                allocate(argument%values(1))
-                argument%values(1)%text = trim(adjustl(field(equals + 1:)))
-                statement%arguments = [statement%arguments, argument]
-                deallocate(argument%values)
-            else if (is_number_text(field) .and. n > 0) then
-                if (.not. statement%arguments(n)%assigned) then
+            else if (top_level_equals(field) == 0 .and. is_number_text(field) .and. a > 0) then
+                ! a number continues the list of the argument before it
+                if (kinds(last) /= field_assignment) then
                     call fatal_error(error, line_text(where, line_of, start) // ": a value '" &
-                        & // field // "' follows " // statement%arguments(n)%keyword &
-                        & // ", which takes none", stat_input)
+                        & // field // "' follows " // upper_case(field_text(text(starts(last): &
+                        & finishes(last) - 1))) // ", which takes none", stat_input)
                     return
                 end if
-                statement%arguments(n)%values = [statement%arguments(n)%values, &
-                    & adm_value_type(field)]
+                kinds(n) = field_value
+                argument_of(n) = a
             else
-                argument%keyword = upper_case(field)
-                argument%assigned = .false.
-                argument%line = line_of(min(start, size(line_of)))
-                allocate(argument%values(0))
-                statement%arguments = [statement%arguments, argument]
-                deallocate(argument%values)
+                kinds(n) = merge(field_assignment, field_conditional, top_level_equals(field) > 0)
+                a = a + 1
+                argument_of(n) = a
+                last = n
             end if
             start = finish + 1
         end do
+        ! pass 2: the arguments, each list allocated at its length
+        allocate(statement%arguments(a), filled(a))
+        filled = 0
+        do k = 1, n
+            if (kinds(k) /= field_empty) filled(argument_of(k)) = filled(argument_of(k)) + 1
+        end do
+        do k = 1, n
+            if (kinds(k) == field_empty) cycle
+            field = field_text(text(starts(k):finishes(k) - 1))
+            associate (argument => statement%arguments(argument_of(k)))
+                select case (kinds(k))
+                case (field_assignment)
+                    equals = top_level_equals(field)
+                    argument%keyword = upper_case(trim(field(:equals - 1)))
+                    argument%assigned = .true.
+                    argument%line = line_of(min(starts(k), size(line_of)))
+                    allocate(argument%values(filled(argument_of(k))))
+                    argument%values(1)%text = trim(adjustl(field(equals + 1:)))
+                    filled(argument_of(k)) = 1
+                case (field_value)
+                    filled(argument_of(k)) = filled(argument_of(k)) + 1
+                    argument%values(filled(argument_of(k)))%text = field
+                case default
+                    argument%keyword = upper_case(field)
+                    argument%assigned = .false.
+                    argument%line = line_of(min(starts(k), size(line_of)))
+                    allocate(argument%values(0))
+                end select
+            end associate
+        end do
     end subroutine split_arguments
+
+    !> A field as an argument reads it: blanks around it and a final backslash dropped.
+    pure function field_text(raw) result(field)
+        character(len=*), intent(in) :: raw
+        character(len=:), allocatable :: field
+
+        field = trim(adjustl(raw))
+        if (len(field) > 0) then
+            if (field(len(field):len(field)) == "\") field = trim(field(:len(field) - 1))
+        end if
+    end function field_text
 
     !> The end of the field starting at `start`: the next comma outside parentheses.
     subroutine next_field(text, start, finish, error, where)

@@ -27,12 +27,12 @@ contains
 
     !> UCON/id, FUNCTION=USER(r1, ..., r30)[, ROUTINE=name]: name, in any case, is a built-in
     !> UCOSUB (rollcon_ucosub_catalog); without it the model's UCOSUB serves the UCON.
-    subroutine read_ucon(path, where, statement, model, error)
+    !> (Whether its id is new is the reader's to check.)
+    subroutine read_ucon(path, where, statement, ucon, error)
         character(len=*), intent(in) :: path, where
         type(adm_statement_type), intent(in) :: statement
-        type(adm_model_type), intent(inout) :: model
+        type(adm_ucon_type), intent(out) :: ucon
         type(error_type), allocatable, intent(out) :: error
-        type(adm_ucon_type) :: ucon
         character(len=:), allocatable :: key, at
         integer :: k
 
@@ -55,11 +55,6 @@ contains
             return
         end if
         if (.not. allocated(ucon%routine)) ucon%routine = ""
-        if (any(model%ucons%id == ucon%id)) then
-            call fatal_error(error, where // ": a second UCON with this id", stat_input)
-            return
-        end if
-        model%ucons = [model%ucons, ucon]
     end subroutine read_ucon
 
     !> ROUTINE = name of a built-in UCOSUB; anything else refused with the list.
@@ -161,12 +156,13 @@ contains
         end do
     end subroutine read_accgrav
 
-    subroutine read_force(path, where, name, statement, model, error)
+    !> SFORCE, VFORCE or GFORCE (name) as read (whether its id is new among the statements of
+    !> its kind is the reader's to check).
+    subroutine read_force(path, where, name, statement, force, error)
         character(len=*), intent(in) :: path, where, name
         type(adm_statement_type), intent(in) :: statement
-        type(adm_model_type), intent(inout) :: model
+        type(adm_force_type), intent(out) :: force
         type(error_type), allocatable, intent(out) :: error
-        type(adm_force_type) :: force
         character(len=:), allocatable :: key, at
         integer :: k, slot
 
@@ -211,11 +207,6 @@ contains
             end select
             if (allocated(error)) return
         end do
-        if (any(model%forces%id == force%id .and. model%forces%kind == force%kind)) then
-            call fatal_error(error, where // ": a second " // name // " with this id", stat_input)
-            return
-        end if
-        model%forces = [model%forces, force]
     end subroutine read_force
 
 end module rollcon_adm_loads

@@ -6,8 +6,11 @@ module rollcon_adm_reader
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type, fatal_error, stat_input
     use rollcon_text, only : to_text
+    use, intrinsic :: iso_fortran_env, only : int64
+    use rollcon_namelist_lexer, only : line_type
     use rollcon_adm_lexer, only : adm_text_type, adm_statement_type, adm_argument_type, &
-        & read_adm_text
+        & lex_adm_lines, read_dataset_lines
+    use rollcon_adm_ids, only : id_index_type, new_id_index
     use rollcon_adm_keywords, only : resolve_name, statement_names, argument_key, arg_place, &
         & place, name_index
     use rollcon_adm_units, only : units_type, set_unit, unit_keywords
@@ -21,7 +24,7 @@ module rollcon_adm_reader
     implicit none
     private
 
-    public :: read_adm
+    public :: read_adm, read_adm_lines
 
 
 contains
@@ -33,12 +36,27 @@ contains
         type(error_type), allocatable, intent(out) :: error
         !> Values set apart from the file
         type(adm_override_type), intent(in), optional :: overrides(:)
-        type(adm_text_type) :: text
-        character(len=:), allocatable :: name
-        integer :: i
-        logical :: seen(size(statement_names))
+        type(line_type), allocatable :: lines(:)
 
-        call read_adm_text(path, text, error)
+        call read_dataset_lines(path, lines, error)
+        if (allocated(error)) return
+        call read_adm_lines(path, lines, model, error, overrides)
+    end subroutine read_adm
+
+    !> Read and check a dataset given as its lines (read from `path`, which messages name),
+    !> with overrides (rollcon_adm_overrides) set first. Linear in the size of the dataset:
+    !> every list is allocated at its size and every id found through an index.
+    subroutine read_adm_lines(path, lines, model, error, overrides)
+        character(len=*), intent(in) :: path
+        !> The dataset's lines, without line ends
+        type(line_type), intent(in) :: lines(:)
+        type(adm_model_type), intent(out) :: model
+        type(error_type), allocatable, intent(out) :: error
+        !> Values set apart from the file
+        type(adm_override_type), intent(in), optional :: overrides(:)
+        type(adm_text_type) :: text
+
+        call lex_adm_lines(path, lines, text, error)
         if (allocated(error)) return
         if (present(overrides)) then
             call override(text, overrides, error)
@@ -50,11 +68,41 @@ contains
         ! UNITS first: every value of the dataset is in its units, wherever it stands
         call read_units(text, model%units, error)
         if (allocated(error)) return
+        call read_statements(path, text, model, error)
+        if (allocated(error)) return
+        call check_references(model, error)
+    end subroutine read_adm_lines
+
+    !> Every statement in file order, up to END; parts, markers, UCONs and forces stored in
+    !> lists allocated once and their ids checked through an index.
+    subroutine read_statements(path, text, model, error)
+        character(len=*), intent(in) :: path
+        type(adm_text_type), intent(in) :: text
+        type(adm_model_type), intent(inout) :: model
+        type(error_type), allocatable, intent(out) :: error
+        character(len=len(statement_names)) :: names(size(text%statements))
+        character(len=:), allocatable :: name
+        type(id_index_type) :: ids(4)
+        integer :: i, n(4), k, previous
+        logical :: seen(size(statement_names))
+
+        do i = 1, size(text%statements)
+            call statement_name(path, text%statements(i), name, error)
+            if (allocated(error)) return
+            names(i) = name
+        end do
+        ! the lists: parts, markers, UCONs, forces (an SFORCE and a GFORCE may share an id)
+        deallocate(model%parts, model%markers, model%ucons, model%forces)
+        allocate(model%parts(count(names == "PART")), model%markers(count(names == "MARKER")), &
+            & model%ucons(count(names == "UCON")), model%forces(count(names == "SFORCE" &
+            & .or. names == "VFORCE" .or. names == "GFORCE")))
+        ids = [new_id_index(size(model%parts)), new_id_index(size(model%markers)), &
+            & new_id_index(size(model%ucons)), new_id_index(size(model%forces))]
+        n = 0
         seen = .false.
         do i = 1, size(text%statements)
             associate (statement => text%statements(i))
-                call statement_name(path, statement, name, error)
-                if (allocated(error)) return
+                name = trim(names(i))
                 if (seen(name_index(name, statement_names)) .and. once(name)) then
                     call fatal_error(error, place(path, statement%line) // ": a second " // name &
                         & // " statement (a dataset has at most one)", stat_input)
@@ -66,13 +114,52 @@ contains
                         & text%statements(i + 1)%line) // ": a statement after END", stat_input)
                     exit
                 end if
-                call read_statement(path, name, statement, model, error)
+                call read_statement(path, name, statement, model, n, error)
                 if (allocated(error)) return
+                k = list_of(name)
+                if (k == 0) cycle
+                call ids(k)%add(list_key(name, statement%id), n(k), previous)
+                if (previous /= 0) then
+                    call fatal_error(error, place(path, statement%line) // ": " // name // "/" &
+                        & // to_text(statement%id) // ": a second " // name // " with this id", &
+                        & stat_input)
+                    return
+                end if
             end associate
         end do
         if (allocated(error)) return
-        call check_references(model, error)
-    end subroutine read_adm
+        model%parts = model%parts(:n(1))
+        model%markers = model%markers(:n(2))
+        model%ucons = model%ucons(:n(3))
+        model%forces = model%forces(:n(4))
+    end subroutine read_statements
+
+    !> The list a statement's element goes to: 1 parts, 2 markers, 3 UCONs, 4 forces; 0 none.
+    pure integer function list_of(name) result(k)
+        character(len=*), intent(in) :: name
+
+        select case (name)
+        case ("PART")
+            k = 1
+        case ("MARKER")
+            k = 2
+        case ("UCON")
+            k = 3
+        case ("SFORCE", "VFORCE", "GFORCE")
+            k = 4
+        case default
+            k = 0
+        end select
+    end function list_of
+
+    !> The key of a statement's id in its list's index: forces of different kinds may share an id.
+    pure function list_key(name, id) result(key)
+        character(len=*), intent(in) :: name
+        integer, intent(in) :: id
+        integer(int64) :: key
+
+        key = 4_int64*int(id, int64) + name_index(name, ["SFORCE", "VFORCE", "GFORCE"])
+    end function list_key
 
     pure logical function once(name)
         character(len=*), intent(in) :: name
@@ -81,10 +168,13 @@ contains
             & "SIMULATE", "UNITS"])
     end function once
 
-    subroutine read_statement(path, name, statement, model, error)
+    !> One statement; a part, marker, UCON or force is stored at the end of its list
+    !> (n: the lengths of the lists, as list_of numbers them).
+    subroutine read_statement(path, name, statement, model, n, error)
         character(len=*), intent(in) :: path, name
         type(adm_statement_type), intent(in) :: statement
         type(adm_model_type), intent(inout) :: model
+        integer, intent(inout) :: n(4)
         type(error_type), allocatable, intent(out) :: error
         character(len=:), allocatable :: where
 
@@ -102,15 +192,19 @@ contains
         if (statement%has_id) where = where // "/" // to_text(statement%id)
         select case (name)
         case ("PART")
-            call read_part(path, where, statement, model, error)
+            n(1) = n(1) + 1
+            call read_part(path, where, statement, model%units, model%parts(n(1)), error)
         case ("MARKER")
-            call read_marker(path, where, statement, model, error)
+            n(2) = n(2) + 1
+            call read_marker(path, where, statement, model%units, model%markers(n(2)), error)
         case ("UCON")
-            call read_ucon(path, where, statement, model, error)
+            n(3) = n(3) + 1
+            call read_ucon(path, where, statement, model%ucons(n(3)), error)
         case ("ACCGRAV")
             call read_accgrav(path, where, statement, model, error)
         case ("SFORCE", "VFORCE", "GFORCE")
-            call read_force(path, where, name, statement, model, error)
+            n(4) = n(4) + 1
+            call read_force(path, where, name, statement, model%forces(n(4)), error)
         case ("SIMULATE")
             call read_simulate(path, where, statement, model%units, model%run, error)
         case ("INTEGRATOR")

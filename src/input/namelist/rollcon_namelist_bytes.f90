@@ -9,7 +9,7 @@ module rollcon_namelist_bytes
     implicit none
     private
 
-    public :: check_bytes, visible
+    public :: check_bytes, visible, utf8_length
 
     !> The UTF-8 encoding of U+FEFF, the byte-order mark
     character(len=*), parameter :: byte_order_mark = achar(239) // achar(187) // achar(191)
