@@ -16,7 +16,7 @@
 module rollcon_expression
     use rollcon_kinds, only : wp
     use rollcon_constants, only : pi
-    use, intrinsic :: ieee_arithmetic, only : ieee_value, ieee_quiet_nan
+    use, intrinsic :: ieee_arithmetic, only : ieee_value, ieee_quiet_nan, ieee_is_finite
     implicit none
     private
 
@@ -141,7 +141,8 @@ contains
     !> argument of a STEP or HAVSIN, is a TIME - c (any a TIME + b, a /= 0, of constants)
     !> and crosses zero, x0 or x1 (constants). A switch on anything else (a state function, a
     !> product of TIME) is not found. In the expression's time units, in the order the program
-    !> meets them (an inner IF before the IF around it).
+    !> meets them (an inner IF before the IF around it). A time that is not finite (constants
+    !> whose product or sum overflows: the switch never happens) is left out.
     pure function switching_times(expression) result(times)
         type(expression_type), intent(in) :: expression
         real(wp), allocatable :: times(:)
@@ -171,13 +172,13 @@ contains
                 arity = 5
                 if (affine(top - 4) .and. slope(top - 4) /= 0.0_wp .and. affine(top - 3) &
                     & .and. slope(top - 3) == 0.0_wp .and. affine(top - 1) &
-                    & .and. slope(top - 1) == 0.0_wp) times = [times, &
-                    & (offset(top - 3) - offset(top - 4))/slope(top - 4), &
-                    & (offset(top - 1) - offset(top - 4))/slope(top - 4)]
+                    & .and. slope(top - 1) == 0.0_wp) call add_finite(times, &
+                    & [(offset(top - 3) - offset(top - 4))/slope(top - 4), &
+                    & (offset(top - 1) - offset(top - 4))/slope(top - 4)])
             case (op_if)
                 arity = 4
                 if (affine(top - 3) .and. slope(top - 3) /= 0.0_wp) &
-                    & times = [times, -offset(top - 3)/slope(top - 3)]
+                    & call add_finite(times, [-offset(top - 3)/slope(top - 3)])
             case default
                 arity = 2
             end select
@@ -186,6 +187,14 @@ contains
                 & affine(top:top + arity - 1))
         end do
     end function switching_times
+
+    !> Append the finite ones of candidates to times.
+    pure subroutine add_finite(times, candidates)
+        real(wp), allocatable, intent(inout) :: times(:)
+        real(wp), intent(in) :: candidates(:)
+
+        times = [times, pack(candidates, ieee_is_finite(candidates))]
+    end subroutine add_finite
 
     !> The affine form of an operation's result from its arguments' (first element on return).
     pure subroutine combine(op, arity, slope, offset, affine)

@@ -7,7 +7,7 @@
 !> the marker exists is checked where the dataset's markers are known (rollcon_adm_build).
 module rollcon_adm_expression_parser
     use rollcon_kinds, only : wp
-    use rollcon_constants, only : pi
+    use rollcon_constants, only : pi, degree
     use rollcon_error, only : error_type, fatal_error, stat_input
     use rollcon_expression, only : expression_type, expression_input_type, max_stack, &
         & max_inputs, op_time, op_input, op_add, op_subtract, op_multiply, op_divide, op_power, &
@@ -15,10 +15,20 @@ module rollcon_adm_expression_parser
     use rollcon_adm_expression_scan, only : parser_type, emit, emit_constant, expect, peek, &
         & here, skip_blanks, skip_digits, read_name, is_digit, is_letter, column_text, &
         & exponent_follows
+    use rollcon_namelist_bytes, only : visible
+    use, intrinsic :: ieee_arithmetic, only : ieee_is_finite
+    use rollcon_text, only : to_text
     implicit none
     private
 
-    public :: compile_expression
+    public :: compile_expression, max_nesting
+
+    !> Deepest nesting of parentheses, function arguments, signs and powers an expression may
+    !> have: far beyond any written one, and a bound on the parser's recursion, which a text of
+    !> a million parentheses would otherwise drive through the stack
+    integer, parameter :: max_nesting = 200
+    !> Longest text a message quotes in full [characters]
+    integer, parameter :: max_quoted = 400
 
 contains
 
@@ -46,8 +56,9 @@ contains
         if (len(problem) == 0 .and. parser%deepest > max_stack) problem = "nested too deeply " &
             & // "(more than 64 values pending)"
         if (len(problem) > 0) then
-            call fatal_error(error, where // ": " // problem // " at column " &
-                & // column_text(parser) // " of '" // trim(adjustl(text)) // "'", stat_input)
+            call fatal_error(error, where // ": " // visible(shortened(problem)) &
+                & // " at column " // column_text(parser) // " of '" &
+                & // visible(shortened(trim(adjustl(text)))) // "'", stat_input)
             return
         end if
         expression%text = trim(adjustl(text))
@@ -56,6 +67,17 @@ contains
         expression%inputs = parser%inputs
         expression%uses_time = any(expression%op == op_time)
     end subroutine compile_expression
+
+    !> A text as a message quotes it: its first max_quoted characters and its length when it
+    !> is longer (an expression may run over thousands of continuation lines).
+    pure function shortened(text) result(quoted)
+        character(len=*), intent(in) :: text
+        character(len=:), allocatable :: quoted
+
+        quoted = text
+        if (len(text) > max_quoted) quoted = text(:max_quoted) // "... (" &
+            & // to_text(len(text)) // " characters)"
+    end function shortened
 
     recursive subroutine parse_sum(p, problem)
         type(parser_type), intent(inout) :: p
@@ -97,27 +119,35 @@ contains
         end do
     end subroutine parse_product
 
+    !> Every level of nesting (a parenthesis, a function's argument, a sign, a power) passes
+    !> here once: the depth of the recursion is bounded by max_nesting, not by the text's length.
     recursive subroutine parse_signed(p, problem)
         type(parser_type), intent(inout) :: p
         character(len=:), allocatable, intent(inout) :: problem
         character :: c
 
+        if (p%nesting >= max_nesting) then
+            problem = "nested too deeply (more than " // to_text(max_nesting) // " levels of " &
+                & // "parentheses, signs and powers)"
+            return
+        end if
+        p%nesting = p%nesting + 1
         c = peek(p)
         if (c == "+" .or. c == "-") then
             p%at = p%at + 1
             call parse_signed(p, problem)
             if (c == "-") call emit(p, op_negate, 0)
-            return
-        end if
-        call parse_primary(p, problem)
-        if (len(problem) > 0) return
-        if (peek(p) == "*" .and. p%at < len(p%text)) then
-            if (p%text(p%at + 1:p%at + 1) == "*") then
-                p%at = p%at + 2
-                call parse_signed(p, problem)
-                call emit(p, op_power, -1)
+        else
+            call parse_primary(p, problem)
+            if (len(problem) == 0 .and. peek(p) == "*" .and. p%at < len(p%text)) then
+                if (p%text(p%at + 1:p%at + 1) == "*") then
+                    p%at = p%at + 2
+                    call parse_signed(p, problem)
+                    call emit(p, op_power, -1)
+                end if
             end if
         end if
+        p%nesting = p%nesting - 1
     end subroutine parse_signed
 
     recursive subroutine parse_primary(p, problem)
@@ -295,9 +325,15 @@ contains
             p%at = first
             return
         end if
+        if (.not. ieee_is_finite(value)) then
+            ! beyond the largest double (1.8e308): read as infinity, never a constant
+            problem = "'" // p%text(first:p%at - 1) // "' is not a finite number"
+            p%at = first
+            return
+        end if
         if (degrees) then
             p%at = p%at + 1
-            value = value*pi/180.0_wp
+            value = value*degree
         end if
         call emit_constant(p, value)
     end subroutine parse_number

@@ -18,6 +18,8 @@ module rollcon_adm_expression_scan
         real(wp), allocatable :: constant(:)
         type(expression_input_type), allocatable :: inputs(:)
         integer :: count = 0, depth = 0, deepest = 0
+        !> Levels of nesting open where reading stands (rollcon_adm_expression_parser)
+        integer :: nesting = 0
     end type parser_type
 
 contains

@@ -65,31 +65,39 @@ contains
     end subroutine check_bytes
 
     !> Text with every control byte written `\xNN`, every well-formed UTF-8 character written
-    !> `U+XXXX`, and any other byte above 127 written `\xNN`.
+    !> `U+XXXX`, and any other byte above 127 written `\xNN`. Linear in the text's length (a
+    !> byte is shown in at most 6 characters: the result is built in a buffer of that size).
     pure function visible(text) result(shown)
         !> Text to show
         character(len=*), intent(in) :: text
         character(len=:), allocatable :: shown
-        integer :: j, n, code
+        character(len=:), allocatable :: buffer
+        character(len=:), allocatable :: piece
+        integer :: j, n, code, at
 
-        shown = ""
+        allocate(character(len=6*len(text)) :: buffer)
+        at = 0
         j = 1
         do while (j <= len(text))
             code = iachar(text(j:j))
             if (code >= 32 .and. code < 127) then
-                shown = shown // text(j:j)
+                buffer(at + 1:at + 1) = text(j:j)
+                at = at + 1
                 j = j + 1
                 cycle
             end if
             n = utf8_length(text(j:))
             if (code > 127 .and. n > 1) then
-                shown = shown // "U+" // hex(utf8_code(text(j:j + n - 1)), 4)
+                piece = "U+" // hex(utf8_code(text(j:j + n - 1)), 4)
                 j = j + n
             else
-                shown = shown // "\x" // hex(code, 2)
+                piece = "\x" // hex(code, 2)
                 j = j + 1
             end if
+            buffer(at + 1:at + len(piece)) = piece
+            at = at + len(piece)
         end do
+        shown = buffer(:at)
     end function visible
 
     !> Bytes of the well-formed UTF-8 character at the start of text; 1 when it is not one.
