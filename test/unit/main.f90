@@ -27,6 +27,7 @@ program tester
     use test_adm_statements, only : collect_adm_statements
     use test_adm_build, only : collect_adm_build
     use test_adm_text, only : collect_adm_text
+    use test_adm_fuzz, only : collect_adm_fuzz
     use test_expression_fuzz, only : collect_expression_fuzz
     use test_adm_forces, only : collect_adm_forces
     use test_dataset_command, only : collect_dataset_command
@@ -78,6 +79,7 @@ program tester
         & new_testsuite("adm-forces", collect_adm_forces), &
         & new_testsuite("adm-build", collect_adm_build), &
         & new_testsuite("adm-text", collect_adm_text), &
+        & new_testsuite("adm-fuzz", collect_adm_fuzz), &
         & new_testsuite("expression-fuzz", collect_expression_fuzz), &
         & new_testsuite("output", collect_output), &
         & new_testsuite("command", collect_command), &

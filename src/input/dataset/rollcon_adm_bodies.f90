@@ -52,10 +52,12 @@ contains
             case ("CM")
                 call read_integer(statement%arguments(k), at, part%cm, error)
             case ("MASS")
-                call read_reals(statement%arguments(k), at, 1, 1, .false., values, error)
-                if (.not. allocated(error)) part%mass = values(1)*units%mass
+                call read_reals(statement%arguments(k), at, 1, 1, .false., values, error, &
+                    & units%mass)
+                if (.not. allocated(error)) part%mass = values(1)
             case ("IP")
-                call read_reals(statement%arguments(k), at, 3, 6, .false., values, error)
+                call read_reals(statement%arguments(k), at, 3, 6, .false., values, error, &
+                    & units%mass*units%length**2)
                 if (allocated(error)) return
                 if (size(values) == 6) then
                     if (any(values(4:6) /= 0.0_wp)) then
@@ -66,24 +68,25 @@ contains
                         return
                     end if
                 end if
-                part%ip = values(1:3)*units%mass*units%length**2
+                part%ip = values(1:3)
             case ("QG")
-                call read_reals(statement%arguments(k), at, 3, 3, .false., values, error)
-                if (.not. allocated(error)) part%qg = values*units%length
+                call read_reals(statement%arguments(k), at, 3, 3, .false., values, error, &
+                    & units%length)
+                if (.not. allocated(error)) part%qg = values
             case ("REULER")
                 call read_reals(statement%arguments(k), at, 3, 3, .true., values, error)
                 if (.not. allocated(error)) part%reuler = values
             case ("VX", "VY", "VZ")
                 axis = iachar(key(2:2)) - iachar("X") + 1
-                call read_reals(statement%arguments(k), at, 1, 1, .false., values, error)
+                call read_reals(statement%arguments(k), at, 1, 1, .false., values, error, speed)
                 if (allocated(error)) return
-                part%velocity(axis) = values(1)*speed
+                part%velocity(axis) = values(1)
                 part%velocity_given(axis) = .true.
             case ("WX", "WY", "WZ")
                 axis = iachar(key(2:2)) - iachar("X") + 1
-                call read_reals(statement%arguments(k), at, 1, 1, .false., values, error)
+                call read_reals(statement%arguments(k), at, 1, 1, .false., values, error, rate)
                 if (allocated(error)) return
-                part%angular_velocity(axis) = values(1)*rate
+                part%angular_velocity(axis) = values(1)
                 part%angular_velocity_given(axis) = .true.
             case ("EXACT")
                 call read_exact(statement%arguments(k), at, part%exact, error)
@@ -146,8 +149,9 @@ contains
             case ("PART")
                 call read_integer(statement%arguments(k), at, marker%part, error)
             case ("QP")
-                call read_reals(statement%arguments(k), at, 3, 3, .false., values, error)
-                if (.not. allocated(error)) marker%qp = values*units%length
+                call read_reals(statement%arguments(k), at, 3, 3, .false., values, error, &
+                    & units%length)
+                if (.not. allocated(error)) marker%qp = values
             case ("REULER")
                 call read_reals(statement%arguments(k), at, 3, 3, .true., values, error)
                 if (.not. allocated(error)) marker%reuler = values

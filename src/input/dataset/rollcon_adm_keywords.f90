@@ -65,8 +65,9 @@ contains
     end subroutine resolve_name
 
     !> The argument's values as reals: between `least` and `most` of them; angles accept `D`
-    !> (degrees, converted to radians). The message names the keyword and what was expected.
-    subroutine read_reals(argument, where, least, most, angle, values, error)
+    !> (degrees, converted to radians); with `factor`, converted to SI (each value finite there
+    !> too). The message names the keyword and what was expected.
+    subroutine read_reals(argument, where, least, most, angle, values, error, factor)
         type(adm_argument_type), intent(in) :: argument
         !> "file:line: STATEMENT/id KEYWORD"
         character(len=*), intent(in) :: where
@@ -74,6 +75,8 @@ contains
         logical, intent(in) :: angle
         real(wp), allocatable, intent(out) :: values(:)
         type(error_type), allocatable, intent(out) :: error
+        !> The value of the dataset's unit in SI (kilometre: 1000)
+        real(wp), intent(in), optional :: factor
         character(len=:), allocatable :: text, expected
         integer :: i, stat, n
 
@@ -110,6 +113,14 @@ contains
             if (stat /= 0 .or. .not. ieee_is_finite(values(i))) then
                 call fatal_error(error, where // ": '" // argument%values(i)%text &
                     & // "' is not a finite number", stat_input)
+                return
+            end if
+            if (.not. present(factor)) cycle
+            values(i) = values(i)*factor
+            if (.not. ieee_is_finite(values(i))) then
+                call fatal_error(error, where // ": '" // argument%values(i)%text // "' is not " &
+                    & // "a finite number once converted to SI (the dataset's unit is " &
+                    & // to_text(factor) // " times SI's)", stat_input)
                 return
             end if
         end do

@@ -91,13 +91,17 @@ contains
         type(adm_argument_type) :: list
         character(len=:), allocatable :: text, inner
         integer :: open, i, n, start
+        logical :: well_formed
 
         text = ""
         if (argument%assigned .and. size(argument%values) == 1) &
             & text = trim(adjustl(argument%values(1)%text))
         open = index(text, "(")
-        if (open == 0 .or. text(len(text):) /= ")" .or. .not. is_user(text(:max(1, open - 1)))) &
-            & then
+        ! (each test apart: Fortran may evaluate every operand of .or., and text may be empty)
+        well_formed = open > 1
+        if (well_formed) well_formed = text(len(text):) == ")"
+        if (well_formed) well_formed = is_user(text(:open - 1))
+        if (.not. well_formed) then
             call fatal_error(error, at // ": expected USER(r1, ..., r30) (a UCON is served by " &
                 & // "the model's UCOSUB), got '" // text // "'", stat_input)
             return
@@ -149,10 +153,11 @@ contains
             call argument_key(path, where, statement, k, accgrav_keys, key, error)
             if (allocated(error)) return
             at = arg_place(path, where, statement%arguments(k)) // " " // key
-            call read_reals(statement%arguments(k), at, 1, 1, .false., values, error)
+            call read_reals(statement%arguments(k), at, 1, 1, .false., values, error, &
+                & model%units%length/model%units%time**2)
             if (allocated(error)) return
             axis = iachar(key(1:1)) - iachar("I") + 1
-            model%gravity(axis) = values(1)*model%units%length/model%units%time**2
+            model%gravity(axis) = values(1)
         end do
     end subroutine read_accgrav
 
