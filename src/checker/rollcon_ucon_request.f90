@@ -4,13 +4,16 @@
 !> option itself is the program's; the text's format and its checks are the checker's, so that
 !> they are tested and fuzzed in the library.) Fortran's list-directed read is not
 !> used on the list: it takes "2*1" as two ones, ";" and "/" as separators or terminators
-!> and an empty field as "leave unchanged".
+!> and an empty field as "leave unchanged". Messages quote the text with its control and
+!> non-ASCII characters shown visibly (`\x1B`, `U+00E9`); a list is refused at its 31st field,
+!> however long it is.
 module rollcon_ucon_request
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type, fatal_error, stat_input
     use rollcon_text, only : to_text
     use rollcon_ucosub_contract, only : max_ucon_par
     use rollcon_ucosub_audit, only : ucon_request_type
+    use rollcon_namelist_bytes, only : visible
     use, intrinsic :: ieee_arithmetic, only : ieee_is_finite
     implicit none
     private
@@ -27,9 +30,10 @@ contains
         type(ucon_request_type), intent(out) :: request
         !> Set when the id is not a positive integer or a field is not one finite number
         type(error_type), allocatable, intent(out) :: error
-        character(len=:), allocatable :: id_text, field
+        character(len=:), allocatable :: id_text, field, quoted
         integer :: colon, stat, start, finish, k
 
+        quoted = "--ucon '" // visible(text) // "': "
         colon = index(text, ":")
         if (colon == 0) colon = len(text) + 1
         id_text = trim(adjustl(text(:colon - 1)))
@@ -37,16 +41,15 @@ contains
         if (len(id_text) > 0 .and. len(id_text) <= 9 .and. verify(id_text, "0123456789") == 0) &
             & read(id_text, *, iostat=stat) request%id
         if (stat /= 0 .or. request%id < 1) then
-            call fatal_error(error, "--ucon '" // text // "': the UCON id must be a positive " &
-                & // "integer (digits only), got '" // id_text // "'; expected ID:PAR1,PAR2,...", &
+            call fatal_error(error, quoted // "the UCON id must be a positive integer (digits " &
+                & // "only), got '" // visible(id_text) // "'; expected ID:PAR1,PAR2,...", &
                 & stat_input)
             return
         end if
         allocate(request%par(0))
         if (colon >= len(text)) then
-            if (colon == len(text)) call fatal_error(error, "--ucon '" // text // "': nothing " &
-                & // "after ':'; give the constants (ID:PAR1,PAR2,...) or the id alone", &
-                & stat_input)
+            if (colon == len(text)) call fatal_error(error, quoted // "nothing after ':'; give " &
+                & // "the constants (ID:PAR1,PAR2,...) or the id alone", stat_input)
             return
         end if
         start = colon + 1
@@ -59,26 +62,30 @@ contains
                 finish = start + finish - 2
             end if
             k = k + 1
+            if (k > max_ucon_par) then
+                call fatal_error(error, quoted // "more than " // to_text(max_ucon_par) &
+                    & // " constants (PAR(" // to_text(k) // ") is given); at most " &
+                    & // to_text(max_ucon_par), stat_input)
+                return
+            end if
             field = trim(adjustl(text(start:finish)))
-            call read_field(text, k, field, request%par, error)
+            call read_field(quoted, k, field, request%par, error)
             if (allocated(error)) return
             if (finish >= len(text)) exit
             start = finish + 2
             if (start > len(text)) then
-                call fatal_error(error, "--ucon '" // text // "': PAR(" // to_text(k + 1) &
-                    & // ") is empty (a trailing comma); one number per field", stat_input)
+                call fatal_error(error, quoted // "PAR(" // to_text(k + 1) // ") is empty (a " &
+                    & // "trailing comma); one number per field", stat_input)
                 return
             end if
         end do
-        if (size(request%par) > max_ucon_par) then
-            call fatal_error(error, "--ucon '" // text // "': " // to_text(size(request%par)) &
-                & // " constants; at most " // to_text(max_ucon_par), stat_input)
-        end if
     end subroutine read_ucon_request
 
     !> Field k of the list as one finite number, appended to par.
-    subroutine read_field(text, k, field, par, error)
-        character(len=*), intent(in) :: text, field
+    subroutine read_field(quoted, k, field, par, error)
+        !> "--ucon 'TEXT': ", the start of a message
+        character(len=*), intent(in) :: quoted
+        character(len=*), intent(in) :: field
         integer, intent(in) :: k
         real(wp), allocatable, intent(inout) :: par(:)
         type(error_type), allocatable, intent(out) :: error
@@ -91,9 +98,9 @@ contains
             if (.not. ieee_is_finite(value)) stat = 1
         end if
         if (stat /= 0) then
-            call fatal_error(error, "--ucon '" // text // "': PAR(" // to_text(k) // ") must " &
-                & // "be one finite decimal number (such as 21, -0.5 or 1.0e-3), got '" &
-                & // field // "'; fields are separated by commas", stat_input)
+            call fatal_error(error, quoted // "PAR(" // to_text(k) // ") must be one finite " &
+                & // "decimal number (such as 21, -0.5 or 1.0e-3), got '" // visible(field) &
+                & // "'; fields are separated by commas", stat_input)
             return
         end if
         par = [par, value]

@@ -35,6 +35,7 @@ program tester
     use test_command, only : collect_command
     use test_csv_fuzz, only : collect_csv_fuzz
     use test_isolation, only : collect_isolation
+    use test_ucon_request_fuzz, only : collect_ucon_request_fuzz
     use test_allocations, only : collect_allocations
     use test_reduced, only : collect_reduced
     use test_layout, only : collect_layout
@@ -85,6 +86,7 @@ program tester
         & new_testsuite("command", collect_command), &
         & new_testsuite("csv-fuzz", collect_csv_fuzz), &
         & new_testsuite("isolation", collect_isolation), &
+        & new_testsuite("ucon-request-fuzz", collect_ucon_request_fuzz), &
         & new_testsuite("allocations", collect_allocations), &
         & new_testsuite("reduced", collect_reduced), &
         & new_testsuite("layout", collect_layout), &
