@@ -26,8 +26,19 @@ module rollcon_study_reader
 
 contains
 
-    !> Read and check a study file and its base scene.
+    !> Read and check a study file and its base scene. A message shows every character
+    !> visibly: a tab in a quoted value, a control byte in the path of a base scene (`\x09`).
     subroutine read_study(path, study, error)
+        character(len=*), intent(in) :: path
+        type(study_type), intent(out) :: study
+        type(error_type), allocatable, intent(out) :: error
+
+        call read_study_file(path, study, error)
+        if (allocated(error)) error%message = visible(error%message)
+    end subroutine read_study
+
+    !> read_study, its messages as they come.
+    subroutine read_study_file(path, study, error)
         character(len=*), intent(in) :: path
         type(study_type), intent(out) :: study
         type(error_type), allocatable, intent(out) :: error
@@ -74,7 +85,7 @@ contains
         call read_map(file, groups, g, study, error)
         if (allocated(error)) return
         call check_base_scene(file, study, error)
-    end subroutine read_study
+    end subroutine read_study_file
 
     !> &study: scene (required: a namelist scene, or an ADAMS dataset ending in .adm) and title.
     subroutine read_study_group(file, group, study, error)
@@ -122,6 +133,7 @@ contains
         type(study_type), intent(inout) :: study
         type(error_type), allocatable, intent(out) :: error
         type(study_parameter_type) :: parameter
+        real(wp) :: cases
         integer :: g, gr, k
 
         g = group_index(groups, "grid")
@@ -142,6 +154,7 @@ contains
         end if
         allocate(study%parameters(0))
         study%seed = 1
+        cases = 1.0_wp
         do k = 1, size(groups(g)%assignments)
             associate (a => groups(g)%assignments(k))
                 if (study%sampling == sampling_random .and. (a%key == "samples" &
@@ -150,7 +163,13 @@ contains
                 else
                     call read_parameter(file, groups(g)%name, a, study%sampling, study%dataset, &
                         & parameter, error)
-                    if (.not. allocated(error)) study%parameters = [study%parameters, parameter]
+                    if (allocated(error)) return
+                    study%parameters = [study%parameters, parameter]
+                    ! a grid's cases are numbered by a default integer (rollcon_study_parameters)
+                    cases = cases*real(max(parameter%count, 1), wp)
+                    if (cases > real(huge(1), wp)) call input_error(error, file, a%line, a%key, &
+                        & "makes the grid " // to_text(cases) // " cases; a study has at most " &
+                        & // to_text(huge(1)))
                 end if
             end associate
             if (allocated(error)) return

@@ -12,6 +12,7 @@ module rollcon_study_rules
         & relation_less, relation_less_equal, relation_greater, relation_greater_equal
     use rollcon_study_measures, only : case_result_type, measure_names, measure_index, &
         & outcome_failed, outcome_refused, outcome_words
+    use, intrinsic :: ieee_arithmetic, only : ieee_is_finite
     implicit none
     private
 
@@ -33,7 +34,7 @@ contains
         type(error_type), allocatable, intent(out) :: error
         type(study_rule_type) :: rule
         character(len=:), allocatable :: text
-        integer :: k, j, r, first_blank
+        integer :: k, j, r, first_blank, stat
 
         allocate(study%rules(0))
         study%otherwise = default_class
@@ -81,7 +82,13 @@ contains
                         & // "number': '" // trim(text) // "' is not a number")
                     return
                 end if
-                read(text, *) rule%bound
+                read(text, *, iostat=stat) rule%bound
+                ! NaN, Infinity and numbers beyond the largest double are no bound
+                if (stat /= 0 .or. .not. ieee_is_finite(rule%bound)) then
+                    call input_error(error, file, a%line, a%key, "reads 'measure relation " &
+                        & // "number': '" // trim(text) // "' is not a finite number")
+                    return
+                end if
                 study%rules = [study%rules, rule]
             end associate
         end do

@@ -44,6 +44,7 @@ program tester
     use test_rebasing, only : collect_rebasing
     use test_models, only : collect_models
     use test_study_file, only : collect_study_file
+    use test_study_fuzz, only : collect_study_fuzz
     use test_study_run, only : collect_study_run
     use test_study_map, only : collect_study_map
     use test_sweep_mpi, only : collect_sweep_mpi
@@ -96,6 +97,7 @@ program tester
         & new_testsuite("rebasing", collect_rebasing), &
         & new_testsuite("models", collect_models), &
         & new_testsuite("study-file", collect_study_file), &
+        & new_testsuite("study-fuzz", collect_study_fuzz), &
         & new_testsuite("study-run", collect_study_run), &
         & new_testsuite("study-map", collect_study_map), &
         & new_testsuite("sweep-mpi", collect_sweep_mpi)]
