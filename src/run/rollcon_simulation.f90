@@ -4,6 +4,7 @@
 !> The driver knows parts, UCONs, forces and watches; what a model watches is the watches'.
 module rollcon_simulation
     use, intrinsic :: iso_fortran_env, only : int64
+    use, intrinsic :: ieee_arithmetic, only : ieee_is_finite
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type, fatal_error, stat_ucon
     use rollcon_text, only : to_text
@@ -230,6 +231,14 @@ contains
             call problem%accelerations(time, q, u, error)
             if (allocated(error)) return
             row = output_row(problem, self%layout, time, q, u)
+            ! a value that is not finite is never written as a result
+            if (.not. all(ieee_is_finite(row))) then
+                call problem%nonfinite_state(time, q, u, error)
+                error%message = "the row at t = " // to_text(time) // " s is not finite (" &
+                    & // trim(self%layout%column_name(findloc(ieee_is_finite(row), .false., &
+                    & dim=1))) // " first): " // error%message
+                return
+            end if
             energy = row(self%layout%energy_column())
             ! Energy is conserved once the last force pulse is over: measure drift from the
             ! first row at or after that time.

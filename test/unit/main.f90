@@ -44,6 +44,7 @@ program tester
     use test_study_map, only : collect_study_map
     use test_sweep_mpi, only : collect_sweep_mpi
     use test_run_apart, only : collect_run_apart
+    use test_adm_physical, only : collect_adm_physical
     implicit none
     type(testsuite_type), allocatable :: suites(:)
     type(test_counts_type) :: counts
@@ -92,7 +93,8 @@ program tester
         & new_testsuite("study-run", collect_study_run), &
         & new_testsuite("study-map", collect_study_map), &
         & new_testsuite("sweep-mpi", collect_sweep_mpi), &
-        & new_testsuite("run-apart", collect_run_apart)]
+        & new_testsuite("run-apart", collect_run_apart), &
+        & new_testsuite("adm-physical", collect_adm_physical)]
 
     if (command_argument_count() >= 1) then
         call get_command_argument(1, argument)

@@ -19,7 +19,7 @@ module rollcon_adm_build
     use rollcon_body, only : part_type
     use rollcon_marker, only : marker_type
     use rollcon_marker_force, only : kind_translation, kind_rotation, kind_vector, &
-        & kind_general, marker_force_values
+        & kind_general, marker_force_values, markers_coincide
     use rollcon_force, only : applied_force_type, profile_statement
     use rollcon_model, only : model_type, setup_model
     use rollcon_problem, only : problem_type
@@ -104,6 +104,14 @@ contains
         integer :: i, k
 
         do i = 1, size(adm%forces)
+            if (markers_coincide(problem%model%forces(i)%statement, q0)) then
+                call fatal_error(error, place(adm%file, adm%forces(i)%line) // ": SFORCE/" &
+                    & // to_text(adm%forces(i)%id) // ": its I and J markers are at one point " &
+                    & // "at the start, where a translational SFORCE's line of action (from J " &
+                    & // "to I) is not defined; move one of them, or give the force as a " &
+                    & // "VFORCE", stat_input)
+                return
+            end if
             values = marker_force_values(problem%model%forces(i)%statement, 0.0_wp, q0, u0)
             do k = 1, 6
                 if (ieee_is_finite(values(k))) cycle
@@ -224,6 +232,8 @@ contains
             if (statement%rm /= 0) s%rm = adm_marker(adm, statement%rm)
             s%functions = statement%functions
             s%given = statement%given
+            ! for messages: "data/x.adm:12: VFORCE/7"
+            force%name = where
             s%time_unit = adm%units%time
             s%length_unit = adm%units%length
             s%force_unit = adm%units%force

@@ -7,6 +7,7 @@ module rollcon_adm_checks
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type, fatal_error, stat_input
     use rollcon_text, only : to_text
+    use rollcon_physical_ranges, only : mass_max, inertia_max, position_max, light, rate_max
     use rollcon_constants, only : pi, degree
     use rollcon_rotation, only : rotation_matrix
     use rollcon_adm_state, only : euler_angles
@@ -86,6 +87,8 @@ contains
                 & // "(each must be at most the sum of the other two)", stat_input)
             return
         end if
+        call check_part_ranges(where, part, error)
+        if (allocated(error)) return
         m = marker_index(model, part%cm)
         if (part%cm == 0) then
             call fatal_error(error, where // " CM: a MARKER on this part must give the centre " &
@@ -130,6 +133,35 @@ contains
             & // degrees(turned(3)) // ", and give IP in the turned axes (Ixx, Izz, Iyy)", &
             & stat_input)
     end subroutine check_principal_axes
+
+    !> A part's values within the physical ranges (rollcon_physical_ranges), in SI after the
+    !> dataset's units: MASS, IP, QG, the speed (VX, VY, VZ) below light's, WX..WZ.
+    subroutine check_part_ranges(where, part, error)
+        !> "file:line: PART/id"
+        character(len=*), intent(in) :: where
+        type(adm_part_type), intent(in) :: part
+        type(error_type), allocatable, intent(out) :: error
+
+        if (.not. part%mass <= mass_max) then
+            call fatal_error(error, where // " MASS must be at most " // to_text(mass_max) &
+                & // " [kg], got " // to_text(part%mass) // " kg", stat_input)
+        else if (.not. all(part%ip <= inertia_max)) then
+            call fatal_error(error, where // " IP must be at most " // to_text(inertia_max) &
+                & // " [kg m^2] each, got " // to_text(maxval(part%ip)) // " kg m^2", stat_input)
+        else if (.not. all(abs(part%qg) <= position_max)) then
+            call fatal_error(error, where // " QG must be within " // to_text(position_max) &
+                & // " m of the origin in each axis, got " // to_text(maxval(abs(part%qg))) &
+                & // " m", stat_input)
+        else if (.not. norm2(part%velocity) < light) then
+            call fatal_error(error, where // " VX, VY, VZ: the speed must be below the speed " &
+                & // "of light " // to_text(light) // " [m/s] (the mechanics is Newtonian), " &
+                & // "got " // to_text(norm2(part%velocity)) // " m/s", stat_input)
+        else if (.not. all(abs(part%angular_velocity) <= rate_max)) then
+            call fatal_error(error, where // " WX, WY, WZ must be at most " // to_text(rate_max) &
+                & // " [rad/s] each, got " // to_text(maxval(abs(part%angular_velocity))) &
+                & // " rad/s", stat_input)
+        end if
+    end subroutine check_part_ranges
 
     !> An angle as a dataset writes it in degrees, rounded to 1e-9 degree: "90D".
     pure function degrees(angle) result(text)
