@@ -98,6 +98,14 @@ contains
         end if
         if (len(text) == 0) return
         stop = index(text, lf)
+        if (stop > 1) then
+            if (text(stop - 1:stop - 1) == achar(13)) then
+                call fatal_error(error, path // ":1: its lines end in CR LF (a file saved on " &
+                    & // "Windows?); rollcon writes and reads a study's CSV with LF line ends: " &
+                    & // "convert it (dos2unix) or remove it to start again", stat_input)
+                return
+            end if
+        end if
         if (text(:stop - 1) /= header) then
             call fatal_error(error, path // ":1: the header is not this study's (" // study%path &
                 & // "); expected '" // header // "', found '" // text(:stop - 1) // "'. Give " &

@@ -196,8 +196,18 @@ contains
         i = i + 1
         do
             if (i > n) then
-                call input_error(error, path, group%line, "", "group '&" // group%name &
-                    & // "' is not closed with '/'")
+                if (size(group%assignments) > 0) then
+                    ! the file ends in the last value: name its key
+                    associate (last => group%assignments(size(group%assignments)))
+                        call input_error(error, path, last%line, last%key, "= '" &
+                            & // last%value // "': the file ends here, inside group '&" &
+                            & // group%name // "' (line " // to_text(group%line) &
+                            & // "), which is not closed with '/'")
+                    end associate
+                else
+                    call input_error(error, path, group%line, "", "group '&" // group%name &
+                        & // "' is not closed with '/'")
+                end if
                 return
             end if
             select case (tokens(i)%kind)
@@ -308,6 +318,16 @@ contains
                     case ("'", '"')
                         k = closing_quote(line, j)
                         if (k == 0) then
+                            ! name the key the string was to be the value of (key = 'open...)
+                            if (n >= 2) then
+                                if (tokens(n)%kind == token_equals .and. tokens(n - 1)%kind &
+                                    & == token_word) then
+                                    call input_error(error, path, i, tokens(n - 1)%text, &
+                                        & "= " // line(j:) // ": the string is not closed on " &
+                                        & // "its line")
+                                    return
+                                end if
+                            end if
                             call input_error(error, path, i, "", "string " // line(j:) &
                                 & // " is not closed on its line")
                             return
