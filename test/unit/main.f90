@@ -46,6 +46,7 @@ program tester
     use test_run_apart, only : collect_run_apart
     use test_adm_physical, only : collect_adm_physical
     use test_study_paths, only : collect_study_paths
+    use test_figure_rows, only : collect_figure_rows
     implicit none
     type(testsuite_type), allocatable :: suites(:)
     type(test_counts_type) :: counts
@@ -96,7 +97,8 @@ program tester
         & new_testsuite("sweep-mpi", collect_sweep_mpi), &
         & new_testsuite("run-apart", collect_run_apart), &
         & new_testsuite("adm-physical", collect_adm_physical), &
-        & new_testsuite("study-paths", collect_study_paths)]
+        & new_testsuite("study-paths", collect_study_paths), &
+        & new_testsuite("figure-rows", collect_figure_rows)]
 
     if (command_argument_count() >= 1) then
         call get_command_argument(1, argument)
