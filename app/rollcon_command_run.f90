@@ -6,7 +6,7 @@ module rollcon_command_run
     use rollcon, only : wp, error_type, fatal_error, stat_input, to_text, job_type, load_job, &
         & run_job, job_result_type, status_inaccurate, run_record_type, read_run, &
         & write_vtk_series
-    use rollcon_cli, only : cli_request_type, command_names
+    use rollcon_cli, only : cli_request_type, command_names, command_line_text
     use rollcon_app_files, only : make_folder, file_stem
     implicit none
     private
@@ -47,6 +47,7 @@ contains
             return
         end if
         job%output_dir = request%text("--output", "output")
+        job%command_line = command_line_text()
         job%quiet = request%has("--quiet")
         if (request%has("--allow-large-output")) job%max_csv_bytes = huge(1.0_wp)
         call call_timeout_of(request, job%call_timeout, error)

@@ -23,6 +23,7 @@ module rollcon_run_job
     use rollcon_summary_text, only : run_summary_text
     use rollcon_job, only : job_type
     use rollcon_isolated_run, only : run_isolated
+    use rollcon_provenance, only : provenance_lines
     implicit none
     private
 
@@ -167,17 +168,18 @@ contains
         end if
         if (.not. allocated(run_error)) then
             result%csv_path = files%csv
-            result%summary_text = run_summary_text(job%source%setting_line(), files%csv, &
-                & result%summary)
-            call place_outputs(files, shapes, result%summary_text, run_error)
+            result%summary_text = provenance_lines(job) // run_summary_text( &
+                & job%source%setting_line(), files%csv, result%summary)
+            call place_outputs(files, shapes, result%summary_text, provenance_lines(job), &
+                & run_error)
             if (.not. allocated(run_error)) return
         end if
         ! The run failed, or its files could not be put in place: no "completed" anywhere.
         result%summary%status = status_failed
         result%summary%message = run_error%message
         result%csv_path = files%partial_csv
-        result%summary_text = run_summary_text(job%source%setting_line(), files%partial_csv, &
-            & result%summary)
+        result%summary_text = provenance_lines(job) // run_summary_text( &
+            & job%source%setting_line(), files%partial_csv, result%summary)
         call write_text_file(files%partial_summary, result%summary_text, cleanup_error)
         call move_alloc(run_error, error)
         if (error%stat == stat_io) then
@@ -194,16 +196,18 @@ contains
 
     !> Write the summary and the part shapes beside the partial CSV, remove an earlier run's
     !> summary, then rename the CSV and the summary to their final names.
-    subroutine place_outputs(files, shapes, summary_text, error)
+    subroutine place_outputs(files, shapes, summary_text, record, error)
         type(job_files_type), intent(in) :: files
         type(part_shape_type), intent(in) :: shapes(:)
         character(len=*), intent(in) :: summary_text
+        !> The run's provenance lines, for the .parts file's comments
+        character(len=*), intent(in) :: record
         type(error_type), allocatable, intent(out) :: error
 
         call write_text_file(files%partial_summary, summary_text, error)
         if (allocated(error)) return
         ! the pictures' geometry of this run's parts (rollcon_part_shapes)
-        call write_part_shapes(files%parts, shapes, error)
+        call write_part_shapes(files%parts, shapes, error, record)
         if (allocated(error)) return
         ! An older run's summary must never sit beside this run's CSV.
         call delete_file(files%summary, error)

@@ -42,6 +42,8 @@ module rollcon_model
         logical :: time_free = .false.
         !> The routine serving this statement: the model's UCOSUB unless given
         procedure(ucosub_interface), pointer, nopass :: ucosub => null()
+        !> The name of its own routine, for the record ("" for the model's UCOSUB)
+        character(len=:), allocatable :: routine
     end type ucon_statement_type
 
     !> The model
@@ -81,7 +83,7 @@ contains
     end subroutine add_part
 
     !> Append a UCON statement.
-    subroutine add_ucon(self, id, par, ucosub, time_free)
+    subroutine add_ucon(self, id, par, ucosub, time_free, routine)
         class(model_type), intent(inout) :: self
         !> Statement id
         integer, intent(in) :: id
@@ -92,11 +94,16 @@ contains
         !> The routine's F has no explicit time (a generated module's `<spec>_time_free`): the
         !> time partials are then taken as zero without calling it. Default false.
         logical, intent(in), optional :: time_free
+        !> The name of the routine given, for the run's record (a built-in's name, "yours")
+        character(len=*), intent(in), optional :: routine
         type(ucon_statement_type) :: ucon
 
         ucon%id = id
         ucon%par = par
+        ucon%routine = ""
+        if (present(routine)) ucon%routine = routine
         if (present(ucosub)) ucon%ucosub => ucosub
+        if (present(ucosub) .and. .not. present(routine)) ucon%routine = "its own"
         if (present(time_free)) ucon%time_free = time_free
         if (.not. allocated(self%ucons)) allocate(self%ucons(0))
         self%ucons = [self%ucons, ucon]

@@ -146,8 +146,20 @@ contains
         summary%layout = self%layout
         allocate(summary%ucon_residual_max(problem%eq%nc), source=0.0_wp)
         allocate(summary%ucon_position(problem%eq%nc))
+        summary%routines = ""
         do k = 1, problem%eq%nc
             summary%ucon_position(k) = problem%model%ucons(k)%holonomic
+            associate (ucon => problem%model%ucons(k))
+                if (k > 1) summary%routines = summary%routines // ", "
+                summary%routines = summary%routines // "UCON " // to_text(ucon%id) // ": "
+                if (allocated(ucon%routine)) then
+                    if (len(ucon%routine) > 0) then
+                        summary%routines = summary%routines // ucon%routine
+                        cycle
+                    end if
+                end if
+                summary%routines = summary%routines // "the model's UCOSUB"
+            end associate
         end do
         if (present(history)) history%layout = self%layout
         allocate(self%bases(size(problem%model%parts)), source=0)

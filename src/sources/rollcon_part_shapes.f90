@@ -162,12 +162,15 @@ contains
     end subroutine write_model_shapes
 
     !> Write a .parts file (format in this module's header).
-    subroutine write_part_shapes(path, shapes, error)
+    subroutine write_part_shapes(path, shapes, error, record)
         character(len=*), intent(in) :: path
         type(part_shape_type), intent(in) :: shapes(:)
         type(error_type), allocatable, intent(out) :: error
+        !> Lines (each ending in a newline) written as comments after the header: the run's
+        !> provenance
+        character(len=*), intent(in), optional :: record
         character(len=256) :: message
-        integer :: unit, stat, p
+        integer :: unit, stat, p, first, last
 
         message = "a write failed"
         open(newunit=unit, file=path, status="replace", action="write", access="stream", &
@@ -181,6 +184,15 @@ contains
             & // "part, in model order; lengths in metres.", "#   part <id> disk <radius> " &
             & // "<thickness>", "#   part <id> ellipsoid <a> <b> <c>   (semi-axes along the " &
             & // "body x, y, z axes: the uniform solid ellipsoid of the part's inertia)"
+        if (present(record)) then
+            first = 1
+            do while (first <= len(record) .and. stat == 0)
+                last = index(record(first:), new_line("a"))
+                if (last == 0) last = len(record) - first + 2
+                write(unit, '(a)', iostat=stat) "# " // record(first:first + last - 2)
+                first = first + last
+            end do
+        end if
         do p = 1, size(shapes)
             if (stat /= 0) exit
             if (shapes(p)%kind == shape_disk) then

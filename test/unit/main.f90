@@ -44,6 +44,7 @@ program tester
     use test_study_map, only : collect_study_map
     use test_sweep_mpi, only : collect_sweep_mpi
     use test_run_apart, only : collect_run_apart
+    use test_provenance, only : collect_provenance
     use test_adm_physical, only : collect_adm_physical
     use test_study_paths, only : collect_study_paths
     use test_figure_rows, only : collect_figure_rows
@@ -96,6 +97,7 @@ program tester
         & new_testsuite("study-map", collect_study_map), &
         & new_testsuite("sweep-mpi", collect_sweep_mpi), &
         & new_testsuite("run-apart", collect_run_apart), &
+        & new_testsuite("provenance", collect_provenance), &
         & new_testsuite("adm-physical", collect_adm_physical), &
         & new_testsuite("study-paths", collect_study_paths), &
         & new_testsuite("figure-rows", collect_figure_rows)]

@@ -171,7 +171,16 @@ contains
                         & // "the UCON with a UCOSUB of your own", stat_input)
                     return
                 end if
-                call model%add_ucon(ucon%id, ucon%par, routine, time_free=time_free .and. found)
+                ! for the record: the ROUTINE= name, or the model's UCOSUB (the job says which)
+                if (allocated(ucon%routine)) then
+                    if (len_trim(ucon%routine) > 0) then
+                        call model%add_ucon(ucon%id, ucon%par, routine, time_free=time_free &
+                            & .and. found, routine=trim(ucon%routine))
+                        cycle
+                    end if
+                end if
+                call model%add_ucon(ucon%id, ucon%par, routine, time_free=time_free .and. found, &
+                    & routine="")
             end associate
         end do
     end subroutine add_ucons
