@@ -45,6 +45,7 @@ program tester
     use test_sweep_mpi, only : collect_sweep_mpi
     use test_run_apart, only : collect_run_apart
     use test_provenance, only : collect_provenance
+    use test_ucosub_units, only : collect_ucosub_units
     use test_adm_physical, only : collect_adm_physical
     use test_study_paths, only : collect_study_paths
     use test_figure_rows, only : collect_figure_rows
@@ -98,6 +99,7 @@ program tester
         & new_testsuite("sweep-mpi", collect_sweep_mpi), &
         & new_testsuite("run-apart", collect_run_apart), &
         & new_testsuite("provenance", collect_provenance), &
+        & new_testsuite("ucosub-units", collect_ucosub_units), &
         & new_testsuite("adm-physical", collect_adm_physical), &
         & new_testsuite("study-paths", collect_study_paths), &
         & new_testsuite("figure-rows", collect_figure_rows)]

@@ -5,15 +5,16 @@
 !>
 !> A part's principal axes are its CM marker's axes, and its inertia is the IP written there
 !> (docs/design.md §2). A UCON is served by the built-in routine its ROUTINE= names
-!> (rollcon_ucosub_catalog), else by the model's routine (the `--ucosub` one). PAR values are
-!> passed exactly as written, as ADAMS passes them; the built-in routines take lengths in
-!> metres, so one of them serving a dataset whose length unit is not the metre is refused.
+!> (rollcon_ucosub_catalog), else by the model's routine (the `--ucosub` one). As ADAMS does, a
+!> routine, built-in or the user's, computes in the dataset's units: PAR as written, the state
+!> and the time converted at the boundary (rollcon_ucosub_units).
 module rollcon_adm_build
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type, fatal_error, stat_input
     use rollcon_text, only : to_text
     use rollcon_rotation, only : rotation_matrix
     use rollcon_ucosub_contract, only : ucosub_interface
+    use rollcon_ucosub_units, only : ucosub_units_type
     use rollcon_ucosub_catalog, only : find_builtin_ucosub, builtin_ucosub_names
     use rollcon_expression, only : quantity_names
     use rollcon_body, only : part_type
@@ -67,6 +68,8 @@ contains
             call model%add_part(part_type(id=adm%parts(i)%id, mass=adm%parts(i)%mass, &
                 & inertia=adm%parts(i)%ip))
         end do
+        ! every UCOSUB, built-in or the user's, computes in the dataset's units, as in ADAMS
+        model%ucosub_units = ucosub_units_type(length=adm%units%length, time=adm%units%time)
         call add_ucons(adm, fallback, model, error)
         if (allocated(error)) return
         do i = 1, size(adm%forces)
@@ -127,8 +130,7 @@ contains
         end do
     end subroutine check_forces_at_start
 
-    !> Each UCON with its routine: ROUTINE=name, else the model's; built-in routines only with
-    !> lengths in metres.
+    !> Each UCON with its routine: ROUTINE=name, else the model's.
     subroutine add_ucons(adm, fallback, model, error)
         type(adm_model_type), intent(in) :: adm
         procedure(ucosub_interface), pointer, intent(in) :: fallback
@@ -161,14 +163,6 @@ contains
                         & // "built-in routine with ROUTINE=name (" // builtin_ucosub_names() &
                         & // ") or give the model's UCOSUB (rollcon run MODEL.adm --ucosub " &
                         & // "FILE|NAME)", stat_input)
-                    return
-                end if
-                if (found .and. adm%units%length /= 1.0_wp) then
-                    call fatal_error(error, where // ": the built-in routine '" // name &
-                        & // "' takes PAR lengths in metres, and PAR is passed as written, but " &
-                        & // "the dataset's length unit is " // to_text(adm%units%length) &
-                        & // " m; write the dataset in metres (UNITS/LENGTH=METER) or serve " &
-                        & // "the UCON with a UCOSUB of your own", stat_input)
                     return
                 end if
                 ! for the record: the ROUTINE= name, or the model's UCOSUB (the job says which)
