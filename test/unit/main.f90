@@ -43,6 +43,9 @@ program tester
     use test_study_run, only : collect_study_run
     use test_study_map, only : collect_study_map
     use test_sweep_mpi, only : collect_sweep_mpi
+    use test_wire, only : collect_wire
+    use test_least_squares, only : collect_least_squares
+    use test_bench, only : collect_bench
     implicit none
     type(testsuite_type), allocatable :: suites(:)
     type(test_counts_type) :: counts
@@ -90,7 +93,10 @@ program tester
         & new_testsuite("study-file", collect_study_file), &
         & new_testsuite("study-run", collect_study_run), &
         & new_testsuite("study-map", collect_study_map), &
-        & new_testsuite("sweep-mpi", collect_sweep_mpi)]
+        & new_testsuite("sweep-mpi", collect_sweep_mpi), &
+        & new_testsuite("wire", collect_wire), &
+        & new_testsuite("least-squares", collect_least_squares), &
+        & new_testsuite("bench", collect_bench)]
 
     if (command_argument_count() >= 1) then
         call get_command_argument(1, argument)
