@@ -116,7 +116,8 @@ contains
                 & evaluate_expression(torque%functions(1), 3.0_wp) == 0.03_wp, "SFORCE")
             if (allocated(error)) return
         end associate
-        call check(error, model%run%settings%end_time == 10.0_wp .and. model%run%settings%rtol == 1.0e-9_wp &
+        call check(error, model%run%settings%end_time == 10.0_wp &
+            & .and. model%run%settings%rtol == 1.0e-9_wp &
             & .and. model%run%settings%formulation == formulation_cvode &
             & .and. model%run%settings%method == method_adams &
             & .and. model%run%settings%drift == drift_baumgarte, "run")

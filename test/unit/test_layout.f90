@@ -25,8 +25,8 @@ module test_layout
     use rollcon_theta_watch, only : new_theta_watch
     use rollcon_contact_watch, only : contact_watch_type
     use rollcon_testing, only : unittest_type, new_unittest, check
-    use layout_models, only : two_part_model, two_part_problem, disk_id, free_id, disk_radius, disk_speed, &
-        & free_spin, free_start, free_velocity, gravity, read_csv, failing_disk_ucosub
+    use layout_models, only : two_part_model, two_part_problem, disk_id, free_id, disk_radius, &
+        & disk_speed, free_spin, free_start, free_velocity, gravity, read_csv, failing_disk_ucosub
     use layout_headers, only : test_good_headers, test_bad_headers
     implicit none
     private
