@@ -49,6 +49,9 @@ program tester
     use test_adm_physical, only : collect_adm_physical
     use test_study_paths, only : collect_study_paths
     use test_figure_rows, only : collect_figure_rows
+    use test_wire, only : collect_wire
+    use test_least_squares, only : collect_least_squares
+    use test_bench, only : collect_bench
     implicit none
     type(testsuite_type), allocatable :: suites(:)
     type(test_counts_type) :: counts
@@ -102,7 +105,10 @@ program tester
         & new_testsuite("ucosub-units", collect_ucosub_units), &
         & new_testsuite("adm-physical", collect_adm_physical), &
         & new_testsuite("study-paths", collect_study_paths), &
-        & new_testsuite("figure-rows", collect_figure_rows)]
+        & new_testsuite("figure-rows", collect_figure_rows), &
+        & new_testsuite("wire", collect_wire), &
+        & new_testsuite("least-squares", collect_least_squares), &
+        & new_testsuite("bench", collect_bench)]
 
     if (command_argument_count() >= 1) then
         call get_command_argument(1, argument)

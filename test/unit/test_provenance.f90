@@ -8,6 +8,7 @@ module test_provenance
     use rollcon_text, only : to_text
     use rollcon_version, only : version_text
     use rollcon_provenance, only : file_record
+    use rollcon_hash, only : fnv1a64_type
     use rollcon_part_shapes, only : part_shape_type, read_part_shapes
     use rollcon_testing, only : unittest_type, new_unittest, check
     use command_runs, only : rollcon_program, run_rollcon, file_text
@@ -27,6 +28,7 @@ contains
         type(unittest_type), allocatable, intent(out) :: tests(:)
 
         tests = [new_unittest("fnv1a-64-test-vectors", test_vectors), &
+            & new_unittest("fnv1a-64-in-pieces", test_pieces), &
             & new_unittest("summary-names-built-in", test_built_in), &
             & new_unittest("summary-names-user-file", test_user_file), &
             & new_unittest("summary-names-each-ucon-routine", test_each_ucon)]
@@ -56,6 +58,28 @@ contains
         call check(error, file_record(scratch // "/missing") == "unreadable", &
             & "a missing file: " // file_record(scratch // "/missing"))
     end subroutine test_vectors
+
+    !> Bytes fed in pieces hash as the whole does (a file is hashed a chunk at a time), and
+    !> every byte value counts: the 256 bytes 0..255 fed one by one, against the value computed
+    !> by the definition (h = (h xor b) * 1099511628211 mod 2**64) in Python.
+    subroutine test_pieces(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(fnv1a64_type) :: whole, pieces
+        character(len=256) :: bytes
+        integer :: k
+
+        do k = 0, 255
+            bytes(k + 1:k + 1) = achar(k)
+        end do
+        call whole%add(bytes)
+        call pieces%add(bytes(:1))
+        call pieces%add(bytes(2:100))
+        call pieces%add("")
+        call pieces%add(bytes(101:))
+        call check(error, whole%hex() == pieces%hex() .and. whole%hex() == &
+            & "4242dc5249c33625", "0..255: " // whole%hex() // " whole, " // pieces%hex() &
+            & // " in pieces, expected 4242dc5249c33625")
+    end subroutine test_pieces
 
     !> `run coin --ucosub rolling_disk`: the summary's first line is the version, a time and
     !> the command; its second names the built-in routine; the .parts file carries both as
