@@ -206,6 +206,15 @@ contains
         call reader%get_ints(ints)
         call check(error, size(ints) == 0 .and. reader%failed, "a negative length refused")
         if (allocated(error)) return
+        ! a count whose byte length overflows 64 bits (2**61 reals of 8 bytes wrap round to 0)
+        writer = wire_writer_type()
+        call writer%put_int(2_int64**61)
+        call writer%put_real(1.0_wp)
+        reader = wire_reader_type(bytes=writer%packed())
+        call reader%get_reals(reals)
+        call check(error, size(reals) == 0 .and. reader%failed, &
+            & "2**61 reals in the bytes of one refused")
+        if (allocated(error)) return
 
         ! no bytes at all
         reader = wire_reader_type()
