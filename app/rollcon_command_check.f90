@@ -5,7 +5,8 @@ module rollcon_command_check
     use rollcon, only : wp, error_type, fatal_error, stat_input, stat_io, user_ucosub_type, &
         & new_user_ucosub, ucon_request_type, user_check_options_type, user_check_report_type, &
         & sampling_ranges, check_user_ucosub_isolated, adm_model_type, read_adm, &
-        & read_ucon_request, report_text, report_json, default_call_timeout
+        & read_ucon_request, report_text, report_json, default_call_timeout, &
+        & max_check_states, states_refusal
     use rollcon_cli, only : cli_request_type
     use rollcon_command_run, only : call_timeout_of
     implicit none
@@ -100,6 +101,11 @@ contains
         if (allocated(error)) return
         call request%integer_value("--states", options%states, options%states, 1, error)
         if (allocated(error)) return
+        if (options%states > max_check_states) then
+            call fatal_error(error, "check: --states " // states_refusal(options%states), &
+                & stat_input)
+            return
+        end if
         call request%integer_value("--seed", options%seed, options%seed, -huge(1), error)
     end subroutine read_requests
 
@@ -151,7 +157,7 @@ contains
             & "                 number per comma-separated field, at most 30 PAR)", &
             & "  --model MODEL.adm  every UCON of an ADAMS dataset that names no ROUTINE (those", &
             & "                 the model's own UCOSUB serves), with its id and PAR", &
-            & "  --states N     random states per UCON (default 25)", &
+            & "  --states N     random states per UCON (default 25, at most 100000)", &
             & "  --seed S       seed of the states (default 1); a run is reproducible", &
             & "  --json OUT     also write the report as JSON to OUT", &
             & "  --call-timeout SECONDS  longest one call of the routine may take (default 10)", &

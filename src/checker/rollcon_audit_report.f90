@@ -64,7 +64,11 @@ contains
         integer :: i, g, r, o
         character(len=16) :: worst
 
-        text = "UCON/" // to_text(ucon%id) // "  PAR = " // real_list(ucon%par, ", ") // nl
+        if (size(ucon%par) > 0) then
+            text = "UCON/" // to_text(ucon%id) // "  PAR = " // real_list(ucon%par, ", ") // nl
+        else
+            text = "UCON/" // to_text(ucon%id) // "  PAR: none (NPAR = 0)" // nl
+        end if
         if (ucon%declared) then
             text = text // "  UCOVAR: " // to_text(size(ucon%codes)) // " variables:"
             do i = 1, size(ucon%codes)

@@ -1,0 +1,1 @@
+checker/check_command_support.f90
