@@ -2,10 +2,10 @@
 !> `rollcon check FILE --ucon ID:PAR,...`: check a user's own UCOSUB without ADAMS.
 module rollcon_command_check
     use, intrinsic :: iso_fortran_env, only : output_unit
-    use rollcon, only : wp, error_type, fatal_error, stat_input, stat_io, user_ucosub_type, &
+    use rollcon, only : wp, error_type, fatal_error, stat_input, user_ucosub_type, &
         & new_user_ucosub, ucon_request_type, user_check_options_type, user_check_report_type, &
         & sampling_ranges, check_user_ucosub_isolated, adm_model_type, read_adm, &
-        & read_ucon_request, report_text, report_json, default_call_timeout, &
+        & read_ucon_request, report_text, write_report_json, default_call_timeout, &
         & max_check_states, states_refusal
     use rollcon_cli, only : cli_request_type
     use rollcon_command_run, only : call_timeout_of
@@ -30,7 +30,6 @@ contains
         type(user_ucosub_type) :: user
         character(len=:), allocatable :: library
         real(wp) :: call_timeout
-        integer :: unit, stat
 
         status = 0
         if (request%has("--help")) then
@@ -52,14 +51,9 @@ contains
         end if
         write(output_unit, '(a)') report_text(report, request%positional, trim(library))
         if (request%has("--json")) then
-            associate (json_path => request%text("--json", ""))
-                open(newunit=unit, file=json_path, status="replace", action="write", iostat=stat)
-                if (stat == 0) write(unit, '(a)', iostat=stat) &
-                    & report_json(report, request%positional, user%library, user%from_cache)
-                if (stat == 0) close(unit, iostat=stat)
-                if (stat /= 0) call fatal_error(error, json_path // ": cannot write the JSON " &
-                    & // "report", stat_io)
-            end associate
+            ! every write checked: a report that did not reach the disk fails the command
+            call write_report_json(request%text("--json", ""), report, request%positional, &
+                & user%library, user%from_cache, error)
         end if
         if (.not. report%clean()) status = 1
         call user%destroy()

@@ -79,7 +79,7 @@ module rollcon
     use rollcon_ucon_request, only : read_ucon_request
     use rollcon_isolated_audit, only : check_user_ucosub_isolated
     use rollcon_audit_report, only : report_text
-    use rollcon_audit_json, only : report_json
+    use rollcon_audit_json, only : report_json, write_report_json
 
     ! parameter studies (docs/studies.md); the MPI loop is the program's
     use rollcon_study_type, only : study_type

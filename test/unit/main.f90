@@ -44,6 +44,7 @@ program tester
     use test_study_map, only : collect_study_map
     use test_sweep_mpi, only : collect_sweep_mpi
     use test_check_reliability, only : collect_check_reliability
+    use test_check_findings, only : collect_check_findings
     implicit none
     type(testsuite_type), allocatable :: suites(:)
     type(test_counts_type) :: counts
@@ -92,7 +93,8 @@ program tester
         & new_testsuite("study-run", collect_study_run), &
         & new_testsuite("study-map", collect_study_map), &
         & new_testsuite("sweep-mpi", collect_sweep_mpi), &
-        & new_testsuite("check-reliability", collect_check_reliability)]
+        & new_testsuite("check-reliability", collect_check_reliability), &
+        & new_testsuite("check-findings", collect_check_findings)]
 
     if (command_argument_count() >= 1) then
         call get_command_argument(1, argument)

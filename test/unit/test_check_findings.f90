@@ -1,0 +1,1 @@
+checker/test_check_findings.f90
