@@ -161,7 +161,9 @@ contains
             & "STOP in the routine ends only that process and is reported as a finding ([crash],", &
             & "[timeout], [stop]) with the call (IFLAG, IDRSEL) and the state; a write outside", &
             & "the declared block or outside ARRAY(30), XMATRX(30,30) is an [outside-block]", &
-            & "finding with the index written.", &
+            & "finding with the index written. ID, TIME, Q, PAR, NPAR, IDRSEL and IFLAG reach", &
+            & "the routine as copies (as in a run): a change of one is a [changed-argument]", &
+            & "finding naming it.", &
             & "", &
             & "For each UCON: the initialisation call (IFLAG = 3) must declare the variables", &
             & "with one UCOVAR call (at most 30, known codes, part ids that appear among the PAR", &
@@ -170,7 +172,8 @@ contains
             & "outputs, and the rules are checked: XMATRX symmetric, no second derivative in two", &
             & "velocities (linear in the velocities), outputs not asked for (IDRSEL = 0) left", &
             & "untouched, nothing beyond the declared variables, same inputs give the same", &
-            & "outputs, no NaN or Infinity, no ERRMES call. States are drawn in:"
+            & "outputs, no NaN or Infinity and nothing beyond 1e100 in magnitude, no ERRMES", &
+            & "call. States are drawn in:"
         do i = 1, size(ranges)
             write(output_unit, '(a)') "  " // trim(ranges(i))
         end do

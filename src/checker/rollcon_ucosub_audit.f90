@@ -11,9 +11,10 @@ module rollcon_ucosub_audit
     use rollcon_ucovar_registry, only : ucovar_registry_type
     use rollcon_ucon_call, only : declare_ucon, stat_non_finite
     use rollcon_check_rules, only : rule_declaration, rule_errmes, rule_finite, &
-        & rule_outside_block, rule_name
+        & rule_outside_block, rule_changed_argument, rule_name
     use rollcon_ucosub_guard, only : install_guard, guarded_ucosub, declare_guarded_count, &
-        & note_stage, take_guard_violations, guard_violation_type, violation_text
+        & note_stage, take_guard_violations, guard_violation_type, violation_text, &
+        & violation_argument
     use rollcon_partials_check, only : ucon_check_options_type, ucon_check_result_type, &
         & check_ucon_state
     use rollcon_adams_runtime, only : take_ucon_error
@@ -316,22 +317,26 @@ contains
         group%q = q
     end subroutine set_worst
 
-    !> The guard's violations since the last look, as outside-block findings at state s.
+    !> The guard's violations since the last look, as findings at state s: outside-block for a
+    !> write outside the block, changed-argument for a change of an argument to be read only.
     subroutine record_violations(ucon, s, time, q)
         type(ucon_report_type), intent(inout) :: ucon
         integer, intent(in) :: s
         real(wp), intent(in) :: time, q(:)
         type(guard_violation_type), allocatable :: found(:)
         type(finding_group_type) :: group
-        integer :: v
+        integer :: v, code
 
         call take_guard_violations(found)
         do v = 1, size(found)
-            group = finding(rule_outside_block, trim(found(v)%output), "UCON/" &
-                & // to_text(ucon%id) // ": " // violation_text(found(v)))
+            code = rule_outside_block
+            if (found(v)%kind == violation_argument) code = rule_changed_argument
+            group = finding(code, trim(found(v)%output), "UCON/" // to_text(ucon%id) // ": " &
+                & // violation_text(found(v)))
             group%row = found(v)%row
             group%column = found(v)%column
             group%returned = found(v)%value
+            if (code == rule_changed_argument) group%expected = found(v)%before
             call record(ucon, group, s, time, q)
         end do
     end subroutine record_violations
