@@ -163,12 +163,20 @@ contains
         call make_folder(scratch)
         call run_bounded(program, "check ucon/adams/rolling_disk/ucosub.f --ucon " // disk_ucon &
             & // " --states 100000000", bound, scratch, "states", run)
-        call remove_folder(scratch)
         call check(error, run%status == 2 .and. len(run%out) == 0, "--states 100000000: " &
             & // "exit status " // to_text(run%status) // ", expected 2; stdout: " // run%out)
         if (allocated(error)) return
         call expect_in(error, run%err, "100000000 states per UCON asked for; at most " &
             & // to_text(max_check_states) // " (each state costs", "stderr")
+        if (allocated(error)) return
+        ! written as a real, the count is no whole number: refused as well
+        call run_bounded(program, "check ucon/adams/rolling_disk/ucosub.f --ucon " // disk_ucon &
+            & // " --states 1e8", bound, scratch, "states", run)
+        call remove_folder(scratch)
+        call check(error, run%status == 2 .and. len(run%out) == 0, "--states 1e8: exit " &
+            & // "status " // to_text(run%status) // ", expected 2; stdout: " // run%out)
+        if (allocated(error)) return
+        call expect_in(error, run%err, "--states expects a whole number", "stderr")
         if (allocated(error)) return
         call check(error, max_check_states == 100000, "the documented maximum (docs/checker.md)" &
             & // " is 100000, the code's " // to_text(max_check_states))
