@@ -75,11 +75,12 @@ module rollcon
     use rollcon_partials_check, only : ucon_check_options_type, ucon_mismatch_type, &
         & ucon_check_result_type, check_ucon_state
     use rollcon_ucosub_audit, only : ucon_request_type, user_check_options_type, &
-        & user_check_report_type, check_user_ucosub, sampling_ranges
+        & user_check_report_type, check_user_ucosub, sampling_ranges, max_check_states, &
+        & states_refusal
     use rollcon_ucon_request, only : read_ucon_request
     use rollcon_isolated_audit, only : check_user_ucosub_isolated
     use rollcon_audit_report, only : report_text
-    use rollcon_audit_json, only : report_json
+    use rollcon_audit_json, only : report_json, write_report_json
 
     ! parameter studies (docs/studies.md); the MPI loop is the program's
     use rollcon_study_type, only : study_type

@@ -52,6 +52,8 @@ program tester
     use test_wire, only : collect_wire
     use test_least_squares, only : collect_least_squares
     use test_bench, only : collect_bench
+    use test_check_reliability, only : collect_check_reliability
+    use test_check_findings, only : collect_check_findings
     implicit none
     type(testsuite_type), allocatable :: suites(:)
     type(test_counts_type) :: counts
@@ -108,7 +110,9 @@ program tester
         & new_testsuite("figure-rows", collect_figure_rows), &
         & new_testsuite("wire", collect_wire), &
         & new_testsuite("least-squares", collect_least_squares), &
-        & new_testsuite("bench", collect_bench)]
+        & new_testsuite("bench", collect_bench), &
+        & new_testsuite("check-reliability", collect_check_reliability), &
+        & new_testsuite("check-findings", collect_check_findings)]
 
     if (command_argument_count() >= 1) then
         call get_command_argument(1, argument)

@@ -10,6 +10,7 @@ module test_wire
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type
     use rollcon_wire, only : wire_writer_type, wire_reader_type
+    use rollcon_text, only : to_text
     use rollcon_run_wire, only : pack_summary, unpack_summary, pack_shapes, unpack_shapes
     use rollcon_run_summary, only : run_summary_type, status_inaccurate
     use rollcon_watch, only : watch_measure_type
@@ -17,7 +18,7 @@ module test_wire
     use rollcon_part_shapes, only : part_shape_type, shape_disk, shape_ellipsoid
     use rollcon_frames, only : send_frame, frame_buffer_type
     use rollcon_ucosub_audit, only : ucon_report_type
-    use rollcon_audit_transfer, only : write_ucon_report, read_ucon_report
+    use rollcon_audit_transfer, only : pack_ucon_report, unpack_ucon_report
     use rollcon_testing, only : unittest_type, new_unittest, check
     implicit none
     private
@@ -25,7 +26,6 @@ module test_wire
     public :: collect_wire
 
     !> The report file of the transfer test
-    character(len=*), parameter :: report_path = "build/test_wire_report.bin"
 
     interface
         function c_pipe(fds) result(rc) bind(c, name="pipe")
@@ -425,14 +425,15 @@ contains
     end subroutine test_closed_pipe
 
     !> A UCON's check report with declared variables and two finding groups (one with the
-    !> worst state and a message, one without) written and read back field by field; the file
-    !> cut in half and a missing file are errors naming the file.
+    !> worst state and a message, one without) packed and read back field by field; the bytes
+    !> cut in half, or with one byte more, are an error.
     subroutine test_report(error)
         type(error_type), allocatable, intent(out) :: error
         type(ucon_report_type) :: ucon, back
         type(error_type), allocatable :: failed
         character(len=:), allocatable :: bytes
-        integer :: unit, size_bytes, g
+        type(wire_writer_type) :: writer
+        integer :: g
 
         ucon%id = 13
         ucon%par = [2.0_wp, 11.0_wp, 12.0_wp, 0.1_wp, 3.0_wp]
@@ -462,9 +463,10 @@ contains
         ucon%groups(2)%count = 1
         ucon%groups(2)%states = [integer ::]
 
-        call write_ucon_report(report_path, ucon, error)
-        if (allocated(error)) return
-        call read_ucon_report(report_path, back, error)
+        writer = wire_writer_type()
+        call pack_ucon_report(writer, ucon)
+        bytes = writer%packed()
+        call unpack_ucon_report(bytes, back, error)
         if (allocated(error)) return
         call check(error, back%id == 13 .and. back%declared .and. back%states == 300 .and. &
             & back%compared == 12345 .and. back%worst == ucon%worst, "the UCON's numbers")
@@ -492,26 +494,16 @@ contains
             & back%groups(1)%message == "sign error?", "the first group's states, q, message")
         if (allocated(error)) return
 
-        open(newunit=unit, file=report_path, access="stream", form="unformatted", &
-            & status="old", action="read")
-        inquire(unit=unit, size=size_bytes)
-        allocate(character(len=size_bytes/2) :: bytes)
-        read(unit) bytes
-        close(unit)
-        open(newunit=unit, file=report_path, access="stream", form="unformatted", &
-            & status="replace", action="write")
-        write(unit) bytes
-        close(unit)
-        call read_ucon_report(report_path, back, failed)
+        call unpack_ucon_report(bytes(:len(bytes)/2), back, failed)
         call check(error, allocated(failed), "a report cut in half is an error")
         if (allocated(error)) return
-        call check(error, failed%message == report_path // ": cannot read a UCON report back " &
-            & // "from the checking process", "the message: " // failed%message)
+        call check(error, failed%message == "the report of a UCON sent back by its checking " &
+            & // "process is damaged (" // to_text(len(bytes)/2) // " bytes, not one whole " &
+            & // "report)", "the message: " // failed%message)
         if (allocated(error)) return
-        open(newunit=unit, file=report_path, status="old")
-        close(unit, status="delete")
-        call read_ucon_report(report_path, back, failed)
-        call check(error, allocated(failed), "a missing report is an error")
+        deallocate(failed)
+        call unpack_ucon_report(bytes // "x", back, failed)
+        call check(error, allocated(failed), "a report with a byte more is an error")
     end subroutine test_report
 
     !> Bytes 0 to 255.
