@@ -6,7 +6,7 @@ module rollcon_command_check
         & new_user_ucosub, ucon_request_type, user_check_options_type, user_check_report_type, &
         & sampling_ranges, check_user_ucosub_isolated, adm_model_type, read_adm, &
         & read_ucon_request, report_text, write_report_json, default_call_timeout, &
-        & max_check_states, states_refusal
+        & max_check_states, states_refusal, ucosub_units_type, to_text
     use rollcon_cli, only : cli_request_type
     use rollcon_command_run, only : call_timeout_of
     implicit none
@@ -122,9 +122,15 @@ contains
             end if
             request%id = adm%ucons(k)%id
             request%par = adm%ucons(k)%par
+            ! the routine computes in the dataset's units, as in a run
+            request%units = ucosub_units_type(length=adm%units%length, time=adm%units%time)
             requests = [requests, request]
             found = found + 1
         end do
+        if (found > 0 .and. .not. request%units%is_si()) write(output_unit, '(a)') path &
+            & // ": the routine is called in the dataset's units, as in a run: lengths in " &
+            & // to_text(request%units%length) // " m, time in " // to_text(request%units%time) &
+            & // " s; PAR as written, each random state drawn in the ranges below and converted"
         if (found == 0) call fatal_error(error, path // ": no UCON statement is served by the " &
             & // "model's UCOSUB (each names a built-in ROUTINE): nothing to check", stat_input)
     end subroutine model_requests

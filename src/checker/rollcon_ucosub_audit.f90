@@ -19,6 +19,7 @@ module rollcon_ucosub_audit
         & check_ucon_state
     use rollcon_adams_runtime, only : take_ucon_error
     use rollcon_random_states, only : sampling_ranges, seed_state, draw_state
+    use rollcon_ucosub_units, only : ucosub_units_type, variable_scales
     implicit none
     private
 
@@ -37,6 +38,9 @@ module rollcon_ucosub_audit
     type :: ucon_request_type
         integer :: id = 0
         real(wp), allocatable :: par(:)
+        !> The units the routine computes in (a dataset's, for --model): the random states are
+        !> drawn in SI's ranges and passed in these units, as a run passes them
+        type(ucosub_units_type) :: units
     end type ucon_request_type
 
     !> How many states, from which seed, compared how
@@ -133,7 +137,8 @@ contains
             call note_stage(0)
             call declare(guarded_ucosub, requests(k), registry, report%ucons(k))
             call record_violations(report%ucons(k), 0, 0.0_wp, [real(wp) ::])
-            if (report%ucons(k)%declared) call sample(guarded_ucosub, options, report%ucons(k))
+            if (report%ucons(k)%declared) call sample(guarded_ucosub, options, &
+                & requests(k)%units, report%ucons(k))
         end do
     end subroutine check_user_ucosub
 
@@ -223,9 +228,11 @@ contains
     end subroutine declare
 
     !> check_ucon_state on options%states random states, findings grouped.
-    subroutine sample(ucosub, options, ucon)
+    subroutine sample(ucosub, options, units, ucon)
         procedure(ucosub_interface) :: ucosub
         type(user_check_options_type), intent(in) :: options
+        !> The units the routine computes in
+        type(ucosub_units_type), intent(in) :: units
         type(ucon_report_type), intent(inout) :: ucon
         type(ucon_check_result_type) :: result
         type(error_type), allocatable :: error
@@ -239,6 +246,10 @@ contains
         allocate(q(size(ucon%codes)))
         do s = 1, options%states
             call draw_state(random, ucon%codes, q, time)
+            if (.not. units%is_si()) then
+                q = variable_scales(units, ucon%codes)*q
+                time = time/units%time
+            end if
             call note_stage(s)
             result = ucon_check_result_type()
             call check_ucon_state(ucosub, ucon%id, ucon%par, ucon%codes, time, q, &

@@ -21,6 +21,8 @@ module test_ucosub_units
     use rollcon_output_rows, only : history_type
     use rollcon_output_layout, only : output_layout_type
     use rollcon_csv_reader, only : read_output_csv
+    use rollcon_ucosub_audit, only : ucon_request_type, user_check_options_type, &
+        & user_check_report_type, check_user_ucosub
     use rollcon_testing, only : unittest_type, new_unittest, check
     use command_runs, only : rollcon_program, run_rollcon, file_text
     implicit none
@@ -45,6 +47,8 @@ module test_ucosub_units
     !> multiplier is compared relative to its column's largest value. Before the units were
     !> converted, the coin in mm ended 7.6e-2 m from its twin
     real(wp), parameter :: tol_twin = 1.0e-5_wp
+    !> Largest |X|, |Xdot| and time the recording routine was evaluated at
+    real(wp) :: seen(3) = 0.0_wp
 
 contains
 
@@ -55,7 +59,8 @@ contains
             & new_unittest("coin-mm-user-file", test_coin_user_file), &
             & new_unittest("coin-mm-built-in", test_coin_built_in), &
             & new_unittest("disk-height-mm", test_disk_height), &
-            & new_unittest("ball-cgs-minutes", test_ball)]
+            & new_unittest("ball-cgs-minutes", test_ball), &
+            & new_unittest("check-states-in-model-units", test_check_units)]
     end subroutine collect_ucosub_units
 
     !> F, dF/dq, d2F/dq dq, dF/dt, d2F/dt dq and d2F/dt2 of the two UCONs: a model in mm and
@@ -189,6 +194,65 @@ contains
             & // to_text(maxval(abs(expected - actual))) // " of entries up to " &
             & // to_text(scale))
     end subroutine same
+
+    !> The checker (check --model) calls a routine as a run does: in a dataset in mm and
+    !> minutes, the random states drawn in SI's ranges (|X| < 1 m, |Xdot| < 1 m/s, time in
+    !> [0, 10] s) reach it in mm, mm/min and minutes; in SI as drawn. 25 states: their largest
+    !> |X| lies in (0.5, 1) m with probability 1 - 2**-25.
+    subroutine test_check_units(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(ucon_request_type) :: request
+        type(user_check_options_type) :: options
+        type(user_check_report_type) :: report
+        real(wp) :: si_seen(3)
+
+        request%id = 4
+        request%par = [3.0_wp]
+        seen = 0.0_wp
+        call check_user_ucosub(recording_ucosub, [request], options, report, error)
+        if (allocated(error)) return
+        si_seen = seen
+        call check(error, si_seen(1) > 0.5_wp .and. si_seen(1) < 1.0_wp .and. si_seen(2) < &
+            & 1.0_wp .and. si_seen(3) <= 10.0_wp .and. report%clean(), "in SI: |X| up to " &
+            & // to_text(si_seen(1)) // ", |Xdot| up to " // to_text(si_seen(2)) &
+            & // ", time up to " // to_text(si_seen(3)))
+        if (allocated(error)) return
+        request%units = ucosub_units_type(length=mm, time=minute)
+        seen = 0.0_wp
+        call check_user_ucosub(recording_ucosub, [request], options, report, error)
+        if (allocated(error)) return
+        ! the same seed draws the same states: only the units differ
+        call check(error, abs(seen(1) - si_seen(1)/mm) <= 1.0e-12_wp*seen(1) .and. &
+            & abs(seen(2) - si_seen(2)*minute/mm) <= 1.0e-12_wp*seen(2) .and. &
+            & abs(seen(3) - si_seen(3)/minute) <= 1.0e-12_wp*seen(3) .and. report%clean(), &
+            & "in mm and minutes: |X| up to " // to_text(seen(1)) // ", |Xdot| up to " &
+            & // to_text(seen(2)) // ", time up to " // to_text(seen(3)))
+    end subroutine test_check_units
+
+    !> F = Xdot - X (PAR(1) the part): records the largest |X|, |Xdot| and time it is
+    !> evaluated at.
+    subroutine recording_ucosub(id, time, q, par, npar, idrsel, iflag, scalar, array, xmatrx)
+        integer, intent(in) :: id
+        real(wp), intent(in) :: time
+        real(wp), intent(in) :: q(30)
+        real(wp), intent(in) :: par(*)
+        integer, intent(in) :: npar
+        integer, intent(in) :: idrsel(3)
+        integer, intent(in) :: iflag
+        real(wp), intent(inout) :: scalar
+        real(wp), intent(inout) :: array(30)
+        real(wp), intent(inout) :: xmatrx(30, 30)
+
+        if (npar < 1) return
+        if (iflag == iflag_init) then
+            call ucovar(id, 2, [nint(par(1)), nint(par(1))], 2, [11, 21])
+            return
+        end if
+        seen = max(seen, [abs(q(1)), abs(q(2)), time])
+        if (idrsel(1) == scalar_value) scalar = q(2) - q(1)
+        if (idrsel(2) == array_dq) array(:2) = [-1.0_wp, 1.0_wp]
+        if (idrsel(3) == xmatrx_dqdq) xmatrx(:2, :2) = 0.0_wp
+    end subroutine recording_ucosub
 
     !> data/coin.adm against test/units/coin_mmks.adm served by the user's own file, the
     !> generated rolling disk in fixed form (run in a child process).
