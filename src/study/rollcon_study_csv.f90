@@ -10,6 +10,7 @@ module rollcon_study_csv
     use rollcon_text, only : to_text
     use rollcon_study_type, only : study_type
     use rollcon_study_measures, only : case_result_type, measure_names, outcome_words
+    use rollcon_input_files, only : read_input_file, csv_input_limit
     implicit none
     private
 
@@ -131,25 +132,18 @@ contains
         end do
     end subroutine read_done_cases
 
-    !> The whole file as bytes; text unallocated when the file does not exist.
+    !> The whole file as bytes; text unallocated when the file does not exist. A regular file
+    !> of at most csv_input_limit bytes (rollcon_input_files).
     subroutine read_csv_text(path, text, error)
         character(len=*), intent(in) :: path
         character(len=:), allocatable, intent(out) :: text
         type(error_type), allocatable, intent(out) :: error
         logical :: exists
-        integer :: unit, stat, bytes
-        character(len=256) :: message
 
-        inquire(file=path, exist=exists, size=bytes)
+        inquire(file=path, exist=exists)
         if (.not. exists) return
-        allocate(character(len=max(bytes, 0)) :: text)
-        if (bytes <= 0) return
-        open(newunit=unit, file=path, access="stream", form="unformatted", action="read", &
-            & status="old", iostat=stat, iomsg=message)
-        if (stat == 0) read(unit, iostat=stat, iomsg=message) text
-        if (stat /= 0) call fatal_error(error, path // ": cannot read: " // trim(message), &
-            & stat_io)
-        close(unit)
+        call read_input_file(path, "study CSV", csv_input_limit, text, error)
+        if (allocated(error)) deallocate(text)
     end subroutine read_csv_text
 
     !> Write text as the whole file (the rows kept, without a last line cut short).

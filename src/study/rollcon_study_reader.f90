@@ -50,7 +50,7 @@ contains
                 call input_error(error, file, 0, "", "no such study file")
                 return
             end if
-            call read_lines(path, lines, error)
+            call read_lines(path, lines, error, "study file")
             if (allocated(error)) return
             call check_bytes(path, lines, error)
             if (allocated(error)) return
@@ -93,7 +93,8 @@ contains
                     study%dataset = is_dataset(unquoted(a%value))
                     study%scene_path = unquoted(a%value)
                     if (.not. study%dataset) study%scene_path = scene_path(study%scene_path)
-                    call read_lines(study%scene_path, study%scene_lines, error)
+                    call read_lines(study%scene_path, study%scene_lines, error, &
+                        & trim(merge("dataset   ", "scene file", study%dataset)))
                     if (allocated(error)) then
                         message = error%message
                         call input_error(error, file, a%line, "scene", "names a base scene " &

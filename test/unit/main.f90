@@ -43,6 +43,8 @@ program tester
     use test_study_run, only : collect_study_run
     use test_study_map, only : collect_study_map
     use test_sweep_mpi, only : collect_sweep_mpi
+    use test_input_files, only : collect_input_files
+    use test_input_refusals, only : collect_input_refusals
     implicit none
     type(testsuite_type), allocatable :: suites(:)
     type(test_counts_type) :: counts
@@ -90,7 +92,9 @@ program tester
         & new_testsuite("study-file", collect_study_file), &
         & new_testsuite("study-run", collect_study_run), &
         & new_testsuite("study-map", collect_study_map), &
-        & new_testsuite("sweep-mpi", collect_sweep_mpi)]
+        & new_testsuite("sweep-mpi", collect_sweep_mpi), &
+        & new_testsuite("input-files", collect_input_files), &
+        & new_testsuite("input-refusals", collect_input_refusals)]
 
     if (command_argument_count() >= 1) then
         call get_command_argument(1, argument)

@@ -1,0 +1,1 @@
+foundation/test_input_files.f90

@@ -1,0 +1,1 @@
+app/test_input_refusals.f90
