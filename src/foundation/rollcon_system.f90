@@ -15,6 +15,7 @@ module rollcon_system
     public :: system_reason, last_errno, path_kind, path_kind_text, descriptor_kind
     public :: open_read, open_lock_file, read_bytes_into, write_descriptor, close_descriptor
     public :: lock_exclusive, truncate_descriptor, make_one_folder, is_executable, host_name
+    public :: remove_flat_folder, rename_path
     public :: kind_missing, kind_regular, kind_directory, kind_character, kind_block, &
         & kind_fifo, kind_socket, kind_link, kind_unknown
     public :: errno_exists, errno_no_space, errno_would_block, errno_interrupted, &
@@ -118,6 +119,38 @@ module rollcon_system
             integer(c_size_t), value :: length
             integer(c_int) :: stat
         end function c_gethostname
+        function c_rename(from, to) result(stat) bind(c, name="rename")
+            import :: c_int, c_char
+            character(kind=c_char), intent(in) :: from(*), to(*)
+            integer(c_int) :: stat
+        end function c_rename
+        function c_unlink(path) result(stat) bind(c, name="unlink")
+            import :: c_int, c_char
+            character(kind=c_char), intent(in) :: path(*)
+            integer(c_int) :: stat
+        end function c_unlink
+        function c_rmdir(path) result(stat) bind(c, name="rmdir")
+            import :: c_int, c_char
+            character(kind=c_char), intent(in) :: path(*)
+            integer(c_int) :: stat
+        end function c_rmdir
+        function c_opendir(path) result(dir) bind(c, name="opendir")
+            import :: c_ptr, c_char
+            character(kind=c_char), intent(in) :: path(*)
+            type(c_ptr) :: dir
+        end function c_opendir
+        !> readdir(3); glibc's struct dirent on 64-bit Linux: d_ino, d_off (8 bytes each),
+        !> d_reclen (2), d_type (1), then d_name at byte 19
+        function c_readdir(dir) result(entry) bind(c, name="readdir")
+            import :: c_ptr
+            type(c_ptr), value :: dir
+            type(c_ptr) :: entry
+        end function c_readdir
+        function c_closedir(dir) result(stat) bind(c, name="closedir")
+            import :: c_ptr, c_int
+            type(c_ptr), value :: dir
+            integer(c_int) :: stat
+        end function c_closedir
         !> glibc's (and musl's) location of errno
         function c_errno_location() result(location) bind(c, name="__errno_location")
             import :: c_ptr
@@ -362,6 +395,56 @@ contains
         if (kind /= kind_regular) return
         is_executable = c_access(path // c_null_char, x_ok) == 0
     end function is_executable
+
+    !> rename(2): 0 or errno.
+    integer function rename_path(from, to) result(errno_value)
+        character(len=*), intent(in) :: from, to
+
+        errno_value = 0
+        if (c_rename(from // c_null_char, to // c_null_char) /= 0) errno_value = last_errno()
+    end function rename_path
+
+    !> Remove a folder that holds files only (no sub-folders), and the files: 0 or the errno
+    !> of the first call that failed. A missing folder is no error.
+    integer function remove_flat_folder(path) result(errno_value)
+        character(len=*), intent(in) :: path
+        integer(c_intptr_t), parameter :: name_offset = 19
+        character(kind=c_char), pointer :: chars(:)
+        character(len=:), allocatable :: name
+        type(c_ptr) :: dir, entry
+        integer :: n, kind
+        integer(int64) :: bytes
+
+        errno_value = 0
+        call path_kind(path, kind, bytes, errno_value)
+        if (kind == kind_missing) return
+        dir = c_opendir(path // c_null_char)
+        if (.not. c_associated(dir)) then
+            errno_value = last_errno()
+            return
+        end if
+        do
+            entry = c_readdir(dir)
+            if (.not. c_associated(entry)) exit
+            call c_f_pointer(transfer(transfer(entry, 0_c_intptr_t) + name_offset, entry), &
+                & chars, [256])
+            n = 0
+            do while (n < size(chars))
+                if (chars(n + 1) == c_null_char) exit
+                n = n + 1
+            end do
+            allocate(character(len=n) :: name)
+            name = transfer(chars(:n), name)
+            if (name /= "." .and. name /= "..") then
+                if (c_unlink(path // "/" // name // c_null_char) /= 0 .and. errno_value == 0) &
+                    & errno_value = last_errno()
+            end if
+            deallocate(name)
+        end do
+        if (c_closedir(dir) /= 0 .and. errno_value == 0) errno_value = last_errno()
+        if (errno_value /= 0) return
+        if (c_rmdir(path // c_null_char) /= 0) errno_value = last_errno()
+    end function remove_flat_folder
 
     !> The host's name ("" when it cannot be had).
     function host_name() result(name)

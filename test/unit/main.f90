@@ -45,6 +45,9 @@ program tester
     use test_sweep_mpi, only : collect_sweep_mpi
     use test_input_files, only : collect_input_files
     use test_input_refusals, only : collect_input_refusals
+    use test_system_calls, only : collect_system_calls
+    use test_user_builds, only : collect_user_builds
+    use test_long_paths, only : collect_long_paths
     implicit none
     type(testsuite_type), allocatable :: suites(:)
     type(test_counts_type) :: counts
@@ -94,7 +97,10 @@ program tester
         & new_testsuite("study-map", collect_study_map), &
         & new_testsuite("sweep-mpi", collect_sweep_mpi), &
         & new_testsuite("input-files", collect_input_files), &
-        & new_testsuite("input-refusals", collect_input_refusals)]
+        & new_testsuite("input-refusals", collect_input_refusals), &
+        & new_testsuite("system-calls", collect_system_calls), &
+        & new_testsuite("user-builds", collect_user_builds), &
+        & new_testsuite("long-paths", collect_long_paths)]
 
     if (command_argument_count() >= 1) then
         call get_command_argument(1, argument)

@@ -1,0 +1,1 @@
+app/test_long_paths.f90

@@ -1,0 +1,1 @@
+foundation/test_system_calls.f90

@@ -1,0 +1,1 @@
+app/test_user_builds.f90
