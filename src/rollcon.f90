@@ -87,7 +87,8 @@ module rollcon
     use rollcon_study_parameters, only : case_count
     use rollcon_study_measures, only : case_result_type, outcome_failed, outcome_refused
     use rollcon_study_run, only : study_plan_type, study_progress_type, plan_cases, plan_study, &
-        & run_case, append_row, run_study, row_file_type
+        & run_case, append_row, run_study, row_file_type, lock_study_csv
+    use rollcon_file_lock, only : file_lock_type
 
     ! pictures
     use rollcon_run_record, only : run_record_type, read_run

@@ -15,7 +15,8 @@ module rollcon_system
     public :: system_reason, last_errno, path_kind, path_kind_text, descriptor_kind
     public :: open_read, open_lock_file, read_bytes_into, write_descriptor, close_descriptor
     public :: lock_exclusive, truncate_descriptor, make_one_folder, is_executable, host_name
-    public :: remove_flat_folder, rename_path
+    public :: remove_flat_folder, rename_path, path_inode, descriptor_inode, remove_file_path
+    public :: this_process
     public :: kind_missing, kind_regular, kind_directory, kind_character, kind_block, &
         & kind_fifo, kind_socket, kind_link, kind_unknown
     public :: errno_exists, errno_no_space, errno_would_block, errno_interrupted, &
@@ -39,7 +40,7 @@ module rollcon_system
     !> statx(2): the descriptor itself (AT_EMPTY_PATH), relative to the working folder
     !> (AT_FDCWD), and the fields asked for (STATX_TYPE | STATX_SIZE)
     integer(c_int), parameter :: at_empty_path = int(z'1000', c_int), at_fdcwd = -100_c_int, &
-        & statx_type_size = int(z'201', c_int)
+        & statx_type_size = int(z'201', c_int), statx_ino = int(z'100', c_int)
     !> flock(2) operations
     integer(c_int), parameter :: lock_ex = 2_c_int, lock_nb = 4_c_int
     !> access(2): may be executed
@@ -119,6 +120,10 @@ module rollcon_system
             integer(c_size_t), value :: length
             integer(c_int) :: stat
         end function c_gethostname
+        function c_getpid() result(pid) bind(c, name="getpid")
+            import :: c_int
+            integer(c_int) :: pid
+        end function c_getpid
         function c_rename(from, to) result(stat) bind(c, name="rename")
             import :: c_int, c_char
             character(kind=c_char), intent(in) :: from(*), to(*)
@@ -268,6 +273,34 @@ contains
         if (kind == kind_regular) size = int(record%size, int64)
     end subroutine kind_of_record
 
+    !> The inode number of what path names (following links), -1 when there is none.
+    integer(int64) function path_inode(path) result(inode)
+        character(len=*), intent(in) :: path
+        type(statx_record_type) :: record
+
+        inode = -1
+        if (c_statx(at_fdcwd, path // c_null_char, 0_c_int, statx_ino, record) == 0) &
+            & inode = int(record%ino, int64)
+    end function path_inode
+
+    !> The inode number of an open descriptor, -1 when statx cannot tell.
+    integer(int64) function descriptor_inode(fd) result(inode)
+        integer(c_int), intent(in) :: fd
+        type(statx_record_type) :: record
+
+        inode = -1
+        if (c_statx(fd, c_null_char, at_empty_path, statx_ino, record) == 0) &
+            & inode = int(record%ino, int64)
+    end function descriptor_inode
+
+    !> unlink(2) of a file: 0 or errno.
+    integer function remove_file_path(path) result(errno_value)
+        character(len=*), intent(in) :: path
+
+        errno_value = 0
+        if (c_unlink(path // c_null_char) /= 0) errno_value = last_errno()
+    end function remove_file_path
+
     !> A path's kind in words, for messages ("a FIFO (named pipe)").
     pure function path_kind_text(kind) result(text)
         integer, intent(in) :: kind
@@ -395,6 +428,11 @@ contains
         if (kind /= kind_regular) return
         is_executable = c_access(path // c_null_char, x_ok) == 0
     end function is_executable
+
+    !> This process's id.
+    integer function this_process()
+        this_process = int(c_getpid())
+    end function this_process
 
     !> rename(2): 0 or errno.
     integer function rename_path(from, to) result(errno_value)

@@ -75,12 +75,14 @@ contains
     !> not exist). The header must be this study's. A last line without its line end (a run
     !> killed while writing it) is cut off the file; any other row that does not have the
     !> header's number of fields is an error naming its line.
-    subroutine read_done_cases(path, study, cases, keys, error)
+    subroutine read_done_cases(path, study, cases, keys, error, lines)
         character(len=*), intent(in) :: path
         type(study_type), intent(in) :: study
         integer, allocatable, intent(out) :: cases(:)
         character(len=:), allocatable, intent(out) :: keys(:)
         type(error_type), allocatable, intent(out) :: error
+        !> Whole lines the file holds, its header included (0: no file, or an empty one)
+        integer, intent(out), optional :: lines
         character(len=:), allocatable :: text, header
         character(len=:), allocatable :: fields(:)
         integer :: start, stop, rows, row, np, complete, stat, width, k
@@ -88,6 +90,7 @@ contains
         np = size(study%parameters)
         allocate(cases(0))
         allocate(character(len=0) :: keys(0))
+        if (present(lines)) lines = 0
         call read_csv_text(path, text, error)
         if (allocated(error) .or. .not. allocated(text)) return
         header = study_header(study)
@@ -106,6 +109,7 @@ contains
             return
         end if
         rows = count_of(text, lf) - 1
+        if (present(lines)) lines = rows + 1
         deallocate(cases, keys)
         allocate(cases(rows))
         width = longest_line(text)

@@ -48,6 +48,8 @@ program tester
     use test_system_calls, only : collect_system_calls
     use test_user_builds, only : collect_user_builds
     use test_long_paths, only : collect_long_paths
+    use test_study_limits, only : collect_study_limits
+    use test_sweep_guards, only : collect_sweep_guards
     implicit none
     type(testsuite_type), allocatable :: suites(:)
     type(test_counts_type) :: counts
@@ -100,7 +102,9 @@ program tester
         & new_testsuite("input-refusals", collect_input_refusals), &
         & new_testsuite("system-calls", collect_system_calls), &
         & new_testsuite("user-builds", collect_user_builds), &
-        & new_testsuite("long-paths", collect_long_paths)]
+        & new_testsuite("long-paths", collect_long_paths), &
+        & new_testsuite("study-limits", collect_study_limits), &
+        & new_testsuite("sweep-guards", collect_sweep_guards)]
 
     if (command_argument_count() >= 1) then
         call get_command_argument(1, argument)

@@ -1,0 +1,1 @@
+study/test_study_limits.f90

@@ -1,0 +1,1 @@
+app/test_sweep_guards.f90
