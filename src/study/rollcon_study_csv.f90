@@ -11,6 +11,7 @@ module rollcon_study_csv
     use rollcon_study_type, only : study_type
     use rollcon_study_measures, only : case_result_type, measure_names, outcome_words
     use rollcon_input_files, only : read_input_file, csv_input_limit
+    use rollcon_c_stream, only : c_stream_type
     implicit none
     private
 
@@ -150,19 +151,21 @@ contains
         if (allocated(error)) deallocate(text)
     end subroutine read_csv_text
 
-    !> Write text as the whole file (the rows kept, without a last line cut short).
+    !> Write text as the whole file (the rows kept, without a last line cut short), through
+    !> the C library with every write checked (rollcon_c_stream).
     subroutine cut_file(path, text, error)
         character(len=*), intent(in) :: path, text
         type(error_type), allocatable, intent(out) :: error
-        integer :: unit, stat
-        character(len=256) :: message
+        type(c_stream_type) :: file
+        type(error_type), allocatable :: close_error
 
-        open(newunit=unit, file=path, access="stream", form="unformatted", action="write", &
-            & status="replace", iostat=stat, iomsg=message)
-        if (stat == 0) write(unit, iostat=stat, iomsg=message) text
-        if (stat /= 0) call fatal_error(error, path // ": cannot rewrite: " // trim(message), &
-            & stat_io)
-        close(unit)
+        call file%open_file(path, error)
+        if (.not. allocated(error)) call file%put(text, error)
+        call file%close_file(close_error)
+        if (.not. allocated(error) .and. allocated(close_error)) &
+            & call move_alloc(close_error, error)
+        if (allocated(error)) error%message = path // ": cannot rewrite it without its last " &
+            & // "line, cut short: " // error%message
     end subroutine cut_file
 
     !> Fields of a CSV line: commas separate them except inside double quotes.

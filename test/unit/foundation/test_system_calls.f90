@@ -9,6 +9,7 @@ module test_system_calls
     use rollcon_output_files, only : make_folders
     use rollcon_system, only : remove_flat_folder, path_kind, kind_directory, kind_missing
     use rollcon_hash, only : fnv1a64_type
+    use rollcon_file_lock, only : file_lock_type
     use rollcon_testing, only : unittest_type, new_unittest, check
     use picture_files, only : make_folder, remove_folder, write_lines
     use, intrinsic :: iso_fortran_env, only : int64
@@ -29,7 +30,8 @@ contains
         tests = [new_unittest("folders-made-level-by-level", test_make_folders), &
             & new_unittest("folder-failures-named", test_folder_failures), &
             & new_unittest("flat-folder-removed", test_remove_flat), &
-            & new_unittest("fnv1a64-test-vectors", test_fnv)]
+            & new_unittest("fnv1a64-test-vectors", test_fnv), &
+            & new_unittest("lock-held-once", test_lock)]
     end subroutine collect_system_calls
 
     !> a/b/c made with its parents, again without complaint, and with doubled and trailing
@@ -120,6 +122,42 @@ contains
         call at_once%add(bytes)
         call check(error, one_by_one%hex() == at_once%hex(), "bytes one by one and at once")
     end subroutine test_fnv
+
+    !> A lock file held by one lock is refused to a second (flock locks belong to an open
+    !> file, so even within one process), which is told the holder; released, its file goes
+    !> and the second takes it.
+    subroutine test_lock(error)
+        type(error_type), allocatable, intent(out) :: error
+        character(len=*), parameter :: path = scratch // "/study.csv.lock"
+        type(file_lock_type) :: first, second
+        character(len=:), allocatable :: holder
+        logical :: held
+
+        call make_folder(scratch)
+        call first%acquire(path, held, holder, error)
+        if (.not. allocated(error)) call check(error, .not. held .and. first%is_held(), &
+            & "the first lock was not taken")
+        if (.not. allocated(error)) call second%acquire(path, held, holder, error)
+        if (.not. allocated(error)) call check(error, held .and. .not. second%is_held() &
+            & .and. index(holder, "process ") == 1 .and. index(holder, " on host ") > 0, &
+            & "the second lock: held " // merge("yes", "no ", held) // ", holder '" // holder &
+            & // "'")
+        if (.not. allocated(error)) then
+            call first%release()
+            call check(error, .not. is_there(path), "the lock file stayed after release")
+        end if
+        if (.not. allocated(error)) call second%acquire(path, held, holder, error)
+        if (.not. allocated(error)) call check(error, .not. held .and. second%is_held(), &
+            & "the lock was not taken after its release")
+        call second%release()
+        call remove_folder(scratch)
+    end subroutine test_lock
+
+    logical function is_there(path)
+        character(len=*), intent(in) :: path
+
+        inquire(file=path, exist=is_there)
+    end function is_there
 
     logical function is_folder(path)
         character(len=*), intent(in) :: path

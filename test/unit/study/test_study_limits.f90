@@ -34,7 +34,8 @@ contains
             & new_unittest("largest-study-accepted", test_largest), &
             & new_unittest("rule-against-nan-refused", test_nan_rule), &
             & new_unittest("class-breaking-csv-refused", test_bad_class), &
-            & new_unittest("class-with-punctuation-reads-back", test_class_round_trip)]
+            & new_unittest("class-with-punctuation-reads-back", test_class_round_trip), &
+            & new_unittest("header-alone-not-doubled", test_header_alone)]
     end subroutine collect_study_limits
 
     !> 1e9 cases three ways and 1e10 on a grid: each refused at the group's line, with the
@@ -162,6 +163,31 @@ contains
         if (allocated(error)) return
         call check(error, size(cases) == 2, "a rerun finds " // to_text(size(cases)) // " cases")
     end subroutine test_class_round_trip
+
+    !> A CSV that holds only its header (a sweep stopped before its first row, or a full disk
+    !> after it) keeps that one header when the study resumes.
+    subroutine test_header_alone(error)
+        type(error_type), allocatable, intent(out) :: error
+        character(len=*), parameter :: csv = "build/test_limits_header.csv"
+        type(study_type) :: study
+        type(study_plan_type) :: plan
+        character(len=:), allocatable :: path, text
+        integer :: unit
+
+        call write_study("test_limits_header", [character(len=50) :: head, "&grid", &
+            & "    initial%speed = '0.8 0.9 2' /"], path)
+        call read_study(path, study, error)
+        if (allocated(error)) return
+        open(newunit=unit, file=csv, status="replace", action="write")
+        write(unit, "(a)") study_header(study)
+        close(unit)
+        call plan_study(study, csv, plan, error)
+        if (allocated(error)) return
+        call read_csv_text(csv, text, error)
+        if (allocated(error)) return
+        call check(error, text == study_header(study) // new_line("a") .and. &
+            & size(plan%pending()) == 2, "the CSV after the plan: " // text)
+    end subroutine test_header_alone
 
     pure integer function findloc_field(fields, name) result(k)
         character(len=*), intent(in) :: fields(:), name
