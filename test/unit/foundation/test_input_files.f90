@@ -119,6 +119,7 @@ contains
         character(len=:), allocatable :: content
         integer :: status
 
+        call remove_folder(scratch)
         call make_folder(scratch)
         call execute_command_line("mkfifo " // fifo // " && ln -s /dev/zero " // zero, &
             & exitstat=status)
