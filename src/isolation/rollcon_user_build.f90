@@ -189,8 +189,16 @@ contains
             end if
             return
         end if
-        ! Into place: an entry of the same content (a damaged one, or another process's) is
-        ! replaced; if that fails, this build is used from its own folder.
+        ! Another process may have put a sound entry of this content in place meanwhile: it
+        ! is used as it is (replacing it could remove it under that process's feet).
+        call check_entry(entry, copy, content, from_cache, damage)
+        if (from_cache) then
+            from_cache = .false.
+            ignored = remove_flat_folder(scratch)
+            return
+        end if
+        ! Into place: a damaged entry is replaced; if that fails, this build is used from its
+        ! own folder.
         ignored = remove_flat_folder(entry)
         if (rename_path(scratch, entry) /= 0) library = scratch // "/" // library_name
     end subroutine build_user_library
