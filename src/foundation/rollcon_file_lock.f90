@@ -4,7 +4,7 @@
 !> lock is never left stale. The file names its holder ("process 4242 on host node7") for the
 !> message of a process that finds it taken, and is removed when the lock is let go. flock
 !> works across the nodes of a cluster on the filesystems Linux emulates it on (NFS: as a
-!> POSIX lock).
+!> POSIX lock); on a filesystem without locks (ENOLCK) the caller goes on unlocked.
 !>
 !>     type(file_lock_type) :: lock
 !>     call lock%acquire("output/study.csv.lock", held, holder, error)
@@ -18,7 +18,8 @@ module rollcon_file_lock
     use rollcon_text, only : to_text
     use rollcon_system, only : open_lock_file, lock_exclusive, close_descriptor, &
         & write_descriptor, truncate_descriptor, path_inode, descriptor_inode, remove_file_path, &
-        & system_reason, last_errno, errno_would_block, host_name, this_process
+        & system_reason, last_errno, errno_would_block, host_name, this_process, &
+        & errno_no_locks, errno_not_supported
     use rollcon_input_files, only : read_input_file
     implicit none
     private
@@ -66,6 +67,9 @@ contains
                 reason = last_errno()
                 ignored = close_descriptor(self%fd)
                 self%fd = -1
+                ! a filesystem without locks (some network filesystems): nobody can hold one,
+                ! so there is nothing to wait for; go on unlocked
+                if (reason == errno_no_locks .or. reason == errno_not_supported) return
                 if (reason /= errno_would_block) then
                     call fatal_error(error, path // ": cannot lock: " // system_reason(reason), &
                         & stat_io)

@@ -20,7 +20,8 @@ module rollcon_system
     public :: kind_missing, kind_regular, kind_directory, kind_character, kind_block, &
         & kind_fifo, kind_socket, kind_link, kind_unknown
     public :: errno_exists, errno_no_space, errno_would_block, errno_interrupted, &
-        & errno_no_entry, errno_name_too_long, errno_not_directory, path_max
+        & errno_no_entry, errno_name_too_long, errno_not_directory, errno_no_locks, &
+        & errno_not_supported, path_max
 
     !> What a path names (path_kind, descriptor_kind)
     integer, parameter :: kind_missing = 0, kind_regular = 1, kind_directory = 2, &
@@ -30,7 +31,7 @@ module rollcon_system
     !> Linux's errno values (the same on x86_64 and aarch64)
     integer, parameter :: errno_no_entry = 2, errno_interrupted = 4, errno_would_block = 11, &
         & errno_exists = 17, errno_not_directory = 20, errno_no_space = 28, &
-        & errno_name_too_long = 36
+        & errno_name_too_long = 36, errno_no_locks = 37, errno_not_supported = 95
     !> Longest path the system takes, its terminating NUL included (Linux's PATH_MAX)
     integer, parameter :: path_max = 4096
 
