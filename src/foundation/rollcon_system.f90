@@ -9,6 +9,7 @@ module rollcon_system
     use, intrinsic :: iso_c_binding, only : c_int, c_char, c_null_char, c_ptr, c_size_t, &
         & c_int16_t, c_int32_t, c_int64_t, c_intptr_t, c_f_pointer, c_associated
     use, intrinsic :: iso_fortran_env, only : int64
+    use rollcon_text, only : to_text
     implicit none
     private
 
@@ -193,7 +194,7 @@ contains
             code = last_errno()
         end if
         address = c_strerror(int(code, c_int))
-        text = "unknown reason (errno " // decimal(code) // ")"
+        text = "unknown reason (errno " // to_text(code) // ")"
         if (.not. c_associated(address)) return
         call c_f_pointer(address, chars, [256])
         n = 0
@@ -245,6 +246,7 @@ contains
         call kind_of_record(record, kind, size)
     end subroutine descriptor_kind
 
+    !> The kind and size a statx record gives.
     subroutine kind_of_record(record, kind, size)
         type(statx_record_type), intent(in) :: record
         integer, intent(out) :: kind
@@ -497,14 +499,5 @@ contains
         n = index(buffer, c_null_char) - 1
         if (n > 0) name = buffer(:n)
     end function host_name
-
-    pure function decimal(value) result(text)
-        integer, intent(in) :: value
-        character(len=:), allocatable :: text
-        character(len=16) :: buffer
-
-        write(buffer, '(i0)') value
-        text = trim(buffer)
-    end function decimal
 
 end module rollcon_system

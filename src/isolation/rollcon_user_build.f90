@@ -365,6 +365,7 @@ contains
         error%stat = stat_io
     end subroutine say_when_disk_full
 
+    !> Remove the probe file of say_when_disk_full, if it is there.
     subroutine delete_probe(path)
         character(len=*), intent(in) :: path
         integer :: unit, stat
@@ -373,6 +374,7 @@ contains
         if (stat == 0) close(unit, status="delete", iostat=stat)
     end subroutine delete_probe
 
+    !> The text up to its first line end.
     pure function first_line(text) result(line)
         character(len=*), intent(in) :: text
         character(len=:), allocatable :: line

@@ -124,6 +124,7 @@ contains
         end do
     end subroutine check_class_name
 
+    !> A character a class name may not hold, in words.
     pure function character_name(c) result(text)
         character, intent(in) :: c
         character(len=:), allocatable :: text
