@@ -41,6 +41,7 @@ contains
         call new_user_ucosub(user, request%positional, error)
         if (allocated(error)) return
         library = user%library // merge(" (from the cache)", " (compiled now)  ", user%from_cache)
+        if (len(user%note) > 0) write(output_unit, '(a)') "check: " // user%note // ": rebuilt"
         ! Each UCON is checked in a child process: a crash, a hang or a STOP in the routine
         ! becomes a finding, not the end of rollcon.
         call check_user_ucosub_isolated(user%ucosub, requests, options, call_timeout, report, &

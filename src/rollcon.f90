@@ -7,6 +7,7 @@ module rollcon
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type, fatal_error, stat_input, stat_io, stat_ucon
     use rollcon_text, only : to_text, shell_quote
+    use rollcon_output_files, only : make_folders
     use rollcon_lapack, only : use_one_blas_thread
     use rollcon_version, only : rollcon_version_number, version_text
 
@@ -89,7 +90,8 @@ module rollcon
     use rollcon_study_parameters, only : case_count
     use rollcon_study_measures, only : case_result_type, outcome_failed, outcome_refused
     use rollcon_study_run, only : study_plan_type, study_progress_type, plan_cases, plan_study, &
-        & run_case, append_row, run_study, row_file_type
+        & run_case, append_row, run_study, row_file_type, lock_study_csv
+    use rollcon_file_lock, only : file_lock_type
 
     ! pictures
     use rollcon_run_record, only : run_record_type, read_run

@@ -12,10 +12,11 @@
 module rollcon_run_job
     use, intrinsic :: iso_fortran_env, only : output_unit
     use rollcon_kinds, only : wp
-    use rollcon_error, only : error_type, fatal_error, stat_io, stat_input
-    use rollcon_text, only : to_text, shell_quote
+    use rollcon_error, only : error_type, stat_io, stat_input
+    use rollcon_text, only : to_text
     use rollcon_ucosub_contract, only : ucosub_interface
-    use rollcon_output_files, only : partial_name, write_text_file, rename_file, delete_file
+    use rollcon_output_files, only : partial_name, write_text_file, rename_file, delete_file, &
+        & make_folders
     use rollcon_problem, only : problem_type
     use rollcon_part_shapes, only : part_shape_type, write_part_shapes
     use rollcon_simulation, only : run_options_type, run_summary_type, history_type, simulate, &
@@ -127,14 +128,10 @@ contains
         type(job_type), intent(in) :: job
         type(job_files_type), intent(out) :: files
         type(error_type), allocatable, intent(out) :: error
-        integer :: stat
 
-        call execute_command_line("mkdir -p " // shell_quote(job%output_dir), exitstat=stat)
-        if (stat /= 0) then
-            call fatal_error(error, job%output_dir // ": cannot create the output folder", &
-                & stat_io)
-            return
-        end if
+        ! through mkdir(2): no shell, no PATH (rollcon_output_files)
+        call make_folders(job%output_dir, error)
+        if (allocated(error)) return
         associate (dir => job%output_dir, name => job%source%name)
             files%csv = dir // "/" // name // ".csv"
             files%summary = dir // "/" // name // ".summary.txt"

@@ -54,6 +54,13 @@ program tester
     use test_bench, only : collect_bench
     use test_check_reliability, only : collect_check_reliability
     use test_check_findings, only : collect_check_findings
+    use test_input_files, only : collect_input_files
+    use test_input_refusals, only : collect_input_refusals
+    use test_system_calls, only : collect_system_calls
+    use test_user_builds, only : collect_user_builds
+    use test_long_paths, only : collect_long_paths
+    use test_study_limits, only : collect_study_limits
+    use test_sweep_guards, only : collect_sweep_guards
     implicit none
     type(testsuite_type), allocatable :: suites(:)
     type(test_counts_type) :: counts
@@ -112,7 +119,14 @@ program tester
         & new_testsuite("least-squares", collect_least_squares), &
         & new_testsuite("bench", collect_bench), &
         & new_testsuite("check-reliability", collect_check_reliability), &
-        & new_testsuite("check-findings", collect_check_findings)]
+        & new_testsuite("check-findings", collect_check_findings), &
+        & new_testsuite("input-files", collect_input_files), &
+        & new_testsuite("input-refusals", collect_input_refusals), &
+        & new_testsuite("system-calls", collect_system_calls), &
+        & new_testsuite("user-builds", collect_user_builds), &
+        & new_testsuite("long-paths", collect_long_paths), &
+        & new_testsuite("study-limits", collect_study_limits), &
+        & new_testsuite("sweep-guards", collect_sweep_guards)]
 
     if (command_argument_count() >= 1) then
         call get_command_argument(1, argument)

@@ -23,6 +23,7 @@ module test_ucosub_units
     use rollcon_csv_reader, only : read_output_csv
     use rollcon_ucosub_audit, only : ucon_request_type, user_check_options_type, &
         & user_check_report_type, check_user_ucosub
+    use rollcon_audit_report, only : report_text
     use rollcon_testing, only : unittest_type, new_unittest, check
     use command_runs, only : rollcon_program, run_rollcon, file_text
     implicit none
@@ -221,16 +222,18 @@ contains
         seen = 0.0_wp
         call check_user_ucosub(recording_ucosub, [request], options, report, error)
         if (allocated(error)) return
-        ! the same seed draws the same states: only the units differ
+        ! the same seed draws the same states: only the units differ (to round-off)
         call check(error, abs(seen(1) - si_seen(1)/mm) <= 1.0e-12_wp*seen(1) .and. &
             & abs(seen(2) - si_seen(2)*minute/mm) <= 1.0e-12_wp*seen(2) .and. &
             & abs(seen(3) - si_seen(3)/minute) <= 1.0e-12_wp*seen(3) .and. report%clean(), &
             & "in mm and minutes: |X| up to " // to_text(seen(1)) // ", |Xdot| up to " &
-            & // to_text(seen(2)) // ", time up to " // to_text(seen(3)))
+            & // to_text(seen(2)) // ", time up to " // to_text(seen(3)) // " (in SI: " &
+            & // to_text(si_seen(1)) // ", " // to_text(si_seen(2)) // ", " // to_text(si_seen(3)) // "); " &
+            & // report_text(report, "the recording routine", "this test"))
     end subroutine test_check_units
 
-    !> F = Xdot - X (PAR(1) the part): records the largest |X|, |Xdot| and time it is
-    !> evaluated at.
+    !> F = Xdot - X (PAR(1) the part): records the largest |X|, |Xdot| and time of the states
+    !> it is checked at.
     subroutine recording_ucosub(id, time, q, par, npar, idrsel, iflag, scalar, array, xmatrx)
         integer, intent(in) :: id
         real(wp), intent(in) :: time
@@ -248,7 +251,8 @@ contains
             call ucovar(id, 2, [nint(par(1)), nint(par(1))], 2, [11, 21])
             return
         end if
-        seen = max(seen, [abs(q(1)), abs(q(2)), time])
+        ! the state drawn: the call that asks for XMATRX (the difference probes do not)
+        if (idrsel(3) == xmatrx_dqdq) seen = max(seen, [abs(q(1)), abs(q(2)), time])
         if (idrsel(1) == scalar_value) scalar = q(2) - q(1)
         if (idrsel(2) == array_dq) array(:2) = [-1.0_wp, 1.0_wp]
         if (idrsel(3) == xmatrx_dqdq) xmatrx(:2, :2) = 0.0_wp

@@ -10,6 +10,7 @@
 module rollcon_adm_lexer
     use rollcon_error, only : error_type, fatal_error, stat_input
     use rollcon_text, only : to_text, upper_case
+    use rollcon_input_files, only : input_file_type, text_input_limit
     implicit none
     private
 
@@ -61,19 +62,19 @@ contains
         character(len=*), intent(in) :: path
         type(adm_text_type), intent(out) :: dataset
         type(error_type), allocatable, intent(out) :: error
-        character(len=:), allocatable :: text
+        character(len=:), allocatable :: text, whole
         integer, allocatable :: line_of(:)
-        integer :: unit, stat, line, start_line
+        integer :: line, start_line
+        type(input_file_type) :: file
         character(len=4096) :: buffer
-        character(len=256) :: message
+        logical :: done
 
         dataset%file = path
         dataset%title = ""
         allocate(dataset%statements(0))
-        open(newunit=unit, file=path, status="old", action="read", iostat=stat, iomsg=message)
-        if (stat /= 0) then
-            call fatal_error(error, path // ": cannot open the dataset: " // trim(message), &
-                & stat_input)
+        call file%open(path, "dataset", text_input_limit, error)
+        if (allocated(error)) then
+            error%stat = stat_input
             return
         end if
         text = ""
@@ -81,10 +82,11 @@ contains
         start_line = 0
         line = 0
         do
-            read(unit, '(a)', iostat=stat) buffer
-            if (stat /= 0) exit
+            call file%next_line(whole, done, error)
+            if (done .or. allocated(error)) exit
+            buffer = whole
             line = line + 1
-            if (len_trim(buffer) == len(buffer)) then
+            if (len_trim(whole) >= len(buffer)) then
                 call fatal_error(error, path // ":" // to_text(line) // ": line longer than " &
                     & // to_text(len(buffer) - 1) // " characters", stat_input)
                 exit
@@ -119,11 +121,9 @@ contains
             line_of = [line_of, spread(line, 1, len_trim(buffer) + 1)]
             text = text // trim(buffer) // " "
         end do
-        close(unit)
-        if (allocated(error)) return
-        if (stat > 0) then
-            call fatal_error(error, path // ":" // to_text(line + 1) // ": cannot read this line", &
-                & stat_input)
+        call file%close()
+        if (allocated(error)) then
+            error%stat = stat_input
             return
         end if
         if (start_line > 0) call add_statement(dataset, text, line_of, start_line, error)
