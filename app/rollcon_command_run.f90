@@ -46,6 +46,10 @@ contains
                 & // "' is not a command (" // command_names() // ")"
             return
         end if
+        ! what the input holds and the run does not use: said once, before the run, --quiet
+        ! or not
+        if (len(job%source%input_warning()) > 0) write(error_unit, '(a)') "rollcon: warning: " &
+            & // job%source%input_warning()
         job%output_dir = request%text("--output", "output")
         job%command_line = command_line_text()
         job%quiet = request%has("--quiet")

@@ -165,8 +165,8 @@ contains
         end if
         if (.not. allocated(run_error)) then
             result%csv_path = files%csv
-            result%summary_text = provenance_lines(job) // run_summary_text( &
-                & job%source%setting_line(), files%csv, result%summary)
+            result%summary_text = provenance_lines(job) // warning_line(job) &
+                & // run_summary_text(job%source%setting_line(), files%csv, result%summary)
             call place_outputs(files, shapes, result%summary_text, provenance_lines(job), &
                 & run_error)
             if (.not. allocated(run_error)) return
@@ -175,8 +175,8 @@ contains
         result%summary%status = status_failed
         result%summary%message = run_error%message
         result%csv_path = files%partial_csv
-        result%summary_text = provenance_lines(job) // run_summary_text( &
-            & job%source%setting_line(), files%partial_csv, result%summary)
+        result%summary_text = provenance_lines(job) // warning_line(job) &
+            & // run_summary_text(job%source%setting_line(), files%partial_csv, result%summary)
         call write_text_file(files%partial_summary, result%summary_text, cleanup_error)
         call move_alloc(run_error, error)
         if (error%stat == stat_io) then
@@ -190,6 +190,16 @@ contains
         if (allocated(cleanup_error)) error%message = error%message // "; " &
             & // cleanup_error%message
     end subroutine finish_files
+
+    !> "warning: " and the input's warning (what it holds that the run does not use), ending in
+    !> a newline; "" when it has none.
+    function warning_line(job) result(text)
+        type(job_type), intent(in) :: job
+        character(len=:), allocatable :: text
+
+        text = job%source%input_warning()
+        if (len(text) > 0) text = "warning: " // text // new_line("a")
+    end function warning_line
 
     !> Write the summary and the part shapes beside the partial CSV, remove an earlier run's
     !> summary, then rename the CSV and the summary to their final names.

@@ -9,6 +9,7 @@ module rollcon_csv_reader
     use rollcon_output_layout, only : output_layout_type, read_layout, name_length
     use rollcon_contact_watch, only : contact_names
     use rollcon_input_files, only : input_file_type, csv_input_limit
+    use rollcon_request_watch, only : request_column_patterns
     use, intrinsic :: ieee_arithmetic, only : ieee_is_finite
     use, intrinsic :: ieee_exceptions, only : ieee_set_flag, ieee_overflow, ieee_underflow
     implicit none
@@ -116,9 +117,10 @@ contains
             count = count + 1
             names(count) = trim(adjustl(field))
         end do
-        ! the watches' columns rollcon writes: a rim contact's, a part's principal basis
+        ! the watches' columns rollcon writes: a rim contact's, a part's principal basis, a
+        ! dataset's displacement requests
         call read_layout(names, layout, message, [character(len=name_length) :: contact_names, &
-            & "basis_<id>"])
+            & "basis_<id>", request_column_patterns])
         if (.not. allocated(message)) return
         ! The one-part header of the runs before the per-part layout (issue #14): say so.
         if (count > 1) then

@@ -61,6 +61,7 @@ program tester
     use test_long_paths, only : collect_long_paths
     use test_study_limits, only : collect_study_limits
     use test_sweep_guards, only : collect_sweep_guards
+    use test_adm_outputs, only : collect_adm_outputs
     implicit none
     type(testsuite_type), allocatable :: suites(:)
     type(test_counts_type) :: counts
@@ -126,7 +127,8 @@ program tester
         & new_testsuite("user-builds", collect_user_builds), &
         & new_testsuite("long-paths", collect_long_paths), &
         & new_testsuite("study-limits", collect_study_limits), &
-        & new_testsuite("sweep-guards", collect_sweep_guards)]
+        & new_testsuite("sweep-guards", collect_sweep_guards), &
+        & new_testsuite("adm-outputs", collect_adm_outputs)]
 
     if (command_argument_count() >= 1) then
         call get_command_argument(1, argument)

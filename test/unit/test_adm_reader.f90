@@ -267,9 +267,8 @@ contains
         expected(11) = file // "17: INTEGRATOR FORMULATION: 'ode' is not a formulation"
         replaced(12) = ", VX=0.1, WZ=-1, WZ=2"
         expected(12) = file // "6: PART/2: WZ is given twice"
-        replaced(13) = "OUTPUT/REQSAVE"
-        expected(13) = file // "18: OUTPUT: 'REQSAVE' is not supported: OUTPUT takes no " &
-            & // "argument"
+        replaced(13) = "OUTPUT/REQSAVE=1"
+        expected(13) = file // "18: OUTPUT REQSAVE takes no value"
         replaced(14) = "UCON/1, FUNCTION=USER(2, 21)"
         expected(14) = file // "11: UCON/1: a second UCON with this id"
         do i = 1, n

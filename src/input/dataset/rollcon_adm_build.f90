@@ -1,7 +1,7 @@
 ! SPDX-License-Identifier: MIT
 !> A dataset as a problem to simulate (docs/datasets-model.md): its parts (ground is not one),
 !> UCONs with their routines, gravity, force statements between body-fixed markers, solver
-!> settings, the theta limit and the initial state.
+!> settings, the theta limit, the displacement requests' columns and the initial state.
 !>
 !> A part's principal axes are its CM marker's axes, and its inertia is the IP written there
 !> (docs/design.md §2). A UCON is served by the built-in routine its ROUTINE= names
@@ -25,6 +25,7 @@ module rollcon_adm_build
     use rollcon_model, only : model_type, setup_model
     use rollcon_problem, only : problem_type
     use rollcon_theta_watch, only : new_theta_watch
+    use rollcon_request_watch, only : displacement_request_type, new_request_watch
     use rollcon_adm_keywords, only : place
     use rollcon_adm_model, only : adm_model_type, adm_force_type, force_sforce, force_vforce
     use rollcon_adm_state, only : part_state
@@ -83,6 +84,10 @@ contains
         problem%settings = adm%run%settings
         ! a dataset's parts are re-based at the theta limit, not stopped (docs/rebasing.md)
         call problem%add_watch(new_theta_watch(adm_theta_min, rebase=.true.))
+        if (allocated(adm%requests)) then
+            if (size(adm%requests) > 0) call problem%add_watch(new_request_watch( &
+                & displacement_requests(adm)))
+        end if
         allocate(q0(6*size(model%parts)), u0(6*size(model%parts)))
         p = 0
         do i = 1, size(adm%parts)
@@ -92,6 +97,21 @@ contains
         end do
         call check_forces_at_start(adm, problem, q0, u0, error)
     end subroutine build_adm_problem
+
+    !> The dataset's REQUEST/id, DISPLACEMENT statements with their markers as the model holds
+    !> them; a J or RM not given is a marker at the ground origin with ground axes.
+    function displacement_requests(adm) result(requests)
+        type(adm_model_type), intent(in) :: adm
+        type(displacement_request_type) :: requests(size(adm%requests))
+        integer :: k
+
+        do k = 1, size(adm%requests)
+            requests(k)%id = adm%requests(k)%id
+            requests(k)%i = adm_marker(adm, adm%requests(k)%i)
+            if (adm%requests(k)%j /= 0) requests(k)%j = adm_marker(adm, adm%requests(k)%j)
+            if (adm%requests(k)%rm /= 0) requests(k)%rm = adm_marker(adm, adm%requests(k)%rm)
+        end do
+    end function displacement_requests
 
     !> Every force expression finite at the start (t = 0): a NaN or infinity there (a LOG of a
     !> negative number, a division by zero) is refused with the statement and key, not left for

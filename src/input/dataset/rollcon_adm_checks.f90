@@ -1,6 +1,7 @@
 ! SPDX-License-Identifier: MIT
 !> Checks a dataset as a whole once every statement is read: one ground part, the values a part
-!> needs, every reference to a part or marker, the forces' expressions, the run, and the
+!> needs, every reference to a part or marker (those of the statements read and not used too),
+!> the forces' expressions, the run, and the
 !> principal-axes rule at t = 0 (a part whose CM marker's z-axis is parallel to ground z starts
 !> at the singularity of its 3-1-3 Euler angles).
 module rollcon_adm_checks
@@ -13,7 +14,7 @@ module rollcon_adm_checks
     use rollcon_adm_state, only : euler_angles
     use rollcon_adm_keywords, only : place
     use rollcon_adm_model, only : adm_model_type, adm_part_type, adm_marker_type, &
-        & adm_force_type, force_sforce, force_vforce
+        & adm_force_type, force_sforce, force_vforce, refers_to_marker, refers_to_part
     implicit none
     private
 
@@ -50,9 +51,35 @@ contains
             call check_force(model, model%forces(i), error)
             if (allocated(error)) return
         end do
+        if (allocated(model%references)) then
+            do i = 1, size(model%references)
+                call check_reference(model, i, error)
+                if (allocated(error)) return
+            end do
+        end if
         if (model%run%line == 0) call fatal_error(error, model%file // ": no SIMULATE " &
             & // "statement (SIMULATE/DYNAMIC, END=t, STEPS=n)", stat_input)
     end subroutine check_references
+
+    !> Reference i of a statement read and not used: its marker, part or force exists.
+    subroutine check_reference(model, i, error)
+        type(adm_model_type), intent(in) :: model
+        integer, intent(in) :: i
+        type(error_type), allocatable, intent(out) :: error
+
+        associate (reference => model%references(i))
+            if (reference%kind == refers_to_marker) then
+                if (marker_index(model, reference%id) == 0) call fatal_error(error, &
+                    & reference%at // ": no MARKER/" // to_text(reference%id), stat_input)
+            else if (reference%kind == refers_to_part) then
+                if (.not. any(model%parts%id == reference%id)) call fatal_error(error, &
+                    & reference%at // ": no PART/" // to_text(reference%id), stat_input)
+            else if (.not. any(model%forces%id == reference%id)) then
+                call fatal_error(error, reference%at // ": no SFORCE, VFORCE or GFORCE with id " &
+                    & // to_text(reference%id), stat_input)
+            end if
+        end associate
+    end subroutine check_reference
 
     subroutine check_part(model, part, error)
         type(adm_model_type), intent(in) :: model
