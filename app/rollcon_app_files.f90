@@ -2,7 +2,7 @@
 !> The program's own file names: an output folder made when missing, a file's stem, and the
 !> CSV a command's argument names.
 module rollcon_app_files
-    use rollcon, only : error_type, fatal_error, stat_io
+    use rollcon, only : error_type, make_folders
     implicit none
     private
 
@@ -10,21 +10,14 @@ module rollcon_app_files
 
 contains
 
-    !> Create a folder and its parents, if missing.
+    !> Create a folder and its parents, if missing: through mkdir(2), no shell and no PATH
+    !> (the library's make_folders); every failure names the folder and the reason.
     subroutine make_folder(folder, error)
-        !> Folder to create; a name holding a single quote is refused
+        !> Folder to create
         character(len=*), intent(in) :: folder
         type(error_type), allocatable, intent(out) :: error
-        integer :: stat, command_stat
 
-        stat = 1
-        command_stat = 1
-        if (index(folder, "'") == 0) then
-            call execute_command_line("mkdir -p '" // folder // "'", exitstat=stat, &
-                & cmdstat=command_stat)
-        end if
-        if (stat /= 0 .or. command_stat /= 0) call fatal_error(error, folder &
-            & // ": cannot create the output folder", stat_io)
+        call make_folders(folder, error)
     end subroutine make_folder
 
     !> The file name of path without its folder and without extension (when it ends so):

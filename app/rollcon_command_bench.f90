@@ -180,13 +180,17 @@ contains
         integer, intent(in) :: process_unit
         type(error_type), allocatable, intent(out) :: error
         type(process_cost_type) :: cost
-        character(len=1024) :: executable
+        character(len=:), allocatable :: executable
         character(len=200) :: numbers
+        integer :: length
 
+        ! whole, however long: a cut path would time another program, or none
+        call get_command_argument(0, length=length)
+        allocate(character(len=length) :: executable)
         call get_command_argument(0, executable)
         call make_folder(output_dir // "/process", error)
         if (allocated(error)) return
-        call measure_process(trim(executable), scene, output_dir // "/process", cost, error)
+        call measure_process(executable, scene, output_dir // "/process", cost, error)
         if (allocated(error)) return
         write(numbers, '(5(es13.5e3, :, ","))') cost%wall, cost%cpu, cost%startup_cpu, &
             & cost%integration_cpu, cost%rest_cpu

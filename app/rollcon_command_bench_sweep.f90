@@ -108,11 +108,12 @@ contains
     !> This program's own path, to run it again.
     subroutine get_program(program)
         character(len=:), allocatable, intent(out) :: program
-        character(len=1024) :: buffer
         integer :: length
 
-        call get_command_argument(0, buffer, length)
-        program = buffer(:length)
+        ! whole, however long: a cut path would run another program, or none
+        call get_command_argument(0, length=length)
+        allocate(character(len=length) :: program)
+        call get_command_argument(0, program)
     end subroutine get_program
 
 

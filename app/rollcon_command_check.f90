@@ -2,10 +2,11 @@
 !> `rollcon check FILE --ucon ID:PAR,...`: check a user's own UCOSUB without ADAMS.
 module rollcon_command_check
     use, intrinsic :: iso_fortran_env, only : output_unit
-    use rollcon, only : wp, error_type, fatal_error, stat_input, stat_io, user_ucosub_type, &
+    use rollcon, only : wp, error_type, fatal_error, stat_input, user_ucosub_type, &
         & new_user_ucosub, ucon_request_type, user_check_options_type, user_check_report_type, &
         & sampling_ranges, check_user_ucosub_isolated, adm_model_type, read_adm, &
-        & read_ucon_request, report_text, report_json, default_call_timeout
+        & read_ucon_request, report_text, write_report_json, default_call_timeout, &
+        & max_check_states, states_refusal, ucosub_units_type, to_text
     use rollcon_cli, only : cli_request_type
     use rollcon_command_run, only : call_timeout_of
     implicit none
@@ -29,7 +30,6 @@ contains
         type(user_ucosub_type) :: user
         character(len=:), allocatable :: library
         real(wp) :: call_timeout
-        integer :: unit, stat
 
         status = 0
         if (request%has("--help")) then
@@ -41,6 +41,7 @@ contains
         call new_user_ucosub(user, request%positional, error)
         if (allocated(error)) return
         library = user%library // merge(" (from the cache)", " (compiled now)  ", user%from_cache)
+        if (len(user%note) > 0) write(output_unit, '(a)') "check: " // user%note // ": rebuilt"
         ! Each UCON is checked in a child process: a crash, a hang or a STOP in the routine
         ! becomes a finding, not the end of rollcon.
         call check_user_ucosub_isolated(user%ucosub, requests, options, call_timeout, report, &
@@ -51,14 +52,9 @@ contains
         end if
         write(output_unit, '(a)') report_text(report, request%positional, trim(library))
         if (request%has("--json")) then
-            associate (json_path => request%text("--json", ""))
-                open(newunit=unit, file=json_path, status="replace", action="write", iostat=stat)
-                if (stat == 0) write(unit, '(a)', iostat=stat) &
-                    & report_json(report, request%positional, user%library, user%from_cache)
-                if (stat == 0) close(unit, iostat=stat)
-                if (stat /= 0) call fatal_error(error, json_path // ": cannot write the JSON " &
-                    & // "report", stat_io)
-            end associate
+            ! every write checked: a report that did not reach the disk fails the command
+            call write_report_json(request%text("--json", ""), report, request%positional, &
+                & user%library, user%from_cache, error)
         end if
         if (.not. report%clean()) status = 1
         call user%destroy()
@@ -100,6 +96,11 @@ contains
         if (allocated(error)) return
         call request%integer_value("--states", options%states, options%states, 1, error)
         if (allocated(error)) return
+        if (options%states > max_check_states) then
+            call fatal_error(error, "check: --states " // states_refusal(options%states), &
+                & stat_input)
+            return
+        end if
         call request%integer_value("--seed", options%seed, options%seed, -huge(1), error)
     end subroutine read_requests
 
@@ -122,9 +123,15 @@ contains
             end if
             request%id = adm%ucons(k)%id
             request%par = adm%ucons(k)%par
+            ! the routine computes in the dataset's units, as in a run
+            request%units = ucosub_units_type(length=adm%units%length, time=adm%units%time)
             requests = [requests, request]
             found = found + 1
         end do
+        if (found > 0 .and. .not. request%units%is_si()) write(output_unit, '(a)') path &
+            & // ": the routine is called in the dataset's units, as in a run: lengths in " &
+            & // to_text(request%units%length) // " m, time in " // to_text(request%units%time) &
+            & // " s; PAR as written, each random state drawn in the ranges below and converted"
         if (found == 0) call fatal_error(error, path // ": no UCON statement is served by the " &
             & // "model's UCOSUB (each names a built-in ROUTINE): nothing to check", stat_input)
     end subroutine model_requests
@@ -151,7 +158,7 @@ contains
             & "                 number per comma-separated field, at most 30 PAR)", &
             & "  --model MODEL.adm  every UCON of an ADAMS dataset that names no ROUTINE (those", &
             & "                 the model's own UCOSUB serves), with its id and PAR", &
-            & "  --states N     random states per UCON (default 25)", &
+            & "  --states N     random states per UCON (default 25, at most 100000)", &
             & "  --seed S       seed of the states (default 1); a run is reproducible", &
             & "  --json OUT     also write the report as JSON to OUT", &
             & "  --call-timeout SECONDS  longest one call of the routine may take (default 10)", &
@@ -161,7 +168,9 @@ contains
             & "STOP in the routine ends only that process and is reported as a finding ([crash],", &
             & "[timeout], [stop]) with the call (IFLAG, IDRSEL) and the state; a write outside", &
             & "the declared block or outside ARRAY(30), XMATRX(30,30) is an [outside-block]", &
-            & "finding with the index written.", &
+            & "finding with the index written. ID, TIME, Q, PAR, NPAR, IDRSEL and IFLAG reach", &
+            & "the routine as copies (as in a run): a change of one is a [changed-argument]", &
+            & "finding naming it.", &
             & "", &
             & "For each UCON: the initialisation call (IFLAG = 3) must declare the variables", &
             & "with one UCOVAR call (at most 30, known codes, part ids that appear among the PAR", &
@@ -170,7 +179,8 @@ contains
             & "outputs, and the rules are checked: XMATRX symmetric, no second derivative in two", &
             & "velocities (linear in the velocities), outputs not asked for (IDRSEL = 0) left", &
             & "untouched, nothing beyond the declared variables, same inputs give the same", &
-            & "outputs, no NaN or Infinity, no ERRMES call. States are drawn in:"
+            & "outputs, no NaN or Infinity and nothing beyond 1e100 in magnitude, no ERRMES", &
+            & "call. States are drawn in:"
         do i = 1, size(ranges)
             write(output_unit, '(a)') "  " // trim(ranges(i))
         end do

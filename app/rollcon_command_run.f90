@@ -6,7 +6,7 @@ module rollcon_command_run
     use rollcon, only : wp, error_type, fatal_error, stat_input, to_text, job_type, load_job, &
         & run_job, job_result_type, status_inaccurate, run_record_type, read_run, &
         & write_vtk_series
-    use rollcon_cli, only : cli_request_type, command_names
+    use rollcon_cli, only : cli_request_type, command_names, command_line_text
     use rollcon_app_files, only : make_folder, file_stem
     implicit none
     private
@@ -46,7 +46,12 @@ contains
                 & // "' is not a command (" // command_names() // ")"
             return
         end if
+        ! what the input holds and the run does not use: said once, before the run, --quiet
+        ! or not
+        if (len(job%source%input_warning()) > 0) write(error_unit, '(a)') "rollcon: warning: " &
+            & // job%source%input_warning()
         job%output_dir = request%text("--output", "output")
+        job%command_line = command_line_text()
         job%quiet = request%has("--quiet")
         if (request%has("--allow-large-output")) job%max_csv_bytes = huge(1.0_wp)
         call call_timeout_of(request, job%call_timeout, error)

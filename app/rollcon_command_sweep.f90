@@ -5,7 +5,8 @@ module rollcon_command_sweep
     use, intrinsic :: iso_fortran_env, only : output_unit, error_unit
     use mpi_f08, only : MPI_Init, MPI_Finalize, MPI_Bcast, MPI_INTEGER, MPI_COMM_WORLD
     use rollcon, only : wp, error_type, fatal_error, stat_input, to_text, study_type, read_study, &
-        & study_plan_type, study_progress_type, plan_cases, plan_study, case_count, draw_study_map
+        & study_plan_type, study_progress_type, plan_cases, plan_study, case_count, &
+        & draw_study_map, file_lock_type, lock_study_csv
     use rollcon_cli, only : cli_request_type
     use rollcon_app_files, only : make_folder
     use rollcon_sweep_mpi, only : sweep_ranks, rank_of_world, size_of_world
@@ -27,6 +28,7 @@ contains
         type(study_type) :: study
         type(study_plan_type) :: plan
         type(study_progress_type) :: progress
+        type(file_lock_type) :: lock
         logical :: quiet, map
         integer :: go, rank
 
@@ -53,7 +55,9 @@ contains
         if (.not. allocated(error)) then
             csv_path = output_dir // "/" // study%name // ".csv"
             if (rank == 0) then
-                call plan_study(study, csv_path, plan, error)
+                ! one sweep at a time into a CSV: held until this process ends
+                call lock_study_csv(csv_path, lock, error)
+                if (.not. allocated(error)) call plan_study(study, csv_path, plan, error)
             else
                 call plan_cases(study, plan)
             end if
@@ -72,7 +76,24 @@ contains
         end if
         if (go == 0 .and. .not. allocated(error)) call fatal_error(error, "the study " &
             & // study_path // " could not start on every rank", stat_input)
-        if (allocated(error)) return
+        if (.not. allocated(error)) call finish_sweep(study, plan, study_path, csv_path, &
+            & output_dir, quiet, map, progress, status, error)
+        ! the CSV's lock goes (with its file) once the map has read the CSV
+        call lock%release()
+    end subroutine sweep_command
+
+    !> After the cases: the closing lines, and the map. status 0 when every case is in the CSV
+    !> (and some case was not refused) and the map, when asked for, is drawn.
+    subroutine finish_sweep(study, plan, study_path, csv_path, output_dir, quiet, map, &
+            & progress, status, error)
+        type(study_type), intent(in) :: study
+        type(study_plan_type), intent(in) :: plan
+        character(len=*), intent(in) :: study_path, csv_path, output_dir
+        logical, intent(in) :: quiet, map
+        type(study_progress_type), intent(in) :: progress
+        integer, intent(inout) :: status
+        type(error_type), allocatable, intent(out) :: error
+
         call close_study(study, plan, csv_path, progress)
         ! nothing of what was asked ran: a mistake in the study, not a result
         if (progress%refused > 0 .and. progress%refused == case_count(study)) then
@@ -91,7 +112,7 @@ contains
                 & // study%name // ".png"
         end if
         status = 0
-    end subroutine sweep_command
+    end subroutine finish_sweep
 
     !> The opening line: cases, those already done, ranks.
     subroutine announce(study, plan, csv_path, quiet, progress)

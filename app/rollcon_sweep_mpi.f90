@@ -80,7 +80,7 @@ contains
         logical :: waiting
         real(wp) :: handling_start, handling_end
 
-        call file%open(csv_path, error)
+        call file%open(csv_path, error, rows_before=plan%rows_in_csv)
         cases = plan%pending()
         next = 1
         stopped = 0
@@ -120,7 +120,11 @@ contains
             call cpu_time(handling_end)
             progress%coordinator_cpu = progress%coordinator_cpu + handling_end - handling_start
         end do
-        call file%close()
+        if (allocated(error)) then
+            call file%close()
+        else
+            call file%close(error)
+        end if
     end subroutine coordinate
 
     !> A worker rank: ask for cases, run them, send their rows, until told to stop.

@@ -96,15 +96,17 @@ contains
         do k = 1, 3
             call builtin_ucosub_par("disk", disk_id, [disk_radius], k, par, error)
             if (allocated(error)) return
-            call model%add_ucon(10 + k, par, disk_routine, time_free=disk_time_free)
+            call model%add_ucon(10 + k, par, disk_routine, time_free=disk_time_free, &
+                & routine="disk")
         end do
         do k = 1, 2
             call builtin_ucosub_par("rolling_sphere", sphere_id, [sphere_radius], k, par, error)
             if (allocated(error)) return
-            call model%add_ucon(20 + k, par, sphere_routine, time_free=sphere_time_free)
+            call model%add_ucon(20 + k, par, sphere_routine, time_free=sphere_time_free, &
+                & routine="rolling_sphere")
         end do
         call model%add_ucon(23, sphere_height_par(sphere_id, sphere_radius), &
-            & sphere_height_ucosub, time_free=.true.)
+            & sphere_height_ucosub, time_free=.true., routine="sphere_height")
 
         ! the push acts on the sphere (the second part added: part numbers are model order) at
         ! its centre (point 0 in its body axes), along ground +X

@@ -6,7 +6,8 @@ module rollcon
     ! kinds, errors, numbers as text
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type, fatal_error, stat_input, stat_io, stat_ucon
-    use rollcon_text, only : to_text
+    use rollcon_text, only : to_text, shell_quote
+    use rollcon_output_files, only : make_folders
     use rollcon_lapack, only : use_one_blas_thread
     use rollcon_version, only : rollcon_version_number, version_text
 
@@ -65,6 +66,8 @@ module rollcon
     use rollcon_model_source, only : model_source_type
     use rollcon_built_model, only : built_model_source_type, new_model_source
     use rollcon_job, only : job_type, new_job
+    use rollcon_provenance, only : provenance_lines, file_record
+    use rollcon_ucosub_units, only : ucosub_units_type
     use rollcon_load, only : load_job, input_override_type, is_dataset
     use rollcon_run_job, only : run_job, job_result_type
 
@@ -74,11 +77,12 @@ module rollcon
     use rollcon_partials_check, only : ucon_check_options_type, ucon_mismatch_type, &
         & ucon_check_result_type, check_ucon_state
     use rollcon_ucosub_audit, only : ucon_request_type, user_check_options_type, &
-        & user_check_report_type, check_user_ucosub, sampling_ranges
+        & user_check_report_type, check_user_ucosub, sampling_ranges, max_check_states, &
+        & states_refusal
     use rollcon_ucon_request, only : read_ucon_request
     use rollcon_isolated_audit, only : check_user_ucosub_isolated
     use rollcon_audit_report, only : report_text
-    use rollcon_audit_json, only : report_json
+    use rollcon_audit_json, only : report_json, write_report_json
 
     ! parameter studies (docs/studies.md); the MPI loop is the program's
     use rollcon_study_type, only : study_type
@@ -86,7 +90,8 @@ module rollcon
     use rollcon_study_parameters, only : case_count
     use rollcon_study_measures, only : case_result_type, outcome_failed, outcome_refused
     use rollcon_study_run, only : study_plan_type, study_progress_type, plan_cases, plan_study, &
-        & run_case, append_row, run_study, row_file_type
+        & run_case, append_row, run_study, row_file_type, lock_study_csv
+    use rollcon_file_lock, only : file_lock_type
 
     ! pictures
     use rollcon_run_record, only : run_record_type, read_run

@@ -2,6 +2,8 @@
 !> The report of a UCOSUB check as a JSON document.
 module rollcon_audit_json
     use rollcon_text, only : to_text
+    use rollcon_error, only : error_type
+    use rollcon_output_files, only : write_text_file, delete_file
     use rollcon_ucosub_audit, only : user_check_report_type, ucon_report_type, finding_group_type, &
         & sampling_ranges
     use rollcon_check_rules, only : rule_name
@@ -9,7 +11,7 @@ module rollcon_audit_json
     implicit none
     private
 
-    public :: report_json
+    public :: report_json, write_report_json
 
     character(len=*), parameter :: nl = new_line("a")
 
@@ -45,6 +47,30 @@ contains
         end do
         json = json // nl // ' ]' // nl // '}'
     end function report_json
+
+    !> Write report_json to a file (replaced). Every write and the close are checked through
+    !> the C library (gfortran 12 reports no full disk): a report that did not reach the disk
+    !> whole is an error naming the file and the reason, and the cut file is removed.
+    subroutine write_report_json(path, report, source, library, from_cache, error)
+        !> File to write
+        character(len=*), intent(in) :: path
+        !> What the check found
+        type(user_check_report_type), intent(in) :: report
+        !> The user's file and the library built from it
+        character(len=*), intent(in) :: source, library
+        !> Whether the library came from the cache
+        logical, intent(in) :: from_cache
+        !> Set when the file cannot be written whole
+        type(error_type), allocatable, intent(out) :: error
+
+        type(error_type), allocatable :: ignored
+
+        call write_text_file(path, report_json(report, source, library, from_cache), error)
+        if (.not. allocated(error)) return
+        error%message = "the JSON report was not written: " // error%message
+        ! what reached the disk is a cut document, which no reader should take for the report
+        call delete_file(path, ignored)
+    end subroutine write_report_json
 
     !> One UCON's object of the JSON report.
     function ucon_json(ucon) result(json)

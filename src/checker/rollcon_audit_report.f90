@@ -6,7 +6,7 @@ module rollcon_audit_report
         & sampling_ranges
     use rollcon_check_rules, only : rule_order, rule_name, rule_meaning, rule_derivative, &
         & rule_symmetry, rule_velocity_linear, rule_selector_0, rule_repeat, &
-        & rule_outside_block, rule_signal, rule_timeout, rule_exit
+        & rule_outside_block, rule_signal, rule_timeout, rule_exit, rule_finite
     use rollcon_audit_words, only : entry_label, variable_name, short, real_list
     implicit none
     private
@@ -64,7 +64,11 @@ contains
         integer :: i, g, r, o
         character(len=16) :: worst
 
-        text = "UCON/" // to_text(ucon%id) // "  PAR = " // real_list(ucon%par, ", ") // nl
+        if (size(ucon%par) > 0) then
+            text = "UCON/" // to_text(ucon%id) // "  PAR = " // real_list(ucon%par, ", ") // nl
+        else
+            text = "UCON/" // to_text(ucon%id) // "  PAR: none (NPAR = 0)" // nl
+        end if
         if (ucon%declared) then
             text = text // "  UCOVAR: " // to_text(size(ucon%codes)) // " variables:"
             do i = 1, size(ucon%codes)
@@ -166,6 +170,13 @@ contains
             text = "the routine wrote " // short(group%returned) // " there"
         case (rule_repeat)
             text = "F = " // short(group%expected) // " then " // short(group%returned)
+        case (rule_finite)
+            if (allocated(group%message)) then
+                text = group%message
+            else
+                text = "returned " // short(group%returned) // ", beyond the largest " &
+                    & // "magnitude the check accepts (" // short(group%expected) // ")"
+            end if
         case (rule_outside_block)
             if (allocated(group%message)) then
                 text = group%message

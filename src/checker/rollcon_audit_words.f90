@@ -7,7 +7,7 @@ module rollcon_audit_words
     use rollcon_text, only : to_text
     use rollcon_ucosub_contract, only : code_name
     use rollcon_ucosub_audit, only : ucon_report_type, finding_group_type
-    use rollcon_check_rules, only : rule_declaration, rule_outside_block
+    use rollcon_check_rules, only : rule_declaration, rule_outside_block, rule_changed_argument
     use, intrinsic :: ieee_arithmetic, only : ieee_is_finite
     implicit none
     private
@@ -26,15 +26,20 @@ contains
         character(len=:), allocatable :: label
 
         label = group%output
-        if (group%row == 0 .or. group%code == rule_declaration) return
+        if (group%code == rule_changed_argument) then
+            ! the argument and its entry: "PAR(10)", "ID"
+            if (group%row > 0) label = group%output // "(" // to_text(group%row) // ")"
+            return
+        end if
         if (group%code == rule_outside_block .and. (group%output == "ARRAY" &
             & .or. group%output == "XMATRX")) then
-            ! the guard's finding: the index written, which has no variable name
+            ! the guard's finding: the index written (0 included), which has no variable name
             label = group%output // "(" // to_text(group%row)
             if (group%output == "XMATRX") label = label // "," // to_text(group%column)
             label = label // ")"
             return
         end if
+        if (group%row == 0 .or. group%code == rule_declaration) return
         select case (group%output)
         case ("ARRAY (dF/dq)", "ARRAY")
             label = "ARRAY(" // to_text(group%row) // ") = dF/d(" &

@@ -7,7 +7,7 @@ module rollcon_check_rules
 
     public :: rule_declaration, rule_errmes, rule_finite, rule_derivative, rule_symmetry
     public :: rule_velocity_linear, rule_selector_0, rule_repeat, rule_outside_block
-    public :: rule_signal, rule_timeout, rule_exit, rule_count, rule_order
+    public :: rule_signal, rule_timeout, rule_exit, rule_changed_argument, rule_count, rule_order
     public :: rule_name, rule_meaning
 
     !> The UCOVAR declaration is wrong
@@ -34,12 +34,15 @@ module rollcon_check_rules
     integer, parameter :: rule_timeout = 11
     !> The routine ended the process (STOP) inside a call
     integer, parameter :: rule_exit = 12
+    !> The routine changed an argument it may only read (ID, TIME, Q, PAR, NPAR, IDRSEL, IFLAG)
+    integer, parameter :: rule_changed_argument = 13
     !> Number of rules
-    integer, parameter :: rule_count = 12
+    integer, parameter :: rule_count = 13
     !> Rules in the order a report lists them: the most telling first
     integer, parameter :: rule_order(rule_count) = [rule_signal, rule_timeout, rule_exit, &
-        & rule_declaration, rule_errmes, rule_finite, rule_outside_block, rule_symmetry, &
-        & rule_velocity_linear, rule_selector_0, rule_repeat, rule_derivative]
+        & rule_declaration, rule_errmes, rule_finite, rule_outside_block, &
+        & rule_changed_argument, rule_symmetry, rule_velocity_linear, rule_selector_0, &
+        & rule_repeat, rule_derivative]
 
 contains
 
@@ -74,6 +77,8 @@ contains
             name = "timeout"
         case (rule_exit)
             name = "stop"
+        case (rule_changed_argument)
+            name = "changed-argument"
         case default
             name = "unknown"
         end select
@@ -101,7 +106,11 @@ contains
             meaning = "written beyond the declared variables, or outside ARRAY(30) and " &
                 & // "XMATRX(30,30)"
         case (rule_finite)
-            meaning = "a non-finite value (NaN or Infinity) was returned"
+            meaning = "a non-finite value (NaN or Infinity), or a huge one (magnitude above " &
+                & // "1e100), was returned"
+        case (rule_changed_argument)
+            meaning = "the routine changed an argument it may only read (ID, TIME, Q, PAR, " &
+                & // "NPAR, IDRSEL, IFLAG)"
         case (rule_errmes)
             meaning = "the routine reported an error through ERRMES"
         case (rule_declaration)

@@ -10,13 +10,19 @@ module rollcon_partials_check
     use rollcon_ucon_call, only : evaluate_ucon
     use rollcon_adams_runtime, only : take_ucon_error
     use rollcon_check_rules, only : rule_derivative, rule_symmetry, rule_velocity_linear, &
-        & rule_selector_0, rule_repeat, rule_outside_block, rule_name
+        & rule_selector_0, rule_repeat, rule_outside_block, rule_finite, rule_name
     use, intrinsic :: ieee_arithmetic, only : ieee_is_finite
     implicit none
     private
 
     public :: ucon_check_options_type, ucon_mismatch_type, ucon_check_result_type
-    public :: check_ucon_state
+    public :: check_ucon_state, huge_output
+
+    !> Largest magnitude of an output the check accepts. The comparison's tolerance scales
+    !> with the values compared, so a routine returning F = 1e308 would pass every comparison;
+    !> no constraint in any system of units comes near 1e100, and beyond it the integrators'
+    !> products of outputs overflow. A larger finite value is a finite finding.
+    real(wp), parameter :: huge_output = 1.0e100_wp
 
     !> How the comparison is made
     type :: ucon_check_options_type
@@ -104,6 +110,8 @@ contains
         call evaluate_ucon(ucosub, id, time, q30, par, [scalar_dtt, array_none, xmatrx_none], &
             & ftt, scratch(:, 1), scratch, error)
         if (allocated(error)) return
+        ! Huge outputs: every comparison below scales with them and would pass.
+        if (huge_outputs(result, n, f, ft, ftt, a, atq, x)) return
         ! Nothing beyond the declared variables: the outputs were zeroed before the call.
         if (any(a(n + 1:) /= 0.0_wp)) then
             i = n + findloc(a(n + 1:) /= 0.0_wp, .true., dim=1)
@@ -228,6 +236,51 @@ contains
         end do
         call take_ucon_error(error)
     end subroutine check_rules
+
+    !> Add a finite finding for each output holding a magnitude beyond huge_output (at its
+    !> largest entry); true when there was one.
+    function huge_outputs(result, n, f, ft, ftt, a, atq, x) result(found)
+        type(ucon_check_result_type), intent(inout) :: result
+        !> Number of declared variables
+        integer, intent(in) :: n
+        !> F, dF/dt, d2F/dt2, dF/dq, d2F/dt dq, d2F/dq dq
+        real(wp), intent(in) :: f, ft, ftt, a(:), atq(:), x(:, :)
+        logical :: found
+        integer :: loc(2)
+
+        found = .false.
+        call one_value("SCALAR", f)
+        call one_value("SCALAR (dF/dt)", ft)
+        call one_value("SCALAR (d2F/dt2)", ftt)
+        if (n < 1) return
+        call one_row("ARRAY (dF/dq)", a(:n))
+        call one_row("ARRAY (d2F/dt dq)", atq(:n))
+        if (maxval(abs(x(:n, :n))) > huge_output) then
+            loc = maxloc(abs(x(:n, :n)))
+            call add(result, rule_finite, "XMATRX (d2F/dq dq)", loc(1), loc(2), huge_output, &
+                & x(loc(1), loc(2)))
+            found = .true.
+        end if
+    contains
+        subroutine one_value(output, value)
+            character(len=*), intent(in) :: output
+            real(wp), intent(in) :: value
+
+            if (abs(value) <= huge_output) return
+            call add(result, rule_finite, output, 0, 0, huge_output, value)
+            found = .true.
+        end subroutine one_value
+        subroutine one_row(output, values)
+            character(len=*), intent(in) :: output
+            real(wp), intent(in) :: values(:)
+            integer :: i
+
+            if (maxval(abs(values)) <= huge_output) return
+            i = maxloc(abs(values), dim=1)
+            call add(result, rule_finite, output, i, 0, huge_output, values(i))
+            found = .true.
+        end subroutine one_row
+    end function huge_outputs
 
     !> True for the entries of XMATRX inside the block of the n declared variables.
     pure function declared_block(n) result(inside)

@@ -11,24 +11,36 @@ module rollcon_ucosub_audit
     use rollcon_ucovar_registry, only : ucovar_registry_type
     use rollcon_ucon_call, only : declare_ucon, stat_non_finite
     use rollcon_check_rules, only : rule_declaration, rule_errmes, rule_finite, &
-        & rule_outside_block, rule_name
+        & rule_outside_block, rule_changed_argument, rule_name
     use rollcon_ucosub_guard, only : install_guard, guarded_ucosub, declare_guarded_count, &
-        & note_stage, take_guard_violations, guard_violation_type, violation_text
+        & note_stage, take_guard_violations, guard_violation_type, violation_text, &
+        & violation_argument
     use rollcon_partials_check, only : ucon_check_options_type, ucon_check_result_type, &
         & check_ucon_state
     use rollcon_adams_runtime, only : take_ucon_error
     use rollcon_random_states, only : sampling_ranges, seed_state, draw_state
+    use rollcon_ucosub_units, only : ucosub_units_type, variable_scales
     implicit none
     private
 
     public :: ucon_request_type, user_check_options_type, finding_group_type, ucon_report_type
     public :: user_check_report_type, check_user_ucosub, check_requests, sampling_ranges
-    public :: finding
+    public :: states_refusal
+    public :: finding, max_check_states
+
+    !> Most random states per UCON a check makes. Each state costs some 60 calls of the
+    !> routine (about 0.3 ms for the disk): 100000 states take half a minute for a cheap
+    !> routine, and every mistake the check knows shows in the first few states. A larger
+    !> count would only make a check that runs for hours, so it is refused.
+    integer, parameter :: max_check_states = 100000
 
     !> One UCON statement to check: its id and FUNCTION=USER constants
     type :: ucon_request_type
         integer :: id = 0
         real(wp), allocatable :: par(:)
+        !> The units the routine computes in (a dataset's, for --model): the random states are
+        !> drawn in SI's ranges and passed in these units, as a run passes them
+        type(ucosub_units_type) :: units
     end type ucon_request_type
 
     !> How many states, from which seed, compared how
@@ -125,7 +137,8 @@ contains
             call note_stage(0)
             call declare(guarded_ucosub, requests(k), registry, report%ucons(k))
             call record_violations(report%ucons(k), 0, 0.0_wp, [real(wp) ::])
-            if (report%ucons(k)%declared) call sample(guarded_ucosub, options, report%ucons(k))
+            if (report%ucons(k)%declared) call sample(guarded_ucosub, options, &
+                & requests(k)%units, report%ucons(k))
         end do
     end subroutine check_user_ucosub
 
@@ -149,6 +162,10 @@ contains
                 & // to_text(options%states), stat_input)
             return
         end if
+        if (options%states > max_check_states) then
+            call fatal_error(error, states_refusal(options%states), stat_input)
+            return
+        end if
         do k = 1, size(requests)
             if (size(requests(k)%par) > max_ucon_par) then
                 call fatal_error(error, "UCON/" // to_text(requests(k)%id) // ": " &
@@ -163,6 +180,18 @@ contains
             end if
         end do
     end subroutine check_requests
+
+    !> Why a number of states beyond max_check_states is refused.
+    pure function states_refusal(states) result(message)
+        !> The number asked for
+        integer, intent(in) :: states
+        character(len=:), allocatable :: message
+
+        message = to_text(states) // " states per UCON asked for; at most " &
+            & // to_text(max_check_states) // " (each state costs some 60 calls of the " &
+            & // "routine: more would run for hours, and a mistake shows in the first " &
+            & // "few states)"
+    end function states_refusal
 
     !> The initialisation call: record what was declared, or the mistake; a part id that no
     !> PAR entry mentions is a finding too (UCON statements name their parts in PAR).
@@ -199,9 +228,11 @@ contains
     end subroutine declare
 
     !> check_ucon_state on options%states random states, findings grouped.
-    subroutine sample(ucosub, options, ucon)
+    subroutine sample(ucosub, options, units, ucon)
         procedure(ucosub_interface) :: ucosub
         type(user_check_options_type), intent(in) :: options
+        !> The units the routine computes in
+        type(ucosub_units_type), intent(in) :: units
         type(ucon_report_type), intent(inout) :: ucon
         type(ucon_check_result_type) :: result
         type(error_type), allocatable :: error
@@ -215,6 +246,10 @@ contains
         allocate(q(size(ucon%codes)))
         do s = 1, options%states
             call draw_state(random, ucon%codes, q, time)
+            if (.not. units%is_si()) then
+                q = variable_scales(units, ucon%codes)*q
+                time = time/units%time
+            end if
             call note_stage(s)
             result = ucon_check_result_type()
             call check_ucon_state(ucosub, ucon%id, ucon%par, ucon%codes, time, q, &
@@ -293,22 +328,26 @@ contains
         group%q = q
     end subroutine set_worst
 
-    !> The guard's violations since the last look, as outside-block findings at state s.
+    !> The guard's violations since the last look, as findings at state s: outside-block for a
+    !> write outside the block, changed-argument for a change of an argument to be read only.
     subroutine record_violations(ucon, s, time, q)
         type(ucon_report_type), intent(inout) :: ucon
         integer, intent(in) :: s
         real(wp), intent(in) :: time, q(:)
         type(guard_violation_type), allocatable :: found(:)
         type(finding_group_type) :: group
-        integer :: v
+        integer :: v, code
 
         call take_guard_violations(found)
         do v = 1, size(found)
-            group = finding(rule_outside_block, trim(found(v)%output), "UCON/" &
-                & // to_text(ucon%id) // ": " // violation_text(found(v)))
+            code = rule_outside_block
+            if (found(v)%kind == violation_argument) code = rule_changed_argument
+            group = finding(code, trim(found(v)%output), "UCON/" // to_text(ucon%id) // ": " &
+                & // violation_text(found(v)))
             group%row = found(v)%row
             group%column = found(v)%column
             group%returned = found(v)%value
+            if (code == rule_changed_argument) group%expected = found(v)%before
             call record(ucon, group, s, time, q)
         end do
     end subroutine record_violations
@@ -328,6 +367,8 @@ contains
         group%rule = rule_name(code)
         group%output = output
         group%count = 1
+        ! no state yet (record adds the states it is found in); defined, so it can be sent
+        allocate(group%states(0))
         if (present(message)) group%message = message
     end function finding
 

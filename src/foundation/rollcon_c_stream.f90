@@ -5,8 +5,9 @@
 !> file and the system's reason ("No space left on device").
 module rollcon_c_stream
     use, intrinsic :: iso_c_binding, only : c_ptr, c_null_ptr, c_associated, c_int, c_size_t, &
-        & c_char, c_null_char, c_f_pointer
+        & c_char, c_null_char
     use rollcon_error, only : error_type, fatal_error, stat_io
+    use rollcon_system, only : system_reason
     implicit none
     private
 
@@ -49,29 +50,26 @@ module rollcon_c_stream
             type(c_ptr), value :: file
             integer(c_int) :: stat
         end function c_fclose
-        !> glibc's (and musl's) location of errno
-        function c_errno_location() result(location) bind(c, name="__errno_location")
-            import :: c_ptr
-            type(c_ptr) :: location
-        end function c_errno_location
-        function c_strerror(number) result(text) bind(c, name="strerror")
-            import :: c_ptr, c_int
-            integer(c_int), value :: number
-            type(c_ptr) :: text
-        end function c_strerror
     end interface
 
 contains
 
-    !> Create (replace) the file for writing.
-    subroutine stream_open(self, path, error)
+    !> Create (replace) the file for writing, or open it to append to it.
+    subroutine stream_open(self, path, error, append)
         class(c_stream_type), intent(inout) :: self
         !> File to write
         character(len=*), intent(in) :: path
         type(error_type), allocatable, intent(out) :: error
+        !> Append to the file (created when missing) instead of replacing it
+        logical, intent(in), optional :: append
+        character(len=2) :: mode
 
+        mode = "wb"
+        if (present(append)) then
+            if (append) mode = "ab"
+        end if
         self%path = path
-        self%file = c_fopen(path // c_null_char, "wb" // c_null_char)
+        self%file = c_fopen(path // c_null_char, mode // c_null_char)
         if (.not. c_associated(self%file)) then
             call fatal_error(error, path // ": cannot write: " // system_reason(), stat_io)
         end if
@@ -125,24 +123,5 @@ contains
 
         stream_is_open = c_associated(self%file)
     end function stream_is_open
-
-    !> The system's text for the current errno.
-    function system_reason() result(text)
-        character(len=:), allocatable :: text
-        integer(c_int), pointer :: errno
-        character(kind=c_char), pointer :: chars(:)
-        integer :: n
-
-        call c_f_pointer(c_errno_location(), errno)
-        call c_f_pointer(c_strerror(errno), chars, [256])
-        n = 0
-        do while (n < size(chars))
-            if (chars(n + 1) == c_null_char) exit
-            n = n + 1
-        end do
-        allocate(character(len=n) :: text)
-        text = transfer(chars(:n), text)
-        if (n == 0) text = "unknown reason"
-    end function system_reason
 
 end module rollcon_c_stream

@@ -8,10 +8,13 @@ module rollcon_output_files
     use rollcon_error, only : error_type, fatal_error, stat_io
     use rollcon_text, only : to_text
     use rollcon_c_stream, only : c_stream_type
+    use rollcon_system, only : make_one_folder, path_kind, kind_directory, &
+        & system_reason, errno_exists, path_max
     implicit none
     private
 
     public :: partial_name, write_text_file, rename_file, delete_file, close_checked
+    public :: make_folders
 
     interface
         !> POSIX getpid(2)
@@ -87,6 +90,54 @@ contains
                 & // " bytes written (is the disk full?)", stat_io)
         end if
     end subroutine close_checked
+
+    !> Create a folder and the parents it lacks, as `mkdir -p` does, through mkdir(2) one
+    !> level at a time: no shell and no PATH are needed. Every failure is an error naming the
+    !> folder, the level that could not be made and the system's reason; a path the system
+    !> cannot take (PATH_MAX) is refused as such.
+    subroutine make_folders(folder, error)
+        !> Folder to create
+        character(len=*), intent(in) :: folder
+        type(error_type), allocatable, intent(out) :: error
+        integer :: j, errno_value, kind, stat_errno
+        integer(int64) :: size
+
+        if (len(folder) == 0) then
+            call fatal_error(error, "an output folder must be named, got ''", stat_io)
+            return
+        end if
+        if (len(folder) >= path_max) then
+            call fatal_error(error, folder(:60) // "...: the folder's path is " &
+                & // to_text(len(folder)) // " characters long; the system takes paths of " &
+                & // "at most " // to_text(path_max - 1) // " (PATH_MAX): give a shorter one", &
+                & stat_io)
+            return
+        end if
+        do j = 1, len(folder)
+            ! folder(:j) is a level when a slash follows it, or it is the whole path
+            if (j < len(folder)) then
+                if (folder(j + 1:j + 1) /= "/") cycle
+            end if
+            ! "/", "a//b" and a trailing slash: the level without the slash is made already
+            if (folder(j:j) == "/") cycle
+            errno_value = make_one_folder(folder(:j))
+            if (errno_value == 0) cycle
+            ! there already (or not to be made again, e.g. a parent without write permission)
+            call path_kind(folder(:j), kind, size, stat_errno)
+            if (kind == kind_directory) cycle
+            if (errno_value == errno_exists) then
+                call fatal_error(error, folder // ": cannot create the folder: " // folder(:j) &
+                    & // " exists and is not a folder", stat_io)
+            else if (j == len(folder)) then
+                call fatal_error(error, folder // ": cannot create the folder: " &
+                    & // system_reason(errno_value), stat_io)
+            else
+                call fatal_error(error, folder // ": cannot create the folder " // folder(:j) &
+                    & // ": " // system_reason(errno_value), stat_io)
+            end if
+            return
+        end do
+    end subroutine make_folders
 
     !> Rename a file, replacing the target (atomically when both are in one folder).
     subroutine rename_file(from, to, error)

@@ -178,7 +178,9 @@ contains
         count = 0
         value = self%get_int()
         if (self%failed) return
-        if (value < 0 .or. value*bytes_each > int(len(self%bytes) - self%at + 1, int64)) then
+        ! compared by division: value*bytes_each could overflow for a forged count near 2**63
+        if (value < 0 .or. value > int(len(self%bytes) - self%at + 1, int64)/max(bytes_each, 1)) &
+            & then
             self%failed = .true.
             return
         end if

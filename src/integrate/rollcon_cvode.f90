@@ -135,6 +135,7 @@ contains
         if (allocated(self%fired)) deallocate(self%fired)
         allocate(self%fired(system%root_count()), source=0_c_int)
         self%failed_flag = 0
+        self%t_now = t0
     end subroutine start
 
     !> Start again from (t0, y0) with the settings, tolerances, callbacks and event functions of
@@ -146,6 +147,7 @@ contains
         integer(c_int) :: flag
 
         self%values(:) = y0
+        self%t_now = t0
         flag = FCVodeReInit(self%memory, t0, self%y)
         if (check(flag, "CVodeReInit", error)) return
     end subroutine restart
@@ -164,8 +166,11 @@ contains
         root = 0
         flag = FCVodeSetStopTime(self%memory, t_stop)
         if (check(flag, "CVodeSetStopTime", error)) return
+        ! where the integrator was, should it fail before it sets t_return
+        t_return(1) = self%t_now
         flag = FCVode(self%memory, t_out, self%y, t_return, CV_NORMAL)
         t_reached = t_return(1)
+        self%t_now = t_reached
         y = self%values
         if (flag == CV_ROOT_RETURN) then
             flag = FCVodeGetRootInfo(self%memory, self%fired)

@@ -134,6 +134,7 @@ contains
         if (allocated(self%fired)) deallocate(self%fired)
         allocate(self%fired(system%root_count()), source=0_c_int)
         self%failed_flag = 0
+        self%t_now = t0
     end subroutine start
 
     !> Start again from consistent (t0, y0, yp0) with the settings, tolerances, callbacks and
@@ -146,6 +147,7 @@ contains
 
         self%values(:) = y0
         self%rates(:) = yp0
+        self%t_now = t0
         flag = FIDAReInit(self%memory, t0, self%y, self%yp)
         if (check(flag, "IDAReInit", error)) return
     end subroutine restart
@@ -164,8 +166,11 @@ contains
         root = 0
         flag = FIDASetStopTime(self%memory, t_stop)
         if (check(flag, "IDASetStopTime", error)) return
+        ! where the integrator was, should it fail before it sets t_return
+        t_return(1) = self%t_now
         flag = FIDASolve(self%memory, t_out, t_return, self%y, self%yp, IDA_NORMAL)
         t_reached = t_return(1)
+        self%t_now = t_reached
         y = self%values
         yp = self%rates
         if (flag == IDA_ROOT_RETURN) then

@@ -28,6 +28,8 @@ module rollcon_integrator
     type, abstract :: integrator_type
         !> The flag of the last failed step (0 when none failed)
         integer :: failed_flag = 0
+        !> The time the integrator reached last [s]
+        real(wp) :: t_now = 0.0_wp
         !> After a root return: non-zero for every event function that fired (its direction)
         integer(c_int), allocatable :: fired(:)
     contains

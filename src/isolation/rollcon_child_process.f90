@@ -333,8 +333,9 @@ contains
             end do
         end if
         record%finished = 1
-        flush(output_unit)
-        flush(error_unit)
+        ! the routine may have closed these units: a failed flush is not the task's failure
+        flush(output_unit, iostat=rc)
+        flush(error_unit, iostat=rc)
         call c_exit(0_c_int)
     end subroutine child_main
 

@@ -128,15 +128,18 @@ contains
         !> File name extension, with its dot
         character(len=*), intent(in) :: extension
         character(len=:), allocatable :: path
-        character(len=4096) :: dir
+        character(len=:), allocatable :: dir
         integer :: length, stat
 
-        call get_environment_variable("TMPDIR", dir, length, stat)
+        ! read whole, however long (a cut value would name another folder)
+        call get_environment_variable("TMPDIR", length=length, status=stat)
         if (stat /= 0 .or. length == 0) then
             dir = "/tmp"
-            length = 4
+        else
+            allocate(character(len=length) :: dir)
+            call get_environment_variable("TMPDIR", dir)
         end if
-        path = dir(:length) // "/rollcon-" // what // "-" // to_text(process_id()) // "-" &
+        path = dir // "/rollcon-" // what // "-" // to_text(process_id()) // "-" &
             & // to_text(k) // extension
     end function scratch_path
 

@@ -4,6 +4,8 @@
 module rollcon_user_files
     use rollcon_error, only : error_type, fatal_error, stat_io
     use rollcon_text, only : to_text
+    use rollcon_input_files, only : read_input_file, text_input_limit
+    use rollcon_c_stream, only : c_stream_type
     implicit none
     private
 
@@ -20,7 +22,8 @@ contains
         inquire(file=path, exist=exists)
     end function file_exists
 
-    !> The whole file as a string of bytes.
+    !> The whole file as bytes: a regular file of at most text_input_limit bytes
+    !> (rollcon_input_files), so a UCOSUB named by a link to /dev/zero or a FIFO is refused.
     subroutine read_bytes(path, content, error)
         !> File to read
         character(len=*), intent(in) :: path
@@ -28,30 +31,12 @@ contains
         character(len=:), allocatable, intent(out) :: content
         !> Set when the file cannot be opened or read
         type(error_type), allocatable, intent(out) :: error
-        integer :: unit, stat, length
 
-        open(newunit=unit, file=path, access="stream", form="unformatted", action="read", &
-            & status="old", iostat=stat)
-        if (stat /= 0) then
-            call fatal_error(error, path // ": cannot open it for reading", stat_io)
-            return
-        end if
-        inquire(unit=unit, size=length)
-        if (length < 0) then
-            close(unit)
-            call fatal_error(error, path // ": cannot tell its size (is it a regular file?)", &
-                & stat_io)
-            return
-        end if
-        allocate(character(len=length) :: content)
-        if (length > 0) read(unit, iostat=stat) content
-        close(unit)
-        if (stat /= 0) then
-            call fatal_error(error, path // ": reading failed (is it a regular file?)", stat_io)
-        end if
+        call read_input_file(path, "UCOSUB source or object", text_input_limit, content, error)
     end subroutine read_bytes
 
-    !> Write a string of bytes as the whole file (replacing it).
+    !> Write a string of bytes as the whole file (replacing it), through the C library so
+    !> that a full disk is an error naming the file and the system's reason.
     subroutine write_bytes(path, content, error)
         !> File to write
         character(len=*), intent(in) :: path
@@ -59,18 +44,18 @@ contains
         character(len=*), intent(in) :: content
         !> Set when the file cannot be written
         type(error_type), allocatable, intent(out) :: error
-        integer :: unit, stat
+        type(c_stream_type) :: file
+        type(error_type), allocatable :: close_error
 
-        open(newunit=unit, file=path, access="stream", form="unformatted", action="write", &
-            & status="replace", iostat=stat)
-        if (stat == 0) then
-            write(unit, iostat=stat) content
-            close(unit)
-        end if
-        if (stat /= 0) call fatal_error(error, path // ": cannot write it", stat_io)
+        call file%open_file(path, error)
+        if (allocated(error)) return
+        call file%put(content, error)
+        call file%close_file(close_error)
+        if (.not. allocated(error) .and. allocated(close_error)) &
+            & call move_alloc(close_error, error)
     end subroutine write_bytes
 
-    !> Write lines (trailing blanks removed) as a text file.
+    !> Write lines (trailing blanks removed) as a text file, checked as write_bytes.
     subroutine write_lines(path, lines, error)
         !> File to write
         character(len=*), intent(in) :: path
@@ -78,15 +63,14 @@ contains
         character(len=*), intent(in) :: lines(:)
         !> Set when the file cannot be written
         type(error_type), allocatable, intent(out) :: error
-        integer :: unit, stat, i
+        character(len=:), allocatable :: text
+        integer :: i
 
-        open(newunit=unit, file=path, action="write", status="replace", iostat=stat)
+        text = ""
         do i = 1, size(lines)
-            if (stat /= 0) exit
-            write(unit, '(a)', iostat=stat) trim(lines(i))
+            text = text // trim(lines(i)) // new_line("a")
         end do
-        if (stat == 0) close(unit)
-        if (stat /= 0) call fatal_error(error, path // ": cannot write it", stat_io)
+        call write_bytes(path, text, error)
     end subroutine write_lines
 
     !> The first max_lines lines of a text file, newline-separated, with a note of how many

@@ -34,6 +34,8 @@ module rollcon_user_library
         character(len=:), allocatable :: library
         !> True when the library came from the cache, false when built by this call
         logical :: from_cache = .false.
+        !> Why a cached library was rebuilt (it was cut or changed on disk); "" otherwise
+        character(len=:), allocatable :: note
         !> The routine, ready to pass wherever a procedure(ucosub_interface) is expected
         procedure(ucosub_interface), pointer, nopass :: ucosub => null()
         !> dlopen handle
@@ -61,7 +63,8 @@ contains
 
         if (present(options)) build_options = options
         self%source = path
-        call build_user_library(path, build_options, self%library, self%from_cache, error)
+        call build_user_library(path, build_options, self%library, self%from_cache, error, &
+            & self%note)
         if (allocated(error)) return
         call load_user_ucosub(self, error)
     end subroutine new_user_ucosub

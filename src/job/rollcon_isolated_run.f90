@@ -99,12 +99,15 @@ contains
         type(job_receiver_type) :: receiver
         type(isolation_outcome_type) :: outcome
         logical :: from_cache
+        character(len=:), allocatable :: note
 
         started = .false.
         allocate(shapes(0))
         call build_user_library(job%user_file, job%build_options, task%library, from_cache, &
-            & error)
+            & error, note)
         if (allocated(error)) return
+        if (.not. job%quiet .and. len(note) > 0) write(output_unit, '(a)') "UCOSUB: " // note &
+            & // ": rebuilt"
         if (.not. job%quiet) write(output_unit, '(a)') "UCOSUB: " // job%user_file // " (" &
             & // task%library // trim(merge(", from the cache", ", compiled now  ", &
             & from_cache)) // ")"

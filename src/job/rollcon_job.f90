@@ -27,6 +27,10 @@ module rollcon_job
         !> ... or a user's file (.f, .f90, .o), compiled, cached and run in a child process
         !> ("" for none): the child computes, this process writes every output
         character(len=:), allocatable :: user_file
+        !> The name of the built-in routine, for the run's record
+        character(len=:), allocatable :: routine_name
+        !> The command that asked for the run, for its record ("" when a program built the job)
+        character(len=:), allocatable :: command_line
         !> How a user's file is compiled and where the cache is
         type(user_build_options_type) :: build_options
         !> Longest one call of a user's routine may take [s]
@@ -50,6 +54,8 @@ contains
 
         allocate(job%source, source=source)
         job%user_file = ""
+        job%routine_name = "disk"
+        job%command_line = ""
         job%output_dir = ""
         job%quiet = .true.
     end function new_job

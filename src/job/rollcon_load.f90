@@ -51,6 +51,8 @@ contains
         end if
         if (allocated(error)) return
         job%user_file = ""
+        job%routine_name = "disk"
+        job%command_line = ""
         job%output_dir = "output"
         if (present(ucosub)) call choose_ucosub(ucosub, job, error)
     end subroutine load_job
@@ -137,6 +139,7 @@ contains
             return
         end if
         job%routine => builtin
+        job%routine_name = name
     end subroutine choose_ucosub
 
 end module rollcon_load

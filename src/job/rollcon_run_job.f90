@@ -12,10 +12,11 @@
 module rollcon_run_job
     use, intrinsic :: iso_fortran_env, only : output_unit
     use rollcon_kinds, only : wp
-    use rollcon_error, only : error_type, fatal_error, stat_io, stat_input
-    use rollcon_text, only : to_text, shell_quote
+    use rollcon_error, only : error_type, stat_io, stat_input
+    use rollcon_text, only : to_text
     use rollcon_ucosub_contract, only : ucosub_interface
-    use rollcon_output_files, only : partial_name, write_text_file, rename_file, delete_file
+    use rollcon_output_files, only : partial_name, write_text_file, rename_file, delete_file, &
+        & make_folders
     use rollcon_problem, only : problem_type
     use rollcon_part_shapes, only : part_shape_type, write_part_shapes
     use rollcon_simulation, only : run_options_type, run_summary_type, history_type, simulate, &
@@ -23,6 +24,7 @@ module rollcon_run_job
     use rollcon_summary_text, only : run_summary_text
     use rollcon_job, only : job_type
     use rollcon_isolated_run, only : run_isolated
+    use rollcon_provenance, only : provenance_lines
     implicit none
     private
 
@@ -126,14 +128,10 @@ contains
         type(job_type), intent(in) :: job
         type(job_files_type), intent(out) :: files
         type(error_type), allocatable, intent(out) :: error
-        integer :: stat
 
-        call execute_command_line("mkdir -p " // shell_quote(job%output_dir), exitstat=stat)
-        if (stat /= 0) then
-            call fatal_error(error, job%output_dir // ": cannot create the output folder", &
-                & stat_io)
-            return
-        end if
+        ! through mkdir(2): no shell, no PATH (rollcon_output_files)
+        call make_folders(job%output_dir, error)
+        if (allocated(error)) return
         associate (dir => job%output_dir, name => job%source%name)
             files%csv = dir // "/" // name // ".csv"
             files%summary = dir // "/" // name // ".summary.txt"
@@ -167,17 +165,18 @@ contains
         end if
         if (.not. allocated(run_error)) then
             result%csv_path = files%csv
-            result%summary_text = run_summary_text(job%source%setting_line(), files%csv, &
-                & result%summary)
-            call place_outputs(files, shapes, result%summary_text, run_error)
+            result%summary_text = provenance_lines(job) // warning_line(job) &
+                & // run_summary_text(job%source%setting_line(), files%csv, result%summary)
+            call place_outputs(files, shapes, result%summary_text, provenance_lines(job), &
+                & run_error)
             if (.not. allocated(run_error)) return
         end if
         ! The run failed, or its files could not be put in place: no "completed" anywhere.
         result%summary%status = status_failed
         result%summary%message = run_error%message
         result%csv_path = files%partial_csv
-        result%summary_text = run_summary_text(job%source%setting_line(), files%partial_csv, &
-            & result%summary)
+        result%summary_text = provenance_lines(job) // warning_line(job) &
+            & // run_summary_text(job%source%setting_line(), files%partial_csv, result%summary)
         call write_text_file(files%partial_summary, result%summary_text, cleanup_error)
         call move_alloc(run_error, error)
         if (error%stat == stat_io) then
@@ -192,18 +191,30 @@ contains
             & // cleanup_error%message
     end subroutine finish_files
 
+    !> "warning: " and the input's warning (what it holds that the run does not use), ending in
+    !> a newline; "" when it has none.
+    function warning_line(job) result(text)
+        type(job_type), intent(in) :: job
+        character(len=:), allocatable :: text
+
+        text = job%source%input_warning()
+        if (len(text) > 0) text = "warning: " // text // new_line("a")
+    end function warning_line
+
     !> Write the summary and the part shapes beside the partial CSV, remove an earlier run's
     !> summary, then rename the CSV and the summary to their final names.
-    subroutine place_outputs(files, shapes, summary_text, error)
+    subroutine place_outputs(files, shapes, summary_text, record, error)
         type(job_files_type), intent(in) :: files
         type(part_shape_type), intent(in) :: shapes(:)
         character(len=*), intent(in) :: summary_text
+        !> The run's provenance lines, for the .parts file's comments
+        character(len=*), intent(in) :: record
         type(error_type), allocatable, intent(out) :: error
 
         call write_text_file(files%partial_summary, summary_text, error)
         if (allocated(error)) return
         ! the pictures' geometry of this run's parts (rollcon_part_shapes)
-        call write_part_shapes(files%parts, shapes, error)
+        call write_part_shapes(files%parts, shapes, error, record)
         if (allocated(error)) return
         ! An older run's summary must never sit beside this run's CSV.
         call delete_file(files%summary, error)

@@ -84,6 +84,7 @@ contains
             call pack_measure(wire, summary%measures(k))
         end do
         call wire%put_text(text_of(summary%watch_lines))
+        call wire%put_text(text_of(summary%routines))
         if (allocated(summary%rebasings)) then
             call wire%put_ints(summary%rebasings)
         else
@@ -127,6 +128,7 @@ contains
             call unpack_measure(wire, summary%measures(k))
         end do
         summary%watch_lines = wire%get_text()
+        summary%routines = wire%get_text()
         call wire%get_ints(summary%rebasings)
         call wire%get_ints(counts)
         if (size(counts) == 5) then

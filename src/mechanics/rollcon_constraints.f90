@@ -65,6 +65,7 @@ contains
         !> Set when a UCOSUB reports an error or returns a non-finite value
         type(error_type), allocatable, intent(out) :: error
         real(wp) :: scalar, array(max_ucon_vars), xmatrx(max_ucon_vars, max_ucon_vars)
+        real(wp) :: ucon_time
         integer :: k, i, idrsel(3)
         logical :: first, second
 
@@ -79,14 +80,21 @@ contains
                         self%local_q(i) = q(ucon%coordinate(i))
                     end if
                 end do
+                ! a routine in the model's units gets the state and the time in them
+                ucon_time = time
+                if (ucon%converted) then
+                    self%local_q(:ucon%nvars) = ucon%scales*self%local_q(:ucon%nvars)
+                    ucon_time = ucon%time_scale*time
+                end if
                 idrsel = [scalar_none, array_none, xmatrx_none]
                 if (iand(needs, need_value) /= 0) idrsel(1) = scalar_value
                 if (first) idrsel(2) = array_dq
                 if (second) idrsel(3) = xmatrx_dqdq
                 if (any(idrsel /= 0)) then
-                    call evaluate_ucon(ucon%ucosub, ucon%id, time, self%local_q, ucon%par, idrsel, &
-                        & scalar, array, xmatrx, error, ucon%nvars)
+                    call evaluate_ucon(ucon%ucosub, ucon%id, ucon_time, self%local_q, ucon%par, &
+                        & idrsel, scalar, array, xmatrx, error, ucon%nvars)
                     if (allocated(error)) return
+                    if (ucon%converted) call to_si(ucon, 0, idrsel /= 0, scalar, array, xmatrx)
                     if (idrsel(1) /= 0) self%value(k) = scalar
                     if (first) call scatter_row(ucon, array, self%grad_q(k, :), &
                         & self%grad_u(k, :))
@@ -95,23 +103,50 @@ contains
                 end if
                 ! a time-free UCON's time partials stay at the zeros of allocate_state
                 if (iand(needs, need_time) /= 0 .and. .not. ucon%time_free) then
-                    call evaluate_ucon(ucon%ucosub, ucon%id, time, self%local_q, ucon%par, &
+                    call evaluate_ucon(ucon%ucosub, ucon%id, ucon_time, self%local_q, ucon%par, &
                         & [scalar_dt, array_dtdq, xmatrx_none], scalar, array, xmatrx, error, &
                         & ucon%nvars)
                     if (allocated(error)) return
+                    if (ucon%converted) call to_si(ucon, 1, [.true., .true., .false.], scalar, &
+                        & array, xmatrx)
                     self%dt(k) = scalar
                     call scatter_row(ucon, array, self%dt_grad_q(k, :), self%dt_grad_u(k, :))
                     if (ucon%holonomic) then
-                        call evaluate_ucon(ucon%ucosub, ucon%id, time, self%local_q, ucon%par, &
-                            & [scalar_dtt, array_none, xmatrx_none], scalar, array, xmatrx, &
-                            & error, ucon%nvars)
+                        call evaluate_ucon(ucon%ucosub, ucon%id, ucon_time, self%local_q, &
+                            & ucon%par, [scalar_dtt, array_none, xmatrx_none], scalar, array, &
+                            & xmatrx, error, ucon%nvars)
                         if (allocated(error)) return
+                        if (ucon%converted) scalar = scalar*ucon%value_scale*ucon%time_scale**2
                         self%dtt(k) = scalar
                     end if
                 end if
             end associate
         end do
     end subroutine evaluate_constraints
+
+    !> What a routine in the model's units returned, in SI (chain rule, rollcon_ucosub_units):
+    !> scalar and array are F and dF/dq (time_order 0) or dF/dt and d2F/dt dq (time_order 1),
+    !> xmatrx d2F/dq dq; only those selected are touched.
+    pure subroutine to_si(ucon, time_order, selected, scalar, array, xmatrx)
+        type(ucon_statement_type), intent(in) :: ucon
+        integer, intent(in) :: time_order
+        !> Which of scalar, array, xmatrx the call returned
+        logical, intent(in) :: selected(3)
+        real(wp), intent(inout) :: scalar, array(:), xmatrx(:, :)
+        real(wp) :: factor
+        integer :: j
+
+        factor = ucon%value_scale*ucon%time_scale**time_order
+        associate (n => ucon%nvars)
+            if (selected(1)) scalar = factor*scalar
+            if (selected(2)) array(:n) = factor*ucon%scales*array(:n)
+            if (selected(3)) then
+                do j = 1, n
+                    xmatrx(:n, j) = ucon%value_scale*ucon%scales*ucon%scales(j)*xmatrx(:n, j)
+                end do
+            end if
+        end associate
+    end subroutine to_si
 
     !> Scatter a UCON's first partials (ARRAY) onto the system's coordinates and rates.
     pure subroutine scatter_row(ucon, array, row_q, row_u)

@@ -7,12 +7,15 @@ module rollcon_force
     use rollcon_constants, only : pi
     use rollcon_rotation, only : rotation_matrix, cross, times
     use rollcon_expression, only : switching_times, evaluate_expression, max_inputs
-    use rollcon_marker_force, only : marker_force_type, marker_force_loads
+    use rollcon_marker_force, only : marker_force_type, marker_force_loads, marker_force_values, &
+        & markers_coincide
+    use rollcon_text, only : to_text
+    use, intrinsic :: ieee_arithmetic, only : ieee_is_finite
     implicit none
     private
 
     public :: applied_force_type, force_and_moment, force_breakpoints, pulse_stops
-    public :: forces_idle_after
+    public :: forces_idle_after, nonfinite_load
     public :: profile_constant, profile_half_sine, profile_statement, frame_body, frame_tilt
 
     !> Time profiles: constant magnitude, one half-sine pulse carrying a given impulse, or a
@@ -44,6 +47,8 @@ module rollcon_force
         real(wp) :: point(3) = 0.0_wp
         !> profile_statement: the force statement (the fields above are then not used)
         type(marker_force_type) :: statement
+        !> What the force is, for messages ("data/x.adm:12: VFORCE/7", "the strike")
+        character(len=:), allocatable :: name
     end type applied_force_type
 
 contains
@@ -104,6 +109,45 @@ contains
             moment = moment + cross(arm, f)
         end do
     end subroutine force_and_moment
+
+    !> Why the loads at (t, q, u) are not finite: the first force whose force or moment on a
+    !> part is not finite, named, with the expression slot at fault for a force statement;
+    !> "" when every load is finite. For a failure's message (not on the hot path).
+    function nonfinite_load(forces, nparts, time, q, u) result(message)
+        type(applied_force_type), intent(in) :: forces(:)
+        !> Number of parts of the model
+        integer, intent(in) :: nparts
+        real(wp), intent(in) :: time, q(:), u(:)
+        character(len=:), allocatable :: message
+        character(len=*), parameter :: slots(6) = ["FX", "FY", "FZ", "TX", "TY", "TZ"]
+        real(wp) :: force(3), moment(3), values(6)
+        integer :: i, p, k
+
+        message = ""
+        do i = 1, size(forces)
+            do p = 1, nparts
+                call force_and_moment(forces(i:i), p, time, q, u, force, moment)
+                if (all(ieee_is_finite([force, moment]))) cycle
+                message = "force " // to_text(i)
+                if (allocated(forces(i)%name)) message = forces(i)%name
+                if (forces(i)%profile == profile_statement) then
+                    if (markers_coincide(forces(i)%statement, q)) then
+                        message = message // ": its I and J markers are at one point at t = " &
+                            & // to_text(time) // " s, where a translational SFORCE's line of " &
+                            & // "action (from J to I) is not defined"
+                        return
+                    end if
+                    values = marker_force_values(forces(i)%statement, time, q, u)
+                    k = findloc(ieee_is_finite(values), .false., dim=1)
+                    if (k > 0) message = message // " " // slots(k) // " = " &
+                        & // to_text(values(k))
+                end if
+                message = message // ": the load is not finite at t = " // to_text(time) &
+                    & // " s (an expression that divides by zero or overflows there)"
+                return
+            end do
+        end do
+    end function nonfinite_load
 
     !> Times the integrator must stop at [s]. An implicit step that jumps over a pulse samples
     !> the force only where it is zero, and a step-size limit set between steps takes effect

@@ -23,7 +23,7 @@ module rollcon_marker_force
     implicit none
     private
 
-    public :: marker_force_type, marker_force_loads, marker_force_values
+    public :: marker_force_type, marker_force_loads, marker_force_values, markers_coincide
     public :: kind_translation, kind_rotation, kind_vector, kind_general
 
     !> Kinds: SFORCE translational or rotational, VFORCE, GFORCE
@@ -100,6 +100,21 @@ contains
             end associate
         end do
     end subroutine input_values
+
+    !> A translational SFORCE (not ACTIONONLY) whose I and J markers are at one point: its line
+    !> of action, from J to I, is not defined there.
+    pure logical function markers_coincide(self, q)
+        type(marker_force_type), intent(in) :: self
+        real(wp), intent(in) :: q(:)
+        real(wp) :: r_i(3), r_j(3), v(3), axes(3, 3), w(3), u(size(q))
+
+        markers_coincide = .false.
+        if (self%kind /= kind_translation .or. self%action_only) return
+        u = 0.0_wp
+        call marker_motion(self%i, q, u, r_i, v, axes, w)
+        call marker_motion(self%j, q, u, r_j, v, axes, w)
+        markers_coincide = all(r_i == r_j)
+    end function markers_coincide
 
     !> Add this force's loads on part p to force [N] and moment about p's centre of mass
     !> [N m], ground components.

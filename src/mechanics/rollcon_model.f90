@@ -14,6 +14,7 @@ module rollcon_model
         & code_name
     use rollcon_ucovar_registry, only : ucovar_registry_type
     use rollcon_ucon_call, only : declare_ucon
+    use rollcon_ucosub_units, only : ucosub_units_type, variable_scales, value_scale
     use rollcon_body, only : part_type
     use rollcon_force, only : applied_force_type, profile_statement, frame_tilt
     use rollcon_marker, only : marker_type
@@ -42,6 +43,14 @@ module rollcon_model
         logical :: time_free = .false.
         !> The routine serving this statement: the model's UCOSUB unless given
         procedure(ucosub_interface), pointer, nopass :: ucosub => null()
+        !> The name of its own routine, for the record ("" for the model's UCOSUB)
+        character(len=:), allocatable :: routine
+        !> The routine works in the model's units, not SI (rollcon_ucosub_units): then each
+        !> variable is passed as scales(i) * its SI value, the time as time_scale * t, and F
+        !> comes back as F_SI = value_scale * F
+        logical :: converted = .false.
+        real(wp), allocatable :: scales(:)
+        real(wp) :: time_scale = 1.0_wp, value_scale = 1.0_wp
     end type ucon_statement_type
 
     !> The model
@@ -54,6 +63,8 @@ module rollcon_model
         procedure(ucosub_interface), pointer, nopass :: ucosub => null()
         !> Applied forces
         type(applied_force_type), allocatable :: forces(:)
+        !> The units every UCOSUB of the model computes in (a dataset's UNITS; SI by default)
+        type(ucosub_units_type) :: ucosub_units
         !> Gravitational acceleration, ground components [m/s^2]
         real(wp) :: gravity(3) = [0.0_wp, 0.0_wp, -9.81_wp]
         !> What the UCOSUB declared
@@ -81,7 +92,7 @@ contains
     end subroutine add_part
 
     !> Append a UCON statement.
-    subroutine add_ucon(self, id, par, ucosub, time_free)
+    subroutine add_ucon(self, id, par, ucosub, time_free, routine)
         class(model_type), intent(inout) :: self
         !> Statement id
         integer, intent(in) :: id
@@ -92,11 +103,16 @@ contains
         !> The routine's F has no explicit time (a generated module's `<spec>_time_free`): the
         !> time partials are then taken as zero without calling it. Default false.
         logical, intent(in), optional :: time_free
+        !> The name of the routine given, for the run's record (a built-in's name, "yours")
+        character(len=*), intent(in), optional :: routine
         type(ucon_statement_type) :: ucon
 
         ucon%id = id
         ucon%par = par
+        ucon%routine = ""
+        if (present(routine)) ucon%routine = routine
         if (present(ucosub)) ucon%ucosub => ucosub
+        if (present(ucosub) .and. .not. present(routine)) ucon%routine = "its own"
         if (present(time_free)) ucon%time_free = time_free
         if (.not. allocated(self%ucons)) allocate(self%ucons(0))
         self%ucons = [self%ucons, ucon]
@@ -227,6 +243,13 @@ contains
                     end do
                 end associate
                 ucon%holonomic = .not. any(ucon%velocity)
+                ucon%converted = .not. model%ucosub_units%is_si()
+                if (ucon%converted) then
+                    ucon%scales = variable_scales(model%ucosub_units, &
+                        & model%registry%entries(entry)%codes)
+                    ucon%time_scale = 1.0_wp/model%ucosub_units%time
+                    ucon%value_scale = value_scale(model%ucosub_units, ucon%holonomic)
+                end if
                 if (ucon%holonomic) then
                     model%nh = model%nh + 1
                     model%holonomic_number(k) = model%nh

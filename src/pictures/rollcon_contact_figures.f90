@@ -13,6 +13,7 @@ module rollcon_contact_figures
     use rollcon_figure_text, only : drift, residual_floor, title, output, figure_preamble
     use rollcon_gnuplot, only : gnuplot_string
     use rollcon_output_files, only : close_checked
+    use rollcon_figure_rows, only : write_figure_rows
     implicit none
     private
 
@@ -27,7 +28,7 @@ module rollcon_contact_figures
 
 contains
 
-    !> The data the figures need, one row per output row: t, X, Y, contact x, y, theta, psidot,
+    !> The data the figures need, one row per output row (thinned: rollcon_figure_rows): t, X, Y, contact x, y, theta, psidot,
     !> phidot, |E - E(t0)|/|E(t0)|, |E - E(t_end)|/|E(t_end)|, normal and tangential force,
     !> mu_needed, then |F_k| for each UCON and |height_residual| (at least residual_floor).
     subroutine write_contact_data(path, run, error)
@@ -37,7 +38,8 @@ contains
         type(run_record_type), intent(in) :: run
         type(error_type), allocatable, intent(out) :: error
         real(wp) :: c(3), first_energy, last_energy
-        real(wp), allocatable :: row(:)
+        real(wp), allocatable :: data(:, :)
+        logical, allocatable :: paired(:)
         character(len=256) :: message
         integer :: unit, stat, j, k, n, fx, fy, fz, mu, height
 
@@ -58,11 +60,11 @@ contains
                     & // trim(message), stat_io)
                 return
             end if
+            allocate(data(13 + size(layout%ucon_ids), n))
             do j = 1, n
-                if (stat /= 0) exit
                 associate (r => run%history%rows(:, j))
                     c = path_point(run, 1, j)
-                    row = [r(1), r(layout%part_column(1, coord_x)), &
+                    data(:, j) = [r(1), r(layout%part_column(1, coord_x)), &
                         & r(layout%part_column(1, coord_y)), c(1:2), &
                         & r(layout%part_column(1, coord_theta)), &
                         & r(layout%part_column(1, coord_psidot)), &
@@ -74,8 +76,10 @@ contains
                         & k = 1, size(layout%ucon_ids))], &
                         & max(abs(r(height)), residual_floor)]
                 end associate
-                write(unit, '(*(es24.16e3, :, 1x))', iostat=stat) row
             end do
+            ! thinned to what a figure shows; the paths (columns 2 to 5) by their own rows
+            paired = [(k >= 2 .and. k <= 5, k = 1, size(data, 1))]
+            call write_figure_rows(unit, data, paired, stat)
         end associate
         call close_checked(unit, path, error)
         if (allocated(error)) return

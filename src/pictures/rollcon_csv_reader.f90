@@ -8,6 +8,8 @@ module rollcon_csv_reader
     use rollcon_simulation, only : history_type
     use rollcon_output_layout, only : output_layout_type, read_layout, name_length
     use rollcon_contact_watch, only : contact_names
+    use rollcon_input_files, only : input_file_type, csv_input_limit
+    use rollcon_request_watch, only : request_column_patterns
     use, intrinsic :: ieee_arithmetic, only : ieee_is_finite
     use, intrinsic :: ieee_exceptions, only : ieee_set_flag, ieee_overflow, ieee_underflow
     implicit none
@@ -36,18 +38,26 @@ contains
         type(history_type), intent(out) :: history
         type(error_type), allocatable, intent(out) :: error
         character(len=:), allocatable :: line
-        character(len=256) :: message
         real(wp), allocatable :: row(:)
-        integer :: unit, stat, line_number
+        type(input_file_type) :: file
+        integer :: line_number
+        logical :: exists, done
 
-        open(newunit=unit, file=path, status="old", action="read", iostat=stat, iomsg=message)
-        if (stat /= 0) then
+        inquire(file=path, exist=exists)
+        if (.not. exists) then
             call fatal_error(error, path // ": cannot open (expected an output CSV of " &
-                & // "'rollcon run'): " // trim(message), stat_io)
+                & // "'rollcon run'): no such file", stat_io)
             return
         end if
-        call read_line(unit, line, stat)
-        if (stat /= 0) then
+        ! a regular file of at most csv_input_limit bytes (rollcon_input_files)
+        call file%open(path, "output CSV", csv_input_limit, error)
+        if (allocated(error)) return
+        call read_line(file, line, done, error)
+        if (allocated(error)) then
+            call file%close()
+            return
+        end if
+        if (done) then
             call input_error(error, path, 1, "", "expected a header line, found an empty file")
         else
             call check_header(path, line, layout, error)
@@ -55,8 +65,8 @@ contains
         line_number = 1
         if (.not. allocated(error)) allocate(row(layout%columns()))
         do while (.not. allocated(error))
-            call read_line(unit, line, stat)
-            if (stat /= 0) exit
+            call read_line(file, line, done, error)
+            if (done .or. allocated(error)) exit
             line_number = line_number + 1
             if (len_trim(line) == 0) cycle
             call parse_row(path, line_number, line, row, error)
@@ -71,7 +81,7 @@ contains
             end if
             call history%add(row)
         end do
-        close(unit)
+        call file%close()
         if (allocated(error)) return
         history%layout = layout
         if (history%count == 0) call input_error(error, path, line_number, "", "expected at " &
@@ -107,9 +117,10 @@ contains
             count = count + 1
             names(count) = trim(adjustl(field))
         end do
-        ! the watches' columns rollcon writes: a rim contact's, a part's principal basis
+        ! the watches' columns rollcon writes: a rim contact's, a part's principal basis, a
+        ! dataset's displacement requests
         call read_layout(names, layout, message, [character(len=name_length) :: contact_names, &
-            & "basis_<id>"])
+            & "basis_<id>", request_column_patterns])
         if (.not. allocated(message)) return
         ! The one-part header of the runs before the per-part layout (issue #14): say so.
         if (count > 1) then
@@ -185,28 +196,15 @@ contains
         end if
     end subroutine next_field
 
-    !> Read one line of any length; stat is non-zero at the end of the file.
-    subroutine read_line(unit, line, stat)
-        integer, intent(in) :: unit
+    !> Read one line of any length; done at the end of the file.
+    subroutine read_line(file, line, done, error)
+        type(input_file_type), intent(inout) :: file
         character(len=:), allocatable, intent(out) :: line
-        integer, intent(out) :: stat
-        character(len=1024) :: buffer
-        integer :: length
+        logical, intent(out) :: done
+        type(error_type), allocatable, intent(out) :: error
 
-        line = ""
-        do
-            read(unit, '(a)', advance="no", iostat=stat, size=length) buffer
-            line = line // buffer(:length)
-            if (is_iostat_eor(stat)) then
-                stat = 0
-                exit
-            end if
-            if (stat /= 0) exit
-        end do
-        ! Tolerate a file written with CRLF line ends.
-        if (len(line) > 0) then
-            if (line(len(line):) == achar(13)) line = line(:len(line) - 1)
-        end if
+        ! lines end at LF, CR LF or CR: a file written with CRLF line ends reads as well
+        call file%next_line(line, done, error)
     end subroutine read_line
 
     !> Text for a message, cut to 60 characters.

@@ -16,6 +16,7 @@ module rollcon_figures
         & remove_file
     use rollcon_text, only : to_text
     use rollcon_output_files, only : close_checked
+    use rollcon_figure_rows, only : write_figure_rows
     implicit none
     private
 
@@ -149,9 +150,10 @@ contains
         character(len=*), intent(in) :: path
         type(run_record_type), intent(in) :: run
         type(error_type), allocatable, intent(out) :: error
-        real(wp), allocatable :: row(:)
+        real(wp), allocatable :: row(:), data(:, :)
+        logical, allocatable :: paired(:)
         character(len=256) :: message
-        integer :: unit, stat, j, p, n, nucons
+        integer :: unit, stat, j, p, n, nucons, np, c
 
         n = run%history%count
         nucons = size(run%layout%ucon_ids)
@@ -163,11 +165,12 @@ contains
                 & stat_io)
             return
         end if
+        np = size(run%layout%part_ids)
+        allocate(data(3 + 6*np + 2*nucons, n))
         associate (rows => run%history%rows, energy => run%layout%energy_column())
             do j = 1, n
-                if (stat /= 0) exit
                 row = [rows(1, j)]
-                do p = 1, size(run%layout%part_ids)
+                do p = 1, np
                     row = [row, rows(run%layout%part_column(p, coord_x):run%layout%part_column(p, &
                         & coord_phi), j)]
                 end do
@@ -176,9 +179,12 @@ contains
                 if (nucons > 0) row = [row, max(abs(rows(run%layout%residual_column(1): &
                     & run%layout%residual_column(nucons), j)), residual_floor), &
                     & rows(run%layout%multiplier_column(1):run%layout%multiplier_column(nucons), j)]
-                write(unit, '(*(es24.16e3, :, 1x))', iostat=stat) row
+                data(:, j) = row
             end do
         end associate
+        ! thinned to what a figure shows; each part's X and Y (its path) by their own rows
+        paired = [(c > 1 .and. c <= 1 + 6*np .and. mod(c - 2, 6) < 2, c = 1, size(data, 1))]
+        call write_figure_rows(unit, data, paired, stat)
         call close_checked(unit, path, error)
         if (allocated(error)) return
         if (stat /= 0) call fatal_error(error, path // ": cannot write the plot data: " &

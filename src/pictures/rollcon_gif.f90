@@ -10,6 +10,7 @@ module rollcon_gif
     use rollcon_output_files, only : close_checked
     use rollcon_output_layout, only : coord_z
     use rollcon_run_record, only : run_record_type, read_run, pose, path_point, ground_bounds
+    use rollcon_figure_rows, only : path_stride
     use rollcon_part_shapes, only : shape_disk, shape_extent
     use rollcon_disk_mesh, only : disk_points, face_triangle, is_marked, disk_sides, &
         & disk_point_count
@@ -198,7 +199,7 @@ contains
         character(len=*), intent(in) :: path
         type(run_record_type), intent(in) :: run
         type(error_type), allocatable, intent(out) :: error
-        integer :: unit, stat, p, j
+        integer :: unit, stat, p, j, stride
 
         open(newunit=unit, file=path, status="replace", action="write", access="stream", &
             & form="formatted", iostat=stat)
@@ -206,8 +207,10 @@ contains
             call fatal_error(error, path // ": cannot write the animation data", stat_io)
             return
         end if
+        ! every path_stride-th row (rollcon_figure_rows): the frames draw the path up to theirs
+        stride = path_stride(run%history%count)
         do p = 1, size(run%shapes)
-            do j = 1, run%history%count
+            do j = 1, run%history%count, stride
                 if (stat == 0) write(unit, point_format, iostat=stat) path_point(run, p, j)
             end do
             if (stat == 0) write(unit, '(a, /)', iostat=stat) ""
@@ -251,7 +254,8 @@ contains
             if (buffer(1:1) == ".") buffer = "0" // buffer
             if (buffer(1:2) == "-.") buffer = "-0" // buffer(2:)
             times = times // merge(", ", "  ", k > 1) // trim(buffer)
-            last_rows = last_rows // merge(", ", "  ", k > 1) // to_text(rows(k) - 1)
+            last_rows = last_rows // merge(", ", "  ", k > 1) &
+                & // to_text((rows(k) - 1)/path_stride(run%history%count))
         end do
         parts = to_text(size(run%shapes))
         ! An ellipsoid is shaded (pm3d lighting) so that its shape reads in 3-D; gnuplot's GIF

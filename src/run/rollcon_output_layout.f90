@@ -14,8 +14,9 @@
 !>   UCON in m/s, N for a position UCON in m);
 !> - the columns the run's watches add, in the order of the watches (rollcon_watch): a part's
 !>   principal basis `basis_<id>` when parts may be re-based (rollcon_theta_watch), a rim
-!>   contact's force, friction and height residual (rollcon_contact_watch), ... Each watch names
-!>   its own columns; readers find them by name (`column`).
+!>   contact's force, friction and height residual (rollcon_contact_watch), a dataset's
+!>   displacement requests `req<id>_x` ... `req<id>_phi` (rollcon_request_watch), ... Each watch
+!>   names its own columns; readers find them by name (`column`).
 !> With one part, the part's coordinates are columns 2 to 13 and the energy column 14, whatever
 !> its id.
 module rollcon_output_layout
@@ -185,7 +186,8 @@ contains
     !> The layout a header describes; message is allocated, saying what was expected at which
     !> column, when the names are not a header this module writes. With known, each column after
     !> the multipliers must be one of its names, where a name ending in "<id>" stands for that
-    !> prefix with the id of any of the header's parts ("basis_<id>").
+    !> prefix with the id of any of the header's parts ("basis_<id>"), and "<n>" in a name for
+    !> any whole number ("req<n>_x").
     pure subroutine read_layout(names, layout, message, known)
         !> Column names, as read
         character(len=*), intent(in) :: names(:)
@@ -286,15 +288,27 @@ contains
         end do
     end subroutine check_extra
 
-    !> name is one of known, "<id>" at the end of one standing for any of the part ids.
+    !> name is one of known, "<id>" at the end of one standing for any of the part ids, "<n>"
+    !> anywhere in one for any whole number of 1 to 9 digits (a request's id).
     pure logical function is_known(name, known, part_ids)
         character(len=*), intent(in) :: name, known(:)
         integer, intent(in) :: part_ids(:)
-        integer :: k, p, cut
+        integer :: k, p, cut, tail, digits
 
         is_known = .true.
         do k = 1, size(known)
             if (name == known(k)) return
+            cut = index(known(k), "<n>")
+            if (cut > 0) then
+                tail = len_trim(known(k)) - cut - 2
+                digits = len_trim(name) - (cut - 1) - tail
+                if (digits < 1 .or. digits > 9) cycle
+                if (name(:cut - 1) /= known(k)(:cut - 1)) cycle
+                if (verify(name(cut:cut + digits - 1), "0123456789") /= 0) cycle
+                if (name(cut + digits:len_trim(name)) == known(k)(cut + 3:len_trim(known(k)))) &
+                    & return
+                cycle
+            end if
             cut = index(known(k), "<id>")
             if (cut == 0) cycle
             do p = 1, size(part_ids)

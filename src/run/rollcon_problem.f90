@@ -5,7 +5,10 @@
 !> y = (q, u, lambda, mu) with y' = (u, a, 0, 0) (docs/design.md §4).
 module rollcon_problem
     use rollcon_kinds, only : wp
-    use rollcon_error, only : error_type
+    use, intrinsic :: ieee_arithmetic, only : ieee_is_finite
+    use rollcon_error, only : error_type, fatal_error, stat_ucon
+    use rollcon_text, only : to_text
+    use rollcon_force, only : nonfinite_load
     use rollcon_model, only : model_type
     use rollcon_equations, only : equations_type
     use rollcon_constraints, only : need_value
@@ -56,6 +59,7 @@ module rollcon_problem
         procedure :: roots
         procedure :: root_values
         procedure :: root_owner
+        procedure :: nonfinite_state
         procedure :: keep_failure
         procedure :: failure_text
         procedure :: ucons_do_no_work
@@ -187,12 +191,34 @@ contains
 
         associate (n => self%eq%n)
             call self%accelerations(time, y(:n), y(n + 1:), error)
+            if (.not. allocated(error) .and. .not. all(ieee_is_finite(self%a))) &
+                & call nonfinite_state(self, time, y(:n), y(n + 1:2*n), error)
             ierr = self%keep_failure(error)
             if (ierr /= 0) return
             ydot(:n) = y(n + 1:)
             ydot(n + 1:) = self%a
         end associate
     end function ode_rhs
+
+    !> Why the equations are not finite at (t, q, u), in words: a force statement's load (named,
+    !> with its expression), a UCON's value, or else the accelerations themselves.
+    subroutine nonfinite_state(self, time, q, u, error)
+        class(problem_type), intent(inout) :: self
+        real(wp), intent(in) :: time, q(:), u(:)
+        type(error_type), allocatable, intent(out) :: error
+        character(len=:), allocatable :: message
+        integer :: k
+
+        message = nonfinite_load(self%model%forces, size(self%model%parts), time, q, u)
+        if (len(message) == 0 .and. self%eq%nc > 0) then
+            k = findloc(ieee_is_finite(self%eq%constraints%value), .false., dim=1)
+            if (k > 0) message = "UCON/" // to_text(self%model%ucons(k)%id) // ": F is not " &
+                & // "finite at t = " // to_text(time) // " s"
+        end if
+        if (len(message) == 0) message = "the accelerations are not finite at t = " &
+            & // to_text(time) // " s (a singular mass matrix or constraint matrix?)"
+        call fatal_error(error, message, stat_ucon)
+    end subroutine nonfinite_state
 
     !> The ODE form's Newton matrix from the UCOSUBs' partials.
     integer function ode_jacobian(self, time, y, matrix) result(ierr)
@@ -235,6 +261,9 @@ contains
         type(error_type), allocatable :: error
 
         call residual_of_dae(self%eq, time, y, yp, residual, error)
+        if (.not. allocated(error) .and. .not. all(ieee_is_finite(residual))) &
+            & call nonfinite_state(self, time, y(:self%eq%n), y(self%eq%n + 1:2*self%eq%n), &
+            & error)
         ierr = self%keep_failure(error)
     end function dae_residual
 

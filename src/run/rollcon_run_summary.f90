@@ -57,6 +57,9 @@ module rollcon_run_summary
         type(watch_measure_type), allocatable :: measures(:)
         !> The watches' own lines for the summary text
         character(len=:), allocatable :: watch_lines
+        !> Which routine served each UCON, in words ("UCON 1: the model's UCOSUB, UCON 4:
+        !> disk_height")
+        character(len=:), allocatable :: routines
         !> For each part (model order), its re-basings (docs/rebasing.md): the final q and u
         !> are in the principal axes turned that many times
         integer, allocatable :: rebasings(:)

@@ -4,6 +4,7 @@
 !> The driver knows parts, UCONs, forces and watches; what a model watches is the watches'.
 module rollcon_simulation
     use, intrinsic :: iso_fortran_env, only : int64
+    use, intrinsic :: ieee_arithmetic, only : ieee_is_finite
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type, fatal_error, stat_ucon
     use rollcon_text, only : to_text
@@ -145,8 +146,20 @@ contains
         summary%layout = self%layout
         allocate(summary%ucon_residual_max(problem%eq%nc), source=0.0_wp)
         allocate(summary%ucon_position(problem%eq%nc))
+        summary%routines = ""
         do k = 1, problem%eq%nc
             summary%ucon_position(k) = problem%model%ucons(k)%holonomic
+            associate (ucon => problem%model%ucons(k))
+                if (k > 1) summary%routines = summary%routines // ", "
+                summary%routines = summary%routines // "UCON " // to_text(ucon%id) // ": "
+                if (allocated(ucon%routine)) then
+                    if (len(ucon%routine) > 0) then
+                        summary%routines = summary%routines // ucon%routine
+                        cycle
+                    end if
+                end if
+                summary%routines = summary%routines // "the model's UCOSUB"
+            end associate
         end do
         if (present(history)) history%layout = self%layout
         allocate(self%bases(size(problem%model%parts)), source=0)
@@ -230,6 +243,14 @@ contains
             call problem%accelerations(time, q, u, error)
             if (allocated(error)) return
             row = output_row(problem, self%layout, time, q, u)
+            ! a value that is not finite is never written as a result
+            if (.not. all(ieee_is_finite(row))) then
+                call problem%nonfinite_state(time, q, u, error)
+                error%message = "the row at t = " // to_text(time) // " s is not finite (" &
+                    & // trim(self%layout%column_name(findloc(ieee_is_finite(row), .false., &
+                    & dim=1))) // " first): " // error%message
+                return
+            end if
             energy = row(self%layout%energy_column())
             ! Energy is conserved once the last force pulse is over: measure drift from the
             ! first row at or after that time.

@@ -51,6 +51,9 @@ contains
             & // "constraint, does work"
         text = text // nl
         text = text // residual_lines(summary)
+        if (allocated(summary%routines)) then
+            if (len(summary%routines) > 0) text = text // "routines: " // summary%routines // nl
+        end if
         if (allocated(summary%watch_lines)) text = text // summary%watch_lines
         text = text // measure_lines(summary)
         text = text // "steps " // to_text(summary%steps) // ", function evaluations " &

@@ -26,10 +26,15 @@ module rollcon_model_source
         character(len=:), allocatable :: kind
         !> How to integrate, and over which times: the input's own, until a caller changes them
         type(run_settings_type) :: settings
+        !> What the input holds that the run does not use, in one line (a dataset's statements
+        !> of ADAMS's outputs and solver choices); unallocated or "" for nothing. `rollcon run`
+        !> prints it on standard error, and the summary carries it
+        character(len=:), allocatable :: warning
     contains
         procedure(build_interface), deferred :: build
         procedure :: shapes
         procedure :: setting_line
+        procedure :: input_warning
     end type model_source_type
 
     abstract interface
@@ -70,5 +75,14 @@ contains
         if (len(self%path) > 0) line = line // " (" // self%path // ")"
         line = line // ": " // self%settings%text()
     end function setting_line
+
+    !> The input's warning (component warning): "" for none.
+    function input_warning(self) result(text)
+        class(model_source_type), intent(in) :: self
+        character(len=:), allocatable :: text
+
+        text = ""
+        if (allocated(self%warning)) text = self%warning
+    end function input_warning
 
 end module rollcon_model_source

@@ -13,6 +13,7 @@ module rollcon_part_shapes
     use rollcon_text, only : to_text
     use rollcon_model, only : model_type
     use rollcon_output_files, only : close_checked
+    use rollcon_input_files, only : input_file_type, text_input_limit
     use, intrinsic :: ieee_arithmetic, only : ieee_is_finite
     use, intrinsic :: ieee_exceptions, only : ieee_set_flag, ieee_overflow, ieee_underflow
     implicit none
@@ -162,12 +163,15 @@ contains
     end subroutine write_model_shapes
 
     !> Write a .parts file (format in this module's header).
-    subroutine write_part_shapes(path, shapes, error)
+    subroutine write_part_shapes(path, shapes, error, record)
         character(len=*), intent(in) :: path
         type(part_shape_type), intent(in) :: shapes(:)
         type(error_type), allocatable, intent(out) :: error
+        !> Lines (each ending in a newline) written as comments after the header: the run's
+        !> provenance
+        character(len=*), intent(in), optional :: record
         character(len=256) :: message
-        integer :: unit, stat, p
+        integer :: unit, stat, p, first, last
 
         message = "a write failed"
         open(newunit=unit, file=path, status="replace", action="write", access="stream", &
@@ -181,6 +185,15 @@ contains
             & // "part, in model order; lengths in metres.", "#   part <id> disk <radius> " &
             & // "<thickness>", "#   part <id> ellipsoid <a> <b> <c>   (semi-axes along the " &
             & // "body x, y, z axes: the uniform solid ellipsoid of the part's inertia)"
+        if (present(record)) then
+            first = 1
+            do while (first <= len(record) .and. stat == 0)
+                last = index(record(first:), new_line("a"))
+                if (last == 0) last = len(record) - first + 2
+                write(unit, '(a)', iostat=stat) "# " // record(first:first + last - 2)
+                first = first + last
+            end do
+        end if
         do p = 1, size(shapes)
             if (stat /= 0) exit
             if (shapes(p)%kind == shape_disk) then
@@ -203,26 +216,25 @@ contains
         character(len=*), intent(in) :: path
         type(part_shape_type), allocatable, intent(out) :: shapes(:)
         type(error_type), allocatable, intent(out) :: error
-        character(len=4096) :: line
-        character(len=256) :: message
+        character(len=:), allocatable :: line
         integer, allocatable :: lines(:)
         type(part_shape_type) :: shape
-        integer :: unit, stat, number, p
+        type(input_file_type) :: file
+        integer :: number, p
+        logical :: done
 
         allocate(shapes(0), lines(0))
-        open(newunit=unit, file=path, status="old", action="read", iostat=stat, iomsg=message)
-        if (stat /= 0) then
-            call fatal_error(error, path // ": cannot open the part shapes: " // trim(message), &
-                & stat_io)
-            return
-        end if
+        ! a regular file of at most text_input_limit bytes (rollcon_input_files)
+        call file%open(path, "part shapes file", text_input_limit, error)
+        if (allocated(error)) return
         number = 0
         do
-            read(unit, '(a)', iostat=stat) line
-            if (stat /= 0) exit
+            call file%next_line(line, done, error)
+            if (done .or. allocated(error)) exit
             number = number + 1
             line = adjustl(line)
-            if (len_trim(line) == 0 .or. line(1:1) == "#") cycle
+            if (len_trim(line) == 0) cycle
+            if (line(1:1) == "#") cycle
             call parse_shape(path, number, trim(line), shape, error)
             if (allocated(error)) exit
             do p = 1, size(shapes)
@@ -235,7 +247,7 @@ contains
             shapes = [shapes, shape]
             lines = [lines, number]
         end do
-        close(unit)
+        call file%close()
         if (.not. allocated(error) .and. size(shapes) == 0) call input_error(error, path, 0, "", &
             & "describes no part: " // line_forms)
     end subroutine read_part_shapes

@@ -10,6 +10,8 @@ module rollcon_study_csv
     use rollcon_text, only : to_text
     use rollcon_study_type, only : study_type
     use rollcon_study_measures, only : case_result_type, measure_names, outcome_words
+    use rollcon_input_files, only : read_input_file, csv_input_limit
+    use rollcon_c_stream, only : c_stream_type
     implicit none
     private
 
@@ -74,12 +76,14 @@ contains
     !> not exist). The header must be this study's. A last line without its line end (a run
     !> killed while writing it) is cut off the file; any other row that does not have the
     !> header's number of fields is an error naming its line.
-    subroutine read_done_cases(path, study, cases, keys, error)
+    subroutine read_done_cases(path, study, cases, keys, error, lines)
         character(len=*), intent(in) :: path
         type(study_type), intent(in) :: study
         integer, allocatable, intent(out) :: cases(:)
         character(len=:), allocatable, intent(out) :: keys(:)
         type(error_type), allocatable, intent(out) :: error
+        !> Whole lines the file holds, its header included (0: no file, or an empty one)
+        integer, intent(out), optional :: lines
         character(len=:), allocatable :: text, header
         character(len=:), allocatable :: fields(:)
         integer :: start, stop, rows, row, np, complete, stat, width, k
@@ -87,6 +91,7 @@ contains
         np = size(study%parameters)
         allocate(cases(0))
         allocate(character(len=0) :: keys(0))
+        if (present(lines)) lines = 0
         call read_csv_text(path, text, error)
         if (allocated(error) .or. .not. allocated(text)) return
         header = study_header(study)
@@ -98,6 +103,14 @@ contains
         end if
         if (len(text) == 0) return
         stop = index(text, lf)
+        if (stop > 1) then
+            if (text(stop - 1:stop - 1) == achar(13)) then
+                call fatal_error(error, path // ":1: its lines end in CR LF (a file saved on " &
+                    & // "Windows?); rollcon writes and reads a study's CSV with LF line ends: " &
+                    & // "convert it (dos2unix) or remove it to start again", stat_input)
+                return
+            end if
+        end if
         if (text(:stop - 1) /= header) then
             call fatal_error(error, path // ":1: the header is not this study's (" // study%path &
                 & // "); expected '" // header // "', found '" // text(:stop - 1) // "'. Give " &
@@ -105,6 +118,7 @@ contains
             return
         end if
         rows = count_of(text, lf) - 1
+        if (present(lines)) lines = rows + 1
         deallocate(cases, keys)
         allocate(cases(rows))
         width = longest_line(text)
@@ -131,40 +145,35 @@ contains
         end do
     end subroutine read_done_cases
 
-    !> The whole file as bytes; text unallocated when the file does not exist.
+    !> The whole file as bytes; text unallocated when the file does not exist. A regular file
+    !> of at most csv_input_limit bytes (rollcon_input_files).
     subroutine read_csv_text(path, text, error)
         character(len=*), intent(in) :: path
         character(len=:), allocatable, intent(out) :: text
         type(error_type), allocatable, intent(out) :: error
         logical :: exists
-        integer :: unit, stat, bytes
-        character(len=256) :: message
 
-        inquire(file=path, exist=exists, size=bytes)
+        inquire(file=path, exist=exists)
         if (.not. exists) return
-        allocate(character(len=max(bytes, 0)) :: text)
-        if (bytes <= 0) return
-        open(newunit=unit, file=path, access="stream", form="unformatted", action="read", &
-            & status="old", iostat=stat, iomsg=message)
-        if (stat == 0) read(unit, iostat=stat, iomsg=message) text
-        if (stat /= 0) call fatal_error(error, path // ": cannot read: " // trim(message), &
-            & stat_io)
-        close(unit)
+        call read_input_file(path, "study CSV", csv_input_limit, text, error)
+        if (allocated(error)) deallocate(text)
     end subroutine read_csv_text
 
-    !> Write text as the whole file (the rows kept, without a last line cut short).
+    !> Write text as the whole file (the rows kept, without a last line cut short), through
+    !> the C library with every write checked (rollcon_c_stream).
     subroutine cut_file(path, text, error)
         character(len=*), intent(in) :: path, text
         type(error_type), allocatable, intent(out) :: error
-        integer :: unit, stat
-        character(len=256) :: message
+        type(c_stream_type) :: file
+        type(error_type), allocatable :: close_error
 
-        open(newunit=unit, file=path, access="stream", form="unformatted", action="write", &
-            & status="replace", iostat=stat, iomsg=message)
-        if (stat == 0) write(unit, iostat=stat, iomsg=message) text
-        if (stat /= 0) call fatal_error(error, path // ": cannot rewrite: " // trim(message), &
-            & stat_io)
-        close(unit)
+        call file%open_file(path, error)
+        if (.not. allocated(error)) call file%put(text, error)
+        call file%close_file(close_error)
+        if (.not. allocated(error) .and. allocated(close_error)) &
+            & call move_alloc(close_error, error)
+        if (allocated(error)) error%message = path // ": cannot rewrite it without its last " &
+            & // "line, cut short: " // error%message
     end subroutine cut_file
 
     !> Fields of a CSV line: commas separate them except inside double quotes.

@@ -2,6 +2,7 @@
 !> The parameters of a study: a `group%key = 'from to count'` (grid) or `'from to'` (random)
 !> line read and checked against the scene's key table, and the values of each case.
 module rollcon_study_parameters
+    use, intrinsic :: iso_fortran_env, only : int64
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type, input_error
     use rollcon_text, only : to_text, unquoted, comma_list
@@ -16,11 +17,22 @@ module rollcon_study_parameters
     implicit none
     private
 
-    public :: read_parameter, case_count, case_values, value_text
+    public :: read_parameter, case_count, case_values, value_text, check_case_count
+    public :: max_study_cases
 
     !> Significant digits a grid or sample value is rounded to: its text in the CSV is then
     !> short ("0.6", not "0.59999999999999998"), and the case runs exactly that value
     integer, parameter :: value_digits = 12
+    !> Most cases one study may have. A study's plan holds every case's values and texts in
+    !> memory (plan_bytes_per_case), and a resume reads its whole CSV (about 260 bytes a
+    !> case, at most csv_input_limit, 1 GiB): 2e6 cases take some 150 MB of plan and 0.5 GB of
+    !> CSV, twice the largest study docs/studies.md works out (1e6 cases). Larger studies are
+    !> split into several files, a &grid range each.
+    integer, parameter :: max_study_cases = 2000000
+    !> Bytes a case's value and text take per parameter in a plan (8 for the value, twice about
+    !> 24 for its text in the plan and in the keys a resume compares), and per case (flags,
+    !> indices)
+    integer(int64), parameter :: plan_bytes_per_parameter = 56, plan_bytes_fixed = 16
 
 contains
 
@@ -152,7 +164,58 @@ contains
         end if
     end subroutine read_grid_count
 
-    !> Number of cases of a study.
+    !> The study must have at most max_study_cases cases (counted in real numbers, so that a
+    !> grid of 1e5 x 1e5 cannot wrap round): else an error naming the file, the group's line,
+    !> the count and the memory its plan alone would take.
+    subroutine check_case_count(file, line, study, error)
+        !> Study file and the line of its &grid or &random
+        character(len=*), intent(in) :: file
+        integer, intent(in) :: line
+        type(study_type), intent(in) :: study
+        type(error_type), allocatable, intent(out) :: error
+        real(wp) :: cases, bytes
+        character(len=:), allocatable :: how, count_text
+        integer :: k
+
+        if (study%sampling == sampling_random) then
+            cases = real(study%samples, wp)
+            how = "&random samples = " // to_text(study%samples)
+        else
+            cases = 1.0_wp
+            how = "&grid: "
+            do k = 1, size(study%parameters)
+                cases = cases*real(study%parameters(k)%count, wp)
+                if (k > 1) how = how // " x "
+                how = how // to_text(study%parameters(k)%count)
+            end do
+        end if
+        if (cases <= real(max_study_cases, wp)) return
+        ! exact while below 2**53
+        count_text = to_text(cases)
+        if (cases < 2.0_wp**53) count_text = to_text(nint(cases, int64))
+        bytes = cases*real(plan_bytes_per_parameter*size(study%parameters) &
+            & + plan_bytes_fixed, wp)
+        call input_error(error, file, line, "", "the study has " // count_text // " cases (" &
+            & // how // "); a study may have at most " // to_text(max_study_cases) &
+            & // " (docs/studies.md): its plan alone would take about " // memory_text(bytes) &
+            & // " of memory. Split it into several studies (a &grid range each), run as " &
+            & // "separate jobs into separate CSVs")
+    end subroutine check_case_count
+
+    !> Bytes as "3.2 GB", "150 MB".
+    pure function memory_text(bytes) result(text)
+        real(wp), intent(in) :: bytes
+
+        character(len=:), allocatable :: text
+
+        if (bytes >= 1.0e9_wp) then
+            text = to_text(anint(bytes/1.0e8_wp)/10.0_wp) // " GB"
+        else
+            text = to_text(anint(bytes/1.0e5_wp)/10.0_wp) // " MB"
+        end if
+    end function memory_text
+
+    !> Number of cases of a study (at most max_study_cases: check_case_count).
     pure integer function case_count(study)
         type(study_type), intent(in) :: study
 

@@ -12,7 +12,7 @@ module rollcon_study_reader
     use rollcon_load, only : is_dataset
     use rollcon_study_type, only : study_type, study_parameter_type, sampling_grid, &
         & sampling_random
-    use rollcon_study_parameters, only : read_parameter
+    use rollcon_study_parameters, only : read_parameter, check_case_count
     use rollcon_study_rules, only : read_rules, read_map
     use rollcon_study_dataset, only : check_dataset_parameters
     implicit none
@@ -61,7 +61,7 @@ contains
                 call input_error(error, file, 0, "", "no such study file")
                 return
             end if
-            call read_lines(path, lines, error)
+            call read_lines(path, lines, error, "study file")
             if (allocated(error)) return
             call check_bytes(path, lines, error)
             if (allocated(error)) return
@@ -104,7 +104,8 @@ contains
                     study%dataset = is_dataset(unquoted(a%value))
                     study%scene_path = unquoted(a%value)
                     if (.not. study%dataset) study%scene_path = scene_path(study%scene_path)
-                    call read_lines(study%scene_path, study%scene_lines, error)
+                    call read_lines(study%scene_path, study%scene_lines, error, &
+                        & trim(merge("dataset   ", "scene file", study%dataset)))
                     if (allocated(error)) then
                         message = error%message
                         call input_error(error, file, a%line, "scene", "names a base scene " &
@@ -133,7 +134,6 @@ contains
         type(study_type), intent(inout) :: study
         type(error_type), allocatable, intent(out) :: error
         type(study_parameter_type) :: parameter
-        real(wp) :: cases
         integer :: g, gr, k
 
         g = group_index(groups, "grid")
@@ -154,7 +154,6 @@ contains
         end if
         allocate(study%parameters(0))
         study%seed = 1
-        cases = 1.0_wp
         do k = 1, size(groups(g)%assignments)
             associate (a => groups(g)%assignments(k))
                 if (study%sampling == sampling_random .and. (a%key == "samples" &
@@ -164,12 +163,8 @@ contains
                     call read_parameter(file, groups(g)%name, a, study%sampling, study%dataset, &
                         & parameter, error)
                     if (allocated(error)) return
+                    ! the count of cases, checked once all are read (check_case_count)
                     study%parameters = [study%parameters, parameter]
-                    ! a grid's cases are numbered by a default integer (rollcon_study_parameters)
-                    cases = cases*real(max(parameter%count, 1), wp)
-                    if (cases > real(huge(1), wp)) call input_error(error, file, a%line, a%key, &
-                        & "makes the grid " // to_text(cases) // " cases; a study has at most " &
-                        & // to_text(huge(1)))
                 end if
             end associate
             if (allocated(error)) return
@@ -181,6 +176,9 @@ contains
         else if (study%sampling == sampling_random .and. study%samples == 0) then
             call input_error(error, file, groups(g)%line, "samples", "is missing in &random: " &
                 & // "the number of cases to draw (at least 1)")
+        else
+            ! before any case is made: a plan of 1e9 cases would not fit in memory
+            call check_case_count(file, groups(g)%line, study, error)
         end if
     end subroutine read_sampling
 

@@ -4,6 +4,7 @@
 !> parameters on its axes, an analytic curve).
 module rollcon_study_rules
     use rollcon_kinds, only : wp
+    use, intrinsic :: ieee_arithmetic, only : ieee_is_finite
     use rollcon_error, only : error_type, input_error
     use rollcon_text, only : to_text, unquoted, comma_list
     use rollcon_namelist_lexer, only : group_type
@@ -12,7 +13,6 @@ module rollcon_study_rules
         & relation_less, relation_less_equal, relation_greater, relation_greater_equal
     use rollcon_study_measures, only : case_result_type, measure_names, measure_index, &
         & outcome_failed, outcome_refused, outcome_words
-    use, intrinsic :: ieee_arithmetic, only : ieee_is_finite
     implicit none
     private
 
@@ -43,9 +43,13 @@ contains
             associate (a => groups(g)%assignments(k))
                 text = unquoted(a%value)
                 if (a%key == "otherwise") then
+                    call check_class_name(file, a%line, a%key, text, error)
+                    if (allocated(error)) return
                     study%otherwise = text
                     cycle
                 end if
+                call check_class_name(file, a%line, a%key, a%key, error)
+                if (allocated(error)) return
                 if (any(outcome_words(outcome_failed:) == a%key)) then
                     call input_error(error, file, a%line, a%key, "is the class of every case " &
                         & // "that " // trim(a%key) // "; give a rule another name")
@@ -83,7 +87,8 @@ contains
                     return
                 end if
                 read(text, *, iostat=stat) rule%bound
-                ! NaN, Infinity and numbers beyond the largest double are no bound
+                ! NaN compares false with everything: such a rule would never hold; Infinity
+                ! and numbers beyond the largest double (iostat) are no bound either
                 if (stat /= 0 .or. .not. ieee_is_finite(rule%bound)) then
                     call input_error(error, file, a%line, a%key, "reads 'measure relation " &
                         & // "number': '" // trim(text) // "' is not a finite number")
@@ -93,6 +98,47 @@ contains
             end associate
         end do
     end subroutine read_rules
+
+    !> A class name goes into every row of the study's CSV and into the map's legend: it must
+    !> not be empty and may hold no comma and no double quote (they would split or quote the
+    !> CSV's class field) and no control character.
+    subroutine check_class_name(file, line, key, name, error)
+        character(len=*), intent(in) :: file, key, name
+        integer, intent(in) :: line
+        type(error_type), allocatable, intent(out) :: error
+        integer :: j, code
+
+        if (len_trim(name) == 0) then
+            call input_error(error, file, line, key, "names an empty class; a class is a word " &
+                & // "such as 'falls'")
+            return
+        end if
+        do j = 1, len(name)
+            code = iachar(name(j:j))
+            if (name(j:j) == "," .or. name(j:j) == '"' .or. code < 32 .or. code == 127) then
+                call input_error(error, file, line, key, "names the class '" // name &
+                    & // "', which holds " // character_name(name(j:j)) // " (column " &
+                    & // to_text(j) // "): a class name goes into every row of the study's " &
+                    & // "CSV and may hold no comma, double quote or control character")
+                return
+            end if
+        end do
+    end subroutine check_class_name
+
+    !> A character a class name may not hold, in words.
+    pure function character_name(c) result(text)
+        character, intent(in) :: c
+        character(len=:), allocatable :: text
+
+        select case (c)
+        case (",")
+            text = "a comma"
+        case ('"')
+            text = "a double quote"
+        case default
+            text = "the control character " // to_text(iachar(c))
+        end select
+    end function character_name
 
     !> &map (group g, 0 when absent): x and y name varied parameters (default: the first two),
     !> curve an analytic curve.

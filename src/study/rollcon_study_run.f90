@@ -9,6 +9,8 @@ module rollcon_study_run
     use rollcon_kinds, only : wp
     use rollcon_clock, only : wall_seconds
     use rollcon_error, only : error_type, fatal_error, stat_io
+    use rollcon_c_stream, only : c_stream_type
+    use rollcon_file_lock, only : file_lock_type
     use rollcon_text, only : to_text
     use rollcon_simulation, only : history_type
     use rollcon_job, only : job_type
@@ -24,6 +26,7 @@ module rollcon_study_run
     private
 
     public :: study_plan_type, plan_cases, plan_study, run_case, append_row, run_study
+    public :: lock_study_csv
     public :: row_file_type
     public :: study_progress_type
 
@@ -35,15 +38,23 @@ module rollcon_study_run
         logical, allocatable :: done(:)
         !> Rows of the CSV that are not cases of this study (the study file changed)
         integer :: foreign = 0
+        !> Lines the CSV held when the plan was made, its header included
+        integer :: rows_in_csv = 0
     contains
         procedure :: pending
         procedure :: case_texts
     end type study_plan_type
 
-    !> A CSV kept open while rows are appended, each flushed as it is written
+    !> A CSV kept open while rows are appended, each flushed as it is written. Written through
+    !> the C library (rollcon_c_stream), every write and flush checked: gfortran 12 reports no
+    !> error when a write or a flush fails on a full disk.
     type :: row_file_type
-        integer :: unit = -1
+        type(c_stream_type) :: stream
         character(len=:), allocatable :: path
+        !> Rows the file held when it was opened (the header and the cases of earlier runs)
+        integer :: rows_before = 0
+        !> Rows written and flushed since
+        integer :: rows_written = 0
     contains
         procedure :: open => row_file_open
         procedure :: write => row_file_write
@@ -65,6 +76,26 @@ module rollcon_study_run
     end type study_progress_type
 
 contains
+
+    !> Take the lock of a study's CSV, CSV.lock beside it, for as long as rows may be read and
+    !> written (until lock%release or the end of the process): a second sweep into the same
+    !> CSV is refused, naming the sweep that holds it, instead of mixing its rows with the
+    !> first one's into a CSV the next resume refuses.
+    subroutine lock_study_csv(csv_path, lock, error)
+        character(len=*), intent(in) :: csv_path
+        type(file_lock_type), intent(inout) :: lock
+        type(error_type), allocatable, intent(out) :: error
+        character(len=:), allocatable :: holder
+        logical :: held
+
+        call lock%acquire(csv_path // ".lock", held, holder, error)
+        if (allocated(error) .or. .not. held) return
+        if (len(holder) == 0) holder = "a process that has not said which yet"
+        call fatal_error(error, csv_path // ": another sweep is writing this study's CSV (" &
+            & // holder // " holds " // csv_path // ".lock); two sweeps into one CSV would " &
+            & // "mix their rows. Wait until it ends (then run the same command to resume), " &
+            & // "or give another --output", stat_io)
+    end subroutine lock_study_csv
 
     !> Every case's parameters, none done yet (what a worker rank needs).
     subroutine plan_cases(study, plan)
@@ -103,12 +134,16 @@ contains
 
         call plan_cases(study, plan)
         n = size(plan%done)
-        call read_done_cases(csv_path, study, rows, keys, error)
+        call read_done_cases(csv_path, study, rows, keys, error, plan%rows_in_csv)
         if (allocated(error)) return
-        if (size(keys) == 0) then
+        if (plan%rows_in_csv == 0) then
+            ! a new CSV, or one left empty: its header (once: a CSV of a header alone, from a
+            ! run stopped before its first row, keeps the one it has)
             call append_row(csv_path, study_header(study), error)
+            if (.not. allocated(error)) plan%rows_in_csv = 1
             return
         end if
+        if (size(keys) == 0) return
         allocate(character(len=(len(plan%texts) + 1)*size(study%parameters)) :: own(n))
         do i = 1, n
             own(i) = case_key(plan%case_texts(i))
@@ -195,42 +230,59 @@ contains
         row = study_row(i, plan%case_texts(i), result)
     end subroutine run_case
 
-    !> Open the CSV for appending rows (created when missing).
-    subroutine row_file_open(self, path, error)
+    !> Open the CSV for appending rows (created when missing). rows_before: the lines it
+    !> holds already (header included), for the message of a failed write.
+    subroutine row_file_open(self, path, error, rows_before)
         class(row_file_type), intent(inout) :: self
         character(len=*), intent(in) :: path
         type(error_type), allocatable, intent(out) :: error
-        integer :: stat
-        character(len=256) :: message
+        integer, intent(in), optional :: rows_before
 
         self%path = path
-        open(newunit=self%unit, file=path, position="append", action="write", &
-            & status="unknown", iostat=stat, iomsg=message)
-        if (stat /= 0) then
-            self%unit = -1
-            call fatal_error(error, path // ": cannot write: " // trim(message), stat_io)
-        end if
+        self%rows_before = 0
+        if (present(rows_before)) self%rows_before = rows_before
+        self%rows_written = 0
+        call self%stream%open_file(path, error, append=.true.)
     end subroutine row_file_open
 
-    !> Write one line and flush it: a row is in the file when its case ends.
+    !> Write one line and flush it: a row is in the file when its case ends. A failure (a
+    !> full disk) says which rows the file holds: those written before, whole; the line that
+    !> failed may be in it cut short (a rerun drops it and runs that case again).
     subroutine row_file_write(self, line, error)
         class(row_file_type), intent(inout) :: self
         character(len=*), intent(in) :: line
         type(error_type), allocatable, intent(out) :: error
-        integer :: stat
-        character(len=256) :: message
+        type(error_type), allocatable :: ignored
 
-        write(self%unit, "(a)", iostat=stat, iomsg=message) line
-        if (stat == 0) flush(self%unit, iostat=stat, iomsg=message)
-        if (stat /= 0) call fatal_error(error, self%path // ": cannot write: " &
-            & // trim(message), stat_io)
+        if (.not. self%stream%is_open()) then
+            call fatal_error(error, self%path // ": cannot write a row: the file is not open", &
+                & stat_io)
+            return
+        end if
+        call self%stream%put(line // new_line("a"), error)
+        if (.not. allocated(error)) call self%stream%hand_over(error)
+        if (.not. allocated(error)) then
+            self%rows_written = self%rows_written + 1
+            return
+        end if
+        error%message = error%message // "; the file holds its first " &
+            & // to_text(self%rows_before + self%rows_written) // " lines whole (" &
+            & // to_text(self%rows_written) // " rows of this run after " &
+            & // to_text(self%rows_before) // " lines before it), the line that failed may " &
+            & // "follow cut short; run the same command again once there is room: it drops " &
+            & // "a cut line and runs the cases that are missing"
+        ! nothing more goes to this file
+        call self%stream%close_file(ignored)
     end subroutine row_file_write
 
-    subroutine row_file_close(self)
+    !> Close the file; a failure of the last flush is an error.
+    subroutine row_file_close(self, error)
         class(row_file_type), intent(inout) :: self
+        type(error_type), allocatable, intent(out), optional :: error
+        type(error_type), allocatable :: failed
 
-        if (self%unit /= -1) close(self%unit)
-        self%unit = -1
+        call self%stream%close_file(failed)
+        if (present(error) .and. allocated(failed)) call move_alloc(failed, error)
     end subroutine row_file_close
 
     !> Append one line to the CSV and flush it (opening and closing the file).
@@ -242,7 +294,8 @@ contains
         call file%open(path, error)
         if (allocated(error)) return
         call file%write(line, error)
-        call file%close()
+        if (allocated(error)) return
+        call file%close(error)
     end subroutine append_row
 
     !> Run every pending case in this process, in case order.
@@ -258,7 +311,7 @@ contains
         integer, allocatable :: cases(:)
         integer :: j
 
-        call file%open(csv_path, error)
+        call file%open(csv_path, error, rows_before=plan%rows_in_csv)
         if (allocated(error)) return
         cases = plan%pending()
         do j = 1, size(cases)
@@ -267,7 +320,8 @@ contains
             if (allocated(error)) exit
             call progress%add(result%outcome)
         end do
-        call file%close()
+        if (allocated(error)) return
+        call file%close(error)
     end subroutine run_study
 
     pure integer function findloc_key(keys, key) result(i)

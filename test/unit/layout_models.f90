@@ -20,7 +20,7 @@ module layout_models
     implicit none
     private
 
-    public :: two_part_problem, read_csv, failing_disk_ucosub
+    public :: two_part_model, two_part_problem, read_csv, failing_disk_ucosub
 
     !> Part ids
     integer, parameter, public :: disk_id = 2, free_id = 5
@@ -43,9 +43,7 @@ module layout_models
 contains
 
     !> The two-part model set up in problem (IDA, default tolerances, a theta limit of 0.05 rad
-    !> that neither part reaches), and its start: the disk upright at (0, 0, R) rolling along
-    !> +X (phidot = -v/R, docs/design.md §5), the free body at free_start with free_velocity
-    !> and phidot = free_spin (theta = pi/2: the spin is about the body z-axis).
+    !> that neither part reaches), and its start (two_part_model).
     subroutine two_part_problem(problem, q0, u0, error, ucosub, ucon_parts)
         type(problem_type), intent(inout), target :: problem
         real(wp), allocatable, intent(out) :: q0(:), u0(:)
@@ -55,6 +53,24 @@ contains
         !> The part id each UCON's PAR names (default: the disk's)
         integer, intent(in), optional :: ucon_parts(3)
         type(model_type), target :: model
+
+        call two_part_model(model, q0, u0, error, ucosub, ucon_parts)
+        if (allocated(error)) return
+        call problem%init(model)
+        call problem%add_watch(new_theta_watch(0.05_wp, rebase=.false.))
+    end subroutine two_part_problem
+
+    !> The two-part model, set up (setup_model), and its start: the disk upright at (0, 0, R)
+    !> rolling along +X (phidot = -v/R, docs/design.md §5), the free body at free_start with
+    !> free_velocity and phidot = free_spin (theta = pi/2: the spin is about the body z-axis).
+    subroutine two_part_model(model, q0, u0, error, ucosub, ucon_parts)
+        type(model_type), intent(out) :: model
+        real(wp), allocatable, intent(out) :: q0(:), u0(:)
+        type(error_type), allocatable, intent(out) :: error
+        !> The routine serving the UCONs (default: the hand-checked disk routine)
+        procedure(ucosub_interface), optional :: ucosub
+        !> The part id each UCON's PAR names (default: the disk's)
+        integer, intent(in), optional :: ucon_parts(3)
         type(part_type) :: disk, free
         integer :: k, parts(3)
 
@@ -81,12 +97,10 @@ contains
         end do
         call setup_model(model, error)
         if (allocated(error)) return
-        call problem%init(model)
-        call problem%add_watch(new_theta_watch(0.05_wp, rebase=.false.))
         q0 = [0.0_wp, 0.0_wp, disk_radius, 0.0_wp, 0.5_wp*pi, 0.0_wp, free_start]
         u0 = [disk_speed, 0.0_wp, 0.0_wp, 0.0_wp, 0.0_wp, -disk_speed/disk_radius, &
             & free_velocity, 0.0_wp, 0.0_wp, free_spin]
-    end subroutine two_part_problem
+    end subroutine two_part_model
 
     !> The disk routine, except that UCON 13 returns F = NaN after t = 0.25 s.
     subroutine failing_disk_ucosub(id, time, q, par, npar, idrsel, iflag, scalar, array, xmatrx)

@@ -48,6 +48,25 @@ program tester
     use test_study_run, only : collect_study_run
     use test_study_map, only : collect_study_map
     use test_sweep_mpi, only : collect_sweep_mpi
+    use test_run_apart, only : collect_run_apart
+    use test_provenance, only : collect_provenance
+    use test_ucosub_units, only : collect_ucosub_units
+    use test_adm_physical, only : collect_adm_physical
+    use test_study_paths, only : collect_study_paths
+    use test_figure_rows, only : collect_figure_rows
+    use test_wire, only : collect_wire
+    use test_least_squares, only : collect_least_squares
+    use test_bench, only : collect_bench
+    use test_check_reliability, only : collect_check_reliability
+    use test_check_findings, only : collect_check_findings
+    use test_input_files, only : collect_input_files
+    use test_input_refusals, only : collect_input_refusals
+    use test_system_calls, only : collect_system_calls
+    use test_user_builds, only : collect_user_builds
+    use test_long_paths, only : collect_long_paths
+    use test_study_limits, only : collect_study_limits
+    use test_sweep_guards, only : collect_sweep_guards
+    use test_adm_outputs, only : collect_adm_outputs
     implicit none
     type(testsuite_type), allocatable :: suites(:)
     type(test_counts_type) :: counts
@@ -100,7 +119,26 @@ program tester
         & new_testsuite("study-fuzz", collect_study_fuzz), &
         & new_testsuite("study-run", collect_study_run), &
         & new_testsuite("study-map", collect_study_map), &
-        & new_testsuite("sweep-mpi", collect_sweep_mpi)]
+        & new_testsuite("sweep-mpi", collect_sweep_mpi), &
+        & new_testsuite("run-apart", collect_run_apart), &
+        & new_testsuite("provenance", collect_provenance), &
+        & new_testsuite("ucosub-units", collect_ucosub_units), &
+        & new_testsuite("adm-physical", collect_adm_physical), &
+        & new_testsuite("study-paths", collect_study_paths), &
+        & new_testsuite("figure-rows", collect_figure_rows), &
+        & new_testsuite("wire", collect_wire), &
+        & new_testsuite("least-squares", collect_least_squares), &
+        & new_testsuite("bench", collect_bench), &
+        & new_testsuite("check-reliability", collect_check_reliability), &
+        & new_testsuite("check-findings", collect_check_findings), &
+        & new_testsuite("input-files", collect_input_files), &
+        & new_testsuite("input-refusals", collect_input_refusals), &
+        & new_testsuite("system-calls", collect_system_calls), &
+        & new_testsuite("user-builds", collect_user_builds), &
+        & new_testsuite("long-paths", collect_long_paths), &
+        & new_testsuite("study-limits", collect_study_limits), &
+        & new_testsuite("sweep-guards", collect_sweep_guards), &
+        & new_testsuite("adm-outputs", collect_adm_outputs)]
 
     if (command_argument_count() >= 1) then
         call get_command_argument(1, argument)

@@ -15,8 +15,8 @@ module picture_files
     implicit none
     private
 
-    public :: picture_scene, disk_run, two_part_run, falling_run, write_run, make_folder, remove_folder, &
-        & write_lines
+    public :: picture_scene, disk_run, two_part_run, falling_run, write_run, make_folder, &
+        & remove_folder, write_lines
     public :: vtu_piece_type, read_vtu, read_pvd, command_available, expect_message, &
         & file_starts_with
 

@@ -211,28 +211,29 @@ contains
             & refused%message)
     end subroutine test_no_routine
 
-    !> The coin in millimetres, served by the built-in disk routine: refused (it takes PAR in
-    !> metres, and PAR is passed as written).
+    !> The coin with UNITS/LENGTH=MILLIMETER, served by the built-in disk routine: built, every
+    !> UCON computing in the dataset's units (the runs are compared in suite ucosub-units):
+    !> the velocities passed in mm/s (scale 1000 per m/s), the rates and angles as they are, F
+    !> (a velocity) turned back to m/s (1e-3).
     subroutine test_builtin_units(error)
         type(error_type), allocatable, intent(out) :: error
         type(adm_model_type) :: adm
         type(problem_type), target :: problem
         real(wp), allocatable :: q0(:), u0(:)
-        type(error_type), allocatable :: refused
         procedure(ucosub_interface), pointer :: disk
 
         call read_lines_model("coin_mm.adm", "UNITS/FORCE=NEWTON, MASS=KILOGRAM, LENGTH=METER" &
             & // ", TIME=SECOND", "UNITS/LENGTH=MILLIMETER", adm, error)
         if (allocated(error)) return
         disk => rolling_disk_ucosub
-        call build_adm_problem(adm, disk, problem, q0, u0, refused)
-        call check(error, allocated(refused), "built in millimetres")
+        call build_adm_problem(adm, disk, problem, q0, u0, error)
         if (allocated(error)) return
-        call check(error, refused%message == "build/rollcon-test/coin_mm.adm:38: UCON/1: the " &
-            & // "built-in routine 'disk' takes PAR lengths in metres, and PAR is passed as " &
-            & // "written, but the dataset's length unit is 0.001 m; write the dataset in " &
-            & // "metres (UNITS/LENGTH=METER) or serve the UCON with a UCOSUB of your own", &
-            & refused%message)
+        associate (ucon => problem%model%ucons(1))
+            ! the coin's PAR(2:9): Xdot, Ydot, Zdot, psi, theta, psidot, thetadot, phidot
+            call check(error, ucon%converted .and. all(ucon%scales == [1.0e3_wp, 1.0e3_wp, &
+                & 1.0e3_wp, 1.0_wp, 1.0_wp, 1.0_wp, 1.0_wp, 1.0_wp]) .and. ucon%value_scale &
+                & == 1.0e-3_wp .and. ucon%time_scale == 1.0_wp, "the UCON's unit factors")
+        end associate
     end subroutine test_builtin_units
 
     !> A state function of a marker the dataset does not have: refused with the statement, the

@@ -253,25 +253,44 @@ contains
     end function base_name
 
     !> An input error that starts with 'path:LINE: ' (LINE >= 1), or 'path: ' for the
-    !> dataset as a whole, says something after it, and shows only printable ASCII.
+    !> dataset as a whole, says something after it, and shows only printable ASCII. A refusal
+    !> of several statements outside the subset (rollcon_adm_reader) gives each a line of its
+    !> own after the first: '  path:LINE: ...', printable too.
     subroutine check_refusal(found, path, m, error)
         type(error_type), intent(in) :: found
         character(len=*), intent(in) :: path
         integer, intent(in) :: m
         type(error_type), allocatable, intent(out) :: error
-        character(len=:), allocatable :: rest
+        character(len=:), allocatable :: rest, first, next
         integer :: j, line, stat
 
         call check(error, found%stat == stat_input .and. allocated(found%message), &
             & "mutation " // to_text(m) // ": not an input error")
         if (allocated(error)) return
-        call check(error, printable(found%message), "mutation " // to_text(m) &
+        first = found%message
+        j = index(first, new_line("a"))
+        if (j > 0) then
+            rest = first(j + 1:)
+            first = first(:j - 1)
+            do while (len(rest) > 0)
+                j = index(rest, new_line("a"))
+                if (j == 0) j = len(rest) + 1
+                next = rest(:j - 1)
+                rest = rest(min(j + 1, len(rest) + 1):)
+                call check(error, printable(next) .and. index(next, "  " // path // ":") == 1, &
+                    & "mutation " // to_text(m) // ": a line of a refusal of several " &
+                    & // "statements is not '  " // path // ":LINE: ...' or shows an " &
+                    & // "invisible character: " // found%message)
+                if (allocated(error)) return
+            end do
+        end if
+        call check(error, printable(first), "mutation " // to_text(m) &
             & // ": invisible character in: " // found%message)
         if (allocated(error)) return
-        call check(error, index(found%message, path // ":") == 1, "mutation " // to_text(m) &
+        call check(error, index(first, path // ":") == 1, "mutation " // to_text(m) &
             & // ": message does not start with the file: " // found%message)
         if (allocated(error)) return
-        rest = found%message(len(path) + 2:)
+        rest = first(len(path) + 2:)
         if (len(rest) > 0) then
             if (rest(1:1) == " " .and. len_trim(rest) > 10) return
         end if

@@ -7,6 +7,7 @@ module test_adm_reader
     use rollcon_error, only : error_type
     use rollcon_adm_model, only : adm_model_type, force_sforce, force_gforce
     use rollcon_adm_reader, only : read_adm
+    use rollcon_adm_units, only : units_type, set_unit
     use rollcon_expression, only : evaluate_expression
     use rollcon_adm_state, only : part_state, euler_angles
     use rollcon_rotation, only : rotation_matrix, rate_matrix
@@ -51,6 +52,7 @@ contains
         allocate(tests(0))
         tests = [new_unittest("coin-as-a-user-writes-it", test_coin), &
             & new_unittest("units-converted", test_units), &
+            & new_unittest("unit-factors-from-definitions", test_unit_factors), &
             & new_unittest("euler-angles-round-trip", test_euler_round_trip), &
             & new_unittest("coin-initial-state", test_coin_state), &
             & new_unittest("refusals", test_refusals)]
@@ -114,7 +116,8 @@ contains
                 & evaluate_expression(torque%functions(1), 3.0_wp) == 0.03_wp, "SFORCE")
             if (allocated(error)) return
         end associate
-        call check(error, model%run%settings%end_time == 10.0_wp .and. model%run%settings%rtol == 1.0e-9_wp &
+        call check(error, model%run%settings%end_time == 10.0_wp &
+            & .and. model%run%settings%rtol == 1.0e-9_wp &
             & .and. model%run%settings%formulation == formulation_cvode &
             & .and. model%run%settings%method == method_adams &
             & .and. model%run%settings%drift == drift_baumgarte, "run")
@@ -143,6 +146,86 @@ contains
             & model%run%settings%end_time], [0.1e-3_wp/60.0_wp, -1.0_wp/60.0_wp, 600.0_wp], &
             & "mm and minutes to SI", rel_tol=tol)
     end subroutine test_units
+
+    !> Every unit name's factor to SI against its definition: the international pound
+    !> (0.45359237 kg), standard gravity (9.80665 m/s^2) and inch (0.0254 m) are exact; the
+    !> pound-force is a pound under standard gravity, the slug the mass a pound-force
+    !> accelerates at a foot per second squared, the dyne a gram at a centimetre per second
+    !> squared. SYSTEM sets all four factors, whatever came before.
+    subroutine test_unit_factors(error)
+        type(error_type), allocatable, intent(out) :: error
+        !> Products and quotients of exact decimal constants: a rounding or two each
+        real(wp), parameter :: tol_definition = 4.0_wp*epsilon(1.0_wp)
+        !> The table writes the slug to 14 significant digits (14.593902937206): 2.5e-14 from
+        !> the pound-force over a foot
+        real(wp), parameter :: tol_slug = 5.0e-14_wp
+        real(wp), parameter :: pound = 0.45359237_wp, g_n = 9.80665_wp, inch = 0.0254_wp
+        character(len=14), parameter :: forces(6) = [character(len=14) :: "NEWTON", &
+            & "KNEWTON", "MILLINEWTON", "DYNE", "KILOGRAM_FORCE", "POUND_FORCE"]
+        character(len=10), parameter :: masses(4) = [character(len=10) :: "KILOGRAM", "GRAM", &
+            & "MEGAGRAM", "POUND_MASS"]
+        character(len=10), parameter :: lengths(6) = [character(len=10) :: "METER", &
+            & "MILLIMETER", "CENTIMETER", "KILOMETER", "INCH", "FOOT"]
+        character(len=11), parameter :: times(4) = [character(len=11) :: "SECOND", &
+            & "MILLISECOND", "MINUTE", "HOUR"]
+        real(wp) :: expected_forces(6), expected_masses(4), expected_lengths(6), &
+            & expected_times(4), got(6)
+        type(units_type) :: units
+        integer :: k
+
+        expected_forces = [1.0_wp, 1.0e3_wp, 1.0e-3_wp, 1.0e-3_wp*1.0e-2_wp, g_n, pound*g_n]
+        expected_masses = [1.0_wp, 1.0e-3_wp, 1.0e3_wp, pound]
+        expected_lengths = [1.0_wp, 1.0e-3_wp, 1.0e-2_wp, 1.0e3_wp, inch, 12.0_wp*inch]
+        expected_times = [1.0_wp, 1.0e-3_wp, 60.0_wp, 3600.0_wp]
+        do k = 1, size(forces)
+            call set_unit(units, "FORCE", trim(forces(k)), "test.adm:2", error)
+            if (allocated(error)) return
+            got(k) = units%force
+        end do
+        call check(error, got, expected_forces, "force units", rel_tol=tol_definition)
+        if (allocated(error)) return
+        do k = 1, size(masses)
+            call set_unit(units, "MASS", trim(masses(k)), "test.adm:2", error)
+            if (allocated(error)) return
+            got(k) = units%mass
+        end do
+        call check(error, got(:4), expected_masses, "mass units", rel_tol=tol_definition)
+        if (allocated(error)) return
+        call set_unit(units, "MASS", "SLUG", "test.adm:2", error)
+        if (allocated(error)) return
+        call check(error, units%mass, pound*g_n/(12.0_wp*inch), "the slug", rel_tol=tol_slug)
+        if (allocated(error)) return
+        do k = 1, size(lengths)
+            call set_unit(units, "LENGTH", trim(lengths(k)), "test.adm:2", error)
+            if (allocated(error)) return
+            got(k) = units%length
+        end do
+        call check(error, got, expected_lengths, "length units", rel_tol=tol_definition)
+        if (allocated(error)) return
+        do k = 1, size(times)
+            call set_unit(units, "TIME", trim(times(k)), "test.adm:2", error)
+            if (allocated(error)) return
+            got(k) = units%time
+        end do
+        call check(error, got(:4), expected_times, "time units", rel_tol=tol_definition)
+        if (allocated(error)) return
+
+        ! units is now (pound-force, slug, foot, hour): each system replaces all four
+        call set_unit(units, "SYSTEM", "CGS", "test.adm:2", error)
+        if (allocated(error)) return
+        call check(error, [units%force, units%mass, units%length, units%time], &
+            & [1.0e-5_wp, 1.0e-3_wp, 1.0e-2_wp, 1.0_wp], "CGS", rel_tol=tol_definition)
+        if (allocated(error)) return
+        call set_unit(units, "SYSTEM", "MMKS", "test.adm:2", error)
+        if (allocated(error)) return
+        call check(error, [units%force, units%mass, units%length, units%time], &
+            & [1.0_wp, 1.0_wp, 1.0e-3_wp, 1.0_wp], "MMKS", rel_tol=tol_definition)
+        if (allocated(error)) return
+        call set_unit(units, "SYSTEM", "MKS", "test.adm:2", error)
+        if (allocated(error)) return
+        call check(error, [units%force, units%mass, units%length, units%time], &
+            & [1.0_wp, 1.0_wp, 1.0_wp, 1.0_wp], "MKS", rel_tol=tol_definition)
+    end subroutine test_unit_factors
 
     !> One line of the coin replaced: the exact message each refusal must give.
     subroutine test_refusals(error)
@@ -184,9 +267,8 @@ contains
         expected(11) = file // "17: INTEGRATOR FORMULATION: 'ode' is not a formulation"
         replaced(12) = ", VX=0.1, WZ=-1, WZ=2"
         expected(12) = file // "6: PART/2: WZ is given twice"
-        replaced(13) = "OUTPUT/REQSAVE"
-        expected(13) = file // "18: OUTPUT: 'REQSAVE' is not supported: OUTPUT takes no " &
-            & // "argument"
+        replaced(13) = "OUTPUT/REQSAVE=1"
+        expected(13) = file // "18: OUTPUT REQSAVE takes no value"
         replaced(14) = "UCON/1, FUNCTION=USER(2, 21)"
         expected(14) = file // "11: UCON/1: a second UCON with this id"
         do i = 1, n

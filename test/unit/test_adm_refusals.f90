@@ -48,10 +48,10 @@ contains
         replaced(2) = "motion/1, joint=9"
         expected(2) = ":7: 'MOTION' is not a statement of the supported subset " // supported &
             & // "; prescribed motions are not in the subset"
-        replaced(3) = "REQ/1, DISPLACEMENT, I=3"
-        expected(3) = ":7: 'REQ' is not a statement of the supported subset " // supported &
-            & // "; rollcon writes its own outputs (a CSV of every part, the energy and" &
-            & // " every UCON, a summary, pictures)"
+        replaced(3) = "SENSOR/1, VALUE=0"
+        expected(3) = ":7: 'SENSOR' is not a statement of the supported subset " // supported &
+            & // "; sensors change a run as it goes (stop it, change its step): not in the" &
+            & // " subset"
         replaced(4) = "BUSHING/1, I=3, J=4"
         expected(4) = ":7: 'BUSHING' is not a statement of the supported subset " // supported &
             & // "; force elements other than SFORCE, VFORCE and GFORCE are not in the" &
@@ -75,11 +75,8 @@ contains
         expected(11) = ":9: ACCGRAV takes no id (write ACCGRAV/ARG=...)"
         replaced(12) = "MARKER, PART=1"
         expected(12) = ":7: MARKER needs an id (MARKER/id, ...)"
-        replaced(13) = "OUTPUT/REQSAVE"
-        expected(13) = ":13: OUTPUT: 'REQSAVE' is not supported: OUTPUT takes no argument in" &
-            & // " rollcon (supported: none), which writes its own outputs (a CSV of every" &
-            & // " part's coordinates, the energy and every UCON's residual and multiplier," &
-            & // " and a summary)"
+        replaced(13) = "OUTPUT/REQSAVE=1"
+        expected(13) = ":13: OUTPUT REQSAVE takes no value"
         call check_refusals(error, [7, 7, 7, 7, 7, 7, 7, 7, 14, 12, 9, 7, 13], replaced, expected)
     end subroutine test_statements
 
@@ -92,10 +89,12 @@ contains
         replaced(1) = "PART/2, MASS=1, CM=3, IP=2, 2, 3, DENSITY=7800"
         expected(1) = ":4: PART/2: 'DENSITY' is not a PART argument of the supported subset" &
             & // " (GROUND, MASS, CM, IP, QG, REULER, VX, VY, VZ, WX, WY, WZ, EXACT)"
-        replaced(2) = "INTEGRATOR/HMAX=0.1"
-        expected(2) = ":12: INTEGRATOR: 'HMAX' is not an INTEGRATOR argument of the supported" &
+        replaced(2) = "INTEGRATOR/STIFF"
+        expected(2) = ":12: INTEGRATOR: 'STIFF' is not an INTEGRATOR argument of the supported" &
             & // " subset (ERROR, RTOL, ATOL, MAXSTEPS, BAUMGARTE, FORMULATION, METHOD," &
-            & // " DRIFT, JACOBIAN)"
+            & // " DRIFT, JACOBIAN, GSTIFF, WSTIFF, DSTIFF, CONSTANT_BDF, HASTIFF, HHT," &
+            & // " NEWMARK, RKF45, ABAM, I3, SI2, SI1, HMAX, HMIN, HINIT, ALPHA, BETA, GAMMA," &
+            & // " ADAPTIVITY, KMAX, MAXIT, CORRECTOR, INTERPOLATE, PATTERN)"
         replaced(3) = ", QG=0, 0, 1, W=1"
         expected(3) = ":5: PART/2: 'W' is ambiguous: it may be WX, WY, WZ; write more of the name"
         replaced(4) = "INTEGRATOR/M=10"

@@ -232,8 +232,8 @@ contains
             & rel_tol=tol)
         if (allocated(error)) return
         ! one hour of end time, one minute per output step
-        call check(error, [model%run%settings%end_time, model%run%settings%output_step], [60.0_wp, 6.0_wp], &
-            & "SIMULATE in minutes", rel_tol=tol)
+        call check(error, [model%run%settings%end_time, model%run%settings%output_step], &
+            & [60.0_wp, 6.0_wp], "SIMULATE in minutes", rel_tol=tol)
     end subroutine test_units_system
 
     !> A disk and a sphere, three UCONs each with a built-in routine, read as written: ids,

@@ -1,7 +1,7 @@
 ! SPDX-License-Identifier: MIT
 !> Tests of the `rollcon` program as a user runs it: refusals (message and exit status alone),
 !> extra arguments, a full disk, a failed run beside an earlier one, concurrent runs into one
-!> folder, and numbers that read back.
+!> folder, numbers that read back, and the version it gives.
 module test_command
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type
@@ -9,6 +9,7 @@ module test_command
     use rollcon_simulation, only : history_type
     use rollcon_output_layout, only : output_layout_type, coord_z
     use rollcon_csv_reader, only : read_output_csv
+    use rollcon_version, only : rollcon_version_number, version_text
     use rollcon_testing, only : unittest_type, new_unittest, check
     use picture_files, only : make_folder, remove_folder, write_lines
     use command_runs, only : rollcon_program, run_rollcon, file_text, file_exists, line_count, &
@@ -37,7 +38,8 @@ contains
             & new_unittest("failed-run-keeps-earlier-files", test_failed_run), &
             & new_unittest("interrupted-run-keeps-earlier-files", test_interrupted), &
             & new_unittest("concurrent-runs-do-not-splice", test_concurrent), &
-            & new_unittest("full-disk-is-a-failure", test_full_disk)]
+            & new_unittest("full-disk-is-a-failure", test_full_disk), &
+            & new_unittest("version-is-fpm-toml-version", test_version)]
     end subroutine collect_command
 
     !> A refusal prints one line, the message, and exits 1: no backtrace, no STOP line.
@@ -238,5 +240,33 @@ contains
             & "No space left on device") > 0, "exit status " // to_text(status) &
             & // "; stdout: " // out // "; stderr: " // err(max(1, index(err, "rollcon:")):))
     end subroutine test_full_disk
+
+    !> The version the program prints and every summary records is fpm.toml's `version`.
+    subroutine test_version(error)
+        type(error_type), allocatable, intent(out) :: error
+        character(len=256) :: line
+        character(len=:), allocatable :: version
+        integer :: unit, stat, first, last
+
+        version = ""
+        open(newunit=unit, file="fpm.toml", status="old", action="read", iostat=stat)
+        call check(error, stat == 0, "fpm.toml is readable from the tests' folder")
+        if (allocated(error)) return
+        do
+            read(unit, '(a)', iostat=stat) line
+            if (stat /= 0) exit
+            if (index(adjustl(line), "version") /= 1) cycle
+            first = index(line, '"')
+            last = index(line, '"', back=.true.)
+            if (first > 0 .and. last > first) version = line(first + 1:last - 1)
+            exit
+        end do
+        close(unit)
+        call check(error, version == rollcon_version_number, "fpm.toml's version '" // version &
+            & // "', rollcon_version_number '" // rollcon_version_number // "'")
+        if (allocated(error)) return
+        call check(error, version_text() == "rollcon " // version, "version_text: " &
+            & // version_text())
+    end subroutine test_version
 
 end module test_command

@@ -1,5 +1,6 @@
 ! SPDX-License-Identifier: MIT
-!> Tests of the rigid-body equations and the Newton matrices built from the UCOSUB's partials.
+!> Tests of the rigid-body equations and the Newton matrices built from the UCOSUB's partials,
+!> and of the integrator each formulation gets.
 module test_dynamics
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type
@@ -8,7 +9,12 @@ module test_dynamics
         & kinetic_energy, body_mass_and_force
     use rollcon_lapack, only : factor_dense, solve_factored
     use rollcon_problem, only : problem_type
-    use rollcon_run_settings, only : drift_none, drift_baumgarte
+    use rollcon_run_settings, only : run_settings_type, drift_none, drift_baumgarte, &
+        & formulation_cvode, formulation_ida
+    use rollcon_integrator, only : integrator_type
+    use rollcon_integrator_choice, only : new_integrator
+    use rollcon_cvode, only : cvode_integrator_type
+    use rollcon_ida, only : ida_integrator_type
     use rollcon_dae, only : dae_size, dae_residual, dae_jacobian
     use rollcon_scene, only : scene_type
     use rollcon_disk_scene, only : build_disk_problem
@@ -41,7 +47,8 @@ contains
             & new_unittest("dae-jacobian-vs-fd", test_dae_jacobian), &
             & new_unittest("mass-and-force-vs-residual", test_mass_and_force), &
             & new_unittest("saddle-point-vs-dense-lu", test_saddle_point), &
-            & new_unittest("equations-use-problem-model", test_problem_model)]
+            & new_unittest("equations-use-problem-model", test_problem_model), &
+            & new_unittest("formulation-chooses-the-integrator", test_integrator_choice)]
     end subroutine collect_dynamics
 
     !> A generic state of the paper's disk: tilted, turning, no angle at a special value.
@@ -288,5 +295,34 @@ contains
             & problem%ucon_id(2), problem%ucon_id(3)] == [1, 2, 3]), "UCON count and ids " &
             & // to_text(problem%ucon_count()))
     end subroutine test_problem_model
+
+    !> The ODE form is integrated by CVODE, the DAE form by IDA (docs/design.md §4): the
+    !> settings' formulation picks the integrator's type.
+    subroutine test_integrator_choice(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(run_settings_type) :: settings
+        class(integrator_type), allocatable :: integrator
+        logical :: right
+
+        settings%formulation = formulation_cvode
+        call new_integrator(settings, integrator)
+        select type (integrator)
+        type is (cvode_integrator_type)
+            right = .true.
+        class default
+            right = .false.
+        end select
+        call check(error, right, "formulation 'cvode' gets CVODE")
+        if (allocated(error)) return
+        settings%formulation = formulation_ida
+        call new_integrator(settings, integrator)
+        select type (integrator)
+        type is (ida_integrator_type)
+            right = .true.
+        class default
+            right = .false.
+        end select
+        call check(error, right, "formulation 'ida' gets IDA")
+    end subroutine test_integrator_choice
 
 end module test_dynamics

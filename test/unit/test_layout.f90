@@ -3,14 +3,19 @@
 !> by three UCONs, and a free body, part 5, falling with a spin) run with CVODE and IDA, its
 !> rows read through the output layout against the analytic motions; the CSV is the history;
 !> the theta limit on every part, named by its id; the lift-off watched only with a contact;
-!> the summary text for any model; read_layout on good and bad headers.
+!> the summary text for any model; read_layout on good and bad headers; the model built in
+!> code run as a job, as the library's users run it.
 module test_layout
     use rollcon_kinds, only : wp
     use rollcon_constants, only : pi
     use rollcon_error, only : error_type
     use rollcon_text, only : to_text
     use rollcon_problem, only : problem_type
-    use rollcon_run_settings, only : formulation_cvode, formulation_ida
+    use rollcon_run_settings, only : run_settings_type, formulation_cvode, formulation_ida
+    use rollcon_model, only : model_type
+    use rollcon_built_model, only : built_model_source_type, new_model_source
+    use rollcon_job, only : job_type, new_job
+    use rollcon_run_job, only : run_job, job_result_type
     use rollcon_simulation, only : run_options_type, run_summary_type, history_type, simulate, &
         & status_completed, status_stopped
     use rollcon_output_layout, only : output_layout_type, new_output_layout, read_layout, &
@@ -20,8 +25,8 @@ module test_layout
     use rollcon_theta_watch, only : new_theta_watch
     use rollcon_contact_watch, only : contact_watch_type
     use rollcon_testing, only : unittest_type, new_unittest, check
-    use layout_models, only : two_part_problem, disk_id, free_id, disk_radius, disk_speed, &
-        & free_spin, free_start, free_velocity, gravity, read_csv, failing_disk_ucosub
+    use layout_models, only : two_part_model, two_part_problem, disk_id, free_id, disk_radius, &
+        & disk_speed, free_spin, free_start, free_velocity, gravity, read_csv, failing_disk_ucosub
     use layout_headers, only : test_good_headers, test_bad_headers
     implicit none
     private
@@ -52,7 +57,8 @@ contains
             & new_unittest("failures-name-the-ucon", test_failures_name_ucon), &
             & new_unittest("summary-text-any-model", test_summary_text), &
             & new_unittest("read-layout-good-headers", test_good_headers), &
-            & new_unittest("read-layout-bad-headers", test_bad_headers)]
+            & new_unittest("read-layout-bad-headers", test_bad_headers), &
+            & new_unittest("model-built-in-code-runs-as-a-job", test_model_source)]
     end subroutine collect_layout
 
     subroutine test_two_parts_cvode(error)
@@ -319,5 +325,58 @@ contains
             & > 0 .and. index(text, "largest constraint residual: none (the model has no UCON)") &
             & > 0, "summary: " // text)
     end subroutine test_summary_text
+
+    !> The two-part model as a job's source (new_model_source, with the theta watch added),
+    !> run by run_job on CVODE, gives the rows of the same model simulated directly, bit for
+    !> bit: the source hands over the model, its start and its settings unchanged (the
+    !> default settings, IDA, would give other rows).
+    subroutine test_model_source(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(model_type) :: model
+        type(problem_type), target :: problem
+        type(run_settings_type) :: settings
+        type(built_model_source_type) :: source
+        type(job_type) :: job
+        type(job_result_type) :: result
+        type(run_options_type) :: options
+        type(run_summary_type) :: summary
+        type(history_type) :: rows, direct
+        real(wp), allocatable :: q0(:), u0(:)
+
+        settings%formulation = formulation_cvode
+        settings%rtol = rtol
+        settings%atol = atol
+        settings%end_time = 1.0_wp
+        settings%output_step = 0.05_wp
+        call two_part_model(model, q0, u0, error)
+        if (allocated(error)) return
+        source = new_model_source("two_parts", model, q0, u0, settings)
+        call source%add_watch(new_theta_watch(0.05_wp, rebase=.false.))
+        job = new_job(source)
+        call run_job(job, result, error, rows)
+        if (allocated(error)) return
+        call check(error, result%started .and. result%summary%status == status_completed, &
+            & "the job ran: " // to_text(result%summary%status))
+        if (allocated(error)) return
+
+        call two_part_problem(problem, q0, u0, error)
+        if (allocated(error)) return
+        problem%settings = settings
+        options%end_time = settings%end_time
+        options%output_step = settings%output_step
+        options%progress = .false.
+        call simulate(problem, q0, u0, options, summary, error, direct)
+        if (allocated(error)) return
+        call check(error, rows%count == direct%count .and. rows%count == 21, &
+            & "rows: " // to_text(rows%count) // " as a job, " // to_text(direct%count) &
+            & // " directly")
+        if (allocated(error)) return
+        call check(error, all(rows%layout%header() == direct%layout%header()), "the header")
+        if (allocated(error)) return
+        call check(error, all(rows%rows(:, :rows%count) == direct%rows(:, :direct%count)), &
+            & "the rows, bit for bit")
+        if (allocated(error)) return
+        call check(error, result%summary%steps == summary%steps, "the steps")
+    end subroutine test_model_source
 
 end module test_layout

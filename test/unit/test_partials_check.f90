@@ -1,13 +1,17 @@
 ! SPDX-License-Identifier: MIT
-!> Tests that the UCOSUB checker catches the mistakes people make (and passes a correct routine).
+!> Tests that the UCOSUB checker catches the mistakes people make (and passes a correct routine),
+!> and that the random states it draws are the documented ones.
 module test_partials_check
+    use, intrinsic :: iso_fortran_env, only : int64
     use rollcon_kinds, only : wp
+    use rollcon_constants, only : pi
     use rollcon_error, only : error_type
     use rollcon_text, only : to_text
     use rollcon_partials_check, only : ucon_check_options_type, ucon_check_result_type, &
         & check_ucon_state
     use rollcon_disk_par, only : disk_par, disk_codes
     use rollcon_disk_reference, only : rolling_disk_ucosub
+    use rollcon_random_states, only : seed_state, draw_state
     use rollcon_testing, only : unittest_type, new_unittest, check
     implicit none
     private
@@ -29,7 +33,9 @@ contains
             & new_unittest("wrong-selector-guard", test_wrong_guard), &
             & new_unittest("missing-symmetric-entry", test_missing_symmetric), &
             & new_unittest("quadratic-in-velocity", test_quadratic), &
-            & new_unittest("hidden-state", test_hidden_state)]
+            & new_unittest("hidden-state", test_hidden_state), &
+            & new_unittest("random-states-xorshift64", test_random_sequence), &
+            & new_unittest("random-states-in-ranges", test_random_ranges)]
     end subroutine collect_partials_check
 
     !> Run the checker on component 2 of a disk-like routine at the generic state.
@@ -182,5 +188,88 @@ contains
         if (allocated(error)) return
         call expect_finding(error, result, "repeat", 0, 0)
     end subroutine test_hidden_state
+
+    !> Seed 2024, UCON 13: the generator's states and the first draw for codes 11, 14, 15, 21,
+    !> 24 against Marsaglia's xorshift64 (13, 7, 17) written apart in Python with unsigned
+    !> 64-bit integers: the same on every compiler, as the checker's reports promise. The
+    !> states must be equal; the values come from the same few operations on the same
+    !> uniform numbers, a rounding or two apart at most (a fused multiply-add).
+    subroutine test_random_sequence(error)
+        type(error_type), allocatable, intent(out) :: error
+        integer(int64), parameter :: seeded = 6963366699050944314_int64, &
+            & drawn = 7344781435211780735_int64
+        real(wp), parameter :: expected_q(5) = [-0.6287106138188773_wp, 2.988130153476352_wp, &
+            & 0.8204572907220647_wp, 0.8242927336680732_wp, 1.8275865712337636_wp]
+        real(wp), parameter :: expected_time = 3.981613994243907_wp
+        real(wp), parameter :: tol_draw = 4.0_wp*epsilon(1.0_wp)
+        integer(int64) :: state
+        real(wp) :: q(5), time
+
+        state = seed_state(2024, 13)
+        call check(error, state == seeded, "the seeded state: " // to_text(state))
+        if (allocated(error)) return
+        call draw_state(state, [11, 14, 15, 21, 24], q, time)
+        call check(error, state == drawn, "the state after one draw: " // to_text(state))
+        if (allocated(error)) return
+        call check(error, q, expected_q, "X, psi, theta, Xdot, psidot", rel_tol=tol_draw)
+        if (allocated(error)) return
+        call check(error, time, expected_time, "time", rel_tol=tol_draw)
+    end subroutine test_random_sequence
+
+    !> 10 000 draws of all twelve codes: every value inside its documented range
+    !> (sampling_ranges) and, as uniform draws do, within 2 % of the range's ends (missing one
+    !> by that much has a probability below e^-100); the same seed and UCON give the same
+    !> states, another UCON others.
+    subroutine test_random_ranges(error)
+        type(error_type), allocatable, intent(out) :: error
+        integer, parameter :: draws = 10000, codes(12) = [11, 12, 13, 14, 15, 16, 21, 22, 23, &
+            & 24, 25, 26]
+        !> theta's distance from 0 and pi [rad]
+        real(wp), parameter :: margin = 0.05_wp
+        real(wp) :: low(13), high(13), q(12), time, smallest(13), largest(13), other(12)
+        real(wp) :: other_time
+        integer(int64) :: state, again, another
+        logical :: inside
+        integer :: i
+
+        low = [-1.0_wp, -1.0_wp, -1.0_wp, -pi, margin, -pi, -1.0_wp, -1.0_wp, -1.0_wp, &
+            & -10.0_wp, -10.0_wp, -10.0_wp, 0.0_wp]
+        high = [1.0_wp, 1.0_wp, 1.0_wp, pi, pi - margin, pi, 1.0_wp, 1.0_wp, 1.0_wp, 10.0_wp, &
+            & 10.0_wp, 10.0_wp, 10.0_wp]
+        smallest = huge(1.0_wp)
+        largest = -huge(1.0_wp)
+        state = seed_state(7, 1)
+        again = seed_state(7, 1)
+        another = seed_state(7, 2)
+        do i = 1, draws
+            call draw_state(state, codes, q, time)
+            smallest = min(smallest, [q, time])
+            largest = max(largest, [q, time])
+            if (i == 1) then
+                call draw_state(again, codes, other, other_time)
+                call check(error, all(other == q) .and. other_time == time, &
+                    & "the same seed and UCON draw the same state")
+                if (allocated(error)) return
+                call draw_state(another, codes, other, other_time)
+                call check(error, all(other /= q), "another UCON draws another state")
+                if (allocated(error)) return
+            end if
+        end do
+        do i = 1, 13
+            if (i == 13) then
+                ! time: the closed interval [0, 10] s
+                inside = smallest(i) >= low(i) .and. largest(i) <= high(i)
+            else
+                inside = smallest(i) > low(i) .and. largest(i) < high(i)
+            end if
+            call check(error, inside, "value " // to_text(i) // " in range: " &
+                & // to_text(smallest(i)) // " to " // to_text(largest(i)))
+            if (allocated(error)) return
+            call check(error, smallest(i) < low(i) + 0.02_wp*(high(i) - low(i)) .and. &
+                & largest(i) > high(i) - 0.02_wp*(high(i) - low(i)), "value " // to_text(i) &
+                & // " reaches the ends of its range")
+            if (allocated(error)) return
+        end do
+    end subroutine test_random_ranges
 
 end module test_partials_check

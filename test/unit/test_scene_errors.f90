@@ -116,7 +116,21 @@ contains
         if (allocated(error)) return
         call expect_input_error(error, "unclosed_end", [character(len=width) :: &
             & "&disk radius = 0.1 ! / in a comment does not close"], [character(len=width) :: &
-            & "@:1: group '&disk' is not closed with '/'"])
+            & "@:1: 'radius' = '0.1': the file ends here, inside group '&disk' (line 1), " &
+            & // "which is not closed with '/'"])
+        if (allocated(error)) return
+        ! a file cut inside a number or a string names the key it was the value of
+        call expect_input_error(error, "cut_number", [character(len=width) :: &
+            & "&disk", "radius = 0.1", "thickness = 0.00"], [character(len=width) :: &
+            & "@:3: 'thickness' = '0.00': the file ends here, inside group '&disk' (line 1), " &
+            & // "which is not closed with '/'"])
+        if (allocated(error)) return
+        call expect_input_error(error, "cut_string", [character(len=width) :: &
+            & "&run", "formulation = 'cvo"], [character(len=width) :: &
+            & "@:2: 'formulation' = 'cvo: the string is not closed on its line"])
+        if (allocated(error)) return
+        call expect_input_error(error, "empty_group_end", [character(len=width) :: &
+            & "&disk"], [character(len=width) :: "@:1: group '&disk' is not closed with '/'"])
     end subroutine test_unclosed_group
 
     subroutine test_outside_group(error)

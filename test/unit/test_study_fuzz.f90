@@ -130,11 +130,12 @@ contains
             & [character(len=120) :: "@:4: 'falls' reads 'measure relation number': 'nan' " &
             & // "is not a finite number"])
         if (allocated(error)) return
-        ! 2147483647 x 20 cases: the case count, a default integer, overflowed to a negative
+        ! 20 x 2147483647 cases: the case count, a default integer, overflowed to a negative;
+        ! refused, counted without wrap-round, at the grid's line (check_case_count)
         call expect_study_error(error, "test_study_fuzz_cases", [character(len=60) :: head, &
             & "    initial%speed = '0.4 1.0 2147483647' /"], [character(len=120) :: &
-            & "@:3: 'initial%speed' makes the grid 42949672940 cases; a study has at most " &
-            & // "2147483647"])
+            & "@:2: the study has 42949672940 cases (&grid: 20 x 2147483647); a study may " &
+            & // "have at most 2000000"])
         if (allocated(error)) return
         ! a tab in the base scene's path was copied raw into the message
         call expect_study_error(error, "test_study_fuzz_tab", [character(len=60) :: &

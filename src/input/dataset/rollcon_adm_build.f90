@@ -1,29 +1,31 @@
 ! SPDX-License-Identifier: MIT
 !> A dataset as a problem to simulate (docs/datasets-model.md): its parts (ground is not one),
 !> UCONs with their routines, gravity, force statements between body-fixed markers, solver
-!> settings, the theta limit and the initial state.
+!> settings, the theta limit, the displacement requests' columns and the initial state.
 !>
 !> A part's principal axes are its CM marker's axes, and its inertia is the IP written there
 !> (docs/design.md §2). A UCON is served by the built-in routine its ROUTINE= names
-!> (rollcon_ucosub_catalog), else by the model's routine (the `--ucosub` one). PAR values are
-!> passed exactly as written, as ADAMS passes them; the built-in routines take lengths in
-!> metres, so one of them serving a dataset whose length unit is not the metre is refused.
+!> (rollcon_ucosub_catalog), else by the model's routine (the `--ucosub` one). As ADAMS does, a
+!> routine, built-in or the user's, computes in the dataset's units: PAR as written, the state
+!> and the time converted at the boundary (rollcon_ucosub_units).
 module rollcon_adm_build
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type, fatal_error, stat_input
     use rollcon_text, only : to_text
     use rollcon_rotation, only : rotation_matrix
     use rollcon_ucosub_contract, only : ucosub_interface
+    use rollcon_ucosub_units, only : ucosub_units_type
     use rollcon_ucosub_catalog, only : find_builtin_ucosub, builtin_ucosub_names
     use rollcon_expression, only : quantity_names
     use rollcon_body, only : part_type
     use rollcon_marker, only : marker_type
     use rollcon_marker_force, only : kind_translation, kind_rotation, kind_vector, &
-        & kind_general, marker_force_values
+        & kind_general, marker_force_values, markers_coincide
     use rollcon_force, only : applied_force_type, profile_statement
     use rollcon_model, only : model_type, setup_model
     use rollcon_problem, only : problem_type
     use rollcon_theta_watch, only : new_theta_watch
+    use rollcon_request_watch, only : displacement_request_type, new_request_watch
     use rollcon_adm_keywords, only : place
     use rollcon_adm_model, only : adm_model_type, adm_force_type, force_sforce, force_vforce
     use rollcon_adm_state, only : part_state
@@ -67,6 +69,8 @@ contains
             call model%add_part(part_type(id=adm%parts(i)%id, mass=adm%parts(i)%mass, &
                 & inertia=adm%parts(i)%ip))
         end do
+        ! every UCOSUB, built-in or the user's, computes in the dataset's units, as in ADAMS
+        model%ucosub_units = ucosub_units_type(length=adm%units%length, time=adm%units%time)
         call add_ucons(adm, fallback, model, error)
         if (allocated(error)) return
         do i = 1, size(adm%forces)
@@ -80,6 +84,10 @@ contains
         problem%settings = adm%run%settings
         ! a dataset's parts are re-based at the theta limit, not stopped (docs/rebasing.md)
         call problem%add_watch(new_theta_watch(adm_theta_min, rebase=.true.))
+        if (allocated(adm%requests)) then
+            if (size(adm%requests) > 0) call problem%add_watch(new_request_watch( &
+                & displacement_requests(adm)))
+        end if
         allocate(q0(6*size(model%parts)), u0(6*size(model%parts)))
         p = 0
         do i = 1, size(adm%parts)
@@ -89,6 +97,21 @@ contains
         end do
         call check_forces_at_start(adm, problem, q0, u0, error)
     end subroutine build_adm_problem
+
+    !> The dataset's REQUEST/id, DISPLACEMENT statements with their markers as the model holds
+    !> them; a J or RM not given is a marker at the ground origin with ground axes.
+    function displacement_requests(adm) result(requests)
+        type(adm_model_type), intent(in) :: adm
+        type(displacement_request_type) :: requests(size(adm%requests))
+        integer :: k
+
+        do k = 1, size(adm%requests)
+            requests(k)%id = adm%requests(k)%id
+            requests(k)%i = adm_marker(adm, adm%requests(k)%i)
+            if (adm%requests(k)%j /= 0) requests(k)%j = adm_marker(adm, adm%requests(k)%j)
+            if (adm%requests(k)%rm /= 0) requests(k)%rm = adm_marker(adm, adm%requests(k)%rm)
+        end do
+    end function displacement_requests
 
     !> Every force expression finite at the start (t = 0): a NaN or infinity there (a LOG of a
     !> negative number, a division by zero) is refused with the statement and key, not left for
@@ -104,6 +127,14 @@ contains
         integer :: i, k
 
         do i = 1, size(adm%forces)
+            if (markers_coincide(problem%model%forces(i)%statement, q0)) then
+                call fatal_error(error, place(adm%file, adm%forces(i)%line) // ": SFORCE/" &
+                    & // to_text(adm%forces(i)%id) // ": its I and J markers are at one point " &
+                    & // "at the start, where a translational SFORCE's line of action (from J " &
+                    & // "to I) is not defined; move one of them, or give the force as a " &
+                    & // "VFORCE", stat_input)
+                return
+            end if
             values = marker_force_values(problem%model%forces(i)%statement, 0.0_wp, q0, u0)
             do k = 1, 6
                 if (ieee_is_finite(values(k))) cycle
@@ -119,8 +150,7 @@ contains
         end do
     end subroutine check_forces_at_start
 
-    !> Each UCON with its routine: ROUTINE=name, else the model's; built-in routines only with
-    !> lengths in metres.
+    !> Each UCON with its routine: ROUTINE=name, else the model's.
     subroutine add_ucons(adm, fallback, model, error)
         type(adm_model_type), intent(in) :: adm
         procedure(ucosub_interface), pointer, intent(in) :: fallback
@@ -155,15 +185,16 @@ contains
                         & // "FILE|NAME)", stat_input)
                     return
                 end if
-                if (found .and. adm%units%length /= 1.0_wp) then
-                    call fatal_error(error, where // ": the built-in routine '" // name &
-                        & // "' takes PAR lengths in metres, and PAR is passed as written, but " &
-                        & // "the dataset's length unit is " // to_text(adm%units%length) &
-                        & // " m; write the dataset in metres (UNITS/LENGTH=METER) or serve " &
-                        & // "the UCON with a UCOSUB of your own", stat_input)
-                    return
+                ! for the record: the ROUTINE= name, or the model's UCOSUB (the job says which)
+                if (allocated(ucon%routine)) then
+                    if (len_trim(ucon%routine) > 0) then
+                        call model%add_ucon(ucon%id, ucon%par, routine, time_free=time_free &
+                            & .and. found, routine=trim(ucon%routine))
+                        cycle
+                    end if
                 end if
-                call model%add_ucon(ucon%id, ucon%par, routine, time_free=time_free .and. found)
+                call model%add_ucon(ucon%id, ucon%par, routine, time_free=time_free .and. found, &
+                    & routine="")
             end associate
         end do
     end subroutine add_ucons
@@ -224,6 +255,8 @@ contains
             if (statement%rm /= 0) s%rm = adm_marker(adm, statement%rm)
             s%functions = statement%functions
             s%given = statement%given
+            ! for messages: "data/x.adm:12: VFORCE/7"
+            force%name = where
             s%time_unit = adm%units%time
             s%length_unit = adm%units%length
             s%force_unit = adm%units%force

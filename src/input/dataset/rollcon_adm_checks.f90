@@ -1,18 +1,20 @@
 ! SPDX-License-Identifier: MIT
 !> Checks a dataset as a whole once every statement is read: one ground part, the values a part
-!> needs, every reference to a part or marker, the forces' expressions, the run, and the
+!> needs, every reference to a part or marker (those of the statements read and not used too),
+!> the forces' expressions, the run, and the
 !> principal-axes rule at t = 0 (a part whose CM marker's z-axis is parallel to ground z starts
 !> at the singularity of its 3-1-3 Euler angles).
 module rollcon_adm_checks
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type, fatal_error, stat_input
     use rollcon_text, only : to_text
+    use rollcon_physical_ranges, only : mass_max, inertia_max, position_max, light, rate_max
     use rollcon_constants, only : pi, degree
     use rollcon_rotation, only : rotation_matrix
     use rollcon_adm_state, only : euler_angles
     use rollcon_adm_keywords, only : place
     use rollcon_adm_model, only : adm_model_type, adm_part_type, adm_marker_type, &
-        & adm_force_type, force_sforce, force_vforce
+        & adm_force_type, force_sforce, force_vforce, refers_to_marker, refers_to_part
     use rollcon_adm_ids, only : id_index_type, new_id_index
     use, intrinsic :: iso_fortran_env, only : int64
     implicit none
@@ -30,7 +32,7 @@ contains
     subroutine check_references(model, error)
         type(adm_model_type), intent(in) :: model
         type(error_type), allocatable, intent(out) :: error
-        type(id_index_type) :: parts, markers
+        type(id_index_type) :: parts, markers, forces
         integer :: i, previous
 
         parts = new_id_index(size(model%parts))
@@ -40,6 +42,11 @@ contains
         markers = new_id_index(size(model%markers))
         do i = 1, size(model%markers)
             call markers%add(int(model%markers(i)%id, int64), i, previous)
+        end do
+        ! an SFORCE and a GFORCE may share an id: a reference names either
+        forces = new_id_index(size(model%forces))
+        do i = 1, size(model%forces)
+            call forces%add(int(model%forces(i)%id, int64), i, previous)
         end do
         if (count(model%parts%ground) /= 1) then
             call fatal_error(error, model%file // ": a dataset needs exactly one PART with " &
@@ -62,9 +69,38 @@ contains
             call check_force(model, markers, model%forces(i), error)
             if (allocated(error)) return
         end do
+        if (allocated(model%references)) then
+            do i = 1, size(model%references)
+                call check_reference(model, parts, markers, forces, i, error)
+                if (allocated(error)) return
+            end do
+        end if
         if (model%run%line == 0) call fatal_error(error, model%file // ": no SIMULATE " &
             & // "statement (SIMULATE/DYNAMIC, END=t, STEPS=n)", stat_input)
     end subroutine check_references
+
+    !> Reference i of a statement read and not used: its marker, part or force exists
+    !> (found through the indexes of their ids).
+    subroutine check_reference(model, parts, markers, forces, i, error)
+        type(adm_model_type), intent(in) :: model
+        !> Positions of the parts, markers and forces (of any kind) by id
+        type(id_index_type), intent(in) :: parts, markers, forces
+        integer, intent(in) :: i
+        type(error_type), allocatable, intent(out) :: error
+
+        associate (reference => model%references(i))
+            if (reference%kind == refers_to_marker) then
+                if (markers%find(int(reference%id, int64)) == 0) call fatal_error(error, &
+                    & reference%at // ": no MARKER/" // to_text(reference%id), stat_input)
+            else if (reference%kind == refers_to_part) then
+                if (parts%find(int(reference%id, int64)) == 0) call fatal_error(error, &
+                    & reference%at // ": no PART/" // to_text(reference%id), stat_input)
+            else if (forces%find(int(reference%id, int64)) == 0) then
+                call fatal_error(error, reference%at // ": no SFORCE, VFORCE or GFORCE with id " &
+                    & // to_text(reference%id), stat_input)
+            end if
+        end associate
+    end subroutine check_reference
 
     subroutine check_part(model, markers, part, error)
         type(adm_model_type), intent(in) :: model
@@ -101,6 +137,8 @@ contains
                 & // "(each must be at most the sum of the other two)", stat_input)
             return
         end if
+        call check_part_ranges(where, part, error)
+        if (allocated(error)) return
         m = markers%find(int(part%cm, int64))
         if (part%cm == 0) then
             call fatal_error(error, where // " CM: a MARKER on this part must give the centre " &
@@ -145,6 +183,35 @@ contains
             & // degrees(turned(3)) // ", and give IP in the turned axes (Ixx, Izz, Iyy)", &
             & stat_input)
     end subroutine check_principal_axes
+
+    !> A part's values within the physical ranges (rollcon_physical_ranges), in SI after the
+    !> dataset's units: MASS, IP, QG, the speed (VX, VY, VZ) below light's, WX..WZ.
+    subroutine check_part_ranges(where, part, error)
+        !> "file:line: PART/id"
+        character(len=*), intent(in) :: where
+        type(adm_part_type), intent(in) :: part
+        type(error_type), allocatable, intent(out) :: error
+
+        if (.not. part%mass <= mass_max) then
+            call fatal_error(error, where // " MASS must be at most " // to_text(mass_max) &
+                & // " [kg], got " // to_text(part%mass) // " kg", stat_input)
+        else if (.not. all(part%ip <= inertia_max)) then
+            call fatal_error(error, where // " IP must be at most " // to_text(inertia_max) &
+                & // " [kg m^2] each, got " // to_text(maxval(part%ip)) // " kg m^2", stat_input)
+        else if (.not. all(abs(part%qg) <= position_max)) then
+            call fatal_error(error, where // " QG must be within " // to_text(position_max) &
+                & // " m of the origin in each axis, got " // to_text(maxval(abs(part%qg))) &
+                & // " m", stat_input)
+        else if (.not. norm2(part%velocity) < light) then
+            call fatal_error(error, where // " VX, VY, VZ: the speed must be below the speed " &
+                & // "of light " // to_text(light) // " [m/s] (the mechanics is Newtonian), " &
+                & // "got " // to_text(norm2(part%velocity)) // " m/s", stat_input)
+        else if (.not. all(abs(part%angular_velocity) <= rate_max)) then
+            call fatal_error(error, where // " WX, WY, WZ must be at most " // to_text(rate_max) &
+                & // " [rad/s] each, got " // to_text(maxval(abs(part%angular_velocity))) &
+                & // " rad/s", stat_input)
+        end if
+    end subroutine check_part_ranges
 
     !> An angle as a dataset writes it in degrees, rounded to 1e-9 degree: "90D".
     pure function degrees(angle) result(text)

@@ -7,7 +7,9 @@
 !> ADAMS's keyword: ERROR = e (sets RTOL, and ATOL unless ATOL is given). rollcon's own:
 !> RTOL, ATOL [SI state units], MAXSTEPS (most steps per output interval), BAUMGARTE (rate
 !> [1/s]), FORMULATION = IDA | CVODE, METHOD = BDF | ADAMS, DRIFT = PROJECTION | BAUMGARTE |
-!> NONE, JACOBIAN = ANALYTIC | DQ.
+!> NONE, JACOBIAN = ANALYTIC | DQ. ADAMS's choice of integrator (GSTIFF, WSTIFF, ..., HHT) and
+!> its tuning (HMAX, KMAX, CORRECTOR, ...) are read, each value checked for its form, and
+!> recorded as not used (rollcon_adm_outputs): rollcon integrates with the settings above.
 module rollcon_adm_integrator
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type, fatal_error, stat_input
@@ -15,7 +17,9 @@ module rollcon_adm_integrator
     use rollcon_adm_lexer, only : adm_statement_type, upper_case
     use rollcon_adm_keywords, only : read_reals, argument_key, arg_place, resolve_name, &
         & name_index, place
-    use rollcon_adm_model, only : adm_run_type
+    use rollcon_adm_model, only : adm_run_type, adm_unused_type
+    use rollcon_adm_outputs, only : read_form, record_unused, form_flag, form_number, &
+        & form_whole, form_text
     use rollcon_run_settings, only : run_settings_type
     use rollcon_keys, only : key_type, find_key, kind_integer, kind_choice
     use rollcon_run_keys, only : bind_run_keys, run_choice_rule
@@ -28,6 +32,14 @@ module rollcon_adm_integrator
     !> The keywords of INTEGRATOR
     character(len=*), parameter :: integrator_keys(9) = [character(len=11) :: "ERROR", &
         & "RTOL", "ATOL", "MAXSTEPS", "BAUMGARTE", "FORMULATION", "METHOD", "DRIFT", "JACOBIAN"]
+    !> ADAMS's keywords of INTEGRATOR that rollcon reads and does not use: its integrators and
+    !> formulations, then its tuning, and the form of each value
+    character(len=*), parameter :: adams_keys(24) = [character(len=12) :: "GSTIFF", "WSTIFF", &
+        & "DSTIFF", "CONSTANT_BDF", "HASTIFF", "HHT", "NEWMARK", "RKF45", "ABAM", "I3", "SI2", &
+        & "SI1", "HMAX", "HMIN", "HINIT", "ALPHA", "BETA", "GAMMA", "ADAPTIVITY", "KMAX", &
+        & "MAXIT", "CORRECTOR", "INTERPOLATE", "PATTERN"]
+    integer, parameter :: adams_forms(size(adams_keys)) = [spread(form_flag, 1, 12), &
+        & spread(form_number, 1, 7), form_whole, form_whole, form_text, form_text, form_text]
     !> The &run key each keyword sets (ERROR: rtol, and atol unless ATOL is given)
     character(len=*), parameter :: run_keys(9) = [character(len=14) :: "rtol", "rtol", &
         & "atol", "max_steps", "baumgarte_rate", "formulation", "method", "drift", "jacobian"]
@@ -35,18 +47,23 @@ module rollcon_adm_integrator
 contains
 
     !> Read INTEGRATOR into run%settings, then check the choices together.
-    subroutine read_integrator(path, where, statement, run, error)
+    subroutine read_integrator(path, where, statement, run, unused, unused_count, error)
         !> Dataset file, for messages
         character(len=*), intent(in) :: path
         !> "file:line: INTEGRATOR"
         character(len=*), intent(in) :: where
         type(adm_statement_type), intent(in) :: statement
         type(adm_run_type), intent(inout) :: run
+        !> The dataset's statements and keywords read and not used: ADAMS's keywords are added
+        type(adm_unused_type), allocatable, intent(inout) :: unused(:)
+        !> The entries of unused that hold one (rollcon_adm_outputs' record_unused)
+        integer, intent(inout) :: unused_count
         type(error_type), allocatable, intent(out) :: error
         type(run_settings_type), target :: settings
         type(key_type), allocatable :: keys(:)
         character(len=:), allocatable :: key, at
         integer :: lines(size(integrator_keys)), k, slot
+        integer, allocatable :: ids(:)
         real(wp) :: error_value
 
         ! the table's pointers write into settings, which starts as the settings so far
@@ -55,10 +72,18 @@ contains
         lines = 0
         error_value = 0.0_wp
         do k = 1, size(statement%arguments)
-            call argument_key(path, where, statement, k, integrator_keys, key, error)
+            call argument_key(path, where, statement, k, integrator_keys, key, error, &
+                & also=adams_keys)
             if (allocated(error)) return
             at = arg_place(path, where, statement%arguments(k)) // " " // key
             slot = name_index(key, integrator_keys)
+            if (slot == 0) then
+                call read_form(statement%arguments(k), at, adams_forms(name_index(key, &
+                    & adams_keys)), ids, error)
+                if (allocated(error)) return
+                call record_unused(unused, unused_count, "INTEGRATOR " // key, statement%line)
+                cycle
+            end if
             lines(slot) = statement%arguments(k)%line
             associate (entry => keys(find_key(keys, "run", trim(run_keys(slot)))))
                 if (entry%kind == kind_choice) then

@@ -17,10 +17,11 @@ module rollcon_adm_keywords
     private
 
     public :: resolve_name, read_reals, read_integer, argument_key, arg_place, place
-    public :: name_index
+    public :: name_index, name_matches
     public :: statement_names
 
-    !> The statements of the subset
+    !> The statements of the subset that are simulated (rollcon_adm_outputs has those read and
+    !> not used)
     character(len=*), parameter :: statement_names(12) = [character(len=10) :: "ACCGRAV", &
         & "END", "GFORCE", "INTEGRATOR", "MARKER", "OUTPUT", "PART", "SFORCE", "SIMULATE", &
         & "UCON", "UNITS", "VFORCE"]
@@ -63,6 +64,25 @@ contains
                 & // "be " // trim(adjustl(matches(2:))) // "; write more of the name", stat_input)
         end if
     end subroutine resolve_name
+
+    !> How many of `allowed` the name `written` may stand for: 1 for an exact name, else the
+    !> number of names it is a prefix of (any case).
+    pure integer function name_matches(written, allowed)
+        character(len=*), intent(in) :: written, allowed(:)
+        character(len=:), allocatable :: name
+        integer :: i
+
+        name = upper_case(trim(written))
+        name_matches = 0
+        if (len(name) == 0) return
+        if (any(allowed == name)) then
+            name_matches = 1
+            return
+        end if
+        do i = 1, size(allowed)
+            if (index(trim(allowed(i)), name) == 1) name_matches = name_matches + 1
+        end do
+    end function name_matches
 
     !> The argument's values as reals: between `least` and `most` of them; angles accept `D`
     !> (degrees, converted to radians); with `factor`, converted to SI (each value finite there
@@ -164,23 +184,25 @@ contains
         text = path // ":" // to_text(line)
     end function place
 
-    !> Resolve argument k of a statement among `allowed`; refuse a keyword given twice.
-    subroutine argument_key(path, where, statement, k, allowed, key, error)
+    !> Resolve argument k of a statement among `allowed`; refuse a keyword given twice. With
+    !> `also`, a name that stands for none of `allowed` is resolved among `also` (keywords
+    !> read and not used: an abbreviation keeps meaning what it meant without them).
+    subroutine argument_key(path, where, statement, k, allowed, key, error, also)
         character(len=*), intent(in) :: path, where
         type(adm_statement_type), intent(in) :: statement
         integer, intent(in) :: k
         character(len=*), intent(in) :: allowed(:)
         character(len=:), allocatable, intent(out) :: key
         type(error_type), allocatable, intent(out) :: error
+        character(len=*), intent(in), optional :: also(:)
         character(len=:), allocatable :: other
         integer :: j
 
-        call resolve_name(statement%arguments(k)%keyword, allowed, statement_of(where) &
-            & // " argument", arg_place(path, where, statement%arguments(k)), key, error)
+        call tiered(statement%arguments(k)%keyword, arg_place(path, where, &
+            & statement%arguments(k)), key)
         if (allocated(error)) return
         do j = 1, k - 1
-            call resolve_name(statement%arguments(j)%keyword, allowed, "argument", where, &
-                & other, error)
+            call tiered(statement%arguments(j)%keyword, where, other)
             if (allocated(error)) return
             if (other == key) then
                 call fatal_error(error, arg_place(path, where, statement%arguments(k)) // ": " &
@@ -188,6 +210,38 @@ contains
                 return
             end if
         end do
+
+    contains
+
+        !> written resolved among allowed, else (when it stands for none of them) among also;
+        !> a name of neither is refused with both lists.
+        subroutine tiered(written, at, resolved)
+            character(len=*), intent(in) :: written, at
+            character(len=:), allocatable, intent(out) :: resolved
+            character(len=32), allocatable :: both(:)
+            integer :: i
+
+            if (present(also)) then
+                if (name_matches(written, allowed) == 0) then
+                    if (name_matches(written, also) > 0) then
+                        call resolve_name(written, also, statement_of(where) // " argument", &
+                            & at, resolved, error)
+                        return
+                    end if
+                    allocate(both(size(allowed) + size(also)))
+                    both(:size(allowed)) = allowed
+                    do i = 1, size(also)
+                        both(size(allowed) + i) = also(i)
+                    end do
+                    call resolve_name(written, both, statement_of(where) // " argument", at, &
+                        & resolved, error)
+                    return
+                end if
+            end if
+            call resolve_name(written, allowed, statement_of(where) // " argument", at, &
+                & resolved, error)
+        end subroutine tiered
+
     end subroutine argument_key
 
     !> The statement's name in "file:line: STATEMENT/id": "STATEMENT".

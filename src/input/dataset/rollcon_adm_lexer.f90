@@ -17,6 +17,7 @@ module rollcon_adm_lexer
     use rollcon_text, only : to_text, upper_case
     use rollcon_namelist_lexer, only : line_type
     use rollcon_namelist_bytes, only : visible, utf8_length
+    use rollcon_input_files, only : input_file_type, text_input_limit
     implicit none
     private
 
@@ -89,49 +90,42 @@ contains
         call lex_adm_lines(path, lines, dataset, error)
     end subroutine read_adm_text
 
-    !> Every line of the file at `path`, as it is (any length, without its line end).
+    !> Every line of the file at `path`, as it is (any length, without its line end): a
+    !> regular file of at most text_input_limit bytes (rollcon_input_files; a FIFO, a device or
+    !> a larger file is refused at once, naming the file).
     subroutine read_dataset_lines(path, lines, error)
         character(len=*), intent(in) :: path
         type(line_type), allocatable, intent(out) :: lines(:)
         type(error_type), allocatable, intent(out) :: error
         type(line_type), allocatable :: grown(:)
+        type(input_file_type) :: file
         character(len=:), allocatable :: text
-        character(len=256) :: chunk, message
-        integer :: unit, stat, got, n
+        logical :: done
+        integer :: n
 
-        open(newunit=unit, file=path, status="old", action="read", form="formatted", &
-            & access="sequential", iostat=stat, iomsg=message)
-        if (stat /= 0) then
-            call fatal_error(error, path // ": cannot open the dataset: " // trim(message), &
-                & stat_input)
+        call file%open(path, "dataset", text_input_limit, error)
+        if (allocated(error)) then
+            error%stat = stat_input
             return
         end if
         allocate(lines(64))
         n = 0
         do
-            text = ""
-            do
-                read(unit, "(a)", advance="no", size=got, iostat=stat) chunk
-                text = text // chunk(:got)
-                if (stat /= 0) exit
-            end do
-            if (is_iostat_end(stat) .and. len(text) == 0) exit
-            if (stat /= 0 .and. .not. is_iostat_eor(stat) .and. .not. is_iostat_end(stat)) then
-                call fatal_error(error, path // ":" // to_text(n + 1) // ": cannot read this " &
-                    & // "line", stat_input)
-                close(unit)
-                return
-            end if
+            call file%next_line(text, done, error)
+            if (done .or. allocated(error)) exit
             if (n == size(lines)) then
                 allocate(grown(2*n))
                 grown(:n) = lines
                 call move_alloc(grown, lines)
             end if
             n = n + 1
-            lines(n)%text = text
-            if (is_iostat_end(stat)) exit
+            call move_alloc(text, lines(n)%text)
         end do
-        close(unit)
+        call file%close()
+        if (allocated(error)) then
+            error%stat = stat_input
+            return
+        end if
         lines = lines(:n)
     end subroutine read_dataset_lines
 

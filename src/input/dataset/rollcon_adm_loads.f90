@@ -2,6 +2,8 @@
 !> Dataset statements of loads and constraints: UCON, ACCGRAV and the SFORCE, VFORCE and
 !> GFORCE statements with their function expressions.
 module rollcon_adm_loads
+    use rollcon_physical_ranges, only : gravity_max
+    use rollcon_text, only : to_text
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type, fatal_error, stat_input
     use rollcon_adm_lexer, only : adm_statement_type, adm_argument_type
@@ -157,7 +159,14 @@ contains
                 & model%units%length/model%units%time**2)
             if (allocated(error)) return
             axis = iachar(key(1:1)) - iachar("I") + 1
+            ! in SI already (read_reals), where the physical range applies
             model%gravity(axis) = values(1)
+            if (.not. abs(model%gravity(axis)) <= gravity_max) then
+                call fatal_error(error, at // " must be at most " // to_text(gravity_max) &
+                    & // " [m/s^2] in magnitude (36 times the Sun's surface gravity), got " &
+                    & // to_text(model%gravity(axis)) // " m/s^2", stat_input)
+                return
+            end if
         end do
     end subroutine read_accgrav
 

@@ -1,6 +1,8 @@
 ! SPDX-License-Identifier: MIT
 !> What a dataset states, in SI units and radians, before it becomes a model to simulate:
-!> parts, markers, UCON statements, forces with their expressions, gravity and the run.
+!> parts, markers, UCON statements, forces with their expressions, gravity and the run; the
+!> displacement requests it honours as output columns, and the statements (or keywords) of
+!> ADAMS's outputs and solver choices it read and checked but does not use.
 module rollcon_adm_model
     use rollcon_kinds, only : wp
     use rollcon_expression, only : expression_type
@@ -11,9 +13,13 @@ module rollcon_adm_model
 
     public :: adm_part_type, adm_marker_type, adm_ucon_type, adm_force_type, adm_run_type
     public :: adm_model_type, force_sforce, force_vforce, force_gforce
+    public :: adm_request_type, adm_unused_type, adm_reference_type
+    public :: refers_to_marker, refers_to_part, refers_to_force
 
     !> Kinds of force statement
     integer, parameter :: force_sforce = 1, force_vforce = 2, force_gforce = 3
+    !> What a reference of a statement read and not used names
+    integer, parameter :: refers_to_marker = 1, refers_to_part = 2, refers_to_force = 3
 
     !> PART/id
     type :: adm_part_type
@@ -80,6 +86,34 @@ module rollcon_adm_model
         integer :: line = 0
     end type adm_run_type
 
+    !> REQUEST/id, DISPLACEMENT, I=id[, J=id][, RM=id]: honoured as output columns
+    !> (rollcon_request_watch)
+    type :: adm_request_type
+        integer :: id = 0, line = 0
+        !> The marker measured, the one it is measured from (0: the ground origin) and the one
+        !> whose axes resolve x, y, z (0: ground axes)
+        integer :: i = 0, j = 0, rm = 0
+    end type adm_request_type
+
+    !> A statement, or a keyword of one, read and checked but not used: ADAMS's own outputs
+    !> and solver choices (rollcon_adm_outputs), named in the run's one warning
+    type :: adm_unused_type
+        !> What it is, grouped by in the warning: "GRAPHICS", "REQUEST VELOCITY", "INTEGRATOR
+        !> GSTIFF", "OUTPUT REQSAVE"
+        character(len=:), allocatable :: what
+        integer :: line = 0
+    end type adm_unused_type
+
+    !> A reference of a statement read and not used (a GRAPHICS's CM, a REQUEST's I), checked
+    !> once the whole file is read, as those of the statements simulated
+    type :: adm_reference_type
+        !> "file:line: REQUEST/3 I", the start of its message
+        character(len=:), allocatable :: at
+        !> refers_to_marker, refers_to_part or refers_to_force (an SFORCE, VFORCE or GFORCE)
+        integer :: kind = refers_to_marker
+        integer :: id = 0
+    end type adm_reference_type
+
     !> A whole dataset
     type :: adm_model_type
         character(len=:), allocatable :: file, title
@@ -91,6 +125,16 @@ module rollcon_adm_model
         !> Gravitational acceleration, ground axes [m/s^2] (zero without ACCGRAV)
         real(wp) :: gravity(3) = 0.0_wp
         type(adm_run_type) :: run
+        !> REQUEST/id, DISPLACEMENT statements, in the order of the file
+        type(adm_request_type), allocatable :: requests(:)
+        !> What was read and not used, in the order of the file
+        type(adm_unused_type), allocatable :: unused(:)
+        !> The references of the statements read and not used
+        type(adm_reference_type), allocatable :: references(:)
+        !> While the dataset is read, the entries of requests, unused and references that hold
+        !> one (each list grows by doubling, so that reading stays linear in the dataset's size;
+        !> the reader cuts it to its count once every statement is read)
+        integer :: request_count = 0, unused_count = 0, reference_count = 0
     end type adm_model_type
 
 end module rollcon_adm_model

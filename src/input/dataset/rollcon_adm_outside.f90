@@ -1,7 +1,8 @@
 ! SPDX-License-Identifier: MIT
 !> Why a statement of the ADAMS/Solver language outside rollcon's subset is refused: the
-!> reason added to the refusal of a well-known statement, so the message says what to write
-!> instead. A statement not listed here is refused with the list of supported ones alone.
+!> reason added to the refusal of a well-known statement (each of them would change the
+!> physics), so the message says what to write instead. A statement not listed here is refused
+!> with the list of supported ones alone.
 module rollcon_adm_outside
     use rollcon_adm_lexer, only : upper_case
     implicit none
@@ -17,18 +18,18 @@ module rollcon_adm_outside
         & "prescribed motions are not in the subset", &
         & "force elements other than SFORCE, VFORCE and GFORCE are not in the subset: write " &
         & // "the force as one of them with a FUNCTION expression", &
-        & "rollcon writes its own outputs (a CSV of every part, the energy and every UCON, a " &
-        & // "summary, pictures)", &
+        & "sensors change a run as it goes (stop it, change its step): not in the subset", &
         & "system and data elements are not in the subset: FUNCTION expressions depend on " &
         & // "TIME only", &
         & "rollcon's bodies are rigid PARTs"]
-    !> Statement names and the kind of each
+    !> Statement names and the kind of each (statements of ADAMS's outputs are read:
+    !> rollcon_adm_outputs)
     character(len=*), parameter :: names(24) = [character(len=12) :: "JOINT", "JPRIM", &
-        & "COUPLER", "GEAR", "PTCV", "CVCV", "MOTION", "BEAM", "BUSHING", "FIELD", &
-        & "SPRINGDAMPER", "FRICTION", "CONTACT", "REQUEST", "MREQUEST", "GRAPHICS", "RESULTS", &
-        & "VARIABLE", "DIFF", "ARRAY", "SPLINE", "STRING", "FLEX_BODY", "POINT_MASS"]
-    integer, parameter :: kind_of(size(names)) = [1, 1, 1, 1, 1, 1, 2, 3, 3, 3, 3, 3, 3, 4, &
-        & 4, 4, 4, 5, 5, 5, 5, 5, 6, 6]
+        & "COUPLER", "GEAR", "PTCV", "CVCV", "GCON", "MOTION", "BEAM", "BUSHING", "FIELD", &
+        & "SPRINGDAMPER", "FRICTION", "CONTACT", "NFORCE", "VTORQUE", "SENSOR", "VARIABLE", &
+        & "DIFF", "ARRAY", "SPLINE", "STRING", "FLEX_BODY", "POINT_MASS"]
+    integer, parameter :: kind_of(size(names)) = [1, 1, 1, 1, 1, 1, 1, 2, 3, 3, 3, 3, 3, 3, &
+        & 3, 3, 4, 5, 5, 5, 5, 5, 6, 6]
 
 contains
 

@@ -1,18 +1,20 @@
 ! SPDX-License-Identifier: MIT
 !> Reads an ADAMS dataset into an adm_model_type: every statement and argument of the subset
-!> checked and converted to SI, anything outside it refused with file, line, statement and what
-!> is supported. References between statements are checked by rollcon_adm_checks.
+!> checked and converted to SI; the statements of ADAMS's outputs and solver choices read and
+!> checked as strictly (rollcon_adm_outputs); every statement outside both refused, all of them
+!> in one message, with file, line, statement and why. References between statements are
+!> checked by rollcon_adm_checks.
 module rollcon_adm_reader
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type, fatal_error, stat_input
-    use rollcon_text, only : to_text
+    use rollcon_text, only : to_text, comma_list
     use, intrinsic :: iso_fortran_env, only : int64
     use rollcon_namelist_lexer, only : line_type
     use rollcon_adm_lexer, only : adm_text_type, adm_statement_type, adm_argument_type, &
         & lex_adm_lines, read_dataset_lines
     use rollcon_adm_ids, only : id_index_type, new_id_index
     use rollcon_adm_keywords, only : resolve_name, statement_names, argument_key, arg_place, &
-        & place, name_index
+        & place, name_index, name_matches
     use rollcon_adm_units, only : units_type, set_unit, unit_keywords
     use rollcon_adm_model, only : adm_model_type
     use rollcon_adm_bodies, only : read_part, read_marker
@@ -20,6 +22,8 @@ module rollcon_adm_reader
     use rollcon_adm_run, only : read_simulate, read_integrator
     use rollcon_adm_checks, only : check_references
     use rollcon_adm_outside, only : outside_reason
+    use rollcon_adm_outputs, only : output_statement_names, output_needs_id, &
+        & read_output_statement
     use rollcon_adm_overrides, only : adm_override_type, apply_adm_overrides
     implicit none
     private
@@ -58,6 +62,8 @@ contains
 
         call lex_adm_lines(path, lines, text, error)
         if (allocated(error)) return
+        call refuse_outside(text, error)
+        if (allocated(error)) return
         if (present(overrides)) then
             call override(text, overrides, error)
             if (allocated(error)) return
@@ -65,6 +71,7 @@ contains
         model%file = path
         model%title = text%title
         allocate(model%parts(0), model%markers(0), model%ucons(0), model%forces(0))
+        allocate(model%requests(0), model%unused(0), model%references(0))
         ! UNITS first: every value of the dataset is in its units, wherever it stands
         call read_units(text, model%units, error)
         if (allocated(error)) return
@@ -80,11 +87,15 @@ contains
         type(adm_text_type), intent(in) :: text
         type(adm_model_type), intent(inout) :: model
         type(error_type), allocatable, intent(out) :: error
-        character(len=len(statement_names)) :: names(size(text%statements))
+        !> The statements' names in full
+        character(len=max(len(statement_names), len(output_statement_names))) :: &
+            & names(size(text%statements))
         character(len=:), allocatable :: name
-        type(id_index_type) :: ids(4)
+        !> The ids of the parts, markers, UCONs and forces (list_of), and of the statements
+        !> read and not used that take one (output_key)
+        type(id_index_type) :: ids(4), output_ids
         integer :: i, n(4), k, previous
-        logical :: seen(size(statement_names))
+        logical :: seen(size(statement_names)), repeated
 
         do i = 1, size(text%statements)
             call statement_name(path, text%statements(i), name, error)
@@ -98,23 +109,33 @@ contains
             & .or. names == "VFORCE" .or. names == "GFORCE")))
         ids = [new_id_index(size(model%parts)), new_id_index(size(model%markers)), &
             & new_id_index(size(model%ucons)), new_id_index(size(model%forces))]
+        output_ids = new_id_index(count([(name_index(names(i), output_statement_names) > 0, &
+            & i = 1, size(names))]))
         n = 0
         seen = .false.
         do i = 1, size(text%statements)
             associate (statement => text%statements(i))
                 name = trim(names(i))
-                if (seen(name_index(name, statement_names)) .and. once(name)) then
-                    call fatal_error(error, place(path, statement%line) // ": a second " // name &
-                        & // " statement (a dataset has at most one)", stat_input)
-                    return
+                if (once(name)) then
+                    if (seen(name_index(name, statement_names))) then
+                        call fatal_error(error, place(path, statement%line) // ": a second " &
+                            & // name // " statement (a dataset has at most one)", stat_input)
+                        return
+                    end if
+                    seen(name_index(name, statement_names)) = .true.
                 end if
-                seen(name_index(name, statement_names)) = .true.
                 if (name == "END") then
                     if (i < size(text%statements)) call fatal_error(error, place(path, &
                         & text%statements(i + 1)%line) // ": a statement after END", stat_input)
                     exit
                 end if
-                call read_statement(path, name, statement, model, n, error)
+                ! an earlier statement read and not used of this kind with this id (0: none)
+                repeated = .false.
+                if (name_index(name, output_statement_names) > 0) then
+                    call output_ids%add(output_key(name, statement%id), i, previous)
+                    repeated = previous /= 0
+                end if
+                call read_statement(path, name, statement, repeated, model, n, error)
                 if (allocated(error)) return
                 k = list_of(name)
                 if (k == 0) cycle
@@ -132,6 +153,9 @@ contains
         model%markers = model%markers(:n(2))
         model%ucons = model%ucons(:n(3))
         model%forces = model%forces(:n(4))
+        model%requests = model%requests(:model%request_count)
+        model%unused = model%unused(:model%unused_count)
+        model%references = model%references(:model%reference_count)
     end subroutine read_statements
 
     !> The list a statement's element goes to: 1 parts, 2 markers, 3 UCONs, 4 forces; 0 none.
@@ -161,6 +185,16 @@ contains
         key = 4_int64*int(id, int64) + name_index(name, ["SFORCE", "VFORCE", "GFORCE"])
     end function list_key
 
+    !> The key of a statement read and not used (one of output_statement_names) in its index:
+    !> each kind has its own ids.
+    pure function output_key(name, id) result(key)
+        character(len=*), intent(in) :: name
+        integer, intent(in) :: id
+        integer(int64) :: key
+
+        key = 16_int64*int(id, int64) + name_index(name, output_statement_names)
+    end function output_key
+
     pure logical function once(name)
         character(len=*), intent(in) :: name
 
@@ -168,11 +202,14 @@ contains
             & "SIMULATE", "UNITS"])
     end function once
 
-    !> One statement; a part, marker, UCON or force is stored at the end of its list
-    !> (n: the lengths of the lists, as list_of numbers them).
-    subroutine read_statement(path, name, statement, model, n, error)
+    !> One statement, name in full; a part, marker, UCON or force is stored at the end of its
+    !> list (n: the lengths of the lists, as list_of numbers them); repeated: an earlier
+    !> statement read and not used of this kind has its id (read_statements refuses that for
+    !> the statements simulated).
+    subroutine read_statement(path, name, statement, repeated, model, n, error)
         character(len=*), intent(in) :: path, name
         type(adm_statement_type), intent(in) :: statement
+        logical, intent(in) :: repeated
         type(adm_model_type), intent(inout) :: model
         integer, intent(inout) :: n(4)
         type(error_type), allocatable, intent(out) :: error
@@ -208,15 +245,73 @@ contains
         case ("SIMULATE")
             call read_simulate(path, where, statement, model%units, model%run, error)
         case ("INTEGRATOR")
-            call read_integrator(path, where, statement, model%run, error)
-        case ("OUTPUT")
-            if (size(statement%arguments) > 0) call fatal_error(error, arg_place(path, where, &
-                & statement%arguments(1)) // ": '" // statement%arguments(1)%keyword &
-                & // "' is not supported: OUTPUT takes no argument in rollcon (supported: none), " &
-                & // "which writes its own outputs (a CSV of every part's coordinates, the " &
-                & // "energy and every UCON's residual and multiplier, and a summary)", stat_input)
+            call read_integrator(path, where, statement, model%run, model%unused, &
+                & model%unused_count, error)
+        case ("UNITS")
+            ! read before every other statement (read_units)
+        case default
+            ! OUTPUT's arguments, and the statements read and not simulated
+            call read_output_statement(path, where, name, statement, repeated, model, error)
         end select
     end subroutine read_statement
+
+    !> Every statement outside the subset (simulated, or read and not used) refused at once,
+    !> up to END: one alone with the message statement_name gives, several in one message of a
+    !> line each.
+    subroutine refuse_outside(text, error)
+        type(adm_text_type), intent(in) :: text
+        type(error_type), allocatable, intent(out) :: error
+        type(error_type), allocatable :: refused
+        character(len=:), allocatable :: name, first, lines
+        integer :: i, count
+
+        count = 0
+        lines = ""
+        do i = 1, size(text%statements)
+            associate (statement => text%statements(i))
+                call statement_name(text%file, statement, name, refused)
+                if (.not. allocated(refused)) then
+                    if (name == "END") exit
+                    cycle
+                end if
+                count = count + 1
+                if (count == 1) first = refused%message
+                lines = lines // new_line("a") // "  " // outside_line(text%file, statement, &
+                    & refused%message)
+                deallocate(refused)
+            end associate
+        end do
+        if (count == 0) return
+        if (count == 1) then
+            call fatal_error(error, first, stat_input)
+            return
+        end if
+        call fatal_error(error, text%file // ": " // to_text(count) // " statements are " &
+            & // "outside the supported subset (" // comma_list(statement_names) // "; read " &
+            & // "and not used: " // comma_list(output_statement_names) // "); nothing was " &
+            & // "run:" // lines, stat_input)
+    end subroutine refuse_outside
+
+    !> One statement outside the subset, in a line of refuse_outside's message: "file:7:
+    !> JOINT/9: why" for a well-known statement, else the refusal itself without its list.
+    function outside_line(path, statement, message) result(line)
+        character(len=*), intent(in) :: path
+        type(adm_statement_type), intent(in) :: statement
+        !> statement_name's refusal
+        character(len=*), intent(in) :: message
+        character(len=:), allocatable :: line, reason
+
+        reason = outside_reason(statement%name)
+        if (len(reason) > 0) then
+            line = place(path, statement%line) // ": " // statement%name
+            if (statement%has_id) line = line // "/" // to_text(statement%id)
+            line = line // ": " // reason
+        else if (index(message, " (") > 0 .and. index(message, "is ambiguous") == 0) then
+            line = message(:index(message, " (", back=.true.) - 1)
+        else
+            line = message
+        end if
+    end function outside_line
 
     !> The supported statement `statement` names (a unique prefix, any case); a refusal says
     !> why for a well-known statement outside the subset (rollcon_adm_outside).
@@ -227,6 +322,14 @@ contains
         type(error_type), allocatable, intent(out) :: error
         character(len=:), allocatable :: reason
 
+        ! the statements simulated first: an abbreviation means what it meant before the
+        ! statements read and not used were added
+        if (name_matches(statement%name, statement_names) == 0 .and. &
+            & name_matches(statement%name, output_statement_names) > 0) then
+            call resolve_name(statement%name, output_statement_names, "statement", &
+                & place(path, statement%line), name, error)
+            return
+        end if
         call resolve_name(statement%name, statement_names, "statement", &
             & place(path, statement%line), name, error)
         if (.not. allocated(error)) return
@@ -240,7 +343,8 @@ contains
         type(adm_override_type), intent(in) :: overrides(:)
         type(error_type), allocatable, intent(out) :: error
         character(len=:), allocatable :: name
-        character(len=len(statement_names)) :: names(size(text%statements))
+        character(len=max(len(statement_names), len(output_statement_names))) :: &
+            & names(size(text%statements))
         integer :: i
 
         do i = 1, size(text%statements)
@@ -255,7 +359,7 @@ contains
         character(len=*), intent(in) :: name
 
         needs_id = any(name == [character(len=10) :: "PART", "MARKER", "UCON", "SFORCE", &
-            & "VFORCE", "GFORCE"])
+            & "VFORCE", "GFORCE"]) .or. output_needs_id(name)
     end function needs_id
 
     !> UNITS, read before any other statement. SYSTEM sets all four units; FORCE, MASS, LENGTH

@@ -2,7 +2,8 @@
 !> An ADAMS dataset as a job's model source (rollcon_model_source): its parts, UCONs, forces and
 !> run (rollcon_adm_build), with the dataset's INTEGRATOR and SIMULATE settings or those a
 !> caller put in their place, and its start made consistent by the initial-conditions analysis
-!> (docs/initial-conditions.md), as ADAMS does before a dynamic run.
+!> (docs/initial-conditions.md), as ADAMS does before a dynamic run. Its warning names the
+!> statements of ADAMS's outputs and solver choices it read and does not use.
 module rollcon_dataset_source
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type
@@ -14,6 +15,7 @@ module rollcon_dataset_source
     use rollcon_adm_model, only : adm_model_type
     use rollcon_adm_build, only : build_adm_problem
     use rollcon_adm_initial, only : adm_ic_options
+    use rollcon_adm_outputs, only : unused_warning
     implicit none
     private
 
@@ -41,6 +43,7 @@ contains
         source%name = path(slash + 1:len_trim(path) - 4)
         source%kind = "dataset"
         source%settings = adm%run%settings
+        source%warning = unused_warning(adm)
     end function new_dataset_source
 
     !> The dataset's problem with the source's settings, and its start after the

@@ -3,7 +3,8 @@
 !> line numbers, so that every mistake can be reported at its place; rollcon_key_values then
 !> converts each value.
 module rollcon_namelist_lexer
-    use rollcon_error, only : error_type, input_error
+    use rollcon_error, only : error_type, input_error, stat_input
+    use rollcon_input_files, only : input_file_type, text_input_limit
     use rollcon_text, only : to_text, to_lower => lower_case
     implicit none
     private
@@ -55,63 +56,47 @@ module rollcon_namelist_lexer
 
 contains
 
-    !> Read every line of a text file.
-    subroutine read_lines(path, lines, error)
+    !> Read every line of a text file: a regular file of at most text_input_limit bytes
+    !> (rollcon_input_files; a FIFO, a device or a larger file is refused, naming the file).
+    subroutine read_lines(path, lines, error, what)
         !> File to read
         character(len=*), intent(in) :: path
         !> Its lines, without line ends
         type(line_type), allocatable, intent(out) :: lines(:)
         type(error_type), allocatable, intent(out) :: error
+        !> What the file is, for messages (default "scene file")
+        character(len=*), intent(in), optional :: what
         type(line_type), allocatable :: grown(:)
-        character(len=256) :: chunk
-        character(len=512) :: message
+        type(input_file_type) :: file
         character(len=:), allocatable :: text
-        logical :: exists
-        integer :: unit, stat, got, n
+        logical :: done
+        integer :: n
 
-        inquire(file=path, exist=exists)
-        if (.not. exists) then
-            call input_error(error, path, 0, "", "no such scene file")
-            return
+        if (present(what)) then
+            call file%open(path, what, text_input_limit, error)
+        else
+            call file%open(path, "scene file", text_input_limit, error)
         end if
-        ! gfortran reads a directory as an empty file; only a directory has an entry '.'
-        inquire(file=path // "/.", exist=exists)
-        if (exists) then
-            call input_error(error, path, 0, "", "is a directory, not a scene file")
-            return
-        end if
-        open(newunit=unit, file=path, status="old", action="read", form="formatted", &
-            & access="sequential", iostat=stat, iomsg=message)
-        if (stat /= 0) then
-            call input_error(error, path, 0, "", "cannot open the scene file: " // trim(message))
-            return
-        end if
+        if (allocated(error)) return
         allocate(lines(64))
         n = 0
         do
-            text = ""
-            do
-                read(unit, "(a)", advance="no", size=got, iostat=stat, iomsg=message) chunk
-                text = text // chunk(:got)
-                if (stat /= 0) exit
-            end do
-            if (is_iostat_end(stat) .and. len(text) == 0) exit
-            if (stat /= 0 .and. .not. is_iostat_eor(stat) .and. .not. is_iostat_end(stat)) then
-                call input_error(error, path, n + 1, "", "cannot read the scene file: " &
-                    & // trim(message))
-                close(unit)
-                return
-            end if
+            call file%next_line(text, done, error)
+            if (done .or. allocated(error)) exit
             if (n == size(lines)) then
                 allocate(grown(2*n))
                 grown(:n) = lines
                 call move_alloc(grown, lines)
             end if
             n = n + 1
-            lines(n)%text = text
-            if (is_iostat_end(stat)) exit
+            call move_alloc(text, lines(n)%text)
         end do
-        close(unit)
+        call file%close()
+        if (allocated(error)) then
+            ! the reader's own message, as the scene readers report theirs: file: reason
+            error%stat = stat_input
+            return
+        end if
         lines = lines(:n)
     end subroutine read_lines
 
@@ -196,8 +181,18 @@ contains
         i = i + 1
         do
             if (i > n) then
-                call input_error(error, path, group%line, "", "group '&" // group%name &
-                    & // "' is not closed with '/'")
+                if (size(group%assignments) > 0) then
+                    ! the file ends in the last value: name its key
+                    associate (last => group%assignments(size(group%assignments)))
+                        call input_error(error, path, last%line, last%key, "= '" &
+                            & // last%value // "': the file ends here, inside group '&" &
+                            & // group%name // "' (line " // to_text(group%line) &
+                            & // "), which is not closed with '/'")
+                    end associate
+                else
+                    call input_error(error, path, group%line, "", "group '&" // group%name &
+                        & // "' is not closed with '/'")
+                end if
                 return
             end if
             select case (tokens(i)%kind)
@@ -308,6 +303,16 @@ contains
                     case ("'", '"')
                         k = closing_quote(line, j)
                         if (k == 0) then
+                            ! name the key the string was to be the value of (key = 'open...)
+                            if (n >= 2) then
+                                if (tokens(n)%kind == token_equals .and. tokens(n - 1)%kind &
+                                    & == token_word) then
+                                    call input_error(error, path, i, tokens(n - 1)%text, &
+                                        & "= " // line(j:) // ": the string is not closed on " &
+                                        & // "its line")
+                                    return
+                                end if
+                            end if
                             call input_error(error, path, i, "", "string " // line(j:) &
                                 & // " is not closed on its line")
                             return

@@ -66,7 +66,7 @@ contains
         if (scene%run%height == height_position) then
             ! Z - R sin(theta) = 0 in place of its time derivative F3 (docs/design.md §5)
             call model%add_ucon(3, disk_height_par(disk_part, scene%disk%radius), &
-                & disk_height_ucosub, time_free=disk_height_time_free)
+                & disk_height_ucosub, time_free=disk_height_time_free, routine="disk_height")
         else
             call model%add_ucon(3, disk_par(disk_part, scene%disk%radius, 3), time_free=time_free)
         end if

@@ -10,6 +10,7 @@ module rollcon_scene_check
     use rollcon_namelist_lexer, only : group_type
     use rollcon_namelist_bytes, only : visible
     use rollcon_scene_type, only : scene_type
+    use rollcon_physical_ranges, only : light
     use rollcon_run_keys, only : run_choice_rule
     use rollcon_scene_state, only : disk_mass_properties, angular_velocity, disk_initial_state
     use, intrinsic :: ieee_arithmetic, only : ieee_is_finite
@@ -23,8 +24,6 @@ module rollcon_scene_check
     !> Closest start to flat that is accepted [rad]: the 3-1-3 angles are singular where
     !> sin(theta) = 0 (docs/design.md §3)
     real(wp), parameter :: flat_margin = 1.0e-3_wp
-    !> Speed of light [m/s]: no speed of a Newtonian rigid body may reach it
-    real(wp), parameter :: light = 299792458.0_wp
     !> Largest mass [kg], moment of inertia [kg m^2] and energy [J] accepted: their squares,
     !> formed in norms and Newton matrices, stay below the 1.8e308 of doubles. The key ranges
     !> (docs/scenes.md) keep them far below; this guards any range widened later.

@@ -9,6 +9,8 @@ module rollcon_scene_keys
     use rollcon_keys, only : key_type, option_type, real_key, logical_key, choice_key, &
         & option_code, option_name
     use rollcon_run_keys, only : bind_run_keys, time_min, time_max
+    use rollcon_physical_ranges, only : light, length_max, length_min, position_max, angle_max, &
+        & rate_max, gravity_max
     use rollcon_scene_type, only : scene_type, height_velocity, height_position
     implicit none
     private
@@ -19,21 +21,8 @@ module rollcon_scene_keys
     character(len=*), parameter :: scene_groups(*) = [character(len=11) :: "disk", &
         & "environment", "initial", "strike", "run", "limits"]
 
-    !> Speed of light [m/s]: the bound of every speed, rigid-body mechanics being Newtonian
-    real(wp), parameter :: light = 299792458.0_wp
-    !> Largest length [m] (1000 km) and smallest (1 um): beyond, a rigid disk with SI
-    !> tolerances is not a meaningful model
-    real(wp), parameter :: length_max = 1.0e6_wp, length_min = 1.0e-6_wp
-    !> Largest position [m]: a start 1e9 m away still resolves 1e-7 m in a double
-    real(wp), parameter :: position_max = 1.0e9_wp
-    !> Largest angle [rad]: sin and cos of 1e6 rad still resolve 1e-10 rad
-    real(wp), parameter :: angle_max = 1.0e6_wp
-    !> Largest rate [rad/s]
-    real(wp), parameter :: rate_max = 1.0e6_wp
     !> Densities [kg/m^3]: lighter than air is not a disk; 1e5 is four times osmium's
     real(wp), parameter :: density_min = 1.0e-3_wp, density_max = 1.0e5_wp
-    !> Largest gravity [m/s^2], 36 times the Sun's surface gravity
-    real(wp), parameter :: gravity_max = 1.0e4_wp
     !> Largest impulse [N s]
     real(wp), parameter :: impulse_max = 1.0e9_wp
 

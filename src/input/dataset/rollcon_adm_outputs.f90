@@ -1,0 +1,472 @@
+! SPDX-License-Identifier: MIT
+!> The statements of a dataset that shape only ADAMS's own outputs or its choice of solver:
+!> REQUEST, MREQUEST, GRAPHICS, RESULTS, DEBUG, PREFERENCES, LIST, NOLIST, the settings of the
+!> analyses rollcon does not run (EQUILIBRIUM, KINEMATICS, IC), and OUTPUT's arguments. Each is
+!> read as strictly as a simulated statement: its keywords (any case, a unique prefix, once
+!> each), the form of every value, and the markers, parts and forces it names (checked with the
+!> rest once the file is read: rollcon_adm_checks). What rollcon has no equivalent of is
+!> recorded as read and not used, and a run names it all in one warning (unused_warning); a
+!> REQUEST/id, DISPLACEMENT is honoured as output columns (rollcon_request_watch). Values are
+!> not converted to SI: nothing reads them.
+module rollcon_adm_outputs
+    use rollcon_kinds, only : wp
+    use rollcon_error, only : error_type, fatal_error, stat_input
+    use rollcon_text, only : to_text
+    use rollcon_adm_lexer, only : adm_statement_type, adm_argument_type, upper_case
+    use rollcon_adm_keywords, only : read_reals, argument_key, arg_place, name_index
+    use rollcon_adm_model, only : adm_model_type, adm_request_type, adm_unused_type, &
+        & adm_reference_type, refers_to_marker, refers_to_part, refers_to_force
+    implicit none
+    private
+
+    public :: output_statement_names, output_needs_id, read_output_statement, read_form
+    public :: record_unused, unused_warning
+
+    !> Forms of a value: a keyword alone; one number; one angle (D for degrees); numbers; a
+    !> whole number >= 0; any text (a name, a comment, an expression: not read further); a
+    !> marker id (0: none); marker ids; ALL or part ids; ALL or ids of SFORCE, VFORCE, GFORCE;
+    !> ALL or ids of statements rollcon has none of (joints)
+    integer, parameter, public :: form_flag = 1, form_number = 2, form_angle = 3, &
+        & form_numbers = 4, form_whole = 5, form_text = 6, form_marker = 7, form_markers = 8, &
+        & form_parts = 9, form_forces = 10, form_ids = 11
+
+    !> The statements read and not simulated (OUTPUT, simulated without arguments, is one of
+    !> rollcon_adm_keywords' statement_names; its arguments are read here)
+    character(len=*), parameter :: output_statement_names(11) = [character(len=11) :: &
+        & "DEBUG", "EQUILIBRIUM", "GRAPHICS", "IC", "KINEMATICS", "LIST", "MREQUEST", &
+        & "NOLIST", "PREFERENCES", "REQUEST", "RESULTS"]
+
+    !> Keywords of one statement that share a form, separated by blanks
+    type :: keyword_group_type
+        character(len=11) :: statement
+        integer :: form
+        character(len=240) :: keywords
+    end type keyword_group_type
+
+    !> Every keyword of the statements read here, in the order a refusal lists them
+    type(keyword_group_type), parameter :: groups(*) = [ &
+        & keyword_group_type("REQUEST", form_flag, "DISPLACEMENT VELOCITY ACCELERATION FORCE"), &
+        & keyword_group_type("REQUEST", form_marker, "I J RM"), &
+        & keyword_group_type("REQUEST", form_text, "F1 F2 F3 F4 F5 F6 F7 F8 FUNCTION ROUTINE " &
+        & // "COMMENT TITLE CNAMES CUNITS CLABELS RESULTS_NAME"), &
+        & keyword_group_type("MREQUEST", form_flag, "DISPLACEMENT VELOCITY ACCELERATION FORCE"), &
+        & keyword_group_type("MREQUEST", form_parts, "PARTS"), &
+        & keyword_group_type("MREQUEST", form_ids, "JOINTS JPRIMS"), &
+        & keyword_group_type("MREQUEST", form_forces, "APPFORS"), &
+        & keyword_group_type("MREQUEST", form_text, "COMMENT"), &
+        & keyword_group_type("GRAPHICS", form_flag, "ARC BOX CIRCLE CURVE CYLINDER ELLIPSOID " &
+        & // "EXTERNAL FORCE FRUSTUM PLANE POINT SPDP TORUS"), &
+        & keyword_group_type("GRAPHICS", form_markers, "OUTLINE"), &
+        & keyword_group_type("GRAPHICS", form_marker, "CM CORNER RM EMARKER I J"), &
+        & keyword_group_type("GRAPHICS", form_number, "RADIUS LENGTH TOP BOTTOM X Y Z XSCALE " &
+        & // "YSCALE ZSCALE XMIN XMAX YMIN YMAX MAJOR_RADIUS MINOR_RADIUS CRATIO DA DB DC " &
+        & // "LA LB LC"), &
+        & keyword_group_type("GRAPHICS", form_angle, "RANGLE"), &
+        & keyword_group_type("GRAPHICS", form_whole, "SIDES SEG COILS"), &
+        & keyword_group_type("GRAPHICS", form_text, "CID EID ETYPE FILE ELEMENT"), &
+        & keyword_group_type("RESULTS", form_flag, "FORMATTED XRF NOACCELERATIONS " &
+        & // "NOAPPLIEDFORCES NOCONTACTS NODATASTRUCTURES NOFLOATINGMARKERS NOLINEAR " &
+        & // "NOREACTIONFORCES NOREQUESTS NOSYSTEMELEMENTS NOTIRES NOVELOCITIES ROUNDOFF " &
+        & // "TRAILINGZEROS"), &
+        & keyword_group_type("RESULTS", form_whole, "SIGFIGS"), &
+        & keyword_group_type("RESULTS", form_number, "ZEROTHRESHOLD"), &
+        & keyword_group_type("RESULTS", form_text, "COMMENT"), &
+        & keyword_group_type("OUTPUT", form_flag, "DACSAVE GRSAVE NOPRINT NOSEPARATOR REQSAVE " &
+        & // "SEPARATOR TELETYPE YPR"), &
+        & keyword_group_type("DEBUG", form_flag, "DOF DUMP EPRINT JMDUMP REQDUMP RHSDUMP " &
+        & // "TOPOLOGY VERBOSE"), &
+        & keyword_group_type("PREFERENCES", form_number, "CONTACT_FACETING_TOLERANCE"), &
+        & keyword_group_type("PREFERENCES", form_whole, "NTHREADS"), &
+        & keyword_group_type("PREFERENCES", form_text, "CONTACT_GEOMETRY_LIBRARY " &
+        & // "FLEX_LIMIT_CHECK FLEX_LIMIT_CHECK_ACTION LIBRARY_SEARCH_PATH SIMFAIL SOLVERBIAS " &
+        & // "STATUS_MESSAGE"), &
+        & keyword_group_type("EQUILIBRIUM", form_flag, "STATIC DYNAMIC"), &
+        & keyword_group_type("EQUILIBRIUM", form_number, "ERROR IMBALANCE STABILITY TLIMIT " &
+        & // "SETTLING_TIME GLOBAL_DAMPING"), &
+        & keyword_group_type("EQUILIBRIUM", form_angle, "ALIMIT"), &
+        & keyword_group_type("EQUILIBRIUM", form_whole, "MAXIT"), &
+        & keyword_group_type("EQUILIBRIUM", form_text, "PATTERN METHOD"), &
+        & keyword_group_type("KINEMATICS", form_number, "ERROR AERROR HMAX TLIMIT"), &
+        & keyword_group_type("KINEMATICS", form_angle, "ALIMIT"), &
+        & keyword_group_type("KINEMATICS", form_whole, "MAXIT AMAXIT"), &
+        & keyword_group_type("KINEMATICS", form_text, "PATTERN APATTERN"), &
+        & keyword_group_type("IC", form_number, "ERROR AERROR VERROR TLIMIT"), &
+        & keyword_group_type("IC", form_angle, "ALIMIT"), &
+        & keyword_group_type("IC", form_whole, "MAXIT AMAXIT"), &
+        & keyword_group_type("IC", form_text, "PATTERN APATTERN")]
+    !> GRAPHICS: the keywords that give its shape (one of them)
+    character(len=*), parameter :: shapes(14) = [character(len=9) :: "ARC", "BOX", "CIRCLE", &
+        & "CURVE", "CYLINDER", "ELLIPSOID", "EXTERNAL", "FORCE", "FRUSTUM", "PLANE", "POINT", &
+        & "SPDP", "TORUS", "OUTLINE"]
+    !> REQUEST: what it measures (one of them, or expressions)
+    character(len=*), parameter :: measures(4) = [character(len=12) :: "DISPLACEMENT", &
+        & "VELOCITY", "ACCELERATION", "FORCE"]
+    !> REQUEST: the keywords of expressions
+    character(len=*), parameter :: expression_keys(9) = [character(len=8) :: "F1", "F2", "F3", &
+        & "F4", "F5", "F6", "F7", "F8", "FUNCTION"]
+    !> Line numbers a warning lists of one kind before it counts the rest
+    integer, parameter :: lines_listed = 8
+    !> Entries a list of requests, unused statements or references starts with when it grows
+    integer, parameter :: least_capacity = 16
+
+contains
+
+    !> The statements read here that take an id (unique among those of their kind).
+    pure logical function output_needs_id(name)
+        character(len=*), intent(in) :: name
+
+        output_needs_id = any(name == [character(len=8) :: "GRAPHICS", "MREQUEST", "REQUEST"])
+    end function output_needs_id
+
+    !> Read statement `name` (one of output_statement_names, or OUTPUT): every keyword and
+    !> value checked, its references kept for rollcon_adm_checks; a REQUEST/id, DISPLACEMENT
+    !> becomes one of model%requests, anything else one of model%unused.
+    subroutine read_output_statement(path, where, name, statement, repeated, model, error)
+        character(len=*), intent(in) :: path
+        !> "file:line: NAME/id"
+        character(len=*), intent(in) :: where
+        !> The statement's name in full
+        character(len=*), intent(in) :: name
+        type(adm_statement_type), intent(in) :: statement
+        !> An earlier statement of this kind has this id
+        logical, intent(in) :: repeated
+        type(adm_model_type), intent(inout) :: model
+        type(error_type), allocatable, intent(out) :: error
+        character(len=26), allocatable :: keys(:)
+        integer, allocatable :: forms(:), ids(:)
+        logical, allocatable :: given(:)
+        integer :: marker(3), k, slot
+        character(len=:), allocatable :: key, at
+
+        if (repeated) then
+            call fatal_error(error, where // ": a second " // name // " with this id", stat_input)
+            return
+        end if
+        call statement_keywords(name, keys, forms)
+        if (size(keys) == 0 .and. size(statement%arguments) > 0) then
+            call fatal_error(error, arg_place(path, where, statement%arguments(1)) // ": " &
+                & // name // " takes no argument, got '" // statement%arguments(1)%keyword &
+                & // "'", stat_input)
+            return
+        end if
+        allocate(given(size(keys)), source=.false.)
+        marker = 0
+        do k = 1, size(statement%arguments)
+            call argument_key(path, where, statement, k, keys, key, error)
+            if (allocated(error)) return
+            at = arg_place(path, where, statement%arguments(k)) // " " // key
+            slot = name_index(key, keys)
+            given(slot) = .true.
+            call read_form(statement%arguments(k), at, forms(slot), ids, error)
+            if (allocated(error)) return
+            call keep_references(model, at, forms(slot), ids)
+            if (name == "REQUEST" .and. forms(slot) == form_marker .and. size(ids) > 0) &
+                & marker(name_index(key, [character(len=2) :: "I", "J", "RM"])) = ids(1)
+            if (name == "OUTPUT") call record_unused(model%unused, model%unused_count, &
+                & "OUTPUT " // key, statement%line)
+        end do
+        select case (name)
+        case ("REQUEST")
+            call read_request(where, statement, keys, given, marker, model, error)
+        case ("GRAPHICS")
+            if (count(given .and. is_one_of(keys, shapes)) /= 1) call fatal_error(error, where &
+                & // ": give one shape (ARC, BOX, CIRCLE, CURVE, CYLINDER, ELLIPSOID, EXTERNAL, " &
+                & // "FORCE, FRUSTUM, PLANE, POINT, SPDP, TORUS or OUTLINE=ids), got " &
+                & // to_text(count(given .and. is_one_of(keys, shapes))), stat_input)
+            if (.not. allocated(error)) call record_unused(model%unused, model%unused_count, &
+                & name, statement%line)
+        case ("OUTPUT")
+        case default
+            call record_unused(model%unused, model%unused_count, name, statement%line)
+        end select
+    end subroutine read_output_statement
+
+    !> A REQUEST asks for one thing: DISPLACEMENT, VELOCITY, ACCELERATION or FORCE of its I
+    !> marker, or expressions (F1..F8, FUNCTION=USER(...)). A DISPLACEMENT is honoured.
+    subroutine read_request(where, statement, keys, given, marker, model, error)
+        character(len=*), intent(in) :: where
+        type(adm_statement_type), intent(in) :: statement
+        character(len=*), intent(in) :: keys(:)
+        logical, intent(in) :: given(:)
+        !> I, J, RM (0: not given)
+        integer, intent(in) :: marker(3)
+        type(adm_model_type), intent(inout) :: model
+        type(error_type), allocatable, intent(out) :: error
+        logical :: measured(size(measures)), expressions
+        character(len=:), allocatable :: what
+        integer :: m
+
+        do m = 1, size(measures)
+            measured(m) = given(name_index(measures(m), keys))
+        end do
+        expressions = any(given .and. is_one_of(keys, expression_keys))
+        if (count(measured) + merge(1, 0, expressions) /= 1) then
+            call fatal_error(error, where // ": a REQUEST asks for one of DISPLACEMENT, " &
+                & // "VELOCITY, ACCELERATION, FORCE (of its I marker) or expressions (F1..F8, " &
+                & // "FUNCTION=USER(...)), got " // to_text(count(measured) &
+                & + merge(1, 0, expressions)), stat_input)
+            return
+        end if
+        if (expressions) then
+            what = "REQUEST F1..F8"
+            if (given(name_index("FUNCTION", keys))) what = "REQUEST FUNCTION=USER"
+            call record_unused(model%unused, model%unused_count, what, statement%line)
+            return
+        end if
+        m = findloc(measured, .true., dim=1)
+        if (marker(1) == 0) then
+            call fatal_error(error, where // " I: " // trim(measures(m)) // " needs the marker " &
+                & // "it measures (I=id of a MARKER)", stat_input)
+            return
+        end if
+        if (m > 1) then
+            call record_unused(model%unused, model%unused_count, "REQUEST " &
+                & // trim(measures(m)), statement%line)
+            return
+        end if
+        call add_request(model, adm_request_type(id=statement%id, line=statement%line, &
+            & i=marker(1), j=marker(2), rm=marker(3)))
+    end subroutine read_request
+
+    !> Append a request to model%requests(:model%request_count), grown by doubling.
+    subroutine add_request(model, request)
+        type(adm_model_type), intent(inout) :: model
+        type(adm_request_type), intent(in) :: request
+        type(adm_request_type), allocatable :: grown(:)
+
+        if (.not. allocated(model%requests)) allocate(model%requests(0))
+        if (model%request_count == size(model%requests)) then
+            allocate(grown(max(2*model%request_count, least_capacity)))
+            grown(:model%request_count) = model%requests(:model%request_count)
+            call move_alloc(grown, model%requests)
+        end if
+        model%request_count = model%request_count + 1
+        model%requests(model%request_count) = request
+    end subroutine add_request
+
+    !> One value of form `form` (form_flag ... form_ids) checked; ids: the ids it names (none
+    !> for a value that names nothing, ALL included).
+    subroutine read_form(argument, at, form, ids, error)
+        type(adm_argument_type), intent(in) :: argument
+        !> "file:line: STATEMENT/id KEYWORD"
+        character(len=*), intent(in) :: at
+        integer, intent(in) :: form
+        integer, allocatable, intent(out) :: ids(:)
+        type(error_type), allocatable, intent(out) :: error
+        real(wp), allocatable :: values(:)
+        integer :: n, i
+
+        allocate(ids(0))
+        n = 0
+        if (argument%assigned) n = size(argument%values)
+        select case (form)
+        case (form_flag)
+            if (argument%assigned) call fatal_error(error, at // " takes no value", stat_input)
+        case (form_number, form_angle)
+            call read_reals(argument, at, 1, 1, form == form_angle, values, error)
+        case (form_numbers)
+            call read_reals(argument, at, 1, huge(1), .false., values, error)
+        case (form_whole)
+            call read_reals(argument, at, 1, 1, .false., values, error)
+            if (allocated(error)) return
+            if (.not. (values(1) >= 0.0_wp .and. values(1) == aint(values(1)) .and. &
+                & values(1) < real(huge(1), wp))) call fatal_error(error, at // " must be a " &
+                & // "whole number >= 0, got " // to_text(values(1)), stat_input)
+        case (form_text)
+            if (n == 0) then
+                call fatal_error(error, at // ": expected a value (" // at(index(at, " ", &
+                    & back=.true.) + 1:) // "=...)", stat_input)
+            else if (len_trim(argument%values(1)%text) == 0) then
+                call fatal_error(error, at // ": expected a value, got none", stat_input)
+            end if
+        case default
+            if (n == 0) then
+                call fatal_error(error, at // ": expected " // ids_wanted(form), stat_input)
+                return
+            end if
+            if (form >= form_parts .and. n == 1) then
+                if (upper_case(trim(argument%values(1)%text)) == "ALL") return
+            end if
+            if (form == form_marker .and. n > 1) then
+                call fatal_error(error, at // ": expected one marker id, got " // to_text(n) &
+                    & // " values", stat_input)
+                return
+            end if
+            allocate(values(n))
+            do i = 1, n
+                values(i) = whole_id(argument%values(i)%text)
+                if (values(i) < 0.0_wp .or. (values(i) == 0.0_wp .and. form /= form_marker)) &
+                    & then
+                    call fatal_error(error, at // ": expected " // ids_wanted(form) // ", got '" &
+                        & // argument%values(i)%text // "'", stat_input)
+                    return
+                end if
+            end do
+            ids = pack(nint(values), values > 0.0_wp)
+        end select
+    end subroutine read_form
+
+    !> What a value of an id form must be, in words.
+    pure function ids_wanted(form) result(text)
+        integer, intent(in) :: form
+        character(len=:), allocatable :: text
+
+        select case (form)
+        case (form_marker)
+            text = "a marker id (a whole number; 0: none)"
+        case (form_markers)
+            text = "marker ids (positive integers)"
+        case default
+            text = "ALL or ids (positive integers)"
+        end select
+    end function ids_wanted
+
+    !> An id as written: its value, or -1 when it is not a whole number of at most 9 digits.
+    pure real(wp) function whole_id(written)
+        character(len=*), intent(in) :: written
+        character(len=:), allocatable :: text
+        integer :: stat, value
+
+        whole_id = -1.0_wp
+        text = trim(adjustl(written))
+        if (len(text) == 0 .or. len(text) > 9 .or. verify(text, "0123456789") > 0) return
+        read(text, *, iostat=stat) value
+        if (stat == 0) whole_id = real(value, wp)
+    end function whole_id
+
+    !> The references of a value read (markers, parts, forces), for rollcon_adm_checks.
+    subroutine keep_references(model, at, form, ids)
+        type(adm_model_type), intent(inout) :: model
+        character(len=*), intent(in) :: at
+        integer, intent(in) :: form, ids(:)
+        type(adm_reference_type), allocatable :: grown(:)
+        integer :: kind, i, j
+
+        select case (form)
+        case (form_marker, form_markers)
+            kind = refers_to_marker
+        case (form_parts)
+            kind = refers_to_part
+        case (form_forces)
+            kind = refers_to_force
+        case default
+            return
+        end select
+        if (.not. allocated(model%references)) allocate(model%references(0))
+        do i = 1, size(ids)
+            if (model%reference_count == size(model%references)) then
+                allocate(grown(max(2*model%reference_count, least_capacity)))
+                do j = 1, model%reference_count
+                    call move_reference(model%references(j), grown(j))
+                end do
+                call move_alloc(grown, model%references)
+            end if
+            model%reference_count = model%reference_count + 1
+            model%references(model%reference_count) = adm_reference_type(at=at, kind=kind, &
+                & id=ids(i))
+        end do
+    end subroutine keep_references
+
+    !> A reference moved to its place in a grown list (its text moved, not copied).
+    subroutine move_reference(from, to)
+        type(adm_reference_type), intent(inout) :: from
+        type(adm_reference_type), intent(out) :: to
+
+        call move_alloc(from%at, to%at)
+        to%kind = from%kind
+        to%id = from%id
+    end subroutine move_reference
+
+    !> Record `what` (a statement, or a statement and keyword) on `line` as read and not used:
+    !> appended to unused(:count), which grows by doubling.
+    subroutine record_unused(unused, count, what, line)
+        !> A dataset's (adm_model_type's unused, and its unused_count)
+        type(adm_unused_type), allocatable, intent(inout) :: unused(:)
+        integer, intent(inout) :: count
+        character(len=*), intent(in) :: what
+        integer, intent(in) :: line
+        type(adm_unused_type), allocatable :: grown(:)
+        integer :: j
+
+        if (.not. allocated(unused)) allocate(unused(0))
+        if (count == size(unused)) then
+            allocate(grown(max(2*count, least_capacity)))
+            do j = 1, count
+                call move_alloc(unused(j)%what, grown(j)%what)
+                grown(j)%line = unused(j)%line
+            end do
+            call move_alloc(grown, unused)
+        end if
+        count = count + 1
+        unused(count) = adm_unused_type(what=what, line=line)
+    end subroutine record_unused
+
+    !> The one warning of a dataset's statements read and not used, each kind with its lines in
+    !> the order of the file: "data/x.adm: read and checked but not used: GRAPHICS (lines 14,
+    !> 15), INTEGRATOR GSTIFF (line 20); rollcon ..."; "" when there is none.
+    function unused_warning(model) result(text)
+        type(adm_model_type), intent(in) :: model
+        character(len=:), allocatable :: text
+        character(len=:), allocatable :: lines
+        logical, allocatable :: done(:)
+        integer :: i, j, n
+
+        text = ""
+        if (.not. allocated(model%unused)) return
+        if (size(model%unused) == 0) return
+        allocate(done(size(model%unused)), source=.false.)
+        do i = 1, size(model%unused)
+            if (done(i)) cycle
+            if (len(text) > 0) text = text // ", "
+            lines = ""
+            n = 0
+            do j = i, size(model%unused)
+                if (model%unused(j)%what /= model%unused(i)%what) cycle
+                done(j) = .true.
+                n = n + 1
+                if (n > 1 .and. n <= lines_listed) lines = lines // ", "
+                if (n <= lines_listed) lines = lines // to_text(model%unused(j)%line)
+            end do
+            if (n > lines_listed) lines = lines // ", ... " // to_text(n) // " in all"
+            text = text // model%unused(i)%what // " (line" // trim(merge("s", " ", n > 1)) &
+                & // " " // lines // ")"
+        end do
+        text = model%file // ": read and checked but not used: " // text // "; rollcon writes " &
+            & // "its own outputs and integrates with its own INTEGRATOR settings " &
+            & // "(docs/datasets.md)"
+    end function unused_warning
+
+    !> The keywords of statement `name` and the form of each, in the table's order.
+    subroutine statement_keywords(name, keys, forms)
+        character(len=*), intent(in) :: name
+        character(len=26), allocatable, intent(out) :: keys(:)
+        integer, allocatable, intent(out) :: forms(:)
+        character(len=:), allocatable :: words
+        integer :: g, start, blank
+
+        allocate(keys(0), forms(0))
+        do g = 1, size(groups)
+            if (groups(g)%statement /= name) cycle
+            words = trim(groups(g)%keywords) // " "
+            start = 1
+            do while (start < len(words))
+                blank = start + index(words(start:), " ") - 1
+                keys = [character(len=26) :: keys, words(start:blank - 1)]
+                forms = [forms, groups(g)%form]
+                start = blank + 1
+            end do
+        end do
+    end subroutine statement_keywords
+
+    !> For each name, whether it is one of `set`.
+    pure function is_one_of(names, set) result(found)
+        character(len=*), intent(in) :: names(:), set(:)
+        logical :: found(size(names))
+        integer :: i
+
+        do i = 1, size(names)
+            found(i) = any(set == names(i))
+        end do
+    end function is_one_of
+
+end module rollcon_adm_outputs

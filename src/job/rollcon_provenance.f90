@@ -1,0 +1,80 @@
+! SPDX-License-Identifier: MIT
+!> A run's provenance: which rollcon, when, the command that asked for it, and which UCOSUB
+!> served the model's UCONs (a built-in routine's name, or the user's file with its size and
+!> FNV-1a 64 hash), so that a result can be traced to what made it. The summary file opens
+!> with these lines, the .parts file carries them as comments.
+module rollcon_provenance
+    use, intrinsic :: iso_fortran_env, only : int64
+    use rollcon_text, only : to_text
+    use rollcon_version, only : version_text
+    use rollcon_hash, only : fnv1a64_type
+    use rollcon_job, only : job_type
+    implicit none
+    private
+
+    public :: provenance_lines, file_record, time_stamp
+
+    !> Bytes read at a time when hashing a file
+    integer, parameter :: chunk_bytes = 65536
+
+contains
+
+    !> Two lines, each ending in a newline:
+    !>     rollcon 0.2.0, 2026-11-26 04:45:12 +0000: rollcon run data/coin.nml
+    !>     the model's UCOSUB: disk (built in)
+    function provenance_lines(job) result(text)
+        type(job_type), intent(in) :: job
+        character(len=:), allocatable :: text
+
+        text = version_text() // ", " // time_stamp()
+        if (allocated(job%command_line)) then
+            if (len(job%command_line) > 0) text = text // ": " // job%command_line
+        end if
+        text = text // new_line("a") // "the model's UCOSUB: "
+        if (len(job%user_file) > 0) then
+            text = text // job%user_file // " (" // file_record(job%user_file) // ")"
+        else
+            text = text // job%routine_name // " (built in)"
+        end if
+        text = text // new_line("a")
+    end function provenance_lines
+
+    !> "N bytes, FNV-1a 64 HHHHHHHHHHHHHHHH" of a file, or "unreadable" when it cannot be read.
+    function file_record(path) result(record)
+        character(len=*), intent(in) :: path
+        character(len=:), allocatable :: record
+        type(fnv1a64_type) :: hash
+        character(len=chunk_bytes) :: chunk
+        integer(int64) :: size_bytes, done
+        integer :: unit, stat, take
+
+        record = "unreadable"
+        inquire(file=path, size=size_bytes)
+        if (size_bytes < 0) return
+        open(newunit=unit, file=path, status="old", action="read", access="stream", &
+            & form="unformatted", iostat=stat)
+        if (stat /= 0) return
+        done = 0
+        do while (done < size_bytes .and. stat == 0)
+            take = int(min(int(chunk_bytes, int64), size_bytes - done))
+            read(unit, iostat=stat) chunk(1:take)
+            if (stat == 0) call hash%add(chunk(1:take))
+            done = done + take
+        end do
+        close(unit)
+        if (stat == 0) record = to_text(size_bytes) // " bytes, FNV-1a 64 " // hash%hex()
+    end function file_record
+
+    !> The local time with its offset from UTC: "2026-11-26 04:45:12 +0000".
+    function time_stamp() result(text)
+        character(len=:), allocatable :: text
+        character(len=8) :: date
+        character(len=10) :: time
+        character(len=5) :: zone
+
+        call date_and_time(date, time, zone)
+        text = date(1:4) // "-" // date(5:6) // "-" // date(7:8) // " " // time(1:2) // ":" &
+            & // time(3:4) // ":" // time(5:6) // " " // zone
+    end function time_stamp
+
+end module rollcon_provenance

@@ -1,0 +1,24 @@
+C rollcon test data: a one-variable UCOSUB, F = Z - PAR(2) for the
+C part PAR(1) (code 13), with one planted fault. Checked as
+C --ucon 1:3,0.25 (see test/unit/test_check_findings.f90).
+C FAULT: F is 1.0D308 whatever the state (its partials, zero, are
+C consistent with it; a tolerance relative to |F| passed it all).
+C EXPECTED FINDING: UCON/1 [finite] SCALAR: returned 1e308, beyond
+C the largest magnitude the check accepts (1e100).
+C
+      SUBROUTINE UCOSUB(ID, TIME, Q, PAR, NPAR, IDRSEL, IFLAG, SCALAR,
+     &      ARRAY, XMATRX)
+      IMPLICIT NONE
+      INTEGER ID, NPAR, IDRSEL(3), IFLAG
+      DOUBLE PRECISION TIME, Q(30), PAR(*), SCALAR, ARRAY(30),
+     &      XMATRX(30, 30)
+      INTEGER LPARTS(1), LVARS(1)
+      IF (IFLAG .EQ. 3) THEN
+         LPARTS(1) = NINT(PAR(1))
+         LVARS(1) = 13
+         CALL UCOVAR(ID, 1, LPARTS, 1, LVARS)
+         RETURN
+      END IF
+      IF (IDRSEL(1) .EQ. 1) SCALAR = 1.0D308
+      RETURN
+      END

@@ -1,0 +1,146 @@
+! SPDX-License-Identifier: MIT
+!> What `rollcon bench` does besides its runs: the cost of a `rollcon run` as a process of its
+!> own (rollcon_bench_process), the coordinator's CPU per row read from a sweep's log
+!> (rollcon_bench_sweep), and one work-precision plot per scene (rollcon_bench_plot). No test
+!> here judges a time: each checks that the numbers are found and where they come from.
+module test_bench
+    use, intrinsic :: ieee_arithmetic, only : ieee_is_finite
+    use rollcon_kinds, only : wp
+    use rollcon_error, only : error_type
+    use rollcon_bench_process, only : process_cost_type, measure_process
+    use rollcon_bench_sweep, only : coordinator_row_us
+    use rollcon_bench_plot, only : plot_work_precision
+    use rollcon_benchmark, only : benchmark_methods
+    use rollcon_testing, only : unittest_type, new_unittest, check
+    use command_runs, only : rollcon_program, file_text
+    use picture_files, only : make_folder, remove_folder, write_lines
+    use study_map_files, only : have_gnuplot, png_file
+    implicit none
+    private
+
+    public :: collect_bench
+
+    !> Scratch folder of the suite
+    character(len=*), parameter :: scratch = "build/test_bench"
+
+contains
+
+    !> Tests of this suite.
+    subroutine collect_bench(tests)
+        type(unittest_type), allocatable, intent(out) :: tests(:)
+
+        allocate(tests(0))
+        tests = [new_unittest("process-cost-of-a-run", test_process_cost), &
+            & new_unittest("process-cost-of-a-failed-run", test_process_failed), &
+            & new_unittest("coordinator-cpu-per-row-from-log", test_row_us), &
+            & new_unittest("work-precision-plot-per-scene", test_plots)]
+    end subroutine collect_bench
+
+    !> `rollcon run steady_circle` timed as a child: its times are read from bash's time and the
+    !> run's summary (an error otherwise), finite and not negative; the integration's CPU time
+    !> is the summary's, which a run of hundreds of steps makes positive.
+    subroutine test_process_cost(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(process_cost_type) :: cost
+        character(len=:), allocatable :: program
+
+        call rollcon_program(program, error)
+        if (allocated(error)) return
+        call remove_folder(scratch)
+        call make_folder(scratch)
+        call measure_process(program, "steady_circle", scratch, cost, error)
+        if (allocated(error)) return
+        call check(error, all(ieee_is_finite([cost%wall, cost%cpu, cost%startup_cpu, &
+            & cost%integration_cpu, cost%rest_cpu])), "finite times")
+        if (allocated(error)) return
+        call check(error, cost%wall >= 0.0_wp .and. cost%cpu >= 0.0_wp .and. &
+            & cost%startup_cpu >= 0.0_wp, "times not negative")
+        if (allocated(error)) return
+        call check(error, cost%integration_cpu > 0.0_wp, "the summary's CPU time")
+        if (allocated(error)) return
+        call check(error, index(file_text(scratch // "/steady_circle.summary.txt"), "CPU time:") &
+            & > 0, "the run's summary is where the cost was read")
+        call remove_folder(scratch)
+    end subroutine test_process_cost
+
+    !> A run that fails (no such scene) is an error naming the command and its log.
+    subroutine test_process_failed(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(error_type), allocatable :: failed
+        type(process_cost_type) :: cost
+        character(len=:), allocatable :: program
+
+        call rollcon_program(program, error)
+        if (allocated(error)) return
+        call remove_folder(scratch)
+        call make_folder(scratch)
+        call measure_process(program, "no_such_scene", scratch, cost, failed)
+        call check(error, allocated(failed), "a failed run is an error")
+        if (allocated(error)) return
+        call check(error, failed%message == "'" // program // " run no_such_scene' failed " &
+            & // "(exit 1); see " // scratch // "/process_run.log", "the message: " &
+            & // failed%message)
+        if (allocated(error)) return
+        call check(error, len(file_text(scratch // "/process_run.log")) > 0, &
+            & "the log holds the run's refusal")
+        call remove_folder(scratch)
+    end subroutine test_process_failed
+
+    !> The closing lines of a sweep's log as app/rollcon_command_sweep.f90 writes them: the
+    !> microseconds a row is the number before " us a row"; a log without that line, or no
+    !> log, gives 0.
+    subroutine test_row_us(error)
+        type(error_type), allocatable, intent(out) :: error
+        character(len=*), parameter :: log = scratch // "/sweep.log"
+
+        call remove_folder(scratch)
+        call make_folder(scratch)
+        call write_lines(log, [character(len=100) :: &
+            & "sweep: 12 cases run now (6 failed, 0 refused), 0 from an earlier run: all 12 " &
+            & // "in out/s.csv", &
+            & "sweep: the coordinator spent 0.003 s of CPU on messages and rows, 250 us a row"])
+        call check(error, coordinator_row_us(log), 250, "microseconds a row")
+        if (allocated(error)) return
+        call write_lines(log, [character(len=100) :: "sweep: 1 cases run now (0 failed, 0 " &
+            & // "refused), 0 from an earlier run: all 1 in out/s.csv"])
+        call check(error, coordinator_row_us(log), 0, "a log without the line")
+        if (allocated(error)) return
+        call remove_folder(scratch)
+        call check(error, coordinator_row_us(log), 0, "no log")
+    end subroutine test_row_us
+
+    !> The shipped benchmark's rows (data/bench/bench.csv) plotted for two of its scenes: one
+    !> PNG for each and none for the others, and in the script a curve for every method of the
+    !> benchmark in each plot. Skipped without gnuplot.
+    subroutine test_plots(error)
+        type(error_type), allocatable, intent(out) :: error
+        character(len=:), allocatable :: script
+        integer :: curves, at, found
+
+        if (.not. have_gnuplot(error)) return
+        call remove_folder(scratch)
+        call make_folder(scratch)
+        call execute_command_line("cp data/bench/bench.csv " // scratch // "/bench.csv")
+        call plot_work_precision(scratch, "coin,near_flat", error)
+        if (allocated(error)) return
+        call check(error, png_file(scratch // "/bench_coin.png") .and. &
+            & png_file(scratch // "/bench_near_flat.png"), "a PNG for each scene asked for")
+        if (allocated(error)) return
+        call check(error, .not. png_file(scratch // "/bench_tipping_coin.png"), &
+            & "none for a scene not asked for")
+        if (allocated(error)) return
+        script = file_text(scratch // "/bench.gp")
+        curves = 0
+        at = 1
+        do
+            found = index(script(at:), " with linespoints title ")
+            if (found == 0) exit
+            curves = curves + 1
+            at = at + found
+        end do
+        call check(error, curves, 2*size(benchmark_methods()), "a curve per method and scene")
+        if (allocated(error)) return
+        call remove_folder(scratch)
+    end subroutine test_plots
+
+end module test_bench

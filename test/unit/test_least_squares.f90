@@ -1,0 +1,146 @@
+! SPDX-License-Identifier: MIT
+!> The linear algebra of the initial-conditions analysis (rollcon_least_squares) on matrices
+!> whose answers are known in closed form: the least-norm solution of an underdetermined
+!> system, the least-squares solution of an inconsistent one, the rank as the angle between
+!> unit rows against rcond, and the left null space.
+module test_least_squares
+    use rollcon_kinds, only : wp
+    use rollcon_error, only : error_type
+    use rollcon_least_squares, only : minimum_norm_solve, left_null_space
+    use rollcon_testing, only : unittest_type, new_unittest, check
+    implicit none
+    private
+
+    public :: collect_least_squares
+
+    !> LAPACK's SVD is backward stable: on these 2 x 3 and 3 x 3 matrices of order-one entries
+    !> and condition below 10, the answers are within a few tens of roundings
+    real(wp), parameter :: tol_svd = 100.0_wp*epsilon(1.0_wp)
+    !> The threshold of the rank: the sine of the smallest angle between two unit rows that
+    !> still count as two constraints
+    real(wp), parameter :: rcond = 1.0e-8_wp
+
+contains
+
+    !> Tests of this suite.
+    subroutine collect_least_squares(tests)
+        type(unittest_type), allocatable, intent(out) :: tests(:)
+
+        allocate(tests(0))
+        tests = [new_unittest("least-norm-of-underdetermined", test_underdetermined), &
+            & new_unittest("least-squares-of-inconsistent", test_inconsistent), &
+            & new_unittest("rank-from-the-angle-of-rows", test_rank), &
+            & new_unittest("left-null-space", test_left_null), &
+            & new_unittest("empty-matrices", test_empty)]
+    end subroutine collect_least_squares
+
+    !> x1 + x2 = 1, x2 + x3 = 2: the solution of least norm is A^T (A A^T)^-1 b = (0, 1, 1)
+    !> (A A^T = [2 1; 1 2]), of rank 2; the matrix is not changed.
+    subroutine test_underdetermined(error)
+        type(error_type), allocatable, intent(out) :: error
+        real(wp) :: a(2, 3), x(3)
+        integer :: rank
+
+        a = reshape([1.0_wp, 0.0_wp, 1.0_wp, 1.0_wp, 0.0_wp, 1.0_wp], [2, 3])
+        call minimum_norm_solve(a, [1.0_wp, 2.0_wp], rcond, x, rank, error)
+        if (allocated(error)) return
+        call check(error, rank, 2, "rank")
+        if (allocated(error)) return
+        call check(error, x, [0.0_wp, 1.0_wp, 1.0_wp], "least-norm solution", abs_tol=tol_svd)
+        if (allocated(error)) return
+        call check(error, all(a == reshape([1.0_wp, 0.0_wp, 1.0_wp, 1.0_wp, 0.0_wp, 1.0_wp], &
+            & [2, 3])), "the matrix is not changed")
+    end subroutine test_underdetermined
+
+    !> x = 1, x = 2, x = 6 has no solution: the least-squares one is their mean, 3.
+    subroutine test_inconsistent(error)
+        type(error_type), allocatable, intent(out) :: error
+        real(wp) :: a(3, 1), x(1)
+        integer :: rank
+
+        a = 1.0_wp
+        call minimum_norm_solve(a, [1.0_wp, 2.0_wp, 6.0_wp], rcond, x, rank, error)
+        if (allocated(error)) return
+        call check(error, rank, 1, "rank")
+        if (allocated(error)) return
+        call check(error, x(1), 3.0_wp, "the mean", abs_tol=tol_svd)
+    end subroutine test_inconsistent
+
+    !> Two unit rows at an angle a of 1e-10 rad count as one constraint (rank 1) for
+    !> rcond = 1e-8, and at 1e-6 rad as two. With b = (1, 1) the one constraint is the
+    !> bisector's, of singular value sqrt(2) cos(a/2): x = (1, tan(a/2)).
+    subroutine test_rank(error)
+        type(error_type), allocatable, intent(out) :: error
+        real(wp) :: a(2, 2), x(2)
+        real(wp), parameter :: close_angle = 1.0e-10_wp, apart_angle = 1.0e-6_wp
+        integer :: rank
+
+        a(1, :) = [1.0_wp, 0.0_wp]
+        a(2, :) = [cos(close_angle), sin(close_angle)]
+        call minimum_norm_solve(a, [1.0_wp, 1.0_wp], rcond, x, rank, error)
+        if (allocated(error)) return
+        call check(error, rank, 1, "rows 1e-10 rad apart")
+        if (allocated(error)) return
+        call check(error, x, [1.0_wp, tan(0.5_wp*close_angle)], &
+            & "the solution of the one constraint", abs_tol=tol_svd)
+        if (allocated(error)) return
+        a(2, :) = [cos(apart_angle), sin(apart_angle)]
+        call minimum_norm_solve(a, [1.0_wp, 1.0_wp], rcond, x, rank, error)
+        if (allocated(error)) return
+        call check(error, rank, 2, "rows 1e-6 rad apart")
+    end subroutine test_rank
+
+    !> Rows (1, 0, 0), (0, 1, 0), (1, 1, 0): rank 2, and the one combination of rows that
+    !> vanishes is w = (1, 1, -1)/sqrt(3) up to its sign.
+    subroutine test_left_null(error)
+        type(error_type), allocatable, intent(out) :: error
+        real(wp) :: a(3, 3)
+        real(wp), allocatable :: null(:, :)
+        integer :: rank
+
+        a = 0.0_wp
+        a(1, 1) = 1.0_wp
+        a(2, 2) = 1.0_wp
+        a(3, 1:2) = 1.0_wp
+        call left_null_space(a, rcond, rank, null, error)
+        if (allocated(error)) return
+        call check(error, rank, 2, "rank")
+        if (allocated(error)) return
+        call check(error, size(null, 1) == 3 .and. size(null, 2) == 1, "one null vector of 3")
+        if (allocated(error)) return
+        call check(error, abs(null(:, 1)), [1.0_wp, 1.0_wp, 1.0_wp]/sqrt(3.0_wp), &
+            & "|w| by component", abs_tol=tol_svd)
+        if (allocated(error)) return
+        call check(error, null(1, 1)*null(3, 1) < 0.0_wp .and. null(1, 1)*null(2, 1) > 0.0_wp, &
+            & "w is along (1, 1, -1)")
+        if (allocated(error)) return
+        call check(error, matmul(transpose(a), null(:, 1)), [0.0_wp, 0.0_wp, 0.0_wp], &
+            & "A^T w = 0", abs_tol=tol_svd)
+    end subroutine test_left_null
+
+    !> No rows or no columns: rank 0, x = 0, and every combination of the rows vanishes.
+    subroutine test_empty(error)
+        type(error_type), allocatable, intent(out) :: error
+        real(wp) :: no_columns(2, 0), x(0), y(2)
+        real(wp), allocatable :: null(:, :)
+        real(wp) :: no_rows(0, 2)
+        integer :: rank
+
+        call minimum_norm_solve(no_rows, [real(wp) ::], rcond, y, rank, error)
+        if (allocated(error)) return
+        call check(error, rank == 0 .and. all(y == 0.0_wp), "no rows: rank 0, x = 0")
+        if (allocated(error)) return
+        call minimum_norm_solve(no_columns, [1.0_wp, 2.0_wp], rcond, x, rank, error)
+        if (allocated(error)) return
+        call check(error, rank, 0, "no columns: rank 0")
+        if (allocated(error)) return
+        call left_null_space(no_columns, rcond, rank, null, error)
+        if (allocated(error)) return
+        call check(error, rank == 0 .and. size(null, 1) == 2 .and. size(null, 2) == 2, &
+            & "no columns: a 2 x 2 null space")
+        if (allocated(error)) return
+        call check(error, all(null == reshape([1.0_wp, 0.0_wp, 0.0_wp, 1.0_wp], [2, 2])), &
+            & "the identity")
+    end subroutine test_empty
+
+end module test_least_squares
