@@ -48,6 +48,7 @@ program tester
     use test_adm_physical, only : collect_adm_physical
     use test_study_paths, only : collect_study_paths
     use test_figure_rows, only : collect_figure_rows
+    use test_fpm_dependency, only : collect_fpm_dependency
     implicit none
     type(testsuite_type), allocatable :: suites(:)
     type(test_counts_type) :: counts
@@ -100,7 +101,8 @@ program tester
         & new_testsuite("provenance", collect_provenance), &
         & new_testsuite("adm-physical", collect_adm_physical), &
         & new_testsuite("study-paths", collect_study_paths), &
-        & new_testsuite("figure-rows", collect_figure_rows)]
+        & new_testsuite("figure-rows", collect_figure_rows), &
+        & new_testsuite("fpm-dependency", collect_fpm_dependency)]
 
     if (command_argument_count() >= 1) then
         call get_command_argument(1, argument)
