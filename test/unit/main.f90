@@ -49,6 +49,7 @@ program tester
     use test_study_paths, only : collect_study_paths
     use test_figure_rows, only : collect_figure_rows
     use test_fpm_dependency, only : collect_fpm_dependency
+    use test_multiplier_units, only : collect_multiplier_units
     implicit none
     type(testsuite_type), allocatable :: suites(:)
     type(test_counts_type) :: counts
@@ -102,7 +103,8 @@ program tester
         & new_testsuite("adm-physical", collect_adm_physical), &
         & new_testsuite("study-paths", collect_study_paths), &
         & new_testsuite("figure-rows", collect_figure_rows), &
-        & new_testsuite("fpm-dependency", collect_fpm_dependency)]
+        & new_testsuite("fpm-dependency", collect_fpm_dependency), &
+        & new_testsuite("multiplier-units", collect_multiplier_units)]
 
     if (command_argument_count() >= 1) then
         call get_command_argument(1, argument)
