@@ -135,7 +135,7 @@ contains
                 & stat_io)
             return
         end if
-        associate (dir => job%output_dir, name => job%source%name)
+        associate (dir => job%output_dir, name => job%name)
             files%csv = dir // "/" // name // ".csv"
             files%summary = dir // "/" // name // ".summary.txt"
             files%parts = dir // "/" // name // ".parts"

@@ -19,8 +19,8 @@ module rollcon_adm_outside
         & // "the force as one of them with a FUNCTION expression", &
         & "rollcon writes its own outputs (a CSV of every part, the energy and every UCON, a " &
         & // "summary, pictures)", &
-        & "system and data elements are not in the subset: FUNCTION expressions depend on " &
-        & // "TIME only", &
+        & "system and data elements are not in the subset: FUNCTION expressions read TIME and " &
+        & // "the state functions of one marker (DX(i) ... PHI(i)) only", &
         & "rollcon's bodies are rigid PARTs"]
     !> Statement names and the kind of each
     character(len=*), parameter :: names(24) = [character(len=12) :: "JOINT", "JPRIM", &
