@@ -62,6 +62,8 @@ program tester
     use test_study_limits, only : collect_study_limits
     use test_sweep_guards, only : collect_sweep_guards
     use test_adm_outputs, only : collect_adm_outputs
+    use test_fpm_dependency, only : collect_fpm_dependency
+    use test_multiplier_units, only : collect_multiplier_units
     implicit none
     type(testsuite_type), allocatable :: suites(:)
     type(test_counts_type) :: counts
@@ -128,7 +130,9 @@ program tester
         & new_testsuite("long-paths", collect_long_paths), &
         & new_testsuite("study-limits", collect_study_limits), &
         & new_testsuite("sweep-guards", collect_sweep_guards), &
-        & new_testsuite("adm-outputs", collect_adm_outputs)]
+        & new_testsuite("adm-outputs", collect_adm_outputs), &
+        & new_testsuite("fpm-dependency", collect_fpm_dependency), &
+        & new_testsuite("multiplier-units", collect_multiplier_units)]
 
     if (command_argument_count() >= 1) then
         call get_command_argument(1, argument)

@@ -59,7 +59,7 @@ contains
         replaced(5) = "VARIABLE/1, FUNCTION=TIME"
         expected(5) = ":7: 'VARIABLE' is not a statement of the supported subset " // supported &
             & // "; system and data elements are not in the subset: FUNCTION expressions" &
-            & // " depend on TIME only"
+            & // " read TIME and the state functions of one marker (DX(i) ... PHI(i)) only"
         replaced(6) = "FLEX_BODY/1"
         expected(6) = ":7: 'FLEX_BODY' is not a statement of the supported subset " // supported &
             & // "; rollcon's bodies are rigid PARTs"
