@@ -38,6 +38,7 @@ program tester
     use test_ucosub_catalog, only : collect_ucosub_catalog
     use test_initial_conditions, only : collect_initial_conditions
     use test_rebasing, only : collect_rebasing
+    use test_singular_start, only : collect_singular_start
     use test_models, only : collect_models
     use test_study_file, only : collect_study_file
     use test_study_run, only : collect_study_run
@@ -107,6 +108,7 @@ program tester
         & new_testsuite("dataset-command", collect_dataset_command), &
         & new_testsuite("initial-conditions", collect_initial_conditions), &
         & new_testsuite("rebasing", collect_rebasing), &
+        & new_testsuite("singular-start", collect_singular_start), &
         & new_testsuite("models", collect_models), &
         & new_testsuite("study-file", collect_study_file), &
         & new_testsuite("study-run", collect_study_run), &

@@ -30,6 +30,7 @@ module rollcon_adm_build
     use rollcon_adm_keywords, only : place
     use rollcon_adm_model, only : adm_model_type, adm_force_type, force_sforce, force_vforce
     use rollcon_adm_state, only : part_state
+    use rollcon_adm_singular, only : start_singular_parts
     use, intrinsic :: ieee_arithmetic, only : ieee_is_finite
     implicit none
     private
@@ -99,6 +100,9 @@ contains
             p = p + 1
             call part_state(adm, adm%parts(i), q0(6*p - 5:6*p), u0(6*p - 5:6*p))
         end do
+        ! a part flat at t = 0 starts in turned axes (docs/rebasing.md): its model part too
+        call start_singular_parts(adm, problem, q0, u0, adm_theta_min, error)
+        if (allocated(error)) return
         call check_forces_at_start(adm, problem, q0, u0, error)
     end subroutine build_adm_problem
 
