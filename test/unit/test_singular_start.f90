@@ -175,7 +175,7 @@ contains
             & // to_text(centre) // " m, velocity " // to_text(velocity) // " m/s, axes " &
             & // to_text(axes))
         if (allocated(error)) return
-        call read_run(scratch // "/flat/flat.csv", record, error)
+        call read_run(scratch // "/flat/flat.adm.csv", record, error)
         if (allocated(error)) return
         drawn = pose(record, 1, 1)
         call check(error, reshape(rotation_matrix(drawn(4), drawn(5), drawn(6)), [9]), &
@@ -232,7 +232,7 @@ contains
             & // to_text(centre) // " m, velocity " // to_text(velocity) // " m/s, axes " &
             & // to_text(axes))
         if (allocated(error)) return
-        call read_run(scratch // "/flat/flat.csv", record, error)
+        call read_run(scratch // "/flat/flat.adm.csv", record, error)
         if (allocated(error)) return
         call ellipsoid_semi_axes(body_mass, body_inertia, expected, message)
         call check(error, record%shapes(1)%semi_axes, expected, "semi-axes along the CM " &
@@ -359,13 +359,13 @@ contains
             & scratch // "/flat.out", scratch // "/flat.err", status(1))
         call run_rollcon(program, "run " // scratch // "/twin.adm -q -o " // scratch // "/twin", &
             & scratch // "/twin.out", scratch // "/twin.err", status(2))
-        summary = file_text(scratch // "/flat/flat.summary.txt")
+        summary = file_text(scratch // "/flat/flat.adm.summary.txt")
         call check(error, all(status == 0), tag // ": exit statuses " // to_text(status(1)) &
             & // ", " // to_text(status(2)) // ": " // file_text(scratch // "/flat.err") &
             & // file_text(scratch // "/twin.err"))
-        if (.not. allocated(error)) call read_output_csv(scratch // "/flat/flat.csv", layout, &
+        if (.not. allocated(error)) call read_output_csv(scratch // "/flat/flat.adm.csv", layout, &
             & flat, error)
-        if (.not. allocated(error)) call read_output_csv(scratch // "/twin/twin.csv", &
+        if (.not. allocated(error)) call read_output_csv(scratch // "/twin/twin.adm.csv", &
             & twin_layout, twin, error)
         if (allocated(error)) call remove_folder(scratch)
     end subroutine run_pair
