@@ -228,7 +228,8 @@ contains
             & abs(seen(3) - si_seen(3)/minute) <= 1.0e-12_wp*seen(3) .and. report%clean(), &
             & "in mm and minutes: |X| up to " // to_text(seen(1)) // ", |Xdot| up to " &
             & // to_text(seen(2)) // ", time up to " // to_text(seen(3)) // " (in SI: " &
-            & // to_text(si_seen(1)) // ", " // to_text(si_seen(2)) // ", " // to_text(si_seen(3)) // "); " &
+            & // to_text(si_seen(1)) // ", " // to_text(si_seen(2)) // ", " &
+            & // to_text(si_seen(3)) // "); " &
             & // report_text(report, "the recording routine", "this test"))
     end subroutine test_check_units
 
