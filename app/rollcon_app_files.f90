@@ -2,7 +2,7 @@
 !> The program's own file names: an output folder made when missing, a file's stem, and the
 !> CSV a command's argument names.
 module rollcon_app_files
-    use rollcon, only : error_type, make_folders
+    use rollcon, only : error_type, make_folders, output_name
     implicit none
     private
 
@@ -46,13 +46,14 @@ contains
         if (slash == 1) folder = "/"
     end function folder_of
 
-    !> The CSV an argument names: itself when it ends in '.csv', else output_dir/<name>.csv
-    !> (so `rollcon plot coin` plots the coin's run).
+    !> The CSV an argument names: itself when it ends in '.csv', else the CSV the run of that
+    !> scene or dataset writes into output_dir, output_dir/<output_name>.csv (so `rollcon plot
+    !> coin` plots the coin scene's run, `rollcon plot data/coin.adm` the dataset's).
     pure function csv_argument(argument, output_dir) result(path)
         character(len=*), intent(in) :: argument, output_dir
         character(len=:), allocatable :: path
 
-        path = output_dir // "/" // argument // ".csv"
+        path = output_dir // "/" // output_name(argument) // ".csv"
         if (len(argument) >= 4) then
             if (argument(len(argument) - 3:) == ".csv") path = argument
         end if

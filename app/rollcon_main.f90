@@ -91,9 +91,11 @@ contains
             & "  file (and its .partial-PID.summary.txt), and the earlier run's files as they", &
             & "  were.", &
             & "  MODEL.adm: an ADAMS dataset (docs/datasets.md): parts, markers, UCONs, forces,", &
-            & "  gravity and the run, any number of parts; outputs DIR/MODEL.csv (every part's", &
-            & "  12 coordinates named by part id, E, each UCON's residual and multiplier),", &
-            & "  DIR/MODEL.summary.txt and DIR/MODEL.parts (the parts' shapes for the pictures).", &
+            & "  gravity and the run, any number of parts; outputs DIR/MODEL.adm.csv (every", &
+            & "  part's 12 coordinates named by part id, E, each UCON's residual and", &
+            & "  multiplier), DIR/MODEL.adm.summary.txt and DIR/MODEL.adm.parts (the parts'", &
+            & "  shapes for the pictures): the name keeps .adm, so data/coin.adm and the scene", &
+            & "  coin (data/coin.nml) keep their own outputs.", &
             & "  A UCON naming ROUTINE=NAME is served by that built-in routine; the others by", &
             & "  the model's UCOSUB: --ucosub FILE|NAME, or rollcon's hand-checked disk.", &
             & "  --allow-large-output  run even when the CSV would pass 100 GB (refused", &
@@ -117,7 +119,8 @@ contains
             & "  .csv. A disk scene: DIR/NAME_path.png, _theta, _rates, _energy, _residuals,", &
             & "  _force and _friction.png. Any other model: DIR/NAME_path.png, _height,", &
             & "  _angles, _energy, _residuals and _multipliers.png, every part and UCON by id.", &
-            & "  A SCENE name means DIR/SCENE.csv (default coin). The parts' shapes come from", &
+            & "  A SCENE or MODEL.adm means the CSV its run wrote, DIR/SCENE.csv or", &
+            & "  DIR/MODEL.adm.csv (default coin). The parts' shapes come from", &
             & "  DIR/NAME.parts, which run writes beside the CSV (docs/pictures.md).", &
             & "animate: draw DIR/NAME.gif, every part moving (a disk as a disk, other parts as", &
             & "  their inertia ellipsoids), 20 frames per second (real time up to 15 s of", &

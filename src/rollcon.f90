@@ -22,7 +22,7 @@ module rollcon
     use rollcon_disk_reference, only : rolling_disk_ucosub, rolling_disk_evaluate
     use rollcon_gen_rolling_disk, only : generated_rolling_disk_ucosub => rolling_disk_ucosub
     use rollcon_ucosub_catalog, only : find_builtin_ucosub, builtin_ucosub_names, &
-        & builtin_ucosub_par, builtin_ucosub_summary
+        & builtin_ucosub_par, builtin_ucosub_summary, builtin_ucosubs_for_par
 
     ! models built in code: parts, forces, UCONs; how to integrate them
     use rollcon_body, only : part_type
@@ -68,7 +68,7 @@ module rollcon
     use rollcon_job, only : job_type, new_job
     use rollcon_provenance, only : provenance_lines, file_record
     use rollcon_ucosub_units, only : ucosub_units_type
-    use rollcon_load, only : load_job, input_override_type, is_dataset
+    use rollcon_load, only : load_job, input_override_type, is_dataset, output_name
     use rollcon_run_job, only : run_job, job_result_type
 
     ! a user's own UCOSUB: built, loaded, checked apart from rollcon

@@ -21,6 +21,10 @@ module rollcon_job
     type :: job_type
         !> What to build and run
         class(model_source_type), allocatable :: source
+        !> The stem of its outputs, DIR/NAME.csv, .summary.txt, .parts: its source's name, or
+        !> for an input file its output_name (rollcon_load: a dataset's keeps its .adm, so that
+        !> data/coin.adm and the scene data/coin.nml never write each other's files)
+        character(len=:), allocatable :: name
         !> The routine of the UCONs that name none (ADAMS's one UCOSUB per model): a built-in
         !> routine, rollcon's hand-checked disk unless the job says otherwise
         procedure(ucosub_interface), pointer, nopass :: routine => rolling_disk_ucosub
@@ -53,6 +57,7 @@ contains
         type(job_type) :: job
 
         allocate(job%source, source=source)
+        job%name = source%name
         job%user_file = ""
         job%routine_name = "disk"
         job%command_line = ""

@@ -20,7 +20,7 @@ module rollcon_load
     implicit none
     private
 
-    public :: load_job, input_override_type, is_dataset
+    public :: load_job, input_override_type, is_dataset, output_name
 
     !> A value set apart from the input file: name as the input writes it (strike%impulse,
     !> part%2%vx), value as the file would write it
@@ -50,12 +50,32 @@ contains
             call load_scene(scene_path(path), given, job, error)
         end if
         if (allocated(error)) return
+        job%name = output_name(path)
         job%user_file = ""
         job%routine_name = "disk"
         job%command_line = ""
         job%output_dir = "output"
         if (present(ucosub)) call choose_ucosub(ucosub, job, error)
     end subroutine load_job
+
+    !> The name of the outputs of the input at path (DIR/NAME.csv, .summary.txt, .parts, and
+    !> the pictures drawn from them), decided here only: a dataset's file name with its
+    !> extension (data/coin.adm: coin.adm), a scene's name (coin, or data/coin.nml: coin). So a
+    !> scene and a dataset of one name keep their own outputs side by side.
+    pure function output_name(path) result(name)
+        !> A scene's name or path, or a dataset's path
+        character(len=*), intent(in) :: path
+        character(len=:), allocatable :: name
+        integer :: n
+
+        name = trim(path)
+        name = name(index(name, "/", back=.true.) + 1:)
+        if (is_dataset(path)) return
+        n = len(name)
+        if (n >= 4) then
+            if (name(n - 3:) == ".nml") name = name(:n - 4)
+        end if
+    end function output_name
 
     !> True when path is a dataset: it ends in .adm (any case).
     pure logical function is_dataset(path)

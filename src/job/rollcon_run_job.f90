@@ -132,7 +132,7 @@ contains
         ! through mkdir(2): no shell, no PATH (rollcon_output_files)
         call make_folders(job%output_dir, error)
         if (allocated(error)) return
-        associate (dir => job%output_dir, name => job%source%name)
+        associate (dir => job%output_dir, name => job%name)
             files%csv = dir // "/" // name // ".csv"
             files%summary = dir // "/" // name // ".summary.txt"
             files%parts = dir // "/" // name // ".parts"

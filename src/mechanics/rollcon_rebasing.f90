@@ -17,7 +17,7 @@ module rollcon_rebasing
     private
 
     public :: basis_turn, rebased_state, rebased_inertia, to_new_basis, euler_angles_near
-    public :: own_axes_rotation
+    public :: own_axes_rotation, own_axes_inertia, angle_rates
 
     !> The turn of a re-basing: its columns are the new principal axes in the old ones
     !> (new x = old x, new y = -old z, new z = old y: 90 degrees about body x)
@@ -36,7 +36,6 @@ contains
         !> The same in the new basis
         real(wp), intent(out) :: q_new(6), u_new(6)
         real(wp) :: r_new(3, 3), omega_old(3), omega_new(3), angles(3)
-        real(wp) :: sth, cth, sph, cph
 
         r_new = matmul(rotation_matrix(q_old(4), q_old(5), q_old(6)), basis_turn)
         angles = euler_angles_near(r_new, q_old(4), q_old(6))
@@ -45,16 +44,29 @@ contains
         q_new(1:3) = q_old(1:3)
         q_new(4:6) = angles
         u_new(1:3) = u_old(1:3)
-        ! the inverse of omega' = B (psidot, thetadot, phidot) (docs/design.md §3); sin(theta)
-        ! of the new basis is at least cos(theta_old) > 0 near the old singularity
-        sth = sin(angles(2))
-        cth = cos(angles(2))
-        sph = sin(angles(3))
-        cph = cos(angles(3))
-        u_new(4) = (omega_new(1)*sph + omega_new(2)*cph)/sth
-        u_new(5) = omega_new(1)*cph - omega_new(2)*sph
-        u_new(6) = omega_new(3) - u_new(4)*cth
+        ! sin(theta) of the new basis is at least cos(theta_old) > 0 near the old singularity
+        u_new(4:6) = angle_rates(angles(2), angles(3), omega_new)
     end subroutine rebased_state
+
+    !> The 3-1-3 angle rates (psidot, thetadot, phidot) [rad/s] of a body angular velocity:
+    !> the inverse of omega' = B (psidot, thetadot, phidot) (docs/design.md §3). sin(theta)
+    !> must be away from 0 (the rates divide by it).
+    pure function angle_rates(theta, phi, omega) result(rates)
+        !> Nutation and spin angles [rad]
+        real(wp), intent(in) :: theta, phi
+        !> Angular velocity, body components [rad/s]
+        real(wp), intent(in) :: omega(3)
+        real(wp) :: rates(3)
+        real(wp) :: sth, cth, sph, cph
+
+        sth = sin(theta)
+        cth = cos(theta)
+        sph = sin(phi)
+        cph = cos(phi)
+        rates(1) = (omega(1)*sph + omega(2)*cph)/sth
+        rates(2) = omega(1)*cph - omega(2)*sph
+        rates(3) = omega(3) - rates(1)*cth
+    end function angle_rates
 
     !> The principal moments about the new x, y, z axes: the old (A1, A3, A2) [kg m^2].
     pure function rebased_inertia(inertia) result(turned)
@@ -91,6 +103,20 @@ contains
             own = matmul(own, transpose(basis_turn))
         end do
     end function own_axes_rotation
+
+    !> The principal moments about a part's own principal axes (its CM marker's, basis 0) from
+    !> those about the axes of basis number `basis` [kg m^2]: the permutation of a re-basing
+    !> (rebased_inertia) has order 2.
+    pure function own_axes_inertia(inertia, basis) result(own)
+        !> Principal moments about the x, y, z axes of the basis [kg m^2]
+        real(wp), intent(in) :: inertia(3)
+        !> Number of the basis, >= 0
+        integer, intent(in) :: basis
+        real(wp) :: own(3)
+
+        own = inertia
+        if (modulo(basis, 2) == 1) own = rebased_inertia(inertia)
+    end function own_axes_inertia
 
     !> The 3-1-3 angles (psi, theta, phi) of R = Rz(psi) Rx(theta) Rz(phi) [rad], theta in
     !> [0, pi], psi and phi the values within pi of psi_near and phi_near. R must be away from

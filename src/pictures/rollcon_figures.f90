@@ -27,14 +27,20 @@ module rollcon_figures
     !> The figures of any other model, each written as DIR/<base>_<name>.png
     character(len=*), parameter :: model_figure_names(6) = [character(len=11) :: "path", &
         & "height", "angles", "energy", "residuals", "multipliers"]
+    !> The multipliers' axis: λ_k carries the power (velocity UCON) or work (position UCON) per
+    !> unit of F_k, as its generalised force is λ_k ∂F_k/∂q̇ (or ∂F_k/∂q): a force for F in m/s
+    !> or m (the coin's λ_1, λ_2, λ_3 are its contact force), a moment for F in rad/s or rad
+    character(len=*), parameter :: multiplier_label = &
+        & "λ_k [N for F_k in m/s or m; N m for F_k in rad/s or rad]"
 
 contains
 
     !> Draw the figures of an output CSV into output_dir (which must exist), as
     !> output_dir/<base>_<figure>.png, <base> the CSV's file name less '.csv': figure_names for
-    !> the CSV of a part rolling on a rim, model_figure_names for any other. The gnuplot script and its data
-    !> (<base>_plots.gp, .dat) are removed when gnuplot succeeds and kept when it fails.
-    subroutine plot_output(csv_path, output_dir, error, files)
+    !> the CSV of a part rolling on a rim, model_figure_names for any other. The gnuplot script
+    !> and its data (<base>_plots.gp, .dat) are removed when gnuplot succeeds and kept when it
+    !> fails.
+    subroutine plot_output(csv_path, output_dir, error, files, script)
         !> Output CSV of `rollcon run` (its part shapes beside it, rollcon_run_record)
         character(len=*), intent(in) :: csv_path
         !> Folder for the PNG files
@@ -42,6 +48,8 @@ contains
         type(error_type), allocatable, intent(out) :: error
         !> The PNG files written
         character(len=:), allocatable, intent(out), optional :: files(:)
+        !> The gnuplot script given to gnuplot (what <base>_plots.gp held)
+        character(len=:), allocatable, intent(out), optional :: script
         type(run_record_type) :: run
         character(len=:), allocatable :: prefix, data_path, script_path, names(:), text
         integer :: i, unit, stat, size_bytes, length
@@ -65,6 +73,7 @@ contains
                 & prefix, data_path, run)
         end if
         if (allocated(error)) return
+        if (present(script)) script = text
         open(newunit=unit, file=script_path, status="replace", action="write", iostat=stat)
         if (stat == 0) then
             write(unit, '(a)', iostat=stat) text
@@ -294,7 +303,7 @@ contains
             & // "unset logscale y" // nl // "set format y '% h'" // nl
         text = text // output(prefix, "multipliers") &
             & // title(name // ": UCON multipliers (the constraint forces' size)") &
-            & // "set ylabel 'λ_k [N s/m velocity UCON; N position UCON]'" // nl &
+            & // "set ylabel " // gnuplot_string(multiplier_label) // nl &
             & // "plot" // multipliers // nl // "unset output" // nl
     end function ucon_figures
 

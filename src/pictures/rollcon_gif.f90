@@ -47,7 +47,7 @@ contains
     !> come from the .parts file beside the CSV (rollcon_run_record). The gnuplot script and its
     !> data (gif_path less '.gif' + '_gif.gp', '_gif.dat', '_gif_path.dat') are removed when
     !> gnuplot succeeds and kept when it fails.
-    subroutine animate_output(csv_path, gif_path, frames, error)
+    subroutine animate_output(csv_path, gif_path, frames, error, script_text)
         !> Output CSV of `rollcon run`
         character(len=*), intent(in) :: csv_path
         !> GIF file to write (its folder must exist)
@@ -55,9 +55,11 @@ contains
         !> Number of frames drawn
         integer, intent(out) :: frames
         type(error_type), allocatable, intent(out) :: error
+        !> The gnuplot script given to gnuplot (what <base>_gif.gp held)
+        character(len=:), allocatable, intent(out), optional :: script_text
         type(run_record_type) :: run
         integer, allocatable :: rows(:)
-        character(len=:), allocatable :: prefix, script_path, frames_path, path_path
+        character(len=:), allocatable :: prefix, script_path, frames_path, path_path, text
         real(wp) :: duration, interval
         integer :: unit, stat, size_bytes
 
@@ -78,10 +80,11 @@ contains
         if (.not. allocated(error)) call write_paths(path_path, run, error)
         if (allocated(error)) return
         call remove_file(gif_path)
+        text = script(base_name(csv_path, ".csv"), gif_path, frames_path, path_path, run, rows)
+        if (present(script_text)) script_text = text
         open(newunit=unit, file=script_path, status="replace", action="write", iostat=stat)
         if (stat == 0) then
-            write(unit, '(a)', iostat=stat) script(base_name(csv_path, ".csv"), gif_path, &
-                & frames_path, path_path, run, rows)
+            write(unit, '(a)', iostat=stat) text
             close(unit)
         end if
         if (stat /= 0) then
@@ -271,7 +274,7 @@ contains
         set = "(3*(" // parts // "*(k - 1) + p - 1))"
         text = "# Animation of " // name // ", written by rollcon animate." // nl &
             & // "set terminal gif animate delay " // to_text(100/gif_fps) // " loop 0 " &
-            & // optimize // "size " // gif_size // " font 'DejaVu Sans,8'" // nl &
+            & // optimize // "size " // gif_size // " font 'DejaVu Sans,8' noenhanced" // nl &
             & // "set output " // gnuplot_string(gif_path) // nl &
             & // "unset key" // nl // "unset colorbox" // nl &
             & // "set view 60, 12, 1.9" // nl // "set view equal xyz" // nl &

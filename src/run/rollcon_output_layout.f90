@@ -10,8 +10,9 @@
 !>   3-1-3 Euler angles of the principal axes);
 !> - `E`, the total energy [J] (kinetic plus gravitational potential);
 !> - for every UCON, in model order, its residual `F_<id>` (the UCON's own unit) ...
-!> - ... then its Lagrange multiplier `lambda_<id>` (force per unit of F: N s/m for a velocity
-!>   UCON in m/s, N for a position UCON in m);
+!> - ... then its Lagrange multiplier `lambda_<id>` (power or work per unit of F, its
+!>   generalised force being lambda dF/dqdot or lambda dF/dq: N for a UCON in m/s or m, N m
+!>   for one in rad/s or rad);
 !> - the columns the run's watches add, in the order of the watches (rollcon_watch): a part's
 !>   principal basis `basis_<id>` when parts may be re-based (rollcon_theta_watch), a rim
 !>   contact's force, friction and height residual (rollcon_contact_watch), a dataset's

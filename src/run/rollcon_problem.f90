@@ -38,6 +38,11 @@ module rollcon_problem
         real(wp), allocatable :: a(:), lambda(:)
         !> The first failure inside a callback, for the caller to report
         type(error_type), allocatable :: failure
+        !> For each part (model order), the basis its start and the model's part are given in
+        !> (docs/rebasing.md): 0, its own axes, unless the part starts where those are singular
+        !> (a dataset's part flat at t = 0: 1). A run counts these as re-basings before its first
+        !> row. Set by init to 0
+        integer, allocatable :: start_bases(:)
     contains
         procedure :: init
         procedure :: add_watch
@@ -68,7 +73,8 @@ module rollcon_problem
 contains
 
     !> Keep a model that setup_model has prepared (the problem's copy is the only one the
-    !> run uses: the equations refer to it) and set up its equations on it; no watches yet.
+    !> run uses: the equations refer to it) and set up its equations on it; no watches yet, every
+    !> part's start in its own axes.
     subroutine init(self, model)
         class(problem_type), intent(inout), target :: self
         type(model_type), intent(in) :: model
@@ -77,6 +83,12 @@ contains
         call self%eq%init(self%model)
         if (allocated(self%watches)) deallocate(self%watches)
         allocate(self%watches(0))
+        if (allocated(self%start_bases)) deallocate(self%start_bases)
+        if (allocated(self%model%parts)) then
+            allocate(self%start_bases(size(self%model%parts)), source=0)
+        else
+            allocate(self%start_bases(0))
+        end if
     end subroutine init
 
     !> Watch this too (after the watches added before it).

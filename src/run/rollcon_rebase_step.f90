@@ -13,7 +13,15 @@ module rollcon_rebase_step
     implicit none
     private
 
-    public :: rebase_part, basis_rtol_floor
+    public :: rebase_part, compare_bases, basis_difference_type, basis_rtol_floor
+
+    !> A UCON whose F differs between two bases of a part (compare_bases)
+    type :: basis_difference_type
+        !> The UCON's number in the model (0: none differs)
+        integer :: k = 0
+        !> F in the first basis and in the second, and the difference allowed [F's unit, SI]
+        real(wp) :: f_old = 0.0_wp, f_new = 0.0_wp, allowed = 0.0_wp
+    end type basis_difference_type
 
     !> Least relative tolerance of the comparison of F in two bases [-]: a routine indifferent
     !> to the basis computes its terms from the sines and cosines of other angles, each term
@@ -23,11 +31,10 @@ module rollcon_rebase_step
 contains
 
     !> Re-base part p (model order) at (time, q, u). Before anything changes, every UCON on the
-    !> part is evaluated at the same physical state in both bases: when some F differs by more
-    !> than atol + max(rtol, basis_rtol_floor) s_k (s_k: the sizes of F's terms, below), the
-    !> part is not re-based and `refusal` names the part, the UCON and the time. Otherwise the
-    !> model's part is turned and q and u hold the new basis's values (the caller counts the
-    !> re-basing). A UCOSUB's own failure is an error.
+    !> part is evaluated at the same physical state in both bases (compare_bases): when some F
+    !> differs by more than allowed, the part is not re-based and `refusal` names the part, the
+    !> UCON and the time. Otherwise the model's part is turned and q and u hold the new basis's
+    !> values (the caller counts the re-basing). A UCOSUB's own failure is an error.
     subroutine rebase_part(problem, p, time, q, u, refusal, error)
         type(problem_type), intent(inout) :: problem
         !> Part index (model order)
@@ -39,49 +46,75 @@ contains
         !> Why the part cannot be re-based (unallocated when it was)
         character(len=:), allocatable, intent(out) :: refusal
         type(error_type), allocatable, intent(out) :: error
-        real(wp), allocatable :: q_new(:), u_new(:), f_old(:), f_new(:), scale(:)
-        real(wp) :: allowed
-        integer :: i0, k
+        type(basis_difference_type) :: found
+        real(wp), allocatable :: q_new(:), u_new(:)
+        integer :: i0
 
         i0 = 6*(p - 1)
         q_new = q
         u_new = u
         call rebased_state(q(i0 + 1:i0 + 6), u(i0 + 1:i0 + 6), q_new(i0 + 1:i0 + 6), &
             & u_new(i0 + 1:i0 + 6))
-        if (problem%eq%nc > 0) then
-            associate (constraints => problem%eq%constraints)
-                call constraints%evaluate(problem%model, time, q, u, need_value + need_first, &
-                    & error)
-                if (allocated(error)) return
-                f_old = constraints%value
-                scale = term_sizes(problem, q, u)
-                call constraints%evaluate(problem%model, time, q_new, u_new, need_value, error)
-                if (allocated(error)) return
-                f_new = constraints%value
-            end associate
-            do k = 1, problem%eq%nc
-                associate (ucon => problem%model%ucons(k))
-                    if (.not. any(ucon%coordinate > i0 .and. ucon%coordinate <= i0 + 6)) cycle
-                    allowed = problem%settings%atol &
-                        & + max(problem%settings%rtol, basis_rtol_floor)*scale(k)
-                    if (abs(f_new(k) - f_old(k)) <= allowed) cycle
-                    refusal = "part " // to_text(problem%model%parts(p)%id) &
-                        & // ": its principal axes cannot be re-based at t = " // to_text(time) &
-                        & // " s (theta = " // to_text(q(i0 + 5)) // " rad): UCON " &
-                        & // to_text(ucon%id) // " gives F = " // to_text(f_old(k)) &
-                        & // " in the old basis and " // to_text(f_new(k)) &
-                        & // " in the turned one (allowed difference " // to_text(allowed) &
-                        & // "): its UCOSUB depends on which principal axis is which " &
-                        & // "(docs/rebasing.md)"
-                    return
-                end associate
-            end do
+        call compare_bases(problem, p, time, q, u, q_new, u_new, found, error)
+        if (allocated(error)) return
+        if (found%k > 0) then
+            refusal = "part " // to_text(problem%model%parts(p)%id) &
+                & // ": its principal axes cannot be re-based at t = " // to_text(time) &
+                & // " s (theta = " // to_text(q(i0 + 5)) // " rad): UCON " &
+                & // to_text(problem%model%ucons(found%k)%id) // " gives F = " &
+                & // to_text(found%f_old) // " in the old basis and " // to_text(found%f_new) &
+                & // " in the turned one (allowed difference " // to_text(found%allowed) &
+                & // "): its UCOSUB depends on which principal axis is which (docs/rebasing.md)"
+            return
         end if
         call problem%model%turn_part_axes(p, error)
         if (allocated(error)) return
         q = q_new
         u = u_new
     end subroutine rebase_part
+
+    !> The UCOSUB contract of a re-basing (docs/rebasing.md): every UCON on part p (a UCON
+    !> with a variable of the part) evaluated at (time, q, u) and at (time, q_new, u_new), the
+    !> same physical state in two bases of the part. `found` is the first whose F differs by
+    !> more than atol + max(rtol, basis_rtol_floor) s_k (s_k: the sizes of F's terms at
+    !> (q, u), term_sizes); found%k = 0 when none does.
+    subroutine compare_bases(problem, p, time, q, u, q_new, u_new, found, error)
+        type(problem_type), intent(inout) :: problem
+        !> Part index (model order)
+        integer, intent(in) :: p
+        !> Time [s]
+        real(wp), intent(in) :: time
+        !> Coordinates and rates of all parts in the two bases [m, rad, m/s, rad/s]
+        real(wp), intent(in) :: q(:), u(:), q_new(:), u_new(:)
+        type(basis_difference_type), intent(out) :: found
+        type(error_type), allocatable, intent(out) :: error
+        real(wp), allocatable :: f_old(:), f_new(:), scale(:)
+        real(wp) :: allowed
+        integer :: i0, k
+
+        if (problem%eq%nc == 0) return
+        i0 = 6*(p - 1)
+        associate (constraints => problem%eq%constraints)
+            call constraints%evaluate(problem%model, time, q, u, need_value + need_first, &
+                & error)
+            if (allocated(error)) return
+            f_old = constraints%value
+            scale = term_sizes(problem, q, u)
+            call constraints%evaluate(problem%model, time, q_new, u_new, need_value, error)
+            if (allocated(error)) return
+            f_new = constraints%value
+        end associate
+        do k = 1, problem%eq%nc
+            associate (ucon => problem%model%ucons(k))
+                if (.not. any(ucon%coordinate > i0 .and. ucon%coordinate <= i0 + 6)) cycle
+                allowed = problem%settings%atol &
+                    & + max(problem%settings%rtol, basis_rtol_floor)*scale(k)
+                if (abs(f_new(k) - f_old(k)) <= allowed) cycle
+                found = basis_difference_type(k, f_old(k), f_new(k), allowed)
+                return
+            end associate
+        end do
+    end subroutine compare_bases
 
     !> The size s_k of each UCON's F at (q, u), in F's unit, from the last evaluation's first
     !> partials: |F| + sum_j |dF/du_j u_j| + sum over translations |dF/dq_j q_j| + sum over

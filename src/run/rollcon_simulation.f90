@@ -347,9 +347,10 @@ contains
         call self%integrator%restart(self%t, self%y, self%yp, error)
     end subroutine rebase
 
-    !> Before the first row: re-base every part a watch wants re-based at the start (a part at
-    !> or below the threshold of a watch that re-bases there). A refusal fails the run after
-    !> that row (the start as given).
+    !> Before the first row: the parts that start in a turned basis (problem%start_bases)
+    !> counted as re-based, then every part a watch wants re-based at the start (a part at
+    !> or below the threshold of a watch that re-bases there) re-based. A refusal fails the run
+    !> after that row (the start as given).
     subroutine rebase_at_start(self, q, u, refusal, error)
         class(simulation_type), intent(inout) :: self
         real(wp), intent(inout) :: q(:), u(:)
@@ -358,6 +359,13 @@ contains
         integer, allocatable :: parts(:)
         integer :: w, k
 
+        if (allocated(self%problem%start_bases)) then
+            do k = 1, size(self%problem%start_bases)
+                do w = 1, self%problem%start_bases(k)
+                    call self%count_rebasing(k)
+                end do
+            end do
+        end if
         do w = 1, size(self%problem%watches)
             parts = self%problem%watches(w)%watch%parts_to_rebase(self%problem%eq, q)
             do k = 1, size(parts)

@@ -55,14 +55,15 @@ module rollcon_model_source
 
 contains
 
-    !> The parts' shapes for the pictures: by default each part's inertia ellipsoid.
+    !> The parts' shapes for the pictures: by default each part's inertia ellipsoid, along its
+    !> own axes whatever basis its start is in.
     subroutine shapes(self, problem, found, error)
         class(model_source_type), intent(in) :: self
         type(problem_type), intent(in) :: problem
         type(part_shape_type), allocatable, intent(out) :: found(:)
         type(error_type), allocatable, intent(out) :: error
 
-        call part_shapes_of(problem%model, found, error)
+        call part_shapes_of(problem%model, found, error, bases=problem%start_bases)
     end subroutine shapes
 
     !> The first line of the run's summary: "scene coin (data/coin.nml): IDA (DAE form, index

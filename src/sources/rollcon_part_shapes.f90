@@ -12,6 +12,7 @@ module rollcon_part_shapes
     use rollcon_error, only : error_type, fatal_error, input_error, stat_input, stat_io
     use rollcon_text, only : to_text
     use rollcon_model, only : model_type
+    use rollcon_rebasing, only : own_axes_inertia
     use rollcon_output_files, only : close_checked
     use rollcon_input_files, only : input_file_type, text_input_limit
     use, intrinsic :: ieee_arithmetic, only : ieee_is_finite
@@ -49,8 +50,10 @@ module rollcon_part_shapes
 contains
 
     !> The shapes of a model's parts, in model order: the uniform solid ellipsoid of each part's
-    !> mass and principal moments (ellipsoid_semi_axes), except the disk of a disk scene.
-    subroutine part_shapes_of(model, shapes, error, disk_radius, disk_thickness, disk_part)
+    !> mass and principal moments (ellipsoid_semi_axes) about its own axes (its CM marker's),
+    !> except the disk of a disk scene.
+    subroutine part_shapes_of(model, shapes, error, disk_radius, disk_thickness, disk_part, &
+        & bases)
         type(model_type), intent(in) :: model
         type(part_shape_type), allocatable, intent(out) :: shapes(:)
         type(error_type), allocatable, intent(out) :: error
@@ -58,8 +61,11 @@ contains
         real(wp), intent(in), optional :: disk_radius, disk_thickness
         !> Which part (model order) is the disk; default 1
         integer, intent(in), optional :: disk_part
+        !> The basis each part of the model is in (problem%start_bases; default: its own axes):
+        !> the semi-axes are given along the part's own axes all the same
+        integer, intent(in), optional :: bases(:)
         character(len=:), allocatable :: message
-        integer :: p, disk
+        integer :: p, disk, basis
 
         disk = 0
         if (present(disk_radius)) disk = 1
@@ -77,8 +83,10 @@ contains
                 if (present(disk_thickness)) shapes(p)%thickness = disk_thickness
                 cycle
             end if
-            call ellipsoid_semi_axes(model%parts(p)%mass, model%parts(p)%inertia, &
-                & shapes(p)%semi_axes, message)
+            basis = 0
+            if (present(bases)) basis = bases(p)
+            call ellipsoid_semi_axes(model%parts(p)%mass, &
+                & own_axes_inertia(model%parts(p)%inertia, basis), shapes(p)%semi_axes, message)
             if (allocated(message)) then
                 call fatal_error(error, "part " // to_text(model%parts(p)%id) // ": " &
                     & // message, stat_input)

@@ -22,7 +22,7 @@ module rollcon_ucosub_catalog
     private
 
     public :: find_builtin_ucosub, builtin_ucosub_names, builtin_ucosub_par
-    public :: builtin_ucosub_summary
+    public :: builtin_ucosub_summary, builtin_ucosubs_for_par
 
     !> Name of the hand-checked disk routine, and of the generated routine of the same constraint
     character(len=*), parameter :: hand_disk_name = "disk", generated_twin = "rolling_disk"
@@ -65,15 +65,42 @@ contains
     !> begun), then every other generated routine in the generated catalog's (alphabetical) order.
     pure function builtin_ucosub_names() result(list)
         character(len=:), allocatable :: list
+        integer, allocatable :: entries(:)
         integer :: i
 
-        list = hand_disk_name
-        if (lookup(generated_twin) > 0) list = list // ", " // generated_twin
-        do i = 1, generated_count
-            if (generated_names(i) == generated_twin) cycle
-            list = list // ", " // trim(generated_names(i))
+        entries = listed_entries()
+        list = entry_name(entries(1))
+        do i = 2, size(entries)
+            list = list // ", " // entry_name(entries(i))
         end do
     end function builtin_ucosub_names
+
+    !> The built-in routines whose PAR layout the constants par fit, as a list for messages in
+    !> the order of builtin_ucosub_names ("" for none): as many constants as the routine takes,
+    !> a positive whole part id in PAR(1), the routine's UCOVAR codes from PAR(2) on, and a
+    !> component in range when it has several. The physical parameters are not judged (the
+    !> routine checks them when declared).
+    pure function builtin_ucosubs_for_par(par) result(list)
+        !> The constants of FUNCTION=USER(...)
+        real(wp), intent(in) :: par(:)
+        character(len=:), allocatable :: list
+        integer, allocatable :: entries(:), codes(:)
+        integer :: i, npar, ncomponents
+
+        list = ""
+        entries = listed_entries()
+        do i = 1, size(entries)
+            call entry_layout(entries(i), codes, npar, ncomponents)
+            if (size(par) /= npar) cycle
+            if (.not. whole_in(par(1), 1, huge(1))) cycle
+            if (any(par(2:1 + size(codes)) /= real(codes, wp))) cycle
+            if (ncomponents > 1) then
+                if (.not. whole_in(par(npar), 1, ncomponents)) cycle
+            end if
+            if (len(list) > 0) list = list // ", "
+            list = list // entry_name(entries(i))
+        end do
+    end function builtin_ucosubs_for_par
 
     !> One line on what the built-in routine called name enforces; empty when there is none.
     pure function builtin_ucosub_summary(name) result(summary)
@@ -119,14 +146,8 @@ contains
             call fatal_error(error, "no built-in UCOSUB is called '" // trim(name) &
                 & // "'; the built-in routines are " // builtin_ucosub_names(), stat_input)
             return
-        case (entry_hand_disk)
-            codes = disk_codes
-            npar = disk_npar
-            ncomponents = hand_disk_components
         case default
-            codes = generated_codes(entry)
-            npar = generated_npar(entry)
-            ncomponents = generated_ncomponents(entry)
+            call entry_layout(entry, codes, npar, ncomponents)
         end select
         nparameters = npar - 1 - size(codes)
         if (ncomponents > 1) nparameters = nparameters - 1
@@ -146,6 +167,59 @@ contains
         par = [real(part, wp), real(codes, wp), parameters]
         if (ncomponents > 1) par = [par, real(component, wp)]
     end subroutine builtin_ucosub_par
+
+    !> The entries in the order of builtin_ucosub_names: the hand-checked disk, its generated
+    !> twin, then the other generated routines in the generated catalog's order.
+    pure function listed_entries() result(entries)
+        integer, allocatable :: entries(:)
+        integer :: i
+
+        entries = [entry_hand_disk]
+        if (lookup(generated_twin) > 0) entries = [entries, lookup(generated_twin)]
+        do i = 1, generated_count
+            if (generated_names(i) == generated_twin) cycle
+            entries = [entries, i]
+        end do
+    end function listed_entries
+
+    !> The name of an entry (not entry_unknown).
+    pure function entry_name(entry) result(name)
+        integer, intent(in) :: entry
+        character(len=:), allocatable :: name
+
+        if (entry == entry_hand_disk) then
+            name = hand_disk_name
+        else
+            name = trim(generated_names(entry))
+        end if
+    end function entry_name
+
+    !> The PAR layout of an entry (not entry_unknown): its UCOVAR codes, NPAR and number of
+    !> components.
+    pure subroutine entry_layout(entry, codes, npar, ncomponents)
+        integer, intent(in) :: entry
+        integer, allocatable, intent(out) :: codes(:)
+        integer, intent(out) :: npar, ncomponents
+
+        if (entry == entry_hand_disk) then
+            codes = disk_codes
+            npar = disk_npar
+            ncomponents = hand_disk_components
+        else
+            codes = generated_codes(entry)
+            npar = generated_npar(entry)
+            ncomponents = generated_ncomponents(entry)
+        end if
+    end subroutine entry_layout
+
+    !> True for a whole number from low to high.
+    pure logical function whole_in(value, low, high)
+        real(wp), intent(in) :: value
+        integer, intent(in) :: low, high
+
+        whole_in = value >= real(low, wp) .and. value <= real(high, wp)
+        if (whole_in) whole_in = value == aint(value)
+    end function whole_in
 
     !> entry_hand_disk, the generated catalog's entry number, or entry_unknown.
     pure integer function lookup(name)

@@ -42,6 +42,7 @@ program tester
     use test_ucosub_catalog, only : collect_ucosub_catalog
     use test_initial_conditions, only : collect_initial_conditions
     use test_rebasing, only : collect_rebasing
+    use test_singular_start, only : collect_singular_start
     use test_models, only : collect_models
     use test_study_file, only : collect_study_file
     use test_study_fuzz, only : collect_study_fuzz
@@ -67,6 +68,8 @@ program tester
     use test_study_limits, only : collect_study_limits
     use test_sweep_guards, only : collect_sweep_guards
     use test_adm_outputs, only : collect_adm_outputs
+    use test_fpm_dependency, only : collect_fpm_dependency
+    use test_multiplier_units, only : collect_multiplier_units
     implicit none
     type(testsuite_type), allocatable :: suites(:)
     type(test_counts_type) :: counts
@@ -114,6 +117,7 @@ program tester
         & new_testsuite("dataset-command", collect_dataset_command), &
         & new_testsuite("initial-conditions", collect_initial_conditions), &
         & new_testsuite("rebasing", collect_rebasing), &
+        & new_testsuite("singular-start", collect_singular_start), &
         & new_testsuite("models", collect_models), &
         & new_testsuite("study-file", collect_study_file), &
         & new_testsuite("study-fuzz", collect_study_fuzz), &
@@ -138,7 +142,9 @@ program tester
         & new_testsuite("long-paths", collect_long_paths), &
         & new_testsuite("study-limits", collect_study_limits), &
         & new_testsuite("sweep-guards", collect_sweep_guards), &
-        & new_testsuite("adm-outputs", collect_adm_outputs)]
+        & new_testsuite("adm-outputs", collect_adm_outputs), &
+        & new_testsuite("fpm-dependency", collect_fpm_dependency), &
+        & new_testsuite("multiplier-units", collect_multiplier_units)]
 
     if (command_argument_count() >= 1) then
         call get_command_argument(1, argument)

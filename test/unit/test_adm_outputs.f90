@@ -118,7 +118,7 @@ contains
         call run_rollcon(program, "run " // path // " -q -o " // scratch // "/out", scratch &
             & // "/run.out", scratch // "/run.err", status)
         stderr = file_text(scratch // "/run.err")
-        summary = file_text(scratch // "/out/outputs.summary.txt")
+        summary = file_text(scratch // "/out/outputs.adm.summary.txt")
         warning = path // ": read and checked but not used: REQUEST VELOCITY (line 9), " &
             & // "RESULTS (line 10), GRAPHICS (lines 11, 12), OUTPUT REQSAVE (line 13), " &
             & // "OUTPUT GRSAVE (line 13), DEBUG (line 14), INTEGRATOR GSTIFF (line 16), " &
@@ -128,7 +128,7 @@ contains
             & // new_line("a") .and. index(summary, "warning: " // warning // new_line("a")) &
             & > 0 .and. index(summary, "status: completed at t = 0.5 s") > 0, "exit status " &
             & // to_text(status) // "; stderr: " // stderr // "; summary: " // summary)
-        if (.not. allocated(error)) call read_output_csv(scratch // "/out/outputs.csv", layout, &
+        if (.not. allocated(error)) call read_output_csv(scratch // "/out/outputs.adm.csv", layout, &
             & rows, error)
         call remove_folder(scratch)
         if (allocated(error)) return
@@ -329,17 +329,17 @@ contains
             & // "LENGTH=0.003, RADIUS=0.1, SIDES=40" // text(cut:))
         call run_rollcon(program, "run " // path // " -q -o " // scratch // "/out", scratch &
             & // "/run.out", scratch // "/run.err", status_run)
-        call run_rollcon(program, "plot " // scratch // "/out/coin.csv -o " // scratch &
+        call run_rollcon(program, "plot " // scratch // "/out/coin.adm.csv -o " // scratch &
             & // "/out", scratch // "/plot.out", scratch // "/plot.err", status_plot)
         stderr = file_text(scratch // "/run.err")
-        summary = file_text(scratch // "/out/coin.summary.txt")
+        summary = file_text(scratch // "/out/coin.adm.summary.txt")
         call check(error, status_run == 0 .and. status_plot == 0 .and. line_count(stderr) == 1 &
             & .and. index(stderr, "rollcon: warning: " // path // ": read and checked but not " &
             & // "used: GRAPHICS (line ") == 1 .and. index(summary, "status: completed at t = " &
-            & // "10 s") > 0 .and. file_exists(scratch // "/out/coin_path.png"), "exit statuses " &
+            & // "10 s") > 0 .and. file_exists(scratch // "/out/coin.adm_path.png"), "exit statuses " &
             & // to_text(status_run) // ", " // to_text(status_plot) // "; stderr: " // stderr &
             & // file_text(scratch // "/plot.err") // "; summary: " // summary)
-        if (.not. allocated(error)) call read_output_csv(scratch // "/out/coin.csv", layout, &
+        if (.not. allocated(error)) call read_output_csv(scratch // "/out/coin.adm.csv", layout, &
             & rows, error)
         call remove_folder(scratch)
         if (allocated(error)) return

@@ -4,7 +4,8 @@
 module test_adm_refusals
     use rollcon_error, only : error_type
     use rollcon_testing, only : unittest_type, new_unittest
-    use adm_datasets, only : check_refusals
+    use rollcon_adm_model, only : adm_model_type
+    use adm_datasets, only : check_refusals, read_dataset, base
     implicit none
     private
 
@@ -59,7 +60,7 @@ contains
         replaced(5) = "VARIABLE/1, FUNCTION=TIME"
         expected(5) = ":7: 'VARIABLE' is not a statement of the supported subset " // supported &
             & // "; system and data elements are not in the subset: FUNCTION expressions" &
-            & // " depend on TIME only"
+            & // " read TIME and the state functions of one marker (DX(i) ... PHI(i)) only"
         replaced(6) = "FLEX_BODY/1"
         expected(6) = ":7: 'FLEX_BODY' is not a statement of the supported subset " // supported &
             & // "; rollcon's bodies are rigid PARTs"
@@ -294,32 +295,43 @@ contains
         call check_refusals(error, [12, 12, 12, 12, 12, 12, 12, 12, 12, 12, 12], replaced, expected)
     end subroutine test_integrator
 
-    !> The principal-axes rule at t = 0: a CM marker not turned, and a part's REULER that turns a
-    !> turned CM marker back; the message names the part and the CM marker's REULER that fixes it.
+    !> The principal-axes rule at t = 0: a part whose CM marker's z-axis is along ground z is
+    !> read (it starts in turned axes, docs/rebasing.md), whether its marker or the part's REULER
+    !> puts the axis there, with EXACT translations; EXACT angles are refused, naming the part,
+    !> the key and the angle, since the turned axes' angles are not the CM marker's.
     subroutine test_principal_axes(error)
         type(error_type), allocatable, intent(out) :: error
-        character(len=120) :: replaced(3)
-        character(len=400) :: expected(3)
+        character(len=*), parameter :: tail = ") is parallel to ground z at t = 0 (sin(theta)" &
+            & // " = *), so the part starts in those axes turned 90 degrees about x" &
+            & // " (docs/rebasing.md), whose Euler angles are not the CM marker's: hold only" &
+            & // " X, Y, Z, or turn the CM marker off ground z"
+        !> Lines 5 (the PART's continuation) and 6 (its CM marker) of datasets that read
+        character(len=60), parameter :: accepted(2, 3) = reshape([character(len=60) :: &
+            & ", QG=0, 0, 1, VX=0.5", "MARKER/3, PART=2", &
+            & ", QG=0, 0, 1, VX=0.5, EXACT=X:Y:Z", "MARKER/3, PART=2, REULER=45D, 0.01D, 0D", &
+            & ", QG=0, 0, 1, EXACT=z", "MARKER/3, PART=2, REULER=0D, 180D, 0D"], [2, 3])
+        character(len=120) :: replaced(2)
+        character(len=400) :: expected(2)
+        character(len=len(base) + 60) :: lines(size(base))
+        type(adm_model_type) :: model
+        integer :: i
 
-        replaced(1) = "MARKER/3, PART=2"
-        expected(1) = ":4: PART/2: the z-axis of its principal axes (its CM marker, MARKER/3, in" &
-            & // " the part's frame) is parallel to ground z at t = 0, where the 3-1-3" &
-            & // " Euler angles are singular (sin(theta) = 0 < 0.001); turn the CM marker" &
-            & // " 90 degrees about its x-axis: MARKER/3, REULER=0D, 90D, 0D, and give IP" &
-            & // " in the turned axes (Ixx, Izz, Iyy)"
-        replaced(2) = ", QG=0, 0, 1, VX=0.5, REULER=0D, -90D, 0D"
-        expected(2) = ":4: PART/2: the z-axis of its principal axes (its CM marker, MARKER/3, in" &
-            & // " the part's frame) is parallel to ground z at t = 0, where the 3-1-3" &
-            & // " Euler angles are singular (sin(theta) = *); turn the CM marker 90" &
-            & // " degrees about its x-axis: MARKER/3, REULER=0D, 180D, 0D, and give IP in" &
-            & // " the turned axes (Ixx, Izz, Iyy)"
-        replaced(3) = "MARKER/3, PART=2, REULER=45D, 0.01D, 0D"
-        expected(3) = ":4: PART/2: the z-axis of its principal axes (its CM marker, MARKER/3, in" &
-            & // " the part's frame) is parallel to ground z at t = 0, where the 3-1-3" &
-            & // " Euler angles are singular (sin(theta) = *); turn the CM marker 90" &
-            & // " degrees about its x-axis: MARKER/3, REULER=45D, 90.01D, 0D, and give IP" &
-            & // " in the turned axes (Ixx, Izz, Iyy)"
-        call check_refusals(error, [6, 5, 6], replaced, expected)
+        do i = 1, size(accepted, 2)
+            lines = base
+            lines(5:6) = accepted(:, i)
+            call read_dataset("principal-axes.adm", lines, model, error)
+            if (allocated(error)) then
+                error%message = trim(accepted(2, i)) // ": " // error%message
+                return
+            end if
+        end do
+        replaced(1) = ", QG=0, 0, 1, VX=0.5, REULER=0D, -90D, 0D, EXACT=X:PSI"
+        expected(1) = ":4: PART/2 EXACT=PSI: the z-axis of its principal axes (its CM marker," &
+            & // " MARKER/3" // tail
+        replaced(2) = ", QG=0, 0, 1, VX=0.5, EXACT=phi:Theta, REULER=0D, 270D, 0D"
+        expected(2) = ":4: PART/2 EXACT=THETA: the z-axis of its principal axes (its CM" &
+            & // " marker, MARKER/3" // tail
+        call check_refusals(error, [5, 5], replaced, expected)
     end subroutine test_principal_axes
 
 end module test_adm_refusals

@@ -42,11 +42,13 @@ contains
             & new_unittest("user-ucosub-file", test_user_file), &
             & new_unittest("check-model-routine", test_check_model), &
             & new_unittest("two-parts-run-and-pictures", test_two_parts), &
-            & new_unittest("default-and-unknown-routine", test_refusals)]
+            & new_unittest("default-and-unknown-routine", test_refusals), &
+            & new_unittest("forgotten-ucosub-hint", test_forgotten_ucosub)]
     end subroutine collect_dataset_command
 
     !> `run data/coin.adm --ucosub disk` writes the rows `run coin` writes, bit for bit, under
-    !> the dataset's part id, with its summary and part shapes.
+    !> the dataset's part id, with its summary and part shapes. Run into one folder, the two
+    !> keep their own outputs: coin.adm.csv, .summary.txt, .parts beside coin.csv, ...
     subroutine test_coin_adm(error)
         type(error_type), allocatable, intent(out) :: error
         character(len=:), allocatable :: program, summary
@@ -57,20 +59,22 @@ contains
         call rollcon_program(program, error)
         if (allocated(error)) return
         call make_folder(scratch)
-        call run_rollcon(program, "run data/coin.adm --ucosub disk -q -o " // scratch // "/adm", &
+        call run_rollcon(program, "run data/coin.adm --ucosub disk -q -o " // scratch // "/both", &
             & scratch // "/adm.out", scratch // "/adm.err", status_adm)
-        call run_rollcon(program, "run coin -q -o " // scratch // "/nml", scratch // "/nml.out", &
+        call run_rollcon(program, "run coin -q -o " // scratch // "/both", scratch // "/nml.out", &
             & scratch // "/nml.err", status_nml)
-        summary = file_text(scratch // "/adm/coin.summary.txt")
+        summary = file_text(scratch // "/both/coin.adm.summary.txt")
         ! after the provenance's two lines (rollcon_provenance)
         call check(error, status_adm == 0 .and. status_nml == 0 .and. index(summary, &
             & new_line("a") // "dataset coin (data/coin.adm): IDA") > 0 .and. index(summary, &
             & "status: completed at t = 10 s") > 0 .and. file_exists(scratch &
-            & // "/adm/coin.parts"), "exit statuses " // to_text(status_adm) // ", " &
-            & // to_text(status_nml) // "; summary: " // summary)
-        if (.not. allocated(error)) call read_output_csv(scratch // "/adm/coin.csv", adm_layout, &
-            & adm_rows, error)
-        if (.not. allocated(error)) call read_output_csv(scratch // "/nml/coin.csv", nml_layout, &
+            & // "/both/coin.adm.parts") .and. file_exists(scratch // "/both/coin.parts") .and. &
+            & index(file_text(scratch // "/both/coin.summary.txt"), "scene coin") > 0, &
+            & "exit statuses " // to_text(status_adm) // ", " // to_text(status_nml) &
+            & // "; summary: " // summary)
+        if (.not. allocated(error)) call read_output_csv(scratch // "/both/coin.adm.csv", &
+            & adm_layout, adm_rows, error)
+        if (.not. allocated(error)) call read_output_csv(scratch // "/both/coin.csv", nml_layout, &
             & nml_rows, error)
         call remove_folder(scratch)
         if (allocated(error)) return
@@ -104,10 +108,10 @@ contains
         call check(error, status_user == 0 .and. status_own == 0, "exit statuses " &
             & // to_text(status_user) // ", " // to_text(status_own) // "; stderr: " &
             & // file_text(scratch // "/user.err"))
-        if (.not. allocated(error)) call read_output_csv(scratch // "/user/coin.csv", &
+        if (.not. allocated(error)) call read_output_csv(scratch // "/user/coin.adm.csv", &
             & user_layout, user_rows, error)
-        if (.not. allocated(error)) call read_output_csv(scratch // "/own/coin.csv", own_layout, &
-            & own_rows, error)
+        if (.not. allocated(error)) call read_output_csv(scratch // "/own/coin.adm.csv", &
+            & own_layout, own_rows, error)
         call remove_folder(scratch)
         if (allocated(error)) return
         call check(error, user_rows%count == own_rows%count, "row counts " &
@@ -142,7 +146,8 @@ contains
     end subroutine test_check_model
 
     !> A dataset of two parts with built-in routines named by ROUTINE= runs with no --ucosub;
-    !> its CSV holds both parts, and plot and animate draw it.
+    !> its CSV, disk_and_sphere.adm.csv, holds both parts, and plot (given the dataset, as run
+    !> was) and animate (given the CSV) draw it.
     subroutine test_two_parts(error)
         type(error_type), allocatable, intent(out) :: error
         character(len=:), allocatable :: program, folder
@@ -156,17 +161,18 @@ contains
         call make_folder(scratch)
         call run_rollcon(program, "run data/disk_and_sphere.adm -q -o " // folder, scratch &
             & // "/run.out", scratch // "/run.err", status_run)
-        call run_rollcon(program, "plot " // folder // "/disk_and_sphere.csv -o " // folder, &
+        call run_rollcon(program, "plot data/disk_and_sphere.adm -o " // folder, &
             & scratch // "/plot.out", scratch // "/plot.err", status_plot)
-        call run_rollcon(program, "animate " // folder // "/disk_and_sphere.csv -o " // folder, &
-            & scratch // "/animate.out", scratch // "/animate.err", status_animate)
+        call run_rollcon(program, "animate " // folder // "/disk_and_sphere.adm.csv -o " &
+            & // folder, scratch // "/animate.out", scratch // "/animate.err", status_animate)
         call check(error, status_run == 0 .and. status_plot == 0 .and. status_animate == 0 &
-            & .and. file_exists(folder // "/disk_and_sphere_path.png") .and. file_exists(folder &
-            & // "/disk_and_sphere.gif"), "exit statuses " // to_text(status_run) // ", " &
+            & .and. file_exists(folder // "/disk_and_sphere.adm_path.png") .and. &
+            & file_exists(folder // "/disk_and_sphere.adm.gif"), "exit statuses " &
+            & // to_text(status_run) // ", " &
             & // to_text(status_plot) // ", " // to_text(status_animate) // "; stderr: " &
             & // file_text(scratch // "/run.err") // file_text(scratch // "/plot.err") &
             & // file_text(scratch // "/animate.err"))
-        if (.not. allocated(error)) call read_output_csv(folder // "/disk_and_sphere.csv", &
+        if (.not. allocated(error)) call read_output_csv(folder // "/disk_and_sphere.adm.csv", &
             & layout, rows, error)
         call remove_folder(scratch)
         if (allocated(error)) return
@@ -194,7 +200,7 @@ contains
         call run_rollcon(program, "run data/coin.adm --ucosub no_such_routine -q -o " &
             & // scratch // "/unknown", scratch // "/unknown.out", scratch // "/unknown.err", &
             & status_unknown)
-        summary = file_text(scratch // "/default/coin.summary.txt")
+        summary = file_text(scratch // "/default/coin.adm.summary.txt")
         unknown = file_text(scratch // "/unknown.err")
         call check(error, status_default == 0 .and. index(summary, "status: completed") > 0, &
             & "exit status " // to_text(status_default) // ", summary: " // summary)
@@ -205,5 +211,48 @@ contains
             & // to_text(status_unknown) // ", stderr: " // unknown)
         call remove_folder(scratch)
     end subroutine test_refusals
+
+    !> The ball on a turntable with its ROUTINE=turntable_ball taken away (an ADAMS user's
+    !> dataset, whose UCOSUB is given apart) and run without --ucosub: the hand-checked disk
+    !> refuses UCON/1's PAR, and the one-line error adds that the model's UCOSUB served it, that
+    !> its PAR suits the built-in turntable_ball, how to choose it, and the built-in routines.
+    !> Following the hint (--ucosub turntable_ball) runs it.
+    subroutine test_forgotten_ucosub(error)
+        type(error_type), allocatable, intent(out) :: error
+        character(len=*), parameter :: expected(4) = [character(len=100) :: &
+            & "rollcon: error: UCON/1: PAR(2) must be code 21 (codes 21 22 23 14 15 24 25 26", &
+            & "this UCON names no ROUTINE, so the model's UCOSUB served it, here the built-in", &
+            & "its PAR suits the built-in turntable_ball: run with --ucosub turntable_ball", &
+            & "(built-in routines: disk, rolling_disk, chaplygin_sled, disk_height, knife_edge"]
+        character(len=:), allocatable :: program, model, refused
+        integer :: status_default, status_hinted, i
+        logical :: complete
+
+        call rollcon_program(program, error)
+        if (allocated(error)) return
+        call make_folder(scratch)
+        model = scratch // "/ball.adm"
+        ! no ROUTINE lines; 0.2 s of the motion, not 20 turns
+        call execute_command_line("sed -e '/^, ROUTINE=/d' -e 's|^SIMULATE.*|SIMULATE/" &
+            & // "DYNAMIC, END=0.2, STEPS=20|' data/ball_on_turntable.adm > " // model)
+        call run_rollcon(program, "run " // model // " -q -o " // scratch // "/default", &
+            & scratch // "/default.out", scratch // "/default.err", status_default)
+        call run_rollcon(program, "run " // model // " --ucosub turntable_ball -q -o " &
+            & // scratch // "/hinted", scratch // "/hinted.out", scratch // "/hinted.err", &
+            & status_hinted)
+        refused = file_text(scratch // "/default.err")
+        complete = index(file_text(scratch // "/hinted/ball.adm.summary.txt"), &
+            & "status: completed") > 0
+        call remove_folder(scratch)
+        call check(error, status_default == 1 .and. line_count(refused) == 1, "exit status " &
+            & // to_text(status_default) // ", stderr: " // refused)
+        do i = 1, size(expected)
+            if (allocated(error)) return
+            call check(error, index(refused, trim(expected(i))) > 0, "the error lacks '" &
+                & // trim(expected(i)) // "': " // refused)
+        end do
+        if (.not. allocated(error)) call check(error, status_hinted == 0 .and. complete, &
+            & "with --ucosub turntable_ball: exit status " // to_text(status_hinted))
+    end subroutine test_forgotten_ucosub
 
 end module test_dataset_command

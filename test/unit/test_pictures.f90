@@ -46,7 +46,8 @@ contains
             & new_unittest("plot-model-without-ucon", test_plot_no_ucon), &
             & new_unittest("plot-missing-csv", test_plot_missing), &
             & new_unittest("plot-malformed-csv", test_plot_malformed), &
-            & new_unittest("animate-writes-gif", test_gif)]
+            & new_unittest("animate-writes-gif", test_gif), &
+            & new_unittest("animate-titles-not-enhanced", test_gif_noenhanced)]
     end subroutine collect_pictures
 
     !> Frames take the nearest row, each row once, and interpolate nothing.
@@ -294,5 +295,32 @@ contains
         end do
         call remove_folder(scratch)
     end subroutine test_gif
+
+    !> The GIF's script, of a run whose name has underscores (two_part_run.csv): its terminal is
+    !> noenhanced, so the title label shows "two_part_run" as written, not with the letters
+    !> after each underscore as subscripts (skipped without gnuplot).
+    subroutine test_gif_noenhanced(error)
+        type(error_type), allocatable, intent(out) :: error
+        character(len=:), allocatable :: script, terminal
+        integer :: frames, start
+
+        if (.not. gnuplot_available()) then
+            call skip_test(error, "gnuplot not found (Debian gnuplot-nox; bash .ci/setup)")
+            return
+        end if
+        call make_folder(scratch)
+        call write_run(scratch // "/two_part_run.csv", two_part_run(), .true., error)
+        if (.not. allocated(error)) call animate_output(scratch // "/two_part_run.csv", &
+            & scratch // "/two_part_run.gif", frames, error, script)
+        call remove_folder(scratch)
+        if (allocated(error)) return
+        start = index(script, "set terminal gif")
+        terminal = ""
+        if (start > 0) terminal = script(start:start - 2 + index(script(start:), new_line("a")))
+        call check(error, index(terminal, " noenhanced") > 0, "the GIF's terminal line is '" &
+            & // terminal // "', without noenhanced")
+        if (.not. allocated(error)) call check(error, index(script, "set label 1 sprintf(" &
+            & // "'two_part_run   t = ") > 0, "the GIF's title label does not name two_part_run")
+    end subroutine test_gif_noenhanced
 
 end module test_pictures

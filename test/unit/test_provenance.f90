@@ -120,7 +120,7 @@ contains
         call run_into("run data/coin.adm --ucosub " // disk_file // " -q -o " // scratch &
             & // "/user_file", "user_file", error)
         if (allocated(error)) return
-        summary = file_text(scratch // "/user_file/coin.summary.txt")
+        summary = file_text(scratch // "/user_file/coin.adm.summary.txt")
         expected = "the model's UCOSUB: " // disk_file // " (" // file_record(disk_file) // ")"
         call check(error, index(file_record(disk_file), " bytes, FNV-1a 64 ") > 0 .and. &
             & index(summary, new_line("a") // expected // new_line("a")) > 0, "expected '" &
@@ -134,7 +134,7 @@ contains
 
         call run_into("run data/disk_height.adm -q -o " // scratch // "/each", "each", error)
         if (allocated(error)) return
-        summary = file_text(scratch // "/each/disk_height.summary.txt")
+        summary = file_text(scratch // "/each/disk_height.adm.summary.txt")
         call check(error, index(summary, "routines: UCON 1: rolling_disk, UCON 2: " &
             & // "rolling_disk, UCON 3: disk_height" // new_line("a")) > 0, &
             & "no line naming the routines in: " // summary)

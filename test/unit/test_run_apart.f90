@@ -60,7 +60,7 @@ contains
         type(error_type), allocatable, intent(out) :: error
 
         call same_rows("data/coin.adm --ucosub rolling_disk -q", "data/coin.adm --ucosub " &
-            & // disk_file // " -q", "coin", error)
+            & // disk_file // " -q", "coin.adm", error)
     end subroutine test_dataset_file
 
     !> A routine that closes units 0, 5 and 6 in its initialisation call: the run completes
@@ -135,8 +135,8 @@ contains
             & // "test/run_apart/height_" // kind // ".f -q -o " // scratch // "/out", &
             & scratch // "/run.out", scratch // "/run.err", status)
         out = file_text(scratch // "/run.out")
-        csv = file_text(scratch // "/out/resting_ball.csv")
-        summary = file_text(scratch // "/out/resting_ball.summary.txt")
+        csv = file_text(scratch // "/out/resting_ball.adm.csv")
+        summary = file_text(scratch // "/out/resting_ball.adm.summary.txt")
         call check(error, status == 0 .and. len(file_text(scratch // "/run.err")) == 0, &
             & "exit status " // to_text(status) // ", stderr: " // file_text(scratch &
             & // "/run.err"))

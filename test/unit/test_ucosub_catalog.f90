@@ -16,8 +16,8 @@ module test_ucosub_catalog
     use rollcon_gen_catalog, only : generated_count, generated_names, generated_codes, &
         & generated_npar, generated_ncomponents, generated_time_free, generated_routine
     use rollcon_ucosub_catalog, only : find_builtin_ucosub, builtin_ucosub_names, &
-        & builtin_ucosub_par, builtin_ucosub_summary
-    use rollcon_text, only : upper_case
+        & builtin_ucosub_par, builtin_ucosub_summary, builtin_ucosubs_for_par
+    use rollcon_text, only : upper_case, to_text
     use rollcon_testing, only : unittest_type, new_unittest, check
     implicit none
     private
@@ -38,7 +38,8 @@ contains
             & new_unittest("routines-declare", test_routines_declare), &
             & new_unittest("unknown-name", test_unknown_name), &
             & new_unittest("par-refusals", test_par_refusals), &
-            & new_unittest("names-every-spec", test_names_every_spec)]
+            & new_unittest("names-every-spec", test_names_every_spec), &
+            & new_unittest("routines-a-par-suits", test_par_suits)]
     end subroutine collect_ucosub_catalog
 
     !> The names of builtin_ucosub_names(), split at ", ".
@@ -289,5 +290,40 @@ contains
         end do
     end subroutine test_names_every_spec
 
+
+    !> builtin_ucosubs_for_par names the routines whose PAR layout a PAR list fits: the disk's
+    !> PAR both disk routines, the data/ datasets' PAR their own routine; a PAR a routine
+    !> cannot read (a part id 0, a component out of range, a code out of place, one constant
+    !> short) none.
+    subroutine test_par_suits(error)
+        type(error_type), allocatable, intent(out) :: error
+        real(wp), parameter :: ball(15) = [2.0_wp, 11.0_wp, 12.0_wp, 21.0_wp, 22.0_wp, &
+            & 23.0_wp, 14.0_wp, 15.0_wp, 25.0_wp, 26.0_wp, 0.02_wp, 3.5_wp, 0.0_wp, 0.0_wp, &
+            & 1.0_wp]
+        real(wp), parameter :: blade(6) = [2.0_wp, 21.0_wp, 22.0_wp, 14.0_wp, 24.0_wp, 0.1_wp]
+        real(wp), parameter :: hold(6) = [2.0_wp, 13.0_wp, 15.0_wp, 16.0_wp, 0.05_wp, 3.0_wp]
+        real(wp) :: wrong(11)
+
+        call expect_suits(error, disk_par(2, 0.1_wp, 3), "disk, rolling_disk")
+        if (.not. allocated(error)) call expect_suits(error, ball, "turntable_ball")
+        if (.not. allocated(error)) call expect_suits(error, blade, "chaplygin_sled")
+        if (.not. allocated(error)) call expect_suits(error, hold, "planar_hold")
+        if (.not. allocated(error)) call expect_suits(error, [0.0_wp, hold(2:)], "")
+        if (.not. allocated(error)) call expect_suits(error, [hold(:5), 4.0_wp], "")
+        if (.not. allocated(error)) call expect_suits(error, blade(:5), "")
+        wrong = disk_par(2, 0.1_wp, 1)
+        wrong(3) = 21.0_wp
+        if (.not. allocated(error)) call expect_suits(error, wrong, "")
+    end subroutine test_par_suits
+
+    subroutine expect_suits(error, par, expected)
+        type(error_type), allocatable, intent(out) :: error
+        real(wp), intent(in) :: par(:)
+        character(len=*), intent(in) :: expected
+
+        call check(error, builtin_ucosubs_for_par(par) == expected, "a PAR of " &
+            & // to_text(size(par)) // " constants suits '" // builtin_ucosubs_for_par(par) &
+            & // "', expected '" // expected // "'")
+    end subroutine expect_suits
 
 end module test_ucosub_catalog

@@ -228,7 +228,8 @@ contains
             & abs(seen(3) - si_seen(3)/minute) <= 1.0e-12_wp*seen(3) .and. report%clean(), &
             & "in mm and minutes: |X| up to " // to_text(seen(1)) // ", |Xdot| up to " &
             & // to_text(seen(2)) // ", time up to " // to_text(seen(3)) // " (in SI: " &
-            & // to_text(si_seen(1)) // ", " // to_text(si_seen(2)) // ", " // to_text(si_seen(3)) // "); " &
+            & // to_text(si_seen(1)) // ", " // to_text(si_seen(2)) // ", " &
+            & // to_text(si_seen(3)) // "); " &
             & // report_text(report, "the recording routine", "this test"))
     end subroutine test_check_units
 
@@ -264,14 +265,15 @@ contains
         type(error_type), allocatable, intent(out) :: error
 
         call twin_runs("data/coin.adm", "test/units/coin_mmks.adm --ucosub " &
-            & // "ucon/adams/rolling_disk/ucosub.f", "coin", "coin_mmks", error)
+            & // "ucon/adams/rolling_disk/ucosub.f", "coin.adm", "coin_mmks.adm", error)
     end subroutine test_coin_user_file
 
     !> The same served by rollcon's hand-checked disk (the model's UCOSUB by default).
     subroutine test_coin_built_in(error)
         type(error_type), allocatable, intent(out) :: error
 
-        call twin_runs("data/coin.adm", "test/units/coin_mmks.adm", "coin", "coin_mmks", error)
+        call twin_runs("data/coin.adm", "test/units/coin_mmks.adm", "coin.adm", "coin_mmks.adm", &
+            & error)
     end subroutine test_coin_built_in
 
     !> The coin with its height as a position UCON (ROUTINE=disk_height, R = 100 mm): the
@@ -280,7 +282,7 @@ contains
         type(error_type), allocatable, intent(out) :: error
 
         call twin_runs("data/disk_height.adm", "test/units/disk_height_mmks.adm", &
-            & "disk_height", "disk_height_mmks", error)
+            & "disk_height.adm", "disk_height_mmks.adm", error)
     end subroutine test_disk_height
 
     !> A ball on a turntable in cm, g, dyne and minutes (its table rate 210 rad/min).
@@ -288,7 +290,7 @@ contains
         type(error_type), allocatable, intent(out) :: error
 
         call twin_runs("test/units/ball_si.adm", "test/units/ball_cgs_minutes.adm", &
-            & "ball_si", "ball_cgs_minutes", error)
+            & "ball_si.adm", "ball_cgs_minutes.adm", error)
     end subroutine test_ball
 
     !> Run both; every row the converted run wrote matches the SI run's row at the same time:

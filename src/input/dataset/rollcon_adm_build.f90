@@ -10,12 +10,13 @@
 !> and the time converted at the boundary (rollcon_ucosub_units).
 module rollcon_adm_build
     use rollcon_kinds, only : wp
-    use rollcon_error, only : error_type, fatal_error, stat_input
+    use rollcon_error, only : error_type, fatal_error, stat_input, stat_ucon
     use rollcon_text, only : to_text
     use rollcon_rotation, only : rotation_matrix
     use rollcon_ucosub_contract, only : ucosub_interface
     use rollcon_ucosub_units, only : ucosub_units_type
-    use rollcon_ucosub_catalog, only : find_builtin_ucosub, builtin_ucosub_names
+    use rollcon_ucosub_catalog, only : find_builtin_ucosub, builtin_ucosub_names, &
+        & builtin_ucosubs_for_par
     use rollcon_expression, only : quantity_names
     use rollcon_body, only : part_type
     use rollcon_marker, only : marker_type
@@ -29,6 +30,7 @@ module rollcon_adm_build
     use rollcon_adm_keywords, only : place
     use rollcon_adm_model, only : adm_model_type, adm_force_type, force_sforce, force_vforce
     use rollcon_adm_state, only : part_state
+    use rollcon_adm_singular, only : start_singular_parts
     use, intrinsic :: ieee_arithmetic, only : ieee_is_finite
     implicit none
     private
@@ -79,7 +81,10 @@ contains
         end do
         model%gravity = adm%gravity
         call setup_model(model, error)
-        if (allocated(error)) return
+        if (allocated(error)) then
+            call add_routine_hint(adm, fallback, error)
+            return
+        end if
         call problem%init(model)
         problem%settings = adm%run%settings
         ! a dataset's parts are re-based at the theta limit, not stopped (docs/rebasing.md)
@@ -95,6 +100,9 @@ contains
             p = p + 1
             call part_state(adm, adm%parts(i), q0(6*p - 5:6*p), u0(6*p - 5:6*p))
         end do
+        ! a part flat at t = 0 starts in turned axes (docs/rebasing.md): its model part too
+        call start_singular_parts(adm, problem, q0, u0, adm_theta_min, error)
+        if (allocated(error)) return
         call check_forces_at_start(adm, problem, q0, u0, error)
     end subroutine build_adm_problem
 
@@ -198,6 +206,55 @@ contains
             end associate
         end do
     end subroutine add_ucons
+
+    !> An error of a UCON that names no ROUTINE, from the model's UCOSUB that served it (a
+    !> forgotten --ucosub leaves rollcon's hand-checked disk serving another routine's PAR):
+    !> the message adds which routine served it and which built-in routines its PAR suits, or
+    !> where a routine is chosen. Nothing is added when the routine that served it is one of
+    !> those its PAR suits (the error is then in a value, not in the choice of routine).
+    subroutine add_routine_hint(adm, fallback, error)
+        type(adm_model_type), intent(in) :: adm
+        procedure(ucosub_interface), pointer, intent(in) :: fallback
+        type(error_type), intent(inout) :: error
+        character(len=:), allocatable :: served, suits, first
+        logical :: time_free
+        integer :: k
+
+        if (error%stat /= stat_ucon .or. .not. associated(fallback)) return
+        do k = 1, size(adm%ucons)
+            associate (ucon => adm%ucons(k))
+                if (index(error%message, "UCON/" // to_text(ucon%id) // ":") /= 1) cycle
+                if (allocated(ucon%routine)) then
+                    if (len_trim(ucon%routine) > 0) return
+                end if
+                served = builtin_name(fallback, time_free)
+                suits = builtin_ucosubs_for_par(ucon%par)
+                if (len(served) > 0) then
+                    if (index(", " // suits // ", ", ", " // served // ", ") > 0) return
+                    served = "the built-in " // served
+                else
+                    served = "a routine of your own"
+                end if
+                error%message = error%message // "; this UCON names no ROUTINE, so the " &
+                    & // "model's UCOSUB served it, here " // served // " (rollcon run " &
+                    & // "MODEL.adm --ucosub FILE|NAME chooses it; without --ucosub it is the " &
+                    & // "hand-checked disk)"
+                if (len(suits) > 0) then
+                    first = suits
+                    if (index(suits, ",") > 0) first = suits(:index(suits, ",") - 1)
+                    error%message = error%message // "; its PAR suits the built-in " // suits &
+                        & // ": run with --ucosub " // first // ", or write ROUTINE=" // first &
+                        & // " on the UCON"
+                else
+                    error%message = error%message // "; give the routine its PAR is written " &
+                        & // "for with --ucosub FILE|NAME, or ROUTINE=name on the UCON"
+                end if
+                error%message = error%message // " (built-in routines: " &
+                    & // builtin_ucosub_names() // ")"
+                return
+            end associate
+        end do
+    end subroutine add_routine_hint
 
     !> The catalog name of a built-in routine ("" for any other) and whether its F is free of
     !> time.

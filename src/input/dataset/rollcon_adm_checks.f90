@@ -3,15 +3,14 @@
 !> needs, every reference to a part or marker (those of the statements read and not used too),
 !> the forces' expressions, the run, and the
 !> principal-axes rule at t = 0 (a part whose CM marker's z-axis is parallel to ground z starts
-!> at the singularity of its 3-1-3 Euler angles).
+!> at the singularity of its 3-1-3 Euler angles: it starts in turned axes, without EXACT angles).
 module rollcon_adm_checks
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type, fatal_error, stat_input
     use rollcon_text, only : to_text
     use rollcon_physical_ranges, only : mass_max, inertia_max, position_max, light, rate_max
-    use rollcon_constants, only : pi, degree
     use rollcon_rotation, only : rotation_matrix
-    use rollcon_adm_state, only : euler_angles
+    use rollcon_adm_state, only : min_sin_theta
     use rollcon_adm_keywords, only : place
     use rollcon_adm_model, only : adm_model_type, adm_part_type, adm_marker_type, &
         & adm_force_type, force_sforce, force_vforce, refers_to_marker, refers_to_part
@@ -21,9 +20,6 @@ module rollcon_adm_checks
     private
 
     public :: check_references, min_sin_theta
-
-    !> sin(theta) of a part's principal axes must be at least this at t = 0 (as for the scenes)
-    real(wp), parameter :: min_sin_theta = 1.0e-3_wp
 
 contains
 
@@ -158,30 +154,29 @@ contains
         call check_principal_axes(where, part, model%markers(m), error)
     end subroutine check_part
 
-    !> The principal-axes rule at t = 0 (docs/design.md §2): the CM marker's z-axis, turned by
-    !> the part's REULER and its own, must not be parallel to ground z. The fix offered turns
-    !> the CM marker 90 degrees about its own x-axis: its new z-axis is its old -y, horizontal.
+    !> The principal-axes rule at t = 0 (docs/rebasing.md): a part whose CM marker's z-axis,
+    !> turned by the part's REULER and its own, is parallel to ground z starts in its principal
+    !> axes turned 90 degrees about x (rollcon_adm_state), where EXACT angles mean nothing.
     subroutine check_principal_axes(where, part, marker, error)
         !> "file:line: PART/id"
         character(len=*), intent(in) :: where
         type(adm_part_type), intent(in) :: part
         type(adm_marker_type), intent(in) :: marker
         type(error_type), allocatable, intent(out) :: error
-        real(wp) :: r_marker(3, 3), r(3, 3), turned(3), sin_theta
+        character(len=*), parameter :: angles(3) = [character(len=5) :: "PSI", "THETA", "PHI"]
+        real(wp) :: r(3, 3), sin_theta
 
-        r_marker = rotation_matrix(marker%reuler(1), marker%reuler(2), marker%reuler(3))
-        r = matmul(rotation_matrix(part%reuler(1), part%reuler(2), part%reuler(3)), r_marker)
+        r = matmul(rotation_matrix(part%reuler(1), part%reuler(2), part%reuler(3)), &
+            & rotation_matrix(marker%reuler(1), marker%reuler(2), marker%reuler(3)))
         sin_theta = hypot(r(1, 3), r(2, 3))
-        if (sin_theta >= min_sin_theta) return
-        turned = euler_angles(matmul(r_marker, rotation_matrix(0.0_wp, 0.5_wp*pi, 0.0_wp)))
-        call fatal_error(error, where // ": the z-axis of its principal axes (its CM marker, " &
-            & // "MARKER/" // to_text(marker%id) // ", in the part's frame) is parallel to " &
-            & // "ground z at t = 0, where the 3-1-3 Euler angles are singular (sin(theta) = " &
-            & // to_text(sin_theta) // " < " // to_text(min_sin_theta) // "); turn the CM " &
-            & // "marker 90 degrees about its x-axis: MARKER/" // to_text(marker%id) &
-            & // ", REULER=" // degrees(turned(1)) // ", " // degrees(turned(2)) // ", " &
-            & // degrees(turned(3)) // ", and give IP in the turned axes (Ixx, Izz, Iyy)", &
-            & stat_input)
+        if (sin_theta >= min_sin_theta .or. .not. any(part%exact(4:6))) return
+        call fatal_error(error, where // " EXACT=" // trim(angles(findloc(part%exact(4:6), &
+            & .true., dim=1))) // ": the z-axis of its principal axes (its CM marker, MARKER/" &
+            & // to_text(marker%id) // ") is parallel to ground z at t = 0 (sin(theta) = " &
+            & // to_text(sin_theta) // " < " // to_text(min_sin_theta) // "), so the part " &
+            & // "starts in those axes turned 90 degrees about x (docs/rebasing.md), whose " &
+            & // "Euler angles are not the CM marker's: hold only X, Y, Z, or turn the CM " &
+            & // "marker off ground z", stat_input)
     end subroutine check_principal_axes
 
     !> A part's values within the physical ranges (rollcon_physical_ranges), in SI after the
@@ -212,17 +207,6 @@ contains
                 & // " rad/s", stat_input)
         end if
     end subroutine check_part_ranges
-
-    !> An angle as a dataset writes it in degrees, rounded to 1e-9 degree: "90D".
-    pure function degrees(angle) result(text)
-        !> Angle [rad]
-        real(wp), intent(in) :: angle
-        character(len=:), allocatable :: text
-        !> Steps per degree printed (1e-9 degree): hides the last bits of the matrix products
-        real(wp), parameter :: steps = 1.0e9_wp
-
-        text = to_text(anint(angle/degree*steps)/steps) // "D"
-    end function degrees
 
     subroutine check_force(model, markers, force, error)
         type(adm_model_type), intent(in) :: model

@@ -19,8 +19,8 @@ module rollcon_adm_outside
         & "force elements other than SFORCE, VFORCE and GFORCE are not in the subset: write " &
         & // "the force as one of them with a FUNCTION expression", &
         & "sensors change a run as it goes (stop it, change its step): not in the subset", &
-        & "system and data elements are not in the subset: FUNCTION expressions depend on " &
-        & // "TIME only", &
+        & "system and data elements are not in the subset: FUNCTION expressions read TIME and " &
+        & // "the state functions of one marker (DX(i) ... PHI(i)) only", &
         & "rollcon's bodies are rigid PARTs"]
     !> Statement names and the kind of each (statements of ADAMS's outputs are read:
     !> rollcon_adm_outputs)
