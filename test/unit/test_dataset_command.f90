@@ -62,8 +62,9 @@ contains
         call run_rollcon(program, "run coin -q -o " // scratch // "/nml", scratch // "/nml.out", &
             & scratch // "/nml.err", status_nml)
         summary = file_text(scratch // "/adm/coin.summary.txt")
+        ! after the provenance's two lines (rollcon_provenance)
         call check(error, status_adm == 0 .and. status_nml == 0 .and. index(summary, &
-            & "dataset coin (data/coin.adm): IDA") == 1 .and. index(summary, &
+            & new_line("a") // "dataset coin (data/coin.adm): IDA") > 0 .and. index(summary, &
             & "status: completed at t = 10 s") > 0 .and. file_exists(scratch &
             & // "/adm/coin.parts"), "exit statuses " // to_text(status_adm) // ", " &
             & // to_text(status_nml) // "; summary: " // summary)
