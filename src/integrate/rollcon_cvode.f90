@@ -139,7 +139,11 @@ contains
     end subroutine start
 
     !> Start again from (t0, y0) with the settings, tolerances, callbacks and event functions of
-    !> start: after a re-basing has changed the coordinates (CVodeReInit).
+    !> start: after a re-basing has changed the coordinates (CVodeReInit). No careful start as
+    !> IDA's (rollcon_ida): measured on data/ball_tumbling.adm (docs/rebasing.md), a first
+    !> stretch 100 times finer, or first steps of 0.2 to 0.01 of the last, moved CVODE's drift
+    !> over 1000 re-basings anywhere between -3.7e-7 and +3.6e-7 m at rtol 1e-10 and made it
+    !> 3 to 10 times larger at 1e-11: no consistent gain.
     subroutine restart(self, t0, y0, yp0, error)
         class(cvode_integrator_type), intent(inout) :: self
         real(wp), intent(in) :: t0, y0(:), yp0(:)

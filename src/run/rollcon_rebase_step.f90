@@ -2,7 +2,9 @@
 !> One re-basing of a part during a run (docs/rebasing.md): the UCOSUB contract checked (every
 !> UCON on the part gives the same F at the same physical state in both bases), the model's
 !> part turned (rollcon_model's turn_part_axes) and its coordinates and rates replaced by those
-!> of the turned basis (rollcon_rebasing). The integrator's re-initialisation is the caller's.
+!> of the turned basis (rollcon_rebasing); the state the integrator starts again from (on the
+!> constraints, with its own accelerations and multipliers). The re-initialisation is the
+!> caller's.
 module rollcon_rebase_step
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type
@@ -10,10 +12,11 @@ module rollcon_rebase_step
     use rollcon_problem, only : problem_type
     use rollcon_constraints, only : need_value, need_first
     use rollcon_rebasing, only : rebased_state
+    use rollcon_run_settings, only : formulation_ida
     implicit none
     private
 
-    public :: rebase_part, compare_bases, basis_difference_type, basis_rtol_floor
+    public :: rebase_part, compare_bases, basis_difference_type, restart_state, basis_rtol_floor
 
     !> A UCON whose F differs between two bases of a part (compare_bases)
     type :: basis_difference_type
@@ -115,6 +118,43 @@ contains
             end associate
         end do
     end subroutine compare_bases
+
+    !> The integrator's state (y, y') to start again from at (time, q, u), consistent to round-off
+    !> (docs/rebasing.md): (q, u) put back on the constraints when the formulation holds them
+    !> there (IDA; CVODE when it projects), by the model's mass-weighted least change (exact for
+    !> velocity UCONs; Newton steps for position UCONs, until they no longer move q), then the
+    !> accelerations and multipliers of the saddle-point system at that state, y' = (u, a, 0, 0)
+    !> for IDA. The state at a root is IDA's or CVODE's interpolant, off the constraints by up
+    !> to the tolerances: from there IDA's first step must move u by as much, whatever its size,
+    !> and its error test failed at every step size (IDA_ERR_FAIL).
+    subroutine restart_state(problem, time, q, u, y, yp, error)
+        type(problem_type), intent(inout) :: problem
+        !> Time [s]
+        real(wp), intent(in) :: time
+        !> Coordinates and rates of all parts [m, rad, m/s, rad/s]; on the constraints on return
+        real(wp), intent(inout) :: q(:), u(:)
+        !> The integrator's state and its derivative
+        real(wp), intent(out) :: y(:), yp(:)
+        type(error_type), allocatable, intent(out) :: error
+        !> Newton steps on position UCONs: each squares the relative error of the last
+        integer, parameter :: most_steps = 4
+        real(wp) :: dq(size(q)), du(size(u))
+        integer :: k
+
+        if (problem%eq%nc > 0 .and. (problem%settings%formulation == formulation_ida &
+            & .or. problem%projects())) then
+            do k = 1, most_steps
+                call problem%eq%project(time, q, u, dq, du, error)
+                if (allocated(error)) return
+                q = q + dq
+                u = u + du
+                if (problem%eq%nh == 0 .or. all(q + dq == q)) exit
+            end do
+        end if
+        call problem%accelerations(time, q, u, error)
+        if (allocated(error)) return
+        call problem%pack_state(q, u, y, yp)
+    end subroutine restart_state
 
     !> The size s_k of each UCON's F at (q, u), in F's unit, from the last evaluation's first
     !> partials: |F| + sum_j |dF/du_j u_j| + sum over translations |dF/dq_j q_j| + sum over

@@ -21,7 +21,7 @@ module rollcon_simulation
     use rollcon_output_layout, only : output_layout_type
     use rollcon_output_rows, only : run_options_type, default_max_csv_bytes, planned_rows, &
         & history_type, output_layout, output_row
-    use rollcon_rebase_step, only : rebase_part
+    use rollcon_rebase_step, only : rebase_part, restart_state
     implicit none
     private
 
@@ -321,8 +321,8 @@ contains
     end subroutine handle_events
 
     !> Re-base the given parts at the current state (rollcon_rebase_step), then start the
-    !> integrator again from the same physical state in the new coordinates: y' from the
-    !> saddle-point system for IDA (mu = 0).
+    !> integrator again from the same physical state in the new coordinates, on the
+    !> constraints, with y' from the saddle-point system for IDA (mu = 0): restart_state.
     subroutine rebase(self, parts, refusal, error)
         class(simulation_type), intent(inout) :: self
         !> Parts to re-base (model order)
@@ -340,10 +340,9 @@ contains
             if (allocated(error) .or. allocated(refusal)) return
             call self%count_rebasing(parts(k))
         end do
-        call self%problem%accelerations(self%t, q, u, error)
+        call restart_state(self%problem, self%t, q, u, self%y, self%yp, error)
         if (allocated(error)) return
         call self%earlier%add(self%integrator%statistics())
-        call self%problem%pack_state(q, u, self%y, self%yp)
         call self%integrator%restart(self%t, self%y, self%yp, error)
     end subroutine rebase
 

@@ -43,6 +43,7 @@ program tester
     use test_initial_conditions, only : collect_initial_conditions
     use test_rebasing, only : collect_rebasing
     use test_singular_start, only : collect_singular_start
+    use test_rebasing_restarts, only : collect_rebasing_restarts
     use test_models, only : collect_models
     use test_study_file, only : collect_study_file
     use test_study_fuzz, only : collect_study_fuzz
@@ -118,6 +119,7 @@ program tester
         & new_testsuite("initial-conditions", collect_initial_conditions), &
         & new_testsuite("rebasing", collect_rebasing), &
         & new_testsuite("singular-start", collect_singular_start), &
+        & new_testsuite("rebasing-restarts", collect_rebasing_restarts), &
         & new_testsuite("models", collect_models), &
         & new_testsuite("study-file", collect_study_file), &
         & new_testsuite("study-fuzz", collect_study_fuzz), &
