@@ -1,6 +1,6 @@
 C rollcon test data: a one-variable UCOSUB, F = Z - PAR(2) for the
 C part PAR(1) (code 13), with one planted fault. Checked as
-C --ucon 1:3,0.25 (see test/unit/test_isolation.f90).
+C --ucon 1:3,0.25 (see test/unit/isolation/test_isolation.f90).
 C FAULT: writes a zero to ARRAY(100), far past the 30 entries of
 C ARRAY (a zero: invisible to a check of the values).
 C EXPECTED FINDING: UCON/1 [outside-block] ARRAY(100) = 0 (in every

@@ -1,6 +1,6 @@
 C rollcon test data: a one-variable UCOSUB, F = Z - PAR(2) for the
 C part PAR(1) (code 13), with one planted fault. Checked as
-C --ucon 1:3,0.25 (see test/unit/test_check_findings.f90).
+C --ucon 1:3,0.25 (see test/unit/checker/test_check_findings.f90).
 C FAULT: every evaluation call adds 100 to ID, an argument the
 C routine may only read.
 C EXPECTED FINDING: UCON/1 [changed-argument] ID, from 1 to 101.

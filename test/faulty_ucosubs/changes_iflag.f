@@ -1,6 +1,6 @@
 C rollcon test data: a one-variable UCOSUB, F = Z - PAR(2) for the
 C part PAR(1) (code 13), with one planted fault. Checked as
-C --ucon 1:3,0.25 (see test/unit/test_check_findings.f90).
+C --ucon 1:3,0.25 (see test/unit/checker/test_check_findings.f90).
 C FAULT: every evaluation call sets IFLAG to 5, an argument the
 C routine may only read (rollcon passed it as a constant: the
 C routine crashed with SIGSEGV).

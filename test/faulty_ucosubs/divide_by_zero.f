@@ -1,6 +1,6 @@
 C rollcon test data: a one-variable UCOSUB, F = Z - PAR(2) for the
 C part PAR(1) (code 13), with one planted fault. Checked as
-C --ucon 1:3,0.25 (see test/unit/test_isolation.f90).
+C --ucon 1:3,0.25 (see test/unit/isolation/test_isolation.f90).
 C FAULT: an integer division by zero (NPAR / 0) in the evaluation
 C call that asks for F.
 C EXPECTED FINDING: UCON/1 [crash], killed by SIGFPE inside the call

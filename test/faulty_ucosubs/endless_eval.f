@@ -1,6 +1,6 @@
 C rollcon test data: a one-variable UCOSUB, F = Z - PAR(2) for the
 C part PAR(1) (code 13), with one planted fault. Checked as
-C --ucon 1:3,0.25 (see test/unit/test_isolation.f90).
+C --ucon 1:3,0.25 (see test/unit/isolation/test_isolation.f90).
 C FAULT: an endless loop in the evaluation call.
 C EXPECTED FINDING: UCON/1 [timeout] inside the call IFLAG = 0,
 C IDRSEL = (1, 1, 1) at state 1, after the time limit.

@@ -1,6 +1,6 @@
 C rollcon test data: a one-variable UCOSUB, F = Z - PAR(2) for the
 C part PAR(1) (code 13), with one planted fault. Checked as
-C --ucon 1:3,0.25 (see test/unit/test_isolation.f90).
+C --ucon 1:3,0.25 (see test/unit/isolation/test_isolation.f90).
 C FAULT: an endless loop in the initialisation call (IFLAG = 3).
 C EXPECTED FINDING: UCON/1 [timeout] inside the call IFLAG = 3 (the
 C initialisation call), after the time limit (--call-timeout).

@@ -1,6 +1,6 @@
 C rollcon test data: a one-variable UCOSUB, F = Z - PAR(2) for the
 C part PAR(1) (code 13), with one planted fault. Checked as
-C --ucon 1:3,0.25 (see test/unit/test_check_findings.f90).
+C --ucon 1:3,0.25 (see test/unit/checker/test_check_findings.f90).
 C FAULT: F is 1.0D308 whatever the state (its partials, zero, are
 C consistent with it; a tolerance relative to |F| passed it all).
 C EXPECTED FINDING: UCON/1 [finite] SCALAR: returned 1e308, beyond

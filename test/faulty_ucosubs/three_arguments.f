@@ -1,6 +1,6 @@
 C rollcon test data: a UCOSUB written with three arguments, as if
 C for another ADAMS interface. Checked as --ucon 1:3,0.25 (see
-C test/unit/test_check_reliability.f90).
+C test/unit/checker/test_check_reliability.f90).
 C MISTAKE: SUBROUTINE UCOSUB(ID, TIME, Q): rollcon passes ten
 C arguments, the routine sees three, never calls UCOVAR and writes
 C nothing.

@@ -1,7 +1,7 @@
 C rollcon test data: a one-variable UCOSUB, F = Z - PAR(2) for the
 C part PAR(1) (code 13), with one planted mistake in its
 C initialisation call. Checked as --ucon 1:3,0.25 (see
-C test/unit/test_check_reliability.f90).
+C test/unit/checker/test_check_reliability.f90).
 C MISTAKE: the part id 7 is written into the routine instead of
 C being taken from PAR(1).
 C EXPECTED FINDING: with PAR(1) = 3: [declaration] UCOVAR declares

@@ -1,7 +1,7 @@
 C rollcon test data: a one-variable UCOSUB, F = Z - PAR(2) for the
 C part PAR(1) (code 13), with one planted mistake in its
 C initialisation call. Checked as --ucon 1:3,0.25 (see
-C test/unit/test_check_reliability.f90).
+C test/unit/checker/test_check_reliability.f90).
 C MISTAKE: the variable is declared with code 99, which is no
 C UCOVAR code.
 C EXPECTED FINDING: [declaration] UCOVAR variable 1 has code 99;

@@ -1,7 +1,7 @@
 C rollcon test data: a one-variable UCOSUB, F = Z - PAR(2) for the
 C part PAR(1) (code 13), with one planted mistake in its
 C initialisation call. Checked as --ucon 1:3,0.25 (see
-C test/unit/test_check_reliability.f90).
+C test/unit/checker/test_check_reliability.f90).
 C MISTAKE: Z of the part is declared twice.
 C EXPECTED FINDING: [declaration] UCOVAR variables 1 and 2 are both
 C Z of part 3; no state is checked.

@@ -1,6 +1,6 @@
 C rollcon test data: a one-variable UCOSUB, F = Z - PAR(2) for the
 C part PAR(1) (code 13), with one planted fault. Checked as
-C --ucon 1:3,0.25 (see test/unit/test_isolation.f90).
+C --ucon 1:3,0.25 (see test/unit/isolation/test_isolation.f90).
 C FAULT: writes XMATRX(2,1), beyond the one declared variable, and
 C XMATRX(31,31), past the 900 entries of XMATRX(30,30) (storage
 C entry 931, which is where XMATRX(1,32) would be).

@@ -1,6 +1,6 @@
 C rollcon test data: a one-variable UCOSUB, F = Z - PAR(2) for the
 C part PAR(1) (code 13), with one planted fault. Checked as
-C --ucon 1:3,0.25 (see test/unit/test_check_findings.f90).
+C --ucon 1:3,0.25 (see test/unit/checker/test_check_findings.f90).
 C FAULT: writes XMATRX(0,0), outside XMATRX(30,30) before its first
 C element (storage entry -30, 31 entries before XMATRX(1,1)).
 C EXPECTED FINDING: UCON/1 [outside-block] XMATRX(0,0) = 0.5.

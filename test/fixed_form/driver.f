@@ -1,7 +1,8 @@
 C SPDX-License-Identifier: MIT
 C     Runs a generated ucosub.f on cases read from standard input and
 C     prints every output at full precision, for the "fixed-form" test
-C     of test/unit/test_generated.f90 to compare with the module.
+C     of test/unit/ucosubs/generated/test_generated.f90 to compare with
+C     the module.
 C
 C     Input (list-directed): NCASE, then for each case
 C       ID IFLAG NPAR NQ
