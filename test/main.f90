@@ -70,6 +70,7 @@ program tester
     use test_sweep_guards, only : collect_sweep_guards
     use test_adm_outputs, only : collect_adm_outputs
     use test_fpm_dependency, only : collect_fpm_dependency
+    use test_main_script, only : collect_main_script
     use test_multiplier_units, only : collect_multiplier_units
     implicit none
     type(testsuite_type), allocatable :: suites(:)
@@ -146,6 +147,7 @@ program tester
         & new_testsuite("sweep-guards", collect_sweep_guards), &
         & new_testsuite("adm-outputs", collect_adm_outputs), &
         & new_testsuite("fpm-dependency", collect_fpm_dependency), &
+        & new_testsuite("main-script", collect_main_script), &
         & new_testsuite("multiplier-units", collect_multiplier_units)]
 
     if (command_argument_count() >= 1) then
