@@ -66,7 +66,7 @@ module rollcon
     use rollcon_model_source, only : model_source_type
     use rollcon_built_model, only : built_model_source_type, new_model_source
     use rollcon_job, only : job_type, new_job
-    use rollcon_provenance, only : provenance_lines, file_record
+    use rollcon_provenance, only : provenance_lines, user_file_record
     use rollcon_ucosub_units, only : ucosub_units_type
     use rollcon_load, only : load_job, input_override_type, is_dataset, output_name
     use rollcon_run_job, only : run_job, job_result_type

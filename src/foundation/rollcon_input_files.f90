@@ -25,13 +25,14 @@ module rollcon_input_files
     use, intrinsic :: iso_fortran_env, only : int64
     use rollcon_error, only : error_type, fatal_error, stat_input, stat_io
     use rollcon_text, only : to_text
+    use rollcon_hash, only : fnv1a64_type
     use rollcon_system, only : open_read, descriptor_kind, path_kind, path_kind_text, &
         & read_bytes_into, close_descriptor, system_reason, kind_missing, kind_regular, &
         & kind_directory, kind_unknown
     implicit none
     private
 
-    public :: input_file_type, read_input_file, limit_text
+    public :: input_file_type, read_input_file, limit_text, file_record
     public :: text_input_limit, csv_input_limit, library_input_limit
 
     !> Largest file read as written by hand or by a tool for rollcon: a scene, a study, an
@@ -353,5 +354,37 @@ contains
         if (allocated(error)) return
         content = grown(:n)
     end subroutine read_input_file
+
+    !> "N bytes, FNV-1a 64 HHHHHHHHHHHHHHHH" of a file, read through input_file_type's checks:
+    !> what identifies a cached library and a user's source in a run's record.
+    subroutine file_record(path, what, limit, record, error)
+        !> File to read
+        character(len=*), intent(in) :: path
+        !> What it should be, for messages
+        character(len=*), intent(in) :: what
+        !> Most bytes it may hold
+        integer(int64), intent(in) :: limit
+        character(len=:), allocatable, intent(out) :: record
+        type(error_type), allocatable, intent(out) :: error
+        type(input_file_type) :: file
+        type(fnv1a64_type) :: hash
+        character(len=:), allocatable :: chunk
+        integer(int64) :: size
+        logical :: done
+
+        record = ""
+        call file%open(path, what, limit, error)
+        if (allocated(error)) return
+        size = 0
+        do
+            call file%next_chunk(chunk, done, error)
+            if (done .or. allocated(error)) exit
+            call hash%add(chunk)
+            size = size + len(chunk)
+        end do
+        call file%close()
+        if (allocated(error)) return
+        record = to_text(size) // " bytes, FNV-1a 64 " // hash%hex()
+    end subroutine file_record
 
 end module rollcon_input_files

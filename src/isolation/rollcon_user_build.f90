@@ -14,7 +14,6 @@
 !> looked up on PATH first, so a missing one is named as such; a full disk under the cache is
 !> said to be one, whichever step it stopped.
 module rollcon_user_build
-    use, intrinsic :: iso_fortran_env, only : int64
     use rollcon_error, only : error_type, fatal_error, stat_input, stat_io, stat_ucon
     use rollcon_text, only : to_text, shell_quote, lower_case
     use rollcon_dlopen, only : process_id
@@ -23,8 +22,8 @@ module rollcon_user_build
         & text_head
     use rollcon_output_files, only : make_folders
     use rollcon_system, only : remove_flat_folder, rename_path, is_executable
-    use rollcon_input_files, only : input_file_type, read_input_file, text_input_limit, &
-        & library_input_limit
+    use rollcon_input_files, only : read_input_file, text_input_limit, &
+        & library_input_limit, file_record
     use rollcon_c_stream, only : c_stream_type
     use rollcon_hash, only : fnv1a64_type
     implicit none
@@ -262,25 +261,8 @@ contains
         character(len=*), intent(in) :: path
         character(len=:), allocatable, intent(out) :: record
         type(error_type), allocatable, intent(out) :: error
-        type(input_file_type) :: file
-        type(fnv1a64_type) :: hash
-        character(len=:), allocatable :: chunk
-        integer(int64) :: size
-        logical :: done
 
-        record = ""
-        call file%open(path, "shared library", library_input_limit, error)
-        if (allocated(error)) return
-        size = 0
-        do
-            call file%next_chunk(chunk, done, error)
-            if (done .or. allocated(error)) exit
-            call hash%add(chunk)
-            size = size + len(chunk)
-        end do
-        call file%close()
-        if (allocated(error)) return
-        record = to_text(size) // " bytes, FNV-1a 64 " // hash%hex()
+        call file_record(path, "shared library", library_input_limit, record, error)
     end subroutine library_record
 
     !> The compiler to run: name itself when it holds a '/', else the first executable file
@@ -492,40 +474,21 @@ contains
         if (kind == kind_fixed) flags = flags // " -std=legacy"
     end function compile_flags
 
-    !> Name of a cache entry: two 32-bit hashes (FNV-1a and sdbm) of content, flags and shim,
-    !> as 16 hexadecimal digits. Products stay below 2**57, so int64 never overflows.
+    !> Name of a cache entry: the FNV-1a 64 hash (rollcon_hash) of content, flags and shim, as
+    !> 16 hexadecimal digits (the entry's source copy is also compared byte for byte).
     pure function content_key(content, flags) result(key)
         character(len=*), intent(in) :: content, flags
         character(len=:), allocatable :: key
-        integer(int64) :: fnv, sdbm
-        character(len=16) :: buffer
+        type(fnv1a64_type) :: hash
         integer :: i
 
-        fnv = 2166136261_int64
-        sdbm = 0_int64
-        call mix(content, fnv, sdbm)
-        call mix(achar(0) // flags // achar(0), fnv, sdbm)
+        call hash%add(content)
+        call hash%add(achar(0) // flags // achar(0))
         do i = 1, size(shim_source_lines)
-            call mix(trim(shim_source_lines(i)) // achar(10), fnv, sdbm)
+            call hash%add(trim(shim_source_lines(i)) // achar(10))
         end do
-        write(buffer, '(z8.8, z8.8)') fnv, sdbm
-        key = lower_case(buffer)
+        key = hash%hex()
     end function content_key
-
-    !> Feed bytes to both hashes (each kept below 2**32).
-    pure subroutine mix(text, fnv, sdbm)
-        character(len=*), intent(in) :: text
-        integer(int64), intent(inout) :: fnv, sdbm
-        integer(int64), parameter :: modulus = 4294967296_int64
-        integer(int64) :: byte
-        integer :: j
-
-        do j = 1, len(text)
-            byte = iand(int(iachar(text(j:j)), int64), 255_int64)
-            fnv = mod(ieor(fnv, byte)*16777619_int64, modulus)
-            sdbm = mod(sdbm*65599_int64 + byte, modulus)
-        end do
-    end subroutine mix
 
     !> ".f" of "dir/name.f" (the extension as written, with its dot).
     pure function extension_of(path) result(extension)

@@ -4,18 +4,14 @@
 !> FNV-1a 64 hash), so that a result can be traced to what made it. The summary file opens
 !> with these lines, the .parts file carries them as comments.
 module rollcon_provenance
-    use, intrinsic :: iso_fortran_env, only : int64
-    use rollcon_text, only : to_text
+    use rollcon_error, only : error_type
     use rollcon_version, only : version_text
-    use rollcon_hash, only : fnv1a64_type
+    use rollcon_input_files, only : file_record, text_input_limit
     use rollcon_job, only : job_type
     implicit none
     private
 
-    public :: provenance_lines, file_record, time_stamp
-
-    !> Bytes read at a time when hashing a file
-    integer, parameter :: chunk_bytes = 65536
+    public :: provenance_lines, user_file_record, time_stamp
 
 contains
 
@@ -32,38 +28,23 @@ contains
         end if
         text = text // new_line("a") // "the model's UCOSUB: "
         if (len(job%user_file) > 0) then
-            text = text // job%user_file // " (" // file_record(job%user_file) // ")"
+            text = text // job%user_file // " (" // user_file_record(job%user_file) // ")"
         else
             text = text // job%routine_name // " (built in)"
         end if
         text = text // new_line("a")
     end function provenance_lines
 
-    !> "N bytes, FNV-1a 64 HHHHHHHHHHHHHHHH" of a file, or "unreadable" when it cannot be read.
-    function file_record(path) result(record)
+    !> "N bytes, FNV-1a 64 HHHHHHHHHHHHHHHH" of a user's file (rollcon_input_files), or
+    !> "unreadable" with the reason.
+    function user_file_record(path) result(record)
         character(len=*), intent(in) :: path
         character(len=:), allocatable :: record
-        type(fnv1a64_type) :: hash
-        character(len=chunk_bytes) :: chunk
-        integer(int64) :: size_bytes, done
-        integer :: unit, stat, take
+        type(error_type), allocatable :: error
 
-        record = "unreadable"
-        inquire(file=path, size=size_bytes)
-        if (size_bytes < 0) return
-        open(newunit=unit, file=path, status="old", action="read", access="stream", &
-            & form="unformatted", iostat=stat)
-        if (stat /= 0) return
-        done = 0
-        do while (done < size_bytes .and. stat == 0)
-            take = int(min(int(chunk_bytes, int64), size_bytes - done))
-            read(unit, iostat=stat) chunk(1:take)
-            if (stat == 0) call hash%add(chunk(1:take))
-            done = done + take
-        end do
-        close(unit)
-        if (stat == 0) record = to_text(size_bytes) // " bytes, FNV-1a 64 " // hash%hex()
-    end function file_record
+        call file_record(path, "UCOSUB source", text_input_limit, record, error)
+        if (allocated(error)) record = "unreadable: " // error%message
+    end function user_file_record
 
     !> The local time with its offset from UTC: "2026-11-26 04:45:12 +0000".
     function time_stamp() result(text)

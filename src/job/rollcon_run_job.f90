@@ -152,6 +152,7 @@ contains
         type(error_type), allocatable, intent(inout) :: run_error
         type(error_type), allocatable, intent(out) :: error
         type(error_type), allocatable :: cleanup_error
+        character(len=:), allocatable :: record
 
         if (allocated(run_error) .and. result%summary%rows == 0) then
             ! refused before any row (e.g. a UCOSUB error at set-up): nothing to keep
@@ -163,19 +164,20 @@ contains
                 & error%message = job%source%path // ": " // error%message
             return
         end if
+        ! once: the summary and the .parts file carry the same time and hash
+        record = provenance_lines(job)
         if (.not. allocated(run_error)) then
             result%csv_path = files%csv
-            result%summary_text = provenance_lines(job) // warning_line(job) &
+            result%summary_text = record // warning_line(job) &
                 & // run_summary_text(job%source%setting_line(), files%csv, result%summary)
-            call place_outputs(files, shapes, result%summary_text, provenance_lines(job), &
-                & run_error)
+            call place_outputs(files, shapes, result%summary_text, record, run_error)
             if (.not. allocated(run_error)) return
         end if
         ! The run failed, or its files could not be put in place: no "completed" anywhere.
         result%summary%status = status_failed
         result%summary%message = run_error%message
         result%csv_path = files%partial_csv
-        result%summary_text = provenance_lines(job) // warning_line(job) &
+        result%summary_text = record // warning_line(job) &
             & // run_summary_text(job%source%setting_line(), files%partial_csv, result%summary)
         call write_text_file(files%partial_summary, result%summary_text, cleanup_error)
         call move_alloc(run_error, error)

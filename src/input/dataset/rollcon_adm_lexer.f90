@@ -15,9 +15,8 @@
 module rollcon_adm_lexer
     use rollcon_error, only : error_type, fatal_error, stat_input
     use rollcon_text, only : to_text, upper_case
-    use rollcon_namelist_lexer, only : line_type
+    use rollcon_namelist_lexer, only : line_type, read_lines
     use rollcon_namelist_bytes, only : visible, utf8_length
-    use rollcon_input_files, only : input_file_type, text_input_limit
     implicit none
     private
 
@@ -97,36 +96,8 @@ contains
         character(len=*), intent(in) :: path
         type(line_type), allocatable, intent(out) :: lines(:)
         type(error_type), allocatable, intent(out) :: error
-        type(line_type), allocatable :: grown(:)
-        type(input_file_type) :: file
-        character(len=:), allocatable :: text
-        logical :: done
-        integer :: n
 
-        call file%open(path, "dataset", text_input_limit, error)
-        if (allocated(error)) then
-            error%stat = stat_input
-            return
-        end if
-        allocate(lines(64))
-        n = 0
-        do
-            call file%next_line(text, done, error)
-            if (done .or. allocated(error)) exit
-            if (n == size(lines)) then
-                allocate(grown(2*n))
-                grown(:n) = lines
-                call move_alloc(grown, lines)
-            end if
-            n = n + 1
-            call move_alloc(text, lines(n)%text)
-        end do
-        call file%close()
-        if (allocated(error)) then
-            error%stat = stat_input
-            return
-        end if
-        lines = lines(:n)
+        call read_lines(path, lines, error, "dataset")
     end subroutine read_dataset_lines
 
     !> The statements of a dataset's lines (read from `path`, which messages name). Each line

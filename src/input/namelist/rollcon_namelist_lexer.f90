@@ -77,7 +77,11 @@ contains
         else
             call file%open(path, "scene file", text_input_limit, error)
         end if
-        if (allocated(error)) return
+        if (allocated(error)) then
+            ! an input that cannot be read is the input's fault, as the readers report theirs
+            error%stat = stat_input
+            return
+        end if
         allocate(lines(64))
         n = 0
         do
