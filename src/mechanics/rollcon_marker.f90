@@ -10,11 +10,12 @@ module rollcon_marker
     use rollcon_kinds, only : wp
     use rollcon_rotation, only : rotation_matrix, times, cross, euler_angles
     use rollcon_body, only : body_angular_velocity
+    use rollcon_rebasing, only : to_new_basis
     use rollcon_expression, only : quantity_dx, quantity_vx, quantity_wx, quantity_psi
     implicit none
     private
 
-    public :: marker_type, marker_motion, marker_quantity
+    public :: marker_type, marker_motion, marker_quantity, turn_marker
 
     !> A marker
     type :: marker_type
@@ -94,5 +95,22 @@ contains
             value = 0.0_wp
         end if
     end function marker_quantity
+
+    !> A marker of part p given in p's principal axes turned by a re-basing (rollcon_rebasing);
+    !> a marker of another part is left as it is. Its axes are then no longer the part's
+    !> principal axes: a CM marker's angles are computed from its axes from here on.
+    pure subroutine turn_marker(marker, p)
+        type(marker_type), intent(inout) :: marker
+        !> The part re-based
+        integer, intent(in) :: p
+        integer :: axis
+
+        if (marker%part /= p) return
+        marker%point = to_new_basis(marker%point)
+        do axis = 1, 3
+            marker%axes(:, axis) = to_new_basis(marker%axes(:, axis))
+        end do
+        marker%principal = .false.
+    end subroutine turn_marker
 
 end module rollcon_marker

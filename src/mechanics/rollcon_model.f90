@@ -17,7 +17,7 @@ module rollcon_model
     use rollcon_ucosub_units, only : ucosub_units_type, variable_scales, value_scale
     use rollcon_body, only : part_type
     use rollcon_force, only : applied_force_type, profile_statement, frame_tilt
-    use rollcon_marker, only : marker_type
+    use rollcon_marker, only : turn_marker
     use rollcon_rebasing, only : rebased_inertia, to_new_basis
     implicit none
     private
@@ -141,12 +141,12 @@ contains
         do i = 1, size(self%forces)
             associate (force => self%forces(i))
                 if (force%profile == profile_statement) then
-                    call turn_marker(force%statement%i)
-                    call turn_marker(force%statement%j)
-                    call turn_marker(force%statement%rm)
+                    call turn_marker(force%statement%i, p)
+                    call turn_marker(force%statement%j, p)
+                    call turn_marker(force%statement%rm, p)
                     if (allocated(force%statement%markers)) then
                         do k = 1, size(force%statement%markers)
-                            call turn_marker(force%statement%markers(k))
+                            call turn_marker(force%statement%markers(k), p)
                         end do
                     end if
                 else if (force%part == p) then
@@ -162,22 +162,6 @@ contains
             end associate
         end do
         self%parts(p)%inertia = rebased_inertia(self%parts(p)%inertia)
-
-    contains
-
-        !> A marker of part p in the new axes.
-        subroutine turn_marker(marker)
-            type(marker_type), intent(inout) :: marker
-            integer :: axis
-
-            if (marker%part /= p) return
-            marker%point = to_new_basis(marker%point)
-            do axis = 1, 3
-                marker%axes(:, axis) = to_new_basis(marker%axes(:, axis))
-            end do
-            marker%principal = .false.
-        end subroutine turn_marker
-
     end subroutine turn_part_axes
 
     !> Initialise every UCON (IFLAG = 3), validate the declarations, map variables to coordinates.

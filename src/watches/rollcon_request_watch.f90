@@ -15,8 +15,7 @@ module rollcon_request_watch
     use rollcon_error, only : error_type, fatal_error, stat_input
     use rollcon_text, only : to_text
     use rollcon_rotation, only : euler_angles, transpose_times
-    use rollcon_marker, only : marker_type, marker_motion
-    use rollcon_rebasing, only : to_new_basis
+    use rollcon_marker, only : marker_type, marker_motion, turn_marker
     use rollcon_equations, only : equations_type
     use rollcon_run_settings, only : run_settings_type
     use rollcon_output_layout, only : name_length
@@ -106,24 +105,10 @@ contains
         integer :: k
 
         do k = 1, size(self%requests)
-            call turn(self%requests(k)%i)
-            call turn(self%requests(k)%j)
-            call turn(self%requests(k)%rm)
+            call turn_marker(self%requests(k)%i, p)
+            call turn_marker(self%requests(k)%j, p)
+            call turn_marker(self%requests(k)%rm, p)
         end do
-
-    contains
-
-        subroutine turn(marker)
-            type(marker_type), intent(inout) :: marker
-            integer :: axis
-
-            if (marker%part /= p) return
-            marker%point = to_new_basis(marker%point)
-            do axis = 1, 3
-                marker%axes(:, axis) = to_new_basis(marker%axes(:, axis))
-            end do
-        end subroutine turn
-
     end subroutine part_rebased
 
     !> req<id>_x ... req<id>_phi for every request.
