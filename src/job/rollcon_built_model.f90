@@ -9,7 +9,7 @@ module rollcon_built_model
     use rollcon_model, only : model_type
     use rollcon_run_settings, only : run_settings_type
     use rollcon_problem, only : problem_type
-    use rollcon_watch, only : watch_type, watch_slot_type
+    use rollcon_watch, only : watch_type, watch_slot_type, append_watch
     use rollcon_model_source, only : model_source_type
     implicit none
     private
@@ -52,15 +52,8 @@ contains
     subroutine add_watch(self, watch)
         class(built_model_source_type), intent(inout) :: self
         class(watch_type), intent(in) :: watch
-        type(watch_slot_type), allocatable :: grown(:)
-        integer :: k
 
-        allocate(grown(size(self%watches) + 1))
-        do k = 1, size(self%watches)
-            call move_alloc(self%watches(k)%watch, grown(k)%watch)
-        end do
-        allocate(grown(size(grown))%watch, source=watch)
-        call move_alloc(grown, self%watches)
+        call append_watch(self%watches, watch)
     end subroutine add_watch
 
     !> The problem of the model as it is; the start as given (no analysis).

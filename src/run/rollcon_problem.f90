@@ -16,7 +16,7 @@ module rollcon_problem
         & residual_of_dae => dae_residual, jacobian_of_dae => dae_jacobian
     use rollcon_run_settings, only : run_settings_type, formulation_cvode, drift_projection
     use rollcon_dynamic_system, only : dynamic_system_type
-    use rollcon_watch, only : watch_type, watch_slot_type
+    use rollcon_watch, only : watch_type, watch_slot_type, append_watch
     use rollcon_output_layout, only : name_length
     implicit none
     private
@@ -95,16 +95,8 @@ contains
     subroutine add_watch(self, watch)
         class(problem_type), intent(inout) :: self
         class(watch_type), intent(in) :: watch
-        type(watch_slot_type), allocatable :: grown(:)
-        integer :: k
 
-        if (.not. allocated(self%watches)) allocate(self%watches(0))
-        allocate(grown(size(self%watches) + 1))
-        do k = 1, size(self%watches)
-            call move_alloc(self%watches(k)%watch, grown(k)%watch)
-        end do
-        allocate(grown(size(grown))%watch, source=watch)
-        call move_alloc(grown, self%watches)
+        call append_watch(self%watches, watch)
     end subroutine add_watch
 
     !> Before a run: size scratch arrays, prepare every watch (it may refuse the model).

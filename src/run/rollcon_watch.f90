@@ -19,7 +19,7 @@ module rollcon_watch
     private
 
     public :: watch_type, watch_slot_type, watch_measure_type, watch_event_type
-    public :: action_stop, action_rebase
+    public :: action_stop, action_rebase, append_watch
 
     !> What the run does when a watch's event function fires: stop there (a limit the input
     !> sets: the run ends `stopped`, exit status 0), or re-base a part's principal axes and go
@@ -176,5 +176,21 @@ contains
 
         text = ""
     end function summary_lines
+
+    !> A copy of watch at the end of slots (allocated empty first if need be).
+    subroutine append_watch(slots, watch)
+        type(watch_slot_type), allocatable, intent(inout) :: slots(:)
+        class(watch_type), intent(in) :: watch
+        type(watch_slot_type), allocatable :: grown(:)
+        integer :: k
+
+        if (.not. allocated(slots)) allocate(slots(0))
+        allocate(grown(size(slots) + 1))
+        do k = 1, size(slots)
+            call move_alloc(slots(k)%watch, grown(k)%watch)
+        end do
+        allocate(grown(size(grown))%watch, source=watch)
+        call move_alloc(grown, slots)
+    end subroutine append_watch
 
 end module rollcon_watch
