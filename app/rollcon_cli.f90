@@ -4,12 +4,12 @@
 !> against them. Each command then asks the parsed request for its values, read as numbers
 !> with messages that name the option.
 module rollcon_cli
-    use rollcon, only : wp, error_type, fatal_error, stat_input, shell_quote
+    use rollcon, only : wp, error_type, fatal_error, stat_input
     use, intrinsic :: ieee_arithmetic, only : ieee_is_finite
     implicit none
     private
 
-    public :: cli_request_type, parse_command_line, command_names, command_line_text
+    public :: cli_request_type, parse_command_line, command_names
 
     !> A command: its name, and its positional argument ("" when it takes none)
     type :: command_spec_type
@@ -381,22 +381,6 @@ contains
         takes = index(options(spec)%commands, " all ") > 0 &
             & .or. index(options(spec)%commands, " " // word // " ") > 0
     end function takes
-
-    !> The command as typed, for a run's record: "rollcon run data/coin.nml --output out", an
-    !> argument quoted for the shell only when it holds more than letters, digits and ./_-=+,:@
-    function command_line_text() result(text)
-        character(len=:), allocatable :: text, argument
-        character(len=*), parameter :: plain = "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ" &
-            & // "0123456789./_-=+,:@%"
-        integer :: i
-
-        text = "rollcon"
-        do i = 1, command_argument_count()
-            argument = get_argument(i)
-            if (len(argument) == 0 .or. verify(argument, plain) > 0) argument = shell_quote(argument)
-            text = text // " " // argument
-        end do
-    end function command_line_text
 
     !> Argument i, whole.
     function get_argument(i) result(argument)

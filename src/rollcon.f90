@@ -6,7 +6,7 @@ module rollcon
     ! kinds, errors, numbers as text
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type, fatal_error, stat_input, stat_io, stat_ucon
-    use rollcon_text, only : to_text, shell_quote
+    use rollcon_text, only : to_text
     use rollcon_output_files, only : make_folders
     use rollcon_lapack, only : use_one_blas_thread
     use rollcon_version, only : rollcon_version_number, version_text
@@ -66,7 +66,7 @@ module rollcon
     use rollcon_model_source, only : model_source_type
     use rollcon_built_model, only : built_model_source_type, new_model_source
     use rollcon_job, only : job_type, new_job
-    use rollcon_provenance, only : provenance_lines, user_file_record
+    use rollcon_provenance, only : provenance_lines, user_file_record, command_line_text
     use rollcon_ucosub_units, only : ucosub_units_type
     use rollcon_load, only : load_job, input_override_type, is_dataset, output_name
     use rollcon_run_job, only : run_job, job_result_type

@@ -6,12 +6,13 @@
 module rollcon_provenance
     use rollcon_error, only : error_type
     use rollcon_version, only : version_text
+    use rollcon_text, only : shell_quote
     use rollcon_input_files, only : file_record, text_input_limit
     use rollcon_job, only : job_type
     implicit none
     private
 
-    public :: provenance_lines, user_file_record, time_stamp
+    public :: provenance_lines, user_file_record, time_stamp, command_line_text
 
 contains
 
@@ -45,6 +46,25 @@ contains
         call file_record(path, "UCOSUB source", text_input_limit, record, error)
         if (allocated(error)) record = "unreadable: " // error%message
     end function user_file_record
+
+    !> The program's command as typed, for a run's record: "rollcon run data/coin.nml -o out";
+    !> an argument is quoted for the shell when it holds more than letters, digits and ./_-=+,:@%
+    function command_line_text() result(text)
+        character(len=:), allocatable :: text, argument
+        character(len=*), parameter :: plain = "abcdefghijklmnopqrstuvwxyz" &
+            & // "ABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789./_-=+,:@%"
+        integer :: i, length
+
+        text = "rollcon"
+        do i = 1, command_argument_count()
+            call get_command_argument(i, length=length)
+            allocate(character(len=length) :: argument)
+            if (length > 0) call get_command_argument(i, argument)
+            if (length == 0 .or. verify(argument, plain) > 0) argument = shell_quote(argument)
+            text = text // " " // argument
+            deallocate(argument)
+        end do
+    end function command_line_text
 
     !> The local time with its offset from UTC: "2026-11-26 04:45:12 +0000".
     function time_stamp() result(text)
