@@ -83,7 +83,8 @@ module rollcon_ida
 contains
 
     !> Create IDA for system from consistent (t0, y0, yp0) with the settings' tolerances, step
-    !> limit and Jacobian, watching the system's event functions.
+    !> limit and Jacobian, watching the system's event functions. Its length is SUNDIALS' set-up
+    !> sequence, one checked call per line, in the order IDA requires.
     subroutine start(self, system, settings, t0, y0, yp0, t_stop, error)
         class(ida_integrator_type), intent(inout), target :: self
         class(dynamic_system_type), intent(inout), target :: system

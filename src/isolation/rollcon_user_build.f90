@@ -109,7 +109,9 @@ contains
     !> Path of a shared library holding the user's file and the shim: from the cache when an
     !> entry matches (its copy of the file byte for byte, its library the size and hash
     !> recorded when it was built), else built now. Compiler diagnostics end up in the error
-    !> message; a full disk under the cache folder is said to be one.
+    !> message; a full disk under the cache folder is said to be one. Its length is the one
+    !> sequence of a cache entry's life (look up, verify, build, record, rename into place),
+    !> kept in one place so that each failure is named at the step it happens.
     subroutine build_user_library(path, options, library, from_cache, error, note)
         !> The user's file, as named (gfortran's diagnostics quote it so)
         character(len=*), intent(in) :: path

@@ -171,6 +171,8 @@ contains
     end subroutine check_group_name
 
     !> Read the assignments of the group opened at tokens(i) up to its '/'; leave i after it.
+    !> Its length is one token loop whose cases (name, '=', value, ',', '/') share the position
+    !> and the pending name; split, they would pass all of it around.
     subroutine scan_body(path, tokens, i, group, error)
         character(len=*), intent(in) :: path
         type(token_type), intent(in) :: tokens(:)
