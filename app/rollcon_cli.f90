@@ -212,12 +212,26 @@ contains
         else if (len(request%positional) > 0) then
             call fatal_error(error, "unexpected argument '" // argument // "' after '" &
                 & // request%positional // "': give one " // trim(commands(k)%positional) &
-                & // "; run 'rollcon " // help_command(request) // "--help' for the usage", &
-                & stat_input)
+                & // "; run 'rollcon " // help_command(request) // "--help' for the usage" &
+                & // mistyped_command(request%positional), stat_input)
         else
             request%positional = argument
         end if
     end subroutine take_positional
+
+    !> "; and 'word' is not a command (run, table, ...)" when word names neither a file nor a
+    !> shipped scene (data/word.nml): most likely a command mistyped (`rollcon plto x.csv`).
+    function mistyped_command(word) result(hint)
+        character(len=*), intent(in) :: word
+        character(len=:), allocatable :: hint
+        logical :: file, scene
+
+        hint = ""
+        inquire(file=word, exist=file)
+        inquire(file="data/" // word // ".nml", exist=scene)
+        if (.not. (file .or. scene)) hint = "; and '" // word // "' is not a command (" &
+            & // command_names() // ")"
+    end function mistyped_command
 
     !> The option was given.
     pure logical function has(self, name)
