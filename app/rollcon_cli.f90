@@ -37,6 +37,7 @@ module rollcon_cli
         & command_spec_type("bench", ""), &
         & command_spec_type("bench sweep", ""), &
         & command_spec_type("sweep", "STUDY.nml"), &
+        & command_spec_type("linear", "MODEL.adm"), &
         & command_spec_type("help", ""), &
         & command_spec_type("version", "")]
 
@@ -44,11 +45,11 @@ module rollcon_cli
     type(option_spec_type), parameter :: options(*) = [ &
         & option_spec_type("--help", "-h", "", .false., " all "), &
         & option_spec_type("--output", "-o", "DIR", .false., &
-        & " run plot animate bench bench-sweep sweep "), &
-        & option_spec_type("--quiet", "-q", "", .false., " run sweep "), &
+        & " run plot animate bench bench-sweep sweep linear "), &
+        & option_spec_type("--quiet", "-q", "", .false., " run sweep linear "), &
         & option_spec_type("--vtk", "", "FPS", .false., " run "), &
         & option_spec_type("--allow-large-output", "", "", .false., " run "), &
-        & option_spec_type("--ucosub", "", "FILE|NAME", .false., " run "), &
+        & option_spec_type("--ucosub", "", "FILE|NAME", .false., " run linear "), &
         & option_spec_type("--call-timeout", "", "SECONDS", .false., " run check "), &
         & option_spec_type("--radius", "", "R", .false., " table "), &
         & option_spec_type("--state", "", "LIST", .false., " table "), &
@@ -159,7 +160,7 @@ contains
 
         ! the commands with a help of their own; the others are in the main help
         select case (request%command)
-        case ("check", "bench", "bench sweep", "sweep")
+        case ("check", "bench", "bench sweep", "sweep", "linear")
             text = request%command // " "
         case default
             text = ""

@@ -13,6 +13,7 @@ program rollcon_main
     use rollcon_command_bench, only : bench_command
     use rollcon_command_bench_sweep, only : bench_sweep_command
     use rollcon_command_sweep, only : sweep_command
+    use rollcon_command_linear, only : linear_command, print_linear_help
     use rollcon, only : version_text
     implicit none
     type(cli_request_type) :: request
@@ -59,6 +60,12 @@ program rollcon_main
         call bench_sweep_command(request, error)
     case ("sweep")
         call sweep_command(request, status, error)
+    case ("linear")
+        if (request%has("--help")) then
+            call print_linear_help()
+        else
+            call linear_command(request, error)
+        end if
     end select
     if (allocated(error)) call fail(error, 1)
     if (status /= 0) stop status, quiet=.true.
@@ -79,6 +86,8 @@ contains
             & "       rollcon check FILE --model MODEL.adm", &
             & "       [mpirun -np N] rollcon sweep STUDY.nml [--output DIR]  (a parameter", &
             & "               study, one CSV row per case, and its map: rollcon sweep --help)", &
+            & "       rollcon linear MODEL.adm [--output DIR]  (eigenvalues on the constraint", &
+            & "               manifold at the start: rollcon linear --help)", &
             & "       rollcon --help | --version", &
             & "", &
             & "run (the default): simulate a rolling-disk scene, the paper's coin unless SCENE", &

@@ -52,6 +52,9 @@ module rollcon
     use rollcon_initial_conditions, only : ic_options_type, ic_options_of, &
         & analyse_initial_conditions
     use rollcon_ic_report, only : ic_change_type, ic_report_type, ic_report_text
+    use rollcon_linearisation, only : linear_options_type, linear_result_type, linearise
+    use rollcon_linear_report, only : linear_table_text, natural_frequency, damped_frequency, &
+        & damping_ratio
 
     ! inputs: scenes and datasets
     use rollcon_scene, only : scene_type, read_scene, scene_path
@@ -70,6 +73,7 @@ module rollcon
     use rollcon_ucosub_units, only : ucosub_units_type
     use rollcon_load, only : load_job, input_override_type, is_dataset, output_name
     use rollcon_run_job, only : run_job, job_result_type
+    use rollcon_linear_job, only : linearise_job, write_eigen_csv, eigen_csv_path
 
     ! a user's own UCOSUB: built, loaded, checked apart from rollcon
     use rollcon_user_library, only : user_ucosub_type, user_build_options_type, new_user_ucosub

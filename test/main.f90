@@ -31,6 +31,7 @@ program tester
     use test_expression_fuzz, only : collect_expression_fuzz
     use test_adm_forces, only : collect_adm_forces
     use test_dataset_command, only : collect_dataset_command
+    use test_linear_command, only : collect_linear_command
     use test_output, only : collect_output
     use test_command, only : collect_command
     use test_csv_fuzz, only : collect_csv_fuzz
@@ -41,6 +42,7 @@ program tester
     use test_layout, only : collect_layout
     use test_ucosub_catalog, only : collect_ucosub_catalog
     use test_initial_conditions, only : collect_initial_conditions
+    use test_linearisation, only : collect_linearisation
     use test_rebasing, only : collect_rebasing
     use test_singular_start, only : collect_singular_start
     use test_rebasing_restarts, only : collect_rebasing_restarts
@@ -117,7 +119,9 @@ program tester
         & new_testsuite("layout", collect_layout), &
         & new_testsuite("ucosub-catalog", collect_ucosub_catalog), &
         & new_testsuite("dataset-command", collect_dataset_command), &
+        & new_testsuite("linear-command", collect_linear_command), &
         & new_testsuite("initial-conditions", collect_initial_conditions), &
+        & new_testsuite("linearisation", collect_linearisation), &
         & new_testsuite("rebasing", collect_rebasing), &
         & new_testsuite("singular-start", collect_singular_start), &
         & new_testsuite("rebasing-restarts", collect_rebasing_restarts), &

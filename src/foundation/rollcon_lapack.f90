@@ -18,6 +18,7 @@ module rollcon_lapack
     private
 
     public :: factor_dense, solve_factored, lapack_info_error
+    public :: general_eigenvalues, pivoted_columns
     public :: dgetf2, dgetrs, dpotf2, dpotrs
     public :: use_one_blas_thread
 
@@ -73,6 +74,27 @@ module rollcon_lapack
             real(wp), intent(inout) :: b(ldb, *)
             integer, intent(out) :: info
         end subroutine dpotrs
+
+        !> Eigenvalues (and optionally eigenvectors) of a general real matrix, balanced (LAPACK)
+        pure subroutine dgeev(jobvl, jobvr, n, a, lda, wr, wi, vl, ldvl, vr, ldvr, work, lwork, &
+                & info)
+            import :: wp
+            character(len=1), intent(in) :: jobvl, jobvr
+            integer, intent(in) :: n, lda, ldvl, ldvr, lwork
+            real(wp), intent(inout) :: a(lda, *)
+            real(wp), intent(out) :: wr(*), wi(*), vl(ldvl, *), vr(ldvr, *), work(*)
+            integer, intent(out) :: info
+        end subroutine dgeev
+
+        !> QR factorisation with column pivoting, A P = Q R (LAPACK)
+        pure subroutine dgeqp3(m, n, a, lda, jpvt, tau, work, lwork, info)
+            import :: wp
+            integer, intent(in) :: m, n, lda, lwork
+            real(wp), intent(inout) :: a(lda, *)
+            integer, intent(inout) :: jpvt(*)
+            real(wp), intent(out) :: tau(*), work(*)
+            integer, intent(out) :: info
+        end subroutine dgeqp3
     end interface
 
     interface
@@ -161,6 +183,79 @@ contains
         call dgetrs("N", size(lu, 1), size(b, 2), lu, size(lu, 1), ipiv, b, size(b, 1), info)
         call lapack_info_error("dgetrs", info, error)
     end subroutine solve_factored
+
+    !> The eigenvalues of a general square matrix (dgeev, with its balancing; no
+    !> eigenvectors), in LAPACK's order: a complex conjugate pair is adjacent, positive
+    !> imaginary part first.
+    subroutine general_eigenvalues(a, re, im, error)
+        !> n x n matrix (not changed)
+        real(wp), intent(in) :: a(:, :)
+        !> Real and imaginary parts, n each
+        real(wp), intent(out) :: re(:), im(:)
+        type(error_type), allocatable, intent(out) :: error
+        real(wp), allocatable :: copy(:, :), work(:)
+        real(wp) :: query(1), none(1, 1)
+        integer :: n, info
+
+        n = size(a, 1)
+        if (size(a, 2) /= n .or. size(re) /= n .or. size(im) /= n) then
+            call fatal_error(error, "general_eigenvalues: matrix is " // to_text(n) // " x " &
+                & // to_text(size(a, 2)) // " with " // to_text(size(re)) // " and " &
+                & // to_text(size(im)) // " places for the eigenvalues", stat_lapack)
+            return
+        end if
+        if (n == 0) return
+        copy = a
+        call dgeev("N", "N", n, copy, n, re, im, none, 1, none, 1, query, -1, info)
+        call lapack_info_error("dgeev", info, error)
+        if (allocated(error)) return
+        allocate(work(max(1, int(query(1)))))
+        call dgeev("N", "N", n, copy, n, re, im, none, 1, none, 1, work, size(work), info)
+        if (info > 0) then
+            call fatal_error(error, "dgeev: the QR algorithm failed to find eigenvalue " &
+                & // to_text(info) // " of " // to_text(n), stat_lapack)
+            return
+        end if
+        call lapack_info_error("dgeev", info, error)
+    end subroutine general_eigenvalues
+
+    !> The columns of an m x n matrix in the order QR with column pivoting takes them (dgeqp3:
+    !> at each step the column with the largest norm left), and the magnitudes |R(k,k)| of
+    !> the triangular factor's diagonal: the first rank columns of `order` are the most
+    !> independent ones, and |R(k,k)| falling towards zero measures how far the first k are from
+    !> dependent.
+    subroutine pivoted_columns(a, order, diagonal, error)
+        !> m x n matrix (not changed)
+        real(wp), intent(in) :: a(:, :)
+        !> The n column numbers in pivot order
+        integer, intent(out) :: order(:)
+        !> |R(k,k)|, min(m, n) of them
+        real(wp), intent(out) :: diagonal(:)
+        type(error_type), allocatable, intent(out) :: error
+        real(wp), allocatable :: copy(:, :), work(:), tau(:)
+        real(wp) :: query(1)
+        integer :: m, n, k, info
+
+        m = size(a, 1)
+        n = size(a, 2)
+        order = 0
+        if (m == 0 .or. n == 0) then
+            order = [(k, k = 1, n)]
+            return
+        end if
+        copy = a
+        allocate(tau(min(m, n)))
+        call dgeqp3(m, n, copy, m, order, tau, query, -1, info)
+        call lapack_info_error("dgeqp3", info, error)
+        if (allocated(error)) return
+        allocate(work(max(1, int(query(1)))))
+        call dgeqp3(m, n, copy, m, order, tau, work, size(work), info)
+        call lapack_info_error("dgeqp3", info, error)
+        if (allocated(error)) return
+        do k = 1, min(m, n)
+            diagonal(k) = abs(copy(k, k))
+        end do
+    end subroutine pivoted_columns
 
     !> Turn a LAPACK info code into an error (nothing when info is 0).
     pure subroutine lapack_info_error(routine, info, error)

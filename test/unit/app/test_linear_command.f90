@@ -1,0 +1,174 @@
+! SPDX-License-Identifier: MIT
+!> Tests of `rollcon linear MODEL.adm` as a user runs it (docs/linear.md): the coin's
+!> eigenvalue CSV read back equals the library's linearisation of the same dataset, with its
+!> record, header and table; a scene, a missing argument and a user's file are refused with
+!> the reason and write nothing; --help gives the usage.
+module test_linear_command
+    use rollcon_kinds, only : wp
+    use rollcon_error, only : error_type
+    use rollcon_text, only : to_text
+    use rollcon_job, only : job_type
+    use rollcon_load, only : load_job
+    use rollcon_linearisation, only : linear_result_type
+    use rollcon_linear_job, only : linearise_job
+    use rollcon_testing, only : unittest_type, new_unittest, check
+    use picture_files, only : make_folder, remove_folder
+    use command_runs, only : rollcon_program, run_rollcon, file_text, file_exists
+    implicit none
+    private
+
+    public :: collect_linear_command
+
+    !> Scratch folder of the suite
+    character(len=*), parameter :: scratch = "build/test_linear_command"
+    !> The CSV holds 17 significant digits (es24.16e3), which read back to the same double;
+    !> the program and this tester run the same library code on the same input, so the values
+    !> agree to the last bit: 1e-15 of the largest allows only a rounding of the text
+    real(wp), parameter :: tol_csv = 1.0e-15_wp
+
+contains
+
+    subroutine collect_linear_command(tests)
+        type(unittest_type), allocatable, intent(out) :: tests(:)
+
+        tests = [new_unittest("coin-eigen-csv", test_coin_csv), &
+            & new_unittest("refusals-write-nothing", test_refusals), &
+            & new_unittest("help", test_help)]
+    end subroutine collect_linear_command
+
+    !> `rollcon linear data/coin.adm -o DIR` prints the table and writes DIR/coin.eigen.csv:
+    !> two record lines and a line of what it holds (# comments), the header real,imag and the
+    !> nine eigenvalues the library finds, no partial file left.
+    subroutine test_coin_csv(error)
+        type(error_type), allocatable, intent(out) :: error
+        character(len=:), allocatable :: program, text, out
+        type(job_type) :: job
+        type(linear_result_type) :: expected
+        character(len=:), allocatable :: report
+        real(wp), allocatable :: re(:), im(:)
+        integer :: status
+
+        call rollcon_program(program, error)
+        if (allocated(error)) return
+        call remove_folder(scratch)
+        call make_folder(scratch)
+        call run_rollcon(program, "linear data/coin.adm -q -o " // scratch // "/out", &
+            & scratch // "/linear.out", scratch // "/linear.err", status)
+        out = file_text(scratch // "/linear.out")
+        text = file_text(scratch // "/out/coin.eigen.csv")
+        call check(error, status == 0 .and. index(out, "linear analysis of data/coin.adm at " &
+            & // "t = 0 s: 9 independent states") == 1 .and. index(out, "zero eigenvalues") > 0 &
+            & .and. index(out, "output: " // scratch // "/out/coin.eigen.csv") > 0, &
+            & "exit status " // to_text(status) // "; stdout: " // out // "; stderr: " &
+            & // file_text(scratch // "/linear.err"))
+        if (allocated(error)) return
+        call check(error, index(text, "# rollcon ") == 1 .and. index(text, new_line("a") &
+            & // "# the model's UCOSUB: disk (built in)" // new_line("a") // "# eigenvalues " &
+            & // "[1/s]") > 0 .and. index(text, new_line("a") // "real,imag" // new_line("a")) &
+            & > 0, "the CSV's head: " // text)
+        if (allocated(error)) return
+        call read_eigen_rows(text, re, im, error)
+        if (allocated(error)) return
+        call load_job("data/coin.adm", job, error)
+        if (allocated(error)) return
+        call linearise_job(job, expected, report, error)
+        if (allocated(error)) return
+        call check(error, size(re) == expected%reduced, "rows: " // to_text(size(re)) &
+            & // ", eigenvalues: " // to_text(expected%reduced))
+        if (allocated(error)) return
+        associate (largest => maxval(hypot(expected%real_part, expected%imag_part)))
+            call check(error, maxval(abs(re - expected%real_part) + abs(im &
+                & - expected%imag_part)), 0.0_wp, "CSV against the library [1/s]", &
+                & abs_tol=tol_csv*largest)
+        end associate
+        if (allocated(error)) return
+        call check(error, count_partials(scratch // "/out") == 0, "a partial file is left in " &
+            & // scratch // "/out")
+        call remove_folder(scratch)
+    end subroutine test_coin_csv
+
+    !> The rows after the header `real,imag`, each two numbers.
+    subroutine read_eigen_rows(text, re, im, error)
+        character(len=*), intent(in) :: text
+        real(wp), allocatable, intent(out) :: re(:), im(:)
+        type(error_type), allocatable, intent(out) :: error
+        character(len=:), allocatable :: rest, line
+        real(wp) :: pair(2)
+        integer :: cut, stat
+
+        allocate(re(0), im(0))
+        rest = text(index(text, "real,imag" // new_line("a")) + 10:)
+        do while (len(rest) > 0)
+            cut = index(rest, new_line("a"))
+            if (cut == 0) cut = len(rest) + 1
+            line = rest(:cut - 1)
+            rest = rest(min(cut + 1, len(rest) + 1):)
+            if (len_trim(line) == 0) cycle
+            read(line, *, iostat=stat) pair
+            call check(error, stat == 0, "not two numbers: '" // line // "'")
+            if (allocated(error)) return
+            re = [re, pair(1)]
+            im = [im, pair(2)]
+        end do
+    end subroutine read_eigen_rows
+
+    !> How many files named *.partial-* a folder holds (through ls; 0 when none).
+    integer function count_partials(folder)
+        character(len=*), intent(in) :: folder
+        integer :: stat
+
+        call execute_command_line("ls " // folder // " | grep -q partial", exitstat=stat)
+        count_partials = merge(1, 0, stat == 0)
+    end function count_partials
+
+    !> A scene, no argument and a user's file are refused (exit status 1, the reason on
+    !> stderr), and no CSV is written.
+    subroutine test_refusals(error)
+        type(error_type), allocatable, intent(out) :: error
+        character(len=:), allocatable :: program
+        character(len=*), parameter :: arguments(3) = [character(len=80) :: &
+            & "linear data/coin.nml", "linear", &
+            & "linear data/coin.adm --ucosub ucon/adams/rolling_disk/ucosub.f"]
+        character(len=*), parameter :: messages(3) = [character(len=120) :: &
+            & "rollcon: error: data/coin.nml: not a dataset: rollcon linear takes an ADAMS " &
+            & // "dataset", "rollcon: error: rollcon linear needs a dataset, MODEL.adm", &
+            & "rollcon: error: --ucosub ucon/adams/rolling_disk/ucosub.f: the linear analysis " &
+            & // "runs built-in routines only"]
+        character(len=:), allocatable :: err
+        integer :: k, status
+
+        call rollcon_program(program, error)
+        if (allocated(error)) return
+        call remove_folder(scratch)
+        call make_folder(scratch)
+        do k = 1, size(arguments)
+            call run_rollcon(program, trim(arguments(k)) // " -o " // scratch // "/out", &
+                & scratch // "/refused.out", scratch // "/refused.err", status)
+            err = file_text(scratch // "/refused.err")
+            call check(error, status == 1 .and. index(err, trim(messages(k))) == 1 .and. .not. &
+                & file_exists(scratch // "/out/coin.eigen.csv"), "rollcon " // trim(arguments(k)) &
+                & // ": exit status " // to_text(status) // ", stderr: " // err)
+            if (allocated(error)) exit
+        end do
+        call remove_folder(scratch)
+    end subroutine test_refusals
+
+    !> `rollcon linear --help` prints the command's usage and exits 0.
+    subroutine test_help(error)
+        type(error_type), allocatable, intent(out) :: error
+        character(len=:), allocatable :: program, out
+        integer :: status
+
+        call rollcon_program(program, error)
+        if (allocated(error)) return
+        call make_folder(scratch)
+        call run_rollcon(program, "linear --help", scratch // "/help.out", scratch &
+            & // "/help.err", status)
+        out = file_text(scratch // "/help.out")
+        call check(error, status == 0 .and. index(out, "usage: rollcon linear MODEL.adm " &
+            & // "[--output DIR]") == 1 .and. index(out, "real,imag [1/s]") > 0, &
+            & "exit status " // to_text(status) // ", stdout: " // out)
+        call remove_folder(scratch)
+    end subroutine test_help
+
+end module test_linear_command
