@@ -183,7 +183,8 @@ contains
     !> The scale of each state component: a part's translations rho_p (the RMS distance of
     !> its mass from its centre) [m], its angles 1 rad, translational rates v_ref [m/s], angular
     !> rates v_ref/rho_p [rad/s], each at least the component's own size; v_ref is the largest
-    !> speed of the start (|rates| and rho_p |angular rates|), at least sqrt(|g| rho).
+    !> speed of the start (|rates| and rho_p |angular rates|), at least sqrt(|g| rho) (and
+    !> rho times 1/s without gravity); a part without inertia counts rho = 1 m.
     pure function state_scales(problem, q, u) result(scale)
         type(problem_type), intent(in) :: problem
         real(wp), intent(in) :: q(:), u(:)
@@ -195,6 +196,8 @@ contains
         allocate(scale(2*n))
         do p = 1, size(rho)
             rho(p) = sqrt(sum(problem%model%parts(p)%inertia)/(2.0_wp*problem%model%parts(p)%mass))
+            ! a point mass has no size of its own: 1 m keeps the steps finite
+            if (.not. rho(p) > 0.0_wp) rho(p) = 1.0_wp
         end do
         v_ref = sqrt(norm2(problem%model%gravity)*maxval(rho))
         do p = 1, size(rho)
