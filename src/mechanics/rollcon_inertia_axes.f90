@@ -69,7 +69,7 @@ contains
         real(wp), intent(out) :: axes(3, 3)
         type(error_type), allocatable, intent(out) :: error
         real(wp) :: values(3), vectors(3, 3), candidate(3, 3), score, best
-        integer :: o, s, k
+        integer :: o, s
 
         axes = identity()
         moments = ip(1:3)
@@ -103,9 +103,7 @@ contains
         ! three repeated moments: any axes are principal; keep the CM marker's
         if (maxval(moments) - minval(moments) <= repeated_moments*maxval(moments)) then
             axes = identity()
-            do k = 1, 3
-                moments(k) = values(k)
-            end do
+            moments = values
         end if
     end subroutine principal_axes
 
