@@ -74,6 +74,9 @@ program tester
     use test_fpm_dependency, only : collect_fpm_dependency
     use test_main_script, only : collect_main_script
     use test_multiplier_units, only : collect_multiplier_units
+    use test_inertia_axes, only : collect_inertia_axes
+    use test_inertia_command, only : collect_inertia_command
+    use test_adm_bicycle, only : collect_adm_bicycle
     implicit none
     type(testsuite_type), allocatable :: suites(:)
     type(test_counts_type) :: counts
@@ -152,7 +155,10 @@ program tester
         & new_testsuite("adm-outputs", collect_adm_outputs), &
         & new_testsuite("fpm-dependency", collect_fpm_dependency), &
         & new_testsuite("main-script", collect_main_script), &
-        & new_testsuite("multiplier-units", collect_multiplier_units)]
+        & new_testsuite("multiplier-units", collect_multiplier_units), &
+        & new_testsuite("inertia-axes", collect_inertia_axes), &
+        & new_testsuite("inertia-command", collect_inertia_command), &
+        & new_testsuite("adm-bicycle", collect_adm_bicycle)]
 
     if (command_argument_count() >= 1) then
         call get_command_argument(1, argument)

@@ -17,7 +17,7 @@ module rollcon_lapack
     implicit none
     private
 
-    public :: factor_dense, solve_factored, lapack_info_error
+    public :: factor_dense, solve_factored, lapack_info_error, symmetric_eigen
     public :: general_eigenvalues, pivoted_columns
     public :: dgetf2, dgetrs, dpotf2, dpotrs
     public :: use_one_blas_thread
@@ -95,6 +95,18 @@ module rollcon_lapack
             real(wp), intent(out) :: tau(*), work(*)
             integer, intent(out) :: info
         end subroutine dgeqp3
+
+        !> Eigenvalues (ascending) and, with jobz = 'V', orthonormal eigenvectors of a
+        !> symmetric matrix (LAPACK)
+        pure subroutine dsyev(jobz, uplo, n, a, lda, w, work, lwork, info)
+            import :: wp
+            character(len=1), intent(in) :: jobz, uplo
+            integer, intent(in) :: n, lda, lwork
+            real(wp), intent(inout) :: a(lda, *)
+            real(wp), intent(out) :: w(*)
+            real(wp), intent(inout) :: work(*)
+            integer, intent(out) :: info
+        end subroutine dsyev
     end interface
 
     interface
@@ -260,6 +272,38 @@ contains
             diagonal(k) = abs(copy(k, k))
         end do
     end subroutine pivoted_columns
+    !> Eigenvalues and eigenvectors of a small symmetric matrix (LAPACK dsyev): the values in
+    !> ascending order, the vectors orthonormal, column k belonging to value k.
+    subroutine symmetric_eigen(a, values, vectors, error)
+        !> The symmetric matrix (its upper triangle is read)
+        real(wp), intent(in) :: a(:, :)
+        !> Eigenvalues, ascending, size(a, 1) of them
+        real(wp), intent(out) :: values(:)
+        !> Eigenvectors as columns, the shape of a
+        real(wp), intent(out) :: vectors(:, :)
+        !> Set when an argument is invalid or the iteration did not converge
+        type(error_type), allocatable, intent(out) :: error
+        real(wp) :: work(max(1, 3*size(a, 1) - 1))
+        integer :: info, n
+
+        n = size(a, 1)
+        if (size(a, 2) /= n .or. size(values) /= n .or. any(shape(vectors) /= [n, n])) then
+            call fatal_error(error, "symmetric_eigen: matrix is " // to_text(n) // " x " &
+                & // to_text(size(a, 2)) // " with " // to_text(size(values)) // " values", &
+                & stat_lapack)
+            return
+        end if
+        vectors = a
+        ! the unblocked workspace 3 n - 1 suffices: the matrices here are 3 x 3
+        call dsyev("V", "U", n, vectors, n, values, work, size(work), info)
+        if (info < 0) then
+            call fatal_error(error, "dsyev: argument " // to_text(-info) // " is invalid", &
+                & stat_lapack)
+        else if (info > 0) then
+            call fatal_error(error, "dsyev: " // to_text(info) // " off-diagonal elements did " &
+                & // "not converge to zero", stat_lapack)
+        end if
+    end subroutine symmetric_eigen
 
     !> Turn a LAPACK info code into an error (nothing when info is 0).
     pure subroutine lapack_info_error(routine, info, error)

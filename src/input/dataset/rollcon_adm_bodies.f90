@@ -1,11 +1,13 @@
 ! SPDX-License-Identifier: MIT
 !> Dataset statements of bodies: PART (mass, inertia, pose, initial velocities) and MARKER.
+!> An IP with products of inertia gives its principal moments and axes (rollcon_inertia_axes).
 module rollcon_adm_bodies
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type, fatal_error, stat_input
     use rollcon_adm_lexer, only : adm_statement_type, adm_argument_type, upper_case
     use rollcon_adm_keywords, only : read_reals, read_integer, argument_key, arg_place
     use rollcon_adm_units, only : units_type
+    use rollcon_inertia_axes, only : principal_axes
     use rollcon_adm_model, only : adm_part_type, adm_marker_type
     implicit none
     private
@@ -59,16 +61,13 @@ contains
                 call read_reals(statement%arguments(k), at, 3, 6, .false., values, error, &
                     & units%mass*units%length**2)
                 if (allocated(error)) return
-                if (size(values) == 6) then
-                    if (any(values(4:6) /= 0.0_wp)) then
-                        call fatal_error(error, at // ": products of inertia (xy, xz, yz) are " &
-                            & // "not supported: rollcon's parts move on their principal axes; " &
-                            & // "turn the CM marker onto them and give IP=xx, yy, zz", &
-                            & stat_input)
-                        return
-                    end if
-                end if
                 part%ip = values(1:3)
+                if (size(values) == 6) then
+                    ! products: the principal moments and axes of the tensor (LAPACK)
+                    part%products = values(4:6)
+                    call principal_axes(values, part%ip, part%principal, error)
+                    if (allocated(error)) error%message = at // ": " // error%message
+                end if
             case ("QG")
                 call read_reals(statement%arguments(k), at, 3, 3, .false., values, error, &
                     & units%length)

@@ -4,7 +4,8 @@
 !> settings, the theta limit, the displacement requests' columns and the initial state.
 !>
 !> A part's principal axes are its CM marker's axes, and its inertia is the IP written there
-!> (docs/design.md §2). A UCON is served by the built-in routine its ROUTINE= names
+!> (docs/design.md §2); an IP with products gives principal axes turned from the CM marker's
+!> (rollcon_inertia_axes), in which the part moves and its markers are held. A UCON is served by the built-in routine its ROUTINE= names
 !> (rollcon_ucosub_catalog), else by the model's routine (the `--ucosub` one). As ADAMS does, a
 !> routine, built-in or the user's, computes in the dataset's units: PAR as written, the state
 !> and the time converted at the boundary (rollcon_ucosub_units).
@@ -365,12 +366,13 @@ contains
             end if
             marker%part = count(.not. adm%parts(:p)%ground)
             c = marker_index(adm, part%cm)
-            r_cm = rotation_matrix(adm%markers(c)%reuler(1), adm%markers(c)%reuler(2), &
-                & adm%markers(c)%reuler(3))
-            ! principal axes = the CM marker's: coordinates in them are R_cm^T times the part's
+            ! principal axes = the CM marker's turned onto those of IP's tensor (R_cm P, P the
+            ! identity without products): coordinates in them are (R_cm P)^T times the part's
+            r_cm = matmul(rotation_matrix(adm%markers(c)%reuler(1), adm%markers(c)%reuler(2), &
+                & adm%markers(c)%reuler(3)), part%principal)
             marker%point = matmul(transpose(r_cm), point - adm%markers(c)%qp)
             marker%axes = matmul(transpose(r_cm), r_marker)
-            marker%principal = c == m
+            marker%principal = c == m .and. all(part%products == 0.0_wp)
             if (marker%principal) then
                 marker%axes = 0.0_wp
                 do i = 1, 3

@@ -129,8 +129,16 @@ contains
         end if
         ! a rigid body's principal moments satisfy the triangle inequality (equality: a lamina)
         if (any(part%ip > (sum(part%ip) - part%ip)*(1.0_wp + 1.0e-12_wp))) then
-            call fatal_error(error, where // " IP: no rigid body has these principal moments " &
-                & // "(each must be at most the sum of the other two)", stat_input)
+            if (all(part%products == 0.0_wp)) then
+                call fatal_error(error, where // " IP: no rigid body has these principal " &
+                    & // "moments (each must be at most the sum of the other two)", stat_input)
+            else
+                call fatal_error(error, where // " IP: no rigid body has this inertia tensor: " &
+                    & // "its principal moments " // to_text(part%ip(1)) // ", " &
+                    & // to_text(part%ip(2)) // ", " // to_text(part%ip(3)) // " kg m^2 break " &
+                    & // "the triangle inequality (each must be at most the sum of the other " &
+                    & // "two)", stat_input)
+            end if
             return
         end if
         call check_part_ranges(where, part, error)
@@ -166,8 +174,9 @@ contains
         character(len=*), parameter :: angles(3) = [character(len=5) :: "PSI", "THETA", "PHI"]
         real(wp) :: r(3, 3), sin_theta
 
-        r = matmul(rotation_matrix(part%reuler(1), part%reuler(2), part%reuler(3)), &
-            & rotation_matrix(marker%reuler(1), marker%reuler(2), marker%reuler(3)))
+        r = matmul(matmul(rotation_matrix(part%reuler(1), part%reuler(2), part%reuler(3)), &
+            & rotation_matrix(marker%reuler(1), marker%reuler(2), marker%reuler(3))), &
+            & part%principal)
         sin_theta = hypot(r(1, 3), r(2, 3))
         if (sin_theta >= min_sin_theta .or. .not. any(part%exact(4:6))) return
         call fatal_error(error, where // " EXACT=" // trim(angles(findloc(part%exact(4:6), &

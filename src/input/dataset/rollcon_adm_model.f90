@@ -31,12 +31,19 @@ module rollcon_adm_model
         real(wp) :: mass = 0.0_wp
         !> Centre-of-mass marker id
         integer :: cm = 0
-        !> Principal moments about the CM marker's axes [kg m^2]
+        !> Principal moments [kg m^2]: IP's xx, yy, zz when it gives no products, else the
+        !> eigenvalues of its tensor (rollcon_inertia_axes), along the columns of `principal`
         real(wp) :: ip(3) = 0.0_wp
+        !> IP's products xy, xz, yz as written (ADAMS's positive integrals) [kg m^2]
+        real(wp) :: products(3) = 0.0_wp
+        !> The principal axes: columns x, y, z in the CM marker's axes (the identity when IP
+        !> gives no products: the CM marker's axes are the principal axes)
+        real(wp) :: principal(3, 3) = reshape([1.0_wp, 0.0_wp, 0.0_wp, 0.0_wp, 1.0_wp, &
+            & 0.0_wp, 0.0_wp, 0.0_wp, 1.0_wp], [3, 3])
         !> Part frame in ground: origin [m] and 3-1-3 Euler angles [rad]
         real(wp) :: qg(3) = 0.0_wp, reuler(3) = 0.0_wp
         !> Initial velocity of the CM marker, ground axes [m/s], and angular velocity, CM
-        !> marker axes [rad/s]; only the components given (the rest are left to the model)
+        !> marker axes (ADAMS's WX, WY, WZ; not the principal axes) [rad/s]; only the components given (the rest are left to the model)
         real(wp) :: velocity(3) = 0.0_wp, angular_velocity(3) = 0.0_wp
         logical :: velocity_given(3) = .false., angular_velocity_given(3) = .false.
         !> EXACT=X:Y:Z:PSI:THETA:PHI: the principal axes' coordinates the initial-conditions

@@ -1,9 +1,10 @@
 ! SPDX-License-Identifier: MIT
 !> The initial state of a dataset's part in ADAMS coordinates: the centre of mass and the 3-1-3
-!> Euler angles of the principal axes (the CM marker's pose in ground), their rates from the
-!> part's VX, VY, VZ (ground axes) and WX, WY, WZ (CM marker axes). A part whose CM marker's
-!> z-axis starts parallel to ground z, where the angles are singular, is given in its principal
-!> axes turned as a re-basing turns them (basis 1, docs/rebasing.md).
+!> Euler angles of the principal axes (the CM marker's pose in ground, turned onto the
+!> principal axes of an IP with products), their rates from the part's VX, VY, VZ (ground
+!> axes) and WX, WY, WZ (CM marker axes). A part whose principal z-axis starts parallel to
+!> ground z, where the angles are singular, is given in its principal axes turned as a
+!> re-basing turns them (basis 1, docs/rebasing.md).
 module rollcon_adm_state
     use rollcon_kinds, only : wp
     use rollcon_rotation, only : rotation_matrix, euler_angles
@@ -37,7 +38,8 @@ contains
         r_part = rotation_matrix(part%reuler(1), part%reuler(2), part%reuler(3))
         q(1:3) = part%qg + matmul(r_part, model%markers(m)%qp)
         r_cm = cm_rotation(model, part)
-        omega = part%angular_velocity
+        ! WX, WY, WZ are about the CM marker's axes: in the principal axes
+        omega = matmul(transpose(part%principal), part%angular_velocity)
         if (present(basis)) basis = 0
         if (starts_singular(model, part)) then
             r_cm = matmul(r_cm, basis_turn)
@@ -49,7 +51,7 @@ contains
         u(4:6) = angle_rates(q(5), q(6), omega)
     end subroutine part_state
 
-    !> True when the z-axis of the part's CM marker is parallel to ground z at t = 0, to
+    !> True when the part's principal z-axis is parallel to ground z at t = 0, to
     !> sin(theta) < min_sin_theta.
     pure logical function starts_singular(model, part)
         type(adm_model_type), intent(in) :: model
@@ -60,7 +62,8 @@ contains
         starts_singular = hypot(r(1, 3), r(2, 3)) < min_sin_theta
     end function starts_singular
 
-    !> The CM marker's axes in ground at t = 0: the part's REULER, then the marker's.
+    !> The principal axes in ground at t = 0: the part's REULER, then the CM marker's, then the
+    !> principal axes in the CM marker's (the identity without products of inertia).
     pure function cm_rotation(model, part) result(r_cm)
         type(adm_model_type), intent(in) :: model
         type(adm_part_type), intent(in) :: part
@@ -71,6 +74,7 @@ contains
         r_cm = matmul(rotation_matrix(part%reuler(1), part%reuler(2), part%reuler(3)), &
             & rotation_matrix(model%markers(m)%reuler(1), model%markers(m)%reuler(2), &
             & model%markers(m)%reuler(3)))
+        r_cm = matmul(r_cm, part%principal)
     end function cm_rotation
 
 end module rollcon_adm_state

@@ -3,10 +3,14 @@
 !> run (rollcon_adm_build), with the dataset's INTEGRATOR and SIMULATE settings or those a
 !> caller put in their place, and its start made consistent by the initial-conditions analysis
 !> (docs/initial-conditions.md), as ADAMS does before a dynamic run. Its warning names the
-!> statements of ADAMS's outputs and solver choices it read and does not use.
+!> statements of ADAMS's outputs and solver choices it read and does not use; its report
+!> gives, before the analysis's, the principal moments and axes of every part whose IP has
+!> products of inertia.
 module rollcon_dataset_source
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type
+    use rollcon_text, only : to_text
+    use rollcon_rotation, only : euler_angles
     use rollcon_ucosub_contract, only : ucosub_interface
     use rollcon_problem, only : problem_type
     use rollcon_model_source, only : model_source_type
@@ -68,7 +72,39 @@ contains
             error%message = self%path // ": " // error%message
             return
         end if
-        report = ic_report_text(analysis)
+        report = principal_axes_text(self%adm) // ic_report_text(analysis)
     end subroutine build
+
+    !> For each part whose IP has products of inertia, two lines: its principal moments and
+    !> the principal axes in its CM marker's axes, with the 3-1-3 Euler angles of the turn
+    !> from those axes onto them; "" when no part has products.
+    function principal_axes_text(adm) result(text)
+        type(adm_model_type), intent(in) :: adm
+        character(len=:), allocatable :: text
+        character(len=*), parameter :: nl = new_line("a"), names = "xyz"
+        real(wp) :: angles(3)
+        integer :: i, k
+
+        text = ""
+        do i = 1, size(adm%parts)
+            associate (part => adm%parts(i))
+                if (part%ground .or. all(part%products == 0.0_wp)) cycle
+                angles = euler_angles(part%principal)
+                text = text // "principal axes of PART/" // to_text(part%id) // " (IP with " &
+                    & // "products of inertia): moments " // to_text(part%ip(1)) // ", " &
+                    & // to_text(part%ip(2)) // ", " // to_text(part%ip(3)) // " kg m^2 about " &
+                    & // "x, y, z; turned from its CM marker's axes (MARKER/" &
+                    & // to_text(part%cm) // ") by the 3-1-3 Euler angles " &
+                    & // to_text(angles(1)) // ", " // to_text(angles(2)) // ", " &
+                    & // to_text(angles(3)) // " rad" // nl // " "
+                do k = 1, 3
+                    text = text // " " // names(k:k) // " = (" // to_text(part%principal(1, k)) &
+                        & // ", " // to_text(part%principal(2, k)) // ", " &
+                        & // to_text(part%principal(3, k)) // ")"
+                end do
+                text = text // " in the CM marker's axes" // nl
+            end associate
+        end do
+    end function principal_axes_text
 
 end module rollcon_dataset_source

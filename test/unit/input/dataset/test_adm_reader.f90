@@ -244,8 +244,8 @@ contains
         expected(1) = file // "3: 'JOINT' is not a statement of the supported subset (ACCGRAV, " &
             & // "END, GFORCE, INTEGRATOR, MARKER, OUTPUT, PART, SFORCE, SIMULATE, UCON, " &
             & // "UNITS, VFORCE)"
-        replaced(2) = "PART/2, MASS=0.7351, CM=3, IP=1, 1, 1, 0.1, 0, 0"
-        expected(2) = file // "4: PART/2 IP: products of inertia (xy, xz, yz) are not supported"
+        replaced(2) = "PART/2, MASS=0.7351, CM=3, IP=1, 1, 1, 1.5, 0, 0"
+        expected(2) = file // "4: PART/2 IP: the inertia tensor [[xx, -xy, -xz], [-xy, yy, -yz]"
         replaced(3) = ", VX=0.1, W=-1"
         expected(3) = file // "6: PART/2: 'W' is ambiguous: it may be WX, WY, WZ; write more"
         ! the CM marker's z-axis along ground z: read, the part starts in turned axes

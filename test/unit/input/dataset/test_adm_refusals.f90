@@ -175,9 +175,14 @@ contains
     !> Masses, inertias, end time and output steps out of range, with the range in the message.
     subroutine test_values(error)
         type(error_type), allocatable, intent(out) :: error
-        character(len=120) :: replaced(16)
-        character(len=400) :: expected(16)
+        character(len=120) :: replaced(17)
+        character(len=400) :: expected(17)
 
+        ! positive definite, but its principal moments 1 - 0.5, 1 + 0.5 and 2.4 > 0.5 + 1.5
+        replaced(17) = "PART/2, MASS=1, CM=3, IP=1, 1, 2.4, 0.5, 0, 0"
+        expected(17) = ":4: PART/2 IP: no rigid body has this inertia tensor: its principal " &
+            & // "moments *2.4 kg m^2 break the triangle inequality (each must be at most the " &
+            & // "sum of the other two)"
         replaced(16) = "PART/1, GROUND, QG=0, 0, 1"
         expected(16) = ":3: PART/1: the ground part takes no MASS, CM, IP, QG, REULER or " &
             & // "velocities (it is the ground frame, at rest)"
@@ -190,10 +195,13 @@ contains
             & // " most the sum of the other two)"
         replaced(4) = "PART/2, MASS=1, CM=3, IP=0, 2, 3"
         expected(4) = ":4: PART/2 IP: three principal moments > 0 [kg m^2] are needed"
-        replaced(5) = "PART/2, MASS=1, CM=3, IP=2, 2, 3, 0.1, 0, 0"
-        expected(5) = ":4: PART/2 IP: products of inertia (xy, xz, yz) are not supported:" &
-            & // " rollcon's parts move on their principal axes; turn the CM marker onto" &
-            & // " them and give IP=xx, yy, zz"
+        ! products of inertia: the tensor [[2, -2.5, 0], [-2.5, 2, 0], [0, 0, 3]] has the
+        ! eigenvalues 2 - 2.5 < 0, 3 and 2 + 2.5 (the digits LAPACK rounds are not compared)
+        replaced(5) = "PART/2, MASS=1, CM=3, IP=2, 2, 3, 2.5, 0, 0"
+        expected(5) = ":4: PART/2 IP: the inertia tensor [[xx, -xy, -xz], [-xy, yy, -yz], " &
+            & // "[-xz, -yz, zz]] (ADAMS's products are positive integrals) is not positive " &
+            & // "definite: its eigenvalues are -0.5*4.5 kg m^2, and a rigid body's principal " &
+            & // "moments are all > 0"
         replaced(6) = "PART/1, GROUND, MASS=1"
         expected(6) = ":3: PART/1: the ground part takes no MASS, CM, IP, QG, REULER or " &
             & // "velocities (it is the ground frame, at rest)"
@@ -220,7 +228,7 @@ contains
             & // " write SIMULATE/DYNAMIC, END=..., STEPS=..."
         replaced(15) = "SIMULATE/DYNAMIC, STEPS=10"
         expected(15) = ":11: SIMULATE: END=t (the end time) is missing"
-        call check_refusals(error, [4, 4, 4, 4, 4, 3, 11, 11, 11, 11, 11, 11, 11, 11, 11, 3], &
+        call check_refusals(error, [4, 4, 4, 4, 4, 3, 11, 11, 11, 11, 11, 11, 11, 11, 11, 3, 4], &
             & replaced, expected)
     end subroutine test_values
 
