@@ -7,7 +7,7 @@ module rollcon_command_linear
     use rollcon, only : error_type, fatal_error, stat_input, job_type, load_job, is_dataset, &
         & linear_result_type, linearise_job, write_eigen_csv, linear_table_text, &
         & command_line_text, wp, speed_table_type, stability_change_type, linear_speeds_job, &
-        & write_speed_csv, draw_eigen_speed_figure
+        & write_speed_csv, draw_eigen_speed_figure, fixed_text, to_text
     use rollcon_cli, only : cli_request_type
     implicit none
     private
@@ -83,20 +83,21 @@ contains
                 & // request%text("--speeds", "") // "'", stat_input)
             return
         end if
-        speeds = [(grid(1) + (grid(2) - grid(1))*real(k, wp)/real(points - 1, wp), &
-            & k = 0, points - 1)]
+        ! both ends exactly as given
+        speeds = [(grid(1)*real(points - 1 - k, wp)/real(points - 1, wp) &
+            & + grid(2)*real(k, wp)/real(points - 1, wp), k = 0, points - 1)]
         call linear_speeds_job(job, speeds, table, changes, report, error)
         if (allocated(error)) return
         if (.not. request%has("--quiet") .and. len(report) > 0) write(output_unit, '(a)') report
         write(output_unit, '(a)') "eigenvalues of " // path // " at " // trim(int_text(points)) &
-            & // " speeds from " // trim(real_text(grid(1))) // " to " &
-            & // trim(real_text(grid(2))) // " m/s (every velocity of the start scaled), " &
+            & // " speeds from " // to_text(grid(1)) // " to " &
+            & // to_text(grid(2)) // " m/s (every velocity of the start scaled), " &
             & // trim(int_text(size(table%real_part, 1))) // " after " &
             & // trim(int_text(count(table%struck))) // " structural zeros taken out"
         if (size(changes) == 0) write(output_unit, '(a)') "stability does not change in that range"
         do k = 1, size(changes)
-            write(output_unit, '(a, f0.6, a)') "stability changes at ", changes(k)%speed, &
-                & " m/s: " // trim(merge("oscillatory (a complex pair: weave)   ", &
+            write(output_unit, '(a)') "stability changes at " // fixed_text(changes(k)%speed, 6) &
+                & // " m/s: " // trim(merge("oscillatory (a complex pair: weave)   ", &
                 & "divergent (a real eigenvalue: capsize)", changes(k)%oscillatory)) &
                 & // merge("; stable above", "; stable below", changes(k)%stable_above)
         end do
@@ -116,13 +117,6 @@ contains
 
         write(text, '(i0)') n
     end function int_text
-
-    pure function real_text(x) result(text)
-        real(wp), intent(in) :: x
-        character(len=24) :: text
-
-        write(text, '(g0)') x
-    end function real_text
 
     subroutine print_linear_help()
         write(output_unit, '(a)') &

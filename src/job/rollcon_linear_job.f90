@@ -15,7 +15,7 @@ module rollcon_linear_job
     use rollcon_linear_report, only : eigen_csv_rows
     use rollcon_linear_speeds, only : speed_table_type, stability_change_type, speed_table, &
         & stability_changes
-    use rollcon_text, only : to_text
+    use rollcon_text, only : to_text, fixed_text
     use rollcon_job, only : job_type
     use rollcon_provenance, only : provenance_lines
     implicit none
@@ -117,7 +117,7 @@ contains
             & // "zeros taken out (" // to_text(count(table%struck)) // "), by decreasing " &
             & // "real part (docs/linear.md)" // new_line("a")
         do k = 1, size(changes)
-            write(number, '(es25.17e3)') changes(k)%speed
+            write(number, '(es24.16e3)') changes(k)%speed
             text = text // "# stability changes at " // trim(adjustl(number)) // " m/s: " &
                 & // change_words(changes(k)) // new_line("a")
         end do
@@ -126,12 +126,12 @@ contains
             text = text // ",real_" // to_text(i) // ",imag_" // to_text(i)
         end do
         do k = 1, size(table%speed)
-            write(number, '(es25.17e3)') table%speed(k)
+            write(number, '(es24.16e3)') table%speed(k)
             text = text // new_line("a") // trim(adjustl(number))
             do i = 1, size(table%real_part, 1)
-                write(number, '(es25.17e3)') table%real_part(i, k)
+                write(number, '(es24.16e3)') table%real_part(i, k)
                 text = text // "," // trim(adjustl(number))
-                write(number, '(es25.17e3)') table%imag_part(i, k)
+                write(number, '(es24.16e3)') table%imag_part(i, k)
                 text = text // "," // trim(adjustl(number))
             end do
         end do
@@ -145,12 +145,10 @@ contains
     function change_words(change) result(words)
         type(stability_change_type), intent(in) :: change
         character(len=:), allocatable :: words
-        character(len=16) :: number
 
         if (change%oscillatory) then
-            write(number, '(f0.6)') change%frequency
             words = "a complex pair crosses the imaginary axis (an oscillation at " &
-                & // trim(number) // " 1/s, as a bicycle's weave)"
+                & // fixed_text(change%frequency, 6) // " rad/s, as a bicycle's weave)"
         else
             words = "a real eigenvalue passes through zero (a divergence, as a bicycle's capsize)"
         end if

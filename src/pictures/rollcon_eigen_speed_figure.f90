@@ -7,7 +7,7 @@
 module rollcon_eigen_speed_figure
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type, fatal_error, stat_io
-    use rollcon_text, only : to_text
+    use rollcon_text, only : to_text, fixed_text
     use rollcon_linear_speeds, only : speed_table_type, stability_change_type
     use rollcon_gnuplot, only : require_gnuplot, run_gnuplot, gnuplot_string, remove_file
     implicit none
@@ -144,13 +144,11 @@ contains
     function change_label(change) result(label)
         type(stability_change_type), intent(in) :: change
         character(len=:), allocatable :: label
-        character(len=24) :: number
 
-        write(number, '(f0.6)') change%speed
         if (change%oscillatory) then
-            label = "oscillatory (weave) " // trim(number) // " m/s"
+            label = "oscillatory (weave) " // fixed_text(change%speed, 6) // " m/s"
         else
-            label = "divergent (capsize) " // trim(number) // " m/s"
+            label = "divergent (capsize) " // fixed_text(change%speed, 6) // " m/s"
         end if
     end function change_label
 
