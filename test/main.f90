@@ -32,6 +32,7 @@ program tester
     use test_expression_fuzz, only : collect_expression_fuzz
     use test_adm_forces, only : collect_adm_forces
     use test_dataset_command, only : collect_dataset_command
+    use test_joint_command, only : collect_joint_command
     use test_output, only : collect_output
     use test_command, only : collect_command
     use test_csv_fuzz, only : collect_csv_fuzz
@@ -119,6 +120,7 @@ program tester
         & new_testsuite("layout", collect_layout), &
         & new_testsuite("ucosub-catalog", collect_ucosub_catalog), &
         & new_testsuite("dataset-command", collect_dataset_command), &
+        & new_testsuite("joint-command", collect_joint_command), &
         & new_testsuite("initial-conditions", collect_initial_conditions), &
         & new_testsuite("rebasing", collect_rebasing), &
         & new_testsuite("singular-start", collect_singular_start), &
