@@ -26,12 +26,14 @@ program tester
     use test_adm_refusals, only : collect_adm_refusals
     use test_adm_statements, only : collect_adm_statements
     use test_adm_build, only : collect_adm_build
+    use test_adm_joints, only : collect_adm_joints
     use test_adm_text, only : collect_adm_text
     use test_adm_fuzz, only : collect_adm_fuzz
     use test_expression_fuzz, only : collect_expression_fuzz
     use test_adm_forces, only : collect_adm_forces
     use test_dataset_command, only : collect_dataset_command
     use test_linear_command, only : collect_linear_command
+    use test_joint_command, only : collect_joint_command
     use test_output, only : collect_output
     use test_command, only : collect_command
     use test_csv_fuzz, only : collect_csv_fuzz
@@ -110,6 +112,7 @@ program tester
         & new_testsuite("adm-statements", collect_adm_statements), &
         & new_testsuite("adm-forces", collect_adm_forces), &
         & new_testsuite("adm-build", collect_adm_build), &
+        & new_testsuite("adm-joints", collect_adm_joints), &
         & new_testsuite("adm-text", collect_adm_text), &
         & new_testsuite("adm-fuzz", collect_adm_fuzz), &
         & new_testsuite("expression-fuzz", collect_expression_fuzz), &
@@ -124,6 +127,7 @@ program tester
         & new_testsuite("ucosub-catalog", collect_ucosub_catalog), &
         & new_testsuite("dataset-command", collect_dataset_command), &
         & new_testsuite("linear-command", collect_linear_command), &
+        & new_testsuite("joint-command", collect_joint_command), &
         & new_testsuite("initial-conditions", collect_initial_conditions), &
         & new_testsuite("linearisation", collect_linearisation), &
         & new_testsuite("linear-speeds", collect_linear_speeds), &

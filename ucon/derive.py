@@ -118,9 +118,11 @@ def derive(spec: ConstraintSpec) -> Derivatives:
     entries: list[Entry] = []
     cache: dict[sympy.Expr, sympy.Expr] = {}
 
+    simplify = simplified if spec.simplify else (lambda expression: expression)
+
     def add(component: int, output: str, row: int, column: int, raw: sympy.Expr) -> None:
         if raw not in cache:
-            cache[raw] = simplified(raw)
+            cache[raw] = simplify(raw)
         expression = cache[raw]
         if expression != 0:
             entries.append(Entry(component, output, row, column, expression))
@@ -128,7 +130,7 @@ def derive(spec: ConstraintSpec) -> Derivatives:
     for k, constraint in enumerate(spec.constraints, start=1):
         # Simplifying F first keeps its derivatives short (a spec stated with vectors carries
         # sin**2 + cos**2 and the like).
-        f = simplified(constraint.expression)
+        f = simplify(constraint.expression)
         add(k, "value", 0, 0, f)
         add(k, "time_part", 0, 0, time_part(f, variables))
         add(k, "dt", 0, 0, sympy.diff(f, TIME))

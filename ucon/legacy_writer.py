@@ -6,6 +6,7 @@ from typing import TYPE_CHECKING
 
 from .derive import ARRAY_SELECTORS, SCALAR_SELECTORS
 from .messages import (IDRSEL_MESSAGE, IFLAG_MESSAGE, PART_MESSAGE, code_message,
+                       second_part_message,
                        component_message, header_lines, npar_message, parameter_message)
 from .printers import FIXED_WIDTH, LegacyPrinter, fixed_string, wrap_comment, wrap_fixed
 from .spec import ConstraintSpec
@@ -83,7 +84,8 @@ def render_legacy(program: Program) -> str:
         out.add("DOUBLE PRECISION BIG")
         out.add(f"PARAMETER (BIG = {LEGACY_HUGE})")
     several = spec.ncomponents > 1
-    out.add("INTEGER LPARTS(NVARS), LVARS(NVARS), IPART, I" + (", ICOMP" if several else ""))
+    out.add("INTEGER LPARTS(NVARS), LVARS(NVARS), IPART, I" + (", ICOMP" if several else "")
+            + (", JPART" if spec.two_parts else ""))
     out.add("DOUBLE PRECISION " + ", ".join(_legacy_names(spec)))
     if program.temporaries:
         out.add("DOUBLE PRECISION "
@@ -97,6 +99,8 @@ def render_legacy(program: Program) -> str:
     out.add("IF (IFLAG .EQ. 3) THEN")
     out.add("DO 10 I = 1, NVARS", 3)
     out.add("LPARTS(I) = IPART", 6)
+    if spec.two_parts:
+        out.add(f"IF (I .GT. {spec.first_part_nvars}) LPARTS(I) = JPART", 6)
     out.add("CONTINUE", 3, label="10")
     out.add("CALL UCOVAR(ID, NVARS, LPARTS, NVARS, LVARS)", 3)
     out.add("RETURN", 3)
@@ -139,7 +143,10 @@ def render_legacy(program: Program) -> str:
 def _legacy_message_length(spec: ConstraintSpec) -> int:
     """Length of MESAGE: the longest message and its number, rounded up to a multiple of 40."""
     texts = [npar_message(spec), PART_MESSAGE, IFLAG_MESSAGE, IDRSEL_MESSAGE]
-    texts += [code_message(spec, i, v.code) for i, v in enumerate(spec.variables, start=2)]
+    texts += [code_message(spec, spec.code_index(i), v.code)
+              for i, v in enumerate(spec.variables)]
+    if spec.two_parts:
+        texts.append(second_part_message(spec))
     texts += [parameter_message(p.index, p.description, p.check) for p in spec.parameters]
     if spec.component_index:
         texts.append(component_message(spec))
@@ -161,7 +168,13 @@ def _legacy_read_par(out: _FixedLines, spec: ConstraintSpec) -> None:
     fail("PAR(1) .LT. 1.0D0 .OR. PAR(1) .GE. 2147483647.0D0 .OR. PAR(1) .NE. AINT(PAR(1))",
          PART_MESSAGE, "PAR(1)")
     out.add("IPART = NINT(PAR(1))")
-    for i, variable in enumerate(spec.variables, start=2):
+    for position, variable in enumerate(spec.variables):
+        i = spec.code_index(position)
+        if spec.two_parts and position == spec.first_part_nvars:
+            j = f"PAR({spec.second_part_index})"
+            fail(f"{j} .LT. 1.0D0 .OR. {j} .GE. 2147483647.0D0 .OR. {j} .NE. AINT({j}) .OR. "
+                 f"{j} .EQ. PAR(1)", second_part_message(spec), j)
+            out.add(f"JPART = NINT({j})")
         fail(f"PAR({i}) .NE. {variable.code}.0D0", code_message(spec, i, variable.code),
              f"PAR({i})")
     for parameter in spec.parameters:

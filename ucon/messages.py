@@ -11,6 +11,7 @@ __all__ = [
     "code_message",
     "parameter_message",
     "component_message",
+    "second_part_message",
     "PART_MESSAGE",
     "IFLAG_MESSAGE",
     "IDRSEL_MESSAGE",
@@ -29,6 +30,8 @@ def npar_message(spec: ConstraintSpec) -> str:
         return f"{number} {noun}" + ("s" if number != 1 else "")
 
     parts = ["part id", counted(spec.nvars, "code")]
+    if spec.two_parts:
+        parts = ["2 part ids", counted(spec.nvars, "code")]
     if len(spec.parameters) == 1:
         parts.append(spec.parameters[0].meaning)
     elif spec.parameters:
@@ -38,15 +41,26 @@ def npar_message(spec: ConstraintSpec) -> str:
     return f"{spec.title} needs NPAR >= {spec.npar} ({', '.join(parts)}), got NPAR ="
 
 
-def codes_range(spec: ConstraintSpec) -> str:
-    """``"PAR(2:9)"``, or ``"PAR(2)"`` for a single variable."""
-    return "PAR(2)" if spec.nvars == 1 else f"PAR(2:{1 + spec.nvars})"
+def codes_range(spec: ConstraintSpec, part: int = 1) -> str:
+    """``"PAR(2:9)"``, or ``"PAR(2)"`` for a single variable; with part 2, the range of the
+    second part's codes."""
+    n1 = spec.first_part_nvars if spec.two_parts else spec.nvars
+    first, count = (2, n1) if part == 1 else (spec.second_part_index + 1, spec.nvars - n1)
+    return f"PAR({first})" if count == 1 else f"PAR({first}:{first + count - 1})"
 
 
 def code_message(spec: ConstraintSpec, index: int, code: int) -> str:
     """Message for a wrong code at PAR(index); the caller appends the value found."""
-    codes = " ".join(str(v.code) for v in spec.variables)
-    return f"PAR({index}) must be code {code} (codes {codes} in {codes_range(spec)}), got"
+    part = 2 if spec.two_parts and index > spec.second_part_index else 1
+    codes = " ".join(str(v.code) for v in spec.variables if v.part == part)
+    return (f"PAR({index}) must be code {code} (codes {codes} in {codes_range(spec, part)}), "
+            "got")
+
+
+def second_part_message(spec: ConstraintSpec) -> str:
+    """Message for a bad second part id; the caller appends the value found."""
+    return (f"PAR({spec.second_part_index}) (second part id) must be a positive whole number "
+            "other than PAR(1), got")
 
 
 def parameter_message(index: int, description: str, check: str) -> str:

@@ -19,8 +19,8 @@ __all__ = ["render_module", "HELPER_MODULE", "HELPER_NAMES"]
 #: The hand-written module of the checks every generated module shares.
 HELPER_MODULE = "rollcon_ucosub_helpers"
 #: What a generated module may take from it (it imports those it uses).
-HELPER_NAMES = ("read_par_head", "check_parameter", "read_component", "selectors_valid",
-                "idrsel_message", "iflag_message")
+HELPER_NAMES = ("read_par_head", "read_second_part", "check_parameter", "read_component",
+                "selectors_valid", "idrsel_message", "iflag_message")
 #: What a generated module may take from the contract (it imports those it uses).
 CONTRACT_NAMES = ("ucovar", "errmes", "iflag_init", "iflag_eval", "scalar_value",
                   "scalar_time_part", "scalar_dt", "scalar_dtt", "array_dq", "array_dtdq",
@@ -178,18 +178,24 @@ def _module_ucosub(out: _Lines, program: Program, names: dict[str, str]) -> None
         out.add(declaration, 8)
     out.add("character(len=:), allocatable :: message", 8)
     several = spec.ncomponents > 1
-    out.add("integer :: part, component" if several else "integer :: part", 8)
+    parts = "part, part_j" if spec.two_parts else "part"
+    out.add(f"integer :: {parts}, component" if several else f"integer :: {parts}", 8)
     out.add()
-    out.add("call read_par(par, npar, part, component, message)" if several
-            else "call read_par(par, npar, part, message)", 8)
+    out.add(f"call read_par(par, npar, {parts}, component, message)" if several
+            else f"call read_par(par, npar, {parts}, message)", 8)
     out.add("if (allocated(message)) then", 8)
     out.add('call errmes(.true., message, id, "STOP")', 12)
     out.add("return", 12)
     out.add("end if", 8)
     out.add("select case (iflag)", 8)
     out.add("case (iflag_init)", 8)
-    out.add(f"call ucovar(id, {names['nvars']}, spread(part, 1, {names['nvars']}), "
-            f"{names['nvars']}, {names['codes']})", 12)
+    if spec.two_parts:
+        n1, n2 = spec.first_part_nvars, spec.nvars - spec.first_part_nvars
+        out.add(f"call ucovar(id, {names['nvars']}, [spread(part, 1, {n1}), "
+                f"spread(part_j, 1, {n2})], {names['nvars']}, {names['codes']})", 12)
+    else:
+        out.add(f"call ucovar(id, {names['nvars']}, spread(part, 1, {names['nvars']}), "
+                f"{names['nvars']}, {names['codes']})", 12)
     out.add("case (iflag_eval)", 8)
     out.add("if (.not. selectors_valid(idrsel)) then", 12)
     out.add('call errmes(.true., idrsel_message, id, "STOP")', 16)
@@ -214,14 +220,19 @@ def _evaluate_actuals(program: Program) -> str:
 
 def _module_par_function(out: _Lines, spec: ConstraintSpec, names: dict[str, str]) -> None:
     """``<name>_par``: the PAR list of one UCON statement."""
-    dummies = ["part"] + [p.symbol.name for p in spec.parameters]
+    dummies = (["part", "part_j"] if spec.two_parts else ["part"]) + [
+        p.symbol.name for p in spec.parameters]
     if spec.component_index:
         dummies.append("component")
     out.doc("PAR of one UCON statement: part id, the codes, the parameters"
             + (", the component." if spec.component_index else "."), 4)
     out.add(f"pure function {names['par']}({', '.join(dummies)}) result(par)", 4)
-    out.doc("Part id of every variable", 8)
-    out.add("integer, intent(in) :: part", 8)
+    if spec.two_parts:
+        out.doc("Part id of the first part's variables, and of the second part's", 8)
+        out.add("integer, intent(in) :: part, part_j", 8)
+    else:
+        out.doc("Part id of every variable", 8)
+        out.add("integer, intent(in) :: part", 8)
     for parameter in spec.parameters:
         out.doc(parameter.description[0].upper() + parameter.description[1:], 8)
         out.add(f"real(wp), intent(in) :: {parameter.symbol.name}", 8)
@@ -232,6 +243,10 @@ def _module_par_function(out: _Lines, spec: ConstraintSpec, names: dict[str, str
     out.add(f"real(wp) :: par({names['npar']})", 8)
     out.add()
     values = ["real(part, wp)", f"real({names['codes']}, wp)"]
+    if spec.two_parts:
+        n1 = spec.first_part_nvars
+        values = ["real(part, wp)", f"real({names['codes']}(:{n1}), wp)", "real(part_j, wp)",
+                  f"real({names['codes']}({n1 + 1}:), wp)"]
     values += [p.symbol.name for p in spec.parameters]
     if spec.component_index:
         values.append("real(component, wp)")
@@ -244,14 +259,19 @@ def _module_read_par(out: _Lines, spec: ConstraintSpec, names: dict[str, str]) -
     the messages are the spec's."""
     several = spec.ncomponents > 1
     out.doc("Check PAR; message is allocated, and says what was expected, when PAR is wrong.", 4)
-    out.add("pure subroutine read_par(par, npar, part, component, message)" if several
-            else "pure subroutine read_par(par, npar, part, message)", 4)
+    parts = "part, part_j" if spec.two_parts else "part"
+    out.add(f"pure subroutine read_par(par, npar, {parts}, component, message)" if several
+            else f"pure subroutine read_par(par, npar, {parts}, message)", 4)
     out.doc("Constants of the UCON statement", 8)
     out.add("real(wp), intent(in) :: par(*)", 8)
     out.doc("Number of constants", 8)
     out.add("integer, intent(in) :: npar", 8)
-    out.doc("Part id of every variable", 8)
-    out.add("integer, intent(out) :: part", 8)
+    if spec.two_parts:
+        out.doc("Part id of the first part's variables, and of the second part's", 8)
+        out.add("integer, intent(out) :: part, part_j", 8)
+    else:
+        out.doc("Part id of every variable", 8)
+        out.add("integer, intent(out) :: part", 8)
     if several:
         out.doc(f"Which component: {component_choices(spec.ncomponents)}", 8)
         out.add("integer, intent(out) :: component", 8)
@@ -262,6 +282,12 @@ def _module_read_par(out: _Lines, spec: ConstraintSpec, names: dict[str, str]) -
         out.add("component = 0", 8)
     calls = [f"call read_par_head(par, npar, {names['npar']}, {names['codes']}, "
              f"{free_string(npar_message(spec))}, part, message)"]
+    if spec.two_parts:
+        n1 = spec.first_part_nvars
+        calls = [f"call read_par_head(par, npar, {names['npar']}, {names['codes']}(:{n1}), "
+                 f"{free_string(npar_message(spec))}, part, message)",
+                 f"call read_second_part(par, {spec.second_part_index}, "
+                 f"{names['codes']}({n1 + 1}:), part, part_j, message)"]
     for parameter in spec.parameters:
         positive = ".true." if parameter.check == "positive" else ".false."
         calls.append(f"call check_parameter(par, {parameter.index}, "

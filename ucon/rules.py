@@ -77,11 +77,11 @@ RESERVED_NAMES = frozenset(
         # arguments of UCOSUB and of the generated helpers
         "id", "time", "q", "par", "npar", "idrsel", "iflag", "scalar", "array", "xmatrx",
         "part", "component", "message", "i", "nvars", "npars", "big", "lparts", "lvars",
-        "ipart", "icomp", "mesage", "wp", "valid", "pi", "whole", "value",
+        "ipart", "icomp", "mesage", "wp", "valid", "pi", "whole", "value", "part_j", "jpart",
         # procedures of the generated module
         "evaluate", "read_par",
         # what the generated module takes from rollcon_ucosub_helpers and the contract
-        "read_par_head", "check_parameter", "read_component", "selectors_valid", "is_whole",
+        "read_par_head", "read_second_part", "check_parameter", "read_component", "selectors_valid", "is_whole",
         "idrsel_message", "iflag_message", "iflag_init", "iflag_eval", "scalar_value",
         "scalar_time_part", "scalar_dt", "scalar_dtt", "array_dq", "array_dtdq", "xmatrx_dqdq",
         # intrinsics the generated code calls

@@ -2,12 +2,21 @@
 
 A spec names its variables by ADAMS code, its parameters by PAR index (with meaning and
 units), and one or more constraint expressions F(q, t). The PAR layout is the paper's for
-every spec (docs/design.md §5)::
+every spec of one part (docs/design.md §5)::
 
     PAR(1)                  part id of every variable
     PAR(2 .. m+1)           the m variable codes, in declaration order
     PAR(m+2 .. m+p+1)       the p physical parameters, in declaration order
     PAR(m+p+2)              which constraint component (only when there are several)
+
+A spec of two parts (a joint between two parts: some variables declared with ``part=2``,
+after those of the first part) has the second part's id and codes after the first's::
+
+    PAR(1)                  part id of the first part's m1 variables
+    PAR(2 .. m1+1)          their codes
+    PAR(m1+2)               part id of the second part's m2 variables (not PAR(1))
+    PAR(m1+3 .. m1+m2+2)    their codes
+    PAR(m+3 ..)             the parameters, then the component (m = m1 + m2)
 
 :func:`validate` rejects anything ADAMS would not accept, or the generator could not print,
 with a :class:`ValueError` whose message names the spec and the offending item.
@@ -51,10 +60,13 @@ class Variable:
         symbol: the SymPy symbol standing for it in the constraints; its name becomes the
             Fortran local that holds ``Q(i)``.
         code: its ADAMS code (11-16 displacements, 21-26 velocities).
+        part: 1 for a variable of the part in PAR(1), 2 for one of the second part (a spec
+            of two parts; its variables come after the first part's).
     """
 
     symbol: sympy.Symbol
     code: int
+    part: int = 1
 
     @property
     def is_velocity(self) -> bool:
@@ -117,6 +129,10 @@ class ConstraintSpec:
         parameters: the physical constants, in PAR order.
         constraints: one or more components; several share one UCOSUB and PAR picks one.
         component_meaning: what the component number selects (``"no-slip component"``).
+        simplify: run SymPy's simplify on every derived entry (the default). False keeps the
+            entries as differentiated: for specs whose components are sums of products of
+            sines, cosines and parameters already (the joint primitives), where simplify
+            costs minutes per spec and shortens little; the one cse still shares their terms.
     """
 
     name: str
@@ -126,6 +142,7 @@ class ConstraintSpec:
     parameters: tuple[Parameter, ...]
     constraints: tuple[Constraint, ...]
     component_meaning: str = "constraint component"
+    simplify: bool = True
 
     @property
     def source(self) -> str:
@@ -143,9 +160,30 @@ class ConstraintSpec:
         return len(self.constraints)
 
     @property
+    def two_parts(self) -> bool:
+        """True when some variable belongs to the second part."""
+        return any(v.part == 2 for v in self.variables)
+
+    @property
+    def first_part_nvars(self) -> int:
+        """Number of variables of the part in PAR(1)."""
+        return sum(1 for v in self.variables if v.part == 1)
+
+    @property
+    def second_part_index(self) -> int:
+        """PAR index of the second part's id, 0 for a spec of one part."""
+        return 2 + self.first_part_nvars if self.two_parts else 0
+
+    def code_index(self, position: int) -> int:
+        """PAR index of the code of variable ``position`` (0-based, declaration order)."""
+        if position < self.first_part_nvars:
+            return 2 + position
+        return self.second_part_index + 1 + position - self.first_part_nvars
+
+    @property
     def first_parameter_index(self) -> int:
         """PAR index of the first physical parameter."""
-        return 2 + self.nvars
+        return 2 + self.nvars + (1 if self.two_parts else 0)
 
     @property
     def component_index(self) -> int:
@@ -157,7 +195,8 @@ class ConstraintSpec:
     @property
     def npar(self) -> int:
         """Number of PAR entries the routine needs."""
-        return 1 + self.nvars + len(self.parameters) + (1 if self.ncomponents > 1 else 0)
+        return (1 + self.nvars + len(self.parameters) + (1 if self.ncomponents > 1 else 0)
+                + (1 if self.two_parts else 0))
 
     @property
     def symbols(self) -> tuple[sympy.Symbol, ...]:
@@ -172,6 +211,14 @@ class ConstraintSpec:
         rows = [("1", "part id"), (f"2:{1 + self.nvars}", f"codes {codes}")]
         if self.nvars == 1:
             rows[1] = ("2", f"code {codes}")
+        if self.two_parts:
+            n1 = self.first_part_nvars
+            first = " ".join(str(v.code) for v in self.variables[:n1])
+            second = " ".join(str(v.code) for v in self.variables[n1:])
+            j = self.second_part_index
+            rows = [("1", "part id of the first part"), (f"2:{1 + n1}", f"codes {first}"),
+                    (str(j), "part id of the second part (not PAR(1))"),
+                    (f"{j + 1}:{j + self.nvars - n1}", f"codes {second}")]
         for parameter in self.parameters:
             rule = "> 0" if parameter.check == "positive" else "finite"
             rows.append((str(parameter.index), f"{parameter.description}, {rule}"))
@@ -248,7 +295,12 @@ def _validate_variables(spec: ConstraintSpec, where: str) -> None:
     if len(spec.variables) > MAX_VARIABLES:
         raise ValueError(f"{where}: declares {len(spec.variables)} variables; UCOVAR accepts "
                          f"at most {MAX_VARIABLES}")
-    seen: dict[int, str] = {}
+    seen: dict[tuple[int, int], str] = {}
+    parts = [v.part for v in spec.variables]
+    if any(part not in (1, 2) for part in parts) or parts != sorted(parts) or parts[0] != 1:
+        raise ValueError(f"{where}: variables must be of part 1, then (a spec of two parts) "
+                         "of part 2, each part's in a block; got parts "
+                         + " ".join(str(p) for p in parts))
     for variable in spec.variables:
         if not isinstance(variable.symbol, sympy.Symbol):
             raise ValueError(f"{where}: variable {variable.symbol!r} is not a SymPy Symbol")
@@ -257,10 +309,11 @@ def _validate_variables(spec: ConstraintSpec, where: str) -> None:
             valid = " ".join(str(code) for code in CODE_NAMES)
             raise ValueError(f"{where}: variable '{name}' has unknown code {variable.code!r}; "
                              f"expected one of {valid}")
-        if variable.code in seen:
+        key = (variable.part, variable.code)
+        if key in seen:
             raise ValueError(f"{where}: code {variable.code} is declared twice "
-                             f"('{seen[variable.code]}' and '{name}')")
-        seen[variable.code] = name
+                             f"('{seen[key]}' and '{name}')")
+        seen[key] = name
 
 
 def _validate_parameters(spec: ConstraintSpec, where: str) -> None:
@@ -274,7 +327,11 @@ def _validate_parameters(spec: ConstraintSpec, where: str) -> None:
             raise ValueError(
                 f"{where}: parameter '{name}' is at PAR({parameter.index}); expected "
                 f"PAR({expected}) (part id in PAR(1), the {spec.nvars} codes in "
-                f"PAR(2:{1 + spec.nvars}), then the parameters in order)")
+                f"PAR(2:{1 + spec.nvars}), then the parameters in order)"
+                if not spec.two_parts else
+                f"{where}: parameter '{name}' is at PAR({parameter.index}); expected "
+                f"PAR({expected}) (the two parts' ids and codes, then the parameters in "
+                "order)")
         if parameter.check not in PARAMETER_CHECKS:
             raise ValueError(f"{where}: parameter '{name}' has check {parameter.check!r}; "
                              f"expected one of {', '.join(PARAMETER_CHECKS)}")

@@ -17,6 +17,7 @@ module rollcon_ucosub_helpers
     private
 
     public :: selectors_valid, is_whole, read_par_head, check_parameter, read_component
+    public :: read_second_part
     public :: idrsel_message, iflag_message, part_message
 
     !> Message of a call with an IDRSEL outside the table of docs/design.md §2
@@ -88,6 +89,46 @@ contains
             end if
         end do
     end subroutine read_par_head
+
+    !> Check the head of a two-part spec's second part (ucon/spec.py): its part id at
+    !> PAR(index), a positive whole number other than the first part's, and its codes in
+    !> PAR(index + 1:). message is allocated, and says what was expected, when one is wrong.
+    pure subroutine read_second_part(par, index, codes, part, part_j, message)
+        !> Constants of the UCON statement (NPAR already checked by read_par_head)
+        real(wp), intent(in) :: par(*)
+        !> PAR index of the second part's id
+        integer, intent(in) :: index
+        !> Codes of the second part's variables, in UCOVAR order
+        integer, intent(in) :: codes(:)
+        !> The first part's id (PAR(1))
+        integer, intent(in) :: part
+        !> The second part's id; 0 when PAR(index) is not one
+        integer, intent(out) :: part_j
+        !> Allocated when PAR is wrong
+        character(len=:), allocatable, intent(out) :: message
+        character(len=:), allocatable :: range
+        integer :: i
+
+        part_j = 0
+        if (.not. is_whole(par(index)) .or. par(index) < 1.0_wp &
+            & .or. par(index) == real(part, wp)) then
+            message = "PAR(" // to_text(index) // ") (second part id) must be a positive " &
+                & // "whole number other than PAR(1), got " // to_text(par(index))
+            return
+        end if
+        part_j = nint(par(index))
+        range = "PAR(" // to_text(index + 1) // ")"
+        if (size(codes) > 1) range = "PAR(" // to_text(index + 1) // ":" &
+            & // to_text(index + size(codes)) // ")"
+        do i = 1, size(codes)
+            if (par(index + i) /= real(codes(i), wp)) then
+                message = "PAR(" // to_text(index + i) // ") must be code " &
+                    & // to_text(codes(i)) // " (codes " // codes_text(codes) // " in " &
+                    & // range // "), got " // to_text(par(index + i))
+                return
+            end if
+        end do
+    end subroutine read_second_part
 
     !> Check one physical parameter: finite, and positive when asked.
     pure subroutine check_parameter(par, index, description, positive, message)

@@ -51,6 +51,11 @@ module rollcon_model
         logical :: converted = .false.
         real(wp), allocatable :: scales(:)
         real(wp) :: time_scale = 1.0_wp, value_scale = 1.0_wp
+        !> Geometry the driver owns (a joint's markers, docs/datasets.md "JOINT and JPRIM"):
+        !> the PAR indices where 3-vectors fixed in a part start (an origin or an axis, in the
+        !> part's principal axes), and that part (model order); each is turned with its part
+        !> when the part is re-based
+        integer, allocatable :: geometry_par(:), geometry_parts(:)
     end type ucon_statement_type
 
     !> The model
@@ -78,6 +83,7 @@ module rollcon_model
         procedure :: add_ucon
         procedure :: add_force
         procedure :: turn_part_axes
+        procedure :: turn_ucon_geometry
     end type model_type
 
 contains
@@ -161,8 +167,31 @@ contains
                 end if
             end associate
         end do
+        call self%turn_ucon_geometry(p)
         self%parts(p)%inertia = rebased_inertia(self%parts(p)%inertia)
     end subroutine turn_part_axes
+
+    !> The PAR entries of every UCON that hold geometry fixed in part p (a joint's marker
+    !> origins and axes, in the part's principal axes) given in the part's turned axes, so that
+    !> the UCON's F stays the same across a re-basing (docs/rebasing.md).
+    subroutine turn_ucon_geometry(self, p)
+        class(model_type), intent(inout) :: self
+        !> Part index (model order)
+        integer, intent(in) :: p
+        integer :: k, i, s
+
+        if (.not. allocated(self%ucons)) return
+        do k = 1, size(self%ucons)
+            associate (ucon => self%ucons(k))
+                if (.not. allocated(ucon%geometry_par)) cycle
+                do i = 1, size(ucon%geometry_par)
+                    if (ucon%geometry_parts(i) /= p) cycle
+                    s = ucon%geometry_par(i)
+                    ucon%par(s:s + 2) = to_new_basis(ucon%par(s:s + 2))
+                end do
+            end associate
+        end do
+    end subroutine turn_ucon_geometry
 
     !> Initialise every UCON (IFLAG = 3), validate the declarations, map variables to coordinates.
     subroutine setup_model(model, error)

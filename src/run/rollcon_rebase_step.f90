@@ -10,6 +10,7 @@ module rollcon_rebase_step
     use rollcon_error, only : error_type
     use rollcon_text, only : to_text
     use rollcon_problem, only : problem_type
+    use rollcon_model, only : ucon_statement_type
     use rollcon_constraints, only : need_value, need_first
     use rollcon_rebasing, only : rebased_state
     use rollcon_run_settings, only : formulation_ida
@@ -92,6 +93,7 @@ contains
         type(basis_difference_type), intent(out) :: found
         type(error_type), allocatable, intent(out) :: error
         real(wp), allocatable :: f_old(:), f_new(:), scale(:)
+        type(ucon_statement_type), allocatable :: saved(:)
         real(wp) :: allowed
         integer :: i0, k
 
@@ -103,7 +105,12 @@ contains
             if (allocated(error)) return
             f_old = constraints%value
             scale = term_sizes(problem, q, u)
+            ! the new basis with the geometry the driver owns turned with it (a joint's
+            ! markers), as turn_part_axes will leave it; put back after the comparison
+            saved = problem%model%ucons
+            call problem%model%turn_ucon_geometry(p)
             call constraints%evaluate(problem%model, time, q_new, u_new, need_value, error)
+            problem%model%ucons = saved
             if (allocated(error)) return
             f_new = constraints%value
         end associate

@@ -32,6 +32,7 @@ module rollcon_adm_build
     use rollcon_adm_model, only : adm_model_type, adm_force_type, force_sforce, force_vforce
     use rollcon_adm_state, only : part_state
     use rollcon_adm_singular, only : start_singular_parts
+    use rollcon_adm_joint_build, only : add_joint_ucons
     use, intrinsic :: ieee_arithmetic, only : ieee_is_finite
     implicit none
     private
@@ -76,6 +77,7 @@ contains
         model%ucosub_units = ucosub_units_type(length=adm%units%length, time=adm%units%time)
         call add_ucons(adm, fallback, model, error)
         if (allocated(error)) return
+        call add_joint_ucons(adm, model)
         do i = 1, size(adm%forces)
             call add_force_statement(adm, adm%forces(i), model, error)
             if (allocated(error)) return

@@ -8,6 +8,7 @@ module rollcon_adm_model
     use rollcon_expression, only : expression_type
     use rollcon_adm_units, only : units_type
     use rollcon_run_settings, only : run_settings_type
+    use rollcon_adm_joints, only : adm_joint_type
     implicit none
     private
 
@@ -129,6 +130,8 @@ module rollcon_adm_model
         type(adm_marker_type), allocatable :: markers(:)
         type(adm_ucon_type), allocatable :: ucons(:)
         type(adm_force_type), allocatable :: forces(:)
+        !> JOINT and JPRIM statements, in the order of the file (rollcon_adm_joints)
+        type(adm_joint_type), allocatable :: joints(:)
         !> Gravitational acceleration, ground axes [m/s^2] (zero without ACCGRAV)
         real(wp) :: gravity(3) = 0.0_wp
         type(adm_run_type) :: run

@@ -13,8 +13,8 @@ module rollcon_adm_outside
     !> Kinds of statement outside the subset, each with its reason
     integer, parameter :: kinds = 6
     character(len=*), parameter :: reasons(kinds) = [character(len=150) :: &
-        & "rollcon's only constraints are UCONs: state this one as a UCON served by a UCOSUB " &
-        & // "(ucon/ generates one from a SymPy statement)", &
+        & "rollcon's constraints are UCONs, JOINTs and JPRIMs: state this one as a UCON " &
+        & // "served by a UCOSUB (ucon/ generates one from a SymPy statement)", &
         & "prescribed motions are not in the subset", &
         & "force elements other than SFORCE, VFORCE and GFORCE are not in the subset: write " &
         & // "the force as one of them with a FUNCTION expression", &
@@ -24,11 +24,11 @@ module rollcon_adm_outside
         & "rollcon's bodies are rigid PARTs"]
     !> Statement names and the kind of each (statements of ADAMS's outputs are read:
     !> rollcon_adm_outputs)
-    character(len=*), parameter :: names(24) = [character(len=12) :: "JOINT", "JPRIM", &
+    character(len=*), parameter :: names(22) = [character(len=12) :: &
         & "COUPLER", "GEAR", "PTCV", "CVCV", "GCON", "MOTION", "BEAM", "BUSHING", "FIELD", &
         & "SPRINGDAMPER", "FRICTION", "CONTACT", "NFORCE", "VTORQUE", "SENSOR", "VARIABLE", &
         & "DIFF", "ARRAY", "SPLINE", "STRING", "FLEX_BODY", "POINT_MASS"]
-    integer, parameter :: kind_of(size(names)) = [1, 1, 1, 1, 1, 1, 1, 2, 3, 3, 3, 3, 3, 3, &
+    integer, parameter :: kind_of(size(names)) = [1, 1, 1, 1, 1, 2, 3, 3, 3, 3, 3, 3, &
         & 3, 3, 4, 5, 5, 5, 5, 5, 6, 6]
 
 contains

@@ -21,6 +21,8 @@ module rollcon_adm_reader
     use rollcon_adm_loads, only : read_ucon, read_accgrav, read_force
     use rollcon_adm_run, only : read_simulate, read_integrator
     use rollcon_adm_checks, only : check_references
+    use rollcon_adm_joints, only : read_joint
+    use rollcon_adm_joint_build, only : check_joints
     use rollcon_adm_outside, only : outside_reason
     use rollcon_adm_outputs, only : output_statement_names, output_needs_id, &
         & read_output_statement
@@ -78,6 +80,8 @@ contains
         call read_statements(path, text, model, error)
         if (allocated(error)) return
         call check_references(model, error)
+        if (allocated(error)) return
+        call check_joints(model, error)
     end subroutine read_adm_lines
 
     !> Every statement in file order, up to END; parts, markers, UCONs and forces stored in
@@ -93,8 +97,8 @@ contains
         character(len=:), allocatable :: name
         !> The ids of the parts, markers, UCONs and forces (list_of), and of the statements
         !> read and not used that take one (output_key)
-        type(id_index_type) :: ids(4), output_ids
-        integer :: i, n(4), k, previous
+        type(id_index_type) :: ids(5), output_ids
+        integer :: i, n(5), k, previous
         logical :: seen(size(statement_names)), repeated
 
         do i = 1, size(text%statements)
@@ -107,8 +111,10 @@ contains
         allocate(model%parts(count(names == "PART")), model%markers(count(names == "MARKER")), &
             & model%ucons(count(names == "UCON")), model%forces(count(names == "SFORCE" &
             & .or. names == "VFORCE" .or. names == "GFORCE")))
+        allocate(model%joints(count(names == "JOINT" .or. names == "JPRIM")))
         ids = [new_id_index(size(model%parts)), new_id_index(size(model%markers)), &
-            & new_id_index(size(model%ucons)), new_id_index(size(model%forces))]
+            & new_id_index(size(model%ucons)), new_id_index(size(model%forces)), &
+            & new_id_index(size(model%joints))]
         output_ids = new_id_index(count([(name_index(names(i), output_statement_names) > 0, &
             & i = 1, size(names))]))
         n = 0
@@ -153,12 +159,14 @@ contains
         model%markers = model%markers(:n(2))
         model%ucons = model%ucons(:n(3))
         model%forces = model%forces(:n(4))
+        model%joints = model%joints(:n(5))
         model%requests = model%requests(:model%request_count)
         model%unused = model%unused(:model%unused_count)
         model%references = model%references(:model%reference_count)
     end subroutine read_statements
 
-    !> The list a statement's element goes to: 1 parts, 2 markers, 3 UCONs, 4 forces; 0 none.
+    !> The list a statement's element goes to: 1 parts, 2 markers, 3 UCONs, 4 forces, 5 joints;
+    !> 0 none.
     pure integer function list_of(name) result(k)
         character(len=*), intent(in) :: name
 
@@ -171,6 +179,8 @@ contains
             k = 3
         case ("SFORCE", "VFORCE", "GFORCE")
             k = 4
+        case ("JOINT", "JPRIM")
+            k = 5
         case default
             k = 0
         end select
@@ -182,7 +192,9 @@ contains
         integer, intent(in) :: id
         integer(int64) :: key
 
-        key = 4_int64*int(id, int64) + name_index(name, ["SFORCE", "VFORCE", "GFORCE"])
+        ! a JOINT and a JPRIM, or forces of different kinds, may share an id
+        key = 4_int64*int(id, int64) + name_index(name, ["SFORCE", "VFORCE", "GFORCE"]) &
+            & + name_index(name, ["JOINT", "JPRIM"])
     end function list_key
 
     !> The key of a statement read and not used (one of output_statement_names) in its index:
@@ -211,7 +223,7 @@ contains
         type(adm_statement_type), intent(in) :: statement
         logical, intent(in) :: repeated
         type(adm_model_type), intent(inout) :: model
-        integer, intent(inout) :: n(4)
+        integer, intent(inout) :: n(5)
         type(error_type), allocatable, intent(out) :: error
         character(len=:), allocatable :: where
 
@@ -242,6 +254,9 @@ contains
         case ("SFORCE", "VFORCE", "GFORCE")
             n(4) = n(4) + 1
             call read_force(path, where, name, statement, model%forces(n(4)), error)
+        case ("JOINT", "JPRIM")
+            n(5) = n(5) + 1
+            call read_joint(path, where, name, statement, model%joints(n(5)), error)
         case ("SIMULATE")
             call read_simulate(path, where, statement, model%units, model%run, error)
         case ("INTEGRATOR")
@@ -359,7 +374,7 @@ contains
         character(len=*), intent(in) :: name
 
         needs_id = any(name == [character(len=10) :: "PART", "MARKER", "UCON", "SFORCE", &
-            & "VFORCE", "GFORCE"]) .or. output_needs_id(name)
+            & "VFORCE", "GFORCE", "JOINT", "JPRIM"]) .or. output_needs_id(name)
     end function needs_id
 
     !> UNITS, read before any other statement. SYSTEM sets all four units; FORCE, MASS, LENGTH

@@ -13,12 +13,14 @@ module test_adm_refusals
 
     !> The supported statements, as a refusal lists them
     character(len=*), parameter :: supported = &
-        & "(ACCGRAV, END, GFORCE, INTEGRATOR, MARKER, OUTPUT, PART, SFORCE, SIMULATE," &
-        & // " UCON, UNITS, VFORCE)"
+        & "(ACCGRAV, END, GFORCE, INTEGRATOR, JOINT, JPRIM, MARKER, OUTPUT, PART, SFORCE," &
+        & // " SIMULATE, UCON, UNITS, VFORCE)"
     !> The built-in UCOSUBs, as a refusal lists them
     character(len=*), parameter :: builtin = &
-        & "(disk, rolling_disk, chaplygin_sled, disk_height, knife_edge, planar_hold," &
-        & // " rolling_sphere, turntable_ball, turntable_disk)"
+        & "(disk, rolling_disk, chaplygin_sled, disk_height, gnd_atpoint, gnd_inline," &
+        & // " gnd_inplane, gnd_orientation, gnd_parallel_axes, gnd_perpendicular, jp_atpoint," &
+        & // " jp_inline, jp_inplane, jp_orientation, jp_parallel_axes, jp_perpendicular," &
+        & // " knife_edge, planar_hold, rolling_sphere, turntable_ball, turntable_disk)"
 
 contains
 
@@ -42,10 +44,10 @@ contains
         character(len=120) :: replaced(13)
         character(len=400) :: expected(13)
 
-        replaced(1) = "JOINT/9, REVOLUTE, I=3, J=4"
-        expected(1) = ":7: 'JOINT' is not a statement of the supported subset " // supported &
-            & // "; rollcon's only constraints are UCONs: state this one as a UCON served" &
-            & // " by a UCOSUB (ucon/ generates one from a SymPy statement)"
+        replaced(1) = "COUPLER/9, JOINTS=1, 2"
+        expected(1) = ":7: 'COUPLER' is not a statement of the supported subset " // supported &
+            & // "; rollcon's constraints are UCONs, JOINTs and JPRIMs: state this one as a" &
+            & // " UCON served by a UCOSUB (ucon/ generates one from a SymPy statement)"
         replaced(2) = "motion/1, joint=9"
         expected(2) = ":7: 'MOTION' is not a statement of the supported subset " // supported &
             & // "; prescribed motions are not in the subset"
@@ -236,7 +238,7 @@ contains
     subroutine test_ucons(error)
         type(error_type), allocatable, intent(out) :: error
         character(len=120) :: replaced(7)
-        character(len=400) :: expected(7)
+        character(len=700) :: expected(7)
 
         replaced(1) = "UCON/1, FUNCTION=USER(2, 21, 1), ROUTINE=my_lib::ucosub"
         expected(1) = ":8: UCON/1 ROUTINE: 'my_lib::ucosub' is not a built-in UCOSUB " // builtin &

@@ -149,7 +149,17 @@ contains
         cases = [cases, one]
         if (size(values) > 0) then
             one = valid
-            one%par(2 + n) = ieee_value(1.0_wp, ieee_quiet_nan)
+            ! the first parameter: after the part ids and codes
+            one%par(size(one%par) - size(values) - merge(1, 0, spec%ncomponents > 1) + 1) = &
+                & ieee_value(1.0_wp, ieee_quiet_nan)
+            cases = [cases, one]
+        end if
+        if (spec%first_part_nvars > 0) then
+            ! a second part id equal to the first's, then one that is not whole
+            one = valid
+            one%par(spec%first_part_nvars + 2) = one%par(1)
+            cases = [cases, one]
+            one%par(spec%first_part_nvars + 2) = 2.5_wp
             cases = [cases, one]
         end if
         if (spec%ncomponents > 1) then

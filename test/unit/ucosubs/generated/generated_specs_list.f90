@@ -15,6 +15,54 @@ module generated_specs_list
         & disk_height_npar, disk_height_ncomponents, disk_height_time_free, &
         & disk_height_component_time_free, disk_height_holonomic, &
         & disk_height_component_holonomic
+    use rollcon_gen_gnd_atpoint, only : gnd_atpoint_ucosub, gnd_atpoint_codes, &
+        & gnd_atpoint_npar, gnd_atpoint_ncomponents, gnd_atpoint_time_free, &
+        & gnd_atpoint_component_time_free, gnd_atpoint_holonomic, &
+        & gnd_atpoint_component_holonomic
+    use rollcon_gen_gnd_inline, only : gnd_inline_ucosub, gnd_inline_codes, &
+        & gnd_inline_npar, gnd_inline_ncomponents, gnd_inline_time_free, &
+        & gnd_inline_component_time_free, gnd_inline_holonomic, &
+        & gnd_inline_component_holonomic
+    use rollcon_gen_gnd_inplane, only : gnd_inplane_ucosub, gnd_inplane_codes, &
+        & gnd_inplane_npar, gnd_inplane_ncomponents, gnd_inplane_time_free, &
+        & gnd_inplane_component_time_free, gnd_inplane_holonomic, &
+        & gnd_inplane_component_holonomic
+    use rollcon_gen_gnd_orientation, only : gnd_orientation_ucosub, gnd_orientation_codes, &
+        & gnd_orientation_npar, gnd_orientation_ncomponents, gnd_orientation_time_free, &
+        & gnd_orientation_component_time_free, gnd_orientation_holonomic, &
+        & gnd_orientation_component_holonomic
+    use rollcon_gen_gnd_parallel_axes, only : gnd_parallel_axes_ucosub, gnd_parallel_axes_codes, &
+        & gnd_parallel_axes_npar, gnd_parallel_axes_ncomponents, gnd_parallel_axes_time_free, &
+        & gnd_parallel_axes_component_time_free, gnd_parallel_axes_holonomic, &
+        & gnd_parallel_axes_component_holonomic
+    use rollcon_gen_gnd_perpendicular, only : gnd_perpendicular_ucosub, gnd_perpendicular_codes, &
+        & gnd_perpendicular_npar, gnd_perpendicular_ncomponents, gnd_perpendicular_time_free, &
+        & gnd_perpendicular_component_time_free, gnd_perpendicular_holonomic, &
+        & gnd_perpendicular_component_holonomic
+    use rollcon_gen_jp_atpoint, only : jp_atpoint_ucosub, jp_atpoint_codes, &
+        & jp_atpoint_npar, jp_atpoint_ncomponents, jp_atpoint_time_free, &
+        & jp_atpoint_component_time_free, jp_atpoint_holonomic, &
+        & jp_atpoint_component_holonomic
+    use rollcon_gen_jp_inline, only : jp_inline_ucosub, jp_inline_codes, &
+        & jp_inline_npar, jp_inline_ncomponents, jp_inline_time_free, &
+        & jp_inline_component_time_free, jp_inline_holonomic, &
+        & jp_inline_component_holonomic
+    use rollcon_gen_jp_inplane, only : jp_inplane_ucosub, jp_inplane_codes, &
+        & jp_inplane_npar, jp_inplane_ncomponents, jp_inplane_time_free, &
+        & jp_inplane_component_time_free, jp_inplane_holonomic, &
+        & jp_inplane_component_holonomic
+    use rollcon_gen_jp_orientation, only : jp_orientation_ucosub, jp_orientation_codes, &
+        & jp_orientation_npar, jp_orientation_ncomponents, jp_orientation_time_free, &
+        & jp_orientation_component_time_free, jp_orientation_holonomic, &
+        & jp_orientation_component_holonomic
+    use rollcon_gen_jp_parallel_axes, only : jp_parallel_axes_ucosub, jp_parallel_axes_codes, &
+        & jp_parallel_axes_npar, jp_parallel_axes_ncomponents, jp_parallel_axes_time_free, &
+        & jp_parallel_axes_component_time_free, jp_parallel_axes_holonomic, &
+        & jp_parallel_axes_component_holonomic
+    use rollcon_gen_jp_perpendicular, only : jp_perpendicular_ucosub, jp_perpendicular_codes, &
+        & jp_perpendicular_npar, jp_perpendicular_ncomponents, jp_perpendicular_time_free, &
+        & jp_perpendicular_component_time_free, jp_perpendicular_holonomic, &
+        & jp_perpendicular_component_holonomic
     use rollcon_gen_knife_edge, only : knife_edge_ucosub, knife_edge_codes, &
         & knife_edge_npar, knife_edge_ncomponents, knife_edge_time_free, &
         & knife_edge_component_time_free, knife_edge_holonomic, &
@@ -54,6 +102,10 @@ module generated_specs_list
         integer, allocatable :: codes(:)
         !> Number of PAR entries it needs
         integer :: npar = 0
+        !> A spec of two parts (a joint primitive between two parts): the number of variables
+        !> of the part in PAR(1), the rest being the second part's (ucon/spec.py); 0 for a
+        !> spec of one part
+        integer :: first_part_nvars = 0
         !> Number of components (PAR picks one when more than 1)
         integer :: ncomponents = 1
         !> Kind of each physical parameter, in PAR order: "length" (log-uniform in
@@ -80,11 +132,17 @@ contains
         type(generated_spec_type), allocatable, intent(out) :: specs(:)
         integer :: i
 
-        allocate(specs(8))
+        allocate(specs(20))
         do i = 1, size(specs)
             specs(i)%component_meaning = "no-slip component"
         end do
-        specs(4)%component_meaning = "hold component"
+        specs(10)%component_meaning = "hold component"
+        do i = 15, 20
+            specs(i)%component_meaning = "primitive component"
+        end do
+        do i = 3, 8
+            specs(i)%component_meaning = "primitive component"
+        end do
         specs(1)%name = "chaplygin_sled"
         specs(1)%ucosub => chaplygin_sled_ucosub
         specs(1)%codes = chaplygin_sled_codes
@@ -105,67 +163,199 @@ contains
         specs(2)%holonomic = disk_height_holonomic
         specs(2)%component_holonomic = disk_height_component_holonomic
         specs(2)%parameter_kinds = [character(len=6) :: "length"]
-        specs(3)%name = "knife_edge"
-        specs(3)%ucosub => knife_edge_ucosub
-        specs(3)%codes = knife_edge_codes
-        specs(3)%npar = knife_edge_npar
-        specs(3)%ncomponents = knife_edge_ncomponents
-        specs(3)%time_free = knife_edge_time_free
-        specs(3)%component_time_free = knife_edge_component_time_free
-        specs(3)%holonomic = knife_edge_holonomic
-        specs(3)%component_holonomic = knife_edge_component_holonomic
-        allocate(specs(3)%parameter_kinds(0))
-        specs(4)%name = "planar_hold"
-        specs(4)%ucosub => planar_hold_ucosub
-        specs(4)%codes = planar_hold_codes
-        specs(4)%npar = planar_hold_npar
-        specs(4)%ncomponents = planar_hold_ncomponents
-        specs(4)%time_free = planar_hold_time_free
-        specs(4)%component_time_free = planar_hold_component_time_free
-        specs(4)%holonomic = planar_hold_holonomic
-        specs(4)%component_holonomic = planar_hold_component_holonomic
-        specs(4)%parameter_kinds = [character(len=6) :: "offset"]
-        specs(5)%name = "rolling_disk"
-        specs(5)%ucosub => rolling_disk_ucosub
-        specs(5)%codes = rolling_disk_codes
-        specs(5)%npar = rolling_disk_npar
-        specs(5)%ncomponents = rolling_disk_ncomponents
-        specs(5)%time_free = rolling_disk_time_free
-        specs(5)%component_time_free = rolling_disk_component_time_free
-        specs(5)%holonomic = rolling_disk_holonomic
-        specs(5)%component_holonomic = rolling_disk_component_holonomic
-        specs(5)%parameter_kinds = [character(len=6) :: "length"]
-        specs(6)%name = "rolling_sphere"
-        specs(6)%ucosub => rolling_sphere_ucosub
-        specs(6)%codes = rolling_sphere_codes
-        specs(6)%npar = rolling_sphere_npar
-        specs(6)%ncomponents = rolling_sphere_ncomponents
-        specs(6)%time_free = rolling_sphere_time_free
-        specs(6)%component_time_free = rolling_sphere_component_time_free
-        specs(6)%holonomic = rolling_sphere_holonomic
-        specs(6)%component_holonomic = rolling_sphere_component_holonomic
-        specs(6)%parameter_kinds = [character(len=6) :: "length"]
-        specs(7)%name = "turntable_ball"
-        specs(7)%ucosub => turntable_ball_ucosub
-        specs(7)%codes = turntable_ball_codes
-        specs(7)%npar = turntable_ball_npar
-        specs(7)%ncomponents = turntable_ball_ncomponents
-        specs(7)%time_free = turntable_ball_time_free
-        specs(7)%component_time_free = turntable_ball_component_time_free
-        specs(7)%holonomic = turntable_ball_holonomic
-        specs(7)%component_holonomic = turntable_ball_component_holonomic
-        specs(7)%parameter_kinds = [character(len=6) :: "length", "rate", "offset", "offset"]
-        specs(8)%name = "turntable_disk"
-        specs(8)%ucosub => turntable_disk_ucosub
-        specs(8)%codes = turntable_disk_codes
-        specs(8)%npar = turntable_disk_npar
-        specs(8)%ncomponents = turntable_disk_ncomponents
-        specs(8)%time_free = turntable_disk_time_free
-        specs(8)%component_time_free = turntable_disk_component_time_free
-        specs(8)%holonomic = turntable_disk_holonomic
-        specs(8)%component_holonomic = turntable_disk_component_holonomic
-        specs(8)%parameter_kinds = [character(len=6) :: "length", "offset", "offset", "rate", &
+        specs(9)%name = "knife_edge"
+        specs(9)%ucosub => knife_edge_ucosub
+        specs(9)%codes = knife_edge_codes
+        specs(9)%npar = knife_edge_npar
+        specs(9)%ncomponents = knife_edge_ncomponents
+        specs(9)%time_free = knife_edge_time_free
+        specs(9)%component_time_free = knife_edge_component_time_free
+        specs(9)%holonomic = knife_edge_holonomic
+        specs(9)%component_holonomic = knife_edge_component_holonomic
+        allocate(specs(9)%parameter_kinds(0))
+        specs(10)%name = "planar_hold"
+        specs(10)%ucosub => planar_hold_ucosub
+        specs(10)%codes = planar_hold_codes
+        specs(10)%npar = planar_hold_npar
+        specs(10)%ncomponents = planar_hold_ncomponents
+        specs(10)%time_free = planar_hold_time_free
+        specs(10)%component_time_free = planar_hold_component_time_free
+        specs(10)%holonomic = planar_hold_holonomic
+        specs(10)%component_holonomic = planar_hold_component_holonomic
+        specs(10)%parameter_kinds = [character(len=6) :: "offset"]
+        specs(11)%name = "rolling_disk"
+        specs(11)%ucosub => rolling_disk_ucosub
+        specs(11)%codes = rolling_disk_codes
+        specs(11)%npar = rolling_disk_npar
+        specs(11)%ncomponents = rolling_disk_ncomponents
+        specs(11)%time_free = rolling_disk_time_free
+        specs(11)%component_time_free = rolling_disk_component_time_free
+        specs(11)%holonomic = rolling_disk_holonomic
+        specs(11)%component_holonomic = rolling_disk_component_holonomic
+        specs(11)%parameter_kinds = [character(len=6) :: "length"]
+        specs(12)%name = "rolling_sphere"
+        specs(12)%ucosub => rolling_sphere_ucosub
+        specs(12)%codes = rolling_sphere_codes
+        specs(12)%npar = rolling_sphere_npar
+        specs(12)%ncomponents = rolling_sphere_ncomponents
+        specs(12)%time_free = rolling_sphere_time_free
+        specs(12)%component_time_free = rolling_sphere_component_time_free
+        specs(12)%holonomic = rolling_sphere_holonomic
+        specs(12)%component_holonomic = rolling_sphere_component_holonomic
+        specs(12)%parameter_kinds = [character(len=6) :: "length"]
+        specs(13)%name = "turntable_ball"
+        specs(13)%ucosub => turntable_ball_ucosub
+        specs(13)%codes = turntable_ball_codes
+        specs(13)%npar = turntable_ball_npar
+        specs(13)%ncomponents = turntable_ball_ncomponents
+        specs(13)%time_free = turntable_ball_time_free
+        specs(13)%component_time_free = turntable_ball_component_time_free
+        specs(13)%holonomic = turntable_ball_holonomic
+        specs(13)%component_holonomic = turntable_ball_component_holonomic
+        specs(13)%parameter_kinds = [character(len=6) :: "length", "rate", "offset", "offset"]
+        specs(14)%name = "turntable_disk"
+        specs(14)%ucosub => turntable_disk_ucosub
+        specs(14)%codes = turntable_disk_codes
+        specs(14)%npar = turntable_disk_npar
+        specs(14)%ncomponents = turntable_disk_ncomponents
+        specs(14)%time_free = turntable_disk_time_free
+        specs(14)%component_time_free = turntable_disk_component_time_free
+        specs(14)%holonomic = turntable_disk_holonomic
+        specs(14)%component_holonomic = turntable_disk_component_holonomic
+        specs(14)%parameter_kinds = [character(len=6) :: "length", "offset", "offset", "rate", &
             & "rate", "rate"]
+        specs(3)%name = "gnd_atpoint"
+        specs(3)%ucosub => gnd_atpoint_ucosub
+        specs(3)%codes = gnd_atpoint_codes
+        specs(3)%npar = gnd_atpoint_npar
+        specs(3)%ncomponents = gnd_atpoint_ncomponents
+        specs(3)%time_free = gnd_atpoint_time_free
+        specs(3)%component_time_free = gnd_atpoint_component_time_free
+        specs(3)%holonomic = gnd_atpoint_holonomic
+        specs(3)%component_holonomic = gnd_atpoint_component_holonomic
+        ! marker origins and axes: any finite numbers (the routine assumes no unit axes)
+        specs(3)%parameter_kinds = spread("offset", 1, 6)
+        specs(4)%name = "gnd_inline"
+        specs(4)%ucosub => gnd_inline_ucosub
+        specs(4)%codes = gnd_inline_codes
+        specs(4)%npar = gnd_inline_npar
+        specs(4)%ncomponents = gnd_inline_ncomponents
+        specs(4)%time_free = gnd_inline_time_free
+        specs(4)%component_time_free = gnd_inline_component_time_free
+        specs(4)%holonomic = gnd_inline_holonomic
+        specs(4)%component_holonomic = gnd_inline_component_holonomic
+        ! marker origins and axes: any finite numbers (the routine assumes no unit axes)
+        specs(4)%parameter_kinds = spread("offset", 1, 12)
+        specs(5)%name = "gnd_inplane"
+        specs(5)%ucosub => gnd_inplane_ucosub
+        specs(5)%codes = gnd_inplane_codes
+        specs(5)%npar = gnd_inplane_npar
+        specs(5)%ncomponents = gnd_inplane_ncomponents
+        specs(5)%time_free = gnd_inplane_time_free
+        specs(5)%component_time_free = gnd_inplane_component_time_free
+        specs(5)%holonomic = gnd_inplane_holonomic
+        specs(5)%component_holonomic = gnd_inplane_component_holonomic
+        ! marker origins and axes: any finite numbers (the routine assumes no unit axes)
+        specs(5)%parameter_kinds = spread("offset", 1, 9)
+        specs(6)%name = "gnd_orientation"
+        specs(6)%ucosub => gnd_orientation_ucosub
+        specs(6)%codes = gnd_orientation_codes
+        specs(6)%npar = gnd_orientation_npar
+        specs(6)%ncomponents = gnd_orientation_ncomponents
+        specs(6)%time_free = gnd_orientation_time_free
+        specs(6)%component_time_free = gnd_orientation_component_time_free
+        specs(6)%holonomic = gnd_orientation_holonomic
+        specs(6)%component_holonomic = gnd_orientation_component_holonomic
+        ! marker origins and axes: any finite numbers (the routine assumes no unit axes)
+        specs(6)%parameter_kinds = spread("offset", 1, 12)
+        specs(7)%name = "gnd_parallel_axes"
+        specs(7)%ucosub => gnd_parallel_axes_ucosub
+        specs(7)%codes = gnd_parallel_axes_codes
+        specs(7)%npar = gnd_parallel_axes_npar
+        specs(7)%ncomponents = gnd_parallel_axes_ncomponents
+        specs(7)%time_free = gnd_parallel_axes_time_free
+        specs(7)%component_time_free = gnd_parallel_axes_component_time_free
+        specs(7)%holonomic = gnd_parallel_axes_holonomic
+        specs(7)%component_holonomic = gnd_parallel_axes_component_holonomic
+        ! marker origins and axes: any finite numbers (the routine assumes no unit axes)
+        specs(7)%parameter_kinds = spread("offset", 1, 9)
+        specs(8)%name = "gnd_perpendicular"
+        specs(8)%ucosub => gnd_perpendicular_ucosub
+        specs(8)%codes = gnd_perpendicular_codes
+        specs(8)%npar = gnd_perpendicular_npar
+        specs(8)%ncomponents = gnd_perpendicular_ncomponents
+        specs(8)%time_free = gnd_perpendicular_time_free
+        specs(8)%component_time_free = gnd_perpendicular_component_time_free
+        specs(8)%holonomic = gnd_perpendicular_holonomic
+        specs(8)%component_holonomic = gnd_perpendicular_component_holonomic
+        ! marker origins and axes: any finite numbers (the routine assumes no unit axes)
+        specs(8)%parameter_kinds = spread("offset", 1, 6)
+        specs(15)%name = "jp_atpoint"
+        specs(15)%ucosub => jp_atpoint_ucosub
+        specs(15)%codes = jp_atpoint_codes
+        specs(15)%npar = jp_atpoint_npar
+        specs(15)%first_part_nvars = 6
+        specs(15)%ncomponents = jp_atpoint_ncomponents
+        specs(15)%time_free = jp_atpoint_time_free
+        specs(15)%component_time_free = jp_atpoint_component_time_free
+        specs(15)%holonomic = jp_atpoint_holonomic
+        specs(15)%component_holonomic = jp_atpoint_component_holonomic
+        specs(15)%parameter_kinds = spread("offset", 1, 6)
+        specs(16)%name = "jp_inline"
+        specs(16)%ucosub => jp_inline_ucosub
+        specs(16)%codes = jp_inline_codes
+        specs(16)%npar = jp_inline_npar
+        specs(16)%first_part_nvars = 6
+        specs(16)%ncomponents = jp_inline_ncomponents
+        specs(16)%time_free = jp_inline_time_free
+        specs(16)%component_time_free = jp_inline_component_time_free
+        specs(16)%holonomic = jp_inline_holonomic
+        specs(16)%component_holonomic = jp_inline_component_holonomic
+        specs(16)%parameter_kinds = spread("offset", 1, 12)
+        specs(17)%name = "jp_inplane"
+        specs(17)%ucosub => jp_inplane_ucosub
+        specs(17)%codes = jp_inplane_codes
+        specs(17)%npar = jp_inplane_npar
+        specs(17)%first_part_nvars = 6
+        specs(17)%ncomponents = jp_inplane_ncomponents
+        specs(17)%time_free = jp_inplane_time_free
+        specs(17)%component_time_free = jp_inplane_component_time_free
+        specs(17)%holonomic = jp_inplane_holonomic
+        specs(17)%component_holonomic = jp_inplane_component_holonomic
+        specs(17)%parameter_kinds = spread("offset", 1, 9)
+        specs(18)%name = "jp_orientation"
+        specs(18)%ucosub => jp_orientation_ucosub
+        specs(18)%codes = jp_orientation_codes
+        specs(18)%npar = jp_orientation_npar
+        specs(18)%first_part_nvars = 3
+        specs(18)%ncomponents = jp_orientation_ncomponents
+        specs(18)%time_free = jp_orientation_time_free
+        specs(18)%component_time_free = jp_orientation_component_time_free
+        specs(18)%holonomic = jp_orientation_holonomic
+        specs(18)%component_holonomic = jp_orientation_component_holonomic
+        specs(18)%parameter_kinds = spread("offset", 1, 12)
+        specs(19)%name = "jp_parallel_axes"
+        specs(19)%ucosub => jp_parallel_axes_ucosub
+        specs(19)%codes = jp_parallel_axes_codes
+        specs(19)%npar = jp_parallel_axes_npar
+        specs(19)%first_part_nvars = 3
+        specs(19)%ncomponents = jp_parallel_axes_ncomponents
+        specs(19)%time_free = jp_parallel_axes_time_free
+        specs(19)%component_time_free = jp_parallel_axes_component_time_free
+        specs(19)%holonomic = jp_parallel_axes_holonomic
+        specs(19)%component_holonomic = jp_parallel_axes_component_holonomic
+        specs(19)%parameter_kinds = spread("offset", 1, 9)
+        specs(20)%name = "jp_perpendicular"
+        specs(20)%ucosub => jp_perpendicular_ucosub
+        specs(20)%codes = jp_perpendicular_codes
+        specs(20)%npar = jp_perpendicular_npar
+        specs(20)%first_part_nvars = 3
+        specs(20)%ncomponents = jp_perpendicular_ncomponents
+        specs(20)%time_free = jp_perpendicular_time_free
+        specs(20)%component_time_free = jp_perpendicular_component_time_free
+        specs(20)%holonomic = jp_perpendicular_holonomic
+        specs(20)%component_holonomic = jp_perpendicular_component_holonomic
+        specs(20)%parameter_kinds = spread("offset", 1, 6)
     end subroutine generated_specs
 
     !> State k of a series for the given codes: positions in [-2, 2] m; psi, phi in [-pi, pi];
@@ -228,8 +418,9 @@ contains
         end do
     end subroutine random_parameters
 
-    !> PAR of one UCON statement in the layout every spec shares: part id, codes, parameters,
-    !> then the component when there are several.
+    !> PAR of one UCON statement in the layout every spec shares: part id, codes (a spec of two
+    !> parts: then the second part's id, part + 1, and its codes), parameters, then the
+    !> component when there are several.
     function spec_par(spec, part, values, component) result(par)
         !> The spec
         type(generated_spec_type), intent(in) :: spec
@@ -242,6 +433,10 @@ contains
         real(wp), allocatable :: par(:)
 
         par = [real(part, wp), real(spec%codes, wp), values]
+        ! a spec of two parts: the second part (id part + 1) and its codes after the first's
+        if (spec%first_part_nvars > 0) par = [real(part, wp), &
+            & real(spec%codes(:spec%first_part_nvars), wp), real(part + 1, wp), &
+            & real(spec%codes(spec%first_part_nvars + 1:), wp), values]
         if (spec%ncomponents > 1) par = [par, real(component, wp)]
     end function spec_par
 

@@ -306,7 +306,8 @@ contains
             & "too few entries compared: " // to_text(result%compared))
     end subroutine test_derivatives
 
-    !> The initialisation call declares the spec's codes, all for the part in PAR(1).
+    !> The initialisation call declares the spec's codes, all for the part in PAR(1) (a spec of
+    !> two parts: the second part's for the part after its codes).
     subroutine test_declarations(error)
         type(error_type), allocatable, intent(out) :: error
         type(generated_spec_type), allocatable :: specs(:)
@@ -332,7 +333,8 @@ contains
                         & specs(s)%name // ": wrong number of variables declared")
                     if (allocated(error)) return
                     call check(error, all(declared%codes == specs(s)%codes) &
-                        & .and. all(declared%parts == 3 + s), specs(s)%name &
+                        & .and. all(declared%parts == expected_parts(specs(s), 3 + s)), &
+                        & specs(s)%name &
                         & // ": declared codes or parts differ from the spec")
                     if (allocated(error)) return
                 end associate
@@ -375,5 +377,16 @@ contains
             end if
         end do
     end subroutine test_bad_calls
+
+    !> The part of each variable a spec declares with `part` in PAR(1) (spec_par gives a
+    !> second part the id part + 1).
+    pure function expected_parts(spec, part) result(parts)
+        type(generated_spec_type), intent(in) :: spec
+        integer, intent(in) :: part
+        integer :: parts(size(spec%codes))
+
+        parts = part
+        if (spec%first_part_nvars > 0) parts(spec%first_part_nvars + 1:) = part + 1
+    end function expected_parts
 
 end module test_generated

@@ -1,0 +1,535 @@
+! SPDX-License-Identifier: MIT
+!> JOINT and JPRIM statements (suite adm-joints): every joint type against a case with a known
+!> answer, the primitives held and free where they should be, a joint between two parts, a
+!> joint whose part is re-based during the run, the initial-conditions analysis pulling a joint
+!> together, and the refusals (docs/datasets.md, "JOINT and JPRIM").
+module test_adm_joints
+    use rollcon_kinds, only : wp
+    use rollcon_constants, only : pi
+    use rollcon_error, only : error_type
+    use rollcon_text, only : to_text
+    use rollcon_adm_model, only : adm_model_type
+    use rollcon_adm_reader, only : read_adm
+    use rollcon_job, only : job_type
+    use rollcon_load, only : load_job
+    use rollcon_run_job, only : run_job, job_result_type
+    use rollcon_simulation, only : history_type, status_completed
+    use rollcon_testing, only : unittest_type, new_unittest, check
+    implicit none
+    private
+
+    public :: collect_adm_joints
+
+    character(len=*), parameter :: work_dir = "build/rollcon-test"
+    character(len=*), parameter :: nl = new_line("a")
+    real(wp), parameter :: g = 9.81_wp
+    !> The joints' residuals: position constraints held by IDA at rtol = atol = 1e-10 stay a
+    !> few atol off (the pendulum's measured largest is 3.4e-11 m); 1e-8 is 100 atol, and a
+    !> joint not held at all is off by the motion itself, 0.1 to 1 m
+    real(wp), parameter :: tol_residual = 1.0e-8_wp
+    !> Energy drift relative to E0: the run's own bound at rtol 1e-10 is some 1e-8 (the
+    !> pendulum: 2.9e-8 measured against 5.7e-8 allowed); a joint that does work (a wrong
+    !> partial in its force) changes E by percents
+    real(wp), parameter :: tol_energy = 1.0e-6_wp
+
+contains
+
+    subroutine collect_adm_joints(tests)
+        type(unittest_type), allocatable, intent(out) :: tests(:)
+
+        tests = [new_unittest("revolute-pendulum-exact-period", test_pendulum_period), &
+            & new_unittest("translational-slider-on-incline", test_slider), &
+            & new_unittest("spherical-pendulum-conserves", test_spherical), &
+            & new_unittest("joints-and-primitives-held-and-free", test_primitives), &
+            & new_unittest("double-pendulum-two-parts", test_double_pendulum), &
+            & new_unittest("joint-survives-rebasing", test_rebasing), &
+            & new_unittest("initial-conditions-pull-together", test_apart), &
+            & new_unittest("refusals", test_refusals)]
+    end subroutine collect_adm_joints
+
+    !> data/pendulum.adm: a bob of 1 kg, l = 0.5 m, I_O = 0.26 kg m^2 about the hinge,
+    !> released at rest at 60 degrees. Its period, from the times the bob crosses below the
+    !> hinge (X = 0) going the same way, against the exact large-amplitude period
+    !> 4 sqrt(I_O/(m g l)) K(sin 30 deg), K the complete elliptic integral of the first kind
+    !> computed here by the arithmetic-geometric mean: 1.5597 s, 7.3 % more than the
+    !> small-amplitude 2 pi sqrt(I_O/(m g l)) = 1.4536 s.
+    subroutine test_pendulum_period(error)
+        type(error_type), allocatable, intent(out) :: error
+        !> The crossing times are interpolated linearly between rows 1 ms apart; at X = 0 the
+        !> bob's X'' vanishes, so the error is of X''' h^2 / 8 over the speed X' = 1.9 m/s:
+        !> 20 m/s^3 * 1e-6 s^2 / 8 / 1.9 m/s = 1.3e-6 s per crossing. 1e-5 s is 8 times that,
+        !> and 1e4 times below the difference from the small-amplitude period
+        real(wp), parameter :: tol_period = 1.0e-5_wp
+        type(history_type) :: rows
+        type(job_result_type) :: result
+        real(wp) :: exact, small, crossings(8), t0, t1, x0, x1, i_o
+        integer :: k, n, cx
+
+        call run_file("data/pendulum.adm", result, rows, error)
+        if (allocated(error)) return
+        i_o = 0.01_wp + 1.0_wp*0.5_wp**2
+        exact = 4.0_wp*sqrt(i_o/(1.0_wp*g*0.5_wp))*elliptic_k(sin(pi/6.0_wp))
+        small = 2.0_wp*pi*sqrt(i_o/(1.0_wp*g*0.5_wp))
+        cx = result%summary%layout%column("X_2")
+        n = 0
+        do k = 2, rows%count
+            x0 = rows%rows(cx, k - 1)
+            x1 = rows%rows(cx, k)
+            ! released at X < 0: upward crossings (X from - to +)
+            if (x0 < 0.0_wp .and. x1 >= 0.0_wp .and. n < size(crossings)) then
+                t0 = rows%rows(1, k - 1)
+                t1 = rows%rows(1, k)
+                n = n + 1
+                crossings(n) = t0 - x0*(t1 - t0)/(x1 - x0)
+            end if
+        end do
+        call check(error, n >= 2, "fewer than two crossings in 4 s: " // to_text(n))
+        if (allocated(error)) return
+        call check(error, abs((crossings(n) - crossings(1))/(n - 1) - exact) <= tol_period &
+            & .and. abs(exact - small) > 0.1_wp, "period " // to_text((crossings(n) &
+            & - crossings(1))/(n - 1)) // " s, exact " // to_text(exact) // " s")
+        if (allocated(error)) return
+        call check_held(result, error)
+    end subroutine test_pendulum_period
+
+    !> A block on a TRANSLATIONAL joint whose axis (J's z) runs down a 30-degree incline:
+    !> released at rest, it slides s = g sin(30 deg) t^2 / 2 along the axis and does not turn.
+    subroutine test_slider(error)
+        type(error_type), allocatable, intent(out) :: error
+        !> X, Z of the CM against the formula at rtol = atol = 1e-10 over 1 s (s = 2.45 m):
+        !> 1e-8 m is 100 atol; a wrong direction or a joint that brakes is off by the metre
+        real(wp), parameter :: tol_position = 1.0e-8_wp
+        !> The angles do not move at all but by round-off and the integrator's atol
+        real(wp), parameter :: tol_angle = 1.0e-9_wp
+        type(history_type) :: rows
+        type(job_result_type) :: result
+        real(wp) :: s, t, worst, turned, alpha
+        integer :: k, cx, cz, c
+
+        alpha = pi/6.0_wp
+        call run_text("slider.adm", "slider on an incline" // nl &
+            & // "PART/1, GROUND" // nl &
+            & // "MARKER/10, PART=1, REULER=90D, 120D, 0D   ! z: down the incline" // nl &
+            & // "PART/2, MASS=3, CM=20, IP=0.1, 0.2, 0.25" // nl &
+            & // "MARKER/20, PART=2, REULER=0, 90D, 0" // nl &
+            & // "MARKER/21, PART=2, REULER=90D, 120D, 0D" // nl &
+            & // "JOINT/4, TRANSLATIONAL, I=21, J=10" // nl &
+            & // "ACCGRAV/KGRAV=-9.81" // nl &
+            & // "SIMULATE/DYNAMIC, END=1, DTOUT=0.01" // nl &
+            & // "INTEGRATOR/ERROR=1e-10" // nl, result, rows, error)
+        if (allocated(error)) return
+        cx = result%summary%layout%column("X_2")
+        cz = result%summary%layout%column("Z_2")
+        worst = 0.0_wp
+        turned = 0.0_wp
+        do k = 1, rows%count
+            t = rows%rows(1, k)
+            s = 0.5_wp*g*sin(alpha)*t**2
+            worst = max(worst, abs(rows%rows(cx, k) - s*cos(alpha)), &
+                & abs(rows%rows(cz, k) + s*sin(alpha)))
+            do c = 4, 6
+                turned = max(turned, abs(rows%rows(cx + c - 1, k) - rows%rows(cx + c - 1, 1)))
+            end do
+        end do
+        call check(error, worst <= tol_position .and. turned <= tol_angle .and. &
+            & rows%rows(1, rows%count) > 0.99_wp, "largest distance from the formula " &
+            & // to_text(worst) // " m, largest turn " // to_text(turned) // " rad")
+        if (allocated(error)) return
+        call check_held(result, error)
+    end subroutine test_slider
+
+    !> A spherical pendulum: a bob on a SPHERICAL joint at the origin, 0.4 m out at 50 degrees
+    !> from the vertical, sent sideways. Its angular momentum about the vertical through the
+    !> pivot, m (x ydot - y xdot) + I omega_Z (the bob's inertia is isotropic), and its energy
+    !> are conserved.
+    subroutine test_spherical(error)
+        type(error_type), allocatable, intent(out) :: error
+        !> H_Z relative to its start (0.76 kg m^2/s): the constraint force passes through the
+        !> pivot and gravity is vertical, so only the integration errors (rtol 1e-10) change
+        !> it; 1e-7 allows a thousand of them, and a spurious torque changes it by percents
+        real(wp), parameter :: tol_momentum = 1.0e-7_wp
+        type(history_type) :: rows
+        type(job_result_type) :: result
+        real(wp) :: h0, h, worst, m, inertia
+        integer :: k, c
+
+        m = 2.0_wp
+        inertia = 0.02_wp
+        call run_text("spherical.adm", "spherical pendulum" // nl &
+            & // "PART/1, GROUND" // nl &
+            & // "MARKER/10, PART=1" // nl &
+            & // "PART/2, MASS=2, CM=20, IP=0.02, 0.02, 0.02, VY=1.2, WX=0.5, WZ=2" // nl &
+            & // "MARKER/20, PART=2, QP=0.30641777724759, 0, -0.25711504387461, " &
+            & // "REULER=20D, 70D, 10D" // nl &
+            & // "MARKER/21, PART=2" // nl &
+            & // "JOINT/2, SPHERICAL, I=21, J=10" // nl &
+            & // "ACCGRAV/KGRAV=-9.81" // nl &
+            & // "SIMULATE/DYNAMIC, END=3, DTOUT=0.01" // nl &
+            & // "INTEGRATOR/ERROR=1e-10" // nl, result, rows, error)
+        if (allocated(error)) return
+        c = result%summary%layout%column("X_2")
+        worst = 0.0_wp
+        do k = 1, rows%count
+            associate (r => rows%rows(c:c + 11, k))
+                ! omega_Z = psidot + phidot cos(theta) (docs/design.md §3)
+                h = m*(r(1)*r(8) - r(2)*r(7)) + inertia*(r(10) + r(12)*cos(r(5)))
+            end associate
+            if (k == 1) h0 = h
+            worst = max(worst, abs(h - h0))
+        end do
+        call check(error, worst <= tol_momentum*abs(h0) .and. abs(h0) > 0.1_wp, &
+            & "H_Z changed by " // to_text(worst) // " kg m^2/s from " // to_text(h0))
+        if (allocated(error)) return
+        call check_held(result, error)
+    end subroutine test_spherical
+
+    !> A part tied to ground by each JOINT type and each JPRIM, started moving and turning
+    !> under gravity: the joint's UCONs held and the energy conserved (check_held); what the
+    !> joint fixes does not move (the part's angles for FIXED, TRANSLATIONAL and ORIENTATION;
+    !> I's origin from J's, as a displacement request measures it in J's axes, along the
+    !> constrained directions) and what it leaves free does (by more than 1e-3). With CVODE
+    !> (BDF, projection) at ERROR = 1e-10: IDA fails its first step (IDA_CONV_FAIL at t = 0,
+    !> at 1e-8 too, with the analytic Jacobian or difference quotients) on the PARALLEL_AXES
+    !> and ORIENTATION parts, whose joints hold angles only while the part falls freely; the
+    !> other cases run with IDA too. docs/datasets.md states this limit.
+    subroutine test_primitives(error)
+        type(error_type), allocatable, intent(out) :: error
+        character(len=*), parameter :: cases(11) = [character(len=28) :: &
+            & "JOINT CYLINDRICAL", "JOINT UNIVERSAL", "JOINT FIXED", "JOINT REVOLUTE", &
+            & "JPRIM ATPOINT", "JPRIM INLINE", "JPRIM INPLANE", "JPRIM PARALLEL_AXES", &
+            & "JPRIM PERPENDICULAR", "JPRIM ORIENTATION", "JOINT TRANSLATIONAL"]
+        !> Whether each case leaves free: rotation, translation along J's z, in J's x-y plane
+        logical, parameter :: turns(11) = [.true., .true., .false., .true., .true., .true., &
+            & .true., .true., .true., .false., .false.]
+        logical, parameter :: along(11) = [.true., .false., .false., .false., .false., .true., &
+            & .false., .true., .true., .true., .true.]
+        logical, parameter :: across(11) = [.false., .false., .false., .false., .false., &
+            & .false., .true., .true., .true., .true., .false.]
+        type(history_type) :: rows
+        type(job_result_type) :: result
+        character(len=:), allocatable :: kind, i_angles
+        real(wp) :: turn, moved_along, moved_across
+        integer :: n, k, c, cq, cr
+
+        do n = 1, size(cases)
+            kind = trim(cases(n))
+            ! PERPENDICULAR and UNIVERSAL need I's z across J's at the start
+            i_angles = "0, 0, 0"
+            if (index(kind, "PERPENDICULAR") > 0 .or. index(kind, "UNIVERSAL") > 0) &
+                & i_angles = "0, 90D, 0"
+            call run_text("primitive.adm", "a part on a joint" // nl &
+                & // "PART/1, GROUND" // nl &
+                & // "MARKER/10, PART=1, QP=0.1, -0.2, 0.3, REULER=30D, 40D, 50D" // nl &
+                & // "PART/2, MASS=2, CM=20, IP=0.02, 0.03, 0.04, QG=0.1, -0.2, 0.3" // nl &
+                & // ", REULER=30D, 40D, 50D, VX=0.3, VY=-0.2, VZ=0.5, WX=1, WY=-2, WZ=3" // nl &
+                & // "MARKER/20, PART=2, QP=0.05, 0.1, -0.2, REULER=10D, 70D, 20D" // nl &
+                & // "MARKER/21, PART=2, REULER=" // i_angles // nl &
+                & // kind(:5) // "/7, " // kind(7:) // ", I=21, J=10" // nl &
+                & // "REQUEST/1, DISPLACEMENT, I=21, J=10, RM=10" // nl &
+                & // "ACCGRAV/KGRAV=-9.81" // nl &
+                & // "SIMULATE/DYNAMIC, END=1, DTOUT=0.01" // nl &
+                & // "INTEGRATOR/ERROR=1e-10, FORMULATION=CVODE" // nl, result, rows, error)
+            if (allocated(error)) then
+                error%message = kind // ": " // error%message
+                return
+            end if
+            call check_held(result, error)
+            if (allocated(error)) then
+                error%message = kind // ": " // error%message
+                return
+            end if
+            cq = result%summary%layout%column("psi_2")
+            cr = result%summary%layout%column("req1_x")
+            turn = 0.0_wp
+            moved_along = 0.0_wp
+            moved_across = 0.0_wp
+            do k = 1, rows%count
+                do c = 0, 2
+                    turn = max(turn, abs(rows%rows(cq + c, k) - rows%rows(cq + c, 1)))
+                end do
+                moved_along = max(moved_along, abs(rows%rows(cr + 2, k) - rows%rows(cr + 2, 1)))
+                moved_across = max(moved_across, hypot(rows%rows(cr, k) - rows%rows(cr, 1), &
+                    & rows%rows(cr + 1, k) - rows%rows(cr + 1, 1)))
+            end do
+            ! held: 1e-8 (a few atol); free: 1e-3, thousands of times below the motion
+            call check(error, free_or_held(turns(n), turn) .and. free_or_held(along(n), &
+                & moved_along) .and. free_or_held(across(n), moved_across), kind &
+                & // ": largest turn " // to_text(turn) // " rad, move along J's z " &
+                & // to_text(moved_along) // " m, across " // to_text(moved_across) // " m")
+            if (allocated(error)) return
+        end do
+    end subroutine test_primitives
+
+    !> A double pendulum: PART/2 hinged to ground, PART/3 hinged to PART/2 by a REVOLUTE joint
+    !> between two moving parts, swinging through large angles for 3 s: energy conserved and
+    !> both joints held, and the lower arm does swing about the elbow (its angle to the upper
+    !> arm changes by more than 0.1 rad).
+    subroutine test_double_pendulum(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(history_type) :: rows
+        type(job_result_type) :: result
+        real(wp) :: bend, bend0, largest
+        integer :: k, c2, c3
+
+        call run_text("double.adm", "double pendulum" // nl &
+            & // "PART/1, GROUND" // nl &
+            & // "MARKER/10, PART=1, REULER=180D, 90D, 0D" // nl &
+            & // "PART/2, MASS=1, CM=20, IP=0.02, 0.02, 0.005, REULER=90D, 70D, -90D" // nl &
+            & // "MARKER/20, PART=2, QP=0, 0, -0.3, REULER=0, 90D, 0" // nl &
+            & // "MARKER/21, PART=2, REULER=180D, 90D, 0D" // nl &
+            & // "MARKER/22, PART=2, QP=0, 0, -0.6, REULER=180D, 90D, 0D" // nl &
+            & // "PART/3, MASS=0.5, CM=30, IP=0.01, 0.01, 0.003, QG=-0.5638155, 0, -0.2052121" &
+            & // nl // ", REULER=90D, 20D, -90D" // nl &
+            & // "MARKER/30, PART=3, QP=0, 0, -0.25, REULER=0, 90D, 0" // nl &
+            & // "MARKER/31, PART=3, REULER=180D, 90D, 0D" // nl &
+            & // "JOINT/1, REVOLUTE, I=21, J=10" // nl &
+            & // "JOINT/2, REVOLUTE, I=31, J=22" // nl &
+            & // "ACCGRAV/KGRAV=-9.81" // nl &
+            & // "SIMULATE/DYNAMIC, END=3, DTOUT=0.01" // nl &
+            & // "INTEGRATOR/ERROR=1e-10" // nl, result, rows, error)
+        if (allocated(error)) return
+        call check_held(result, error)
+        if (allocated(error)) return
+        ! both arms turn about ground Y, their body z along -Y: the angle between them is the
+        ! difference of their phi
+        c2 = result%summary%layout%column("phi_2")
+        c3 = result%summary%layout%column("phi_3")
+        bend0 = rows%rows(c3, 1) - rows%rows(c2, 1)
+        largest = 0.0_wp
+        do k = 1, rows%count
+            bend = rows%rows(c3, k) - rows%rows(c2, k)
+            largest = max(largest, abs(bend - bend0))
+        end do
+        call check(error, largest > 0.1_wp .and. index(result%summary%routines, "jp_atpoint") &
+            & > 0, "the elbow bent by at most " // to_text(largest) // " rad; routines: " &
+            & // result%summary%routines)
+    end subroutine test_double_pendulum
+
+    !> The pendulum with its CM marker's z axis in the plane of the swing, 5 degrees off the
+    !> arm: as the bob first passes below the hinge that axis passes the vertical, and the part
+    !> is re-based (its principal axes turned; the joint's marker geometry in PAR turned with
+    !> it; the new z axis is 95 degrees off the arm and never vertical again).
+    !> The run goes on with the joint held, and its motion is that of data/pendulum.adm, whose
+    !> CM marker's z axis stays along the hinge (never re-based; the bob's inertia is
+    !> isotropic, so the two are the same physical pendulum).
+    subroutine test_rebasing(error)
+        type(error_type), allocatable, intent(out) :: error
+        !> Both runs at rtol = atol = 1e-10 over 4 s (two and a half swings): the re-based run
+        !> restarts its integrator at each re-basing; 1e-7 m is a thousand atol, and a joint
+        !> that jumps at a re-basing moves the bob by its geometry, 0.1 m
+        real(wp), parameter :: tol_twin = 1.0e-7_wp
+        type(history_type) :: rows, twin
+        type(job_result_type) :: result, twin_result
+        real(wp) :: worst, bases
+        integer :: k, cx, tx, cb
+
+        call run_file("data/pendulum.adm", twin_result, twin, error)
+        if (allocated(error)) return
+        call run_text("rebased.adm", "pendulum, re-based" // nl &
+            & // "PART/1, GROUND" // nl &
+            & // "MARKER/10, PART=1, REULER=180D, 90D, 0D" // nl &
+            & // "PART/2, MASS=1, CM=20, IP=0.01, 0.01, 0.01" // nl &
+            & // ", REULER=90D, 60D, -90D" // nl &
+            & // "MARKER/20, PART=2, QP=0, 0, -0.5, REULER=90D, 175D, 0" // nl &
+            & // "MARKER/21, PART=2, REULER=180D, 90D, 0D" // nl &
+            & // "JOINT/1, REVOLUTE, I=21, J=10" // nl &
+            & // "ACCGRAV/KGRAV=-9.81" // nl &
+            & // "SIMULATE/DYNAMIC, END=4, DTOUT=0.001" // nl &
+            & // "INTEGRATOR/ERROR=1e-10" // nl, result, rows, error)
+        if (allocated(error)) return
+        call check_held(result, error)
+        if (allocated(error)) return
+        cx = result%summary%layout%column("X_2")
+        tx = twin_result%summary%layout%column("X_2")
+        cb = result%summary%layout%column("basis_2")
+        call check(error, cb > 0 .and. rows%count == twin%count, "no basis_2 column, or " &
+            & // to_text(rows%count) // " rows against " // to_text(twin%count))
+        if (allocated(error)) return
+        worst = 0.0_wp
+        do k = 1, rows%count
+            worst = max(worst, abs(rows%rows(cx, k) - twin%rows(tx, k)), &
+                & abs(rows%rows(cx + 2, k) - twin%rows(tx + 2, k)))
+        end do
+        bases = rows%rows(cb, rows%count)
+        call check(error, bases >= 1.0_wp .and. worst <= tol_twin, to_text(bases) &
+            & // " re-basings (1 expected); " &
+            & // "largest distance from the twin " // to_text(worst) // " m")
+    end subroutine test_rebasing
+
+    !> The pendulum with its hinge marker J 1 mm above the bob's I: the initial-conditions
+    !> analysis moves the part so that the two meet, and the bob is then 0.5 m from the
+    !> hinge, where the joint holds it.
+    subroutine test_apart(error)
+        type(error_type), allocatable, intent(out) :: error
+        !> The analysis's Newton steps end at round-off: 1e-12 m
+        real(wp), parameter :: tol_meet = 1.0e-12_wp
+        type(history_type) :: rows
+        type(job_result_type) :: result
+        real(wp) :: distance, moved
+        integer :: cx
+
+        call run_text("apart.adm", "pendulum, 1 mm apart" // nl &
+            & // "PART/1, GROUND" // nl &
+            & // "MARKER/10, PART=1, QP=0, 0, 0.001, REULER=180D, 90D, 0D" // nl &
+            & // "PART/2, MASS=1, CM=20, IP=0.01, 0.01, 0.01, REULER=90D, 60D, -90D" // nl &
+            & // "MARKER/20, PART=2, QP=0, 0, -0.5, REULER=0, 90D, 0" // nl &
+            & // "MARKER/21, PART=2, REULER=180D, 90D, 0D" // nl &
+            & // "JOINT/1, REVOLUTE, I=21, J=10" // nl &
+            & // "ACCGRAV/KGRAV=-9.81" // nl &
+            & // "SIMULATE/DYNAMIC, END=0.1, DTOUT=0.01" // nl &
+            & // "INTEGRATOR/ERROR=1e-10" // nl, result, rows, error)
+        if (allocated(error)) return
+        cx = result%summary%layout%column("X_2")
+        distance = hypot(rows%rows(cx, 1), rows%rows(cx + 2, 1) - 0.001_wp)
+        moved = hypot(rows%rows(cx, 1) + 0.5_wp*sin(pi/3.0_wp), rows%rows(cx + 2, 1) &
+            & + 0.5_wp*cos(pi/3.0_wp))
+        call check(error, abs(distance - 0.5_wp) <= tol_meet .and. moved > 1.0e-4_wp .and. &
+            & moved < 1.0e-3_wp, "bob " // to_text(distance) // " m from the hinge at the " &
+            & // "start, moved by " // to_text(moved) // " m")
+        if (allocated(error)) return
+        call check_held(result, error)
+    end subroutine test_apart
+
+    !> Each refusal names the file, the line, the statement and the keyword.
+    subroutine test_refusals(error)
+        type(error_type), allocatable, intent(out) :: error
+
+        call refused("JOINT/1, REVOLUTE, J=10", ":8: JOINT/1: I=id is missing", error)
+        if (allocated(error)) return
+        call refused("JOINT/1, REVOLUTE, I=21", ":8: JOINT/1: J=id is missing", error)
+        if (allocated(error)) return
+        call refused("JOINT/1, REVOLUTE, I=21, J=99", ":8: JOINT/1 J: no MARKER/99", error)
+        if (allocated(error)) return
+        call refused("JOINT/1, REVOLUTE, I=21, J=20", ":8: JOINT/1: its markers I (MARKER/21) " &
+            & // "and J (MARKER/20) are both on PART/2", error)
+        if (allocated(error)) return
+        call refused("JOINT/1, REVOLUTE, I=10, J=21", ":8: JOINT/1 I: MARKER/10 is on the " &
+            & // "ground part", error)
+        if (allocated(error)) return
+        call refused("JOINT/1, HINGE, I=21, J=10", ":8: JOINT/1: 'HINGE' is not a JOINT " &
+            & // "argument", error)
+        if (allocated(error)) return
+        call refused("JOINT/1, REVOLUTE, I=21, J=10, ICROT=0, 0", ":8: JOINT/1 ICROT: a " &
+            & // "joint's initial conditions and its friction are not supported", error)
+        if (allocated(error)) return
+        call refused("JOINT/1, I=21, J=10", ":8: JOINT/1: the type is missing (one of " &
+            & // "CYLINDRICAL, FIXED, REVOLUTE, SPHERICAL, TRANSLATIONAL, UNIVERSAL)", error)
+        if (allocated(error)) return
+        call refused("JPRIM/1, INLINE, ORIENTATION, I=21, J=10", ":8: JPRIM/1 ORIENTATION: " &
+            & // "the type is given twice (INLINE and ORIENTATION)", error)
+        if (allocated(error)) return
+        call refused("JOINT/1, REVOLUTE, I=21, J=10" // nl // "JOINT/1, SPHERICAL, I=21, J=10", &
+            & ":9: JOINT/1: a second JOINT with this id", error)
+        if (allocated(error)) return
+        call refused("JPRIM/1, REVOLUTE, I=21, J=10", ":8: JPRIM/1: 'REVOLUTE' is not a " &
+            & // "JPRIM argument", error)
+        if (allocated(error)) return
+        call refused("JOINT/1, PLANAR, I=21, J=10", ":8: JOINT/1 PLANAR: a PLANAR joint is " &
+            & // "not supported", error)
+    end subroutine test_refusals
+
+    !> data/pendulum.adm with its JOINT line replaced by `new` is refused by read_adm with a
+    !> message holding `expected` after the file name.
+    subroutine refused(new, expected, error)
+        character(len=*), intent(in) :: new, expected
+        type(error_type), allocatable, intent(out) :: error
+        type(adm_model_type) :: adm
+        type(error_type), allocatable :: failure
+
+        call write_text("refused.adm", "pendulum" // nl &
+            & // "PART/1, GROUND" // nl &
+            & // "MARKER/10, PART=1, REULER=180D, 90D, 0D" // nl &
+            & // "PART/2, MASS=1, CM=20, IP=0.01, 0.01, 0.01" // nl &
+            & // ", REULER=90D, 60D, -90D" // nl &
+            & // "MARKER/20, PART=2, QP=0, 0, -0.5, REULER=0, 90D, 0" // nl &
+            & // "MARKER/21, PART=2, REULER=180D, 90D, 0D" // nl &
+            & // new // nl &
+            & // "SIMULATE/DYNAMIC, END=1, STEPS=10" // nl)
+        call read_adm(work_dir // "/refused.adm", adm, failure)
+        call check(error, allocated(failure), "accepted: " // new)
+        if (allocated(error)) return
+        call check(error, index(failure%message, work_dir // "/refused.adm" // expected) == 1, &
+            & "message '" // failure%message // "', expected '" // expected // "'")
+    end subroutine refused
+
+    !> The run completed, its joints' UCONs held (largest residual) and its energy conserved.
+    subroutine check_held(result, error)
+        type(job_result_type), intent(in) :: result
+        type(error_type), allocatable, intent(out) :: error
+
+        call check(error, result%summary%status == status_completed .and. &
+            & result%summary%residual_max <= tol_residual .and. &
+            & result%summary%energy_drift <= tol_energy, "status " &
+            & // to_text(result%summary%status) // ", largest residual " &
+            & // to_text(result%summary%residual_max) // ", energy drift " &
+            & // to_text(result%summary%energy_drift))
+    end subroutine check_held
+
+    !> A measure of a motion the joint leaves free is above 1e-3; one it holds is below 1e-8.
+    pure logical function free_or_held(free, measure)
+        logical, intent(in) :: free
+        real(wp), intent(in) :: measure
+
+        if (free) then
+            free_or_held = measure > 1.0e-3_wp
+        else
+            free_or_held = measure <= 1.0e-8_wp
+        end if
+    end function free_or_held
+
+    !> K(k), the complete elliptic integral of the first kind, pi / (2 AGM(1, sqrt(1 - k^2))).
+    pure function elliptic_k(k) result(value)
+        real(wp), intent(in) :: k
+        real(wp) :: value, a, b, c
+        integer :: i
+
+        a = 1.0_wp
+        b = sqrt(1.0_wp - k**2)
+        do i = 1, 40
+            c = 0.5_wp*(a + b)
+            b = sqrt(a*b)
+            a = c
+        end do
+        value = pi/(2.0_wp*a)
+    end function elliptic_k
+
+    !> Run a dataset written here.
+    subroutine run_text(name, text, result, rows, error)
+        character(len=*), intent(in) :: name, text
+        type(job_result_type), intent(out) :: result
+        type(history_type), intent(out) :: rows
+        type(error_type), allocatable, intent(out) :: error
+
+        call write_text(name, text)
+        call run_file(work_dir // "/" // name, result, rows, error)
+    end subroutine run_text
+
+    !> Run the dataset at path, writing no file, and keep its rows.
+    subroutine run_file(path, result, rows, error)
+        character(len=*), intent(in) :: path
+        type(job_result_type), intent(out) :: result
+        type(history_type), intent(out) :: rows
+        type(error_type), allocatable, intent(out) :: error
+        type(job_type) :: job
+        type(error_type), allocatable :: failure
+
+        call load_job(path, job, error)
+        if (allocated(error)) return
+        job%output_dir = ""
+        job%quiet = .true.
+        call run_job(job, result, failure, rows)
+        if (allocated(failure)) call move_alloc(failure, error)
+    end subroutine run_file
+
+    !> Write text to work_dir/name.
+    subroutine write_text(name, text)
+        character(len=*), intent(in) :: name, text
+        integer :: unit
+
+        call execute_command_line("mkdir -p " // work_dir)
+        open(newunit=unit, file=work_dir // "/" // name, status="replace", action="write")
+        write(unit, '(a)') text
+        close(unit)
+    end subroutine write_text
+
+end module test_adm_joints

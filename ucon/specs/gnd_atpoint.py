@@ -1,0 +1,9 @@
+"""The atpoint joint primitive with marker J on ground (ADAMS JPRIM/id, ATPOINT).
+
+Geometry and PAR layout: ucon/specs/_joint.py. A JOINT or JPRIM statement of a dataset whose
+J marker is on the ground part is served by this routine and its kin (docs/datasets.md).
+"""
+
+from ucon.specs._joint import primitive
+
+SPEC = primitive("atpoint", ground=True)
