@@ -230,7 +230,8 @@ contains
     end subroutine marker_vectors
 
     !> Origin [m] and axes (columns) of marker id: in its part's principal axes (its CM marker's
-    !> axes, origin at the CM), or in ground for a marker on the ground part.
+    !> axes turned onto those of an IP with products, origin at the CM), or in ground for a
+    !> marker on the ground part.
     subroutine marker_pose(adm, id, point, axes)
         type(adm_model_type), intent(in) :: adm
         integer, intent(in) :: id
@@ -249,8 +250,10 @@ contains
                 return
             end if
             c = marker_index(adm, part%cm)
-            r_cm = rotation_matrix(adm%markers(c)%reuler(1), adm%markers(c)%reuler(2), &
-                & adm%markers(c)%reuler(3))
+            ! the principal axes: the CM marker's turned onto those of IP's tensor (R_cm P, P
+            ! the identity without products of inertia)
+            r_cm = matmul(rotation_matrix(adm%markers(c)%reuler(1), adm%markers(c)%reuler(2), &
+                & adm%markers(c)%reuler(3)), part%principal)
             point = matmul(transpose(r_cm), marker%qp - adm%markers(c)%qp)
             axes = matmul(transpose(r_cm), axes)
         end associate
