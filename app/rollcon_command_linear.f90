@@ -93,7 +93,7 @@ contains
             & // " speeds from " // to_text(grid(1)) // " to " &
             & // to_text(grid(2)) // " m/s (every velocity of the start scaled), " &
             & // trim(int_text(size(table%real_part, 1))) // " after " &
-            & // trim(int_text(count(table%struck))) // " structural zeros taken out"
+            & // trim(int_text(count(table%struck) + table%deflations)) // " structural zeros taken out"
         if (size(changes) == 0) write(output_unit, '(a)') "stability does not change in that range"
         do k = 1, size(changes)
             write(output_unit, '(a)') "stability changes at " // fixed_text(changes(k)%speed, 6) &

@@ -20,13 +20,14 @@ module rollcon_linear_speeds
     use rollcon_error, only : error_type, fatal_error, stat_input
     use rollcon_text, only : to_text
     use rollcon_lapack, only : general_eigenvalues
+    use rollcon_least_squares, only : left_null_space
     use rollcon_problem, only : problem_type
     use rollcon_linearisation, only : linear_options_type, linear_result_type, linearise
     implicit none
     private
 
     public :: speed_table_type, stability_change_type, reference_speed, structural_zeros, &
-        & kept_eigenvalues, speed_table, stability_changes, speed_tolerance
+        & zero_deflations, kept_eigenvalues, speed_table, stability_changes, speed_tolerance
 
     !> An entry of A_red counts as zero when |a| <= zero_entry max|A_red|: the differences'
     !> error is about 1e-10 relative (docs/linear.md); the exact zeros of a cyclic coordinate's
@@ -51,6 +52,9 @@ module rollcon_linear_speeds
         real(wp), allocatable :: real_part(:, :), imag_part(:, :)
         !> Indices of A_red struck out as structural zeros (found at the reference speed)
         logical, allocatable :: struck(:)
+        !> Zeros of the kept block deflated one by one by its null vectors (counted at the
+        !> reference speed, the same number at every speed)
+        integer :: deflations = 0
     end type speed_table_type
 
     !> A speed where the largest real part of the kept eigenvalues changes sign
@@ -116,20 +120,79 @@ contains
         end do
     end function structural_zeros
 
-    !> The eigenvalues of A_red with the struck indices taken out, by decreasing real part (for
-    !> equal real parts by decreasing |imaginary part|, + first).
-    subroutine kept_eigenvalues(a, struck, re, im, error)
+    !> How many zero eigenvalues the block of A_red left by the struck indices still has: its
+    !> null vectors deflated one by one (deflate) until it is regular, a singular value below
+    !> zero_entry of the largest counting as zero. A combination of coordinates the equations
+    !> do not depend on (the common heading of parts whose own headings are independent
+    !> coordinates) or a first integral's mode gives such a zero without a zero row or column.
+    subroutine zero_deflations(a, struck, count_found, error)
         real(wp), intent(in) :: a(:, :)
         logical, intent(in) :: struck(:)
+        integer, intent(out) :: count_found
+        type(error_type), allocatable, intent(out) :: error
+        real(wp), allocatable :: b(:, :), null(:, :)
+        integer, allocatable :: keep(:)
+        integer :: rank, k
+
+        count_found = 0
+        keep = pack([(k, k = 1, size(struck))], .not. struck)
+        b = a(keep, keep)
+        do while (size(b, 1) > 0)
+            call left_null_space(transpose(b), zero_entry, rank, null, error)
+            if (allocated(error)) return
+            if (rank == size(b, 1)) exit
+            call deflate(b, null(:, size(null, 2)))
+            count_found = count_found + 1
+        end do
+    end subroutine zero_deflations
+
+    !> Take one zero eigenvalue out of b by a null vector v (b v = 0): with j where |v_j| is
+    !> largest, the basis change S = I + (v - e_j) e_j^T turns column j of S^-1 b S into
+    !> S^-1 b v = 0, so row and column j are struck with the eigenvalue 0 they carry.
+    pure subroutine deflate(b, v)
+        real(wp), allocatable, intent(inout) :: b(:, :)
+        real(wp), intent(in) :: v(:)
+        real(wp), allocatable :: c(:, :)
+        integer :: j, i, n
+
+        n = size(b, 1)
+        j = maxloc(abs(v), 1)
+        c = b
+        ! c = b S: column j becomes b v
+        c(:, j) = matmul(b, v)
+        ! c = S^-1 c: row j divided by v_j, then v_i/v_j times it taken from row i
+        c(j, :) = c(j, :)/v(j)
+        do i = 1, n
+            if (i /= j) c(i, :) = c(i, :) - v(i)*c(j, :)
+        end do
+        b = c(pack([(i, i = 1, n)], [(i, i = 1, n)] /= j), &
+            & pack([(i, i = 1, n)], [(i, i = 1, n)] /= j))
+    end subroutine deflate
+
+    !> The eigenvalues of A_red with the struck indices taken out and then deflations more
+    !> zeros deflated by the null vectors of what is left (the smallest singular value's each
+    !> time), by decreasing real part (for equal real parts by decreasing |imaginary part|, +
+    !> first).
+    subroutine kept_eigenvalues(a, struck, deflations, re, im, error)
+        real(wp), intent(in) :: a(:, :)
+        logical, intent(in) :: struck(:)
+        integer, intent(in) :: deflations
         real(wp), allocatable, intent(out) :: re(:), im(:)
         type(error_type), allocatable, intent(out) :: error
+        real(wp), allocatable :: b(:, :), null(:, :)
         integer, allocatable :: keep(:)
-        integer :: i, j, k
+        integer :: i, j, k, rank
         real(wp) :: r, m
 
         keep = pack([(k, k = 1, size(struck))], .not. struck)
-        allocate(re(size(keep)), im(size(keep)))
-        call general_eigenvalues(a(keep, keep), re, im, error)
+        b = a(keep, keep)
+        do k = 1, min(deflations, size(b, 1))
+            call left_null_space(transpose(b), zero_entry, rank, null, error)
+            if (allocated(error)) return
+            call deflate(b, null(:, size(null, 2)))
+        end do
+        allocate(re(size(b, 1)), im(size(b, 1)))
+        call general_eigenvalues(b, re, im, error)
         if (allocated(error)) return
         do i = 2, size(re)
             r = re(i)
@@ -173,12 +236,14 @@ contains
         call linearise(problem, time, q, u, options, result, error)
         if (allocated(error)) return
         table%struck = structural_zeros(result%reduced_matrix)
-        kept = count(.not. table%struck)
+        call zero_deflations(result%reduced_matrix, table%struck, table%deflations, error)
+        if (allocated(error)) return
+        kept = count(.not. table%struck) - table%deflations
         table%speed = speeds
         allocate(table%real_part(kept, size(speeds)), table%imag_part(kept, size(speeds)))
         do k = 1, size(speeds)
-            call eigenvalues_at(problem, time, q, u, reference, speeds(k), options, &
-                & table%struck, re, im, error)
+            call eigenvalues_at(problem, time, q, u, reference, speeds(k), options, table, re, &
+                & im, error)
             if (allocated(error)) return
             table%real_part(:, k) = re
             table%imag_part(:, k) = im
@@ -186,12 +251,13 @@ contains
     end subroutine speed_table
 
     !> The kept eigenvalues at one speed.
-    subroutine eigenvalues_at(problem, time, q, u, reference, speed, options, struck, re, im, &
+    subroutine eigenvalues_at(problem, time, q, u, reference, speed, options, table, re, im, &
             & error)
         type(problem_type), intent(inout), target :: problem
         real(wp), intent(in) :: time, q(:), u(:), reference, speed
         type(linear_options_type), intent(in) :: options
-        logical, intent(in) :: struck(:)
+        !> The struck indices and the deflations
+        type(speed_table_type), intent(in) :: table
         real(wp), allocatable, intent(out) :: re(:), im(:)
         type(error_type), allocatable, intent(out) :: error
         type(linear_result_type) :: result
@@ -201,7 +267,8 @@ contains
             error%message = "at " // to_text(speed) // " m/s: " // error%message
             return
         end if
-        call kept_eigenvalues(result%reduced_matrix, struck, re, im, error)
+        call kept_eigenvalues(result%reduced_matrix, table%struck, table%deflations, re, im, &
+            & error)
     end subroutine eigenvalues_at
 
     !> The speeds within the table's range where the motion changes stability, each found by
@@ -246,8 +313,8 @@ contains
                 & table%imag_part(:, k + 2 - side), followed(side))
             do while (abs(speed(2) - speed(1)) > speed_tolerance)
                 middle = 0.5_wp*(speed(1) + speed(2))
-                call eigenvalues_at(problem, time, q, u, reference, middle, options, &
-                    & table%struck, re, im, error)
+                call eigenvalues_at(problem, time, q, u, reference, middle, options, table, re, &
+                    & im, error)
                 if (allocated(error)) return
                 weight = (middle - speed(1))/(speed(2) - speed(1))
                 guess = (1.0_wp - weight)*followed(1) + weight*followed(2)

@@ -114,7 +114,7 @@ contains
         text = comment_lines(provenance_lines(job)) // "# eigenvalues [1/s] of the " &
             & // "linearisation on the constraint manifold against the speed [m/s] of the " &
             & // "first moving part (every velocity of the start scaled), the structural " &
-            & // "zeros taken out (" // to_text(count(table%struck)) // "), by decreasing " &
+            & // "zeros taken out (" // to_text(count(table%struck) + table%deflations) // "), by decreasing " &
             & // "real part (docs/linear.md)" // new_line("a")
         do k = 1, size(changes)
             write(number, '(es24.16e3)') changes(k)%speed

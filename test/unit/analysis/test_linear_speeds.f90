@@ -64,7 +64,7 @@ contains
             & // merge("T", "F", struck(3)) // merge("T", "F", struck(4)) &
             & // merge("T", "F", struck(5)))
         if (allocated(error)) return
-        call kept_eigenvalues(a, struck, re, im, error)
+        call kept_eigenvalues(a, struck, 0, re, im, error)
         if (allocated(error)) return
         call check(error, size(re) == 2, "kept: " // to_text(size(re)))
         if (allocated(error)) return
@@ -95,9 +95,10 @@ contains
     end subroutine sweep
 
     !> One change between a grid's speeds, at v_c, the disk stable above it, found as a real
-    !> pair (the disk falls over: a divergence); the kept block is theta, its rate and the
-    !> heading rate (the other six of nine states are struck: X, Y, Z, psi, phi columns and
-    !> the spin rate's row).
+    !> pair (the disk falls over: a divergence); two eigenvalues kept, +-sqrt(s) of the closed
+    !> form lambda (lambda^2 - s) (docs/linear.md): of the nine (eight) states the columns of
+    !> X, Y, (Z,) psi, phi and the spin rate's row are struck, and the first integral of the
+    !> heading rate, the zero of lambda (lambda^2 - s), is deflated.
     subroutine check_critical(path, error)
         character(len=*), intent(in) :: path
         type(error_type), allocatable, intent(out) :: error
@@ -116,8 +117,9 @@ contains
         call check(error, changes(1)%stable_above .and. .not. changes(1)%oscillatory, path &
             & // ": expected stable above, a real pair")
         if (allocated(error)) return
-        call check(error, size(table%real_part, 1) == 3, path // ": kept " &
-            & // to_text(size(table%real_part, 1)) // " eigenvalues, expected 3")
+        call check(error, size(table%real_part, 1) == 2 .and. table%deflations == 1, path &
+            & // ": kept " // to_text(size(table%real_part, 1)) // " eigenvalues after " &
+            & // to_text(table%deflations) // " deflations, expected 2 after 1")
     end subroutine check_critical
 
     !> data/coin.adm: the height at velocity level.
