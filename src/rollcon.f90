@@ -31,6 +31,7 @@ module rollcon
     use rollcon_model, only : model_type, ucon_statement_type, setup_model
     use rollcon_equations, only : equations_type
     use rollcon_run_settings, only : run_settings_type, formulation_cvode, formulation_ida, &
+        & formulation_maggi, &
         & method_bdf, method_adams, drift_none, drift_projection, drift_baumgarte, &
         & jacobian_analytic, jacobian_dq
 

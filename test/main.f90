@@ -72,6 +72,7 @@ program tester
     use test_fpm_dependency, only : collect_fpm_dependency
     use test_main_script, only : collect_main_script
     use test_multiplier_units, only : collect_multiplier_units
+    use test_independent_speeds, only : collect_independent_speeds
     implicit none
     type(testsuite_type), allocatable :: suites(:)
     type(test_counts_type) :: counts
@@ -148,7 +149,8 @@ program tester
         & new_testsuite("adm-outputs", collect_adm_outputs), &
         & new_testsuite("fpm-dependency", collect_fpm_dependency), &
         & new_testsuite("main-script", collect_main_script), &
-        & new_testsuite("multiplier-units", collect_multiplier_units)]
+        & new_testsuite("multiplier-units", collect_multiplier_units), &
+        & new_testsuite("independent-speeds", collect_independent_speeds)]
 
     if (command_argument_count() >= 1) then
         call get_command_argument(1, argument)

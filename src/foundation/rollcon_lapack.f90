@@ -18,7 +18,7 @@ module rollcon_lapack
     private
 
     public :: factor_dense, solve_factored, lapack_info_error
-    public :: dgetf2, dgetrs, dpotf2, dpotrs
+    public :: dgetf2, dgetrs, dpotf2, dpotrs, dgeqp3
     public :: use_one_blas_thread
 
     !> Largest order factored with the unblocked routine
@@ -73,6 +73,18 @@ module rollcon_lapack
             real(wp), intent(inout) :: b(ldb, *)
             integer, intent(out) :: info
         end subroutine dpotrs
+
+        !> QR factorisation with column pivoting (LAPACK): the pivots order the columns from
+        !> the most independent
+        pure subroutine dgeqp3(m, n, a, lda, jpvt, tau, work, lwork, info)
+            import :: wp
+            integer, intent(in) :: m, n, lda, lwork
+            real(wp), intent(inout) :: a(lda, *)
+            integer, intent(inout) :: jpvt(*)
+            real(wp), intent(out) :: tau(*), work(*)
+            integer, intent(out) :: info
+        end subroutine dgeqp3
+
     end interface
 
     interface

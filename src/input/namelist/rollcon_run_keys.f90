@@ -6,7 +6,7 @@
 module rollcon_run_keys
     use rollcon_kinds, only : wp
     use rollcon_run_settings, only : run_settings_type, formulation_cvode, formulation_ida, &
-        & method_bdf, method_adams, drift_none, drift_projection, drift_baumgarte, &
+        & formulation_maggi, method_bdf, method_adams, drift_none, drift_projection, drift_baumgarte, &
         & jacobian_analytic, jacobian_dq
     use rollcon_keys, only : key_type, option_type, real_key, integer_key, choice_key, &
         & option_code, option_name
@@ -41,7 +41,8 @@ contains
                 & real_key(run_group, "end_time", r%end_time, "s", time_min, time_max), &
                 & real_key(run_group, "output_step", r%output_step, "s", time_min, time_max), &
                 & choice_key(run_group, "formulation", r%formulation, &
-                & [option_type("ida", formulation_ida), option_type("cvode", formulation_cvode)]), &
+                & [option_type("ida", formulation_ida), option_type("cvode", formulation_cvode), &
+                & option_type("maggi", formulation_maggi)]), &
                 & choice_key(run_group, "method", r%method, [option_type("bdf", method_bdf), &
                 & option_type("adams", method_adams)]), &
                 & choice_key(run_group, "drift", r%drift, [option_type("projection", &
@@ -94,12 +95,12 @@ contains
             if (run%formulation == formulation_ida .and. run%method /= method_bdf) then
                 key = "method"
                 expected = "'bdf' with formulation 'ida' (IDA is a BDF code; 'adams' needs " &
-                    & // "'cvode')"
+                    & // "'cvode' or 'maggi')"
             else if (run%formulation == formulation_ida .and. run%drift /= drift_projection) then
                 key = "drift"
                 expected = "left out with formulation 'ida' (IDA has no drift; 'baumgarte' " &
-                    & // "and 'none' are for 'cvode')"
-            else if (run%formulation == formulation_cvode .and. run%method == method_adams &
+                    & // "and 'none' are for 'cvode' and 'maggi')"
+            else if (run%uses_cvode() .and. run%method == method_adams &
                     & .and. run%drift == drift_projection) then
                 ! CVODE's projection works with BDF only (CVodeSetProjFn refuses Adams)
                 key = "drift"

@@ -121,7 +121,7 @@ contains
             & // " subset (DYNAMIC, END, STEPS, DTOUT)"
         replaced(13) = "INTEGRATOR/FORM=ode"
         expected(13) = ":12: INTEGRATOR FORMULATION: 'ode' is not a formulation of the supported" &
-            & // " subset (IDA, CVODE)"
+            & // " subset (IDA, CVODE, MAGGI)"
         call check_refusals(error, [4, 12, 5, 12, 5, 3, 5, 4, 4, 6, 2, 11, 12], replaced, expected)
     end subroutine test_keywords
 
@@ -281,7 +281,7 @@ contains
         expected(7) = ":12: INTEGRATOR RTOL: give ERROR or RTOL, not both (ERROR sets RTOL)"
         replaced(8) = "INTEGRATOR/METHOD=ADAMS"
         expected(8) = ":12: INTEGRATOR METHOD must be 'bdf' with formulation 'ida' (IDA is a BDF" &
-            & // " code; 'adams' needs 'cvode'), got 'adams'"
+            & // " code; 'adams' needs 'cvode' or 'maggi'), got 'adams'"
         replaced(9) = "INTEGRATOR/FORM=CVODE|, METHOD=ADAMS"
         expected(9) = ":12: INTEGRATOR DRIFT must be 'baumgarte' or 'none' with method = 'adams'" &
             & // " (CVODE projects only with BDF), got 'projection' (DRIFT not given: the" &
@@ -291,7 +291,7 @@ contains
             & // " (CVODE projects only with BDF), got 'projection'"
         replaced(11) = "INTEGRATOR/DRIFT=NONE"
         expected(11) = ":12: INTEGRATOR DRIFT must be left out with formulation 'ida' (IDA has no" &
-            & // " drift; 'baumgarte' and 'none' are for 'cvode'), got 'none'"
+            & // " drift; 'baumgarte' and 'none' are for 'cvode' and 'maggi'), got 'none'"
         call check_refusals(error, [12, 12, 12, 12, 12, 12, 12, 12, 12, 12, 12], replaced, expected)
     end subroutine test_integrator
 
