@@ -109,6 +109,9 @@ module rollcon
     use rollcon_bench_summary, only : accuracy_line
     use rollcon_bench_plot, only : plot_work_precision, machine_name
     use rollcon_bench_sweep, only : time_sweep, coordinator_row_us
+    use rollcon_bench_scaling, only : scaling_row_type, measure_scaling, scaling_header, &
+        & scaling_csv_row
+    use rollcon_disk_fleet, only : disk_fleet_dataset
     implicit none
     public
 end module rollcon

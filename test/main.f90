@@ -73,6 +73,7 @@ program tester
     use test_main_script, only : collect_main_script
     use test_multiplier_units, only : collect_multiplier_units
     use test_independent_speeds, only : collect_independent_speeds
+    use test_disk_fleet, only : collect_disk_fleet
     implicit none
     type(testsuite_type), allocatable :: suites(:)
     type(test_counts_type) :: counts
@@ -150,7 +151,8 @@ program tester
         & new_testsuite("fpm-dependency", collect_fpm_dependency), &
         & new_testsuite("main-script", collect_main_script), &
         & new_testsuite("multiplier-units", collect_multiplier_units), &
-        & new_testsuite("independent-speeds", collect_independent_speeds)]
+        & new_testsuite("independent-speeds", collect_independent_speeds), &
+        & new_testsuite("disk-fleet", collect_disk_fleet)]
 
     if (command_argument_count() >= 1) then
         call get_command_argument(1, argument)

@@ -315,7 +315,6 @@ contains
                 & // ": largest UCON residual " // to_text(summary%residual_max))
             if (allocated(error)) return
             difference = largest_difference(ode, speeds)
-            print '(a, i0, a, es10.3)', "  scene ", k, ": largest difference ", difference
             call check(error, difference <= tol_scene, "scene " // to_text(k) &
                 & // ": independent speeds against the ODE form, largest difference " &
                 & // to_text(difference))
@@ -389,8 +388,6 @@ contains
                 & drift_none, 1.0e-11_wp, end_times(k), speeds, summary, error)
             if (allocated(error)) return
             difference = largest_difference(ode, speeds)
-            print '(3a, es10.3, a, 2(1x, i0))', "  ", trim(names(k)), ": largest difference ", &
-                & difference, ", re-basings", sum(ode_summary%rebasings), sum(summary%rebasings)
             call check(error, difference <= tol_dataset(k), trim(names(k)) &
                 & // ": independent speeds against the ODE form, largest difference " &
                 & // to_text(difference))
