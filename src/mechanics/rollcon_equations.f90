@@ -198,7 +198,7 @@ contains
         real(wp), intent(in) :: q(:), u(:), a(:)
         real(wp), intent(in) :: lambda(:)
         real(wp) :: part_dq(6, 6), part_du(6, 6)
-        integer :: p, i0, k, j
+        integer :: p, i0, k, j, i, jj, ii
 
         self%work%dm_dq = 0.0_wp
         self%work%dm_du = 0.0_wp
@@ -210,16 +210,30 @@ contains
             self%work%dm_du(i0 + 1:i0 + 6, i0 + 1:i0 + 6) = part_du
         end do
         ! -d(C^T lambda)/dq: second partials are why ADAMS asks a UCOSUB for XMATRX
-        ! (docs/design.md §4)
+        ! (docs/design.md §4); each UCON's over its own coordinates (the rest are zeros)
         do k = 1, self%nc
-            if (self%model%ucons(k)%holonomic) then
-                self%work%dm_dq = self%work%dm_dq - lambda(k)*self%constraints%hqq(:, :, k)
-            else
-                do j = 1, self%n
-                    self%work%dm_dq(:, j) = self%work%dm_dq(:, j) &
-                        & - lambda(k)*self%constraints%hqu(j, :, k)
-                end do
-            end if
+            associate (at => self%blocks%ucon_coordinates(self%blocks%ucon_start(k): &
+                    & self%blocks%ucon_start(k + 1) - 1))
+                if (self%model%ucons(k)%holonomic) then
+                    do jj = 1, size(at)
+                        j = at(jj)
+                        do ii = 1, size(at)
+                            i = at(ii)
+                            self%work%dm_dq(i, j) = self%work%dm_dq(i, j) &
+                                & - lambda(k)*self%constraints%hqq(i, j, k)
+                        end do
+                    end do
+                else
+                    do jj = 1, size(at)
+                        j = at(jj)
+                        do ii = 1, size(at)
+                            i = at(ii)
+                            self%work%dm_dq(i, j) = self%work%dm_dq(i, j) &
+                                & - lambda(k)*self%constraints%hqu(j, i, k)
+                        end do
+                    end do
+                end if
+            end associate
         end do
     end subroutine momentum_jacobian
 
@@ -261,30 +275,38 @@ contains
         real(wp), intent(in) :: u(:), a(:)
         !> Baumgarte rate in effect [1/s], 0 without Baumgarte terms
         real(wp), intent(in) :: alpha
-        integer :: n, k, j
+        integer :: n, k, j, jj
 
         n = self%n
+        ! each UCON's row over its own coordinates; the rest are zeros (-(0) as the dense sums
+        ! gave, written as +0 here)
+        self%work%rhs_bottom = 0.0_wp
         associate (cs => self%constraints, rhs_bottom => self%work%rhs_bottom)
             do k = 1, self%nc
-                if (self%model%ucons(k)%holonomic) then
-                    do j = 1, n
-                        rhs_bottom(k, j) = -dot_product(cs%hqq(:, j, k), a) &
-                            & - 2.0_wp*alpha*(dot_product(cs%hqq(:, j, k), u) &
-                            & + cs%dt_grad_q(k, j)) - alpha**2*cs%grad_q(k, j)
-                        rhs_bottom(k, n + j) = -2.0_wp*dot_product(cs%hqq(:, j, k), u) &
-                            & - 2.0_wp*cs%dt_grad_q(k, j) - 2.0_wp*alpha*cs%grad_q(k, j)
-                    end do
-                else
-                    ! C a - gamma = dF/du a + dF/dq u + dF/dt + alpha F
-                    do j = 1, n
-                        rhs_bottom(k, j) = -(dot_product(cs%hqu(j, :, k), a) &
-                            & + dot_product(cs%hqq(:, j, k), u) + cs%dt_grad_q(k, j) &
-                            & + alpha*cs%grad_q(k, j))
-                        rhs_bottom(k, n + j) = -(cs%grad_q(k, j) &
-                            & + dot_product(cs%hqu(:, j, k), u) + cs%dt_grad_u(k, j) &
-                            & + alpha*cs%grad_u(k, j))
-                    end do
-                end if
+                associate (at => self%blocks%ucon_coordinates(self%blocks%ucon_start(k): &
+                        & self%blocks%ucon_start(k + 1) - 1))
+                    if (self%model%ucons(k)%holonomic) then
+                        do jj = 1, size(at)
+                            j = at(jj)
+                            rhs_bottom(k, j) = -sparse_dot(cs%hqq(:, j, k), a, at) &
+                                & - 2.0_wp*alpha*(sparse_dot(cs%hqq(:, j, k), u, at) &
+                                & + cs%dt_grad_q(k, j)) - alpha**2*cs%grad_q(k, j)
+                            rhs_bottom(k, n + j) = -2.0_wp*sparse_dot(cs%hqq(:, j, k), u, at) &
+                                & - 2.0_wp*cs%dt_grad_q(k, j) - 2.0_wp*alpha*cs%grad_q(k, j)
+                        end do
+                    else
+                        ! C a - gamma = dF/du a + dF/dq u + dF/dt + alpha F
+                        do jj = 1, size(at)
+                            j = at(jj)
+                            rhs_bottom(k, j) = -(sparse_dot(cs%hqu(j, :, k), a, at) &
+                                & + sparse_dot(cs%hqq(:, j, k), u, at) + cs%dt_grad_q(k, j) &
+                                & + alpha*cs%grad_q(k, j))
+                            rhs_bottom(k, n + j) = -(cs%grad_q(k, j) &
+                                & + sparse_dot(cs%hqu(:, j, k), u, at) + cs%dt_grad_u(k, j) &
+                                & + alpha*cs%grad_u(k, j))
+                        end do
+                    end if
+                end associate
             end do
         end associate
     end subroutine jacobian_constraint_rows

@@ -13,7 +13,8 @@
 !> the derivative of the dependent-speed equations). This is coordinate partitioning; it has
 !> the motion of Maggi's equations N^T M N v' = N^T (f - M N' v) with N = [-C_d^-1 C_i; I].
 !> Its Newton matrix follows by the chain rule from the ODE form's (rollcon_equations):
-!> d(u, a_i)/d(q, v) with du_d/dq = -C_d^-1 dr/dq and du_d/dv = -C_d^-1 C_i.
+!> d(u, a_i)/d(q, v) with du_d/dq = -C_d^-1 dr/dq and du_d/dv = -C_d^-1 C_i. The dependent
+!> speeds are numbered by the partition's slots (rollcon_speed_partition).
 module rollcon_independent_speeds
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type
@@ -56,7 +57,7 @@ contains
         self%n = eq%n
         self%nc = eq%nc
         self%ni = eq%n - eq%nc
-        call self%partition%init(self%n, self%nc)
+        call self%partition%init(self%n, self%nc, eq%blocks)
         if (allocated(self%full)) deallocate(self%full, self%dud_dq, self%dud_dv, self%r)
         allocate(self%full(2*self%n, 2*self%n), self%dud_dq(max(self%nc, 1), self%n), &
             & self%dud_dv(max(self%nc, 1), self%ni), self%r(max(self%nc, 1)), source=0.0_wp)
@@ -202,6 +203,8 @@ contains
             end do
             do k = 1, nc
                 associate (slope => self%full(row, n + self%partition%dependent(k)))
+                    ! zero across blocks: skipping those keeps N parts N times one
+                    if (slope == 0.0_wp) cycle
                     jac(n + i, :n) = jac(n + i, :n) + slope*self%dud_dq(k, :)
                     jac(n + i, n + 1:) = jac(n + i, n + 1:) + slope*self%dud_dv(k, :)
                 end associate
