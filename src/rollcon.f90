@@ -33,7 +33,7 @@ module rollcon
     use rollcon_run_settings, only : run_settings_type, formulation_cvode, formulation_ida, &
         & formulation_maggi, &
         & method_bdf, method_adams, drift_none, drift_projection, drift_baumgarte, &
-        & jacobian_analytic, jacobian_dq
+        & jacobian_analytic, jacobian_dq, linear_dense, linear_sparse
 
     ! a run: the problem, its watches, the simulation, its rows and summary
     use rollcon_problem, only : problem_type

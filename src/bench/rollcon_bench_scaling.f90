@@ -31,15 +31,21 @@ module rollcon_bench_scaling
 contains
 
     !> The methods measured: their names and their INTEGRATOR keywords (rtol 1e-8, atol 1e-10,
-    !> as the coin's run).
+    !> as the coin's run): IDA, CVODE Adams on the ODE form and in independent speeds, the last
+    !> two also with the sparse Newton matrix (KLU).
     subroutine scaling_methods(names, keywords)
         character(len=24), allocatable, intent(out) :: names(:)
         character(len=96), allocatable, intent(out) :: keywords(:)
 
-        names = [character(len=24) :: "ida", "cvode-adams-baumgarte", "maggi-adams"]
+        names = [character(len=24) :: "ida", "cvode-adams-baumgarte", "maggi-adams", &
+            & "cvode-adams-klu", "maggi-adams-klu"]
         keywords = [character(len=96) :: "FORMULATION=IDA, RTOL=1e-8, ATOL=1e-10", &
             & "FORMULATION=CVODE, METHOD=ADAMS, DRIFT=BAUMGARTE, RTOL=1e-8, ATOL=1e-10", &
-            & "FORMULATION=MAGGI, METHOD=ADAMS, DRIFT=BAUMGARTE, RTOL=1e-8, ATOL=1e-10"]
+            & "FORMULATION=MAGGI, METHOD=ADAMS, DRIFT=BAUMGARTE, RTOL=1e-8, ATOL=1e-10", &
+            & "FORMULATION=CVODE, METHOD=ADAMS, DRIFT=BAUMGARTE, RTOL=1e-8, ATOL=1e-10, " &
+            & // "SOLVER=SPARSE", &
+            & "FORMULATION=MAGGI, METHOD=ADAMS, DRIFT=BAUMGARTE, RTOL=1e-8, ATOL=1e-10, " &
+            & // "SOLVER=SPARSE"]
     end subroutine scaling_methods
 
     !> Run every method on N = counts(:) disks, 0.5 m apart, to end_time [s]; the datasets are
@@ -100,7 +106,7 @@ contains
         select case (method)
         case ("ida")
             states = 15*parts
-        case ("maggi-adams")
+        case ("maggi-adams", "maggi-adams-klu")
             states = 9*parts
         case default
             states = 12*parts

@@ -11,6 +11,7 @@ module rollcon_run_settings
     public :: run_settings_type
     public :: formulation_cvode, formulation_ida, formulation_maggi, method_bdf, method_adams
     public :: drift_none, drift_projection, drift_baumgarte, jacobian_analytic, jacobian_dq
+    public :: linear_dense, linear_sparse
 
     !> Formulations: CVODE on the ODE form, IDA on the DAE form, CVODE on the coordinates and
     !> independent speeds (docs/design.md §4)
@@ -21,6 +22,9 @@ module rollcon_run_settings
     integer, parameter :: drift_none = 0, drift_projection = 1, drift_baumgarte = 2
     !> Newton matrices: from the UCOSUBs' partials, or SUNDIALS' difference quotients
     integer, parameter :: jacobian_analytic = 1, jacobian_dq = 2
+    !> CVODE's Newton matrices: dense LU (LAPACK-style, SUNDIALS' dense solver) or sparse LU
+    !> (SUNDIALS' KLU) over the constraints' blocks (docs/design.md §7)
+    integer, parameter :: linear_dense = 1, linear_sparse = 2
 
     !> How to integrate, and over which times
     type :: run_settings_type
@@ -35,6 +39,8 @@ module rollcon_run_settings
         integer :: drift = drift_projection
         !> jacobian_analytic or jacobian_dq
         integer :: jacobian = jacobian_analytic
+        !> linear_dense or linear_sparse (CVODE with an analytic Jacobian only)
+        integer :: linear_solver = linear_dense
         !> Relative and absolute tolerances [-, state units]
         real(wp) :: rtol = 1.0e-8_wp, atol = 1.0e-10_wp
         !> Baumgarte rate alpha [1/s]: F' = -alpha F (velocity), F'' = -2 alpha F' - alpha^2 F
@@ -92,6 +98,7 @@ contains
         end if
         words = words // ", " // trim(merge("analytic", "dq      ", self%analytic_jacobian())) &
             & // " Jacobian, rtol " // to_text(self%rtol) // ", atol " // to_text(self%atol)
+        if (self%linear_solver == linear_sparse) words = words // ", sparse Newton matrix (KLU)"
     end function text
 
 end module rollcon_run_settings

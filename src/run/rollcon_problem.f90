@@ -71,6 +71,7 @@ module rollcon_problem
         procedure :: dae_residual
         procedure :: dae_jacobian
         procedure :: dae_differential
+        procedure :: state_blocks
         procedure :: root_count
         procedure :: roots
         procedure :: root_values
@@ -392,6 +393,39 @@ contains
 
         kinds = dae_differential_kinds(self%eq)
     end function dae_differential
+
+    !> Each state's block (rollcon_dynamic_system): the block of its coordinate's UCONs
+    !> (rollcon_constraint_blocks), or its part's own past the blocks for a part that no UCON
+    !> holds; a rate and an independent speed as their coordinate; IDA's multipliers as their
+    !> UCON.
+    function state_blocks(self, n) result(blocks)
+        class(problem_type), intent(in) :: self
+        integer, intent(in) :: n
+        integer :: blocks(n)
+        integer :: of_coordinate(self%eq%n), b, j, m
+
+        associate (bl => self%eq%blocks, nq => self%eq%n)
+            do j = 1, nq
+                of_coordinate(j) = bl%count + (j - 1)/6 + 1
+            end do
+            do b = 1, bl%count
+                of_coordinate(bl%coordinates(bl%coordinate_start(b): &
+                    & bl%coordinate_start(b + 1) - 1)) = b
+            end do
+            blocks = 0
+            blocks(:nq) = of_coordinate
+            if (self%in_speeds()) then
+                do m = 1, n - nq
+                    blocks(nq + m) = of_coordinate(self%speeds%partition%independent(m))
+                end do
+            else
+                blocks(nq + 1:min(n, 2*nq)) = of_coordinate
+                do j = 2*nq + 1, min(n, 2*nq + self%eq%nc)
+                    blocks(j) = bl%row_block(j - 2*nq)
+                end do
+            end if
+        end associate
+    end function state_blocks
 
     !> Number of event functions: every watch's, in watch order.
     integer function root_count(self)

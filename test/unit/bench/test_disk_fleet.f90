@@ -84,12 +84,16 @@ contains
         !> Against the one-disk run, relative: CVODE's ODE form took the same steps (measured
         !> 2.5e-12: round-off, 1e-10 allowed); the independent speeds and IDA decided some step
         !> otherwise (measured 7.8e-8 and 1.1e-4 over 1 s of the tipping coin at rtol 1e-8,
-        !> its global error near flat). Ten times those
-        real(wp), parameter :: tol_copies(3) = [1.0e-3_wp, 1.0e-10_wp, 1.0e-6_wp]
-        character(len=*), parameter :: keywords(3) = [character(len=72) :: &
+        !> its global error near flat). With the sparse Newton matrix (KLU, the last two), whose
+        !> LU orders its sums by the pattern: 8.7e-10 and 1.1e-7. Ten times those
+        real(wp), parameter :: tol_copies(5) = [1.0e-3_wp, 1.0e-10_wp, 1.0e-6_wp, 1.0e-8_wp, &
+            & 1.0e-6_wp]
+        character(len=*), parameter :: keywords(5) = [character(len=82) :: &
             & "FORMULATION=IDA, RTOL=1e-8, ATOL=1e-10", &
             & "FORMULATION=CVODE, METHOD=ADAMS, DRIFT=BAUMGARTE, RTOL=1e-8, ATOL=1e-10", &
-            & "FORMULATION=MAGGI, METHOD=ADAMS, DRIFT=BAUMGARTE, RTOL=1e-8, ATOL=1e-10"]
+            & "FORMULATION=MAGGI, METHOD=ADAMS, DRIFT=BAUMGARTE, RTOL=1e-8, ATOL=1e-10", &
+            & "FORMULATION=CVODE, METHOD=ADAMS, DRIFT=BAUMGARTE, RTOL=1e-8, ATOL=1e-10, SOLVER=S", &
+            & "FORMULATION=MAGGI, METHOD=ADAMS, DRIFT=BAUMGARTE, RTOL=1e-8, ATOL=1e-10, SOLVER=S"]
         integer, parameter :: copies = 4
         type(history_type) :: one, many
         real(wp) :: largest, scale
@@ -188,10 +192,10 @@ contains
         if (allocated(error)) return
         call measure_scaling(folder, [1, 2], 0.2_wp, rows, error)
         if (allocated(error)) return
-        call check(error, size(rows), 6, "rows: 3 methods, 2 sizes")
+        call check(error, size(rows), 10, "rows: 5 methods, 2 sizes")
         if (allocated(error)) return
-        call check(error, all(rows%states == [15, 30, 12, 24, 9, 18]), "states of IDA, " &
-            & // "CVODE and the independent speeds on 1 and 2 disks")
+        call check(error, all(rows%states == [15, 30, 12, 24, 9, 18, 12, 24, 9, 18]), &
+            & "states of IDA, CVODE and the independent speeds (dense, sparse) on 1 and 2 disks")
         if (allocated(error)) return
         call check(error, rows(3)%steps > 0 .and. rows(4)%steps == rows(3)%steps, &
             & "CVODE's steps on 1 and 2 disks: " // to_text(rows(3)%steps) // ", " &
