@@ -209,8 +209,9 @@ contains
             & "", &
             & "Work-precision benchmark. For each scene (default: coin, tipping_coin,", &
             & "fast_upright, near_flat, long_run) and each way of solving (IDA; CVODE BDF with", &
-            & "projection, Baumgarte or no drift control; CVODE Adams; analytic against", &
-            & "difference-quotient Jacobians) on the tolerances rtol = 1e-3 ... 1e-12", &
+            & "projection, Baumgarte or no drift control; CVODE Adams; CVODE Adams on the", &
+            & "independent speeds, maggi-adams; analytic against difference-quotient", &
+            & "Jacobians) on the tolerances rtol = 1e-3 ... 1e-12", &
             & "(atol = 1e-2 rtol) it measures the CPU time (median of N runs, default 3; runs", &
             & "over a second are not repeated), steps, function and Jacobian evaluations, the", &
             & "largest distance of the disk's centre from the independent reference, the", &

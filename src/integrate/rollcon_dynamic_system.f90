@@ -23,6 +23,7 @@ module rollcon_dynamic_system
         procedure :: dae_residual
         procedure :: dae_jacobian
         procedure :: dae_differential
+        procedure :: state_blocks
         procedure :: root_count
         procedure :: roots
         procedure :: failure_text
@@ -97,6 +98,18 @@ contains
 
         kinds = 1.0_wp
     end function dae_differential
+
+    !> For each state, its block: the Newton matrix's entry (i, j) can be nonzero only when
+    !> states i and j are of one block (a sparse Newton matrix keeps those entries). Default:
+    !> one block, every entry.
+    function state_blocks(self, n) result(blocks)
+        class(dynamic_system_type), intent(in) :: self
+        !> Size of the state
+        integer, intent(in) :: n
+        integer :: blocks(n)
+
+        blocks = 1
+    end function state_blocks
 
     !> Number of event functions (0: none).
     integer function root_count(self)

@@ -287,7 +287,7 @@ contains
         real(wp), parameter :: tol = 1.0e-12_wp  ! one division and three subtractions
         type(job_type) :: job
         type(benchmark_row_type), allocatable :: rows(:)
-        type(method_type) :: all_methods(9)
+        type(method_type) :: all_methods(size(benchmark_methods()))
         type(part_costs_type) :: costs
         integer :: i, j
 
