@@ -7,7 +7,7 @@ module rollcon_run_keys
     use rollcon_kinds, only : wp
     use rollcon_run_settings, only : run_settings_type, formulation_cvode, formulation_ida, &
         & method_bdf, method_adams, drift_none, drift_projection, drift_baumgarte, &
-        & jacobian_analytic, jacobian_dq
+        & jacobian_analytic, jacobian_dq, jacobian_none
     use rollcon_keys, only : key_type, option_type, real_key, integer_key, choice_key, &
         & option_code, option_name
     implicit none
@@ -48,7 +48,8 @@ contains
                 & drift_projection), option_type("baumgarte", drift_baumgarte), &
                 & option_type("none", drift_none)]), &
                 & choice_key(run_group, "jacobian", r%jacobian, [option_type("analytic", &
-                & jacobian_analytic), option_type("dq", jacobian_dq)]), &
+                & jacobian_analytic), option_type("dq", jacobian_dq), option_type("none", &
+                & jacobian_none)]), &
                 & real_key(run_group, "rtol", r%rtol, "", rtol_min, 1.0_wp, upper_open=.true.), &
                 & real_key(run_group, "atol", r%atol, "", atol_min, atol_max), &
                 & real_key(run_group, "baumgarte_rate", r%baumgarte_rate, "1/s", 0.0_wp, &
@@ -82,7 +83,7 @@ contains
     !> and the studies refuse the same combinations through it.
     subroutine run_choice_rule(settings, key, expected, got)
         type(run_settings_type), intent(in) :: settings
-        !> 'method' or 'drift', "" when the choices go together
+        !> 'method', 'drift' or 'jacobian', "" when the choices go together
         character(len=:), allocatable, intent(out) :: key
         !> What the key must be, and its value quoted
         character(len=:), allocatable, intent(out) :: expected, got
@@ -99,6 +100,10 @@ contains
                 key = "drift"
                 expected = "left out with formulation 'ida' (IDA has no drift; 'baumgarte' " &
                     & // "and 'none' are for 'cvode')"
+            else if (run%formulation == formulation_ida .and. run%jacobian == jacobian_none) then
+                key = "jacobian"
+                expected = "'analytic' or 'dq' with formulation 'ida' (IDA solves with " &
+                    & // "Newton's method; 'none', fixed-point iteration, is for 'cvode')"
             else if (run%formulation == formulation_cvode .and. run%method == method_adams &
                     & .and. run%drift == drift_projection) then
                 ! CVODE's projection works with BDF only (CVodeSetProjFn refuses Adams)
@@ -106,8 +111,14 @@ contains
                 expected = "'baumgarte' or 'none' with method = 'adams' (CVODE projects only " &
                     & // "with BDF)"
             end if
-            if (len(key) > 0) got = "'" // choice_name(key, merge(run%method, run%drift, &
-                & key == "method")) // "'"
+            select case (key)
+            case ("method")
+                got = "'" // choice_name(key, run%method) // "'"
+            case ("drift")
+                got = "'" // choice_name(key, run%drift) // "'"
+            case ("jacobian")
+                got = "'" // choice_name(key, run%jacobian) // "'"
+            end select
         end associate
     end subroutine run_choice_rule
 
