@@ -213,7 +213,6 @@ contains
         call compare_scene(error, "long_run", 20.0_wp, 20.0_wp, tol_stable)
     end subroutine test_long_run
 
-    !> The scene (cut at end_time) by IDA, by CVODE (BDF, projection) and by the reduced ODE,
     !> CVODE Adams with fixed-point iteration (jacobian = 'none'), the full model with Baumgarte's
     !> stabilisation and the reduced ODE alike, on fast_upright at rtol 1e-10: no Newton matrix
     !> is ever formed, and the two centres agree within tol_stable (measured by the benchmark:
@@ -256,6 +255,7 @@ contains
             & // to_text(distance) // " m")
     end subroutine test_fixed_point
 
+    !> The scene (cut at end_time) by IDA, by CVODE (BDF, projection) and by the reduced ODE,
     !> all at rtol 1e-10: the centres agree within tol_position up to horizon; over the whole
     !> run each full solution keeps the reduced one's energy and Z = R sin(theta).
     subroutine compare_scene(error, name, end_time, horizon, tol_position)
