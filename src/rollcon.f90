@@ -107,10 +107,12 @@ module rollcon
 
     ! speed against accuracy (docs/benchmark.md)
     use rollcon_benchmark, only : method_type, benchmark_methods, benchmark_row_type, &
-        & benchmark_scene, benchmark_header, write_benchmark_row, evaluation_costs
+        & benchmark_scene, benchmark_header, write_benchmark_row, evaluation_costs, &
+        & method_settings
     use rollcon_bench_costs, only : part_costs_type, measure_part_costs
-    use rollcon_bench_process, only : process_cost_type, measure_process
-    use rollcon_bench_summary, only : accuracy_line
+    use rollcon_bench_process, only : process_cost_type, measure_process, &
+        & write_scene_with_settings
+    use rollcon_bench_summary, only : accuracy_line, cheapest_row
     use rollcon_bench_plot, only : plot_work_precision, machine_name
     use rollcon_bench_sweep, only : time_sweep, coordinator_row_us
     use rollcon_bench_scaling, only : scaling_row_type, measure_scaling, scaling_header, &

@@ -10,7 +10,8 @@ module rollcon_run_settings
 
     public :: run_settings_type
     public :: formulation_cvode, formulation_ida, formulation_maggi, method_bdf, method_adams
-    public :: drift_none, drift_projection, drift_baumgarte, jacobian_analytic, jacobian_dq
+    public :: drift_none, drift_projection, drift_baumgarte, jacobian_analytic, jacobian_dq, &
+        & jacobian_none
     public :: linear_dense, linear_sparse
 
     !> Formulations: CVODE on the ODE form, IDA on the DAE form, CVODE on the coordinates and
@@ -20,8 +21,9 @@ module rollcon_run_settings
     integer, parameter :: method_bdf = 1, method_adams = 2
     !> Drift control of the ODE form: none, projection onto the constraints, Baumgarte
     integer, parameter :: drift_none = 0, drift_projection = 1, drift_baumgarte = 2
-    !> Newton matrices: from the UCOSUBs' partials, or SUNDIALS' difference quotients
-    integer, parameter :: jacobian_analytic = 1, jacobian_dq = 2
+    !> Newton matrices: from the UCOSUBs' partials, or SUNDIALS' difference quotients; or none:
+    !> CVODE's fixed-point (functional) iteration instead of Newton's method
+    integer, parameter :: jacobian_analytic = 1, jacobian_dq = 2, jacobian_none = 0
     !> CVODE's Newton matrices: dense LU (LAPACK-style, SUNDIALS' dense solver) or sparse LU
     !> (SUNDIALS' KLU) over the constraints' blocks (docs/design.md §7)
     integer, parameter :: linear_dense = 1, linear_sparse = 2
@@ -37,7 +39,7 @@ module rollcon_run_settings
         integer :: method = method_bdf
         !> drift_projection, drift_baumgarte or drift_none (the last two CVODE only)
         integer :: drift = drift_projection
-        !> jacobian_analytic or jacobian_dq
+        !> jacobian_analytic, jacobian_dq, or jacobian_none (fixed-point iteration, CVODE only)
         integer :: jacobian = jacobian_analytic
         !> linear_dense or linear_sparse (CVODE with an analytic Jacobian only)
         integer :: linear_solver = linear_dense
@@ -96,8 +98,13 @@ contains
         else
             words = "IDA (DAE form, index 2)"
         end if
-        words = words // ", " // trim(merge("analytic", "dq      ", self%analytic_jacobian())) &
-            & // " Jacobian, rtol " // to_text(self%rtol) // ", atol " // to_text(self%atol)
+        if (self%jacobian == jacobian_none) then
+            words = words // ", fixed-point iteration (no Jacobian)"
+        else
+            words = words // ", " // trim(merge("analytic", "dq      ", &
+                & self%analytic_jacobian())) // " Jacobian"
+        end if
+        words = words // ", rtol " // to_text(self%rtol) // ", atol " // to_text(self%atol)
         if (self%linear_solver == linear_sparse) words = words // ", sparse Newton matrix (KLU)"
     end function text
 

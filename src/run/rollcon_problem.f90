@@ -20,7 +20,7 @@ module rollcon_problem
         & drift_projection
     use rollcon_dynamic_system, only : dynamic_system_type
     use rollcon_watch, only : watch_type, watch_slot_type, append_watch
-    use rollcon_output_layout, only : name_length
+    use rollcon_output_layout, only : name_length, coord_psi
     implicit none
     private
 
@@ -72,6 +72,7 @@ module rollcon_problem
         procedure :: dae_jacobian
         procedure :: dae_differential
         procedure :: state_blocks
+        procedure :: dae_vector_groups
         procedure :: root_count
         procedure :: roots
         procedure :: root_values
@@ -426,6 +427,23 @@ contains
             end if
         end associate
     end function state_blocks
+
+    !> A part's three Euler-angle rates are held relative to the largest of them: they are the
+    !> components of one angular velocity (docs/design.md §7, IDA's error test). Every other
+    !> component alone.
+    function dae_vector_groups(self, n) result(groups)
+        class(problem_type), intent(in) :: self
+        integer, intent(in) :: n
+        integer :: groups(n)
+        integer :: p, first
+
+        groups = 0
+        do p = 1, self%eq%n/6
+            ! u of part p: n + 6 (p - 1) + (X', Y', Z', psi', theta', phi')
+            first = self%eq%n + 6*(p - 1) + coord_psi
+            groups(first:first + 2) = first
+        end do
+    end function dae_vector_groups
 
     !> Number of event functions: every watch's, in watch order.
     integer function root_count(self)

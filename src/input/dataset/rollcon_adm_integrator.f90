@@ -7,9 +7,10 @@
 !> ADAMS's keyword: ERROR = e (sets RTOL, and ATOL unless ATOL is given). rollcon's own:
 !> RTOL, ATOL [SI state units], MAXSTEPS (most steps per output interval), BAUMGARTE (rate
 !> [1/s]), FORMULATION = IDA | CVODE | MAGGI, METHOD = BDF | ADAMS, DRIFT = PROJECTION |
-!> BAUMGARTE | NONE, JACOBIAN = ANALYTIC | DQ, SOLVER = DENSE | SPARSE. ADAMS's choice of integrator (GSTIFF, WSTIFF, ..., HHT) and
-!> its tuning (HMAX, KMAX, CORRECTOR, ...) are read, each value checked for its form, and
-!> recorded as not used (rollcon_adm_outputs): rollcon integrates with the settings above.
+!> BAUMGARTE | NONE, JACOBIAN = ANALYTIC | DQ | NONE, SOLVER = DENSE | SPARSE. ADAMS's choice
+!> of integrator (GSTIFF, WSTIFF, ..., HHT) and its tuning (HMAX, KMAX, CORRECTOR, ...) are
+!> read, each value checked for its form, and recorded as not used (rollcon_adm_outputs):
+!> rollcon integrates with the settings above.
 module rollcon_adm_integrator
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type, fatal_error, stat_input

@@ -7,7 +7,7 @@ module rollcon_run_keys
     use rollcon_kinds, only : wp
     use rollcon_run_settings, only : run_settings_type, formulation_cvode, formulation_ida, &
         & formulation_maggi, method_bdf, method_adams, drift_none, drift_projection, drift_baumgarte, &
-        & jacobian_analytic, jacobian_dq, linear_dense, linear_sparse
+        & jacobian_analytic, jacobian_dq, jacobian_none, linear_dense, linear_sparse
     use rollcon_keys, only : key_type, option_type, real_key, integer_key, choice_key, &
         & option_code, option_name
     implicit none
@@ -49,7 +49,8 @@ contains
                 & drift_projection), option_type("baumgarte", drift_baumgarte), &
                 & option_type("none", drift_none)]), &
                 & choice_key(run_group, "jacobian", r%jacobian, [option_type("analytic", &
-                & jacobian_analytic), option_type("dq", jacobian_dq)]), &
+                & jacobian_analytic), option_type("dq", jacobian_dq), option_type("none", &
+                & jacobian_none)]), &
                 & choice_key(run_group, "linear_solver", r%linear_solver, [option_type("dense", &
                 & linear_dense), option_type("sparse", linear_sparse)]), &
                 & real_key(run_group, "rtol", r%rtol, "", rtol_min, 1.0_wp, upper_open=.true.), &
@@ -85,7 +86,7 @@ contains
     !> and the studies refuse the same combinations through it.
     subroutine run_choice_rule(settings, key, expected, got)
         type(run_settings_type), intent(in) :: settings
-        !> 'method' or 'drift', "" when the choices go together
+        !> 'method', 'drift' or 'jacobian', "" when the choices go together
         character(len=:), allocatable, intent(out) :: key
         !> What the key must be, and its value quoted
         character(len=:), allocatable, intent(out) :: expected, got
@@ -102,6 +103,11 @@ contains
                 key = "drift"
                 expected = "left out with formulation 'ida' (IDA has no drift; 'baumgarte' " &
                     & // "and 'none' are for 'cvode' and 'maggi')"
+            else if (run%formulation == formulation_ida .and. run%jacobian == jacobian_none) then
+                key = "jacobian"
+                expected = "'analytic' or 'dq' with formulation 'ida' (IDA solves with " &
+                    & // "Newton's method; 'none', fixed-point iteration, is for 'cvode' and " &
+                    & // "'maggi')"
             else if (run%uses_cvode() .and. run%method == method_adams &
                     & .and. run%drift == drift_projection) then
                 ! CVODE's projection works with BDF only (CVodeSetProjFn refuses Adams)
@@ -116,12 +122,16 @@ contains
                     & // "'analytic' (the sparse Newton matrix is CVODE's, from the UCOSUBs' " &
                     & // "partials)"
             end if
-            if (key == "linear_solver") then
+            select case (key)
+            case ("method")
+                got = "'" // choice_name(key, run%method) // "'"
+            case ("drift")
+                got = "'" // choice_name(key, run%drift) // "'"
+            case ("jacobian")
+                got = "'" // choice_name(key, run%jacobian) // "'"
+            case ("linear_solver")
                 got = "'sparse'"
-            else if (len(key) > 0) then
-                got = "'" // choice_name(key, merge(run%method, run%drift, key == "method")) &
-                    & // "'"
-            end if
+            end select
         end associate
     end subroutine run_choice_rule
 

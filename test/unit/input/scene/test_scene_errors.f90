@@ -254,6 +254,12 @@ contains
         call expect_input_error(error, "adams", [character(len=width) :: &
             & "&run method = 'adams' /"], [character(len=width) :: &
             & "@:1: 'method' in &run must be 'bdf' with formulation 'ida'"])
+        if (allocated(error)) return
+        ! fixed-point iteration is CVODE's: IDA solves with Newton's method
+        call expect_input_error(error, "fixed_point_ida", [character(len=width) :: &
+            & "&run jacobian = 'none' /"], [character(len=width) :: &
+            & "@:1: 'jacobian' in &run must be 'analytic' or 'dq' with formulation 'ida'", &
+            & "got 'none'"])
     end subroutine test_adams_ida
 
     subroutine test_theta_range(error)
