@@ -65,6 +65,7 @@ module rollcon_cli
         & option_spec_type("--end-time", "", "T", .false., " bench bench-scaling "), &
         & option_spec_type("--study", "", "STUDY.nml", .false., " bench-sweep "), &
         & option_spec_type("--no-map", "", "", .false., " sweep "), &
+        & option_spec_type("--speeds", "", "FROM,TO,COUNT", .false., " linear "), &
         & option_spec_type("--version", "", "", .false., " version ")]
 
     !> One option as given, with its value

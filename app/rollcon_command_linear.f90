@@ -6,7 +6,8 @@ module rollcon_command_linear
     use, intrinsic :: iso_fortran_env, only : output_unit, error_unit
     use rollcon, only : error_type, fatal_error, stat_input, job_type, load_job, is_dataset, &
         & linear_result_type, linearise_job, write_eigen_csv, linear_table_text, &
-        & command_line_text
+        & command_line_text, wp, speed_table_type, stability_change_type, linear_speeds_job, &
+        & write_speed_csv, draw_eigen_speed_figure, fixed_text, to_text
     use rollcon_cli, only : cli_request_type
     implicit none
     private
@@ -40,6 +41,10 @@ contains
             & // job%source%input_warning()
         job%output_dir = request%text("--output", "output")
         job%command_line = command_line_text()
+        if (request%has("--speeds")) then
+            call speeds_command(request, path, job, error)
+            return
+        end if
         call linearise_job(job, result, report, error)
         if (allocated(error)) return
         if (.not. request%has("--quiet") .and. len(report) > 0) write(output_unit, '(a)') report
@@ -53,9 +58,70 @@ contains
         write(output_unit, '(a)') "output: " // written
     end subroutine linear_command
 
+    !> --speeds FROM,TO,COUNT: the eigenvalues at COUNT speeds from FROM to TO [m/s], the
+    !> speeds where stability changes printed, the CSV and the figure written.
+    subroutine speeds_command(request, path, job, error)
+        type(cli_request_type), intent(in) :: request
+        character(len=*), intent(in) :: path
+        type(job_type), intent(inout) :: job
+        type(error_type), allocatable, intent(out) :: error
+        type(speed_table_type) :: table
+        type(stability_change_type), allocatable :: changes(:)
+        character(len=:), allocatable :: report, written, png
+        real(wp) :: grid(3)
+        real(wp), allocatable :: speeds(:)
+        integer :: points, k
+
+        grid = 0.0_wp
+        call request%real_list("--speeds", grid, error)
+        if (allocated(error)) return
+        points = nint(grid(3))
+        if (abs(grid(3) - points) > 0.0_wp .or. points < 2 .or. points > 100000 &
+            & .or. grid(1) < 0.0_wp .or. grid(2) <= grid(1)) then
+            call fatal_error(error, "--speeds expects FROM,TO,COUNT with 0 <= FROM < TO [m/s] " &
+                & // "and a whole COUNT from 2 to 100000 (the speeds, ends included), got '" &
+                & // request%text("--speeds", "") // "'", stat_input)
+            return
+        end if
+        ! both ends exactly as given
+        speeds = [(grid(1)*real(points - 1 - k, wp)/real(points - 1, wp) &
+            & + grid(2)*real(k, wp)/real(points - 1, wp), k = 0, points - 1)]
+        call linear_speeds_job(job, speeds, table, changes, report, error)
+        if (allocated(error)) return
+        if (.not. request%has("--quiet") .and. len(report) > 0) write(output_unit, '(a)') report
+        write(output_unit, '(a)') "eigenvalues of " // path // " at " // trim(int_text(points)) &
+            & // " speeds from " // to_text(grid(1)) // " to " &
+            & // to_text(grid(2)) // " m/s (every velocity of the start scaled), " &
+            & // trim(int_text(size(table%real_part, 1))) // " after " &
+            & // trim(int_text(count(table%struck) + table%deflations)) // " structural zeros taken out"
+        if (size(changes) == 0) write(output_unit, '(a)') "stability does not change in that range"
+        do k = 1, size(changes)
+            write(output_unit, '(a)') "stability changes at " // fixed_text(changes(k)%speed, 6) &
+                & // " m/s: " // trim(merge("oscillatory (a complex pair: weave)   ", &
+                & "divergent (a real eigenvalue: capsize)", changes(k)%oscillatory)) &
+                & // merge("; stable above", "; stable below", changes(k)%stable_above)
+        end do
+        call write_speed_csv(job, table, changes, written, error)
+        if (allocated(error)) return
+        write(output_unit, '(a)') "output: " // written
+        png = written(:len(written) - len(".csv")) // ".png"
+        call draw_eigen_speed_figure(table, changes, "Eigenvalues of " // path &
+            & // " against speed", png, error)
+        if (allocated(error)) return
+        write(output_unit, '(a)') "output: " // png
+    end subroutine speeds_command
+
+    pure function int_text(n) result(text)
+        integer, intent(in) :: n
+        character(len=12) :: text
+
+        write(text, '(i0)') n
+    end function int_text
+
     subroutine print_linear_help()
         write(output_unit, '(a)') &
             & "usage: rollcon linear MODEL.adm [--output DIR] [--ucosub NAME] [--quiet]", &
+            & "                      [--speeds FROM,TO,COUNT]", &
             & "", &
             & "Linear analysis (as ADAMS's LINEAR/EIGENSOL): the dataset's model, its start made", &
             & "consistent by the initial-conditions analysis (a steady motion such as straight", &
@@ -71,6 +137,14 @@ contains
             & "                 (disk, rolling_disk, ...); a file of your own is refused: it", &
             & "                 runs only in a child process, which linear does not use", &
             & "  --quiet        do not print what the initial-conditions analysis moved", &
+            & "  --speeds FROM,TO,COUNT", &
+            & "                 eigenvalues against speed: every velocity of the start scaled", &
+            & "                 so that the first moving part's centre of mass moves at each", &
+            & "                 of COUNT speeds from FROM to TO [m/s] (a steady motion whose", &
+            & "                 velocities all scale with its speed: straight rolling); the", &
+            & "                 structural zeros (cyclic coordinates, conserved speeds) taken", &
+            & "                 out; prints the speeds where stability changes (to 1e-9 m/s),", &
+            & "                 writes DIR/MODEL.eigen-speed.csv and its figure .png", &
             & "", &
             & "Exit status: 0 when the CSV is written, 1 on bad input (not a dataset, a start", &
             & "off the constraints, a singular constraint Jacobian) or a failure."

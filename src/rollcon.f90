@@ -6,7 +6,7 @@ module rollcon
     ! kinds, errors, numbers as text
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type, fatal_error, stat_input, stat_io, stat_ucon
-    use rollcon_text, only : to_text
+    use rollcon_text, only : to_text, fixed_text
     use rollcon_output_files, only : make_folders
     use rollcon_lapack, only : use_one_blas_thread
     use rollcon_version, only : rollcon_version_number, version_text
@@ -56,6 +56,8 @@ module rollcon
     use rollcon_linearisation, only : linear_options_type, linear_result_type, linearise
     use rollcon_linear_report, only : linear_table_text, natural_frequency, damped_frequency, &
         & damping_ratio
+    use rollcon_linear_speeds, only : speed_table_type, stability_change_type, speed_table, &
+        & stability_changes, reference_speed
 
     ! inputs: scenes and datasets
     use rollcon_scene, only : scene_type, read_scene, scene_path
@@ -74,7 +76,8 @@ module rollcon
     use rollcon_ucosub_units, only : ucosub_units_type
     use rollcon_load, only : load_job, input_override_type, is_dataset, output_name
     use rollcon_run_job, only : run_job, job_result_type
-    use rollcon_linear_job, only : linearise_job, write_eigen_csv, eigen_csv_path
+    use rollcon_linear_job, only : linearise_job, write_eigen_csv, eigen_csv_path, &
+        & linear_speeds_job, write_speed_csv, speed_csv_path
 
     ! a user's own UCOSUB: built, loaded, checked apart from rollcon
     use rollcon_user_library, only : user_ucosub_type, user_build_options_type, new_user_ucosub
@@ -104,6 +107,7 @@ module rollcon
     use rollcon_gif, only : animate_output
     use rollcon_vtk, only : write_vtk_series
     use rollcon_study_map, only : draw_study_map
+    use rollcon_eigen_speed_figure, only : draw_eigen_speed_figure
 
     ! speed against accuracy (docs/benchmark.md)
     use rollcon_benchmark, only : method_type, benchmark_methods, benchmark_row_type, &

@@ -43,6 +43,7 @@ program tester
     use test_ucosub_catalog, only : collect_ucosub_catalog
     use test_initial_conditions, only : collect_initial_conditions
     use test_linearisation, only : collect_linearisation
+    use test_linear_speeds, only : collect_linear_speeds
     use test_rebasing, only : collect_rebasing
     use test_singular_start, only : collect_singular_start
     use test_rebasing_restarts, only : collect_rebasing_restarts
@@ -127,6 +128,7 @@ program tester
         & new_testsuite("linear-command", collect_linear_command), &
         & new_testsuite("initial-conditions", collect_initial_conditions), &
         & new_testsuite("linearisation", collect_linearisation), &
+        & new_testsuite("linear-speeds", collect_linear_speeds), &
         & new_testsuite("rebasing", collect_rebasing), &
         & new_testsuite("singular-start", collect_singular_start), &
         & new_testsuite("rebasing-restarts", collect_rebasing_restarts), &

@@ -253,7 +253,12 @@ contains
     end subroutine partition
 
     !> The size(rows) most independent columns of block (scaled by scale, rows to unit
-    !> length), or an error when the rows are dependent.
+    !> length), or an error when the rows are dependent. The translational columns (a part's
+    !> X, Y, Z or their rates) are taken first, as many as are independent: the independent
+    !> coordinates and speeds are then angles and angle rates wherever the constraints allow,
+    !> which a turn of the whole model about the vertical leaves as they are (a heading, a
+    !> spin angle: cyclic coordinates, whose columns of A_red are zero; docs/linear.md). The
+    !> choice changes no eigenvalue, only which ones are zero by structure.
     subroutine pick_columns(problem, level, rows, block, scale, chosen, error)
         type(problem_type), intent(in) :: problem
         character(len=*), intent(in) :: level
@@ -262,8 +267,9 @@ contains
         integer, allocatable, intent(out) :: chosen(:)
         type(error_type), allocatable, intent(out) :: error
         real(wp), allocatable :: a(:, :), diagonal(:)
-        integer, allocatable :: order(:)
-        integer :: m, i
+        integer, allocatable :: order(:), translational(:)
+        logical, allocatable :: leading(:)
+        integer :: m, i, rank
 
         m = size(rows)
         allocate(chosen(0))
@@ -273,8 +279,18 @@ contains
             a(i, :) = a(i, :)*scale
             if (norm2(a(i, :)) > 0.0_wp) a(i, :) = a(i, :)/norm2(a(i, :))
         end do
+        ! first the translational columns alone: those of them that are independent lead
+        translational = pack([(i, i = 1, size(a, 2))], modulo([(i, i = 0, size(a, 2) - 1)], &
+            & 6) < 3)
+        allocate(order(size(translational)), diagonal(min(m, size(translational))))
+        call pivoted_columns(a(:, translational), order, diagonal, error)
+        if (allocated(error)) return
+        rank = count(diagonal > ic_rcond)
+        allocate(leading(size(a, 2)), source=.false.)
+        leading(translational(order(:rank))) = .true.
+        deallocate(order, diagonal)
         allocate(order(size(a, 2)), diagonal(min(m, size(a, 2))))
-        call pivoted_columns(a, order, diagonal, error)
+        call pivoted_columns(a, order, diagonal, error, leading)
         if (allocated(error)) return
         if (m > size(a, 2) .or. .not. diagonal(min(m, size(a, 2))) > ic_rcond) then
             call fatal_error(error, "linearisation: the constraints' Jacobian is singular at " &

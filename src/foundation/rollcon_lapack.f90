@@ -236,7 +236,7 @@ contains
     !> the triangular factor's diagonal: the first rank columns of `order` are the most
     !> independent ones, and |R(k,k)| falling towards zero measures how far the first k are from
     !> dependent.
-    subroutine pivoted_columns(a, order, diagonal, error)
+    subroutine pivoted_columns(a, order, diagonal, error, leading)
         !> m x n matrix (not changed)
         real(wp), intent(in) :: a(:, :)
         !> The n column numbers in pivot order
@@ -244,6 +244,9 @@ contains
         !> |R(k,k)|, min(m, n) of them
         real(wp), intent(out) :: diagonal(:)
         type(error_type), allocatable, intent(out) :: error
+        !> Columns put first, in their own order and not pivoted (dgeqp3's fixed columns):
+        !> the caller makes sure they are independent
+        logical, intent(in), optional :: leading(:)
         real(wp), allocatable :: copy(:, :), work(:), tau(:)
         real(wp) :: query(1)
         integer :: m, n, k, info
@@ -255,6 +258,7 @@ contains
             order = [(k, k = 1, n)]
             return
         end if
+        if (present(leading)) order = merge(1, 0, leading)
         copy = a
         allocate(tau(min(m, n)))
         call dgeqp3(m, n, copy, m, order, tau, query, -1, info)

@@ -7,7 +7,7 @@ module rollcon_text
     implicit none
     private
 
-    public :: to_text, single_quoted, shell_quote, lower_case, upper_case, unquoted, comma_list
+    public :: to_text, fixed_text, single_quoted, shell_quote, lower_case, upper_case, unquoted, comma_list
 
     !> Decimal text of an integer or a real
     interface to_text
@@ -96,6 +96,25 @@ contains
             text = text // "e" // integer_to_text(exponent)
         end if
     end function real_to_text
+
+    !> A real with a fixed number of decimals and a digit before the point: 0.571925, -0.5.
+    pure function fixed_text(value, decimals) result(text)
+        real(wp), intent(in) :: value
+        !> Digits after the point
+        integer, intent(in) :: decimals
+        character(len=:), allocatable :: text
+        character(len=64) :: buffer
+        character(len=16) :: form
+
+        write(form, '("(f0.", i0, ")")') decimals
+        write(buffer, form) value
+        text = trim(adjustl(buffer))
+        if (text(1:1) == ".") then
+            text = "0" // text
+        else if (text(1:min(2, len(text))) == "-.") then
+            text = "-0" // text(2:)
+        end if
+    end function fixed_text
 
     !> text between single quotes, each quote inside written as escape: "'\''" for a POSIX
     !> shell, "''" for gnuplot.

@@ -13,12 +13,16 @@ module rollcon_linear_job
     use rollcon_problem, only : problem_type
     use rollcon_linearisation, only : linear_options_type, linear_result_type, linearise
     use rollcon_linear_report, only : eigen_csv_rows
+    use rollcon_linear_speeds, only : speed_table_type, stability_change_type, speed_table, &
+        & stability_changes
+    use rollcon_text, only : to_text, fixed_text
     use rollcon_job, only : job_type
     use rollcon_provenance, only : provenance_lines
     implicit none
     private
 
     public :: linearise_job, write_eigen_csv, eigen_csv_path
+    public :: linear_speeds_job, write_speed_csv, speed_csv_path
 
 contains
 
@@ -40,14 +44,8 @@ contains
 
         report = ""
         if (present(options)) chosen = options
-        if (len(job%user_file) > 0) then
-            call fatal_error(error, "--ucosub " // job%user_file // ": the linear analysis " &
-                & // "runs built-in routines only (a user's routine runs in a child process, " &
-                & // "docs/checker.md, which it does not use); give --ucosub NAME of a " &
-                & // "built-in routine, or check and simulate your routine with rollcon check " &
-                & // "and rollcon run", stat_input)
-            return
-        end if
+        call refuse_user_file(job, error)
+        if (allocated(error)) return
         routine => job%routine
         call job%source%build(routine, problem, q0, u0, report, error)
         if (allocated(error)) return
@@ -55,6 +53,141 @@ contains
         if (allocated(error) .and. len(job%source%path) > 0) &
             & error%message = job%source%path // ": " // error%message
     end subroutine linearise_job
+
+    !> Build the job's model and its consistent start (t = 0), linearise at every speed of the
+    !> grid (the start's velocities scaled: rollcon_linear_speeds) and find where stability
+    !> changes. Refusals as linearise_job's.
+    subroutine linear_speeds_job(job, speeds, table, changes, report, error, options)
+        type(job_type), intent(inout) :: job
+        !> Speeds [m/s]
+        real(wp), intent(in) :: speeds(:)
+        type(speed_table_type), intent(out) :: table
+        type(stability_change_type), allocatable, intent(out) :: changes(:)
+        character(len=:), allocatable, intent(out) :: report
+        type(error_type), allocatable, intent(out) :: error
+        type(linear_options_type), intent(in), optional :: options
+        type(problem_type), target :: problem
+        type(linear_options_type) :: chosen
+        procedure(ucosub_interface), pointer :: routine
+        real(wp), allocatable :: q0(:), u0(:)
+
+        report = ""
+        if (present(options)) chosen = options
+        call refuse_user_file(job, error)
+        if (allocated(error)) return
+        routine => job%routine
+        call job%source%build(routine, problem, q0, u0, report, error)
+        if (.not. allocated(error)) call speed_table(problem, 0.0_wp, q0, u0, speeds, chosen, &
+            & table, error)
+        if (.not. allocated(error)) call stability_changes(problem, 0.0_wp, q0, u0, table, &
+            & chosen, changes, error)
+        if (allocated(error) .and. len(job%source%path) > 0) &
+            & error%message = job%source%path // ": " // error%message
+    end subroutine linear_speeds_job
+
+    !> DIR/MODEL.eigen-speed.csv, beside eigen_csv_path(job).
+    function speed_csv_path(job) result(path)
+        type(job_type), intent(in) :: job
+        character(len=:), allocatable :: path
+
+        path = job%output_dir // "/" // eigen_stem(job) // ".eigen-speed.csv"
+    end function speed_csv_path
+
+    !> Write the eigenvalues against speed to speed_csv_path(job), whole or not at all: the
+    !> record and the stability changes as # lines, then `speed,real_1,imag_1,...` [m/s, 1/s]
+    !> and one row per speed.
+    subroutine write_speed_csv(job, table, changes, path, error)
+        type(job_type), intent(in) :: job
+        type(speed_table_type), intent(in) :: table
+        type(stability_change_type), intent(in) :: changes(:)
+        character(len=:), allocatable, intent(out) :: path
+        type(error_type), allocatable, intent(out) :: error
+        type(error_type), allocatable :: cleanup_error
+        character(len=:), allocatable :: partial, text
+        character(len=26) :: number
+        integer :: k, i
+
+        path = speed_csv_path(job)
+        call make_folders(job%output_dir, error)
+        if (allocated(error)) return
+        partial = partial_name(job%output_dir, eigen_stem(job), ".eigen-speed.csv")
+        text = comment_lines(provenance_lines(job)) // "# eigenvalues [1/s] of the " &
+            & // "linearisation on the constraint manifold against the speed [m/s] of the " &
+            & // "first moving part (every velocity of the start scaled), the structural " &
+            & // "zeros taken out (" // to_text(count(table%struck) + table%deflations) // "), by decreasing " &
+            & // "real part (docs/linear.md)" // new_line("a")
+        do k = 1, size(changes)
+            write(number, '(es24.16e3)') changes(k)%speed
+            text = text // "# stability changes at " // trim(adjustl(number)) // " m/s: " &
+                & // change_words(changes(k)) // new_line("a")
+        end do
+        text = text // "speed"
+        do i = 1, size(table%real_part, 1)
+            text = text // ",real_" // to_text(i) // ",imag_" // to_text(i)
+        end do
+        do k = 1, size(table%speed)
+            write(number, '(es24.16e3)') table%speed(k)
+            text = text // new_line("a") // trim(adjustl(number))
+            do i = 1, size(table%real_part, 1)
+                write(number, '(es24.16e3)') table%real_part(i, k)
+                text = text // "," // trim(adjustl(number))
+                write(number, '(es24.16e3)') table%imag_part(i, k)
+                text = text // "," // trim(adjustl(number))
+            end do
+        end do
+        call write_text_file(partial, text, error)
+        if (.not. allocated(error)) call rename_file(partial, path, error)
+        if (allocated(error)) call delete_file(partial, cleanup_error)
+    end subroutine write_speed_csv
+
+    !> What a stability change is, in words: which kind of eigenvalue crosses, and on which
+    !> side the motion is stable.
+    function change_words(change) result(words)
+        type(stability_change_type), intent(in) :: change
+        character(len=:), allocatable :: words
+
+        if (change%oscillatory) then
+            words = "a complex pair crosses the imaginary axis (an oscillation at " &
+                & // fixed_text(change%frequency, 6) // " rad/s, as a bicycle's weave)"
+        else
+            words = "a real eigenvalue passes through zero (a divergence, as a bicycle's capsize)"
+        end if
+        if (change%stable_above) then
+            words = words // "; stable above"
+        else
+            words = words // "; stable below"
+        end if
+    end function change_words
+
+    !> Lines as # comments, each ending with a new line.
+    function comment_lines(lines) result(text)
+        character(len=*), intent(in) :: lines
+        character(len=:), allocatable :: text
+        integer :: start, cut
+
+        text = ""
+        start = 1
+        do while (start <= len(lines))
+            cut = index(lines(start:), new_line("a"))
+            if (cut == 0) cut = len(lines) - start + 2
+            text = text // "# " // lines(start:start + cut - 2) // new_line("a")
+            start = start + cut
+        end do
+    end function comment_lines
+
+    !> A user's UCOSUB file is refused (see linearise_job).
+    subroutine refuse_user_file(job, error)
+        type(job_type), intent(in) :: job
+        type(error_type), allocatable, intent(out) :: error
+
+        if (len(job%user_file) > 0) then
+            call fatal_error(error, "--ucosub " // job%user_file // ": the linear analysis " &
+                & // "runs built-in routines only (a user's routine runs in a child process, " &
+                & // "docs/checker.md, which it does not use); give --ucosub NAME of a " &
+                & // "built-in routine, or check and simulate your routine with rollcon check " &
+                & // "and rollcon run", stat_input)
+        end if
+    end subroutine refuse_user_file
 
     !> DIR/MODEL.eigen.csv: MODEL the input's file name without its .adm or .nml (the job's
     !> name for a model built in code).
@@ -90,21 +223,13 @@ contains
         character(len=:), allocatable, intent(out) :: path
         type(error_type), allocatable, intent(out) :: error
         type(error_type), allocatable :: cleanup_error
-        character(len=:), allocatable :: partial, text, record
-        integer :: cut
+        character(len=:), allocatable :: partial, text
 
         path = eigen_csv_path(job)
         call make_folders(job%output_dir, error)
         if (allocated(error)) return
         partial = partial_name(job%output_dir, eigen_stem(job), ".eigen.csv")
-        record = provenance_lines(job)
-        text = ""
-        do while (len(record) > 0)
-            cut = index(record, new_line("a"))
-            text = text // "# " // record(:cut)
-            record = record(cut + 1:)
-        end do
-        text = text // "# eigenvalues [1/s] of the linearisation on the constraint manifold at " &
+        text = comment_lines(provenance_lines(job)) // "# eigenvalues [1/s] of the linearisation on the constraint manifold at " &
             & // "t = 0 s (docs/linear.md), by decreasing real part" // new_line("a") &
             & // eigen_csv_rows(result)
         call write_text_file(partial, text(:len(text) - 1), error)

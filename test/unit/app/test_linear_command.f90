@@ -33,6 +33,8 @@ contains
 
         tests = [new_unittest("coin-eigen-csv", test_coin_csv), &
             & new_unittest("refusals-write-nothing", test_refusals), &
+            & new_unittest("speeds-csv-and-figure", test_speeds), &
+            & new_unittest("speeds-refused", test_speeds_refused), &
             & new_unittest("help", test_help)]
     end subroutine collect_linear_command
 
@@ -152,6 +154,69 @@ contains
         end do
         call remove_folder(scratch)
     end subroutine test_refusals
+
+    !> `rollcon linear data/coin.adm --speeds 0.5,0.7,5 -o DIR` prints the critical speed of
+    !> docs/design.md §5 (0.571925 m/s to the 6 decimals printed) and writes
+    !> DIR/coin.eigen-speed.csv (the change as a # line, the header of the two kept
+    !> eigenvalues, five rows whose first column is the speed, to 17 digits: 0.7 is
+    !> 6.9999999999999996E-001) and its figure, nothing partial.
+    subroutine test_speeds(error)
+        type(error_type), allocatable, intent(out) :: error
+        character(len=:), allocatable :: program, out, text
+        integer :: status, png_size
+
+        call rollcon_program(program, error)
+        if (allocated(error)) return
+        call remove_folder(scratch)
+        call make_folder(scratch)
+        call run_rollcon(program, "linear data/coin.adm --speeds 0.5,0.7,5 -q -o " // scratch &
+            & // "/out", scratch // "/speeds.out", scratch // "/speeds.err", status)
+        out = file_text(scratch // "/speeds.out")
+        call check(error, status == 0 .and. index(out, "stability changes at 0.571925 m/s: " &
+            & // "divergent") > 0 .and. index(out, "2 after 7 structural zeros taken out") > 0, &
+            & "exit status " // to_text(status) // "; stdout: " // out // "; stderr: " &
+            & // file_text(scratch // "/speeds.err"))
+        if (allocated(error)) return
+        text = file_text(scratch // "/out/coin.eigen-speed.csv")
+        call check(error, index(text, "# stability changes at 5.719249") > 0 .and. index(text, &
+            & new_line("a") // "speed,real_1,imag_1,real_2,imag_2" &
+            & // new_line("a") // "5.0000000000000000E-001,") > 0 .and. index(text, &
+            & new_line("a") // "6.9999999999999996E-001,") > 0, &
+            & "the CSV: " // text)
+        if (allocated(error)) return
+        png_size = 0
+        inquire(file=scratch // "/out/coin.eigen-speed.png", size=png_size)
+        call check(error, png_size > 0 .and. count_partials(scratch // "/out") == 0, &
+            & "the figure's size " // to_text(png_size) // ", or a partial file left")
+        call remove_folder(scratch)
+    end subroutine test_speeds
+
+    !> A grid that is not FROM,TO,COUNT with 0 <= FROM < TO and a whole COUNT >= 2 is refused
+    !> naming the option, and nothing is written.
+    subroutine test_speeds_refused(error)
+        type(error_type), allocatable, intent(out) :: error
+        character(len=:), allocatable :: program, err
+        character(len=*), parameter :: grids(4) = [character(len=16) :: "0.5,0.7", &
+            & "0.7,0.5,5", "0,1,2.5", "-1,1,3"]
+        integer :: k, status
+
+        call rollcon_program(program, error)
+        if (allocated(error)) return
+        call remove_folder(scratch)
+        call make_folder(scratch)
+        do k = 1, size(grids)
+            call run_rollcon(program, "linear data/coin.adm --speeds " // trim(grids(k)) &
+                & // " -o " // scratch // "/out", scratch // "/bad.out", scratch // "/bad.err", &
+                & status)
+            err = file_text(scratch // "/bad.err")
+            call check(error, status == 1 .and. index(err, "rollcon: error: --speeds expects") &
+                & == 1 .and. .not. file_exists(scratch // "/out/coin.eigen-speed.csv"), &
+                & "--speeds " // trim(grids(k)) // ": exit status " // to_text(status) &
+                & // ", stderr: " // err)
+            if (allocated(error)) exit
+        end do
+        call remove_folder(scratch)
+    end subroutine test_speeds_refused
 
     !> `rollcon linear --help` prints the command's usage and exits 0.
     subroutine test_help(error)
