@@ -13,7 +13,7 @@ module rollcon_cli
 
     !> A command: its name, and its positional argument ("" when it takes none)
     type :: command_spec_type
-        character(len=12) :: name = ""
+        character(len=16) :: name = ""
         character(len=24) :: positional = ""
     end type command_spec_type
 
@@ -36,6 +36,7 @@ module rollcon_cli
         & command_spec_type("check", "FILE"), &
         & command_spec_type("bench", ""), &
         & command_spec_type("bench sweep", ""), &
+        & command_spec_type("bench scaling", ""), &
         & command_spec_type("sweep", "STUDY.nml"), &
         & command_spec_type("linear", "MODEL.adm"), &
         & command_spec_type("help", ""), &
@@ -45,7 +46,7 @@ module rollcon_cli
     type(option_spec_type), parameter :: options(*) = [ &
         & option_spec_type("--help", "-h", "", .false., " all "), &
         & option_spec_type("--output", "-o", "DIR", .false., &
-        & " run plot animate bench bench-sweep sweep linear "), &
+        & " run plot animate bench bench-sweep bench-scaling sweep linear "), &
         & option_spec_type("--quiet", "-q", "", .false., " run sweep linear "), &
         & option_spec_type("--vtk", "", "FPS", .false., " run "), &
         & option_spec_type("--allow-large-output", "", "", .false., " run "), &
@@ -61,7 +62,7 @@ module rollcon_cli
         & option_spec_type("--quick", "", "", .false., " bench "), &
         & option_spec_type("--scenes", "", "A,B,...", .false., " bench "), &
         & option_spec_type("--repeats", "", "N", .false., " bench "), &
-        & option_spec_type("--end-time", "", "T", .false., " bench "), &
+        & option_spec_type("--end-time", "", "T", .false., " bench bench-scaling "), &
         & option_spec_type("--study", "", "STUDY.nml", .false., " bench-sweep "), &
         & option_spec_type("--no-map", "", "", .false., " sweep "), &
         & option_spec_type("--speeds", "", "FROM,TO,COUNT", .false., " linear "), &
@@ -120,11 +121,13 @@ contains
             k = command_index(argument)
             if (argument == "bench" .and. command_argument_count() >= 2) then
                 if (get_argument(2) == "sweep") k = command_index("bench sweep")
+                if (get_argument(2) == "scaling") k = command_index("bench scaling")
             end if
             if (argument == "--version") k = command_index("version")
             if (k > 0) then
                 request%command = trim(commands(k)%name)
-                i = 1 + merge(2, 1, request%command == "bench sweep")
+                i = 1 + merge(2, 1, request%command == "bench sweep" &
+                    & .or. request%command == "bench scaling")
             end if
         end if
         do while (i <= command_argument_count())
@@ -161,7 +164,7 @@ contains
 
         ! the commands with a help of their own; the others are in the main help
         select case (request%command)
-        case ("check", "bench", "bench sweep", "sweep", "linear")
+        case ("check", "bench", "bench sweep", "bench scaling", "sweep", "linear")
             text = request%command // " "
         case default
             text = ""
@@ -393,6 +396,7 @@ contains
 
         word = command
         if (word == "bench sweep") word = "bench-sweep"
+        if (word == "bench scaling") word = "bench-scaling"
         if (word == "help") word = "run"
         takes = index(options(spec)%commands, " all ") > 0 &
             & .or. index(options(spec)%commands, " " // word // " ") > 0

@@ -12,6 +12,7 @@ program rollcon_main
     use rollcon_command_check, only : check_command
     use rollcon_command_bench, only : bench_command
     use rollcon_command_bench_sweep, only : bench_sweep_command
+    use rollcon_command_bench_scaling, only : bench_scaling_command
     use rollcon_command_sweep, only : sweep_command
     use rollcon_command_linear, only : linear_command, print_linear_help
     use rollcon, only : version_text
@@ -58,6 +59,8 @@ program rollcon_main
         call bench_command(request, error)
     case ("bench sweep")
         call bench_sweep_command(request, error)
+    case ("bench scaling")
+        call bench_scaling_command(request, error)
     case ("sweep")
         call sweep_command(request, status, error)
     case ("linear")
@@ -80,6 +83,7 @@ contains
             & "       rollcon table [--radius R] [--state XD,YD,ZD,PSI,THETA,PSID,THETAD,PHID]", &
             & "       rollcon bench [--quick] [...]     (rollcon bench --help)", &
             & "       rollcon bench sweep [...]         (rollcon bench sweep --help)", &
+            & "       rollcon bench scaling [...]       (rollcon bench scaling --help)", &
             & "       rollcon [run] MODEL.adm [--ucosub FILE|NAME] [...]  (an ADAMS dataset)", &
             & "       rollcon [run] [SCENE] --ucosub FILE|NAME  (your own UCOSUB, see below)", &
             & "       rollcon check FILE --ucon ID:PAR1,PAR2,...  (rollcon check --help)", &

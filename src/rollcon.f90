@@ -31,8 +31,9 @@ module rollcon
     use rollcon_model, only : model_type, ucon_statement_type, setup_model
     use rollcon_equations, only : equations_type
     use rollcon_run_settings, only : run_settings_type, formulation_cvode, formulation_ida, &
+        & formulation_maggi, &
         & method_bdf, method_adams, drift_none, drift_projection, drift_baumgarte, &
-        & jacobian_analytic, jacobian_dq
+        & jacobian_analytic, jacobian_dq, linear_dense, linear_sparse
 
     ! a run: the problem, its watches, the simulation, its rows and summary
     use rollcon_problem, only : problem_type
@@ -110,12 +111,17 @@ module rollcon
 
     ! speed against accuracy (docs/benchmark.md)
     use rollcon_benchmark, only : method_type, benchmark_methods, benchmark_row_type, &
-        & benchmark_scene, benchmark_header, write_benchmark_row, evaluation_costs
+        & benchmark_scene, benchmark_header, write_benchmark_row, evaluation_costs, &
+        & method_settings
     use rollcon_bench_costs, only : part_costs_type, measure_part_costs
-    use rollcon_bench_process, only : process_cost_type, measure_process
-    use rollcon_bench_summary, only : accuracy_line
+    use rollcon_bench_process, only : process_cost_type, measure_process, &
+        & write_scene_with_settings
+    use rollcon_bench_summary, only : accuracy_line, cheapest_row
     use rollcon_bench_plot, only : plot_work_precision, machine_name
     use rollcon_bench_sweep, only : time_sweep, coordinator_row_us
+    use rollcon_bench_scaling, only : scaling_row_type, measure_scaling, scaling_header, &
+        & scaling_csv_row
+    use rollcon_disk_fleet, only : disk_fleet_dataset
     implicit none
     public
 end module rollcon

@@ -80,6 +80,8 @@ program tester
     use test_inertia_axes, only : collect_inertia_axes
     use test_inertia_command, only : collect_inertia_command
     use test_adm_bicycle, only : collect_adm_bicycle
+    use test_independent_speeds, only : collect_independent_speeds
+    use test_disk_fleet, only : collect_disk_fleet
     implicit none
     type(testsuite_type), allocatable :: suites(:)
     type(test_counts_type) :: counts
@@ -164,7 +166,9 @@ program tester
         & new_testsuite("multiplier-units", collect_multiplier_units), &
         & new_testsuite("inertia-axes", collect_inertia_axes), &
         & new_testsuite("inertia-command", collect_inertia_command), &
-        & new_testsuite("adm-bicycle", collect_adm_bicycle)]
+        & new_testsuite("adm-bicycle", collect_adm_bicycle), &
+        & new_testsuite("independent-speeds", collect_independent_speeds), &
+        & new_testsuite("disk-fleet", collect_disk_fleet)]
 
     if (command_argument_count() >= 1) then
         call get_command_argument(1, argument)

@@ -1,7 +1,8 @@
 ! SPDX-License-Identifier: MIT
 !> Unit costs of the parts of a full-model step, measured in the running process: one ODE
 !> right-hand side, one DAE residual, one event-function evaluation, one output row (as the
-!> benchmark's runs keep it in memory) and, apart, its CSV line (what `rollcon run` adds). The
+!> benchmark's runs keep it in memory) and, apart, its CSV line (what `rollcon run` adds; and,
+!> for comparison, the same line by Fortran's formatted write, which the C library replaced). The
 !> benchmark multiplies them by a run's counts; what is left of the run's CPU time is SUNDIALS'
 !> own work (with the Jacobians and linear solves).
 module rollcon_bench_costs
@@ -14,7 +15,7 @@ module rollcon_bench_costs
     use rollcon_simulation, only : history_type
     use rollcon_output_layout, only : output_layout_type
     use rollcon_output_rows, only : output_layout, output_row
-    use rollcon_csv_writer, only : csv_writer_type
+    use rollcon_csv_writer, only : csv_writer_type, fortran_row_text
     implicit none
     private
 
@@ -25,6 +26,8 @@ module rollcon_bench_costs
         real(wp) :: rhs = 0.0_wp, residual = 0.0_wp, root = 0.0_wp
         !> One output row as the benchmark's runs make it (no file) and one CSV line of it
         real(wp) :: output = 0.0_wp, csv_line = 0.0_wp
+        !> The same row's text by Fortran's formatted write (es24.16e3), no file
+        real(wp) :: fortran_line = 0.0_wp
     end type part_costs_type
 
 contains
@@ -105,6 +108,12 @@ contains
         call cpu_time(finish)
         call csv%close()
         costs%csv_line = (finish - start)/count
+        call cpu_time(start)
+        do i = 1, count
+            checksum = checksum + len(fortran_row_text(history%rows(:, i)))
+        end do
+        call cpu_time(finish)
+        costs%fortran_line = (finish - start)/count
         open(newunit=unit, file=scratch_csv, status="old", iostat=ierr)
         if (ierr == 0) close(unit, status="delete")
         ! keep the loops from being optimised away

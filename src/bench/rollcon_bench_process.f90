@@ -1,15 +1,21 @@
 ! SPDX-License-Identifier: MIT
-!> What a user waits for: `rollcon run SCENE` timed as a child process (wall and CPU), split
-!> into start-up (a `rollcon --help` child), the integration with its output rows (the CPU time
-!> the run's summary reports) and the rest (reading the scene, setting up, the summary file).
+!> What a user waits for: `rollcon run SCENE` timed as a child process (wall, and user + system
+!> CPU from getrusage of the children), split into start-up (a `rollcon --help` child), the
+!> integration with its output rows (the CPU time the run's summary reports) and the rest
+!> (reading the scene, setting up, the summary file); and the scene file that runs a scene with
+!> other run settings (the benchmark's whole-process column).
 module rollcon_bench_process
+    use, intrinsic :: iso_c_binding, only : c_int, c_long
+    use, intrinsic :: iso_fortran_env, only : int64
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type, fatal_error, stat_io
-    use rollcon_text, only : to_text, shell_quote
+    use rollcon_text, only : to_text, shell_quote, lower_case
+    use rollcon_run_settings, only : run_settings_type
+    use rollcon_run_keys, only : choice_name
     implicit none
     private
 
-    public :: process_cost_type, measure_process
+    public :: process_cost_type, measure_process, write_scene_with_settings
 
     !> Times of one `rollcon run` [s]
     type :: process_cost_type
@@ -23,67 +29,143 @@ module rollcon_bench_process
         real(wp) :: rest_cpu = 0.0_wp
     end type process_cost_type
 
+    !> struct timeval and struct rusage of Linux (x86_64 and other LP64 systems)
+    type, bind(c) :: timeval_type
+        integer(c_long) :: seconds, microseconds
+    end type timeval_type
+    type, bind(c) :: rusage_type
+        type(timeval_type) :: user, system
+        !> maxrss ... nivcsw, not read
+        integer(c_long) :: rest(14)
+    end type rusage_type
+
+    !> getrusage's who for the terminated and waited-for children (and theirs)
+    integer(c_int), parameter :: rusage_children = -1
+
+    interface
+        function c_getrusage(who, usage) result(stat) bind(c, name="getrusage")
+            import :: c_int, rusage_type
+            integer(c_int), value :: who
+            type(rusage_type), intent(out) :: usage
+            integer(c_int) :: stat
+        end function c_getrusage
+    end interface
+
 contains
 
-    !> Time `executable run scene --quiet --output work_dir` and `executable --help`.
-    subroutine measure_process(executable, scene, work_dir, cost, error)
-        !> How this program was started (argument 0)
-        character(len=*), intent(in) :: executable, scene, work_dir
+    !> Time `executable run scene --quiet --output work_dir` (its outputs named output_name)
+    !> and `executable --help`, each as a child of this process: CPU from getrusage of the
+    !> children before and after (the shell that starts it included, about a millisecond).
+    subroutine measure_process(executable, scene, output_name, work_dir, cost, error)
+        !> How this program was started (argument 0); a scene's name or file; the name of the
+        !> run's outputs (the scene's name: docs/outputs.md); the folder for them
+        character(len=*), intent(in) :: executable, scene, output_name, work_dir
         type(process_cost_type), intent(out) :: cost
         type(error_type), allocatable, intent(out) :: error
-        character(len=:), allocatable :: script, run_time, help_time
-        real(wp) :: times(3)
-        integer :: unit, stat
+        integer :: stat
 
-        script = work_dir // "/process.sh"
-        run_time = work_dir // "/process_run.time"
-        help_time = work_dir // "/process_help.time"
-        open(newunit=unit, file=script, status="replace", action="write", iostat=stat)
-        if (stat /= 0) then
-            call fatal_error(error, script // ": cannot write", stat_io)
-            return
-        end if
-        ! bash's time keyword: wall, user and system seconds of the group
-        write(unit, '(a)') "TIMEFORMAT='%R %U %S'", &
-            & "{ time " // shell_quote(executable) // " run " // shell_quote(scene) &
+        call child_cpu(shell_quote(executable) // " run " // shell_quote(scene) &
             & // " --quiet --output " // shell_quote(work_dir) // " > " &
-            & // shell_quote(work_dir // "/process_run.log") // " 2>&1; } 2> " &
-            & // shell_quote(run_time) // " || exit 1", &
-            & "{ time " // shell_quote(executable) // " --help > /dev/null 2>&1; } 2> " &
-            & // shell_quote(help_time)
-        close(unit)
-        call execute_command_line("bash " // shell_quote(script), exitstat=stat)
+            & // shell_quote(work_dir // "/process_run.log") // " 2>&1", cost%cpu, cost%wall, &
+            & stat)
         if (stat /= 0) then
             call fatal_error(error, "'" // executable // " run " // scene // "' failed (exit " &
                 & // to_text(stat) // "); see " // work_dir // "/process_run.log", stat_io)
             return
         end if
-        call read_times(run_time, times, error)
-        if (allocated(error)) return
-        cost%wall = times(1)
-        cost%cpu = times(2) + times(3)
-        call read_times(help_time, times, error)
-        if (allocated(error)) return
-        cost%startup_cpu = times(2) + times(3)
-        call read_summary_cpu(work_dir // "/" // scene // ".summary.txt", cost%integration_cpu, &
-            & error)
+        call child_cpu(shell_quote(executable) // " --help > /dev/null 2>&1", cost%startup_cpu, &
+            & stat=stat)
+        call read_summary_cpu(work_dir // "/" // output_name // ".summary.txt", &
+            & cost%integration_cpu, error)
         if (allocated(error)) return
         cost%rest_cpu = cost%cpu - cost%startup_cpu - cost%integration_cpu
     end subroutine measure_process
 
-    !> Three numbers written by bash's time.
-    subroutine read_times(path, times, error)
-        character(len=*), intent(in) :: path
-        real(wp), intent(out) :: times(3)
-        type(error_type), allocatable, intent(out) :: error
-        integer :: unit, stat
+    !> Run command in a child shell; its user + system CPU [s] (getrusage of the children) and
+    !> wall time [s], and its exit status.
+    subroutine child_cpu(command, cpu, wall, stat)
+        character(len=*), intent(in) :: command
+        real(wp), intent(out) :: cpu
+        real(wp), intent(out), optional :: wall
+        integer, intent(out) :: stat
+        type(rusage_type) :: before, after
+        integer(int64) :: start, finish, rate
+        integer(c_int) :: flag
 
-        open(newunit=unit, file=path, status="old", action="read", iostat=stat)
-        if (stat == 0) read(unit, *, iostat=stat) times
-        if (stat == 0) close(unit)
-        if (stat /= 0) call fatal_error(error, path // ":1: expected three times [s] " &
-            & // "(wall, user, system) from bash's time", stat_io)
-    end subroutine read_times
+        flag = c_getrusage(rusage_children, before)
+        call system_clock(start, rate)
+        call execute_command_line(command, exitstat=stat)
+        call system_clock(finish)
+        flag = c_getrusage(rusage_children, after)
+        cpu = seconds(after%user) + seconds(after%system) - seconds(before%user) &
+            & - seconds(before%system)
+        if (present(wall)) wall = real(finish - start, wp)/real(rate, wp)
+    end subroutine child_cpu
+
+    pure real(wp) function seconds(time)
+        type(timeval_type), intent(in) :: time
+
+        seconds = real(time%seconds, wp) + 1.0e-6_wp*real(time%microseconds, wp)
+    end function seconds
+
+    !> A copy of the scene file source_path at path whose &run group is settings (every run
+    !> key written; the source's own &run group left out): the same scene run another way.
+    subroutine write_scene_with_settings(source_path, settings, path, error)
+        character(len=*), intent(in) :: source_path, path
+        type(run_settings_type), intent(in) :: settings
+        type(error_type), allocatable, intent(out) :: error
+        character(len=1024) :: line
+        integer :: source, copy, stat
+        logical :: in_run
+
+        open(newunit=source, file=source_path, status="old", action="read", iostat=stat)
+        if (stat /= 0) then
+            call fatal_error(error, source_path // ": cannot read", stat_io)
+            return
+        end if
+        open(newunit=copy, file=path, status="replace", action="write", iostat=stat)
+        if (stat /= 0) then
+            close(source)
+            call fatal_error(error, path // ": cannot write", stat_io)
+            return
+        end if
+        in_run = .false.
+        do
+            read(source, '(a)', iostat=stat) line
+            if (stat /= 0) exit
+            ! the &run group, from its first line to the line that closes it
+            if (index(adjustl(lower_case(line)), "&run") == 1) in_run = .true.
+            if (.not. in_run) write(copy, '(a)') trim(line)
+            if (in_run .and. index(adjustl(line), "/") == 1) in_run = .false.
+        end do
+        close(source)
+        write(copy, '(a)') "&run", &
+            & "    end_time = " // real_text(settings%end_time), &
+            & "    output_step = " // real_text(settings%output_step), &
+            & "    formulation = '" // choice_name("formulation", settings%formulation) // "'", &
+            & "    method = '" // choice_name("method", settings%method) // "'", &
+            & "    drift = '" // choice_name("drift", settings%drift) // "'", &
+            & "    jacobian = '" // choice_name("jacobian", settings%jacobian) // "'", &
+            & "    rtol = " // real_text(settings%rtol), &
+            & "    atol = " // real_text(settings%atol), &
+            & "    baumgarte_rate = " // real_text(settings%baumgarte_rate), &
+            & "    max_steps = " // to_text(settings%max_steps), &
+            & "/"
+        close(copy, iostat=stat)
+        if (stat /= 0) call fatal_error(error, path // ": cannot write", stat_io)
+
+    contains
+
+        function real_text(value) result(text)
+            real(wp), intent(in) :: value
+            character(len=:), allocatable :: text
+            character(len=32) :: buffer
+
+            write(buffer, '(es24.16e3)') value
+            text = trim(adjustl(buffer))
+        end function real_text
+
+    end subroutine write_scene_with_settings
 
     !> The number after "CPU time:" in a run's summary file [s].
     subroutine read_summary_cpu(path, seconds, error)

@@ -23,7 +23,8 @@ module rollcon_benchmark
     implicit none
     private
 
-    public :: method_type, benchmark_methods, benchmark_row_type, benchmark_scene
+    public :: method_type, benchmark_methods, benchmark_row_type, benchmark_scene, &
+        & method_settings
     public :: benchmark_header, write_benchmark_row, evaluation_costs, bench_scene_of
 
     !> The scene formulation code the benchmark gives its reduced-ODE runs (not a scene choice)
@@ -31,14 +32,14 @@ module rollcon_benchmark
 
     !> One way of solving: formulation, method, drift control, Jacobian
     type :: method_type
-        character(len=32) :: name = ""
+        character(len=40) :: name = ""
         character(len=12) :: formulation = "ida", method = "bdf", drift = "projection"
         character(len=12) :: jacobian = "analytic"
     end type method_type
 
     !> What one (scene, method, tolerance) measured
     type :: benchmark_row_type
-        character(len=32) :: scene = "", method = ""
+        character(len=40) :: scene = "", method = ""
         real(wp) :: rtol = 0.0_wp
         !> Median CPU time of the repeated runs [s]
         real(wp) :: cpu = 0.0_wp
@@ -55,6 +56,10 @@ module rollcon_benchmark
         !> CPU time of the run's right-hand sides (or residuals), event functions, output rows
         !> (counts times unit costs), and SUNDIALS' remainder with Jacobians and solves [s]
         real(wp) :: rhs_cpu = 0.0_wp, roots_cpu = 0.0_wp, output_cpu = 0.0_wp, sundials_cpu = 0.0_wp
+        !> User + system CPU time of `rollcon run` of the same setting as a child process [s]:
+        !> measured for each method's cheapest run within the headline's accuracy (rollcon
+        !> bench), 0 on the other rows
+        real(wp) :: process_cpu = 0.0_wp
         !> 'completed', or why not
         character(len=:), allocatable :: status
     end type benchmark_row_type
@@ -62,9 +67,12 @@ module rollcon_benchmark
 contains
 
     !> The methods compared: IDA and CVODE (BDF, Adams), analytic against difference-quotient
-    !> Jacobians, and each drift control of the ODE form.
+    !> Jacobians, Newton against fixed-point iteration for Adams, each drift control of the
+    !> ODE form, and the independent speeds. A new way of solving is one more line here (its
+    !> formulation a run setting); the reduced ODE's rows are the limit, each row's ratio
+    !> against the reduced run of its multistep method and iteration (reduced_partner).
     pure function benchmark_methods() result(methods)
-        type(method_type) :: methods(9)
+        type(method_type) :: methods(12)
 
         methods(1) = method_type("ida", "ida", "bdf", "projection", "analytic")
         methods(2) = method_type("ida-dq", "ida", "bdf", "projection", "dq")
@@ -75,10 +83,37 @@ contains
         ! CVODE projects only with BDF: Adams is stabilised by Baumgarte's method
         methods(7) = method_type("cvode-adams-baumgarte", "cvode", "adams", "baumgarte", &
             & "analytic")
+        ! Adams on a non-stiff problem: fixed-point (functional) iteration, no Jacobian at all
+        methods(8) = method_type("cvode-adams-baumgarte-fixed-point", "cvode", "adams", &
+            & "baumgarte", "none")
         ! the limit: the disk in minimal coordinates (ucon/reduced/), no constraints to keep
-        methods(8) = method_type("reduced-bdf", "reduced", "bdf", "none", "analytic")
-        methods(9) = method_type("reduced-adams", "reduced", "adams", "none", "analytic")
+        methods(9) = method_type("reduced-bdf", "reduced", "bdf", "none", "analytic")
+        methods(10) = method_type("reduced-adams", "reduced", "adams", "none", "analytic")
+        methods(11) = method_type("reduced-adams-fixed-point", "reduced", "adams", "none", &
+            & "none")
+        ! CVODE on q and the independent speeds (docs/design.md §4): the rolling UCONs hold
+        ! exactly; Baumgarte's rate would act on position UCONs alone (the scenes have none)
+        methods(12) = method_type("maggi-adams", "maggi", "adams", "baumgarte", "analytic")
     end function benchmark_methods
+
+    !> The reduced runs every row is compared with, one per multistep method and iteration: BDF
+    !> (Newton), Adams with Newton, Adams with fixed-point iteration.
+    pure function reduced_methods() result(methods)
+        type(method_type) :: methods(3)
+
+        methods(1) = method_type("reduced-bdf", "reduced", "bdf", "none", "analytic")
+        methods(2) = method_type("reduced-adams", "reduced", "adams", "none", "analytic")
+        methods(3) = method_type("reduced-adams-fixed-point", "reduced", "adams", "none", "none")
+    end function reduced_methods
+
+    !> Which of reduced_methods a method is compared with: the same multistep method, and
+    !> fixed-point iteration when the method iterates so.
+    pure integer function reduced_partner(method) result(partner)
+        type(method_type), intent(in) :: method
+
+        partner = 1
+        if (method%method == "adams") partner = merge(3, 2, method%jacobian == "none")
+    end function reduced_partner
 
     !> Header of the benchmark CSV.
     pure function benchmark_header() result(header)
@@ -87,20 +122,20 @@ contains
         header = "scene,method,rtol,cpu_s,steps,function_evaluations,jacobian_evaluations," &
             & // "position_error_m,residual_max,energy_drift,reduced_cpu_s,cpu_ratio_to_reduced," &
             & // "root_evaluations,output_rows,rhs_cpu_s,roots_cpu_s,output_cpu_s,sundials_cpu_s," &
-            & // "status"
+            & // "process_cpu_s,status"
     end function benchmark_header
 
     !> One CSV line.
     function write_benchmark_row(row) result(line)
         type(benchmark_row_type), intent(in) :: row
         character(len=:), allocatable :: line
-        character(len=320) :: numbers
+        character(len=340) :: numbers
 
         write(numbers, '(es11.3e3, ",", es13.5e3, 3(",", i0), 5(",", es13.5e3), 2(",", i0), &
-            & 4(",", es13.5e3))') row%rtol, row%cpu, row%steps, row%functions, row%jacobians, &
+            & 5(",", es13.5e3))') row%rtol, row%cpu, row%steps, row%functions, row%jacobians, &
             & row%position_error, row%residual, row%energy_drift, row%reduced_cpu, row%ratio, &
             & row%root_evaluations, row%output_rows, row%rhs_cpu, row%roots_cpu, &
-            & row%output_cpu, row%sundials_cpu
+            & row%output_cpu, row%sundials_cpu, row%process_cpu
         line = trim(row%scene) // "," // trim(row%method) // "," // trim(numbers) // "," &
             & // row%status
     end function write_benchmark_row
@@ -150,30 +185,32 @@ contains
         type(benchmark_row_type) :: row
         type(benchmark_row_type), allocatable :: reduced(:, :)
         type(scene_type) :: scene
-        integer :: m, k, lmm
+        type(method_type) :: limits(size(reduced_methods()))
+        integer :: m, k, v, partner
 
         if (.not. allocated(rows)) allocate(rows(0))
         call bench_scene_of(job, scene, error)
         if (allocated(error)) return
         call reference_run(reference, error)
         if (allocated(error)) return
-        ! reduced(k, 1): BDF, reduced(k, 2): Adams, at tolerances(k)
-        allocate(reduced(size(tolerances), 2))
+        ! reduced(k, v): reduced_methods()(v) at tolerances(k)
+        limits = reduced_methods()
+        allocate(reduced(size(tolerances), size(limits)))
         do k = 1, size(tolerances)
-            reduced(k, 1) = measure(method_type("reduced-bdf", "reduced", "bdf", "none", &
-                & "analytic"), tolerances(k), reference, repeats)
-            reduced(k, 2) = measure(method_type("reduced-adams", "reduced", "adams", "none", &
-                & "analytic"), tolerances(k), reference, repeats)
+            do v = 1, size(limits)
+                reduced(k, v) = measure(limits(v), tolerances(k), reference, repeats)
+            end do
         end do
         do m = 1, size(methods)
-            lmm = merge(2, 1, methods(m)%method == "adams")
+            partner = reduced_partner(methods(m))
             do k = 1, size(tolerances)
                 if (methods(m)%formulation == "reduced") then
-                    row = reduced(k, lmm)
+                    row = reduced(k, partner)
+                    row%method = methods(m)%name
                 else
                     row = measure(methods(m), tolerances(k), reference, repeats)
                 end if
-                row%reduced_cpu = reduced(k, lmm)%cpu
+                row%reduced_cpu = reduced(k, partner)%cpu
                 row%ratio = row%cpu/max(row%reduced_cpu, tiny(1.0_wp))
                 if (present(costs) .and. methods(m)%formulation /= "reduced") &
                     & call split_costs(row, costs, methods(m)%formulation == "ida")
@@ -379,6 +416,22 @@ contains
         ! keep the loops from being optimised away
         if (checksum /= checksum) rhs_seconds = -1.0_wp
     end subroutine evaluation_costs
+
+    !> The run settings a row of method at rtol ran with, for a job of a disk scene (what a
+    !> `rollcon run` of the same setting needs: rollcon_bench_process).
+    subroutine method_settings(job, method, rtol, settings, error)
+        type(job_type), intent(in) :: job
+        type(method_type), intent(in) :: method
+        real(wp), intent(in) :: rtol
+        type(run_settings_type), intent(out) :: settings
+        type(error_type), allocatable, intent(out) :: error
+        type(scene_type) :: scene, changed
+
+        call bench_scene_of(job, scene, error)
+        if (allocated(error)) return
+        changed = with_method(scene, method, rtol)
+        settings = changed%run%run_settings_type
+    end subroutine method_settings
 
     !> The scene with a method and tolerance in place of its own.
     function with_method(scene, method, rtol) result(changed)

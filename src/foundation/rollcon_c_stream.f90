@@ -45,6 +45,13 @@ module rollcon_c_stream
             type(c_ptr), value :: file
             integer(c_int) :: stat
         end function c_fflush
+        function c_setvbuf(file, buffer, mode, size) result(stat) bind(c, name="setvbuf")
+            import :: c_ptr, c_int, c_size_t
+            type(c_ptr), value :: file, buffer
+            integer(c_int), value :: mode
+            integer(c_size_t), value :: size
+            integer(c_int) :: stat
+        end function c_setvbuf
         function c_fclose(file) result(stat) bind(c, name="fclose")
             import :: c_ptr, c_int
             type(c_ptr), value :: file
@@ -55,13 +62,18 @@ module rollcon_c_stream
 contains
 
     !> Create (replace) the file for writing, or open it to append to it.
-    subroutine stream_open(self, path, error, append)
+    subroutine stream_open(self, path, error, append, unbuffered)
         class(c_stream_type), intent(inout) :: self
         !> File to write
         character(len=*), intent(in) :: path
         type(error_type), allocatable, intent(out) :: error
         !> Append to the file (created when missing) instead of replacing it
         logical, intent(in), optional :: append
+        !> No stdio buffer: each put is one write to the system (a caller that buffers whole
+        !> lines itself, so that a killed process never leaves a line cut by stdio)
+        logical, intent(in), optional :: unbuffered
+        !> _IONBF of glibc's stdio.h
+        integer(c_int), parameter :: no_buffering = 2
         character(len=2) :: mode
 
         mode = "wb"
@@ -72,6 +84,13 @@ contains
         self%file = c_fopen(path // c_null_char, mode // c_null_char)
         if (.not. c_associated(self%file)) then
             call fatal_error(error, path // ": cannot write: " // system_reason(), stat_io)
+            return
+        end if
+        if (present(unbuffered)) then
+            if (unbuffered) then
+                if (c_setvbuf(self%file, c_null_ptr, no_buffering, 0_c_size_t) /= 0) &
+                    & call fatal_error(error, path // ": cannot write unbuffered", stat_io)
+            end if
         end if
     end subroutine stream_open
 

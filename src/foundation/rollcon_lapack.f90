@@ -19,7 +19,7 @@ module rollcon_lapack
 
     public :: factor_dense, solve_factored, lapack_info_error, symmetric_eigen
     public :: general_eigenvalues, pivoted_columns
-    public :: dgetf2, dgetrs, dpotf2, dpotrs
+    public :: dgetf2, dgetrs, dpotf2, dpotrs, dgeqp3
     public :: use_one_blas_thread
 
     !> Largest order factored with the unblocked routine

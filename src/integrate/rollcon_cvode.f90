@@ -1,13 +1,16 @@
 ! SPDX-License-Identifier: MIT
 !> CVODE on a system's ODE form: BDF or Adams, dense Newton solves with the system's Jacobian or
-!> CVODE's difference quotients, the system's projection when it asks for one, root finding.
+!> CVODE's difference quotients, or sparse ones (KLU) with the system's Jacobian kept over its
+!> state blocks (or fixed-point iteration, without any); the system's projection when it asks
+!> for one, root finding.
 module rollcon_cvode
     use, intrinsic :: iso_c_binding, only : c_ptr, c_null_ptr, c_int, c_long, c_int64_t, &
         & c_double, c_funloc, c_loc, c_f_pointer, c_associated
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type, fatal_error, stat_solver
     use rollcon_text, only : to_text
-    use rollcon_run_settings, only : run_settings_type, method_adams
+    use rollcon_run_settings, only : run_settings_type, method_adams, linear_sparse, &
+        & jacobian_none
     use rollcon_dynamic_system, only : dynamic_system_type
     use rollcon_integrator, only : integrator_type, integrator_statistics_type, solver_failure
     use fsundials_context_mod, only : FSUNContext_Create, FSUNContext_Free
@@ -17,6 +20,10 @@ module rollcon_cvode
     use fnvector_serial_mod, only : FN_VMake_Serial
     use fsunmatrix_dense_mod, only : FSUNDenseMatrix, FSUNDenseMatrix_Data
     use fsunlinsol_dense_mod, only : FSUNLinSol_Dense
+    use fsunmatrix_sparse_mod, only : FSUNSparseMatrix, FSUNSparseMatrix_Data, &
+        & FSUNSparseMatrix_IndexValues, FSUNSparseMatrix_IndexPointers, FSUNSparseMatrix_NNZ, &
+        & CSC_MAT
+    use fsunlinsol_klu_mod, only : FSUNLinSol_KLU, FSUNLinSol_KLUReInit, SUNKLU_REINIT_PARTIAL
     use fcvode_mod, only : FCVodeCreate, FCVodeInit, FCVodeSStolerances, FCVodeSetUserData, &
         & FCVodeSetLinearSolver, FCVodeSetJacFn, FCVodeSetMaxNumSteps, FCVodeSetStopTime, &
         & FCVode, FCVodeRootInit, FCVodeGetRootInfo, FCVodeSetProjFn, FCVodeFree, &
@@ -32,6 +39,30 @@ module rollcon_cvode
 
     public :: cvode_integrator_type
 
+    ! SUNDIALS' fixed-point solver, from the C library itself (libsundials_cvode holds it): its
+    ! Fortran module is a library rollcon does not otherwise link
+    interface
+        !> SUNNonlinSol_FixedPoint(y, m, context): m = 0, no Anderson acceleration
+        function c_fixed_point_solver(y, m, context) result(solver) &
+                & bind(c, name="SUNNonlinSol_FixedPoint")
+            import :: c_ptr, c_int
+            type(c_ptr), value :: y, context
+            integer(c_int), value :: m
+            type(c_ptr) :: solver
+        end function c_fixed_point_solver
+        function c_set_nonlinear_solver(memory, solver) result(flag) &
+                & bind(c, name="CVodeSetNonlinearSolver")
+            import :: c_ptr, c_int
+            type(c_ptr), value :: memory, solver
+            integer(c_int) :: flag
+        end function c_set_nonlinear_solver
+        function c_free_nonlinear_solver(solver) result(flag) bind(c, name="SUNNonlinSolFree")
+            import :: c_ptr, c_int
+            type(c_ptr), value :: solver
+            integer(c_int) :: flag
+        end function c_free_nonlinear_solver
+    end interface
+
     !> What the callbacks receive as user data: the system, and what the event function needs
     !> to read the state's derivative off CVODE's interpolating polynomial
     type :: callback_data_type
@@ -40,6 +71,11 @@ module rollcon_cvode
         !> y'(t) from CVodeGetDky, and its storage
         type(N_Vector), pointer :: rates => null()
         real(c_double), allocatable :: rate_values(:)
+        !> Sparse Newton matrices: the system's Jacobian in full (its work space), and each
+        !> state's block (entries kept: those of one block)
+        logical :: sparse = .false.
+        real(c_double), allocatable :: full(:, :)
+        integer, allocatable :: blocks(:)
     end type callback_data_type
 
     !> One CVODE integration of a system's ODE form
@@ -50,6 +86,8 @@ module rollcon_cvode
         type(callback_data_type) :: data
         type(SUNMatrix), pointer :: matrix => null()
         type(SUNLinearSolver), pointer :: solver => null()
+        !> The fixed-point (functional) nonlinear solver in place of Newton's (jacobian_none)
+        type(c_ptr) :: fixed_point = c_null_ptr
         !> Storage behind y
         real(c_double), allocatable :: values(:)
     contains
@@ -108,18 +146,19 @@ contains
         if (check(flag, "CVodeSStolerances", error)) return
         flag = FCVodeSetMaxNumSteps(self%memory, int(settings%max_steps, c_long))
         if (check(flag, "CVodeSetMaxNumSteps", error)) return
-        self%matrix => FSUNDenseMatrix(int(size(y0), c_int64_t), int(size(y0), c_int64_t), &
-            & self%context)
-        self%solver => FSUNLinSol_Dense(self%y, self%matrix, self%context)
-        if (.not. associated(self%matrix) .or. .not. associated(self%solver)) then
-            call fatal_error(error, "CVODE: could not create the dense linear solver", stat_solver)
-            return
-        end if
-        flag = FCVodeSetLinearSolver(self%memory, self%solver, self%matrix)
-        if (check(flag, "CVodeSetLinearSolver", error)) return
-        if (settings%analytic_jacobian()) then
-            flag = FCVodeSetJacFn(self%memory, c_funloc(jacobian))
-            if (check(flag, "CVodeSetJacFn", error)) return
+        if (settings%jacobian == jacobian_none) then
+            ! fixed-point (functional) iteration: no Newton matrix, no linear solver
+            self%fixed_point = c_fixed_point_solver(c_loc(self%y), 0_c_int, self%context)
+            if (.not. c_associated(self%fixed_point)) then
+                call fatal_error(error, "CVODE: could not create the fixed-point solver", &
+                    & stat_solver)
+                return
+            end if
+            flag = c_set_nonlinear_solver(self%memory, self%fixed_point)
+            if (check(flag, "CVodeSetNonlinearSolver", error)) return
+        else
+            call newton_solver(error)
+            if (allocated(error)) return
         end if
         if (system%projects()) then
             flag = FCVodeSetProjFn(self%memory, c_funloc(projection))
@@ -136,6 +175,47 @@ contains
         allocate(self%fired(system%root_count()), source=0_c_int)
         self%failed_flag = 0
         self%t_now = t0
+
+    contains
+
+        !> Newton's method with SUNDIALS' dense linear solver on the system's Jacobian or
+        !> difference quotients, or its sparse one (KLU) on the Jacobian kept over the state
+        !> blocks.
+        subroutine newton_solver(failure)
+            type(error_type), allocatable, intent(out) :: failure
+
+            self%data%sparse = settings%linear_solver == linear_sparse .and. &
+                & settings%analytic_jacobian()
+            if (self%data%sparse) then
+                ! room for every entry of the blocks (block_entries); KLU factors those given
+                self%data%blocks = system%state_blocks(size(y0))
+                allocate(self%data%full(size(y0), size(y0)), source=0.0_wp)
+                self%matrix => FSUNSparseMatrix(int(size(y0), c_int64_t), int(size(y0), &
+                    & c_int64_t), int(max(block_entries(self%data%blocks), 1), c_int64_t), &
+                    & CSC_MAT, self%context)
+                if (associated(self%matrix)) &
+                    & self%solver => FSUNLinSol_KLU(self%y, self%matrix, self%context)
+            else
+                self%matrix => FSUNDenseMatrix(int(size(y0), c_int64_t), int(size(y0), &
+                    & c_int64_t), self%context)
+                self%solver => FSUNLinSol_Dense(self%y, self%matrix, self%context)
+            end if
+            if (.not. associated(self%matrix) .or. .not. associated(self%solver)) then
+                call fatal_error(failure, "CVODE: could not create the linear solver", &
+                    & stat_solver)
+                return
+            end if
+            flag = FCVodeSetLinearSolver(self%memory, self%solver, self%matrix)
+            if (check(flag, "CVodeSetLinearSolver", failure)) return
+            if (self%data%sparse) then
+                flag = FCVodeSetJacFn(self%memory, c_funloc(sparse_jacobian))
+                if (check(flag, "CVodeSetJacFn", failure)) return
+            else if (settings%analytic_jacobian()) then
+                flag = FCVodeSetJacFn(self%memory, c_funloc(jacobian))
+                if (check(flag, "CVodeSetJacFn", failure)) return
+            end if
+        end subroutine newton_solver
+
     end subroutine start
 
     !> Start again from (t0, y0) with the settings, tolerances, callbacks and event functions of
@@ -150,10 +230,21 @@ contains
         type(error_type), allocatable, intent(out) :: error
         integer(c_int) :: flag
 
+        integer, allocatable :: blocks(:)
+
         self%values(:) = y0
         self%t_now = t0
         flag = FCVodeReInit(self%memory, t0, self%y)
         if (check(flag, "CVodeReInit", error)) return
+        if (.not. self%data%sparse) return
+        ! a new partition of independent speeds may move states between blocks: KLU analyses
+        ! the new pattern again
+        blocks = self%data%system%state_blocks(size(y0))
+        if (all(blocks == self%data%blocks)) return
+        self%data%blocks = blocks
+        flag = FSUNLinSol_KLUReInit(self%solver, self%matrix, &
+            & int(max(block_entries(blocks), 1), c_int64_t), SUNKLU_REINIT_PARTIAL)
+        if (check(flag, "SUNLinSol_KLUReInit", error)) return
     end subroutine restart
 
     !> Integrate towards t_out (never past t_stop); y at t_reached (yp is left as it was).
@@ -199,9 +290,12 @@ contains
         flag = FCVodeGetNumSteps(self%memory, count)
         counts%steps = int(count(1))
         flag = FCVodeGetNumRhsEvals(self%memory, count)
-        flag = FCVodeGetNumLinRhsEvals(self%memory, extra)
+        ! without a linear solver (fixed-point iteration) there are no Jacobians
+        extra(1) = 0
+        if (associated(self%solver)) flag = FCVodeGetNumLinRhsEvals(self%memory, extra)
         counts%functions = int(count(1) + extra(1))
-        flag = FCVodeGetNumJacEvals(self%memory, count)
+        count(1) = 0
+        if (associated(self%solver)) flag = FCVodeGetNumJacEvals(self%memory, count)
         counts%jacobians = int(count(1))
         flag = FCVodeGetNumErrTestFails(self%memory, count)
         counts%failures = int(count(1))
@@ -216,6 +310,8 @@ contains
 
         if (c_associated(self%memory)) call FCVodeFree(self%memory)
         if (associated(self%solver)) flag = FSUNLinSolFree(self%solver)
+        if (c_associated(self%fixed_point)) flag = c_free_nonlinear_solver(self%fixed_point)
+        self%fixed_point = c_null_ptr
         if (associated(self%matrix)) call FSUNMatDestroy(self%matrix)
         if (associated(self%y)) call FN_VDestroy(self%y)
         if (associated(self%data%rates)) call FN_VDestroy(self%data%rates)
@@ -226,6 +322,9 @@ contains
         self%data%memory = c_null_ptr
         if (allocated(self%values)) deallocate(self%values)
         if (allocated(self%data%rate_values)) deallocate(self%data%rate_values)
+        if (allocated(self%data%full)) deallocate(self%data%full)
+        if (allocated(self%data%blocks)) deallocate(self%data%blocks)
+        self%data%sparse = .false.
         if (allocated(self%fired)) deallocate(self%fired)
     end subroutine destroy
 
@@ -290,6 +389,55 @@ contains
         call c_f_pointer(c_loc(entries(1)), matrix, [size(yv), size(yv)])
         ierr = int(data%system%ode_jacobian(t, yv, matrix), c_int)
     end function jacobian
+
+    !> The system's Jacobian, kept over its blocks (entries (i, j) of states of one block,
+    !> zeros included, so the pattern KLU analysed stays), as a compressed-column matrix.
+    integer(c_int) function sparse_jacobian(t, y, fy, jac, user_data, tmp1, tmp2, tmp3) &
+            & result(ierr) bind(c, name="rollcon_cvode_sparse_jacobian")
+        real(c_double), value :: t
+        type(N_Vector) :: y, fy, tmp1, tmp2, tmp3
+        type(SUNMatrix) :: jac
+        type(c_ptr), value :: user_data
+        type(callback_data_type), pointer :: data
+        real(c_double), pointer :: yv(:), values(:), first_value(:)
+        integer(c_int64_t), pointer :: rows(:), starts(:), first_index(:)
+        integer :: i, j, next, capacity
+
+        call c_f_pointer(user_data, data)
+        yv => FN_VGetArrayPointer(y)
+        ierr = int(data%system%ode_jacobian(t, yv, data%full), c_int)
+        if (ierr /= 0) return
+        ! SUNDIALS' Fortran interface hands the first element: the arrays by their sizes
+        capacity = int(FSUNSparseMatrix_NNZ(jac))
+        first_value => FSUNSparseMatrix_Data(jac)
+        call c_f_pointer(c_loc(first_value(1)), values, [capacity])
+        first_index => FSUNSparseMatrix_IndexValues(jac)
+        call c_f_pointer(c_loc(first_index(1)), rows, [capacity])
+        first_index => FSUNSparseMatrix_IndexPointers(jac)
+        call c_f_pointer(c_loc(first_index(1)), starts, [size(yv) + 1])
+        next = 0
+        do j = 1, size(yv)
+            starts(j) = int(next, c_int64_t)
+            do i = 1, size(yv)
+                if (data%blocks(i) /= data%blocks(j)) cycle
+                next = next + 1
+                values(next) = data%full(i, j)
+                rows(next) = int(i - 1, c_int64_t)
+            end do
+        end do
+        starts(size(yv) + 1) = int(next, c_int64_t)
+    end function sparse_jacobian
+
+    !> Entries of a matrix kept over blocks: the sum of each block's size squared.
+    pure integer function block_entries(blocks) result(total)
+        integer, intent(in) :: blocks(:)
+        integer :: b
+
+        total = 0
+        do b = minval(blocks), maxval(blocks)
+            total = total + count(blocks == b)**2
+        end do
+    end function block_entries
 
     integer(c_int) function projection(t, ycur, corr, eps_proj, err, user_data) result(ierr) &
             & bind(c, name="rollcon_cvode_projection")

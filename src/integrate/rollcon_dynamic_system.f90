@@ -23,6 +23,8 @@ module rollcon_dynamic_system
         procedure :: dae_residual
         procedure :: dae_jacobian
         procedure :: dae_differential
+        procedure :: state_blocks
+        procedure :: dae_vector_groups
         procedure :: root_count
         procedure :: roots
         procedure :: failure_text
@@ -97,6 +99,30 @@ contains
 
         kinds = 1.0_wp
     end function dae_differential
+
+    !> For each state, its block: the Newton matrix's entry (i, j) can be nonzero only when
+    !> states i and j are of one block (a sparse Newton matrix keeps those entries). Default:
+    !> one block, every entry.
+    function state_blocks(self, n) result(blocks)
+        class(dynamic_system_type), intent(in) :: self
+        !> Size of the state
+        integer, intent(in) :: n
+        integer :: blocks(n)
+
+        blocks = 1
+    end function state_blocks
+
+    !> For each component of a DAE state: 0 when its tolerance is relative to itself, or the
+    !> first component of the vector it is a component of, whose largest component its
+    !> tolerance is then relative to (IDA's error weights). The default: every component alone.
+    function dae_vector_groups(self, n) result(groups)
+        class(dynamic_system_type), intent(in) :: self
+        !> Size of the DAE state
+        integer, intent(in) :: n
+        integer :: groups(n)
+
+        groups = 0
+    end function dae_vector_groups
 
     !> Number of event functions (0: none).
     integer function root_count(self)

@@ -1,7 +1,8 @@
 ! SPDX-License-Identifier: MIT
-!> The integrator a run's settings choose: CVODE for the ODE form, IDA for the DAE form.
+!> The integrator a run's settings choose: CVODE for the ODE forms (the ODE form and the
+!> independent speeds), IDA for the DAE form.
 module rollcon_integrator_choice
-    use rollcon_run_settings, only : run_settings_type, formulation_cvode
+    use rollcon_run_settings, only : run_settings_type
     use rollcon_integrator, only : integrator_type
     use rollcon_cvode, only : cvode_integrator_type
     use rollcon_ida, only : ida_integrator_type
@@ -17,7 +18,7 @@ contains
         type(run_settings_type), intent(in) :: settings
         class(integrator_type), allocatable, intent(out) :: integrator
 
-        if (settings%formulation == formulation_cvode) then
+        if (settings%uses_cvode()) then
             allocate(cvode_integrator_type :: integrator)
         else
             allocate(ida_integrator_type :: integrator)

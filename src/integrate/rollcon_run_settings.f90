@@ -9,30 +9,40 @@ module rollcon_run_settings
     private
 
     public :: run_settings_type
-    public :: formulation_cvode, formulation_ida, method_bdf, method_adams
-    public :: drift_none, drift_projection, drift_baumgarte, jacobian_analytic, jacobian_dq
+    public :: formulation_cvode, formulation_ida, formulation_maggi, method_bdf, method_adams
+    public :: drift_none, drift_projection, drift_baumgarte, jacobian_analytic, jacobian_dq, &
+        & jacobian_none
+    public :: linear_dense, linear_sparse
 
-    !> Formulations: CVODE on the ODE form, IDA on the DAE form (docs/design.md §4)
-    integer, parameter :: formulation_cvode = 1, formulation_ida = 2
+    !> Formulations: CVODE on the ODE form, IDA on the DAE form, CVODE on the coordinates and
+    !> independent speeds (docs/design.md §4)
+    integer, parameter :: formulation_cvode = 1, formulation_ida = 2, formulation_maggi = 3
     !> CVODE's linear multistep methods
     integer, parameter :: method_bdf = 1, method_adams = 2
     !> Drift control of the ODE form: none, projection onto the constraints, Baumgarte
     integer, parameter :: drift_none = 0, drift_projection = 1, drift_baumgarte = 2
-    !> Newton matrices: from the UCOSUBs' partials, or SUNDIALS' difference quotients
-    integer, parameter :: jacobian_analytic = 1, jacobian_dq = 2
+    !> Newton matrices: from the UCOSUBs' partials, or SUNDIALS' difference quotients; or none:
+    !> CVODE's fixed-point (functional) iteration instead of Newton's method
+    integer, parameter :: jacobian_analytic = 1, jacobian_dq = 2, jacobian_none = 0
+    !> CVODE's Newton matrices: dense LU (LAPACK-style, SUNDIALS' dense solver) or sparse LU
+    !> (SUNDIALS' KLU) over the constraints' blocks (docs/design.md §7)
+    integer, parameter :: linear_dense = 1, linear_sparse = 2
 
     !> How to integrate, and over which times
     type :: run_settings_type
         !> End time and output step [s]
         real(wp) :: end_time = 10.0_wp, output_step = 0.01_wp
-        !> formulation_ida (DAE) or formulation_cvode (ODE)
+        !> formulation_ida (DAE), formulation_cvode (ODE) or formulation_maggi (ODE in
+        !> independent speeds)
         integer :: formulation = formulation_ida
-        !> method_bdf or method_adams (CVODE only)
+        !> method_bdf or method_adams (CVODE only: 'cvode' and 'maggi')
         integer :: method = method_bdf
         !> drift_projection, drift_baumgarte or drift_none (the last two CVODE only)
         integer :: drift = drift_projection
-        !> jacobian_analytic or jacobian_dq
+        !> jacobian_analytic, jacobian_dq, or jacobian_none (fixed-point iteration, CVODE only)
         integer :: jacobian = jacobian_analytic
+        !> linear_dense or linear_sparse (CVODE with an analytic Jacobian only)
+        integer :: linear_solver = linear_dense
         !> Relative and absolute tolerances [-, state units]
         real(wp) :: rtol = 1.0e-8_wp, atol = 1.0e-10_wp
         !> Baumgarte rate alpha [1/s]: F' = -alpha F (velocity), F'' = -2 alpha F' - alpha^2 F
@@ -42,6 +52,7 @@ module rollcon_run_settings
     contains
         procedure :: baumgarte
         procedure :: analytic_jacobian
+        procedure :: uses_cvode
         procedure :: text
     end type run_settings_type
 
@@ -63,6 +74,14 @@ contains
         analytic_jacobian = self%jacobian == jacobian_analytic
     end function analytic_jacobian
 
+    !> CVODE integrates the run (the ODE forms, 'cvode' and 'maggi'); else IDA.
+    pure logical function uses_cvode(self)
+        class(run_settings_type), intent(in) :: self
+
+        uses_cvode = self%formulation == formulation_cvode &
+            & .or. self%formulation == formulation_maggi
+    end function uses_cvode
+
     !> The integrator settings in words: "IDA (DAE form, index 2), analytic Jacobian, rtol
     !> 1e-8, atol 1e-10".
     function text(self) result(words)
@@ -71,15 +90,22 @@ contains
         character(len=*), parameter :: drifts(0:2) = [character(len=10) :: "none", &
             & "projection", "baumgarte"]
 
-        if (self%formulation == formulation_cvode) then
-            words = "CVODE (ODE form, " &
+        if (self%uses_cvode()) then
+            words = "CVODE (" // trim(merge("ODE form          ", "independent speeds", &
+                & self%formulation == formulation_cvode)) // ", " &
                 & // trim(merge("Adams", "BDF  ", self%method == method_adams)) // ", drift " &
                 & // trim(drifts(self%drift)) // ")"
         else
             words = "IDA (DAE form, index 2)"
         end if
-        words = words // ", " // trim(merge("analytic", "dq      ", self%analytic_jacobian())) &
-            & // " Jacobian, rtol " // to_text(self%rtol) // ", atol " // to_text(self%atol)
+        if (self%jacobian == jacobian_none) then
+            words = words // ", fixed-point iteration (no Jacobian)"
+        else
+            words = words // ", " // trim(merge("analytic", "dq      ", &
+                & self%analytic_jacobian())) // " Jacobian"
+        end if
+        words = words // ", rtol " // to_text(self%rtol) // ", atol " // to_text(self%atol)
+        if (self%linear_solver == linear_sparse) words = words // ", sparse Newton matrix (KLU)"
     end function text
 
 end module rollcon_run_settings

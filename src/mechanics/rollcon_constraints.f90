@@ -148,16 +148,20 @@ contains
         end associate
     end subroutine to_si
 
-    !> Scatter a UCON's first partials (ARRAY) onto the system's coordinates and rates.
+    !> Scatter a UCON's first partials (ARRAY) onto the system's coordinates and rates. Only the
+    !> UCON's own coordinates are written (zeroed, then set): the others are zero from
+    !> allocate_state and stay so, and a model of N parts costs N times one.
     pure subroutine scatter_row(ucon, array, row_q, row_u)
         type(ucon_statement_type), intent(in) :: ucon
         real(wp), intent(in) :: array(:)
         !> d/dq and d/du rows of the system
-        real(wp), intent(out) :: row_q(:), row_u(:)
+        real(wp), intent(inout) :: row_q(:), row_u(:)
         integer :: i
 
-        row_q = 0.0_wp
-        row_u = 0.0_wp
+        do i = 1, ucon%nvars
+            row_q(ucon%coordinate(i)) = 0.0_wp
+            row_u(ucon%coordinate(i)) = 0.0_wp
+        end do
         do i = 1, ucon%nvars
             if (ucon%velocity(i)) then
                 row_u(ucon%coordinate(i)) = array(i)
@@ -168,15 +172,20 @@ contains
     end subroutine scatter_row
 
     !> Scatter a UCON's second partials (XMATRX) onto d2F/dq dq and d2F/dq du of the system
-    !> (d2F/du du is zero: F is linear in the rates, docs/design.md §2).
+    !> (d2F/du du is zero: F is linear in the rates, docs/design.md §2); only the UCON's own
+    !> coordinates' entries are written, as in scatter_row.
     pure subroutine scatter_hessian(ucon, xmatrx, hqq, hqu)
         type(ucon_statement_type), intent(in) :: ucon
         real(wp), intent(in) :: xmatrx(:, :)
-        real(wp), intent(out) :: hqq(:, :), hqu(:, :)
+        real(wp), intent(inout) :: hqq(:, :), hqu(:, :)
         integer :: i, j
 
-        hqq = 0.0_wp
-        hqu = 0.0_wp
+        do j = 1, ucon%nvars
+            do i = 1, ucon%nvars
+                hqq(ucon%coordinate(i), ucon%coordinate(j)) = 0.0_wp
+                hqu(ucon%coordinate(i), ucon%coordinate(j)) = 0.0_wp
+            end do
+        end do
         do j = 1, ucon%nvars
             do i = 1, ucon%nvars
                 if (ucon%velocity(i)) cycle

@@ -13,6 +13,7 @@ module rollcon_equations
     use rollcon_constraints, only : constraint_state_type, need_value, need_first, need_second, &
         & need_time
     use rollcon_saddle_point, only : saddle_point_type
+    use rollcon_constraint_blocks, only : constraint_blocks_type
     use rollcon_ode_workspace, only : ode_workspace_type
     implicit none
     private
@@ -34,7 +35,9 @@ module rollcon_equations
         !> The system as last assembled: mass matrix, applied and inertial forces f, constraint
         !> matrix C, gamma
         real(wp), allocatable :: mass(:, :), force(:), c(:, :), gamma(:)
-        !> The saddle-point system's factors, as the last accelerations call left them
+        !> The constraints' blocks (UCONs sharing parts), and the saddle-point system's factors,
+        !> as the last accelerations call left them
+        type(constraint_blocks_type) :: blocks
         type(saddle_point_type) :: saddle
         !> Scratch arrays of the right-hand side, the Jacobian and the projection
         type(ode_workspace_type) :: work
@@ -66,7 +69,8 @@ contains
         self%nc = model%nc
         self%nh = model%nh
         call self%constraints%allocate(model)
-        call self%saddle%init(self%n, self%nc)
+        call self%blocks%init(model)
+        call self%saddle%init(self%n, self%nc, self%blocks)
         associate (n => self%n, nc => self%nc)
             if (allocated(self%mass)) deallocate(self%mass, self%force, self%c, self%gamma)
             allocate(self%mass(n, n), self%force(n), self%c(nc, n), self%gamma(nc), source=0.0_wp)
@@ -102,35 +106,43 @@ contains
         !> alpha^2 F (position); 0 without Baumgarte terms
         real(wp), intent(in) :: alpha
         real(wp) :: rate
-        integer :: k
+        integer :: k, first, last
 
         call self%constraint_matrix()
-        associate (cs => self%constraints)
+        ! sums over each UCON's own coordinates (ascending): the dense sums' terms that are
+        ! not exact zeros, in their order
+        associate (cs => self%constraints, at => self%blocks%ucon_coordinates)
             do k = 1, self%nc
+                first = self%blocks%ucon_start(k)
+                last = self%blocks%ucon_start(k + 1) - 1
                 if (self%model%ucons(k)%holonomic) then
-                    rate = dot_product(cs%grad_q(k, :), u) + cs%dt(k)
-                    self%gamma(k) = -quadratic_form(cs%hqq(:, :, k), u) &
-                        & - 2.0_wp*dot_product(cs%dt_grad_q(k, :), u) - cs%dtt(k) &
-                        & - 2.0_wp*alpha*rate - alpha**2*cs%value(k)
+                    rate = sparse_dot(cs%grad_q(k, :), u, at(first:last)) + cs%dt(k)
+                    self%gamma(k) = -sparse_quadratic_form(cs%hqq(:, :, k), u, at(first:last)) &
+                        & - 2.0_wp*sparse_dot(cs%dt_grad_q(k, :), u, at(first:last)) &
+                        & - cs%dtt(k) - 2.0_wp*alpha*rate - alpha**2*cs%value(k)
                 else
-                    self%gamma(k) = -dot_product(cs%grad_q(k, :), u) - cs%dt(k) &
+                    self%gamma(k) = -sparse_dot(cs%grad_q(k, :), u, at(first:last)) - cs%dt(k) &
                         & - alpha*cs%value(k)
                 end if
             end do
         end associate
     end subroutine constraint_rows
 
-    !> C alone (velocity UCON: dF/du; position UCON: dF/dq), from first partials only.
+    !> C alone (velocity UCON: dF/du; position UCON: dF/dq), from first partials only: each
+    !> row over its UCON's coordinates (the others are zero from init, and stay so).
     subroutine constraint_matrix(self)
         class(equations_type), intent(inout) :: self
-        integer :: k
+        integer :: k, i, j
 
         do k = 1, self%nc
-            if (self%model%ucons(k)%holonomic) then
-                self%c(k, :) = self%constraints%grad_q(k, :)
-            else
-                self%c(k, :) = self%constraints%grad_u(k, :)
-            end if
+            do i = self%blocks%ucon_start(k), self%blocks%ucon_start(k + 1) - 1
+                j = self%blocks%ucon_coordinates(i)
+                if (self%model%ucons(k)%holonomic) then
+                    self%c(k, j) = self%constraints%grad_q(k, j)
+                else
+                    self%c(k, j) = self%constraints%grad_u(k, j)
+                end if
+            end do
         end do
     end subroutine constraint_matrix
 
@@ -186,7 +198,7 @@ contains
         real(wp), intent(in) :: q(:), u(:), a(:)
         real(wp), intent(in) :: lambda(:)
         real(wp) :: part_dq(6, 6), part_du(6, 6)
-        integer :: p, i0, k, j
+        integer :: p, i0, k, j, i, jj, ii
 
         self%work%dm_dq = 0.0_wp
         self%work%dm_du = 0.0_wp
@@ -198,16 +210,30 @@ contains
             self%work%dm_du(i0 + 1:i0 + 6, i0 + 1:i0 + 6) = part_du
         end do
         ! -d(C^T lambda)/dq: second partials are why ADAMS asks a UCOSUB for XMATRX
-        ! (docs/design.md §4)
+        ! (docs/design.md §4); each UCON's over its own coordinates (the rest are zeros)
         do k = 1, self%nc
-            if (self%model%ucons(k)%holonomic) then
-                self%work%dm_dq = self%work%dm_dq - lambda(k)*self%constraints%hqq(:, :, k)
-            else
-                do j = 1, self%n
-                    self%work%dm_dq(:, j) = self%work%dm_dq(:, j) &
-                        & - lambda(k)*self%constraints%hqu(j, :, k)
-                end do
-            end if
+            associate (at => self%blocks%ucon_coordinates(self%blocks%ucon_start(k): &
+                    & self%blocks%ucon_start(k + 1) - 1))
+                if (self%model%ucons(k)%holonomic) then
+                    do jj = 1, size(at)
+                        j = at(jj)
+                        do ii = 1, size(at)
+                            i = at(ii)
+                            self%work%dm_dq(i, j) = self%work%dm_dq(i, j) &
+                                & - lambda(k)*self%constraints%hqq(i, j, k)
+                        end do
+                    end do
+                else
+                    do jj = 1, size(at)
+                        j = at(jj)
+                        do ii = 1, size(at)
+                            i = at(ii)
+                            self%work%dm_dq(i, j) = self%work%dm_dq(i, j) &
+                                & - lambda(k)*self%constraints%hqu(j, i, k)
+                        end do
+                    end do
+                end if
+            end associate
         end do
     end subroutine momentum_jacobian
 
@@ -249,30 +275,38 @@ contains
         real(wp), intent(in) :: u(:), a(:)
         !> Baumgarte rate in effect [1/s], 0 without Baumgarte terms
         real(wp), intent(in) :: alpha
-        integer :: n, k, j
+        integer :: n, k, j, jj
 
         n = self%n
+        ! each UCON's row over its own coordinates; the rest are zeros (-(0) as the dense sums
+        ! gave, written as +0 here)
+        self%work%rhs_bottom = 0.0_wp
         associate (cs => self%constraints, rhs_bottom => self%work%rhs_bottom)
             do k = 1, self%nc
-                if (self%model%ucons(k)%holonomic) then
-                    do j = 1, n
-                        rhs_bottom(k, j) = -dot_product(cs%hqq(:, j, k), a) &
-                            & - 2.0_wp*alpha*(dot_product(cs%hqq(:, j, k), u) &
-                            & + cs%dt_grad_q(k, j)) - alpha**2*cs%grad_q(k, j)
-                        rhs_bottom(k, n + j) = -2.0_wp*dot_product(cs%hqq(:, j, k), u) &
-                            & - 2.0_wp*cs%dt_grad_q(k, j) - 2.0_wp*alpha*cs%grad_q(k, j)
-                    end do
-                else
-                    ! C a - gamma = dF/du a + dF/dq u + dF/dt + alpha F
-                    do j = 1, n
-                        rhs_bottom(k, j) = -(dot_product(cs%hqu(j, :, k), a) &
-                            & + dot_product(cs%hqq(:, j, k), u) + cs%dt_grad_q(k, j) &
-                            & + alpha*cs%grad_q(k, j))
-                        rhs_bottom(k, n + j) = -(cs%grad_q(k, j) &
-                            & + dot_product(cs%hqu(:, j, k), u) + cs%dt_grad_u(k, j) &
-                            & + alpha*cs%grad_u(k, j))
-                    end do
-                end if
+                associate (at => self%blocks%ucon_coordinates(self%blocks%ucon_start(k): &
+                        & self%blocks%ucon_start(k + 1) - 1))
+                    if (self%model%ucons(k)%holonomic) then
+                        do jj = 1, size(at)
+                            j = at(jj)
+                            rhs_bottom(k, j) = -sparse_dot(cs%hqq(:, j, k), a, at) &
+                                & - 2.0_wp*alpha*(sparse_dot(cs%hqq(:, j, k), u, at) &
+                                & + cs%dt_grad_q(k, j)) - alpha**2*cs%grad_q(k, j)
+                            rhs_bottom(k, n + j) = -2.0_wp*sparse_dot(cs%hqq(:, j, k), u, at) &
+                                & - 2.0_wp*cs%dt_grad_q(k, j) - 2.0_wp*alpha*cs%grad_q(k, j)
+                        end do
+                    else
+                        ! C a - gamma = dF/du a + dF/dq u + dF/dt + alpha F
+                        do jj = 1, size(at)
+                            j = at(jj)
+                            rhs_bottom(k, j) = -(sparse_dot(cs%hqu(j, :, k), a, at) &
+                                & + sparse_dot(cs%hqq(:, j, k), u, at) + cs%dt_grad_q(k, j) &
+                                & + alpha*cs%grad_q(k, j))
+                            rhs_bottom(k, n + j) = -(cs%grad_q(k, j) &
+                                & + sparse_dot(cs%hqu(:, j, k), u, at) + cs%dt_grad_u(k, j) &
+                                & + alpha*cs%grad_u(k, j))
+                        end do
+                    end if
+                end associate
             end do
         end associate
     end subroutine jacobian_constraint_rows
@@ -331,17 +365,31 @@ contains
         du = self%work%rhs_top(:, 1)
     end subroutine project
 
-    !> u^T H u for a square H.
-    pure function quadratic_form(h, u) result(value)
+    !> x . y over the given coordinates (ascending).
+    pure function sparse_dot(x, y, at) result(total)
+        real(wp), intent(in) :: x(:), y(:)
+        integer, intent(in) :: at(:)
+        real(wp) :: total
+        integer :: i
+
+        total = 0.0_wp
+        do i = 1, size(at)
+            total = total + x(at(i))*y(at(i))
+        end do
+    end function sparse_dot
+
+    !> u^T H u over the given coordinates (ascending), summed as quadratic_form.
+    pure function sparse_quadratic_form(h, u, at) result(value)
         real(wp), intent(in) :: h(:, :), u(:)
+        integer, intent(in) :: at(:)
         real(wp) :: value
         integer :: j
 
         value = 0.0_wp
-        do j = 1, size(u)
-            value = value + u(j)*dot_product(h(:, j), u)
+        do j = 1, size(at)
+            value = value + u(at(j))*sparse_dot(h(:, at(j)), u, at)
         end do
-    end function quadratic_form
+    end function sparse_quadratic_form
 
     !> Total energy: kinetic plus gravitational potential [J].
     pure function energy(self, q, u) result(e)

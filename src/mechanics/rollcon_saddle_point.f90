@@ -9,12 +9,19 @@
 !> the 3 x 3 rotational block B^T J B (principal axes at the centre of mass: no coupling). So
 !> M^-1 costs a division and a 3 x 3 Cholesky solve per part (LAPACK dpotf2/dpotrs) and only
 !> the small Schur complement S is factored with pivoting (LAPACK dgetf2/dgetrs), in place of
-!> the whole (n + nc) x (n + nc) matrix. Nothing here allocates after init.
+!> the whole (n + nc) x (n + nc) matrix. Given the constraints' blocks (rollcon_constraint_blocks:
+!> UCONs that share no part do not couple), S is block diagonal and every step goes block by
+!> block, each row over its block's coordinates only, so N independent disks cost N times one:
+!> the sums are those of the dense path without its terms that are exact zeros, in the same
+!> order, and the blocks' LU factors those of the dense S: the same numbers, except that an
+!> exact zero may keep the sign the dense path's added zeros took from it (-0 for +0, with two
+!> blocks or more). Nothing here allocates after init.
 module rollcon_saddle_point
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type, fatal_error, stat_lapack
     use rollcon_text, only : to_text
     use rollcon_lapack, only : dgetf2, dgetrs, dpotf2, dpotrs, lapack_info_error
+    use rollcon_constraint_blocks, only : constraint_blocks_type
     implicit none
     private
 
@@ -37,6 +44,16 @@ module rollcon_saddle_point
         integer, allocatable :: pivots(:)
         !> Factorisations done since init: one per saddle-point solve of a new matrix
         integer :: factorisations = 0
+        !> The constraints' blocks, when given to init (then the factorisations of all nc rows
+        !> go block by block; those of fewer rows, the projection's, stay dense)
+        logical :: blocked = .false.
+        type(constraint_blocks_type) :: blocks
+        !> Each block's LU factors of S, packed (offset of block b: schur_start(b)), and the
+        !> right-hand sides of one block gathered (most_rows, up to 2 n columns)
+        real(wp), allocatable :: block_schur(:), gathered(:, :)
+        integer, allocatable :: schur_start(:)
+        !> Whether the current factorisation went block by block
+        logical :: by_blocks = .false.
     contains
         procedure :: init
         procedure :: factor
@@ -46,10 +63,13 @@ module rollcon_saddle_point
 
 contains
 
-    !> Size the workspace for n coordinates (6 per part) and at most nc constraint rows.
-    subroutine init(self, n, nc)
+    !> Size the workspace for n coordinates (6 per part) and at most nc constraint rows, with
+    !> the constraints' blocks when given.
+    subroutine init(self, n, nc, blocks)
         class(saddle_point_type), intent(inout) :: self
         integer, intent(in) :: n, nc
+        type(constraint_blocks_type), intent(in), optional :: blocks
+        integer :: b, m
 
         self%n = n
         self%nc = nc
@@ -63,6 +83,20 @@ contains
         allocate(self%minv_ct(n, max(nc, 1)), source=0.0_wp)
         allocate(self%schur(max(nc, 1), max(nc, 1)), source=0.0_wp)
         allocate(self%pivots(max(nc, 1)), source=0)
+        self%blocked = present(blocks)
+        self%by_blocks = .false.
+        if (allocated(self%block_schur)) deallocate(self%block_schur, self%gathered, &
+            & self%schur_start)
+        if (.not. self%blocked) return
+        self%blocks = blocks
+        allocate(self%schur_start(blocks%count + 1))
+        self%schur_start(1) = 1
+        do b = 1, blocks%count
+            m = blocks%row_start(b + 1) - blocks%row_start(b)
+            self%schur_start(b + 1) = self%schur_start(b) + m*m
+        end do
+        allocate(self%block_schur(max(self%schur_start(blocks%count + 1) - 1, 1)), &
+            & self%gathered(max(blocks%most_rows, 1), max(2*n, 1)), source=0.0_wp)
     end subroutine init
 
     !> Factor the saddle-point matrix of mass (n x n, block structure above) and the first
@@ -96,6 +130,11 @@ contains
             if (allocated(error)) return
         end do
         if (rows == 0) return
+        self%by_blocks = self%blocked .and. rows == self%nc
+        if (self%by_blocks) then
+            call factor_blocks(self, c, error)
+            return
+        end if
         do k = 1, rows
             self%minv_ct(:, k) = c(k, :)
         end do
@@ -127,6 +166,10 @@ contains
         call self%apply_inverse_mass(r1, m, error)
         if (allocated(error)) return
         if (self%rows == 0) return
+        if (self%by_blocks) then
+            call solve_blocks(self, c, r1, r2, m, error)
+            return
+        end if
         do j = 1, m
             do k = 1, self%rows
                 r2(k, j) = r2(k, j) - dot_product(c(k, :), r1(:, j))
@@ -141,6 +184,112 @@ contains
             end do
         end do
     end subroutine solve
+
+    !> The block path of factor: M^-1 C^T column by column over each row's block, each block's
+    !> S from its rows and coordinates, and its LU factors (dgetf2).
+    subroutine factor_blocks(self, c, error)
+        type(saddle_point_type), intent(inout) :: self
+        real(wp), intent(in) :: c(:, :)
+        type(error_type), allocatable, intent(out) :: error
+        integer :: b, i, j, k, kj, m, first, last, p, i0, info, s0
+
+        associate (blocks => self%blocks)
+            do b = 1, blocks%count
+                first = blocks%coordinate_start(b)
+                last = blocks%coordinate_start(b + 1) - 1
+                ! M^-1 c_k^T over the block's parts (zero elsewhere, as the dense path leaves it)
+                do i = blocks%row_start(b), blocks%row_start(b + 1) - 1
+                    k = blocks%rows(i)
+                    do j = first, last, 6
+                        i0 = blocks%coordinates(j) - 1
+                        p = i0/6 + 1
+                        self%minv_ct(i0 + 1:i0 + 3, k) = c(k, i0 + 1:i0 + 3)/self%part_mass(p)
+                        self%minv_ct(i0 + 4:i0 + 6, k) = c(k, i0 + 4:i0 + 6)
+                        call dpotrs("L", 3, 1, self%rotational(1, 1, p), 3, &
+                            & self%minv_ct(i0 + 4, k), self%n, info)
+                        call lapack_info_error("dpotrs", info, error)
+                        if (allocated(error)) return
+                    end do
+                end do
+                m = blocks%row_start(b + 1) - blocks%row_start(b)
+                s0 = self%schur_start(b) - 1
+                do j = 1, m
+                    kj = blocks%rows(blocks%row_start(b) + j - 1)
+                    do i = 1, m
+                        k = blocks%rows(blocks%row_start(b) + i - 1)
+                        self%block_schur(s0 + i + m*(j - 1)) = block_dot(c, k, &
+                            & self%minv_ct(:, kj), blocks%coordinates(first:last))
+                    end do
+                end do
+                call dgetf2(m, m, self%block_schur(self%schur_start(b)), m, &
+                    & self%pivots(blocks%row_start(b)), info)
+                call lapack_info_error("dgetf2 (constraint Schur complement, a block)", info, &
+                    & error)
+                if (allocated(error)) return
+            end do
+        end associate
+    end subroutine factor_blocks
+
+    !> The block path of solve, after r1 := M^-1 r1: lambda block by block, then a.
+    subroutine solve_blocks(self, c, r1, r2, m, error)
+        type(saddle_point_type), intent(inout) :: self
+        real(wp), intent(in) :: c(:, :)
+        integer, intent(in) :: m
+        real(wp), intent(inout) :: r1(self%n, m), r2(self%rows, m)
+        type(error_type), allocatable, intent(out) :: error
+        integer :: b, i, j, k, rows_b, first, last, col, info
+
+        associate (blocks => self%blocks)
+            do b = 1, blocks%count
+                first = blocks%coordinate_start(b)
+                last = blocks%coordinate_start(b + 1) - 1
+                rows_b = blocks%row_start(b + 1) - blocks%row_start(b)
+                do col = 1, m
+                    do i = 1, rows_b
+                        k = blocks%rows(blocks%row_start(b) + i - 1)
+                        self%gathered(i, col) = r2(k, col) - block_dot(c, k, r1(:, col), &
+                            & blocks%coordinates(first:last))
+                    end do
+                end do
+                call dgetrs("N", rows_b, m, self%block_schur(self%schur_start(b)), rows_b, &
+                    & self%pivots(blocks%row_start(b)), self%gathered, size(self%gathered, 1), &
+                    & info)
+                call lapack_info_error("dgetrs (constraint Schur complement, a block)", info, &
+                    & error)
+                if (allocated(error)) return
+                do col = 1, m
+                    do i = 1, rows_b
+                        r2(blocks%rows(blocks%row_start(b) + i - 1), col) = self%gathered(i, col)
+                    end do
+                end do
+            end do
+            ! a = M^-1 (r1 + C^T lambda): each row's column of M^-1 C^T over its block, rows in
+            ! ascending order as the dense path adds them
+            do col = 1, m
+                do k = 1, self%rows
+                    b = blocks%row_block(k)
+                    do j = blocks%coordinate_start(b), blocks%coordinate_start(b + 1) - 1
+                        i = blocks%coordinates(j)
+                        r1(i, col) = r1(i, col) + r2(k, col)*self%minv_ct(i, k)
+                    end do
+                end do
+            end do
+        end associate
+    end subroutine solve_blocks
+
+    !> Row k of c times x over the given coordinates (ascending): the dense dot product's
+    !> terms that are not exact zeros, in its order.
+    pure function block_dot(c, k, x, coordinates) result(total)
+        real(wp), intent(in) :: c(:, :), x(:)
+        integer, intent(in) :: k, coordinates(:)
+        real(wp) :: total
+        integer :: j
+
+        total = 0.0_wp
+        do j = 1, size(coordinates)
+            total = total + c(k, coordinates(j))*x(coordinates(j))
+        end do
+    end function block_dot
 
     !> x := M^-1 x for the m columns of x (leading dimension n), part by part.
     subroutine apply_inverse_mass(self, x, m, error)

@@ -2,7 +2,8 @@
 !> A model as the integrators see it (rollcon_dynamic_system): the model (held here, once), its
 !> equations, the run settings, the watches of the run, scratch arrays, and the first failure a
 !> callback met (callbacks never print or stop). The ODE state is y = (q, u); the DAE state is
-!> y = (q, u, lambda, mu) with y' = (u, a, 0, 0) (docs/design.md §4).
+!> y = (q, u, lambda, mu) with y' = (u, a, 0, 0); the state in independent speeds is
+!> y = (q, v), v the independent rates of a partition (docs/design.md §4).
 module rollcon_problem
     use rollcon_kinds, only : wp
     use, intrinsic :: ieee_arithmetic, only : ieee_is_finite
@@ -14,10 +15,12 @@ module rollcon_problem
     use rollcon_constraints, only : need_value
     use rollcon_dae, only : dae_size, dae_differential_kinds => dae_differential, &
         & residual_of_dae => dae_residual, jacobian_of_dae => dae_jacobian
-    use rollcon_run_settings, only : run_settings_type, formulation_cvode, drift_projection
+    use rollcon_independent_speeds, only : independent_speeds_type
+    use rollcon_run_settings, only : run_settings_type, formulation_cvode, formulation_maggi, &
+        & drift_projection
     use rollcon_dynamic_system, only : dynamic_system_type
     use rollcon_watch, only : watch_type, watch_slot_type, append_watch
-    use rollcon_output_layout, only : name_length
+    use rollcon_output_layout, only : name_length, coord_psi
     implicit none
     private
 
@@ -36,6 +39,11 @@ module rollcon_problem
         integer, allocatable :: watch_columns(:)
         !> Scratch: accelerations and multipliers
         real(wp), allocatable :: a(:), lambda(:)
+        !> The formulation in independent speeds: its partition and workspace (sized by
+        !> prepare), the coordinates and rates its last evaluation used and the change of rates
+        !> a projection would make (n each)
+        type(independent_speeds_type) :: speeds
+        real(wp), allocatable :: q(:), u(:), du(:)
         !> The first failure inside a callback, for the caller to report
         type(error_type), allocatable :: failure
         !> For each part (model order), the basis its start and the model's part are given in
@@ -53,6 +61,9 @@ module rollcon_problem
         procedure :: constraint_values
         procedure :: state_size
         procedure :: pack_state
+        procedure :: unpack_state
+        procedure :: in_speeds
+        procedure :: speeds_worn
         procedure :: ode_rhs
         procedure :: ode_jacobian
         procedure :: projects
@@ -60,6 +71,8 @@ module rollcon_problem
         procedure :: dae_residual
         procedure :: dae_jacobian
         procedure :: dae_differential
+        procedure :: state_blocks
+        procedure :: dae_vector_groups
         procedure :: root_count
         procedure :: roots
         procedure :: root_values
@@ -108,7 +121,10 @@ contains
 
         if (allocated(self%a)) deallocate(self%a)
         if (allocated(self%lambda)) deallocate(self%lambda)
-        allocate(self%a(self%eq%n), self%lambda(self%eq%nc), source=0.0_wp)
+        if (allocated(self%u)) deallocate(self%q, self%u, self%du)
+        allocate(self%a(self%eq%n), self%lambda(self%eq%nc), self%q(self%eq%n), &
+            & self%u(self%eq%n), self%du(self%eq%n), source=0.0_wp)
+        if (self%in_speeds()) call self%speeds%init(self%eq)
         if (allocated(self%failure)) deallocate(self%failure)
         if (.not. allocated(self%watches)) allocate(self%watches(0))
         if (allocated(self%watch_columns)) deallocate(self%watch_columns)
@@ -155,11 +171,21 @@ contains
         values = self%eq%constraints%value
     end function constraint_values
 
-    !> Size of the integrator's state: 2n for the ODE form, the DAE's size for IDA.
+    !> The state is in independent speeds (formulation 'maggi').
+    pure logical function in_speeds(self)
+        class(problem_type), intent(in) :: self
+
+        in_speeds = self%settings%formulation == formulation_maggi
+    end function in_speeds
+
+    !> Size of the integrator's state: 2n for the ODE form, the DAE's size for IDA, n plus the
+    !> independent speeds in those.
     pure integer function state_size(self)
         class(problem_type), intent(in) :: self
 
-        if (self%settings%formulation == formulation_cvode) then
+        if (self%in_speeds()) then
+            state_size = self%speeds%state_size()
+        else if (self%settings%formulation == formulation_cvode) then
             state_size = 2*self%eq%n
         else
             state_size = dae_size(self%eq)
@@ -168,15 +194,27 @@ contains
 
     !> The integrator's state at (q, u) with the accelerations and multipliers of the last
     !> accelerations call: y = (q, u) for CVODE; y = (q, u, lambda, 0), y' = (u, a, 0, 0) for
-    !> IDA (mu = 0: the GGL multipliers vanish on a consistent state).
-    pure subroutine pack_state(self, q, u, y, yp)
-        class(problem_type), intent(in) :: self
+    !> IDA (mu = 0: the GGL multipliers vanish on a consistent state); y = (q, u_i) in
+    !> independent speeds, whose partition is chosen here, from the constraint matrix of that
+    !> call (a start or a restart of the integrator: the only times it may change). A failed
+    !> choice (constraint rows not independent) is kept as the problem's failure; the first
+    !> evaluation then fails with it.
+    subroutine pack_state(self, q, u, y, yp)
+        class(problem_type), intent(inout) :: self
         real(wp), intent(in) :: q(:), u(:)
         real(wp), intent(out) :: y(:), yp(:)
+        type(error_type), allocatable :: error
+        integer :: ierr
 
         associate (n => self%eq%n, nc => self%eq%nc)
             y = 0.0_wp
             yp = 0.0_wp
+            if (self%in_speeds()) then
+                call self%speeds%choose(self%eq, error)
+                ierr = self%keep_failure(error)
+                call self%speeds%pack(q, u, y)
+                return
+            end if
             y(:n) = q
             y(n + 1:2*n) = u
             if (self%settings%formulation == formulation_cvode) return
@@ -186,13 +224,62 @@ contains
         end associate
     end subroutine pack_state
 
-    !> y' = (u, a) for y = (q, u); ierr 0 on success, -1 on failure (kept in self%failure).
+    !> The coordinates and rates (q, u) at a state y of the integrator: y's own for the ODE
+    !> and DAE forms, the dependent rates solved at (t, q) in independent speeds.
+    subroutine unpack_state(self, time, y, q, u, error)
+        class(problem_type), intent(inout) :: self
+        real(wp), intent(in) :: time, y(:)
+        real(wp), intent(out) :: q(:), u(:)
+        type(error_type), allocatable, intent(out) :: error
+
+        associate (n => self%eq%n)
+            q = y(:n)
+            if (self%in_speeds()) then
+                call self%speeds%speeds(self%eq, time, y(:n), y(n + 1:), &
+                    & self%settings%baumgarte(), u, error)
+            else
+                u = y(n + 1:2*n)
+            end if
+        end associate
+    end subroutine unpack_state
+
+    !> In independent speeds: the partition no longer suits the state y at t (its dependent
+    !> block's condition has worn, rollcon_speed_partition), so the integrator should start
+    !> again with a new one. Always false for the other forms.
+    function speeds_worn(self, time, y) result(worn)
+        class(problem_type), intent(inout) :: self
+        real(wp), intent(in) :: time, y(:)
+        logical :: worn
+        type(error_type), allocatable :: error
+
+        worn = .false.
+        if (.not. self%in_speeds() .or. self%eq%nc == 0) return
+        call self%unpack_state(time, y, self%q, self%u, error)
+        worn = allocated(error)
+        if (.not. worn) worn = self%speeds%partition%worn(self%eq%c)
+    end function speeds_worn
+
+    !> y' = (u, a) for y = (q, u), (u, a_i) for y = (q, v); ierr 0 on success, -1 on failure
+    !> (kept in self%failure).
     integer function ode_rhs(self, time, y, ydot) result(ierr)
         class(problem_type), intent(inout) :: self
         real(wp), intent(in) :: time, y(:)
         real(wp), intent(out) :: ydot(:)
         type(error_type), allocatable :: error
 
+        if (self%in_speeds()) then
+            ! a partition that could not be chosen (pack_state) fails the first evaluation
+            ierr = -1
+            if (allocated(self%failure)) return
+            associate (n => self%eq%n)
+                call self%speeds%rhs(self%eq, time, y, self%settings%baumgarte(), ydot, self%u, &
+                    & self%a, self%lambda, error)
+                if (.not. allocated(error) .and. .not. all(ieee_is_finite(ydot))) &
+                    & call nonfinite_state(self, time, y(:n), self%u, error)
+            end associate
+            ierr = self%keep_failure(error)
+            return
+        end if
         associate (n => self%eq%n)
             call self%accelerations(time, y(:n), y(n + 1:), error)
             if (.not. allocated(error) .and. .not. all(ieee_is_finite(self%a))) &
@@ -231,6 +318,12 @@ contains
         real(wp), intent(out) :: matrix(:, :)
         type(error_type), allocatable :: error
 
+        if (self%in_speeds()) then
+            call self%speeds%jacobian(self%eq, time, y, self%settings%baumgarte(), self%u, &
+                & matrix, error)
+            ierr = self%keep_failure(error)
+            return
+        end if
         associate (n => self%eq%n)
             call self%eq%ode_jacobian(time, y(:n), y(n + 1:), self%settings%baumgarte(), matrix, &
                 & error)
@@ -238,20 +331,32 @@ contains
         ierr = self%keep_failure(error)
     end function ode_jacobian
 
-    !> Projection onto the constraints, when the settings ask for it and there are UCONs.
+    !> Projection onto the constraints, when the settings ask for it and there are UCONs (in
+    !> independent speeds: position UCONs, the velocity ones holding by construction).
     logical function projects(self)
         class(problem_type), intent(in) :: self
 
         projects = self%settings%drift == drift_projection .and. self%eq%nc > 0
+        if (self%in_speeds()) projects = projects .and. self%eq%nh > 0
     end function projects
 
-    !> The mass-weighted correction onto the constraints (exact, one step).
+    !> The mass-weighted correction onto the constraints (exact, one step); in independent
+    !> speeds the coordinates' part alone (the rates follow from the speeds at every
+    !> evaluation).
     integer function project(self, time, y, correction) result(ierr)
         class(problem_type), intent(inout) :: self
         real(wp), intent(in) :: time, y(:)
         real(wp), intent(out) :: correction(:)
         type(error_type), allocatable :: error
 
+        if (self%in_speeds()) then
+            correction = 0.0_wp
+            call self%unpack_state(time, y, self%q, self%u, error)
+            if (.not. allocated(error)) call self%eq%project(time, self%q, self%u, &
+                & correction(:self%eq%n), self%du, error)
+            ierr = self%keep_failure(error)
+            return
+        end if
         associate (n => self%eq%n)
             call self%eq%project(time, y(:n), y(n + 1:), correction(:n), correction(n + 1:), error)
         end associate
@@ -290,6 +395,56 @@ contains
         kinds = dae_differential_kinds(self%eq)
     end function dae_differential
 
+    !> Each state's block (rollcon_dynamic_system): the block of its coordinate's UCONs
+    !> (rollcon_constraint_blocks), or its part's own past the blocks for a part that no UCON
+    !> holds; a rate and an independent speed as their coordinate; IDA's multipliers as their
+    !> UCON.
+    function state_blocks(self, n) result(blocks)
+        class(problem_type), intent(in) :: self
+        integer, intent(in) :: n
+        integer :: blocks(n)
+        integer :: of_coordinate(self%eq%n), b, j, m
+
+        associate (bl => self%eq%blocks, nq => self%eq%n)
+            do j = 1, nq
+                of_coordinate(j) = bl%count + (j - 1)/6 + 1
+            end do
+            do b = 1, bl%count
+                of_coordinate(bl%coordinates(bl%coordinate_start(b): &
+                    & bl%coordinate_start(b + 1) - 1)) = b
+            end do
+            blocks = 0
+            blocks(:nq) = of_coordinate
+            if (self%in_speeds()) then
+                do m = 1, n - nq
+                    blocks(nq + m) = of_coordinate(self%speeds%partition%independent(m))
+                end do
+            else
+                blocks(nq + 1:min(n, 2*nq)) = of_coordinate
+                do j = 2*nq + 1, min(n, 2*nq + self%eq%nc)
+                    blocks(j) = bl%row_block(j - 2*nq)
+                end do
+            end if
+        end associate
+    end function state_blocks
+
+    !> A part's three Euler-angle rates are held relative to the largest of them: they are the
+    !> components of one angular velocity (docs/design.md §7, IDA's error test). Every other
+    !> component alone.
+    function dae_vector_groups(self, n) result(groups)
+        class(problem_type), intent(in) :: self
+        integer, intent(in) :: n
+        integer :: groups(n)
+        integer :: p, first
+
+        groups = 0
+        do p = 1, self%eq%n/6
+            ! u of part p: n + 6 (p - 1) + (X', Y', Z', psi', theta', phi')
+            first = self%eq%n + 6*(p - 1) + coord_psi
+            groups(first:first + 2) = first
+        end do
+    end function dae_vector_groups
+
     !> Number of event functions: every watch's, in watch order.
     integer function root_count(self)
         class(problem_type), intent(in) :: self
@@ -310,8 +465,15 @@ contains
         real(wp), intent(out) :: g(:)
         real(wp), intent(in), optional :: ydot(:)
 
+        type(error_type), allocatable :: error
+
         associate (n => self%eq%n, nc => self%eq%nc)
-            if (size(y) > 2*n) then
+            if (self%in_speeds()) then
+                ! y' = (u, a_i) carries no whole a: the watches solve for what they need
+                call self%unpack_state(time, y, self%q, self%u, error)
+                ierr = self%keep_failure(error)
+                if (ierr == 0) ierr = self%root_values(time, self%q, self%u, g)
+            else if (size(y) > 2*n) then
                 ierr = self%root_values(time, y(:n), y(n + 1:2*n), g, lambda=y(2*n + 1:2*n + nc))
             else if (present(ydot)) then
                 ierr = self%root_values(time, y(:n), y(n + 1:2*n), g, a=ydot(n + 1:2*n))

@@ -40,6 +40,8 @@ module rollcon_simulation
         type(csv_writer_type) :: csv
         !> The integrator's state and its derivative (IDA), the time
         real(wp), allocatable :: y(:), yp(:)
+        !> The coordinates and rates at y (problem%unpack_state)
+        real(wp), allocatable :: q(:), u(:)
         real(wp) :: t = 0.0_wp
         !> Force kinks the integrator must not step over
         real(wp), allocatable :: breaks(:)
@@ -60,6 +62,7 @@ module rollcon_simulation
         procedure :: record
         procedure :: handle_events
         procedure :: rebase
+        procedure :: repartition
         procedure :: rebase_at_start
         procedure :: count_rebasing
         procedure :: finish
@@ -108,6 +111,15 @@ contains
             if (root /= 0) then
                 call run%handle_events(summary, stop_here, error, history, sink)
                 if (stop_here .or. allocated(error)) exit
+            end if
+            ! in independent speeds, a worn partition is chosen again (a restart)
+            if (problem%speeds_worn(run%t, run%y)) then
+                call run%repartition(error)
+                if (allocated(error)) then
+                    summary%status = status_failed
+                    summary%message = error%message
+                    exit
+                end if
             end if
             if (run%t < t_out) cycle
             call run%record(summary, error, history, sink)
@@ -209,6 +221,7 @@ contains
             call self%progress%start(self%options%progress, self%options%t0, &
                 & self%options%end_time)
             allocate(self%y(problem%state_size()), self%yp(problem%state_size()))
+            allocate(self%q(problem%eq%n), self%u(problem%eq%n))
             call problem%pack_state(q, u, self%y, self%yp)
             call new_integrator(problem%settings, self%integrator)
             call self%integrator%start(problem, problem%settings, self%t, self%y, self%yp, &
@@ -235,11 +248,10 @@ contains
         class(row_sink_type), intent(inout), optional :: sink
         real(wp) :: energy
         real(wp), allocatable :: row(:)
-        integer :: n
 
-        n = self%problem%eq%n
-        associate (problem => self%problem, q => self%y(:n), u => self%y(n + 1:2*n), &
-                & time => self%t)
+        call self%problem%unpack_state(self%t, self%y, self%q, self%u, error)
+        if (allocated(error)) return
+        associate (problem => self%problem, q => self%q, u => self%u, time => self%t)
             call problem%accelerations(time, q, u, error)
             if (allocated(error)) return
             row = output_row(problem, self%layout, time, q, u)
@@ -290,16 +302,17 @@ contains
         class(row_sink_type), intent(inout), optional :: sink
         type(watch_event_type), allocatable :: events(:)
         character(len=:), allocatable :: refusal
-        integer :: r, w, k, n, stopping
+        integer :: r, w, k, stopping
 
-        n = self%problem%eq%n
+        call self%problem%unpack_state(self%t, self%y, self%q, self%u, error)
+        if (allocated(error)) return
         allocate(events(0))
         stopping = 0
         do r = 1, size(self%integrator%fired)
             if (self%integrator%fired(r) == 0) cycle
             call self%problem%root_owner(r, w, k)
             events = [events, self%problem%watches(w)%watch%fired(self%problem%eq, k, self%t, &
-                & self%y(:n), self%y(n + 1:2*n))]
+                & self%q, self%u)]
             if (events(size(events))%action /= action_rebase .and. stopping == 0) &
                 & stopping = size(events)
         end do
@@ -330,11 +343,12 @@ contains
         character(len=:), allocatable, intent(out) :: refusal
         type(error_type), allocatable, intent(out) :: error
         real(wp), allocatable :: q(:), u(:)
-        integer :: k, n
+        integer :: k
 
-        n = self%problem%eq%n
-        q = self%y(:n)
-        u = self%y(n + 1:2*n)
+        call self%problem%unpack_state(self%t, self%y, self%q, self%u, error)
+        if (allocated(error)) return
+        q = self%q
+        u = self%u
         do k = 1, size(parts)
             call rebase_part(self%problem, parts(k), self%t, q, u, refusal, error)
             if (allocated(error) .or. allocated(refusal)) return
@@ -345,6 +359,23 @@ contains
         call self%earlier%add(self%integrator%statistics())
         call self%integrator%restart(self%t, self%y, self%yp, error)
     end subroutine rebase
+
+    !> In independent speeds: start the integrator again at the current state with a new
+    !> partition of the speeds (chosen by restart_state), the same physical state.
+    subroutine repartition(self, error)
+        class(simulation_type), intent(inout) :: self
+        type(error_type), allocatable, intent(out) :: error
+        real(wp), allocatable :: q(:), u(:)
+
+        call self%problem%unpack_state(self%t, self%y, self%q, self%u, error)
+        if (allocated(error)) return
+        q = self%q
+        u = self%u
+        call restart_state(self%problem, self%t, q, u, self%y, self%yp, error)
+        if (allocated(error)) return
+        call self%earlier%add(self%integrator%statistics())
+        call self%integrator%restart(self%t, self%y, self%yp, error)
+    end subroutine repartition
 
     !> Before the first row: the parts that start in a turned basis (problem%start_bases)
     !> counted as re-based, then every part a watch wants re-based at the start (a part at

@@ -6,10 +6,11 @@
 !>
 !> ADAMS's keyword: ERROR = e (sets RTOL, and ATOL unless ATOL is given). rollcon's own:
 !> RTOL, ATOL [SI state units], MAXSTEPS (most steps per output interval), BAUMGARTE (rate
-!> [1/s]), FORMULATION = IDA | CVODE, METHOD = BDF | ADAMS, DRIFT = PROJECTION | BAUMGARTE |
-!> NONE, JACOBIAN = ANALYTIC | DQ. ADAMS's choice of integrator (GSTIFF, WSTIFF, ..., HHT) and
-!> its tuning (HMAX, KMAX, CORRECTOR, ...) are read, each value checked for its form, and
-!> recorded as not used (rollcon_adm_outputs): rollcon integrates with the settings above.
+!> [1/s]), FORMULATION = IDA | CVODE | MAGGI, METHOD = BDF | ADAMS, DRIFT = PROJECTION |
+!> BAUMGARTE | NONE, JACOBIAN = ANALYTIC | DQ | NONE, SOLVER = DENSE | SPARSE. ADAMS's choice
+!> of integrator (GSTIFF, WSTIFF, ..., HHT) and its tuning (HMAX, KMAX, CORRECTOR, ...) are
+!> read, each value checked for its form, and recorded as not used (rollcon_adm_outputs):
+!> rollcon integrates with the settings above.
 module rollcon_adm_integrator
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type, fatal_error, stat_input
@@ -30,8 +31,9 @@ module rollcon_adm_integrator
     public :: read_integrator, integrator_keys
 
     !> The keywords of INTEGRATOR
-    character(len=*), parameter :: integrator_keys(9) = [character(len=11) :: "ERROR", &
-        & "RTOL", "ATOL", "MAXSTEPS", "BAUMGARTE", "FORMULATION", "METHOD", "DRIFT", "JACOBIAN"]
+    character(len=*), parameter :: integrator_keys(10) = [character(len=11) :: "ERROR", &
+        & "RTOL", "ATOL", "MAXSTEPS", "BAUMGARTE", "FORMULATION", "METHOD", "DRIFT", "JACOBIAN", &
+        & "SOLVER"]
     !> ADAMS's keywords of INTEGRATOR that rollcon reads and does not use: its integrators and
     !> formulations, then its tuning, and the form of each value
     character(len=*), parameter :: adams_keys(24) = [character(len=12) :: "GSTIFF", "WSTIFF", &
@@ -41,8 +43,9 @@ module rollcon_adm_integrator
     integer, parameter :: adams_forms(size(adams_keys)) = [spread(form_flag, 1, 12), &
         & spread(form_number, 1, 7), form_whole, form_whole, form_text, form_text, form_text]
     !> The &run key each keyword sets (ERROR: rtol, and atol unless ATOL is given)
-    character(len=*), parameter :: run_keys(9) = [character(len=14) :: "rtol", "rtol", &
-        & "atol", "max_steps", "baumgarte_rate", "formulation", "method", "drift", "jacobian"]
+    character(len=*), parameter :: run_keys(10) = [character(len=14) :: "rtol", "rtol", &
+        & "atol", "max_steps", "baumgarte_rate", "formulation", "method", "drift", "jacobian", &
+        & "linear_solver"]
 
 contains
 

@@ -6,8 +6,8 @@
 module rollcon_run_keys
     use rollcon_kinds, only : wp
     use rollcon_run_settings, only : run_settings_type, formulation_cvode, formulation_ida, &
-        & method_bdf, method_adams, drift_none, drift_projection, drift_baumgarte, &
-        & jacobian_analytic, jacobian_dq
+        & formulation_maggi, method_bdf, method_adams, drift_none, drift_projection, drift_baumgarte, &
+        & jacobian_analytic, jacobian_dq, jacobian_none, linear_dense, linear_sparse
     use rollcon_keys, only : key_type, option_type, real_key, integer_key, choice_key, &
         & option_code, option_name
     implicit none
@@ -41,14 +41,18 @@ contains
                 & real_key(run_group, "end_time", r%end_time, "s", time_min, time_max), &
                 & real_key(run_group, "output_step", r%output_step, "s", time_min, time_max), &
                 & choice_key(run_group, "formulation", r%formulation, &
-                & [option_type("ida", formulation_ida), option_type("cvode", formulation_cvode)]), &
+                & [option_type("ida", formulation_ida), option_type("cvode", formulation_cvode), &
+                & option_type("maggi", formulation_maggi)]), &
                 & choice_key(run_group, "method", r%method, [option_type("bdf", method_bdf), &
                 & option_type("adams", method_adams)]), &
                 & choice_key(run_group, "drift", r%drift, [option_type("projection", &
                 & drift_projection), option_type("baumgarte", drift_baumgarte), &
                 & option_type("none", drift_none)]), &
                 & choice_key(run_group, "jacobian", r%jacobian, [option_type("analytic", &
-                & jacobian_analytic), option_type("dq", jacobian_dq)]), &
+                & jacobian_analytic), option_type("dq", jacobian_dq), option_type("none", &
+                & jacobian_none)]), &
+                & choice_key(run_group, "linear_solver", r%linear_solver, [option_type("dense", &
+                & linear_dense), option_type("sparse", linear_sparse)]), &
                 & real_key(run_group, "rtol", r%rtol, "", rtol_min, 1.0_wp, upper_open=.true.), &
                 & real_key(run_group, "atol", r%atol, "", atol_min, atol_max), &
                 & real_key(run_group, "baumgarte_rate", r%baumgarte_rate, "1/s", 0.0_wp, &
@@ -82,7 +86,7 @@ contains
     !> and the studies refuse the same combinations through it.
     subroutine run_choice_rule(settings, key, expected, got)
         type(run_settings_type), intent(in) :: settings
-        !> 'method' or 'drift', "" when the choices go together
+        !> 'method', 'drift' or 'jacobian', "" when the choices go together
         character(len=:), allocatable, intent(out) :: key
         !> What the key must be, and its value quoted
         character(len=:), allocatable, intent(out) :: expected, got
@@ -94,20 +98,40 @@ contains
             if (run%formulation == formulation_ida .and. run%method /= method_bdf) then
                 key = "method"
                 expected = "'bdf' with formulation 'ida' (IDA is a BDF code; 'adams' needs " &
-                    & // "'cvode')"
+                    & // "'cvode' or 'maggi')"
             else if (run%formulation == formulation_ida .and. run%drift /= drift_projection) then
                 key = "drift"
                 expected = "left out with formulation 'ida' (IDA has no drift; 'baumgarte' " &
-                    & // "and 'none' are for 'cvode')"
-            else if (run%formulation == formulation_cvode .and. run%method == method_adams &
+                    & // "and 'none' are for 'cvode' and 'maggi')"
+            else if (run%formulation == formulation_ida .and. run%jacobian == jacobian_none) then
+                key = "jacobian"
+                expected = "'analytic' or 'dq' with formulation 'ida' (IDA solves with " &
+                    & // "Newton's method; 'none', fixed-point iteration, is for 'cvode' and " &
+                    & // "'maggi')"
+            else if (run%uses_cvode() .and. run%method == method_adams &
                     & .and. run%drift == drift_projection) then
                 ! CVODE's projection works with BDF only (CVodeSetProjFn refuses Adams)
                 key = "drift"
                 expected = "'baumgarte' or 'none' with method = 'adams' (CVODE projects only " &
                     & // "with BDF)"
+            else if (run%linear_solver == linear_sparse .and. .not. (run%uses_cvode() &
+                    & .and. run%jacobian == jacobian_analytic)) then
+                ! KLU needs the Newton matrix's entries: CVODE's difference quotients are dense
+                key = "linear_solver"
+                expected = "'dense' unless formulation is 'cvode' or 'maggi' with jacobian = " &
+                    & // "'analytic' (the sparse Newton matrix is CVODE's, from the UCOSUBs' " &
+                    & // "partials)"
             end if
-            if (len(key) > 0) got = "'" // choice_name(key, merge(run%method, run%drift, &
-                & key == "method")) // "'"
+            select case (key)
+            case ("method")
+                got = "'" // choice_name(key, run%method) // "'"
+            case ("drift")
+                got = "'" // choice_name(key, run%drift) // "'"
+            case ("jacobian")
+                got = "'" // choice_name(key, run%jacobian) // "'"
+            case ("linear_solver")
+                got = "'sparse'"
+            end select
         end associate
     end subroutine run_choice_rule
 

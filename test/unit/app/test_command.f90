@@ -37,6 +37,7 @@ contains
             & new_unittest("table-exponents-read-back", test_exponents), &
             & new_unittest("failed-run-keeps-earlier-files", test_failed_run), &
             & new_unittest("interrupted-run-keeps-earlier-files", test_interrupted), &
+            & new_unittest("killed-run-leaves-valid-prefix", test_killed), &
             & new_unittest("concurrent-runs-do-not-splice", test_concurrent), &
             & new_unittest("full-disk-is-a-failure", test_full_disk), &
             & new_unittest("version-is-fpm-toml-version", test_version)]
@@ -183,6 +184,77 @@ contains
         end if
         call remove_folder(scratch)
     end subroutine test_interrupted
+
+    !> A run killed by SIGKILL (no handler can run) three seconds in leaves its partial CSV a
+    !> valid prefix of the run (docs/outputs.md): the header whole, then whole lines only (the
+    !> file ends with a line end), each row as many numbers as the header has columns, every
+    !> one of them read back, times strictly increasing; and rows are there (written at least
+    !> once a second of wall time: three seconds give two writes at the least).
+    subroutine test_killed(error)
+        type(error_type), allocatable, intent(out) :: error
+        character(len=:), allocatable :: program, text, header, partial
+        character(len=*), parameter :: folder = scratch // "/killed"
+        real(wp), allocatable :: row(:)
+        real(wp) :: last_time
+        integer :: status, start, finish, columns, rows, stat, k
+
+        call rollcon_program(program, error)
+        if (allocated(error)) return
+        call make_folder(folder)
+        call write_lines(folder // "/s.nml", [character(len=40) :: "&run", &
+            & "end_time = 100000.0", "/"])
+        call run_rollcon(program, "-q " // folder // "/s.nml -o " // folder &
+            & // "/out > /dev/null 2>&1 & sleep 3; kill -KILL $!; wait; ls " // folder &
+            & // "/out/s.partial-*.csv", folder // "/ls.out", folder // "/ls.err", status)
+        partial = trim(adjustl(file_text(folder // "/ls.out")))
+        if (len(partial) > 0) then
+            if (partial(len(partial):) == new_line("a")) partial = partial(:len(partial) - 1)
+        end if
+        call check(error, file_exists(partial), "no partial CSV after the kill: " &
+            & // file_text(folder // "/ls.out") // file_text(folder // "/ls.err"))
+        if (allocated(error)) then
+            call remove_folder(scratch)
+            return
+        end if
+        text = file_text(partial)
+        finish = index(text, new_line("a"))
+        call check(error, finish > 0 .and. index(text, "t,X_1,Y_1,Z_1,") == 1, &
+            & "header cut or missing: " // text(:min(len(text), 200)))
+        if (.not. allocated(error)) call check(error, text(len(text):) == new_line("a"), &
+            & "the file ends inside a line: ..." // text(max(1, len(text) - 200):))
+        if (allocated(error)) then
+            call remove_folder(scratch)
+            return
+        end if
+        header = text(:finish - 1)
+        columns = count([(header(k:k) == ",", k = 1, len(header))]) + 1
+        allocate(row(columns))
+        rows = 0
+        last_time = -huge(1.0_wp)
+        start = finish + 1
+        do while (start <= len(text))
+            finish = start - 1 + index(text(start:), new_line("a"))
+            ! each row: exactly columns numbers, read back, and its time after the last
+            read(text(start:finish - 1), *, iostat=stat) row
+            if (stat /= 0 .or. count([(text(k:k) == ",", k = start, finish - 1)]) &
+                & /= columns - 1) then
+                call check(error, .false., "row " // to_text(rows + 1) // " does not read " &
+                    & // "as " // to_text(columns) // " numbers: " // text(start:finish - 1))
+                exit
+            end if
+            if (.not. row(1) > last_time) then
+                call check(error, .false., "row " // to_text(rows + 1) // ": time " &
+                    & // to_text(row(1)) // " not after " // to_text(last_time))
+                exit
+            end if
+            last_time = row(1)
+            rows = rows + 1
+            start = finish + 1
+        end do
+        if (.not. allocated(error)) call check(error, rows >= 1, "no row written in three " &
+            & // "seconds before the kill")
+        call remove_folder(scratch)
+    end subroutine test_killed
 
     !> Two runs of scenes with one name into one folder at once: the CSV is one run's, whole.
     subroutine test_concurrent(error)

@@ -1,13 +1,19 @@
 ! SPDX-License-Identifier: MIT
 !> What `rollcon bench` does besides its runs: the cost of a `rollcon run` as a process of its
-!> own (rollcon_bench_process), the coordinator's CPU per row read from a sweep's log
-!> (rollcon_bench_sweep), and one work-precision plot per scene (rollcon_bench_plot). No test
-!> here judges a time: each checks that the numbers are found and where they come from.
+!> own and the scene file that runs a row's setting (rollcon_bench_process), the coordinator's
+!> CPU per row read from a sweep's log (rollcon_bench_sweep), and one work-precision plot per
+!> scene (rollcon_bench_plot). No test here judges a time: each checks that the numbers are
+!> found and where they come from.
 module test_bench
     use, intrinsic :: ieee_arithmetic, only : ieee_is_finite
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type
-    use rollcon_bench_process, only : process_cost_type, measure_process
+    use rollcon_bench_process, only : process_cost_type, measure_process, &
+        & write_scene_with_settings
+    use rollcon_run_settings, only : run_settings_type, formulation_cvode, method_adams, &
+        & drift_baumgarte, jacobian_none
+    use rollcon_job, only : job_type
+    use rollcon_load, only : load_job
     use rollcon_bench_sweep, only : coordinator_row_us
     use rollcon_bench_plot, only : plot_work_precision
     use rollcon_benchmark, only : benchmark_methods
@@ -32,11 +38,46 @@ contains
         allocate(tests(0))
         tests = [new_unittest("process-cost-of-a-run", test_process_cost), &
             & new_unittest("process-cost-of-a-failed-run", test_process_failed), &
+            & new_unittest("scene-with-a-row-settings", test_scene_settings), &
             & new_unittest("coordinator-cpu-per-row-from-log", test_row_us), &
             & new_unittest("work-precision-plot-per-scene", test_plots)]
     end subroutine collect_bench
 
-    !> `rollcon run steady_circle` timed as a child: its times are read from bash's time and the
+    !> A scene file written with a benchmark row's settings loads as the same scene with exactly
+    !> those settings (every run key, rtol to the last bit), its other groups as they were.
+    subroutine test_scene_settings(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(run_settings_type) :: settings
+        type(job_type) :: original, copy
+
+        call make_folder(scratch)
+        call load_job("tipping_coin", original, error)
+        if (allocated(error)) return
+        settings = original%source%settings
+        settings%formulation = formulation_cvode
+        settings%method = method_adams
+        settings%drift = drift_baumgarte
+        settings%jacobian = jacobian_none
+        settings%rtol = 10.0_wp**(-7.5_wp)
+        settings%atol = 1.0e-2_wp*settings%rtol
+        settings%end_time = 3.0_wp
+        call write_scene_with_settings(original%source%path, settings, scratch &
+            & // "/variant.nml", error)
+        if (allocated(error)) return
+        call load_job(scratch // "/variant.nml", copy, error)
+        if (allocated(error)) return
+        associate (got => copy%source%settings)
+            call check(error, got%formulation == settings%formulation .and. got%method &
+                & == settings%method .and. got%drift == settings%drift .and. got%jacobian &
+                & == settings%jacobian .and. got%rtol == settings%rtol .and. got%atol &
+                & == settings%atol .and. got%end_time == settings%end_time .and. &
+                & got%output_step == settings%output_step .and. got%max_steps &
+                & == settings%max_steps, "the settings read back: " // got%text())
+        end associate
+        call remove_folder(scratch)
+    end subroutine test_scene_settings
+
+    !> `rollcon run steady_circle` timed as a child: its times are read from getrusage and the
     !> run's summary (an error otherwise), finite and not negative; the integration's CPU time
     !> is the summary's, which a run of hundreds of steps makes positive.
     subroutine test_process_cost(error)
@@ -48,7 +89,7 @@ contains
         if (allocated(error)) return
         call remove_folder(scratch)
         call make_folder(scratch)
-        call measure_process(program, "steady_circle", scratch, cost, error)
+        call measure_process(program, "steady_circle", "steady_circle", scratch, cost, error)
         if (allocated(error)) return
         call check(error, all(ieee_is_finite([cost%wall, cost%cpu, cost%startup_cpu, &
             & cost%integration_cpu, cost%rest_cpu])), "finite times")
@@ -74,7 +115,7 @@ contains
         if (allocated(error)) return
         call remove_folder(scratch)
         call make_folder(scratch)
-        call measure_process(program, "no_such_scene", scratch, cost, failed)
+        call measure_process(program, "no_such_scene", "no_such_scene", scratch, cost, failed)
         call check(error, allocated(failed), "a failed run is an error")
         if (allocated(error)) return
         call check(error, failed%message == "'" // program // " run no_such_scene' failed " &

@@ -14,8 +14,8 @@ module test_allocations
     use rollcon_error, only : error_type
     use rollcon_text, only : to_text
     use rollcon_problem, only : problem_type
-    use rollcon_run_settings, only : formulation_cvode, formulation_ida, method_adams, &
-        & drift_baumgarte, drift_projection
+    use rollcon_run_settings, only : formulation_cvode, formulation_ida, formulation_maggi, &
+        & method_adams, drift_baumgarte, drift_projection
     use rollcon_dae, only : dae_size, dae_residual, dae_jacobian
     use rollcon_cvode, only : cvode_integrator_type
     use rollcon_ida, only : ida_integrator_type
@@ -80,6 +80,7 @@ contains
         tests = [new_unittest("evaluations-allocate-nothing", test_evaluations), &
             & new_unittest("cvode-run-allocates-nothing", test_cvode_run), &
             & new_unittest("ida-run-allocates-nothing", test_ida_run), &
+            & new_unittest("independent-speeds-allocate-nothing", test_independent_speeds), &
             & new_unittest("liftoff-root-without-solve", test_liftoff_root), &
             & new_unittest("time-free-ucon-skips-time-partials", test_time_free), &
             & new_unittest("blas-one-thread", test_blas_thread)]
@@ -237,6 +238,57 @@ contains
             & // to_text(t) // " s")
         call ida%destroy()
     end subroutine test_ida_run
+
+    !> In independent speeds (9 states): right-hand side, Newton matrix, event functions, the
+    !> partition's check and a CVODE Adams run allocate nothing.
+    subroutine test_independent_speeds(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(problem_type), target :: problem
+        type(cvode_integrator_type), target :: cvode
+        real(wp) :: q(6), u(6), y(9), yp(9), ydot(9), jac(9, 9), g(2), t
+        integer(c_long) :: start, calls
+        integer :: i, k, ierr, root
+        logical :: worn
+
+        if (malloc_counting() == 0) then
+            call skip_test(error, "malloc is not interposed on this C library")
+            return
+        end if
+        call coin_problem(problem, q, u, .false., error)
+        if (allocated(error)) return
+        problem%settings%formulation = formulation_maggi
+        call problem%prepare(error)
+        if (allocated(error)) return
+        call problem%accelerations(0.0_wp, q, u, error)
+        if (allocated(error)) return
+        call problem%pack_state(q, u, y, yp)
+        ierr = problem%ode_rhs(0.0_wp, y, ydot)
+        start = malloc_count()
+        do i = 1, repeats
+            ierr = ierr + problem%ode_rhs(0.0_wp, y, ydot)
+            ierr = ierr + problem%ode_jacobian(0.0_wp, y, jac)
+            ierr = ierr + problem%roots(0.0_wp, y, g, ydot)
+            worn = problem%speeds_worn(0.0_wp, y)
+        end do
+        calls = malloc_count() - start
+        call check_none(error, calls, "rhs, Jacobian, roots and the partition's check in " &
+            & // "independent speeds, " // to_text(repeats) // " times each,")
+        if (allocated(error)) return
+        call check(error, ierr == 0 .and. .not. worn, "a callback failed, or the partition " &
+            & // "wore at its own state: " // problem%failure_text())
+        if (allocated(error)) return
+        call cvode%start(problem, problem%settings, 0.0_wp, y, yp, 2.0_wp, error)
+        if (.not. allocated(error)) call cvode%advance(0.1_wp, 2.0_wp, t, y, yp, root, error)
+        start = malloc_count()
+        do k = 2, 20
+            if (allocated(error) .or. root /= 0) exit
+            call cvode%advance(0.1_wp*k, 2.0_wp, t, y, yp, root, error)
+        end do
+        calls = malloc_count() - start
+        if (.not. allocated(error)) call check_none(error, calls, "CVODE Adams in independent " &
+            & // "speeds from t = 0.1 s to " // to_text(t) // " s")
+        call cvode%destroy()
+    end subroutine test_independent_speeds
 
     !> The CVODE event function given the accelerations: the normal force it returns (less the
     !> lift-off threshold the root adds) is the one a saddle-point solve gives at the same

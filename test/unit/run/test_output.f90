@@ -6,7 +6,9 @@ module test_output
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type, stat_input
     use rollcon_text, only : to_text
-    use rollcon_csv_writer, only : csv_writer_type, csv_row_bytes
+    use, intrinsic :: ieee_arithmetic, only : ieee_value, ieee_quiet_nan, ieee_positive_inf, &
+        & ieee_negative_inf
+    use rollcon_csv_writer, only : csv_writer_type, csv_row_bytes, row_text, fortran_row_text
     use rollcon_output_rows, only : output_layout
     use rollcon_output_layout, only : output_layout_type
     use rollcon_problem, only : problem_type
@@ -41,6 +43,7 @@ contains
         tests = [new_unittest("csv-full-device-is-an-error", test_full_device), &
             & new_unittest("csv-buffered-then-whole", test_buffered), &
             & new_unittest("csv-extremes-read-back", test_extremes_read_back), &
+            & new_unittest("csv-row-text-is-fortran-format", test_row_text), &
             & new_unittest("huge-output-refused", test_huge_output), &
             & new_unittest("output-limit-is-the-option", test_output_limit), &
             & new_unittest("failed-figures-leave-nothing", test_failed_figures), &
@@ -89,6 +92,45 @@ contains
             & // to_text(line_count(file_text(path))))
         call remove_folder(scratch)
     end subroutine test_buffered
+
+    !> A row made by the C library has the characters of Fortran's es24.16e3 (the CSVs stay
+    !> bit for bit what they were): the extremes of the range, subnormals, both zeros, NaN,
+    !> both infinities, rounding ties of the 17th digit, and 20000 numbers spread over every
+    !> exponent with random digits. Exact comparison: a single differing character fails.
+    subroutine test_row_text(error)
+        type(error_type), allocatable, intent(out) :: error
+        real(wp) :: special(16), values(40), draw(2)
+        character(len=25*size(values)) :: line
+        integer :: length, i, j
+
+        special = [0.0_wp, -0.0_wp, huge(1.0_wp), -huge(1.0_wp), tiny(1.0_wp), 4.9e-324_wp, &
+            & -2.5e-310_wp, 1.0_wp, -1.0_wp, 0.5_wp, 1.0e100_wp, 9.99999999999999999e99_wp, &
+            & 1.25_wp, 0.1_wp, ieee_value(1.0_wp, ieee_quiet_nan), &
+            & ieee_value(1.0_wp, ieee_positive_inf)]
+        call row_text(special, line, length)
+        call check(error, line(:length) == fortran_row_text(special), "special values: '" &
+            & // line(:length) // "' against '" // fortran_row_text(special) // "'")
+        if (allocated(error)) return
+        call row_text([ieee_value(1.0_wp, ieee_negative_inf)], line, length)
+        call check(error, line(:length) == fortran_row_text([ieee_value(1.0_wp, &
+            & ieee_negative_inf)]), "-Infinity: '" // line(:length) // "'")
+        if (allocated(error)) return
+        call random_seed()
+        do i = 1, 500
+            do j = 1, size(values)
+                call random_number(draw)
+                ! mantissa in [1, 10), exponent over the whole range, either sign
+                values(j) = sign((1.0_wp + 9.0_wp*draw(1)) &
+                    & *10.0_wp**int(614.0_wp*draw(2) - 307.0_wp), draw(1) - 0.5_wp)
+            end do
+            call row_text(values, line, length)
+            if (line(:length) /= fortran_row_text(values)) then
+                call check(error, .false., "row " // to_text(i) // ": '" // line(:length) &
+                    & // "' against '" // fortran_row_text(values) // "'")
+                return
+            end if
+        end do
+    end subroutine test_row_text
 
     !> Three-digit exponents, -0 and the extremes of the range read back exactly.
     subroutine test_extremes_read_back(error)

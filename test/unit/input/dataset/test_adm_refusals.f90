@@ -95,7 +95,7 @@ contains
         replaced(2) = "INTEGRATOR/STIFF"
         expected(2) = ":12: INTEGRATOR: 'STIFF' is not an INTEGRATOR argument of the supported" &
             & // " subset (ERROR, RTOL, ATOL, MAXSTEPS, BAUMGARTE, FORMULATION, METHOD," &
-            & // " DRIFT, JACOBIAN, GSTIFF, WSTIFF, DSTIFF, CONSTANT_BDF, HASTIFF, HHT," &
+            & // " DRIFT, JACOBIAN, SOLVER, GSTIFF, WSTIFF, DSTIFF, CONSTANT_BDF, HASTIFF, HHT," &
             & // " NEWMARK, RKF45, ABAM, I3, SI2, SI1, HMAX, HMIN, HINIT, ALPHA, BETA, GAMMA," &
             & // " ADAPTIVITY, KMAX, MAXIT, CORRECTOR, INTERPOLATE, PATTERN)"
         replaced(3) = ", QG=0, 0, 1, W=1"
@@ -123,7 +123,7 @@ contains
             & // " subset (DYNAMIC, END, STEPS, DTOUT)"
         replaced(13) = "INTEGRATOR/FORM=ode"
         expected(13) = ":12: INTEGRATOR FORMULATION: 'ode' is not a formulation of the supported" &
-            & // " subset (IDA, CVODE)"
+            & // " subset (IDA, CVODE, MAGGI)"
         call check_refusals(error, [4, 12, 5, 12, 5, 3, 5, 4, 4, 6, 2, 11, 12], replaced, expected)
     end subroutine test_keywords
 
@@ -268,8 +268,8 @@ contains
     !> solver choices.
     subroutine test_integrator(error)
         type(error_type), allocatable, intent(out) :: error
-        character(len=120) :: replaced(11)
-        character(len=400) :: expected(11)
+        character(len=120) :: replaced(13)
+        character(len=400) :: expected(13)
 
         replaced(1) = "INTEGRATOR/ERROR=2"
         expected(1) = ":12: INTEGRATOR ERROR must be >= 1e-15 and < 1 (as &run rtol), got 2"
@@ -291,7 +291,7 @@ contains
         expected(7) = ":12: INTEGRATOR RTOL: give ERROR or RTOL, not both (ERROR sets RTOL)"
         replaced(8) = "INTEGRATOR/METHOD=ADAMS"
         expected(8) = ":12: INTEGRATOR METHOD must be 'bdf' with formulation 'ida' (IDA is a BDF" &
-            & // " code; 'adams' needs 'cvode'), got 'adams'"
+            & // " code; 'adams' needs 'cvode' or 'maggi'), got 'adams'"
         replaced(9) = "INTEGRATOR/FORM=CVODE|, METHOD=ADAMS"
         expected(9) = ":12: INTEGRATOR DRIFT must be 'baumgarte' or 'none' with method = 'adams'" &
             & // " (CVODE projects only with BDF), got 'projection' (DRIFT not given: the" &
@@ -301,8 +301,15 @@ contains
             & // " (CVODE projects only with BDF), got 'projection'"
         replaced(11) = "INTEGRATOR/DRIFT=NONE"
         expected(11) = ":12: INTEGRATOR DRIFT must be left out with formulation 'ida' (IDA has no" &
-            & // " drift; 'baumgarte' and 'none' are for 'cvode'), got 'none'"
-        call check_refusals(error, [12, 12, 12, 12, 12, 12, 12, 12, 12, 12, 12], replaced, expected)
+            & // " drift; 'baumgarte' and 'none' are for 'cvode' and 'maggi'), got 'none'"
+        replaced(12) = "INTEGRATOR/SOLVER=SPARSE"
+        expected(12) = ":12: INTEGRATOR SOLVER must be 'dense' unless formulation is 'cvode' or" &
+            & // " 'maggi' with jacobian = 'analytic' (the sparse Newton matrix is CVODE's, from" &
+            & // " the UCOSUBs' partials), got 'sparse'"
+        replaced(13) = "INTEGRATOR/FORM=CVODE, JACOBIAN=DQ, SOLVER=SPARSE"
+        expected(13) = expected(12)
+        call check_refusals(error, [12, 12, 12, 12, 12, 12, 12, 12, 12, 12, 12, 12, 12], &
+            & replaced, expected)
     end subroutine test_integrator
 
     !> The principal-axes rule at t = 0: a part whose CM marker's z-axis is along ground z is

@@ -159,7 +159,7 @@ contains
         if (allocated(error)) return
         call expect_input_error(error, "type_string", [character(len=width) :: &
             & "&run formulation = ida /"], [character(len=width) :: &
-            & "@:1: 'formulation' in &run must be 'ida' or 'cvode' (a quoted string), got ida"])
+            & "@:1: 'formulation' in &run must be 'ida', 'cvode' or 'maggi' (a quoted string), got ida"])
         if (allocated(error)) return
         call expect_input_error(error, "two_values", [character(len=width) :: &
             & "&disk radius = 0.1 0.2 /"], [character(len=width) :: &
@@ -240,7 +240,7 @@ contains
 
         call expect_input_error(error, "choice", [character(len=width) :: &
             & "&run", "  formulation = 'RK4'", "/"], [character(len=width) :: &
-            & "@:2: 'formulation' in &run must be 'ida' or 'cvode' (a quoted string), got 'RK4'"])
+            & "@:2: 'formulation' in &run must be 'ida', 'cvode' or 'maggi' (a quoted string), got 'RK4'"])
         if (allocated(error)) return
         call expect_input_error(error, "choice_drift", [character(len=width) :: &
             & "&run formulation = 'cvode', drift = 'stabilise' /"], [character(len=width) :: &
@@ -254,6 +254,12 @@ contains
         call expect_input_error(error, "adams", [character(len=width) :: &
             & "&run method = 'adams' /"], [character(len=width) :: &
             & "@:1: 'method' in &run must be 'bdf' with formulation 'ida'"])
+        if (allocated(error)) return
+        ! fixed-point iteration is CVODE's: IDA solves with Newton's method
+        call expect_input_error(error, "fixed_point_ida", [character(len=width) :: &
+            & "&run jacobian = 'none' /"], [character(len=width) :: &
+            & "@:1: 'jacobian' in &run must be 'analytic' or 'dq' with formulation 'ida'", &
+            & "got 'none'"])
     end subroutine test_adams_ida
 
     subroutine test_theta_range(error)

@@ -29,12 +29,27 @@ module test_models
     !> A ball of another inertia (I/(I + m r^2) = 2/7 is the solid sphere's) misses by orders
     real(wp), parameter :: tol_orbit_rate = 1.0e-6_wp
     !> Orbit centre and radius held [m] over 10 minutes (95 turns of the orbit, 334 of the
-    !> table): measured 1.3e-8 m (IDA), 3.1e-8 m (CVODE) on 0.1 m; 1e-6 m, 1e-5 of the radius
+    !> table): measured 1.6e-7 m (IDA at ida_long_tolerance), 3.1e-8 m (CVODE) on 0.1 m; 1e-6 m,
+    !> 1e-5 of the radius
     real(wp), parameter :: tol_orbit_shape = 1.0e-6_wp
     !> CVODE's tolerance for the ball [1]: at 1e-10 its projection keeps the constraints but the
     !> radius shrinks by 1e-6 relative over 20 turns (measured); 1e-12 holds it to 3e-7. The
     !> turning table does work on the ball, so its energy is not judged (ucons_do_no_work)
     real(wp), parameter :: cvode_ball_tolerance = 1.0e-12_wp
+    !> IDA's tolerance for the ball over ten minutes [1]: at the dataset's 1e-10 its radius grows
+    !> by 1.7e-6 m (1.7e-5 relative) over 95 turns, as CVODE's does at 1e-10 (measured, with a
+    !> part's Euler-angle rates held relative to the largest: 85,000 steps; 1.3e-8 m before,
+    !> in 1.15 million steps that nearly all failed their error test once); 1e-11 holds it to
+    !> 1.6e-7 m in 115,000 steps
+    real(wp), parameter :: ida_long_tolerance = 1.0e-11_wp
+    !> IDA's error-test failures per step on the ball [1]: 240,866 in 240,903 steps (every
+    !> doubling of the step failed) while its tilt rate, near zero, was held to atol alone;
+    !> measured 0.9 % (160 in 17,573) with a part's Euler-angle rates held relative to the
+    !> largest (rollcon_ida); the issue's bound, 5 %
+    real(wp), parameter :: tol_failures_per_step = 0.05_wp
+    !> IDA's constraint residual on the ball [m/s]: F = 0 within its Newton tolerance, a few
+    !> atol (the dataset's 1e-10; measured 1.2e-10, 2.3e-12 before); 10 atol
+    real(wp), parameter :: tol_ball_residual = 1.0e-9_wp
 
     !> data/chaplygin_sled.adm: blade offset a [m], initial speed along the blade u0 [m/s],
     !> initial turning rate w0 [rad/s]
@@ -58,6 +73,7 @@ contains
             & new_unittest("ball-ten-minutes-ida", test_ball_long_ida), &
             & new_unittest("ball-ten-minutes-cvode", test_ball_long_cvode), &
             & new_unittest("ball-tumbling-ida", test_ball_tumbling_ida), &
+            & new_unittest("ball-ida-error-test-failures", test_ball_failures_ida), &
             & new_unittest("ball-tumbling-cvode", test_ball_tumbling_cvode), &
             & new_unittest("sled-sideways-ida", test_sled_ida), &
             & new_unittest("sled-sideways-cvode", test_sled_cvode), &
@@ -82,7 +98,7 @@ contains
     subroutine test_ball_long_ida(error)
         type(error_type), allocatable, intent(out) :: error
 
-        call check_ball(formulation_ida, ten_minutes, error)
+        call check_ball(formulation_ida, ten_minutes, error, tolerance=ida_long_tolerance)
     end subroutine test_ball_long_ida
 
     subroutine test_ball_long_cvode(error)
@@ -99,6 +115,24 @@ contains
         call check_ball(formulation_ida, twenty_turns, error, "ball_tumbling")
     end subroutine test_ball_tumbling_ida
 
+    !> IDA on the ball over its 20 turns (the dataset as given, ERROR = 1e-10): its error test
+    !> fails on at most tol_failures_per_step of its steps (the run's own counters, as its
+    !> summary prints them), and its constraint residual stays within a few atol.
+    subroutine test_ball_failures_ida(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(model_run_type) :: run
+
+        call run_model("ball_on_turntable", formulation_ida, run, error)
+        if (allocated(error)) return
+        call check(error, run%summary%steps > 0 .and. real(run%summary%failures, wp) &
+            & <= tol_failures_per_step*real(run%summary%steps, wp), "error-test failures " &
+            & // to_text(run%summary%failures) // " in " // to_text(run%summary%steps) &
+            & // " steps")
+        if (allocated(error)) return
+        call check(error, run%summary%residual_max <= tol_ball_residual, "largest UCON " &
+            & // "residual " // to_text(run%summary%residual_max) // " m/s")
+    end subroutine test_ball_failures_ida
+
     subroutine test_ball_tumbling_cvode(error)
         type(error_type), allocatable, intent(out) :: error
 
@@ -108,12 +142,14 @@ contains
     !> The ball to end_time: on every row, the orbit's angle (unwrapped atan2(Y, X)) is
     !> (2/7) Omega t to tol_orbit_rate of the angle travelled by the end, and the orbit's centre
     !> (X - Ydot/wc, Y + Xdot/wc, from v = wc e_Z x (r - c)) and radius |v|/wc are held.
-    subroutine check_ball(formulation, end_time, error, dataset)
+    subroutine check_ball(formulation, end_time, error, dataset, tolerance)
         integer, intent(in) :: formulation
         real(wp), intent(in) :: end_time
         type(error_type), allocatable, intent(out) :: error
         !> The dataset (default ball_on_turntable); ball_tumbling must be re-based > 100 times
         character(len=*), intent(in), optional :: dataset
+        !> rtol = atol of IDA's run (default: the dataset's ERROR)
+        real(wp), intent(in), optional :: tolerance
         type(model_run_type) :: run
         character(len=:), allocatable :: name
         real(wp) :: orbit_rate, angle, previous, turn, phase_error, shape_error
@@ -123,6 +159,8 @@ contains
         if (present(dataset)) name = dataset
         if (formulation == formulation_cvode) then
             call run_model(name, formulation, run, error, end_time, cvode_ball_tolerance)
+        else if (present(tolerance)) then
+            call run_model(name, formulation, run, error, end_time, tolerance)
         else
             call run_model(name, formulation, run, error, end_time)
         end if

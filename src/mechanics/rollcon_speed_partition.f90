@@ -1,0 +1,365 @@
+! SPDX-License-Identifier: MIT
+!> A partition of the rates u into dependent and independent speeds (coordinate partitioning,
+!> docs/design.md §4): the velocity-level constraint matrix C (nc x n, full row rank) has nc
+!> columns chosen by LAPACK's QR with column pivoting (dgeqp3), the dependent speeds; the
+!> n - nc others are the independent speeds an integrator carries. With C_d the chosen
+!> columns, C u = b gives u_d = C_d^-1 (b - C_i u_i), solved with C_d's LU factors (dgetf2,
+!> dgetrs). All of it goes block by block over the constraints' blocks
+!> (rollcon_constraint_blocks: UCONs that share no part do not couple), so each block chooses
+!> its own columns and N independent disks cost N times one. How well a block's choice still
+!> suits the state is the growth of its dependent speeds, the largest entry of C_d^-1 C_i
+!> (how much an error of an independent speed is amplified in a dependent one; QR with
+!> pivoting keeps it small when it chooses), against its value at the choice. The dependent
+!> speeds are numbered by slot: block b's are slots row_start(b) ... in ascending coordinate
+!> order. Nothing here allocates after init.
+module rollcon_speed_partition
+    use rollcon_kinds, only : wp
+    use rollcon_error, only : error_type, fatal_error, stat_lapack
+    use rollcon_lapack, only : dgeqp3, dgetf2, dgetrs, lapack_info_error
+    use rollcon_constraint_blocks, only : constraint_blocks_type
+    implicit none
+    private
+
+    public :: speed_partition_type, worn_ratio
+
+    !> A block's partition is worn when the growth of its dependent speeds has risen above its
+    !> value at the choice divided by this (and QR with pivoting would now choose other
+    !> columns): the dependent speeds' errors grow with it. Measured on
+    !> data/chaplygin_sled.adm (ERROR = 1e-10, the knife edge's columns turning with the sled),
+    !> energy drift 3.2e-9 at 0.3 against 1.5e-9 for the ODE form; with C_d's condition number
+    !> as the measure instead, 1.4e-6 at a ratio of 1e-2, 8.8e-9 at 0.1, 4.3e-9 at 0.3
+    real(wp), parameter :: worn_ratio = 0.3_wp
+
+    !> The chosen partition, C_d's factors and the workspace of the choice
+    type :: speed_partition_type
+        !> Rates and constraint rows
+        integer :: n = 0, nc = 0
+        !> The blocks (one of every row and coordinate when init was given none)
+        type(constraint_blocks_type) :: blocks
+        !> Dependent speeds by slot (nc) and the independent ones (n - nc, ascending)
+        integer, allocatable :: dependent(:), independent(:)
+        !> Each block's LU factors of C_d, packed from lu_start(b), and their pivots by slot
+        real(wp), allocatable :: lu(:)
+        integer, allocatable :: lu_start(:), pivots(:)
+        !> Each block's growth max |C_d^-1 C_i| when its partition was chosen [-]
+        real(wp), allocatable :: growth_chosen(:)
+        !> Partitions chosen since init
+        integer :: choices = 0
+        !> Workspace of dgeqp3, of a trial choice, of the growth and of solves
+        real(wp), allocatable :: qr(:, :), tau(:), work(:), basis(:, :), buffer(:, :)
+        integer, allocatable :: jpvt(:), trial(:)
+        logical, allocatable :: is_dependent(:)
+    contains
+        procedure :: init
+        procedure :: choose
+        procedure :: factor
+        procedure :: solve
+        procedure :: growth
+        procedure :: worn
+    end type speed_partition_type
+
+contains
+
+    !> Size for n rates and nc constraint rows (nc <= n) over the given blocks (none: one
+    !> block of everything); every block's first rates dependent until the first choice.
+    subroutine init(self, n, nc, blocks)
+        class(speed_partition_type), intent(inout) :: self
+        integer, intent(in) :: n, nc
+        type(constraint_blocks_type), intent(in), optional :: blocks
+        real(wp) :: query(1)
+        integer :: info, b, m, columns, lwork, total
+
+        self%n = n
+        self%nc = nc
+        self%choices = 0
+        if (present(blocks)) then
+            self%blocks = blocks
+        else
+            call whole_block(self%blocks, n, nc)
+        end if
+        if (allocated(self%dependent)) deallocate(self%dependent, self%independent, self%lu, &
+            & self%lu_start, self%pivots, self%growth_chosen, self%qr, self%tau, self%work, &
+            & self%basis, self%buffer, self%jpvt, self%trial, self%is_dependent)
+        associate (bl => self%blocks)
+            allocate(self%dependent(nc), self%independent(n - nc), self%trial(max(nc, 1)))
+            allocate(self%lu_start(bl%count + 1), self%growth_chosen(max(bl%count, 1)))
+            self%growth_chosen = 1.0_wp
+            self%lu_start(1) = 1
+            do b = 1, bl%count
+                m = bl%row_start(b + 1) - bl%row_start(b)
+                self%lu_start(b + 1) = self%lu_start(b) + m*m
+                ! the block's first m coordinates until a choice
+                self%dependent(bl%row_start(b):bl%row_start(b + 1) - 1) = &
+                    & bl%coordinates(bl%coordinate_start(b):bl%coordinate_start(b) + m - 1)
+            end do
+            total = max(self%lu_start(bl%count + 1) - 1, 1)
+            allocate(self%lu(total), self%qr(max(bl%most_rows, 1), max(bl%most_coordinates, 1)), &
+                & self%tau(max(bl%most_rows, 1)), source=0.0_wp)
+            allocate(self%basis(max(bl%most_rows, 1), max(bl%most_coordinates, 1)), &
+                & self%buffer(max(nc, 1), max(n, 1)), source=0.0_wp)
+            allocate(self%pivots(max(nc, 1)), self%jpvt(max(bl%most_coordinates, 1)), source=0)
+            allocate(self%is_dependent(n), source=.false.)
+            call set_independent(self)
+            ! workspace query of dgeqp3 (lwork = -1) on the largest block
+            columns = max(bl%most_coordinates, 1)
+            lwork = 3*columns + 1
+            if (bl%most_rows > 0) then
+                call dgeqp3(bl%most_rows, columns, self%qr, size(self%qr, 1), self%jpvt, &
+                    & self%tau, query, -1, info)
+                if (info == 0) lwork = max(lwork, int(query(1)))
+            end if
+            allocate(self%work(lwork), source=0.0_wp)
+        end associate
+    end subroutine init
+
+    !> One block of every row and every coordinate.
+    subroutine whole_block(blocks, n, nc)
+        type(constraint_blocks_type), intent(out) :: blocks
+        integer, intent(in) :: n, nc
+        integer :: j
+
+        blocks%count = merge(1, 0, nc > 0)
+        blocks%most_rows = nc
+        blocks%most_coordinates = merge(n, 0, nc > 0)
+        blocks%row_start = [1, nc + 1]
+        blocks%coordinate_start = [1, n + 1]
+        blocks%rows = [(j, j = 1, nc)]
+        blocks%coordinates = [(j, j = 1, n)]
+        blocks%row_block = [(1, j = 1, nc)]
+        if (nc == 0) then
+            blocks%row_start = [1]
+            blocks%coordinate_start = [1]
+        end if
+    end subroutine whole_block
+
+    !> Choose the partition for the constraint matrix c (nc x n): in each block the first
+    !> columns of QR with column pivoting are the dependent speeds; then factor C_d. An error
+    !> when c has not full row rank (a dependent block is singular).
+    subroutine choose(self, c, error)
+        class(speed_partition_type), intent(inout) :: self
+        !> Velocity-level constraint rows [UCON unit per rate unit]
+        real(wp), intent(in) :: c(:, :)
+        type(error_type), allocatable, intent(out) :: error
+        integer :: b
+
+        self%choices = self%choices + 1
+        do b = 1, self%blocks%count
+            call choose_block(self, b, c, error)
+            if (allocated(error)) return
+            associate (first => self%blocks%row_start(b), last => self%blocks%row_start(b + 1) - 1)
+                self%dependent(first:last) = self%trial(first:last)
+            end associate
+        end do
+        call set_independent(self)
+        call self%factor(c, error)
+        if (allocated(error)) return
+        do b = 1, self%blocks%count
+            self%growth_chosen(b) = block_growth(self, b, c)
+        end do
+    end subroutine choose
+
+    !> Block b's choice of dependent speeds by QR with column pivoting into trial (its slots),
+    !> ascending; the partition itself is not changed.
+    subroutine choose_block(self, b, c, error)
+        type(speed_partition_type), intent(inout) :: self
+        integer, intent(in) :: b
+        real(wp), intent(in) :: c(:, :)
+        type(error_type), allocatable, intent(out) :: error
+        integer :: i, j, m, columns, info
+
+        associate (bl => self%blocks)
+            m = bl%row_start(b + 1) - bl%row_start(b)
+            columns = bl%coordinate_start(b + 1) - bl%coordinate_start(b)
+            do j = 1, columns
+                do i = 1, m
+                    self%qr(i, j) = c(bl%rows(bl%row_start(b) + i - 1), &
+                        & bl%coordinates(bl%coordinate_start(b) + j - 1))
+                end do
+            end do
+            self%jpvt(:columns) = 0
+            call dgeqp3(m, columns, self%qr, size(self%qr, 1), self%jpvt, self%tau, self%work, &
+                & size(self%work), info)
+            call lapack_info_error("dgeqp3 (speed partition)", info, error)
+            if (allocated(error)) return
+            do i = 1, m
+                self%trial(bl%row_start(b) + i - 1) = bl%coordinates(bl%coordinate_start(b) &
+                    & + self%jpvt(i) - 1)
+            end do
+            call sort_ascending(self%trial(bl%row_start(b):bl%row_start(b + 1) - 1))
+        end associate
+    end subroutine choose_block
+
+    !> LU factors of each block's C_d = c(block's rows, its dependent speeds).
+    subroutine factor(self, c, error)
+        class(speed_partition_type), intent(inout) :: self
+        real(wp), intent(in) :: c(:, :)
+        type(error_type), allocatable, intent(out) :: error
+        integer :: b, i, j, m, first, info
+
+        associate (bl => self%blocks)
+            do b = 1, bl%count
+                m = bl%row_start(b + 1) - bl%row_start(b)
+                first = bl%row_start(b)
+                do j = 1, m
+                    do i = 1, m
+                        self%lu(self%lu_start(b) + i - 1 + m*(j - 1)) = &
+                            & c(bl%rows(first + i - 1), self%dependent(first + j - 1))
+                    end do
+                end do
+                call dgetf2(m, m, self%lu(self%lu_start(b)), m, self%pivots(first), info)
+                if (info > 0) then
+                    call fatal_error(error, "the constraint rows are dependent where the speeds " &
+                        & // "were partitioned (a singular block C_d: dgetf2 info > 0)", &
+                        & stat_lapack)
+                    return
+                end if
+                call lapack_info_error("dgetf2 (dependent speeds)", info, error)
+                if (allocated(error)) return
+            end do
+        end associate
+    end subroutine factor
+
+    !> x := C_d^-1 x for m columns of x (leading dimension nc), with the last factors: x's
+    !> rows are the constraint rows (UCON numbers) on entry, the dependent speeds' slots on
+    !> return.
+    subroutine solve(self, x, m, error)
+        class(speed_partition_type), intent(inout) :: self
+        integer, intent(in) :: m
+        real(wp), intent(inout) :: x(self%nc, m)
+        type(error_type), allocatable, intent(out) :: error
+        integer :: b, i, rows, first, col, info
+
+        if (self%nc == 0) return
+        associate (bl => self%blocks)
+            do col = 1, m
+                self%buffer(:self%nc, col) = x(:, col)
+            end do
+            do b = 1, bl%count
+                first = bl%row_start(b)
+                rows = bl%row_start(b + 1) - first
+                do col = 1, m
+                    do i = 1, rows
+                        x(first + i - 1, col) = self%buffer(bl%rows(first + i - 1), col)
+                    end do
+                end do
+                call dgetrs("N", rows, m, self%lu(self%lu_start(b)), rows, self%pivots(first), &
+                    & x(first, 1), self%nc, info)
+                call lapack_info_error("dgetrs (dependent speeds)", info, error)
+                if (allocated(error)) return
+            end do
+        end associate
+    end subroutine solve
+
+    !> The largest growth max |C_d^-1 C_i| of the blocks for the matrix c, with the factors of
+    !> the last factor call, which must be of this c.
+    function growth(self, c) result(largest)
+        class(speed_partition_type), intent(inout) :: self
+        real(wp), intent(in) :: c(:, :)
+        real(wp) :: largest
+        integer :: b
+
+        largest = 0.0_wp
+        do b = 1, self%blocks%count
+            largest = max(largest, block_growth(self, b, c))
+        end do
+    end function growth
+
+    !> Block b's growth max |C_d^-1 C_i| (0 without independent speeds in it; huge when the
+    !> solve fails), with the factors of the last factor call.
+    function block_growth(self, b, c) result(largest)
+        type(speed_partition_type), intent(inout) :: self
+        integer, intent(in) :: b
+        real(wp), intent(in) :: c(:, :)
+        real(wp) :: largest
+        integer :: i, j, m, columns, free, first, info, coordinate
+
+        largest = 0.0_wp
+        associate (bl => self%blocks)
+            first = bl%row_start(b)
+            m = bl%row_start(b + 1) - first
+            columns = bl%coordinate_start(b + 1) - bl%coordinate_start(b)
+            free = 0
+            do j = 1, columns
+                coordinate = bl%coordinates(bl%coordinate_start(b) + j - 1)
+                if (any(self%dependent(first:first + m - 1) == coordinate)) cycle
+                free = free + 1
+                do i = 1, m
+                    self%basis(i, free) = c(bl%rows(first + i - 1), coordinate)
+                end do
+            end do
+            if (free == 0) return
+            call dgetrs("N", m, free, self%lu(self%lu_start(b)), m, self%pivots(first), &
+                & self%basis, size(self%basis, 1), info)
+            largest = huge(1.0_wp)
+            if (info == 0) largest = maxval(abs(self%basis(:m, :free)))
+        end associate
+    end function block_growth
+
+    !> True when the partition no longer suits c: some block's C_d (factored again here)
+    !> singular, or its growth above its choice's divided by worn_ratio while QR with pivoting
+    !> would now choose other columns there. A block whose choice would stay keeps it, with
+    !> the growth of now as its reference. The partition itself is never changed here (the
+    !> integrator's state is in its speeds): a worn one is chosen again by choose.
+    function worn(self, c) result(is_worn)
+        class(speed_partition_type), intent(inout) :: self
+        real(wp), intent(in) :: c(:, :)
+        logical :: is_worn
+        type(error_type), allocatable :: error
+        real(wp) :: now
+        integer :: b, first, last
+
+        is_worn = .false.
+        if (self%nc == 0) return
+        call self%factor(c, error)
+        is_worn = allocated(error)
+        if (is_worn) return
+        do b = 1, self%blocks%count
+            now = block_growth(self, b, c)
+            if (worn_ratio*now <= self%growth_chosen(b)) cycle
+            call choose_block(self, b, c, error)
+            first = self%blocks%row_start(b)
+            last = self%blocks%row_start(b + 1) - 1
+            if (allocated(error)) then
+                is_worn = .true.
+            else if (any(self%trial(first:last) /= self%dependent(first:last))) then
+                is_worn = .true.
+            else
+                self%growth_chosen(b) = now
+            end if
+            if (is_worn) return
+        end do
+    end function worn
+
+    !> The independent speeds: the rates not dependent, ascending.
+    subroutine set_independent(self)
+        type(speed_partition_type), intent(inout) :: self
+        integer :: j, m
+
+        self%is_dependent = .false.
+        self%is_dependent(self%dependent) = .true.
+        m = 0
+        do j = 1, self%n
+            if (self%is_dependent(j)) cycle
+            m = m + 1
+            self%independent(m) = j
+        end do
+    end subroutine set_independent
+
+    !> Sort in place, ascending (insertion sort: a block's few rows).
+    pure subroutine sort_ascending(values)
+        integer, intent(inout) :: values(:)
+        integer :: i, j, key
+
+        do i = 2, size(values)
+            key = values(i)
+            j = i - 1
+            do while (j >= 1)
+                if (values(j) <= key) exit
+                values(j + 1) = values(j)
+                j = j - 1
+            end do
+            values(j + 1) = key
+        end do
+    end subroutine sort_ascending
+
+end module rollcon_speed_partition

@@ -1,0 +1,225 @@
+! SPDX-License-Identifier: MIT
+!> The dataset of N independent rolling disks (rollcon_disk_fleet), the model of the cost
+!> benchmark `rollcon bench scaling`: it reads as N parts with 3 N UCONs, spread apart as asked,
+!> and its motion is N copies of the one-disk motion to round-off on every formulation.
+module test_disk_fleet
+    use rollcon_kinds, only : wp
+    use rollcon_error, only : error_type
+    use rollcon_text, only : to_text
+    use rollcon_output_files, only : write_text_file, make_folders
+    use rollcon_job, only : job_type
+    use rollcon_load, only : load_job
+    use rollcon_run_job, only : run_job, job_result_type
+    use rollcon_simulation, only : history_type, status_completed
+    use rollcon_disk_fleet, only : disk_fleet_dataset
+    use rollcon_bench_scaling, only : scaling_row_type, measure_scaling, scaling_header, &
+        & scaling_csv_row
+    use rollcon_constraint_blocks, only : constraint_blocks_type
+    use rollcon_problem, only : problem_type
+    use rollcon_adm_model, only : adm_model_type
+    use rollcon_adm_reader, only : read_adm
+    use rollcon_adm_build, only : build_adm_problem
+    use rollcon_ucosub_contract, only : ucosub_interface
+    use rollcon_disk_reference, only : rolling_disk_ucosub
+    use rollcon_testing, only : unittest_type, new_unittest, check
+    implicit none
+    private
+
+    public :: collect_disk_fleet
+
+    !> Where the tests write their datasets
+    character(len=*), parameter :: folder = "build/rollcon-test/disk-fleet"
+
+contains
+
+    subroutine collect_disk_fleet(tests)
+        type(unittest_type), allocatable, intent(out) :: tests(:)
+
+        tests = [new_unittest("copies-of-one-disk", test_copies), &
+            & new_unittest("parts-spread-apart", test_spread), &
+            & new_unittest("blocks-of-the-fleet", test_blocks), &
+            & new_unittest("scaling-rows", test_scaling_rows)]
+    end subroutine collect_disk_fleet
+
+    !> Run the fleet of count disks, spacing apart, to 1 s on the INTEGRATOR keywords.
+    subroutine run_fleet(count, spacing, keywords, history, error)
+        integer, intent(in) :: count
+        real(wp), intent(in) :: spacing
+        character(len=*), intent(in) :: keywords
+        type(history_type), intent(out) :: history
+        type(error_type), allocatable, intent(out) :: error
+        character(len=:), allocatable :: path
+        type(job_type) :: job
+        type(job_result_type) :: ran
+
+        call make_folders(folder, error)
+        if (allocated(error)) return
+        path = folder // "/fleet_" // to_text(count) // ".adm"
+        call write_text_file(path, disk_fleet_dataset(count, spacing, 1.0_wp, 0.05_wp, &
+            & keywords), error)
+        if (allocated(error)) return
+        call load_job(path, job, error)
+        if (allocated(error)) return
+        job%output_dir = ""
+        job%quiet = .true.
+        call run_job(job, ran, error, history)
+        if (allocated(error)) return
+        call check(error, ran%summary%status == status_completed, "the fleet of " &
+            & // to_text(count) // " (" // keywords // "): " // ran%summary%message)
+    end subroutine run_fleet
+
+    !> Four disks on one spot (they do not touch one another in the model) against one, on IDA,
+    !> CVODE's ODE form and the independent speeds: within the four-disk run every disk's 12
+    !> coordinates and rates equal the first's at every row, to round-off (measured: bit for
+    !> bit); and they follow the one-disk run. The integrators' error norms are root mean
+    !> squares over all states, the same for four copies of a state as for one up to their
+    !> rounding, so the runs take the same steps unless a step's test falls the other way on
+    !> that rounding; then the runs differ by their global errors.
+    subroutine test_copies(error)
+        type(error_type), allocatable, intent(out) :: error
+        !> The copies within one run, relative to each column's scale: their equations are the
+        !> same numbers in other rows, every block factored alone, so only round-off could part
+        !> them (measured 0); a coupling between the copies moves them by the motion's size
+        real(wp), parameter :: tol_among = 1.0e-14_wp
+        !> Against the one-disk run, relative: CVODE's ODE form took the same steps (measured
+        !> 2.5e-12: round-off, 1e-10 allowed); the independent speeds and IDA decided some step
+        !> otherwise (measured 7.8e-8 and 1.1e-4 over 1 s of the tipping coin at rtol 1e-8,
+        !> its global error near flat). With the sparse Newton matrix (KLU, the last two), whose
+        !> LU orders its sums by the pattern: 8.7e-10 and 1.1e-7. Ten times those
+        real(wp), parameter :: tol_copies(5) = [1.0e-3_wp, 1.0e-10_wp, 1.0e-6_wp, 1.0e-8_wp, &
+            & 1.0e-6_wp]
+        character(len=*), parameter :: keywords(5) = [character(len=82) :: &
+            & "FORMULATION=IDA, RTOL=1e-8, ATOL=1e-10", &
+            & "FORMULATION=CVODE, METHOD=ADAMS, DRIFT=BAUMGARTE, RTOL=1e-8, ATOL=1e-10", &
+            & "FORMULATION=MAGGI, METHOD=ADAMS, DRIFT=BAUMGARTE, RTOL=1e-8, ATOL=1e-10", &
+            & "FORMULATION=CVODE, METHOD=ADAMS, DRIFT=BAUMGARTE, RTOL=1e-8, ATOL=1e-10, SOLVER=S", &
+            & "FORMULATION=MAGGI, METHOD=ADAMS, DRIFT=BAUMGARTE, RTOL=1e-8, ATOL=1e-10, SOLVER=S"]
+        integer, parameter :: copies = 4
+        type(history_type) :: one, many
+        real(wp) :: largest, scale
+        integer :: k, p, c
+
+        do k = 1, size(keywords)
+            call run_fleet(1, 0.0_wp, trim(keywords(k)), one, error)
+            if (allocated(error)) return
+            call run_fleet(copies, 0.0_wp, trim(keywords(k)), many, error)
+            if (allocated(error)) return
+            call check(error, many%count, one%count, "rows")
+            if (allocated(error)) return
+            largest = 0.0_wp
+            do p = 1, copies
+                do c = 1, 12
+                    scale = max(1.0_wp, maxval(abs(one%rows(1 + c, :one%count))))
+                    largest = max(largest, maxval(abs(many%rows(1 + 12*(p - 1) + c, &
+                        & :many%count) - one%rows(1 + c, :one%count)))/scale)
+                end do
+            end do
+            call check(error, among(many, copies) <= tol_among, trim(keywords(k)) &
+                & // ": the copies differ from one another by " &
+                & // to_text(among(many, copies)) // " (relative)")
+            if (allocated(error)) return
+            call check(error, largest <= tol_copies(k), trim(keywords(k)) // ": the copies " &
+                & // "differ from the one disk by " // to_text(largest) // " (relative)")
+            if (allocated(error)) return
+        end do
+    end subroutine test_copies
+
+    !> Disks 0.5 m apart along Y: the fleet reads as N parts and 3 N UCONs, disk p's centre at
+    !> Y = 0.5 (p - 1) m at the start, each on the ground (Z = R sin theta) with its UCONs held.
+    subroutine test_spread(error)
+        type(error_type), allocatable, intent(out) :: error
+        !> The start's Y is the dataset's number as written, to its printed digits
+        real(wp), parameter :: tol_start = 1.0e-12_wp
+        type(history_type) :: history
+        integer :: p
+
+        call run_fleet(3, 0.5_wp, "FORMULATION=CVODE, METHOD=ADAMS, DRIFT=BAUMGARTE, " &
+            & // "ERROR=1e-8", history, error)
+        if (allocated(error)) return
+        call check(error, size(history%layout%part_ids), 3, "parts")
+        if (allocated(error)) return
+        call check(error, size(history%layout%ucon_ids), 9, "UCONs")
+        if (allocated(error)) return
+        do p = 1, 3
+            call check(error, history%rows(1 + 12*(p - 1) + 2, 1), 0.5_wp*(p - 1), "disk " &
+                & // to_text(p) // "'s Y at the start, m", abs_tol=tol_start)
+            if (allocated(error)) return
+        end do
+    end subroutine test_spread
+
+    !> The fleet's constraints fall into one block per disk: its three UCONs and its six
+    !> coordinates (what the saddle-point system and the partition factor alone).
+    subroutine test_blocks(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(adm_model_type) :: adm
+        type(problem_type), target :: problem
+        type(constraint_blocks_type) :: blocks
+        procedure(ucosub_interface), pointer :: disk
+        real(wp), allocatable :: q0(:), u0(:)
+        character(len=:), allocatable :: path
+        integer :: b, j
+
+        call make_folders(folder, error)
+        if (allocated(error)) return
+        path = folder // "/fleet_blocks.adm"
+        call write_text_file(path, disk_fleet_dataset(3, 0.5_wp, 1.0_wp, 0.05_wp, &
+            & "FORMULATION=CVODE"), error)
+        if (allocated(error)) return
+        disk => rolling_disk_ucosub
+        call read_adm(path, adm, error)
+        if (allocated(error)) return
+        call build_adm_problem(adm, disk, problem, q0, u0, error)
+        if (allocated(error)) return
+        call blocks%init(problem%model)
+        call check(error, blocks%count, 3, "blocks")
+        if (allocated(error)) return
+        do b = 1, 3
+            call check(error, all(blocks%block_rows(b) == [(3*(b - 1) + j, j = 1, 3)]) &
+                & .and. all(blocks%block_coordinates(b) == [(6*(b - 1) + j, j = 1, 6)]), &
+                & "block " // to_text(b) // ": its disk's UCONs and coordinates")
+            if (allocated(error)) return
+        end do
+    end subroutine test_blocks
+
+    !> The scaling benchmark's rows (never their times, which are the benchmark's to report):
+    !> one per method and N, the states of each form, and on CVODE the same steps for 1 and 2
+    !> disks (their error norms agree: the copies differ only in Y).
+    subroutine test_scaling_rows(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(scaling_row_type), allocatable :: rows(:)
+
+        call make_folders(folder, error)
+        if (allocated(error)) return
+        call measure_scaling(folder, [1, 2], 0.2_wp, rows, error)
+        if (allocated(error)) return
+        call check(error, size(rows), 10, "rows: 5 methods, 2 sizes")
+        if (allocated(error)) return
+        call check(error, all(rows%states == [15, 30, 12, 24, 9, 18, 12, 24, 9, 18]), &
+            & "states of IDA, CVODE and the independent speeds (dense, sparse) on 1 and 2 disks")
+        if (allocated(error)) return
+        call check(error, rows(3)%steps > 0 .and. rows(4)%steps == rows(3)%steps, &
+            & "CVODE's steps on 1 and 2 disks: " // to_text(rows(3)%steps) // ", " &
+            & // to_text(rows(4)%steps))
+        if (allocated(error)) return
+        call check(error, index(scaling_csv_row(rows(1)), "ida,1,15,") == 1 .and. &
+            & index(scaling_header(), "cpu_per_step_part_us") > 0, "the CSV row and header")
+    end subroutine test_scaling_rows
+
+    !> The largest difference between the copies of one run, relative to each column's scale.
+    function among(history, copies) result(largest)
+        type(history_type), intent(in) :: history
+        integer, intent(in) :: copies
+        real(wp) :: largest, scale
+        integer :: p, c
+
+        largest = 0.0_wp
+        do p = 2, copies
+            do c = 1, 12
+                scale = max(1.0_wp, maxval(abs(history%rows(1 + c, :history%count))))
+                largest = max(largest, maxval(abs(history%rows(1 + 12*(p - 1) + c, &
+                    & :history%count) - history%rows(1 + c, :history%count)))/scale)
+            end do
+        end do
+    end function among
+
+end module test_disk_fleet
