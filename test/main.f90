@@ -46,6 +46,8 @@ program tester
     use test_initial_conditions, only : collect_initial_conditions
     use test_linearisation, only : collect_linearisation
     use test_linear_speeds, only : collect_linear_speeds
+    use test_bicycle, only : collect_bicycle
+    use test_mode_rates, only : collect_mode_rates
     use test_rebasing, only : collect_rebasing
     use test_singular_start, only : collect_singular_start
     use test_rebasing_restarts, only : collect_rebasing_restarts
@@ -133,6 +135,8 @@ program tester
         & new_testsuite("initial-conditions", collect_initial_conditions), &
         & new_testsuite("linearisation", collect_linearisation), &
         & new_testsuite("linear-speeds", collect_linear_speeds), &
+        & new_testsuite("bicycle", collect_bicycle), &
+        & new_testsuite("mode-rates", collect_mode_rates), &
         & new_testsuite("rebasing", collect_rebasing), &
         & new_testsuite("singular-start", collect_singular_start), &
         & new_testsuite("rebasing-restarts", collect_rebasing_restarts), &

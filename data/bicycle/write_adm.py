@@ -96,6 +96,9 @@ PARAMETERS = (
     ("m_F", "kg", "front wheel mass"),
     ("I_Fxx", "kg m^2", "front wheel, about a diameter"),
     ("I_Fyy", "kg m^2", "front wheel, about the axle"),
+    ("push", "N s", "impulse of a sideways push on the rear frame (0: none)"),
+    ("push_time", "s", "when the push starts"),
+    ("push_length", "s", "how long the push lasts (a half-sine pulse)"),
     ("end_time", "s", "SIMULATE END"),
     ("steps", "1", "SIMULATE STEPS"),
 )
@@ -142,7 +145,7 @@ def read_table(path):
     if missing:
         raise TableError(f"{path}: missing " + ", ".join(missing))
     positive = ("w", "g", "r_R", "m_R", "I_Rxx", "I_Ryy", "m_B", "m_H", "r_F", "m_F", "I_Fxx",
-                "I_Fyy", "end_time", "steps")
+                "I_Fyy", "push_length", "end_time", "steps")
     for name in positive:
         if not values[name] > 0:
             raise TableError(f"{path}: {name} must be > 0 [{units[name]}], got {values[name]}")
@@ -251,13 +254,29 @@ def dataset_text(p, table_path, out_path):
             f"UCON/{first + 2}, FUNCTION=USER({part}, 13, 15, {number(radius)}), "
             "ROUTINE=disk_height",
         ]
+    t0, length, impulse = p["push_time"], p["push_length"], p["push"]
+    t1 = t0 + length
+    peak = math.pi / 2 * impulse / length
+    pulse = f"{number(peak)}*SIN(PI*(TIME - {number(t0)})/{number(length)})"
+    lines += [
+        "",
+        f"! A push sideways (+Y, to the left) on the rear frame at its centre of mass: a half-sine",
+        f"! pulse from t = {number(t0)} s lasting {number(length)} s carrying {number(impulse)} N s"
+        " (peak pi J / (2 T) [N]),",
+        "! zero at t = 0, so the start is the steady upright motion that rollcon linear",
+        "! linearises. Markers 1 (the force's axes, RM) and 2 (its reaction, JFLOAT) are ground's.",
+        "MARKER/1, PART=1",
+        "MARKER/2, PART=1",
+        "GFORCE/1, I=30, JFLOAT=2, RM=1, FX=0, FZ=0, TX=0, TY=0, TZ=0",
+        f", FY=IF(TIME - {number(t0)}: 0, 0, IF(TIME - {number(t1)}: {pulse}, {pulse}, 0))",
+    ]
     lines += [
         "",
         "! Gravity along -Z [m/s^2].",
         f"ACCGRAV/KGRAV={number(-p['g'])}",
         "",
         f"SIMULATE/DYNAMIC, END={number(p['end_time'])}, STEPS={number(p['steps'])}",
-        "INTEGRATOR/FORMULATION=IDA",
+        "INTEGRATOR/FORMULATION=IDA, ERROR=1E-10",
         "",
         "END",
     ]
