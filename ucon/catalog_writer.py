@@ -69,6 +69,11 @@ def _constants(lines: list[str], specs: list[ConstraintSpec]) -> None:
          "told apart by the last PAR entry when more than one)", 4)
     _array(lines, "integer, parameter :: generated_ncomponents(generated_count)",
            [f"{spec.name}_ncomponents" for spec in specs])
+    _doc(lines, "A routine of two parts (a joint primitive between two parts): the number of "
+         "codes of the part in PAR(1), the second part's id following them; 0 for a routine of "
+         "one part", 4)
+    _array(lines, "integer, parameter :: generated_first_part_nvars(generated_count)",
+           [str(spec.first_part_nvars if spec.two_parts else 0) for spec in specs])
     _doc(lines, "True for a routine whose F has no explicit time: the driver need not ask for "
          "the time partials", 4)
     _array(lines, "logical, parameter :: generated_time_free(generated_count)",
@@ -141,6 +146,7 @@ def render_catalog(specs: list[ConstraintSpec]) -> str:
     lines += ["    implicit none", "    private", ""]
     _add(lines, "public :: generated_count, generated_names, generated_npar, "
          "generated_ncomponents, generated_time_free", 4)
+    _add(lines, "public :: generated_first_part_nvars", 4)
     _add(lines, "public :: generated_routine, generated_codes, generated_summary", 4)
     lines.append("")
     _constants(lines, specs)

@@ -17,7 +17,7 @@ module rollcon_ucosub_catalog
     use rollcon_disk_reference, only : hand_disk_ucosub => rolling_disk_ucosub
     use rollcon_gen_catalog, only : generated_count, generated_names, generated_npar, &
         & generated_ncomponents, generated_time_free, generated_routine, generated_codes, &
-        & generated_summary
+        & generated_summary, generated_first_part_nvars
     implicit none
     private
 
@@ -85,15 +85,22 @@ contains
         real(wp), intent(in) :: par(:)
         character(len=:), allocatable :: list
         integer, allocatable :: entries(:), codes(:)
-        integer :: i, npar, ncomponents
+        integer :: i, npar, ncomponents, first
 
         list = ""
         entries = listed_entries()
         do i = 1, size(entries)
-            call entry_layout(entries(i), codes, npar, ncomponents)
+            call entry_layout(entries(i), codes, npar, ncomponents, first)
             if (size(par) /= npar) cycle
             if (.not. whole_in(par(1), 1, huge(1))) cycle
-            if (any(par(2:1 + size(codes)) /= real(codes, wp))) cycle
+            if (first > 0) then
+                ! two parts: the second part's id and codes after the first's
+                if (.not. whole_in(par(first + 2), 1, huge(1))) cycle
+                if (any(par(2:1 + first) /= real(codes(:first), wp))) cycle
+                if (any(par(first + 3:2 + size(codes)) /= real(codes(first + 1:), wp))) cycle
+            else if (any(par(2:1 + size(codes)) /= real(codes, wp))) then
+                cycle
+            end if
             if (ncomponents > 1) then
                 if (.not. whole_in(par(npar), 1, ncomponents)) cycle
             end if
@@ -123,12 +130,16 @@ contains
     !> The PAR list of one UCON served by the built-in routine called name: the part id, the
     !> routine's codes, the physical parameters in its order (units as its module documents:
     !> SI lengths [m] and rates [rad/s]), then the component when the routine has several.
-    !> Refused (stat_input) for an unknown name, the wrong number of parameters or a component
-    !> out of range; nothing else is checked here (the routine checks its PAR when declared).
-    pure subroutine builtin_ucosub_par(name, part, parameters, component, par, error)
+    !> A routine of two parts (a joint primitive between two parts) takes the second part's id,
+    !> part_j, after its first part's codes, and its codes after it (ucon/spec.py).
+    !> Refused (stat_input) for an unknown name, the wrong number of parameters, a component
+    !> out of range, or a routine of two parts without part_j; nothing else is checked here
+    !> (the routine checks its PAR when declared).
+    pure subroutine builtin_ucosub_par(name, part, parameters, component, par, error, part_j)
         !> Name of the routine (any case)
         character(len=*), intent(in) :: name
-        !> Id of the part whose variables the UCON constrains
+        !> Id of the part whose variables the UCON constrains (the first part of a routine of
+        !> two parts)
         integer, intent(in) :: part
         !> Physical parameters, in the routine's PAR order (e.g. the radius [m])
         real(wp), intent(in) :: parameters(:)
@@ -137,8 +148,10 @@ contains
         !> The constants of FUNCTION=USER(...)
         real(wp), allocatable, intent(out) :: par(:)
         type(error_type), allocatable, intent(out) :: error
+        !> Id of the second part of a routine of two parts
+        integer, intent(in), optional :: part_j
         integer, allocatable :: codes(:)
-        integer :: entry, npar, ncomponents, nparameters
+        integer :: entry, npar, ncomponents, nparameters, first
 
         entry = lookup(name)
         select case (entry)
@@ -147,15 +160,20 @@ contains
                 & // "'; the built-in routines are " // builtin_ucosub_names(), stat_input)
             return
         case default
-            call entry_layout(entry, codes, npar, ncomponents)
+            call entry_layout(entry, codes, npar, ncomponents, first)
         end select
-        nparameters = npar - 1 - size(codes)
+        nparameters = npar - 1 - size(codes) - merge(1, 0, first > 0)
         if (ncomponents > 1) nparameters = nparameters - 1
         if (size(parameters) /= nparameters) then
             call fatal_error(error, "the built-in UCOSUB '" // trim(name) // "' takes " &
                 & // to_text(nparameters) // " physical parameter(s) (PAR(" &
-                & // to_text(2 + size(codes)) // ") on), got " // to_text(size(parameters)), &
-                & stat_input)
+                & // to_text(2 + size(codes) + merge(1, 0, first > 0)) // ") on), got " &
+                & // to_text(size(parameters)), stat_input)
+            return
+        end if
+        if (first > 0 .and. .not. present(part_j)) then
+            call fatal_error(error, "the built-in UCOSUB '" // trim(name) // "' constrains " &
+                & // "two parts: give the second part's id (part_j)", stat_input)
             return
         end if
         if (component < 1 .or. component > ncomponents) then
@@ -164,7 +182,12 @@ contains
                 & // to_text(ncomponents) // ", got " // to_text(component), stat_input)
             return
         end if
-        par = [real(part, wp), real(codes, wp), parameters]
+        if (first > 0) then
+            par = [real(part, wp), real(codes(:first), wp), real(part_j, wp), &
+                & real(codes(first + 1:), wp), parameters]
+        else
+            par = [real(part, wp), real(codes, wp), parameters]
+        end if
         if (ncomponents > 1) par = [par, real(component, wp)]
     end subroutine builtin_ucosub_par
 
@@ -194,13 +217,15 @@ contains
         end if
     end function entry_name
 
-    !> The PAR layout of an entry (not entry_unknown): its UCOVAR codes, NPAR and number of
-    !> components.
-    pure subroutine entry_layout(entry, codes, npar, ncomponents)
+    !> The PAR layout of an entry (not entry_unknown): its UCOVAR codes, NPAR, number of
+    !> components, and for a routine of two parts the number of its first part's codes (0: one
+    !> part).
+    pure subroutine entry_layout(entry, codes, npar, ncomponents, first)
         integer, intent(in) :: entry
         integer, allocatable, intent(out) :: codes(:)
-        integer, intent(out) :: npar, ncomponents
+        integer, intent(out) :: npar, ncomponents, first
 
+        first = 0
         if (entry == entry_hand_disk) then
             codes = disk_codes
             npar = disk_npar
@@ -209,6 +234,7 @@ contains
             codes = generated_codes(entry)
             npar = generated_npar(entry)
             ncomponents = generated_ncomponents(entry)
+            first = generated_first_part_nvars(entry)
         end if
     end subroutine entry_layout
 

@@ -51,6 +51,7 @@ module rollcon_gen_catalog
 
     public :: generated_count, generated_names, generated_npar, generated_ncomponents, &
         & generated_time_free
+    public :: generated_first_part_nvars
     public :: generated_routine, generated_codes, generated_summary
 
     !> Number of generated routines
@@ -123,6 +124,29 @@ module rollcon_gen_catalog
         & rolling_sphere_ncomponents, &
         & turntable_ball_ncomponents, &
         & turntable_disk_ncomponents]
+    !> A routine of two parts (a joint primitive between two parts): the number of codes of the part
+    !> in PAR(1), the second part's id following them; 0 for a routine of one part
+    integer, parameter :: generated_first_part_nvars(generated_count) = [ &
+        & 0, &
+        & 0, &
+        & 0, &
+        & 0, &
+        & 0, &
+        & 0, &
+        & 0, &
+        & 0, &
+        & 6, &
+        & 6, &
+        & 6, &
+        & 3, &
+        & 3, &
+        & 3, &
+        & 0, &
+        & 0, &
+        & 0, &
+        & 0, &
+        & 0, &
+        & 0]
     !> True for a routine whose F has no explicit time: the driver need not ask for the time
     !> partials
     logical, parameter :: generated_time_free(generated_count) = [ &

@@ -225,7 +225,7 @@ contains
             & "rollcon: error: UCON/1: PAR(2) must be code 21 (codes 21 22 23 14 15 24 25 26", &
             & "this UCON names no ROUTINE, so the model's UCOSUB served it, here the built-in", &
             & "its PAR suits the built-in turntable_ball: run with --ucosub turntable_ball", &
-            & "(built-in routines: disk, rolling_disk, chaplygin_sled, disk_height, knife_edge"]
+            & "(built-in routines: disk, rolling_disk, chaplygin_sled, disk_height, gnd_atpoint"]
         character(len=:), allocatable :: program, model, refused
         integer :: status_default, status_hinted, i
         logical :: complete

@@ -14,7 +14,8 @@ module test_ucosub_catalog
     use rollcon_gen_rolling_sphere, only : rolling_sphere_ucosub, rolling_sphere_codes
     use rollcon_gen_turntable_disk, only : turntable_disk_time_free
     use rollcon_gen_catalog, only : generated_count, generated_names, generated_codes, &
-        & generated_npar, generated_ncomponents, generated_time_free, generated_routine
+        & generated_npar, generated_ncomponents, generated_time_free, generated_routine, &
+        & generated_first_part_nvars
     use rollcon_ucosub_catalog, only : find_builtin_ucosub, builtin_ucosub_names, &
         & builtin_ucosub_par, builtin_ucosub_summary, builtin_ucosubs_for_par
     use rollcon_text, only : upper_case, to_text
@@ -140,12 +141,13 @@ contains
         type(ucovar_registry_type) :: registry
         procedure(ucosub_interface), pointer :: ucosub
         real(wp), allocatable :: par(:)
-        integer, allocatable :: codes(:)
-        integer :: i, component, ncomponents, id, entry, nparameters, declared_entry
+        integer, allocatable :: codes(:), parts(:)
+        integer :: i, component, ncomponents, id, entry, nparameters, declared_entry, first
         logical :: time_free, found
 
         names = listed_names()
         id = 0
+        first = 0
         do i = 1, size(names)
             call find_builtin_ucosub(names(i), ucosub, time_free, found)
             if (i == 1) then
@@ -156,13 +158,17 @@ contains
                 entry = catalog_entry(names(i))
                 codes = generated_codes(entry)
                 ncomponents = generated_ncomponents(entry)
-                ! PAR: part id, codes, parameters, then the component when there are several
-                nparameters = generated_npar(entry) - 1 - size(codes)
+                ! PAR: part id, codes (two parts: then the second part's id and codes),
+                ! parameters, then the component when there are several
+                first = generated_first_part_nvars(entry)
+                nparameters = generated_npar(entry) - 1 - size(codes) - merge(1, 0, first > 0)
                 if (ncomponents > 1) nparameters = nparameters - 1
             end if
+            parts = spread(part, 1, size(codes))
+            if (first > 0) parts(first + 1:) = part + 1
             do component = 1, ncomponents
                 call builtin_ucosub_par(names(i), part, spread(parameter_value, 1, nparameters), &
-                    & component, par, error)
+                    & component, par, error, part_j=part + 1)
                 if (allocated(error)) return
                 id = id + 1
                 call declare_ucon(ucosub, id, par, registry, error)
@@ -175,7 +181,7 @@ contains
                         & // ": wrong number of variables declared")
                     if (allocated(error)) return
                     call check(error, all(declared%codes == codes) .and. all(declared%parts &
-                        & == part), trim(names(i)) // ": declared codes or parts differ")
+                        & == parts), trim(names(i)) // ": declared codes or parts differ")
                     if (allocated(error)) return
                 end associate
             end do
@@ -229,6 +235,16 @@ contains
         call builtin_ucosub_par("knife_edge", 1, [0.1_wp], 1, par, error)
         call check_message(error, "the built-in UCOSUB 'knife_edge' takes 0 physical " &
             & // "parameter(s) (PAR(5) on), got 1")
+        if (allocated(error)) return
+        call builtin_ucosub_par("jp_atpoint", 1, spread(0.1_wp, 1, 6), 1, par, error)
+        call check_message(error, "the built-in UCOSUB 'jp_atpoint' constrains two parts: give " &
+            & // "the second part's id (part_j)")
+        if (allocated(error)) return
+        ! a PAR of two parts suits the routine of two parts
+        call builtin_ucosub_par("jp_atpoint", 2, spread(0.1_wp, 1, 6), 3, par, error, part_j=5)
+        if (allocated(error)) return
+        call check(error, builtin_ucosubs_for_par(par) == "jp_atpoint" .and. par(8) == 5.0_wp, &
+            & "jp_atpoint's PAR suits '" // builtin_ucosubs_for_par(par) // "'")
         if (allocated(error)) return
         call builtin_ucosub_par("disk", 1, [0.1_wp], 4, par, error)
         call check_message(error, "the built-in UCOSUB 'disk' has 3 component(s); component " &
