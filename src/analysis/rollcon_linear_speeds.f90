@@ -35,10 +35,11 @@ module rollcon_linear_speeds
     real(wp), parameter :: zero_entry = 1.0e-9_wp
     !> Speeds where stability changes are found to this absolute tolerance [m/s]
     real(wp), parameter :: speed_tolerance = 1.0e-9_wp
-    !> What the differences' error (about 1e-10 relative, docs/linear.md) leaves in a real
-    !> part that is zero, relative to the largest |lambda|: a real part within it counts as 0
-    !> and an imaginary part within it makes an eigenvalue real
-    real(wp), parameter :: noise_fraction = 1.0e-9_wp
+    !> What the differences' error (about 1e-11 relative, docs/linear.md) leaves in a real
+    !> part that is zero, relative to the largest |lambda|: a real part within it counts as 0.
+    !> It biases a crossing by this much of max|lambda| over the crossing eigenvalue's slope:
+    !> 1e-8 m/s at the bicycle's capsize speed (1e-9 of max|lambda| made it 1e-7)
+    real(wp), parameter :: noise_fraction = 1.0e-10_wp
     !> On the grid, a real part counts as positive only above this fraction of the largest
     !> |lambda|: a zero of multiplicity two (a conserved speed coupled to a first integral)
     !> spreads to about 1e-8 of it (docs/linear.md), the linear analysis's own zero limit

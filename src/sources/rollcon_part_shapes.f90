@@ -51,7 +51,7 @@ contains
 
     !> The shapes of a model's parts, in model order: the uniform solid ellipsoid of each part's
     !> mass and principal moments (ellipsoid_semi_axes) about its own axes (its CM marker's),
-    !> except the disk of a disk scene.
+    !> except the disk of a disk scene and a part that rolls as a disk (wheel_shape).
     subroutine part_shapes_of(model, shapes, error, disk_radius, disk_thickness, disk_part, &
         & bases)
         type(model_type), intent(in) :: model
@@ -85,6 +85,7 @@ contains
             end if
             basis = 0
             if (present(bases)) basis = bases(p)
+            if (disk == 0 .and. wheel_shape(model, p, shapes(p))) cycle
             call ellipsoid_semi_axes(model%parts(p)%mass, &
                 & own_axes_inertia(model%parts(p)%inertia, basis), shapes(p)%semi_axes, message)
             if (allocated(message)) then
@@ -94,6 +95,43 @@ contains
             end if
         end do
     end subroutine part_shapes_of
+
+    !> A part that a disk routine holds on the ground (a UCON that names rolling_disk,
+    !> disk_height or the hand-checked disk as its ROUTINE, whose PAR holds the radius R after
+    !> the codes, in the model's length unit; a UCON served by the model's UCOSUB may be any) is drawn as a disk of that radius about its body z axis (the
+    !> routines' axle): its thickness that of a uniform disk with the part's mass and moment A
+    !> about a diameter, h^2 = 12 A/m - 3 R^2, at most R/10 (a wheel's moments are a rim's,
+    !> not a uniform disk's) and 0 when the moments give none.
+    logical function wheel_shape(model, p, shape)
+        type(model_type), intent(in) :: model
+        !> The part's number (model order)
+        integer, intent(in) :: p
+        type(part_shape_type), intent(inout) :: shape
+        real(wp) :: radius, square
+        integer :: k
+
+        wheel_shape = .false.
+        if (.not. allocated(model%ucons)) return
+        do k = 1, size(model%ucons)
+            associate (ucon => model%ucons(k))
+                if (.not. allocated(ucon%routine) .or. .not. allocated(ucon%par)) cycle
+                if (ucon%routine /= "rolling_disk" .and. ucon%routine /= "disk_height" &
+                    & .and. ucon%routine /= "disk") cycle
+                if (size(ucon%par) < ucon%nvars + 2) cycle
+                if (nint(ucon%par(1)) /= model%parts(p)%id) cycle
+                radius = ucon%par(ucon%nvars + 2)*model%ucosub_units%length
+                if (.not. (radius > 0.0_wp .and. radius <= largest_length)) cycle
+                shape%kind = shape_disk
+                shape%radius = radius
+                square = 0.0_wp
+                if (model%parts(p)%mass > 0.0_wp) square = 12.0_wp*model%parts(p)%inertia(1) &
+                    & /model%parts(p)%mass - 3.0_wp*radius**2
+                shape%thickness = min(sqrt(max(square, 0.0_wp)), 0.1_wp*radius)
+                wheel_shape = .true.
+                return
+            end associate
+        end do
+    end function wheel_shape
 
     !> Semi-axes of the uniform solid ellipsoid with this mass and these principal moments:
     !> I1 = m (b^2 + c^2)/5 and so on, hence a^2 = 5 (I2 + I3 - I1)/(2 m), b^2 = 5 (I1 + I3 - I2)

@@ -15,6 +15,10 @@ module test_part_shapes
     use rollcon_run_record, only : run_record_type, read_run
     use rollcon_ellipsoid_mesh, only : ellipsoid_points, ellipsoid_triangle, &
         & ellipsoid_point_count, ellipsoid_triangle_count
+    use rollcon_problem, only : problem_type
+    use rollcon_ucosub_contract, only : ucosub_interface
+    use rollcon_job, only : job_type
+    use rollcon_load, only : load_job
     use rollcon_testing, only : unittest_type, new_unittest, check
     use picture_files, only : disk_run, two_part_run, write_run, make_folder, remove_folder, &
         & write_lines, disk_radius, disk_thickness
@@ -47,6 +51,7 @@ contains
             & new_unittest("ellipsoid-of-a-thin-disk", test_thin_disk), &
             & new_unittest("ellipsoid-refuses-non-physical", test_refusals), &
             & new_unittest("shapes-of-a-model", test_model_shapes), &
+            & new_unittest("wheels-of-a-dataset", test_wheels), &
             & new_unittest("parts-file-round-trip", test_round_trip), &
             & new_unittest("parts-file-refusals", test_file_refusals), &
             & new_unittest("parts-file-must-match-csv", test_mismatch), &
@@ -131,6 +136,58 @@ contains
         call expect_error(error, "part 1: the principal moments (1, 1, 2.5) kg m^2 are not " &
             & // "those of a rigid body: I3 = 2.5 exceeds the sum of the other two")
     end subroutine test_model_shapes
+
+    !> A part that a disk routine holds on the ground is drawn as a disk of the routine's
+    !> radius: data/bicycle.adm's wheels (rolling_disk and disk_height, R = 0.3 and 0.35 m; a
+    !> rim's moments, so the thickness is capped at R/10) between the frames' ellipsoids;
+    !> data/disk_height.adm's coin (rolling_disk), whose moments are a uniform disk's 3 mm
+    !> thick; data/coin.adm's coin stays its ellipsoid: its UCONs name no routine, and the
+    !> model's UCOSUB (--ucosub) may be any.
+    subroutine test_wheels(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(part_shape_type), allocatable :: shapes(:)
+
+        call dataset_shapes("data/bicycle.adm", shapes, error)
+        if (allocated(error)) return
+        call check(error, size(shapes) == 4 .and. all(shapes%kind == [shape_disk, &
+            & shape_ellipsoid, shape_ellipsoid, shape_disk]), "the bicycle: disks, ellipsoids, " &
+            & // "disk expected")
+        if (allocated(error)) return
+        call check(error, [shapes(1)%radius, shapes(1)%thickness, shapes(4)%radius, &
+            & shapes(4)%thickness], [0.3_wp, 0.03_wp, 0.35_wp, 0.035_wp], "the wheels' radii " &
+            & // "and thicknesses [m]", rel_tol=tol_axes)
+        if (allocated(error)) return
+        call dataset_shapes("data/coin.adm", shapes, error)
+        if (allocated(error)) return
+        call check(error, shapes(1)%kind == shape_ellipsoid, "data/coin.adm: an ellipsoid " &
+            & // "expected")
+        if (allocated(error)) return
+        call dataset_shapes("data/disk_height.adm", shapes, error)
+        if (allocated(error)) return
+        ! h^2 = 12 A/m - 3 R^2 is 9e-6 m^2 out of terms of 0.03: 3e3 roundings, halved by the root
+        call check(error, shapes(1)%kind == shape_disk .and. abs(shapes(1)%radius - 0.1_wp) &
+            & <= tol_axes .and. abs(shapes(1)%thickness - 0.003_wp) <= tol_thin_axis*0.003_wp, &
+            & "the coin: a disk 0.1 m by 3 mm expected")
+    end subroutine test_wheels
+
+    !> The part shapes of a dataset's model as a run gives them.
+    subroutine dataset_shapes(path, shapes, error)
+        character(len=*), intent(in) :: path
+        type(part_shape_type), allocatable, intent(out) :: shapes(:)
+        type(error_type), allocatable, intent(out) :: error
+        type(job_type) :: job
+        type(problem_type), target :: problem
+        procedure(ucosub_interface), pointer :: routine
+        real(wp), allocatable :: q0(:), u0(:)
+        character(len=:), allocatable :: report
+
+        call load_job(path, job, error)
+        if (allocated(error)) return
+        routine => job%routine
+        call job%source%build(routine, problem, q0, u0, report, error)
+        if (allocated(error)) return
+        call part_shapes_of(problem%model, shapes, error, bases=problem%start_bases)
+    end subroutine dataset_shapes
 
     !> write_model_shapes writes DIR/NAME.parts; read back, the shapes are the same numbers.
     subroutine test_round_trip(error)
