@@ -168,7 +168,7 @@ contains
         record = provenance_lines(job)
         if (.not. allocated(run_error)) then
             result%csv_path = files%csv
-            result%summary_text = record // warning_line(job) &
+            result%summary_text = record // warning_line(job) // job%source%model_notes() &
                 & // run_summary_text(job%source%setting_line(), files%csv, result%summary)
             call place_outputs(files, shapes, result%summary_text, record, run_error)
             if (.not. allocated(run_error)) return
@@ -177,7 +177,7 @@ contains
         result%summary%status = status_failed
         result%summary%message = run_error%message
         result%csv_path = files%partial_csv
-        result%summary_text = record // warning_line(job) &
+        result%summary_text = record // warning_line(job) // job%source%model_notes() &
             & // run_summary_text(job%source%setting_line(), files%partial_csv, result%summary)
         call write_text_file(files%partial_summary, result%summary_text, cleanup_error)
         call move_alloc(run_error, error)

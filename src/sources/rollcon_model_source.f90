@@ -30,11 +30,16 @@ module rollcon_model_source
         !> of ADAMS's outputs and solver choices); unallocated or "" for nothing. `rollcon run`
         !> prints it on standard error, and the summary carries it
         character(len=:), allocatable :: warning
+        !> What the model is made of that its summary states, in lines each ending with a new
+        !> line (a dataset's principal axes turned from its CM markers'); unallocated or "" for
+        !> nothing
+        character(len=:), allocatable :: notes
     contains
         procedure(build_interface), deferred :: build
         procedure :: shapes
         procedure :: setting_line
         procedure :: input_warning
+        procedure :: model_notes
     end type model_source_type
 
     abstract interface
@@ -85,5 +90,14 @@ contains
         text = ""
         if (allocated(self%warning)) text = self%warning
     end function input_warning
+
+    !> The model's notes for the summary (component notes): "" for none.
+    function model_notes(self) result(text)
+        class(model_source_type), intent(in) :: self
+        character(len=:), allocatable :: text
+
+        text = ""
+        if (allocated(self%notes)) text = self%notes
+    end function model_notes
 
 end module rollcon_model_source

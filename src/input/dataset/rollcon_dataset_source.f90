@@ -48,6 +48,7 @@ contains
         source%kind = "dataset"
         source%settings = adm%run%settings
         source%warning = unused_warning(adm)
+        source%notes = principal_axes_text(adm)
     end function new_dataset_source
 
     !> The dataset's problem with the source's settings, and its start after the

@@ -100,7 +100,9 @@ contains
             & // file_text(scratch // "/hand.err"))
         if (.not. allocated(error)) call check(error, index(report, "principal axes of " &
             & // "PART/2 (IP with products of inertia): moments ") > 0 .and. index(file_text( &
-            & scratch // "/hand.out"), "principal axes of") == 0, "startup reports: " // report)
+            & scratch // "/hand.out"), "principal axes of") == 0 .and. index(file_text(scratch &
+            & // "/prods.adm.summary.txt"), "principal axes of PART/2 (IP with products of " &
+            & // "inertia): moments ") > 0, "startup reports and the summary: " // report)
         do k = 1, 2
             if (.not. allocated(error)) call read_output_csv(scratch // "/" // trim(names(k)) &
                 & // ".adm.csv", layouts(k), rows(k), error)
