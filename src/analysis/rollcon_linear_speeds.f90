@@ -22,7 +22,8 @@ module rollcon_linear_speeds
     use rollcon_lapack, only : general_eigenvalues
     use rollcon_least_squares, only : left_null_space
     use rollcon_problem, only : problem_type
-    use rollcon_linearisation, only : linear_options_type, linear_result_type, linearise
+    use rollcon_linearisation, only : linear_options_type, linear_result_type, linearise, &
+        & sort_eigenvalues
     implicit none
     private
 
@@ -182,8 +183,7 @@ contains
         type(error_type), allocatable, intent(out) :: error
         real(wp), allocatable :: b(:, :), null(:, :)
         integer, allocatable :: keep(:)
-        integer :: i, j, k, rank
-        real(wp) :: r, m
+        integer :: k, rank
 
         keep = pack([(k, k = 1, size(struck))], .not. struck)
         b = a(keep, keep)
@@ -195,20 +195,7 @@ contains
         allocate(re(size(b, 1)), im(size(b, 1)))
         call general_eigenvalues(b, re, im, error)
         if (allocated(error)) return
-        do i = 2, size(re)
-            r = re(i)
-            m = im(i)
-            j = i - 1
-            do while (j >= 1)
-                if (re(j) > r .or. (re(j) == r .and. (abs(im(j)) > abs(m) &
-                    & .or. (abs(im(j)) == abs(m) .and. im(j) >= m)))) exit
-                re(j + 1) = re(j)
-                im(j + 1) = im(j)
-                j = j - 1
-            end do
-            re(j + 1) = r
-            im(j + 1) = m
-        end do
+        call sort_eigenvalues(re, im)
     end subroutine kept_eigenvalues
 
     !> Linearise at every speed of a grid: the start's rates u scaled by speed/reference

@@ -27,7 +27,8 @@ module rollcon_linearisation
     implicit none
     private
 
-    public :: linear_options_type, linear_result_type, linearise, invariance_limit
+    public :: linear_options_type, linear_result_type, linearise, invariance_limit, &
+        & sort_eigenvalues
 
     !> Largest relative rest |A T - T A_red| / |A T| (scaled) of a tangent space taken as
     !> invariant: the differences' own error is about 1e-10 (docs/linear.md), so a rest above
@@ -432,15 +433,28 @@ contains
         type(linear_result_type), intent(inout) :: result
         type(error_type), allocatable, intent(out) :: error
         real(wp), allocatable :: re(:), im(:)
-        integer :: i, j, d
-        real(wp) :: r, m
+        integer :: d
 
         d = result%reduced
         allocate(re(d), im(d))
         call general_eigenvalues(result%reduced_matrix, re, im, error)
         if (allocated(error)) return
-        ! insertion sort: d is a few dozen at most
-        do i = 2, d
+        call sort_eigenvalues(re, im)
+        result%real_part = re
+        result%imag_part = im
+        result%zero_limit = 0.0_wp
+        if (d > 0) result%zero_limit = zero_fraction*maxval(hypot(re, im))
+        result%zeros = count(hypot(re, im) <= result%zero_limit)
+    end subroutine sorted_eigenvalues
+
+    !> Eigenvalues in the table's order: by decreasing real part, for equal real parts by
+    !> decreasing |imaginary part|, + before - (insertion sort: a few dozen at most).
+    pure subroutine sort_eigenvalues(re, im)
+        real(wp), intent(inout) :: re(:), im(:)
+        real(wp) :: r, m
+        integer :: i, j
+
+        do i = 2, size(re)
             r = re(i)
             m = im(i)
             j = i - 1
@@ -453,12 +467,7 @@ contains
             re(j + 1) = r
             im(j + 1) = m
         end do
-        result%real_part = re
-        result%imag_part = im
-        result%zero_limit = 0.0_wp
-        if (d > 0) result%zero_limit = zero_fraction*maxval(hypot(re, im))
-        result%zeros = count(hypot(re, im) <= result%zero_limit)
-    end subroutine sorted_eigenvalues
+    end subroutine sort_eigenvalues
 
     !> (r1, i1) comes before (r2, i2): a larger real part; for equal real parts a larger
     !> |imaginary part|, + before - (so a conjugate pair stays adjacent: LAPACK gives both the

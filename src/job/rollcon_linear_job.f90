@@ -39,15 +39,10 @@ contains
         type(linear_options_type), intent(in), optional :: options
         type(problem_type), target :: problem
         type(linear_options_type) :: chosen
-        procedure(ucosub_interface), pointer :: routine
         real(wp), allocatable :: q0(:), u0(:)
 
-        report = ""
         if (present(options)) chosen = options
-        call refuse_user_file(job, error)
-        if (allocated(error)) return
-        routine => job%routine
-        call job%source%build(routine, problem, q0, u0, report, error)
+        call build_start(job, problem, q0, u0, report, error)
         if (allocated(error)) return
         call linearise(problem, 0.0_wp, q0, u0, chosen, result, error)
         if (allocated(error) .and. len(job%source%path) > 0) &
@@ -68,15 +63,10 @@ contains
         type(linear_options_type), intent(in), optional :: options
         type(problem_type), target :: problem
         type(linear_options_type) :: chosen
-        procedure(ucosub_interface), pointer :: routine
         real(wp), allocatable :: q0(:), u0(:)
 
-        report = ""
         if (present(options)) chosen = options
-        call refuse_user_file(job, error)
-        if (allocated(error)) return
-        routine => job%routine
-        call job%source%build(routine, problem, q0, u0, report, error)
+        call build_start(job, problem, q0, u0, report, error)
         if (.not. allocated(error)) call speed_table(problem, 0.0_wp, q0, u0, speeds, chosen, &
             & table, error)
         if (.not. allocated(error)) call stability_changes(problem, 0.0_wp, q0, u0, table, &
@@ -175,19 +165,29 @@ contains
         end do
     end function comment_lines
 
-    !> A user's UCOSUB file is refused (see linearise_job).
-    subroutine refuse_user_file(job, error)
-        type(job_type), intent(in) :: job
+    !> The job's problem built as a run builds it, with the consistent start at t = 0 and the
+    !> report of what making it consistent changed; a user's UCOSUB file is refused (see
+    !> linearise_job).
+    subroutine build_start(job, problem, q0, u0, report, error)
+        type(job_type), intent(inout) :: job
+        type(problem_type), intent(inout), target :: problem
+        real(wp), allocatable, intent(out) :: q0(:), u0(:)
+        character(len=:), allocatable, intent(out) :: report
         type(error_type), allocatable, intent(out) :: error
+        procedure(ucosub_interface), pointer :: routine
 
+        report = ""
         if (len(job%user_file) > 0) then
             call fatal_error(error, "--ucosub " // job%user_file // ": the linear analysis " &
                 & // "runs built-in routines only (a user's routine runs in a child process, " &
                 & // "docs/checker.md, which it does not use); give --ucosub NAME of a " &
                 & // "built-in routine, or check and simulate your routine with rollcon check " &
                 & // "and rollcon run", stat_input)
+            return
         end if
-    end subroutine refuse_user_file
+        routine => job%routine
+        call job%source%build(routine, problem, q0, u0, report, error)
+    end subroutine build_start
 
     !> DIR/MODEL.eigen.csv: MODEL the input's file name without its .adm or .nml (the job's
     !> name for a model built in code).

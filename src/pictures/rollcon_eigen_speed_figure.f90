@@ -9,7 +9,8 @@ module rollcon_eigen_speed_figure
     use rollcon_error, only : error_type, fatal_error, stat_io
     use rollcon_text, only : to_text, fixed_text
     use rollcon_linear_speeds, only : speed_table_type, stability_change_type
-    use rollcon_gnuplot, only : require_gnuplot, run_gnuplot, gnuplot_string, remove_file
+    use rollcon_gnuplot, only : require_gnuplot, run_gnuplot, gnuplot_string, remove_file, &
+        & require_written
     implicit none
     private
 
@@ -29,7 +30,7 @@ contains
         type(error_type), allocatable, intent(out) :: error
         character(len=:), allocatable :: script
         character(len=256) :: message
-        integer :: unit, stat, size_bytes
+        integer :: unit, stat
 
         call require_gnuplot(error)
         if (allocated(error)) return
@@ -52,10 +53,7 @@ contains
         end if
         call run_gnuplot(script, error)
         if (allocated(error)) return
-        size_bytes = 0
-        inquire(file=png_path, size=size_bytes)
-        if (size_bytes <= 0) call fatal_error(error, png_path // ": gnuplot reported success " &
-            & // "but did not write this PNG file (see " // script // ")", stat_io)
+        call require_written(png_path, script, error)
     end subroutine draw_eigen_speed_figure
 
     !> The whole script: settings, the data inline ($re and $im: speed and one column per

@@ -8,7 +8,7 @@ module rollcon_gnuplot
     private
 
     public :: gnuplot_available, require_gnuplot, run_gnuplot, gnuplot_string, base_name, &
-        & remove_file
+        & remove_file, require_written
 
     !> What to install when gnuplot is missing
     character(len=*), parameter :: install_hint = "gnuplot with its pngcairo and gif " &
@@ -63,6 +63,18 @@ contains
             call remove_file(script // ".log")
         end if
     end subroutine run_gnuplot
+
+    !> An error unless gnuplot, reporting success on script, did write the picture at path.
+    subroutine require_written(path, script, error)
+        character(len=*), intent(in) :: path, script
+        type(error_type), allocatable, intent(out) :: error
+        integer :: size_bytes
+
+        size_bytes = 0
+        inquire(file=path, size=size_bytes)
+        if (size_bytes <= 0) call fatal_error(error, path // ": gnuplot reported success but " &
+            & // "did not write this PNG file (see " // script // ")", stat_io)
+    end subroutine require_written
 
     !> A gnuplot string constant holding text: single quotes, a quote doubled.
     pure function gnuplot_string(text) result(word)

@@ -13,7 +13,8 @@ module rollcon_study_map
     use rollcon_study_type, only : study_type, study_parameter_type, sampling_grid
     use rollcon_study_measures, only : outcome_words, outcome_failed, outcome_refused
     use rollcon_study_map_cases, only : map_cases_type, map_classes, read_map_cases
-    use rollcon_gnuplot, only : require_gnuplot, run_gnuplot, gnuplot_string, remove_file
+    use rollcon_gnuplot, only : require_gnuplot, run_gnuplot, gnuplot_string, remove_file, &
+        & require_written
     implicit none
     private
 
@@ -55,8 +56,7 @@ contains
         type(map_cases_type) :: cases
         character(len=:), allocatable :: classes(:), script
         real(wp), allocatable :: curve_x(:), curve_speed(:)
-        integer :: size_bytes
-
+        
         if (min(study%map%x, study%map%y) < 1 .or. study%map%x == study%map%y &
             & .or. max(study%map%x, study%map%y) > parameter_count(study)) then
             call fatal_error(error, name_of(study%path) // ": no map: a map needs two " &
@@ -81,10 +81,7 @@ contains
         if (allocated(error)) return
         call run_gnuplot(script, error)
         if (allocated(error)) return
-        size_bytes = 0
-        inquire(file=png_path, size=size_bytes)
-        if (size_bytes <= 0) call fatal_error(error, png_path // ": gnuplot reported success " &
-            & // "but did not write this PNG file (see " // script // ")", stat_io)
+        call require_written(png_path, script, error)
     end subroutine draw_study_map
 
     !> The gnuplot script of a map: the PNG's path with .gp for .png (or .gp added).

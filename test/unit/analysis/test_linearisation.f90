@@ -25,6 +25,7 @@ module test_linearisation
     use rollcon_linear_job, only : linearise_job
     use ic_models, only : coin_problem, coin_start, ucon_noslip, ucon_height, coin_radius
     use rollcon_testing, only : unittest_type, new_unittest, check
+    use override_lists, only : add_override
     implicit none
     private
 
@@ -103,25 +104,6 @@ contains
         if (allocated(error)) return
         call linearise_job(job, result, report, error, options)
     end subroutine disk_at_speed
-
-    !> Append an override, element by element: gfortran 12 cuts the values in an array
-    !> constructor of input_override_type to the first one's length.
-    subroutine add_override(set, name, value)
-        type(input_override_type), allocatable, intent(inout) :: set(:)
-        character(len=*), intent(in) :: name, value
-        type(input_override_type), allocatable :: grown(:)
-        integer :: k
-
-        if (.not. allocated(set)) allocate(set(0))
-        allocate(grown(size(set) + 1))
-        do k = 1, size(set)
-            grown(k)%name = set(k)%name
-            grown(k)%value = set(k)%value
-        end do
-        grown(size(grown))%name = name
-        grown(size(grown))%value = value
-        call move_alloc(grown, set)
-    end subroutine add_override
 
     !> error set unless refused holds a message starting with expected.
     subroutine expect_refusal(refused, expected, error)

@@ -19,6 +19,7 @@ module test_bicycle
     use rollcon_linear_job, only : linearise_job, linear_speeds_job
     use rollcon_mode_rates, only : exponential_rates
     use rollcon_testing, only : unittest_type, new_unittest, check
+    use override_lists, only : add_override
     implicit none
     private
 
@@ -150,25 +151,6 @@ contains
         time = history%column(1)
         step = time(2) - time(1)
     end subroutine ride
-
-    !> Append an override, element by element (gfortran 12 cuts the values of an array
-    !> constructor of input_override_type to the first one's length).
-    subroutine add_override(set, name, value)
-        type(input_override_type), allocatable, intent(inout) :: set(:)
-        character(len=*), intent(in) :: name, value
-        type(input_override_type), allocatable :: grown(:)
-        integer :: k
-
-        if (.not. allocated(set)) allocate(set(0))
-        allocate(grown(size(set) + 1))
-        do k = 1, size(set)
-            grown(k)%name = set(k)%name
-            grown(k)%value = set(k)%value
-        end do
-        grown(size(grown))%name = name
-        grown(size(grown))%value = value
-        call move_alloc(grown, set)
-    end subroutine add_override
 
     !> The three rates of the lean over the rows from t = first to last [s] (Prony's method),
     !> each expected eigenvalue (re, im) found among them to tolerance.
