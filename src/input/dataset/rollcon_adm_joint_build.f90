@@ -72,16 +72,45 @@ contains
                         & // "joint connects two parts", stat_input)
                     return
                 end if
-                if (adm%parts(pi)%ground) then
+                if (adm%parts(pi)%ground .and. .not. swappable(joint)) then
                     call fatal_error(error, where(adm, joint) // " I: MARKER/" &
-                        & // to_text(joint%i) // " is on the ground part; rollcon needs " &
-                        & // "marker I on a moving part (J may be on the ground): swap I and " &
-                        & // "J, turning the markers to keep the joint's meaning", stat_input)
+                        & // to_text(joint%i) // " is on the ground part; an " // joint%kind &
+                        & // " primitive is not symmetric in I and J (it holds I's origin to " &
+                        & // "J's " // trim(merge("z axis  ", "xy plane", joint%kind == "INLINE")) &
+                        & // "), so rollcon, which serves a primitive from the part of I, needs " &
+                        & // "marker I on a moving part: swap I and J, turning the markers to " &
+                        & // "keep its meaning", stat_input)
                     return
                 end if
             end associate
         end do
     end subroutine check_joints
+
+    !> A joint or primitive whose I marker is on the ground is served with I and J swapped
+    !> (the routines hold the part of I): every JOINT type is symmetric in its markers (its
+    !> INLINE, I's origin on J's z axis, is J's origin on I's z axis once its other primitive
+    !> makes the axes parallel), and so are ATPOINT, PARALLEL_AXES, PERPENDICULAR and
+    !> ORIENTATION; a JPRIM INLINE or INPLANE is not.
+    pure logical function swappable(joint)
+        type(adm_joint_type), intent(in) :: joint
+
+        swappable = .not. (joint%primitive .and. (joint%kind == "INLINE" &
+            & .or. joint%kind == "INPLANE"))
+    end function swappable
+
+    !> The joint as the routines serve it: I and J swapped when I is on the ground.
+    pure function served(adm, joint) result(turned)
+        type(adm_model_type), intent(in) :: adm
+        type(adm_joint_type), intent(in) :: joint
+        type(adm_joint_type) :: turned
+
+        turned = joint
+        if (adm%parts(part_index(adm, adm%markers(marker_index(adm, joint%i))%part))%ground) &
+            & then
+            turned%i = joint%j
+            turned%j = joint%i
+        end if
+    end function served
 
     !> The UCONs of every JOINT and JPRIM, appended to the model (after the dataset's UCONs).
     subroutine add_joint_ucons(adm, model)
@@ -94,48 +123,48 @@ contains
         integer, allocatable :: primitives(:), codes(:), used(:)
         integer :: k, n, c, next_id, part_i, part_j, components, first, v
         logical :: ground
+        type(adm_joint_type) :: joint
 
         if (.not. allocated(adm%joints)) return
         next_id = 0
         if (size(adm%ucons) > 0) next_id = maxval(adm%ucons%id)
         do k = 1, size(adm%joints)
-            associate (joint => adm%joints(k))
-                part_i = adm%markers(marker_index(adm, joint%i))%part
-                part_j = adm%markers(marker_index(adm, joint%j))%part
-                ground = adm%parts(part_index(adm, part_j))%ground
-                call marker_vectors(adm, joint, vectors)
-                primitives = joint_primitives(joint%kind)
-                do n = 1, size(primitives)
-                    call primitive_routine(primitives(n), ground, routine, codes, first, used, &
-                        & components)
-                    values = reshape(vectors(:, used), [3*size(used)])
-                    name = merge("gnd_", "jp_ ", ground)
-                    name = trim(name) // lower_case(trim(primitive_names(primitives(n))))
-                    do c = 1, components
-                        if (ground) then
-                            par = [real(part_i, wp), real(codes, wp), values]
-                        else
-                            par = [real(part_i, wp), real(codes(:first), wp), &
-                                & real(part_j, wp), real(codes(first + 1:), wp), values]
-                        end if
-                        if (components > 1) par = [par, real(c, wp)]
-                        next_id = next_id + 1
-                        call model%add_ucon(next_id, par, routine, time_free=.true., &
-                            & routine=name)
-                        associate (ucon => model%ucons(size(model%ucons)))
-                            ! each vector's PAR index and the part (model order) it is fixed in
-                            ucon%geometry_par = [(size(par) - merge(1, 0, components > 1) &
-                                & - 3*size(used) + 3*(v - 1) + 1, v = 1, size(used))]
-                            ucon%geometry_parts = [(model_part(adm, merge(part_i, part_j, &
-                                & used(v) <= vector_ix)), v = 1, size(used))]
-                            ! J's vectors are in ground when J is on the ground: never turned
-                            ucon%geometry_par = pack(ucon%geometry_par, ucon%geometry_parts > 0)
-                            ucon%geometry_parts = pack(ucon%geometry_parts, &
-                                & ucon%geometry_parts > 0)
-                        end associate
-                    end do
+            joint = served(adm, adm%joints(k))
+            part_i = adm%markers(marker_index(adm, joint%i))%part
+            part_j = adm%markers(marker_index(adm, joint%j))%part
+            ground = adm%parts(part_index(adm, part_j))%ground
+            call marker_vectors(adm, joint, vectors)
+            primitives = joint_primitives(joint%kind)
+            do n = 1, size(primitives)
+                call primitive_routine(primitives(n), ground, routine, codes, first, used, &
+                    & components)
+                values = reshape(vectors(:, used), [3*size(used)])
+                name = merge("gnd_", "jp_ ", ground)
+                name = trim(name) // lower_case(trim(primitive_names(primitives(n))))
+                do c = 1, components
+                    if (ground) then
+                        par = [real(part_i, wp), real(codes, wp), values]
+                    else
+                        par = [real(part_i, wp), real(codes(:first), wp), &
+                            & real(part_j, wp), real(codes(first + 1:), wp), values]
+                    end if
+                    if (components > 1) par = [par, real(c, wp)]
+                    next_id = next_id + 1
+                    call model%add_ucon(next_id, par, routine, time_free=.true., &
+                        & routine=name)
+                    associate (ucon => model%ucons(size(model%ucons)))
+                        ! each vector's PAR index and the part (model order) it is fixed in
+                        ucon%geometry_par = [(size(par) - merge(1, 0, components > 1) &
+                            & - 3*size(used) + 3*(v - 1) + 1, v = 1, size(used))]
+                        ucon%geometry_parts = [(model_part(adm, merge(part_i, part_j, &
+                            & used(v) <= vector_ix)), v = 1, size(used))]
+                        ! J's vectors are in ground when J is on the ground: never turned
+                        ucon%geometry_par = pack(ucon%geometry_par, ucon%geometry_parts > 0)
+                        ucon%geometry_parts = pack(ucon%geometry_parts, &
+                            & ucon%geometry_parts > 0)
+                    end associate
                 end do
-            end associate
+            end do
         end do
     end subroutine add_joint_ucons
 

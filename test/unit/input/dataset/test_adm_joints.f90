@@ -44,6 +44,7 @@ contains
             & new_unittest("double-pendulum-two-parts", test_double_pendulum), &
             & new_unittest("joint-survives-rebasing", test_rebasing), &
             & new_unittest("two-part-joint-survives-rebasing-of-j", test_rebasing_j), &
+            & new_unittest("marker-i-on-ground", test_i_on_ground), &
             & new_unittest("initial-conditions-pull-together", test_apart), &
             & new_unittest("refusals", test_refusals)]
     end subroutine collect_adm_joints
@@ -418,6 +419,55 @@ contains
             & // "twin never re-based: " // to_text(worst) // " m")
     end subroutine test_rebasing_j
 
+    !> data/pendulum.adm with its joint written the other way round, I on the ground and J on
+    !> the bob (JOINT/1, REVOLUTE, I=10, J=21), and with its hinge a JPRIM ATPOINT plus a JPRIM
+    !> PARALLEL_AXES written so: the same motion, the routines serving it from the bob's side
+    !> (a joint is symmetric in its markers).
+    subroutine test_i_on_ground(error)
+        type(error_type), allocatable, intent(out) :: error
+        !> The same equations, up to the order of their terms: round-off, amplified over 4 s
+        !> of a pendulum by its step decisions at rtol 1e-10
+        real(wp), parameter :: tol_same = 1.0e-8_wp
+        character(len=*), parameter :: joints(2) = [character(len=80) :: &
+            & "JOINT/1, REVOLUTE, I=10, J=21", &
+            & "JPRIM/1, ATPOINT, I=10, J=21" // nl // "JPRIM/2, PARALLEL_AXES, I=10, J=21"]
+        type(history_type) :: rows, twin
+        type(job_result_type) :: result, twin_result
+        real(wp) :: worst
+        integer :: k, n, cx, tx
+
+        call run_file("data/pendulum.adm", twin_result, twin, error)
+        if (allocated(error)) return
+        tx = twin_result%summary%layout%column("X_2")
+        do n = 1, size(joints)
+            call run_text("swapped.adm", "pendulum, I on the ground" // nl &
+                & // "PART/1, GROUND" // nl &
+                & // "MARKER/10, PART=1, REULER=180D, 90D, 0D" // nl &
+                & // "PART/2, MASS=1, CM=20, IP=0.01, 0.01, 0.01" // nl &
+                & // ", REULER=90D, 60D, -90D" // nl &
+                & // "MARKER/20, PART=2, QP=0, 0, -0.5, REULER=0, 90D, 0" // nl &
+                & // "MARKER/21, PART=2, REULER=180D, 90D, 0D" // nl &
+                & // trim(joints(n)) // nl &
+                & // "ACCGRAV/KGRAV=-9.81" // nl &
+                & // "SIMULATE/DYNAMIC, END=4, DTOUT=0.001" // nl &
+                & // "INTEGRATOR/ERROR=1e-10" // nl, result, rows, error)
+            if (allocated(error)) return
+            call check_held(result, error)
+            if (allocated(error)) return
+            cx = result%summary%layout%column("X_2")
+            worst = 0.0_wp
+            do k = 1, min(rows%count, twin%count)
+                worst = max(worst, abs(rows%rows(cx, k) - twin%rows(tx, k)), &
+                    & abs(rows%rows(cx + 2, k) - twin%rows(tx + 2, k)))
+            end do
+            call check(error, rows%count == twin%count .and. worst <= tol_same, &
+                & trim(joints(n)) // ": " // to_text(rows%count) // " rows against " &
+                & // to_text(twin%count) // ", largest distance from data/pendulum.adm " &
+                & // to_text(worst) // " m")
+            if (allocated(error)) return
+        end do
+    end subroutine test_i_on_ground
+
     !> The pendulum with its hinge marker J 1 mm above the bob's I: the initial-conditions
     !> analysis moves the part so that the two meet, and the bob is then 0.5 m from the
     !> hinge, where the joint holds it.
@@ -465,8 +515,11 @@ contains
         call refused("JOINT/1, REVOLUTE, I=21, J=20", ":8: JOINT/1: its markers I (MARKER/21) " &
             & // "and J (MARKER/20) are both on PART/2", error)
         if (allocated(error)) return
-        call refused("JOINT/1, REVOLUTE, I=10, J=21", ":8: JOINT/1 I: MARKER/10 is on the " &
-            & // "ground part", error)
+        call refused("JPRIM/1, INLINE, I=10, J=21", ":8: JPRIM/1 I: MARKER/10 is on the " &
+            & // "ground part; an INLINE primitive is not symmetric in I and J", error)
+        if (allocated(error)) return
+        call refused("JPRIM/1, INPLANE, I=10, J=21", ":8: JPRIM/1 I: MARKER/10 is on the " &
+            & // "ground part; an INPLANE primitive is not symmetric in I and J", error)
         if (allocated(error)) return
         call refused("JOINT/1, HINGE, I=21, J=10", ":8: JOINT/1: 'HINGE' is not a JOINT " &
             & // "argument", error)
