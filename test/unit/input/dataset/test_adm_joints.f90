@@ -191,9 +191,8 @@ contains
     !> I's origin from J's, as a displacement request measures it in J's axes, along the
     !> constrained directions) and what it leaves free does (by more than 1e-3). With CVODE
     !> (BDF, projection) at ERROR = 1e-10: IDA fails its first step (IDA_CONV_FAIL at t = 0,
-    !> at 1e-8 too) on the PARALLEL_AXES and ORIENTATION parts, whose multipliers are all zero
-    !> at the start (angles held, the part falling freely), so that IDA's tolerance on them
-    !> falls back to the states' atol (rollcon_ida); docs/datasets.md states this limit.
+    !> at 1e-8 too) on the PARALLEL_AXES and ORIENTATION parts (angles held, the part spinning
+    !> and falling freely), for a cause not found; docs/datasets.md states this limit.
     subroutine test_primitives(error)
         type(error_type), allocatable, intent(out) :: error
         character(len=*), parameter :: cases(11) = [character(len=28) :: &
