@@ -90,8 +90,9 @@ contains
             & "       rollcon check FILE --model MODEL.adm", &
             & "       [mpirun -np N] rollcon sweep STUDY.nml [--output DIR]  (a parameter", &
             & "               study, one CSV row per case, and its map: rollcon sweep --help)", &
-            & "       rollcon linear MODEL.adm [--output DIR]  (eigenvalues on the constraint", &
-            & "               manifold at the start: rollcon linear --help)", &
+            & "       rollcon linear MODEL.adm [--output DIR] [--speeds FROM,TO,COUNT]", &
+            & "               (eigenvalues on the constraint manifold at the start, or", &
+            & "               against speed: rollcon linear --help)", &
             & "       rollcon --help | --version", &
             & "", &
             & "run (the default): simulate a rolling-disk scene, the paper's coin unless SCENE", &
