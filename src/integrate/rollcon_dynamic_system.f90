@@ -25,6 +25,7 @@ module rollcon_dynamic_system
         procedure :: dae_differential
         procedure :: state_blocks
         procedure :: dae_vector_groups
+        procedure :: multiplier_scale
         procedure :: root_count
         procedure :: roots
         procedure :: failure_text
@@ -115,6 +116,16 @@ contains
     !> For each component of a DAE state: 0 when its tolerance is relative to itself, or the
     !> first component of the vector it is a component of, whose largest component its
     !> tolerance is then relative to (IDA's error weights). The default: every component alone.
+    !> A size the loads on the constraints can be compared with, in the multipliers' units
+    !> (IDA's absolute tolerance on the multipliers is at least 1e-5 of it). The default: 0,
+    !> no such size.
+    function multiplier_scale(self) result(scale)
+        class(dynamic_system_type), intent(in) :: self
+        real(wp) :: scale
+
+        scale = 0.0_wp
+    end function multiplier_scale
+
     function dae_vector_groups(self, n) result(groups)
         class(dynamic_system_type), intent(in) :: self
         !> Size of the DAE state

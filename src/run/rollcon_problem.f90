@@ -73,6 +73,7 @@ module rollcon_problem
         procedure :: dae_differential
         procedure :: state_blocks
         procedure :: dae_vector_groups
+        procedure :: multiplier_scale
         procedure :: root_count
         procedure :: roots
         procedure :: root_values
@@ -431,6 +432,17 @@ contains
     !> A part's three Euler-angle rates are held relative to the largest of them: they are the
     !> components of one angular velocity (docs/design.md §7, IDA's error test). Every other
     !> component alone.
+    !> The model's weight, the sum of m |g| [N]: a constraint force's scale, and a constraint
+    !> moment's per metre (rollcon_ida: the floor of the multipliers' absolute tolerance).
+    function multiplier_scale(self) result(scale)
+        class(problem_type), intent(in) :: self
+        real(wp) :: scale
+
+        scale = 0.0_wp
+        if (allocated(self%model%parts)) scale = sum(self%model%parts%mass) &
+            & *norm2(self%model%gravity)
+    end function multiplier_scale
+
     function dae_vector_groups(self, n) result(groups)
         class(problem_type), intent(in) :: self
         integer, intent(in) :: n

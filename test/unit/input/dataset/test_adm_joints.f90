@@ -45,6 +45,7 @@ contains
             & new_unittest("joint-survives-rebasing", test_rebasing), &
             & new_unittest("two-part-joint-survives-rebasing-of-j", test_rebasing_j), &
             & new_unittest("marker-i-on-ground", test_i_on_ground), &
+            & new_unittest("angles-only-on-ida", test_angles_on_ida), &
             & new_unittest("initial-conditions-pull-together", test_apart), &
             & new_unittest("refusals", test_refusals)]
     end subroutine collect_adm_joints
@@ -191,8 +192,8 @@ contains
     !> I's origin from J's, as a displacement request measures it in J's axes, along the
     !> constrained directions) and what it leaves free does (by more than 1e-3). With CVODE
     !> (BDF, projection) at ERROR = 1e-10: IDA fails its first step (IDA_CONV_FAIL at t = 0,
-    !> at 1e-8 too) on the PARALLEL_AXES and ORIENTATION parts (angles held, the part spinning
-    !> and falling freely), for a cause not found; docs/datasets.md states this limit.
+    !> at 1e-8 too) on the PARALLEL_AXES and ORIENTATION parts before their multipliers'
+    !> tolerance got its floor; test_angles_on_ida runs those two on IDA.
     subroutine test_primitives(error)
         type(error_type), allocatable, intent(out) :: error
         character(len=*), parameter :: cases(11) = [character(len=28) :: &
@@ -417,6 +418,50 @@ contains
         call check(error, worst <= tol_twin, "largest distance of the arms' centres from the " &
             & // "twin never re-based: " // to_text(worst) // " m")
     end subroutine test_rebasing_j
+
+    !> A part held only in its angles (JPRIM PARALLEL_AXES, JPRIM ORIENTATION), spinning and
+    !> falling freely, on IDA (the default) at ERROR = 1e-10: its multipliers start at 4e-4
+    !> N m, 2e-5 of its weight, and IDA failed its first step until their absolute tolerance
+    !> got a floor of 1e-5 of the model's weight (rollcon_ida). The run completes with the
+    !> joint held and the energy kept (check_held), and falls as a free body: its centre
+    !> 0.5 g t^2 below its start after 1 s, to 1e-8 m.
+    subroutine test_angles_on_ida(error)
+        type(error_type), allocatable, intent(out) :: error
+        character(len=*), parameter :: kinds(2) = [character(len=13) :: "PARALLEL_AXES", &
+            & "ORIENTATION"]
+        type(history_type) :: rows
+        type(job_result_type) :: result
+        real(wp) :: fall
+        integer :: n, cz
+
+        do n = 1, size(kinds)
+            call run_text("angles.adm", "a part held in its angles, on IDA" // nl &
+                & // "PART/1, GROUND" // nl &
+                & // "MARKER/10, PART=1, QP=0.1, -0.2, 0.3, REULER=30D, 40D, 50D" // nl &
+                & // "PART/2, MASS=2, CM=20, IP=0.02, 0.03, 0.04, QG=0.1, -0.2, 0.3" // nl &
+                & // ", REULER=30D, 40D, 50D, WX=1, WY=-2, WZ=3" // nl &
+                & // "MARKER/20, PART=2, QP=0.05, 0.1, -0.2, REULER=10D, 70D, 20D" // nl &
+                & // "MARKER/21, PART=2, REULER=0, 0, 0" // nl &
+                & // "JPRIM/7, " // trim(kinds(n)) // ", I=21, J=10" // nl &
+                & // "ACCGRAV/KGRAV=-9.81" // nl &
+                & // "SIMULATE/DYNAMIC, END=1, DTOUT=0.01" // nl &
+                & // "INTEGRATOR/ERROR=1e-10" // nl, result, rows, error)
+            if (allocated(error)) then
+                error%message = trim(kinds(n)) // ": " // error%message
+                return
+            end if
+            call check_held(result, error)
+            if (allocated(error)) then
+                error%message = trim(kinds(n)) // ": " // error%message
+                return
+            end if
+            cz = result%summary%layout%column("Z_2")
+            fall = rows%rows(cz, 1) - rows%rows(cz, rows%count)
+            call check(error, fall, 0.5_wp*9.81_wp, trim(kinds(n)) // ": the fall in 1 s [m]", &
+                & abs_tol=1.0e-8_wp)
+            if (allocated(error)) return
+        end do
+    end subroutine test_angles_on_ida
 
     !> data/pendulum.adm with its joint written the other way round, I on the ground and J on
     !> the bob (JOINT/1, REVOLUTE, I=10, J=21), and with its hinge a JPRIM ATPOINT plus a JPRIM
