@@ -19,6 +19,8 @@ contains
     !> Two lines, each ending in a newline:
     !>     rollcon 0.2.0, 2026-11-26 04:45:12 +0000: rollcon run data/coin.nml
     !>     the model's UCOSUB: disk (built in)
+    !> (the second: "none (every UCON names its ROUTINE)" for a model whose every UCON has its
+    !> own routine, and a user's file with its size and hash)
     function provenance_lines(job) result(text)
         type(job_type), intent(in) :: job
         character(len=:), allocatable :: text
@@ -30,6 +32,8 @@ contains
         text = text // new_line("a") // "the model's UCOSUB: "
         if (len(job%user_file) > 0) then
             text = text // job%user_file // " (" // user_file_record(job%user_file) // ")"
+        else if (job%source%own_routines) then
+            text = text // "none (every UCON names its ROUTINE)"
         else
             text = text // job%routine_name // " (built in)"
         end if

@@ -34,6 +34,9 @@ module rollcon_model_source
         !> line (a dataset's principal axes turned from its CM markers'); unallocated or "" for
         !> nothing
         character(len=:), allocatable :: notes
+        !> Every UCON names its own routine (a dataset's ROUTINE=, its joints'): the model's
+        !> UCOSUB serves none, and the summary's record says so
+        logical :: own_routines = .false.
     contains
         procedure(build_interface), deferred :: build
         procedure :: shapes

@@ -49,6 +49,7 @@ contains
         source%settings = adm%run%settings
         source%warning = unused_warning(adm)
         source%notes = principal_axes_text(adm)
+        source%own_routines = all_named(adm)
     end function new_dataset_source
 
     !> The dataset's problem with the source's settings, and its start after the
@@ -107,5 +108,21 @@ contains
             end associate
         end do
     end function principal_axes_text
+
+    !> Every UCON statement names its ROUTINE (the joints' UCONs always do).
+    pure logical function all_named(adm)
+        type(adm_model_type), intent(in) :: adm
+        integer :: k
+
+        all_named = .true.
+        if (.not. allocated(adm%ucons)) return
+        do k = 1, size(adm%ucons)
+            if (.not. allocated(adm%ucons(k)%routine)) then
+                all_named = .false.
+            else if (len_trim(adm%ucons(k)%routine) == 0) then
+                all_named = .false.
+            end if
+        end do
+    end function all_named
 
 end module rollcon_dataset_source

@@ -128,7 +128,8 @@ contains
             & // expected // "' in: " // first_lines(summary))
     end subroutine test_user_file
 
-    !> data/disk_height.adm names its routines (ROUTINE=): the summary says which served each.
+    !> data/disk_height.adm names its routines (ROUTINE=): the summary says which served each,
+    !> and that the model's UCOSUB served none.
     subroutine test_each_ucon(error)
         type(error_type), allocatable, intent(out) :: error
         character(len=:), allocatable :: summary
@@ -137,8 +138,10 @@ contains
         if (allocated(error)) return
         summary = file_text(scratch // "/each/disk_height.adm.summary.txt")
         call check(error, index(summary, "routines: UCON 1: rolling_disk, UCON 2: " &
-            & // "rolling_disk, UCON 3: disk_height" // new_line("a")) > 0, &
-            & "no line naming the routines in: " // summary)
+            & // "rolling_disk, UCON 3: disk_height" // new_line("a")) > 0 .and. &
+            & index(summary, "the model's UCOSUB: none (every UCON names its ROUTINE)" &
+            & // new_line("a")) > 0, "no line naming the routines, or the model's UCOSUB " &
+            & // "named though it serves no UCON, in: " // summary)
     end subroutine test_each_ucon
 
     !> Run rollcon with arguments; it must exit 0 with nothing on stderr.
