@@ -13,14 +13,12 @@ module rollcon_adm_build
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type, fatal_error, stat_input, stat_ucon
     use rollcon_text, only : to_text
-    use rollcon_rotation, only : rotation_matrix
     use rollcon_ucosub_contract, only : ucosub_interface
     use rollcon_ucosub_units, only : ucosub_units_type
     use rollcon_ucosub_catalog, only : find_builtin_ucosub, builtin_ucosub_names, &
         & builtin_ucosubs_for_par
     use rollcon_expression, only : quantity_names
     use rollcon_body, only : part_type
-    use rollcon_marker, only : marker_type
     use rollcon_marker_force, only : kind_translation, kind_rotation, kind_vector, &
         & kind_general, marker_force_values, markers_coincide
     use rollcon_force, only : applied_force_type, profile_statement
@@ -33,6 +31,7 @@ module rollcon_adm_build
     use rollcon_adm_state, only : part_state
     use rollcon_adm_singular, only : start_singular_parts
     use rollcon_adm_joint_build, only : add_joint_ucons
+    use rollcon_adm_markers, only : adm_marker, marker_index
     use, intrinsic :: ieee_arithmetic, only : ieee_is_finite
     implicit none
     private
@@ -343,57 +342,5 @@ contains
         end associate
         call model%add_force(force)
     end subroutine add_force_statement
-
-    !> Marker `id` of the dataset as the model holds it: its part's index among the non-ground
-    !> parts (0: ground), its origin and axes in that part's principal axes (ground: in ground).
-    function adm_marker(adm, id) result(marker)
-        type(adm_model_type), intent(in) :: adm
-        !> Marker id (it exists: the reader checked the references)
-        integer, intent(in) :: id
-        type(marker_type) :: marker
-        real(wp) :: r_part(3, 3), r_cm(3, 3), r_marker(3, 3)
-        integer :: m, p, c, i
-
-        m = marker_index(adm, id)
-        p = findloc(adm%parts%id, adm%markers(m)%part, dim=1)
-        marker%id = id
-        associate (point => adm%markers(m)%qp, angles => adm%markers(m)%reuler, &
-            & part => adm%parts(p))
-            r_marker = rotation_matrix(angles(1), angles(2), angles(3))
-            if (part%ground) then
-                r_part = rotation_matrix(part%reuler(1), part%reuler(2), part%reuler(3))
-                marker%point = part%qg + matmul(r_part, point)
-                marker%axes = matmul(r_part, r_marker)
-                return
-            end if
-            marker%part = count(.not. adm%parts(:p)%ground)
-            c = marker_index(adm, part%cm)
-            ! principal axes = the CM marker's turned onto those of IP's tensor (R_cm P, P the
-            ! identity without products): coordinates in them are (R_cm P)^T times the part's
-            r_cm = matmul(rotation_matrix(adm%markers(c)%reuler(1), adm%markers(c)%reuler(2), &
-                & adm%markers(c)%reuler(3)), part%principal)
-            marker%point = matmul(transpose(r_cm), point - adm%markers(c)%qp)
-            marker%axes = matmul(transpose(r_cm), r_marker)
-            marker%principal = c == m .and. all(part%products == 0.0_wp)
-            if (marker%principal) then
-                marker%axes = 0.0_wp
-                do i = 1, 3
-                    marker%axes(i, i) = 1.0_wp
-                end do
-            end if
-        end associate
-    end function adm_marker
-
-    !> Position of marker `id` in the dataset's list (0: none).
-    pure integer function marker_index(adm, id)
-        type(adm_model_type), intent(in) :: adm
-        integer, intent(in) :: id
-        integer :: k
-
-        marker_index = 0
-        do k = 1, size(adm%markers)
-            if (adm%markers(k)%id == id) marker_index = k
-        end do
-    end function marker_index
 
 end module rollcon_adm_build

@@ -14,7 +14,8 @@ module rollcon_adm_joint_build
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type, fatal_error, stat_input
     use rollcon_text, only : to_text, lower_case
-    use rollcon_rotation, only : rotation_matrix
+    use rollcon_marker, only : marker_type
+    use rollcon_adm_markers, only : adm_marker, marker_index
     use rollcon_ucosub_contract, only : ucosub_interface
     use rollcon_model, only : model_type
     use rollcon_adm_keywords, only : place
@@ -239,54 +240,24 @@ contains
     end function model_part
 
     !> The seven vectors of a joint (vector_* order): I's origin [dataset length] and axes in
-    !> its part's principal axes (the CM marker's axes), J's origin [dataset length] and axes in
-    !> ground.
+    !> its part's principal axes, J's origin [dataset length] and axes in ground (adm_marker:
+    !> the same pose every statement naming a marker takes).
     subroutine marker_vectors(adm, joint, vectors)
         type(adm_model_type), intent(in) :: adm
         type(adm_joint_type), intent(in) :: joint
         real(wp), intent(out) :: vectors(3, 7)
-        real(wp) :: point(3), axes(3, 3)
+        type(marker_type) :: marker
 
-        call marker_pose(adm, joint%i, point, axes)
-        vectors(:, vector_ip) = point/adm%units%length
-        vectors(:, vector_iz) = axes(:, 3)
-        vectors(:, vector_ix) = axes(:, 1)
-        call marker_pose(adm, joint%j, point, axes)
-        vectors(:, vector_jp) = point/adm%units%length
-        vectors(:, vector_jx) = axes(:, 1)
-        vectors(:, vector_jy) = axes(:, 2)
-        vectors(:, vector_jz) = axes(:, 3)
+        marker = adm_marker(adm, joint%i)
+        vectors(:, vector_ip) = marker%point/adm%units%length
+        vectors(:, vector_iz) = marker%axes(:, 3)
+        vectors(:, vector_ix) = marker%axes(:, 1)
+        marker = adm_marker(adm, joint%j)
+        vectors(:, vector_jp) = marker%point/adm%units%length
+        vectors(:, vector_jx) = marker%axes(:, 1)
+        vectors(:, vector_jy) = marker%axes(:, 2)
+        vectors(:, vector_jz) = marker%axes(:, 3)
     end subroutine marker_vectors
-
-    !> Origin [m] and axes (columns) of marker id: in its part's principal axes (its CM marker's
-    !> axes turned onto those of an IP with products, origin at the CM), or in ground for a
-    !> marker on the ground part.
-    subroutine marker_pose(adm, id, point, axes)
-        type(adm_model_type), intent(in) :: adm
-        integer, intent(in) :: id
-        real(wp), intent(out) :: point(3), axes(3, 3)
-        real(wp) :: r_part(3, 3), r_cm(3, 3)
-        integer :: m, p, c
-
-        m = marker_index(adm, id)
-        p = part_index(adm, adm%markers(m)%part)
-        associate (marker => adm%markers(m), part => adm%parts(p))
-            axes = rotation_matrix(marker%reuler(1), marker%reuler(2), marker%reuler(3))
-            if (part%ground) then
-                r_part = rotation_matrix(part%reuler(1), part%reuler(2), part%reuler(3))
-                point = part%qg + matmul(r_part, marker%qp)
-                axes = matmul(r_part, axes)
-                return
-            end if
-            c = marker_index(adm, part%cm)
-            ! the principal axes: the CM marker's turned onto those of IP's tensor (R_cm P, P
-            ! the identity without products of inertia)
-            r_cm = matmul(rotation_matrix(adm%markers(c)%reuler(1), adm%markers(c)%reuler(2), &
-                & adm%markers(c)%reuler(3)), part%principal)
-            point = matmul(transpose(r_cm), marker%qp - adm%markers(c)%qp)
-            axes = matmul(transpose(r_cm), axes)
-        end associate
-    end subroutine marker_pose
 
     !> "file:line: JOINT/id" or "file:line: JPRIM/id"
     function where(adm, joint) result(text)
@@ -297,13 +268,6 @@ contains
         text = place(adm%file, joint%line) // ": " // trim(merge("JPRIM", "JOINT", &
             & joint%primitive)) // "/" // to_text(joint%id)
     end function where
-
-    pure integer function marker_index(adm, id)
-        type(adm_model_type), intent(in) :: adm
-        integer, intent(in) :: id
-
-        marker_index = findloc(adm%markers%id, id, dim=1)
-    end function marker_index
 
     pure integer function part_index(adm, id)
         type(adm_model_type), intent(in) :: adm
