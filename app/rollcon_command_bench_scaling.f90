@@ -65,8 +65,9 @@ contains
             & "Cost as models grow. N independent rolling disks (the tipping coin's start,", &
             & "each its own part with its three rolling UCONs, 0.5 m apart), N = 1, 2, 4,", &
             & "..., 64, each a dataset run to T [s] (default 2) on IDA, CVODE Adams with", &
-            & "Baumgarte terms and CVODE Adams in independent speeds (rtol 1e-8, atol", &
-            & "1e-10): the CPU time of the integration per step and per part [us] and its", &
+            & "Baumgarte terms and CVODE Adams in independent speeds, the two CVODE ones", &
+            & "also with the sparse Newton matrix (KLU) (rtol 1e-8, atol 1e-10): the CPU", &
+            & "time of the integration per step and per part [us] and its", &
             & "ratio to N = 1's. Writes the datasets and DIR/scaling.csv (default", &
             & "output/bench_scaling). A benchmark: run it on a quiet machine."
     end subroutine print_help
