@@ -66,6 +66,9 @@ module rollcon_input_files
         integer :: next = 1, filled = 0
         !> The system said end of file
         logical :: at_end = .false.
+        !> The last line handed out ended the file without a line end (a file cut while it was
+        !> being written, or one whose last line has no end)
+        logical :: unterminated = .false.
     contains
         procedure :: open => input_open
         procedure :: next_line => input_next_line
@@ -269,6 +272,7 @@ contains
                 else
                     line = self%buffer(self%next:self%filled)
                     self%next = self%filled + 1
+                    self%unterminated = .true.
                 end if
                 return
             end if

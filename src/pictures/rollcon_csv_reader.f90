@@ -70,6 +70,12 @@ contains
             line_number = line_number + 1
             if (len_trim(line) == 0) cycle
             call parse_row(path, line_number, line, row, error)
+            ! a last line without its end that does not read is the torn tail of a run killed
+            ! while it wrote (docs/outputs.md): the rows before it are the run's, whole
+            if (allocated(error) .and. file%unterminated) then
+                deallocate(error)
+                exit
+            end if
             if (allocated(error)) exit
             if (history%count > 0) then
                 if (row(1) < history%rows(1, history%count)) then

@@ -196,7 +196,9 @@ contains
         character(len=*), parameter :: folder = scratch // "/killed"
         real(wp), allocatable :: row(:)
         real(wp) :: last_time
-        integer :: status, start, finish, columns, rows, stat, k
+        integer :: status, start, finish, columns, rows, stat, k, torn
+        type(output_layout_type) :: layout
+        type(history_type) :: history
 
         call rollcon_program(program, error)
         if (allocated(error)) return
@@ -220,13 +222,25 @@ contains
         finish = index(text, new_line("a"))
         call check(error, finish > 0 .and. index(text, "t,X_1,Y_1,Z_1,") == 1, &
             & "header cut or missing: " // text(:min(len(text), 200)))
-        if (.not. allocated(error)) call check(error, text(len(text):) == new_line("a"), &
-            & "the file ends inside a line: ..." // text(max(1, len(text) - 200):))
         if (allocated(error)) then
             call remove_folder(scratch)
             return
         end if
         header = text(:finish - 1)
+        ! a kill inside the kernel's copy of a write (page by page) leaves the last line without
+        ! its end (docs/outputs.md): that tail must be shorter than a row, and rollcon's reader
+        ! must drop it and give every whole row
+        torn = 0
+        if (text(len(text):) /= new_line("a")) then
+            torn = len(text) - index(text, new_line("a"), back=.true.)
+            text = text(:len(text) - torn)
+        end if
+        call check(error, torn < len(header), "a last line longer than the header without " &
+            & // "its end: " // to_text(torn) // " characters")
+        if (allocated(error)) then
+            call remove_folder(scratch)
+            return
+        end if
         columns = count([(header(k:k) == ",", k = 1, len(header))]) + 1
         allocate(row(columns))
         rows = 0
@@ -253,6 +267,11 @@ contains
         end do
         if (.not. allocated(error)) call check(error, rows >= 1, "no row written in three " &
             & // "seconds before the kill")
+        ! rollcon's reader (plot, animate) reads the killed run's file: every whole row
+        if (.not. allocated(error)) call read_output_csv(partial, layout, history, error)
+        if (.not. allocated(error)) call check(error, history%count == rows, "the reader " &
+            & // "gives " // to_text(history%count) // " rows of the " // to_text(rows) &
+            & // " whole ones (a torn last line of " // to_text(torn) // " characters)")
         call remove_folder(scratch)
     end subroutine test_killed
 
