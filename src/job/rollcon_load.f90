@@ -138,15 +138,28 @@ contains
     end subroutine load_dataset
 
     !> --ucosub NAME: a file when one exists (compiled and run apart), else a built-in
-    !> routine's name; "" keeps the hand-checked disk.
+    !> routine's name; "" keeps the hand-checked disk. A model whose every UCON names its own
+    !> ROUTINE has no use for it: it is then neither compiled nor named in the run's record,
+    !> and the input's warning says so (a file that serves nothing must not look as if it did).
     subroutine choose_ucosub(name, job, error)
         character(len=*), intent(in) :: name
         type(job_type), intent(inout) :: job
         type(error_type), allocatable, intent(out) :: error
         procedure(ucosub_interface), pointer :: builtin
         logical :: exists, time_free, found
+        character(len=:), allocatable :: unused
 
         if (len_trim(name) == 0) return
+        if (job%source%own_routines) then
+            unused = "--ucosub " // trim(name) // " is not used: every UCON of the model " &
+                & // "names its ROUTINE"
+            if (len(job%source%input_warning()) > 0) then
+                job%source%warning = job%source%input_warning() // "; " // unused
+            else
+                job%source%warning = unused
+            end if
+            return
+        end if
         inquire(file=name, exist=exists)
         if (exists) then
             job%user_file = name

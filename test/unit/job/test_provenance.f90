@@ -31,7 +31,8 @@ contains
             & new_unittest("fnv1a-64-in-pieces", test_pieces), &
             & new_unittest("summary-names-built-in", test_built_in), &
             & new_unittest("summary-names-user-file", test_user_file), &
-            & new_unittest("summary-names-each-ucon-routine", test_each_ucon)]
+            & new_unittest("summary-names-each-ucon-routine", test_each_ucon), &
+            & new_unittest("unused-ucosub-file-is-said", test_unused_file)]
     end subroutine collect_provenance
 
     !> user_file_record of files holding "", "a" and "foobar": their sizes and the FNV-1a 64 values
@@ -143,6 +144,38 @@ contains
             & // new_line("a")) > 0, "no line naming the routines, or the model's UCOSUB " &
             & // "named though it serves no UCON, in: " // summary)
     end subroutine test_each_ucon
+
+    !> `run data/disk_height.adm --ucosub FILE` where every UCON names its ROUTINE: the file
+    !> serves nothing, so it is not compiled (a file that does not compile passes), the run
+    !> completes, standard error and the summary say the file is not used, and the record names
+    !> no model UCOSUB.
+    subroutine test_unused_file(error)
+        type(error_type), allocatable, intent(out) :: error
+        character(len=:), allocatable :: program, summary, stderr_text, broken
+        character(len=*), parameter :: said = "is not used: every UCON of the model names " &
+            & // "its ROUTINE"
+        integer :: status, unit
+
+        call rollcon_program(program, error)
+        if (allocated(error)) return
+        call execute_command_line("rm -rf " // scratch // "/unused && mkdir -p " // scratch)
+        broken = scratch // "/broken_ucosub.f90"
+        open(newunit=unit, file=broken, status="replace", action="write")
+        write(unit, '(a)') "this is not Fortran"
+        close(unit)
+        call run_rollcon(program, "run data/disk_height.adm --ucosub " // broken // " -q -o " &
+            & // scratch // "/unused", scratch // "/unused.out", scratch // "/unused.err", status)
+        stderr_text = file_text(scratch // "/unused.err")
+        call check(error, status == 0, "exited " // to_text(status) // ": " // stderr_text)
+        if (allocated(error)) return
+        call check(error, index(stderr_text, "warning: --ucosub " // broken // " " // said) > 0, &
+            & "standard error does not say the file is unused: " // stderr_text)
+        if (allocated(error)) return
+        summary = file_text(scratch // "/unused/disk_height.adm.summary.txt")
+        call check(error, index(summary, said) > 0 .and. index(summary, "the model's UCOSUB: " &
+            & // "none (every UCON names its ROUTINE)" // new_line("a")) > 0, "the summary " &
+            & // "names the unused file or does not say it is unused: " // first_lines(summary))
+    end subroutine test_unused_file
 
     !> Run rollcon with arguments; it must exit 0 with nothing on stderr.
     subroutine run_into(arguments, label, error)
