@@ -87,8 +87,9 @@ static int put_exact(double x, char *out)
     }
     m |= UINT64_C(1) << 52;
     e = biased - 1075; /* x = m 2^e */
-    /* floor(log10 2^(e+52)) (78913 / 2^18 is log10 2 to 6e-7): |x| lies in [2^(e+52), 2^(e+53)),
-     * so floor(log10 |x|) is this or one more */
+    /* floor(log10 2^(e+52)) (78913 / 2^18 is log10 2 to 8e-7; exact for every e whose k is
+     * 0 to 32, checked in rational arithmetic): |x| lies in [2^(e+52), 2^(e+53)), so
+     * floor(log10 |x|) is this or one more */
     exponent = ((e + 52) * 78913) >> 18;
     for (;;) {
         k = 16 - exponent;
