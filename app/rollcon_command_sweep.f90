@@ -1,6 +1,7 @@
 ! SPDX-License-Identifier: MIT
 !> `rollcon sweep STUDY.nml [--output DIR] [--quiet]`: run a parameter study (docs/studies.md)
-!> on one process or under mpirun, writing DIR/STUDY.csv as cases end, then its map.
+!> on one process or under mpirun, writing DIR/STUDY.csv as cases end, then its map. Part of
+!> the program rollcon-sweep (app/rollcon_sweep_main.f90), the one that links Open MPI.
 module rollcon_command_sweep
     use, intrinsic :: iso_fortran_env, only : output_unit, error_unit
     use mpi_f08, only : MPI_Init, MPI_Finalize, MPI_Bcast, MPI_INTEGER, MPI_COMM_WORLD
@@ -10,6 +11,7 @@ module rollcon_command_sweep
     use rollcon_cli, only : cli_request_type
     use rollcon_app_files, only : make_folder
     use rollcon_sweep_mpi, only : sweep_ranks, rank_of_world, size_of_world
+    use rollcon_sweep_help, only : print_sweep_help
     implicit none
     private
 
@@ -164,35 +166,5 @@ contains
             & // to_text(plan%foreign) // " rows that are not cases of " // study%path &
             & // " (the study changed); they are kept"
     end subroutine close_study
-
-    subroutine print_sweep_help()
-        write(output_unit, "(a)") &
-            & "usage: rollcon sweep STUDY.nml [--output DIR] [--quiet] [--no-map]", &
-            & "       mpirun --oversubscribe -np N rollcon sweep STUDY.nml [...]", &
-            & "", &
-            & "Run a parameter study (docs/studies.md): the study file names a base scene (or", &
-            & "an ADAMS dataset, .adm), the keys to vary (&grid 'from to count', or &random", &
-            & "'from to' samples; group%key of a scene, statement%id%keyword of a dataset), the", &
-            & "rules that class each case (&classify) and the map's axes (&map). Every case", &
-            & "is the ordinary simulation of its scene.", &
-            & "", &
-            & "Writes DIR/STUDY.csv (DIR defaults to ./output): one row per case, written and", &
-            & "flushed as the case ends, with its parameters, outcome (completed, theta_limit,", &
-            & "liftoff, inaccurate, failed, refused), class, SUNDIALS' flag when it failed, and", &
-            & "measures: t_reached [s], theta_min, theta_max, tilt_max [rad], mu_max [-],", &
-            & "fn_min [N], t_fn_negative [s], energy_drift [-], residual_max, steps, cpu_s [s].", &
-            & "A case that fails is recorded; it never stops the study. Run the same command", &
-            & "again to resume: cases already in the CSV (same parameters) are skipped.", &
-            & "Then draws the map, DIR/STUDY.png (and its gnuplot script DIR/STUDY.gp): every", &
-            & "case at its two parameters (&map x and y), coloured by class (--no-map: none).", &
-            & "", &
-            & "Under mpirun, rank 0 hands out the cases and writes the rows, the other ranks run", &
-            & "cases; rank 0 sleeps between messages, so start one rank more than cores", &
-            & "(--oversubscribe). The rows do not depend on the number of ranks, except cpu_s.", &
-            & "As root, mpirun needs OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1", &
-            & "(.ci/env sets them).", &
-            & "", &
-            & "Exit status: 0 when every case is in the CSV, 1 on bad input or a failure."
-    end subroutine print_sweep_help
 
 end module rollcon_command_sweep

@@ -13,7 +13,8 @@ program rollcon_main
     use rollcon_command_bench, only : bench_command
     use rollcon_command_bench_sweep, only : bench_sweep_command
     use rollcon_command_bench_scaling, only : bench_scaling_command
-    use rollcon_command_sweep, only : sweep_command
+    use rollcon_sweep_program, only : run_sweep_program
+    use rollcon_sweep_help, only : print_sweep_help
     use rollcon_command_linear, only : linear_command, print_linear_help
     use rollcon, only : version_text
     implicit none
@@ -62,7 +63,12 @@ program rollcon_main
     case ("bench scaling")
         call bench_scaling_command(request, error)
     case ("sweep")
-        call sweep_command(request, status, error)
+        ! the study program, which alone loads Open MPI: rollcon-sweep, beside this one
+        if (request%has("--help")) then
+            call print_sweep_help()
+        else
+            call run_sweep_program(error)
+        end if
     case ("linear")
         if (request%has("--help")) then
             call print_linear_help()

@@ -1,10 +1,10 @@
 ! SPDX-License-Identifier: MIT
 !> Unit costs of the parts of a full-model step, measured in the running process: one ODE
 !> right-hand side, one DAE residual, one event-function evaluation, one output row (as the
-!> benchmark's runs keep it in memory) and, apart, its CSV line (what `rollcon run` adds; and,
-!> for comparison, the same line by Fortran's formatted write, which the C library replaced). The
-!> benchmark multiplies them by a run's counts; what is left of the run's CPU time is SUNDIALS'
-!> own work (with the Jacobians and linear solves).
+!> benchmark's runs keep it in memory) and, apart, its CSV line (what `rollcon run` adds; and, for
+!> comparison, the same line by Fortran's formatted write, which rollcon_row_text.c replaced). The
+!> benchmark multiplies them by a run's counts; what is left of the run's CPU time is SUNDIALS' own
+!> work (with the Jacobians and linear solves).
 module rollcon_bench_costs
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type

@@ -1,10 +1,11 @@
 ! SPDX-License-Identifier: MIT
-!> A CSV file written cheaply: each row is made text by the C library (rollcon_row_text.c, the
-!> characters of Fortran's es24.16e3 at a fraction of its cost), whole rows are kept in a
-!> buffer and handed to the system in one write when it fills, at least every flush_seconds of
-!> wall time, on close and on failure, so a run that fails or is killed leaves a valid prefix
-!> and a crash loses at most about a second of rows. Every write and the close are checked: a
-!> full disk is an error naming the file.
+!> A CSV file written cheaply: each row is made text in C (rollcon_row_text.c: the characters of
+!> Fortran's es24.16e3, in exact integer arithmetic for the usual magnitudes and by the C library's
+!> conversion for the others, at a fraction of Fortran's cost), whole rows are kept in a buffer and
+!> handed to the system in one write when it fills, at least every flush_seconds of wall time, on
+!> close and on failure, so a run that fails or is killed leaves a valid prefix and a crash loses
+!> at most about a second of rows. Every write and the close are checked: a full disk is an error
+!> naming the file.
 module rollcon_csv_writer
     use, intrinsic :: iso_fortran_env, only : int64
     use, intrinsic :: iso_c_binding, only : c_int, c_double, c_char

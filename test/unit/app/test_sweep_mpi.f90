@@ -3,7 +3,9 @@
 !> --oversubscribe, and as root the two OMPI_ALLOW_RUN_AS_ROOT variables): the rows do not
 !> depend on the number of ranks; failing cases are rows and the study completes; a study
 !> whose worker rank is killed (SIGKILL) keeps the rows written and a rerun completes it; a
-!> bad study file is refused with file, line and key and exit status 1.
+!> bad study file is refused with file, line and key and exit status 1. rollcon itself loads
+!> no MPI library: `rollcon sweep` replaces it by the program rollcon-sweep beside it (under
+!> mpirun on every rank), and says so, with exit status 1, when that program is missing.
 module test_sweep_mpi
     use rollcon_error, only : error_type
     use rollcon_text, only : to_text
@@ -31,7 +33,9 @@ contains
 
         tests = [new_unittest("ranks-give-the-same-rows", test_ranks), &
             & new_unittest("resume-after-kill", test_kill), &
-            & new_unittest("bad-study-refused", test_bad_study)]
+            & new_unittest("bad-study-refused", test_bad_study), &
+            & new_unittest("rollcon-loads-no-mpi", test_no_mpi), &
+            & new_unittest("sweep-program-missing", test_program_missing)]
     end subroutine collect_sweep_mpi
 
     !> Twelve cases, six of which fail (max_steps 1), on one process, on 2 ranks (a
@@ -75,6 +79,11 @@ contains
             end if
             if (allocated(error)) return
         end do
+        ! rollcon replaced itself by rollcon-sweep on every rank: MPI_Init there saw the job
+        call check(error, index(file_text(scratch // "/r2.out"), "2 ranks: a coordinator and 1 " &
+            & // "workers") > 0, "2 ranks: not said in the output: " // file_text(scratch &
+            & // "/r2.out"))
+        if (allocated(error)) return
         call check(error, index(file_text(scratch // "/r3.out"), "a coordinator and 2 workers") &
             & > 0, "3 ranks: not said in the output")
     end subroutine test_ranks
@@ -157,6 +166,73 @@ contains
         call check(error, .not. file_exists(scratch // "/bad/test_sweep_bad.csv"), &
             & "a CSV was written")
     end subroutine test_bad_study
+
+    !> The shared objects rollcon loads (ldd) hold no MPI library, those of rollcon-sweep beside
+    !> it do: MPI is linked into the study program alone (fpm.toml).
+    subroutine test_no_mpi(error)
+        type(error_type), allocatable, intent(out) :: error
+        character(len=:), allocatable :: program, objects
+        integer :: status
+
+        call rollcon_program(program, error)
+        if (allocated(error)) return
+        call make_folder(scratch)
+        call run_rollcon("ldd", program, scratch // "/ldd.out", scratch // "/ldd.err", status)
+        objects = file_text(scratch // "/ldd.out")
+        call check(error, status == 0 .and. index(objects, "libgfortran") > 0, "ldd " &
+            & // program // ": exit status " // to_text(status) // ": " // objects)
+        if (allocated(error)) return
+        call check(error, index(objects, "libmpi") == 0 .and. index(objects, "libopen-pal") &
+            & == 0, "rollcon loads MPI's libraries: " // objects)
+        if (allocated(error)) return
+        call run_rollcon("ldd", program // "-sweep", scratch // "/ldd-sweep.out", scratch &
+            & // "/ldd-sweep.err", status)
+        call check(error, status == 0 .and. index(file_text(scratch // "/ldd-sweep.out"), &
+            & "libmpi_usempif08") > 0, "rollcon-sweep does not load libmpi_usempif08: " &
+            & // file_text(scratch // "/ldd-sweep.out") // file_text(scratch // "/ldd-sweep.err"))
+    end subroutine test_no_mpi
+
+    !> rollcon copied alone into a folder: `rollcon sweep` says which program is missing
+    !> where, and how to get it, with exit status 1 and no CSV; `rollcon sweep --help` still
+    !> prints the help (rollcon's own).
+    subroutine test_program_missing(error)
+        type(error_type), allocatable, intent(out) :: error
+        character(len=:), allocatable :: program, study, folder, messages
+        integer :: status
+
+        call rollcon_program(program, error)
+        if (allocated(error)) return
+        folder = scratch // "/alone"
+        call remove_folder(folder)
+        call make_folder(folder)
+        call execute_command_line("cp " // program // " " // folder // "/rollcon", &
+            & exitstat=status)
+        call check(error, status == 0, "cannot copy " // program)
+        if (allocated(error)) return
+        call write_study("test_sweep_alone", [character(len=60) :: "&study", &
+            & "    scene = 'data/upright.nml' /", "&grid", "    disk%thickness = '0.01 0.1 2' /"], &
+            & study)
+        call run_rollcon(folder // "/rollcon", "sweep " // study // " --no-map -o " // folder &
+            & // "/out", folder // ".out", folder // ".err", status)
+        messages = file_text(folder // ".err")
+        call check(error, status == 1, "exit status " // to_text(status) // ", not 1: " &
+            & // messages)
+        if (allocated(error)) return
+        call check(error, index(messages, "rollcon: error: rollcon sweep runs the program " &
+            & // "rollcon-sweep, which is not beside rollcon (") > 0 .and. index(messages, &
+            & "/alone/rollcon-sweep is missing): build both with fpm build, or install both " &
+            & // "with fpm install") > 0, "message: " // messages)
+        if (allocated(error)) return
+        call check(error, .not. file_exists(folder // "/out/test_sweep_alone.csv"), &
+            & "a CSV was written")
+        if (allocated(error)) return
+        call run_rollcon(folder // "/rollcon", "sweep --help", folder // "-help.out", folder &
+            & // "-help.err", status)
+        call check(error, status == 0 .and. index(file_text(folder // "-help.out"), &
+            & "usage: rollcon sweep STUDY.nml") == 1, "rollcon sweep --help without " &
+            & // "rollcon-sweep: exit status " // to_text(status) // ": " // file_text(folder &
+            & // "-help.out") // file_text(folder // "-help.err"))
+    end subroutine test_program_missing
 
     !> The rollcon program, and mpirun on the PATH (else the test is skipped).
     subroutine mpi_program(program, error)

@@ -44,6 +44,7 @@ contains
             & new_unittest("csv-buffered-then-whole", test_buffered), &
             & new_unittest("csv-extremes-read-back", test_extremes_read_back), &
             & new_unittest("csv-row-text-is-fortran-format", test_row_text), &
+            & new_unittest("csv-row-text-exact-range", test_row_text_exact_range), &
             & new_unittest("huge-output-refused", test_huge_output), &
             & new_unittest("output-limit-is-the-option", test_output_limit), &
             & new_unittest("failed-figures-leave-nothing", test_failed_figures), &
@@ -131,6 +132,60 @@ contains
             end if
         end do
     end subroutine test_row_text
+
+    !> The numbers the row text converts in integers (1e-16 <= |x| < 1e17, and zeros) and
+    !> those just outside, which go to the C library, have the characters of Fortran's
+    !> es24.16e3: every power of ten of the range and its neighbours, exact ties of the 17th
+    !> digit (an 18-digit value ending in 5: to even, both ways), the largest double below
+    !> 1e17, and 12000 rows of 40 doubles whose 52 significand
+    !> bits are random and whose binary exponents span 2^-60 to 2^64. Exact comparison.
+    subroutine test_row_text_exact_range(error)
+        type(error_type), allocatable, intent(out) :: error
+        real(wp), allocatable :: edges(:)
+        real(wp) :: values(40), draw(4), power
+        character(len=25*40) :: line
+        character(len=:), allocatable :: expected
+        integer(int64) :: bits
+        integer :: i, j, length
+
+        edges = [real(wp) ::]
+        do i = -18, 18
+            power = 10.0_wp**i
+            edges = [edges, power, nearest(power, -1.0_wp), nearest(power, 1.0_wp), -power]
+        end do
+        ! ties: 999999999999999/8 = 124999999999999.875 to ...88 (odd 7 up), and
+        ! 999999999999997/8 = 124999999999999.625 to ...62 (even 2 stays); 2^-1 .. 2^-3
+        edges = [edges, 999999999999999.0_wp/8.0_wp, 999999999999997.0_wp/8.0_wp, &
+            & -999999999999999.0_wp/8.0_wp, 0.5_wp, 0.25_wp, 0.125_wp, 1.0e16_wp - 2.0_wp, &
+            & 99999999999999984.0_wp, 9.9999999999999998e-17_wp, 0.0_wp, -0.0_wp]
+        do i = 1, size(edges), size(values)
+            associate (part => edges(i:min(i + size(values) - 1, size(edges))))
+                call row_text(part, line, length)
+                expected = fortran_row_text(part)
+                call check(error, line(:length) == expected, "edges: '" // line(:length) &
+                    & // "' against '" // expected // "'")
+                if (allocated(error)) return
+            end associate
+        end do
+        call random_seed()
+        do i = 1, 12000
+            do j = 1, size(values)
+                call random_number(draw)
+                ! 52 random significand bits, a binary exponent from -60 to 64, a sign
+                bits = ior(int(draw(1)*2.0_wp**26, int64), shiftl(int(draw(2)*2.0_wp**26, &
+                    & int64), 26))
+                bits = ior(bits, shiftl(int(1023 - 60 + int(125.0_wp*draw(3)), int64), 52))
+                values(j) = sign(transfer(bits, 1.0_wp), draw(4) - 0.5_wp)
+            end do
+            call row_text(values, line, length)
+            expected = fortran_row_text(values)
+            if (line(:length) /= expected) then
+                call check(error, .false., "row " // to_text(i) // ": '" // line(:length) &
+                    & // "' against '" // expected // "'")
+                return
+            end if
+        end do
+    end subroutine test_row_text_exact_range
 
     !> Three-digit exponents, -0 and the extremes of the range read back exactly.
     subroutine test_extremes_read_back(error)
