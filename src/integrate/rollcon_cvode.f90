@@ -17,7 +17,8 @@ module rollcon_cvode
     use fsundials_nvector_mod, only : N_Vector, FN_VDestroy, FN_VGetArrayPointer
     use fsundials_matrix_mod, only : SUNMatrix, FSUNMatDestroy
     use fsundials_linearsolver_mod, only : SUNLinearSolver, FSUNLinSolFree
-    use fnvector_serial_mod, only : FN_VMake_Serial
+    use fnvector_serial_mod, only : FN_VMake_Serial, FN_VEnableLinearCombination_Serial, &
+        & FN_VEnableScaleAddMulti_Serial, FN_VEnableScaleVectorArray_Serial
     use fsunmatrix_dense_mod, only : FSUNDenseMatrix, FSUNDenseMatrix_Data
     use fsunlinsol_dense_mod, only : FSUNLinSol_Dense
     use fsunmatrix_sparse_mod, only : FSUNSparseMatrix, FSUNSparseMatrix_Data, &
@@ -119,6 +120,8 @@ contains
             call fatal_error(error, "CVODE: could not create the state vector", stat_solver)
             return
         end if
+        call enable_fused_operations(self%y, flag)
+        if (check(flag, "N_VEnable..._Serial (the state vector)", error)) return
         lmm = CV_BDF
         if (settings%method == method_adams) lmm = CV_ADAMS
         self%memory = FCVodeCreate(lmm, self%context)
@@ -138,6 +141,8 @@ contains
             call fatal_error(error, "CVODE: could not create the derivative vector", stat_solver)
             return
         end if
+        call enable_fused_operations(self%data%rates, flag)
+        if (check(flag, "N_VEnable..._Serial (the derivative vector)", error)) return
         self%data%system => system
         self%data%memory = self%memory
         flag = FCVodeSetUserData(self%memory, c_loc(self%data))
@@ -327,6 +332,23 @@ contains
         self%data%sparse = .false.
         if (allocated(self%fired)) deallocate(self%fired)
     end subroutine destroy
+
+    !> SUNDIALS' fused vector operations that CVODE uses, on a serial vector (CVODE's own vectors
+    !> are clones of its state vector and inherit them, so this comes before CVodeInit): the
+    !> Nordsieck array's updates (N_VScaleAddMulti after every step and at order changes,
+    !> N_VScaleVectorArray at step-size changes) and the interpolation (N_VLinearCombination,
+    !> CVodeGetDky: an event function's y', the output's y) in one call each, in place of one
+    !> N_VLinearSum or N_VScale per column. Element by element they compute what those calls
+    !> compute (y + a x with the same a, x, y; a x alone for a column that is scaled), so the
+    !> integration is the same to the last bit. flag: 0, or the first call's failure.
+    subroutine enable_fused_operations(vector, flag)
+        type(N_Vector), intent(inout) :: vector
+        integer(c_int), intent(out) :: flag
+
+        flag = FN_VEnableLinearCombination_Serial(vector, 1_c_int)
+        if (flag == 0) flag = FN_VEnableScaleAddMulti_Serial(vector, 1_c_int)
+        if (flag == 0) flag = FN_VEnableScaleVectorArray_Serial(vector, 1_c_int)
+    end subroutine enable_fused_operations
 
     !> What a failure flag of CVODE means (names of the CVODE guide), for messages: SUNDIALS
     !> itself prints nothing (its error file is none).
