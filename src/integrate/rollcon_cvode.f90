@@ -72,6 +72,10 @@ module rollcon_cvode
         !> y'(t) from CVodeGetDky, and its storage
         type(N_Vector), pointer :: rates => null()
         real(c_double), allocatable :: rate_values(:)
+        !> The system's event functions (fixed for a run, as CVodeRootInit was told) and
+        !> whether they use y' (roots_use_rates): the interpolation is made only then
+        integer :: root_count = 0
+        logical :: roots_use_rates = .false.
         !> Sparse Newton matrices: the system's Jacobian in full (its work space), and each
         !> state's block (entries kept: those of one block)
         logical :: sparse = .false.
@@ -171,8 +175,10 @@ contains
         end if
         flag = FCVodeSetStopTime(self%memory, t_stop)
         if (check(flag, "CVodeSetStopTime", error)) return
-        if (system%root_count() > 0) then
-            flag = FCVodeRootInit(self%memory, int(system%root_count(), c_int), &
+        self%data%root_count = system%root_count()
+        self%data%roots_use_rates = system%roots_use_rates()
+        if (self%data%root_count > 0) then
+            flag = FCVodeRootInit(self%memory, int(self%data%root_count, c_int), &
                 & c_funloc(events))
             if (check(flag, "CVodeRootInit", error)) return
         end if
@@ -486,19 +492,21 @@ contains
         type(c_ptr), value :: user_data
         type(callback_data_type), pointer :: data
         real(c_double), pointer :: yv(:)
-        integer :: nroots
 
         call c_f_pointer(user_data, data)
         yv => FN_VGetArrayPointer(y)
-        nroots = data%system%root_count()
-        ! y' at t from CVODE's own polynomial: the system need not evaluate its right-hand
-        ! side. Outside the last step (the start-up check just past t0) CVODE refuses; then
-        ! the system works it out itself.
-        if (FCVodeGetDky(data%memory, t, 1_c_int, data%rates) == CV_SUCCESS) then
-            ierr = int(data%system%roots(t, yv, gout(:nroots), data%rate_values), c_int)
-        else
-            ierr = int(data%system%roots(t, yv, gout(:nroots)), c_int)
-        end if
+        associate (nroots => data%root_count)
+            ! y' at t from CVODE's own polynomial, when the event functions use it: the system
+            ! need not evaluate its right-hand side. Outside the last step (the start-up check
+            ! just past t0) CVODE refuses; then the system works it out itself.
+            if (.not. data%roots_use_rates) then
+                ierr = int(data%system%roots(t, yv, gout(:nroots)), c_int)
+            else if (FCVodeGetDky(data%memory, t, 1_c_int, data%rates) == CV_SUCCESS) then
+                ierr = int(data%system%roots(t, yv, gout(:nroots), data%rate_values), c_int)
+            else
+                ierr = int(data%system%roots(t, yv, gout(:nroots)), c_int)
+            end if
+        end associate
     end function events
 
 end module rollcon_cvode
