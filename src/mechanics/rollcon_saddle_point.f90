@@ -185,13 +185,13 @@ contains
         end do
     end subroutine solve
 
-    !> The block path of factor: M^-1 C^T column by column over each row's block, each block's
-    !> S from its rows and coordinates, and its LU factors (dgetf2).
+    !> The block path of factor: M^-1 C^T over each block's rows and parts, each block's S
+    !> from its rows and coordinates, and its LU factors (dgetf2).
     subroutine factor_blocks(self, c, error)
         type(saddle_point_type), intent(inout) :: self
         real(wp), intent(in) :: c(:, :)
         type(error_type), allocatable, intent(out) :: error
-        integer :: b, i, j, k, kj, m, first, last, p, i0, info, s0
+        integer :: b, i, j, k, kj, m, first, last, p, i0, info, s0, run_first, run_last
 
         associate (blocks => self%blocks)
             do b = 1, blocks%count
@@ -205,11 +205,29 @@ contains
                         p = i0/6 + 1
                         self%minv_ct(i0 + 1:i0 + 3, k) = c(k, i0 + 1:i0 + 3)/self%part_mass(p)
                         self%minv_ct(i0 + 4:i0 + 6, k) = c(k, i0 + 4:i0 + 6)
-                        call dpotrs("L", 3, 1, self%rotational(1, 1, p), 3, &
-                            & self%minv_ct(i0 + 4, k), self%n, info)
+                    end do
+                end do
+                ! the rotational rows: one dpotrs per part for each run of consecutive UCONs
+                ! (the block's UCONs are ascending; a model's are usually one run), its columns
+                ! side by side with leading dimension n. Column by column the same solves as
+                ! one call per UCON, at a fraction of LAPACK's and BLAS's cost per call
+                run_first = blocks%row_start(b)
+                do while (run_first < blocks%row_start(b + 1))
+                    run_last = run_first
+                    do while (run_last + 1 < blocks%row_start(b + 1))
+                        if (blocks%rows(run_last + 1) /= blocks%rows(run_last) + 1) exit
+                        run_last = run_last + 1
+                    end do
+                    k = blocks%rows(run_first)
+                    do j = first, last, 6
+                        i0 = blocks%coordinates(j) - 1
+                        p = i0/6 + 1
+                        call dpotrs("L", 3, run_last - run_first + 1, self%rotational(1, 1, p), &
+                            & 3, self%minv_ct(i0 + 4, k), self%n, info)
                         call lapack_info_error("dpotrs", info, error)
                         if (allocated(error)) return
                     end do
+                    run_first = run_last + 1
                 end do
                 m = blocks%row_start(b + 1) - blocks%row_start(b)
                 s0 = self%schur_start(b) - 1
