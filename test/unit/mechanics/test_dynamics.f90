@@ -268,8 +268,9 @@ contains
             & abs_tol=tol_solve*maxval(abs(b(7:, 1))))
     end subroutine test_saddle_point
 
-    !> Two disks (parts 7 and 3) at generic states: the saddle-point system solved block by
-    !> block, as every evaluation does, gives the dense path's numbers exactly
+    !> Two disks (parts 7 and 3) and a free part (5, no UCON) at generic states: the
+    !> saddle-point system solved block by block, as every evaluation does (M^-1 f within the
+    !> factorisation's LAPACK calls), gives the dense path's numbers exactly
     !> (rollcon_saddle_point: the same sums without their exact-zero terms; -0 and +0 compare
     !> equal), for the accelerations and for two more right-hand sides, whether each disk's
     !> UCONs come in one run (1, 2, 3 | 4, 5, 6: one LAPACK solve per part and run) or
@@ -280,7 +281,7 @@ contains
         type(problem_type), target :: problems(2)
         type(part_type) :: part
         type(saddle_point_type) :: dense
-        real(wp) :: q(12), u(12), a(12), lambda(6), r1(12, 2), r2(6, 2), s1(12, 2), s2(6, 2)
+        real(wp) :: q(18), u(18), a(18), lambda(6), r1(18, 2), r2(6, 2), s1(18, 2), s2(6, 2)
         integer :: order, k, i
 
         do order = 1, 2
@@ -290,6 +291,8 @@ contains
                 part%id = 7
                 call model%add_part(part)
                 part%id = 3
+                call model%add_part(part)
+                part%id = 5
                 call model%add_part(part)
                 model%gravity = [0.0_wp, 0.0_wp, -9.81_wp]
                 model%ucosub => rolling_disk_ucosub
@@ -312,15 +315,17 @@ contains
                 call problem%prepare(error)
                 if (allocated(error)) return
                 q = [0.1_wp, -0.2_wp, 0.08_wp, 0.4_wp, 1.1_wp, 0.7_wp, &
-                    & 0.5_wp, 0.3_wp, 0.07_wp, -0.9_wp, 1.9_wp, -0.3_wp]
+                    & 0.5_wp, 0.3_wp, 0.07_wp, -0.9_wp, 1.9_wp, -0.3_wp, &
+                    & -0.4_wp, 0.2_wp, 0.5_wp, 0.6_wp, 0.8_wp, 1.2_wp]
                 u = [0.2_wp, 0.1_wp, -0.05_wp, 1.3_wp, -0.6_wp, -4.0_wp, &
-                    & -0.1_wp, 0.3_wp, 0.02_wp, 0.8_wp, 0.4_wp, 3.0_wp]
+                    & -0.1_wp, 0.3_wp, 0.02_wp, 0.8_wp, 0.4_wp, 3.0_wp, &
+                    & 0.3_wp, -0.2_wp, 0.1_wp, -1.1_wp, 0.5_wp, 2.0_wp]
                 call problem%accelerations(0.0_wp, q, u, error)
                 if (allocated(error)) return
                 call check(error, problem%eq%saddle%by_blocks .and. problem%eq%blocks%count == 2, &
                     & "the two disks' system was not solved by its two blocks")
                 if (allocated(error)) return
-                call dense%init(12, 6)
+                call dense%init(18, 6)
                 call dense%factor(problem%eq%mass, problem%eq%c, 6, error)
                 if (allocated(error)) return
                 a = problem%eq%force
@@ -333,7 +338,7 @@ contains
                     & // to_text(max(maxval(abs(problem%a - a)), &
                     & maxval(abs(problem%lambda - lambda)))))
                 if (allocated(error)) return
-                do i = 1, 12
+                do i = 1, 18
                     r1(i, :) = [0.3_wp*i - 1.0_wp, sin(real(i, wp))]
                 end do
                 r2(:, 1) = [(0.2_wp*i, i = 1, 6)]
