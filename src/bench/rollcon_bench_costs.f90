@@ -1,10 +1,11 @@
 ! SPDX-License-Identifier: MIT
 !> Unit costs of the parts of a full-model step, measured in the running process: one ODE
-!> right-hand side, one DAE residual, one event-function evaluation, one output row (as the
-!> benchmark's runs keep it in memory) and, apart, its CSV line (what `rollcon run` adds; and, for
-!> comparison, the same line by Fortran's formatted write, which rollcon_row_text.c replaced). The
-!> benchmark multiplies them by a run's counts; what is left of the run's CPU time is SUNDIALS' own
-!> work (with the Jacobians and linear solves).
+!> right-hand side, one DAE residual, one event-function evaluation (alone, and as CVODE's ODE
+!> form and IDA call them), one output row (as the benchmark's runs keep it in memory) and,
+!> apart, its CSV line (what `rollcon run` adds; and, for comparison, the same line by Fortran's
+!> formatted write, which rollcon_row_text.c replaced). The benchmark multiplies them by a run's
+!> counts; what is left of the run's CPU time is SUNDIALS' own work (with the Jacobians and
+!> linear solves).
 module rollcon_bench_costs
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type
@@ -24,6 +25,11 @@ module rollcon_bench_costs
     !> CPU seconds of one evaluation of each part [s]
     type :: part_costs_type
         real(wp) :: rhs = 0.0_wp, residual = 0.0_wp, root = 0.0_wp
+        !> The event functions as the integrators call them: given the accelerations (CVODE's
+        !> ODE form: y' from its polynomial, whose interpolation is SUNDIALS' own work) and
+        !> given the multipliers (IDA: its state holds them); root is the evaluation alone,
+        !> with a saddle-point solve, as in independent speeds
+        real(wp) :: root_given_rates = 0.0_wp, root_given_multipliers = 0.0_wp
         !> One output row as the benchmark's runs make it (no file) and one CSV line of it
         real(wp) :: output = 0.0_wp, csv_line = 0.0_wp
         !> The same row's text by Fortran's formatted write (es24.16e3), no file
@@ -88,6 +94,22 @@ contains
         end do
         call cpu_time(finish)
         costs%root = (finish - start)/count
+        call problem%accelerations(0.0_wp, q0, u0, error)
+        if (allocated(error)) return
+        call cpu_time(start)
+        do i = 1, count
+            ierr = problem%root_values(0.0_wp, q0, u0, g, a=problem%a)
+            checksum = checksum + sum(g)
+        end do
+        call cpu_time(finish)
+        costs%root_given_rates = (finish - start)/count
+        call cpu_time(start)
+        do i = 1, count
+            ierr = problem%root_values(0.0_wp, q0, u0, g, lambda=problem%lambda)
+            checksum = checksum + sum(g)
+        end do
+        call cpu_time(finish)
+        costs%root_given_multipliers = (finish - start)/count
         ! what rollcon_simulation's record does for a row: accelerations, then the row
         call cpu_time(start)
         do i = 1, count

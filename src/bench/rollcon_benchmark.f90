@@ -213,7 +213,7 @@ contains
                 row%reduced_cpu = reduced(k, partner)%cpu
                 row%ratio = row%cpu/max(row%reduced_cpu, tiny(1.0_wp))
                 if (present(costs) .and. methods(m)%formulation /= "reduced") &
-                    & call split_costs(row, costs, methods(m)%formulation == "ida")
+                    & call split_costs(row, costs, trim(methods(m)%formulation))
                 rows = [rows, row]
                 if (present(progress)) then
                     write(progress, '(a)') "bench: " // write_benchmark_row(row)
@@ -336,14 +336,26 @@ contains
     end subroutine run_case
 
     !> A full-model row's CPU time split by parts: counts times unit costs, SUNDIALS the rest.
-    pure subroutine split_costs(row, costs, dae)
+    !> The event functions cost what they cost as the row's integrator calls them: given the
+    !> multipliers (IDA), given the accelerations (CVODE's ODE form; the interpolation that
+    !> gives them is in SUNDIALS' remainder), alone (independent speeds).
+    pure subroutine split_costs(row, costs, formulation)
         type(benchmark_row_type), intent(inout) :: row
         type(part_costs_type), intent(in) :: costs
-        !> The run was IDA's: its functions are DAE residuals
-        logical, intent(in) :: dae
+        !> The method's formulation: "ida" (its functions are DAE residuals), "cvode", "maggi"
+        character(len=*), intent(in) :: formulation
+        logical :: dae
 
+        dae = formulation == "ida"
         row%rhs_cpu = row%functions*merge(costs%residual, costs%rhs, dae)
-        row%roots_cpu = row%root_evaluations*costs%root
+        select case (formulation)
+        case ("ida")
+            row%roots_cpu = row%root_evaluations*costs%root_given_multipliers
+        case ("cvode")
+            row%roots_cpu = row%root_evaluations*costs%root_given_rates
+        case default
+            row%roots_cpu = row%root_evaluations*costs%root
+        end select
         row%output_cpu = row%output_rows*costs%output
         row%sundials_cpu = row%cpu - row%rhs_cpu - row%roots_cpu - row%output_cpu
     end subroutine split_costs

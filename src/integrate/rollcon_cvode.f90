@@ -17,7 +17,8 @@ module rollcon_cvode
     use fsundials_nvector_mod, only : N_Vector, FN_VDestroy, FN_VGetArrayPointer
     use fsundials_matrix_mod, only : SUNMatrix, FSUNMatDestroy
     use fsundials_linearsolver_mod, only : SUNLinearSolver, FSUNLinSolFree
-    use fnvector_serial_mod, only : FN_VMake_Serial
+    use fnvector_serial_mod, only : FN_VMake_Serial, FN_VEnableLinearCombination_Serial, &
+        & FN_VEnableScaleAddMulti_Serial, FN_VEnableScaleVectorArray_Serial
     use fsunmatrix_dense_mod, only : FSUNDenseMatrix, FSUNDenseMatrix_Data
     use fsunlinsol_dense_mod, only : FSUNLinSol_Dense
     use fsunmatrix_sparse_mod, only : FSUNSparseMatrix, FSUNSparseMatrix_Data, &
@@ -71,6 +72,10 @@ module rollcon_cvode
         !> y'(t) from CVodeGetDky, and its storage
         type(N_Vector), pointer :: rates => null()
         real(c_double), allocatable :: rate_values(:)
+        !> The system's event functions (fixed for a run, as CVodeRootInit was told) and
+        !> whether they use y' (roots_use_rates): the interpolation is made only then
+        integer :: root_count = 0
+        logical :: roots_use_rates = .false.
         !> Sparse Newton matrices: the system's Jacobian in full (its work space), and each
         !> state's block (entries kept: those of one block)
         logical :: sparse = .false.
@@ -119,6 +124,8 @@ contains
             call fatal_error(error, "CVODE: could not create the state vector", stat_solver)
             return
         end if
+        call enable_fused_operations(self%y, flag)
+        if (check(flag, "N_VEnable..._Serial (the state vector)", error)) return
         lmm = CV_BDF
         if (settings%method == method_adams) lmm = CV_ADAMS
         self%memory = FCVodeCreate(lmm, self%context)
@@ -138,6 +145,8 @@ contains
             call fatal_error(error, "CVODE: could not create the derivative vector", stat_solver)
             return
         end if
+        call enable_fused_operations(self%data%rates, flag)
+        if (check(flag, "N_VEnable..._Serial (the derivative vector)", error)) return
         self%data%system => system
         self%data%memory = self%memory
         flag = FCVodeSetUserData(self%memory, c_loc(self%data))
@@ -166,8 +175,10 @@ contains
         end if
         flag = FCVodeSetStopTime(self%memory, t_stop)
         if (check(flag, "CVodeSetStopTime", error)) return
-        if (system%root_count() > 0) then
-            flag = FCVodeRootInit(self%memory, int(system%root_count(), c_int), &
+        self%data%root_count = system%root_count()
+        self%data%roots_use_rates = system%roots_use_rates()
+        if (self%data%root_count > 0) then
+            flag = FCVodeRootInit(self%memory, int(self%data%root_count, c_int), &
                 & c_funloc(events))
             if (check(flag, "CVodeRootInit", error)) return
         end if
@@ -328,6 +339,23 @@ contains
         if (allocated(self%fired)) deallocate(self%fired)
     end subroutine destroy
 
+    !> SUNDIALS' fused vector operations that CVODE uses, on a serial vector (CVODE's own vectors
+    !> are clones of its state vector and inherit them, so this comes before CVodeInit): the
+    !> Nordsieck array's updates (N_VScaleAddMulti after every step and at order changes,
+    !> N_VScaleVectorArray at step-size changes) and the interpolation (N_VLinearCombination,
+    !> CVodeGetDky: an event function's y', the output's y) in one call each, in place of one
+    !> N_VLinearSum or N_VScale per column. Element by element they compute what those calls
+    !> compute (y + a x with the same a, x, y; a x alone for a column that is scaled), so the
+    !> integration is the same to the last bit. flag: 0, or the first call's failure.
+    subroutine enable_fused_operations(vector, flag)
+        type(N_Vector), intent(inout) :: vector
+        integer(c_int), intent(out) :: flag
+
+        flag = FN_VEnableLinearCombination_Serial(vector, 1_c_int)
+        if (flag == 0) flag = FN_VEnableScaleAddMulti_Serial(vector, 1_c_int)
+        if (flag == 0) flag = FN_VEnableScaleVectorArray_Serial(vector, 1_c_int)
+    end subroutine enable_fused_operations
+
     !> What a failure flag of CVODE means (names of the CVODE guide), for messages: SUNDIALS
     !> itself prints nothing (its error file is none).
     pure function flag_meaning(flag) result(text)
@@ -464,19 +492,21 @@ contains
         type(c_ptr), value :: user_data
         type(callback_data_type), pointer :: data
         real(c_double), pointer :: yv(:)
-        integer :: nroots
 
         call c_f_pointer(user_data, data)
         yv => FN_VGetArrayPointer(y)
-        nroots = data%system%root_count()
-        ! y' at t from CVODE's own polynomial: the system need not evaluate its right-hand
-        ! side. Outside the last step (the start-up check just past t0) CVODE refuses; then
-        ! the system works it out itself.
-        if (FCVodeGetDky(data%memory, t, 1_c_int, data%rates) == CV_SUCCESS) then
-            ierr = int(data%system%roots(t, yv, gout(:nroots), data%rate_values), c_int)
-        else
-            ierr = int(data%system%roots(t, yv, gout(:nroots)), c_int)
-        end if
+        associate (nroots => data%root_count)
+            ! y' at t from CVODE's own polynomial, when the event functions use it: the system
+            ! need not evaluate its right-hand side. Outside the last step (the start-up check
+            ! just past t0) CVODE refuses; then the system works it out itself.
+            if (.not. data%roots_use_rates) then
+                ierr = int(data%system%roots(t, yv, gout(:nroots)), c_int)
+            else if (FCVodeGetDky(data%memory, t, 1_c_int, data%rates) == CV_SUCCESS) then
+                ierr = int(data%system%roots(t, yv, gout(:nroots), data%rate_values), c_int)
+            else
+                ierr = int(data%system%roots(t, yv, gout(:nroots)), c_int)
+            end if
+        end associate
     end function events
 
 end module rollcon_cvode

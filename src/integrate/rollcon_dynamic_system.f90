@@ -28,6 +28,7 @@ module rollcon_dynamic_system
         procedure :: multiplier_scale
         procedure :: root_count
         procedure :: roots
+        procedure :: roots_use_rates
         procedure :: failure_text
     end type dynamic_system_type
 
@@ -153,6 +154,15 @@ contains
         g = 0.0_wp
         ierr = -1
     end function roots
+
+    !> The event functions use y' when the integrator gives it (roots' ydot): CVODE then works it
+    !> out from its polynomial (CVodeGetDky) at every evaluation; otherwise it is not given. The
+    !> default: they do not.
+    logical function roots_use_rates(self)
+        class(dynamic_system_type), intent(in) :: self
+
+        roots_use_rates = .false.
+    end function roots_use_rates
 
     !> What made a callback fail, when it kept a reason ("" when none).
     function failure_text(self) result(text)

@@ -185,11 +185,12 @@ contains
         if (allocated(error)) return
         call self%assemble(time, q, u)
         call self%constraint_rows(u, baumgarte)
-        call self%saddle%factor(self%mass, self%c, nc, error)
-        if (allocated(error)) return
+        ! M^-1 f in the factorisation's own LAPACK calls (those of M^-1 C^T)
         a = self%force
+        call self%saddle%factor(self%mass, self%c, nc, error, a)
+        if (allocated(error)) return
         lambda = self%gamma
-        call self%saddle%solve(self%c, a, lambda, 1, error)
+        call self%saddle%solve(self%c, a, lambda, 1, error, scaled=.true.)
     end subroutine accelerations
 
     !> d(M a - f - C^T lambda)/dq and /du at given a, lambda (into dm_dq, dm_du).

@@ -54,6 +54,11 @@ module rollcon_saddle_point
         integer, allocatable :: schur_start(:)
         !> Whether the current factorisation went block by block
         logical :: by_blocks = .false.
+        !> For each part, whether a block holds it (a part no UCON touches is in none)
+        logical, allocatable :: part_blocked(:)
+        !> The rotational rows of one part's right-hand sides gathered for one dpotrs:
+        !> (3, 1 + most_rows)
+        real(wp), allocatable :: rotational_rows(:, :)
     contains
         procedure :: init
         procedure :: factor
@@ -86,9 +91,15 @@ contains
         self%blocked = present(blocks)
         self%by_blocks = .false.
         if (allocated(self%block_schur)) deallocate(self%block_schur, self%gathered, &
-            & self%schur_start)
+            & self%schur_start, self%part_blocked, self%rotational_rows)
         if (.not. self%blocked) return
         self%blocks = blocks
+        allocate(self%part_blocked(self%parts), source=.false.)
+        do b = 1, blocks%count
+            self%part_blocked((blocks%coordinates(blocks%coordinate_start(b): &
+                & blocks%coordinate_start(b + 1) - 1) - 1)/6 + 1) = .true.
+        end do
+        allocate(self%rotational_rows(3, 1 + max(blocks%most_rows, 1)), source=0.0_wp)
         allocate(self%schur_start(blocks%count + 1))
         self%schur_start(1) = 1
         do b = 1, blocks%count
@@ -100,8 +111,11 @@ contains
     end subroutine init
 
     !> Factor the saddle-point matrix of mass (n x n, block structure above) and the first
-    !> `rows` rows of c (rows x n, leading dimension nc).
-    subroutine factor(self, mass, c, rows, error)
+    !> `rows` rows of c (rows x n, leading dimension nc). With r1, the first step of a solve for
+    !> one right-hand side is taken too, r1 := M^-1 r1, in the LAPACK calls that give M^-1 C^T
+    !> (solve then with `scaled`): the numbers apply_inverse_mass gives, at one call per part
+    !> fewer.
+    subroutine factor(self, mass, c, rows, error, r1)
         class(saddle_point_type), intent(inout) :: self
         !> Mass matrix [kg, kg m^2]
         real(wp), intent(in) :: mass(:, :)
@@ -111,6 +125,8 @@ contains
         integer, intent(in) :: rows
         !> Set when a mass block is not positive definite or the constraints are dependent
         type(error_type), allocatable, intent(out) :: error
+        !> Momentum rows of one right-hand side (n) on entry, M^-1 times them on exit
+        real(wp), intent(inout), optional :: r1(:)
         integer :: p, i0, k, j, info
 
         self%rows = rows
@@ -129,12 +145,23 @@ contains
             call lapack_info_error("dpotf2", info, error)
             if (allocated(error)) return
         end do
-        if (rows == 0) return
-        self%by_blocks = self%blocked .and. rows == self%nc
+        self%by_blocks = self%blocked .and. rows == self%nc .and. rows > 0
         if (self%by_blocks) then
-            call factor_blocks(self, c, error)
+            call factor_blocks(self, c, error, r1)
+            if (allocated(error) .or. .not. present(r1)) return
+            ! the parts no UCON touches, alone
+            do p = 1, self%parts
+                if (self%part_blocked(p)) cycle
+                call inverse_mass_of_part(self, p, r1, error)
+                if (allocated(error)) return
+            end do
             return
         end if
+        if (present(r1)) then
+            call self%apply_inverse_mass(r1, 1, error)
+            if (allocated(error)) return
+        end if
+        if (rows == 0) return
         do k = 1, rows
             self%minv_ct(:, k) = c(k, :)
         end do
@@ -151,7 +178,7 @@ contains
 
     !> Solve for m right-hand sides: r1 (n x m) becomes a, r2 (rows x m) becomes lambda;
     !> c must be the matrix given to factor.
-    subroutine solve(self, c, r1, r2, m, error)
+    subroutine solve(self, c, r1, r2, m, error, scaled)
         class(saddle_point_type), intent(inout) :: self
         real(wp), intent(in) :: c(:, :)
         !> Number of right-hand sides
@@ -161,10 +188,17 @@ contains
         !> Constraint rows on entry, multipliers on exit (leading dimension rows)
         real(wp), intent(inout) :: r2(self%rows, m)
         type(error_type), allocatable, intent(out) :: error
+        !> r1 holds M^-1 times the momentum rows already (factor's r1)
+        logical, intent(in), optional :: scaled
         integer :: j, k, info
+        logical :: done
 
-        call self%apply_inverse_mass(r1, m, error)
-        if (allocated(error)) return
+        done = .false.
+        if (present(scaled)) done = scaled
+        if (.not. done) then
+            call self%apply_inverse_mass(r1, m, error)
+            if (allocated(error)) return
+        end if
         if (self%rows == 0) return
         if (self%by_blocks) then
             call solve_blocks(self, c, r1, r2, m, error)
@@ -185,30 +219,46 @@ contains
         end do
     end subroutine solve
 
-    !> The block path of factor: M^-1 C^T column by column over each row's block, each block's
-    !> S from its rows and coordinates, and its LU factors (dgetf2).
-    subroutine factor_blocks(self, c, error)
+    !> The block path of factor: M^-1 C^T over each block's parts and rows (and M^-1 r1 there,
+    !> with r1), each block's S from its rows and coordinates, and its LU factors (dgetf2).
+    subroutine factor_blocks(self, c, error, r1)
         type(saddle_point_type), intent(inout) :: self
         real(wp), intent(in) :: c(:, :)
         type(error_type), allocatable, intent(out) :: error
-        integer :: b, i, j, k, kj, m, first, last, p, i0, info, s0
+        real(wp), intent(inout), optional :: r1(:)
+        integer :: b, i, j, k, kj, m, first, last, p, i0, info, s0, col, extra
 
-        associate (blocks => self%blocks)
+        extra = merge(1, 0, present(r1))
+        associate (blocks => self%blocks, rot => self%rotational_rows)
             do b = 1, blocks%count
                 first = blocks%coordinate_start(b)
                 last = blocks%coordinate_start(b + 1) - 1
-                ! M^-1 c_k^T over the block's parts (zero elsewhere, as the dense path leaves it)
-                do i = blocks%row_start(b), blocks%row_start(b + 1) - 1
-                    k = blocks%rows(i)
-                    do j = first, last, 6
-                        i0 = blocks%coordinates(j) - 1
-                        p = i0/6 + 1
+                ! M^-1 c_k^T over the block's parts (zero elsewhere, as the dense path leaves
+                ! it): per part, the translational rows divided by the mass, the rotational
+                ! rows of every UCON of the block (and of r1) in one dpotrs, column by column
+                ! the solves of one call per UCON
+                do j = first, last, 6
+                    i0 = blocks%coordinates(j) - 1
+                    p = i0/6 + 1
+                    if (present(r1)) then
+                        r1(i0 + 1:i0 + 3) = r1(i0 + 1:i0 + 3)/self%part_mass(p)
+                        rot(:, 1) = r1(i0 + 4:i0 + 6)
+                    end if
+                    col = extra
+                    do i = blocks%row_start(b), blocks%row_start(b + 1) - 1
+                        k = blocks%rows(i)
                         self%minv_ct(i0 + 1:i0 + 3, k) = c(k, i0 + 1:i0 + 3)/self%part_mass(p)
-                        self%minv_ct(i0 + 4:i0 + 6, k) = c(k, i0 + 4:i0 + 6)
-                        call dpotrs("L", 3, 1, self%rotational(1, 1, p), 3, &
-                            & self%minv_ct(i0 + 4, k), self%n, info)
-                        call lapack_info_error("dpotrs", info, error)
-                        if (allocated(error)) return
+                        col = col + 1
+                        rot(:, col) = c(k, i0 + 4:i0 + 6)
+                    end do
+                    call dpotrs("L", 3, col, self%rotational(1, 1, p), 3, rot, 3, info)
+                    call lapack_info_error("dpotrs", info, error)
+                    if (allocated(error)) return
+                    if (present(r1)) r1(i0 + 4:i0 + 6) = rot(:, 1)
+                    col = extra
+                    do i = blocks%row_start(b), blocks%row_start(b + 1) - 1
+                        col = col + 1
+                        self%minv_ct(i0 + 4:i0 + 6, blocks%rows(i)) = rot(:, col)
                     end do
                 end do
                 m = blocks%row_start(b + 1) - blocks%row_start(b)
@@ -290,6 +340,23 @@ contains
             total = total + c(k, coordinates(j))*x(coordinates(j))
         end do
     end function block_dot
+
+    !> x := M^-1 x over part p's rows, for one column x (n).
+    subroutine inverse_mass_of_part(self, p, x, error)
+        type(saddle_point_type), intent(in) :: self
+        integer, intent(in) :: p
+        real(wp), intent(inout) :: x(:)
+        type(error_type), allocatable, intent(out) :: error
+        real(wp) :: rotational_rows(3)
+        integer :: i0, info
+
+        i0 = 6*(p - 1)
+        x(i0 + 1:i0 + 3) = x(i0 + 1:i0 + 3)/self%part_mass(p)
+        rotational_rows = x(i0 + 4:i0 + 6)
+        call dpotrs("L", 3, 1, self%rotational(1, 1, p), 3, rotational_rows, 3, info)
+        call lapack_info_error("dpotrs", info, error)
+        x(i0 + 4:i0 + 6) = rotational_rows
+    end subroutine inverse_mass_of_part
 
     !> x := M^-1 x for the m columns of x (leading dimension n), part by part.
     subroutine apply_inverse_mass(self, x, m, error)

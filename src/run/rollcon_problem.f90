@@ -76,6 +76,7 @@ module rollcon_problem
         procedure :: multiplier_scale
         procedure :: root_count
         procedure :: roots
+        procedure :: roots_use_rates
         procedure :: root_values
         procedure :: root_owner
         procedure :: nonfinite_state
@@ -494,6 +495,21 @@ contains
             end if
         end associate
     end function roots
+
+    !> CVODE should give the event functions y' = (u, a): in the ODE form, when a watch's event
+    !> functions use the accelerations. In independent speeds y' = (u, a_i) carries no whole a
+    !> (roots solves for what the watches need), so it is never asked for.
+    logical function roots_use_rates(self)
+        class(problem_type), intent(in) :: self
+        integer :: k
+
+        roots_use_rates = .false.
+        if (self%settings%formulation /= formulation_cvode .or. .not. allocated(self%watches)) &
+            & return
+        do k = 1, size(self%watches)
+            if (self%watches(k)%watch%roots_use_accelerations(self%eq)) roots_use_rates = .true.
+        end do
+    end function roots_use_rates
 
     !> Every watch's event functions at (t, q, u), root_count() of them; lambda or a when the
     !> integrator knows them (rollcon_watch).

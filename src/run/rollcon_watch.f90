@@ -58,6 +58,7 @@ module rollcon_watch
         procedure :: prepare
         procedure :: root_count
         procedure :: roots
+        procedure :: roots_use_accelerations
         procedure :: fired
         procedure :: part_rebased
         procedure :: parts_to_rebase
@@ -105,6 +106,15 @@ contains
 
         g = 0.0_wp
     end subroutine roots
+
+    !> Its event functions use the accelerations a when the integrator gives them (roots), so
+    !> that the integrator should work them out (default: they do not).
+    pure logical function roots_use_accelerations(self, eq)
+        class(watch_type), intent(in) :: self
+        type(equations_type), intent(in) :: eq
+
+        roots_use_accelerations = .false.
+    end function roots_use_accelerations
 
     !> Event function k (of this watch's) fired at (t, q, u): what the run does.
     function fired(self, eq, k, time, q, u) result(event)

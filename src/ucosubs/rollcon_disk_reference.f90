@@ -18,6 +18,11 @@ module rollcon_disk_reference
     integer, parameter :: i_xdot = 1, i_ydot = 2, i_zdot = 3, i_psi = 4, i_theta = 5, &
         & i_psidot = 6, i_thetadot = 7, i_phidot = 8
 
+    !> What the value and the partials of one call share (disk_trig)
+    type :: disk_trig_type
+        real(wp) :: spsi = 0.0_wp, cpsi = 0.0_wp, sth = 0.0_wp, cth = 0.0_wp, spin = 0.0_wp
+    end type disk_trig_type
+
 contains
 
     !> The rolling-disk UCOSUB, with ADAMS's calling sequence (see ucosub_interface).
@@ -96,33 +101,46 @@ contains
         !> Selected second partials
         real(wp), intent(inout) :: xmatrx(:, :)
 
+        type(disk_trig_type) :: trig
+
+        ! the sines and cosines every selected output shares, once per call
+        if (idrsel(1) == scalar_value .or. idrsel(2) == array_dq .or. idrsel(3) == xmatrx_dqdq) &
+            & trig = disk_trig(q)
         select case (idrsel(1))
         case (scalar_value)
-            scalar = constraint_value(q, radius, component)
+            scalar = constraint_value(q, trig, radius, component)
         case (scalar_time_part, scalar_dt, scalar_dtt)
             ! No term of F is free of the variables and none depends on time explicitly.
             scalar = 0.0_wp
         end select
-        if (idrsel(2) == array_dq) call first_partials(q, radius, component, array)
+        if (idrsel(2) == array_dq) call first_partials(q, trig, radius, component, array)
         ! idrsel(2) == array_dtdq: d2F/dt dq is zero, left untouched.
-        if (idrsel(3) == xmatrx_dqdq) call second_partials(q, radius, component, xmatrx)
+        if (idrsel(3) == xmatrx_dqdq) call second_partials(q, trig, radius, component, xmatrx)
     end subroutine rolling_disk_evaluate
 
-    !> F of one component: v_G + omega x r_GC = 0 with r_GC = -R e_y2 (docs/design.md §5).
-    pure function constraint_value(q, radius, component) result(f)
+    !> sin and cos of psi and theta, and the spin phidot + psidot cos(theta) (the angular
+    !> velocity about the disk axis) at the variables q.
+    pure function disk_trig(q) result(trig)
         real(wp), intent(in) :: q(:)
+        type(disk_trig_type) :: trig
+
+        trig%spsi = sin(q(i_psi))
+        trig%cpsi = cos(q(i_psi))
+        trig%sth = sin(q(i_theta))
+        trig%cth = cos(q(i_theta))
+        trig%spin = q(i_phidot) + q(i_psidot)*trig%cth
+    end function disk_trig
+
+    !> F of one component: v_G + omega x r_GC = 0 with r_GC = -R e_y2 (docs/design.md §5).
+    pure function constraint_value(q, trig, radius, component) result(f)
+        real(wp), intent(in) :: q(:)
+        type(disk_trig_type), intent(in) :: trig
         real(wp), intent(in) :: radius
         integer, intent(in) :: component
         real(wp) :: f
-        real(wp) :: spsi, cpsi, sth, cth, spin
 
-        associate (psidot => q(i_psidot), thetadot => q(i_thetadot), phidot => q(i_phidot))
-            spsi = sin(q(i_psi))
-            cpsi = cos(q(i_psi))
-            sth = sin(q(i_theta))
-            cth = cos(q(i_theta))
-            ! spin: the angular velocity about the disk axis, phidot + psidot cos(theta)
-            spin = phidot + psidot*cth
+        associate (psidot => q(i_psidot), thetadot => q(i_thetadot), spsi => trig%spsi, &
+                & cpsi => trig%cpsi, sth => trig%sth, cth => trig%cth, spin => trig%spin)
             select case (component)
             case (1)
                 f = q(i_xdot) + radius*cpsi*spin - radius*thetadot*spsi*sth
@@ -135,19 +153,15 @@ contains
     end function constraint_value
 
     !> dF/dq_j: six non-zero entries for components 1 and 2, three for component 3.
-    pure subroutine first_partials(q, radius, component, array)
+    pure subroutine first_partials(q, trig, radius, component, array)
         real(wp), intent(in) :: q(:)
+        type(disk_trig_type), intent(in) :: trig
         real(wp), intent(in) :: radius
         integer, intent(in) :: component
         real(wp), intent(inout) :: array(:)
-        real(wp) :: spsi, cpsi, sth, cth, spin
 
-        associate (psidot => q(i_psidot), thetadot => q(i_thetadot), phidot => q(i_phidot))
-            spsi = sin(q(i_psi))
-            cpsi = cos(q(i_psi))
-            sth = sin(q(i_theta))
-            cth = cos(q(i_theta))
-            spin = phidot + psidot*cth
+        associate (psidot => q(i_psidot), thetadot => q(i_thetadot), spsi => trig%spsi, &
+                & cpsi => trig%cpsi, sth => trig%sth, cth => trig%cth, spin => trig%spin)
             select case (component)
             case (1)
                 array(i_xdot) = 1.0_wp
@@ -172,19 +186,15 @@ contains
     end subroutine first_partials
 
     !> d2F/dq_i dq_j, both triangles: 14 non-zero entries for components 1 and 2, 3 for 3.
-    pure subroutine second_partials(q, radius, component, xmatrx)
+    pure subroutine second_partials(q, trig, radius, component, xmatrx)
         real(wp), intent(in) :: q(:)
+        type(disk_trig_type), intent(in) :: trig
         real(wp), intent(in) :: radius
         integer, intent(in) :: component
         real(wp), intent(inout) :: xmatrx(:, :)
-        real(wp) :: spsi, cpsi, sth, cth, spin
 
-        associate (psidot => q(i_psidot), thetadot => q(i_thetadot), phidot => q(i_phidot))
-            spsi = sin(q(i_psi))
-            cpsi = cos(q(i_psi))
-            sth = sin(q(i_theta))
-            cth = cos(q(i_theta))
-            spin = phidot + psidot*cth
+        associate (psidot => q(i_psidot), thetadot => q(i_thetadot), spsi => trig%spsi, &
+                & cpsi => trig%cpsi, sth => trig%sth, cth => trig%cth, spin => trig%spin)
             select case (component)
             case (1)
                 xmatrx(i_psi, i_psi) = radius*(thetadot*spsi*sth - cpsi*spin)

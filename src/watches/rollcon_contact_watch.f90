@@ -46,6 +46,7 @@ module rollcon_contact_watch
         procedure :: prepare
         procedure :: root_count
         procedure :: roots
+        procedure :: roots_use_accelerations
         procedure :: fired
         procedure :: column_names
         procedure :: fill_columns
@@ -115,6 +116,14 @@ contains
         end if
         g(1) = force(3) + self%liftoff_force
     end subroutine roots
+
+    !> The lift-off's normal force comes from the accelerations when they are given.
+    pure logical function roots_use_accelerations(self, eq)
+        class(contact_watch_type), intent(in) :: self
+        type(equations_type), intent(in) :: eq
+
+        roots_use_accelerations = self%root_count(eq) > 0
+    end function roots_use_accelerations
 
     !> The lift-off: the run stops.
     function fired(self, eq, k, time, q, u) result(event)

@@ -327,7 +327,9 @@ contains
 
     !> Every row's ratio is its CPU time over the reduced ODE's, both measured in the same
     !> call: the reduced-bdf row at the same rtol carries exactly that reduced CPU time; the
-    !> per-part split adds up to the row's CPU time.
+    !> per-part split adds up to the row's CPU time, its event functions at their cost as the
+    !> row's integrator calls them (IDA: given the multipliers; CVODE: given the
+    !> accelerations).
     subroutine test_benchmark_ratio(error)
         type(error_type), allocatable, intent(out) :: error
         real(wp), parameter :: tol = 1.0e-12_wp  ! one division and three subtractions
@@ -366,6 +368,11 @@ contains
                 if (allocated(error)) return
                 call check(error, row%rhs_cpu > 0.0_wp .and. row%output_cpu > 0.0_wp .and. &
                     & row%output_rows > 0, trim(row%method) // ": no part costs")
+                if (allocated(error)) return
+                call check(error, row%roots_cpu, row%root_evaluations*merge( &
+                    & costs%root_given_multipliers, costs%root_given_rates, &
+                    & row%method(:3) == "ida"), trim(row%method) // ": event functions' CPU", &
+                    & rel_tol=tol)
                 if (allocated(error)) return
                 if (trim(row%method) == "cvode-adams-baumgarte") cycle
                 do j = 1, size(rows)

@@ -82,6 +82,7 @@ contains
             & new_unittest("ida-run-allocates-nothing", test_ida_run), &
             & new_unittest("independent-speeds-allocate-nothing", test_independent_speeds), &
             & new_unittest("liftoff-root-without-solve", test_liftoff_root), &
+            & new_unittest("event-rates-only-when-used", test_event_rates), &
             & new_unittest("time-free-ucon-skips-time-partials", test_time_free), &
             & new_unittest("blas-one-thread", test_blas_thread)]
     end subroutine collect_allocations
@@ -320,6 +321,38 @@ contains
             call check(error, .false., "the disk scene's second watch is not its contact")
         end select
     end subroutine test_liftoff_root
+
+    !> CVODE interpolates y' for the event functions (a CVodeGetDky per evaluation) only when
+    !> they use it: the ODE form with the lift-off watched (its normal force from the
+    !> accelerations); not without the lift-off (the theta limit needs theta alone), not in
+    !> independent speeds (y' carries no whole a), not under IDA (the state holds the
+    !> multipliers).
+    subroutine test_event_rates(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(problem_type), target :: problem
+        real(wp) :: q(6), u(6)
+        logical :: used(4)
+
+        call coin_problem(problem, q, u, .true., error)
+        if (allocated(error)) return
+        used(1) = problem%roots_use_rates()
+        problem%settings%formulation = formulation_maggi
+        used(2) = problem%roots_use_rates()
+        problem%settings%formulation = formulation_ida
+        used(3) = problem%roots_use_rates()
+        problem%settings%formulation = formulation_cvode
+        select type (contact => problem%watches(2)%watch)
+        type is (contact_watch_type)
+            contact%stop_on_liftoff = .false.
+        end select
+        used(4) = problem%roots_use_rates()
+        call check(error, all(used .eqv. [.true., .false., .false., .false.]) &
+            & .and. problem%root_count() == 1, "y' for the events (ODE form with lift-off, " &
+            & // "independent speeds, IDA, ODE form without lift-off): " &
+            & // trim(merge("T ", "F ", used(1))) // trim(merge("T ", "F ", used(2))) &
+            & // trim(merge("T ", "F ", used(3))) // trim(merge("T ", "F ", used(4))) &
+            & // ", expected TFFF with the theta limit's one event function left")
+    end subroutine test_event_rates
 
     !> A UCON whose F has explicit time (the turntable) declared time-free is not asked for
     !> time partials: they stay zero; declared as it is, they are not.

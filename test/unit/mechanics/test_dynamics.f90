@@ -19,6 +19,9 @@ module test_dynamics
     use rollcon_scene, only : scene_type
     use rollcon_disk_scene, only : build_disk_problem
     use rollcon_disk_reference, only : rolling_disk_ucosub
+    use rollcon_disk_par, only : disk_par
+    use rollcon_model, only : model_type, setup_model
+    use rollcon_saddle_point, only : saddle_point_type
     use rollcon_testing, only : unittest_type, new_unittest, check
     implicit none
     private
@@ -47,6 +50,7 @@ contains
             & new_unittest("dae-jacobian-vs-fd", test_dae_jacobian), &
             & new_unittest("mass-and-force-vs-residual", test_mass_and_force), &
             & new_unittest("saddle-point-vs-dense-lu", test_saddle_point), &
+            & new_unittest("saddle-point-blocks-as-dense", test_saddle_blocks), &
             & new_unittest("equations-use-problem-model", test_problem_model), &
             & new_unittest("formulation-chooses-the-integrator", test_integrator_choice)]
     end subroutine collect_dynamics
@@ -263,6 +267,94 @@ contains
         call check(error, problem%lambda, b(7:, 1), "multipliers", &
             & abs_tol=tol_solve*maxval(abs(b(7:, 1))))
     end subroutine test_saddle_point
+
+    !> Two disks (parts 7 and 3) and a free part (5, no UCON) at generic states: the
+    !> saddle-point system solved block by block, as every evaluation does (M^-1 f within the
+    !> factorisation's LAPACK calls), gives the dense path's numbers exactly
+    !> (rollcon_saddle_point: the same sums without their exact-zero terms; -0 and +0 compare
+    !> equal), for the accelerations and for two more right-hand sides, whether each disk's
+    !> UCONs come in one run (1, 2, 3 | 4, 5, 6: one LAPACK solve per part and run) or
+    !> interleaved (1, 3, 5 | 2, 4, 6: runs of one).
+    subroutine test_saddle_blocks(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(model_type), target :: models(2)
+        type(problem_type), target :: problems(2)
+        type(part_type) :: part
+        type(saddle_point_type) :: dense
+        real(wp) :: q(18), u(18), a(18), lambda(6), r1(18, 2), r2(6, 2), s1(18, 2), s2(6, 2)
+        integer :: order, k, i
+
+        do order = 1, 2
+            associate (model => models(order), problem => problems(order))
+                part%mass = 0.18_wp
+                part%inertia = [4.6e-4_wp, 4.6e-4_wp, 9.1e-4_wp]
+                part%id = 7
+                call model%add_part(part)
+                part%id = 3
+                call model%add_part(part)
+                part%id = 5
+                call model%add_part(part)
+                model%gravity = [0.0_wp, 0.0_wp, -9.81_wp]
+                model%ucosub => rolling_disk_ucosub
+                if (order == 1) then
+                    do k = 1, 3
+                        call model%add_ucon(10 + k, disk_par(7, 0.1_wp, k))
+                    end do
+                    do k = 1, 3
+                        call model%add_ucon(20 + k, disk_par(3, 0.08_wp, k))
+                    end do
+                else
+                    do k = 1, 3
+                        call model%add_ucon(10 + k, disk_par(7, 0.1_wp, k))
+                        call model%add_ucon(20 + k, disk_par(3, 0.08_wp, k))
+                    end do
+                end if
+                call setup_model(model, error)
+                if (allocated(error)) return
+                call problem%init(model)
+                call problem%prepare(error)
+                if (allocated(error)) return
+                q = [0.1_wp, -0.2_wp, 0.08_wp, 0.4_wp, 1.1_wp, 0.7_wp, &
+                    & 0.5_wp, 0.3_wp, 0.07_wp, -0.9_wp, 1.9_wp, -0.3_wp, &
+                    & -0.4_wp, 0.2_wp, 0.5_wp, 0.6_wp, 0.8_wp, 1.2_wp]
+                u = [0.2_wp, 0.1_wp, -0.05_wp, 1.3_wp, -0.6_wp, -4.0_wp, &
+                    & -0.1_wp, 0.3_wp, 0.02_wp, 0.8_wp, 0.4_wp, 3.0_wp, &
+                    & 0.3_wp, -0.2_wp, 0.1_wp, -1.1_wp, 0.5_wp, 2.0_wp]
+                call problem%accelerations(0.0_wp, q, u, error)
+                if (allocated(error)) return
+                call check(error, problem%eq%saddle%by_blocks .and. problem%eq%blocks%count == 2, &
+                    & "the two disks' system was not solved by its two blocks")
+                if (allocated(error)) return
+                call dense%init(18, 6)
+                call dense%factor(problem%eq%mass, problem%eq%c, 6, error)
+                if (allocated(error)) return
+                a = problem%eq%force
+                lambda = problem%eq%gamma
+                call dense%solve(problem%eq%c, a, lambda, 1, error)
+                if (allocated(error)) return
+                call check(error, all(problem%a == a) .and. all(problem%lambda == lambda), &
+                    & "accelerations or multipliers by blocks differ from the dense path's, " &
+                    & // "order " // to_text(order) // ": largest difference " &
+                    & // to_text(max(maxval(abs(problem%a - a)), &
+                    & maxval(abs(problem%lambda - lambda)))))
+                if (allocated(error)) return
+                do i = 1, 18
+                    r1(i, :) = [0.3_wp*i - 1.0_wp, sin(real(i, wp))]
+                end do
+                r2(:, 1) = [(0.2_wp*i, i = 1, 6)]
+                r2(:, 2) = [(cos(real(i, wp)), i = 1, 6)]
+                s1 = r1
+                s2 = r2
+                call problem%eq%saddle%solve(problem%eq%c, r1, r2, 2, error)
+                if (allocated(error)) return
+                call dense%solve(problem%eq%c, s1, s2, 2, error)
+                if (allocated(error)) return
+                call check(error, all(r1 == s1) .and. all(r2 == s2), "two right-hand sides by " &
+                    & // "blocks differ from the dense path's, order " // to_text(order))
+                if (allocated(error)) return
+            end associate
+        end do
+    end subroutine test_saddle_blocks
 
     !> The equations evaluate the problem's own model, not a copy of it: gravity changed there
     !> after set-up changes the accelerations, affinely (a = M^-1 (f + C^T lambda) with gravity

@@ -39,7 +39,8 @@ contains
             & new_unittest("bad-par-short", test_bad_npar), &
             & new_unittest("bad-par-component", test_bad_component), &
             & new_unittest("bad-par-radius", test_bad_radius), &
-            & new_unittest("bad-par-code", test_bad_code)]
+            & new_unittest("bad-par-code", test_bad_code), &
+            & new_unittest("bad-par-part-id", test_bad_part_id)]
     end subroutine collect_disk_reference
 
     !> Every ARRAY and XMATRX entry against sixth-order central differences of the lower-order
@@ -288,5 +289,23 @@ contains
         par(5) = 16.0_wp
         call expect_par_error(error, par, disk_npar, "PAR(5) must be code 14")
     end subroutine test_bad_code
+
+    !> A part id that is not a positive whole number a default integer holds is refused, by
+    !> the quick test of a valid PAR as by the checks that word the message.
+    subroutine test_bad_part_id(error)
+        type(error_type), allocatable, intent(out) :: error
+        real(wp) :: par(disk_npar), bad(6)
+        integer :: i
+
+        bad = [0.0_wp, -2.0_wp, 1.5_wp, 1.0e12_wp, ieee_value(1.0_wp, ieee_positive_inf), &
+            & ieee_value(1.0_wp, ieee_quiet_nan)]
+        do i = 1, size(bad)
+            par = disk_par(1, 0.1_wp, 2)
+            par(1) = bad(i)
+            call expect_par_error(error, par, disk_npar, "PAR(1) (part id) must be a positive " &
+                & // "whole number")
+            if (allocated(error)) return
+        end do
+    end subroutine test_bad_part_id
 
 end module test_disk_reference
