@@ -9,6 +9,7 @@
 !> step), < 0 unrecoverable.
 module rollcon_dynamic_system
     use rollcon_kinds, only : wp
+    use rollcon_newton_pattern, only : newton_pattern_type, pattern_of_blocks
     implicit none
     private
 
@@ -24,6 +25,7 @@ module rollcon_dynamic_system
         procedure :: dae_jacobian
         procedure :: dae_differential
         procedure :: state_blocks
+        procedure :: dae_pattern
         procedure :: dae_vector_groups
         procedure :: multiplier_scale
         procedure :: root_count
@@ -112,6 +114,17 @@ contains
 
         blocks = 1
     end function state_blocks
+
+    !> Where the DAE's Newton matrix dF/dy + cj dF/dy' can be nonzero (IDA's sparse Newton
+    !> matrix keeps those entries). Default: every entry of states of one block (state_blocks).
+    subroutine dae_pattern(self, n, pattern)
+        class(dynamic_system_type), intent(in) :: self
+        !> Size of the DAE state
+        integer, intent(in) :: n
+        type(newton_pattern_type), intent(out) :: pattern
+
+        pattern = pattern_of_blocks(self%state_blocks(n))
+    end subroutine dae_pattern
 
     !> For each component of a DAE state: 0 when its tolerance is relative to itself, or the
     !> first component of the vector it is a component of, whose largest component its
