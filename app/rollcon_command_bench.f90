@@ -9,7 +9,7 @@ module rollcon_command_bench
         & measure_part_costs, accuracy_line, process_cost_type, measure_process, &
         & plot_work_precision, machine_name, method_settings, cheapest_row, &
         & write_scene_with_settings, run_settings_type, scaling_row_type, measure_scaling, &
-        & scaling_table, short_scaling_methods, chain_time_share
+        & scaling_table, short_scaling_methods
     use rollcon_cli, only : cli_request_type
     use rollcon_app_files, only : make_folder
     implicit none
@@ -199,7 +199,7 @@ contains
         end_time = merge(0.2_wp, 2.0_wp, options%quick)
         write(output_unit, '(a)') "bench: cost per step and part as models grow (the default " &
             & // "solver; N disks over " // to_text(end_time) // " s, a chain of N links over " &
-            & // to_text(chain_time_share*end_time) // " s; the full table: rollcon bench scaling)"
+            & // "a tenth of that; the full table: rollcon bench scaling)"
         if (options%quick) then
             call measure_scaling(options%output_dir // "/scaling", [1, 2], end_time, rows, &
                 & error, short_scaling_methods())
