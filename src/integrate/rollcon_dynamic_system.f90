@@ -83,11 +83,14 @@ contains
         ierr = -1
     end function dae_residual
 
-    !> The Newton matrix dF/dy + cj dF/dy'.
-    integer function dae_jacobian(self, time, cj, y, yp, matrix) result(ierr)
+    !> The Newton matrix dF/dy + cj dF/dy'. With `zeroed` true the caller has zeroed every
+    !> entry of dae_pattern and the others are zero: only those are written (a sparse matrix's
+    !> full work space, kept zero outside its pattern, is not cleared whole).
+    integer function dae_jacobian(self, time, cj, y, yp, matrix, zeroed) result(ierr)
         class(dynamic_system_type), intent(inout) :: self
         real(wp), intent(in) :: time, cj, y(:), yp(:)
-        real(wp), intent(out) :: matrix(:, :)
+        real(wp), intent(inout) :: matrix(:, :)
+        logical, intent(in), optional :: zeroed
 
         matrix = 0.0_wp
         ierr = -1

@@ -399,7 +399,10 @@ contains
         call c_f_pointer(user_data, data)
         yv => FN_VGetArrayPointer(y)
         ypv => FN_VGetArrayPointer(yp)
-        ierr = int(data%system%dae_jacobian(t, cj, yv, ypv, data%full), c_int)
+        ! full is zero outside the pattern (allocated so, and the Newton matrix has no entry
+        ! there: suite link-chain): only the pattern's entries are cleared
+        call data%pattern%clear(data%full)
+        ierr = int(data%system%dae_jacobian(t, cj, yv, ypv, data%full, zeroed=.true.), c_int)
         if (ierr /= 0) return
         ! SUNDIALS' Fortran interface hands the first element: the arrays by their sizes
         entries = data%pattern%entries()

@@ -18,6 +18,7 @@ module rollcon_newton_pattern
         procedure :: entries
         procedure :: from_relation
         procedure :: gather
+        procedure :: clear
     end type newton_pattern_type
 
 contains
@@ -77,6 +78,19 @@ contains
         end do
         pattern%starts(pattern%n + 1) = next
     end function pattern_of_blocks
+
+    !> Zero the pattern's entries of the dense matrix full (the others are left as they are).
+    pure subroutine clear(self, full)
+        class(newton_pattern_type), intent(in) :: self
+        real(wp), intent(inout) :: full(:, :)
+        integer :: j, e
+
+        do j = 1, self%n
+            do e = self%starts(j) + 1, self%starts(j + 1)
+                full(self%rows(e) + 1, j) = 0.0_wp
+            end do
+        end do
+    end subroutine clear
 
     !> The pattern's entries of the dense matrix full, column by column (values(e) is entry e
     !> of the pattern).

@@ -379,13 +379,14 @@ contains
         ierr = self%keep_failure(error)
     end function dae_residual
 
-    integer function dae_jacobian(self, time, cj, y, yp, matrix) result(ierr)
+    integer function dae_jacobian(self, time, cj, y, yp, matrix, zeroed) result(ierr)
         class(problem_type), intent(inout) :: self
         real(wp), intent(in) :: time, cj, y(:), yp(:)
-        real(wp), intent(out) :: matrix(:, :)
+        real(wp), intent(inout) :: matrix(:, :)
+        logical, intent(in), optional :: zeroed
         type(error_type), allocatable :: error
 
-        call jacobian_of_dae(self%eq, time, cj, y, yp, matrix, error)
+        call jacobian_of_dae(self%eq, time, cj, y, yp, matrix, error, zeroed)
         ierr = self%keep_failure(error)
     end function dae_jacobian
 
