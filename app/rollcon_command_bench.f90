@@ -8,7 +8,8 @@ module rollcon_command_bench
         & benchmark_header, write_benchmark_row, evaluation_costs, part_costs_type, &
         & measure_part_costs, accuracy_line, process_cost_type, measure_process, &
         & plot_work_precision, machine_name, method_settings, cheapest_row, &
-        & write_scene_with_settings, run_settings_type
+        & write_scene_with_settings, run_settings_type, scaling_row_type, measure_scaling, &
+        & scaling_table, short_scaling_methods
     use rollcon_cli, only : cli_request_type
     use rollcon_app_files, only : make_folder
     implicit none
@@ -84,6 +85,8 @@ contains
         close(unit)
         if (process_unit /= -1) close(process_unit)
         call plot_work_precision(options%output_dir, options%scene_list, error)
+        if (allocated(error)) return
+        call scaling_summary(options, error)
         if (allocated(error)) return
         write(output_unit, '(a)') "bench: wrote " // options%output_dir // "/bench.csv and " &
             & // options%output_dir // "/bench_<scene>.png"
@@ -182,6 +185,32 @@ contains
         if (.not. options%quick) call process_cost(name, options%output_dir, process_unit, error)
     end subroutine bench_scene
 
+    !> The per-part scaling table (issue #25; the full one is `rollcon bench scaling`): the
+    !> default way of solving on N disks and on a chain of N links, N = 1, 4, 16, 64 over 2 s
+    !> (the chain a tenth of it); with --quick N = 1, 2 over 0.2 s. Datasets in DIR/scaling.
+    subroutine scaling_summary(options, error)
+        type(bench_options_type), intent(in) :: options
+        type(error_type), allocatable, intent(out) :: error
+        type(scaling_row_type), allocatable :: rows(:)
+        real(wp) :: end_time
+
+        call make_folder(options%output_dir // "/scaling", error)
+        if (allocated(error)) return
+        end_time = merge(0.2_wp, 2.0_wp, options%quick)
+        write(output_unit, '(a)') "bench: cost per step and part as models grow (the default " &
+            & // "solver; N disks over " // to_text(end_time) // " s, a chain of N links over " &
+            & // "a tenth of that; the full table: rollcon bench scaling)"
+        if (options%quick) then
+            call measure_scaling(options%output_dir // "/scaling", [1, 2], end_time, rows, &
+                & error, short_scaling_methods())
+        else
+            call measure_scaling(options%output_dir // "/scaling", [1, 4, 16, 64], end_time, &
+                & rows, error, short_scaling_methods())
+        end if
+        if (allocated(error)) return
+        write(output_unit, '(a)', advance="no") scaling_table(rows)
+    end subroutine scaling_summary
+
     !> The whole process of each method's headline row (its cheapest run within
     !> accuracy_target): `rollcon run` of a copy of the scene with that row's settings, as a
     !> child; its user + system CPU goes into the row (process_cpu).
@@ -275,7 +304,10 @@ contains
             & "unit costs measured in the same run) and SUNDIALS' remainder. Outside --quick, the", &
             & "whole process 'rollcon run SCENE' is timed as a child (DIR/bench_process.csv).", &
             & "Writes DIR/bench.csv and DIR/bench_<scene>.png (gnuplot); DIR defaults to output.", &
-            & "  --quick       tipping_coin over 1 s at rtol 1e-4 and 1e-6, one run each", &
+            & "Last, the cost per step and part of the default way of solving on N disks and", &
+            & "on a chain of N links, N = 1, 4, 16, 64 (rollcon bench scaling: the full table).", &
+            & "  --quick       tipping_coin over 1 s at rtol 1e-4 and 1e-6, one run each; the", &
+            & "                scaling table on N = 1, 2", &
             & "  --end-time T  cut every scene at T seconds"
     end subroutine print_help
 

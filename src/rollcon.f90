@@ -33,7 +33,7 @@ module rollcon
     use rollcon_run_settings, only : run_settings_type, formulation_cvode, formulation_ida, &
         & formulation_maggi, &
         & method_bdf, method_adams, drift_none, drift_projection, drift_baumgarte, &
-        & jacobian_analytic, jacobian_dq, linear_dense, linear_sparse
+        & jacobian_analytic, jacobian_dq, linear_dense, linear_sparse, linear_auto
 
     ! a run: the problem, its watches, the simulation, its rows and summary
     use rollcon_problem, only : problem_type
@@ -120,8 +120,9 @@ module rollcon
     use rollcon_bench_plot, only : plot_work_precision, machine_name
     use rollcon_bench_sweep, only : time_sweep, coordinator_row_us
     use rollcon_bench_scaling, only : scaling_row_type, measure_scaling, scaling_header, &
-        & scaling_csv_row
+        & scaling_csv_row, chain_time_share, scaling_table, short_scaling_methods
     use rollcon_disk_fleet, only : disk_fleet_dataset
+    use rollcon_link_chain, only : link_chain_dataset
     implicit none
     public
 end module rollcon

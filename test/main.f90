@@ -84,6 +84,7 @@ program tester
     use test_adm_bicycle, only : collect_adm_bicycle
     use test_independent_speeds, only : collect_independent_speeds
     use test_disk_fleet, only : collect_disk_fleet
+    use test_link_chain, only : collect_link_chain
     implicit none
     type(testsuite_type), allocatable :: suites(:)
     type(test_counts_type) :: counts
@@ -172,7 +173,8 @@ program tester
         & new_testsuite("inertia-command", collect_inertia_command), &
         & new_testsuite("adm-bicycle", collect_adm_bicycle), &
         & new_testsuite("independent-speeds", collect_independent_speeds), &
-        & new_testsuite("disk-fleet", collect_disk_fleet)]
+        & new_testsuite("disk-fleet", collect_disk_fleet), &
+        & new_testsuite("link-chain", collect_link_chain)]
 
     if (command_argument_count() >= 1) then
         call get_command_argument(1, argument)

@@ -117,11 +117,14 @@ contains
             return
         end if
         part_j = nint(par(index))
-        range = "PAR(" // to_text(index + 1) // ")"
-        if (size(codes) > 1) range = "PAR(" // to_text(index + 1) // ":" &
-            & // to_text(index + size(codes)) // ")"
         do i = 1, size(codes)
             if (par(index + i) /= real(codes(i), wp)) then
+                ! the message's text only when it is needed: this check runs at every call of
+                ! a two-part routine (a joint's), where building it cost a quarter of a chain's
+                ! run (docs/benchmark.md "Cost as models grow")
+                range = "PAR(" // to_text(index + 1) // ")"
+                if (size(codes) > 1) range = "PAR(" // to_text(index + 1) // ":" &
+                    & // to_text(index + size(codes)) // ")"
                 message = "PAR(" // to_text(index + i) // ") must be code " &
                     & // to_text(codes(i)) // " (codes " // codes_text(codes) // " in " &
                     & // range // "), got " // to_text(par(index + i))

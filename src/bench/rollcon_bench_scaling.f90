@@ -1,8 +1,9 @@
 ! SPDX-License-Identifier: MIT
 !> Cost as models grow (`rollcon bench scaling`, docs/benchmark.md): N independent rolling
-!> disks (rollcon_disk_fleet) for N = 1, 2, 4, ..., 64, each run as a dataset through the one
-!> route (load_job, run_job, no files) on each formulation, and the CPU time per step and per
-!> part against N = 1's. A benchmark, not a test: the ratios are what it reports.
+!> disks (rollcon_disk_fleet) and a chain of N links joined by REVOLUTE joints
+!> (rollcon_link_chain) for N = 1, 2, 4, ..., 64, each run as a dataset through the one route
+!> (load_job, run_job, no files) on each way of solving, and the CPU time per step and per part
+!> against N = 1's. A benchmark, not a test: the ratios are what it reports.
 module rollcon_bench_scaling
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type
@@ -12,14 +13,23 @@ module rollcon_bench_scaling
     use rollcon_load, only : load_job
     use rollcon_run_job, only : run_job, job_result_type
     use rollcon_disk_fleet, only : disk_fleet_dataset
+    use rollcon_link_chain, only : link_chain_dataset
     implicit none
     private
 
     public :: scaling_row_type, scaling_methods, measure_scaling, scaling_header, scaling_csv_row
+    public :: chain_time_share, scaling_table, short_scaling_methods
+
+    !> The chain runs this share of the disks' time (the programs say "a tenth"), to keep the
+    !> benchmark near 2 minutes: over 0.2 s the chain takes 310 IDA steps at one link and 924
+    !> at 64 (the disks 4444 over 2 s), and at 64 links the dense matrix's run takes 20 s
+    real(wp), parameter :: chain_time_share = 0.1_wp
 
     !> One (method, N) measured
     type :: scaling_row_type
         character(len=24) :: method = ""
+        !> "disks" (rollcon_disk_fleet) or "chain" (rollcon_link_chain)
+        character(len=8) :: model = ""
         !> Parts (disks) and the integrator's states
         integer :: parts = 0, states = 0
         integer :: steps = 0, functions = 0, jacobians = 0
@@ -30,49 +40,83 @@ module rollcon_bench_scaling
 
 contains
 
-    !> The methods measured: their names and their INTEGRATOR keywords (rtol 1e-8, atol 1e-10,
-    !> as the coin's run): IDA, CVODE Adams on the ODE form and in independent speeds, the last
-    !> two also with the sparse Newton matrix (KLU).
+    !> The methods measured: their names (a chain's begin with "chain-"), and their INTEGRATOR
+    !> keywords (rtol 1e-8, atol 1e-10, as the coin's run): on the disks IDA and CVODE Adams on
+    !> the ODE form and in independent speeds, each with the dense and the sparse Newton matrix
+    !> (KLU); on the chain IDA and CVODE's ODE form, dense and sparse; on both, the default
+    !> (IDA, the Newton matrix the size chooses: linear_solver = 'auto').
     subroutine scaling_methods(names, keywords)
         character(len=24), allocatable, intent(out) :: names(:)
         character(len=96), allocatable, intent(out) :: keywords(:)
+        character(len=*), parameter :: tolerances = "RTOL=1e-8, ATOL=1e-10", &
+            & cvode = "FORMULATION=CVODE, METHOD=ADAMS, DRIFT=BAUMGARTE, " // tolerances, &
+            & maggi = "FORMULATION=MAGGI, METHOD=ADAMS, DRIFT=BAUMGARTE, " // tolerances, &
+            & ida = "FORMULATION=IDA, " // tolerances, dense = ", SOLVER=DENSE", &
+            & sparse = ", SOLVER=SPARSE"
 
-        names = [character(len=24) :: "ida", "cvode-adams-baumgarte", "maggi-adams", &
-            & "cvode-adams-klu", "maggi-adams-klu"]
-        keywords = [character(len=96) :: "FORMULATION=IDA, RTOL=1e-8, ATOL=1e-10", &
-            & "FORMULATION=CVODE, METHOD=ADAMS, DRIFT=BAUMGARTE, RTOL=1e-8, ATOL=1e-10", &
-            & "FORMULATION=MAGGI, METHOD=ADAMS, DRIFT=BAUMGARTE, RTOL=1e-8, ATOL=1e-10", &
-            & "FORMULATION=CVODE, METHOD=ADAMS, DRIFT=BAUMGARTE, RTOL=1e-8, ATOL=1e-10, " &
-            & // "SOLVER=SPARSE", &
-            & "FORMULATION=MAGGI, METHOD=ADAMS, DRIFT=BAUMGARTE, RTOL=1e-8, ATOL=1e-10, " &
-            & // "SOLVER=SPARSE"]
+        names = [character(len=24) :: "default", "ida", "ida-klu", "cvode-adams-baumgarte", &
+            & "cvode-adams-klu", "maggi-adams", "maggi-adams-klu", "chain-default", &
+            & "chain-ida", "chain-ida-klu", "chain-cvode-adams", "chain-cvode-adams-klu"]
+        keywords = [character(len=96) :: tolerances, ida // dense, ida // sparse, &
+            & cvode // dense, cvode // sparse, maggi // dense, maggi // sparse, tolerances, &
+            & ida // dense, ida // sparse, cvode // dense, cvode // sparse]
     end subroutine scaling_methods
 
-    !> Run every method on N = counts(:) disks, 0.5 m apart, to end_time [s]; the datasets are
-    !> written to folder (disk_fleet_<N>.adm). Rows in method order, then N.
-    subroutine measure_scaling(folder, counts, end_time, rows, error)
+    !> Run every method (or those named in `only`) on N = counts(:) disks, 0.5 m apart, to
+    !> end_time [s], or on a chain of N links to chain_time_share of it; the datasets are
+    !> written to folder (disk_fleet_<N>_<method>.adm, link_chain_<N>_<method>.adm). Rows in
+    !> method order, then N.
+    subroutine measure_scaling(folder, counts, end_time, rows, error, only)
         character(len=*), intent(in) :: folder
         integer, intent(in) :: counts(:)
         real(wp), intent(in) :: end_time
         type(scaling_row_type), allocatable, intent(out) :: rows(:)
         type(error_type), allocatable, intent(out) :: error
+        !> The methods to run, by name (default: all of scaling_methods)
+        character(len=*), intent(in), optional :: only(:)
         character(len=24), allocatable :: names(:)
         character(len=96), allocatable :: keywords(:)
         character(len=:), allocatable :: path
         type(job_type) :: job
         type(job_result_type) :: ran
+        logical, allocatable :: chosen(:)
+        logical :: chain
         integer :: m, k, r
 
         call scaling_methods(names, keywords)
-        allocate(rows(size(names)*size(counts)))
+        chosen = [(.true., m = 1, size(names))]
+        if (present(only)) chosen = [(any(only == names(m)), m = 1, size(names))]
+        allocate(rows(count(chosen)*size(counts)))
+        ! warm-up, not measured: the first run of a process paid 60 % more per step than the
+        ! same run after it (5.55 against 3.44 us on one disk: page faults, cold caches)
+        path = folder // "/disk_fleet_warm_up.adm"
+        call write_text_file(path, disk_fleet_dataset(1, 0.5_wp, end_time, 0.1_wp, &
+            & trim(keywords(findloc(chosen, .true., dim=1)))), error)
+        if (allocated(error)) return
+        call load_job(path, job, error)
+        if (allocated(error)) return
+        job%output_dir = ""
+        job%quiet = .true.
+        call run_job(job, ran, error)
+        if (allocated(error)) return
         r = 0
         do m = 1, size(names)
+            if (.not. chosen(m)) cycle
+            chain = index(names(m), "chain-") == 1
             do k = 1, size(counts)
                 r = r + 1
-                path = folder // "/disk_fleet_" // to_text(counts(k)) // "_" // trim(names(m)) &
-                    & // ".adm"
-                call write_text_file(path, disk_fleet_dataset(counts(k), 0.5_wp, end_time, &
-                    & 0.1_wp, trim(keywords(m))), error)
+                if (chain) then
+                    path = folder // "/link_chain_" // to_text(counts(k)) // "_" &
+                        & // trim(names(m)) // ".adm"
+                    call write_text_file(path, link_chain_dataset(counts(k), &
+                        & chain_time_share*end_time, 0.1_wp*chain_time_share, &
+                        & trim(keywords(m))), error)
+                else
+                    path = folder // "/disk_fleet_" // to_text(counts(k)) // "_" &
+                        & // trim(names(m)) // ".adm"
+                    call write_text_file(path, disk_fleet_dataset(counts(k), 0.5_wp, end_time, &
+                        & 0.1_wp, trim(keywords(m))), error)
+                end if
                 if (allocated(error)) return
                 call load_job(path, job, error)
                 if (allocated(error)) return
@@ -82,8 +126,10 @@ contains
                 if (allocated(error)) return
                 associate (row => rows(r), s => ran%summary)
                     row%method = names(m)
+                    row%model = trim(merge("chain", "disks", chain))
                     row%parts = counts(k)
-                    row%states = states_of(trim(names(m)), counts(k))
+                    row%states = states_of(trim(keywords(m)), size(s%q), size(s%ucon_position), &
+                        & count(s%ucon_position))
                     row%steps = s%steps
                     row%functions = s%functions
                     row%jacobians = s%jacobians
@@ -97,28 +143,55 @@ contains
         end do
     end subroutine measure_scaling
 
-    !> The integrator's states of a method on N disks: 12 N (q, u) for CVODE's ODE form, 15 N
-    !> with IDA's multipliers, 9 N in independent speeds.
-    pure integer function states_of(method, parts) result(states)
-        character(len=*), intent(in) :: method
-        integer, intent(in) :: parts
+    !> The integrator's states of a method (by its INTEGRATOR keywords) on a model of n
+    !> coordinates, nc UCONs, nh of them position UCONs: 2 n (q, u) for CVODE's ODE form,
+    !> 2 n + nc + nh with IDA's multipliers (the default), 2 n - nc in independent speeds.
+    pure integer function states_of(keywords, n, nc, nh) result(states)
+        character(len=*), intent(in) :: keywords
+        integer, intent(in) :: n, nc, nh
 
-        select case (method)
-        case ("ida")
-            states = 15*parts
-        case ("maggi-adams", "maggi-adams-klu")
-            states = 9*parts
-        case default
-            states = 12*parts
-        end select
+        if (index(keywords, "FORMULATION=CVODE") > 0) then
+            states = 2*n
+        else if (index(keywords, "FORMULATION=MAGGI") > 0) then
+            states = 2*n - nc
+        else
+            states = 2*n + nc + nh
+        end if
     end function states_of
+
+    !> The methods of the short table `rollcon bench` prints: the default way of solving on
+    !> the disks and on the chain.
+    pure function short_scaling_methods() result(names)
+        character(len=24) :: names(2)
+
+        names = [character(len=24) :: "default", "chain-default"]
+    end function short_scaling_methods
+
+    !> The rows as the table the benchmark prints: a header line, then one line per row (model,
+    !> method, N, states, steps, us per step and part, ratio to N = 1, status), each ending in
+    !> a new line.
+    function scaling_table(rows) result(text)
+        type(scaling_row_type), intent(in) :: rows(:)
+        character(len=:), allocatable :: text
+        character(len=120) :: line
+        integer :: k
+
+        text = "  model   method                      N  states   steps  us/step/part" &
+            & // "  ratio to N = 1" // new_line("a")
+        do k = 1, size(rows)
+            write(line, "(2x, a8, a24, i5, i8, i8, f14.2, f16.2, 2x, a)") rows(k)%model, &
+                & rows(k)%method, rows(k)%parts, rows(k)%states, rows(k)%steps, &
+                & rows(k)%per_step_part, rows(k)%ratio, trim(rows(k)%status)
+            text = text // trim(line) // new_line("a")
+        end do
+    end function scaling_table
 
     !> Header of the scaling CSV.
     pure function scaling_header() result(header)
         character(len=:), allocatable :: header
 
-        header = "method,parts,states,steps,function_evaluations,jacobian_evaluations,cpu_s," &
-            & // "cpu_per_step_part_us,ratio_to_one_part,status"
+        header = "model,method,parts,states,steps,function_evaluations,jacobian_evaluations," &
+            & // "cpu_s,cpu_per_step_part_us,ratio_to_one_part,status"
     end function scaling_header
 
     !> One CSV row.
@@ -126,7 +199,8 @@ contains
         type(scaling_row_type), intent(in) :: row
         character(len=:), allocatable :: line
 
-        line = trim(row%method) // "," // to_text(row%parts) // "," // to_text(row%states) &
+        line = trim(row%model) // "," // trim(row%method) // "," // to_text(row%parts) // "," &
+            & // to_text(row%states) &
             & // "," // to_text(row%steps) // "," // to_text(row%functions) // "," &
             & // to_text(row%jacobians) // "," // to_text(row%cpu) // "," &
             & // to_text(row%per_step_part) // "," // to_text(row%ratio) // "," // row%status

@@ -3,8 +3,7 @@
 !> models grow"): each disk its own part with its three rolling UCONs served by the model's
 !> UCOSUB (rollcon's hand-checked disk), each started as the tipping coin (the paper's steel
 !> disk, 0.1 m radius, upright less 0.2 rad, rolling at 0.1 m/s), the disks `spacing` apart
-!> along Y. A chain of parts with joints is the next model of the study, once JOINTs are read
-!> (not on main yet).
+!> along Y. The study's other model, a chain of parts with joints, is rollcon_link_chain.
 module rollcon_disk_fleet
     use rollcon_kinds, only : wp
     use rollcon_text, only : to_text

@@ -9,8 +9,7 @@ module rollcon_cvode
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type, fatal_error, stat_solver
     use rollcon_text, only : to_text
-    use rollcon_run_settings, only : run_settings_type, method_adams, linear_sparse, &
-        & jacobian_none
+    use rollcon_run_settings, only : run_settings_type, method_adams, jacobian_none
     use rollcon_dynamic_system, only : dynamic_system_type
     use rollcon_integrator, only : integrator_type, integrator_statistics_type, solver_failure
     use fsundials_context_mod, only : FSUNContext_Create, FSUNContext_Free
@@ -195,11 +194,12 @@ contains
         subroutine newton_solver(failure)
             type(error_type), allocatable, intent(out) :: failure
 
-            self%data%sparse = settings%linear_solver == linear_sparse .and. &
-                & settings%analytic_jacobian()
+            ! sparse when the settings choose it for the matrix's size and blocks
+            self%data%blocks = system%state_blocks(size(y0))
+            self%data%sparse = settings%sparse_newton(size(y0), &
+                & block_entries(self%data%blocks))
             if (self%data%sparse) then
                 ! room for every entry of the blocks (block_entries); KLU factors those given
-                self%data%blocks = system%state_blocks(size(y0))
                 allocate(self%data%full(size(y0), size(y0)), source=0.0_wp)
                 self%matrix => FSUNSparseMatrix(int(size(y0), c_int64_t), int(size(y0), &
                     & c_int64_t), int(max(block_entries(self%data%blocks), 1), c_int64_t), &

@@ -9,6 +9,7 @@
 !> step), < 0 unrecoverable.
 module rollcon_dynamic_system
     use rollcon_kinds, only : wp
+    use rollcon_newton_pattern, only : newton_pattern_type, pattern_of_blocks
     implicit none
     private
 
@@ -24,6 +25,7 @@ module rollcon_dynamic_system
         procedure :: dae_jacobian
         procedure :: dae_differential
         procedure :: state_blocks
+        procedure :: dae_pattern
         procedure :: dae_vector_groups
         procedure :: multiplier_scale
         procedure :: root_count
@@ -82,11 +84,14 @@ contains
         ierr = -1
     end function dae_residual
 
-    !> The Newton matrix dF/dy + cj dF/dy'.
-    integer function dae_jacobian(self, time, cj, y, yp, matrix) result(ierr)
+    !> The Newton matrix dF/dy + cj dF/dy'. With `zeroed` true the caller has zeroed every
+    !> entry of dae_pattern and the others are zero: only those are written (a sparse matrix's
+    !> full work space, kept zero outside its pattern, is not cleared whole).
+    integer function dae_jacobian(self, time, cj, y, yp, matrix, zeroed) result(ierr)
         class(dynamic_system_type), intent(inout) :: self
         real(wp), intent(in) :: time, cj, y(:), yp(:)
-        real(wp), intent(out) :: matrix(:, :)
+        real(wp), intent(inout) :: matrix(:, :)
+        logical, intent(in), optional :: zeroed
 
         matrix = 0.0_wp
         ierr = -1
@@ -113,6 +118,17 @@ contains
 
         blocks = 1
     end function state_blocks
+
+    !> Where the DAE's Newton matrix dF/dy + cj dF/dy' can be nonzero (IDA's sparse Newton
+    !> matrix keeps those entries). Default: every entry of states of one block (state_blocks).
+    subroutine dae_pattern(self, n, pattern)
+        class(dynamic_system_type), intent(in) :: self
+        !> Size of the DAE state
+        integer, intent(in) :: n
+        type(newton_pattern_type), intent(out) :: pattern
+
+        pattern = pattern_of_blocks(self%state_blocks(n))
+    end subroutine dae_pattern
 
     !> For each component of a DAE state: 0 when its tolerance is relative to itself, or the
     !> first component of the vector it is a component of, whose largest component its

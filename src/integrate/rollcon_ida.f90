@@ -1,6 +1,7 @@
 ! SPDX-License-Identifier: MIT
 !> IDA on a system's DAE form: its algebraic components (a model's multipliers) excluded from
-!> the error test, dense Newton solves with the system's Jacobian or IDA's difference quotients.
+!> the error test, dense Newton solves with the system's Jacobian or IDA's difference quotients,
+!> or sparse ones (KLU) with the system's Jacobian kept over its pattern (dae_pattern).
 module rollcon_ida
     use, intrinsic :: iso_c_binding, only : c_ptr, c_null_ptr, c_int, c_long, c_int64_t, &
         & c_double, c_funloc, c_loc, c_f_pointer, c_associated
@@ -18,6 +19,10 @@ module rollcon_ida
     use fnvector_serial_mod, only : FN_VMake_Serial
     use fsunmatrix_dense_mod, only : FSUNDenseMatrix, FSUNDenseMatrix_Data
     use fsunlinsol_dense_mod, only : FSUNLinSol_Dense
+    use fsunmatrix_sparse_mod, only : FSUNSparseMatrix, FSUNSparseMatrix_Data, &
+        & FSUNSparseMatrix_IndexValues, FSUNSparseMatrix_IndexPointers, CSC_MAT
+    use fsunlinsol_klu_mod, only : FSUNLinSol_KLU
+    use rollcon_newton_pattern, only : newton_pattern_type
     use fida_mod, only : FIDACreate, FIDAInit, FIDAWFtolerances, FIDASetUserData, &
         & FIDASetLinearSolver, FIDASetJacFn, FIDASetMaxNumSteps, FIDASetStopTime, FIDASolve, &
         & FIDARootInit, FIDAGetRootInfo, FIDASetId, FIDASetSuppressAlg, FIDAFree, FIDAReInit, &
@@ -63,6 +68,10 @@ module rollcon_ida
         !> The differential components' tolerances are multiplied by this: 1, or finer on the
         !> careful start after a restart
         real(wp) :: scale = 1.0_wp
+        !> Sparse Newton matrices: the system's Jacobian in full (its work space) and the
+        !> entries kept (the system's dae_pattern)
+        real(c_double), allocatable :: full(:, :)
+        type(newton_pattern_type) :: pattern
     end type callback_data_type
 
     !> One IDA integration of a system's DAE form
@@ -161,15 +170,29 @@ contains
         if (check(flag, "IDASetId", error)) return
         flag = FIDASetSuppressAlg(self%memory, SUNTRUE)
         if (check(flag, "IDASetSuppressAlg", error)) return
-        self%matrix => FSUNDenseMatrix(n, n, self%context)
-        self%solver => FSUNLinSol_Dense(self%y, self%matrix, self%context)
+        ! the Newton matrix: sparse (KLU) over the system's pattern when the settings choose
+        ! it for its size and entries (sparse_newton), else dense
+        call system%dae_pattern(size(y0), self%data%pattern)
+        if (settings%sparse_newton(size(y0), self%data%pattern%entries())) then
+            allocate(self%data%full(n, n), source=0.0_wp)
+            self%matrix => FSUNSparseMatrix(n, n, int(self%data%pattern%entries(), c_int64_t), &
+                & CSC_MAT, self%context)
+            if (associated(self%matrix)) &
+                & self%solver => FSUNLinSol_KLU(self%y, self%matrix, self%context)
+        else
+            self%matrix => FSUNDenseMatrix(n, n, self%context)
+            self%solver => FSUNLinSol_Dense(self%y, self%matrix, self%context)
+        end if
         if (.not. associated(self%matrix) .or. .not. associated(self%solver)) then
-            call fatal_error(error, "IDA: could not create the dense linear solver", stat_solver)
+            call fatal_error(error, "IDA: could not create the linear solver", stat_solver)
             return
         end if
         flag = FIDASetLinearSolver(self%memory, self%solver, self%matrix)
         if (check(flag, "IDASetLinearSolver", error)) return
-        if (settings%analytic_jacobian()) then
+        if (allocated(self%data%full)) then
+            flag = FIDASetJacFn(self%memory, c_funloc(sparse_jacobian))
+            if (check(flag, "IDASetJacFn", error)) return
+        else if (settings%analytic_jacobian()) then
             flag = FIDASetJacFn(self%memory, c_funloc(jacobian))
             if (check(flag, "IDASetJacFn", error)) return
         end if
@@ -313,6 +336,7 @@ contains
         self%memory = c_null_ptr
         self%context = c_null_ptr
         nullify(self%solver, self%matrix, self%y, self%yp, self%id, self%data%system)
+        if (allocated(self%data%full)) deallocate(self%data%full)
         if (allocated(self%fired)) deallocate(self%fired)
     end subroutine destroy
 
@@ -358,6 +382,40 @@ contains
         call c_f_pointer(c_loc(entries(1)), matrix, [size(yv), size(yv)])
         ierr = int(data%system%dae_jacobian(t, cj, yv, ypv, matrix), c_int)
     end function jacobian
+
+    !> The system's Jacobian kept over its pattern (zeros included, so the pattern KLU analysed
+    !> stays) as a compressed-column matrix: IDA zeroes the matrix, indices too, before each call.
+    integer(c_int) function sparse_jacobian(t, cj, y, yp, r, jac, user_data, tmp1, tmp2, tmp3) &
+            & result(ierr) bind(c, name="rollcon_ida_sparse_jacobian")
+        real(c_double), value :: t, cj
+        type(N_Vector) :: y, yp, r, tmp1, tmp2, tmp3
+        type(SUNMatrix) :: jac
+        type(c_ptr), value :: user_data
+        type(callback_data_type), pointer :: data
+        real(c_double), pointer :: yv(:), ypv(:), values(:), first_value(:)
+        integer(c_int64_t), pointer :: rows(:), starts(:), first_index(:)
+        integer :: entries
+
+        call c_f_pointer(user_data, data)
+        yv => FN_VGetArrayPointer(y)
+        ypv => FN_VGetArrayPointer(yp)
+        ! full is zero outside the pattern (allocated so, and the Newton matrix has no entry
+        ! there: suite link-chain): only the pattern's entries are cleared
+        call data%pattern%clear(data%full)
+        ierr = int(data%system%dae_jacobian(t, cj, yv, ypv, data%full, zeroed=.true.), c_int)
+        if (ierr /= 0) return
+        ! SUNDIALS' Fortran interface hands the first element: the arrays by their sizes
+        entries = data%pattern%entries()
+        first_value => FSUNSparseMatrix_Data(jac)
+        call c_f_pointer(c_loc(first_value(1)), values, [entries])
+        first_index => FSUNSparseMatrix_IndexValues(jac)
+        call c_f_pointer(c_loc(first_index(1)), rows, [entries])
+        first_index => FSUNSparseMatrix_IndexPointers(jac)
+        call c_f_pointer(c_loc(first_index(1)), starts, [size(yv) + 1])
+        rows = int(data%pattern%rows, c_int64_t)
+        starts = int(data%pattern%starts, c_int64_t)
+        call data%pattern%gather(data%full, values)
+    end function sparse_jacobian
 
     !> IDA's error weights, 1/(rtol |y_i| + atol_i), |y_i| the largest component of y_i's vector
     !> for a component of one (a part's Euler-angle rates), the differential components'

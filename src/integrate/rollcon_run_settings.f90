@@ -12,7 +12,7 @@ module rollcon_run_settings
     public :: formulation_cvode, formulation_ida, formulation_maggi, method_bdf, method_adams
     public :: drift_none, drift_projection, drift_baumgarte, jacobian_analytic, jacobian_dq, &
         & jacobian_none
-    public :: linear_dense, linear_sparse
+    public :: linear_dense, linear_sparse, linear_auto
 
     !> Formulations: CVODE on the ODE form, IDA on the DAE form, CVODE on the coordinates and
     !> independent speeds (docs/design.md §4)
@@ -24,9 +24,18 @@ module rollcon_run_settings
     !> Newton matrices: from the UCOSUBs' partials, or SUNDIALS' difference quotients; or none:
     !> CVODE's fixed-point (functional) iteration instead of Newton's method
     integer, parameter :: jacobian_analytic = 1, jacobian_dq = 2, jacobian_none = 0
-    !> CVODE's Newton matrices: dense LU (LAPACK-style, SUNDIALS' dense solver) or sparse LU
-    !> (SUNDIALS' KLU) over the constraints' blocks (docs/design.md §7)
-    integer, parameter :: linear_dense = 1, linear_sparse = 2
+    !> The Newton matrices: dense LU (LAPACK-style, SUNDIALS' dense solver), sparse LU
+    !> (SUNDIALS' KLU) over the entries the model's structure leaves (docs/design.md §4), or
+    !> whichever of the two the matrix's size and entries make cheaper (sparse_newton)
+    integer, parameter :: linear_dense = 1, linear_sparse = 2, linear_auto = 3
+    !> linear_auto's choice: KLU from this many states on, when the entries kept are at most
+    !> auto_sparse_fill of the matrix. Measured (docs/benchmark.md "Cost as models grow"):
+    !> KLU and the dense LU cost the same per step on one disk (15 states on IDA) and on one
+    !> link (22), KLU 10 to 25 % less from 24 to 44 states; on a full matrix (CVODE's on a
+    !> chain, one block) KLU costs 5 to 10 % more at every size. 32 keeps every shipped
+    !> scene and dataset of one or two parts (at most 30 states) on the dense matrix, as before
+    integer, parameter :: auto_sparse_states = 32
+    real(wp), parameter :: auto_sparse_fill = 0.5_wp
 
     !> How to integrate, and over which times
     type :: run_settings_type
@@ -41,8 +50,8 @@ module rollcon_run_settings
         integer :: drift = drift_projection
         !> jacobian_analytic, jacobian_dq, or jacobian_none (fixed-point iteration, CVODE only)
         integer :: jacobian = jacobian_analytic
-        !> linear_dense or linear_sparse (CVODE with an analytic Jacobian only)
-        integer :: linear_solver = linear_dense
+        !> linear_auto, linear_dense or linear_sparse (the last with an analytic Jacobian only)
+        integer :: linear_solver = linear_auto
         !> Relative and absolute tolerances [-, state units]
         real(wp) :: rtol = 1.0e-8_wp, atol = 1.0e-10_wp
         !> Baumgarte rate alpha [1/s]: F' = -alpha F (velocity), F'' = -2 alpha F' - alpha^2 F
@@ -53,6 +62,7 @@ module rollcon_run_settings
         procedure :: baumgarte
         procedure :: analytic_jacobian
         procedure :: uses_cvode
+        procedure :: sparse_newton
         procedure :: text
     end type run_settings_type
 
@@ -73,6 +83,26 @@ contains
 
         analytic_jacobian = self%jacobian == jacobian_analytic
     end function analytic_jacobian
+
+    !> The Newton matrix of `states` states, `entries` of them kept by the model's structure,
+    !> is solved by KLU: linear_sparse, or linear_auto on a matrix of at least
+    !> auto_sparse_states states at most auto_sparse_fill full; always with the analytic
+    !> Jacobian (difference quotients fill a dense matrix).
+    pure logical function sparse_newton(self, states, entries)
+        class(run_settings_type), intent(in) :: self
+        integer, intent(in) :: states, entries
+
+        select case (self%linear_solver)
+        case (linear_sparse)
+            sparse_newton = .true.
+        case (linear_auto)
+            sparse_newton = states >= auto_sparse_states .and. &
+                & real(entries, wp) <= auto_sparse_fill*real(states, wp)**2
+        case default
+            sparse_newton = .false.
+        end select
+        sparse_newton = sparse_newton .and. self%analytic_jacobian()
+    end function sparse_newton
 
     !> CVODE integrates the run (the ODE forms, 'cvode' and 'maggi'); else IDA.
     pure logical function uses_cvode(self)

@@ -43,80 +43,151 @@ contains
         real(wp), intent(in) :: time, y(:), yp(:)
         real(wp), intent(out) :: r(:)
         type(error_type), allocatable, intent(out) :: error
-        integer :: n, nc, needs, k, h, j
+        integer :: n, nc, needs, k, h, j, i0, jj
 
         n = eq%n
         nc = eq%nc
         needs = need_value + need_first
         if (eq%nh > 0) needs = needs + need_time
         associate (q => y(:n), u => y(n + 1:2*n), lambda => y(2*n + 1:2*n + nc), &
-            & mu => y(2*n + nc + 1:), qp => yp(:n), up => yp(n + 1:2*n), cs => eq%constraints)
+            & mu => y(2*n + nc + 1:), qp => yp(:n), up => yp(n + 1:2*n), cs => eq%constraints, &
+            & bl => eq%blocks)
             call cs%evaluate(eq%model, time, q, u, needs, error)
             if (allocated(error)) return
             call eq%assemble(time, q, u)
             r(:n) = qp - u
             r(n + 1:2*n) = -eq%force
-            do j = 1, n
-                r(n + 1:2*n) = r(n + 1:2*n) + eq%mass(:, j)*up(j)
+            ! M u' part by part (M is the parts' 6 by 6 blocks), and each UCON's terms over its
+            ! own coordinates: the dense sums' terms that are not exact zeros, in their order,
+            ! at a cost per part that stays flat as the model grows
+            do i0 = 0, n - 6, 6
+                do j = i0 + 1, i0 + 6
+                    r(n + i0 + 1:n + i0 + 6) = r(n + i0 + 1:n + i0 + 6) &
+                        & + eq%mass(i0 + 1:i0 + 6, j)*up(j)
+                end do
             end do
             do k = 1, nc
                 h = eq%model%holonomic_number(k)
-                if (h > 0) then
-                    r(:n) = r(:n) - mu(h)*cs%grad_q(k, :)
-                    r(n + 1:2*n) = r(n + 1:2*n) - lambda(k)*cs%grad_q(k, :)
-                    r(2*n + k) = dot_product(cs%grad_q(k, :), u) + cs%dt(k)
-                    r(2*n + nc + h) = cs%value(k)
-                else
-                    r(n + 1:2*n) = r(n + 1:2*n) - lambda(k)*cs%grad_u(k, :)
-                    r(2*n + k) = cs%value(k)
-                end if
+                associate (at => bl%ucon_coordinates(bl%ucon_start(k):bl%ucon_start(k + 1) - 1))
+                    if (h > 0) then
+                        do jj = 1, size(at)
+                            j = at(jj)
+                            r(j) = r(j) - mu(h)*cs%grad_q(k, j)
+                            r(n + j) = r(n + j) - lambda(k)*cs%grad_q(k, j)
+                        end do
+                        r(2*n + k) = sparse_dot(cs%grad_q(k, :), u, at) + cs%dt(k)
+                        r(2*n + nc + h) = cs%value(k)
+                    else
+                        do jj = 1, size(at)
+                            j = at(jj)
+                            r(n + j) = r(n + j) - lambda(k)*cs%grad_u(k, j)
+                        end do
+                        r(2*n + k) = cs%value(k)
+                    end if
+                end associate
             end do
         end associate
     end subroutine dae_residual
 
     !> Newton matrix dr/dy + cj dr/dy', analytic from the UCOSUB's first and second partials.
-    subroutine dae_jacobian(eq, time, cj, y, yp, jac, error)
+    !> Written part by part (the mass, force and momentum terms: 6 by 6 per part) and over
+    !> each UCON's own coordinates (its partials are zero elsewhere): O(entries), as a sparse
+    !> Newton matrix needs, after jac is cleared. With `zeroed` true the caller has cleared it:
+    !> jac is zero wherever this routine writes or adds (rollcon_ida zeroes its pattern's
+    !> entries, and the rest stay zero), and the (2n + nc + nh)^2 writes of clearing it whole,
+    !> which a chain of 64 links would pay at every Jacobian, are left out.
+    subroutine dae_jacobian(eq, time, cj, y, yp, jac, error, zeroed)
         type(equations_type), intent(inout) :: eq
         real(wp), intent(in) :: time, cj, y(:), yp(:)
-        real(wp), intent(out) :: jac(:, :)
+        real(wp), intent(inout) :: jac(:, :)
         type(error_type), allocatable, intent(out) :: error
-        integer :: n, nc, k, h, j, row
+        logical, intent(in), optional :: zeroed
+        logical :: clear
+        integer :: n, nc, k, h, i, j, row, ii, jj, i0
 
         n = eq%n
         nc = eq%nc
+        clear = .true.
+        if (present(zeroed)) clear = .not. zeroed
         associate (q => y(:n), u => y(n + 1:2*n), lambda => y(2*n + 1:2*n + nc), &
-            & mu => y(2*n + nc + 1:), up => yp(n + 1:2*n), cs => eq%constraints)
+            & mu => y(2*n + nc + 1:), up => yp(n + 1:2*n), cs => eq%constraints, &
+            & bl => eq%blocks, dm_dq => eq%work%dm_dq)
             call cs%evaluate(eq%model, time, q, u, need_value + need_first + need_second &
                 & + need_time, error)
             if (allocated(error)) return
             call eq%assemble(time, q, u)
             call eq%constraint_rows(u, 0.0_wp)  ! the DAE form keeps F itself: no Baumgarte terms
             call eq%momentum_jacobian(q, u, up, lambda)
-            jac = 0.0_wp
+            if (clear) jac = 0.0_wp
             do j = 1, n
                 jac(j, j) = cj
                 jac(j, n + j) = -1.0_wp
             end do
-            jac(n + 1:2*n, :n) = eq%work%dm_dq
-            jac(n + 1:2*n, n + 1:2*n) = eq%work%dm_du + cj*eq%mass
+            ! the momentum rows: each part's 6 by 6 blocks (M, its forces), then the UCONs'
+            ! terms of dm/dq over their coordinates (rollcon_equations' momentum_jacobian)
+            do i0 = 0, n - 6, 6
+                do j = i0 + 1, i0 + 6
+                    jac(n + i0 + 1:n + i0 + 6, j) = dm_dq(i0 + 1:i0 + 6, j)
+                    jac(n + i0 + 1:n + i0 + 6, n + j) = eq%work%dm_du(i0 + 1:i0 + 6, j) &
+                        & + cj*eq%mass(i0 + 1:i0 + 6, j)
+                end do
+            end do
+            do k = 1, nc
+                associate (at => bl%ucon_coordinates(bl%ucon_start(k):bl%ucon_start(k + 1) - 1))
+                    do jj = 1, size(at)
+                        do ii = 1, size(at)
+                            jac(n + at(ii), at(jj)) = dm_dq(at(ii), at(jj))
+                        end do
+                    end do
+                end associate
+            end do
             do k = 1, nc
                 h = eq%model%holonomic_number(k)
                 row = 2*n + k
-                jac(n + 1:2*n, row) = -eq%c(k, :)
-                if (h > 0) then
-                    jac(:n, :n) = jac(:n, :n) - mu(h)*cs%hqq(:, :, k)
-                    jac(:n, 2*n + nc + h) = -cs%grad_q(k, :)
-                    do j = 1, n
-                        jac(row, j) = dot_product(cs%hqq(:, j, k), u) + cs%dt_grad_q(k, j)
+                associate (at => bl%ucon_coordinates(bl%ucon_start(k):bl%ucon_start(k + 1) - 1))
+                    do jj = 1, size(at)
+                        j = at(jj)
+                        jac(n + j, row) = -eq%c(k, j)
                     end do
-                    jac(row, n + 1:2*n) = cs%grad_q(k, :)
-                    jac(2*n + nc + h, :n) = cs%grad_q(k, :)
-                else
-                    jac(row, :n) = cs%grad_q(k, :)
-                    jac(row, n + 1:2*n) = cs%grad_u(k, :)
-                end if
+                    if (h > 0) then
+                        ! mu_h G_h's partials and G_h u's
+                        do jj = 1, size(at)
+                            j = at(jj)
+                            do ii = 1, size(at)
+                                i = at(ii)
+                                jac(i, j) = jac(i, j) - mu(h)*cs%hqq(i, j, k)
+                            end do
+                        end do
+                        do jj = 1, size(at)
+                            j = at(jj)
+                            jac(row, j) = sparse_dot(cs%hqq(:, j, k), u, at) + cs%dt_grad_q(k, j)
+                            jac(j, 2*n + nc + h) = -cs%grad_q(k, j)
+                            jac(row, n + j) = cs%grad_q(k, j)
+                            jac(2*n + nc + h, j) = cs%grad_q(k, j)
+                        end do
+                    else
+                        do jj = 1, size(at)
+                            j = at(jj)
+                            jac(row, j) = cs%grad_q(k, j)
+                            jac(row, n + j) = cs%grad_u(k, j)
+                        end do
+                    end if
+                end associate
             end do
         end associate
     end subroutine dae_jacobian
+
+    !> x . y over the given entries (ascending), in their order.
+    pure function sparse_dot(x, y, at) result(total)
+        real(wp), intent(in) :: x(:), y(:)
+        integer, intent(in) :: at(:)
+        real(wp) :: total
+        integer :: i
+
+        total = 0.0_wp
+        do i = 1, size(at)
+            total = total + x(at(i))*y(at(i))
+        end do
+    end function sparse_dot
 
 end module rollcon_dae

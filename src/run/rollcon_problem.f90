@@ -19,6 +19,7 @@ module rollcon_problem
     use rollcon_run_settings, only : run_settings_type, formulation_cvode, formulation_maggi, &
         & drift_projection
     use rollcon_dynamic_system, only : dynamic_system_type
+    use rollcon_newton_pattern, only : newton_pattern_type
     use rollcon_watch, only : watch_type, watch_slot_type, append_watch
     use rollcon_output_layout, only : name_length, coord_psi
     implicit none
@@ -72,6 +73,7 @@ module rollcon_problem
         procedure :: dae_jacobian
         procedure :: dae_differential
         procedure :: state_blocks
+        procedure :: dae_pattern
         procedure :: dae_vector_groups
         procedure :: multiplier_scale
         procedure :: root_count
@@ -378,13 +380,14 @@ contains
         ierr = self%keep_failure(error)
     end function dae_residual
 
-    integer function dae_jacobian(self, time, cj, y, yp, matrix) result(ierr)
+    integer function dae_jacobian(self, time, cj, y, yp, matrix, zeroed) result(ierr)
         class(problem_type), intent(inout) :: self
         real(wp), intent(in) :: time, cj, y(:), yp(:)
-        real(wp), intent(out) :: matrix(:, :)
+        real(wp), intent(inout) :: matrix(:, :)
+        logical, intent(in), optional :: zeroed
         type(error_type), allocatable :: error
 
-        call jacobian_of_dae(self%eq, time, cj, y, yp, matrix, error)
+        call jacobian_of_dae(self%eq, time, cj, y, yp, matrix, error, zeroed)
         ierr = self%keep_failure(error)
     end function dae_jacobian
 
@@ -426,9 +429,93 @@ contains
                 do j = 2*nq + 1, min(n, 2*nq + self%eq%nc)
                     blocks(j) = bl%row_block(j - 2*nq)
                 end do
+                ! the DAE's mu_h: its position UCON's
+                do m = 1, self%eq%nc
+                    j = 2*nq + self%eq%nc + self%model%holonomic_number(m)
+                    if (self%model%holonomic_number(m) > 0 .and. j <= n) &
+                        & blocks(j) = bl%row_block(m)
+                end do
             end if
         end associate
     end function state_blocks
+
+    !> Where the DAE's Newton matrix (rollcon_dae) can be nonzero: entries between the states
+    !> of neighbouring parts, two parts being neighbours when they are one or a UCON holds both
+    !> (a part's q, u; a UCON's lambda, and its mu when it is a position UCON, of every part it
+    !> holds). Its terms are the parts' own (mass, forces: 6 by 6 per part) and the UCONs'
+    !> (partials over their own coordinates): within a block, a chain of N links keeps O(N)
+    !> entries where the block holds O(N^2).
+    subroutine dae_pattern(self, n, pattern)
+        class(problem_type), intent(in) :: self
+        integer, intent(in) :: n
+        type(newton_pattern_type), intent(out) :: pattern
+        !> Each state's parts (at most most_parts), their number
+        integer, allocatable :: parts_of(:, :), counts(:)
+        logical, allocatable :: neighbours(:, :), keep(:, :)
+        integer :: np, nq, nc, k, i, j, a, b, most_parts, row
+
+        np = self%eq%n/6
+        nq = self%eq%n
+        nc = self%eq%nc
+        associate (bl => self%eq%blocks)
+            most_parts = 1
+            do k = 1, nc
+                most_parts = max(most_parts, bl%ucon_start(k + 1) - bl%ucon_start(k))
+            end do
+            allocate(parts_of(most_parts, n), counts(n), source=0)
+            allocate(neighbours(np, np), source=.false.)
+            do i = 1, min(n, 2*nq)
+                counts(i) = 1
+                parts_of(1, i) = mod(i - 1, nq)/6 + 1
+            end do
+            do a = 1, np
+                neighbours(a, a) = .true.
+            end do
+            do k = 1, nc
+                row = 2*nq + k
+                call add_parts(row, bl%ucon_coordinates(bl%ucon_start(k):bl%ucon_start(k + 1) - 1))
+                if (self%model%holonomic_number(k) > 0) then
+                    j = 2*nq + nc + self%model%holonomic_number(k)
+                    if (j <= n) then
+                        counts(j) = counts(row)
+                        parts_of(:, j) = parts_of(:, row)
+                    end if
+                end if
+                do a = 1, counts(row)
+                    do b = 1, counts(row)
+                        neighbours(parts_of(a, row), parts_of(b, row)) = .true.
+                    end do
+                end do
+            end do
+        end associate
+        allocate(keep(n, n), source=.false.)
+        do j = 1, n
+            do i = 1, n
+                do a = 1, counts(i)
+                    do b = 1, counts(j)
+                        if (neighbours(parts_of(a, i), parts_of(b, j))) keep(i, j) = .true.
+                    end do
+                end do
+            end do
+        end do
+        call pattern%from_relation(keep)
+
+    contains
+
+        !> The parts of these coordinates, each once, as state i's.
+        subroutine add_parts(i, coordinates)
+            integer, intent(in) :: i, coordinates(:)
+            integer :: c, p
+
+            do c = 1, size(coordinates)
+                p = (coordinates(c) - 1)/6 + 1
+                if (any(parts_of(:counts(i), i) == p)) cycle
+                counts(i) = counts(i) + 1
+                parts_of(counts(i), i) = p
+            end do
+        end subroutine add_parts
+
+    end subroutine dae_pattern
 
     !> A part's three Euler-angle rates are held relative to the largest of them: they are the
     !> components of one angular velocity (docs/design.md §7, IDA's error test). Every other

@@ -7,7 +7,8 @@ module rollcon_run_keys
     use rollcon_kinds, only : wp
     use rollcon_run_settings, only : run_settings_type, formulation_cvode, formulation_ida, &
         & formulation_maggi, method_bdf, method_adams, drift_none, drift_projection, drift_baumgarte, &
-        & jacobian_analytic, jacobian_dq, jacobian_none, linear_dense, linear_sparse
+        & jacobian_analytic, jacobian_dq, jacobian_none, linear_dense, linear_sparse, &
+        & linear_auto
     use rollcon_keys, only : key_type, option_type, real_key, integer_key, choice_key, &
         & option_code, option_name
     implicit none
@@ -51,8 +52,9 @@ contains
                 & choice_key(run_group, "jacobian", r%jacobian, [option_type("analytic", &
                 & jacobian_analytic), option_type("dq", jacobian_dq), option_type("none", &
                 & jacobian_none)]), &
-                & choice_key(run_group, "linear_solver", r%linear_solver, [option_type("dense", &
-                & linear_dense), option_type("sparse", linear_sparse)]), &
+                & choice_key(run_group, "linear_solver", r%linear_solver, [option_type("auto", &
+                & linear_auto), option_type("dense", linear_dense), option_type("sparse", &
+                & linear_sparse)]), &
                 & real_key(run_group, "rtol", r%rtol, "", rtol_min, 1.0_wp, upper_open=.true.), &
                 & real_key(run_group, "atol", r%atol, "", atol_min, atol_max), &
                 & real_key(run_group, "baumgarte_rate", r%baumgarte_rate, "1/s", 0.0_wp, &
@@ -114,13 +116,12 @@ contains
                 key = "drift"
                 expected = "'baumgarte' or 'none' with method = 'adams' (CVODE projects only " &
                     & // "with BDF)"
-            else if (run%linear_solver == linear_sparse .and. .not. (run%uses_cvode() &
-                    & .and. run%jacobian == jacobian_analytic)) then
-                ! KLU needs the Newton matrix's entries: CVODE's difference quotients are dense
+            else if (run%linear_solver == linear_sparse .and. run%jacobian /= jacobian_analytic) &
+                    & then
+                ! KLU needs the Newton matrix's entries: difference quotients are dense
                 key = "linear_solver"
-                expected = "'dense' unless formulation is 'cvode' or 'maggi' with jacobian = " &
-                    & // "'analytic' (the sparse Newton matrix is CVODE's, from the UCOSUBs' " &
-                    & // "partials)"
+                expected = "'dense' or 'auto' unless jacobian = 'analytic' (the sparse Newton " &
+                    & // "matrix is built from the UCOSUBs' partials)"
             end if
             select case (key)
             case ("method")

@@ -302,10 +302,10 @@ contains
         replaced(11) = "INTEGRATOR/DRIFT=NONE"
         expected(11) = ":12: INTEGRATOR DRIFT must be left out with formulation 'ida' (IDA has no" &
             & // " drift; 'baumgarte' and 'none' are for 'cvode' and 'maggi'), got 'none'"
-        replaced(12) = "INTEGRATOR/SOLVER=SPARSE"
-        expected(12) = ":12: INTEGRATOR SOLVER must be 'dense' unless formulation is 'cvode' or" &
-            & // " 'maggi' with jacobian = 'analytic' (the sparse Newton matrix is CVODE's, from" &
-            & // " the UCOSUBs' partials), got 'sparse'"
+        replaced(12) = "INTEGRATOR/JACOBIAN=DQ, SOLVER=SPARSE"
+        expected(12) = ":12: INTEGRATOR SOLVER must be 'dense' or 'auto' unless jacobian =" &
+            & // " 'analytic' (the sparse Newton matrix is built from the UCOSUBs' partials)," &
+            & // " got 'sparse'"
         replaced(13) = "INTEGRATOR/FORM=CVODE, JACOBIAN=DQ, SOLVER=SPARSE"
         expected(13) = expected(12)
         call check_refusals(error, [12, 12, 12, 12, 12, 12, 12, 12, 12, 12, 12, 12, 12], &

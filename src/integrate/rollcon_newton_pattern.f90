@@ -1,0 +1,110 @@
+! SPDX-License-Identifier: MIT
+!> Where a sparse Newton matrix can hold nonzeros, as a compressed-column pattern (0-based row
+!> indices, SUNDIALS' CSC layout): from each state's block (every entry of a block kept) or
+!> from a relation between states; and a dense matrix copied onto a pattern.
+module rollcon_newton_pattern
+    use rollcon_kinds, only : wp
+    implicit none
+    private
+
+    public :: newton_pattern_type, pattern_of_blocks
+
+    !> A compressed-column pattern of an n-square matrix: column j's rows (0-based)
+    !> rows(starts(j) + 1 : starts(j + 1)), ascending
+    type :: newton_pattern_type
+        integer :: n = 0
+        integer, allocatable :: starts(:), rows(:)
+    contains
+        procedure :: entries
+        procedure :: from_relation
+        procedure :: gather
+        procedure :: clear
+    end type newton_pattern_type
+
+contains
+
+    !> The entries kept.
+    pure integer function entries(self)
+        class(newton_pattern_type), intent(in) :: self
+
+        entries = 0
+        if (allocated(self%starts)) entries = self%starts(self%n + 1)
+    end function entries
+
+    !> Every entry (i, j) with keep(i, j) true, and the diagonal.
+    subroutine from_relation(self, keep)
+        class(newton_pattern_type), intent(inout) :: self
+        logical, intent(in) :: keep(:, :)
+        integer :: i, j, next
+
+        self%n = size(keep, 2)
+        if (allocated(self%starts)) deallocate(self%starts, self%rows)
+        allocate(self%starts(self%n + 1), self%rows(count(keep) + self%n))
+        next = 0
+        do j = 1, self%n
+            self%starts(j) = next
+            do i = 1, self%n
+                if (.not. (keep(i, j) .or. i == j)) cycle
+                next = next + 1
+                self%rows(next) = i - 1
+            end do
+        end do
+        self%starts(self%n + 1) = next
+        self%rows = self%rows(:next)
+    end subroutine from_relation
+
+    !> Every entry (i, j) of states of one block: blocks(i) == blocks(j).
+    function pattern_of_blocks(blocks) result(pattern)
+        integer, intent(in) :: blocks(:)
+        type(newton_pattern_type) :: pattern
+        integer :: i, j, next, b, total
+
+        total = 0
+        if (size(blocks) > 0) then
+            do b = minval(blocks), maxval(blocks)
+                total = total + count(blocks == b)**2
+            end do
+        end if
+        pattern%n = size(blocks)
+        allocate(pattern%starts(pattern%n + 1), pattern%rows(total))
+        next = 0
+        do j = 1, pattern%n
+            pattern%starts(j) = next
+            do i = 1, pattern%n
+                if (blocks(i) /= blocks(j)) cycle
+                next = next + 1
+                pattern%rows(next) = i - 1
+            end do
+        end do
+        pattern%starts(pattern%n + 1) = next
+    end function pattern_of_blocks
+
+    !> Zero the pattern's entries of the dense matrix full (the others are left as they are).
+    pure subroutine clear(self, full)
+        class(newton_pattern_type), intent(in) :: self
+        real(wp), intent(inout) :: full(:, :)
+        integer :: j, e
+
+        do j = 1, self%n
+            do e = self%starts(j) + 1, self%starts(j + 1)
+                full(self%rows(e) + 1, j) = 0.0_wp
+            end do
+        end do
+    end subroutine clear
+
+    !> The pattern's entries of the dense matrix full, column by column (values(e) is entry e
+    !> of the pattern).
+    pure subroutine gather(self, full, values)
+        class(newton_pattern_type), intent(in) :: self
+        real(wp), intent(in) :: full(:, :)
+        real(wp), intent(out) :: values(:)
+        integer :: j, e
+
+        do j = 1, self%n
+            do e = self%starts(j) + 1, self%starts(j + 1)
+                values(e) = full(self%rows(e) + 1, j)
+            end do
+        end do
+    end subroutine gather
+
+end module rollcon_newton_pattern

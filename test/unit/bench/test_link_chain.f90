@@ -1,0 +1,349 @@
+! SPDX-License-Identifier: MIT
+!> The chain of N links (rollcon_link_chain), the second model of the cost benchmark, and the
+!> sparse Newton matrix of IDA: the chain reads as one block, starts where it is written and
+!> meets its joints; the DAE's pattern (dae_pattern) holds every nonzero of the analytic
+!> Newton matrix and keeps O(N) of a chain's entries; IDA with KLU moves the chain and the disks
+!> as the dense matrix does; linear_solver = 'auto' picks KLU on large sparse matrices only;
+!> `rollcon bench` prints the per-part scaling table.
+module test_link_chain
+    use rollcon_kinds, only : wp
+    use rollcon_error, only : error_type
+    use rollcon_text, only : to_text
+    use rollcon_output_files, only : write_text_file, make_folders
+    use rollcon_job, only : job_type
+    use rollcon_load, only : load_job
+    use rollcon_run_job, only : run_job, job_result_type
+    use rollcon_simulation, only : history_type, status_completed
+    use rollcon_link_chain, only : link_chain_dataset
+    use rollcon_disk_fleet, only : disk_fleet_dataset
+    use rollcon_constraint_blocks, only : constraint_blocks_type
+    use rollcon_problem, only : problem_type
+    use rollcon_newton_pattern, only : newton_pattern_type, pattern_of_blocks
+    use rollcon_dae, only : dae_size
+    use rollcon_run_settings, only : run_settings_type, linear_auto, linear_dense, &
+        & linear_sparse, jacobian_dq
+    use rollcon_adm_model, only : adm_model_type
+    use rollcon_adm_reader, only : read_adm
+    use rollcon_adm_build, only : build_adm_problem
+    use rollcon_ucosub_contract, only : ucosub_interface
+    use rollcon_disk_reference, only : rolling_disk_ucosub
+    use rollcon_testing, only : unittest_type, new_unittest, check
+    use command_runs, only : rollcon_program, run_rollcon, file_text
+    implicit none
+    private
+
+    public :: collect_link_chain
+
+    !> Where the tests write their datasets
+    character(len=*), parameter :: folder = "build/rollcon-test/link-chain"
+    !> The chain's links [m] and start angle from the vertical [rad] (rollcon_link_chain)
+    real(wp), parameter :: link = 0.1_wp, start = 60.0_wp*acos(-1.0_wp)/180.0_wp
+
+contains
+
+    subroutine collect_link_chain(tests)
+        type(unittest_type), allocatable, intent(out) :: tests(:)
+
+        tests = [new_unittest("chain-one-block", test_one_block), &
+            & new_unittest("chain-start", test_start), &
+            & new_unittest("pattern-holds-the-jacobian", test_pattern), &
+            & new_unittest("ida-klu-same-motion", test_klu_motion), &
+            & new_unittest("auto-solver-choice", test_auto), &
+            & new_unittest("bench-prints-scaling-table", test_bench_table)]
+    end subroutine collect_link_chain
+
+    !> Write the dataset text as name.adm, run it, keep its history.
+    subroutine run_text(name, text, history, error)
+        character(len=*), intent(in) :: name, text
+        type(history_type), intent(out) :: history
+        type(error_type), allocatable, intent(out) :: error
+        character(len=:), allocatable :: path
+        type(job_type) :: job
+        type(job_result_type) :: ran
+
+        call make_folders(folder, error)
+        if (allocated(error)) return
+        path = folder // "/" // name // ".adm"
+        call write_text_file(path, text, error)
+        if (allocated(error)) return
+        call load_job(path, job, error)
+        if (allocated(error)) return
+        job%output_dir = ""
+        job%quiet = .true.
+        call run_job(job, ran, error, history)
+        if (allocated(error)) return
+        call check(error, ran%summary%status == status_completed, name // ": " &
+            & // ran%summary%message)
+    end subroutine run_text
+
+    !> The problem of a dataset text, set up (its equations, blocks), with its start.
+    subroutine problem_of(name, text, problem, q0, u0, error)
+        character(len=*), intent(in) :: name, text
+        type(problem_type), intent(inout), target :: problem
+        real(wp), allocatable, intent(out) :: q0(:), u0(:)
+        type(error_type), allocatable, intent(out) :: error
+        type(adm_model_type) :: adm
+        procedure(ucosub_interface), pointer :: disk
+        character(len=:), allocatable :: path
+
+        call make_folders(folder, error)
+        if (allocated(error)) return
+        path = folder // "/" // name // ".adm"
+        call write_text_file(path, text, error)
+        if (allocated(error)) return
+        disk => rolling_disk_ucosub
+        call read_adm(path, adm, error)
+        if (allocated(error)) return
+        call build_adm_problem(adm, disk, problem, q0, u0, error)
+    end subroutine problem_of
+
+    !> Three links: three parts, 15 UCONs (five per REVOLUTE), all of one block holding the
+    !> 18 coordinates: each joint shares a part with the next.
+    subroutine test_one_block(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(problem_type), target :: problem
+        type(constraint_blocks_type) :: blocks
+        real(wp), allocatable :: q0(:), u0(:)
+        integer :: j
+
+        call problem_of("chain_blocks", link_chain_dataset(3, 0.1_wp, 0.05_wp, &
+            & "FORMULATION=IDA"), problem, q0, u0, error)
+        if (allocated(error)) return
+        call check(error, size(problem%model%parts) == 3 .and. problem%model%nc == 15 &
+            & .and. problem%model%nh == 15, "3 parts, 15 position UCONs: " &
+            & // to_text(size(problem%model%parts)) // ", " // to_text(problem%model%nc) &
+            & // ", " // to_text(problem%model%nh))
+        if (allocated(error)) return
+        call blocks%init(problem%model)
+        call check(error, blocks%count, 1, "blocks")
+        if (allocated(error)) return
+        call check(error, all(blocks%block_coordinates(1) == [(j, j = 1, 18)]), &
+            & "the block holds every coordinate")
+    end subroutine test_one_block
+
+    !> The chain starts straight, 60 degrees from the vertical, at rest: link k's centre at
+    !> (k - 1/2) l (-sin 60, 0, -cos 60) in the first row, and the run of 0.1 s keeps the
+    !> hinges: the first link's centre l/2 from the ground hinge at every row.
+    subroutine test_start(error)
+        type(error_type), allocatable, intent(out) :: error
+        !> The start is the dataset's numbers as written (17 digits) through the markers'
+        !> rotations: round-off of a few ulp of 0.1 m
+        real(wp), parameter :: tol_start = 1.0e-14_wp
+        !> IDA holds the position UCONs directly (GGL): their residual is the Newton
+        !> iteration's (the summary's largest on the 3-link chain over 1 s at rtol 1e-8:
+        !> 5.9e-11 m), and the centre is l/2 from the hinge when they hold
+        real(wp), parameter :: tol_hinge = 1.0e-8_wp
+        type(history_type) :: history
+        real(wp) :: largest
+        integer :: k
+
+        call run_text("chain_start", link_chain_dataset(3, 0.1_wp, 0.01_wp, "ERROR=1e-8"), &
+            & history, error)
+        if (allocated(error)) return
+        do k = 1, 3
+            call check(error, history%rows(1 + 12*(k - 1) + 1, 1), -(k - 0.5_wp)*link &
+                & *sin(start), "link " // to_text(k) // "'s X at the start, m", &
+                & abs_tol=tol_start)
+            if (allocated(error)) return
+            call check(error, history%rows(1 + 12*(k - 1) + 3, 1), -(k - 0.5_wp)*link &
+                & *cos(start), "link " // to_text(k) // "'s Z at the start, m", &
+                & abs_tol=tol_start)
+            if (allocated(error)) return
+        end do
+        largest = maxval(abs(hypot(history%rows(2, :history%count), &
+            & history%rows(4, :history%count)) - 0.5_wp*link))
+        call check(error, largest <= tol_hinge, "the first link's centre from the hinge " &
+            & // "differs from l/2 by " // to_text(largest) // " m")
+        if (allocated(error)) return
+        call check(error, maxval(abs(history%rows(2, :history%count) &
+            & - history%rows(2, 1))) > 1.0e-3_wp, "the chain falls")
+    end subroutine test_start
+
+    !> The DAE's pattern holds every entry of the analytic Newton matrix that is not zero, at a
+    !> state with every velocity and multiplier nonzero, on chains of 8 and 16 links (one block)
+    !> and on 3 disks (three blocks), and keeps no more than the blocks; a chain's grows as N
+    !> (a band: each part meets its two neighbours), where its block grows as N^2.
+    subroutine test_pattern(error)
+        type(error_type), allocatable, intent(out) :: error
+        !> Entries of the chain of 16 over the chain of 8's: 2 for a band (the ground hinge's
+        !> fewer entries make it a little more), 4 for a full block
+        real(wp), parameter :: most_growth = 2.2_wp
+        integer :: eight, sixteen, disks
+
+        call check_pattern("chain_pattern_8", link_chain_dataset(8, 0.1_wp, 0.05_wp, &
+            & "FORMULATION=IDA"), eight, error)
+        if (allocated(error)) return
+        call check_pattern("chain_pattern_16", link_chain_dataset(16, 0.1_wp, 0.05_wp, &
+            & "FORMULATION=IDA"), sixteen, error)
+        if (allocated(error)) return
+        call check(error, real(sixteen, wp) <= most_growth*real(eight, wp), "the chain's " &
+            & // "pattern: " // to_text(eight) // " entries at 8 links, " // to_text(sixteen) &
+            & // " at 16")
+        if (allocated(error)) return
+        call check_pattern("fleet_pattern", disk_fleet_dataset(3, 0.5_wp, 0.1_wp, 0.05_wp, &
+            & "FORMULATION=IDA"), disks, error)
+    end subroutine test_pattern
+
+    !> The pattern of the dataset's DAE holds the Newton matrix's nonzeros and keeps no more
+    !> than its blocks; its entries.
+    subroutine check_pattern(name, text, entries, error)
+        character(len=*), intent(in) :: name, text
+        integer, intent(out) :: entries
+        type(error_type), allocatable, intent(out) :: error
+        type(problem_type), target :: problem
+        type(newton_pattern_type) :: pattern, blocks
+        real(wp), allocatable :: q0(:), u0(:), y(:), yp(:), matrix(:, :)
+        logical, allocatable :: kept(:, :)
+        integer :: n, i, j, e, ierr, missed
+
+        entries = 0
+        call problem_of(name, text, problem, q0, u0, error)
+        if (allocated(error)) return
+        n = dae_size(problem%eq)
+        allocate(y(n), yp(n), matrix(n, n), source=0.0_wp)
+        allocate(kept(n, n), source=.false.)
+        ! every velocity, multiplier and acceleration nonzero: the entries zero at rest appear
+        y(:size(q0)) = q0
+        y(size(q0) + 1:) = [(0.1_wp*sin(real(i, wp)), i = 1, n - size(q0))]
+        yp = [(0.2_wp*cos(real(i, wp)), i = 1, n)]
+        ierr = problem%dae_jacobian(0.0_wp, 1.0e3_wp, y, yp, matrix)
+        call check(error, ierr, 0, name // ": the Newton matrix")
+        if (allocated(error)) return
+        call problem%dae_pattern(n, pattern)
+        do j = 1, n
+            do e = pattern%starts(j) + 1, pattern%starts(j + 1)
+                kept(pattern%rows(e) + 1, j) = .true.
+            end do
+        end do
+        missed = count(matrix /= 0.0_wp .and. .not. kept)
+        call check(error, missed, 0, name // ": nonzero entries outside the pattern")
+        if (allocated(error)) return
+        blocks = pattern_of_blocks(problem%state_blocks(n))
+        entries = pattern%entries()
+        call check(error, entries <= blocks%entries(), name // ": the pattern keeps " &
+            & // to_text(entries) // " of " // to_text(n*n) // " entries, the blocks " &
+            & // to_text(blocks%entries()))
+    end subroutine check_pattern
+
+    !> IDA with the sparse Newton matrix (KLU) against the dense one, on a chain of 4 links
+    !> over 0.2 s and on 2 disks over 0.3 s: the same motion. Only the Newton matrix's LU
+    !> differs (its sums in another order), so the runs differ by where a step's tests fall:
+    !> measured 3.2e-8 m or rad (chain) and 8.7e-12 (disks), the largest over every
+    !> coordinate and row, at rtol 1e-8. Ten times those, rounded up.
+    subroutine test_klu_motion(error)
+        type(error_type), allocatable, intent(out) :: error
+        real(wp), parameter :: tol_chain = 4.0e-7_wp, tol_disks = 1.0e-10_wp
+        type(history_type) :: dense, sparse
+        character(len=*), parameter :: ida = "FORMULATION=IDA, RTOL=1e-8, ATOL=1e-10, SOLVER="
+
+        call run_text("chain_dense", link_chain_dataset(4, 0.2_wp, 0.01_wp, ida // "DENSE"), &
+            & dense, error)
+        if (allocated(error)) return
+        call run_text("chain_sparse", link_chain_dataset(4, 0.2_wp, 0.01_wp, ida // "SPARSE"), &
+            & sparse, error)
+        if (allocated(error)) return
+        call compare("chain of 4", dense, sparse, 4, tol_chain, error)
+        if (allocated(error)) return
+        call run_text("fleet_dense", disk_fleet_dataset(2, 0.5_wp, 0.3_wp, 0.05_wp, &
+            & ida // "DENSE"), dense, error)
+        if (allocated(error)) return
+        call run_text("fleet_sparse", disk_fleet_dataset(2, 0.5_wp, 0.3_wp, 0.05_wp, &
+            & ida // "SPARSE"), sparse, error)
+        if (allocated(error)) return
+        call compare("2 disks", dense, sparse, 2, tol_disks, error)
+    end subroutine test_klu_motion
+
+    !> Every part's six coordinates of two runs, row by row.
+    subroutine compare(what, one, other, parts, tolerance, error)
+        character(len=*), intent(in) :: what
+        type(history_type), intent(in) :: one, other
+        integer, intent(in) :: parts
+        real(wp), intent(in) :: tolerance
+        type(error_type), allocatable, intent(out) :: error
+        real(wp) :: largest
+        integer :: p, c
+
+        call check(error, other%count, one%count, what // ": rows")
+        if (allocated(error)) return
+        largest = 0.0_wp
+        do p = 1, parts
+            do c = 1, 6
+                largest = max(largest, maxval(abs(one%rows(1 + 12*(p - 1) + c, :one%count) &
+                    & - other%rows(1 + 12*(p - 1) + c, :one%count))))
+            end do
+        end do
+        call check(error, largest <= tolerance, what // ": KLU and dense differ by " &
+            & // to_text(largest) // " (m or rad)")
+    end subroutine compare
+
+    !> linear_solver = 'auto' (the default) keeps the dense matrix on a disk (15 states) and on
+    !> two parts (30), on the chain of 64 links on CVODE (768 states in one block: every entry
+    !> kept) and on a matrix 0.6 full (the bicycle's DAE: four parts, three of the six pairs
+    !> apart); it takes KLU from 32 states on a sparse matrix: 64 disks' DAE (960 states in
+    !> blocks of 15) and the chain's (1408 states, about 1/30 full); 'dense' and 'sparse' are
+    !> obeyed, and difference quotients are always dense.
+    subroutine test_auto(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(run_settings_type) :: settings
+
+        call check(error, settings%linear_solver == linear_auto, "the default is 'auto'")
+        if (allocated(error)) return
+        call check(error, .not. settings%sparse_newton(15, 225) .and. &
+            & .not. settings%sparse_newton(30, 2*15**2) .and. &
+            & .not. settings%sparse_newton(768, 768**2) .and. &
+            & .not. settings%sparse_newton(84, 6*84**2/10) .and. &
+            & settings%sparse_newton(32, 32**2/2) .and. &
+            & settings%sparse_newton(960, 64*15**2) .and. &
+            & settings%sparse_newton(1408, 1408**2/30), &
+            & "auto: dense on small or full matrices, KLU on large sparse ones")
+        if (allocated(error)) return
+        settings%linear_solver = linear_dense
+        call check(error, .not. settings%sparse_newton(960, 64*15**2), "'dense' obeyed")
+        if (allocated(error)) return
+        settings%linear_solver = linear_sparse
+        call check(error, settings%sparse_newton(15, 225), "'sparse' obeyed")
+        if (allocated(error)) return
+        settings%jacobian = jacobian_dq
+        call check(error, .not. settings%sparse_newton(15, 225), "dq Jacobians are dense")
+    end subroutine test_auto
+
+    !> `rollcon bench --quick` ends with the per-part scaling table: its header, and one line
+    !> for each of the default on the disks and on the chain at N = 1 and 2, each completed
+    !> with a ratio of exactly 1 at N = 1 (the table's shape; never its times).
+    subroutine test_bench_table(error)
+        type(error_type), allocatable, intent(out) :: error
+        character(len=*), parameter :: scratch = "build/test_link_chain_bench"
+        character(len=:), allocatable :: program, out, line
+        character(len=*), parameter :: expected(4) = [character(len=20) :: &
+            & "disks   default", "disks   default", "chain   chain-defaul", "chain   chain-defaul"]
+        integer, parameter :: parts(4) = [1, 2, 1, 2]
+        integer :: status, at, k, next, n
+
+        call rollcon_program(program, error)
+        if (allocated(error)) return
+        call make_folders(scratch, error)
+        if (allocated(error)) return
+        call run_rollcon(program, "bench --quick --end-time 0.05 --output " // scratch, &
+            & scratch // "/bench.out", scratch // "/bench.err", status)
+        out = file_text(scratch // "/bench.out")
+        at = index(out, "  model   method                      N  states   steps  us/step/part" &
+            & // "  ratio to N = 1")
+        call check(error, status == 0 .and. at > 0, "exit status " // to_text(status) &
+            & // "; the table's header in stdout: " // out // file_text(scratch // "/bench.err"))
+        if (allocated(error)) return
+        at = at + index(out(at:), new_line("a"))
+        do k = 1, 4
+            next = index(out(at:), new_line("a"))
+            call check(error, next > 0, "row " // to_text(k) // " of the table")
+            if (allocated(error)) return
+            line = out(at:at + next - 2)
+            at = at + next
+            read(line(35:39), *) n
+            call check(error, index(line, trim(expected(k))) == 3 .and. n == parts(k) .and. &
+                & index(line, "completed") > 0 .and. (k == 2 .or. k == 4 .or. &
+                & index(line, " 1.00  completed") > 0), "row " // to_text(k) // ": " // line)
+            if (allocated(error)) return
+        end do
+    end subroutine test_bench_table
+
+end module test_link_chain
