@@ -312,6 +312,7 @@ contains
         counts%failures = int(count(1))
         flag = FCVodeGetNumGEvals(self%memory, count)
         counts%roots = int(count(1))
+        counts%sparse = self%data%sparse
     end function statistics
 
     !> Free in reverse order of creation.

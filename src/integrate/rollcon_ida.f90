@@ -299,6 +299,7 @@ contains
         counts%failures = int(count(1))
         flag = FIDAGetNumGEvals(self%memory, count)
         counts%roots = int(count(1))
+        counts%sparse = allocated(self%data%full)
     end function statistics
 
     !> What a failure flag of IDA means (names of the IDA guide), for messages: SUNDIALS

@@ -21,6 +21,9 @@ module rollcon_integrator
         !> of difference-quotient Jacobians), Newton-matrix evaluations, error-test failures,
         !> event-function evaluations
         integer :: steps = 0, functions = 0, jacobians = 0, failures = 0, roots = 0
+        !> The Newton matrix was solved by SUNDIALS' sparse KLU (linear_solver 'sparse', or
+        !> 'auto' on a large sparse matrix), not the dense LU
+        logical :: sparse = .false.
     contains
         procedure :: add => statistics_add
     end type integrator_statistics_type
@@ -100,6 +103,7 @@ contains
         self%jacobians = self%jacobians + other%jacobians
         self%failures = self%failures + other%failures
         self%roots = self%roots + other%roots
+        self%sparse = self%sparse .or. other%sparse
     end subroutine statistics_add
 
     !> The error of a failed step: "<name> failed at t = ... s with flag F: <meaning>", or with

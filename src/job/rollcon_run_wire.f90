@@ -91,7 +91,7 @@ contains
             call wire%put_ints([integer ::])
         end if
         call wire%put_ints([summary%steps, summary%functions, summary%jacobians, &
-            & summary%failures, summary%root_evaluations])
+            & summary%failures, summary%root_evaluations, merge(1, 0, summary%sparse_newton)])
         call wire%put_int(summary%rows)
         call wire%put_real(summary%cpu_seconds)
     end subroutine pack_summary
@@ -131,12 +131,13 @@ contains
         summary%routines = wire%get_text()
         call wire%get_ints(summary%rebasings)
         call wire%get_ints(counts)
-        if (size(counts) == 5) then
+        if (size(counts) == 6) then
             summary%steps = counts(1)
             summary%functions = counts(2)
             summary%jacobians = counts(3)
             summary%failures = counts(4)
             summary%root_evaluations = counts(5)
+            summary%sparse_newton = counts(6) == 1
         else
             wire%failed = .true.
         end if

@@ -67,6 +67,9 @@ module rollcon_run_summary
         !> right-hand sides or residuals, Newton matrices, error-test failures, event-function
         !> evaluations
         integer :: steps = 0, functions = 0, jacobians = 0, failures = 0, root_evaluations = 0
+        !> The Newton matrix was solved by SUNDIALS' sparse KLU (the summary says so: 'auto'
+        !> chooses it on large sparse models)
+        logical :: sparse_newton = .false.
         !> Output rows written (64 bits: a long run at a fine step passes 2**31)
         integer(int64) :: rows = 0
         !> CPU time of the integration [s]

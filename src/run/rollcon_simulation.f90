@@ -443,6 +443,7 @@ contains
         summary%jacobians = self%earlier%jacobians
         summary%failures = self%earlier%failures
         summary%root_evaluations = self%earlier%roots
+        summary%sparse_newton = self%earlier%sparse
         allocate(summary%measures(0))
         summary%watch_lines = ""
         associate (problem => self%problem)

@@ -59,7 +59,9 @@ contains
         text = text // "steps " // to_text(summary%steps) // ", function evaluations " &
             & // to_text(summary%functions) // ", Jacobian evaluations " &
             & // to_text(summary%jacobians) // ", error-test failures " &
-            & // to_text(summary%failures) // nl
+            & // to_text(summary%failures)
+        if (summary%sparse_newton) text = text // ", Newton matrix sparse (KLU)"
+        text = text // nl
         text = text // "CPU time: " // fixed(summary%cpu_seconds) // " s" // nl
         text = text // "output: " // csv_path // " (" // to_text(summary%rows) // " rows)"
     end function run_summary_text

@@ -21,6 +21,7 @@ module test_disk_fleet
     use rollcon_adm_build, only : build_adm_problem
     use rollcon_ucosub_contract, only : ucosub_interface
     use rollcon_disk_reference, only : rolling_disk_ucosub
+    use rollcon_summary_text, only : run_summary_text
     use rollcon_testing, only : unittest_type, new_unittest, check
     implicit none
     private
@@ -38,7 +39,8 @@ contains
         tests = [new_unittest("copies-of-one-disk", test_copies), &
             & new_unittest("parts-spread-apart", test_spread), &
             & new_unittest("blocks-of-the-fleet", test_blocks), &
-            & new_unittest("scaling-rows", test_scaling_rows)]
+            & new_unittest("scaling-rows", test_scaling_rows), &
+            & new_unittest("summary-names-klu", test_summary_klu)]
     end subroutine collect_disk_fleet
 
     !> Run the fleet of count disks, spacing apart, to 1 s on the INTEGRATOR keywords.
@@ -67,6 +69,64 @@ contains
         call check(error, ran%summary%status == status_completed, "the fleet of " &
             & // to_text(count) // " (" // keywords // "): " // ran%summary%message)
     end subroutine run_fleet
+
+    !> The run's summary says when the Newton matrix was solved by KLU: four disks on IDA with
+    !> the default solver ('auto': 60 states, the matrix a sixteenth full, past its threshold)
+    !> say so, through the child process of a user's file too (the run's wire); one disk (15
+    !> states) and four disks with SOLVER=DENSE do not.
+    subroutine test_summary_klu(error)
+        type(error_type), allocatable, intent(out) :: error
+        character(len=*), parameter :: said = ", Newton matrix sparse (KLU)" // new_line("a")
+        character(len=*), parameter :: keywords(3) = [character(len=40) :: &
+            & "FORMULATION=IDA, RTOL=1e-8, ATOL=1e-10", "FORMULATION=IDA, RTOL=1e-8, ATOL=1e-10", &
+            & "FORMULATION=IDA, SOLVER=DENSE"]
+        integer, parameter :: counts(3) = [4, 1, 4]
+        logical, parameter :: sparse(3) = [.true., .false., .false.]
+        character(len=:), allocatable :: path, text
+        type(job_result_type) :: ran
+        integer :: k
+
+        call make_folders(folder, error)
+        if (allocated(error)) return
+        do k = 1, size(keywords)
+            path = folder // "/klu_" // to_text(k) // ".adm"
+            call write_text_file(path, disk_fleet_dataset(counts(k), 0.5_wp, 0.05_wp, 0.05_wp, &
+                & trim(keywords(k))), error)
+            if (allocated(error)) return
+            call run_one(path, "", ran, text, error)
+            if (allocated(error)) return
+            call check(error, ran%summary%status == status_completed .and. &
+                & (ran%summary%sparse_newton .eqv. sparse(k)) .and. &
+                & (index(text, said) > 0 .eqv. sparse(k)), to_text(counts(k)) // " disks, " &
+                & // trim(keywords(k)) // ": " // text)
+            if (allocated(error)) return
+        end do
+        ! through a user's file, run apart: the summary crosses the wire
+        call run_one(folder // "/klu_1.adm", "ucon/adams/rolling_disk/ucosub.f", ran, text, error)
+        if (allocated(error)) return
+        call check(error, ran%summary%status == status_completed .and. &
+            & ran%summary%sparse_newton .and. index(text, said) > 0, "4 disks with a user's " &
+            & // "file: " // text)
+
+    contains
+
+        subroutine run_one(dataset, ucosub, result, summary_text, run_error)
+            character(len=*), intent(in) :: dataset, ucosub
+            type(job_result_type), intent(out) :: result
+            character(len=:), allocatable, intent(out) :: summary_text
+            type(error_type), allocatable, intent(out) :: run_error
+            type(job_type) :: job
+            type(history_type) :: history
+
+            call load_job(dataset, job, run_error, ucosub=ucosub)
+            if (allocated(run_error)) return
+            job%output_dir = ""
+            job%quiet = .true.
+            call run_job(job, result, run_error, history)
+            if (allocated(run_error)) return
+            summary_text = run_summary_text(job%source%setting_line(), "x.csv", result%summary)
+        end subroutine run_one
+    end subroutine test_summary_klu
 
     !> Four disks on one spot (they do not touch one another in the model) against one, on IDA,
     !> CVODE's ODE form and the independent speeds, each with the dense Newton matrix named
