@@ -66,7 +66,8 @@ contains
             & // dataset)
     end subroutine test_geometry
 
-    !> The dataset without its JOINT statements (rollcon reads no JOINT yet: docs/models.md)
+    !> The dataset without its JOINT statements (the frames and wheels alone; suite bicycle runs
+    !> the whole dataset, joints and all)
     !> reads and builds. The rear frame's tensor in the CM marker's axes (x forward, z up) is
     !> [[9.2, 0, -2.4], [0, 11, 0], [-2.4, 0, 2.8]]: by hand its x-z block has the eigenvalues
     !> 6 +- sqrt(3.2^2 + 2.4^2) = 10 and 2, along (3, 0, -1)/sqrt(10) and (1, 0, 3)/sqrt(10),
