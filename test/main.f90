@@ -40,6 +40,7 @@ program tester
     use test_isolation, only : collect_isolation
     use test_ucon_request_fuzz, only : collect_ucon_request_fuzz
     use test_allocations, only : collect_allocations
+    use test_ida_first_step, only : collect_ida_first_step
     use test_reduced, only : collect_reduced
     use test_layout, only : collect_layout
     use test_ucosub_catalog, only : collect_ucosub_catalog
@@ -127,6 +128,7 @@ program tester
         & new_testsuite("isolation", collect_isolation), &
         & new_testsuite("ucon-request-fuzz", collect_ucon_request_fuzz), &
         & new_testsuite("allocations", collect_allocations), &
+        & new_testsuite("ida-first-step", collect_ida_first_step), &
         & new_testsuite("reduced", collect_reduced), &
         & new_testsuite("layout", collect_layout), &
         & new_testsuite("ucosub-catalog", collect_ucosub_catalog), &

@@ -24,7 +24,7 @@ module rollcon_ida
     use fsunlinsol_klu_mod, only : FSUNLinSol_KLU
     use rollcon_newton_pattern, only : newton_pattern_type
     use fida_mod, only : FIDACreate, FIDAInit, FIDAWFtolerances, FIDASetUserData, &
-        & FIDASetLinearSolver, FIDASetJacFn, FIDASetMaxNumSteps, FIDASetStopTime, FIDASolve, &
+        & FIDASetInitStep, FIDASetLinearSolver, FIDASetJacFn, FIDASetMaxNumSteps, FIDASetStopTime, FIDASolve, &
         & FIDARootInit, FIDAGetRootInfo, FIDASetId, FIDASetSuppressAlg, FIDAFree, FIDAReInit, &
         & FIDAGetNumSteps, FIDAGetNumResEvals, FIDAGetNumJacEvals, FIDAGetNumLinResEvals, &
         & FIDAGetNumErrTestFails, FIDAGetNumGEvals, FIDASetErrFile, FIDAGetLastStep, &
@@ -87,6 +87,10 @@ module rollcon_ida
         !> The careful start after a restart: finer tolerances until fine_until [s]; its
         !> length fine_span [s] from the last restart that followed a step
         real(wp) :: fine_until = -huge(1.0_wp), fine_span = 0.0_wp
+        !> Where the integration last began (start or restart) [s], and the state there: what a
+        !> second try of a first step that failed starts from (advance)
+        real(wp) :: t_begin = 0.0_wp
+        real(c_double), allocatable :: begin_values(:), begin_rates(:)
     contains
         procedure :: start
         procedure :: restart
@@ -207,6 +211,9 @@ contains
         allocate(self%fired(system%root_count()), source=0_c_int)
         self%failed_flag = 0
         self%t_now = t0
+        self%t_begin = t0
+        self%begin_values = self%values
+        self%begin_rates = self%rates
     end subroutine start
 
     !> Start again from consistent (t0, y0, yp0) with the settings, tolerances, callbacks and
@@ -226,6 +233,9 @@ contains
         self%values(:) = y0
         self%rates(:) = yp0
         self%t_now = t0
+        self%t_begin = t0
+        self%begin_values = self%values
+        self%begin_rates = self%rates
         flag = FIDAReInit(self%memory, t0, self%y, self%yp)
         if (check(flag, "IDAReInit", error)) return
         if (h_last(1) > 0.0_wp) self%fine_span = restart_fine_steps*h_last(1)
@@ -236,6 +246,14 @@ contains
     end subroutine restart
 
     !> Integrate towards t_out (never past t_stop); y, yp at t_reached; root fired (0 if none).
+    !> A first step whose Newton iteration fails (no step taken since the start or restart) is
+    !> tried once more from the same state with a first step of first_step_fraction of the way
+    !> to t_out: IDA's own first step is small enough that h y' is small in the error weights,
+    !> and components that begin at zero (a model released from rest) are weighed by atol alone,
+    !> so on a large model it can be small enough (1.4e-11 s on a chain of 64 links of 0.1 kg at
+    !> atol 1e-10) that the index-2 Newton matrix, whose condition grows as 1/h^2, cannot be
+    !> solved; IDA then only shrinks it. A first step too large fails IDA's error test instead,
+    !> which shrinks it by the error's own estimate. A run whose first step succeeds is as before.
     subroutine advance(self, t_out, t_stop, t_reached, y, yp, root, error)
         class(ida_integrator_type), intent(inout) :: self
         real(wp), intent(in) :: t_out, t_stop
@@ -243,27 +261,32 @@ contains
         real(wp), intent(inout) :: y(:), yp(:)
         integer, intent(out) :: root
         type(error_type), allocatable, intent(out) :: error
+        !> The second try's first step, as a fraction of the way to t_out (IDA's own first
+        !> step before it is cut to make h y' small)
+        real(wp), parameter :: first_step_fraction = 1.0e-3_wp
         real(c_double) :: t_return(1)
-        integer(c_int) :: flag
+        integer(c_long) :: taken(1)
+        integer(c_int) :: flag, ignored
 
         root = 0
         flag = FIDASetStopTime(self%memory, t_stop)
         if (check(flag, "IDASetStopTime", error)) return
-        ! where the integrator was, should it fail before it sets t_return
-        t_return(1) = self%t_now
-        if (self%fine_until > self%t_now) then
-            ! the careful start after a restart: the finer stretch first, then the run's own
-            ! tolerances on the same history
-            flag = FIDASolve(self%memory, min(t_out, self%fine_until), t_return, self%y, &
-                & self%yp, IDA_NORMAL)
-            if ((flag == IDA_SUCCESS .or. flag == IDA_TSTOP_RETURN) &
-                & .and. t_return(1) >= self%fine_until) then
-                self%data%scale = 1.0_wp
-                if (flag == IDA_SUCCESS .and. t_return(1) < t_out) flag = FIDASolve(self%memory, &
-                    & t_out, t_return, self%y, self%yp, IDA_NORMAL)
+        call solve(flag)
+        if (flag == IDA_CONV_FAIL) then
+            taken(1) = -1
+            if (FIDAGetNumSteps(self%memory, taken) /= IDA_SUCCESS) taken(1) = -1
+            if (taken(1) == 0 .and. t_out > self%t_begin) then
+                self%values(:) = self%begin_values
+                self%rates(:) = self%begin_rates
+                self%t_now = self%t_begin
+                flag = FIDAReInit(self%memory, self%t_begin, self%y, self%yp)
+                if (check(flag, "IDAReInit", error)) return
+                flag = FIDASetInitStep(self%memory, first_step_fraction*(t_out - self%t_begin))
+                if (check(flag, "IDASetInitStep", error)) return
+                call solve(flag)
+                ! IDA's own choice again for any later restart (0: IDA estimates it)
+                ignored = FIDASetInitStep(self%memory, 0.0_wp)
             end if
-        else
-            flag = FIDASolve(self%memory, t_out, t_return, self%y, self%yp, IDA_NORMAL)
         end if
         t_reached = t_return(1)
         self%t_now = t_reached
@@ -278,6 +301,30 @@ contains
         self%failed_flag = int(flag)
         call solver_failure(error, "IDA", t_reached, int(flag), flag_meaning(flag), &
             & self%data%system)
+
+    contains
+
+        !> IDASolve towards t_out, t_return set: after a restart, the careful start first.
+        subroutine solve(status)
+            integer(c_int), intent(out) :: status
+
+            ! where the integrator was, should it fail before it sets t_return
+            t_return(1) = self%t_now
+            if (self%fine_until > self%t_now) then
+                ! the careful start after a restart: the finer stretch first, then the run's
+                ! own tolerances on the same history
+                status = FIDASolve(self%memory, min(t_out, self%fine_until), t_return, self%y, &
+                    & self%yp, IDA_NORMAL)
+                if ((status == IDA_SUCCESS .or. status == IDA_TSTOP_RETURN) &
+                    & .and. t_return(1) >= self%fine_until) then
+                    self%data%scale = 1.0_wp
+                    if (status == IDA_SUCCESS .and. t_return(1) < t_out) status = &
+                        & FIDASolve(self%memory, t_out, t_return, self%y, self%yp, IDA_NORMAL)
+                end if
+            else
+                status = FIDASolve(self%memory, t_out, t_return, self%y, self%yp, IDA_NORMAL)
+            end if
+        end subroutine solve
     end subroutine advance
 
     !> Steps, residuals (own and for difference-quotient Jacobians), Jacobians, test failures.
