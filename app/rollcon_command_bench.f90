@@ -159,10 +159,12 @@ contains
         call measure_part_costs(job, 20000, options%output_dir // "/bench_scratch.csv", costs, &
             & error)
         if (allocated(error)) return
-        write(output_unit, '(a, 6(f8.3, a))') "bench: " // name &
-            & // ": unit costs: right-hand side", 1.0e6_wp*costs%rhs, " us, residual", &
+        write(output_unit, '(a, 8(f8.3, a))') "bench: " // name &
+            & // ": unit costs: right-hand side", 1.0e6_wp*costs%rhs, " us (in independent " &
+            & // "speeds", 1.0e6_wp*costs%rhs_in_speeds, " us), residual", &
             & 1.0e6_wp*costs%residual, " us, event functions", 1.0e6_wp*costs%root, &
-            & " us, output row", 1.0e6_wp*costs%output, " us, its CSV line", &
+            & " us (given CVODE's accelerations", 1.0e6_wp*costs%root_given_rates, &
+            & " us), output row", 1.0e6_wp*costs%output, " us, its CSV line", &
             & 1.0e6_wp*costs%csv_line, " us (Fortran's formatted write of it", &
             & 1.0e6_wp*costs%fortran_line, " us)"
         call benchmark_scene(job, benchmark_methods(), options%tolerances, &

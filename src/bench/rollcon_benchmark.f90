@@ -25,7 +25,7 @@ module rollcon_benchmark
 
     public :: method_type, benchmark_methods, benchmark_row_type, benchmark_scene, &
         & method_settings
-    public :: benchmark_header, write_benchmark_row, evaluation_costs, bench_scene_of
+    public :: benchmark_header, write_benchmark_row, evaluation_costs, bench_scene_of, split_costs
 
     !> The scene formulation code the benchmark gives its reduced-ODE runs (not a scene choice)
     integer, parameter :: formulation_reduced = -1
@@ -348,6 +348,7 @@ contains
 
         dae = formulation == "ida"
         row%rhs_cpu = row%functions*merge(costs%residual, costs%rhs, dae)
+        if (formulation == "maggi") row%rhs_cpu = row%functions*costs%rhs_in_speeds
         select case (formulation)
         case ("ida")
             row%roots_cpu = row%root_evaluations*costs%root_given_multipliers

@@ -16,7 +16,8 @@ module test_bench
     use rollcon_load, only : load_job
     use rollcon_bench_sweep, only : coordinator_row_us
     use rollcon_bench_plot, only : plot_work_precision
-    use rollcon_benchmark, only : benchmark_methods
+    use rollcon_benchmark, only : benchmark_methods, benchmark_row_type, split_costs
+    use rollcon_bench_costs, only : part_costs_type
     use rollcon_testing, only : unittest_type, new_unittest, check
     use command_runs, only : rollcon_program, file_text
     use picture_files, only : make_folder, remove_folder, write_lines
@@ -40,7 +41,8 @@ contains
             & new_unittest("process-cost-of-a-failed-run", test_process_failed), &
             & new_unittest("scene-with-a-row-settings", test_scene_settings), &
             & new_unittest("coordinator-cpu-per-row-from-log", test_row_us), &
-            & new_unittest("work-precision-plot-per-scene", test_plots)]
+            & new_unittest("work-precision-plot-per-scene", test_plots), &
+            & new_unittest("split-by-formulation", test_split)]
     end subroutine collect_bench
 
     !> A scene file written with a benchmark row's settings loads as the same scene with exactly
@@ -183,5 +185,42 @@ contains
         if (allocated(error)) return
         call remove_folder(scratch)
     end subroutine test_plots
+
+    !> A row's CPU time split into counts times its formulation's unit costs: residuals for IDA,
+    !> right-hand sides in independent speeds for 'maggi', the ODE form's for CVODE; events as
+    !> each integrator calls them; the remainder is SUNDIALS'. Costs picked so that every
+    !> pairing gives another number.
+    subroutine test_split(error)
+        type(error_type), allocatable, intent(out) :: error
+        character(len=*), parameter :: forms(3) = [character(len=5) :: "ida", "cvode", "maggi"]
+        ! functions 10, events 100, rows 1000: rhs, residual, in speeds 1, 2, 3; events alone,
+        ! given rates, given multipliers 4e-3, 5e-3, 6e-3; output 1e-4
+        real(wp), parameter :: expected_rhs(3) = [20.0_wp, 10.0_wp, 30.0_wp], &
+            & expected_roots(3) = [0.6_wp, 0.5_wp, 0.4_wp]
+        type(part_costs_type) :: costs
+        type(benchmark_row_type) :: row
+        integer :: k
+
+        costs%rhs = 1.0_wp
+        costs%residual = 2.0_wp
+        costs%rhs_in_speeds = 3.0_wp
+        costs%root = 4.0e-3_wp
+        costs%root_given_rates = 5.0e-3_wp
+        costs%root_given_multipliers = 6.0e-3_wp
+        costs%output = 1.0e-4_wp
+        do k = 1, size(forms)
+            row%cpu = 100.0_wp
+            row%functions = 10
+            row%root_evaluations = 100
+            row%output_rows = 1000
+            call split_costs(row, costs, trim(forms(k)))
+            call check(error, abs(row%rhs_cpu - expected_rhs(k)) < 1.0e-12_wp .and. &
+                & abs(row%roots_cpu - expected_roots(k)) < 1.0e-12_wp .and. &
+                & abs(row%output_cpu - 0.1_wp) < 1.0e-12_wp .and. abs(row%sundials_cpu &
+                & - (100.0_wp - expected_rhs(k) - expected_roots(k) - 0.1_wp)) < 1.0e-12_wp, &
+                & trim(forms(k)) // ": the split is not its formulation's")
+            if (allocated(error)) return
+        end do
+    end subroutine test_split
 
 end module test_bench
