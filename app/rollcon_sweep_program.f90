@@ -7,9 +7,9 @@
 !> sees the job mpirun started. POSIX calls through iso_c_binding (Linux and glibc).
 module rollcon_sweep_program
     use, intrinsic :: iso_c_binding, only : c_int, c_char, c_ptr, c_size_t, c_intptr_t, &
-        & c_null_char, c_null_ptr, c_loc, c_f_pointer, c_associated
+        & c_null_char, c_null_ptr, c_loc
     use, intrinsic :: iso_fortran_env, only : output_unit, error_unit
-    use rollcon, only : error_type, fatal_error, stat_input, stat_io, to_text
+    use rollcon, only : error_type, fatal_error, stat_input, stat_io, system_reason
     implicit none
     private
 
@@ -42,15 +42,6 @@ module rollcon_sweep_program
             type(c_ptr), intent(in) :: argv(*)
             integer(c_int) :: stat
         end function c_execv
-        function c_errno_location() result(location) bind(c, name="__errno_location")
-            import :: c_ptr
-            type(c_ptr) :: location
-        end function c_errno_location
-        function c_strerror(number) result(text) bind(c, name="strerror")
-            import :: c_int, c_ptr
-            integer(c_int), value :: number
-            type(c_ptr) :: text
-        end function c_strerror
     end interface
 
 contains
@@ -144,29 +135,5 @@ contains
         pointer = c_loc(texts(start))
         start = start + len(text) + 1
     end subroutine put_text
-
-    !> The system's text for errno ("No such file or directory").
-    function system_reason() result(text)
-        character(len=:), allocatable :: text
-        integer(c_int), pointer :: errno
-        character(kind=c_char), pointer :: chars(:)
-        type(c_ptr) :: address
-        integer :: n
-
-        call c_f_pointer(c_errno_location(), errno)
-        text = "errno " // to_text(int(errno))
-        address = c_strerror(errno)
-        if (.not. c_associated(address)) return
-        call c_f_pointer(address, chars, [256])
-        n = 0
-        do while (n < size(chars))
-            if (chars(n + 1) == c_null_char) exit
-            n = n + 1
-        end do
-        if (n == 0) return
-        deallocate(text)
-        allocate(character(len=n) :: text)
-        text = transfer(chars(:n), text)
-    end function system_reason
 
 end module rollcon_sweep_program

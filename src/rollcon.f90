@@ -8,6 +8,7 @@ module rollcon
     use rollcon_error, only : error_type, fatal_error, stat_input, stat_io, stat_ucon
     use rollcon_text, only : to_text, fixed_text
     use rollcon_output_files, only : make_folders
+    use rollcon_system, only : system_reason
     use rollcon_lapack, only : use_one_blas_thread
     use rollcon_version, only : rollcon_version_number, version_text
 
