@@ -34,9 +34,11 @@ module rollcon_saddle_point
 
     !> Blocks of at least this many constraint rows go the sparse way (KLU on S's nonzeros):
     !> a dense LU of S costs m^3/3 and forming it m^2 times the block's coordinates, against
-    !> O(m) for a chain's S (UCONs sharing a part: a band of a few dozen entries per row). Every
-    !> shipped dataset and scene has smaller blocks (data/bicycle.adm's, the largest, 21 rows), and
-    !> keeps the dense path's numbers bit for bit.
+    !> O(m) for a chain's S (UCONs sharing a part: about 15 entries per row). Measured on the
+    !> chain (docs/benchmark.md): at 20 rows (4 links) both paths cost the same, at 40 (8 links)
+    !> the sparse one makes CVODE's ODE form 1.6 times cheaper. Every shipped dataset and scene
+    !> has smaller blocks (data/bicycle.adm's, the largest, 21 rows), and keeps the dense path's
+    !> numbers bit for bit.
     integer, parameter :: sparse_schur_rows = 40
 
     !> Factors of one saddle-point matrix and the workspace to solve with them
