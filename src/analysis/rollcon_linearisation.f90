@@ -21,7 +21,7 @@ module rollcon_linearisation
     use rollcon_text, only : to_text
     use rollcon_lapack, only : general_eigenvalues, pivoted_columns, factor_dense, &
         & solve_factored
-    use rollcon_constraints, only : need_value, need_first, need_second, need_time
+    use rollcon_constraints, only : local_dot, need_value, need_first, need_second, need_time
     use rollcon_problem, only : problem_type
     use rollcon_ic_rows, only : tolerance, ic_fraction, ic_rcond
     implicit none
@@ -128,7 +128,7 @@ contains
         real(wp), allocatable, intent(out) :: jac(:, :)
         type(error_type), allocatable, intent(out) :: error
         real(wp) :: residual
-        integer :: n, k, row, j
+        integer :: n, k, row, j, jj
 
         n = problem%model%n
         allocate(jac(problem%model%nc + problem%model%nh, 2*n), source=0.0_wp)
@@ -140,9 +140,16 @@ contains
             do k = 1, problem%model%nc
                 row = row + 1
                 if (ucons(k)%holonomic) then
+                    ! d2F/dq dq's column j is zero off the UCON's own coordinates
                     do j = 1, n
-                        jac(row, j) = dot_product(cs%hqq(:, j, k), u) + cs%dt_grad_q(k, j)
+                        jac(row, j) = 0.0_wp + cs%dt_grad_q(k, j)
                     end do
+                    associate (at => cs%local(:cs%local_count(k), k))
+                        do jj = 1, size(at)
+                            jac(row, at(jj)) = local_dot(cs%hqq(:, jj, k), u, at) &
+                                & + cs%dt_grad_q(k, at(jj))
+                        end do
+                    end associate
                     jac(row, n + 1:) = cs%grad_q(k, :)
                     residual = dot_product(cs%grad_q(k, :), u) + cs%dt(k)
                     call check_met(ucons(k)%id, "its rate", residual, &

@@ -12,7 +12,7 @@ module rollcon_constraints
     implicit none
     private
 
-    public :: constraint_state_type, need_value, need_first, need_second, need_time
+    public :: constraint_state_type, local_dot, need_value, need_first, need_second, need_time
 
     !> What an evaluation needs (add them): F, first partials, second partials, time partials
     integer, parameter :: need_value = 1, need_first = 2, need_second = 4, need_time = 8
@@ -27,8 +27,16 @@ module rollcon_constraints
         real(wp), allocatable :: dt(:), dtt(:)
         !> d2F_k/dt dq_j and d2F_k/dt du_j
         real(wp), allocatable :: dt_grad_q(:, :), dt_grad_u(:, :)
-        !> d2F_k/dq_i dq_j (i, j, k) and d2F_k/dq_i du_j (i, j, k); d2F/du du is zero
-        !> (docs/design.md §2)
+        !> Each UCON's own coordinates, ascending and each once (a rate and its coordinate
+        !> share one): local(1:local_count(k), k), at most `width` (12 for a UCON on two parts)
+        integer :: width = 0
+        integer, allocatable :: local(:, :), local_count(:)
+        !> The place in local(:, k) of each of UCON k's variables (max_ucon_vars, nc)
+        integer, allocatable :: slot(:, :)
+        !> Second partials over each UCON's own coordinates (docs/design.md §4): hqq(a, b, k) is
+        !> d2F_k/dq_i dq_j and hqu(a, b, k) d2F_k/dq_i du_j with i = local(a, k), j = local(b, k);
+        !> d2F/du du is zero (docs/design.md §2). The rest of the n x n matrices are zeros, not
+        !> stored: memory and time grow as the number of UCONs, not as n^2 of them.
         real(wp), allocatable :: hqq(:, :, :), hqu(:, :, :)
         !> Scratch for one UCOSUB call
         real(wp) :: local_q(max_ucon_vars) = 0.0_wp
@@ -44,11 +52,43 @@ contains
         class(constraint_state_type), intent(inout) :: self
         type(model_type), intent(in) :: model
 
+        integer :: k, i, a, j, count
+
         associate (n => model%n, nc => model%nc)
+            if (allocated(self%value)) deallocate(self%value, self%dt, self%dtt, self%grad_q, &
+                & self%grad_u, self%dt_grad_q, self%dt_grad_u, self%hqq, self%hqu, self%local, &
+                & self%local_count, self%slot)
             allocate(self%value(nc), self%dt(nc), self%dtt(nc), source=0.0_wp)
             allocate(self%grad_q(nc, n), self%grad_u(nc, n), self%dt_grad_q(nc, n), &
                 & self%dt_grad_u(nc, n), source=0.0_wp)
-            allocate(self%hqq(n, n, nc), self%hqu(n, n, nc), source=0.0_wp)
+            allocate(self%local(max_ucon_vars, nc), self%slot(max_ucon_vars, nc), &
+                & self%local_count(nc), source=0)
+            ! each UCON's distinct coordinates in ascending order (insertion), then the slots
+            self%width = 0
+            do k = 1, nc
+                associate (ucon => model%ucons(k), list => self%local(:, k))
+                    count = 0
+                    do i = 1, ucon%nvars
+                        j = ucon%coordinate(i)
+                        if (any(list(:count) == j)) cycle
+                        a = count
+                        do while (a >= 1)
+                            if (list(a) <= j) exit
+                            list(a + 1) = list(a)
+                            a = a - 1
+                        end do
+                        list(a + 1) = j
+                        count = count + 1
+                    end do
+                    do i = 1, ucon%nvars
+                        self%slot(i, k) = findloc(list(:count), ucon%coordinate(i), 1)
+                    end do
+                    self%local_count(k) = count
+                    self%width = max(self%width, count)
+                end associate
+            end do
+            allocate(self%hqq(self%width, self%width, nc), self%hqu(self%width, self%width, nc), &
+                & source=0.0_wp)
         end associate
     end subroutine allocate_state
 
@@ -98,8 +138,8 @@ contains
                     if (idrsel(1) /= 0) self%value(k) = scalar
                     if (first) call scatter_row(ucon, array, self%grad_q(k, :), &
                         & self%grad_u(k, :))
-                    if (second) call scatter_hessian(ucon, xmatrx, self%hqq(:, :, k), &
-                        & self%hqu(:, :, k))
+                    if (second) call place_hessian(ucon, self%slot(:, k), xmatrx, &
+                        & self%hqq(:, :, k), self%hqu(:, :, k))
                 end if
                 ! a time-free UCON's time partials stay at the zeros of allocate_state
                 if (iand(needs, need_time) /= 0 .and. .not. ucon%time_free) then
@@ -171,31 +211,42 @@ contains
         end do
     end subroutine scatter_row
 
-    !> Scatter a UCON's second partials (XMATRX) onto d2F/dq dq and d2F/dq du of the system
-    !> (d2F/du du is zero: F is linear in the rates, docs/design.md §2); only the UCON's own
-    !> coordinates' entries are written, as in scatter_row.
-    pure subroutine scatter_hessian(ucon, xmatrx, hqq, hqu)
+    !> Place a UCON's second partials (XMATRX) in its compact d2F/dq dq and d2F/dq du (over its
+    !> own coordinates: `slot` gives each variable's place; d2F/du du is zero: F is linear in
+    !> the rates, docs/design.md §2). Cleared, then set, as scatter_row does.
+    pure subroutine place_hessian(ucon, slot, xmatrx, hqq, hqu)
         type(ucon_statement_type), intent(in) :: ucon
+        integer, intent(in) :: slot(:)
         real(wp), intent(in) :: xmatrx(:, :)
         real(wp), intent(inout) :: hqq(:, :), hqu(:, :)
         integer :: i, j
 
-        do j = 1, ucon%nvars
-            do i = 1, ucon%nvars
-                hqq(ucon%coordinate(i), ucon%coordinate(j)) = 0.0_wp
-                hqu(ucon%coordinate(i), ucon%coordinate(j)) = 0.0_wp
-            end do
-        end do
+        hqq = 0.0_wp
+        hqu = 0.0_wp
         do j = 1, ucon%nvars
             do i = 1, ucon%nvars
                 if (ucon%velocity(i)) cycle
                 if (ucon%velocity(j)) then
-                    hqu(ucon%coordinate(i), ucon%coordinate(j)) = xmatrx(i, j)
+                    hqu(slot(i), slot(j)) = xmatrx(i, j)
                 else
-                    hqq(ucon%coordinate(i), ucon%coordinate(j)) = xmatrx(i, j)
+                    hqq(slot(i), slot(j)) = xmatrx(i, j)
                 end if
             end do
         end do
-    end subroutine scatter_hessian
+    end subroutine place_hessian
+
+    !> h . x with h over a UCON's own coordinates `at` (ascending; h(i) belongs to at(i)): the
+    !> dense sum's terms that are not exact zeros, in its order.
+    pure function local_dot(h, x, at) result(total)
+        real(wp), intent(in) :: h(:), x(:)
+        integer, intent(in) :: at(:)
+        real(wp) :: total
+        integer :: i
+
+        total = 0.0_wp
+        do i = 1, size(at)
+            total = total + h(i)*x(at(i))
+        end do
+    end function local_dot
 
 end module rollcon_constraints

@@ -11,7 +11,7 @@
 module rollcon_dae
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type
-    use rollcon_constraints, only : need_value, need_first, need_second, need_time
+    use rollcon_constraints, only : local_dot, need_value, need_first, need_second, need_time
     use rollcon_equations, only : equations_type
     implicit none
     private
@@ -155,12 +155,12 @@ contains
                             j = at(jj)
                             do ii = 1, size(at)
                                 i = at(ii)
-                                jac(i, j) = jac(i, j) - mu(h)*cs%hqq(i, j, k)
+                                jac(i, j) = jac(i, j) - mu(h)*cs%hqq(ii, jj, k)
                             end do
                         end do
                         do jj = 1, size(at)
                             j = at(jj)
-                            jac(row, j) = sparse_dot(cs%hqq(:, j, k), u, at) + cs%dt_grad_q(k, j)
+                            jac(row, j) = local_dot(cs%hqq(:, jj, k), u, at) + cs%dt_grad_q(k, j)
                             jac(j, 2*n + nc + h) = -cs%grad_q(k, j)
                             jac(row, n + j) = cs%grad_q(k, j)
                             jac(2*n + nc + h, j) = cs%grad_q(k, j)

@@ -10,8 +10,8 @@ module rollcon_equations
     use rollcon_model, only : model_type
     use rollcon_body, only : body_mass_and_force, body_residual_jacobian, kinetic_energy
     use rollcon_force, only : force_and_moment
-    use rollcon_constraints, only : constraint_state_type, need_value, need_first, need_second, &
-        & need_time
+    use rollcon_constraints, only : constraint_state_type, local_dot, need_value, need_first, &
+        & need_second, need_time
     use rollcon_saddle_point, only : saddle_point_type
     use rollcon_constraint_blocks, only : constraint_blocks_type
     use rollcon_ode_workspace, only : ode_workspace_type
@@ -117,7 +117,7 @@ contains
                 last = self%blocks%ucon_start(k + 1) - 1
                 if (self%model%ucons(k)%holonomic) then
                     rate = sparse_dot(cs%grad_q(k, :), u, at(first:last)) + cs%dt(k)
-                    self%gamma(k) = -sparse_quadratic_form(cs%hqq(:, :, k), u, at(first:last)) &
+                    self%gamma(k) = -local_quadratic_form(cs%hqq(:, :, k), u, at(first:last)) &
                         & - 2.0_wp*sparse_dot(cs%dt_grad_q(k, :), u, at(first:last)) &
                         & - cs%dtt(k) - 2.0_wp*alpha*rate - alpha**2*cs%value(k)
                 else
@@ -221,7 +221,7 @@ contains
                         do ii = 1, size(at)
                             i = at(ii)
                             self%work%dm_dq(i, j) = self%work%dm_dq(i, j) &
-                                & - lambda(k)*self%constraints%hqq(i, j, k)
+                                & - lambda(k)*self%constraints%hqq(ii, jj, k)
                         end do
                     end do
                 else
@@ -230,7 +230,7 @@ contains
                         do ii = 1, size(at)
                             i = at(ii)
                             self%work%dm_dq(i, j) = self%work%dm_dq(i, j) &
-                                & - lambda(k)*self%constraints%hqu(j, i, k)
+                                & - lambda(k)*self%constraints%hqu(jj, ii, k)
                         end do
                     end do
                 end if
@@ -289,21 +289,21 @@ contains
                     if (self%model%ucons(k)%holonomic) then
                         do jj = 1, size(at)
                             j = at(jj)
-                            rhs_bottom(k, j) = -sparse_dot(cs%hqq(:, j, k), a, at) &
-                                & - 2.0_wp*alpha*(sparse_dot(cs%hqq(:, j, k), u, at) &
+                            rhs_bottom(k, j) = -local_dot(cs%hqq(:, jj, k), a, at) &
+                                & - 2.0_wp*alpha*(local_dot(cs%hqq(:, jj, k), u, at) &
                                 & + cs%dt_grad_q(k, j)) - alpha**2*cs%grad_q(k, j)
-                            rhs_bottom(k, n + j) = -2.0_wp*sparse_dot(cs%hqq(:, j, k), u, at) &
+                            rhs_bottom(k, n + j) = -2.0_wp*local_dot(cs%hqq(:, jj, k), u, at) &
                                 & - 2.0_wp*cs%dt_grad_q(k, j) - 2.0_wp*alpha*cs%grad_q(k, j)
                         end do
                     else
                         ! C a - gamma = dF/du a + dF/dq u + dF/dt + alpha F
                         do jj = 1, size(at)
                             j = at(jj)
-                            rhs_bottom(k, j) = -(sparse_dot(cs%hqu(j, :, k), a, at) &
-                                & + sparse_dot(cs%hqq(:, j, k), u, at) + cs%dt_grad_q(k, j) &
+                            rhs_bottom(k, j) = -(local_dot(cs%hqu(jj, :, k), a, at) &
+                                & + local_dot(cs%hqq(:, jj, k), u, at) + cs%dt_grad_q(k, j) &
                                 & + alpha*cs%grad_q(k, j))
                             rhs_bottom(k, n + j) = -(cs%grad_q(k, j) &
-                                & + sparse_dot(cs%hqu(:, j, k), u, at) + cs%dt_grad_u(k, j) &
+                                & + local_dot(cs%hqu(:, jj, k), u, at) + cs%dt_grad_u(k, j) &
                                 & + alpha*cs%grad_u(k, j))
                         end do
                     end if
@@ -379,8 +379,9 @@ contains
         end do
     end function sparse_dot
 
-    !> u^T H u over the given coordinates (ascending), summed as quadratic_form.
-    pure function sparse_quadratic_form(h, u, at) result(value)
+    !> u^T H u with H over a UCON's own coordinates `at` (ascending; h(i, j) belongs to at(i),
+    !> at(j)), summed as the dense quadratic form.
+    pure function local_quadratic_form(h, u, at) result(value)
         real(wp), intent(in) :: h(:, :), u(:)
         integer, intent(in) :: at(:)
         real(wp) :: value
@@ -388,9 +389,9 @@ contains
 
         value = 0.0_wp
         do j = 1, size(at)
-            value = value + u(at(j))*sparse_dot(h(:, at(j)), u, at)
+            value = value + u(at(j))*local_dot(h(:, j), u, at)
         end do
-    end function sparse_quadratic_form
+    end function local_quadratic_form
 
     !> Total energy: kinetic plus gravitational potential [J].
     pure function energy(self, q, u) result(e)

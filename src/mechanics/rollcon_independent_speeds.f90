@@ -18,7 +18,7 @@
 module rollcon_independent_speeds
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type
-    use rollcon_constraints, only : need_value, need_first, need_time
+    use rollcon_constraints, only : local_dot, need_value, need_first, need_time
     use rollcon_equations, only : equations_type
     use rollcon_speed_partition, only : speed_partition_type
     implicit none
@@ -155,7 +155,7 @@ contains
         !> (n + ni) square
         real(wp), intent(out) :: jac(:, :)
         type(error_type), allocatable, intent(out) :: error
-        integer :: n, nc, ni, i, j, k, row
+        integer :: n, nc, ni, i, j, jj, k, row
 
         n = self%n
         nc = self%nc
@@ -171,10 +171,18 @@ contains
             associate (cs => eq%constraints)
                 do k = 1, nc
                     if (eq%model%ucons(k)%holonomic) then
+                        ! d2F/dq dq's column j is zero off the UCON's own coordinates
                         do j = 1, n
-                            self%dud_dq(k, j) = -(dot_product(cs%hqq(:, j, k), u) &
-                                & + cs%dt_grad_q(k, j) + alpha*cs%grad_q(k, j))
+                            self%dud_dq(k, j) = -(0.0_wp + cs%dt_grad_q(k, j) &
+                                & + alpha*cs%grad_q(k, j))
                         end do
+                        associate (at => cs%local(:cs%local_count(k), k))
+                            do jj = 1, size(at)
+                                j = at(jj)
+                                self%dud_dq(k, j) = -(local_dot(cs%hqq(:, jj, k), u, at) &
+                                    & + cs%dt_grad_q(k, j) + alpha*cs%grad_q(k, j))
+                            end do
+                        end associate
                     else
                         self%dud_dq(k, :) = -cs%grad_q(k, :)
                     end if

@@ -4,7 +4,8 @@
 !> meets its joints; the DAE's pattern (dae_pattern) holds every nonzero of the analytic
 !> Newton matrix and keeps O(N) of a chain's entries; IDA with KLU moves the chain and the disks
 !> as the dense matrix does; linear_solver = 'auto' picks KLU on large sparse matrices only;
-!> `rollcon bench` prints the per-part scaling table.
+!> the saddle-point system's Schur complement goes sparse (KLU) on a long chain's block only,
+!> with the dense path's accelerations; `rollcon bench` prints the per-part scaling table.
 module test_link_chain
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type
@@ -20,6 +21,7 @@ module test_link_chain
     use rollcon_problem, only : problem_type
     use rollcon_newton_pattern, only : newton_pattern_type, pattern_of_blocks
     use rollcon_dae, only : dae_size
+    use rollcon_saddle_point, only : saddle_point_type, sparse_schur_rows
     use rollcon_run_settings, only : run_settings_type, linear_auto, linear_dense, &
         & linear_sparse, jacobian_dq
     use rollcon_adm_model, only : adm_model_type
@@ -46,6 +48,7 @@ contains
 
         tests = [new_unittest("chain-one-block", test_one_block), &
             & new_unittest("chain-start", test_start), &
+            & new_unittest("sparse-schur-as-dense", test_sparse_schur), &
             & new_unittest("pattern-holds-the-jacobian", test_pattern), &
             & new_unittest("ida-klu-same-motion", test_klu_motion), &
             & new_unittest("auto-solver-choice", test_auto), &
@@ -120,6 +123,83 @@ contains
         call check(error, all(blocks%block_coordinates(1) == [(j, j = 1, 18)]), &
             & "the block holds every coordinate")
     end subroutine test_one_block
+
+    !> The saddle-point solve of a chain of 12 links (one block of 60 rows: sparse, KLU on S's
+    !> nonzeros) against the whole dense Schur complement (LAPACK LU, no blocks) at three
+    !> generic states: the same accelerations and multipliers, and the same solutions for two
+    !> more right-hand sides, to round-off. A chain of 2 links (10 rows) stays dense.
+    subroutine test_sparse_schur(error)
+        type(error_type), allocatable, intent(out) :: error
+        !> Both are backward-stable LU solves (KLU's partial pivoting, LAPACK's) of the same S
+        !> in double precision: they differ by about cond(S) eps relative to the solution, and
+        !> the chain's S (masses 1 kg, lengths 0.1 m, 12 links) is well conditioned: the
+        !> largest relative difference seen is below 1e-13; 1e-10 leaves room and still catches
+        !> a wrong entry of S or a missed coupling (differences of order one)
+        real(wp), parameter :: tol = 1.0e-10_wp
+        type(problem_type), target :: problem, small
+        type(saddle_point_type) :: dense
+        real(wp), allocatable :: q0(:), u0(:), q(:), u(:), a(:), lambda(:), r1(:, :), r2(:, :), &
+            & s1(:, :), s2(:, :)
+        real(wp) :: worst
+        integer :: n, nc, state, i
+
+        call problem_of("chain_small", link_chain_dataset(2, 0.1_wp, 0.05_wp, &
+            & "FORMULATION=IDA"), small, q0, u0, error)
+        if (allocated(error)) return
+        call small%prepare(error)
+        if (allocated(error)) return
+        call small%accelerations(0.0_wp, q0, u0, error)
+        if (allocated(error)) return
+        call check(error, small%eq%saddle%by_blocks .and. small%eq%blocks%most_rows == 10 &
+            & .and. .not. any(small%eq%saddle%block_sparse), "2 links (10 rows, fewer than " &
+            & // to_text(sparse_schur_rows) // "): the dense path by blocks")
+        if (allocated(error)) return
+        call problem_of("chain_sparse", link_chain_dataset(12, 0.1_wp, 0.05_wp, &
+            & "FORMULATION=IDA"), problem, q0, u0, error)
+        if (allocated(error)) return
+        call problem%prepare(error)
+        if (allocated(error)) return
+        n = problem%model%n
+        nc = problem%model%nc
+        call dense%init(n, nc)
+        allocate(r1(n, 2), r2(nc, 2), s1(n, 2), s2(nc, 2))
+        worst = 0.0_wp
+        do state = 1, 3
+            ! a generic state near the start: every coordinate and rate moved
+            q = q0 + [(0.05_wp*sin(1.7_wp*i + state), i = 1, n)]
+            u = u0 + [(0.8_wp*cos(0.9_wp*i*state), i = 1, n)]
+            call problem%accelerations(0.0_wp, q, u, error)
+            if (allocated(error)) return
+            call check(error, problem%eq%saddle%by_blocks .and. problem%eq%blocks%count == 1 &
+                & .and. problem%eq%blocks%most_rows == 60 .and. problem%eq%saddle%block_sparse(1), &
+                & "12 links (one block of 60 rows): the sparse path")
+            if (allocated(error)) return
+            call dense%factor(problem%eq%mass, problem%eq%c, nc, error)
+            if (allocated(error)) return
+            a = problem%eq%force
+            lambda = problem%eq%gamma
+            call dense%solve(problem%eq%c, a, lambda, 1, error)
+            if (allocated(error)) return
+            worst = max(worst, maxval(abs(problem%a - a))/maxval(abs(a)), &
+                & maxval(abs(problem%lambda - lambda))/maxval(abs(lambda)))
+            do i = 1, n
+                r1(i, :) = [0.3_wp*i - 1.0_wp, sin(real(i*state, wp))]
+            end do
+            do i = 1, nc
+                r2(i, :) = [0.2_wp*i, cos(real(i + state, wp))]
+            end do
+            s1 = r1
+            s2 = r2
+            call problem%eq%saddle%solve(problem%eq%c, r1, r2, 2, error)
+            if (allocated(error)) return
+            call dense%solve(problem%eq%c, s1, s2, 2, error)
+            if (allocated(error)) return
+            worst = max(worst, maxval(abs(r1 - s1))/maxval(abs(s1)), &
+                & maxval(abs(r2 - s2))/maxval(abs(s2)))
+        end do
+        call check(error, worst < tol, "sparse and dense saddle-point solves differ by " &
+            & // to_text(worst) // " (relative)")
+    end subroutine test_sparse_schur
 
     !> The chain starts straight, 60 degrees from the vertical, at rest: link k's centre at
     !> (k - 1/2) l (-sin 60, 0, -cos 60) in the first row, and the run of 0.1 s keeps the
