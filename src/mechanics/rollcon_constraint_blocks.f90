@@ -10,7 +10,7 @@ module rollcon_constraint_blocks
     implicit none
     private
 
-    public :: constraint_blocks_type
+    public :: constraint_blocks_type, ascending
 
     !> The blocks, each listing its UCONs and its coordinates in ascending order
     type :: constraint_blocks_type
@@ -131,7 +131,8 @@ contains
         end do
     end subroutine ucon_lists
 
-    !> The values in ascending order (insertion sort: at most 30).
+    !> The values in ascending order (insertion sort: for the short lists of a block's UCONs
+    !> and coordinates).
     pure function ascending(values) result(ordered)
         integer, intent(in) :: values(:)
         integer :: ordered(size(values))

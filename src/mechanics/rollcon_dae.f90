@@ -12,7 +12,7 @@ module rollcon_dae
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type
     use rollcon_constraints, only : local_dot, need_value, need_first, need_second, need_time
-    use rollcon_equations, only : equations_type
+    use rollcon_equations, only : equations_type, sparse_dot
     implicit none
     private
 
@@ -176,18 +176,5 @@ contains
             end do
         end associate
     end subroutine dae_jacobian
-
-    !> x . y over the given entries (ascending), in their order.
-    pure function sparse_dot(x, y, at) result(total)
-        real(wp), intent(in) :: x(:), y(:)
-        integer, intent(in) :: at(:)
-        real(wp) :: total
-        integer :: i
-
-        total = 0.0_wp
-        do i = 1, size(at)
-            total = total + x(at(i))*y(at(i))
-        end do
-    end function sparse_dot
 
 end module rollcon_dae

@@ -18,7 +18,7 @@ module rollcon_equations
     implicit none
     private
 
-    public :: equations_type
+    public :: equations_type, sparse_dot
 
     !> The equations of a model held elsewhere, and what evaluating them fills (allocated once,
     !> in init; no evaluation allocates). The saddle-point factors live in `saddle`, the scratch

@@ -26,7 +26,7 @@ module rollcon_saddle_point
     use rollcon_text, only : to_text
     use rollcon_lapack, only : dgetf2, dgetrs, dpotf2, dpotrs, lapack_info_error
     use rollcon_sparse_lu, only : sparse_lu_type
-    use rollcon_constraint_blocks, only : constraint_blocks_type
+    use rollcon_constraint_blocks, only : constraint_blocks_type, ascending
     implicit none
     private
 
@@ -269,25 +269,6 @@ contains
         end associate
     end subroutine sparse_pattern
 
-    !> The values in ascending order (insertion sort: a few dozen).
-    pure function ascending(values) result(ordered)
-        integer, intent(in) :: values(:)
-        integer :: ordered(size(values))
-        integer :: i, j, key
-
-        ordered = values
-        do i = 2, size(ordered)
-            key = ordered(i)
-            j = i - 1
-            do while (j >= 1)
-                if (ordered(j) <= key) exit
-                ordered(j + 1) = ordered(j)
-                j = j - 1
-            end do
-            ordered(j + 1) = key
-        end do
-    end function ascending
-
     !> Factor the saddle-point matrix of mass (n x n, block structure above) and the first
     !> `rows` rows of c (rows x n, leading dimension nc). With r1, the first step of a solve for
     !> one right-hand side is taken too, r1 := M^-1 r1, in the LAPACK calls that give M^-1 C^T
@@ -404,10 +385,9 @@ contains
         real(wp), intent(in) :: c(:, :)
         type(error_type), allocatable, intent(out) :: error
         real(wp), intent(inout), optional :: r1(:)
-        integer :: b, i, j, k, kj, m, first, last, p, i0, info, s0, col, extra
+        integer :: b, i, j, k, kj, m, first, last, info, s0
 
-        extra = merge(1, 0, present(r1))
-        associate (blocks => self%blocks, rot => self%rotational_rows)
+        associate (blocks => self%blocks)
             do b = 1, blocks%count
                 if (self%block_sparse(b)) then
                     call factor_sparse_block(self, b, c, error, r1)
@@ -416,33 +396,12 @@ contains
                 end if
                 first = blocks%coordinate_start(b)
                 last = blocks%coordinate_start(b + 1) - 1
-                ! M^-1 c_k^T over the block's parts (zero elsewhere, as the dense path leaves
-                ! it): per part, the translational rows divided by the mass, the rotational
-                ! rows of every UCON of the block (and of r1) in one dpotrs, column by column
-                ! the solves of one call per UCON
+                ! M^-1 c_k^T over the block's parts, for every UCON of the block
                 do j = first, last, 6
-                    i0 = blocks%coordinates(j) - 1
-                    p = i0/6 + 1
-                    if (present(r1)) then
-                        r1(i0 + 1:i0 + 3) = r1(i0 + 1:i0 + 3)/self%part_mass(p)
-                        rot(:, 1) = r1(i0 + 4:i0 + 6)
-                    end if
-                    col = extra
-                    do i = blocks%row_start(b), blocks%row_start(b + 1) - 1
-                        k = blocks%rows(i)
-                        self%minv_ct(i0 + 1:i0 + 3, k) = c(k, i0 + 1:i0 + 3)/self%part_mass(p)
-                        col = col + 1
-                        rot(:, col) = c(k, i0 + 4:i0 + 6)
-                    end do
-                    call dpotrs("L", 3, col, self%rotational(1, 1, p), 3, rot, 3, info)
-                    call lapack_info_error("dpotrs", info, error)
+                    call part_inverse_mass(self, (blocks%coordinates(j) - 1)/6 + 1, &
+                        & blocks%rows(blocks%row_start(b):blocks%row_start(b + 1) - 1), c, &
+                        & error, r1)
                     if (allocated(error)) return
-                    if (present(r1)) r1(i0 + 4:i0 + 6) = rot(:, 1)
-                    col = extra
-                    do i = blocks%row_start(b), blocks%row_start(b + 1) - 1
-                        col = col + 1
-                        self%minv_ct(i0 + 4:i0 + 6, blocks%rows(i)) = rot(:, col)
-                    end do
                 end do
                 m = blocks%row_start(b + 1) - blocks%row_start(b)
                 s0 = self%schur_start(b) - 1
@@ -524,6 +483,44 @@ contains
         end associate
     end subroutine solve_blocks
 
+    !> M^-1 c_k^T over part p for each UCON k of ucons (zero elsewhere, as the dense path
+    !> leaves it), and M^-1 r1 there with r1: the translational rows divided by the mass, the
+    !> rotational rows of every UCON (and of r1) in one dpotrs, column by column the solves of
+    !> one call per UCON.
+    subroutine part_inverse_mass(self, p, ucons, c, error, r1)
+        type(saddle_point_type), intent(inout) :: self
+        integer, intent(in) :: p, ucons(:)
+        real(wp), intent(in) :: c(:, :)
+        type(error_type), allocatable, intent(out) :: error
+        real(wp), intent(inout), optional :: r1(:)
+        integer :: i, k, i0, info, col, extra
+
+        extra = merge(1, 0, present(r1))
+        i0 = 6*(p - 1)
+        associate (rot => self%rotational_rows)
+            if (present(r1)) then
+                r1(i0 + 1:i0 + 3) = r1(i0 + 1:i0 + 3)/self%part_mass(p)
+                rot(:, 1) = r1(i0 + 4:i0 + 6)
+            end if
+            col = extra
+            do i = 1, size(ucons)
+                k = ucons(i)
+                self%minv_ct(i0 + 1:i0 + 3, k) = c(k, i0 + 1:i0 + 3)/self%part_mass(p)
+                col = col + 1
+                rot(:, col) = c(k, i0 + 4:i0 + 6)
+            end do
+            call dpotrs("L", 3, col, self%rotational(1, 1, p), 3, rot, 3, info)
+            call lapack_info_error("dpotrs", info, error)
+            if (allocated(error)) return
+            if (present(r1)) r1(i0 + 4:i0 + 6) = rot(:, 1)
+            col = extra
+            do i = 1, size(ucons)
+                col = col + 1
+                self%minv_ct(i0 + 4:i0 + 6, ucons(i)) = rot(:, col)
+            end do
+        end associate
+    end subroutine part_inverse_mass
+
     !> factor_blocks for a sparse block b: M^-1 C^T over each part's own UCONs (and M^-1 r1
     !> there, with r1), S's nonzeros (UCONs sharing a part) and their KLU factors.
     subroutine factor_sparse_block(self, b, c, error, r1)
@@ -533,33 +530,15 @@ contains
         type(error_type), allocatable, intent(out) :: error
         real(wp), intent(inout), optional :: r1(:)
         real(wp) :: total
-        integer :: i, j, k, p, i0, info, col, extra, e, l, x
+        integer :: j, k, p, e, l, x
 
-        extra = merge(1, 0, present(r1))
-        associate (blocks => self%blocks, rot => self%rotational_rows)
+        associate (blocks => self%blocks)
             do j = blocks%coordinate_start(b), blocks%coordinate_start(b + 1) - 1, 6
-                i0 = blocks%coordinates(j) - 1
-                p = i0/6 + 1
-                if (present(r1)) then
-                    r1(i0 + 1:i0 + 3) = r1(i0 + 1:i0 + 3)/self%part_mass(p)
-                    rot(:, 1) = r1(i0 + 4:i0 + 6)
-                end if
-                col = extra
-                do i = self%part_ucon_start(p), self%part_ucon_start(p + 1) - 1
-                    k = self%part_ucons(i)
-                    self%minv_ct(i0 + 1:i0 + 3, k) = c(k, i0 + 1:i0 + 3)/self%part_mass(p)
-                    col = col + 1
-                    rot(:, col) = c(k, i0 + 4:i0 + 6)
-                end do
-                call dpotrs("L", 3, col, self%rotational(1, 1, p), 3, rot, 3, info)
-                call lapack_info_error("dpotrs", info, error)
+                p = (blocks%coordinates(j) - 1)/6 + 1
+                call part_inverse_mass(self, p, &
+                    & self%part_ucons(self%part_ucon_start(p):self%part_ucon_start(p + 1) - 1), &
+                    & c, error, r1)
                 if (allocated(error)) return
-                if (present(r1)) r1(i0 + 4:i0 + 6) = rot(:, 1)
-                col = extra
-                do i = self%part_ucon_start(p), self%part_ucon_start(p + 1) - 1
-                    col = col + 1
-                    self%minv_ct(i0 + 4:i0 + 6, self%part_ucons(i)) = rot(:, col)
-                end do
             end do
             associate (lu => self%sparse(b))
                 do e = self%entry_start(b), self%entry_start(b + 1) - 1

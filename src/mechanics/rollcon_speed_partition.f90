@@ -16,7 +16,7 @@ module rollcon_speed_partition
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type, fatal_error, stat_lapack
     use rollcon_lapack, only : dgeqp3, dgetf2, dgetrs, lapack_info_error
-    use rollcon_constraint_blocks, only : constraint_blocks_type
+    use rollcon_constraint_blocks, only : constraint_blocks_type, ascending
     implicit none
     private
 
@@ -185,7 +185,8 @@ contains
                 self%trial(bl%row_start(b) + i - 1) = bl%coordinates(bl%coordinate_start(b) &
                     & + self%jpvt(i) - 1)
             end do
-            call sort_ascending(self%trial(bl%row_start(b):bl%row_start(b + 1) - 1))
+            self%trial(bl%row_start(b):bl%row_start(b + 1) - 1) = &
+                & ascending(self%trial(bl%row_start(b):bl%row_start(b + 1) - 1))
         end associate
     end subroutine choose_block
 
@@ -344,22 +345,5 @@ contains
             self%independent(m) = j
         end do
     end subroutine set_independent
-
-    !> Sort in place, ascending (insertion sort: a block's few rows).
-    pure subroutine sort_ascending(values)
-        integer, intent(inout) :: values(:)
-        integer :: i, j, key
-
-        do i = 2, size(values)
-            key = values(i)
-            j = i - 1
-            do while (j >= 1)
-                if (values(j) <= key) exit
-                values(j + 1) = values(j)
-                j = j - 1
-            end do
-            values(j + 1) = key
-        end do
-    end subroutine sort_ascending
 
 end module rollcon_speed_partition
