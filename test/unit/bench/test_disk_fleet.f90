@@ -23,6 +23,7 @@ module test_disk_fleet
     use rollcon_disk_reference, only : rolling_disk_ucosub
     use rollcon_summary_text, only : run_summary_text
     use rollcon_testing, only : unittest_type, new_unittest, check
+    use motion_runs, only : run_dataset_text
     implicit none
     private
 
@@ -50,24 +51,10 @@ contains
         character(len=*), intent(in) :: keywords
         type(history_type), intent(out) :: history
         type(error_type), allocatable, intent(out) :: error
-        character(len=:), allocatable :: path
-        type(job_type) :: job
-        type(job_result_type) :: ran
 
-        call make_folders(folder, error)
-        if (allocated(error)) return
-        path = folder // "/fleet_" // to_text(count) // ".adm"
-        call write_text_file(path, disk_fleet_dataset(count, spacing, 1.0_wp, 0.05_wp, &
-            & keywords), error)
-        if (allocated(error)) return
-        call load_job(path, job, error)
-        if (allocated(error)) return
-        job%output_dir = ""
-        job%quiet = .true.
-        call run_job(job, ran, error, history)
-        if (allocated(error)) return
-        call check(error, ran%summary%status == status_completed, "the fleet of " &
-            & // to_text(count) // " (" // keywords // "): " // ran%summary%message)
+        call run_dataset_text(folder, "fleet_" // to_text(count), disk_fleet_dataset(count, &
+            & spacing, 1.0_wp, 0.05_wp, keywords), history, error)
+        if (allocated(error)) error%message = keywords // ": " // error%message
     end subroutine run_fleet
 
     !> The run's summary says when the Newton matrix was solved by KLU: four disks on IDA with

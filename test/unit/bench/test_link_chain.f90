@@ -30,6 +30,7 @@ module test_link_chain
     use rollcon_ucosub_contract, only : ucosub_interface
     use rollcon_disk_reference, only : rolling_disk_ucosub
     use rollcon_testing, only : unittest_type, new_unittest, check
+    use motion_runs, only : run_dataset_text
     use command_runs, only : rollcon_program, run_rollcon, file_text
     implicit none
     private
@@ -60,23 +61,8 @@ contains
         character(len=*), intent(in) :: name, text
         type(history_type), intent(out) :: history
         type(error_type), allocatable, intent(out) :: error
-        character(len=:), allocatable :: path
-        type(job_type) :: job
-        type(job_result_type) :: ran
 
-        call make_folders(folder, error)
-        if (allocated(error)) return
-        path = folder // "/" // name // ".adm"
-        call write_text_file(path, text, error)
-        if (allocated(error)) return
-        call load_job(path, job, error)
-        if (allocated(error)) return
-        job%output_dir = ""
-        job%quiet = .true.
-        call run_job(job, ran, error, history)
-        if (allocated(error)) return
-        call check(error, ran%summary%status == status_completed, name // ": " &
-            & // ran%summary%message)
+        call run_dataset_text(folder, name, text, history, error)
     end subroutine run_text
 
     !> The problem of a dataset text, set up (its equations, blocks), with its start.

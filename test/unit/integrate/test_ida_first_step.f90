@@ -9,13 +9,10 @@ module test_ida_first_step
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type
     use rollcon_text, only : to_text
-    use rollcon_output_files, only : write_text_file, make_folders
-    use rollcon_job, only : job_type
-    use rollcon_load, only : load_job
-    use rollcon_run_job, only : run_job, job_result_type
-    use rollcon_simulation, only : history_type, status_completed
+    use rollcon_simulation, only : history_type
     use rollcon_link_chain, only : link_chain_dataset
     use rollcon_testing, only : unittest_type, new_unittest, check
+    use motion_runs, only : run_dataset_text
     implicit none
     private
 
@@ -58,9 +55,9 @@ contains
             & "the generator's parts are no longer 'MASS=1, ... " // heavy_ip // "'")
         if (allocated(error)) return
         light = replaced(replaced(heavy, "MASS=1,", "MASS=0.1,"), heavy_ip, light_ip)
-        call run_chain("heavy", heavy, heavy_rows, error)
+        call run_dataset_text(folder, "chain_64_heavy", heavy, heavy_rows, error)
         if (allocated(error)) return
-        call run_chain("light", light, light_rows, error)
+        call run_dataset_text(folder, "chain_64_light", light, light_rows, error)
         if (allocated(error)) return
         call check(error, light_rows%count == heavy_rows%count, "rows: " &
             & // to_text(light_rows%count) // " against " // to_text(heavy_rows%count))
@@ -76,30 +73,6 @@ contains
         call check(error, worst <= tol, "the light chain moves otherwise than the heavy one by " &
             & // to_text(worst))
     end subroutine test_light_chain
-
-    !> Run a chain dataset's text; it must complete.
-    subroutine run_chain(label, text, rows, error)
-        character(len=*), intent(in) :: label, text
-        type(history_type), intent(out) :: rows
-        type(error_type), allocatable, intent(out) :: error
-        character(len=:), allocatable :: path
-        type(job_type) :: job
-        type(job_result_type) :: ran
-
-        call make_folders(folder, error)
-        if (allocated(error)) return
-        path = folder // "/chain_64_" // label // ".adm"
-        call write_text_file(path, text, error)
-        if (allocated(error)) return
-        call load_job(path, job, error)
-        if (allocated(error)) return
-        job%output_dir = ""
-        job%quiet = .true.
-        call run_job(job, ran, error, rows)
-        if (allocated(error)) return
-        call check(error, ran%summary%status == status_completed, "the " // label // " chain: " &
-            & // ran%summary%message)
-    end subroutine run_chain
 
     !> How many times part occurs in text.
     pure integer function count_of(text, part) result(n)

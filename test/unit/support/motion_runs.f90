@@ -3,7 +3,7 @@
 module motion_runs
     use rollcon_kinds, only : wp
     use rollcon_constants, only : pi
-    use rollcon_error, only : error_type
+    use rollcon_error, only : error_type, fatal_error
     use rollcon_ucosub_contract, only : ucosub_interface
     use rollcon_scene, only : scene_type, formulation_ida, method_bdf, drift_projection, &
         & jacobian_analytic, height_velocity, choice_code
@@ -12,10 +12,13 @@ module motion_runs
     use rollcon_run_job, only : run_job, job_result_type
     use rollcon_simulation, only : run_summary_type, history_type
     use rollcon_disk_reference, only : rolling_disk_ucosub
+    use rollcon_output_files, only : write_text_file, make_folders
+    use rollcon_load, only : load_job
+    use rollcon_simulation, only : status_completed
     implicit none
     private
 
-    public :: run_in_memory, default_scene, tipping_coin
+    public :: run_in_memory, default_scene, tipping_coin, run_dataset_text
 
 
 contains
@@ -67,5 +70,30 @@ contains
         call run_job(job, result, error, history)
         summary = result%summary
     end subroutine run_in_memory
+
+    !> Write a dataset's text as folder/name.adm and run it (run_job, no files), keeping every
+    !> output row; the run must complete (error otherwise, naming it and why).
+    subroutine run_dataset_text(folder, name, text, history, error)
+        character(len=*), intent(in) :: folder, name, text
+        type(history_type), intent(out) :: history
+        type(error_type), allocatable, intent(out) :: error
+        character(len=:), allocatable :: path
+        type(job_type) :: job
+        type(job_result_type) :: ran
+
+        call make_folders(folder, error)
+        if (allocated(error)) return
+        path = folder // "/" // name // ".adm"
+        call write_text_file(path, text, error)
+        if (allocated(error)) return
+        call load_job(path, job, error)
+        if (allocated(error)) return
+        job%output_dir = ""
+        job%quiet = .true.
+        call run_job(job, ran, error, history)
+        if (allocated(error)) return
+        if (ran%summary%status /= status_completed) call fatal_error(error, path // ": " &
+            & // ran%summary%message)
+    end subroutine run_dataset_text
 
 end module motion_runs
