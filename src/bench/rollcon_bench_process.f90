@@ -56,30 +56,60 @@ contains
     !> Time `executable run scene --quiet --output work_dir` (its outputs named output_name)
     !> and `executable --help`, each as a child of this process: CPU from getrusage of the
     !> children before and after (the shell that starts it included, about a millisecond).
-    subroutine measure_process(executable, scene, output_name, work_dir, cost, error)
+    !> With repeats (default 1), each is run that many times and its median kept, the
+    !> integration's CPU time that of the median run: one child of some 30 ms varied by a
+    !> quarter from one benchmark run to the next (page faults, the loader, the CPU's clock).
+    subroutine measure_process(executable, scene, output_name, work_dir, cost, error, repeats)
         !> How this program was started (argument 0); a scene's name or file; the name of the
         !> run's outputs (the scene's name: docs/outputs.md); the folder for them
         character(len=*), intent(in) :: executable, scene, output_name, work_dir
         type(process_cost_type), intent(out) :: cost
         type(error_type), allocatable, intent(out) :: error
-        integer :: stat
+        integer, intent(in), optional :: repeats
+        real(wp), allocatable :: cpu(:), wall(:), startup(:), integration(:)
+        integer :: stat, k, n, middle
 
-        call child_cpu(shell_quote(executable) // " run " // shell_quote(scene) &
-            & // " --quiet --output " // shell_quote(work_dir) // " > " &
-            & // shell_quote(work_dir // "/process_run.log") // " 2>&1", cost%cpu, cost%wall, &
-            & stat)
-        if (stat /= 0) then
-            call fatal_error(error, "'" // executable // " run " // scene // "' failed (exit " &
-                & // to_text(stat) // "); see " // work_dir // "/process_run.log", stat_io)
-            return
-        end if
-        call child_cpu(shell_quote(executable) // " --help > /dev/null 2>&1", cost%startup_cpu, &
-            & stat=stat)
-        call read_summary_cpu(work_dir // "/" // output_name // ".summary.txt", &
-            & cost%integration_cpu, error)
-        if (allocated(error)) return
+        n = 1
+        if (present(repeats)) n = max(1, repeats)
+        allocate(cpu(n), wall(n), startup(n), integration(n))
+        do k = 1, n
+            call child_cpu(shell_quote(executable) // " run " // shell_quote(scene) &
+                & // " --quiet --output " // shell_quote(work_dir) // " > " &
+                & // shell_quote(work_dir // "/process_run.log") // " 2>&1", cpu(k), wall(k), &
+                & stat)
+            if (stat /= 0) then
+                call fatal_error(error, "'" // executable // " run " // scene // "' failed (exit " &
+                    & // to_text(stat) // "); see " // work_dir // "/process_run.log", stat_io)
+                return
+            end if
+            call read_summary_cpu(work_dir // "/" // output_name // ".summary.txt", &
+                & integration(k), error)
+            if (allocated(error)) return
+            call child_cpu(shell_quote(executable) // " --help > /dev/null 2>&1", startup(k), &
+                & stat=stat)
+        end do
+        middle = median_index(cpu)
+        cost%cpu = cpu(middle)
+        cost%wall = wall(middle)
+        cost%integration_cpu = integration(middle)
+        cost%startup_cpu = startup(median_index(startup))
         cost%rest_cpu = cost%cpu - cost%startup_cpu - cost%integration_cpu
     end subroutine measure_process
+
+    !> Index of the median of values (the lower middle one of an even count).
+    pure integer function median_index(values) result(middle)
+        real(wp), intent(in) :: values(:)
+        integer :: i, below
+
+        middle = 1
+        do i = 1, size(values)
+            below = count(values < values(i)) + count(values(:i - 1) == values(i))
+            if (below == (size(values) - 1)/2) then
+                middle = i
+                return
+            end if
+        end do
+    end function median_index
 
     !> Run command in a child shell; its user + system CPU [s] (getrusage of the children) and
     !> wall time [s], and its exit status.
