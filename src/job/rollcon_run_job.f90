@@ -115,12 +115,17 @@ contains
         allocate(shapes(0))
         routine => job%routine
         call job%source%build(routine, problem, q0, u0, report, error)
-        if (allocated(error)) return
-        if (.not. job%quiet .and. len(report) > 0) write(output_unit, '(a)') report
-        call job%source%shapes(problem, shapes, error)
-        if (allocated(error)) return
+        if (.not. allocated(error)) then
+            if (.not. job%quiet .and. len(report) > 0) write(output_unit, '(a)') report
+            call job%source%shapes(problem, shapes, error)
+        end if
+        if (allocated(error)) then
+            call problem%release()
+            return
+        end if
         started = .true.
         call simulate(problem, q0, u0, options, summary, error, history)
+        call problem%release()
     end subroutine run_here
 
     !> The output folder (made when missing) and the names of the files.

@@ -42,6 +42,7 @@ module rollcon_equations
         !> Scratch arrays of the right-hand side, the Jacobian and the projection
         type(ode_workspace_type) :: work
     contains
+        procedure :: release => release_equations
         procedure :: init
         procedure :: accelerations
         procedure :: ode_jacobian
@@ -443,5 +444,13 @@ contains
         call force_and_moment(self%model%forces, p, time, q, u, applied, moment)
         force = self%model%parts(p)%mass*(a(i0 + 1:i0 + 3) - self%model%gravity) - applied
     end function reaction_from_accelerations
+
+    !> Free what the saddle-point solve holds outside Fortran's memory (KLU's factors of large
+    !> blocks); called when the model's run is done.
+    subroutine release_equations(self)
+        class(equations_type), intent(inout) :: self
+
+        call self%saddle%release()
+    end subroutine release_equations
 
 end module rollcon_equations

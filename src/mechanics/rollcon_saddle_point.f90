@@ -93,6 +93,7 @@ module rollcon_saddle_point
         procedure :: factor
         procedure :: solve
         procedure :: apply_inverse_mass
+        procedure :: release
     end type saddle_point_type
 
 contains
@@ -639,5 +640,18 @@ contains
             if (allocated(error)) return
         end do
     end subroutine apply_inverse_mass
+
+    !> Free the KLU factors of the sparse blocks (memory outside Fortran's, which leaving the
+    !> object's scope does not free): a process that runs many models one after another (a
+    !> study's cases) calls it when a model is done. The object may be initialised again.
+    subroutine release(self)
+        class(saddle_point_type), intent(inout) :: self
+        integer :: b
+
+        if (.not. allocated(self%sparse)) return
+        do b = 1, size(self%sparse)
+            call self%sparse(b)%release()
+        end do
+    end subroutine release
 
 end module rollcon_saddle_point

@@ -85,6 +85,7 @@ module rollcon_problem
         procedure :: keep_failure
         procedure :: failure_text
         procedure :: ucons_do_no_work
+        procedure :: release => release_problem
     end type problem_type
 
 contains
@@ -697,5 +698,14 @@ contains
             end if
         end do
     end function ucons_do_no_work
+
+    !> Free what the problem holds outside Fortran's memory (its equations' KLU factors): a
+    !> process running many models one after another (a study's cases) would keep every one's
+    !> until it ends.
+    subroutine release_problem(self)
+        class(problem_type), intent(inout) :: self
+
+        call self%eq%release()
+    end subroutine release_problem
 
 end module rollcon_problem

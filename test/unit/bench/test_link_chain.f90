@@ -7,6 +7,7 @@
 !> the saddle-point system's Schur complement goes sparse (KLU) on a long chain's block only,
 !> with the dense path's accelerations; `rollcon bench` prints the per-part scaling table.
 module test_link_chain
+    use, intrinsic :: iso_c_binding, only : c_associated
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type
     use rollcon_text, only : to_text
@@ -185,6 +186,13 @@ contains
         end do
         call check(error, worst < tol, "sparse and dense saddle-point solves differ by " &
             & // to_text(worst) // " (relative)")
+        if (allocated(error)) return
+        ! the KLU factors live outside Fortran's memory: release frees them (a study's cases)
+        call check(error, c_associated(problem%eq%saddle%sparse(1)%handle), "no KLU factors held")
+        if (allocated(error)) return
+        call problem%release()
+        call check(error, .not. c_associated(problem%eq%saddle%sparse(1)%handle), &
+            & "release left the KLU factors held")
     end subroutine test_sparse_schur
 
     !> The chain starts straight, 60 degrees from the vertical, at rest: link k's centre at
