@@ -24,7 +24,8 @@ module rollcon_ida
     use fsunlinsol_klu_mod, only : FSUNLinSol_KLU
     use rollcon_newton_pattern, only : newton_pattern_type
     use fida_mod, only : FIDACreate, FIDAInit, FIDAWFtolerances, FIDASetUserData, &
-        & FIDASetInitStep, FIDASetLinearSolver, FIDASetJacFn, FIDASetMaxNumSteps, FIDASetStopTime, FIDASolve, &
+        & FIDASetInitStep, FIDASetLinearSolver, FIDASetJacFn, FIDASetMaxNumSteps, &
+        & FIDASetStopTime, FIDASolve, &
         & FIDARootInit, FIDAGetRootInfo, FIDASetId, FIDASetSuppressAlg, FIDAFree, FIDAReInit, &
         & FIDAGetNumSteps, FIDAGetNumResEvals, FIDAGetNumJacEvals, FIDAGetNumLinResEvals, &
         & FIDAGetNumErrTestFails, FIDAGetNumGEvals, FIDASetErrFile, FIDAGetLastStep, &
