@@ -41,6 +41,7 @@ program tester
     use test_ucon_request_fuzz, only : collect_ucon_request_fuzz
     use test_allocations, only : collect_allocations
     use test_ida_first_step, only : collect_ida_first_step
+    use test_int_buffer, only : collect_int_buffer
     use test_reduced, only : collect_reduced
     use test_layout, only : collect_layout
     use test_ucosub_catalog, only : collect_ucosub_catalog
@@ -129,6 +130,7 @@ program tester
         & new_testsuite("ucon-request-fuzz", collect_ucon_request_fuzz), &
         & new_testsuite("allocations", collect_allocations), &
         & new_testsuite("ida-first-step", collect_ida_first_step), &
+        & new_testsuite("int-buffer", collect_int_buffer), &
         & new_testsuite("reduced", collect_reduced), &
         & new_testsuite("layout", collect_layout), &
         & new_testsuite("ucosub-catalog", collect_ucosub_catalog), &

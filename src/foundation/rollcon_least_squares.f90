@@ -79,7 +79,10 @@ contains
     end subroutine minimum_norm_solve
 
     !> The rank of A and the left singular vectors beyond it: the columns of `null` span the
-    !> vectors w with A^T w = 0 (the combinations of rows that vanish).
+    !> vectors w with A^T w = 0 (the combinations of rows that vanish). The singular values
+    !> come first, alone; the m x m left vectors (the dearer part of an SVD: O(m^3) rotations
+    !> applied to them) are computed only when the rank is short of m, so a full-rank check,
+    !> the usual answer, costs a fraction of a whole SVD on a large model.
     subroutine left_null_space(a, rcond, rank, null, error)
         !> m x n matrix (not changed)
         real(wp), intent(in) :: a(:, :)
@@ -89,30 +92,56 @@ contains
         !> m x (m - rank)
         real(wp), allocatable, intent(out) :: null(:, :)
         type(error_type), allocatable, intent(out) :: error
-        real(wp), allocatable :: work_a(:, :), s(:), u(:, :), work(:)
+        real(wp), allocatable :: u(:, :)
+        real(wp) :: no_vectors(1, 1)
+        integer :: m, n
+
+        m = size(a, 1)
+        n = size(a, 2)
+        rank = 0
+        if (n == 0 .or. m == 0) then
+            null = identity(m)
+            return
+        end if
+        call singular_values("N", a, rcond, rank, no_vectors, error)
+        if (allocated(error)) return
+        if (rank == m) then
+            allocate(null(m, 0))
+            return
+        end if
+        allocate(u(m, m), source=0.0_wp)
+        call singular_values("A", a, rcond, rank, u, error)
+        if (allocated(error)) return
+        null = u(:, rank + 1:)
+    end subroutine left_null_space
+
+    !> dgesvd on a copy of A: the count of singular values above rcond times the largest and,
+    !> with jobu = "A", the m x m left singular vectors in u (jobu = "N": u not referenced).
+    subroutine singular_values(jobu, a, rcond, rank, u, error)
+        character, intent(in) :: jobu
+        real(wp), intent(in) :: a(:, :)
+        real(wp), intent(in) :: rcond
+        integer, intent(out) :: rank
+        real(wp), intent(inout) :: u(:, :)
+        type(error_type), allocatable, intent(out) :: error
+        real(wp), allocatable :: work_a(:, :), s(:), work(:)
         real(wp) :: query(1), vt(1, 1)
         integer :: m, n, info
 
         m = size(a, 1)
         n = size(a, 2)
         rank = 0
-        allocate(u(m, m), source=0.0_wp)
-        if (n == 0 .or. m == 0) then
-            null = identity(m)
-            return
-        end if
         work_a = a
         allocate(s(min(m, n)), source=0.0_wp)
-        call dgesvd("A", "N", m, n, work_a, m, s, u, m, vt, 1, query, -1, info)
+        call dgesvd(jobu, "N", m, n, work_a, m, s, u, size(u, 1), vt, 1, query, -1, info)
         call svd_info_error("dgesvd", info, error)
         if (allocated(error)) return
         allocate(work(max(1, int(query(1)))))
-        call dgesvd("A", "N", m, n, work_a, m, s, u, m, vt, 1, work, size(work), info)
+        call dgesvd(jobu, "N", m, n, work_a, m, s, u, size(u, 1), vt, 1, work, size(work), info)
         call svd_info_error("dgesvd", info, error)
         if (allocated(error)) return
         if (s(1) > 0.0_wp) rank = count(s > rcond*s(1))
-        null = u(:, rank + 1:)
-    end subroutine left_null_space
+    end subroutine singular_values
 
     !> Turn the info of an SVD routine into an error (nothing when info is 0).
     pure subroutine svd_info_error(routine, info, error)

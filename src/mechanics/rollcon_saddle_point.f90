@@ -27,6 +27,7 @@ module rollcon_saddle_point
     use rollcon_lapack, only : dgetf2, dgetrs, dpotf2, dpotrs, lapack_info_error
     use rollcon_sparse_lu, only : sparse_lu_type
     use rollcon_constraint_blocks, only : constraint_blocks_type, ascending
+    use rollcon_int_buffer, only : append, trimmed
     implicit none
     private
 
@@ -173,22 +174,25 @@ contains
         type(error_type), allocatable, intent(out) :: error
         integer, allocatable :: count_of(:), mark(:), column_start(:), row(:), list(:)
         integer :: k, l, i, j, p, b, e, m, x, y, q, first
+        integer :: parts_count, list_count, entries, columns, coordinates, starts
         logical :: shared
 
         associate (blocks => self%blocks, nc => self%nc)
             ! each UCON's parts, ascending (from its ascending coordinates)
-            allocate(self%ucon_part_start(nc + 1), self%ucon_parts(0))
+            allocate(self%ucon_part_start(nc + 1))
+            parts_count = 0
             self%ucon_part_start(1) = 1
             do k = 1, nc
                 do i = blocks%ucon_start(k), blocks%ucon_start(k + 1) - 1
                     p = (blocks%ucon_coordinates(i) - 1)/6 + 1
-                    if (size(self%ucon_parts) >= self%ucon_part_start(k)) then
-                        if (self%ucon_parts(size(self%ucon_parts)) == p) cycle
+                    if (parts_count >= self%ucon_part_start(k)) then
+                        if (self%ucon_parts(parts_count) == p) cycle
                     end if
-                    self%ucon_parts = [self%ucon_parts, p]
+                    call append(self%ucon_parts, parts_count, p)
                 end do
-                self%ucon_part_start(k + 1) = size(self%ucon_parts) + 1
+                self%ucon_part_start(k + 1) = parts_count + 1
             end do
+            call trimmed(self%ucon_parts, parts_count)
             ! each part's UCONs, ascending
             allocate(count_of(self%parts), source=0)
             do i = 1, size(self%ucon_parts)
@@ -215,10 +219,12 @@ contains
                 end do
             end do
             ! the entries, block by block, column by column (rows ascending)
-            allocate(self%entry_start(blocks%count + 1), self%entry_row(0), &
-                & self%entry_column(0), self%entry_coordinate_start(1), &
-                & self%entry_coordinates(0), mark(nc), source=0)
-            self%entry_coordinate_start(1) = 1
+            allocate(self%entry_start(blocks%count + 1), mark(nc), list(nc), source=0)
+            entries = 0
+            columns = 0
+            coordinates = 0
+            starts = 0
+            call append(self%entry_coordinate_start, starts, 1)
             self%entry_start(1) = 1
             do b = 1, blocks%count
                 self%entry_start(b + 1) = self%entry_start(b)
@@ -226,47 +232,51 @@ contains
                 m = blocks%row_start(b + 1) - blocks%row_start(b)
                 allocate(column_start(m + 1))
                 column_start(1) = 1
-                first = size(self%entry_row) + 1
+                first = entries + 1
                 do j = 1, m
                     l = blocks%rows(blocks%row_start(b) + j - 1)
-                    list = [integer ::]
+                    list_count = 0
                     do x = self%ucon_part_start(l), self%ucon_part_start(l + 1) - 1
                         p = self%ucon_parts(x)
                         do y = self%part_ucon_start(p), self%part_ucon_start(p + 1) - 1
                             k = self%part_ucons(y)
                             if (mark(k) /= 0) cycle
                             mark(k) = 1
-                            list = [list, k]
+                            list_count = list_count + 1
+                            list(list_count) = k
                         end do
                     end do
-                    list = ascending(list)
-                    do i = 1, size(list)
+                    list(:list_count) = ascending(list(:list_count))
+                    do i = 1, list_count
                         k = list(i)
                         mark(k) = 0
-                        self%entry_row = [self%entry_row, k]
-                        self%entry_column = [self%entry_column, l]
+                        call append(self%entry_column, columns, l)
+                        call append(self%entry_row, entries, k)
                         ! k's coordinates on a part of l
                         do q = blocks%ucon_start(k), blocks%ucon_start(k + 1) - 1
                             p = (blocks%ucon_coordinates(q) - 1)/6 + 1
                             shared = any(self%ucon_parts(self%ucon_part_start(l): &
                                 & self%ucon_part_start(l + 1) - 1) == p)
-                            if (shared) self%entry_coordinates = [self%entry_coordinates, &
-                                & blocks%ucon_coordinates(q)]
+                            if (shared) call append(self%entry_coordinates, coordinates, &
+                                & blocks%ucon_coordinates(q))
                         end do
-                        self%entry_coordinate_start = [self%entry_coordinate_start, &
-                            & size(self%entry_coordinates) + 1]
+                        call append(self%entry_coordinate_start, starts, coordinates + 1)
                     end do
-                    column_start(j + 1) = column_start(j) + size(list)
+                    column_start(j + 1) = column_start(j) + list_count
                 end do
-                self%entry_start(b + 1) = size(self%entry_row) + 1
-                allocate(row(self%entry_start(b + 1) - first))
-                do e = first, size(self%entry_row)
+                self%entry_start(b + 1) = entries + 1
+                allocate(row(entries + 1 - first))
+                do e = first, entries
                     row(e - first + 1) = self%row_local(self%entry_row(e))
                 end do
                 call self%sparse(b)%analyse(m, column_start, row, error)
                 deallocate(column_start, row)
                 if (allocated(error)) return
             end do
+            call trimmed(self%entry_row, entries)
+            call trimmed(self%entry_column, entries)
+            call trimmed(self%entry_coordinates, coordinates)
+            call trimmed(self%entry_coordinate_start, starts)
         end associate
     end subroutine sparse_pattern
 

@@ -116,6 +116,14 @@ contains
         if (allocated(error)) return
         call check(error, matmul(transpose(a), null(:, 1)), [0.0_wp, 0.0_wp, 0.0_wp], &
             & "A^T w = 0", abs_tol=tol_svd)
+        if (allocated(error)) return
+        ! full rank (the third row now (1, 1, 1)): rank 3 and no null vector, from the singular
+        ! values alone (the left vectors are computed only when the rank falls short)
+        a(3, 3) = 1.0_wp
+        call left_null_space(a, rcond, rank, null, error)
+        if (allocated(error)) return
+        call check(error, rank == 3 .and. size(null, 1) == 3 .and. size(null, 2) == 0, &
+            & "full rank: rank 3, a 3 x 0 null space")
     end subroutine test_left_null
 
     !> No rows or no columns: rank 0, x = 0, and every combination of the rows vanishes.
