@@ -31,11 +31,13 @@ module rollcon_run_settings
     !> linear_auto's choice: KLU from this many states on, when the entries kept are at most
     !> auto_sparse_fill of the matrix. Measured (docs/benchmark.md "Cost as models grow"):
     !> KLU and the dense LU cost the same per step on one disk (15 states on IDA) and on one
-    !> link (22), KLU 10 to 25 % less from 24 to 44 states; on a full matrix (CVODE's on a
-    !> chain, one block) KLU costs 5 to 10 % more at every size. 32 keeps every shipped
-    !> scene and dataset of one or two parts (at most 30 states) on the dense matrix, as before
+    !> link (22), KLU 10 to 25 % less from 24 to 44 states; on IDA's matrices 74 % full
+    !> (data/bicycle.adm, 86 states; a chain of 4 links, 88) KLU's whole run is 21 and 29 %
+    !> cheaper; on a full matrix (CVODE's on a chain, one block) KLU costs the same at 48
+    !> states and more from 96 on (60 % more at 768). 32 keeps every shipped scene and dataset
+    !> of one or two parts (at most 30 states) on the dense matrix
     integer, parameter :: auto_sparse_states = 32
-    real(wp), parameter :: auto_sparse_fill = 0.5_wp
+    real(wp), parameter :: auto_sparse_fill = 0.8_wp
 
     !> How to integrate, and over which times
     type :: run_settings_type
