@@ -1,8 +1,9 @@
 ! SPDX-License-Identifier: MIT
 !> `rollcon bench scaling`: the CPU time per step and per part of N independent rolling disks
 !> and of a chain of N links, N = 1, 2, 4, ..., 64, on IDA, CVODE's ODE form and the
-!> independent speeds, dense and sparse, as ratios to N = 1's (docs/benchmark.md "Cost as
-!> models grow"). A benchmark, not a test.
+!> independent speeds, dense and sparse, and CVODE's ODE form by fixed-point iteration, as
+!> ratios to N = 1's, and the start-up of each run (docs/benchmark.md "Cost as models grow").
+!> A benchmark, not a test.
 module rollcon_command_bench_scaling
     use, intrinsic :: iso_fortran_env, only : output_unit
     use rollcon, only : wp, error_type, fatal_error, stat_io, to_text, machine_name, &
@@ -65,10 +66,13 @@ contains
             & "degrees), N = 1, 2, 4, ..., 64, each a dataset run to T [s] (default 2; the", &
             & "chain to T/10) on the default (IDA, the Newton matrix chosen by size), IDA,", &
             & "CVODE Adams with Baumgarte terms and, on the disks, CVODE Adams in", &
-            & "independent speeds, each with the dense and the sparse Newton matrix (KLU)", &
-            & "(rtol 1e-8, atol 1e-10): the CPU time of the integration per step and per", &
-            & "part [us] and its ratio to N = 1's. Writes the datasets and DIR/scaling.csv", &
-            & "(default output/bench_scaling). A benchmark: run it on a quiet machine."
+            & "independent speeds, each with the dense and the sparse Newton matrix (KLU),", &
+            & "and CVODE Adams with fixed-point iteration (no Newton matrix) (rtol 1e-8,", &
+            & "atol 1e-10): the CPU time of the integration per step and per part [us],", &
+            & "its ratio to N = 1's, and the CPU time of the rest of the run [ms]", &
+            & "(reading, building, initial conditions). Writes the datasets and", &
+            & "DIR/scaling.csv (default output/bench_scaling). A benchmark: run it on a", &
+            & "quiet machine."
     end subroutine print_help
 
 end module rollcon_command_bench_scaling

@@ -27,7 +27,7 @@ module rollcon_bench_scaling
 
     !> One (method, N) measured
     type :: scaling_row_type
-        character(len=24) :: method = ""
+        character(len=30) :: method = ""
         !> "disks" (rollcon_disk_fleet) or "chain" (rollcon_link_chain)
         character(len=8) :: model = ""
         !> Parts (disks) and the integrator's states
@@ -35,6 +35,9 @@ module rollcon_bench_scaling
         integer :: steps = 0, functions = 0, jacobians = 0
         !> CPU time of the integration [s], per step and part [us], and that over N = 1's
         real(wp) :: cpu = 0.0_wp, per_step_part = 0.0_wp, ratio = 0.0_wp
+        !> CPU time of the rest of the run [s]: reading the dataset, building the model, its
+        !> initial conditions' analysis (what a user waits for before the first step)
+        real(wp) :: startup = 0.0_wp
         character(len=:), allocatable :: status
     end type scaling_row_type
 
@@ -43,23 +46,26 @@ contains
     !> The methods measured: their names (a chain's begin with "chain-"), and their INTEGRATOR
     !> keywords (rtol 1e-8, atol 1e-10, as the coin's run): on the disks IDA and CVODE Adams on
     !> the ODE form and in independent speeds, each with the dense and the sparse Newton matrix
-    !> (KLU); on the chain IDA and CVODE's ODE form, dense and sparse; on both, the default
-    !> (IDA, the Newton matrix the size chooses: linear_solver = 'auto').
+    !> (KLU), and CVODE Adams on the ODE form with fixed-point iteration (no Newton matrix);
+    !> on the chain IDA and CVODE's ODE form, dense, sparse and fixed-point; on both, the
+    !> default (IDA, the Newton matrix the size chooses: linear_solver = 'auto').
     subroutine scaling_methods(names, keywords)
-        character(len=24), allocatable, intent(out) :: names(:)
+        character(len=30), allocatable, intent(out) :: names(:)
         character(len=96), allocatable, intent(out) :: keywords(:)
         character(len=*), parameter :: tolerances = "RTOL=1e-8, ATOL=1e-10", &
             & cvode = "FORMULATION=CVODE, METHOD=ADAMS, DRIFT=BAUMGARTE, " // tolerances, &
             & maggi = "FORMULATION=MAGGI, METHOD=ADAMS, DRIFT=BAUMGARTE, " // tolerances, &
             & ida = "FORMULATION=IDA, " // tolerances, dense = ", SOLVER=DENSE", &
-            & sparse = ", SOLVER=SPARSE"
+            & sparse = ", SOLVER=SPARSE", fixed_point = ", JACOBIAN=NONE"
 
-        names = [character(len=24) :: "default", "ida", "ida-klu", "cvode-adams-baumgarte", &
-            & "cvode-adams-klu", "maggi-adams", "maggi-adams-klu", "chain-default", &
-            & "chain-ida", "chain-ida-klu", "chain-cvode-adams", "chain-cvode-adams-klu"]
+        names = [character(len=30) :: "default", "ida", "ida-klu", "cvode-adams-baumgarte", &
+            & "cvode-adams-klu", "maggi-adams", "maggi-adams-klu", "cvode-adams-fixed-point", &
+            & "chain-default", "chain-ida", "chain-ida-klu", "chain-cvode-adams", &
+            & "chain-cvode-adams-klu", "chain-cvode-adams-fixed-point"]
         keywords = [character(len=96) :: tolerances, ida // dense, ida // sparse, &
-            & cvode // dense, cvode // sparse, maggi // dense, maggi // sparse, tolerances, &
-            & ida // dense, ida // sparse, cvode // dense, cvode // sparse]
+            & cvode // dense, cvode // sparse, maggi // dense, maggi // sparse, &
+            & cvode // fixed_point, tolerances, ida // dense, ida // sparse, cvode // dense, &
+            & cvode // sparse, cvode // fixed_point]
     end subroutine scaling_methods
 
     !> Run every method (or those named in `only`) on N = counts(:) disks, 0.5 m apart, to
@@ -74,7 +80,7 @@ contains
         type(error_type), allocatable, intent(out) :: error
         !> The methods to run, by name (default: all of scaling_methods)
         character(len=*), intent(in), optional :: only(:)
-        character(len=24), allocatable :: names(:)
+        character(len=30), allocatable :: names(:)
         character(len=96), allocatable :: keywords(:)
         character(len=:), allocatable :: path
         type(job_type) :: job
@@ -82,6 +88,7 @@ contains
         logical, allocatable :: chosen(:)
         logical :: chain
         integer :: m, k, r
+        real(wp) :: cpu_before, cpu_after
 
         call scaling_methods(names, keywords)
         chosen = [(.true., m = 1, size(names))]
@@ -118,12 +125,18 @@ contains
                         & 0.1_wp, trim(keywords(m))), error)
                 end if
                 if (allocated(error)) return
+                ! the last run's job and result freed first, outside the time taken (freeing
+                ! a 64-part run's memory cost a following run of one disk 2 ms)
+                job = job_type()
+                ran = job_result_type()
+                call cpu_time(cpu_before)
                 call load_job(path, job, error)
                 if (allocated(error)) return
                 job%output_dir = ""
                 job%quiet = .true.
                 call run_job(job, ran, error)
                 if (allocated(error)) return
+                call cpu_time(cpu_after)
                 associate (row => rows(r), s => ran%summary)
                     row%method = names(m)
                     row%model = trim(merge("chain", "disks", chain))
@@ -136,6 +149,7 @@ contains
                     row%cpu = s%cpu_seconds
                     row%per_step_part = 1.0e6_wp*s%cpu_seconds/real(max(s%steps, 1)*counts(k), wp)
                     row%ratio = row%per_step_part/rows(r - k + 1)%per_step_part
+                    row%startup = max(cpu_after - cpu_before - s%cpu_seconds, 0.0_wp)
                     row%status = s%message
                     if (len(row%status) == 0) row%status = "completed"
                 end associate
@@ -162,26 +176,27 @@ contains
     !> The methods of the short table `rollcon bench` prints: the default way of solving on
     !> the disks and on the chain.
     pure function short_scaling_methods() result(names)
-        character(len=24) :: names(2)
+        character(len=30) :: names(2)
 
-        names = [character(len=24) :: "default", "chain-default"]
+        names = [character(len=30) :: "default", "chain-default"]
     end function short_scaling_methods
 
     !> The rows as the table the benchmark prints: a header line, then one line per row (model,
-    !> method, N, states, steps, us per step and part, ratio to N = 1, status), each ending in
-    !> a new line.
+    !> method, N, states, steps, us per step and part, ratio to N = 1, start-up [ms], status),
+    !> each ending in a new line.
     function scaling_table(rows) result(text)
         type(scaling_row_type), intent(in) :: rows(:)
         character(len=:), allocatable :: text
-        character(len=120) :: line
+        character(len=140) :: line
         integer :: k
 
-        text = "  model   method                      N  states   steps  us/step/part" &
-            & // "  ratio to N = 1" // new_line("a")
+        text = "  model   method                            N  states   steps  us/step/part" &
+            & // "  ratio to N = 1  start-up [ms]" // new_line("a")
         do k = 1, size(rows)
-            write(line, "(2x, a8, a24, i5, i8, i8, f14.2, f16.2, 2x, a)") rows(k)%model, &
-                & rows(k)%method, rows(k)%parts, rows(k)%states, rows(k)%steps, &
-                & rows(k)%per_step_part, rows(k)%ratio, trim(rows(k)%status)
+            write(line, "(2x, a8, a30, i5, i8, i8, f14.2, f16.2, f15.1, 2x, a)") &
+                & rows(k)%model, rows(k)%method, rows(k)%parts, rows(k)%states, rows(k)%steps, &
+                & rows(k)%per_step_part, rows(k)%ratio, 1.0e3_wp*rows(k)%startup, &
+                & trim(rows(k)%status)
             text = text // trim(line) // new_line("a")
         end do
     end function scaling_table
@@ -191,7 +206,7 @@ contains
         character(len=:), allocatable :: header
 
         header = "model,method,parts,states,steps,function_evaluations,jacobian_evaluations," &
-            & // "cpu_s,cpu_per_step_part_us,ratio_to_one_part,status"
+            & // "cpu_s,cpu_per_step_part_us,ratio_to_one_part,startup_cpu_s,status"
     end function scaling_header
 
     !> One CSV row.
@@ -203,7 +218,8 @@ contains
             & // to_text(row%states) &
             & // "," // to_text(row%steps) // "," // to_text(row%functions) // "," &
             & // to_text(row%jacobians) // "," // to_text(row%cpu) // "," &
-            & // to_text(row%per_step_part) // "," // to_text(row%ratio) // "," // row%status
+            & // to_text(row%per_step_part) // "," // to_text(row%ratio) // "," &
+            & // to_text(row%startup) // "," // row%status
     end function scaling_csv_row
 
 end module rollcon_bench_scaling

@@ -246,14 +246,24 @@ contains
         if (allocated(error)) return
         call measure_scaling(folder, [1, 2], 0.2_wp, rows, error)
         if (allocated(error)) return
-        call check(error, size(rows), 24, "rows: 12 methods, 2 sizes")
+        call check(error, size(rows), 28, "rows: 14 methods, 2 sizes")
         if (allocated(error)) return
         call check(error, all(rows%states == [15, 30, 15, 30, 15, 30, 12, 24, 12, 24, 9, 18, &
-            & 9, 18, 22, 44, 22, 44, 22, 44, 12, 24, 12, 24]), "states of the default, IDA, " &
-            & // "CVODE and the independent speeds on 1 and 2 disks and of the chain")
+            & 9, 18, 12, 24, 22, 44, 22, 44, 22, 44, 12, 24, 12, 24, 12, 24]), "states of the " &
+            & // "default, IDA, CVODE (Newton, then fixed-point) and the independent speeds " &
+            & // "on 1 and 2 disks and of the chain")
         if (allocated(error)) return
-        call check(error, all(rows(:14)%model == "disks") .and. all(rows(15:)%model == "chain"), &
+        call check(error, all(rows(:16)%model == "disks") .and. all(rows(17:)%model == "chain"), &
             & "the disks' rows, then the chain's")
+        if (allocated(error)) return
+        ! fixed-point iteration: no Newton matrix, so no Jacobian is ever evaluated
+        call check(error, all(rows([15, 16, 27, 28])%jacobians == 0) .and. &
+            & all(rows([15, 16, 27, 28])%steps > 0), "fixed-point rows: steps and no Jacobian")
+        if (allocated(error)) return
+        ! the rest of a run (reading, building, initial conditions) is measured, not zero:
+        ! even one disk's dataset takes more than cpu_time's tick of the process to read
+        call check(error, all(rows%startup >= 0.0_wp) .and. sum(rows%startup) > 0.0_wp, &
+            & "start-up CPU measured")
         if (allocated(error)) return
         call check(error, rows(7)%steps > 0 .and. rows(8)%steps == rows(7)%steps, &
             & "CVODE's steps on 1 and 2 disks: " // to_text(rows(7)%steps) // ", " &
@@ -264,7 +274,8 @@ contains
         if (allocated(error)) return
         call check(error, index(scaling_csv_row(rows(3)), "disks,ida,1,15,") == 1 .and. &
             & index(scaling_header(), "model,method,parts,") == 1 .and. &
-            & index(scaling_header(), "cpu_per_step_part_us") > 0, "the CSV row and header")
+            & index(scaling_header(), "cpu_per_step_part_us") > 0 .and. &
+            & index(scaling_header(), ",startup_cpu_s,status") > 0, "the CSV row and header")
     end subroutine test_scaling_rows
 
     !> The largest difference between the copies of one run, relative to each column's scale.
