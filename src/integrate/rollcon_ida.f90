@@ -21,7 +21,7 @@ module rollcon_ida
     use fsunlinsol_dense_mod, only : FSUNLinSol_Dense
     use fsunmatrix_sparse_mod, only : FSUNSparseMatrix, FSUNSparseMatrix_Data, &
         & FSUNSparseMatrix_IndexValues, FSUNSparseMatrix_IndexPointers, CSC_MAT
-    use fsunlinsol_klu_mod, only : FSUNLinSol_KLU, FSUNLinSol_KLUSetOrdering
+    use fsunlinsol_klu_mod, only : FSUNLinSol_KLU
     use rollcon_newton_pattern, only : newton_pattern_type
     use fida_mod, only : FIDACreate, FIDAInit, FIDAWFtolerances, FIDASetUserData, &
         & FIDASetInitStep, FIDASetLinearSolver, FIDASetJacFn, FIDASetMaxNumSteps, &
@@ -52,9 +52,6 @@ module rollcon_ida
     !> The finest relative tolerance of that stretch [-]: 1000 eps, where the corrector of the
     !> index-2 DAE still converges (at 100 eps it fails on the first steps)
     real(wp), parameter :: finest_rtol = 1.0e3_wp*epsilon(1.0_wp)
-    !> KLU's fill-reducing ordering number for AMD (SUNLinSol_KLUSetOrdering: 0 AMD,
-    !> 1 COLAMD, the default, 2 the natural order)
-    integer(c_int), parameter :: klu_amd = 0
 
     !> What the callbacks receive as user data: the system, and what the error weights are
     !> made of
@@ -187,13 +184,6 @@ contains
                 & CSC_MAT, self%context)
             if (associated(self%matrix)) &
                 & self%solver => FSUNLinSol_KLU(self%y, self%matrix, self%context)
-            ! the DAE's pattern is symmetric (M and C^T beside C): AMD on it fills less than
-            ! KLU's default COLAMD (a chain of 16 links: its start-up 50 -> 34 ms, its steps
-            ! 17 % cheaper; design.md section 4)
-            if (associated(self%solver)) then
-                flag = FSUNLinSol_KLUSetOrdering(self%solver, klu_amd)
-                if (check(flag, "SUNLinSol_KLUSetOrdering", error)) return
-            end if
         else
             self%matrix => FSUNDenseMatrix(n, n, self%context)
             self%solver => FSUNLinSol_Dense(self%y, self%matrix, self%context)

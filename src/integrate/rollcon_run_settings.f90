@@ -32,10 +32,11 @@ module rollcon_run_settings
     !> auto_sparse_fill of the matrix. Measured (docs/benchmark.md "Cost as models grow"):
     !> KLU and the dense LU cost the same per step on one disk (15 states on IDA) and on one
     !> link (22), KLU 10 to 25 % less from 24 to 44 states; on IDA's matrices 74 % full
-    !> (data/bicycle.adm, 86 states; a chain of 4 links, 88) KLU's whole run is 21 and 29 %
-    !> cheaper; on a full matrix (CVODE's on a chain, one block) KLU costs the same at 48
-    !> states and more from 96 on (60 % more at 768). 32 keeps every shipped scene and dataset
-    !> of one or two parts (at most 30 states) on the dense matrix
+    !> (data/bicycle.adm, 86 states, and a chain of 4 links, 88, under the broader pattern
+    !> IDA's had before its exact one: now 23 %) KLU's whole run was 21 and 29 % cheaper; on a
+    !> full matrix (CVODE's on a chain, one block) KLU costs the same at 48 states and more
+    !> from 96 on (60 % more at 768). 32 keeps every shipped scene and dataset of one or two
+    !> parts (at most 30 states) on the dense matrix
     integer, parameter :: auto_sparse_states = 32
     real(wp), parameter :: auto_sparse_fill = 0.8_wp
 

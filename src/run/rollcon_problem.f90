@@ -440,82 +440,50 @@ contains
         end associate
     end function state_blocks
 
-    !> Where the DAE's Newton matrix (rollcon_dae) can be nonzero: entries between the states
-    !> of neighbouring parts, two parts being neighbours when they are one or a UCON holds both
-    !> (a part's q, u; a UCON's lambda, and its mu when it is a position UCON, of every part it
-    !> holds). Its terms are the parts' own (mass, forces: 6 by 6 per part) and the UCONs'
-    !> (partials over their own coordinates): within a block, a chain of N links keeps O(N)
-    !> entries where the block holds O(N^2).
+    !> Where the DAE's Newton matrix (rollcon_dae's dae_jacobian) can be nonzero: the entries
+    !> that routine writes, and no others. Per part, q' = u's diagonal and the momentum rows' 6
+    !> by 6 blocks over its q and u (mass, forces); per UCON k over its own coordinates a (its
+    !> partials are zero elsewhere): the momentum rows a by the q columns a and by lambda_k, the
+    !> UCON's row by q a and u a, and for a position UCON h the q rows a by q a and mu_h, and
+    !> mu_h's row by q a. A chain of N links keeps O(N) entries (672 per link), where the
+    !> states of neighbouring parts (the pattern before issue #25's third round) kept 1661.
     subroutine dae_pattern(self, n, pattern)
         class(problem_type), intent(in) :: self
         integer, intent(in) :: n
         type(newton_pattern_type), intent(out) :: pattern
-        !> Each state's parts (at most most_parts), their number
-        integer, allocatable :: parts_of(:, :), counts(:)
-        logical, allocatable :: neighbours(:, :), keep(:, :)
-        integer :: np, nq, nc, k, i, j, a, b, most_parts, row
+        logical, allocatable :: keep(:, :)
+        integer :: nq, nc, k, h, j, i0, row, column
 
-        np = self%eq%n/6
         nq = self%eq%n
         nc = self%eq%nc
+        allocate(keep(n, n), source=.false.)
+        do j = 1, min(nq, n - nq)
+            keep(j, nq + j) = .true.
+        end do
+        do i0 = 0, min(nq, n - nq) - 6, 6
+            keep(nq + i0 + 1:nq + i0 + 6, i0 + 1:i0 + 6) = .true.
+            keep(nq + i0 + 1:nq + i0 + 6, nq + i0 + 1:nq + i0 + 6) = .true.
+        end do
         associate (bl => self%eq%blocks)
-            most_parts = 1
-            do k = 1, nc
-                most_parts = max(most_parts, bl%ucon_start(k + 1) - bl%ucon_start(k))
-            end do
-            allocate(parts_of(most_parts, n), counts(n), source=0)
-            allocate(neighbours(np, np), source=.false.)
-            do i = 1, min(n, 2*nq)
-                counts(i) = 1
-                parts_of(1, i) = mod(i - 1, nq)/6 + 1
-            end do
-            do a = 1, np
-                neighbours(a, a) = .true.
-            end do
             do k = 1, nc
                 row = 2*nq + k
-                call add_parts(row, bl%ucon_coordinates(bl%ucon_start(k):bl%ucon_start(k + 1) - 1))
-                if (self%model%holonomic_number(k) > 0) then
-                    j = 2*nq + nc + self%model%holonomic_number(k)
-                    if (j <= n) then
-                        counts(j) = counts(row)
-                        parts_of(:, j) = parts_of(:, row)
+                if (row > n) exit
+                associate (at => bl%ucon_coordinates(bl%ucon_start(k):bl%ucon_start(k + 1) - 1))
+                    keep(nq + at, at) = .true.
+                    keep(nq + at, row) = .true.
+                    keep(row, at) = .true.
+                    keep(row, nq + at) = .true.
+                    h = self%model%holonomic_number(k)
+                    column = 2*nq + nc + h
+                    if (h > 0 .and. column <= n) then
+                        keep(at, at) = .true.
+                        keep(at, column) = .true.
+                        keep(column, at) = .true.
                     end if
-                end if
-                do a = 1, counts(row)
-                    do b = 1, counts(row)
-                        neighbours(parts_of(a, row), parts_of(b, row)) = .true.
-                    end do
-                end do
+                end associate
             end do
         end associate
-        allocate(keep(n, n), source=.false.)
-        do j = 1, n
-            do i = 1, n
-                do a = 1, counts(i)
-                    do b = 1, counts(j)
-                        if (neighbours(parts_of(a, i), parts_of(b, j))) keep(i, j) = .true.
-                    end do
-                end do
-            end do
-        end do
         call pattern%from_relation(keep)
-
-    contains
-
-        !> The parts of these coordinates, each once, as state i's.
-        subroutine add_parts(i, coordinates)
-            integer, intent(in) :: i, coordinates(:)
-            integer :: c, p
-
-            do c = 1, size(coordinates)
-                p = (coordinates(c) - 1)/6 + 1
-                if (any(parts_of(:counts(i), i) == p)) cycle
-                counts(i) = counts(i) + 1
-                parts_of(counts(i), i) = p
-            end do
-        end subroutine add_parts
-
     end subroutine dae_pattern
 
     !> A part's three Euler-angle rates are held relative to the largest of them: they are the
