@@ -242,6 +242,9 @@ contains
         !> Entries of the chain of 16 over the chain of 8's: 2 for a band (the ground hinge's
         !> fewer entries make it a little more), 4 for a full block
         real(wp), parameter :: most_growth = 2.2_wp
+        !> Entries of the chain's pattern per link: 504 for a link between two (a hinge's two
+        !> parts' 6 by 6 blocks, its five UCONs over 12 coordinates), fewer at the ground
+        integer, parameter :: most_per_link = 504
         integer :: eight, sixteen, disks
 
         call check_pattern("chain_pattern_8", link_chain_dataset(8, 0.1_wp, 0.05_wp, &
@@ -253,6 +256,12 @@ contains
         call check(error, real(sixteen, wp) <= most_growth*real(eight, wp), "the chain's " &
             & // "pattern: " // to_text(eight) // " entries at 8 links, " // to_text(sixteen) &
             & // " at 16")
+        if (allocated(error)) return
+        ! the entries the Newton matrix is written in, not every state of neighbouring parts by
+        ! every other (which kept 13288 at 8 links, 1661 a link, and made KLU's factorisations
+        ! of a long chain about twice as dear): 3800 at 8 links, 475 a link
+        call check(error, eight <= most_per_link*8, "the chain's pattern at 8 links keeps " &
+            & // to_text(eight) // " entries, at most " // to_text(most_per_link) // " a link")
         if (allocated(error)) return
         call check_pattern("fleet_pattern", disk_fleet_dataset(3, 0.5_wp, 0.1_wp, 0.05_wp, &
             & "FORMULATION=IDA"), disks, error)
