@@ -1,3 +1,4 @@
+! SPDX-License-Identifier: MIT
 !> An integer array filled one value at a time: its capacity doubles when full, so n appends
 !> cost O(n) in all (an array grown by [array, value] is copied whole at every append: O(n^2),
 !> which a model of hundreds of UCONs feels at start-up).

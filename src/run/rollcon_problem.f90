@@ -445,7 +445,7 @@ contains
     !> by 6 blocks over its q and u (mass, forces); per UCON k over its own coordinates a (its
     !> partials are zero elsewhere): the momentum rows a by the q columns a and by lambda_k, the
     !> UCON's row by q a and u a, and for a position UCON h the q rows a by q a and mu_h, and
-    !> mu_h's row by q a. A chain of N links keeps O(N) entries (672 per link), where the
+    !> mu_h's row by q a. A chain of N links keeps O(N) entries (504 per link), where the
     !> states of neighbouring parts (the pattern before issue #25's third round) kept 1661.
     subroutine dae_pattern(self, n, pattern)
         class(problem_type), intent(in) :: self
