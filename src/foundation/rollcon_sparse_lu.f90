@@ -69,6 +69,7 @@ contains
 
     !> Take the pattern of an n x n matrix (compressed columns, 1-based: column j's rows are
     !> row(column_start(j) : column_start(j + 1) - 1)) and analyse it; values are set later.
+    !> Called again, it frees the last pattern's objects and takes the new one.
     subroutine analyse(self, n, column_start, row, error)
         class(sparse_lu_type), intent(inout) :: self
         integer, intent(in) :: n, column_start(:), row(:)
@@ -79,6 +80,8 @@ contains
         self%n = n
         self%column_start = int(column_start - 1, c_int)
         self%row = int(row - 1, c_int)
+        ! a pattern analysed again (a speed partition chosen anew) replaces the last one's
+        if (allocated(self%values)) deallocate(self%values)
         allocate(self%values(size(row)), source=0.0_c_double)
         self%handle = rollcon_klu_analyse(int(n, c_int), self%column_start, self%row, status)
         if (.not. c_associated(self%handle)) call fatal_error(error, &

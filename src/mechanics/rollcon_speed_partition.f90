@@ -11,16 +11,28 @@
 !> (how much an error of an independent speed is amplified in a dependent one; QR with
 !> pivoting keeps it small when it chooses), against its value at the choice. The dependent
 !> speeds are numbered by slot: block b's are slots row_start(b) ... in ascending coordinate
-!> order. Nothing here allocates after init.
+!> order. A block of sparse_partition_rows rows or more (a long chain) has C_d factored by KLU
+!> over its nonzeros (a UCON's row holds its own coordinates only), its pattern analysed again
+!> after each choice: its factors and solves then cost O(m), not m^3 and m^2. Nothing else
+!> here allocates after init.
 module rollcon_speed_partition
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type, fatal_error, stat_lapack
     use rollcon_lapack, only : dgeqp3, dgetf2, dgetrs, lapack_info_error
     use rollcon_constraint_blocks, only : constraint_blocks_type, ascending
+    use rollcon_sparse_lu, only : sparse_lu_type
     implicit none
     private
 
-    public :: speed_partition_type, worn_ratio
+    public :: speed_partition_type, worn_ratio, sparse_partition_rows
+
+    !> Blocks of at least this many rows have C_d factored by KLU. Measured on the chain in
+    !> independent speeds by fixed-point iteration (whole runs, pairs of processes): at 4 links
+    !> (20 rows) the two paths cost the same (1.006); at 64 links (320 rows) the run took
+    !> 0.23 s, 0.50 s with C_d dense. The threshold of rollcon_saddle_point's sparse Schur
+    !> complement: every shipped model's blocks (21 rows at most) stay dense, their outputs bit
+    !> for bit
+    integer, parameter :: sparse_partition_rows = 40
 
     !> A block's partition is worn when the growth of its dependent speeds has risen above its
     !> value at the choice divided by this (and QR with pivoting would now choose other
@@ -49,6 +61,15 @@ module rollcon_speed_partition
         real(wp), allocatable :: qr(:, :), tau(:), work(:), basis(:, :), buffer(:, :)
         integer, allocatable :: jpvt(:), trial(:)
         logical, allocatable :: is_dependent(:)
+        !> Blocks factored by KLU, and whether their pattern is analysed for the dependent
+        !> speeds of now
+        logical, allocatable :: block_sparse(:), analysed(:)
+        type(sparse_lu_type), allocatable :: sparse(:)
+        !> Of a sparse block b's entries, from value_start(b): the UCON (row of c) and the
+        !> coordinate (column of c) of each, in KLU's order of values
+        integer, allocatable :: value_start(:), value_ucon(:), value_coordinate(:)
+        !> A coordinate's column in the block being analysed (0: not a dependent speed of it)
+        integer, allocatable :: column_of(:)
     contains
         procedure :: init
         procedure :: choose
@@ -56,6 +77,7 @@ module rollcon_speed_partition
         procedure :: solve
         procedure :: growth
         procedure :: worn
+        procedure :: release
     end type speed_partition_type
 
 contains
@@ -77,17 +99,26 @@ contains
         else
             call whole_block(self%blocks, n, nc)
         end if
+        call self%release()
         if (allocated(self%dependent)) deallocate(self%dependent, self%independent, self%lu, &
             & self%lu_start, self%pivots, self%growth_chosen, self%qr, self%tau, self%work, &
-            & self%basis, self%buffer, self%jpvt, self%trial, self%is_dependent)
+            & self%basis, self%buffer, self%jpvt, self%trial, self%is_dependent, &
+            & self%block_sparse, self%analysed, self%sparse, self%value_start, self%column_of)
+        if (allocated(self%value_ucon)) deallocate(self%value_ucon, self%value_coordinate)
         associate (bl => self%blocks)
             allocate(self%dependent(nc), self%independent(n - nc), self%trial(max(nc, 1)))
             allocate(self%lu_start(bl%count + 1), self%growth_chosen(max(bl%count, 1)))
+            allocate(self%block_sparse(bl%count), self%analysed(bl%count), source=.false.)
+            allocate(self%sparse(bl%count))
+            allocate(self%value_start(bl%count + 1), self%column_of(max(n, 1)), source=0)
             self%growth_chosen = 1.0_wp
             self%lu_start(1) = 1
             do b = 1, bl%count
                 m = bl%row_start(b + 1) - bl%row_start(b)
-                self%lu_start(b + 1) = self%lu_start(b) + m*m
+                ! (the UCONs' coordinates come with blocks given; one whole block has none)
+                self%block_sparse(b) = m >= sparse_partition_rows &
+                    & .and. allocated(bl%ucon_start)
+                self%lu_start(b + 1) = self%lu_start(b) + merge(0, m*m, self%block_sparse(b))
                 ! the block's first m coordinates until a choice
                 self%dependent(bl%row_start(b):bl%row_start(b + 1) - 1) = &
                     & bl%coordinates(bl%coordinate_start(b):bl%coordinate_start(b) + m - 1)
@@ -149,6 +180,8 @@ contains
             associate (first => self%blocks%row_start(b), last => self%blocks%row_start(b + 1) - 1)
                 self%dependent(first:last) = self%trial(first:last)
             end associate
+            ! a sparse block's pattern follows its dependent speeds: analysed again at factor
+            self%analysed(b) = .false.
         end do
         call set_independent(self)
         call self%factor(c, error)
@@ -201,6 +234,11 @@ contains
             do b = 1, bl%count
                 m = bl%row_start(b + 1) - bl%row_start(b)
                 first = bl%row_start(b)
+                if (self%block_sparse(b)) then
+                    call factor_sparse(self, b, c, error)
+                    if (allocated(error)) return
+                    cycle
+                end if
                 do j = 1, m
                     do i = 1, m
                         self%lu(self%lu_start(b) + i - 1 + m*(j - 1)) = &
@@ -243,6 +281,11 @@ contains
                         x(first + i - 1, col) = self%buffer(bl%rows(first + i - 1), col)
                     end do
                 end do
+                if (self%block_sparse(b)) then
+                    call self%sparse(b)%solve(x(first, 1), self%nc, m, error)
+                    if (allocated(error)) return
+                    cycle
+                end if
                 call dgetrs("N", rows, m, self%lu(self%lu_start(b)), rows, self%pivots(first), &
                     & x(first, 1), self%nc, info)
                 call lapack_info_error("dgetrs (dependent speeds)", info, error)
@@ -273,6 +316,7 @@ contains
         real(wp), intent(in) :: c(:, :)
         real(wp) :: largest
         integer :: i, j, m, columns, free, first, info, coordinate
+        type(error_type), allocatable :: error
 
         largest = 0.0_wp
         associate (bl => self%blocks)
@@ -289,9 +333,14 @@ contains
                 end do
             end do
             if (free == 0) return
+            largest = huge(1.0_wp)
+            if (self%block_sparse(b)) then
+                call self%sparse(b)%solve(self%basis, size(self%basis, 1), free, error)
+                if (.not. allocated(error)) largest = maxval(abs(self%basis(:m, :free)))
+                return
+            end if
             call dgetrs("N", m, free, self%lu(self%lu_start(b)), m, self%pivots(first), &
                 & self%basis, size(self%basis, 1), info)
-            largest = huge(1.0_wp)
             if (info == 0) largest = maxval(abs(self%basis(:m, :free)))
         end associate
     end function block_growth
@@ -330,6 +379,126 @@ contains
             if (is_worn) return
         end do
     end function worn
+
+    !> Block b's C_d (a sparse block) factored by KLU: its pattern analysed first when the
+    !> dependent speeds changed since, then its values taken from c. The error of a singular
+    !> C_d is the dense path's.
+    subroutine factor_sparse(self, b, c, error)
+        type(speed_partition_type), intent(inout) :: self
+        integer, intent(in) :: b
+        real(wp), intent(in) :: c(:, :)
+        type(error_type), allocatable, intent(out) :: error
+        type(error_type), allocatable :: failure
+        integer :: e, offset
+
+        if (.not. self%analysed(b)) then
+            call analyse_block(self, b, error)
+            if (allocated(error)) return
+        end if
+        offset = self%value_start(b) - 1
+        associate (values => self%sparse(b)%values)
+            do e = 1, size(values)
+                values(e) = c(self%value_ucon(offset + e), self%value_coordinate(offset + e))
+            end do
+        end associate
+        call self%sparse(b)%factor(failure)
+        if (allocated(failure)) call fatal_error(error, "the constraint rows are dependent " &
+            & // "where the speeds were partitioned (a singular block C_d: " // failure%message &
+            & // ")", stat_lapack)
+    end subroutine factor_sparse
+
+    !> Block b's pattern of C_d in compressed columns: column j is dependent speed j of the
+    !> block, row i its UCON i, an entry where that UCON holds that coordinate; analysed by
+    !> KLU. The sparse blocks' entries are kept from value_start(b) (the blocks before it
+    !> analysed last keep theirs: each block's slice is rebuilt in place of its own).
+    subroutine analyse_block(self, b, error)
+        type(speed_partition_type), intent(inout) :: self
+        integer, intent(in) :: b
+        type(error_type), allocatable, intent(out) :: error
+        integer, allocatable :: column_start(:), row(:), ucon(:), coordinate(:), fill(:)
+        integer :: first, m, i, j, k, x, q, entries, e
+
+        associate (bl => self%blocks)
+            first = bl%row_start(b)
+            m = bl%row_start(b + 1) - first
+            do j = 1, m
+                self%column_of(self%dependent(first + j - 1)) = j
+            end do
+            allocate(column_start(m + 1), fill(m), source=0)
+            do i = 1, m
+                k = bl%rows(first + i - 1)
+                do x = bl%ucon_start(k), bl%ucon_start(k + 1) - 1
+                    j = self%column_of(bl%ucon_coordinates(x))
+                    if (j > 0) column_start(j + 1) = column_start(j + 1) + 1
+                end do
+            end do
+            column_start(1) = 1
+            do j = 1, m
+                column_start(j + 1) = column_start(j) + column_start(j + 1)
+            end do
+            entries = column_start(m + 1) - 1
+            allocate(row(entries), ucon(entries), coordinate(entries))
+            ! rows ascending within each column: the rows are taken in order
+            do i = 1, m
+                k = bl%rows(first + i - 1)
+                do x = bl%ucon_start(k), bl%ucon_start(k + 1) - 1
+                    q = bl%ucon_coordinates(x)
+                    j = self%column_of(q)
+                    if (j == 0) cycle
+                    e = column_start(j) + fill(j)
+                    fill(j) = fill(j) + 1
+                    row(e) = i
+                    ucon(e) = k
+                    coordinate(e) = q
+                end do
+            end do
+            do j = 1, m
+                self%column_of(self%dependent(first + j - 1)) = 0
+            end do
+        end associate
+        call place_entries(self, b, ucon, coordinate)
+        call self%sparse(b)%analyse(m, column_start, row, error)
+        if (allocated(error)) return
+        self%analysed(b) = .true.
+    end subroutine analyse_block
+
+    !> Block b's entries (their UCONs and coordinates) into value_ucon and value_coordinate,
+    !> from value_start(b); the later blocks' slices move with it when its count changed.
+    subroutine place_entries(self, b, ucon, coordinate)
+        type(speed_partition_type), intent(inout) :: self
+        integer, intent(in) :: b, ucon(:), coordinate(:)
+        integer, allocatable :: before_u(:), after_u(:), before_c(:), after_c(:)
+        integer :: start, old_end, count
+
+        if (.not. allocated(self%value_ucon)) then
+            allocate(self%value_ucon(0), self%value_coordinate(0))
+            self%value_start = 1
+        end if
+        count = size(self%value_start) - 1
+        start = self%value_start(b)
+        old_end = self%value_start(b + 1) - 1
+        before_u = self%value_ucon(:start - 1)
+        before_c = self%value_coordinate(:start - 1)
+        after_u = self%value_ucon(old_end + 1:)
+        after_c = self%value_coordinate(old_end + 1:)
+        self%value_ucon = [before_u, ucon, after_u]
+        self%value_coordinate = [before_c, coordinate, after_c]
+        self%value_start(b + 1:count + 1) = self%value_start(b + 1:count + 1) &
+            & + size(ucon) - (old_end - start + 1)
+    end subroutine place_entries
+
+    !> Free the sparse blocks' KLU objects (the holder of a copy must not call it: the copy
+    !> shares them).
+    subroutine release(self)
+        class(speed_partition_type), intent(inout) :: self
+        integer :: b
+
+        if (.not. allocated(self%sparse)) return
+        do b = 1, size(self%sparse)
+            call self%sparse(b)%release()
+        end do
+        if (allocated(self%analysed)) self%analysed = .false.
+    end subroutine release
 
     !> The independent speeds: the rates not dependent, ascending.
     subroutine set_independent(self)

@@ -674,6 +674,7 @@ contains
         class(problem_type), intent(inout) :: self
 
         call self%eq%release()
+        call self%speeds%partition%release()
     end subroutine release_problem
 
 end module rollcon_problem

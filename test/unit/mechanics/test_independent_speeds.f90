@@ -22,6 +22,9 @@ module test_independent_speeds
     use rollcon_adm_build, only : build_adm_problem
     use rollcon_ucosub_contract, only : ucosub_interface
     use rollcon_testing, only : unittest_type, new_unittest, check
+    use rollcon_link_chain, only : link_chain_dataset
+    use rollcon_constraints, only : need_value, need_first, need_time
+    use rollcon_output_files, only : write_text_file, make_folders
     implicit none
     private
 
@@ -46,6 +49,7 @@ contains
             & new_unittest("state-count", test_state_count), &
             & new_unittest("dependent-speeds-on-constraints", test_on_constraints), &
             & new_unittest("partition-worn-and-chosen-again", test_partition_worn), &
+            & new_unittest("sparse-partition-on-a-chain", test_sparse_partition), &
             & new_unittest("scenes-match-ode-form", test_scenes), &
             & new_unittest("datasets-match-ode-form", test_datasets)]
     end subroutine collect_independent_speeds
@@ -91,15 +95,16 @@ contains
     end subroutine dataset_start
 
     !> The Newton matrix of the problem at (q, u) (its partition chosen there) against central
-    !> differences of its right-hand side.
-    subroutine check_jacobian(problem, q, u, what, error)
+    !> differences of its right-hand side: every row, or its first `rows`.
+    subroutine check_jacobian(problem, q, u, what, error, rows)
         type(problem_type), intent(inout) :: problem
         real(wp), intent(in) :: q(:), u(:)
         character(len=*), intent(in) :: what
         type(error_type), allocatable, intent(out) :: error
+        integer, intent(in), optional :: rows
         real(wp), allocatable :: y(:), yp(:), yh(:), jac(:, :), fp(:), fm(:)
         real(wp) :: scale
-        integer :: j, m, ierr
+        integer :: j, m, ierr, last
 
         call problem%accelerations(0.0_wp, q, u, error)
         if (allocated(error)) return
@@ -109,7 +114,9 @@ contains
         ierr = problem%ode_jacobian(0.0_wp, y, jac)
         call check(error, ierr == 0, what // ": the Jacobian failed: " // problem%failure_text())
         if (allocated(error)) return
-        scale = maxval(abs(jac))
+        last = m
+        if (present(rows)) last = rows
+        scale = maxval(abs(jac(:last, :)))
         do j = 1, m
             yh = y
             yh(j) = y(j) + h_fd
@@ -118,7 +125,8 @@ contains
             ierr = ierr + problem%ode_rhs(0.0_wp, yh, fm)
             call check(error, ierr == 0, what // ": the right-hand side failed")
             if (allocated(error)) return
-            call check(error, jac(:, j), (fp - fm)/(2.0_wp*h_fd), what // ": column " &
+            call check(error, jac(:last, j), (fp(:last) - fm(:last))/(2.0_wp*h_fd), what &
+                & // ": column " &
                 & // to_text(j) // " of d(u, a_i)/d(q, v)", abs_tol=tol_fd*scale)
             if (allocated(error)) return
         end do
@@ -248,6 +256,66 @@ contains
         call check(error, all(partition%dependent == [2]) .and. all(partition%independent &
             & == [1, 3]), "chosen again: rate 2 dependent")
     end subroutine test_partition_worn
+
+    !> A chain of 8 links in independent speeds: one block of 40 position UCONs, at the size
+    !> where C_d is factored by KLU (sparse_partition_rows). From independent speeds set
+    !> apart from the chain's rest, the rates unpacked hold every UCON's velocity form to
+    !> round-off (the sparse solve of the dependent speeds), and the Newton matrix's rows of
+    !> q' = u, the dependent speeds' partials -C_d^-1 dr/dq and -C_d^-1 C_i (KLU solves with n
+    !> and n - nc right-hand sides), match central differences. (Its rows of v' leave out a
+    !> position UCON's third partials, design.md §7: not compared here.)
+    subroutine test_sparse_partition(error)
+        type(error_type), allocatable, intent(out) :: error
+        character(len=*), parameter :: folder = "build/rollcon-test/independent-speeds"
+        type(problem_type), target, allocatable :: problem
+        type(adm_model_type) :: adm
+        procedure(ucosub_interface), pointer :: disk
+        real(wp), allocatable :: q(:), u(:), y(:), yp(:), q2(:), u2(:), residual(:)
+        integer :: i, k
+
+        call make_folders(folder, error)
+        if (allocated(error)) return
+        call write_text_file(folder // "/chain8.adm", link_chain_dataset(8, 0.1_wp, 0.05_wp, &
+            & "FORMULATION=MAGGI, METHOD=ADAMS, DRIFT=NONE"), error)
+        if (allocated(error)) return
+        disk => rolling_disk_ucosub
+        call read_adm(folder // "/chain8.adm", adm, error)
+        if (allocated(error)) return
+        allocate(problem)
+        call build_adm_problem(adm, disk, problem, q, u, error)
+        if (allocated(error)) return
+        problem%settings%formulation = formulation_maggi
+        problem%settings%drift = drift_none
+        call problem%prepare(error)
+        if (allocated(error)) return
+        call problem%accelerations(0.0_wp, q, u, error)
+        if (allocated(error)) return
+        call check(error, problem%eq%nc == 40 .and. size(problem%speeds%partition%sparse) == 1 &
+            & .and. problem%speeds%partition%block_sparse(1), "one block of 40 UCONs, " &
+            & // "factored by KLU: " // to_text(problem%eq%nc) // " UCONs")
+        if (allocated(error)) return
+        allocate(y(problem%state_size()), yp(problem%state_size()))
+        call problem%pack_state(q, u, y, yp)
+        y(size(q) + 1:) = y(size(q) + 1:) + [(0.5_wp*sin(real(i, wp)), &
+            & i = 1, size(y) - size(q))]
+        allocate(q2(size(q)), u2(size(u)))
+        call problem%unpack_state(0.0_wp, y, q2, u2, error)
+        if (allocated(error)) return
+        call problem%eq%constraints%evaluate(problem%model, 0.0_wp, q2, u2, need_value &
+            & + need_first + need_time, error)
+        if (allocated(error)) return
+        allocate(residual(problem%eq%nc))
+        do k = 1, problem%eq%nc
+            residual(k) = dot_product(problem%eq%constraints%grad_q(k, :), u2) &
+                & + problem%eq%constraints%dt(k)
+        end do
+        call check(error, residual, [(0.0_wp, k = 1, problem%eq%nc)], "the UCONs' velocity " &
+            & // "forms at the unpacked rates", abs_tol=tol_on*maxval(abs(u2)))
+        if (allocated(error)) return
+        call check_jacobian(problem, q2, u2, "chain of 8 links", error, rows=size(q))
+        if (allocated(error)) return
+        call problem%release()
+    end subroutine test_sparse_partition
 
     !> The largest difference of the parts' coordinates and rates between two histories of
     !> the same rows, each column's relative to its largest magnitude over the run (at least
