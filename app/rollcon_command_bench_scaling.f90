@@ -67,12 +67,12 @@ contains
             & "chain to T/10) on the default (IDA, the Newton matrix chosen by size), IDA,", &
             & "CVODE Adams with Baumgarte terms and, on the disks, CVODE Adams in", &
             & "independent speeds, each with the dense and the sparse Newton matrix (KLU),", &
-            & "and CVODE Adams with fixed-point iteration (no Newton matrix) (rtol 1e-8,", &
-            & "atol 1e-10): the CPU time of the integration per step and per part [us],", &
-            & "its ratio to N = 1's, and the CPU time of the rest of the run [ms]", &
-            & "(reading, building, initial conditions). Writes the datasets and", &
-            & "DIR/scaling.csv (default output/bench_scaling). A benchmark: run it on a", &
-            & "quiet machine."
+            & "and CVODE Adams with fixed-point iteration (no Newton matrix; on the chain", &
+            & "in independent speeds too) (rtol 1e-8, atol 1e-10): the CPU time of the", &
+            & "integration per step and per part [us], its ratio to N = 1's, and the CPU", &
+            & "time of the rest of the run [ms] (reading, building, initial conditions).", &
+            & "Writes the datasets and DIR/scaling.csv (default output/bench_scaling). A", &
+            & "benchmark: run it on a quiet machine."
     end subroutine print_help
 
 end module rollcon_command_bench_scaling

@@ -47,8 +47,9 @@ contains
     !> keywords (rtol 1e-8, atol 1e-10, as the coin's run): on the disks IDA and CVODE Adams on
     !> the ODE form and in independent speeds, each with the dense and the sparse Newton matrix
     !> (KLU), and CVODE Adams on the ODE form with fixed-point iteration (no Newton matrix);
-    !> on the chain IDA and CVODE's ODE form, dense, sparse and fixed-point; on both, the
-    !> default (IDA, the Newton matrix the size chooses: linear_solver = 'auto').
+    !> on the chain IDA and CVODE's ODE form, dense, sparse and fixed-point, and CVODE Adams in
+    !> independent speeds by fixed-point iteration; on both, the default (IDA, the Newton
+    !> matrix the size chooses: linear_solver = 'auto').
     subroutine scaling_methods(names, keywords)
         character(len=30), allocatable, intent(out) :: names(:)
         character(len=96), allocatable, intent(out) :: keywords(:)
@@ -61,11 +62,12 @@ contains
         names = [character(len=30) :: "default", "ida", "ida-klu", "cvode-adams-baumgarte", &
             & "cvode-adams-klu", "maggi-adams", "maggi-adams-klu", "cvode-adams-fixed-point", &
             & "chain-default", "chain-ida", "chain-ida-klu", "chain-cvode-adams", &
-            & "chain-cvode-adams-klu", "chain-cvode-adams-fixed-point"]
+            & "chain-cvode-adams-klu", "chain-cvode-adams-fixed-point", &
+            & "chain-maggi-adams-fixed-point"]
         keywords = [character(len=96) :: tolerances, ida // dense, ida // sparse, &
             & cvode // dense, cvode // sparse, maggi // dense, maggi // sparse, &
             & cvode // fixed_point, tolerances, ida // dense, ida // sparse, cvode // dense, &
-            & cvode // sparse, cvode // fixed_point]
+            & cvode // sparse, cvode // fixed_point, maggi // fixed_point]
     end subroutine scaling_methods
 
     !> Run every method (or those named in `only`) on N = counts(:) disks, 0.5 m apart, to
