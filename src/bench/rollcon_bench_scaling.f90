@@ -102,11 +102,7 @@ contains
         call write_text_file(path, disk_fleet_dataset(1, 0.5_wp, end_time, 0.1_wp, &
             & trim(keywords(findloc(chosen, .true., dim=1)))), error)
         if (allocated(error)) return
-        call load_job(path, job, error)
-        if (allocated(error)) return
-        job%output_dir = ""
-        job%quiet = .true.
-        call run_job(job, ran, error)
+        call run_dataset(path, job, ran, error)
         if (allocated(error)) return
         r = 0
         do m = 1, size(names)
@@ -132,11 +128,7 @@ contains
                 job = job_type()
                 ran = job_result_type()
                 call cpu_time(cpu_before)
-                call load_job(path, job, error)
-                if (allocated(error)) return
-                job%output_dir = ""
-                job%quiet = .true.
-                call run_job(job, ran, error)
+                call run_dataset(path, job, ran, error)
                 if (allocated(error)) return
                 call cpu_time(cpu_after)
                 associate (row => rows(r), s => ran%summary)
@@ -158,6 +150,20 @@ contains
             end do
         end do
     end subroutine measure_scaling
+
+    !> Load the dataset at path and run it through the one route, quietly and writing no files.
+    subroutine run_dataset(path, job, ran, error)
+        character(len=*), intent(in) :: path
+        type(job_type), intent(inout) :: job
+        type(job_result_type), intent(inout) :: ran
+        type(error_type), allocatable, intent(out) :: error
+
+        call load_job(path, job, error)
+        if (allocated(error)) return
+        job%output_dir = ""
+        job%quiet = .true.
+        call run_job(job, ran, error)
+    end subroutine run_dataset
 
     !> The integrator's states of a method (by its INTEGRATOR keywords) on a model of n
     !> coordinates, nc UCONs, nh of them position UCONs: 2 n (q, u) for CVODE's ODE form,

@@ -465,11 +465,7 @@ contains
                 call lapack_info_error("dgetrs (constraint Schur complement, a block)", info, &
                     & error)
                 if (allocated(error)) return
-                do col = 1, m
-                    do i = 1, rows_b
-                        r2(blocks%rows(blocks%row_start(b) + i - 1), col) = self%gathered(i, col)
-                    end do
-                end do
+                call scatter_rows(blocks, b, self%gathered, m, r2)
             end do
             ! a = M^-1 (r1 + C^T lambda): each row's column of M^-1 C^T over its block, rows in
             ! ascending order as the dense path adds them
@@ -593,13 +589,25 @@ contains
             end do
             call self%sparse(b)%solve(self%gathered, size(self%gathered, 1), m, error)
             if (allocated(error)) return
-            do col = 1, m
-                do i = 1, rows_b
-                    r2(blocks%rows(blocks%row_start(b) + i - 1), col) = self%gathered(i, col)
-                end do
-            end do
+            call scatter_rows(blocks, b, self%gathered, m, r2)
         end associate
     end subroutine solve_sparse_block
+
+    !> Block b's solved rows (gathered, in the block's order) into r2's rows of its UCONs, for
+    !> m right-hand sides.
+    pure subroutine scatter_rows(blocks, b, gathered, m, r2)
+        type(constraint_blocks_type), intent(in) :: blocks
+        integer, intent(in) :: b, m
+        real(wp), intent(in) :: gathered(:, :)
+        real(wp), intent(inout) :: r2(:, :)
+        integer :: i, col
+
+        do col = 1, m
+            do i = 1, blocks%row_start(b + 1) - blocks%row_start(b)
+                r2(blocks%rows(blocks%row_start(b) + i - 1), col) = gathered(i, col)
+            end do
+        end do
+    end subroutine scatter_rows
 
     !> Row k of c times x over the given coordinates (ascending): the dense dot product's
     !> terms that are not exact zeros, in its order.
