@@ -119,7 +119,8 @@ contains
                 call run%handle_events(summary, stop_here, error, history, sink)
                 if (stop_here .or. allocated(error)) exit
             end if
-            ! in independent speeds, a worn partition is chosen again (a restart)
+            ! the formulation's choices worn (in independent speeds, its partition): a restart
+            ! that makes them again
             if (run%system%worn(run%t, run%y)) then
                 call run%repartition(error)
                 if (allocated(error)) then
