@@ -14,6 +14,7 @@ module rollcon_benchmark
     use rollcon_scene, only : scene_type
     use rollcon_scene_source, only : scene_source_type
     use rollcon_problem, only : problem_type
+    use rollcon_ode_form, only : ode_form_type
     use rollcon_simulation, only : run_summary_type, history_type, status_completed
     use rollcon_job, only : job_type
     use rollcon_run_job, only : run_job, job_result_type
@@ -370,6 +371,7 @@ contains
         real(wp), intent(out) :: rhs_seconds, residual_seconds, solve_seconds
         type(error_type), allocatable, intent(out) :: error
         type(problem_type), target :: problem
+        type(ode_form_type) :: ode
         procedure(ucosub_interface), pointer :: routine
         real(wp) :: start, finish, checksum
         real(wp), allocatable :: q0(:), u0(:)
@@ -383,13 +385,14 @@ contains
         if (allocated(error)) return
         call problem%prepare(error)
         if (allocated(error)) return
+        call ode%init(problem)
         y = [q0, u0]
         allocate(ydot(size(y)))
-        ierr = problem%ode_rhs(0.0_wp, y, ydot)
+        ierr = ode%ode_rhs(0.0_wp, y, ydot)
         checksum = 0.0_wp
         call cpu_time(start)
         do i = 1, count
-            ierr = problem%ode_rhs(0.0_wp, y, ydot)
+            ierr = ode%ode_rhs(0.0_wp, y, ydot)
             checksum = checksum + ydot(size(q0) + 1)
         end do
         call cpu_time(finish)

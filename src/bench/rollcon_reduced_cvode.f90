@@ -11,20 +11,20 @@ module rollcon_reduced_cvode
     use rollcon_text, only : to_text
     use rollcon_force, only : applied_force_type, force_and_moment, force_breakpoints
     use rollcon_run_settings, only : run_settings_type
-    use rollcon_dynamic_system, only : dynamic_system_type
+    use rollcon_dynamic_system, only : ode_system_type
     use rollcon_cvode, only : cvode_integrator_type
     use rollcon_simulation, only : run_summary_type, history_type, status_failed, status_stopped
     use rollcon_output_layout, only : new_output_layout, coord_x, coord_phi, coord_xdot, &
         & coord_phidot
     use rollcon_reduced_disk_rhs, only : reduced_size, reduced_rate, reduced_jacobian, &
-        & reduced_energy, reduced_to_full
+        & reduced_energy, reduced_to_full, full_to_reduced
     implicit none
     private
 
     public :: reduced_problem_type, simulate_reduced
 
-    !> The reduced disk with its loads and solver settings
-    type, extends(dynamic_system_type) :: reduced_problem_type
+    !> The reduced disk with its loads and solver settings, an ODE system
+    type, extends(ode_system_type) :: reduced_problem_type
         !> (A, C, m, R, g) [kg m^2, kg m^2, kg, m, m/s^2]
         real(wp) :: par(5) = 0.0_wp
         !> Strike forces: along +Y at the top of the rim (rollcon_force's profiles)
@@ -36,10 +36,14 @@ module rollcon_reduced_cvode
         !> Part id of the disk, for the rows' column names
         integer :: part_id = 1
     contains
+        procedure :: state_size
+        procedure :: pack_state
+        procedure :: unpack_state
         procedure :: ode_rhs
         procedure :: ode_jacobian
         procedure :: root_count
         procedure :: roots
+        procedure :: failure_text
     end type reduced_problem_type
 
 contains
@@ -124,8 +128,10 @@ contains
             real(wp), intent(in) :: time
             real(wp) :: q(6), u(6), energy
             real(wp), allocatable :: row(:)
+            type(error_type), allocatable :: never
 
-            call reduced_to_full(values, problem%par, q, u)
+            ! every reduced state has its (q, u): unpack_state does not fail
+            call problem%unpack_state(time, values, q, u, never)
             energy = reduced_energy(values, problem%par)
             if (time >= t_reference) then
                 if (.not. have_reference) summary%energy_reference = energy
@@ -162,6 +168,34 @@ contains
             & state(1), state(6)], [(0.0_wp, k = 1, 6)], force, moment)
         strike = force(2)
     end function strike_at
+
+    !> reduced_size: (theta, thetadot, psidot, omega3, psi, phi, X, Y).
+    integer function state_size(self)
+        class(reduced_problem_type), intent(in) :: self
+
+        state_size = reduced_size
+    end function state_size
+
+    !> The reduced state of the disk's (q, u) (rollcon_reduced_disk_rhs); y' is not used (0).
+    subroutine pack_state(self, q, u, y, yp)
+        class(reduced_problem_type), intent(inout) :: self
+        !> The disk's coordinates and rates [m, rad, m/s, rad/s]
+        real(wp), intent(in) :: q(:), u(:)
+        real(wp), intent(out) :: y(:), yp(:)
+
+        call full_to_reduced(q(:6), u(:6), y)
+        yp = 0.0_wp
+    end subroutine pack_state
+
+    !> The disk's (q, u) at the reduced state y (rollcon_reduced_disk_rhs).
+    subroutine unpack_state(self, time, y, q, u, error)
+        class(reduced_problem_type), intent(inout) :: self
+        real(wp), intent(in) :: time, y(:)
+        real(wp), intent(out) :: q(:), u(:)
+        type(error_type), allocatable, intent(out) :: error
+
+        call reduced_to_full(y, self%par, q, u)
+    end subroutine unpack_state
 
     !> y' of the reduced ODE; a flat disk (sin theta = 0) is outside it: recoverable (1),
     !> CVODE cuts the step.
@@ -203,5 +237,13 @@ contains
         g(1) = y(1) - self%theta_min
         ierr = 0
     end function roots
+
+    !> No callback keeps a reason: the only failure, a flat disk, is recoverable ("").
+    function failure_text(self) result(text)
+        class(reduced_problem_type), intent(in) :: self
+        character(len=:), allocatable :: text
+
+        text = ""
+    end function failure_text
 
 end module rollcon_reduced_cvode

@@ -13,7 +13,7 @@ module rollcon_rebase_step
     use rollcon_model, only : ucon_statement_type
     use rollcon_constraints, only : need_value, need_first
     use rollcon_rebasing, only : rebased_state
-    use rollcon_run_settings, only : formulation_ida
+    use rollcon_dynamic_system, only : dynamic_system_type
     implicit none
     private
 
@@ -128,14 +128,17 @@ contains
 
     !> The integrator's state (y, y') to start again from at (time, q, u), consistent to round-off
     !> (docs/rebasing.md): (q, u) put back on the constraints when the formulation holds them
-    !> there (IDA; CVODE when it projects), by the model's mass-weighted least change (exact for
-    !> velocity UCONs; Newton steps for position UCONs, until they no longer move q), then the
-    !> accelerations and multipliers of the saddle-point system at that state, y' = (u, a, 0, 0)
-    !> for IDA. The state at a root is IDA's or CVODE's interpolant, off the constraints by up
-    !> to the tolerances: from there IDA's first step must move u by as much, whatever its size,
-    !> and its error test failed at every step size (IDA_ERR_FAIL).
-    subroutine restart_state(problem, time, q, u, y, yp, error)
+    !> there (system%holds_constraints: IDA's DAE; an ODE form when it projects), by the model's
+    !> mass-weighted least change (exact for velocity UCONs; Newton steps for position UCONs,
+    !> until they no longer move q), then the accelerations and multipliers of the saddle-point
+    !> system at that state, packed by the formulation (y' = (u, a, 0, 0) for IDA). The state at
+    !> a root is IDA's or CVODE's interpolant, off the constraints by up to the tolerances: from
+    !> there IDA's first step must move u by as much, whatever its size, and its error test
+    !> failed at every step size (IDA_ERR_FAIL).
+    subroutine restart_state(problem, system, time, q, u, y, yp, error)
         type(problem_type), intent(inout) :: problem
+        !> The problem's formulation (rollcon_formulation_choice)
+        class(dynamic_system_type), intent(inout) :: system
         !> Time [s]
         real(wp), intent(in) :: time
         !> Coordinates and rates of all parts [m, rad, m/s, rad/s]; on the constraints on return
@@ -148,8 +151,7 @@ contains
         real(wp) :: dq(size(q)), du(size(u))
         integer :: k
 
-        if (problem%eq%nc > 0 .and. (problem%settings%formulation == formulation_ida &
-            & .or. problem%projects())) then
+        if (problem%eq%nc > 0 .and. system%holds_constraints()) then
             do k = 1, most_steps
                 call problem%eq%project(time, q, u, dq, du, error)
                 if (allocated(error)) return
@@ -160,7 +162,7 @@ contains
         end if
         call problem%accelerations(time, q, u, error)
         if (allocated(error)) return
-        call problem%pack_state(q, u, y, yp)
+        call system%pack_state(q, u, y, yp)
     end subroutine restart_state
 
     !> The size s_k of each UCON's F at (q, u), in F's unit, from the last evaluation's first

@@ -1,7 +1,9 @@
 ! SPDX-License-Identifier: MIT
-!> Runs a problem from t0 to the end time with its integrator (CVODE or IDA, through
-!> rollcon_integrator): output rows, the watches' events (stop, or re-base a part), the summary.
-!> The driver knows parts, UCONs, forces and watches; what a model watches is the watches'.
+!> Runs a problem from t0 to the end time in the formulation its settings choose (made once,
+!> where the integrator starts: rollcon_formulation_choice) with the integrator that takes it
+!> (CVODE or IDA, through rollcon_integrator): output rows, the watches' events (stop, or
+!> re-base a part), the summary. The driver knows parts, UCONs, forces and watches; what a
+!> model watches is the watches'; the state's layout is the formulation's.
 module rollcon_simulation
     use, intrinsic :: iso_fortran_env, only : int64
     use, intrinsic :: ieee_arithmetic, only : ieee_is_finite
@@ -10,8 +12,10 @@ module rollcon_simulation
     use rollcon_text, only : to_text
     use rollcon_force, only : force_breakpoints, forces_idle_after
     use rollcon_integrator, only : integrator_type, integrator_statistics_type
-    use rollcon_integrator_choice, only : new_integrator
+    use rollcon_integrator_choice, only : start_integrator
+    use rollcon_dynamic_system, only : dynamic_system_type
     use rollcon_problem, only : problem_type
+    use rollcon_formulation_choice, only : new_formulation
     use rollcon_watch, only : watch_event_type, watch_measure_type, action_rebase
     use rollcon_csv_writer, only : csv_writer_type
     use rollcon_row_sink, only : row_sink_type
@@ -34,13 +38,15 @@ module rollcon_simulation
     !> A run in progress: what the steps of simulate share
     type :: simulation_type
         type(problem_type), pointer :: problem => null()
+        !> The problem's formulation (new_formulation), the system the integrator integrates
+        class(dynamic_system_type), allocatable :: system
         class(integrator_type), allocatable :: integrator
         type(run_options_type) :: options
         type(output_layout_type) :: layout
         type(csv_writer_type) :: csv
         !> The integrator's state and its derivative (IDA), the time
         real(wp), allocatable :: y(:), yp(:)
-        !> The coordinates and rates at y (problem%unpack_state)
+        !> The coordinates and rates at y (system%unpack_state)
         real(wp), allocatable :: q(:), u(:)
         real(wp) :: t = 0.0_wp
         !> Force kinks the integrator must not step over
@@ -57,7 +63,7 @@ module rollcon_simulation
         type(progress_type) :: progress
     contains
         procedure :: begin
-        procedure :: start_integrator
+        procedure :: start
         procedure :: next_stop
         procedure :: record
         procedure :: handle_events
@@ -84,7 +90,8 @@ contains
         type(history_type), intent(inout), optional :: history
         !> When present, every output row is also handed to it
         class(row_sink_type), intent(inout), optional :: sink
-        type(simulation_type) :: run
+        ! target: the integrator keeps pointers to the run's system
+        type(simulation_type), target :: run
         real(wp) :: t_out
         integer :: root
         integer(int64) :: k_output, n_output
@@ -112,8 +119,9 @@ contains
                 call run%handle_events(summary, stop_here, error, history, sink)
                 if (stop_here .or. allocated(error)) exit
             end if
-            ! in independent speeds, a worn partition is chosen again (a restart)
-            if (problem%speeds_worn(run%t, run%y)) then
+            ! the formulation's choices worn (in independent speeds, its partition): a restart
+            ! that makes them again
+            if (run%system%worn(run%t, run%y)) then
                 call run%repartition(error)
                 if (allocated(error)) then
                     summary%status = status_failed
@@ -136,7 +144,7 @@ contains
     !> re-based at the start when they must be, a consistent start (accelerations and
     !> multipliers from the saddle-point system), the integrator set up and the first row.
     subroutine begin(self, problem, q0, u0, options, summary, n_output, error, history, sink)
-        class(simulation_type), intent(inout) :: self
+        class(simulation_type), intent(inout), target :: self
         type(problem_type), intent(inout), target :: problem
         real(wp), intent(in) :: q0(:), u0(:)
         type(run_options_type), intent(in) :: options
@@ -200,7 +208,7 @@ contains
         u = u0
         call self%rebase_at_start(q, u, refusal, error)
         if (allocated(error)) return
-        call self%start_integrator(q, u, error)
+        call self%start(q, u, error)
         if (allocated(error)) return
         call self%record(summary, error, history, sink)
         ! a re-basing refused: the run cannot go on as asked, a failure (docs/rebasing.md)
@@ -208,9 +216,10 @@ contains
             & stat_ucon)
     end subroutine begin
 
-    !> The consistent start at (options%t0, q, u) and the integrator set up on it.
-    subroutine start_integrator(self, q, u, error)
-        class(simulation_type), intent(inout) :: self
+    !> The consistent start at (options%t0, q, u), the formulation the settings choose (the
+    !> one choice of a run) packed there and its integrator set up on it.
+    subroutine start(self, q, u, error)
+        class(simulation_type), intent(inout), target :: self
         real(wp), intent(in) :: q(:), u(:)
         type(error_type), allocatable, intent(out) :: error
 
@@ -220,14 +229,14 @@ contains
             self%t = self%options%t0
             call self%progress%start(self%options%progress, self%options%t0, &
                 & self%options%end_time)
-            allocate(self%y(problem%state_size()), self%yp(problem%state_size()))
+            call new_formulation(problem, self%system)
+            allocate(self%y(self%system%state_size()), self%yp(self%system%state_size()))
             allocate(self%q(problem%eq%n), self%u(problem%eq%n))
-            call problem%pack_state(q, u, self%y, self%yp)
-            call new_integrator(problem%settings, self%integrator)
-            call self%integrator%start(problem, problem%settings, self%t, self%y, self%yp, &
-                & self%next_stop(self%t), error)
+            call self%system%pack_state(q, u, self%y, self%yp)
+            call start_integrator(self%system, problem%settings, self%t, self%y, self%yp, &
+                & self%next_stop(self%t), self%integrator, error)
         end associate
-    end subroutine start_integrator
+    end subroutine start
 
     !> The next time the integrator must not step past: a force kink or the end.
     pure function next_stop(self, time) result(stop_time)
@@ -249,7 +258,7 @@ contains
         real(wp) :: energy
         real(wp), allocatable :: row(:)
 
-        call self%problem%unpack_state(self%t, self%y, self%q, self%u, error)
+        call self%system%unpack_state(self%t, self%y, self%q, self%u, error)
         if (allocated(error)) return
         associate (problem => self%problem, q => self%q, u => self%u, time => self%t)
             call problem%accelerations(time, q, u, error)
@@ -304,7 +313,7 @@ contains
         character(len=:), allocatable :: refusal
         integer :: r, w, k, stopping
 
-        call self%problem%unpack_state(self%t, self%y, self%q, self%u, error)
+        call self%system%unpack_state(self%t, self%y, self%q, self%u, error)
         if (allocated(error)) return
         allocate(events(0))
         stopping = 0
@@ -345,7 +354,7 @@ contains
         real(wp), allocatable :: q(:), u(:)
         integer :: k
 
-        call self%problem%unpack_state(self%t, self%y, self%q, self%u, error)
+        call self%system%unpack_state(self%t, self%y, self%q, self%u, error)
         if (allocated(error)) return
         q = self%q
         u = self%u
@@ -354,24 +363,25 @@ contains
             if (allocated(error) .or. allocated(refusal)) return
             call self%count_rebasing(parts(k))
         end do
-        call restart_state(self%problem, self%t, q, u, self%y, self%yp, error)
+        call restart_state(self%problem, self%system, self%t, q, u, self%y, self%yp, error)
         if (allocated(error)) return
         call self%earlier%add(self%integrator%statistics())
         call self%integrator%restart(self%t, self%y, self%yp, error)
     end subroutine rebase
 
-    !> In independent speeds: start the integrator again at the current state with a new
-    !> partition of the speeds (chosen by restart_state), the same physical state.
+    !> The system's choices have worn (in independent speeds, its partition): start the
+    !> integrator again at the current state with new ones (made by restart_state's
+    !> pack_state), the same physical state.
     subroutine repartition(self, error)
         class(simulation_type), intent(inout) :: self
         type(error_type), allocatable, intent(out) :: error
         real(wp), allocatable :: q(:), u(:)
 
-        call self%problem%unpack_state(self%t, self%y, self%q, self%u, error)
+        call self%system%unpack_state(self%t, self%y, self%q, self%u, error)
         if (allocated(error)) return
         q = self%q
         u = self%u
-        call restart_state(self%problem, self%t, q, u, self%y, self%yp, error)
+        call restart_state(self%problem, self%system, self%t, q, u, self%y, self%yp, error)
         if (allocated(error)) return
         call self%earlier%add(self%integrator%statistics())
         call self%integrator%restart(self%t, self%y, self%yp, error)
@@ -438,6 +448,7 @@ contains
             call self%earlier%add(self%integrator%statistics())
             call self%integrator%destroy()
         end if
+        if (allocated(self%system)) call self%system%release()
         summary%steps = self%earlier%steps
         summary%functions = self%earlier%functions
         summary%jacobians = self%earlier%jacobians
