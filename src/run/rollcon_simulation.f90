@@ -20,7 +20,8 @@ module rollcon_simulation
         & status_failed, status_inaccurate, judge_drift
     use rollcon_output_layout, only : output_layout_type
     use rollcon_output_rows, only : run_options_type, default_max_csv_bytes, planned_rows, &
-        & history_type, output_layout, output_row
+        & output_layout, output_row
+    use rollcon_history, only : history_type
     use rollcon_rebase_step, only : rebase_part, restart_state
     implicit none
     private
