@@ -65,9 +65,11 @@ module rollcon_adm_model
     type :: adm_ucon_type
         integer :: id = 0, line = 0
         real(wp), allocatable :: par(:)
-        !> ROUTINE=name: a built-in UCOSUB (rollcon_ucosub_catalog) serving this UCON; empty
-        !> when not given (the model's UCOSUB serves it, as in ADAMS)
+        !> ROUTINE=name as written: the built-in UCOSUB (rollcon_ucosub_catalog) serving this
+        !> UCON; empty when not given (the model's UCOSUB serves it, as in ADAMS)
         character(len=:), allocatable :: routine
+        !> Where ROUTINE= was written, for the assembly's messages ("file:line: UCON/1 ROUTINE")
+        character(len=:), allocatable :: routine_at
     end type adm_ucon_type
 
     !> SFORCE, VFORCE or GFORCE: markers and up to six expressions (FUNCTION is the first)

@@ -22,7 +22,6 @@ module rollcon_adm_reader
     use rollcon_adm_run, only : read_simulate, read_integrator
     use rollcon_adm_checks, only : check_references
     use rollcon_adm_joints, only : read_joint
-    use rollcon_adm_joint_build, only : check_joints
     use rollcon_adm_outside, only : outside_reason
     use rollcon_adm_outputs, only : output_statement_names, output_needs_id, &
         & read_output_statement
@@ -80,8 +79,6 @@ contains
         call read_statements(path, text, model, error)
         if (allocated(error)) return
         call check_references(model, error)
-        if (allocated(error)) return
-        call check_joints(model, error)
     end subroutine read_adm_lines
 
     !> Every statement in file order, up to END; parts, markers, UCONs and forces stored in
