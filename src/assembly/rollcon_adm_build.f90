@@ -15,7 +15,7 @@
 module rollcon_adm_build
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type, fatal_error, stat_input, stat_ucon
-    use rollcon_text, only : to_text
+    use rollcon_text, only : to_text, place
     use rollcon_ucosub_contract, only : ucosub_interface
     use rollcon_ucosub_units, only : ucosub_units_type
     use rollcon_ucosub_catalog, only : find_builtin_ucosub, builtin_ucosub_names, &
@@ -29,7 +29,6 @@ module rollcon_adm_build
     use rollcon_problem, only : problem_type
     use rollcon_theta_watch, only : new_theta_watch
     use rollcon_request_watch, only : displacement_request_type, new_request_watch
-    use rollcon_adm_keywords, only : place
     use rollcon_adm_model, only : adm_model_type, adm_force_type, force_sforce, force_vforce
     use rollcon_adm_state, only : part_state
     use rollcon_adm_singular, only : start_singular_parts

@@ -20,7 +20,6 @@ module rollcon_dataset_source
     use rollcon_adm_model, only : adm_model_type
     use rollcon_adm_build, only : build_adm_problem
     use rollcon_adm_initial, only : adm_ic_options
-    use rollcon_adm_outputs, only : unused_warning
     implicit none
     private
 
@@ -48,7 +47,8 @@ contains
         source%name = path(slash + 1:len_trim(path) - 4)
         source%kind = "dataset"
         source%settings = adm%run%settings
-        source%warning = unused_warning(adm)
+        source%warning = ""
+        if (allocated(adm%warning)) source%warning = adm%warning
         source%notes = principal_axes_text(adm)
         source%own_routines = all_named(adm)
     end function new_dataset_source

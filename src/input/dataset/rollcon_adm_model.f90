@@ -143,6 +143,9 @@ module rollcon_adm_model
         type(adm_unused_type), allocatable :: unused(:)
         !> The references of the statements read and not used
         type(adm_reference_type), allocatable :: references(:)
+        !> The one warning naming what was read and not used, with its lines ("" for nothing:
+        !> rollcon_adm_outputs' unused_warning)
+        character(len=:), allocatable :: warning
         !> While the dataset is read, the entries of requests, unused and references that hold
         !> one (each list grows by doubling, so that reading stays linear in the dataset's size;
         !> the reader cuts it to its count once every statement is read)

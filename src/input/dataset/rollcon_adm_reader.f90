@@ -24,7 +24,7 @@ module rollcon_adm_reader
     use rollcon_adm_joints, only : read_joint
     use rollcon_adm_outside, only : outside_reason
     use rollcon_adm_outputs, only : output_statement_names, output_needs_id, &
-        & read_output_statement
+        & read_output_statement, unused_warning
     use rollcon_adm_overrides, only : adm_override_type, apply_adm_overrides
     implicit none
     private
@@ -79,6 +79,8 @@ contains
         call read_statements(path, text, model, error)
         if (allocated(error)) return
         call check_references(model, error)
+        if (allocated(error)) return
+        model%warning = unused_warning(model)
     end subroutine read_adm_lines
 
     !> Every statement in file order, up to END; parts, markers, UCONs and forces stored in
