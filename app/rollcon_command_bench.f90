@@ -4,12 +4,13 @@
 module rollcon_command_bench
     use, intrinsic :: iso_fortran_env, only : output_unit
     use rollcon, only : wp, error_type, fatal_error, stat_input, stat_io, to_text, job_type, &
-        & load_job, method_type, benchmark_methods, benchmark_row_type, benchmark_scene, &
-        & benchmark_header, write_benchmark_row, evaluation_costs, part_costs_type, &
-        & measure_part_costs, accuracy_line, process_cost_type, measure_process, &
-        & plot_work_precision, machine_name, method_settings, cheapest_row, &
-        & write_scene_with_settings, run_settings_type, scaling_row_type, measure_scaling, &
-        & scaling_table, short_scaling_methods
+        & load_job, run_settings_type
+    use rollcon_program, only : method_type, benchmark_methods, benchmark_row_type, &
+        & benchmark_scene, benchmark_header, write_benchmark_row, evaluation_costs, &
+        & part_costs_type, measure_part_costs, accuracy_line, process_cost_type, &
+        & measure_process, plot_work_precision, machine_name, method_settings, cheapest_row, &
+        & write_scene_with_settings, scaling_row_type, measure_scaling, scaling_table, &
+        & short_scaling_methods
     use rollcon_cli, only : cli_request_type
     use rollcon_app_files, only : make_folder
     implicit none

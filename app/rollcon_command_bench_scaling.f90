@@ -6,9 +6,9 @@
 !> A benchmark, not a test.
 module rollcon_command_bench_scaling
     use, intrinsic :: iso_fortran_env, only : output_unit
-    use rollcon, only : wp, error_type, fatal_error, stat_io, to_text, machine_name, &
-        & make_folders, scaling_row_type, measure_scaling, scaling_header, scaling_csv_row, &
-        & scaling_table
+    use rollcon, only : wp, error_type, fatal_error, stat_io, to_text
+    use rollcon_program, only : machine_name, make_folders, scaling_row_type, measure_scaling, &
+        & scaling_header, scaling_csv_row, scaling_table
     use rollcon_cli, only : cli_request_type
     implicit none
     private

@@ -5,7 +5,8 @@ module rollcon_command_run
     use, intrinsic :: iso_fortran_env, only : output_unit, error_unit
     use rollcon, only : wp, error_type, fatal_error, stat_input, to_text, job_type, load_job, &
         & run_job, job_result_type, status_inaccurate, run_record_type, read_run, &
-        & write_vtk_series, command_line_text
+        & write_vtk_series
+    use rollcon_program, only : command_line_text
     use rollcon_cli, only : cli_request_type, command_names
     use rollcon_app_files, only : make_folder, file_stem
     implicit none

@@ -87,6 +87,8 @@ program tester
     use test_independent_speeds, only : collect_independent_speeds
     use test_disk_fleet, only : collect_disk_fleet
     use test_link_chain, only : collect_link_chain
+    use test_assembly, only : collect_assembly
+    use test_model_elements, only : collect_model_elements
     implicit none
     type(testsuite_type), allocatable :: suites(:)
     type(test_counts_type) :: counts
@@ -178,7 +180,9 @@ program tester
         & new_testsuite("adm-bicycle", collect_adm_bicycle), &
         & new_testsuite("independent-speeds", collect_independent_speeds), &
         & new_testsuite("disk-fleet", collect_disk_fleet), &
-        & new_testsuite("link-chain", collect_link_chain)]
+        & new_testsuite("link-chain", collect_link_chain), &
+        & new_testsuite("assembly", collect_assembly), &
+        & new_testsuite("model-elements", collect_model_elements)]
 
     if (command_argument_count() >= 1) then
         call get_command_argument(1, argument)

@@ -11,6 +11,7 @@ module rollcon_simulation
     use rollcon_error, only : error_type, fatal_error, stat_ucon
     use rollcon_text, only : to_text
     use rollcon_force, only : force_breakpoints, forces_idle_after
+    use rollcon_model, only : served_by_model_ucosub
     use rollcon_integrator, only : integrator_type, integrator_statistics_type
     use rollcon_integrator_choice, only : start_integrator
     use rollcon_dynamic_system, only : dynamic_system_type
@@ -24,7 +25,8 @@ module rollcon_simulation
         & status_failed, status_inaccurate, judge_drift
     use rollcon_output_layout, only : output_layout_type
     use rollcon_output_rows, only : run_options_type, default_max_csv_bytes, planned_rows, &
-        & history_type, output_layout, output_row
+        & output_layout, output_row
+    use rollcon_history, only : history_type
     use rollcon_rebase_step, only : rebase_part, restart_state
     implicit none
     private
@@ -172,13 +174,11 @@ contains
             associate (ucon => problem%model%ucons(k))
                 if (k > 1) summary%routines = summary%routines // ", "
                 summary%routines = summary%routines // "UCON " // to_text(ucon%id) // ": "
-                if (allocated(ucon%routine)) then
-                    if (len(ucon%routine) > 0) then
-                        summary%routines = summary%routines // ucon%routine
-                        cycle
-                    end if
+                if (served_by_model_ucosub(ucon%routine)) then
+                    summary%routines = summary%routines // "the model's UCOSUB"
+                else
+                    summary%routines = summary%routines // ucon%routine
                 end if
-                summary%routines = summary%routines // "the model's UCOSUB"
             end associate
         end do
         if (present(history)) history%layout = self%layout

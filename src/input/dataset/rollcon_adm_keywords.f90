@@ -9,7 +9,7 @@ module rollcon_adm_keywords
     use rollcon_kinds, only : wp
     use rollcon_constants, only : degree
     use rollcon_error, only : error_type, fatal_error, stat_input
-    use rollcon_text, only : to_text, comma_list
+    use rollcon_text, only : to_text, comma_list, place
     use rollcon_adm_lexer, only : adm_argument_type, adm_statement_type, is_number_text, &
         & upper_case
     use, intrinsic :: ieee_arithmetic, only : ieee_is_finite
@@ -175,14 +175,6 @@ contains
             value = 0
         end if
     end subroutine read_integer
-
-    pure function place(path, line) result(text)
-        character(len=*), intent(in) :: path
-        integer, intent(in) :: line
-        character(len=:), allocatable :: text
-
-        text = path // ":" // to_text(line)
-    end function place
 
     !> Resolve argument k of a statement among `allowed`; refuse a keyword given twice. With
     !> `also`, a name that stands for none of `allowed` is resolved among `also` (keywords

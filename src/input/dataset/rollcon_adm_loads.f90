@@ -9,8 +9,6 @@ module rollcon_adm_loads
     use rollcon_adm_lexer, only : adm_statement_type, adm_argument_type
     use rollcon_adm_keywords, only : read_reals, read_integer, argument_key, arg_place, name_index
     use rollcon_adm_expression_parser, only : compile_expression
-    use rollcon_ucosub_contract, only : ucosub_interface
-    use rollcon_ucosub_catalog, only : find_builtin_ucosub, builtin_ucosub_names
     use rollcon_adm_model, only : adm_model_type, adm_ucon_type, adm_force_type, force_sforce, &
         & force_vforce, force_gforce
     implicit none
@@ -27,9 +25,9 @@ module rollcon_adm_loads
 
 contains
 
-    !> UCON/id, FUNCTION=USER(r1, ..., r30)[, ROUTINE=name]: name, in any case, is a built-in
-    !> UCOSUB (rollcon_ucosub_catalog); without it the model's UCOSUB serves the UCON.
-    !> (Whether its id is new is the reader's to check.)
+    !> UCON/id, FUNCTION=USER(r1, ..., r30)[, ROUTINE=name]: name, in any case, names a
+    !> built-in UCOSUB (which one is the assembly's to find, rollcon_adm_build; without it the
+    !> model's UCOSUB serves the UCON). (Whether its id is new is the reader's to check.)
     subroutine read_ucon(path, where, statement, ucon, error)
         character(len=*), intent(in) :: path, where
         type(adm_statement_type), intent(in) :: statement
@@ -48,6 +46,7 @@ contains
                 call read_user_list(statement%arguments(k), at, ucon%par, error)
             else
                 call read_routine(statement%arguments(k), at, ucon%routine, error)
+                ucon%routine_at = at
             end if
             if (allocated(error)) return
         end do
@@ -59,29 +58,20 @@ contains
         if (.not. allocated(ucon%routine)) ucon%routine = ""
     end subroutine read_ucon
 
-    !> ROUTINE = name of a built-in UCOSUB; anything else refused with the list.
+    !> ROUTINE = name: one word, kept as written (the assembly finds the built-in UCOSUB it
+    !> names, rollcon_adm_build).
     subroutine read_routine(argument, at, routine, error)
         type(adm_argument_type), intent(in) :: argument
         character(len=*), intent(in) :: at
         character(len=:), allocatable, intent(out) :: routine
         type(error_type), allocatable, intent(out) :: error
-        procedure(ucosub_interface), pointer :: ucosub
-        logical :: time_free, found
 
-        found = .false.
         if (argument%assigned .and. size(argument%values) == 1) then
             routine = trim(adjustl(argument%values(1)%text))
-            call find_builtin_ucosub(routine, ucosub, time_free, found)
+            if (len(routine) > 0) return
         end if
-        if (found) return
-        if (allocated(routine)) then
-            call fatal_error(error, at // ": '" // routine // "' is not a built-in UCOSUB (" &
-                & // builtin_ucosub_names() // "); a routine of your own is given with " &
-                & // "rollcon run MODEL.adm --ucosub FILE", stat_input)
-        else
-            call fatal_error(error, at // ": expected the name of a built-in UCOSUB (" &
-                & // builtin_ucosub_names() // ")", stat_input)
-        end if
+        call fatal_error(error, at // ": expected the name of a built-in UCOSUB (ROUTINE=name)", &
+            & stat_input)
     end subroutine read_routine
 
     !> FUNCTION = USER(r1, ..., rn): 1 <= n <= 30, one number per field.

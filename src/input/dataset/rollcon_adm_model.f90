@@ -65,9 +65,11 @@ module rollcon_adm_model
     type :: adm_ucon_type
         integer :: id = 0, line = 0
         real(wp), allocatable :: par(:)
-        !> ROUTINE=name: a built-in UCOSUB (rollcon_ucosub_catalog) serving this UCON; empty
-        !> when not given (the model's UCOSUB serves it, as in ADAMS)
+        !> ROUTINE=name as written: the built-in UCOSUB (rollcon_ucosub_catalog) serving this
+        !> UCON; empty when not given (the model's UCOSUB serves it, as in ADAMS)
         character(len=:), allocatable :: routine
+        !> Where ROUTINE= was written, for the assembly's messages ("file:line: UCON/1 ROUTINE")
+        character(len=:), allocatable :: routine_at
     end type adm_ucon_type
 
     !> SFORCE, VFORCE or GFORCE: markers and up to six expressions (FUNCTION is the first)
@@ -141,6 +143,9 @@ module rollcon_adm_model
         type(adm_unused_type), allocatable :: unused(:)
         !> The references of the statements read and not used
         type(adm_reference_type), allocatable :: references(:)
+        !> The one warning naming what was read and not used, with its lines ("" for nothing:
+        !> rollcon_adm_outputs' unused_warning)
+        character(len=:), allocatable :: warning
         !> While the dataset is read, the entries of requests, unused and references that hold
         !> one (each list grows by doubling, so that reading stays linear in the dataset's size;
         !> the reader cuts it to its count once every statement is read)

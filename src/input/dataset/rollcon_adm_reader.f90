@@ -22,10 +22,9 @@ module rollcon_adm_reader
     use rollcon_adm_run, only : read_simulate, read_integrator
     use rollcon_adm_checks, only : check_references
     use rollcon_adm_joints, only : read_joint
-    use rollcon_adm_joint_build, only : check_joints
     use rollcon_adm_outside, only : outside_reason
     use rollcon_adm_outputs, only : output_statement_names, output_needs_id, &
-        & read_output_statement
+        & read_output_statement, unused_warning
     use rollcon_adm_overrides, only : adm_override_type, apply_adm_overrides
     implicit none
     private
@@ -81,7 +80,7 @@ contains
         if (allocated(error)) return
         call check_references(model, error)
         if (allocated(error)) return
-        call check_joints(model, error)
+        model%warning = unused_warning(model)
     end subroutine read_adm_lines
 
     !> Every statement in file order, up to END; parts, markers, UCONs and forces stored in

@@ -20,7 +20,7 @@ module test_rebasing
     use rollcon_csv_reader, only : read_output_csv
     use rollcon_output_files, only : delete_file
     use rollcon_run_record, only : run_record_type, pose
-    use rollcon_contact_watch, only : contact_names
+    use rollcon_watch_columns, only : contact_names
     use rollcon_testing, only : unittest_type, new_unittest, check
     use rebasing_models, only : run_dataset, tumbling_sphere, spinning_sphere, falling_disk, &
         & sphere_end, sphere_near_flat

@@ -12,7 +12,7 @@ module test_adm_outputs
     use rollcon_rotation, only : rotation_matrix
     use rollcon_output_layout, only : output_layout_type, coord_x, coord_psi, read_layout, &
         & name_length
-    use rollcon_request_watch, only : request_column_patterns
+    use rollcon_watch_columns, only : request_column_patterns
     use rollcon_simulation, only : history_type
     use rollcon_csv_reader, only : read_output_csv
     use rollcon_adm_model, only : adm_model_type

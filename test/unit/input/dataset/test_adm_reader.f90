@@ -9,8 +9,8 @@ module test_adm_reader
     use rollcon_adm_reader, only : read_adm
     use rollcon_adm_units, only : units_type, set_unit
     use rollcon_expression, only : evaluate_expression
-    use rollcon_adm_state, only : part_state, euler_angles
-    use rollcon_rotation, only : rotation_matrix, rate_matrix
+    use rollcon_adm_state, only : part_state
+    use rollcon_rotation, only : rotation_matrix, rate_matrix, euler_angles
     use rollcon_run_settings, only : formulation_cvode, method_adams, drift_baumgarte
     use rollcon_testing, only : unittest_type, new_unittest, check
     implicit none

@@ -1,6 +1,7 @@
 ! SPDX-License-Identifier: MIT
-!> Turns a disk scene into a problem: the disk as a rigid part, three no-slip UCONs served by
-!> a rolling-disk UCOSUB, gravity, the strike, solver settings, limits and the initial state.
+!> Turns a disk scene into a problem (the scene's assembly): the disk as a rigid part, three
+!> no-slip UCONs served by a rolling-disk UCOSUB, gravity, the strike, solver settings, the
+!> watches of its theta limit and its rim contact, and the initial state.
 module rollcon_disk_scene
     use rollcon_kinds, only : wp
     use rollcon_constants, only : pi
@@ -10,10 +11,7 @@ module rollcon_disk_scene
     use rollcon_force, only : applied_force_type, profile_half_sine, frame_tilt
     use rollcon_model, only : model_type, setup_model
     use rollcon_disk_par, only : disk_par
-    use rollcon_disk_reference, only : rolling_disk_ucosub
     use rollcon_gen_disk_height, only : disk_height_ucosub, disk_height_par, disk_height_time_free
-    use rollcon_gen_rolling_disk, only : generated_disk_ucosub => rolling_disk_ucosub, &
-        & rolling_disk_time_free
     use rollcon_problem, only : problem_type
     use rollcon_theta_watch, only : theta_watch_type, new_theta_watch
     use rollcon_contact_watch, only : contact_watch_type
@@ -48,27 +46,24 @@ contains
         type(part_type) :: disk
         type(applied_force_type) :: strike
         integer :: k
-        logical :: time_free
 
         disk%id = disk_part
         call disk_mass_properties(scene, disk%mass, disk%inertia)
         call model%add_part(disk)
         model%gravity = [0.0_wp, 0.0_wp, -scene%environment%gravity]
+        ! the model's UCOSUB serves the no-slip UCONs; setup_model spares the driver their time
+        ! partials when it is a built-in routine whose F has no explicit time (the hand-checked
+        ! disk, docs/design.md §5, and the generated one), and asks any other (a user's)
         model%ucosub => ucosub
-        ! the hand-checked routine's F has no explicit time (docs/design.md §5), nor has the
-        ! generated one's (the generator says so): the driver skips their time partials; any
-        ! other routine (a user's) is asked for them
-        time_free = associated(model%ucosub, rolling_disk_ucosub) &
-            & .or. (associated(model%ucosub, generated_disk_ucosub) .and. rolling_disk_time_free)
         do k = 1, 2
-            call model%add_ucon(k, disk_par(disk_part, scene%disk%radius, k), time_free=time_free)
+            call model%add_ucon(k, disk_par(disk_part, scene%disk%radius, k))
         end do
         if (scene%run%height == height_position) then
             ! Z - R sin(theta) = 0 in place of its time derivative F3 (docs/design.md §5)
             call model%add_ucon(3, disk_height_par(disk_part, scene%disk%radius), &
                 & disk_height_ucosub, time_free=disk_height_time_free, routine="disk_height")
         else
-            call model%add_ucon(3, disk_par(disk_part, scene%disk%radius, 3), time_free=time_free)
+            call model%add_ucon(3, disk_par(disk_part, scene%disk%radius, 3))
         end if
         if (scene%strike%enabled) then
             ! Horizontal, along +Y, at the top of the rim: (0, R, 0) in the tilt frame.
