@@ -114,7 +114,9 @@ contains
         type(ucon_request_type) :: request
         integer :: k, found
 
-        call read_adm(path, adm, error)
+        ! the check runs no simulation: a dataset without SIMULATE (run from an ADAMS
+        ! command file) is checked as it is
+        call read_adm(path, adm, error, run_given=.true.)
         if (allocated(error)) return
         found = 0
         do k = 1, size(adm%ucons)

@@ -75,7 +75,8 @@ module rollcon
     use rollcon_job, only : job_type, new_job
     use rollcon_provenance, only : provenance_lines, user_file_record, command_line_text
     use rollcon_ucosub_units, only : ucosub_units_type
-    use rollcon_load, only : load_job, input_override_type, is_dataset, output_name
+    use rollcon_load, only : load_job, input_override_type, is_dataset, output_name, &
+        & is_command_file, run_times_type
     use rollcon_run_job, only : run_job, job_result_type
     use rollcon_linear_job, only : linearise_job, write_eigen_csv, eigen_csv_path, &
         & linear_speeds_job, write_speed_csv, speed_csv_path
