@@ -29,7 +29,7 @@ module rollcon_cli
 
     !> The commands; `run` is the one meant when the first argument names none
     type(command_spec_type), parameter :: commands(*) = [ &
-        & command_spec_type("run", "SCENE or MODEL.adm"), &
+        & command_spec_type("run", "SCENE, MODEL.adm or .acf"), &
         & command_spec_type("table", ""), &
         & command_spec_type("plot", "CSV or SCENE"), &
         & command_spec_type("animate", "CSV or SCENE"), &
@@ -50,6 +50,9 @@ module rollcon_cli
         & option_spec_type("--quiet", "-q", "", .false., " run sweep linear "), &
         & option_spec_type("--vtk", "", "FPS", .false., " run "), &
         & option_spec_type("--allow-large-output", "", "", .false., " run "), &
+        & option_spec_type("--end", "", "T", .false., " run "), &
+        & option_spec_type("--steps", "", "N", .false., " run "), &
+        & option_spec_type("--dtout", "", "DT", .false., " run "), &
         & option_spec_type("--ucosub", "", "FILE|NAME", .false., " run linear "), &
         & option_spec_type("--call-timeout", "", "SECONDS", .false., " run check "), &
         & option_spec_type("--radius", "", "R", .false., " table "), &

@@ -78,6 +78,9 @@ program tester
     use test_study_limits, only : collect_study_limits
     use test_sweep_guards, only : collect_sweep_guards
     use test_adm_outputs, only : collect_adm_outputs
+    use test_adm_language, only : collect_adm_language
+    use test_acf_reader, only : collect_acf_reader
+    use test_acf_command, only : collect_acf_command
     use test_fpm_dependency, only : collect_fpm_dependency
     use test_main_script, only : collect_main_script
     use test_multiplier_units, only : collect_multiplier_units
@@ -172,6 +175,9 @@ program tester
         & new_testsuite("study-limits", collect_study_limits), &
         & new_testsuite("sweep-guards", collect_sweep_guards), &
         & new_testsuite("adm-outputs", collect_adm_outputs), &
+        & new_testsuite("adm-language", collect_adm_language), &
+        & new_testsuite("acf-reader", collect_acf_reader), &
+        & new_testsuite("acf-command", collect_acf_command), &
         & new_testsuite("fpm-dependency", collect_fpm_dependency), &
         & new_testsuite("main-script", collect_main_script), &
         & new_testsuite("multiplier-units", collect_multiplier_units), &

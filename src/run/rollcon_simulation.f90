@@ -25,7 +25,7 @@ module rollcon_simulation
         & status_failed, status_inaccurate, judge_drift
     use rollcon_output_layout, only : output_layout_type
     use rollcon_output_rows, only : run_options_type, default_max_csv_bytes, planned_rows, &
-        & output_layout, output_row
+        & output_layout, output_row, output_time
     use rollcon_history, only : history_type
     use rollcon_rebase_step, only : rebase_part, restart_state
     implicit none
@@ -106,7 +106,7 @@ contains
         end if
         k_output = 1
         do while (k_output <= n_output)
-            t_out = min(options%t0 + real(k_output, wp)*options%output_step, options%end_time)
+            t_out = output_time(options, k_output)
             call run%integrator%advance(t_out, run%next_stop(run%t), run%t, run%y, run%yp, root, &
                 & error)
             if (allocated(error)) then

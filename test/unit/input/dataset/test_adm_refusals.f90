@@ -63,7 +63,8 @@ contains
         replaced(7) = "FOO/1"
         expected(7) = ":7: 'FOO' is not a statement of the supported subset " // supported
         replaced(8) = "S/1, I=3"
-        expected(8) = ":7: 'S' is ambiguous: it may be SFORCE, SIMULATE; write more of the name"
+        expected(8) = ":7: 'S' is too short an abbreviation of a statement: the shortest ADAMS" &
+            & // " takes are SF for SFORCE, SI for SIMULATE (docs/datasets.md, Abbreviations)"
         replaced(9) = "END|PART/6, MASS=1"
         expected(9) = ":15: a statement after END"
         replaced(10) = "INTEGRATOR/ERROR=1e-8|INTEG/ERROR=1e-9"
@@ -93,10 +94,14 @@ contains
             & // " NEWMARK, RKF45, ABAM, I3, SI2, SI1, HMAX, HMIN, HINIT, ALPHA, BETA, GAMMA," &
             & // " ADAPTIVITY, KMAX, MAXIT, CORRECTOR, INTERPOLATE, PATTERN)"
         replaced(3) = ", QG=0, 0, 1, W=1"
-        expected(3) = ":5: PART/2: 'W' is ambiguous: it may be WX, WY, WZ; write more of the name"
-        replaced(4) = "INTEGRATOR/M=10"
-        expected(4) = ":12: INTEGRATOR: 'M' is ambiguous: it may be MAXSTEPS, METHOD; write more" &
-            & // " of the name"
+        expected(3) = ":5: PART/2: 'W' is too short an abbreviation of a PART argument: the" &
+            & // " shortest ADAMS takes are WX for WX, WY for WY, WZ for WZ (docs/datasets.md," &
+            & // " Abbreviations)"
+        ! H begins five of ADAMS's keywords, each abbreviated to two letters at least
+        replaced(4) = "INTEGRATOR/H=10"
+        expected(4) = ":12: INTEGRATOR: 'H' is too short an abbreviation of an INTEGRATOR" &
+            & // " argument: the shortest ADAMS takes are HA for HASTIFF, HH for HHT, HMA for" &
+            & // " HMAX, HMI for HMIN, HI for HINIT (docs/datasets.md, Abbreviations)"
         replaced(5) = ", QG=0, 0, 1, VX=0.5, VX=1"
         expected(5) = ":5: PART/2: VX is given twice"
         replaced(6) = "PART/1, GROUND=1"
@@ -114,7 +119,7 @@ contains
             & // " (METER, MILLIMETER, CENTIMETER, KILOMETER, INCH, FOOT)"
         replaced(12) = "SIM/STATICS, END=1"
         expected(12) = ":11: SIMULATE: 'STATICS' is not a SIMULATE argument of the supported" &
-            & // " subset (DYNAMIC, END, STEPS, DTOUT)"
+            & // " subset (DYNAMIC, END, STEPS, DTOUT, DURATION)"
         replaced(13) = "INTEGRATOR/FORM=ode"
         expected(13) = ":12: INTEGRATOR FORMULATION: 'ode' is not a formulation of the supported" &
             & // " subset (IDA, CVODE, MAGGI)"
@@ -147,7 +152,12 @@ contains
         replaced(9) = "! no ground"
         expected(9) = ": a dataset needs exactly one PART with GROUND, found 0"
         replaced(10) = "! no SIMULATE"
-        expected(10) = ": no SIMULATE statement (SIMULATE/DYNAMIC, END=t, STEPS=n)"
+        expected(10) = ": no SIMULATE statement, and no run given apart from the dataset: run" &
+            & // " it from an ADAMS command file (rollcon run MODEL.acf: its first line names" &
+            & // " the dataset, its second the output name, then SIMULATE/DYNAMIC, END=t," &
+            & // " STEPS=n and STOP), or give the run on the command line (rollcon run" &
+            & // " build/rollcon-test/refusal.adm --end T --steps N), or add SIMULATE/DYNAMIC," &
+            & // " END=t, STEPS=n to the dataset"
         call check_refusals(error, [6, 4, 4, 4, 10, 10, 10, 7, 3, 11], replaced, expected)
     end subroutine test_references
 
@@ -223,7 +233,8 @@ contains
         expected(14) = ":11: SIMULATE: only SIMULATE/DYNAMIC is supported (a dynamic analysis);" &
             & // " write SIMULATE/DYNAMIC, END=..., STEPS=..."
         replaced(15) = "SIMULATE/DYNAMIC, STEPS=10"
-        expected(15) = ":11: SIMULATE: END=t (the end time) is missing"
+        expected(15) = ":11: SIMULATE: END=t (the end time) is missing (or" &
+            & // " DURATION=t, from where the run is)"
         call check_refusals(error, [4, 4, 4, 4, 4, 3, 11, 11, 11, 11, 11, 11, 11, 11, 11, 3, 4], &
             & replaced, expected)
     end subroutine test_values
