@@ -27,6 +27,7 @@ program tester
     use test_adm_statements, only : collect_adm_statements
     use test_adm_build, only : collect_adm_build
     use test_adm_joints, only : collect_adm_joints
+    use test_adm_joint_motions, only : collect_adm_joint_motions
     use test_adm_text, only : collect_adm_text
     use test_adm_fuzz, only : collect_adm_fuzz
     use test_expression_fuzz, only : collect_expression_fuzz
@@ -125,6 +126,7 @@ program tester
         & new_testsuite("adm-forces", collect_adm_forces), &
         & new_testsuite("adm-build", collect_adm_build), &
         & new_testsuite("adm-joints", collect_adm_joints), &
+        & new_testsuite("adm-joint-motions", collect_adm_joint_motions), &
         & new_testsuite("adm-text", collect_adm_text), &
         & new_testsuite("adm-fuzz", collect_adm_fuzz), &
         & new_testsuite("expression-fuzz", collect_expression_fuzz), &
