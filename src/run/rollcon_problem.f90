@@ -16,7 +16,6 @@ module rollcon_problem
     use rollcon_force, only : nonfinite_load
     use rollcon_model, only : model_type
     use rollcon_equations, only : equations_type
-    use rollcon_constraints, only : need_value
     use rollcon_run_settings, only : run_settings_type, drift_projection
     use rollcon_watch, only : watch_type, watch_slot_type, append_watch
     use rollcon_output_layout, only : name_length
@@ -63,7 +62,7 @@ module rollcon_problem
         procedure :: nonfinite_state
         procedure :: keep_failure
         procedure :: failure_text
-        procedure :: ucons_do_no_work
+        procedure :: constraint_power
         procedure :: release => release_problem
     end type problem_type
 
@@ -287,43 +286,34 @@ contains
         if (allocated(self%failure)) text = self%failure%message
     end function failure_text
 
-    !> True when the UCONs do no work at the start (t, q), so that they leave the energy
-    !> alone: every velocity UCON's F vanishes at zero rates (F = C(q) u: every term carries a
-    !> rate, as for a rolling contact on fixed ground) and no position UCON changes with time
-    !> alone (F at t and at t + 1 s equal). A moving constraint (a turntable, a driven motion)
-    !> fails this, and its constraint forces do work. The check is made at the one state given;
-    !> a UCOSUB that cannot be evaluated at zero rates leaves the answer true (the run itself
-    !> then reports its error). The UCONs are evaluated, so call this before the run's first
-    !> evaluation.
-    function ucons_do_no_work(self, time, q) result(no_work)
-        class(problem_type), intent(inout) :: self
-        real(wp), intent(in) :: time, q(:)
-        logical :: no_work
-        !> A homogeneous form gives exact zeros (every term is a product with a rate that is 0),
-        !> and a time-free one the same value twice; a moving constraint's terms are of the size
-        !> of its motion, many orders above this
-        real(wp), parameter :: tol_work = 1.0e-12_wp
-        real(wp) :: still(size(q)), now(self%eq%nc)
-        type(error_type), allocatable :: error
+    !> The explicit power of the constraint forces at the last evaluation (accelerations), at
+    !> the run's own state: sum over the UCONs of |lambda_k w_k| [W], w_k the part of F_k's
+    !> rate that the motion does not make: dF_k/dt for a position UCON (its forces' power is
+    !> -lambda_k dF_k/dq u = lambda_k dF_k/dt on the constraint), and F_k - dF_k/du u for a
+    !> velocity UCON (F linear in u, F = C u + c: the forces' power lambda_k C u is -lambda_k c).
+    !> Zero, up to rounding, for constraints fixed in space and time (a rolling contact on
+    !> fixed ground: F = C(q) u, c = 0; a joint: no explicit time); a moving constraint's (a
+    !> turntable, a driven motion) is of the size of the power it puts in. Calls no UCOSUB.
+    pure function constraint_power(self, u) result(power)
+        class(problem_type), intent(in) :: self
+        !> The rates of the last evaluation
+        real(wp), intent(in) :: u(:)
+        real(wp) :: power
         integer :: k
 
-        no_work = .true.
-        if (self%eq%nc == 0) return
-        still = 0.0_wp
-        call self%eq%constraints%evaluate(self%model, time, q, still, need_value, error)
-        if (allocated(error)) return
-        now = self%eq%constraints%value
-        call self%eq%constraints%evaluate(self%model, time + 1.0_wp, q, still, need_value, error)
-        if (allocated(error)) return
-        do k = 1, self%eq%nc
-            if (self%model%ucons(k)%holonomic) then
-                if (abs(self%eq%constraints%value(k) - now(k)) > tol_work) no_work = .false.
-            else
-                if (abs(now(k)) > tol_work .or. abs(self%eq%constraints%value(k)) > tol_work) &
-                    & no_work = .false.
-            end if
-        end do
-    end function ucons_do_no_work
+        power = 0.0_wp
+        if (.not. allocated(self%lambda)) return
+        associate (cs => self%eq%constraints)
+            do k = 1, self%eq%nc
+                if (self%model%ucons(k)%holonomic) then
+                    power = power + abs(self%lambda(k)*cs%dt(k))
+                else
+                    power = power + abs(self%lambda(k)*(cs%value(k) &
+                        & - dot_product(cs%grad_u(k, :), u)))
+                end if
+            end do
+        end associate
+    end function constraint_power
 
     !> Free what the problem holds outside Fortran's memory (its equations' KLU factors): a
     !> process running many models one after another (a study's cases) would keep every one's

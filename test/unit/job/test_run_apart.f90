@@ -33,6 +33,7 @@ contains
             & new_unittest("dataset-ucosub-file", test_dataset_file), &
             & new_unittest("routine-closes-standard-units", test_closes_units), &
             & new_unittest("routine-changes-directory", test_chdir), &
+            & new_unittest("routine-faulting-after-end", test_faults_after_end), &
             & new_unittest("sigterm-stops-the-child", test_sigterm), &
             & new_unittest("sigkill-stops-the-child", test_sigkill)]
     end subroutine collect_run_apart
@@ -78,6 +79,15 @@ contains
 
         call odd_routine("chdir", error)
     end subroutine test_chdir
+
+    !> A routine that faults when called after the run's END: a run calls a user's routine at
+    !> its own states and times only (whether its constraints do work is judged from the rows,
+    !> rollcon_problem constraint_power), so it completes.
+    subroutine test_faults_after_end(error)
+        type(error_type), allocatable, intent(out) :: error
+
+        call odd_routine("faults_after_end", error)
+    end subroutine test_faults_after_end
 
     !> SIGTERM to rollcon while its child is in an endless call of the routine: the child is
     !> gone within child_grace_ms, and the earlier run's CSV is as it was.
