@@ -52,6 +52,13 @@ module rollcon_linearisation
         real(wp) :: baumgarte = 0.0_wp
         !> Relative difference step (see default_step)
         real(wp) :: step = default_step
+        !> The independent coordinates to take (numbers into y = (q, u), as a result's
+        !> `independent`); not allocated: chosen by the pivoted QR (partition). The analysis
+        !> against speed takes those of its reference speed at every speed: the blocks the
+        !> choice is made on do not change with the speed, but their scaling does, and where
+        !> columns tie (two equal wheels) rounding would pick others at other speeds, so that
+        !> A_red's indices would name other coordinates
+        integer, allocatable :: independent(:)
     end type linear_options_type
 
     !> What the linearisation found
@@ -109,7 +116,11 @@ contains
         call constraint_jacobian(problem, time, q, u, jac, error)
         if (allocated(error)) return
         scale = state_scales(problem, q, u)
-        call partition(problem, jac, scale, dependent, result%independent, error)
+        if (allocated(options%independent)) then
+            call given_partition(n, options%independent, dependent, result%independent, error)
+        else
+            call partition(problem, jac, scale, dependent, result%independent, error)
+        end if
         if (allocated(error)) return
         call tangent_basis(jac, dependent, result%independent, result%basis, error)
         if (allocated(error)) return
@@ -288,6 +299,35 @@ contains
         taken(dependent) = .true.
         independent = pack([(j, j = 1, 2*n)], .not. taken)
     end subroutine partition
+
+    !> The partition of y = (q, u) with the given independent coordinates (checked: distinct
+    !> numbers from 1 to 2n), the rest dependent.
+    subroutine given_partition(n, given, dependent, independent, error)
+        integer, intent(in) :: n
+        integer, intent(in) :: given(:)
+        integer, allocatable, intent(out) :: dependent(:), independent(:)
+        type(error_type), allocatable, intent(out) :: error
+        logical :: taken(2*n)
+        integer :: j
+
+        taken = .false.
+        do j = 1, size(given)
+            if (given(j) < 1 .or. given(j) > 2*n) then
+                call fatal_error(error, "linearisation: independent coordinate " &
+                    & // to_text(given(j)) // " is not one of the " // to_text(2*n) &
+                    & // " coordinates and rates", stat_input)
+                return
+            end if
+            if (taken(given(j))) then
+                call fatal_error(error, "linearisation: independent coordinate " &
+                    & // to_text(given(j)) // " is given twice", stat_input)
+                return
+            end if
+            taken(given(j)) = .true.
+        end do
+        independent = given
+        dependent = pack([(j, j = 1, 2*n)], .not. taken)
+    end subroutine given_partition
 
     !> The size(rows) most independent columns of block (scaled by scale, rows to unit
     !> length), or an error when the rows are dependent. The translational columns (a part's
