@@ -13,7 +13,8 @@ module rollcon_problem
     use, intrinsic :: ieee_arithmetic, only : ieee_is_finite
     use rollcon_error, only : error_type, fatal_error, stat_ucon
     use rollcon_text, only : to_text
-    use rollcon_force, only : nonfinite_load
+    use rollcon_force, only : nonfinite_load, runaway_load, runaway_limit
+    use rollcon_output_layout, only : coordinate_names
     use rollcon_model, only : model_type
     use rollcon_equations, only : equations_type
     use rollcon_run_settings, only : run_settings_type, drift_projection
@@ -60,6 +61,7 @@ module rollcon_problem
         procedure :: root_owner
         procedure :: roots_use_accelerations
         procedure :: nonfinite_state
+        procedure :: runaway_text
         procedure :: keep_failure
         procedure :: failure_text
         procedure :: constraint_power
@@ -245,8 +247,11 @@ contains
         end do
     end function roots_use_accelerations
 
-    !> Why the equations are not finite at (t, q, u), in words: a force statement's load (named,
-    !> with its expression), a UCON's value, or else the accelerations themselves.
+    !> Why the equations or a row are not finite at (t, q, u), in words: a coordinate or rate
+    !> that is not finite, a force statement's load that is not finite (named, with its
+    !> expression), a UCON's value, a load that has run away (finite but beyond
+    !> runaway_limit: its square, a power or the energy, overflows), a rate beyond it, or else
+    !> the accelerations themselves.
     subroutine nonfinite_state(self, time, q, u, error)
         class(problem_type), intent(inout) :: self
         real(wp), intent(in) :: time, q(:), u(:)
@@ -254,16 +259,61 @@ contains
         character(len=:), allocatable :: message
         integer :: k
 
-        message = nonfinite_load(self%model%forces, size(self%model%parts), time, q, u)
+        message = ""
+        k = findloc(ieee_is_finite(q) .and. ieee_is_finite(u), .false., dim=1)
+        if (k > 0) message = "part " // to_text(self%model%parts((k - 1)/6 + 1)%id) // "'s " &
+            & // trim(merge(coordinate_names(mod(k - 1, 6) + 1), &
+            & coordinate_names(mod(k - 1, 6) + 7), .not. ieee_is_finite(q(k)))) &
+            & // " is not finite at t = " // to_text(time) // " s"
+        if (len(message) == 0) message = nonfinite_load(self%model%forces, &
+            & size(self%model%parts), time, q, u)
         if (len(message) == 0 .and. self%eq%nc > 0) then
             k = findloc(ieee_is_finite(self%eq%constraints%value), .false., dim=1)
             if (k > 0) message = "UCON/" // to_text(self%model%ucons(k)%id) // ": F is not " &
                 & // "finite at t = " // to_text(time) // " s"
         end if
+        if (len(message) == 0) message = self%runaway_text(time, q, u)
         if (len(message) == 0) message = "the accelerations are not finite at t = " &
             & // to_text(time) // " s (a singular mass matrix or constraint matrix?)"
         call fatal_error(error, message, stat_ucon)
     end subroutine nonfinite_state
+
+    !> A load or a rate that has run away at (t, q, u), in words: the force statement whose
+    !> component exceeds runaway_limit (its square, a power or the energy, overflows; with
+    !> weight_times, also one that exceeds weight_times the parts' weight, the model's own force
+    !> scale: the cause of an integrator's failure), else the part whose rate exceeds
+    !> runaway_limit ("part 2's Xdot = 3.1E+157 m/s at t = ...: the motion has run away");
+    !> "" when none does (rollcon_force runaway_load).
+    function runaway_text(self, time, q, u, weight_times) result(text)
+        class(problem_type), intent(in) :: self
+        real(wp), intent(in) :: time, q(:), u(:)
+        !> Loads beyond this many times the parts' weight have run away too [-]
+        real(wp), intent(in), optional :: weight_times
+        character(len=:), allocatable :: text
+        real(wp) :: weight
+        character(len=16) :: times, weight_text
+        integer :: k
+
+        weight = 0.0_wp
+        if (present(weight_times)) weight = weight_times*sum(self%model%parts%mass) &
+            & *norm2(self%model%gravity)
+        if (weight > 0.0_wp .and. weight < runaway_limit) then
+            write(times, '(es8.1)') weight_times
+            write(weight_text, '(es10.3)') weight/weight_times
+            text = runaway_load(self%model%forces, time, q, u, weight, "beyond " &
+                & // trim(adjustl(times)) // " times the parts' weight, " &
+                & // trim(adjustl(weight_text)) // " N")
+        else
+            text = runaway_load(self%model%forces, time, q, u, runaway_limit, "beyond 1.3e154, " &
+                & // "whose square overflows")
+        end if
+        if (len(text) > 0) return
+        k = findloc(abs(u) > runaway_limit, .true., dim=1)
+        if (k == 0) return
+        text = "part " // to_text(self%model%parts((k - 1)/6 + 1)%id) // "'s " &
+            & // trim(coordinate_names(mod(k - 1, 6) + 7)) // " = " // to_text(u(k)) &
+            & // " at t = " // to_text(time) // " s: the motion has run away (beyond 1.3e154)"
+    end function runaway_text
 
     !> Keep the first failure; return the callback code (0 ok, -1 unrecoverable).
     function keep_failure(self, error) result(ierr)

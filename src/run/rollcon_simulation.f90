@@ -83,6 +83,7 @@ module rollcon_simulation
         procedure :: rebase_at_start
         procedure :: count_rebasing
         procedure :: finish
+        procedure :: name_runaway
     end type simulation_type
 
 contains
@@ -119,6 +120,8 @@ contains
             call run%integrator%advance(t_out, run%next_stop(run%t), run%t, run%y, run%yp, root, &
                 & error)
             if (allocated(error)) then
+                ! a load or the motion that ran away is why, whatever the integrator's words
+                call run%name_runaway(error)
                 summary%status = status_failed
                 summary%message = error%message
                 summary%solver_flag = run%integrator%failed_flag
@@ -470,6 +473,26 @@ contains
             call self%problem%watches(w)%watch%part_rebased(p)
         end do
     end subroutine count_rebasing
+
+    !> Add to an integrator's failure the load or rate that ran away at its last state
+    !> (problem_type's runaway_text: a load beyond runaway_weights times the parts' weight),
+    !> when one has and the message does not say it already: an integrator that cannot follow
+    !> a load of 1e33 N on a coin of 7 N says only that it took too many steps.
+    subroutine name_runaway(self, error)
+        class(simulation_type), intent(inout) :: self
+        type(error_type), allocatable, intent(inout) :: error
+        !> A load a million times the weight of every part together is no load the model was
+        !> written for (the coin's strike peaks at a fifth of its weight)
+        real(wp), parameter :: runaway_weights = 1.0e6_wp
+        type(error_type), allocatable :: unpacked
+        character(len=:), allocatable :: why
+
+        call self%system%unpack_state(self%t, self%y, self%q, self%u, unpacked)
+        if (allocated(unpacked)) return
+        why = self%problem%runaway_text(self%t, self%q, self%u, runaway_weights)
+        if (len(why) > 0 .and. index(error%message, why) == 0) error%message = error%message &
+            & // "; " // why
+    end subroutine name_runaway
 
     !> The summary's counters, CPU time, re-basings and the watches' measures and lines; the
     !> integrator freed; the CSV closed (its failure, a full disk, fails the run unless it

@@ -16,7 +16,7 @@ module rollcon_adm_joints
 
     !> ADAMS's keywords of a JOINT that rollcon reads and refuses (initial conditions, friction,
     !> the joints it does not simulate)
-    character(len=*), parameter :: joint_refused(8) = [character(len=13) :: "IC", "ICTRAN", &
+    character(len=*), parameter :: joint_refused(8) = [character(len=19) :: "IC", "ICTRAN", &
         & "ICROT", "DELTA_V", "MAXIMUM_DEFORMATION", "RACKPIN", "SCREW", "PLANAR"]
 
     !> JOINT/id or JPRIM/id

@@ -146,7 +146,7 @@ contains
         type(error_type), allocatable, intent(out) :: error
         character(len=*), parameter :: commands(4) = [character(len=40) :: &
             & "coin tipping_coin", "plot a.csv b.csv", "table coin", "plto x.csv"]
-        character(len=*), parameter :: extras(4) = [character(len=12) :: "'tipping_coin'", &
+        character(len=*), parameter :: extras(4) = [character(len=14) :: "'tipping_coin'", &
             & "'b.csv'", "'coin'", "'x.csv'"]
         logical, parameter :: mistyped(4) = [.false., .false., .false., .true.]
         character(len=:), allocatable :: program, err

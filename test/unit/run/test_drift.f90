@@ -305,7 +305,7 @@ contains
     !> 1e-3, INACCURATE on each).
     subroutine test_energy_advice(error)
         type(error_type), allocatable, intent(out) :: error
-        character(len=*), parameter :: settings(3) = [character(len=40) :: &
+        character(len=*), parameter :: settings(3) = [character(len=48) :: &
             & "FORMULATION=CVODE, DRIFT=NONE", "FORMULATION=CVODE, DRIFT=PROJECTION", &
             & "FORMULATION=CVODE, METHOD=ADAMS, DRIFT=BAUMGARTE"]
         logical, parameter :: projection(3) = [.true., .false., .false.]
