@@ -89,7 +89,7 @@ contains
             & "JPRIM/1, INLINE, I=10, J=21", "JPRIM/1, INPLANE, I=10, J=21", &
             & "JOINT/1, CONVEL, I=21, J=10", &
             & "JOINT/1, CONVEL, I=21, J=12|MARKER/12, PART=1, REULER=180D, 60D, 0"]
-        character(len=*), parameter :: expected(6) = [character(len=220) :: &
+        character(len=*), parameter :: expected(6) = [character(len=300) :: &
             & ":8: JOINT/1: its markers I (MARKER/21) and J (MARKER/20) are both on PART/2; " &
             & // "a joint connects two parts", &
             & ":8: JOINT/1: its markers I (MARKER/10) and J (MARKER/11) are both on the " &
