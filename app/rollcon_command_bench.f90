@@ -9,7 +9,8 @@ module rollcon_command_bench
         & measure_part_costs, accuracy_line, process_cost_type, measure_process, &
         & plot_work_precision, machine_name, method_settings, cheapest_row, &
         & write_scene_with_settings, run_settings_type, scaling_row_type, measure_scaling, &
-        & scaling_table, short_scaling_methods
+        & scaling_table, short_scaling_methods, write_dataset_with_settings, &
+        & bicycle_table_type, read_bicycle_table, is_dataset, output_name
     use rollcon_cli, only : cli_request_type
     use rollcon_app_files, only : make_folder
     implicit none
@@ -131,6 +132,21 @@ contains
         end if
     end subroutine read_bench_options
 
+    !> What a name of --scenes runs: a disk scene (its name or file), or a bicycle's dataset
+    !> with the table it is written from (data/bicycle/write_adm.py): `bicycle` is
+    !> data/bicycle.adm and data/bicycle/benchmark.txt, `DIR/NAME.adm` has its table at
+    !> DIR/NAME/benchmark.txt.
+    subroutine bench_input(name, input, table_path)
+        character(len=*), intent(in) :: name
+        !> The input to load; the table ("" for a disk scene)
+        character(len=:), allocatable, intent(out) :: input, table_path
+
+        input = name
+        table_path = ""
+        if (name == "bicycle") input = "data/bicycle.adm"
+        if (is_dataset(input)) table_path = input(:len(input) - 4) // "/benchmark.txt"
+    end subroutine bench_input
+
     !> One scene: its unit costs, every method on the tolerance ladder (rows to unit), the
     !> headline ratio per method, and (outside --quick) the whole-process cost.
     subroutine bench_scene(name, options, unit, process_unit, error)
@@ -142,10 +158,21 @@ contains
         type(benchmark_row_type), allocatable :: rows(:)
         type(part_costs_type) :: costs
         type(method_type) :: methods(size(benchmark_methods()))
+        type(bicycle_table_type) :: table
+        character(len=:), allocatable :: input, table_path
         real(wp) :: rhs_seconds, residual_seconds, solve_seconds
         integer :: i
 
-        call load_job(name, job, error)
+        call bench_input(name, input, table_path)
+        if (len(table_path) > 0) then
+            call read_bicycle_table(table_path, table, error)
+            if (allocated(error)) then
+                error%message = "rollcon bench compares a dataset with the reduced bicycle of " &
+                    & // "the table it is written from: " // error%message
+                return
+            end if
+        end if
+        call load_job(input, job, error)
         if (allocated(error)) return
         associate (settings => job%source%settings)
             if (options%end_time > 0.0_wp) settings%end_time = min(settings%end_time, &
@@ -170,8 +197,14 @@ contains
             & " us), output row", 1.0e6_wp*costs%output, " us, its CSV line", &
             & 1.0e6_wp*costs%csv_line, " us (Fortran's formatted write of it", &
             & 1.0e6_wp*costs%fortran_line, " us)"
-        call benchmark_scene(job, benchmark_methods(), options%tolerances, &
-            & options%reference_rtol, options%repeats, rows, error, output_unit, costs)
+        if (len(table_path) > 0) then
+            call benchmark_scene(job, benchmark_methods(), options%tolerances, &
+                & options%reference_rtol, options%repeats, rows, error, output_unit, costs, &
+                & table)
+        else
+            call benchmark_scene(job, benchmark_methods(), options%tolerances, &
+                & options%reference_rtol, options%repeats, rows, error, output_unit, costs)
+        end if
         if (allocated(error)) return
         methods = benchmark_methods()
         if (.not. options%quick) then
@@ -185,9 +218,10 @@ contains
         do i = 1, size(methods)
             if (methods(i)%formulation == "reduced") cycle
             write(output_unit, '(a)') accuracy_line(rows, name, trim(methods(i)%name), &
-                & accuracy_target)
+                & accuracy_target, merge("(rad, m)", "m       ", len(table_path) > 0))
         end do
-        if (.not. options%quick) call process_cost(name, options%output_dir, process_unit, error)
+        if (.not. options%quick) call process_cost(name, input, options%output_dir, &
+            & process_unit, error)
     end subroutine bench_scene
 
     !> The per-part scaling table (issue #25; the full one is `rollcon bench scaling`): the
@@ -237,14 +271,21 @@ contains
             if (methods(m)%formulation == "reduced") cycle
             best = cheapest_row(rows, scene, trim(methods(m)%name), accuracy_target)
             if (best == 0) cycle
-            call method_settings(job, methods(m), rows(best)%rtol, settings, error)
-            if (allocated(error)) return
+            settings = method_settings(job, methods(m), rows(best)%rtol)
             variant = scene // "-" // trim(methods(m)%name)
-            call write_scene_with_settings(job%source%path, settings, folder // "/" // variant &
-                & // ".nml", error)
-            if (allocated(error)) return
-            call measure_process(executable_path(), folder // "/" // variant // ".nml", variant, &
-                & folder, cost, error, process_repeats)
+            if (is_dataset(job%source%path)) then
+                call write_dataset_with_settings(job%source%path, settings, folder // "/" &
+                    & // variant // ".adm", error)
+                if (allocated(error)) return
+                call measure_process(executable_path(), folder // "/" // variant // ".adm", &
+                    & variant // ".adm", folder, cost, error, process_repeats)
+            else
+                call write_scene_with_settings(job%source%path, settings, folder // "/" &
+                    & // variant // ".nml", error)
+                if (allocated(error)) return
+                call measure_process(executable_path(), folder // "/" // variant // ".nml", &
+                    & variant, folder, cost, error, process_repeats)
+            end if
             if (allocated(error)) return
             rows(best)%process_cpu = cost%cpu
         end do
@@ -261,9 +302,10 @@ contains
         call get_command_argument(0, executable)
     end function executable_path
 
-    !> Time `rollcon run SCENE` as a child process; print it and add a line to process_unit.
-    subroutine process_cost(scene, output_dir, process_unit, error)
-        character(len=*), intent(in) :: scene, output_dir
+    !> Time `rollcon run INPUT` (scene's input) as a child process; print it and add a line
+    !> to process_unit.
+    subroutine process_cost(scene, input, output_dir, process_unit, error)
+        character(len=*), intent(in) :: scene, input, output_dir
         integer, intent(in) :: process_unit
         type(error_type), allocatable, intent(out) :: error
         type(process_cost_type) :: cost
@@ -271,15 +313,15 @@ contains
 
         call make_folder(output_dir // "/process", error)
         if (allocated(error)) return
-        call measure_process(executable_path(), scene, scene, output_dir // "/process", cost, &
-            & error, process_repeats)
+        call measure_process(executable_path(), input, output_name(input), output_dir &
+            & // "/process", cost, error, process_repeats)
         if (allocated(error)) return
         write(numbers, '(5(es13.5e3, :, ","))') cost%wall, cost%cpu, cost%startup_cpu, &
             & cost%integration_cpu, cost%rest_cpu
         write(process_unit, '(a)') scene // "," // trim(numbers)
         flush(process_unit)
         write(output_unit, '(a, 5(f8.3, a))') "bench: " // scene // ": whole process 'rollcon " &
-            & // "run " // scene // "': wall", cost%wall, " s, CPU", cost%cpu, " s = start-up", &
+            & // "run " // input // "': wall", cost%wall, " s, CPU", cost%cpu, " s = start-up", &
             & cost%startup_cpu, " s + integration with output rows", cost%integration_cpu, &
             & " s + scene reading, set-up and summary", cost%rest_cpu, " s"
     end subroutine process_cost

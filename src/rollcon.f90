@@ -116,7 +116,8 @@ module rollcon
         & method_settings
     use rollcon_bench_costs, only : part_costs_type, measure_part_costs
     use rollcon_bench_process, only : process_cost_type, measure_process, &
-        & write_scene_with_settings
+        & write_scene_with_settings, write_dataset_with_settings
+    use rollcon_reduced_bicycle, only : bicycle_table_type, read_bicycle_table
     use rollcon_bench_summary, only : accuracy_line, cheapest_row
     use rollcon_bench_plot, only : plot_work_precision, machine_name
     use rollcon_bench_sweep, only : time_sweep, coordinator_row_us

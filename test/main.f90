@@ -43,6 +43,7 @@ program tester
     use test_ida_first_step, only : collect_ida_first_step
     use test_int_buffer, only : collect_int_buffer
     use test_reduced, only : collect_reduced
+    use test_reduced_bicycle, only : collect_reduced_bicycle
     use test_layout, only : collect_layout
     use test_ucosub_catalog, only : collect_ucosub_catalog
     use test_initial_conditions, only : collect_initial_conditions
@@ -132,6 +133,7 @@ program tester
         & new_testsuite("ida-first-step", collect_ida_first_step), &
         & new_testsuite("int-buffer", collect_int_buffer), &
         & new_testsuite("reduced", collect_reduced), &
+        & new_testsuite("reduced-bicycle", collect_reduced_bicycle), &
         & new_testsuite("layout", collect_layout), &
         & new_testsuite("ucosub-catalog", collect_ucosub_catalog), &
         & new_testsuite("dataset-command", collect_dataset_command), &
