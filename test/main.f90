@@ -68,6 +68,7 @@ program tester
     use test_figure_rows, only : collect_figure_rows
     use test_wire, only : collect_wire
     use test_least_squares, only : collect_least_squares
+    use test_small_dense, only : collect_small_dense
     use test_bench, only : collect_bench
     use test_check_reliability, only : collect_check_reliability
     use test_check_findings, only : collect_check_findings
@@ -161,6 +162,7 @@ program tester
         & new_testsuite("figure-rows", collect_figure_rows), &
         & new_testsuite("wire", collect_wire), &
         & new_testsuite("least-squares", collect_least_squares), &
+        & new_testsuite("small-dense", collect_small_dense), &
         & new_testsuite("bench", collect_bench), &
         & new_testsuite("check-reliability", collect_check_reliability), &
         & new_testsuite("check-findings", collect_check_findings), &
