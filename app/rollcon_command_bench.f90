@@ -7,7 +7,7 @@ module rollcon_command_bench
         & load_job, method_type, benchmark_methods, benchmark_row_type, benchmark_scene, &
         & benchmark_header, write_benchmark_row, evaluation_costs, part_costs_type, &
         & measure_part_costs, accuracy_line, process_cost_type, measure_process, &
-        & plot_work_precision, machine_name, method_settings, cheapest_row, &
+        & plot_work_precision, machine_name, sundials_build, method_settings, cheapest_row, &
         & write_scene_with_settings, run_settings_type, scaling_row_type, measure_scaling, &
         & scaling_table, short_scaling_methods, write_dataset_with_settings, &
         & bicycle_table_type, read_bicycle_table, is_dataset, output_name
@@ -60,7 +60,7 @@ contains
             return
         end if
         write(unit, '(a)') benchmark_header()
-        write(output_unit, '(a)') "bench: " // machine_name()
+        write(output_unit, '(a)') "bench: " // machine_name() // "; " // sundials_build()
         process_unit = -1
         if (.not. options%quick) then
             open(newunit=process_unit, file=options%output_dir // "/bench_process.csv", &
@@ -124,7 +124,7 @@ contains
             if (options%end_time < 0.0_wp) options%end_time = 1.0_wp
         else
             if (len(options%scene_list) == 0) options%scene_list = "coin,tipping_coin," &
-                & // "fast_upright,near_flat,long_run"
+                & // "fast_upright,near_flat,long_run,bicycle"
             ! half a decade apart: a decade's grid put the cheapest run within 1e-6 m up to
             ! ten times tighter than it needs, the reduced ODE's and a method's differently
             options%tolerances = [(10.0_wp**(-3.0_wp - 0.5_wp*i), i = 0, 18)]
@@ -332,7 +332,10 @@ contains
             & "                     [--output DIR]", &
             & "", &
             & "Work-precision benchmark. For each scene (default: coin, tipping_coin,", &
-            & "fast_upright, near_flat, long_run) and each way of solving (IDA; CVODE BDF with", &
+            & "fast_upright, near_flat, long_run, and bicycle: data/bicycle.adm, against the", &
+            & "Whipple bicycle's reduced ODE of its table data/bicycle/benchmark.txt; a", &
+            & "dataset DIR/NAME.adm is compared with the bicycle of DIR/NAME/benchmark.txt)", &
+            & "and each way of solving (IDA; CVODE BDF with", &
             & "projection, Baumgarte or no drift control; CVODE Adams with Newton's method and", &
             & "with fixed-point iteration; CVODE Adams on the independent speeds, maggi-adams;", &
             & "analytic against difference-quotient Jacobians) on the tolerances rtol = 1e-3,", &
@@ -341,7 +344,8 @@ contains
             & "over a second are not repeated), steps, function and Jacobian evaluations, the", &
             & "largest distance of the disk's centre from the independent reference, the", &
             & "disk's reduced ODE (minimal coordinates, ucon/reduced/) by CVODE Adams at rtol", &
-            & "1e-13 [m], the largest constraint residual [m/s] and the relative energy drift.", &
+            & "1e-13 [m] (the bicycle: the largest difference of roll and steer [rad] and of the", &
+            & "rear contact point [m]), the largest constraint residual and the energy drift.", &
             & "The reduced ODE is also the limit: every row carries the CPU time of the reduced", &
             & "ODE at the same rtol, multistep method and iteration, measured in the same run,", &
             & "and the ratio; per scene the cheapest run within 1e-6 m of the reference is", &
@@ -351,6 +355,8 @@ contains
             & "unit costs measured in the same run) and SUNDIALS' remainder. Outside --quick, the", &
             & "whole process 'rollcon run SCENE' is timed as a child (DIR/bench_process.csv).", &
             & "Writes DIR/bench.csv and DIR/bench_<scene>.png (gnuplot); DIR defaults to output.", &
+            & "The first line names the machine and the SUNDIALS build measured (the library", &
+            & "file loaded: Debian's, or .ci/setup's ROLLCON_SUNDIALS=optimised build).", &
             & "Last, the cost per step and part of the default way of solving on N disks and", &
             & "on a chain of N links, N = 1, 4, 16, 64 (rollcon bench scaling: the full table).", &
             & "  --quick       tipping_coin over 1 s at rtol 1e-4 and 1e-6, one run each; the", &
