@@ -58,8 +58,8 @@ contains
                 & // ".png"), "set title " // gnuplot_string("work-precision: " // scene &
                 & // " (tolerances 1e-3 to 1e-12)") // " noenhanced"
             if (scene == "bicycle" .or. index(scene, ".adm") > 0) then
-                write(unit, '(a)') "set ylabel 'largest difference from the reduced ODE " &
-                    & // "(Adams, rtol 1e-13): roll, steer [rad], rear contact [m]'"
+                write(unit, '(a)') "set ylabel 'largest difference from the reduced ODE: " &
+                    & // "roll, steer [rad], contact [m]'"
             else
                 write(unit, '(a)') "set ylabel 'largest position error against the reduced " &
                     & // "ODE (Adams, rtol 1e-13) [m]'"
