@@ -42,7 +42,7 @@ contains
         type(cli_request_type), intent(in) :: request
         type(error_type), allocatable, intent(out) :: error
         type(bench_options_type) :: options
-        character(len=:), allocatable :: name
+        character(len=:), allocatable :: name, labels
         integer :: unit, stat, start, comma, process_unit
 
         if (request%has("--help")) then
@@ -74,6 +74,7 @@ contains
                 & // "reading_setup_summary_cpu_s"
         end if
         start = 1
+        labels = ""
         do
             comma = index(options%scene_list(start:), ",")
             if (comma == 0) then
@@ -83,12 +84,13 @@ contains
             end if
             call bench_scene(name, options, unit, process_unit, error)
             if (allocated(error)) return
+            labels = labels // trim(merge(",", " ", len(labels) > 0)) // bench_label(name)
             if (comma == 0) exit
             start = start + comma
         end do
         close(unit)
         if (process_unit /= -1) close(process_unit)
-        call plot_work_precision(options%output_dir, options%scene_list, error)
+        call plot_work_precision(options%output_dir, labels, error)
         if (allocated(error)) return
         call scaling_summary(options, error)
         if (allocated(error)) return
@@ -131,6 +133,17 @@ contains
             options%reference_rtol = 1.0e-13_wp
         end if
     end subroutine read_bench_options
+
+    !> The rows' scene name of a name of --scenes: a dataset's file name without its folder and
+    !> .adm (the benchmark's subject name), else the name itself.
+    pure function bench_label(name) result(label)
+        character(len=*), intent(in) :: name
+        character(len=:), allocatable :: label
+
+        label = name
+        if (.not. is_dataset(name)) return
+        label = label(index(label, "/", back=.true.) + 1:len(label) - 4)
+    end function bench_label
 
     !> What a name of --scenes runs: a disk scene (its name or file), or a bicycle's dataset
     !> with the table it is written from (data/bicycle/write_adm.py): `bicycle` is
@@ -208,7 +221,8 @@ contains
         if (allocated(error)) return
         methods = benchmark_methods()
         if (.not. options%quick) then
-            call headline_processes(name, job, methods, options%output_dir, rows, error)
+            call headline_processes(bench_label(name), job, methods, options%output_dir, rows, &
+                & error)
             if (allocated(error)) return
         end if
         do i = 1, size(rows)
@@ -217,11 +231,12 @@ contains
         flush(unit)
         do i = 1, size(methods)
             if (methods(i)%formulation == "reduced") cycle
-            write(output_unit, '(a)') accuracy_line(rows, name, trim(methods(i)%name), &
-                & accuracy_target, merge("(rad, m)", "m       ", len(table_path) > 0))
+            write(output_unit, '(a)') accuracy_line(rows, bench_label(name), &
+                & trim(methods(i)%name), accuracy_target, merge("(rad, m)", "m       ", &
+                & len(table_path) > 0))
         end do
-        if (.not. options%quick) call process_cost(name, input, options%output_dir, &
-            & process_unit, error)
+        if (.not. options%quick) call process_cost(bench_label(name), input, &
+            & options%output_dir, process_unit, error)
     end subroutine bench_scene
 
     !> The per-part scaling table (issue #25; the full one is `rollcon bench scaling`): the
