@@ -200,6 +200,12 @@ contains
             end if
             i = i + 1
             option%value = get_argument(i)
+            ! an empty value is a mistake (a shell variable not set), never "the default"
+            if (len_trim(option%value) == 0) then
+                call fatal_error(error, option%name // " was given an empty value; it needs " &
+                    & // trim(o%value) // " (a variable not set?)", stat_input)
+                return
+            end if
         end if
         request%given = [request%given, option]
     end subroutine take_option
@@ -212,7 +218,12 @@ contains
         integer :: k
 
         k = command_index(request%command)
-        if (len_trim(commands(k)%positional) == 0) then
+        ! an empty argument is a mistake (a shell variable not set), never "the default"
+        if (len_trim(argument) == 0) then
+            call fatal_error(error, "an empty argument was given to rollcon " // request%command &
+                & // " (a variable not set?); run 'rollcon " // help_command(request) &
+                & // "--help' for the usage", stat_input)
+        else if (len_trim(commands(k)%positional) == 0) then
             call fatal_error(error, "unexpected argument '" // argument // "': rollcon " &
                 & // request%command // " takes no " // trim(merge("SCENE   ", "argument", &
                 & request%command == "table")) // "; run 'rollcon " // help_command(request) &

@@ -34,9 +34,10 @@ contains
         status = 0
         call request%real_value("--vtk", fps, 0.0_wp, error)
         if (allocated(error)) return
-        if (request%has("--vtk") .and. .not. fps > 0.0_wp) then
-            call fatal_error(error, "--vtk needs a positive number of frames per second", &
-                & stat_input)
+        ! a frame per output row at most; more than a million a simulated second is a mistake
+        if (request%has("--vtk") .and. .not. (fps > 0.0_wp .and. fps <= 1.0e6_wp)) then
+            call fatal_error(error, "--vtk needs a number of frames per second above 0 and " &
+                & // "up to 1e6, got '" // request%text("--vtk", "") // "'", stat_input)
             return
         end if
         name = request%positional

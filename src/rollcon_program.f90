@@ -20,12 +20,13 @@ module rollcon_program
         & method_settings
     use rollcon_bench_costs, only : part_costs_type, measure_part_costs
     use rollcon_bench_process, only : process_cost_type, measure_process, &
-        & write_scene_with_settings
+        & write_scene_with_settings, write_dataset_with_settings
+    use rollcon_reduced_bicycle, only : bicycle_table_type, read_bicycle_table
     use rollcon_bench_summary, only : accuracy_line, cheapest_row
-    use rollcon_bench_plot, only : plot_work_precision, machine_name
+    use rollcon_bench_plot, only : plot_work_precision, machine_name, sundials_build
     use rollcon_bench_sweep, only : time_sweep, coordinator_row_us
     use rollcon_bench_scaling, only : scaling_row_type, measure_scaling, scaling_header, &
-        & scaling_csv_row, scaling_table, short_scaling_methods
+        & scaling_csv_row, scaling_table, short_scaling_methods, check_scaling_end_time
     implicit none
     public
 end module rollcon_program

@@ -27,6 +27,7 @@ program tester
     use test_adm_statements, only : collect_adm_statements
     use test_adm_build, only : collect_adm_build
     use test_adm_joints, only : collect_adm_joints
+    use test_adm_joint_motions, only : collect_adm_joint_motions
     use test_adm_text, only : collect_adm_text
     use test_adm_fuzz, only : collect_adm_fuzz
     use test_expression_fuzz, only : collect_expression_fuzz
@@ -43,6 +44,7 @@ program tester
     use test_ida_first_step, only : collect_ida_first_step
     use test_int_buffer, only : collect_int_buffer
     use test_reduced, only : collect_reduced
+    use test_reduced_bicycle, only : collect_reduced_bicycle
     use test_layout, only : collect_layout
     use test_ucosub_catalog, only : collect_ucosub_catalog
     use test_initial_conditions, only : collect_initial_conditions
@@ -67,6 +69,7 @@ program tester
     use test_figure_rows, only : collect_figure_rows
     use test_wire, only : collect_wire
     use test_least_squares, only : collect_least_squares
+    use test_small_dense, only : collect_small_dense
     use test_bench, only : collect_bench
     use test_check_reliability, only : collect_check_reliability
     use test_check_findings, only : collect_check_findings
@@ -129,6 +132,7 @@ program tester
         & new_testsuite("adm-forces", collect_adm_forces), &
         & new_testsuite("adm-build", collect_adm_build), &
         & new_testsuite("adm-joints", collect_adm_joints), &
+        & new_testsuite("adm-joint-motions", collect_adm_joint_motions), &
         & new_testsuite("adm-text", collect_adm_text), &
         & new_testsuite("adm-fuzz", collect_adm_fuzz), &
         & new_testsuite("expression-fuzz", collect_expression_fuzz), &
@@ -141,6 +145,7 @@ program tester
         & new_testsuite("ida-first-step", collect_ida_first_step), &
         & new_testsuite("int-buffer", collect_int_buffer), &
         & new_testsuite("reduced", collect_reduced), &
+        & new_testsuite("reduced-bicycle", collect_reduced_bicycle), &
         & new_testsuite("layout", collect_layout), &
         & new_testsuite("ucosub-catalog", collect_ucosub_catalog), &
         & new_testsuite("dataset-command", collect_dataset_command), &
@@ -168,6 +173,7 @@ program tester
         & new_testsuite("figure-rows", collect_figure_rows), &
         & new_testsuite("wire", collect_wire), &
         & new_testsuite("least-squares", collect_least_squares), &
+        & new_testsuite("small-dense", collect_small_dense), &
         & new_testsuite("bench", collect_bench), &
         & new_testsuite("check-reliability", collect_check_reliability), &
         & new_testsuite("check-findings", collect_check_findings), &

@@ -24,7 +24,7 @@ module rollcon_acf_reader
     use rollcon_adm_model, only : adm_model_type, adm_segment_type
     use rollcon_adm_run, only : read_segment, set_run_times
     use rollcon_adm_integrator, only : read_integrator
-    use rollcon_adm_outputs, only : read_output_statement
+    use rollcon_adm_outputs, only : read_output_statement, unused_warning
     implicit none
     private
 
@@ -223,6 +223,8 @@ contains
                 end do
             end associate
         end do
+        ! the dataset's warning, read with it, names the command file's unused commands too
+        model%warning = unused_warning(model)
         if (size(segments) == 0) return
         model%run%segments = segments
         model%run%line = first_line

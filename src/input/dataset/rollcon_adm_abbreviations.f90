@@ -46,8 +46,9 @@ module rollcon_adm_abbreviations
         & // "ROTATIONAl"), &
         & place_type("VFORCE", "I Jfloat RM FX FY FZ"), &
         & place_type("GFORCE", "I Jfloat RM FX FY FZ TX TY TZ"), &
-        & place_type("JOINT", "CYlindrical Fixed REvolute SPherical Translational Universal " &
-        & // "I J IC ICTran ICRot Delta_v Maximum_deformation RAckpin SCrew PLanar PD PItch"), &
+        & place_type("JOINT", "COnvel CYlindrical Fixed Hooke REvolute SPherical " &
+        & // "Translational Universal I J IC ICTran ICRot Delta_v Maximum_deformation " &
+        & // "RAckpin SCrew PLanar PD PItch"), &
         & place_type("JPRIM", "Atpoint INLine INPlane PArallel_axes PErpendicular " &
         & // "Orientation I J"), &
         & place_type("GCON", "I Function"), &

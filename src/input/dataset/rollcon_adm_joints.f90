@@ -20,8 +20,8 @@ module rollcon_adm_joints
 
     !> ADAMS's keywords of a JOINT that rollcon reads and refuses (initial conditions, friction,
     !> the joints it does not simulate)
-    character(len=*), parameter :: joint_refused(6) = [character(len=19) :: "IC", "ICTRAN", &
-        & "ICROT", "DELTA_V", "MAXIMUM_DEFORMATION", "PLANAR"]
+    character(len=*), parameter :: joint_refused(5) = [character(len=19) :: "IC", "ICTRAN", &
+        & "ICROT", "DELTA_V", "MAXIMUM_DEFORMATION"]
     !> The joints that couple motions, and their keywords
     character(len=*), parameter :: coupling_joints(2) = [character(len=7) :: "RACKPIN", "SCREW"]
     character(len=*), parameter :: coupling_keys(2) = [character(len=5) :: "PD", "PITCH"]
@@ -78,10 +78,6 @@ contains
                     & // "are not supported: rollcon's initial-conditions analysis places the " &
                     & // "parts (docs/initial-conditions.md); give the parts' QG, REULER and " &
                     & // "velocities instead", stat_input)
-            case ("PLANAR")
-                call fatal_error(error, at // ": a " // key // " joint is not supported " &
-                    & // "(supported: " // name_list(joint_names) // ", RACKPIN, SCREW, and " &
-                    & // "JPRIM)", stat_input)
             case ("PD", "PITCH")
                 call read_reals(statement%arguments(k), at, 1, 1, .false., values, error, &
                     & units%length)

@@ -13,6 +13,7 @@ module rollcon_adm_keywords
     use rollcon_error, only : error_type, fatal_error, stat_input
     use rollcon_text, only : to_text, comma_list, place
     use rollcon_adm_lexer, only : adm_argument_type, adm_statement_type, is_number_text, &
+        & is_nonfinite_text, &
         & upper_case
     use rollcon_adm_abbreviations, only : minimum_abbreviation
     use, intrinsic :: ieee_arithmetic, only : ieee_is_finite
@@ -191,6 +192,11 @@ contains
         allocate(values(n))
         do i = 1, n
             text = upper_case(argument%values(i)%text)
+            if (is_nonfinite_text(text)) then
+                call fatal_error(error, where // ": '" // argument%values(i)%text &
+                    & // "' is not a finite number (expected " // expected // ")", stat_input)
+                return
+            end if
             if (.not. is_number_text(text)) then
                 call fatal_error(error, where // ": '" // argument%values(i)%text &
                     & // "' is not a number (expected " // expected // ")", stat_input)

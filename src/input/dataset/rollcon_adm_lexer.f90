@@ -29,6 +29,7 @@ module rollcon_adm_lexer
     private
 
     public :: adm_argument_type, adm_statement_type, adm_text_type, read_adm_text, is_number_text
+    public :: is_nonfinite_text
     public :: lex_adm_lines, read_dataset_lines, max_line_length
     public :: upper_case
 
@@ -356,7 +357,8 @@ contains
                 last = n
                 closed(a) = backslash
                 open_end(a) = ends_open(field(top_level_equals(field) + 1:))
-            else if (is_name(field) .and. .not. continues(a)) then
+            else if (is_name(field) .and. .not. continues(a) .and. &
+                & .not. is_nonfinite_text(field)) then
                 kinds(n) = field_conditional
                 a = a + 1
                 argument_of(n) = a
@@ -370,9 +372,9 @@ contains
                     return
                 end if
                 if (kinds(last) /= field_assignment) then
-                    call fatal_error(error, line_text(where, line_of, start) // ": a value '" &
-                        & // field // "' follows " // upper_case(trim(adjustl(text(starts(last): &
-                        & finishes(last) - 1)))) // ", which takes none", stat_input)
+                    call fatal_error(error, line_text(where, line_of, start) &
+                        & // stray_value(text, starts, finishes, kinds, last, field, &
+                        & statement), stat_input)
                     return
                 end if
                 if (closed(a)) then
@@ -532,6 +534,47 @@ contains
                 & // to_text(line_of(min(at, size(line_of)))) // where(colon:)
         end if
     end function line_text
+
+    !> Why a value follows a conditional argument, in words that go after the statement's
+    !> name. A word right after an assignment's list (`IP=2, heavy, 3`) stands in that list
+    !> and is not a number ("/2 IP: 'heavy' is not a number (it stands in the list of IP: the
+    !> value '3' follows it)"); else the value follows a word that takes none (": a value '1'
+    !> follows GROUND, which takes none").
+    function stray_value(text, starts, finishes, kinds, last, value, statement) result(words)
+        character(len=*), intent(in) :: text, value
+        integer, intent(in) :: starts(:), finishes(:), kinds(:), last
+        type(adm_statement_type), intent(in) :: statement
+        character(len=:), allocatable :: words, word
+        integer :: list
+
+        word = trim(adjustl(text(starts(last):finishes(last) - 1)))
+        words = ": a value '" // value // "' follows " // upper_case(word) // ", which takes none"
+        if (last <= 1) return
+        if (kinds(last - 1) /= field_assignment .and. kinds(last - 1) /= field_value) return
+        ! the assignment whose list the word stands in
+        list = last - 1
+        do while (kinds(list) /= field_assignment)
+            list = list - 1
+        end do
+        words = upper_case(trim(adjustl(text(starts(list):starts(list) &
+            & + index(text(starts(list):finishes(list) - 1), "=") - 2))))
+        words = " " // words // ": '" // word // "' is not a number (it stands in the list of " &
+            & // words // ": the value '" // value // "' follows it)"
+        if (statement%has_id) words = "/" // to_text(statement%id) // words
+    end function stray_value
+
+    !> NaN or Inf written as a number (NAN, INF, INFINITY, any case, a sign allowed): a value
+    !> that Fortran reads but no list may hold.
+    pure logical function is_nonfinite_text(text)
+        character(len=*), intent(in) :: text
+        character(len=:), allocatable :: t
+
+        t = upper_case(trim(adjustl(text)))
+        if (len(t) > 0) then
+            if (t(1:1) == "+" .or. t(1:1) == "-") t = t(2:)
+        end if
+        is_nonfinite_text = t == "NAN" .or. t == "INF" .or. t == "INFINITY"
+    end function is_nonfinite_text
 
     !> True for a number as a dataset writes it: [sign] digits [. digits] [E|D [sign] digits],
     !> then optionally D (degrees).

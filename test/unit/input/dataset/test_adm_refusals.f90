@@ -29,7 +29,9 @@ contains
             & new_unittest("values-out-of-range", test_values), &
             & new_unittest("ucon-refusals", test_ucons), &
             & new_unittest("integrator-refusals", test_integrator), &
-            & new_unittest("principal-axes-at-start", test_principal_axes)]
+            & new_unittest("principal-axes-at-start", test_principal_axes), &
+            & new_unittest("lists-with-values-not-finite", test_nonfinite_lists), &
+            & new_unittest("keywords-by-their-whole-names", test_whole_names)]
     end subroutine collect_adm_refusals
 
     !> Statements outside the subset, ambiguous, misplaced, repeated, with or without an id.
@@ -126,6 +128,51 @@ contains
             & // " subset (IDA, CVODE, MAGGI)"
         call check_refusals(error, [4, 12, 5, 12, 5, 3, 5, 4, 4, 6, 2, 11, 12], replaced, expected)
     end subroutine test_keywords
+
+    !> A list holding NaN, Inf or a word: each refused as that list's entry, by name (NaN in
+    !> the middle of IP said "a value '3' follows NAN, which takes none", Inf at its end
+    !> "expected from 3 to 6 numbers, got 2").
+    subroutine test_nonfinite_lists(error)
+        type(error_type), allocatable, intent(out) :: error
+        character(len=120) :: replaced(7)
+        character(len=400) :: expected(7)
+
+        replaced(1) = "PART/2, MASS=1, CM=3, IP=2, NaN, 3"
+        expected(1) = ":4: PART/2 IP: 'NaN' is not a finite number (expected from 3 to 6 numbers)"
+        replaced(2) = "PART/2, MASS=1, CM=3, IP=2, 2, Inf"
+        expected(2) = ":4: PART/2 IP: 'Inf' is not a finite number (expected from 3 to 6 numbers)"
+        replaced(3) = "PART/2, MASS=1, CM=3, IP=2, 2, 3, NaN, 0, 0"
+        expected(3) = ":4: PART/2 IP: 'NaN' is not a finite number (expected from 3 to 6 numbers)"
+        replaced(4) = "PART/2, MASS=1, CM=3, IP=2, 2, -infinity"
+        expected(4) = ":4: PART/2 IP: '-infinity' is not a finite number (expected from 3 to 6" &
+            & // " numbers)"
+        replaced(5) = "PART/2, MASS=1, CM=3, IP=2, heavy, 3"
+        expected(5) = ":4: PART/2 IP: 'heavy' is not a number (it stands in the list of IP: the" &
+            & // " value '3' follows it)"
+        replaced(6) = ", QG=0, NaN, 1, VX=0.5"
+        expected(6) = ":5: PART/2 QG: 'NaN' is not a finite number (expected 3 numbers)"
+        replaced(7) = "MARKER/3, PART=2, REULER=0D, Inf, 0D"
+        expected(7) = ":6: MARKER/3 REULER: 'Inf' is not a finite number (expected 3 numbers)"
+        call check_refusals(error, [4, 4, 4, 4, 4, 5, 6], replaced, expected)
+    end subroutine test_nonfinite_lists
+
+    !> Keywords by their whole ADAMS names, however long: MAXIMUM_DEFORMATION (19 letters, once
+    !> cut to 13 in the table of a JOINT's refused keywords) is the joint's friction, refused
+    !> as such, as is its abbreviation.
+    subroutine test_whole_names(error)
+        type(error_type), allocatable, intent(out) :: error
+        character(len=120) :: replaced(2)
+        character(len=400) :: expected(2)
+
+        replaced(1) = "MARKER/4, PART=1|JOINT/9, REVOLUTE, I=3, J=4, MAXIMUM_DEFORMATION=0.01"
+        expected(1) = ":8: JOINT/9 MAXIMUM_DEFORMATION: a joint's initial conditions and its " &
+            & // "friction are not supported: rollcon's initial-conditions analysis places the " &
+            & // "parts (docs/initial-conditions.md); give the parts' QG, REULER and velocities" &
+            & // " instead"
+        replaced(2) = "MARKER/4, PART=1|JOINT/9, REVOLUTE, I=3, J=4, MAXIMUM_DEF=0.01"
+        expected(2) = expected(1)
+        call check_refusals(error, [7, 7], replaced, expected)
+    end subroutine test_whole_names
 
     !> References to parts and markers that do not exist, a CM marker on another part, no ground.
     subroutine test_references(error)
