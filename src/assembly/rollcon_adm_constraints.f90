@@ -74,7 +74,8 @@ contains
                             & stat_input)
                         return
                     end if
-                    if (.not. any(markers%id == ids(m))) markers = [markers, adm_marker(adm, ids(m))]
+                    if (.not. any(markers%id == ids(m))) &
+                        & markers = [markers, adm_marker(adm, ids(m))]
                 end do
             end associate
         end do

@@ -7,8 +7,8 @@
 module rollcon_expression_functions
     use rollcon_kinds, only : wp
     use rollcon_constants, only : pi
-    use rollcon_jet, only : jet_type, jet_constant, jet_chain, operator(+), operator(-), operator(*), &
-        & operator(/), operator(**), sin, cos, abs, log, sqrt, asin, acos
+    use rollcon_jet, only : jet_type, jet_constant, jet_chain, operator(+), operator(-), &
+        & operator(*), operator(/), operator(**), sin, cos, abs, log, sqrt, asin, acos
     use rollcon_spline, only : spline_type, spline_derivatives
     use, intrinsic :: ieee_arithmetic, only : ieee_value, ieee_quiet_nan
     implicit none
