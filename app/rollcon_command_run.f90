@@ -5,9 +5,8 @@ module rollcon_command_run
     use, intrinsic :: iso_fortran_env, only : output_unit, error_unit
     use rollcon, only : wp, error_type, fatal_error, stat_input, to_text, job_type, load_job, &
         & run_job, job_result_type, status_inaccurate, run_record_type, read_run, &
-        & write_vtk_series, run_times_type, is_dataset, is_command_file, &
-        & user_check_report_type, report_text
-    use rollcon_program, only : command_line_text, check_before_run, run_check_states
+        & write_vtk_series, run_times_type
+    use rollcon_program, only : command_line_text, check_at_start
     use rollcon_cli, only : cli_request_type, command_names
     use rollcon_app_files, only : make_folder, file_stem
     implicit none
@@ -19,34 +18,6 @@ module rollcon_command_run
     real(wp), parameter :: longest_call_timeout = 86400.0_wp
 
 contains
-
-    !> A dataset's run with the user's own UCOSUB file (--ucosub FILE, not a built-in NAME)
-    !> checks the routine first, unless --no-check: its findings are a warning on stderr (the
-    !> check's report), and the run goes on, since a wrong partial slows the integrators but
-    !> leaves the residuals they solve right. error: the routine or the dataset cannot be read.
-    subroutine check_user_routine(request, name, call_timeout, error)
-        type(cli_request_type), intent(in) :: request
-        character(len=*), intent(in) :: name
-        real(wp), intent(in) :: call_timeout
-        type(error_type), allocatable, intent(out) :: error
-        type(user_check_report_type) :: report
-        character(len=:), allocatable :: file
-        logical :: checked, exists
-
-        if (request%has("--no-check") .or. .not. request%has("--ucosub")) return
-        if (.not. (is_dataset(name) .or. is_command_file(name))) return
-        file = request%text("--ucosub", "")
-        inquire(file=file, exist=exists)
-        if (.not. exists) return
-        call check_before_run(name, file, call_timeout, report, checked, error)
-        if (allocated(error)) return
-        if (.not. checked .or. report%clean()) return
-        write(error_unit, '(a)') "rollcon: warning: " // file // " fails its check at " &
-            & // to_text(run_check_states) // " random states per UCON (the run goes on: " &
-            & // "wrong partials slow the integrators, or stop them, but the residuals they " &
-            & // "solve stay the routine's; --no-check skips this check):"
-        write(error_unit, '(a)') report_text(report, file, "the run's build of it")
-    end subroutine check_user_routine
 
     !> Run the command; status 3 when the run's results drifted beyond what its tolerances
     !> promise (its outputs written), else 0 (error: a refusal or a failure).
@@ -90,8 +61,8 @@ contains
         if (request%has("--allow-large-output")) job%max_csv_bytes = huge(1.0_wp)
         call call_timeout_of(request, job%call_timeout, error)
         if (allocated(error)) return
-        call check_user_routine(request, name, job%call_timeout, error)
-        if (allocated(error)) return
+        ! a user's file is checked at the run's consistent start, before the first step
+        if (.not. request%has("--no-check")) job%start_check => check_at_start
         call run_job(job, result, error)
         if (len(result%summary_text) > 0) write(output_unit, '(a)') result%summary_text
         if (allocated(error)) return

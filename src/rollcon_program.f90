@@ -14,7 +14,7 @@ module rollcon_program
     use rollcon_child_process, only : default_call_timeout
     use rollcon_ucosub_audit, only : sampling_ranges, max_check_states, states_refusal
     use rollcon_ucon_request, only : dataset_ucon_requests
-    use rollcon_run_check, only : check_before_run, run_check_states
+    use rollcon_run_check, only : check_at_start
 
     ! rollcon bench: speed against accuracy, and the cost as models grow
     use rollcon_benchmark, only : method_type, benchmark_methods, benchmark_row_type, &

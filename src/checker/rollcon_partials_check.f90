@@ -99,6 +99,7 @@ contains
         real(wp) :: f_line(-3:3), a_line(max_ucon_vars, -3:3), ft_line(-3:3), h
         real(wp) :: fine_line(max_ucon_vars, -3:3), fine_f_line(-3:3), fine_ft_line(-3:3)
         real(wp) :: fd_f, fine_f, fd_a(max_ucon_vars), fine_a(max_ucon_vars), fd_t(2), fine_t(2)
+        real(wp) :: a_scale, x_scale, atq_scale
         real(wp) :: f_again, a_again(max_ucon_vars), x_again(max_ucon_vars, max_ucon_vars)
         integer :: n, i, j, loc(2)
 
@@ -136,6 +137,9 @@ contains
             call add(result, rule_repeat, "all outputs", 0, 0, f, f_again)
         end if
 
+        a_scale = maxval(abs(a(:n)))
+        x_scale = maxval(abs(x(:n, :n)))
+        atq_scale = maxval(abs(atq(:n)))
         do j = 1, n
             h = options%step * max(1.0_wp, abs(q30(j)))
             call q_lines(ucosub, id, time, q30, par, j, h, f, a, f_line, a_line, error)
@@ -145,18 +149,19 @@ contains
             ! a deviation beyond the tolerance is judged again at a quarter of the step
             fine_f = fd_f
             fine_a = fd_a
-            if (beyond(options, fd_f, a(j), f_line) .or. any([(beyond(options, fd_a(i), &
-                & x(i, j), a_line(i, :)), i = 1, n)])) then
+            if (beyond(options, fd_f, a(j), f_line, a_scale) .or. any([(beyond(options, &
+                & fd_a(i), x(i, j), a_line(i, :), x_scale), i = 1, n)])) then
                 call q_lines(ucosub, id, time, q30, par, j, h/refinement, f, a, f_line, &
                     & fine_line, error)
                 if (allocated(error)) return
                 fine_f = dot_product(fd_weights, f_line) / (h/refinement)
                 fine_a = matmul(fine_line, fd_weights) / (h/refinement)
             end if
-            call compare(result, options, "ARRAY (dF/dq)", j, 0, fd_f, fine_f, a(j), f_line)
+            call compare(result, options, "ARRAY (dF/dq)", j, 0, fd_f, fine_f, a(j), f_line, &
+                & a_scale)
             do i = 1, n
                 call compare(result, options, "XMATRX (d2F/dq dq)", i, j, fd_a(i), fine_a(i), &
-                    & x(i, j), a_line(i, :))
+                    & x(i, j), a_line(i, :), x_scale)
             end do
         end do
 
@@ -167,8 +172,9 @@ contains
         fd_a = matmul(a_line, fd_weights) / h
         fine_t = fd_t
         fine_a = fd_a
-        if (beyond(options, fd_t(1), ft, f_line) .or. beyond(options, fd_t(2), ftt, ft_line) &
-            & .or. any([(beyond(options, fd_a(i), atq(i), a_line(i, :)), i = 1, n)])) then
+        if (beyond(options, fd_t(1), ft, f_line, 0.0_wp) .or. beyond(options, fd_t(2), ftt, &
+            & ft_line, 0.0_wp) .or. any([(beyond(options, fd_a(i), atq(i), a_line(i, :), &
+            & atq_scale), i = 1, n)])) then
             call t_lines(ucosub, id, time, q30, par, h/refinement, f, ft, a, fine_f_line, &
                 & fine_ft_line, fine_line, error)
             if (allocated(error)) return
@@ -176,12 +182,13 @@ contains
                 & dot_product(fd_weights, fine_ft_line)] / (h/refinement)
             fine_a = matmul(fine_line, fd_weights) / (h/refinement)
         end if
-        call compare(result, options, "SCALAR (dF/dt)", 0, 0, fd_t(1), fine_t(1), ft, f_line)
+        call compare(result, options, "SCALAR (dF/dt)", 0, 0, fd_t(1), fine_t(1), ft, f_line, &
+            & 0.0_wp)
         call compare(result, options, "SCALAR (d2F/dt2)", 0, 0, fd_t(2), fine_t(2), ftt, &
-            & ft_line)
+            & ft_line, 0.0_wp)
         do i = 1, n
             call compare(result, options, "ARRAY (d2F/dt dq)", i, 0, fd_a(i), fine_a(i), &
-                & atq(i), a_line(i, :))
+                & atq(i), a_line(i, :), atq_scale)
         end do
 
         call check_rules(ucosub, id, time, q30, par, codes, x, result, error)
@@ -374,13 +381,14 @@ contains
     end subroutine t_lines
 
     !> True when returned differs from the difference quotient by more than the tolerance
-    !> (relative to the largest magnitude among returned and the differenced values).
-    pure logical function beyond(options, expected, returned, line)
+    !> (relative to the largest magnitude among returned, the differenced values and the
+    !> entries of the same output, output_scale).
+    pure logical function beyond(options, expected, returned, line, output_scale)
         type(ucon_check_options_type), intent(in) :: options
-        real(wp), intent(in) :: expected, returned, line(:)
+        real(wp), intent(in) :: expected, returned, line(:), output_scale
         real(wp) :: scale
 
-        scale = max(abs(returned), maxval(abs(line)), tiny(1.0_wp))
+        scale = max(abs(returned), maxval(abs(line)), output_scale, tiny(1.0_wp))
         beyond = .not. (abs(returned - expected)/scale <= options%rel_tol)
     end function beyond
 
@@ -394,15 +402,20 @@ contains
     !> is off by 1e-7, its terms' seventh derivative large) is not a finding; a wrong one
     !> differs from both quotients alike.
     pure subroutine compare(result, options, output, row, column, expected, finer, returned, &
-            & line)
+            & line, output_scale)
         type(ucon_check_result_type), intent(inout) :: result
         type(ucon_check_options_type), intent(in) :: options
         character(len=*), intent(in) :: output
         integer, intent(in) :: row, column
         real(wp), intent(in) :: expected, finer, returned, line(:)
+        !> The largest magnitude among the entries of the same output (ARRAY, XMATRX): an
+        !> entry is judged against it too, so that an entry that is zero but for rounding (F's
+        !> dependence on a variable it does not hold, at a start where F = 0 and so is every
+        !> value differenced) is no finding
+        real(wp), intent(in) :: output_scale
         real(wp) :: scale, deviation, truncation
 
-        scale = max(abs(returned), maxval(abs(line)), tiny(1.0_wp))
+        scale = max(abs(returned), maxval(abs(line)), output_scale, tiny(1.0_wp))
         deviation = abs(returned - finer) / scale
         truncation = abs(expected - finer) / scale / (real(refinement, wp)**6 - 1.0_wp)
         result%compared = result%compared + 1

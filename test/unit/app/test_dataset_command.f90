@@ -259,13 +259,13 @@ contains
             & "with --ucosub turntable_ball: exit status " // to_text(status_hinted))
     end subroutine test_forgotten_ucosub
 
-    !> `run MODEL.adm --ucosub FILE` checks the routine first: test/turntable/turntable.adm (a
+    !> `run MODEL.adm --ucosub FILE` checks the routine at the consistent start first: test/turntable/turntable.adm (a
     !> puck carried round at 3.5 rad/s by two velocity UCONs) with its right routine runs with
-    !> no warning and ends, one turn later, where X = 0.1 cos(W t), Y = 0.1 sin(W t) put it,
-    !> (0.1, 0) m: measured 2.2e-8 m off at rtol 1e-8 (the dataset's default), so 2e-7 m
-    !> catches a tenfold loss. With the slipped twin (dF/dX, dF/dY half their value) the
-    !> warning names both wrong entries and the values, and the run still completes (exit 0):
-    !> the residuals are the routine's own; --no-check runs it without the warning.
+    !> nothing on stderr and ends, one turn later, where X = 0.1 cos(W t), Y = 0.1 sin(W t)
+    !> put it, (0.1, 0) m: measured 2.2e-8 m off at rtol 1e-8 (the dataset's default), so
+    !> 2e-7 m catches a tenfold loss. With the slipped twin (dF/dX, dF/dY half their value)
+    !> the run is not started (exit 1, no CSV): stderr names both wrong entries and their
+    !> values, the full check's command and --no-check, with which it runs (exit 0).
     subroutine test_checked_before_run(error)
         type(error_type), allocatable, intent(out) :: error
         character(len=*), parameter :: model = "test/turntable/turntable.adm"
@@ -275,6 +275,7 @@ contains
         type(output_layout_type) :: layout
         type(history_type) :: rows
         integer :: status_right, status_slipped, status_unchecked, x
+        logical :: slipped_csv
 
         call rollcon_program(program, error)
         if (allocated(error)) return
@@ -292,10 +293,11 @@ contains
         right_err = file_text(scratch // "/right.err")
         slipped_err = file_text(scratch // "/slipped.err")
         unchecked_err = file_text(scratch // "/unchecked.err")
+        slipped_csv = file_exists(scratch // "/slipped/turntable.adm.csv")
         call read_output_csv(scratch // "/right/turntable.adm.csv", layout, rows, error)
         call remove_folder(scratch)
         if (allocated(error)) return
-        call check(error, status_right == 0 .and. index(right_err, "warning") == 0, &
+        call check(error, status_right == 0 .and. len_trim(right_err) == 0, &
             & "the right routine: exit " // to_text(status_right) // ", stderr: " // right_err)
         if (allocated(error)) return
         x = layout%part_column(1, coord_x)
@@ -304,13 +306,16 @@ contains
             & // to_text(rows%rows(x, rows%count)) // ", " // to_text(rows%rows(x + 1, &
             & rows%count)) // ") m, not (0.1, 0) within " // tol_turn)
         if (allocated(error)) return
-        call check(error, status_slipped == 0 .and. index(slipped_err, "fails its check") > 0 &
-            & .and. index(slipped_err, "ARRAY(2) = dF/d(Y)") > 0 .and. index(slipped_err, &
-            & "returned 1.75, differences give 3.5") > 0 .and. index(slipped_err, &
-            & "ARRAY(1) = dF/d(X)") > 0, "the slipped routine: exit " // to_text(status_slipped) &
-            & // ", stderr: " // slipped_err)
+        call check(error, status_slipped /= 0 .and. index(slipped_err, "fails its check") > 0 &
+            & .and. index(slipped_err, "UCON/1 ARRAY(2) = dF/d(Y_2) [derivative]: returned " &
+            & // "1.75, differences give 3.5") > 0 .and. index(slipped_err, "UCON/2 ARRAY(1) " &
+            & // "= dF/d(X_2)") > 0 .and. index(slipped_err, "rollcon check " &
+            & // "test/turntable/turntable_half_coriolis.f --model " // model) > 0 .and. &
+            & index(slipped_err, "--no-check") > 0 .and. .not. slipped_csv, &
+            & "the slipped routine: exit " // to_text(status_slipped) // ", stderr: " &
+            & // slipped_err)
         if (allocated(error)) return
-        call check(error, status_unchecked == 0 .and. index(unchecked_err, "warning") == 0, &
+        call check(error, status_unchecked == 0 .and. len_trim(unchecked_err) == 0, &
             & "--no-check: exit " // to_text(status_unchecked) // ", stderr: " // unchecked_err)
     end subroutine test_checked_before_run
 
