@@ -242,7 +242,7 @@ contains
         lines_at = [3, 4, 6, 7, 7, 10, 12, 13, 16, 16, 17, 6, 18, 11]
         replaced(1) = "GEAR/9, JOINTS=4, 5"
         expected(1) = file // "3: 'GEAR' is not a statement of the supported subset (ACCGRAV, " &
-            & // "END, GFORCE, INTEGRATOR, JOINT, JPRIM, MARKER, OUTPUT, PART, SFORCE, " &
+            & // "END, GFORCE, INTEGRATOR, JOINT, JPRIM, MARKER, MOTION, OUTPUT, PART, SFORCE, " &
             & // "SIMULATE, UCON, UNITS, VFORCE)"
         replaced(2) = "PART/2, MASS=0.7351, CM=3, IP=1, 1, 1, 1.5, 0, 0"
         expected(2) = file // "4: PART/2 IP: the inertia tensor [[xx, -xy, -xz], [-xy, yy, -yz]"
