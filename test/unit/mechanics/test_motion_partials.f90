@@ -4,9 +4,12 @@
 !> between two parts, and with J on the ground; a joint's ROTATION), F = s(q) - h(t) against
 !> the closed form of s in the markers' ground frames, and every partial the constraints ask
 !> for checked entry by entry: dF/dq against fourth-order central differences of F in each
-!> coordinate, dF/dt and d2F/dt2 against those in t, d2F/dt dq zero. The same motion given as
-!> a VELOCITY and as an ACCELERATION (with ICDISP and ICVEL) gives the same F and time partials:
-!> the quadratures of its time part agree with the closed form.
+!> coordinate, d2F/dq dq against those of dF/dq, dF/dt and d2F/dt2 against those in t,
+!> d2F/dt dq zero. (The angles' routines are checked here, at a state away from the pole of
+!> atan2, rather than at the generic test's random states: generated_specs_list's
+!> pole_free.) The same motion given as a VELOCITY and as an ACCELERATION (with ICDISP and
+!> ICVEL) gives the same F and time partials: the quadratures of its time part agree with the
+!> closed form.
 module test_motion_partials
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type
@@ -21,7 +24,8 @@ module test_motion_partials
     use rollcon_motion_geometry, only : motion_x, motion_y, motion_z, motion_b1, motion_b2, &
         & motion_b3, motion_rotation
     use rollcon_model, only : model_type, setup_model
-    use rollcon_constraints, only : constraint_state_type, need_value, need_first, need_time
+    use rollcon_constraints, only : constraint_state_type, need_value, need_first, need_second, &
+        & need_time
     use rollcon_testing, only : unittest_type, new_unittest, check
     implicit none
     private
@@ -72,7 +76,7 @@ contains
                 if (allocated(error)) return
                 call state%allocate(model)
                 call state%evaluate(model, t_check, q_state, 0.0_wp*q_state, need_value &
-                    & + need_first + need_time, error)
+                    & + need_first + need_second + need_time, error)
                 if (allocated(error)) return
                 h = 0.1_wp*sin(3.0_wp*t_check) + 0.02_wp*t_check**2
                 expected = closed_form(components(c), i, j) - h
@@ -134,7 +138,8 @@ contains
     end subroutine test_forms
 
     !> dF/dq against fourth-order central differences of F in each of the twelve coordinates,
-    !> dF/dt and d2F/dt2 against those in t, d2F/dt dq zero.
+    !> d2F/dq dq (over the UCON's own coordinates) against those of dF/dq, dF/dt and d2F/dt2
+    !> against those in t, d2F/dt dq zero.
     subroutine check_partials(model, state, what, error)
         type(model_type), intent(in) :: model
         type(constraint_state_type), intent(in) :: state
@@ -145,8 +150,8 @@ contains
         !> partial's size that matters (a wrong sign or a missing term is order 0.1)
         real(wp), parameter :: step = 1.0e-3_wp, tol = 1.0e-9_wp
         type(constraint_state_type) :: probe
-        real(wp) :: q(12), f(-2:2), difference, second
-        integer :: n, k
+        real(wp) :: q(12), f(-2:2), difference, second, g(12, -2:2)
+        integer :: n, k, a, b
 
         call probe%allocate(model)
         do n = 1, 12
@@ -161,6 +166,26 @@ contains
             call check(error, state%grad_q(1, n), difference, what // " dF/dq(" &
                 & // to_text(n) // ")", abs_tol=tol)
             if (allocated(error)) return
+        end do
+        ! d2F/dq dq column by column over the UCON's own coordinates
+        do b = 1, state%local_count(1)
+            n = state%local(b, 1)
+            do k = -2, 2
+                q = q_state
+                q(n) = q(n) + k*step
+                call probe%evaluate(model, t_check, q, 0.0_wp*q, need_first, error)
+                if (allocated(error)) return
+                g(:, k) = probe%grad_q(1, :)
+            end do
+            do a = 1, state%local_count(1)
+                associate (m => state%local(a, 1))
+                    difference = (g(m, -2) - 8.0_wp*g(m, -1) + 8.0_wp*g(m, 1) - g(m, 2)) &
+                        & /(12.0_wp*step)
+                    call check(error, state%hqq(a, b, 1), difference, what // " d2F/dq dq(" &
+                        & // to_text(m) // "," // to_text(n) // ")", abs_tol=tol)
+                    if (allocated(error)) return
+                end associate
+            end do
         end do
         do k = -2, 2
             call probe%evaluate(model, t_check + k*step, q_state, 0.0_wp*q_state, need_value, &
