@@ -124,8 +124,36 @@ contains
             & receiver=receiver)
         call conclude(receiver, outcome, summary, error)
         started = receiver%started
+        if (started .and. summary%status == status_failed) call point_at_check(job, summary, &
+            & error)
         if (allocated(receiver%shapes)) shapes = receiver%shapes
     end subroutine run_isolated
+
+    !> An integrator that failed on a run with a user's routine: its partials (the Newton
+    !> matrix) are the first suspect, so the message names the command that checks them all
+    !> (the start's check saw one state). Not for a routine that crashed, overran or stopped
+    !> (stat_ucon: the message names the call already).
+    subroutine point_at_check(job, summary, error)
+        type(job_type), intent(in) :: job
+        type(run_summary_type), intent(inout) :: summary
+        type(error_type), allocatable, intent(inout) :: error
+        character(len=:), allocatable :: hint
+
+        if (allocated(error)) then
+            if (error%stat == stat_ucon) return
+        end if
+        hint = "; the run's UCONs are served by " // job%user_file // ": rollcon check " &
+            & // job%user_file
+        if (allocated(job%input_path)) then
+            if (len(job%input_path) > 4) then
+                if (job%input_path(len(job%input_path) - 3:) == ".adm") hint = hint &
+                    & // " --model " // job%input_path
+            end if
+        end if
+        hint = hint // " checks its partials at many states (a wrong one stalls the integrators)"
+        summary%message = summary%message // hint
+        if (allocated(error)) error%message = error%message // hint
+    end subroutine point_at_check
 
     !> The run's summary from what the child sent and how it ended: its own summary when it
     !> finished, else a failure at the last row received, naming the call it ended in.
@@ -159,8 +187,9 @@ contains
         end if
     end subroutine conclude
 
-    !> In the child: load the routine, guard it, build, make the start consistent and
-    !> simulate, sending everything to the host.
+    !> In the child: load the routine, guard it, build, make the start consistent, check the
+    !> routine there when the job asks (job%start_check) and simulate, sending everything to
+    !> the host.
     subroutine run_task(self, record, error)
         class(job_task_type), intent(inout) :: self
         type(call_record_type), pointer, intent(in) :: record
@@ -185,6 +214,11 @@ contains
         guarded => guarded_ucosub
         call self%job%source%build(guarded, problem, q0, u0, report, error)
         if (allocated(error)) return
+        if (associated(self%job%start_check)) then
+            call self%job%start_check(self%job%user_file, self%job%input_path, problem, &
+                & self%options%t0, q0, u0, error)
+            if (allocated(error)) return
+        end if
         call send_frame(self%stream_fd, frame_report, report, error)
         if (allocated(error)) return
         call self%job%source%shapes(problem, shapes, error)
