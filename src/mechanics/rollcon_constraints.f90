@@ -10,6 +10,7 @@ module rollcon_constraints
     use rollcon_ucon_call, only : evaluate_ucon
     use rollcon_model, only : model_type, ucon_statement_type
     use rollcon_gcon, only : evaluate_gcon
+    use rollcon_motion, only : motion_displacement, motion_residual
     implicit none
     private
 
@@ -112,7 +113,7 @@ contains
         !> Set when a UCOSUB reports an error or returns a non-finite value
         type(error_type), allocatable, intent(out) :: error
         real(wp) :: scalar, array(max_ucon_vars), xmatrx(max_ucon_vars, max_ucon_vars)
-        real(wp) :: ucon_time
+        real(wp) :: ucon_time, h(0:2)
         integer :: k, i, idrsel(3)
         logical :: first, second
 
@@ -143,13 +144,24 @@ contains
                     if (allocated(error)) return
                     if (ucon%converted) call to_si(ucon, 0, idrsel /= 0, scalar, array, xmatrx)
                     if (idrsel(1) /= 0) self%value(k) = scalar
+                    ! a MOTION: F = s(q) - h(t), s the routine's value (rollcon_motion)
+                    if (idrsel(1) /= 0 .and. allocated(ucon%motion)) self%value(k) = &
+                        & motion_residual(ucon%motion, time, scalar)
                     if (first) call scatter_row(ucon, array, self%grad_q(k, :), &
                         & self%grad_u(k, :))
                     if (second) call place_hessian(ucon, self%slot(:, k), self%local_count(k), &
                         & self%plain_hessian(k), xmatrx, self%hqq(:, :, k), self%hqu(:, :, k))
                 end if
+                ! a MOTION's time partials are its time part's: dF/dt = -h', d2F/dt2 = -h'',
+                ! d2F/dt dq = 0 (its routine is time-free)
+                if (iand(needs, need_time) /= 0 .and. allocated(ucon%motion)) then
+                    h = motion_displacement(ucon%motion, time)
+                    self%dt(k) = -h(1)
+                    self%dtt(k) = -h(2)
+                end if
                 ! a time-free UCON's time partials stay at the zeros of allocate_state
-                if (iand(needs, need_time) /= 0 .and. .not. ucon%time_free) then
+                if (iand(needs, need_time) /= 0 .and. .not. ucon%time_free &
+                    & .and. .not. allocated(ucon%motion)) then
                     call evaluate_one(ucon, ucon_time, self%local_q, [scalar_dt, array_dtdq, &
                         & xmatrx_none], scalar, array, xmatrx, error)
                     if (allocated(error)) return

@@ -30,6 +30,9 @@ module rollcon_model
     use rollcon_expression, only : expression_type
     use rollcon_gcon, only : gcon_type, new_gcon, gcon_codes, turn_gcon_markers
     use rollcon_measures, only : count_turns
+    use rollcon_motion, only : motion_type
+    use rollcon_motion_geometry, only : motion_ucon, motion_rotation, motion_b1, motion_b2, &
+        & motion_b3
     implicit none
     private
 
@@ -72,6 +75,10 @@ module rollcon_model
         !> A constraint written as an expression (GCON, and the couplers made of one): served
         !> by rollcon_gcon's evaluate_gcon instead of a UCOSUB
         type(gcon_type), allocatable :: gcon
+        !> A MOTION's time part (rollcon_motion), allocated for a MOTION's UCON only: F is then
+        !> s(q) - h(t), s the routine's value, and the time partials are the motion's
+        !> (rollcon_constraints); the UCON computes in SI whatever the model's units
+        type(motion_type), allocatable :: motion
     end type ucon_statement_type
 
     !> The model
@@ -102,6 +109,7 @@ module rollcon_model
         procedure :: add_force
         procedure :: add_gcon
         procedure :: count_turns => count_model_turns
+        procedure :: add_motion
         procedure :: turn_part_axes
         procedure :: turn_ucon_geometry
     end type model_type
@@ -299,6 +307,44 @@ contains
         end do
     end subroutine count_model_turns
 
+    !> Append MOTION/motion%id, driving `component` (rollcon_motion_geometry's motion_x ...
+    !> motion_rotation) of marker i from marker j by its time part `motion`: a UCON F = s(q) -
+    !> h(t) (rollcon_motion), its id after the largest UCON id of the model, served by the
+    !> generated routine of s (motion_ucon), in SI. joint: the MOTION is on a joint (its
+    !> TRANSLATION may then be served from J's part when I is on the ground). Add the parts
+    !> first. Refused as motion_ucon refuses, naming motion%name.
+    subroutine add_motion(self, motion, component, joint, i, j, error)
+        class(model_type), intent(inout) :: self
+        !> The time part: its id, name, function and form (motion%rotational is set here)
+        type(motion_type), intent(in) :: motion
+        integer, intent(in) :: component
+        logical, intent(in) :: joint
+        !> Marker I and marker J (part 0: the ground), as part_marker places them
+        type(marker_type), intent(in) :: i, j
+        type(error_type), allocatable, intent(out) :: error
+        type(primitive_ucon_type) :: ucon
+        integer, allocatable :: part_ids(:)
+        integer :: next_id
+
+        if (.not. allocated(self%parts)) allocate(self%parts(0))
+        if (.not. allocated(self%ucons)) allocate(self%ucons(0))
+        part_ids = self%parts%id
+        call motion_ucon(motion%name, component, joint, i, j, part_ids, ucon, error)
+        if (allocated(error)) return
+        next_id = 0
+        if (size(self%ucons) > 0) next_id = maxval(self%ucons%id)
+        ! its own time partials: not time-free (rollcon_constraints asks the motion for them)
+        call self%add_ucon(next_id + 1, ucon%par, ucon%ucosub, time_free=.false., &
+            & routine=ucon%routine)
+        associate (added => self%ucons(size(self%ucons)))
+            added%geometry_par = ucon%geometry_par
+            added%geometry_parts = ucon%geometry_parts
+            allocate(added%motion, source=motion)
+            added%motion%rotational = any(component == [motion_rotation, motion_b1, motion_b2, &
+                & motion_b3])
+        end associate
+    end subroutine add_motion
+
     !> Append an applied force.
     subroutine add_force(self, force)
         class(model_type), intent(inout) :: self
@@ -460,6 +506,9 @@ contains
                 ! a GCON takes SI variables and converts its expression's measures itself
                 ucon%converted = .not. model%ucosub_units%is_si() .and. &
                     & .not. allocated(ucon%gcon)
+                ! a MOTION's UCON computes in SI (rollcon_motion_geometry)
+                ucon%converted = .not. model%ucosub_units%is_si() .and. .not. &
+                    & allocated(ucon%motion)
                 if (ucon%converted) then
                     ucon%scales = variable_scales(model%ucosub_units, &
                         & model%registry%entries(entry)%codes)

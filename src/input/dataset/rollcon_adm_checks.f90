@@ -14,6 +14,7 @@ module rollcon_adm_checks
     use rollcon_adm_model, only : adm_model_type, adm_part_type, adm_marker_type, &
         & adm_force_type, force_sforce, force_vforce, refers_to_marker, refers_to_part
     use rollcon_adm_joints, only : adm_joint_type
+    use rollcon_adm_motions, only : adm_motion_type
     use rollcon_adm_ids, only : id_index_type, new_id_index
     use rollcon_adm_run, only : no_simulate_message
     use, intrinsic :: iso_fortran_env, only : int64
@@ -90,6 +91,12 @@ contains
             if (allocated(error)) return
         end do
         call check_couplers(model, markers, error)
+        if (allocated(error)) return
+        if (.not. allocated(model%motions)) return
+        do i = 1, size(model%motions)
+            call check_motion(model, markers, model%motions(i), error)
+            if (allocated(error)) return
+        end do
     end subroutine check_references
 
     !> A GCON's marker I, a GEAR's marker CV, and the JOINTs a COUPLER or GEAR names exist
@@ -148,6 +155,32 @@ contains
         if (any(model%joints%id == id .and. .not. model%joints%primitive)) return
         call fatal_error(error, where // ": no JOINT/" // to_text(id), stat_input)
     end subroutine check_joint_id
+
+    !> A MOTION's JOINT is a JOINT of the dataset (not a JPRIM), or its markers I and J are
+    !> MARKERs (which types of joint take which motion is the assembly's to judge).
+    subroutine check_motion(model, markers, motion, error)
+        type(adm_model_type), intent(in) :: model
+        !> Positions of the markers by id
+        type(id_index_type), intent(in) :: markers
+        type(adm_motion_type), intent(in) :: motion
+        type(error_type), allocatable, intent(out) :: error
+        character(len=:), allocatable :: where
+        integer :: k
+
+        where = place(model%file, motion%line) // ": MOTION/" // to_text(motion%id)
+        if (motion%joint /= 0) then
+            do k = 1, size(model%joints)
+                if (model%joints(k)%id == motion%joint .and. .not. model%joints(k)%primitive) &
+                    & return
+            end do
+            call fatal_error(error, where // " JOINT: no JOINT/" // to_text(motion%joint), &
+                & stat_input)
+        else if (markers%find(int(motion%i, int64)) == 0) then
+            call fatal_error(error, where // " I: no MARKER/" // to_text(motion%i), stat_input)
+        else if (markers%find(int(motion%j, int64)) == 0) then
+            call fatal_error(error, where // " J: no MARKER/" // to_text(motion%j), stat_input)
+        end if
+    end subroutine check_motion
 
     !> A JOINT's or JPRIM's markers I and J are MARKERs (which parts they join is the model's
     !> to judge: model%add_joint, model%add_jprim).

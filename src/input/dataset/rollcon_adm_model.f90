@@ -10,6 +10,7 @@ module rollcon_adm_model
     use rollcon_run_settings, only : run_settings_type
     use rollcon_adm_joints, only : adm_joint_type
     use rollcon_adm_couplers, only : adm_gcon_type, adm_coupler_type, adm_gear_type
+    use rollcon_adm_motions, only : adm_motion_type
     implicit none
     private
 
@@ -188,6 +189,8 @@ module rollcon_adm_model
         type(adm_gcon_type), allocatable :: gcons(:)
         type(adm_coupler_type), allocatable :: couplers(:)
         type(adm_gear_type), allocatable :: gears(:)
+        !> MOTION statements, in the order of the file (rollcon_adm_motions)
+        type(adm_motion_type), allocatable :: motions(:)
         !> Gravitational acceleration, ground axes [m/s^2] (zero without ACCGRAV)
         real(wp) :: gravity(3) = 0.0_wp
         type(adm_run_type) :: run

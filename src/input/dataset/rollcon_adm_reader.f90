@@ -23,6 +23,7 @@ module rollcon_adm_reader
     use rollcon_adm_checks, only : check_references
     use rollcon_adm_joints, only : read_joint
     use rollcon_adm_couplers, only : read_gcon, read_coupler, read_gear
+    use rollcon_adm_motions, only : read_motion
     use rollcon_adm_outside, only : outside_reason
     use rollcon_adm_outputs, only : output_statement_names, output_needs_id, &
         & read_output_statement, unused_warning
@@ -107,8 +108,8 @@ contains
         character(len=:), allocatable :: name
         !> The ids of the parts, markers, UCONs and forces (list_of), and of the statements
         !> read and not used that take one (output_key)
-        type(id_index_type) :: ids(8), output_ids
-        integer :: i, n(8), k, previous
+        type(id_index_type) :: ids(9), output_ids
+        integer :: i, n(9), k, previous
         logical :: seen(size(statement_names)), repeated
 
         do i = 1, size(text%statements)
@@ -123,11 +124,12 @@ contains
             & .or. names == "VFORCE" .or. names == "GFORCE")))
         allocate(model%joints(count(names == "JOINT" .or. names == "JPRIM")))
         allocate(model%gcons(count(names == "GCON")), model%couplers(count(names == "COUPLER")), &
-            & model%gears(count(names == "GEAR")))
+            & model%gears(count(names == "GEAR")), model%motions(count(names == "MOTION")))
         ids = [new_id_index(size(model%parts)), new_id_index(size(model%markers)), &
             & new_id_index(size(model%ucons)), new_id_index(size(model%forces)), &
             & new_id_index(size(model%joints)), new_id_index(size(model%gcons)), &
-            & new_id_index(size(model%couplers)), new_id_index(size(model%gears))]
+            & new_id_index(size(model%couplers)), new_id_index(size(model%gears)), &
+            & new_id_index(size(model%motions))]
         output_ids = new_id_index(count([(name_index(names(i), output_statement_names) > 0, &
             & i = 1, size(names))]))
         n = 0
@@ -176,6 +178,7 @@ contains
         model%gcons = model%gcons(:n(6))
         model%couplers = model%couplers(:n(7))
         model%gears = model%gears(:n(8))
+        model%motions = model%motions(:n(9))
         model%requests = model%requests(:model%request_count)
         model%other_requests = model%other_requests(:model%other_request_count)
         model%unused = model%unused(:model%unused_count)
@@ -183,7 +186,7 @@ contains
     end subroutine read_statements
 
     !> The list a statement's element goes to: 1 parts, 2 markers, 3 UCONs, 4 forces, 5 joints,
-    !> 6 GCONs, 7 COUPLERs, 8 GEARs; 0 none.
+    !> 6 GCONs, 7 COUPLERs, 8 GEARs, 9 MOTIONs; 0 none.
     pure integer function list_of(name) result(k)
         character(len=*), intent(in) :: name
 
@@ -204,6 +207,8 @@ contains
             k = 7
         case ("GEAR")
             k = 8
+        case ("MOTION")
+            k = 9
         case default
             k = 0
         end select
@@ -246,7 +251,7 @@ contains
         type(adm_statement_type), intent(in) :: statement
         logical, intent(in) :: repeated
         type(adm_model_type), intent(inout) :: model
-        integer, intent(inout) :: n(8)
+        integer, intent(inout) :: n(9)
         type(error_type), allocatable, intent(out) :: error
         character(len=:), allocatable :: where
 
@@ -289,6 +294,9 @@ contains
         case ("GEAR")
             n(8) = n(8) + 1
             call read_gear(path, where, statement, model%gears(n(8)), error)
+        case ("MOTION")
+            n(9) = n(9) + 1
+            call read_motion(path, where, statement, model%units, model%motions(n(9)), error)
         case ("SIMULATE")
             call read_simulate(path, where, statement, model%units, model%run, error)
         case ("INTEGRATOR")
@@ -408,7 +416,7 @@ contains
         character(len=*), intent(in) :: name
 
         needs_id = any(name == [character(len=10) :: "PART", "MARKER", "UCON", "SFORCE", &
-            & "VFORCE", "GFORCE", "JOINT", "JPRIM", "GCON", "COUPLER", "GEAR"]) &
+            & "VFORCE", "GFORCE", "JOINT", "JPRIM", "GCON", "COUPLER", "GEAR", "MOTION"]) &
             & .or. output_needs_id(name)
     end function needs_id
 

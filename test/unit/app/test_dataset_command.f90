@@ -189,10 +189,10 @@ contains
         type(error_type), allocatable, intent(out) :: error
         character(len=*), parameter :: names = "(disk, rolling_disk, chaplygin_sled, " &
             & // "disk_height, gnd_atpoint, gnd_homokinetic, gnd_inline, gnd_inplane, " &
-            & // "gnd_orientation, gnd_parallel_axes, gnd_perpendicular, jp_atpoint, " &
-            & // "jp_homokinetic, jp_inline, jp_inplane, jp_orientation, jp_parallel_axes, " &
-            & // "jp_perpendicular, knife_edge, planar_hold, rolling_sphere, turntable_ball, " &
-            & // "turntable_disk)"
+            & // "gnd_motion_angle, gnd_orientation, gnd_parallel_axes, gnd_perpendicular, " &
+            & // "jp_atpoint, jp_homokinetic, jp_inline, jp_inplane, jp_motion_angle, " &
+            & // "jp_orientation, jp_parallel_axes, jp_perpendicular, knife_edge, planar_hold, " &
+            & // "rolling_sphere, turntable_ball, turntable_disk)"
         character(len=:), allocatable :: program, unknown, summary
         integer :: status_default, status_unknown
 

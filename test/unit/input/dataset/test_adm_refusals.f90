@@ -14,7 +14,7 @@ module test_adm_refusals
     !> The supported statements, as a refusal lists them
     character(len=*), parameter :: supported = &
         & "(ACCGRAV, COUPLER, END, GCON, GEAR, GFORCE, INTEGRATOR, JOINT, JPRIM, MARKER," &
-        & // " OUTPUT, PART, SFORCE, SIMULATE, UCON, UNITS, VFORCE)"
+        & // " MOTION, OUTPUT, PART, SFORCE, SIMULATE, UCON, UNITS, VFORCE)"
 
 contains
 
@@ -45,9 +45,11 @@ contains
             & // "; rollcon's constraints are UCONs, JOINTs, JPRIMs, GCONs, COUPLERs and" &
             & // " GEARs: state this one as a GCON expression, or as a UCON served by a" &
             & // " UCOSUB (ucon/)"
-        replaced(2) = "motion/1, joint=9"
-        expected(2) = ":7: 'MOTION' is not a statement of the supported subset " // supported &
-            & // "; prescribed motions are not in the subset"
+        replaced(2) = "cvcv/1, i=3"
+        expected(2) = ":7: 'CVCV' is not a statement of the supported subset " // supported &
+            & // "; rollcon's constraints are UCONs, JOINTs, JPRIMs, GCONs, COUPLERs and" &
+            & // " GEARs: state this one as a GCON expression, or as a UCON served by a" &
+            & // " UCOSUB (ucon/)"
         replaced(3) = "SENSOR/1, VALUE=0"
         expected(3) = ":7: 'SENSOR' is not a statement of the supported subset " // supported &
             & // "; sensors change a run as it goes (stop it, change its step): not in the" &
