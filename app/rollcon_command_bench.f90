@@ -207,7 +207,7 @@ contains
         if (allocated(error)) return
         write(output_unit, '(a, 8(f8.3, a))') "bench: " // name &
             & // ": unit costs: right-hand side", 1.0e6_wp*costs%rhs, " us (in independent " &
-            & // "speeds", 1.0e6_wp*costs%rhs_in_speeds, " us), residual", &
+            & // "speeds", 1.0e6_wp*costs%rhs_speeds, " us), residual", &
             & 1.0e6_wp*costs%residual, " us, event functions", 1.0e6_wp*costs%root, &
             & " us (given CVODE's accelerations", 1.0e6_wp*costs%root_given_rates, &
             & " us), output row", 1.0e6_wp*costs%output, " us, its CSV line", &
