@@ -45,9 +45,9 @@ module rollcon_ida
     !> 1e-10. Over the first stretch after a restart, restart_fine_steps of the steps IDA was
     !> taking before it, the differential components' tolerances are restart_tolerance_factor
     !> finer; IDA reaches order 2 well within it and goes on from there, on the same history,
-    !> with the run's own tolerances (measured: the 1000 re-basings of data/ball_tumbling.adm
-    !> drift its orbit radius by 1.0e-8 m, 7.4e-7 m before, for 1 % more steps; both while
-    !> IDA's error test failed on most steps, before issue #25: 1.57e-7 m since,
+    !> with the run's own tolerances (measured with each Euler-angle rate held to itself: the
+    !> 1000 re-basings of data/ball_tumbling.adm drift its orbit radius by 1.0e-8 m, 7.4e-7 m
+    !> restarted plainly, for 1 % more steps; with the rates held together 1.57e-7 m,
     !> docs/rebasing.md).
     real(wp), parameter :: restart_tolerance_factor = 1.0e-2_wp, restart_fine_steps = 2.0_wp
     !> The finest relative tolerance of that stretch [-]: 1000 eps, where the corrector of the
