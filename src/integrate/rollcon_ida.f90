@@ -255,7 +255,8 @@ contains
     !> so on a large model it can be small enough (1.4e-11 s on a chain of 64 links of 0.1 kg at
     !> atol 1e-10) that the index-2 Newton matrix, whose condition grows as 1/h^2, cannot be
     !> solved; IDA then only shrinks it. A first step too large fails IDA's error test instead,
-    !> which shrinks it by the error's own estimate. A run whose first step succeeds is as before.
+    !> which shrinks it by the error's own estimate. A run whose first step succeeds makes no
+    !> retry, so its numbers do not depend on it.
     subroutine advance(self, t_out, t_stop, t_reached, y, yp, root, error)
         class(ida_integrator_type), intent(inout) :: self
         real(wp), intent(in) :: t_out, t_stop
