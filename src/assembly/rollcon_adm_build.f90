@@ -21,7 +21,7 @@ module rollcon_adm_build
     use rollcon_ucosub_units, only : ucosub_units_type
     use rollcon_ucosub_catalog, only : find_builtin_ucosub, builtin_ucosub_names, &
         & builtin_ucosubs_for_par, builtin_ucosub_name
-    use rollcon_expression, only : quantity_names
+    use rollcon_marker, only : marker_type
     use rollcon_rotation, only : rotation_matrix
     use rollcon_body, only : part_type
     use rollcon_marker_force, only : kind_translation, kind_rotation, kind_vector, &
@@ -35,6 +35,7 @@ module rollcon_adm_build
     use rollcon_adm_state, only : part_state
     use rollcon_adm_singular, only : start_singular_parts
     use rollcon_adm_markers, only : adm_marker, marker_index
+    use rollcon_adm_constraints, only : add_expression_constraints, expression_markers
     use, intrinsic :: ieee_arithmetic, only : ieee_is_finite
     implicit none
     private
@@ -81,6 +82,16 @@ contains
         if (allocated(error)) return
         call add_joints(adm, model, error)
         if (allocated(error)) return
+        allocate(q0(6*size(model%parts)), u0(6*size(model%parts)))
+        p = 0
+        do i = 1, size(adm%parts)
+            if (adm%parts(i)%ground) cycle
+            p = p + 1
+            call part_state(adm, adm%parts(i), q0(6*p - 5:6*p), u0(6*p - 5:6*p))
+        end do
+        ! GCONs and couplings, the latter measured from this start
+        call add_expression_constraints(adm, model, q0, u0, error)
+        if (allocated(error)) return
         do i = 1, size(adm%forces)
             call add_force_statement(adm, adm%forces(i), model, error)
             if (allocated(error)) return
@@ -101,13 +112,6 @@ contains
             if (size(adm%requests) > 0) call problem%add_watch(new_request_watch( &
                 & displacement_requests(adm)))
         end if
-        allocate(q0(6*size(model%parts)), u0(6*size(model%parts)))
-        p = 0
-        do i = 1, size(adm%parts)
-            if (adm%parts(i)%ground) cycle
-            p = p + 1
-            call part_state(adm, adm%parts(i), q0(6*p - 5:6*p), u0(6*p - 5:6*p))
-        end do
         ! a part flat at t = 0 starts in turned axes (docs/rebasing.md): its model part too
         call start_singular_parts(adm, problem, q0, u0, adm_theta_min, error)
         if (allocated(error)) return
@@ -222,6 +226,8 @@ contains
         if (.not. allocated(adm%joints)) return
         do k = 1, size(adm%joints)
             associate (joint => adm%joints(k))
+                ! a RACKPIN or SCREW couples motions: rollcon_adm_constraints
+                if (joint%kind == "RACKPIN" .or. joint%kind == "SCREW") cycle
                 if (.not. joint%primitive .and. joint%kind == "CONVEL") then
                     cosine = dot_product(start_z_axis(adm, joint%i), start_z_axis(adm, joint%j))
                     if (cosine >= 0.0_wp) then
@@ -323,8 +329,9 @@ contains
         type(model_type), intent(inout) :: model
         type(error_type), allocatable, intent(out) :: error
         type(applied_force_type) :: force
+        type(marker_type), allocatable :: markers(:)
         character(len=:), allocatable :: where, key
-        integer :: k, n, m
+        integer :: k, n
 
         force%profile = profile_statement
         associate (s => force%statement)
@@ -354,19 +361,12 @@ contains
                 if (.not. statement%given(k)) cycle
                 key = slot_names(k)
                 if (statement%kind == force_sforce) key = "FUNCTION"
-                do n = 1, size(statement%functions(k)%inputs)
-                    associate (input => statement%functions(k)%inputs(n))
-                        m = marker_index(adm, input%marker)
-                        if (m == 0) then
-                            call fatal_error(error, where // " " // key // ": " &
-                                & // trim(quantity_names(input%quantity)) // "(" &
-                                & // to_text(input%marker) // "): no MARKER/" &
-                                & // to_text(input%marker) // " in the dataset", stat_input)
-                            return
-                        end if
-                        if (.not. any(s%markers%id == input%marker)) &
-                            & s%markers = [s%markers, adm_marker(adm, input%marker)]
-                    end associate
+                call expression_markers(adm, statement%functions(k), where // " " // key, &
+                    & "a force's FUNCTION", markers, error)
+                if (allocated(error)) return
+                do n = 1, size(markers)
+                    if (.not. any(s%markers%id == markers(n)%id)) s%markers = [s%markers, &
+                        & markers(n)]
                 end do
             end do
         end associate

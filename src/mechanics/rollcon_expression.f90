@@ -1,31 +1,54 @@
 ! SPDX-License-Identifier: MIT
 !> Function expressions of an ADAMS dataset (`FUNCTION = e`) as small stack programs, evaluated
-!> at any time and state with no allocation (rollcon_adm_expression_parser compiles them).
+!> at any time and state with no allocation on the path of the functions below
+!> (rollcon_adm_expression_parser compiles them; docs/datasets.md, "Function expressions",
+!> defines every function).
 !>
-!> The subset: numbers (with `D` after a number for degrees), `TIME`, `PI`, `DTOR`; `+ - * /`
-!> and `**` (right-associative, binding tighter than a sign, as in Fortran); the functions
+!> Numbers (with `D` after a number for degrees), `TIME`, `PI`, `DTOR`, `RTOD`; `+ - * /` and
+!> `**` (right-associative, binding tighter than a sign, as in Fortran); the functions
 !> `SIN COS TAN ATAN2 EXP LOG SQRT ABS MIN MAX`, `STEP(x, x0, h0, x1, h1)` (cubic step),
-!> `HAVSIN(x, x0, h0, x1, h1)` (haversine step) and `IF(e: neg, zero, pos)`; and the state
-!> functions of one marker i, measured from ground in ground axes: `DX(i) DY(i) DZ(i)`
-!> (position), `VX(i) VY(i) VZ(i)` (velocity), `WX(i) WY(i) WZ(i)` (angular velocity),
-!> `PSI(i) THETA(i) PHI(i)` (body 3-1-3 angles of the marker's axes). Names are read in any
-!> case. A compiled expression lists its state functions as inputs (marker id, quantity); the
-!> caller computes their values and passes them in that order. A value outside a function's
-!> domain (LOG of a negative number, STEP with x1 <= x0) evaluates to NaN: callers check the
-!> result with ieee_is_finite and name the expression.
+!> `HAVSIN(x, x0, h0, x1, h1)` (haversine step) and `IF(e: neg, zero, pos)`; ADAMS's further
+!> functions of numbers `ASIN ACOS ATAN SINH COSH TANH LOG10 STEP5 SHF POLY CHEBY FORCOS FORSIN
+!> IMPACT BISTOP DIM MOD AINT ANINT SIGN` and the curves `AKISPL CUBSPL` (rollcon_expression_
+!> functions, rollcon_spline); and the measures of markers and the values of other statements
+!> (quantity_names: `DX(i[,j[,k]])`, `VX(i[,j[,k[,l]]])`, `AX(i[,j])`, `FX(i[,j[,k]])`,
+!> `JOINT(id, jflag, comp, rm)`, `VARVAL(id)`, ...). Names are read in any case. A compiled
+!> expression lists the measures it reads as inputs (expression_input_type); the caller
+!> computes their values and passes them in that order (rollcon_measures). A value outside a
+!> function's domain (LOG of a negative number, STEP with x1 <= x0) evaluates to NaN: callers
+!> check the result with ieee_is_finite and name the expression. The functions of SIN to IF
+!> keep their own value code here; those after them are evaluated through their jet form
+!> (rollcon_expression_functions) with constant arguments, the same code their partials use.
 module rollcon_expression
     use rollcon_kinds, only : wp
     use rollcon_constants, only : pi
+    use rollcon_jet, only : jet_type, jet_constant
+    use rollcon_spline, only : spline_type, method_akima, method_cubic
+    use rollcon_expression_functions, only : jet_step5, jet_shf, jet_poly, jet_cheby, &
+        & jet_fourier, jet_impact, jet_bistop, jet_dim, jet_mod, jet_aint, jet_anint, jet_sign, &
+        & jet_asin_domain, jet_acos_domain, jet_spline, nan_jet
+    use rollcon_jet, only : atan, sinh, cosh, tanh, log10
     use, intrinsic :: ieee_arithmetic, only : ieee_value, ieee_quiet_nan, ieee_is_finite
     implicit none
     private
 
     public :: expression_type, expression_input_type, evaluate_expression, switching_times
-    public :: max_stack, max_inputs
+    public :: max_stack, max_inputs, max_arguments
     public :: op_constant, op_time, op_input, op_add, op_subtract, op_multiply, op_divide, &
-        & op_power, op_negate, op_step, op_havsin, op_if
-    public :: function_names, function_codes, function_arguments
+        & op_power, op_negate, op_sin, op_cos, op_tan, op_exp, op_log, op_sqrt, op_abs, &
+        & op_atan2, op_min, op_max, op_step, op_havsin, op_if
+    public :: op_step5, op_shf, op_poly, op_cheby, op_forcos, op_forsin, op_impact, op_bistop, &
+        & op_dim, op_mod, op_aint, op_anint, op_sign, op_asin, op_acos, op_atan, op_sinh, &
+        & op_cosh, op_tanh, op_log10, op_akispl, op_cubspl, first_further_op, last_further_op
+    public :: function_names, function_codes, function_arguments, operation_arity
+    public :: spline_reference, spline_id_of, spline_order_of, further_jet
     public :: quantity_names, quantity_dx, quantity_vx, quantity_wx, quantity_psi
+    public :: quantity_dm, quantity_vm, quantity_vr, quantity_wm, quantity_ax, quantity_yaw, &
+        & quantity_accx, quantity_accm, quantity_wdtx, quantity_wdtm, quantity_fx, quantity_fm, &
+        & quantity_tx, quantity_tm, quantity_varval, quantity_dif, quantity_dif1, &
+        & quantity_joint, quantity_least_markers, quantity_most_markers, quantity_kind
+    public :: kind_length, kind_velocity, kind_angular_velocity, kind_angle, kind_acceleration, &
+        & kind_angular_acceleration, kind_force, kind_torque, kind_element, kind_element_force
 
     !> Deepest stack a compiled expression may need
     integer, parameter :: max_stack = 64
@@ -37,27 +60,77 @@ module rollcon_expression
         & op_multiply = 5, op_divide = 6, op_power = 7, op_negate = 8, op_sin = 9, op_cos = 10, &
         & op_tan = 11, op_exp = 12, op_log = 13, op_sqrt = 14, op_abs = 15, op_atan2 = 16, &
         & op_min = 17, op_max = 18, op_step = 19, op_havsin = 20, op_if = 21, op_input = 22
+    ! ADAMS's further functions, evaluated through their jet form (rollcon_expression_functions)
+    integer, parameter :: op_step5 = 23, op_shf = 24, op_poly = 25, op_cheby = 26, &
+        & op_forcos = 27, op_forsin = 28, op_impact = 29, op_bistop = 30, op_dim = 31, &
+        & op_mod = 32, op_aint = 33, op_anint = 34, op_sign = 35, op_asin = 36, op_acos = 37, &
+        & op_atan = 38, op_sinh = 39, op_cosh = 40, op_tanh = 41, op_log10 = 42, &
+        & op_akispl = 43, op_cubspl = 44
+    integer, parameter :: first_further_op = op_step5, last_further_op = op_cubspl
+    !> Most arguments of one function (FORCOS: x, x0, w and a0 ... a30)
+    integer, parameter :: max_arguments = 34
 
-    !> Function names, their operation codes and argument counts (IF is parsed apart)
-    character(len=*), parameter :: function_names(12) = [character(len=6) :: "SIN", "COS", &
-        & "TAN", "ATAN2", "EXP", "LOG", "SQRT", "ABS", "MIN", "MAX", "STEP", "HAVSIN"]
-    integer, parameter :: function_codes(12) = [op_sin, op_cos, op_tan, op_atan2, op_exp, &
-        & op_log, op_sqrt, op_abs, op_min, op_max, op_step, op_havsin]
-    integer, parameter :: function_arguments(12) = [1, 1, 1, 2, 1, 1, 1, 1, 2, 2, 5, 5]
+    !> Function names, their operation codes and argument counts (IF is parsed apart). A
+    !> negative count -m: at least m arguments and at most max_arguments (POLY, CHEBY: x, x0,
+    !> a0, ..., a30; FORCOS, FORSIN: x, x0, w, a0, ..., a30), the count kept in the operation's
+    !> constant slot. AKISPL and CUBSPL take (x, z, id[, iord]): x and z are expressions, id
+    !> and iord whole numbers kept in the constant slot (spline_reference).
+    character(len=*), parameter :: function_names(34) = [character(len=6) :: "SIN", "COS", &
+        & "TAN", "ATAN2", "EXP", "LOG", "SQRT", "ABS", "MIN", "MAX", "STEP", "HAVSIN", &
+        & "STEP5", "SHF", "POLY", "CHEBY", "FORCOS", "FORSIN", "IMPACT", "BISTOP", "DIM", "MOD", &
+        & "AINT", "ANINT", "SIGN", "ASIN", "ACOS", "ATAN", "SINH", "COSH", "TANH", "LOG10", &
+        & "AKISPL", "CUBSPL"]
+    integer, parameter :: function_codes(34) = [op_sin, op_cos, op_tan, op_atan2, op_exp, &
+        & op_log, op_sqrt, op_abs, op_min, op_max, op_step, op_havsin, op_step5, op_shf, &
+        & op_poly, op_cheby, op_forcos, op_forsin, op_impact, op_bistop, op_dim, op_mod, &
+        & op_aint, op_anint, op_sign, op_asin, op_acos, op_atan, op_sinh, op_cosh, op_tanh, &
+        & op_log10, op_akispl, op_cubspl]
+    integer, parameter :: function_arguments(34) = [1, 1, 1, 2, 1, 1, 1, 1, 2, 2, 5, 5, 5, 6, &
+        & -3, -3, -4, -4, 7, 8, 2, 2, 1, 1, 2, 1, 1, 1, 1, 1, 1, 1, 2, 2]
 
-    !> State functions of one marker; quantity code k is quantity_names(k). DX..DZ [length],
-    !> VX..VZ [length/time], WX..WZ [rad/time], PSI, THETA, PHI [rad], in dataset units
-    character(len=*), parameter :: quantity_names(12) = [character(len=5) :: "DX", "DY", "DZ", &
-        & "VX", "VY", "VZ", "WX", "WY", "WZ", "PSI", "THETA", "PHI"]
-    !> First code of each group of three (x, y, z or psi, theta, phi follow in order)
-    integer, parameter :: quantity_dx = 1, quantity_vx = 4, quantity_wx = 7, quantity_psi = 10
+    !> Measures of markers and values of other statements an expression reads; quantity code
+    !> q is quantity_names(q). The markers each takes (i, j, k, l; those not given are the
+    !> ground origin and axes): quantity_least_markers to quantity_most_markers. The element
+    !> functions (JOINT ... CONTACT) take (id, jflag, comp, rm), VARVAL, DIF and DIF1 an id.
+    character(len=*), parameter :: quantity_names(57) = [character(len=8) :: "DX", "DY", "DZ", &
+        & "VX", "VY", "VZ", "WX", "WY", "WZ", "PSI", "THETA", "PHI", "DM", "VM", "VR", "WM", &
+        & "AX", "AY", "AZ", "YAW", "PITCH", "ROLL", "ACCX", "ACCY", "ACCZ", "ACCM", "WDTX", &
+        & "WDTY", "WDTZ", "WDTM", "FX", "FY", "FZ", "FM", "TX", "TY", "TZ", "TM", "VARVAL", &
+        & "DIF", "DIF1", "JOINT", "JPRIM", "MOTION", "SFORCE", "VFORCE", "VTORQUE", "GFORCE", &
+        & "BUSHING", "BEAM", "FIELD", "SPDP", "NFORCE", "PTCV", "CVCV", "FRICTION", "CONTACT"]
+    !> First code of each group (x, y, z or psi, theta, phi follow in order)
+    integer, parameter :: quantity_dx = 1, quantity_vx = 4, quantity_wx = 7, quantity_psi = 10, &
+        & quantity_dm = 13, quantity_vm = 14, quantity_vr = 15, quantity_wm = 16, &
+        & quantity_ax = 17, quantity_yaw = 20, quantity_accx = 23, quantity_accm = 26, &
+        & quantity_wdtx = 27, quantity_wdtm = 30, quantity_fx = 31, quantity_fm = 34, &
+        & quantity_tx = 35, quantity_tm = 38, quantity_varval = 39, quantity_dif = 40, &
+        & quantity_dif1 = 41, quantity_joint = 42
+    integer, parameter :: quantity_least_markers(57) = [1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, &
+        & 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, &
+        & 1, 4, 4, 4, 4, 4, 4, 4, 4, 4, 4, 4, 4, 4, 4, 4, 4]
+    integer, parameter :: quantity_most_markers(57) = [3, 3, 3, 4, 4, 4, 3, 3, 3, 2, 2, 2, 2, &
+        & 3, 3, 2, 2, 2, 2, 2, 2, 2, 4, 4, 4, 3, 4, 4, 4, 3, 3, 3, 3, 3, 3, 3, 3, 3, 1, 1, 1, &
+        & 4, 4, 4, 4, 4, 4, 4, 4, 4, 4, 4, 4, 4, 4, 4, 4]
+    !> What each measures, for its units: a length, a velocity, an angular velocity, an angle,
+    !> an acceleration, an angular acceleration, a force, a torque, the value of a VARIABLE or
+    !> DIFF (its own units), an element's force or torque (by its comp)
+    integer, parameter :: kind_length = 1, kind_velocity = 2, kind_angular_velocity = 3, &
+        & kind_angle = 4, kind_acceleration = 5, kind_angular_acceleration = 6, kind_force = 7, &
+        & kind_torque = 8, kind_element = 9, kind_element_force = 10
+    integer, parameter :: quantity_kind(57) = [1, 1, 1, 2, 2, 2, 3, 3, 3, 4, 4, 4, 1, 2, 2, &
+        & 3, 4, 4, 4, 4, 4, 4, 5, 5, 5, 5, 6, 6, 6, 6, 7, 7, 7, 7, 8, 8, 8, 8, 9, 9, 9, 10, &
+        & 10, 10, 10, 10, 10, 10, 10, 10, 10, 10, 10, 10, 10, 10, 10]
 
-    !> One state function an expression reads
+    !> One measure (or value of another statement) an expression reads
     type :: expression_input_type
-        !> Marker id (as in the dataset)
+        !> Marker i (as in the dataset); for an element function its id, for VARVAL, DIF and
+        !> DIF1 the VARIABLE's or DIFF's id
         integer :: marker = 0
         !> Quantity code (quantity_names)
         integer :: quantity = 0
+        !> Markers j, k and l (0: not given, the ground origin and axes); for an element
+        !> function jflag, comp and rm
+        integer :: j = 0, k = 0, l = 0
     end type expression_input_type
 
     !> A compiled expression
@@ -66,13 +139,21 @@ module rollcon_expression
         character(len=:), allocatable :: text
         !> Operation codes, in order
         integer, allocatable :: op(:)
-        !> The constant of each op_constant operation; for op_input, the input's number
-        !> (0 elsewhere)
+        !> The constant of each op_constant operation; for op_input, the input's number; for a
+        !> function of a variable number of arguments, their count; for AKISPL and CUBSPL,
+        !> spline_reference (0 elsewhere)
         real(wp), allocatable :: constant(:)
-        !> The state functions read, in the order their values are passed
+        !> The measures read, in the order their values are passed
         type(expression_input_type), allocatable :: inputs(:)
         !> True when the expression depends on TIME
         logical :: uses_time = .false.
+        !> For each input that is an angle ADAMS counts whole turns of (AX, AY, AZ): the value
+        !> it had where its turns were last counted [rad] (rollcon_measures' count_turns); the
+        !> value passed is the one of its 2 pi branches nearest to it (0 when not allocated)
+        real(wp), allocatable :: anchors(:)
+        !> The curves AKISPL and CUBSPL read, by their SPLINE id (given by whoever assembles
+        !> the expression; a curve not given evaluates to NaN)
+        type(spline_type), allocatable :: splines(:)
     end type expression_type
 
 contains
@@ -118,10 +199,140 @@ contains
             case (op_if)
                 top = top - 3
                 stack(top) = if_branch(stack(top:top + 3))
+            case (first_further_op:last_further_op)
+                k = operation_arity(expression%op(i), expression%constant(i))
+                top = top - k + 1
+                stack(top) = further_value(expression, i, stack(top:top + k - 1))
             end select
         end do
         value = stack(1)
     end function evaluate_expression
+
+    !> The value of operation i (one of ADAMS's further functions) of the program from its
+    !> arguments, through the function's jet form with constant arguments.
+    pure function further_value(expression, i, arguments) result(value)
+        type(expression_type), intent(in) :: expression
+        integer, intent(in) :: i
+        real(wp), intent(in) :: arguments(:)
+        real(wp) :: value
+        type(jet_type) :: args(size(arguments)), result
+        integer :: s
+
+        args = jet_constant(arguments)
+        select case (expression%op(i))
+        case (op_akispl, op_cubspl)
+            result = nan_jet()
+            if (allocated(expression%splines)) then
+                s = findloc(expression%splines%id, spline_id_of(expression%constant(i)), dim=1)
+                if (s > 0) result = jet_spline(args(1), expression%splines(s), &
+                    & merge(method_akima, method_cubic, expression%op(i) == op_akispl), &
+                    & spline_order_of(expression%constant(i)))
+            end if
+        case default
+            result = further_jet(expression%op(i), args)
+        end select
+        value = result%v
+    end function further_value
+
+    !> One of ADAMS's further functions of numbers (not AKISPL or CUBSPL) of its arguments'
+    !> jets: the one code of its value and of its partials (rollcon_expression_jet).
+    pure function further_jet(op, args) result(y)
+        integer, intent(in) :: op
+        type(jet_type), intent(in) :: args(:)
+        type(jet_type) :: y
+
+        select case (op)
+        case (op_step5)
+            y = jet_step5(args(1), args(2), args(3), args(4), args(5))
+        case (op_shf)
+            y = jet_shf(args(1), args(2), args(3), args(4), args(5), args(6))
+        case (op_poly)
+            y = jet_poly(args)
+        case (op_cheby)
+            y = jet_cheby(args)
+        case (op_forcos, op_forsin)
+            y = jet_fourier(op == op_forcos, args)
+        case (op_impact)
+            y = jet_impact(args(1), args(2), args(3), args(4), args(5), args(6), args(7))
+        case (op_bistop)
+            y = jet_bistop(args(1), args(2), args(3), args(4), args(5), args(6), args(7), &
+                & args(8))
+        case (op_dim)
+            y = jet_dim(args(1), args(2))
+        case (op_mod)
+            y = jet_mod(args(1), args(2))
+        case (op_aint)
+            y = jet_aint(args(1))
+        case (op_anint)
+            y = jet_anint(args(1))
+        case (op_sign)
+            y = jet_sign(args(1), args(2))
+        case (op_asin)
+            y = jet_asin_domain(args(1))
+        case (op_acos)
+            y = jet_acos_domain(args(1))
+        case (op_atan)
+            y = atan(args(1))
+        case (op_sinh)
+            y = sinh(args(1))
+        case (op_cosh)
+            y = cosh(args(1))
+        case (op_tanh)
+            y = tanh(args(1))
+        case (op_log10)
+            y = nan_jet()
+            if (args(1)%v > 0.0_wp) y = log10(args(1))
+        case default
+            y = nan_jet()
+        end select
+    end function further_jet
+
+    !> How many values operation `op` takes from the stack (1 for a value it pushes: the
+    !> constants, TIME and inputs take none and leave one); `constant` is its constant slot.
+    pure integer function operation_arity(op, constant) result(arity)
+        integer, intent(in) :: op
+        real(wp), intent(in) :: constant
+        integer :: k
+
+        select case (op)
+        case (op_constant, op_time, op_input)
+            arity = 0
+        case (op_negate, op_sin:op_abs)
+            arity = 1
+        case (op_step, op_havsin)
+            arity = 5
+        case (op_if)
+            arity = 4
+        case (first_further_op:last_further_op)
+            k = findloc(function_codes, op, dim=1)
+            arity = function_arguments(k)
+            ! a variadic function keeps its count in the constant slot
+            if (arity < 0) arity = nint(constant)
+        case default
+            arity = 2
+        end select
+    end function operation_arity
+
+    !> The constant slot of AKISPL or CUBSPL: SPLINE/id and the order of the derivative.
+    pure real(wp) function spline_reference(id, order)
+        integer, intent(in) :: id, order
+
+        spline_reference = 4.0_wp*real(id, wp) + real(order, wp)
+    end function spline_reference
+
+    !> The SPLINE id of a constant slot made by spline_reference.
+    pure integer function spline_id_of(constant)
+        real(wp), intent(in) :: constant
+
+        spline_id_of = nint(constant)/4
+    end function spline_id_of
+
+    !> The order of the derivative of a constant slot made by spline_reference.
+    pure integer function spline_order_of(constant)
+        real(wp), intent(in) :: constant
+
+        spline_order_of = mod(nint(constant), 4)
+    end function spline_order_of
 
     !> IF(e: negative, zero, positive) from its four values.
     pure function if_branch(arguments) result(y)
@@ -179,6 +390,10 @@ contains
                 arity = 4
                 if (affine(top - 3) .and. slope(top - 3) /= 0.0_wp) &
                     & call add_finite(times, [-offset(top - 3)/slope(top - 3)])
+            case (first_further_op:last_further_op)
+                arity = operation_arity(op, expression%constant(i))
+                call further_corners(op, slope(top - arity + 1:top), &
+                    & offset(top - arity + 1:top), affine(top - arity + 1:top), times)
             case default
                 arity = 2
             end select
@@ -187,6 +402,47 @@ contains
                 & affine(top:top + arity - 1))
         end do
     end function switching_times
+
+    !> The switching times of one of ADAMS's further functions from its arguments' affine
+    !> forms in TIME (as switching_times finds STEP's): STEP5 at x0 and x1; IMPACT where x
+    !> reaches x1 - d and x1; BISTOP at x1 - d, x1, x2 and x2 + d; DIM where a - b changes
+    !> sign; SIGN where b or a does. MOD, AINT and ANINT jump wherever their argument passes a
+    !> whole number (of b): such periodic switches are not found.
+    pure subroutine further_corners(op, slope, offset, affine, times)
+        integer, intent(in) :: op
+        real(wp), intent(in) :: slope(:), offset(:)
+        logical, intent(in) :: affine(:)
+        real(wp), allocatable, intent(inout) :: times(:)
+        real(wp), allocatable :: levels(:)
+        logical :: constant(size(slope))
+
+        constant = affine .and. slope == 0.0_wp
+        allocate(levels(0))
+        select case (op)
+        case (op_step5)
+            if (constant(2)) levels = [levels, offset(2)]
+            if (constant(4)) levels = [levels, offset(4)]
+        case (op_impact)
+            if (constant(3) .and. constant(7)) levels = [levels, offset(3) - offset(7)]
+            if (constant(3)) levels = [levels, offset(3)]
+        case (op_bistop)
+            if (constant(3) .and. constant(8)) levels = [levels, offset(3) - offset(8)]
+            if (constant(3)) levels = [levels, offset(3)]
+            if (constant(4)) levels = [levels, offset(4)]
+            if (constant(4) .and. constant(8)) levels = [levels, offset(4) + offset(8)]
+        case (op_dim)
+            if (all(affine(1:2)) .and. slope(1) /= slope(2)) call add_finite(times, &
+                & [(offset(2) - offset(1))/(slope(1) - slope(2))])
+        case (op_sign)
+            if (affine(2) .and. slope(2) /= 0.0_wp) call add_finite(times, &
+                & [-offset(2)/slope(2)])
+            if (affine(1) .and. slope(1) /= 0.0_wp) call add_finite(times, &
+                & [-offset(1)/slope(1)])
+        end select
+        ! the levels of the first argument x, affine in TIME
+        if (size(levels) > 0 .and. affine(1) .and. slope(1) /= 0.0_wp) &
+            & call add_finite(times, (levels - offset(1))/slope(1))
+    end subroutine further_corners
 
     !> Append the finite ones of candidates to times.
     pure subroutine add_finite(times, candidates)
@@ -201,8 +457,14 @@ contains
         integer, intent(in) :: op, arity
         real(wp), intent(inout) :: slope(arity), offset(arity)
         logical, intent(inout) :: affine(arity)
-        real(wp) :: values(5)
+        real(wp) :: values(max_arguments)
+        type(jet_type) :: folded
 
+        if (op == op_akispl .or. op == op_cubspl) then
+            ! a curve's points are not known here: not a constant
+            affine(1) = .false.
+            return
+        end if
         if (all(affine) .and. all(slope == 0.0_wp)) then
             ! constants only: fold
             values(:arity) = offset
@@ -213,6 +475,9 @@ contains
                 offset(1) = smooth_step(op == op_havsin, values(:5))
             case (op_if)
                 offset(1) = if_branch(values(:4))
+            case (first_further_op:last_further_op)
+                folded = further_jet(op, jet_constant(values(:arity)))
+                offset(1) = folded%v
             case default
                 offset(1) = binary(op, values(1), values(2))
             end select

@@ -27,6 +27,9 @@ module rollcon_model
     use rollcon_joint_primitives, only : primitive_ucon_type, joint_ucons
     use rollcon_ucosub_catalog, only : builtin_ucosub_name
     use rollcon_rebasing, only : rebased_inertia, to_new_basis
+    use rollcon_expression, only : expression_type
+    use rollcon_gcon, only : gcon_type, new_gcon, gcon_codes, turn_gcon_markers
+    use rollcon_measures, only : count_turns
     implicit none
     private
 
@@ -66,6 +69,9 @@ module rollcon_model
         !> part's principal axes), and that part (model order); each is turned with its part
         !> when the part is re-based
         integer, allocatable :: geometry_par(:), geometry_parts(:)
+        !> A constraint written as an expression (GCON, and the couplers made of one): served
+        !> by rollcon_gcon's evaluate_gcon instead of a UCOSUB
+        type(gcon_type), allocatable :: gcon
     end type ucon_statement_type
 
     !> The model
@@ -94,6 +100,8 @@ module rollcon_model
         procedure :: add_joint
         procedure :: add_jprim
         procedure :: add_force
+        procedure :: add_gcon
+        procedure :: count_turns => count_model_turns
         procedure :: turn_part_axes
         procedure :: turn_ucon_geometry
     end type model_type
@@ -221,6 +229,76 @@ contains
         end do
     end subroutine add_primitives
 
+    !> Append GCON/id, the constraint expression = 0 (rollcon_gcon): a UCON whose F and
+    !> partials come from the expression, reading `markers` (every marker its measures name,
+    !> as the model holds them; add the parts first), its reaction reported at marker
+    !> `reaction`. The expression is in the model's units (ucosub_units). It takes the id after
+    !> the largest UCON id of the model, as a joint's UCONs do, and is named `name` in the
+    !> run's record ("GCON/1"; default "GCON/id"). Refused, with why: a FUNCTION that reads an
+    !> acceleration, a force or another statement's value, or no moving part, or more than 30
+    !> variables, or velocities in a way that is not linear (rollcon_gcon's new_gcon).
+    subroutine add_gcon(self, id, expression, markers, reaction, error, name)
+        class(model_type), intent(inout) :: self
+        !> The statement's id, for messages
+        integer, intent(in) :: id
+        !> F, compiled (rollcon_adm_expression_parser's compile_expression)
+        type(expression_type), intent(in) :: expression
+        type(marker_type), intent(in) :: markers(:), reaction
+        type(error_type), allocatable, intent(out) :: error
+        character(len=*), intent(in), optional :: name
+        type(ucon_statement_type) :: ucon
+        character(len=:), allocatable :: problem
+
+        if (.not. allocated(self%ucons)) allocate(self%ucons(0))
+        allocate(ucon%gcon)
+        call new_gcon(id, expression, markers, reaction, self%ucosub_units%length, &
+            & self%ucosub_units%time, ucon%gcon, problem)
+        if (len(problem) > 0) then
+            call fatal_error(error, "GCON/" // to_text(id) // " FUNCTION: " // problem, &
+                & stat_input)
+            return
+        end if
+        ucon%id = 1
+        if (size(self%ucons) > 0) ucon%id = maxval(self%ucons%id) + 1
+        ucon%par = [real(wp) :: ]
+        ucon%routine = "GCON/" // to_text(id)
+        if (present(name)) ucon%routine = name
+        ucon%time_free = .not. expression%uses_time
+        self%ucons = [self%ucons, ucon]
+    end subroutine add_gcon
+
+    !> Count the whole turns of every AX, AY, AZ the model's expressions read (its force
+    !> statements' and GCONs') at (q, u): rollcon_measures' count_turns. A run makes it at its
+    !> start (restart true: each angle on its branch in (-pi, pi]) and at every output row.
+    pure subroutine count_model_turns(self, q, u, restart)
+        class(model_type), intent(inout) :: self
+        !> Coordinates and rates of all parts [m, rad, m/s, rad/s]
+        real(wp), intent(in) :: q(:), u(:)
+        logical, intent(in) :: restart
+        integer :: i, k
+
+        if (allocated(self%forces)) then
+            do i = 1, size(self%forces)
+                if (self%forces(i)%profile /= profile_statement) cycle
+                associate (s => self%forces(i)%statement)
+                    if (.not. allocated(s%markers)) cycle
+                    do k = 1, 6
+                        if (s%given(k)) call count_turns(s%functions(k), s%markers, &
+                            & s%length_unit, s%time_unit, q, u, restart)
+                    end do
+                end associate
+            end do
+        end if
+        if (.not. allocated(self%ucons)) return
+        do k = 1, size(self%ucons)
+            if (.not. allocated(self%ucons(k)%gcon)) cycle
+            associate (g => self%ucons(k)%gcon)
+                call count_turns(g%expression, g%markers, g%length_unit, g%time_unit, q, u, &
+                    & restart)
+            end associate
+        end do
+    end subroutine count_model_turns
+
     !> Append an applied force.
     subroutine add_force(self, force)
         class(model_type), intent(inout) :: self
@@ -265,6 +343,9 @@ contains
             end associate
         end do
         call self%turn_ucon_geometry(p)
+        do k = 1, size(self%ucons)
+            if (allocated(self%ucons(k)%gcon)) call turn_gcon_markers(self%ucons(k)%gcon, p)
+        end do
         self%parts(p)%inertia = rebased_inertia(self%parts(p)%inertia)
     end subroutine turn_part_axes
 
@@ -297,6 +378,7 @@ contains
         character(len=:), allocatable :: model_name
         logical :: model_time_free
         integer :: k, i, p, entry
+        integer, allocatable :: declared_parts(:), declared_codes(:), part_ids(:)
 
         if (.not. allocated(model%parts)) allocate(model%parts(0))
         if (.not. allocated(model%ucons)) allocate(model%ucons(0))
@@ -313,6 +395,8 @@ contains
         do k = 1, size(model%ucons)
             associate (ucon => model%ucons(k))
                 if (.not. allocated(ucon%routine)) ucon%routine = ""
+                ! a GCON is served by its expression
+                if (allocated(ucon%gcon)) cycle
                 if (served_by_model_ucosub(ucon%routine)) then
                     ucon%ucosub => model%ucosub
                     ucon%time_free = ucon%time_free .or. model_time_free
@@ -346,7 +430,14 @@ contains
                     call ucon_error(error, ucon%id, "the id is used by two UCON statements")
                     return
                 end if
-                call declare_ucon(ucon%ucosub, ucon%id, ucon%par, model%registry, error)
+                if (allocated(ucon%gcon)) then
+                    part_ids = model%parts%id
+                    call gcon_codes(ucon%gcon, part_ids, declared_parts, declared_codes)
+                    call model%registry%declare(ucon%id, size(declared_parts), &
+                        & declared_parts, size(declared_codes), declared_codes, error)
+                else
+                    call declare_ucon(ucon%ucosub, ucon%id, ucon%par, model%registry, error)
+                end if
                 if (allocated(error)) return
                 entry = model%registry%find(ucon%id)
                 associate (declared => model%registry%entries(entry))
@@ -366,7 +457,9 @@ contains
                     end do
                 end associate
                 ucon%holonomic = .not. any(ucon%velocity)
-                ucon%converted = .not. model%ucosub_units%is_si()
+                ! a GCON takes SI variables and converts its expression's measures itself
+                ucon%converted = .not. model%ucosub_units%is_si() .and. &
+                    & .not. allocated(ucon%gcon)
                 if (ucon%converted) then
                     ucon%scales = variable_scales(model%ucosub_units, &
                         & model%registry%entries(entry)%codes)
