@@ -54,7 +54,7 @@ module rollcon
 
     ! how to integrate
     use rollcon_run_settings, only : run_settings_type, formulation_cvode, formulation_ida, &
-        & formulation_maggi, method_bdf, method_adams, drift_none, drift_projection, &
+        & formulation_speeds, method_bdf, method_adams, drift_none, drift_projection, &
         & drift_baumgarte, jacobian_analytic, jacobian_dq, linear_dense, linear_sparse, &
         & linear_auto
 

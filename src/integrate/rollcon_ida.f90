@@ -45,9 +45,9 @@ module rollcon_ida
     !> 1e-10. Over the first stretch after a restart, restart_fine_steps of the steps IDA was
     !> taking before it, the differential components' tolerances are restart_tolerance_factor
     !> finer; IDA reaches order 2 well within it and goes on from there, on the same history,
-    !> with the run's own tolerances (measured: the 1000 re-basings of data/ball_tumbling.adm
-    !> drift its orbit radius by 1.0e-8 m, 7.4e-7 m before, for 1 % more steps; both while
-    !> IDA's error test failed on most steps, before issue #25: 1.57e-7 m since,
+    !> with the run's own tolerances (measured with each Euler-angle rate held to itself: the
+    !> 1000 re-basings of data/ball_tumbling.adm drift its orbit radius by 1.0e-8 m, 7.4e-7 m
+    !> restarted plainly, for 1 % more steps; with the rates held together 1.57e-7 m,
     !> docs/rebasing.md).
     real(wp), parameter :: restart_tolerance_factor = 1.0e-2_wp, restart_fine_steps = 2.0_wp
     !> The finest relative tolerance of that stretch [-]: 1000 eps, where the corrector of the
@@ -255,7 +255,8 @@ contains
     !> so on a large model it can be small enough (1.4e-11 s on a chain of 64 links of 0.1 kg at
     !> atol 1e-10) that the index-2 Newton matrix, whose condition grows as 1/h^2, cannot be
     !> solved; IDA then only shrinks it. A first step too large fails IDA's error test instead,
-    !> which shrinks it by the error's own estimate. A run whose first step succeeds is as before.
+    !> which shrinks it by the error's own estimate. A run whose first step succeeds makes no
+    !> retry, so its numbers do not depend on it.
     subroutine advance(self, t_out, t_stop, t_reached, y, yp, root, error)
         class(ida_integrator_type), intent(inout) :: self
         real(wp), intent(in) :: t_out, t_stop

@@ -128,7 +128,7 @@ contains
         call read_layout(names, layout, message, [character(len=name_length) :: contact_names, &
             & basis_pattern, request_column_patterns, motion_column_patterns])
         if (.not. allocated(message)) return
-        ! The one-part header of the runs before the per-part layout (issue #14): say so.
+        ! A one-part header without the part's id (t, X, ...): say what it is.
         if (count > 1) then
             if (names(1) == "t" .and. names(2) == "X") message = message // " (a CSV of an " &
                 & // "older rollcon, whose columns did not name the part: run the scene again)"

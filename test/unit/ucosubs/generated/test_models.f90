@@ -43,9 +43,9 @@ module test_models
     !> 1.6e-7 m in 115,000 steps
     real(wp), parameter :: ida_long_tolerance = 1.0e-11_wp
     !> IDA's error-test failures per step on the ball [1]: 240,866 in 240,903 steps (every
-    !> doubling of the step failed) while its tilt rate, near zero, was held to atol alone;
+    !> doubling of the step fails) with its tilt rate, near zero, held to atol alone;
     !> measured 0.9 % (160 in 17,573) with a part's Euler-angle rates held relative to the
-    !> largest (rollcon_ida); the issue's bound, 5 %
+    !> largest (rollcon_ida); bound 5 %
     real(wp), parameter :: tol_failures_per_step = 0.05_wp
     !> IDA's constraint residual on the ball [m/s]: F = 0 within its Newton tolerance, a few
     !> atol (the dataset's 1e-10; measured 1.2e-10, 2.3e-12 before); 10 atol
