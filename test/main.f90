@@ -89,6 +89,8 @@ program tester
     use test_link_chain, only : collect_link_chain
     use test_assembly, only : collect_assembly
     use test_model_elements, only : collect_model_elements
+    use test_redundancy, only : collect_redundancy
+    use test_reactions, only : collect_reactions
     implicit none
     type(testsuite_type), allocatable :: suites(:)
     type(test_counts_type) :: counts
@@ -182,7 +184,9 @@ program tester
         & new_testsuite("disk-fleet", collect_disk_fleet), &
         & new_testsuite("link-chain", collect_link_chain), &
         & new_testsuite("assembly", collect_assembly), &
-        & new_testsuite("model-elements", collect_model_elements)]
+        & new_testsuite("model-elements", collect_model_elements), &
+        & new_testsuite("redundancy", collect_redundancy), &
+        & new_testsuite("reactions", collect_reactions)]
 
     if (command_argument_count() >= 1) then
         call get_command_argument(1, argument)

@@ -13,14 +13,16 @@
 !> held: their columns are removed. Rows are scaled to unit length before each solve (LAPACK
 !> dgelss, rcond below), so that rank and least squares are judged by the constraints'
 !> geometry, not by their units.
-!> Refusals (stat_input), naming the UCONs: redundant (dependent rows, all met: the
-!> integrators' saddle-point matrix would be singular), contradictory (dependent rows, not all
-!> met), no convergence (independent rows still unmet after max_iterations).
+!> Refusals (stat_input), naming the statements and lines the user wrote: contradictory
+!> (dependent rows, not all met), no convergence (independent rows still unmet after
+!> max_iterations). Dependent rows that are all met are redundant, not refused: the run sets
+!> aside those that repeat others (rollcon_redundancy).
 module rollcon_initial_conditions
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type, fatal_error, stat_input
     use rollcon_text, only : to_text
-    use rollcon_ic_rows, only : level_type, tolerance, least_change, verdict, ic_fraction
+    use rollcon_ic_rows, only : level_type, tolerance, least_change, verdict, ic_fraction, &
+        & name_rows
     use rollcon_constraints, only : need_value, need_first, need_time
     use rollcon_problem, only : problem_type
     use rollcon_ic_report, only : ic_change_type, ic_report_type
@@ -132,7 +134,7 @@ contains
 
         level%name = "position"
         level%ucon = holonomic_ucons(problem)
-        level%ids = problem%model%ucons(level%ucon)%id
+        call name_rows(level, problem%model)
         report%position_rows = size(level%ucon)
         if (size(level%ucon) == 0) return
         do
@@ -176,7 +178,7 @@ contains
 
         level%name = "velocity"
         level%ucon = [(k, k = 1, problem%model%nc)]
-        level%ids = problem%model%ucons%id
+        call name_rows(level, problem%model)
         report%velocity_rows = size(level%ucon)
         if (size(level%ucon) == 0) return
         do

@@ -186,7 +186,7 @@ contains
                             & // "FILE|NAME)", stat_input)
                         return
                     end if
-                    call model%add_ucon(ucon%id, ucon%par)
+                    call model%add_ucon(ucon%id, ucon%par, line=ucon%line)
                     cycle
                 end if
                 call find_builtin_ucosub(trim(ucon%routine), routine, time_free, found)
@@ -198,7 +198,7 @@ contains
                     return
                 end if
                 call model%add_ucon(ucon%id, ucon%par, routine, time_free=time_free, &
-                    & routine=trim(ucon%routine))
+                    & routine=trim(ucon%routine), line=ucon%line)
             end associate
         end do
     end subroutine add_ucons
@@ -217,10 +217,10 @@ contains
             associate (joint => adm%joints(k))
                 if (joint%primitive) then
                     call model%add_jprim(joint%id, joint%kind, adm_marker(adm, joint%i), &
-                        & adm_marker(adm, joint%j), error)
+                        & adm_marker(adm, joint%j), error, line=joint%line)
                 else
                     call model%add_joint(joint%id, joint%kind, adm_marker(adm, joint%i), &
-                        & adm_marker(adm, joint%j), error)
+                        & adm_marker(adm, joint%j), error, line=joint%line)
                 end if
                 if (allocated(error)) then
                     error%message = place(adm%file, joint%line) // ": " // error%message

@@ -17,7 +17,8 @@ module rollcon_joint_primitives
     use rollcon_ucosub_contract, only : ucosub_interface
     use rollcon_marker, only : marker_type
     use rollcon_joint_types, only : joint_names, primitive_names, joint_primitives, &
-        & is_joint_name, primitive_index, primitive_symmetric, name_list, primitive_atpoint, &
+        & is_joint_name, primitive_index, primitive_symmetric, name_list, primitive_equation, &
+        & primitive_atpoint, &
         & primitive_inline, primitive_inplane, primitive_parallel_axes, primitive_perpendicular
     use rollcon_gen_gnd_atpoint, only : gnd_atpoint_ucosub, gnd_atpoint_codes
     use rollcon_gen_gnd_inline, only : gnd_inline_ucosub, gnd_inline_codes
@@ -50,6 +51,9 @@ module rollcon_joint_primitives
         character(len=:), allocatable :: routine
         !> PAR indices where a 3-vector fixed in a part starts, and that part (model order)
         integer, allocatable :: geometry_par(:), geometry_parts(:)
+        !> Which equation of the statement it is, in words (rollcon_joint_types'
+        !> primitive_equation: "translation along ground X")
+        character(len=:), allocatable :: equation
     end type primitive_ucon_type
 
 contains
@@ -118,7 +122,7 @@ contains
             second = i
         end if
         primitives = joint_primitives(kind)
-        call primitive_list(primitives, first, second, part_ids, length_unit, ucons)
+        call primitive_list(primitives, first, second, i%part == 0, part_ids, length_unit, ucons)
     end subroutine joint_ucons
 
     !> "PART/3", or "the ground" for part 0.
@@ -130,10 +134,12 @@ contains
         if (part > 0) words = "PART/" // to_text(part_ids(part))
     end function part_words
 
-    !> The UCONs of the primitives, marker I (i) on a moving part.
-    subroutine primitive_list(primitives, i, j, part_ids, length_unit, ucons)
+    !> The UCONs of the primitives, marker I (i) on a moving part (swapped: the statement's
+    !> markers exchanged, its I on the ground).
+    subroutine primitive_list(primitives, i, j, swapped, part_ids, length_unit, ucons)
         integer, intent(in) :: primitives(:)
         type(marker_type), intent(in) :: i, j
+        logical, intent(in) :: swapped
         integer, intent(in) :: part_ids(:)
         real(wp), intent(in) :: length_unit
         type(primitive_ucon_type), allocatable, intent(inout) :: ucons(:)
@@ -174,6 +180,7 @@ contains
                 ucon%par = par
                 ucon%ucosub => routine
                 ucon%routine = name
+                ucon%equation = primitive_equation(primitives(n), c, swapped)
                 ! each vector's PAR index and the part (model order) it is fixed in
                 ucon%geometry_par = [(size(par) - merge(1, 0, components > 1) &
                     & - 3*size(used) + 3*(v - 1) + 1, v = 1, size(used))]

@@ -2,12 +2,14 @@
 !> The names of the columns rollcon's own watches add to a run's rows (rollcon_output_layout):
 !> written by the watches, recognised by a reader of the CSV. A rim contact's six
 !> (rollcon_contact_watch), the basis of every part a re-basing run records
-!> (rollcon_theta_watch), and the six of each displacement request (rollcon_request_watch).
+!> (rollcon_theta_watch), the six of each displacement request (rollcon_request_watch), and the
+!> six of each statement's reaction (rollcon_reaction_watch).
 module rollcon_watch_columns
     implicit none
     private
 
-    public :: contact_names, basis_pattern, request_column_patterns
+    public :: contact_names, basis_pattern, request_column_patterns, reaction_suffixes, &
+        & reaction_column_patterns
 
     !> A rim contact's columns, in order: the constraint force on the part Fx, Fy, Fz [N]
     !> (ground components), its normal part Fn [N], the friction coefficient rolling needs
@@ -20,5 +22,20 @@ module rollcon_watch_columns
     !> x, y, z [m] and the 3-1-3 angles psi, theta, phi [rad] in RM's axes
     character(len=*), parameter :: request_column_patterns(6) = [character(len=12) :: &
         & "req<n>_x", "req<n>_y", "req<n>_z", "req<n>_psi", "req<n>_theta", "req<n>_phi"]
+
+    !> A reaction's columns after its stem: force fx, fy, fz [N] and torque tx, ty, tz [N m],
+    !> ground axes
+    character(len=*), parameter :: reaction_suffixes(6) = [character(len=3) :: "_fx", "_fy", &
+        & "_fz", "_tx", "_ty", "_tz"]
+    !> Each statement's reaction columns ("<n>": the statement's id, "<id>": a part's id): a
+    !> JOINT's and a JPRIM's on the part of marker I at I, a UCON's on its part at its centre
+    !> of mass (on each of several parts: ucon<n>_part<id>_...)
+    character(len=*), parameter :: reaction_column_patterns(24) = [character(len=22) :: &
+        & "joint<n>_fx", "joint<n>_fy", "joint<n>_fz", "joint<n>_tx", "joint<n>_ty", &
+        & "joint<n>_tz", "jprim<n>_fx", "jprim<n>_fy", "jprim<n>_fz", "jprim<n>_tx", &
+        & "jprim<n>_ty", "jprim<n>_tz", "ucon<n>_fx", "ucon<n>_fy", "ucon<n>_fz", "ucon<n>_tx", &
+        & "ucon<n>_ty", "ucon<n>_tz", "ucon<n>_part<id>_fx", "ucon<n>_part<id>_fy", &
+        & "ucon<n>_part<id>_fz", "ucon<n>_part<id>_tx", "ucon<n>_part<id>_ty", &
+        & "ucon<n>_part<id>_tz"]
 
 end module rollcon_watch_columns

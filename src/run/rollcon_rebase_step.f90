@@ -64,8 +64,8 @@ contains
         if (found%k > 0) then
             refusal = "part " // to_text(problem%model%parts(p)%id) &
                 & // ": its principal axes cannot be re-based at t = " // to_text(time) &
-                & // " s (theta = " // to_text(q(i0 + 5)) // " rad): UCON " &
-                & // to_text(problem%model%ucons(found%k)%id) // " gives F = " &
+                & // " s (theta = " // to_text(q(i0 + 5)) // " rad): " &
+                & // ucon_words(problem, found%k) // " gives F = " &
                 & // to_text(found%f_old) // " in the old basis and " // to_text(found%f_new) &
                 & // " in the turned one (allowed difference " // to_text(found%allowed) &
                 & // "): its UCOSUB depends on which principal axis is which (docs/rebasing.md)"
@@ -76,6 +76,18 @@ contains
         q = q_new
         u = u_new
     end subroutine rebase_part
+
+    !> "UCON 3" (a UCON statement, as the message said it), or a JOINT's or JPRIM's equation in
+    !> the user's words ("JOINT/1 (line 14), its translation along ground X").
+    function ucon_words(problem, k) result(words)
+        type(problem_type), intent(in) :: problem
+        integer, intent(in) :: k
+        character(len=:), allocatable :: words
+
+        words = "UCON " // to_text(problem%model%ucons(k)%id)
+        if (.not. allocated(problem%model%ucons(k)%equation)) return
+        if (len(problem%model%ucons(k)%equation) > 0) words = problem%model%row_words(k)
+    end function ucon_words
 
     !> The UCOSUB contract of a re-basing (docs/rebasing.md): every UCON on part p (a UCON
     !> with a variable of the part) evaluated at (time, q, u) and at (time, q_new, u_new), the
