@@ -110,9 +110,11 @@ contains
         if (allocated(error)) return
         call request%real_value("--end-time", options%end_time, -1.0_wp, error)
         if (allocated(error)) return
-        if (request%has("--end-time") .and. .not. options%end_time > 0.0_wp) then
-            call fatal_error(error, "--end-time expects a positive number, got '" &
-                & // request%text("--end-time", "") // "'", stat_input)
+        ! the scenes' own range of end_time (docs/scenes.md)
+        if (request%has("--end-time") .and. .not. (options%end_time >= 1.0e-9_wp .and. &
+            & options%end_time <= 1.0e9_wp)) then
+            call fatal_error(error, "--end-time expects a time from 1e-9 to 1e9 s (a scene's " &
+                & // "end_time), got '" // request%text("--end-time", "") // "'", stat_input)
             return
         end if
         if (options%quick) then

@@ -27,6 +27,7 @@ program tester
     use test_adm_statements, only : collect_adm_statements
     use test_adm_build, only : collect_adm_build
     use test_adm_joints, only : collect_adm_joints
+    use test_adm_joint_motions, only : collect_adm_joint_motions
     use test_adm_text, only : collect_adm_text
     use test_adm_fuzz, only : collect_adm_fuzz
     use test_expression_fuzz, only : collect_expression_fuzz
@@ -78,6 +79,9 @@ program tester
     use test_study_limits, only : collect_study_limits
     use test_sweep_guards, only : collect_sweep_guards
     use test_adm_outputs, only : collect_adm_outputs
+    use test_adm_language, only : collect_adm_language
+    use test_acf_reader, only : collect_acf_reader
+    use test_acf_command, only : collect_acf_command
     use test_fpm_dependency, only : collect_fpm_dependency
     use test_main_script, only : collect_main_script
     use test_multiplier_units, only : collect_multiplier_units
@@ -124,6 +128,7 @@ program tester
         & new_testsuite("adm-forces", collect_adm_forces), &
         & new_testsuite("adm-build", collect_adm_build), &
         & new_testsuite("adm-joints", collect_adm_joints), &
+        & new_testsuite("adm-joint-motions", collect_adm_joint_motions), &
         & new_testsuite("adm-text", collect_adm_text), &
         & new_testsuite("adm-fuzz", collect_adm_fuzz), &
         & new_testsuite("expression-fuzz", collect_expression_fuzz), &
@@ -174,6 +179,9 @@ program tester
         & new_testsuite("study-limits", collect_study_limits), &
         & new_testsuite("sweep-guards", collect_sweep_guards), &
         & new_testsuite("adm-outputs", collect_adm_outputs), &
+        & new_testsuite("adm-language", collect_adm_language), &
+        & new_testsuite("acf-reader", collect_acf_reader), &
+        & new_testsuite("acf-command", collect_acf_command), &
         & new_testsuite("fpm-dependency", collect_fpm_dependency), &
         & new_testsuite("main-script", collect_main_script), &
         & new_testsuite("multiplier-units", collect_multiplier_units), &

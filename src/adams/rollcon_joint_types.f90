@@ -3,9 +3,12 @@
 !> joints rollcon simulates, the six primitives, and ADAMS's own decomposition of a joint into
 !> primitives, by the degrees of freedom each removes: SPHERICAL = ATPOINT; REVOLUTE = ATPOINT
 !> + PARALLEL_AXES; UNIVERSAL = ATPOINT + PERPENDICULAR; CYLINDRICAL = INLINE + PARALLEL_AXES;
-!> TRANSLATIONAL = INLINE + ORIENTATION; FIXED = ATPOINT + ORIENTATION. The names a dataset's
-!> JOINT and JPRIM take (rollcon_adm_joints) and the ones model%add_joint and model%add_jprim
-!> take (rollcon_joint_primitives) are these.
+!> TRANSLATIONAL = INLINE + ORIENTATION; FIXED = ATPOINT + ORIENTATION; PLANAR = INPLANE +
+!> PARALLEL_AXES; HOOKE = ATPOINT + PERPENDICULAR of its cross pins, x_i and y_j (UNIVERSAL's
+!> pins are z_i and z_j); CONVEL = ATPOINT + the homokinetic condition x_i.y_j + y_i.x_j = 0,
+!> which is no JPRIM (ucon/specs/_joint.py). The names a dataset's JOINT and JPRIM take
+!> (rollcon_adm_joints) and the ones model%add_joint and model%add_jprim take
+!> (rollcon_joint_primitives) are these.
 module rollcon_joint_types
     implicit none
     private
@@ -13,16 +16,19 @@ module rollcon_joint_types
     public :: joint_names, primitive_names, joint_primitives, primitive_index
     public :: is_joint_name, primitive_symmetric, name_list, primitive_equation
     public :: primitive_atpoint, primitive_inline, primitive_inplane, primitive_parallel_axes, &
-        & primitive_perpendicular, primitive_orientation
+        & primitive_perpendicular, primitive_orientation, primitive_homokinetic
 
-    !> The joint primitives, numbered as primitive_names lists them
+    !> The joint primitives, numbered as primitive_names lists them, and CONVEL's homokinetic
+    !> condition after them (a joint's constraint, not a JPRIM)
     integer, parameter :: primitive_atpoint = 1, primitive_inline = 2, primitive_inplane = 3, &
-        & primitive_parallel_axes = 4, primitive_perpendicular = 5, primitive_orientation = 6
+        & primitive_parallel_axes = 4, primitive_perpendicular = 5, primitive_orientation = 6, &
+        & primitive_homokinetic = 7
     character(len=*), parameter :: primitive_names(6) = [character(len=13) :: "ATPOINT", &
         & "INLINE", "INPLANE", "PARALLEL_AXES", "PERPENDICULAR", "ORIENTATION"]
     !> The joints rollcon simulates, in alphabetical order
-    character(len=*), parameter :: joint_names(6) = [character(len=13) :: "CYLINDRICAL", &
-        & "FIXED", "REVOLUTE", "SPHERICAL", "TRANSLATIONAL", "UNIVERSAL"]
+    character(len=*), parameter :: joint_names(9) = [character(len=13) :: "CONVEL", &
+        & "CYLINDRICAL", "FIXED", "HOOKE", "PLANAR", "REVOLUTE", "SPHERICAL", "TRANSLATIONAL", &
+        & "UNIVERSAL"]
 
 contains
 
@@ -41,7 +47,9 @@ contains
     end function primitive_index
 
     !> The primitives (primitive_* numbers) a joint (joint_names) or a primitive
-    !> (primitive_names) of this name is made of; empty for any other name.
+    !> (primitive_names) of this name is made of; empty for any other name. A HOOKE's
+    !> PERPENDICULAR holds its cross pins perpendicular, x_i and y_j, not the z axes
+    !> (rollcon_joint_primitives).
     pure function joint_primitives(name) result(primitives)
         character(len=*), intent(in) :: name
         integer, allocatable :: primitives(:)
@@ -51,8 +59,12 @@ contains
             primitives = [primitive_atpoint]
         case ("REVOLUTE")
             primitives = [primitive_atpoint, primitive_parallel_axes]
-        case ("UNIVERSAL")
+        case ("UNIVERSAL", "HOOKE")
             primitives = [primitive_atpoint, primitive_perpendicular]
+        case ("CONVEL")
+            primitives = [primitive_atpoint, primitive_homokinetic]
+        case ("PLANAR")
+            primitives = [primitive_inplane, primitive_parallel_axes]
         case ("CYLINDRICAL")
             primitives = [primitive_inline, primitive_parallel_axes]
         case ("TRANSLATIONAL")
@@ -66,8 +78,10 @@ contains
 
     !> True when the statement means the same with its markers I and J swapped: every JOINT
     !> (its INLINE, I's origin on J's z axis, is J's origin on I's z axis once its other
-    !> primitive makes the axes parallel), and the primitives ATPOINT, PARALLEL_AXES,
-    !> PERPENDICULAR and ORIENTATION; a JPRIM INLINE or INPLANE is not.
+    !> primitive makes the axes parallel, and a PLANAR's INPLANE likewise; CONVEL's condition
+    !> is symmetric; a HOOKE's pins, I's x axis and J's y axis, stay with their markers when
+    !> they are swapped), and the primitives ATPOINT, PARALLEL_AXES, PERPENDICULAR and
+    !> ORIENTATION; a JPRIM INLINE or INPLANE is not.
     pure logical function primitive_symmetric(name, primitive)
         !> The joint's or primitive's name (upper case, in full)
         character(len=*), intent(in) :: name
@@ -93,7 +107,9 @@ contains
     !> the motion between the markers it stops, "translation along ground X" (ATPOINT: I's
     !> origin from J's in ground axes), "translation along J's x" (INLINE, INPLANE: along J's
     !> axes), "rotation about J's y" (PARALLEL_AXES, ORIENTATION: z_i.x_j = 0 stops the turn of
-    !> z_i towards x_j, about y_j), "rotation about z_i x z_j" (PERPENDICULAR). With `swapped`
+    !> z_i towards x_j, about y_j), "rotation about the pins' common normal" (PERPENDICULAR: z_i x
+!> z_j, a HOOKE's x_i x y_j), "rotation about J's z, against I's" (CONVEL's homokinetic
+!> condition x_i.y_j + y_i.x_j = 0, the turn of either shaft about its axis). With `swapped`
     !> the routine holds marker J's part (a statement whose I is on the ground): its J is the
     !> statement's I, and the words say so.
     pure function primitive_equation(primitive, component, swapped) result(words)
@@ -115,7 +131,10 @@ contains
             ! z_i.x_j (about y_j), then z_i.y_j (about x_j)
             words = "rotation about " // marker // " " // own_axes(3 - component:3 - component)
         case (primitive_perpendicular)
-            words = "rotation about z_i x z_j"
+            words = "rotation about the pins' common normal"
+        case (primitive_homokinetic)
+            words = "rotation about " // marker // " z, against " // trim(merge("J's", "I's", &
+                & swapped))
         case default
             ! z_i.x_j, z_i.y_j, x_i.y_j: about y_j, x_j, z_j
             words = "rotation about " // marker // " " // "yxz"(component:component)

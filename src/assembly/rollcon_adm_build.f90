@@ -14,6 +14,7 @@
 !> (rollcon_ucosub_units).
 module rollcon_adm_build
     use rollcon_kinds, only : wp
+    use rollcon_constants, only : pi
     use rollcon_error, only : error_type, fatal_error, stat_input, stat_ucon
     use rollcon_text, only : to_text, place
     use rollcon_ucosub_contract, only : ucosub_interface
@@ -21,6 +22,7 @@ module rollcon_adm_build
     use rollcon_ucosub_catalog, only : find_builtin_ucosub, builtin_ucosub_names, &
         & builtin_ucosubs_for_par, builtin_ucosub_name
     use rollcon_expression, only : quantity_names
+    use rollcon_rotation, only : rotation_matrix
     use rollcon_body, only : part_type
     use rollcon_marker_force, only : kind_translation, kind_rotation, kind_vector, &
         & kind_general, marker_force_values, markers_coincide
@@ -205,16 +207,35 @@ contains
 
     !> Each JOINT and JPRIM, in the order of the file, between its markers as the model holds
     !> them: its UCONs after the dataset's (model%add_joint, model%add_jprim). A refusal names
-    !> the statement's line.
+    !> the statement's line. A CONVEL whose markers' z axes start less than 90 degrees apart is
+    !> refused: they point along its two shafts away from the joint's centre (ADAMS's rule),
+    !> opposite when the shafts are in line, and with the axes the other way its equation
+    !> turns the shafts in opposite senses and vanishes to first order when they come in line
+    !> (ucon/specs/_joint.py).
     subroutine add_joints(adm, model, error)
         type(adm_model_type), intent(in) :: adm
         type(model_type), intent(inout) :: model
         type(error_type), allocatable, intent(out) :: error
+        real(wp) :: cosine
         integer :: k
 
         if (.not. allocated(adm%joints)) return
         do k = 1, size(adm%joints)
             associate (joint => adm%joints(k))
+                if (.not. joint%primitive .and. joint%kind == "CONVEL") then
+                    cosine = dot_product(start_z_axis(adm, joint%i), start_z_axis(adm, joint%j))
+                    if (cosine >= 0.0_wp) then
+                        call fatal_error(error, place(adm%file, joint%line) // ": JOINT/" &
+                            & // to_text(joint%id) // ": a CONVEL's markers' z axes point " &
+                            & // "along its two shafts, away from the joint's centre (opposite " &
+                            & // "when the shafts are in line), but at the start I's (MARKER/" &
+                            & // to_text(joint%i) // ") and J's (MARKER/" // to_text(joint%j) &
+                            & // ") are " // to_text(nint(acos(min(cosine, 1.0_wp))*180.0_wp &
+                            & /pi)) // " degrees apart, more than 90 degrees from opposite: turn " &
+                            & // "one of them half a turn about its x axis", stat_input)
+                        return
+                    end if
+                end if
                 if (joint%primitive) then
                     call model%add_jprim(joint%id, joint%kind, adm_marker(adm, joint%i), &
                         & adm_marker(adm, joint%j), error, line=joint%line)
@@ -229,6 +250,24 @@ contains
             end associate
         end do
     end subroutine add_joints
+
+    !> The z axis in ground of marker `id` at the start: its part's frame (PART's REULER)
+    !> turned by its own REULER.
+    function start_z_axis(adm, id) result(axis)
+        type(adm_model_type), intent(in) :: adm
+        !> Marker id (it exists: the reader checked the references)
+        integer, intent(in) :: id
+        real(wp) :: axis(3), turned(3, 3)
+        integer :: m, p
+
+        m = marker_index(adm, id)
+        p = findloc(adm%parts%id, adm%markers(m)%part, dim=1)
+        associate (part => adm%parts(p)%reuler, marker => adm%markers(m)%reuler)
+            turned = matmul(rotation_matrix(part(1), part(2), part(3)), &
+                & rotation_matrix(marker(1), marker(2), marker(3)))
+        end associate
+        axis = turned(:, 3)
+    end function start_z_axis
 
     !> An error of a UCON that names no ROUTINE, from the model's UCOSUB that served it (a
     !> forgotten --ucosub leaves rollcon's hand-checked disk serving another routine's PAR):

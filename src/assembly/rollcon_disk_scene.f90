@@ -5,7 +5,9 @@
 module rollcon_disk_scene
     use rollcon_kinds, only : wp
     use rollcon_constants, only : pi
-    use rollcon_error, only : error_type
+    use rollcon_error, only : error_type, stat_ucon
+    use rollcon_text, only : to_text
+    use rollcon_ucosub_catalog, only : builtin_ucosub_name, builtin_ucosubs_for_par
     use rollcon_ucosub_contract, only : ucosub_interface
     use rollcon_body, only : part_type
     use rollcon_force, only : applied_force_type, profile_half_sine, frame_tilt
@@ -32,6 +34,44 @@ module rollcon_disk_scene
     real(wp), parameter :: liftoff_fraction = 1.0e-5_wp, liftoff_per_rtol = 100.0_wp
 
 contains
+
+    !> An error of a no-slip UCON from the routine that served it: when that routine is not one
+    !> a disk's PAR suits (`--ucosub knife_edge` on a scene), the message says that this routine
+    !> refused the scene's PAR, what that PAR is, and which built-in routines take it. Nothing is
+    !> added when the routine is one of those (the error is then in a value).
+    subroutine add_par_hint(model, ucosub, error)
+        type(model_type), intent(in) :: model
+        procedure(ucosub_interface) :: ucosub
+        type(error_type), intent(inout) :: error
+        procedure(ucosub_interface), pointer :: served
+        character(len=:), allocatable :: name, suits
+        logical :: time_free
+        integer :: k
+
+        if (error%stat /= stat_ucon) return
+        do k = 1, size(model%ucons)
+            associate (ucon => model%ucons(k))
+                if (index(error%message, "UCON/" // to_text(ucon%id) // ":") /= 1) cycle
+                if (len(ucon%routine) > 0) return
+                served => ucosub
+                name = builtin_ucosub_name(served, time_free)
+                suits = builtin_ucosubs_for_par(ucon%par)
+                if (len(name) > 0) then
+                    if (index(", " // suits // ", ", ", " // name // ", ") > 0) return
+                    name = "the built-in " // name
+                else
+                    name = "a routine of your own"
+                end if
+                error%message = error%message // "; the routine chosen for the scene's no-slip " &
+                    & // "UCONs (--ucosub), here " // name // ", refused the PAR a disk scene " &
+                    & // "gives them, the rolling disk's (part, codes 21 22 23 14 15 24 25 26, " &
+                    & // "R, component)"
+                if (len(suits) > 0) error%message = error%message // "; routines that take it: " &
+                    & // suits
+                return
+            end associate
+        end do
+    end subroutine add_par_hint
 
     !> Model, settings and limits of a disk scene, with ucosub serving the three no-slip UCONs.
     subroutine build_disk_problem(scene, ucosub, problem, q0, u0, error)
@@ -81,7 +121,10 @@ contains
             call model%add_force(strike)
         end if
         call setup_model(model, error)
-        if (allocated(error)) return
+        if (allocated(error)) then
+            call add_par_hint(model, ucosub, error)
+            return
+        end if
         call problem%init(model)
         problem%settings = scene%run%run_settings_type
         ! what the disk scene watches: its theta limit (a stop, in the disk's words), then its

@@ -42,7 +42,9 @@ contains
         integer :: k, found
 
         note = ""
-        call read_adm(path, adm, error)
+        ! the check runs no simulation: a dataset without SIMULATE (run from an ADAMS command
+        ! file) is checked as it is
+        call read_adm(path, adm, error, run_given=.true.)
         if (allocated(error)) return
         found = 0
         ! the routine computes in the dataset's units, as in a run

@@ -7,9 +7,14 @@
 !> marker's origin and axes in its part's principal axes are the geometry the driver owns
 !> (ucon_statement_type's geometry_par), turned with the part at each re-basing.
 !>
+!> A HOOKE's PERPENDICULAR takes its cross pins, I's x axis and J's y axis, where a UNIVERSAL's
+!> and a JPRIM's take the z axes; a CONVEL's homokinetic condition is served by
+!> `jp_homokinetic` and `gnd_homokinetic`, which take I's and J's x and y axes.
+!>
 !> The routines hold the part of marker I; a statement whose I is on the ground is served with
-!> I and J swapped when it means the same so (rollcon_joint_types' primitive_symmetric), and
-!> refused otherwise. model%add_joint and model%add_jprim (rollcon_model) append these UCONs.
+!> I and J swapped when it means the same so (rollcon_joint_types' primitive_symmetric; a
+!> HOOKE's pins stay with their markers), and refused otherwise. model%add_joint and
+!> model%add_jprim (rollcon_model) append these UCONs.
 module rollcon_joint_primitives
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type, fatal_error, stat_input
@@ -18,15 +23,17 @@ module rollcon_joint_primitives
     use rollcon_marker, only : marker_type
     use rollcon_joint_types, only : joint_names, primitive_names, joint_primitives, &
         & is_joint_name, primitive_index, primitive_symmetric, name_list, primitive_equation, &
-        & primitive_atpoint, &
-        & primitive_inline, primitive_inplane, primitive_parallel_axes, primitive_perpendicular
+        & primitive_atpoint, primitive_inline, primitive_inplane, primitive_parallel_axes, &
+        & primitive_perpendicular, primitive_orientation, primitive_homokinetic
     use rollcon_gen_gnd_atpoint, only : gnd_atpoint_ucosub, gnd_atpoint_codes
+    use rollcon_gen_gnd_homokinetic, only : gnd_homokinetic_ucosub, gnd_homokinetic_codes
     use rollcon_gen_gnd_inline, only : gnd_inline_ucosub, gnd_inline_codes
     use rollcon_gen_gnd_inplane, only : gnd_inplane_ucosub, gnd_inplane_codes
     use rollcon_gen_gnd_parallel_axes, only : gnd_parallel_axes_ucosub, gnd_parallel_axes_codes
     use rollcon_gen_gnd_perpendicular, only : gnd_perpendicular_ucosub, gnd_perpendicular_codes
     use rollcon_gen_gnd_orientation, only : gnd_orientation_ucosub, gnd_orientation_codes
     use rollcon_gen_jp_atpoint, only : jp_atpoint_ucosub, jp_atpoint_codes
+    use rollcon_gen_jp_homokinetic, only : jp_homokinetic_ucosub, jp_homokinetic_codes
     use rollcon_gen_jp_inline, only : jp_inline_ucosub, jp_inline_codes
     use rollcon_gen_jp_inplane, only : jp_inplane_ucosub, jp_inplane_codes
     use rollcon_gen_jp_parallel_axes, only : jp_parallel_axes_ucosub, jp_parallel_axes_codes
@@ -38,10 +45,10 @@ module rollcon_joint_primitives
     public :: primitive_ucon_type, joint_ucons
 
     !> The vectors a primitive's PAR holds, in PAR order (ucon/specs/_joint.py): I's origin,
-    !> z and x axes (in part i's principal axes), J's origin, x, y and z axes (in J's part's
+    !> z, x and y axes (in part i's principal axes), J's origin, x, y and z axes (in J's part's
     !> principal axes, or in ground)
-    integer, parameter :: vector_ip = 1, vector_iz = 2, vector_ix = 3, vector_jp = 4, &
-        & vector_jx = 5, vector_jy = 6, vector_jz = 7
+    integer, parameter :: vector_ip = 1, vector_iz = 2, vector_ix = 3, vector_iy = 4, &
+        & vector_jp = 5, vector_jx = 6, vector_jy = 7, vector_jz = 8
 
     !> One UCON of a joint: what model%add_ucon takes, and the geometry it holds
     type :: primitive_ucon_type
@@ -60,8 +67,9 @@ contains
 
     !> The UCONs of JOINT/id (primitive false) or JPRIM/id (primitive true) of type `kind`
     !> between marker i and marker j, in the order of the primitives (joint_primitives), then
-    !> of the components. Refused, naming the statement: an unknown type, both markers on one
-    !> part, an asymmetric primitive whose marker I is on the ground.
+    !> of the components. Refused, naming the statement: an unknown type, markers on parts the
+    !> model does not have, both markers on one part (or both on the ground), an asymmetric
+    !> primitive whose marker I is on the ground.
     subroutine joint_ucons(primitive, id, kind, i, j, part_ids, length_unit, ucons, error)
         !> JPRIM (true) or JOINT (false)
         logical, intent(in) :: primitive
@@ -80,6 +88,7 @@ contains
         type(marker_type) :: first, second
         character(len=:), allocatable :: where
         integer, allocatable :: primitives(:)
+        real(wp) :: pins(3, 2)
 
         allocate(ucons(0))
         where = trim(merge("JPRIM", "JOINT", primitive)) // "/" // to_text(id)
@@ -108,6 +117,14 @@ contains
         end if
         first = i
         second = j
+        ! the axes a PERPENDICULAR holds perpendicular, first's and second's: the z axes, or a
+        ! HOOKE's cross pins, I's x axis and J's y axis (each with its marker when swapped)
+        pins(:, 1) = i%axes(:, 3)
+        pins(:, 2) = j%axes(:, 3)
+        if (.not. primitive .and. kind == "HOOKE") then
+            pins(:, 1) = i%axes(:, 1)
+            pins(:, 2) = j%axes(:, 2)
+        end if
         if (i%part == 0) then
             if (.not. primitive_symmetric(kind, primitive)) then
                 call fatal_error(error, where // " I: MARKER/" // to_text(i%id) // " is on " &
@@ -120,9 +137,11 @@ contains
             end if
             first = j
             second = i
+            pins = pins(:, [2, 1])
         end if
         primitives = joint_primitives(kind)
-        call primitive_list(primitives, first, second, i%part == 0, part_ids, length_unit, ucons)
+        call primitive_list(primitives, first, second, pins, i%part == 0, part_ids, length_unit, &
+            & ucons)
     end subroutine joint_ucons
 
     !> "PART/3", or "the ground" for part 0.
@@ -135,10 +154,12 @@ contains
     end function part_words
 
     !> The UCONs of the primitives, marker I (i) on a moving part (swapped: the statement's
-    !> markers exchanged, its I on the ground).
-    subroutine primitive_list(primitives, i, j, swapped, part_ids, length_unit, ucons)
+    !> markers exchanged, its I on the ground); a PERPENDICULAR holds pins(:, 1), fixed in i's
+    !> part, perpendicular to pins(:, 2), fixed in j's.
+    subroutine primitive_list(primitives, i, j, pins, swapped, part_ids, length_unit, ucons)
         integer, intent(in) :: primitives(:)
         type(marker_type), intent(in) :: i, j
+        real(wp), intent(in) :: pins(3, 2)
         logical, intent(in) :: swapped
         integer, intent(in) :: part_ids(:)
         real(wp), intent(in) :: length_unit
@@ -146,7 +167,7 @@ contains
         type(primitive_ucon_type) :: ucon
         procedure(ucosub_interface), pointer :: routine
         character(len=:), allocatable :: name
-        real(wp) :: vectors(3, 7)
+        real(wp) :: vectors(3, 8)
         real(wp), allocatable :: par(:), values(:)
         integer, allocatable :: codes(:), used(:)
         integer :: n, c, v, components, first, part_i, part_j
@@ -159,16 +180,17 @@ contains
         vectors(:, vector_ip) = i%point/length_unit
         vectors(:, vector_iz) = i%axes(:, 3)
         vectors(:, vector_ix) = i%axes(:, 1)
+        vectors(:, vector_iy) = i%axes(:, 2)
         vectors(:, vector_jp) = j%point/length_unit
         vectors(:, vector_jx) = j%axes(:, 1)
         vectors(:, vector_jy) = j%axes(:, 2)
         vectors(:, vector_jz) = j%axes(:, 3)
         do n = 1, size(primitives)
             call primitive_routine(primitives(n), ground, routine, codes, first, used, &
-                & components)
+                & components, name)
             values = reshape(vectors(:, used), [3*size(used)])
-            name = merge("gnd_", "jp_ ", ground)
-            name = trim(name) // lower_case(trim(primitive_names(primitives(n))))
+            ! its z_i and z_j: the pins (a HOOKE's x_i and y_j)
+            if (primitives(n) == primitive_perpendicular) values = [pins(:, 1), pins(:, 2)]
             do c = 1, components
                 if (ground) then
                     par = [real(part_i, wp), real(codes, wp), values]
@@ -184,7 +206,7 @@ contains
                 ! each vector's PAR index and the part (model order) it is fixed in
                 ucon%geometry_par = [(size(par) - merge(1, 0, components > 1) &
                     & - 3*size(used) + 3*(v - 1) + 1, v = 1, size(used))]
-                ucon%geometry_parts = [(merge(i%part, j%part, used(v) <= vector_ix), &
+                ucon%geometry_parts = [(merge(i%part, j%part, used(v) <= vector_iy), &
                     & v = 1, size(used))]
                 ! J's vectors are in ground when J is on the ground: never turned
                 ucon%geometry_par = pack(ucon%geometry_par, ucon%geometry_parts > 0)
@@ -211,14 +233,16 @@ contains
     end subroutine append
 
     !> A primitive's routine (gnd_<primitive> with J on the ground, jp_<primitive> between two
-    !> parts), its codes (first: how many are part i's), the vectors its PAR holds and its
-    !> number of components.
-    subroutine primitive_routine(primitive, ground, routine, codes, first, used, components)
+    !> parts), its codes (first: how many are part i's), the vectors its PAR holds, its number
+    !> of components and the routine's name (its spec's: gnd_atpoint, jp_homokinetic, ...).
+    subroutine primitive_routine(primitive, ground, routine, codes, first, used, components, &
+        & name)
         integer, intent(in) :: primitive
         logical, intent(in) :: ground
         procedure(ucosub_interface), pointer, intent(out) :: routine
         integer, allocatable, intent(out) :: codes(:), used(:)
         integer, intent(out) :: first, components
+        character(len=:), allocatable, intent(out) :: name
 
         select case (primitive)
         case (primitive_atpoint)
@@ -256,16 +280,29 @@ contains
             if (.not. ground) codes = jp_perpendicular_codes
             used = [vector_iz, vector_jz]
             components = 1
-        case default
+        case (primitive_orientation)
             routine => gnd_orientation_ucosub
             codes = gnd_orientation_codes
             if (.not. ground) routine => jp_orientation_ucosub
             if (.not. ground) codes = jp_orientation_codes
             used = [vector_iz, vector_ix, vector_jx, vector_jy]
             components = 3
+        case default
+            routine => gnd_homokinetic_ucosub
+            codes = gnd_homokinetic_codes
+            if (.not. ground) routine => jp_homokinetic_ucosub
+            if (.not. ground) codes = jp_homokinetic_codes
+            used = [vector_ix, vector_iy, vector_jx, vector_jy]
+            components = 1
         end select
         ! part i's coordinates: X, Y, Z with I's origin, and the three angles
         first = merge(6, 3, any(used == vector_ip))
+        if (primitive == primitive_homokinetic) then
+            name = "homokinetic"
+        else
+            name = lower_case(trim(primitive_names(primitive)))
+        end if
+        name = trim(merge("gnd_", "jp_ ", ground)) // name
     end subroutine primitive_routine
 
 end module rollcon_joint_primitives

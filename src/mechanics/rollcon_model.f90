@@ -208,11 +208,11 @@ contains
     end function served_by_model_ucosub
 
     !> Append JOINT/id, a joint of type kind (REVOLUTE, SPHERICAL, UNIVERSAL, CYLINDRICAL,
-    !> TRANSLATIONAL, FIXED: rollcon_joint_types) between marker i and marker j, as the UCONs
-    !> of its primitives (rollcon_joint_primitives): they take the ids after the largest UCON
-    !> id of the model, in the order of the primitives and their components, and the model's
-    !> length unit (ucosub_units). Add the parts first. Refused: an unknown type, markers on
-    !> parts the model does not have, or both on one part.
+    !> TRANSLATIONAL, FIXED, PLANAR, HOOKE, CONVEL: rollcon_joint_types) between marker i and
+    !> marker j, as the UCONs of its primitives (rollcon_joint_primitives): they take the ids
+    !> after the largest UCON id of the model, in the order of the primitives and their
+    !> components, and the model's length unit (ucosub_units). Add the parts first. Refused: an
+    !> unknown type, markers on parts the model does not have, or both on one part.
     subroutine add_joint(self, id, kind, i, j, error, line)
         class(model_type), intent(inout) :: self
         !> The joint's id, for messages ("JOINT/3")

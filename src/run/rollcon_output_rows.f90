@@ -16,6 +16,7 @@ module rollcon_output_rows
     private
 
     public :: run_options_type, planned_rows, output_layout, output_row
+    public :: output_time
 
     !> Default limit of a planned CSV [bytes], 100 GB: ten thousand times the coin's run
     real(wp), parameter, public :: default_max_csv_bytes = 1.0e11_wp
@@ -24,6 +25,10 @@ module rollcon_output_rows
     type :: run_options_type
         !> Start and end time, output interval [s]
         real(wp) :: t0 = 0.0_wp, end_time = 1.0_wp, output_step = 0.01_wp
+        !> The output times after t0 [s], ascending, the last at end_time, when they are not
+        !> every output_step (several SIMULATE commands of a command file); unallocated: every
+        !> output_step
+        real(wp), allocatable :: output_times(:)
         !> CSV file to write (none when unallocated)
         character(len=:), allocatable :: csv_path
         !> Progress lines on stderr for runs longer than a second
@@ -102,6 +107,19 @@ contains
         end do
     end function output_row
 
+    !> The k-th output time after t0 [s]: options%output_times(k) when given, else
+    !> t0 + k output_step (at most end_time).
+    pure real(wp) function output_time(options, k) result(t)
+        type(run_options_type), intent(in) :: options
+        integer(int64), intent(in) :: k
+
+        if (allocated(options%output_times)) then
+            t = options%output_times(k)
+        else
+            t = min(options%t0 + real(k, wp)*options%output_step, options%end_time)
+        end if
+    end function output_time
+
     !> Number of output steps after the first row (64 bits); refused when the CSV they would
     !> fill is larger than options%max_csv_bytes, or the count does not fit in 64 bits.
     subroutine planned_rows(options, columns, n_output, error)
@@ -116,6 +134,7 @@ contains
         ! 1e-9: an end time a rounding short of a whole number of steps adds no step.
         steps = max(1.0_wp, ceiling_real((options%end_time - options%t0)/options%output_step &
             & - 1.0e-9_wp))
+        if (allocated(options%output_times)) steps = real(size(options%output_times), wp)
         bytes = (steps + 1.0_wp)*real(csv_row_bytes(columns), wp)
         n_output = 1
         rows = to_text(steps + 1.0_wp)

@@ -13,10 +13,10 @@ module rollcon_problem
     use, intrinsic :: ieee_arithmetic, only : ieee_is_finite
     use rollcon_error, only : error_type, fatal_error, stat_ucon, stat_input
     use rollcon_text, only : to_text
-    use rollcon_force, only : nonfinite_load
+    use rollcon_force, only : nonfinite_load, runaway_load, runaway_limit
+    use rollcon_output_layout, only : coordinate_names
     use rollcon_model, only : model_type, served_by_model_ucosub, statement_ucon
     use rollcon_equations, only : equations_type
-    use rollcon_constraints, only : need_value
     use rollcon_run_settings, only : run_settings_type, drift_projection
     use rollcon_watch, only : watch_type, watch_slot_type, append_watch
     use rollcon_redundancy_watch, only : redundancy_watch_type
@@ -70,9 +70,10 @@ module rollcon_problem
         procedure :: root_owner
         procedure :: roots_use_accelerations
         procedure :: nonfinite_state
+        procedure :: runaway_text
         procedure :: keep_failure
         procedure :: failure_text
-        procedure :: ucons_do_no_work
+        procedure :: constraint_power
         procedure :: release => release_problem
     end type problem_type
 
@@ -403,8 +404,11 @@ contains
         end do
     end function roots_use_accelerations
 
-    !> Why the equations are not finite at (t, q, u), in words: a force statement's load (named,
-    !> with its expression), a UCON's value, or else the accelerations themselves.
+    !> Why the equations or a row are not finite at (t, q, u), in words: a coordinate or rate
+    !> that is not finite, a force statement's load that is not finite (named, with its
+    !> expression), a UCON's value, a load that has run away (finite but beyond
+    !> runaway_limit: its square, a power or the energy, overflows), a rate beyond it, or else
+    !> the accelerations themselves.
     subroutine nonfinite_state(self, time, q, u, error)
         class(problem_type), intent(inout) :: self
         real(wp), intent(in) :: time, q(:), u(:)
@@ -412,16 +416,61 @@ contains
         character(len=:), allocatable :: message
         integer :: k
 
-        message = nonfinite_load(self%model%forces, size(self%model%parts), time, q, u)
+        message = ""
+        k = findloc(ieee_is_finite(q) .and. ieee_is_finite(u), .false., dim=1)
+        if (k > 0) message = "part " // to_text(self%model%parts((k - 1)/6 + 1)%id) // "'s " &
+            & // trim(merge(coordinate_names(mod(k - 1, 6) + 1), &
+            & coordinate_names(mod(k - 1, 6) + 7), .not. ieee_is_finite(q(k)))) &
+            & // " is not finite at t = " // to_text(time) // " s"
+        if (len(message) == 0) message = nonfinite_load(self%model%forces, &
+            & size(self%model%parts), time, q, u)
         if (len(message) == 0 .and. self%eq%nc > 0) then
             k = findloc(ieee_is_finite(self%eq%constraints%value), .false., dim=1)
             if (k > 0) message = self%model%row_words(k) // ": F is not " &
                 & // "finite at t = " // to_text(time) // " s"
         end if
+        if (len(message) == 0) message = self%runaway_text(time, q, u)
         if (len(message) == 0) message = "the accelerations are not finite at t = " &
             & // to_text(time) // " s (a singular mass matrix or constraint matrix?)"
         call fatal_error(error, message, stat_ucon)
     end subroutine nonfinite_state
+
+    !> A load or a rate that has run away at (t, q, u), in words: the force statement whose
+    !> component exceeds runaway_limit (its square, a power or the energy, overflows; with
+    !> weight_times, also one that exceeds weight_times the parts' weight, the model's own force
+    !> scale: the cause of an integrator's failure), else the part whose rate exceeds
+    !> runaway_limit ("part 2's Xdot = 3.1E+157 m/s at t = ...: the motion has run away");
+    !> "" when none does (rollcon_force runaway_load).
+    function runaway_text(self, time, q, u, weight_times) result(text)
+        class(problem_type), intent(in) :: self
+        real(wp), intent(in) :: time, q(:), u(:)
+        !> Loads beyond this many times the parts' weight have run away too [-]
+        real(wp), intent(in), optional :: weight_times
+        character(len=:), allocatable :: text
+        real(wp) :: weight
+        character(len=16) :: times, weight_text
+        integer :: k
+
+        weight = 0.0_wp
+        if (present(weight_times)) weight = weight_times*sum(self%model%parts%mass) &
+            & *norm2(self%model%gravity)
+        if (weight > 0.0_wp .and. weight < runaway_limit) then
+            write(times, '(es8.1)') weight_times
+            write(weight_text, '(es10.3)') weight/weight_times
+            text = runaway_load(self%model%forces, time, q, u, weight, "beyond " &
+                & // trim(adjustl(times)) // " times the parts' weight, " &
+                & // trim(adjustl(weight_text)) // " N")
+        else
+            text = runaway_load(self%model%forces, time, q, u, runaway_limit, "beyond 1.3e154, " &
+                & // "whose square overflows")
+        end if
+        if (len(text) > 0) return
+        k = findloc(abs(u) > runaway_limit, .true., dim=1)
+        if (k == 0) return
+        text = "part " // to_text(self%model%parts((k - 1)/6 + 1)%id) // "'s " &
+            & // trim(coordinate_names(mod(k - 1, 6) + 7)) // " = " // to_text(u(k)) &
+            & // " at t = " // to_text(time) // " s: the motion has run away (beyond 1.3e154)"
+    end function runaway_text
 
     !> Keep the first failure; return the callback code (0 ok, -1 unrecoverable).
     function keep_failure(self, error) result(ierr)
@@ -444,43 +493,34 @@ contains
         if (allocated(self%failure)) text = self%failure%message
     end function failure_text
 
-    !> True when the UCONs do no work at the start (t, q), so that they leave the energy
-    !> alone: every velocity UCON's F vanishes at zero rates (F = C(q) u: every term carries a
-    !> rate, as for a rolling contact on fixed ground) and no position UCON changes with time
-    !> alone (F at t and at t + 1 s equal). A moving constraint (a turntable, a driven motion)
-    !> fails this, and its constraint forces do work. The check is made at the one state given;
-    !> a UCOSUB that cannot be evaluated at zero rates leaves the answer true (the run itself
-    !> then reports its error). The UCONs are evaluated, so call this before the run's first
-    !> evaluation.
-    function ucons_do_no_work(self, time, q) result(no_work)
-        class(problem_type), intent(inout) :: self
-        real(wp), intent(in) :: time, q(:)
-        logical :: no_work
-        !> A homogeneous form gives exact zeros (every term is a product with a rate that is 0),
-        !> and a time-free one the same value twice; a moving constraint's terms are of the size
-        !> of its motion, many orders above this
-        real(wp), parameter :: tol_work = 1.0e-12_wp
-        real(wp) :: still(size(q)), now(self%eq%nc)
-        type(error_type), allocatable :: error
+    !> The explicit power of the constraint forces at the last evaluation (accelerations), at
+    !> the run's own state: sum over the UCONs of |lambda_k w_k| [W], w_k the part of F_k's
+    !> rate that the motion does not make: dF_k/dt for a position UCON (its forces' power is
+    !> -lambda_k dF_k/dq u = lambda_k dF_k/dt on the constraint), and F_k - dF_k/du u for a
+    !> velocity UCON (F linear in u, F = C u + c: the forces' power lambda_k C u is -lambda_k c).
+    !> Zero, up to rounding, for constraints fixed in space and time (a rolling contact on
+    !> fixed ground: F = C(q) u, c = 0; a joint: no explicit time); a moving constraint's (a
+    !> turntable, a driven motion) is of the size of the power it puts in. Calls no UCOSUB.
+    pure function constraint_power(self, u) result(power)
+        class(problem_type), intent(in) :: self
+        !> The rates of the last evaluation
+        real(wp), intent(in) :: u(:)
+        real(wp) :: power
         integer :: k
 
-        no_work = .true.
-        if (self%eq%nc == 0) return
-        still = 0.0_wp
-        call self%eq%constraints%evaluate(self%model, time, q, still, need_value, error)
-        if (allocated(error)) return
-        now = self%eq%constraints%value
-        call self%eq%constraints%evaluate(self%model, time + 1.0_wp, q, still, need_value, error)
-        if (allocated(error)) return
-        do k = 1, self%eq%nc
-            if (self%model%ucons(k)%holonomic) then
-                if (abs(self%eq%constraints%value(k) - now(k)) > tol_work) no_work = .false.
-            else
-                if (abs(now(k)) > tol_work .or. abs(self%eq%constraints%value(k)) > tol_work) &
-                    & no_work = .false.
-            end if
-        end do
-    end function ucons_do_no_work
+        power = 0.0_wp
+        if (.not. allocated(self%lambda)) return
+        associate (cs => self%eq%constraints)
+            do k = 1, self%eq%nc
+                if (self%model%ucons(k)%holonomic) then
+                    power = power + abs(self%lambda(k)*cs%dt(k))
+                else
+                    power = power + abs(self%lambda(k)*(cs%value(k) &
+                        & - dot_product(cs%grad_u(k, :), u)))
+                end if
+            end do
+        end associate
+    end function constraint_power
 
     !> Free what the problem holds outside Fortran's memory (its equations' KLU factors): a
     !> process running many models one after another (a study's cases) would keep every one's

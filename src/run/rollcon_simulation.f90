@@ -25,7 +25,7 @@ module rollcon_simulation
         & status_failed, status_inaccurate, judge_drift
     use rollcon_output_layout, only : output_layout_type
     use rollcon_output_rows, only : run_options_type, default_max_csv_bytes, planned_rows, &
-        & output_layout, output_row
+        & output_layout, output_row, output_time
     use rollcon_history, only : history_type
     use rollcon_rebase_step, only : rebase_part, restart_state
     implicit none
@@ -56,6 +56,15 @@ module rollcon_simulation
         !> Energy drift is measured from the first row at or after this time [s]
         real(wp) :: t_reference = 0.0_wp
         logical :: have_reference = .false.
+        !> Over the rows from the reference on (the judged rows): their count, the largest
+        !> |E - E_reference| [J], the largest kinetic energy and the potential energy's range
+        !> [J], the sum of what one step's tolerance allows the energy [J], the explicit work of
+        !> the constraint forces [J] and the power and time of the last row [W, s]
+        integer :: judged_rows = 0
+        real(wp) :: energy_change = 0.0_wp, kinetic_max = 0.0_wp
+        real(wp) :: potential_min = huge(1.0_wp), potential_max = -huge(1.0_wp)
+        real(wp) :: step_energy_sum = 0.0_wp, constraint_work = 0.0_wp
+        real(wp) :: last_power = 0.0_wp, last_time = 0.0_wp
         !> Counters of the integrator's segments before its last restart
         type(integrator_statistics_type) :: earlier
         !> Re-basings of each part (model order)
@@ -74,6 +83,7 @@ module rollcon_simulation
         procedure :: rebase_at_start
         procedure :: count_rebasing
         procedure :: finish
+        procedure :: name_runaway
     end type simulation_type
 
 contains
@@ -106,10 +116,12 @@ contains
         end if
         k_output = 1
         do while (k_output <= n_output)
-            t_out = min(options%t0 + real(k_output, wp)*options%output_step, options%end_time)
+            t_out = output_time(options, k_output)
             call run%integrator%advance(t_out, run%next_stop(run%t), run%t, run%y, run%yp, root, &
                 & error)
             if (allocated(error)) then
+                ! a load or the motion that ran away is why, whatever the integrator's words
+                call run%name_runaway(error)
                 summary%status = status_failed
                 summary%message = error%message
                 summary%solver_flag = run%integrator%failed_flag
@@ -138,7 +150,7 @@ contains
             call run%progress%report(run%t)
         end do
         call run%finish(summary, error)
-        if (.not. allocated(error)) call judge_drift(summary, problem%settings%rtol)
+        if (.not. allocated(error)) call judge_drift(summary, problem%settings)
     end subroutine simulate
 
     !> Everything before the first step: the watches prepared, the layout, what the summary
@@ -157,6 +169,7 @@ contains
         class(row_sink_type), intent(inout), optional :: sink
         real(wp), allocatable :: q(:), u(:)
         character(len=:), allocatable :: refusal
+        logical :: fell
         integer :: k
 
         self%problem => problem
@@ -175,11 +188,10 @@ contains
         self%breaks = force_breakpoints(problem%model%forces)
         self%t_reference = options%t0
         if (size(self%breaks) > 0) self%t_reference = maxval(self%breaks)
-        ! forces acting after the reference, or moving constraints, do work: no drift to judge
+        ! forces acting after the reference do work: no drift to judge (constraints that do
+        ! work are found from the rows, record, and judged by judge_drift)
         summary%energy_conserved = forces_idle_after(problem%model%forces, self%t_reference, &
             & options%end_time)
-        if (summary%energy_conserved) summary%energy_conserved = &
-            & problem%ucons_do_no_work(options%t0, q0)
         self%breaks = pack(self%breaks, self%breaks > options%t0 .and. self%breaks &
             & < options%end_time)
         call planned_rows(options, self%layout%columns(), n_output, error)
@@ -195,14 +207,22 @@ contains
         call cpu_time(self%cpu_start)
         q = q0
         u = u0
-        call self%rebase_at_start(q, u, refusal, error)
+        call self%rebase_at_start(q, u, refusal, fell, error)
         if (allocated(error)) return
         call self%start(q, u, error)
         if (allocated(error)) return
         call self%record(summary, error, history, sink)
-        ! a re-basing refused: the run cannot go on as asked, a failure (docs/rebasing.md)
-        if (allocated(refusal) .and. .not. allocated(error)) call fatal_error(error, refusal, &
-            & stat_ucon)
+        if (.not. allocated(refusal) .or. allocated(error)) return
+        ! a re-basing refused: the run cannot go on as asked: a fall ends it at its first row,
+        ! anything else is a failure (docs/rebasing.md)
+        if (fell) then
+            summary%status = status_stopped
+            summary%message = refusal
+            summary%limit = "fall"
+            n_output = 0
+        else
+            call fatal_error(error, refusal, stat_ucon)
+        end if
     end subroutine begin
 
     !> The consistent start at (options%t0, q, u), the formulation the settings choose (the
@@ -247,7 +267,7 @@ contains
         type(error_type), allocatable, intent(out) :: error
         type(history_type), intent(inout), optional :: history
         class(row_sink_type), intent(inout), optional :: sink
-        real(wp) :: energy
+        real(wp) :: energy, potential, power
         real(wp), allocatable :: row(:)
 
         call self%system%unpack_state(self%t, self%y, self%q, self%u, error)
@@ -266,14 +286,24 @@ contains
             end if
             energy = row(self%layout%energy_column())
             ! Energy is conserved once the last force pulse is over: measure drift from the
-            ! first row at or after that time.
+            ! first row at or after that time, with what the judge needs (rollcon_drift)
             if (time >= self%t_reference) then
                 if (.not. self%have_reference) summary%energy_reference = energy
                 self%have_reference = .true.
-                if (summary%energy_reference /= 0.0_wp) then
-                    summary%energy_drift = max(summary%energy_drift, &
-                        & abs(energy - summary%energy_reference)/abs(summary%energy_reference))
-                end if
+                potential = problem%eq%potential_energy(q)
+                power = problem%constraint_power(u)
+                self%energy_change = max(self%energy_change, &
+                    & abs(energy - summary%energy_reference))
+                self%kinetic_max = max(self%kinetic_max, energy - potential)
+                self%potential_min = min(self%potential_min, potential)
+                self%potential_max = max(self%potential_max, potential)
+                self%step_energy_sum = self%step_energy_sum + problem%eq%energy_tolerance(q, &
+                    & u, problem%settings%rtol, problem%settings%atol)
+                if (self%judged_rows > 0) self%constraint_work = self%constraint_work &
+                    & + 0.5_wp*(power + self%last_power)*(time - self%last_time)
+                self%last_power = power
+                self%last_time = time
+                self%judged_rows = self%judged_rows + 1
             end if
             if (problem%eq%nc > 0) then
                 summary%ucon_residual_max = max(summary%ucon_residual_max, &
@@ -305,6 +335,7 @@ contains
         character(len=:), allocatable :: refusal
         integer, allocatable :: owners(:)
         integer :: r, w, k, stopping
+        logical :: fell
 
         call self%system%unpack_state(self%t, self%y, self%q, self%u, error)
         if (allocated(error)) return
@@ -335,23 +366,33 @@ contains
             if (allocated(error)) return
         end do
         call self%rebase(pack([(events(k)%part, k = 1, size(events))], &
-            & [(events(k)%action == action_rebase, k = 1, size(events))]), refusal, error)
+            & [(events(k)%action == action_rebase, k = 1, size(events))]), refusal, fell, error)
         if (allocated(error)) return
         if (allocated(refusal)) then
             stop_here = .true.
             call self%record(summary, error, history, sink)
-            if (.not. allocated(error)) call fatal_error(error, refusal, stat_ucon)
+            if (allocated(error)) return
+            ! a fall is the run's outcome, reported as a stop at the last valid row
+            if (fell) then
+                summary%status = status_stopped
+                summary%message = refusal
+                summary%limit = "fall"
+            else
+                call fatal_error(error, refusal, stat_ucon)
+            end if
         end if
     end subroutine handle_events
 
     !> Re-base the given parts at the current state (rollcon_rebase_step), then start the
     !> integrator again from the same physical state in the new coordinates, on the
     !> constraints, with y' from the saddle-point system for IDA (mu = 0): restart_state.
-    subroutine rebase(self, parts, refusal, error)
+    subroutine rebase(self, parts, refusal, fell, error)
         class(simulation_type), intent(inout) :: self
         !> Parts to re-base (model order)
         integer, intent(in) :: parts(:)
         character(len=:), allocatable, intent(out) :: refusal
+        !> The refusal is a fall (rollcon_rebase_step)
+        logical, intent(out) :: fell
         type(error_type), allocatable, intent(out) :: error
         real(wp), allocatable :: q(:), u(:)
         integer :: k
@@ -360,8 +401,9 @@ contains
         if (allocated(error)) return
         q = self%q
         u = self%u
+        fell = .false.
         do k = 1, size(parts)
-            call rebase_part(self%problem, parts(k), self%t, q, u, refusal, error)
+            call rebase_part(self%problem, parts(k), self%t, q, u, refusal, error, fell)
             if (allocated(error) .or. allocated(refusal)) return
             call self%count_rebasing(parts(k))
         end do
@@ -393,14 +435,17 @@ contains
     !> counted as re-based, then every part a watch wants re-based at the start (a part at
     !> or below the threshold of a watch that re-bases there) re-based. A refusal fails the run
     !> after that row (the start as given).
-    subroutine rebase_at_start(self, q, u, refusal, error)
+    subroutine rebase_at_start(self, q, u, refusal, fell, error)
         class(simulation_type), intent(inout) :: self
         real(wp), intent(inout) :: q(:), u(:)
         character(len=:), allocatable, intent(out) :: refusal
+        !> The refusal is a fall (rollcon_rebase_step)
+        logical, intent(out) :: fell
         type(error_type), allocatable, intent(out) :: error
         integer, allocatable :: parts(:)
         integer :: w, k
 
+        fell = .false.
         if (allocated(self%problem%start_bases)) then
             do k = 1, size(self%problem%start_bases)
                 do w = 1, self%problem%start_bases(k)
@@ -411,7 +456,8 @@ contains
         do w = 1, size(self%problem%watches)
             parts = self%problem%watches(w)%watch%parts_to_rebase(self%problem%eq, q)
             do k = 1, size(parts)
-                call rebase_part(self%problem, parts(k), self%options%t0, q, u, refusal, error)
+                call rebase_part(self%problem, parts(k), self%options%t0, q, u, refusal, error, &
+                    & fell)
                 if (allocated(error) .or. allocated(refusal)) return
                 call self%count_rebasing(parts(k))
             end do
@@ -430,6 +476,26 @@ contains
         end do
     end subroutine count_rebasing
 
+    !> Add to an integrator's failure the load or rate that ran away at its last state
+    !> (problem_type's runaway_text: a load beyond runaway_weights times the parts' weight),
+    !> when one has and the message does not say it already: an integrator that cannot follow
+    !> a load of 1e33 N on a coin of 7 N says only that it took too many steps.
+    subroutine name_runaway(self, error)
+        class(simulation_type), intent(inout) :: self
+        type(error_type), allocatable, intent(inout) :: error
+        !> A load a million times the weight of every part together is no load the model was
+        !> written for (the coin's strike peaks at a fifth of its weight)
+        real(wp), parameter :: runaway_weights = 1.0e6_wp
+        type(error_type), allocatable :: unpacked
+        character(len=:), allocatable :: why
+
+        call self%system%unpack_state(self%t, self%y, self%q, self%u, unpacked)
+        if (allocated(unpacked)) return
+        why = self%problem%runaway_text(self%t, self%q, self%u, runaway_weights)
+        if (len(why) > 0 .and. index(error%message, why) == 0) error%message = error%message &
+            & // "; " // why
+    end subroutine name_runaway
+
     !> The summary's counters, CPU time, re-basings and the watches' measures and lines; the
     !> integrator freed; the CSV closed (its failure, a full disk, fails the run unless it
     !> failed already).
@@ -443,6 +509,13 @@ contains
         integer :: k
 
         if (allocated(self%bases)) summary%rebasings = self%bases
+        if (self%judged_rows > 0) then
+            summary%energy_scale = max(self%kinetic_max, self%potential_max - self%potential_min)
+            if (summary%energy_scale > 0.0_wp) summary%energy_drift = &
+                & self%energy_change/summary%energy_scale
+            summary%energy_step = self%step_energy_sum/real(self%judged_rows, wp)
+            summary%constraint_work = self%constraint_work
+        end if
         call cpu_time(cpu_now)
         summary%cpu_seconds = cpu_now - self%cpu_start
         if (allocated(self%integrator)) then

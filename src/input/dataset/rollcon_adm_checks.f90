@@ -15,6 +15,7 @@ module rollcon_adm_checks
         & adm_force_type, force_sforce, force_vforce, refers_to_marker, refers_to_part
     use rollcon_adm_joints, only : adm_joint_type
     use rollcon_adm_ids, only : id_index_type, new_id_index
+    use rollcon_adm_run, only : no_simulate_message
     use, intrinsic :: iso_fortran_env, only : int64
     implicit none
     private
@@ -25,11 +26,15 @@ contains
 
     !> The checks of the whole dataset, in time linear in its statements (each reference found
     !> through an index of the ids).
-    subroutine check_references(model, error)
+    subroutine check_references(model, error, simulate_needed)
         type(adm_model_type), intent(in) :: model
         type(error_type), allocatable, intent(out) :: error
+        !> The dataset must hold its SIMULATE (default); false when the run is given apart
+        !> from it (a command file, or `rollcon run --end T --steps N`)
+        logical, intent(in), optional :: simulate_needed
         type(id_index_type) :: parts, markers, forces
         integer :: i, previous
+        logical :: simulation_needed
 
         parts = new_id_index(size(model%parts))
         do i = 1, size(model%parts)
@@ -72,9 +77,12 @@ contains
             end do
         end if
         if (model%run%line == 0) then
-            call fatal_error(error, model%file // ": no SIMULATE statement (SIMULATE/DYNAMIC, " &
-                & // "END=t, STEPS=n)", stat_input)
-            return
+            simulation_needed = .true.
+            if (present(simulate_needed)) simulation_needed = simulate_needed
+            if (simulation_needed) then
+                call fatal_error(error, no_simulate_message(model%file), stat_input)
+                return
+            end if
         end if
         if (.not. allocated(model%joints)) return
         do i = 1, size(model%joints)

@@ -16,8 +16,8 @@ module rollcon_adm_joints
 
     !> ADAMS's keywords of a JOINT that rollcon reads and refuses (initial conditions, friction,
     !> the joints it does not simulate)
-    character(len=*), parameter :: joint_refused(8) = [character(len=13) :: "IC", "ICTRAN", &
-        & "ICROT", "DELTA_V", "MAXIMUM_DEFORMATION", "RACKPIN", "SCREW", "PLANAR"]
+    character(len=*), parameter :: joint_refused(7) = [character(len=19) :: "IC", "ICTRAN", &
+        & "ICROT", "DELTA_V", "MAXIMUM_DEFORMATION", "RACKPIN", "SCREW"]
 
     !> JOINT/id or JPRIM/id
     type :: adm_joint_type
@@ -65,7 +65,7 @@ contains
                     & // "are not supported: rollcon's initial-conditions analysis places the " &
                     & // "parts (docs/initial-conditions.md); give the parts' QG, REULER and " &
                     & // "velocities instead", stat_input)
-            case ("RACKPIN", "SCREW", "PLANAR")
+            case ("RACKPIN", "SCREW")
                 call fatal_error(error, at // ": a " // key // " joint is not supported " &
                     & // "(supported: " // name_list(joint_names) // ", and JPRIM)", stat_input)
             case default

@@ -2,8 +2,9 @@
 !> The assembly of a dataset (src/assembly/): what the readers leave to it is refused there,
 !> naming the file, the line and the statement. A ROUTINE that names no built-in routine; a
 !> UCON that names none when no model's UCOSUB is given; a JOINT or JPRIM whose markers the
-!> model cannot join (model%add_joint, model%add_jprim judge them). Each dataset reads cleanly
-!> first: these are not the text's to refuse.
+!> model cannot join (model%add_joint, model%add_jprim judge them); a CONVEL whose markers' z
+!> axes start less than 90 degrees apart. Each dataset reads cleanly first: these are not the
+!> text's to refuse.
 module test_assembly
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type
@@ -21,10 +22,11 @@ module test_assembly
 
     !> The built-in UCOSUBs, as a refusal lists them
     character(len=*), parameter :: builtin = &
-        & "(disk, rolling_disk, chaplygin_sled, disk_height, gnd_atpoint, gnd_inline," &
-        & // " gnd_inplane, gnd_orientation, gnd_parallel_axes, gnd_perpendicular, jp_atpoint," &
-        & // " jp_inline, jp_inplane, jp_orientation, jp_parallel_axes, jp_perpendicular," &
-        & // " knife_edge, planar_hold, rolling_sphere, turntable_ball, turntable_disk)"
+        & "(disk, rolling_disk, chaplygin_sled, disk_height, gnd_atpoint, gnd_homokinetic," &
+        & // " gnd_inline, gnd_inplane, gnd_orientation, gnd_parallel_axes, gnd_perpendicular," &
+        & // " jp_atpoint, jp_homokinetic, jp_inline, jp_inplane, jp_orientation," &
+        & // " jp_parallel_axes, jp_perpendicular, knife_edge, planar_hold, rolling_sphere," &
+        & // " turntable_ball, turntable_disk)"
     !> A pendulum (data/pendulum.adm's parts and markers): ground marker 10, the bob's CM
     !> marker 20 and hinge marker 21; line 8 is the statement under test
     character(len=60), parameter :: pendulum(10) = [character(len=60) :: &
@@ -75,13 +77,19 @@ contains
     end subroutine test_no_routine
 
     !> Markers on one part, on the ground both, and an asymmetric primitive with I on the
-    !> ground: the model's refusals, with the statement's line.
+    !> ground: the model's refusals, with the statement's line. A CONVEL on the pendulum's
+    !> hinge markers, whose z axes are one (a REVOLUTE's), and on the bob's hinge marker (z
+    !> along ground Y) and a ground marker whose z is 30 degrees from it: refused by the
+    !> assembly; with that marker's z 150 degrees from the hinge's (its shafts bent by 30
+    !> degrees, ADAMS's CONVEL markers), the problem is made.
     subroutine test_joint_markers(error)
         type(error_type), allocatable, intent(out) :: error
-        character(len=*), parameter :: statements(4) = [character(len=40) :: &
+        character(len=*), parameter :: statements(6) = [character(len=70) :: &
             & "JOINT/1, REVOLUTE, I=21, J=20", "JOINT/1, SPHERICAL, I=10, J=11", &
-            & "JPRIM/1, INLINE, I=10, J=21", "JPRIM/1, INPLANE, I=10, J=21"]
-        character(len=*), parameter :: expected(4) = [character(len=120) :: &
+            & "JPRIM/1, INLINE, I=10, J=21", "JPRIM/1, INPLANE, I=10, J=21", &
+            & "JOINT/1, CONVEL, I=21, J=10", &
+            & "JOINT/1, CONVEL, I=21, J=12|MARKER/12, PART=1, REULER=180D, 60D, 0"]
+        character(len=*), parameter :: expected(6) = [character(len=300) :: &
             & ":8: JOINT/1: its markers I (MARKER/21) and J (MARKER/20) are both on PART/2; " &
             & // "a joint connects two parts", &
             & ":8: JOINT/1: its markers I (MARKER/10) and J (MARKER/11) are both on the " &
@@ -89,9 +97,19 @@ contains
             & ":8: JPRIM/1 I: MARKER/10 is on the ground part; an INLINE primitive is not " &
             & // "symmetric in I and J", &
             & ":8: JPRIM/1 I: MARKER/10 is on the ground part; an INPLANE primitive is not " &
-            & // "symmetric in I and J"]
-        character(len=60) :: lines(size(pendulum))
+            & // "symmetric in I and J", &
+            & ":8: JOINT/1: a CONVEL's markers' z axes point along its two shafts, away from " &
+            & // "the joint's centre (opposite when the shafts are in line), but at the start " &
+            & // "I's (MARKER/21) and J's (MARKER/10) are 0 degrees apart, more than 90 " &
+            & // "degrees from opposite: turn one of them half a turn about its x axis", &
+            & ":8: JOINT/1: a CONVEL's markers' z axes point along its two shafts, away from " &
+            & // "the joint's centre (opposite when the shafts are in line), but at the start " &
+            & // "I's (MARKER/21) and J's (MARKER/12) are 30 degrees apart"]
+        character(len=80) :: lines(size(pendulum))
         procedure(ucosub_interface), pointer :: disk
+        type(adm_model_type) :: adm
+        type(problem_type), target :: problem
+        real(wp), allocatable :: q0(:), u0(:)
         integer :: k
 
         disk => rolling_disk_ucosub
@@ -101,6 +119,12 @@ contains
             call refused(lines, disk, trim(expected(k)), error)
             if (allocated(error)) return
         end do
+        lines = pendulum
+        lines(8) = "JOINT/1, CONVEL, I=21, J=12|MARKER/12, PART=1, REULER=0, 60D, 0"
+        call read_dataset("convel.adm", lines, adm, error)
+        if (allocated(error)) return
+        call build_adm_problem(adm, disk, problem, q0, u0, error)
+        call problem%release()
     end subroutine test_joint_markers
 
     !> The dataset of these lines reads cleanly, and its assembly is refused with a message

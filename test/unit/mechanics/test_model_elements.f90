@@ -4,7 +4,8 @@
 !> (part_start). The joints' UCONs are judged by what they evaluate to: at a state of two parts
 !> in general position, each component against its closed form in the markers' ground
 !> positions and axes (ucon/specs/_joint.py: atpoint d = r_I - r_J; parallel_axes z_i.x_j,
-!> z_i.y_j; inline d.x_j, d.y_j).
+!> z_i.y_j; inline d.x_j, d.y_j; inplane d.z_j; a HOOKE's perpendicular x_i.y_j; homokinetic
+!> x_i.y_j + y_i.x_j).
 module test_model_elements
     use rollcon_kinds, only : wp
     use rollcon_constants, only : pi
@@ -42,6 +43,8 @@ contains
 
         tests = [new_unittest("revolute-ucons-evaluate-their-closed-form", test_revolute), &
             & new_unittest("joint-is-its-primitives", test_primitives), &
+            & new_unittest("hooke-planar-convel-closed-form", test_hooke_planar_convel), &
+            & new_unittest("hooke-and-convel-with-i-on-ground", test_ground_i), &
             & new_unittest("marker-i-on-ground-served-swapped", test_swapped), &
             & new_unittest("inline-to-ground-closed-form", test_inline_ground), &
             & new_unittest("origins-in-the-model-length-unit", test_length_unit), &
@@ -102,7 +105,9 @@ contains
     end subroutine test_revolute
 
     !> Every joint type's UCONs are those of its primitives (joint_primitives) added one by
-    !> one with add_jprim: the same PAR, routines and geometry.
+    !> one with add_jprim: the same PAR, routines and geometry. Not a HOOKE (its PERPENDICULAR
+    !> takes x_i and y_j) nor a CONVEL (its homokinetic condition is no JPRIM):
+    !> test_hooke_planar_convel.
     subroutine test_primitives(error)
         type(error_type), allocatable, intent(out) :: error
         type(model_type) :: joint, parts
@@ -112,6 +117,7 @@ contains
         logical :: same
 
         do n = 1, size(joint_names)
+            if (joint_names(n) == "HOOKE" .or. joint_names(n) == "CONVEL") cycle
             call two_parts(joint, i, j, error)
             if (allocated(error)) return
             call two_parts(parts, i, j, error)
@@ -137,6 +143,99 @@ contains
             if (allocated(error)) return
         end do
     end subroutine test_primitives
+
+    !> HOOKE, PLANAR and CONVEL between parts 7 and 9, each F against its closed form at
+    !> q_state: a HOOKE is 4 UCONs, ATPOINT's d and x_i.y_j (its cross pins, by
+    !> jp_perpendicular); a PLANAR 3, d.z_j (jp_inplane), z_i.x_j and z_i.y_j; a CONVEL 4,
+    !> d and x_i.y_j + y_i.x_j (jp_homokinetic): the equations each removes.
+    subroutine test_hooke_planar_convel(error)
+        type(error_type), allocatable, intent(out) :: error
+        character(len=*), parameter :: kinds(3) = [character(len=6) :: "HOOKE", "PLANAR", &
+            & "CONVEL"]
+        character(len=*), parameter :: routines(4, 3) = reshape([character(len=16) :: &
+            & "jp_atpoint", "jp_atpoint", "jp_atpoint", "jp_perpendicular", &
+            & "jp_inplane", "jp_parallel_axes", "jp_parallel_axes", "", &
+            & "jp_atpoint", "jp_atpoint", "jp_atpoint", "jp_homokinetic"], [4, 3])
+        integer, parameter :: counts(3) = [4, 3, 4]
+        type(model_type) :: model
+        type(marker_type) :: i, j
+        real(wp) :: d(3), axes_i(3, 3), axes_j(3, 3), expected(4)
+        integer :: n, k
+
+        do n = 1, size(kinds)
+            call two_parts(model, i, j, error)
+            if (allocated(error)) return
+            call model%add_joint(n, trim(kinds(n)), i, j, error)
+            if (allocated(error)) return
+            call check(error, size(model%ucons) == 1 + counts(n), trim(kinds(n)) // ": " &
+                & // to_text(size(model%ucons) - 1) // " UCONs, not " // to_text(counts(n)))
+            if (allocated(error)) return
+            call check(error, all([(model%ucons(k + 1)%routine == trim(routines(k, n)), &
+                & k = 1, counts(n))]) .and. all(model%ucons(2:)%id == [(20 + k, &
+                & k = 1, counts(n))]), trim(kinds(n)) // ": not the routines and ids expected")
+            if (allocated(error)) return
+            call setup_model(model, error)
+            if (allocated(error)) return
+            call ground_frames(i, j, d, axes_i, axes_j)
+            select case (trim(kinds(n)))
+            case ("HOOKE")
+                expected = [d, dot_product(axes_i(:, 1), axes_j(:, 2))]
+            case ("PLANAR")
+                expected = [dot_product(d, axes_j(:, 3)), dot_product(axes_i(:, 3), &
+                    & axes_j(:, 1)), dot_product(axes_i(:, 3), axes_j(:, 2)), 0.0_wp]
+            case default
+                expected = [d, dot_product(axes_i(:, 1), axes_j(:, 2)) &
+                    & + dot_product(axes_i(:, 2), axes_j(:, 1))]
+            end select
+            do k = 1, counts(n)
+                call check_f(model, k + 1, expected(k), error)
+                if (allocated(error)) then
+                    error%message = trim(kinds(n)) // ": " // error%message
+                    return
+                end if
+            end do
+        end do
+    end subroutine test_hooke_planar_convel
+
+    !> A HOOKE and a CONVEL from a ground marker I to part 7's marker J are served from the
+    !> part's side (gnd_perpendicular, gnd_homokinetic) and mean what their markers say: the
+    !> HOOKE's pins stay with their markers, x of the ground marker and y of the part's
+    !> (x_I.y_J), and the CONVEL's equation is symmetric (x_I.y_J + y_I.x_J).
+    subroutine test_ground_i(error)
+        type(error_type), allocatable, intent(out) :: error
+        character(len=*), parameter :: kinds(2) = [character(len=6) :: "HOOKE", "CONVEL"]
+        character(len=*), parameter :: routines(2) = [character(len=17) :: &
+            & "gnd_perpendicular", "gnd_homokinetic"]
+        type(model_type) :: model
+        type(marker_type) :: i, j, ground
+        real(wp) :: d(3), axes_part(3, 3), axes_ground(3, 3), expected(2)
+        integer :: n
+
+        do n = 1, size(kinds)
+            call two_parts(model, i, j, error)
+            if (allocated(error)) return
+            ground = marker_type(id=5, part=0, point=[0.0_wp, 0.2_wp, 1.0_wp], &
+                & axes=rotation_matrix(0.1_wp, 0.5_wp, 0.3_wp))
+            call model%add_joint(n, trim(kinds(n)), ground, i, error)
+            if (allocated(error)) return
+            call check(error, size(model%ucons) == 5 .and. model%ucons(5)%routine &
+                & == trim(routines(n)), trim(kinds(n)) // ": not 3 gnd_atpoint and " &
+                & // trim(routines(n)))
+            if (allocated(error)) return
+            call setup_model(model, error)
+            if (allocated(error)) return
+            ! the part's marker as "I" of ground_frames, the ground's as its "J"
+            call ground_frames(i, ground, d, axes_part, axes_ground)
+            expected = [dot_product(axes_ground(:, 1), axes_part(:, 2)), &
+                & dot_product(axes_ground(:, 1), axes_part(:, 2)) &
+                & + dot_product(axes_ground(:, 2), axes_part(:, 1))]
+            call check_f(model, 5, expected(n), error)
+            if (allocated(error)) then
+                error%message = trim(kinds(n)) // ": " // error%message
+                return
+            end if
+        end do
+    end subroutine test_ground_i
 
     !> A REVOLUTE from a ground marker to a part's marker is served from the part's side: the
     !> same UCONs as with the markers swapped (every joint is symmetric in I and J).
@@ -224,8 +323,9 @@ contains
         other = marker_type(id=22, part=1)
         ground = marker_type(id=5, part=0)
         outside = marker_type(id=99, part=3)
-        call refused("JOINT", 1, "HINGE", i, j, "JOINT/1: 'HINGE' is not a joint (CYLINDRICAL, " &
-            & // "FIXED, REVOLUTE, SPHERICAL, TRANSLATIONAL, UNIVERSAL)", error)
+        call refused("JOINT", 1, "HINGE", i, j, "JOINT/1: 'HINGE' is not a joint (CONVEL, " &
+            & // "CYLINDRICAL, FIXED, HOOKE, PLANAR, REVOLUTE, SPHERICAL, TRANSLATIONAL, " &
+            & // "UNIVERSAL)", error)
         if (allocated(error)) return
         call refused("JPRIM", 2, "REVOLUTE", i, j, "JPRIM/2: 'REVOLUTE' is not a joint " &
             & // "primitive (ATPOINT, INLINE, INPLANE, PARALLEL_AXES, PERPENDICULAR, " &
@@ -242,6 +342,15 @@ contains
         if (allocated(error)) return
         call refused("JOINT", 6, "SPHERICAL", i, outside, "JOINT/6: its markers I (MARKER/21) " &
             & // "and J (MARKER/99) must be on parts of the model (1 to 2)", error)
+        if (allocated(error)) return
+        call refused("JOINT", 7, "HOOKE", i, other, "JOINT/7: its markers I (MARKER/21) and J " &
+            & // "(MARKER/22) are both on PART/7; a joint connects two parts", error)
+        if (allocated(error)) return
+        call refused("JOINT", 8, "CONVEL", ground, ground, "JOINT/8: its markers I (MARKER/5) " &
+            & // "and J (MARKER/5) are both on the ground", error)
+        if (allocated(error)) return
+        call refused("JOINT", 9, "PLANAR", outside, j, "JOINT/9: its markers I (MARKER/99) " &
+            & // "and J (MARKER/31) must be on parts of the model (1 to 2)", error)
 
     contains
 
@@ -323,6 +432,25 @@ contains
         x_j = matmul(r_j, j%axes(:, 1))
         y_j = matmul(r_j, j%axes(:, 2))
     end subroutine marker_frames
+
+    !> At q_state: d = r_I - r_J and both markers' axes in ground (columns x, y, z); J on the
+    !> ground keeps its own.
+    subroutine ground_frames(i, j, d, axes_i, axes_j)
+        type(marker_type), intent(in) :: i, j
+        real(wp), intent(out) :: d(3), axes_i(3, 3), axes_j(3, 3)
+        real(wp) :: r_i(3, 3), r_j(3, 3), origin_j(3)
+
+        r_i = rotation_matrix(q_state(4), q_state(5), q_state(6))
+        r_j = rotation_matrix(q_state(10), q_state(11), q_state(12))
+        origin_j = q_state(7:9)
+        if (j%part == 0) then
+            r_j = rotation_matrix(0.0_wp, 0.0_wp, 0.0_wp)
+            origin_j = 0.0_wp
+        end if
+        d = q_state(1:3) + matmul(r_i, i%point) - (origin_j + matmul(r_j, j%point))
+        axes_i = matmul(r_i, i%axes)
+        axes_j = matmul(r_j, j%axes)
+    end subroutine ground_frames
 
     !> UCON k of the set-up model evaluated at q_state, against expected.
     subroutine check_f(model, k, expected, error)
