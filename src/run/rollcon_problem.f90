@@ -255,22 +255,24 @@ contains
         end do
     end function routines_text
 
-    !> "UCON 3" of a UCON statement (the summary's words), "JOINT/1 (line 14)" of a JOINT or
-    !> JPRIM.
+    !> "UCON 3" of a UCON statement of a model without lines (a scene, a model built in code:
+    !> the summary's words), else its statement and line: "UCON/3 (line 16)", "JOINT/1 (line
+    !> 14)".
     pure function statement_label(model, s) result(label)
         type(model_type), intent(in) :: model
         integer, intent(in) :: s
         character(len=:), allocatable :: label
 
-        if (model%statements(s)%kind == statement_ucon) then
+        if (model%statements(s)%kind == statement_ucon .and. model%statements(s)%line == 0) then
             label = "UCON " // to_text(model%statements(s)%id)
         else
             label = model%statement_name(s)
         end if
     end function statement_label
 
-    !> Each UCON in the summary's words, one line each: "UCON 3" of a UCON statement, "JOINT/1
-    !> (line 14), its translation along ground X" of a JOINT's or JPRIM's equation.
+    !> Each UCON in the summary's words, one line each: "UCON 3" of a UCON statement without a
+    !> line, "UCON/3 (line 16)" of a dataset's, "JOINT/1 (line 14), its translation along ground
+    !> X" of a JOINT's or JPRIM's equation.
     function ucon_labels(self) result(text)
         class(problem_type), intent(in) :: self
         character(len=:), allocatable :: text
@@ -279,7 +281,8 @@ contains
         text = ""
         do k = 1, self%eq%nc
             associate (ucon => self%model%ucons(k))
-                if (self%model%statements(ucon%statement)%kind == statement_ucon) then
+                if (self%model%statements(ucon%statement)%kind == statement_ucon .and. &
+                    & self%model%statements(ucon%statement)%line == 0) then
                     text = text // "UCON " // to_text(ucon%id) // new_line("a")
                 else
                     text = text // self%model%row_words(k) // new_line("a")
