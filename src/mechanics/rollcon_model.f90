@@ -38,7 +38,7 @@ module rollcon_model
     private
 
     public :: model_type, ucon_statement_type, statement_type, setup_model, served_by_model_ucosub
-    public :: statement_ucon, statement_joint, statement_jprim
+    public :: statement_ucon, statement_joint, statement_jprim, force_request_type
 
     !> The kinds of statement a model's UCONs come from
     integer, parameter :: statement_ucon = 1, statement_joint = 2, statement_jprim = 3
@@ -52,12 +52,24 @@ module rollcon_model
         integer :: id = 0
         !> The line of the dataset it was written on (0: a model built in code, no line)
         integer :: line = 0
-        !> A JOINT's or JPRIM's marker I as the model holds it (part 0: the ground; its origin
-        !> and axes in the part's principal axes, turned with the part at each re-basing), and
-        !> the part of its marker J (model order, 0: the ground)
-        type(marker_type) :: i
+        !> A JOINT's or JPRIM's markers I and J as the model holds them (part 0: the ground;
+        !> their origins and axes in the part's principal axes, turned with the part at each
+        !> re-basing), and the part of its marker J (model order, 0: the ground)
+        type(marker_type) :: i, j
         integer :: j_part = 0
     end type statement_type
+
+    !> A request for the force and torque between a JOINT's or JPRIM's two markers (a
+    !> dataset's REQUEST/id, FORCE, I=, J= naming them): ADAMS's force and torque on the
+    !> request's marker I, at I, in ground axes (rollcon_reaction_watch's req<id>_fx ... _tz)
+    type :: force_request_type
+        !> The request's id ("REQUEST/2": 2)
+        integer :: id = 0
+        !> The statement whose reaction it is (model%statements)
+        integer :: statement = 0
+        !> The request's I is the statement's J (and its J the statement's I)
+        logical :: swapped = .false.
+    end type force_request_type
 
     !> One UCON/id, FUNCTION=USER(par) statement and, after setup, where its variables live
     type :: ucon_statement_type
@@ -114,6 +126,9 @@ module rollcon_model
         !> rows (rollcon_reaction_watch); a disk scene, whose rim contact watch reports the
         !> contact's force, leaves it off
         logical :: report_reactions = .true.
+        !> Requests for a JOINT's or JPRIM's reaction between its markers, reported as columns
+        !> beside the statements' own (rollcon_reaction_watch)
+        type(force_request_type), allocatable :: force_requests(:)
         !> The UCOSUB serving every UCON of the model
         procedure(ucosub_interface), pointer, nopass :: ucosub => null()
         !> Applied forces
@@ -279,6 +294,7 @@ contains
         statement%id = id
         statement%line = line
         statement%i = i
+        statement%j = j
         statement%j_part = j%part
         call append_statement(self%statements, statement)
         next_id = 0
@@ -441,6 +457,7 @@ contains
         if (allocated(self%statements)) then
             do k = 1, size(self%statements)
                 call turn_marker(self%statements(k)%i, p)
+                call turn_marker(self%statements(k)%j, p)
             end do
         end if
         self%parts(p)%inertia = rebased_inertia(self%parts(p)%inertia)

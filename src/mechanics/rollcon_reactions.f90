@@ -17,11 +17,12 @@ module rollcon_reactions
     use rollcon_kinds, only : wp
     use rollcon_text, only : to_text
     use rollcon_rotation, only : rotation_matrix, times, cross
+    use rollcon_marker, only : marker_type
     use rollcon_model, only : model_type, statement_ucon, statement_joint
     implicit none
     private
 
-    public :: reaction_site_type, reaction_sites, site_wrench
+    public :: reaction_site_type, reaction_sites, site_wrench, swapped_wrench
 
     !> Where one statement's reaction is reported, and the rows that make it
     type :: reaction_site_type
@@ -141,6 +142,38 @@ contains
         wrench(1:3) = force
         wrench(4:6) = moment
     end function site_wrench
+
+    !> The reaction on the part of a JOINT's or JPRIM's marker J, at J [N, N m], ground axes,
+    !> from its reaction `wrench` on the part of marker I at I (site_wrench): equal and
+    !> opposite, its moment taken about J: (-F, -T - (r_I - r_J) x F), r the markers' origins in
+    !> ground at the coordinates q.
+    pure function swapped_wrench(model, site, wrench, q) result(turned)
+        type(model_type), intent(in) :: model
+        type(reaction_site_type), intent(in) :: site
+        real(wp), intent(in) :: wrench(6), q(:)
+        real(wp) :: turned(6)
+
+        associate (statement => model%statements(site%statement))
+            turned(1:3) = -wrench(1:3)
+            turned(4:6) = -wrench(4:6) - cross(marker_origin(statement%i, q) &
+                & - marker_origin(statement%j, q), wrench(1:3))
+        end associate
+    end function swapped_wrench
+
+    !> A marker's origin in ground [m] at the coordinates q: on the ground as given, on part p
+    !> its centre of mass plus R(psi, theta, phi) times the origin in the principal axes.
+    pure function marker_origin(marker, q) result(origin)
+        type(marker_type), intent(in) :: marker
+        real(wp), intent(in) :: q(:)
+        real(wp) :: origin(3)
+        integer :: i0
+
+        origin = marker%point
+        if (marker%part == 0) return
+        i0 = 6*(marker%part - 1)
+        origin = q(i0 + 1:i0 + 3) + times(rotation_matrix(q(i0 + 4), q(i0 + 5), q(i0 + 6)), &
+            & marker%point)
+    end function marker_origin
 
     !> The moment tau' about the centre of mass, principal axes [N m], whose generalised force
     !> on the Euler angles is B^T tau' = q_angles (B: omega' = B (psi', theta', phi'),

@@ -3,7 +3,7 @@
 !> written by the watches, recognised by a reader of the CSV. A rim contact's six
 !> (rollcon_contact_watch), the basis of every part a re-basing run records
 !> (rollcon_theta_watch), the six of each displacement request (rollcon_request_watch), and the
-!> six of each statement's reaction (rollcon_reaction_watch).
+!> six of each statement's reaction and of each force request (rollcon_reaction_watch).
 module rollcon_watch_columns
     implicit none
     private
@@ -30,12 +30,15 @@ module rollcon_watch_columns
     !> Each statement's reaction columns ("<n>": the statement's id, "<id>": a part's id): a
     !> JOINT's and a JPRIM's on the part of marker I at I, a UCON's on its part at its centre
     !> of mass (on each of several parts: ucon<n>_part<id>_...)
-    character(len=*), parameter :: reaction_column_patterns(24) = [character(len=22) :: &
+    !> and a force request's (a REQUEST/n, FORCE between a JOINT's or JPRIM's markers: on the
+    !> part of the request's marker I, at I)
+    character(len=*), parameter :: reaction_column_patterns(30) = [character(len=22) :: &
         & "joint<n>_fx", "joint<n>_fy", "joint<n>_fz", "joint<n>_tx", "joint<n>_ty", &
         & "joint<n>_tz", "jprim<n>_fx", "jprim<n>_fy", "jprim<n>_fz", "jprim<n>_tx", &
         & "jprim<n>_ty", "jprim<n>_tz", "ucon<n>_fx", "ucon<n>_fy", "ucon<n>_fz", "ucon<n>_tx", &
         & "ucon<n>_ty", "ucon<n>_tz", "ucon<n>_part<id>_fx", "ucon<n>_part<id>_fy", &
         & "ucon<n>_part<id>_fz", "ucon<n>_part<id>_tx", "ucon<n>_part<id>_ty", &
-        & "ucon<n>_part<id>_tz"]
+        & "ucon<n>_part<id>_tz", "req<n>_fx", "req<n>_fy", "req<n>_fz", "req<n>_tx", &
+        & "req<n>_ty", "req<n>_tz"]
 
 end module rollcon_watch_columns

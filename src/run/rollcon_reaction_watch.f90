@@ -4,7 +4,11 @@
 !> exerts on the part of its marker I, at marker I, in ground axes [N, N m] (`jprim<id>_...`
 !> a JPRIM's), `ucon<id>_...` the force and torque a UCON exerts on its part at the part's
 !> centre of mass (`ucon<id>_part<part id>_...` for each of several parts); and the summary's
-!> largest force and torque of each. Where equations are redundant (rollcon_redundancy) the
+!> largest force and torque of each. A dataset's REQUEST/id, FORCE between a JOINT's or
+!> JPRIM's two markers (model%force_requests) is answered by `req<id>_fx ... _tz`: the same
+!> reaction on the part of the request's marker I, at I (ADAMS's force request, in ground axes):
+!> the statement's own when the markers are in its order, else the reaction on J's part, equal
+!> and opposite, its moment taken about J. Where equations are redundant (rollcon_redundancy) the
 !> reactions of the statements in a dependency are not unique: the split of least norm is
 !> reported, and the summary says so.
 module rollcon_reaction_watch
@@ -12,7 +16,8 @@ module rollcon_reaction_watch
     use rollcon_error, only : error_type
     use rollcon_text, only : to_text
     use rollcon_equations, only : equations_type
-    use rollcon_reactions, only : reaction_site_type, reaction_sites, site_wrench
+    use rollcon_reactions, only : reaction_site_type, reaction_sites, site_wrench, &
+        & swapped_wrench
     use rollcon_run_settings, only : run_settings_type
     use rollcon_output_layout, only : name_length
     use rollcon_watch_columns, only : suffixes => reaction_suffixes
@@ -27,6 +32,8 @@ module rollcon_reaction_watch
         type(reaction_site_type), allocatable :: sites(:)
         !> The largest |force| [N] and |torque| [N m] of each site over the output rows
         real(wp), allocatable :: largest(:, :)
+        !> For each of the model's force requests, the site of its statement
+        integer, allocatable :: request_sites(:)
     contains
         procedure :: prepare
         procedure :: column_names
@@ -43,27 +50,42 @@ contains
         type(run_settings_type), intent(in) :: settings
         type(error_type), allocatable, intent(out) :: error
 
+        integer :: r, i
+
         self%sites = reaction_sites(eq%model)
         if (allocated(self%largest)) deallocate(self%largest)
         allocate(self%largest(2, size(self%sites)), source=0.0_wp)
+        allocate(self%request_sites(0))
+        if (.not. allocated(eq%model%force_requests)) return
+        do r = 1, size(eq%model%force_requests)
+            i = findloc(self%sites%statement, eq%model%force_requests(r)%statement, dim=1)
+            self%request_sites = [self%request_sites, i]
+        end do
     end subroutine prepare
 
-    !> Six per site: `<stem>_fx ... <stem>_tz`.
+    !> Six per site: `<stem>_fx ... <stem>_tz`; then six per force request, `req<id>_fx ...`.
     subroutine column_names(self, eq, names)
         class(reaction_watch_type), intent(in) :: self
         type(equations_type), intent(in) :: eq
         character(len=name_length), allocatable, intent(out) :: names(:)
-        integer :: i, c
+        integer :: i, c, n
 
         ! no sites before prepare (a watch before it refused the model)
         if (.not. allocated(self%sites)) then
             allocate(names(0))
             return
         end if
-        allocate(names(6*size(self%sites)))
+        allocate(names(6*(size(self%sites) + size(self%request_sites))))
         do i = 1, size(self%sites)
             do c = 1, 6
                 names(6*(i - 1) + c) = self%sites(i)%stem // trim(suffixes(c))
+            end do
+        end do
+        n = 6*size(self%sites)
+        do i = 1, size(self%request_sites)
+            do c = 1, 6
+                names(n + 6*(i - 1) + c) = "req" // to_text(eq%model%force_requests(i)%id) &
+                    & // trim(suffixes(c))
             end do
         end do
     end subroutine column_names
@@ -76,13 +98,22 @@ contains
         type(equations_type), intent(in) :: eq
         real(wp), intent(in) :: time, q(:), u(:), lambda(:)
         real(wp), intent(out) :: values(:)
-        integer :: i
+        integer :: i, n
 
         do i = 1, size(self%sites)
             associate (wrench => values(6*i - 5:6*i))
                 wrench = site_wrench(eq%model, self%sites(i), eq%c, lambda, q)
                 self%largest(1, i) = max(self%largest(1, i), norm2(wrench(1:3)))
                 self%largest(2, i) = max(self%largest(2, i), norm2(wrench(4:6)))
+            end associate
+        end do
+        n = 6*size(self%sites)
+        do i = 1, size(self%request_sites)
+            associate (wrench => values(n + 6*i - 5:n + 6*i), &
+                    & site => values(6*self%request_sites(i) - 5:6*self%request_sites(i)))
+                wrench = site
+                if (eq%model%force_requests(i)%swapped) wrench = swapped_wrench(eq%model, &
+                    & self%sites(self%request_sites(i)), site, q)
             end associate
         end do
     end subroutine fill_columns
