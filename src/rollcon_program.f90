@@ -9,10 +9,12 @@ module rollcon_program
     use rollcon_output_files, only : make_folders
     use rollcon_provenance, only : command_line_text
 
-    ! rollcon check: its options' limits and texts, and a dataset's UCONs as requests
+    ! rollcon check: its options' limits and texts, and a dataset's UCONs as requests; the
+    ! check of a user's UCOSUB before a dataset's run
     use rollcon_child_process, only : default_call_timeout
     use rollcon_ucosub_audit, only : sampling_ranges, max_check_states, states_refusal
     use rollcon_ucon_request, only : dataset_ucon_requests
+    use rollcon_run_check, only : check_at_start
 
     ! rollcon bench: speed against accuracy, and the cost as models grow
     use rollcon_benchmark, only : method_type, benchmark_methods, benchmark_row_type, &
@@ -20,9 +22,10 @@ module rollcon_program
         & method_settings
     use rollcon_bench_costs, only : part_costs_type, measure_part_costs
     use rollcon_bench_process, only : process_cost_type, measure_process, &
-        & write_scene_with_settings
+        & write_scene_with_settings, write_dataset_with_settings
+    use rollcon_reduced_bicycle, only : bicycle_table_type, read_bicycle_table
     use rollcon_bench_summary, only : accuracy_line, cheapest_row
-    use rollcon_bench_plot, only : plot_work_precision, machine_name
+    use rollcon_bench_plot, only : plot_work_precision, machine_name, sundials_build
     use rollcon_bench_sweep, only : time_sweep, coordinator_row_us
     use rollcon_bench_scaling, only : scaling_row_type, measure_scaling, scaling_header, &
         & scaling_csv_row, scaling_table, short_scaling_methods, check_scaling_end_time

@@ -44,6 +44,7 @@ program tester
     use test_ida_first_step, only : collect_ida_first_step
     use test_int_buffer, only : collect_int_buffer
     use test_reduced, only : collect_reduced
+    use test_reduced_bicycle, only : collect_reduced_bicycle
     use test_layout, only : collect_layout
     use test_ucosub_catalog, only : collect_ucosub_catalog
     use test_initial_conditions, only : collect_initial_conditions
@@ -68,6 +69,7 @@ program tester
     use test_figure_rows, only : collect_figure_rows
     use test_wire, only : collect_wire
     use test_least_squares, only : collect_least_squares
+    use test_small_dense, only : collect_small_dense
     use test_bench, only : collect_bench
     use test_check_reliability, only : collect_check_reliability
     use test_check_findings, only : collect_check_findings
@@ -141,6 +143,7 @@ program tester
         & new_testsuite("ida-first-step", collect_ida_first_step), &
         & new_testsuite("int-buffer", collect_int_buffer), &
         & new_testsuite("reduced", collect_reduced), &
+        & new_testsuite("reduced-bicycle", collect_reduced_bicycle), &
         & new_testsuite("layout", collect_layout), &
         & new_testsuite("ucosub-catalog", collect_ucosub_catalog), &
         & new_testsuite("dataset-command", collect_dataset_command), &
@@ -168,6 +171,7 @@ program tester
         & new_testsuite("figure-rows", collect_figure_rows), &
         & new_testsuite("wire", collect_wire), &
         & new_testsuite("least-squares", collect_least_squares), &
+        & new_testsuite("small-dense", collect_small_dense), &
         & new_testsuite("bench", collect_bench), &
         & new_testsuite("check-reliability", collect_check_reliability), &
         & new_testsuite("check-findings", collect_check_findings), &

@@ -526,11 +526,17 @@ contains
         real(wp), intent(in) :: h(:, :), u(:)
         integer, intent(in) :: at(:)
         real(wp) :: value
-        integer :: j
+        real(wp) :: column
+        integer :: i, j
 
+        ! local_dot of each column, written out (a call per column cost more than its sum)
         value = 0.0_wp
         do j = 1, size(at)
-            value = value + u(at(j))*local_dot(h(:, j), u, at)
+            column = 0.0_wp
+            do i = 1, size(at)
+                column = column + h(i, j)*u(at(i))
+            end do
+            value = value + u(at(j))*column
         end do
     end function local_quadratic_form
 
