@@ -101,6 +101,8 @@ program tester
     use test_couplers, only : collect_couplers
     use test_motions, only : collect_motions
     use test_motion_partials, only : collect_motion_partials
+    use test_redundancy, only : collect_redundancy
+    use test_reactions, only : collect_reactions
     implicit none
     type(testsuite_type), allocatable :: suites(:)
     type(test_counts_type) :: counts
@@ -206,7 +208,9 @@ program tester
         & new_testsuite("gcon", collect_gcon), &
         & new_testsuite("couplers", collect_couplers), &
         & new_testsuite("motions", collect_motions), &
-        & new_testsuite("motion-partials", collect_motion_partials)]
+        & new_testsuite("motion-partials", collect_motion_partials), &
+        & new_testsuite("redundancy", collect_redundancy), &
+        & new_testsuite("reactions", collect_reactions)]
 
     if (command_argument_count() >= 1) then
         call get_command_argument(1, argument)

@@ -14,7 +14,7 @@ module rollcon_joint_types
     private
 
     public :: joint_names, primitive_names, joint_primitives, primitive_index
-    public :: is_joint_name, primitive_symmetric, name_list
+    public :: is_joint_name, primitive_symmetric, name_list, primitive_equation
     public :: primitive_atpoint, primitive_inline, primitive_inplane, primitive_parallel_axes, &
         & primitive_perpendicular, primitive_orientation, primitive_homokinetic
 
@@ -102,5 +102,43 @@ contains
             text = text // ", " // trim(names(k))
         end do
     end function name_list
+
+    !> Equation `component` of a primitive (ucon/specs/_joint.py's order) in a user's words:
+    !> the motion between the markers it stops, "translation along ground X" (ATPOINT: I's
+    !> origin from J's in ground axes), "translation along J's x" (INLINE, INPLANE: along J's
+    !> axes), "rotation about J's y" (PARALLEL_AXES, ORIENTATION: z_i.x_j = 0 stops the turn of
+    !> z_i towards x_j, about y_j), "rotation about the pins' common normal" (PERPENDICULAR: z_i x
+!> z_j, a HOOKE's x_i x y_j), "rotation about J's z, against I's" (CONVEL's homokinetic
+!> condition x_i.y_j + y_i.x_j = 0, the turn of either shaft about its axis). With `swapped`
+    !> the routine holds marker J's part (a statement whose I is on the ground): its J is the
+    !> statement's I, and the words say so.
+    pure function primitive_equation(primitive, component, swapped) result(words)
+        integer, intent(in) :: primitive, component
+        logical, intent(in) :: swapped
+        character(len=:), allocatable :: words
+        character(len=*), parameter :: ground_axes = "XYZ", own_axes = "xyz"
+        character(len=:), allocatable :: marker
+
+        marker = trim(merge("I's", "J's", swapped))
+        select case (primitive)
+        case (primitive_atpoint)
+            words = "translation along ground " // ground_axes(component:component)
+        case (primitive_inline)
+            words = "translation along " // marker // " " // own_axes(component:component)
+        case (primitive_inplane)
+            words = "translation along " // marker // " z"
+        case (primitive_parallel_axes)
+            ! z_i.x_j (about y_j), then z_i.y_j (about x_j)
+            words = "rotation about " // marker // " " // own_axes(3 - component:3 - component)
+        case (primitive_perpendicular)
+            words = "rotation about the pins' common normal"
+        case (primitive_homokinetic)
+            words = "rotation about " // marker // " z, against " // trim(merge("J's", "I's", &
+                & swapped))
+        case default
+            ! z_i.x_j, z_i.y_j, x_i.y_j: about y_j, x_j, z_j
+            words = "rotation about " // marker // " " // "yxz"(component:component)
+        end select
+    end function primitive_equation
 
 end module rollcon_joint_types

@@ -7,10 +7,11 @@ module rollcon_ic_rows
     use rollcon_error, only : error_type, fatal_error, stat_input
     use rollcon_text, only : to_text
     use rollcon_least_squares, only : minimum_norm_solve, left_null_space
+    use rollcon_model, only : model_type
     implicit none
     private
 
-    public :: level_type, tolerance, least_change, verdict
+    public :: level_type, tolerance, least_change, verdict, name_rows
     public :: ic_fraction, ic_rcond
 
     !> A UCON is met when |F_k| <= ic_fraction (atol + rtol s_k), s_k the size of the terms of
@@ -28,11 +29,24 @@ module rollcon_ic_rows
         character(len=:), allocatable :: name
         !> UCON number (model order) and UCON statement id of each row
         integer, allocatable :: ucon(:), ids(:)
+        !> The model whose UCONs the rows are, for their names in the user's words (name_rows;
+        !> without it a row is named "UCON/<id>")
+        type(model_type), pointer :: model => null()
         !> Rows over the system's coordinates (or rates), residuals, tolerances
         real(wp), allocatable :: rows(:, :), residual(:), tolerance(:)
     end type level_type
 
 contains
+
+    !> The rows' ids and names from the model whose UCONs they are (level%ucon set): every
+    !> message then names the statement and line the user wrote (rollcon_model's rows_text).
+    subroutine name_rows(level, model)
+        type(level_type), intent(inout) :: level
+        type(model_type), intent(in), target :: model
+
+        level%ids = model%ucons(level%ucon)%id
+        level%model => model
+    end subroutine name_rows
 
     !> ic_fraction (atol + rtol s), s = sum |row_j x_j| + |residual - row . x| (the size of the
     !> terms that F adds up).
@@ -100,9 +114,10 @@ contains
         end do
     end subroutine least_change
 
-    !> Refuse what the rows left. Met: redundant when the rows over every column (the
-    !> integrators' matrix) are dependent. Not met: contradictory when the rows over the free
-    !> columns are dependent (one UCON alone: its free columns are gone), else no convergence.
+    !> Refuse what the rows left. Met, the rows may be dependent (redundant): the run sets aside
+    !> those that repeat others (rollcon_redundancy) and says which. Not met: contradictory when
+    !> the rows over the free columns are dependent (one UCON alone: its free columns are
+    !> gone), else no convergence.
     subroutine verdict(level, free, weight, met, steps, error)
         type(level_type), intent(in) :: level
         logical, intent(in) :: free(:)
@@ -115,24 +130,16 @@ contains
         integer :: rank, i, m
 
         m = size(level%ucon)
-        if (met) then
-            call unit_rows(level, spread(.true., 1, size(free)), weight, a, row_scale)
-        else
-            call unit_rows(level, free, weight, a, row_scale)
-        end if
+        ! redundant rows that are all met: consistent, the run sets the repeated ones aside
+        if (met) return
+        call unit_rows(level, free, weight, a, row_scale)
         call left_null_space(a, ic_rcond, rank, null, error)
         if (allocated(error)) return
         allocate(involved(m))
         do i = 1, m
             involved(i) = any(abs(null(i, :)) > involvement)
         end do
-        if (rank < m .and. met) then
-            call fatal_error(error, "initial conditions: " // ucon_list(level, involved) &
-                & // " are redundant at " // level%name // " level: their rows are linearly " &
-                & // "dependent (rank " // to_text(rank) // " of " // to_text(m) &
-                & // "), so their multipliers are not unique and no integrator can solve the " &
-                & // "model; remove the UCON that repeats the others", stat_input)
-        else if (rank < m .and. count(involved) == 1) then
+        if (rank < m .and. count(involved) == 1) then
             call fatal_error(error, "initial conditions: " // ucon_list(level, involved) &
                 & // " cannot be met at " // level%name // " level with the values marked " &
                 & // "exact held (none of its variables is free): " &
@@ -144,7 +151,7 @@ contains
                 & // " over the values not marked exact) and no " // level%name &
                 & // " meets them all; least-squares residuals after " // to_text(steps) &
                 & // " step(s): " // residual_list(level, involved), stat_input)
-        else if (.not. met) then
+        else
             call fatal_error(error, "initial conditions: the " // level%name // " UCONs are " &
                 & // "not met after " // to_text(steps) // " step(s) (no convergence): " &
                 & // residual_list(level, abs(level%residual) > level%tolerance), &
@@ -152,13 +159,22 @@ contains
         end if
     end subroutine verdict
 
-    !> "UCON/3 and UCON/4" (or "UCON/1, UCON/3 and UCON/4") for the flagged rows.
-    pure function ucon_list(level, flagged) result(text)
+    !> "UCON/3 and UCON/4" (or "UCON/1, UCON/3 and UCON/4") for the flagged rows; with the
+    !> model, its statements and lines, "JOINT/1 (line 14: translation along ground Z) and
+    !> UCON/3 (line 9)" (rollcon_model's rows_text).
+    function ucon_list(level, flagged) result(text)
         type(level_type), intent(in) :: level
         logical, intent(in) :: flagged(:)
         character(len=:), allocatable :: text
+        logical, allocatable :: rows(:)
         integer :: i, seen, total
 
+        if (associated(level%model)) then
+            allocate(rows(size(level%model%ucons)), source=.false.)
+            rows(level%ucon) = flagged
+            text = level%model%rows_text(rows)
+            return
+        end if
         text = ""
         seen = 0
         total = count(flagged)
@@ -174,8 +190,9 @@ contains
         end do
     end function ucon_list
 
-    !> "UCON/3 |F| = 0.05 (tolerance 1.1e-11), ..." for the flagged rows.
-    pure function residual_list(level, flagged) result(text)
+    !> "UCON/3 |F| = 0.05 (tolerance 1.1e-11), ..." for the flagged rows (with the model: each
+    !> row in its words, rollcon_model's row_words).
+    function residual_list(level, flagged) result(text)
         type(level_type), intent(in) :: level
         logical, intent(in) :: flagged(:)
         character(len=:), allocatable :: text
@@ -185,7 +202,12 @@ contains
         do i = 1, size(flagged)
             if (.not. flagged(i)) cycle
             if (len(text) > 0) text = text // ", "
-            text = text // "UCON/" // to_text(level%ids(i)) &
+            if (associated(level%model)) then
+                text = text // level%model%row_words(level%ucon(i))
+            else
+                text = text // "UCON/" // to_text(level%ids(i))
+            end if
+            text = text &
                 & // " |F| = " // to_text(abs(level%residual(i))) // " (tolerance " &
                 & // to_text(level%tolerance(i)) // ")"
         end do

@@ -16,15 +16,16 @@
 !> (given_moved in the report); velocities not given are ADAMS's "inexact" zeros, free. Rows are scaled to unit length before each solve (LAPACK
 !> dgelss, rcond below), so that rank and least squares are judged by the constraints'
 !> geometry, not by their units.
-!> Refusals (stat_input), naming the UCONs: redundant (dependent rows, all met: the
-!> integrators' saddle-point matrix would be singular), contradictory (dependent rows, not all
-!> met), no convergence (independent rows still unmet after max_iterations).
+!> Refusals (stat_input), naming the statements and lines the user wrote: contradictory
+!> (dependent rows, not all met), no convergence (independent rows still unmet after
+!> max_iterations). Dependent rows that are all met are redundant, not refused: the run sets
+!> aside those that repeat others (rollcon_redundancy).
 module rollcon_initial_conditions
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type, fatal_error, stat_input
     use rollcon_text, only : to_text
     use rollcon_ic_rows, only : level_type, tolerance, least_change, verdict, ic_fraction, &
-        & ic_rcond
+        & name_rows, ic_rcond
     use rollcon_constraints, only : need_value, need_first, need_time
     use rollcon_least_squares, only : left_null_space
     use rollcon_rotation, only : rate_matrix
@@ -147,7 +148,7 @@ contains
 
         level%name = "position"
         level%ucon = holonomic_ucons(problem)
-        level%ids = problem%model%ucons(level%ucon)%id
+        call name_rows(level, problem%model)
         report%position_rows = size(level%ucon)
         if (size(level%ucon) == 0) return
         do
@@ -194,7 +195,7 @@ contains
 
         level%name = "velocity"
         level%ucon = [(k, k = 1, problem%model%nc)]
-        level%ids = problem%model%ucons%id
+        call name_rows(level, problem%model)
         report%velocity_rows = size(level%ucon)
         if (size(level%ucon) == 0) return
         held = held_rows(problem, q, options, free)

@@ -14,7 +14,9 @@
 !> A T is formed column by column as directional central differences of f along T, with one
 !> Richardson step (error O(h^4)); A_red is the independent rows of A T, and its eigenvalues
 !> come from LAPACK dgeev. For a steady motion the tangent space is invariant, A T = T A_red;
-!> the rest, the dependent rows of A T - T A_red, is measured and reported.
+!> the rest, the dependent rows of A T - T A_red, is measured and reported. Rows set aside as
+!> redundant (rollcon_redundancy: the dataset's choice at its start) are checked met and left
+!> out: the active rows span the same tangent space.
 module rollcon_linearisation
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type, fatal_error, stat_input
@@ -133,19 +135,23 @@ contains
         call sorted_eigenvalues(result, frequency_scale(problem, q, u), error)
     end subroutine linearise
 
-    !> J = d(constraints)/dy at the start, one row per UCON (a velocity UCON: dF/dq, dF/du; a
-    !> position UCON: its rate's row, then a row of its own: dF/dq, 0), after checking that the
-    !> start meets every row to atol + rtol s (the error one integrator step allows).
+    !> J = d(constraints)/dy at the start, one row per active UCON (a velocity UCON: dF/dq,
+    !> dF/du; a position UCON: its rate's row, then a row of its own: dF/dq, 0), after checking
+    !> that the start meets every row, those set aside too, to atol + rtol s (the error one
+    !> integrator step allows).
     subroutine constraint_jacobian(problem, time, q, u, jac, error)
         type(problem_type), intent(inout), target :: problem
         real(wp), intent(in) :: time, q(:), u(:)
         real(wp), allocatable, intent(out) :: jac(:, :)
         type(error_type), allocatable, intent(out) :: error
+        real(wp), allocatable :: all_rows(:, :)
+        logical, allocatable :: kept(:)
         real(wp) :: residual
         integer :: n, k, row, j, jj
 
         n = problem%model%n
         allocate(jac(problem%model%nc + problem%model%nh, 2*n), source=0.0_wp)
+        allocate(kept(size(jac, 1)), source=.true.)
         call problem%eq%constraints%evaluate(problem%model, time, q, u, need_value &
             & + need_first + need_second + need_time, error)
         if (allocated(error)) return
@@ -165,38 +171,47 @@ contains
                         end do
                     end associate
                     jac(row, n + 1:) = cs%grad_q(k, :)
+                    kept(row:row + 1) = problem%eq%active_rows_of(k)
                     residual = dot_product(cs%grad_q(k, :), u) + cs%dt(k)
-                    call check_met(ucons(k)%id, "its rate", residual, &
+                    call check_met(problem, k, "its rate", residual, &
                         & tolerance(problem%settings%atol, problem%settings%rtol, &
                         & cs%grad_q(k, :), u, residual)/ic_fraction, error)
                     if (allocated(error)) return
                     row = row + 1
                     jac(row, :n) = cs%grad_q(k, :)
-                    call check_met(ucons(k)%id, "F", cs%value(k), &
+                    call check_met(problem, k, "F", cs%value(k), &
                         & tolerance(problem%settings%atol, problem%settings%rtol, &
                         & cs%grad_q(k, :), q, cs%value(k))/ic_fraction, error)
                 else
                     jac(row, :n) = cs%grad_q(k, :)
                     jac(row, n + 1:) = cs%grad_u(k, :)
-                    call check_met(ucons(k)%id, "F", cs%value(k), &
+                    kept(row) = problem%eq%active_rows_of(k)
+                    call check_met(problem, k, "F", cs%value(k), &
                         & tolerance(problem%settings%atol, problem%settings%rtol, &
                         & cs%grad_u(k, :), u, cs%value(k))/ic_fraction, error)
                 end if
                 if (allocated(error)) return
             end do
         end associate
+        ! the rows set aside repeat the active ones: left out
+        if (all(kept)) return
+        call move_alloc(jac, all_rows)
+        jac = all_rows(pack([(j, j = 1, size(kept))], kept), :)
     end subroutine constraint_jacobian
 
-    !> An error naming the UCON when |value| > allowed: the start is off the constraints.
-    subroutine check_met(id, what, value, allowed, error)
-        integer, intent(in) :: id
+    !> An error naming UCON k (model order) in the user's words when |value| > allowed: the
+    !> start is off the constraints.
+    subroutine check_met(problem, k, what, value, allowed, error)
+        type(problem_type), intent(in) :: problem
+        integer, intent(in) :: k
         character(len=*), intent(in) :: what
         real(wp), intent(in) :: value, allowed
         type(error_type), allocatable, intent(out) :: error
 
         if (abs(value) <= allowed) return
-        call fatal_error(error, "linearisation: the start is off the constraints: UCON/" &
-            & // to_text(id) // " " // what // " = " // to_text(value) // ", allowed " &
+        call fatal_error(error, "linearisation: the start is off the constraints: " &
+            & // problem%model%row_words(k) // " " // what // " = " // to_text(value) &
+            & // ", allowed " &
             & // to_text(allowed) // " (atol + rtol times the size of its terms); make the " &
             & // "start consistent first (initial-conditions analysis, " &
             & // "docs/initial-conditions.md)", stat_input)
@@ -281,6 +296,8 @@ contains
         allocate(position_rows(0), velocity_rows(0))
         row = 0
         do k = 1, problem%model%nc
+            ! jac's rows: the active UCONs' (constraint_jacobian)
+            if (.not. problem%eq%active_rows_of(k)) cycle
             row = row + 1
             velocity_rows = [velocity_rows, row]
             if (problem%model%ucons(k)%holonomic) then
@@ -374,26 +391,28 @@ contains
                 & // "the start: the " // level // " rows of " // ucon_list(problem, level) &
                 & // " are dependent (the smallest of " // to_text(m) // " pivots is " &
                 & // to_text(diagonal(min(m, size(a, 2)))) // " of unit rows), so no " &
-                & // "independent coordinates can be chosen; remove the UCON that repeats " &
-                & // "the others", stat_input)
+                & // "independent coordinates can be chosen (a singular configuration of " &
+                & // "the mechanism)", stat_input)
             return
         end if
         chosen = order(:m)
     end subroutine pick_columns
 
-    !> "UCON/1, UCON/2, ..." of a level (position: the position UCONs; velocity: all).
+    !> The active UCONs of a level (position: the position UCONs; velocity: all) in the user's
+    !> words: "UCON/1, JOINT/2 (line 9: translation along ground X, ...)" (rollcon_model's
+    !> rows_text).
     function ucon_list(problem, level) result(text)
         type(problem_type), intent(in) :: problem
         character(len=*), intent(in) :: level
         character(len=:), allocatable :: text
+        logical :: flagged(problem%model%nc)
         integer :: k
 
-        text = ""
         do k = 1, problem%model%nc
-            if (level == "position" .and. .not. problem%model%ucons(k)%holonomic) cycle
-            if (len(text) > 0) text = text // ", "
-            text = text // "UCON/" // to_text(problem%model%ucons(k)%id)
+            flagged(k) = problem%eq%active_rows_of(k) .and. (level /= "position" .or. &
+                & problem%model%ucons(k)%holonomic)
         end do
+        text = problem%model%rows_text(flagged)
     end function ucon_list
 
     !> T (2n x d): identity in the independent rows, -J_D^-1 J_I in the dependent ones.

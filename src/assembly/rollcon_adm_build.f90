@@ -27,7 +27,7 @@ module rollcon_adm_build
     use rollcon_marker_force, only : kind_translation, kind_rotation, kind_vector, &
         & kind_general, marker_force_values, markers_coincide
     use rollcon_force, only : applied_force_type, profile_statement
-    use rollcon_model, only : model_type, setup_model, served_by_model_ucosub
+    use rollcon_model, only : model_type, setup_model, served_by_model_ucosub, force_request_type
     use rollcon_problem, only : problem_type
     use rollcon_theta_watch, only : new_theta_watch
     use rollcon_request_watch, only : displacement_request_type, new_request_watch
@@ -204,7 +204,7 @@ contains
                             & // "FILE|NAME)", stat_input)
                         return
                     end if
-                    call model%add_ucon(ucon%id, ucon%par)
+                    call model%add_ucon(ucon%id, ucon%par, line=ucon%line)
                     cycle
                 end if
                 call find_builtin_ucosub(trim(ucon%routine), routine, time_free, found)
@@ -216,7 +216,7 @@ contains
                     return
                 end if
                 call model%add_ucon(ucon%id, ucon%par, routine, time_free=time_free, &
-                    & routine=trim(ucon%routine))
+                    & routine=trim(ucon%routine), line=ucon%line)
             end associate
         end do
     end subroutine add_ucons
@@ -227,15 +227,19 @@ contains
     !> refused: they point along its two shafts away from the joint's centre (ADAMS's rule),
     !> opposite when the shafts are in line, and with the axes the other way its equation
     !> turns the shafts in opposite senses and vanishes to first order when they come in line
-    !> (ucon/specs/_joint.py).
+    !> (ucon/specs/_joint.py). A REQUEST/id, FORCE answered by a joint's reaction
+    !> (adm%force_requests) becomes one of model%force_requests, naming the joint's statement.
     subroutine add_joints(adm, model, error)
         type(adm_model_type), intent(in) :: adm
         type(model_type), intent(inout) :: model
         type(error_type), allocatable, intent(out) :: error
         real(wp) :: cosine
+        integer, allocatable :: statements(:)
         integer :: k
 
+        allocate(model%force_requests(0))
         if (.not. allocated(adm%joints)) return
+        allocate(statements(size(adm%joints)), source=0)
         do k = 1, size(adm%joints)
             associate (joint => adm%joints(k))
                 ! a RACKPIN or SCREW couples motions: rollcon_adm_constraints
@@ -256,15 +260,23 @@ contains
                 end if
                 if (joint%primitive) then
                     call model%add_jprim(joint%id, joint%kind, adm_marker(adm, joint%i), &
-                        & adm_marker(adm, joint%j), error)
+                        & adm_marker(adm, joint%j), error, line=joint%line)
                 else
                     call model%add_joint(joint%id, joint%kind, adm_marker(adm, joint%i), &
-                        & adm_marker(adm, joint%j), error)
+                        & adm_marker(adm, joint%j), error, line=joint%line)
                 end if
                 if (allocated(error)) then
                     error%message = place(adm%file, joint%line) // ": " // error%message
                     return
                 end if
+                statements(k) = size(model%statements)
+            end associate
+        end do
+        if (.not. allocated(adm%force_requests)) return
+        do k = 1, size(adm%force_requests)
+            associate (request => adm%force_requests(k))
+                model%force_requests = [model%force_requests, force_request_type(id=request%id, &
+                    & statement=statements(request%joint), swapped=request%swapped)]
             end associate
         end do
     end subroutine add_joints

@@ -2,7 +2,8 @@
 !> An ADAMS dataset as a job's model source (rollcon_model_source): its parts, UCONs, forces and
 !> run (rollcon_adm_build), with the dataset's INTEGRATOR and SIMULATE settings or those a
 !> caller put in their place, and its start made consistent by the initial-conditions analysis
-!> (docs/initial-conditions.md), as ADAMS does before a dynamic run. Its warning names the
+!> (docs/initial-conditions.md), as ADAMS does before a dynamic run, with the equations that
+!> repeat others set aside there (rollcon_redundancy) named in its report. Its warning names the
 !> statements of ADAMS's outputs and solver choices it read and does not use; its report
 !> gives, before the analysis's, the principal moments and axes of every part whose IP has
 !> products of inertia.
@@ -76,6 +77,16 @@ contains
             return
         end if
         report = principal_axes_text(self%adm) // ic_report_text(analysis)
+        ! the equations the run sets aside as redundant, chosen at this start: said once here,
+        ! before the run (a contradictory set is refused), and in the summary
+        call problem%choose_rows(0.0_wp, q0, u0, error)
+        if (allocated(error)) then
+            error%message = self%path // ": initial conditions: " // error%message
+            return
+        end if
+        if (len(problem%set_aside_text) > 0) report = report // new_line("a") &
+            & // "  warning: redundant equations set aside (docs/design.md §4): " &
+            & // problem%set_aside_text
     end subroutine build
 
     !> For each part whose IP has products of inertia, two lines: its principal moments and

@@ -90,6 +90,9 @@ contains
         disk%id = disk_part
         call disk_mass_properties(scene, disk%mass, disk%inertia)
         call model%add_part(disk)
+        ! the rim contact watch reports the contact's force, the sum of the three UCONs' on the
+        ! disk: no reaction columns of its own (rollcon_reaction_watch)
+        model%report_reactions = .false.
         model%gravity = [0.0_wp, 0.0_wp, -scene%environment%gravity]
         ! the model's UCOSUB serves the no-slip UCONs; setup_model spares the driver their time
         ! partials when it is a built-in routine whose F has no explicit time (the hand-checked

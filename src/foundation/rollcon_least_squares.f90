@@ -12,7 +12,7 @@ module rollcon_least_squares
     implicit none
     private
 
-    public :: minimum_norm_solve, left_null_space
+    public :: minimum_norm_solve, left_null_space, smallest_singular_value
 
     interface
         !> Minimum-norm least-squares solution by the SVD (LAPACK)
@@ -114,6 +114,34 @@ contains
         if (allocated(error)) return
         null = u(:, rank + 1:)
     end subroutine left_null_space
+
+    !> The smallest of the min(m, n) singular values of A (dgesvd, values only): for A with
+    !> unit columns, how near they come to dependent (0 when they are).
+    function smallest_singular_value(a, error) result(smallest)
+        !> m x n matrix (not changed)
+        real(wp), intent(in) :: a(:, :)
+        type(error_type), allocatable, intent(out) :: error
+        real(wp) :: smallest
+        real(wp), allocatable :: work_a(:, :), s(:), work(:)
+        real(wp) :: query(1), no_vectors(1, 1)
+        integer :: m, n, info
+
+        m = size(a, 1)
+        n = size(a, 2)
+        smallest = 0.0_wp
+        if (m == 0 .or. n == 0) return
+        work_a = a
+        allocate(s(min(m, n)), source=0.0_wp)
+        call dgesvd("N", "N", m, n, work_a, m, s, no_vectors, 1, no_vectors, 1, query, -1, info)
+        call svd_info_error("dgesvd", info, error)
+        if (allocated(error)) return
+        allocate(work(max(1, int(query(1)))))
+        call dgesvd("N", "N", m, n, work_a, m, s, no_vectors, 1, no_vectors, 1, work, &
+            & size(work), info)
+        call svd_info_error("dgesvd", info, error)
+        if (allocated(error)) return
+        smallest = minval(s)
+    end function smallest_singular_value
 
     !> dgesvd on a copy of A: the count of singular values above rcond times the largest and,
     !> with jobu = "A", the m x m left singular vectors in u (jobu = "N": u not referenced).

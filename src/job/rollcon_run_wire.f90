@@ -88,6 +88,7 @@ contains
         end do
         call wire%put_text(text_of(summary%watch_lines))
         call wire%put_text(text_of(summary%routines))
+        call wire%put_text(text_of(summary%ucon_labels))
         if (allocated(summary%rebasings)) then
             call wire%put_ints(summary%rebasings)
         else
@@ -135,6 +136,7 @@ contains
         end do
         summary%watch_lines = wire%get_text()
         summary%routines = wire%get_text()
+        summary%ucon_labels = wire%get_text()
         call wire%get_ints(summary%rebasings)
         call wire%get_ints(counts)
         if (size(counts) == 6) then

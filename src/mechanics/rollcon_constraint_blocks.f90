@@ -28,6 +28,7 @@ module rollcon_constraint_blocks
         procedure :: init
         procedure :: block_rows
         procedure :: block_coordinates
+        procedure :: active_subset
     end type constraint_blocks_type
 
 contains
@@ -150,6 +151,25 @@ contains
             ordered(j + 1) = key
         end do
     end function ascending
+
+    !> The blocks with only the active UCONs in their rows (active(k) for UCON k; every block
+    !> keeps its coordinates, its number and at least one row when the choice of rows set aside
+    !> is rollcon_redundancy's): what the independent speeds partition over.
+    pure function active_subset(self, active) result(subset)
+        class(constraint_blocks_type), intent(in) :: self
+        logical, intent(in) :: active(:)
+        type(constraint_blocks_type) :: subset
+        integer :: b
+
+        subset = self
+        subset%rows = pack(self%rows, active(self%rows))
+        subset%most_rows = 0
+        do b = 1, self%count
+            subset%row_start(b + 1) = subset%row_start(b) + count(active(self%block_rows(b)))
+            subset%most_rows = max(subset%most_rows, subset%row_start(b + 1) &
+                & - subset%row_start(b))
+        end do
+    end function active_subset
 
     !> Block b's UCONs, ascending.
     pure function block_rows(self, b) result(rows)

@@ -8,7 +8,8 @@ module rollcon_constraints
         & scalar_dtt, &
         & array_none, array_dq, array_dtdq, xmatrx_none, xmatrx_dqdq
     use rollcon_ucon_call, only : evaluate_ucon
-    use rollcon_model, only : model_type, ucon_statement_type
+    use rollcon_model, only : model_type, ucon_statement_type, statement_ucon
+    use rollcon_text, only : to_text
     use rollcon_gcon, only : evaluate_gcon
     use rollcon_motion, only : motion_displacement, motion_residual
     implicit none
@@ -141,6 +142,7 @@ contains
                 if (any(idrsel /= 0)) then
                     call evaluate_one(ucon, ucon_time, self%local_q, idrsel, scalar, array, &
                         & xmatrx, error)
+                    if (allocated(error)) call in_user_words(model, k, error)
                     if (allocated(error)) return
                     if (ucon%converted) call to_si(ucon, 0, idrsel /= 0, scalar, array, xmatrx)
                     if (idrsel(1) /= 0) self%value(k) = scalar
@@ -164,6 +166,7 @@ contains
                     & .and. .not. allocated(ucon%motion)) then
                     call evaluate_one(ucon, ucon_time, self%local_q, [scalar_dt, array_dtdq, &
                         & xmatrx_none], scalar, array, xmatrx, error)
+                    if (allocated(error)) call in_user_words(model, k, error)
                     if (allocated(error)) return
                     if (ucon%converted) call to_si(ucon, 1, [.true., .true., .false.], scalar, &
                         & array, xmatrx)
@@ -172,6 +175,7 @@ contains
                     if (ucon%holonomic) then
                         call evaluate_one(ucon, ucon_time, self%local_q, [scalar_dtt, &
                             & array_none, xmatrx_none], scalar, array, xmatrx, error)
+                        if (allocated(error)) call in_user_words(model, k, error)
                         if (allocated(error)) return
                         if (ucon%converted) scalar = scalar*ucon%value_scale*ucon%time_scale**2
                         self%dtt(k) = scalar
@@ -200,6 +204,21 @@ contains
                 & xmatrx, error, ucon%nvars)
         end if
     end subroutine evaluate_one
+
+    !> A UCOSUB's error for an equation of a JOINT or JPRIM (a UCON the program numbered) named
+    !> by its statement, line and equation instead of "UCON/<id>" (rollcon_model's row_words).
+    pure subroutine in_user_words(model, k, error)
+        type(model_type), intent(in) :: model
+        integer, intent(in) :: k
+        type(error_type), intent(inout) :: error
+        character(len=:), allocatable :: prefix
+
+        if (.not. allocated(model%statements) .or. model%ucons(k)%statement == 0) return
+        if (model%statements(model%ucons(k)%statement)%kind == statement_ucon) return
+        prefix = "UCON/" // to_text(model%ucons(k)%id) // ":"
+        if (index(error%message, prefix) /= 1) return
+        error%message = model%row_words(k) // ":" // error%message(len(prefix) + 1:)
+    end subroutine in_user_words
 
     !> What a routine in the model's units returned, in SI (chain rule, rollcon_ucosub_units):
     !> scalar and array are F and dF/dq (time_order 0) or dF/dt and d2F/dt dq (time_order 1),

@@ -7,7 +7,9 @@
 !>     dF_k/dq u + dF_k/dt = 0       position UCON k (its velocity form)
 !>     F_h = 0                       position UCON h (with mu_h)
 !>
-!> which has index 2 with every constraint enforced directly: no drift by construction.
+!> which has index 2 with every constraint enforced directly: no drift by construction. A row
+!> set aside as redundant (rollcon_redundancy) keeps its place: its equation is lambda_k = 0
+!> (and mu_h = 0 for a position UCON's), and its multipliers appear nowhere else.
 module rollcon_dae
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type
@@ -44,6 +46,7 @@ contains
         real(wp), intent(out) :: r(:)
         type(error_type), allocatable, intent(out) :: error
         integer :: n, nc, needs, k, h, j, i0, jj
+        logical :: aside
 
         n = eq%n
         nc = eq%nc
@@ -68,6 +71,13 @@ contains
             end do
             do k = 1, nc
                 h = eq%model%holonomic_number(k)
+                aside = .false.
+                if (eq%redundancy%set_aside > 0) aside = .not. eq%redundancy%active(k)
+                if (aside) then
+                    r(2*n + k) = lambda(k)
+                    if (h > 0) r(2*n + nc + h) = mu(h)
+                    cycle
+                end if
                 associate (at => bl%ucon_coordinates(bl%ucon_start(k):bl%ucon_start(k + 1) - 1))
                     if (h > 0) then
                         do jj = 1, size(at)
@@ -102,7 +112,7 @@ contains
         real(wp), intent(inout) :: jac(:, :)
         type(error_type), allocatable, intent(out) :: error
         logical, intent(in), optional :: zeroed
-        logical :: clear
+        logical :: clear, aside
         integer :: n, nc, k, h, i, j, row, ii, jj, i0
 
         n = eq%n
@@ -117,7 +127,13 @@ contains
             if (allocated(error)) return
             call eq%assemble(time, q, u)
             call eq%constraint_rows(u, 0.0_wp)  ! the DAE form keeps F itself: no Baumgarte terms
-            call eq%momentum_jacobian(q, u, up, lambda)
+            if (eq%redundancy%set_aside > 0) then
+                ! the rows set aside carry no force, whatever the iterate's lambda_k
+                call eq%momentum_jacobian(q, u, up, merge(lambda, 0.0_wp, &
+                    & eq%redundancy%active))
+            else
+                call eq%momentum_jacobian(q, u, up, lambda)
+            end if
             if (clear) jac = 0.0_wp
             do j = 1, n
                 jac(j, j) = cj
@@ -144,6 +160,13 @@ contains
             do k = 1, nc
                 h = eq%model%holonomic_number(k)
                 row = 2*n + k
+                aside = .false.
+                if (eq%redundancy%set_aside > 0) aside = .not. eq%redundancy%active(k)
+                if (aside) then
+                    jac(row, row) = 1.0_wp
+                    if (h > 0) jac(2*n + nc + h, 2*n + nc + h) = 1.0_wp
+                    cycle
+                end if
                 associate (at => bl%ucon_coordinates(bl%ucon_start(k):bl%ucon_start(k + 1) - 1))
                     do jj = 1, size(at)
                         j = at(jj)

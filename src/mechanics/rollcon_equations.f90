@@ -4,6 +4,10 @@
 !>
 !> M(q) a = f(q, u, t) + C^T lambda,  C a = gamma, where C_k = dF_k/du for a velocity UCON and
 !> dF_k/dq for a position UCON, and gamma makes the constraint's time derivative vanish.
+!>
+!> Rows that repeat others (redundant equations) are set aside by the choice of `redundancy`
+!> (rollcon_redundancy, choose_active): they keep their place in every array, their
+!> multiplier is zero, and every solve here goes over the active rows only.
 module rollcon_equations
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type
@@ -16,6 +20,8 @@ module rollcon_equations
     use rollcon_saddle_point, only : saddle_point_type
     use rollcon_constraint_blocks, only : constraint_blocks_type
     use rollcon_ode_workspace, only : ode_workspace_type
+    use rollcon_redundancy, only : redundancy_type
+    use rollcon_redundancy_words, only : set_aside_words
     implicit none
     private
 
@@ -42,6 +48,9 @@ module rollcon_equations
         type(saddle_point_type) :: saddle
         !> Scratch arrays of the right-hand side, the Jacobian and the projection
         type(ode_workspace_type) :: work
+        !> Which rows are active and which are set aside as redundant (all active until
+        !> choose_active is called)
+        type(redundancy_type) :: redundancy
     contains
         procedure :: release => release_equations
         procedure :: init
@@ -58,6 +67,12 @@ module rollcon_equations
         procedure :: constraint_matrix
         procedure :: constraint_matrix_at
         procedure :: momentum_jacobian
+        procedure :: choose_active
+        procedure :: choose_block_again
+        procedure :: redundancy_margins
+        procedure :: reported_multipliers
+        procedure :: active_rows
+        procedure :: active_rows_of
     end type equations_type
 
 contains
@@ -80,7 +95,100 @@ contains
             allocate(self%mass(n, n), self%force(n), self%c(nc, n), self%gamma(nc), source=0.0_wp)
         end associate
         call self%work%init(self%n, self%nc, self%nh, size(model%parts))
+        call self%redundancy%init(self%nc, self%blocks)
     end subroutine init
+
+    !> Choose the rows to set aside at (t, q, u) (rollcon_redundancy's choose: every block's
+    !> rank from the tolerance) and say which in the user's words (redundancy%words): leaves C
+    !> and M assembled there, and the constraints evaluated (values, first and time partials).
+    subroutine choose_active(self, time, q, u, error)
+        class(equations_type), intent(inout) :: self
+        real(wp), intent(in) :: time, q(:), u(:)
+        type(error_type), allocatable, intent(out) :: error
+
+        call self%redundancy%init(self%nc, self%blocks)
+        if (self%nc == 0) return
+        call self%constraints%evaluate(self%model, time, q, u, need_value + need_first &
+            & + need_time, error)
+        if (allocated(error)) return
+        call self%assemble(time, q, u)
+        call self%constraint_matrix()
+        call self%redundancy%choose(self%c, self%mass, self%blocks, &
+            & self%model%holonomic_number > 0, error)
+        if (allocated(error)) return
+        self%redundancy%words = set_aside_words(self%model, self%redundancy, self%c, self%mass, &
+            & self%blocks, self%redundancy%involved, error)
+    end subroutine choose_active
+
+    !> Choose block b's rows again at (t, q, u) with the ranks of the first choice (changed:
+    !> other rows are set aside now).
+    subroutine choose_block_again(self, b, time, q, u, changed, error)
+        class(equations_type), intent(inout) :: self
+        integer, intent(in) :: b
+        real(wp), intent(in) :: time, q(:), u(:)
+        logical, intent(out) :: changed
+        type(error_type), allocatable, intent(out) :: error
+
+        changed = .false.
+        call self%constraint_matrix_at(time, q, u, error)
+        if (allocated(error)) return
+        call self%assemble(time, q, u)
+        call self%redundancy%rechoose(b, self%c, self%mass, self%blocks, &
+            & self%model%holonomic_number > 0, changed, error)
+    end subroutine choose_block_again
+
+    !> For every block with rows set aside, in block order, its margin at (t, q, u)
+    !> (rollcon_redundancy: zero where its choice has worn), into g.
+    subroutine redundancy_margins(self, time, q, u, g, error)
+        class(equations_type), intent(inout) :: self
+        real(wp), intent(in) :: time, q(:), u(:)
+        real(wp), intent(out) :: g(:)
+        type(error_type), allocatable, intent(out) :: error
+        integer :: b, i
+
+        call self%constraint_matrix_at(time, q, u, error)
+        if (allocated(error)) return
+        call self%assemble(time, q, u)
+        i = 0
+        do b = 1, self%blocks%count
+            if (.not. self%redundancy%redundant(b)) cycle
+            i = i + 1
+            g(i) = self%redundancy%margin(b, self%c, self%mass, self%blocks, error)
+            if (allocated(error)) return
+        end do
+    end subroutine redundancy_margins
+
+    !> The multipliers to report, with C and M as the last accelerations call left them: lambda
+    !> itself, or where rows are set aside the split of least norm of the same constraint force
+    !> (rollcon_redundancy's multipliers; a redundant joint's reaction is not unique).
+    subroutine reported_multipliers(self, lambda, reported, error)
+        class(equations_type), intent(in) :: self
+        real(wp), intent(in) :: lambda(:)
+        real(wp), intent(out) :: reported(:)
+        type(error_type), allocatable, intent(out) :: error
+
+        reported = lambda
+        if (self%redundancy%set_aside == 0) return
+        call self%redundancy%multipliers(self%c, self%mass, self%blocks, reported, error)
+    end subroutine reported_multipliers
+
+    !> Whether row k is active (every row is until a choice sets some aside).
+    pure logical function active_rows_of(self, k)
+        class(equations_type), intent(in) :: self
+        integer, intent(in) :: k
+
+        active_rows_of = .true.
+        if (allocated(self%redundancy%active)) active_rows_of = self%redundancy%active(k)
+    end function active_rows_of
+
+    !> Which rows are active (all of them until a choice sets some aside).
+    pure function active_rows(self) result(active)
+        class(equations_type), intent(in) :: self
+        logical :: active(self%nc)
+
+        active = .true.
+        if (allocated(self%redundancy%active)) active = self%redundancy%active
+    end function active_rows
 
     !> Mass matrix and f = -(M a - f) at a = 0, part by part. Only the parts' diagonal blocks
     !> are written: the others stay zero from init.
@@ -191,7 +299,11 @@ contains
         call self%constraint_rows(u, baumgarte)
         ! M^-1 f in the factorisation's own LAPACK calls (those of M^-1 C^T)
         a = self%force
-        call self%saddle%factor(self%mass, self%c, nc, error, a)
+        if (self%redundancy%set_aside > 0) then
+            call self%saddle%factor(self%mass, self%c, nc, error, a, self%redundancy%active)
+        else
+            call self%saddle%factor(self%mass, self%c, nc, error, a)
+        end if
         if (allocated(error)) return
         lambda = self%gamma
         call self%saddle%solve(self%c, a, lambda, 1, error, scaled=.true.)
@@ -323,11 +435,31 @@ contains
         real(wp), intent(in) :: time, q(:), u(:)
         real(wp), intent(out) :: dq(:), du(:)
         type(error_type), allocatable, intent(out) :: error
-        integer :: n, k, h
+        integer :: n, k, h, rows
 
         n = self%n
         dq = 0.0_wp
-        if (self%nh > 0) then
+        if (self%nh > 0 .and. self%redundancy%set_aside > 0) then
+            ! the active position UCONs alone (those set aside repeat them)
+            call self%constraints%evaluate(self%model, time, q, u, need_value + need_first, error)
+            if (allocated(error)) return
+            call self%assemble(time, q, u)
+            rows = 0
+            do k = 1, self%nc
+                if (self%model%holonomic_number(k) == 0 .or. .not. self%redundancy%active(k)) &
+                    & cycle
+                rows = rows + 1
+                self%work%holonomic_rows(rows, :) = self%constraints%grad_q(k, :)
+                self%work%rhs_bottom(rows, 1) = -self%constraints%value(k)
+            end do
+            call self%saddle%factor(self%mass, self%work%holonomic_rows, rows, error)
+            if (allocated(error)) return
+            self%work%rhs_top(:, 1) = 0.0_wp
+            call self%saddle%solve(self%work%holonomic_rows, self%work%rhs_top(:, 1), &
+                & self%work%rhs_bottom(:, 1), 1, error)
+            if (allocated(error)) return
+            dq = self%work%rhs_top(:, 1)
+        else if (self%nh > 0) then
             call self%constraints%evaluate(self%model, time, q, u, need_value + need_first, error)
             if (allocated(error)) return
             call self%assemble(time, q, u)
@@ -361,7 +493,12 @@ contains
                 end if
             end do
         end associate
-        call self%saddle%factor(self%mass, self%c, self%nc, error)
+        if (self%redundancy%set_aside > 0) then
+            call self%saddle%factor(self%mass, self%c, self%nc, error, &
+                & active=self%redundancy%active)
+        else
+            call self%saddle%factor(self%mass, self%c, self%nc, error)
+        end if
         if (allocated(error)) return
         self%work%rhs_top(:, 1) = 0.0_wp
         call self%saddle%solve(self%c, self%work%rhs_top(:, 1), self%work%rhs_bottom(:, 1), 1, &

@@ -14,7 +14,9 @@
 !> the motion of Maggi's equations N^T M N v' = N^T (f - M N' v) with N = [-C_d^-1 C_i; I].
 !> Its Newton matrix follows by the chain rule from the ODE form's (rollcon_equations):
 !> d(u, a_i)/d(q, v) with du_d/dq = -C_d^-1 dr/dq and du_d/dv = -C_d^-1 C_i. The dependent
-!> speeds are numbered by the partition's slots (rollcon_speed_partition).
+!> speeds are numbered by the partition's slots (rollcon_speed_partition). Rows set aside as
+!> redundant (rollcon_redundancy) are not partitioned: nc is the active rows, and the n - nc
+!> independent speeds are the mechanism's own.
 module rollcon_independent_speeds
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type
@@ -28,8 +30,11 @@ module rollcon_independent_speeds
 
     !> The partition and the workspace of the formulation (allocated once, in init)
     type :: independent_speeds_type
-        !> Rates, constraint rows, independent speeds n - nc
-        integer :: n = 0, nc = 0, ni = 0
+        !> Rates, constraint rows partitioned (the active ones), independent speeds n - nc, and
+        !> the model's rows (active or set aside)
+        integer :: n = 0, nc = 0, ni = 0, rows = 0
+        !> Which rows were active when the partition was sized (init)
+        logical, allocatable :: active(:)
         type(speed_partition_type) :: partition
         !> The ODE form's Jacobian d(q', u')/d(q, u) (2n x 2n)
         real(wp), allocatable :: full(:, :)
@@ -49,18 +54,25 @@ module rollcon_independent_speeds
 
 contains
 
-    !> Size for the equations eq (initialised on their model).
+    !> Size for the equations eq (initialised on their model) and the rows active in them now.
     subroutine init(self, eq)
         class(independent_speeds_type), intent(inout) :: self
         type(equations_type), intent(in) :: eq
 
         self%n = eq%n
-        self%nc = eq%nc
-        self%ni = eq%n - eq%nc
-        call self%partition%init(self%n, self%nc, eq%blocks)
+        self%rows = eq%nc
+        self%active = eq%active_rows()
+        self%nc = count(self%active)
+        self%ni = eq%n - self%nc
+        if (self%nc == self%rows) then
+            call self%partition%init(self%n, self%nc, eq%blocks)
+        else
+            call self%partition%init(self%n, self%nc, eq%blocks%active_subset(self%active), &
+                & self%rows)
+        end if
         if (allocated(self%full)) deallocate(self%full, self%dud_dq, self%dud_dv, self%r)
-        allocate(self%full(2*self%n, 2*self%n), self%dud_dq(max(self%nc, 1), self%n), &
-            & self%dud_dv(max(self%nc, 1), self%ni), self%r(max(self%nc, 1)), source=0.0_wp)
+        allocate(self%full(2*self%n, 2*self%n), self%dud_dq(max(self%rows, 1), self%n), &
+            & self%dud_dv(max(self%rows, 1), self%ni), self%r(max(self%rows, 1)), source=0.0_wp)
     end subroutine init
 
     !> Size of the integrator's state: n coordinates and n - nc independent speeds.
@@ -110,7 +122,7 @@ contains
         if (allocated(error)) return
         call eq%constraint_matrix()
         associate (cs => eq%constraints, bl => eq%blocks)
-            do k = 1, self%nc
+            do k = 1, self%rows
                 if (eq%model%ucons(k)%holonomic) then
                     ! over the UCON's own coordinates (its partials are zero elsewhere): the
                     ! dense sum's nonzero terms in their order, O(1) a UCON, not O(n)
@@ -172,7 +184,7 @@ contains
         if (nc > 0) then
             ! dr/dq at fixed u (module text), then -C_d^-1 of it; -C_d^-1 C_i
             associate (cs => eq%constraints)
-                do k = 1, nc
+                do k = 1, self%rows
                     if (eq%model%ucons(k)%holonomic) then
                         ! d2F/dq dq's column j is zero off the UCON's own coordinates
                         do j = 1, n

@@ -22,9 +22,9 @@ module rollcon_joint_primitives
     use rollcon_ucosub_contract, only : ucosub_interface
     use rollcon_marker, only : marker_type
     use rollcon_joint_types, only : joint_names, primitive_names, joint_primitives, &
-        & is_joint_name, primitive_index, primitive_symmetric, name_list, primitive_atpoint, &
-        & primitive_inline, primitive_inplane, primitive_parallel_axes, primitive_perpendicular, &
-        & primitive_orientation, primitive_homokinetic
+        & is_joint_name, primitive_index, primitive_symmetric, name_list, primitive_equation, &
+        & primitive_atpoint, primitive_inline, primitive_inplane, primitive_parallel_axes, &
+        & primitive_perpendicular, primitive_orientation, primitive_homokinetic
     use rollcon_gen_gnd_atpoint, only : gnd_atpoint_ucosub, gnd_atpoint_codes
     use rollcon_gen_gnd_homokinetic, only : gnd_homokinetic_ucosub, gnd_homokinetic_codes
     use rollcon_gen_gnd_inline, only : gnd_inline_ucosub, gnd_inline_codes
@@ -58,6 +58,9 @@ module rollcon_joint_primitives
         character(len=:), allocatable :: routine
         !> PAR indices where a 3-vector fixed in a part starts, and that part (model order)
         integer, allocatable :: geometry_par(:), geometry_parts(:)
+        !> Which equation of the statement it is, in words (rollcon_joint_types'
+        !> primitive_equation: "translation along ground X")
+        character(len=:), allocatable :: equation
     end type primitive_ucon_type
 
 contains
@@ -137,7 +140,8 @@ contains
             pins = pins(:, [2, 1])
         end if
         primitives = joint_primitives(kind)
-        call primitive_list(primitives, first, second, pins, part_ids, length_unit, ucons)
+        call primitive_list(primitives, first, second, pins, i%part == 0, part_ids, length_unit, &
+            & ucons)
     end subroutine joint_ucons
 
     !> "PART/3", or "the ground" for part 0.
@@ -149,12 +153,14 @@ contains
         if (part > 0) words = "PART/" // to_text(part_ids(part))
     end function part_words
 
-    !> The UCONs of the primitives, marker I (i) on a moving part; a PERPENDICULAR holds
-    !> pins(:, 1), fixed in i's part, perpendicular to pins(:, 2), fixed in j's.
-    subroutine primitive_list(primitives, i, j, pins, part_ids, length_unit, ucons)
+    !> The UCONs of the primitives, marker I (i) on a moving part (swapped: the statement's
+    !> markers exchanged, its I on the ground); a PERPENDICULAR holds pins(:, 1), fixed in i's
+    !> part, perpendicular to pins(:, 2), fixed in j's.
+    subroutine primitive_list(primitives, i, j, pins, swapped, part_ids, length_unit, ucons)
         integer, intent(in) :: primitives(:)
         type(marker_type), intent(in) :: i, j
         real(wp), intent(in) :: pins(3, 2)
+        logical, intent(in) :: swapped
         integer, intent(in) :: part_ids(:)
         real(wp), intent(in) :: length_unit
         type(primitive_ucon_type), allocatable, intent(inout) :: ucons(:)
@@ -196,6 +202,7 @@ contains
                 ucon%par = par
                 ucon%ucosub => routine
                 ucon%routine = name
+                ucon%equation = primitive_equation(primitives(n), c, swapped)
                 ! each vector's PAR index and the part (model order) it is fixed in
                 ucon%geometry_par = [(size(par) - merge(1, 0, components > 1) &
                     & - 3*size(used) + 3*(v - 1) + 1, v = 1, size(used))]

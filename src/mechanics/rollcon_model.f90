@@ -7,6 +7,13 @@
 !> UCOSUB per model serves every UCON that names no ROUTINE); served_by_model_ucosub is that
 !> rule, written here only, and setup_model acts on it.
 !>
+!> The model keeps the statements as its user wrote them (model%statements: a UCON, a JOINT,
+!> a JPRIM, with its dataset line and a joint's marker I) beside the UCONs the driver evaluates:
+!> a JOINT or JPRIM is several UCONs of generated routines, each knowing its statement and
+!> which of its equations it is, so that every message and column speaks of the statement and
+!> the line the user wrote ("JOINT/3 (line 40), its rotation about J's x"), never of an id the
+!> program generated (row_words, statement_name).
+!>
 !> setup_model makes the initialisation call of every UCON (IFLAG = 3), validates the UCOVAR
 !> declarations and maps each declared variable onto the system's coordinates: part p's
 !> coordinate c (X, Y, Z, psi, theta, phi) is number 6 (p - 1) + c of q, and its rate the same
@@ -36,7 +43,39 @@ module rollcon_model
     implicit none
     private
 
-    public :: model_type, ucon_statement_type, setup_model, served_by_model_ucosub
+    public :: model_type, ucon_statement_type, statement_type, setup_model, served_by_model_ucosub
+    public :: statement_ucon, statement_joint, statement_jprim, force_request_type
+
+    !> The kinds of statement a model's UCONs come from
+    integer, parameter :: statement_ucon = 1, statement_joint = 2, statement_jprim = 3
+
+    !> A statement as its user wrote it: a UCON, or a JOINT or JPRIM (whose equations are UCONs
+    !> of generated routines)
+    type :: statement_type
+        !> statement_ucon, statement_joint or statement_jprim
+        integer :: kind = statement_ucon
+        !> Its id ("JOINT/3": 3)
+        integer :: id = 0
+        !> The line of the dataset it was written on (0: a model built in code, no line)
+        integer :: line = 0
+        !> A JOINT's or JPRIM's markers I and J as the model holds them (part 0: the ground;
+        !> their origins and axes in the part's principal axes, turned with the part at each
+        !> re-basing), and the part of its marker J (model order, 0: the ground)
+        type(marker_type) :: i, j
+        integer :: j_part = 0
+    end type statement_type
+
+    !> A request for the force and torque between a JOINT's or JPRIM's two markers (a
+    !> dataset's REQUEST/id, FORCE, I=, J= naming them): ADAMS's force and torque on the
+    !> request's marker I, at I, in ground axes (rollcon_reaction_watch's req<id>_fx ... _tz)
+    type :: force_request_type
+        !> The request's id ("REQUEST/2": 2)
+        integer :: id = 0
+        !> The statement whose reaction it is (model%statements)
+        integer :: statement = 0
+        !> The request's I is the statement's J (and its J the statement's I)
+        logical :: swapped = .false.
+    end type force_request_type
 
     !> One UCON/id, FUNCTION=USER(par) statement and, after setup, where its variables live
     type :: ucon_statement_type
@@ -79,14 +118,30 @@ module rollcon_model
         !> s(q) - h(t), s the routine's value, and the time partials are the motion's
         !> (rollcon_constraints); the UCON computes in SI whatever the model's units
         type(motion_type), allocatable :: motion
+        !> The statement it is (a UCON) or one equation of (a JOINT or JPRIM): its number in
+        !> model%statements (set by add_ucon, add_joint and add_jprim; setup_model gives a UCON
+        !> put in the list by hand a statement of its own)
+        integer :: statement = 0
+        !> Which equation of its JOINT or JPRIM it is, in words ("translation along ground X");
+        !> "" for a UCON statement
+        character(len=:), allocatable :: equation
     end type ucon_statement_type
 
     !> The model
     type :: model_type
         !> Rigid parts
         type(part_type), allocatable :: parts(:)
-        !> UCON statements
+        !> UCONs: the UCON statements and the equations of the JOINTs and JPRIMs
         type(ucon_statement_type), allocatable :: ucons(:)
+        !> The statements as their user wrote them, in the order they were added
+        type(statement_type), allocatable :: statements(:)
+        !> Report each statement's reaction (the force and torque it exerts on its part) in the
+        !> rows (rollcon_reaction_watch); a disk scene, whose rim contact watch reports the
+        !> contact's force, leaves it off
+        logical :: report_reactions = .true.
+        !> Requests for a JOINT's or JPRIM's reaction between its markers, reported as columns
+        !> beside the statements' own (rollcon_reaction_watch)
+        type(force_request_type), allocatable :: force_requests(:)
         !> The UCOSUB serving every UCON of the model
         procedure(ucosub_interface), pointer, nopass :: ucosub => null()
         !> Applied forces
@@ -112,6 +167,9 @@ module rollcon_model
         procedure :: add_motion
         procedure :: turn_part_axes
         procedure :: turn_ucon_geometry
+        procedure :: statement_name
+        procedure :: row_words
+        procedure :: rows_text
     end type model_type
 
 contains
@@ -126,7 +184,7 @@ contains
     end subroutine add_part
 
     !> Append a UCON statement.
-    subroutine add_ucon(self, id, par, ucosub, time_free, routine)
+    subroutine add_ucon(self, id, par, ucosub, time_free, routine, line)
         class(model_type), intent(inout) :: self
         !> Statement id
         integer, intent(in) :: id
@@ -142,8 +200,17 @@ contains
         !> The name of the routine given as ucosub, for the run's record (a built-in's name;
         !> "its own" when not given)
         character(len=*), intent(in), optional :: routine
+        !> The dataset line of the statement, for messages (default 0: no line)
+        integer, intent(in), optional :: line
         type(ucon_statement_type) :: ucon
+        type(statement_type) :: statement
 
+        statement%kind = statement_ucon
+        statement%id = id
+        if (present(line)) statement%line = line
+        call append_statement(self%statements, statement)
+        ucon%statement = size(self%statements)
+        ucon%equation = ""
         ucon%id = id
         ucon%par = par
         ucon%routine = ""
@@ -177,7 +244,7 @@ contains
     !> after the largest UCON id of the model, in the order of the primitives and their
     !> components, and the model's length unit (ucosub_units). Add the parts first. Refused: an
     !> unknown type, markers on parts the model does not have, or both on one part.
-    subroutine add_joint(self, id, kind, i, j, error)
+    subroutine add_joint(self, id, kind, i, j, error, line)
         class(model_type), intent(inout) :: self
         !> The joint's id, for messages ("JOINT/3")
         integer, intent(in) :: id
@@ -187,15 +254,20 @@ contains
         !> in the part's principal axes (rollcon_marker's part_marker)
         type(marker_type), intent(in) :: i, j
         type(error_type), allocatable, intent(out) :: error
+        !> The dataset line of the statement, for messages (default 0: no line)
+        integer, intent(in), optional :: line
+        integer :: at
 
-        call add_primitives(self, .false., id, kind, i, j, error)
+        at = 0
+        if (present(line)) at = line
+        call add_primitives(self, .false., id, kind, i, j, at, error)
     end subroutine add_joint
 
     !> Append JPRIM/id, a joint primitive of type kind (ATPOINT, INLINE, INPLANE,
     !> PARALLEL_AXES, PERPENDICULAR, ORIENTATION) between marker i and marker j, as add_joint
     !> does. An INLINE or INPLANE with marker I on the ground is refused (it is not symmetric
     !> in I and J, and the routines hold the part of I).
-    subroutine add_jprim(self, id, kind, i, j, error)
+    subroutine add_jprim(self, id, kind, i, j, error, line)
         class(model_type), intent(inout) :: self
         !> The primitive's id, for messages ("JPRIM/3")
         integer, intent(in) :: id
@@ -204,19 +276,27 @@ contains
         !> Marker I and marker J (part 0: the ground)
         type(marker_type), intent(in) :: i, j
         type(error_type), allocatable, intent(out) :: error
+        !> The dataset line of the statement, for messages (default 0: no line)
+        integer, intent(in), optional :: line
+        integer :: at
 
-        call add_primitives(self, .true., id, kind, i, j, error)
+        at = 0
+        if (present(line)) at = line
+        call add_primitives(self, .true., id, kind, i, j, at, error)
     end subroutine add_jprim
 
-    !> The UCONs of a JOINT (primitive false) or JPRIM, appended.
-    subroutine add_primitives(self, primitive, id, kind, i, j, error)
+    !> The UCONs of a JOINT (primitive false) or JPRIM, appended, and its statement.
+    subroutine add_primitives(self, primitive, id, kind, i, j, line, error)
         class(model_type), intent(inout) :: self
         logical, intent(in) :: primitive
         integer, intent(in) :: id
         character(len=*), intent(in) :: kind
         type(marker_type), intent(in) :: i, j
+        integer, intent(in) :: line
         type(error_type), allocatable, intent(out) :: error
         type(primitive_ucon_type), allocatable :: ucons(:)
+        type(statement_type) :: statement
+        type(ucon_statement_type) :: ucon
         integer, allocatable :: part_ids(:)
         integer :: k, next_id
 
@@ -226,14 +306,27 @@ contains
         call joint_ucons(primitive, id, kind, i, j, part_ids, self%ucosub_units%length, ucons, &
             & error)
         if (allocated(error)) return
+        statement%kind = merge(statement_jprim, statement_joint, primitive)
+        statement%id = id
+        statement%line = line
+        statement%i = i
+        statement%j = j
+        statement%j_part = j%part
+        call append_statement(self%statements, statement)
         next_id = 0
         if (size(self%ucons) > 0) next_id = maxval(self%ucons%id)
         do k = 1, size(ucons)
             next_id = next_id + 1
-            call self%add_ucon(next_id, ucons(k)%par, ucons(k)%ucosub, time_free=.true., &
-                & routine=ucons(k)%routine)
-            self%ucons(size(self%ucons))%geometry_par = ucons(k)%geometry_par
-            self%ucons(size(self%ucons))%geometry_parts = ucons(k)%geometry_parts
+            ucon%id = next_id
+            ucon%par = ucons(k)%par
+            ucon%ucosub => ucons(k)%ucosub
+            ucon%routine = ucons(k)%routine
+            ucon%time_free = .true.
+            ucon%geometry_par = ucons(k)%geometry_par
+            ucon%geometry_parts = ucons(k)%geometry_parts
+            ucon%statement = size(self%statements)
+            ucon%equation = ucons(k)%equation
+            self%ucons = [self%ucons, ucon]
         end do
     end subroutine add_primitives
 
@@ -344,6 +437,101 @@ contains
                 & motion_b3])
         end associate
     end subroutine add_motion
+    !> Append a statement (element by element: gfortran 12 may mishandle an array constructor
+    !> of a type with allocatable components).
+    pure subroutine append_statement(statements, statement)
+        type(statement_type), allocatable, intent(inout) :: statements(:)
+        type(statement_type), intent(in) :: statement
+        type(statement_type), allocatable :: grown(:)
+        integer :: k
+
+        if (.not. allocated(statements)) allocate(statements(0))
+        allocate(grown(size(statements) + 1))
+        do k = 1, size(statements)
+            grown(k) = statements(k)
+        end do
+        grown(size(grown)) = statement
+        call move_alloc(grown, statements)
+    end subroutine append_statement
+
+    !> "JOINT/3 (line 40)", "UCON/5" (no line for a model built in code) of statement s.
+    pure function statement_name(self, s) result(name)
+        class(model_type), intent(in) :: self
+        !> Its number in self%statements
+        integer, intent(in) :: s
+        character(len=:), allocatable :: name
+
+        associate (statement => self%statements(s))
+            select case (statement%kind)
+            case (statement_joint)
+                name = "JOINT/"
+            case (statement_jprim)
+                name = "JPRIM/"
+            case default
+                name = "UCON/"
+            end select
+            name = name // to_text(statement%id)
+            if (statement%line > 0) name = name // " (line " // to_text(statement%line) // ")"
+        end associate
+    end function statement_name
+
+    !> UCON k (model order) in the user's words: its statement, and for an equation of a JOINT
+    !> or JPRIM which one ("JOINT/3 (line 40), its rotation about J's x"; "UCON/5 (line 12)").
+    pure function row_words(self, k) result(words)
+        class(model_type), intent(in) :: self
+        integer, intent(in) :: k
+        character(len=:), allocatable :: words
+
+        words = self%statement_name(self%ucons(k)%statement)
+        if (allocated(self%ucons(k)%equation)) then
+            if (len(self%ucons(k)%equation) > 0) words = words // ", its " &
+                & // self%ucons(k)%equation
+        end if
+    end function row_words
+
+    !> The flagged UCONs (model order, flagged(k) for UCON k) in the user's words, each
+    !> statement once, in the order of its first flagged UCON, with the equations of a JOINT or
+    !> JPRIM flagged: "JOINT/1 (line 14: translation along ground Z), UCON/2 and JOINT/3 (line
+    !> 16: rotation about J's x, rotation about J's y)".
+    pure function rows_text(self, flagged) result(text)
+        class(model_type), intent(in) :: self
+        logical, intent(in) :: flagged(:)
+        character(len=:), allocatable :: text, item
+        integer, allocatable :: order(:)
+        integer :: k, l, n, s
+
+        allocate(order(0))
+        do k = 1, size(flagged)
+            if (flagged(k) .and. .not. any(order == self%ucons(k)%statement)) &
+                & order = [order, self%ucons(k)%statement]
+        end do
+        text = ""
+        do n = 1, size(order)
+            s = order(n)
+            item = self%statement_name(s)
+            if (self%statements(s)%kind /= statement_ucon) then
+                if (self%statements(s)%line > 0) then
+                    item = item(:len(item) - 1) // ": "
+                else
+                    item = item // " ("
+                end if
+                k = 0
+                do l = 1, size(flagged)
+                    if (.not. flagged(l) .or. self%ucons(l)%statement /= s) cycle
+                    if (k > 0) item = item // ", "
+                    item = item // self%ucons(l)%equation
+                    k = k + 1
+                end do
+                item = item // ")"
+            end if
+            if (n > 1 .and. n == size(order)) then
+                text = text // " and "
+            else if (n > 1) then
+                text = text // ", "
+            end if
+            text = text // item
+        end do
+    end function rows_text
 
     !> Append an applied force.
     subroutine add_force(self, force)
@@ -392,6 +580,12 @@ contains
         do k = 1, size(self%ucons)
             if (allocated(self%ucons(k)%gcon)) call turn_gcon_markers(self%ucons(k)%gcon, p)
         end do
+        if (allocated(self%statements)) then
+            do k = 1, size(self%statements)
+                call turn_marker(self%statements(k)%i, p)
+                call turn_marker(self%statements(k)%j, p)
+            end do
+        end if
         self%parts(p)%inertia = rebased_inertia(self%parts(p)%inertia)
     end subroutine turn_part_axes
 
@@ -429,6 +623,15 @@ contains
         if (.not. allocated(model%parts)) allocate(model%parts(0))
         if (.not. allocated(model%ucons)) allocate(model%ucons(0))
         if (.not. allocated(model%forces)) allocate(model%forces(0))
+        if (.not. allocated(model%statements)) allocate(model%statements(0))
+        ! a UCON put in the list by hand is a statement of its own
+        do k = 1, size(model%ucons)
+            if (model%ucons(k)%statement > 0) cycle
+            call append_statement(model%statements, statement_type(kind=statement_ucon, &
+                & id=model%ucons(k)%id))
+            model%ucons(k)%statement = size(model%statements)
+            model%ucons(k)%equation = ""
+        end do
         if (size(model%parts) == 0) then
             call fatal_error(error, "the model has no part", stat_input)
             return

@@ -21,6 +21,11 @@
 !> factored by KLU (rollcon_sparse_lu), its pattern analysed once in init: the dense path's
 !> numbers to round-off. Nothing here allocates after init, except KLU's first factorisation
 !> of a sparse block (and a fresh one when reusing the pivot order would lose accuracy).
+!>
+!> Rows set aside (rollcon_redundancy: a redundant row, given as `active` false to factor) keep
+!> their place: their multiplier is zero, their row and column of S become the identity's and
+!> their right-hand side zero, so lambda_k = 0 and they add nothing to a. Without rows set
+!> aside every operation is the one above.
 module rollcon_saddle_point
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type, fatal_error, stat_lapack
@@ -74,6 +79,9 @@ module rollcon_saddle_point
         logical, allocatable :: block_shares(:)
         !> Whether the current factorisation went block by block
         logical :: by_blocks = .false.
+        !> Whether the current factorisation sets rows aside, and which rows are active (nc)
+        logical :: masked = .false.
+        logical, allocatable :: active(:)
         !> For each part, whether a block holds it (a part no UCON touches is in none)
         logical, allocatable :: part_blocked(:)
         !> The rotational rows of one part's right-hand sides gathered for one dpotrs:
@@ -129,6 +137,9 @@ contains
         allocate(self%minv_ct(n, max(nc, 1)), source=0.0_wp)
         allocate(self%schur(max(nc, 1), max(nc, 1)), source=0.0_wp)
         allocate(self%pivots(max(nc, 1)), source=0)
+        if (allocated(self%active)) deallocate(self%active)
+        allocate(self%active(max(nc, 1)), source=.true.)
+        self%masked = .false.
         self%blocked = present(blocks)
         self%by_blocks = .false.
         if (allocated(self%block_schur)) deallocate(self%block_schur, self%gathered, &
@@ -321,8 +332,9 @@ contains
     !> `rows` rows of c (rows x n, leading dimension nc). With r1, the first step of a solve for
     !> one right-hand side is taken too, r1 := M^-1 r1, in the LAPACK calls that give M^-1 C^T
     !> (solve then with `scaled`): the numbers apply_inverse_mass gives, at one call per part
-    !> fewer.
-    subroutine factor(self, mass, c, rows, error, r1)
+    !> fewer. With active (nc, all the rows), the rows it marks false are set aside (module
+    !> text).
+    subroutine factor(self, mass, c, rows, error, r1, active)
         class(saddle_point_type), intent(inout) :: self
         !> Mass matrix [kg, kg m^2]
         real(wp), intent(in) :: mass(:, :)
@@ -335,9 +347,14 @@ contains
         type(error_type), allocatable, intent(out) :: error
         !> Momentum rows of one right-hand side (n) on entry, M^-1 times them on exit
         real(wp), intent(inout), optional :: r1(:)
+        !> Which of the nc rows take part (rows must be nc); the others are set aside
+        logical, intent(in), optional :: active(:)
         integer :: p, i0, k, j, info
 
         self%rows = rows
+        self%masked = .false.
+        if (present(active) .and. rows == self%nc) self%masked = .not. all(active(:rows))
+        if (self%masked) self%active(:rows) = active(:rows)
         self%factorisations = self%factorisations + 1
         do p = 1, self%parts
             i0 = 6*(p - 1)
@@ -375,11 +392,23 @@ contains
         end do
         call self%apply_inverse_mass(self%minv_ct, rows, error)
         if (allocated(error)) return
+        if (self%masked) then
+            do k = 1, rows
+                if (.not. self%active(k)) self%minv_ct(:, k) = 0.0_wp
+            end do
+        end if
         do j = 1, rows
             do k = 1, rows
                 self%schur(k, j) = dot_product(c(k, :), self%minv_ct(:, j))
             end do
         end do
+        if (self%masked) then
+            do k = 1, rows
+                if (self%active(k)) cycle
+                self%schur(k, :rows) = 0.0_wp
+                self%schur(k, k) = 1.0_wp
+            end do
+        end if
         call factor_lu(rows, self%schur, self%nc, self%pivots, info)
         call lapack_info_error("dgetf2 (constraint Schur complement)", info, error)
     end subroutine factor
@@ -417,6 +446,11 @@ contains
                 r2(k, j) = r2(k, j) - dot_product(c(k, :), r1(:, j))
             end do
         end do
+        if (self%masked) then
+            do k = 1, self%rows
+                if (.not. self%active(k)) r2(k, :m) = 0.0_wp
+            end do
+        end if
         call solve_lu(self%rows, m, self%schur, self%nc, self%pivots, r2, self%rows)
         do j = 1, m
             do k = 1, self%rows
@@ -453,6 +487,7 @@ contains
                 end do
                 m = blocks%row_start(b + 1) - blocks%row_start(b)
                 s0 = self%schur_start(b) - 1
+                if (self%masked) call set_aside_columns(self, b)
                 ! each entry over UCON k's own coordinates (c(k, :) is zero elsewhere), and an
                 ! exact zero where k and kj share no part: the terms the block's dense sum has
                 ! beyond these are exact zeros, which change no sum
@@ -460,11 +495,18 @@ contains
                     kj = blocks%rows(blocks%row_start(b) + j - 1)
                     do i = 1, m
                         e = s0 + i + m*(j - 1)
+                        k = blocks%rows(blocks%row_start(b) + i - 1)
+                        ! a row set aside: its own row and column of S are those of the identity
+                        if (self%masked) then
+                            if (.not. (self%active(k) .and. self%active(kj))) then
+                                self%block_schur(e) = merge(1.0_wp, 0.0_wp, k == kj)
+                                cycle
+                            end if
+                        end if
                         if (.not. self%block_shares(e)) then
                             self%block_schur(e) = 0.0_wp
                             cycle
                         end if
-                        k = blocks%rows(blocks%row_start(b) + i - 1)
                         total = 0.0_wp
                         do x = blocks%ucon_start(k), blocks%ucon_start(k + 1) - 1
                             jj = blocks%ucon_coordinates(x)
@@ -507,6 +549,9 @@ contains
                         self%gathered(i, col) = r2(k, col) - block_dot(c, k, r1(:, col), &
                             & blocks%ucon_coordinates(blocks%ucon_start(k): &
                             & blocks%ucon_start(k + 1) - 1))
+                        if (self%masked) then
+                            if (.not. self%active(k)) self%gathered(i, col) = 0.0_wp
+                        end if
                     end do
                 end do
                 call solve_lu(rows_b, m, self%block_schur(self%schur_start(b)), rows_b, &
@@ -591,6 +636,7 @@ contains
                     & c, error, r1)
                 if (allocated(error)) return
             end do
+            if (self%masked) call set_aside_columns(self, b)
             associate (lu => self%sparse(b))
                 do e = self%entry_start(b), self%entry_start(b + 1) - 1
                     k = self%entry_row(e)
@@ -600,6 +646,10 @@ contains
                         j = self%entry_coordinates(x)
                         total = total + c(k, j)*self%minv_ct(j, l)
                     end do
+                    if (self%masked) then
+                        if (.not. (self%active(k) .and. self%active(l))) &
+                            & total = merge(1.0_wp, 0.0_wp, k == l)
+                    end if
                     lu%values(e - self%entry_start(b) + 1) = total
                 end do
                 call lu%factor(error)
@@ -629,6 +679,9 @@ contains
                             & *r1(blocks%ucon_coordinates(x), col)
                     end do
                     self%gathered(i, col) = r2(k, col) - total
+                    if (self%masked) then
+                        if (.not. self%active(k)) self%gathered(i, col) = 0.0_wp
+                    end if
                 end do
             end do
             call self%sparse(b)%solve(self%gathered, size(self%gathered, 1), m, error)
@@ -636,6 +689,18 @@ contains
             call scatter_rows(blocks, b, self%gathered, m, r2)
         end associate
     end subroutine solve_sparse_block
+
+    !> The columns of M^-1 C^T of block b's rows set aside zeroed (they add nothing to a).
+    pure subroutine set_aside_columns(self, b)
+        type(saddle_point_type), intent(inout) :: self
+        integer, intent(in) :: b
+        integer :: i, k
+
+        do i = self%blocks%row_start(b), self%blocks%row_start(b + 1) - 1
+            k = self%blocks%rows(i)
+            if (.not. self%active(k)) self%minv_ct(:, k) = 0.0_wp
+        end do
+    end subroutine set_aside_columns
 
     !> Block b's solved rows (gathered, in the block's order) into r2's rows of its UCONs, for
     !> m right-hand sides.

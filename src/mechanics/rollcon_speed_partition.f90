@@ -44,8 +44,9 @@ module rollcon_speed_partition
 
     !> The chosen partition, C_d's factors and the workspace of the choice
     type :: speed_partition_type
-        !> Rates and constraint rows
-        integer :: n = 0, nc = 0
+        !> Rates and constraint rows (the rows partitioned: the active ones when rows are set
+        !> aside), and the rows of the model (the leading dimension of solve's x)
+        integer :: n = 0, nc = 0, rows = 0
         !> The blocks (one of every row and coordinate when init was given none)
         type(constraint_blocks_type) :: blocks
         !> Dependent speeds by slot (nc) and the independent ones (n - nc, ascending)
@@ -83,16 +84,21 @@ module rollcon_speed_partition
 contains
 
     !> Size for n rates and nc constraint rows (nc <= n) over the given blocks (none: one
-    !> block of everything); every block's first rates dependent until the first choice.
-    subroutine init(self, n, nc, blocks)
+    !> block of everything); every block's first rates dependent until the first choice. With
+    !> rows, the model has that many rows and the blocks list the nc of them partitioned (the
+    !> active ones: constraint_blocks_type's active_subset); solve's x is then rows long.
+    subroutine init(self, n, nc, blocks, rows)
         class(speed_partition_type), intent(inout) :: self
         integer, intent(in) :: n, nc
         type(constraint_blocks_type), intent(in), optional :: blocks
+        integer, intent(in), optional :: rows
         real(wp) :: query(1)
         integer :: info, b, m, columns, lwork, total
 
         self%n = n
         self%nc = nc
+        self%rows = nc
+        if (present(rows)) self%rows = rows
         self%choices = 0
         if (present(blocks)) then
             self%blocks = blocks
@@ -127,7 +133,7 @@ contains
             allocate(self%lu(total), self%qr(max(bl%most_rows, 1), max(bl%most_coordinates, 1)), &
                 & self%tau(max(bl%most_rows, 1)), source=0.0_wp)
             allocate(self%basis(max(bl%most_rows, 1), max(bl%most_coordinates, 1)), &
-                & self%buffer(max(nc, 1), max(n, 1)), source=0.0_wp)
+                & self%buffer(max(self%rows, 1), max(n, 1)), source=0.0_wp)
             allocate(self%pivots(max(nc, 1)), self%jpvt(max(bl%most_coordinates, 1)), source=0)
             allocate(self%is_dependent(n), source=.false.)
             call set_independent(self)
@@ -258,20 +264,20 @@ contains
         end associate
     end subroutine factor
 
-    !> x := C_d^-1 x for m columns of x (leading dimension nc), with the last factors: x's
-    !> rows are the constraint rows (UCON numbers) on entry, the dependent speeds' slots on
-    !> return.
+    !> x := C_d^-1 x for m columns of x (leading dimension rows), with the last factors: x's
+    !> rows are the constraint rows (UCON numbers) on entry, the dependent speeds' slots (the
+    !> first nc) on return.
     subroutine solve(self, x, m, error)
         class(speed_partition_type), intent(inout) :: self
         integer, intent(in) :: m
-        real(wp), intent(inout) :: x(self%nc, m)
+        real(wp), intent(inout) :: x(self%rows, m)
         type(error_type), allocatable, intent(out) :: error
         integer :: b, i, rows, first, col, info
 
         if (self%nc == 0) return
         associate (bl => self%blocks)
             do col = 1, m
-                self%buffer(:self%nc, col) = x(:, col)
+                self%buffer(:self%rows, col) = x(:, col)
             end do
             do b = 1, bl%count
                 first = bl%row_start(b)
@@ -282,12 +288,12 @@ contains
                     end do
                 end do
                 if (self%block_sparse(b)) then
-                    call self%sparse(b)%solve(x(first, 1), self%nc, m, error)
+                    call self%sparse(b)%solve(x(first, 1), self%rows, m, error)
                     if (allocated(error)) return
                     cycle
                 end if
                 call dgetrs("N", rows, m, self%lu(self%lu_start(b)), rows, self%pivots(first), &
-                    & x(first, 1), self%nc, info)
+                    & x(first, 1), self%rows, info)
                 call lapack_info_error("dgetrs (dependent speeds)", info, error)
                 if (allocated(error)) return
             end do

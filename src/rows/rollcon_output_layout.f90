@@ -289,35 +289,47 @@ contains
         end do
     end subroutine check_extra
 
-    !> name is one of known, "<id>" at the end of one standing for any of the part ids, "<n>"
-    !> anywhere in one for any whole number of 1 to 9 digits (a request's id).
+    !> name is one of known, "<id>" in one standing for any of the part ids, "<n>" for any
+    !> whole number of 1 to 9 digits (a request's or a statement's id), before an "<id>" or not.
     pure logical function is_known(name, known, part_ids)
         character(len=*), intent(in) :: name, known(:)
         integer, intent(in) :: part_ids(:)
-        integer :: k, p, cut, tail, digits
+        character(len=:), allocatable :: rest, pattern
+        integer :: k, cut, digits
 
         is_known = .true.
         do k = 1, size(known)
             if (name == known(k)) return
-            cut = index(known(k), "<n>")
+            rest = trim(name)
+            pattern = trim(known(k))
+            cut = index(pattern, "<n>")
             if (cut > 0) then
-                tail = len_trim(known(k)) - cut - 2
-                digits = len_trim(name) - (cut - 1) - tail
+                if (len(rest) < cut) cycle
+                if (rest(:cut - 1) /= pattern(:cut - 1)) cycle
+                digits = verify(rest(cut:) // "_", "0123456789") - 1
                 if (digits < 1 .or. digits > 9) cycle
-                if (name(:cut - 1) /= known(k)(:cut - 1)) cycle
-                if (verify(name(cut:cut + digits - 1), "0123456789") /= 0) cycle
-                if (name(cut + digits:len_trim(name)) == known(k)(cut + 3:len_trim(known(k)))) &
-                    & return
-                cycle
+                rest = rest(cut + digits:)
+                pattern = pattern(cut + 3:)
             end if
-            cut = index(known(k), "<id>")
-            if (cut == 0) cycle
-            do p = 1, size(part_ids)
-                if (name == known(k)(:cut - 1) // to_text(part_ids(p))) return
-            end do
+            if (has_id(rest, pattern, part_ids)) return
         end do
         is_known = .false.
     end function is_known
+
+    !> name is pattern, an "<id>" in it standing for any of the part ids.
+    pure logical function has_id(name, pattern, part_ids)
+        character(len=*), intent(in) :: name, pattern
+        integer, intent(in) :: part_ids(:)
+        integer :: p, cut
+
+        has_id = name == pattern
+        cut = index(pattern, "<id>")
+        if (has_id .or. cut == 0) return
+        do p = 1, size(part_ids)
+            has_id = name == pattern(:cut - 1) // to_text(part_ids(p)) // pattern(cut + 4:)
+            if (has_id) return
+        end do
+    end function has_id
 
     !> "Fx, Fy, ..., basis_<id>".
     pure function known_list(known) result(text)

@@ -2,13 +2,15 @@
 !> The names of the columns rollcon's own watches add to a run's rows (rollcon_output_layout):
 !> written by the watches, recognised by a reader of the CSV. A rim contact's six
 !> (rollcon_contact_watch), the basis of every part a re-basing run records
-!> (rollcon_theta_watch), the six of each displacement request (rollcon_request_watch), and
-!> the force or torque of each MOTION (rollcon_motion_watch).
+!> (rollcon_theta_watch), the six of each displacement request (rollcon_request_watch), the
+!> force or torque of each MOTION (rollcon_motion_watch), and the six of each statement's
+!> reaction and of each force request (rollcon_reaction_watch).
 module rollcon_watch_columns
     implicit none
     private
 
     public :: contact_names, basis_pattern, request_column_patterns, motion_column_patterns
+    public :: reaction_suffixes, reaction_column_patterns
 
     !> A rim contact's columns, in order: the constraint force on the part Fx, Fy, Fz [N]
     !> (ground components), its normal part Fn [N], the friction coefficient rolling needs
@@ -25,5 +27,23 @@ module rollcon_watch_columns
     !> along the axis it drives, or the torque [N m] about it for an angle
     character(len=*), parameter :: motion_column_patterns(2) = [character(len=16) :: &
         & "motion<n>_force", "motion<n>_torque"]
+
+    !> A reaction's columns after its stem: force fx, fy, fz [N] and torque tx, ty, tz [N m],
+    !> ground axes
+    character(len=*), parameter :: reaction_suffixes(6) = [character(len=3) :: "_fx", "_fy", &
+        & "_fz", "_tx", "_ty", "_tz"]
+    !> Each statement's reaction columns ("<n>": the statement's id, "<id>": a part's id): a
+    !> JOINT's and a JPRIM's on the part of marker I at I, a UCON's on its part at its centre
+    !> of mass (on each of several parts: ucon<n>_part<id>_...)
+    !> and a force request's (a REQUEST/n, FORCE between a JOINT's or JPRIM's markers: on the
+    !> part of the request's marker I, at I)
+    character(len=*), parameter :: reaction_column_patterns(30) = [character(len=22) :: &
+        & "joint<n>_fx", "joint<n>_fy", "joint<n>_fz", "joint<n>_tx", "joint<n>_ty", &
+        & "joint<n>_tz", "jprim<n>_fx", "jprim<n>_fy", "jprim<n>_fz", "jprim<n>_tx", &
+        & "jprim<n>_ty", "jprim<n>_tz", "ucon<n>_fx", "ucon<n>_fy", "ucon<n>_fz", "ucon<n>_tx", &
+        & "ucon<n>_ty", "ucon<n>_tz", "ucon<n>_part<id>_fx", "ucon<n>_part<id>_fy", &
+        & "ucon<n>_part<id>_fz", "ucon<n>_part<id>_tx", "ucon<n>_part<id>_ty", &
+        & "ucon<n>_part<id>_tz", "req<n>_fx", "req<n>_fy", "req<n>_fz", "req<n>_tx", &
+        & "req<n>_ty", "req<n>_tz"]
 
 end module rollcon_watch_columns

@@ -132,7 +132,9 @@ contains
     !> partials are zero elsewhere): the momentum rows a by the q columns a and by lambda_k, the
     !> UCON's row by q a and u a, and for a position UCON h the q rows a by q a and mu_h, and
     !> mu_h's row by q a. A chain of N links keeps O(N) entries (504 per link), where every
-    !> state of neighbouring parts by every other would keep 1661.
+    !> state of neighbouring parts by every other would keep 1661. A model with rows set aside
+    !> (rollcon_redundancy) keeps the diagonal of every lambda_k and mu_h too, where a row set
+    !> aside has its equation lambda_k = 0 (mu_h = 0): whichever rows a choice again sets aside.
     subroutine dae_pattern(self, n, pattern)
         class(dae_form_type), intent(in) :: self
         integer, intent(in) :: n
@@ -165,6 +167,10 @@ contains
                         keep(at, at) = .true.
                         keep(at, column) = .true.
                         keep(column, at) = .true.
+                    end if
+                    if (self%problem%eq%redundancy%set_aside > 0) then
+                        keep(row, row) = .true.
+                        if (h > 0 .and. column <= n) keep(column, column) = .true.
                     end if
                 end associate
             end do

@@ -4,6 +4,7 @@
 !> place that says which quantity sits in which column) and what fills a row.
 module rollcon_output_rows
     use, intrinsic :: iso_fortran_env, only : int64
+    use, intrinsic :: ieee_arithmetic, only : ieee_value, ieee_quiet_nan
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type, fatal_error, stat_input
     use rollcon_text, only : to_text
@@ -68,7 +69,9 @@ contains
     !> The output row at (time, q, u), in the columns of layout (output_layout(problem)), with
     !> the energy, each UCON's residual and multiplier as the last accelerations call left
     !> them at this state, and each watch's columns (the watches take their measures here).
-    !> The problem is prepared (problem%prepare).
+    !> The multipliers are those reported (the equations' reported_multipliers: the split of
+    !> least norm where rows are set aside as redundant; NaN, which the caller refuses, should
+    !> that solve fail). The problem is prepared (problem%prepare).
     function output_row(problem, layout, time, q, u) result(row)
         type(problem_type), intent(inout) :: problem
         type(output_layout_type), intent(in) :: layout
@@ -77,8 +80,12 @@ contains
         !> Coordinates and rates of every part [m, rad, m/s, rad/s]
         real(wp), intent(in) :: q(:), u(:)
         real(wp) :: row(layout%columns())
+        real(wp) :: lambda(size(problem%lambda))
+        type(error_type), allocatable :: error
         integer :: p, k, i0, first, count
 
+        call problem%eq%reported_multipliers(problem%lambda, lambda, error)
+        if (allocated(error)) lambda = ieee_value(1.0_wp, ieee_quiet_nan)
         row(1) = time
         do p = 1, size(layout%part_ids)
             i0 = 6*(p - 1)
@@ -89,12 +96,12 @@ contains
         row(layout%energy_column()) = problem%eq%energy(q, u)
         do k = 1, size(layout%ucon_ids)
             row(layout%residual_column(k)) = problem%eq%constraints%value(k)
-            row(layout%multiplier_column(k)) = problem%lambda(k)
+            row(layout%multiplier_column(k)) = lambda(k)
         end do
         first = layout%energy_column() + 2*size(layout%ucon_ids) + 1
         do k = 1, size(problem%watches)
             count = problem%watch_columns(k)
-            call problem%watches(k)%watch%fill_columns(problem%eq, time, q, u, problem%lambda, &
+            call problem%watches(k)%watch%fill_columns(problem%eq, time, q, u, lambda, &
                 & row(first:first + count - 1))
             first = first + count
         end do

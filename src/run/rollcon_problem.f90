@@ -11,14 +11,16 @@
 module rollcon_problem
     use rollcon_kinds, only : wp
     use, intrinsic :: ieee_arithmetic, only : ieee_is_finite
-    use rollcon_error, only : error_type, fatal_error, stat_ucon
+    use rollcon_error, only : error_type, fatal_error, stat_ucon, stat_input
     use rollcon_text, only : to_text
     use rollcon_force, only : nonfinite_load, runaway_load, runaway_limit
     use rollcon_output_layout, only : coordinate_names
-    use rollcon_model, only : model_type
+    use rollcon_model, only : model_type, served_by_model_ucosub, statement_ucon
     use rollcon_equations, only : equations_type
     use rollcon_run_settings, only : run_settings_type, drift_projection
     use rollcon_watch, only : watch_type, watch_slot_type, append_watch
+    use rollcon_redundancy_watch, only : redundancy_watch_type
+    use rollcon_reaction_watch, only : reaction_watch_type
     use rollcon_output_layout, only : name_length
     implicit none
     private
@@ -46,11 +48,18 @@ module rollcon_problem
         !> (a dataset's part flat at t = 0: 1). A run counts these as re-basings before its first
         !> row. Set by init to 0
         integer, allocatable :: start_bases(:)
+        !> The rows the choice at the start set aside (choose_rows), in the user's words:
+        !> "JOINT/3 (line 40): its rotation about J's x and rotation about J's y repeat JOINT/1
+        !> (line 37), JOINT/2 (line 38) and JOINT/4 (line 39); set aside" ("" when none)
+        character(len=:), allocatable :: set_aside_text
     contains
         procedure :: init
         procedure :: add_watch
         procedure :: prepare
         procedure :: accelerations
+        procedure :: choose_rows
+        procedure :: routines_text
+        procedure :: ucon_labels
         procedure :: ucon_count
         procedure :: ucon_id
         procedure :: constraint_values
@@ -97,8 +106,11 @@ contains
         call append_watch(self%watches, watch)
     end subroutine add_watch
 
-    !> Before a run: size the accelerations and multipliers, forget an earlier failure, prepare
-    !> every watch (it may refuse the model).
+    !> Before a run: size the accelerations and multipliers, forget an earlier failure, add the
+    !> watches every run has after those added before (once: the redundant rows' choice again,
+    !> rollcon_redundancy_watch, which has no event function unless rows are set aside; and
+    !> when the model reports reactions, rollcon_reaction_watch's columns), prepare every
+    !> watch (it may refuse the model).
     subroutine prepare(self, error)
         class(problem_type), intent(inout) :: self
         type(error_type), allocatable, intent(out) :: error
@@ -110,6 +122,7 @@ contains
         allocate(self%a(self%eq%n), self%lambda(self%eq%nc), source=0.0_wp)
         if (allocated(self%failure)) deallocate(self%failure)
         if (.not. allocated(self%watches)) allocate(self%watches(0))
+        call add_own_watches(self)
         if (allocated(self%watch_columns)) deallocate(self%watch_columns)
         allocate(self%watch_columns(size(self%watches)))
         do k = 1, size(self%watches)
@@ -119,6 +132,29 @@ contains
             self%watch_columns(k) = size(names)
         end do
     end subroutine prepare
+
+    !> The watches every run has (prepare), unless added already.
+    subroutine add_own_watches(self)
+        type(problem_type), intent(inout) :: self
+        type(redundancy_watch_type) :: redundancy
+        type(reaction_watch_type) :: reactions
+        logical :: have_redundancy, have_reactions
+        integer :: k
+
+        have_redundancy = .false.
+        have_reactions = .false.
+        do k = 1, size(self%watches)
+            select type (watch => self%watches(k)%watch)
+            type is (redundancy_watch_type)
+                have_redundancy = .true.
+            type is (reaction_watch_type)
+                have_reactions = .true.
+            end select
+        end do
+        if (.not. have_redundancy) call self%add_watch(redundancy)
+        if (.not. have_reactions .and. self%model%report_reactions .and. self%eq%nc > 0) &
+            & call self%add_watch(reactions)
+    end subroutine add_own_watches
 
     !> Accelerations and multipliers at (t, q, u) into self%a and self%lambda, with the
     !> settings' drift control.
@@ -130,6 +166,130 @@ contains
         call self%eq%accelerations(time, q, u, self%settings%baumgarte(), self%a, self%lambda, &
             & error)
     end subroutine accelerations
+
+    !> Choose the rows to set aside as redundant at the start (t, q, u) (rollcon_redundancy,
+    !> through the equations' choose_active) and say which in the user's words
+    !> (set_aside_text). Refused (stat_input) as contradictory: a row set aside that is not met
+    !> there, |F| (and, for a position UCON, |dF/dt|) above atol + rtol s, s the size of F's
+    !> terms: it repeats the others' normals but asks for another value.
+    subroutine choose_rows(self, time, q, u, error)
+        class(problem_type), intent(inout) :: self
+        real(wp), intent(in) :: time, q(:), u(:)
+        type(error_type), allocatable, intent(out) :: error
+
+        self%set_aside_text = ""
+        call self%eq%choose_active(time, q, u, error)
+        if (allocated(error)) return
+        if (self%eq%redundancy%set_aside == 0) return
+        call check_set_aside(self, q, u, error)
+        if (allocated(error)) return
+        self%set_aside_text = self%eq%redundancy%words
+    end subroutine choose_rows
+
+    !> Every row set aside met at (q, u), as choose_rows says; the constraints evaluated there.
+    subroutine check_set_aside(self, q, u, error)
+        type(problem_type), intent(inout) :: self
+        real(wp), intent(in) :: q(:), u(:)
+        type(error_type), allocatable, intent(out) :: error
+        real(wp) :: position, rate, allowed_position, allowed_rate
+        integer :: k
+
+        associate (cs => self%eq%constraints, atol => self%settings%atol, &
+                & rtol => self%settings%rtol)
+            do k = 1, self%eq%nc
+                if (self%eq%redundancy%active(k)) cycle
+                if (self%model%ucons(k)%holonomic) then
+                    position = cs%value(k)
+                    allowed_position = atol + rtol*(sum(abs(cs%grad_q(k, :)*q)) &
+                        & + abs(position - dot_product(cs%grad_q(k, :), q)))
+                    rate = dot_product(cs%grad_q(k, :), u) + cs%dt(k)
+                    allowed_rate = atol + rtol*(sum(abs(cs%grad_q(k, :)*u)) + abs(cs%dt(k)))
+                else
+                    position = 0.0_wp
+                    allowed_position = 1.0_wp
+                    rate = cs%value(k)
+                    allowed_rate = atol + rtol*(sum(abs(cs%grad_u(k, :)*u)) &
+                        & + abs(rate - dot_product(cs%grad_u(k, :), u)))
+                end if
+                if (abs(position) <= allowed_position .and. abs(rate) <= allowed_rate) cycle
+                call fatal_error(error, self%model%row_words(k) // " repeats the other " &
+                    & // "constraints' equations (its row depends on theirs) but is not met " &
+                    & // "where they are: |F| = " // to_text(abs(merge(position, rate, &
+                    & abs(position) > allowed_position))) // " (allowed " &
+                    & // to_text(merge(allowed_position, allowed_rate, abs(position) &
+                    & > allowed_position)) // "): the constraints are contradictory", &
+                    & stat_input)
+                return
+            end do
+        end associate
+    end subroutine check_set_aside
+
+    !> Which routine serves each statement, in words: "UCON 1: the model's UCOSUB, UCON 4:
+    !> disk_height, JOINT/1: gnd_atpoint, gnd_parallel_axes" (a JOINT's or JPRIM's routines
+    !> each once).
+    function routines_text(self) result(text)
+        class(problem_type), intent(in) :: self
+        character(len=:), allocatable :: text, routine, listed
+        integer :: s, k
+
+        text = ""
+        if (.not. allocated(self%model%statements)) return
+        do s = 1, size(self%model%statements)
+            listed = ""
+            do k = 1, self%eq%nc
+                associate (ucon => self%model%ucons(k))
+                    if (ucon%statement /= s) cycle
+                    if (served_by_model_ucosub(ucon%routine)) then
+                        routine = "the model's UCOSUB"
+                    else
+                        routine = ucon%routine
+                    end if
+                    if (index(", " // listed // ",", ", " // routine // ",") > 0) cycle
+                    if (len(listed) > 0) listed = listed // ", "
+                    listed = listed // routine
+                end associate
+            end do
+            if (len(listed) == 0) cycle
+            if (len(text) > 0) text = text // ", "
+            text = text // statement_label(self%model, s) // ": " // listed
+        end do
+    end function routines_text
+
+    !> "UCON 3" of a UCON statement of a model without lines (a scene, a model built in code:
+    !> the summary's words), else its statement and line: "UCON/3 (line 16)", "JOINT/1 (line
+    !> 14)".
+    pure function statement_label(model, s) result(label)
+        type(model_type), intent(in) :: model
+        integer, intent(in) :: s
+        character(len=:), allocatable :: label
+
+        if (model%statements(s)%kind == statement_ucon .and. model%statements(s)%line == 0) then
+            label = "UCON " // to_text(model%statements(s)%id)
+        else
+            label = model%statement_name(s)
+        end if
+    end function statement_label
+
+    !> Each UCON in the summary's words, one line each: "UCON 3" of a UCON statement without a
+    !> line, "UCON/3 (line 16)" of a dataset's, "JOINT/1 (line 14), its translation along ground
+    !> X" of a JOINT's or JPRIM's equation.
+    function ucon_labels(self) result(text)
+        class(problem_type), intent(in) :: self
+        character(len=:), allocatable :: text
+        integer :: k
+
+        text = ""
+        do k = 1, self%eq%nc
+            associate (ucon => self%model%ucons(k))
+                if (self%model%statements(ucon%statement)%kind == statement_ucon .and. &
+                    & self%model%statements(ucon%statement)%line == 0) then
+                    text = text // "UCON " // to_text(ucon%id) // new_line("a")
+                else
+                    text = text // self%model%row_words(k) // new_line("a")
+                end if
+            end associate
+        end do
+    end function ucon_labels
 
     !> Number of UCONs.
     pure integer function ucon_count(self)
@@ -269,7 +429,7 @@ contains
             & size(self%model%parts), time, q, u)
         if (len(message) == 0 .and. self%eq%nc > 0) then
             k = findloc(ieee_is_finite(self%eq%constraints%value), .false., dim=1)
-            if (k > 0) message = "UCON/" // to_text(self%model%ucons(k)%id) // ": F is not " &
+            if (k > 0) message = self%model%row_words(k) // ": F is not " &
                 & // "finite at t = " // to_text(time) // " s"
         end if
         if (len(message) == 0) message = self%runaway_text(time, q, u)

@@ -84,8 +84,8 @@ contains
             end if
             refusal = "part " // to_text(problem%model%parts(p)%id) &
                 & // ": its principal axes cannot be re-based at t = " // to_text(time) &
-                & // " s (theta = " // to_text(q(i0 + 5)) // " rad): UCON " &
-                & // to_text(problem%model%ucons(found%k)%id) // " gives F = " &
+                & // " s (theta = " // to_text(q(i0 + 5)) // " rad): " &
+                & // ucon_words(problem, found%k) // " gives F = " &
                 & // to_text(found%f_old) // " in the old basis and " // to_text(found%f_new) &
                 & // " in the turned one (allowed difference " // to_text(found%allowed) &
                 & // "): its UCOSUB depends on which principal axis is which (docs/rebasing.md; " &
@@ -98,6 +98,18 @@ contains
         q = q_new
         u = u_new
     end subroutine rebase_part
+
+    !> "UCON 3" (a UCON statement, as the message said it), or a JOINT's or JPRIM's equation in
+    !> the user's words ("JOINT/1 (line 14), its translation along ground X").
+    function ucon_words(problem, k) result(words)
+        type(problem_type), intent(in) :: problem
+        integer, intent(in) :: k
+        character(len=:), allocatable :: words
+
+        words = "UCON " // to_text(problem%model%ucons(k)%id)
+        if (.not. allocated(problem%model%ucons(k)%equation)) return
+        if (len(problem%model%ucons(k)%equation) > 0) words = problem%model%row_words(k)
+    end function ucon_words
 
     !> "part 2 fell: it lies flat at t = 7.826 s, its principal z-axis 2.86 degrees from the
     !> vertical (theta = 0.05 rad) and its centre of mass 0.01499 m above the ground (Z): UCON

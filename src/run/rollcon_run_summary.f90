@@ -71,9 +71,12 @@ module rollcon_run_summary
         type(watch_measure_type), allocatable :: measures(:)
         !> The watches' own lines for the summary text
         character(len=:), allocatable :: watch_lines
-        !> Which routine served each UCON, in words ("UCON 1: the model's UCOSUB, UCON 4:
-        !> disk_height")
+        !> Which routine served each statement, in words ("UCON 1: the model's UCOSUB, UCON 4:
+        !> disk_height, JOINT/1 (line 14): gnd_atpoint, gnd_parallel_axes")
         character(len=:), allocatable :: routines
+        !> Each UCON in the user's words, a line each ("UCON 3", "JOINT/1 (line 14), its
+        !> translation along ground X"): the residual lines' names
+        character(len=:), allocatable :: ucon_labels
         !> For each part (model order), its re-basings (docs/rebasing.md): the final q and u
         !> are in the principal axes turned that many times
         integer, allocatable :: rebasings(:)

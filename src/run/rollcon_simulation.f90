@@ -11,13 +11,13 @@ module rollcon_simulation
     use rollcon_error, only : error_type, fatal_error, stat_ucon
     use rollcon_text, only : to_text
     use rollcon_force, only : force_breakpoints, forces_idle_after
-    use rollcon_model, only : served_by_model_ucosub
     use rollcon_integrator, only : integrator_type, integrator_statistics_type
     use rollcon_integrator_choice, only : start_integrator
     use rollcon_dynamic_system, only : dynamic_system_type
     use rollcon_problem, only : problem_type
     use rollcon_formulation_choice, only : new_formulation
-    use rollcon_watch, only : watch_event_type, watch_measure_type, action_rebase
+    use rollcon_watch, only : watch_event_type, watch_measure_type, action_rebase, &
+        & action_stop, action_restart
     use rollcon_csv_writer, only : csv_writer_type
     use rollcon_row_sink, only : row_sink_type
     use rollcon_progress, only : progress_type
@@ -180,20 +180,9 @@ contains
         self%layout = output_layout(problem)
         summary%layout = self%layout
         allocate(summary%ucon_residual_max(problem%eq%nc), source=0.0_wp)
-        allocate(summary%ucon_position(problem%eq%nc))
-        summary%routines = ""
-        do k = 1, problem%eq%nc
-            summary%ucon_position(k) = problem%model%ucons(k)%holonomic
-            associate (ucon => problem%model%ucons(k))
-                if (k > 1) summary%routines = summary%routines // ", "
-                summary%routines = summary%routines // "UCON " // to_text(ucon%id) // ": "
-                if (served_by_model_ucosub(ucon%routine)) then
-                    summary%routines = summary%routines // "the model's UCOSUB"
-                else
-                    summary%routines = summary%routines // ucon%routine
-                end if
-            end associate
-        end do
+        summary%ucon_position = problem%model%holonomic_number > 0
+        summary%routines = problem%routines_text()
+        summary%ucon_labels = problem%ucon_labels()
         if (present(history)) history%layout = self%layout
         allocate(self%bases(size(problem%model%parts)), source=0)
         self%breaks = force_breakpoints(problem%model%forces)
@@ -246,6 +235,9 @@ contains
         type(error_type), allocatable, intent(out) :: error
 
         associate (problem => self%problem)
+            ! the rows set aside as redundant, chosen here (rollcon_redundancy)
+            call problem%choose_rows(self%options%t0, q, u, error)
+            if (allocated(error)) return
             call problem%accelerations(self%options%t0, q, u, error)
             if (allocated(error)) return
             self%t = self%options%t0
@@ -345,19 +337,21 @@ contains
         class(row_sink_type), intent(inout), optional :: sink
         type(watch_event_type), allocatable :: events(:)
         character(len=:), allocatable :: refusal
+        integer, allocatable :: owners(:)
         integer :: r, w, k, stopping
         logical :: fell
 
         call self%system%unpack_state(self%t, self%y, self%q, self%u, error)
         if (allocated(error)) return
-        allocate(events(0))
+        allocate(events(0), owners(0))
         stopping = 0
         do r = 1, size(self%integrator%fired)
             if (self%integrator%fired(r) == 0) cycle
             call self%problem%root_owner(r, w, k)
             events = [events, self%problem%watches(w)%watch%fired(self%problem%eq, k, self%t, &
                 & self%q, self%u)]
-            if (events(size(events))%action /= action_rebase .and. stopping == 0) &
+            owners = [owners, w]
+            if (events(size(events))%action == action_stop .and. stopping == 0) &
                 & stopping = size(events)
         end do
         stop_here = stopping > 0
@@ -368,7 +362,15 @@ contains
             summary%limit = events(stopping)%limit
             return
         end if
-        call self%rebase([(events(k)%part, k = 1, size(events))], refusal, fell, error)
+        ! the changes the watches ask for (each once), then the re-basings and the restart
+        do k = 1, size(events)
+            if (events(k)%action /= action_restart .or. any(owners(:k - 1) == owners(k))) cycle
+            call self%problem%watches(owners(k))%watch%restart_problem(self%problem%eq, &
+                & self%t, self%q, self%u, error)
+            if (allocated(error)) return
+        end do
+        call self%rebase(pack([(events(k)%part, k = 1, size(events))], &
+            & [(events(k)%action == action_rebase, k = 1, size(events))]), refusal, fell, error)
         if (allocated(error)) return
         if (allocated(refusal)) then
             stop_here = .true.

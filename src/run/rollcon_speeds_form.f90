@@ -69,7 +69,9 @@ contains
     !> y = (q, u_i), the partition chosen here from the constraint matrix of the problem's
     !> last evaluation (a start or a restart of the integrator: the only times it may change);
     !> y' is not used (0). A failed choice (constraint rows not independent) is kept as the
-    !> problem's failure: the first evaluation then fails with it.
+    !> problem's failure: the first evaluation then fails with it. Rows set aside otherwise
+    !> than when the partition was sized (a choice again, rollcon_redundancy) size it anew:
+    !> as many active rows, so as many independent speeds.
     subroutine pack_state(self, q, u, y, yp)
         class(speeds_form_type), intent(inout) :: self
         real(wp), intent(in) :: q(:), u(:)
@@ -79,6 +81,10 @@ contains
 
         y = 0.0_wp
         yp = 0.0_wp
+        if (any(self%speeds%active .neqv. self%problem%eq%active_rows())) then
+            call self%speeds%partition%release()
+            call self%speeds%init(self%problem%eq)
+        end if
         call self%speeds%choose(self%problem%eq, error)
         ierr = self%problem%keep_failure(error)
         call self%speeds%pack(q, u, y)

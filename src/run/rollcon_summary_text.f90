@@ -123,7 +123,7 @@ contains
             & // " (velocity level: its coordinates' units per s; position level: their units)" &
             & // nl
         do k = 1, size(summary%ucon_residual_max)
-            text = text // "  UCON " // to_text(summary%layout%ucon_ids(k)) // ": " &
+            text = text // "  " // ucon_label(summary, k) // ": " &
                 & // scientific(summary%ucon_residual_max(k))
             if (summary%ucon_position(k)) then
                 text = text // " (position level)" // nl
@@ -132,6 +132,25 @@ contains
             end if
         end do
     end function residual_lines
+
+    !> UCON k in the user's words: line k of summary%ucon_labels, else "UCON <id>".
+    function ucon_label(summary, k) result(label)
+        type(run_summary_type), intent(in) :: summary
+        integer, intent(in) :: k
+        character(len=:), allocatable :: label
+        integer :: first, last, line
+
+        label = "UCON " // to_text(summary%layout%ucon_ids(k))
+        if (.not. allocated(summary%ucon_labels)) return
+        first = 1
+        do line = 1, k
+            last = index(summary%ucon_labels(first:), new_line("a"))
+            if (last == 0) return
+            last = first + last - 1
+            if (line == k) label = summary%ucon_labels(first:last - 1)
+            first = last + 1
+        end do
+    end function ucon_label
 
     !> Each watch measure: "largest height residual |Z - R sin(theta)|: 1.2E-09 m, allowed
     !> 3.4E-08 m".

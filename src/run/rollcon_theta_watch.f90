@@ -12,6 +12,7 @@ module rollcon_theta_watch
     use rollcon_text, only : to_text
     use rollcon_body, only : part_type
     use rollcon_force, only : applied_force_type
+    use rollcon_model, only : ucon_statement_type, statement_type
     use rollcon_equations, only : equations_type
     use rollcon_run_settings, only : run_settings_type
     use rollcon_output_layout, only : name_length
@@ -34,10 +35,13 @@ module rollcon_theta_watch
         integer :: worded_part = 0
         !> For each part (model order), its re-basings in the run so far
         integer, allocatable :: bases(:)
-        !> The parts and forces in their own principal axes, as prepare found them: a run that
-        !> re-based parts leaves the model turned; the next prepare gives it back its own axes
+        !> The parts, forces, UCONs (a joint's geometry in PAR) and statements (a joint's marker
+        !> I) in the parts' own principal axes, as prepare found them: a run that re-based parts
+        !> leaves the model turned; the next prepare gives it back its own axes
         type(part_type), allocatable :: own_parts(:)
         type(applied_force_type), allocatable :: own_forces(:)
+        type(ucon_statement_type), allocatable :: own_ucons(:)
+        type(statement_type), allocatable :: own_statements(:)
     contains
         procedure :: prepare
         procedure :: root_count
@@ -73,11 +77,15 @@ contains
             if (any(self%bases /= 0)) then
                 eq%model%parts = self%own_parts
                 eq%model%forces = self%own_forces
+                if (allocated(self%own_ucons)) eq%model%ucons = self%own_ucons
+                if (allocated(self%own_statements)) eq%model%statements = self%own_statements
             end if
         end if
         if (self%rebase) then
             self%own_parts = eq%model%parts
             self%own_forces = eq%model%forces
+            if (allocated(eq%model%ucons)) self%own_ucons = eq%model%ucons
+            if (allocated(eq%model%statements)) self%own_statements = eq%model%statements
         end if
         if (allocated(self%bases)) deallocate(self%bases)
         allocate(self%bases(size(eq%model%parts)), source=0)

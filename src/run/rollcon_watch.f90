@@ -19,12 +19,13 @@ module rollcon_watch
     private
 
     public :: watch_type, watch_slot_type, watch_measure_type, watch_event_type
-    public :: action_stop, action_rebase, append_watch
+    public :: action_stop, action_rebase, action_restart, append_watch
 
     !> What the run does when a watch's event function fires: stop there (a limit the input
-    !> sets: the run ends `stopped`, exit status 0), or re-base a part's principal axes and go
-    !> on (docs/rebasing.md)
-    integer, parameter :: action_stop = 1, action_rebase = 2
+    !> sets: the run ends `stopped`, exit status 0), re-base a part's principal axes and go
+    !> on (docs/rebasing.md), or let the watch change the problem (restart_problem: the rows
+    !> set aside as redundant chosen again) and start the integrator again from the same state
+    integer, parameter :: action_stop = 1, action_rebase = 2, action_restart = 3
 
     !> The watch's answer when one of its event functions fired
     type :: watch_event_type
@@ -60,6 +61,7 @@ module rollcon_watch
         procedure :: roots
         procedure :: roots_use_accelerations
         procedure :: fired
+        procedure :: restart_problem
         procedure :: part_rebased
         procedure :: parts_to_rebase
         procedure :: column_names
@@ -127,6 +129,15 @@ contains
         event%limit = "event"
         event%message = "an event"
     end function fired
+
+    !> The change an event of action_restart asks for, made at (t, q, u) before the run starts
+    !> the integrator again from that state (default: none).
+    subroutine restart_problem(self, eq, time, q, u, error)
+        class(watch_type), intent(inout) :: self
+        type(equations_type), intent(inout) :: eq
+        real(wp), intent(in) :: time, q(:), u(:)
+        type(error_type), allocatable, intent(out) :: error
+    end subroutine restart_problem
 
     !> The run re-based part p (model order): its coordinates are now in its principal axes
     !> turned once more (docs/rebasing.md).

@@ -149,6 +149,10 @@ module rollcon_adm_model
         !> FUNCTION=USER(...) (its value, USER(...)) and ROUTINE= as written (request_user), ""
         !> when not given
         character(len=:), allocatable :: user, routine
+        !> A FORCE between a JOINT's or JPRIM's two markers: that statement (its place in
+        !> model%joints; 0: none), and whether the request's I is the statement's J
+        integer :: joint = 0
+        logical :: swapped = .false.
     end type adm_request_type
 
     !> A statement, or a keyword of one, read and checked but not used: ADAMS's own outputs
@@ -196,6 +200,9 @@ module rollcon_adm_model
         type(adm_run_type) :: run
         !> REQUEST/id, DISPLACEMENT statements, in the order of the file
         type(adm_request_type), allocatable :: requests(:)
+        !> REQUEST/id, FORCE statements between a JOINT's or JPRIM's two markers (either way
+        !> round, no RM): answered by that statement's reaction, in the order of the file
+        type(adm_request_type), allocatable :: force_requests(:)
         !> The other REQUEST statements (VELOCITY, ACCELERATION, FORCE, F1 ... F8,
         !> FUNCTION=USER), in the order of the file: read and kept, not answered yet
         type(adm_request_type), allocatable :: other_requests(:)

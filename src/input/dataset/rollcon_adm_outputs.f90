@@ -26,7 +26,7 @@ module rollcon_adm_outputs
     private
 
     public :: output_statement_names, output_needs_id, read_output_statement, read_form
-    public :: record_unused, unused_warning
+    public :: record_unused, unused_warning, answer_force_requests
 
     !> Forms of a value: a keyword alone; one number; one angle (D for degrees); numbers; a
     !> whole number >= 0; any text (a name, a comment, an expression: not read further); a
@@ -496,6 +496,54 @@ contains
         unused(count) = adm_unused_type(what=what, line=line)
         if (present(known)) unused(count)%known = known
     end subroutine record_unused
+
+    !> A REQUEST/id, FORCE whose markers I and J are a JOINT's or JPRIM's (either way round)
+    !> and which gives no RM asks for that statement's reaction, which rollcon reports: it
+    !> becomes one of model%force_requests (its joint and which way round) and is no longer
+    !> named in the warning. Called once the whole dataset is read (joints may follow).
+    subroutine answer_force_requests(model)
+        type(adm_model_type), intent(inout) :: model
+        type(adm_request_type), allocatable :: kept(:), answered(:)
+        logical, allocatable :: drop(:)
+        integer :: r, k, u, n_kept, n_answered
+
+        allocate(kept(0), answered(0))
+        n_kept = 0
+        n_answered = 0
+        if (.not. allocated(model%joints)) allocate(model%joints(0))
+        allocate(drop(size(model%unused)), source=.false.)
+        do r = 1, size(model%other_requests)
+            associate (request => model%other_requests(r))
+                if (request%kind == request_force .and. request%rm == 0) then
+                    do k = 1, size(model%joints)
+                        if (request%i == model%joints(k)%i .and. request%j &
+                            & == model%joints(k)%j) then
+                            request%joint = k
+                        else if (request%i == model%joints(k)%j .and. request%j &
+                            & == model%joints(k)%i) then
+                            request%joint = k
+                            request%swapped = .true.
+                        end if
+                        if (request%joint > 0) exit
+                    end do
+                end if
+                if (request%joint == 0) then
+                    call add_request(kept, n_kept, request)
+                    cycle
+                end if
+                call add_request(answered, n_answered, request)
+                do u = 1, size(model%unused)
+                    if (model%unused(u)%what == "REQUEST FORCE" .and. model%unused(u)%line &
+                        & == request%line) drop(u) = .true.
+                end do
+            end associate
+        end do
+        model%other_requests = kept(:n_kept)
+        model%other_request_count = n_kept
+        model%force_requests = answered(:n_answered)
+        model%unused = pack(model%unused, .not. drop)
+        model%unused_count = size(model%unused)
+    end subroutine answer_force_requests
 
     !> The one warning of a dataset's statements read and not used, each kind with its lines in
     !> the order of the file: "data/x.adm: read and checked but not used: GRAPHICS (lines 14,

@@ -26,7 +26,7 @@ module rollcon_adm_reader
     use rollcon_adm_motions, only : read_motion
     use rollcon_adm_outside, only : outside_reason
     use rollcon_adm_outputs, only : output_statement_names, output_needs_id, &
-        & read_output_statement, unused_warning
+        & read_output_statement, unused_warning, answer_force_requests
     use rollcon_adm_overrides, only : adm_override_type, apply_adm_overrides
     implicit none
     private
@@ -91,6 +91,7 @@ contains
         if (present(run_given)) needed = .not. run_given
         call check_references(model, error, simulate_needed=needed)
         if (allocated(error)) return
+        call answer_force_requests(model)
         model%warning = unused_warning(model)
     end subroutine read_adm_lines
 

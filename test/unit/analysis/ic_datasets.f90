@@ -208,7 +208,7 @@ contains
     end subroutine test_exact_refused
 
     !> The coin 1 mm high with the height as a position UCON. With X, Y and the angles EXACT,
-    !> Z alone moves, back to R; with Z EXACT too, the refusal names UCON/3.
+    !> Z alone moves, back to R; with Z EXACT too, the refusal names UCON/3 and its line.
     subroutine test_dataset_exact(error)
         type(error_type), allocatable, intent(out) :: error
         type(adm_model_type) :: adm
@@ -243,12 +243,14 @@ contains
             & report, refused)
         call check(error, allocated(refused), "Z held too: not refused")
         if (allocated(error)) return
-        call check(error, index(refused%message, "initial conditions: UCON/3 cannot be met") &
+        call check(error, index(refused%message, "initial conditions: UCON/3 (line 40) " &
+            & // "cannot be met") &
             & == 1, refused%message)
     end subroutine test_dataset_exact
 
     !> `rollcon run` on the high coin (0.1 s) prints the report naming Z_2; with -q it does
-    !> not; and a dataset whose height is held 1 mm off exits 1 naming the file and UCON/3.
+    !> not; and a dataset whose height is held 1 mm off exits 1 naming the file, UCON/3 and its
+    !> line.
     subroutine test_dataset_run(error)
         type(error_type), allocatable, intent(out) :: error
         character(len=:), allocatable :: program, out, quiet_out, err
@@ -281,7 +283,8 @@ contains
             & "with -q: " // quiet_out)
         if (allocated(error)) return
         call check(error, refused_status == 1 .and. index(err, "rollcon: error: " // scratch &
-            & // "/run_held.adm: initial conditions: UCON/3 cannot be met at position level") &
+            & // "/run_held.adm: initial conditions: UCON/3 (line 40) cannot be met at " &
+            & // "position level") &
             & == 1 .and. index(file_text(scratch // "/held.out"), "completed") == 0, &
             & "exit status " // to_text(refused_status) // ": " // err)
     end subroutine test_dataset_run

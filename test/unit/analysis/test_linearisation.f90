@@ -393,7 +393,8 @@ contains
         if (allocated(error)) return
         call linearise(twice_f3, 0.0_wp, q, u, options, result, refused)
         call expect_refusal(refused, "linearisation: the constraints' Jacobian is singular at " &
-            & // "the start: the velocity rows of UCON/1, UCON/2, UCON/3, UCON/4 are dependent", &
+            & // "the start: the velocity rows of UCON/1, UCON/2, UCON/3 and UCON/4 are " &
+            & // "dependent", &
             & error)
         if (allocated(error)) return
         call coin_problem([ucon_noslip, ucon_noslip, ucon_height, ucon_height], [1.0_wp, &
@@ -401,7 +402,7 @@ contains
         if (allocated(error)) return
         call linearise(twice_height, 0.0_wp, q, u, options, result, refused)
         call expect_refusal(refused, "linearisation: the constraints' Jacobian is singular at " &
-            & // "the start: the position rows of UCON/3, UCON/4 are dependent", error)
+            & // "the start: the position rows of UCON/3 and UCON/4 are dependent", error)
     end subroutine test_singular
 
     !> A turntable on a REVOLUTE (test/linear/turntable_revolute.adm): both eigenvalues are zero

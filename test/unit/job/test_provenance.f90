@@ -138,8 +138,9 @@ contains
         call run_into("run data/disk_height.adm -q -o " // scratch // "/each", "each", error)
         if (allocated(error)) return
         summary = file_text(scratch // "/each/disk_height.adm.summary.txt")
-        call check(error, index(summary, "routines: UCON 1: rolling_disk, UCON 2: " &
-            & // "rolling_disk, UCON 3: disk_height" // new_line("a")) > 0 .and. &
+        call check(error, index(summary, "routines: UCON/1 (line 38): rolling_disk, UCON/2 " &
+            & // "(line 39): rolling_disk, UCON/3 (line 40): disk_height" // new_line("a")) > 0 &
+            & .and. &
             & index(summary, "the model's UCOSUB: none (every UCON names its ROUTINE)" &
             & // new_line("a")) > 0, "no line naming the routines, or the model's UCOSUB " &
             & // "named though it serves no UCON, in: " // summary)

@@ -14,7 +14,8 @@ module test_pictures
     use rollcon_figures, only : plot_output, figure_file, figure_names, model_figure_names
     use rollcon_gif, only : animate_output
     use rollcon_gnuplot, only : gnuplot_available
-    use rollcon_watch_columns, only : contact_names, request_column_patterns
+    use rollcon_watch_columns, only : contact_names, request_column_patterns, &
+        & reaction_column_patterns
     use rollcon_testing, only : unittest_type, new_unittest, check, skip_test
     use picture_files, only : disk_run, two_part_run, falling_run, write_run, make_folder, &
         & remove_folder, write_lines, expect_message, file_starts_with
@@ -117,7 +118,7 @@ contains
         character(len=*), parameter :: part = "X_1,Y_1,Z_1,psi_1,theta_1,phi_1,Xdot_1,Ydot_1," &
             & // "Zdot_1,psidot_1,thetadot_1,phidot_1"
         character(len=*), parameter :: prefix = "not the header 'rollcon run' writes: "
-        character(len=200) :: headers(5), expected(5)
+        character(len=2000) :: headers(5), expected(5)
         type(error_type), allocatable :: failure
         type(output_layout_type) :: layout
         type(history_type) :: history
@@ -129,16 +130,16 @@ contains
             & "phi_1", "Xdot_1", "Ydot_1", "Zdot_1", "psidot_1", "thetadot_1", "phidot_1", "E", &
             & "F_1", "lambda_1", "F_2"]
         call read_layout(names, layout, count_reason, [character(len=name_length) :: &
-            & contact_names, "basis_<id>", request_column_patterns])
+            & contact_names, "basis_<id>", request_column_patterns, reaction_column_patterns])
         call check(error, allocated(count_reason), "read_layout accepted 17 columns for one " &
             & // "part and one UCON")
         if (allocated(error)) return
-        headers = [character(len=200) :: "time,X,Y", &
+        headers = [character(len=2000) :: "time,X,Y", &
             & "t,X,Y,Z,psi,theta,phi,Xdot,Ydot,Zdot,psidot,thetadot,phidot,E,Fx", &
             & "t," // part // ",E,F_1,lambda_1,F_2", &
             & "t," // part // ",E,F_1,lambda_2", &
             & "t," // part // "," // repeat("E", 40)]
-        expected = [character(len=200) :: prefix // "column 1 must be t, got 'time'", &
+        expected = [character(len=2000) :: prefix // "column 1 must be t, got 'time'", &
             & prefix // "column 2 must be X_<part id>, got 'X' (a CSV of an older rollcon, whose " &
             & // "columns did not name the part: run the scene again)", &
             & prefix // count_reason, &

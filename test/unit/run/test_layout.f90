@@ -108,9 +108,11 @@ contains
         if (allocated(error)) return
         layout = history%layout
         names = layout%header()
-        call check(error, size(names) == 32 .and. names(layout%part_column(1, coord_x)) == "X_2" &
+        ! then the three UCONs' reactions, six columns each (rollcon_reaction_watch)
+        call check(error, size(names) == 50 .and. names(layout%part_column(1, coord_x)) == "X_2" &
             & .and. names(layout%part_column(2, coord_phidot)) == "phidot_5" &
             & .and. names(26) == "E" .and. names(27) == "F_11" .and. names(32) == "lambda_13" &
+            & .and. names(33) == "ucon11_fx" .and. names(50) == "ucon13_tz" &
             & .and. layout%column("Fn") == 0, &
             & "layout: " // to_text(size(names)) // " columns, " // trim(names(2)) // " ... " &
             & // trim(names(size(names))))
@@ -136,6 +138,12 @@ contains
             call check(error, history%rows(layout%multiplier_column(1) &
                 & :layout%multiplier_column(3), i), [0.0_wp, 0.0_wp, weight], &
                 & "lambda_11..13 [N] at t = " // to_text(t(i)), abs_tol=tol_force)
+            if (allocated(error)) return
+            ! the contact's height row carries the weight, up, at the disk's centre (its
+            ! dF/dZdot is 1): (0, 0, m g), no moment about the centre
+            call check(error, history%rows(layout%column("ucon13_fx"):layout%column("ucon13_tz"), &
+                & i), [0.0_wp, 0.0_wp, weight, 0.0_wp, 0.0_wp, 0.0_wp], "UCON/13's reaction " &
+                & // "[N, N m] at t = " // to_text(t(i)), abs_tol=tol_force)
             if (allocated(error)) return
         end do
         call check(error, history%column(layout%energy_column()), &

@@ -230,8 +230,10 @@ contains
         call read_output_csv(csv_path, layout, rows, error)
         call delete_file(csv_path, delete_error)
         if (allocated(error)) return
-        call check(error, layout%column("basis_2") == layout%columns(), &
-            & "the CSV ends with the basis column")
+        ! the theta watch's column right after the multipliers (the reactions' come last)
+        call check(error, layout%column("basis_2") &
+            & == layout%multiplier_column(size(layout%ucon_ids)) + 1, &
+            & "the basis column follows the multipliers")
         if (allocated(error)) return
         names = layout%header()
         basis = rows%column(layout%column("basis_2"))

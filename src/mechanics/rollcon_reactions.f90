@@ -1,0 +1,193 @@
+! SPDX-License-Identifier: MIT
+!> The reaction of each statement (docs/outputs.md, "Reactions"): the force and torque a JOINT
+!> or JPRIM exerts on the part of its marker I, at marker I (ADAMS's convention), and the force
+!> and torque a UCON exerts on each part it holds, at the part's centre of mass; all in ground
+!> axes [N, N m].
+!>
+!> They come from the generalised constraint forces sum_k lambda_k c_k of the statement's rows
+!> (docs/design.md §3) on the part's coordinates: the translational ones are the force in
+!> ground axes; the rotational ones are B^T tau' (B the Euler-angle rate matrix, tau' the moment
+!> about the centre of mass in the part's principal axes), so tau = R B^-T (its three entries).
+!> The moment about marker I is tau - r x F, r from the centre of mass to I. A statement whose
+!> marker I is on the ground is served from the part of J (rollcon_joint_primitives): the force
+!> on the ground is then minus the force on J's part, and its moment about I minus that force's
+!> and moment's about I (the joint's equations depend on the two markers' relative pose only,
+!> so the pair is equal and opposite).
+module rollcon_reactions
+    use rollcon_kinds, only : wp
+    use rollcon_text, only : to_text
+    use rollcon_rotation, only : rotation_matrix, times, cross
+    use rollcon_marker, only : marker_type
+    use rollcon_model, only : model_type, statement_ucon, statement_joint
+    implicit none
+    private
+
+    public :: reaction_site_type, reaction_sites, site_wrench, swapped_wrench
+
+    !> Where one statement's reaction is reported, and the rows that make it
+    type :: reaction_site_type
+        !> The statement (model%statements)
+        integer :: statement = 0
+        !> The part whose coordinates the rows' forces are taken on (model order)
+        integer :: part = 0
+        !> A JOINT's or JPRIM's reaction, at marker I; with marker I on the ground (its rows
+        !> hold J's part): the reaction on the ground
+        logical :: at_marker = .false., on_ground = .false.
+        !> The statement's UCONs (model order)
+        integer, allocatable :: rows(:)
+        !> The stem of its columns: "joint3", "jprim2", "ucon1" (a UCON on one part),
+        !> "ucon1_part3" (one of several parts)
+        character(len=:), allocatable :: stem
+    end type reaction_site_type
+
+contains
+
+    !> The reaction sites of a set-up model, in the order of its statements: one per JOINT and
+    !> JPRIM, one per part a UCON holds (in model order).
+    function reaction_sites(model) result(sites)
+        type(model_type), intent(in) :: model
+        type(reaction_site_type), allocatable :: sites(:)
+        type(reaction_site_type) :: site
+        integer, allocatable :: rows(:), parts(:)
+        integer :: s, k, p, i
+
+        allocate(sites(0))
+        if (.not. allocated(model%statements)) return
+        do s = 1, size(model%statements)
+            rows = pack([(k, k = 1, model%nc)], model%ucons(:model%nc)%statement == s)
+            if (size(rows) == 0) cycle
+            associate (statement => model%statements(s))
+                site%statement = s
+                site%rows = rows
+                if (statement%kind /= statement_ucon) then
+                    site%at_marker = .true.
+                    site%on_ground = statement%i%part == 0
+                    site%part = statement%i%part
+                    if (site%on_ground) site%part = statement%j_part
+                    site%stem = trim(merge("joint", "jprim", statement%kind == statement_joint)) &
+                        & // to_text(statement%id)
+                    call append(sites, site)
+                    cycle
+                end if
+                ! a UCON: each part it holds, in model order
+                allocate(parts(0))
+                do i = 1, size(rows)
+                    do k = 1, model%ucons(rows(i))%nvars
+                        p = (model%ucons(rows(i))%coordinate(k) - 1)/6 + 1
+                        if (.not. any(parts == p)) parts = [parts, p]
+                    end do
+                end do
+                site%at_marker = .false.
+                site%on_ground = .false.
+                do p = 1, size(model%parts)
+                    if (.not. any(parts == p)) cycle
+                    site%part = p
+                    site%stem = "ucon" // to_text(statement%id)
+                    if (size(parts) > 1) site%stem = site%stem // "_part" &
+                        & // to_text(model%parts(p)%id)
+                    call append(sites, site)
+                end do
+                deallocate(parts)
+            end associate
+        end do
+    end function reaction_sites
+
+    !> Append one site (element by element: gfortran 12 may mishandle an array constructor of
+    !> a type with allocatable components).
+    pure subroutine append(sites, site)
+        type(reaction_site_type), allocatable, intent(inout) :: sites(:)
+        type(reaction_site_type), intent(in) :: site
+        type(reaction_site_type), allocatable :: grown(:)
+        integer :: k
+
+        allocate(grown(size(sites) + 1))
+        do k = 1, size(sites)
+            grown(k) = sites(k)
+        end do
+        grown(size(grown)) = site
+        call move_alloc(grown, sites)
+    end subroutine append
+
+    !> A site's force and torque (fx, fy, fz, tx, ty, tz) [N, N m], ground axes: on the part of
+    !> marker I at marker I (a JOINT or JPRIM), or on the part at its centre of mass (a UCON);
+    !> from the constraint rows c (nc x n: dF/du, or dF/dq for a position UCON) and the
+    !> multipliers lambda at the coordinates q.
+    pure function site_wrench(model, site, c, lambda, q) result(wrench)
+        type(model_type), intent(in) :: model
+        type(reaction_site_type), intent(in) :: site
+        real(wp), intent(in) :: c(:, :), lambda(:), q(:)
+        real(wp) :: wrench(6)
+        real(wp) :: generalised(6), rotation(3, 3), force(3), moment(3)
+        integer :: i0, i
+
+        i0 = 6*(site%part - 1)
+        generalised = 0.0_wp
+        do i = 1, size(site%rows)
+            generalised = generalised + lambda(site%rows(i))*c(site%rows(i), i0 + 1:i0 + 6)
+        end do
+        rotation = rotation_matrix(q(i0 + 4), q(i0 + 5), q(i0 + 6))
+        force = generalised(1:3)
+        moment = times(rotation, body_moment(q(i0 + 5), q(i0 + 6), generalised(4:6)))
+        if (site%at_marker) then
+            associate (marker => model%statements(site%statement)%i)
+                if (site%on_ground) then
+                    ! minus J's part's force, and minus its moment about I
+                    moment = -(moment + cross(q(i0 + 1:i0 + 3) - marker%point, force))
+                    force = -force
+                else
+                    moment = moment - cross(times(rotation, marker%point), force)
+                end if
+            end associate
+        end if
+        wrench(1:3) = force
+        wrench(4:6) = moment
+    end function site_wrench
+
+    !> The reaction on the part of a JOINT's or JPRIM's marker J, at J [N, N m], ground axes,
+    !> from its reaction `wrench` on the part of marker I at I (site_wrench): equal and
+    !> opposite, its moment taken about J: (-F, -T - (r_I - r_J) x F), r the markers' origins in
+    !> ground at the coordinates q.
+    pure function swapped_wrench(model, site, wrench, q) result(turned)
+        type(model_type), intent(in) :: model
+        type(reaction_site_type), intent(in) :: site
+        real(wp), intent(in) :: wrench(6), q(:)
+        real(wp) :: turned(6)
+
+        associate (statement => model%statements(site%statement))
+            turned(1:3) = -wrench(1:3)
+            turned(4:6) = -wrench(4:6) - cross(marker_origin(statement%i, q) &
+                & - marker_origin(statement%j, q), wrench(1:3))
+        end associate
+    end function swapped_wrench
+
+    !> A marker's origin in ground [m] at the coordinates q: on the ground as given, on part p
+    !> its centre of mass plus R(psi, theta, phi) times the origin in the principal axes.
+    pure function marker_origin(marker, q) result(origin)
+        type(marker_type), intent(in) :: marker
+        real(wp), intent(in) :: q(:)
+        real(wp) :: origin(3)
+        integer :: i0
+
+        origin = marker%point
+        if (marker%part == 0) return
+        i0 = 6*(marker%part - 1)
+        origin = q(i0 + 1:i0 + 3) + times(rotation_matrix(q(i0 + 4), q(i0 + 5), q(i0 + 6)), &
+            & marker%point)
+    end function marker_origin
+
+    !> The moment tau' about the centre of mass, principal axes [N m], whose generalised force
+    !> on the Euler angles is B^T tau' = q_angles (B: omega' = B (psi', theta', phi'),
+    !> docs/design.md §3); sin(theta) must be away from 0 (re-basing keeps it so).
+    pure function body_moment(theta, phi, q_angles) result(moment)
+        real(wp), intent(in) :: theta, phi, q_angles(3)
+        real(wp) :: moment(3)
+        real(wp) :: across
+
+        ! B^T = [s_theta s_phi, s_theta c_phi, c_theta; c_phi, -s_phi, 0; 0, 0, 1]
+        moment(3) = q_angles(3)
+        across = (q_angles(1) - cos(theta)*q_angles(3))/sin(theta)
+        moment(1) = sin(phi)*across + cos(phi)*q_angles(2)
+        moment(2) = cos(phi)*across - sin(phi)*q_angles(2)
+    end function body_moment
+
+end module rollcon_reactions

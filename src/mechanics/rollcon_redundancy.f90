@@ -1,0 +1,353 @@
+! SPDX-License-Identifier: MIT
+!> Redundant constraint rows (docs/design.md §4, "Redundant constraints"): the rows of a block
+!> (rollcon_constraint_blocks) that repeat others are found and set aside, so that the rows
+!> left, the active ones, are independent and every formulation can solve them.
+!>
+!> The rows are compared in a metric that does not depend on units: row k of C (dF_k/du, or
+!> dF_k/dq for a position UCON) becomes the column L^-1 c_k^T / |L^-1 c_k^T| over its block's
+!> coordinates, L L^T = M the mass matrix (part by part: sqrt(m) for translations, the Cholesky
+!> factor of B^T J B for the angles). Its Gram matrix is the Schur complement C M^-1 C^T with
+!> unit diagonal: a UCON's scale, the units and the coordinates (a re-basing) do not change it.
+!> The choice is LAPACK's QR with column pivoting (dgeqp3) on those unit columns, position
+!> UCONs first: their rows are chosen among themselves (a position UCON also holds its
+!> position, which the velocity rows cannot), then fixed in front while the others are
+!> pivoted. |R(k,k)| of a unit column is its distance from the span of those chosen before it:
+!> a row whose distance is at most rank_tolerance repeats them and is set aside.
+!>
+!> A set-aside row's multiplier is zero; the constraint force C^T lambda is the same for any
+!> split of it between dependent rows, so the split reported (multipliers) is the one of least
+!> norm in the same metric, lambda_k |L^-1 c_k^T| (a UCON's scale does not change it). The
+!> choice wears when the configuration moves (a cart's redundant row changes with its
+!> heading): its measure, the smallest singular value of the active unit columns (the Schur
+!> complement of the active rows has condition sigma_max^2 / sigma_min^2, sigma_max <=
+!> sqrt(rows)), is watched against its value at the choice (margin), and a block is chosen
+!> again (rechoose) with the same number of rows when it has fallen to measure_ratio of it.
+module rollcon_redundancy
+    use rollcon_kinds, only : wp
+    use rollcon_error, only : error_type
+    use rollcon_lapack, only : pivoted_columns
+    use rollcon_least_squares, only : minimum_norm_solve, smallest_singular_value
+    use rollcon_constraint_blocks, only : constraint_blocks_type
+    implicit none
+    private
+
+    public :: redundancy_type, rank_tolerance, measure_ratio
+
+    !> A unit row is set aside when its distance from the span of the rows chosen before it
+    !> (|R(k,k)| of the pivoted QR) is at most this, sqrt(machine epsilon), the rank threshold of
+    !> the initial-conditions analysis (rollcon_ic_rows' ic_rcond). Measured at the start of
+    !> every shipped dataset and field case (docs/design.md §4): the rows that repeat others lie
+    !> at round-off, 5.6e-17 (a four-bar of REVOLUTEs), 1.3e-16 (a slider-crank), 2.1e-16 (a
+    !> two-wheeled cart); the nearest a row kept comes is 7.5e-3 (a double pendulum of light
+    !> links), 0.19 (data/bicycle.adm's 21 rows): the threshold sits 7.8 decades above the one
+    !> and 5.7 below the other
+    real(wp), parameter :: rank_tolerance = 1.4901161193847656e-8_wp
+    !> A block is chosen again when its measure (module text) has fallen to this fraction of its
+    !> value at the choice: the active rows' Schur complement is then at most 1/0.3^2 = 11
+    !> times worse conditioned than at the choice, and its multipliers' errors grow with it.
+    !> The speed partition's worn_ratio (rollcon_speed_partition), measured there
+    real(wp), parameter :: measure_ratio = 0.3_wp
+
+    !> The rows set aside, block by block
+    type :: redundancy_type
+        !> Constraint rows
+        integer :: nc = 0
+        !> Which rows are active (true) or set aside
+        logical, allocatable :: active(:)
+        !> Rows set aside
+        integer :: set_aside = 0
+        !> Each block's active rows, and how many of those are position UCONs (fixed at the
+        !> first choice: a choice again keeps them)
+        integer, allocatable :: kept(:), kept_position(:)
+        !> Each block's measure at its choice, and whether it has rows set aside
+        real(wp), allocatable :: measure_chosen(:)
+        logical, allocatable :: redundant(:)
+        !> For each row, its distance |R(k,k)| at the first choice (the rank gap; 0 for a row
+        !> pivoted past its block's coordinates)
+        real(wp), allocatable :: distance(:)
+        !> Choices made since init (the first included), and the choices again that changed
+        !> the rows set aside
+        integer :: choices = 0, changes = 0
+        !> The rows the first choice set aside, in the user's words (rollcon_redundancy_words;
+        !> set by the equations' choose_active): "" when none
+        character(len=:), allocatable :: words
+        !> The rows that take part in a dependency (the rows set aside and those they repeat):
+        !> their multipliers are not unique (rollcon_redundancy_words; false until described)
+        logical, allocatable :: involved(:)
+    contains
+        procedure :: init
+        procedure :: choose
+        procedure :: rechoose
+        procedure :: margin
+        procedure :: multipliers
+        procedure :: dependency
+    end type redundancy_type
+
+contains
+
+    !> Every row active, for nc rows in the given blocks; no choice yet.
+    subroutine init(self, nc, blocks)
+        class(redundancy_type), intent(inout) :: self
+        integer, intent(in) :: nc
+        type(constraint_blocks_type), intent(in) :: blocks
+
+        self%nc = nc
+        self%set_aside = 0
+        self%words = ""
+        self%choices = 0
+        self%changes = 0
+        if (allocated(self%active)) deallocate(self%active, self%kept, self%kept_position, &
+            & self%measure_chosen, self%redundant, self%distance, self%involved)
+        allocate(self%active(nc), source=.true.)
+        allocate(self%involved(nc), source=.false.)
+        allocate(self%kept(blocks%count), self%kept_position(blocks%count), source=0)
+        allocate(self%measure_chosen(blocks%count), self%distance(nc), source=0.0_wp)
+        allocate(self%redundant(blocks%count), source=.false.)
+    end subroutine init
+
+    !> The first choice, every block's: its rank from rank_tolerance (module text), at the
+    !> state where c (nc x n: dF/du of a velocity UCON, dF/dq of a position UCON) and mass
+    !> (n x n, the parts' 6 x 6 blocks) were assembled.
+    subroutine choose(self, c, mass, blocks, holonomic, error)
+        class(redundancy_type), intent(inout) :: self
+        real(wp), intent(in) :: c(:, :), mass(:, :)
+        type(constraint_blocks_type), intent(in) :: blocks
+        !> Which rows are position UCONs
+        logical, intent(in) :: holonomic(:)
+        type(error_type), allocatable, intent(out) :: error
+        logical :: changed
+        integer :: b
+
+        self%choices = self%choices + 1
+        self%active = .true.
+        do b = 1, blocks%count
+            call choose_block(self, b, c, mass, blocks, holonomic, .true., changed, error)
+            if (allocated(error)) return
+        end do
+        self%set_aside = count(.not. self%active)
+    end subroutine choose
+
+    !> Block b chosen again with the ranks of the first choice (changed: other rows set aside
+    !> now); its measure at this state becomes the reference either way.
+    subroutine rechoose(self, b, c, mass, blocks, holonomic, changed, error)
+        class(redundancy_type), intent(inout) :: self
+        integer, intent(in) :: b
+        real(wp), intent(in) :: c(:, :), mass(:, :)
+        type(constraint_blocks_type), intent(in) :: blocks
+        logical, intent(in) :: holonomic(:)
+        logical, intent(out) :: changed
+        type(error_type), allocatable, intent(out) :: error
+
+        self%choices = self%choices + 1
+        call choose_block(self, b, c, mass, blocks, holonomic, .false., changed, error)
+        if (changed) self%changes = self%changes + 1
+        self%set_aside = count(.not. self%active)
+    end subroutine rechoose
+
+    !> Block b's choice (first: its ranks from the tolerance; else those of the first choice).
+    subroutine choose_block(self, b, c, mass, blocks, holonomic, first, changed, error)
+        type(redundancy_type), intent(inout) :: self
+        integer, intent(in) :: b
+        real(wp), intent(in) :: c(:, :), mass(:, :)
+        type(constraint_blocks_type), intent(in) :: blocks
+        logical, intent(in) :: holonomic(:), first
+        logical, intent(out) :: changed
+        type(error_type), allocatable, intent(out) :: error
+        real(wp), allocatable :: a(:, :), norms(:), diagonal(:), position_diagonal(:), &
+            & position_columns(:, :)
+        integer, allocatable :: rows(:), order(:), position(:), position_order(:)
+        logical, allocatable :: leading(:), before(:)
+        integer :: m, r, rp, k
+
+        changed = .false.
+        rows = blocks%block_rows(b)
+        m = size(rows)
+        call unit_columns(c, mass, blocks%block_coordinates(b), rows, a, norms)
+        position = pack([(k, k = 1, m)], holonomic(rows))
+        allocate(leading(m), source=.false.)
+        rp = self%kept_position(b)
+        if (size(position) > 0) then
+            allocate(position_order(size(position)), &
+                & position_diagonal(min(size(a, 1), size(position))))
+            position_columns = a(:, position)
+            call pivoted_columns(position_columns, position_order, position_diagonal, error)
+            if (allocated(error)) return
+            if (first) rp = leading_count(position_diagonal)
+            leading(position(position_order(:rp))) = .true.
+        else
+            rp = 0
+        end if
+        allocate(order(m), diagonal(min(size(a, 1), m)))
+        call pivoted_columns(a, order, diagonal, error, leading)
+        if (allocated(error)) return
+        r = self%kept(b)
+        if (first) r = rp + leading_count(diagonal(rp + 1:))
+        before = self%active(rows)
+        self%active(rows) = .false.
+        self%active(rows(order(:r))) = .true.
+        changed = any(before .neqv. self%active(rows))
+        if (first) then
+            self%kept(b) = r
+            self%kept_position(b) = rp
+            self%distance(rows) = 0.0_wp
+            self%distance(rows(order(:size(diagonal)))) = diagonal
+        end if
+        self%redundant(b) = r < m
+        self%measure_chosen(b) = 0.0_wp
+        if (self%redundant(b)) then
+            self%measure_chosen(b) = smallest_singular_value(a(:, order(:r)), error)
+            if (allocated(error)) return
+        end if
+    end subroutine choose_block
+
+    !> How many leading entries of a pivoted QR's |R(k,k)| exceed rank_tolerance.
+    pure integer function leading_count(diagonal)
+        real(wp), intent(in) :: diagonal(:)
+
+        leading_count = 0
+        do while (leading_count < size(diagonal))
+            if (.not. diagonal(leading_count + 1) > rank_tolerance) exit
+            leading_count = leading_count + 1
+        end do
+    end function leading_count
+
+    !> Block b's measure at the state of c and mass less measure_ratio times its value at the
+    !> choice: positive while the choice suits, zero where it has worn (an event function).
+    !> 1 for a block without rows set aside.
+    function margin(self, b, c, mass, blocks, error) result(value)
+        class(redundancy_type), intent(in) :: self
+        integer, intent(in) :: b
+        real(wp), intent(in) :: c(:, :), mass(:, :)
+        type(constraint_blocks_type), intent(in) :: blocks
+        type(error_type), allocatable, intent(out) :: error
+        real(wp) :: value
+        real(wp), allocatable :: a(:, :), norms(:)
+        integer, allocatable :: rows(:)
+
+        value = 1.0_wp
+        if (.not. self%redundant(b)) return
+        rows = blocks%block_rows(b)
+        rows = pack(rows, self%active(rows))
+        call unit_columns(c, mass, blocks%block_coordinates(b), rows, a, norms)
+        value = smallest_singular_value(a, error) - measure_ratio*self%measure_chosen(b)
+    end function margin
+
+    !> The multipliers of the blocks with rows set aside replaced by the split of least norm
+    !> (module text) of the same constraint force C^T lambda; the other blocks' are untouched.
+    subroutine multipliers(self, c, mass, blocks, lambda, error)
+        class(redundancy_type), intent(in) :: self
+        real(wp), intent(in) :: c(:, :), mass(:, :)
+        type(constraint_blocks_type), intent(in) :: blocks
+        !> The multipliers of the active rows (0 for those set aside) on entry
+        real(wp), intent(inout) :: lambda(:)
+        type(error_type), allocatable, intent(out) :: error
+        real(wp), allocatable :: a(:, :), norms(:), force(:, :), scaled(:, :), split(:), &
+            & length(:)
+        integer, allocatable :: rows(:), coordinates(:)
+        integer :: b, i, rank
+
+        do b = 1, blocks%count
+            if (.not. self%redundant(b)) cycle
+            rows = blocks%block_rows(b)
+            coordinates = blocks%block_coordinates(b)
+            ! the constraint force over the block's coordinates (a row over the system's)
+            allocate(force(1, size(c, 2)), source=0.0_wp)
+            do i = 1, size(rows)
+                force(1, coordinates) = force(1, coordinates) &
+                    & + lambda(rows(i))*c(rows(i), coordinates)
+            end do
+            call unit_columns(c, mass, coordinates, rows, a, norms)
+            call unit_columns(force, mass, coordinates, [1], scaled, length, unscaled=.true.)
+            allocate(split(size(rows)))
+            call minimum_norm_solve(a, scaled(:, 1), rank_tolerance, split, rank, error)
+            if (allocated(error)) return
+            do i = 1, size(rows)
+                lambda(rows(i)) = 0.0_wp
+                if (norms(i) > 0.0_wp) lambda(rows(i)) = split(i)/norms(i)
+            end do
+            deallocate(force, split)
+        end do
+    end subroutine multipliers
+
+    !> How the set-aside row k repeats the active rows of its block: coefficients x (nc, zero
+    !> off them) of least norm with c_k = sum x_l c_l in the unit metric (module text).
+    subroutine dependency(self, k, c, mass, blocks, coefficients, error)
+        class(redundancy_type), intent(in) :: self
+        integer, intent(in) :: k
+        real(wp), intent(in) :: c(:, :), mass(:, :)
+        type(constraint_blocks_type), intent(in) :: blocks
+        real(wp), intent(out) :: coefficients(:)
+        type(error_type), allocatable, intent(out) :: error
+        real(wp), allocatable :: a(:, :), norms(:), target_row(:, :), x(:)
+        integer, allocatable :: rows(:), coordinates(:)
+        integer :: b, rank
+
+        coefficients = 0.0_wp
+        b = blocks%row_block(k)
+        rows = blocks%block_rows(b)
+        rows = pack(rows, self%active(rows))
+        coordinates = blocks%block_coordinates(b)
+        call unit_columns(c, mass, coordinates, rows, a, norms)
+        call unit_columns(c, mass, coordinates, [k], target_row, norms)
+        allocate(x(size(rows)))
+        call minimum_norm_solve(a, target_row(:, 1), rank_tolerance, x, rank, error)
+        if (allocated(error)) return
+        coefficients(rows) = x
+    end subroutine dependency
+
+    !> The columns L^-1 c_k^T over the coordinates (6 per part, ascending) for the rows k,
+    !> each of unit length (a zero row stays zero) unless unscaled; norms their lengths.
+    subroutine unit_columns(c, mass, coordinates, rows, a, norms, unscaled)
+        real(wp), intent(in) :: c(:, :), mass(:, :)
+        integer, intent(in) :: coordinates(:), rows(:)
+        real(wp), allocatable, intent(out) :: a(:, :), norms(:)
+        logical, intent(in), optional :: unscaled
+        real(wp) :: factor(3, 3), x(3), rotational(3, 3)
+        integer :: p, i0, j0, i
+        logical :: scale
+
+        scale = .true.
+        if (present(unscaled)) scale = .not. unscaled
+        allocate(a(size(coordinates), size(rows)), norms(size(rows)))
+        do p = 1, size(coordinates)/6
+            j0 = 6*(p - 1)
+            i0 = coordinates(j0 + 1) - 1
+            rotational = mass(i0 + 4:i0 + 6, i0 + 4:i0 + 6)
+            factor = cholesky_3(rotational)
+            do i = 1, size(rows)
+                a(j0 + 1:j0 + 3, i) = c(rows(i), i0 + 1:i0 + 3)/sqrt(mass(i0 + 1, i0 + 1))
+                x = c(rows(i), i0 + 4:i0 + 6)
+                a(j0 + 4:j0 + 6, i) = forward_3(factor, x)
+            end do
+        end do
+        do i = 1, size(rows)
+            norms(i) = norm2(a(:, i))
+            if (scale .and. norms(i) > 0.0_wp) a(:, i) = a(:, i)/norms(i)
+        end do
+    end subroutine unit_columns
+
+    !> The lower Cholesky factor of a symmetric positive definite 3 x 3 matrix.
+    pure function cholesky_3(m) result(l)
+        real(wp), intent(in) :: m(3, 3)
+        real(wp) :: l(3, 3)
+
+        l = 0.0_wp
+        l(1, 1) = sqrt(m(1, 1))
+        l(2, 1) = m(2, 1)/l(1, 1)
+        l(3, 1) = m(3, 1)/l(1, 1)
+        l(2, 2) = sqrt(m(2, 2) - l(2, 1)**2)
+        l(3, 2) = (m(3, 2) - l(3, 1)*l(2, 1))/l(2, 2)
+        l(3, 3) = sqrt(m(3, 3) - l(3, 1)**2 - l(3, 2)**2)
+    end function cholesky_3
+
+    !> L^-1 x for a lower triangular 3 x 3 L.
+    pure function forward_3(l, x) result(y)
+        real(wp), intent(in) :: l(3, 3), x(3)
+        real(wp) :: y(3)
+
+        y(1) = x(1)/l(1, 1)
+        y(2) = (x(2) - l(2, 1)*y(1))/l(2, 2)
+        y(3) = (x(3) - l(3, 1)*y(1) - l(3, 2)*y(2))/l(3, 3)
+    end function forward_3
+
+end module rollcon_redundancy

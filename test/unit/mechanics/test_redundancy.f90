@@ -1,0 +1,555 @@
+! SPDX-License-Identifier: MIT
+!> Redundant equations set aside (suite redundancy, docs/design.md §4): closed loops of joints
+!> and a cart whose two rolling wheels repeat each other's sideways no-slip run, each against a
+!> solution of its own one degree of freedom or a closed form, on every formulation where the
+!> choice wears; a loop that contradicts itself is refused in the user's words; the split of a
+!> redundant joint's reaction does not depend on units. Datasets: test/redundant/.
+module test_redundancy
+    use rollcon_kinds, only : wp
+    use rollcon_constants, only : pi
+    use rollcon_error, only : error_type
+    use rollcon_text, only : to_text
+    use rollcon_load, only : load_job, input_override_type
+    use rollcon_job, only : job_type
+    use rollcon_run_job, only : run_job, job_result_type
+    use rollcon_linearisation, only : linear_result_type
+    use rollcon_linear_job, only : linearise_job
+    use rollcon_simulation, only : history_type, status_completed
+    use rollcon_testing, only : unittest_type, new_unittest, check
+    implicit none
+    private
+
+    public :: collect_redundancy
+
+    !> Gravity of the datasets [m/s^2]
+    real(wp), parameter :: g = 9.81_wp
+    !> Scratch folder for datasets written by a test
+    character(len=*), parameter :: scratch = "build/test_redundancy"
+
+contains
+
+    subroutine collect_redundancy(tests)
+        type(unittest_type), allocatable, intent(out) :: tests(:)
+
+        tests = [new_unittest("fourbar-one-degree-of-freedom", test_fourbar), &
+            & new_unittest("slider-crank-one-degree-of-freedom", test_slider_crank), &
+            & new_unittest("cart-on-its-circle-ida", test_cart_ida), &
+            & new_unittest("cart-on-its-circle-cvode", test_cart_cvode), &
+            & new_unittest("cart-on-its-circle-independent-speeds", test_cart_speeds), &
+            & new_unittest("contradictory-loop-refused", test_contradictory), &
+            & new_unittest("fourbar-linear-hanging", test_linear), &
+            & new_unittest("least-norm-split-independent-of-units", test_units)]
+    end subroutine collect_redundancy
+
+    !> test/redundant/fourbar.adm: a parallelogram of four REVOLUTEs (3 redundant equations)
+    !> swinging from -30 degrees. Its crank angle theta (from +X to the crank) obeys the loop's
+    !> Lagrange equation I theta'' = -(m_c + m_k) g L cos(theta), I = 2 (I_c + m_c L^2/4) +
+    !> m_k L^2 (the coupler translates): theta and theta' at every row against RK4 on that
+    !> equation, and its energy integral I theta'^2/2 + (m_c + m_k) g L sin(theta) held. The
+    !> reactions the four joints share are the
+    !> least-norm split: out of the plane, where gravity and the motion ask for nothing, they
+    !> are zero; in the plane they are unique, and the two ground joints' forces on the cranks
+    !> sum to the mechanism's m a less its weight. The summary names the joints and lines whose
+    !> equations were set aside, never a generated UCON id.
+    subroutine test_fourbar(error)
+        type(error_type), allocatable, intent(out) :: error
+        !> Crank and coupler masses [kg], crank length [m], crank moment about its CM [kg m^2]
+        real(wp), parameter :: crank_mass = 1.0_wp, coupler_mass = 2.0_wp, length = 1.0_wp, &
+            & crank_moment = 0.09_wp
+        !> IDA at ERROR = 1e-10 over 2 s: theta within 1.2e-8 rad and theta' within 4.0e-8 rad/s
+        !> of RK4 (h = 1e-4 s, its own error 1e-14), the energy within 3.3e-7 J of its start
+        !> (of 14.7 J; measured); 5e-8, 2e-7 and 1.5e-6 catch a tenfold loss
+        real(wp), parameter :: tol_angle = 5.0e-8_wp, tol_rate = 2.0e-7_wp, &
+            & tol_energy = 1.5e-6_wp
+        !> Reactions: the out-of-plane ones are rounding of forces of 36 N (measured 7e-14);
+        !> the sum of the ground forces against m a - m g of the row's own theta, theta'
+        !> (measured 2.7e-9 N of 36 N)
+        real(wp), parameter :: tol_out_of_plane = 1.0e-10_wp, tol_sum = 1.0e-8_wp
+        real(wp), parameter :: step = 1.0e-4_wp
+        type(job_result_type) :: result
+        type(history_type) :: rows
+        real(wp) :: inertia, state(2), t, x, y, theta, rate, acceleration, expected(3), total(3)
+        integer :: k, c
+
+        call run_dataset("test/redundant/fourbar.adm", "", result, rows, error)
+        if (allocated(error)) return
+        associate (lines => result%summary%watch_lines)
+            call check(error, index(lines, "warning: redundant equations set aside") > 0 &
+                & .and. index(lines, "JOINT/") > 0 .and. index(lines, "(line ") > 0 .and. &
+                & index(lines, "UCON/") == 0 .and. &
+                & index(lines, "the split reported is the least-norm one") > 0, &
+                & "the summary: " // lines)
+        end associate
+        if (allocated(error)) return
+        inertia = 2.0_wp*(crank_moment + crank_mass*(0.5_wp*length)**2) + coupler_mass*length**2
+        state = [-pi/6.0_wp, 0.0_wp]
+        t = 0.0_wp
+        associate (layout => rows%layout)
+            do k = 1, rows%count
+                do while (t < rows%rows(1, k) - 0.5_wp*step)
+                    call rk4_pendulum(state, step, 3.0_wp*g/inertia)
+                    t = t + step
+                end do
+                x = rows%rows(layout%column("X_2"), k)
+                y = rows%rows(layout%column("Y_2"), k)
+                theta = atan2(y, x)
+                rate = (x*rows%rows(layout%column("Ydot_2"), k) &
+                    & - y*rows%rows(layout%column("Xdot_2"), k))/(x**2 + y**2)
+                call check(error, theta, state(1), "crank angle at t = " &
+                    & // to_text(rows%rows(1, k)) // " s [rad]", abs_tol=tol_angle)
+                if (allocated(error)) return
+                call check(error, rate, state(2), "crank rate at t = " &
+                    & // to_text(rows%rows(1, k)) // " s [rad/s]", abs_tol=tol_rate)
+                if (allocated(error)) return
+                ! energy: I theta'^2 / 2 + 3 g L sin(theta) = 3 g L sin(theta_0)
+                call check(error, 0.5_wp*inertia*rate**2 + 3.0_wp*g*length*sin(theta), &
+                    & 3.0_wp*g*length*sin(-pi/6.0_wp), "the loop's energy at t = " &
+                    & // to_text(rows%rows(1, k)) // " s [J]", abs_tol=tol_energy)
+                if (allocated(error)) return
+                do c = 1, 4
+                    call check(error, maxval(abs([rows%rows(layout%column("joint" // to_text(c) &
+                        & // "_fz"), k), rows%rows(layout%column("joint" // to_text(c) &
+                        & // "_tx"), k), rows%rows(layout%column("joint" // to_text(c) &
+                        & // "_ty"), k)])) <= tol_out_of_plane, "JOINT/" // to_text(c) &
+                        & // "'s out-of-plane reaction at t = " // to_text(rows%rows(1, k)) &
+                        & // " s is not zero")
+                    if (allocated(error)) return
+                end do
+                ! the cranks' and the coupler's CMs move as L/2, L/2 and L times the crank tip
+                acceleration = -3.0_wp*g*cos(theta)/inertia
+                expected(1:2) = (0.5_wp*crank_mass + 0.5_wp*crank_mass + coupler_mass)*length &
+                    & *(acceleration*[-sin(theta), cos(theta)] - rate**2*[cos(theta), sin(theta)])
+                expected(2) = expected(2) + (2.0_wp*crank_mass + coupler_mass)*g
+                expected(3) = 0.0_wp
+                total = rows%rows(layout%column("joint1_fx"):layout%column("joint1_fz"), k) &
+                    & + rows%rows(layout%column("joint4_fx"):layout%column("joint4_fz"), k)
+                call check(error, total, expected, "the ground joints' forces on the cranks " &
+                    & // "at t = " // to_text(rows%rows(1, k)) // " s [N]", abs_tol=tol_sum)
+                if (allocated(error)) return
+            end do
+        end associate
+    end subroutine test_fourbar
+
+    !> One RK4 step of theta'' = -k cos(theta), state (theta, theta').
+    pure subroutine rk4_pendulum(state, h, k)
+        real(wp), intent(inout) :: state(2)
+        real(wp), intent(in) :: h, k
+        real(wp) :: k1(2), k2(2), k3(2), k4(2)
+
+        k1 = [state(2), -k*cos(state(1))]
+        k2 = [state(2) + 0.5_wp*h*k1(2), -k*cos(state(1) + 0.5_wp*h*k1(1))]
+        k3 = [state(2) + 0.5_wp*h*k2(2), -k*cos(state(1) + 0.5_wp*h*k2(1))]
+        k4 = [state(2) + h*k3(2), -k*cos(state(1) + h*k3(1))]
+        state = state + h/6.0_wp*(k1 + 2.0_wp*k2 + 2.0_wp*k3 + k4)
+    end subroutine rk4_pendulum
+
+    !> test/redundant/slider_crank.adm: three REVOLUTEs and a TRANSLATIONAL (3 redundant
+    !> equations), driven from rest at 30 degrees by tau = 1 N m against gravity. One degree of
+    !> freedom: with T = M(theta) theta'^2 / 2 (M from the linkage's kinematics, slider at
+    !> x = r cos(theta) + sqrt(l^2 - r^2 sin^2(theta))) and V(theta) the weights' potential,
+    !> Lagrange gives M theta'' + M'(theta) theta'^2 / 2 = tau - V'(theta). theta at every row
+    !> against RK4 on it (M' by the complex step: exact to rounding), theta' against the energy
+    !> integral M theta'^2 / 2 + V - tau (theta - theta_0) = V(theta_0).
+    subroutine test_slider_crank(error)
+        type(error_type), allocatable, intent(out) :: error
+        !> IDA at ERROR = 1e-10 over 3.6 turns to 65 rad/s: theta within 5.2e-7 rad of RK4 (h =
+        !> 2e-5 s: its own error 2e-10), theta' within 2.5e-6 rad/s of the energy (measured);
+        !> 2e-6 and 1e-5 catch a tenfold loss
+        real(wp), parameter :: tol_angle = 2.0e-6_wp, tol_rate = 1.0e-5_wp
+        real(wp), parameter :: step = 2.0e-5_wp, theta_0 = pi/6.0_wp, torque = 1.0_wp
+        type(job_result_type) :: result
+        type(history_type) :: rows
+        real(wp) :: state(2), t, x, y, theta, rate, energy
+        integer :: k
+
+        call run_dataset("test/redundant/slider_crank.adm", "", result, rows, error)
+        if (allocated(error)) return
+        state = [theta_0, 0.0_wp]
+        t = 0.0_wp
+        theta = theta_0
+        associate (layout => rows%layout)
+            do k = 1, rows%count
+                do while (t < rows%rows(1, k) - 0.5_wp*step)
+                    call rk4_slider(state, step, torque)
+                    t = t + step
+                end do
+                x = rows%rows(layout%column("X_2"), k)
+                y = rows%rows(layout%column("Y_2"), k)
+                ! the crank's angle, continued through whole turns
+                theta = theta + modulo(atan2(y, x) - theta + pi, 2.0_wp*pi) - pi
+                rate = (x*rows%rows(layout%column("Ydot_2"), k) &
+                    & - y*rows%rows(layout%column("Xdot_2"), k))/(x**2 + y**2)
+                call check(error, theta, state(1), "crank angle at t = " &
+                    & // to_text(rows%rows(1, k)) // " s [rad]", abs_tol=tol_angle)
+                if (allocated(error)) return
+                energy = slider_potential(theta_0) - slider_potential(theta) &
+                    & + torque*(theta - theta_0)
+                call check(error, rate, sqrt(max(0.0_wp, 2.0_wp*energy &
+                    & /real(slider_mass(cmplx(theta, 0.0_wp, wp)), wp))), "crank rate at t = " &
+                    & // to_text(rows%rows(1, k)) // " s [rad/s]", abs_tol=tol_rate)
+                if (allocated(error)) return
+            end do
+            call check(error, theta > theta_0 + 6.0_wp*pi, "the crank turned " &
+                & // to_text((theta - theta_0)/(2.0_wp*pi)) // " times, not 3 or more")
+        end associate
+    end subroutine test_slider_crank
+
+    !> The slider-crank's M(theta) [kg m^2] (test_slider_crank), in complex arithmetic for the
+    !> complex step: crank r = 0.1 m, 0.5 kg, r^2/12 per kg about its CM at mid-length; rod
+    !> l = 0.3 m, 1 kg, l^2/12 per kg; slider 2 kg.
+    pure function slider_mass(theta) result(m)
+        complex(wp), intent(in) :: theta
+        complex(wp) :: m
+        real(wp), parameter :: r = 0.1_wp, l = 0.3_wp, crank = 0.5_wp, rod = 1.0_wp, &
+            & slider = 2.0_wp
+        complex(wp) :: root, slide, rod_x, rod_y, rod_turn
+
+        root = sqrt(l**2 - r**2*sin(theta)**2)
+        ! dx/dtheta of the slider, of the rod's centre (midway from pin to slider)
+        slide = -r*sin(theta) - r**2*sin(theta)*cos(theta)/root
+        rod_x = 0.5_wp*(-r*sin(theta) + slide)
+        rod_y = 0.5_wp*r*cos(theta)
+        ! the rod's turn: its angle phi has l sin(phi) = -r sin(theta)
+        rod_turn = -r*cos(theta)/root
+        m = crank*(0.25_wp*r**2 + r**2/12.0_wp) + rod*(rod_x**2 + rod_y**2 &
+            & + rod_turn**2*l**2/12.0_wp) + slider*slide**2
+    end function slider_mass
+
+    !> The slider-crank's potential [J]: the crank's CM at r/2 sin(theta), the rod's at
+    !> r/2 sin(theta), the slider on the X axis.
+    pure real(wp) function slider_potential(theta)
+        real(wp), intent(in) :: theta
+
+        slider_potential = g*(0.5_wp*0.05_wp + 1.0_wp*0.05_wp)*sin(theta)
+    end function slider_potential
+
+    !> One RK4 step of M theta'' = tau - V' - M' theta'^2 / 2, state (theta, theta').
+    pure subroutine rk4_slider(state, h, torque)
+        real(wp), intent(inout) :: state(2)
+        real(wp), intent(in) :: h, torque
+        real(wp) :: k1(2), k2(2), k3(2), k4(2)
+
+        k1 = slope(state)
+        k2 = slope(state + 0.5_wp*h*k1)
+        k3 = slope(state + 0.5_wp*h*k2)
+        k4 = slope(state + h*k3)
+        state = state + h/6.0_wp*(k1 + 2.0_wp*k2 + 2.0_wp*k3 + k4)
+    contains
+        pure function slope(s) result(ds)
+            real(wp), intent(in) :: s(2)
+            real(wp) :: ds(2)
+            !> The complex step: M'(theta) = Im M(theta + i h) / h, exact to rounding
+            real(wp), parameter :: tiny_step = 1.0e-30_wp
+            real(wp) :: m, dm
+
+            m = real(slider_mass(cmplx(s(1), 0.0_wp, wp)), wp)
+            dm = aimag(slider_mass(cmplx(s(1), tiny_step, wp)))/tiny_step
+            ds = [s(2), (torque - g*(0.5_wp*0.05_wp + 1.0_wp*0.05_wp)*cos(s(1)) &
+                & - 0.5_wp*dm*s(2)**2)/m]
+        end function slope
+    end subroutine rk4_slider
+
+    !> test/redundant/two_wheeled_cart.adm on IDA (the DAE form).
+    subroutine test_cart_ida(error)
+        type(error_type), allocatable, intent(out) :: error
+
+        ! IDA at ERROR = 1e-10: radius within 1.1e-8 m, loads within 6.7e-8 N (measured)
+        call check_cart("", 5.0e-8_wp, 3.0e-7_wp, error)
+    end subroutine test_cart_ida
+
+    !> The cart on CVODE (the ODE form, projection onto the constraints).
+    subroutine test_cart_cvode(error)
+        type(error_type), allocatable, intent(out) :: error
+
+        ! CVODE at ERROR = 1e-10: radius within 9.0e-9 m, loads within 6.0e-8 N (measured)
+        call check_cart("CVODE", 4.0e-8_wp, 3.0e-7_wp, error)
+    end subroutine test_cart_cvode
+
+    !> The cart in independent speeds (the partition over the active rows).
+    subroutine test_cart_speeds(error)
+        type(error_type), allocatable, intent(out) :: error
+
+        ! independent speeds at ERROR = 1e-10: radius within 6.7e-9 m, loads within 3.7e-11 N
+        ! (measured: the velocity UCONs hold exactly, docs/design.md §4)
+        call check_cart("MAGGI", 3.0e-8_wp, 2.0e-10_wp, error)
+    end subroutine test_cart_speeds
+
+    !> test/redundant/two_wheeled_cart.adm in the given formulation ("": the dataset's IDA): a
+    !> body of 4 kg on an axle of half-track d = 0.3 m, two wheels (1 kg, C = 0.02 kg m^2 about
+    !> the axle, radius 0.2 m) each rolling without slip; its one redundant equation (the two
+    !> wheels' sideways no-slip repeat each other through the axle) changes with the heading.
+    !> Pushed at 1 m/s and 1 rad/s it must stay on its circle, radius 1 m about (0, 1), at every
+    !> row of a whole turn (every heading), and the wheels' loads (the height UCONs' vertical
+    !> force, ucon3_fz and ucon6_fz) are constant. Moments about the heading axis at the
+    !> ground, the sideways friction's line through it: d (N_in - N_out) = -h sum m_i a_i -
+    !> C Omega sum s_i (h = 0.2 m the centres' height, a_i = Omega^2 R_i towards the centre,
+    !> s_i = Omega R_i / 0.2 the wheels' spin, the last term the spinning wheels' gyroscopic
+    !> moment), N_in + N_out = M g: N_in = 27.0967 N, N_out = 31.7633 N. The choice wears as
+    !> the heading turns (the row set aside has a coefficient like cos(heading) in the
+    !> dependency): it is chosen again, and other rows set aside, at least three times a turn.
+    subroutine check_cart(formulation, tol_radius, tol_load, error)
+        character(len=*), intent(in) :: formulation
+        !> The circle's and the loads' tolerances [m, N] (the callers': a few times measured)
+        real(wp), intent(in) :: tol_radius, tol_load
+        type(error_type), allocatable, intent(out) :: error
+        real(wp), parameter :: omega = 1.0_wp, half_track = 0.3_wp, height = 0.2_wp, &
+            & radius = 0.2_wp, axial_moment = 0.02_wp, masses(3) = [4.0_wp, 1.0_wp, 1.0_wp], &
+            & circles(3) = [1.0_wp, 0.7_wp, 1.3_wp]
+        type(job_result_type) :: result
+        type(history_type) :: rows
+        real(wp) :: roll, inner, outer
+        integer :: k, choices, at
+
+        call run_dataset("test/redundant/two_wheeled_cart.adm", formulation, result, rows, &
+            & error)
+        if (allocated(error)) return
+        roll = (height*sum(masses*omega**2*circles) &
+            & + axial_moment*omega*sum(omega*circles(2:)/radius))/half_track
+        inner = 0.5_wp*(sum(masses)*g - roll)
+        outer = 0.5_wp*(sum(masses)*g + roll)
+        call check(error, abs(inner - 27.0967_wp) < 1.0e-4_wp .and. abs(outer - 31.7633_wp) &
+            & < 1.0e-4_wp, "the closed form's loads " // to_text(inner) // " and " &
+            & // to_text(outer) // " N")
+        if (allocated(error)) return
+        call check(error, result%summary%status == status_completed .and. abs(rows%rows(1, &
+            & rows%count) - 2.0_wp*pi) < 1.0e-9_wp, "a whole turn: status " &
+            & // to_text(result%summary%status) // " at t = " // to_text(rows%rows(1, &
+            & rows%count)))
+        if (allocated(error)) return
+        associate (layout => rows%layout)
+            do k = 1, rows%count
+                call check(error, hypot(rows%rows(layout%column("X_2"), k), &
+                    & rows%rows(layout%column("Y_2"), k) - 1.0_wp), 1.0_wp, "the cart's " &
+                    & // "distance from the circle's centre at t = " // to_text(rows%rows(1, k)) &
+                    & // " s [m]", abs_tol=tol_radius)
+                if (allocated(error)) return
+                call check(error, rows%rows(layout%column("ucon3_fz"), k), inner, "the inner " &
+                    & // "wheel's load at t = " // to_text(rows%rows(1, k)) // " s [N]", &
+                    & abs_tol=tol_load)
+                if (allocated(error)) return
+                call check(error, rows%rows(layout%column("ucon6_fz"), k), outer, "the outer " &
+                    & // "wheel's load at t = " // to_text(rows%rows(1, k)) // " s [N]", &
+                    & abs_tol=tol_load)
+                if (allocated(error)) return
+            end do
+        end associate
+        at = index(result%summary%watch_lines, "chosen again ")
+        choices = 0
+        if (at > 0) read(result%summary%watch_lines(at + 13:), *) choices
+        call check(error, choices >= 3 .and. index(result%summary%watch_lines, "UCON/5 (line ") &
+            & > 0, &
+            & "chosen again " // to_text(choices) // " times over a turn; summary: " &
+            & // result%summary%watch_lines)
+    end subroutine check_cart
+
+    !> The four-bar with JOINT/2's marker on the coupler 0.1 m out of the plane: the loop's
+    !> out-of-plane equations, redundant when they agree, now contradict each other (no
+    !> position meets them all). Refused by the initial-conditions analysis, naming the joints'
+    !> statements and lines, never a generated UCON id.
+    subroutine test_contradictory(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(job_type) :: job
+        type(job_result_type) :: result
+        type(history_type) :: rows
+        type(error_type), allocatable :: refused
+
+        call copy_replacing("test/redundant/fourbar.adm", scratch // "/contradictory.adm", &
+            & ["MARKER/31, PART=3, QP=0.8660254037844386, -0.5, 0  "], &
+            & ["MARKER/31, PART=3, QP=0.8660254037844386, -0.5, 0.1"], error)
+        if (allocated(error)) return
+        call load_job(scratch // "/contradictory.adm", job, error)
+        if (allocated(error)) return
+        job%output_dir = ""
+        job%quiet = .true.
+        call run_job(job, result, refused, rows)
+        call check(error, allocated(refused), "the contradictory loop ran")
+        if (allocated(error)) return
+        call check(error, index(refused%message, "contradictory at position level") > 0 &
+            & .and. index(refused%message, "JOINT/2 (line 25: ") > 0 &
+            & .and. index(refused%message, "translation along ground Z") > 0 &
+            & .and. index(refused%message, "UCON/") == 0 .and. result%summary%rows == 0, &
+            & "the refusal: " // refused%message)
+    end subroutine test_contradictory
+
+    !> The four-bar hanging at rest (cranks straight down, theta = -90 degrees): `rollcon
+    !> linear` on its active rows (the rows set aside repeat them) finds the one mode of the
+    !> loop's equation linearised there, I theta'' = -3 g L (theta + pi/2): lambda = +-i
+    !> sqrt(3 g L / I), on an invariant tangent space (the start is steady).
+    subroutine test_linear(error)
+        type(error_type), allocatable, intent(out) :: error
+        !> The linearisation's differences are good to 1e-10 relative (docs/linear.md)
+        real(wp), parameter :: tol_frequency = 1.0e-8_wp
+        real(wp), parameter :: inertia = 2.0_wp*(0.09_wp + 0.25_wp) + 2.0_wp
+        character(len=*), parameter :: lines(*) = [character(len=70) :: &
+            & "MARKER/20, PART=2, QP=0.4330127018922193, -0.25, 0, REULER=0D, 90D, 0D", &
+            & "MARKER/22, PART=2, QP=0.8660254037844386, -0.5, 0", &
+            & "MARKER/30, PART=3, QP=1.8660254037844386, -0.5, 0, REULER=0D, 90D, 0D", &
+            & "MARKER/31, PART=3, QP=0.8660254037844386, -0.5, 0", &
+            & "MARKER/32, PART=3, QP=2.8660254037844386, -0.5, 0", &
+            & "MARKER/40, PART=4, QP=2.4330127018922193, -0.25, 0, REULER=0D, 90D, 0D", &
+            & "MARKER/41, PART=4, QP=2.8660254037844386, -0.5, 0"]
+        character(len=*), parameter :: hanging(*) = [character(len=70) :: &
+            & "MARKER/20, PART=2, QP=0, -0.5, 0, REULER=0D, 90D, 0D", &
+            & "MARKER/22, PART=2, QP=0, -1, 0", &
+            & "MARKER/30, PART=3, QP=1, -1, 0, REULER=0D, 90D, 0D", &
+            & "MARKER/31, PART=3, QP=0, -1, 0", "MARKER/32, PART=3, QP=2, -1, 0", &
+            & "MARKER/40, PART=4, QP=2, -0.5, 0, REULER=0D, 90D, 0D", &
+            & "MARKER/41, PART=4, QP=2, -1, 0"]
+        type(job_type) :: job
+        type(linear_result_type) :: result
+        character(len=:), allocatable :: report
+
+        call copy_replacing("test/redundant/fourbar.adm", scratch // "/hanging.adm", lines, &
+            & hanging, error)
+        if (allocated(error)) return
+        call load_job(scratch // "/hanging.adm", job, error)
+        if (allocated(error)) return
+        call linearise_job(job, result, report, error)
+        if (allocated(error)) return
+        call check(error, result%reduced == 2 .and. result%invariant .and. &
+            & index(report, "redundant equations set aside") > 0, to_text(result%reduced) &
+            & // " independent states, invariance " // to_text(result%invariance) &
+            & // "; report: " // report)
+        if (allocated(error)) return
+        call check(error, [result%real_part(1), abs(result%imag_part(1))], [0.0_wp, &
+            & sqrt(3.0_wp*g/inertia)], "the hanging loop's eigenvalue [1/s]", &
+            & abs_tol=tol_frequency)
+    end subroutine test_linear
+
+    !> test/redundant/door.adm: a door of 10 kg on two REVOLUTEs on one vertical axis (5
+    !> redundant equations), held still: the weight's pull along the axis and its moment about
+    !> the horizontal may be split between the hinges' forces and moments in many ways. The
+    !> split reported is the least-norm one in the mass metric, so the same door written in
+    !> millimetres (positions 1000 times, moments of inertia 1e6 times, gravity 9810 mm/s^2)
+    !> gives the same reactions [N, N m]; the least norm in the plain multipliers would not
+    !> (its moments in N mm weigh 1e6 times more). And they balance the weight: their forces sum
+    !> to (0, 0, m g), each hinge bearing m g / 2 along the axis (the two are alike), and their
+    !> moments about the centre of mass sum to zero.
+    subroutine test_units(error)
+        type(error_type), allocatable, intent(out) :: error
+        real(wp), parameter :: mass = 10.0_wp
+        !> A still state: the split from one least-squares solve of a well-conditioned block,
+        !> forces of 50 N (the two runs agree to the last bit, measured); 1e-9 N allows their
+        !> rounding to differ
+        real(wp), parameter :: tol_same = 1.0e-9_wp
+        character(len=*), parameter :: lines(*) = [character(len=70) :: &
+            & "UNITS/SYSTEM=SI", "MARKER/10, PART=1, QP=0, 0, 0.5", &
+            & "MARKER/11, PART=1, QP=0, 0, 1.5", "PART/2, MASS=10, CM=20, IP=1, 0.8, 0.3", &
+            & "MARKER/20, PART=2, QP=0.5, 0, 1, REULER=0D, 90D, 0D", &
+            & "MARKER/21, PART=2, QP=0, 0, 0.5", "MARKER/22, PART=2, QP=0, 0, 1.5", &
+            & "ACCGRAV/KGRAV=-9.81"]
+        character(len=*), parameter :: millimetres(*) = [character(len=70) :: &
+            & "UNITS/FORCE=NEWTON, MASS=KILOGRAM, LENGTH=MILLIMETER, TIME=SECOND", &
+            & "MARKER/10, PART=1, QP=0, 0, 500", "MARKER/11, PART=1, QP=0, 0, 1500", &
+            & "PART/2, MASS=10, CM=20, IP=1e6, 8e5, 3e5", &
+            & "MARKER/20, PART=2, QP=500, 0, 1000, REULER=0D, 90D, 0D", &
+            & "MARKER/21, PART=2, QP=0, 0, 500", "MARKER/22, PART=2, QP=0, 0, 1500", &
+            & "ACCGRAV/KGRAV=-9810"]
+        type(job_result_type) :: si, scaled
+        type(history_type) :: si_rows, scaled_rows
+        real(wp) :: hinges(6, 2), moment(3), arm(3)
+        integer :: h, first
+
+        call copy_replacing("test/redundant/door.adm", scratch // "/door_mm.adm", lines, &
+            & millimetres, error)
+        if (allocated(error)) return
+        call run_dataset("test/redundant/door.adm", "", si, si_rows, error)
+        if (allocated(error)) return
+        call run_dataset(scratch // "/door_mm.adm", "", scaled, scaled_rows, error)
+        if (allocated(error)) return
+        do h = 1, 2
+            first = si_rows%layout%column("joint" // to_text(h) // "_fx")
+            hinges(:, h) = si_rows%rows(first:first + 5, 1)
+            first = scaled_rows%layout%column("joint" // to_text(h) // "_fx")
+            call check(error, scaled_rows%rows(first:first + 5, 1), hinges(:, h), "JOINT/" &
+                & // to_text(h) // "'s force and torque in millimetres against metres " &
+                & // "[N, N m]", abs_tol=tol_same)
+            if (allocated(error)) return
+            call check(error, hinges(3, h), 0.5_wp*mass*g, "JOINT/" // to_text(h) &
+                & // "'s share of the weight [N]", abs_tol=tol_same)
+            if (allocated(error)) return
+        end do
+        call check(error, hinges(1:3, 1) + hinges(1:3, 2), [0.0_wp, 0.0_wp, mass*g], &
+            & "the hinges' forces [N]", abs_tol=tol_same)
+        if (allocated(error)) return
+        ! about the centre of mass (0.5, 0, 1): each hinge's torque at its marker (0, 0, 0.5)
+        ! and (0, 0, 1.5), and its force's moment
+        moment = hinges(4:6, 1) + hinges(4:6, 2)
+        do h = 1, 2
+            arm = [-0.5_wp, 0.0_wp, real(2*h - 3, wp)*0.5_wp]
+            moment = moment + [arm(2)*hinges(3, h) - arm(3)*hinges(2, h), &
+                & arm(3)*hinges(1, h) - arm(1)*hinges(3, h), &
+                & arm(1)*hinges(2, h) - arm(2)*hinges(1, h)]
+        end do
+        call check(error, moment, [0.0_wp, 0.0_wp, 0.0_wp], "the hinges' moments about the " &
+            & // "centre of mass [N m]", abs_tol=tol_same)
+    end subroutine test_units
+
+    !> The summary's words of the rows set aside (its warning line, "" without one).
+    function set_aside_words(summary) result(words)
+        character(len=*), intent(in) :: summary
+        character(len=:), allocatable :: words
+        integer :: first, last
+
+        words = ""
+        first = index(summary, "warning: redundant equations set aside")
+        if (first == 0) return
+        last = index(summary(first:), "; chosen again")
+        if (last == 0) return
+        words = summary(first:first + last - 2)
+    end function set_aside_words
+
+    !> Run a dataset (formulation: INTEGRATOR/FORMULATION= put in place, "" as it is) without
+    !> files, its rows kept; a run that does not complete is an error.
+    subroutine run_dataset(path, formulation, result, rows, error)
+        character(len=*), intent(in) :: path, formulation
+        type(job_result_type), intent(out) :: result
+        type(history_type), intent(out) :: rows
+        type(error_type), allocatable, intent(out) :: error
+        type(job_type) :: job
+
+        if (len(formulation) > 0) then
+            call load_job(path, job, error, overrides=[input_override_type( &
+                & "integrator%formulation", formulation)])
+        else
+            call load_job(path, job, error)
+        end if
+        if (allocated(error)) return
+        job%output_dir = ""
+        job%quiet = .true.
+        call run_job(job, result, error, rows)
+        if (allocated(error)) return
+        call check(error, result%summary%status == status_completed, path // ": status " &
+            & // to_text(result%summary%status) // ": " // result%summary%watch_lines)
+    end subroutine run_dataset
+
+    !> Copy a text file, each line equal to one of old replaced by the new one of the same
+    !> place; every old line must be found.
+    subroutine copy_replacing(from, to, old, new, error)
+        character(len=*), intent(in) :: from, to
+        character(len=*), intent(in) :: old(:), new(:)
+        type(error_type), allocatable, intent(out) :: error
+        character(len=512) :: line
+        logical :: found(size(old))
+        integer :: in, out, status, k
+
+        call execute_command_line("mkdir -p " // scratch)
+        found = .false.
+        open(newunit=in, file=from, status="old", action="read")
+        open(newunit=out, file=to, status="replace", action="write")
+        do
+            read(in, '(a)', iostat=status) line
+            if (status /= 0) exit
+            do k = 1, size(old)
+                if (trim(line) /= trim(old(k))) cycle
+                line = new(k)
+                found(k) = .true.
+            end do
+            write(out, '(a)') trim(line)
+        end do
+        close(in)
+        close(out)
+        call check(error, all(found), from // ": a line to replace is missing")
+    end subroutine copy_replacing
+
+end module test_redundancy
