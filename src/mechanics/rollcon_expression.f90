@@ -5,7 +5,8 @@
 !> The subset: numbers (with `D` after a number for degrees), `TIME`, `PI`, `DTOR`; `+ - * /`
 !> and `**` (right-associative, binding tighter than a sign, as in Fortran); the functions
 !> `SIN COS TAN ATAN2 EXP LOG SQRT ABS MIN MAX`, `STEP(x, x0, h0, x1, h1)` (cubic step),
-!> `HAVSIN(x, x0, h0, x1, h1)` (haversine step) and `IF(e: neg, zero, pos)`; and the state
+!> `STEP5(x, x0, h0, x1, h1)` (quintic step), `HAVSIN(x, x0, h0, x1, h1)` (haversine step)
+!> and `IF(e: neg, zero, pos)`; and the state
 !> functions of one marker i, measured from ground in ground axes: `DX(i) DY(i) DZ(i)`
 !> (position), `VX(i) VY(i) VZ(i)` (velocity), `WX(i) WY(i) WZ(i)` (angular velocity),
 !> `PSI(i) THETA(i) PHI(i)` (body 3-1-3 angles of the marker's axes). Names are read in any
@@ -13,6 +14,11 @@
 !> caller computes their values and passes them in that order. A value outside a function's
 !> domain (LOG of a negative number, STEP with x1 <= x0) evaluates to NaN: callers check the
 !> result with ieee_is_finite and name the expression.
+!>
+!> Where an expression switches (an IF's condition, a STEP's x at x0 and x1, MIN and MAX where
+!> their arguments are equal, ABS at zero) it has a corner, which an integrator must not step
+!> across (docs/design.md §7): a switch on TIME alone is found here as a time (switching_times),
+!> any other is a function of the state whose zero an integrator locates (switch_values).
 module rollcon_expression
     use rollcon_kinds, only : wp
     use rollcon_constants, only : pi
@@ -21,9 +27,10 @@ module rollcon_expression
     private
 
     public :: expression_type, expression_input_type, evaluate_expression, switching_times
+    public :: switch_kinds, switch_count, switch_values, switch_none, switch_timed, switch_watched
     public :: max_stack, max_inputs
     public :: op_constant, op_time, op_input, op_add, op_subtract, op_multiply, op_divide, &
-        & op_power, op_negate, op_step, op_havsin, op_if
+        & op_power, op_negate, op_step, op_step5, op_havsin, op_if, op_min, op_max, op_abs
     public :: function_names, function_codes, function_arguments
     public :: quantity_names, quantity_dx, quantity_vx, quantity_wx, quantity_psi
 
@@ -36,14 +43,20 @@ module rollcon_expression
     integer, parameter :: op_constant = 1, op_time = 2, op_add = 3, op_subtract = 4, &
         & op_multiply = 5, op_divide = 6, op_power = 7, op_negate = 8, op_sin = 9, op_cos = 10, &
         & op_tan = 11, op_exp = 12, op_log = 13, op_sqrt = 14, op_abs = 15, op_atan2 = 16, &
-        & op_min = 17, op_max = 18, op_step = 19, op_havsin = 20, op_if = 21, op_input = 22
+        & op_min = 17, op_max = 18, op_step = 19, op_havsin = 20, op_if = 21, op_input = 22, &
+        & op_step5 = 23
 
     !> Function names, their operation codes and argument counts (IF is parsed apart)
-    character(len=*), parameter :: function_names(12) = [character(len=6) :: "SIN", "COS", &
-        & "TAN", "ATAN2", "EXP", "LOG", "SQRT", "ABS", "MIN", "MAX", "STEP", "HAVSIN"]
-    integer, parameter :: function_codes(12) = [op_sin, op_cos, op_tan, op_atan2, op_exp, &
-        & op_log, op_sqrt, op_abs, op_min, op_max, op_step, op_havsin]
-    integer, parameter :: function_arguments(12) = [1, 1, 1, 2, 1, 1, 1, 1, 2, 2, 5, 5]
+    character(len=*), parameter :: function_names(13) = [character(len=6) :: "SIN", "COS", &
+        & "TAN", "ATAN2", "EXP", "LOG", "SQRT", "ABS", "MIN", "MAX", "STEP", "HAVSIN", "STEP5"]
+    integer, parameter :: function_codes(13) = [op_sin, op_cos, op_tan, op_atan2, op_exp, &
+        & op_log, op_sqrt, op_abs, op_min, op_max, op_step, op_havsin, op_step5]
+    integer, parameter :: function_arguments(13) = [1, 1, 1, 2, 1, 1, 1, 1, 2, 2, 5, 5, 5]
+
+    !> What an operation of a program is as a switch (switch_kinds): none; a switch on TIME
+    !> alone, at times switching_times gives; a switch on anything else, whose zero an
+    !> integrator locates (switch_values)
+    integer, parameter :: switch_none = 0, switch_timed = 1, switch_watched = 2
 
     !> State functions of one marker; quantity code k is quantity_names(k). DX..DZ [length],
     !> VX..VZ [length/time], WX..WZ [rad/time], PSI, THETA, PHI [rad], in dataset units
@@ -86,11 +99,29 @@ contains
         !> Values of expression%inputs, in that order, in the expression's units
         real(wp), intent(in), optional :: inputs(:)
         real(wp) :: value
+
+        call run_program(expression, time, value, inputs)
+    end function evaluate_expression
+
+    !> Run the stack program at `time` with the inputs' values: its value and, when kinds and g
+    !> are given, the switch functions of its watched switches (switch_values).
+    pure subroutine run_program(expression, time, value, inputs, kinds, g)
+        type(expression_type), intent(in) :: expression
+        real(wp), intent(in) :: time
+        real(wp), intent(out) :: value
+        real(wp), intent(in), optional :: inputs(:)
+        integer, intent(in), optional :: kinds(:)
+        real(wp), intent(out), optional :: g(:)
         real(wp) :: stack(max_stack)
-        integer :: i, top, k
+        integer :: i, top, k, j
 
         top = 0
+        j = 0
         do i = 1, size(expression%op)
+            if (present(kinds) .and. present(g)) then
+                if (kinds(i) == switch_watched) call add_switch(expression%op(i), stack, top, &
+                    & g, j)
+            end if
             select case (expression%op(i))
             case (op_constant)
                 top = top + 1
@@ -112,16 +143,40 @@ contains
             case (op_add:op_power, op_atan2:op_max)
                 top = top - 1
                 stack(top) = binary(expression%op(i), stack(top), stack(top + 1))
-            case (op_step, op_havsin)
+            case (op_step, op_havsin, op_step5)
                 top = top - 4
-                stack(top) = smooth_step(expression%op(i) == op_havsin, stack(top:top + 4))
+                stack(top) = smooth_step(expression%op(i), stack(top:top + 4))
             case (op_if)
                 top = top - 3
                 stack(top) = if_branch(stack(top:top + 3))
             end select
         end do
         value = stack(1)
-    end function evaluate_expression
+    end subroutine run_program
+
+    !> The switch function(s) of the watched switch op, its arguments on the stack up to top,
+    !> into g after the j already there (j counts them).
+    pure subroutine add_switch(op, stack, top, g, j)
+        integer, intent(in) :: op, top
+        real(wp), intent(in) :: stack(:)
+        real(wp), intent(inout) :: g(:)
+        integer, intent(inout) :: j
+
+        select case (op)
+        case (op_step, op_havsin, op_step5)
+            g(j + 1:j + 2) = stack(top - 4) - [stack(top - 3), stack(top - 1)]
+            j = j + 2
+        case (op_if)
+            g(j + 1) = stack(top - 3)
+            j = j + 1
+        case (op_min, op_max)
+            g(j + 1) = stack(top - 1) - stack(top)
+            j = j + 1
+        case default
+            g(j + 1) = stack(top)
+            j = j + 1
+        end select
+    end subroutine add_switch
 
     !> IF(e: negative, zero, positive) from its four values.
     pure function if_branch(arguments) result(y)
@@ -137,21 +192,81 @@ contains
         end if
     end function if_branch
 
-    !> The times at which the expression switches: where the condition of an IF, or the
-    !> argument of a STEP or HAVSIN, is a TIME - c (any a TIME + b, a /= 0, of constants)
-    !> and crosses zero, x0 or x1 (constants). A switch on anything else (a state function, a
-    !> product of TIME) is not found. In the expression's time units, in the order the program
-    !> meets them (an inner IF before the IF around it). A time that is not finite (constants
-    !> whose product or sum overflows: the switch never happens) is left out.
+    !> The times at which the expression switches: where the condition of an IF, the argument
+    !> of a STEP, STEP5 or HAVSIN, the difference of MIN's or MAX's arguments or the argument of
+    !> ABS is a TIME - c (any a TIME + b, a /= 0, of constants) and crosses zero, x0 or x1
+    !> (constants). A switch on anything else (a state function, a product of TIME) is not
+    !> found here: switch_kinds calls it watched. In the expression's time units, in the order
+    !> the program meets them (an inner IF before the IF around it). A time that is not finite
+    !> (constants whose product or sum overflows: the switch never happens) is left out.
     pure function switching_times(expression) result(times)
         type(expression_type), intent(in) :: expression
         real(wp), allocatable :: times(:)
-        !> Each pending value as slope*TIME + offset when `affine` (slope 0: a constant)
+        integer, allocatable :: kinds(:)
+
+        call analyse_switches(expression, kinds, times)
+    end function switching_times
+
+    !> For each operation of the program: switch_none, switch_timed (its times are among
+    !> switching_times) or switch_watched (a switch whose argument is not affine in TIME: a
+    !> state function, or TIME in a non-affine way).
+    pure function switch_kinds(expression) result(kinds)
+        type(expression_type), intent(in) :: expression
+        integer, allocatable :: kinds(:)
+        real(wp), allocatable :: times(:)
+
+        call analyse_switches(expression, kinds, times)
+    end function switch_kinds
+
+    !> Number of switch functions switch_values gives for these kinds: two for a watched
+    !> STEP, STEP5 or HAVSIN (x - x0, x - x1), one for a watched IF, MIN, MAX or ABS.
+    pure integer function switch_count(expression, kinds)
+        type(expression_type), intent(in) :: expression
+        integer, intent(in) :: kinds(:)
+        integer :: i
+
+        switch_count = 0
+        do i = 1, size(kinds)
+            if (kinds(i) /= switch_watched) cycle
+            select case (expression%op(i))
+            case (op_step, op_havsin, op_step5)
+                switch_count = switch_count + 2
+            case default
+                switch_count = switch_count + 1
+            end select
+        end do
+    end function switch_count
+
+    !> The switch functions of the watched switches (kinds from switch_kinds) at `time` with
+    !> the inputs' values, in program order, each zero where its switch switches: an IF's
+    !> condition, x - x0 and x - x1 of a STEP, STEP5 or HAVSIN, a - b of MIN(a, b) and
+    !> MAX(a, b), the argument of ABS. g has switch_count values. Allocates nothing (an event
+    !> function of the integrators).
+    pure subroutine switch_values(expression, time, inputs, kinds, g)
+        type(expression_type), intent(in) :: expression
+        !> Time, in the expression's units
+        real(wp), intent(in) :: time
+        !> Values of expression%inputs, in that order, in the expression's units
+        real(wp), intent(in) :: inputs(:)
+        integer, intent(in) :: kinds(:)
+        real(wp), intent(out) :: g(:)
+        real(wp) :: value
+
+        call run_program(expression, time, value, inputs, kinds, g)
+    end subroutine switch_values
+
+    !> The switches of the program (analyse_switches' walk): each pending value as
+    !> slope*TIME + offset when affine (slope 0: a constant).
+    pure subroutine analyse_switches(expression, kinds, times)
+        type(expression_type), intent(in) :: expression
+        integer, allocatable, intent(out) :: kinds(:)
+        real(wp), allocatable, intent(out) :: times(:)
         real(wp) :: slope(max_stack), offset(max_stack)
         logical :: affine(max_stack)
         integer :: i, top, op, arity
 
         allocate(times(0))
+        allocate(kinds(size(expression%op)), source=switch_none)
         top = 0
         do i = 1, size(expression%op)
             op = expression%op(i)
@@ -166,19 +281,27 @@ contains
                 slope(top) = -slope(top)
                 offset(top) = -offset(top)
                 cycle
-            case (op_sin:op_abs)
+            case (op_abs)
                 arity = 1
-            case (op_step, op_havsin)
+                call classify(kinds(i), times, [slope(top)], [offset(top)], [affine(top)])
+            case (op_sin:op_sqrt)
+                arity = 1
+            case (op_step, op_havsin, op_step5)
                 arity = 5
-                if (affine(top - 4) .and. slope(top - 4) /= 0.0_wp .and. affine(top - 3) &
-                    & .and. slope(top - 3) == 0.0_wp .and. affine(top - 1) &
-                    & .and. slope(top - 1) == 0.0_wp) call add_finite(times, &
-                    & [(offset(top - 3) - offset(top - 4))/slope(top - 4), &
-                    & (offset(top - 1) - offset(top - 4))/slope(top - 4)])
+                ! x - x0 and x - x1 (the arguments x, x0, h0, x1, h1 from top - 4 up)
+                call classify(kinds(i), times, slope(top - 4) - [slope(top - 3), &
+                    & slope(top - 1)], &
+                    & offset(top - 4) - [offset(top - 3), offset(top - 1)], &
+                    & [affine(top - 4) .and. affine(top - 3), &
+                    & affine(top - 4) .and. affine(top - 1)])
             case (op_if)
                 arity = 4
-                if (affine(top - 3) .and. slope(top - 3) /= 0.0_wp) &
-                    & call add_finite(times, [-offset(top - 3)/slope(top - 3)])
+                call classify(kinds(i), times, [slope(top - 3)], [offset(top - 3)], &
+                    & [affine(top - 3)])
+            case (op_min, op_max)
+                arity = 2
+                call classify(kinds(i), times, [slope(top - 1) - slope(top)], &
+                    & [offset(top - 1) - offset(top)], [affine(top - 1) .and. affine(top)])
             case default
                 arity = 2
             end select
@@ -186,7 +309,23 @@ contains
             call combine(op, arity, slope(top:top + arity - 1), offset(top:top + arity - 1), &
                 & affine(top:top + arity - 1))
         end do
-    end function switching_times
+    end subroutine analyse_switches
+
+    !> A switch where each slope*TIME + offset (when affine) is zero: timed, its times added,
+    !> when every one is affine (a constant one, of slope 0, never switches), else watched.
+    pure subroutine classify(kind, times, slopes, offsets, affines)
+        integer, intent(inout) :: kind
+        real(wp), allocatable, intent(inout) :: times(:)
+        real(wp), intent(in) :: slopes(:), offsets(:)
+        logical, intent(in) :: affines(:)
+
+        if (.not. all(affines)) then
+            kind = switch_watched
+        else if (any(slopes /= 0.0_wp)) then
+            kind = switch_timed
+            call add_finite(times, pack(-offsets/slopes, slopes /= 0.0_wp))
+        end if
+    end subroutine classify
 
     !> Append the finite ones of candidates to times.
     pure subroutine add_finite(times, candidates)
@@ -209,8 +348,8 @@ contains
             select case (op)
             case (op_sin:op_abs)
                 offset(1) = unary(op, values(1))
-            case (op_step, op_havsin)
-                offset(1) = smooth_step(op == op_havsin, values(:5))
+            case (op_step, op_havsin, op_step5)
+                offset(1) = smooth_step(op, values(:5))
             case (op_if)
                 offset(1) = if_branch(values(:4))
             case default
@@ -297,10 +436,10 @@ contains
         end select
     end function binary
 
-    !> ADAMS's STEP (cubic, C1) or HAVSIN (haversine) from h0 at x0 to h1 at x1; NaN unless
-    !> x0 < x1. Arguments: x, x0, h0, x1, h1.
-    pure function smooth_step(haversine, arguments) result(y)
-        logical, intent(in) :: haversine
+    !> ADAMS's STEP (cubic, C1), STEP5 (quintic, C2) or HAVSIN (haversine, C1) from h0 at x0
+    !> to h1 at x1, by the operation op; NaN unless x0 < x1. Arguments: x, x0, h0, x1, h1.
+    pure function smooth_step(op, arguments) result(y)
+        integer, intent(in) :: op
         real(wp), intent(in) :: arguments(5)
         real(wp) :: y
         real(wp) :: s
@@ -315,11 +454,14 @@ contains
                 y = h1
             else
                 s = (x - x0)/(x1 - x0)
-                if (haversine) then
+                select case (op)
+                case (op_havsin)
                     y = 0.5_wp*(h0 + h1) + 0.5_wp*(h1 - h0)*sin(pi*s - 0.5_wp*pi)
-                else
+                case (op_step5)
+                    y = h0 + (h1 - h0)*s**3*(10.0_wp - 15.0_wp*s + 6.0_wp*s**2)
+                case default
                     y = h0 + (h1 - h0)*s**2*(3.0_wp - 2.0_wp*s)
-                end if
+                end select
             end if
         end associate
     end function smooth_step

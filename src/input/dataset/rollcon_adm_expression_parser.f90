@@ -204,8 +204,9 @@ contains
             end if
             p%at = p%at - len(name)
             problem = "unknown name '" // name // "' (the subset has TIME, PI, DTOR, SIN, " &
-                & // "COS, TAN, ATAN2, EXP, LOG, SQRT, ABS, MIN, MAX, STEP, HAVSIN, IF and " &
-                & // "the state functions DX DY DZ VX VY VZ WX WY WZ PSI THETA PHI of one marker)"
+                & // "COS, TAN, ATAN2, EXP, LOG, SQRT, ABS, MIN, MAX, STEP, STEP5, HAVSIN, IF " &
+                & // "and the state functions DX DY DZ VX VY VZ WX WY WZ PSI THETA PHI of one " &
+                & // "marker)"
             return
         end if
         call expect(p, "(", problem)
