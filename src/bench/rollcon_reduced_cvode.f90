@@ -9,7 +9,8 @@ module rollcon_reduced_cvode
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type
     use rollcon_text, only : to_text
-    use rollcon_force, only : applied_force_type, force_and_moment, force_breakpoints
+    use rollcon_force, only : applied_force_type, force_and_moment, force_breakpoints, &
+        & force_corners
     use rollcon_run_settings, only : run_settings_type
     use rollcon_dynamic_system, only : dynamic_system_type
     use rollcon_cvode, only : cvode_integrator_type
@@ -58,7 +59,7 @@ contains
         type(error_type), allocatable, intent(out) :: error
         type(cvode_integrator_type), target :: cvode
         real(wp) :: values(reduced_size), unused(reduced_size)
-        real(wp), allocatable :: breaks(:)
+        real(wp), allocatable :: breaks(:), corners(:)
         real(wp) :: t, t_out, start, finish, t_reference
         integer :: k_output, n_output, root
         logical :: have_reference
@@ -68,6 +69,8 @@ contains
         ! energy is conserved once the last pulse is over (as in rollcon_simulation)
         t_reference = maxval([t0, breaks])
         breaks = pack(breaks, breaks > t0 .and. breaks < end_time)
+        ! a pulse's ends: CVODE starts again there, as the full runs do (rollcon_simulation)
+        corners = force_corners(problem%forces)
         history%layout = new_output_layout([problem%part_id], [integer ::])
         summary%layout = history%layout
         values = y0
@@ -81,7 +84,13 @@ contains
         k_output = 1
         do while (k_output <= n_output .and. .not. allocated(error))
             t_out = min(t0 + k_output*output_step, end_time)
-            call cvode%advance(t_out, next_stop(t), t, values, unused, root, error)
+            ! an output time within the time's round-off after a restart: the same state
+            if (t_out - t <= 4.0_wp*epsilon(1.0_wp)*(abs(t) + abs(t_out))) then
+                t = t_out
+                root = 0
+            else
+                call cvode%advance(t_out, next_stop(t), t, values, unused, root, error)
+            end if
             if (allocated(error)) then
                 summary%status = status_failed
                 error%message = "reduced ODE: " // error%message
@@ -95,6 +104,8 @@ contains
                     & // to_text(t) // " s"
                 exit
             end if
+            if (any(corners == t)) call cvode%restart(t, values, unused, error)
+            if (allocated(error)) exit
             if (t < t_out) cycle
             call record(t)
             k_output = k_output + 1

@@ -26,7 +26,7 @@ module rollcon_dynamic_system
         procedure :: dae_differential
         procedure :: state_blocks
         procedure :: dae_pattern
-        procedure :: dae_vector_groups
+        procedure :: dae_euler_parts
         procedure :: multiplier_scale
         procedure :: root_count
         procedure :: roots
@@ -143,14 +143,19 @@ contains
         scale = 0.0_wp
     end function multiplier_scale
 
-    function dae_vector_groups(self, n) result(groups)
+    !> The parts whose orientation is a set of 3-1-3 Euler angles in the DAE state: for each,
+    !> the index of its psi (theta, phi follow) and of its psi' (theta', phi' follow). IDA holds
+    !> those rates to the error their part's angular velocity may have (rollcon_ida). Default:
+    !> none.
+    function dae_euler_parts(self, n) result(parts)
         class(dynamic_system_type), intent(in) :: self
         !> Size of the DAE state
         integer, intent(in) :: n
-        integer :: groups(n)
+        !> (1, k): psi of the k-th part, (2, k): its psi'
+        integer, allocatable :: parts(:, :)
 
-        groups = 0
-    end function dae_vector_groups
+        allocate(parts(2, 0))
+    end function dae_euler_parts
 
     !> Number of event functions (0: none).
     integer function root_count(self)

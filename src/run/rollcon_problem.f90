@@ -74,7 +74,7 @@ module rollcon_problem
         procedure :: dae_differential
         procedure :: state_blocks
         procedure :: dae_pattern
-        procedure :: dae_vector_groups
+        procedure :: dae_euler_parts
         procedure :: multiplier_scale
         procedure :: root_count
         procedure :: roots
@@ -500,19 +500,20 @@ contains
             & *norm2(self%model%gravity)
     end function multiplier_scale
 
-    function dae_vector_groups(self, n) result(groups)
+    !> Every part's Euler angles and their rates in the DAE state (q, u, lambda, mu): part p's
+    !> psi at 6 (p - 1) + coord_psi, its psi' n further.
+    function dae_euler_parts(self, n) result(parts)
         class(problem_type), intent(in) :: self
         integer, intent(in) :: n
-        integer :: groups(n)
-        integer :: p, first
+        integer, allocatable :: parts(:, :)
+        integer :: p
 
-        groups = 0
+        allocate(parts(2, self%eq%n/6))
         do p = 1, self%eq%n/6
-            ! u of part p: n + 6 (p - 1) + (X', Y', Z', psi', theta', phi')
-            first = self%eq%n + 6*(p - 1) + coord_psi
-            groups(first:first + 2) = first
+            parts(1, p) = 6*(p - 1) + coord_psi
+            parts(2, p) = self%eq%n + parts(1, p)
         end do
-    end function dae_vector_groups
+    end function dae_euler_parts
 
     !> Number of event functions: every watch's, in watch order.
     integer function root_count(self)
