@@ -2,7 +2,8 @@
 !> The program's own file names: an output folder made when missing, a file's stem, and the
 !> CSV a command's argument names.
 module rollcon_app_files
-    use rollcon, only : error_type, make_folders, output_name
+    use rollcon, only : error_type, output_name
+    use rollcon_program, only : make_folders
     implicit none
     private
 

@@ -29,7 +29,7 @@ module rollcon_cli
 
     !> The commands; `run` is the one meant when the first argument names none
     type(command_spec_type), parameter :: commands(*) = [ &
-        & command_spec_type("run", "SCENE or MODEL.adm"), &
+        & command_spec_type("run", "SCENE, MODEL.adm or .acf"), &
         & command_spec_type("table", ""), &
         & command_spec_type("plot", "CSV or SCENE"), &
         & command_spec_type("animate", "CSV or SCENE"), &
@@ -50,6 +50,9 @@ module rollcon_cli
         & option_spec_type("--quiet", "-q", "", .false., " run sweep linear "), &
         & option_spec_type("--vtk", "", "FPS", .false., " run "), &
         & option_spec_type("--allow-large-output", "", "", .false., " run "), &
+        & option_spec_type("--end", "", "T", .false., " run "), &
+        & option_spec_type("--steps", "", "N", .false., " run "), &
+        & option_spec_type("--dtout", "", "DT", .false., " run "), &
         & option_spec_type("--ucosub", "", "FILE|NAME", .false., " run linear "), &
         & option_spec_type("--call-timeout", "", "SECONDS", .false., " run check "), &
         & option_spec_type("--radius", "", "R", .false., " table "), &
@@ -197,6 +200,12 @@ contains
             end if
             i = i + 1
             option%value = get_argument(i)
+            ! an empty value is a mistake (a shell variable not set), never "the default"
+            if (len_trim(option%value) == 0) then
+                call fatal_error(error, option%name // " was given an empty value; it needs " &
+                    & // trim(o%value) // " (a variable not set?)", stat_input)
+                return
+            end if
         end if
         request%given = [request%given, option]
     end subroutine take_option
@@ -209,7 +218,12 @@ contains
         integer :: k
 
         k = command_index(request%command)
-        if (len_trim(commands(k)%positional) == 0) then
+        ! an empty argument is a mistake (a shell variable not set), never "the default"
+        if (len_trim(argument) == 0) then
+            call fatal_error(error, "an empty argument was given to rollcon " // request%command &
+                & // " (a variable not set?); run 'rollcon " // help_command(request) &
+                & // "--help' for the usage", stat_input)
+        else if (len_trim(commands(k)%positional) == 0) then
             call fatal_error(error, "unexpected argument '" // argument // "': rollcon " &
                 & // request%command // " takes no " // trim(merge("SCENE   ", "argument", &
                 & request%command == "table")) // "; run 'rollcon " // help_command(request) &

@@ -4,12 +4,14 @@
 module rollcon_command_bench
     use, intrinsic :: iso_fortran_env, only : output_unit
     use rollcon, only : wp, error_type, fatal_error, stat_input, stat_io, to_text, job_type, &
-        & load_job, method_type, benchmark_methods, benchmark_row_type, benchmark_scene, &
-        & benchmark_header, write_benchmark_row, evaluation_costs, part_costs_type, &
-        & measure_part_costs, accuracy_line, process_cost_type, measure_process, &
-        & plot_work_precision, machine_name, method_settings, cheapest_row, &
-        & write_scene_with_settings, run_settings_type, scaling_row_type, measure_scaling, &
-        & scaling_table, short_scaling_methods
+        & load_job, run_settings_type, is_dataset, output_name
+    use rollcon_program, only : method_type, benchmark_methods, benchmark_row_type, &
+        & benchmark_scene, benchmark_header, write_benchmark_row, evaluation_costs, &
+        & part_costs_type, measure_part_costs, accuracy_line, process_cost_type, &
+        & measure_process, plot_work_precision, machine_name, sundials_build, method_settings, &
+        & cheapest_row, write_scene_with_settings, write_dataset_with_settings, &
+        & scaling_row_type, measure_scaling, scaling_table, short_scaling_methods, &
+        & bicycle_table_type, read_bicycle_table
     use rollcon_cli, only : cli_request_type
     use rollcon_app_files, only : make_folder
     implicit none
@@ -41,7 +43,7 @@ contains
         type(cli_request_type), intent(in) :: request
         type(error_type), allocatable, intent(out) :: error
         type(bench_options_type) :: options
-        character(len=:), allocatable :: name
+        character(len=:), allocatable :: name, labels
         integer :: unit, stat, start, comma, process_unit
 
         if (request%has("--help")) then
@@ -59,7 +61,7 @@ contains
             return
         end if
         write(unit, '(a)') benchmark_header()
-        write(output_unit, '(a)') "bench: " // machine_name()
+        write(output_unit, '(a)') "bench: " // machine_name() // "; " // sundials_build()
         process_unit = -1
         if (.not. options%quick) then
             open(newunit=process_unit, file=options%output_dir // "/bench_process.csv", &
@@ -73,6 +75,7 @@ contains
                 & // "reading_setup_summary_cpu_s"
         end if
         start = 1
+        labels = ""
         do
             comma = index(options%scene_list(start:), ",")
             if (comma == 0) then
@@ -82,12 +85,13 @@ contains
             end if
             call bench_scene(name, options, unit, process_unit, error)
             if (allocated(error)) return
+            labels = labels // trim(merge(",", " ", len(labels) > 0)) // bench_label(name)
             if (comma == 0) exit
             start = start + comma
         end do
         close(unit)
         if (process_unit /= -1) close(process_unit)
-        call plot_work_precision(options%output_dir, options%scene_list, error)
+        call plot_work_precision(options%output_dir, labels, error)
         if (allocated(error)) return
         call scaling_summary(options, error)
         if (allocated(error)) return
@@ -109,9 +113,11 @@ contains
         if (allocated(error)) return
         call request%real_value("--end-time", options%end_time, -1.0_wp, error)
         if (allocated(error)) return
-        if (request%has("--end-time") .and. .not. options%end_time > 0.0_wp) then
-            call fatal_error(error, "--end-time expects a positive number, got '" &
-                & // request%text("--end-time", "") // "'", stat_input)
+        ! the scenes' own range of end_time (docs/scenes.md)
+        if (request%has("--end-time") .and. .not. (options%end_time >= 1.0e-9_wp .and. &
+            & options%end_time <= 1.0e9_wp)) then
+            call fatal_error(error, "--end-time expects a time from 1e-9 to 1e9 s (a scene's " &
+                & // "end_time), got '" // request%text("--end-time", "") // "'", stat_input)
             return
         end if
         if (options%quick) then
@@ -123,13 +129,39 @@ contains
             if (options%end_time < 0.0_wp) options%end_time = 1.0_wp
         else
             if (len(options%scene_list) == 0) options%scene_list = "coin,tipping_coin," &
-                & // "fast_upright,near_flat,long_run"
+                & // "fast_upright,near_flat,long_run,bicycle"
             ! half a decade apart: a decade's grid put the cheapest run within 1e-6 m up to
             ! ten times tighter than it needs, the reduced ODE's and a method's differently
             options%tolerances = [(10.0_wp**(-3.0_wp - 0.5_wp*i), i = 0, 18)]
             options%reference_rtol = 1.0e-13_wp
         end if
     end subroutine read_bench_options
+
+    !> The rows' scene name of a name of --scenes: a dataset's file name without its folder and
+    !> .adm (the benchmark's subject name), else the name itself.
+    pure function bench_label(name) result(label)
+        character(len=*), intent(in) :: name
+        character(len=:), allocatable :: label
+
+        label = name
+        if (.not. is_dataset(name)) return
+        label = label(index(label, "/", back=.true.) + 1:len(label) - 4)
+    end function bench_label
+
+    !> What a name of --scenes runs: a disk scene (its name or file), or a bicycle's dataset
+    !> with the table it is written from (data/bicycle/write_adm.py): `bicycle` is
+    !> data/bicycle.adm and data/bicycle/benchmark.txt, `DIR/NAME.adm` has its table at
+    !> DIR/NAME/benchmark.txt.
+    subroutine bench_input(name, input, table_path)
+        character(len=*), intent(in) :: name
+        !> The input to load; the table ("" for a disk scene)
+        character(len=:), allocatable, intent(out) :: input, table_path
+
+        input = name
+        table_path = ""
+        if (name == "bicycle") input = "data/bicycle.adm"
+        if (is_dataset(input)) table_path = input(:len(input) - 4) // "/benchmark.txt"
+    end subroutine bench_input
 
     !> One scene: its unit costs, every method on the tolerance ladder (rows to unit), the
     !> headline ratio per method, and (outside --quick) the whole-process cost.
@@ -142,10 +174,21 @@ contains
         type(benchmark_row_type), allocatable :: rows(:)
         type(part_costs_type) :: costs
         type(method_type) :: methods(size(benchmark_methods()))
+        type(bicycle_table_type) :: table
+        character(len=:), allocatable :: input, table_path
         real(wp) :: rhs_seconds, residual_seconds, solve_seconds
         integer :: i
 
-        call load_job(name, job, error)
+        call bench_input(name, input, table_path)
+        if (len(table_path) > 0) then
+            call read_bicycle_table(table_path, table, error)
+            if (allocated(error)) then
+                error%message = "rollcon bench compares a dataset with the reduced bicycle of " &
+                    & // "the table it is written from: " // error%message
+                return
+            end if
+        end if
+        call load_job(input, job, error)
         if (allocated(error)) return
         associate (settings => job%source%settings)
             if (options%end_time > 0.0_wp) settings%end_time = min(settings%end_time, &
@@ -170,12 +213,19 @@ contains
             & " us), output row", 1.0e6_wp*costs%output, " us, its CSV line", &
             & 1.0e6_wp*costs%csv_line, " us (Fortran's formatted write of it", &
             & 1.0e6_wp*costs%fortran_line, " us)"
-        call benchmark_scene(job, benchmark_methods(), options%tolerances, &
-            & options%reference_rtol, options%repeats, rows, error, output_unit, costs)
+        if (len(table_path) > 0) then
+            call benchmark_scene(job, benchmark_methods(), options%tolerances, &
+                & options%reference_rtol, options%repeats, rows, error, output_unit, costs, &
+                & table)
+        else
+            call benchmark_scene(job, benchmark_methods(), options%tolerances, &
+                & options%reference_rtol, options%repeats, rows, error, output_unit, costs)
+        end if
         if (allocated(error)) return
         methods = benchmark_methods()
         if (.not. options%quick) then
-            call headline_processes(name, job, methods, options%output_dir, rows, error)
+            call headline_processes(bench_label(name), job, methods, options%output_dir, rows, &
+                & error)
             if (allocated(error)) return
         end if
         do i = 1, size(rows)
@@ -184,10 +234,12 @@ contains
         flush(unit)
         do i = 1, size(methods)
             if (methods(i)%formulation == "reduced") cycle
-            write(output_unit, '(a)') accuracy_line(rows, name, trim(methods(i)%name), &
-                & accuracy_target)
+            write(output_unit, '(a)') accuracy_line(rows, bench_label(name), &
+                & trim(methods(i)%name), accuracy_target, merge("(rad, m)", "m       ", &
+                & len(table_path) > 0))
         end do
-        if (.not. options%quick) call process_cost(name, options%output_dir, process_unit, error)
+        if (.not. options%quick) call process_cost(bench_label(name), input, &
+            & options%output_dir, process_unit, error)
     end subroutine bench_scene
 
     !> The per-part scaling table (issue #25; the full one is `rollcon bench scaling`): the
@@ -237,14 +289,21 @@ contains
             if (methods(m)%formulation == "reduced") cycle
             best = cheapest_row(rows, scene, trim(methods(m)%name), accuracy_target)
             if (best == 0) cycle
-            call method_settings(job, methods(m), rows(best)%rtol, settings, error)
-            if (allocated(error)) return
+            settings = method_settings(job, methods(m), rows(best)%rtol)
             variant = scene // "-" // trim(methods(m)%name)
-            call write_scene_with_settings(job%source%path, settings, folder // "/" // variant &
-                & // ".nml", error)
-            if (allocated(error)) return
-            call measure_process(executable_path(), folder // "/" // variant // ".nml", variant, &
-                & folder, cost, error, process_repeats)
+            if (is_dataset(job%source%path)) then
+                call write_dataset_with_settings(job%source%path, settings, folder // "/" &
+                    & // variant // ".adm", error)
+                if (allocated(error)) return
+                call measure_process(executable_path(), folder // "/" // variant // ".adm", &
+                    & variant // ".adm", folder, cost, error, process_repeats)
+            else
+                call write_scene_with_settings(job%source%path, settings, folder // "/" &
+                    & // variant // ".nml", error)
+                if (allocated(error)) return
+                call measure_process(executable_path(), folder // "/" // variant // ".nml", &
+                    & variant, folder, cost, error, process_repeats)
+            end if
             if (allocated(error)) return
             rows(best)%process_cpu = cost%cpu
         end do
@@ -261,9 +320,10 @@ contains
         call get_command_argument(0, executable)
     end function executable_path
 
-    !> Time `rollcon run SCENE` as a child process; print it and add a line to process_unit.
-    subroutine process_cost(scene, output_dir, process_unit, error)
-        character(len=*), intent(in) :: scene, output_dir
+    !> Time `rollcon run INPUT` (scene's input) as a child process; print it and add a line
+    !> to process_unit.
+    subroutine process_cost(scene, input, output_dir, process_unit, error)
+        character(len=*), intent(in) :: scene, input, output_dir
         integer, intent(in) :: process_unit
         type(error_type), allocatable, intent(out) :: error
         type(process_cost_type) :: cost
@@ -271,15 +331,15 @@ contains
 
         call make_folder(output_dir // "/process", error)
         if (allocated(error)) return
-        call measure_process(executable_path(), scene, scene, output_dir // "/process", cost, &
-            & error, process_repeats)
+        call measure_process(executable_path(), input, output_name(input), output_dir &
+            & // "/process", cost, error, process_repeats)
         if (allocated(error)) return
         write(numbers, '(5(es13.5e3, :, ","))') cost%wall, cost%cpu, cost%startup_cpu, &
             & cost%integration_cpu, cost%rest_cpu
         write(process_unit, '(a)') scene // "," // trim(numbers)
         flush(process_unit)
         write(output_unit, '(a, 5(f8.3, a))') "bench: " // scene // ": whole process 'rollcon " &
-            & // "run " // scene // "': wall", cost%wall, " s, CPU", cost%cpu, " s = start-up", &
+            & // "run " // input // "': wall", cost%wall, " s, CPU", cost%cpu, " s = start-up", &
             & cost%startup_cpu, " s + integration with output rows", cost%integration_cpu, &
             & " s + scene reading, set-up and summary", cost%rest_cpu, " s"
     end subroutine process_cost
@@ -290,7 +350,10 @@ contains
             & "                     [--output DIR]", &
             & "", &
             & "Work-precision benchmark. For each scene (default: coin, tipping_coin,", &
-            & "fast_upright, near_flat, long_run) and each way of solving (IDA; CVODE BDF with", &
+            & "fast_upright, near_flat, long_run, and bicycle: data/bicycle.adm, against the", &
+            & "Whipple bicycle's reduced ODE of its table data/bicycle/benchmark.txt; a", &
+            & "dataset DIR/NAME.adm is compared with the bicycle of DIR/NAME/benchmark.txt)", &
+            & "and each way of solving (IDA; CVODE BDF with", &
             & "projection, Baumgarte or no drift control; CVODE Adams with Newton's method and", &
             & "with fixed-point iteration; CVODE Adams on the independent speeds, maggi-adams;", &
             & "analytic against difference-quotient Jacobians) on the tolerances rtol = 1e-3,", &
@@ -299,7 +362,8 @@ contains
             & "over a second are not repeated), steps, function and Jacobian evaluations, the", &
             & "largest distance of the disk's centre from the independent reference, the", &
             & "disk's reduced ODE (minimal coordinates, ucon/reduced/) by CVODE Adams at rtol", &
-            & "1e-13 [m], the largest constraint residual [m/s] and the relative energy drift.", &
+            & "1e-13 [m] (the bicycle: the largest difference of roll and steer [rad] and of the", &
+            & "rear contact point [m]), the largest constraint residual and the energy drift.", &
             & "The reduced ODE is also the limit: every row carries the CPU time of the reduced", &
             & "ODE at the same rtol, multistep method and iteration, measured in the same run,", &
             & "and the ratio; per scene the cheapest run within 1e-6 m of the reference is", &
@@ -309,6 +373,8 @@ contains
             & "unit costs measured in the same run) and SUNDIALS' remainder. Outside --quick, the", &
             & "whole process 'rollcon run SCENE' is timed as a child (DIR/bench_process.csv).", &
             & "Writes DIR/bench.csv and DIR/bench_<scene>.png (gnuplot); DIR defaults to output.", &
+            & "The first line names the machine and the SUNDIALS build measured (the library", &
+            & "file loaded: Debian's, or .ci/setup's ROLLCON_SUNDIALS=optimised build).", &
             & "Last, the cost per step and part of the default way of solving on N disks and", &
             & "on a chain of N links, N = 1, 4, 16, 64 (rollcon bench scaling: the full table).", &
             & "  --quick       tipping_coin over 1 s at rtol 1e-4 and 1e-6, one run each; the", &

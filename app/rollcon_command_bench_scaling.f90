@@ -6,9 +6,9 @@
 !> A benchmark, not a test.
 module rollcon_command_bench_scaling
     use, intrinsic :: iso_fortran_env, only : output_unit
-    use rollcon, only : wp, error_type, fatal_error, stat_io, to_text, machine_name, &
-        & make_folders, scaling_row_type, measure_scaling, scaling_header, scaling_csv_row, &
-        & scaling_table
+    use rollcon, only : wp, error_type, fatal_error, stat_io, to_text
+    use rollcon_program, only : machine_name, make_folders, scaling_row_type, measure_scaling, &
+        & scaling_header, scaling_csv_row, scaling_table, check_scaling_end_time
     use rollcon_cli, only : cli_request_type
     implicit none
     private
@@ -33,6 +33,9 @@ contains
         end if
         output_dir = request%text("--output", "output/bench_scaling")
         call request%real_value("--end-time", end_time, 2.0_wp, error)
+        if (allocated(error)) return
+        ! before the folder is made or anything printed
+        call check_scaling_end_time(end_time, error)
         if (allocated(error)) return
         call make_folders(output_dir, error)
         if (allocated(error)) return
@@ -63,8 +66,9 @@ contains
             & "Cost as models grow. N independent rolling disks (the tipping coin's start,", &
             & "each its own part with its three rolling UCONs, 0.5 m apart) and a chain of", &
             & "N links hinged by REVOLUTE joints (a many-link pendulum falling from 60", &
-            & "degrees), N = 1, 2, 4, ..., 64, each a dataset run to T [s] (default 2; the", &
-            & "chain to T/10) on the default (IDA, the Newton matrix chosen by size), IDA,", &
+            & "degrees), N = 1, 2, 4, ..., 64, each a dataset run to T [s] (default 2, from", &
+            & "1e-8 to 1e9; the chain to T/10; output every 0.1 s, or T when shorter) on the", &
+            & "default (IDA, the Newton matrix chosen by size), IDA,", &
             & "CVODE Adams with Baumgarte terms and, on the disks, CVODE Adams in", &
             & "independent speeds, each with the dense and the sparse Newton matrix (KLU),", &
             & "and CVODE Adams with fixed-point iteration (no Newton matrix; on the chain", &

@@ -6,7 +6,8 @@
 module rollcon_command_bench_sweep
     use, intrinsic :: iso_fortran_env, only : output_unit, int64
     use rollcon, only : wp, error_type, fatal_error, stat_io, to_text, study_type, read_study, &
-        & case_count, machine_name, time_sweep, coordinator_row_us
+        & case_count
+    use rollcon_program, only : machine_name, time_sweep, coordinator_row_us
     use rollcon_cli, only : cli_request_type
     implicit none
     private

@@ -4,9 +4,9 @@ module rollcon_command_check
     use, intrinsic :: iso_fortran_env, only : output_unit
     use rollcon, only : wp, error_type, fatal_error, stat_input, user_ucosub_type, &
         & new_user_ucosub, ucon_request_type, user_check_options_type, user_check_report_type, &
-        & sampling_ranges, check_user_ucosub_isolated, adm_model_type, read_adm, &
-        & read_ucon_request, report_text, write_report_json, default_call_timeout, &
-        & max_check_states, states_refusal, ucosub_units_type, to_text
+        & check_user_ucosub_isolated, read_ucon_request, report_text, write_report_json
+    use rollcon_program, only : sampling_ranges, default_call_timeout, max_check_states, &
+        & states_refusal, dataset_ucon_requests
     use rollcon_cli, only : cli_request_type
     use rollcon_command_run, only : call_timeout_of
     implicit none
@@ -68,6 +68,7 @@ contains
         real(wp), intent(out) :: call_timeout
         type(error_type), allocatable, intent(out) :: error
         type(ucon_request_type) :: one
+        character(len=:), allocatable :: note
         integer :: k
 
         allocate(requests(0))
@@ -82,8 +83,9 @@ contains
             requests = [requests, one]
         end do
         if (request%has("--model")) then
-            call model_requests(request%text("--model", ""), requests, error)
+            call dataset_ucon_requests(request%text("--model", ""), requests, note, error)
             if (allocated(error)) return
+            if (len(note) > 0) write(output_unit, '(a)') note
         end if
         if (size(requests) == 0) then
             call fatal_error(error, "check: no --ucon ID:PAR1,PAR2,... or --model MODEL.adm " &
@@ -103,38 +105,6 @@ contains
         end if
         call request%integer_value("--seed", options%seed, options%seed, -huge(1), error)
     end subroutine read_requests
-
-    !> The UCON statements of a dataset that its own UCOSUB serves (those naming no ROUTINE),
-    !> appended to requests.
-    subroutine model_requests(path, requests, error)
-        character(len=*), intent(in) :: path
-        type(ucon_request_type), allocatable, intent(inout) :: requests(:)
-        type(error_type), allocatable, intent(out) :: error
-        type(adm_model_type) :: adm
-        type(ucon_request_type) :: request
-        integer :: k, found
-
-        call read_adm(path, adm, error)
-        if (allocated(error)) return
-        found = 0
-        do k = 1, size(adm%ucons)
-            if (allocated(adm%ucons(k)%routine)) then
-                if (len(adm%ucons(k)%routine) > 0) cycle
-            end if
-            request%id = adm%ucons(k)%id
-            request%par = adm%ucons(k)%par
-            ! the routine computes in the dataset's units, as in a run
-            request%units = ucosub_units_type(length=adm%units%length, time=adm%units%time)
-            requests = [requests, request]
-            found = found + 1
-        end do
-        if (found > 0 .and. .not. request%units%is_si()) write(output_unit, '(a)') path &
-            & // ": the routine is called in the dataset's units, as in a run: lengths in " &
-            & // to_text(request%units%length) // " m, time in " // to_text(request%units%time) &
-            & // " s; PAR as written, each random state drawn in the ranges below and converted"
-        if (found == 0) call fatal_error(error, path // ": no UCON statement is served by the " &
-            & // "model's UCOSUB (each names a built-in ROUTINE): nothing to check", stat_input)
-    end subroutine model_requests
 
     subroutine print_help()
         character(len=80) :: ranges(4)

@@ -5,9 +5,10 @@
 module rollcon_command_linear
     use, intrinsic :: iso_fortran_env, only : output_unit, error_unit
     use rollcon, only : error_type, fatal_error, stat_input, job_type, load_job, is_dataset, &
-        & linear_result_type, linearise_job, write_eigen_csv, linear_table_text, &
-        & command_line_text, wp, speed_table_type, stability_change_type, linear_speeds_job, &
-        & write_speed_csv, draw_eigen_speed_figure, fixed_text, to_text
+        & linear_result_type, linearise_job, write_eigen_csv, linear_table_text, wp, &
+        & speed_table_type, stability_change_type, linear_speeds_job, write_speed_csv, &
+        & draw_eigen_speed_figure, to_text
+    use rollcon_program, only : command_line_text, fixed_text
     use rollcon_cli, only : cli_request_type
     implicit none
     private

@@ -5,7 +5,8 @@ module rollcon_command_run
     use, intrinsic :: iso_fortran_env, only : output_unit, error_unit
     use rollcon, only : wp, error_type, fatal_error, stat_input, to_text, job_type, load_job, &
         & run_job, job_result_type, status_inaccurate, run_record_type, read_run, &
-        & write_vtk_series, command_line_text
+        & write_vtk_series, run_times_type
+    use rollcon_program, only : command_line_text
     use rollcon_cli, only : cli_request_type, command_names
     use rollcon_app_files, only : make_folder, file_stem
     implicit none
@@ -26,20 +27,24 @@ contains
         type(error_type), allocatable, intent(out) :: error
         type(job_type) :: job
         type(job_result_type) :: result
+        type(run_times_type) :: times
         real(wp) :: fps
         character(len=:), allocatable :: name
 
         status = 0
         call request%real_value("--vtk", fps, 0.0_wp, error)
         if (allocated(error)) return
-        if (request%has("--vtk") .and. .not. fps > 0.0_wp) then
-            call fatal_error(error, "--vtk needs a positive number of frames per second", &
-                & stat_input)
+        ! a frame per output row at most; more than a million a simulated second is a mistake
+        if (request%has("--vtk") .and. .not. (fps > 0.0_wp .and. fps <= 1.0e6_wp)) then
+            call fatal_error(error, "--vtk needs a number of frames per second above 0 and " &
+                & // "up to 1e6, got '" // request%text("--vtk", "") // "'", stat_input)
             return
         end if
         name = request%positional
         if (len(name) == 0) name = "coin"
-        call load_job(name, job, error, ucosub=request%text("--ucosub", ""))
+        call run_times_of(request, times, error)
+        if (allocated(error)) return
+        call load_job(name, job, error, ucosub=request%text("--ucosub", ""), times=times)
         if (allocated(error)) then
             ! a bare word that names no scene may be a command mistyped
             if (scan(name, "/.") == 0) error%message = error%message // "; and '" // name &
@@ -67,6 +72,35 @@ contains
             status = 3
         end if
     end subroutine run_command
+
+    !> --end T, --steps N, --dtout DT: the run of a dataset or a command file given on the
+    !> command line, in place of its SIMULATE (T and DT in the dataset's time unit, as
+    !> SIMULATE's END and DTOUT; docs/datasets.md).
+    subroutine run_times_of(request, times, error)
+        type(cli_request_type), intent(in) :: request
+        type(run_times_type), intent(out) :: times
+        type(error_type), allocatable, intent(out) :: error
+        integer :: steps
+
+        times%written = ""
+        times%end_given = request%has("--end")
+        times%steps_given = request%has("--steps")
+        times%dtout_given = request%has("--dtout")
+        call request%real_value("--end", times%end_time, 0.0_wp, error)
+        if (allocated(error)) return
+        call request%real_value("--dtout", times%dtout, 0.0_wp, error)
+        if (allocated(error)) return
+        call request%integer_value("--steps", steps, 1, 1, error)
+        if (allocated(error)) return
+        times%steps = real(steps, wp)
+        if (times%end_given) times%written = times%written // " --end " &
+            & // request%text("--end", "")
+        if (times%steps_given) times%written = times%written // " --steps " &
+            & // request%text("--steps", "")
+        if (times%dtout_given) times%written = times%written // " --dtout " &
+            & // request%text("--dtout", "")
+        times%written = trim(adjustl(times%written))
+    end subroutine run_times_of
 
     !> --call-timeout SECONDS: the longest one call of a user's routine may take, a positive
     !> number up to a day (default: the job's own).

@@ -5,8 +5,8 @@
 module rollcon_command_sweep
     use, intrinsic :: iso_fortran_env, only : output_unit, error_unit
     use mpi_f08, only : MPI_Init, MPI_Finalize, MPI_Bcast, MPI_INTEGER, MPI_COMM_WORLD
-    use rollcon, only : wp, error_type, fatal_error, stat_input, to_text, study_type, read_study, &
-        & study_plan_type, study_progress_type, plan_cases, plan_study, case_count, &
+    use rollcon, only : wp, error_type, fatal_error, stat_input, to_text, study_type, &
+        & read_study, study_plan_type, study_progress_type, plan_cases, plan_study, case_count, &
         & draw_study_map, file_lock_type, lock_study_csv
     use rollcon_cli, only : cli_request_type
     use rollcon_app_files, only : make_folder

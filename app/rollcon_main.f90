@@ -91,6 +91,9 @@ contains
             & "       rollcon bench sweep [...]         (rollcon bench sweep --help)", &
             & "       rollcon bench scaling [...]       (rollcon bench scaling --help)", &
             & "       rollcon [run] MODEL.adm [--ucosub FILE|NAME] [...]  (an ADAMS dataset)", &
+            & "       rollcon [run] MODEL.adm --end T --steps N|--dtout DT  (its run given)", &
+            & "       rollcon [run] MODEL.acf [...]  (an ADAMS command file: the dataset it", &
+            & "               names, run as its SIMULATE commands say)", &
             & "       rollcon [run] [SCENE] --ucosub FILE|NAME  (your own UCOSUB, see below)", &
             & "       rollcon check FILE --ucon ID:PAR1,PAR2,...  (rollcon check --help)", &
             & "       rollcon check FILE --model MODEL.adm", &
@@ -116,6 +119,14 @@ contains
             & "  multiplier), DIR/MODEL.adm.summary.txt and DIR/MODEL.adm.parts (the parts'", &
             & "  shapes for the pictures): the name keeps .adm, so data/coin.adm and the scene", &
             & "  coin (data/coin.nml) keep their own outputs.", &
+            & "  The run is the dataset's SIMULATE, or an ADAMS command file's: MODEL.acf,", &
+            & "  whose first line names the dataset (from the command file's folder), its", &
+            & "  second the output name (DIR/NAME.csv; blank: MODEL.adm), then", &
+            & "  SIMULATE/DYNAMIC, END=t, STEPS=n (several in a row continue one run),", &
+            & "  INTEGRATOR/..., OUTPUT/..., STOP.", &
+            & "  --end T, --steps N, --dtout DT  the run's end and output steps (T and DT in", &
+            & "               the dataset's time unit), in place of the SIMULATE of the", &
+            & "               dataset or command file; what is not given is kept from it", &
             & "  A UCON naming ROUTINE=NAME is served by that built-in routine; the others by", &
             & "  the model's UCOSUB: --ucosub FILE|NAME, or rollcon's hand-checked disk.", &
             & "  --allow-large-output  run even when the CSV would pass 100 GB (refused", &

@@ -28,6 +28,7 @@ program tester
     use test_adm_statements, only : collect_adm_statements
     use test_adm_build, only : collect_adm_build
     use test_adm_joints, only : collect_adm_joints
+    use test_adm_joint_motions, only : collect_adm_joint_motions
     use test_adm_text, only : collect_adm_text
     use test_adm_fuzz, only : collect_adm_fuzz
     use test_expression_fuzz, only : collect_expression_fuzz
@@ -44,6 +45,7 @@ program tester
     use test_ida_first_step, only : collect_ida_first_step
     use test_int_buffer, only : collect_int_buffer
     use test_reduced, only : collect_reduced
+    use test_reduced_bicycle, only : collect_reduced_bicycle
     use test_layout, only : collect_layout
     use test_ucosub_catalog, only : collect_ucosub_catalog
     use test_initial_conditions, only : collect_initial_conditions
@@ -68,6 +70,7 @@ program tester
     use test_figure_rows, only : collect_figure_rows
     use test_wire, only : collect_wire
     use test_least_squares, only : collect_least_squares
+    use test_small_dense, only : collect_small_dense
     use test_bench, only : collect_bench
     use test_check_reliability, only : collect_check_reliability
     use test_check_findings, only : collect_check_findings
@@ -79,6 +82,9 @@ program tester
     use test_study_limits, only : collect_study_limits
     use test_sweep_guards, only : collect_sweep_guards
     use test_adm_outputs, only : collect_adm_outputs
+    use test_adm_language, only : collect_adm_language
+    use test_acf_reader, only : collect_acf_reader
+    use test_acf_command, only : collect_acf_command
     use test_fpm_dependency, only : collect_fpm_dependency
     use test_main_script, only : collect_main_script
     use test_multiplier_units, only : collect_multiplier_units
@@ -88,6 +94,8 @@ program tester
     use test_independent_speeds, only : collect_independent_speeds
     use test_disk_fleet, only : collect_disk_fleet
     use test_link_chain, only : collect_link_chain
+    use test_assembly, only : collect_assembly
+    use test_model_elements, only : collect_model_elements
     implicit none
     type(testsuite_type), allocatable :: suites(:)
     type(test_counts_type) :: counts
@@ -122,6 +130,7 @@ program tester
         & new_testsuite("adm-forces", collect_adm_forces), &
         & new_testsuite("adm-build", collect_adm_build), &
         & new_testsuite("adm-joints", collect_adm_joints), &
+        & new_testsuite("adm-joint-motions", collect_adm_joint_motions), &
         & new_testsuite("adm-text", collect_adm_text), &
         & new_testsuite("adm-fuzz", collect_adm_fuzz), &
         & new_testsuite("expression-fuzz", collect_expression_fuzz), &
@@ -134,6 +143,7 @@ program tester
         & new_testsuite("ida-first-step", collect_ida_first_step), &
         & new_testsuite("int-buffer", collect_int_buffer), &
         & new_testsuite("reduced", collect_reduced), &
+        & new_testsuite("reduced-bicycle", collect_reduced_bicycle), &
         & new_testsuite("layout", collect_layout), &
         & new_testsuite("ucosub-catalog", collect_ucosub_catalog), &
         & new_testsuite("dataset-command", collect_dataset_command), &
@@ -161,6 +171,7 @@ program tester
         & new_testsuite("figure-rows", collect_figure_rows), &
         & new_testsuite("wire", collect_wire), &
         & new_testsuite("least-squares", collect_least_squares), &
+        & new_testsuite("small-dense", collect_small_dense), &
         & new_testsuite("bench", collect_bench), &
         & new_testsuite("check-reliability", collect_check_reliability), &
         & new_testsuite("check-findings", collect_check_findings), &
@@ -172,6 +183,9 @@ program tester
         & new_testsuite("study-limits", collect_study_limits), &
         & new_testsuite("sweep-guards", collect_sweep_guards), &
         & new_testsuite("adm-outputs", collect_adm_outputs), &
+        & new_testsuite("adm-language", collect_adm_language), &
+        & new_testsuite("acf-reader", collect_acf_reader), &
+        & new_testsuite("acf-command", collect_acf_command), &
         & new_testsuite("fpm-dependency", collect_fpm_dependency), &
         & new_testsuite("main-script", collect_main_script), &
         & new_testsuite("multiplier-units", collect_multiplier_units), &
@@ -180,7 +194,9 @@ program tester
         & new_testsuite("adm-bicycle", collect_adm_bicycle), &
         & new_testsuite("independent-speeds", collect_independent_speeds), &
         & new_testsuite("disk-fleet", collect_disk_fleet), &
-        & new_testsuite("link-chain", collect_link_chain)]
+        & new_testsuite("link-chain", collect_link_chain), &
+        & new_testsuite("assembly", collect_assembly), &
+        & new_testsuite("model-elements", collect_model_elements)]
 
     if (command_argument_count() >= 1) then
         call get_command_argument(1, argument)

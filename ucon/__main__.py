@@ -24,7 +24,8 @@ def _selected(names: list[str]) -> list[ConstraintSpec]:
 
 def _files(names: list[str]) -> dict[str, str]:
     """The files of the specs named (each spec's two files), or, with no name, of every spec
-    plus the catalog of all of them and the benchmark's reduced disk (ucon/reduced/)."""
+    plus the catalog of all of them and the benchmark's reduced disk and bicycle
+    (ucon/reduced/)."""
     files = generate_all(_selected(names))
     if not names:
         files.update(catalog_files(load_specs()))

@@ -111,6 +111,26 @@ class TableError(Exception):
     """A table that cannot be read: the message names the file and line."""
 
 
+def file_problem(path, error, writing=False):
+    """What went wrong with the file at path, in words that name it (never a traceback)."""
+    if isinstance(error, UnicodeDecodeError):
+        line = error.object[:error.start].count(b"\n") + 1
+        return (f"{path}:{line}: not ASCII text (byte 0x{error.object[error.start]:02x} at "
+                f"offset {error.start})")
+    if isinstance(error, IsADirectoryError):
+        return f"{path}: is a folder, not a file"
+    if isinstance(error, FileNotFoundError):
+        folder = pathlib.Path(path).parent
+        if writing and not folder.is_dir():
+            return f"{path}: cannot write: no folder {folder}"
+        return f"{path}: no such file"
+    if isinstance(error, NotADirectoryError):
+        return f"{path}: a part of the path is not a folder"
+    if isinstance(error, PermissionError):
+        return f"{path}: permission denied" + (" (cannot write)" if writing else "")
+    return f"{path}: {error.strerror or error}"
+
+
 def read_table(path):
     """The table at path as {name: value in SI}; every parameter once, none unknown."""
     units = {name: unit for name, unit, _ in PARAMETERS}
@@ -294,8 +314,11 @@ def main(argv=None):
     args = parser.parse_args(argv)
     try:
         table = read_table(args.table)
-    except (OSError, UnicodeDecodeError, TableError) as error:
+    except TableError as error:
         print(f"write_adm.py: {error}", file=sys.stderr)
+        return 2
+    except (OSError, UnicodeDecodeError) as error:
+        print(f"write_adm.py: {file_problem(args.table, error)}", file=sys.stderr)
         return 2
     out = args.output or args.check
     text = dataset_text(table, args.table, out)
@@ -308,7 +331,7 @@ def main(argv=None):
         try:
             current = pathlib.Path(args.check).read_text(encoding="ascii")
         except (OSError, UnicodeDecodeError) as error:
-            print(f"write_adm.py: {error}", file=sys.stderr)
+            print(f"write_adm.py: {file_problem(args.check, error)}", file=sys.stderr)
             return 1
         if current != text:
             print(f"write_adm.py: {args.check} is not what {args.table} gives; regenerate "
@@ -316,7 +339,11 @@ def main(argv=None):
                   file=sys.stderr)
             return 1
         return 0
-    pathlib.Path(args.output).write_text(text, encoding="ascii")
+    try:
+        pathlib.Path(args.output).write_text(text, encoding="ascii")
+    except OSError as error:
+        print(f"write_adm.py: {file_problem(args.output, error, writing=True)}", file=sys.stderr)
+        return 2
     return 0
 
 

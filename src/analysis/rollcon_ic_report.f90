@@ -34,6 +34,9 @@ module rollcon_ic_report
         integer :: position_rows = 0, velocity_rows = 0
         !> Largest |F| of any UCON after the analysis, at position and at velocity level
         real(wp) :: position_residual = 0.0_wp, velocity_residual = 0.0_wp
+        !> The velocities the input gives could not all be kept with the UCONs met: they were
+        !> moved with the rest (rollcon_initial_conditions)
+        logical :: given_moved = .false.
     end type ic_report_type
 
 contains
@@ -77,6 +80,8 @@ contains
             & // to_text(report%velocity_steps) // " least-squares step(s); largest |F| after: " &
             & // to_text(report%position_residual) // " (positions), " &
             & // to_text(report%velocity_residual) // " (velocities)"
+        if (report%given_moved) text = text // nl // "  the velocities given (VX ... WZ) " &
+            & // "cannot all be kept with the UCONs met: they were moved with the rest"
         if (size(report%changes) == 0) then
             text = text // nl // "  nothing moved: the start meets every UCON as given"
             return

@@ -10,7 +10,10 @@
 !> Weights: a part's translations count in metres and its angles times rho, the RMS distance
 !> of its mass from its centre of mass, sqrt((J1 + J2 + J3)/(2 m)): a turn of d rad counts as
 !> the rho d metres a typical point of the part moves. Rates likewise. Values marked exact are
-!> held: their columns are removed. Rows are scaled to unit length before each solve (LAPACK
+!> held: their columns are removed. Velocities given (a dataset's VX ... WZ, each a linear
+!> function of the rates) are held as ADAMS holds them: the least change is sought among the
+!> rates that keep them, and only when the UCONs cannot be met so are they moved with the rest
+!> (given_moved in the report); velocities not given are ADAMS's "inexact" zeros, free. Rows are scaled to unit length before each solve (LAPACK
 !> dgelss, rcond below), so that rank and least squares are judged by the constraints'
 !> geometry, not by their units.
 !> Refusals (stat_input), naming the UCONs: redundant (dependent rows, all met: the
@@ -20,8 +23,11 @@ module rollcon_initial_conditions
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type, fatal_error, stat_input
     use rollcon_text, only : to_text
-    use rollcon_ic_rows, only : level_type, tolerance, least_change, verdict, ic_fraction
+    use rollcon_ic_rows, only : level_type, tolerance, least_change, verdict, ic_fraction, &
+        & ic_rcond
     use rollcon_constraints, only : need_value, need_first, need_time
+    use rollcon_least_squares, only : left_null_space
+    use rollcon_rotation, only : rate_matrix
     use rollcon_problem, only : problem_type
     use rollcon_ic_report, only : ic_change_type, ic_report_type
     implicit none
@@ -41,6 +47,15 @@ module rollcon_initial_conditions
     type :: ic_options_type
         !> Coordinates and rates held as given (system numbering; not allocated: none)
         logical, allocatable :: exact_q(:), exact_u(:)
+        !> For each part (model order; not allocated: none), which of its velocities the input
+        !> gives, held unless the UCONs cannot be met with them: VX, VY, VZ of the centre of
+        !> mass (ground axes) and WX, WY, WZ, the angular velocity's components along the rows
+        !> of given_axes
+        logical, allocatable :: given_velocity(:, :)
+        !> For each part, the axes of its given WX, WY, WZ (rows) in the principal axes the
+        !> model holds the part in: (WX, WY, WZ) = given_axes omega', omega' = B(theta, phi)
+        !> u_rot the body angular velocity (docs/design.md §3)
+        real(wp), allocatable :: given_axes(:, :, :)
         !> Tolerances of the run [-, state units] (see ic_fraction)
         real(wp) :: rtol = 1.0e-8_wp, atol = 1.0e-10_wp
         !> Most Gauss-Newton iterations on the position UCONs (ADAMS's IC MAXIT default)
@@ -158,7 +173,10 @@ contains
         call verdict(level, free, weight, met, report%newton_iterations, error)
     end subroutine position_level
 
-    !> Least-squares steps on every UCON's velocity row, then the verdict on them.
+    !> Least-squares steps on every UCON's velocity row, then the verdict on them. With
+    !> velocities given (options%given_velocity), the steps are taken among the rates that keep
+    !> them (held_steps); when the UCONs cannot be met so, the rates start again from u and
+    !> every one that is not exact is free (report%given_moved).
     subroutine velocity_level(problem, time, q, u, options, free, weight, report, error)
         type(problem_type), intent(inout), target :: problem
         real(wp), intent(in) :: time
@@ -170,7 +188,7 @@ contains
         type(ic_report_type), intent(inout) :: report
         type(error_type), allocatable, intent(out) :: error
         type(level_type) :: level
-        real(wp), allocatable :: du(:)
+        real(wp), allocatable :: du(:), held(:, :), u_given(:)
         logical :: met
         integer :: k
 
@@ -179,6 +197,22 @@ contains
         level%ids = problem%model%ucons%id
         report%velocity_rows = size(level%ucon)
         if (size(level%ucon) == 0) return
+        held = held_rows(problem, q, options, free)
+        if (size(held, 1) > 0) then
+            u_given = u
+            call held_steps(problem, time, q, u, options, held, weight, level, report, met, &
+                & error)
+            if (allocated(error)) return
+            if (met) then
+                report%velocity_residual = maxval(abs(level%residual))
+                call verdict(level, free, weight, met, report%velocity_steps, error)
+                return
+            end if
+            ! the UCONs cannot be met with the given velocities held: ADAMS moves them too
+            u = u_given
+            report%velocity_steps = 0
+            report%given_moved = .true.
+        end if
         do
             call velocity_rows(problem, time, q, u, options, level, error)
             if (allocated(error)) return
@@ -192,6 +226,99 @@ contains
         report%velocity_residual = maxval(abs(level%residual))
         call verdict(level, free, weight, met, report%velocity_steps, error)
     end subroutine velocity_level
+
+    !> The rows over u of every velocity held: each given VX, VY, VZ (a rate itself), each given
+    !> WX, WY, WZ (given_axes(k, :) B(theta, phi) on the part's angle rates, at q), and each
+    !> rate marked exact (not free). No rows when nothing is given.
+    function held_rows(problem, q, options, free) result(rows)
+        type(problem_type), intent(in) :: problem
+        real(wp), intent(in) :: q(:)
+        type(ic_options_type), intent(in) :: options
+        logical, intent(in) :: free(:)
+        real(wp), allocatable :: rows(:, :)
+        real(wp) :: b(3, 3)
+        integer :: p, k, i0, j, r
+
+        allocate(rows(0, size(q)))
+        if (.not. allocated(options%given_velocity)) return
+        if (.not. any(options%given_velocity)) return
+        deallocate(rows)
+        allocate(rows(count(options%given_velocity) + count(.not. free), size(q)), &
+            & source=0.0_wp)
+        r = 0
+        do p = 1, min(size(options%given_velocity, 2), size(problem%model%parts))
+            i0 = 6*(p - 1)
+            b = rate_matrix(q(i0 + 5), q(i0 + 6))
+            do k = 1, 6
+                if (.not. options%given_velocity(k, p)) cycle
+                r = r + 1
+                if (k <= 3) then
+                    rows(r, i0 + k) = 1.0_wp
+                else
+                    rows(r, i0 + 4:i0 + 6) = matmul(options%given_axes(k - 3, :, p), b)
+                end if
+            end do
+        end do
+        do j = 1, size(free)
+            if (free(j)) cycle
+            r = r + 1
+            rows(r, j) = 1.0_wp
+        end do
+    end function held_rows
+
+    !> Least-squares steps on the velocity rows among the rates that keep the held rows: du =
+    !> W Z dz, W the weights and Z an orthonormal basis of the null space of (held W), so that
+    !> the least weighted change is found as before, in the coordinates z the held velocities
+    !> leave free. met: the rows are met at the end.
+    subroutine held_steps(problem, time, q, u, options, held, weight, level, report, met, error)
+        type(problem_type), intent(inout), target :: problem
+        real(wp), intent(in) :: time, q(:)
+        real(wp), intent(inout) :: u(:)
+        type(ic_options_type), intent(in) :: options
+        real(wp), intent(in) :: held(:, :), weight(:)
+        type(level_type), intent(inout) :: level
+        type(ic_report_type), intent(inout) :: report
+        logical, intent(out) :: met
+        type(error_type), allocatable, intent(out) :: error
+        type(level_type) :: reduced
+        real(wp), allocatable :: basis(:, :), dz(:), scaled(:, :)
+        integer :: rank, i, j
+
+        scaled = held
+        do j = 1, size(weight)
+            scaled(:, j) = scaled(:, j)*weight(j)
+        end do
+        call left_null_space(transpose(scaled), ic_rcond, rank, basis, error)
+        if (allocated(error)) return
+        do j = 1, size(weight)
+            basis(j, :) = basis(j, :)*weight(j)
+        end do
+        reduced%name = level%name
+        reduced%ucon = level%ucon
+        reduced%ids = level%ids
+        do
+            call velocity_rows(problem, time, q, u, options, level, error)
+            if (allocated(error)) return
+            met = all(abs(level%residual) <= level%tolerance)
+            if (met .or. report%velocity_steps >= max_velocity_steps .or. size(basis, 2) == 0) &
+                & exit
+            reduced%rows = matmul(level%rows, basis)
+            ! a row that only the held rates carry (its part in the free coordinates z is
+            ! rounding) is no row for the solve: judged, as unit_rows judges, against the whole
+            ! weighted row, so that rounding is never scaled up to a step
+            do i = 1, size(reduced%rows, 1)
+                if (norm2(reduced%rows(i, :)) <= ic_rcond*norm2(level%rows(i, :)*weight)) &
+                    & reduced%rows(i, :) = 0.0_wp
+            end do
+            reduced%residual = level%residual
+            reduced%tolerance = level%tolerance
+            call least_change(reduced, spread(.true., 1, size(basis, 2)), &
+                & spread(1.0_wp, 1, size(basis, 2)), dz, error)
+            if (allocated(error)) return
+            report%velocity_steps = report%velocity_steps + 1
+            u = u + matmul(basis, dz)
+        end do
+    end subroutine held_steps
 
     !> Shorten dq along its direction so that no Euler angle changes by more than angle_limit.
     pure subroutine limit_angles(dq)

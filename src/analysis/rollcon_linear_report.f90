@@ -71,7 +71,8 @@ contains
             text = text // trim(line) // nl
         end do
         text = text // "zero eigenvalues (|lambda| <= " // to_text(result%zero_limit) &
-            & // " 1/s, 1e-6 of the largest): " // to_text(result%zeros) // nl
+            & // " 1/s, 1e-6 of the largest or of the model's frequency scale): " &
+            & // to_text(result%zeros) // nl
         text = text // "invariance of the tangent space, |A T - T A_red|/|A T|: " &
             & // to_text(result%invariance)
         if (result%invariant) then

@@ -37,10 +37,17 @@ module rollcon_linear_speeds
     !> Speeds where stability changes are found to this absolute tolerance [m/s]
     real(wp), parameter :: speed_tolerance = 1.0e-9_wp
     !> What the differences' error (about 1e-11 relative, docs/linear.md) leaves in a real
-    !> part that is zero, relative to the largest |lambda|: a real part within it counts as 0.
-    !> It biases a crossing by this much of max|lambda| over the crossing eigenvalue's slope:
-    !> 1e-8 m/s at the bicycle's capsize speed (1e-9 of max|lambda| made it 1e-7)
+    !> part that is zero, relative to the largest |lambda|: while no eigenvalue is followed
+    !> (stability_changes, step 1), a largest real part within it counts as 0
     real(wp), parameter :: noise_fraction = 1.0e-10_wp
+    !> Step 1 of stability_changes narrows a bracket to this fraction of the grid's step
+    !> before an eigenvalue is followed: 1e-6 of 0.05 m/s moves the bicycle's eigenvalues by
+    !> 1e-8 1/s or less, far below their distances from each other
+    real(wp), parameter :: narrow_fraction = 1.0e-6_wp
+    !> Most doublings of the bracket into the stable side (stability_changes, step 2): the
+    !> bias of step 1 is noise_fraction max|lambda| over the crossing's slope, 2.4e-8 m/s on
+    !> the bicycle's capsize, a few widths of the narrowed bracket
+    integer, parameter :: max_widenings = 40
     !> On the grid, a real part counts as positive only above this fraction of the largest
     !> |lambda|: a zero of multiplicity two (a conserved speed coupled to a first integral)
     !> spreads to about 1e-8 of it (docs/linear.md), the linear analysis's own zero limit
@@ -54,6 +61,9 @@ module rollcon_linear_speeds
         real(wp), allocatable :: real_part(:, :), imag_part(:, :)
         !> Indices of A_red struck out as structural zeros (found at the reference speed)
         logical, allocatable :: struck(:)
+        !> The independent coordinates of A_red (numbers into y = (q, u)), those of the
+        !> reference speed, taken at every speed: the struck indices name the same coordinates
+        integer, allocatable :: independent(:)
         !> Zeros of the kept block deflated one by one by its null vectors (counted at the
         !> reference speed, the same number at every speed)
         integer :: deflations = 0
@@ -223,6 +233,7 @@ contains
         if (allocated(error)) return
         call linearise(problem, time, q, u, options, result, error)
         if (allocated(error)) return
+        table%independent = result%independent
         table%struck = structural_zeros(result%reduced_matrix)
         call zero_deflations(result%reduced_matrix, table%struck, table%deflations, error)
         if (allocated(error)) return
@@ -249,8 +260,11 @@ contains
         real(wp), allocatable, intent(out) :: re(:), im(:)
         type(error_type), allocatable, intent(out) :: error
         type(linear_result_type) :: result
+        type(linear_options_type) :: fixed
 
-        call linearise(problem, time, q, u*(speed/reference), options, result, error)
+        fixed = options
+        fixed%independent = table%independent
+        call linearise(problem, time, q, u*(speed/reference), fixed, result, error)
         if (allocated(error)) then
             error%message = "at " // to_text(speed) // " m/s: " // error%message
             return
@@ -259,17 +273,28 @@ contains
             & error)
     end subroutine eigenvalues_at
 
-    !> The speeds within the table's range where the motion changes stability, each found by
-    !> bisection between the grid's speeds that bracket it, to speed_tolerance. On the grid a
-    !> speed is stable when no kept eigenvalue has a real part above grid_fraction of the
-    !> largest |lambda| (what a zero's computed value may be: docs/linear.md). Between two grid
-    !> speeds that differ, the eigenvalue that crosses is followed (at each new speed the one
-    !> nearest to the value its bracket's ends interpolate) and the bisection keeps the end
-    !> where its real part is above noise_fraction of the largest |lambda|: a crossing is then
-    !> found to well below 1e-6 m/s even when the crossing eigenvalue is real and passes among
-    !> the cyclic zeros. Oscillatory when the followed eigenvalue is one of a complex pair. A
-    !> grid too coarse to bracket two changes close together finds neither: the grid's
-    !> spacing bounds what is found.
+    !> The speeds within the table's range where the motion changes stability, each between
+    !> the grid's speeds that bracket it, to speed_tolerance. On the grid a speed is stable when
+    !> no kept eigenvalue has a real part above grid_fraction of the largest |lambda| (what a
+    !> zero's computed value may be: docs/linear.md). Between two grid speeds that differ:
+    !>
+    !> 1. the bracket is bisected on the largest real part, unstable above noise_fraction of the
+    !>    largest |lambda| (a conservative model's neutral pair has a computed real part of the
+    !>    differences' error), down to narrow_fraction of the grid's step: no eigenvalue is
+    !>    followed, so none can be mistaken for another where two are equal or close (two equal
+    !>    wheels give a repeated one);
+    !> 2. there the crossing eigenvalue is the most unstable at the unstable end and the nearest
+    !>    to it at the other (the bracket so narrow that it has moved far less than its distance
+    !>    to any other), and the bracket is bisected on that eigenvalue's own real part against
+    !>    0, followed at each new speed as the one nearest to the value its bracket's ends
+    !>    interpolate, down to speed_tolerance: the noise threshold of step 1 biases nothing.
+    !>    The bracket is first widened into the stable side until that real part is <= 0 there
+    !>    (step 1's threshold put the stable end up to noise_fraction max|lambda| / slope from
+    !>    the crossing).
+    !>
+    !> Oscillatory when the followed eigenvalue is one of a complex pair at both ends. A grid
+    !> too coarse to bracket two changes close together finds neither: the grid's spacing
+    !> bounds what is found.
     subroutine stability_changes(problem, time, q, u, table, options, changes, error)
         type(problem_type), intent(inout), target :: problem
         real(wp), intent(in) :: time, q(:), u(:)
@@ -278,10 +303,10 @@ contains
         type(stability_change_type), allocatable, intent(out) :: changes(:)
         type(error_type), allocatable, intent(out) :: error
         real(wp), allocatable :: re(:), im(:)
-        real(wp) :: reference, speed(2), middle, weight
+        real(wp) :: reference, speed(2), middle, weight, width, step
         complex(wp) :: followed(2), guess, found
         logical :: stable(2)
-        integer :: k, side
+        integer :: k, side, stable_side, widenings
 
         allocate(changes(0))
         call reference_speed(u, reference, error)
@@ -292,13 +317,43 @@ contains
                 & grid_fraction)
             if (stable(1) .eqv. stable(2)) cycle
             speed = table%speed(k:k + 1)
-            ! the crossing eigenvalue: the one with the largest real part where it is unstable,
-            ! and the one nearest to it at the stable end
-            side = merge(2, 1, stable(1))
-            followed(side) = most_unstable(table%real_part(:, k + side - 1), &
-                & table%imag_part(:, k + side - 1))
-            followed(3 - side) = nearest(table%real_part(:, k + 2 - side), &
-                & table%imag_part(:, k + 2 - side), followed(side))
+            stable_side = merge(1, 2, stable(1))
+            ! 1. the largest real part, no eigenvalue followed
+            width = narrow_fraction*abs(speed(2) - speed(1))
+            do while (abs(speed(2) - speed(1)) > max(width, speed_tolerance))
+                middle = 0.5_wp*(speed(1) + speed(2))
+                call eigenvalues_at(problem, time, q, u, reference, middle, options, table, re, &
+                    & im, error)
+                if (allocated(error)) return
+                side = merge(3 - stable_side, stable_side, .not. is_stable(re, im, &
+                    & noise_fraction))
+                speed(side) = middle
+            end do
+            ! 2. the crossing eigenvalue: the most unstable at the unstable end, the nearest
+            ! to it at the stable end
+            call eigenvalues_at(problem, time, q, u, reference, speed(3 - stable_side), &
+                & options, table, re, im, error)
+            if (allocated(error)) return
+            followed(3 - stable_side) = most_unstable(re, im)
+            call eigenvalues_at(problem, time, q, u, reference, speed(stable_side), options, &
+                & table, re, im, error)
+            if (allocated(error)) return
+            followed(stable_side) = nearest(re, im, followed(3 - stable_side))
+            ! widen into the stable side until the followed real part is <= 0 there
+            step = speed(stable_side) - speed(3 - stable_side)
+            widenings = 0
+            do while (real(followed(stable_side)) > 0.0_wp .and. widenings < max_widenings)
+                widenings = widenings + 1
+                guess = followed(stable_side)
+                speed(stable_side) = speed(stable_side) + step
+                step = 2.0_wp*step
+                call eigenvalues_at(problem, time, q, u, reference, speed(stable_side), &
+                    & options, table, re, im, error)
+                if (allocated(error)) return
+                followed(stable_side) = nearest(re, im, guess + (guess &
+                    & - followed(3 - stable_side)))
+            end do
+            ! 3. the followed eigenvalue's real part against 0
             do while (abs(speed(2) - speed(1)) > speed_tolerance)
                 middle = 0.5_wp*(speed(1) + speed(2))
                 call eigenvalues_at(problem, time, q, u, reference, middle, options, table, re, &
@@ -307,9 +362,7 @@ contains
                 weight = (middle - speed(1))/(speed(2) - speed(1))
                 guess = (1.0_wp - weight)*followed(1) + weight*followed(2)
                 found = nearest(re, im, guess)
-                ! the end on the same side of the axis as the middle moves to it
-                side = merge(2, 1, (real(found) > noise_fraction*maxval(hypot(re, im))) &
-                    & .eqv. .not. stable(2))
+                side = merge(3 - stable_side, stable_side, real(found) > 0.0_wp)
                 speed(side) = middle
                 followed(side) = found
             end do

@@ -37,9 +37,12 @@ module rollcon_linearisation
     !> Relative size of the largest scaled component of a difference step (h; the Richardson
     !> step also uses h/2): truncation ~h^4, rounding ~eps/h, both near 1e-12 (docs/linear.md)
     real(wp), parameter :: default_step = 2.0e-3_wp
-    !> An eigenvalue counts as zero when |lambda| <= zero_fraction max |lambda|: the
-    !> difference error (~1e-10 relative) spreads a zero of multiplicity k by ~(1e-10)^(1/k)
-    !> at most; cyclic coordinates give exact zeros (their columns of A T are exactly zero)
+    !> An eigenvalue counts as zero when |lambda| <= zero_fraction max(max |lambda|, Omega),
+    !> Omega the model's own frequency scale (frequency_scale): the difference error (~1e-10
+    !> relative) spreads a zero of multiplicity k by ~(1e-10)^(1/k) at most; cyclic
+    !> coordinates give exact zeros (their columns of A T are exactly zero). Omega keeps the
+    !> limit absolute where every eigenvalue is zero by structure (a turntable on a REVOLUTE:
+    !> its two computed as +-4.5e-16 1/s, which 1e-6 of the largest would call a growing mode)
     real(wp), parameter :: zero_fraction = 1.0e-6_wp
 
     !> How the linearisation runs
@@ -49,6 +52,13 @@ module rollcon_linearisation
         real(wp) :: baumgarte = 0.0_wp
         !> Relative difference step (see default_step)
         real(wp) :: step = default_step
+        !> The independent coordinates to take (numbers into y = (q, u), as a result's
+        !> `independent`); not allocated: chosen by the pivoted QR (partition). The analysis
+        !> against speed takes those of its reference speed at every speed: the blocks the
+        !> choice is made on do not change with the speed, but their scaling does, and where
+        !> columns tie (two equal wheels) rounding would pick others at other speeds, so that
+        !> A_red's indices would name other coordinates
+        integer, allocatable :: independent(:)
     end type linear_options_type
 
     !> What the linearisation found
@@ -106,7 +116,11 @@ contains
         call constraint_jacobian(problem, time, q, u, jac, error)
         if (allocated(error)) return
         scale = state_scales(problem, q, u)
-        call partition(problem, jac, scale, dependent, result%independent, error)
+        if (allocated(options%independent)) then
+            call given_partition(n, options%independent, dependent, result%independent, error)
+        else
+            call partition(problem, jac, scale, dependent, result%independent, error)
+        end if
         if (allocated(error)) return
         call tangent_basis(jac, dependent, result%independent, result%basis, error)
         if (allocated(error)) return
@@ -116,7 +130,7 @@ contains
         result%reduced_matrix = at(result%independent, :)
         result%invariance = invariance_rest(at, result%basis, result%reduced_matrix, scale)
         result%invariant = result%invariance <= invariance_limit
-        call sorted_eigenvalues(result, error)
+        call sorted_eigenvalues(result, frequency_scale(problem, q, u), error)
     end subroutine linearise
 
     !> J = d(constraints)/dy at the start, one row per UCON (a velocity UCON: dF/dq, dF/du; a
@@ -188,6 +202,42 @@ contains
             & // "docs/initial-conditions.md)", stat_input)
     end subroutine check_met
 
+    !> The model's own frequency scale Omega [1/s]: the speed scale v_ref of state_scales (at
+    !> least sqrt(|g| rho), the largest speed of the start) over the largest rho_p: a pendulum
+    !> of the model's size swings at about sqrt(g/rho), and a part moving at v_ref passes its
+    !> own size in rho/v_ref. Never 0 (without gravity or motion, 1/s).
+    pure real(wp) function frequency_scale(problem, q, u) result(omega)
+        type(problem_type), intent(in) :: problem
+        real(wp), intent(in) :: q(:), u(:)
+        real(wp) :: rho(size(problem%model%parts)), v_ref
+
+        omega = 1.0_wp
+        if (size(rho) == 0) return
+        call reference_sizes(problem, u, rho, v_ref)
+        omega = v_ref/maxval(rho)
+    end function frequency_scale
+
+    !> Each part's rho_p (the RMS distance of its mass from its centre; 1 m for a part without
+    !> inertia) [m] and the start's speed scale v_ref [m/s] (state_scales).
+    pure subroutine reference_sizes(problem, u, rho, v_ref)
+        type(problem_type), intent(in) :: problem
+        real(wp), intent(in) :: u(:)
+        real(wp), intent(out) :: rho(:), v_ref
+        integer :: p, i0
+
+        do p = 1, size(rho)
+            rho(p) = sqrt(sum(problem%model%parts(p)%inertia)/(2.0_wp*problem%model%parts(p)%mass))
+            ! a point mass has no size of its own: 1 m keeps the steps finite
+            if (.not. rho(p) > 0.0_wp) rho(p) = 1.0_wp
+        end do
+        v_ref = sqrt(norm2(problem%model%gravity)*maxval(rho))
+        do p = 1, size(rho)
+            i0 = 6*(p - 1)
+            v_ref = max(v_ref, maxval(abs(u(i0 + 1:i0 + 3))), rho(p)*maxval(abs(u(i0 + 4:i0 + 6))))
+        end do
+        if (.not. v_ref > 0.0_wp) v_ref = maxval(rho)*1.0_wp
+    end subroutine reference_sizes
+
     !> The scale of each state component: a part's translations rho_p (the RMS distance of
     !> its mass from its centre) [m], its angles 1 rad, translational rates v_ref [m/s], angular
     !> rates v_ref/rho_p [rad/s], each at least the component's own size; v_ref is the largest
@@ -202,17 +252,7 @@ contains
 
         n = problem%model%n
         allocate(scale(2*n))
-        do p = 1, size(rho)
-            rho(p) = sqrt(sum(problem%model%parts(p)%inertia)/(2.0_wp*problem%model%parts(p)%mass))
-            ! a point mass has no size of its own: 1 m keeps the steps finite
-            if (.not. rho(p) > 0.0_wp) rho(p) = 1.0_wp
-        end do
-        v_ref = sqrt(norm2(problem%model%gravity)*maxval(rho))
-        do p = 1, size(rho)
-            i0 = 6*(p - 1)
-            v_ref = max(v_ref, maxval(abs(u(i0 + 1:i0 + 3))), rho(p)*maxval(abs(u(i0 + 4:i0 + 6))))
-        end do
-        if (.not. v_ref > 0.0_wp) v_ref = maxval(rho)*1.0_wp
+        call reference_sizes(problem, u, rho, v_ref)
         do p = 1, size(rho)
             i0 = 6*(p - 1)
             scale(i0 + 1:i0 + 3) = rho(p)
@@ -259,6 +299,35 @@ contains
         taken(dependent) = .true.
         independent = pack([(j, j = 1, 2*n)], .not. taken)
     end subroutine partition
+
+    !> The partition of y = (q, u) with the given independent coordinates (checked: distinct
+    !> numbers from 1 to 2n), the rest dependent.
+    subroutine given_partition(n, given, dependent, independent, error)
+        integer, intent(in) :: n
+        integer, intent(in) :: given(:)
+        integer, allocatable, intent(out) :: dependent(:), independent(:)
+        type(error_type), allocatable, intent(out) :: error
+        logical :: taken(2*n)
+        integer :: j
+
+        taken = .false.
+        do j = 1, size(given)
+            if (given(j) < 1 .or. given(j) > 2*n) then
+                call fatal_error(error, "linearisation: independent coordinate " &
+                    & // to_text(given(j)) // " is not one of the " // to_text(2*n) &
+                    & // " coordinates and rates", stat_input)
+                return
+            end if
+            if (taken(given(j))) then
+                call fatal_error(error, "linearisation: independent coordinate " &
+                    & // to_text(given(j)) // " is given twice", stat_input)
+                return
+            end if
+            taken(given(j)) = .true.
+        end do
+        independent = given
+        dependent = pack([(j, j = 1, 2*n)], .not. taken)
+    end subroutine given_partition
 
     !> The size(rows) most independent columns of block (scaled by scale, rows to unit
     !> length), or an error when the rows are dependent. The translational columns (a part's
@@ -436,8 +505,10 @@ contains
     end function invariance_rest
 
     !> Eigenvalues of A_red, sorted (see before), and the count of zeros.
-    subroutine sorted_eigenvalues(result, error)
+    subroutine sorted_eigenvalues(result, omega, error)
         type(linear_result_type), intent(inout) :: result
+        !> The model's frequency scale [1/s] (frequency_scale)
+        real(wp), intent(in) :: omega
         type(error_type), allocatable, intent(out) :: error
         real(wp), allocatable :: re(:), im(:)
         integer :: d
@@ -449,8 +520,8 @@ contains
         call sort_eigenvalues(re, im)
         result%real_part = re
         result%imag_part = im
-        result%zero_limit = 0.0_wp
-        if (d > 0) result%zero_limit = zero_fraction*maxval(hypot(re, im))
+        result%zero_limit = zero_fraction*omega
+        if (d > 0) result%zero_limit = zero_fraction*max(maxval(hypot(re, im)), omega)
         result%zeros = count(hypot(re, im) <= result%zero_limit)
     end subroutine sorted_eigenvalues
 

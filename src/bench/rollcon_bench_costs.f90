@@ -12,12 +12,13 @@ module rollcon_bench_costs
     use rollcon_dae, only : dae_size, dae_residual
     use rollcon_ucosub_contract, only : ucosub_interface
     use rollcon_problem, only : problem_type
+    use rollcon_ode_form, only : ode_form_type
+    use rollcon_speeds_form, only : speeds_form_type
     use rollcon_job, only : job_type
     use rollcon_simulation, only : history_type
     use rollcon_output_layout, only : output_layout_type
     use rollcon_output_rows, only : output_layout, output_row
     use rollcon_csv_writer, only : csv_writer_type, fortran_row_text
-    use rollcon_run_settings, only : formulation_maggi
     implicit none
     private
 
@@ -51,6 +52,8 @@ contains
         type(part_costs_type), intent(out) :: costs
         type(error_type), allocatable, intent(out) :: error
         type(problem_type), target :: problem
+        type(ode_form_type) :: ode
+        type(speeds_form_type) :: in_speeds
         type(history_type) :: history
         type(csv_writer_type) :: csv
         type(output_layout_type) :: layout
@@ -68,13 +71,14 @@ contains
         if (allocated(error)) return
         n = size(q0)
         layout = output_layout(problem)
+        call ode%init(problem)
         allocate(g(problem%root_count()))
         y = [q0, u0]
         allocate(ydot(size(y)))
         checksum = 0.0_wp
         call cpu_time(start)
         do i = 1, count
-            ierr = problem%ode_rhs(0.0_wp, y, ydot)
+            ierr = ode%ode_rhs(0.0_wp, y, ydot)
             checksum = checksum + ydot(n + 1)
         end do
         call cpu_time(finish)
@@ -141,17 +145,17 @@ contains
         call cpu_time(finish)
         costs%fortran_line = (finish - start)/count
         ! the right-hand side in independent speeds, on the same model and start
-        problem%settings%formulation = formulation_maggi
         call problem%prepare(error)
         if (allocated(error)) return
+        call in_speeds%init(problem)
         call problem%accelerations(0.0_wp, q0, u0, error)
         if (allocated(error)) return
         deallocate(y, ydot)
-        allocate(y(problem%state_size()), ydot(problem%state_size()))
-        call problem%pack_state(q0, u0, y, ydot)
+        allocate(y(in_speeds%state_size()), ydot(in_speeds%state_size()))
+        call in_speeds%pack_state(q0, u0, y, ydot)
         call cpu_time(start)
         do i = 1, count
-            ierr = problem%ode_rhs(0.0_wp, y, ydot)
+            ierr = in_speeds%ode_rhs(0.0_wp, y, ydot)
             checksum = checksum + ydot(n + 1)
         end do
         call cpu_time(finish)
@@ -160,6 +164,7 @@ contains
         if (ierr == 0) close(unit, status="delete")
         ! keep the loops from being optimised away
         if (checksum /= checksum) costs%rhs = -1.0_wp
+        call in_speeds%release()
     end subroutine measure_part_costs
 
 end module rollcon_bench_costs

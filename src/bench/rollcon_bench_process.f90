@@ -2,20 +2,21 @@
 !> What a user waits for: `rollcon run SCENE` timed as a child process (wall, and user + system
 !> CPU from getrusage of the children), split into start-up (a `rollcon --help` child), the
 !> integration with its output rows (the CPU time the run's summary reports) and the rest
-!> (reading the scene, setting up, the summary file); and the scene file that runs a scene with
-!> other run settings (the benchmark's whole-process column).
+!> (reading the scene, setting up, the summary file); and the scene file or dataset that runs a
+!> scene or a dataset with other run settings (the benchmark's whole-process column).
 module rollcon_bench_process
     use, intrinsic :: iso_c_binding, only : c_int, c_long
     use, intrinsic :: iso_fortran_env, only : int64
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type, fatal_error, stat_io
-    use rollcon_text, only : to_text, shell_quote, lower_case
+    use rollcon_text, only : to_text, shell_quote, lower_case, upper_case
     use rollcon_run_settings, only : run_settings_type
     use rollcon_run_keys, only : choice_name
     implicit none
     private
 
     public :: process_cost_type, measure_process, write_scene_with_settings
+    public :: write_dataset_with_settings
 
     !> Times of one `rollcon run` [s]
     type :: process_cost_type
@@ -183,19 +184,79 @@ contains
             & "/"
         close(copy, iostat=stat)
         if (stat /= 0) call fatal_error(error, path // ": cannot write", stat_io)
-
-    contains
-
-        function real_text(value) result(text)
-            real(wp), intent(in) :: value
-            character(len=:), allocatable :: text
-            character(len=32) :: buffer
-
-            write(buffer, '(es24.16e3)') value
-            text = trim(adjustl(buffer))
-        end function real_text
-
     end subroutine write_scene_with_settings
+
+    !> A copy of the dataset at source_path at path whose INTEGRATOR and SIMULATE statements
+    !> are settings (every INTEGRATOR keyword of rollcon's written, SIMULATE's END and DTOUT;
+    !> the source's own statements and their continuation lines left out, the new ones written
+    !> before END): the same dataset run another way. A statement is known by its name or a
+    !> prefix of it of three letters or more (INTEG, SIM).
+    subroutine write_dataset_with_settings(source_path, settings, path, error)
+        character(len=*), intent(in) :: source_path, path
+        type(run_settings_type), intent(in) :: settings
+        type(error_type), allocatable, intent(out) :: error
+        character(len=4096) :: line
+        character(len=:), allocatable :: word
+        integer :: source, copy, stat, cut
+        logical :: skipping
+
+        open(newunit=source, file=source_path, status="old", action="read", iostat=stat)
+        if (stat /= 0) then
+            call fatal_error(error, source_path // ": cannot read", stat_io)
+            return
+        end if
+        open(newunit=copy, file=path, status="replace", action="write", iostat=stat)
+        if (stat /= 0) then
+            close(source)
+            call fatal_error(error, path // ": cannot write", stat_io)
+            return
+        end if
+        skipping = .false.
+        read(source, '(a)', iostat=stat) line
+        ! the title line, whatever it holds
+        if (stat == 0) write(copy, '(a)') trim(line)
+        do
+            read(source, '(a)', iostat=stat) line
+            if (stat /= 0) exit
+            ! a continuation line belongs to the statement above
+            if (index(adjustl(line), ",") == 1) then
+                if (.not. skipping) write(copy, '(a)') trim(line)
+                cycle
+            end if
+            cut = scan(adjustl(line), "/, !")
+            word = upper_case(trim(adjustl(line)))
+            if (cut > 1) word = word(:cut - 1)
+            if (word == "END") exit
+            skipping = (len(word) >= 3 .and. (index("INTEGRATOR", word) == 1 &
+                & .or. index("SIMULATE", word) == 1))
+            if (.not. skipping) write(copy, '(a)') trim(line)
+        end do
+        close(source)
+        write(copy, '(a)') "INTEGRATOR/FORMULATION=" &
+            & // choice_name("formulation", settings%formulation) &
+            & // ", METHOD=" // choice_name("method", settings%method) &
+            & // ", DRIFT=" // choice_name("drift", settings%drift), &
+            & ", JACOBIAN=" // choice_name("jacobian", settings%jacobian) &
+            & // ", SOLVER=" // choice_name("linear_solver", settings%linear_solver), &
+            & ", RTOL=" // real_text(settings%rtol) // ", ATOL=" // real_text(settings%atol), &
+            & ", BAUMGARTE=" // real_text(settings%baumgarte_rate) // ", MAXSTEPS=" &
+            & // to_text(settings%max_steps), &
+            & "SIMULATE/DYNAMIC, END=" // real_text(settings%end_time) // ", DTOUT=" &
+            & // real_text(settings%output_step), &
+            & "END"
+        close(copy, iostat=stat)
+        if (stat /= 0) call fatal_error(error, path // ": cannot write", stat_io)
+    end subroutine write_dataset_with_settings
+
+    !> A number as the scene and dataset files write it: all 17 digits.
+    function real_text(value) result(text)
+        real(wp), intent(in) :: value
+        character(len=:), allocatable :: text
+        character(len=32) :: buffer
+
+        write(buffer, '(es24.16e3)') value
+        text = trim(adjustl(buffer))
+    end function real_text
 
     !> The number after "CPU time:" in a run's summary file [s].
     subroutine read_summary_cpu(path, seconds, error)

@@ -6,7 +6,7 @@
 !> against N = 1's. A benchmark, not a test: the ratios are what it reports.
 module rollcon_bench_scaling
     use rollcon_kinds, only : wp
-    use rollcon_error, only : error_type
+    use rollcon_error, only : error_type, fatal_error, stat_input
     use rollcon_text, only : to_text
     use rollcon_output_files, only : write_text_file
     use rollcon_job, only : job_type
@@ -18,12 +18,18 @@ module rollcon_bench_scaling
     private
 
     public :: scaling_row_type, scaling_methods, measure_scaling, scaling_header, scaling_csv_row
-    public :: chain_time_share, scaling_table, short_scaling_methods
+    public :: chain_time_share, scaling_table, short_scaling_methods, check_scaling_end_time
 
     !> The chain runs this share of the disks' time (the programs say "a tenth"), to keep the
     !> benchmark near 2 minutes: over 0.2 s the chain takes 310 IDA steps at one link and 924
     !> at 64 (the disks 4444 over 2 s), and at 64 links the dense matrix's run takes 20 s
     real(wp), parameter :: chain_time_share = 0.1_wp
+    !> The end times a benchmark may take [s]: the chain runs chain_time_share of it, and a
+    !> dataset's END is 1e-9 s at least and 1e9 s at most (docs/datasets.md, SIMULATE)
+    real(wp), parameter :: shortest_end = 1.0e-8_wp, longest_end = 1.0e9_wp
+    !> Output step of the runs [s] (of the chain: chain_time_share of it), or the end time
+    !> when that is shorter: SIMULATE's DTOUT may not exceed END
+    real(wp), parameter :: output_step = 0.1_wp
 
     !> One (method, N) measured
     type :: scaling_row_type
@@ -70,6 +76,18 @@ contains
             & cvode // sparse, cvode // fixed_point, maggi // fixed_point]
     end subroutine scaling_methods
 
+    !> Refuse an end time the benchmark's datasets cannot take (shortest_end to longest_end, a
+    !> finite number) [s], naming the option the programs read it from.
+    subroutine check_scaling_end_time(end_time, error)
+        real(wp), intent(in) :: end_time
+        type(error_type), allocatable, intent(out) :: error
+
+        if (end_time >= shortest_end .and. end_time <= longest_end) return
+        call fatal_error(error, "bench scaling: --end-time expects a time from 1e-8 to 1e9 s " &
+            & // "(the chain runs a tenth of it, and a dataset's END is from 1e-9 to 1e9 s), got " &
+            & // to_text(end_time), stat_input)
+    end subroutine check_scaling_end_time
+
     !> Run every method (or those named in `only`) on N = counts(:) disks, 0.5 m apart, to
     !> end_time [s], or on a chain of N links to chain_time_share of it; the datasets are
     !> written to folder (disk_fleet_<N>_<method>.adm, link_chain_<N>_<method>.adm). Rows in
@@ -92,6 +110,8 @@ contains
         integer :: m, k, r
         real(wp) :: cpu_before, cpu_after
 
+        call check_scaling_end_time(end_time, error)
+        if (allocated(error)) return
         call scaling_methods(names, keywords)
         chosen = [(.true., m = 1, size(names))]
         if (present(only)) chosen = [(any(only == names(m)), m = 1, size(names))]
@@ -99,7 +119,8 @@ contains
         ! warm-up, not measured: the first run of a process paid 60 % more per step than the
         ! same run after it (5.55 against 3.44 us on one disk: page faults, cold caches)
         path = folder // "/disk_fleet_warm_up.adm"
-        call write_text_file(path, disk_fleet_dataset(1, 0.5_wp, end_time, 0.1_wp, &
+        call write_text_file(path, disk_fleet_dataset(1, 0.5_wp, end_time, &
+            & min(output_step, end_time), &
             & trim(keywords(findloc(chosen, .true., dim=1)))), error)
         if (allocated(error)) return
         call run_dataset(path, job, ran, error)
@@ -114,13 +135,14 @@ contains
                     path = folder // "/link_chain_" // to_text(counts(k)) // "_" &
                         & // trim(names(m)) // ".adm"
                     call write_text_file(path, link_chain_dataset(counts(k), &
-                        & chain_time_share*end_time, 0.1_wp*chain_time_share, &
+                        & chain_time_share*end_time, chain_time_share*min(output_step, &
+                        & end_time), &
                         & trim(keywords(m))), error)
                 else
                     path = folder // "/disk_fleet_" // to_text(counts(k)) // "_" &
                         & // trim(names(m)) // ".adm"
                     call write_text_file(path, disk_fleet_dataset(counts(k), 0.5_wp, end_time, &
-                        & 0.1_wp, trim(keywords(m))), error)
+                        & min(output_step, end_time), trim(keywords(m))), error)
                 end if
                 if (allocated(error)) return
                 ! the last run's job and result freed first, outside the time taken (freeing

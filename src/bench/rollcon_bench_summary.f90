@@ -72,10 +72,12 @@ contains
 
     !> "bench: SCENE: at <= 1e-6 m of the reference: METHOD (rtol 1e-11) 0.12 s, reduced ODE
     !> 0.06 s, CPU ratio 2.0; whole process 0.2 s, ratio 3.3" (or why not).
-    function accuracy_line(rows, scene, method, target) result(line)
+    function accuracy_line(rows, scene, method, target, unit) result(line)
         type(benchmark_row_type), intent(in) :: rows(:)
         character(len=*), intent(in) :: scene, method
         real(wp), intent(in) :: target
+        !> The errors' unit (default m; the bicycle's "(rad, m)")
+        character(len=*), intent(in), optional :: unit
         character(len=:), allocatable :: line
         real(wp) :: cpu, reduced_cpu
         logical :: found
@@ -85,6 +87,8 @@ contains
         call accuracy_ratio(rows, scene, method, target, cpu, reduced_cpu, found)
         line = "bench: " // scene // ": at <= " // to_text(target) // " m of the reference: " &
             & // method
+        if (present(unit)) line = "bench: " // scene // ": at <= " // to_text(target) // " " &
+            & // trim(unit) // " of the reference: " // method
         if (.not. found) then
             line = line // ": no run (or no reduced run) that close"
             return

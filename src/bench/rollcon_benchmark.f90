@@ -1,7 +1,8 @@
 ! SPDX-License-Identifier: MIT
 !> Work-precision measurements: each way of solving a scene on a ladder of tolerances, against an
-!> independent reference (the reduced ODE of the disk at a tight tolerance), each row with its CPU
-!> ratio to the reduced ODE at the same tolerance, measured in the same call.
+!> independent reference (a reduced ODE at a tight tolerance: the disk's for a disk scene, the
+!> Whipple bicycle's for the bicycle's dataset), each row with its CPU ratio to the reduced ODE at
+!> the same tolerance, measured in the same call.
 module rollcon_benchmark
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type, fatal_error, stat_input
@@ -14,11 +15,14 @@ module rollcon_benchmark
     use rollcon_scene, only : scene_type
     use rollcon_scene_source, only : scene_source_type
     use rollcon_problem, only : problem_type
+    use rollcon_ode_form, only : ode_form_type
     use rollcon_simulation, only : run_summary_type, history_type, status_completed
     use rollcon_job, only : job_type
     use rollcon_run_job, only : run_job, job_result_type
     use rollcon_output_layout, only : coord_x, coord_z
     use rollcon_reduced_scene, only : simulate_reduced_scene
+    use rollcon_reduced_bicycle, only : bicycle_table_type, simulate_reduced_bicycle, &
+        & bicycle_distance
     use rollcon_bench_costs, only : part_costs_type
     implicit none
     private
@@ -26,6 +30,7 @@ module rollcon_benchmark
     public :: method_type, benchmark_methods, benchmark_row_type, benchmark_scene, &
         & method_settings
     public :: benchmark_header, write_benchmark_row, evaluation_costs, bench_scene_of, split_costs
+    public :: bench_subject_type, bench_subject_of
 
     !> The scene formulation code the benchmark gives its reduced-ODE runs (not a scene choice)
     integer, parameter :: formulation_reduced = -1
@@ -37,6 +42,19 @@ module rollcon_benchmark
         character(len=12) :: jacobian = "analytic"
     end type method_type
 
+    !> What the benchmark compares a job with: a disk scene's reduced ODE, or (bicycle) the
+    !> Whipple bicycle's of the table the job's dataset is written from
+    type :: bench_subject_type
+        !> The rows' scene name
+        character(len=:), allocatable :: name
+        logical :: bicycle = .false.
+        !> A disk scene (with the job's settings), or the bicycle's table
+        type(scene_type) :: scene
+        type(bicycle_table_type) :: table
+        !> The job's run settings (end time and output step among them)
+        type(run_settings_type) :: settings
+    end type bench_subject_type
+
     !> What one (scene, method, tolerance) measured
     type :: benchmark_row_type
         character(len=40) :: scene = "", method = ""
@@ -44,7 +62,8 @@ module rollcon_benchmark
         !> Median CPU time of the repeated runs [s]
         real(wp) :: cpu = 0.0_wp
         integer :: steps = 0, functions = 0, jacobians = 0
-        !> Largest distance of the centre from the reference's at the output times [m]
+        !> Largest distance of the centre from the reference's at the output times [m] (the
+        !> bicycle: the largest difference of roll and steer [rad] and of the rear contact [m])
         real(wp) :: position_error = 0.0_wp
         !> Largest constraint residual [m/s] and relative energy drift
         real(wp) :: residual = 0.0_wp, energy_drift = 0.0_wp
@@ -157,16 +176,44 @@ contains
         end select
     end subroutine bench_scene_of
 
+    !> What a job is measured against: with a bicycle's table, the job is that bicycle's
+    !> dataset (data/bicycle/write_adm.py's) and the reduced bicycle its reference; else a disk
+    !> scene's (bench_scene_of).
+    subroutine bench_subject_of(job, subject, error, table)
+        type(job_type), intent(in) :: job
+        type(bench_subject_type), intent(out) :: subject
+        type(error_type), allocatable, intent(out) :: error
+        type(bicycle_table_type), intent(in), optional :: table
+        integer :: n
+
+        subject%settings = job%source%settings
+        if (present(table)) then
+            subject%bicycle = .true.
+            subject%table = table
+            subject%name = job%name
+            n = len(subject%name)
+            if (n > 4) then
+                if (subject%name(n - 3:) == ".adm") subject%name = subject%name(:n - 4)
+            end if
+            return
+        end if
+        call bench_scene_of(job, subject%scene, error)
+        if (allocated(error)) return
+        subject%name = trim(subject%scene%name)
+    end subroutine bench_subject_of
+
     !> Measure every method on every tolerance for one scene's job (load_job); rows are
     !> appended. Every row of the full model is a run of the job (run_job) with the method's
     !> settings. The reduced ODE is run at every tolerance with BDF and Adams whether or not the
     !> methods name it: each row's ratio is its CPU time over the reduced ODE's at the same rtol
-    !> and with the same multistep method, both measured here, in this call. Long because its
-    !> two internal procedures (the reference run, one measurement) share the scene, the job
-    !> and the progress unit of the host.
+    !> and with the same multistep method, both measured here, in this call. With a bicycle's
+    !> table (read_bicycle_table) the job is that bicycle's dataset and the reduced ODE the
+    !> bicycle's. Long because its two internal procedures (the reference run, one measurement)
+    !> share the subject, the job and the progress unit of the host.
     subroutine benchmark_scene(job, methods, tolerances, reference_rtol, repeats, rows, &
-            & error, progress, costs)
-        !> A disk scene's job, as loaded (its own solver settings are replaced)
+            & error, progress, costs, table)
+        !> A disk scene's job, or the bicycle's dataset's, as loaded (its own solver settings
+        !> are replaced)
         type(job_type), intent(in) :: job
         type(method_type), intent(in) :: methods(:)
         !> Relative tolerances; atol = 1e-2 rtol (positions ~0.1 m, rates ~1 rad/s)
@@ -181,15 +228,17 @@ contains
         integer, intent(in), optional :: progress
         !> Unit costs of the parts of a step: when given, rows get the per-part split
         type(part_costs_type), intent(in), optional :: costs
+        !> The bicycle's table, when the job is its dataset
+        type(bicycle_table_type), intent(in), optional :: table
         type(history_type) :: reference
         type(benchmark_row_type) :: row
         type(benchmark_row_type), allocatable :: reduced(:, :)
-        type(scene_type) :: scene
+        type(bench_subject_type) :: subject
         type(method_type) :: limits(size(reduced_methods()))
         integer :: m, k, v, partner
 
         if (.not. allocated(rows)) allocate(rows(0))
-        call bench_scene_of(job, scene, error)
+        call bench_subject_of(job, subject, error, table)
         if (allocated(error)) return
         call reference_run(reference, error)
         if (allocated(error)) return
@@ -239,17 +288,17 @@ contains
 
             do attempt = 0, 2
                 rtol = reference_rtol*10.0_wp**attempt
-                call simulate_reduced_scene(with_method(scene, method_type("reference", &
-                    & "reduced", "adams", "none", "analytic"), rtol), kept, summary, run_error)
+                call run_reduced(subject, method_type("reference", "reduced", "adams", "none", &
+                    & "analytic"), rtol, kept, summary, run_error)
                 if (allocated(run_error)) cycle
-                call simulate_reduced_scene(with_method(scene, method_type("reference", &
-                    & "reduced", "bdf", "none", "analytic"), rtol), check_run, summary, &
-                    & run_error)
+                call run_reduced(subject, method_type("reference", "reduced", "bdf", "none", &
+                    & "analytic"), rtol, check_run, summary, run_error)
                 if (allocated(run_error)) cycle
                 if (present(progress)) write(progress, '(a, es10.2e3, a, es10.2e3, a)') "bench: " &
-                    & // trim(scene%name) // ": reference by the reduced ODE (CVODE Adams) at " &
+                    & // subject%name // ": reference by the reduced ODE (CVODE Adams) at " &
                     & // "rtol " // to_text(rtol) // "; BDF at that rtol differs by", &
-                    & position_error(check_run, kept), " m in", summary%cpu_seconds, " s of CPU"
+                    & subject_distance(subject, check_run, kept), " " // error_unit(subject) &
+                    & // " in", summary%cpu_seconds, " s of CPU"
                 return
             end do
             run_error%message = "reference solution by the reduced ODE failed: " &
@@ -269,13 +318,13 @@ contains
             real(wp), allocatable :: times(:)
             integer :: r, roots
 
-            measured%scene = scene%name
+            measured%scene = subject%name
             measured%method = method%name
             measured%rtol = rtol
             allocate(times(0))
             roots = 0
             do r = 1, max(1, repeats)
-                call run_case(job, scene, method, rtol, history, summary, roots, run_error)
+                call run_case(job, subject, method, rtol, history, summary, roots, run_error)
                 if (allocated(run_error)) then
                     ! a failed run is a measurement too: recorded, not fatal
                     measured%status = "failed: " // run_error%message
@@ -299,17 +348,66 @@ contains
             measured%output_rows = summary%rows
             measured%residual = summary%residual_max
             measured%energy_drift = summary%energy_drift
-            measured%position_error = position_error(history, reference)
+            measured%position_error = subject_distance(subject, history, reference)
         end function measure
 
     end subroutine benchmark_scene
 
+    !> The unit of a subject's errors: m (a disk's centre), or rad and m (the bicycle's roll
+    !> and steer, its rear contact).
+    pure function error_unit(subject) result(unit)
+        type(bench_subject_type), intent(in) :: subject
+        character(len=:), allocatable :: unit
+
+        unit = "m"
+        if (subject%bicycle) unit = "(rad, m)"
+    end function error_unit
+
+    !> How far a run is from the reference: the disk's centres' largest distance [m], or the
+    !> bicycle's largest difference (bicycle_distance).
+    function subject_distance(subject, run, reference) result(distance)
+        type(bench_subject_type), intent(in) :: subject
+        type(history_type), intent(in) :: run, reference
+        real(wp) :: distance
+
+        if (subject%bicycle) then
+            distance = bicycle_distance(run, reference, subject%table%par(3), &
+                & subject%table%par(5))
+        else
+            distance = position_error(run, reference)
+        end if
+    end function subject_distance
+
+    !> The subject's reduced ODE with a method at rtol. The bicycle's has no analytic
+    !> Jacobian: its Newton runs take CVODE's difference quotients.
+    subroutine run_reduced(subject, method, rtol, history, summary, error)
+        type(bench_subject_type), intent(in) :: subject
+        type(method_type), intent(in) :: method
+        real(wp), intent(in) :: rtol
+        type(history_type), intent(out) :: history
+        type(run_summary_type), intent(out) :: summary
+        type(error_type), allocatable, intent(out) :: error
+        type(run_settings_type) :: settings
+        type(method_type) :: chosen
+
+        if (subject%bicycle) then
+            chosen = method
+            if (chosen%jacobian == "analytic") chosen%jacobian = "dq"
+            settings = settings_with_method(subject%settings, chosen, rtol)
+            call simulate_reduced_bicycle(subject%table, settings, settings%end_time, &
+                & settings%output_step, history, summary, error)
+        else
+            call simulate_reduced_scene(with_method(subject%scene, method, rtol), history, &
+                & summary, error)
+        end if
+    end subroutine run_reduced
+
     !> One run of a case: the job with the method's settings at rtol (run_job, no files) or
-    !> the scene's reduced ODE; roots: the event-function evaluations of a full run (0 for the
-    !> reduced ODE).
-    subroutine run_case(job, scene, method, rtol, history, summary, roots, error)
+    !> the subject's reduced ODE; roots: the event-function evaluations of a full run (0 for
+    !> the reduced ODE).
+    subroutine run_case(job, subject, method, rtol, history, summary, roots, error)
         type(job_type), intent(in) :: job
-        type(scene_type), intent(in) :: scene
+        type(bench_subject_type), intent(in) :: subject
         type(method_type), intent(in) :: method
         real(wp), intent(in) :: rtol
         type(history_type), intent(out) :: history
@@ -318,18 +416,16 @@ contains
         type(error_type), allocatable, intent(out) :: error
         type(job_type) :: row_job
         type(job_result_type) :: ran
-        type(scene_type) :: changed
 
         roots = 0
         if (method%formulation == "reduced") then
-            call simulate_reduced_scene(with_method(scene, method, rtol), history, summary, error)
+            call run_reduced(subject, method, rtol, history, summary, error)
             return
         end if
         row_job = job
         row_job%output_dir = ""
         row_job%quiet = .true.
-        changed = with_method(scene, method, rtol)
-        row_job%source%settings = changed%run%run_settings_type
+        row_job%source%settings = settings_with_method(subject%settings, method, rtol)
         call run_job(row_job, ran, error, history)
         summary = ran%summary
         roots = summary%root_evaluations
@@ -370,6 +466,7 @@ contains
         real(wp), intent(out) :: rhs_seconds, residual_seconds, solve_seconds
         type(error_type), allocatable, intent(out) :: error
         type(problem_type), target :: problem
+        type(ode_form_type) :: ode
         procedure(ucosub_interface), pointer :: routine
         real(wp) :: start, finish, checksum
         real(wp), allocatable :: q0(:), u0(:)
@@ -383,13 +480,14 @@ contains
         if (allocated(error)) return
         call problem%prepare(error)
         if (allocated(error)) return
+        call ode%init(problem)
         y = [q0, u0]
         allocate(ydot(size(y)))
-        ierr = problem%ode_rhs(0.0_wp, y, ydot)
+        ierr = ode%ode_rhs(0.0_wp, y, ydot)
         checksum = 0.0_wp
         call cpu_time(start)
         do i = 1, count
-            ierr = problem%ode_rhs(0.0_wp, y, ydot)
+            ierr = ode%ode_rhs(0.0_wp, y, ydot)
             checksum = checksum + ydot(size(q0) + 1)
         end do
         call cpu_time(finish)
@@ -432,21 +530,35 @@ contains
         if (checksum /= checksum) rhs_seconds = -1.0_wp
     end subroutine evaluation_costs
 
-    !> The run settings a row of method at rtol ran with, for a job of a disk scene (what a
-    !> `rollcon run` of the same setting needs: rollcon_bench_process).
-    subroutine method_settings(job, method, rtol, settings, error)
+    !> The run settings a row of method at rtol ran with, for a job (what a `rollcon run` of
+    !> the same setting needs: rollcon_bench_process).
+    function method_settings(job, method, rtol) result(settings)
         type(job_type), intent(in) :: job
         type(method_type), intent(in) :: method
         real(wp), intent(in) :: rtol
-        type(run_settings_type), intent(out) :: settings
-        type(error_type), allocatable, intent(out) :: error
-        type(scene_type) :: scene, changed
+        type(run_settings_type) :: settings
 
-        call bench_scene_of(job, scene, error)
-        if (allocated(error)) return
-        changed = with_method(scene, method, rtol)
-        settings = changed%run%run_settings_type
-    end subroutine method_settings
+        settings = settings_with_method(job%source%settings, method, rtol)
+    end function method_settings
+
+    !> Run settings with a method and tolerance in place of their own (atol = 1e-2 rtol).
+    function settings_with_method(settings, method, rtol) result(changed)
+        type(run_settings_type), intent(in) :: settings
+        type(method_type), intent(in) :: method
+        real(wp), intent(in) :: rtol
+        type(run_settings_type) :: changed
+
+        changed = settings
+        changed%formulation = formulation_reduced
+        if (method%formulation /= "reduced") &
+            & changed%formulation = choice_code("formulation", method%formulation)
+        changed%method = choice_code("method", method%method)
+        changed%drift = choice_code("drift", method%drift)
+        changed%jacobian = choice_code("jacobian", method%jacobian)
+        changed%rtol = rtol
+        changed%atol = 1.0e-2_wp*rtol
+        changed%max_steps = 10000000
+    end function settings_with_method
 
     !> The scene with a method and tolerance in place of its own.
     function with_method(scene, method, rtol) result(changed)
@@ -456,15 +568,8 @@ contains
         type(scene_type) :: changed
 
         changed = scene
-        changed%run%formulation = formulation_reduced
-        if (method%formulation /= "reduced") &
-            & changed%run%formulation = choice_code("formulation", method%formulation)
-        changed%run%method = choice_code("method", method%method)
-        changed%run%drift = choice_code("drift", method%drift)
-        changed%run%jacobian = choice_code("jacobian", method%jacobian)
-        changed%run%rtol = rtol
-        changed%run%atol = 1.0e-2_wp*rtol
-        changed%run%max_steps = 10000000
+        changed%run%run_settings_type = settings_with_method(scene%run%run_settings_type, &
+            & method, rtol)
     end function with_method
 
     !> Largest distance between the centres of the first part at the output times both runs

@@ -4,7 +4,7 @@
 !> link k + 1 to the lower end of link k, every hinge axis along ground Y; the chain starts
 !> straight, at rest, 60 degrees from the vertical (the start of data/pendulum.adm), and falls
 !> under gravity in the X-Z plane. Each joint is five position UCONs between two neighbours
-!> (rollcon_adm_joints), so the whole chain is one block of the constraints
+!> (rollcon_joint_primitives), so the whole chain is one block of the constraints
 !> (rollcon_constraint_blocks).
 module rollcon_link_chain
     use rollcon_kinds, only : wp

@@ -11,7 +11,7 @@ module rollcon_reduced_scene
     use rollcon_problem, only : problem_type
     use rollcon_simulation, only : run_summary_type, history_type
     use rollcon_reduced_cvode, only : reduced_problem_type, simulate_reduced
-    use rollcon_reduced_disk_rhs, only : reduced_size, full_to_reduced
+    use rollcon_reduced_disk_rhs, only : reduced_size
     implicit none
     private
 
@@ -30,7 +30,7 @@ contains
         type(error_type), allocatable, intent(out) :: error
         type(problem_type), target :: full
         type(reduced_problem_type), target :: reduced
-        real(wp) :: q0(6), u0(6), y0(reduced_size), mass, inertia(3)
+        real(wp) :: q0(6), u0(6), y0(reduced_size), unused(reduced_size), mass, inertia(3)
 
         ! the full problem only lends its forces and start, so both solve the same scene
         call build_disk_problem(scene, rolling_disk_ucosub, full, q0, u0, error)
@@ -41,7 +41,7 @@ contains
         ! CVODE with the scene's method, Jacobian, tolerances and step limit
         reduced%settings = scene%run%run_settings_type
         reduced%theta_min = scene%limits%theta_min
-        call full_to_reduced(q0, u0, y0)
+        call reduced%pack_state(q0, u0, y0, unused)
         call simulate_reduced(reduced, y0, 0.0_wp, scene%run%end_time, scene%run%output_step, &
             & history, &
             & summary, error)

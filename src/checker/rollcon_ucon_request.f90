@@ -1,5 +1,6 @@
 ! SPDX-License-Identifier: MIT
-!> A UCON statement as the checker takes it (`rollcon check --ucon`), "ID:PAR1,PAR2,...", read
+!> The UCON statements the checker takes: those of a dataset that its model's UCOSUB serves
+!> (`rollcon check --model`), and one written as "ID:PAR1,PAR2,..." (`rollcon check --ucon`), read
 !> strictly: a positive integer id, then one decimal number per comma-separated field. (The
 !> option itself is the program's; the text's format and its checks are the checker's, so that
 !> they are tested and fuzzed in the library.) Fortran's list-directed read is not
@@ -12,15 +13,56 @@ module rollcon_ucon_request
     use rollcon_error, only : error_type, fatal_error, stat_input
     use rollcon_text, only : to_text
     use rollcon_ucosub_contract, only : max_ucon_par
+    use rollcon_ucosub_units, only : ucosub_units_type
+    use rollcon_model, only : served_by_model_ucosub
     use rollcon_ucosub_audit, only : ucon_request_type
     use rollcon_namelist_bytes, only : visible
+    use rollcon_adm_model, only : adm_model_type
+    use rollcon_adm_reader, only : read_adm
     use, intrinsic :: ieee_arithmetic, only : ieee_is_finite
     implicit none
     private
 
-    public :: read_ucon_request, is_decimal_number
+    public :: read_ucon_request, is_decimal_number, dataset_ucon_requests
 
 contains
+
+    !> The UCON statements of the dataset at path that the model's UCOSUB serves (those naming
+    !> no ROUTINE: rollcon_model's served_by_model_ucosub), with their ids, PAR and the
+    !> dataset's units, appended to requests. note: a line saying the routine is called in the
+    !> dataset's units when they are not SI ("" otherwise). Refused: a dataset the reader
+    !> refuses, or one whose every UCON names its ROUTINE (nothing to check).
+    subroutine dataset_ucon_requests(path, requests, note, error)
+        character(len=*), intent(in) :: path
+        type(ucon_request_type), allocatable, intent(inout) :: requests(:)
+        character(len=:), allocatable, intent(out) :: note
+        type(error_type), allocatable, intent(out) :: error
+        type(adm_model_type) :: adm
+        type(ucon_request_type) :: request
+        integer :: k, found
+
+        note = ""
+        ! the check runs no simulation: a dataset without SIMULATE (run from an ADAMS command
+        ! file) is checked as it is
+        call read_adm(path, adm, error, run_given=.true.)
+        if (allocated(error)) return
+        found = 0
+        ! the routine computes in the dataset's units, as in a run
+        request%units = ucosub_units_type(length=adm%units%length, time=adm%units%time)
+        do k = 1, size(adm%ucons)
+            if (.not. served_by_model_ucosub(adm%ucons(k)%routine)) cycle
+            request%id = adm%ucons(k)%id
+            request%par = adm%ucons(k)%par
+            requests = [requests, request]
+            found = found + 1
+        end do
+        if (found > 0 .and. .not. request%units%is_si()) note = path // ": the routine is " &
+            & // "called in the dataset's units, as in a run: lengths in " &
+            & // to_text(request%units%length) // " m, time in " // to_text(request%units%time) &
+            & // " s; PAR as written, each random state drawn in the ranges below and converted"
+        if (found == 0) call fatal_error(error, path // ": no UCON statement is served by the " &
+            & // "model's UCOSUB (each names a built-in ROUTINE): nothing to check", stat_input)
+    end subroutine dataset_ucon_requests
 
     !> "ID:PAR1,PAR2,..." (or "ID" alone) as a UCON id and its constants.
     subroutine read_ucon_request(text, request, error)

@@ -8,6 +8,7 @@ module rollcon_text
     private
 
     public :: to_text, fixed_text, single_quoted, shell_quote, lower_case, upper_case, unquoted, comma_list
+    public :: place
 
     !> Decimal text of an integer or a real
     interface to_text
@@ -196,5 +197,14 @@ contains
             text = text // trim(words(k))
         end do
     end function comma_list
+
+    !> Where a statement of an input file stands, as messages begin: "data/coin.adm:12".
+    pure function place(path, line) result(text)
+        character(len=*), intent(in) :: path
+        integer, intent(in) :: line
+        character(len=:), allocatable :: text
+
+        text = path // ":" // to_text(line)
+    end function place
 
 end module rollcon_text

@@ -1,8 +1,8 @@
 ! SPDX-License-Identifier: MIT
-!> CVODE on a system's ODE form: BDF or Adams, dense Newton solves with the system's Jacobian or
-!> CVODE's difference quotients, or sparse ones (KLU) with the system's Jacobian kept over its
-!> state blocks (or fixed-point iteration, without any); the system's projection when it asks
-!> for one, root finding.
+!> CVODE on an ODE system (rollcon_dynamic_system's ode_system_type): BDF or Adams, dense
+!> Newton solves with the system's Jacobian or CVODE's difference quotients, or sparse ones
+!> (KLU) with the system's Jacobian kept over its state blocks (or fixed-point iteration,
+!> without any); the system's projection when it asks for one, root finding.
 module rollcon_cvode
     use, intrinsic :: iso_c_binding, only : c_ptr, c_null_ptr, c_int, c_long, c_int64_t, &
         & c_double, c_funloc, c_loc, c_f_pointer, c_associated
@@ -10,7 +10,7 @@ module rollcon_cvode
     use rollcon_error, only : error_type, fatal_error, stat_solver
     use rollcon_text, only : to_text
     use rollcon_run_settings, only : run_settings_type, method_adams, jacobian_none
-    use rollcon_dynamic_system, only : dynamic_system_type
+    use rollcon_dynamic_system, only : ode_system_type
     use rollcon_integrator, only : integrator_type, integrator_statistics_type, solver_failure
     use fsundials_context_mod, only : FSUNContext_Create, FSUNContext_Free
     use fsundials_nvector_mod, only : N_Vector, FN_VDestroy, FN_VGetArrayPointer
@@ -66,7 +66,7 @@ module rollcon_cvode
     !> What the callbacks receive as user data: the system, and what the event function needs
     !> to read the state's derivative off CVODE's interpolating polynomial
     type :: callback_data_type
-        class(dynamic_system_type), pointer :: system => null()
+        class(ode_system_type), pointer :: system => null()
         type(c_ptr) :: memory = c_null_ptr
         !> y'(t) from CVodeGetDky, and its storage
         type(N_Vector), pointer :: rates => null()
@@ -82,7 +82,7 @@ module rollcon_cvode
         integer, allocatable :: blocks(:)
     end type callback_data_type
 
-    !> One CVODE integration of a system's ODE form
+    !> One CVODE integration of an ODE system
     type, extends(integrator_type) :: cvode_integrator_type
         type(c_ptr) :: context = c_null_ptr
         type(c_ptr) :: memory = c_null_ptr
@@ -105,10 +105,11 @@ module rollcon_cvode
 contains
 
     !> Create CVODE for system from (t0, y0) with the settings' method, tolerances, step limit
-    !> and Jacobian, watching the system's event functions (yp0 is not used).
+    !> and Jacobian, watching the system's event functions (yp0 is not used), never stepping
+    !> past t_stop.
     subroutine start(self, system, settings, t0, y0, yp0, t_stop, error)
         class(cvode_integrator_type), intent(inout), target :: self
-        class(dynamic_system_type), intent(inout), target :: system
+        class(ode_system_type), intent(inout), target :: system
         type(run_settings_type), intent(in) :: settings
         real(wp), intent(in) :: t0, y0(:), yp0(:), t_stop
         type(error_type), allocatable, intent(out) :: error

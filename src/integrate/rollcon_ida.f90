@@ -1,7 +1,8 @@
 ! SPDX-License-Identifier: MIT
-!> IDA on a system's DAE form: its algebraic components (a model's multipliers) excluded from
-!> the error test, dense Newton solves with the system's Jacobian or IDA's difference quotients,
-!> or sparse ones (KLU) with the system's Jacobian kept over its pattern (dae_pattern).
+!> IDA on a DAE system (rollcon_dynamic_system's dae_system_type): its algebraic components (a
+!> model's multipliers) excluded from the error test, dense Newton solves with the system's
+!> Jacobian or IDA's difference quotients, or sparse ones (KLU) with the system's Jacobian kept
+!> over its pattern (dae_pattern).
 module rollcon_ida
     use, intrinsic :: iso_c_binding, only : c_ptr, c_null_ptr, c_int, c_long, c_int64_t, &
         & c_double, c_funloc, c_loc, c_f_pointer, c_associated
@@ -9,7 +10,7 @@ module rollcon_ida
     use rollcon_error, only : error_type, fatal_error, stat_solver
     use rollcon_text, only : to_text
     use rollcon_run_settings, only : run_settings_type
-    use rollcon_dynamic_system, only : dynamic_system_type
+    use rollcon_dynamic_system, only : dae_system_type
     use rollcon_integrator, only : integrator_type, integrator_statistics_type, solver_failure
     use fsundials_context_mod, only : FSUNContext_Create, FSUNContext_Free
     use fsundials_types_mod, only : SUNTRUE
@@ -73,7 +74,7 @@ module rollcon_ida
     !> What the callbacks receive as user data: the system, and what the error weights are
     !> made of
     type :: callback_data_type
-        class(dynamic_system_type), pointer :: system => null()
+        class(dae_system_type), pointer :: system => null()
         !> The run's relative tolerance [-] and each component's absolute one [state units]
         real(wp) :: rtol = 0.0_wp
         real(wp), allocatable :: absolute(:)
@@ -91,7 +92,7 @@ module rollcon_ida
         type(newton_pattern_type) :: pattern
     end type callback_data_type
 
-    !> One IDA integration of a system's DAE form
+    !> One IDA integration of a DAE system
     type, extends(integrator_type) :: ida_integrator_type
         type(c_ptr) :: context = c_null_ptr
         type(c_ptr) :: memory = c_null_ptr
@@ -123,7 +124,7 @@ contains
     !> sequence, one checked call per line, in the order IDA requires.
     subroutine start(self, system, settings, t0, y0, yp0, t_stop, error)
         class(ida_integrator_type), intent(inout), target :: self
-        class(dynamic_system_type), intent(inout), target :: system
+        class(dae_system_type), intent(inout), target :: system
         type(run_settings_type), intent(in) :: settings
         real(wp), intent(in) :: t0, y0(:), yp0(:), t_stop
         type(error_type), allocatable, intent(out) :: error

@@ -1,14 +1,14 @@
 ! SPDX-License-Identifier: MIT
-!> The integrator interface a run drives: set up on a system from a start, advance to a time
-!> (never past a stop time), start again after the state was changed from outside (a
-!> re-basing) or at an input's corner, counters, and the flag and message of a failure. CVODE
-!> (rollcon_cvode) and IDA (rollcon_ida) extend it; a run never asks which one it has.
+!> The integrator interface a run drives: advance to a time (never past a stop time), start
+!> again after the state was changed from outside (a re-basing) or at an input's corner,
+!> counters, and the flag and message of a failure. CVODE (rollcon_cvode) and IDA (rollcon_ida)
+!> extend it, each set up on the form of system it takes (its own `start`: an ODE, a DAE); a run
+!> sets one up through rollcon_integrator_choice and never asks which one it has.
 module rollcon_integrator
     use, intrinsic :: iso_c_binding, only : c_int
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type, fatal_error, stat_solver
     use rollcon_text, only : to_text
-    use rollcon_run_settings, only : run_settings_type
     use rollcon_dynamic_system, only : dynamic_system_type
     implicit none
     private
@@ -36,7 +36,6 @@ module rollcon_integrator
         !> After a root return: non-zero for every event function that fired (its direction)
         integer(c_int), allocatable :: fired(:)
     contains
-        procedure(start_interface), deferred :: start
         procedure(restart_interface), deferred :: restart
         procedure(advance_interface), deferred :: advance
         procedure(statistics_interface), deferred :: statistics
@@ -44,17 +43,6 @@ module rollcon_integrator
     end type integrator_type
 
     abstract interface
-        !> Set up on system from (t0, y0) (and y0' for a DAE), every setting from settings,
-        !> watching the system's event functions; never step past t_stop.
-        subroutine start_interface(self, system, settings, t0, y0, yp0, t_stop, error)
-            import :: integrator_type, dynamic_system_type, run_settings_type, wp, error_type
-            class(integrator_type), intent(inout), target :: self
-            class(dynamic_system_type), intent(inout), target :: system
-            type(run_settings_type), intent(in) :: settings
-            real(wp), intent(in) :: t0, y0(:), yp0(:), t_stop
-            type(error_type), allocatable, intent(out) :: error
-        end subroutine start_interface
-
         !> Start again from (t0, y0, yp0) with everything else as set up and no history: the
         !> state was changed from outside (its coordinates re-based), or an input has a corner
         !> at t0 (careful false: the integrator begins as it would at a start).

@@ -44,6 +44,10 @@ module rollcon_run_settings
     type :: run_settings_type
         !> End time and output step [s]
         real(wp) :: end_time = 10.0_wp, output_step = 0.01_wp
+        !> The output times after the start [s], ascending, the last at end_time, when they
+        !> are not every output_step (a command file's several SIMULATE commands, each with its
+        !> own: rollcon_adm_run); unallocated: every output_step
+        real(wp), allocatable :: output_times(:)
         !> formulation_ida (DAE), formulation_cvode (ODE) or formulation_maggi (ODE in
         !> independent speeds)
         integer :: formulation = formulation_ida

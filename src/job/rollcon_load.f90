@@ -1,6 +1,9 @@
 ! SPDX-License-Identifier: MIT
 !> load_job: a path (and --ucosub) made a job (rollcon_job). `MODEL.adm` is an ADAMS dataset
-!> (docs/datasets.md); anything else a namelist scene (`coin` is data/coin.nml; docs/scenes.md).
+!> (docs/datasets.md); `MODEL.acf` an ADAMS command file, which names the dataset and gives
+!> its run (docs/datasets.md, "The command file"); anything else a namelist scene (`coin` is
+!> data/coin.nml; docs/scenes.md). A dataset's run may be given apart from it, as
+!> `rollcon run --end T --steps N` does (run_times_type).
 !> Overrides set values apart from the file, as a study's case does (docs/studies.md): a
 !> scene's `group%key`, a dataset's `statement%id%keyword[%k]`.
 module rollcon_load
@@ -15,12 +18,15 @@ module rollcon_load
     use rollcon_adm_model, only : adm_model_type
     use rollcon_adm_reader, only : read_adm
     use rollcon_adm_overrides, only : adm_override_type, parse_override_name
+    use rollcon_adm_run, only : run_times_type, apply_run_times
+    use rollcon_acf_reader, only : acf_type, read_acf, apply_acf
     use rollcon_dataset_source, only : new_dataset_source
     use rollcon_job, only : job_type
     implicit none
     private
 
-    public :: load_job, input_override_type, is_dataset, output_name
+    public :: load_job, input_override_type, is_dataset, output_name, is_command_file
+    public :: run_times_type
 
     !> A value set apart from the input file: name as the input writes it (strike%impulse,
     !> part%2%vx), value as the file would write it
@@ -30,27 +36,41 @@ module rollcon_load
 
 contains
 
-    !> Read and check the input at path (a scene name or path, or MODEL.adm) with its
-    !> overrides, and make it a job whose UCONs without a routine of their own are served by
-    !> ucosub: a file (run apart), a built-in routine's name when no such file exists, or
-    !> (absent or "") rollcon's hand-checked disk. Refusals name the file, line and key.
-    subroutine load_job(path, job, error, ucosub, overrides)
+    !> Read and check the input at path (a scene name or path, MODEL.adm, or MODEL.acf) with
+    !> its overrides, and make it a job whose UCONs without a routine of their own are served
+    !> by ucosub: a file (run apart), a built-in routine's name when no such file exists, or
+    !> (absent or "") rollcon's hand-checked disk. times (a dataset's or a command file's
+    !> only) replace the SIMULATE of either. Refusals name the file, line and key.
+    subroutine load_job(path, job, error, ucosub, overrides, times)
         character(len=*), intent(in) :: path
         type(job_type), intent(out) :: job
         type(error_type), allocatable, intent(out) :: error
         character(len=*), intent(in), optional :: ucosub
         type(input_override_type), intent(in), optional :: overrides(:)
+        !> The run's times given apart from the input (rollcon run --end, --steps, --dtout)
+        type(run_times_type), intent(in), optional :: times
         type(input_override_type), allocatable :: given(:)
+        type(run_times_type) :: run_times
 
         allocate(given(0))
         if (present(overrides)) given = overrides
-        if (is_dataset(path)) then
-            call load_dataset(path, given, job, error)
+        if (present(times)) run_times = times
+        if (is_command_file(path)) then
+            call load_command_file(path, given, run_times, job, error)
+        else if (is_dataset(path)) then
+            call load_dataset(path, given, run_times, job, error)
+            if (.not. allocated(error)) job%name = output_name(path)
         else
+            if (run_times%end_given .or. run_times%steps_given .or. run_times%dtout_given) then
+                call fatal_error(error, "--end, --steps and --dtout give the run of a dataset " &
+                    & // "(MODEL.adm) or a command file (MODEL.acf); a scene's run is its &run " &
+                    & // "end_time and output_step (docs/scenes.md)", stat_input)
+                return
+            end if
             call load_scene(scene_path(path), given, job, error)
+            if (.not. allocated(error)) job%name = output_name(path)
         end if
         if (allocated(error)) return
-        job%name = output_name(path)
         job%user_file = ""
         job%routine_name = "disk"
         job%command_line = ""
@@ -76,6 +96,16 @@ contains
             if (name(n - 3:) == ".nml") name = name(:n - 4)
         end if
     end function output_name
+
+    !> True when path is an ADAMS command file: it ends in .acf (any case).
+    pure logical function is_command_file(path)
+        character(len=*), intent(in) :: path
+        integer :: n
+
+        n = len_trim(path)
+        is_command_file = .false.
+        if (n > 4) is_command_file = lower_case(path(n - 3:n)) == ".acf"
+    end function is_command_file
 
     !> True when path is a dataset: it ends in .adm (any case).
     pure logical function is_dataset(path)
@@ -113,16 +143,80 @@ contains
         allocate(job%source, source=new_scene_source(scene))
     end subroutine load_scene
 
-    subroutine load_dataset(path, overrides, job, error)
+    !> The dataset at path, its run replaced by times when they are given.
+    subroutine load_dataset(path, overrides, times, job, error)
         character(len=*), intent(in) :: path
         type(input_override_type), intent(in) :: overrides(:)
+        type(run_times_type), intent(in) :: times
         type(job_type), intent(inout) :: job
         type(error_type), allocatable, intent(out) :: error
-        type(adm_override_type) :: set(size(overrides))
+        type(adm_override_type), allocatable :: set(:)
         type(adm_model_type) :: adm
+        logical :: apart
+
+        call dataset_overrides(path, overrides, set, error)
+        if (allocated(error)) return
+        apart = times%end_given .or. times%steps_given .or. times%dtout_given
+        call read_adm(path, adm, error, set, run_given=apart)
+        if (allocated(error)) return
+        call apply_run_times(path, times, adm%units, adm%run, error)
+        if (allocated(error)) return
+        allocate(job%source, source=new_dataset_source(adm, path))
+    end subroutine load_dataset
+
+    !> The command file at path: the dataset it names, read with the overrides, then the
+    !> file's commands and times applied; the outputs named by its second line (blank: the
+    !> dataset's output_name).
+    subroutine load_command_file(path, overrides, times, job, error)
+        character(len=*), intent(in) :: path
+        type(input_override_type), intent(in) :: overrides(:)
+        type(run_times_type), intent(in) :: times
+        type(job_type), intent(inout) :: job
+        type(error_type), allocatable, intent(out) :: error
+        type(adm_override_type), allocatable :: set(:)
+        type(adm_model_type) :: adm
+        type(acf_type) :: acf
+        logical :: exists
+
+        call read_acf(path, acf, error)
+        if (allocated(error)) return
+        inquire(file=acf%dataset, exist=exists)
+        if (.not. exists) then
+            call fatal_error(error, path // ":1: no dataset " // acf%dataset // " (the first " &
+                & // "line names it, from the command file's folder; .adm is added to a name " &
+                & // "without an extension)", stat_input)
+            return
+        end if
+        call dataset_overrides(acf%dataset, overrides, set, error)
+        if (allocated(error)) return
+        call read_adm(acf%dataset, adm, error, set, run_given=.true.)
+        if (allocated(error)) return
+        call apply_acf(acf, adm, error)
+        if (allocated(error)) return
+        call apply_run_times(path, times, adm%units, adm%run, error)
+        if (allocated(error)) return
+        if (.not. allocated(adm%run%segments)) then
+            call fatal_error(error, path // ": no SIMULATE command, and " // acf%dataset &
+                & // " has no SIMULATE statement: add SIMULATE/DYNAMIC, END=t, STEPS=n to the " &
+                & // "command file (before STOP), or give rollcon run " // path // " --end T " &
+                & // "--steps N", stat_input)
+            return
+        end if
+        allocate(job%source, source=new_dataset_source(adm, acf%dataset))
+        job%name = acf%output_name
+        if (len(job%name) == 0) job%name = output_name(acf%dataset)
+    end subroutine load_command_file
+
+    !> The overrides of a dataset (statement%id%keyword[%k]) as the reader takes them.
+    subroutine dataset_overrides(path, overrides, set, error)
+        character(len=*), intent(in) :: path
+        type(input_override_type), intent(in) :: overrides(:)
+        type(adm_override_type), allocatable, intent(out) :: set(:)
+        type(error_type), allocatable, intent(out) :: error
         character(len=:), allocatable :: group, key
         integer :: k
 
+        allocate(set(size(overrides)))
         do k = 1, size(overrides)
             call parse_override_name(overrides(k)%name, set(k), group, key)
             if (len(group) == 0) then
@@ -132,10 +226,7 @@ contains
             end if
             set(k)%value = overrides(k)%value
         end do
-        call read_adm(path, adm, error, set)
-        if (allocated(error)) return
-        allocate(job%source, source=new_dataset_source(adm, path))
-    end subroutine load_dataset
+    end subroutine dataset_overrides
 
     !> --ucosub NAME: a file when one exists (compiled and run apart), else a built-in
     !> routine's name; "" keeps the hand-checked disk. A model whose every UCON names its own

@@ -93,6 +93,8 @@ contains
 
         options%end_time = job%source%settings%end_time
         options%output_step = job%source%settings%output_step
+        if (allocated(job%source%settings%output_times)) options%output_times = &
+            & job%source%settings%output_times
         options%progress = .not. job%quiet
         options%max_csv_bytes = job%max_csv_bytes
     end subroutine job_options

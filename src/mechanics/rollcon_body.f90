@@ -15,7 +15,7 @@ module rollcon_body
     private
 
     public :: part_type, body_residual, body_mass_matrix, body_residual_jacobian
-    public :: kinetic_energy, body_angular_velocity, body_mass_and_force
+    public :: kinetic_energy, body_angular_velocity, body_mass_and_force, energy_gradient
 
     !> A rigid part with principal (diagonal) inertia at its centre of mass
     type :: part_type
@@ -50,6 +50,29 @@ contains
         omega = body_angular_velocity(q, u)
         energy = 0.5_wp*part%mass*sum(u(1:3)**2) + 0.5_wp*sum(part%inertia*omega**2)
     end function kinetic_energy
+
+    !> The gradient of the part's energy, kinetic plus gravitational potential, with respect to
+    !> its coordinates and their rates [J/m, J/rad; kg m/s, kg m^2/s]: dT/dq (0 for X, Y, Z,
+    !> psi; (J omega) . (dB/dtheta u_rot) and (J omega) . (dB/dphi u_rot) for theta and phi)
+    !> minus m g for X, Y, Z; dT/du = M(q) u (m v, and B^T J omega). Exact (docs/design.md §3).
+    pure subroutine energy_gradient(part, q, u, gravity, d_q, d_u)
+        type(part_type), intent(in) :: part
+        !> Coordinates [m, rad] and their rates [m/s, rad/s]
+        real(wp), intent(in) :: q(6), u(6)
+        !> Gravity, ground components [m/s^2]
+        real(wp), intent(in) :: gravity(3)
+        real(wp), intent(out) :: d_q(6), d_u(6)
+        real(wp) :: b(3, 3), j_omega(3)
+
+        b = rate_matrix(q(5), q(6))
+        j_omega = part%inertia*times(b, u(4:6))
+        d_q(1:3) = -part%mass*gravity
+        d_q(4) = 0.0_wp
+        d_q(5) = dot_product(j_omega, times(rate_matrix_dtheta(q(5), q(6)), u(4:6)))
+        d_q(6) = dot_product(j_omega, times(rate_matrix_dphi(q(5), q(6)), u(4:6)))
+        d_u(1:3) = part%mass*u(1:3)
+        d_u(4:6) = transpose_times(b, j_omega)
+    end subroutine energy_gradient
 
     !> M(q) = diag(m, m, m, B^T J B).
     pure function body_mass_matrix(part, q) result(m)

@@ -33,6 +33,9 @@ module rollcon_constraints
         integer, allocatable :: local(:, :), local_count(:)
         !> The place in local(:, k) of each of UCON k's variables (max_ucon_vars, nc)
         integer, allocatable :: slot(:, :)
+        !> For each UCON: every variable a coordinate (none a rate), declared in ascending order
+        !> of its coordinates: its XMATRX is its d2F/dq dq as it stands (place_hessian)
+        logical, allocatable :: plain_hessian(:)
         !> Second partials over each UCON's own coordinates (docs/design.md §4): hqq(a, b, k) is
         !> d2F_k/dq_i dq_j and hqu(a, b, k) d2F_k/dq_i du_j with i = local(a, k), j = local(b, k);
         !> d2F/du du is zero (docs/design.md §2). The rest of the n x n matrices are zeros, not
@@ -57,12 +60,13 @@ contains
         associate (n => model%n, nc => model%nc)
             if (allocated(self%value)) deallocate(self%value, self%dt, self%dtt, self%grad_q, &
                 & self%grad_u, self%dt_grad_q, self%dt_grad_u, self%hqq, self%hqu, self%local, &
-                & self%local_count, self%slot)
+                & self%local_count, self%slot, self%plain_hessian)
             allocate(self%value(nc), self%dt(nc), self%dtt(nc), source=0.0_wp)
             allocate(self%grad_q(nc, n), self%grad_u(nc, n), self%dt_grad_q(nc, n), &
                 & self%dt_grad_u(nc, n), source=0.0_wp)
             allocate(self%local(max_ucon_vars, nc), self%slot(max_ucon_vars, nc), &
                 & self%local_count(nc), source=0)
+            allocate(self%plain_hessian(nc), source=.false.)
             ! each UCON's distinct coordinates in ascending order (insertion), then the slots
             self%width = 0
             do k = 1, nc
@@ -85,6 +89,8 @@ contains
                     end do
                     self%local_count(k) = count
                     self%width = max(self%width, count)
+                    self%plain_hessian(k) = .not. any(ucon%velocity(:ucon%nvars)) &
+                        & .and. all(self%slot(:ucon%nvars, k) == [(i, i = 1, ucon%nvars)])
                 end associate
             end do
             allocate(self%hqq(self%width, self%width, nc), self%hqu(self%width, self%width, nc), &
@@ -138,8 +144,8 @@ contains
                     if (idrsel(1) /= 0) self%value(k) = scalar
                     if (first) call scatter_row(ucon, array, self%grad_q(k, :), &
                         & self%grad_u(k, :))
-                    if (second) call place_hessian(ucon, self%slot(:, k), xmatrx, &
-                        & self%hqq(:, :, k), self%hqu(:, :, k))
+                    if (second) call place_hessian(ucon, self%slot(:, k), self%local_count(k), &
+                        & self%plain_hessian(k), xmatrx, self%hqq(:, :, k), self%hqu(:, :, k))
                 end if
                 ! a time-free UCON's time partials stay at the zeros of allocate_state
                 if (iand(needs, need_time) /= 0 .and. .not. ucon%time_free) then
@@ -213,25 +219,39 @@ contains
 
     !> Place a UCON's second partials (XMATRX) in its compact d2F/dq dq and d2F/dq du (over its
     !> own coordinates: `slot` gives each variable's place; d2F/du du is zero: F is linear in
-    !> the rates, docs/design.md §2). Cleared, then set, as scatter_row does.
-    pure subroutine place_hessian(ucon, slot, xmatrx, hqq, hqu)
+    !> the rates, docs/design.md §2). A plain UCON (plain_hessian: coordinates only, in
+    !> ascending order) has its XMATRX copied whole, every entry of its corner written, and its
+    !> hqu never written (zero since allocate_state); another has the count x count corner of
+    !> its own coordinates cleared (the rest is never written and stays zero), then set, as
+    !> scatter_row does: no two variables of one kind share a slot, so the entries set do not
+    !> overlap.
+    pure subroutine place_hessian(ucon, slot, count, plain, xmatrx, hqq, hqu)
         type(ucon_statement_type), intent(in) :: ucon
         integer, intent(in) :: slot(:)
+        !> Number of the UCON's own coordinates
+        integer, intent(in) :: count
+        !> Its plain_hessian
+        logical, intent(in) :: plain
         real(wp), intent(in) :: xmatrx(:, :)
         real(wp), intent(inout) :: hqq(:, :), hqu(:, :)
         integer :: i, j
 
-        hqq = 0.0_wp
-        hqu = 0.0_wp
+        if (plain) then
+            hqq(:count, :count) = xmatrx(:count, :count)
+            return
+        end if
+        hqq(:count, :count) = 0.0_wp
+        hqu(:count, :count) = 0.0_wp
         do j = 1, ucon%nvars
-            do i = 1, ucon%nvars
-                if (ucon%velocity(i)) cycle
-                if (ucon%velocity(j)) then
-                    hqu(slot(i), slot(j)) = xmatrx(i, j)
-                else
-                    hqq(slot(i), slot(j)) = xmatrx(i, j)
-                end if
-            end do
+            if (ucon%velocity(j)) then
+                do i = 1, ucon%nvars
+                    if (.not. ucon%velocity(i)) hqu(slot(i), slot(j)) = xmatrx(i, j)
+                end do
+            else
+                do i = 1, ucon%nvars
+                    if (.not. ucon%velocity(i)) hqq(slot(i), slot(j)) = xmatrx(i, j)
+                end do
+            end if
         end do
     end subroutine place_hessian
 

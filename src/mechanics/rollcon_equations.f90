@@ -8,7 +8,8 @@ module rollcon_equations
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type
     use rollcon_model, only : model_type
-    use rollcon_body, only : body_mass_and_force, body_residual_jacobian, kinetic_energy
+    use rollcon_body, only : body_mass_and_force, body_residual_jacobian, kinetic_energy, &
+        & energy_gradient
     use rollcon_force, only : force_and_moment
     use rollcon_constraints, only : constraint_state_type, local_dot, need_value, need_first, &
         & need_second, need_time
@@ -48,6 +49,8 @@ module rollcon_equations
         procedure :: ode_jacobian
         procedure :: project
         procedure :: energy
+        procedure :: potential_energy
+        procedure :: energy_tolerance
         procedure :: constraint_force
         procedure :: reaction_from_accelerations
         procedure :: assemble
@@ -386,13 +389,34 @@ contains
         real(wp), intent(in) :: h(:, :), u(:)
         integer, intent(in) :: at(:)
         real(wp) :: value
-        integer :: j
+        real(wp) :: column
+        integer :: i, j
 
+        ! local_dot of each column, written out (a call per column cost more than its sum)
         value = 0.0_wp
         do j = 1, size(at)
-            value = value + u(at(j))*local_dot(h(:, j), u, at)
+            column = 0.0_wp
+            do i = 1, size(at)
+                column = column + h(i, j)*u(at(i))
+            end do
+            value = value + u(at(j))*column
         end do
     end function local_quadratic_form
+
+    !> Gravitational potential energy, sum of -m g . r over the parts [J] (zero at ground's
+    !> origin).
+    pure function potential_energy(self, q) result(e)
+        class(equations_type), intent(in) :: self
+        real(wp), intent(in) :: q(:)
+        real(wp) :: e
+        integer :: p, i0
+
+        e = 0.0_wp
+        do p = 1, size(self%model%parts)
+            i0 = 6*(p - 1)
+            e = e - self%model%parts(p)%mass*dot_product(self%model%gravity, q(i0 + 1:i0 + 3))
+        end do
+    end function potential_energy
 
     !> Total energy: kinetic plus gravitational potential [J].
     pure function energy(self, q, u) result(e)
@@ -408,6 +432,29 @@ contains
                 & - self%model%parts(p)%mass*dot_product(self%model%gravity, q(i0 + 1:i0 + 3))
         end do
     end function energy
+
+    !> The change of the energy (kinetic plus gravitational potential) that an error of the
+    !> integrator's tolerance in every coordinate and rate could make [J]: the sum over them of
+    !> |dE/dy_i| (rtol |y_i| + atol), the weights of the integrators' error test (rtol |y_i| +
+    !> atol for each component y_i of the state). Never 0 under gravity (dE/dZ = m g).
+    pure function energy_tolerance(self, q, u, rtol, atol) result(e)
+        class(equations_type), intent(in) :: self
+        real(wp), intent(in) :: q(:), u(:)
+        !> The run's relative and absolute tolerances
+        real(wp), intent(in) :: rtol, atol
+        real(wp) :: e
+        real(wp) :: d_q(6), d_u(6)
+        integer :: p, i0
+
+        e = 0.0_wp
+        do p = 1, size(self%model%parts)
+            i0 = 6*(p - 1)
+            call energy_gradient(self%model%parts(p), q(i0 + 1:i0 + 6), u(i0 + 1:i0 + 6), &
+                & self%model%gravity, d_q, d_u)
+            e = e + sum(abs(d_q)*(rtol*abs(q(i0 + 1:i0 + 6)) + atol)) &
+                & + sum(abs(d_u)*(rtol*abs(u(i0 + 1:i0 + 6)) + atol))
+        end do
+    end function energy_tolerance
 
     !> Constraint force on part p, ground components [N]: the translational rows of C^T lambda,
     !> with C as left by the last accelerations call.

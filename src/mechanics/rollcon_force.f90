@@ -15,12 +15,15 @@ module rollcon_force
     private
 
     public :: applied_force_type, force_and_moment, force_breakpoints, force_corners, pulse_stops
-    public :: forces_idle_after, nonfinite_load
+    public :: forces_idle_after, nonfinite_load, runaway_load, runaway_limit
     public :: profile_constant, profile_half_sine, profile_statement, frame_body, frame_tilt
 
     !> Time profiles: constant magnitude, one half-sine pulse carrying a given impulse, or a
     !> force statement's expressions (`statement`: markers, directions and magnitudes)
     integer, parameter :: profile_constant = 1, profile_half_sine = 2, profile_statement = 3
+    !> A load or rate beyond this is a runaway: its square (a power, an energy) overflows, so
+    !> the run's rows cannot stay finite (sqrt(huge(1.0_wp)), 1.3e154)
+    real(wp), parameter :: runaway_limit = 1.3407807929942596e154_wp
     !> Stops inside each pulse: the integrator stops at pulse_points + 1 equally spaced times
     !> from a pulse's start to its end (force_breakpoints)
     integer, parameter :: pulse_points = 20
@@ -148,6 +151,38 @@ contains
             end do
         end do
     end function nonfinite_load
+
+    !> The force statement whose expression has run away at (time, q, u): the first component
+    !> FX ... TZ, over every statement, whose finite value exceeds limit (at most runaway_limit:
+    !> an EXP of a growing argument, a finite overflow of the kind nonfinite_load cannot see),
+    !> in words ("VFORCE/5 FX = 5.2E+160 at t = 0.37 s: ..."; why names what limit is: "beyond
+    !> 1.3e154, whose square overflows"); "" when none does.
+    function runaway_load(forces, time, q, u, limit, why) result(message)
+        type(applied_force_type), intent(in) :: forces(:)
+        real(wp), intent(in) :: time, q(:), u(:)
+        !> The size beyond which a load has run away [N, N m]
+        real(wp), intent(in) :: limit
+        character(len=*), intent(in) :: why
+        character(len=:), allocatable :: message
+        character(len=*), parameter :: slots(6) = ["FX", "FY", "FZ", "TX", "TY", "TZ"]
+        real(wp) :: values(6)
+        integer :: i, k
+
+        message = ""
+        do i = 1, size(forces)
+            if (forces(i)%profile /= profile_statement) cycle
+            values = marker_force_values(forces(i)%statement, time, q, u)
+            k = findloc(ieee_is_finite(values) .and. abs(values) > limit, .true., dim=1)
+            if (k == 0) cycle
+            message = "force " // to_text(i)
+            if (allocated(forces(i)%name)) message = forces(i)%name
+            message = message // " " // slots(k) // " = " // to_text(values(k)) // " at t = " &
+                & // to_text(time) // " s: a load this large (" // why // ") has run away: " &
+                & // "an expression that grows without bound there (an EXP of a growing " &
+                & // "argument?)"
+            return
+        end do
+    end function runaway_load
 
     !> Times the integrator must stop at [s]. An implicit step that jumps over a pulse samples
     !> the force only where it is zero, and a step-size limit set between steps takes effect

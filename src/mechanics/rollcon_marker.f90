@@ -15,7 +15,7 @@ module rollcon_marker
     implicit none
     private
 
-    public :: marker_type, marker_motion, marker_quantity, turn_marker
+    public :: marker_type, marker_motion, marker_quantity, turn_marker, part_marker
 
     !> A marker
     type :: marker_type
@@ -112,5 +112,33 @@ contains
         end do
         marker%principal = .false.
     end subroutine turn_marker
+
+    !> Marker `id` on part p as ADAMS places it: from its origin and axes in the part's frame
+    !> (a MARKER's QP, and the matrix of its REULER), the CM marker's origin and axes in the
+    !> same frame and the principal axes in the CM marker's axes, its origin from the centre of
+    !> mass and its axes, both in the principal axes (R_cm = cm_axes principal; point =
+    !> R_cm^T (origin - cm_origin), axes = R_cm^T axes). A marker whose axes are the principal
+    !> axes themselves (a CM marker without products of inertia) is better given as
+    !> marker_type(id=id, part=p, principal=.true.): its angles are then the part's own.
+    pure function part_marker(id, part, origin, axes, cm_origin, cm_axes, principal) &
+            & result(marker)
+        integer, intent(in) :: id
+        !> Index of its part in the model (model order, from 1)
+        integer, intent(in) :: part
+        !> Origin [m] and axes (columns) in the part's frame
+        real(wp), intent(in) :: origin(3), axes(3, 3)
+        !> The CM marker's origin [m] and axes (columns) in the part's frame
+        real(wp), intent(in) :: cm_origin(3), cm_axes(3, 3)
+        !> The principal axes (columns) in the CM marker's axes
+        real(wp), intent(in) :: principal(3, 3)
+        type(marker_type) :: marker
+        real(wp) :: r_cm(3, 3)
+
+        marker%id = id
+        marker%part = part
+        r_cm = matmul(cm_axes, principal)
+        marker%point = matmul(transpose(r_cm), origin - cm_origin)
+        marker%axes = matmul(transpose(r_cm), axes)
+    end function part_marker
 
 end module rollcon_marker

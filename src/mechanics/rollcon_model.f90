@@ -1,5 +1,11 @@
 ! SPDX-License-Identifier: MIT
-!> A multibody model: rigid parts, UCON statements served by one UCOSUB, applied forces, gravity.
+!> A multibody model: rigid parts, UCON statements served by one UCOSUB, joints and joint
+!> primitives (as UCONs of the generated primitive routines, rollcon_joint_primitives),
+!> applied forces, gravity.
+!>
+!> A UCON that names no routine of its own is served by the model's UCOSUB (ADAMS's rule: one
+!> UCOSUB per model serves every UCON that names no ROUTINE); served_by_model_ucosub is that
+!> rule, written here only, and setup_model acts on it.
 !>
 !> setup_model makes the initialisation call of every UCON (IFLAG = 3), validates the UCOVAR
 !> declarations and maps each declared variable onto the system's coordinates: part p's
@@ -17,12 +23,14 @@ module rollcon_model
     use rollcon_ucosub_units, only : ucosub_units_type, variable_scales, value_scale
     use rollcon_body, only : part_type
     use rollcon_force, only : applied_force_type, profile_statement, frame_tilt
-    use rollcon_marker, only : turn_marker
+    use rollcon_marker, only : marker_type, turn_marker
+    use rollcon_joint_primitives, only : primitive_ucon_type, joint_ucons
+    use rollcon_ucosub_catalog, only : builtin_ucosub_name
     use rollcon_rebasing, only : rebased_inertia, to_new_basis
     implicit none
     private
 
-    public :: model_type, ucon_statement_type, setup_model
+    public :: model_type, ucon_statement_type, setup_model, served_by_model_ucosub
 
     !> One UCON/id, FUNCTION=USER(par) statement and, after setup, where its variables live
     type :: ucon_statement_type
@@ -41,9 +49,11 @@ module rollcon_model
         !> True when F has no explicit time: dF/dt, d2F/dt2, d2F/dt dq and f(t) are identically
         !> zero and the driver never asks for them (default false: "may depend on time", ask)
         logical :: time_free = .false.
-        !> The routine serving this statement: the model's UCOSUB unless given
+        !> The routine serving this statement: its own when given, else (from setup_model on)
+        !> the model's UCOSUB
         procedure(ucosub_interface), pointer, nopass :: ucosub => null()
-        !> The name of its own routine, for the record ("" for the model's UCOSUB)
+        !> The name of its own routine, for the record ("" when it has none: the model's UCOSUB
+        !> serves it, served_by_model_ucosub)
         character(len=:), allocatable :: routine
         !> The routine works in the model's units, not SI (rollcon_ucosub_units): then each
         !> variable is passed as scales(i) * its SI value, the time as time_scale * t, and F
@@ -81,6 +91,8 @@ module rollcon_model
     contains
         procedure :: add_part
         procedure :: add_ucon
+        procedure :: add_joint
+        procedure :: add_jprim
         procedure :: add_force
         procedure :: turn_part_axes
         procedure :: turn_ucon_geometry
@@ -104,25 +116,110 @@ contains
         integer, intent(in) :: id
         !> Its constants
         real(wp), intent(in) :: par(:)
-        !> A routine of its own (ADAMS has one UCOSUB per model; rollcon allows one per UCON)
+        !> A routine of its own (ADAMS has one UCOSUB per model; rollcon allows one per UCON);
+        !> without it, the model's UCOSUB serves the UCON
         procedure(ucosub_interface), optional :: ucosub
         !> The routine's F has no explicit time (a generated module's `<spec>_time_free`): the
-        !> time partials are then taken as zero without calling it. Default false.
+        !> time partials are then taken as zero without calling it. Default false; a UCON the
+        !> model's UCOSUB serves takes it from setup_model when that routine is a built-in one.
         logical, intent(in), optional :: time_free
-        !> The name of the routine given, for the run's record (a built-in's name, "yours")
+        !> The name of the routine given as ucosub, for the run's record (a built-in's name;
+        !> "its own" when not given)
         character(len=*), intent(in), optional :: routine
         type(ucon_statement_type) :: ucon
 
         ucon%id = id
         ucon%par = par
         ucon%routine = ""
-        if (present(routine)) ucon%routine = routine
-        if (present(ucosub)) ucon%ucosub => ucosub
-        if (present(ucosub) .and. .not. present(routine)) ucon%routine = "its own"
+        if (present(ucosub)) then
+            ucon%ucosub => ucosub
+            ucon%routine = "its own"
+            if (present(routine)) then
+                if (len_trim(routine) > 0) ucon%routine = trim(routine)
+            end if
+        end if
         if (present(time_free)) ucon%time_free = time_free
         if (.not. allocated(self%ucons)) allocate(self%ucons(0))
         self%ucons = [self%ucons, ucon]
     end subroutine add_ucon
+
+    !> True when the model's UCOSUB serves a UCON whose own routine is named `routine` (""
+    !> when it names none): ADAMS's rule, one UCOSUB per model serves every UCON that names no
+    !> ROUTINE; rollcon lets a UCON name its own. The one statement of the rule: setup_model
+    !> gives such a UCON the model's routine, a run's record and a dataset's assembly ask here.
+    pure logical function served_by_model_ucosub(routine)
+        !> The name of the UCON's own routine (ucon_statement_type's routine, a dataset's
+        !> ROUTINE=), "" for none
+        character(len=*), intent(in) :: routine
+
+        served_by_model_ucosub = len_trim(routine) == 0
+    end function served_by_model_ucosub
+
+    !> Append JOINT/id, a joint of type kind (REVOLUTE, SPHERICAL, UNIVERSAL, CYLINDRICAL,
+    !> TRANSLATIONAL, FIXED, PLANAR, HOOKE, CONVEL: rollcon_joint_types) between marker i and
+    !> marker j, as the UCONs of its primitives (rollcon_joint_primitives): they take the ids
+    !> after the largest UCON id of the model, in the order of the primitives and their
+    !> components, and the model's length unit (ucosub_units). Add the parts first. Refused: an
+    !> unknown type, markers on parts the model does not have, or both on one part.
+    subroutine add_joint(self, id, kind, i, j, error)
+        class(model_type), intent(inout) :: self
+        !> The joint's id, for messages ("JOINT/3")
+        integer, intent(in) :: id
+        !> Its type, in capitals and in full
+        character(len=*), intent(in) :: kind
+        !> Marker I and marker J: their part (model order, 0 for the ground), origin and axes
+        !> in the part's principal axes (rollcon_marker's part_marker)
+        type(marker_type), intent(in) :: i, j
+        type(error_type), allocatable, intent(out) :: error
+
+        call add_primitives(self, .false., id, kind, i, j, error)
+    end subroutine add_joint
+
+    !> Append JPRIM/id, a joint primitive of type kind (ATPOINT, INLINE, INPLANE,
+    !> PARALLEL_AXES, PERPENDICULAR, ORIENTATION) between marker i and marker j, as add_joint
+    !> does. An INLINE or INPLANE with marker I on the ground is refused (it is not symmetric
+    !> in I and J, and the routines hold the part of I).
+    subroutine add_jprim(self, id, kind, i, j, error)
+        class(model_type), intent(inout) :: self
+        !> The primitive's id, for messages ("JPRIM/3")
+        integer, intent(in) :: id
+        !> Its type, in capitals and in full
+        character(len=*), intent(in) :: kind
+        !> Marker I and marker J (part 0: the ground)
+        type(marker_type), intent(in) :: i, j
+        type(error_type), allocatable, intent(out) :: error
+
+        call add_primitives(self, .true., id, kind, i, j, error)
+    end subroutine add_jprim
+
+    !> The UCONs of a JOINT (primitive false) or JPRIM, appended.
+    subroutine add_primitives(self, primitive, id, kind, i, j, error)
+        class(model_type), intent(inout) :: self
+        logical, intent(in) :: primitive
+        integer, intent(in) :: id
+        character(len=*), intent(in) :: kind
+        type(marker_type), intent(in) :: i, j
+        type(error_type), allocatable, intent(out) :: error
+        type(primitive_ucon_type), allocatable :: ucons(:)
+        integer, allocatable :: part_ids(:)
+        integer :: k, next_id
+
+        if (.not. allocated(self%parts)) allocate(self%parts(0))
+        if (.not. allocated(self%ucons)) allocate(self%ucons(0))
+        part_ids = self%parts%id
+        call joint_ucons(primitive, id, kind, i, j, part_ids, self%ucosub_units%length, ucons, &
+            & error)
+        if (allocated(error)) return
+        next_id = 0
+        if (size(self%ucons) > 0) next_id = maxval(self%ucons%id)
+        do k = 1, size(ucons)
+            next_id = next_id + 1
+            call self%add_ucon(next_id, ucons(k)%par, ucons(k)%ucosub, time_free=.true., &
+                & routine=ucons(k)%routine)
+            self%ucons(size(self%ucons))%geometry_par = ucons(k)%geometry_par
+            self%ucons(size(self%ucons))%geometry_parts = ucons(k)%geometry_parts
+        end do
+    end subroutine add_primitives
 
     !> Append an applied force.
     subroutine add_force(self, force)
@@ -197,6 +294,8 @@ contains
     subroutine setup_model(model, error)
         type(model_type), target, intent(inout) :: model
         type(error_type), allocatable, intent(out) :: error
+        character(len=:), allocatable :: model_name
+        logical :: model_time_free
         integer :: k, i, p, entry
 
         if (.not. allocated(model%parts)) allocate(model%parts(0))
@@ -206,12 +305,23 @@ contains
             call fatal_error(error, "the model has no part", stat_input)
             return
         end if
+        ! the model's UCOSUB serves every UCON that names no routine of its own; a built-in
+        ! one whose F has no explicit time spares the driver the time partials
+        model_time_free = .false.
+        if (associated(model%ucosub)) model_name = builtin_ucosub_name(model%ucosub, &
+            & model_time_free)
         do k = 1, size(model%ucons)
-            if (.not. associated(model%ucons(k)%ucosub)) model%ucons(k)%ucosub => model%ucosub
-            if (.not. associated(model%ucons(k)%ucosub)) then
-                call ucon_error(error, model%ucons(k)%id, "no UCOSUB serves this statement")
-                return
-            end if
+            associate (ucon => model%ucons(k))
+                if (.not. allocated(ucon%routine)) ucon%routine = ""
+                if (served_by_model_ucosub(ucon%routine)) then
+                    ucon%ucosub => model%ucosub
+                    ucon%time_free = ucon%time_free .or. model_time_free
+                end if
+                if (.not. associated(ucon%ucosub)) then
+                    call ucon_error(error, ucon%id, "no UCOSUB serves this statement")
+                    return
+                end if
+            end associate
         end do
         do i = 1, size(model%parts)
             if (model%parts(i)%mass <= 0.0_wp .or. any(model%parts(i)%inertia <= 0.0_wp)) then

@@ -7,8 +7,9 @@
 !>
 !> M is block diagonal, one 6 x 6 block per part, and each block is m I (translation) beside
 !> the 3 x 3 rotational block B^T J B (principal axes at the centre of mass: no coupling). So
-!> M^-1 costs a division and a 3 x 3 Cholesky solve per part (LAPACK dpotf2/dpotrs) and only
-!> the small Schur complement S is factored with pivoting (LAPACK dgetf2/dgetrs), in place of
+!> M^-1 costs a division and a 3 x 3 Cholesky solve per part (LAPACK dpotf2, and dpotrs's
+!> arithmetic in rollcon_small_dense) and only the small Schur complement S is factored with
+!> pivoting (dgetf2's and dgetrs's arithmetic, rollcon_small_dense), in place of
 !> the whole (n + nc) x (n + nc) matrix. Given the constraints' blocks (rollcon_constraint_blocks:
 !> UCONs that share no part do not couple), S is block diagonal and every step goes block by
 !> block, each row over its block's coordinates only, so N independent disks cost N times one:
@@ -24,7 +25,8 @@ module rollcon_saddle_point
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type, fatal_error, stat_lapack
     use rollcon_text, only : to_text
-    use rollcon_lapack, only : dgetf2, dgetrs, dpotf2, dpotrs, lapack_info_error
+    use rollcon_lapack, only : dpotf2, lapack_info_error
+    use rollcon_small_dense, only : factor_lu, solve_lu, solve_cholesky3
     use rollcon_sparse_lu, only : sparse_lu_type
     use rollcon_constraint_blocks, only : constraint_blocks_type, ascending
     use rollcon_int_buffer, only : append, trimmed
@@ -67,6 +69,9 @@ module rollcon_saddle_point
         !> right-hand sides of one block gathered (most_rows, up to 2 n columns)
         real(wp), allocatable :: block_schur(:), gathered(:, :)
         integer, allocatable :: schur_start(:)
+        !> For each entry of a dense block's S (packed as block_schur): whether its two UCONs
+        !> share a part (else the entry is an exact zero, not summed)
+        logical, allocatable :: block_shares(:)
         !> Whether the current factorisation went block by block
         logical :: by_blocks = .false.
         !> For each part, whether a block holds it (a part no UCON touches is in none)
@@ -127,7 +132,7 @@ contains
         self%blocked = present(blocks)
         self%by_blocks = .false.
         if (allocated(self%block_schur)) deallocate(self%block_schur, self%gathered, &
-            & self%schur_start, self%part_blocked, self%rotational_rows)
+            & self%schur_start, self%part_blocked, self%rotational_rows, self%block_shares)
         if (allocated(self%sparse)) then
             do b = 1, size(self%sparse)
                 call self%sparse(b)%release()
@@ -156,6 +161,7 @@ contains
         end do
         allocate(self%block_schur(max(self%schur_start(blocks%count + 1) - 1, 1)), &
             & self%gathered(max(blocks%most_rows, 1), max(2*n, 1)), source=0.0_wp)
+        call find_shares(self)
         allocate(self%block_sparse(blocks%count), self%sparse(blocks%count))
         do b = 1, blocks%count
             self%block_sparse(b) = blocks%row_start(b + 1) - blocks%row_start(b) &
@@ -166,6 +172,37 @@ contains
             if (allocated(failure) .and. present(error)) call move_alloc(failure, error)
         end if
     end subroutine init
+
+    !> For each entry (k, l) of every block's S, whether UCONs k and l share a part: M is
+    !> block diagonal by parts, so M^-1 c_l^T is zero outside l's parts, and c_k outside k's
+    !> own coordinates.
+    subroutine find_shares(self)
+        type(saddle_point_type), intent(inout) :: self
+        logical :: touches(self%parts)
+        integer :: b, i, j, k, l, m, x
+
+        allocate(self%block_shares(size(self%block_schur)), source=.false.)
+        associate (blocks => self%blocks)
+            do b = 1, blocks%count
+                m = blocks%row_start(b + 1) - blocks%row_start(b)
+                do j = 1, m
+                    l = blocks%rows(blocks%row_start(b) + j - 1)
+                    touches = .false.
+                    do x = blocks%ucon_start(l), blocks%ucon_start(l + 1) - 1
+                        touches((blocks%ucon_coordinates(x) - 1)/6 + 1) = .true.
+                    end do
+                    do i = 1, m
+                        k = blocks%rows(blocks%row_start(b) + i - 1)
+                        do x = blocks%ucon_start(k), blocks%ucon_start(k + 1) - 1
+                            if (touches((blocks%ucon_coordinates(x) - 1)/6 + 1)) &
+                                & self%block_shares(self%schur_start(b) + i - 1 + m*(j - 1)) &
+                                & = .true.
+                        end do
+                    end do
+                end do
+            end do
+        end associate
+    end subroutine find_shares
 
     !> The sparse blocks' patterns of S (UCONs k, l couple when they share a part), each
     !> analysed by KLU, and the coordinates each entry sums over.
@@ -289,7 +326,8 @@ contains
         class(saddle_point_type), intent(inout) :: self
         !> Mass matrix [kg, kg m^2]
         real(wp), intent(in) :: mass(:, :)
-        !> Constraint rows
+        !> Constraint rows; with the blocks, row k is zero outside UCON k's own coordinates
+        !> (constraint_blocks_type's ucon_coordinates), over which the blocks' sums run
         real(wp), intent(in) :: c(:, :)
         !> How many rows of c take part
         integer, intent(in) :: rows
@@ -342,7 +380,7 @@ contains
                 self%schur(k, j) = dot_product(c(k, :), self%minv_ct(:, j))
             end do
         end do
-        call dgetf2(rows, rows, self%schur, self%nc, self%pivots, info)
+        call factor_lu(rows, self%schur, self%nc, self%pivots, info)
         call lapack_info_error("dgetf2 (constraint Schur complement)", info, error)
     end subroutine factor
 
@@ -360,7 +398,7 @@ contains
         type(error_type), allocatable, intent(out) :: error
         !> r1 holds M^-1 times the momentum rows already (factor's r1)
         logical, intent(in), optional :: scaled
-        integer :: j, k, info
+        integer :: j, k
         logical :: done
 
         done = .false.
@@ -379,9 +417,7 @@ contains
                 r2(k, j) = r2(k, j) - dot_product(c(k, :), r1(:, j))
             end do
         end do
-        call dgetrs("N", self%rows, m, self%schur, self%nc, self%pivots, r2, self%rows, info)
-        call lapack_info_error("dgetrs (constraint Schur complement)", info, error)
-        if (allocated(error)) return
+        call solve_lu(self%rows, m, self%schur, self%nc, self%pivots, r2, self%rows)
         do j = 1, m
             do k = 1, self%rows
                 r1(:, j) = r1(:, j) + r2(k, j)*self%minv_ct(:, k)
@@ -396,7 +432,8 @@ contains
         real(wp), intent(in) :: c(:, :)
         type(error_type), allocatable, intent(out) :: error
         real(wp), intent(inout), optional :: r1(:)
-        integer :: b, i, j, k, kj, m, first, last, info, s0
+        real(wp) :: total
+        integer :: b, i, j, k, kj, m, first, last, info, s0, e, x, jj
 
         associate (blocks => self%blocks)
             do b = 1, blocks%count
@@ -416,15 +453,27 @@ contains
                 end do
                 m = blocks%row_start(b + 1) - blocks%row_start(b)
                 s0 = self%schur_start(b) - 1
+                ! each entry over UCON k's own coordinates (c(k, :) is zero elsewhere), and an
+                ! exact zero where k and kj share no part: the terms the block's dense sum has
+                ! beyond these are exact zeros, which change no sum
                 do j = 1, m
                     kj = blocks%rows(blocks%row_start(b) + j - 1)
                     do i = 1, m
+                        e = s0 + i + m*(j - 1)
+                        if (.not. self%block_shares(e)) then
+                            self%block_schur(e) = 0.0_wp
+                            cycle
+                        end if
                         k = blocks%rows(blocks%row_start(b) + i - 1)
-                        self%block_schur(s0 + i + m*(j - 1)) = block_dot(c, k, &
-                            & self%minv_ct(:, kj), blocks%coordinates(first:last))
+                        total = 0.0_wp
+                        do x = blocks%ucon_start(k), blocks%ucon_start(k + 1) - 1
+                            jj = blocks%ucon_coordinates(x)
+                            total = total + c(k, jj)*self%minv_ct(jj, kj)
+                        end do
+                        self%block_schur(e) = total
                     end do
                 end do
-                call dgetf2(m, m, self%block_schur(self%schur_start(b)), m, &
+                call factor_lu(m, self%block_schur(self%schur_start(b)), m, &
                     & self%pivots(blocks%row_start(b)), info)
                 call lapack_info_error("dgetf2 (constraint Schur complement, a block)", info, &
                     & error)
@@ -440,7 +489,7 @@ contains
         integer, intent(in) :: m
         real(wp), intent(inout) :: r1(self%n, m), r2(self%rows, m)
         type(error_type), allocatable, intent(out) :: error
-        integer :: b, i, j, k, rows_b, first, last, col, info
+        integer :: b, i, j, k, rows_b, first, last, col
 
         associate (blocks => self%blocks)
             do b = 1, blocks%count
@@ -456,15 +505,12 @@ contains
                     do i = 1, rows_b
                         k = blocks%rows(blocks%row_start(b) + i - 1)
                         self%gathered(i, col) = r2(k, col) - block_dot(c, k, r1(:, col), &
-                            & blocks%coordinates(first:last))
+                            & blocks%ucon_coordinates(blocks%ucon_start(k): &
+                            & blocks%ucon_start(k + 1) - 1))
                     end do
                 end do
-                call dgetrs("N", rows_b, m, self%block_schur(self%schur_start(b)), rows_b, &
-                    & self%pivots(blocks%row_start(b)), self%gathered, size(self%gathered, 1), &
-                    & info)
-                call lapack_info_error("dgetrs (constraint Schur complement, a block)", info, &
-                    & error)
-                if (allocated(error)) return
+                call solve_lu(rows_b, m, self%block_schur(self%schur_start(b)), rows_b, &
+                    & self%pivots(blocks%row_start(b)), self%gathered, size(self%gathered, 1))
                 call scatter_rows(blocks, b, self%gathered, m, r2)
             end do
             ! a = M^-1 (r1 + C^T lambda): each row's column of M^-1 C^T over its block, rows in
@@ -500,7 +546,7 @@ contains
         real(wp), intent(in) :: c(:, :)
         type(error_type), allocatable, intent(out) :: error
         real(wp), intent(inout), optional :: r1(:)
-        integer :: i, k, i0, info, col, extra
+        integer :: i, k, i0, col, extra
 
         extra = merge(1, 0, present(r1))
         i0 = 6*(p - 1)
@@ -516,9 +562,7 @@ contains
                 col = col + 1
                 rot(:, col) = c(k, i0 + 4:i0 + 6)
             end do
-            call dpotrs("L", 3, col, self%rotational(1, 1, p), 3, rot, 3, info)
-            call lapack_info_error("dpotrs", info, error)
-            if (allocated(error)) return
+            call solve_cholesky3(self%rotational(:, :, p), col, rot, 3)
             if (present(r1)) r1(i0 + 4:i0 + 6) = rot(:, 1)
             col = extra
             do i = 1, size(ucons)
@@ -630,13 +674,12 @@ contains
         real(wp), intent(inout) :: x(:)
         type(error_type), allocatable, intent(out) :: error
         real(wp) :: rotational_rows(3)
-        integer :: i0, info
+        integer :: i0
 
         i0 = 6*(p - 1)
         x(i0 + 1:i0 + 3) = x(i0 + 1:i0 + 3)/self%part_mass(p)
         rotational_rows = x(i0 + 4:i0 + 6)
-        call dpotrs("L", 3, 1, self%rotational(1, 1, p), 3, rotational_rows, 3, info)
-        call lapack_info_error("dpotrs", info, error)
+        call solve_cholesky3(self%rotational(:, :, p), 1, rotational_rows, 3)
         x(i0 + 4:i0 + 6) = rotational_rows
     end subroutine inverse_mass_of_part
 
@@ -646,16 +689,14 @@ contains
         real(wp), intent(inout) :: x(self%n, *)
         integer, intent(in) :: m
         type(error_type), allocatable, intent(out) :: error
-        integer :: p, i0, info
+        integer :: p, i0
 
         do p = 1, self%parts
             i0 = 6*(p - 1)
             x(i0 + 1:i0 + 3, :m) = x(i0 + 1:i0 + 3, :m)/self%part_mass(p)
             ! rows i0+4..i0+6 of every column: the element x(i0 + 4, 1) with leading dimension n
-            ! hands LAPACK that strided block without a copy
-            call dpotrs("L", 3, m, self%rotational(1, 1, p), 3, x(i0 + 4, 1), self%n, info)
-            call lapack_info_error("dpotrs", info, error)
-            if (allocated(error)) return
+            ! hands that strided block over without a copy
+            call solve_cholesky3(self%rotational(:, :, p), m, x(i0 + 4, 1), self%n)
         end do
     end subroutine apply_inverse_mass
 

@@ -28,7 +28,9 @@ contains
         allocate(rows(0))
         if (n == 0 .or. .not. interval > 0.0_wp) return
         ! A frame time within 1e-9 of a step past the last row still counts (rounding).
-        k_last = floor((times(n) - times(1))/interval + 1.0e-9_wp)
+        ! as a real first: an interval far below the rows' spacing must not overflow the count
+        k_last = floor(min((times(n) - times(1))/interval + 1.0e-9_wp, &
+            & real(huge(k_last) - 1, wp)))
         allocate(picked(min(n, k_last + 1)))
         count = 0
         j = 1

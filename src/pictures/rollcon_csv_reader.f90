@@ -5,11 +5,10 @@ module rollcon_csv_reader
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type, fatal_error, input_error, stat_io
     use rollcon_text, only : to_text
-    use rollcon_simulation, only : history_type
+    use rollcon_history, only : history_type
     use rollcon_output_layout, only : output_layout_type, read_layout, name_length
-    use rollcon_contact_watch, only : contact_names
     use rollcon_input_files, only : input_file_type, csv_input_limit
-    use rollcon_request_watch, only : request_column_patterns
+    use rollcon_watch_columns, only : contact_names, basis_pattern, request_column_patterns
     use, intrinsic :: ieee_arithmetic, only : ieee_is_finite
     use, intrinsic :: ieee_exceptions, only : ieee_set_flag, ieee_overflow, ieee_underflow
     implicit none
@@ -126,7 +125,7 @@ contains
         ! the watches' columns rollcon writes: a rim contact's, a part's principal basis, a
         ! dataset's displacement requests
         call read_layout(names, layout, message, [character(len=name_length) :: contact_names, &
-            & "basis_<id>", request_column_patterns])
+            & basis_pattern, request_column_patterns])
         if (.not. allocated(message)) return
         ! The one-part header of the runs before the per-part layout (issue #14): say so.
         if (count > 1) then

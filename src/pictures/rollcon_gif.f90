@@ -254,7 +254,7 @@ contains
         do k = 1, size(rows)
             write(buffer, '(f0.3)') run%history%rows(1, rows(k))
             buffer = adjustl(buffer)
-            if (buffer(1:1) == ".") buffer = "0" // buffer
+            if (buffer(1:1) == ".") buffer = "0" // buffer(:len(buffer) - 1)
             if (buffer(1:2) == "-.") buffer = "-0" // buffer(2:)
             times = times // merge(", ", "  ", k > 1) // trim(buffer)
             last_rows = last_rows // merge(", ", "  ", k > 1) &

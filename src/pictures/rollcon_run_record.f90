@@ -7,12 +7,12 @@ module rollcon_run_record
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type, fatal_error, input_error, stat_io
     use rollcon_text, only : to_text
-    use rollcon_simulation, only : history_type
+    use rollcon_history, only : history_type
     use rollcon_output_layout, only : output_layout_type, coord_x, coord_z, coord_theta, coord_phi
     use rollcon_csv_reader, only : read_output_csv, largest_value
     use rollcon_part_shapes, only : part_shape_type, read_part_shapes, parts_path, shape_disk
     use rollcon_disk_mesh, only : contact_point
-    use rollcon_contact_watch, only : contact_names
+    use rollcon_watch_columns, only : contact_names
     use rollcon_rotation, only : rotation_matrix, euler_angles
     use rollcon_rebasing, only : own_axes_rotation
     implicit none

@@ -1,8 +1,7 @@
 ! SPDX-License-Identifier: MIT
 !> The output rows of a run: where and how often they are written, how many a request plans
 !> (refused beyond a size limit), the layout of a problem's rows (rollcon_output_layout, the one
-!> place that says which quantity sits in which column), what fills a row, and the rows kept in
-!> memory (history) for tests and benchmarks.
+!> place that says which quantity sits in which column) and what fills a row.
 module rollcon_output_rows
     use, intrinsic :: iso_fortran_env, only : int64
     use rollcon_kinds, only : wp
@@ -15,7 +14,8 @@ module rollcon_output_rows
     implicit none
     private
 
-    public :: run_options_type, planned_rows, history_type, output_layout, output_row
+    public :: run_options_type, planned_rows, output_layout, output_row
+    public :: output_time
 
     !> Default limit of a planned CSV [bytes], 100 GB: ten thousand times the coin's run
     real(wp), parameter, public :: default_max_csv_bytes = 1.0e11_wp
@@ -24,6 +24,10 @@ module rollcon_output_rows
     type :: run_options_type
         !> Start and end time, output interval [s]
         real(wp) :: t0 = 0.0_wp, end_time = 1.0_wp, output_step = 0.01_wp
+        !> The output times after t0 [s], ascending, the last at end_time, when they are not
+        !> every output_step (several SIMULATE commands of a command file); unallocated: every
+        !> output_step
+        real(wp), allocatable :: output_times(:)
         !> CSV file to write (none when unallocated)
         character(len=:), allocatable :: csv_path
         !> Progress lines on stderr for runs longer than a second
@@ -33,66 +37,7 @@ module rollcon_output_rows
         real(wp) :: max_csv_bytes = default_max_csv_bytes
     end type run_options_type
 
-    !> The output rows kept in memory (the CSV's rows), for tests and benchmarks
-    type :: history_type
-        !> What the columns hold (set by the run that fills the rows)
-        type(output_layout_type) :: layout
-        !> rows(:, i) is output row i; only the first count rows are filled
-        real(wp), allocatable :: rows(:, :)
-        integer :: count = 0
-    contains
-        procedure :: add => history_add
-        procedure :: column => history_column
-        procedure :: part_values => history_part_values
-        procedure :: part_state => history_part_state
-    end type history_type
-
 contains
-
-    !> Append a row, growing the storage geometrically.
-    pure subroutine history_add(self, row)
-        class(history_type), intent(inout) :: self
-        real(wp), intent(in) :: row(:)
-        real(wp), allocatable :: grown(:, :)
-
-        if (.not. allocated(self%rows)) allocate(self%rows(size(row), 256))
-        if (self%count == size(self%rows, 2)) then
-            allocate(grown(size(row), 2*self%count))
-            grown(:, :self%count) = self%rows(:, :self%count)
-            call move_alloc(grown, self%rows)
-        end if
-        self%count = self%count + 1
-        self%rows(:, self%count) = row
-    end subroutine history_add
-
-    !> Column j over the filled rows.
-    pure function history_column(self, j) result(values)
-        class(history_type), intent(in) :: self
-        integer, intent(in) :: j
-        real(wp), allocatable :: values(:)
-
-        values = self%rows(j, :self%count)
-    end function history_column
-
-    !> Quantity c (coord_x ... coord_phidot) of the p-th part (model order) over the filled
-    !> rows.
-    pure function history_part_values(self, p, c) result(values)
-        class(history_type), intent(in) :: self
-        integer, intent(in) :: p, c
-        real(wp), allocatable :: values(:)
-
-        values = self%rows(self%layout%part_column(p, c), :self%count)
-    end function history_part_values
-
-    !> The 12 coordinates and rates (X ... phi, Xdot ... phidot) of the p-th part (model order)
-    !> in row i.
-    pure function history_part_state(self, p, i) result(state)
-        class(history_type), intent(in) :: self
-        integer, intent(in) :: p, i
-        real(wp) :: state(12)
-
-        state = self%rows(self%layout%part_column(p, 1):self%layout%part_column(p, 12), i)
-    end function history_part_state
 
     !> The layout of a problem's output rows: its parts and UCONs in model order, then the
     !> columns of its watches in watch order.
@@ -155,6 +100,19 @@ contains
         end do
     end function output_row
 
+    !> The k-th output time after t0 [s]: options%output_times(k) when given, else
+    !> t0 + k output_step (at most end_time).
+    pure real(wp) function output_time(options, k) result(t)
+        type(run_options_type), intent(in) :: options
+        integer(int64), intent(in) :: k
+
+        if (allocated(options%output_times)) then
+            t = options%output_times(k)
+        else
+            t = min(options%t0 + real(k, wp)*options%output_step, options%end_time)
+        end if
+    end function output_time
+
     !> Number of output steps after the first row (64 bits); refused when the CSV they would
     !> fill is larger than options%max_csv_bytes, or the count does not fit in 64 bits.
     subroutine planned_rows(options, columns, n_output, error)
@@ -169,6 +127,7 @@ contains
         ! 1e-9: an end time a rounding short of a whole number of steps adds no step.
         steps = max(1.0_wp, ceiling_real((options%end_time - options%t0)/options%output_step &
             & - 1.0e-9_wp))
+        if (allocated(options%output_times)) steps = real(size(options%output_times), wp)
         bytes = (steps + 1.0_wp)*real(csv_row_bytes(columns), wp)
         n_output = 1
         rows = to_text(steps + 1.0_wp)

@@ -11,9 +11,10 @@ module rollcon_rebase_step
     use rollcon_text, only : to_text
     use rollcon_problem, only : problem_type
     use rollcon_model, only : ucon_statement_type
+    use rollcon_ucosub_catalog, only : builtin_ucosub_name
     use rollcon_constraints, only : need_value, need_first
     use rollcon_rebasing, only : rebased_state
-    use rollcon_run_settings, only : formulation_ida
+    use rollcon_dynamic_system, only : dynamic_system_type
     implicit none
     private
 
@@ -39,7 +40,15 @@ contains
     !> differs by more than allowed, the part is not re-based and `refusal` names the part, the
     !> UCON and the time. Otherwise the model's part is turned and q and u hold the new basis's
     !> values (the caller counts the re-basing). A UCOSUB's own failure is an error.
-    subroutine rebase_part(problem, p, time, q, u, refusal, error)
+    !>
+    !> A fall (`fell`): the UCON that refuses is a built-in routine. Every built-in routine
+    !> keeps the contract but the contacts whose geometry is the body's own z-axis (a disk's
+    !> axle: disk, rolling_disk, disk_height, turntable_disk; a blade's normal: knife_edge),
+    !> which have no contact point when that axis is vertical: the part lies flat on the ground,
+    !> a state the model cannot pass. `refusal` then says what fell, when, and where it lies. A
+    !> user's routine that refuses is named as breaking the contract (or lying flat: rollcon
+    !> cannot tell which).
+    subroutine rebase_part(problem, p, time, q, u, refusal, error, fell)
         type(problem_type), intent(inout) :: problem
         !> Part index (model order)
         integer, intent(in) :: p
@@ -50,10 +59,15 @@ contains
         !> Why the part cannot be re-based (unallocated when it was)
         character(len=:), allocatable, intent(out) :: refusal
         type(error_type), allocatable, intent(out) :: error
+        !> The refusal is a fall (see above)
+        logical, intent(out), optional :: fell
         type(basis_difference_type) :: found
         real(wp), allocatable :: q_new(:), u_new(:)
+        character(len=:), allocatable :: routine
+        logical :: time_free
         integer :: i0
 
+        if (present(fell)) fell = .false.
         i0 = 6*(p - 1)
         q_new = q
         u_new = u
@@ -62,13 +76,21 @@ contains
         call compare_bases(problem, p, time, q, u, q_new, u_new, found, error)
         if (allocated(error)) return
         if (found%k > 0) then
+            routine = builtin_ucosub_name(problem%model%ucons(found%k)%ucosub, time_free)
+            if (len(routine) > 0) then
+                if (present(fell)) fell = .true.
+                refusal = fall_words(problem, p, found%k, routine, time, q)
+                return
+            end if
             refusal = "part " // to_text(problem%model%parts(p)%id) &
                 & // ": its principal axes cannot be re-based at t = " // to_text(time) &
                 & // " s (theta = " // to_text(q(i0 + 5)) // " rad): UCON " &
                 & // to_text(problem%model%ucons(found%k)%id) // " gives F = " &
                 & // to_text(found%f_old) // " in the old basis and " // to_text(found%f_new) &
                 & // " in the turned one (allowed difference " // to_text(found%allowed) &
-                & // "): its UCOSUB depends on which principal axis is which (docs/rebasing.md)"
+                & // "): its UCOSUB depends on which principal axis is which (docs/rebasing.md; " &
+                & // "if it is a contact about that axis, a wheel's axle, the part lies flat " &
+                & // "on the ground: the model fell)"
             return
         end if
         call problem%model%turn_part_axes(p, error)
@@ -76,6 +98,33 @@ contains
         q = q_new
         u = u_new
     end subroutine rebase_part
+
+    !> "part 2 fell: it lies flat at t = 7.826 s, its principal z-axis 2.86 degrees from the
+    !> vertical (theta = 0.05 rad) and its centre of mass 0.01499 m above the ground (Z): UCON
+    !> 1 (rolling_disk), a contact about that axis, has no contact point there ..."
+    function fall_words(problem, p, k, routine, time, q) result(words)
+        type(problem_type), intent(in) :: problem
+        !> The part (model order) and the UCON (model order) that cannot follow it
+        integer, intent(in) :: p, k
+        !> The UCON's routine
+        character(len=*), intent(in) :: routine
+        real(wp), intent(in) :: time, q(:)
+        character(len=:), allocatable :: words
+        real(wp), parameter :: degrees = 57.29577951308232_wp
+        character(len=16) :: tilt, height
+
+        associate (theta => q(6*p - 1), z => q(6*p - 3))
+            write(tilt, '(f8.2)') degrees*min(theta, acos(-1.0_wp) - theta)
+            write(height, '(es11.4)') z
+            words = "part " // to_text(problem%model%parts(p)%id) // " fell: it lies flat at t = " &
+                & // to_text(time) // " s, its principal z-axis " // trim(adjustl(tilt)) &
+                & // " degrees from the vertical (theta = " // to_text(theta) &
+                & // " rad) and its centre of mass at Z = " // trim(adjustl(height)) &
+                & // " m: UCON " // to_text(problem%model%ucons(k)%id) // " (" // routine &
+                & // "), a contact about that axis, has no contact point there, and the " &
+                & // "motion cannot go on; the rows up to this one are valid"
+        end associate
+    end function fall_words
 
     !> The UCOSUB contract of a re-basing (docs/rebasing.md): every UCON on part p (a UCON
     !> with a variable of the part) evaluated at (time, q, u) and at (time, q_new, u_new), the
@@ -128,14 +177,17 @@ contains
 
     !> The integrator's state (y, y') to start again from at (time, q, u), consistent to round-off
     !> (docs/rebasing.md): (q, u) put back on the constraints when the formulation holds them
-    !> there (IDA; CVODE when it projects), by the model's mass-weighted least change (exact for
-    !> velocity UCONs; Newton steps for position UCONs, until they no longer move q), then the
-    !> accelerations and multipliers of the saddle-point system at that state, y' = (u, a, 0, 0)
-    !> for IDA. The state at a root is IDA's or CVODE's interpolant, off the constraints by up
-    !> to the tolerances: from there IDA's first step must move u by as much, whatever its size,
-    !> and its error test failed at every step size (IDA_ERR_FAIL).
-    subroutine restart_state(problem, time, q, u, y, yp, error)
+    !> there (system%holds_constraints: IDA's DAE; an ODE form when it projects), by the model's
+    !> mass-weighted least change (exact for velocity UCONs; Newton steps for position UCONs,
+    !> until they no longer move q), then the accelerations and multipliers of the saddle-point
+    !> system at that state, packed by the formulation (y' = (u, a, 0, 0) for IDA). The state at
+    !> a root is IDA's or CVODE's interpolant, off the constraints by up to the tolerances: from
+    !> there IDA's first step must move u by as much, whatever its size, and its error test
+    !> failed at every step size (IDA_ERR_FAIL).
+    subroutine restart_state(problem, system, time, q, u, y, yp, error)
         type(problem_type), intent(inout) :: problem
+        !> The problem's formulation (rollcon_formulation_choice)
+        class(dynamic_system_type), intent(inout) :: system
         !> Time [s]
         real(wp), intent(in) :: time
         !> Coordinates and rates of all parts [m, rad, m/s, rad/s]; on the constraints on return
@@ -148,8 +200,7 @@ contains
         real(wp) :: dq(size(q)), du(size(u))
         integer :: k
 
-        if (problem%eq%nc > 0 .and. (problem%settings%formulation == formulation_ida &
-            & .or. problem%projects())) then
+        if (problem%eq%nc > 0 .and. system%holds_constraints()) then
             do k = 1, most_steps
                 call problem%eq%project(time, q, u, dq, du, error)
                 if (allocated(error)) return
@@ -160,7 +211,7 @@ contains
         end if
         call problem%accelerations(time, q, u, error)
         if (allocated(error)) return
-        call problem%pack_state(q, u, y, yp)
+        call system%pack_state(q, u, y, yp)
     end subroutine restart_state
 
     !> The size s_k of each UCON's F at (q, u), in F's unit, from the last evaluation's first

@@ -4,15 +4,16 @@
  * write (docs/benchmark.md, "Costs of the parts of a step"). In C so that a whole row is one
  * call.
  *
- * A number x = m 2^e (m the 53-bit significand) of magnitude 1e-16 to 1e17, or a zero, is
- * converted exactly in integers (put_exact): its 17 significant digits are x 10^k rounded to
- * the nearest integer, ties to even, for k = 16 - floor(log10 |x|); x 10^k = m 5^k 2^(k+e) and
- * m 5^k (k <= 32) fits 128 bits, so the digits, the remainder and the rounding are exact:
- * what a correctly rounding printf gives, as glibc and gfortran do. Every other finite number
- * (the rare tiny residual, a huge value, a subnormal) goes through the C library's conversion
- * (strfromd, C23 and glibc since 2.25), as every number did before issue #25: glibc spends
- * about 0.14 us a number, the exact path about 0.02. The csv-writer tests compare both with
- * Fortran's formatted write. */
+ * A finite number x = m 2^e (m the 53-bit significand, a subnormal's normalised) of magnitude
+ * below 1e17, or a zero, is converted exactly in integers (put_exact): its 17 significant
+ * digits are x 10^k rounded to the nearest integer, ties to even, for k = 16 - floor(log10 |x|);
+ * x 10^k = m 5^k 2^(k+e). For 1e-16 <= |x| m 5^k (k <= 32) fits 128 bits; below, m 5^k is a
+ * multi-word integer (k <= 340: at most 14 words of 64 bits), of which the digits are the bits
+ * above -(k + e) and the rounding is decided by the bits below: exact in every case, what a
+ * correctly rounding printf gives, as glibc and gfortran do. Numbers of 1e17 and more go through
+ * the C library's conversion (strfromd, C23 and glibc since 2.25): glibc spends about 0.14 us a
+ * number, the exact path about 0.02 (a tiny residual's multi-word path a little more). The
+ * csv-writer tests compare both with Fortran's formatted write. */
 #define _GNU_SOURCE
 #include <math.h>
 #include <stdint.h>
@@ -67,37 +68,103 @@ static void put_digits(int negative, uint64_t digits, int exponent, char *out)
     out[23] = (char)('0' + size % 10);
 }
 
-/* x as es24.16e3 in integer arithmetic when 1e-16 <= |x| < 1e17 or x is a zero: returns 1;
- * 0 (nothing decided) for any other x, which the C library converts. */
+/* Words of a multi-word integer: m 5^k for k <= 340 (53 + 790 bits) */
+#define WORDS 14
+
+/* The digits of m 5^k 2^-shift (k > 27, shift > 0) rounded to the nearest integer, ties to
+ * even, if they are below 2^64; *overflow set when they are not (the caller then takes one
+ * more decimal exponent). */
+static uint64_t round_wide(uint64_t m, int k, int shift, int *overflow)
+{
+    uint64_t n[WORDS + 1] = {0}, digits, below;
+    unsigned __int128 product;
+    int length = 1, i, j, q, r, top, factor;
+
+    n[0] = m;
+    for (j = k; j > 0; j -= factor) {
+        factor = j < 27 ? j : 27;
+        product = 0;
+        for (i = 0; i < length; i++) {
+            product += (unsigned __int128)n[i] * five[factor];
+            n[i] = (uint64_t)product;
+            product >>= 64;
+        }
+        if (product != 0) n[length++] = (uint64_t)product;
+    }
+    /* bits of the product: the digits are bits shift ... shift + 63 */
+    top = 64 * (length - 1) + (64 - __builtin_clzll(n[length - 1]));
+    *overflow = top > shift + 64;
+    if (*overflow) return 0;
+    q = shift / 64;
+    r = shift % 64;
+    digits = n[q] >> r;
+    if (r > 0) digits |= n[q + 1] << (64 - r);
+    /* the bit just below the digits (half), and whether any bit below it is set */
+    q = (shift - 1) / 64;
+    r = (shift - 1) % 64;
+    below = n[q] & ((UINT64_C(1) << r) - 1);
+    for (i = 0; i < q && below == 0; i++) below = n[i];
+    if ((n[q] >> r & 1u) && (below != 0 || (digits & 1))) digits++;
+    return digits;
+}
+
+/* x as es24.16e3 in integer arithmetic when |x| < 1e17 or x is a zero: returns 1; 0 (nothing
+ * decided) for any other x, which the C library converts. */
 static int put_exact(double x, char *out)
 {
     const uint64_t ten16 = 10000000000000000u, ten17 = 100000000000000000u;
     uint64_t bits, m, digits;
-    int biased, e, exponent, k, shift;
+    int biased, e, exponent, k, shift, overflow;
     unsigned __int128 scaled, rest, half;
 
     memcpy(&bits, &x, sizeof bits);
     biased = (int)((bits >> 52) & 0x7ff);
     m = bits & ((UINT64_C(1) << 52) - 1);
+    if (biased == 0x7ff) return 0; /* not finite: put_special's */
     if (biased == 0) {
-        if (m != 0) return 0; /* subnormal */
-        put_digits((int)(bits >> 63), ten16, 0, out);
-        out[1] = '0';
-        return 1;
+        if (m == 0) {
+            put_digits((int)(bits >> 63), ten16, 0, out);
+            out[1] = '0';
+            return 1;
+        }
+        /* a subnormal, normalised: m 2^e with m of 53 bits */
+        e = -1074;
+        while (!(m >> 52)) {
+            m <<= 1;
+            e--;
+        }
+    } else {
+        m |= UINT64_C(1) << 52;
+        e = biased - 1075; /* x = m 2^e */
     }
-    m |= UINT64_C(1) << 52;
-    e = biased - 1075; /* x = m 2^e */
-    /* floor(log10 2^(e+52)) (78913 / 2^18 is log10 2 to 8e-7; exact for every e whose k is
-     * 0 to 32, checked in rational arithmetic): |x| lies in [2^(e+52), 2^(e+53)), so
-     * floor(log10 |x|) is this or one more */
+    /* floor(log10 2^(e+52)) (78913 / 2^18 is log10 2 to 8e-7): |x| lies in
+     * [2^(e+52), 2^(e+53)), so floor(log10 |x|) is this or one more; the loop below corrects
+     * an estimate off by one either way */
     exponent = ((e + 52) * 78913) >> 18;
     for (;;) {
         k = 16 - exponent;
-        if (k < 0 || k > 32) return 0;
+        if (k < 0) return 0;
+        shift = -(k + e); /* x 10^k = m 5^k 2^-shift */
+        if (k > 32) {
+            /* x < 1e-16: shift > 0 and m 5^k is wider than 128 bits */
+            digits = round_wide(m, k, shift, &overflow);
+            if (overflow || digits >= ten17) {
+                exponent++;
+                continue;
+            }
+            if (digits < ten16) {
+                exponent--;
+                continue;
+            }
+            if (digits == ten17) {
+                digits = ten16;
+                exponent++;
+            }
+            break;
+        }
         /* m 5^k < 2^53 5^32 < 2^128 */
         scaled = (unsigned __int128)m * five[k < 27 ? k : 27];
         if (k > 27) scaled *= five[k - 27];
-        shift = -(k + e); /* x 10^k = scaled 2^-shift */
         if (shift <= 0) {
             /* x 10^k < 2 10^17: an integer, exact */
             digits = (uint64_t)(scaled << -shift);

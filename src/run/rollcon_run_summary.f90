@@ -6,7 +6,9 @@ module rollcon_run_summary
     use, intrinsic :: iso_fortran_env, only : int64
     use rollcon_kinds, only : wp
     use rollcon_text, only : to_text
-    use rollcon_drift, only : energy_bound, energy_allowance
+    use rollcon_drift, only : energy_bound, energy_allowance, energy_fraction, work_fraction
+    use rollcon_run_settings, only : run_settings_type, formulation_ida, method_bdf, &
+        & drift_projection, drift_none
     use rollcon_output_layout, only : output_layout_type
     use rollcon_watch, only : watch_measure_type
     implicit none
@@ -35,11 +37,22 @@ module rollcon_run_summary
         real(wp), allocatable :: q(:), u(:)
         !> Energy at the reference time (start, or end of the last force pulse) [J]
         real(wp) :: energy_reference = 0.0_wp
-        !> Largest |E - E_reference| / |E_reference| after the reference time
+        !> Largest |E - E_reference| after the reference time, relative to energy_scale (0
+        !> when the scale is 0: nothing moved)
         real(wp) :: energy_drift = 0.0_wp
+        !> The energy scale over the rows after the reference time [J]: the larger of the
+        !> largest kinetic energy and the range of the potential energy (rollcon_drift)
+        real(wp) :: energy_scale = 0.0_wp
+        !> The mean over those rows of what one step's error test allows the energy [J]
+        !> (rollcon_equations energy_tolerance)
+        real(wp) :: energy_step = 0.0_wp
+        !> The explicit work of the constraint forces over those rows [J]: the integral of
+        !> problem%constraint_power by the trapezoidal rule (a moving constraint's work)
+        real(wp) :: constraint_work = 0.0_wp
         !> False when an applied force acts after the reference time (rollcon_force
-        !> forces_idle_after) or a UCON moves (problem%ucons_do_no_work): the energy is then not
-        !> conserved, and its drift not judged
+        !> forces_idle_after) or the constraints do work (constraint_work beyond work_fraction of
+        !> the drift allowed, rollcon_drift): the energy is then not conserved, and its drift
+        !> not judged
         logical :: energy_conserved = .true.
         !> What the rows hold: the parts and UCONs (their ids, in model order) and the watches'
         !> columns
@@ -51,7 +64,8 @@ module rollcon_run_summary
         !> For each UCON: a position-level (holonomic) one, F in its coordinates' units; else a
         !> velocity-level one, F in their units per second
         logical, allocatable :: ucon_position(:)
-        !> What the energy drift is allowed (rollcon_drift); 0 when not judged
+        !> What the energy drift is allowed (rollcon_drift), relative to energy_scale; 0 when
+        !> not judged
         real(wp) :: energy_bound = 0.0_wp
         !> The watches' measures, with their bounds (a rim contact's height residual, ...)
         type(watch_measure_type), allocatable :: measures(:)
@@ -103,44 +117,66 @@ contains
 
     !> Judge a run that reached its end or a limit against what its tolerances promise: the
     !> energy drift (rollcon_drift) and every watch's measure that has a bound. Beyond a bound
-    !> its results are not what was asked: status_inaccurate, with the measures and bounds in
-    !> the message.
-    subroutine judge_drift(summary, rtol)
+    !> its results are not what was asked: status_inaccurate, with the measures, the bounds and
+    !> the remedies that apply to the run's settings in the message.
+    subroutine judge_drift(summary, settings)
         type(run_summary_type), intent(inout) :: summary
-        !> The run's relative tolerance
-        real(wp), intent(in) :: rtol
+        !> The run's settings (tolerances; the integrator and its drift control, for the remedy)
+        type(run_settings_type), intent(in) :: settings
         character(len=:), allocatable :: findings, bounds, remedies
+        real(wp) :: allowed
         integer :: k
 
         if (summary%status /= status_completed .and. summary%status /= status_stopped) return
-        summary%energy_bound = energy_bound(summary%steps, rtol)
-        ! no reference energy to be relative to: not judged
-        if (summary%energy_reference == 0.0_wp) summary%energy_bound = 0.0_wp
-        ! forces doing work after the reference: a change of energy is no drift
-        if (.not. summary%energy_conserved) summary%energy_bound = 0.0_wp
+        summary%energy_bound = 0.0_wp
         findings = ""
-        bounds = to_text(energy_allowance) // " sqrt(N) rtol for the energy"
-        remedies = "use drift = 'projection'"
-        if (summary%energy_bound > 0.0_wp .and. &
-            & .not. summary%energy_drift <= summary%energy_bound) findings = findings &
-            & // "; energy drift " // to_text(summary%energy_drift) // " > " &
-            & // to_text(summary%energy_bound) // " allowed"
+        bounds = ""
+        remedies = ""
+        ! a scale of 0: nothing moved and nothing fell, so there is no drift to judge
+        if (summary%energy_scale > 0.0_wp) then
+            allowed = energy_bound(summary%steps, summary%energy_step, summary%energy_scale)
+            ! constraints that do work: a change of energy is no drift
+            if (summary%constraint_work > work_fraction*allowed) &
+                & summary%energy_conserved = .false.
+            if (summary%energy_conserved) summary%energy_bound = allowed/summary%energy_scale
+        end if
+        if (summary%energy_bound > 0.0_wp) then
+            bounds = "for the energy the smaller of " // to_text(energy_allowance) &
+                & // " sqrt(N) times the " // short(summary%energy_step) // " J one step's " &
+                & // "tolerance allows it and " // to_text(energy_fraction) // " of its scale"
+            if (.not. summary%energy_drift <= summary%energy_bound) then
+                findings = findings // "; energy drift " &
+                    & // short(summary%energy_drift*summary%energy_scale) // " J (" &
+                    & // short(summary%energy_drift) // " of the energy scale " &
+                    & // short(summary%energy_scale) // " J) > " &
+                    & // short(summary%energy_bound*summary%energy_scale) // " J allowed"
+                remedies = energy_remedies(settings)
+            end if
+        end if
         if (allocated(summary%measures)) then
             do k = 1, size(summary%measures)
                 associate (m => summary%measures(k))
                     if (.not. m%bound > 0.0_wp) cycle
-                    bounds = bounds // ", " // m%bound_rule // " for the " // m%name
-                    remedies = remedies // ", " // m%remedy
+                    if (len(bounds) > 0) bounds = bounds // ", "
+                    bounds = bounds // m%bound_rule // " for the " // m%name
                     if (m%value <= m%bound) cycle
                     findings = findings // "; " // m%label(index(m%label, " ") + 1:) // " " &
                         & // to_text(m%value) // " " // m%unit // " > " // to_text(m%bound) &
                         & // " " // m%unit // " allowed"
+                    if (index(remedies, m%remedy) == 0) then
+                        if (len(remedies) > 0) remedies = remedies // ", "
+                        remedies = remedies // m%remedy
+                    end if
                 end associate
             end do
         end if
         if (len(findings) == 0) return
+        if (index(remedies, "a tighter rtol") == 0) then
+            if (len(remedies) > 0) remedies = remedies // " or "
+            remedies = remedies // "a tighter rtol (now " // to_text(settings%rtol) // ")"
+        end if
         findings = findings(3:) // " (bounds: " // bounds // ", after N = " &
-            & // to_text(summary%steps) // " steps; " // remedies // " or a tighter rtol)"
+            & // to_text(summary%steps) // " steps; use " // remedies // ")"
         if (summary%status == status_stopped) then
             summary%message = summary%message // "; and the results drifted: " // findings
         else
@@ -149,5 +185,32 @@ contains
         end if
         summary%status = status_inaccurate
     end subroutine judge_drift
+
+    !> A value in 4 significant digits (1.982E-08).
+    pure function short(x) result(text)
+        real(wp), intent(in) :: x
+        character(len=:), allocatable :: text
+        character(len=32) :: value
+
+        write(value, '(es11.3e3)') x
+        text = trim(adjustl(value))
+    end function short
+
+    !> What may bring an energy drift within its bound, among the settings the run's
+    !> integrator takes and does not use already: CVODE's projection onto the constraints
+    !> (BDF only; Adams takes Baumgarte terms), then a tighter rtol (docs/outputs.md).
+    pure function energy_remedies(settings) result(text)
+        type(run_settings_type), intent(in) :: settings
+        character(len=:), allocatable :: text
+
+        text = ""
+        if (settings%formulation == formulation_ida) then
+            text = ""
+        else if (settings%method == method_bdf .and. settings%drift /= drift_projection) then
+            text = "drift = 'projection' (a dataset's INTEGRATOR/DRIFT=PROJECTION)"
+        else if (settings%method /= method_bdf .and. settings%drift == drift_none) then
+            text = "drift = 'baumgarte' (a dataset's INTEGRATOR/DRIFT=BAUMGARTE)"
+        end if
+    end function energy_remedies
 
 end module rollcon_run_summary

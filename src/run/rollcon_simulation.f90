@@ -1,7 +1,9 @@
 ! SPDX-License-Identifier: MIT
-!> Runs a problem from t0 to the end time with its integrator (CVODE or IDA, through
-!> rollcon_integrator): output rows, the watches' events (stop, or re-base a part), the summary.
-!> The driver knows parts, UCONs, forces and watches; what a model watches is the watches'.
+!> Runs a problem from t0 to the end time in the formulation its settings choose (made once,
+!> where the integrator starts: rollcon_formulation_choice) with the integrator that takes it
+!> (CVODE or IDA, through rollcon_integrator): output rows, the watches' events (stop, or
+!> re-base a part), the summary. The driver knows parts, UCONs, forces and watches; what a
+!> model watches is the watches'; the state's layout is the formulation's.
 module rollcon_simulation
     use, intrinsic :: iso_fortran_env, only : int64
     use, intrinsic :: ieee_arithmetic, only : ieee_is_finite
@@ -9,12 +11,14 @@ module rollcon_simulation
     use rollcon_error, only : error_type, fatal_error, stat_ucon
     use rollcon_text, only : to_text
     use rollcon_force, only : force_breakpoints, force_corners, forces_idle_after
+    use rollcon_model, only : model_type, served_by_model_ucosub
     use rollcon_integrator, only : integrator_type, integrator_statistics_type
-    use rollcon_integrator_choice, only : new_integrator
+    use rollcon_integrator_choice, only : start_integrator
+    use rollcon_dynamic_system, only : dynamic_system_type
     use rollcon_problem, only : problem_type
+    use rollcon_formulation_choice, only : new_formulation
     use rollcon_watch, only : watch_event_type, watch_measure_type, action_rebase, action_stop
     use rollcon_switch_watch, only : switch_watch_type, has_state_switches
-    use rollcon_model, only : model_type
     use rollcon_csv_writer, only : csv_writer_type
     use rollcon_row_sink, only : row_sink_type
     use rollcon_progress, only : progress_type
@@ -22,7 +26,8 @@ module rollcon_simulation
         & status_failed, status_inaccurate, judge_drift
     use rollcon_output_layout, only : output_layout_type
     use rollcon_output_rows, only : run_options_type, default_max_csv_bytes, planned_rows, &
-        & history_type, output_layout, output_row
+        & output_layout, output_row, output_time
+    use rollcon_history, only : history_type
     use rollcon_rebase_step, only : rebase_part, restart_state
     implicit none
     private
@@ -36,13 +41,15 @@ module rollcon_simulation
     !> A run in progress: what the steps of simulate share
     type :: simulation_type
         type(problem_type), pointer :: problem => null()
+        !> The problem's formulation (new_formulation), the system the integrator integrates
+        class(dynamic_system_type), allocatable :: system
         class(integrator_type), allocatable :: integrator
         type(run_options_type) :: options
         type(output_layout_type) :: layout
         type(csv_writer_type) :: csv
         !> The integrator's state and its derivative (IDA), the time
         real(wp), allocatable :: y(:), yp(:)
-        !> The coordinates and rates at y (problem%unpack_state)
+        !> The coordinates and rates at y (system%unpack_state)
         real(wp), allocatable :: q(:), u(:)
         real(wp) :: t = 0.0_wp
         !> Force kinks the integrator must not step over, and among them the corners, where it
@@ -53,6 +60,15 @@ module rollcon_simulation
         !> Energy drift is measured from the first row at or after this time [s]
         real(wp) :: t_reference = 0.0_wp
         logical :: have_reference = .false.
+        !> Over the rows from the reference on (the judged rows): their count, the largest
+        !> |E - E_reference| [J], the largest kinetic energy and the potential energy's range
+        !> [J], the sum of what one step's tolerance allows the energy [J], the explicit work of
+        !> the constraint forces [J] and the power and time of the last row [W, s]
+        integer :: judged_rows = 0
+        real(wp) :: energy_change = 0.0_wp, kinetic_max = 0.0_wp
+        real(wp) :: potential_min = huge(1.0_wp), potential_max = -huge(1.0_wp)
+        real(wp) :: step_energy_sum = 0.0_wp, constraint_work = 0.0_wp
+        real(wp) :: last_power = 0.0_wp, last_time = 0.0_wp
         !> Counters of the integrator's segments before its last restart
         type(integrator_statistics_type) :: earlier
         !> Re-basings of each part (model order)
@@ -62,7 +78,7 @@ module rollcon_simulation
         type(progress_type) :: progress
     contains
         procedure :: begin
-        procedure :: start_integrator
+        procedure :: start
         procedure :: next_stop
         procedure :: record
         procedure :: handle_events
@@ -72,6 +88,7 @@ module rollcon_simulation
         procedure :: rebase_at_start
         procedure :: count_rebasing
         procedure :: finish
+        procedure :: name_runaway
     end type simulation_type
 
 contains
@@ -90,7 +107,8 @@ contains
         type(history_type), intent(inout), optional :: history
         !> When present, every output row is also handed to it
         class(row_sink_type), intent(inout), optional :: sink
-        type(simulation_type) :: run
+        ! target: the integrator keeps pointers to the run's system
+        type(simulation_type), target :: run
         real(wp) :: t_out
         integer :: root
         integer(int64) :: k_output, n_output
@@ -103,7 +121,7 @@ contains
         end if
         k_output = 1
         do while (k_output <= n_output)
-            t_out = min(options%t0 + real(k_output, wp)*options%output_step, options%end_time)
+            t_out = output_time(options, k_output)
             ! an output time closer after a restart than the time's round-off (an output at a
             ! corner's time written another way): the integrators refuse to start towards it,
             ! and the state there is the same
@@ -115,6 +133,8 @@ contains
                     & run%yp, root, error)
             end if
             if (allocated(error)) then
+                ! a load or the motion that ran away is why, whatever the integrator's words
+                call run%name_runaway(error)
                 summary%status = status_failed
                 summary%message = error%message
                 summary%solver_flag = run%integrator%failed_flag
@@ -134,8 +154,9 @@ contains
                     exit
                 end if
             end if
-            ! in independent speeds, a worn partition is chosen again (a restart)
-            if (problem%speeds_worn(run%t, run%y)) then
+            ! the formulation's choices worn (in independent speeds, its partition): a restart
+            ! that makes them again
+            if (run%system%worn(run%t, run%y)) then
                 call run%repartition(error)
                 if (allocated(error)) then
                     summary%status = status_failed
@@ -150,7 +171,7 @@ contains
             call run%progress%report(run%t)
         end do
         call run%finish(summary, error)
-        if (.not. allocated(error)) call judge_drift(summary, problem%settings%rtol)
+        if (.not. allocated(error)) call judge_drift(summary, problem%settings)
     end subroutine simulate
 
     !> Everything before the first step: the watches prepared, the layout, what the summary
@@ -158,7 +179,7 @@ contains
     !> re-based at the start when they must be, a consistent start (accelerations and
     !> multipliers from the saddle-point system), the integrator set up and the first row.
     subroutine begin(self, problem, q0, u0, options, summary, n_output, error, history, sink)
-        class(simulation_type), intent(inout) :: self
+        class(simulation_type), intent(inout), target :: self
         type(problem_type), intent(inout), target :: problem
         real(wp), intent(in) :: q0(:), u0(:)
         type(run_options_type), intent(in) :: options
@@ -169,6 +190,7 @@ contains
         class(row_sink_type), intent(inout), optional :: sink
         real(wp), allocatable :: q(:), u(:)
         character(len=:), allocatable :: refusal
+        logical :: fell
         integer :: k
 
         self%problem => problem
@@ -187,13 +209,11 @@ contains
             associate (ucon => problem%model%ucons(k))
                 if (k > 1) summary%routines = summary%routines // ", "
                 summary%routines = summary%routines // "UCON " // to_text(ucon%id) // ": "
-                if (allocated(ucon%routine)) then
-                    if (len(ucon%routine) > 0) then
-                        summary%routines = summary%routines // ucon%routine
-                        cycle
-                    end if
+                if (served_by_model_ucosub(ucon%routine)) then
+                    summary%routines = summary%routines // "the model's UCOSUB"
+                else
+                    summary%routines = summary%routines // ucon%routine
                 end if
-                summary%routines = summary%routines // "the model's UCOSUB"
             end associate
         end do
         if (present(history)) history%layout = self%layout
@@ -201,11 +221,10 @@ contains
         self%breaks = force_breakpoints(problem%model%forces)
         self%t_reference = options%t0
         if (size(self%breaks) > 0) self%t_reference = maxval(self%breaks)
-        ! forces acting after the reference, or moving constraints, do work: no drift to judge
+        ! forces acting after the reference do work: no drift to judge (constraints that do
+        ! work are found from the rows, record, and judged by judge_drift)
         summary%energy_conserved = forces_idle_after(problem%model%forces, self%t_reference, &
             & options%end_time)
-        if (summary%energy_conserved) summary%energy_conserved = &
-            & problem%ucons_do_no_work(options%t0, q0)
         self%breaks = pack(self%breaks, self%breaks > options%t0 .and. self%breaks &
             & < options%end_time)
         self%corners = corner_times(problem%model)
@@ -226,19 +245,28 @@ contains
         call cpu_time(self%cpu_start)
         q = q0
         u = u0
-        call self%rebase_at_start(q, u, refusal, error)
+        call self%rebase_at_start(q, u, refusal, fell, error)
         if (allocated(error)) return
-        call self%start_integrator(q, u, error)
+        call self%start(q, u, error)
         if (allocated(error)) return
         call self%record(summary, error, history, sink)
-        ! a re-basing refused: the run cannot go on as asked, a failure (docs/rebasing.md)
-        if (allocated(refusal) .and. .not. allocated(error)) call fatal_error(error, refusal, &
-            & stat_ucon)
+        if (.not. allocated(refusal) .or. allocated(error)) return
+        ! a re-basing refused: the run cannot go on as asked: a fall ends it at its first row,
+        ! anything else is a failure (docs/rebasing.md)
+        if (fell) then
+            summary%status = status_stopped
+            summary%message = refusal
+            summary%limit = "fall"
+            n_output = 0
+        else
+            call fatal_error(error, refusal, stat_ucon)
+        end if
     end subroutine begin
 
-    !> The consistent start at (options%t0, q, u) and the integrator set up on it.
-    subroutine start_integrator(self, q, u, error)
-        class(simulation_type), intent(inout) :: self
+    !> The consistent start at (options%t0, q, u), the formulation the settings choose (the
+    !> one choice of a run) packed there and its integrator set up on it.
+    subroutine start(self, q, u, error)
+        class(simulation_type), intent(inout), target :: self
         real(wp), intent(in) :: q(:), u(:)
         type(error_type), allocatable, intent(out) :: error
 
@@ -248,14 +276,14 @@ contains
             self%t = self%options%t0
             call self%progress%start(self%options%progress, self%options%t0, &
                 & self%options%end_time)
-            allocate(self%y(problem%state_size()), self%yp(problem%state_size()))
+            call new_formulation(problem, self%system)
+            allocate(self%y(self%system%state_size()), self%yp(self%system%state_size()))
             allocate(self%q(problem%eq%n), self%u(problem%eq%n))
-            call problem%pack_state(q, u, self%y, self%yp)
-            call new_integrator(problem%settings, self%integrator)
-            call self%integrator%start(problem, problem%settings, self%t, self%y, self%yp, &
-                & self%next_stop(self%t), error)
+            call self%system%pack_state(q, u, self%y, self%yp)
+            call start_integrator(self%system, problem%settings, self%t, self%y, self%yp, &
+                & self%next_stop(self%t), self%integrator, error)
         end associate
-    end subroutine start_integrator
+    end subroutine start
 
     !> The next time the integrator must not step past: a force kink or the end.
     pure function next_stop(self, time) result(stop_time)
@@ -274,10 +302,10 @@ contains
         type(error_type), allocatable, intent(out) :: error
         type(history_type), intent(inout), optional :: history
         class(row_sink_type), intent(inout), optional :: sink
-        real(wp) :: energy
+        real(wp) :: energy, potential, power
         real(wp), allocatable :: row(:)
 
-        call self%problem%unpack_state(self%t, self%y, self%q, self%u, error)
+        call self%system%unpack_state(self%t, self%y, self%q, self%u, error)
         if (allocated(error)) return
         associate (problem => self%problem, q => self%q, u => self%u, time => self%t)
             call problem%accelerations(time, q, u, error)
@@ -293,14 +321,24 @@ contains
             end if
             energy = row(self%layout%energy_column())
             ! Energy is conserved once the last force pulse is over: measure drift from the
-            ! first row at or after that time.
+            ! first row at or after that time, with what the judge needs (rollcon_drift)
             if (time >= self%t_reference) then
                 if (.not. self%have_reference) summary%energy_reference = energy
                 self%have_reference = .true.
-                if (summary%energy_reference /= 0.0_wp) then
-                    summary%energy_drift = max(summary%energy_drift, &
-                        & abs(energy - summary%energy_reference)/abs(summary%energy_reference))
-                end if
+                potential = problem%eq%potential_energy(q)
+                power = problem%constraint_power(u)
+                self%energy_change = max(self%energy_change, &
+                    & abs(energy - summary%energy_reference))
+                self%kinetic_max = max(self%kinetic_max, energy - potential)
+                self%potential_min = min(self%potential_min, potential)
+                self%potential_max = max(self%potential_max, potential)
+                self%step_energy_sum = self%step_energy_sum + problem%eq%energy_tolerance(q, &
+                    & u, problem%settings%rtol, problem%settings%atol)
+                if (self%judged_rows > 0) self%constraint_work = self%constraint_work &
+                    & + 0.5_wp*(power + self%last_power)*(time - self%last_time)
+                self%last_power = power
+                self%last_time = time
+                self%judged_rows = self%judged_rows + 1
             end if
             if (problem%eq%nc > 0) then
                 summary%ucon_residual_max = max(summary%ucon_residual_max, &
@@ -334,8 +372,9 @@ contains
         character(len=:), allocatable :: refusal
         integer, allocatable :: parts(:)
         integer :: r, w, k, stopping
+        logical :: fell
 
-        call self%problem%unpack_state(self%t, self%y, self%q, self%u, error)
+        call self%system%unpack_state(self%t, self%y, self%q, self%u, error)
         if (allocated(error)) return
         allocate(events(0))
         stopping = 0
@@ -362,54 +401,66 @@ contains
             return
         end if
         parts = pack(events%part, events%action == action_rebase)
-        call self%rebase(parts, refusal, error)
+        call self%rebase(parts, refusal, fell, error)
         if (allocated(error)) return
         if (allocated(refusal)) then
             stop_here = .true.
             call self%record(summary, error, history, sink)
-            if (.not. allocated(error)) call fatal_error(error, refusal, stat_ucon)
+            if (allocated(error)) return
+            ! a fall is the run's outcome, reported as a stop at the last valid row
+            if (fell) then
+                summary%status = status_stopped
+                summary%message = refusal
+                summary%limit = "fall"
+            else
+                call fatal_error(error, refusal, stat_ucon)
+            end if
         end if
     end subroutine handle_events
 
     !> Re-base the given parts at the current state (rollcon_rebase_step), then start the
     !> integrator again from the same physical state in the new coordinates, on the
     !> constraints, with y' from the saddle-point system for IDA (mu = 0): restart_state.
-    subroutine rebase(self, parts, refusal, error)
+    subroutine rebase(self, parts, refusal, fell, error)
         class(simulation_type), intent(inout) :: self
         !> Parts to re-base (model order)
         integer, intent(in) :: parts(:)
         character(len=:), allocatable, intent(out) :: refusal
+        !> The refusal is a fall (rollcon_rebase_step)
+        logical, intent(out) :: fell
         type(error_type), allocatable, intent(out) :: error
         real(wp), allocatable :: q(:), u(:)
         integer :: k
 
-        call self%problem%unpack_state(self%t, self%y, self%q, self%u, error)
+        call self%system%unpack_state(self%t, self%y, self%q, self%u, error)
         if (allocated(error)) return
         q = self%q
         u = self%u
+        fell = .false.
         do k = 1, size(parts)
-            call rebase_part(self%problem, parts(k), self%t, q, u, refusal, error)
+            call rebase_part(self%problem, parts(k), self%t, q, u, refusal, error, fell)
             if (allocated(error) .or. allocated(refusal)) return
             call self%count_rebasing(parts(k))
         end do
-        call restart_state(self%problem, self%t, q, u, self%y, self%yp, error)
+        call restart_state(self%problem, self%system, self%t, q, u, self%y, self%yp, error)
         if (allocated(error)) return
         call self%earlier%add(self%integrator%statistics())
         call self%integrator%restart(self%t, self%y, self%yp, error)
     end subroutine rebase
 
-    !> In independent speeds: start the integrator again at the current state with a new
-    !> partition of the speeds (chosen by restart_state), the same physical state.
+    !> The system's choices have worn (in independent speeds, its partition): start the
+    !> integrator again at the current state with new ones (made by restart_state's
+    !> pack_state), the same physical state.
     subroutine repartition(self, error)
         class(simulation_type), intent(inout) :: self
         type(error_type), allocatable, intent(out) :: error
         real(wp), allocatable :: q(:), u(:)
 
-        call self%problem%unpack_state(self%t, self%y, self%q, self%u, error)
+        call self%system%unpack_state(self%t, self%y, self%q, self%u, error)
         if (allocated(error)) return
         q = self%q
         u = self%u
-        call restart_state(self%problem, self%t, q, u, self%y, self%yp, error)
+        call restart_state(self%problem, self%system, self%t, q, u, self%y, self%yp, error)
         if (allocated(error)) return
         call self%earlier%add(self%integrator%statistics())
         call self%integrator%restart(self%t, self%y, self%yp, error)
@@ -428,15 +479,15 @@ contains
         type(error_type), allocatable, intent(out) :: error
         real(wp), allocatable :: q(:), u(:)
 
-        call self%problem%unpack_state(self%t, self%y, self%q, self%u, error)
+        call self%system%unpack_state(self%t, self%y, self%q, self%u, error)
         if (allocated(error)) return
         q = self%q
         u = self%u
-        call restart_state(self%problem, self%t, q, u, self%y, self%yp, error)
+        call restart_state(self%problem, self%system, self%t, q, u, self%y, self%yp, error)
         if (allocated(error)) return
         call self%problem%accelerations(nearest(self%t, 1.0_wp), q, u, error)
         if (allocated(error)) return
-        call self%problem%pack_state(q, u, self%y, self%yp)
+        call self%system%pack_state(q, u, self%y, self%yp)
         call self%earlier%add(self%integrator%statistics())
         call self%integrator%restart(self%t, self%y, self%yp, error, careful=.false.)
         if (allocated(error)) return
@@ -476,14 +527,17 @@ contains
     !> counted as re-based, then every part a watch wants re-based at the start (a part at
     !> or below the threshold of a watch that re-bases there) re-based. A refusal fails the run
     !> after that row (the start as given).
-    subroutine rebase_at_start(self, q, u, refusal, error)
+    subroutine rebase_at_start(self, q, u, refusal, fell, error)
         class(simulation_type), intent(inout) :: self
         real(wp), intent(inout) :: q(:), u(:)
         character(len=:), allocatable, intent(out) :: refusal
+        !> The refusal is a fall (rollcon_rebase_step)
+        logical, intent(out) :: fell
         type(error_type), allocatable, intent(out) :: error
         integer, allocatable :: parts(:)
         integer :: w, k
 
+        fell = .false.
         if (allocated(self%problem%start_bases)) then
             do k = 1, size(self%problem%start_bases)
                 do w = 1, self%problem%start_bases(k)
@@ -494,7 +548,8 @@ contains
         do w = 1, size(self%problem%watches)
             parts = self%problem%watches(w)%watch%parts_to_rebase(self%problem%eq, q)
             do k = 1, size(parts)
-                call rebase_part(self%problem, parts(k), self%options%t0, q, u, refusal, error)
+                call rebase_part(self%problem, parts(k), self%options%t0, q, u, refusal, error, &
+                    & fell)
                 if (allocated(error) .or. allocated(refusal)) return
                 call self%count_rebasing(parts(k))
             end do
@@ -513,6 +568,26 @@ contains
         end do
     end subroutine count_rebasing
 
+    !> Add to an integrator's failure the load or rate that ran away at its last state
+    !> (problem_type's runaway_text: a load beyond runaway_weights times the parts' weight),
+    !> when one has and the message does not say it already: an integrator that cannot follow
+    !> a load of 1e33 N on a coin of 7 N says only that it took too many steps.
+    subroutine name_runaway(self, error)
+        class(simulation_type), intent(inout) :: self
+        type(error_type), allocatable, intent(inout) :: error
+        !> A load a million times the weight of every part together is no load the model was
+        !> written for (the coin's strike peaks at a fifth of its weight)
+        real(wp), parameter :: runaway_weights = 1.0e6_wp
+        type(error_type), allocatable :: unpacked
+        character(len=:), allocatable :: why
+
+        call self%system%unpack_state(self%t, self%y, self%q, self%u, unpacked)
+        if (allocated(unpacked)) return
+        why = self%problem%runaway_text(self%t, self%q, self%u, runaway_weights)
+        if (len(why) > 0 .and. index(error%message, why) == 0) error%message = error%message &
+            & // "; " // why
+    end subroutine name_runaway
+
     !> The summary's counters, CPU time, re-basings and the watches' measures and lines; the
     !> integrator freed; the CSV closed (its failure, a full disk, fails the run unless it
     !> failed already).
@@ -526,6 +601,13 @@ contains
         integer :: k
 
         if (allocated(self%bases)) summary%rebasings = self%bases
+        if (self%judged_rows > 0) then
+            summary%energy_scale = max(self%kinetic_max, self%potential_max - self%potential_min)
+            if (summary%energy_scale > 0.0_wp) summary%energy_drift = &
+                & self%energy_change/summary%energy_scale
+            summary%energy_step = self%step_energy_sum/real(self%judged_rows, wp)
+            summary%constraint_work = self%constraint_work
+        end if
         call cpu_time(cpu_now)
         summary%cpu_seconds = cpu_now - self%cpu_start
         if (allocated(self%integrator)) then
@@ -533,6 +615,7 @@ contains
             call self%earlier%add(self%integrator%statistics())
             call self%integrator%destroy()
         end if
+        if (allocated(self%system)) call self%system%release()
         summary%steps = self%earlier%steps
         summary%functions = self%earlier%functions
         summary%jacobians = self%earlier%jacobians

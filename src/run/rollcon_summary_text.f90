@@ -43,13 +43,7 @@ contains
             text = text // "status: FAILED: " // summary%message // nl
         end select
         text = text // final_state(summary)
-        text = text // "energy drift: " // scientific(summary%energy_drift) &
-            & // " (largest |E - E0|/|E0|, E0 = " // to_text(summary%energy_reference) &
-            & // " J after the last applied force)" // allowed(summary%energy_bound, "")
-        if (.not. summary%energy_conserved) text = text &
-            & // "; not judged: an applied force acting until the end, or a moving " &
-            & // "constraint, does work"
-        text = text // nl
+        text = text // energy_line(summary) // nl
         text = text // residual_lines(summary)
         if (allocated(summary%routines)) then
             if (len(summary%routines) > 0) text = text // "routines: " // summary%routines // nl
@@ -67,6 +61,29 @@ contains
         text = text // "CPU time: " // fixed(summary%cpu_seconds) // " s" // nl
         text = text // "output: " // csv_path // " (" // to_text(summary%rows) // " rows)"
     end function run_summary_text
+
+    !> "energy drift: 7.708E-008 of the energy scale 1.226 J (largest |E - E0| 9.452E-008 J, E0 =
+    !> -1.22625 J after the last applied force), allowed 7.5E-007" (rollcon_drift), or why it
+    !> is not judged.
+    function energy_line(summary) result(text)
+        type(run_summary_type), intent(in) :: summary
+        character(len=:), allocatable :: text
+
+        if (summary%energy_scale > 0.0_wp) then
+            text = "energy drift: " // scientific(summary%energy_drift) &
+                & // " of the energy scale " // scientific(summary%energy_scale) &
+                & // " J (largest |E - E0| " &
+                & // scientific(summary%energy_drift*summary%energy_scale) // " J, E0 = " &
+                & // to_text(summary%energy_reference) // " J after the last applied force)" &
+                & // allowed(summary%energy_bound, "")
+        else
+            text = "energy drift: none to judge (nothing moved after the last applied force, " &
+                & // "E0 = " // to_text(summary%energy_reference) // " J)"
+        end if
+        if (.not. summary%energy_conserved) text = text &
+            & // "; not judged: an applied force acting until the end, or a moving " &
+            & // "constraint, does work"
+    end function energy_line
 
     !> "final state of part <id>:" and its coordinates beside their rates, for every part.
     function final_state(summary) result(text)

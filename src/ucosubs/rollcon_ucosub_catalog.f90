@@ -21,7 +21,7 @@ module rollcon_ucosub_catalog
     implicit none
     private
 
-    public :: find_builtin_ucosub, builtin_ucosub_names, builtin_ucosub_par
+    public :: find_builtin_ucosub, builtin_ucosub_names, builtin_ucosub_par, builtin_ucosub_name
     public :: builtin_ucosub_summary, builtin_ucosubs_for_par
 
     !> Name of the hand-checked disk routine, and of the generated routine of the same constraint
@@ -59,6 +59,30 @@ contains
             time_free = generated_time_free(entry)
         end select
     end subroutine find_builtin_ucosub
+
+    !> The catalog's name of a routine ("" when it is no built-in one: a user's) and whether
+    !> its F is free of time (false for a routine that is not built in).
+    function builtin_ucosub_name(routine, time_free) result(name)
+        procedure(ucosub_interface), pointer, intent(in) :: routine
+        logical, intent(out) :: time_free
+        character(len=:), allocatable :: name
+        procedure(ucosub_interface), pointer :: candidate
+        integer, allocatable :: entries(:)
+        logical :: found
+        integer :: i
+
+        name = ""
+        time_free = .false.
+        entries = listed_entries()
+        do i = 1, size(entries)
+            call find_builtin_ucosub(entry_name(entries(i)), candidate, time_free, found)
+            if (found .and. associated(routine, candidate)) then
+                name = entry_name(entries(i))
+                return
+            end if
+        end do
+        time_free = .false.
+    end function builtin_ucosub_name
 
     !> The names as a list for messages: "disk, rolling_disk, disk_height, ...": the two disk
     !> routines first (the hand-checked one and its generated twin, as the list has always

@@ -13,17 +13,14 @@ module rollcon_contact_watch
     use rollcon_equations, only : equations_type
     use rollcon_run_settings, only : run_settings_type
     use rollcon_output_layout, only : name_length
+    !> The columns it adds, in order (named where a CSV reader finds them too)
+    use rollcon_watch_columns, only : contact_names
     use rollcon_watch, only : watch_type, watch_event_type, watch_measure_type, action_stop
     implicit none
     private
 
-    public :: contact_watch_type, contact_names, height_allowance
+    public :: contact_watch_type, height_allowance
 
-    !> The columns it adds, in order: the constraint force on the part Fx, Fy, Fz [N] (ground
-    !> components), its normal part Fn [N], the friction coefficient rolling needs
-    !> |F_tangential| / Fn [-] (0 when Fn <= 0) and the height residual Z - R sin(theta) [m]
-    character(len=*), parameter :: contact_names(6) = [character(len=15) :: "Fx", "Fy", "Fz", &
-        & "Fn", "mu_needed", "height_residual"]
     !> K_H of the height residual's bound K_H sqrt(N) (atol + rtol R) after N steps: independent
     !> local errors add up like a random walk (rollcon_drift); measured on the data/ scenes,
     !> sound runs reach at most 0.82 of sqrt(N) (atol + rtol R), drift = 'none' 4.8 to 7800

@@ -19,19 +19,17 @@ module rollcon_request_watch
     use rollcon_equations, only : equations_type
     use rollcon_run_settings, only : run_settings_type
     use rollcon_output_layout, only : name_length
+    use rollcon_watch_columns, only : request_column_patterns
     use rollcon_watch, only : watch_type
     implicit none
     private
 
     public :: request_watch_type, displacement_request_type, new_request_watch
-    public :: request_column_name, request_column_patterns
+    public :: request_column_name
 
     !> What each request's columns hold, in order (the column req<id>_<suffix>)
     character(len=*), parameter :: suffixes(6) = [character(len=5) :: "x", "y", "z", "psi", &
         & "theta", "phi"]
-    !> The names of the columns, as a CSV reader knows them ("<n>": the request's id)
-    character(len=*), parameter :: request_column_patterns(6) = [character(len=12) :: &
-        & "req<n>_x", "req<n>_y", "req<n>_z", "req<n>_psi", "req<n>_theta", "req<n>_phi"]
 
     !> One request: its id and its markers as the model holds them (rollcon_marker)
     type :: displacement_request_type

@@ -1,4 +1,4 @@
-"""Shared geometry of the joint primitives (ADAMS's JPRIM statements).
+"""Shared geometry of the joint primitives (ADAMS's JPRIM statements) and CONVEL's condition.
 
 Not a spec (the underscore): ``jp_<primitive>.py`` (marker I on part i, marker J on part j:
 a spec of two parts) and ``gnd_<primitive>.py`` (marker J on the ground, which has no
@@ -12,12 +12,24 @@ J's origin to I's (docs/datasets.md, "JOINT and JPRIM")::
     parallel_axes  z_i.x_j = z_i.y_j = 0                   2
     perpendicular  z_i.z_j = 0                             1
     orientation    z_i.x_j = z_i.y_j = x_i.y_j = 0         3
+    homokinetic    x_i.y_j + y_i.x_j = 0                   1
+
+The first six are ADAMS's joint primitives (JPRIM). The seventh is no JPRIM: it is the
+constant-velocity condition of a CONVEL joint (with atpoint). With the z axes along the two
+shafts, each pointing away from the joint's centre (ADAMS's rule for CONVEL), let J' be J's
+axes turned a half turn about x_j (z_j' = z_i when the shafts are in line). The rotation that
+carries I's axes onto J', by an angle a about an axis n, has 2 sin(a) n.z_i =
+x_i.y_j + y_i.x_j: the equation holds exactly when n is perpendicular to z_i (and so to both
+shafts), in the plane that bisects them; the two halves of the joint are then mirror images
+in that plane, and the shafts turn at the same rate. The equation is symmetric in I and J; it
+also holds a half turn of twist away, which the start excludes as it excludes reversed axes
+for the others.
 
 The geometry is held by PAR as vectors, never as angles, so that the driver can turn it when
 a part is re-based (docs/rebasing.md) by one matrix product, with no Euler-angle singularity:
 I's origin and axes in part i's principal axes, J's in part j's (in ground for ``gnd_``). Each
-spec takes only the vectors its components use, in the order I origin, z_i, x_i, J origin,
-x_j, y_j, z_j (the generator refuses a parameter no component uses), and declares only the
+spec takes only the vectors its components use, in the order I origin, z_i, x_i, y_i,
+J origin, x_j, y_j, z_j (the generator refuses a parameter no component uses), and declares only the
 coordinates they depend on (X, Y, Z only with an origin). A part's rotation is
 R = Rz(psi) Rx(theta) Rz(phi) (docs/design.md section 3). As vectors, a joint's geometry fits
 PAR's 30 entries primitive by primitive (a two-part in-line primitive needs 27), not joint by
@@ -40,25 +52,31 @@ VECTORS = {
     "ip": ("ip", "I's origin in part i", "length"),
     "iz": ("iz", "I's z axis in part i", "1"),
     "ix": ("ix", "I's x axis in part i", "1"),
+    "iy": ("iy", "I's y axis in part i", "1"),
     "jp": ("jp", "J's origin in {frame}", "length"),
     "jx": ("jx", "J's x axis in {frame}", "1"),
     "jy": ("jy", "J's y axis in {frame}", "1"),
     "jz": ("jz", "J's z axis in {frame}", "1"),
 }
 #: The order of the vectors in PAR
-ORDER = ("ip", "iz", "ix", "jp", "jx", "jy", "jz")
+ORDER = ("ip", "iz", "ix", "iy", "jp", "jx", "jy", "jz")
 
-#: Each primitive: the vectors it uses, its title and the meaning of its components
+#: Each primitive: the vectors it uses, its title, the meaning of its components and the
+#: ADAMS statement it serves
 PRIMITIVES = {
-    "atpoint": (("ip", "jp"), "at-point joint primitive", "I's origin at J's"),
-    "inline": (("ip", "jp", "jx", "jy"), "in-line joint primitive", "I's origin on J's z axis"),
-    "inplane": (("ip", "jp", "jz"), "in-plane joint primitive", "I's origin in J's x-y plane"),
+    "atpoint": (("ip", "jp"), "at-point joint primitive", "I's origin at J's", "JPRIM"),
+    "inline": (("ip", "jp", "jx", "jy"), "in-line joint primitive", "I's origin on J's z axis",
+               "JPRIM"),
+    "inplane": (("ip", "jp", "jz"), "in-plane joint primitive", "I's origin in J's x-y plane",
+                "JPRIM"),
     "parallel_axes": (("iz", "jx", "jy"), "parallel-axes joint primitive",
-                      "I's z axis parallel to J's"),
+                      "I's z axis parallel to J's", "JPRIM"),
     "perpendicular": (("iz", "jz"), "perpendicular joint primitive",
-                      "I's z axis perpendicular to J's"),
+                      "I's z axis perpendicular to J's", "JPRIM"),
     "orientation": (("iz", "ix", "jx", "jy"), "orientation joint primitive",
-                    "I's axes parallel to J's"),
+                    "I's axes parallel to J's", "JPRIM"),
+    "homokinetic": (("ix", "iy", "jx", "jy"), "homokinetic condition",
+                    "I's and J's shafts turn alike", "JOINT CONVEL"),
 }
 
 
@@ -76,7 +94,7 @@ def _vector(stem: str) -> sympy.Matrix:
 
 def primitive(name: str, ground: bool) -> ConstraintSpec:
     """The spec ``gnd_<name>`` (marker J on ground) or ``jp_<name>`` (J on a second part)."""
-    used, title, meaning = PRIMITIVES[name]
+    used, title, meaning, statement = PRIMITIVES[name]
     rotation = _rotation(psi, theta, phi)
     vec = {key: _vector(VECTORS[key][0]) for key in used}
     if not ground:
@@ -91,6 +109,7 @@ def primitive(name: str, ground: bool) -> ConstraintSpec:
     d = r_i - vec["jp"] if r_i is not None else None
     z_i = rotation * vec["iz"] if "iz" in vec else None
     x_i = rotation * vec["ix"] if "ix" in vec else None
+    y_i = rotation * vec["iy"] if "iy" in vec else None
 
     def dot(a: sympy.Matrix, b: sympy.Matrix) -> sympy.Expr:
         return sympy.expand((a.T * b)[0, 0])
@@ -109,10 +128,13 @@ def primitive(name: str, ground: bool) -> ConstraintSpec:
                       Constraint(dot(z_i, vec["jy"]), "z_i.y_j [1]")]
     elif name == "perpendicular":
         components = [Constraint(dot(z_i, vec["jz"]), "z_i.z_j [1]")]
-    else:
+    elif name == "orientation":
         components = [Constraint(dot(z_i, vec["jx"]), "z_i.x_j [1]"),
                       Constraint(dot(z_i, vec["jy"]), "z_i.y_j [1]"),
                       Constraint(dot(x_i, vec["jy"]), "x_i.y_j [1]")]
+    else:
+        components = [Constraint(dot(x_i, vec["jy"]) + dot(y_i, vec["jx"]),
+                                 "x_i.y_j + y_i.x_j [1]")]
     codes = [(x, 11), (y, 12), (z, 13), (psi, 14), (theta, 15), (phi, 16)]
     if "ip" not in vec:
         codes = codes[3:]
@@ -139,7 +161,7 @@ def primitive(name: str, ground: bool) -> ConstraintSpec:
     return ConstraintSpec(
         name=f"gnd_{name}" if ground else f"jp_{name}",
         title=f"{title} to ground" if ground else title,
-        summary=f"{meaning}: marker I on a part, {where} (ADAMS JPRIM).",
+        summary=f"{meaning}: marker I on a part, {where} (ADAMS {statement}).",
         variables=tuple(variables),
         parameters=tuple(parameters),
         constraints=tuple(components),

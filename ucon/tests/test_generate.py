@@ -237,8 +237,9 @@ class DeterminismTest(unittest.TestCase):
         second_files = sorted(p.relative_to(second.name) for p in Path(second.name).rglob("*")
                               if p.is_file())
         self.assertEqual(first_files, second_files)
-        # two files per spec, the catalog of them all, and the reduced disk's module
-        self.assertEqual(len(first_files), 2 * len(ucon.spec_names()) + 2)
+        # two files per spec, the catalog of them all, and the reduced disk's and bicycle's
+        # modules
+        self.assertEqual(len(first_files), 2 * len(ucon.spec_names()) + 3)
         for relative in first_files:
             self.assertEqual((Path(first.name) / relative).read_bytes(),
                              (Path(second.name) / relative).read_bytes(), str(relative))

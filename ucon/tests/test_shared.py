@@ -110,10 +110,11 @@ class OutputConstantsTest(unittest.TestCase):
                     "turntable_ball": ([True] * 3, [False] * 3),
                     "chaplygin_sled": ([True], [False]),
                     "planar_hold": ([True] * 3, [True] * 3)}
-        # the joint primitives: positions only, no time; to ground and between two parts
+        # the joint primitives and CONVEL's homokinetic condition: positions only, no time;
+        # to ground and between two parts
         for primitive, count in (("atpoint", 3), ("inline", 2), ("inplane", 1),
                                  ("parallel_axes", 2), ("perpendicular", 1),
-                                 ("orientation", 3)):
+                                 ("orientation", 3), ("homokinetic", 1)):
             for prefix in ("gnd_", "jp_"):
                 expected[prefix + primitive] = ([True] * count, [True] * count)
         self.assertEqual(sorted(expected), ucon.spec_names())

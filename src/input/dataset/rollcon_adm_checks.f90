@@ -1,7 +1,7 @@
 ! SPDX-License-Identifier: MIT
 !> Checks a dataset as a whole once every statement is read: one ground part, the values a part
-!> needs, every reference to a part or marker (those of the statements read and not used too),
-!> the forces' expressions, the run, and the
+!> needs, every reference to a part or marker (those of the joints and of the statements read
+!> and not used too), the forces' expressions, the run, and the
 !> principal-axes rule at t = 0 (a part whose CM marker's z-axis is parallel to ground z starts
 !> at the singularity of its 3-1-3 Euler angles: it starts in turned axes, without EXACT angles).
 module rollcon_adm_checks
@@ -9,27 +9,32 @@ module rollcon_adm_checks
     use rollcon_error, only : error_type, fatal_error, stat_input
     use rollcon_text, only : to_text
     use rollcon_physical_ranges, only : mass_max, inertia_max, position_max, light, rate_max
-    use rollcon_rotation, only : rotation_matrix
-    use rollcon_adm_state, only : min_sin_theta
+    use rollcon_part_frames, only : principal_frame, min_sin_theta
     use rollcon_adm_keywords, only : place
     use rollcon_adm_model, only : adm_model_type, adm_part_type, adm_marker_type, &
         & adm_force_type, force_sforce, force_vforce, refers_to_marker, refers_to_part
+    use rollcon_adm_joints, only : adm_joint_type
     use rollcon_adm_ids, only : id_index_type, new_id_index
+    use rollcon_adm_run, only : no_simulate_message
     use, intrinsic :: iso_fortran_env, only : int64
     implicit none
     private
 
-    public :: check_references, min_sin_theta
+    public :: check_references
 
 contains
 
     !> The checks of the whole dataset, in time linear in its statements (each reference found
     !> through an index of the ids).
-    subroutine check_references(model, error)
+    subroutine check_references(model, error, simulate_needed)
         type(adm_model_type), intent(in) :: model
         type(error_type), allocatable, intent(out) :: error
+        !> The dataset must hold its SIMULATE (default); false when the run is given apart
+        !> from it (a command file, or `rollcon run --end T --steps N`)
+        logical, intent(in), optional :: simulate_needed
         type(id_index_type) :: parts, markers, forces
         integer :: i, previous
+        logical :: simulation_needed
 
         parts = new_id_index(size(model%parts))
         do i = 1, size(model%parts)
@@ -71,9 +76,39 @@ contains
                 if (allocated(error)) return
             end do
         end if
-        if (model%run%line == 0) call fatal_error(error, model%file // ": no SIMULATE " &
-            & // "statement (SIMULATE/DYNAMIC, END=t, STEPS=n)", stat_input)
+        if (model%run%line == 0) then
+            simulation_needed = .true.
+            if (present(simulate_needed)) simulation_needed = simulate_needed
+            if (simulation_needed) then
+                call fatal_error(error, no_simulate_message(model%file), stat_input)
+                return
+            end if
+        end if
+        if (.not. allocated(model%joints)) return
+        do i = 1, size(model%joints)
+            call check_joint(model, markers, model%joints(i), error)
+            if (allocated(error)) return
+        end do
     end subroutine check_references
+
+    !> A JOINT's or JPRIM's markers I and J are MARKERs (which parts they join is the model's
+    !> to judge: model%add_joint, model%add_jprim).
+    subroutine check_joint(model, markers, joint, error)
+        type(adm_model_type), intent(in) :: model
+        !> Positions of the markers by id
+        type(id_index_type), intent(in) :: markers
+        type(adm_joint_type), intent(in) :: joint
+        type(error_type), allocatable, intent(out) :: error
+        character(len=:), allocatable :: where
+
+        where = place(model%file, joint%line) // ": " // trim(merge("JPRIM", "JOINT", &
+            & joint%primitive)) // "/" // to_text(joint%id)
+        if (markers%find(int(joint%i, int64)) == 0) then
+            call fatal_error(error, where // " I: no MARKER/" // to_text(joint%i), stat_input)
+        else if (markers%find(int(joint%j, int64)) == 0) then
+            call fatal_error(error, where // " J: no MARKER/" // to_text(joint%j), stat_input)
+        end if
+    end subroutine check_joint
 
     !> Reference i of a statement read and not used: its marker, part or force exists
     !> (found through the indexes of their ids).
@@ -164,7 +199,7 @@ contains
 
     !> The principal-axes rule at t = 0 (docs/rebasing.md): a part whose CM marker's z-axis,
     !> turned by the part's REULER and its own, is parallel to ground z starts in its principal
-    !> axes turned 90 degrees about x (rollcon_adm_state), where EXACT angles mean nothing.
+    !> axes turned 90 degrees about x (rollcon_part_frames), where EXACT angles mean nothing.
     subroutine check_principal_axes(where, part, marker, error)
         !> "file:line: PART/id"
         character(len=*), intent(in) :: where
@@ -174,9 +209,7 @@ contains
         character(len=*), parameter :: angles(3) = [character(len=5) :: "PSI", "THETA", "PHI"]
         real(wp) :: r(3, 3), sin_theta
 
-        r = matmul(matmul(rotation_matrix(part%reuler(1), part%reuler(2), part%reuler(3)), &
-            & rotation_matrix(marker%reuler(1), marker%reuler(2), marker%reuler(3))), &
-            & part%principal)
+        r = principal_frame(part%reuler, marker%reuler, part%principal)
         sin_theta = hypot(r(1, 3), r(2, 3))
         if (sin_theta >= min_sin_theta .or. .not. any(part%exact(4:6))) return
         call fatal_error(error, where // " EXACT=" // trim(angles(findloc(part%exact(4:6), &

@@ -15,7 +15,7 @@ module rollcon_adm_integrator
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type, fatal_error, stat_input
     use rollcon_text, only : to_text
-    use rollcon_adm_lexer, only : adm_statement_type, upper_case
+    use rollcon_adm_lexer, only : adm_statement_type, adm_argument_type, upper_case
     use rollcon_adm_keywords, only : read_reals, argument_key, arg_place, resolve_name, &
         & name_index, place
     use rollcon_adm_model, only : adm_run_type, adm_unused_type
@@ -87,6 +87,13 @@ contains
                 call record_unused(unused, unused_count, "INTEGRATOR " // key, statement%line)
                 cycle
             end if
+            if (key == "FORMULATION" .and. adams_formulation(statement%arguments(k))) then
+                ! ADAMS's own formulation of its integrators (I3, SI2, SI1): not rollcon's
+                call record_unused(unused, unused_count, "INTEGRATOR FORMULATION=" &
+                    & // upper_case(trim(statement%arguments(k)%values(1)%text)), &
+                    & statement%line)
+                cycle
+            end if
             lines(slot) = statement%arguments(k)%line
             associate (entry => keys(find_key(keys, "run", trim(run_keys(slot)))))
                 if (entry%kind == kind_choice) then
@@ -120,6 +127,17 @@ contains
         run%settings = settings
         call check_choices(path, where, statement%line, lines, run, error)
     end subroutine read_integrator
+
+    !> FORMULATION= one of ADAMS's formulations of its integrators (I3, SI2, SI1, any case).
+    pure logical function adams_formulation(argument)
+        type(adm_argument_type), intent(in) :: argument
+
+        adams_formulation = .false.
+        if (.not. argument%assigned) return
+        if (size(argument%values) /= 1) return
+        adams_formulation = any(upper_case(trim(argument%values(1)%text)) == &
+            & [character(len=3) :: "I3", "SI2", "SI1"])
+    end function adams_formulation
 
     !> A number for a real or integer &run key, within the key's range.
     subroutine store_number(statement, k, at, entry, error)

@@ -1,35 +1,23 @@
 ! SPDX-License-Identifier: MIT
 !> Dataset statements JOINT and JPRIM (docs/datasets.md, "JOINT and JPRIM"): ADAMS's joints
-!> and joint primitives between marker I and marker J, read and checked. Each becomes UCONs
-!> served by the generated joint-primitive routines (rollcon_adm_joint_build).
-!>
-!> A joint is a set of primitives (ADAMS's own decomposition, by the degrees of freedom each
-!> removes): SPHERICAL = ATPOINT; REVOLUTE = ATPOINT + PARALLEL_AXES; UNIVERSAL = ATPOINT +
-!> PERPENDICULAR; CYLINDRICAL = INLINE + PARALLEL_AXES; TRANSLATIONAL = INLINE + ORIENTATION;
-!> FIXED = ATPOINT + ORIENTATION.
+!> and joint primitives between marker I and marker J, read and checked as the text states
+!> them: a type of rollcon_joint_types, and the two markers (that they are MARKERs is checked
+!> with every reference, rollcon_adm_checks). The model makes each one UCONs
+!> (model%add_joint, model%add_jprim), which also judges the markers' parts.
 module rollcon_adm_joints
     use rollcon_error, only : error_type, fatal_error, stat_input
+    use rollcon_joint_types, only : joint_names, primitive_names, name_list
     use rollcon_adm_lexer, only : adm_statement_type
-    use rollcon_adm_keywords, only : argument_key, arg_place, read_integer, name_index
+    use rollcon_adm_keywords, only : argument_key, arg_place, read_integer
     implicit none
     private
 
-    public :: adm_joint_type, read_joint, joint_primitives, primitive_names, joint_names
-    public :: primitive_atpoint, primitive_inline, primitive_inplane, primitive_parallel_axes, &
-        & primitive_perpendicular, primitive_orientation
+    public :: adm_joint_type, read_joint
 
-    !> The joint primitives, numbered as primitive_names lists them
-    integer, parameter :: primitive_atpoint = 1, primitive_inline = 2, primitive_inplane = 3, &
-        & primitive_parallel_axes = 4, primitive_perpendicular = 5, primitive_orientation = 6
-    character(len=*), parameter :: primitive_names(6) = [character(len=13) :: "ATPOINT", &
-        & "INLINE", "INPLANE", "PARALLEL_AXES", "PERPENDICULAR", "ORIENTATION"]
-    !> The joints rollcon simulates
-    character(len=*), parameter :: joint_names(6) = [character(len=13) :: "CYLINDRICAL", &
-        & "FIXED", "REVOLUTE", "SPHERICAL", "TRANSLATIONAL", "UNIVERSAL"]
     !> ADAMS's keywords of a JOINT that rollcon reads and refuses (initial conditions, friction,
     !> the joints it does not simulate)
-    character(len=*), parameter :: joint_refused(8) = [character(len=13) :: "IC", "ICTRAN", &
-        & "ICROT", "DELTA_V", "MAXIMUM_DEFORMATION", "RACKPIN", "SCREW", "PLANAR"]
+    character(len=*), parameter :: joint_refused(7) = [character(len=19) :: "IC", "ICTRAN", &
+        & "ICROT", "DELTA_V", "MAXIMUM_DEFORMATION", "RACKPIN", "SCREW"]
 
     !> JOINT/id or JPRIM/id
     type :: adm_joint_type
@@ -44,8 +32,8 @@ module rollcon_adm_joints
 
 contains
 
-    !> JOINT/id, type, I=id, J=id or JPRIM/id, type, I=id, J=id (name says which); the
-    !> markers' existence and parts are checked once the file is read (rollcon_adm_joint_build).
+    !> JOINT/id, type, I=id, J=id or JPRIM/id, type, I=id, J=id (name says which); that the
+    !> markers exist is checked once the file is read (rollcon_adm_checks).
     subroutine read_joint(path, where, name, statement, joint, error)
         character(len=*), intent(in) :: path, where, name
         type(adm_statement_type), intent(in) :: statement
@@ -77,9 +65,9 @@ contains
                     & // "are not supported: rollcon's initial-conditions analysis places the " &
                     & // "parts (docs/initial-conditions.md); give the parts' QG, REULER and " &
                     & // "velocities instead", stat_input)
-            case ("RACKPIN", "SCREW", "PLANAR")
+            case ("RACKPIN", "SCREW")
                 call fatal_error(error, at // ": a " // key // " joint is not supported " &
-                    & // "(supported: " // list(joint_names) // ", and JPRIM)", stat_input)
+                    & // "(supported: " // name_list(joint_names) // ", and JPRIM)", stat_input)
             case default
                 if (statement%arguments(k)%assigned) then
                     call fatal_error(error, at // " takes no value", stat_input)
@@ -95,10 +83,10 @@ contains
         if (.not. allocated(joint%kind)) then
             if (joint%primitive) then
                 call fatal_error(error, where // ": the type is missing (one of " &
-                    & // list(primitive_names) // ")", stat_input)
+                    & // name_list(primitive_names) // ")", stat_input)
             else
                 call fatal_error(error, where // ": the type is missing (one of " &
-                    & // list(joint_names) // ")", stat_input)
+                    & // name_list(joint_names) // ")", stat_input)
             end if
         else if (joint%i == 0) then
             call fatal_error(error, where // ": I=id is missing (the marker on the first " &
@@ -108,40 +96,5 @@ contains
                 & // "part, or on ground)", stat_input)
         end if
     end subroutine read_joint
-
-    !> The primitives a JOINT or JPRIM of this type is made of (primitive_* numbers).
-    pure function joint_primitives(kind) result(primitives)
-        character(len=*), intent(in) :: kind
-        integer, allocatable :: primitives(:)
-
-        select case (kind)
-        case ("SPHERICAL")
-            primitives = [primitive_atpoint]
-        case ("REVOLUTE")
-            primitives = [primitive_atpoint, primitive_parallel_axes]
-        case ("UNIVERSAL")
-            primitives = [primitive_atpoint, primitive_perpendicular]
-        case ("CYLINDRICAL")
-            primitives = [primitive_inline, primitive_parallel_axes]
-        case ("TRANSLATIONAL")
-            primitives = [primitive_inline, primitive_orientation]
-        case ("FIXED")
-            primitives = [primitive_atpoint, primitive_orientation]
-        case default
-            primitives = [name_index(kind, primitive_names)]
-        end select
-    end function joint_primitives
-
-    !> "A, B, C" of a list of names.
-    pure function list(names) result(text)
-        character(len=*), intent(in) :: names(:)
-        character(len=:), allocatable :: text
-        integer :: k
-
-        text = trim(names(1))
-        do k = 2, size(names)
-            text = text // ", " // trim(names(k))
-        end do
-    end function list
 
 end module rollcon_adm_joints

@@ -1,23 +1,27 @@
 ! SPDX-License-Identifier: MIT
 !> Names of the dataset subset and the typed reading of argument values.
 !>
-!> A statement name or argument keyword may be written in any case and abbreviated to any
-!> prefix that is unique among the names allowed at that place (an exact name always wins).
+!> A statement name or argument keyword may be written in any case and abbreviated as ADAMS
+!> abbreviates it: to any beginning at least as long as the name's shortest form in ADAMS's
+!> table (rollcon_adm_abbreviations; an exact name always wins). Choice values (unit names,
+!> INTEGRATOR's choices) may be abbreviated to any beginning unique among the values allowed.
 !> Values are read strictly: one number per field, `D` after a number only where an angle is
 !> expected (degrees), integers where ids are expected.
 module rollcon_adm_keywords
     use rollcon_kinds, only : wp
     use rollcon_constants, only : degree
     use rollcon_error, only : error_type, fatal_error, stat_input
-    use rollcon_text, only : to_text, comma_list
+    use rollcon_text, only : to_text, comma_list, place
     use rollcon_adm_lexer, only : adm_argument_type, adm_statement_type, is_number_text, &
+        & is_nonfinite_text, &
         & upper_case
+    use rollcon_adm_abbreviations, only : minimum_abbreviation
     use, intrinsic :: ieee_arithmetic, only : ieee_is_finite
     implicit none
     private
 
-    public :: resolve_name, read_reals, read_integer, argument_key, arg_place, place
-    public :: name_index, name_matches
+    public :: resolve_name, resolve_keyword, read_reals, read_integer, argument_key, arg_place
+    public :: place, name_index, argument_text
     public :: statement_names
 
     !> The statements of the subset that are simulated (rollcon_adm_outputs has those read and
@@ -29,8 +33,9 @@ module rollcon_adm_keywords
 
 contains
 
-    !> The name of `allowed` that `written` stands for (exact, else a unique prefix); `what`
-    !> says what is being named, for the message ("statement", "PART argument").
+    !> The choice value of `allowed` that `written` stands for (a unit name, an INTEGRATOR
+    !> choice: exact, else a unique beginning); `what` says what is being named, for the
+    !> message ("force unit", "method"). Statement names and keywords: resolve_keyword.
     subroutine resolve_name(written, allowed, what, where, resolved, error)
         character(len=*), intent(in) :: written, allowed(:), what, where
         character(len=:), allocatable, intent(out) :: resolved
@@ -65,24 +70,98 @@ contains
         end if
     end subroutine resolve_name
 
-    !> How many of `allowed` the name `written` may stand for: 1 for an exact name, else the
-    !> number of names it is a prefix of (any case).
-    pure integer function name_matches(written, allowed)
-        character(len=*), intent(in) :: written, allowed(:)
-        character(len=:), allocatable :: name
-        integer :: i
+    !> The name of `allowed` that `written` stands for at `table_place` (a place of
+    !> rollcon_adm_abbreviations: "statement", "command", or a statement's name for its
+    !> arguments): the exact name, else the one name of which it is a beginning at least as
+    !> long as that name's shortest form. `what` says what is being named, for the message
+    !> ("statement", "PART argument"). Refused: a word that begins names only shorter than
+    !> their shortest forms (with those forms), a word of no name (with the list), and, were
+    !> the table to allow it, a word that two names take.
+    subroutine resolve_keyword(written, allowed, table_place, what, where, resolved, error)
+        character(len=*), intent(in) :: written, allowed(:), table_place, what, where
+        character(len=:), allocatable, intent(out) :: resolved
+        type(error_type), allocatable, intent(out) :: error
+        character(len=:), allocatable :: name, matches, short
+        integer :: i, count, minimum, shorts
 
         name = upper_case(trim(written))
-        name_matches = 0
-        if (len(name) == 0) return
-        if (any(allowed == name)) then
-            name_matches = 1
-            return
-        end if
+        resolved = ""
         do i = 1, size(allowed)
-            if (index(trim(allowed(i)), name) == 1) name_matches = name_matches + 1
+            if (name == trim(allowed(i))) then
+                resolved = trim(allowed(i))
+                return
+            end if
         end do
-    end function name_matches
+        count = 0
+        shorts = 0
+        matches = ""
+        short = ""
+        do i = 1, size(allowed)
+            minimum = minimum_abbreviation(table_place, trim(allowed(i)))
+            if (minimum < 0) then
+                call fatal_error(error, where // ": internal error: " // trim(allowed(i)) &
+                    & // " has no shortest form at " // trim(table_place) // " in the table " &
+                    & // "of rollcon_adm_abbreviations", stat_input)
+                return
+            end if
+            if (len(name) == 0) cycle
+            if (index(trim(allowed(i)), name) /= 1) cycle
+            if (len(name) >= minimum) then
+                count = count + 1
+                resolved = trim(allowed(i))
+                matches = matches // merge(", ", "  ", count > 1) // trim(allowed(i))
+            else
+                shorts = shorts + 1
+                short = short // merge(", ", "  ", shorts > 1) // trim(allowed(i)(:minimum)) &
+                    & // " for " // trim(allowed(i))
+            end if
+        end do
+        if (count == 1) return
+        resolved = ""
+        if (count > 1) then
+            call fatal_error(error, where // ": '" // trim(written) // "' is ambiguous: it may " &
+                & // "be " // trim(adjustl(matches(2:))) // "; write more of the name", stat_input)
+        else if (shorts > 0) then
+            call fatal_error(error, where // ": '" // trim(written) // "' is too short an " &
+                & // "abbreviation of " // article(what) // " " // what // ": the shortest " &
+                & // "ADAMS takes " &
+                & // trim(merge("is ", "are", shorts == 1)) // " " // trim(adjustl(short(2:))) &
+                & // " (docs/datasets.md, Abbreviations)", stat_input)
+        else
+            call fatal_error(error, where // ": '" // trim(written) // "' is not " &
+                & // article(what) // " " // what // " of the supported subset (" &
+                & // comma_list(allowed) // ")", stat_input)
+        end if
+    end subroutine resolve_keyword
+
+    !> "a" or "an" before `what` ("a PART argument", "an SFORCE argument", "an INTEGRATOR
+    !> argument"): ADAMS's names are said as words, but SFORCE and MREQUEST by their first
+    !> letter.
+    pure function article(what) result(word)
+        character(len=*), intent(in) :: what
+        character(len=:), allocatable :: word
+
+        word = "a"
+        if (len(what) == 0) return
+        if (scan(what(1:1), "AEIOaeio") > 0 .or. index(what, "SFORCE") == 1 .or. &
+            & index(what, "MREQUEST") == 1) word = "an"
+    end function article
+
+    !> An argument's values as one text, separated by blanks: an expression continued on
+    !> comma lines at any depth (ADAMS reads it to a backslash or to the statement's end, the
+    !> commas that begin its lines dropped), or a value of one field as written.
+    pure function argument_text(argument) result(text)
+        type(adm_argument_type), intent(in) :: argument
+        character(len=:), allocatable :: text
+        integer :: i
+
+        text = ""
+        if (.not. argument%assigned) return
+        do i = 1, size(argument%values)
+            if (i > 1) text = text // " "
+            text = text // trim(adjustl(argument%values(i)%text))
+        end do
+    end function argument_text
 
     !> The argument's values as reals: between `least` and `most` of them; angles accept `D`
     !> (degrees, converted to radians); with `factor`, converted to SI (each value finite there
@@ -113,6 +192,11 @@ contains
         allocate(values(n))
         do i = 1, n
             text = upper_case(argument%values(i)%text)
+            if (is_nonfinite_text(text)) then
+                call fatal_error(error, where // ": '" // argument%values(i)%text &
+                    & // "' is not a finite number (expected " // expected // ")", stat_input)
+                return
+            end if
             if (.not. is_number_text(text)) then
                 call fatal_error(error, where // ": '" // argument%values(i)%text &
                     & // "' is not a number (expected " // expected // ")", stat_input)
@@ -176,17 +260,9 @@ contains
         end if
     end subroutine read_integer
 
-    pure function place(path, line) result(text)
-        character(len=*), intent(in) :: path
-        integer, intent(in) :: line
-        character(len=:), allocatable :: text
-
-        text = path // ":" // to_text(line)
-    end function place
-
-    !> Resolve argument k of a statement among `allowed`; refuse a keyword given twice. With
-    !> `also`, a name that stands for none of `allowed` is resolved among `also` (keywords
-    !> read and not used: an abbreviation keeps meaning what it meant without them).
+    !> Resolve argument k of a statement among `allowed` by ADAMS's shortest forms at the
+    !> statement (rollcon_adm_abbreviations); refuse a keyword given twice. With `also`, the
+    !> names of `also` (keywords read and not used) are allowed too.
     subroutine argument_key(path, where, statement, k, allowed, key, error, also)
         character(len=*), intent(in) :: path, where
         type(adm_statement_type), intent(in) :: statement
@@ -195,53 +271,33 @@ contains
         character(len=:), allocatable, intent(out) :: key
         type(error_type), allocatable, intent(out) :: error
         character(len=*), intent(in), optional :: also(:)
-        character(len=:), allocatable :: other
+        type(error_type), allocatable :: earlier
+        character(len=32), allocatable :: names(:)
+        character(len=:), allocatable :: other, statement_name
         integer :: j
 
-        call tiered(statement%arguments(k)%keyword, arg_place(path, where, &
-            & statement%arguments(k)), key)
+        allocate(names(size(allowed)))
+        names = allowed
+        if (present(also)) names = [character(len=32) :: names, also]
+        statement_name = statement_of(where)
+        call resolve_keyword(statement%arguments(k)%keyword, names, statement_name, &
+            & statement_name // " argument", arg_place(path, where, statement%arguments(k)), &
+            & key, error)
         if (allocated(error)) return
         do j = 1, k - 1
-            call tiered(statement%arguments(j)%keyword, where, other)
-            if (allocated(error)) return
+            ! an earlier keyword that names nothing is another message's (or the warning's)
+            call resolve_keyword(statement%arguments(j)%keyword, names, statement_name, &
+                & statement_name // " argument", where, other, earlier)
+            if (allocated(earlier)) then
+                deallocate(earlier)
+                cycle
+            end if
             if (other == key) then
                 call fatal_error(error, arg_place(path, where, statement%arguments(k)) // ": " &
                     & // key // " is given twice", stat_input)
                 return
             end if
         end do
-
-    contains
-
-        !> written resolved among allowed, else (when it stands for none of them) among also;
-        !> a name of neither is refused with both lists.
-        subroutine tiered(written, at, resolved)
-            character(len=*), intent(in) :: written, at
-            character(len=:), allocatable, intent(out) :: resolved
-            character(len=32), allocatable :: both(:)
-            integer :: i
-
-            if (present(also)) then
-                if (name_matches(written, allowed) == 0) then
-                    if (name_matches(written, also) > 0) then
-                        call resolve_name(written, also, statement_of(where) // " argument", &
-                            & at, resolved, error)
-                        return
-                    end if
-                    allocate(both(size(allowed) + size(also)))
-                    both(:size(allowed)) = allowed
-                    do i = 1, size(also)
-                        both(size(allowed) + i) = also(i)
-                    end do
-                    call resolve_name(written, both, statement_of(where) // " argument", at, &
-                        & resolved, error)
-                    return
-                end if
-            end if
-            call resolve_name(written, allowed, statement_of(where) // " argument", at, &
-                & resolved, error)
-        end subroutine tiered
-
     end subroutine argument_key
 
     !> The statement's name in "file:line: STATEMENT/id": "STATEMENT".

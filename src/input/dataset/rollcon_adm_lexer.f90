@@ -3,10 +3,18 @@
 !> `NAME/id, ARG, KEY=v1, v2, ..., KEY=expression`, with continuation lines that start with a
 !> comma and `!` comments. It knows no statement's meaning: rollcon_adm_keywords resolves names.
 !>
-!> Arguments are split at commas outside parentheses. A field `KEY=...` starts an assignment; a
-!> field that is a plain number continues the list of the assignment before it (`QG = 0, 0, 1`);
-!> any other field is a conditional argument (`GROUND`, `DYNAMIC`). A backslash ends an
-!> expression, as in ADAMS. Every argument keeps the line it started on, for messages.
+!> The layout is ADAMS's, as ADAMS/View writes it too: a statement's name and slash may stand
+!> alone on a line with its arguments on the comma lines that follow (`UNITS/` then
+!> `, FORCE = NEWTON`), and a comma that ends a line and one that begins the next are one.
+!> Arguments are split at commas and backslashes outside parentheses. A field `KEY=...`
+!> starts an assignment; a field that is a name alone (`GROUND`, `DYNAMIC`) is a conditional
+!> argument; any other field continues the assignment before it: the next entry of a list
+!> (`QG = 0, 0, 1`) or the next piece of an expression continued on comma lines at any depth
+!> (`FUNCTION = -100*(DM(10,20)-2)` then `, - 1.0*VR(10,20)`), as ADAMS reads an expression
+!> to a backslash or to the statement's end. A name alone continues an expression too when
+!> the piece before it ends with an operator (`FUNCTION = 2*` then `, TIME`). A backslash
+!> ends an expression (`F2=JOINT(1,0,2,0)\F3=...`); a comma after it is the same separator.
+!> Every argument keeps the line it started on, for messages.
 !>
 !> The file is ASCII text: a UTF-8 byte-order mark at its start is skipped, a tab or the
 !> carriage return of a CRLF line end is a blank, and a non-ASCII character is allowed inside a
@@ -21,6 +29,7 @@ module rollcon_adm_lexer
     private
 
     public :: adm_argument_type, adm_statement_type, adm_text_type, read_adm_text, is_number_text
+    public :: is_nonfinite_text
     public :: lex_adm_lines, read_dataset_lines, max_line_length
     public :: upper_case
 
@@ -272,6 +281,15 @@ contains
         first = slash + 1
         if (slash <= len(text)) then
             if (text(slash:slash) == "/") then
+                ! NAME/ alone on its line, its arguments on the comma lines below (ADAMS/View's
+                ! layout): the comma that begins them follows the slash
+                if (first <= len(text)) then
+                    if (first_nonblank(text(first:)) > 0) then
+                        if (text(first + first_nonblank(text(first:)) - 1:first &
+                            & + first_nonblank(text(first:)) - 1) == ",") first = first &
+                            & + first_nonblank(text(first:))
+                    end if
+                end if
                 comma = index(text(first:), ",")
                 if (comma == 0) comma = len(text) - first + 2
                 if (is_integer_text(text(first:first + comma - 2))) then
@@ -298,12 +316,18 @@ contains
         type(adm_statement_type), intent(inout) :: statement
         type(error_type), allocatable, intent(out) :: error
         character(len=:), allocatable :: field
-        !> Each field's place in the text, kind, and argument (the one a value belongs to)
+        !> Each field's place, kind, and argument (the one a value belongs to)
         integer, allocatable :: starts(:), finishes(:), kinds(:), argument_of(:), filled(:)
+        !> For each argument: a backslash ended it; its last piece is open (empty, or ends
+        !> with an operator), so a name alone after it continues it
+        logical, allocatable :: closed(:), open_end(:)
         integer :: start, finish, n, k, a, last, equals
+        logical :: backslash
 
-        n = count([(text(k:k) == ",", k = first, len(text))]) + 1
-        allocate(starts(n), finishes(n), kinds(n), argument_of(n))
+        n = count([(text(k:k) == "," .or. text(k:k) == "\", k = first, len(text))]) + 1
+        allocate(starts(n), finishes(n), kinds(n), argument_of(n), closed(n), open_end(n))
+        closed = .false.
+        open_end = .false.
         ! pass 1: each field's place, kind and argument; refusals in the order of the text
         n = 0
         a = 0
@@ -312,7 +336,9 @@ contains
         do while (start <= len(text))
             call next_field(text, start, finish, error, where)
             if (allocated(error)) return
-            field = field_text(text(start:finish - 1))
+            backslash = .false.
+            if (finish <= len(text)) backslash = text(finish:finish) == "\"
+            field = trim(adjustl(text(start:finish - 1)))
             n = n + 1
             starts(n) = start
             finishes(n) = finish
@@ -320,26 +346,58 @@ contains
                 kinds(n) = field_empty
                 if (finish <= len(text)) then
                     call fatal_error(error, line_text(where, line_of, start) // ": an empty " &
-                        & // "argument (two commas in a row)", stat_input)
+                        & // "argument (" // trim(merge("a backslash", "two commas ", &
+                        & backslash)) // " with no argument before it)", stat_input)
                     return
                 end if
-            else if (top_level_equals(field) == 0 .and. is_number_text(field) .and. a > 0) then
-                ! a number continues the list of the argument before it
+            else if (top_level_equals(field) > 0) then
+                kinds(n) = field_assignment
+                a = a + 1
+                argument_of(n) = a
+                last = n
+                closed(a) = backslash
+                open_end(a) = ends_open(field(top_level_equals(field) + 1:))
+            else if (is_name(field) .and. .not. continues(a) .and. &
+                & .not. is_nonfinite_text(field)) then
+                kinds(n) = field_conditional
+                a = a + 1
+                argument_of(n) = a
+                last = n
+                closed(a) = backslash
+            else
+                ! the next entry of a list, or the next piece of an expression
+                if (a == 0) then
+                    call fatal_error(error, line_text(where, line_of, start) // ": '" // field &
+                        & // "' is not an argument (expected KEY=value or a keyword)", stat_input)
+                    return
+                end if
                 if (kinds(last) /= field_assignment) then
-                    call fatal_error(error, line_text(where, line_of, start) // ": a value '" &
-                        & // field // "' follows " // upper_case(field_text(text(starts(last): &
-                        & finishes(last) - 1))) // ", which takes none", stat_input)
+                    call fatal_error(error, line_text(where, line_of, start) &
+                        & // stray_value(text, starts, finishes, kinds, last, field, &
+                        & statement), stat_input)
+                    return
+                end if
+                if (closed(a)) then
+                    call fatal_error(error, line_text(where, line_of, start) // ": '" // field &
+                        & // "' follows " // upper_case(field_key(text(starts(last): &
+                        & finishes(last) - 1))) // ", which a backslash ended (a value or " &
+                        & // "expression goes before the backslash)", stat_input)
                     return
                 end if
                 kinds(n) = field_value
                 argument_of(n) = a
-            else
-                kinds(n) = merge(field_assignment, field_conditional, top_level_equals(field) > 0)
-                a = a + 1
-                argument_of(n) = a
-                last = n
+                closed(a) = backslash
+                open_end(a) = ends_open(field)
             end if
             start = finish + 1
+            ! a comma after a backslash is the same separator
+            if (backslash .and. start <= len(text)) then
+                if (first_nonblank(text(start:)) > 0) then
+                    if (text(start + first_nonblank(text(start:)) - 1:start &
+                        & + first_nonblank(text(start:)) - 1) == ",") start = start &
+                        & + first_nonblank(text(start:))
+                end if
+            end if
         end do
         ! pass 2: the arguments, each list allocated at its length
         allocate(statement%arguments(a), filled(a))
@@ -349,7 +407,7 @@ contains
         end do
         do k = 1, n
             if (kinds(k) == field_empty) cycle
-            field = field_text(text(starts(k):finishes(k) - 1))
+            field = trim(adjustl(text(starts(k):finishes(k) - 1)))
             associate (argument => statement%arguments(argument_of(k)))
                 select case (kinds(k))
                 case (field_assignment)
@@ -371,20 +429,54 @@ contains
                 end select
             end associate
         end do
+
+    contains
+
+        !> Argument j is an assignment still open: a name alone after it continues it.
+        pure logical function continues(j)
+            integer, intent(in) :: j
+
+            continues = .false.
+            if (j == 0) return
+            continues = kinds(last) == field_assignment .and. open_end(j) .and. .not. closed(j)
+        end function continues
+
     end subroutine split_arguments
 
-    !> A field as an argument reads it: blanks around it and a final backslash dropped.
-    pure function field_text(raw) result(field)
+    !> The keyword of an assignment's field as written (before its '='), or the field.
+    pure function field_key(raw) result(key)
         character(len=*), intent(in) :: raw
-        character(len=:), allocatable :: field
+        character(len=:), allocatable :: key
 
-        field = trim(adjustl(raw))
-        if (len(field) > 0) then
-            if (field(len(field):len(field)) == "\") field = trim(field(:len(field) - 1))
-        end if
-    end function field_text
+        key = trim(adjustl(raw))
+        if (top_level_equals(key) > 0) key = trim(key(:top_level_equals(key) - 1))
+    end function field_key
 
-    !> The end of the field starting at `start`: the next comma outside parentheses.
+    !> A piece of a value that an expression must go on from: empty, or ending with an
+    !> operator (+ - * / or the ':' and '(' of a function's arguments).
+    pure logical function ends_open(piece)
+        character(len=*), intent(in) :: piece
+        integer :: n
+
+        n = len_trim(piece)
+        ends_open = n == 0
+        if (n > 0) ends_open = index("+-*/:(", piece(n:n)) > 0
+    end function ends_open
+
+    !> A name alone: a letter, then letters, digits and underscores.
+    pure logical function is_name(field)
+        character(len=*), intent(in) :: field
+        character(len=:), allocatable :: word
+
+        word = upper_case(trim(field))
+        is_name = len(word) > 0
+        if (.not. is_name) return
+        is_name = verify(word(1:1), "ABCDEFGHIJKLMNOPQRSTUVWXYZ") == 0 .and. &
+            & verify(word, "ABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_") == 0
+    end function is_name
+
+    !> The end of the field starting at `start`: the next comma or backslash outside
+    !> parentheses (len(text) + 1 at the end of the statement).
     subroutine next_field(text, start, finish, error, where)
         character(len=*), intent(in) :: text, where
         integer, intent(in) :: start
@@ -404,7 +496,7 @@ contains
                     call fatal_error(error, where // ": a ')' with no '(' before it", stat_input)
                     return
                 end if
-            case (",")
+            case (",", "\")
                 if (depth == 0) return
             end select
             finish = finish + 1
@@ -442,6 +534,47 @@ contains
                 & // to_text(line_of(min(at, size(line_of)))) // where(colon:)
         end if
     end function line_text
+
+    !> Why a value follows a conditional argument, in words that go after the statement's
+    !> name. A word right after an assignment's list (`IP=2, heavy, 3`) stands in that list
+    !> and is not a number ("/2 IP: 'heavy' is not a number (it stands in the list of IP: the
+    !> value '3' follows it)"); else the value follows a word that takes none (": a value '1'
+    !> follows GROUND, which takes none").
+    function stray_value(text, starts, finishes, kinds, last, value, statement) result(words)
+        character(len=*), intent(in) :: text, value
+        integer, intent(in) :: starts(:), finishes(:), kinds(:), last
+        type(adm_statement_type), intent(in) :: statement
+        character(len=:), allocatable :: words, word
+        integer :: list
+
+        word = trim(adjustl(text(starts(last):finishes(last) - 1)))
+        words = ": a value '" // value // "' follows " // upper_case(word) // ", which takes none"
+        if (last <= 1) return
+        if (kinds(last - 1) /= field_assignment .and. kinds(last - 1) /= field_value) return
+        ! the assignment whose list the word stands in
+        list = last - 1
+        do while (kinds(list) /= field_assignment)
+            list = list - 1
+        end do
+        words = upper_case(trim(adjustl(text(starts(list):starts(list) &
+            & + index(text(starts(list):finishes(list) - 1), "=") - 2))))
+        words = " " // words // ": '" // word // "' is not a number (it stands in the list of " &
+            & // words // ": the value '" // value // "' follows it)"
+        if (statement%has_id) words = "/" // to_text(statement%id) // words
+    end function stray_value
+
+    !> NaN or Inf written as a number (NAN, INF, INFINITY, any case, a sign allowed): a value
+    !> that Fortran reads but no list may hold.
+    pure logical function is_nonfinite_text(text)
+        character(len=*), intent(in) :: text
+        character(len=:), allocatable :: t
+
+        t = upper_case(trim(adjustl(text)))
+        if (len(t) > 0) then
+            if (t(1:1) == "+" .or. t(1:1) == "-") t = t(2:)
+        end if
+        is_nonfinite_text = t == "NAN" .or. t == "INF" .or. t == "INFINITY"
+    end function is_nonfinite_text
 
     !> True for a number as a dataset writes it: [sign] digits [. digits] [E|D [sign] digits],
     !> then optionally D (degrees).

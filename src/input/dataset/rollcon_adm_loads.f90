@@ -7,10 +7,9 @@ module rollcon_adm_loads
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type, fatal_error, stat_input
     use rollcon_adm_lexer, only : adm_statement_type, adm_argument_type
-    use rollcon_adm_keywords, only : read_reals, read_integer, argument_key, arg_place, name_index
+    use rollcon_adm_keywords, only : read_reals, read_integer, argument_key, arg_place, &
+        & name_index, argument_text
     use rollcon_adm_expression_parser, only : compile_expression
-    use rollcon_ucosub_contract, only : ucosub_interface
-    use rollcon_ucosub_catalog, only : find_builtin_ucosub, builtin_ucosub_names
     use rollcon_adm_model, only : adm_model_type, adm_ucon_type, adm_force_type, force_sforce, &
         & force_vforce, force_gforce
     implicit none
@@ -20,16 +19,18 @@ module rollcon_adm_loads
 
     character(len=*), parameter :: ucon_keys(2) = [character(len=8) :: "FUNCTION", "ROUTINE"]
     character(len=*), parameter :: accgrav_keys(3) = ["IGRAV", "JGRAV", "KGRAV"]
-    character(len=*), parameter :: sforce_keys(6) = [character(len=11) :: "I", "J", &
-        & "TRANSLATION", "ROTATION", "ACTIONONLY", "FUNCTION"]
+    !> SFORCE's keywords; TRANSLATIONAL and ROTATIONAL are ADAMS's other spellings of
+    !> TRANSLATION and ROTATION (ADAMS/View writes them)
+    character(len=*), parameter :: sforce_keys(8) = [character(len=13) :: "I", "J", &
+        & "TRANSLATION", "ROTATION", "ACTIONONLY", "FUNCTION", "TRANSLATIONAL", "ROTATIONAL"]
     character(len=*), parameter :: gforce_keys(9) = [character(len=6) :: "I", "JFLOAT", "RM", &
         & "FX", "FY", "FZ", "TX", "TY", "TZ"]
 
 contains
 
-    !> UCON/id, FUNCTION=USER(r1, ..., r30)[, ROUTINE=name]: name, in any case, is a built-in
-    !> UCOSUB (rollcon_ucosub_catalog); without it the model's UCOSUB serves the UCON.
-    !> (Whether its id is new is the reader's to check.)
+    !> UCON/id, FUNCTION=USER(r1, ..., r30)[, ROUTINE=name]: name, in any case, names a
+    !> built-in UCOSUB (which one is the assembly's to find, rollcon_adm_build; without it the
+    !> model's UCOSUB serves the UCON). (Whether its id is new is the reader's to check.)
     subroutine read_ucon(path, where, statement, ucon, error)
         character(len=*), intent(in) :: path, where
         type(adm_statement_type), intent(in) :: statement
@@ -48,6 +49,7 @@ contains
                 call read_user_list(statement%arguments(k), at, ucon%par, error)
             else
                 call read_routine(statement%arguments(k), at, ucon%routine, error)
+                ucon%routine_at = at
             end if
             if (allocated(error)) return
         end do
@@ -59,29 +61,20 @@ contains
         if (.not. allocated(ucon%routine)) ucon%routine = ""
     end subroutine read_ucon
 
-    !> ROUTINE = name of a built-in UCOSUB; anything else refused with the list.
+    !> ROUTINE = name: one word, kept as written (the assembly finds the built-in UCOSUB it
+    !> names, rollcon_adm_build).
     subroutine read_routine(argument, at, routine, error)
         type(adm_argument_type), intent(in) :: argument
         character(len=*), intent(in) :: at
         character(len=:), allocatable, intent(out) :: routine
         type(error_type), allocatable, intent(out) :: error
-        procedure(ucosub_interface), pointer :: ucosub
-        logical :: time_free, found
 
-        found = .false.
         if (argument%assigned .and. size(argument%values) == 1) then
             routine = trim(adjustl(argument%values(1)%text))
-            call find_builtin_ucosub(routine, ucosub, time_free, found)
+            if (len(routine) > 0) return
         end if
-        if (found) return
-        if (allocated(routine)) then
-            call fatal_error(error, at // ": '" // routine // "' is not a built-in UCOSUB (" &
-                & // builtin_ucosub_names() // "); a routine of your own is given with " &
-                & // "rollcon run MODEL.adm --ucosub FILE", stat_input)
-        else
-            call fatal_error(error, at // ": expected the name of a built-in UCOSUB (" &
-                & // builtin_ucosub_names() // ")", stat_input)
-        end if
+        call fatal_error(error, at // ": expected the name of a built-in UCOSUB (ROUTINE=name)", &
+            & stat_input)
     end subroutine read_routine
 
     !> FUNCTION = USER(r1, ..., rn): 1 <= n <= 30, one number per field.
@@ -95,9 +88,7 @@ contains
         integer :: open, i, n, start
         logical :: well_formed
 
-        text = ""
-        if (argument%assigned .and. size(argument%values) == 1) &
-            & text = trim(adjustl(argument%values(1)%text))
+        text = trim(argument_text(argument))
         open = index(text, "(")
         ! (each test apart: Fortran may evaluate every operand of .or., and text may be empty)
         well_formed = open > 1
@@ -178,8 +169,9 @@ contains
         type(adm_force_type), intent(out) :: force
         type(error_type), allocatable, intent(out) :: error
         character(len=:), allocatable :: key, at
-        integer :: k, slot
+        integer :: k, slot, sense
 
+        sense = 0
         force%id = statement%id
         force%line = statement%line
         force%kind = merge(force_sforce, merge(force_vforce, force_gforce, name == "VFORCE"), &
@@ -201,21 +193,32 @@ contains
                 call read_integer(statement%arguments(k), at, force%j, error)
             case ("RM")
                 call read_integer(statement%arguments(k), at, force%rm, error)
-            case ("TRANSLATION", "ROTATION", "ACTIONONLY")
+            case ("TRANSLATION", "ROTATION", "ACTIONONLY", "TRANSLATIONAL", "ROTATIONAL")
                 if (statement%arguments(k)%assigned) then
                     call fatal_error(error, at // " takes no value", stat_input)
                     return
                 end if
-                if (key == "ROTATION") force%translation = .false.
+                if (key == "TRANSLATION" .or. key == "TRANSLATIONAL") sense = sense + 1
+                if (key == "ROTATION" .or. key == "ROTATIONAL") then
+                    force%translation = .false.
+                    sense = sense + 1
+                end if
+                if (sense > 1) then
+                    call fatal_error(error, at // ": TRANSLATION (TRANSLATIONAL) and ROTATION " &
+                        & // "(ROTATIONAL) are given together; an SFORCE is one of them", &
+                        & stat_input)
+                    return
+                end if
                 if (key == "ACTIONONLY") force%action_only = .true.
             case default
                 slot = max(1, name_index(key, gforce_keys(4:9)))
-                if (.not. statement%arguments(k)%assigned .or. &
-                    & size(statement%arguments(k)%values) /= 1) then
+                if (.not. statement%arguments(k)%assigned) then
                     call fatal_error(error, at // ": expected one expression", stat_input)
                     return
                 end if
-                call compile_expression(statement%arguments(k)%values(1)%text, at, &
+                ! an expression goes on to a backslash or the statement's end, over comma
+                ! lines at any depth (rollcon_adm_lexer)
+                call compile_expression(argument_text(statement%arguments(k)), at, &
                     & force%functions(slot), error)
                 force%given(slot) = .true.
             end select

@@ -1,8 +1,8 @@
 ! SPDX-License-Identifier: MIT
 !> What a dataset states, in SI units and radians, before it becomes a model to simulate:
 !> parts, markers, UCON statements, forces with their expressions, gravity and the run; the
-!> displacement requests it honours as output columns, and the statements (or keywords) of
-!> ADAMS's outputs and solver choices it read and checked but does not use.
+!> displacement requests it honours as output columns, its other requests, and the statements
+!> (or keywords) of ADAMS's outputs and solver choices it read and checked but does not use.
 module rollcon_adm_model
     use rollcon_kinds, only : wp
     use rollcon_expression, only : expression_type
@@ -13,12 +13,18 @@ module rollcon_adm_model
     private
 
     public :: adm_part_type, adm_marker_type, adm_ucon_type, adm_force_type, adm_run_type
+    public :: adm_segment_type
     public :: adm_model_type, force_sforce, force_vforce, force_gforce
     public :: adm_request_type, adm_unused_type, adm_reference_type
     public :: refers_to_marker, refers_to_part, refers_to_force
+    public :: adm_request_column_type, request_displacement, request_velocity, &
+        & request_acceleration, request_force, request_expressions, request_user
 
     !> Kinds of force statement
     integer, parameter :: force_sforce = 1, force_vforce = 2, force_gforce = 3
+    !> What a REQUEST asks for
+    integer, parameter :: request_displacement = 1, request_velocity = 2, &
+        & request_acceleration = 3, request_force = 4, request_expressions = 5, request_user = 6
     !> What a reference of a statement read and not used names
     integer, parameter :: refers_to_marker = 1, refers_to_part = 2, refers_to_force = 3
 
@@ -65,9 +71,11 @@ module rollcon_adm_model
     type :: adm_ucon_type
         integer :: id = 0, line = 0
         real(wp), allocatable :: par(:)
-        !> ROUTINE=name: a built-in UCOSUB (rollcon_ucosub_catalog) serving this UCON; empty
-        !> when not given (the model's UCOSUB serves it, as in ADAMS)
+        !> ROUTINE=name as written: the built-in UCOSUB (rollcon_ucosub_catalog) serving this
+        !> UCON; empty when not given (the model's UCOSUB serves it, as in ADAMS)
         character(len=:), allocatable :: routine
+        !> Where ROUTINE= was written, for the assembly's messages ("file:line: UCON/1 ROUTINE")
+        character(len=:), allocatable :: routine_at
     end type adm_ucon_type
 
     !> SFORCE, VFORCE or GFORCE: markers and up to six expressions (FUNCTION is the first)
@@ -85,31 +93,73 @@ module rollcon_adm_model
         logical :: given(6) = .false.
     end type adm_force_type
 
+    !> One SIMULATE/DYNAMIC: a dataset's statement, a command of a command file, or the
+    !> options of `rollcon run` (rollcon_adm_run). Each goes on from where the one before ended
+    !> (the first from t = 0).
+    type :: adm_segment_type
+        !> END=t [s] (by_duration false), or DURATION=t [s] from the segment's start
+        real(wp) :: end_time = 0.0_wp, duration = 0.0_wp
+        logical :: by_duration = .false.
+        !> STEPS=n (by_steps: n output steps over the segment, a whole number >= 1), or
+        !> DTOUT=dt [s]
+        real(wp) :: steps = 0.0_wp, dtout = 0.0_wp
+        logical :: by_steps = .true.
+        !> For messages: "file:line: SIMULATE" where END (or DURATION), and where STEPS (or
+        !> DTOUT) was written
+        character(len=:), allocatable :: end_at, output_at
+    end type adm_segment_type
+
     !> SIMULATE and INTEGRATOR
     type :: adm_run_type
-        !> End time [s] and output step [s] (SIMULATE's END, and STEPS or DTOUT), and the
-        !> solver settings (INTEGRATOR), in the run settings' one type (rollcon_run_settings)
+        !> End time [s] and output step [s] (SIMULATE's END, and STEPS or DTOUT; with several
+        !> SIMULATE commands, every output time), and the solver settings (INTEGRATOR), in the
+        !> run settings' one type (rollcon_run_settings)
         type(run_settings_type) :: settings
         !> Line of the SIMULATE statement (0: none)
         integer :: line = 0
+        !> The SIMULATE statement, or the SIMULATE commands of a command file, or the options
+        !> that replaced them, in order (none before any is read)
+        type(adm_segment_type), allocatable :: segments(:)
     end type adm_run_type
 
-    !> REQUEST/id, DISPLACEMENT, I=id[, J=id][, RM=id]: honoured as output columns
-    !> (rollcon_request_watch)
+    !> One column of a REQUEST given by an expression (F1 ... F8), as written
+    type :: adm_request_column_type
+        !> The expression ("" when the column is not given)
+        character(len=:), allocatable :: text
+    end type adm_request_column_type
+
+    !> REQUEST/id: what it asks for (request_displacement ... request_user), its markers and
+    !> its text. A DISPLACEMENT is honoured as output columns (rollcon_request_watch); the
+    !> others are read and kept here, and named in the run's warning as not answered.
     type :: adm_request_type
         integer :: id = 0, line = 0
-        !> The marker measured, the one it is measured from (0: the ground origin) and the one
-        !> whose axes resolve x, y, z (0: ground axes)
+        !> request_displacement, request_velocity, request_acceleration, request_force,
+        !> request_expressions (F1 ... F8) or request_user (FUNCTION=USER(...))
+        integer :: kind = request_displacement
+        !> The marker measured (or where the force acts), the one it is measured from (0: the
+        !> ground origin; a force's reaction marker) and the one whose axes resolve x, y, z
+        !> (0: ground axes)
         integer :: i = 0, j = 0, rm = 0
+        !> COMMENT (`C=`) as written ("" when not given): ADAMS's title of the request's output
+        character(len=:), allocatable :: comment
+        !> F1 ... F8 as written, each "" when not given (request_expressions)
+        type(adm_request_column_type) :: columns(8)
+        !> FUNCTION=USER(...) (its value, USER(...)) and ROUTINE= as written (request_user), ""
+        !> when not given
+        character(len=:), allocatable :: user, routine
     end type adm_request_type
 
     !> A statement, or a keyword of one, read and checked but not used: ADAMS's own outputs
     !> and solver choices (rollcon_adm_outputs), named in the run's one warning
     type :: adm_unused_type
         !> What it is, grouped by in the warning: "GRAPHICS", "REQUEST VELOCITY", "INTEGRATOR
-        !> GSTIFF", "OUTPUT REQSAVE"
+        !> GSTIFF", "OUTPUT REQSAVE"; for a keyword rollcon does not know, the statement and
+        !> the keyword as written ("GRAPHICS LD")
         character(len=:), allocatable :: what
         integer :: line = 0
+        !> False for a keyword of a statement of ADAMS's outputs that rollcon does not know:
+        !> not read, and named apart in the warning
+        logical :: known = .true.
     end type adm_unused_type
 
     !> A reference of a statement read and not used (a GRAPHICS's CM, a REQUEST's I), checked
@@ -137,14 +187,21 @@ module rollcon_adm_model
         type(adm_run_type) :: run
         !> REQUEST/id, DISPLACEMENT statements, in the order of the file
         type(adm_request_type), allocatable :: requests(:)
+        !> The other REQUEST statements (VELOCITY, ACCELERATION, FORCE, F1 ... F8,
+        !> FUNCTION=USER), in the order of the file: read and kept, not answered yet
+        type(adm_request_type), allocatable :: other_requests(:)
         !> What was read and not used, in the order of the file
         type(adm_unused_type), allocatable :: unused(:)
         !> The references of the statements read and not used
         type(adm_reference_type), allocatable :: references(:)
+        !> The one warning naming what was read and not used, with its lines ("" for nothing:
+        !> rollcon_adm_outputs' unused_warning)
+        character(len=:), allocatable :: warning
         !> While the dataset is read, the entries of requests, unused and references that hold
         !> one (each list grows by doubling, so that reading stays linear in the dataset's size;
         !> the reader cuts it to its count once every statement is read)
         integer :: request_count = 0, unused_count = 0, reference_count = 0
+        integer :: other_request_count = 0
     end type adm_model_type
 
 end module rollcon_adm_model

@@ -1,21 +1,27 @@
 ! SPDX-License-Identifier: MIT
 !> The statements of a dataset that shape only ADAMS's own outputs or its choice of solver:
 !> REQUEST, MREQUEST, GRAPHICS, RESULTS, DEBUG, PREFERENCES, LIST, NOLIST, the settings of the
-!> analyses rollcon does not run (EQUILIBRIUM, KINEMATICS, IC), and OUTPUT's arguments. Each is
-!> read as strictly as a simulated statement: its keywords (any case, a unique prefix, once
-!> each), the form of every value, and the markers, parts and forces it names (checked with the
-!> rest once the file is read: rollcon_adm_checks). What rollcon has no equivalent of is
-!> recorded as read and not used, and a run names it all in one warning (unused_warning); a
-!> REQUEST/id, DISPLACEMENT is honoured as output columns (rollcon_request_watch). Values are
-!> not converted to SI: nothing reads them.
+!> analyses rollcon does not run (EQUILIBRIUM, KINEMATICS, IC), and OUTPUT's arguments. Each
+!> keyword rollcon knows is read as strictly as a simulated statement's (any case, ADAMS's
+!> abbreviations, once each), the form of every value, and the markers, parts and forces it
+!> names (checked with the rest once the file is read: rollcon_adm_checks). A keyword rollcon
+!> does not know never stops a run over a statement that changes nothing it computes: it is
+!> named in the one warning, not read. What rollcon has no equivalent of is recorded as read
+!> and not used, and a run names it all in one warning (unused_warning); a REQUEST/id,
+!> DISPLACEMENT is honoured as output columns (rollcon_request_watch), and every other
+!> REQUEST is kept (its kind, markers, comment and expressions) and named as not answered.
+!> Values are not converted to SI: nothing reads them.
 module rollcon_adm_outputs
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type, fatal_error, stat_input
     use rollcon_text, only : to_text
     use rollcon_adm_lexer, only : adm_statement_type, adm_argument_type, upper_case
-    use rollcon_adm_keywords, only : read_reals, argument_key, arg_place, name_index
+    use rollcon_adm_keywords, only : read_reals, argument_key, arg_place, name_index, &
+        & argument_text
     use rollcon_adm_model, only : adm_model_type, adm_request_type, adm_unused_type, &
-        & adm_reference_type, refers_to_marker, refers_to_part, refers_to_force
+        & adm_reference_type, refers_to_marker, refers_to_part, refers_to_force, &
+        & request_displacement, request_velocity, request_acceleration, request_force, &
+        & request_expressions, request_user
     implicit none
     private
 
@@ -25,10 +31,11 @@ module rollcon_adm_outputs
     !> Forms of a value: a keyword alone; one number; one angle (D for degrees); numbers; a
     !> whole number >= 0; any text (a name, a comment, an expression: not read further); a
     !> marker id (0: none); marker ids; ALL or part ids; ALL or ids of SFORCE, VFORCE, GFORCE;
-    !> ALL or ids of statements rollcon has none of (joints)
+    !> ALL or ids of statements rollcon has none of (joints); names (a list whose further
+    !> entries, names alone, follow on: REQUEST's CNAMES=MAG, X_COMP, Y_COMP)
     integer, parameter, public :: form_flag = 1, form_number = 2, form_angle = 3, &
         & form_numbers = 4, form_whole = 5, form_text = 6, form_marker = 7, form_markers = 8, &
-        & form_parts = 9, form_forces = 10, form_ids = 11
+        & form_parts = 9, form_forces = 10, form_ids = 11, form_texts = 12
 
     !> The statements read and not simulated (OUTPUT, simulated without arguments, is one of
     !> rollcon_adm_keywords' statement_names; its arguments are read here)
@@ -48,7 +55,9 @@ module rollcon_adm_outputs
         & keyword_group_type("REQUEST", form_flag, "DISPLACEMENT VELOCITY ACCELERATION FORCE"), &
         & keyword_group_type("REQUEST", form_marker, "I J RM"), &
         & keyword_group_type("REQUEST", form_text, "F1 F2 F3 F4 F5 F6 F7 F8 FUNCTION ROUTINE " &
-        & // "COMMENT TITLE CNAMES CUNITS CLABELS RESULTS_NAME"), &
+        & // "COMMENT TITLE"), &
+        & keyword_group_type("REQUEST", form_texts, "CNAMES CUNITS CLABELS"), &
+        & keyword_group_type("REQUEST", form_text, "RESULTS_NAME"), &
         & keyword_group_type("MREQUEST", form_flag, "DISPLACEMENT VELOCITY ACCELERATION FORCE"), &
         & keyword_group_type("MREQUEST", form_parts, "PARTS"), &
         & keyword_group_type("MREQUEST", form_ids, "JOINTS JPRIMS"), &
@@ -59,8 +68,8 @@ module rollcon_adm_outputs
         & keyword_group_type("GRAPHICS", form_markers, "OUTLINE"), &
         & keyword_group_type("GRAPHICS", form_marker, "CM CORNER RM EMARKER I J"), &
         & keyword_group_type("GRAPHICS", form_number, "RADIUS LENGTH TOP BOTTOM X Y Z XSCALE " &
-        & // "YSCALE ZSCALE XMIN XMAX YMIN YMAX MAJOR_RADIUS MINOR_RADIUS CRATIO DA DB DC " &
-        & // "LA LB LC"), &
+        & // "YSCALE ZSCALE XMIN XMAX YMIN YMAX MAJOR_RADIUS MINOR_RADIUS CRATIO DA DB DC DD " &
+        & // "LA LB LC LD FACETING_TOLERANCE"), &
         & keyword_group_type("GRAPHICS", form_angle, "RANGLE"), &
         & keyword_group_type("GRAPHICS", form_whole, "SIDES SEG COILS"), &
         & keyword_group_type("GRAPHICS", form_text, "CID EID ETYPE FILE ELEMENT"), &
@@ -101,6 +110,9 @@ module rollcon_adm_outputs
     !> REQUEST: what it measures (one of them, or expressions)
     character(len=*), parameter :: measures(4) = [character(len=12) :: "DISPLACEMENT", &
         & "VELOCITY", "ACCELERATION", "FORCE"]
+    !> REQUEST: the kind of request each of measures asks for
+    integer, parameter :: measure_kinds(4) = [request_displacement, request_velocity, &
+        & request_acceleration, request_force]
     !> REQUEST: the keywords of expressions
     character(len=*), parameter :: expression_keys(9) = [character(len=8) :: "F1", "F2", "F3", &
         & "F4", "F5", "F6", "F7", "F8", "FUNCTION"]
@@ -137,26 +149,42 @@ contains
         logical, allocatable :: given(:)
         integer :: marker(3), k, slot
         character(len=:), allocatable :: key, at
+        type(error_type), allocatable :: refused
+        !> A keyword rollcon does not know was written; a list of names goes on
+        logical :: unknown, names_open
 
         if (repeated) then
             call fatal_error(error, where // ": a second " // name // " with this id", stat_input)
             return
         end if
         call statement_keywords(name, keys, forms)
-        if (size(keys) == 0 .and. size(statement%arguments) > 0) then
-            call fatal_error(error, arg_place(path, where, statement%arguments(1)) // ": " &
-                & // name // " takes no argument, got '" // statement%arguments(1)%keyword &
-                & // "'", stat_input)
-            return
-        end if
         allocate(given(size(keys)), source=.false.)
         marker = 0
+        unknown = .false.
+        names_open = .false.
         do k = 1, size(statement%arguments)
-            call argument_key(path, where, statement, k, keys, key, error)
-            if (allocated(error)) return
+            call argument_key(path, where, statement, k, keys, key, refused)
+            if (allocated(refused) .and. names_open .and. .not. &
+                & statement%arguments(k)%assigned) then
+                ! a further entry of a list of names (CNAMES=MAG, X_COMP, Y_COMP)
+                deallocate(refused)
+                cycle
+            end if
+            names_open = .false.
+            if (allocated(refused)) then
+                ! not read: named in the warning, never a refusal (nothing rollcon computes
+                ! depends on it)
+                call record_unused(model%unused, model%unused_count, name // " " &
+                    & // statement%arguments(k)%keyword, statement%arguments(k)%line, &
+                    & known=.false.)
+                unknown = .true.
+                deallocate(refused)
+                cycle
+            end if
             at = arg_place(path, where, statement%arguments(k)) // " " // key
             slot = name_index(key, keys)
             given(slot) = .true.
+            names_open = forms(slot) == form_texts
             call read_form(statement%arguments(k), at, forms(slot), ids, error)
             if (allocated(error)) return
             call keep_references(model, at, forms(slot), ids)
@@ -167,8 +195,13 @@ contains
         end do
         select case (name)
         case ("REQUEST")
-            call read_request(where, statement, keys, given, marker, model, error)
+            call read_request(path, where, statement, keys, given, marker, unknown, model, error)
         case ("GRAPHICS")
+            if (unknown .and. count(given .and. is_one_of(keys, shapes)) == 0) then
+                ! its shape is a keyword rollcon does not know: named in the warning
+                call record_unused(model%unused, model%unused_count, name, statement%line)
+                return
+            end if
             if (count(given .and. is_one_of(keys, shapes)) /= 1) call fatal_error(error, where &
                 & // ": give one shape (ARC, BOX, CIRCLE, CURVE, CYLINDER, ELLIPSOID, EXTERNAL, " &
                 & // "FORCE, FRUSTUM, PLANE, POINT, SPDP, TORUS or OUTLINE=ids), got " &
@@ -182,24 +215,30 @@ contains
     end subroutine read_output_statement
 
     !> A REQUEST asks for one thing: DISPLACEMENT, VELOCITY, ACCELERATION or FORCE of its I
-    !> marker, or expressions (F1..F8, FUNCTION=USER(...)). A DISPLACEMENT is honoured.
-    subroutine read_request(where, statement, keys, given, marker, model, error)
-        character(len=*), intent(in) :: where
+    !> marker, or expressions (F1..F8, FUNCTION=USER(...)). A DISPLACEMENT is honoured; the
+    !> others are kept (model%other_requests) and named in the warning as not answered. A
+    !> REQUEST whose kind is a keyword rollcon does not know is named in the warning.
+    subroutine read_request(path, where, statement, keys, given, marker, unknown, model, error)
+        character(len=*), intent(in) :: path, where
         type(adm_statement_type), intent(in) :: statement
         character(len=*), intent(in) :: keys(:)
         logical, intent(in) :: given(:)
         !> I, J, RM (0: not given)
         integer, intent(in) :: marker(3)
+        !> A keyword rollcon does not know was written (and named in the warning)
+        logical, intent(in) :: unknown
         type(adm_model_type), intent(inout) :: model
         type(error_type), allocatable, intent(out) :: error
         logical :: measured(size(measures)), expressions
         character(len=:), allocatable :: what
+        type(adm_request_type) :: request
         integer :: m
 
         do m = 1, size(measures)
             measured(m) = given(name_index(measures(m), keys))
         end do
         expressions = any(given .and. is_one_of(keys, expression_keys))
+        if (unknown .and. count(measured) + merge(1, 0, expressions) == 0) return
         if (count(measured) + merge(1, 0, expressions) /= 1) then
             call fatal_error(error, where // ": a REQUEST asks for one of DISPLACEMENT, " &
                 & // "VELOCITY, ACCELERATION, FORCE (of its I marker) or expressions (F1..F8, " &
@@ -207,10 +246,21 @@ contains
                 & + merge(1, 0, expressions)), stat_input)
             return
         end if
+        call request_text(path, where, statement, request)
+        request%id = statement%id
+        request%line = statement%line
+        request%i = marker(1)
+        request%j = marker(2)
+        request%rm = marker(3)
         if (expressions) then
             what = "REQUEST F1..F8"
-            if (given(name_index("FUNCTION", keys))) what = "REQUEST FUNCTION=USER"
+            request%kind = request_expressions
+            if (given(name_index("FUNCTION", keys))) then
+                what = "REQUEST FUNCTION=USER"
+                request%kind = request_user
+            end if
             call record_unused(model%unused, model%unused_count, what, statement%line)
+            call add_request(model%other_requests, model%other_request_count, request)
             return
         end if
         m = findloc(measured, .true., dim=1)
@@ -219,29 +269,71 @@ contains
                 & // "it measures (I=id of a MARKER)", stat_input)
             return
         end if
+        request%kind = measure_kinds(m)
         if (m > 1) then
             call record_unused(model%unused, model%unused_count, "REQUEST " &
                 & // trim(measures(m)), statement%line)
+            call add_request(model%other_requests, model%other_request_count, request)
             return
         end if
-        call add_request(model, adm_request_type(id=statement%id, line=statement%line, &
-            & i=marker(1), j=marker(2), rm=marker(3)))
+        call add_request(model%requests, model%request_count, request)
     end subroutine read_request
 
-    !> Append a request to model%requests(:model%request_count), grown by doubling.
-    subroutine add_request(model, request)
-        type(adm_model_type), intent(inout) :: model
+    !> A request's text as written: COMMENT, the expressions F1 ... F8, FUNCTION=USER(...)
+    !> and ROUTINE ("" for each not given); the keywords rollcon does not know are skipped.
+    subroutine request_text(path, where, statement, request)
+        character(len=*), intent(in) :: path, where
+        type(adm_statement_type), intent(in) :: statement
+        type(adm_request_type), intent(inout) :: request
+        character(len=26), allocatable :: keys(:)
+        integer, allocatable :: forms(:)
+        type(error_type), allocatable :: refused
+        character(len=:), allocatable :: key
+        integer :: k, column
+
+        request%comment = ""
+        request%user = ""
+        request%routine = ""
+        do k = 1, size(request%columns)
+            request%columns(k)%text = ""
+        end do
+        call statement_keywords("REQUEST", keys, forms)
+        do k = 1, size(statement%arguments)
+            call argument_key(path, where, statement, k, keys, key, refused)
+            if (allocated(refused)) then
+                deallocate(refused)
+                cycle
+            end if
+            select case (key)
+            case ("COMMENT")
+                request%comment = argument_text(statement%arguments(k))
+            case ("FUNCTION")
+                request%user = argument_text(statement%arguments(k))
+            case ("ROUTINE")
+                request%routine = argument_text(statement%arguments(k))
+            case ("F1", "F2", "F3", "F4", "F5", "F6", "F7", "F8")
+                read(key(2:2), '(i1)') column
+                request%columns(column)%text = argument_text(statement%arguments(k))
+            end select
+        end do
+    end subroutine request_text
+
+    !> Append a request to requests(:count) (a dataset's requests or other_requests, and its
+    !> count), grown by doubling.
+    subroutine add_request(requests, count, request)
+        type(adm_request_type), allocatable, intent(inout) :: requests(:)
+        integer, intent(inout) :: count
         type(adm_request_type), intent(in) :: request
         type(adm_request_type), allocatable :: grown(:)
 
-        if (.not. allocated(model%requests)) allocate(model%requests(0))
-        if (model%request_count == size(model%requests)) then
-            allocate(grown(max(2*model%request_count, least_capacity)))
-            grown(:model%request_count) = model%requests(:model%request_count)
-            call move_alloc(grown, model%requests)
+        if (.not. allocated(requests)) allocate(requests(0))
+        if (count == size(requests)) then
+            allocate(grown(max(2*count, least_capacity)))
+            grown(:count) = requests(:count)
+            call move_alloc(grown, requests)
         end if
-        model%request_count = model%request_count + 1
-        model%requests(model%request_count) = request
+        count = count + 1
+        requests(count) = request
     end subroutine add_request
 
     !> One value of form `form` (form_flag ... form_ids) checked; ids: the ids it names (none
@@ -272,7 +364,7 @@ contains
             if (.not. (values(1) >= 0.0_wp .and. values(1) == aint(values(1)) .and. &
                 & values(1) < real(huge(1), wp))) call fatal_error(error, at // " must be a " &
                 & // "whole number >= 0, got " // to_text(values(1)), stat_input)
-        case (form_text)
+        case (form_text, form_texts)
             if (n == 0) then
                 call fatal_error(error, at // ": expected a value (" // at(index(at, " ", &
                     & back=.true.) + 1:) // "=...)", stat_input)
@@ -377,14 +469,16 @@ contains
         to%id = from%id
     end subroutine move_reference
 
-    !> Record `what` (a statement, or a statement and keyword) on `line` as read and not used:
-    !> appended to unused(:count), which grows by doubling.
-    subroutine record_unused(unused, count, what, line)
+    !> Record `what` (a statement, or a statement and keyword) on `line` as read and not used
+    !> (known false: a keyword rollcon does not know, not read): appended to unused(:count),
+    !> which grows by doubling.
+    subroutine record_unused(unused, count, what, line, known)
         !> A dataset's (adm_model_type's unused, and its unused_count)
         type(adm_unused_type), allocatable, intent(inout) :: unused(:)
         integer, intent(inout) :: count
         character(len=*), intent(in) :: what
         integer, intent(in) :: line
+        logical, intent(in), optional :: known
         type(adm_unused_type), allocatable :: grown(:)
         integer :: j
 
@@ -394,47 +488,67 @@ contains
             do j = 1, count
                 call move_alloc(unused(j)%what, grown(j)%what)
                 grown(j)%line = unused(j)%line
+                grown(j)%known = unused(j)%known
             end do
             call move_alloc(grown, unused)
         end if
         count = count + 1
         unused(count) = adm_unused_type(what=what, line=line)
+        if (present(known)) unused(count)%known = known
     end subroutine record_unused
 
     !> The one warning of a dataset's statements read and not used, each kind with its lines in
     !> the order of the file: "data/x.adm: read and checked but not used: GRAPHICS (lines 14,
-    !> 15), INTEGRATOR GSTIFF (line 20); rollcon ..."; "" when there is none.
+    !> 15), INTEGRATOR GSTIFF (line 20); not known to rollcon, not read: GRAPHICS LD (line
+    !> 14); rollcon ..."; "" when there is none.
     function unused_warning(model) result(text)
         type(adm_model_type), intent(in) :: model
         character(len=:), allocatable :: text
-        character(len=:), allocatable :: lines
-        logical, allocatable :: done(:)
-        integer :: i, j, n
+        character(len=:), allocatable :: known, unknown
 
         text = ""
         if (.not. allocated(model%unused)) return
         if (size(model%unused) == 0) return
-        allocate(done(size(model%unused)), source=.false.)
-        do i = 1, size(model%unused)
+        known = kinds_text(model%unused, .true.)
+        unknown = kinds_text(model%unused, .false.)
+        if (len(known) > 0) text = "read and checked but not used: " // known
+        if (len(unknown) > 0) then
+            if (len(text) > 0) text = text // "; "
+            text = text // "not known to rollcon, not read: " // unknown
+        end if
+        text = model%file // ": " // text // "; rollcon writes its own outputs and integrates " &
+            & // "with its own INTEGRATOR settings (docs/datasets.md)"
+    end function unused_warning
+
+    !> The entries of `unused` whose `known` is known, each kind once with its lines: "GRAPHICS
+    !> (lines 14, 15), INTEGRATOR GSTIFF (line 20)"; "" when there is none.
+    function kinds_text(unused, known) result(text)
+        type(adm_unused_type), intent(in) :: unused(:)
+        logical, intent(in) :: known
+        character(len=:), allocatable :: text
+        character(len=:), allocatable :: lines
+        logical :: done(size(unused))
+        integer :: i, j, n
+
+        text = ""
+        done = unused%known .neqv. known
+        do i = 1, size(unused)
             if (done(i)) cycle
             if (len(text) > 0) text = text // ", "
             lines = ""
             n = 0
-            do j = i, size(model%unused)
-                if (model%unused(j)%what /= model%unused(i)%what) cycle
+            do j = i, size(unused)
+                if (done(j) .or. unused(j)%what /= unused(i)%what) cycle
                 done(j) = .true.
                 n = n + 1
                 if (n > 1 .and. n <= lines_listed) lines = lines // ", "
-                if (n <= lines_listed) lines = lines // to_text(model%unused(j)%line)
+                if (n <= lines_listed) lines = lines // to_text(unused(j)%line)
             end do
             if (n > lines_listed) lines = lines // ", ... " // to_text(n) // " in all"
-            text = text // model%unused(i)%what // " (line" // trim(merge("s", " ", n > 1)) &
+            text = text // unused(i)%what // " (line" // trim(merge("s", " ", n > 1)) &
                 & // " " // lines // ")"
         end do
-        text = model%file // ": read and checked but not used: " // text // "; rollcon writes " &
-            & // "its own outputs and integrates with its own INTEGRATOR settings " &
-            & // "(docs/datasets.md)"
-    end function unused_warning
+    end function kinds_text
 
     !> The keywords of statement `name` and the form of each, in the table's order.
     subroutine statement_keywords(name, keys, forms)

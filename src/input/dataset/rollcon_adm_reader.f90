@@ -13,8 +13,8 @@ module rollcon_adm_reader
     use rollcon_adm_lexer, only : adm_text_type, adm_statement_type, adm_argument_type, &
         & lex_adm_lines, read_dataset_lines
     use rollcon_adm_ids, only : id_index_type, new_id_index
-    use rollcon_adm_keywords, only : resolve_name, statement_names, argument_key, arg_place, &
-        & place, name_index, name_matches
+    use rollcon_adm_keywords, only : resolve_keyword, statement_names, argument_key, &
+        & arg_place, place, name_index
     use rollcon_adm_units, only : units_type, set_unit, unit_keywords
     use rollcon_adm_model, only : adm_model_type
     use rollcon_adm_bodies, only : read_part, read_marker
@@ -22,10 +22,9 @@ module rollcon_adm_reader
     use rollcon_adm_run, only : read_simulate, read_integrator
     use rollcon_adm_checks, only : check_references
     use rollcon_adm_joints, only : read_joint
-    use rollcon_adm_joint_build, only : check_joints
     use rollcon_adm_outside, only : outside_reason
     use rollcon_adm_outputs, only : output_statement_names, output_needs_id, &
-        & read_output_statement
+        & read_output_statement, unused_warning
     use rollcon_adm_overrides, only : adm_override_type, apply_adm_overrides
     implicit none
     private
@@ -36,23 +35,26 @@ module rollcon_adm_reader
 contains
 
     !> Read and check the dataset at `path`, with overrides (rollcon_adm_overrides) set first.
-    subroutine read_adm(path, model, error, overrides)
+    subroutine read_adm(path, model, error, overrides, run_given)
         character(len=*), intent(in) :: path
         type(adm_model_type), intent(out) :: model
         type(error_type), allocatable, intent(out) :: error
         !> Values set apart from the file
         type(adm_override_type), intent(in), optional :: overrides(:)
+        !> The run is given apart from the dataset (an ADAMS command file, or the options of
+        !> `rollcon run`): it needs no SIMULATE statement (default false)
+        logical, intent(in), optional :: run_given
         type(line_type), allocatable :: lines(:)
 
         call read_dataset_lines(path, lines, error)
         if (allocated(error)) return
-        call read_adm_lines(path, lines, model, error, overrides)
+        call read_adm_lines(path, lines, model, error, overrides, run_given)
     end subroutine read_adm
 
     !> Read and check a dataset given as its lines (read from `path`, which messages name),
     !> with overrides (rollcon_adm_overrides) set first. Linear in the size of the dataset:
     !> every list is allocated at its size and every id found through an index.
-    subroutine read_adm_lines(path, lines, model, error, overrides)
+    subroutine read_adm_lines(path, lines, model, error, overrides, run_given)
         character(len=*), intent(in) :: path
         !> The dataset's lines, without line ends
         type(line_type), intent(in) :: lines(:)
@@ -60,7 +62,10 @@ contains
         type(error_type), allocatable, intent(out) :: error
         !> Values set apart from the file
         type(adm_override_type), intent(in), optional :: overrides(:)
+        !> The run is given apart from the dataset: it needs no SIMULATE (default false)
+        logical, intent(in), optional :: run_given
         type(adm_text_type) :: text
+        logical :: needed
 
         call lex_adm_lines(path, lines, text, error)
         if (allocated(error)) return
@@ -73,15 +78,18 @@ contains
         model%file = path
         model%title = text%title
         allocate(model%parts(0), model%markers(0), model%ucons(0), model%forces(0))
-        allocate(model%requests(0), model%unused(0), model%references(0))
+        allocate(model%requests(0), model%other_requests(0), model%unused(0), &
+            & model%references(0))
         ! UNITS first: every value of the dataset is in its units, wherever it stands
         call read_units(text, model%units, error)
         if (allocated(error)) return
         call read_statements(path, text, model, error)
         if (allocated(error)) return
-        call check_references(model, error)
+        needed = .true.
+        if (present(run_given)) needed = .not. run_given
+        call check_references(model, error, simulate_needed=needed)
         if (allocated(error)) return
-        call check_joints(model, error)
+        model%warning = unused_warning(model)
     end subroutine read_adm_lines
 
     !> Every statement in file order, up to END; parts, markers, UCONs and forces stored in
@@ -161,6 +169,7 @@ contains
         model%forces = model%forces(:n(4))
         model%joints = model%joints(:n(5))
         model%requests = model%requests(:model%request_count)
+        model%other_requests = model%other_requests(:model%other_request_count)
         model%unused = model%unused(:model%unused_count)
         model%references = model%references(:model%reference_count)
     end subroutine read_statements
@@ -321,15 +330,17 @@ contains
             line = place(path, statement%line) // ": " // statement%name
             if (statement%has_id) line = line // "/" // to_text(statement%id)
             line = line // ": " // reason
-        else if (index(message, " (") > 0 .and. index(message, "is ambiguous") == 0) then
+        else if (index(message, " (") > 0 .and. index(message, "is ambiguous") == 0 .and. &
+            & index(message, "is too short") == 0) then
             line = message(:index(message, " (", back=.true.) - 1)
         else
             line = message
         end if
     end function outside_line
 
-    !> The supported statement `statement` names (a unique prefix, any case); a refusal says
-    !> why for a well-known statement outside the subset (rollcon_adm_outside).
+    !> The supported statement `statement` names (any case, abbreviated as ADAMS abbreviates
+    !> it: rollcon_adm_abbreviations); a refusal says why for a well-known statement outside
+    !> the subset (rollcon_adm_outside).
     subroutine statement_name(path, statement, name, error)
         character(len=*), intent(in) :: path
         type(adm_statement_type), intent(in) :: statement
@@ -337,17 +348,17 @@ contains
         type(error_type), allocatable, intent(out) :: error
         character(len=:), allocatable :: reason
 
-        ! the statements simulated first: an abbreviation means what it meant before the
-        ! statements read and not used were added
-        if (name_matches(statement%name, statement_names) == 0 .and. &
-            & name_matches(statement%name, output_statement_names) > 0) then
-            call resolve_name(statement%name, output_statement_names, "statement", &
-                & place(path, statement%line), name, error)
-            return
-        end if
-        call resolve_name(statement%name, statement_names, "statement", &
-            & place(path, statement%line), name, error)
+        call resolve_keyword(statement%name, [character(len=11) :: statement_names, &
+            & output_statement_names], "statement", "statement", place(path, statement%line), &
+            & name, error)
         if (.not. allocated(error)) return
+        if (index(error%message, "' is not a statement") > 0) then
+            ! the list of a refusal: the statements simulated
+            deallocate(error)
+            call fatal_error(error, place(path, statement%line) // ": '" &
+                & // trim(statement%name) // "' is not a statement of the supported subset (" &
+                & // comma_list(statement_names) // ")", stat_input)
+        end if
         reason = outside_reason(statement%name)
         if (len(reason) > 0) error%message = error%message // "; " // reason
     end subroutine statement_name

@@ -1,15 +1,21 @@
 ! SPDX-License-Identifier: MIT
-!> The SIMULATE statement: SIMULATE/DYNAMIC, END = t, and STEPS = n or DTOUT = dt. The end time
-!> and the output step are checked against the ranges of the run keys end_time and
-!> output_step (rollcon_run_keys) and obey the scenes' rule output_step <= end_time.
+!> The run of a dataset: its SIMULATE statement (SIMULATE/DYNAMIC, END = t or DURATION = t,
+!> and STEPS = n or DTOUT = dt), the SIMULATE commands of an ADAMS command file, or the
+!> options of `rollcon run` that replace them; and the run's times from them. Each SIMULATE
+!> goes on from where the one before ended, as ADAMS continues one run: the output times are
+!> each segment's own. The end time and the output step are checked against the ranges of the
+!> run keys end_time and output_step (rollcon_run_keys) and obey the scenes' rule
+!> output_step <= end_time, for each segment.
 module rollcon_adm_run
+    use, intrinsic :: iso_fortran_env, only : int64
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type, fatal_error, stat_input
     use rollcon_text, only : to_text
     use rollcon_adm_lexer, only : adm_statement_type
-    use rollcon_adm_keywords, only : read_reals, argument_key, arg_place, name_index, place
+    use rollcon_adm_keywords, only : read_reals, argument_key, arg_place, name_index, place, &
+        & resolve_keyword
     use rollcon_adm_units, only : units_type
-    use rollcon_adm_model, only : adm_run_type
+    use rollcon_adm_model, only : adm_run_type, adm_segment_type
     use rollcon_adm_integrator, only : read_integrator
     use rollcon_run_settings, only : run_settings_type
     use rollcon_keys, only : key_type, find_key
@@ -18,16 +24,33 @@ module rollcon_adm_run
     implicit none
     private
 
-    public :: read_simulate, read_integrator, simulate_keys
+    public :: read_simulate, read_integrator, simulate_keys, read_segment, set_run_times
+    public :: run_times_type, apply_run_times, no_simulate_message
 
-    !> The keywords of SIMULATE
-    character(len=*), parameter :: simulate_keys(4) = [character(len=7) :: "DYNAMIC", "END", &
-        & "STEPS", "DTOUT"]
+    !> The keywords of SIMULATE: the analysis (DYNAMIC the one rollcon runs; the others
+    !> refused with the reason), the end, the output steps
+    character(len=*), parameter :: simulate_keys(5) = [character(len=8) :: "DYNAMIC", "END", &
+        & "STEPS", "DTOUT", "DURATION"]
+    !> ADAMS's other analyses, refused with the reason
+    character(len=*), parameter :: other_analyses(4) = [character(len=18) :: "STATIC", &
+        & "KINEMATIC", "TRANSIENT", "INITIAL_CONDITIONS"]
+    !> An output time within this many output steps of a segment's end is at its end (as the
+    !> run's planned rows count them: rollcon_output_rows)
+    real(wp), parameter :: grid_tolerance = 1.0e-9_wp
+
+    !> The run's times given apart from the dataset (`rollcon run --end T --steps N`, or
+    !> --dtout DT), in the dataset's time unit: they replace its SIMULATE (and a command
+    !> file's), keeping what they do not give
+    type :: run_times_type
+        logical :: end_given = .false., steps_given = .false., dtout_given = .false.
+        real(wp) :: end_time = 0.0_wp, steps = 0.0_wp, dtout = 0.0_wp
+        !> The options as the user wrote them, for messages ("--end 5 --steps 500")
+        character(len=:), allocatable :: written
+    end type run_times_type
 
 contains
 
-    !> SIMULATE/DYNAMIC, END=t, STEPS=n or DTOUT=dt (t, dt in the dataset's time unit). About 90
-    !> lines with its internal set_times, which shares the keywords' lines for its messages.
+    !> The dataset's SIMULATE statement: its one segment, and the run's times from it.
     subroutine read_simulate(path, where, statement, units, run, error)
         !> Dataset file, for messages
         character(len=*), intent(in) :: path
@@ -37,27 +60,61 @@ contains
         type(units_type), intent(in) :: units
         type(adm_run_type), intent(inout) :: run
         type(error_type), allocatable, intent(out) :: error
+        type(adm_segment_type) :: segment
+
+        call read_segment(path, where, statement, units, segment, error)
+        if (allocated(error)) return
+        run%line = statement%line
+        if (allocated(run%segments)) deallocate(run%segments)
+        allocate(run%segments(1))
+        run%segments(1) = segment
+        call set_run_times(run, error)
+    end subroutine read_simulate
+
+    !> One SIMULATE/DYNAMIC, END=t or DURATION=t, STEPS=n or DTOUT=dt (t, dt in the
+    !> dataset's time unit, converted to s), as a statement of a dataset or a command of a
+    !> command file.
+    subroutine read_segment(path, where, statement, units, segment, error)
+        !> The file, for messages
+        character(len=*), intent(in) :: path
+        !> "file:line: SIMULATE"
+        character(len=*), intent(in) :: where
+        type(adm_statement_type), intent(in) :: statement
+        type(units_type), intent(in) :: units
+        type(adm_segment_type), intent(out) :: segment
+        type(error_type), allocatable, intent(out) :: error
         character(len=:), allocatable :: key, at
         real(wp), allocatable :: values(:)
         real(wp) :: given(size(simulate_keys))
         integer :: lines(size(simulate_keys)), k, slot
+        type(error_type), allocatable :: refused
 
-        run%line = statement%line
         lines = 0
         given = 0.0_wp
         do k = 1, size(statement%arguments)
+            call resolve_keyword(statement%arguments(k)%keyword, other_analyses, "SIMULATE", &
+                & "analysis", where, key, refused)
+            if (.not. allocated(refused)) then
+                call fatal_error(error, arg_place(path, where, statement%arguments(k)) // " " &
+                    & // key // ": rollcon runs a dynamic analysis only (SIMULATE/DYNAMIC), " &
+                    & // "from the start its initial-conditions analysis makes consistent " &
+                    & // "(docs/initial-conditions.md)", stat_input)
+                return
+            end if
+            deallocate(refused)
             call argument_key(path, where, statement, k, simulate_keys, key, error)
             if (allocated(error)) return
             at = arg_place(path, where, statement%arguments(k)) // " " // key
             slot = name_index(key, simulate_keys)
             lines(slot) = statement%arguments(k)%line
-            if (key == "DYNAMIC") then
+            select case (key)
+            case ("DYNAMIC")
                 if (statement%arguments(k)%assigned) then
                     call fatal_error(error, at // " takes no value", stat_input)
                     return
                 end if
                 cycle
-            end if
+            end select
             call read_reals(statement%arguments(k), at, 1, 1, .false., values, error)
             if (allocated(error)) return
             given(slot) = values(1)
@@ -65,60 +122,245 @@ contains
         if (lines(1) == 0) then
             call fatal_error(error, where // ": only SIMULATE/DYNAMIC is supported (a dynamic " &
                 & // "analysis); write SIMULATE/DYNAMIC, END=..., STEPS=...", stat_input)
-        else if (lines(2) == 0) then
-            call fatal_error(error, where // ": END=t (the end time) is missing", stat_input)
+        else if (lines(2) == 0 .and. lines(5) == 0) then
+            call fatal_error(error, where // ": END=t (the end time) is missing (or " &
+                & // "DURATION=t, from where the run is)", stat_input)
+        else if (lines(2) > 0 .and. lines(5) > 0) then
+            call fatal_error(error, where // ": give one of END=t (the end time) and " &
+                & // "DURATION=t (from where the run is), not both", stat_input)
         else if ((lines(3) > 0) .eqv. (lines(4) > 0)) then
             call fatal_error(error, where // ": give one of STEPS=n and DTOUT=dt", stat_input)
         end if
         if (allocated(error)) return
-        call set_times(given(2)*units%time, given(3), given(4)*units%time, error)
+        segment%by_duration = lines(5) > 0
+        segment%end_time = given(2)*units%time
+        segment%duration = given(5)*units%time
+        segment%by_steps = lines(3) > 0
+        segment%steps = given(3)
+        segment%dtout = given(4)*units%time
+        segment%end_at = place(path, maxval(lines([2, 5]))) // where(index(where, ": ", &
+            & back=.true.):) // " " // trim(merge("DURATION", "END     ", segment%by_duration))
+        segment%output_at = place(path, maxval(lines(3:4))) // where(index(where, ": ", &
+            & back=.true.):) // " " // trim(merge("STEPS", "DTOUT", segment%by_steps))
+    end subroutine read_segment
 
-    contains
+    !> The run's end time and output step from its segments (run%segments, at least one),
+    !> each checked against the ranges of &run end_time and output_step: one segment gives
+    !> end_time and output_step alone; several give the output times too, each segment's own,
+    !> continuing the run. Where a segment has the step of the one before and that one ended
+    !> on its grid, its times go on counting from the same origin, so that the rows are those
+    !> of one run with the combined end, bit for bit.
+    subroutine set_run_times(run, error)
+        type(adm_run_type), intent(inout) :: run
+        type(error_type), allocatable, intent(out) :: error
+        type(run_settings_type), target :: scratch
+        type(key_type), allocatable :: keys(:)
+        real(wp), allocatable :: times(:)
+        real(wp) :: start, finish, step, anchor, previous_step, span
+        integer(int64) :: counted, n, j
+        integer :: s, total
+        logical :: aligned
 
-        !> End time and output step [s] within the ranges of &run end_time and output_step.
-        subroutine set_times(end_time, steps, output_step, error)
-            real(wp), intent(in) :: end_time, steps, output_step
-            type(error_type), allocatable, intent(out) :: error
-            type(run_settings_type), target :: scratch
-            type(key_type), allocatable :: keys(:)
-            character(len=:), allocatable :: head
-
-            keys = bind_run_keys(scratch)
-            head = where(index(where, ": ", back=.true.):)
-            associate (end_key => keys(find_key(keys, "run", "end_time")), &
-                    & step_key => keys(find_key(keys, "run", "output_step")))
-                if (.not. in_range(end_key, end_time)) then
-                    call fatal_error(error, place(path, lines(2)) // head // " END must be " &
+        keys = bind_run_keys(scratch)
+        start = 0.0_wp
+        anchor = 0.0_wp
+        counted = 0
+        previous_step = -1.0_wp
+        aligned = .true.
+        allocate(times(0))
+        total = 0
+        do s = 1, size(run%segments)
+            associate (segment => run%segments(s), end_key => keys(find_key(keys, "run", &
+                    & "end_time")), step_key => keys(find_key(keys, "run", "output_step")))
+                if (segment%by_duration) then
+                    finish = start + segment%duration
+                else
+                    finish = segment%end_time
+                end if
+                if (.not. in_range(end_key, finish)) then
+                    call fatal_error(error, segment%end_at // " must be " &
                         & // range_text(end_key) // " (as &run end_time), got " &
-                        & // to_text(end_time) // " s", stat_input)
+                        & // to_text(finish) // " s" // trim(merge(" (the end it gives)", &
+                        & "                   ", segment%by_duration)), stat_input)
                     return
                 end if
-                run%settings%end_time = end_time
-                if (lines(3) > 0) then
-                    if (.not. (steps >= 1.0_wp .and. steps == aint(steps))) then
-                        call fatal_error(error, place(path, lines(3)) // head // " STEPS must " &
-                            & // "be a whole number of output steps >= 1, got " &
-                            & // to_text(steps), stat_input)
+                if (s > 1 .and. .not. finish > start) then
+                    call fatal_error(error, segment%end_at // " gives an end of " &
+                        & // to_text(finish) // " s, not after the end of the SIMULATE before " &
+                        & // "it (" // to_text(start) // " s): each SIMULATE goes on from " &
+                        & // "where the one before ended", stat_input)
+                    return
+                end if
+                if (segment%by_steps) then
+                    if (.not. (segment%steps >= 1.0_wp .and. segment%steps == &
+                        & aint(segment%steps) .and. segment%steps < 1.0e15_wp)) then
+                        call fatal_error(error, segment%output_at // " must be a whole " &
+                            & // "number of output steps >= 1, got " &
+                            & // to_text(segment%steps), stat_input)
                         return
                     end if
-                    run%settings%output_step = end_time/steps
+                    step = (finish - start)/segment%steps
                 else
-                    run%settings%output_step = output_step
+                    step = segment%dtout
                 end if
-                if (.not. in_range(step_key, run%settings%output_step)) then
-                    call fatal_error(error, place(path, maxval(lines(3:4))) // head // " " &
-                        & // trim(merge("STEPS", "DTOUT", lines(3) > 0)) // " gives an output " &
-                        & // "step of " // to_text(run%settings%output_step) // " s; it must be " &
-                        & // range_text(step_key) // " (as &run output_step)", stat_input)
-                else if (run%settings%output_step > end_time) then
-                    call fatal_error(error, place(path, lines(4)) // head // " DTOUT must be " &
-                        & // "<= END = " // to_text(end_time) // " s (as &run output_step <= " &
-                        & // "end_time), got " // to_text(run%settings%output_step) // " s", &
+                if (.not. in_range(step_key, step)) then
+                    call fatal_error(error, segment%output_at // " gives an output step of " &
+                        & // to_text(step) // " s; it must be " // range_text(step_key) &
+                        & // " (as &run output_step)", stat_input)
+                    return
+                else if (step > finish - start) then
+                    call fatal_error(error, segment%output_at // " must be <= " &
+                        & // trim(merge("END     ", "its span", s == 1)) // " = " &
+                        & // to_text(finish - start) // " s (as &run output_step <= " &
+                        & // "end_time), got " // to_text(step) // " s", stat_input)
+                    return
+                end if
+                if (size(run%segments) == 1) then
+                    run%settings%end_time = finish
+                    run%settings%output_step = step
+                    if (allocated(run%settings%output_times)) &
+                        & deallocate(run%settings%output_times)
+                    return
+                end if
+                ! a new origin unless the step and the grid go on
+                if (.not. (step == previous_step .and. aligned)) then
+                    anchor = start
+                    counted = 0
+                end if
+                span = (finish - anchor)/step
+                aligned = abs(span - anint(span)) <= grid_tolerance*max(1.0_wp, abs(span))
+                if (segment%by_steps) then
+                    n = nint(segment%steps, int64)
+                else
+                    n = max(1_int64, int(ceiling_real(span - grid_tolerance), int64) - counted)
+                end if
+                if (real(total, wp) + real(n, wp) > real(huge(total), wp)/2.0_wp) then
+                    call fatal_error(error, segment%output_at // ": the SIMULATE commands ask " &
+                        & // "for more than " // to_text(huge(total)/2) // " output rows", &
                         & stat_input)
+                    return
                 end if
+                times = [times, (anchor + real(counted + j, wp)*step, j = 1, n)]
+                total = total + int(n)
+                ! the segment's last time is its end, as one run's last is at its end time
+                if (.not. aligned .or. s == size(run%segments)) times(total) = min(times(total), &
+                    & finish)
+                if (.not. aligned) times(total) = finish
+                counted = counted + n
+                previous_step = step
+                start = finish
+                if (s == 1) run%settings%output_step = step
             end associate
-        end subroutine set_times
+        end do
+        run%settings%end_time = start
+        run%settings%output_times = times
+    end subroutine set_run_times
 
-    end subroutine read_simulate
+    !> Replace the run's segments by the options of `rollcon run` (times): END (--end), and
+    !> STEPS (--steps) or DTOUT (--dtout), each kept from the last segment read when not
+    !> given; with no segment read, both must be given. The run's times follow.
+    subroutine apply_run_times(file, times, units, run, error)
+        !> The dataset (or command file), for messages
+        character(len=*), intent(in) :: file
+        type(run_times_type), intent(in) :: times
+        type(units_type), intent(in) :: units
+        type(adm_run_type), intent(inout) :: run
+        type(error_type), allocatable, intent(out) :: error
+        type(adm_segment_type) :: segment
+        logical :: have
+
+        if (.not. (times%end_given .or. times%steps_given .or. times%dtout_given)) return
+        if (times%steps_given .and. times%dtout_given) then
+            call fatal_error(error, "rollcon run: give one of --steps N and --dtout DT", &
+                & stat_input)
+            return
+        end if
+        have = .false.
+        if (allocated(run%segments)) have = size(run%segments) > 0
+        if (.not. have .and. .not. (times%end_given .and. (times%steps_given .or. &
+            & times%dtout_given))) then
+            call fatal_error(error, file // ": no SIMULATE to take the rest from: with " &
+                & // times%written // ", give --end T and --steps N (or --dtout DT) both", &
+                & stat_input)
+            return
+        end if
+        if (have) then
+            segment = run%segments(size(run%segments))
+            if (segment%by_duration) then
+                ! the last segment's end, from the start of the run
+                segment%by_duration = .false.
+                segment%end_time = final_end(run)
+            end if
+            ! its way of counting outputs, over the whole run now
+            if (segment%by_steps .and. size(run%segments) > 1) segment%steps = &
+                & real(total_outputs(run), wp)
+        end if
+        if (times%end_given) then
+            segment%end_time = times%end_time*units%time
+            segment%end_at = file // ": rollcon run --end"
+        end if
+        if (times%steps_given) then
+            segment%by_steps = .true.
+            segment%steps = times%steps
+            segment%output_at = file // ": rollcon run --steps"
+        else if (times%dtout_given) then
+            segment%by_steps = .false.
+            segment%dtout = times%dtout*units%time
+            segment%output_at = file // ": rollcon run --dtout"
+        end if
+        if (allocated(run%segments)) deallocate(run%segments)
+        allocate(run%segments(1))
+        run%segments(1) = segment
+        call set_run_times(run, error)
+    end subroutine apply_run_times
+
+    !> The end of the run's last segment [s].
+    pure real(wp) function final_end(run) result(finish)
+        type(adm_run_type), intent(in) :: run
+        integer :: s
+
+        finish = 0.0_wp
+        do s = 1, size(run%segments)
+            if (run%segments(s)%by_duration) then
+                finish = finish + run%segments(s)%duration
+            else
+                finish = run%segments(s)%end_time
+            end if
+        end do
+    end function final_end
+
+    !> The number of output times after the start of the run's times as set.
+    pure integer function total_outputs(run) result(n)
+        type(adm_run_type), intent(in) :: run
+
+        if (allocated(run%settings%output_times)) then
+            n = size(run%settings%output_times)
+        else
+            n = max(1, nint(run%settings%end_time/run%settings%output_step))
+        end if
+    end function total_outputs
+
+    !> The refusal of a dataset with no SIMULATE statement and no run given apart from it:
+    !> both ways of giving one.
+    pure function no_simulate_message(file) result(text)
+        character(len=*), intent(in) :: file
+        character(len=:), allocatable :: text
+
+        text = file // ": no SIMULATE statement, and no run given apart from the dataset: " &
+            & // "run it from an ADAMS command file (rollcon run MODEL.acf: its first line " &
+            & // "names the dataset, its second the output name, then SIMULATE/DYNAMIC, " &
+            & // "END=t, STEPS=n and STOP), or give the run on the command line (rollcon run " &
+            & // file // " --end T --steps N), or add SIMULATE/DYNAMIC, END=t, STEPS=n to the " &
+            & // "dataset"
+    end function no_simulate_message
+
+    !> ceiling of a real of any size, as a real (no integer overflow).
+    elemental function ceiling_real(x) result(c)
+        real(wp), intent(in) :: x
+        real(wp) :: c
+
+        c = aint(x)
+        if (c < x) c = c + 1.0_wp
+    end function ceiling_real
 
 end module rollcon_adm_run

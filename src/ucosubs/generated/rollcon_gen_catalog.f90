@@ -12,6 +12,8 @@ module rollcon_gen_catalog
         & disk_height_ncomponents, disk_height_codes, disk_height_time_free
     use rollcon_gen_gnd_atpoint, only : gnd_atpoint_ucosub, gnd_atpoint_npar, &
         & gnd_atpoint_ncomponents, gnd_atpoint_codes, gnd_atpoint_time_free
+    use rollcon_gen_gnd_homokinetic, only : gnd_homokinetic_ucosub, gnd_homokinetic_npar, &
+        & gnd_homokinetic_ncomponents, gnd_homokinetic_codes, gnd_homokinetic_time_free
     use rollcon_gen_gnd_inline, only : gnd_inline_ucosub, gnd_inline_npar, gnd_inline_ncomponents, &
         & gnd_inline_codes, gnd_inline_time_free
     use rollcon_gen_gnd_inplane, only : gnd_inplane_ucosub, gnd_inplane_npar, &
@@ -24,6 +26,8 @@ module rollcon_gen_catalog
         & gnd_perpendicular_ncomponents, gnd_perpendicular_codes, gnd_perpendicular_time_free
     use rollcon_gen_jp_atpoint, only : jp_atpoint_ucosub, jp_atpoint_npar, jp_atpoint_ncomponents, &
         & jp_atpoint_codes, jp_atpoint_time_free
+    use rollcon_gen_jp_homokinetic, only : jp_homokinetic_ucosub, jp_homokinetic_npar, &
+        & jp_homokinetic_ncomponents, jp_homokinetic_codes, jp_homokinetic_time_free
     use rollcon_gen_jp_inline, only : jp_inline_ucosub, jp_inline_npar, jp_inline_ncomponents, &
         & jp_inline_codes, jp_inline_time_free
     use rollcon_gen_jp_inplane, only : jp_inplane_ucosub, jp_inplane_npar, jp_inplane_ncomponents, &
@@ -55,18 +59,20 @@ module rollcon_gen_catalog
     public :: generated_routine, generated_codes, generated_summary
 
     !> Number of generated routines
-    integer, parameter :: generated_count = 20
+    integer, parameter :: generated_count = 22
     !> Their names: the spec names of ucon/specs/, in alphabetical order
     character(len=*), parameter :: generated_names(generated_count) = [character(len=17) :: &
         & "chaplygin_sled", &
         & "disk_height", &
         & "gnd_atpoint", &
+        & "gnd_homokinetic", &
         & "gnd_inline", &
         & "gnd_inplane", &
         & "gnd_orientation", &
         & "gnd_parallel_axes", &
         & "gnd_perpendicular", &
         & "jp_atpoint", &
+        & "jp_homokinetic", &
         & "jp_inline", &
         & "jp_inplane", &
         & "jp_orientation", &
@@ -84,12 +90,14 @@ module rollcon_gen_catalog
         & chaplygin_sled_npar, &
         & disk_height_npar, &
         & gnd_atpoint_npar, &
+        & gnd_homokinetic_npar, &
         & gnd_inline_npar, &
         & gnd_inplane_npar, &
         & gnd_orientation_npar, &
         & gnd_parallel_axes_npar, &
         & gnd_perpendicular_npar, &
         & jp_atpoint_npar, &
+        & jp_homokinetic_npar, &
         & jp_inline_npar, &
         & jp_inplane_npar, &
         & jp_orientation_npar, &
@@ -107,12 +115,14 @@ module rollcon_gen_catalog
         & chaplygin_sled_ncomponents, &
         & disk_height_ncomponents, &
         & gnd_atpoint_ncomponents, &
+        & gnd_homokinetic_ncomponents, &
         & gnd_inline_ncomponents, &
         & gnd_inplane_ncomponents, &
         & gnd_orientation_ncomponents, &
         & gnd_parallel_axes_ncomponents, &
         & gnd_perpendicular_ncomponents, &
         & jp_atpoint_ncomponents, &
+        & jp_homokinetic_ncomponents, &
         & jp_inline_ncomponents, &
         & jp_inplane_ncomponents, &
         & jp_orientation_ncomponents, &
@@ -135,7 +145,9 @@ module rollcon_gen_catalog
         & 0, &
         & 0, &
         & 0, &
+        & 0, &
         & 6, &
+        & 3, &
         & 6, &
         & 6, &
         & 3, &
@@ -153,12 +165,14 @@ module rollcon_gen_catalog
         & chaplygin_sled_time_free, &
         & disk_height_time_free, &
         & gnd_atpoint_time_free, &
+        & gnd_homokinetic_time_free, &
         & gnd_inline_time_free, &
         & gnd_inplane_time_free, &
         & gnd_orientation_time_free, &
         & gnd_parallel_axes_time_free, &
         & gnd_perpendicular_time_free, &
         & jp_atpoint_time_free, &
+        & jp_homokinetic_time_free, &
         & jp_inline_time_free, &
         & jp_inplane_time_free, &
         & jp_orientation_time_free, &
@@ -188,38 +202,42 @@ contains
         case (3)
             ucosub => gnd_atpoint_ucosub
         case (4)
-            ucosub => gnd_inline_ucosub
+            ucosub => gnd_homokinetic_ucosub
         case (5)
-            ucosub => gnd_inplane_ucosub
+            ucosub => gnd_inline_ucosub
         case (6)
-            ucosub => gnd_orientation_ucosub
+            ucosub => gnd_inplane_ucosub
         case (7)
-            ucosub => gnd_parallel_axes_ucosub
+            ucosub => gnd_orientation_ucosub
         case (8)
-            ucosub => gnd_perpendicular_ucosub
+            ucosub => gnd_parallel_axes_ucosub
         case (9)
-            ucosub => jp_atpoint_ucosub
+            ucosub => gnd_perpendicular_ucosub
         case (10)
-            ucosub => jp_inline_ucosub
+            ucosub => jp_atpoint_ucosub
         case (11)
-            ucosub => jp_inplane_ucosub
+            ucosub => jp_homokinetic_ucosub
         case (12)
-            ucosub => jp_orientation_ucosub
+            ucosub => jp_inline_ucosub
         case (13)
-            ucosub => jp_parallel_axes_ucosub
+            ucosub => jp_inplane_ucosub
         case (14)
-            ucosub => jp_perpendicular_ucosub
+            ucosub => jp_orientation_ucosub
         case (15)
-            ucosub => knife_edge_ucosub
+            ucosub => jp_parallel_axes_ucosub
         case (16)
-            ucosub => planar_hold_ucosub
+            ucosub => jp_perpendicular_ucosub
         case (17)
-            ucosub => rolling_disk_ucosub
+            ucosub => knife_edge_ucosub
         case (18)
-            ucosub => rolling_sphere_ucosub
+            ucosub => planar_hold_ucosub
         case (19)
-            ucosub => turntable_ball_ucosub
+            ucosub => rolling_disk_ucosub
         case (20)
+            ucosub => rolling_sphere_ucosub
+        case (21)
+            ucosub => turntable_ball_ucosub
+        case (22)
             ucosub => turntable_disk_ucosub
         case default
             ucosub => null()
@@ -241,38 +259,42 @@ contains
         case (3)
             codes = gnd_atpoint_codes
         case (4)
-            codes = gnd_inline_codes
+            codes = gnd_homokinetic_codes
         case (5)
-            codes = gnd_inplane_codes
+            codes = gnd_inline_codes
         case (6)
-            codes = gnd_orientation_codes
+            codes = gnd_inplane_codes
         case (7)
-            codes = gnd_parallel_axes_codes
+            codes = gnd_orientation_codes
         case (8)
-            codes = gnd_perpendicular_codes
+            codes = gnd_parallel_axes_codes
         case (9)
-            codes = jp_atpoint_codes
+            codes = gnd_perpendicular_codes
         case (10)
-            codes = jp_inline_codes
+            codes = jp_atpoint_codes
         case (11)
-            codes = jp_inplane_codes
+            codes = jp_homokinetic_codes
         case (12)
-            codes = jp_orientation_codes
+            codes = jp_inline_codes
         case (13)
-            codes = jp_parallel_axes_codes
+            codes = jp_inplane_codes
         case (14)
-            codes = jp_perpendicular_codes
+            codes = jp_orientation_codes
         case (15)
-            codes = knife_edge_codes
+            codes = jp_parallel_axes_codes
         case (16)
-            codes = planar_hold_codes
+            codes = jp_perpendicular_codes
         case (17)
-            codes = rolling_disk_codes
+            codes = knife_edge_codes
         case (18)
-            codes = rolling_sphere_codes
+            codes = planar_hold_codes
         case (19)
-            codes = turntable_ball_codes
+            codes = rolling_disk_codes
         case (20)
+            codes = rolling_sphere_codes
+        case (21)
+            codes = turntable_ball_codes
+        case (22)
             codes = turntable_disk_codes
         case default
             codes = [integer ::]
@@ -296,53 +318,59 @@ contains
             summary = "I's origin at J's: marker I on a part, marker J on ground (ADAMS " &
                 & // "JPRIM)."
         case (4)
+            summary = "I's and J's shafts turn alike: marker I on a part, marker J on ground " &
+                & // "(ADAMS JOINT CONVEL)."
+        case (5)
             summary = "I's origin on J's z axis: marker I on a part, marker J on ground " &
                 & // "(ADAMS JPRIM)."
-        case (5)
+        case (6)
             summary = "I's origin in J's x-y plane: marker I on a part, marker J on ground " &
                 & // "(ADAMS JPRIM)."
-        case (6)
+        case (7)
             summary = "I's axes parallel to J's: marker I on a part, marker J on ground " &
                 & // "(ADAMS JPRIM)."
-        case (7)
+        case (8)
             summary = "I's z axis parallel to J's: marker I on a part, marker J on ground " &
                 & // "(ADAMS JPRIM)."
-        case (8)
+        case (9)
             summary = "I's z axis perpendicular to J's: marker I on a part, marker J on " &
                 & // "ground (ADAMS JPRIM)."
-        case (9)
+        case (10)
             summary = "I's origin at J's: marker I on a part, marker J on a second part " &
                 & // "(ADAMS JPRIM)."
-        case (10)
+        case (11)
+            summary = "I's and J's shafts turn alike: marker I on a part, marker J on a " &
+                & // "second part (ADAMS JOINT CONVEL)."
+        case (12)
             summary = "I's origin on J's z axis: marker I on a part, marker J on a second " &
                 & // "part (ADAMS JPRIM)."
-        case (11)
+        case (13)
             summary = "I's origin in J's x-y plane: marker I on a part, marker J on a second " &
                 & // "part (ADAMS JPRIM)."
-        case (12)
+        case (14)
             summary = "I's axes parallel to J's: marker I on a part, marker J on a second " &
                 & // "part (ADAMS JPRIM)."
-        case (13)
+        case (15)
             summary = "I's z axis parallel to J's: marker I on a part, marker J on a second " &
                 & // "part (ADAMS JPRIM)."
-        case (14)
+        case (16)
             summary = "I's z axis perpendicular to J's: marker I on a part, marker J on a " &
                 & // "second part (ADAMS JPRIM)."
-        case (15)
-            summary = "The blade's contact point has no velocity across the blade."
-        case (16)
-            summary = "The body stays level: centre of mass at the height h, body y vertical."
         case (17)
+            summary = "The blade's contact point has no velocity across the blade."
+        case (18)
+            summary = "The body stays level: centre of mass at the height h, body y vertical."
+        case (19)
             summary = "No slip, no penetration: the disk's material point at the contact has " &
                 & // "zero velocity."
-        case (18)
+        case (20)
             summary = "No slip, no penetration: the sphere's material point at the contact " &
                 & // "has zero velocity."
-        case (19)
+        case (21)
             summary = "No slip on a table turning at a constant rate Omega about a fixed " &
                 & // "vertical axis: the sphere's material point at the contact moves with " &
                 & // "the table's."
-        case (20)
+        case (22)
             summary = "No slip on a table turning about a vertical axis at the rate Omega0 + " &
                 & // "Omega1 sin(nu t): the disk's material point at the contact moves with " &
                 & // "the table's."

@@ -18,7 +18,7 @@ module test_ucosub_units
     use rollcon_model, only : model_type, setup_model
     use rollcon_constraints, only : constraint_state_type, need_value, need_first, &
         & need_second, need_time
-    use rollcon_output_rows, only : history_type
+    use rollcon_history, only : history_type
     use rollcon_output_layout, only : output_layout_type
     use rollcon_csv_reader, only : read_output_csv
     use rollcon_ucosub_audit, only : ucon_request_type, user_check_options_type, &

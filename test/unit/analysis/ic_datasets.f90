@@ -14,13 +14,15 @@ module ic_datasets
     use rollcon_adm_build, only : build_adm_problem
     use rollcon_adm_initial, only : adm_ic_options
     use rollcon_initial_conditions, only : analyse_initial_conditions
-    use rollcon_ic_report, only : ic_report_type
+    use rollcon_ic_report, only : ic_report_type, ic_report_text
+    use rollcon_body, only : body_angular_velocity
     use command_runs, only : rollcon_program, run_rollcon, file_text
     use rollcon_testing, only : check
     implicit none
     private
 
     public :: test_exact_read, test_exact_refused, test_dataset_exact, test_dataset_run
+    public :: test_given_kept, test_defaulted_moved, test_given_contradicted
 
     !> Scratch folder of these tests
     character(len=*), parameter :: scratch = "build/test_initial_conditions"
@@ -35,6 +37,12 @@ module ic_datasets
     !> Z recovered: it enters Z - R sin(theta) linearly with theta held (see the suite's
     !> tol_recovered)
     real(wp), parameter :: tol_recovered = 1.0e-12_wp
+    !> The velocity level is one linear least-squares solve: its values to rounding of the
+    !> wheel's rates (5 rad/s, 1.5 m/s)
+    real(wp), parameter :: tol_velocity = 1.0e-12_wp
+    !> The wheel of test/initial/wheel_spin_only.adm: its radius [m], and its velocities line
+    real(wp), parameter :: wheel_radius = 0.3_wp
+    character(len=*), parameter :: wheel_line = ", QG = 0.2, 0.2, 0.3, WX = 1, WY = 0, WZ = -5"
 
 contains
 
@@ -67,6 +75,106 @@ contains
         if (replaced /= size(old)) call fatal_error(error, "data/coin.adm: only " &
             & // to_text(replaced) // " of the " // to_text(size(old)) // " lines found")
     end subroutine write_variant
+
+    !> test/initial/wheel_spin_only.adm with its velocities line replaced by line, built with
+    !> its routines and analysed: the start (q, u) and the report.
+    subroutine wheel_start(name, line, q, u, report, error)
+        character(len=*), intent(in) :: name, line
+        real(wp), allocatable, intent(out) :: q(:), u(:)
+        type(ic_report_type), intent(out) :: report
+        type(error_type), allocatable, intent(out) :: error
+        type(adm_model_type) :: adm
+        type(problem_type), target :: problem
+        character(len=4096) :: buffer
+        integer :: in, out, stat
+
+        call execute_command_line("mkdir -p " // scratch)
+        open(newunit=in, file="test/initial/wheel_spin_only.adm", status="old", action="read")
+        open(newunit=out, file=scratch // "/" // name, status="replace", action="write")
+        do
+            read(in, '(a)', iostat=stat) buffer
+            if (stat /= 0) exit
+            if (trim(buffer) == wheel_line) buffer = line
+            write(out, '(a)') trim(buffer)
+        end do
+        close(in)
+        close(out)
+        call read_adm(scratch // "/" // name, adm, error)
+        if (allocated(error)) return
+        call build_adm_problem(adm, problem=problem, q0=q, u0=u, error=error)
+        if (allocated(error)) return
+        call analyse_initial_conditions(problem, 0.0_wp, q, u, adm_ic_options(adm, problem), &
+            & report, error)
+    end subroutine wheel_start
+
+    !> A rolling wheel given only its lean rate WX = 1 and spin WZ = -5 (and WY = 0): ADAMS keeps
+    !> a velocity the dataset gives and moves a defaulted one, an "inexact" zero. The angular
+    !> velocity stays as given, about the CM marker's axes, and the centre's velocity comes from
+    !> the no-slip UCONs: omega x (0, 0, r) = (1.5, -0.3, 0) m/s, the only values moved. (The
+    !> analysis weighed given and defaulted alike and halved them: phidot -5 -> -2.27 rad/s,
+    !> with 0.68 m/s of centre velocity invented.)
+    subroutine test_given_kept(error)
+        type(error_type), allocatable, intent(out) :: error
+        real(wp), allocatable :: q(:), u(:)
+        type(ic_report_type) :: report
+
+        call wheel_start("wheel_given.adm", wheel_line, q, u, report, error)
+        if (allocated(error)) return
+        call check(error, body_angular_velocity(q(1:6), u(1:6)), [1.0_wp, 0.0_wp, -5.0_wp], &
+            & "the angular velocity about the CM marker's axes", abs_tol=tol_velocity)
+        if (allocated(error)) return
+        call check(error, u(1:3), [5.0_wp*wheel_radius, -1.0_wp*wheel_radius, 0.0_wp], &
+            & "the centre's velocity [m/s]", abs_tol=tol_velocity)
+        if (allocated(error)) return
+        call check(error, size(report%changes) == 2 .and. .not. report%given_moved, &
+            & ic_report_text(report))
+        if (allocated(error)) return
+        call check(error, report%changes(1)%name() == "Xdot_2" .and. report%changes(2)%name() &
+            & == "Ydot_2", ic_report_text(report))
+    end subroutine test_given_kept
+
+    !> Given VX = 1.5 m/s and the lean rate WX = 1 alone: the spin WZ, a defaulted zero, moves
+    !> to what rolling at 1.5 m/s needs, -VX/r = -5 rad/s, VY to -WX r; VX and WX stay; the
+    !> heading rate WY, which no UCON fixes, stays 0.
+    subroutine test_defaulted_moved(error)
+        type(error_type), allocatable, intent(out) :: error
+        real(wp), allocatable :: q(:), u(:)
+        type(ic_report_type) :: report
+
+        call wheel_start("wheel_vx.adm", ", QG = 0.2, 0.2, 0.3, VX = 1.5, WX = 1", q, u, &
+            & report, error)
+        if (allocated(error)) return
+        call check(error, body_angular_velocity(q(1:6), u(1:6)), [1.0_wp, 0.0_wp, &
+            & -1.5_wp/wheel_radius], "the angular velocity about the CM marker's axes", &
+            & abs_tol=tol_velocity)
+        if (allocated(error)) return
+        call check(error, u(1:3), [1.5_wp, -1.0_wp*wheel_radius, 0.0_wp], &
+            & "the centre's velocity [m/s]", abs_tol=tol_velocity)
+        if (allocated(error)) return
+        call check(error, .not. report%given_moved, ic_report_text(report))
+    end subroutine test_defaulted_moved
+
+    !> Every velocity given, and the centre's at rest against the spin: the UCONs cannot be met
+    !> with them held, so they are moved with the rest (as ADAMS moves an EXACT value that
+    !> contradicts a joint), the report says so, and the start meets the UCONs.
+    subroutine test_given_contradicted(error)
+        type(error_type), allocatable, intent(out) :: error
+        real(wp), allocatable :: q(:), u(:)
+        type(ic_report_type) :: report
+        real(wp) :: omega(3)
+
+        call wheel_start("wheel_all.adm", ", QG = 0.2, 0.2, 0.3, VX = 0, VY = 0, VZ = 0, " &
+            & // "WX = 1, WY = 0, WZ = -5", q, u, report, error)
+        if (allocated(error)) return
+        call check(error, report%given_moved .and. index(ic_report_text(report), &
+            & "cannot all be kept with the UCONs met") > 0, ic_report_text(report))
+        if (allocated(error)) return
+        ! rolling without slip: the centre moves as omega x (0, 0, r), omega in ground =
+        ! (WX, -WZ, WY) for the CM marker's axes x = X, y = Z, z = -Y
+        omega = body_angular_velocity(q(1:6), u(1:6))
+        call check(error, u(1:2), [-omega(3)*wheel_radius, -omega(1)*wheel_radius], &
+            & "no slip", abs_tol=tol_velocity)
+    end subroutine test_given_contradicted
 
     !> EXACT=x:Phi:THETA (any case, any order) marks X, theta and phi of the part.
     subroutine test_exact_read(error)

@@ -15,7 +15,7 @@ module test_initial_conditions
         & coin_rho
     use ic_scene_starts, only : test_scene_starts, test_scene_velocities
     use ic_datasets, only : test_exact_read, test_exact_refused, test_dataset_exact, &
-        & test_dataset_run
+        & test_dataset_run, test_given_kept, test_defaulted_moved, test_given_contradicted
     use rollcon_testing, only : unittest_type, new_unittest, check
     implicit none
     private
@@ -52,7 +52,10 @@ contains
             & new_unittest("exact-keyword-read", test_exact_read), &
             & new_unittest("exact-keyword-refused", test_exact_refused), &
             & new_unittest("dataset-exact-held", test_dataset_exact), &
-            & new_unittest("dataset-run-report", test_dataset_run)]
+            & new_unittest("dataset-run-report", test_dataset_run), &
+            & new_unittest("given-velocities-kept", test_given_kept), &
+            & new_unittest("defaulted-velocities-moved", test_defaulted_moved), &
+            & new_unittest("given-velocities-contradicted", test_given_contradicted)]
     end subroutine collect_initial_conditions
 
     !> The coin with F1, F2 and the height Z - R sin(theta) as a position UCON.

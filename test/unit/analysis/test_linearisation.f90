@@ -19,7 +19,7 @@ module test_linearisation
     use rollcon_problem, only : problem_type
     use rollcon_ucosub_contract, only : ucosub_interface
     use rollcon_linearisation, only : linear_options_type, linear_result_type, linearise
-    use rollcon_linear_report, only : damping_ratio, natural_frequency
+    use rollcon_linear_report, only : damping_ratio, natural_frequency, linear_table_text
     use rollcon_job, only : job_type
     use rollcon_load, only : load_job, input_override_type
     use rollcon_linear_job, only : linearise_job
@@ -67,7 +67,8 @@ contains
             & new_unittest("not-steady-reported", test_not_steady), &
             & new_unittest("start-off-constraints", test_off_constraints), &
             & new_unittest("singular-constraint-jacobian", test_singular), &
-            & new_unittest("user-file-refused", test_user_file)]
+            & new_unittest("user-file-refused", test_user_file), &
+            & new_unittest("zeros-by-structure-absolute", test_structural_zeros)]
     end subroutine collect_linearisation
 
     !> s (the wobble's lambda^2) of the upright disk [1/s^2] from the closed form.
@@ -402,6 +403,34 @@ contains
         call expect_refusal(refused, "linearisation: the constraints' Jacobian is singular at " &
             & // "the start: the position rows of UCON/3, UCON/4 are dependent", error)
     end subroutine test_singular
+
+    !> A turntable on a REVOLUTE (test/linear/turntable_revolute.adm): both eigenvalues are zero
+    !> by structure, computed as +-4.5e-16 1/s. With every eigenvalue that small, 1e-6 of the
+    !> largest is no limit at all: the limit's absolute part, 1e-6 of the model's frequency
+    !> scale (sqrt(g/rho) = 7 1/s here), counts both as zeros, and the table prints no growing
+    !> mode (no damping ratio of -1). A model with eigenvalues of its own keeps them (the other
+    !> tests of the suite).
+    subroutine test_structural_zeros(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(job_type) :: job
+        type(linear_result_type) :: result
+        character(len=:), allocatable :: report, table
+
+        call load_job("test/linear/turntable_revolute.adm", job, error)
+        if (allocated(error)) return
+        call linearise_job(job, result, report, error)
+        if (allocated(error)) return
+        table = linear_table_text(result, "turntable")
+        call check(error, result%reduced == 2 .and. result%zeros == 2 .and. &
+            & index(table, "-1.0000000") == 0, "zeros " // to_text(result%zeros) // " of " &
+            & // to_text(result%reduced) // " (limit " // to_text(result%zero_limit) &
+            & // " 1/s): " // table)
+        if (allocated(error)) return
+        ! the limit stays far below the model's own frequencies: 1e-6 of sqrt(g/rho), rho =
+        ! sqrt(0.4/10) m
+        call check(error, result%zero_limit, 1.0e-6_wp*sqrt(9.81_wp/0.2_wp), "zero limit [1/s]", &
+            & rel_tol=1.0e-12_wp)
+    end subroutine test_structural_zeros
 
     !> A user's file serving the UCONs is refused, with the reason and what to do.
     subroutine test_user_file(error)

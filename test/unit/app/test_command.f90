@@ -40,7 +40,9 @@ contains
             & new_unittest("killed-run-leaves-valid-prefix", test_killed), &
             & new_unittest("concurrent-runs-do-not-splice", test_concurrent), &
             & new_unittest("full-disk-is-a-failure", test_full_disk), &
-            & new_unittest("version-is-fpm-toml-version", test_version)]
+            & new_unittest("version-is-fpm-toml-version", test_version), &
+            & new_unittest("empty-values-refused", test_empty_values), &
+            & new_unittest("numbers-out-of-range-refused", test_numbers_out_of_range)]
     end subroutine collect_command
 
     !> A refusal prints one line, the message, and exits 1: no backtrace, no STOP line.
@@ -61,6 +63,82 @@ contains
             & // to_text(status) // ", stderr: " // err)
     end subroutine test_refusal
 
+    !> An empty value (a shell variable not set) is a mistake, never the option's default: every
+    !> option that takes a value, and the positional argument of every command that takes one,
+    !> given '' is refused with one line naming it, exit status 1, nothing written. (Before,
+    !> `run coin --output ''` wrote nothing and exited 0, `--ucosub ''` ran the built-in disk.)
+    subroutine test_empty_values(error)
+        type(error_type), allocatable, intent(out) :: error
+        character(len=*), parameter :: lines(27) = [character(len=64) :: &
+            & "run coin --output ''", "run coin -o ''", "run coin --vtk ''", &
+            & "run coin --ucosub ''", "run coin --call-timeout ''", &
+            & "table --radius ''", "table --state ''", "check x.f --ucon ''", &
+            & "check x.f --model ''", "check x.f --states ''", "check x.f --seed ''", &
+            & "check x.f --json ''", "check x.f --call-timeout ''", "bench --scenes ''", &
+            & "bench --repeats ''", "bench --end-time ''", "bench scaling --end-time ''", &
+            & "bench sweep --study ''", "linear data/coin.adm --speeds ''", &
+            & "linear data/coin.adm --ucosub ''", "plot x.csv --output ''", &
+            & "run ''", "linear ''", "plot ''", "animate ''", "check ''", "sweep ''"]
+        character(len=:), allocatable :: program, err, expected
+        integer :: status, i, at
+
+        call rollcon_program(program, error)
+        if (allocated(error)) return
+        call make_folder(scratch)
+        do i = 1, size(lines)
+            ! the option's name, or the command's for an empty positional argument
+            at = index(lines(i), " -", back=.true.)
+            if (at > 0) then
+                expected = lines(i)(at + 1:index(lines(i), " ''") - 1)
+                if (expected == "-o") expected = "--output"
+                expected = expected // " was given an empty value"
+            else
+                expected = "an empty argument was given to rollcon"
+            end if
+            call run_rollcon(program, trim(lines(i)) // " -o " // scratch // "/out", scratch &
+                & // "/empty.out", scratch // "/empty.err", status)
+            err = file_text(scratch // "/empty.err")
+            call check(error, status == 1 .and. line_count(err) == 1 .and. index(err, &
+                & expected) > 0 .and. .not. file_exists(scratch // "/out"), "rollcon " &
+                & // trim(lines(i)) // ": exit status " // to_text(status) // ", stderr: " &
+                & // err)
+            if (allocated(error)) exit
+        end do
+        call remove_folder(scratch)
+    end subroutine test_empty_values
+
+    !> Numbers outside what an option can take are refused by name before anything runs:
+    !> frames per second beyond 1e6 (1e300 wrote an empty VTK series), end times no scene or
+    !> dataset of the benchmarks can take (`bench scaling` ran datasets whose DTOUT exceeded END
+    !> below 0.1 s, and its --end-time was never checked).
+    subroutine test_numbers_out_of_range(error)
+        type(error_type), allocatable, intent(out) :: error
+        character(len=*), parameter :: lines(6) = [character(len=64) :: &
+            & "run coin --vtk 1e300", "run coin --vtk 0", "bench --end-time 1e-300", &
+            & "bench scaling --end-time 1e-9", "bench scaling --end-time -2", &
+            & "bench scaling --end-time nan"]
+        character(len=*), parameter :: expected(6) = [character(len=40) :: &
+            & "--vtk needs a number of frames", "--vtk needs a number of frames", &
+            & "--end-time expects a time from 1e-9", "--end-time expects a time from 1e-8", &
+            & "--end-time expects a time from 1e-8", "--end-time expects one finite number"]
+        character(len=:), allocatable :: program, err
+        integer :: status, i
+
+        call rollcon_program(program, error)
+        if (allocated(error)) return
+        call make_folder(scratch)
+        do i = 1, size(lines)
+            call run_rollcon(program, trim(lines(i)) // " -o " // scratch // "/out", &
+                & scratch // "/range.out", scratch // "/range.err", status)
+            err = file_text(scratch // "/range.err")
+            call check(error, status == 1 .and. line_count(err) == 1 .and. index(err, &
+                & trim(expected(i))) > 0 .and. .not. file_exists(scratch // "/out"), "rollcon " &
+                & // trim(lines(i)) // ": exit status " // to_text(status) // ", stderr: " // err)
+            if (allocated(error)) exit
+        end do
+        call remove_folder(scratch)
+    end subroutine test_numbers_out_of_range
+
     !> A second positional argument is refused and names itself, for run, plot and table; after
     !> a word that is neither a file nor a scene (a mistyped command, `plto x.csv`) the message
     !> says that word is not a command, and after a scene's name it does not.
@@ -68,7 +146,7 @@ contains
         type(error_type), allocatable, intent(out) :: error
         character(len=*), parameter :: commands(4) = [character(len=40) :: &
             & "coin tipping_coin", "plot a.csv b.csv", "table coin", "plto x.csv"]
-        character(len=*), parameter :: extras(4) = [character(len=12) :: "'tipping_coin'", &
+        character(len=*), parameter :: extras(4) = [character(len=14) :: "'tipping_coin'", &
             & "'b.csv'", "'coin'", "'x.csv'"]
         logical, parameter :: mistyped(4) = [.false., .false., .false., .true.]
         character(len=:), allocatable :: program, err

@@ -187,10 +187,11 @@ contains
     subroutine test_refusals(error)
         type(error_type), allocatable, intent(out) :: error
         character(len=*), parameter :: names = "(disk, rolling_disk, chaplygin_sled, " &
-            & // "disk_height, gnd_atpoint, gnd_inline, gnd_inplane, gnd_orientation, " &
-            & // "gnd_parallel_axes, gnd_perpendicular, jp_atpoint, jp_inline, jp_inplane, " &
-            & // "jp_orientation, jp_parallel_axes, jp_perpendicular, knife_edge, planar_hold, " &
-            & // "rolling_sphere, turntable_ball, turntable_disk)"
+            & // "disk_height, gnd_atpoint, gnd_homokinetic, gnd_inline, gnd_inplane, " &
+            & // "gnd_orientation, gnd_parallel_axes, gnd_perpendicular, jp_atpoint, " &
+            & // "jp_homokinetic, jp_inline, jp_inplane, jp_orientation, jp_parallel_axes, " &
+            & // "jp_perpendicular, knife_edge, planar_hold, rolling_sphere, turntable_ball, " &
+            & // "turntable_disk)"
         character(len=:), allocatable :: program, unknown, summary
         integer :: status_default, status_unknown
 

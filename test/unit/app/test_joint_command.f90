@@ -60,7 +60,7 @@ contains
         call rollcon_program(program, error)
         if (allocated(error)) return
         call make_folder(scratch)
-        call write_lines(scratch // "/apart.adm", [character(len=64) :: "pendulum, 1 mm apart", &
+        call write_lines(scratch // "/apart.adm", [character(len=72) :: "pendulum, 1 mm apart", &
             & "PART/1, GROUND", "MARKER/10, PART=1, QP=0, 0, 0.001, REULER=180D, 90D, 0D", &
             & "PART/2, MASS=1, CM=20, IP=0.01, 0.01, 0.01, REULER=90D, 60D, -90D", &
             & "MARKER/20, PART=2, QP=0, 0, -0.5, REULER=0, 90D, 0", &
@@ -84,7 +84,7 @@ contains
         call rollcon_program(program, error)
         if (allocated(error)) return
         call make_folder(scratch)
-        call write_lines(scratch // "/bad.adm", [character(len=64) :: "pendulum", &
+        call write_lines(scratch // "/bad.adm", [character(len=72) :: "pendulum", &
             & "PART/1, GROUND", "MARKER/10, PART=1, REULER=180D, 90D, 0D", &
             & "PART/2, MASS=1, CM=20, IP=0.01, 0.01, 0.01, REULER=90D, 60D, -90D", &
             & "MARKER/20, PART=2, QP=0, 0, -0.5, REULER=0, 90D, 0", &

@@ -2,8 +2,9 @@
 !> The README's main command, `bash .ci/main` (suite main-script): after a run that ends
 !> INACCURATE (exit status 3: its CSV and summary are written, and its figures are wanted most)
 !> it draws the figures and the animation, and still exits 3; after a run that fails (exit 1)
-!> it draws nothing. Through the script itself, which builds rollcon's release build (the first
-!> time this costs a few minutes; later runs reuse it).
+!> it draws nothing; run from another folder on a command file there, it finds the dataset and
+!> writes where it was asked. Through the script itself, which builds rollcon's release build
+!> (the first time this costs a few minutes; later runs reuse it).
 module test_main_script
     use rollcon_error, only : error_type
     use rollcon_text, only : to_text
@@ -34,7 +35,8 @@ contains
         type(unittest_type), allocatable, intent(out) :: tests(:)
 
         tests = [new_unittest("inaccurate-run-drawn-exit-3", test_inaccurate_drawn), &
-            & new_unittest("failed-run-not-drawn", test_failed_not_drawn)]
+            & new_unittest("failed-run-not-drawn", test_failed_not_drawn), &
+            & new_unittest("command-file-from-its-folder", test_other_folder)]
     end subroutine collect_main_script
 
     !> `bash .ci/main run SCENE -q -o DIR` on the inaccurate scene: exit status 3, the summary
@@ -74,6 +76,33 @@ contains
             & "exit status " // to_text(status) // " (expected 1), and nothing drawn: " &
             & // last_lines(file_text(scratch // "/main.log")))
     end subroutine test_failed_not_drawn
+
+    !> From the folder of a command file and its dataset (a copy of test/view's pendulum):
+    !> `bash <repository>/.ci/main short.acf -q -o out` runs it (the dataset found from the
+    !> command file, `out` the caller's folder), exits 0 and draws the run named by the
+    !> command file's second line.
+    subroutine test_other_folder(error)
+        type(error_type), allocatable, intent(out) :: error
+        character(len=*), parameter :: away = scratch // "/away"
+        integer :: status, unit
+
+        if (.not. gnuplot_available()) then
+            call skip_test(error, "gnuplot is not installed (bash .ci/setup installs it)")
+            return
+        end if
+        call execute_command_line("rm -rf " // away // " && mkdir -p " // away &
+            & // " && cp test/view/view_export_pendulum.adm " // away // "/")
+        open(newunit=unit, file=away // "/short.acf", status="replace", action="write")
+        write(unit, '(a)') "view_export_pendulum", "short", "SIMULATE/DYNAMIC, END=0.5, STEPS=5", &
+            & "STOP"
+        close(unit)
+        call execute_command_line("cd " // away // " && bash ../../../.ci/main short.acf -q -o " &
+            & // "out > main.log 2>&1", exitstat=status)
+        call check(error, status == 0 .and. file_exists(away // "/out/short.csv") .and. &
+            & file_exists(away // "/out/short_path.png"), "exit status " // to_text(status) &
+            & // " (expected 0), the CSV and the figures in " // away // "/out: " &
+            & // last_lines(file_text(away // "/main.log")))
+    end subroutine test_other_folder
 
     !> Write the inaccurate scene and run `bash .ci/main` on it into out.
     subroutine run_main(out, status)

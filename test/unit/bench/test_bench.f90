@@ -9,7 +9,7 @@ module test_bench
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type
     use rollcon_bench_process, only : process_cost_type, measure_process, &
-        & write_scene_with_settings
+        & write_scene_with_settings, write_dataset_with_settings
     use rollcon_run_settings, only : run_settings_type, formulation_cvode, method_adams, &
         & drift_baumgarte, jacobian_none
     use rollcon_job, only : job_type
@@ -40,6 +40,7 @@ contains
         tests = [new_unittest("process-cost-of-a-run", test_process_cost), &
             & new_unittest("process-cost-of-a-failed-run", test_process_failed), &
             & new_unittest("scene-with-a-row-settings", test_scene_settings), &
+            & new_unittest("dataset-with-a-row-settings", test_dataset_settings), &
             & new_unittest("coordinator-cpu-per-row-from-log", test_row_us), &
             & new_unittest("work-precision-plot-per-scene", test_plots), &
             & new_unittest("split-by-formulation", test_split)]
@@ -78,6 +79,49 @@ contains
         end associate
         call remove_folder(scratch)
     end subroutine test_scene_settings
+
+    !> A copy of data/bicycle.adm written with a benchmark row's settings loads with exactly
+    !> those settings (every INTEGRATOR keyword, rtol to the last bit, the end time and output
+    !> step of its SIMULATE), and is the same model (parts, UCONs, the push).
+    subroutine test_dataset_settings(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(run_settings_type) :: settings
+        type(job_type) :: original, copy
+
+        call make_folder(scratch)
+        call load_job("data/bicycle.adm", original, error)
+        if (allocated(error)) return
+        settings = original%source%settings
+        settings%formulation = formulation_cvode
+        settings%method = method_adams
+        settings%drift = drift_baumgarte
+        settings%jacobian = jacobian_none
+        settings%rtol = 10.0_wp**(-7.5_wp)
+        settings%atol = 1.0e-2_wp*settings%rtol
+        settings%end_time = 3.0_wp
+        settings%output_step = 0.03_wp
+        call write_dataset_with_settings(original%source%path, settings, scratch &
+            & // "/variant.adm", error)
+        if (allocated(error)) return
+        call load_job(scratch // "/variant.adm", copy, error)
+        if (allocated(error)) return
+        associate (got => copy%source%settings)
+            call check(error, got%formulation == settings%formulation .and. got%method &
+                & == settings%method .and. got%drift == settings%drift .and. got%jacobian &
+                & == settings%jacobian .and. got%rtol == settings%rtol .and. got%atol &
+                & == settings%atol .and. got%end_time == settings%end_time .and. &
+                & got%output_step == settings%output_step .and. got%max_steps &
+                & == settings%max_steps .and. got%linear_solver == settings%linear_solver &
+                & .and. got%baumgarte_rate == settings%baumgarte_rate, &
+                & "the settings read back: " // got%text())
+        end associate
+        if (allocated(error)) return
+        call check(error, index(file_text(scratch // "/variant.adm"), "GFORCE/1") > 0 .and. &
+            & index(file_text(scratch // "/variant.adm"), "UCON/6") > 0 .and. &
+            & index(file_text(scratch // "/variant.adm"), "ERROR=1E-10") == 0, &
+            & "the model kept, its own INTEGRATOR left out")
+        call remove_folder(scratch)
+    end subroutine test_dataset_settings
 
     !> `rollcon run steady_circle` timed as a child: its times are read from getrusage and the
     !> run's summary (an error otherwise), finite and not negative; the integration's CPU time

@@ -41,6 +41,7 @@ contains
             & new_unittest("parts-spread-apart", test_spread), &
             & new_unittest("blocks-of-the-fleet", test_blocks), &
             & new_unittest("scaling-rows", test_scaling_rows), &
+            & new_unittest("scaling-short-and-refused-end-times", test_scaling_end_times), &
             & new_unittest("summary-names-klu", test_summary_klu)]
     end subroutine collect_disk_fleet
 
@@ -280,6 +281,37 @@ contains
             & index(scaling_header(), "cpu_per_step_part_us") > 0 .and. &
             & index(scaling_header(), ",startup_cpu_s,status") > 0, "the CSV row and header")
     end subroutine test_scaling_rows
+
+    !> A short end time (0.05 s: the disks' output step then 0.05 s, the chain's 0.005 s, below
+    !> the 0.1 s they take otherwise) runs: every method on one disk and one link completes;
+    !> an end time no dataset can take (the chain's a tenth of it below SIMULATE's 1e-9 s, or
+    !> none at all) is refused by name, before any dataset is written.
+    subroutine test_scaling_end_times(error)
+        type(error_type), allocatable, intent(out) :: error
+        real(wp), parameter :: refused(3) = [1.0e-9_wp, -1.0_wp, 2.0e9_wp]
+        type(scaling_row_type), allocatable :: rows(:)
+        character(len=:), allocatable :: message
+        integer :: k
+
+        call make_folders(folder, error)
+        if (allocated(error)) return
+        call measure_scaling(folder, [1], 0.05_wp, rows, error)
+        if (allocated(error)) return
+        call check(error, all([(rows(k)%status == "completed", k = 1, size(rows))]) .and. &
+            & all(rows%steps > 0), "every run of 0.05 s completed")
+        if (allocated(error)) return
+        do k = 1, size(refused)
+            call measure_scaling(folder, [1], refused(k), rows, error)
+            if (.not. allocated(error)) then
+                call check(error, .false., "end time " // to_text(refused(k)) // " s taken")
+                return
+            end if
+            message = error%message
+            call check(error, index(message, "--end-time expects a time from 1e-8 to 1e9 s") &
+                & > 0, "end time " // to_text(refused(k)) // ": " // message)
+            if (allocated(error)) return
+        end do
+    end subroutine test_scaling_end_times
 
     !> The largest difference between the copies of one run, relative to each column's scale.
     function among(history, copies) result(largest)

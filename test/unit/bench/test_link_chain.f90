@@ -20,8 +20,8 @@ module test_link_chain
     use rollcon_disk_fleet, only : disk_fleet_dataset
     use rollcon_constraint_blocks, only : constraint_blocks_type
     use rollcon_problem, only : problem_type
+    use rollcon_dae_form, only : dae_form_type
     use rollcon_newton_pattern, only : newton_pattern_type, pattern_of_blocks
-    use rollcon_dae, only : dae_size
     use rollcon_saddle_point, only : saddle_point_type, sparse_schur_rows
     use rollcon_run_settings, only : run_settings_type, linear_auto, linear_dense, &
         & linear_sparse, jacobian_dq
@@ -274,6 +274,7 @@ contains
         integer, intent(out) :: entries
         type(error_type), allocatable, intent(out) :: error
         type(problem_type), target :: problem
+        type(dae_form_type) :: dae
         type(newton_pattern_type) :: pattern, blocks
         real(wp), allocatable :: q0(:), u0(:), y(:), yp(:), matrix(:, :)
         logical, allocatable :: kept(:, :)
@@ -282,17 +283,18 @@ contains
         entries = 0
         call problem_of(name, text, problem, q0, u0, error)
         if (allocated(error)) return
-        n = dae_size(problem%eq)
+        call dae%init(problem)
+        n = dae%state_size()
         allocate(y(n), yp(n), matrix(n, n), source=0.0_wp)
         allocate(kept(n, n), source=.false.)
         ! every velocity, multiplier and acceleration nonzero: the entries zero at rest appear
         y(:size(q0)) = q0
         y(size(q0) + 1:) = [(0.1_wp*sin(real(i, wp)), i = 1, n - size(q0))]
         yp = [(0.2_wp*cos(real(i, wp)), i = 1, n)]
-        ierr = problem%dae_jacobian(0.0_wp, 1.0e3_wp, y, yp, matrix)
+        ierr = dae%dae_jacobian(0.0_wp, 1.0e3_wp, y, yp, matrix)
         call check(error, ierr, 0, name // ": the Newton matrix")
         if (allocated(error)) return
-        call problem%dae_pattern(n, pattern)
+        call dae%dae_pattern(n, pattern)
         do j = 1, n
             do e = pattern%starts(j) + 1, pattern%starts(j + 1)
                 kept(pattern%rows(e) + 1, j) = .true.
@@ -301,7 +303,7 @@ contains
         missed = count(matrix /= 0.0_wp .and. .not. kept)
         call check(error, missed, 0, name // ": nonzero entries outside the pattern")
         if (allocated(error)) return
-        blocks = pattern_of_blocks(problem%state_blocks(n))
+        blocks = pattern_of_blocks(dae%state_blocks(n))
         entries = pattern%entries()
         call check(error, entries <= blocks%entries(), name // ": the pattern keeps " &
             & // to_text(entries) // " of " // to_text(n*n) // " entries, the blocks " &

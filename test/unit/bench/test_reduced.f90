@@ -9,6 +9,7 @@ module test_reduced
     use rollcon_text, only : to_text
     use rollcon_scene, only : scene_type, read_scene, choice_code
     use rollcon_problem, only : problem_type
+    use rollcon_ode_form, only : ode_form_type
     use rollcon_disk_scene, only : build_disk_problem, disk_mass_properties
     use rollcon_disk_reference, only : rolling_disk_ucosub
     use rollcon_simulation, only : history_type, run_summary_type
@@ -78,6 +79,7 @@ contains
         real(wp), parameter :: time = 2.005_wp
         type(scene_type) :: scene
         type(problem_type), target :: problem
+        type(ode_form_type) :: ode
         real(wp) :: q0(6), u0(6), y(reduced_size), rate(reduced_size), q(6), u(6), draw(8)
         real(wp) :: full(12), spin_rate, force
         integer :: k, ierr
@@ -90,6 +92,7 @@ contains
         if (allocated(error)) return
         call problem%prepare(error)
         if (allocated(error)) return
+        call ode%init(problem)
         force = 0.5_wp*pi*scene%strike%impulse/scene%strike%duration
         call seed_random(13)
         do k = 1, 20
@@ -99,7 +102,7 @@ contains
                 & 2.0_wp*pi*draw(6), draw(7) - 0.5_wp, draw(8) - 0.5_wp]
             call reduced_rate(y, coin_par(scene), force, rate)
             call reduced_to_full(y, coin_par(scene), q, u)
-            ierr = problem%ode_rhs(time, [q, u], full)
+            ierr = ode%ode_rhs(time, [q, u], full)
             call check(error, ierr == 0, "full right-hand side failed")
             if (allocated(error)) return
             associate (a => full(7:12))

@@ -246,6 +246,9 @@ contains
         summary%u = [1.0e-300_wp, 0.0_wp, -0.0_wp, 3.0_wp, 4.0_wp, 5.0_wp]
         summary%energy_reference = -0.0123_wp
         summary%energy_drift = 3.5e-9_wp
+        summary%energy_scale = 0.75_wp
+        summary%energy_step = 2.5e-11_wp
+        summary%constraint_work = 1.25e-3_wp
         summary%energy_conserved = .false.
         summary%layout = new_output_layout([2, 5], [11, 12, 13], &
             & [character(len=16) :: "height_2", "normal_force_2"])
@@ -286,8 +289,10 @@ contains
             & "status, message, limit, flag, energy conserved")
         if (allocated(error)) return
         call check(error, same_bits([back%t_reached, back%energy_reference, back%energy_drift, &
-            & back%residual_max, back%energy_bound, back%cpu_seconds], [summary%t_reached, &
-            & summary%energy_reference, summary%energy_drift, summary%residual_max, &
+            & back%energy_scale, back%energy_step, back%constraint_work, back%residual_max, &
+            & back%energy_bound, back%cpu_seconds], [summary%t_reached, &
+            & summary%energy_reference, summary%energy_drift, summary%energy_scale, &
+            & summary%energy_step, summary%constraint_work, summary%residual_max, &
             & summary%energy_bound, summary%cpu_seconds]), "the scalar reals")
         if (allocated(error)) return
         call check(error, same_bits(back%q, summary%q) .and. same_bits(back%u, summary%u) &

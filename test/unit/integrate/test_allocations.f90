@@ -14,8 +14,10 @@ module test_allocations
     use rollcon_error, only : error_type
     use rollcon_text, only : to_text
     use rollcon_problem, only : problem_type
-    use rollcon_run_settings, only : formulation_cvode, formulation_ida, formulation_maggi, &
-        & method_adams, drift_baumgarte, drift_projection
+    use rollcon_ode_form, only : ode_form_type
+    use rollcon_dae_form, only : dae_form_type
+    use rollcon_speeds_form, only : speeds_form_type
+    use rollcon_run_settings, only : method_adams, drift_baumgarte, drift_projection
     use rollcon_dae, only : dae_size, dae_residual, dae_jacobian
     use rollcon_cvode, only : cvode_integrator_type
     use rollcon_ida, only : ida_integrator_type
@@ -132,6 +134,7 @@ contains
     subroutine test_evaluations(error)
         type(error_type), allocatable, intent(out) :: error
         type(problem_type), target :: problem
+        type(ode_form_type) :: ode
         type(error_type), allocatable :: failure
         real(wp) :: q(6), u(6), y(12), ydot(12), jac(12, 12), g(2), dq(6), du(6)
         real(wp), allocatable :: yd(:), ypd(:), r(:), jd(:, :)
@@ -144,17 +147,18 @@ contains
         end if
         call coin_problem(problem, q, u, .true., error)
         if (allocated(error)) return
+        call ode%init(problem)
         y = [q, u]
         m = dae_size(problem%eq)
         allocate(yd(m), ypd(m), r(m), jd(m, m), source=0.0_wp)
         ! one call of each first: anything allocated on a first use only is not counted
-        ierr = problem%ode_rhs(0.0_wp, y, ydot)
+        ierr = ode%ode_rhs(0.0_wp, y, ydot)
         yd(:12) = y
         yd(13:) = problem%lambda
         ypd(:12) = ydot
         start = malloc_count()
         do i = 1, repeats
-            ierr = problem%ode_rhs(0.0_wp, y, ydot)
+            ierr = ode%ode_rhs(0.0_wp, y, ydot)
             ierr = ierr + problem%root_values(0.0_wp, q, u, g)
             ierr = ierr + problem%root_values(0.0_wp, q, u, g, a=ydot(7:))
             ierr = ierr + problem%root_values(0.0_wp, q, u, g, lambda=yd(13:))
@@ -180,6 +184,7 @@ contains
     subroutine test_cvode_run(error)
         type(error_type), allocatable, intent(out) :: error
         type(problem_type), target :: problem
+        type(ode_form_type), target :: ode
         type(cvode_integrator_type), target :: cvode
         real(wp) :: q(6), u(6), y(12), yp(12), t
         integer(c_long) :: start, calls
@@ -191,9 +196,10 @@ contains
         end if
         call coin_problem(problem, q, u, .false., error)
         if (allocated(error)) return
+        call ode%init(problem)
         y = [q, u]
         yp = 0.0_wp
-        call cvode%start(problem, problem%settings, 0.0_wp, y, yp, 2.0_wp, error)
+        call cvode%start(ode, problem%settings, 0.0_wp, y, yp, 2.0_wp, error)
         if (.not. allocated(error)) call cvode%advance(0.1_wp, 2.0_wp, t, y, yp, root, error)
         start = malloc_count()
         do k = 2, 20
@@ -209,6 +215,7 @@ contains
     subroutine test_ida_run(error)
         type(error_type), allocatable, intent(out) :: error
         type(problem_type), target :: problem
+        type(dae_form_type), target :: dae
         type(ida_integrator_type), target :: ida
         real(wp) :: q(6), u(6), t
         real(wp), allocatable :: y(:), yp(:)
@@ -222,12 +229,12 @@ contains
         call coin_problem(problem, q, u, .false., error)
         if (allocated(error)) return
         problem%settings%drift = drift_projection
-        problem%settings%formulation = formulation_ida
+        call dae%init(problem)
         call problem%accelerations(0.0_wp, q, u, error)
         if (allocated(error)) return
-        allocate(y(problem%state_size()), yp(problem%state_size()))
-        call problem%pack_state(q, u, y, yp)
-        call ida%start(problem, problem%settings, 0.0_wp, y, yp, 2.0_wp, error)
+        allocate(y(dae%state_size()), yp(dae%state_size()))
+        call dae%pack_state(q, u, y, yp)
+        call ida%start(dae, problem%settings, 0.0_wp, y, yp, 2.0_wp, error)
         if (.not. allocated(error)) call ida%advance(0.1_wp, 2.0_wp, t, y, yp, root, error)
         start = malloc_count()
         do k = 2, 20
@@ -245,6 +252,7 @@ contains
     subroutine test_independent_speeds(error)
         type(error_type), allocatable, intent(out) :: error
         type(problem_type), target :: problem
+        type(speeds_form_type), target :: speeds
         type(cvode_integrator_type), target :: cvode
         real(wp) :: q(6), u(6), y(9), yp(9), ydot(9), jac(9, 9), g(2), t
         integer(c_long) :: start, calls
@@ -257,28 +265,26 @@ contains
         end if
         call coin_problem(problem, q, u, .false., error)
         if (allocated(error)) return
-        problem%settings%formulation = formulation_maggi
-        call problem%prepare(error)
-        if (allocated(error)) return
+        call speeds%init(problem)
         call problem%accelerations(0.0_wp, q, u, error)
         if (allocated(error)) return
-        call problem%pack_state(q, u, y, yp)
-        ierr = problem%ode_rhs(0.0_wp, y, ydot)
+        call speeds%pack_state(q, u, y, yp)
+        ierr = speeds%ode_rhs(0.0_wp, y, ydot)
         start = malloc_count()
         do i = 1, repeats
-            ierr = ierr + problem%ode_rhs(0.0_wp, y, ydot)
-            ierr = ierr + problem%ode_jacobian(0.0_wp, y, jac)
-            ierr = ierr + problem%roots(0.0_wp, y, g, ydot)
-            worn = problem%speeds_worn(0.0_wp, y)
+            ierr = ierr + speeds%ode_rhs(0.0_wp, y, ydot)
+            ierr = ierr + speeds%ode_jacobian(0.0_wp, y, jac)
+            ierr = ierr + speeds%roots(0.0_wp, y, g, ydot)
+            worn = speeds%worn(0.0_wp, y)
         end do
         calls = malloc_count() - start
         call check_none(error, calls, "rhs, Jacobian, roots and the partition's check in " &
             & // "independent speeds, " // to_text(repeats) // " times each,")
         if (allocated(error)) return
         call check(error, ierr == 0 .and. .not. worn, "a callback failed, or the partition " &
-            & // "wore at its own state: " // problem%failure_text())
+            & // "wore at its own state: " // speeds%failure_text())
         if (allocated(error)) return
-        call cvode%start(problem, problem%settings, 0.0_wp, y, yp, 2.0_wp, error)
+        call cvode%start(speeds, problem%settings, 0.0_wp, y, yp, 2.0_wp, error)
         if (.not. allocated(error)) call cvode%advance(0.1_wp, 2.0_wp, t, y, yp, root, error)
         start = malloc_count()
         do k = 2, 20
@@ -297,13 +303,15 @@ contains
     subroutine test_liftoff_root(error)
         type(error_type), allocatable, intent(out) :: error
         type(problem_type), target :: problem
+        type(ode_form_type) :: ode
         real(wp) :: q(6), u(6), y(12), ydot(12), g(2), force(3)
         integer :: ierr, before
 
         call coin_problem(problem, q, u, .true., error)
         if (allocated(error)) return
+        call ode%init(problem)
         y = [q, u]
-        ierr = problem%ode_rhs(0.0_wp, y, ydot)
+        ierr = ode%ode_rhs(0.0_wp, y, ydot)
         force = problem%eq%constraint_force(1, problem%lambda)
         before = problem%eq%saddle%factorisations
         ierr = ierr + problem%root_values(0.0_wp, q, u, g, a=ydot(7:))
@@ -325,33 +333,33 @@ contains
     !> CVODE interpolates y' for the event functions (a CVodeGetDky per evaluation) only when
     !> they use it: the ODE form with the lift-off watched (its normal force from the
     !> accelerations); not without the lift-off (the theta limit needs theta alone), not in
-    !> independent speeds (y' carries no whole a), not under IDA (the state holds the
-    !> multipliers).
+    !> independent speeds (y' carries no whole a). (IDA gives none: its system, a DAE, has no
+    !> such binding; its state holds the multipliers.)
     subroutine test_event_rates(error)
         type(error_type), allocatable, intent(out) :: error
         type(problem_type), target :: problem
+        type(ode_form_type) :: ode
+        type(speeds_form_type) :: speeds
         real(wp) :: q(6), u(6)
-        logical :: used(4)
+        logical :: used(3)
 
         call coin_problem(problem, q, u, .true., error)
         if (allocated(error)) return
-        used(1) = problem%roots_use_rates()
-        problem%settings%formulation = formulation_maggi
-        used(2) = problem%roots_use_rates()
-        problem%settings%formulation = formulation_ida
-        used(3) = problem%roots_use_rates()
-        problem%settings%formulation = formulation_cvode
+        call ode%init(problem)
+        call speeds%init(problem)
+        used(1) = ode%roots_use_rates()
+        used(2) = speeds%roots_use_rates()
         select type (contact => problem%watches(2)%watch)
         type is (contact_watch_type)
             contact%stop_on_liftoff = .false.
         end select
-        used(4) = problem%roots_use_rates()
-        call check(error, all(used .eqv. [.true., .false., .false., .false.]) &
-            & .and. problem%root_count() == 1, "y' for the events (ODE form with lift-off, " &
-            & // "independent speeds, IDA, ODE form without lift-off): " &
+        used(3) = ode%roots_use_rates()
+        call check(error, all(used .eqv. [.true., .false., .false.]) &
+            & .and. ode%root_count() == 1, "y' for the events (ODE form with lift-off, " &
+            & // "independent speeds, ODE form without lift-off): " &
             & // trim(merge("T ", "F ", used(1))) // trim(merge("T ", "F ", used(2))) &
-            & // trim(merge("T ", "F ", used(3))) // trim(merge("T ", "F ", used(4))) &
-            & // ", expected TFFF with the theta limit's one event function left")
+            & // trim(merge("T ", "F ", used(3))) &
+            & // ", expected TFF with the theta limit's one event function left")
     end subroutine test_event_rates
 
     !> A UCON whose F has explicit time (the turntable) declared time-free is not asked for

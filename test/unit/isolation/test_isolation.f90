@@ -157,7 +157,7 @@ contains
 
         call check_isolated(faulty // "endless_eval.f", short_timeout, report, error)
         if (allocated(error)) return
-        call expect_fault(error, report, rule_timeout, [character(len=40) :: "a UCOSUB call " &
+        call expect_fault(error, report, rule_timeout, [character(len=48) :: "a UCOSUB call " &
             & // "did not return within 0.5 s", "IFLAG = 0, IDRSEL = (1, 1, 1)"])
     end subroutine test_endless_eval
 

@@ -13,7 +13,8 @@ module test_bicycle
     use rollcon_job, only : job_type
     use rollcon_load, only : load_job, input_override_type
     use rollcon_run_job, only : run_job, job_result_type
-    use rollcon_simulation, only : history_type, status_completed
+    use rollcon_simulation, only : history_type, status_completed, status_stopped, &
+        & run_summary_type
     use rollcon_output_layout, only : coord_theta, coord_x, coord_z
     use rollcon_linearisation, only : linear_result_type
     use rollcon_linear_speeds, only : speed_table_type, stability_change_type
@@ -21,6 +22,7 @@ module test_bicycle
     use rollcon_mode_rates, only : exponential_rates
     use rollcon_testing, only : unittest_type, new_unittest, check
     use override_lists, only : add_override
+    use bicycle_equal_wheels, only : test_equal_rows, test_equal_speeds
     implicit none
     private
 
@@ -35,7 +37,7 @@ module test_bicycle
     !> The issue's demand, 1e-6 relative for the eigenvalues and 1e-6 m/s for the speeds; the
     !> linearisation is good to about 1e-11 relative (docs/linear.md) and the bisection to
     !> 1e-9 m/s, so both are met with margins of 100 and more (measured: 3e-11 relative, and
-    !> 6.3e-10 and 9.4e-9 m/s from the paper's speeds given to 13 digits)
+    !> 3.5e-10 and 1.5e-10 m/s at 21 speeds from the paper's speeds given to 13 digits)
     real(wp), parameter :: tol_eigen = 1.0e-6_wp, tol_speed = 1.0e-6_wp
     !> Rates measured from a ride against the linear eigenvalues, relative to |lambda|. The
     !> rides are integrated at ERROR = 1e-10 and nonlinear: at 5 and 7 m/s the lean stays below
@@ -61,6 +63,9 @@ contains
             & new_unittest("ride-5-m-s-settles", test_ride_5), &
             & new_unittest("ride-3-m-s-weave-grows-until-it-falls", test_ride_3), &
             & new_unittest("ride-7-m-s-slowly-capsizes", test_ride_7), &
+            & new_unittest("ride-3-m-s-falls-and-says-so", test_fall), &
+            & new_unittest("equal-wheels-rows-are-direct", test_equal_rows), &
+            & new_unittest("equal-wheels-weave-and-capsize", test_equal_speeds), &
             & new_unittest("ride-error-falls-with-error-past-the-push", test_error_falls)]
     end subroutine collect_bicycle
 
@@ -130,12 +135,14 @@ contains
 
     !> The dataset ridden at speed [m/s] (every part's VX and the wheels' spins -v/r set), to
     !> end [s]: the rear wheel's lean pi/2 - theta [rad] at each output row, and the rows' step.
-    subroutine ride(speed, end, lean, step, status, error)
+    subroutine ride(speed, end, lean, step, status, error, summary)
         real(wp), intent(in) :: speed, end
         real(wp), allocatable, intent(out) :: lean(:)
         real(wp), intent(out) :: step
         integer, intent(out) :: status
         type(error_type), allocatable, intent(out) :: error
+        !> The run's summary
+        type(run_summary_type), intent(out), optional :: summary
         type(input_override_type), allocatable :: set(:)
         type(job_type) :: job
         type(job_result_type) :: ran
@@ -157,6 +164,7 @@ contains
         call run_job(job, ran, error, history)
         if (allocated(error)) return
         status = ran%summary%status
+        if (present(summary)) summary = ran%summary
         lean = 0.5_wp*pi - history%part_values(1, coord_theta)
         time = history%column(1)
         step = time(2) - time(1)
@@ -229,8 +237,8 @@ contains
 
     !> At 3 m/s (below the weave speed) the weave grows at the linear rate (measured while the
     !> lean is small, 1.3 to 3 s: below 0.04 rad) until the bicycle falls: a lean beyond 45
-    !> degrees by 7.3 s (at 7.8 s the rear wheel lies flat, and the run ends there: its
-    !> routine takes body z as the axle and cannot be re-based, docs/rebasing.md).
+    !> degrees by 7.3 s (at 7.83 s the rear wheel lies flat, and the run stops there:
+    !> test_fall).
     subroutine test_ride_3(error)
         type(error_type), allocatable, intent(out) :: error
         real(wp), allocatable :: lean(:), re(:), im(:)
@@ -251,6 +259,37 @@ contains
         call check_rates(lean, step, 1.3_wp, 3.0_wp, [re(k), re(k)], [abs(im(k)), -abs(im(k))], &
             & tol_rate_growing, "at 3 m/s", error)
     end subroutine test_ride_3
+
+    !> At 3 m/s the bicycle falls: at 7.83 s its rear wheel lies flat (theta = 0.05 rad, where
+    !> its rolling contact, about the wheel's axle, has no contact point). That is the run's
+    !> outcome, not a failure: the run stops there (status stopped, limit "fall"), says what
+    !> fell, when and where it lies, and keeps every row up to it, the last at that state.
+    subroutine test_fall(error)
+        type(error_type), allocatable, intent(out) :: error
+        !> The re-basing threshold of a dataset's parts [rad] (docs/rebasing.md)
+        real(wp), parameter :: theta_flat = 0.05_wp
+        type(run_summary_type) :: summary
+        real(wp), allocatable :: lean(:)
+        real(wp) :: step
+        integer :: status
+
+        call ride(3.0_wp, 10.0_wp, lean, step, status, error, summary)
+        if (allocated(error)) return
+        call check(error, status == status_stopped .and. summary%limit == "fall" .and. &
+            & index(summary%message, "part 2 fell: it lies flat at t = ") == 1 .and. &
+            & index(summary%message, "rolling_disk") > 0, "status " // to_text(status) &
+            & // " (" // summary%limit // "): " // summary%message)
+        if (allocated(error)) return
+        ! it fell between the ride test's 45 degrees (by 7.3 s) and the end; the last row is
+        ! the flat state, to the event's root (the lean pi/2 - theta there)
+        call check(error, summary%t_reached > 7.3_wp .and. summary%t_reached < 10.0_wp .and. &
+            & size(lean) == summary%rows, "fell at t = " // to_text(summary%t_reached) &
+            & // " s, " // to_text(size(lean)) // " rows kept of " // to_text(summary%rows))
+        if (allocated(error)) return
+        ! the integrator's root is found to 3e-13 rad (measured); 1e-9 of the lean leaves room
+        call check(error, abs(lean(size(lean))), 0.5_wp*pi - theta_flat, "the last row's lean", &
+            & rel_tol=1.0e-9_wp)
+    end subroutine test_fall
 
     !> At 7 m/s (above the capsize speed) the weave dies and the capsize mode grows slowly at
     !> its linear rate: the lean grows from 3 s to the end, at the rates of both, measured

@@ -29,10 +29,12 @@ contains
         type(unittest_type), allocatable, intent(out) :: tests(:)
 
         tests = [new_unittest("scene-ucosub-builtin-name", test_scene_builtin), &
+            & new_unittest("scene-ucosub-refusing-the-par", test_scene_refused_par), &
             & new_unittest("scene-ucosub-file", test_scene_file), &
             & new_unittest("dataset-ucosub-file", test_dataset_file), &
             & new_unittest("routine-closes-standard-units", test_closes_units), &
             & new_unittest("routine-changes-directory", test_chdir), &
+            & new_unittest("routine-faulting-after-end", test_faults_after_end), &
             & new_unittest("sigterm-stops-the-child", test_sigterm), &
             & new_unittest("sigkill-stops-the-child", test_sigkill)]
     end subroutine collect_run_apart
@@ -44,6 +46,28 @@ contains
 
         call same_rows("coin -q", "coin --ucosub disk -q", "coin", error)
     end subroutine test_scene_builtin
+
+    !> `run coin --ucosub knife_edge`: the built-in knife edge refuses the rolling disk's PAR a
+    !> disk scene gives its no-slip UCONs. The one-line error says that the routine chosen
+    !> refused the scene's PAR, what that PAR is, and which built-in routines take it; nothing
+    !> is written.
+    subroutine test_scene_refused_par(error)
+        type(error_type), allocatable, intent(out) :: error
+        character(len=:), allocatable :: program, err
+        integer :: status
+
+        call rollcon_program(program, error)
+        if (allocated(error)) return
+        call execute_command_line("rm -rf " // scratch // " && mkdir -p " // scratch)
+        call run_rollcon(program, "run coin --ucosub knife_edge -q -o " // scratch // "/out", &
+            & scratch // "/par.out", scratch // "/par.err", status)
+        err = file_text(scratch // "/par.err")
+        call check(error, status == 1 .and. index(err, "rollcon: error: UCON/1: ") == 1 .and. &
+            & index(err, "here the built-in knife_edge, refused the PAR a disk scene gives " &
+            & // "them, the rolling disk's") > 0 .and. index(err, "routines that take it: " &
+            & // "disk, rolling_disk") > 0 .and. .not. file_exists(scratch // "/out/coin.csv"), &
+            & "exit status " // to_text(status) // ", stderr: " // err)
+    end subroutine test_scene_refused_par
 
     !> `run coin --ucosub ucon/adams/rolling_disk/ucosub.f` (the generated routine's fixed-form
     !> file, run in a child process) completes and writes the rows of `--ucosub rolling_disk`
@@ -78,6 +102,15 @@ contains
 
         call odd_routine("chdir", error)
     end subroutine test_chdir
+
+    !> A routine that faults when called after the run's END: a run calls a user's routine at
+    !> its own states and times only (whether its constraints do work is judged from the rows,
+    !> rollcon_problem constraint_power), so it completes.
+    subroutine test_faults_after_end(error)
+        type(error_type), allocatable, intent(out) :: error
+
+        call odd_routine("faults_after_end", error)
+    end subroutine test_faults_after_end
 
     !> SIGTERM to rollcon while its child is in an endless call of the routine: the child is
     !> gone within child_grace_ms, and the earlier run's CSV is as it was.

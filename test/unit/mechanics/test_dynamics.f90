@@ -9,10 +9,15 @@ module test_dynamics
         & kinetic_energy, body_mass_and_force
     use rollcon_lapack, only : factor_dense, solve_factored
     use rollcon_problem, only : problem_type
-    use rollcon_run_settings, only : run_settings_type, drift_none, drift_baumgarte, &
-        & formulation_cvode, formulation_ida
+    use rollcon_run_settings, only : drift_none, drift_baumgarte, formulation_cvode, &
+        & formulation_ida, formulation_maggi
+    use rollcon_dynamic_system, only : dynamic_system_type
+    use rollcon_ode_form, only : ode_form_type
+    use rollcon_dae_form, only : dae_form_type
+    use rollcon_speeds_form, only : speeds_form_type
+    use rollcon_formulation_choice, only : new_formulation
     use rollcon_integrator, only : integrator_type
-    use rollcon_integrator_choice, only : new_integrator
+    use rollcon_integrator_choice, only : start_integrator
     use rollcon_cvode, only : cvode_integrator_type
     use rollcon_ida, only : ida_integrator_type
     use rollcon_dae, only : dae_size, dae_residual, dae_jacobian
@@ -130,11 +135,13 @@ contains
         type(error_type), allocatable, intent(out) :: error
         integer, intent(in) :: drift
         type(problem_type), target :: problem
+        type(ode_form_type) :: ode
         type(error_type), allocatable :: failure
         real(wp) :: q(6), u(6), y(12), yh(12), jac(12, 12), fp(12), fm(12), scale
         integer :: j, ierr
 
         call generic_problem(problem, q, u, drift)
+        call ode%init(problem)
         y = [q, u]
         call problem%eq%ode_jacobian(0.0_wp, q, u, problem%settings%baumgarte(), jac, failure)
         if (allocated(failure)) then
@@ -145,9 +152,9 @@ contains
         do j = 1, 12
             yh = y
             yh(j) = y(j) + h_fd
-            ierr = problem%ode_rhs(0.0_wp, yh, fp)
+            ierr = ode%ode_rhs(0.0_wp, yh, fp)
             yh(j) = y(j) - h_fd
-            ierr = ierr + problem%ode_rhs(0.0_wp, yh, fm)
+            ierr = ierr + ode%ode_rhs(0.0_wp, yh, fm)
             call check(error, ierr == 0, "right-hand side failed")
             if (allocated(error)) return
             call check(error, jac(:, j), (fp - fm)/(2.0_wp*h_fd), "ODE Jacobian column " &
@@ -388,33 +395,63 @@ contains
             & // to_text(problem%ucon_count()))
     end subroutine test_problem_model
 
-    !> The ODE form is integrated by CVODE, the DAE form by IDA (docs/design.md §4): the
-    !> settings' formulation picks the integrator's type.
+    !> The settings' formulation makes the system (new_formulation, a run's one choice): the ODE
+    !> form, the DAE form or the independent speeds; and the system's form takes its integrator
+    !> (start_integrator): CVODE the two ODE forms, IDA the DAE form (docs/design.md §4). Each
+    !> is packed at the disk's generic state and started on it.
     subroutine test_integrator_choice(error)
         type(error_type), allocatable, intent(out) :: error
-        type(run_settings_type) :: settings
-        class(integrator_type), allocatable :: integrator
-        logical :: right
+        integer, parameter :: formulations(3) = [formulation_cvode, formulation_ida, &
+            & formulation_maggi]
+        character(len=*), parameter :: names(3) = [character(len=5) :: "cvode", "ida", "maggi"]
+        !> The system's type (1 ODE form, 2 DAE form, 3 independent speeds) and the
+        !> integrator's (1 CVODE, 2 IDA) each formulation must give
+        integer, parameter :: systems(3) = [1, 2, 3], integrators(3) = [1, 2, 1]
+        type(problem_type), target :: problem
+        class(dynamic_system_type), allocatable, target :: system
+        class(integrator_type), allocatable, target :: integrator
+        real(wp) :: q(6), u(6)
+        real(wp), allocatable :: y(:), yp(:)
+        integer :: k, got_system, got_integrator
 
-        settings%formulation = formulation_cvode
-        call new_integrator(settings, integrator)
-        select type (integrator)
-        type is (cvode_integrator_type)
-            right = .true.
-        class default
-            right = .false.
-        end select
-        call check(error, right, "formulation 'cvode' gets CVODE")
-        if (allocated(error)) return
-        settings%formulation = formulation_ida
-        call new_integrator(settings, integrator)
-        select type (integrator)
-        type is (ida_integrator_type)
-            right = .true.
-        class default
-            right = .false.
-        end select
-        call check(error, right, "formulation 'ida' gets IDA")
+        call generic_problem(problem, q, u, drift_none)
+        do k = 1, size(formulations)
+            problem%settings%formulation = formulations(k)
+            call problem%accelerations(0.0_wp, q, u, error)
+            if (allocated(error)) return
+            call new_formulation(problem, system)
+            select type (system)
+            type is (ode_form_type)
+                got_system = 1
+            type is (dae_form_type)
+                got_system = 2
+            type is (speeds_form_type)
+                got_system = 3
+            class default
+                got_system = 0
+            end select
+            if (allocated(y)) deallocate(y, yp)
+            allocate(y(system%state_size()), yp(system%state_size()))
+            call system%pack_state(q, u, y, yp)
+            call start_integrator(system, problem%settings, 0.0_wp, y, yp, 1.0_wp, integrator, &
+                & error)
+            if (allocated(error)) return
+            select type (integrator)
+            type is (cvode_integrator_type)
+                got_integrator = 1
+            type is (ida_integrator_type)
+                got_integrator = 2
+            class default
+                got_integrator = 0
+            end select
+            call integrator%destroy()
+            call system%release()
+            call check(error, got_system == systems(k) .and. got_integrator == integrators(k), &
+                & "formulation '" // trim(names(k)) // "' made system " // to_text(got_system) &
+                & // " on integrator " // to_text(got_integrator) // ", expected " &
+                & // to_text(systems(k)) // " on " // to_text(integrators(k)))
+            if (allocated(error)) return
+        end do
     end subroutine test_integrator_choice
 
 end module test_dynamics

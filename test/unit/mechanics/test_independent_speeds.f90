@@ -7,6 +7,7 @@ module test_independent_speeds
     use rollcon_error, only : error_type
     use rollcon_text, only : to_text
     use rollcon_problem, only : problem_type
+    use rollcon_speeds_form, only : speeds_form_type
     use rollcon_run_settings, only : run_settings_type, drift_none, drift_baumgarte, &
         & formulation_maggi, formulation_cvode, method_adams
     use rollcon_scene, only : read_scene, choice_code
@@ -54,7 +55,7 @@ contains
             & new_unittest("datasets-match-ode-form", test_datasets)]
     end subroutine collect_independent_speeds
 
-    !> A generic state of the paper's disk (tilted, turning), in independent speeds.
+    !> A generic state of the paper's disk (tilted, turning).
     subroutine generic_disk(problem, q, u, drift)
         type(problem_type), intent(inout), target :: problem
         real(wp), intent(out) :: q(6), u(6)
@@ -71,12 +72,11 @@ contains
         call build_disk_problem(scene, rolling_disk_ucosub, problem, q, u, error)
         if (allocated(error)) error stop "generic_disk: " // error%message
         problem%settings%drift = drift
-        problem%settings%formulation = formulation_maggi
         call problem%prepare(error)
         if (allocated(error)) error stop "generic_disk: " // error%message
     end subroutine generic_disk
 
-    !> data/<name>.adm at its start, in independent speeds.
+    !> data/<name>.adm at its start.
     subroutine dataset_start(name, problem, q, u, error)
         character(len=*), intent(in) :: name
         type(problem_type), intent(inout), target :: problem
@@ -90,29 +90,31 @@ contains
         if (allocated(error)) return
         call build_adm_problem(adm, disk, problem, q, u, error)
         if (allocated(error)) return
-        problem%settings%formulation = formulation_maggi
         call problem%prepare(error)
     end subroutine dataset_start
 
-    !> The Newton matrix of the problem at (q, u) (its partition chosen there) against central
-    !> differences of its right-hand side: every row, or its first `rows`.
+    !> The Newton matrix of the problem in independent speeds at (q, u) (its partition chosen
+    !> there) against central differences of its right-hand side: every row, or its first
+    !> `rows`.
     subroutine check_jacobian(problem, q, u, what, error, rows)
-        type(problem_type), intent(inout) :: problem
+        type(problem_type), intent(inout), target :: problem
         real(wp), intent(in) :: q(:), u(:)
         character(len=*), intent(in) :: what
         type(error_type), allocatable, intent(out) :: error
         integer, intent(in), optional :: rows
+        type(speeds_form_type) :: speeds
         real(wp), allocatable :: y(:), yp(:), yh(:), jac(:, :), fp(:), fm(:)
         real(wp) :: scale
         integer :: j, m, ierr, last
 
+        call speeds%init(problem)
         call problem%accelerations(0.0_wp, q, u, error)
         if (allocated(error)) return
-        m = problem%state_size()
+        m = speeds%state_size()
         allocate(y(m), yp(m), yh(m), fp(m), fm(m), jac(m, m))
-        call problem%pack_state(q, u, y, yp)
-        ierr = problem%ode_jacobian(0.0_wp, y, jac)
-        call check(error, ierr == 0, what // ": the Jacobian failed: " // problem%failure_text())
+        call speeds%pack_state(q, u, y, yp)
+        ierr = speeds%ode_jacobian(0.0_wp, y, jac)
+        call check(error, ierr == 0, what // ": the Jacobian failed: " // speeds%failure_text())
         if (allocated(error)) return
         last = m
         if (present(rows)) last = rows
@@ -120,16 +122,17 @@ contains
         do j = 1, m
             yh = y
             yh(j) = y(j) + h_fd
-            ierr = problem%ode_rhs(0.0_wp, yh, fp)
+            ierr = speeds%ode_rhs(0.0_wp, yh, fp)
             yh(j) = y(j) - h_fd
-            ierr = ierr + problem%ode_rhs(0.0_wp, yh, fm)
+            ierr = ierr + speeds%ode_rhs(0.0_wp, yh, fm)
             call check(error, ierr == 0, what // ": the right-hand side failed")
             if (allocated(error)) return
             call check(error, jac(:last, j), (fp(:last) - fm(:last))/(2.0_wp*h_fd), what &
                 & // ": column " &
                 & // to_text(j) // " of d(u, a_i)/d(q, v)", abs_tol=tol_fd*scale)
-            if (allocated(error)) return
+            if (allocated(error)) exit
         end do
+        call speeds%release()
     end subroutine check_jacobian
 
     subroutine test_jacobian_disk(error)
@@ -180,20 +183,23 @@ contains
             & "disk_and_sphere", "chaplygin_sled"]
         integer, parameter :: expected(3) = [9, 18, 8]
         type(problem_type), target, allocatable :: problem
+        type(speeds_form_type) :: speeds
         real(wp), allocatable :: q(:), u(:)
         real(wp) :: q6(6), u6(6)
         integer :: k
 
         allocate(problem)
         call generic_disk(problem, q6, u6, drift_none)
-        call check(error, problem%state_size(), 9, "the disk's states")
+        call speeds%init(problem)
+        call check(error, speeds%state_size(), 9, "the disk's states")
         if (allocated(error)) return
         deallocate(problem)
         do k = 1, size(names)
             allocate(problem)
             call dataset_start(trim(names(k)), problem, q, u, error)
             if (allocated(error)) return
-            call check(error, problem%state_size(), expected(k), trim(names(k)) // "'s states")
+            call speeds%init(problem)
+            call check(error, speeds%state_size(), expected(k), trim(names(k)) // "'s states")
             if (allocated(error)) return
             deallocate(problem)
         end do
@@ -205,18 +211,20 @@ contains
     subroutine test_on_constraints(error)
         type(error_type), allocatable, intent(out) :: error
         type(problem_type), target :: problem
+        type(speeds_form_type) :: speeds
         real(wp) :: q(6), u(6), y(9), yp(9), q2(6), u2(6)
 
         call generic_disk(problem, q, u, drift_none)
+        call speeds%init(problem)
         call problem%accelerations(0.0_wp, q, u, error)
         if (allocated(error)) return
-        call problem%pack_state(q, u, y, yp)
+        call speeds%pack_state(q, u, y, yp)
         call check(error, y(:6), q, "y starts with q", abs_tol=0.0_wp)
         if (allocated(error)) return
         y(7:) = y(7:) + [0.3_wp, -1.1_wp, 2.0_wp]
-        call problem%unpack_state(0.0_wp, y, q2, u2, error)
+        call speeds%unpack_state(0.0_wp, y, q2, u2, error)
         if (allocated(error)) return
-        call check(error, u2(problem%speeds%partition%independent), y(7:), &
+        call check(error, u2(speeds%speeds%partition%independent), y(7:), &
             & "the independent speeds are y's", abs_tol=0.0_wp)
         if (allocated(error)) return
         call problem%eq%constraints%evaluate(problem%model, 0.0_wp, q2, u2, 1, error)
@@ -268,6 +276,7 @@ contains
         type(error_type), allocatable, intent(out) :: error
         character(len=*), parameter :: folder = "build/rollcon-test/independent-speeds"
         type(problem_type), target, allocatable :: problem
+        type(speeds_form_type) :: speeds
         type(adm_model_type) :: adm
         procedure(ucosub_interface), pointer :: disk
         real(wp), allocatable :: q(:), u(:), y(:), yp(:), q2(:), u2(:), residual(:)
@@ -284,22 +293,22 @@ contains
         allocate(problem)
         call build_adm_problem(adm, disk, problem, q, u, error)
         if (allocated(error)) return
-        problem%settings%formulation = formulation_maggi
         problem%settings%drift = drift_none
         call problem%prepare(error)
         if (allocated(error)) return
+        call speeds%init(problem)
         call problem%accelerations(0.0_wp, q, u, error)
         if (allocated(error)) return
-        call check(error, problem%eq%nc == 40 .and. size(problem%speeds%partition%sparse) == 1 &
-            & .and. problem%speeds%partition%block_sparse(1), "one block of 40 UCONs, " &
+        call check(error, problem%eq%nc == 40 .and. size(speeds%speeds%partition%sparse) == 1 &
+            & .and. speeds%speeds%partition%block_sparse(1), "one block of 40 UCONs, " &
             & // "factored by KLU: " // to_text(problem%eq%nc) // " UCONs")
         if (allocated(error)) return
-        allocate(y(problem%state_size()), yp(problem%state_size()))
-        call problem%pack_state(q, u, y, yp)
+        allocate(y(speeds%state_size()), yp(speeds%state_size()))
+        call speeds%pack_state(q, u, y, yp)
         y(size(q) + 1:) = y(size(q) + 1:) + [(0.5_wp*sin(real(i, wp)), &
             & i = 1, size(y) - size(q))]
         allocate(q2(size(q)), u2(size(u)))
-        call problem%unpack_state(0.0_wp, y, q2, u2, error)
+        call speeds%unpack_state(0.0_wp, y, q2, u2, error)
         if (allocated(error)) return
         call problem%eq%constraints%evaluate(problem%model, 0.0_wp, q2, u2, need_value &
             & + need_first + need_time, error)
@@ -312,6 +321,7 @@ contains
         call check(error, residual, [(0.0_wp, k = 1, problem%eq%nc)], "the UCONs' velocity " &
             & // "forms at the unpacked rates", abs_tol=tol_on*maxval(abs(u2)))
         if (allocated(error)) return
+        call speeds%release()
         call check_jacobian(problem, q2, u2, "chain of 8 links", error, rows=size(q))
         if (allocated(error)) return
         call problem%release()

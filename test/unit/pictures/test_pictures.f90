@@ -14,8 +14,7 @@ module test_pictures
     use rollcon_figures, only : plot_output, figure_file, figure_names, model_figure_names
     use rollcon_gif, only : animate_output
     use rollcon_gnuplot, only : gnuplot_available
-    use rollcon_contact_watch, only : contact_names
-    use rollcon_request_watch, only : request_column_patterns
+    use rollcon_watch_columns, only : contact_names, request_column_patterns
     use rollcon_testing, only : unittest_type, new_unittest, check, skip_test
     use picture_files, only : disk_run, two_part_run, falling_run, write_run, make_folder, &
         & remove_folder, write_lines, expect_message, file_starts_with

@@ -7,7 +7,7 @@ module layout_headers
     use rollcon_text, only : to_text
     use rollcon_output_layout, only : output_layout_type, new_output_layout, read_layout, &
         & name_length
-    use rollcon_contact_watch, only : contact_names
+    use rollcon_watch_columns, only : contact_names
     use rollcon_testing, only : check
     implicit none
     private

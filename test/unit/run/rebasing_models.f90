@@ -13,11 +13,13 @@ module rebasing_models
     use rollcon_adm_reader, only : read_adm
     use rollcon_adm_build, only : build_adm_problem
     use rollcon_output_files, only : write_text_file, delete_file
+    use rollcon_ucosub_contract, only : ucosub_interface
+    use rollcon_disk_reference, only : rolling_disk_ucosub
     implicit none
     private
 
     public :: run_dataset, tumbling_sphere, spinning_sphere, falling_disk, sphere_near_flat
-    public :: sphere_radius, sphere_speed, sphere_end
+    public :: sphere_radius, sphere_speed, sphere_end, users_disk
 
     !> Sphere radius [m], speed of its centre along +X [m/s], end of its runs [s]: 10 rad/s,
     !> a turn in 0.63 s, about 32 turns and four re-basings a turn
@@ -107,33 +109,39 @@ contains
     !> The coin's disk (data/coin.adm's part 2) at rest, tilted 60 degrees (its CM marker turned
     !> 60 degrees about x, centre at R sin(60 deg)), served by the hand-checked disk routine,
     !> whose F takes body z as the axle: it falls flat within a second.
-    function falling_disk(formulation) result(text)
+    function falling_disk(formulation, routine) result(text)
         character(len=*), intent(in) :: formulation
-        character(len=:), allocatable :: text
+        !> "ROUTINE=disk" (the default) or "" (the model's UCOSUB serves the UCONs)
+        character(len=*), intent(in), optional :: routine
+        character(len=:), allocatable :: text, named
 
+        named = ", ROUTINE=disk"
+        if (present(routine)) named = routine
         text = "falling disk" // nl // "UNITS/SYSTEM=SI" // nl // "PART/1, GROUND" // nl &
             & // "PART/2, MASS=0.73513268094001172, CM=21" // nl &
             & // ", IP=1.8383830518607345E-3, 1.8383830518607345E-3, 3.6756634047000595E-3" &
             & // nl // ", QG=0, 0, 0.086602540378443865" // nl &
             & // "MARKER/21, PART=2, REULER=0D, 60D, 0D" // nl // "ACCGRAV/KGRAV=-9.81" // nl &
-            & // "UCON/1, FUNCTION=USER(2, 21, 22, 23, 14, 15, 24, 25, 26, 0.1, 1), " &
-            & // "ROUTINE=disk" // nl &
-            & // "UCON/2, FUNCTION=USER(2, 21, 22, 23, 14, 15, 24, 25, 26, 0.1, 2), " &
-            & // "ROUTINE=disk" // nl &
-            & // "UCON/3, FUNCTION=USER(2, 21, 22, 23, 14, 15, 24, 25, 26, 0.1, 3), " &
-            & // "ROUTINE=disk" // nl &
+            & // "UCON/1, FUNCTION=USER(2, 21, 22, 23, 14, 15, 24, 25, 26, 0.1, 1)" // named &
+            & // nl // "UCON/2, FUNCTION=USER(2, 21, 22, 23, 14, 15, 24, 25, 26, 0.1, 2)" &
+            & // named // nl &
+            & // "UCON/3, FUNCTION=USER(2, 21, 22, 23, 14, 15, 24, 25, 26, 0.1, 3)" // named &
+            & // nl &
             & // "SIMULATE/DYNAMIC, END=3, DTOUT=0.01" // nl &
             & // "INTEGRATOR/FORMULATION=" // formulation // ", ERROR=1.0E-12" // nl // "END"
     end function falling_disk
 
     !> Write text as build/rebasing-<tag>.adm, read and build it, run it (rows kept in
     !> history, and written to csv_path when given), and delete the dataset.
-    subroutine run_dataset(tag, text, summary, history, error, csv_path)
+    subroutine run_dataset(tag, text, summary, history, error, csv_path, default_ucosub)
         character(len=*), intent(in) :: tag, text
         type(run_summary_type), intent(out) :: summary
         type(history_type), intent(out) :: history
         type(error_type), allocatable, intent(out) :: error
         character(len=*), intent(in), optional :: csv_path
+        !> The model's UCOSUB, serving the UCONs that name no ROUTINE
+        procedure(ucosub_interface), optional :: default_ucosub
+        procedure(ucosub_interface), pointer :: model_ucosub
         type(adm_model_type) :: adm
         type(problem_type), target :: problem
         type(run_options_type) :: options
@@ -147,7 +155,9 @@ contains
         call read_adm(path, adm, error)
         call delete_file(path, delete_error)
         if (allocated(error)) return
-        call build_adm_problem(adm, problem=problem, q0=q0, u0=u0, error=error)
+        model_ucosub => null()
+        if (present(default_ucosub)) model_ucosub => default_ucosub
+        call build_adm_problem(adm, model_ucosub, problem=problem, q0=q0, u0=u0, error=error)
         if (allocated(error)) return
         options%end_time = adm%run%settings%end_time
         options%output_step = adm%run%settings%output_step
@@ -155,5 +165,22 @@ contains
         if (present(csv_path)) options%csv_path = csv_path
         call simulate(problem, q0, u0, options, summary, error, history)
     end subroutine run_dataset
+
+    !> A user's rolling-disk UCOSUB (no built-in routine, for the driver): the hand-checked
+    !> disk's F, which takes body z as the axle.
+    subroutine users_disk(id, time, q, par, npar, idrsel, iflag, scalar, array, xmatrx)
+        integer, intent(in) :: id
+        real(wp), intent(in) :: time
+        real(wp), intent(in) :: q(30)
+        real(wp), intent(in) :: par(*)
+        integer, intent(in) :: npar
+        integer, intent(in) :: idrsel(3)
+        integer, intent(in) :: iflag
+        real(wp), intent(inout) :: scalar
+        real(wp), intent(inout) :: array(30)
+        real(wp), intent(inout) :: xmatrx(30, 30)
+
+        call rolling_disk_ucosub(id, time, q, par, npar, idrsel, iflag, scalar, array, xmatrx)
+    end subroutine users_disk
 
 end module rebasing_models

@@ -17,10 +17,19 @@ module test_drift
         & coord_x, coord_z, coord_theta, coord_phi
     use rollcon_testing, only : unittest_type, new_unittest, check
     use motion_runs, only : run_in_memory, tipping_coin
+    use rollcon_load, only : load_job, input_override_type
+    use rollcon_job, only : job_type
+    use rollcon_run_job, only : run_job, job_result_type
+    use rollcon_output_files, only : make_folders, write_text_file
+    use command_runs, only : file_text
+    use override_lists, only : add_override
     implicit none
     private
 
     public :: collect_drift
+
+    !> Scratch folder of the suite
+    character(len=*), parameter :: scratch = "build/test_drift"
 
 contains
 
@@ -33,7 +42,11 @@ contains
             & new_unittest("sound-run-within-drift-bounds", test_sound_run), &
             & new_unittest("position-height-holds-z-to-atol", test_position_height_holds), &
             & new_unittest("position-height-matches-velocity-form", test_position_height), &
-            & new_unittest("long-run-energy-and-no-drift-growth", test_long_run)]
+            & new_unittest("long-run-energy-and-no-drift-growth", test_long_run), &
+            & new_unittest("energy-judged-from-zero", test_energy_from_zero), &
+            & new_unittest("right-pendulums-complete", test_right_pendulums), &
+            & new_unittest("loose-pendulum-inaccurate", test_loose_pendulum), &
+            & new_unittest("energy-advice-fits-the-integrator", test_energy_advice)]
     end subroutine collect_drift
 
     !> The CSV's last column is the height residual Z - R sin(theta) of each row, and the
@@ -215,6 +228,147 @@ contains
         call check(error, late <= 10.0_wp*early + 1.0e-2_wp*scene%run%atol, "residual grew from " &
             & // to_text(early) // " (first 20 s) to " // to_text(late) // " (last 20 s)")
     end subroutine test_long_run
+
+    !> A pendulum released level with the origin has E0 = 0 J (test/drift/energy_from_zero.adm):
+    !> its drift is judged all the same, against the energy it exchanges, m g L = 19.6 J (the
+    !> scale is that to the drift itself: T_max = m g L + the drift). At ERROR = 1e-3 the energy
+    !> wanders by 0.5 J, 2.5 % of it: INACCURATE, the message naming the energy and a tighter
+    !> rtol; at ERROR = 1e-6 by 1.2e-3 J (6e-5 of it, 0.3 of its bound): completed, and judged.
+    subroutine test_energy_from_zero(error)
+        type(error_type), allocatable, intent(out) :: error
+        !> m g L of the dataset [J]
+        real(wp), parameter :: exchanged = 9.80665_wp*2.0_wp
+        type(run_summary_type) :: summary
+
+        call run_drift_dataset("energy_from_zero", "1e-3", summary, error)
+        if (allocated(error)) return
+        call check(error, summary%energy_reference == 0.0_wp .and. summary%status &
+            & == status_inaccurate .and. index(summary%message, "energy drift") > 0 .and. &
+            & index(summary%message, "a tighter rtol") > 0, "ERROR = 1e-3: status " &
+            & // to_text(summary%status) // ", E0 " // to_text(summary%energy_reference) &
+            & // " J: " // summary%message)
+        if (allocated(error)) return
+        ! the scale is m g L to the drift: at most the 0.5 J it wandered above it
+        call check(error, summary%energy_scale, exchanged, "the energy scale [J]", &
+            & abs_tol=summary%energy_drift*summary%energy_scale + 1.0e-12_wp)
+        if (allocated(error)) return
+        call run_drift_dataset("energy_from_zero", "1e-6", summary, error)
+        if (allocated(error)) return
+        call check(error, summary%status == status_completed .and. summary%energy_bound > 0.0_wp &
+            & .and. summary%energy_drift > 0.0_wp .and. summary%energy_drift &
+            & <= summary%energy_bound, "ERROR = 1e-6: status " // to_text(summary%status) &
+            & // ", drift " // to_text(summary%energy_drift) // ", bound " &
+            & // to_text(summary%energy_bound))
+    end subroutine test_energy_from_zero
+
+    !> Right runs complete: a compound pendulum from 60 degrees and a double pendulum at ERROR
+    !> = 1e-10 (their periods and angles right to 1e-8 and better) drift by 7.7e-8 and 2.0e-8
+    !> of their energy scales, within the bound: one step's allowance there is atol-bound
+    !> (1e-10 on states of 0.1 to 1), which the bound takes in.
+    subroutine test_right_pendulums(error)
+        type(error_type), allocatable, intent(out) :: error
+        character(len=15), parameter :: names(2) = ["pendulum_swing ", "double_pendulum"]
+        type(run_summary_type) :: summary
+        integer :: k
+
+        do k = 1, size(names)
+            call run_drift_dataset(trim(names(k)), "", summary, error)
+            if (allocated(error)) return
+            call check(error, summary%status == status_completed .and. summary%energy_bound &
+                & > 0.0_wp .and. summary%energy_drift <= summary%energy_bound, trim(names(k)) &
+                & // ": status " // to_text(summary%status) // ", drift " &
+                & // to_text(summary%energy_drift) // ", bound " &
+                & // to_text(summary%energy_bound) // ": " // text_of(summary%message))
+            if (allocated(error)) return
+        end do
+    end subroutine test_right_pendulums
+
+    !> A deliberately loose run, the compound pendulum at ERROR = 1e-2: its energy drifts by
+    !> 63 % of its scale (0.77 J of 1.23 J) and the run is INACCURATE; on IDA the advice is a
+    !> tighter rtol, never a drift control IDA does not take.
+    subroutine test_loose_pendulum(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(run_summary_type) :: summary
+
+        call run_drift_dataset("pendulum_swing", "1e-2", summary, error)
+        if (allocated(error)) return
+        call check(error, summary%status == status_inaccurate .and. summary%energy_drift &
+            & > 0.1_wp .and. index(summary%message, "a tighter rtol (now 0.01)") > 0 .and. &
+            & index(summary%message, "projection") == 0, "status " &
+            & // to_text(summary%status) // ", drift " // to_text(summary%energy_drift) &
+            & // ": " // text_of(summary%message))
+    end subroutine test_loose_pendulum
+
+    !> The advice names a setting the run's integrator takes and does not use yet: CVODE BDF
+    !> without drift control is told drift = 'projection'; CVODE with projection, and CVODE
+    !> Adams with Baumgarte terms, only a tighter rtol (the pendulum released level at ERROR =
+    !> 1e-3, INACCURATE on each).
+    subroutine test_energy_advice(error)
+        type(error_type), allocatable, intent(out) :: error
+        character(len=*), parameter :: settings(3) = [character(len=48) :: &
+            & "FORMULATION=CVODE, DRIFT=NONE", "FORMULATION=CVODE, DRIFT=PROJECTION", &
+            & "FORMULATION=CVODE, METHOD=ADAMS, DRIFT=BAUMGARTE"]
+        logical, parameter :: projection(3) = [.true., .false., .false.]
+        character(len=:), allocatable :: text, variant
+        type(run_summary_type) :: summary
+        integer :: k, at
+
+        text = file_text("test/drift/energy_from_zero.adm")
+        at = index(text, "INTEGRATOR/ERROR = 1e-3")
+        do k = 1, size(settings)
+            variant = text(:at - 1) // "INTEGRATOR/ERROR = 1e-3, " // trim(settings(k)) &
+                & // text(at + len("INTEGRATOR/ERROR = 1e-3"):)
+            call make_folders(scratch, error)
+            if (allocated(error)) return
+            call write_text_file(scratch // "/advice.adm", variant, error)
+            if (allocated(error)) return
+            call run_dataset_file(scratch // "/advice.adm", "", summary, error)
+            if (allocated(error)) return
+            call check(error, summary%status == status_inaccurate .and. &
+                & (index(summary%message, "drift = 'projection'") > 0 .eqv. projection(k)) &
+                & .and. index(summary%message, "a tighter rtol") > 0, trim(settings(k)) &
+                & // ": status " // to_text(summary%status) // ": " // text_of(summary%message))
+            if (allocated(error)) return
+        end do
+    end subroutine test_energy_advice
+
+    !> Run test/drift/NAME.adm (at ERROR = error_value unless ""), no files.
+    subroutine run_drift_dataset(name, error_value, summary, error)
+        character(len=*), intent(in) :: name, error_value
+        type(run_summary_type), intent(out) :: summary
+        type(error_type), allocatable, intent(out) :: error
+
+        call run_dataset_file("test/drift/" // name // ".adm", error_value, summary, error)
+    end subroutine run_drift_dataset
+
+    !> Run a dataset file (at INTEGRATOR ERROR = error_value unless ""), no files.
+    subroutine run_dataset_file(path, error_value, summary, error)
+        character(len=*), intent(in) :: path, error_value
+        type(run_summary_type), intent(out) :: summary
+        type(error_type), allocatable, intent(out) :: error
+        type(input_override_type), allocatable :: set(:)
+        type(job_type) :: job
+        type(job_result_type) :: ran
+
+        allocate(set(0))
+        if (len(error_value) > 0) call add_override(set, "integrator%error", error_value)
+        call load_job(path, job, error, overrides=set)
+        if (allocated(error)) return
+        job%output_dir = ""
+        job%quiet = .true.
+        call run_job(job, ran, error)
+        if (allocated(error)) return
+        summary = ran%summary
+    end subroutine run_dataset_file
+
+    !> An allocatable text, "" when it is not allocated.
+    pure function text_of(text) result(value)
+        character(len=:), allocatable, intent(in) :: text
+        character(len=:), allocatable :: value
+
+        value = ""
+        if (allocated(text)) value = text
+    end function text_of
 
     !> The contact height as a position UCON (Z - R sin(theta) = 0, GGL form in IDA, projection
     !> in CVODE) gives the motion of its velocity form F3, and holds Z = R sin(theta).

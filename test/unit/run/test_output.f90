@@ -45,6 +45,7 @@ contains
             & new_unittest("csv-extremes-read-back", test_extremes_read_back), &
             & new_unittest("csv-row-text-is-fortran-format", test_row_text), &
             & new_unittest("csv-row-text-exact-range", test_row_text_exact_range), &
+            & new_unittest("csv-row-text-tiny-numbers", test_row_text_tiny), &
             & new_unittest("huge-output-refused", test_huge_output), &
             & new_unittest("output-limit-is-the-option", test_output_limit), &
             & new_unittest("failed-figures-leave-nothing", test_failed_figures), &
@@ -186,6 +187,60 @@ contains
             end if
         end do
     end subroutine test_row_text_exact_range
+
+    !> Numbers below 1e-16, which the row text converts in multi-word integers (a residual of
+    !> 1e-17, a subnormal), have the characters of Fortran's es24.16e3: the powers of ten from
+    !> 1e-17 to 1e-323 and their neighbours, the smallest subnormal and normal numbers, exact
+    !> ties of the 17th digit among short significands, and 12000 rows of 40 doubles whose
+    !> significand bits are random (some cut short, to make ties) and whose binary exponents
+    !> span 2^-1074 to 2^-54. Exact comparison.
+    subroutine test_row_text_tiny(error)
+        type(error_type), allocatable, intent(out) :: error
+        real(wp), allocatable :: edges(:)
+        real(wp) :: values(40), draw(5), power
+        character(len=25*40) :: line
+        character(len=:), allocatable :: expected
+        integer(int64) :: bits
+        integer :: i, j, length, exponent
+
+        edges = [4.9e-324_wp, -4.9e-324_wp, 1.5e-323_wp, tiny(1.0_wp), &
+            & nearest(tiny(1.0_wp), -1.0_wp), 1.0e-17_wp, 9.9999999999999998e-17_wp]
+        do i = 17, 323
+            power = 10.0_wp**(-i)
+            edges = [edges, power, nearest(power, -1.0_wp), nearest(power, 1.0_wp), -power]
+        end do
+        do i = 1, size(edges), size(values)
+            associate (part => edges(i:min(i + size(values) - 1, size(edges))))
+                call row_text(part, line, length)
+                expected = fortran_row_text(part)
+                call check(error, line(:length) == expected, "edges: '" // line(:length) &
+                    & // "' against '" // expected // "'")
+                if (allocated(error)) return
+            end associate
+        end do
+        call random_seed()
+        do i = 1, 12000
+            do j = 1, size(values)
+                call random_number(draw)
+                bits = ior(int(draw(1)*2.0_wp**26, int64), shiftl(int(draw(2)*2.0_wp**26, &
+                    & int64), 26))
+                ! a third of them with their last bits cleared: short significands, ties
+                if (draw(5) < 1.0_wp/3.0_wp) bits = iand(bits, not(shiftl(1_int64, &
+                    & int(52.0_wp*draw(5)*3.0_wp)) - 1_int64))
+                ! biased exponents 0 (subnormals) to 969 (2^-54)
+                exponent = int(970.0_wp*draw(3))
+                bits = ior(bits, shiftl(int(exponent, int64), 52))
+                values(j) = sign(transfer(bits, 1.0_wp), draw(4) - 0.5_wp)
+            end do
+            call row_text(values, line, length)
+            expected = fortran_row_text(values)
+            if (line(:length) /= expected) then
+                call check(error, .false., "row " // to_text(i) // ": '" // line(:length) &
+                    & // "' against '" // expected // "'")
+                return
+            end if
+        end do
+    end subroutine test_row_text_tiny
 
     !> Three-digit exponents, -0 and the extremes of the range read back exactly.
     subroutine test_extremes_read_back(error)

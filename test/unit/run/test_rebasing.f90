@@ -13,17 +13,17 @@ module test_rebasing
     use rollcon_body, only : part_type, kinetic_energy
     use rollcon_rebasing, only : rebased_state, rebased_inertia, basis_turn, own_axes_rotation
     use rollcon_simulation, only : run_summary_type, history_type, status_completed, &
-        & status_failed
+        & status_failed, status_stopped
     use rollcon_summary_text, only : run_summary_text
     use rollcon_output_layout, only : output_layout_type, new_output_layout, read_layout, &
         & name_length, coord_x, coord_z, coord_xdot, coord_zdot, coord_theta
     use rollcon_csv_reader, only : read_output_csv
     use rollcon_output_files, only : delete_file
     use rollcon_run_record, only : run_record_type, pose
-    use rollcon_contact_watch, only : contact_names
+    use rollcon_watch_columns, only : contact_names
     use rollcon_testing, only : unittest_type, new_unittest, check
     use rebasing_models, only : run_dataset, tumbling_sphere, spinning_sphere, falling_disk, &
-        & sphere_end, sphere_near_flat
+        & sphere_end, sphere_near_flat, users_disk
     implicit none
     private
 
@@ -62,8 +62,9 @@ contains
             & new_unittest("sphere-hundred-rebasings-ida", test_sphere_ida), &
             & new_unittest("sphere-hundred-rebasings-cvode", test_sphere_cvode), &
             & new_unittest("sphere-pushed-at-a-marker", test_sphere_pushed), &
-            & new_unittest("disk-routine-refused-ida", test_disk_ida), &
-            & new_unittest("disk-routine-refused-cvode", test_disk_cvode), &
+            & new_unittest("disk-falls-ida", test_disk_ida), &
+            & new_unittest("disk-falls-cvode", test_disk_cvode), &
+            & new_unittest("users-axis-routine-refused", test_users_disk), &
             & new_unittest("start-below-threshold", test_start_below), &
             & new_unittest("basis-columns", test_basis_columns), &
             & new_unittest("pictures-own-axes", test_pictures_pose)]
@@ -244,26 +245,54 @@ contains
     subroutine test_disk_ida(error)
         type(error_type), allocatable, intent(out) :: error
 
-        call disk_refused("IDA", error)
+        call disk_falls("IDA", error)
     end subroutine test_disk_ida
 
     subroutine test_disk_cvode(error)
         type(error_type), allocatable, intent(out) :: error
 
-        call disk_refused("CVODE", error)
+        call disk_falls("CVODE", error)
     end subroutine test_disk_cvode
 
-    !> The disk falls flat; at the theta limit its routine gives another F in the turned
-    !> basis: the run fails there, never re-based, naming part 2, a UCON and the time.
-    subroutine disk_refused(formulation, error)
+    !> The disk falls flat; at the theta limit its built-in routine, a contact about body z
+    !> (its axle), gives another F in the turned basis: the disk lies on the ground, a state
+    !> the model cannot pass. The run stops there, never re-based (status stopped, limit
+    !> "fall"), saying what fell, when, its tilt and height, and the UCON; the rows up to the
+    !> limit stay, the last at sin(theta) = sin(0.05).
+    subroutine disk_falls(formulation, error)
         character(len=*), intent(in) :: formulation
+        type(error_type), allocatable, intent(out) :: error
+        type(run_summary_type) :: summary
+        type(history_type) :: rows
+        character(len=:), allocatable :: expected
+
+        call run_dataset("disk", falling_disk(formulation), summary, rows, error)
+        if (allocated(error)) return
+        expected = "part 2 fell: it lies flat at t = " // to_text(summary%t_reached) &
+            & // " s, its principal z-axis "
+        call check(error, summary%status == status_stopped .and. summary%limit == "fall" &
+            & .and. summary%t_reached < 3.0_wp .and. summary%rebasings(1) == 0 .and. &
+            & index(summary%message, expected) == 1 .and. index(summary%message, &
+            & " (disk), a contact about that axis") > 0, "stopped at the fall with the " &
+            & // "part, its tilt and height and the UCON; got status " &
+            & // to_text(summary%status) // ": " // summary%message)
+        if (allocated(error)) return
+        call check(error, sin(summary%q(5)), sin(0.05_wp), "sin(theta) at the stop", &
+            & abs_tol=1.0e-6_wp)
+    end subroutine disk_falls
+
+    !> The same disk served by a user's routine (the model's UCOSUB, no built-in one): rollcon
+    !> cannot tell a contact about body z from a routine that breaks the contract, so the run
+    !> fails there, never re-based, naming part 2, the UCON and the time, and saying both.
+    subroutine test_users_disk(error)
         type(error_type), allocatable, intent(out) :: error
         type(run_summary_type) :: summary
         type(history_type) :: rows
         character(len=:), allocatable :: expected
         type(error_type), allocatable :: refused
 
-        call run_dataset("disk", falling_disk(formulation), summary, rows, refused)
+        call run_dataset("users-disk", falling_disk("IDA", ""), summary, rows, refused, &
+            & default_ucosub=users_disk)
         expected = "part 2: its principal axes cannot be re-based at t = " &
             & // to_text(summary%t_reached) // " s (theta = "
         ! a failure: the run cannot go on as asked; simulate returns the error, and the rows up
@@ -273,14 +302,15 @@ contains
         call check(error, summary%status == status_failed .and. summary%t_reached < 3.0_wp &
             & .and. summary%rebasings(1) == 0 .and. index(refused%message, expected) == 1 &
             & .and. index(refused%message, "): UCON ") > 0 .and. index(refused%message, &
-            & "its UCOSUB depends on which principal axis is which") > 0 &
+            & "its UCOSUB depends on which principal axis is which") > 0 .and. &
+            & index(refused%message, "the model fell") > 0 &
             & .and. summary%message == refused%message, &
             & "failed at the re-basing with the part, UCON and time; got status " &
             & // to_text(summary%status) // ": " // refused%message)
         if (allocated(error)) return
         call check(error, sin(summary%q(5)), sin(0.05_wp), "sin(theta) at the stop", &
             & abs_tol=1.0e-6_wp)
-    end subroutine disk_refused
+    end subroutine test_users_disk
 
     !> A sphere starting 2 degrees from flat is re-based before its first row: that row is in
     !> basis 1, its theta near pi/2, its centre and energy the start's, and it rolls on.

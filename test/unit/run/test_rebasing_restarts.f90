@@ -10,6 +10,7 @@ module test_rebasing_restarts
     use rollcon_error, only : error_type
     use rollcon_text, only : to_text
     use rollcon_problem, only : problem_type
+    use rollcon_dae_form, only : dae_form_type
     use rollcon_run_settings, only : formulation_ida
     use rollcon_rebase_step, only : restart_state
     use rollcon_simulation, only : run_summary_type, history_type, status_completed
@@ -91,27 +92,27 @@ contains
         character(len=*), intent(in) :: tag, text
         type(error_type), allocatable, intent(out) :: error
         type(problem_type), target :: problem
+        type(dae_form_type) :: dae
         real(wp), allocatable :: q0(:), u0(:), q(:), u(:), y(:), yp(:), residual(:)
         real(wp) :: end_time, output_step, before
         integer :: ierr
 
         call build_dataset(tag, text, problem, q0, u0, end_time, output_step, error)
         if (allocated(error)) return
-        problem%settings%formulation = formulation_ida
         call problem%prepare(error)
         if (allocated(error)) return
-        allocate(y(problem%state_size()), yp(problem%state_size()), &
-            & residual(problem%state_size()))
+        call dae%init(problem)
+        allocate(y(dae%state_size()), yp(dae%state_size()), residual(dae%state_size()))
         q = q0 + offset
         u = u0 + offset
         call problem%accelerations(0.0_wp, q, u, error)
         if (allocated(error)) return
-        call problem%pack_state(q, u, y, yp)
-        ierr = problem%dae_residual(0.0_wp, y, yp, residual)
+        call dae%pack_state(q, u, y, yp)
+        ierr = dae%dae_residual(0.0_wp, y, yp, residual)
         before = maxval(abs(residual))
-        call restart_state(problem, 0.0_wp, q, u, y, yp, error)
+        call restart_state(problem, dae, 0.0_wp, q, u, y, yp, error)
         if (allocated(error)) return
-        ierr = problem%dae_residual(0.0_wp, y, yp, residual)
+        ierr = dae%dae_residual(0.0_wp, y, yp, residual)
         call check(error, ierr == 0 .and. before > 1.0e3_wp*tol_consistent, tag // ": the " &
             & // "residual of the state off the constraints, " // to_text(before))
         if (allocated(error)) return

@@ -7,7 +7,7 @@ module picture_files
     use rollcon_error, only : error_type, fatal_error
     use rollcon_testing, only : check
     use rollcon_output_layout, only : new_output_layout, name_length, coord_x
-    use rollcon_contact_watch, only : contact_names
+    use rollcon_watch_columns, only : contact_names
     use rollcon_part_shapes, only : write_part_shapes, parts_path, shape_disk, shape_ellipsoid
     use rollcon_run_record, only : run_record_type
     use rollcon_scene, only : scene_type

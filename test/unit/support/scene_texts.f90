@@ -10,7 +10,7 @@ module scene_texts
     public :: read_text, expect_input_error, check_input_error, expect_accepted, width
 
     !> Width of the lines of a test file
-    integer, parameter :: width = 100
+    integer, parameter :: width = 120
 
 contains
 

@@ -38,7 +38,8 @@ contains
 
         tests = [new_unittest("writer-up-to-date", test_up_to_date), &
             & new_unittest("geometry-in-python", test_geometry), &
-            & new_unittest("reads-without-joints", test_reads)]
+            & new_unittest("reads-without-joints", test_reads), &
+            & new_unittest("writer-errors-named", test_writer_errors)]
     end subroutine collect_adm_bicycle
 
     !> The checked-in dataset is what the writer makes of the table today.
@@ -148,6 +149,71 @@ contains
             & cmdstat=command_stat)
         if (command_stat /= 0 .or. stat /= 0) call skip_test(error, "python3 not found")
     end subroutine require_python
+
+    !> The writer's refusals are one line naming the file and what is wrong, never a Python
+    !> traceback: -o in a folder that does not exist, -o naming a folder, a table that is not
+    !> ASCII (its line), --check of a file that is not ASCII, a table that does not exist.
+    subroutine test_writer_errors(error)
+        type(error_type), allocatable, intent(out) :: error
+        character(len=*), parameter :: bad = work_dir // "/not_ascii.txt"
+        character(len=80) :: arguments(5), expected(5)
+        character(len=:), allocatable :: err
+        integer :: k, stat, command_stat, unit
+
+        call require_python(error)
+        if (allocated(error)) return
+        call execute_command_line("mkdir -p " // work_dir, exitstat=stat, cmdstat=command_stat)
+        open(newunit=unit, file=bad, status="replace", action="write", access="stream")
+        write(unit) "w 1.02 m" // new_line("a") // achar(255) // new_line("a")
+        close(unit)
+        arguments = [character(len=80) :: table // " -o " // work_dir // "/no/such/x.adm", &
+            & table // " -o " // work_dir, bad // " -o " // work_dir // "/x.adm", &
+            & table // " --check " // bad, work_dir // "/none.txt -o " // work_dir // "/x.adm"]
+        expected = [character(len=80) :: work_dir // "/no/such/x.adm: cannot write: no folder", &
+            & work_dir // ": is a folder, not a file", bad // ":2: not ASCII text (byte 0xff", &
+            & bad // ":2: not ASCII text (byte 0xff", work_dir // "/none.txt: no such file"]
+        do k = 1, size(arguments)
+            call execute_command_line("python3 data/bicycle/write_adm.py " &
+                & // trim(arguments(k)) // " > " // work_dir // "/writer.out 2> " // work_dir &
+                & // "/writer.err", exitstat=stat, cmdstat=command_stat)
+            err = file_text(work_dir // "/writer.err")
+            call check(error, command_stat == 0 .and. stat /= 0 .and. index(err, &
+                & "write_adm.py: " // trim(expected(k))) == 1 .and. index(err, "Traceback") &
+                & == 0 .and. count_lines(err) == 1, "write_adm.py " // trim(arguments(k)) &
+                & // ": exit status " // to_text(stat) // ", stderr: " // err)
+            if (allocated(error)) return
+        end do
+    end subroutine test_writer_errors
+
+    !> The whole of a small text file ("" when it cannot be read).
+    function file_text(path) result(text)
+        character(len=*), intent(in) :: path
+        character(len=:), allocatable :: text
+        integer :: unit, size_bytes, stat
+
+        text = ""
+        open(newunit=unit, file=path, status="old", action="read", access="stream", &
+            & iostat=stat)
+        if (stat /= 0) return
+        inquire(unit=unit, size=size_bytes)
+        if (size_bytes > 0) then
+            deallocate(text)
+            allocate(character(len=size_bytes) :: text)
+            read(unit, iostat=stat) text
+        end if
+        close(unit)
+    end function file_text
+
+    !> Line ends in a text.
+    pure integer function count_lines(text)
+        character(len=*), intent(in) :: text
+        integer :: i
+
+        count_lines = 0
+        do i = 1, len(text)
+            if (text(i:i) == new_line("a")) count_lines = count_lines + 1
+        end do
+    end function count_lines
 
     !> Run a command with its output in a log file; fail naming the log if it exits non-zero.
     subroutine run_logged(error, command, log, what)

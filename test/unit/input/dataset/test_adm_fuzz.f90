@@ -253,7 +253,8 @@ contains
     end function base_name
 
     !> An input error that starts with 'path:LINE: ' (LINE >= 1), or 'path: ' for the
-    !> dataset as a whole, says something after it, and shows only printable ASCII. A refusal
+    !> dataset as a whole, says something after it, shows only printable ASCII, and never says
+    !> that a value follows NaN or Inf (they are a list's entries that are not finite). A refusal
     !> of several statements outside the subset (rollcon_adm_reader) gives each a line of its
     !> own after the first: '  path:LINE: ...', printable too.
     subroutine check_refusal(found, path, m, error)
@@ -286,6 +287,13 @@ contains
         end if
         call check(error, printable(first), "mutation " // to_text(m) &
             & // ": invisible character in: " // found%message)
+        if (allocated(error)) return
+        ! NaN or Inf among a list's numbers is that list's entry that is not finite, never a
+        ! word a value 'follows' (rollcon_adm_lexer's is_nonfinite_text)
+        call check(error, index(first, "follows NAN,") == 0 .and. index(first, &
+            & "follows INF,") == 0 .and. index(first, "follows -INF") == 0 .and. &
+            & index(first, "follows INFINITY,") == 0, "mutation " // to_text(m) &
+            & // ": a value said to follow NaN or Inf: " // found%message)
         if (allocated(error)) return
         call check(error, index(first, path // ":") == 1, "mutation " // to_text(m) &
             & // ": message does not start with the file: " // found%message)

@@ -12,7 +12,7 @@ module test_adm_outputs
     use rollcon_rotation, only : rotation_matrix
     use rollcon_output_layout, only : output_layout_type, coord_x, coord_psi, read_layout, &
         & name_length
-    use rollcon_request_watch, only : request_column_patterns
+    use rollcon_watch_columns, only : request_column_patterns
     use rollcon_simulation, only : history_type
     use rollcon_csv_reader, only : read_output_csv
     use rollcon_adm_model, only : adm_model_type
@@ -228,11 +228,9 @@ contains
         expected(3) = ":13: GRAPHICS/2 CM: no MARKER/97"
         replaced(4) = "MREQUEST/3, DISPLACEMENT, PARTS=2, 9"
         expected(4) = ":13: MREQUEST/3 PARTS: no PART/9"
-        replaced(5) = "REQUEST/1, DISPLACEMENT, I=3, COLOUR=red"
-        expected(5) = ":13: REQUEST/1: 'COLOUR' is not a REQUEST argument of the supported" &
-            & // " subset (DISPLACEMENT, VELOCITY, ACCELERATION, FORCE, I, J, RM, F1, F2, F3," &
-            & // " F4, F5, F6, F7, F8, FUNCTION, ROUTINE, COMMENT, TITLE, CNAMES, CUNITS," &
-            & // " CLABELS, RESULTS_NAME)"
+        ! a keyword rollcon knows is read as strictly as ever (one it does not know is warned)
+        replaced(5) = "REQUEST/1, DISPLACEMENT, I=3, C"
+        expected(5) = ":13: REQUEST/1 COMMENT: expected a value (COMMENT=...)"
         replaced(6) = "REQUEST/1, I=3"
         expected(6) = ":13: REQUEST/1: a REQUEST asks for one of DISPLACEMENT, VELOCITY," &
             & // " ACCELERATION, FORCE (of its I marker) or expressions (F1..F8," &
@@ -257,8 +255,9 @@ contains
         replaced(14) = "GRAPHICS/2, CIRCLE, CM=3, RADIUS=big"
         expected(14) = ":13: GRAPHICS/2 RADIUS: 'big' is not a number (expected 1 number)"
         replaced(15) = "RE/1, DISPLACEMENT, I=3"
-        expected(15) = ":13: 'RE' is ambiguous: it may be REQUEST, RESULTS; write more of the" &
-            & // " name"
+        expected(15) = ":13: 'RE' is too short an abbreviation of a statement: the shortest" &
+            & // " ADAMS takes are REQ for REQUEST, RES for RESULTS (docs/datasets.md," &
+            & // " Abbreviations)"
         call check_refusals(error, [13, 13, 13, 13, 13, 13, 13, 13, 13, 13, 13, 13, 12, 13, &
             & 13], replaced, expected)
     end subroutine test_refusals

@@ -31,7 +31,8 @@ contains
             & new_unittest("gravity-beyond-range-refused", test_gravity), &
             & new_unittest("mass-beyond-range-refused", test_mass), &
             & new_unittest("coincident-sforce-markers-refused", test_coincident), &
-            & new_unittest("infinite-force-fails-naming-it", test_infinite_force)]
+            & new_unittest("infinite-force-fails-naming-it", test_infinite_force), &
+            & new_unittest("runaway-force-fails-naming-it", test_runaway_force)]
     end subroutine collect_adm_physical
 
     subroutine test_speed(error)
@@ -100,6 +101,41 @@ contains
             & // "finite: " // merge("yes", "no ", all(ieee_is_finite(history%rows(:, &
             & :history%count)))))
     end subroutine test_infinite_force
+
+    !> A VFORCE on the coin whose FX = EXP(1000 TIME) is finite until t = 0.71 s but passes
+    !> 1.3e154 at t = 0.36 s: the coin's speed, and with it the energy, overflow and the row at
+    !> t = 0.37 s is not finite. The failure names VFORCE/7 and FX, with its value and the
+    !> time, not "the accelerations are not finite (a singular mass matrix ...)", which they
+    !> are not; every row kept is finite.
+    subroutine test_runaway_force(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(job_type) :: job
+        type(job_result_type) :: result
+        type(history_type) :: history
+        type(error_type), allocatable :: failure
+
+        call write_lines("data/coin.adm", "runaway_force.adm", &
+            & "SIMULATE/DYNAMIC, END=10, STEPS=1000", "VFORCE/7, I=3, JFLOAT=2, RM=1, " &
+            & // "FX=EXP(1000*TIME), FY=0, FZ=0" // new_line("a") // "SIMULATE/DYNAMIC, END=1, " &
+            & // "STEPS=100", error)
+        if (allocated(error)) return
+        call load_job("build/rollcon-test/runaway_force.adm", job, error)
+        if (allocated(error)) return
+        job%output_dir = ""
+        job%quiet = .true.
+        call run_job(job, result, failure, history)
+        call check(error, allocated(failure), "the run with a runaway force did not fail")
+        if (allocated(error)) return
+        call check(error, result%summary%status == status_failed .and. &
+            & index(failure%message, ": VFORCE/7 FX = ") > 0 .and. &
+            & index(failure%message, "has run away") > 0 .and. &
+            & index(failure%message, "singular mass matrix") == 0, "message: " &
+            & // failure%message)
+        if (allocated(error)) return
+        call check(error, history%count >= 1 .and. all(ieee_is_finite(history%rows(:, &
+            & :history%count))), to_text(history%count) // " rows kept, all finite: " &
+            & // merge("yes", "no ", all(ieee_is_finite(history%rows(:, :history%count)))))
+    end subroutine test_runaway_force
 
     !> data/coin.adm with the line old replaced by new is refused by read_adm with a message
     !> that ends in expected (after the file name).

@@ -9,8 +9,8 @@ module test_adm_reader
     use rollcon_adm_reader, only : read_adm
     use rollcon_adm_units, only : units_type, set_unit
     use rollcon_expression, only : evaluate_expression
-    use rollcon_adm_state, only : part_state, euler_angles
-    use rollcon_rotation, only : rotation_matrix, rate_matrix
+    use rollcon_adm_state, only : part_state
+    use rollcon_rotation, only : rotation_matrix, rate_matrix, euler_angles
     use rollcon_run_settings, only : formulation_cvode, method_adams, drift_baumgarte
     use rollcon_testing, only : unittest_type, new_unittest, check
     implicit none
@@ -233,7 +233,7 @@ contains
         integer, parameter :: n = 14
         integer :: lines_at(n), i
         character(len=72) :: replaced(n)
-        character(len=160) :: expected(n)
+        character(len=240) :: expected(n)
         character(len=72) :: lines(size(coin))
         type(adm_model_type) :: model
         type(error_type), allocatable :: refused
@@ -247,7 +247,7 @@ contains
         replaced(2) = "PART/2, MASS=0.7351, CM=3, IP=1, 1, 1, 1.5, 0, 0"
         expected(2) = file // "4: PART/2 IP: the inertia tensor [[xx, -xy, -xz], [-xy, yy, -yz]"
         replaced(3) = ", VX=0.1, W=-1"
-        expected(3) = file // "6: PART/2: 'W' is ambiguous: it may be WX, WY, WZ; write more"
+        expected(3) = file // "6: PART/2: 'W' is too short an abbreviation of a PART argument"
         ! the CM marker's z-axis along ground z: read, the part starts in turned axes
         replaced(4) = "MARKER/3, PART=2"
         expected(4) = ""

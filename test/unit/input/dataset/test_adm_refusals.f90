@@ -15,12 +15,6 @@ module test_adm_refusals
     character(len=*), parameter :: supported = &
         & "(ACCGRAV, END, GFORCE, INTEGRATOR, JOINT, JPRIM, MARKER, OUTPUT, PART, SFORCE," &
         & // " SIMULATE, UCON, UNITS, VFORCE)"
-    !> The built-in UCOSUBs, as a refusal lists them
-    character(len=*), parameter :: builtin = &
-        & "(disk, rolling_disk, chaplygin_sled, disk_height, gnd_atpoint, gnd_inline," &
-        & // " gnd_inplane, gnd_orientation, gnd_parallel_axes, gnd_perpendicular, jp_atpoint," &
-        & // " jp_inline, jp_inplane, jp_orientation, jp_parallel_axes, jp_perpendicular," &
-        & // " knife_edge, planar_hold, rolling_sphere, turntable_ball, turntable_disk)"
 
 contains
 
@@ -35,7 +29,9 @@ contains
             & new_unittest("values-out-of-range", test_values), &
             & new_unittest("ucon-refusals", test_ucons), &
             & new_unittest("integrator-refusals", test_integrator), &
-            & new_unittest("principal-axes-at-start", test_principal_axes)]
+            & new_unittest("principal-axes-at-start", test_principal_axes), &
+            & new_unittest("lists-with-values-not-finite", test_nonfinite_lists), &
+            & new_unittest("keywords-by-their-whole-names", test_whole_names)]
     end subroutine collect_adm_refusals
 
     !> Statements outside the subset, ambiguous, misplaced, repeated, with or without an id.
@@ -69,7 +65,8 @@ contains
         replaced(7) = "FOO/1"
         expected(7) = ":7: 'FOO' is not a statement of the supported subset " // supported
         replaced(8) = "S/1, I=3"
-        expected(8) = ":7: 'S' is ambiguous: it may be SFORCE, SIMULATE; write more of the name"
+        expected(8) = ":7: 'S' is too short an abbreviation of a statement: the shortest ADAMS" &
+            & // " takes are SF for SFORCE, SI for SIMULATE (docs/datasets.md, Abbreviations)"
         replaced(9) = "END|PART/6, MASS=1"
         expected(9) = ":15: a statement after END"
         replaced(10) = "INTEGRATOR/ERROR=1e-8|INTEG/ERROR=1e-9"
@@ -99,10 +96,14 @@ contains
             & // " NEWMARK, RKF45, ABAM, I3, SI2, SI1, HMAX, HMIN, HINIT, ALPHA, BETA, GAMMA," &
             & // " ADAPTIVITY, KMAX, MAXIT, CORRECTOR, INTERPOLATE, PATTERN)"
         replaced(3) = ", QG=0, 0, 1, W=1"
-        expected(3) = ":5: PART/2: 'W' is ambiguous: it may be WX, WY, WZ; write more of the name"
-        replaced(4) = "INTEGRATOR/M=10"
-        expected(4) = ":12: INTEGRATOR: 'M' is ambiguous: it may be MAXSTEPS, METHOD; write more" &
-            & // " of the name"
+        expected(3) = ":5: PART/2: 'W' is too short an abbreviation of a PART argument: the" &
+            & // " shortest ADAMS takes are WX for WX, WY for WY, WZ for WZ (docs/datasets.md," &
+            & // " Abbreviations)"
+        ! H begins five of ADAMS's keywords, each abbreviated to two letters at least
+        replaced(4) = "INTEGRATOR/H=10"
+        expected(4) = ":12: INTEGRATOR: 'H' is too short an abbreviation of an INTEGRATOR" &
+            & // " argument: the shortest ADAMS takes are HA for HASTIFF, HH for HHT, HMA for" &
+            & // " HMAX, HMI for HMIN, HI for HINIT (docs/datasets.md, Abbreviations)"
         replaced(5) = ", QG=0, 0, 1, VX=0.5, VX=1"
         expected(5) = ":5: PART/2: VX is given twice"
         replaced(6) = "PART/1, GROUND=1"
@@ -120,12 +121,57 @@ contains
             & // " (METER, MILLIMETER, CENTIMETER, KILOMETER, INCH, FOOT)"
         replaced(12) = "SIM/STATICS, END=1"
         expected(12) = ":11: SIMULATE: 'STATICS' is not a SIMULATE argument of the supported" &
-            & // " subset (DYNAMIC, END, STEPS, DTOUT)"
+            & // " subset (DYNAMIC, END, STEPS, DTOUT, DURATION)"
         replaced(13) = "INTEGRATOR/FORM=ode"
         expected(13) = ":12: INTEGRATOR FORMULATION: 'ode' is not a formulation of the supported" &
             & // " subset (IDA, CVODE, MAGGI)"
         call check_refusals(error, [4, 12, 5, 12, 5, 3, 5, 4, 4, 6, 2, 11, 12], replaced, expected)
     end subroutine test_keywords
+
+    !> A list holding NaN, Inf or a word: each refused as that list's entry, by name (NaN in
+    !> the middle of IP said "a value '3' follows NAN, which takes none", Inf at its end
+    !> "expected from 3 to 6 numbers, got 2").
+    subroutine test_nonfinite_lists(error)
+        type(error_type), allocatable, intent(out) :: error
+        character(len=120) :: replaced(7)
+        character(len=400) :: expected(7)
+
+        replaced(1) = "PART/2, MASS=1, CM=3, IP=2, NaN, 3"
+        expected(1) = ":4: PART/2 IP: 'NaN' is not a finite number (expected from 3 to 6 numbers)"
+        replaced(2) = "PART/2, MASS=1, CM=3, IP=2, 2, Inf"
+        expected(2) = ":4: PART/2 IP: 'Inf' is not a finite number (expected from 3 to 6 numbers)"
+        replaced(3) = "PART/2, MASS=1, CM=3, IP=2, 2, 3, NaN, 0, 0"
+        expected(3) = ":4: PART/2 IP: 'NaN' is not a finite number (expected from 3 to 6 numbers)"
+        replaced(4) = "PART/2, MASS=1, CM=3, IP=2, 2, -infinity"
+        expected(4) = ":4: PART/2 IP: '-infinity' is not a finite number (expected from 3 to 6" &
+            & // " numbers)"
+        replaced(5) = "PART/2, MASS=1, CM=3, IP=2, heavy, 3"
+        expected(5) = ":4: PART/2 IP: 'heavy' is not a number (it stands in the list of IP: the" &
+            & // " value '3' follows it)"
+        replaced(6) = ", QG=0, NaN, 1, VX=0.5"
+        expected(6) = ":5: PART/2 QG: 'NaN' is not a finite number (expected 3 numbers)"
+        replaced(7) = "MARKER/3, PART=2, REULER=0D, Inf, 0D"
+        expected(7) = ":6: MARKER/3 REULER: 'Inf' is not a finite number (expected 3 numbers)"
+        call check_refusals(error, [4, 4, 4, 4, 4, 5, 6], replaced, expected)
+    end subroutine test_nonfinite_lists
+
+    !> Keywords by their whole ADAMS names, however long: MAXIMUM_DEFORMATION (19 letters, once
+    !> cut to 13 in the table of a JOINT's refused keywords) is the joint's friction, refused
+    !> as such, as is its abbreviation.
+    subroutine test_whole_names(error)
+        type(error_type), allocatable, intent(out) :: error
+        character(len=120) :: replaced(2)
+        character(len=400) :: expected(2)
+
+        replaced(1) = "MARKER/4, PART=1|JOINT/9, REVOLUTE, I=3, J=4, MAXIMUM_DEFORMATION=0.01"
+        expected(1) = ":8: JOINT/9 MAXIMUM_DEFORMATION: a joint's initial conditions and its " &
+            & // "friction are not supported: rollcon's initial-conditions analysis places the " &
+            & // "parts (docs/initial-conditions.md); give the parts' QG, REULER and velocities" &
+            & // " instead"
+        replaced(2) = "MARKER/4, PART=1|JOINT/9, REVOLUTE, I=3, J=4, MAXIMUM_DEF=0.01"
+        expected(2) = expected(1)
+        call check_refusals(error, [7, 7], replaced, expected)
+    end subroutine test_whole_names
 
     !> References to parts and markers that do not exist, a CM marker on another part, no ground.
     subroutine test_references(error)
@@ -153,7 +199,12 @@ contains
         replaced(9) = "! no ground"
         expected(9) = ": a dataset needs exactly one PART with GROUND, found 0"
         replaced(10) = "! no SIMULATE"
-        expected(10) = ": no SIMULATE statement (SIMULATE/DYNAMIC, END=t, STEPS=n)"
+        expected(10) = ": no SIMULATE statement, and no run given apart from the dataset: run" &
+            & // " it from an ADAMS command file (rollcon run MODEL.acf: its first line names" &
+            & // " the dataset, its second the output name, then SIMULATE/DYNAMIC, END=t," &
+            & // " STEPS=n and STOP), or give the run on the command line (rollcon run" &
+            & // " build/rollcon-test/refusal.adm --end T --steps N), or add SIMULATE/DYNAMIC," &
+            & // " END=t, STEPS=n to the dataset"
         call check_refusals(error, [6, 4, 4, 4, 10, 10, 10, 7, 3, 11], replaced, expected)
     end subroutine test_references
 
@@ -229,22 +280,24 @@ contains
         expected(14) = ":11: SIMULATE: only SIMULATE/DYNAMIC is supported (a dynamic analysis);" &
             & // " write SIMULATE/DYNAMIC, END=..., STEPS=..."
         replaced(15) = "SIMULATE/DYNAMIC, STEPS=10"
-        expected(15) = ":11: SIMULATE: END=t (the end time) is missing"
+        expected(15) = ":11: SIMULATE: END=t (the end time) is missing (or" &
+            & // " DURATION=t, from where the run is)"
         call check_refusals(error, [4, 4, 4, 4, 4, 3, 11, 11, 11, 11, 11, 11, 11, 11, 11, 3, 4], &
             & replaced, expected)
     end subroutine test_values
 
-    !> UCON: an unknown ROUTINE, too many or no constants, FUNCTION missing or not USER(...).
+    !> UCON: ROUTINE without a name, too many or no constants, FUNCTION missing or not
+    !> USER(...). (A ROUTINE that names no built-in routine is the assembly's to refuse: suite
+    !> assembly.)
     subroutine test_ucons(error)
         type(error_type), allocatable, intent(out) :: error
         character(len=120) :: replaced(7)
         character(len=700) :: expected(7)
 
-        replaced(1) = "UCON/1, FUNCTION=USER(2, 21, 1), ROUTINE=my_lib::ucosub"
-        expected(1) = ":8: UCON/1 ROUTINE: 'my_lib::ucosub' is not a built-in UCOSUB " // builtin &
-            & // "; a routine of your own is given with rollcon run MODEL.adm --ucosub FILE"
+        replaced(1) = "UCON/1, FUNCTION=USER(2, 21, 1), ROUTINE="
+        expected(1) = ":8: UCON/1 ROUTINE: expected the name of a built-in UCOSUB (ROUTINE=name)"
         replaced(2) = "UCON/1, FUNCTION=USER(2, 21, 1), ROUTINE"
-        expected(2) = ":8: UCON/1 ROUTINE: expected the name of a built-in UCOSUB " // builtin
+        expected(2) = ":8: UCON/1 ROUTINE: expected the name of a built-in UCOSUB (ROUTINE=name)"
         replaced(3) = "UCON/1," &
             & // " FUNCTION=USER(1,2,3,4,5,6,7,8,9,10,11,12,13,14,15,16,17,18,19,20,21,22,23" &
             & // ",24,25,26,27,28,29,30,31)"

@@ -148,7 +148,7 @@ contains
     !> either order); RTOL and ATOL apart; every choice by name and abbreviation.
     subroutine test_integrator_settings(error)
         type(error_type), allocatable, intent(out) :: error
-        character(len=60), parameter :: statements(5) = [character(len=60) :: &
+        character(len=80), parameter :: statements(5) = [character(len=80) :: &
             & "! no INTEGRATOR", "INTEGRATOR/ERROR=1e-6", "INTEGRATOR/ATOL=1e-12, ERROR=1e-6", &
             & "INTEG/RTOL=1e-9, ATOL=1e-11, FORM=IDA, METH=BDF, DRIFT=PROJ, JAC=ANALYTIC", &
             & "integrator/formulation=Cvode, method=Adams, drift=None"]

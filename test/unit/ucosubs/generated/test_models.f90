@@ -34,7 +34,7 @@ module test_models
     real(wp), parameter :: tol_orbit_shape = 1.0e-6_wp
     !> CVODE's tolerance for the ball [1]: at 1e-10 its projection keeps the constraints but the
     !> radius shrinks by 1e-6 relative over 20 turns (measured); 1e-12 holds it to 3e-7. The
-    !> turning table does work on the ball, so its energy is not judged (ucons_do_no_work)
+    !> turning table does work on the ball, so its energy is not judged (constraint_power)
     real(wp), parameter :: cvode_ball_tolerance = 1.0e-12_wp
     !> IDA on the ball over its 20 turns at the dataset's ERROR = 1e-10, against the closed form:
     !> the largest change of the orbit radius |v|/wc relative to the radius, and of the Jacobi

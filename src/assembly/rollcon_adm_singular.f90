@@ -18,12 +18,11 @@ module rollcon_adm_singular
     use rollcon_kinds, only : wp
     use rollcon_constants, only : pi
     use rollcon_error, only : error_type, fatal_error, stat_input
-    use rollcon_text, only : to_text
+    use rollcon_text, only : to_text, place
     use rollcon_rotation, only : rotation_matrix, rate_matrix, times, euler_angles
     use rollcon_rebasing, only : basis_turn, own_axes_rotation, rebased_state, angle_rates
     use rollcon_problem, only : problem_type
     use rollcon_rebase_step, only : compare_bases, basis_difference_type
-    use rollcon_adm_keywords, only : place
     use rollcon_adm_model, only : adm_model_type
     use rollcon_adm_state, only : starts_singular
     implicit none

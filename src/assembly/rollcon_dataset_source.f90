@@ -12,6 +12,7 @@ module rollcon_dataset_source
     use rollcon_text, only : to_text
     use rollcon_rotation, only : euler_angles
     use rollcon_ucosub_contract, only : ucosub_interface
+    use rollcon_model, only : served_by_model_ucosub
     use rollcon_problem, only : problem_type
     use rollcon_model_source, only : model_source_type
     use rollcon_initial_conditions, only : analyse_initial_conditions
@@ -19,7 +20,6 @@ module rollcon_dataset_source
     use rollcon_adm_model, only : adm_model_type
     use rollcon_adm_build, only : build_adm_problem
     use rollcon_adm_initial, only : adm_ic_options
-    use rollcon_adm_outputs, only : unused_warning
     implicit none
     private
 
@@ -47,7 +47,8 @@ contains
         source%name = path(slash + 1:len_trim(path) - 4)
         source%kind = "dataset"
         source%settings = adm%run%settings
-        source%warning = unused_warning(adm)
+        source%warning = ""
+        if (allocated(adm%warning)) source%warning = adm%warning
         source%notes = principal_axes_text(adm)
         source%own_routines = all_named(adm)
     end function new_dataset_source
@@ -109,7 +110,8 @@ contains
         end do
     end function principal_axes_text
 
-    !> Every UCON statement names its ROUTINE (the joints' UCONs always do).
+    !> The model's UCOSUB serves none of the dataset's UCONs (each names its ROUTINE; the
+    !> joints' UCONs always have theirs): rollcon_model's served_by_model_ucosub.
     pure logical function all_named(adm)
         type(adm_model_type), intent(in) :: adm
         integer :: k
@@ -117,11 +119,7 @@ contains
         all_named = .true.
         if (.not. allocated(adm%ucons)) return
         do k = 1, size(adm%ucons)
-            if (.not. allocated(adm%ucons(k)%routine)) then
-                all_named = .false.
-            else if (len_trim(adm%ucons(k)%routine) == 0) then
-                all_named = .false.
-            end if
+            if (served_by_model_ucosub(adm%ucons(k)%routine)) all_named = .false.
         end do
     end function all_named
 

@@ -1,19 +1,19 @@
 ! SPDX-License-Identifier: MIT
-!> Turns a disk scene into a problem: the disk as a rigid part, three no-slip UCONs served by
-!> a rolling-disk UCOSUB, gravity, the strike, solver settings, limits and the initial state.
+!> Turns a disk scene into a problem (the scene's assembly): the disk as a rigid part, three
+!> no-slip UCONs served by a rolling-disk UCOSUB, gravity, the strike, solver settings, the
+!> watches of its theta limit and its rim contact, and the initial state.
 module rollcon_disk_scene
     use rollcon_kinds, only : wp
     use rollcon_constants, only : pi
-    use rollcon_error, only : error_type
+    use rollcon_error, only : error_type, stat_ucon
+    use rollcon_text, only : to_text
+    use rollcon_ucosub_catalog, only : builtin_ucosub_name, builtin_ucosubs_for_par
     use rollcon_ucosub_contract, only : ucosub_interface
     use rollcon_body, only : part_type
     use rollcon_force, only : applied_force_type, profile_half_sine, frame_tilt
     use rollcon_model, only : model_type, setup_model
     use rollcon_disk_par, only : disk_par
-    use rollcon_disk_reference, only : rolling_disk_ucosub
     use rollcon_gen_disk_height, only : disk_height_ucosub, disk_height_par, disk_height_time_free
-    use rollcon_gen_rolling_disk, only : generated_disk_ucosub => rolling_disk_ucosub, &
-        & rolling_disk_time_free
     use rollcon_problem, only : problem_type
     use rollcon_theta_watch, only : theta_watch_type, new_theta_watch
     use rollcon_contact_watch, only : contact_watch_type
@@ -35,6 +35,44 @@ module rollcon_disk_scene
 
 contains
 
+    !> An error of a no-slip UCON from the routine that served it: when that routine is not one
+    !> a disk's PAR suits (`--ucosub knife_edge` on a scene), the message says that this routine
+    !> refused the scene's PAR, what that PAR is, and which built-in routines take it. Nothing is
+    !> added when the routine is one of those (the error is then in a value).
+    subroutine add_par_hint(model, ucosub, error)
+        type(model_type), intent(in) :: model
+        procedure(ucosub_interface) :: ucosub
+        type(error_type), intent(inout) :: error
+        procedure(ucosub_interface), pointer :: served
+        character(len=:), allocatable :: name, suits
+        logical :: time_free
+        integer :: k
+
+        if (error%stat /= stat_ucon) return
+        do k = 1, size(model%ucons)
+            associate (ucon => model%ucons(k))
+                if (index(error%message, "UCON/" // to_text(ucon%id) // ":") /= 1) cycle
+                if (len(ucon%routine) > 0) return
+                served => ucosub
+                name = builtin_ucosub_name(served, time_free)
+                suits = builtin_ucosubs_for_par(ucon%par)
+                if (len(name) > 0) then
+                    if (index(", " // suits // ", ", ", " // name // ", ") > 0) return
+                    name = "the built-in " // name
+                else
+                    name = "a routine of your own"
+                end if
+                error%message = error%message // "; the routine chosen for the scene's no-slip " &
+                    & // "UCONs (--ucosub), here " // name // ", refused the PAR a disk scene " &
+                    & // "gives them, the rolling disk's (part, codes 21 22 23 14 15 24 25 26, " &
+                    & // "R, component)"
+                if (len(suits) > 0) error%message = error%message // "; routines that take it: " &
+                    & // suits
+                return
+            end associate
+        end do
+    end subroutine add_par_hint
+
     !> Model, settings and limits of a disk scene, with ucosub serving the three no-slip UCONs.
     subroutine build_disk_problem(scene, ucosub, problem, q0, u0, error)
         type(scene_type), intent(in) :: scene
@@ -48,27 +86,24 @@ contains
         type(part_type) :: disk
         type(applied_force_type) :: strike
         integer :: k
-        logical :: time_free
 
         disk%id = disk_part
         call disk_mass_properties(scene, disk%mass, disk%inertia)
         call model%add_part(disk)
         model%gravity = [0.0_wp, 0.0_wp, -scene%environment%gravity]
+        ! the model's UCOSUB serves the no-slip UCONs; setup_model spares the driver their time
+        ! partials when it is a built-in routine whose F has no explicit time (the hand-checked
+        ! disk, docs/design.md §5, and the generated one), and asks any other (a user's)
         model%ucosub => ucosub
-        ! the hand-checked routine's F has no explicit time (docs/design.md §5), nor has the
-        ! generated one's (the generator says so): the driver skips their time partials; any
-        ! other routine (a user's) is asked for them
-        time_free = associated(model%ucosub, rolling_disk_ucosub) &
-            & .or. (associated(model%ucosub, generated_disk_ucosub) .and. rolling_disk_time_free)
         do k = 1, 2
-            call model%add_ucon(k, disk_par(disk_part, scene%disk%radius, k), time_free=time_free)
+            call model%add_ucon(k, disk_par(disk_part, scene%disk%radius, k))
         end do
         if (scene%run%height == height_position) then
             ! Z - R sin(theta) = 0 in place of its time derivative F3 (docs/design.md §5)
             call model%add_ucon(3, disk_height_par(disk_part, scene%disk%radius), &
                 & disk_height_ucosub, time_free=disk_height_time_free, routine="disk_height")
         else
-            call model%add_ucon(3, disk_par(disk_part, scene%disk%radius, 3), time_free=time_free)
+            call model%add_ucon(3, disk_par(disk_part, scene%disk%radius, 3))
         end if
         if (scene%strike%enabled) then
             ! Horizontal, along +Y, at the top of the rim: (0, R, 0) in the tilt frame.
@@ -83,7 +118,10 @@ contains
             call model%add_force(strike)
         end if
         call setup_model(model, error)
-        if (allocated(error)) return
+        if (allocated(error)) then
+            call add_par_hint(model, ucosub, error)
+            return
+        end if
         call problem%init(model)
         problem%settings = scene%run%run_settings_type
         ! what the disk scene watches: its theta limit (a stop, in the disk's words), then its

@@ -5,32 +5,35 @@
 !>
 !> A part's principal axes are its CM marker's axes, and its inertia is the IP written there
 !> (docs/design.md §2); an IP with products gives principal axes turned from the CM marker's
-!> (rollcon_inertia_axes), in which the part moves and its markers are held. A UCON is served by the built-in routine its ROUTINE= names
-!> (rollcon_ucosub_catalog), else by the model's routine (the `--ucosub` one). As ADAMS does, a
-!> routine, built-in or the user's, computes in the dataset's units: PAR as written, the state
-!> and the time converted at the boundary (rollcon_ucosub_units).
+!> (rollcon_inertia_axes), in which the part moves and its markers are held. A UCON is served
+!> by the built-in routine its ROUTINE= names (rollcon_ucosub_catalog), else by the model's
+!> routine (the `--ucosub` one: rollcon_model's served_by_model_ucosub). A JOINT or JPRIM is
+!> model%add_joint or model%add_jprim between its markers as the model holds them
+!> (rollcon_adm_markers). As ADAMS does, a routine, built-in or the user's, computes in the
+!> dataset's units: PAR as written, the state and the time converted at the boundary
+!> (rollcon_ucosub_units).
 module rollcon_adm_build
     use rollcon_kinds, only : wp
+    use rollcon_constants, only : pi
     use rollcon_error, only : error_type, fatal_error, stat_input, stat_ucon
-    use rollcon_text, only : to_text
+    use rollcon_text, only : to_text, place
     use rollcon_ucosub_contract, only : ucosub_interface
     use rollcon_ucosub_units, only : ucosub_units_type
     use rollcon_ucosub_catalog, only : find_builtin_ucosub, builtin_ucosub_names, &
-        & builtin_ucosubs_for_par
+        & builtin_ucosubs_for_par, builtin_ucosub_name
     use rollcon_expression, only : quantity_names
+    use rollcon_rotation, only : rotation_matrix
     use rollcon_body, only : part_type
     use rollcon_marker_force, only : kind_translation, kind_rotation, kind_vector, &
         & kind_general, marker_force_values, markers_coincide
     use rollcon_force, only : applied_force_type, profile_statement
-    use rollcon_model, only : model_type, setup_model
+    use rollcon_model, only : model_type, setup_model, served_by_model_ucosub
     use rollcon_problem, only : problem_type
     use rollcon_theta_watch, only : new_theta_watch
     use rollcon_request_watch, only : displacement_request_type, new_request_watch
-    use rollcon_adm_keywords, only : place
     use rollcon_adm_model, only : adm_model_type, adm_force_type, force_sforce, force_vforce
     use rollcon_adm_state, only : part_state
     use rollcon_adm_singular, only : start_singular_parts
-    use rollcon_adm_joint_build, only : add_joint_ucons
     use rollcon_adm_markers, only : adm_marker, marker_index
     use, intrinsic :: ieee_arithmetic, only : ieee_is_finite
     implicit none
@@ -76,12 +79,15 @@ contains
         model%ucosub_units = ucosub_units_type(length=adm%units%length, time=adm%units%time)
         call add_ucons(adm, fallback, model, error)
         if (allocated(error)) return
-        call add_joint_ucons(adm, model)
+        call add_joints(adm, model, error)
+        if (allocated(error)) return
         do i = 1, size(adm%forces)
             call add_force_statement(adm, adm%forces(i), model, error)
             if (allocated(error)) return
         end do
         model%gravity = adm%gravity
+        ! the routine of the UCONs that name none (ADAMS's one UCOSUB per model)
+        model%ucosub => fallback
         call setup_model(model, error)
         if (allocated(error)) then
             call add_routine_hint(adm, fallback, error)
@@ -160,54 +166,108 @@ contains
         end do
     end subroutine check_forces_at_start
 
-    !> Each UCON with its routine: ROUTINE=name, else the model's.
+    !> Each UCON with its routine: the built-in one ROUTINE=name names (refused, where
+    !> ROUTINE= was written, when there is none), else the model's (none given: refused).
     subroutine add_ucons(adm, fallback, model, error)
         type(adm_model_type), intent(in) :: adm
         procedure(ucosub_interface), pointer, intent(in) :: fallback
         type(model_type), intent(inout) :: model
         type(error_type), allocatable, intent(out) :: error
         procedure(ucosub_interface), pointer :: routine
-        character(len=:), allocatable :: where, name
         logical :: time_free, found
         integer :: k
 
         do k = 1, size(adm%ucons)
             associate (ucon => adm%ucons(k))
-                where = place(adm%file, ucon%line) // ": UCON/" // to_text(ucon%id)
-                name = ""
-                if (allocated(ucon%routine)) name = trim(ucon%routine)
-                if (len(name) > 0) then
-                    call find_builtin_ucosub(name, routine, time_free, found)
-                    if (.not. found) then
-                        call fatal_error(error, where // " ROUTINE=" // name // ": no built-in " &
-                            & // "UCOSUB has this name (built-ins: " // builtin_ucosub_names() &
-                            & // ")", stat_input)
+                if (served_by_model_ucosub(ucon%routine)) then
+                    if (.not. associated(fallback)) then
+                        call fatal_error(error, place(adm%file, ucon%line) // ": UCON/" &
+                            & // to_text(ucon%id) // ": no UCOSUB serves this UCON: name a " &
+                            & // "built-in routine with ROUTINE=name (" // builtin_ucosub_names() &
+                            & // ") or give the model's UCOSUB (rollcon run MODEL.adm --ucosub " &
+                            & // "FILE|NAME)", stat_input)
                         return
                     end if
-                else if (associated(fallback)) then
-                    routine => fallback
-                    name = builtin_name(fallback, time_free)
-                    found = len(name) > 0
-                else
-                    call fatal_error(error, where // ": no UCOSUB serves this UCON: name a " &
-                        & // "built-in routine with ROUTINE=name (" // builtin_ucosub_names() &
-                        & // ") or give the model's UCOSUB (rollcon run MODEL.adm --ucosub " &
-                        & // "FILE|NAME)", stat_input)
+                    call model%add_ucon(ucon%id, ucon%par)
+                    cycle
+                end if
+                call find_builtin_ucosub(trim(ucon%routine), routine, time_free, found)
+                if (.not. found) then
+                    call fatal_error(error, ucon%routine_at // ": '" // trim(ucon%routine) &
+                        & // "' is not a built-in UCOSUB (" // builtin_ucosub_names() // "); a " &
+                        & // "routine of your own is given with rollcon run MODEL.adm --ucosub " &
+                        & // "FILE", stat_input)
                     return
                 end if
-                ! for the record: the ROUTINE= name, or the model's UCOSUB (the job says which)
-                if (allocated(ucon%routine)) then
-                    if (len_trim(ucon%routine) > 0) then
-                        call model%add_ucon(ucon%id, ucon%par, routine, time_free=time_free &
-                            & .and. found, routine=trim(ucon%routine))
-                        cycle
-                    end if
-                end if
-                call model%add_ucon(ucon%id, ucon%par, routine, time_free=time_free .and. found, &
-                    & routine="")
+                call model%add_ucon(ucon%id, ucon%par, routine, time_free=time_free, &
+                    & routine=trim(ucon%routine))
             end associate
         end do
     end subroutine add_ucons
+
+    !> Each JOINT and JPRIM, in the order of the file, between its markers as the model holds
+    !> them: its UCONs after the dataset's (model%add_joint, model%add_jprim). A refusal names
+    !> the statement's line. A CONVEL whose markers' z axes start less than 90 degrees apart is
+    !> refused: they point along its two shafts away from the joint's centre (ADAMS's rule),
+    !> opposite when the shafts are in line, and with the axes the other way its equation
+    !> turns the shafts in opposite senses and vanishes to first order when they come in line
+    !> (ucon/specs/_joint.py).
+    subroutine add_joints(adm, model, error)
+        type(adm_model_type), intent(in) :: adm
+        type(model_type), intent(inout) :: model
+        type(error_type), allocatable, intent(out) :: error
+        real(wp) :: cosine
+        integer :: k
+
+        if (.not. allocated(adm%joints)) return
+        do k = 1, size(adm%joints)
+            associate (joint => adm%joints(k))
+                if (.not. joint%primitive .and. joint%kind == "CONVEL") then
+                    cosine = dot_product(start_z_axis(adm, joint%i), start_z_axis(adm, joint%j))
+                    if (cosine >= 0.0_wp) then
+                        call fatal_error(error, place(adm%file, joint%line) // ": JOINT/" &
+                            & // to_text(joint%id) // ": a CONVEL's markers' z axes point " &
+                            & // "along its two shafts, away from the joint's centre (opposite " &
+                            & // "when the shafts are in line), but at the start I's (MARKER/" &
+                            & // to_text(joint%i) // ") and J's (MARKER/" // to_text(joint%j) &
+                            & // ") are " // to_text(nint(acos(min(cosine, 1.0_wp))*180.0_wp &
+                            & /pi)) // " degrees apart, more than 90 degrees from opposite: turn " &
+                            & // "one of them half a turn about its x axis", stat_input)
+                        return
+                    end if
+                end if
+                if (joint%primitive) then
+                    call model%add_jprim(joint%id, joint%kind, adm_marker(adm, joint%i), &
+                        & adm_marker(adm, joint%j), error)
+                else
+                    call model%add_joint(joint%id, joint%kind, adm_marker(adm, joint%i), &
+                        & adm_marker(adm, joint%j), error)
+                end if
+                if (allocated(error)) then
+                    error%message = place(adm%file, joint%line) // ": " // error%message
+                    return
+                end if
+            end associate
+        end do
+    end subroutine add_joints
+
+    !> The z axis in ground of marker `id` at the start: its part's frame (PART's REULER)
+    !> turned by its own REULER.
+    function start_z_axis(adm, id) result(axis)
+        type(adm_model_type), intent(in) :: adm
+        !> Marker id (it exists: the reader checked the references)
+        integer, intent(in) :: id
+        real(wp) :: axis(3), turned(3, 3)
+        integer :: m, p
+
+        m = marker_index(adm, id)
+        p = findloc(adm%parts%id, adm%markers(m)%part, dim=1)
+        associate (part => adm%parts(p)%reuler, marker => adm%markers(m)%reuler)
+            turned = matmul(rotation_matrix(part(1), part(2), part(3)), &
+                & rotation_matrix(marker(1), marker(2), marker(3)))
+        end associate
+        axis = turned(:, 3)
+    end function start_z_axis
 
     !> An error of a UCON that names no ROUTINE, from the model's UCOSUB that served it (a
     !> forgotten --ucosub leaves rollcon's hand-checked disk serving another routine's PAR):
@@ -226,10 +286,8 @@ contains
         do k = 1, size(adm%ucons)
             associate (ucon => adm%ucons(k))
                 if (index(error%message, "UCON/" // to_text(ucon%id) // ":") /= 1) cycle
-                if (allocated(ucon%routine)) then
-                    if (len_trim(ucon%routine) > 0) return
-                end if
-                served = builtin_name(fallback, time_free)
+                if (.not. served_by_model_ucosub(ucon%routine)) return
+                served = builtin_ucosub_name(fallback, time_free)
                 suits = builtin_ucosubs_for_par(ucon%par)
                 if (len(served) > 0) then
                     if (index(", " // suits // ", ", ", " // served // ", ") > 0) return
@@ -257,34 +315,6 @@ contains
             end associate
         end do
     end subroutine add_routine_hint
-
-    !> The catalog name of a built-in routine ("" for any other) and whether its F is free of
-    !> time.
-    function builtin_name(routine, time_free) result(name)
-        procedure(ucosub_interface), pointer, intent(in) :: routine
-        logical, intent(out) :: time_free
-        character(len=:), allocatable :: name
-        procedure(ucosub_interface), pointer :: candidate
-        character(len=:), allocatable :: names
-        integer :: start, comma
-        logical :: found
-
-        names = builtin_ucosub_names() // ","
-        start = 1
-        time_free = .false.
-        name = ""
-        do while (start < len(names))
-            comma = start + index(names(start:), ",") - 1
-            call find_builtin_ucosub(trim(adjustl(names(start:comma - 1))), candidate, &
-                & time_free, found)
-            if (found .and. associated(routine, candidate)) then
-                name = trim(adjustl(names(start:comma - 1)))
-                return
-            end if
-            start = comma + 1
-        end do
-        time_free = .false.
-    end function builtin_name
 
     !> A force statement as a force between body-fixed markers.
     subroutine add_force_statement(adm, statement, model, error)

@@ -6,7 +6,7 @@
 module rollcon_adm_markers
     use rollcon_kinds, only : wp
     use rollcon_rotation, only : rotation_matrix
-    use rollcon_marker, only : marker_type
+    use rollcon_marker, only : marker_type, part_marker
     use rollcon_adm_model, only : adm_model_type
     implicit none
     private
@@ -22,8 +22,8 @@ contains
         !> Marker id (it exists: the reader checked the references)
         integer, intent(in) :: id
         type(marker_type) :: marker
-        real(wp) :: r_part(3, 3), r_cm(3, 3), r_marker(3, 3)
-        integer :: m, p, c, i
+        real(wp) :: r_part(3, 3), r_marker(3, 3)
+        integer :: m, p, c
 
         m = marker_index(adm, id)
         p = findloc(adm%parts%id, adm%markers(m)%part, dim=1)
@@ -37,21 +37,16 @@ contains
                 marker%axes = matmul(r_part, r_marker)
                 return
             end if
-            marker%part = count(.not. adm%parts(:p)%ground)
             c = marker_index(adm, part%cm)
             ! principal axes = the CM marker's turned onto those of IP's tensor (R_cm P, P the
             ! identity without products): coordinates in them are (R_cm P)^T times the part's
-            r_cm = matmul(rotation_matrix(adm%markers(c)%reuler(1), adm%markers(c)%reuler(2), &
-                & adm%markers(c)%reuler(3)), part%principal)
-            marker%point = matmul(transpose(r_cm), point - adm%markers(c)%qp)
-            marker%axes = matmul(transpose(r_cm), r_marker)
+            marker = part_marker(id, count(.not. adm%parts(:p)%ground), point, r_marker, &
+                & adm%markers(c)%qp, rotation_matrix(adm%markers(c)%reuler(1), &
+                & adm%markers(c)%reuler(2), adm%markers(c)%reuler(3)), part%principal)
+            ! the CM marker without products of inertia: the principal axes themselves
             marker%principal = c == m .and. all(part%products == 0.0_wp)
-            if (marker%principal) then
-                marker%axes = 0.0_wp
-                do i = 1, 3
-                    marker%axes(i, i) = 1.0_wp
-                end do
-            end if
+            if (marker%principal) marker%axes = reshape([1.0_wp, 0.0_wp, 0.0_wp, 0.0_wp, &
+                & 1.0_wp, 0.0_wp, 0.0_wp, 0.0_wp, 1.0_wp], [3, 3])
         end associate
     end function adm_marker
 

@@ -1,0 +1,260 @@
+! SPDX-License-Identifier: MIT
+!> The DAE form of a problem (docs/design.md §4, formulation 'ida'), the DAE system IDA
+!> integrates: y = (q, u, lambda, mu), one mu per position UCON (the GGL form), and its
+!> residual and Newton matrix (rollcon_dae); the multipliers algebraic; the Newton matrix's
+!> pattern over each part and each UCON's own coordinates; the watches' event functions, given
+!> the multipliers the state holds.
+module rollcon_dae_form
+    use, intrinsic :: ieee_arithmetic, only : ieee_is_finite
+    use rollcon_kinds, only : wp
+    use rollcon_error, only : error_type
+    use rollcon_dae, only : dae_size, dae_differential_kinds => dae_differential, &
+        & residual_of_dae => dae_residual, jacobian_of_dae => dae_jacobian
+    use rollcon_dynamic_system, only : dae_system_type
+    use rollcon_newton_pattern, only : newton_pattern_type
+    use rollcon_output_layout, only : coord_psi
+    use rollcon_problem, only : problem_type
+    implicit none
+    private
+
+    public :: dae_form_type
+
+    !> The DAE form of a problem
+    type, extends(dae_system_type) :: dae_form_type
+        !> The problem it integrates: its model, equations, settings and watches
+        type(problem_type), pointer :: problem => null()
+    contains
+        procedure :: init
+        procedure :: state_size
+        procedure :: pack_state
+        procedure :: unpack_state
+        procedure :: dae_residual
+        procedure :: dae_jacobian
+        procedure :: dae_differential
+        procedure :: dae_pattern
+        procedure :: dae_euler_parts
+        procedure :: multiplier_scale
+        procedure :: state_blocks
+        procedure :: root_count
+        procedure :: roots
+        procedure :: failure_text
+    end type dae_form_type
+
+contains
+
+    !> The DAE form of problem (prepared: rollcon_problem's prepare), which must outlive it.
+    subroutine init(self, problem)
+        class(dae_form_type), intent(inout) :: self
+        type(problem_type), intent(inout), target :: problem
+
+        self%problem => problem
+    end subroutine init
+
+    !> 2n + nc + nh: the coordinates, the rates, a multiplier per UCON and one per position
+    !> UCON (rollcon_dae).
+    integer function state_size(self)
+        class(dae_form_type), intent(in) :: self
+
+        state_size = dae_size(self%problem%eq)
+    end function state_size
+
+    !> y = (q, u, lambda, 0), y' = (u, a, 0, 0) with the accelerations and multipliers of the
+    !> problem's last evaluation (mu = 0: the GGL multipliers vanish on a consistent state).
+    subroutine pack_state(self, q, u, y, yp)
+        class(dae_form_type), intent(inout) :: self
+        real(wp), intent(in) :: q(:), u(:)
+        real(wp), intent(out) :: y(:), yp(:)
+
+        associate (n => self%problem%eq%n, nc => self%problem%eq%nc)
+            y = 0.0_wp
+            yp = 0.0_wp
+            y(:n) = q
+            y(n + 1:2*n) = u
+            y(2*n + 1:2*n + nc) = self%problem%lambda
+            yp(:n) = u
+            yp(n + 1:2*n) = self%problem%a
+        end associate
+    end subroutine pack_state
+
+    !> (q, u), y's own.
+    subroutine unpack_state(self, time, y, q, u, error)
+        class(dae_form_type), intent(inout) :: self
+        real(wp), intent(in) :: time, y(:)
+        real(wp), intent(out) :: q(:), u(:)
+        type(error_type), allocatable, intent(out) :: error
+
+        associate (n => self%problem%eq%n)
+            q = y(:n)
+            u = y(n + 1:2*n)
+        end associate
+    end subroutine unpack_state
+
+    !> F(t, y, y') of rollcon_dae; ierr 0 on success, -1 on failure (kept as the problem's
+    !> failure, a residual that is not finite named by its cause).
+    integer function dae_residual(self, time, y, yp, residual) result(ierr)
+        class(dae_form_type), intent(inout) :: self
+        real(wp), intent(in) :: time, y(:), yp(:)
+        real(wp), intent(out) :: residual(:)
+        type(error_type), allocatable :: error
+
+        associate (problem => self%problem, n => self%problem%eq%n)
+            call residual_of_dae(problem%eq, time, y, yp, residual, error)
+            if (.not. allocated(error) .and. .not. all(ieee_is_finite(residual))) &
+                & call problem%nonfinite_state(time, y(:n), y(n + 1:2*n), error)
+            ierr = problem%keep_failure(error)
+        end associate
+    end function dae_residual
+
+    !> The Newton matrix of rollcon_dae from the UCOSUBs' partials.
+    integer function dae_jacobian(self, time, cj, y, yp, matrix, zeroed) result(ierr)
+        class(dae_form_type), intent(inout) :: self
+        real(wp), intent(in) :: time, cj, y(:), yp(:)
+        real(wp), intent(inout) :: matrix(:, :)
+        logical, intent(in), optional :: zeroed
+        type(error_type), allocatable :: error
+
+        call jacobian_of_dae(self%problem%eq, time, cj, y, yp, matrix, error, zeroed)
+        ierr = self%problem%keep_failure(error)
+    end function dae_jacobian
+
+    !> q and u differential, the multipliers algebraic.
+    function dae_differential(self, n) result(kinds)
+        class(dae_form_type), intent(in) :: self
+        integer, intent(in) :: n
+        real(wp) :: kinds(n)
+
+        kinds = dae_differential_kinds(self%problem%eq)
+    end function dae_differential
+
+    !> Where the Newton matrix (rollcon_dae's dae_jacobian) can be nonzero: the entries that
+    !> routine writes, and no others. Per part, q' = u's diagonal and the momentum rows' 6 by 6
+    !> blocks over its q and u (mass, forces); per UCON k over its own coordinates a (its
+    !> partials are zero elsewhere): the momentum rows a by the q columns a and by lambda_k, the
+    !> UCON's row by q a and u a, and for a position UCON h the q rows a by q a and mu_h, and
+    !> mu_h's row by q a. A chain of N links keeps O(N) entries (504 per link), where every
+    !> state of neighbouring parts by every other would keep 1661.
+    subroutine dae_pattern(self, n, pattern)
+        class(dae_form_type), intent(in) :: self
+        integer, intent(in) :: n
+        type(newton_pattern_type), intent(out) :: pattern
+        logical, allocatable :: keep(:, :)
+        integer :: nq, nc, k, h, j, i0, row, column
+
+        nq = self%problem%eq%n
+        nc = self%problem%eq%nc
+        allocate(keep(n, n), source=.false.)
+        do j = 1, min(nq, n - nq)
+            keep(j, nq + j) = .true.
+        end do
+        do i0 = 0, min(nq, n - nq) - 6, 6
+            keep(nq + i0 + 1:nq + i0 + 6, i0 + 1:i0 + 6) = .true.
+            keep(nq + i0 + 1:nq + i0 + 6, nq + i0 + 1:nq + i0 + 6) = .true.
+        end do
+        associate (bl => self%problem%eq%blocks)
+            do k = 1, nc
+                row = 2*nq + k
+                if (row > n) exit
+                associate (at => bl%ucon_coordinates(bl%ucon_start(k):bl%ucon_start(k + 1) - 1))
+                    keep(nq + at, at) = .true.
+                    keep(nq + at, row) = .true.
+                    keep(row, at) = .true.
+                    keep(row, nq + at) = .true.
+                    h = self%problem%model%holonomic_number(k)
+                    column = 2*nq + nc + h
+                    if (h > 0 .and. column <= n) then
+                        keep(at, at) = .true.
+                        keep(at, column) = .true.
+                        keep(column, at) = .true.
+                    end if
+                end associate
+            end do
+        end associate
+        call pattern%from_relation(keep)
+    end subroutine dae_pattern
+
+    !> Every part's Euler angles and their rates in the DAE state (q, u, lambda, mu): part p's
+    !> psi at 6 (p - 1) + coord_psi, its psi' n further (IDA's error weights, docs/design.md §7).
+    function dae_euler_parts(self, n) result(parts)
+        class(dae_form_type), intent(in) :: self
+        integer, intent(in) :: n
+        integer, allocatable :: parts(:, :)
+        integer :: p
+
+        allocate(parts(2, self%problem%eq%n/6))
+        do p = 1, self%problem%eq%n/6
+            parts(1, p) = 6*(p - 1) + coord_psi
+            parts(2, p) = self%problem%eq%n + parts(1, p)
+        end do
+    end function dae_euler_parts
+
+    !> The model's weight, the sum of m |g| [N]: a constraint force's scale, and a constraint
+    !> moment's per metre (rollcon_ida: the floor of the multipliers' absolute tolerance).
+    function multiplier_scale(self) result(scale)
+        class(dae_form_type), intent(in) :: self
+        real(wp) :: scale
+
+        scale = 0.0_wp
+        associate (model => self%problem%model)
+            if (allocated(model%parts)) scale = sum(model%parts%mass)*norm2(model%gravity)
+        end associate
+    end function multiplier_scale
+
+    !> A coordinate and its rate are of the coordinate's block (rollcon_problem's
+    !> coordinate_blocks), a multiplier lambda_k or mu_h of its UCON's.
+    function state_blocks(self, n) result(blocks)
+        class(dae_form_type), intent(in) :: self
+        integer, intent(in) :: n
+        integer :: blocks(n)
+        integer :: j, m
+
+        associate (bl => self%problem%eq%blocks, nq => self%problem%eq%n, &
+                & nc => self%problem%eq%nc, model => self%problem%model)
+            blocks = 0
+            blocks(:nq) = self%problem%coordinate_blocks()
+            blocks(nq + 1:min(n, 2*nq)) = blocks(:min(nq, n - nq))
+            do j = 2*nq + 1, min(n, 2*nq + nc)
+                blocks(j) = bl%row_block(j - 2*nq)
+            end do
+            ! mu_h: its position UCON's
+            do m = 1, nc
+                j = 2*nq + nc + model%holonomic_number(m)
+                if (model%holonomic_number(m) > 0 .and. j <= n) blocks(j) = bl%row_block(m)
+            end do
+        end associate
+    end function state_blocks
+
+    !> Every watch's event functions.
+    integer function root_count(self)
+        class(dae_form_type), intent(in) :: self
+
+        root_count = self%problem%root_count()
+    end function root_count
+
+    !> The watches' event functions at y = (q, u, lambda, mu), given the multipliers (IDA
+    !> gives no y').
+    integer function roots(self, time, y, g, ydot) result(ierr)
+        class(dae_form_type), intent(inout) :: self
+        real(wp), intent(in) :: time, y(:)
+        real(wp), intent(out) :: g(:)
+        real(wp), intent(in), optional :: ydot(:)
+
+        associate (n => self%problem%eq%n, nc => self%problem%eq%nc)
+            if (size(y) > 2*n) then
+                ierr = self%problem%root_values(time, y(:n), y(n + 1:2*n), g, &
+                    & lambda=y(2*n + 1:2*n + nc))
+            else
+                ! no UCON: no multipliers
+                ierr = self%problem%root_values(time, y(:n), y(n + 1:2*n), g)
+            end if
+        end associate
+    end function roots
+
+    !> The first failure a callback kept ("" when none).
+    function failure_text(self) result(text)
+        class(dae_form_type), intent(in) :: self
+        character(len=:), allocatable :: text
+
+        text = self%problem%failure_text()
+    end function failure_text
+
+end module rollcon_dae_form

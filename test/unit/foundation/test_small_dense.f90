@@ -1,0 +1,141 @@
+! SPDX-License-Identifier: MIT
+!> The small dense solves of the saddle-point system (rollcon_small_dense) against LAPACK's
+!> dgetf2, dgetrs and dpotrs, whose arithmetic they repeat, and on matrices whose answers are
+!> known: a pivoting permutation, a singular matrix, a Cholesky factor.
+module test_small_dense
+    use rollcon_kinds, only : wp
+    use rollcon_error, only : error_type
+    use rollcon_text, only : to_text
+    use rollcon_lapack, only : dgetf2, dgetrs, dpotf2, dpotrs
+    use rollcon_small_dense, only : factor_lu, solve_lu, solve_cholesky3
+    use rollcon_testing, only : unittest_type, new_unittest, check
+    use disk_states, only : seed_random
+    implicit none
+    private
+
+    public :: collect_small_dense
+
+    !> The same operations in the same order as the reference LAPACK: with it, the numbers are
+    !> equal; with another LAPACK (blocked, vectorised with fused multiply-adds) a few
+    !> roundings apart on these well-conditioned matrices (condition below 1e3 by construction)
+    real(wp), parameter :: tol = 1.0e-12_wp
+
+contains
+
+    subroutine collect_small_dense(tests)
+        type(unittest_type), allocatable, intent(out) :: tests(:)
+
+        tests = [new_unittest("lu-equals-lapack", test_lu_lapack), &
+            & new_unittest("lu-pivots-and-solves", test_lu_known), &
+            & new_unittest("lu-singular-column", test_singular), &
+            & new_unittest("cholesky3-equals-lapack", test_cholesky)]
+    end subroutine collect_small_dense
+
+    !> Random matrices of 1 to 25 rows, diagonally weighted: factors, pivots and the solution of
+    !> three right-hand sides as LAPACK's, and a x = b.
+    subroutine test_lu_lapack(error)
+        type(error_type), allocatable, intent(out) :: error
+        real(wp), allocatable :: a(:, :), lu(:, :), reference(:, :), b(:, :), x(:, :)
+        integer, allocatable :: pivots(:), reference_pivots(:)
+        integer :: n, info, reference_info, trial
+
+        call seed_random(31)
+        do trial = 1, 50
+            n = 1 + mod(trial - 1, 25)
+            allocate(a(n, n), b(n, 3), pivots(n), reference_pivots(n))
+            call random_number(a)
+            call random_number(b)
+            a = a - 0.5_wp
+            a(1, 1) = a(1, 1) + 0.1_wp*n
+            lu = a
+            reference = a
+            call factor_lu(n, lu, n, pivots, info)
+            call dgetf2(n, n, reference, n, reference_pivots, reference_info)
+            call check(error, info == reference_info .and. all(pivots == reference_pivots), &
+                & "n = " // to_text(n) // ": pivots or info differ from dgetf2's")
+            if (allocated(error)) return
+            call check(error, reshape(lu, [n*n]), reshape(reference, [n*n]), "n = " &
+                & // to_text(n) // ": factors", abs_tol=tol, rel_tol=tol)
+            if (allocated(error)) return
+            x = b
+            call solve_lu(n, 3, lu, n, pivots, x, n)
+            call dgetrs("N", n, 3, reference, n, reference_pivots, b, n, info)
+            call check(error, reshape(x, [3*n]), reshape(b, [3*n]), "n = " // to_text(n) &
+                & // ": solutions", abs_tol=tol, rel_tol=tol)
+            if (allocated(error)) return
+            deallocate(a, b, pivots, reference_pivots)
+        end do
+    end subroutine test_lu_lapack
+
+    !> A matrix whose pivots are its second, then third row: P a = L U with the known factors,
+    !> and the solution of a x = (1, 2, 3).
+    subroutine test_lu_known(error)
+        type(error_type), allocatable, intent(out) :: error
+        ! a few roundings of numbers of order one
+        real(wp), parameter :: exact = 4.0_wp*epsilon(1.0_wp)
+        real(wp) :: a(3, 3), b(3, 1)
+        integer :: pivots(3), info
+
+        ! rows (0 1 1), (2 0 0), (0 4 0): x = (1, 3/4, 1/4) solves a x = (1, 2, 3)
+        a = reshape([0.0_wp, 2.0_wp, 0.0_wp, 1.0_wp, 0.0_wp, 4.0_wp, 1.0_wp, 0.0_wp, 0.0_wp], &
+            & [3, 3])
+        call factor_lu(3, a, 3, pivots, info)
+        call check(error, info == 0 .and. all(pivots == [2, 3, 3]), "pivots")
+        if (allocated(error)) return
+        ! U = (2 0 0; 0 4 0; 0 0 1), L = (1; 0 1; 0 1/4 1)
+        call check(error, reshape(a, [9]), [2.0_wp, 0.0_wp, 0.0_wp, 0.0_wp, 4.0_wp, 0.25_wp, &
+            & 0.0_wp, 0.0_wp, 1.0_wp], "factors", abs_tol=exact)
+        if (allocated(error)) return
+        b(:, 1) = [1.0_wp, 2.0_wp, 3.0_wp]
+        call solve_lu(3, 1, a, 3, pivots, b, 3)
+        call check(error, b(:, 1), [1.0_wp, 0.75_wp, 0.25_wp], "solution", abs_tol=exact)
+    end subroutine test_lu_known
+
+    !> A matrix with a zero column beyond the first: info names the column, as dgetf2's.
+    subroutine test_singular(error)
+        type(error_type), allocatable, intent(out) :: error
+        real(wp) :: a(3, 3)
+        integer :: pivots(3), info
+
+        a = reshape([1.0_wp, 2.0_wp, 3.0_wp, 2.0_wp, 4.0_wp, 6.0_wp, 0.0_wp, 1.0_wp, 5.0_wp], &
+            & [3, 3])
+        call factor_lu(3, a, 3, pivots, info)
+        call check(error, info, 2, "info of a matrix whose second column is twice its first")
+    end subroutine test_singular
+
+    !> The solve with a 3 x 3 Cholesky factor (dpotf2's) of random positive definite matrices,
+    !> for five right-hand sides in a taller array, as dpotrs's, and m x = b; the array's other
+    !> rows untouched.
+    subroutine test_cholesky(error)
+        type(error_type), allocatable, intent(out) :: error
+        real(wp) :: m(3, 3), l(3, 3), b(7, 5), reference(7, 5), rhs(7, 5)
+        integer :: trial, info
+
+        call seed_random(37)
+        do trial = 1, 50
+            call random_number(l)
+            m = matmul(l, transpose(l))
+            m(1, 1) = m(1, 1) + 0.1_wp
+            m(2, 2) = m(2, 2) + 0.1_wp
+            m(3, 3) = m(3, 3) + 0.1_wp
+            l = m
+            call dpotf2("L", 3, l, 3, info)
+            call check(error, info, 0, "dpotf2")
+            if (allocated(error)) return
+            call random_number(b)
+            reference = b
+            rhs = b
+            call solve_cholesky3(l, 5, b, 7)
+            call dpotrs("L", 3, 5, l, 3, reference, 7, info)
+            call check(error, reshape(b, [35]), reshape(reference, [35]), "trial " &
+                & // to_text(trial), abs_tol=tol, rel_tol=tol)
+            if (allocated(error)) return
+            call check(error, reshape(matmul(m, b(:3, :)), [15]), reshape(rhs(:3, :), [15]), &
+                & "m x", abs_tol=tol, rel_tol=tol)
+            if (allocated(error)) return
+            call check(error, all(b(4:, :) == rhs(4:, :)), "rows past the third touched")
+            if (allocated(error)) return
+        end do
+    end subroutine test_cholesky
+
+end module test_small_dense
