@@ -400,7 +400,10 @@ contains
             if (self%t > self%t_corner) call self%restart_at_corner(summary, error)
             return
         end if
-        parts = pack(events%part, events%action == action_rebase)
+        allocate(parts(0))
+        do k = 1, size(events)
+            if (events(k)%action == action_rebase) parts = [parts, events(k)%part]
+        end do
         call self%rebase(parts, refusal, fell, error)
         if (allocated(error)) return
         if (allocated(refusal)) then
