@@ -6,7 +6,7 @@ module rollcon_command_run
     use rollcon, only : wp, error_type, fatal_error, stat_input, to_text, job_type, load_job, &
         & run_job, job_result_type, status_inaccurate, run_record_type, read_run, &
         & write_vtk_series, run_times_type
-    use rollcon_program, only : command_line_text
+    use rollcon_program, only : command_line_text, check_at_start
     use rollcon_cli, only : cli_request_type, command_names
     use rollcon_app_files, only : make_folder, file_stem
     implicit none
@@ -61,6 +61,8 @@ contains
         if (request%has("--allow-large-output")) job%max_csv_bytes = huge(1.0_wp)
         call call_timeout_of(request, job%call_timeout, error)
         if (allocated(error)) return
+        ! a user's file is checked at the run's consistent start, before the first step
+        if (.not. request%has("--no-check")) job%start_check => check_at_start
         call run_job(job, result, error)
         if (len(result%summary_text) > 0) write(output_unit, '(a)') result%summary_text
         if (allocated(error)) return

@@ -139,7 +139,11 @@ contains
             & "               your routine runs in a child process that only computes (this", &
             & "               process writes every output), so a crash, a STOP or a call", &
             & "               longer than --call-timeout SECONDS (default 10) of the", &
-            & "               routine ends with an error naming the UCON and the call", &
+            & "               routine ends with an error naming the UCON and the call;", &
+            & "               the run checks your routine's partials at its consistent", &
+            & "               start, before the first step: a wrong one is named and the", &
+            & "               run is not started", &
+            & "  --no-check   skip that check and run anyway", &
             & "  --ucosub NAME  a built-in routine instead (when no file NAME exists): disk,", &
             & "               rolling_disk, and the other generated specs (docs/generator.md)", &
             & "  --vtk FPS    also write DIR/SCENE_vtk/SCENE.pvd, a VTK time series for", &

@@ -9,10 +9,12 @@ module rollcon_program
     use rollcon_output_files, only : make_folders
     use rollcon_provenance, only : command_line_text
 
-    ! rollcon check: its options' limits and texts, and a dataset's UCONs as requests
+    ! rollcon check: its options' limits and texts, and a dataset's UCONs as requests; the
+    ! check of a user's UCOSUB before a dataset's run
     use rollcon_child_process, only : default_call_timeout
     use rollcon_ucosub_audit, only : sampling_ranges, max_check_states, states_refusal
     use rollcon_ucon_request, only : dataset_ucon_requests
+    use rollcon_run_check, only : check_at_start
 
     ! rollcon bench: speed against accuracy, and the cost as models grow
     use rollcon_benchmark, only : method_type, benchmark_methods, benchmark_row_type, &

@@ -159,8 +159,9 @@ contains
         end if
     end subroutine conclude
 
-    !> In the child: load the routine, guard it, build, make the start consistent and
-    !> simulate, sending everything to the host.
+    !> In the child: load the routine, guard it, build, make the start consistent, check the
+    !> routine there when the job asks (job%start_check) and simulate, sending everything to
+    !> the host.
     subroutine run_task(self, record, error)
         class(job_task_type), intent(inout) :: self
         type(call_record_type), pointer, intent(in) :: record
@@ -185,6 +186,11 @@ contains
         guarded => guarded_ucosub
         call self%job%source%build(guarded, problem, q0, u0, report, error)
         if (allocated(error)) return
+        if (associated(self%job%start_check)) then
+            call self%job%start_check(self%job%user_file, self%job%input_path, problem, &
+                & self%options%t0, q0, u0, error)
+            if (allocated(error)) return
+        end if
         call send_frame(self%stream_fd, frame_report, report, error)
         if (allocated(error)) return
         call self%job%source%shapes(problem, shapes, error)

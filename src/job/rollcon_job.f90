@@ -13,10 +13,12 @@ module rollcon_job
     use rollcon_output_rows, only : default_max_csv_bytes
     use rollcon_child_process, only : default_call_timeout
     use rollcon_user_build, only : user_build_options_type
+    use rollcon_problem, only : problem_type
+    use rollcon_error, only : error_type
     implicit none
     private
 
-    public :: job_type, new_job
+    public :: job_type, new_job, start_check_interface
 
     type :: job_type
         !> What to build and run
@@ -46,7 +48,26 @@ module rollcon_job
         logical :: quiet = .false.
         !> Largest CSV the run may plan [bytes]
         real(wp) :: max_csv_bytes = default_max_csv_bytes
+        !> The input file the job was loaded from ("" when a program built the job)
+        character(len=:), allocatable :: input_path
+        !> Called in the child process of a run whose routine is a user's file, at the
+        !> consistent start and before the first step, when associated (the program sets it:
+        !> rollcon_run_check's check_at_start); an error stops the run before it starts
+        procedure(start_check_interface), pointer, nopass :: start_check => null()
     end type job_type
+
+    abstract interface
+        !> Check the routine serving a built problem at its consistent start: time [s], the
+        !> coordinates q and rates u (system numbering, SI); user_file and input_path name
+        !> the routine's file and the job's input for messages; error stops the run.
+        subroutine start_check_interface(user_file, input_path, problem, time, q, u, error)
+            import :: wp, problem_type, error_type
+            character(len=*), intent(in) :: user_file, input_path
+            type(problem_type), intent(inout), target :: problem
+            real(wp), intent(in) :: time, q(:), u(:)
+            type(error_type), allocatable, intent(out) :: error
+        end subroutine start_check_interface
+    end interface
 
 contains
 
@@ -62,6 +83,7 @@ contains
         job%routine_name = "disk"
         job%command_line = ""
         job%output_dir = ""
+        job%input_path = ""
         job%quiet = .true.
     end function new_job
 

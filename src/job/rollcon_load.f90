@@ -75,6 +75,8 @@ contains
         job%routine_name = "disk"
         job%command_line = ""
         job%output_dir = "output"
+        ! a command file's job keeps its dataset's path, the file rollcon check --model reads
+        if (.not. allocated(job%input_path)) job%input_path = path
         if (present(ucosub)) call choose_ucosub(ucosub, job, error)
     end subroutine load_job
 
@@ -205,6 +207,7 @@ contains
         allocate(job%source, source=new_dataset_source(adm, acf%dataset))
         job%name = acf%output_name
         if (len(job%name) == 0) job%name = output_name(acf%dataset)
+        job%input_path = acf%dataset
     end subroutine load_command_file
 
     !> The overrides of a dataset (statement%id%keyword[%k]) as the reader takes them.

@@ -43,7 +43,8 @@ contains
             & new_unittest("check-model-routine", test_check_model), &
             & new_unittest("two-parts-run-and-pictures", test_two_parts), &
             & new_unittest("default-and-unknown-routine", test_refusals), &
-            & new_unittest("forgotten-ucosub-hint", test_forgotten_ucosub)]
+            & new_unittest("forgotten-ucosub-hint", test_forgotten_ucosub), &
+            & new_unittest("user-routine-checked-before-run", test_checked_before_run)]
     end subroutine collect_dataset_command
 
     !> `run data/coin.adm --ucosub disk` writes the rows `run coin` writes, bit for bit, under
@@ -257,5 +258,65 @@ contains
         if (.not. allocated(error)) call check(error, status_hinted == 0 .and. complete, &
             & "with --ucosub turntable_ball: exit status " // to_text(status_hinted))
     end subroutine test_forgotten_ucosub
+
+    !> `run MODEL.adm --ucosub FILE` checks the routine at the consistent start first: test/turntable/turntable.adm (a
+    !> puck carried round at 3.5 rad/s by two velocity UCONs) with its right routine runs with
+    !> nothing on stderr and ends, one turn later, where X = 0.1 cos(W t), Y = 0.1 sin(W t)
+    !> put it, (0.1, 0) m: measured 2.2e-8 m off at rtol 1e-8 (the dataset's default), so
+    !> 2e-7 m catches a tenfold loss. With the slipped twin (dF/dX, dF/dY half their value)
+    !> the run is not started (exit 1, no CSV): stderr names both wrong entries and their
+    !> values, the full check's command and --no-check, with which it runs (exit 0).
+    subroutine test_checked_before_run(error)
+        type(error_type), allocatable, intent(out) :: error
+        character(len=*), parameter :: model = "test/turntable/turntable.adm"
+        character(len=*), parameter :: tol_turn = "2e-7 m"
+        real(wp), parameter :: tol_end = 2.0e-7_wp
+        character(len=:), allocatable :: program, right_err, slipped_err, unchecked_err
+        type(output_layout_type) :: layout
+        type(history_type) :: rows
+        integer :: status_right, status_slipped, status_unchecked, x
+        logical :: slipped_csv
+
+        call rollcon_program(program, error)
+        if (allocated(error)) return
+        call make_folder(scratch)
+        call run_rollcon(program, "run " // model // " --ucosub test/turntable/turntable.f " &
+            & // "-q -o " // scratch // "/right", scratch // "/right.out", scratch &
+            & // "/right.err", status_right)
+        call run_rollcon(program, "run " // model // " --ucosub " &
+            & // "test/turntable/turntable_half_coriolis.f -q -o " // scratch // "/slipped", &
+            & scratch // "/slipped.out", scratch // "/slipped.err", status_slipped)
+        call run_rollcon(program, "run " // model // " --ucosub " &
+            & // "test/turntable/turntable_half_coriolis.f --no-check -q -o " // scratch &
+            & // "/unchecked", scratch // "/unchecked.out", scratch // "/unchecked.err", &
+            & status_unchecked)
+        right_err = file_text(scratch // "/right.err")
+        slipped_err = file_text(scratch // "/slipped.err")
+        unchecked_err = file_text(scratch // "/unchecked.err")
+        slipped_csv = file_exists(scratch // "/slipped/turntable.adm.csv")
+        call read_output_csv(scratch // "/right/turntable.adm.csv", layout, rows, error)
+        call remove_folder(scratch)
+        if (allocated(error)) return
+        call check(error, status_right == 0 .and. len_trim(right_err) == 0, &
+            & "the right routine: exit " // to_text(status_right) // ", stderr: " // right_err)
+        if (allocated(error)) return
+        x = layout%part_column(1, coord_x)
+        call check(error, abs(rows%rows(x, rows%count) - 0.1_wp) <= tol_end .and. &
+            & abs(rows%rows(x + 1, rows%count)) <= tol_end, "after one turn (X, Y) = (" &
+            & // to_text(rows%rows(x, rows%count)) // ", " // to_text(rows%rows(x + 1, &
+            & rows%count)) // ") m, not (0.1, 0) within " // tol_turn)
+        if (allocated(error)) return
+        call check(error, status_slipped /= 0 .and. index(slipped_err, "fails its check") > 0 &
+            & .and. index(slipped_err, "UCON/1 ARRAY(2) = dF/d(Y_2) [derivative]: returned " &
+            & // "1.75, differences give 3.5") > 0 .and. index(slipped_err, "UCON/2 ARRAY(1) " &
+            & // "= dF/d(X_2)") > 0 .and. index(slipped_err, "rollcon check " &
+            & // "test/turntable/turntable_half_coriolis.f --model " // model) > 0 .and. &
+            & index(slipped_err, "--no-check") > 0 .and. .not. slipped_csv, &
+            & "the slipped routine: exit " // to_text(status_slipped) // ", stderr: " &
+            & // slipped_err)
+        if (allocated(error)) return
+        call check(error, status_unchecked == 0 .and. len_trim(unchecked_err) == 0, &
+            & "--no-check: exit " // to_text(status_unchecked) // ", stderr: " // unchecked_err)
+    end subroutine test_checked_before_run
 
 end module test_dataset_command

@@ -35,7 +35,8 @@ contains
             & new_unittest("quadratic-in-velocity", test_quadratic), &
             & new_unittest("hidden-state", test_hidden_state), &
             & new_unittest("random-states-xorshift64", test_random_sequence), &
-            & new_unittest("random-states-in-ranges", test_random_ranges)]
+            & new_unittest("random-states-in-ranges", test_random_ranges), &
+            & new_unittest("sharp-bend-judged-at-a-finer-step", test_sharp_bend)]
     end subroutine collect_partials_check
 
     !> Run the checker on component 2 of a disk-like routine at the generic state.
@@ -271,5 +272,54 @@ contains
             if (allocated(error)) return
         end do
     end subroutine test_random_ranges
+
+    !> F = sin(k X) + sin(k t) + Y with k = 200 (1/m and 1/s), every partial exact; with
+    !> slip, dF/dX returned 0.1 % too large.
+    subroutine sharp_bend_ucosub(id, time, q, par, npar, idrsel, iflag, scalar, array, xmatrx)
+        integer, intent(in) :: id, npar, idrsel(3), iflag
+        real(wp), intent(in) :: time, q(30), par(*)
+        real(wp), intent(inout) :: scalar, array(30), xmatrx(30, 30)
+        real(wp) :: k
+
+        k = par(1)
+        ! IDRSEL(1): 1 F, 2 its explicit time part, 3 dF/dt, 4 d2F/dt2
+        select case (idrsel(1))
+        case (1)
+            scalar = sin(k*q(1)) + sin(k*time) + q(2)
+        case (2)
+            scalar = sin(k*time)
+        case (3)
+            scalar = k*cos(k*time)
+        case (4)
+            scalar = -k**2*sin(k*time)
+        end select
+        if (idrsel(2) == 1) array(1:2) = [k*cos(k*q(1))*par(2), 1.0_wp]
+        if (idrsel(3) == 1) xmatrx(1, 1) = -k**2*sin(k*q(1))
+    end subroutine sharp_bend_ucosub
+
+    !> A right routine where the function bends sharply: sin(200 X) at the step h = 1e-3
+    !> leaves the sixth-order quotient (k h)^6/140 = 4.6e-7 off, 46 times the tolerance 1e-8,
+    !> and the quotient at h/4 is good to 1.1e-10: no finding, and the largest deviation
+    !> reported below the tolerance. The same routine with dF/dX 0.1 % too large is still
+    !> found (a deviation 1e5 times the quotients' error).
+    subroutine test_sharp_bend(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(ucon_check_result_type) :: result
+        type(ucon_check_options_type) :: options
+        real(wp), parameter :: q(2) = [0.3_wp, -0.4_wp]
+
+        call check_ucon_state(sharp_bend_ucosub, 1, [200.0_wp, 1.0_wp], [11, 12], 0.2_wp, q, &
+            & options, result, error)
+        if (allocated(error)) return
+        call check(error, size(result%mismatches), 0, "findings on a right routine")
+        if (allocated(error)) return
+        call check(error, result%worst <= options%rel_tol, "largest deviation " &
+            & // to_text(result%worst) // " after the finer step")
+        if (allocated(error)) return
+        call check_ucon_state(sharp_bend_ucosub, 1, [200.0_wp, 1.001_wp], [11, 12], 0.2_wp, &
+            & q, options, result, error)
+        if (allocated(error)) return
+        call expect_finding(error, result, "derivative", 1, 0)
+    end subroutine test_sharp_bend
 
 end module test_partials_check

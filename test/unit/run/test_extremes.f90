@@ -8,7 +8,7 @@ module test_extremes
     use rollcon_text, only : to_text
     use rollcon_scene, only : scene_type, read_scene, choice_code
     use rollcon_simulation, only : history_type, run_summary_type, status_completed, &
-        & status_stopped
+        & status_inaccurate, status_stopped
     use rollcon_output_layout, only : coord_theta, coord_psidot
     use rollcon_benchmark, only : benchmark_methods, benchmark_row_type, benchmark_scene, &
         & benchmark_header, write_benchmark_row
@@ -160,8 +160,22 @@ contains
             scene%run%atol = 1.0e-2_wp*rtol
             call run_in_memory(scene, history, summary, error)
             if (allocated(error)) return
-            call check_sane(error, history, summary, trim(formulations(i)) // " at rtol " &
-                & // to_text(rtol))
+            if (summary%status == status_inaccurate) then
+                ! a verdict is a promise: at the loosest rung a run may drift beyond what its
+                ! tolerance promises (CVODE at 1e-3: 1.7e-2 of the energy scale against the
+                ! 1e-2 allowed), and then it must reach the end with its rows whole and say so
+                ! truly: its drift beyond its bound
+                call check(error, summary%t_reached >= scene%run%end_time .and. &
+                    & all(ieee_is_finite(history%rows(:, :history%count))) .and. &
+                    & summary%energy_drift > summary%energy_bound, trim(formulations(i)) &
+                    & // " at rtol " // to_text(rtol) // ": INACCURATE with drift " &
+                    & // to_text(summary%energy_drift) // " against its bound " &
+                    & // to_text(summary%energy_bound) // " at t = " &
+                    & // to_text(summary%t_reached) // " s")
+            else
+                call check_sane(error, history, summary, trim(formulations(i)) // " at rtol " &
+                    & // to_text(rtol))
+            end if
             if (allocated(error)) return
             ! residual: 100 rtol [m/s] (velocities ~0.1 m/s), floored at 1e-13 for round-off
             call check(error, summary%residual_max, 0.0_wp, trim(formulations(i)) &
