@@ -19,7 +19,7 @@ module rollcon_command_bench
 
     public :: bench_command
 
-    !> The accuracy the headline ratio is quoted at [m] (issue #13)
+    !> The accuracy the headline ratio is quoted at [m] (docs/benchmark.md)
     real(wp), parameter :: accuracy_target = 1.0e-6_wp
     !> Runs of each whole process timed (the median kept): one child of some 30 ms varied by a
     !> quarter between two benchmark runs an hour apart
@@ -207,7 +207,7 @@ contains
         if (allocated(error)) return
         write(output_unit, '(a, 8(f8.3, a))') "bench: " // name &
             & // ": unit costs: right-hand side", 1.0e6_wp*costs%rhs, " us (in independent " &
-            & // "speeds", 1.0e6_wp*costs%rhs_in_speeds, " us), residual", &
+            & // "speeds", 1.0e6_wp*costs%rhs_speeds, " us), residual", &
             & 1.0e6_wp*costs%residual, " us, event functions", 1.0e6_wp*costs%root, &
             & " us (given CVODE's accelerations", 1.0e6_wp*costs%root_given_rates, &
             & " us), output row", 1.0e6_wp*costs%output, " us, its CSV line", &
@@ -242,7 +242,7 @@ contains
             & options%output_dir, process_unit, error)
     end subroutine bench_scene
 
-    !> The per-part scaling table (issue #25; the full one is `rollcon bench scaling`): the
+    !> The per-part scaling table (the full one is `rollcon bench scaling`): the
     !> default way of solving on N disks and on a chain of N links, N = 1, 4, 16, 64 over 2 s
     !> (the chain a tenth of it); with --quick N = 1, 2 over 0.2 s. Datasets in DIR/scaling.
     subroutine scaling_summary(options, error)

@@ -37,6 +37,10 @@ module rollcon
     use rollcon_model, only : model_type, ucon_statement_type, setup_model, &
         & served_by_model_ucosub
     use rollcon_marker, only : marker_type, part_marker
+    use rollcon_motion, only : motion_type, prepare_motion, motion_form_displacement, &
+        & motion_form_velocity, motion_form_acceleration
+    use rollcon_motion_geometry, only : motion_x, motion_y, motion_z, motion_b1, motion_b2, &
+        & motion_b3, motion_rotation
     use rollcon_part_frames, only : part_start
     use rollcon_inertia_axes, only : principal_axes
     use rollcon_rotation, only : rotation_matrix
@@ -50,7 +54,7 @@ module rollcon
 
     ! how to integrate
     use rollcon_run_settings, only : run_settings_type, formulation_cvode, formulation_ida, &
-        & formulation_maggi, method_bdf, method_adams, drift_none, drift_projection, &
+        & formulation_speeds, method_bdf, method_adams, drift_none, drift_projection, &
         & drift_baumgarte, jacobian_analytic, jacobian_dq, linear_dense, linear_sparse, &
         & linear_auto
 

@@ -96,6 +96,12 @@ program tester
     use test_link_chain, only : collect_link_chain
     use test_assembly, only : collect_assembly
     use test_model_elements, only : collect_model_elements
+
+    use test_expression_functions, only : collect_expression_functions
+    use test_gcon, only : collect_gcon
+    use test_couplers, only : collect_couplers
+    use test_motions, only : collect_motions
+    use test_motion_partials, only : collect_motion_partials
     implicit none
     type(testsuite_type), allocatable :: suites(:)
     type(test_counts_type) :: counts
@@ -196,7 +202,13 @@ program tester
         & new_testsuite("disk-fleet", collect_disk_fleet), &
         & new_testsuite("link-chain", collect_link_chain), &
         & new_testsuite("assembly", collect_assembly), &
-        & new_testsuite("model-elements", collect_model_elements)]
+        & new_testsuite("model-elements", collect_model_elements), &
+
+        & new_testsuite("expression-functions", collect_expression_functions), &
+        & new_testsuite("gcon", collect_gcon), &
+        & new_testsuite("couplers", collect_couplers), &
+        & new_testsuite("motions", collect_motions), &
+        & new_testsuite("motion-partials", collect_motion_partials)]
 
     if (command_argument_count() >= 1) then
         call get_command_argument(1, argument)

@@ -21,7 +21,7 @@ module rollcon_adm_build
     use rollcon_ucosub_units, only : ucosub_units_type
     use rollcon_ucosub_catalog, only : find_builtin_ucosub, builtin_ucosub_names, &
         & builtin_ucosubs_for_par, builtin_ucosub_name
-    use rollcon_expression, only : quantity_names
+    use rollcon_marker, only : marker_type
     use rollcon_rotation, only : rotation_matrix
     use rollcon_body, only : part_type
     use rollcon_marker_force, only : kind_translation, kind_rotation, kind_vector, &
@@ -31,10 +31,17 @@ module rollcon_adm_build
     use rollcon_problem, only : problem_type
     use rollcon_theta_watch, only : new_theta_watch
     use rollcon_request_watch, only : displacement_request_type, new_request_watch
+    use rollcon_motion_watch, only : motion_watch_type
     use rollcon_adm_model, only : adm_model_type, adm_force_type, force_sforce, force_vforce
     use rollcon_adm_state, only : part_state
     use rollcon_adm_singular, only : start_singular_parts
     use rollcon_adm_markers, only : adm_marker, marker_index
+    use rollcon_adm_constraints, only : add_expression_constraints, expression_markers
+    use rollcon_adm_motions, only : motion_velocity_form, motion_acceleration_form
+    use rollcon_motion, only : motion_type, prepare_motion, motion_form_displacement, &
+        & motion_form_velocity, motion_form_acceleration
+    use rollcon_motion_geometry, only : motion_x, motion_y, motion_z, motion_b1, motion_b2, &
+        & motion_b3, motion_rotation
     use, intrinsic :: ieee_arithmetic, only : ieee_is_finite
     implicit none
     private
@@ -81,6 +88,18 @@ contains
         if (allocated(error)) return
         call add_joints(adm, model, error)
         if (allocated(error)) return
+        allocate(q0(6*size(model%parts)), u0(6*size(model%parts)))
+        p = 0
+        do i = 1, size(adm%parts)
+            if (adm%parts(i)%ground) cycle
+            p = p + 1
+            call part_state(adm, adm%parts(i), q0(6*p - 5:6*p), u0(6*p - 5:6*p))
+        end do
+        ! GCONs and couplings, the latter measured from this start
+        call add_expression_constraints(adm, model, q0, u0, error)
+        if (allocated(error)) return
+        call add_motions(adm, model, error)
+        if (allocated(error)) return
         do i = 1, size(adm%forces)
             call add_force_statement(adm, adm%forces(i), model, error)
             if (allocated(error)) return
@@ -101,13 +120,10 @@ contains
             if (size(adm%requests) > 0) call problem%add_watch(new_request_watch( &
                 & displacement_requests(adm)))
         end if
-        allocate(q0(6*size(model%parts)), u0(6*size(model%parts)))
-        p = 0
-        do i = 1, size(adm%parts)
-            if (adm%parts(i)%ground) cycle
-            p = p + 1
-            call part_state(adm, adm%parts(i), q0(6*p - 5:6*p), u0(6*p - 5:6*p))
-        end do
+        ! each MOTION's force or torque, a column (rollcon_motion_watch)
+        if (allocated(adm%motions)) then
+            if (size(adm%motions) > 0) call problem%add_watch(motion_watch_type())
+        end if
         ! a part flat at t = 0 starts in turned axes (docs/rebasing.md): its model part too
         call start_singular_parts(adm, problem, q0, u0, adm_theta_min, error)
         if (allocated(error)) return
@@ -222,6 +238,8 @@ contains
         if (.not. allocated(adm%joints)) return
         do k = 1, size(adm%joints)
             associate (joint => adm%joints(k))
+                ! a RACKPIN or SCREW couples motions: rollcon_adm_constraints
+                if (joint%kind == "RACKPIN" .or. joint%kind == "SCREW") cycle
                 if (.not. joint%primitive .and. joint%kind == "CONVEL") then
                     cosine = dot_product(start_z_axis(adm, joint%i), start_z_axis(adm, joint%j))
                     if (cosine >= 0.0_wp) then
@@ -250,6 +268,90 @@ contains
             end associate
         end do
     end subroutine add_joints
+
+    !> Each MOTION, in the order of the file: a UCON with its time part (model%add_motion), after
+    !> the joints' UCONs. On a joint, its markers are the joint's: TRANSLATION drives a
+    !> TRANSLATIONAL or CYLINDRICAL joint along J's z axis, ROTATION a REVOLUTE or CYLINDRICAL
+    !> one about it; between markers, X, Y, Z, B1, B2, B3 (rollcon_motion_geometry). The
+    !> function's integrals (VELOCITY, ACCELERATION) are anchored over the run's span
+    !> (prepare_motion). A refusal names the statement's line.
+    subroutine add_motions(adm, model, error)
+        type(adm_model_type), intent(in) :: adm
+        type(model_type), intent(inout) :: model
+        type(error_type), allocatable, intent(out) :: error
+        type(motion_type) :: motion
+        character(len=:), allocatable :: where
+        integer :: k, i, j, component, joint
+        real(wp) :: horizon
+
+        if (.not. allocated(adm%motions)) return
+        horizon = adm%run%settings%end_time
+        do k = 1, size(adm%motions)
+            associate (statement => adm%motions(k))
+                where = place(adm%file, statement%line) // ": MOTION/" // to_text(statement%id)
+                i = statement%i
+                j = statement%j
+                select case (statement%component)
+                case ("X")
+                    component = motion_x
+                case ("Y")
+                    component = motion_y
+                case ("Z")
+                    component = motion_z
+                case ("B1")
+                    component = motion_b1
+                case ("B2")
+                    component = motion_b2
+                case ("B3")
+                    component = motion_b3
+                case default
+                    joint = findloc(adm%joints%id, statement%joint, dim=1, &
+                        & mask=.not. adm%joints%primitive)
+                    associate (kind => adm%joints(joint)%kind)
+                        if (statement%component == "TRANSLATION" .and. all(kind /= &
+                            & [character(len=13) :: "TRANSLATIONAL", "CYLINDRICAL"])) then
+                            call fatal_error(error, where // ": JOINT/" &
+                                & // to_text(statement%joint) // " is " // kind // "; a " &
+                                & // "TRANSLATION drives a TRANSLATIONAL or CYLINDRICAL joint " &
+                                & // "(along its z axis)", stat_input)
+                            return
+                        end if
+                        if (statement%component == "ROTATION" .and. all(kind /= &
+                            & [character(len=11) :: "REVOLUTE", "CYLINDRICAL"])) then
+                            call fatal_error(error, where // ": JOINT/" &
+                                & // to_text(statement%joint) // " is " // kind // "; a " &
+                                & // "ROTATION drives a REVOLUTE or CYLINDRICAL joint (about " &
+                                & // "its z axis)", stat_input)
+                            return
+                        end if
+                    end associate
+                    component = merge(motion_z, motion_rotation, &
+                        & statement%component == "TRANSLATION")
+                    i = adm%joints(joint)%i
+                    j = adm%joints(joint)%j
+                end select
+                motion = motion_type(id=statement%id, name=where, function=statement%function, &
+                    & form=motion_form(statement%form), time_unit=adm%units%time, &
+                    & initial_displacement=statement%initial_displacement, &
+                    & initial_velocity=statement%initial_velocity)
+                if (any(component == [motion_x, motion_y, motion_z])) &
+                    & motion%value_unit = adm%units%length
+                call prepare_motion(motion, horizon)
+                call model%add_motion(motion, component, statement%joint /= 0, &
+                    & adm_marker(adm, i), adm_marker(adm, j), error)
+                if (allocated(error)) return
+            end associate
+        end do
+    end subroutine add_motions
+
+    !> rollcon_motion's code of a MOTION's form as the reader gives it (rollcon_adm_motions).
+    pure integer function motion_form(form)
+        integer, intent(in) :: form
+
+        motion_form = motion_form_displacement
+        if (form == motion_velocity_form) motion_form = motion_form_velocity
+        if (form == motion_acceleration_form) motion_form = motion_form_acceleration
+    end function motion_form
 
     !> The z axis in ground of marker `id` at the start: its part's frame (PART's REULER)
     !> turned by its own REULER.
@@ -323,8 +425,9 @@ contains
         type(model_type), intent(inout) :: model
         type(error_type), allocatable, intent(out) :: error
         type(applied_force_type) :: force
+        type(marker_type), allocatable :: markers(:)
         character(len=:), allocatable :: where, key
-        integer :: k, n, m
+        integer :: k, n
 
         force%profile = profile_statement
         associate (s => force%statement)
@@ -354,19 +457,12 @@ contains
                 if (.not. statement%given(k)) cycle
                 key = slot_names(k)
                 if (statement%kind == force_sforce) key = "FUNCTION"
-                do n = 1, size(statement%functions(k)%inputs)
-                    associate (input => statement%functions(k)%inputs(n))
-                        m = marker_index(adm, input%marker)
-                        if (m == 0) then
-                            call fatal_error(error, where // " " // key // ": " &
-                                & // trim(quantity_names(input%quantity)) // "(" &
-                                & // to_text(input%marker) // "): no MARKER/" &
-                                & // to_text(input%marker) // " in the dataset", stat_input)
-                            return
-                        end if
-                        if (.not. any(s%markers%id == input%marker)) &
-                            & s%markers = [s%markers, adm_marker(adm, input%marker)]
-                    end associate
+                call expression_markers(adm, statement%functions(k), where // " " // key, &
+                    & "a force's FUNCTION", markers, error)
+                if (allocated(error)) return
+                do n = 1, size(markers)
+                    if (.not. any(s%markers%id == markers(n)%id)) s%markers = [s%markers, &
+                        & markers(n)]
                 end do
             end do
         end associate

@@ -29,7 +29,7 @@ module rollcon_bench_costs
         real(wp) :: rhs = 0.0_wp, residual = 0.0_wp, root = 0.0_wp
         !> One right-hand side in independent speeds (formulation 'maggi': the dependent speeds
         !> solved, then the saddle-point system)
-        real(wp) :: rhs_in_speeds = 0.0_wp
+        real(wp) :: rhs_speeds = 0.0_wp
         !> The event functions as the integrators call them: given the accelerations (CVODE's
         !> ODE form: y' from its polynomial, whose interpolation is SUNDIALS' own work) and
         !> given the multipliers (IDA: its state holds them); root is the evaluation alone,
@@ -53,7 +53,7 @@ contains
         type(error_type), allocatable, intent(out) :: error
         type(problem_type), target :: problem
         type(ode_form_type) :: ode
-        type(speeds_form_type) :: in_speeds
+        type(speeds_form_type) :: speeds
         type(history_type) :: history
         type(csv_writer_type) :: csv
         type(output_layout_type) :: layout
@@ -147,24 +147,24 @@ contains
         ! the right-hand side in independent speeds, on the same model and start
         call problem%prepare(error)
         if (allocated(error)) return
-        call in_speeds%init(problem)
+        call speeds%init(problem)
         call problem%accelerations(0.0_wp, q0, u0, error)
         if (allocated(error)) return
         deallocate(y, ydot)
-        allocate(y(in_speeds%state_size()), ydot(in_speeds%state_size()))
-        call in_speeds%pack_state(q0, u0, y, ydot)
+        allocate(y(speeds%state_size()), ydot(speeds%state_size()))
+        call speeds%pack_state(q0, u0, y, ydot)
         call cpu_time(start)
         do i = 1, count
-            ierr = in_speeds%ode_rhs(0.0_wp, y, ydot)
+            ierr = speeds%ode_rhs(0.0_wp, y, ydot)
             checksum = checksum + ydot(n + 1)
         end do
         call cpu_time(finish)
-        costs%rhs_in_speeds = (finish - start)/count
+        costs%rhs_speeds = (finish - start)/count
         open(newunit=unit, file=scratch_csv, status="old", iostat=ierr)
         if (ierr == 0) close(unit, status="delete")
         ! keep the loops from being optimised away
         if (checksum /= checksum) costs%rhs = -1.0_wp
-        call in_speeds%release()
+        call speeds%release()
     end subroutine measure_part_costs
 
 end module rollcon_bench_costs

@@ -444,7 +444,7 @@ contains
 
         dae = formulation == "ida"
         row%rhs_cpu = row%functions*merge(costs%residual, costs%rhs, dae)
-        if (formulation == "maggi") row%rhs_cpu = row%functions*costs%rhs_in_speeds
+        if (formulation == "maggi") row%rhs_cpu = row%functions*costs%rhs_speeds
         select case (formulation)
         case ("ida")
             row%roots_cpu = row%root_evaluations*costs%root_given_multipliers

@@ -1,5 +1,5 @@
 ! SPDX-License-Identifier: MIT
-!> A dataset of N independent rolling disks (issue #25 item 4, docs/benchmark.md "Cost as
+!> A dataset of N independent rolling disks (docs/benchmark.md "Cost as
 !> models grow"): each disk its own part with its three rolling UCONs served by the model's
 !> UCOSUB (rollcon's hand-checked disk), each started as the tipping coin (the paper's steel
 !> disk, 0.1 m radius, upright less 0.2 rad, rolling at 0.1 m/s), the disks `spacing` apart

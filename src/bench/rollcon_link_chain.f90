@@ -1,6 +1,6 @@
 ! SPDX-License-Identifier: MIT
-!> A dataset of a chain of N links joined by REVOLUTE joints (issue #25 item 4, docs/benchmark.md
-!> "Cost as models grow"): a many-link pendulum. Link 1 is hinged to the ground at the origin,
+!> A dataset of a chain of N links joined by REVOLUTE joints (docs/benchmark.md "Cost as
+!> models grow"): a many-link pendulum. Link 1 is hinged to the ground at the origin,
 !> link k + 1 to the lower end of link k, every hinge axis along ground Y; the chain starts
 !> straight, at rest, 60 degrees from the vertical (the start of data/pendulum.adm), and falls
 !> under gravity in the X-Z plane. Each joint is five position UCONs between two neighbours

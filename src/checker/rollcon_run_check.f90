@@ -42,7 +42,7 @@ contains
         type(error_type), allocatable, intent(out) :: error
         type(ucon_check_options_type) :: options
         type(ucon_check_result_type) :: result
-        character(len=:), allocatable :: found
+        character(len=:), allocatable :: found, whole
         real(wp), allocatable :: values(:)
         integer, allocatable :: codes(:)
         real(wp) :: ucon_time
@@ -82,11 +82,16 @@ contains
             end associate
         end do
         if (len(found) == 0) return
+        ! a dataset's UCONs are named by --model; a scene's by --ucon (docs/checker.md)
+        whole = " --ucon ID:PAR1,PAR2,..."
+        if (len(input_path) > 4) then
+            if (input_path(len(input_path) - 3:) == ".adm") whole = " --model " // input_path
+        end if
         call fatal_error(error, user_file // " fails its check at the run's consistent start " &
             & // "(t = " // to_text(time) // " s), so the run was not started: a wrong partial " &
             & // "slows the integrators or stops them" // found // new_line("a") // "  the " &
-            & // "whole routine, at random states: rollcon check " // user_file // " --model " &
-            & // input_path // "; to run anyway: --no-check", stat_input)
+            & // "whole routine, at random states: rollcon check " // user_file // whole &
+            & // "; to run anyway: --no-check", stat_input)
     end subroutine check_at_start
 
     !> "ARRAY(2) = dF/d(Y_2)", "XMATRX(1,2) = d2F/d(X_2) d(Y_2)", "ARRAY(2) = d2F/dt d(Y_2)"

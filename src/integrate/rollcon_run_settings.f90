@@ -9,14 +9,14 @@ module rollcon_run_settings
     private
 
     public :: run_settings_type
-    public :: formulation_cvode, formulation_ida, formulation_maggi, method_bdf, method_adams
+    public :: formulation_cvode, formulation_ida, formulation_speeds, method_bdf, method_adams
     public :: drift_none, drift_projection, drift_baumgarte, jacobian_analytic, jacobian_dq, &
         & jacobian_none
     public :: linear_dense, linear_sparse, linear_auto
 
     !> Formulations: CVODE on the ODE form, IDA on the DAE form, CVODE on the coordinates and
     !> independent speeds (docs/design.md §4)
-    integer, parameter :: formulation_cvode = 1, formulation_ida = 2, formulation_maggi = 3
+    integer, parameter :: formulation_cvode = 1, formulation_ida = 2, formulation_speeds = 3
     !> CVODE's linear multistep methods
     integer, parameter :: method_bdf = 1, method_adams = 2
     !> Drift control of the ODE form: none, projection onto the constraints, Baumgarte
@@ -32,8 +32,9 @@ module rollcon_run_settings
     !> auto_sparse_fill of the matrix. Measured (docs/benchmark.md "Cost as models grow"):
     !> KLU and the dense LU cost the same per step on one disk (15 states on IDA) and on one
     !> link (22), KLU 10 to 25 % less from 24 to 44 states; on IDA's matrices 74 % full
-    !> (data/bicycle.adm, 86 states, and a chain of 4 links, 88, under the broader pattern
-    !> IDA's had before its exact one: now 23 %) KLU's whole run was 21 and 29 % cheaper; on a
+    !> (data/bicycle.adm, 86 states, and a chain of 4 links, 88, under the broader pattern of
+    !> every state of neighbouring parts; IDA's exact one is 23 % full) KLU's whole run is 21
+    !> and 29 % cheaper; on a
     !> full matrix (CVODE's on a chain, one block) KLU costs the same at 48 states and more
     !> from 96 on (60 % more at 768). 32 keeps every shipped scene and dataset of one or two
     !> parts (at most 30 states) on the dense matrix
@@ -48,7 +49,7 @@ module rollcon_run_settings
         !> are not every output_step (a command file's several SIMULATE commands, each with its
         !> own: rollcon_adm_run); unallocated: every output_step
         real(wp), allocatable :: output_times(:)
-        !> formulation_ida (DAE), formulation_cvode (ODE) or formulation_maggi (ODE in
+        !> formulation_ida (DAE), formulation_cvode (ODE) or formulation_speeds (ODE in
         !> independent speeds)
         integer :: formulation = formulation_ida
         !> method_bdf or method_adams (CVODE only: 'cvode' and 'maggi')
@@ -116,7 +117,7 @@ contains
         class(run_settings_type), intent(in) :: self
 
         uses_cvode = self%formulation == formulation_cvode &
-            & .or. self%formulation == formulation_maggi
+            & .or. self%formulation == formulation_speeds
     end function uses_cvode
 
     !> The integrator settings in words: "IDA (DAE form, index 2), analytic Jacobian, rtol

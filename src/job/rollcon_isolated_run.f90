@@ -124,8 +124,36 @@ contains
             & receiver=receiver)
         call conclude(receiver, outcome, summary, error)
         started = receiver%started
+        if (started .and. summary%status == status_failed) call point_at_check(job, summary, &
+            & error)
         if (allocated(receiver%shapes)) shapes = receiver%shapes
     end subroutine run_isolated
+
+    !> An integrator that failed on a run with a user's routine: its partials (the Newton
+    !> matrix) are the first suspect, so the message names the command that checks them all
+    !> (the start's check saw one state). Not for a routine that crashed, overran or stopped
+    !> (stat_ucon: the message names the call already).
+    subroutine point_at_check(job, summary, error)
+        type(job_type), intent(in) :: job
+        type(run_summary_type), intent(inout) :: summary
+        type(error_type), allocatable, intent(inout) :: error
+        character(len=:), allocatable :: hint
+
+        if (allocated(error)) then
+            if (error%stat == stat_ucon) return
+        end if
+        hint = "; the run's UCONs are served by " // job%user_file // ": rollcon check " &
+            & // job%user_file
+        if (allocated(job%input_path)) then
+            if (len(job%input_path) > 4) then
+                if (job%input_path(len(job%input_path) - 3:) == ".adm") hint = hint &
+                    & // " --model " // job%input_path
+            end if
+        end if
+        hint = hint // " checks its partials at many states (a wrong one stalls the integrators)"
+        summary%message = summary%message // hint
+        if (allocated(error)) error%message = error%message // hint
+    end subroutine point_at_check
 
     !> The run's summary from what the child sent and how it ended: its own summary when it
     !> finished, else a failure at the last row received, naming the call it ended in.

@@ -9,6 +9,8 @@ module rollcon_constraints
         & array_none, array_dq, array_dtdq, xmatrx_none, xmatrx_dqdq
     use rollcon_ucon_call, only : evaluate_ucon
     use rollcon_model, only : model_type, ucon_statement_type
+    use rollcon_gcon, only : evaluate_gcon
+    use rollcon_motion, only : motion_displacement, motion_residual
     implicit none
     private
 
@@ -111,7 +113,7 @@ contains
         !> Set when a UCOSUB reports an error or returns a non-finite value
         type(error_type), allocatable, intent(out) :: error
         real(wp) :: scalar, array(max_ucon_vars), xmatrx(max_ucon_vars, max_ucon_vars)
-        real(wp) :: ucon_time
+        real(wp) :: ucon_time, h(0:2)
         integer :: k, i, idrsel(3)
         logical :: first, second
 
@@ -137,30 +139,39 @@ contains
                 if (first) idrsel(2) = array_dq
                 if (second) idrsel(3) = xmatrx_dqdq
                 if (any(idrsel /= 0)) then
-                    call evaluate_ucon(ucon%ucosub, ucon%id, ucon_time, self%local_q, ucon%par, &
-                        & idrsel, scalar, array, xmatrx, error, ucon%nvars)
+                    call evaluate_one(ucon, ucon_time, self%local_q, idrsel, scalar, array, &
+                        & xmatrx, error)
                     if (allocated(error)) return
                     if (ucon%converted) call to_si(ucon, 0, idrsel /= 0, scalar, array, xmatrx)
                     if (idrsel(1) /= 0) self%value(k) = scalar
+                    ! a MOTION: F = s(q) - h(t), s the routine's value (rollcon_motion)
+                    if (idrsel(1) /= 0 .and. allocated(ucon%motion)) self%value(k) = &
+                        & motion_residual(ucon%motion, time, scalar)
                     if (first) call scatter_row(ucon, array, self%grad_q(k, :), &
                         & self%grad_u(k, :))
                     if (second) call place_hessian(ucon, self%slot(:, k), self%local_count(k), &
                         & self%plain_hessian(k), xmatrx, self%hqq(:, :, k), self%hqu(:, :, k))
                 end if
+                ! a MOTION's time partials are its time part's: dF/dt = -h', d2F/dt2 = -h'',
+                ! d2F/dt dq = 0 (its routine is time-free)
+                if (iand(needs, need_time) /= 0 .and. allocated(ucon%motion)) then
+                    h = motion_displacement(ucon%motion, time)
+                    self%dt(k) = -h(1)
+                    self%dtt(k) = -h(2)
+                end if
                 ! a time-free UCON's time partials stay at the zeros of allocate_state
-                if (iand(needs, need_time) /= 0 .and. .not. ucon%time_free) then
-                    call evaluate_ucon(ucon%ucosub, ucon%id, ucon_time, self%local_q, ucon%par, &
-                        & [scalar_dt, array_dtdq, xmatrx_none], scalar, array, xmatrx, error, &
-                        & ucon%nvars)
+                if (iand(needs, need_time) /= 0 .and. .not. ucon%time_free &
+                    & .and. .not. allocated(ucon%motion)) then
+                    call evaluate_one(ucon, ucon_time, self%local_q, [scalar_dt, array_dtdq, &
+                        & xmatrx_none], scalar, array, xmatrx, error)
                     if (allocated(error)) return
                     if (ucon%converted) call to_si(ucon, 1, [.true., .true., .false.], scalar, &
                         & array, xmatrx)
                     self%dt(k) = scalar
                     call scatter_row(ucon, array, self%dt_grad_q(k, :), self%dt_grad_u(k, :))
                     if (ucon%holonomic) then
-                        call evaluate_ucon(ucon%ucosub, ucon%id, ucon_time, self%local_q, &
-                            & ucon%par, [scalar_dtt, array_none, xmatrx_none], scalar, array, &
-                            & xmatrx, error, ucon%nvars)
+                        call evaluate_one(ucon, ucon_time, self%local_q, [scalar_dtt, &
+                            & array_none, xmatrx_none], scalar, array, xmatrx, error)
                         if (allocated(error)) return
                         if (ucon%converted) scalar = scalar*ucon%value_scale*ucon%time_scale**2
                         self%dtt(k) = scalar
@@ -169,6 +180,26 @@ contains
             end associate
         end do
     end subroutine evaluate_constraints
+
+    !> One evaluation of a UCON as its UCOSUB gives it (rollcon_ucon_call's evaluate_ucon),
+    !> or, for a GCON, as its expression gives it (rollcon_gcon's evaluate_gcon, the same
+    !> contract).
+    subroutine evaluate_one(ucon, time, q, idrsel, scalar, array, xmatrx, error)
+        type(ucon_statement_type), intent(in) :: ucon
+        real(wp), intent(in) :: time, q(max_ucon_vars)
+        integer, intent(in) :: idrsel(3)
+        real(wp), intent(inout) :: scalar, array(max_ucon_vars), &
+            & xmatrx(max_ucon_vars, max_ucon_vars)
+        type(error_type), allocatable, intent(out) :: error
+
+        if (allocated(ucon%gcon)) then
+            call evaluate_gcon(ucon%gcon, ucon%id, time, q, idrsel, scalar, array, xmatrx, &
+                & error, ucon%nvars)
+        else
+            call evaluate_ucon(ucon%ucosub, ucon%id, time, q, ucon%par, idrsel, scalar, array, &
+                & xmatrx, error, ucon%nvars)
+        end if
+    end subroutine evaluate_one
 
     !> What a routine in the model's units returned, in SI (chain rule, rollcon_ucosub_units):
     !> scalar and array are F and dF/dq (time_order 0) or dF/dt and d2F/dt dq (time_order 1),

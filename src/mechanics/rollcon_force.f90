@@ -264,8 +264,8 @@ contains
     end function forces_idle_after
 
     !> Times where a force has a corner [s], each once: a half-sine pulse's start and end, and
-    !> every switching time of a force statement's expressions (an IF, STEP, STEP5 or HAVSIN
-    !> on TIME - c, MIN, MAX or ABS of TIME - c: switching_times). They are among
+    !> every switching time of a force statement's expressions (an IF, STEP, STEP5, HAVSIN,
+    !> IMPACT or BISTOP on TIME - c, MIN, MAX, DIM, SIGN or ABS of TIME - c: switching_times). They are among
     !> force_breakpoints; an integrator stops there and starts again with no history, which
     !> would hold a force the solution no longer has (docs/design.md §7). A switch on the state
     !> is located by the run instead (rollcon_switch_watch).

@@ -10,16 +10,16 @@
 !>   point;
 !> - GFORCE: the same, and the torque (TX, TY, TZ) in RM's axes; the reaction on JFLOAT's part.
 !>
-!> The expressions are in the dataset's units: their TIME and state functions are converted
+!> The expressions are in the dataset's units: their TIME and measures are converted
 !> from SI before evaluation and their values to N and N m after (time_unit, length_unit,
 !> force_unit: the size of a dataset unit in SI). A load on ground (part 0) is not applied.
 module rollcon_marker_force
     use rollcon_kinds, only : wp
     use rollcon_rotation, only : times, cross
     use rollcon_expression, only : expression_type, evaluate_expression, max_inputs, &
-        & quantity_vx, quantity_wx, quantity_psi, switch_values
-    use rollcon_marker, only : marker_type, marker_motion, marker_quantity
-    use, intrinsic :: ieee_arithmetic, only : ieee_value, ieee_quiet_nan
+        & switch_values
+    use rollcon_marker, only : marker_type, marker_motion
+    use rollcon_measures, only : expression_input_values
     implicit none
     private
 
@@ -94,33 +94,16 @@ contains
         call switch_values(self%functions(k), time/self%time_unit, inputs(:n), kinds, g)
     end subroutine marker_force_switches
 
-    !> The state functions an expression reads, in the dataset's units.
+    !> The measures an expression reads, in the dataset's units (rollcon_measures).
     pure subroutine input_values(self, expression, q, u, values)
         type(marker_force_type), intent(in) :: self
         type(expression_type), intent(in) :: expression
         real(wp), intent(in) :: q(:), u(:)
         real(wp), intent(out) :: values(:)
-        real(wp) :: scale
-        integer :: k, m, slot
 
-        do k = 1, size(values)
-            associate (input => expression%inputs(k))
-                slot = 0
-                do m = 1, size(self%markers)
-                    if (self%markers(m)%id == input%marker) slot = m
-                end do
-                scale = 1.0_wp
-                if (input%quantity < quantity_psi) scale = 1.0_wp/self%length_unit
-                if (input%quantity < quantity_psi .and. input%quantity >= quantity_wx) &
-                    & scale = self%time_unit
-                if (input%quantity < quantity_wx .and. input%quantity >= quantity_vx) &
-                    & scale = self%time_unit/self%length_unit
-                ! a marker the force was not given (the builder gives every one): NaN
-                values(k) = ieee_value(scale, ieee_quiet_nan)
-                if (slot > 0) values(k) = scale*marker_quantity(self%markers(slot), &
-                    & input%quantity, q, u)
-            end associate
-        end do
+        ! a marker the force was not given (the builder gives every one): NaN
+        call expression_input_values(expression, self%markers, self%length_unit, &
+            & self%time_unit, q, u, values)
     end subroutine input_values
 
     !> A translational SFORCE (not ACTIONONLY) whose I and J markers are at one point: its line

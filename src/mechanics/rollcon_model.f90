@@ -27,6 +27,12 @@ module rollcon_model
     use rollcon_joint_primitives, only : primitive_ucon_type, joint_ucons
     use rollcon_ucosub_catalog, only : builtin_ucosub_name
     use rollcon_rebasing, only : rebased_inertia, to_new_basis
+    use rollcon_expression, only : expression_type
+    use rollcon_gcon, only : gcon_type, new_gcon, gcon_codes, turn_gcon_markers
+    use rollcon_measures, only : count_turns
+    use rollcon_motion, only : motion_type
+    use rollcon_motion_geometry, only : motion_ucon, motion_rotation, motion_b1, motion_b2, &
+        & motion_b3
     implicit none
     private
 
@@ -66,6 +72,13 @@ module rollcon_model
         !> part's principal axes), and that part (model order); each is turned with its part
         !> when the part is re-based
         integer, allocatable :: geometry_par(:), geometry_parts(:)
+        !> A constraint written as an expression (GCON, and the couplers made of one): served
+        !> by rollcon_gcon's evaluate_gcon instead of a UCOSUB
+        type(gcon_type), allocatable :: gcon
+        !> A MOTION's time part (rollcon_motion), allocated for a MOTION's UCON only: F is then
+        !> s(q) - h(t), s the routine's value, and the time partials are the motion's
+        !> (rollcon_constraints); the UCON computes in SI whatever the model's units
+        type(motion_type), allocatable :: motion
     end type ucon_statement_type
 
     !> The model
@@ -94,6 +107,9 @@ module rollcon_model
         procedure :: add_joint
         procedure :: add_jprim
         procedure :: add_force
+        procedure :: add_gcon
+        procedure :: count_turns => count_model_turns
+        procedure :: add_motion
         procedure :: turn_part_axes
         procedure :: turn_ucon_geometry
     end type model_type
@@ -221,6 +237,114 @@ contains
         end do
     end subroutine add_primitives
 
+    !> Append GCON/id, the constraint expression = 0 (rollcon_gcon): a UCON whose F and
+    !> partials come from the expression, reading `markers` (every marker its measures name,
+    !> as the model holds them; add the parts first), its reaction reported at marker
+    !> `reaction`. The expression is in the model's units (ucosub_units). It takes the id after
+    !> the largest UCON id of the model, as a joint's UCONs do, and is named `name` in the
+    !> run's record ("GCON/1"; default "GCON/id"). Refused, with why: a FUNCTION that reads an
+    !> acceleration, a force or another statement's value, or no moving part, or more than 30
+    !> variables, or velocities in a way that is not linear (rollcon_gcon's new_gcon).
+    subroutine add_gcon(self, id, expression, markers, reaction, error, name)
+        class(model_type), intent(inout) :: self
+        !> The statement's id, for messages
+        integer, intent(in) :: id
+        !> F, compiled (rollcon_adm_expression_parser's compile_expression)
+        type(expression_type), intent(in) :: expression
+        type(marker_type), intent(in) :: markers(:), reaction
+        type(error_type), allocatable, intent(out) :: error
+        character(len=*), intent(in), optional :: name
+        type(ucon_statement_type) :: ucon
+        character(len=:), allocatable :: problem
+
+        if (.not. allocated(self%ucons)) allocate(self%ucons(0))
+        allocate(ucon%gcon)
+        call new_gcon(id, expression, markers, reaction, self%ucosub_units%length, &
+            & self%ucosub_units%time, ucon%gcon, problem)
+        if (len(problem) > 0) then
+            call fatal_error(error, "GCON/" // to_text(id) // " FUNCTION: " // problem, &
+                & stat_input)
+            return
+        end if
+        ucon%id = 1
+        if (size(self%ucons) > 0) ucon%id = maxval(self%ucons%id) + 1
+        ucon%par = [real(wp) :: ]
+        ucon%routine = "GCON/" // to_text(id)
+        if (present(name)) ucon%routine = name
+        ucon%time_free = .not. expression%uses_time
+        self%ucons = [self%ucons, ucon]
+    end subroutine add_gcon
+
+    !> Count the whole turns of every AX, AY, AZ the model's expressions read (its force
+    !> statements' and GCONs') at (q, u): rollcon_measures' count_turns. A run makes it at its
+    !> start (restart true: each angle on its branch in (-pi, pi]) and at every output row.
+    pure subroutine count_model_turns(self, q, u, restart)
+        class(model_type), intent(inout) :: self
+        !> Coordinates and rates of all parts [m, rad, m/s, rad/s]
+        real(wp), intent(in) :: q(:), u(:)
+        logical, intent(in) :: restart
+        integer :: i, k
+
+        if (allocated(self%forces)) then
+            do i = 1, size(self%forces)
+                if (self%forces(i)%profile /= profile_statement) cycle
+                associate (s => self%forces(i)%statement)
+                    if (.not. allocated(s%markers)) cycle
+                    do k = 1, 6
+                        if (s%given(k)) call count_turns(s%functions(k), s%markers, &
+                            & s%length_unit, s%time_unit, q, u, restart)
+                    end do
+                end associate
+            end do
+        end if
+        if (.not. allocated(self%ucons)) return
+        do k = 1, size(self%ucons)
+            if (.not. allocated(self%ucons(k)%gcon)) cycle
+            associate (g => self%ucons(k)%gcon)
+                call count_turns(g%expression, g%markers, g%length_unit, g%time_unit, q, u, &
+                    & restart)
+            end associate
+        end do
+    end subroutine count_model_turns
+
+    !> Append MOTION/motion%id, driving `component` (rollcon_motion_geometry's motion_x ...
+    !> motion_rotation) of marker i from marker j by its time part `motion`: a UCON F = s(q) -
+    !> h(t) (rollcon_motion), its id after the largest UCON id of the model, served by the
+    !> generated routine of s (motion_ucon), in SI. joint: the MOTION is on a joint (its
+    !> TRANSLATION may then be served from J's part when I is on the ground). Add the parts
+    !> first. Refused as motion_ucon refuses, naming motion%name.
+    subroutine add_motion(self, motion, component, joint, i, j, error)
+        class(model_type), intent(inout) :: self
+        !> The time part: its id, name, function and form (motion%rotational is set here)
+        type(motion_type), intent(in) :: motion
+        integer, intent(in) :: component
+        logical, intent(in) :: joint
+        !> Marker I and marker J (part 0: the ground), as part_marker places them
+        type(marker_type), intent(in) :: i, j
+        type(error_type), allocatable, intent(out) :: error
+        type(primitive_ucon_type) :: ucon
+        integer, allocatable :: part_ids(:)
+        integer :: next_id
+
+        if (.not. allocated(self%parts)) allocate(self%parts(0))
+        if (.not. allocated(self%ucons)) allocate(self%ucons(0))
+        part_ids = self%parts%id
+        call motion_ucon(motion%name, component, joint, i, j, part_ids, ucon, error)
+        if (allocated(error)) return
+        next_id = 0
+        if (size(self%ucons) > 0) next_id = maxval(self%ucons%id)
+        ! its own time partials: not time-free (rollcon_constraints asks the motion for them)
+        call self%add_ucon(next_id + 1, ucon%par, ucon%ucosub, time_free=.false., &
+            & routine=ucon%routine)
+        associate (added => self%ucons(size(self%ucons)))
+            added%geometry_par = ucon%geometry_par
+            added%geometry_parts = ucon%geometry_parts
+            allocate(added%motion, source=motion)
+            added%motion%rotational = any(component == [motion_rotation, motion_b1, motion_b2, &
+                & motion_b3])
+        end associate
+    end subroutine add_motion
+
     !> Append an applied force.
     subroutine add_force(self, force)
         class(model_type), intent(inout) :: self
@@ -265,6 +389,9 @@ contains
             end associate
         end do
         call self%turn_ucon_geometry(p)
+        do k = 1, size(self%ucons)
+            if (allocated(self%ucons(k)%gcon)) call turn_gcon_markers(self%ucons(k)%gcon, p)
+        end do
         self%parts(p)%inertia = rebased_inertia(self%parts(p)%inertia)
     end subroutine turn_part_axes
 
@@ -297,6 +424,7 @@ contains
         character(len=:), allocatable :: model_name
         logical :: model_time_free
         integer :: k, i, p, entry
+        integer, allocatable :: declared_parts(:), declared_codes(:), part_ids(:)
 
         if (.not. allocated(model%parts)) allocate(model%parts(0))
         if (.not. allocated(model%ucons)) allocate(model%ucons(0))
@@ -313,6 +441,8 @@ contains
         do k = 1, size(model%ucons)
             associate (ucon => model%ucons(k))
                 if (.not. allocated(ucon%routine)) ucon%routine = ""
+                ! a GCON is served by its expression
+                if (allocated(ucon%gcon)) cycle
                 if (served_by_model_ucosub(ucon%routine)) then
                     ucon%ucosub => model%ucosub
                     ucon%time_free = ucon%time_free .or. model_time_free
@@ -346,7 +476,14 @@ contains
                     call ucon_error(error, ucon%id, "the id is used by two UCON statements")
                     return
                 end if
-                call declare_ucon(ucon%ucosub, ucon%id, ucon%par, model%registry, error)
+                if (allocated(ucon%gcon)) then
+                    part_ids = model%parts%id
+                    call gcon_codes(ucon%gcon, part_ids, declared_parts, declared_codes)
+                    call model%registry%declare(ucon%id, size(declared_parts), &
+                        & declared_parts, size(declared_codes), declared_codes, error)
+                else
+                    call declare_ucon(ucon%ucosub, ucon%id, ucon%par, model%registry, error)
+                end if
                 if (allocated(error)) return
                 entry = model%registry%find(ucon%id)
                 associate (declared => model%registry%entries(entry))
@@ -366,7 +503,12 @@ contains
                     end do
                 end associate
                 ucon%holonomic = .not. any(ucon%velocity)
-                ucon%converted = .not. model%ucosub_units%is_si()
+                ! a GCON takes SI variables and converts its expression's measures itself
+                ucon%converted = .not. model%ucosub_units%is_si() .and. &
+                    & .not. allocated(ucon%gcon)
+                ! a MOTION's UCON computes in SI (rollcon_motion_geometry)
+                ucon%converted = .not. model%ucosub_units%is_si() .and. .not. &
+                    & allocated(ucon%motion)
                 if (ucon%converted) then
                     ucon%scales = variable_scales(model%ucosub_units, &
                         & model%registry%entries(entry)%codes)

@@ -8,7 +8,8 @@ module rollcon_csv_reader
     use rollcon_history, only : history_type
     use rollcon_output_layout, only : output_layout_type, read_layout, name_length
     use rollcon_input_files, only : input_file_type, csv_input_limit
-    use rollcon_watch_columns, only : contact_names, basis_pattern, request_column_patterns
+    use rollcon_watch_columns, only : contact_names, basis_pattern, request_column_patterns, &
+        & motion_column_patterns
     use, intrinsic :: ieee_arithmetic, only : ieee_is_finite
     use, intrinsic :: ieee_exceptions, only : ieee_set_flag, ieee_overflow, ieee_underflow
     implicit none
@@ -123,11 +124,11 @@ contains
             names(count) = trim(adjustl(field))
         end do
         ! the watches' columns rollcon writes: a rim contact's, a part's principal basis, a
-        ! dataset's displacement requests
+        ! dataset's displacement requests, its MOTIONs' forces
         call read_layout(names, layout, message, [character(len=name_length) :: contact_names, &
-            & basis_pattern, request_column_patterns])
+            & basis_pattern, request_column_patterns, motion_column_patterns])
         if (.not. allocated(message)) return
-        ! The one-part header of the runs before the per-part layout (issue #14): say so.
+        ! A one-part header without the part's id (t, X, ...): say what it is.
         if (count > 1) then
             if (names(1) == "t" .and. names(2) == "X") message = message // " (a CSV of an " &
                 & // "older rollcon, whose columns did not name the part: run the scene again)"

@@ -5,7 +5,7 @@
 !> dynamic system whose type says which integrator takes it (rollcon_integrator_choice). Nothing
 !> else in a run asks which formulation it has.
 module rollcon_formulation_choice
-    use rollcon_run_settings, only : formulation_cvode, formulation_maggi
+    use rollcon_run_settings, only : formulation_cvode, formulation_speeds
     use rollcon_dynamic_system, only : dynamic_system_type
     use rollcon_problem, only : problem_type
     use rollcon_ode_form, only : ode_form_type
@@ -32,7 +32,7 @@ contains
             allocate(ode)
             call ode%init(problem)
             call move_alloc(ode, system)
-        case (formulation_maggi)
+        case (formulation_speeds)
             allocate(speeds)
             call speeds%init(problem)
             call move_alloc(speeds, system)

@@ -247,6 +247,8 @@ contains
         u = u0
         call self%rebase_at_start(q, u, refusal, fell, error)
         if (allocated(error)) return
+        ! the whole turns of the expressions' angles counted from here (rollcon_measures)
+        call problem%model%count_turns(q, u, restart=.true.)
         call self%start(q, u, error)
         if (allocated(error)) return
         call self%record(summary, error, history, sink)
@@ -345,6 +347,8 @@ contains
                     & abs(problem%constraint_values()))
                 summary%residual_max = maxval(summary%ucon_residual_max)
             end if
+            ! each row goes on from the whole turns counted at the one before it
+            call problem%model%count_turns(q, u, restart=.false.)
             summary%t_reached = time
             summary%q = q
             summary%u = u

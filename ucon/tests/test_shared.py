@@ -117,6 +117,10 @@ class OutputConstantsTest(unittest.TestCase):
                                  ("orientation", 3), ("homokinetic", 1)):
             for prefix in ("gnd_", "jp_"):
                 expected[prefix + primitive] = ([True] * count, [True] * count)
+        # the angles a MOTION drives: two components (rotation, tilt), positions only; the
+        # MOTION's time part is the driver's (rollcon_motion)
+        for prefix in ("gnd_", "jp_"):
+            expected[prefix + "motion_angle"] = ([True] * 2, [True] * 2)
         self.assertEqual(sorted(expected), ucon.spec_names())
         for name, (time_free, holonomic) in expected.items():
             derivatives = derived(name)

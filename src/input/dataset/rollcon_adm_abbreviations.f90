@@ -31,7 +31,8 @@ module rollcon_adm_abbreviations
 
     !> The table (docs/datasets.md repeats it)
     type(place_type), parameter :: table(*) = [ &
-        & place_type("statement", "ACcgrav END GForce INtegrator JOint JPrim MARker Output " &
+        & place_type("statement", "ACcgrav COUpler END GCon GEar GForce INtegrator JOint JPrim " &
+        & // "MARker MOtion Output " &
         & // "PArt SForce SImulate UCon UNits VForce DEbug EQuilibrium GRaphics IC " &
         & // "Kinematics LIst MRequest NOlist PReferences REQuest RESults"), &
         & place_type("command", "SImulate INTegrator Output STOp DEBug PReferences " &
@@ -47,9 +48,14 @@ module rollcon_adm_abbreviations
         & place_type("GFORCE", "I Jfloat RM FX FY FZ TX TY TZ"), &
         & place_type("JOINT", "COnvel CYlindrical Fixed Hooke REvolute SPherical " &
         & // "Translational Universal I J IC ICTran ICRot Delta_v Maximum_deformation " &
-        & // "RAckpin SCrew PLanar"), &
+        & // "RAckpin SCrew PLanar PD PItch"), &
+        & place_type("MOTION", "JOint I J Translation ROTation TRANSLATIONAl ROTATIONAl X Y Z " &
+        & // "B1 B2 B3 Displacement Velocity Acceleration Function ICDisp ICVel"), &
         & place_type("JPRIM", "Atpoint INLine INPlane PArallel_axes PErpendicular " &
         & // "Orientation I J"), &
+        & place_type("GCON", "I Function"), &
+        & place_type("COUPLER", "Joints Type Scales Function Routine"), &
+        & place_type("GEAR", "Joints Cv"), &
         & place_type("SIMULATE", "DYnamic End STEps DTout DUration STAtic Kinematic " &
         & // "Transient Initial_conditions"), &
         & place_type("INTEGRATOR", "Error RTol ATol MAXSteps BAumgarte Formulation MEthod " &

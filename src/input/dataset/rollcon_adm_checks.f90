@@ -14,6 +14,7 @@ module rollcon_adm_checks
     use rollcon_adm_model, only : adm_model_type, adm_part_type, adm_marker_type, &
         & adm_force_type, force_sforce, force_vforce, refers_to_marker, refers_to_part
     use rollcon_adm_joints, only : adm_joint_type
+    use rollcon_adm_motions, only : adm_motion_type
     use rollcon_adm_ids, only : id_index_type, new_id_index
     use rollcon_adm_run, only : no_simulate_message
     use, intrinsic :: iso_fortran_env, only : int64
@@ -89,7 +90,97 @@ contains
             call check_joint(model, markers, model%joints(i), error)
             if (allocated(error)) return
         end do
+        call check_couplers(model, markers, error)
+        if (allocated(error)) return
+        if (.not. allocated(model%motions)) return
+        do i = 1, size(model%motions)
+            call check_motion(model, markers, model%motions(i), error)
+            if (allocated(error)) return
+        end do
     end subroutine check_references
+
+    !> A GCON's marker I, a GEAR's marker CV, and the JOINTs a COUPLER or GEAR names exist
+    !> (which types of joint they may couple, and the markers a GCON's FUNCTION reads, are
+    !> judged by the assembly).
+    subroutine check_couplers(model, markers, error)
+        type(adm_model_type), intent(in) :: model
+        type(id_index_type), intent(in) :: markers
+        type(error_type), allocatable, intent(out) :: error
+        character(len=:), allocatable :: where
+        integer :: i, k
+
+        if (allocated(model%gcons)) then
+            do i = 1, size(model%gcons)
+                associate (gcon => model%gcons(i))
+                    if (markers%find(int(gcon%i, int64)) == 0) call fatal_error(error, &
+                        & place(model%file, gcon%line) // ": GCON/" // to_text(gcon%id) &
+                        & // " I: no MARKER/" // to_text(gcon%i), stat_input)
+                end associate
+                if (allocated(error)) return
+            end do
+        end if
+        if (allocated(model%couplers)) then
+            do i = 1, size(model%couplers)
+                where = place(model%file, model%couplers(i)%line) // ": COUPLER/" &
+                    & // to_text(model%couplers(i)%id) // " JOINTS"
+                do k = 1, size(model%couplers(i)%joints)
+                    call check_joint_id(model, model%couplers(i)%joints(k), where, error)
+                    if (allocated(error)) return
+                end do
+            end do
+        end if
+        if (.not. allocated(model%gears)) return
+        do i = 1, size(model%gears)
+            where = place(model%file, model%gears(i)%line) // ": GEAR/" &
+                & // to_text(model%gears(i)%id)
+            if (markers%find(int(model%gears(i)%cv, int64)) == 0) then
+                call fatal_error(error, where // " CV: no MARKER/" &
+                    & // to_text(model%gears(i)%cv), stat_input)
+                return
+            end if
+            do k = 1, 2
+                call check_joint_id(model, model%gears(i)%joints(k), where // " JOINTS", error)
+                if (allocated(error)) return
+            end do
+        end do
+    end subroutine check_couplers
+
+    !> A JOINT with id `id` exists (a JPRIM does not count).
+    subroutine check_joint_id(model, id, where, error)
+        type(adm_model_type), intent(in) :: model
+        integer, intent(in) :: id
+        character(len=*), intent(in) :: where
+        type(error_type), allocatable, intent(out) :: error
+
+        if (any(model%joints%id == id .and. .not. model%joints%primitive)) return
+        call fatal_error(error, where // ": no JOINT/" // to_text(id), stat_input)
+    end subroutine check_joint_id
+
+    !> A MOTION's JOINT is a JOINT of the dataset (not a JPRIM), or its markers I and J are
+    !> MARKERs (which types of joint take which motion is the assembly's to judge).
+    subroutine check_motion(model, markers, motion, error)
+        type(adm_model_type), intent(in) :: model
+        !> Positions of the markers by id
+        type(id_index_type), intent(in) :: markers
+        type(adm_motion_type), intent(in) :: motion
+        type(error_type), allocatable, intent(out) :: error
+        character(len=:), allocatable :: where
+        integer :: k
+
+        where = place(model%file, motion%line) // ": MOTION/" // to_text(motion%id)
+        if (motion%joint /= 0) then
+            do k = 1, size(model%joints)
+                if (model%joints(k)%id == motion%joint .and. .not. model%joints(k)%primitive) &
+                    & return
+            end do
+            call fatal_error(error, where // " JOINT: no JOINT/" // to_text(motion%joint), &
+                & stat_input)
+        else if (markers%find(int(motion%i, int64)) == 0) then
+            call fatal_error(error, where // " I: no MARKER/" // to_text(motion%i), stat_input)
+        else if (markers%find(int(motion%j, int64)) == 0) then
+            call fatal_error(error, where // " J: no MARKER/" // to_text(motion%j), stat_input)
+        end if
+    end subroutine check_motion
 
     !> A JOINT's or JPRIM's markers I and J are MARKERs (which parts they join is the model's
     !> to judge: model%add_joint, model%add_jprim).

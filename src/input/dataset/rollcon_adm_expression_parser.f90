@@ -2,16 +2,21 @@
 !> Compiles a dataset function expression into the stack program of rollcon_expression, by
 !> recursive descent: sum := product {(+|-) product}; product := signed {(*|/) signed};
 !> signed := (+|-) signed | power; power := primary [** signed]. A syntax error names where the
-!> expression was read and the column. A state function takes one marker id, DX(i); the forms
-!> with J (measured from another marker) or K (in another marker's axes) are refused. Whether
-!> the marker exists is checked where the dataset's markers are known (rollcon_adm_build).
+!> expression was read and the column. A measure takes its marker ids as whole numbers,
+!> DX(i[, j[, k]]) (0 for j, k or l: the ground origin and axes), an element function its id
+!> and three whole numbers, JOINT(id, jflag, comp, rm). Whether the markers and elements exist,
+!> and whether the place the expression is used can compute what it reads, is judged where the
+!> dataset is assembled (rollcon_adm_build).
 module rollcon_adm_expression_parser
     use rollcon_kinds, only : wp
     use rollcon_constants, only : pi, degree
     use rollcon_error, only : error_type, fatal_error, stat_input
     use rollcon_expression, only : expression_type, expression_input_type, max_stack, &
         & max_inputs, op_time, op_input, op_add, op_subtract, op_multiply, op_divide, op_power, &
-        & op_negate, op_if, function_names, function_codes, function_arguments, quantity_names
+        & op_negate, op_if, function_names, function_codes, function_arguments, quantity_names, &
+        & quantity_least_markers, quantity_most_markers, quantity_kind, kind_element_force, &
+        & max_arguments, op_akispl, op_cubspl, spline_reference, quantity_vm, quantity_vr, &
+        & quantity_accm, quantity_wdtm
     use rollcon_adm_expression_scan, only : parser_type, emit, emit_constant, expect, peek, &
         & here, skip_blanks, skip_digits, read_name, is_digit, is_letter, column_text, &
         & exponent_follows
@@ -66,6 +71,7 @@ contains
         expression%constant = parser%constant(:parser%count)
         expression%inputs = parser%inputs
         expression%uses_time = any(expression%op == op_time)
+        allocate(expression%anchors(size(expression%inputs)), source=0.0_wp)
     end subroutine compile_expression
 
     !> A text as a message quotes it: its first max_quoted characters and its length when it
@@ -172,6 +178,8 @@ contains
                 call emit_constant(p, pi)
             case ("DTOR")
                 call emit_constant(p, pi/180.0_wp)
+            case ("RTOD")
+                call emit_constant(p, 180.0_wp/pi)
             case ("IF")
                 call parse_if(p, problem)
             case default
@@ -188,7 +196,7 @@ contains
         type(parser_type), intent(inout) :: p
         character(len=*), intent(in) :: name
         character(len=:), allocatable, intent(inout) :: problem
-        integer :: k, i
+        integer :: k, i, least, most, count
 
         k = 0
         do i = 1, size(function_names)
@@ -199,83 +207,269 @@ contains
                 if (trim(quantity_names(i)) == name) k = i
             end do
             if (k > 0) then
-                call parse_state_function(p, name, k, problem)
+                call parse_measure(p, name, k, problem)
                 return
             end if
             p%at = p%at - len(name)
-            problem = "unknown name '" // name // "' (the subset has TIME, PI, DTOR, SIN, " &
-                & // "COS, TAN, ATAN2, EXP, LOG, SQRT, ABS, MIN, MAX, STEP, STEP5, HAVSIN, IF " &
-                & // "and the state functions DX DY DZ VX VY VZ WX WY WZ PSI THETA PHI of one " &
-                & // "marker)"
+            problem = "unknown name '" // name // "': not a function, measure or constant " &
+                & // "rollcon reads (docs/datasets.md, Function expressions, lists them)"
             return
         end if
+        if (function_codes(k) == op_akispl .or. function_codes(k) == op_cubspl) then
+            call parse_spline(p, name, function_codes(k), problem)
+            return
+        end if
+        least = function_arguments(k)
+        most = least
+        if (least < 0) then
+            least = -least
+            most = max_arguments
+        end if
         call expect(p, "(", problem)
-        do i = 1, function_arguments(k)
-            if (len(problem) > 0) return
-            if (i > 1) call expect(p, ",", problem)
-            if (len(problem) > 0) return
+        count = 0
+        do while (len(problem) == 0)
+            if (count > 0) then
+                if (count >= least .and. peek(p) == ")") exit
+                call expect(p, ",", problem)
+                if (len(problem) > 0) exit
+            end if
+            if (count == most) then
+                problem = "too many arguments"
+                exit
+            end if
             call parse_sum(p, problem)
+            count = count + 1
+            if (count == least .and. least == most) exit
         end do
         if (len(problem) == 0) call expect(p, ")", problem)
         if (len(problem) > 0) then
-            problem = problem // " (" // name // " takes " &
-                & // achar(48 + function_arguments(k)) // " argument" &
-                & // merge("s", " ", function_arguments(k) > 1) // ")"
-            problem = trim(problem)
+            if (least == most) then
+                problem = problem // " (" // name // " takes " // to_text(least) &
+                    & // " argument" // trim(merge("s", " ", least > 1)) // ")"
+            else
+                problem = problem // " (" // name // " takes " // to_text(least) // " to " &
+                    & // to_text(most) // " arguments)"
+            end if
             return
         end if
-        call emit(p, function_codes(k), 1 - function_arguments(k))
+        call emit(p, function_codes(k), 1 - count)
+        ! a variadic function keeps its count in the constant slot
+        if (least /= most) p%constant(p%count) = real(count, wp)
     end subroutine parse_call
 
-    !> NAME(i): the quantity of marker i, measured from ground in ground axes; an input of
-    !> the expression (one per distinct marker and quantity).
-    subroutine parse_state_function(p, name, quantity, problem)
+    !> AKISPL(x, z, id[, iord]) or CUBSPL(...): x and z expressions, id the SPLINE's id and
+    !> iord the order of the derivative in x (0, 1 or 2), both whole numbers.
+    recursive subroutine parse_spline(p, name, op, problem)
+        type(parser_type), intent(inout) :: p
+        character(len=*), intent(in) :: name
+        integer, intent(in) :: op
+        character(len=:), allocatable, intent(inout) :: problem
+        integer :: id, order
+
+        call expect(p, "(", problem)
+        if (len(problem) == 0) call parse_sum(p, problem)
+        if (len(problem) == 0) call expect(p, ",", problem)
+        if (len(problem) == 0) call parse_sum(p, problem)
+        if (len(problem) == 0) call expect(p, ",", problem)
+        if (len(problem) == 0) call read_whole(p, name // "'s id", 1, huge(1)/4, id, problem)
+        order = 0
+        if (len(problem) == 0 .and. peek(p) == ",") then
+            p%at = p%at + 1
+            call read_whole(p, name // "'s iord", 0, 2, order, problem)
+        end if
+        if (len(problem) == 0) call expect(p, ")", problem)
+        if (len(problem) > 0) then
+            problem = problem // " (" // name // " is written " // name // "(x, z, id[, iord]): " &
+                & // "x and z expressions, id a SPLINE id, iord 0, 1 or 2)"
+            return
+        end if
+        call emit(p, op, -1)
+        p%constant(p%count) = spline_reference(id, order)
+    end subroutine parse_spline
+
+    !> A whole number from least to most at the parser's place, named `what` in a refusal.
+    subroutine read_whole(p, what, least, most, value, problem)
+        type(parser_type), intent(inout) :: p
+        character(len=*), intent(in) :: what
+        integer, intent(in) :: least, most
+        integer, intent(out) :: value
+        character(len=:), allocatable, intent(inout) :: problem
+        integer :: first, stat
+
+        call skip_blanks(p)
+        first = p%at
+        call skip_digits(p)
+        value = -1
+        stat = 1
+        if (p%at > first .and. p%at - first <= 9) read(p%text(first:p%at - 1), *, iostat=stat) &
+            & value
+        if (stat /= 0 .or. value < least .or. value > most) then
+            p%at = first
+            problem = what // " must be a whole number from " // to_text(least) // " to " &
+                & // to_text(most)
+        end if
+    end subroutine read_whole
+
+    !> NAME(i[, j[, k[, l]]]): a measure of markers (or, for an element function, its id,
+    !> jflag, comp and rm; for VARVAL, DIF and DIF1 an id); an input of the expression (one per
+    !> distinct measure).
+    subroutine parse_measure(p, name, quantity, problem)
         type(parser_type), intent(inout) :: p
         character(len=*), intent(in) :: name
         integer, intent(in) :: quantity
         character(len=:), allocatable, intent(inout) :: problem
-        integer :: first, id, stat, k, slot
+        integer :: ids(4), count, k, slot, least, most
+        character(len=:), allocatable :: form
+        type(expression_input_type) :: input
 
+        least = quantity_least_markers(quantity)
+        most = quantity_most_markers(quantity)
+        form = measure_form(name, quantity)
         call expect(p, "(", problem)
         if (len(problem) > 0) then
-            problem = problem // " (" // name // " is written " // name // "(i), i a marker id)"
+            problem = problem // " (" // name // " is written " // form // ")"
             return
         end if
-        call skip_blanks(p)
-        first = p%at
-        call skip_digits(p)
-        id = 0
-        stat = 1
-        if (p%at > first) read(p%text(first:p%at - 1), *, iostat=stat) id
-        if (stat /= 0 .or. id <= 0) then
-            p%at = first
-            problem = name // "(i) takes a marker id (a whole number > 0)"
+        ids = 0
+        count = 0
+        do
+            if (count == most) exit
+            if (count > 0) then
+                if (peek(p) /= ",") exit
+                p%at = p%at + 1
+            end if
+            count = count + 1
+            call read_whole(p, "x", merge(1, 0, count == 1 .or. (quantity_kind(quantity) &
+                & == kind_element_force .and. count == 3)), huge(1), ids(count), problem)
+            if (len(problem) > 0) then
+                problem = name // "'s " // argument_name(quantity, count) // " must be " &
+                    & // argument_meaning(quantity, count) // " (" // name // " is written " &
+                    & // form // ")"
+                return
+            end if
+        end do
+        if (count < least) then
+            problem = name // " takes " // to_text(least) // " whole numbers, " // form
             return
         end if
         if (peek(p) == ",") then
-            problem = name // "(i, ...): only the one-marker form " // name // "(i) is " &
-                & // "supported, measured from ground in ground axes (a J or K marker, from or " &
-                & // "in another marker, is not)"
+            problem = name // " takes at most " // to_text(most) // " marker id" &
+                & // trim(merge("s", " ", most > 1)) // ", " // form
             return
         end if
         call expect(p, ")", problem)
-        if (len(problem) > 0) return
+        if (len(problem) > 0) then
+            problem = problem // " (" // name // " is written " // form // ")"
+            return
+        end if
+        if (quantity_kind(quantity) == kind_element_force .and. ids(2) > 1) then
+            problem = name // "'s jflag must be " // argument_meaning(quantity, 2)
+            return
+        end if
+        if (quantity_kind(quantity) == kind_element_force .and. ids(3) > 8) then
+            problem = name // "'s comp must be " // argument_meaning(quantity, 3)
+            return
+        end if
+        input = expression_input_type(marker=ids(1), quantity=quantity, j=ids(2), k=ids(3), &
+            & l=ids(4))
+        if (frame_third(quantity)) then
+            ! VM, VR, ACCM, WDTM (i, j, l): the third is the frame of the time derivative
+            input%l = ids(3)
+            input%k = 0
+        end if
         slot = 0
         do k = 1, size(p%inputs)
-            if (p%inputs(k)%marker == id .and. p%inputs(k)%quantity == quantity) slot = k
+            if (same_input(p%inputs(k), input)) slot = k
         end do
         if (slot == 0) then
             if (size(p%inputs) == max_inputs) then
-                problem = "more than 32 different state functions in one expression"
+                problem = "more than " // to_text(max_inputs) // " different measures in one " &
+                    & // "expression"
                 return
             end if
-            p%inputs = [p%inputs, expression_input_type(marker=id, quantity=quantity)]
+            p%inputs = [p%inputs, input]
             slot = size(p%inputs)
         end if
         ! the input's number rides in the constant slot of its operation
         call emit_constant(p, real(slot, wp))
         p%op(p%count) = op_input
-    end subroutine parse_state_function
+    end subroutine parse_measure
+
+    !> How a measure is written, for messages: "DX(i[, j[, k]])".
+    pure function measure_form(name, quantity) result(form)
+        character(len=*), intent(in) :: name
+        integer, intent(in) :: quantity
+        character(len=:), allocatable :: form
+        integer :: k
+
+        if (quantity_kind(quantity) == kind_element_force) then
+            form = name // "(id, jflag, comp, rm)"
+            return
+        end if
+        form = name // "(" // argument_name(quantity, 1)
+        do k = 2, quantity_most_markers(quantity)
+            form = form // "[, " // argument_name(quantity, k)
+        end do
+        form = form // repeat("]", quantity_most_markers(quantity) - 1) // ")"
+    end function measure_form
+
+    !> The name of a measure's argument k: i, j, k, l (for DX to WDTM: the velocity's frame is
+    !> l, the fourth; VM, VR, ACCM and WDTM take i, j, l), or id, jflag, comp, rm.
+    pure function argument_name(quantity, k) result(name)
+        integer, intent(in) :: quantity, k
+        character(len=:), allocatable :: name
+        character(len=5), parameter :: markers(4) = ["i    ", "j    ", "k    ", "l    "]
+        character(len=5), parameter :: element(4) = ["id   ", "jflag", "comp ", "rm   "]
+
+        if (quantity_kind(quantity) == kind_element_force) then
+            name = trim(element(k))
+        else if (quantity_most_markers(quantity) == 1) then
+            name = "id"
+        else if (k == 3 .and. frame_third(quantity)) then
+            name = "l"
+        else
+            name = trim(markers(k))
+        end if
+    end function argument_name
+
+    !> What a measure's argument k must be, for messages.
+    pure function argument_meaning(quantity, k) result(text)
+        integer, intent(in) :: quantity, k
+        character(len=:), allocatable :: text
+
+        if (quantity_kind(quantity) == kind_element_force) then
+            select case (k)
+            case (1)
+                text = "the element's id (a whole number > 0)"
+            case (2)
+                text = "0 (the force on the I marker) or 1 (on J)"
+            case (3)
+                text = "a component from 1 to 8 (FM, FX, FY, FZ, TM, TX, TY, TZ)"
+            case default
+                text = "a marker id (0: ground axes)"
+            end select
+        else if (quantity_most_markers(quantity) == 1) then
+            text = "an id (a whole number > 0)"
+        else if (k == 1) then
+            text = "a marker id (a whole number > 0)"
+        else
+            text = "a marker id (a whole number; 0: the ground's origin and axes)"
+        end if
+    end function argument_meaning
+
+    !> VM, VR, ACCM and WDTM take (i, j, l): their third marker is the frame of the derivative.
+    pure logical function frame_third(quantity)
+        integer, intent(in) :: quantity
+
+        frame_third = any(quantity == [quantity_vm, quantity_vr, quantity_accm, quantity_wdtm])
+    end function frame_third
+
+    pure logical function same_input(a, b)
+        type(expression_input_type), intent(in) :: a, b
+
+        same_input = a%marker == b%marker .and. a%quantity == b%quantity .and. a%j == b%j &
+            & .and. a%k == b%k .and. a%l == b%l
+    end function same_input
 
     recursive subroutine parse_if(p, problem)
         type(parser_type), intent(inout) :: p

@@ -3,12 +3,16 @@
 !> and joint primitives between marker I and marker J, read and checked as the text states
 !> them: a type of rollcon_joint_types, and the two markers (that they are MARKERs is checked
 !> with every reference, rollcon_adm_checks). The model makes each one UCONs
-!> (model%add_joint, model%add_jprim), which also judges the markers' parts.
+!> (model%add_joint, model%add_jprim), which also judges the markers' parts. RACKPIN (with its
+!> pitch diameter PD) and SCREW (with its PITCH) couple the motions of the parts they join: the
+!> assembly makes each a constraint of its markers' measures (rollcon_adm_build).
 module rollcon_adm_joints
+    use rollcon_kinds, only : wp
     use rollcon_error, only : error_type, fatal_error, stat_input
+    use rollcon_adm_units, only : units_type
     use rollcon_joint_types, only : joint_names, primitive_names, name_list
     use rollcon_adm_lexer, only : adm_statement_type
-    use rollcon_adm_keywords, only : argument_key, arg_place, read_integer
+    use rollcon_adm_keywords, only : argument_key, arg_place, read_integer, read_reals
     implicit none
     private
 
@@ -16,8 +20,11 @@ module rollcon_adm_joints
 
     !> ADAMS's keywords of a JOINT that rollcon reads and refuses (initial conditions, friction,
     !> the joints it does not simulate)
-    character(len=*), parameter :: joint_refused(7) = [character(len=19) :: "IC", "ICTRAN", &
-        & "ICROT", "DELTA_V", "MAXIMUM_DEFORMATION", "RACKPIN", "SCREW"]
+    character(len=*), parameter :: joint_refused(5) = [character(len=19) :: "IC", "ICTRAN", &
+        & "ICROT", "DELTA_V", "MAXIMUM_DEFORMATION"]
+    !> The joints that couple motions, and their keywords
+    character(len=*), parameter :: coupling_joints(2) = [character(len=7) :: "RACKPIN", "SCREW"]
+    character(len=*), parameter :: coupling_keys(2) = [character(len=5) :: "PD", "PITCH"]
 
     !> JOINT/id or JPRIM/id
     type :: adm_joint_type
@@ -28,19 +35,24 @@ module rollcon_adm_joints
         character(len=:), allocatable :: kind
         !> Marker I and marker J
         integer :: i = 0, j = 0
+        !> RACKPIN: the pinion's pitch diameter [m]; SCREW: the translation per turn [m]
+        real(wp) :: pd = 0.0_wp, pitch = 0.0_wp
     end type adm_joint_type
 
 contains
 
     !> JOINT/id, type, I=id, J=id or JPRIM/id, type, I=id, J=id (name says which); that the
     !> markers exist is checked once the file is read (rollcon_adm_checks).
-    subroutine read_joint(path, where, name, statement, joint, error)
+    subroutine read_joint(path, where, name, statement, units, joint, error)
         character(len=*), intent(in) :: path, where, name
         type(adm_statement_type), intent(in) :: statement
+        !> The dataset's units (PD and PITCH are lengths)
+        type(units_type), intent(in) :: units
         type(adm_joint_type), intent(out) :: joint
         type(error_type), allocatable, intent(out) :: error
-        character(len=:), allocatable :: key, at
+        character(len=:), allocatable :: key, at, pd_at, pitch_at
         character(len=32), allocatable :: allowed(:)
+        real(wp), allocatable :: values(:)
         integer :: k
 
         joint%id = statement%id
@@ -49,7 +61,8 @@ contains
         if (joint%primitive) then
             allowed = [character(len=32) :: primitive_names, "I", "J"]
         else
-            allowed = [character(len=32) :: joint_names, "I", "J", joint_refused]
+            allowed = [character(len=32) :: joint_names, "I", "J", joint_refused, &
+                & coupling_joints, coupling_keys]
         end if
         do k = 1, size(statement%arguments)
             call argument_key(path, where, statement, k, allowed, key, error)
@@ -65,9 +78,17 @@ contains
                     & // "are not supported: rollcon's initial-conditions analysis places the " &
                     & // "parts (docs/initial-conditions.md); give the parts' QG, REULER and " &
                     & // "velocities instead", stat_input)
-            case ("RACKPIN", "SCREW")
-                call fatal_error(error, at // ": a " // key // " joint is not supported " &
-                    & // "(supported: " // name_list(joint_names) // ", and JPRIM)", stat_input)
+            case ("PD", "PITCH")
+                call read_reals(statement%arguments(k), at, 1, 1, .false., values, error, &
+                    & units%length)
+                if (allocated(error)) return
+                if (key == "PD") then
+                    joint%pd = values(1)
+                    pd_at = at
+                else
+                    joint%pitch = values(1)
+                    pitch_at = at
+                end if
             case default
                 if (statement%arguments(k)%assigned) then
                     call fatal_error(error, at // " takes no value", stat_input)
@@ -94,6 +115,19 @@ contains
         else if (joint%j == 0) then
             call fatal_error(error, where // ": J=id is missing (the marker on the second " &
                 & // "part, or on ground)", stat_input)
+        else if (allocated(pd_at) .and. joint%kind /= "RACKPIN") then
+            call fatal_error(error, pd_at // ": PD is the pitch diameter of a RACKPIN " &
+                & // "joint, not of a " // joint%kind // " joint", stat_input)
+        else if (allocated(pitch_at) .and. joint%kind /= "SCREW") then
+            call fatal_error(error, pitch_at // ": PITCH is the translation per turn of a " &
+                & // "SCREW joint, not of a " // joint%kind // " joint", stat_input)
+        else if (joint%kind == "RACKPIN" .and. .not. joint%pd > 0.0_wp) then
+            call fatal_error(error, where // ": a RACKPIN joint needs PD=d > 0, the pinion's " &
+                & // "pitch diameter [length]", stat_input)
+        else if (joint%kind == "SCREW" .and. joint%pitch == 0.0_wp) then
+            call fatal_error(error, where // ": a SCREW joint needs PITCH=p /= 0, the " &
+                & // "translation per turn [length] (negative for a left-handed thread)", &
+                & stat_input)
         end if
     end subroutine read_joint
 

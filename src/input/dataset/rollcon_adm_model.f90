@@ -9,6 +9,8 @@ module rollcon_adm_model
     use rollcon_adm_units, only : units_type
     use rollcon_run_settings, only : run_settings_type
     use rollcon_adm_joints, only : adm_joint_type
+    use rollcon_adm_couplers, only : adm_gcon_type, adm_coupler_type, adm_gear_type
+    use rollcon_adm_motions, only : adm_motion_type
     implicit none
     private
 
@@ -182,6 +184,13 @@ module rollcon_adm_model
         type(adm_force_type), allocatable :: forces(:)
         !> JOINT and JPRIM statements, in the order of the file (rollcon_adm_joints)
         type(adm_joint_type), allocatable :: joints(:)
+        !> GCON, COUPLER and GEAR statements, each in the order of the file
+        !> (rollcon_adm_couplers)
+        type(adm_gcon_type), allocatable :: gcons(:)
+        type(adm_coupler_type), allocatable :: couplers(:)
+        type(adm_gear_type), allocatable :: gears(:)
+        !> MOTION statements, in the order of the file (rollcon_adm_motions)
+        type(adm_motion_type), allocatable :: motions(:)
         !> Gravitational acceleration, ground axes [m/s^2] (zero without ACCGRAV)
         real(wp) :: gravity(3) = 0.0_wp
         type(adm_run_type) :: run

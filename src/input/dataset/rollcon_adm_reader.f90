@@ -22,6 +22,8 @@ module rollcon_adm_reader
     use rollcon_adm_run, only : read_simulate, read_integrator
     use rollcon_adm_checks, only : check_references
     use rollcon_adm_joints, only : read_joint
+    use rollcon_adm_couplers, only : read_gcon, read_coupler, read_gear
+    use rollcon_adm_motions, only : read_motion
     use rollcon_adm_outside, only : outside_reason
     use rollcon_adm_outputs, only : output_statement_names, output_needs_id, &
         & read_output_statement, unused_warning
@@ -92,7 +94,8 @@ contains
         model%warning = unused_warning(model)
     end subroutine read_adm_lines
 
-    !> Every statement in file order, up to END; parts, markers, UCONs and forces stored in
+    !> Every statement in file order, up to END; parts, markers, UCONs, forces, joints and the
+    !> GCONs and couplers stored in
     !> lists allocated once and their ids checked through an index.
     subroutine read_statements(path, text, model, error)
         character(len=*), intent(in) :: path
@@ -105,8 +108,8 @@ contains
         character(len=:), allocatable :: name
         !> The ids of the parts, markers, UCONs and forces (list_of), and of the statements
         !> read and not used that take one (output_key)
-        type(id_index_type) :: ids(5), output_ids
-        integer :: i, n(5), k, previous
+        type(id_index_type) :: ids(9), output_ids
+        integer :: i, n(9), k, previous
         logical :: seen(size(statement_names)), repeated
 
         do i = 1, size(text%statements)
@@ -120,9 +123,13 @@ contains
             & model%ucons(count(names == "UCON")), model%forces(count(names == "SFORCE" &
             & .or. names == "VFORCE" .or. names == "GFORCE")))
         allocate(model%joints(count(names == "JOINT" .or. names == "JPRIM")))
+        allocate(model%gcons(count(names == "GCON")), model%couplers(count(names == "COUPLER")), &
+            & model%gears(count(names == "GEAR")), model%motions(count(names == "MOTION")))
         ids = [new_id_index(size(model%parts)), new_id_index(size(model%markers)), &
             & new_id_index(size(model%ucons)), new_id_index(size(model%forces)), &
-            & new_id_index(size(model%joints))]
+            & new_id_index(size(model%joints)), new_id_index(size(model%gcons)), &
+            & new_id_index(size(model%couplers)), new_id_index(size(model%gears)), &
+            & new_id_index(size(model%motions))]
         output_ids = new_id_index(count([(name_index(names(i), output_statement_names) > 0, &
             & i = 1, size(names))]))
         n = 0
@@ -168,14 +175,18 @@ contains
         model%ucons = model%ucons(:n(3))
         model%forces = model%forces(:n(4))
         model%joints = model%joints(:n(5))
+        model%gcons = model%gcons(:n(6))
+        model%couplers = model%couplers(:n(7))
+        model%gears = model%gears(:n(8))
+        model%motions = model%motions(:n(9))
         model%requests = model%requests(:model%request_count)
         model%other_requests = model%other_requests(:model%other_request_count)
         model%unused = model%unused(:model%unused_count)
         model%references = model%references(:model%reference_count)
     end subroutine read_statements
 
-    !> The list a statement's element goes to: 1 parts, 2 markers, 3 UCONs, 4 forces, 5 joints;
-    !> 0 none.
+    !> The list a statement's element goes to: 1 parts, 2 markers, 3 UCONs, 4 forces, 5 joints,
+    !> 6 GCONs, 7 COUPLERs, 8 GEARs, 9 MOTIONs; 0 none.
     pure integer function list_of(name) result(k)
         character(len=*), intent(in) :: name
 
@@ -190,6 +201,14 @@ contains
             k = 4
         case ("JOINT", "JPRIM")
             k = 5
+        case ("GCON")
+            k = 6
+        case ("COUPLER")
+            k = 7
+        case ("GEAR")
+            k = 8
+        case ("MOTION")
+            k = 9
         case default
             k = 0
         end select
@@ -232,7 +251,7 @@ contains
         type(adm_statement_type), intent(in) :: statement
         logical, intent(in) :: repeated
         type(adm_model_type), intent(inout) :: model
-        integer, intent(inout) :: n(5)
+        integer, intent(inout) :: n(9)
         type(error_type), allocatable, intent(out) :: error
         character(len=:), allocatable :: where
 
@@ -265,7 +284,19 @@ contains
             call read_force(path, where, name, statement, model%forces(n(4)), error)
         case ("JOINT", "JPRIM")
             n(5) = n(5) + 1
-            call read_joint(path, where, name, statement, model%joints(n(5)), error)
+            call read_joint(path, where, name, statement, model%units, model%joints(n(5)), error)
+        case ("GCON")
+            n(6) = n(6) + 1
+            call read_gcon(path, where, statement, model%gcons(n(6)), error)
+        case ("COUPLER")
+            n(7) = n(7) + 1
+            call read_coupler(path, where, statement, model%couplers(n(7)), error)
+        case ("GEAR")
+            n(8) = n(8) + 1
+            call read_gear(path, where, statement, model%gears(n(8)), error)
+        case ("MOTION")
+            n(9) = n(9) + 1
+            call read_motion(path, where, statement, model%units, model%motions(n(9)), error)
         case ("SIMULATE")
             call read_simulate(path, where, statement, model%units, model%run, error)
         case ("INTEGRATOR")
@@ -385,7 +416,8 @@ contains
         character(len=*), intent(in) :: name
 
         needs_id = any(name == [character(len=10) :: "PART", "MARKER", "UCON", "SFORCE", &
-            & "VFORCE", "GFORCE", "JOINT", "JPRIM"]) .or. output_needs_id(name)
+            & "VFORCE", "GFORCE", "JOINT", "JPRIM", "GCON", "COUPLER", "GEAR", "MOTION"]) &
+            & .or. output_needs_id(name)
     end function needs_id
 
     !> UNITS, read before any other statement. SYSTEM sets all four units; FORCE, MASS, LENGTH

@@ -6,9 +6,9 @@
 module rollcon_run_keys
     use rollcon_kinds, only : wp
     use rollcon_run_settings, only : run_settings_type, formulation_cvode, formulation_ida, &
-        & formulation_maggi, method_bdf, method_adams, drift_none, drift_projection, drift_baumgarte, &
-        & jacobian_analytic, jacobian_dq, jacobian_none, linear_dense, linear_sparse, &
-        & linear_auto
+        & formulation_speeds, method_bdf, method_adams, drift_none, drift_projection, &
+        & drift_baumgarte, jacobian_analytic, jacobian_dq, jacobian_none, linear_dense, &
+        & linear_sparse, linear_auto
     use rollcon_keys, only : key_type, option_type, real_key, integer_key, choice_key, &
         & option_code, option_name
     implicit none
@@ -43,7 +43,7 @@ contains
                 & real_key(run_group, "output_step", r%output_step, "s", time_min, time_max), &
                 & choice_key(run_group, "formulation", r%formulation, &
                 & [option_type("ida", formulation_ida), option_type("cvode", formulation_cvode), &
-                & option_type("maggi", formulation_maggi)]), &
+                & option_type("maggi", formulation_speeds)]), &
                 & choice_key(run_group, "method", r%method, [option_type("bdf", method_bdf), &
                 & option_type("adams", method_adams)]), &
                 & choice_key(run_group, "drift", r%drift, [option_type("projection", &

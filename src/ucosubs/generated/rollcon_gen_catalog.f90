@@ -18,6 +18,8 @@ module rollcon_gen_catalog
         & gnd_inline_codes, gnd_inline_time_free
     use rollcon_gen_gnd_inplane, only : gnd_inplane_ucosub, gnd_inplane_npar, &
         & gnd_inplane_ncomponents, gnd_inplane_codes, gnd_inplane_time_free
+    use rollcon_gen_gnd_motion_angle, only : gnd_motion_angle_ucosub, gnd_motion_angle_npar, &
+        & gnd_motion_angle_ncomponents, gnd_motion_angle_codes, gnd_motion_angle_time_free
     use rollcon_gen_gnd_orientation, only : gnd_orientation_ucosub, gnd_orientation_npar, &
         & gnd_orientation_ncomponents, gnd_orientation_codes, gnd_orientation_time_free
     use rollcon_gen_gnd_parallel_axes, only : gnd_parallel_axes_ucosub, gnd_parallel_axes_npar, &
@@ -32,6 +34,8 @@ module rollcon_gen_catalog
         & jp_inline_codes, jp_inline_time_free
     use rollcon_gen_jp_inplane, only : jp_inplane_ucosub, jp_inplane_npar, jp_inplane_ncomponents, &
         & jp_inplane_codes, jp_inplane_time_free
+    use rollcon_gen_jp_motion_angle, only : jp_motion_angle_ucosub, jp_motion_angle_npar, &
+        & jp_motion_angle_ncomponents, jp_motion_angle_codes, jp_motion_angle_time_free
     use rollcon_gen_jp_orientation, only : jp_orientation_ucosub, jp_orientation_npar, &
         & jp_orientation_ncomponents, jp_orientation_codes, jp_orientation_time_free
     use rollcon_gen_jp_parallel_axes, only : jp_parallel_axes_ucosub, jp_parallel_axes_npar, &
@@ -59,7 +63,7 @@ module rollcon_gen_catalog
     public :: generated_routine, generated_codes, generated_summary
 
     !> Number of generated routines
-    integer, parameter :: generated_count = 22
+    integer, parameter :: generated_count = 24
     !> Their names: the spec names of ucon/specs/, in alphabetical order
     character(len=*), parameter :: generated_names(generated_count) = [character(len=17) :: &
         & "chaplygin_sled", &
@@ -68,6 +72,7 @@ module rollcon_gen_catalog
         & "gnd_homokinetic", &
         & "gnd_inline", &
         & "gnd_inplane", &
+        & "gnd_motion_angle", &
         & "gnd_orientation", &
         & "gnd_parallel_axes", &
         & "gnd_perpendicular", &
@@ -75,6 +80,7 @@ module rollcon_gen_catalog
         & "jp_homokinetic", &
         & "jp_inline", &
         & "jp_inplane", &
+        & "jp_motion_angle", &
         & "jp_orientation", &
         & "jp_parallel_axes", &
         & "jp_perpendicular", &
@@ -93,6 +99,7 @@ module rollcon_gen_catalog
         & gnd_homokinetic_npar, &
         & gnd_inline_npar, &
         & gnd_inplane_npar, &
+        & gnd_motion_angle_npar, &
         & gnd_orientation_npar, &
         & gnd_parallel_axes_npar, &
         & gnd_perpendicular_npar, &
@@ -100,6 +107,7 @@ module rollcon_gen_catalog
         & jp_homokinetic_npar, &
         & jp_inline_npar, &
         & jp_inplane_npar, &
+        & jp_motion_angle_npar, &
         & jp_orientation_npar, &
         & jp_parallel_axes_npar, &
         & jp_perpendicular_npar, &
@@ -118,6 +126,7 @@ module rollcon_gen_catalog
         & gnd_homokinetic_ncomponents, &
         & gnd_inline_ncomponents, &
         & gnd_inplane_ncomponents, &
+        & gnd_motion_angle_ncomponents, &
         & gnd_orientation_ncomponents, &
         & gnd_parallel_axes_ncomponents, &
         & gnd_perpendicular_ncomponents, &
@@ -125,6 +134,7 @@ module rollcon_gen_catalog
         & jp_homokinetic_ncomponents, &
         & jp_inline_ncomponents, &
         & jp_inplane_ncomponents, &
+        & jp_motion_angle_ncomponents, &
         & jp_orientation_ncomponents, &
         & jp_parallel_axes_ncomponents, &
         & jp_perpendicular_ncomponents, &
@@ -146,10 +156,12 @@ module rollcon_gen_catalog
         & 0, &
         & 0, &
         & 0, &
+        & 0, &
         & 6, &
         & 3, &
         & 6, &
         & 6, &
+        & 3, &
         & 3, &
         & 3, &
         & 3, &
@@ -168,6 +180,7 @@ module rollcon_gen_catalog
         & gnd_homokinetic_time_free, &
         & gnd_inline_time_free, &
         & gnd_inplane_time_free, &
+        & gnd_motion_angle_time_free, &
         & gnd_orientation_time_free, &
         & gnd_parallel_axes_time_free, &
         & gnd_perpendicular_time_free, &
@@ -175,6 +188,7 @@ module rollcon_gen_catalog
         & jp_homokinetic_time_free, &
         & jp_inline_time_free, &
         & jp_inplane_time_free, &
+        & jp_motion_angle_time_free, &
         & jp_orientation_time_free, &
         & jp_parallel_axes_time_free, &
         & jp_perpendicular_time_free, &
@@ -208,36 +222,40 @@ contains
         case (6)
             ucosub => gnd_inplane_ucosub
         case (7)
-            ucosub => gnd_orientation_ucosub
+            ucosub => gnd_motion_angle_ucosub
         case (8)
-            ucosub => gnd_parallel_axes_ucosub
+            ucosub => gnd_orientation_ucosub
         case (9)
-            ucosub => gnd_perpendicular_ucosub
+            ucosub => gnd_parallel_axes_ucosub
         case (10)
-            ucosub => jp_atpoint_ucosub
+            ucosub => gnd_perpendicular_ucosub
         case (11)
-            ucosub => jp_homokinetic_ucosub
+            ucosub => jp_atpoint_ucosub
         case (12)
-            ucosub => jp_inline_ucosub
+            ucosub => jp_homokinetic_ucosub
         case (13)
-            ucosub => jp_inplane_ucosub
+            ucosub => jp_inline_ucosub
         case (14)
-            ucosub => jp_orientation_ucosub
+            ucosub => jp_inplane_ucosub
         case (15)
-            ucosub => jp_parallel_axes_ucosub
+            ucosub => jp_motion_angle_ucosub
         case (16)
-            ucosub => jp_perpendicular_ucosub
+            ucosub => jp_orientation_ucosub
         case (17)
-            ucosub => knife_edge_ucosub
+            ucosub => jp_parallel_axes_ucosub
         case (18)
-            ucosub => planar_hold_ucosub
+            ucosub => jp_perpendicular_ucosub
         case (19)
-            ucosub => rolling_disk_ucosub
+            ucosub => knife_edge_ucosub
         case (20)
-            ucosub => rolling_sphere_ucosub
+            ucosub => planar_hold_ucosub
         case (21)
-            ucosub => turntable_ball_ucosub
+            ucosub => rolling_disk_ucosub
         case (22)
+            ucosub => rolling_sphere_ucosub
+        case (23)
+            ucosub => turntable_ball_ucosub
+        case (24)
             ucosub => turntable_disk_ucosub
         case default
             ucosub => null()
@@ -265,36 +283,40 @@ contains
         case (6)
             codes = gnd_inplane_codes
         case (7)
-            codes = gnd_orientation_codes
+            codes = gnd_motion_angle_codes
         case (8)
-            codes = gnd_parallel_axes_codes
+            codes = gnd_orientation_codes
         case (9)
-            codes = gnd_perpendicular_codes
+            codes = gnd_parallel_axes_codes
         case (10)
-            codes = jp_atpoint_codes
+            codes = gnd_perpendicular_codes
         case (11)
-            codes = jp_homokinetic_codes
+            codes = jp_atpoint_codes
         case (12)
-            codes = jp_inline_codes
+            codes = jp_homokinetic_codes
         case (13)
-            codes = jp_inplane_codes
+            codes = jp_inline_codes
         case (14)
-            codes = jp_orientation_codes
+            codes = jp_inplane_codes
         case (15)
-            codes = jp_parallel_axes_codes
+            codes = jp_motion_angle_codes
         case (16)
-            codes = jp_perpendicular_codes
+            codes = jp_orientation_codes
         case (17)
-            codes = knife_edge_codes
+            codes = jp_parallel_axes_codes
         case (18)
-            codes = planar_hold_codes
+            codes = jp_perpendicular_codes
         case (19)
-            codes = rolling_disk_codes
+            codes = knife_edge_codes
         case (20)
-            codes = rolling_sphere_codes
+            codes = planar_hold_codes
         case (21)
-            codes = turntable_ball_codes
+            codes = rolling_disk_codes
         case (22)
+            codes = rolling_sphere_codes
+        case (23)
+            codes = turntable_ball_codes
+        case (24)
             codes = turntable_disk_codes
         case default
             codes = [integer ::]
@@ -327,50 +349,56 @@ contains
             summary = "I's origin in J's x-y plane: marker I on a part, marker J on ground " &
                 & // "(ADAMS JPRIM)."
         case (7)
+            summary = "An angle of one part's axes from another's, the second side on " &
+                & // "ground, that a MOTION drives (ADAMS MOTION, ROTATION or B1, B2, B3)."
+        case (8)
             summary = "I's axes parallel to J's: marker I on a part, marker J on ground " &
                 & // "(ADAMS JPRIM)."
-        case (8)
+        case (9)
             summary = "I's z axis parallel to J's: marker I on a part, marker J on ground " &
                 & // "(ADAMS JPRIM)."
-        case (9)
+        case (10)
             summary = "I's z axis perpendicular to J's: marker I on a part, marker J on " &
                 & // "ground (ADAMS JPRIM)."
-        case (10)
+        case (11)
             summary = "I's origin at J's: marker I on a part, marker J on a second part " &
                 & // "(ADAMS JPRIM)."
-        case (11)
+        case (12)
             summary = "I's and J's shafts turn alike: marker I on a part, marker J on a " &
                 & // "second part (ADAMS JOINT CONVEL)."
-        case (12)
+        case (13)
             summary = "I's origin on J's z axis: marker I on a part, marker J on a second " &
                 & // "part (ADAMS JPRIM)."
-        case (13)
+        case (14)
             summary = "I's origin in J's x-y plane: marker I on a part, marker J on a second " &
                 & // "part (ADAMS JPRIM)."
-        case (14)
+        case (15)
+            summary = "An angle of one part's axes from another's, between two parts, that a " &
+                & // "MOTION drives (ADAMS MOTION, ROTATION or B1, B2, B3)."
+        case (16)
             summary = "I's axes parallel to J's: marker I on a part, marker J on a second " &
                 & // "part (ADAMS JPRIM)."
-        case (15)
+        case (17)
             summary = "I's z axis parallel to J's: marker I on a part, marker J on a second " &
                 & // "part (ADAMS JPRIM)."
-        case (16)
+        case (18)
             summary = "I's z axis perpendicular to J's: marker I on a part, marker J on a " &
                 & // "second part (ADAMS JPRIM)."
-        case (17)
-            summary = "The blade's contact point has no velocity across the blade."
-        case (18)
-            summary = "The body stays level: centre of mass at the height h, body y vertical."
         case (19)
+            summary = "The blade's contact point has no velocity across the blade."
+        case (20)
+            summary = "The body stays level: centre of mass at the height h, body y vertical."
+        case (21)
             summary = "No slip, no penetration: the disk's material point at the contact has " &
                 & // "zero velocity."
-        case (20)
+        case (22)
             summary = "No slip, no penetration: the sphere's material point at the contact " &
                 & // "has zero velocity."
-        case (21)
+        case (23)
             summary = "No slip on a table turning at a constant rate Omega about a fixed " &
                 & // "vertical axis: the sphere's material point at the contact moves with " &
                 & // "the table's."
-        case (22)
+        case (24)
             summary = "No slip on a table turning about a vertical axis at the rate Omega0 + " &
                 & // "Omega1 sin(nu t): the disk's material point at the contact moves with " &
                 & // "the table's."

@@ -232,7 +232,7 @@ contains
     end subroutine test_failed_run
 
     !> A run killed after two seconds leaves the earlier run's CSV and summary as they were
-    !> (it used to have replaced the CSV and left the old summary beside it).
+    !> (not the CSV replaced and the old summary left beside it).
     subroutine test_interrupted(error)
         type(error_type), allocatable, intent(out) :: error
         character(len=:), allocatable :: program, csv, summary

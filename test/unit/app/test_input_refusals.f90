@@ -1,9 +1,9 @@
 ! SPDX-License-Identifier: MIT
 !> Every input file the `rollcon` program reads, given as a link to /dev/zero, as a FIFO that
 !> nobody writes to, and one byte beyond its size limit (a sparse file): each is refused at
-!> once, with one line naming the file and what it is (or the limit), exit status 1. Before
-!> issue #22 these inputs were read forever or waited on forever: each run is given a time
-!> limit (timeout), so such a run fails the test instead of holding it.
+!> once, with one line naming the file and what it is (or the limit), exit status 1. Read
+!> naively, these inputs are read or waited on forever: each run is given a time limit
+!> (timeout), so such a run fails the test instead of holding it.
 module test_input_refusals
     use, intrinsic :: iso_fortran_env, only : int64
     use rollcon_error, only : error_type

@@ -1,9 +1,9 @@
 ! SPDX-License-Identifier: MIT
-!> Long paths through the program (issue #22, item 5): an --output of 603 characters takes
+!> Long paths through the program: an --output of 603 characters takes
 !> run, plot and sweep exactly there; a path the system cannot take (beyond PATH_MAX, or a
 !> name beyond 255 bytes) is refused with one line that names it and says why; a cache folder
-!> named by an XDG_CACHE_HOME longer than 4096 characters is used as named (once cut to a
-!> 4096-character buffer, it made rollcon build in ~/.cache instead and exit 0).
+!> named by an XDG_CACHE_HOME longer than 4096 characters is used as named (cut to a
+!> 4096-character buffer, it would make rollcon build in ~/.cache instead and exit 0).
 module test_long_paths
     use rollcon_error, only : error_type
     use rollcon_text, only : to_text

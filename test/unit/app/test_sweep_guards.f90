@@ -1,5 +1,5 @@
 ! SPDX-License-Identifier: MIT
-!> `rollcon sweep` where its CSV cannot simply be written (issue #22, item 4): into a full disk
+!> `rollcon sweep` where its CSV cannot simply be written: into a full disk
 !> the sweep fails and says which rows the CSV holds, and the file holds exactly those;
 !> a second sweep into the CSV another one is writing is refused, and the first one's CSV
 !> resumes as a whole.

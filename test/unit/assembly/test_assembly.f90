@@ -23,10 +23,10 @@ module test_assembly
     !> The built-in UCOSUBs, as a refusal lists them
     character(len=*), parameter :: builtin = &
         & "(disk, rolling_disk, chaplygin_sled, disk_height, gnd_atpoint, gnd_homokinetic," &
-        & // " gnd_inline, gnd_inplane, gnd_orientation, gnd_parallel_axes, gnd_perpendicular," &
-        & // " jp_atpoint, jp_homokinetic, jp_inline, jp_inplane, jp_orientation," &
-        & // " jp_parallel_axes, jp_perpendicular, knife_edge, planar_hold, rolling_sphere," &
-        & // " turntable_ball, turntable_disk)"
+        & // " gnd_inline, gnd_inplane, gnd_motion_angle, gnd_orientation, gnd_parallel_axes," &
+        & // " gnd_perpendicular, jp_atpoint, jp_homokinetic, jp_inline, jp_inplane," &
+        & // " jp_motion_angle, jp_orientation, jp_parallel_axes, jp_perpendicular, knife_edge," &
+        & // " planar_hold, rolling_sphere, turntable_ball, turntable_disk)"
     !> A pendulum (data/pendulum.adm's parts and markers): ground marker 10, the bob's CM
     !> marker 20 and hinge marker 21; line 8 is the statement under test
     character(len=60), parameter :: pendulum(10) = [character(len=60) :: &

@@ -249,7 +249,7 @@ contains
 
         costs%rhs = 1.0_wp
         costs%residual = 2.0_wp
-        costs%rhs_in_speeds = 3.0_wp
+        costs%rhs_speeds = 3.0_wp
         costs%root = 4.0e-3_wp
         costs%root_given_rates = 5.0e-3_wp
         costs%root_given_multipliers = 6.0e-3_wp

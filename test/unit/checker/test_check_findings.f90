@@ -1,5 +1,5 @@
 ! SPDX-License-Identifier: MIT
-!> No false success of `rollcon check` (issue #22, item 3): a write of XMATRX(0,0) is an
+!> No false success of `rollcon check`: a write of XMATRX(0,0) is an
 !> outside-block finding with its index; a huge output is a finite finding; a routine that
 !> changes an argument it may only read (ID, NPAR, TIME, IFLAG, PAR(k)) gets a changed-argument
 !> finding in check and an error naming the argument in run, both called through the same

@@ -1,5 +1,5 @@
 ! SPDX-License-Identifier: MIT
-!> `rollcon check` ends, every time (issue #22, items 1 and 2): each way of misusing the
+!> `rollcon check` ends, every time: each way of misusing the
 !> initialisation call (UCOVAR with -1 variables, twice, NPARTS /= NVARS, code 99, a variable
 !> twice, the wrong id, a part id of its own; ERRMES; three arguments; no UCOVAR) is checked
 !> 20 times through the program and must end with its [declaration] finding within a time
@@ -27,7 +27,8 @@ module test_check_reliability
     character(len=*), parameter :: faulty = "test/faulty_ucosubs/"
     !> The disk's UCON 1, as the documentation checks it
     character(len=*), parameter :: disk_ucon = "1:1,21,22,23,14,15,24,25,26,0.1,1"
-    !> Runs of each case: the hang of issue #22 came in 30-50 % of the runs
+    !> Runs of each case: a hang of the host reading a child's report comes in 30-50 % of the
+    !> runs when the report's length is garbage (docs/design.md §7)
     integer, parameter :: repeats = 20
     !> Bound of one run [s]: a check that stops at the initialisation call takes milliseconds;
     !> the default time limit of one call of the routine is 10 s

@@ -46,8 +46,8 @@ contains
         call expect_in(error, report_text(report, disk_source, "lib"), "verdict: CLEAN")
     end subroutine test_report
 
-    !> A deviation of 1e-301 is printed with its exponent letter (issue #11, item 11: an
-    !> `es9.2` edit gave "1.00-301") and reads back as the number it was.
+    !> A deviation of 1e-301 is printed with its exponent letter (an `es9.2` edit gives
+    !> "1.00-301") and reads back as the number it was.
     subroutine test_report_exponent(error)
         type(error_type), allocatable, intent(out) :: error
         !> The text report prints three significant digits: the read-back is within half a unit

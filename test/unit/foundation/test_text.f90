@@ -50,7 +50,7 @@ contains
 
         call check(error, to_text(-42) == "-42", "integer text")
         if (allocated(error)) return
-        ! Row counts pass 2**31 (issue #11, item 4): printed whole, not wrapped round.
+        ! Row counts pass 2**31: printed whole, not wrapped round.
         call check(error, to_text(1000000000000001_int64) == "1000000000000001", &
             & "64-bit integer text: " // to_text(1000000000000001_int64))
         if (allocated(error)) return

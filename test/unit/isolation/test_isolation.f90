@@ -1,5 +1,5 @@
 ! SPDX-License-Identifier: MIT
-!> A user's routine cannot take rollcon down (issue #11, items 1, 2, 8; issue #12): each planted
+!> A user's routine cannot take rollcon down: each planted
 !> fault of test/faulty_ucosubs/ (a signal, an endless call, a STOP, a write outside the block)
 !> becomes the finding its header names; the --ucon option is read strictly; findings are
 !> classified by their rule code.

@@ -1,5 +1,5 @@
 ! SPDX-License-Identifier: MIT
-!> Tests of `rollcon run --ucosub FILE` against its surroundings (issue #22, items 2 and 3):
+!> Tests of `rollcon run --ucosub FILE` against its surroundings:
 !> an empty PATH is refused with the reason, and output folders are made without a shell; a
 !> cached library cut short on disk is rebuilt, not loaded; a full cache disk is named as
 !> such. Each runs the program with its own cache folder under build/.

@@ -1,10 +1,10 @@
 ! SPDX-License-Identifier: MIT
 !> `rollcon run ... --ucosub`, through the program (suite run-apart): the one route with a
-!> built-in routine by name and with a user's file, on a scene and on a dataset (the scene path
-!> crashed before issue #21), and the run apart from a user's routine: the child process only
-!> computes and rollcon writes every output, so a routine that closes the standard units or
-!> changes the working directory cannot touch the outputs, and a rollcon killed during the run
-!> takes its child with it and leaves the earlier run's files as they were.
+!> built-in routine by name and with a user's file, on a scene and on a dataset, and the run
+!> apart from a user's routine: the child process only computes and rollcon writes every
+!> output, so a routine that closes the standard units or changes the working directory
+!> cannot touch the outputs, and a rollcon killed during the run takes its child with it and
+!> leaves the earlier run's files as they were.
 module test_run_apart
     use rollcon_error, only : error_type
     use rollcon_text, only : to_text

@@ -10,7 +10,7 @@ module expression_checks
     use rollcon_text, only : to_text
     use rollcon_expression, only : expression_type, evaluate_expression, switching_times, &
         & max_stack, max_inputs, op_constant, op_time, op_input, op_add, op_power, op_negate, &
-        & op_if, function_codes, function_arguments, quantity_names
+        & op_if, function_codes, function_arguments, quantity_names, max_arguments
     use rollcon_testing, only : check
     use, intrinsic :: ieee_arithmetic, only : ieee_is_finite
     implicit none
@@ -45,7 +45,7 @@ contains
         depth = 0
         deepest = 0
         do i = 1, size(expression%op)
-            call stack_change(expression%op(i), change, known)
+            call stack_change(expression%op(i), expression%constant(i), change, known)
             call check(error, known .and. depth + min(change, 0) >= 1 - merge(1, 0, change > 0), &
                 & label // ": operation " // to_text(i) // " has no operands in '" &
                 & // expression%text // "'")
@@ -65,7 +65,7 @@ contains
         call check(error, size(expression%inputs) <= max_inputs .and. &
             & all(expression%inputs%marker > 0) .and. all(expression%inputs%quantity >= 1) &
             & .and. all(expression%inputs%quantity <= size(quantity_names)), label &
-            & // ": an input that is not a state function of a marker in '" &
+            & // ": an input that is not a measure of markers in '" &
             & // expression%text // "'")
         if (allocated(error)) return
         ! any value, NaN included (a domain error is the caller's to report), but no fault
@@ -78,9 +78,12 @@ contains
             & // "is not finite in '" // expression%text // "'")
     end subroutine check_expression_program
 
-    !> How an operation changes the depth of the stack; known is false for an unknown code.
-    pure subroutine stack_change(op, change, known)
+    !> How an operation changes the depth of the stack; known is false for an unknown code, or
+    !> a function of a variable number of arguments whose count (in its constant slot) is out
+    !> of its range.
+    pure subroutine stack_change(op, constant, change, known)
         integer, intent(in) :: op
+        real(wp), intent(in) :: constant
         integer, intent(out) :: change
         logical, intent(out) :: known
         integer :: k
@@ -99,7 +102,14 @@ contains
             k = findloc(function_codes, op, dim=1)
             known = k > 0
             change = 0
-            if (known) change = 1 - function_arguments(k)
+            if (.not. known) return
+            if (function_arguments(k) > 0) then
+                change = 1 - function_arguments(k)
+            else
+                known = nint(constant) >= -function_arguments(k) .and. nint(constant) &
+                    & <= max_arguments
+                change = 1 - nint(constant)
+            end if
         end select
     end subroutine stack_change
 

@@ -10,7 +10,7 @@ module test_dynamics
     use rollcon_lapack, only : factor_dense, solve_factored
     use rollcon_problem, only : problem_type
     use rollcon_run_settings, only : drift_none, drift_baumgarte, formulation_cvode, &
-        & formulation_ida, formulation_maggi
+        & formulation_ida, formulation_speeds
     use rollcon_dynamic_system, only : dynamic_system_type
     use rollcon_ode_form, only : ode_form_type
     use rollcon_dae_form, only : dae_form_type
@@ -402,7 +402,7 @@ contains
     subroutine test_integrator_choice(error)
         type(error_type), allocatable, intent(out) :: error
         integer, parameter :: formulations(3) = [formulation_cvode, formulation_ida, &
-            & formulation_maggi]
+            & formulation_speeds]
         character(len=*), parameter :: names(3) = [character(len=5) :: "cvode", "ida", "maggi"]
         !> The system's type (1 ODE form, 2 DAE form, 3 independent speeds) and the
         !> integrator's (1 CVODE, 2 IDA) each formulation must give

@@ -9,7 +9,7 @@ module test_independent_speeds
     use rollcon_problem, only : problem_type
     use rollcon_speeds_form, only : speeds_form_type
     use rollcon_run_settings, only : run_settings_type, drift_none, drift_baumgarte, &
-        & formulation_maggi, formulation_cvode, method_adams
+        & formulation_speeds, formulation_cvode, method_adams
     use rollcon_scene, only : read_scene, choice_code
     use rollcon_simulation, only : run_options_type, run_summary_type, history_type, simulate, &
         & status_completed
@@ -380,7 +380,7 @@ contains
             scene(k)%run%drift = drift_baumgarte
             call run_in_memory(scene(k), ode, summary, error)
             if (allocated(error)) return
-            scene(k)%run%formulation = formulation_maggi
+            scene(k)%run%formulation = formulation_speeds
             scene(k)%run%method = choice_code("method", "bdf")
             scene(k)%run%drift = drift_none
             call run_in_memory(scene(k), speeds, summary, error)
@@ -462,7 +462,7 @@ contains
             call run_dataset(trim(names(k)), formulation_cvode, method_adams, drift_baumgarte, &
                 & 1.0e-11_wp, end_times(k), ode, ode_summary, error)
             if (allocated(error)) return
-            call run_dataset(trim(names(k)), formulation_maggi, choice_code("method", "bdf"), &
+            call run_dataset(trim(names(k)), formulation_speeds, choice_code("method", "bdf"), &
                 & drift_none, 1.0e-11_wp, end_times(k), speeds, summary, error)
             if (allocated(error)) return
             difference = largest_difference(ode, speeds)

@@ -268,7 +268,7 @@ contains
     end subroutine test_extremes_read_back
 
     !> end_time 1e9 s at output_step 1e-6 s is refused before the run, with the row count
-    !> and the bytes (it used to overflow a 32-bit count and "complete" after one step).
+    !> and the bytes (a 32-bit count would overflow and "complete" after one step).
     subroutine test_huge_output(error)
         type(error_type), allocatable, intent(out) :: error
         type(scene_type) :: scene

@@ -1,10 +1,10 @@
 ! SPDX-License-Identifier: MIT
-!> The integrator's restart after a re-basing (docs/rebasing.md, issue #23 items 3 and 4): the
+!> The integrator's restart after a re-basing (docs/rebasing.md): the
 !> restart state is on the constraints with its own accelerations and multipliers, so that
 !> the DAE's residual vanishes there; IDA carries the Chaplygin ball and the ball released on a
-!> turntable through the re-basings where it failed, to CVODE's trajectory; and the 1000
-!> re-basings of data/ball_tumbling.adm no longer shrink its orbit: it drifts no more than
-!> the same motion never re-based.
+!> turntable through the re-basings where it fails from the interpolated state, to CVODE's
+!> trajectory; and the 1000 re-basings of data/ball_tumbling.adm drift its orbit no more than
+!> ten times the same motion never re-based.
 module test_rebasing_restarts
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type
@@ -49,9 +49,9 @@ module test_rebasing_restarts
     !> The released ball's orbit: the table's rate [rad/s] and the orbit's, (2/7) of it for a
     !> solid ball (docs/models.md)
     real(wp), parameter :: table_rate = 3.5_wp, orbit_rate = 2.0_wp*table_rate/7.0_wp
-    !> The least re-basings each IDA run must go through (the Chaplygin ball: 4, IDA failed at
-    !> the first; the released ball: 4, IDA failed at the fourth) and the tumbling ball (1000
-    !> in 20 turns, the issue's count)
+    !> The least re-basings each IDA run must go through (the Chaplygin ball: 4, IDA fails at
+    !> the first from the interpolated state; the released ball: 4, IDA fails at the fourth)
+    !> and the tumbling ball (1000 in 20 turns)
     integer, parameter :: least_chaplygin = 2, least_released = 4, least_tumbling = 900
     !> The re-based ball's orbit drifts at most most_drift_ratio times as much as the same
     !> motion never re-based. Measured (IDA, ERROR = 1e-10, 20 turns, the orbit radius |v|/wc):

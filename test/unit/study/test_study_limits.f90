@@ -1,5 +1,5 @@
 ! SPDX-License-Identifier: MIT
-!> Tests of what a study file may ask for (issue #22, item 4): a study of 1e9 cases (one count,
+!> Tests of what a study file may ask for: a study of 1e9 cases (one count,
 !> a grid of 1e5 x 1e4, samples) or of 1e10 (a grid of 1e5 x 1e5, whose count once wrapped
 !> round) is refused with its count and the memory its plan would need, before any case is
 !> made; a rule against NaN (or infinity) is refused; a class name that would break the CSV

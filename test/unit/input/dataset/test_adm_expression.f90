@@ -225,21 +225,26 @@ contains
         end do
     end subroutine test_state_functions
 
+    !> A measure with more markers than it takes, markers that are not ids, a call without its
+    !> parentheses, an element function's flag out of range, a marker i of 0: each refused
+    !> with how the measure is written.
     subroutine test_state_function_refusals(error)
         type(error_type), allocatable, intent(out) :: error
-        character(len=*), parameter :: texts(4) = [character(len=16) :: "DX(1, 2)", &
-            & "PSI(3,2,1)", "VZ(a)", "WX 3"]
-        character(len=*), parameter :: expected(4) = [character(len=240) :: &
-            & "test.adm:1: SFORCE/1 FUNCTION: DX(i, ...): only the one-marker form DX(i) is " &
-            & // "supported, measured from ground in ground axes (a J or K marker, from or in " &
-            & // "another marker, is not) at column 5 of 'DX(1, 2)'", &
-            & "test.adm:1: SFORCE/1 FUNCTION: PSI(i, ...): only the one-marker form PSI(i) is " &
-            & // "supported, measured from ground in ground axes (a J or K marker, from or in " &
-            & // "another marker, is not) at column 6 of 'PSI(3,2,1)'", &
-            & "test.adm:1: SFORCE/1 FUNCTION: VZ(i) takes a marker id (a whole number > 0) at " &
-            & // "column 4 of 'VZ(a)'", &
-            & "test.adm:1: SFORCE/1 FUNCTION: '(' expected, found '3' (WX is written WX(i), i " &
-            & // "a marker id) at column 4 of 'WX 3'"]
+        character(len=*), parameter :: texts(6) = [character(len=20) :: "DX(1, 2, 3, 4)", &
+            & "PSI(3,2,1)", "VZ(a)", "WX 3", "JOINT(1, 2, 3, 0)", "DM(0)"]
+        character(len=*), parameter :: expected(6) = [character(len=240) :: &
+            & "test.adm:1: SFORCE/1 FUNCTION: DX takes at most 3 marker ids, DX(i[, j[, k]]) " &
+            & // "at column 11 of 'DX(1, 2, 3, 4)'", &
+            & "test.adm:1: SFORCE/1 FUNCTION: PSI takes at most 2 marker ids, PSI(i[, j]) at " &
+            & // "column 8 of 'PSI(3,2,1)'", &
+            & "test.adm:1: SFORCE/1 FUNCTION: VZ's i must be a marker id (a whole number > 0) " &
+            & // "(VZ is written VZ(i[, j[, k[, l]]])) at column 4 of 'VZ(a)'", &
+            & "test.adm:1: SFORCE/1 FUNCTION: '(' expected, found '3' (WX is written " &
+            & // "WX(i[, j[, k]])) at column 4 of 'WX 3'", &
+            & "test.adm:1: SFORCE/1 FUNCTION: JOINT's jflag must be 0 (the force on the I " &
+            & // "marker) or 1 (on J) at column 18 of 'JOINT(1, 2, 3, 0)'", &
+            & "test.adm:1: SFORCE/1 FUNCTION: DM's i must be a marker id (a whole number > 0) " &
+            & // "(DM is written DM(i[, j])) at column 4 of 'DM(0)'"]
         real(wp) :: value
         type(error_type), allocatable :: refused
         integer :: i
@@ -360,14 +365,12 @@ contains
         real(wp) :: value
         type(error_type), allocatable :: refused
 
-        call value_of("2*VM(1, 2)", 0.0_wp, value, refused)
-        call check(error, allocated(refused), "VM accepted")
+        call value_of("2*VMX(1, 2)", 0.0_wp, value, refused)
+        call check(error, allocated(refused), "VMX accepted")
         if (allocated(error)) return
-        call check(error, refused%message == "test.adm:1: SFORCE/1 FUNCTION: unknown name 'VM' " &
-            & // "(the subset has TIME, PI, DTOR, SIN, COS, TAN, ATAN2, EXP, LOG, SQRT, ABS, " &
-            & // "MIN, MAX, STEP, STEP5, HAVSIN, IF and the state functions DX DY DZ VX VY VZ " &
-            & // "WX WY WZ PSI THETA PHI of one marker) at column 3 of '2*VM(1, 2)'", &
-            & refused%message)
+        call check(error, refused%message == "test.adm:1: SFORCE/1 FUNCTION: unknown name 'VMX': " &
+            & // "not a function, measure or constant rollcon reads (docs/datasets.md, Function " &
+            & // "expressions, lists them) at column 3 of '2*VMX(1, 2)'", refused%message)
     end subroutine test_unknown_name
 
     subroutine test_syntax_errors(error)

@@ -581,9 +581,9 @@ contains
         call refused("JPRIM/1, REVOLUTE, I=21, J=10", ":8: JPRIM/1: 'REVOLUTE' is not a " &
             & // "JPRIM argument", error)
         if (allocated(error)) return
-        call refused("JOINT/1, SCREW, I=21, J=10", ":8: JOINT/1 SCREW: a SCREW joint is " &
-            & // "not supported (supported: CONVEL, CYLINDRICAL, FIXED, HOOKE, PLANAR, " &
-            & // "REVOLUTE, SPHERICAL, TRANSLATIONAL, UNIVERSAL, and JPRIM)", error)
+        call refused("JOINT/1, SCREW, I=21, J=10", ":8: JOINT/1: a SCREW joint needs " &
+            & // "PITCH=p /= 0, the translation per turn [length] (negative for a " &
+            & // "left-handed thread)", error)
     end subroutine test_refusals
 
     !> data/pendulum.adm with its JOINT line replaced by `new` is refused by read_adm with a

@@ -171,7 +171,8 @@ contains
             & // " takes are SF for SFORCE, SI for SIMULATE (docs/datasets.md, Abbreviations)"
         replaced(2) = "G/5, I=3, FX=0, FY=0, FZ=1, TX=0, TY=0, TZ=0"
         expected(2) = ":10: 'G' is too short an abbreviation of a statement: the shortest ADAMS" &
-            & // " takes are GF for GFORCE, GR for GRAPHICS (docs/datasets.md, Abbreviations)"
+            & // " takes are GC for GCON, GE for GEAR, GF for GFORCE, GR for GRAPHICS" &
+            & // " (docs/datasets.md, Abbreviations)"
         replaced(3) = "PART/2, MASS=1, CM=3, I=2, 2, 3"
         expected(3) = ":4: PART/2: 'I' is too short an abbreviation of a PART argument: the" &
             & // " shortest ADAMS takes is IP for IP (docs/datasets.md, Abbreviations)"
@@ -333,16 +334,14 @@ contains
 
     !> A spring-damper as ADAMS/View exports one (an SFORCE TRANSLATIONAL whose FUNCTION goes
     !> on over comma lines at depth 0, a VARIABLE, a GRAPHICS SPDP with LD): refused for its
-    !> elements rollcon lacks only, naming them — the VARIABLE statement; without it, DM(10,20)
-    !> in the FUNCTION — and read once they are written in the one-marker functions rollcon
-    !> has (marker 10 is at the ground origin: DM(10,20) is the length of DX, DY, DZ of 20).
+    !> elements rollcon lacks only, naming them — the VARIABLE statement — and read as it is
+    !> without it: the FUNCTION reads the two-marker measures DM(10,20) and VR(10,20).
     subroutine test_springdamper(error)
         type(error_type), allocatable, intent(out) :: error
         character(len=96) :: lines(15)
         type(adm_model_type) :: model
         type(error_type), allocatable :: refused
-        character(len=*), parameter :: file = "build/rollcon-test/springdamper.adm", &
-            & length = "SQRT(DX(20)**2 + DY(20)**2 + DZ(20)**2)"
+        character(len=*), parameter :: file = "build/rollcon-test/springdamper.adm"
 
         lines = [character(len=96) :: "mass on a spring-damper as ADAMS/View exports it", &
             & "UNITS/FORCE = NEWTON, MASS = KILOGRAM, LENGTH = METER, TIME = SECOND", &
@@ -362,16 +361,13 @@ contains
         if (allocated(error)) return
         deallocate(refused)
         lines(11) = "! VARIABLE/1 left out"
-        call read_dataset("springdamper.adm", lines, model, refused)
-        call check(error, allocated(refused), "the export read with DM and VR")
-        if (allocated(error)) return
-        call check(error, index(refused%message, file // ":8: SFORCE/1 FUNCTION: unknown name " &
-            & // "'DM'") == 1, refused%message)
-        if (allocated(error)) return
-        lines(8) = ", FUNCTION = - 100.0*(" // length // " - 2.0)"
-        lines(9) = ", - 1.0*(DX(20)*VX(20) + DY(20)*VY(20) + DZ(20)*VZ(20))"
-        lines(10) = ", /" // length // " + 0.0"
         call read_dataset("springdamper.adm", lines, model, error)
+        if (allocated(error)) return
+        call check(error, size(model%forces(1)%functions(1)%inputs) == 2, &
+            & "the FUNCTION reads two measures, DM(10,20) and VR(10,20)")
+        if (allocated(error)) return
+        call check(error, all(model%forces(1)%functions(1)%inputs%marker == 10) .and. &
+            & all(model%forces(1)%functions(1)%inputs%j == 20), "both of 10 from 20")
         if (allocated(error)) return
         call check(error, model%forces(1)%translation .and. model%forces(1)%i == 10 .and. &
             & model%forces(1)%j == 20, "the SFORCE, translational between 10 and 20")

@@ -13,8 +13,8 @@ module test_adm_refusals
 
     !> The supported statements, as a refusal lists them
     character(len=*), parameter :: supported = &
-        & "(ACCGRAV, END, GFORCE, INTEGRATOR, JOINT, JPRIM, MARKER, OUTPUT, PART, SFORCE," &
-        & // " SIMULATE, UCON, UNITS, VFORCE)"
+        & "(ACCGRAV, COUPLER, END, GCON, GEAR, GFORCE, INTEGRATOR, JOINT, JPRIM, MARKER," &
+        & // " MOTION, OUTPUT, PART, SFORCE, SIMULATE, UCON, UNITS, VFORCE)"
 
 contains
 
@@ -40,13 +40,16 @@ contains
         character(len=120) :: replaced(13)
         character(len=400) :: expected(13)
 
-        replaced(1) = "COUPLER/9, JOINTS=1, 2"
-        expected(1) = ":7: 'COUPLER' is not a statement of the supported subset " // supported &
-            & // "; rollcon's constraints are UCONs, JOINTs and JPRIMs: state this one as a" &
-            & // " UCON served by a UCOSUB (ucon/ generates one from a SymPy statement)"
-        replaced(2) = "motion/1, joint=9"
-        expected(2) = ":7: 'MOTION' is not a statement of the supported subset " // supported &
-            & // "; prescribed motions are not in the subset"
+        replaced(1) = "PTCV/9, I=3, J=4"
+        expected(1) = ":7: 'PTCV' is not a statement of the supported subset " // supported &
+            & // "; rollcon's constraints are UCONs, JOINTs, JPRIMs, GCONs, COUPLERs and" &
+            & // " GEARs: state this one as a GCON expression, or as a UCON served by a" &
+            & // " UCOSUB (ucon/)"
+        replaced(2) = "cvcv/1, i=3"
+        expected(2) = ":7: 'CVCV' is not a statement of the supported subset " // supported &
+            & // "; rollcon's constraints are UCONs, JOINTs, JPRIMs, GCONs, COUPLERs and" &
+            & // " GEARs: state this one as a GCON expression, or as a UCON served by a" &
+            & // " UCOSUB (ucon/)"
         replaced(3) = "SENSOR/1, VALUE=0"
         expected(3) = ":7: 'SENSOR' is not a statement of the supported subset " // supported &
             & // "; sensors change a run as it goes (stop it, change its step): not in the" &
@@ -58,7 +61,7 @@ contains
         replaced(5) = "VARIABLE/1, FUNCTION=TIME"
         expected(5) = ":7: 'VARIABLE' is not a statement of the supported subset " // supported &
             & // "; system and data elements are not in the subset: FUNCTION expressions" &
-            & // " read TIME and the state functions of one marker (DX(i) ... PHI(i)) only"
+            & // " read TIME and the measures of markers (DX(i, j, k) ... ROLL(i, j)) only"
         replaced(6) = "FLEX_BODY/1"
         expected(6) = ":7: 'FLEX_BODY' is not a statement of the supported subset " // supported &
             & // "; rollcon's bodies are rigid PARTs"

@@ -1,6 +1,6 @@
 ! SPDX-License-Identifier: MIT
 !> The scene-errors suite's tests of bytes a scene file must not hold: control characters and
-!> non-ASCII text outside comments (issue #11, item 11).
+!> non-ASCII text outside comments.
 module scene_bytes
     use rollcon_error, only : error_type
     use rollcon_scene, only : scene_type
@@ -12,8 +12,7 @@ module scene_bytes
 
 contains
 
-    !> A NUL or other control byte is refused with file, line and column, shown as \xNN
-    !> (issue #11, item 11).
+    !> A NUL or other control byte is refused with file, line and column, shown as \xNN.
     subroutine test_control_byte(error)
         type(error_type), allocatable, intent(out) :: error
 

@@ -335,7 +335,7 @@ contains
             & "@:3: 'speed' in &initial cannot be given with 'phidot' (line 2)"])
     end subroutine test_speed_with_phidot
 
-    !> Huge finite values (issue #11, item 7) are refused at their key, with the bound.
+    !> Huge finite values are refused at their key, with the bound.
     subroutine test_huge_values(error)
         type(error_type), allocatable, intent(out) :: error
 
