@@ -265,10 +265,11 @@ contains
 
     !> Times where a force has a corner [s], each once: a half-sine pulse's start and end, and
     !> every switching time of a force statement's expressions (an IF, STEP, STEP5, HAVSIN,
-    !> IMPACT or BISTOP on TIME - c, MIN, MAX, DIM, SIGN or ABS of TIME - c: switching_times). They are among
-    !> force_breakpoints; an integrator stops there and starts again with no history, which
-    !> would hold a force the solution no longer has (docs/design.md §7). A switch on the state
-    !> is located by the run instead (rollcon_switch_watch).
+    !> IMPACT or BISTOP on TIME - c, MIN, MAX, DIM, SIGN or ABS of TIME - c:
+    !> switching_times). They are among force_breakpoints; an integrator stops there and
+    !> starts again with no history, which would hold a force the solution no longer has
+    !> (docs/design.md §7). A switch on the state is located by the run instead
+    !> (rollcon_switch_watch).
     pure function force_corners(forces) result(times)
         type(applied_force_type), intent(in) :: forces(:)
         real(wp), allocatable :: times(:)

@@ -1,10 +1,11 @@
 ! SPDX-License-Identifier: MIT
 !> The switches of the model's force expressions that depend on the state (an IF of a
 !> measure, MIN, MAX or DIM of measures, a STEP, STEP5, HAVSIN, IMPACT or BISTOP of a measure,
-!> ABS or SIGN of one, or TIME in a way not affine: rollcon_expression's switch_kinds): each is an event function, zero where its expression has a corner, and when
-!> one fires the run starts the integrator again there with no history (docs/design.md §7). A
-!> switch on TIME alone is a corner known in advance, a stop time of the run instead
-!> (force_corners). The watch adds no columns and no summary lines.
+!> ABS or SIGN of one, or TIME in a way not affine: rollcon_expression's switch_kinds): each
+!> is an event function, zero where its expression has a corner, and when one fires the run
+!> starts the integrator again there with no history (docs/design.md §7). A switch on TIME
+!> alone is a corner known in advance, a stop time of the run instead (force_corners). The
+!> watch adds no columns and no summary lines.
 module rollcon_switch_watch
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type
