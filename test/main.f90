@@ -14,6 +14,7 @@ program tester
     use test_dynamics, only : collect_dynamics
     use test_motion, only : collect_motion
     use test_events, only : collect_events
+    use test_corners, only : collect_corners
     use test_drift, only : collect_drift
     use test_extremes, only : collect_extremes
     use test_pictures, only : collect_pictures
@@ -122,6 +123,7 @@ program tester
         & new_testsuite("dynamics", collect_dynamics), &
         & new_testsuite("motion", collect_motion), &
         & new_testsuite("events", collect_events), &
+        & new_testsuite("corners", collect_corners), &
         & new_testsuite("drift", collect_drift), &
         & new_testsuite("extremes", collect_extremes), &
         & new_testsuite("pictures", collect_pictures), &

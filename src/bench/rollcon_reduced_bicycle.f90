@@ -89,6 +89,7 @@ module rollcon_reduced_bicycle
         procedure :: row_layout
         procedure :: row
         procedure :: stops
+        procedure :: corners
     end type reduced_bicycle_type
 
 contains
@@ -431,6 +432,15 @@ contains
 
         times = pulse_stops(self%table%push_time, self%table%push_time + self%table%push_length)
     end function stops
+
+    !> The push's start and end, corners of the force where the integrator starts again, as
+    !> the full model's does (docs/design.md §7).
+    function corners(self) result(times)
+        class(reduced_bicycle_type), intent(in) :: self
+        real(wp), allocatable :: times(:)
+
+        times = [self%table%push_time, self%table%push_time + self%table%push_length]
+    end function corners
 
     !> Run the reduced bicycle of table from its upright start with settings (method, Jacobian
     !> 'dq' or 'none': there is no analytic one, rtol, atol, max_steps), a row every output_step

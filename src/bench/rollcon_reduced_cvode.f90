@@ -13,7 +13,8 @@ module rollcon_reduced_cvode
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type
     use rollcon_text, only : to_text
-    use rollcon_force, only : applied_force_type, force_and_moment, force_breakpoints
+    use rollcon_force, only : applied_force_type, force_and_moment, force_breakpoints, &
+        & force_corners
     use rollcon_run_settings, only : run_settings_type
     use rollcon_dynamic_system, only : ode_system_type
     use rollcon_cvode, only : cvode_integrator_type
@@ -38,6 +39,8 @@ module rollcon_reduced_cvode
         procedure(row_interface), deferred :: row
         !> Times the integrator must not step over (the force pulses' kinks) [s]
         procedure(stops_interface), deferred :: stops
+        !> Among the stops, the inputs' corners, where the integrator also starts again [s]
+        procedure :: corners
         !> Why the event function stopped the run, at time [s]
         procedure :: stop_message
     end type reduced_system_type
@@ -85,6 +88,7 @@ module rollcon_reduced_cvode
         procedure :: row_layout => disk_row_layout
         procedure :: row => disk_row
         procedure :: stops => disk_stops
+        procedure :: corners => disk_corners
         procedure :: stop_message => disk_stop_message
     end type reduced_problem_type
 
@@ -104,7 +108,7 @@ contains
         type(error_type), allocatable, intent(out) :: error
         type(cvode_integrator_type), target :: cvode
         real(wp) :: values(size(y0)), unused(size(y0))
-        real(wp), allocatable :: breaks(:)
+        real(wp), allocatable :: breaks(:), corners(:)
         real(wp) :: t, t_out, start, finish, t_reference
         integer :: k_output, n_output, root
         logical :: have_reference
@@ -113,6 +117,8 @@ contains
         ! energy is conserved once the last pulse is over (as in rollcon_simulation)
         t_reference = maxval([t0, breaks])
         breaks = pack(breaks, breaks > t0 .and. breaks < end_time)
+        ! a pulse's ends: CVODE starts again there, as the full runs do (rollcon_simulation)
+        corners = problem%corners()
         history%layout = problem%row_layout()
         summary%layout = history%layout
         values = y0
@@ -126,7 +132,13 @@ contains
         k_output = 1
         do while (k_output <= n_output .and. .not. allocated(error))
             t_out = min(t0 + k_output*output_step, end_time)
-            call cvode%advance(t_out, next_stop(t), t, values, unused, root, error)
+            ! an output time within the time's round-off after a restart: the same state
+            if (t_out - t <= 4.0_wp*epsilon(1.0_wp)*(abs(t) + abs(t_out))) then
+                t = t_out
+                root = 0
+            else
+                call cvode%advance(t_out, next_stop(t), t, values, unused, root, error)
+            end if
             if (allocated(error)) then
                 summary%status = status_failed
                 error%message = "reduced ODE: " // error%message
@@ -139,6 +151,8 @@ contains
                 summary%message = problem%stop_message(t)
                 exit
             end if
+            if (any(corners == t)) call cvode%restart(t, values, unused, error)
+            if (allocated(error)) exit
             if (t < t_out) cycle
             call record(t)
             k_output = k_output + 1
@@ -183,6 +197,15 @@ contains
         end subroutine record
 
     end subroutine simulate_reduced
+
+    !> The inputs' corners among the stops [s], where the integrator starts again with no
+    !> history (docs/design.md §7). Default: none.
+    function corners(self) result(times)
+        class(reduced_system_type), intent(in) :: self
+        real(wp), allocatable :: times(:)
+
+        allocate(times(0))
+    end function corners
 
     !> Why the event functions stopped a run at time [s] (a system with event functions says).
     function stop_message(self, time) result(message)
@@ -229,6 +252,18 @@ contains
             allocate(times(0))
         end if
     end function disk_stops
+
+    !> The strike pulses' starts and ends (force_corners).
+    function disk_corners(self) result(times)
+        class(reduced_problem_type), intent(in) :: self
+        real(wp), allocatable :: times(:)
+
+        if (allocated(self%forces)) then
+            times = force_corners(self%forces)
+        else
+            allocate(times(0))
+        end if
+    end function disk_corners
 
     !> The theta limit's message.
     function disk_stop_message(self, time) result(message)

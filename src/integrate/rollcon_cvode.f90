@@ -236,10 +236,12 @@ contains
     !> stretch 100 times finer, or first steps of 0.2 to 0.01 of the last, moved CVODE's drift
     !> over 1000 re-basings anywhere between -3.7e-7 and +3.6e-7 m at rtol 1e-10 and made it
     !> 3 to 10 times larger at 1e-11: no consistent gain.
-    subroutine restart(self, t0, y0, yp0, error)
+    subroutine restart(self, t0, y0, yp0, error, careful)
         class(cvode_integrator_type), intent(inout) :: self
         real(wp), intent(in) :: t0, y0(:), yp0(:)
         type(error_type), allocatable, intent(out) :: error
+        !> Not used: CVODE starts again its own way (docs/rebasing.md)
+        logical, intent(in), optional :: careful
         integer(c_int) :: flag
 
         integer, allocatable :: blocks(:)

@@ -56,7 +56,7 @@ module rollcon_dynamic_system
         procedure(dae_jacobian_interface), deferred :: dae_jacobian
         procedure(dae_differential_interface), deferred :: dae_differential
         procedure(dae_pattern_interface), deferred :: dae_pattern
-        procedure :: dae_vector_groups
+        procedure :: dae_euler_parts
         procedure :: multiplier_scale
         procedure :: holds_constraints => dae_holds_constraints
     end type dae_system_type
@@ -250,17 +250,19 @@ contains
         holds = .true.
     end function dae_holds_constraints
 
-    !> For each component of a DAE state: 0 when its tolerance is relative to itself, or the
-    !> first component of the vector it is a component of, whose largest component its
-    !> tolerance is then relative to (IDA's error weights). Default: every component alone.
-    function dae_vector_groups(self, n) result(groups)
+    !> The parts whose orientation is a set of 3-1-3 Euler angles in the DAE state: for each,
+    !> the index of its psi (theta, phi follow) and of its psi' (theta', phi' follow). IDA holds
+    !> those rates to the error their part's angular velocity may have (rollcon_ida). Default:
+    !> none.
+    function dae_euler_parts(self, n) result(parts)
         class(dae_system_type), intent(in) :: self
         !> Size of the DAE state
         integer, intent(in) :: n
-        integer :: groups(n)
+        !> (1, k): psi of the k-th part, (2, k): its psi'
+        integer, allocatable :: parts(:, :)
 
-        groups = 0
-    end function dae_vector_groups
+        allocate(parts(2, 0))
+    end function dae_euler_parts
 
     !> A size the loads on the constraints can be compared with, in the multipliers' units
     !> (IDA's absolute tolerance on the multipliers is at least 1e-5 of it). Default: 0, no

@@ -26,7 +26,7 @@ module rollcon_ida
     use rollcon_newton_pattern, only : newton_pattern_type
     use fida_mod, only : FIDACreate, FIDAInit, FIDAWFtolerances, FIDASetUserData, &
         & FIDASetInitStep, FIDASetLinearSolver, FIDASetJacFn, FIDASetMaxNumSteps, &
-        & FIDASetStopTime, FIDASolve, &
+        & FIDASetStopTime, FIDASolve, FIDASetNonlinConvCoef, &
         & FIDARootInit, FIDAGetRootInfo, FIDASetId, FIDASetSuppressAlg, FIDAFree, FIDAReInit, &
         & FIDAGetNumSteps, FIDAGetNumResEvals, FIDAGetNumJacEvals, FIDAGetNumLinResEvals, &
         & FIDAGetNumErrTestFails, FIDAGetNumGEvals, FIDASetErrFile, FIDAGetLastStep, &
@@ -38,21 +38,38 @@ module rollcon_ida
 
     public :: ida_integrator_type
 
-    !> The careful start after a restart (docs/rebasing.md). A restarted IDA has no history and
-    !> begins at order 1, backward Euler, whose local error, held only to the run's tolerances,
-    !> is all amplitude on an oscillating motion and always takes energy away: measured, some
-    !> 20 such steps after each restart cost a rolling ball 4e-10 m of its orbit radius at rtol
-    !> 1e-10. Over the first stretch after a restart, restart_fine_steps of the steps IDA was
-    !> taking before it, the differential components' tolerances are restart_tolerance_factor
-    !> finer; IDA reaches order 2 well within it and goes on from there, on the same history,
-    !> with the run's own tolerances (measured with each Euler-angle rate held to itself: the
-    !> 1000 re-basings of data/ball_tumbling.adm drift its orbit radius by 1.0e-8 m, 7.4e-7 m
-    !> restarted plainly, for 1 % more steps; with the rates held together 1.57e-7 m,
-    !> docs/rebasing.md).
+    !> The careful start after a re-basing (docs/rebasing.md). A restarted IDA has no history
+    !> and begins at order 1, backward Euler, whose local error, held only to the run's
+    !> tolerances, is all amplitude on an oscillating motion and always takes energy away:
+    !> measured, some 20 such steps after each restart cost a rolling ball 4e-10 m of its orbit
+    !> radius at rtol 1e-10. Over the first stretch after a re-basing, restart_fine_steps of the
+    !> steps IDA was taking before it, the differential components' tolerances are
+    !> restart_tolerance_factor finer; IDA reaches order 2 well within it and goes on from
+    !> there, on the same history, with the run's own tolerances (measured with the tilt rate
+    !> held to atol alone: the 1000 re-basings of data/ball_tumbling.adm drift its orbit radius
+    !> by 1.0e-8 m with it, 7.4e-7 m without, for 1 % more steps). At an input's corner the
+    !> start is plain (restart, careful false).
     real(wp), parameter :: restart_tolerance_factor = 1.0e-2_wp, restart_fine_steps = 2.0_wp
     !> The finest relative tolerance of that stretch [-]: 1000 eps, where the corrector of the
     !> index-2 DAE still converges (at 100 eps it fails on the first steps)
     real(wp), parameter :: finest_rtol = 1.0e3_wp*epsilon(1.0_wp)
+    !> IDA's Newton iteration stops when its error is estimated below this fraction of the
+    !> error weights (IDASetNonlinConvCoef; IDA's own default 0.33). What it leaves in each step
+    !> is in the history whose differences estimate the local error and choose the order, where
+    !> the (k+1)-th difference amplifies it: at 0.33 IDA chooses order 3 on 7,589 of the 17,573
+    !> steps of data/ball_on_turntable.adm at ERROR = 1e-10, whose error on an undamped
+    !> oscillation is all growth ((h w)^4 / 4 per step), and the orbit grows 3.6e-6 relative; at
+    !> 0.02 it takes 9,185 steps, mostly of order 4 and 5, and the orbit moves 7.4e-8
+    !> (docs/design.md §7; 0.1, 0.05, 0.033, 0.015 and 0.01 measured too)
+    real(wp), parameter :: newton_coefficient = 0.02_wp
+    !> But never a Newton error below this relative one, what the index-2 corrector can reach
+    !> in the arithmetic (IDA's 0.33 of finest_rtol, the finest careful start, converges; at
+    !> 0.02 of it IDA fails to converge on the tumbling ball at ERROR = 1e-11), nor above IDA's
+    !> own coefficient
+    real(wp), parameter :: finest_newton = 0.33_wp*finest_rtol, widest_newton = 0.33_wp
+    !> The flattest tilt at which a part's Euler-angle rates are weighed as they are [-]: sin
+    !> theta below it is taken as it (a start flatter than this is refused)
+    real(wp), parameter :: flattest_sin_theta = 1.0e-3_wp
 
     !> What the callbacks receive as user data: the system, and what the error weights are
     !> made of
@@ -63,10 +80,9 @@ module rollcon_ida
         real(wp), allocatable :: absolute(:)
         !> 1 for a differential component, 0 for an algebraic one (IDA's id vector)
         real(wp), allocatable :: kinds(:)
-        !> 0 for a component whose relative tolerance is on itself, or the first component of
-        !> the vector (three components) on whose largest component it is (a part's Euler-angle
-        !> rates: dae_vector_groups)
-        integer, allocatable :: groups(:)
+        !> The parts whose orientation is a set of Euler angles (dae_euler_parts): (1, k) the
+        !> index of the k-th one's psi, (2, k) of its psi'
+        integer, allocatable :: euler(:, :)
         !> The differential components' tolerances are multiplied by this: 1, or finer on the
         !> careful start after a restart
         real(wp) :: scale = 1.0_wp
@@ -134,13 +150,12 @@ contains
             & max(1.0e-3_wp*maxval(abs(y0), mask=self%kinds == 0.0_wp), settings%atol, &
             & 1.0e-5_wp*system%multiplier_scale()), self%kinds == 1.0_wp)
         self%data%kinds = self%kinds
-        ! A part's Euler-angle rates are the components of one angular velocity: each is held
-        ! to rtol of the largest. A rate that stays near zero while the part spins (the
-        ! tilt rate theta' of data/ball_on_turntable.adm, 1e-8 rad/s against 12.5 rad/s) was
-        ! held to atol alone, 1e-10 rad/s, finer than the multipliers' (index-2) error after a
-        ! step-size change lets it be (the contact force's moment on a small inertia): IDA
-        ! failed its error test on 240,866 of 240,903 steps, every doubling of the step.
-        self%data%groups = system%dae_vector_groups(size(y0))
+        ! A part's Euler-angle rates are the coordinates of one angular velocity: they are held
+        ! to what an error of that angular velocity within rtol |omega| + atol makes in them
+        ! (weights, below). Held to atol alone, a rate that stays near zero while the part spins
+        ! (the tilt rate theta' of data/ball_on_turntable.adm, against 12.5 rad/s) failed IDA's
+        ! error test on 240,866 of 240,903 steps (docs/design.md §7).
+        self%data%euler = system%dae_euler_parts(size(y0))
         self%data%rtol = settings%rtol
         self%data%scale = 1.0_wp
         self%fine_until = -huge(1.0_wp)
@@ -171,6 +186,8 @@ contains
         if (check(flag, "IDAWFtolerances", error)) return
         flag = FIDASetMaxNumSteps(self%memory, int(settings%max_steps, c_long))
         if (check(flag, "IDASetMaxNumSteps", error)) return
+        flag = FIDASetNonlinConvCoef(self%memory, newton_fraction(self%data))
+        if (check(flag, "IDASetNonlinConvCoef", error)) return
         ! Index 2: the algebraic components are kept out of the local error test.
         flag = FIDASetId(self%memory, self%id)
         if (check(flag, "IDASetId", error)) return
@@ -219,14 +236,17 @@ contains
     end subroutine start
 
     !> Start again from consistent (t0, y0, yp0) with the settings, tolerances, callbacks and
-    !> event functions of start: after a re-basing has changed the coordinates (IDAReInit),
-    !> with the careful start: the differential components' tolerances restart_tolerance_factor
-    !> finer up to restart_fine_steps of the last step taken before (or of the previous
-    !> restart's stretch, when none was taken since).
-    subroutine restart(self, t0, y0, yp0, error)
+    !> event functions of start (IDAReInit): after a re-basing has changed the coordinates,
+    !> with the careful start (the differential components' tolerances
+    !> restart_tolerance_factor finer up to restart_fine_steps of the last step taken before, or
+    !> of the previous restart's stretch when none was taken since); at an input's corner
+    !> (careful false) as at a start, whose first step IDA makes small (docs/design.md §7).
+    subroutine restart(self, t0, y0, yp0, error, careful)
         class(ida_integrator_type), intent(inout) :: self
         real(wp), intent(in) :: t0, y0(:), yp0(:)
         type(error_type), allocatable, intent(out) :: error
+        !> The careful start (default true)
+        logical, intent(in), optional :: careful
         integer(c_int) :: flag
         real(c_double) :: h_last(1)
 
@@ -240,11 +260,21 @@ contains
         self%begin_rates = self%rates
         flag = FIDAReInit(self%memory, t0, self%y, self%yp)
         if (check(flag, "IDAReInit", error)) return
+        self%data%scale = 1.0_wp
+        self%fine_until = t0
+        if (present(careful)) then
+            if (.not. careful) then
+                flag = FIDASetNonlinConvCoef(self%memory, newton_fraction(self%data))
+                if (check(flag, "IDASetNonlinConvCoef", error)) return
+                return
+            end if
+        end if
         if (h_last(1) > 0.0_wp) self%fine_span = restart_fine_steps*h_last(1)
         self%fine_until = t0 + self%fine_span
-        self%data%scale = 1.0_wp
         if (self%fine_span > 0.0_wp) self%data%scale = min(1.0_wp, &
             & max(restart_tolerance_factor, finest_rtol/self%data%rtol))
+        flag = FIDASetNonlinConvCoef(self%memory, newton_fraction(self%data))
+        if (check(flag, "IDASetNonlinConvCoef", error)) return
     end subroutine restart
 
     !> Integrate towards t_out (never past t_stop); y, yp at t_reached; root fired (0 if none).
@@ -255,8 +285,12 @@ contains
     !> so on a large model it can be small enough (1.4e-11 s on a chain of 64 links of 0.1 kg at
     !> atol 1e-10) that the index-2 Newton matrix, whose condition grows as 1/h^2, cannot be
     !> solved; IDA then only shrinks it. A first step too large fails IDA's error test instead,
-    !> which shrinks it by the error's own estimate. A run whose first step succeeds makes no
-    !> retry, so its numbers do not depend on it.
+    !> which shrinks it by the error's own estimate. A careful start whose Newton iteration
+    !> still fails before its first output (its finer tolerances beyond what the corrector
+    !> reaches at that state: the SPHERICAL pendulum of the suite couplers, re-based at
+    !> sin theta = 0.05, at ERROR = 1e-10, whose careful stretch asks 7e-14 relative of the
+    !> corrector) is made again from the same state as a plain start. A run whose first step
+    !> and careful starts succeed makes no retry, so its numbers do not depend on it.
     subroutine advance(self, t_out, t_stop, t_reached, y, yp, root, error)
         class(ida_integrator_type), intent(inout) :: self
         real(wp), intent(in) :: t_out, t_stop
@@ -270,8 +304,10 @@ contains
         real(c_double) :: t_return(1)
         integer(c_long) :: taken(1)
         integer(c_int) :: flag, ignored
+        real(wp) :: t_entry
 
         root = 0
+        t_entry = self%t_now
         flag = FIDASetStopTime(self%memory, t_stop)
         if (check(flag, "IDASetStopTime", error)) return
         call solve(flag)
@@ -290,6 +326,20 @@ contains
                 ! IDA's own choice again for any later restart (0: IDA estimates it)
                 ignored = FIDASetInitStep(self%memory, 0.0_wp)
             end if
+        end if
+        if (flag == IDA_CONV_FAIL .and. self%data%scale < 1.0_wp &
+            & .and. t_entry == self%t_begin) then
+            ! the careful start failed before its first output: plainly, from the same state
+            self%values(:) = self%begin_values
+            self%rates(:) = self%begin_rates
+            self%t_now = self%t_begin
+            self%data%scale = 1.0_wp
+            self%fine_until = self%t_begin
+            flag = FIDAReInit(self%memory, self%t_begin, self%y, self%yp)
+            if (check(flag, "IDAReInit", error)) return
+            flag = FIDASetNonlinConvCoef(self%memory, newton_fraction(self%data))
+            if (check(flag, "IDASetNonlinConvCoef", error)) return
+            call solve(flag)
         end if
         t_reached = t_return(1)
         self%t_now = t_reached
@@ -321,6 +371,7 @@ contains
                 if ((status == IDA_SUCCESS .or. status == IDA_TSTOP_RETURN) &
                     & .and. t_return(1) >= self%fine_until) then
                     self%data%scale = 1.0_wp
+                    ignored = FIDASetNonlinConvCoef(self%memory, newton_fraction(self%data))
                     if (status == IDA_SUCCESS .and. t_return(1) < t_out) status = &
                         & FIDASolve(self%memory, t_out, t_return, self%y, self%yp, IDA_NORMAL)
                 end if
@@ -371,6 +422,16 @@ contains
             text = "see the IDA guide's return codes"
         end select
     end function flag_meaning
+
+    !> The Newton coefficient for the tolerances of the moment: newton_coefficient, within
+    !> finest_newton relative (rtol times the careful start's scale) and widest_newton.
+    pure function newton_fraction(data) result(fraction)
+        type(callback_data_type), intent(in) :: data
+        real(wp) :: fraction
+
+        fraction = min(widest_newton, max(newton_coefficient, &
+            & finest_newton/(data%rtol*data%scale)))
+    end function newton_fraction
 
     !> Free in reverse order of creation.
     subroutine destroy(self)
@@ -468,30 +529,40 @@ contains
         call data%pattern%gather(data%full, values)
     end function sparse_jacobian
 
-    !> IDA's error weights, 1/(rtol |y_i| + atol_i), |y_i| the largest component of y_i's vector
-    !> for a component of one (a part's Euler-angle rates), the differential components'
-    !> tolerances multiplied by the scale of the moment (finer on the careful start after a
-    !> restart).
+    !> IDA's error weights, 1/(rtol |y_i| + atol_i), but for a part's Euler-angle rates: the
+    !> angular velocity w = B(theta, phi) (psi', theta', phi') is held to
+    !> tau = rtol |w| + atol (Euclidean, w's error in any direction), and each rate to the
+    !> largest error such an error of w makes in it through B^-1: tau / sin(theta) for psi' and
+    !> phi', tau for theta' (|w|^2 = psi'^2 + theta'^2 + phi'^2 + 2 psi' phi' cos(theta), the
+    !> 3-1-3 angles of docs/design.md §3). The differential components' tolerances are
+    !> multiplied by the scale of the moment (finer on the careful start after a restart).
     integer(c_int) function weights(y, ewt, user_data) result(ierr) &
             & bind(c, name="rollcon_ida_weights")
         type(N_Vector) :: y, ewt
         type(c_ptr), value :: user_data
         type(callback_data_type), pointer :: data
         real(c_double), pointer :: yv(:), wv(:)
-        integer :: i, first
+        real(wp) :: omega, sin_theta
+        integer :: i, k, a, r
 
         call c_f_pointer(user_data, data)
         yv => FN_VGetArrayPointer(y)
         wv => FN_VGetArrayPointer(ewt)
         ! element by element: called before every step, it allocates nothing
         do i = 1, size(wv)
-            first = data%groups(i)
-            if (first == 0) then
-                wv(i) = data%rtol*abs(yv(i)) + data%absolute(i)
-            else
-                wv(i) = data%rtol*max(abs(yv(first)), abs(yv(first + 1)), abs(yv(first + 2))) &
-                    & + data%absolute(i)
-            end if
+            wv(i) = data%rtol*abs(yv(i)) + data%absolute(i)
+        end do
+        do k = 1, size(data%euler, 2)
+            a = data%euler(1, k)
+            r = data%euler(2, k)
+            sin_theta = max(abs(sin(yv(a + 1))), flattest_sin_theta)
+            omega = sqrt(max(0.0_wp, yv(r)**2 + yv(r + 1)**2 + yv(r + 2)**2 &
+                & + 2.0_wp*yv(r)*yv(r + 2)*cos(yv(a + 1))))
+            wv(r) = (data%rtol*omega + data%absolute(r))/sin_theta
+            wv(r + 1) = data%rtol*omega + data%absolute(r + 1)
+            wv(r + 2) = (data%rtol*omega + data%absolute(r + 2))/sin_theta
+        end do
+        do i = 1, size(wv)
             if (data%kinds(i) == 1.0_wp) wv(i) = data%scale*wv(i)
             wv(i) = 1.0_wp/wv(i)
         end do

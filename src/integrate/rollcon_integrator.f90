@@ -1,9 +1,9 @@
 ! SPDX-License-Identifier: MIT
 !> The integrator interface a run drives: advance to a time (never past a stop time), start
-!> again after the state was changed from outside (a re-basing), counters, and the flag and
-!> message of a failure. CVODE (rollcon_cvode) and IDA (rollcon_ida) extend it, each set up
-!> on the form of system it takes (its own `start`: an ODE, a DAE); a run sets one up through
-!> rollcon_integrator_choice and never asks which one it has.
+!> again after the state was changed from outside (a re-basing) or at an input's corner,
+!> counters, and the flag and message of a failure. CVODE (rollcon_cvode) and IDA (rollcon_ida)
+!> extend it, each set up on the form of system it takes (its own `start`: an ODE, a DAE); a run
+!> sets one up through rollcon_integrator_choice and never asks which one it has.
 module rollcon_integrator
     use, intrinsic :: iso_c_binding, only : c_int
     use rollcon_kinds, only : wp
@@ -43,13 +43,16 @@ module rollcon_integrator
     end type integrator_type
 
     abstract interface
-        !> Start again from (t0, y0, yp0) with everything else as set up: the state was changed
-        !> from outside (its coordinates re-based).
-        subroutine restart_interface(self, t0, y0, yp0, error)
+        !> Start again from (t0, y0, yp0) with everything else as set up and no history: the
+        !> state was changed from outside (its coordinates re-based), or an input has a corner
+        !> at t0 (careful false: the integrator begins as it would at a start).
+        subroutine restart_interface(self, t0, y0, yp0, error, careful)
             import :: integrator_type, wp, error_type
             class(integrator_type), intent(inout) :: self
             real(wp), intent(in) :: t0, y0(:), yp0(:)
             type(error_type), allocatable, intent(out) :: error
+            !> Begin carefully, as after a re-basing (default true; the integrator's own way)
+            logical, intent(in), optional :: careful
         end subroutine restart_interface
 
         !> Integrate towards t_out, never past t_stop. On return y (and yp for a DAE) hold the

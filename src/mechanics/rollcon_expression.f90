@@ -19,6 +19,13 @@
 !> check the result with ieee_is_finite and name the expression. The functions of SIN to IF
 !> keep their own value code here; those after them are evaluated through their jet form
 !> (rollcon_expression_functions) with constant arguments, the same code their partials use.
+!>
+!> Where an expression switches (an IF's condition; a STEP's, STEP5's or HAVSIN's x at x0 and
+!> x1; MIN, MAX and DIM where their arguments are equal; ABS at zero; SIGN(a, b) where a or b
+!> is zero; IMPACT's and BISTOP's x at their free lengths and the ends of their damping) it
+!> has a corner, which an integrator must not step across (docs/design.md §7): a switch on
+!> TIME alone is found here as a time (switching_times), any other is a function of the state
+!> whose zero an integrator locates (switch_values).
 module rollcon_expression
     use rollcon_kinds, only : wp
     use rollcon_constants, only : pi
@@ -33,6 +40,7 @@ module rollcon_expression
     private
 
     public :: expression_type, expression_input_type, evaluate_expression, switching_times
+    public :: switch_kinds, switch_count, switch_values, switch_none, switch_timed, switch_watched
     public :: max_stack, max_inputs, max_arguments
     public :: op_constant, op_time, op_input, op_add, op_subtract, op_multiply, op_divide, &
         & op_power, op_negate, op_sin, op_cos, op_tan, op_exp, op_log, op_sqrt, op_abs, &
@@ -87,6 +95,14 @@ module rollcon_expression
         & op_log10, op_akispl, op_cubspl]
     integer, parameter :: function_arguments(34) = [1, 1, 1, 2, 1, 1, 1, 1, 2, 2, 5, 5, 5, 6, &
         & -3, -3, -4, -4, 7, 8, 2, 2, 1, 1, 2, 1, 1, 1, 1, 1, 1, 1, 2, 2]
+
+    !> What an operation of a program is as a switch (switch_kinds): none; a switch on TIME
+    !> alone, at times switching_times gives; a switch on anything else, whose zero an
+    !> integrator locates (switch_values)
+    integer, parameter :: switch_none = 0, switch_timed = 1, switch_watched = 2
+    !> Most switch functions of one operation (BISTOP's four) and the most arguments they read
+    !> (BISTOP's d is its eighth)
+    integer, parameter :: max_switches = 4, max_switch_arguments = 8
 
     !> Measures of markers and values of other statements an expression reads; quantity code
     !> q is quantity_names(q). The markers each takes (i, j, k, l; those not given are the
@@ -167,11 +183,30 @@ contains
         !> Values of expression%inputs, in that order, in the expression's units
         real(wp), intent(in), optional :: inputs(:)
         real(wp) :: value
+
+        call run_program(expression, time, value, inputs)
+    end function evaluate_expression
+
+    !> Run the stack program at `time` with the inputs' values: its value and, when kinds and g
+    !> are given, the switch functions of its watched switches (switch_values).
+    pure subroutine run_program(expression, time, value, inputs, kinds, g)
+        type(expression_type), intent(in) :: expression
+        real(wp), intent(in) :: time
+        real(wp), intent(out) :: value
+        real(wp), intent(in), optional :: inputs(:)
+        integer, intent(in), optional :: kinds(:)
+        real(wp), intent(out), optional :: g(:)
         real(wp) :: stack(max_stack)
-        integer :: i, top, k
+        integer :: i, top, k, j
 
         top = 0
+        j = 0
         do i = 1, size(expression%op)
+            if (present(kinds) .and. present(g)) then
+                if (kinds(i) == switch_watched) call add_switch(expression%op(i), &
+                    & stack(top - operation_arity(expression%op(i), expression%constant(i)) &
+                    & + 1:top), g, j)
+            end if
             select case (expression%op(i))
             case (op_constant)
                 top = top + 1
@@ -206,7 +241,70 @@ contains
             end select
         end do
         value = stack(1)
-    end function evaluate_expression
+    end subroutine run_program
+
+    !> The switch functions of operation op as combinations of its arguments: switch r (1 to
+    !> n) is the sum over k of c(r, k) times argument k (n = 0: op does not switch). IF: its
+    !> condition; ABS: its argument; MIN, MAX, DIM: a - b; STEP, STEP5, HAVSIN: x - x0,
+    !> x - x1; SIGN(a, b): b, a; IMPACT(x, xdot, x1, k, e, cmax, d): x - (x1 - d), x - x1;
+    !> BISTOP(x, xdot, x1, x2, k, e, cmax, d): x - (x1 - d), x - x1, x - x2, x - (x2 + d).
+    !> MOD, AINT and ANINT jump wherever their argument passes a whole number (of b): such
+    !> periodic switches are not among them.
+    pure subroutine switch_combinations(op, c, n)
+        integer, intent(in) :: op
+        real(wp), intent(out) :: c(max_switches, max_switch_arguments)
+        integer, intent(out) :: n
+
+        c = 0.0_wp
+        select case (op)
+        case (op_if, op_abs)
+            n = 1
+            c(1, 1) = 1.0_wp
+        case (op_min, op_max, op_dim)
+            n = 1
+            c(1, 1:2) = [1.0_wp, -1.0_wp]
+        case (op_step, op_step5, op_havsin)
+            n = 2
+            c(1, 1:2) = [1.0_wp, -1.0_wp]
+            c(2, [1, 4]) = [1.0_wp, -1.0_wp]
+        case (op_sign)
+            n = 2
+            c(1, 2) = 1.0_wp
+            c(2, 1) = 1.0_wp
+        case (op_impact)
+            n = 2
+            c(1, [1, 3, 7]) = [1.0_wp, -1.0_wp, 1.0_wp]
+            c(2, [1, 3]) = [1.0_wp, -1.0_wp]
+        case (op_bistop)
+            n = 4
+            c(1, [1, 3, 8]) = [1.0_wp, -1.0_wp, 1.0_wp]
+            c(2, [1, 3]) = [1.0_wp, -1.0_wp]
+            c(3, [1, 4]) = [1.0_wp, -1.0_wp]
+            c(4, [1, 4, 8]) = [1.0_wp, -1.0_wp, -1.0_wp]
+        case default
+            n = 0
+        end select
+    end subroutine switch_combinations
+
+    !> The switch functions of the watched switch op from its arguments' values, into g after
+    !> the j already there (j counts them).
+    pure subroutine add_switch(op, arguments, g, j)
+        integer, intent(in) :: op
+        real(wp), intent(in) :: arguments(:)
+        real(wp), intent(inout) :: g(:)
+        integer, intent(inout) :: j
+        real(wp) :: c(max_switches, max_switch_arguments)
+        integer :: n, r, k
+
+        call switch_combinations(op, c, n)
+        do r = 1, n
+            g(j + r) = 0.0_wp
+            do k = 1, min(size(arguments), max_switch_arguments)
+                if (c(r, k) /= 0.0_wp) g(j + r) = g(j + r) + c(r, k)*arguments(k)
+            end do
+        end do
+        j = j + n
+    end subroutine add_switch
 
     !> The value of operation i (one of ADAMS's further functions) of the program from its
     !> arguments, through the function's jet form with constant arguments.
@@ -348,21 +446,84 @@ contains
         end if
     end function if_branch
 
-    !> The times at which the expression switches: where the condition of an IF, or the
-    !> argument of a STEP or HAVSIN, is a TIME - c (any a TIME + b, a /= 0, of constants)
-    !> and crosses zero, x0 or x1 (constants). A switch on anything else (a state function, a
-    !> product of TIME) is not found. In the expression's time units, in the order the program
-    !> meets them (an inner IF before the IF around it). A time that is not finite (constants
-    !> whose product or sum overflows: the switch never happens) is left out.
+    !> The times at which the expression switches: where a switch function of an operation
+    !> (switch_combinations: an IF's condition, x - x0 and x - x1 of a STEP, STEP5 or HAVSIN,
+    !> a - b of MIN, MAX or DIM, the argument of ABS, ...) is a TIME + b (a /= 0, a and b
+    !> constants) and crosses zero. A switch on anything else (a state function, a
+    !> product of TIME) is not found here: switch_kinds calls it watched. In the expression's
+    !> time units, in the order the program meets them (an inner IF before the IF around it). A
+    !> time that is not finite (constants whose product or sum overflows: the switch never
+    !> happens) is left out.
     pure function switching_times(expression) result(times)
         type(expression_type), intent(in) :: expression
         real(wp), allocatable :: times(:)
-        !> Each pending value as slope*TIME + offset when `affine` (slope 0: a constant)
+        integer, allocatable :: kinds(:)
+
+        call analyse_switches(expression, kinds, times)
+    end function switching_times
+
+    !> For each operation of the program: switch_none, switch_timed (its times are among
+    !> switching_times) or switch_watched (a switch whose argument is not affine in TIME: a
+    !> state function, or TIME in a non-affine way).
+    pure function switch_kinds(expression) result(kinds)
+        type(expression_type), intent(in) :: expression
+        integer, allocatable :: kinds(:)
+        real(wp), allocatable :: times(:)
+
+        call analyse_switches(expression, kinds, times)
+    end function switch_kinds
+
+    !> Number of switch functions switch_values gives for these kinds: each watched
+    !> operation's (switch_combinations; two for a STEP, STEP5, HAVSIN, SIGN or IMPACT, four
+    !> for a BISTOP, one for the others).
+    pure integer function switch_count(expression, kinds)
+        type(expression_type), intent(in) :: expression
+        integer, intent(in) :: kinds(:)
+        real(wp) :: c(max_switches, max_switch_arguments)
+        integer :: i, n
+
+        switch_count = 0
+        do i = 1, size(kinds)
+            if (kinds(i) /= switch_watched) cycle
+            call switch_combinations(expression%op(i), c, n)
+            switch_count = switch_count + n
+        end do
+    end function switch_count
+
+    !> The switch functions of the watched switches (kinds from switch_kinds) at `time` with
+    !> the inputs' values, in program order, each zero where its switch switches: an IF's
+    !> condition, x - x0 and x - x1 of a STEP, STEP5 or HAVSIN, a - b of MIN(a, b), MAX(a, b)
+    !> and DIM(a, b), the argument of ABS, ... (switch_combinations). g has switch_count
+    !> values. Allocates nothing (an event function of the integrators).
+    pure subroutine switch_values(expression, time, inputs, kinds, g)
+        type(expression_type), intent(in) :: expression
+        !> Time, in the expression's units
+        real(wp), intent(in) :: time
+        !> Values of expression%inputs, in that order, in the expression's units
+        real(wp), intent(in) :: inputs(:)
+        integer, intent(in) :: kinds(:)
+        real(wp), intent(out) :: g(:)
+        real(wp) :: value
+
+        call run_program(expression, time, value, inputs, kinds, g)
+    end subroutine switch_values
+
+    !> The switches of the program: each pending value as slope*TIME + offset when affine
+    !> (slope 0: a constant), each switch function of an operation (switch_combinations) the
+    !> same combination of its arguments' forms.
+    pure subroutine analyse_switches(expression, kinds, times)
+        type(expression_type), intent(in) :: expression
+        integer, allocatable, intent(out) :: kinds(:)
+        real(wp), allocatable, intent(out) :: times(:)
         real(wp) :: slope(max_stack), offset(max_stack)
         logical :: affine(max_stack)
-        integer :: i, top, op, arity
+        real(wp) :: c(max_switches, max_switch_arguments)
+        real(wp) :: slopes(max_switches), offsets(max_switches)
+        logical :: affines(max_switches)
+        integer :: i, top, op, arity, n, r, k
 
         allocate(times(0))
+        allocate(kinds(size(expression%op)), source=switch_none)
         top = 0
         do i = 1, size(expression%op)
             op = expression%op(i)
@@ -377,72 +538,42 @@ contains
                 slope(top) = -slope(top)
                 offset(top) = -offset(top)
                 cycle
-            case (op_sin:op_abs)
-                arity = 1
-            case (op_step, op_havsin)
-                arity = 5
-                if (affine(top - 4) .and. slope(top - 4) /= 0.0_wp .and. affine(top - 3) &
-                    & .and. slope(top - 3) == 0.0_wp .and. affine(top - 1) &
-                    & .and. slope(top - 1) == 0.0_wp) call add_finite(times, &
-                    & [(offset(top - 3) - offset(top - 4))/slope(top - 4), &
-                    & (offset(top - 1) - offset(top - 4))/slope(top - 4)])
-            case (op_if)
-                arity = 4
-                if (affine(top - 3) .and. slope(top - 3) /= 0.0_wp) &
-                    & call add_finite(times, [-offset(top - 3)/slope(top - 3)])
-            case (first_further_op:last_further_op)
-                arity = operation_arity(op, expression%constant(i))
-                call further_corners(op, slope(top - arity + 1:top), &
-                    & offset(top - arity + 1:top), affine(top - arity + 1:top), times)
-            case default
-                arity = 2
             end select
+            arity = operation_arity(op, expression%constant(i))
             top = top - arity + 1
+            call switch_combinations(op, c, n)
+            do r = 1, n
+                slopes(r) = 0.0_wp
+                offsets(r) = 0.0_wp
+                affines(r) = .true.
+                do k = 1, min(arity, max_switch_arguments)
+                    if (c(r, k) == 0.0_wp) cycle
+                    slopes(r) = slopes(r) + c(r, k)*slope(top + k - 1)
+                    offsets(r) = offsets(r) + c(r, k)*offset(top + k - 1)
+                    affines(r) = affines(r) .and. affine(top + k - 1)
+                end do
+            end do
+            if (n > 0) call classify(kinds(i), times, slopes(:n), offsets(:n), affines(:n))
             call combine(op, arity, slope(top:top + arity - 1), offset(top:top + arity - 1), &
                 & affine(top:top + arity - 1))
         end do
-    end function switching_times
+    end subroutine analyse_switches
 
-    !> The switching times of one of ADAMS's further functions from its arguments' affine
-    !> forms in TIME (as switching_times finds STEP's): STEP5 at x0 and x1; IMPACT where x
-    !> reaches x1 - d and x1; BISTOP at x1 - d, x1, x2 and x2 + d; DIM where a - b changes
-    !> sign; SIGN where b or a does. MOD, AINT and ANINT jump wherever their argument passes a
-    !> whole number (of b): such periodic switches are not found.
-    pure subroutine further_corners(op, slope, offset, affine, times)
-        integer, intent(in) :: op
-        real(wp), intent(in) :: slope(:), offset(:)
-        logical, intent(in) :: affine(:)
+    !> A switch where each slope*TIME + offset (when affine) is zero: timed, its times added,
+    !> when every one is affine (a constant one, of slope 0, never switches), else watched.
+    pure subroutine classify(kind, times, slopes, offsets, affines)
+        integer, intent(inout) :: kind
         real(wp), allocatable, intent(inout) :: times(:)
-        real(wp), allocatable :: levels(:)
-        logical :: constant(size(slope))
+        real(wp), intent(in) :: slopes(:), offsets(:)
+        logical, intent(in) :: affines(:)
 
-        constant = affine .and. slope == 0.0_wp
-        allocate(levels(0))
-        select case (op)
-        case (op_step5)
-            if (constant(2)) levels = [levels, offset(2)]
-            if (constant(4)) levels = [levels, offset(4)]
-        case (op_impact)
-            if (constant(3) .and. constant(7)) levels = [levels, offset(3) - offset(7)]
-            if (constant(3)) levels = [levels, offset(3)]
-        case (op_bistop)
-            if (constant(3) .and. constant(8)) levels = [levels, offset(3) - offset(8)]
-            if (constant(3)) levels = [levels, offset(3)]
-            if (constant(4)) levels = [levels, offset(4)]
-            if (constant(4) .and. constant(8)) levels = [levels, offset(4) + offset(8)]
-        case (op_dim)
-            if (all(affine(1:2)) .and. slope(1) /= slope(2)) call add_finite(times, &
-                & [(offset(2) - offset(1))/(slope(1) - slope(2))])
-        case (op_sign)
-            if (affine(2) .and. slope(2) /= 0.0_wp) call add_finite(times, &
-                & [-offset(2)/slope(2)])
-            if (affine(1) .and. slope(1) /= 0.0_wp) call add_finite(times, &
-                & [-offset(1)/slope(1)])
-        end select
-        ! the levels of the first argument x, affine in TIME
-        if (size(levels) > 0 .and. affine(1) .and. slope(1) /= 0.0_wp) &
-            & call add_finite(times, (levels - offset(1))/slope(1))
-    end subroutine further_corners
+        if (.not. all(affines)) then
+            kind = switch_watched
+        else if (any(slopes /= 0.0_wp)) then
+            kind = switch_timed
+            call add_finite(times, pack(-offsets/slopes, slopes /= 0.0_wp))
+        end if
+    end subroutine classify
 
     !> Append the finite ones of candidates to times.
     pure subroutine add_finite(times, candidates)

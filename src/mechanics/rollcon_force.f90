@@ -14,7 +14,7 @@ module rollcon_force
     implicit none
     private
 
-    public :: applied_force_type, force_and_moment, force_breakpoints, pulse_stops
+    public :: applied_force_type, force_and_moment, force_breakpoints, force_corners, pulse_stops
     public :: forces_idle_after, nonfinite_load, runaway_load, runaway_limit
     public :: profile_constant, profile_half_sine, profile_statement, frame_body, frame_tilt
 
@@ -189,8 +189,10 @@ contains
     !> only after the next step; stopping at points inside a pulse resolves its shape whatever
     !> the step size was. One rule for both kinds of force: a half-sine pulse stops at
     !> pulse_stops(start, start + duration); a force statement at every switching time of each
-    !> of its expressions (an IF, STEP or HAVSIN on TIME - c: switching_times) and, when an
-    !> expression switches at two times or more, at pulse_stops(first, last). Each time once.
+    !> of its expressions (switching_times) and, when an expression switches at two times or
+    !> more, at pulse_stops(first, last). Each time once. The corners among them
+    !> (force_corners: a pulse's ends, the switching times) are where the integrator also
+    !> starts again; inside a pulse it only stops.
     pure function force_breakpoints(forces) result(times)
         type(applied_force_type), intent(in) :: forces(:)
         real(wp), allocatable :: times(:)
@@ -260,6 +262,34 @@ contains
             if (.not. idle) return
         end do
     end function forces_idle_after
+
+    !> Times where a force has a corner [s], each once: a half-sine pulse's start and end, and
+    !> every switching time of a force statement's expressions (an IF, STEP, STEP5, HAVSIN,
+    !> IMPACT or BISTOP on TIME - c, MIN, MAX, DIM, SIGN or ABS of TIME - c:
+    !> switching_times). They are among force_breakpoints; an integrator stops there and
+    !> starts again with no history, which would hold a force the solution no longer has
+    !> (docs/design.md §7). A switch on the state is located by the run instead
+    !> (rollcon_switch_watch).
+    pure function force_corners(forces) result(times)
+        type(applied_force_type), intent(in) :: forces(:)
+        real(wp), allocatable :: times(:)
+        integer :: i, k
+
+        allocate(times(0))
+        do i = 1, size(forces)
+            if (forces(i)%profile == profile_half_sine) then
+                call add_new(times, [forces(i)%start, forces(i)%start + forces(i)%duration])
+            else if (forces(i)%profile == profile_statement) then
+                associate (statement => forces(i)%statement)
+                    do k = 1, size(statement%functions)
+                        if (.not. statement%given(k)) cycle
+                        call add_new(times, switching_times(statement%functions(k)) &
+                            & *statement%time_unit)
+                    end do
+                end associate
+            end if
+        end do
+    end function force_corners
 
     !> pulse_points + 1 equally spaced times from first to last [s], both included exactly.
     pure function pulse_stops(first, last) result(times)

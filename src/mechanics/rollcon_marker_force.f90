@@ -16,13 +16,15 @@
 module rollcon_marker_force
     use rollcon_kinds, only : wp
     use rollcon_rotation, only : times, cross
-    use rollcon_expression, only : expression_type, evaluate_expression, max_inputs
+    use rollcon_expression, only : expression_type, evaluate_expression, max_inputs, &
+        & switch_values
     use rollcon_marker, only : marker_type, marker_motion
     use rollcon_measures, only : expression_input_values
     implicit none
     private
 
     public :: marker_force_type, marker_force_loads, marker_force_values, markers_coincide
+    public :: marker_force_switches
     public :: kind_translation, kind_rotation, kind_vector, kind_general
 
     !> Kinds: SFORCE translational or rotational, VFORCE, GFORCE
@@ -70,6 +72,27 @@ contains
         values(1:3) = values(1:3)*self%force_unit
         values(4:6) = values(4:6)*(self%force_unit*self%length_unit)
     end function marker_force_values
+
+    !> The switch functions of expression k's watched switches (kinds: switch_kinds of it) at
+    !> (t, q, u), into g (switch_count of them; rollcon_expression's switch_values), in the
+    !> dataset's units. Allocates nothing.
+    pure subroutine marker_force_switches(self, k, time, q, u, kinds, g)
+        type(marker_force_type), intent(in) :: self
+        !> Which expression: FX, FY, FZ, TX, TY, TZ (1 to 6)
+        integer, intent(in) :: k
+        !> Time [s]
+        real(wp), intent(in) :: time
+        !> Coordinates and rates of all parts
+        real(wp), intent(in) :: q(:), u(:)
+        integer, intent(in) :: kinds(:)
+        real(wp), intent(out) :: g(:)
+        real(wp) :: inputs(max_inputs)
+        integer :: n
+
+        n = size(self%functions(k)%inputs)
+        call input_values(self, self%functions(k), q, u, inputs(:n))
+        call switch_values(self%functions(k), time/self%time_unit, inputs(:n), kinds, g)
+    end subroutine marker_force_switches
 
     !> The measures an expression reads, in the dataset's units (rollcon_measures).
     pure subroutine input_values(self, expression, q, u, values)

@@ -18,10 +18,10 @@
 !> as ADAMS integrates a velocity or an acceleration to the displacement it imposes, with the
 !> initial conditions as the constants of integration. The integrals are Gauss-Legendre
 !> quadratures of f (8 points), adaptive (a panel is halved until its two halves agree with
-!> it to quadrature_tolerance relative to the integrals of |f| and |tau f|), with the expression's switching times (an IF, STEP
-!> or HAVSIN on TIME - c: rollcon_expression's switching_times) as panel ends; over a run
-!> they are kept at anchor_count + 1 equally spaced times (prepare_motion), so that each
-!> evaluation integrates from the anchor before it only.
+!> it to quadrature_tolerance relative to the integrals of |f| and |tau f|), with the
+!> expression's switching times (an IF, STEP or HAVSIN on TIME - c, ...: rollcon_expression's
+!> switching_times) as panel ends; over a run they are kept at anchor_count + 1 equally spaced
+!> times (prepare_motion), so that each evaluation integrates from the anchor before it only.
 module rollcon_motion
     use rollcon_kinds, only : wp
     use rollcon_constants, only : pi

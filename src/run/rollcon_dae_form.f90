@@ -32,7 +32,7 @@ module rollcon_dae_form
         procedure :: dae_jacobian
         procedure :: dae_differential
         procedure :: dae_pattern
-        procedure :: dae_vector_groups
+        procedure :: dae_euler_parts
         procedure :: multiplier_scale
         procedure :: state_blocks
         procedure :: root_count
@@ -178,22 +178,20 @@ contains
         call pattern%from_relation(keep)
     end subroutine dae_pattern
 
-    !> A part's three Euler-angle rates are held relative to the largest of them: they are the
-    !> components of one angular velocity (docs/design.md §7, IDA's error test). Every other
-    !> component alone.
-    function dae_vector_groups(self, n) result(groups)
+    !> Every part's Euler angles and their rates in the DAE state (q, u, lambda, mu): part p's
+    !> psi at 6 (p - 1) + coord_psi, its psi' n further (IDA's error weights, docs/design.md §7).
+    function dae_euler_parts(self, n) result(parts)
         class(dae_form_type), intent(in) :: self
         integer, intent(in) :: n
-        integer :: groups(n)
-        integer :: p, first
+        integer, allocatable :: parts(:, :)
+        integer :: p
 
-        groups = 0
+        allocate(parts(2, self%problem%eq%n/6))
         do p = 1, self%problem%eq%n/6
-            ! u of part p: n + 6 (p - 1) + (X', Y', Z', psi', theta', phi')
-            first = self%problem%eq%n + 6*(p - 1) + coord_psi
-            groups(first:first + 2) = first
+            parts(1, p) = 6*(p - 1) + coord_psi
+            parts(2, p) = self%problem%eq%n + parts(1, p)
         end do
-    end function dae_vector_groups
+    end function dae_euler_parts
 
     !> The model's weight, the sum of m |g| [N]: a constraint force's scale, and a constraint
     !> moment's per metre (rollcon_ida: the floor of the multipliers' absolute tolerance).

@@ -84,6 +84,9 @@ module rollcon_run_summary
         !> right-hand sides or residuals, Newton matrices, error-test failures, event-function
         !> evaluations
         integer :: steps = 0, functions = 0, jacobians = 0, failures = 0, root_evaluations = 0
+        !> Times the integrator started again at a corner of an input (a force's switch or a
+        !> pulse's end: docs/design.md §7)
+        integer :: corner_restarts = 0
         !> The Newton matrix was solved by SUNDIALS' sparse KLU (the summary says so: 'auto'
         !> chooses it on large sparse models)
         logical :: sparse_newton = .false.

@@ -10,14 +10,16 @@ module rollcon_simulation
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type, fatal_error, stat_ucon
     use rollcon_text, only : to_text
-    use rollcon_force, only : force_breakpoints, forces_idle_after
+    use rollcon_force, only : force_breakpoints, force_corners, forces_idle_after
+    use rollcon_model, only : model_type, served_by_model_ucosub
     use rollcon_integrator, only : integrator_type, integrator_statistics_type
     use rollcon_integrator_choice, only : start_integrator
     use rollcon_dynamic_system, only : dynamic_system_type
     use rollcon_problem, only : problem_type
     use rollcon_formulation_choice, only : new_formulation
     use rollcon_watch, only : watch_event_type, watch_measure_type, action_rebase, &
-        & action_stop, action_restart
+        & action_stop, action_restart, action_corner
+    use rollcon_switch_watch, only : switch_watch_type, has_state_switches
     use rollcon_csv_writer, only : csv_writer_type
     use rollcon_row_sink, only : row_sink_type
     use rollcon_progress, only : progress_type
@@ -51,8 +53,11 @@ module rollcon_simulation
         !> The coordinates and rates at y (system%unpack_state)
         real(wp), allocatable :: q(:), u(:)
         real(wp) :: t = 0.0_wp
-        !> Force kinks the integrator must not step over
-        real(wp), allocatable :: breaks(:)
+        !> Force kinks the integrator must not step over, and among them the corners, where it
+        !> also starts again (corner_times)
+        real(wp), allocatable :: breaks(:), corners(:)
+        !> Where the integrator last started again at a corner [s]
+        real(wp) :: t_corner = -huge(1.0_wp)
         !> Energy drift is measured from the first row at or after this time [s]
         real(wp) :: t_reference = 0.0_wp
         logical :: have_reference = .false.
@@ -80,6 +85,7 @@ module rollcon_simulation
         procedure :: handle_events
         procedure :: rebase
         procedure :: repartition
+        procedure :: restart_at_corner
         procedure :: rebase_at_start
         procedure :: count_rebasing
         procedure :: finish
@@ -117,8 +123,16 @@ contains
         k_output = 1
         do while (k_output <= n_output)
             t_out = output_time(options, k_output)
-            call run%integrator%advance(t_out, run%next_stop(run%t), run%t, run%y, run%yp, root, &
-                & error)
+            ! an output time closer after a restart than the time's round-off (an output at a
+            ! corner's time written another way): the integrators refuse to start towards it,
+            ! and the state there is the same
+            if (t_out - run%t <= 4.0_wp*epsilon(1.0_wp)*(abs(run%t) + abs(t_out))) then
+                run%t = t_out
+                root = 0
+            else
+                call run%integrator%advance(t_out, run%next_stop(run%t), run%t, run%y, &
+                    & run%yp, root, error)
+            end if
             if (allocated(error)) then
                 ! a load or the motion that ran away is why, whatever the integrator's words
                 call run%name_runaway(error)
@@ -132,6 +146,14 @@ contains
             if (root /= 0) then
                 call run%handle_events(summary, stop_here, error, history, sink)
                 if (stop_here .or. allocated(error)) exit
+            else if (any(run%corners == run%t)) then
+                ! at an input's corner (a stop time): start again with no history
+                call run%restart_at_corner(summary, error)
+                if (allocated(error)) then
+                    summary%status = status_failed
+                    summary%message = error%message
+                    exit
+                end if
             end if
             ! the formulation's choices worn (in independent speeds, its partition): a restart
             ! that makes them again
@@ -175,6 +197,7 @@ contains
         self%problem => problem
         self%options = options
         n_output = 0
+        call add_switch_watch(problem)
         call problem%prepare(error)
         if (allocated(error)) return
         self%layout = output_layout(problem)
@@ -194,6 +217,11 @@ contains
             & options%end_time)
         self%breaks = pack(self%breaks, self%breaks > options%t0 .and. self%breaks &
             & < options%end_time)
+        self%corners = corner_times(problem%model)
+        self%corners = pack(self%corners, self%corners > options%t0 .and. self%corners &
+            & < options%end_time)
+        self%breaks = [self%breaks, pack(self%corners, [(.not. any(self%breaks &
+            & == self%corners(k)), k = 1, size(self%corners))])]
         call planned_rows(options, self%layout%columns(), n_output, error)
         if (allocated(error)) return
         if (allocated(options%csv_path)) then
@@ -325,9 +353,11 @@ contains
         end associate
     end subroutine record
 
-    !> Event functions fired at the current state: each watch says what to do. When every one
-    !> re-bases a part, the parts are re-based and the integrator starts again; otherwise the
-    !> run records the row there and stops with the first stopping event's message.
+    !> Event functions fired at the current state: each watch says what to do. When none stops
+    !> the run, the parts to re-base are re-based and the integrator starts again (carefully),
+    !> or, when no part is, it starts again at the corner of an input (a force's switch on the
+    !> state); otherwise the run records the row there and stops with the first stopping
+    !> event's message.
     subroutine handle_events(self, summary, stop_here, error, history, sink)
         class(simulation_type), intent(inout) :: self
         type(run_summary_type), intent(inout) :: summary
@@ -362,13 +392,20 @@ contains
             summary%limit = events(stopping)%limit
             return
         end if
-        ! the changes the watches ask for (each once), then the re-basings and the restart
+        ! the changes the watches ask for (each once)
         do k = 1, size(events)
             if (events(k)%action /= action_restart .or. any(owners(:k - 1) == owners(k))) cycle
             call self%problem%watches(owners(k))%watch%restart_problem(self%problem%eq, &
                 & self%t, self%q, self%u, error)
             if (allocated(error)) return
         end do
+        if (all(events%action == action_corner)) then
+            ! only corners: the integrator starts again with no history, once where a switch
+            ! fired (IDA may report a root again at the time it was started from)
+            if (self%t > self%t_corner) call self%restart_at_corner(summary, error)
+            return
+        end if
+        ! the re-basings and the restart
         call self%rebase(pack([(events(k)%part, k = 1, size(events))], &
             & [(events(k)%action == action_rebase, k = 1, size(events))]), refusal, fell, error)
         if (allocated(error)) return
@@ -434,6 +471,63 @@ contains
         call self%earlier%add(self%integrator%statistics())
         call self%integrator%restart(self%t, self%y, self%yp, error)
     end subroutine repartition
+
+    !> At a corner of an input, time t (a force that switches, a pulse's end): start the
+    !> integrator again there with no history, from the state put back on the constraints
+    !> (restart_state) and y' as the run goes on (the accelerations just after t, where a force
+    !> that switches at t has its new value), without the careful start of a re-basing: a
+    !> history across the corner holds a force the solution no longer has, and the error
+    !> estimates that come from it let the error stop falling with the tolerance
+    !> (docs/design.md §7).
+    subroutine restart_at_corner(self, summary, error)
+        class(simulation_type), intent(inout) :: self
+        type(run_summary_type), intent(inout) :: summary
+        type(error_type), allocatable, intent(out) :: error
+        real(wp), allocatable :: q(:), u(:)
+
+        call self%system%unpack_state(self%t, self%y, self%q, self%u, error)
+        if (allocated(error)) return
+        q = self%q
+        u = self%u
+        call restart_state(self%problem, self%system, self%t, q, u, self%y, self%yp, error)
+        if (allocated(error)) return
+        call self%problem%accelerations(nearest(self%t, 1.0_wp), q, u, error)
+        if (allocated(error)) return
+        call self%system%pack_state(q, u, self%y, self%yp)
+        call self%earlier%add(self%integrator%statistics())
+        call self%integrator%restart(self%t, self%y, self%yp, error, careful=.false.)
+        if (allocated(error)) return
+        self%t_corner = self%t
+        summary%corner_restarts = summary%corner_restarts + 1
+    end subroutine restart_at_corner
+
+    !> Where the model's inputs have corners known in advance [s]: the forces' (force_corners).
+    !> A MOTION's switching times, when the datasets have MOTION, join them here.
+    function corner_times(model) result(times)
+        type(model_type), intent(in) :: model
+        real(wp), allocatable :: times(:)
+
+        times = force_corners(model%forces)
+    end function corner_times
+
+    !> A model whose force expressions switch on the state is watched for those switches (once:
+    !> a problem run again keeps its watch).
+    subroutine add_switch_watch(problem)
+        type(problem_type), intent(inout) :: problem
+        type(switch_watch_type) :: watch
+        integer :: k
+
+        if (.not. has_state_switches(problem%model%forces)) return
+        if (allocated(problem%watches)) then
+            do k = 1, size(problem%watches)
+                select type (w => problem%watches(k)%watch)
+                type is (switch_watch_type)
+                    return
+                end select
+            end do
+        end if
+        call problem%add_watch(watch)
+    end subroutine add_switch_watch
 
     !> Before the first row: the parts that start in a turned basis (problem%start_bases)
     !> counted as re-based, then every part a watch wants re-based at the start (a part at

@@ -55,6 +55,8 @@ contains
             & // to_text(summary%jacobians) // ", error-test failures " &
             & // to_text(summary%failures)
         if (summary%sparse_newton) text = text // ", Newton matrix sparse (KLU)"
+        if (summary%corner_restarts > 0) text = text // ", started again at " &
+            & // to_text(summary%corner_restarts) // " corner(s) of the inputs"
         text = text // nl
         text = text // "CPU time: " // fixed(summary%cpu_seconds) // " s" // nl
         text = text // "output: " // csv_path // " (" // to_text(summary%rows) // " rows)"

@@ -1,10 +1,11 @@
 ! SPDX-License-Identifier: MIT
 !> What a run watches besides the parts, UCONs and forces every run has: a pluggable watch
-!> brings its own event functions (and what the run does when one fires: stop, or re-base a
-!> part), its own output columns, its own measures judged against what the tolerances promise,
-!> and its own summary lines. The driver (rollcon_simulation) knows watches only through this
-!> interface: a part's Euler-angle limit (rollcon_theta_watch) and a rim's contact with the
-!> ground (rollcon_contact_watch) are two of them.
+!> brings its own event functions (and what the run does when one fires: stop, re-base a part,
+!> or start the integrator again), its own output columns, its own measures judged against what
+!> the tolerances promise, and its own summary lines. The driver (rollcon_simulation) knows
+!> watches only through this interface: a part's Euler-angle limit (rollcon_theta_watch), a
+!> rim's contact with the ground (rollcon_contact_watch) and the switches of force expressions
+!> on the state (rollcon_switch_watch) are three of them.
 !>
 !> A watch works on the model's equations (rollcon_equations): the state it is given and, when
 !> the integrator knows them without a solve, the multipliers or the accelerations at it.
@@ -19,13 +20,16 @@ module rollcon_watch
     private
 
     public :: watch_type, watch_slot_type, watch_measure_type, watch_event_type
-    public :: action_stop, action_rebase, action_restart, append_watch
+    public :: action_stop, action_rebase, action_restart, action_corner, append_watch
 
     !> What the run does when a watch's event function fires: stop there (a limit the input
     !> sets: the run ends `stopped`, exit status 0), re-base a part's principal axes and go
-    !> on (docs/rebasing.md), or let the watch change the problem (restart_problem: the rows
-    !> set aside as redundant chosen again) and start the integrator again from the same state
-    integer, parameter :: action_stop = 1, action_rebase = 2, action_restart = 3
+    !> on (docs/rebasing.md), let the watch change the problem (restart_problem: the rows
+    !> set aside as redundant chosen again) and start the integrator again from the same state,
+    !> or start the integrator again there with no history, the problem unchanged (an input's
+    !> corner: docs/design.md §7)
+    integer, parameter :: action_stop = 1, action_rebase = 2, action_restart = 3, &
+        & action_corner = 4
 
     !> The watch's answer when one of its event functions fired
     type :: watch_event_type

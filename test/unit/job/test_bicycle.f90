@@ -3,7 +3,8 @@
 !> Meijaard, Papadopoulos, Ruina and Schwab 2007, Proc. R. Soc. A 463, 1955-1982): four parts,
 !> three revolute JOINTs, two rolling wheels. Its linearisation at 5 m/s gives the paper's
 !> eigenvalues; over speed, the paper's weave and capsize speeds; and the nonlinear rides at 3,
-!> 5 and 7 m/s, pushed sideways at t = 1 s, grow and decay at the rates of those eigenvalues.
+!> 5 and 7 m/s, pushed sideways at t = 1 s, grow and decay at the rates of those eigenvalues;
+!> past the push (an input with corners at its start and end) the ride's error falls with ERROR.
 module test_bicycle
     use rollcon_kinds, only : wp
     use rollcon_constants, only : pi
@@ -14,7 +15,7 @@ module test_bicycle
     use rollcon_run_job, only : run_job, job_result_type
     use rollcon_simulation, only : history_type, status_completed, status_stopped, &
         & run_summary_type
-    use rollcon_output_layout, only : coord_theta
+    use rollcon_output_layout, only : coord_theta, coord_x, coord_z
     use rollcon_linearisation, only : linear_result_type
     use rollcon_linear_speeds, only : speed_table_type, stability_change_type
     use rollcon_linear_job, only : linearise_job, linear_speeds_job
@@ -43,6 +44,14 @@ module test_bicycle
     !> 0.005 rad, whose square is 1e-5 of it (measured 2e-7 to 1.4e-5); at 3 m/s the growing
     !> weave reaches 0.04 rad in its window, 1e-3 (measured 8.8e-4)
     real(wp), parameter :: tol_rate = 1.0e-4_wp, tol_rate_growing = 2.0e-3_wp
+    !> The ride at 5 m/s on IDA at ERROR = 1e-10, 1e-11 and 1e-12 against CVODE at 1e-13 (which
+    !> agrees with CVODE at 1e-14 to 2.6e-12 m): the parts' centres [m] over the 10 s, measured
+    !> 6.1e-8, 4.2e-9 and 2.8e-10 m (831, 1,122 and 1,690 steps), 14 and 15 times less for each
+    !> tenfold ERROR. Stopped at the push's corners but going on on its history there, IDA's
+    !> error stops falling: 3.7e-7, 3.6e-7 and 2.2e-8 m (889, 1,151 and 1,816 steps, at IDA's
+    !> default Newton coefficient). Each tenfold ERROR must cut it at least 4 times, and at 1e-12
+    !> it must be below 1e-9 m: a push stepped over, or a corner not started from, fails
+    real(wp), parameter :: least_error_fall = 4.0_wp, tol_finest_ride = 1.0e-9_wp
 
 contains
 
@@ -56,7 +65,8 @@ contains
             & new_unittest("ride-7-m-s-slowly-capsizes", test_ride_7), &
             & new_unittest("ride-3-m-s-falls-and-says-so", test_fall), &
             & new_unittest("equal-wheels-rows-are-direct", test_equal_rows), &
-            & new_unittest("equal-wheels-weave-and-capsize", test_equal_speeds)]
+            & new_unittest("equal-wheels-weave-and-capsize", test_equal_speeds), &
+            & new_unittest("ride-error-falls-with-error-past-the-push", test_error_falls)]
     end subroutine collect_bicycle
 
     !> `rollcon linear data/bicycle.adm`: the four non-zero eigenvalues are the paper's at 5 m/s,
@@ -307,5 +317,73 @@ contains
         call check_rates(lean, step, 2.0_wp, 10.0_wp, [re(k), re(w), re(w)], &
             & [0.0_wp, abs(im(w)), -abs(im(w))], tol_rate, "at 7 m/s", error)
     end subroutine test_ride_7
+
+    !> The ride at 5 m/s (the dataset as given) at ERROR = 1e-10, 1e-11 and 1e-12 against a
+    !> reference, CVODE at 1e-13: the largest distance of any part's centre from the
+    !> reference's over the rows falls at least least_error_fall times with each tenfold ERROR,
+    !> and to tol_finest_ride at 1e-12. Every run starts IDA again at the push's two corners.
+    subroutine test_error_falls(error)
+        type(error_type), allocatable, intent(out) :: error
+        character(len=*), parameter :: errors(3) = ["1e-10", "1e-11", "1e-12"]
+        type(history_type) :: reference, run
+        real(wp) :: distance(size(errors))
+        integer :: k, restarts
+
+        call ride_at("CVODE", "1e-13", reference, restarts, error)
+        if (allocated(error)) return
+        do k = 1, size(errors)
+            call ride_at("IDA", errors(k), run, restarts, error)
+            if (allocated(error)) return
+            call check(error, restarts == 2 .and. run%count == reference%count, "ERROR = " &
+                & // errors(k) // ": " // to_text(restarts) // " restarts at corners (2 " &
+                & // "expected), " // to_text(run%count) // " rows")
+            if (allocated(error)) return
+            distance(k) = largest_distance(run, reference)
+        end do
+        call check(error, all(distance(2:) <= distance(:size(errors) - 1)/least_error_fall) &
+            & .and. distance(size(errors)) <= tol_finest_ride, "the ride's distance from " &
+            & // "CVODE at 1e-13 at ERROR = 1e-10, 1e-11, 1e-12: " // to_text(distance(1)) &
+            & // ", " // to_text(distance(2)) // ", " // to_text(distance(3)) // " m")
+    end subroutine test_error_falls
+
+    !> data/bicycle.adm as given but on formulation at ERROR = tolerance: its rows, and the
+    !> integrator's restarts at the inputs' corners.
+    subroutine ride_at(formulation, tolerance, history, restarts, error)
+        character(len=*), intent(in) :: formulation, tolerance
+        type(history_type), intent(out) :: history
+        integer, intent(out) :: restarts
+        type(error_type), allocatable, intent(out) :: error
+        type(input_override_type), allocatable :: set(:)
+        type(job_type) :: job
+        type(job_result_type) :: ran
+
+        restarts = 0
+        call add_override(set, "integrator%formulation", formulation)
+        call add_override(set, "integrator%error", tolerance)
+        call load_job(dataset, job, error, overrides=set)
+        if (allocated(error)) return
+        job%output_dir = ""
+        job%quiet = .true.
+        call run_job(job, ran, error, history)
+        if (allocated(error)) return
+        restarts = ran%summary%corner_restarts
+        call check(error, ran%summary%status == status_completed, formulation // " at " &
+            & // tolerance // ": status " // to_text(ran%summary%status))
+    end subroutine ride_at
+
+    !> The largest distance of a part's centre in a from b's on the same rows [m].
+    function largest_distance(a, b) result(distance)
+        type(history_type), intent(in) :: a, b
+        real(wp) :: distance
+        integer :: p, c
+
+        distance = 0.0_wp
+        do p = 1, 4
+            do c = coord_x, coord_z
+                distance = max(distance, maxval(abs(a%part_values(p, c) &
+                    & - b%part_values(p, c))))
+            end do
+        end do
+    end function largest_distance
 
 end module test_bicycle

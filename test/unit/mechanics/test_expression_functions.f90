@@ -2,7 +2,8 @@
 !> ADAMS's function library in expressions (suite expression-functions): every function of
 !> numbers and every measure of markers against a value worked by hand; the curves (AKISPL,
 !> CUBSPL) against hand-fitted cubics; the whole turns of AX, AY, AZ; the switching times of
-!> the functions with corners; and the exact partials: every expression's jet (its value,
+!> the functions with corners, and their switch functions where they switch on the state; and
+!> the exact partials: every expression's jet (its value,
 !> gradient and Hessian over two parts' q, u and the time) against the value path and against
 !> the values SymPy derives from the same definitions (ucon/expression_partials.py).
 module test_expression_functions
@@ -13,7 +14,8 @@ module test_expression_functions
     use rollcon_rotation, only : rotation_matrix
     use rollcon_jet, only : jet_type, jet_variable
     use rollcon_spline, only : spline_type, new_spline
-    use rollcon_expression, only : expression_type, evaluate_expression, switching_times
+    use rollcon_expression, only : expression_type, evaluate_expression, switching_times, &
+        & switch_kinds, switch_count, switch_values, switch_none, switch_timed, switch_watched
     use rollcon_expression_jet, only : evaluate_expression_jet
     use rollcon_marker, only : marker_type
     use rollcon_measures, only : expression_input_values, expression_input_jets, &
@@ -51,6 +53,7 @@ contains
             & new_unittest("whole-turns-counted", test_turns), &
             & new_unittest("curves-against-hand-fits", test_curves), &
             & new_unittest("switching-times-of-corners", test_corners), &
+            & new_unittest("switches-on-the-state", test_state_switches), &
             & new_unittest("jets-equal-the-value-path", test_paths), &
             & new_unittest("partials-against-sympy", test_partials)]
     end subroutine collect_expression_functions
@@ -337,6 +340,38 @@ contains
             first = first + counts(i)
         end do
     end subroutine test_corners
+
+    !> The functions with corners whose arguments read measures are watched switches: IMPACT's
+    !> x - (x1 - d) and x - x1; BISTOP's x - (x1 - d), x - x1, x - x2, x - (x2 + d); SIGN's b
+    !> and a; DIM's a - b; each zero where its function switches, in program order. STEP5 on
+    !> TIME alone is timed (its times 1 and 2); MOD, whose jumps are periodic, and SHF, smooth,
+    !> are not switches.
+    subroutine test_state_switches(error)
+        type(error_type), allocatable, intent(out) :: error
+        character(len=*), parameter :: text = "IMPACT(DZ(1), VZ(1), 1, 10, 1.5, 1, 0.5) + " &
+            & // "BISTOP(DX(1), 0, 1, 2, 10, 2, 1, 0.25) + SIGN(DY(1), TIME - 3) + " &
+            & // "DIM(DX(1), 2) + STEP5(TIME, 1, 0, 2, 1) + MOD(DZ(1), 2) " &
+            & // "+ SHF(DX(1), 0, 1, 2, 0, 0)"
+        type(expression_type) :: expression
+        integer, allocatable :: kinds(:)
+        real(wp) :: g(9)
+
+        call compile_expression(text, "test.adm:1: SFORCE/1 FUNCTION", expression, error)
+        if (allocated(error)) return
+        kinds = switch_kinds(expression)
+        call check(error, count(kinds == switch_watched) == 4 .and. count(kinds &
+            & == switch_timed) == 1 .and. count(kinds == switch_none) == size(kinds) - 5 &
+            & .and. switch_count(expression, kinds) == size(g), "kinds of '" // text // "'")
+        if (allocated(error)) return
+        ! inputs in the order the expression reads them: DZ(1), VZ(1), DX(1), DY(1)
+        call switch_values(expression, 0.5_wp, [0.8_wp, -0.1_wp, 1.5_wp, -0.4_wp], kinds, g)
+        call check(error, g, [0.8_wp - 0.5_wp, 0.8_wp - 1.0_wp, 1.5_wp - 0.75_wp, &
+            & 1.5_wp - 1.0_wp, 1.5_wp - 2.0_wp, 1.5_wp - 2.25_wp, 0.5_wp - 3.0_wp, -0.4_wp, &
+            & 1.5_wp - 2.0_wp], "switch functions of '" // text // "'", abs_tol=tol)
+        if (allocated(error)) return
+        call check(error, switching_times(expression), [1.0_wp, 2.0_wp], "its timed switch", &
+            & abs_tol=tol)
+    end subroutine test_state_switches
 
     !> The markers of the reference (expression_reference), as the model holds them.
     function reference_marker_list() result(markers)

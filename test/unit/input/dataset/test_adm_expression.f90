@@ -1,12 +1,14 @@
 ! SPDX-License-Identifier: MIT
 !> Function expressions of ADAMS datasets: every operator and function against hand values,
 !> precedence, degrees, the smooth steps, state functions as inputs, the switching times found
-!> for breakpoints, and one refusal per kind of syntax error.
+!> for breakpoints and corners, the switches on the state (their kinds and event-function
+!> values), and one refusal per kind of syntax error.
 module test_adm_expression
     use rollcon_kinds, only : wp
     use rollcon_constants, only : pi
     use rollcon_error, only : error_type
-    use rollcon_expression, only : expression_type, evaluate_expression, switching_times
+    use rollcon_expression, only : expression_type, evaluate_expression, switching_times, &
+        & switch_kinds, switch_count, switch_values, switch_none, switch_timed, switch_watched
     use rollcon_adm_expression_parser, only : compile_expression
     use rollcon_testing, only : unittest_type, new_unittest, check
     use, intrinsic :: ieee_arithmetic, only : ieee_is_nan
@@ -33,6 +35,8 @@ contains
             & new_unittest("state-functions-as-inputs", test_state_functions), &
             & new_unittest("state-function-forms-refused", test_state_function_refusals), &
             & new_unittest("switching-times", test_switching_times), &
+            & new_unittest("step5-quintic", test_step5), &
+            & new_unittest("switches-on-the-state", test_state_switches), &
             & new_unittest("unknown-name-refused", test_unknown_name), &
             & new_unittest("syntax-errors-refused", test_syntax_errors)]
     end subroutine collect_adm_expression
@@ -255,19 +259,22 @@ contains
         end do
     end subroutine test_state_function_refusals
 
-    !> IF, STEP and HAVSIN switching on TIME - c (or a TIME + b) give their switching times
-    !> exactly as -b/a, inner ones first; a switch on a state function or a non-affine TIME
-    !> is not one.
+    !> IF, STEP, STEP5 and HAVSIN switching on TIME - c (or a TIME + b), MIN and MAX whose
+    !> arguments' difference is one, ABS of one, give their switching times exactly as -b/a,
+    !> inner ones first; a switch on a state function or a non-affine TIME is not one, nor MAX
+    !> of two arguments that never meet.
     subroutine test_switching_times(error)
         type(error_type), allocatable, intent(out) :: error
-        character(len=*), parameter :: texts(7) = [character(len=64) :: &
+        character(len=*), parameter :: texts(12) = [character(len=64) :: &
             & "IF(TIME-2: 0, 0, IF(TIME-2.01: SIN(PI*(TIME-2)/0.01), 0, 0))", &
             & "STEP(TIME, 1, 0, 3, 5) + 1", "HAVSIN(-(1 - TIME)/2, 0.5, 0, 1, 1)", &
             & "IF(2*TIME - 10**-1: 1, 0, 0)", "IF(DX(1) - 2: 0, 0, 1)", &
-            & "STEP(TIME*TIME, 1, 0, 2, 1)", "STEP(TIME, DX(2), 0, 2, 1)"]
-        integer, parameter :: counts(7) = [2, 2, 2, 1, 0, 0, 0]
-        real(wp), parameter :: expected(7) = [2.01_wp, 2.0_wp, 1.0_wp, 3.0_wp, 2.0_wp, 3.0_wp, &
-            & 0.05_wp]
+            & "STEP(TIME*TIME, 1, 0, 2, 1)", "STEP(TIME, DX(2), 0, 2, 1)", &
+            & "STEP5(TIME, 0.5, 0, 0.75, 1)", "MAX(TIME - 1, 0) + MIN(4, 2*TIME)", &
+            & "ABS(3 - TIME)", "MAX(TIME, TIME + 1)", "MIN(DX(1), TIME)"]
+        integer, parameter :: counts(12) = [2, 2, 2, 1, 0, 0, 0, 2, 2, 1, 0, 0]
+        real(wp), parameter :: expected(12) = [2.01_wp, 2.0_wp, 1.0_wp, 3.0_wp, 2.0_wp, 3.0_wp, &
+            & 0.05_wp, 0.5_wp, 0.75_wp, 1.0_wp, 2.0_wp, 3.0_wp]
         type(expression_type) :: expression
         real(wp), allocatable :: times(:)
         integer :: i, first
@@ -292,6 +299,66 @@ contains
         times = switching_times(expression)
         call check(error, times(1) == 2.01_wp .and. times(2) == 2.0_wp, "exact switching times")
     end subroutine test_switching_times
+
+    !> STEP5 is ADAMS's quintic h0 + (h1 - h0) s^3 (10 - 15 s + 6 s^2): at the ends, halfway,
+    !> at s = 1/4, and without a jump of its second derivative at x0 (a second difference).
+    subroutine test_step5(error)
+        type(error_type), allocatable, intent(out) :: error
+        character(len=*), parameter :: step5 = "STEP5(TIME, 1, 2, 3, 6)"
+        !> The second difference at x0 = 1, (y(1 + h) - 2 y(1) + y(1 - h))/h^2 with y constant
+        !> before: 4 * 10 (h/2)^3 / h^2 = 5 h = 5e-4 for the quintic (s = (t - 1)/2), and
+        !> 4 * 3 (h/2)^2 / h^2 = 3 for a cubic STEP, whose curvature jumps there; 0.05 between
+        real(wp), parameter :: tol_curvature = 0.05_wp, h = 1.0e-4_wp
+        real(wp) :: a, b, c
+
+        call check_value(error, step5, 0.5_wp, 2.0_wp)
+        if (allocated(error)) return
+        call check_value(error, step5, 3.5_wp, 6.0_wp)
+        if (allocated(error)) return
+        call check_value(error, step5, 2.0_wp, 4.0_wp)
+        if (allocated(error)) return
+        ! s = 1/4: 2 + 4 (1/64)(10 - 15/4 + 6/16) = 2.4140625
+        call check_value(error, step5, 1.5_wp, 2.4140625_wp)
+        if (allocated(error)) return
+        call value_of(step5, 1.0_wp + h, a, error)
+        if (allocated(error)) return
+        call value_of(step5, 1.0_wp, b, error)
+        if (allocated(error)) return
+        call value_of(step5, 1.0_wp - h, c, error)
+        if (allocated(error)) return
+        call check(error, (a - 2.0_wp*b + c)/h**2, 0.0_wp, "STEP5 curvature at x0", &
+            & abs_tol=tol_curvature)
+    end subroutine test_step5
+
+    !> A switch whose argument is not affine in TIME is watched: switch_kinds says which
+    !> operations, switch_count how many event functions, and switch_values gives them, each
+    !> zero where its switch switches (an IF's condition; x - x0 and x - x1 of a STEP; a - b of
+    !> MAX; the argument of ABS), in program order; a switch on TIME alone is timed.
+    subroutine test_state_switches(error)
+        type(error_type), allocatable, intent(out) :: error
+        character(len=*), parameter :: text = "IF(DX(1) - 2: STEP(VX(1), 0, 0, 1, 5), 0, " &
+            & // "MAX(DY(1), TIME)) + ABS(DZ(1)) + STEP(TIME, 1, 0, 2, 1) + SIN(TIME*TIME)"
+        type(expression_type) :: expression
+        integer, allocatable :: kinds(:)
+        real(wp) :: g(5)
+
+        call compile_expression(text, "test.adm:1: SFORCE/1 FUNCTION", expression, error)
+        if (allocated(error)) return
+        kinds = switch_kinds(expression)
+        call check(error, count(kinds == switch_watched) == 4 .and. count(kinds &
+            & == switch_timed) == 1 .and. count(kinds == switch_none) == size(kinds) - 5 &
+            & .and. switch_count(expression, kinds) == 5, "kinds of '" // text // "'")
+        if (allocated(error)) return
+        ! inputs in the order the expression reads them: DX(1), VX(1), DY(1), DZ(1)
+        call switch_values(expression, 0.25_wp, [2.5_wp, 0.75_wp, -1.0_wp, -0.5_wp], kinds, g)
+        ! in the order their operations close: the STEP on VX and the MAX inside the IF, the IF,
+        ! then ABS
+        call check(error, g, [0.75_wp, 0.75_wp - 1.0_wp, -1.0_wp - 0.25_wp, 2.5_wp - 2.0_wp, &
+            & -0.5_wp], "switch functions of '" // text // "'", abs_tol=tol)
+        if (allocated(error)) return
+        call check(error, switching_times(expression), [1.0_wp, 2.0_wp], "its timed switch", &
+            & abs_tol=tol)
+    end subroutine test_state_switches
 
     subroutine test_unknown_name(error)
         type(error_type), allocatable, intent(out) :: error

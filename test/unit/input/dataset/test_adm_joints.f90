@@ -54,15 +54,17 @@ contains
     !> released at rest at 60 degrees. Its period, from the times the bob crosses below the
     !> hinge (X = 0) going the same way, against the exact large-amplitude period
     !> 4 sqrt(I_O/(m g l)) K(sin 30 deg), K the complete elliptic integral of the first kind
-    !> computed here by the arithmetic-geometric mean: 1.5597 s, 7.3 % more than the
-    !> small-amplitude 2 pi sqrt(I_O/(m g l)) = 1.4536 s.
+    !> computed here by the arithmetic-geometric mean: 1.55246 s, 7.3 % more than the
+    !> small-amplitude 2 pi sqrt(I_O/(m g l)) = 1.44660 s.
     subroutine test_pendulum_period(error)
         type(error_type), allocatable, intent(out) :: error
-        !> The crossing times are interpolated linearly between rows 1 ms apart; at X = 0 the
-        !> bob's X'' vanishes, so the error is of X''' h^2 / 8 over the speed X' = 1.9 m/s:
-        !> 20 m/s^3 * 1e-6 s^2 / 8 / 1.9 m/s = 1.3e-6 s per crossing. 1e-5 s is 8 times that,
-        !> and 1e4 times below the difference from the small-amplitude period
-        real(wp), parameter :: tol_period = 1.0e-5_wp
+        !> The crossing times are interpolated linearly between rows h = 1 ms apart; at X = 0
+        !> the bob's X'' vanishes, so X - its line is at most |X'''| h^3 / 8, and the time
+        !> |X'''/X'| h^3 / 8 = 28.3 s^-2 * 1e-9 s^3 / 8 = 3.5e-9 s per crossing (X' = l phi' =
+        !> 1.54 m/s, X''' = l (phi''' - phi'^3) = -43.4 m/s^3 at the bottom): at most 3.5e-9 s
+        !> on the period of three crossings. The integration's own, measured at ERROR = 1e-10:
+        !> 9e-10 s. 5e-9 s holds both, and a tenfold loss of the integration's fails
+        real(wp), parameter :: tol_period = 5.0e-9_wp
         type(history_type) :: rows
         type(job_result_type) :: result
         real(wp) :: exact, small, crossings(8), t0, t1, x0, x1, i_o
