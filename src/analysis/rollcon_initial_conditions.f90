@@ -13,9 +13,9 @@
 !> held: their columns are removed. Velocities given (a dataset's VX ... WZ, each a linear
 !> function of the rates) are held as ADAMS holds them: the least change is sought among the
 !> rates that keep them, and only when the UCONs cannot be met so are they moved with the rest
-!> (given_moved in the report); velocities not given are ADAMS's "inexact" zeros, free. Rows are scaled to unit length before each solve (LAPACK
-!> dgelss, rcond below), so that rank and least squares are judged by the constraints'
-!> geometry, not by their units.
+!> (given_moved in the report); velocities not given are ADAMS's "inexact" zeros, free. Rows
+!> are scaled to unit length before each solve (LAPACK dgelss, rcond below), so that rank and
+!> least squares are judged by the constraints' geometry, not by their units.
 !> Refusals (stat_input), naming the statements and lines the user wrote: contradictory
 !> (dependent rows, not all met), no convergence (independent rows still unmet after
 !> max_iterations). Dependent rows that are all met are redundant, not refused: the run sets
