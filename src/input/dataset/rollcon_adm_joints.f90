@@ -107,7 +107,8 @@ contains
                     & // name_list(primitive_names) // ")", stat_input)
             else
                 call fatal_error(error, where // ": the type is missing (one of " &
-                    & // name_list(joint_names) // ")", stat_input)
+                    & // name_list(joint_names) // "; or a coupling, " &
+                    & // name_list(coupling_joints) // ")", stat_input)
             end if
         else if (joint%i == 0) then
             call fatal_error(error, where // ": I=id is missing (the marker on the first " &

@@ -570,7 +570,7 @@ contains
         if (allocated(error)) return
         call refused("JOINT/1, I=21, J=10", ":8: JOINT/1: the type is missing (one of " &
             & // "CONVEL, CYLINDRICAL, FIXED, HOOKE, PLANAR, REVOLUTE, SPHERICAL, " &
-            & // "TRANSLATIONAL, UNIVERSAL)", error)
+            & // "TRANSLATIONAL, UNIVERSAL; or a coupling, RACKPIN, SCREW)", error)
         if (allocated(error)) return
         call refused("JPRIM/1, INLINE, ORIENTATION, I=21, J=10", ":8: JPRIM/1 ORIENTATION: " &
             & // "the type is given twice (INLINE and ORIENTATION)", error)
