@@ -350,7 +350,7 @@ contains
                     & motion%value_unit = adm%units%length
                 call prepare_motion(motion, horizon)
                 call model%add_motion(motion, component, statement%joint /= 0, &
-                    & adm_marker(adm, i), adm_marker(adm, j), error)
+                    & adm_marker(adm, i), adm_marker(adm, j), error, line=statement%line)
                 if (allocated(error)) return
             end associate
         end do

@@ -100,7 +100,7 @@ contains
                         & "a constraint's FUNCTION", markers, error)
                     if (allocated(error)) return
                     call model%add_gcon(gcon%id, gcon%function, markers, adm_marker(adm, &
-                        & gcon%i), error)
+                        & gcon%i), error, line=gcon%line)
                     if (allocated(error)) then
                         error%message = place(adm%file, gcon%line) // ": " // error%message
                         return
@@ -160,7 +160,7 @@ contains
             text = "DZ(" // to_text(joint%i) // ", " // to_text(joint%j) // ", " &
                 & // to_text(joint%j) // ") - PITCH/(2 PI) AZ(" // to_text(joint%i) // ", " &
                 & // to_text(joint%j) // ")"
-            call add_linear(where, text, inputs, [1.0_wp, &
+            call add_linear(where, joint%line, text, inputs, [1.0_wp, &
                 & -joint%pitch/adm%units%length/(2.0_wp*pi)], markers, adm%units%length, &
                 & adm%units%time, model, q0, u0, error)
             return
@@ -198,8 +198,9 @@ contains
         text = "DZ(" // to_text(joint%i) // ", " // to_text(joint%j) // ", " &
             & // to_text(joint%j) // ") " // merge("-", "+", side > 0.0_wp) // " PD/2 AZ(" &
             & // to_text(joint%i) // ", the pinion's turn from the rack's direction)"
-        call add_linear(where, text, inputs, [1.0_wp, -sign(radius, side)/adm%units%length], &
-            & markers, adm%units%length, adm%units%time, model, q0, u0, error)
+        call add_linear(where, joint%line, text, inputs, [1.0_wp, &
+            & -sign(radius, side)/adm%units%length], markers, adm%units%length, &
+            & adm%units%time, model, q0, u0, error)
     end subroutine add_coupling_joint
 
     !> The rotation from a moving part's principal axes to ground, from one of its markers'
@@ -238,8 +239,8 @@ contains
                 if (k > 1) text = text // " + "
                 text = text // to_text(coupler%scales(k)) // " " // displacement_text(inputs(k))
             end do
-            call add_linear(where, text, inputs, coupler%scales, markers, adm%units%length, &
-                & adm%units%time, model, q0, u0, error)
+            call add_linear(where, coupler%line, text, inputs, coupler%scales, markers, &
+                & adm%units%length, adm%units%time, model, q0, u0, error)
         end associate
     end subroutine add_coupler
 
@@ -299,8 +300,8 @@ contains
             markers = [markers, cv]
             text = to_text(c(1)) // " " // displacement_text(inputs(1)) // " - " &
                 & // to_text(c(2)) // " " // displacement_text(inputs(2))
-            call add_linear(where, text, inputs, [c(1), -c(2)], markers, adm%units%length, &
-                & adm%units%time, model, q0, u0, error)
+            call add_linear(where, gear%line, text, inputs, [c(1), -c(2)], markers, &
+                & adm%units%length, adm%units%time, model, q0, u0, error)
         end associate
     end subroutine add_gear
 
@@ -379,9 +380,12 @@ contains
 
     !> The GCON sum_k scales(k) inputs(k) - F0, F0 its value at the start, named by `where`
     !> (its statement) with `text` (the sum, for messages), in the dataset's units.
-    subroutine add_linear(where, text, inputs, scales, markers, length_unit, time_unit, model, &
-            & q0, u0, error)
-        character(len=*), intent(in) :: where, text
+    subroutine add_linear(where, line, text, inputs, scales, markers, length_unit, time_unit, &
+            & model, q0, u0, error)
+        character(len=*), intent(in) :: where
+        !> The statement's line in the dataset
+        integer, intent(in) :: line
+        character(len=*), intent(in) :: text
         type(expression_input_type), intent(in) :: inputs(:)
         real(wp), intent(in) :: scales(:)
         type(marker_type), intent(in) :: markers(:)
@@ -415,7 +419,7 @@ contains
         expression%constant = [expression%constant, start, 0.0_wp]
         expression%text = text // " - (its value at the start, " // to_text(start) // ")"
         call model%add_gcon(0, expression, markers, markers(1), error, &
-            & name=where(index(where, ": ", back=.true.) + 2:))
+            & name=where(index(where, ": ", back=.true.) + 2:), line=line)
         if (allocated(error)) then
             ! add_gcon names a GCON/0: name the statement instead
             error%message = where // error%message(index(error%message, ": ") :)

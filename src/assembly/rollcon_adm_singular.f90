@@ -111,7 +111,7 @@ contains
             call fatal_error(error, where // ": the z-axis of its principal axes (its CM " &
                 & // "marker) is parallel to ground z at t = 0, where the 3-1-3 Euler angles " &
                 & // "are singular, so the part starts in those axes turned 90 degrees about x " &
-                & // "(docs/rebasing.md); but UCON/" // to_text(problem%model%ucons(found%k)%id) &
+                & // "(docs/rebasing.md); but " // problem%model%row_words(found%k) &
                 & // " gives F = " // to_text(found%f_old) // " in the CM marker's axes and " &
                 & // to_text(found%f_new) // " in the turned ones (compared with the part " &
                 & // "tilted to theta = " // to_text(angles(2)) // " rad" &

@@ -258,8 +258,8 @@ contains
         if (all(idrsel == [scalar_none, array_none, xmatrx_none])) return
         if (idrsel(1) /= scalar_none .and. idrsel(1) /= scalar_value .and. &
             & idrsel(1) /= scalar_dt .and. idrsel(1) /= scalar_dtt) then
-            call ucon_error(error, id, "GCON/" // to_text(gcon%id) // " gives F, dF/dt and " &
-                & // "d2F/dt2, not IDRSEL(1) = " // to_text(idrsel(1)))
+            call ucon_error(error, id, "its expression gives F, dF/dt and d2F/dt2, not " &
+                & // "IDRSEL(1) = " // to_text(idrsel(1)))
             return
         end if
         f = gcon_jet(gcon, time, q(:nvars), order, with_time)
@@ -289,8 +289,7 @@ contains
         if (idrsel(3) /= xmatrx_none) finite = finite .and. &
             & all(ieee_is_finite(xmatrx(:nvars, :nvars)))
         if (.not. finite) then
-            call ucon_error(error, id, "GCON/" // to_text(gcon%id) // ": F = " &
-                & // gcon%expression%text // " or its partials are not finite at t = " &
+            call ucon_error(error, id, "F = " // gcon%expression%text // " or its partials are not finite at t = " &
                 & // to_text(time) // " s with IDRSEL = (" // to_text(idrsel(1)) // ", " &
                 & // to_text(idrsel(2)) // ", " // to_text(idrsel(3)) // "): a function " &
                 & // "outside its domain, or a measure where it has no derivative (a distance " &

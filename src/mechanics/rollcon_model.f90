@@ -44,18 +44,25 @@ module rollcon_model
     private
 
     public :: model_type, ucon_statement_type, statement_type, setup_model, served_by_model_ucosub
-    public :: statement_ucon, statement_joint, statement_jprim, force_request_type
+    public :: statement_ucon, statement_joint, statement_jprim, statement_element
+    public :: force_request_type
 
-    !> The kinds of statement a model's UCONs come from
-    integer, parameter :: statement_ucon = 1, statement_joint = 2, statement_jprim = 3
+    !> The kinds of statement a model's UCONs come from: a UCON; a JOINT or JPRIM (its
+    !> equations, each a UCON of a generated routine, its reaction at its marker I); an element
+    !> of one equation the program serves, named by its own words (a GCON, a MOTION, a
+    !> coupling: COUPLER, GEAR, a RACKPIN or SCREW JOINT), its reaction at each part's centre
+    integer, parameter :: statement_ucon = 1, statement_joint = 2, statement_jprim = 3, &
+        & statement_element = 4
 
     !> A statement as its user wrote it: a UCON, or a JOINT or JPRIM (whose equations are UCONs
-    !> of generated routines)
+    !> of generated routines), or an element of one equation (a GCON, a MOTION, a coupling)
     type :: statement_type
-        !> statement_ucon, statement_joint or statement_jprim
+        !> statement_ucon, statement_joint, statement_jprim or statement_element
         integer :: kind = statement_ucon
         !> Its id ("JOINT/3": 3)
         integer :: id = 0
+        !> An element's name as its user wrote it ("MOTION/1", "COUPLER/2"; "" for the others)
+        character(len=:), allocatable :: name
         !> The line of the dataset it was written on (0: a model built in code, no line)
         integer :: line = 0
         !> A JOINT's or JPRIM's markers I and J as the model holds them (part 0: the ground;
@@ -337,8 +344,10 @@ contains
     !> the largest UCON id of the model, as a joint's UCONs do, and is named `name` in the
     !> run's record ("GCON/1"; default "GCON/id"). Refused, with why: a FUNCTION that reads an
     !> acceleration, a force or another statement's value, or no moving part, or more than 30
-    !> variables, or velocities in a way that is not linear (rollcon_gcon's new_gcon).
-    subroutine add_gcon(self, id, expression, markers, reaction, error, name)
+    !> variables, or velocities in a way that is not linear (rollcon_gcon's new_gcon). line:
+    !> the statement's line in the dataset (default 0: none), for the user's words ("GCON/1
+    !> (line 12)"; the UCON's own id is never shown).
+    subroutine add_gcon(self, id, expression, markers, reaction, error, name, line)
         class(model_type), intent(inout) :: self
         !> The statement's id, for messages
         integer, intent(in) :: id
@@ -347,6 +356,7 @@ contains
         type(marker_type), intent(in) :: markers(:), reaction
         type(error_type), allocatable, intent(out) :: error
         character(len=*), intent(in), optional :: name
+        integer, intent(in), optional :: line
         type(ucon_statement_type) :: ucon
         character(len=:), allocatable :: problem
 
@@ -365,8 +375,29 @@ contains
         ucon%routine = "GCON/" // to_text(id)
         if (present(name)) ucon%routine = name
         ucon%time_free = .not. expression%uses_time
+        call add_element(self, ucon, ucon%routine, id, line)
         self%ucons = [self%ucons, ucon]
     end subroutine add_gcon
+
+    !> Give ucon, one equation of an element (a GCON, a MOTION, a coupling), a statement of its
+    !> own: kind statement_element, named `name` ("MOTION/1"), at `line` (absent: 0).
+    pure subroutine add_element(self, ucon, name, id, line)
+        class(model_type), intent(inout) :: self
+        type(ucon_statement_type), intent(inout) :: ucon
+        character(len=*), intent(in) :: name
+        integer, intent(in) :: id
+        integer, intent(in), optional :: line
+        type(statement_type) :: statement
+
+        statement%kind = statement_element
+        statement%id = id
+        statement%name = name
+        if (present(line)) statement%line = line
+        if (.not. allocated(self%statements)) allocate(self%statements(0))
+        call append_statement(self%statements, statement)
+        ucon%statement = size(self%statements)
+        ucon%equation = ""
+    end subroutine add_element
 
     !> Count the whole turns of every AX, AY, AZ the model's expressions read (its force
     !> statements' and GCONs') at (q, u): rollcon_measures' count_turns. A run makes it at its
@@ -405,8 +436,10 @@ contains
     !> h(t) (rollcon_motion), its id after the largest UCON id of the model, served by the
     !> generated routine of s (motion_ucon), in SI. joint: the MOTION is on a joint (its
     !> TRANSLATION may then be served from J's part when I is on the ground). Add the parts
-    !> first. Refused as motion_ucon refuses, naming motion%name.
-    subroutine add_motion(self, motion, component, joint, i, j, error)
+    !> first. Refused as motion_ucon refuses, naming motion%name. Its statement is
+    !> "MOTION/id" at `line` (default 0: none) in every message and column (its UCON's id is
+    !> never shown).
+    subroutine add_motion(self, motion, component, joint, i, j, error, line)
         class(model_type), intent(inout) :: self
         !> The time part: its id, name, function and form (motion%rotational is set here)
         type(motion_type), intent(in) :: motion
@@ -415,6 +448,7 @@ contains
         !> Marker I and marker J (part 0: the ground), as part_marker places them
         type(marker_type), intent(in) :: i, j
         type(error_type), allocatable, intent(out) :: error
+        integer, intent(in), optional :: line
         type(primitive_ucon_type) :: ucon
         integer, allocatable :: part_ids(:)
         integer :: next_id
@@ -435,6 +469,12 @@ contains
             allocate(added%motion, source=motion)
             added%motion%rotational = any(component == [motion_rotation, motion_b1, motion_b2, &
                 & motion_b3])
+            associate (statement => self%statements(added%statement))
+                statement%kind = statement_element
+                statement%id = motion%id
+                statement%name = "MOTION/" // to_text(motion%id)
+                if (present(line)) statement%line = line
+            end associate
         end associate
     end subroutine add_motion
     !> Append a statement (element by element: gfortran 12 may mishandle an array constructor
@@ -471,6 +511,7 @@ contains
                 name = "UCON/"
             end select
             name = name // to_text(statement%id)
+            if (statement%kind == statement_element) name = statement%name
             if (statement%line > 0) name = name // " (line " // to_text(statement%line) // ")"
         end associate
     end function statement_name
@@ -509,7 +550,7 @@ contains
         do n = 1, size(order)
             s = order(n)
             item = self%statement_name(s)
-            if (self%statements(s)%kind /= statement_ucon) then
+            if (any(self%statements(s)%kind == [statement_joint, statement_jprim])) then
                 if (self%statements(s)%line > 0) then
                     item = item(:len(item) - 1) // ": "
                 else

@@ -15,10 +15,11 @@
 !> so the pair is equal and opposite).
 module rollcon_reactions
     use rollcon_kinds, only : wp
-    use rollcon_text, only : to_text
+    use rollcon_text, only : to_text, lower_case
     use rollcon_rotation, only : rotation_matrix, times, cross
     use rollcon_marker, only : marker_type
-    use rollcon_model, only : model_type, statement_ucon, statement_joint
+    use rollcon_model, only : model_type, statement_type, statement_joint, statement_jprim, &
+        & statement_element
     implicit none
     private
 
@@ -59,7 +60,7 @@ contains
             associate (statement => model%statements(s))
                 site%statement = s
                 site%rows = rows
-                if (statement%kind /= statement_ucon) then
+                if (any(statement%kind == [statement_joint, statement_jprim])) then
                     site%at_marker = .true.
                     site%on_ground = statement%i%part == 0
                     site%part = statement%i%part
@@ -83,6 +84,7 @@ contains
                     if (.not. any(parts == p)) cycle
                     site%part = p
                     site%stem = "ucon" // to_text(statement%id)
+                    if (statement%kind == statement_element) site%stem = element_stem(statement)
                     if (size(parts) > 1) site%stem = site%stem // "_part" &
                         & // to_text(model%parts(p)%id)
                     call append(sites, site)
@@ -91,6 +93,18 @@ contains
             end associate
         end do
     end function reaction_sites
+
+    !> The column stem of an element's reaction: its name in lower case without the slash
+    !> ("MOTION/1": "motion1", "COUPLER/2": "coupler2").
+    pure function element_stem(statement) result(stem)
+        type(statement_type), intent(in) :: statement
+        character(len=:), allocatable :: stem
+        integer :: slash
+
+        stem = lower_case(statement%name)
+        slash = index(stem, "/")
+        if (slash > 0) stem = stem(:slash - 1) // stem(slash + 1:)
+    end function element_stem
 
     !> Append one site (element by element: gfortran 12 may mishandle an array constructor of
     !> a type with allocatable components).

@@ -7,7 +7,7 @@
 module rollcon_redundancy_words
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type
-    use rollcon_model, only : model_type, statement_ucon
+    use rollcon_model, only : model_type, statement_joint, statement_jprim
     use rollcon_redundancy, only : redundancy_type
     use rollcon_constraint_blocks, only : constraint_blocks_type
     implicit none
@@ -72,7 +72,8 @@ contains
 
         total = count(flagged)
         k = findloc(flagged, .true., dim=1)
-        if (model%statements(model%ucons(k)%statement)%kind == statement_ucon) then
+        if (all(model%statements(model%ucons(k)%statement)%kind /= [statement_joint, &
+            & statement_jprim])) then
             words = " repeats"
             return
         end if

@@ -10,7 +10,7 @@ module rollcon_rebase_step
     use rollcon_error, only : error_type
     use rollcon_text, only : to_text
     use rollcon_problem, only : problem_type
-    use rollcon_model, only : ucon_statement_type
+    use rollcon_model, only : ucon_statement_type, statement_ucon
     use rollcon_ucosub_catalog, only : builtin_ucosub_name
     use rollcon_constraints, only : need_value, need_first
     use rollcon_rebasing, only : rebased_state
@@ -106,9 +106,13 @@ contains
         integer, intent(in) :: k
         character(len=:), allocatable :: words
 
-        words = "UCON " // to_text(problem%model%ucons(k)%id)
-        if (.not. allocated(problem%model%ucons(k)%equation)) return
-        if (len(problem%model%ucons(k)%equation) > 0) words = problem%model%row_words(k)
+        associate (statement => problem%model%statements(problem%model%ucons(k)%statement))
+            if (statement%kind == statement_ucon .and. statement%line == 0) then
+                words = "UCON " // to_text(problem%model%ucons(k)%id)
+            else
+                words = problem%model%row_words(k)
+            end if
+        end associate
     end function ucon_words
 
     !> "part 2 fell: it lies flat at t = 7.826 s, its principal z-axis 2.86 degrees from the
@@ -132,7 +136,7 @@ contains
                 & // to_text(time) // " s, its principal z-axis " // trim(adjustl(tilt)) &
                 & // " degrees from the vertical (theta = " // to_text(theta) &
                 & // " rad) and its centre of mass at Z = " // trim(adjustl(height)) &
-                & // " m: UCON " // to_text(problem%model%ucons(k)%id) // " (" // routine &
+                & // " m: " // ucon_words(problem, k) // " (" // routine &
                 & // "), a contact about that axis, has no contact point there, and the " &
                 & // "motion cannot go on; the rows up to this one are valid"
         end associate

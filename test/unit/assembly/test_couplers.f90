@@ -76,8 +76,8 @@ contains
             & // "SIMULATE/DYNAMIC, END = 5, STEPS = 500" // nl // "END"
         type(job_result_type) :: result_gcon, result_twin
         type(history_type) :: rows_gcon, rows_twin
-        real(wp) :: worst, worst_tension, r(3), v(3), tension
-        integer :: k, cx, cv, cl, cr
+        real(wp) :: worst, worst_tension, worst_reaction, r(3), v(3), tension
+        integer :: k, cx, cv, cl, cr, ce
 
         call run_text("gcon_distance.adm", gcon, result_gcon, rows_gcon, error)
         if (allocated(error)) return
@@ -91,8 +91,13 @@ contains
         cv = result_gcon%summary%layout%column("Xdot_2")
         cl = result_gcon%summary%layout%column("lambda_1")
         cr = result_twin%summary%layout%column("req1_x")
+        ! the GCON's reaction columns are its statement's (never its UCON's generated id)
+        ce = result_gcon%summary%layout%column("gcon1_fx")
+        call check(error, ce > 0, "column gcon1_fx")
+        if (allocated(error)) return
         worst = 0.0_wp
         worst_tension = 0.0_wp
+        worst_reaction = 0.0_wp
         do k = 1, rows_gcon%count
             r = rows_gcon%rows(cx:cx + 2, k)
             v = rows_gcon%rows(cv:cv + 2, k)
@@ -100,12 +105,18 @@ contains
             ! m = 1 kg, L = 2 m
             tension = (1.0_wp*dot_product(v, v) - 1.0_wp*g*r(3))/2.0_wp
             worst_tension = max(worst_tension, abs(rows_gcon%rows(cl, k) + tension))
+            worst_reaction = max(worst_reaction, abs(norm2(rows_gcon%rows(ce:ce + 2, k)) &
+                & - abs(tension)))
         end do
         call check(error, worst <= tol_position, "largest distance between the GCON's centre " &
             & // "and the twin's centre of oscillation " // to_text(worst) // " m")
         if (allocated(error)) return
         call check(error, worst_tension <= tol_tension, "largest difference between lambda_1 " &
             & // "and -T " // to_text(worst_tension) // " N")
+        if (allocated(error)) return
+        ! the reaction is the tension along the string: the same tolerance
+        call check(error, worst_reaction <= tol_tension, "largest difference between |gcon1_fx" &
+            & // "..fz| and T " // to_text(worst_reaction) // " N")
         if (allocated(error)) return
         ! the swing reaches the bottom: the comparison is not of a pendulum at rest
         call check(error, minval(rows_gcon%rows(cx + 2, :rows_gcon%count)) < -1.99_wp, &

@@ -40,7 +40,9 @@ contains
     !> along z. Its centre follows s e at every row, and the force the motion exerts on it along
     !> e is m (s'' - g.e) = m (s'' + g/2): the joint's other reactions are normal to e. The same
     !> motion as a VELOCITY (s', ICDISP = -150) and as an ACCELERATION (s'', ICDISP, ICVEL =
-    !> 20 pi, a number) gives the same rows: their integrals are exact.
+    !> 20 pi, a number) gives the same rows: their integrals are exact. The MOTION's reaction
+    !> columns (motion1_fx ...) are its statement's, and along e they are the driving force;
+    !> the summary names it MOTION/1 (line 8), never by its UCON's generated id.
     subroutine test_slider(error)
         type(error_type), allocatable, intent(out) :: error
         !> The position constraint is held by each step's Newton iteration: measured 3.1e-11 m
@@ -68,7 +70,8 @@ contains
         type(job_result_type) :: result
         type(history_type) :: rows
         real(wp) :: worst, worst_force, t, s, s2
-        integer :: k, m, cx, cf
+        real(wp) :: worst_split
+        integer :: k, m, cx, cf, cr
 
         do m = 1, size(motions)
             call run_text("motion_slider.adm", head // trim(motions(m)) // tail, result, rows, &
@@ -79,17 +82,31 @@ contains
             if (allocated(error)) return
             cx = result%summary%layout%column("X_2")
             cf = result%summary%layout%column("motion1_force")
-            call check(error, cx > 0 .and. cf > 0, "columns X_2 and motion1_force")
+            cr = result%summary%layout%column("motion1_fx")
+            call check(error, cx > 0 .and. cf > 0 .and. cr > 0, "columns X_2, motion1_force " &
+                & // "and motion1_fx")
+            if (allocated(error)) return
+            call check(error, index(result%summary%ucon_labels, "MOTION/1 (line 8)") > 0 &
+                & .and. index(result%summary%ucon_labels, "UCON") == 0, "the summary's words " &
+                & // "for the constraints: " // result%summary%ucon_labels)
             if (allocated(error)) return
             worst = 0.0_wp
             worst_force = 0.0_wp
+            worst_split = 0.0_wp
             do k = 1, rows%count
                 t = rows%rows(1, k)
                 s = (-150.0_wp + 10.0_wp*sin(2.0_wp*pi*t))*1.0e-3_wp
                 s2 = -10.0e-3_wp*(2.0_wp*pi)**2*sin(2.0_wp*pi*t)
                 worst = max(worst, norm2(rows%rows(cx:cx + 2, k) - s*axis))
                 worst_force = max(worst_force, abs(rows%rows(cf, k) - 2.0_wp*(s2 + g/2.0_wp)))
+                worst_split = max(worst_split, abs(dot_product(rows%rows(cr:cr + 2, k), axis) &
+                    & - rows%rows(cf, k)))
             end do
+            ! both from the one multiplier: the same tolerance as the force's
+            call check(error, worst_split <= tol_force, "run " // to_text(m) // ": largest " &
+                & // "difference of motion1_fx..fz along e from motion1_force " &
+                & // to_text(worst_split) // " N")
+            if (allocated(error)) return
             call check(error, worst <= tol_position, "run " // to_text(m) // ": largest " &
                 & // "distance of the centre from s(t) e " // to_text(worst) // " m")
             if (allocated(error)) return
