@@ -149,17 +149,8 @@ contains
         integer :: source, copy, stat
         logical :: in_run
 
-        open(newunit=source, file=source_path, status="old", action="read", iostat=stat)
-        if (stat /= 0) then
-            call fatal_error(error, source_path // ": cannot read", stat_io)
-            return
-        end if
-        open(newunit=copy, file=path, status="replace", action="write", iostat=stat)
-        if (stat /= 0) then
-            close(source)
-            call fatal_error(error, path // ": cannot write", stat_io)
-            return
-        end if
+        call open_copy(source_path, path, source, copy, error)
+        if (allocated(error)) return
         in_run = .false.
         do
             read(source, '(a)', iostat=stat) line
@@ -200,17 +191,8 @@ contains
         integer :: source, copy, stat, cut
         logical :: skipping
 
-        open(newunit=source, file=source_path, status="old", action="read", iostat=stat)
-        if (stat /= 0) then
-            call fatal_error(error, source_path // ": cannot read", stat_io)
-            return
-        end if
-        open(newunit=copy, file=path, status="replace", action="write", iostat=stat)
-        if (stat /= 0) then
-            close(source)
-            call fatal_error(error, path // ": cannot write", stat_io)
-            return
-        end if
+        call open_copy(source_path, path, source, copy, error)
+        if (allocated(error)) return
         skipping = .false.
         read(source, '(a)', iostat=stat) line
         ! the title line, whatever it holds
@@ -247,6 +229,26 @@ contains
         close(copy, iostat=stat)
         if (stat /= 0) call fatal_error(error, path // ": cannot write", stat_io)
     end subroutine write_dataset_with_settings
+
+    !> Open source_path to read (unit source) and path to write anew (unit copy); an error
+    !> names the file that cannot be opened (neither is left open then).
+    subroutine open_copy(source_path, path, source, copy, error)
+        character(len=*), intent(in) :: source_path, path
+        integer, intent(out) :: source, copy
+        type(error_type), allocatable, intent(out) :: error
+        integer :: stat
+
+        open(newunit=source, file=source_path, status="old", action="read", iostat=stat)
+        if (stat /= 0) then
+            call fatal_error(error, source_path // ": cannot read", stat_io)
+            return
+        end if
+        open(newunit=copy, file=path, status="replace", action="write", iostat=stat)
+        if (stat /= 0) then
+            close(source)
+            call fatal_error(error, path // ": cannot write", stat_io)
+        end if
+    end subroutine open_copy
 
     !> A number as the scene and dataset files write it: all 17 digits.
     function real_text(value) result(text)
