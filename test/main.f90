@@ -82,6 +82,7 @@ program tester
     use test_study_limits, only : collect_study_limits
     use test_sweep_guards, only : collect_sweep_guards
     use test_adm_outputs, only : collect_adm_outputs
+    use test_adm_system, only : collect_adm_system
     use test_adm_language, only : collect_adm_language
     use test_acf_reader, only : collect_acf_reader
     use test_acf_command, only : collect_acf_command
@@ -191,6 +192,7 @@ program tester
         & new_testsuite("study-limits", collect_study_limits), &
         & new_testsuite("sweep-guards", collect_sweep_guards), &
         & new_testsuite("adm-outputs", collect_adm_outputs), &
+        & new_testsuite("adm-system", collect_adm_system), &
         & new_testsuite("adm-language", collect_adm_language), &
         & new_testsuite("acf-reader", collect_acf_reader), &
         & new_testsuite("acf-command", collect_acf_command), &

@@ -137,6 +137,14 @@ contains
                 if (allocated(error)) return
             end do
         end if
+        if (allocated(model%motions)) then
+            do i = 1, size(model%motions)
+                where = place(model%file, model%motions(i)%line) // ": MOTION/" &
+                    & // to_text(model%motions(i)%id) // " FUNCTION"
+                call give_curves(model, curves, model%motions(i)%function, where, error)
+                if (allocated(error)) return
+            end do
+        end if
         call check_plants(model, ids, error)
     end subroutine resolve_variables
 
@@ -216,7 +224,7 @@ contains
         integer, allocatable, intent(inout) :: path(:)
         type(error_type), allocatable, intent(out) :: error
         character(len=:), allocatable :: loop
-        integer :: n, w, first, m
+        integer :: n, w, first, m, next
 
         state(v) = resolving
         path = [path, v]
@@ -234,9 +242,10 @@ contains
                     first = findloc(path, w, dim=1)
                     loop = ""
                     do m = first, size(path)
+                        next = w
+                        if (m < size(path)) next = path(m + 1)
                         loop = loop // variable_place(model, path(m)) // " reads VARVAL(" &
-                            & // to_text(model%variables(merge(path(m + 1), w, &
-                            & m < size(path)))%id) // "); "
+                            & // to_text(model%variables(next)%id) // "); "
                     end do
                     call fatal_error(error, loop // "an algebraic loop among VARIABLEs, which " &
                         & // "rollcon does not solve: write one of them without the others " &
