@@ -37,8 +37,8 @@ contains
 
     !> Every marker `expression` reads (i, j, k, l of each measure), as the model holds them;
     !> refused, after `where` ("file:line: GCON/1 FUNCTION"): a marker the dataset lacks, or
-    !> what cannot be read in `kind` ("a force's FUNCTION", "a constraint's FUNCTION": rollcon_measures'
-    !> input_refusal).
+    !> what cannot be read in `kind` ("a force's FUNCTION", "a constraint's FUNCTION":
+    !> rollcon_measures' input_refusal).
     subroutine expression_markers(adm, expression, where, kind, markers, error)
         type(adm_model_type), intent(in) :: adm
         type(expression_type), intent(in) :: expression

@@ -11,8 +11,9 @@
 !>   zero second derivative at both ends (the natural spline).
 !>
 !> Outside [x_1, x_n] the end interval's cubic goes on; with LINEAR_EXTRAPOLATE (the SPLINE's
-!> option) the curve goes on along the straight line of its value and slope at that end. A curve needs at least 4 points for
-!> CUBSPL and at least 2 for AKISPL (ADAMS asks for 4), its x strictly increasing.
+!> option) the curve goes on along the straight line of its value and slope at that end. A
+!> curve needs at least 4 points for CUBSPL and at least 2 for AKISPL (ADAMS asks for 4), its
+!> x strictly increasing.
 module rollcon_spline
     use rollcon_kinds, only : wp
     implicit none

@@ -33,7 +33,8 @@ module rollcon_adm_abbreviations
     type(place_type), parameter :: table(*) = [ &
         & place_type("statement", "ACcgrav COUpler END GCon GEar GForce INtegrator JOint JPrim " &
         & // "MARker MOtion Output " &
-        & // "PArt PInput POUtput SForce SImulate SPLine UCon UNits VAriable VForce DEbug EQuilibrium GRaphics IC " &
+        & // "PArt PInput POUtput SForce SImulate SPLine UCon UNits VAriable VForce DEbug " &
+        & // "EQuilibrium GRaphics IC " &
         & // "Kinematics LIst MRequest NOlist PReferences REQuest RESults"), &
         & place_type("command", "SImulate INTegrator Output STOp DEBug PReferences " &
         & // "EQuilibrium IC Kinematics"), &

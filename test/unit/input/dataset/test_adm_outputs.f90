@@ -279,7 +279,8 @@ contains
         call read_dataset("refusal.adm", lines, model, refused)
         expected = file // ": 4 statements are outside the supported subset (ACCGRAV, COUPLER," &
             & // " END, GCON, GEAR, GFORCE, INTEGRATOR, JOINT, JPRIM, MARKER, MOTION, OUTPUT," &
-            & // " PART, PINPUT, POUTPUT, SFORCE, SIMULATE, SPLINE, UCON, UNITS, VARIABLE, VFORCE;" &
+            & // " PART, PINPUT, POUTPUT, SFORCE, SIMULATE, SPLINE, UCON, UNITS, VARIABLE," &
+            & // " VFORCE;" &
             & // " read and not used: DEBUG, EQUILIBRIUM," &
             & // " GRAPHICS, IC, KINEMATICS, LIST, MREQUEST, NOLIST, PREFERENCES, REQUEST," &
             & // " RESULTS); nothing was run:" &
