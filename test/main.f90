@@ -82,6 +82,7 @@ program tester
     use test_study_limits, only : collect_study_limits
     use test_sweep_guards, only : collect_sweep_guards
     use test_adm_outputs, only : collect_adm_outputs
+    use test_adm_system, only : collect_adm_system
     use test_adm_language, only : collect_adm_language
     use test_acf_reader, only : collect_acf_reader
     use test_acf_command, only : collect_acf_command
@@ -101,6 +102,7 @@ program tester
     use test_gcon, only : collect_gcon
     use test_couplers, only : collect_couplers
     use test_motions, only : collect_motions
+    use test_system_runs, only : collect_system_runs
     use test_motion_partials, only : collect_motion_partials
     use test_redundancy, only : collect_redundancy
     use test_reactions, only : collect_reactions
@@ -191,6 +193,7 @@ program tester
         & new_testsuite("study-limits", collect_study_limits), &
         & new_testsuite("sweep-guards", collect_sweep_guards), &
         & new_testsuite("adm-outputs", collect_adm_outputs), &
+        & new_testsuite("adm-system", collect_adm_system), &
         & new_testsuite("adm-language", collect_adm_language), &
         & new_testsuite("acf-reader", collect_acf_reader), &
         & new_testsuite("acf-command", collect_acf_command), &
@@ -210,6 +213,7 @@ program tester
         & new_testsuite("gcon", collect_gcon), &
         & new_testsuite("couplers", collect_couplers), &
         & new_testsuite("motions", collect_motions), &
+        & new_testsuite("system-runs", collect_system_runs), &
         & new_testsuite("motion-partials", collect_motion_partials), &
         & new_testsuite("redundancy", collect_redundancy), &
         & new_testsuite("reactions", collect_reactions)]

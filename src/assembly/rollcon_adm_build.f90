@@ -31,6 +31,7 @@ module rollcon_adm_build
     use rollcon_problem, only : problem_type
     use rollcon_theta_watch, only : new_theta_watch
     use rollcon_request_watch, only : displacement_request_type, new_request_watch
+    use rollcon_variable_watch, only : watched_variable_type, new_variable_watch
     use rollcon_motion_watch, only : motion_watch_type
     use rollcon_adm_model, only : adm_model_type, adm_force_type, force_sforce, force_vforce
     use rollcon_adm_state, only : part_state
@@ -124,11 +125,37 @@ contains
         if (allocated(adm%motions)) then
             if (size(adm%motions) > 0) call problem%add_watch(motion_watch_type())
         end if
+        ! each VARIABLE's value, a column (rollcon_variable_watch)
+        call add_variable_watch(adm, problem, error)
+        if (allocated(error)) return
         ! a part flat at t = 0 starts in turned axes (docs/rebasing.md): its model part too
         call start_singular_parts(adm, problem, q0, u0, adm_theta_min, error)
         if (allocated(error)) return
         call check_forces_at_start(adm, problem, q0, u0, error)
     end subroutine build_adm_problem
+
+    !> A column for each VARIABLE of the dataset (none without them), its markers as the model
+    !> holds them.
+    subroutine add_variable_watch(adm, problem, error)
+        type(adm_model_type), intent(in) :: adm
+        type(problem_type), intent(inout) :: problem
+        type(error_type), allocatable, intent(out) :: error
+        type(watched_variable_type), allocatable :: variables(:)
+        integer :: k
+
+        if (.not. allocated(adm%variables)) return
+        if (size(adm%variables) == 0) return
+        allocate(variables(size(adm%variables)))
+        do k = 1, size(adm%variables)
+            variables(k)%id = adm%variables(k)%id
+            variables(k)%function = adm%variables(k)%function
+            call expression_markers(adm, variables(k)%function, place(adm%file, &
+                & adm%variables(k)%line) // ": VARIABLE/" // to_text(adm%variables(k)%id) &
+                & // " FUNCTION", "a VARIABLE's FUNCTION", variables(k)%markers, error)
+            if (allocated(error)) return
+        end do
+        call problem%add_watch(new_variable_watch(variables, adm%units%length, adm%units%time))
+    end subroutine add_variable_watch
 
     !> The dataset's REQUEST/id, DISPLACEMENT statements with their markers as the model holds
     !> them; a J or RM not given is a marker at the ground origin with ground axes.

@@ -16,7 +16,7 @@ module rollcon_adm_constraints
     use rollcon_rotation, only : cross
     use rollcon_expression, only : expression_type, expression_input_type, evaluate_expression, &
         & op_constant, op_input, op_multiply, op_add, op_subtract, quantity_names, quantity_dx, &
-        & quantity_ax, op_akispl, op_cubspl, spline_id_of
+        & quantity_ax
     use rollcon_marker, only : marker_type, marker_motion
     use rollcon_measures, only : expression_input_values, input_refusal, input_text
     use rollcon_model, only : model_type
@@ -36,10 +36,9 @@ module rollcon_adm_constraints
 contains
 
     !> Every marker `expression` reads (i, j, k, l of each measure), as the model holds them;
-    !> refused, after `where` ("file:line: GCON/1 FUNCTION"): a marker the dataset lacks, a
-    !> curve (AKISPL, CUBSPL: SPLINE statements are not in the subset), or what cannot be read
-    !> in `kind` ("a force's FUNCTION", "a constraint's FUNCTION": rollcon_measures'
-    !> input_refusal).
+    !> refused, after `where` ("file:line: GCON/1 FUNCTION"): a marker the dataset lacks, or
+    !> what cannot be read in `kind` ("a force's FUNCTION", "a constraint's FUNCTION":
+    !> rollcon_measures' input_refusal).
     subroutine expression_markers(adm, expression, where, kind, markers, error)
         type(adm_model_type), intent(in) :: adm
         type(expression_type), intent(in) :: expression
@@ -47,17 +46,9 @@ contains
         type(marker_type), allocatable, intent(out) :: markers(:)
         type(error_type), allocatable, intent(out) :: error
         character(len=:), allocatable :: problem
-        integer :: n, m, ids(4), k
+        integer :: n, m, ids(4)
 
         allocate(markers(0))
-        do k = 1, size(expression%op)
-            if (expression%op(k) /= op_akispl .and. expression%op(k) /= op_cubspl) cycle
-            call fatal_error(error, where // ": " // merge("AKISPL", "CUBSPL", expression%op(k) &
-                & == op_akispl) // " reads SPLINE/" &
-                & // to_text(spline_id_of(expression%constant(k))) // ": SPLINE statements " &
-                & // "are not in the subset (docs/datasets.md)", stat_input)
-            return
-        end do
         do n = 1, size(expression%inputs)
             associate (input => expression%inputs(n))
                 problem = input_refusal(input, kind)

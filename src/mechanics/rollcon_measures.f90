@@ -31,7 +31,7 @@ module rollcon_measures
         & quantity_vx, quantity_wx, quantity_psi, quantity_dm, quantity_vm, quantity_vr, &
         & quantity_wm, quantity_ax, quantity_yaw, quantity_kind, kind_length, kind_velocity, &
         & kind_angular_velocity, kind_acceleration, kind_angular_acceleration, kind_element, &
-        & kind_element_force, quantity_names, quantity_accm, quantity_wdtm
+        & kind_element_force, quantity_names, quantity_accm, quantity_wdtm, quantity_varval
     use, intrinsic :: ieee_arithmetic, only : ieee_value, ieee_quiet_nan
     implicit none
     private
@@ -63,8 +63,8 @@ contains
     !> Why an input cannot be read in `place` ("a force's FUNCTION", "a constraint's
     !> FUNCTION"): "" for a measure of the state. Accelerations and forces are solved for with
     !> the motion, so reading them in a FUNCTION that gives a force or a constraint makes an
-    !> algebraic loop, which rollcon does not solve; VARVAL, DIF and DIF1 read statements
-    !> outside the subset.
+    !> algebraic loop, which rollcon does not solve; DIF and DIF1 read statements outside the
+    !> subset (a dataset's VARVALs are put in place before: rollcon_adm_variables).
     pure function input_refusal(input, place) result(reason)
         type(expression_input_type), intent(in) :: input
         character(len=*), intent(in) :: place
@@ -80,8 +80,13 @@ contains
                 & // "for the forces; read in " // place // " (which gives a force or a " &
                 & // "constraint) it makes an algebraic loop rollcon does not solve"
         case (kind_element)
-            reason = name // ": VARIABLE and DIFF statements are not in the subset " &
-                & // "(docs/datasets.md)"
+            if (input%quantity == quantity_varval) then
+                reason = name // ": a VARIABLE's value, read only where the dataset's " &
+                    & // "VARIABLEs are put in place (rollcon_adm_variables)"
+            else
+                reason = name // ": DIFF statements (user differential equations, read by " &
+                    & // "DIF and DIF1) are not in the subset (docs/datasets.md)"
+            end if
         case default
             reason = name // ": a force, which rollcon solves for together with the motion " &
                 & // "(a reaction, or a force that may depend on this one); read in " // place &

@@ -10,8 +10,10 @@
 !> - CUBSPL: the interpolating cubic spline with continuous first and second derivatives and
 !>   zero second derivative at both ends (the natural spline).
 !>
-!> Outside [x_1, x_n] the end interval's cubic goes on. A curve needs at least 4 points for
-!> CUBSPL and at least 2 for AKISPL (ADAMS asks for 4), its x strictly increasing.
+!> Outside [x_1, x_n] the end interval's cubic goes on; with LINEAR_EXTRAPOLATE (the SPLINE's
+!> option) the curve goes on along the straight line of its value and slope at that end. A
+!> curve needs at least 4 points for CUBSPL and at least 2 for AKISPL (ADAMS asks for 4), its
+!> x strictly increasing.
 module rollcon_spline
     use rollcon_kinds, only : wp
     implicit none
@@ -26,6 +28,8 @@ module rollcon_spline
     type :: spline_type
         !> The SPLINE's id
         integer :: id = 0
+        !> LINEAR_EXTRAPOLATE: beyond the end points, the end's tangent line
+        logical :: linear = .false.
         !> The points, x strictly increasing
         real(wp), allocatable :: x(:), y(:)
         !> b, c, d of each interval (n - 1 of them; the last row repeats the last interval
@@ -36,12 +40,15 @@ module rollcon_spline
 contains
 
     !> The spline of points (x, y); `problem` is "" or why they cannot be fitted (fewer than
-    !> 2 points, x not strictly increasing, a value not finite).
-    pure subroutine new_spline(id, x, y, spline, problem)
+    !> 2 points, x not strictly increasing, a value not finite). With `linear_extrapolate`
+    !> true, the curve beyond its ends is the end's tangent line (default false: the end
+    !> interval's cubic).
+    pure subroutine new_spline(id, x, y, spline, problem, linear_extrapolate)
         integer, intent(in) :: id
         real(wp), intent(in) :: x(:), y(:)
         type(spline_type), intent(out) :: spline
         character(len=:), allocatable, intent(out) :: problem
+        logical, intent(in), optional :: linear_extrapolate
         integer :: n
 
         problem = ""
@@ -55,6 +62,7 @@ contains
             return
         end if
         spline%id = id
+        if (present(linear_extrapolate)) spline%linear = linear_extrapolate
         spline%x = x
         spline%y = y
         allocate(spline%b(n - 1, 2), spline%c(n - 1, 2), spline%d(n - 1, 2))
@@ -142,8 +150,8 @@ contains
         integer, intent(in) :: method
         real(wp), intent(in) :: x
         real(wp) :: values(0:3)
-        real(wp) :: s, b, c, d
-        integer :: low, high, mid
+        real(wp) :: s, b, c, d, h
+        integer :: low, high, mid, n
 
         ! the interval holding x (the first or last beyond the ends)
         low = 1
@@ -160,6 +168,17 @@ contains
         b = spline%b(low, method)
         c = spline%c(low, method)
         d = spline%d(low, method)
+        n = size(spline%x)
+        if (spline%linear .and. x < spline%x(1)) then
+            values = [spline%y(1) + s*b, b, 0.0_wp, 0.0_wp]
+            return
+        else if (spline%linear .and. x > spline%x(n)) then
+            ! the slope at the last point, of the last interval's cubic
+            h = spline%x(n) - spline%x(low)
+            b = b + h*(2.0_wp*c + 3.0_wp*h*d)
+            values = [spline%y(n) + (x - spline%x(n))*b, b, 0.0_wp, 0.0_wp]
+            return
+        end if
         values(0) = spline%y(low) + s*(b + s*(c + s*d))
         values(1) = b + s*(2.0_wp*c + 3.0_wp*s*d)
         values(2) = 2.0_wp*c + 6.0_wp*s*d

@@ -3,13 +3,15 @@
 !> written by the watches, recognised by a reader of the CSV. A rim contact's six
 !> (rollcon_contact_watch), the basis of every part a re-basing run records
 !> (rollcon_theta_watch), the six of each displacement request (rollcon_request_watch), the
-!> force or torque of each MOTION (rollcon_motion_watch), and the six of each statement's
+!> force or torque of each MOTION (rollcon_motion_watch), the value of each VARIABLE
+!> (rollcon_variable_watch), and the six of each statement's
 !> reaction and of each force request (rollcon_reaction_watch).
 module rollcon_watch_columns
     implicit none
     private
 
     public :: contact_names, basis_pattern, request_column_patterns, motion_column_patterns
+    public :: variable_column_patterns
     public :: reaction_suffixes, reaction_column_patterns
 
     !> A rim contact's columns, in order: the constraint force on the part Fx, Fy, Fz [N]
@@ -27,6 +29,10 @@ module rollcon_watch_columns
     !> along the axis it drives, or the torque [N m] about it for an angle
     character(len=*), parameter :: motion_column_patterns(2) = [character(len=16) :: &
         & "motion<n>_force", "motion<n>_torque"]
+
+    !> A VARIABLE's column ("<n>": the VARIABLE's id): its FUNCTION's value, in the dataset's
+    !> units (rollcon_variable_watch)
+    character(len=*), parameter :: variable_column_patterns(1) = [character(len=6) :: "var<n>"]
 
     !> A reaction's columns after its stem: force fx, fy, fz [N] and torque tx, ty, tz [N m],
     !> ground axes

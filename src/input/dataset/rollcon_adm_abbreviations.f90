@@ -33,12 +33,17 @@ module rollcon_adm_abbreviations
     type(place_type), parameter :: table(*) = [ &
         & place_type("statement", "ACcgrav COUpler END GCon GEar GForce INtegrator JOint JPrim " &
         & // "MARker MOtion Output " &
-        & // "PArt SForce SImulate UCon UNits VForce DEbug EQuilibrium GRaphics IC " &
+        & // "PArt PInput POUtput SForce SImulate SPLine UCon UNits VAriable VForce DEbug " &
+        & // "EQuilibrium GRaphics IC " &
         & // "Kinematics LIst MRequest NOlist PReferences REQuest RESults"), &
         & place_type("command", "SImulate INTegrator Output STOp DEBug PReferences " &
         & // "EQuilibrium IC Kinematics"), &
         & place_type("PART", "Ground Mass Cm IP Qg Reuler VX VY VZ WX WY WZ Exact"), &
         & place_type("MARKER", "PArt Qp Reuler"), &
+        & place_type("VARIABLE", "Function Ic Routine"), &
+        & place_type("SPLINE", "X Y Z Linear_extrapolate"), &
+        & place_type("PINPUT", "Variables"), &
+        & place_type("POUTPUT", "Variables"), &
         & place_type("UCON", "Function Routine"), &
         & place_type("ACCGRAV", "Igrav Jgrav Kgrav"), &
         & place_type("UNITS", "Force Mass Length Time System"), &

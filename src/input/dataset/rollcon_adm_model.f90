@@ -11,6 +11,7 @@ module rollcon_adm_model
     use rollcon_adm_joints, only : adm_joint_type
     use rollcon_adm_couplers, only : adm_gcon_type, adm_coupler_type, adm_gear_type
     use rollcon_adm_motions, only : adm_motion_type
+    use rollcon_adm_system, only : adm_variable_type, adm_spline_data_type, adm_plant_type
     implicit none
     private
 
@@ -195,6 +196,12 @@ module rollcon_adm_model
         type(adm_gear_type), allocatable :: gears(:)
         !> MOTION statements, in the order of the file (rollcon_adm_motions)
         type(adm_motion_type), allocatable :: motions(:)
+        !> VARIABLE, SPLINE, and PINPUT and POUTPUT statements, each in the order of the file
+        !> (rollcon_adm_system); the expressions above read the VARIABLEs' in place
+        !> (rollcon_adm_variables)
+        type(adm_variable_type), allocatable :: variables(:)
+        type(adm_spline_data_type), allocatable :: splines(:)
+        type(adm_plant_type), allocatable :: plants(:)
         !> Gravitational acceleration, ground axes [m/s^2] (zero without ACCGRAV)
         real(wp) :: gravity(3) = 0.0_wp
         type(adm_run_type) :: run

@@ -8,7 +8,7 @@ module rollcon_adm_motions
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type, fatal_error, stat_input
     use rollcon_text, only : to_text
-    use rollcon_expression, only : expression_type
+    use rollcon_expression, only : expression_type, quantity_varval
     use rollcon_adm_lexer, only : adm_statement_type
     use rollcon_adm_keywords, only : argument_key, arg_place, read_integer, read_reals, &
         & argument_text
@@ -151,7 +151,8 @@ contains
         end if
     end subroutine read_motion
 
-    !> FUNCTION=e: an expression of TIME alone (ADAMS's rule for a MOTION); USER(...) (a
+    !> FUNCTION=e: an expression of TIME alone (ADAMS's rule for a MOTION), VARVAL(id) of a
+    !> VARIABLE of TIME alone among it; USER(...) (a
     !> MOTSUB) is not supported.
     subroutine read_function(statement, k, at, function, error)
         type(adm_statement_type), intent(in) :: statement
@@ -173,10 +174,12 @@ contains
         end if
         call compile_expression(text, at, function, error)
         if (allocated(error)) return
-        if (size(function%inputs) > 0) then
+        ! a VARIABLE it reads is judged once every VARIABLE is read (rollcon_adm_variables)
+        if (any(function%inputs%quantity /= quantity_varval)) then
             call fatal_error(error, at // ": a MOTION's function is an expression of TIME " &
                 & // "alone (ADAMS's rule: the motion it prescribes may not depend on the " &
-                & // "state), but it reads " // to_text(size(function%inputs)) &
+                & // "state), but it reads " &
+                & // to_text(count(function%inputs%quantity /= quantity_varval)) &
                 & // " state function(s)", stat_input)
         end if
     end subroutine read_function

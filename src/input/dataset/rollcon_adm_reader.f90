@@ -24,6 +24,8 @@ module rollcon_adm_reader
     use rollcon_adm_joints, only : read_joint
     use rollcon_adm_couplers, only : read_gcon, read_coupler, read_gear
     use rollcon_adm_motions, only : read_motion
+    use rollcon_adm_system, only : read_variable, read_spline, read_plant
+    use rollcon_adm_variables, only : resolve_variables, add_plant_warning
     use rollcon_adm_outside, only : outside_reason
     use rollcon_adm_outputs, only : output_statement_names, output_needs_id, &
         & read_output_statement, unused_warning, answer_force_requests
@@ -91,8 +93,12 @@ contains
         if (present(run_given)) needed = .not. run_given
         call check_references(model, error, simulate_needed=needed)
         if (allocated(error)) return
+        ! VARVAL(id) read in place, the curves given to AKISPL and CUBSPL, PINPUT and POUTPUT
+        call resolve_variables(model, error)
+        if (allocated(error)) return
         call answer_force_requests(model)
         model%warning = unused_warning(model)
+        call add_plant_warning(model)
     end subroutine read_adm_lines
 
     !> Every statement in file order, up to END; parts, markers, UCONs, forces, joints and the
@@ -109,8 +115,8 @@ contains
         character(len=:), allocatable :: name
         !> The ids of the parts, markers, UCONs and forces (list_of), and of the statements
         !> read and not used that take one (output_key)
-        type(id_index_type) :: ids(9), output_ids
-        integer :: i, n(9), k, previous
+        type(id_index_type) :: ids(12), output_ids
+        integer :: i, n(12), k, previous
         logical :: seen(size(statement_names)), repeated
 
         do i = 1, size(text%statements)
@@ -126,11 +132,15 @@ contains
         allocate(model%joints(count(names == "JOINT" .or. names == "JPRIM")))
         allocate(model%gcons(count(names == "GCON")), model%couplers(count(names == "COUPLER")), &
             & model%gears(count(names == "GEAR")), model%motions(count(names == "MOTION")))
+        allocate(model%variables(count(names == "VARIABLE")), &
+            & model%splines(count(names == "SPLINE")), &
+            & model%plants(count(names == "PINPUT" .or. names == "POUTPUT")))
         ids = [new_id_index(size(model%parts)), new_id_index(size(model%markers)), &
             & new_id_index(size(model%ucons)), new_id_index(size(model%forces)), &
             & new_id_index(size(model%joints)), new_id_index(size(model%gcons)), &
             & new_id_index(size(model%couplers)), new_id_index(size(model%gears)), &
-            & new_id_index(size(model%motions))]
+            & new_id_index(size(model%motions)), new_id_index(size(model%variables)), &
+            & new_id_index(size(model%splines)), new_id_index(size(model%plants))]
         output_ids = new_id_index(count([(name_index(names(i), output_statement_names) > 0, &
             & i = 1, size(names))]))
         n = 0
@@ -180,6 +190,9 @@ contains
         model%couplers = model%couplers(:n(7))
         model%gears = model%gears(:n(8))
         model%motions = model%motions(:n(9))
+        model%variables = model%variables(:n(10))
+        model%splines = model%splines(:n(11))
+        model%plants = model%plants(:n(12))
         model%requests = model%requests(:model%request_count)
         model%other_requests = model%other_requests(:model%other_request_count)
         model%unused = model%unused(:model%unused_count)
@@ -187,7 +200,8 @@ contains
     end subroutine read_statements
 
     !> The list a statement's element goes to: 1 parts, 2 markers, 3 UCONs, 4 forces, 5 joints,
-    !> 6 GCONs, 7 COUPLERs, 8 GEARs, 9 MOTIONs; 0 none.
+    !> 6 GCONs, 7 COUPLERs, 8 GEARs, 9 MOTIONs, 10 VARIABLEs, 11 SPLINEs, 12 PINPUTs and
+    !> POUTPUTs; 0 none.
     pure integer function list_of(name) result(k)
         character(len=*), intent(in) :: name
 
@@ -210,6 +224,12 @@ contains
             k = 8
         case ("MOTION")
             k = 9
+        case ("VARIABLE")
+            k = 10
+        case ("SPLINE")
+            k = 11
+        case ("PINPUT", "POUTPUT")
+            k = 12
         case default
             k = 0
         end select
@@ -223,7 +243,7 @@ contains
 
         ! a JOINT and a JPRIM, or forces of different kinds, may share an id
         key = 4_int64*int(id, int64) + name_index(name, ["SFORCE", "VFORCE", "GFORCE"]) &
-            & + name_index(name, ["JOINT", "JPRIM"])
+            & + name_index(name, ["JOINT", "JPRIM"]) + name_index(name, ["PINPUT ", "POUTPUT"])
     end function list_key
 
     !> The key of a statement read and not used (one of output_statement_names) in its index:
@@ -252,7 +272,7 @@ contains
         type(adm_statement_type), intent(in) :: statement
         logical, intent(in) :: repeated
         type(adm_model_type), intent(inout) :: model
-        integer, intent(inout) :: n(9)
+        integer, intent(inout) :: n(12)
         type(error_type), allocatable, intent(out) :: error
         character(len=:), allocatable :: where
 
@@ -298,6 +318,16 @@ contains
         case ("MOTION")
             n(9) = n(9) + 1
             call read_motion(path, where, statement, model%units, model%motions(n(9)), error)
+        case ("VARIABLE")
+            n(10) = n(10) + 1
+            call read_variable(path, where, statement, model%variables(n(10)), error)
+        case ("SPLINE")
+            n(11) = n(11) + 1
+            call read_spline(path, where, statement, model%splines(n(11)), error)
+        case ("PINPUT", "POUTPUT")
+            n(12) = n(12) + 1
+            call read_plant(path, where, statement, name == "POUTPUT", model%plants(n(12)), &
+                & error)
         case ("SIMULATE")
             call read_simulate(path, where, statement, model%units, model%run, error)
         case ("INTEGRATOR")
@@ -417,7 +447,8 @@ contains
         character(len=*), intent(in) :: name
 
         needs_id = any(name == [character(len=10) :: "PART", "MARKER", "UCON", "SFORCE", &
-            & "VFORCE", "GFORCE", "JOINT", "JPRIM", "GCON", "COUPLER", "GEAR", "MOTION"]) &
+            & "VFORCE", "GFORCE", "JOINT", "JPRIM", "GCON", "COUPLER", "GEAR", "MOTION", &
+            & "VARIABLE", "SPLINE", "PINPUT", "POUTPUT"]) &
             & .or. output_needs_id(name)
     end function needs_id
 

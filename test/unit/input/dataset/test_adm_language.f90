@@ -168,7 +168,8 @@ contains
 
         replaced(1) = "S/5, I=3, J=4, TRANSLATION, FUNCTION=TIME"
         expected(1) = ":10: 'S' is too short an abbreviation of a statement: the shortest ADAMS" &
-            & // " takes are SF for SFORCE, SI for SIMULATE (docs/datasets.md, Abbreviations)"
+            & // " takes are SF for SFORCE, SI for SIMULATE, SPL for SPLINE (docs/datasets.md, " &
+            & // "Abbreviations)"
         replaced(2) = "G/5, I=3, FX=0, FY=0, FZ=1, TX=0, TY=0, TZ=0"
         expected(2) = ":10: 'G' is too short an abbreviation of a statement: the shortest ADAMS" &
             & // " takes are GC for GCON, GE for GEAR, GF for GFORCE, GR for GRAPHICS" &
@@ -333,9 +334,9 @@ contains
     end subroutine test_table_unambiguous
 
     !> A spring-damper as ADAMS/View exports one (an SFORCE TRANSLATIONAL whose FUNCTION goes
-    !> on over comma lines at depth 0, a VARIABLE, a GRAPHICS SPDP with LD): refused for its
-    !> elements rollcon lacks only, naming them — the VARIABLE statement — and read as it is
-    !> without it: the FUNCTION reads the two-marker measures DM(10,20) and VR(10,20).
+    !> on over comma lines at depth 0, a VARIABLE, a GRAPHICS SPDP with LD): read as it is, its
+    !> VARIABLE reading DM(10,20) and its FUNCTION the two-marker measures DM(10,20) and
+    !> VR(10,20).
     subroutine test_springdamper(error)
         type(error_type), allocatable, intent(out) :: error
         character(len=96) :: lines(15)
@@ -352,16 +353,16 @@ contains
             & ", - 1.0*VR(10,20)", ", + 0.0", "VARIABLE/1, FUNCTION = DM(10,20) - 2.0", &
             & "GRAPHICS/1, SPDP, I = 10, J = 20, DA = 0.1, DB = 0.2, DC = 0.16, LD = 1.34", &
             & "ACCGRAV/KGRAV = -9.80665", "SIMULATE/DYNAMIC, END = 5, STEPS = 500", "END"]
-        call read_dataset("springdamper.adm", lines, model, refused)
-        call check(error, allocated(refused), "the export read with its VARIABLE")
-        if (allocated(error)) return
-        call check(error, index(refused%message, file // ":11: 'VARIABLE' is not a statement " &
-            & // "of the supported subset") == 1 .and. index(refused%message, "system and data " &
-            & // "elements are not in the subset") > 0, refused%message)
-        if (allocated(error)) return
-        deallocate(refused)
-        lines(11) = "! VARIABLE/1 left out"
         call read_dataset("springdamper.adm", lines, model, error)
+        if (allocated(error)) return
+        call check(error, size(model%variables) == 1, "the export's VARIABLE read")
+        if (allocated(error)) return
+        call check(error, model%variables(1)%id == 1 .and. model%variables(1)%line == 11 &
+            & .and. size(model%variables(1)%function%inputs) == 1, "VARIABLE/1 at line 11 " &
+            & // "reads one measure")
+        if (allocated(error)) return
+        call check(error, model%variables(1)%function%inputs(1)%marker == 10 .and. &
+            & model%variables(1)%function%inputs(1)%j == 20, "VARIABLE/1 reads DM(10,20)")
         if (allocated(error)) return
         call check(error, size(model%forces(1)%functions(1)%inputs) == 2, &
             & "the FUNCTION reads two measures, DM(10,20) and VR(10,20)")

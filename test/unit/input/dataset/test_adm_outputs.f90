@@ -279,7 +279,9 @@ contains
         call read_dataset("refusal.adm", lines, model, refused)
         expected = file // ": 4 statements are outside the supported subset (ACCGRAV, COUPLER," &
             & // " END, GCON, GEAR, GFORCE, INTEGRATOR, JOINT, JPRIM, MARKER, MOTION, OUTPUT," &
-            & // " PART, SFORCE, SIMULATE, UCON, UNITS, VFORCE; read and not used: DEBUG, EQUILIBRIUM," &
+            & // " PART, PINPUT, POUTPUT, SFORCE, SIMULATE, SPLINE, UCON, UNITS, VARIABLE," &
+            & // " VFORCE;" &
+            & // " read and not used: DEBUG, EQUILIBRIUM," &
             & // " GRAPHICS, IC, KINEMATICS, LIST, MREQUEST, NOLIST, PREFERENCES, REQUEST," &
             & // " RESULTS); nothing was run:" &
             & // nl // "  " // file // ":13: PTCV/9: rollcon's constraints are UCONs, JOINTs," &

@@ -14,7 +14,8 @@ module test_adm_refusals
     !> The supported statements, as a refusal lists them
     character(len=*), parameter :: supported = &
         & "(ACCGRAV, COUPLER, END, GCON, GEAR, GFORCE, INTEGRATOR, JOINT, JPRIM, MARKER," &
-        & // " MOTION, OUTPUT, PART, SFORCE, SIMULATE, UCON, UNITS, VFORCE)"
+        & // " MOTION, OUTPUT, PART, PINPUT, POUTPUT, SFORCE, SIMULATE, SPLINE, UCON, UNITS," &
+        & // " VARIABLE, VFORCE)"
 
 contains
 
@@ -58,10 +59,10 @@ contains
         expected(4) = ":7: 'BUSHING' is not a statement of the supported subset " // supported &
             & // "; force elements other than SFORCE, VFORCE and GFORCE are not in the" &
             & // " subset: write the force as one of them with a FUNCTION expression"
-        replaced(5) = "VARIABLE/1, FUNCTION=TIME"
-        expected(5) = ":7: 'VARIABLE' is not a statement of the supported subset " // supported &
-            & // "; system and data elements are not in the subset: FUNCTION expressions" &
-            & // " read TIME and the measures of markers (DX(i, j, k) ... ROLL(i, j)) only"
+        replaced(5) = "ARRAY/1, NUMBERS=1, 2"
+        expected(5) = ":7: 'ARRAY' is not a statement of the supported subset " // supported &
+            & // "; ARRAY and STRING are not in the subset: FUNCTION expressions read TIME," &
+            & // " the measures of markers, VARVAL(id) and the SPLINEs of AKISPL and CUBSPL"
         replaced(6) = "FLEX_BODY/1"
         expected(6) = ":7: 'FLEX_BODY' is not a statement of the supported subset " // supported &
             & // "; rollcon's bodies are rigid PARTs"
@@ -69,7 +70,8 @@ contains
         expected(7) = ":7: 'FOO' is not a statement of the supported subset " // supported
         replaced(8) = "S/1, I=3"
         expected(8) = ":7: 'S' is too short an abbreviation of a statement: the shortest ADAMS" &
-            & // " takes are SF for SFORCE, SI for SIMULATE (docs/datasets.md, Abbreviations)"
+            & // " takes are SF for SFORCE, SI for SIMULATE, SPL for SPLINE (docs/datasets.md, " &
+            & // "Abbreviations)"
         replaced(9) = "END|PART/6, MASS=1"
         expected(9) = ":15: a statement after END"
         replaced(10) = "INTEGRATOR/ERROR=1e-8|INTEG/ERROR=1e-9"
