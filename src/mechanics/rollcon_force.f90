@@ -8,7 +8,7 @@ module rollcon_force
     use rollcon_rotation, only : rotation_matrix, cross, times
     use rollcon_expression, only : switching_times, evaluate_expression, max_inputs
     use rollcon_marker_force, only : marker_force_type, marker_force_loads, marker_force_values, &
-        & markers_coincide
+        & markers_coincide, kind_spring
     use rollcon_text, only : to_text
     use, intrinsic :: ieee_arithmetic, only : ieee_is_finite
     implicit none
@@ -222,9 +222,10 @@ contains
     !> True when no force acts after time (up to end_time), so that the energy is conserved
     !> there: a constant force is zero, a pulse has ended, and a force statement's expressions
     !> are zero at idle_samples times spread over (time, end_time] for two unrelated sets of
-    !> values of the state functions they read. A sampled check, conservative in one
-    !> direction only: an expression that is zero at every sample but not in between (a pulse
-    !> falling between samples) would pass, which no expression of one switching time can be.
+    !> values of the state functions they read; a SPRINGDAMPER or BUSHING is never idle. A
+    !> sampled check, conservative in one direction only: an expression that is zero at every
+    !> sample but not in between (a pulse falling between samples) would pass, which no
+    !> expression of one switching time can be.
     pure logical function forces_idle_after(forces, time, end_time) result(idle)
         type(applied_force_type), intent(in) :: forces(:)
         !> From this time [s] to end_time [s]
@@ -243,6 +244,8 @@ contains
                     & .or. forces(i)%start + forces(i)%duration <= time
             case (profile_statement)
                 associate (statement => forces(i)%statement)
+                    ! a SPRINGDAMPER or BUSHING does work whenever its markers move apart
+                    if (statement%kind == kind_spring) idle = .false.
                     do k = 1, size(statement%functions)
                         if (.not. statement%given(k)) cycle
                         do set = 1, size(sample_inputs)

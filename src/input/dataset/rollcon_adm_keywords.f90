@@ -26,9 +26,10 @@ module rollcon_adm_keywords
 
     !> The statements of the subset that are simulated (rollcon_adm_outputs has those read and
     !> not used)
-    character(len=*), parameter :: statement_names(18) = [character(len=10) :: "ACCGRAV", &
-        & "COUPLER", "END", "GCON", "GEAR", "GFORCE", "INTEGRATOR", "JOINT", "JPRIM", "MARKER", &
-        & "MOTION", "OUTPUT", "PART", "SFORCE", "SIMULATE", "UCON", "UNITS", "VFORCE"]
+    character(len=*), parameter :: statement_names(21) = [character(len=12) :: "ACCGRAV", &
+        & "BUSHING", "COUPLER", "END", "GCON", "GEAR", "GFORCE", "INTEGRATOR", "JOINT", "JPRIM", &
+        & "MARKER", "MOTION", "OUTPUT", "PART", "SFORCE", "SIMULATE", "SPRINGDAMPER", "UCON", &
+        & "UNITS", "VFORCE", "VTORQUE"]
 
 
 contains

@@ -15,20 +15,20 @@ module rollcon_adm_outside
     character(len=*), parameter :: reasons(kinds) = [character(len=160) :: &
         & "rollcon's constraints are UCONs, JOINTs, JPRIMs, GCONs, COUPLERs and GEARs: state " &
         & // "this one as a GCON expression, or as a UCON served by a UCOSUB (ucon/)", &
-        & "force elements other than SFORCE, VFORCE and GFORCE are not in the subset: write " &
-        & // "the force as one of them with a FUNCTION expression", &
+        & "force elements other than SFORCE, VFORCE, GFORCE, VTORQUE, SPRINGDAMPER and " &
+        & // "BUSHING are not in the subset: write the force as a GFORCE with FUNCTION " &
+        & // "expressions", &
         & "sensors change a run as it goes (stop it, change its step): not in the subset", &
         & "system and data elements are not in the subset: FUNCTION expressions read TIME and " &
         & // "the measures of markers (DX(i, j, k) ... ROLL(i, j)) only", &
         & "rollcon's bodies are rigid PARTs"]
     !> Statement names and the kind of each (statements of ADAMS's outputs are read:
     !> rollcon_adm_outputs)
-    character(len=*), parameter :: names(18) = [character(len=12) :: &
-        & "PTCV", "CVCV", "BEAM", "BUSHING", "FIELD", &
-        & "SPRINGDAMPER", "FRICTION", "CONTACT", "NFORCE", "VTORQUE", "SENSOR", "VARIABLE", &
-        & "DIFF", "ARRAY", "SPLINE", "STRING", "FLEX_BODY", "POINT_MASS"]
+    character(len=*), parameter :: names(15) = [character(len=12) :: &
+        & "PTCV", "CVCV", "BEAM", "FIELD", "FRICTION", "CONTACT", "NFORCE", "SENSOR", &
+        & "VARIABLE", "DIFF", "ARRAY", "SPLINE", "STRING", "FLEX_BODY", "POINT_MASS"]
     integer, parameter :: kind_of(size(names)) = [1, 1, 2, 2, 2, 2, 2, &
-        & 2, 2, 2, 3, 4, 4, 4, 4, 4, 5, 5]
+        & 3, 4, 4, 4, 4, 4, 5, 5]
 
 contains
 
