@@ -101,6 +101,7 @@ program tester
     use test_gcon, only : collect_gcon
     use test_couplers, only : collect_couplers
     use test_motions, only : collect_motions
+    use test_springs, only : collect_springs
     use test_motion_partials, only : collect_motion_partials
     use test_redundancy, only : collect_redundancy
     use test_reactions, only : collect_reactions
@@ -210,6 +211,7 @@ program tester
         & new_testsuite("gcon", collect_gcon), &
         & new_testsuite("couplers", collect_couplers), &
         & new_testsuite("motions", collect_motions), &
+        & new_testsuite("springs", collect_springs), &
         & new_testsuite("motion-partials", collect_motion_partials), &
         & new_testsuite("redundancy", collect_redundancy), &
         & new_testsuite("reactions", collect_reactions)]
