@@ -102,6 +102,7 @@ program tester
     use test_couplers, only : collect_couplers
     use test_motions, only : collect_motions
     use test_springs, only : collect_springs
+    use test_spring_partials, only : collect_spring_partials
     use test_motion_partials, only : collect_motion_partials
     use test_redundancy, only : collect_redundancy
     use test_reactions, only : collect_reactions
@@ -212,6 +213,7 @@ program tester
         & new_testsuite("couplers", collect_couplers), &
         & new_testsuite("motions", collect_motions), &
         & new_testsuite("springs", collect_springs), &
+        & new_testsuite("spring-partials", collect_spring_partials), &
         & new_testsuite("motion-partials", collect_motion_partials), &
         & new_testsuite("redundancy", collect_redundancy), &
         & new_testsuite("reactions", collect_reactions)]
