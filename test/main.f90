@@ -102,6 +102,7 @@ program tester
     use test_couplers, only : collect_couplers
     use test_motions, only : collect_motions
     use test_springs, only : collect_springs
+    use test_adm_springs, only : collect_adm_springs
     use test_spring_partials, only : collect_spring_partials
     use test_motion_partials, only : collect_motion_partials
     use test_redundancy, only : collect_redundancy
@@ -138,6 +139,7 @@ program tester
         & new_testsuite("adm-refusals", collect_adm_refusals), &
         & new_testsuite("adm-statements", collect_adm_statements), &
         & new_testsuite("adm-forces", collect_adm_forces), &
+        & new_testsuite("adm-springs", collect_adm_springs), &
         & new_testsuite("adm-build", collect_adm_build), &
         & new_testsuite("adm-joints", collect_adm_joints), &
         & new_testsuite("adm-joint-motions", collect_adm_joint_motions), &

@@ -36,7 +36,8 @@ contains
             & test_hanging_mass), &
             & new_unittest("rotational-springdamper-is-its-torsional-oscillation", &
             & test_torsion), &
-            & new_unittest("bushing-stiffnesses-and-dampings-one-by-one", test_bushing)]
+            & new_unittest("bushing-stiffnesses-and-dampings-one-by-one", test_bushing), &
+            & new_unittest("vtorque-turns-a-part-at-torque-over-inertia", test_vtorque)]
     end subroutine collect_springs
 
     !> x(t) of m x'' + c x' + k x = k x_e (an underdamped oscillator) from x(0) = x0 at rest
@@ -191,6 +192,44 @@ contains
             & // "springdamper1_tx ... _tz from the definition " // to_text(worst_torque) &
             & // " N m")
     end subroutine test_torsion
+
+    !> The part of test_torsion at rest, turned by VTORQUE/1, TX = 0.2 (ground axes: along its
+    !> z axis, Izz = 0.5 kg m^2) on it and its reaction on ground: its spin phi is
+    !> (TX/Izz) t^2/2 = 0.2 t^2 and its rate 0.4 t.
+    subroutine test_vtorque(error)
+        type(error_type), allocatable, intent(out) :: error
+        !> Measured at ERROR = 1e-9: 4e-16 (a constant acceleration, which the integrator's
+        !> polynomials hold exactly: rounding of the 0.8 rad); 1e-12 allows rounding only
+        real(wp), parameter :: tol_angle = 1.0e-12_wp
+        character(len=*), parameter :: text = "torque" // nl &
+            & // "UNITS/FORCE = NEWTON, MASS = KILOGRAM, LENGTH = METER, TIME = SECOND" // nl &
+            & // "PART/1, GROUND" // nl // "MARKER/10, PART = 1" // nl &
+            & // "PART/2, MASS = 1, CM = 20, IP = 2, 2.3, 0.5, REULER = 90D, 90D, 0D" &
+            & // nl // "MARKER/20, PART = 2" // nl &
+            & // "VTORQUE/1, I = 20, JFLOAT = 10, TX = 0.2, TY = 0, TZ = 0" // nl &
+            & // "INTEGRATOR/ERROR = 1e-9" // nl &
+            & // "SIMULATE/DYNAMIC, END = 2, STEPS = 20" // nl // "END"
+        type(job_result_type) :: result
+        type(history_type) :: rows
+        real(wp) :: worst, t
+        integer :: r, cphi, cw
+
+        call run_text("vtorque.adm", text, result, rows, error)
+        if (allocated(error)) return
+        call check(error, result%summary%status == status_completed .and. rows%count == 21, &
+            & "the run completes with 21 rows")
+        if (allocated(error)) return
+        cphi = result%summary%layout%column("phi_2")
+        cw = result%summary%layout%column("phidot_2")
+        worst = 0.0_wp
+        do r = 1, rows%count
+            t = rows%rows(1, r)
+            worst = max(worst, abs(rows%rows(cphi, r) - 0.2_wp*t**2), &
+                & abs(rows%rows(cw, r) - 0.4_wp*t))
+        end do
+        call check(error, worst <= tol_angle, "largest distance from phi = 0.2 t^2 " &
+            & // to_text(worst))
+    end subroutine test_vtorque
 
     !> BUSHING/1 between a 2 kg part (principal moments 2, 3, 4 kg m^2 about its CM marker's
     !> axes) and a ground marker of the same axes, turned (REULER 30D, 40D, 20D) so that J's
