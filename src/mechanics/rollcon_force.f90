@@ -171,6 +171,7 @@ contains
         real(wp), intent(in) :: time, q(:), u(:)
         character(len=:), allocatable :: message
         character(len=*), parameter :: slots(6) = ["FX", "FY", "FZ", "TX", "TY", "TZ"]
+        character(len=:), allocatable :: kind
         real(wp) :: force(3), moment(3), values(6)
         integer :: i, p, k
 
@@ -183,9 +184,12 @@ contains
                 if (allocated(forces(i)%name)) message = forces(i)%name
                 if (forces(i)%profile == profile_statement) then
                     if (markers_coincide(forces(i)%statement, q)) then
+                        ! the statement's own name: an SFORCE or a SPRINGDAMPER
+                        kind = "SFORCE"
+                        if (forces(i)%statement%kind == kind_spring) kind = "SPRINGDAMPER"
                         message = message // ": its I and J markers are at one point at t = " &
-                            & // to_text(time) // " s, where a translational SFORCE's line of " &
-                            & // "action (from J to I) is not defined"
+                            & // to_text(time) // " s, where a translational " // kind &
+                            & // "'s line of action (from J to I) is not defined"
                         return
                     end if
                     values = marker_force_values(forces(i)%statement, time, q, u)
