@@ -47,7 +47,9 @@ module rollcon
     use rollcon_force, only : applied_force_type, profile_constant, profile_half_sine, &
         & profile_statement, frame_body, frame_tilt
     use rollcon_marker_force, only : marker_force_type, kind_translation, kind_rotation, &
-        & kind_vector, kind_general
+        & kind_vector, kind_general, kind_spring, marker_force_action
+    use rollcon_spring_force, only : spring_type, spring_translational, spring_rotational, &
+        & spring_bushing
     use rollcon_expression, only : expression_type
     use rollcon_adm_expression_parser, only : compile_expression
     use rollcon_equations, only : equations_type

@@ -103,6 +103,9 @@ program tester
     use test_couplers, only : collect_couplers
     use test_motions, only : collect_motions
     use test_system_runs, only : collect_system_runs
+    use test_springs, only : collect_springs
+    use test_adm_springs, only : collect_adm_springs
+    use test_spring_partials, only : collect_spring_partials
     use test_motion_partials, only : collect_motion_partials
     use test_redundancy, only : collect_redundancy
     use test_reactions, only : collect_reactions
@@ -138,6 +141,7 @@ program tester
         & new_testsuite("adm-refusals", collect_adm_refusals), &
         & new_testsuite("adm-statements", collect_adm_statements), &
         & new_testsuite("adm-forces", collect_adm_forces), &
+        & new_testsuite("adm-springs", collect_adm_springs), &
         & new_testsuite("adm-build", collect_adm_build), &
         & new_testsuite("adm-joints", collect_adm_joints), &
         & new_testsuite("adm-joint-motions", collect_adm_joint_motions), &
@@ -214,6 +218,8 @@ program tester
         & new_testsuite("couplers", collect_couplers), &
         & new_testsuite("motions", collect_motions), &
         & new_testsuite("system-runs", collect_system_runs), &
+        & new_testsuite("springs", collect_springs), &
+        & new_testsuite("spring-partials", collect_spring_partials), &
         & new_testsuite("motion-partials", collect_motion_partials), &
         & new_testsuite("redundancy", collect_redundancy), &
         & new_testsuite("reactions", collect_reactions)]

@@ -25,7 +25,7 @@ module rollcon_adm_build
     use rollcon_rotation, only : rotation_matrix
     use rollcon_body, only : part_type
     use rollcon_marker_force, only : kind_translation, kind_rotation, kind_vector, &
-        & kind_general, marker_force_values, markers_coincide
+        & kind_general, kind_spring, marker_force_values, markers_coincide
     use rollcon_force, only : applied_force_type, profile_statement
     use rollcon_model, only : model_type, setup_model, served_by_model_ucosub, force_request_type
     use rollcon_problem, only : problem_type
@@ -33,7 +33,10 @@ module rollcon_adm_build
     use rollcon_request_watch, only : displacement_request_type, new_request_watch
     use rollcon_variable_watch, only : watched_variable_type, new_variable_watch
     use rollcon_motion_watch, only : motion_watch_type
-    use rollcon_adm_model, only : adm_model_type, adm_force_type, force_sforce, force_vforce
+    use rollcon_element_force_watch, only : element_force_watch_type, watches_elements
+    use rollcon_adm_model, only : adm_model_type, adm_force_type, force_sforce, force_vforce, &
+        & force_springdamper, force_bushing, force_names
+    use rollcon_spring_force, only : spring_translational, spring_rotational, spring_bushing
     use rollcon_adm_state, only : part_state
     use rollcon_adm_singular, only : start_singular_parts
     use rollcon_adm_markers, only : adm_marker, marker_index
@@ -128,6 +131,9 @@ contains
         ! each VARIABLE's value, a column (rollcon_variable_watch)
         call add_variable_watch(adm, problem, error)
         if (allocated(error)) return
+        ! each SPRINGDAMPER's and BUSHING's force and torque, six columns
+        ! (rollcon_element_force_watch)
+        if (watches_elements(problem%eq)) call problem%add_watch(element_force_watch_type())
         ! a part flat at t = 0 starts in turned axes (docs/rebasing.md): its model part too
         call start_singular_parts(adm, problem, q0, u0, adm_theta_min, error)
         if (allocated(error)) return
@@ -180,18 +186,18 @@ contains
         type(problem_type), intent(in) :: problem
         real(wp), intent(in) :: q0(:), u0(:)
         type(error_type), allocatable, intent(out) :: error
-        character(len=*), parameter :: names(3) = ["SFORCE", "VFORCE", "GFORCE"]
         real(wp) :: values(6)
-        character(len=:), allocatable :: key
+        character(len=:), allocatable :: key, name
         integer :: i, k
 
         do i = 1, size(adm%forces)
+            name = trim(force_names(adm%forces(i)%kind))
             if (markers_coincide(problem%model%forces(i)%statement, q0)) then
-                call fatal_error(error, place(adm%file, adm%forces(i)%line) // ": SFORCE/" &
-                    & // to_text(adm%forces(i)%id) // ": its I and J markers are at one point " &
-                    & // "at the start, where a translational SFORCE's line of action (from J " &
-                    & // "to I) is not defined; move one of them, or give the force as a " &
-                    & // "VFORCE", stat_input)
+                call fatal_error(error, place(adm%file, adm%forces(i)%line) // ": " // name &
+                    & // "/" // to_text(adm%forces(i)%id) // ": its I and J markers are at one " &
+                    & // "point at the start, where a translational " // name // "'s line of " &
+                    & // "action (from J to I) is not defined; move one of them, or give the " &
+                    & // "force as a VFORCE", stat_input)
                 return
             end if
             values = marker_force_values(problem%model%forces(i)%statement, 0.0_wp, q0, u0)
@@ -200,7 +206,7 @@ contains
                 key = slot_names(k)
                 if (adm%forces(i)%kind == force_sforce) key = "FUNCTION"
                 call fatal_error(error, place(adm%file, adm%forces(i)%line) // ": " &
-                    & // names(adm%forces(i)%kind) // "/" // to_text(adm%forces(i)%id) // " " &
+                    & // name // "/" // to_text(adm%forces(i)%id) // " " &
                     & // key // ": the expression is not finite at t = 0 (" &
                     & // to_text(values(k)) // "): a function outside its domain, or a " &
                     & // "division by zero", stat_input)
@@ -470,6 +476,11 @@ contains
 
         force%profile = profile_statement
         associate (s => force%statement)
+            s%id = statement%id
+            if (any(statement%kind == [force_springdamper, force_bushing])) then
+                call add_spring(adm, statement, model)
+                return
+            end if
             if (statement%kind == force_sforce) then
                 s%kind = merge(kind_translation, kind_rotation, statement%translation)
                 where = place(adm%file, statement%line) // ": SFORCE/" // to_text(statement%id)
@@ -477,8 +488,10 @@ contains
                 s%kind = kind_vector
                 where = place(adm%file, statement%line) // ": VFORCE/" // to_text(statement%id)
             else
+                ! a GFORCE, or a VTORQUE: a GFORCE of TX, TY, TZ alone
                 s%kind = kind_general
-                where = place(adm%file, statement%line) // ": GFORCE/" // to_text(statement%id)
+                where = place(adm%file, statement%line) // ": " &
+                    & // trim(force_names(statement%kind)) // "/" // to_text(statement%id)
             end if
             s%action_only = statement%action_only
             s%i = adm_marker(adm, statement%i)
@@ -507,5 +520,43 @@ contains
         end associate
         call model%add_force(force)
     end subroutine add_force_statement
+
+    !> A SPRINGDAMPER or BUSHING as a force between its markers (rollcon_spring_force), its
+    !> constants in SI as read.
+    subroutine add_spring(adm, statement, model)
+        type(adm_model_type), intent(in) :: adm
+        type(adm_force_type), intent(in) :: statement
+        type(model_type), intent(inout) :: model
+        type(applied_force_type) :: force
+
+        force%profile = profile_statement
+        force%name = place(adm%file, statement%line) // ": " &
+            & // trim(force_names(statement%kind)) // "/" // to_text(statement%id)
+        associate (s => force%statement, spring => force%statement%spring, &
+                & c => statement%constants)
+            s%id = statement%id
+            s%kind = kind_spring
+            s%i = adm_marker(adm, statement%i)
+            s%j = adm_marker(adm, statement%j)
+            s%time_unit = adm%units%time
+            s%length_unit = adm%units%length
+            s%force_unit = adm%units%force
+            allocate(s%markers(0))
+            if (statement%kind == force_bushing) then
+                spring%kind = spring_bushing
+            else
+                spring%kind = merge(spring_translational, spring_rotational, &
+                    & statement%translation)
+            end if
+            spring%stiffness = c(1:3)
+            spring%damping = c(4:6)
+            spring%torsional_stiffness = c(7:9)
+            spring%torsional_damping = c(10:12)
+            spring%preload = c(13:15)
+            spring%preload_torque = c(16:18)
+            spring%reference = statement%reference
+        end associate
+        call model%add_force(force)
+    end subroutine add_spring
 
 end module rollcon_adm_build

@@ -148,6 +148,11 @@ contains
                         & + cj*eq%mass(i0 + 1:i0 + 6, j)
                 end do
             end do
+            ! a SPRINGDAMPER's or BUSHING's partials between its two parts (rollcon_force)
+            do k = 1, size(eq%couplings, 2)
+                call copy_coupling(eq%couplings(1, k), eq%couplings(2, k))
+                call copy_coupling(eq%couplings(2, k), eq%couplings(1, k))
+            end do
             do k = 1, nc
                 associate (at => bl%ucon_coordinates(bl%ucon_start(k):bl%ucon_start(k + 1) - 1))
                     do jj = 1, size(at)
@@ -198,6 +203,22 @@ contains
                 end associate
             end do
         end associate
+
+    contains
+
+        !> The momentum rows of part a by the coordinates and rates of part b.
+        subroutine copy_coupling(a, b)
+            integer, intent(in) :: a, b
+            integer :: r0, c0
+
+            r0 = 6*(a - 1)
+            c0 = 6*(b - 1)
+            jac(n + r0 + 1:n + r0 + 6, c0 + 1:c0 + 6) = eq%work%dm_dq(r0 + 1:r0 + 6, &
+                & c0 + 1:c0 + 6)
+            jac(n + r0 + 1:n + r0 + 6, n + c0 + 1:n + c0 + 6) = eq%work%dm_du(r0 + 1:r0 + 6, &
+                & c0 + 1:c0 + 6)
+        end subroutine copy_coupling
+
     end subroutine dae_jacobian
 
 end module rollcon_dae

@@ -14,7 +14,7 @@ module rollcon_equations
     use rollcon_model, only : model_type
     use rollcon_body, only : body_mass_and_force, body_residual_jacobian, kinetic_energy, &
         & energy_gradient
-    use rollcon_force, only : force_and_moment
+    use rollcon_force, only : force_and_moment, add_force_partials, force_couplings
     use rollcon_constraints, only : constraint_state_type, local_dot, need_value, need_first, &
         & need_second, need_time
     use rollcon_saddle_point, only : saddle_point_type
@@ -51,6 +51,9 @@ module rollcon_equations
         !> Which rows are active and which are set aside as redundant (all active until
         !> choose_active is called)
         type(redundancy_type) :: redundancy
+        !> The pairs of parts a SPRINGDAMPER or BUSHING joins (2 x m, rollcon_force's
+        !> force_couplings): their momentum rows' partials in each other's states
+        integer, allocatable :: couplings(:, :)
     contains
         procedure :: release => release_equations
         procedure :: init
@@ -96,6 +99,11 @@ contains
         end associate
         call self%work%init(self%n, self%nc, self%nh, size(model%parts))
         call self%redundancy%init(self%nc, self%blocks)
+        if (allocated(model%forces)) then
+            self%couplings = force_couplings(model%forces)
+        else
+            allocate(self%couplings(2, 0))
+        end if
     end subroutine init
 
     !> Choose the rows to set aside at (t, q, u) (rollcon_redundancy's choose: every block's
@@ -326,6 +334,8 @@ contains
             self%work%dm_dq(i0 + 1:i0 + 6, i0 + 1:i0 + 6) = part_dq
             self%work%dm_du(i0 + 1:i0 + 6, i0 + 1:i0 + 6) = part_du
         end do
+        ! the SPRINGDAMPERs' and BUSHINGs' partials, over both of each one's parts
+        call add_force_partials(self%model%forces, q, u, self%work%dm_dq, self%work%dm_du)
         ! -d(C^T lambda)/dq: second partials are why ADAMS asks a UCOSUB for XMATRX
         ! (docs/design.md §4); each UCON's over its own coordinates (the rest are zeros)
         do k = 1, self%nc

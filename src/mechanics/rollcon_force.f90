@@ -8,14 +8,16 @@ module rollcon_force
     use rollcon_rotation, only : rotation_matrix, cross, times
     use rollcon_expression, only : switching_times, evaluate_expression, max_inputs
     use rollcon_marker_force, only : marker_force_type, marker_force_loads, marker_force_values, &
-        & markers_coincide
+        & markers_coincide, kind_spring
     use rollcon_text, only : to_text
+    use rollcon_spring_partials, only : add_spring_partials
     use, intrinsic :: ieee_arithmetic, only : ieee_is_finite
     implicit none
     private
 
     public :: applied_force_type, force_and_moment, force_breakpoints, force_corners, pulse_stops
     public :: forces_idle_after, nonfinite_load, runaway_load, runaway_limit
+    public :: add_force_partials, force_couplings
     public :: profile_constant, profile_half_sine, profile_statement, frame_body, frame_tilt
 
     !> Time profiles: constant magnitude, one half-sine pulse carrying a given impulse, or a
@@ -113,6 +115,52 @@ contains
         end do
     end subroutine force_and_moment
 
+    !> Subtract the partials of the SPRINGDAMPERs' and BUSHINGs' generalised forces from
+    !> dm_dq and dm_du, the partials of the momentum residual M a - f (rollcon_spring_partials:
+    !> exact, over both parts of each). The other forces' partials are not in the Newton
+    !> matrices: a force statement's expressions, and the fixed-direction forces (their moment
+    !> held at body components, rollcon_body's body_residual_jacobian).
+    pure subroutine add_force_partials(forces, q, u, dm_dq, dm_du)
+        type(applied_force_type), intent(in) :: forces(:)
+        !> Coordinates and rates of all parts [m, rad, m/s, rad/s]
+        real(wp), intent(in) :: q(:), u(:)
+        !> n x n
+        real(wp), intent(inout) :: dm_dq(:, :), dm_du(:, :)
+        integer :: i
+
+        do i = 1, size(forces)
+            if (forces(i)%profile /= profile_statement) cycle
+            associate (s => forces(i)%statement)
+                if (s%kind == kind_spring) call add_spring_partials(s%spring, s%i, s%j, q, u, &
+                    & dm_dq, dm_du)
+            end associate
+        end do
+    end subroutine add_force_partials
+
+    !> The pairs of parts (model indices, 2 x m) a SPRINGDAMPER or BUSHING joins, each pair
+    !> once in either order, ground left out: where add_force_partials writes outside the
+    !> parts' own blocks, which a sparse Newton matrix keeps.
+    pure function force_couplings(forces) result(pairs)
+        type(applied_force_type), intent(in) :: forces(:)
+        integer, allocatable :: pairs(:, :)
+        integer :: i, a, b, k
+        logical :: known
+
+        allocate(pairs(2, 0))
+        do i = 1, size(forces)
+            if (forces(i)%profile /= profile_statement) cycle
+            if (forces(i)%statement%kind /= kind_spring) cycle
+            a = min(forces(i)%statement%i%part, forces(i)%statement%j%part)
+            b = max(forces(i)%statement%i%part, forces(i)%statement%j%part)
+            if (a <= 0 .or. a == b) cycle
+            known = .false.
+            do k = 1, size(pairs, 2)
+                if (pairs(1, k) == a .and. pairs(2, k) == b) known = .true.
+            end do
+            if (.not. known) pairs = reshape([pairs, a, b], [2, size(pairs, 2) + 1])
+        end do
+    end function force_couplings
+
     !> Why the loads at (t, q, u) are not finite: the first force whose force or moment on a
     !> part is not finite, named, with the expression slot at fault for a force statement;
     !> "" when every load is finite. For a failure's message (not on the hot path).
@@ -123,6 +171,7 @@ contains
         real(wp), intent(in) :: time, q(:), u(:)
         character(len=:), allocatable :: message
         character(len=*), parameter :: slots(6) = ["FX", "FY", "FZ", "TX", "TY", "TZ"]
+        character(len=:), allocatable :: kind
         real(wp) :: force(3), moment(3), values(6)
         integer :: i, p, k
 
@@ -135,9 +184,12 @@ contains
                 if (allocated(forces(i)%name)) message = forces(i)%name
                 if (forces(i)%profile == profile_statement) then
                     if (markers_coincide(forces(i)%statement, q)) then
+                        ! the statement's own name: an SFORCE or a SPRINGDAMPER
+                        kind = "SFORCE"
+                        if (forces(i)%statement%kind == kind_spring) kind = "SPRINGDAMPER"
                         message = message // ": its I and J markers are at one point at t = " &
-                            & // to_text(time) // " s, where a translational SFORCE's line of " &
-                            & // "action (from J to I) is not defined"
+                            & // to_text(time) // " s, where a translational " // kind &
+                            & // "'s line of action (from J to I) is not defined"
                         return
                     end if
                     values = marker_force_values(forces(i)%statement, time, q, u)
@@ -222,9 +274,10 @@ contains
     !> True when no force acts after time (up to end_time), so that the energy is conserved
     !> there: a constant force is zero, a pulse has ended, and a force statement's expressions
     !> are zero at idle_samples times spread over (time, end_time] for two unrelated sets of
-    !> values of the state functions they read. A sampled check, conservative in one
-    !> direction only: an expression that is zero at every sample but not in between (a pulse
-    !> falling between samples) would pass, which no expression of one switching time can be.
+    !> values of the state functions they read; a SPRINGDAMPER or BUSHING is never idle. A
+    !> sampled check, conservative in one direction only: an expression that is zero at every
+    !> sample but not in between (a pulse falling between samples) would pass, which no
+    !> expression of one switching time can be.
     pure logical function forces_idle_after(forces, time, end_time) result(idle)
         type(applied_force_type), intent(in) :: forces(:)
         !> From this time [s] to end_time [s]
@@ -243,6 +296,8 @@ contains
                     & .or. forces(i)%start + forces(i)%duration <= time
             case (profile_statement)
                 associate (statement => forces(i)%statement)
+                    ! a SPRINGDAMPER or BUSHING does work whenever its markers move apart
+                    if (statement%kind == kind_spring) idle = .false.
                     do k = 1, size(statement%functions)
                         if (.not. statement%given(k)) cycle
                         do set = 1, size(sample_inputs)

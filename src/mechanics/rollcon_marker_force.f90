@@ -8,7 +8,10 @@
 !> - ACTIONONLY: on I only (translational: along J's z axis);
 !> - VFORCE: (FX, FY, FZ) in RM's axes at I's origin; the reaction on JFLOAT's part at the same
 !>   point;
-!> - GFORCE: the same, and the torque (TX, TY, TZ) in RM's axes; the reaction on JFLOAT's part.
+!> - GFORCE: the same, and the torque (TX, TY, TZ) in RM's axes; the reaction on JFLOAT's part
+!>   (a VTORQUE is a GFORCE of TX, TY, TZ alone);
+!> - SPRINGDAMPER and BUSHING: rollcon_spring_force's force and torque on I's part at I's
+!>   origin; the reaction on J's part at the same point.
 !>
 !> The expressions are in the dataset's units: their TIME and measures are converted
 !> from SI before evaluation and their values to N and N m after (time_unit, length_unit,
@@ -20,20 +23,24 @@ module rollcon_marker_force
         & switch_values
     use rollcon_marker, only : marker_type, marker_motion
     use rollcon_measures, only : expression_input_values
+    use rollcon_spring_force, only : spring_type, spring_loads, spring_translational
     implicit none
     private
 
     public :: marker_force_type, marker_force_loads, marker_force_values, markers_coincide
-    public :: marker_force_switches
-    public :: kind_translation, kind_rotation, kind_vector, kind_general
+    public :: marker_force_switches, marker_force_action
+    public :: kind_translation, kind_rotation, kind_vector, kind_general, kind_spring
 
-    !> Kinds: SFORCE translational or rotational, VFORCE, GFORCE
+    !> Kinds: SFORCE translational or rotational, VFORCE, GFORCE (and VTORQUE), a
+    !> SPRINGDAMPER or BUSHING (kind_spring: its constants in `spring`)
     integer, parameter :: kind_translation = 1, kind_rotation = 2, kind_vector = 3, &
-        & kind_general = 4
+        & kind_general = 4, kind_spring = 5
 
     !> One force statement
     type :: marker_force_type
         integer :: kind = kind_translation
+        !> The statement's id in the dataset (0: none)
+        integer :: id = 0
         !> Leave out the reaction (SFORCE ACTIONONLY)
         logical :: action_only = .false.
         !> The marker it acts at, the reaction marker (J or JFLOAT; a ground marker when none),
@@ -47,6 +54,8 @@ module rollcon_marker_force
         type(marker_type), allocatable :: markers(:)
         !> Size of the dataset's time [s], length [m] and force [N] units
         real(wp) :: time_unit = 1.0_wp, length_unit = 1.0_wp, force_unit = 1.0_wp
+        !> kind_spring: the SPRINGDAMPER's or BUSHING's constants, SI
+        type(spring_type) :: spring
     end type marker_force_type
 
 contains
@@ -106,15 +115,19 @@ contains
             & self%time_unit, q, u, values)
     end subroutine input_values
 
-    !> A translational SFORCE (not ACTIONONLY) whose I and J markers are at one point: its line
-    !> of action, from J to I, is not defined there.
+    !> A translational SFORCE (not ACTIONONLY) or SPRINGDAMPER whose I and J markers are at one
+    !> point: its line of action, from J to I, is not defined there.
     pure logical function markers_coincide(self, q)
         type(marker_force_type), intent(in) :: self
         real(wp), intent(in) :: q(:)
         real(wp) :: r_i(3), r_j(3), v(3), axes(3, 3), w(3), u(size(q))
 
         markers_coincide = .false.
-        if (self%kind /= kind_translation .or. self%action_only) return
+        if (self%kind == kind_spring) then
+            if (self%spring%kind /= spring_translational) return
+        else if (self%kind /= kind_translation .or. self%action_only) then
+            return
+        end if
         u = 0.0_wp
         call marker_motion(self%i, q, u, r_i, v, axes, w)
         call marker_motion(self%j, q, u, r_j, v, axes, w)
@@ -139,6 +152,15 @@ contains
         on_i = self%i%part == p
         on_j = self%j%part == p .and. .not. self%action_only
         if (.not. (on_i .or. on_j)) return
+        if (self%kind == kind_spring) then
+            call spring_loads(self%spring, self%i, self%j, q, u, f, torque)
+            call marker_motion(self%i, q, u, r_i, v, axes_rm, w)
+            if (on_i) call add_load(p, q, r_i, f, force, moment)
+            if (on_i) moment = moment + torque
+            if (on_j) call add_load(p, q, r_i, -f, force, moment)
+            if (on_j) moment = moment - torque
+            return
+        end if
         values = marker_force_values(self, time, q, u)
         ! the markers' velocities and angular velocities are not needed here
         call marker_motion(self%i, q, u, r_i, v, axes_rm, w)
@@ -170,6 +192,45 @@ contains
             if (on_j) moment = moment - torque
         end select
     end subroutine marker_force_loads
+
+    !> The statement's force [N] and torque [N m] on I's part, at I's origin, ground components
+    !> (its reaction, unless ACTIONONLY, is the opposite force and torque on J's part: at J's
+    !> origin for a translational SFORCE, whose force lies along the line from J to I, at I's
+    !> origin for the others). The one place each element's force and torque are computed
+    !> from the state, for outputs and requests.
+    pure subroutine marker_force_action(self, time, q, u, force, torque)
+        type(marker_force_type), intent(in) :: self
+        !> Time [s]
+        real(wp), intent(in) :: time
+        !> Coordinates and rates of all parts
+        real(wp), intent(in) :: q(:), u(:)
+        real(wp), intent(out) :: force(3), torque(3)
+        real(wp) :: values(6), r_i(3), r_j(3), axes_j(3, 3), axes(3, 3), r(3), v(3), w(3)
+
+        force = 0.0_wp
+        torque = 0.0_wp
+        if (self%kind == kind_spring) then
+            call spring_loads(self%spring, self%i, self%j, q, u, force, torque)
+            return
+        end if
+        values = marker_force_values(self, time, q, u)
+        call marker_motion(self%i, q, u, r_i, v, axes, w)
+        call marker_motion(self%j, q, u, r_j, v, axes_j, w)
+        select case (self%kind)
+        case (kind_translation)
+            if (self%action_only) then
+                force = values(1)*axes_j(:, 3)
+            else
+                force = values(1)*(r_i - r_j)/norm2(r_i - r_j)
+            end if
+        case (kind_rotation)
+            torque = values(1)*self%length_unit*axes_j(:, 3)
+        case default
+            call marker_motion(self%rm, q, u, r, v, axes, w)
+            force = times(axes, values(1:3))
+            torque = times(axes, values(4:6))
+        end select
+    end subroutine marker_force_action
 
     !> A force f at ground point r on part p: the force, and its moment about p's centre.
     pure subroutine add_load(p, q, r, f, force, moment)

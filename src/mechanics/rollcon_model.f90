@@ -37,6 +37,7 @@ module rollcon_model
     use rollcon_expression, only : expression_type
     use rollcon_gcon, only : gcon_type, new_gcon, gcon_codes, turn_gcon_markers
     use rollcon_measures, only : count_turns
+    use rollcon_spring_force, only : count_spring_turns
     use rollcon_motion, only : motion_type
     use rollcon_motion_geometry, only : motion_ucon, motion_rotation, motion_b1, motion_b2, &
         & motion_b3
@@ -400,7 +401,7 @@ contains
     end subroutine add_element
 
     !> Count the whole turns of every AX, AY, AZ the model's expressions read (its force
-    !> statements' and GCONs') at (q, u): rollcon_measures' count_turns. A run makes it at its
+    !> statements' and GCONs') and of its rotational SPRINGDAMPERs' angles at (q, u): rollcon_measures' count_turns. A run makes it at its
     !> start (restart true: each angle on its branch in (-pi, pi]) and at every output row.
     pure subroutine count_model_turns(self, q, u, restart)
         class(model_type), intent(inout) :: self
@@ -413,6 +414,8 @@ contains
             do i = 1, size(self%forces)
                 if (self%forces(i)%profile /= profile_statement) cycle
                 associate (s => self%forces(i)%statement)
+                    ! a rotational SPRINGDAMPER's AZ (rollcon_spring_force)
+                    call count_spring_turns(s%spring, s%i, s%j, q, u, restart)
                     if (.not. allocated(s%markers)) cycle
                     do k = 1, 6
                         if (s%given(k)) call count_turns(s%functions(k), s%markers, &

@@ -128,7 +128,8 @@ contains
 
     !> Where the Newton matrix (rollcon_dae's dae_jacobian) can be nonzero: the entries that
     !> routine writes, and no others. Per part, q' = u's diagonal and the momentum rows' 6 by 6
-    !> blocks over its q and u (mass, forces); per UCON k over its own coordinates a (its
+    !> blocks over its q and u (mass, forces), and over the q and u of each part a SPRINGDAMPER
+    !> or BUSHING joins it to; per UCON k over its own coordinates a (its
     !> partials are zero elsewhere): the momentum rows a by the q columns a and by lambda_k, the
     !> UCON's row by q a and u a, and for a position UCON h the q rows a by q a and mu_h, and
     !> mu_h's row by q a. A chain of N links keeps O(N) entries (504 per link), where every
@@ -152,6 +153,14 @@ contains
             keep(nq + i0 + 1:nq + i0 + 6, i0 + 1:i0 + 6) = .true.
             keep(nq + i0 + 1:nq + i0 + 6, nq + i0 + 1:nq + i0 + 6) = .true.
         end do
+        ! a SPRINGDAMPER's or BUSHING's momentum rows of each part by the other's q and u
+        associate (pairs => self%problem%eq%couplings)
+            do k = 1, size(pairs, 2)
+                if (6*max(pairs(1, k), pairs(2, k)) > min(nq, n - nq)) cycle
+                call keep_coupling(pairs(1, k), pairs(2, k))
+                call keep_coupling(pairs(2, k), pairs(1, k))
+            end do
+        end associate
         associate (bl => self%problem%eq%blocks)
             do k = 1, nc
                 row = 2*nq + k
@@ -176,6 +185,17 @@ contains
             end do
         end associate
         call pattern%from_relation(keep)
+
+    contains
+
+        !> The momentum rows of part a by part b's coordinates and rates.
+        subroutine keep_coupling(a, b)
+            integer, intent(in) :: a, b
+
+            keep(nq + 6*(a - 1) + 1:nq + 6*a, 6*(b - 1) + 1:6*b) = .true.
+            keep(nq + 6*(a - 1) + 1:nq + 6*a, nq + 6*(b - 1) + 1:nq + 6*b) = .true.
+        end subroutine keep_coupling
+
     end subroutine dae_pattern
 
     !> Every part's Euler angles and their rates in the DAE state (q, u, lambda, mu): part p's

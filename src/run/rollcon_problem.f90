@@ -323,12 +323,13 @@ contains
     end function projection_asked
 
     !> Each coordinate's block (rollcon_constraint_blocks): the block of its UCONs, or its
-    !> part's own past the blocks for a part that no UCON holds. A formulation's states are
-    !> of their coordinate's block, or of their UCON's (its state_blocks).
+    !> part's own past the blocks for a part that no UCON holds; the blocks of two parts a
+    !> SPRINGDAMPER or BUSHING joins are one. A formulation's states are of their
+    !> coordinate's block, or of their UCON's (its state_blocks).
     pure function coordinate_blocks(self) result(blocks)
         class(problem_type), intent(in) :: self
         integer :: blocks(self%eq%n)
-        integer :: b, j
+        integer :: b, j, k, first, second
 
         associate (bl => self%eq%blocks)
             do j = 1, self%eq%n
@@ -338,6 +339,14 @@ contains
                 blocks(bl%coordinates(bl%coordinate_start(b):bl%coordinate_start(b + 1) - 1)) = b
             end do
         end associate
+        ! the parts a SPRINGDAMPER or BUSHING joins share a block (the union of theirs): its
+        ! partials couple their states (rollcon_equations' couplings)
+        if (.not. allocated(self%eq%couplings)) return
+        do k = 1, size(self%eq%couplings, 2)
+            first = blocks(6*self%eq%couplings(1, k))
+            second = blocks(6*self%eq%couplings(2, k))
+            if (first /= second) where (blocks == second) blocks = first
+        end do
     end function coordinate_blocks
 
     !> Number of event functions: every watch's, in watch order.

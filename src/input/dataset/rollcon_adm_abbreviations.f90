@@ -32,7 +32,7 @@ module rollcon_adm_abbreviations
     !> The table (docs/datasets.md repeats it)
     type(place_type), parameter :: table(*) = [ &
         & place_type("statement", "ACcgrav COUpler END GCon GEar GForce INtegrator JOint JPrim " &
-        & // "MARker MOtion Output " &
+        & // "MARker MOtion Output BUshing SPRingdamper VTorque " &
         & // "PArt PInput POUtput SForce SImulate SPLine UCon UNits VAriable VForce DEbug " &
         & // "EQuilibrium GRaphics IC " &
         & // "Kinematics LIst MRequest NOlist PReferences REQuest RESults"), &
@@ -51,6 +51,10 @@ module rollcon_adm_abbreviations
         & // "ROTATIONAl"), &
         & place_type("VFORCE", "I Jfloat RM FX FY FZ"), &
         & place_type("GFORCE", "I Jfloat RM FX FY FZ TX TY TZ"), &
+        & place_type("VTORQUE", "I Jfloat RM TX TY TZ"), &
+        & place_type("SPRINGDAMPER", "I J TRanslational Rotational K C Length Force KT CT " &
+        & // "Angle TOrque"), &
+        & place_type("BUSHING", "I J K C KT CT Force Torque"), &
         & place_type("JOINT", "COnvel CYlindrical Fixed Hooke REvolute SPherical " &
         & // "Translational Universal I J IC ICTran ICRot Delta_v Maximum_deformation " &
         & // "RAckpin SCrew PLanar PD PItch"), &

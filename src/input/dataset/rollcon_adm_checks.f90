@@ -12,7 +12,8 @@ module rollcon_adm_checks
     use rollcon_part_frames, only : principal_frame, min_sin_theta
     use rollcon_adm_keywords, only : place
     use rollcon_adm_model, only : adm_model_type, adm_part_type, adm_marker_type, &
-        & adm_force_type, force_sforce, force_vforce, refers_to_marker, refers_to_part
+        & adm_force_type, force_sforce, force_vforce, refers_to_marker, refers_to_part, &
+        & force_springdamper, force_bushing, force_vtorque, force_names
     use rollcon_adm_joints, only : adm_joint_type
     use rollcon_adm_motions, only : adm_motion_type
     use rollcon_adm_ids, only : id_index_type, new_id_index
@@ -218,7 +219,8 @@ contains
                 if (parts%find(int(reference%id, int64)) == 0) call fatal_error(error, &
                     & reference%at // ": no PART/" // to_text(reference%id), stat_input)
             else if (forces%find(int(reference%id, int64)) == 0) then
-                call fatal_error(error, reference%at // ": no SFORCE, VFORCE or GFORCE with id " &
+                call fatal_error(error, reference%at // ": no SFORCE, VFORCE, GFORCE, VTORQUE, " &
+                    & // "SPRINGDAMPER or BUSHING with id " &
                     & // to_text(reference%id), stat_input)
             end if
         end associate
@@ -350,8 +352,7 @@ contains
         character(len=:), allocatable :: where, name
         integer :: needed
 
-        name = merge("SFORCE", merge("VFORCE", "GFORCE", force%kind == force_vforce), &
-            & force%kind == force_sforce)
+        name = trim(force_names(force%kind))
         where = place(model%file, force%line) // ": " // name // "/" // to_text(force%id)
         if (force%i == 0) then
             call fatal_error(error, where // " I: a marker id is needed (I=id of an existing " &
@@ -359,12 +360,20 @@ contains
             return
         end if
         call require_marker(force%i, "I")
-        call require_marker(force%j, trim(merge("J     ", "JFLOAT", force%kind == force_sforce)))
+        call require_marker(force%j, trim(merge("J     ", "JFLOAT", &
+            & any(force%kind == [force_sforce, force_springdamper, force_bushing]))))
         call require_marker(force%rm, "RM")
         if (allocated(error)) return
-        if (force%kind == force_sforce .and. force%j == 0) then
-            call fatal_error(error, where // " J: an SFORCE acts between I and J (J=id)", &
-                & stat_input)
+        if (any(force%kind == [force_sforce, force_springdamper, force_bushing]) &
+            & .and. force%j == 0) then
+            call fatal_error(error, where // " J: " // trim(merge("an", "a ", force%kind == force_sforce)) // " " // name &
+                & // " acts between I and J (J=id)", stat_input)
+            return
+        end if
+        if (any(force%kind == [force_springdamper, force_bushing])) return
+        if (force%kind == force_vtorque) then
+            if (.not. all(force%given(4:6))) call fatal_error(error, where &
+                & // ": TX=e, TY=e, TZ=e is needed", stat_input)
             return
         end if
         needed = merge(1, merge(3, 6, force%kind == force_vforce), force%kind == force_sforce)

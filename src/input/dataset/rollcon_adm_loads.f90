@@ -1,6 +1,7 @@
 ! SPDX-License-Identifier: MIT
-!> Dataset statements of loads and constraints: UCON, ACCGRAV and the SFORCE, VFORCE and
-!> GFORCE statements with their function expressions.
+!> Dataset statements of loads and constraints: UCON, ACCGRAV, the SFORCE, VFORCE, GFORCE and
+!> VTORQUE statements with their function expressions, and the SPRINGDAMPER and BUSHING
+!> statements with their constants.
 module rollcon_adm_loads
     use rollcon_physical_ranges, only : gravity_max
     use rollcon_text, only : to_text
@@ -11,11 +12,12 @@ module rollcon_adm_loads
         & name_index, argument_text
     use rollcon_adm_expression_parser, only : compile_expression
     use rollcon_adm_model, only : adm_model_type, adm_ucon_type, adm_force_type, force_sforce, &
-        & force_vforce, force_gforce
+        & force_vforce, force_gforce, force_springdamper, force_bushing, force_vtorque
+    use rollcon_adm_units, only : units_type
     implicit none
     private
 
-    public :: read_ucon, read_accgrav, read_force
+    public :: read_ucon, read_accgrav, read_force, read_spring
 
     character(len=*), parameter :: ucon_keys(2) = [character(len=8) :: "FUNCTION", "ROUTINE"]
     character(len=*), parameter :: accgrav_keys(3) = ["IGRAV", "JGRAV", "KGRAV"]
@@ -25,6 +27,16 @@ module rollcon_adm_loads
         & "TRANSLATION", "ROTATION", "ACTIONONLY", "FUNCTION", "TRANSLATIONAL", "ROTATIONAL"]
     character(len=*), parameter :: gforce_keys(9) = [character(len=6) :: "I", "JFLOAT", "RM", &
         & "FX", "FY", "FZ", "TX", "TY", "TZ"]
+    character(len=*), parameter :: vtorque_keys(6) = [character(len=6) :: "I", "JFLOAT", "RM", &
+        & "TX", "TY", "TZ"]
+    !> SPRINGDAMPER's keywords: its markers, its kind, and its constants
+    character(len=*), parameter :: springdamper_keys(12) = [character(len=13) :: "I", "J", &
+        & "TRANSLATIONAL", "ROTATIONAL", "K", "C", "LENGTH", "FORCE", "KT", "CT", "ANGLE", &
+        & "TORQUE"]
+    !> BUSHING's keywords: its markers, and its constants in the order of adm_force_type's
+    !> constants
+    character(len=*), parameter :: bushing_keys(8) = [character(len=6) :: "I", "J", "K", "C", &
+        & "KT", "CT", "FORCE", "TORQUE"]
 
 contains
 
@@ -161,8 +173,9 @@ contains
         end do
     end subroutine read_accgrav
 
-    !> SFORCE, VFORCE or GFORCE (name) as read (whether its id is new among the statements of
-    !> its kind is the reader's to check).
+    !> SFORCE, VFORCE, GFORCE or VTORQUE (name) as read (whether its id is new among the
+    !> statements of its kind is the reader's to check). A VTORQUE is kept as a GFORCE of TX,
+    !> TY, TZ alone, of kind force_vtorque.
     subroutine read_force(path, where, name, statement, force, error)
         character(len=*), intent(in) :: path, where, name
         type(adm_statement_type), intent(in) :: statement
@@ -176,9 +189,12 @@ contains
         force%line = statement%line
         force%kind = merge(force_sforce, merge(force_vforce, force_gforce, name == "VFORCE"), &
             & name == "SFORCE")
+        if (name == "VTORQUE") force%kind = force_vtorque
         do k = 1, size(statement%arguments)
             if (force%kind == force_sforce) then
                 call argument_key(path, where, statement, k, sforce_keys, key, error)
+            else if (force%kind == force_vtorque) then
+                call argument_key(path, where, statement, k, vtorque_keys, key, error)
             else if (force%kind == force_vforce) then
                 call argument_key(path, where, statement, k, gforce_keys(1:6), key, error)
             else
@@ -225,5 +241,123 @@ contains
             if (allocated(error)) return
         end do
     end subroutine read_force
+
+    !> SPRINGDAMPER or BUSHING (name) as read, its constants in SI (units: the dataset's).
+    !> A SPRINGDAMPER is TRANSLATIONAL (K, C, LENGTH, FORCE) or ROTATIONAL (KT, CT, ANGLE,
+    !> TORQUE), one of them and only its own constants; a BUSHING takes three numbers for each
+    !> of K, C, KT, CT, FORCE, TORQUE. Every constant defaults to 0; stiffnesses, dampings and
+    !> LENGTH may not be negative.
+    subroutine read_spring(path, where, name, statement, units, force, error)
+        character(len=*), intent(in) :: path, where, name
+        type(adm_statement_type), intent(in) :: statement
+        type(units_type), intent(in) :: units
+        type(adm_force_type), intent(out) :: force
+        type(error_type), allocatable, intent(out) :: error
+        ! where the first constant of a translational and of a rotational SPRINGDAMPER is
+        character(len=:), allocatable :: key, at, translational_at, rotational_at
+        real(wp), allocatable :: values(:)
+        real(wp) :: factors(6)
+        integer :: k, slot, sense
+
+        ! K, C, KT, CT, FORCE, TORQUE: the size of a dataset unit of each in SI
+        factors = [units%force/units%length, units%force*units%time/units%length, &
+            & units%force*units%length, units%force*units%length*units%time, units%force, &
+            & units%force*units%length]
+        force%id = statement%id
+        force%line = statement%line
+        force%kind = merge(force_springdamper, force_bushing, name == "SPRINGDAMPER")
+        sense = 0
+        translational_at = ""
+        rotational_at = ""
+        do k = 1, size(statement%arguments)
+            if (force%kind == force_springdamper) then
+                call argument_key(path, where, statement, k, springdamper_keys, key, error)
+            else
+                call argument_key(path, where, statement, k, bushing_keys, key, error)
+            end if
+            if (allocated(error)) return
+            at = arg_place(path, where, statement%arguments(k)) // " " // key
+            select case (key)
+            case ("I")
+                call read_integer(statement%arguments(k), at, force%i, error)
+            case ("J")
+                call read_integer(statement%arguments(k), at, force%j, error)
+            case ("TRANSLATIONAL", "ROTATIONAL")
+                if (statement%arguments(k)%assigned) then
+                    call fatal_error(error, at // " takes no value", stat_input)
+                    return
+                end if
+                sense = sense + 1
+                if (sense > 1) then
+                    call fatal_error(error, at // ": TRANSLATIONAL and ROTATIONAL are given " &
+                        & // "together; a SPRINGDAMPER is one of them", stat_input)
+                    return
+                end if
+                force%translation = key == "TRANSLATIONAL"
+            case ("LENGTH")
+                if (len(translational_at) == 0) translational_at = at
+                call read_reals(statement%arguments(k), at, 1, 1, .false., values, error, &
+                    & units%length)
+                if (allocated(error)) return
+                force%reference = values(1)
+                call refuse_negative(values, at, error)
+            case ("ANGLE")
+                if (len(rotational_at) == 0) rotational_at = at
+                call read_reals(statement%arguments(k), at, 1, 1, .true., values, error)
+                if (allocated(error)) return
+                force%reference = values(1)
+            case default
+                ! K, C, KT, CT, FORCE, TORQUE: slot 1 to 6 of the constants' triples
+                slot = name_index(key, bushing_keys(3:8))
+                if (force%kind == force_springdamper) then
+                    if (len(translational_at) == 0 .and. any(slot == [1, 2, 5])) &
+                        & translational_at = at
+                    if (len(rotational_at) == 0 .and. any(slot == [3, 4, 6])) &
+                        & rotational_at = at
+                    call read_reals(statement%arguments(k), at, 1, 1, .false., values, error, &
+                        & factors(slot))
+                    if (allocated(error)) return
+                    ! a translational one's in the first of the triple, a rotational one's in
+                    ! the third (about J's z axis)
+                    if (any(slot == [1, 2, 5])) then
+                        force%constants(3*slot - 2) = values(1)
+                    else
+                        force%constants(3*slot) = values(1)
+                    end if
+                else
+                    call read_reals(statement%arguments(k), at, 3, 3, .false., values, error, &
+                        & factors(slot))
+                    if (allocated(error)) return
+                    force%constants(3*slot - 2:3*slot) = values
+                end if
+                if (slot <= 4) call refuse_negative(values, at, error)
+            end select
+            if (allocated(error)) return
+        end do
+        if (force%kind /= force_springdamper) return
+        if (sense == 0) then
+            call fatal_error(error, where // ": TRANSLATIONAL or ROTATIONAL is missing (a " &
+                & // "SPRINGDAMPER is one of them)", stat_input)
+        else if (force%translation .and. len(rotational_at) > 0) then
+            call fatal_error(error, rotational_at // ": a TRANSLATIONAL SPRINGDAMPER takes K, C, " &
+                & // "LENGTH and FORCE (KT, CT, ANGLE and TORQUE are a ROTATIONAL one's)", &
+                & stat_input)
+        else if (.not. force%translation .and. len(translational_at) > 0) then
+            call fatal_error(error, translational_at // ": a ROTATIONAL SPRINGDAMPER takes KT, CT, " &
+                & // "ANGLE and TORQUE (K, C, LENGTH and FORCE are a TRANSLATIONAL one's)", &
+                & stat_input)
+        end if
+    end subroutine read_spring
+
+    !> A stiffness, damping or length is not negative.
+    subroutine refuse_negative(values, at, error)
+        real(wp), intent(in) :: values(:)
+        character(len=*), intent(in) :: at
+        type(error_type), allocatable, intent(out) :: error
+
+        if (all(values >= 0.0_wp)) return
+        call fatal_error(error, at // ": expected a value >= 0, got " &
+            & // to_text(minval(values)), stat_input)
+    end subroutine refuse_negative
 
 end module rollcon_adm_loads

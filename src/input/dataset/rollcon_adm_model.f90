@@ -17,14 +17,19 @@ module rollcon_adm_model
 
     public :: adm_part_type, adm_marker_type, adm_ucon_type, adm_force_type, adm_run_type
     public :: adm_segment_type
-    public :: adm_model_type, force_sforce, force_vforce, force_gforce
+    public :: adm_model_type, force_sforce, force_vforce, force_gforce, force_springdamper
+    public :: force_bushing, force_vtorque, force_names
     public :: adm_request_type, adm_unused_type, adm_reference_type
     public :: refers_to_marker, refers_to_part, refers_to_force
     public :: adm_request_column_type, request_displacement, request_velocity, &
         & request_acceleration, request_force, request_expressions, request_user
 
     !> Kinds of force statement
-    integer, parameter :: force_sforce = 1, force_vforce = 2, force_gforce = 3
+    integer, parameter :: force_sforce = 1, force_vforce = 2, force_gforce = 3, &
+        & force_springdamper = 4, force_bushing = 5, force_vtorque = 6
+    !> Their statements' names, by kind
+    character(len=*), parameter :: force_names(6) = [character(len=12) :: "SFORCE", "VFORCE", &
+        & "GFORCE", "SPRINGDAMPER", "BUSHING", "VTORQUE"]
     !> What a REQUEST asks for
     integer, parameter :: request_displacement = 1, request_velocity = 2, &
         & request_acceleration = 3, request_force = 4, request_expressions = 5, request_user = 6
@@ -81,19 +86,27 @@ module rollcon_adm_model
         character(len=:), allocatable :: routine_at
     end type adm_ucon_type
 
-    !> SFORCE, VFORCE or GFORCE: markers and up to six expressions (FUNCTION is the first)
+    !> SFORCE, VFORCE, GFORCE or VTORQUE: markers and up to six expressions (FUNCTION is the
+    !> first); SPRINGDAMPER or BUSHING: markers and constants
     type :: adm_force_type
         integer :: kind = force_sforce
         integer :: id = 0, line = 0
         !> Marker the force acts at, reaction marker (0: none), marker of the axes (0: ground)
         integer :: i = 0, j = 0, rm = 0
-        !> SFORCE: translational (along I-J) or rotational (about the J z-axis)
+        !> SFORCE, SPRINGDAMPER: translational (along I-J) or rotational (about the J z-axis)
         logical :: translation = .true.
         !> SFORCE: the reaction on J is left out
         logical :: action_only = .false.
         !> FX, FY, FZ, TX, TY, TZ (SFORCE: FUNCTION in the first); in dataset units
         type(expression_type) :: functions(6)
         logical :: given(6) = .false.
+        !> SPRINGDAMPER, BUSHING, SI: K (1:3), C (4:6), KT (7:9), CT (10:12), FORCE (13:15),
+        !> TORQUE (16:18) along or about J's x, y, z (a translational SPRINGDAMPER's K, C,
+        !> FORCE in the first of each, a rotational one's KT, CT, TORQUE in the third)
+        !> [N/m, N s/m, N m/rad, N m s/rad, N, N m]
+        real(wp) :: constants(18) = 0.0_wp
+        !> SPRINGDAMPER: LENGTH [m] or ANGLE [rad]
+        real(wp) :: reference = 0.0_wp
     end type adm_force_type
 
     !> One SIMULATE/DYNAMIC: a dataset's statement, a command of a command file, or the

@@ -15,8 +15,9 @@ module rollcon_adm_outside
     character(len=*), parameter :: reasons(kinds) = [character(len=160) :: &
         & "rollcon's constraints are UCONs, JOINTs, JPRIMs, GCONs, COUPLERs and GEARs: state " &
         & // "this one as a GCON expression, or as a UCON served by a UCOSUB (ucon/)", &
-        & "force elements other than SFORCE, VFORCE and GFORCE are not in the subset: write " &
-        & // "the force as one of them with a FUNCTION expression", &
+        & "force elements other than SFORCE, VFORCE, GFORCE, VTORQUE, SPRINGDAMPER and " &
+        & // "BUSHING are not in the subset: write the force as a GFORCE with FUNCTION " &
+        & // "expressions", &
         & "sensors change a run as it goes (stop it, change its step): not in the subset", &
         & "ARRAY and STRING are not in the subset: FUNCTION expressions read TIME, the " &
         & // "measures of markers, VARVAL(id) and the SPLINEs of AKISPL and CUBSPL", &
@@ -25,12 +26,11 @@ module rollcon_adm_outside
         & // "rollcon integrates the states of its parts alone"]
     !> Statement names and the kind of each (statements of ADAMS's outputs are read:
     !> rollcon_adm_outputs)
-    character(len=*), parameter :: names(16) = [character(len=12) :: &
-        & "PTCV", "CVCV", "BEAM", "BUSHING", "FIELD", &
-        & "SPRINGDAMPER", "FRICTION", "CONTACT", "NFORCE", "VTORQUE", "SENSOR", &
+    character(len=*), parameter :: names(13) = [character(len=12) :: &
+        & "PTCV", "CVCV", "BEAM", "FIELD", "FRICTION", "CONTACT", "NFORCE", "SENSOR", &
         & "DIFF", "ARRAY", "STRING", "FLEX_BODY", "POINT_MASS"]
     integer, parameter :: kind_of(size(names)) = [1, 1, 2, 2, 2, 2, 2, &
-        & 2, 2, 2, 3, 6, 4, 4, 5, 5]
+        & 3, 6, 4, 4, 5, 5]
 
 contains
 

@@ -16,9 +16,9 @@ module rollcon_adm_reader
     use rollcon_adm_keywords, only : resolve_keyword, statement_names, argument_key, &
         & arg_place, place, name_index
     use rollcon_adm_units, only : units_type, set_unit, unit_keywords
-    use rollcon_adm_model, only : adm_model_type
+    use rollcon_adm_model, only : adm_model_type, force_names
     use rollcon_adm_bodies, only : read_part, read_marker
-    use rollcon_adm_loads, only : read_ucon, read_accgrav, read_force
+    use rollcon_adm_loads, only : read_ucon, read_accgrav, read_force, read_spring
     use rollcon_adm_run, only : read_simulate, read_integrator
     use rollcon_adm_checks, only : check_references
     use rollcon_adm_joints, only : read_joint
@@ -127,8 +127,7 @@ contains
         ! the lists: parts, markers, UCONs, forces (an SFORCE and a GFORCE may share an id)
         deallocate(model%parts, model%markers, model%ucons, model%forces)
         allocate(model%parts(count(names == "PART")), model%markers(count(names == "MARKER")), &
-            & model%ucons(count(names == "UCON")), model%forces(count(names == "SFORCE" &
-            & .or. names == "VFORCE" .or. names == "GFORCE")))
+            & model%ucons(count(names == "UCON")), model%forces(count(list_of(names) == 4)))
         allocate(model%joints(count(names == "JOINT" .or. names == "JPRIM")))
         allocate(model%gcons(count(names == "GCON")), model%couplers(count(names == "COUPLER")), &
             & model%gears(count(names == "GEAR")), model%motions(count(names == "MOTION")))
@@ -202,7 +201,7 @@ contains
     !> The list a statement's element goes to: 1 parts, 2 markers, 3 UCONs, 4 forces, 5 joints,
     !> 6 GCONs, 7 COUPLERs, 8 GEARs, 9 MOTIONs, 10 VARIABLEs, 11 SPLINEs, 12 PINPUTs and
     !> POUTPUTs; 0 none.
-    pure integer function list_of(name) result(k)
+    elemental integer function list_of(name) result(k)
         character(len=*), intent(in) :: name
 
         select case (name)
@@ -212,7 +211,7 @@ contains
             k = 2
         case ("UCON")
             k = 3
-        case ("SFORCE", "VFORCE", "GFORCE")
+        case ("SFORCE", "VFORCE", "GFORCE", "VTORQUE", "SPRINGDAMPER", "BUSHING")
             k = 4
         case ("JOINT", "JPRIM")
             k = 5
@@ -242,7 +241,7 @@ contains
         integer(int64) :: key
 
         ! a JOINT and a JPRIM, or forces of different kinds, may share an id
-        key = 4_int64*int(id, int64) + name_index(name, ["SFORCE", "VFORCE", "GFORCE"]) &
+        key = 8_int64*int(id, int64) + name_index(name, force_names) &
             & + name_index(name, ["JOINT", "JPRIM"]) + name_index(name, ["PINPUT ", "POUTPUT"])
     end function list_key
 
@@ -300,9 +299,13 @@ contains
             call read_ucon(path, where, statement, model%ucons(n(3)), error)
         case ("ACCGRAV")
             call read_accgrav(path, where, statement, model, error)
-        case ("SFORCE", "VFORCE", "GFORCE")
+        case ("SFORCE", "VFORCE", "GFORCE", "VTORQUE")
             n(4) = n(4) + 1
             call read_force(path, where, name, statement, model%forces(n(4)), error)
+        case ("SPRINGDAMPER", "BUSHING")
+            n(4) = n(4) + 1
+            call read_spring(path, where, name, statement, model%units, model%forces(n(4)), &
+                & error)
         case ("JOINT", "JPRIM")
             n(5) = n(5) + 1
             call read_joint(path, where, name, statement, model%units, model%joints(n(5)), error)
@@ -410,7 +413,7 @@ contains
         type(error_type), allocatable, intent(out) :: error
         character(len=:), allocatable :: reason
 
-        call resolve_keyword(statement%name, [character(len=11) :: statement_names, &
+        call resolve_keyword(statement%name, [character(len=12) :: statement_names, &
             & output_statement_names], "statement", "statement", place(path, statement%line), &
             & name, error)
         if (.not. allocated(error)) return
@@ -446,9 +449,9 @@ contains
     pure logical function needs_id(name)
         character(len=*), intent(in) :: name
 
-        needs_id = any(name == [character(len=10) :: "PART", "MARKER", "UCON", "SFORCE", &
+        needs_id = any(name == [character(len=12) :: "PART", "MARKER", "UCON", "SFORCE", &
             & "VFORCE", "GFORCE", "JOINT", "JPRIM", "GCON", "COUPLER", "GEAR", "MOTION", &
-            & "VARIABLE", "SPLINE", "PINPUT", "POUTPUT"]) &
+            & "VTORQUE", "SPRINGDAMPER", "BUSHING", "VARIABLE", "SPLINE", "PINPUT", "POUTPUT"]) &
             & .or. output_needs_id(name)
     end function needs_id
 

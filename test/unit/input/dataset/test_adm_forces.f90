@@ -11,9 +11,10 @@ module test_adm_forces
     use rollcon_adm_expression_parser, only : compile_expression
     use rollcon_marker, only : marker_type, marker_quantity
     use rollcon_marker_force, only : marker_force_type, kind_translation, kind_rotation, &
-        & kind_vector, kind_general
+        & kind_vector, kind_general, kind_spring
     use rollcon_force, only : applied_force_type, force_and_moment, force_breakpoints, &
         & pulse_stops, profile_statement, profile_half_sine
+    use rollcon_spring_force, only : spring_type, spring_bushing, spring_translational
     use rollcon_testing, only : unittest_type, new_unittest, check, skip_test
     use, intrinsic :: iso_c_binding, only : c_int, c_long
     implicit none
@@ -323,10 +324,11 @@ contains
     end subroutine test_breakpoints
 
     !> The loads of force statements, evaluated as every right-hand side does, call malloc
-    !> not once: the expressions' inputs live in a fixed array (at most max_inputs).
+    !> not once: the expressions' inputs live in a fixed array (at most max_inputs), a
+    !> SPRINGDAMPER's and a BUSHING's loads in fixed arrays.
     subroutine test_no_allocation(error)
         type(error_type), allocatable, intent(out) :: error
-        type(applied_force_type) :: forces(2)
+        type(applied_force_type) :: forces(4)
         real(wp) :: f(3), m(3), total
         integer(c_long) :: before
         integer :: k
@@ -345,6 +347,14 @@ contains
         forces(2)%statement%i = marker_type(id=5, part=1, point=[0.1_wp, 0.0_wp, 0.0_wp])
         forces(2)%statement%j = marker_type(id=6, part=2)
         forces(2)%statement%markers = [forces(2)%statement%i, forces(2)%statement%j]
+        ! a BUSHING and a translational SPRINGDAMPER between the parts (rollcon_spring_force)
+        forces(3:4) = forces(2)
+        forces(3:4)%statement%kind = kind_spring
+        forces(3)%statement%spring = spring_type(kind=spring_bushing, stiffness=[1.0_wp, &
+            & 2.0_wp, 3.0_wp], damping=0.5_wp, torsional_stiffness=4.0_wp, &
+            & torsional_damping=0.1_wp, preload=1.0_wp, preload_torque=-1.0_wp)
+        forces(4)%statement%spring = spring_type(kind=spring_translational, stiffness=5.0_wp, &
+            & damping=0.2_wp, reference=0.3_wp, preload=2.0_wp)
         total = 0.0_wp
         before = malloc_count()
         do k = 1, 100

@@ -277,10 +277,10 @@ contains
         lines(13) = "PTCV/9, I=3, J=4|CVCV/1, I=3|BEAM/2, I=3, J=4|FOO/1" &
             & // "|REQUEST/1, DISPLACEMENT, I=3"
         call read_dataset("refusal.adm", lines, model, refused)
-        expected = file // ": 4 statements are outside the supported subset (ACCGRAV, COUPLER," &
-            & // " END, GCON, GEAR, GFORCE, INTEGRATOR, JOINT, JPRIM, MARKER, MOTION, OUTPUT," &
-            & // " PART, PINPUT, POUTPUT, SFORCE, SIMULATE, SPLINE, UCON, UNITS, VARIABLE," &
-            & // " VFORCE;" &
+        expected = file // ": 4 statements are outside the supported subset (ACCGRAV, BUSHING," &
+            & // " COUPLER, END, GCON, GEAR, GFORCE, INTEGRATOR, JOINT, JPRIM, MARKER, MOTION," &
+            & // " OUTPUT, PART, PINPUT, POUTPUT, SFORCE, SIMULATE, SPLINE, SPRINGDAMPER, UCON," &
+            & // " UNITS, VARIABLE, VFORCE, VTORQUE;" &
             & // " read and not used: DEBUG, EQUILIBRIUM," &
             & // " GRAPHICS, IC, KINEMATICS, LIST, MREQUEST, NOLIST, PREFERENCES, REQUEST," &
             & // " RESULTS); nothing was run:" &
@@ -290,8 +290,9 @@ contains
             & // ":14: CVCV/1: rollcon's constraints are UCONs, JOINTs, JPRIMs, GCONs," &
             & // " COUPLERs and GEARs: state this one as a GCON expression, or as a UCON served" &
             & // " by a UCOSUB (ucon/)" // nl // "  " // file // ":15: BEAM/2:" &
-            & // " force elements other than SFORCE, VFORCE and GFORCE are not in the subset:" &
-            & // " write the force as one of them with a FUNCTION expression" // nl // "  " &
+            & // " force elements other than SFORCE, VFORCE, GFORCE, VTORQUE, SPRINGDAMPER and" &
+            & // " BUSHING are not in the subset: write the force as a GFORCE with FUNCTION" &
+            & // " expressions" // nl // "  " &
             & // file // ":16: 'FOO' is not a statement of the supported subset"
         call check(error, allocated(refused), "the dataset was accepted")
         if (allocated(error)) return

@@ -13,9 +13,9 @@ module test_adm_refusals
 
     !> The supported statements, as a refusal lists them
     character(len=*), parameter :: supported = &
-        & "(ACCGRAV, COUPLER, END, GCON, GEAR, GFORCE, INTEGRATOR, JOINT, JPRIM, MARKER," &
-        & // " MOTION, OUTPUT, PART, PINPUT, POUTPUT, SFORCE, SIMULATE, SPLINE, UCON, UNITS," &
-        & // " VARIABLE, VFORCE)"
+        & "(ACCGRAV, BUSHING, COUPLER, END, GCON, GEAR, GFORCE, INTEGRATOR, JOINT, JPRIM," &
+        & // " MARKER, MOTION, OUTPUT, PART, PINPUT, POUTPUT, SFORCE, SIMULATE, SPLINE," &
+        & // " SPRINGDAMPER, UCON, UNITS, VARIABLE, VFORCE, VTORQUE)"
 
 contains
 
@@ -55,10 +55,11 @@ contains
         expected(3) = ":7: 'SENSOR' is not a statement of the supported subset " // supported &
             & // "; sensors change a run as it goes (stop it, change its step): not in the" &
             & // " subset"
-        replaced(4) = "BUSHING/1, I=3, J=4"
-        expected(4) = ":7: 'BUSHING' is not a statement of the supported subset " // supported &
-            & // "; force elements other than SFORCE, VFORCE and GFORCE are not in the" &
-            & // " subset: write the force as one of them with a FUNCTION expression"
+        replaced(4) = "BEAM/1, I=3, J=4"
+        expected(4) = ":7: 'BEAM' is not a statement of the supported subset " // supported &
+            & // "; force elements other than SFORCE, VFORCE, GFORCE, VTORQUE, SPRINGDAMPER" &
+            & // " and BUSHING are not in the subset: write the force as a GFORCE with" &
+            & // " FUNCTION expressions"
         replaced(5) = "ARRAY/1, NUMBERS=1, 2"
         expected(5) = ":7: 'ARRAY' is not a statement of the supported subset " // supported &
             & // "; ARRAY and STRING are not in the subset: FUNCTION expressions read TIME," &
@@ -70,8 +71,8 @@ contains
         expected(7) = ":7: 'FOO' is not a statement of the supported subset " // supported
         replaced(8) = "S/1, I=3"
         expected(8) = ":7: 'S' is too short an abbreviation of a statement: the shortest ADAMS" &
-            & // " takes are SF for SFORCE, SI for SIMULATE, SPL for SPLINE (docs/datasets.md, " &
-            & // "Abbreviations)"
+            & // " takes are SF for SFORCE, SI for SIMULATE, SPL for SPLINE, SPR for" &
+            & // " SPRINGDAMPER (docs/datasets.md, Abbreviations)"
         replaced(9) = "END|PART/6, MASS=1"
         expected(9) = ":15: a statement after END"
         replaced(10) = "INTEGRATOR/ERROR=1e-8|INTEG/ERROR=1e-9"
