@@ -36,7 +36,7 @@ module rollcon_measures
     implicit none
     private
 
-    public :: measure_value, measure_jet, state_jets_type, new_state_jets, part_slot
+    public :: measure_value, measure_jet, state_jets_type, new_state_jets, part_slot, marker_jets
     public :: input_markers, expression_input_values, expression_input_jets, quantity_scale
     public :: counts_turns, reads_rates, is_state_measure, unwrap_angle, input_refusal
     public :: input_text, count_turns
