@@ -328,7 +328,7 @@ contains
         type(error_type), allocatable, intent(out) :: error
         type(adm_segment_type) :: segment
         type(adm_segment_type), allocatable :: segments(:)
-        integer :: statics
+        integer :: statics, k
         logical :: have
 
         if (.not. (times%end_given .or. times%steps_given .or. times%dtout_given)) return
@@ -374,7 +374,11 @@ contains
         ! the static equilibrium at the start, when one is asked, still comes first
         statics = 0
         if (have) statics = count_leading_statics(run)
-        segments = [run%segments(:statics), segment]
+        allocate(segments(statics + 1))
+        do k = 1, statics
+            segments(k) = run%segments(k)
+        end do
+        segments(statics + 1) = segment
         call move_alloc(segments, run%segments)
         call set_run_times(run, error)
     end subroutine apply_run_times
