@@ -44,6 +44,10 @@ module rollcon_analysis_run
         type(output_layout_type) :: layout
         type(csv_writer_type) :: csv
         real(wp) :: cpu_start = 0.0_wp
+        !> The energy's measures over the rows [J]: the first row's, the largest change from
+        !> it, the largest kinetic energy, the potential energy's range
+        real(wp) :: first_energy = 0.0_wp, energy_change = 0.0_wp, kinetic_max = 0.0_wp
+        real(wp) :: potential_min = huge(1.0_wp), potential_max = -huge(1.0_wp)
     end type rows_type
 
 contains
@@ -208,6 +212,7 @@ contains
         type(history_type), intent(inout), optional :: history
         class(row_sink_type), intent(inout), optional :: sink
         real(wp), allocatable :: row(:)
+        real(wp) :: energy, potential
 
         call problem%accelerations(time, q, u, error)
         if (allocated(error)) return
@@ -224,6 +229,14 @@ contains
                 & abs(problem%constraint_values()))
             summary%residual_max = maxval(summary%ucon_residual_max)
         end if
+        ! the energy, measured as a dynamic run measures it (rollcon_simulation's record)
+        energy = row(rows%layout%energy_column())
+        potential = problem%eq%potential_energy(q)
+        if (summary%rows == 0) rows%first_energy = energy
+        rows%energy_change = max(rows%energy_change, abs(energy - rows%first_energy))
+        rows%kinetic_max = max(rows%kinetic_max, energy - potential)
+        rows%potential_min = min(rows%potential_min, potential)
+        rows%potential_max = max(rows%potential_max, potential)
         call problem%model%count_turns(q, u, restart=.false.)
         summary%t_reached = time
         summary%q = q
@@ -264,6 +277,12 @@ contains
         end if
         call cpu_time(now)
         summary%cpu_seconds = now - rows%cpu_start
+        ! the energy is not conserved where MOTIONs drive the model: measured, not judged
+        summary%energy_reference = rows%first_energy
+        summary%energy_scale = max(rows%kinetic_max, rows%potential_max - rows%potential_min)
+        if (summary%energy_scale > 0.0_wp) summary%energy_drift = &
+            & rows%energy_change/summary%energy_scale
+        summary%energy_conserved = summary%energy_scale == 0.0_wp
         if (allocated(error)) then
             summary%status = status_failed
             summary%message = error%message

@@ -1,7 +1,9 @@
 ! SPDX-License-Identifier: MIT
 !> The statements of a dataset that shape only ADAMS's own outputs or its choice of solver:
-!> REQUEST, MREQUEST, GRAPHICS, RESULTS, DEBUG, PREFERENCES, LIST, NOLIST, the settings of the
-!> analyses rollcon does not run (EQUILIBRIUM, KINEMATICS, IC), and OUTPUT's arguments. Each
+!> REQUEST, MREQUEST, GRAPHICS, RESULTS, DEBUG, PREFERENCES, LIST, NOLIST, the settings of
+!> ADAMS's own solvers (KINEMATICS, IC), EQUILIBRIUM (its ERROR, IMBALANCE, TLIMIT, ALIMIT and
+!> MAXIT honoured as the static equilibrium's limits, in the run settings, in SI; the rest
+!> warned), and OUTPUT's arguments. Each
 !> keyword rollcon knows is read as strictly as a simulated statement's (any case, ADAMS's
 !> abbreviations, once each), the form of every value, and the markers, parts and forces it
 !> names (checked with the rest once the file is read: rollcon_adm_checks). A keyword rollcon
@@ -10,7 +12,7 @@
 !> and not used, and a run names it all in one warning (unused_warning); a REQUEST/id,
 !> DISPLACEMENT is honoured as output columns (rollcon_request_watch), and every other
 !> REQUEST is kept (its kind, markers, comment and expressions) and named as not answered.
-!> Values are not converted to SI: nothing reads them.
+!> Values are not converted to SI (EQUILIBRIUM's honoured ones aside): nothing reads them.
 module rollcon_adm_outputs
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type, fatal_error, stat_input
