@@ -48,7 +48,8 @@ contains
             & new_unittest("static-angle-of-a-pendulum-on-a-spring", test_pendulum), &
             & new_unittest("static-then-dynamic-stays-at-rest", test_static_then_dynamic), &
             & new_unittest("kinematic-refuses-a-degree-of-freedom", test_kinematic_refusal), &
-            & new_unittest("static-newton-failures-named", test_newton_failures)]
+            & new_unittest("static-newton-failures-named", test_newton_failures), &
+            & new_unittest("equilibrium-limits-read-in-si", test_equilibrium_limits)]
     end subroutine collect_analyses
 
     !> The slider-crank of test/redundant (crank r = 0.1 m, 0.5 kg; rod l = 0.3 m, 1 kg;
@@ -354,6 +355,53 @@ contains
             deallocate(refusal)
         end do
     end subroutine test_newton_failures
+
+    !> EQUILIBRIUM's limits in a dataset in centimetres and dynes are the run's in SI:
+    !> IMBALANCE 2 dyn = 2e-5 N, TLIMIT 5 cm = 0.05 m, ALIMIT 3D = pi/60 rad, ERROR and MAXIT
+    !> as written; STABILITY, which rollcon has no use for, is named in the warning; a MAXIT
+    !> that is not a whole number is refused by its line and keyword.
+    subroutine test_equilibrium_limits(error)
+        type(error_type), allocatable, intent(out) :: error
+        !> The unit conversions: a few roundings of the factors
+        real(wp), parameter :: tol = 1.0e-15_wp
+        character(len=*), parameter :: head = "limits" // nl &
+            & // "UNITS/FORCE=DYNE, MASS=GRAM, LENGTH=CENTIMETER, TIME=SECOND" // nl &
+            & // "PART/1, GROUND" // nl // "PART/2, MASS=1, CM=20, IP=1, 1, 1" // nl &
+            & // "MARKER/20, PART=2" // nl
+        type(job_type) :: job
+        type(error_type), allocatable :: refusal
+
+        call write_text("limits.adm", head // "EQUILIBRIUM/ERROR=1e-6, IMBALANCE=2, TLIMIT=5, " &
+            & // "ALIMIT=3D, MAXIT=7, STABILITY=1e-5" // nl // "SIMULATE/STATIC" // nl // "END")
+        call load_job(work_dir // "/limits.adm", job, error)
+        if (allocated(error)) return
+        associate (settings => job%source%settings)
+            call check(error, settings%equilibrium_error, 1.0e-6_wp, "ERROR", rel_tol=tol)
+            if (allocated(error)) return
+            call check(error, settings%equilibrium_imbalance, 2.0e-5_wp, "IMBALANCE [N]", &
+                & rel_tol=tol)
+            if (allocated(error)) return
+            call check(error, settings%equilibrium_tlimit, 0.05_wp, "TLIMIT [m]", rel_tol=tol)
+            if (allocated(error)) return
+            call check(error, settings%equilibrium_alimit, pi/60.0_wp, "ALIMIT [rad]", &
+                & rel_tol=tol)
+            if (allocated(error)) return
+            call check(error, settings%equilibrium_maxit == 7, "MAXIT " &
+                & // to_text(settings%equilibrium_maxit))
+            if (allocated(error)) return
+        end associate
+        call check(error, index(job%source%input_warning(), "EQUILIBRIUM STABILITY") > 0, &
+            & "the warning names STABILITY: " // job%source%input_warning())
+        if (allocated(error)) return
+        call write_text("limits_bad.adm", head // "EQUILIBRIUM/MAXIT=2.5" // nl &
+            & // "SIMULATE/STATIC" // nl // "END")
+        call load_job(work_dir // "/limits_bad.adm", job, refusal)
+        call check(error, allocated(refusal), "MAXIT=2.5 refused")
+        if (allocated(error)) return
+        call check(error, index(refusal%message, "limits_bad.adm:6: EQUILIBRIUM MAXIT must be " &
+            & // "a whole number") > 0, "the refusal names the line and keyword: " &
+            & // refusal%message)
+    end subroutine test_equilibrium_limits
 
     !> The pendulum's equilibrium angle: k a = m g l cos a, by Newton on the scalar.
     real(wp) function spring_angle() result(a)
