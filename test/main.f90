@@ -50,6 +50,7 @@ program tester
     use test_ucosub_catalog, only : collect_ucosub_catalog
     use test_initial_conditions, only : collect_initial_conditions
     use test_linearisation, only : collect_linearisation
+    use test_analyses, only : collect_analyses
     use test_linear_speeds, only : collect_linear_speeds
     use test_bicycle, only : collect_bicycle
     use test_mode_rates, only : collect_mode_rates
@@ -165,6 +166,7 @@ program tester
         & new_testsuite("joint-command", collect_joint_command), &
         & new_testsuite("initial-conditions", collect_initial_conditions), &
         & new_testsuite("linearisation", collect_linearisation), &
+        & new_testsuite("analyses", collect_analyses), &
         & new_testsuite("linear-speeds", collect_linear_speeds), &
         & new_testsuite("bicycle", collect_bicycle), &
         & new_testsuite("mode-rates", collect_mode_rates), &

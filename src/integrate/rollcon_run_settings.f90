@@ -13,6 +13,7 @@ module rollcon_run_settings
     public :: drift_none, drift_projection, drift_baumgarte, jacobian_analytic, jacobian_dq, &
         & jacobian_none
     public :: linear_dense, linear_sparse, linear_auto
+    public :: analysis_dynamic, analysis_kinematic, analysis_static
 
     !> Formulations: CVODE on the ODE form, IDA on the DAE form, CVODE on the coordinates and
     !> independent speeds (docs/design.md §4)
@@ -28,6 +29,8 @@ module rollcon_run_settings
     !> (SUNDIALS' KLU) over the entries the model's structure leaves (docs/design.md §4), or
     !> whichever of the two the matrix's size and entries make cheaper (sparse_newton)
     integer, parameter :: linear_dense = 1, linear_sparse = 2, linear_auto = 3
+    !> Analyses (SIMULATE/DYNAMIC, /KINEMATIC, /STATIC): run_settings_type%analysis
+    integer, parameter :: analysis_dynamic = 1, analysis_kinematic = 2, analysis_static = 3
     !> linear_auto's choice: KLU from this many states on, when the entries kept are at most
     !> auto_sparse_fill of the matrix. Measured (docs/benchmark.md "Cost as models grow"):
     !> KLU and the dense LU cost the same per step on one disk (15 states on IDA) and on one
@@ -66,6 +69,21 @@ module rollcon_run_settings
         real(wp) :: baumgarte_rate = 10.0_wp
         !> Most internal steps per output interval
         integer :: max_steps = 500000
+        !> The analysis the output times are for: analysis_dynamic (integration),
+        !> analysis_kinematic (a model with no degree of freedom, solved at each output time) or
+        !> analysis_static (the static equilibrium alone, one row)
+        integer :: analysis = analysis_dynamic
+        !> A static equilibrium at the start, before the dynamic run (SIMULATE/STATIC then
+        !> SIMULATE/DYNAMIC): the dynamic run starts from it at rest
+        logical :: static_first = .false.
+        !> The static equilibrium's limits (ADAMS's EQUILIBRIUM statement and its defaults):
+        !> ERROR, the largest relative correction of a converged iteration [-]; IMBALANCE, the
+        !> largest force [N] and moment [N m] left unbalanced; TLIMIT and ALIMIT, the largest
+        !> translation [m] and angle [rad] an iteration may move a coordinate; MAXIT, the most
+        !> Newton iterations
+        real(wp) :: equilibrium_error = 1.0e-4_wp, equilibrium_imbalance = 1.0e-4_wp
+        real(wp) :: equilibrium_tlimit = 20.0_wp, equilibrium_alimit = 0.17453292519943295_wp
+        integer :: equilibrium_maxit = 25
     contains
         procedure :: baumgarte
         procedure :: analytic_jacobian

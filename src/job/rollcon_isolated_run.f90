@@ -24,7 +24,7 @@ module rollcon_isolated_run
         & pack_shapes, unpack_shapes
     use rollcon_progress, only : progress_type
     use rollcon_csv_writer, only : csv_writer_type
-    use rollcon_simulation, only : run_options_type, run_summary_type, history_type, simulate, &
+    use rollcon_simulation, only : run_options_type, run_summary_type, history_type, &
         & status_failed
     use rollcon_child_process, only : isolated_task_type, stream_receiver_type, &
         & call_record_type, isolation_outcome_type, run_in_child, outcome_finished
@@ -34,6 +34,7 @@ module rollcon_isolated_run
     use rollcon_user_build, only : build_user_library
     use rollcon_user_library, only : user_ucosub_type, load_user_ucosub
     use rollcon_job, only : job_type
+    use rollcon_analysis_run, only : run_analysis
     implicit none
     private
 
@@ -229,7 +230,7 @@ contains
         call send_frame(self%stream_fd, frame_started, "", error)
         if (allocated(error)) return
         sink%fd = self%stream_fd
-        call simulate(problem, q0, u0, self%options, summary, error, sink=sink)
+        call run_analysis(problem, q0, u0, self%options, summary, error, sink=sink)
         wire = wire_writer_type()
         call pack_summary(wire, summary)
         call send_frame(self%stream_fd, frame_summary, wire%packed(), send_error)

@@ -19,10 +19,11 @@ module rollcon_run_job
         & make_folders
     use rollcon_problem, only : problem_type
     use rollcon_part_shapes, only : part_shape_type, write_part_shapes
-    use rollcon_simulation, only : run_options_type, run_summary_type, history_type, simulate, &
+    use rollcon_simulation, only : run_options_type, run_summary_type, history_type, &
         & status_failed
     use rollcon_summary_text, only : run_summary_text
     use rollcon_job, only : job_type
+    use rollcon_analysis_run, only : run_analysis
     use rollcon_isolated_run, only : run_isolated
     use rollcon_provenance, only : provenance_lines
     implicit none
@@ -126,7 +127,7 @@ contains
             return
         end if
         started = .true.
-        call simulate(problem, q0, u0, options, summary, error, history)
+        call run_analysis(problem, q0, u0, options, summary, error, history)
         call problem%release()
     end subroutine run_here
 

@@ -98,6 +98,7 @@ contains
             & summary%failures, summary%root_evaluations, merge(1, 0, summary%sparse_newton)])
         call wire%put_int(summary%rows)
         call wire%put_real(summary%cpu_seconds)
+        call wire%put_text(text_of(summary%analysis_lines))
     end subroutine pack_summary
 
     subroutine unpack_summary(wire, summary)
@@ -151,6 +152,7 @@ contains
         end if
         summary%rows = wire%get_int()
         summary%cpu_seconds = wire%get_real()
+        summary%analysis_lines = wire%get_text()
     end subroutine unpack_summary
 
     subroutine pack_measure(wire, measure)

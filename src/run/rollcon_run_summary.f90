@@ -94,6 +94,10 @@ module rollcon_run_summary
         integer(int64) :: rows = 0
         !> CPU time of the integration [s]
         real(wp) :: cpu_seconds = 0.0_wp
+        !> Which analysis ran, when not a dynamic run alone, with what it found (a static
+        !> equilibrium's iterations and imbalance: rollcon_static_equilibrium), lines each ending
+        !> in a newline; "" or unallocated for a dynamic run
+        character(len=:), allocatable :: analysis_lines
     contains
         procedure :: measure
     end type run_summary_type

@@ -42,6 +42,7 @@ contains
         case default
             text = text // "status: FAILED: " // summary%message // nl
         end select
+        if (allocated(summary%analysis_lines)) text = text // summary%analysis_lines
         text = text // final_state(summary)
         text = text // energy_line(summary) // nl
         text = text // residual_lines(summary)

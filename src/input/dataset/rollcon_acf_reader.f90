@@ -5,10 +5,13 @@
 !> commands, one a statement as in a dataset (continuation lines start with a comma, or the
 !> line before ends with `&`; `!` comments), up to STOP or the end of the file:
 !>
-!>     SIMULATE/DYNAMIC, END=t | DURATION=t, STEPS=n | DTOUT=dt
+!>     SIMULATE/DYNAMIC, END=t | DURATION=t, STEPS=n | DTOUT=dt   (or /KINEMATIC)
+!>     SIMULATE/STATIC     (the static equilibrium: before the first DYNAMIC, or alone)
 !>     INTEGRATOR/...      (rollcon's and ADAMS's keywords, as the statement; before the
 !>                          first SIMULATE: one run has one integrator)
-!>     OUTPUT/...          (and DEBUG, PREFERENCES, EQUILIBRIUM, IC, KINEMATICS: read, warned)
+!>     EQUILIBRIUM/...     (its ERROR, IMBALANCE, MAXIT, TLIMIT, ALIMIT honoured, as the
+!>                          statement's; the rest warned)
+!>     OUTPUT/...          (and DEBUG, PREFERENCES, IC, KINEMATICS: read, warned)
 !>     STOP
 !>
 !> Several SIMULATE commands in a row continue one run, each with its own output times

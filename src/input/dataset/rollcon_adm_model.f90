@@ -7,7 +7,7 @@ module rollcon_adm_model
     use rollcon_kinds, only : wp
     use rollcon_expression, only : expression_type
     use rollcon_adm_units, only : units_type
-    use rollcon_run_settings, only : run_settings_type
+    use rollcon_run_settings, only : run_settings_type, analysis_dynamic
     use rollcon_adm_joints, only : adm_joint_type
     use rollcon_adm_couplers, only : adm_gcon_type, adm_coupler_type, adm_gear_type
     use rollcon_adm_motions, only : adm_motion_type
@@ -113,6 +113,9 @@ module rollcon_adm_model
     !> options of `rollcon run` (rollcon_adm_run). Each goes on from where the one before ended
     !> (the first from t = 0).
     type :: adm_segment_type
+        !> The analysis: analysis_dynamic, analysis_kinematic or analysis_static
+        !> (rollcon_run_settings); a static one has no times
+        integer :: analysis = analysis_dynamic
         !> END=t [s] (by_duration false), or DURATION=t [s] from the segment's start
         real(wp) :: end_time = 0.0_wp, duration = 0.0_wp
         logical :: by_duration = .false.

@@ -1,7 +1,9 @@
 ! SPDX-License-Identifier: MIT
 !> The statements of a dataset that shape only ADAMS's own outputs or its choice of solver:
-!> REQUEST, MREQUEST, GRAPHICS, RESULTS, DEBUG, PREFERENCES, LIST, NOLIST, the settings of the
-!> analyses rollcon does not run (EQUILIBRIUM, KINEMATICS, IC), and OUTPUT's arguments. Each
+!> REQUEST, MREQUEST, GRAPHICS, RESULTS, DEBUG, PREFERENCES, LIST, NOLIST, the settings of
+!> ADAMS's own solvers (KINEMATICS, IC), EQUILIBRIUM (its ERROR, IMBALANCE, TLIMIT, ALIMIT and
+!> MAXIT honoured as the static equilibrium's limits, in the run settings, in SI; the rest
+!> warned), and OUTPUT's arguments. Each
 !> keyword rollcon knows is read as strictly as a simulated statement's (any case, ADAMS's
 !> abbreviations, once each), the form of every value, and the markers, parts and forces it
 !> names (checked with the rest once the file is read: rollcon_adm_checks). A keyword rollcon
@@ -10,7 +12,7 @@
 !> and not used, and a run names it all in one warning (unused_warning); a REQUEST/id,
 !> DISPLACEMENT is honoured as output columns (rollcon_request_watch), and every other
 !> REQUEST is kept (its kind, markers, comment and expressions) and named as not answered.
-!> Values are not converted to SI: nothing reads them.
+!> Values are not converted to SI (EQUILIBRIUM's honoured ones aside): nothing reads them.
 module rollcon_adm_outputs
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type, fatal_error, stat_input
@@ -192,6 +194,10 @@ contains
                 & marker(name_index(key, [character(len=2) :: "I", "J", "RM"])) = ids(1)
             if (name == "OUTPUT") call record_unused(model%unused, model%unused_count, &
                 & "OUTPUT " // key, statement%line)
+            if (name == "EQUILIBRIUM") then
+                call read_equilibrium_limit(statement%arguments(k), at, key, model, error)
+                if (allocated(error)) return
+            end if
         end do
         select case (name)
         case ("REQUEST")
@@ -208,11 +214,58 @@ contains
                 & // to_text(count(given .and. is_one_of(keys, shapes))), stat_input)
             if (.not. allocated(error)) call record_unused(model%unused, model%unused_count, &
                 & name, statement%line)
-        case ("OUTPUT")
+        case ("OUTPUT", "EQUILIBRIUM")
         case default
             call record_unused(model%unused, model%unused_count, name, statement%line)
         end select
     end subroutine read_output_statement
+
+    !> One argument of EQUILIBRIUM: ERROR, IMBALANCE (force units), TLIMIT (length units),
+    !> ALIMIT (an angle) and MAXIT set the static equilibrium's limits (run settings, in SI);
+    !> the others (STABILITY, PATTERN, METHOD, DYNAMIC, ...) are recorded as read and not used.
+    subroutine read_equilibrium_limit(argument, at, key, model, error)
+        type(adm_argument_type), intent(in) :: argument
+        !> "file:line: EQUILIBRIUM KEY"
+        character(len=*), intent(in) :: at
+        !> The keyword in full
+        character(len=*), intent(in) :: key
+        type(adm_model_type), intent(inout) :: model
+        type(error_type), allocatable, intent(out) :: error
+        real(wp), allocatable :: values(:)
+
+        select case (key)
+        case ("ERROR", "IMBALANCE", "TLIMIT", "ALIMIT", "MAXIT")
+        case default
+            call record_unused(model%unused, model%unused_count, "EQUILIBRIUM " // key, &
+                & argument%line)
+            return
+        end select
+        call read_reals(argument, at, 1, 1, key == "ALIMIT", values, error)
+        if (allocated(error)) return
+        if (.not. values(1) > 0.0_wp) then
+            call fatal_error(error, at // " must be > 0, got " // to_text(values(1)), stat_input)
+            return
+        end if
+        associate (settings => model%run%settings)
+            select case (key)
+            case ("ERROR")
+                settings%equilibrium_error = values(1)
+            case ("IMBALANCE")
+                settings%equilibrium_imbalance = values(1)*model%units%force
+            case ("TLIMIT")
+                settings%equilibrium_tlimit = values(1)*model%units%length
+            case ("ALIMIT")
+                settings%equilibrium_alimit = values(1)
+            case ("MAXIT")
+                if (values(1) /= aint(values(1)) .or. values(1) > 1.0e6_wp) then
+                    call fatal_error(error, at // " must be a whole number of iterations from " &
+                        & // "1 to 1000000, got " // to_text(values(1)), stat_input)
+                    return
+                end if
+                settings%equilibrium_maxit = nint(values(1))
+            end select
+        end associate
+    end subroutine read_equilibrium_limit
 
     !> A REQUEST asks for one thing: DISPLACEMENT, VELOCITY, ACCELERATION or FORCE of its I
     !> marker, or expressions (F1..F8, FUNCTION=USER(...)). A DISPLACEMENT is honoured; the

@@ -17,7 +17,8 @@ module rollcon_adm_run
     use rollcon_adm_units, only : units_type
     use rollcon_adm_model, only : adm_run_type, adm_segment_type
     use rollcon_adm_integrator, only : read_integrator
-    use rollcon_run_settings, only : run_settings_type
+    use rollcon_run_settings, only : run_settings_type, analysis_dynamic, analysis_kinematic, &
+        & analysis_static
     use rollcon_keys, only : key_type, find_key
     use rollcon_run_keys, only : bind_run_keys
     use rollcon_key_values, only : in_range, range_text
@@ -27,13 +28,13 @@ module rollcon_adm_run
     public :: read_simulate, read_integrator, simulate_keys, read_segment, set_run_times
     public :: run_times_type, apply_run_times, no_simulate_message
 
-    !> The keywords of SIMULATE: the analysis (DYNAMIC the one rollcon runs; the others
-    !> refused with the reason), the end, the output steps
-    character(len=*), parameter :: simulate_keys(5) = [character(len=8) :: "DYNAMIC", "END", &
-        & "STEPS", "DTOUT", "DURATION"]
+    !> The keywords of SIMULATE: the end, the output steps, and the analysis (DYNAMIC,
+    !> KINEMATIC, STATIC; ADAMS's others refused with the reason)
+    character(len=*), parameter :: simulate_keys(7) = [character(len=9) :: "DYNAMIC", "END", &
+        & "STEPS", "DTOUT", "DURATION", "STATIC", "KINEMATIC"]
     !> ADAMS's other analyses, refused with the reason
-    character(len=*), parameter :: other_analyses(4) = [character(len=18) :: "STATIC", &
-        & "KINEMATIC", "TRANSIENT", "INITIAL_CONDITIONS"]
+    character(len=*), parameter :: other_analyses(2) = [character(len=18) :: "TRANSIENT", &
+        & "INITIAL_CONDITIONS"]
     !> An output time within this many output steps of a segment's end is at its end (as the
     !> run's planned rows count them: rollcon_output_rows)
     real(wp), parameter :: grid_tolerance = 1.0e-9_wp
@@ -71,9 +72,10 @@ contains
         call set_run_times(run, error)
     end subroutine read_simulate
 
-    !> One SIMULATE/DYNAMIC, END=t or DURATION=t, STEPS=n or DTOUT=dt (t, dt in the
-    !> dataset's time unit, converted to s), as a statement of a dataset or a command of a
-    !> command file.
+    !> One SIMULATE/DYNAMIC or SIMULATE/KINEMATIC, END=t or DURATION=t, STEPS=n or DTOUT=dt
+    !> (t, dt in the dataset's time unit, converted to s), or SIMULATE/STATIC (no times: the
+    !> equilibrium where the run is), as a statement of a dataset or a command of a command
+    !> file.
     subroutine read_segment(path, where, statement, units, segment, error)
         !> The file, for messages
         character(len=*), intent(in) :: path
@@ -96,9 +98,9 @@ contains
                 & "analysis", where, key, refused)
             if (.not. allocated(refused)) then
                 call fatal_error(error, arg_place(path, where, statement%arguments(k)) // " " &
-                    & // key // ": rollcon runs a dynamic analysis only (SIMULATE/DYNAMIC), " &
-                    & // "from the start its initial-conditions analysis makes consistent " &
-                    & // "(docs/initial-conditions.md)", stat_input)
+                    & // key // ": rollcon runs SIMULATE/DYNAMIC, /KINEMATIC and /STATIC; " &
+                    & // "a dynamic run starts from the start its initial-conditions analysis " &
+                    & // "makes consistent (docs/initial-conditions.md)", stat_input)
                 return
             end if
             deallocate(refused)
@@ -108,7 +110,7 @@ contains
             slot = name_index(key, simulate_keys)
             lines(slot) = statement%arguments(k)%line
             select case (key)
-            case ("DYNAMIC")
+            case ("DYNAMIC", "STATIC", "KINEMATIC")
                 if (statement%arguments(k)%assigned) then
                     call fatal_error(error, at // " takes no value", stat_input)
                     return
@@ -119,10 +121,23 @@ contains
             if (allocated(error)) return
             given(slot) = values(1)
         end do
-        if (lines(1) == 0) then
-            call fatal_error(error, where // ": only SIMULATE/DYNAMIC is supported (a dynamic " &
-                & // "analysis); write SIMULATE/DYNAMIC, END=..., STEPS=...", stat_input)
-        else if (lines(2) == 0 .and. lines(5) == 0) then
+        if (count(lines([1, 6, 7]) > 0) /= 1) then
+            call fatal_error(error, where // ": give one analysis: SIMULATE/DYNAMIC (or " &
+                & // "/KINEMATIC), END=..., STEPS=..., or SIMULATE/STATIC", stat_input)
+            return
+        end if
+        if (lines(6) > 0) then
+            segment%analysis = analysis_static
+            if (any(lines(2:5) > 0)) call fatal_error(error, where // ": SIMULATE/STATIC is " &
+                & // "the static equilibrium where the run is and takes no END, DURATION, " &
+                & // "STEPS or DTOUT (ADAMS's quasi-static analysis is not run)", stat_input)
+            segment%end_at = place(path, lines(6)) // where(index(where, ": ", back=.true.):) &
+                & // " STATIC"
+            segment%output_at = segment%end_at
+            return
+        end if
+        if (lines(7) > 0) segment%analysis = analysis_kinematic
+        if (lines(2) == 0 .and. lines(5) == 0) then
             call fatal_error(error, where // ": END=t (the end time) is missing (or " &
                 & // "DURATION=t, from where the run is)", stat_input)
         else if (lines(2) > 0 .and. lines(5) > 0) then
@@ -153,6 +168,51 @@ contains
     subroutine set_run_times(run, error)
         type(adm_run_type), intent(inout) :: run
         type(error_type), allocatable, intent(out) :: error
+        type(adm_segment_type), allocatable :: timed(:)
+        integer :: s, statics, kinematics
+
+        statics = 0
+        do s = 1, size(run%segments)
+            if (run%segments(s)%analysis /= analysis_static) exit
+            statics = s
+        end do
+        run%settings%static_first = statics > 0
+        if (statics == size(run%segments)) then
+            run%settings%analysis = analysis_static
+            run%settings%static_first = .false.
+            return
+        end if
+        kinematics = count(run%segments(statics + 1:)%analysis == analysis_kinematic)
+        do s = statics + 1, size(run%segments)
+            if (run%segments(s)%analysis == analysis_static) then
+                call fatal_error(error, run%segments(s)%end_at // ": a static equilibrium " &
+                    & // "after a dynamic or kinematic SIMULATE; rollcon finds it at the start " &
+                    & // "only (SIMULATE/STATIC before the first SIMULATE/DYNAMIC)", stat_input)
+                return
+            end if
+        end do
+        if (kinematics > 0 .and. kinematics < size(run%segments) - statics) then
+            call fatal_error(error, run%segments(statics + 1)%end_at // ": SIMULATE/KINEMATIC " &
+                & // "and SIMULATE/DYNAMIC in one run; rollcon runs one of them (a model with " &
+                & // "no degree of freedom: KINEMATIC)", stat_input)
+            return
+        end if
+        if (kinematics > 0 .and. statics > 0) then
+            call fatal_error(error, run%segments(1)%end_at // ": SIMULATE/STATIC before " &
+                & // "SIMULATE/KINEMATIC; a kinematic run's positions are its constraints' " &
+                & // "alone: leave the SIMULATE/STATIC out", stat_input)
+            return
+        end if
+        run%settings%analysis = merge(analysis_kinematic, analysis_dynamic, kinematics > 0)
+        timed = run%segments(statics + 1:)
+        call segment_times(timed, run%settings, error)
+    end subroutine set_run_times
+
+    !> The run's times from its timed segments (see set_run_times).
+    subroutine segment_times(segments, settings, error)
+        type(adm_segment_type), intent(in) :: segments(:)
+        type(run_settings_type), intent(inout) :: settings
+        type(error_type), allocatable, intent(out) :: error
         type(run_settings_type), target :: scratch
         type(key_type), allocatable :: keys(:)
         real(wp), allocatable :: times(:)
@@ -169,8 +229,8 @@ contains
         aligned = .true.
         allocate(times(0))
         total = 0
-        do s = 1, size(run%segments)
-            associate (segment => run%segments(s), end_key => keys(find_key(keys, "run", &
+        do s = 1, size(segments)
+            associate (segment => segments(s), end_key => keys(find_key(keys, "run", &
                     & "end_time")), step_key => keys(find_key(keys, "run", "output_step")))
                 if (segment%by_duration) then
                     finish = start + segment%duration
@@ -215,11 +275,11 @@ contains
                         & // "end_time), got " // to_text(step) // " s", stat_input)
                     return
                 end if
-                if (size(run%segments) == 1) then
-                    run%settings%end_time = finish
-                    run%settings%output_step = step
-                    if (allocated(run%settings%output_times)) &
-                        & deallocate(run%settings%output_times)
+                if (size(segments) == 1) then
+                    settings%end_time = finish
+                    settings%output_step = step
+                    if (allocated(settings%output_times)) &
+                        & deallocate(settings%output_times)
                     return
                 end if
                 ! a new origin unless the step and the grid go on
@@ -243,18 +303,18 @@ contains
                 times = [times, (anchor + real(counted + j, wp)*step, j = 1, n)]
                 total = total + int(n)
                 ! the segment's last time is its end, as one run's last is at its end time
-                if (.not. aligned .or. s == size(run%segments)) times(total) = min(times(total), &
+                if (.not. aligned .or. s == size(segments)) times(total) = min(times(total), &
                     & finish)
                 if (.not. aligned) times(total) = finish
                 counted = counted + n
                 previous_step = step
                 start = finish
-                if (s == 1) run%settings%output_step = step
+                if (s == 1) settings%output_step = step
             end associate
         end do
-        run%settings%end_time = start
-        run%settings%output_times = times
-    end subroutine set_run_times
+        settings%end_time = start
+        settings%output_times = times
+    end subroutine segment_times
 
     !> Replace the run's segments by the options of `rollcon run` (times): END (--end), and
     !> STEPS (--steps) or DTOUT (--dtout), each kept from the last segment read when not
@@ -267,6 +327,8 @@ contains
         type(adm_run_type), intent(inout) :: run
         type(error_type), allocatable, intent(out) :: error
         type(adm_segment_type) :: segment
+        type(adm_segment_type), allocatable :: segments(:)
+        integer :: statics, k
         logical :: have
 
         if (.not. (times%end_given .or. times%steps_given .or. times%dtout_given)) return
@@ -308,11 +370,30 @@ contains
             segment%dtout = times%dtout*units%time
             segment%output_at = file // ": rollcon run --dtout"
         end if
-        if (allocated(run%segments)) deallocate(run%segments)
-        allocate(run%segments(1))
-        run%segments(1) = segment
+        if (segment%analysis == analysis_static) segment%analysis = analysis_dynamic
+        ! the static equilibrium at the start, when one is asked, still comes first
+        statics = 0
+        if (have) statics = count_leading_statics(run)
+        allocate(segments(statics + 1))
+        do k = 1, statics
+            segments(k) = run%segments(k)
+        end do
+        segments(statics + 1) = segment
+        call move_alloc(segments, run%segments)
         call set_run_times(run, error)
     end subroutine apply_run_times
+
+    !> The number of SIMULATE/STATIC segments before the first timed one.
+    pure integer function count_leading_statics(run) result(statics)
+        type(adm_run_type), intent(in) :: run
+        integer :: s
+
+        statics = 0
+        do s = 1, size(run%segments)
+            if (run%segments(s)%analysis /= analysis_static) exit
+            statics = s
+        end do
+    end function count_leading_statics
 
     !> The end of the run's last segment [s].
     pure real(wp) function final_end(run) result(finish)
@@ -321,6 +402,7 @@ contains
 
         finish = 0.0_wp
         do s = 1, size(run%segments)
+            if (run%segments(s)%analysis == analysis_static) cycle
             if (run%segments(s)%by_duration) then
                 finish = finish + run%segments(s)%duration
             else

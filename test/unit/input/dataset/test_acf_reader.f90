@@ -257,10 +257,10 @@ contains
         expected(4) = file // ":3: 'SAVE' is not a command of the supported subset (SIMULATE, " &
             & // "INTEGRATOR, OUTPUT, STOP, DEBUG, PREFERENCES, EQUILIBRIUM, IC, KINEMATICS); a " &
             & // "run is not saved and reloaded"
-        commands(5, :) = [character(len=60) :: "untimed", "", "SIMULATE/STATIC"]
-        expected(5) = file // ":3: SIMULATE STATIC: rollcon runs a dynamic analysis only " &
-            & // "(SIMULATE/DYNAMIC), from the start its initial-conditions analysis makes " &
-            & // "consistent (docs/initial-conditions.md)"
+        commands(5, :) = [character(len=60) :: "untimed", "", "SIMULATE/TRANSIENT"]
+        expected(5) = file // ":3: SIMULATE TRANSIENT: rollcon runs SIMULATE/DYNAMIC, " &
+            & // "/KINEMATIC and /STATIC; a dynamic run starts from the start its " &
+            & // "initial-conditions analysis makes consistent (docs/initial-conditions.md)"
         commands(6, :) = [character(len=60) :: "untimed", "", &
             & "SIM/DYN, END=2, STEPS=2|SIM/DYN, END=1, STEPS=2"]
         expected(6) = file // ":4: SIMULATE END gives an end of 1 s, not after the end of the " &

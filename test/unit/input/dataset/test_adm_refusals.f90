@@ -127,7 +127,7 @@ contains
             & // " (METER, MILLIMETER, CENTIMETER, KILOMETER, INCH, FOOT)"
         replaced(12) = "SIM/STATICS, END=1"
         expected(12) = ":11: SIMULATE: 'STATICS' is not a SIMULATE argument of the supported" &
-            & // " subset (DYNAMIC, END, STEPS, DTOUT, DURATION)"
+            & // " subset (DYNAMIC, END, STEPS, DTOUT, DURATION, STATIC, KINEMATIC)"
         replaced(13) = "INTEGRATOR/FORM=ode"
         expected(13) = ":12: INTEGRATOR FORMULATION: 'ode' is not a formulation of the supported" &
             & // " subset (IDA, CVODE, MAGGI)"
@@ -283,8 +283,8 @@ contains
         expected(13) = ":11: SIMULATE DTOUT must be <= END = 1 s (as &run output_step <=" &
             & // " end_time), got 2 s"
         replaced(14) = "SIMULATE/END=1, STEPS=10"
-        expected(14) = ":11: SIMULATE: only SIMULATE/DYNAMIC is supported (a dynamic analysis);" &
-            & // " write SIMULATE/DYNAMIC, END=..., STEPS=..."
+        expected(14) = ":11: SIMULATE: give one analysis: SIMULATE/DYNAMIC (or /KINEMATIC)," &
+            & // " END=..., STEPS=..., or SIMULATE/STATIC"
         replaced(15) = "SIMULATE/DYNAMIC, STEPS=10"
         expected(15) = ":11: SIMULATE: END=t (the end time) is missing (or" &
             & // " DURATION=t, from where the run is)"
