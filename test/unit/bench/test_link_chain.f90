@@ -2,7 +2,8 @@
 !> The chain of N links (rollcon_link_chain), the second model of the cost benchmark, and the
 !> sparse Newton matrix of IDA: the chain reads as one block, starts where it is written and
 !> meets its joints; the DAE's pattern (dae_pattern) holds every nonzero of the analytic
-!> Newton matrix and keeps O(N) of a chain's entries; IDA with KLU moves the chain and the disks
+!> Newton matrix and keeps O(N) of a chain's entries, and the Newton matrix written over it
+!> (dae_sparse_jacobian) is the dense one's bit for bit; IDA with KLU moves the chain and the disks
 !> as the dense matrix does; linear_solver = 'auto' picks KLU on large sparse matrices only;
 !> the saddle-point system's Schur complement goes sparse (KLU) on a long chain's block only,
 !> with the dense path's accelerations; `rollcon bench` prints the per-part scaling table.
@@ -235,9 +236,11 @@ contains
     end subroutine test_start
 
     !> The DAE's pattern holds every entry of the analytic Newton matrix that is not zero, at a
-    !> state with every velocity and multiplier nonzero, on chains of 8 and 16 links (one block)
-    !> and on 3 disks (three blocks), and keeps no more than the blocks; a chain's grows as N
-    !> (a band: each part meets its two neighbours), where its block grows as N^2.
+    !> state with every velocity and multiplier nonzero, on chains of 8 and 16 links (one block),
+    !> on 3 disks (three blocks) and on data/bicycle.adm, and keeps no more than the blocks; a
+    !> chain's grows as N (a band: each part meets its two neighbours), where its block grows as
+    !> N^2; gathered from the elements' blocks, it keeps exactly the entries the n x n relation
+    !> of the same blocks kept; the Newton matrix written over it is the dense one's.
     subroutine test_pattern(error)
         type(error_type), allocatable, intent(out) :: error
         !> Entries of the chain of 16 over the chain of 8's: 2 for a band (the ground hinge's
