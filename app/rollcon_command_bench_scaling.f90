@@ -2,13 +2,15 @@
 !> `rollcon bench scaling`: the CPU time per step and per part of N independent rolling disks
 !> and of a chain of N links, N = 1, 2, 4, ..., 64, on IDA, CVODE's ODE form and the
 !> independent speeds, dense and sparse, and CVODE's ODE form by fixed-point iteration, as
-!> ratios to N = 1's, and the start-up of each run (docs/benchmark.md "Cost as models grow").
+!> ratios to N = 1's, the start-up of each run and its memory per part; the chain on the sparse
+!> Newton matrix also at 128, 256 and 640 links (docs/benchmark.md "Cost as models grow").
 !> A benchmark, not a test.
 module rollcon_command_bench_scaling
     use, intrinsic :: iso_fortran_env, only : output_unit
     use rollcon, only : wp, error_type, fatal_error, stat_io, to_text
     use rollcon_program, only : machine_name, make_folders, scaling_row_type, measure_scaling, &
-        & scaling_header, scaling_csv_row, scaling_table, check_scaling_end_time
+        & scaling_header, scaling_csv_row, scaling_table, check_scaling_end_time, &
+        & long_chain_methods
     use rollcon_cli, only : cli_request_type
     implicit none
     private
@@ -22,7 +24,9 @@ contains
         type(cli_request_type), intent(in) :: request
         type(error_type), allocatable, intent(out) :: error
         integer, parameter :: counts(7) = [1, 2, 4, 8, 16, 32, 64]
-        type(scaling_row_type), allocatable :: rows(:)
+        !> The long chains, on the sparse Newton matrix only (N = 1 again: their ratios' base)
+        integer, parameter :: long_counts(4) = [1, 128, 256, 640]
+        type(scaling_row_type), allocatable :: rows(:), long_rows(:)
         character(len=:), allocatable :: output_dir
         real(wp) :: end_time
         integer :: k, unit, stat
@@ -44,6 +48,10 @@ contains
             & // "atol 1e-10"
         call measure_scaling(output_dir, counts, end_time, rows, error)
         if (allocated(error)) return
+        call measure_scaling(output_dir, long_counts, end_time, long_rows, error, &
+            & long_chain_methods())
+        if (allocated(error)) return
+        rows = [rows, long_rows]
         open(newunit=unit, file=output_dir // "/scaling.csv", status="replace", &
             & action="write", iostat=stat)
         if (stat /= 0) then
@@ -74,7 +82,10 @@ contains
             & "and CVODE Adams with fixed-point iteration (no Newton matrix; on the chain", &
             & "in independent speeds too) (rtol 1e-8, atol 1e-10): the CPU time of the", &
             & "integration per step and per part [us], its ratio to N = 1's, and the CPU", &
-            & "time of the rest of the run [ms] (reading, building, initial conditions).", &
+            & "time of the rest of the run [ms] (reading, building, initial conditions),", &
+            & "the peak resident memory [MB] and the run's memory per part [kB] (the peak", &
+            & "over what the process held before the run; Linux's VmHWM). The chain on the", &
+            & "default and on IDA with KLU runs to 128, 256 and 640 links too.", &
             & "Writes the datasets and DIR/scaling.csv (default output/bench_scaling). A", &
             & "benchmark: run it on a quiet machine."
     end subroutine print_help

@@ -28,7 +28,8 @@ module rollcon_program
     use rollcon_bench_plot, only : plot_work_precision, machine_name, sundials_build
     use rollcon_bench_sweep, only : time_sweep, coordinator_row_us
     use rollcon_bench_scaling, only : scaling_row_type, measure_scaling, scaling_header, &
-        & scaling_csv_row, scaling_table, short_scaling_methods, check_scaling_end_time
+        & scaling_csv_row, scaling_table, short_scaling_methods, check_scaling_end_time, &
+        & long_chain_methods
     implicit none
     public
 end module rollcon_program

@@ -3,7 +3,9 @@
 !> disks (rollcon_disk_fleet) and a chain of N links joined by REVOLUTE joints
 !> (rollcon_link_chain) for N = 1, 2, 4, ..., 64, each run as a dataset through the one route
 !> (load_job, run_job, no files) on each way of solving, and the CPU time per step and per part
-!> against N = 1's. A benchmark, not a test: the ratios are what it reports.
+!> against N = 1's, and the memory each run takes per part (the peak resident memory over what
+!> the process held before it: Linux's VmHWM, reset before each run through
+!> /proc/self/clear_refs). A benchmark, not a test: the ratios are what it reports.
 module rollcon_bench_scaling
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type, fatal_error, stat_input
@@ -19,6 +21,7 @@ module rollcon_bench_scaling
 
     public :: scaling_row_type, scaling_methods, measure_scaling, scaling_header, scaling_csv_row
     public :: chain_time_share, scaling_table, short_scaling_methods, check_scaling_end_time
+    public :: long_chain_methods
 
     !> The chain runs this share of the disks' time (the programs say "a tenth"), to keep the
     !> benchmark near 2 minutes: over 0.2 s the chain takes 310 IDA steps at one link and 924
@@ -44,6 +47,10 @@ module rollcon_bench_scaling
         !> CPU time of the rest of the run [s]: reading the dataset, building the model, its
         !> initial conditions' analysis (what a user waits for before the first step)
         real(wp) :: startup = 0.0_wp
+        !> The process's peak resident memory during the run [KiB], and what the run took over
+        !> what the process held before it, per part [KiB] (-1: Linux's /proc not readable)
+        integer :: peak_kib = -1
+        real(wp) :: memory_per_part = -1.0_wp
         character(len=:), allocatable :: status
     end type scaling_row_type
 
@@ -107,7 +114,7 @@ contains
         type(job_result_type) :: ran
         logical, allocatable :: chosen(:)
         logical :: chain
-        integer :: m, k, r
+        integer :: m, k, r, resident_before
         real(wp) :: cpu_before, cpu_after
 
         call check_scaling_end_time(end_time, error)
@@ -149,10 +156,15 @@ contains
                 ! a 64-part run's memory cost a following run of one disk 2 ms)
                 job = job_type()
                 ran = job_result_type()
+                call reset_peak_memory()
+                resident_before = memory_kib("VmRSS:")
                 call cpu_time(cpu_before)
                 call run_dataset(path, job, ran, error)
                 if (allocated(error)) return
                 call cpu_time(cpu_after)
+                rows(r)%peak_kib = memory_kib("VmHWM:")
+                if (rows(r)%peak_kib >= 0 .and. resident_before >= 0) rows(r)%memory_per_part &
+                    & = real(rows(r)%peak_kib - resident_before, wp)/real(counts(k), wp)
                 associate (row => rows(r), s => ran%summary)
                     row%method = names(m)
                     row%model = trim(merge("chain", "disks", chain))
@@ -172,6 +184,48 @@ contains
             end do
         end do
     end subroutine measure_scaling
+
+    !> The chain's methods `rollcon bench scaling` runs on long chains too (to 640 links): the
+    !> sparse Newton matrix's (the default picks it there), whose memory grows as the model.
+    pure function long_chain_methods() result(names)
+        character(len=30) :: names(2)
+
+        names = [character(len=30) :: "chain-default", "chain-ida-klu"]
+    end function long_chain_methods
+
+    !> Reset the process's peak resident memory (VmHWM) to what it holds now: Linux's
+    !> /proc/self/clear_refs, "5" (proc(5)); nothing where that cannot be written.
+    subroutine reset_peak_memory()
+        integer :: unit, stat
+
+        open(newunit=unit, file="/proc/self/clear_refs", action="write", status="old", &
+            & iostat=stat)
+        if (stat /= 0) return
+        write(unit, "(a)", iostat=stat) "5"
+        close(unit, iostat=stat)
+    end subroutine reset_peak_memory
+
+    !> A memory figure of this process from /proc/self/status [KiB]: key "VmRSS:" (resident
+    !> now) or "VmHWM:" (the peak since start or the last reset_peak_memory); -1 when it cannot
+    !> be read.
+    integer function memory_kib(key) result(kib)
+        character(len=*), intent(in) :: key
+        character(len=256) :: line
+        integer :: unit, stat
+
+        kib = -1
+        open(newunit=unit, file="/proc/self/status", action="read", status="old", iostat=stat)
+        if (stat /= 0) return
+        do
+            read(unit, "(a)", iostat=stat) line
+            if (stat /= 0) exit
+            if (index(line, key) /= 1) cycle
+            read(line(len(key) + 1:), *, iostat=stat) kib
+            if (stat /= 0) kib = -1
+            exit
+        end do
+        close(unit, iostat=stat)
+    end function memory_kib
 
     !> Load the dataset at path and run it through the one route, quietly and writing no files.
     subroutine run_dataset(path, job, ran, error)
@@ -212,20 +266,22 @@ contains
     end function short_scaling_methods
 
     !> The rows as the table the benchmark prints: a header line, then one line per row (model,
-    !> method, N, states, steps, us per step and part, ratio to N = 1, start-up [ms], status),
-    !> each ending in a new line.
+    !> method, N, states, steps, us per step and part, ratio to N = 1, start-up [ms], the peak
+    !> resident memory [MB] and the run's memory per part [kB], status), each ending in a new
+    !> line.
     function scaling_table(rows) result(text)
         type(scaling_row_type), intent(in) :: rows(:)
         character(len=:), allocatable :: text
-        character(len=140) :: line
+        character(len=180) :: line
         integer :: k
 
         text = "  model   method                            N  states   steps  us/step/part" &
-            & // "  ratio to N = 1  start-up [ms]" // new_line("a")
+            & // "  ratio to N = 1  start-up [ms]  peak [MB]  kB/part" // new_line("a")
         do k = 1, size(rows)
-            write(line, "(2x, a8, a30, i5, i8, i8, f14.2, f16.2, f15.1, 2x, a)") &
+            write(line, "(2x, a8, a30, i5, i8, i8, f14.2, f16.2, f15.1, f11.1, f9.1, 2x, a)") &
                 & rows(k)%model, rows(k)%method, rows(k)%parts, rows(k)%states, rows(k)%steps, &
                 & rows(k)%per_step_part, rows(k)%ratio, 1.0e3_wp*rows(k)%startup, &
+                & 1.024e-3_wp*real(rows(k)%peak_kib, wp), 1.024_wp*rows(k)%memory_per_part, &
                 & trim(rows(k)%status)
             text = text // trim(line) // new_line("a")
         end do
@@ -236,7 +292,8 @@ contains
         character(len=:), allocatable :: header
 
         header = "model,method,parts,states,steps,function_evaluations,jacobian_evaluations," &
-            & // "cpu_s,cpu_per_step_part_us,ratio_to_one_part,startup_cpu_s,status"
+            & // "cpu_s,cpu_per_step_part_us,ratio_to_one_part,peak_resident_kib," &
+            & // "memory_per_part_kib,startup_cpu_s,status"
     end function scaling_header
 
     !> One CSV row.
@@ -249,6 +306,7 @@ contains
             & // "," // to_text(row%steps) // "," // to_text(row%functions) // "," &
             & // to_text(row%jacobians) // "," // to_text(row%cpu) // "," &
             & // to_text(row%per_step_part) // "," // to_text(row%ratio) // "," &
+            & // to_text(row%peak_kib) // "," // to_text(row%memory_per_part) // "," &
             & // to_text(row%startup) // "," // row%status
     end function scaling_csv_row
 

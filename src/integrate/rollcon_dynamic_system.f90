@@ -54,6 +54,7 @@ module rollcon_dynamic_system
     contains
         procedure(dae_residual_interface), deferred :: dae_residual
         procedure(dae_jacobian_interface), deferred :: dae_jacobian
+        procedure(dae_sparse_jacobian_interface), deferred :: dae_sparse_jacobian
         procedure(dae_differential_interface), deferred :: dae_differential
         procedure(dae_pattern_interface), deferred :: dae_pattern
         procedure :: dae_euler_parts
@@ -145,17 +146,25 @@ module rollcon_dynamic_system
             real(wp), intent(out) :: residual(:)
         end function dae_residual_interface
 
-        !> The Newton matrix dF/dy + cj dF/dy'. With `zeroed` true the caller has zeroed every
-        !> entry of dae_pattern and the others are zero: only those are written (a sparse
-        !> matrix's full work space, kept zero outside its pattern, is not cleared whole).
-        integer function dae_jacobian_interface(self, time, cj, y, yp, matrix, zeroed) &
-                & result(ierr)
+        !> The Newton matrix dF/dy + cj dF/dy', dense (size(y) square).
+        integer function dae_jacobian_interface(self, time, cj, y, yp, matrix) result(ierr)
             import :: dae_system_type, wp
             class(dae_system_type), intent(inout) :: self
             real(wp), intent(in) :: time, cj, y(:), yp(:)
             real(wp), intent(inout) :: matrix(:, :)
-            logical, intent(in), optional :: zeroed
         end function dae_jacobian_interface
+
+        !> The same Newton matrix over dae_pattern's entries, compressed by columns: column j's
+        !> rows (0-based, ascending) rows(starts(j) + 1 : starts(j + 1)), their values in
+        !> values (the same places); no size(y)-square array (IDA's sparse Newton matrix).
+        integer function dae_sparse_jacobian_interface(self, time, cj, y, yp, starts, rows, &
+                & values) result(ierr)
+            import :: dae_system_type, wp
+            class(dae_system_type), intent(inout) :: self
+            real(wp), intent(in) :: time, cj, y(:), yp(:)
+            integer, intent(in) :: starts(:), rows(:)
+            real(wp), intent(out) :: values(:)
+        end function dae_sparse_jacobian_interface
 
         !> For each component of a DAE state of size n: 1 differential, 0 algebraic
         !> (IDASetId).

@@ -1,8 +1,8 @@
 ! SPDX-License-Identifier: MIT
 !> IDA on a DAE system (rollcon_dynamic_system's dae_system_type): its algebraic components (a
 !> model's multipliers) excluded from the error test, dense Newton solves with the system's
-!> Jacobian or IDA's difference quotients, or sparse ones (KLU) with the system's Jacobian kept
-!> over its pattern (dae_pattern).
+!> Jacobian or IDA's difference quotients, or sparse ones (KLU) with the system's Jacobian
+!> written over its pattern (dae_pattern, dae_sparse_jacobian: no n x n array).
 module rollcon_ida
     use, intrinsic :: iso_c_binding, only : c_ptr, c_null_ptr, c_int, c_long, c_int64_t, &
         & c_double, c_funloc, c_loc, c_f_pointer, c_associated
@@ -86,9 +86,9 @@ module rollcon_ida
         !> The differential components' tolerances are multiplied by this: 1, or finer on the
         !> careful start after a restart
         real(wp) :: scale = 1.0_wp
-        !> Sparse Newton matrices: the system's Jacobian in full (its work space) and the
-        !> entries kept (the system's dae_pattern)
-        real(c_double), allocatable :: full(:, :)
+        !> Sparse Newton matrices (KLU): whether the Newton matrix is one, and its entries (the
+        !> system's dae_pattern), which the system writes straight into (no n x n array)
+        logical :: sparse = .false.
         type(newton_pattern_type) :: pattern
     end type callback_data_type
 
@@ -196,8 +196,8 @@ contains
         ! the Newton matrix: sparse (KLU) over the system's pattern when the settings choose
         ! it for its size and entries (sparse_newton), else dense
         call system%dae_pattern(size(y0), self%data%pattern)
-        if (settings%sparse_newton(size(y0), self%data%pattern%entries())) then
-            allocate(self%data%full(n, n), source=0.0_wp)
+        self%data%sparse = settings%sparse_newton(size(y0), self%data%pattern%entries())
+        if (self%data%sparse) then
             self%matrix => FSUNSparseMatrix(n, n, int(self%data%pattern%entries(), c_int64_t), &
                 & CSC_MAT, self%context)
             if (associated(self%matrix)) &
@@ -212,7 +212,7 @@ contains
         end if
         flag = FIDASetLinearSolver(self%memory, self%solver, self%matrix)
         if (check(flag, "IDASetLinearSolver", error)) return
-        if (allocated(self%data%full)) then
+        if (self%data%sparse) then
             flag = FIDASetJacFn(self%memory, c_funloc(sparse_jacobian))
             if (check(flag, "IDASetJacFn", error)) return
         else if (settings%analytic_jacobian()) then
@@ -400,7 +400,7 @@ contains
         counts%failures = int(count(1))
         flag = FIDAGetNumGEvals(self%memory, count)
         counts%roots = int(count(1))
-        counts%sparse = allocated(self%data%full)
+        counts%sparse = self%data%sparse
     end function statistics
 
     !> What a failure flag of IDA means (names of the IDA guide), for messages: SUNDIALS
@@ -448,7 +448,7 @@ contains
         self%memory = c_null_ptr
         self%context = c_null_ptr
         nullify(self%solver, self%matrix, self%y, self%yp, self%id, self%data%system)
-        if (allocated(self%data%full)) deallocate(self%data%full)
+        self%data%sparse = .false.
         if (allocated(self%fired)) deallocate(self%fired)
     end subroutine destroy
 
@@ -495,8 +495,9 @@ contains
         ierr = int(data%system%dae_jacobian(t, cj, yv, ypv, matrix), c_int)
     end function jacobian
 
-    !> The system's Jacobian kept over its pattern (zeros included, so the pattern KLU analysed
-    !> stays) as a compressed-column matrix: IDA zeroes the matrix, indices too, before each call.
+    !> The system's Jacobian written over its pattern (zeros included, so the pattern KLU
+    !> analysed stays) as a compressed-column matrix: IDA zeroes the matrix, indices too,
+    !> before each call.
     integer(c_int) function sparse_jacobian(t, cj, y, yp, r, jac, user_data, tmp1, tmp2, tmp3) &
             & result(ierr) bind(c, name="rollcon_ida_sparse_jacobian")
         real(c_double), value :: t, cj
@@ -511,11 +512,6 @@ contains
         call c_f_pointer(user_data, data)
         yv => FN_VGetArrayPointer(y)
         ypv => FN_VGetArrayPointer(yp)
-        ! full is zero outside the pattern (allocated so, and the Newton matrix has no entry
-        ! there: suite link-chain): only the pattern's entries are cleared
-        call data%pattern%clear(data%full)
-        ierr = int(data%system%dae_jacobian(t, cj, yv, ypv, data%full, zeroed=.true.), c_int)
-        if (ierr /= 0) return
         ! SUNDIALS' Fortran interface hands the first element: the arrays by their sizes
         entries = data%pattern%entries()
         first_value => FSUNSparseMatrix_Data(jac)
@@ -526,7 +522,8 @@ contains
         call c_f_pointer(c_loc(first_index(1)), starts, [size(yv) + 1])
         rows = int(data%pattern%rows, c_int64_t)
         starts = int(data%pattern%starts, c_int64_t)
-        call data%pattern%gather(data%full, values)
+        ierr = int(data%system%dae_sparse_jacobian(t, cj, yv, ypv, data%pattern%starts, &
+            & data%pattern%rows, values), c_int)
     end function sparse_jacobian
 
     !> IDA's error weights, 1/(rtol |y_i| + atol_i), but for a part's Euler-angle rates: the

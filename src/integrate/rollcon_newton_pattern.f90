@@ -1,7 +1,9 @@
 ! SPDX-License-Identifier: MIT
 !> Where a sparse Newton matrix can hold nonzeros, as a compressed-column pattern (0-based row
-!> indices, SUNDIALS' CSC layout): from each state's block (every entry of a block kept) or
-!> from a relation between states; and a dense matrix copied onto a pattern.
+!> indices, SUNDIALS' CSC layout): from a list of entries (what each element's block of the
+!> matrix covers, gathered without an n x n array: memory and time O(entries)), from each
+!> state's block (every entry of a block kept) or from a relation between states; and a dense
+!> matrix copied onto a pattern.
 module rollcon_newton_pattern
     use rollcon_kinds, only : wp
     implicit none
@@ -16,6 +18,7 @@ module rollcon_newton_pattern
         integer, allocatable :: starts(:), rows(:)
     contains
         procedure :: entries
+        procedure :: from_entries
         procedure :: from_relation
         procedure :: gather
         procedure :: clear
@@ -30,6 +33,66 @@ contains
         entries = 0
         if (allocated(self%starts)) entries = self%starts(self%n + 1)
     end function entries
+
+    !> The entries (rows(e), columns(e)), e = 1 .. count (1-based, each in 1 .. n; repeats
+    !> kept once), and the diagonal of an n-square matrix: by a count of each column's entries,
+    !> then each column's rows sorted (insertion: a column holds a few dozen) and repeats
+    !> dropped. Memory and time O(n + count); the pattern from_relation makes of the same
+    !> relation.
+    subroutine from_entries(self, n, rows, columns, count)
+        class(newton_pattern_type), intent(inout) :: self
+        integer, intent(in) :: n, rows(:), columns(:), count
+        integer, allocatable :: fill(:), sorted(:)
+        integer :: e, j, i, a, first, next, row
+
+        self%n = n
+        if (allocated(self%starts)) deallocate(self%starts, self%rows)
+        ! each column's entries with its diagonal, placed by a count, then sorted in place
+        allocate(fill(n + 1), source=1)
+        do e = 1, count
+            fill(columns(e) + 1) = fill(columns(e) + 1) + 1
+        end do
+        fill(1) = 0
+        do j = 2, n + 1
+            fill(j) = fill(j) + fill(j - 1)
+        end do
+        allocate(self%starts(n + 1), sorted(fill(n + 1)))
+        self%starts = fill
+        do j = 1, n
+            fill(j) = fill(j) + 1
+            sorted(fill(j)) = j - 1
+        end do
+        do e = 1, count
+            j = columns(e)
+            fill(j) = fill(j) + 1
+            sorted(fill(j)) = rows(e) - 1
+        end do
+        next = 0
+        do j = 1, n
+            first = self%starts(j) + 1
+            do i = first + 1, self%starts(j + 1)
+                row = sorted(i)
+                a = i - 1
+                do while (a >= first)
+                    if (sorted(a) <= row) exit
+                    sorted(a + 1) = sorted(a)
+                    a = a - 1
+                end do
+                sorted(a + 1) = row
+            end do
+            ! the column's distinct rows, packed after the previous columns'
+            self%starts(j) = next
+            do i = first, fill(j)
+                if (i > first) then
+                    if (sorted(i) == sorted(i - 1)) cycle
+                end if
+                next = next + 1
+                sorted(next) = sorted(i)
+            end do
+        end do
+        self%starts(n + 1) = next
+        self%rows = sorted(:next)
+    end subroutine from_entries
 
     !> Every entry (i, j) with keep(i, j) true, and the diagonal.
     subroutine from_relation(self, keep)

@@ -12,13 +12,14 @@
 !> (and mu_h = 0 for a position UCON's), and its multipliers appear nowhere else.
 module rollcon_dae
     use rollcon_kinds, only : wp
-    use rollcon_error, only : error_type
+    use rollcon_error, only : error_type, fatal_error
+    use rollcon_text, only : to_text
     use rollcon_constraints, only : local_dot, need_value, need_first, need_second, need_time
     use rollcon_equations, only : equations_type, sparse_dot
     implicit none
     private
 
-    public :: dae_size, dae_residual, dae_jacobian, dae_differential
+    public :: dae_size, dae_residual, dae_jacobian, dae_sparse_jacobian, dae_differential
 
 contains
 
@@ -99,26 +100,55 @@ contains
         end associate
     end subroutine dae_residual
 
-    !> Newton matrix dr/dy + cj dr/dy', analytic from the UCOSUB's first and second partials.
-    !> Written part by part (the mass, force and momentum terms: 6 by 6 per part) and over
-    !> each UCON's own coordinates (its partials are zero elsewhere): O(entries), as a sparse
-    !> Newton matrix needs, after jac is cleared. With `zeroed` true the caller has cleared it:
-    !> jac is zero wherever this routine writes or adds (rollcon_ida zeroes its pattern's
-    !> entries, and the rest stay zero), and the (2n + nc + nh)^2 writes of clearing it whole,
-    !> which a chain of 64 links would pay at every Jacobian, are left out.
-    subroutine dae_jacobian(eq, time, cj, y, yp, jac, error, zeroed)
+    !> Newton matrix dr/dy + cj dr/dy', analytic from the UCOSUB's first and second partials,
+    !> into the dense matrix jac ((2n + nc + nh) square, cleared first). Written part by part
+    !> (the mass, force and momentum terms: 6 by 6 per part) and over each UCON's own
+    !> coordinates (its partials are zero elsewhere).
+    subroutine dae_jacobian(eq, time, cj, y, yp, jac, error)
         type(equations_type), intent(inout) :: eq
         real(wp), intent(in) :: time, cj, y(:), yp(:)
-        real(wp), intent(inout) :: jac(:, :)
+        real(wp), intent(out) :: jac(:, :)
         type(error_type), allocatable, intent(out) :: error
-        logical, intent(in), optional :: zeroed
-        logical :: clear, aside
-        integer :: n, nc, k, h, i, j, row, ii, jj, i0
+
+        jac = 0.0_wp
+        call write_jacobian(eq, time, cj, y, yp, error, jac=jac)
+    end subroutine dae_jacobian
+
+    !> The same Newton matrix as dae_jacobian, its entries written straight into a
+    !> compressed-column matrix: column j's rows (0-based, ascending) are
+    !> rows(starts(j) + 1 : starts(j + 1)) and its values values(the same); every entry this
+    !> routine writes must be in the pattern (the DAE form's dae_pattern), the others are zero.
+    !> No (2n + nc + nh)-square array: memory O(entries), time O(entries log(column length)).
+    !> The entries are those of dae_jacobian's dense matrix, bit for bit (the same operations).
+    !> Error: an entry outside the pattern (a pattern that misses an element's block).
+    subroutine dae_sparse_jacobian(eq, time, cj, y, yp, starts, rows, values, error)
+        type(equations_type), intent(inout) :: eq
+        real(wp), intent(in) :: time, cj, y(:), yp(:)
+        integer, intent(in) :: starts(:), rows(:)
+        real(wp), intent(out) :: values(:)
+        type(error_type), allocatable, intent(out) :: error
+
+        values = 0.0_wp
+        call write_jacobian(eq, time, cj, y, yp, error, starts=starts, rows=rows, &
+            & values=values)
+    end subroutine dae_sparse_jacobian
+
+    !> dae_jacobian's entries into the dense jac, or into the compressed-column (starts, rows,
+    !> values), already zero.
+    subroutine write_jacobian(eq, time, cj, y, yp, error, jac, starts, rows, values)
+        type(equations_type), intent(inout) :: eq
+        real(wp), intent(in) :: time, cj, y(:), yp(:)
+        type(error_type), allocatable, intent(out) :: error
+        real(wp), intent(inout), optional :: jac(:, :)
+        integer, intent(in), optional :: starts(:), rows(:)
+        real(wp), intent(inout), optional :: values(:)
+        logical :: aside, dense
+        integer :: n, nc, k, h, i, j, row, ii, jj, i0, outside(2)
 
         n = eq%n
         nc = eq%nc
-        clear = .true.
-        if (present(zeroed)) clear = .not. zeroed
+        dense = present(jac)
+        outside = 0
         associate (q => y(:n), u => y(n + 1:2*n), lambda => y(2*n + 1:2*n + nc), &
             & mu => y(2*n + nc + 1:), up => yp(n + 1:2*n), cs => eq%constraints, &
             & bl => eq%blocks, dm_dq => eq%work%dm_dq)
@@ -134,18 +164,18 @@ contains
             else
                 call eq%momentum_jacobian(q, u, up, lambda)
             end if
-            if (clear) jac = 0.0_wp
             do j = 1, n
-                jac(j, j) = cj
-                jac(j, n + j) = -1.0_wp
+                call put(j, j, cj)
+                call put(j, n + j, -1.0_wp)
             end do
             ! the momentum rows: each part's 6 by 6 blocks (M, its forces), then the UCONs'
             ! terms of dm/dq over their coordinates (rollcon_equations' momentum_jacobian)
             do i0 = 0, n - 6, 6
                 do j = i0 + 1, i0 + 6
-                    jac(n + i0 + 1:n + i0 + 6, j) = dm_dq(i0 + 1:i0 + 6, j)
-                    jac(n + i0 + 1:n + i0 + 6, n + j) = eq%work%dm_du(i0 + 1:i0 + 6, j) &
-                        & + cj*eq%mass(i0 + 1:i0 + 6, j)
+                    do i = i0 + 1, i0 + 6
+                        call put(n + i, j, dm_dq(i, j))
+                        call put(n + i, n + j, eq%work%dm_du(i, j) + cj*eq%mass(i, j))
+                    end do
                 end do
             end do
             ! a SPRINGDAMPER's or BUSHING's partials between its two parts (rollcon_force)
@@ -157,7 +187,7 @@ contains
                 associate (at => bl%ucon_coordinates(bl%ucon_start(k):bl%ucon_start(k + 1) - 1))
                     do jj = 1, size(at)
                         do ii = 1, size(at)
-                            jac(n + at(ii), at(jj)) = dm_dq(at(ii), at(jj))
+                            call put(n + at(ii), at(jj), dm_dq(at(ii), at(jj)))
                         end do
                     end do
                 end associate
@@ -168,14 +198,14 @@ contains
                 aside = .false.
                 if (eq%redundancy%set_aside > 0) aside = .not. eq%redundancy%active(k)
                 if (aside) then
-                    jac(row, row) = 1.0_wp
-                    if (h > 0) jac(2*n + nc + h, 2*n + nc + h) = 1.0_wp
+                    call put(row, row, 1.0_wp)
+                    if (h > 0) call put(2*n + nc + h, 2*n + nc + h, 1.0_wp)
                     cycle
                 end if
                 associate (at => bl%ucon_coordinates(bl%ucon_start(k):bl%ucon_start(k + 1) - 1))
                     do jj = 1, size(at)
                         j = at(jj)
-                        jac(n + j, row) = -eq%c(k, j)
+                        call put(n + j, row, -eq%c(k, j))
                     end do
                     if (h > 0) then
                         ! mu_h G_h's partials and G_h u's
@@ -183,42 +213,99 @@ contains
                             j = at(jj)
                             do ii = 1, size(at)
                                 i = at(ii)
-                                jac(i, j) = jac(i, j) - mu(h)*cs%hqq(ii, jj, k)
+                                call subtract(i, j, mu(h)*cs%hqq(ii, jj, k))
                             end do
                         end do
                         do jj = 1, size(at)
                             j = at(jj)
-                            jac(row, j) = local_dot(cs%hqq(:, jj, k), u, at) + cs%dt_grad_q(k, j)
-                            jac(j, 2*n + nc + h) = -cs%grad_q(k, j)
-                            jac(row, n + j) = cs%grad_q(k, j)
-                            jac(2*n + nc + h, j) = cs%grad_q(k, j)
+                            call put(row, j, local_dot(cs%hqq(:, jj, k), u, at) &
+                                & + cs%dt_grad_q(k, j))
+                            call put(j, 2*n + nc + h, -cs%grad_q(k, j))
+                            call put(row, n + j, cs%grad_q(k, j))
+                            call put(2*n + nc + h, j, cs%grad_q(k, j))
                         end do
                     else
                         do jj = 1, size(at)
                             j = at(jj)
-                            jac(row, j) = cs%grad_q(k, j)
-                            jac(row, n + j) = cs%grad_u(k, j)
+                            call put(row, j, cs%grad_q(k, j))
+                            call put(row, n + j, cs%grad_u(k, j))
                         end do
                     end if
                 end associate
             end do
         end associate
+        if (outside(1) > 0) call fatal_error(error, "the DAE's Newton matrix has entry (" &
+            & // to_text(outside(1)) // ", " // to_text(outside(2)) // ") outside its " &
+            & // "sparse pattern (the DAE form's dae_pattern misses an element's block)")
 
     contains
 
-        !> The momentum rows of part a by the coordinates and rates of part b.
+        !> Entry (i, j) = value.
+        subroutine put(i, j, value)
+            integer, intent(in) :: i, j
+            real(wp), intent(in) :: value
+            integer :: e
+
+            if (dense) then
+                jac(i, j) = value
+                return
+            end if
+            e = located(i, j)
+            if (e > 0) values(e) = value
+        end subroutine put
+
+        !> Entry (i, j) = entry (i, j) - value.
+        subroutine subtract(i, j, value)
+            integer, intent(in) :: i, j
+            real(wp), intent(in) :: value
+            integer :: e
+
+            if (dense) then
+                jac(i, j) = jac(i, j) - value
+                return
+            end if
+            e = located(i, j)
+            if (e > 0) values(e) = values(e) - value
+        end subroutine subtract
+
+        !> Where entry (i, j) is in values (bisection of column j's rows), 0 outside the
+        !> pattern (the first such entry kept for the message).
+        integer function located(i, j) result(e)
+            integer, intent(in) :: i, j
+            integer :: low, high, middle
+
+            low = starts(j) + 1
+            high = starts(j + 1)
+            do while (low <= high)
+                middle = (low + high)/2
+                if (rows(middle) == i - 1) then
+                    e = middle
+                    return
+                else if (rows(middle) < i - 1) then
+                    low = middle + 1
+                else
+                    high = middle - 1
+                end if
+            end do
+            e = 0
+            if (outside(1) == 0) outside = [i, j]
+        end function located
+
+        !> The momentum rows of part a by the coordinates and rates of part b (a SPRINGDAMPER's
+        !> or BUSHING's partials between its two parts).
         subroutine copy_coupling(a, b)
             integer, intent(in) :: a, b
-            integer :: r0, c0
+            integer :: r0, c0, ia, jb
 
             r0 = 6*(a - 1)
             c0 = 6*(b - 1)
-            jac(n + r0 + 1:n + r0 + 6, c0 + 1:c0 + 6) = eq%work%dm_dq(r0 + 1:r0 + 6, &
-                & c0 + 1:c0 + 6)
-            jac(n + r0 + 1:n + r0 + 6, n + c0 + 1:n + c0 + 6) = eq%work%dm_du(r0 + 1:r0 + 6, &
-                & c0 + 1:c0 + 6)
+            do jb = 1, 6
+                do ia = 1, 6
+                    call put(n + r0 + ia, c0 + jb, eq%work%dm_dq(r0 + ia, c0 + jb))
+                    call put(n + r0 + ia, n + c0 + jb, eq%work%dm_du(r0 + ia, c0 + jb))
+                end do
+            end do
         end subroutine copy_coupling
-
-    end subroutine dae_jacobian
+    end subroutine write_jacobian
 
 end module rollcon_dae

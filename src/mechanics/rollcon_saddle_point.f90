@@ -164,27 +164,30 @@ contains
                 & blocks%coordinate_start(b + 1) - 1) - 1)/6 + 1) = .true.
         end do
         allocate(self%rotational_rows(3, 1 + max(blocks%most_rows, 1)), source=0.0_wp)
-        allocate(self%schur_start(blocks%count + 1))
-        self%schur_start(1) = 1
-        do b = 1, blocks%count
-            m = blocks%row_start(b + 1) - blocks%row_start(b)
-            self%schur_start(b + 1) = self%schur_start(b) + m*m
-        end do
-        allocate(self%block_schur(max(self%schur_start(blocks%count + 1) - 1, 1)), &
-            & self%gathered(max(blocks%most_rows, 1), max(2*n, 1)), source=0.0_wp)
-        call find_shares(self)
         allocate(self%block_sparse(blocks%count), self%sparse(blocks%count))
         do b = 1, blocks%count
             self%block_sparse(b) = blocks%row_start(b + 1) - blocks%row_start(b) &
                 & >= self%sparse_from
         end do
+        ! a dense block's S packed m x m; a sparse block's is KLU's, over its nonzeros only
+        ! (no m x m array: a chain of N links' S is 5N square)
+        allocate(self%schur_start(blocks%count + 1))
+        self%schur_start(1) = 1
+        do b = 1, blocks%count
+            m = blocks%row_start(b + 1) - blocks%row_start(b)
+            if (self%block_sparse(b)) m = 0
+            self%schur_start(b + 1) = self%schur_start(b) + m*m
+        end do
+        allocate(self%block_schur(max(self%schur_start(blocks%count + 1) - 1, 1)), &
+            & self%gathered(max(blocks%most_rows, 1), max(2*n, 1)), source=0.0_wp)
+        call find_shares(self)
         if (any(self%block_sparse)) then
             call sparse_pattern(self, failure)
             if (allocated(failure) .and. present(error)) call move_alloc(failure, error)
         end if
     end subroutine init
 
-    !> For each entry (k, l) of every block's S, whether UCONs k and l share a part: M is
+    !> For each entry (k, l) of every dense block's S, whether UCONs k and l share a part: M is
     !> block diagonal by parts, so M^-1 c_l^T is zero outside l's parts, and c_k outside k's
     !> own coordinates.
     subroutine find_shares(self)
@@ -195,6 +198,8 @@ contains
         allocate(self%block_shares(size(self%block_schur)), source=.false.)
         associate (blocks => self%blocks)
             do b = 1, blocks%count
+                ! a sparse block's entries are found by sparse_pattern
+                if (self%block_sparse(b)) cycle
                 m = blocks%row_start(b + 1) - blocks%row_start(b)
                 do j = 1, m
                     l = blocks%rows(blocks%row_start(b) + j - 1)

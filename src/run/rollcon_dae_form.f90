@@ -9,7 +9,9 @@ module rollcon_dae_form
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type
     use rollcon_dae, only : dae_size, dae_differential_kinds => dae_differential, &
-        & residual_of_dae => dae_residual, jacobian_of_dae => dae_jacobian
+        & residual_of_dae => dae_residual, jacobian_of_dae => dae_jacobian, &
+        & sparse_jacobian_of_dae => dae_sparse_jacobian
+    use rollcon_int_buffer, only : append
     use rollcon_dynamic_system, only : dae_system_type
     use rollcon_newton_pattern, only : newton_pattern_type
     use rollcon_output_layout, only : coord_psi
@@ -30,6 +32,7 @@ module rollcon_dae_form
         procedure :: unpack_state
         procedure :: dae_residual
         procedure :: dae_jacobian
+        procedure :: dae_sparse_jacobian
         procedure :: dae_differential
         procedure :: dae_pattern
         procedure :: dae_euler_parts
@@ -106,16 +109,29 @@ contains
     end function dae_residual
 
     !> The Newton matrix of rollcon_dae from the UCOSUBs' partials.
-    integer function dae_jacobian(self, time, cj, y, yp, matrix, zeroed) result(ierr)
+    integer function dae_jacobian(self, time, cj, y, yp, matrix) result(ierr)
         class(dae_form_type), intent(inout) :: self
         real(wp), intent(in) :: time, cj, y(:), yp(:)
         real(wp), intent(inout) :: matrix(:, :)
-        logical, intent(in), optional :: zeroed
         type(error_type), allocatable :: error
 
-        call jacobian_of_dae(self%problem%eq, time, cj, y, yp, matrix, error, zeroed)
+        call jacobian_of_dae(self%problem%eq, time, cj, y, yp, matrix, error)
         ierr = self%problem%keep_failure(error)
     end function dae_jacobian
+
+    !> The same Newton matrix over dae_pattern's entries (rollcon_dae's dae_sparse_jacobian).
+    integer function dae_sparse_jacobian(self, time, cj, y, yp, starts, rows, values) &
+            & result(ierr)
+        class(dae_form_type), intent(inout) :: self
+        real(wp), intent(in) :: time, cj, y(:), yp(:)
+        integer, intent(in) :: starts(:), rows(:)
+        real(wp), intent(out) :: values(:)
+        type(error_type), allocatable :: error
+
+        call sparse_jacobian_of_dae(self%problem%eq, time, cj, y, yp, starts, rows, values, &
+            & error)
+        ierr = self%problem%keep_failure(error)
+    end function dae_sparse_jacobian
 
     !> q and u differential, the multipliers algebraic.
     function dae_differential(self, n) result(kinds)
@@ -136,22 +152,31 @@ contains
     !> state of neighbouring parts by every other would keep 1661. A model with rows set aside
     !> (rollcon_redundancy) keeps the diagonal of every lambda_k and mu_h too, where a row set
     !> aside has its equation lambda_k = 0 (mu_h = 0): whichever rows a choice again sets aside.
+    !> Gathered as each element's entries (rollcon_newton_pattern's from_entries): memory and
+    !> time O(entries), no n x n array.
     subroutine dae_pattern(self, n, pattern)
         class(dae_form_type), intent(in) :: self
         integer, intent(in) :: n
         type(newton_pattern_type), intent(out) :: pattern
-        logical, allocatable :: keep(:, :)
-        integer :: nq, nc, k, h, j, i0, row, column
+        integer, allocatable :: rows(:), columns(:)
+        integer :: nq, nc, k, h, j, i0, row, column, count, a, b
 
+        ! each element's block as a list of entries (repeats dropped by from_entries): memory
+        ! O(entries), no n x n relation
         nq = self%problem%eq%n
         nc = self%problem%eq%nc
-        allocate(keep(n, n), source=.false.)
+        count = 0
+        allocate(rows(0), columns(0))
         do j = 1, min(nq, n - nq)
-            keep(j, nq + j) = .true.
+            call keep(j, nq + j)
         end do
         do i0 = 0, min(nq, n - nq) - 6, 6
-            keep(nq + i0 + 1:nq + i0 + 6, i0 + 1:i0 + 6) = .true.
-            keep(nq + i0 + 1:nq + i0 + 6, nq + i0 + 1:nq + i0 + 6) = .true.
+            do b = i0 + 1, i0 + 6
+                do a = i0 + 1, i0 + 6
+                    call keep(nq + a, b)
+                    call keep(nq + a, nq + b)
+                end do
+            end do
         end do
         ! a SPRINGDAMPER's or BUSHING's momentum rows of each part by the other's q and u
         associate (pairs => self%problem%eq%couplings)
@@ -166,36 +191,54 @@ contains
                 row = 2*nq + k
                 if (row > n) exit
                 associate (at => bl%ucon_coordinates(bl%ucon_start(k):bl%ucon_start(k + 1) - 1))
-                    keep(nq + at, at) = .true.
-                    keep(nq + at, row) = .true.
-                    keep(row, at) = .true.
-                    keep(row, nq + at) = .true.
                     h = self%problem%model%holonomic_number(k)
                     column = 2*nq + nc + h
-                    if (h > 0 .and. column <= n) then
-                        keep(at, at) = .true.
-                        keep(at, column) = .true.
-                        keep(column, at) = .true.
-                    end if
+                    do b = 1, size(at)
+                        do a = 1, size(at)
+                            call keep(nq + at(a), at(b))
+                            if (h > 0 .and. column <= n) call keep(at(a), at(b))
+                        end do
+                        call keep(nq + at(b), row)
+                        call keep(row, at(b))
+                        call keep(row, nq + at(b))
+                        if (h > 0 .and. column <= n) then
+                            call keep(at(b), column)
+                            call keep(column, at(b))
+                        end if
+                    end do
                     if (self%problem%eq%redundancy%set_aside > 0) then
-                        keep(row, row) = .true.
-                        if (h > 0 .and. column <= n) keep(column, column) = .true.
+                        call keep(row, row)
+                        if (h > 0 .and. column <= n) call keep(column, column)
                     end if
                 end associate
             end do
         end associate
-        call pattern%from_relation(keep)
+        call pattern%from_entries(n, rows, columns, count)
 
     contains
+
+        !> Entry (i, j) kept.
+        subroutine keep(i, j)
+            integer, intent(in) :: i, j
+            integer :: counted
+
+            counted = count
+            call append(rows, counted, i)
+            call append(columns, count, j)
+        end subroutine keep
 
         !> The momentum rows of part a by part b's coordinates and rates.
         subroutine keep_coupling(a, b)
             integer, intent(in) :: a, b
+            integer :: ia, jb
 
-            keep(nq + 6*(a - 1) + 1:nq + 6*a, 6*(b - 1) + 1:6*b) = .true.
-            keep(nq + 6*(a - 1) + 1:nq + 6*a, nq + 6*(b - 1) + 1:nq + 6*b) = .true.
+            do jb = 1, 6
+                do ia = 1, 6
+                    call keep(nq + 6*(a - 1) + ia, 6*(b - 1) + jb)
+                    call keep(nq + 6*(a - 1) + ia, nq + 6*(b - 1) + jb)
+                end do
+            end do
         end subroutine keep_coupling
-
     end subroutine dae_pattern
 
     !> Every part's Euler angles and their rates in the DAE state (q, u, lambda, mu): part p's

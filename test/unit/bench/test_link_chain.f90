@@ -2,12 +2,14 @@
 !> The chain of N links (rollcon_link_chain), the second model of the cost benchmark, and the
 !> sparse Newton matrix of IDA: the chain reads as one block, starts where it is written and
 !> meets its joints; the DAE's pattern (dae_pattern) holds every nonzero of the analytic
-!> Newton matrix and keeps O(N) of a chain's entries; IDA with KLU moves the chain and the disks
+!> Newton matrix and keeps O(N) of a chain's entries, and the Newton matrix written over it
+!> (dae_sparse_jacobian) is the dense one's bit for bit; IDA with KLU moves the chain and the disks
 !> as the dense matrix does; linear_solver = 'auto' picks KLU on large sparse matrices only;
 !> the saddle-point system's Schur complement goes sparse (KLU) on a long chain's block only,
 !> with the dense path's accelerations; `rollcon bench` prints the per-part scaling table.
 module test_link_chain
     use, intrinsic :: iso_c_binding, only : c_associated
+    use, intrinsic :: iso_fortran_env, only : int64
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type
     use rollcon_text, only : to_text
@@ -234,9 +236,11 @@ contains
     end subroutine test_start
 
     !> The DAE's pattern holds every entry of the analytic Newton matrix that is not zero, at a
-    !> state with every velocity and multiplier nonzero, on chains of 8 and 16 links (one block)
-    !> and on 3 disks (three blocks), and keeps no more than the blocks; a chain's grows as N
-    !> (a band: each part meets its two neighbours), where its block grows as N^2.
+    !> state with every velocity and multiplier nonzero, on chains of 8 and 16 links (one block),
+    !> on 3 disks (three blocks) and on data/bicycle.adm, and keeps no more than the blocks; a
+    !> chain's grows as N (a band: each part meets its two neighbours), where its block grows as
+    !> N^2; gathered from the elements' blocks, it keeps exactly the entries the n x n relation
+    !> of the same blocks kept; the Newton matrix written over it is the dense one's.
     subroutine test_pattern(error)
         type(error_type), allocatable, intent(out) :: error
         !> Entries of the chain of 16 over the chain of 8's: 2 for a band (the ground hinge's
@@ -245,7 +249,10 @@ contains
         !> Entries of the chain's pattern per link: 504 for a link between two (a hinge's two
         !> parts' 6 by 6 blocks, its five UCONs over 12 coordinates), fewer at the ground
         integer, parameter :: most_per_link = 504
-        integer :: eight, sixteen, disks
+        !> The entries of the chain of 8's pattern when it was gathered n x n from the same
+        !> blocks (what a pattern gathered otherwise must keep, no more, no fewer)
+        integer, parameter :: entries_of_eight = 3800
+        integer :: eight, sixteen, disks, bicycle
 
         call check_pattern("chain_pattern_8", link_chain_dataset(8, 0.1_wp, 0.05_wp, &
             & "FORMULATION=IDA"), eight, error)
@@ -263,12 +270,19 @@ contains
         call check(error, eight <= most_per_link*8, "the chain's pattern at 8 links keeps " &
             & // to_text(eight) // " entries, at most " // to_text(most_per_link) // " a link")
         if (allocated(error)) return
+        ! gathered from the elements' blocks, the pattern is the one the n x n relation of
+        ! the same blocks kept (3800 entries at 8 links)
+        call check(error, eight, entries_of_eight, "the chain's pattern at 8 links")
+        if (allocated(error)) return
+        call check_pattern("bicycle_pattern", file_text("data/bicycle.adm"), bicycle, error)
+        if (allocated(error)) return
         call check_pattern("fleet_pattern", disk_fleet_dataset(3, 0.5_wp, 0.1_wp, 0.05_wp, &
             & "FORMULATION=IDA"), disks, error)
     end subroutine test_pattern
 
     !> The pattern of the dataset's DAE holds the Newton matrix's nonzeros and keeps no more
-    !> than its blocks; its entries.
+    !> than its blocks; the Newton matrix written over the pattern (dae_sparse_jacobian) is the
+    !> dense one's, bit for bit; its entries.
     subroutine check_pattern(name, text, entries, error)
         character(len=*), intent(in) :: name, text
         integer, intent(out) :: entries
@@ -276,7 +290,7 @@ contains
         type(problem_type), target :: problem
         type(dae_form_type) :: dae
         type(newton_pattern_type) :: pattern, blocks
-        real(wp), allocatable :: q0(:), u0(:), y(:), yp(:), matrix(:, :)
+        real(wp), allocatable :: q0(:), u0(:), y(:), yp(:), matrix(:, :), values(:)
         logical, allocatable :: kept(:, :)
         integer :: n, i, j, e, ierr, missed
 
@@ -302,6 +316,23 @@ contains
         end do
         missed = count(matrix /= 0.0_wp .and. .not. kept)
         call check(error, missed, 0, name // ": nonzero entries outside the pattern")
+        if (allocated(error)) return
+        ! the same matrix written straight over the pattern (IDA's sparse path, no n x n
+        ! array): every entry the dense one's, bit for bit (the same operations)
+        allocate(values(pattern%entries()))
+        ierr = dae%dae_sparse_jacobian(0.0_wp, 1.0e3_wp, y, yp, pattern%starts, pattern%rows, &
+            & values)
+        call check(error, ierr, 0, name // ": the sparse Newton matrix")
+        if (allocated(error)) return
+        missed = 0
+        do j = 1, n
+            do e = pattern%starts(j) + 1, pattern%starts(j + 1)
+                if (.not. same_bits(values(e), matrix(pattern%rows(e) + 1, j))) &
+                    & missed = missed + 1
+            end do
+        end do
+        call check(error, missed, 0, name // ": entries of the sparse Newton matrix not the " &
+            & // "dense one's")
         if (allocated(error)) return
         blocks = pattern_of_blocks(dae%state_blocks(n))
         entries = pattern%entries()
@@ -438,5 +469,12 @@ contains
             if (allocated(error)) return
         end do
     end subroutine test_bench_table
+
+    !> The two numbers have the same bits (a +0 and a -0 differ).
+    pure logical function same_bits(a, b)
+        real(wp), intent(in) :: a, b
+
+        same_bits = transfer(a, 1_int64) == transfer(b, 1_int64)
+    end function same_bits
 
 end module test_link_chain
