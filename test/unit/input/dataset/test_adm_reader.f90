@@ -233,7 +233,7 @@ contains
         integer, parameter :: n = 14
         integer :: lines_at(n), i
         character(len=72) :: replaced(n)
-        character(len=280) :: expected(n)
+        character(len=320) :: expected(n)
         character(len=72) :: lines(size(coin))
         type(adm_model_type) :: model
         type(error_type), allocatable :: refused

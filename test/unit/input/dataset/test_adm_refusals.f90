@@ -39,7 +39,7 @@ contains
     subroutine test_statements(error)
         type(error_type), allocatable, intent(out) :: error
         character(len=120) :: replaced(13)
-        character(len=400) :: expected(13)
+        character(len=480) :: expected(13)
 
         replaced(1) = "PTCV/9, I=3, J=4"
         expected(1) = ":7: 'PTCV' is not a statement of the supported subset " // supported &
@@ -90,7 +90,7 @@ contains
     subroutine test_keywords(error)
         type(error_type), allocatable, intent(out) :: error
         character(len=120) :: replaced(13)
-        character(len=400) :: expected(13)
+        character(len=480) :: expected(13)
 
         replaced(1) = "PART/2, MASS=1, CM=3, IP=2, 2, 3, DENSITY=7800"
         expected(1) = ":4: PART/2: 'DENSITY' is not a PART argument of the supported subset" &
@@ -140,7 +140,7 @@ contains
     subroutine test_nonfinite_lists(error)
         type(error_type), allocatable, intent(out) :: error
         character(len=120) :: replaced(7)
-        character(len=400) :: expected(7)
+        character(len=480) :: expected(7)
 
         replaced(1) = "PART/2, MASS=1, CM=3, IP=2, NaN, 3"
         expected(1) = ":4: PART/2 IP: 'NaN' is not a finite number (expected from 3 to 6 numbers)"
@@ -167,7 +167,7 @@ contains
     subroutine test_whole_names(error)
         type(error_type), allocatable, intent(out) :: error
         character(len=120) :: replaced(2)
-        character(len=400) :: expected(2)
+        character(len=480) :: expected(2)
 
         replaced(1) = "MARKER/4, PART=1|JOINT/9, REVOLUTE, I=3, J=4, MAXIMUM_DEFORMATION=0.01"
         expected(1) = ":8: JOINT/9 MAXIMUM_DEFORMATION: a joint's initial conditions and its " &
@@ -183,7 +183,7 @@ contains
     subroutine test_references(error)
         type(error_type), allocatable, intent(out) :: error
         character(len=120) :: replaced(10)
-        character(len=400) :: expected(10)
+        character(len=480) :: expected(10)
 
         replaced(1) = "MARKER/3, PART=9, REULER=0D, 90D, 0D"
         expected(1) = ":6: MARKER/3 PART: no PART/9"
@@ -218,7 +218,7 @@ contains
     subroutine test_duplicates(error)
         type(error_type), allocatable, intent(out) :: error
         character(len=120) :: replaced(4)
-        character(len=400) :: expected(4)
+        character(len=480) :: expected(4)
 
         replaced(1) = "PART/1, MASS=1, CM=3, IP=2, 2, 3"
         expected(1) = ":4: PART/1: a second PART with this id"
@@ -235,7 +235,7 @@ contains
     subroutine test_values(error)
         type(error_type), allocatable, intent(out) :: error
         character(len=120) :: replaced(17)
-        character(len=400) :: expected(17)
+        character(len=480) :: expected(17)
 
         ! positive definite, but its principal moments 1 - 0.5, 1 + 0.5 and 2.4 > 0.5 + 1.5
         replaced(17) = "PART/2, MASS=1, CM=3, IP=1, 1, 2.4, 0.5, 0, 0"
@@ -328,7 +328,7 @@ contains
     subroutine test_integrator(error)
         type(error_type), allocatable, intent(out) :: error
         character(len=120) :: replaced(13)
-        character(len=400) :: expected(13)
+        character(len=480) :: expected(13)
 
         replaced(1) = "INTEGRATOR/ERROR=2"
         expected(1) = ":12: INTEGRATOR ERROR must be >= 1e-15 and < 1 (as &run rtol), got 2"
@@ -387,7 +387,7 @@ contains
             & ", QG=0, 0, 1, VX=0.5, EXACT=X:Y:Z", "MARKER/3, PART=2, REULER=45D, 0.01D, 0D", &
             & ", QG=0, 0, 1, EXACT=z", "MARKER/3, PART=2, REULER=0D, 180D, 0D"], [2, 3])
         character(len=120) :: replaced(2)
-        character(len=400) :: expected(2)
+        character(len=480) :: expected(2)
         character(len=len(base) + 60) :: lines(size(base))
         type(adm_model_type) :: model
         integer :: i
