@@ -179,8 +179,8 @@ contains
             & // " shortest ADAMS takes is IP for IP (docs/datasets.md, Abbreviations)"
         replaced(4) = "SIMULATE/DYNAMIC, END=1, ST=10"
         expected(4) = ":11: SIMULATE: 'ST' is too short an abbreviation of a SIMULATE" &
-            & // " argument: the shortest ADAMS takes is STE for STEPS (docs/datasets.md," &
-            & // " Abbreviations)"
+            & // " argument: the shortest ADAMS takes are STE for STEPS, STA for STATIC" &
+            & // " (docs/datasets.md, Abbreviations)"
         replaced(5) = "SFORCE/5, I=3, J=4, R, FUNCTION=TIME"
         expected(5) = ":10: SFORCE/5: 'R' is too short an abbreviation of an SFORCE argument:" &
             & // " the shortest ADAMS takes are ROT for ROTATION, ROTATIONA for ROTATIONAL" &
