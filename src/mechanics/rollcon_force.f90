@@ -242,6 +242,8 @@ contains
                 idle = forces(i)%impulse == 0.0_wp &
                     & .or. forces(i)%start + forces(i)%duration <= time
             case (profile_statement)
+                ! a user's routine (FUNCTION=USER) may push at any time
+                if (forces(i)%statement%routine > 0) idle = .false.
                 associate (statement => forces(i)%statement)
                     do k = 1, size(statement%functions)
                         if (.not. statement%given(k)) cycle

@@ -93,6 +93,11 @@ module rollcon_adm_model
         !> FX, FY, FZ, TX, TY, TZ (SFORCE: FUNCTION in the first); in dataset units
         type(expression_type) :: functions(6)
         logical :: given(6) = .false.
+        !> FUNCTION=USER(r1, ..., r30): served by a user's routine (SFOSUB, VFOSUB, GFOSUB) with
+        !> these constants (PAR), the one ROUTINE= names ("" for the model's own)
+        logical :: user = .false.
+        real(wp), allocatable :: par(:)
+        character(len=:), allocatable :: routine
     end type adm_force_type
 
     !> One SIMULATE/DYNAMIC: a dataset's statement, a command of a command file, or the
