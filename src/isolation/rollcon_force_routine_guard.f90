@@ -96,8 +96,8 @@ contains
             if (i >= 1 .and. i <= n) cycle
             if (transfer(result_buffer(i), canary_bits) == canary_bits) cycle
             call report_call_problem("the routine wrote RESULT(" // to_text(i) // ") = " &
-                & // to_text(result_buffer(i)) // ", outside the " // to_text(n) // " entries " &
-                & // "of " // trim(routine_names(kind)) // "'s RESULT")
+                & // to_text(result_buffer(i)) // ", outside " // trim(routine_names(kind)) &
+                & // "'s RESULT(" // to_text(n) // ")")
             exit
         end do
         if (id_copy /= id) call changed("ID", 0, real(id, wp), real(id_copy, wp))

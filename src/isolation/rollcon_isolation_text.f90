@@ -95,7 +95,7 @@ contains
             case (outcome_signal)
                 text = text // "the process was killed by " // signal_name(outcome%signal)
             case (outcome_timeout)
-                text = text // "a " // routine // " call did not return within " &
+                text = text // "a call of the " // routine // " did not return within " &
                     & // to_text(real(outcome%call_timeout, wp)) // " s, the time limit per " &
                     & // "call (--call-timeout SECONDS); the process was killed"
             case (outcome_exit)

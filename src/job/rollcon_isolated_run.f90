@@ -158,6 +158,9 @@ contains
         if (allocated(error)) then
             if (error%stat == stat_ucon) return
         end if
+        ! a force routine's failure names its routine and call already (rollcon_user_forces:
+        ! "its SFOSUB of FILE ..."); the partials check is a UCOSUB's
+        if (index(summary%message, "FOSUB of ") > 0) return
         hint = "; the run's UCONs are served by " // job%user_file // ": rollcon check " &
             & // job%user_file
         if (allocated(job%input_path)) then

@@ -480,6 +480,8 @@ contains
 
         value = 0.0_wp
         errflg = .true.
+        ! outside a call (no model set): no marker is known
+        if (.not. allocated(markers)) allocate(markers(0))
         ids = 0
         ids(:size(ipar)) = ipar
         ! VM, VR, ACCM, WDTM are written (i, j, l)
