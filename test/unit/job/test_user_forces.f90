@@ -17,6 +17,8 @@ module test_user_forces
     use rollcon_simulation, only : status_completed
     use rollcon_output_files, only : make_folders, write_text_file
     use rollcon_user_forces, only : system_function, system_array
+    use rollcon_user_build, only : user_build_options_type
+    use rollcon_force_routine_check, only : check_force_routines
     implicit none
     private
 
@@ -52,7 +54,9 @@ contains
             & new_unittest("sfosub-missing", test_missing), &
             & new_unittest("routine-names-no-file", test_unknown_routine), &
             & new_unittest("motion-user-unsupported", test_motion_user), &
-            & new_unittest("utilities-outside-a-call", test_utilities_refuse)]
+            & new_unittest("utilities-outside-a-call", test_utilities_refuse), &
+            & new_unittest("check-reports-implicit-typing", test_check_typing), &
+            & new_unittest("check-clean-spring", test_check_clean)]
     end subroutine collect_user_forces
 
     !> user_forces.adm (SFORCE/2 by sforce_spring.f's SFOSUB, GFORCE/1 by gforce_bushing.f's
@@ -192,6 +196,49 @@ contains
             & // merge("T", "F", acceleration) // ", RACC " // merge("T", "F", &
             & array_acceleration) // ", missing marker " // merge("T", "F", no_marker))
     end subroutine test_utilities_refuse
+
+    !> `rollcon check implicit_slip.f --model spring.adm`: exactly its two slips of implicit
+    !> typing, each naming the routine, the line and the statement (KS truncated to an
+    !> INTEGER, CD kept in REAL), and no finding of the probed states (the routine is smooth
+    !> and keeps no state).
+    subroutine test_check_typing(error)
+        type(error_type), allocatable, intent(out) :: error
+        character(len=:), allocatable :: findings
+        integer :: count
+
+        call check_file("implicit_slip.f", findings, count, error)
+        if (allocated(error)) return
+        call check(error, count == 2 .and. index(findings, "implicit_slip.f:16 (in SUBROUTINE " &
+            & // "SFOSUB)") > 0 .and. index(findings, "REAL(8) to INTEGER(4)") > 0 .and. &
+            & index(findings, "'KS = PAR(3)'") > 0 .and. index(findings, "implicit_slip.f:17") &
+            & > 0 .and. index(findings, "REAL(8) to REAL(4)") > 0 .and. index(findings, &
+            & "'CD = PAR(4)'") > 0, to_text(count) // " findings: " // findings)
+    end subroutine test_check_typing
+
+    !> The same check of sforce_spring.f (declared types, no state, smooth, its SYSFNC calls
+    !> those of its initialisation call): clean.
+    subroutine test_check_clean(error)
+        type(error_type), allocatable, intent(out) :: error
+        character(len=:), allocatable :: findings
+        integer :: count
+
+        call check_file("sforce_spring.f", findings, count, error)
+        if (allocated(error)) return
+        call check(error, count == 0, to_text(count) // " findings: " // findings)
+    end subroutine test_check_clean
+
+    !> check_force_routines of folder//file on spring.adm, the tests' cache, seed 1.
+    subroutine check_file(file, findings, count, error)
+        character(len=*), intent(in) :: file
+        character(len=:), allocatable, intent(out) :: findings
+        integer, intent(out) :: count
+        type(error_type), allocatable, intent(out) :: error
+        type(user_build_options_type) :: options
+
+        options%cache_dir = test_cache
+        call check_force_routines(folder // file, folder // "spring.adm", options, 10.0_wp, 1, &
+            & findings, count, error)
+    end subroutine check_file
 
     !> Run NAME.adm served by files (run apart) and NAME_expressions.adm (here); both complete
     !> with the same number of rows, equal to twin_tolerance in every part coordinate and rate.
