@@ -45,6 +45,7 @@ contains
         type(unittest_type), allocatable, intent(out) :: tests(:)
 
         tests = [new_unittest("sfosub-gfosub-as-expressions", test_against_expressions), &
+            & new_unittest("vfosub-as-expressions", test_vfosub), &
             & new_unittest("two-user-files", test_two_files), &
             & new_unittest("sfosub-crashes", test_crashes), &
             & new_unittest("sfosub-stops", test_stops), &
@@ -56,7 +57,8 @@ contains
             & new_unittest("motion-user-unsupported", test_motion_user), &
             & new_unittest("utilities-outside-a-call", test_utilities_refuse), &
             & new_unittest("check-reports-implicit-typing", test_check_typing), &
-            & new_unittest("check-clean-spring", test_check_clean)]
+            & new_unittest("check-clean-spring", test_check_clean), &
+            & new_unittest("check-reports-hidden-state", test_check_hidden)]
     end subroutine collect_user_forces
 
     !> user_forces.adm (SFORCE/2 by sforce_spring.f's SFOSUB, GFORCE/1 by gforce_bushing.f's
@@ -66,6 +68,14 @@ contains
 
         call compare_twins("user_forces", ["sforce_spring.f ", "gforce_bushing.f"], error)
     end subroutine test_against_expressions
+
+    !> vforce.adm (VFORCE/4 by vforce_spring.f's VFOSUB, components in a turned marker's
+    !> axes) gives the rows of vforce_expressions.adm to twin_tolerance.
+    subroutine test_vfosub(error)
+        type(error_type), allocatable, intent(out) :: error
+
+        call compare_twins("vforce", ["vforce_spring.f"], error)
+    end subroutine test_vfosub
 
     !> two_files.adm: SFORCE/2 by the first file's SFOSUB (the model's own), SFORCE/3 by the
     !> SFOSUB of the second file, which its ROUTINE=sforce_cubic::SFOSUB names (and which reads
@@ -226,6 +236,21 @@ contains
         if (allocated(error)) return
         call check(error, count == 0, to_text(count) // " findings: " // findings)
     end subroutine test_check_clean
+
+    !> The same check of hidden_state.f (a SAVEd counter in RESULT): a [hidden state] finding
+    !> at each of the 21 states, naming the statement, the routine and the state.
+    subroutine test_check_hidden(error)
+        type(error_type), allocatable, intent(out) :: error
+        character(len=:), allocatable :: findings
+        integer :: count
+
+        call check_file("hidden_state.f", findings, count, error)
+        if (allocated(error)) return
+        call check(error, count == 21 .and. index(findings, "[hidden state] " // folder &
+            & // "spring.adm:9: SFORCE/2, its SFOSUB of " // folder // "hidden_state.f at " &
+            & // "state 0 (the start)") > 0 .and. index(findings, "at state 20") > 0, &
+            & to_text(count) // " findings: " // findings)
+    end subroutine test_check_hidden
 
     !> check_force_routines of folder//file on spring.adm, the tests' cache, seed 1.
     subroutine check_file(file, findings, count, error)
