@@ -43,9 +43,9 @@ module rollcon_adm_abbreviations
         & place_type("ACCGRAV", "Igrav Jgrav Kgrav"), &
         & place_type("UNITS", "Force Mass Length Time System"), &
         & place_type("SFORCE", "I J Translation ROTation Actiononly Function TRANSLATIONAl " &
-        & // "ROTATIONAl"), &
-        & place_type("VFORCE", "I Jfloat RM FX FY FZ"), &
-        & place_type("GFORCE", "I Jfloat RM FX FY FZ TX TY TZ"), &
+        & // "ROTATIONAl ROUtine"), &
+        & place_type("VFORCE", "I Jfloat RM FX FY FZ FUnction ROutine"), &
+        & place_type("GFORCE", "I Jfloat RM FX FY FZ TX TY TZ FUnction ROutine"), &
         & place_type("JOINT", "COnvel CYlindrical Fixed Hooke REvolute SPherical " &
         & // "Translational Universal I J IC ICTran ICRot Delta_v Maximum_deformation " &
         & // "RAckpin SCrew PLanar PD PItch"), &
