@@ -4,9 +4,10 @@ module rollcon_command_check
     use, intrinsic :: iso_fortran_env, only : output_unit
     use rollcon, only : wp, error_type, fatal_error, stat_input, user_ucosub_type, &
         & new_user_ucosub, ucon_request_type, user_check_options_type, user_check_report_type, &
-        & check_user_ucosub_isolated, read_ucon_request, report_text, write_report_json
+        & check_user_ucosub_isolated, read_ucon_request, report_text, write_report_json, &
+        & user_build_options_type
     use rollcon_program, only : sampling_ranges, default_call_timeout, max_check_states, &
-        & states_refusal, dataset_ucon_requests
+        & states_refusal, dataset_ucon_requests, dataset_has_user_forces, check_force_routines
     use rollcon_cli, only : cli_request_type
     use rollcon_command_run, only : call_timeout_of
     implicit none
@@ -36,6 +37,12 @@ contains
             call print_help()
             return
         end if
+        if (request%has("--model") .and. len(request%positional) > 0) then
+            if (dataset_has_user_forces(request%text("--model", ""))) then
+                call check_forces(request, status, error)
+                return
+            end if
+        end if
         call read_requests(request, requests, options, call_timeout, error)
         if (allocated(error)) return
         call new_user_ucosub(user, request%positional, error)
@@ -59,6 +66,38 @@ contains
         if (.not. report%clean()) status = 1
         call user%destroy()
     end subroutine check_command
+
+    !> `check FILE --model MODEL.adm` for a dataset whose forces FILE's routines serve
+    !> (rollcon_force_routine_check): the findings, a line each; status 1 when there are some.
+    subroutine check_forces(request, status, error)
+        type(cli_request_type), intent(in) :: request
+        integer, intent(out) :: status
+        type(error_type), allocatable, intent(out) :: error
+        type(user_build_options_type) :: build
+        character(len=:), allocatable :: findings
+        real(wp) :: call_timeout
+        integer :: count, seed
+
+        status = 0
+        call_timeout = real(default_call_timeout, wp)
+        call call_timeout_of(request, call_timeout, error)
+        if (allocated(error)) return
+        seed = 1
+        call request%integer_value("--seed", seed, seed, -huge(1), error)
+        if (allocated(error)) return
+        call check_force_routines(request%positional, request%text("--model", ""), build, &
+            & call_timeout, seed, findings, count, error)
+        if (allocated(error)) return
+        write(output_unit, '(a)') "check: the force routines of " // request%positional &
+            & // " on " // request%text("--model", "") // " (the start and 20 states about it)"
+        if (count == 0) then
+            write(output_unit, '(a)') "verdict: clean"
+        else
+            write(output_unit, '(a)', advance="no") findings
+            write(output_unit, '(a, i0, a)') "verdict: ", count, " finding(s)"
+            status = 1
+        end if
+    end subroutine check_forces
 
     !> The UCON statements to check (--ucon, --model) and the check's options.
     subroutine read_requests(request, requests, options, call_timeout, error)

@@ -36,6 +36,12 @@ contains
                 & // "dataset, a file named MODEL.adm (docs/datasets.md)", stat_input)
             return
         end if
+        if (request%count("--ucosub") > 1) then
+            call fatal_error(error, "linear: --ucosub is given " &
+                & // trim(to_text(request%count("--ucosub"))) // " times; the linear analysis " &
+                & // "takes one built-in routine", stat_input)
+            return
+        end if
         call load_job(path, job, error, ucosub=request%text("--ucosub", ""))
         if (allocated(error)) return
         if (len(job%source%input_warning()) > 0) write(error_unit, '(a)') "rollcon: warning: " &

@@ -4,6 +4,7 @@
 module rollcon_command_run
     use, intrinsic :: iso_fortran_env, only : output_unit, error_unit
     use rollcon, only : wp, error_type, fatal_error, stat_input, to_text, job_type, load_job, &
+        & add_user_file, &
         & run_job, job_result_type, status_inaccurate, run_record_type, read_run, &
         & write_vtk_series, run_times_type
     use rollcon_program, only : command_line_text, check_at_start
@@ -30,6 +31,7 @@ contains
         type(run_times_type) :: times
         real(wp) :: fps
         character(len=:), allocatable :: name
+        integer :: k
 
         status = 0
         call request%real_value("--vtk", fps, 0.0_wp, error)
@@ -44,13 +46,18 @@ contains
         if (len(name) == 0) name = "coin"
         call run_times_of(request, times, error)
         if (allocated(error)) return
-        call load_job(name, job, error, ucosub=request%text("--ucosub", ""), times=times)
+        call load_job(name, job, error, ucosub=request%nth("--ucosub", 1), times=times)
         if (allocated(error)) then
             ! a bare word that names no scene may be a command mistyped
             if (scan(name, "/.") == 0) error%message = error%message // "; and '" // name &
                 & // "' is not a command (" // command_names() // ")"
             return
         end if
+        ! more files of user routines, run with the first in its child process
+        do k = 2, request%count("--ucosub")
+            call add_user_file(job, request%nth("--ucosub", k), error)
+            if (allocated(error)) return
+        end do
         ! what the input holds and the run does not use: said once, before the run, --quiet
         ! or not
         if (len(job%source%input_warning()) > 0) write(error_unit, '(a)') "rollcon: warning: " &

@@ -144,6 +144,10 @@ contains
             & "               start, before the first step: a wrong one is named and the", &
             & "               run is not started", &
             & "  --no-check   skip that check and run anyway", &
+            & "               The file may also hold SFOSUB, VFOSUB, GFOSUB: they serve the", &
+            & "               SFORCE, VFORCE, GFORCE with FUNCTION=USER(...); --ucosub", &
+            & "               given again adds files, ROUTINE=FILE::SFOSUB picks one's", &
+            & "               routine (docs/datasets.md, User force routines)", &
             & "  --ucosub NAME  a built-in routine instead (when no file NAME exists): disk,", &
             & "               rolling_disk, and the other generated specs (docs/generator.md)", &
             & "  --vtk FPS    also write DIR/SCENE_vtk/SCENE.pvd, a VTK time series for", &

@@ -27,6 +27,9 @@ module rollcon_adm_build
     use rollcon_marker_force, only : kind_translation, kind_rotation, kind_vector, &
         & kind_general, kind_spring, marker_force_values, markers_coincide
     use rollcon_force, only : applied_force_type, profile_statement
+    use rollcon_user_forces, only : find_force_routine, routine_kind_of, set_system_markers, &
+        & declare_user_force, evaluate_user_forces, take_user_force_error
+    use rollcon_force_routine_contract, only : routine_names
     use rollcon_model, only : model_type, setup_model, served_by_model_ucosub, force_request_type
     use rollcon_problem, only : problem_type
     use rollcon_theta_watch, only : new_theta_watch
@@ -137,6 +140,8 @@ contains
         ! a part flat at t = 0 starts in turned axes (docs/rebasing.md): its model part too
         call start_singular_parts(adm, problem, q0, u0, adm_theta_min, error)
         if (allocated(error)) return
+        call declare_user_forces(adm, problem, q0, u0, error)
+        if (allocated(error)) return
         call check_forces_at_start(adm, problem, q0, u0, error)
     end subroutine build_adm_problem
 
@@ -177,6 +182,35 @@ contains
             if (adm%requests(k)%rm /= 0) requests(k)%rm = adm_marker(adm, adm%requests(k)%rm)
         end do
     end function displacement_requests
+
+    !> The initialisation call (IFLAG = .TRUE.) of every force's user routine at the start,
+    !> which declares what it reads (rollcon_user_forces), then a first evaluation there, whose
+    !> values check_forces_at_start reads. The markers SYSFNC and SYSARY may name are every
+    !> marker of the dataset.
+    subroutine declare_user_forces(adm, problem, q0, u0, error)
+        type(adm_model_type), intent(in) :: adm
+        type(problem_type), intent(inout) :: problem
+        real(wp), intent(in) :: q0(:), u0(:)
+        type(error_type), allocatable, intent(out) :: error
+        type(marker_type), allocatable :: markers(:)
+        integer :: i
+
+        if (.not. allocated(adm%forces)) return
+        if (.not. any(adm%forces%user)) return
+        allocate(markers(size(adm%markers)))
+        do i = 1, size(adm%markers)
+            markers(i) = adm_marker(adm, adm%markers(i)%id)
+        end do
+        call set_system_markers(markers, adm%units%length, adm%units%time)
+        do i = 1, size(problem%model%forces)
+            if (problem%model%forces(i)%profile /= profile_statement) cycle
+            if (problem%model%forces(i)%statement%routine == 0) cycle
+            call declare_user_force(problem%model%forces(i), 0.0_wp, q0, u0, error)
+            if (allocated(error)) return
+        end do
+        call evaluate_user_forces(problem%model%forces, 0.0_wp, q0, u0)
+        call take_user_force_error(error)
+    end subroutine declare_user_forces
 
     !> Every force expression finite at the start (t = 0): a NaN or infinity there (a LOG of a
     !> negative number, a division by zero) is refused with the statement and key, not left for
@@ -501,6 +535,12 @@ contains
             s%given = statement%given
             ! for messages: "data/x.adm:12: VFORCE/7"
             force%name = where
+            s%id = statement%id
+            if (statement%user) then
+                call user_routine(statement, where, s%routine, error)
+                if (allocated(error)) return
+                s%par = statement%par
+            end if
             s%time_unit = adm%units%time
             s%length_unit = adm%units%length
             s%force_unit = adm%units%force
@@ -558,5 +598,33 @@ contains
         end associate
         call model%add_force(force)
     end subroutine add_spring
+    !> The entry of the user's routine serving a FUNCTION=USER force statement
+    !> (rollcon_user_forces' table): the model's own SFOSUB, VFOSUB or GFOSUB, or the one its
+    !> ROUTINE= names. Refused when there is none, naming the statement and what to give.
+    subroutine user_routine(statement, where, entry, error)
+        type(adm_force_type), intent(in) :: statement
+        !> "data/x.adm:12: SFORCE/2"
+        character(len=*), intent(in) :: where
+        integer, intent(out) :: entry
+        type(error_type), allocatable, intent(out) :: error
+        character(len=*), parameter :: statements(3) = ["SFORCE", "VFORCE", "GFORCE"]
+        integer :: kind
+
+        kind = routine_kind_of(statements(statement%kind))
+        entry = find_force_routine(kind, statement%routine)
+        if (entry > 0) return
+        if (len(statement%routine) == 0) then
+            call fatal_error(error, where // " FUNCTION=USER(...): no " &
+                & // trim(routine_names(kind)) // " serves it; give the file that defines " &
+                & // "SUBROUTINE " // trim(routine_names(kind)) // " (rollcon run MODEL " &
+                & // "--ucosub FILE; it runs in a process of its own)", stat_input)
+        else
+            call fatal_error(error, where // " ROUTINE=" // statement%routine // ": no " &
+                & // trim(routine_names(kind)) // " of that name among the user's files; " &
+                & // "ROUTINE=FILE::" // trim(routine_names(kind)) // " names the routine of " &
+                & // "FILE (given with --ucosub FILE; FILE as given, or its name without " &
+                & // "folder and extension)", stat_input)
+        end if
+    end subroutine user_routine
 
 end module rollcon_adm_build

@@ -128,6 +128,12 @@ contains
         integer :: k
 
         all_named = .true.
+        ! a force served by the model's own SFOSUB, VFOSUB or GFOSUB needs the user's file
+        if (allocated(adm%forces)) then
+            do k = 1, size(adm%forces)
+                if (adm%forces(k)%user) all_named = .false.
+            end do
+        end if
         if (.not. allocated(adm%ucons)) return
         do k = 1, size(adm%ucons)
             if (served_by_model_ucosub(adm%ucons(k)%routine)) all_named = .false.

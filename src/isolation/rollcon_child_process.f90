@@ -49,6 +49,9 @@ module rollcon_child_process
         integer(c_int) :: ucon_id, iflag, idrsel(3), nq
         !> What the task was doing: a checker's state number (0: the initialisation call)
         integer(c_int) :: stage
+        !> The routine of the call: 0 a UCOSUB (ucon_id its UCON), else a force routine's kind
+        !> (rollcon_force_routine_contract: 1 SFOSUB, 2 VFOSUB, 3 GFOSUB; ucon_id its statement)
+        integer(c_int) :: routine_kind
         !> The task's error: 0 none, else its stat; length of its message
         integer(c_int) :: error_stat, message_length
         !> TIME and Q of the call

@@ -5,6 +5,7 @@ module rollcon_isolation_text
     use rollcon_kinds, only : wp
     use rollcon_text, only : to_text
     use rollcon_dlopen, only : process_id
+    use rollcon_force_routine_contract, only : routine_names, routine_statements, routine_kinds
     use rollcon_child_process, only : isolation_outcome_type, outcome_signal, outcome_timeout, &
         & outcome_exit, signal_name
     implicit none
@@ -25,6 +26,10 @@ contains
         character(len=:), allocatable :: text
         integer :: i, n
 
+        if (outcome%record%routine_kind > 0) then
+            text = force_outcome_text(outcome)
+            return
+        end if
         associate (record => outcome%record)
             text = ""
             if (record%calls > 0) text = "UCON/" // to_text(int(record%ucon_id)) // ": "
@@ -76,6 +81,42 @@ contains
         end associate
     end function outcome_text
 
+    !> outcome_text for a force routine's call: "SFORCE/2: the process was killed by SIGSEGV
+    !> (...), inside SFOSUB call 57: IFLAG = .FALSE., TIME = 0.25".
+    function force_outcome_text(outcome) result(text)
+        type(isolation_outcome_type), intent(in) :: outcome
+        character(len=:), allocatable :: text, routine
+
+        associate (record => outcome%record)
+            routine = trim(routine_names(max(1, min(routine_kinds, int(record%routine_kind)))))
+            text = trim(routine_statements(max(1, min(routine_kinds, &
+                & int(record%routine_kind))))) // "/" // to_text(int(record%ucon_id)) // ": "
+            select case (outcome%kind)
+            case (outcome_signal)
+                text = text // "the process was killed by " // signal_name(outcome%signal)
+            case (outcome_timeout)
+                text = text // "a call of the " // routine // " did not return within " &
+                    & // to_text(real(outcome%call_timeout, wp)) // " s, the time limit per " &
+                    & // "call (--call-timeout SECONDS); the process was killed"
+            case (outcome_exit)
+                text = text // "the process ended with exit status " &
+                    & // to_text(outcome%exit_status) // " before its work was done (a STOP, " &
+                    & // "ERROR STOP or CALL EXIT in the " // routine // "? only rollcon may " &
+                    & // "end the process)"
+            case default
+                text = text // "the process finished"
+            end select
+            if (record%in_call == 1) then
+                text = text // ", inside"
+            else
+                text = text // ", after"
+            end if
+            text = text // " " // routine // " call " // to_text(int(record%calls)) &
+                & // ": IFLAG = " // trim(merge(".TRUE. ", ".FALSE.", record%iflag /= 0)) &
+                & // ", TIME = " // to_text(real(record%time, wp))
+        end associate
+    end function force_outcome_text
+
     !> The useful lines of a child's captured stderr (what gfortran says of the signal, a STOP
     !> message, the source line of the UCOSUB in the backtrace), as "; its stderr: ..." or "".
     function quote_stderr(path) result(text)
@@ -105,7 +146,8 @@ contains
             useful = index(line, "Program received signal") == 1 .or. index(line, "STOP") == 1 &
                 & .or. index(line, "ERROR STOP") == 1 .or. index(line, "Fortran runtime") == 1 &
                 & .or. index(line, "At line") == 1 .or. (after_ucosub .and. index(line, "at ") == 1)
-            after_ucosub = index(line, " in ucosub_") > 0
+            after_ucosub = index(line, " in ucosub_") > 0 .or. index(line, " in sfosub_") > 0 &
+                & .or. index(line, " in vfosub_") > 0 .or. index(line, " in gfosub_") > 0
             if (.not. useful .or. len_trim(line) == 0) cycle
             if (quoted == 0) then
                 text = "; its stderr: "

@@ -17,11 +17,14 @@ module rollcon_user_library
     use rollcon_dlopen, only : open_library, library_symbol, close_library, last_library_error
     use rollcon_user_shim, only : install_host_hooks
     use rollcon_user_build, only : user_build_options_type, build_user_library
+    use rollcon_force_routine_contract, only : force_routine_interface, routine_symbols, &
+        & routine_names, routine_kinds
+    use rollcon_user_forces, only : register_force_routine, find_force_routine
     implicit none
     private
 
     public :: user_ucosub_type, user_build_options_type, new_user_ucosub, load_user_ucosub, &
-        & ucosub_symbol
+        & ucosub_symbol, load_user_routines, library_stem
 
     !> Symbol of an external subroutine UCOSUB compiled by gfortran
     character(len=*), parameter :: ucosub_symbol = "ucosub_"
@@ -101,6 +104,68 @@ contains
         ! The symbol is gfortran's external UCOSUB, whose calling convention is ucosub_interface.
         call c_f_procpointer(address, self%ucosub)
     end subroutine load_user_ucosub
+
+    !> Load every routine of self%library, the library built from self%source: its UCOSUB
+    !> (self%ucosub; null when it defines none) and its force routines SFOSUB, VFOSUB, GFOSUB,
+    !> registered with rollcon_user_forces under the names ROUTINE= may give: FILE::NAME with
+    !> FILE the file as given or its name without folder and extension (u.f: "u::SFOSUB"), and
+    !> "" (the model's own, serving every statement naming no ROUTINE) when no file loaded
+    !> before defines one of that kind. An error when it defines none of them.
+    subroutine load_user_routines(self, error)
+        type(user_ucosub_type), intent(inout) :: self
+        type(error_type), allocatable, intent(out) :: error
+        type(c_funptr) :: address
+        procedure(force_routine_interface), pointer :: routine
+        integer :: kind
+        logical :: found
+
+        self%handle = open_library(self%library)
+        if (.not. c_associated(self%handle)) then
+            call fatal_error(error, self%source // ": the shared library built from it cannot be " &
+                & // "loaded (" // last_library_error() // "); a routine may call only UCOVAR, " &
+                & // "ERRMES, SYSFNC, SYSARY, TIMGET and what it defines itself", stat_ucon)
+            return
+        end if
+        call install_host_hooks(self%handle, self%library, error)
+        if (allocated(error)) then
+            call self%destroy()
+            return
+        end if
+        address = library_symbol(self%handle, ucosub_symbol)
+        found = c_associated(address)
+        if (found) call c_f_procpointer(address, self%ucosub)
+        do kind = 1, routine_kinds
+            address = library_symbol(self%handle, trim(routine_symbols(kind)))
+            if (.not. c_associated(address)) cycle
+            found = .true.
+            ! the symbol is gfortran's external routine: force_routine_interface's convention
+            call c_f_procpointer(address, routine)
+            if (find_force_routine(kind, "") == 0) call register_force_routine(kind, "", &
+                & self%source, routine)
+            call register_force_routine(kind, self%source // "::" // trim(routine_names(kind)), &
+                & self%source, routine)
+            call register_force_routine(kind, library_stem(self%source) // "::" &
+                & // trim(routine_names(kind)), self%source, routine)
+        end do
+        if (.not. found) then
+            call fatal_error(error, self%source // ": defines none of the routines rollcon " &
+                & // "calls (UCOSUB, SFOSUB, VFOSUB, GFOSUB: symbols 'ucosub_', 'sfosub_', " &
+                & // "'vfosub_', 'gfosub_'); check the names in its SUBROUTINE statements, " &
+                & // "and that they are external subroutines, not inside a module", stat_ucon)
+            call self%destroy()
+        end if
+    end subroutine load_user_routines
+
+    !> The name of a file without its folder and extension ("test/x/sfo_b.f": "sfo_b").
+    pure function library_stem(path) result(stem)
+        character(len=*), intent(in) :: path
+        character(len=:), allocatable :: stem
+        integer :: dot
+
+        stem = path(index(path, "/", back=.true.) + 1:)
+        dot = index(stem, ".", back=.true.)
+        if (dot > 1) stem = stem(:dot - 1)
+    end function library_stem
 
     !> Close the library; the routine must not be called afterwards.
     subroutine user_ucosub_destroy(self)

@@ -1,6 +1,6 @@
 ! SPDX-License-Identifier: MIT
-!> UCOVAR and ERRMES for a UCOSUB loaded at run time: the forwarding shim compiled into the
-!> user's shared library, and the host's side of it.
+!> UCOVAR, ERRMES, SYSFNC, SYSARY and TIMGET for a user's routine loaded at run time: the
+!> forwarding shim compiled into the user's shared library, and the host's side of it.
 !>
 !> rollcon's programs are not linked with -rdynamic, so a shared library cannot resolve the
 !> user's calls to UCOVAR and ERRMES against them. The shim (source text below, written to the
@@ -11,7 +11,8 @@
 !> ERRMES's character arguments cross the C boundary as (characters, length) pairs.
 module rollcon_user_shim
     use, intrinsic :: iso_c_binding, only : c_ptr, c_funptr, c_int, c_size_t, c_char, &
-        & c_funloc, c_associated, c_f_procpointer
+        & c_double, c_funloc, c_associated, c_f_procpointer
+    use rollcon_user_forces, only : system_function, system_array, system_time
     use rollcon_error, only : error_type, fatal_error, stat_ucon
     use rollcon_ucosub_contract, only : ucovar, errmes, max_ucon_vars
     use rollcon_dlopen, only : library_symbol
@@ -22,6 +23,8 @@ module rollcon_user_shim
 
     !> Name of the shim's setter, as exported by the shared library
     character(len=*), parameter :: shim_install_symbol = "rollcon_shim_install"
+    !> Name of the shim's setter of SYSFNC, SYSARY and TIMGET
+    character(len=*), parameter :: shim_system_symbol = "rollcon_shim_install_system"
 
     !> Source of the shim, free form; the host writes it to the cache as rollcon_shim.f90
     character(len=*), parameter :: shim_source_lines(*) = [character(len=96) :: &
@@ -30,10 +33,13 @@ module rollcon_user_shim
         & "! the host installs the targets with rollcon_shim_install right after dlopen.", &
         & "module rollcon_shim_targets", &
         & "    use, intrinsic :: iso_c_binding, only : c_funptr, c_null_funptr, c_int, &", &
-        & "        & c_size_t, c_char", &
+        & "        & c_size_t, c_char, c_double", &
         & "    implicit none", &
         & "    type(c_funptr), save :: ucovar_target = c_null_funptr", &
         & "    type(c_funptr), save :: errmes_target = c_null_funptr", &
+        & "    type(c_funptr), save :: sysfnc_target = c_null_funptr", &
+        & "    type(c_funptr), save :: sysary_target = c_null_funptr", &
+        & "    type(c_funptr), save :: timget_target = c_null_funptr", &
         & "    abstract interface", &
         & "        subroutine ucovar_hook(id, nparts, lparts, nvars, lvars) bind(c)", &
         & "            import :: c_int", &
@@ -47,6 +53,27 @@ module rollcon_user_shim
         & "            integer(c_size_t), value :: mesage_length, endflg_length", &
         & "            integer(c_int), intent(in) :: id", &
         & "        end subroutine errmes_hook", &
+        & "        subroutine sysfnc_hook(name, name_length, ipar, nsize, value, errflg) bind(c)", &
+        & "            import :: c_int, c_size_t, c_char, c_double", &
+        & "            character(kind=c_char), intent(in) :: name(*)", &
+        & "            integer(c_size_t), value :: name_length", &
+        & "            integer(c_int), intent(in) :: ipar(*), nsize", &
+        & "            real(c_double), intent(out) :: value", &
+        & "            integer(c_int), intent(out) :: errflg", &
+        & "        end subroutine sysfnc_hook", &
+        & "        subroutine sysary_hook(name, name_length, ipar, nsize, states, nstates, &", &
+        & "                & errflg) bind(c)", &
+        & "            import :: c_int, c_size_t, c_char, c_double", &
+        & "            character(kind=c_char), intent(in) :: name(*)", &
+        & "            integer(c_size_t), value :: name_length", &
+        & "            integer(c_int), intent(in) :: ipar(*), nsize", &
+        & "            real(c_double), intent(out) :: states(3)", &
+        & "            integer(c_int), intent(out) :: nstates, errflg", &
+        & "        end subroutine sysary_hook", &
+        & "        subroutine timget_hook(time) bind(c)", &
+        & "            import :: c_double", &
+        & "            real(c_double), intent(out) :: time", &
+        & "        end subroutine timget_hook", &
         & "    end interface", &
         & "end module rollcon_shim_targets", &
         & "", &
@@ -58,6 +85,17 @@ module rollcon_user_shim
         & "    ucovar_target = ucovar_address", &
         & "    errmes_target = errmes_address", &
         & "end subroutine rollcon_shim_install", &
+        & "", &
+        & "subroutine rollcon_shim_install_system(sysfnc_address, sysary_address, &", &
+        & "        & timget_address) bind(c, name='rollcon_shim_install_system')", &
+        & "    use rollcon_shim_targets, only : c_funptr, sysfnc_target, sysary_target, &", &
+        & "        & timget_target", &
+        & "    implicit none", &
+        & "    type(c_funptr), value :: sysfnc_address, sysary_address, timget_address", &
+        & "    sysfnc_target = sysfnc_address", &
+        & "    sysary_target = sysary_address", &
+        & "    timget_target = timget_address", &
+        & "end subroutine rollcon_shim_install_system", &
         & "", &
         & "subroutine ucovar(id, nparts, lparts, nvars, lvars)", &
         & "    use, intrinsic :: iso_c_binding, only : c_associated, c_f_procpointer", &
@@ -83,7 +121,62 @@ module rollcon_user_shim
         & "    call forward_errmes(merge(1_c_int, 0_c_int, errflg), mesage, &", &
         & "        & len(mesage, kind=c_size_t), &", &
         & "        & id, endflg, len(endflg, kind=c_size_t))", &
-        & "end subroutine errmes"]
+        & "end subroutine errmes", &
+        & "", &
+        & "subroutine sysfnc(fncnam, ipar, nsize, value, errflg)", &
+        & "    use, intrinsic :: iso_c_binding, only : c_associated, c_f_procpointer", &
+        & "    use rollcon_shim_targets, only : c_int, c_size_t, c_double, sysfnc_target, &", &
+        & "        & sysfnc_hook", &
+        & "    implicit none", &
+        & "    character(len=*), intent(in) :: fncnam", &
+        & "    integer(c_int), intent(in) :: ipar(*), nsize", &
+        & "    real(c_double), intent(out) :: value", &
+        & "    logical, intent(out) :: errflg", &
+        & "    procedure(sysfnc_hook), pointer :: forward_sysfnc", &
+        & "    integer(c_int) :: failed", &
+        & "    value = 0", &
+        & "    errflg = .true.", &
+        & "    if (.not. c_associated(sysfnc_target)) return", &
+        & "    call c_f_procpointer(sysfnc_target, forward_sysfnc)", &
+        & "    call forward_sysfnc(fncnam, len(fncnam, kind=c_size_t), ipar, nsize, value, &", &
+        & "        & failed)", &
+        & "    errflg = failed /= 0", &
+        & "end subroutine sysfnc", &
+        & "", &
+        & "subroutine sysary(fncnam, ipar, nsize, states, nstates, errflg)", &
+        & "    use, intrinsic :: iso_c_binding, only : c_associated, c_f_procpointer", &
+        & "    use rollcon_shim_targets, only : c_int, c_size_t, c_double, sysary_target, &", &
+        & "        & sysary_hook", &
+        & "    implicit none", &
+        & "    character(len=*), intent(in) :: fncnam", &
+        & "    integer(c_int), intent(in) :: ipar(*), nsize", &
+        & "    real(c_double), intent(out) :: states(*)", &
+        & "    integer(c_int), intent(out) :: nstates", &
+        & "    logical, intent(out) :: errflg", &
+        & "    procedure(sysary_hook), pointer :: forward_sysary", &
+        & "    real(c_double) :: values(3)", &
+        & "    integer(c_int) :: failed", &
+        & "    nstates = 0", &
+        & "    errflg = .true.", &
+        & "    if (.not. c_associated(sysary_target)) return", &
+        & "    call c_f_procpointer(sysary_target, forward_sysary)", &
+        & "    call forward_sysary(fncnam, len(fncnam, kind=c_size_t), ipar, nsize, values, &", &
+        & "        & nstates, failed)", &
+        & "    if (nstates > 0) states(1:nstates) = values(1:nstates)", &
+        & "    errflg = failed /= 0", &
+        & "end subroutine sysary", &
+        & "", &
+        & "subroutine timget(time)", &
+        & "    use, intrinsic :: iso_c_binding, only : c_associated, c_f_procpointer", &
+        & "    use rollcon_shim_targets, only : c_double, timget_target, timget_hook", &
+        & "    implicit none", &
+        & "    real(c_double), intent(out) :: time", &
+        & "    procedure(timget_hook), pointer :: forward_timget", &
+        & "    time = 0", &
+        & "    if (.not. c_associated(timget_target)) return", &
+        & "    call c_f_procpointer(timget_target, forward_timget)", &
+        & "    call forward_timget(time)", &
+        & "end subroutine timget"]
 
     abstract interface
         !> The shim's setter (rollcon_shim_install in the source above)
@@ -94,6 +187,13 @@ module rollcon_user_shim
             !> Address of host_errmes
             type(c_funptr), value :: errmes_address
         end subroutine install_interface
+        !> The shim's setter of the force routines' utilities (rollcon_shim_install_system)
+        subroutine install_system_interface(sysfnc_address, sysary_address, timget_address) &
+                & bind(c)
+            import :: c_funptr
+            !> Addresses of host_sysfnc, host_sysary, host_timget
+            type(c_funptr), value :: sysfnc_address, sysary_address, timget_address
+        end subroutine install_system_interface
     end interface
 
 contains
@@ -108,6 +208,7 @@ contains
         type(error_type), allocatable, intent(out) :: error
         type(c_funptr) :: address
         procedure(install_interface), pointer :: install
+        procedure(install_system_interface), pointer :: install_system
 
         address = library_symbol(handle, shim_install_symbol)
         if (.not. c_associated(address)) then
@@ -117,7 +218,62 @@ contains
         end if
         call c_f_procpointer(address, install)
         call install(c_funloc(host_ucovar), c_funloc(host_errmes))
+        ! the utilities of force routines (a library built before the shim had them: none)
+        address = library_symbol(handle, shim_system_symbol)
+        if (.not. c_associated(address)) return
+        call c_f_procpointer(address, install_system)
+        call install_system(c_funloc(host_sysfnc), c_funloc(host_sysary), c_funloc(host_timget))
     end subroutine install_host_hooks
+
+    !> The shim's SYSFNC lands here and goes on to rollcon_user_forces' system_function.
+    subroutine host_sysfnc(name, name_length, ipar, nsize, value, errflg) bind(c)
+        !> Characters of FNCNAM
+        character(kind=c_char), intent(in) :: name(*)
+        !> Its length
+        integer(c_size_t), value :: name_length
+        !> Marker ids, NSIZE of them
+        integer(c_int), intent(in) :: ipar(*), nsize
+        !> The measure, dataset units
+        real(c_double), intent(out) :: value
+        !> 1 when the call was refused
+        integer(c_int), intent(out) :: errflg
+        logical :: failed
+
+        call system_function(to_string(name, name_length), int(ipar(:max(0, min(nsize, 4)))), &
+            & value, failed)
+        errflg = merge(1_c_int, 0_c_int, failed)
+    end subroutine host_sysfnc
+
+    !> The shim's SYSARY lands here and goes on to rollcon_user_forces' system_array.
+    subroutine host_sysary(name, name_length, ipar, nsize, states, nstates, errflg) bind(c)
+        !> Characters of FNCNAM
+        character(kind=c_char), intent(in) :: name(*)
+        !> Its length
+        integer(c_size_t), value :: name_length
+        !> Marker ids, NSIZE of them
+        integer(c_int), intent(in) :: ipar(*), nsize
+        !> The three values, dataset units
+        real(c_double), intent(out) :: states(3)
+        !> Number of values given (3, or 0 when refused)
+        integer(c_int), intent(out) :: nstates
+        !> 1 when the call was refused
+        integer(c_int), intent(out) :: errflg
+        logical :: failed
+        integer :: n
+
+        call system_array(to_string(name, name_length), int(ipar(:max(0, min(nsize, 4)))), &
+            & states, n, failed)
+        nstates = int(n, c_int)
+        errflg = merge(1_c_int, 0_c_int, failed)
+    end subroutine host_sysary
+
+    !> The shim's TIMGET lands here: the time of the call, dataset units.
+    subroutine host_timget(time) bind(c)
+        !> The time
+        real(c_double), intent(out) :: time
+
+        time = system_time()
+    end subroutine host_timget
 
     !> The shim's UCOVAR lands here and goes on to rollcon's external UCOVAR.
     subroutine host_ucovar(id, nparts, lparts, nvars, lvars) bind(c)

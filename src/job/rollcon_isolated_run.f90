@@ -32,8 +32,10 @@ module rollcon_isolated_run
     use rollcon_isolation_text, only : outcome_text
     use rollcon_ucosub_guard, only : install_guard, attach_call_record, guarded_ucosub
     use rollcon_user_build, only : build_user_library
-    use rollcon_user_library, only : user_ucosub_type, load_user_ucosub
-    use rollcon_job, only : job_type
+    use rollcon_user_library, only : user_ucosub_type, load_user_routines
+    use rollcon_user_forces, only : clear_force_routines
+    use rollcon_force_routine_guard, only : install_force_guard
+    use rollcon_job, only : job_type, user_file_type
     use rollcon_analysis_run, only : run_analysis
     implicit none
     private
@@ -50,6 +52,8 @@ module rollcon_isolated_run
         type(run_options_type) :: options
         !> The shared library built from the user's file
         character(len=:), allocatable :: library
+        !> Those built from the job's more files (job%more_files), in order
+        type(user_file_type), allocatable :: more_libraries(:)
     contains
         procedure :: run => run_task
     end type job_task_type
@@ -101,6 +105,7 @@ contains
         type(isolation_outcome_type) :: outcome
         logical :: from_cache
         character(len=:), allocatable :: note
+        integer :: k
 
         started = .false.
         allocate(shapes(0))
@@ -112,6 +117,17 @@ contains
         if (.not. job%quiet) write(output_unit, '(a)') "UCOSUB: " // job%user_file // " (" &
             & // task%library // trim(merge(", from the cache", ", compiled now  ", &
             & from_cache)) // ")"
+        allocate(task%more_libraries(0))
+        if (allocated(job%more_files)) deallocate(task%more_libraries)
+        if (allocated(job%more_files)) allocate(task%more_libraries(size(job%more_files)))
+        do k = 1, size(task%more_libraries)
+            call build_user_library(job%more_files(k)%path, job%build_options, &
+                & task%more_libraries(k)%path, from_cache, error, note)
+            if (allocated(error)) return
+            if (.not. job%quiet) write(output_unit, '(a)') "user routines: " &
+                & // job%more_files(k)%path // " (" // task%more_libraries(k)%path &
+                & // trim(merge(", from the cache", ", compiled now  ", from_cache)) // ")"
+        end do
         task%job = job
         task%options = options
         ! the child writes no file: this process keeps the rows
@@ -143,6 +159,9 @@ contains
         if (allocated(error)) then
             if (error%stat == stat_ucon) return
         end if
+        ! a force routine's failure names its routine and call already (rollcon_user_forces:
+        ! "its SFOSUB of FILE ..."); the partials check is a UCOSUB's
+        if (index(summary%message, "FOSUB of ") > 0) return
         hint = "; the run's UCONs are served by " // job%user_file // ": rollcon check " &
             & // job%user_file
         if (allocated(job%input_path)) then
@@ -196,6 +215,8 @@ contains
         type(call_record_type), pointer, intent(in) :: record
         type(error_type), allocatable, intent(out) :: error
         type(user_ucosub_type) :: user
+        type(user_ucosub_type) :: more(size(self%more_libraries))
+        integer :: k
         type(problem_type), target :: problem
         type(pipe_sink_type) :: sink
         type(run_summary_type) :: summary
@@ -207,12 +228,24 @@ contains
         character(len=:), allocatable :: report
 
         call attach_call_record(record)
+        call clear_force_routines()
         user%source = self%job%user_file
         user%library = self%library
-        call load_user_ucosub(user, error)
+        ! its UCOSUB, if any, and its force routines (rollcon_user_forces' table)
+        call load_user_routines(user, error)
         if (allocated(error)) return
-        call install_guard(user%ucosub, as_errors=.true.)
-        guarded => guarded_ucosub
+        do k = 1, size(self%more_libraries)
+            more(k)%source = self%job%more_files(k)%path
+            more(k)%library = self%more_libraries(k)%path
+            call load_user_routines(more(k), error)
+            if (allocated(error)) return
+        end do
+        call install_force_guard(record)
+        guarded => null()
+        if (associated(user%ucosub)) then
+            call install_guard(user%ucosub, as_errors=.true.)
+            guarded => guarded_ucosub
+        end if
         call self%job%source%build(guarded, problem, q0, u0, report, error)
         if (allocated(error)) return
         if (associated(self%job%start_check)) then

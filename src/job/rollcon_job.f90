@@ -18,7 +18,13 @@ module rollcon_job
     implicit none
     private
 
-    public :: job_type, new_job, start_check_interface
+    public :: job_type, new_job, start_check_interface, user_file_type
+
+    !> A file of user routines
+    type :: user_file_type
+        !> Its path, as given
+        character(len=:), allocatable :: path
+    end type user_file_type
 
     type :: job_type
         !> What to build and run
@@ -33,6 +39,10 @@ module rollcon_job
         !> ... or a user's file (.f, .f90, .o), compiled, cached and run in a child process
         !> ("" for none): the child computes, this process writes every output
         character(len=:), allocatable :: user_file
+        !> More files of user routines (--ucosub given again), run in the same child process:
+        !> their force routines serve the statements whose ROUTINE=FILE::NAME names them, and
+        !> those of a kind user_file does not define (rollcon_user_library)
+        type(user_file_type), allocatable :: more_files(:)
         !> The name of the built-in routine, for the run's record
         character(len=:), allocatable :: routine_name
         !> The command that asked for the run, for its record ("" when a program built the job)
@@ -80,6 +90,7 @@ contains
         allocate(job%source, source=source)
         job%name = source%name
         job%user_file = ""
+        allocate(job%more_files(0))
         job%routine_name = "disk"
         job%command_line = ""
         job%output_dir = ""

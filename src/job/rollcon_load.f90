@@ -21,11 +21,12 @@ module rollcon_load
     use rollcon_adm_run, only : run_times_type, apply_run_times
     use rollcon_acf_reader, only : acf_type, read_acf, apply_acf
     use rollcon_dataset_source, only : new_dataset_source
-    use rollcon_job, only : job_type
+    use rollcon_job, only : job_type, user_file_type
     implicit none
     private
 
-    public :: load_job, input_override_type, is_dataset, output_name, is_command_file
+    public :: load_job, add_user_file, input_override_type, is_dataset, output_name, &
+        & is_command_file
     public :: run_times_type
 
     !> A value set apart from the input file: name as the input writes it (strike%impulse,
@@ -72,6 +73,7 @@ contains
         end if
         if (allocated(error)) return
         job%user_file = ""
+        allocate(job%more_files(0))
         job%routine_name = "disk"
         job%command_line = ""
         job%output_dir = "output"
@@ -230,6 +232,32 @@ contains
             set(k)%value = overrides(k)%value
         end do
     end subroutine dataset_overrides
+
+    !> One more file of user routines (--ucosub given again): run in the child process of the
+    !> job's first file, whose routines come first (rollcon_user_library's load_user_routines).
+    !> Refused when the job's routine is not a user's file or path is no file.
+    subroutine add_user_file(job, path, error)
+        type(job_type), intent(inout) :: job
+        !> The file (.f, .f90, .o)
+        character(len=*), intent(in) :: path
+        type(error_type), allocatable, intent(out) :: error
+        logical :: exists
+
+        inquire(file=path, exist=exists)
+        if (.not. exists) then
+            call fatal_error(error, "--ucosub " // path // ": no such file; a second --ucosub " &
+                & // "names a file of user routines", stat_input)
+            return
+        end if
+        if (len(job%user_file) == 0) then
+            call fatal_error(error, "--ucosub " // path // ": more files of user routines go " &
+                & // "with a first one, and the first --ucosub names none here (a built-in " &
+                & // "routine, or a model that uses no user routine)", stat_input)
+            return
+        end if
+        if (.not. allocated(job%more_files)) allocate(job%more_files(0))
+        job%more_files = [job%more_files, user_file_type(path)]
+    end subroutine add_user_file
 
     !> --ucosub NAME: a file when one exists (compiled and run apart), else a built-in
     !> routine's name; "" keeps the hand-checked disk. A model whose every UCON names its own

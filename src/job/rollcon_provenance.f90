@@ -20,10 +20,12 @@ contains
     !>     rollcon 0.2.0, 2026-11-26 04:45:12 +0000: rollcon run data/coin.nml
     !>     the model's UCOSUB: disk (built in)
     !> (the second: "none (every UCON names its ROUTINE)" for a model whose every UCON has its
-    !> own routine, and a user's file with its size and hash)
+    !> own routine, and a user's file with its size and hash), then a line "more user routines:
+    !> FILE (its size and hash)" for each more file of the job (rollcon_load's add_user_file)
     function provenance_lines(job) result(text)
         type(job_type), intent(in) :: job
         character(len=:), allocatable :: text
+        integer :: k
 
         text = version_text() // ", " // time_stamp()
         if (allocated(job%command_line)) then
@@ -38,6 +40,13 @@ contains
             text = text // job%routine_name // " (built in)"
         end if
         text = text // new_line("a")
+        ! more files of user routines (rollcon run --ucosub A.f --ucosub B.f)
+        if (allocated(job%more_files)) then
+            do k = 1, size(job%more_files)
+                text = text // "more user routines: " // job%more_files(k)%path // " (" &
+                    & // user_file_record(job%more_files(k)%path) // ")" // new_line("a")
+            end do
+        end if
     end function provenance_lines
 
     !> "N bytes, FNV-1a 64 HHHHHHHHHHHHHHHH" of a user's file (rollcon_input_files), or

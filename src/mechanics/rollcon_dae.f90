@@ -11,6 +11,7 @@
 !> set aside as redundant (rollcon_redundancy) keeps its place: its equation is lambda_k = 0
 !> (and mu_h = 0 for a position UCON's), and its multipliers appear nowhere else.
 module rollcon_dae
+    use rollcon_user_forces, only : take_user_force_error
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type, fatal_error
     use rollcon_text, only : to_text
@@ -59,6 +60,8 @@ contains
             call cs%evaluate(eq%model, time, q, u, needs, error)
             if (allocated(error)) return
             call eq%assemble(time, q, u)
+            call take_user_force_error(error)
+            if (allocated(error)) return
             r(:n) = qp - u
             r(n + 1:2*n) = -eq%force
             ! M u' part by part (M is the parts' 6 by 6 blocks), and each UCON's terms over its

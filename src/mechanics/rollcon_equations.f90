@@ -15,6 +15,7 @@ module rollcon_equations
     use rollcon_body, only : body_mass_and_force, body_residual_jacobian, kinetic_energy, &
         & energy_gradient
     use rollcon_force, only : force_and_moment, add_force_partials, force_couplings
+    use rollcon_user_forces, only : evaluate_user_forces, take_user_force_error
     use rollcon_constraints, only : constraint_state_type, local_dot, need_value, need_first, &
         & need_second, need_time
     use rollcon_saddle_point, only : saddle_point_type
@@ -199,7 +200,8 @@ contains
     end function active_rows
 
     !> Mass matrix and f = -(M a - f) at a = 0, part by part. Only the parts' diagonal blocks
-    !> are written: the others stay zero from init.
+    !> are written: the others stay zero from init. A user's force routine that fails leaves
+    !> its error for take_user_force_error (rollcon_user_forces).
     subroutine assemble(self, time, q, u)
         class(equations_type), intent(inout) :: self
         real(wp), intent(in) :: time
@@ -207,6 +209,9 @@ contains
         real(wp) :: applied(3), part_mass(6, 6), part_force(6)
         integer :: p, i0
 
+        ! the user's force routines at this state (FUNCTION=USER; a failure is taken by the
+        ! caller, take_user_force_error)
+        call evaluate_user_forces(self%model%forces, time, q, u)
         do p = 1, size(self%model%parts)
             i0 = 6*(p - 1)
             call force_and_moment(self%model%forces, p, time, q, u, applied, &
@@ -304,6 +309,8 @@ contains
         call self%constraints%evaluate(self%model, time, q, u, needs, error)
         if (allocated(error)) return
         call self%assemble(time, q, u)
+        call take_user_force_error(error)
+        if (allocated(error)) return
         call self%constraint_rows(u, baumgarte)
         ! M^-1 f in the factorisation's own LAPACK calls (those of M^-1 C^T)
         a = self%force

@@ -295,6 +295,8 @@ contains
                 idle = forces(i)%impulse == 0.0_wp &
                     & .or. forces(i)%start + forces(i)%duration <= time
             case (profile_statement)
+                ! a user's routine (FUNCTION=USER) may push at any time
+                if (forces(i)%statement%routine > 0) idle = .false.
                 associate (statement => forces(i)%statement)
                     ! a SPRINGDAMPER or BUSHING does work whenever its markers move apart
                     if (statement%kind == kind_spring) idle = .false.

@@ -16,6 +16,10 @@
 !> The expressions are in the dataset's units: their TIME and measures are converted
 !> from SI before evaluation and their values to N and N m after (time_unit, length_unit,
 !> force_unit: the size of a dataset unit in SI). A load on ground (part 0) is not applied.
+!>
+!> A statement with FUNCTION=USER(...) has no expressions: its values are those its user's
+!> routine gave at the state last set by rollcon_user_forces' evaluate_user_forces (these
+!> procedures are pure, the routine is not), which the equations call before every use.
 module rollcon_marker_force
     use rollcon_kinds, only : wp
     use rollcon_rotation, only : times, cross
@@ -56,6 +60,18 @@ module rollcon_marker_force
         real(wp) :: time_unit = 1.0_wp, length_unit = 1.0_wp, force_unit = 1.0_wp
         !> kind_spring: the SPRINGDAMPER's or BUSHING's constants, SI
         type(spring_type) :: spring
+        !> FUNCTION=USER: the entry of the user's routine (rollcon_user_forces' table) serving
+        !> it, 0 for expressions
+        integer :: routine = 0
+        !> FUNCTION=USER: its constants (PAR; the routine's ID is the statement's id)
+        real(wp), allocatable :: par(:)
+        !> FUNCTION=USER: the routine's values at the last state it was called at, as
+        !> marker_force_values gives them (SI; rollcon_user_forces' evaluate_user_forces)
+        real(wp) :: user_values(6) = 0.0_wp
+        !> FUNCTION=USER: the markers its initialisation call's SYSFNC and SYSARY calls named
+        !> (by id), and whether they read rates and time
+        integer, allocatable :: declared_markers(:)
+        logical :: declared_rates = .false.
     end type marker_force_type
 
 contains
@@ -72,6 +88,11 @@ contains
         integer :: k, n
 
         values = 0.0_wp
+        if (self%routine > 0) then
+            ! a user's routine, called where its state was set (rollcon_user_forces)
+            values = self%user_values
+            return
+        end if
         do k = 1, 6
             if (.not. self%given(k)) cycle
             n = size(self%functions(k)%inputs)

@@ -48,9 +48,9 @@ module rollcon_adm_abbreviations
         & place_type("ACCGRAV", "Igrav Jgrav Kgrav"), &
         & place_type("UNITS", "Force Mass Length Time System"), &
         & place_type("SFORCE", "I J Translation ROTation Actiononly Function TRANSLATIONAl " &
-        & // "ROTATIONAl"), &
-        & place_type("VFORCE", "I Jfloat RM FX FY FZ"), &
-        & place_type("GFORCE", "I Jfloat RM FX FY FZ TX TY TZ"), &
+        & // "ROTATIONAl ROUtine"), &
+        & place_type("VFORCE", "I Jfloat RM FX FY FZ FUnction ROutine"), &
+        & place_type("GFORCE", "I Jfloat RM FX FY FZ TX TY TZ FUnction ROutine"), &
         & place_type("VTORQUE", "I Jfloat RM TX TY TZ"), &
         & place_type("SPRINGDAMPER", "I J TRanslational Rotational K C Length Force KT CT " &
         & // "Angle TOrque"), &

@@ -377,6 +377,7 @@ contains
             return
         end if
         needed = merge(1, merge(3, 6, force%kind == force_vforce), force%kind == force_sforce)
+        if (force%user) return
         if (.not. all(force%given(:needed))) then
             call fatal_error(error, where // ": " // trim(merge("FUNCTION=e          ", &
                 & merge("FX=e, FY=e, FZ=e    ", "FX..FZ and TX..TZ=e ", &

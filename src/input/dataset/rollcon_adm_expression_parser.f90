@@ -211,6 +211,17 @@ contains
                 return
             end if
             p%at = p%at - len(name)
+            if (name == "USER") then
+                ! FUNCTION=USER(...) where no user routine serves the statement (SFORCE,
+                ! VFORCE, GFORCE and UCON read theirs before any expression)
+                problem = "USER(...): user routines of this kind (this statement's user " &
+                    & // "subroutine: MOTSUB of a MOTION, VARSUB of a VARIABLE, REQSUB of a " &
+                    & // "REQUEST, ...) are not supported; rollcon runs the user routines of " &
+                    & // "UCON (UCOSUB), SFORCE (SFOSUB), VFORCE (VFOSUB) and GFORCE (GFOSUB) " &
+                    & // "(docs/datasets.md, User force routines); write this FUNCTION as an " &
+                    & // "expression"
+                return
+            end if
             problem = "unknown name '" // name // "': not a function, measure or constant " &
                 & // "rollcon reads (docs/datasets.md, Function expressions, lists them)"
             return

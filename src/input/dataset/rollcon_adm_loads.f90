@@ -23,8 +23,9 @@ module rollcon_adm_loads
     character(len=*), parameter :: accgrav_keys(3) = ["IGRAV", "JGRAV", "KGRAV"]
     !> SFORCE's keywords; TRANSLATIONAL and ROTATIONAL are ADAMS's other spellings of
     !> TRANSLATION and ROTATION (ADAMS/View writes them)
-    character(len=*), parameter :: sforce_keys(8) = [character(len=13) :: "I", "J", &
-        & "TRANSLATION", "ROTATION", "ACTIONONLY", "FUNCTION", "TRANSLATIONAL", "ROTATIONAL"]
+    character(len=*), parameter :: sforce_keys(9) = [character(len=13) :: "I", "J", &
+        & "TRANSLATION", "ROTATION", "ACTIONONLY", "FUNCTION", "TRANSLATIONAL", "ROTATIONAL", &
+        & "ROUTINE"]
     character(len=*), parameter :: gforce_keys(9) = [character(len=6) :: "I", "JFLOAT", "RM", &
         & "FX", "FY", "FZ", "TX", "TY", "TZ"]
     character(len=*), parameter :: vtorque_keys(6) = [character(len=6) :: "I", "JFLOAT", "RM", &
@@ -37,6 +38,8 @@ module rollcon_adm_loads
     !> constants
     character(len=*), parameter :: bushing_keys(8) = [character(len=6) :: "I", "J", "K", "C", &
         & "KT", "CT", "FORCE", "TORQUE"]
+    !> VFORCE's and GFORCE's keywords beside their components: a user's routine serves it
+    character(len=*), parameter :: user_keys(2) = [character(len=8) :: "FUNCTION", "ROUTINE"]
 
 contains
 
@@ -90,15 +93,20 @@ contains
     end subroutine read_routine
 
     !> FUNCTION = USER(r1, ..., rn): 1 <= n <= 30, one number per field.
-    subroutine read_user_list(argument, at, par, error)
+    subroutine read_user_list(argument, at, par, error, routine)
         type(adm_argument_type), intent(in) :: argument
         character(len=*), intent(in) :: at
         real(wp), allocatable, intent(out) :: par(:)
         type(error_type), allocatable, intent(out) :: error
+        !> The routine the constants go to (default UCOSUB)
+        character(len=*), intent(in), optional :: routine
         type(adm_argument_type) :: list
-        character(len=:), allocatable :: text, inner
+        character(len=:), allocatable :: text, inner, served
         integer :: open, i, n, start
         logical :: well_formed
+
+        served = "UCOSUB"
+        if (present(routine)) served = routine
 
         text = trim(argument_text(argument))
         open = index(text, "(")
@@ -107,14 +115,24 @@ contains
         if (well_formed) well_formed = text(len(text):) == ")"
         if (well_formed) well_formed = is_user(text(:open - 1))
         if (.not. well_formed) then
-            call fatal_error(error, at // ": expected USER(r1, ..., r30) (a UCON is served by " &
-                & // "the model's UCOSUB), got '" // text // "'", stat_input)
+            if (present(routine)) then
+                call fatal_error(error, at // ": expected USER(r1, ..., r30) (the constants " &
+                    & // "of its " // served // "), got '" // text // "'", stat_input)
+            else
+                call fatal_error(error, at // ": expected USER(r1, ..., r30) (a UCON is served " &
+                    & // "by the model's UCOSUB), got '" // text // "'", stat_input)
+            end if
             return
         end if
         inner = text(open + 1:len(text) - 1)
         if (len_trim(inner) == 0) then
-            call fatal_error(error, at // ": USER() holds no constant; a UCON passes 1 to 30 " &
-                & // "constants to its UCOSUB (PAR)", stat_input)
+            if (present(routine)) then
+                call fatal_error(error, at // ": USER() holds no constant; 1 to 30 constants " &
+                    & // "go to the " // served // " (PAR)", stat_input)
+            else
+                call fatal_error(error, at // ": USER() holds no constant; a UCON passes 1 to " &
+                    & // "30 constants to its UCOSUB (PAR)", stat_input)
+            end if
             return
         end if
         n = count([(inner(i:i) == ",", i = 1, len(inner))]) + 1
@@ -196,9 +214,12 @@ contains
             else if (force%kind == force_vtorque) then
                 call argument_key(path, where, statement, k, vtorque_keys, key, error)
             else if (force%kind == force_vforce) then
-                call argument_key(path, where, statement, k, gforce_keys(1:6), key, error)
+                call argument_key(path, where, statement, k, [character(len=8) :: &
+                    & gforce_keys(1:6), user_keys], key, error)
             else
-                call argument_key(path, where, statement, k, gforce_keys, key, error)
+                call argument_key(path, where, statement, k, [character(len=8) :: gforce_keys, &
+                    & user_keys], key, &
+                    & error)
             end if
             if (allocated(error)) return
             at = arg_place(path, where, statement%arguments(k)) // " " // key
@@ -209,6 +230,29 @@ contains
                 call read_integer(statement%arguments(k), at, force%j, error)
             case ("RM")
                 call read_integer(statement%arguments(k), at, force%rm, error)
+            case ("ROUTINE")
+                call read_routine(statement%arguments(k), at, force%routine, error)
+            case ("FUNCTION")
+                if (.not. statement%arguments(k)%assigned) then
+                    call fatal_error(error, at // ": expected one expression", stat_input)
+                    return
+                end if
+                if (user_function(argument_text(statement%arguments(k)))) then
+                    ! FUNCTION=USER(r1, ...): the statement's user routine (SFOSUB, ...)
+                    call read_user_list(statement%arguments(k), at, force%par, error, &
+                        & routine_of(name))
+                    force%user = .true.
+                else if (force%kind /= force_sforce) then
+                    call fatal_error(error, at // ": a " // name // " gives its components as " &
+                        & // "FX=e, ... or is served by a user's routine, FUNCTION=USER(r1, " &
+                        & // "..., r30); got '" // trim(argument_text(statement%arguments(k))) &
+                        & // "'", stat_input)
+                    return
+                else
+                    call compile_expression(argument_text(statement%arguments(k)), at, &
+                        & force%functions(1), error)
+                    force%given(1) = .true.
+                end if
             case ("TRANSLATION", "ROTATION", "ACTIONONLY", "TRANSLATIONAL", "ROTATIONAL")
                 if (statement%arguments(k)%assigned) then
                     call fatal_error(error, at // " takes no value", stat_input)
@@ -240,6 +284,19 @@ contains
             end select
             if (allocated(error)) return
         end do
+        if (force%user .and. any(force%given)) then
+            call fatal_error(error, where // ": FUNCTION=USER(...) and expressions are given " &
+                & // "together; a " // name // " is served by its " // routine_of(name) &
+                & // " or by expressions", stat_input)
+            return
+        end if
+        if (allocated(force%routine) .and. .not. force%user) then
+            call fatal_error(error, where // ": ROUTINE=" // force%routine // " names a " &
+                & // routine_of(name) // ", which serves a FUNCTION=USER(r1, ..., r30) only", &
+                & stat_input)
+            return
+        end if
+        if (.not. allocated(force%routine)) force%routine = ""
     end subroutine read_force
 
     !> SPRINGDAMPER or BUSHING (name) as read, its constants in SI (units: the dataset's).
@@ -359,5 +416,31 @@ contains
         call fatal_error(error, at // ": expected a value >= 0, got " &
             & // to_text(minval(values)), stat_input)
     end subroutine refuse_negative
+    !> The user routine of a force statement: SFOSUB of SFORCE, and so on.
+    pure function routine_of(name) result(routine)
+        character(len=*), intent(in) :: name
+        character(len=:), allocatable :: routine
+
+        select case (name)
+        case ("SFORCE")
+            routine = "SFOSUB"
+        case ("VFORCE")
+            routine = "VFOSUB"
+        case default
+            routine = "GFOSUB"
+        end select
+    end function routine_of
+
+    !> True for "USER(...)" in any case, spaces aside.
+    pure logical function user_function(text)
+        character(len=*), intent(in) :: text
+        character(len=:), allocatable :: word
+        integer :: open
+
+        word = trim(adjustl(text))
+        open = index(word, "(")
+        user_function = .false.
+        if (open > 1) user_function = is_user(word(:open - 1))
+    end function user_function
 
 end module rollcon_adm_loads

@@ -107,6 +107,11 @@ module rollcon_adm_model
         real(wp) :: constants(18) = 0.0_wp
         !> SPRINGDAMPER: LENGTH [m] or ANGLE [rad]
         real(wp) :: reference = 0.0_wp
+        !> FUNCTION=USER(r1, ..., r30): served by a user's routine (SFOSUB, VFOSUB, GFOSUB) with
+        !> these constants (PAR), the one ROUTINE= names ("" for the model's own)
+        logical :: user = .false.
+        real(wp), allocatable :: par(:)
+        character(len=:), allocatable :: routine
     end type adm_force_type
 
     !> One SIMULATE/DYNAMIC: a dataset's statement, a command of a command file, or the

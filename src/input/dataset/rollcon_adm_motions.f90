@@ -168,7 +168,8 @@ contains
         end if
         text = argument_text(statement%arguments(k))
         if (index(adjustl(text), "USER") == 1 .or. index(adjustl(text), "user") == 1) then
-            call fatal_error(error, at // ": FUNCTION=USER(...) (a MOTSUB) is not supported; " &
+            call fatal_error(error, at // ": FUNCTION=USER(...): user routines of this kind " &
+                & // "(MOTSUB, a MOTION's) are not supported; " &
                 & // "write the motion as an expression of TIME", stat_input)
             return
         end if

@@ -183,8 +183,8 @@ contains
             & // " (docs/datasets.md, Abbreviations)"
         replaced(5) = "SFORCE/5, I=3, J=4, R, FUNCTION=TIME"
         expected(5) = ":10: SFORCE/5: 'R' is too short an abbreviation of an SFORCE argument:" &
-            & // " the shortest ADAMS takes are ROT for ROTATION, ROTATIONA for ROTATIONAL" &
-            & // " (docs/datasets.md, Abbreviations)"
+            & // " the shortest ADAMS takes are ROT for ROTATION, ROTATIONA for ROTATIONAL," &
+            & // " ROU for ROUTINE (docs/datasets.md, Abbreviations)"
         call check_refusals(error, [10, 10, 4, 11, 10], replaced, expected)
     end subroutine test_short_refused
 

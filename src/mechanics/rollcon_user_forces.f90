@@ -1,0 +1,579 @@
+! SPDX-License-Identifier: MIT
+!> Force statements served by a user's routine (FUNCTION=USER(r1, ...): SFOSUB, VFOSUB,
+!> GFOSUB; rollcon_force_routine_contract), and the utilities those routines call: SYSFNC,
+!> SYSARY and TIMGET, answering from the state the routine is called at (docs/datasets.md,
+!> "User force routines").
+!>
+!> ADAMS's utilities take no handle, so what they read is module state, as
+!> rollcon_adams_runtime's: the table of routines the model may use (register_force_routine:
+!> the model's own SFOSUB, VFOSUB, GFOSUB, and those a ROUTINE=library::name names), the
+!> markers of the model (set_system_markers), and during a call the time and state. One model
+!> per process: a user's routines run in a child process of their own (rollcon_isolated_run).
+!>
+!> - declare_user_force makes the initialisation call (IFLAG = .TRUE.): the markers its
+!>   SYSFNC and SYSARY calls name, and whether they read rates, are the force's declared
+!>   dependencies (marker_force_type's declared_markers, declared_rates);
+!> - evaluate_user_forces calls each routine at (t, q, u) and keeps its values in SI
+!>   (marker_force_type's user_values), which the pure force procedures then read; a routine
+!>   that reports an error (ERRMES), returns a value that is not finite or reads what it did
+!>   not declare leaves an error for take_user_force_error.
+!>
+!> Every call goes through the call hook (set_force_call_hook), which a child process points at
+!> its guard (rollcon_force_routine_guard: time limit, copies of the inputs, canaries).
+module rollcon_user_forces
+    use rollcon_kinds, only : wp
+    use rollcon_error, only : error_type, fatal_error, stat_ucon
+    use rollcon_text, only : to_text, upper_case
+    use rollcon_force_routine_contract, only : force_routine_interface, routine_names, &
+        & routine_results, routine_kinds, routine_statements
+    use rollcon_adams_runtime, only : take_ucon_error
+    use rollcon_marker, only : marker_type
+    use rollcon_measures, only : measure_value, is_state_measure, reads_rates, quantity_scale
+    use rollcon_expression, only : quantity_names, quantity_psi, quantity_wx, quantity_vx, &
+        & quantity_vm, quantity_vr, quantity_accm, quantity_wdtm, quantity_least_markers, &
+        & quantity_most_markers, quantity_dx
+    use rollcon_force, only : applied_force_type, profile_statement
+    use, intrinsic :: ieee_arithmetic, only : ieee_is_finite
+    implicit none
+    private
+
+    public :: force_call_interface, register_force_routine, clear_force_routines
+    public :: find_force_routine, force_routine_label, set_force_call_hook, direct_force_call
+    public :: set_system_markers, declare_user_force, evaluate_user_forces
+    public :: take_user_force_error, has_user_forces, routine_kind_of
+    public :: system_function, system_array, system_time, system_notes, clear_system_notes
+    public :: get_force_routine, report_call_problem
+
+    !> A routine the model may use
+    type :: routine_entry_type
+        !> routine_sfosub ... (rollcon_force_routine_contract)
+        integer :: kind = 0
+        !> "" for the model's own (served to every statement naming no ROUTINE), else the
+        !> ROUTINE= text that names it ("library::name")
+        character(len=:), allocatable :: name
+        !> The file it came from, for messages
+        character(len=:), allocatable :: source
+        procedure(force_routine_interface), pointer, nopass :: routine => null()
+    end type routine_entry_type
+
+    abstract interface
+        !> How a routine of the table is called: entry (its index), the statement's id, time
+        !> (dataset units), par(:npar), dflag, iflag, and result (n values).
+        subroutine force_call_interface(entry, id, time, par, npar, dflag, iflag, result, n)
+            import :: wp
+            integer, intent(in) :: entry, id, npar, n
+            real(wp), intent(in) :: time, par(:)
+            logical, intent(in) :: dflag, iflag
+            real(wp), intent(inout) :: result(n)
+        end subroutine force_call_interface
+    end interface
+
+    type(routine_entry_type), allocatable, save :: table(:)
+    procedure(force_call_interface), pointer, save :: call_hook => direct_force_call
+    !> The model's markers (every one a routine may name), the dataset's units
+    type(marker_type), allocatable, save :: markers(:)
+    real(wp), save :: length_unit = 1.0_wp, time_unit = 1.0_wp
+    !> The state of the call under way [SI]
+    real(wp), allocatable, save :: q_now(:), u_now(:)
+    real(wp), save :: time_now = 0.0_wp
+    !> An initialisation call is under way: the markers named are collected
+    logical, save :: declaring = .false.
+    integer, allocatable, save :: named(:)
+    logical, save :: named_rates = .false.
+    !> The declaration of the statement whose routine is being called (an evaluation)
+    integer, allocatable, save :: allowed(:)
+    logical, save :: allowed_rates = .true.
+    !> What the utilities found wrong in the call under way ("" for nothing), and the notes
+    !> of every call since clear_system_notes (for rollcon check)
+    character(len=:), allocatable, save :: problem, notes
+    !> First error not yet taken
+    type(error_type), allocatable, save :: pending
+
+contains
+
+    !> Add a routine to the table the model's statements are served from.
+    subroutine register_force_routine(kind, name, source, routine)
+        !> routine_sfosub, routine_vfosub, routine_gfosub or routine_vtosub
+        integer, intent(in) :: kind
+        !> "" for the model's own; else the ROUTINE= text that names it
+        character(len=*), intent(in) :: name
+        !> The file it was built from
+        character(len=*), intent(in) :: source
+        procedure(force_routine_interface) :: routine
+        type(routine_entry_type) :: entry
+
+        if (.not. allocated(table)) allocate(table(0))
+        entry%kind = kind
+        entry%name = name
+        entry%source = source
+        entry%routine => routine
+        table = [table, entry]
+    end subroutine register_force_routine
+
+    !> Empty the table (the direct call hook again).
+    subroutine clear_force_routines()
+        if (allocated(table)) deallocate(table)
+        allocate(table(0))
+        call_hook => direct_force_call
+    end subroutine clear_force_routines
+
+    !> The entry serving a statement of kind that names routine ("" for the model's own): its
+    !> index, 0 when the table holds none. A name is matched in any case; "library::name"
+    !> also matches an entry registered as the same library and name.
+    function find_force_routine(kind, routine) result(entry)
+        integer, intent(in) :: kind
+        character(len=*), intent(in) :: routine
+        integer :: entry
+        integer :: k
+
+        entry = 0
+        if (.not. allocated(table)) return
+        do k = 1, size(table)
+            if (table(k)%kind /= kind) cycle
+            if (upper_case(trim(table(k)%name)) /= upper_case(trim(routine))) cycle
+            entry = k
+            return
+        end do
+    end function find_force_routine
+
+    !> "SFOSUB of u.f" for messages.
+    function force_routine_label(entry) result(label)
+        integer, intent(in) :: entry
+        character(len=:), allocatable :: label
+
+        label = "a user routine"
+        if (.not. allocated(table)) return
+        if (entry < 1 .or. entry > size(table)) return
+        label = trim(routine_names(table(entry)%kind)) // " of " // table(entry)%source
+        if (len(table(entry)%name) > 0) label = label // " (ROUTINE=" // table(entry)%name &
+            & // ")"
+    end function force_routine_label
+
+    !> The kind of routine a statement needs: "SFORCE" gives routine_sfosub, and so on; 0 for
+    !> none.
+    pure integer function routine_kind_of(statement) result(kind)
+        character(len=*), intent(in) :: statement
+
+        kind = findloc(routine_statements, statement, dim=1)
+        if (kind < 1 .or. kind > routine_kinds) kind = 0
+    end function routine_kind_of
+
+    !> Route every call through hook (a guard); null: the direct call.
+    subroutine set_force_call_hook(hook)
+        procedure(force_call_interface), pointer, intent(in) :: hook
+
+        if (associated(hook)) then
+            call_hook => hook
+        else
+            call_hook => direct_force_call
+        end if
+    end subroutine set_force_call_hook
+
+    !> Call the routine of entry as it is.
+    subroutine direct_force_call(entry, id, time, par, npar, dflag, iflag, result, n)
+        integer, intent(in) :: entry, id, npar, n
+        real(wp), intent(in) :: time, par(:)
+        logical, intent(in) :: dflag, iflag
+        real(wp), intent(inout) :: result(n)
+
+        call table(entry)%routine(id, time, par, npar, dflag, iflag, result)
+    end subroutine direct_force_call
+
+    !> The routine of entry and its kind (routine_sfosub ...), for a guard that calls it.
+    subroutine get_force_routine(entry, routine, kind)
+        integer, intent(in) :: entry
+        procedure(force_routine_interface), pointer, intent(out) :: routine
+        integer, intent(out) :: kind
+
+        routine => table(entry)%routine
+        kind = table(entry)%kind
+    end subroutine get_force_routine
+
+    !> What a guard found wrong with the call under way (a write outside RESULT, a changed
+    !> argument): the call's error says it, naming the statement and the routine.
+    subroutine report_call_problem(why)
+        character(len=*), intent(in) :: why
+
+        call refuse(why)
+    end subroutine report_call_problem
+
+    !> The markers SYSFNC and SYSARY may name (every marker of the model) and the dataset's
+    !> units [m, s] the routines compute in.
+    subroutine set_system_markers(all_markers, length, time)
+        type(marker_type), intent(in) :: all_markers(:)
+        real(wp), intent(in) :: length, time
+
+        markers = all_markers
+        length_unit = length
+        time_unit = time
+    end subroutine set_system_markers
+
+    !> True when a force of the model is served by a user's routine.
+    pure logical function has_user_forces(forces)
+        type(applied_force_type), intent(in) :: forces(:)
+        integer :: i
+
+        has_user_forces = .false.
+        do i = 1, size(forces)
+            if (forces(i)%profile /= profile_statement) cycle
+            if (forces(i)%statement%routine > 0) has_user_forces = .true.
+        end do
+    end function has_user_forces
+
+    !> The initialisation call (IFLAG = .TRUE.) of a force's routine at (t, q, u): the markers
+    !> its SYSFNC and SYSARY calls name become its declaration. An error names the statement
+    !> (force%name), the routine and what went wrong.
+    subroutine declare_user_force(force, time, q, u, error)
+        type(applied_force_type), intent(inout) :: force
+        !> Time [s], coordinates and rates of all parts [SI]
+        real(wp), intent(in) :: time, q(:), u(:)
+        type(error_type), allocatable, intent(out) :: error
+        real(wp) :: result(6)
+        integer :: n
+
+        associate (s => force%statement)
+            n = routine_results(table(s%routine)%kind)
+            call begin_call(time, q, u)
+            declaring = .true.
+            named = [integer ::]
+            named_rates = .false.
+            result = 0.0_wp
+            call call_hook(s%routine, s%id, time/s%time_unit, s%par, size(s%par), .false., &
+                & .true., result(:n), n)
+            declaring = .false.
+            s%declared_markers = named
+            s%declared_rates = named_rates
+            call after_call(force, "the initialisation call (IFLAG = .TRUE.)", time, error)
+        end associate
+    end subroutine declare_user_force
+
+    !> Call every user routine of forces at (t, q, u) and keep its values (SI) for the pure
+    !> force procedures; the first failure is kept for take_user_force_error.
+    subroutine evaluate_user_forces(forces, time, q, u)
+        type(applied_force_type), intent(inout) :: forces(:)
+        !> Time [s], coordinates and rates of all parts [SI]
+        real(wp), intent(in) :: time, q(:), u(:)
+        type(error_type), allocatable :: error
+        real(wp) :: result(6), values(6)
+        integer :: i, n, kind
+
+        do i = 1, size(forces)
+            if (forces(i)%profile /= profile_statement) cycle
+            associate (s => forces(i)%statement)
+                if (s%routine == 0) cycle
+                kind = table(s%routine)%kind
+                n = routine_results(kind)
+                call begin_call(time, q, u)
+                if (allocated(s%declared_markers)) then
+                    allowed = s%declared_markers
+                    allowed_rates = s%declared_rates
+                else if (allocated(allowed)) then
+                    ! not declared yet: nothing to compare with
+                    deallocate(allowed)
+                end if
+                result = 0.0_wp
+                call call_hook(s%routine, s%id, time/s%time_unit, s%par, size(s%par), &
+                    & .false., .false., result(:n), n)
+                if (allocated(allowed)) deallocate(allowed)
+                allowed_rates = .true.
+                values = 0.0_wp
+                select case (n)
+                case (1)
+                    values(1) = result(1)*s%force_unit
+                case (3)
+                    values(1:3) = result(1:3)*s%force_unit
+                case default
+                    values(1:3) = result(1:3)*s%force_unit
+                    values(4:6) = result(4:6)*s%force_unit*s%length_unit
+                end select
+                s%user_values = values
+                if (.not. all(ieee_is_finite(result(:n)))) then
+                    call fatal_error(error, forces(i)%name // ": its " &
+                        & // force_routine_label(s%routine) // " returned RESULT = (" &
+                        & // numbers(result(:n)) // ") at TIME = " // to_text(time/s%time_unit) &
+                        & // ": a force must be finite", stat_ucon)
+                else
+                    call after_call(forces(i), "the call", time, error)
+                end if
+                if (allocated(error)) then
+                    if (.not. allocated(pending)) call move_alloc(error, pending)
+                end if
+            end associate
+        end do
+    end subroutine evaluate_user_forces
+
+    !> Move the first failure of a user routine, if any, to the caller.
+    subroutine take_user_force_error(error)
+        type(error_type), allocatable, intent(out) :: error
+
+        if (allocated(pending)) call move_alloc(pending, error)
+    end subroutine take_user_force_error
+
+    !> The notes the utilities made since clear_system_notes (calls that named what the
+    !> routine had not declared, names they do not know), one a line.
+    function system_notes() result(text)
+        character(len=:), allocatable :: text
+
+        text = ""
+        if (allocated(notes)) text = notes
+    end function system_notes
+
+    !> Forget the notes.
+    subroutine clear_system_notes()
+        notes = ""
+    end subroutine clear_system_notes
+
+    !> Set the state the utilities answer from.
+    subroutine begin_call(time, q, u)
+        real(wp), intent(in) :: time, q(:), u(:)
+
+        time_now = time
+        q_now = q
+        u_now = u
+        problem = ""
+        if (.not. allocated(markers)) allocate(markers(0))
+        if (.not. allocated(notes)) notes = ""
+    end subroutine begin_call
+
+    !> After a call: an ERRMES it made, or a utility's refusal, as an error naming the force.
+    subroutine after_call(force, call_name, time, error)
+        type(applied_force_type), intent(in) :: force
+        character(len=*), intent(in) :: call_name
+        real(wp), intent(in) :: time
+        type(error_type), allocatable, intent(out) :: error
+        type(error_type), allocatable :: reported
+        character(len=:), allocatable :: message
+        integer :: colon
+
+        call take_ucon_error(reported)
+        if (allocated(reported)) then
+            message = reported%message
+            ! ERRMES keeps its message as a UCON's: "UCON/2: ..."
+            colon = index(message, ": ")
+            if (index(message, "UCON/") == 1 .and. colon > 0) message = message(colon + 2:)
+            call fatal_error(error, force%name // ": its " &
+                & // force_routine_label(force%statement%routine) // " reported an error in " &
+                & // call_name // " at TIME = " // to_text(time/force%statement%time_unit) &
+                & // ": " // message, stat_ucon)
+            return
+        end if
+        if (len(problem) > 0) then
+            call fatal_error(error, force%name // ": its " &
+                & // force_routine_label(force%statement%routine) // ", in " // call_name &
+                & // " at TIME = " // to_text(time/force%statement%time_unit) // ": " // problem, &
+                & stat_ucon)
+        end if
+    end subroutine after_call
+
+    !> SYSFNC(FNCNAM, IPAR, NSIZE, VALUE, ERRFLG): one measure of markers IPAR(1:NSIZE) at the
+    !> call's state, in the dataset's units: DX, DY, DZ, DM, VX, VY, VZ, VM, VR, WX, WY, WZ,
+    !> WM, AX, AY, AZ, PSI, THETA, PHI, YAW, PITCH, ROLL with the markers as a FUNCTION
+    !> expression takes them (docs/datasets.md, "Measures of markers"). ERRFLG is set, and
+    !> VALUE 0, for a name rollcon does not know or a marker the model has not; a measure of
+    !> acceleration or force is refused (the algebraic loop of input_refusal).
+    subroutine system_function(name, ipar, value, errflg)
+        character(len=*), intent(in) :: name
+        integer, intent(in) :: ipar(:)
+        real(wp), intent(out) :: value
+        logical, intent(out) :: errflg
+        integer :: quantity
+
+        value = 0.0_wp
+        errflg = .true.
+        quantity = findloc(quantity_names, upper_case(trim(adjustl(name))), dim=1)
+        if (quantity == 0) then
+            call refuse("SYSFNC('" // trim(name) // "'): not a function rollcon's SYSFNC " &
+                & // "knows (DX, DY, DZ, DM, VX, VY, VZ, VM, VR, WX, WY, WZ, WM, AX, AY, AZ, " &
+                & // "PSI, THETA, PHI, YAW, PITCH, ROLL)")
+            return
+        end if
+        if (.not. is_state_measure(quantity)) then
+            call refuse("SYSFNC('" // trim(name) // "'): an acceleration or a force, which " &
+                & // "rollcon knows only once it has solved for the forces; read by a force " &
+                & // "it makes an algebraic loop rollcon does not solve")
+            return
+        end if
+        if (size(ipar) < quantity_least_markers(quantity) .or. size(ipar) &
+            & > quantity_most_markers(quantity)) then
+            call refuse("SYSFNC('" // trim(name) // "') with NSIZE = " // to_text(size(ipar)) &
+                & // ": it takes " // to_text(quantity_least_markers(quantity)) // " to " &
+                & // to_text(quantity_most_markers(quantity)) // " marker ids")
+            return
+        end if
+        call measure(quantity, ipar, "SYSFNC('" // trim(name) // "')", value, errflg)
+    end subroutine system_function
+
+    !> SYSARY(FNCNAM, IPAR, NSIZE, STATES, NSTATES, ERRFLG): TDISP(i[, j[, k]]) = (DX, DY, DZ),
+    !> TVEL(i[, j[, k[, l]]]) = (VX, VY, VZ), RVEL(i[, j[, k]]) = (WX, WY, WZ) and
+    !> RDISP(i[, j]) = (PSI, THETA, PHI), in the dataset's units; NSTATES = 3. TACC and RACC
+    !> are refused (an acceleration read by a force is an algebraic loop rollcon does not
+    !> solve), as is a name rollcon does not know: ERRFLG set, NSTATES = 0.
+    subroutine system_array(name, ipar, states, nstates, errflg)
+        character(len=*), intent(in) :: name
+        integer, intent(in) :: ipar(:)
+        real(wp), intent(out) :: states(3)
+        integer, intent(out) :: nstates
+        logical, intent(out) :: errflg
+        character(len=:), allocatable :: word
+        integer :: first, most, c
+
+        states = 0.0_wp
+        nstates = 0
+        errflg = .true.
+        word = upper_case(trim(adjustl(name)))
+        select case (word)
+        case ("TDISP")
+            first = quantity_dx
+            most = 3
+        case ("TVEL")
+            first = quantity_vx
+            most = 4
+        case ("RVEL")
+            first = quantity_wx
+            most = 3
+        case ("RDISP")
+            first = quantity_psi
+            most = 2
+        case ("TACC", "RACC")
+            call refuse("SYSARY('" // word // "'): an acceleration, which rollcon knows only " &
+                & // "once it has solved for the forces; read by a force it makes an " &
+                & // "algebraic loop rollcon does not solve")
+            return
+        case default
+            call refuse("SYSARY('" // trim(name) // "'): not an array rollcon's SYSARY knows " &
+                & // "(TDISP, TVEL, RDISP, RVEL)")
+            return
+        end select
+        if (size(ipar) < 1 .or. size(ipar) > most) then
+            call refuse("SYSARY('" // word // "') with NSIZE = " // to_text(size(ipar)) &
+                & // ": it takes 1 to " // to_text(most) // " marker ids")
+            return
+        end if
+        do c = 1, 3
+            call measure(first + c - 1, ipar, "SYSARY('" // word // "')", states(c), errflg)
+            if (errflg) then
+                states = 0.0_wp
+                return
+            end if
+        end do
+        nstates = 3
+    end subroutine system_array
+
+    !> TIMGET(TIME): the time of the call, in the dataset's unit.
+    function system_time() result(time)
+        real(wp) :: time
+
+        time = time_now/time_unit
+    end function system_time
+
+    !> A measure of markers ipar at the call's state in the dataset's units; the markers named
+    !> recorded (a declaration) or compared with the declaration (an evaluation).
+    subroutine measure(quantity, ipar, call_name, value, errflg)
+        integer, intent(in) :: quantity, ipar(:)
+        character(len=*), intent(in) :: call_name
+        real(wp), intent(out) :: value
+        logical, intent(out) :: errflg
+        type(marker_type) :: chosen(4)
+        integer :: ids(4), m, s
+        logical :: found
+        real(wp) :: scale
+
+        value = 0.0_wp
+        errflg = .true.
+        ! outside a call (no model set): no marker is known
+        if (.not. allocated(markers)) allocate(markers(0))
+        ids = 0
+        ids(:size(ipar)) = ipar
+        ! VM, VR, ACCM, WDTM are written (i, j, l)
+        if (any(quantity == [quantity_vm, quantity_vr, quantity_accm, quantity_wdtm])) &
+            & ids = [ids(1), ids(2), 0, ids(3)]
+        do m = 1, 4
+            chosen(m) = marker_type()
+            if (ids(m) == 0) cycle
+            found = .false.
+            do s = 1, size(markers)
+                if (markers(s)%id /= ids(m)) cycle
+                chosen(m) = markers(s)
+                found = .true.
+                exit
+            end do
+            if (.not. found) then
+                call refuse(call_name // " names marker " // to_text(ids(m)) &
+                    & // ", which the model has not")
+                return
+            end if
+        end do
+        if (ids(1) == 0) then
+            call refuse(call_name // ": IPAR(1) must name a marker, got 0")
+            return
+        end if
+        call note_reads(ids, reads_rates(quantity), call_name)
+        scale = 1.0_wp
+        if (quantity < quantity_psi) scale = 1.0_wp/length_unit
+        if (quantity < quantity_psi .and. quantity >= quantity_wx) scale = time_unit
+        if (quantity < quantity_wx .and. quantity >= quantity_vx) scale = time_unit/length_unit
+        if (quantity > quantity_psi + 2) scale = quantity_scale(quantity, length_unit, time_unit)
+        value = scale*measure_value(quantity, chosen, q_now, u_now, 0.0_wp)
+        errflg = .false.
+    end subroutine measure
+
+    !> Record the markers and rates a call reads (initialisation), or note what it reads that
+    !> its initialisation call did not name (an evaluation: ADAMS would leave it out of the
+    !> force's dependencies).
+    subroutine note_reads(ids, rates, call_name)
+        integer, intent(in) :: ids(4)
+        logical, intent(in) :: rates
+        character(len=*), intent(in) :: call_name
+        integer :: m
+
+        if (declaring) then
+            do m = 1, 4
+                if (ids(m) == 0) cycle
+                if (.not. any(named == ids(m))) named = [named, ids(m)]
+            end do
+            named_rates = named_rates .or. rates
+            return
+        end if
+        if (.not. allocated(allowed)) return
+        do m = 1, 4
+            if (ids(m) == 0) cycle
+            if (any(allowed == ids(m))) cycle
+            call add_note(call_name // " named marker " // to_text(ids(m)) // ", which the " &
+                & // "initialisation call (IFLAG = .TRUE.) did not name")
+        end do
+        if (rates .and. .not. allowed_rates) call add_note(call_name // " read velocities, " &
+            & // "which the initialisation call (IFLAG = .TRUE.) did not read")
+    end subroutine note_reads
+
+    !> A utility refuses a call: ERRFLG is set, and the call's error says why.
+    subroutine refuse(why)
+        character(len=*), intent(in) :: why
+
+        if (.not. allocated(problem)) problem = ""
+        if (len(problem) == 0) problem = why
+        call add_note(why)
+    end subroutine refuse
+
+    !> A note for rollcon check, each once.
+    subroutine add_note(text)
+        character(len=*), intent(in) :: text
+
+        if (.not. allocated(notes)) notes = ""
+        if (index(notes, text // new_line("a")) > 0) return
+        notes = notes // text // new_line("a")
+    end subroutine add_note
+
+    !> "1.5, -2" of values.
+    function numbers(values) result(text)
+        real(wp), intent(in) :: values(:)
+        character(len=:), allocatable :: text
+        integer :: k
+
+        text = ""
+        do k = 1, size(values)
+            if (k > 1) text = text // ", "
+            text = text // to_text(values(k))
+        end do
+    end function numbers
+
+end module rollcon_user_forces

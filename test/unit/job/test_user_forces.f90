@@ -1,0 +1,369 @@
+! SPDX-License-Identifier: MIT
+!> Force statements served by a user's routines (suite user-forces): SFOSUB and GFOSUB files
+!> written for the test (test/user_forces/, reading SYSFNC, SYSARY and TIMGET), run apart in a
+!> child process, against the same forces written as FUNCTION expressions and run here; a
+!> model with two files of routines (ROUTINE=FILE::SFOSUB); the faults of the UCOSUB corpus
+!> planted in an SFOSUB, each a clean error naming the statement; and the refusals of a model
+!> whose user routine is missing or of a kind rollcon does not run.
+module test_user_forces
+    use rollcon_kinds, only : wp
+    use rollcon_error, only : error_type, fatal_error
+    use rollcon_text, only : to_text
+    use rollcon_testing, only : unittest_type, new_unittest, check
+    use rollcon_history, only : history_type
+    use rollcon_job, only : job_type
+    use rollcon_load, only : load_job, add_user_file
+    use rollcon_run_job, only : run_job, job_result_type
+    use rollcon_simulation, only : status_completed
+    use rollcon_output_files, only : make_folders, write_text_file
+    use rollcon_user_forces, only : system_function, system_array
+    use rollcon_user_build, only : user_build_options_type
+    use rollcon_force_routine_check, only : check_force_routines
+    implicit none
+    private
+
+    public :: collect_user_forces
+
+    !> The test data
+    character(len=*), parameter :: folder = "test/user_forces/"
+    !> The tests' cache of compiled routines (the user-ucosub suite's)
+    character(len=*), parameter :: test_cache = "build/rollcon-test-user-cache"
+    !> Scratch folder of the suite
+    character(len=*), parameter :: scratch = "build/test_user_forces"
+    !> Largest difference allowed between a run served by user routines and its expression
+    !> twin, in every coordinate and rate [m, rad, m/s, rad/s]: both runs integrate with IDA at
+    !> rtol 1e-8, atol 1e-10 (the datasets' default) and their forces are the same functions of
+    !> the state computed from the same measures; the routines' arithmetic may round otherwise
+    !> than the expressions', which can change the step sequence, so the rows may differ by the
+    !> integrators' global error: here bounded by 1e-6 (100 rtol over a 1 s run of motions of
+    !> size 1). A wrong measure (VR's sign, TDISP in the wrong axes) differs by 1e-2 or more.
+    real(wp), parameter :: twin_tolerance = 1.0e-6_wp
+
+contains
+
+    subroutine collect_user_forces(tests)
+        type(unittest_type), allocatable, intent(out) :: tests(:)
+
+        tests = [new_unittest("sfosub-gfosub-as-expressions", test_against_expressions), &
+            & new_unittest("vfosub-as-expressions", test_vfosub), &
+            & new_unittest("two-user-files", test_two_files), &
+            & new_unittest("sfosub-crashes", test_crashes), &
+            & new_unittest("sfosub-stops", test_stops), &
+            & new_unittest("sfosub-endless-loop", test_endless), &
+            & new_unittest("sfosub-writes-outside-result", test_writes_outside), &
+            & new_unittest("sfosub-returns-nan", test_nan), &
+            & new_unittest("sfosub-missing", test_missing), &
+            & new_unittest("routine-names-no-file", test_unknown_routine), &
+            & new_unittest("motion-user-unsupported", test_motion_user), &
+            & new_unittest("utilities-outside-a-call", test_utilities_refuse), &
+            & new_unittest("check-reports-implicit-typing", test_check_typing), &
+            & new_unittest("check-clean-spring", test_check_clean), &
+            & new_unittest("check-reports-hidden-state", test_check_hidden)]
+    end subroutine collect_user_forces
+
+    !> user_forces.adm (SFORCE/2 by sforce_spring.f's SFOSUB, GFORCE/1 by gforce_bushing.f's
+    !> GFOSUB) gives the rows of user_forces_expressions.adm to twin_tolerance.
+    subroutine test_against_expressions(error)
+        type(error_type), allocatable, intent(out) :: error
+
+        call compare_twins("user_forces", ["sforce_spring.f ", "gforce_bushing.f"], error)
+    end subroutine test_against_expressions
+
+    !> vforce.adm (VFORCE/4 by vforce_spring.f's VFOSUB, components in a turned marker's
+    !> axes) gives the rows of vforce_expressions.adm to twin_tolerance.
+    subroutine test_vfosub(error)
+        type(error_type), allocatable, intent(out) :: error
+
+        call compare_twins("vforce", ["vforce_spring.f"], error)
+    end subroutine test_vfosub
+
+    !> two_files.adm: SFORCE/2 by the first file's SFOSUB (the model's own), SFORCE/3 by the
+    !> SFOSUB of the second file, which its ROUTINE=sforce_cubic::SFOSUB names (and which reads
+    !> TIMGET): the rows of two_files_expressions.adm to twin_tolerance.
+    subroutine test_two_files(error)
+        type(error_type), allocatable, intent(out) :: error
+
+        call compare_twins("two_files", ["sforce_spring.f", "sforce_cubic.f "], error)
+    end subroutine test_two_files
+
+    !> A write through a wild index in an SFOSUB kills the child by SIGSEGV: the error names
+    !> the statement, the signal and the call (not the initialisation call).
+    subroutine test_crashes(error)
+        type(error_type), allocatable, intent(out) :: error
+
+        call expect_fault("crashes", 10.0_wp, [character(len=50) :: &
+            & "SFORCE/2: the process was killed by SIGSEGV", "inside SFOSUB call", &
+            & "IFLAG = .FALSE."], error)
+    end subroutine test_crashes
+
+    !> A STOP in an SFOSUB: the child ended before its work was done, said as for a UCOSUB.
+    subroutine test_stops(error)
+        type(error_type), allocatable, intent(out) :: error
+
+        call expect_fault("stops", 10.0_wp, [character(len=50) :: &
+            & "SFORCE/2: the process ended with exit status", &
+            & "a STOP, ERROR STOP or CALL EXIT in the SFOSUB", "inside SFOSUB call"], error)
+    end subroutine test_stops
+
+    !> An endless loop in an SFOSUB: killed at the time limit per call (1 s here).
+    subroutine test_endless(error)
+        type(error_type), allocatable, intent(out) :: error
+
+        call expect_fault("endless", 1.0_wp, [character(len=50) :: &
+            & "SFORCE/2: a call of the SFOSUB did not return", "within 1 s, the time limit", &
+            & "IFLAG = .FALSE."], error)
+    end subroutine test_endless
+
+    !> RESULT(2) written by an SFOSUB (whose RESULT is one value): the guard's canary sees it,
+    !> in the initialisation call already, and the error names statement, file and entry.
+    subroutine test_writes_outside(error)
+        type(error_type), allocatable, intent(out) :: error
+
+        call expect_fault("writes_result_2", 10.0_wp, [character(len=70) :: &
+            & "user_forces.adm:15: SFORCE/2: its SFOSUB of", "writes_result_2.f", &
+            & "initialisation call (IFLAG = .TRUE.)", &
+            & "wrote RESULT(2) = 1, outside SFOSUB's RESULT(1)"], error)
+    end subroutine test_writes_outside
+
+    !> An SFOSUB returning NaN after t = 0.1 s: the run stops there, the error naming the
+    !> statement, the routine, the value and a TIME past 0.1.
+    subroutine test_nan(error)
+        type(error_type), allocatable, intent(out) :: error
+
+        call expect_fault("nan", 10.0_wp, [character(len=50) :: &
+            & "user_forces.adm:15: SFORCE/2: its SFOSUB of", &
+            & "returned RESULT = (NaN) at TIME = 0.1", &
+            & "a force must be finite"], error)
+    end subroutine test_nan
+
+    !> user_forces.adm with only the GFOSUB's file: SFORCE/2 is refused before any call,
+    !> naming its line and the routine it needs.
+    subroutine test_missing(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(history_type) :: history
+        type(error_type), allocatable :: run_error
+
+        call run_user(folder // "user_forces.adm", ["gforce_bushing.f"], 10.0_wp, history, &
+            & run_error)
+        call expect_message(run_error, [character(len=70) :: &
+            & "user_forces.adm:15: SFORCE/2 FUNCTION=USER(...): no SFOSUB serves it", &
+            & "SUBROUTINE SFOSUB"], error)
+    end subroutine test_missing
+
+    !> A ROUTINE=FILE::SFOSUB naming no file given: refused, naming the ROUTINE.
+    subroutine test_unknown_routine(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(history_type) :: history
+        type(error_type), allocatable :: run_error
+
+        call run_user(folder // "two_files.adm", ["sforce_spring.f"], 10.0_wp, history, &
+            & run_error)
+        call expect_message(run_error, [character(len=70) :: &
+            & "two_files.adm:13: SFORCE/3 ROUTINE=sforce_cubic::SFOSUB: no SFOSUB", &
+            & "ROUTINE=FILE::SFOSUB"], error)
+    end subroutine test_unknown_routine
+
+    !> A MOTION with FUNCTION=USER(...): refused as a user routine of a kind rollcon does not
+    !> run, not as an unknown name.
+    subroutine test_motion_user(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(job_type) :: job
+        type(error_type), allocatable :: load_error
+        character(len=:), allocatable :: path
+
+        call make_folders(scratch, error)
+        if (allocated(error)) return
+        path = scratch // "/motion_user.adm"
+        call write_text_file(path, "a MOTION served by a MOTSUB" // new_line("a") &
+            & // "PART/1, GROUND" // new_line("a") // "MARKER/1, PART = 1" // new_line("a") &
+            & // "PART/2, MASS = 1, CM = 20, IP = 1, 1, 1" // new_line("a") &
+            & // "MARKER/20, PART = 2" // new_line("a") &
+            & // "JOINT/1, TRANSLATIONAL, I = 20, J = 1" // new_line("a") &
+            & // "MOTION/1, JOINT = 1, TRANSLATION, FUNCTION = USER(1, 2)" // new_line("a") &
+            & // "SIMULATE/DYNAMIC, END = 1, STEPS = 10" // new_line("a") // "END" &
+            & // new_line("a"), error)
+        if (allocated(error)) return
+        call load_job(path, job, load_error)
+        call expect_message(load_error, [character(len=60) :: "MOTION/1", &
+            & "user routines of this kind", "are not supported"], error)
+    end subroutine test_motion_user
+
+    !> SYSFNC and SYSARY refuse what they do not know, an acceleration, and a marker the model
+    !> has not (here: no model at all), setting ERRFLG and giving zeros.
+    subroutine test_utilities_refuse(error)
+        type(error_type), allocatable, intent(out) :: error
+        real(wp) :: value, states(3)
+        integer :: nstates
+        logical :: unknown, acceleration, no_marker, array_acceleration
+
+        call system_function("XYZZY", [1, 2], value, unknown)
+        call system_function("ACCX", [1, 2], value, acceleration)
+        call system_array("RACC", [1, 2], states, nstates, array_acceleration)
+        call system_function("DM", [987654, 2], value, no_marker)
+        call check(error, unknown .and. acceleration .and. no_marker .and. array_acceleration &
+            & .and. value == 0.0_wp .and. nstates == 0 .and. all(states == 0.0_wp), &
+            & "ERRFLG: unknown " // merge("T", "F", unknown) // ", ACCX " &
+            & // merge("T", "F", acceleration) // ", RACC " // merge("T", "F", &
+            & array_acceleration) // ", missing marker " // merge("T", "F", no_marker))
+    end subroutine test_utilities_refuse
+
+    !> `rollcon check implicit_slip.f --model spring.adm`: exactly its two slips of implicit
+    !> typing, each naming the routine, the line and the statement (KS truncated to an
+    !> INTEGER, CD kept in REAL), and no finding of the probed states (the routine is smooth
+    !> and keeps no state).
+    subroutine test_check_typing(error)
+        type(error_type), allocatable, intent(out) :: error
+        character(len=:), allocatable :: findings
+        integer :: count
+
+        call check_file("implicit_slip.f", findings, count, error)
+        if (allocated(error)) return
+        call check(error, count == 2 .and. index(findings, "implicit_slip.f:16 (in SUBROUTINE " &
+            & // "SFOSUB)") > 0 .and. index(findings, "REAL(8) to INTEGER(4)") > 0 .and. &
+            & index(findings, "'KS = PAR(3)'") > 0 .and. index(findings, "implicit_slip.f:17") &
+            & > 0 .and. index(findings, "REAL(8) to REAL(4)") > 0 .and. index(findings, &
+            & "'CD = PAR(4)'") > 0, to_text(count) // " findings: " // findings)
+    end subroutine test_check_typing
+
+    !> The same check of sforce_spring.f (declared types, no state, smooth, its SYSFNC calls
+    !> those of its initialisation call): clean.
+    subroutine test_check_clean(error)
+        type(error_type), allocatable, intent(out) :: error
+        character(len=:), allocatable :: findings
+        integer :: count
+
+        call check_file("sforce_spring.f", findings, count, error)
+        if (allocated(error)) return
+        call check(error, count == 0, to_text(count) // " findings: " // findings)
+    end subroutine test_check_clean
+
+    !> The same check of hidden_state.f (a SAVEd counter in RESULT): a [hidden state] finding
+    !> at each of the 21 states, naming the statement, the routine and the state.
+    subroutine test_check_hidden(error)
+        type(error_type), allocatable, intent(out) :: error
+        character(len=:), allocatable :: findings
+        integer :: count
+
+        call check_file("hidden_state.f", findings, count, error)
+        if (allocated(error)) return
+        call check(error, count == 21 .and. index(findings, "[hidden state] " // folder &
+            & // "spring.adm:9: SFORCE/2, its SFOSUB of " // folder // "hidden_state.f at " &
+            & // "state 0 (the start)") > 0 .and. index(findings, "at state 20") > 0, &
+            & to_text(count) // " findings: " // findings)
+    end subroutine test_check_hidden
+
+    !> check_force_routines of folder//file on spring.adm, the tests' cache, seed 1.
+    subroutine check_file(file, findings, count, error)
+        character(len=*), intent(in) :: file
+        character(len=:), allocatable, intent(out) :: findings
+        integer, intent(out) :: count
+        type(error_type), allocatable, intent(out) :: error
+        type(user_build_options_type) :: options
+
+        options%cache_dir = test_cache
+        call check_force_routines(folder // file, folder // "spring.adm", options, 10.0_wp, 1, &
+            & findings, count, error)
+    end subroutine check_file
+
+    !> Run NAME.adm served by files (run apart) and NAME_expressions.adm (here); both complete
+    !> with the same number of rows, equal to twin_tolerance in every part coordinate and rate.
+    subroutine compare_twins(name, files, error)
+        character(len=*), intent(in) :: name, files(:)
+        type(error_type), allocatable, intent(out) :: error
+        type(history_type) :: user, expressions
+        type(job_type) :: job
+        type(job_result_type) :: ran
+        real(wp) :: largest
+        integer :: c, worst
+
+        call run_user(folder // name // ".adm", files, 10.0_wp, user, error)
+        if (allocated(error)) return
+        call load_job(folder // name // "_expressions.adm", job, error)
+        if (allocated(error)) return
+        job%output_dir = ""
+        job%quiet = .true.
+        call run_job(job, ran, error, expressions)
+        if (allocated(error)) return
+        if (user%count /= expressions%count .or. user%count < 101) then
+            call fatal_error(error, name // ": " // to_text(user%count) // " rows with user " &
+                & // "routines, " // to_text(expressions%count) // " with expressions")
+            return
+        end if
+        largest = 0.0_wp
+        worst = 0
+        do c = 1, 12
+            associate (d => maxval(abs(user%part_values(1, c) - expressions%part_values(1, c))))
+                if (d > largest) worst = c
+                largest = max(largest, d)
+            end associate
+        end do
+        call check(error, largest <= twin_tolerance, name // ": the runs differ by " &
+            & // to_text(largest) // " in coordinate " // to_text(worst) // " of part 2")
+    end subroutine compare_twins
+
+    !> Run folder//faulty/NAME.f (with gforce_bushing.f for GFORCE/1) on user_forces.adm with
+    !> the time limit per call; the run must fail with an error holding every piece.
+    subroutine expect_fault(name, timeout, pieces, error)
+        character(len=*), intent(in) :: name
+        real(wp), intent(in) :: timeout
+        character(len=*), intent(in) :: pieces(:)
+        type(error_type), allocatable, intent(out) :: error
+        type(history_type) :: history
+        type(error_type), allocatable :: run_error
+        character(len=64) :: files(2)
+
+        ! (a local array: a typed constructor of a concatenation of assumed length is
+        ! miscompiled by gfortran 12)
+        files(1) = "faulty/" // name // ".f"
+        files(2) = "gforce_bushing.f"
+        call run_user(folder // "user_forces.adm", files, timeout, history, run_error)
+        call expect_message(run_error, pieces, error)
+    end subroutine expect_fault
+
+    !> An error must have come, holding every piece (trimmed).
+    subroutine expect_message(got, pieces, error)
+        type(error_type), allocatable, intent(in) :: got
+        character(len=*), intent(in) :: pieces(:)
+        type(error_type), allocatable, intent(out) :: error
+        integer :: k
+
+        if (.not. allocated(got)) then
+            call fatal_error(error, "no error; expected one saying '" // trim(pieces(1)) // "'")
+            return
+        end if
+        do k = 1, size(pieces)
+            if (index(got%message, trim(pieces(k))) > 0) cycle
+            call fatal_error(error, "the error does not say '" // trim(pieces(k)) // "': " &
+                & // got%message)
+            return
+        end do
+    end subroutine expect_message
+
+    !> Run a dataset with the user's files (folder//files(k)), no output files, every row
+    !> kept; a run that does not complete is an error.
+    subroutine run_user(path, files, timeout, history, error)
+        character(len=*), intent(in) :: path, files(:)
+        real(wp), intent(in) :: timeout
+        type(history_type), intent(out) :: history
+        type(error_type), allocatable, intent(out) :: error
+        type(job_type) :: job
+        type(job_result_type) :: ran
+        integer :: k
+
+        call load_job(path, job, error, ucosub=folder // trim(files(1)))
+        if (allocated(error)) return
+        do k = 2, size(files)
+            call add_user_file(job, folder // trim(files(k)), error)
+            if (allocated(error)) return
+        end do
+        job%output_dir = ""
+        job%quiet = .true.
+        job%call_timeout = timeout
+        job%build_options%cache_dir = test_cache
+        call run_job(job, ran, error, history)
+        if (allocated(error)) return
+        if (ran%summary%status /= status_completed) call fatal_error(error, path // ": " &
+            & // ran%summary%message)
+    end subroutine run_user
+
+end module test_user_forces
