@@ -9,7 +9,8 @@
 !> named in the one warning, not read. What rollcon has no equivalent of is recorded as read
 !> and not used, and a run names it all in one warning (unused_warning); a REQUEST/id,
 !> DISPLACEMENT is honoured as output columns (rollcon_request_watch), and every other
-!> REQUEST is kept (its kind, markers, comment and expressions) and named as not answered.
+!> REQUEST is kept (its kind, markers, comment and expressions) for the assembly to answer
+!> (rollcon_adm_requests); only a FUNCTION=USER(...) one (a REQSUB) is named in the warning.
 !> Values are not converted to SI: nothing reads them.
 module rollcon_adm_outputs
     use rollcon_kinds, only : wp
@@ -216,8 +217,9 @@ contains
 
     !> A REQUEST asks for one thing: DISPLACEMENT, VELOCITY, ACCELERATION or FORCE of its I
     !> marker, or expressions (F1..F8, FUNCTION=USER(...)). A DISPLACEMENT is honoured; the
-    !> others are kept (model%other_requests) and named in the warning as not answered. A
-    !> REQUEST whose kind is a keyword rollcon does not know is named in the warning.
+    !> others are kept (model%other_requests) for the assembly to answer, a FUNCTION=USER one
+    !> named in the warning. A REQUEST whose kind is a keyword rollcon does not know is named
+    !> in the warning.
     subroutine read_request(path, where, statement, keys, given, marker, unknown, model, error)
         character(len=*), intent(in) :: path, where
         type(adm_statement_type), intent(in) :: statement
@@ -230,7 +232,6 @@ contains
         type(adm_model_type), intent(inout) :: model
         type(error_type), allocatable, intent(out) :: error
         logical :: measured(size(measures)), expressions
-        character(len=:), allocatable :: what
         type(adm_request_type) :: request
         integer :: m
 
@@ -253,13 +254,13 @@ contains
         request%j = marker(2)
         request%rm = marker(3)
         if (expressions) then
-            what = "REQUEST F1..F8"
             request%kind = request_expressions
             if (given(name_index("FUNCTION", keys))) then
-                what = "REQUEST FUNCTION=USER"
+                ! a REQSUB: named in the warning
                 request%kind = request_user
+                call record_unused(model%unused, model%unused_count, "REQUEST FUNCTION=USER", &
+                    & statement%line)
             end if
-            call record_unused(model%unused, model%unused_count, what, statement%line)
             call add_request(model%other_requests, model%other_request_count, request)
             return
         end if
@@ -271,8 +272,6 @@ contains
         end if
         request%kind = measure_kinds(m)
         if (m > 1) then
-            call record_unused(model%unused, model%unused_count, "REQUEST " &
-                & // trim(measures(m)), statement%line)
             call add_request(model%other_requests, model%other_request_count, request)
             return
         end if
@@ -499,19 +498,18 @@ contains
 
     !> A REQUEST/id, FORCE whose markers I and J are a JOINT's or JPRIM's (either way round)
     !> and which gives no RM asks for that statement's reaction, which rollcon reports: it
-    !> becomes one of model%force_requests (its joint and which way round) and is no longer
-    !> named in the warning. Called once the whole dataset is read (joints may follow).
+    !> becomes one of model%force_requests (its joint and which way round; the reaction's own
+    !> columns, rollcon_reaction_watch). Called once the whole dataset is read (joints may
+    !> follow).
     subroutine answer_force_requests(model)
         type(adm_model_type), intent(inout) :: model
         type(adm_request_type), allocatable :: kept(:), answered(:)
-        logical, allocatable :: drop(:)
-        integer :: r, k, u, n_kept, n_answered
+        integer :: r, k, n_kept, n_answered
 
         allocate(kept(0), answered(0))
         n_kept = 0
         n_answered = 0
         if (.not. allocated(model%joints)) allocate(model%joints(0))
-        allocate(drop(size(model%unused)), source=.false.)
         do r = 1, size(model%other_requests)
             associate (request => model%other_requests(r))
                 if (request%kind == request_force .and. request%rm == 0) then
@@ -532,17 +530,11 @@ contains
                     cycle
                 end if
                 call add_request(answered, n_answered, request)
-                do u = 1, size(model%unused)
-                    if (model%unused(u)%what == "REQUEST FORCE" .and. model%unused(u)%line &
-                        & == request%line) drop(u) = .true.
-                end do
             end associate
         end do
         model%other_requests = kept(:n_kept)
         model%other_request_count = n_kept
         model%force_requests = answered(:n_answered)
-        model%unused = pack(model%unused, .not. drop)
-        model%unused_count = size(model%unused)
     end subroutine answer_force_requests
 
     !> The one warning of a dataset's statements read and not used, each kind with its lines in
