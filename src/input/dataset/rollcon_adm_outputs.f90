@@ -19,6 +19,9 @@ module rollcon_adm_outputs
     use rollcon_adm_lexer, only : adm_statement_type, adm_argument_type, upper_case
     use rollcon_adm_keywords, only : read_reals, argument_key, arg_place, name_index, &
         & argument_text
+    use rollcon_expression, only : expression_type, quantity_kind, quantity_names, &
+        & kind_element, kind_element_force, op_akispl, op_cubspl
+    use rollcon_adm_expression_parser, only : compile_expression
     use rollcon_adm_model, only : adm_model_type, adm_request_type, adm_unused_type, &
         & adm_reference_type, refers_to_marker, refers_to_part, refers_to_force, &
         & request_displacement, request_velocity, request_acceleration, request_force, &
@@ -260,6 +263,9 @@ contains
                 request%kind = request_user
                 call record_unused(model%unused, model%unused_count, "REQUEST FUNCTION=USER", &
                     & statement%line)
+            else
+                call check_request_columns(where, request, model, error)
+                if (allocated(error)) return
             end if
             call add_request(model%other_requests, model%other_request_count, request)
             return
@@ -277,6 +283,48 @@ contains
         end if
         call add_request(model%requests, model%request_count, request)
     end subroutine read_request
+
+    !> Each expression F1 ... F8 of a request compiled (a syntax error refused with `where`
+    !> and Fk); one that reads what rollcon has no statement for (an element function of a
+    !> statement other than JOINT, JPRIM, MOTION, SFORCE, VFORCE and GFORCE; VARVAL, DIF, DIF1;
+    !> a curve, AKISPL or CUBSPL) is not answered: its text is cleared and it is named in the
+    !> warning ("REQUEST F1..F8 reading BUSHING"). A statement rollcon adds is taken off
+    !> that list here as it becomes answerable (rollcon_request_answers).
+    subroutine check_request_columns(where, request, model, error)
+        character(len=*), intent(in) :: where
+        type(adm_request_type), intent(inout) :: request
+        type(adm_model_type), intent(inout) :: model
+        type(error_type), allocatable, intent(out) :: error
+        character(len=*), parameter :: answered(6) = [character(len=6) :: "JOINT", "JPRIM", &
+            & "MOTION", "SFORCE", "VFORCE", "GFORCE"]
+        type(expression_type) :: expression
+        character(len=:), allocatable :: missing
+        integer :: k, n
+
+        do k = 1, size(request%columns)
+            if (len(request%columns(k)%text) == 0) cycle
+            call compile_expression(request%columns(k)%text, where // " F" // to_text(k), &
+                & expression, error)
+            if (allocated(error)) return
+            missing = ""
+            do n = 1, size(expression%inputs)
+                associate (quantity => expression%inputs(n)%quantity)
+                    if (quantity_kind(quantity) == kind_element) &
+                        & missing = trim(quantity_names(quantity))
+                    if (quantity_kind(quantity) == kind_element_force) then
+                        if (.not. any(answered == quantity_names(quantity))) &
+                            & missing = trim(quantity_names(quantity))
+                    end if
+                end associate
+            end do
+            if (any(expression%op == op_akispl)) missing = "AKISPL"
+            if (any(expression%op == op_cubspl)) missing = "CUBSPL"
+            if (len(missing) == 0) cycle
+            call record_unused(model%unused, model%unused_count, "REQUEST F1..F8 reading " &
+                & // missing, request%line)
+            request%columns(k)%text = ""
+        end do
+    end subroutine check_request_columns
 
     !> A request's text as written: COMMENT, the expressions F1 ... F8, FUNCTION=USER(...)
     !> and ROUTINE ("" for each not given); the keywords rollcon does not know are skipped.

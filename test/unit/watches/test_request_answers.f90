@@ -264,7 +264,8 @@ contains
 
     !> A force or an acceleration read in a force's FUNCTION is an algebraic loop: refused with
     !> the statement, its line and the function; a REQUEST's element function naming a
-    !> statement the dataset lacks: refused with the REQUEST, its line and Fk.
+    !> statement the dataset lacks: refused with the REQUEST, its line and Fk; one of a kind
+    !> rollcon has no statement for (BUSHING): that column named in the warning, not answered.
     subroutine test_refusals(error)
         type(error_type), allocatable, intent(out) :: error
         character(len=*), parameter :: head = "refused" // nl // "UNITS/SYSTEM=SI" // nl &
@@ -301,6 +302,22 @@ contains
             if (allocated(error)) return
             deallocate(failure)
         end do
+        ! what rollcon has no statement for is not a refusal: that column is named in the
+        ! warning, the others answered
+        call write_text("warned.adm", head // "REQUEST/3, F2=DX(20)\F3=BUSHING(7, 0, 2, 0)" &
+            & // tail)
+        call load_job(work_dir // "/warned.adm", job, failure)
+        if (.not. allocated(failure)) then
+            job%output_dir = ""
+            job%quiet = .true.
+            call run_job(job, result, failure)
+        end if
+        call check(error, .not. allocated(failure), "REQUEST/3 reading BUSHING refused")
+        if (allocated(error)) return
+        call check(error, index(job%source%warning, "REQUEST F1..F8 reading BUSHING (line 7)") &
+            & > 0 .and. result%summary%layout%column("req3_f2") > 0 .and. &
+            & result%summary%layout%column("req3_f3") == 0, "the warning: " &
+            & // job%source%warning)
     end subroutine test_refusals
 
     !> Run a dataset without files, its rows kept; a run that does not complete is an error.
