@@ -44,6 +44,7 @@ contains
             & new_unittest("pendulum-expressions", test_pendulum_expressions), &
             & new_unittest("force-between-spring-markers", test_spring), &
             & new_unittest("marker-acceleration-is-the-derivative", test_marker_acceleration), &
+            & new_unittest("motion-force-function", test_motion), &
             & new_unittest("force-functions-refused-in-forces", test_refusals)]
     end subroutine collect_request_answers
 
@@ -261,6 +262,50 @@ contains
             & 0.0_wp, 0.0_wp, 0.0_wp], "a marker spinning about Z at 3 rad/s [m/s^2, rad/s^2]", &
             & abs_tol=tol_spin)
     end subroutine test_marker_acceleration
+
+    !> A 2 kg slider driven along a TRANSLATIONAL joint's axis e (MARKER/10's z, rising at 30
+    !> degrees) by MOTION/1: MOTION(1, 0, 4, 10), the force the motion exerts on the slider along
+    !> e (in MARKER/10's axes, whose z is e), is its column motion1_force (the multiplier, m (s''
+    !> - g.e)); MOTION(1, 0, 2, 10), across e, and MOTION(1, 0, 8, 10), a torque about the
+    !> slider's centre, are zero; MOTION(1, 1, 4, 10), at J on the ground, is the opposite.
+    subroutine test_motion(error)
+        type(error_type), allocatable, intent(out) :: error
+        !> Rounding of a 10 N force through the constraint row's unit axis (measured 1e-31)
+        real(wp), parameter :: tol_rounding = 1.0e-13_wp
+        type(job_result_type) :: result
+        type(history_type) :: rows
+        real(wp) :: worst, largest
+        integer :: k
+
+        call write_text("motion_force.adm", "slider driven by a MOTION" // nl &
+            & // "UNITS/SYSTEM=SI" // nl // "PART/1, GROUND" // nl &
+            & // "MARKER/10, PART=1, REULER=90D, 60D, 0D" // nl &
+            & // "PART/2, MASS=2, CM=20, IP=1, 1, 0.1" // nl &
+            & // "MARKER/20, PART=2, REULER=90D, 60D, 0D" // nl &
+            & // "JOINT/1, TRANSLATIONAL, I=20, J=10" // nl &
+            & // "MOTION/1, JOINT=1, TRANSLATION, FUNCTION=-0.15 + 0.01*SIN(2*PI*TIME)" // nl &
+            & // "REQUEST/2, F2=MOTION(1, 0, 4, 10)\F3=MOTION(1, 0, 2, 10)\" &
+            & // "F4=MOTION(1, 1, 4, 10)\F8=MOTION(1, 0, 8, 10)" // nl &
+            & // "ACCGRAV/KGRAV=-9.81" // nl // "SIMULATE/DYNAMIC, END=1, STEPS=50" // nl &
+            & // "END")
+        call run_dataset(work_dir // "/motion_force.adm", result, rows, error)
+        if (allocated(error)) return
+        worst = 0.0_wp
+        largest = 0.0_wp
+        associate (layout => rows%layout, r => rows%rows)
+            do k = 1, rows%count
+                associate (force => r(layout%column("motion1_force"), k))
+                    worst = max(worst, abs(r(layout%column("req2_f2"), k) - force), &
+                        & abs(r(layout%column("req2_f3"), k)), abs(r(layout%column("req2_f4"), &
+                        & k) + force), abs(r(layout%column("req2_f8"), k)))
+                    largest = max(largest, abs(force))
+                end associate
+            end do
+        end associate
+        call check(error, worst <= tol_rounding .and. largest > 5.0_wp, "MOTION(1, ...) " &
+            & // "against motion1_force: largest difference " // to_text(worst) // " N of " &
+            & // to_text(largest) // " N")
+    end subroutine test_motion
 
     !> A force or an acceleration read in a force's FUNCTION is an algebraic loop: refused with
     !> the statement, its line and the function; a REQUEST's element function naming a
