@@ -2,18 +2,18 @@
 !> A dataset's REQUESTs of velocity, acceleration, force (those no JOINT or JPRIM answers) and
 !> expressions F1 ... F8, made the columns of rollcon_request_answers: their markers as the
 !> model holds them, each expression compiled (a syntax error names the file, line, REQUEST and
-!> Fk) and every id it reads checked: a marker the dataset lacks, an element function naming a
-!> statement that is not there (`JOINT(7, 0, 2, 0)`: no JOINT/7), or one of a kind rollcon has
-!> none of, is refused with the statement and line. The elements the force functions read are
-!> every JOINT and JPRIM the model holds, MOTION, SFORCE, VFORCE and GFORCE. A REQUEST with
-!> FUNCTION=USER(...) (a REQSUB) stays named in the dataset's warning.
+!> Fk, as the reader found it) and every id it reads checked: a marker the dataset lacks, or
+!> an element function naming a statement that is not there (`JOINT(7, 0, 2, 0)`: no
+!> JOINT/7), is refused with the statement and line. The elements the force functions read
+!> are every JOINT and JPRIM the model holds, MOTION, SFORCE, VFORCE and GFORCE. A REQUEST
+!> with FUNCTION=USER(...) (a REQSUB) stays named in the dataset's warning.
 module rollcon_adm_requests
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type, fatal_error, stat_input
     use rollcon_text, only : to_text, place
     use rollcon_marker, only : marker_type
-    use rollcon_expression, only : expression_type, quantity_kind, quantity_names, kind_element, &
-        & kind_element_force, op_akispl, op_cubspl
+    use rollcon_expression, only : expression_type, quantity_kind, quantity_names, &
+        & kind_element_force
     use rollcon_measures, only : input_text
     use rollcon_model, only : model_type, statement_joint, statement_jprim
     use rollcon_force, only : profile_statement
@@ -161,7 +161,9 @@ contains
     end function model_elements
 
     !> Every id an expression of a REQUEST reads exists (module header); the markers it reads
-    !> added to `markers` (once each). `where`: "file:line: REQUEST/id Fk".
+    !> added to `markers` (once each). `where`: "file:line: REQUEST/id Fk". What rollcon has no
+    !> statement for (VARVAL, a curve, BUSHING(...)) the reader took out of the request and
+    !> named in the warning (rollcon_adm_outputs).
     subroutine check_inputs(adm, elements, expression, where, markers, error)
         type(adm_model_type), intent(in) :: adm
         type(request_element_type), intent(in) :: elements(:)
@@ -169,32 +171,13 @@ contains
         character(len=*), intent(in) :: where
         type(marker_type), allocatable, intent(inout) :: markers(:)
         type(error_type), allocatable, intent(out) :: error
-        integer :: n, m, ids(4), kind, k
+        integer :: n, m, ids(4), kind
 
-        do k = 1, size(expression%op)
-            if (expression%op(k) /= op_akispl .and. expression%op(k) /= op_cubspl) cycle
-            call fatal_error(error, where // ": " // merge("AKISPL", "CUBSPL", expression%op(k) &
-                & == op_akispl) // " reads a SPLINE: SPLINE statements are not in the subset " &
-                & // "(docs/datasets.md)", stat_input)
-            return
-        end do
         do n = 1, size(expression%inputs)
             associate (input => expression%inputs(n))
                 ids = [input%marker, input%j, input%k, input%l]
-                select case (quantity_kind(input%quantity))
-                case (kind_element)
-                    call fatal_error(error, where // ": " // input_text(input) // ": VARIABLE " &
-                        & // "and DIFF statements are not in the subset (docs/datasets.md)", &
-                        & stat_input)
-                    return
-                case (kind_element_force)
+                if (quantity_kind(input%quantity) == kind_element_force) then
                     kind = element_kind_of(input%quantity)
-                    if (kind == 0) then
-                        call fatal_error(error, where // ": " // input_text(input) &
-                            & // ": rollcon has no " // trim(quantity_names(input%quantity)) &
-                            & // " statements (docs/datasets.md)", stat_input)
-                        return
-                    end if
                     if (.not. any(elements%kind == kind .and. elements%id == input%marker)) then
                         call fatal_error(error, where // ": " // input_text(input) // ": no " &
                             & // trim(quantity_names(input%quantity)) // "/" &
@@ -204,7 +187,7 @@ contains
                         return
                     end if
                     ids = [0, 0, 0, input%l]
-                end select
+                end if
                 do m = 1, 4
                     if (ids(m) == 0) cycle
                     if (marker_index(adm, ids(m)) == 0) then
