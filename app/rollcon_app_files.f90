@@ -2,7 +2,7 @@
 !> The program's own file names: an output folder made when missing, a file's stem, and the
 !> CSV a command's argument names.
 module rollcon_app_files
-    use rollcon, only : error_type, output_name
+    use rollcon, only : error_type, outputs_name_of
     use rollcon_program, only : make_folders
     implicit none
     private
@@ -48,16 +48,26 @@ contains
     end function folder_of
 
     !> The CSV an argument names: itself when it ends in '.csv', else the CSV the run of that
-    !> scene or dataset writes into output_dir, output_dir/<output_name>.csv (so `rollcon plot
-    !> coin` plots the coin scene's run, `rollcon plot data/coin.adm` the dataset's).
-    pure function csv_argument(argument, output_dir) result(path)
+    !> scene, dataset or command file writes into output_dir, output_dir/<name>.csv, <name> as
+    !> the run names its outputs (outputs_name_of: `rollcon plot coin` plots the coin scene's
+    !> run, `rollcon plot data/coin.adm` the dataset's, `rollcon plot MODEL.acf` the run of the
+    !> command file, by the output name its second line gives or else its dataset's). A
+    !> command file that cannot be read is refused as `rollcon run` refuses it.
+    subroutine csv_argument(argument, output_dir, path, error)
         character(len=*), intent(in) :: argument, output_dir
-        character(len=:), allocatable :: path
+        character(len=:), allocatable, intent(out) :: path
+        type(error_type), allocatable, intent(out) :: error
+        character(len=:), allocatable :: name
 
-        path = output_dir // "/" // output_name(argument) // ".csv"
         if (len(argument) >= 4) then
-            if (argument(len(argument) - 3:) == ".csv") path = argument
+            if (argument(len(argument) - 3:) == ".csv") then
+                path = argument
+                return
+            end if
         end if
-    end function csv_argument
+        call outputs_name_of(argument, name, error)
+        if (allocated(error)) return
+        path = output_dir // "/" // name // ".csv"
+    end subroutine csv_argument
 
 end module rollcon_app_files

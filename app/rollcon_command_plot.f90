@@ -13,7 +13,8 @@ module rollcon_command_plot
 
 contains
 
-    !> The CSV the command names (a CSV, or a scene name meaning output/<name>.csv) and the
+    !> The CSV the command names (a CSV, or a scene, dataset or command file meaning the CSV
+    !> its run wrote, output/<name>.csv: rollcon_app_files' csv_argument) and the
     !> folder for its pictures (--output, else the CSV's own folder), made when missing.
     subroutine pictures_of(request, csv_path, folder, error)
         type(cli_request_type), intent(in) :: request
@@ -23,7 +24,8 @@ contains
 
         argument = request%positional
         if (len(argument) == 0) argument = "coin"
-        csv_path = csv_argument(argument, request%text("--output", "output"))
+        call csv_argument(argument, request%text("--output", "output"), csv_path, error)
+        if (allocated(error)) return
         folder = request%text("--output", folder_of(csv_path))
         call make_folder(folder, error)
     end subroutine pictures_of

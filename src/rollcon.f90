@@ -83,8 +83,8 @@ module rollcon
     ! the one route: a job (any input, or a model built in code), loaded and run
     use rollcon_built_model, only : built_model_source_type, new_model_source
     use rollcon_job, only : job_type, new_job
-    use rollcon_load, only : load_job, add_user_file, input_override_type, is_dataset, output_name, &
-        & is_command_file, run_times_type
+    use rollcon_load, only : load_job, add_user_file, input_override_type, is_dataset, &
+        & output_name, is_command_file, run_times_type, outputs_name_of
     use rollcon_run_job, only : run_job, job_result_type
 
     ! the initial-conditions analysis

@@ -112,6 +112,7 @@ program tester
     use test_motion_partials, only : collect_motion_partials
     use test_redundancy, only : collect_redundancy
     use test_reactions, only : collect_reactions
+    use test_request_answers, only : collect_request_answers
     implicit none
     type(testsuite_type), allocatable :: suites(:)
     type(test_counts_type) :: counts
@@ -228,7 +229,8 @@ program tester
         & new_testsuite("spring-partials", collect_spring_partials), &
         & new_testsuite("motion-partials", collect_motion_partials), &
         & new_testsuite("redundancy", collect_redundancy), &
-        & new_testsuite("reactions", collect_reactions)]
+        & new_testsuite("reactions", collect_reactions), &
+        & new_testsuite("requests", collect_request_answers)]
 
     if (command_argument_count() >= 1) then
         call get_command_argument(1, argument)

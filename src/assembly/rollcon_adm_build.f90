@@ -1,7 +1,7 @@
 ! SPDX-License-Identifier: MIT
 !> A dataset as a problem to simulate (docs/datasets-model.md): its parts (ground is not one),
 !> UCONs with their routines, gravity, force statements between body-fixed markers, solver
-!> settings, the theta limit, the displacement requests' columns and the initial state.
+!> settings, the theta limit, the requests' columns and the initial state.
 !>
 !> A part's principal axes are its CM marker's axes, and its inertia is the IP written there
 !> (docs/design.md §2); an IP with products gives principal axes turned from the CM marker's
@@ -37,6 +37,7 @@ module rollcon_adm_build
     use rollcon_variable_watch, only : watched_variable_type, new_variable_watch
     use rollcon_motion_watch, only : motion_watch_type
     use rollcon_element_force_watch, only : element_force_watch_type, watches_elements
+    use rollcon_adm_requests, only : add_request_answers
     use rollcon_adm_model, only : adm_model_type, adm_force_type, force_sforce, force_vforce, &
         & force_springdamper, force_bushing, force_names
     use rollcon_spring_force, only : spring_translational, spring_rotational, spring_bushing
@@ -137,6 +138,9 @@ contains
         ! each SPRINGDAMPER's and BUSHING's force and torque, six columns
         ! (rollcon_element_force_watch)
         if (watches_elements(problem%eq)) call problem%add_watch(element_force_watch_type())
+        ! the other requests: velocity, acceleration, force, F1 ... F8 (rollcon_request_answers)
+        call add_request_answers(adm, problem, error)
+        if (allocated(error)) return
         ! a part flat at t = 0 starts in turned axes (docs/rebasing.md): its model part too
         call start_singular_parts(adm, problem, q0, u0, adm_theta_min, error)
         if (allocated(error)) return

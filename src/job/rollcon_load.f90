@@ -27,6 +27,7 @@ module rollcon_load
 
     public :: load_job, add_user_file, input_override_type, is_dataset, output_name, &
         & is_command_file
+    public :: outputs_name_of
     public :: run_times_type
 
     !> A value set apart from the input file: name as the input writes it (strike%impulse,
@@ -100,6 +101,26 @@ contains
             if (name(n - 3:) == ".nml") name = name(:n - 4)
         end if
     end function output_name
+
+    !> The name of the outputs `load_job(path, ...)` gives its job, for any input: a command
+    !> file's second line, else its dataset's output_name (the command file read: refused as
+    !> load_job refuses it); a scene's or a dataset's output_name. `rollcon plot MODEL.acf`
+    !> finds the CSV `rollcon run MODEL.acf` wrote by it.
+    subroutine outputs_name_of(path, name, error)
+        character(len=*), intent(in) :: path
+        character(len=:), allocatable, intent(out) :: name
+        type(error_type), allocatable, intent(out) :: error
+        type(acf_type) :: acf
+
+        if (.not. is_command_file(path)) then
+            name = output_name(path)
+            return
+        end if
+        call read_acf(path, acf, error)
+        if (allocated(error)) return
+        name = acf%output_name
+        if (len(name) == 0) name = output_name(acf%dataset)
+    end subroutine outputs_name_of
 
     !> True when path is an ADAMS command file: it ends in .acf (any case).
     pure logical function is_command_file(path)

@@ -23,7 +23,7 @@ module rollcon_reactions
     implicit none
     private
 
-    public :: reaction_site_type, reaction_sites, site_wrench, swapped_wrench
+    public :: reaction_site_type, reaction_sites, site_wrench, swapped_wrench, body_moment
 
     !> Where one statement's reaction is reported, and the rows that make it
     type :: reaction_site_type

@@ -4,15 +4,15 @@
 !> (rollcon_contact_watch), the basis of every part a re-basing run records
 !> (rollcon_theta_watch), the six of each displacement request (rollcon_request_watch), the
 !> force or torque of each MOTION (rollcon_motion_watch), the value of each VARIABLE
-!> (rollcon_variable_watch), and the six of each statement's
-!> reaction and of each force request (rollcon_reaction_watch).
+!> (rollcon_variable_watch), those of the other requests (rollcon_request_answers), and the
+!> six of each statement's reaction and of each force request (rollcon_reaction_watch).
 module rollcon_watch_columns
     implicit none
     private
 
     public :: contact_names, basis_pattern, request_column_patterns, motion_column_patterns
     public :: variable_column_patterns
-    public :: reaction_suffixes, reaction_column_patterns
+    public :: reaction_suffixes, reaction_column_patterns, answer_column_patterns
 
     !> A rim contact's columns, in order: the constraint force on the part Fx, Fy, Fz [N]
     !> (ground components), its normal part Fn [N], the friction coefficient rolling needs
@@ -51,5 +51,14 @@ module rollcon_watch_columns
         & "ucon<n>_part<id>_fz", "ucon<n>_part<id>_tx", "ucon<n>_part<id>_ty", &
         & "ucon<n>_part<id>_tz", "req<n>_fx", "req<n>_fy", "req<n>_fz", "req<n>_tx", &
         & "req<n>_ty", "req<n>_tz"]
+    !> The other requests' columns ("<n>": the request's id): a VELOCITY's vx, vy, vz [m/s]
+    !> and wx, wy, wz [rad/s], an ACCELERATION's accx, accy, accz [m/s^2] and wdtx, wdty,
+    !> wdtz [rad/s^2] (in RM's axes), each expression F1 ... F8 given (the dataset's units); a
+    !> FORCE's are req<n>_fx ... req<n>_tz, as a force request's above
+    character(len=*), parameter :: answer_column_patterns(20) = [character(len=12) :: &
+        & "req<n>_vx", "req<n>_vy", "req<n>_vz", "req<n>_wx", "req<n>_wy", "req<n>_wz", &
+        & "req<n>_accx", "req<n>_accy", "req<n>_accz", "req<n>_wdtx", "req<n>_wdty", &
+        & "req<n>_wdtz", "req<n>_f1", "req<n>_f2", "req<n>_f3", "req<n>_f4", "req<n>_f5", &
+        & "req<n>_f6", "req<n>_f7", "req<n>_f8"]
 
 end module rollcon_watch_columns

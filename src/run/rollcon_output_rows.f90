@@ -68,7 +68,8 @@ contains
 
     !> The output row at (time, q, u), in the columns of layout (output_layout(problem)), with
     !> the energy, each UCON's residual and multiplier as the last accelerations call left
-    !> them at this state, and each watch's columns (the watches take their measures here).
+    !> them at this state, and each watch's columns (the watches take their measures here, and
+    !> the accelerations problem%a that call left).
     !> The multipliers are those reported (the equations' reported_multipliers: the split of
     !> least norm where rows are set aside as redundant; NaN, which the caller refuses, should
     !> that solve fail). The problem is prepared (problem%prepare).
@@ -101,6 +102,7 @@ contains
         first = layout%energy_column() + 2*size(layout%ucon_ids) + 1
         do k = 1, size(problem%watches)
             count = problem%watch_columns(k)
+            call problem%watches(k)%watch%take_accelerations(problem%eq, problem%a)
             call problem%watches(k)%watch%fill_columns(problem%eq, time, q, u, lambda, &
                 & row(first:first + count - 1))
             first = first + count

@@ -69,6 +69,7 @@ module rollcon_watch
         procedure :: part_rebased
         procedure :: parts_to_rebase
         procedure :: column_names
+        procedure :: take_accelerations
         procedure :: fill_columns
         procedure :: measures
         procedure :: summary_lines
@@ -169,6 +170,15 @@ contains
 
         allocate(names(0))
     end subroutine column_names
+
+    !> The accelerations at the output row fill_columns is about to be given (the equations of
+    !> motion's at that state, as the run's last evaluation there left them: a [m/s^2, rad/s^2],
+    !> one per coordinate), for a watch whose columns read them (default: not kept).
+    subroutine take_accelerations(self, eq, a)
+        class(watch_type), intent(inout) :: self
+        type(equations_type), intent(in) :: eq
+        real(wp), intent(in) :: a(:)
+    end subroutine take_accelerations
 
     !> The values of its columns at an output row (t, q, u), with the equations as the run's
     !> last evaluation at this state left them and its multipliers lambda; the watch takes its

@@ -154,7 +154,8 @@ module rollcon_adm_model
 
     !> REQUEST/id: what it asks for (request_displacement ... request_user), its markers and
     !> its text. A DISPLACEMENT is honoured as output columns (rollcon_request_watch); the
-    !> others are read and kept here, and named in the run's warning as not answered.
+    !> others are read and kept here and answered by the assembly (rollcon_adm_requests) but a
+    !> FUNCTION=USER one, named in the run's warning.
     type :: adm_request_type
         integer :: id = 0, line = 0
         !> request_displacement, request_velocity, request_acceleration, request_force,
@@ -232,7 +233,8 @@ module rollcon_adm_model
         !> round, no RM): answered by that statement's reaction, in the order of the file
         type(adm_request_type), allocatable :: force_requests(:)
         !> The other REQUEST statements (VELOCITY, ACCELERATION, FORCE, F1 ... F8,
-        !> FUNCTION=USER), in the order of the file: read and kept, not answered yet
+        !> FUNCTION=USER), in the order of the file: read and kept, answered where the dataset
+        !> is assembled (rollcon_adm_requests; FUNCTION=USER is not)
         type(adm_request_type), allocatable :: other_requests(:)
         !> What was read and not used, in the order of the file
         type(adm_unused_type), allocatable :: unused(:)

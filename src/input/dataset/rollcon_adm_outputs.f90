@@ -11,7 +11,8 @@
 !> named in the one warning, not read. What rollcon has no equivalent of is recorded as read
 !> and not used, and a run names it all in one warning (unused_warning); a REQUEST/id,
 !> DISPLACEMENT is honoured as output columns (rollcon_request_watch), and every other
-!> REQUEST is kept (its kind, markers, comment and expressions) and named as not answered.
+!> REQUEST is kept (its kind, markers, comment and expressions) for the assembly to answer
+!> (rollcon_adm_requests); only a FUNCTION=USER(...) one (a REQSUB) is named in the warning.
 !> Values are not converted to SI (EQUILIBRIUM's honoured ones aside): nothing reads them.
 module rollcon_adm_outputs
     use rollcon_kinds, only : wp
@@ -20,6 +21,9 @@ module rollcon_adm_outputs
     use rollcon_adm_lexer, only : adm_statement_type, adm_argument_type, upper_case
     use rollcon_adm_keywords, only : read_reals, argument_key, arg_place, name_index, &
         & argument_text
+    use rollcon_expression, only : expression_type, quantity_kind, quantity_names, &
+        & kind_element, kind_element_force, op_akispl, op_cubspl
+    use rollcon_adm_expression_parser, only : compile_expression
     use rollcon_adm_model, only : adm_model_type, adm_request_type, adm_unused_type, &
         & adm_reference_type, refers_to_marker, refers_to_part, refers_to_force, &
         & request_displacement, request_velocity, request_acceleration, request_force, &
@@ -269,8 +273,9 @@ contains
 
     !> A REQUEST asks for one thing: DISPLACEMENT, VELOCITY, ACCELERATION or FORCE of its I
     !> marker, or expressions (F1..F8, FUNCTION=USER(...)). A DISPLACEMENT is honoured; the
-    !> others are kept (model%other_requests) and named in the warning as not answered. A
-    !> REQUEST whose kind is a keyword rollcon does not know is named in the warning.
+    !> others are kept (model%other_requests) for the assembly to answer, a FUNCTION=USER one
+    !> named in the warning. A REQUEST whose kind is a keyword rollcon does not know is named
+    !> in the warning.
     subroutine read_request(path, where, statement, keys, given, marker, unknown, model, error)
         character(len=*), intent(in) :: path, where
         type(adm_statement_type), intent(in) :: statement
@@ -283,7 +288,6 @@ contains
         type(adm_model_type), intent(inout) :: model
         type(error_type), allocatable, intent(out) :: error
         logical :: measured(size(measures)), expressions
-        character(len=:), allocatable :: what
         type(adm_request_type) :: request
         integer :: m
 
@@ -306,13 +310,16 @@ contains
         request%j = marker(2)
         request%rm = marker(3)
         if (expressions) then
-            what = "REQUEST F1..F8"
             request%kind = request_expressions
             if (given(name_index("FUNCTION", keys))) then
-                what = "REQUEST FUNCTION=USER"
+                ! a REQSUB: named in the warning
                 request%kind = request_user
+                call record_unused(model%unused, model%unused_count, "REQUEST FUNCTION=USER", &
+                    & statement%line)
+            else
+                call check_request_columns(where, request, model, error)
+                if (allocated(error)) return
             end if
-            call record_unused(model%unused, model%unused_count, what, statement%line)
             call add_request(model%other_requests, model%other_request_count, request)
             return
         end if
@@ -324,13 +331,53 @@ contains
         end if
         request%kind = measure_kinds(m)
         if (m > 1) then
-            call record_unused(model%unused, model%unused_count, "REQUEST " &
-                & // trim(measures(m)), statement%line)
             call add_request(model%other_requests, model%other_request_count, request)
             return
         end if
         call add_request(model%requests, model%request_count, request)
     end subroutine read_request
+
+    !> Each expression F1 ... F8 of a request compiled (a syntax error refused with `where`
+    !> and Fk); one that reads what rollcon has no statement for (an element function of a
+    !> statement other than JOINT, JPRIM, MOTION, SFORCE, VFORCE and GFORCE; VARVAL, DIF, DIF1;
+    !> a curve, AKISPL or CUBSPL) is not answered: its text is cleared and it is named in the
+    !> warning ("REQUEST F1..F8 reading BUSHING"). A statement rollcon adds is taken off
+    !> that list here as it becomes answerable (rollcon_request_answers).
+    subroutine check_request_columns(where, request, model, error)
+        character(len=*), intent(in) :: where
+        type(adm_request_type), intent(inout) :: request
+        type(adm_model_type), intent(inout) :: model
+        type(error_type), allocatable, intent(out) :: error
+        character(len=*), parameter :: answered(6) = [character(len=6) :: "JOINT", "JPRIM", &
+            & "MOTION", "SFORCE", "VFORCE", "GFORCE"]
+        type(expression_type) :: expression
+        character(len=:), allocatable :: missing
+        integer :: k, n
+
+        do k = 1, size(request%columns)
+            if (len(request%columns(k)%text) == 0) cycle
+            call compile_expression(request%columns(k)%text, where // " F" // to_text(k), &
+                & expression, error)
+            if (allocated(error)) return
+            missing = ""
+            do n = 1, size(expression%inputs)
+                associate (quantity => expression%inputs(n)%quantity)
+                    if (quantity_kind(quantity) == kind_element) &
+                        & missing = trim(quantity_names(quantity))
+                    if (quantity_kind(quantity) == kind_element_force) then
+                        if (.not. any(answered == quantity_names(quantity))) &
+                            & missing = trim(quantity_names(quantity))
+                    end if
+                end associate
+            end do
+            if (any(expression%op == op_akispl)) missing = "AKISPL"
+            if (any(expression%op == op_cubspl)) missing = "CUBSPL"
+            if (len(missing) == 0) cycle
+            call record_unused(model%unused, model%unused_count, "REQUEST F1..F8 reading " &
+                & // missing, request%line)
+            request%columns(k)%text = ""
+        end do
+    end subroutine check_request_columns
 
     !> A request's text as written: COMMENT, the expressions F1 ... F8, FUNCTION=USER(...)
     !> and ROUTINE ("" for each not given); the keywords rollcon does not know are skipped.
@@ -552,19 +599,18 @@ contains
 
     !> A REQUEST/id, FORCE whose markers I and J are a JOINT's or JPRIM's (either way round)
     !> and which gives no RM asks for that statement's reaction, which rollcon reports: it
-    !> becomes one of model%force_requests (its joint and which way round) and is no longer
-    !> named in the warning. Called once the whole dataset is read (joints may follow).
+    !> becomes one of model%force_requests (its joint and which way round; the reaction's own
+    !> columns, rollcon_reaction_watch). Called once the whole dataset is read (joints may
+    !> follow).
     subroutine answer_force_requests(model)
         type(adm_model_type), intent(inout) :: model
         type(adm_request_type), allocatable :: kept(:), answered(:)
-        logical, allocatable :: drop(:)
-        integer :: r, k, u, n_kept, n_answered
+        integer :: r, k, n_kept, n_answered
 
         allocate(kept(0), answered(0))
         n_kept = 0
         n_answered = 0
         if (.not. allocated(model%joints)) allocate(model%joints(0))
-        allocate(drop(size(model%unused)), source=.false.)
         do r = 1, size(model%other_requests)
             associate (request => model%other_requests(r))
                 if (request%kind == request_force .and. request%rm == 0) then
@@ -585,17 +631,11 @@ contains
                     cycle
                 end if
                 call add_request(answered, n_answered, request)
-                do u = 1, size(model%unused)
-                    if (model%unused(u)%what == "REQUEST FORCE" .and. model%unused(u)%line &
-                        & == request%line) drop(u) = .true.
-                end do
             end associate
         end do
         model%other_requests = kept(:n_kept)
         model%other_request_count = n_kept
         model%force_requests = answered(:n_answered)
-        model%unused = pack(model%unused, .not. drop)
-        model%unused_count = size(model%unused)
     end subroutine answer_force_requests
 
     !> The one warning of a dataset's statements read and not used, each kind with its lines in

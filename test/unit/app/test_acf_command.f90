@@ -3,7 +3,8 @@
 !> (suite acf-command): the pendulum ADAMS/View exports (test/view, no SIMULATE of its own) run
 !> from its command file against an independent integration of the pendulum's equation; the
 !> same dataset run with --end and --steps; run with neither, refused saying both ways; and
-!> the command file given from another folder, by a relative and by an absolute path.
+!> the command file given from another folder, by a relative and by an absolute path; `rollcon
+!> plot MODEL.acf` drawing the run `rollcon run MODEL.acf` wrote.
 module test_acf_command
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type
@@ -12,8 +13,9 @@ module test_acf_command
     use rollcon_simulation, only : history_type
     use rollcon_csv_reader, only : read_output_csv
     use rollcon_testing, only : unittest_type, new_unittest, check
-    use picture_files, only : make_folder, remove_folder, write_lines
+    use picture_files, only : make_folder, remove_folder, write_lines, command_available
     use command_runs, only : rollcon_program, run_rollcon, file_text, file_exists
+    use rollcon_load, only : outputs_name_of
     implicit none
     private
 
@@ -52,7 +54,8 @@ contains
         tests = [new_unittest("view-pendulum-from-command-file", test_pendulum), &
             & new_unittest("end-and-steps-options", test_options), &
             & new_unittest("no-run-says-both-ways", test_no_run), &
-            & new_unittest("command-file-from-another-folder", test_other_folder)]
+            & new_unittest("command-file-from-another-folder", test_other_folder), &
+            & new_unittest("plot-finds-the-command-file-run", test_plot)]
     end subroutine collect_acf_command
 
     !> rollcon run test/view/pendulum.acf: exit 0, the outputs named by the command file's
@@ -243,5 +246,46 @@ contains
             & "absolute: exit status " // to_text(status) // ": " // file_text(scratch &
             & // "/away/abs.txt"))
     end subroutine test_other_folder
+
+    !> The outputs of test/view/pendulum.acf are named by its second line, pendulum (not
+    !> pendulum.acf, nor the dataset's view_export_pendulum.adm): outputs_name_of says so, and
+    !> `rollcon plot test/view/pendulum.acf -o DIR` draws DIR/pendulum.csv, the CSV `rollcon
+    !> run test/view/pendulum.acf -o DIR` wrote (where gnuplot is installed); a command file
+    !> whose dataset's name is all it gives names its outputs as the dataset's run does.
+    subroutine test_plot(error)
+        type(error_type), allocatable, intent(out) :: error
+        character(len=:), allocatable :: program, name, folder
+        integer :: status
+
+        call outputs_name_of("test/view/pendulum.acf", name, error)
+        if (allocated(error)) return
+        call check(error, name == "pendulum", "the outputs of test/view/pendulum.acf: " // name)
+        if (allocated(error)) return
+        folder = scratch // "/plot"
+        call remove_folder(folder)
+        call make_folder(folder)
+        call write_lines(folder // "/unnamed.acf", [character(len=64) :: &
+            & "../../../test/view/view_export_pendulum", "", &
+            & "SIMULATE/DYNAMIC, END=1, STEPS=10", "STOP"])
+        call outputs_name_of(folder // "/unnamed.acf", name, error)
+        if (allocated(error)) return
+        call check(error, name == "view_export_pendulum.adm", "the outputs of a command file " &
+            & // "with no output name: " // name)
+        if (allocated(error)) return
+        if (.not. command_available("gnuplot")) return
+        call rollcon_program(program, error)
+        if (allocated(error)) return
+        call run_rollcon(program, "run test/view/pendulum.acf -q -o " // folder, scratch &
+            & // "/plot_run.out", scratch // "/plot_run.err", status)
+        call check(error, status == 0, "run: exit status " // to_text(status) // ": " &
+            & // file_text(scratch // "/plot_run.err"))
+        if (allocated(error)) return
+        call run_rollcon(program, "plot test/view/pendulum.acf -o " // folder, scratch &
+            & // "/plot.out", scratch // "/plot.err", status)
+        call check(error, status == 0 .and. index(file_text(scratch // "/plot.out"), &
+            & "plot: wrote " // folder // "/pendulum") > 0, "plot: exit status " &
+            & // to_text(status) // ": " // file_text(scratch // "/plot.out") &
+            & // file_text(scratch // "/plot.err"))
+    end subroutine test_plot
 
 end module test_acf_command

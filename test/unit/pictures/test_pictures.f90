@@ -14,6 +14,7 @@ module test_pictures
     use rollcon_figures, only : plot_output, figure_file, figure_names, model_figure_names
     use rollcon_gif, only : animate_output
     use rollcon_gnuplot, only : gnuplot_available
+    use rollcon_watch_columns, only : answer_column_patterns
     use rollcon_watch_columns, only : contact_names, request_column_patterns, &
         & motion_column_patterns, reaction_column_patterns, variable_column_patterns
     use rollcon_testing, only : unittest_type, new_unittest, check, skip_test
@@ -131,7 +132,7 @@ contains
             & "F_1", "lambda_1", "F_2"]
         call read_layout(names, layout, count_reason, [character(len=name_length) :: &
             & contact_names, "basis_<id>", request_column_patterns, motion_column_patterns, &
-            & reaction_column_patterns, variable_column_patterns])
+            & answer_column_patterns, reaction_column_patterns, variable_column_patterns])
         call check(error, allocated(count_reason), "read_layout accepted 17 columns for one " &
             & // "part and one UCON")
         if (allocated(error)) return

@@ -119,7 +119,7 @@ contains
             & // "/run.out", scratch // "/run.err", status)
         stderr = file_text(scratch // "/run.err")
         summary = file_text(scratch // "/out/outputs.adm.summary.txt")
-        warning = path // ": read and checked but not used: REQUEST VELOCITY (line 9), " &
+        warning = path // ": read and checked but not used: " &
             & // "RESULTS (line 10), GRAPHICS (lines 11, 12), OUTPUT REQSAVE (line 13), " &
             & // "OUTPUT GRSAVE (line 13), DEBUG (line 14), INTEGRATOR GSTIFF (line 16), " &
             & // "INTEGRATOR HMAX (line 16); rollcon writes its own outputs and integrates " &
