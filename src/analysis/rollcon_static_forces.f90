@@ -17,7 +17,9 @@ module rollcon_static_forces
         & operator(+), operator(-), operator(*), operator(/), sin, cos
     use rollcon_model, only : model_type
     use rollcon_force, only : profile_statement
-    use rollcon_marker_force, only : marker_force_type, kind_translation, kind_rotation
+    use rollcon_marker_force, only : marker_force_type, kind_translation, kind_rotation, &
+        & kind_spring
+    use rollcon_spring_partials, only : add_spring_partials
     use rollcon_measures, only : state_jets_type, new_state_jets, marker_jets, &
         & expression_input_jets
     use rollcon_expression_jet, only : evaluate_expression_jet
@@ -30,6 +32,7 @@ contains
 
     !> d f/dq at (t, q, u = 0), n x n: row i the generalised force i (N, or N m about an
     !> Euler axis), column j the coordinate j (m or rad). f itself is the equations' (assemble).
+    !> A SPRINGDAMPER's or BUSHING's are its own exact partials (rollcon_spring_partials).
     subroutine applied_force_partials(model, time, q, dfdq)
         type(model_type), intent(in) :: model
         !> Time [s]
@@ -39,6 +42,7 @@ contains
         real(wp), intent(out) :: dfdq(:, :)
         type(state_jets_type) :: state
         integer, allocatable :: parts(:), q_variable(:, :), u_variable(:, :)
+        real(wp), allocatable :: residual_q(:, :), residual_u(:, :)
         integer :: np, n, s, c, i
 
         n = size(q)
@@ -55,7 +59,20 @@ contains
             & q_variable, u_variable, n, .false.)
         do i = 1, size(model%forces)
             if (model%forces(i)%profile /= profile_statement) cycle
-            call statement_partials(model%forces(i)%statement, time, state, dfdq)
+            associate (statement => model%forces(i)%statement)
+                if (statement%kind == kind_spring) then
+                    ! the partials of the momentum residual M a - f: -df/dq
+                    if (.not. allocated(residual_q)) allocate(residual_q(n, n), &
+                        & residual_u(n, n))
+                    residual_q = 0.0_wp
+                    residual_u = 0.0_wp
+                    call add_spring_partials(statement%spring, statement%i, statement%j, q, &
+                        & spread(0.0_wp, 1, n), residual_q, residual_u)
+                    dfdq = dfdq - residual_q
+                else
+                    call statement_partials(statement, time, state, dfdq)
+                end if
+            end associate
         end do
     end subroutine applied_force_partials
 
