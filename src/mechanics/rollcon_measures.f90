@@ -81,8 +81,8 @@ contains
                 & // "constraint) it makes an algebraic loop rollcon does not solve"
         case (kind_element)
             if (input%quantity == quantity_varval) then
-                reason = name // ": a VARIABLE's value, read only where the dataset's " &
-                    & // "VARIABLEs are put in place (rollcon_adm_variables)"
+                reason = name // ": a VARIABLE's value, which a dataset's reader puts in " &
+                    & // "place; a model built in code writes the VARIABLE's expression itself"
             else
                 reason = name // ": DIFF statements (user differential equations, read by " &
                     & // "DIF and DIF1) are not in the subset (docs/datasets.md)"

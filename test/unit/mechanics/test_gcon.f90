@@ -236,7 +236,7 @@ contains
             & "GCON/1 FUNCTION: JOINT(3, 0, 2, 0): a force, which rollcon solves for", &
             & "GCON/1 FUNCTION: it reads velocities, but F is not linear in them", &
             & "GCON/1 FUNCTION: it reads no marker of a moving part: F = DX(10) - 1", &
-            & "GCON/1 FUNCTION: VARVAL(2): VARIABLE and DIFF statements are not in the subset"]
+            & "GCON/1 FUNCTION: VARVAL(2): a VARIABLE's value, which a dataset's reader puts in"]
         type(model_type) :: model
         type(marker_type) :: i, ground
         integer :: k
