@@ -22,7 +22,7 @@ module rollcon_analysis_run
     use rollcon_run_settings, only : analysis_static, analysis_kinematic
     use rollcon_problem, only : problem_type
     use rollcon_simulation, only : run_options_type, run_summary_type, history_type, simulate, &
-        & status_completed, status_failed, output_layout
+        & status_completed, status_failed, output_layout, start_summary
     use rollcon_output_rows, only : output_row, output_time, planned_rows
     use rollcon_output_layout, only : output_layout_type
     use rollcon_csv_writer, only : csv_writer_type
@@ -184,11 +184,7 @@ contains
         call problem%prepare(error)
         if (allocated(error)) return
         rows%layout = output_layout(problem)
-        summary%layout = rows%layout
-        allocate(summary%ucon_residual_max(problem%eq%nc), source=0.0_wp)
-        summary%ucon_position = problem%model%holonomic_number > 0
-        summary%routines = problem%routines_text()
-        summary%ucon_labels = problem%ucon_labels()
+        call start_summary(problem, rows%layout, summary)
         if (present(history)) history%layout = rows%layout
         if (allocated(options%csv_path)) then
             call rows%csv%open(options%csv_path, rows%layout%header(), error)

@@ -37,7 +37,7 @@ module rollcon_simulation
     !> How a run ended and what it did (rollcon_run_summary), for the callers of simulate
     public :: status_completed, status_stopped, status_failed, status_inaccurate
     !> The output rows' limit and layout (rollcon_output_rows), for the callers of simulate
-    public :: default_max_csv_bytes, output_layout
+    public :: default_max_csv_bytes, output_layout, start_summary
 
     !> A run in progress: what the steps of simulate share
     type :: simulation_type
@@ -201,11 +201,7 @@ contains
         call problem%prepare(error)
         if (allocated(error)) return
         self%layout = output_layout(problem)
-        summary%layout = self%layout
-        allocate(summary%ucon_residual_max(problem%eq%nc), source=0.0_wp)
-        summary%ucon_position = problem%model%holonomic_number > 0
-        summary%routines = problem%routines_text()
-        summary%ucon_labels = problem%ucon_labels()
+        call start_summary(problem, self%layout, summary)
         if (present(history)) history%layout = self%layout
         allocate(self%bases(size(problem%model%parts)), source=0)
         self%breaks = force_breakpoints(problem%model%forces)
@@ -509,6 +505,21 @@ contains
 
         times = force_corners(model%forces)
     end function corner_times
+
+    !> The summary of a prepared problem before its first row, as every analysis starts it:
+    !> its rows' layout, each UCON's largest residual (0 so far), which are position UCONs,
+    !> the routines serving the statements and each UCON in the user's words.
+    subroutine start_summary(problem, layout, summary)
+        type(problem_type), intent(in) :: problem
+        type(output_layout_type), intent(in) :: layout
+        type(run_summary_type), intent(inout) :: summary
+
+        summary%layout = layout
+        summary%ucon_residual_max = spread(0.0_wp, 1, problem%eq%nc)
+        summary%ucon_position = problem%model%holonomic_number > 0
+        summary%routines = problem%routines_text()
+        summary%ucon_labels = problem%ucon_labels()
+    end subroutine start_summary
 
     !> A model whose force expressions switch on the state is watched for those switches (once:
     !> a problem run again keeps its watch).

@@ -16,12 +16,12 @@ module test_analyses
     use rollcon_run_job, only : run_job, job_result_type
     use rollcon_simulation, only : history_type, status_completed
     use rollcon_testing, only : unittest_type, new_unittest, check
+    use dataset_texts, only : texts_dir, run_text, write_text
     implicit none
     private
 
     public :: collect_analyses
 
-    character(len=*), parameter :: work_dir = "build/rollcon-test"
     character(len=*), parameter :: nl = new_line("a")
     real(wp), parameter :: g = 9.81_wp
 
@@ -281,7 +281,7 @@ contains
         call write_text("static_dynamic.acf", "static_dynamic" // nl // "static_dynamic_out" &
             & // nl // "SIMULATE/STATIC" // nl // "SIMULATE/DYNAMIC, END=1, STEPS=20" // nl &
             & // "STOP")
-        call load_job(work_dir // "/static_dynamic.acf", job, error)
+        call load_job(texts_dir // "/static_dynamic.acf", job, error)
         if (allocated(error)) return
         job%output_dir = ""
         job%quiet = .true.
@@ -382,7 +382,7 @@ contains
 
         call write_text("limits.adm", head // "EQUILIBRIUM/ERROR=1e-6, IMBALANCE=2, TLIMIT=5, " &
             & // "ALIMIT=3D, MAXIT=7, STABILITY=1e-5" // nl // "SIMULATE/STATIC" // nl // "END")
-        call load_job(work_dir // "/limits.adm", job, error)
+        call load_job(texts_dir // "/limits.adm", job, error)
         if (allocated(error)) return
         associate (settings => job%source%settings)
             call check(error, settings%equilibrium_error, 1.0e-6_wp, "ERROR", rel_tol=tol)
@@ -404,7 +404,7 @@ contains
         if (allocated(error)) return
         call write_text("limits_bad.adm", head // "EQUILIBRIUM/MAXIT=2.5" // nl &
             & // "SIMULATE/STATIC" // nl // "END")
-        call load_job(work_dir // "/limits_bad.adm", job, refusal)
+        call load_job(texts_dir // "/limits_bad.adm", job, refusal)
         call check(error, allocated(refusal), "MAXIT=2.5 refused")
         if (allocated(error)) return
         call check(error, index(refusal%message, "limits_bad.adm:6: EQUILIBRIUM MAXIT must be " &
@@ -435,34 +435,5 @@ contains
         read(lines(first:last), *, iostat=stat) count
         if (stat /= 0) count = -1
     end function newton_iterations
-
-    !> Write the dataset and run it with its rows kept, no output files.
-    subroutine run_text(name, text, result, rows, error)
-        character(len=*), intent(in) :: name, text
-        type(job_result_type), intent(out) :: result
-        type(history_type), intent(out) :: rows
-        type(error_type), allocatable, intent(out) :: error
-        type(job_type) :: job
-        type(error_type), allocatable :: failure
-
-        call write_text(name, text)
-        call load_job(work_dir // "/" // name, job, error)
-        if (allocated(error)) return
-        job%output_dir = ""
-        job%quiet = .true.
-        call run_job(job, result, failure, rows)
-        if (allocated(failure)) call move_alloc(failure, error)
-    end subroutine run_text
-
-    !> Write text to work_dir/name.
-    subroutine write_text(name, text)
-        character(len=*), intent(in) :: name, text
-        integer :: unit
-
-        call execute_command_line("mkdir -p " // work_dir)
-        open(newunit=unit, file=work_dir // "/" // name, status="replace", action="write")
-        write(unit, '(a)') text
-        close(unit)
-    end subroutine write_text
 
 end module test_analyses

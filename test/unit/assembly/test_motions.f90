@@ -14,12 +14,12 @@ module test_motions
     use rollcon_run_job, only : run_job, job_result_type
     use rollcon_simulation, only : history_type, status_completed
     use rollcon_testing, only : unittest_type, new_unittest, check
+    use dataset_texts, only : texts_dir, run_text, write_text
     implicit none
     private
 
     public :: collect_motions
 
-    character(len=*), parameter :: work_dir = "build/rollcon-test"
     real(wp), parameter :: g = 9.80665_wp
     character(len=*), parameter :: nl = new_line("a")
 
@@ -229,7 +229,7 @@ contains
 
         do k = 1, size(statements)
             call write_text("refused.adm", head // trim(statements(k)) // tail)
-            call load_job(work_dir // "/refused.adm", job, failure)
+            call load_job(texts_dir // "/refused.adm", job, failure)
             if (.not. allocated(failure)) then
                 job%output_dir = ""
                 job%quiet = .true.
@@ -237,41 +237,12 @@ contains
             end if
             call check(error, allocated(failure), "accepted: " // trim(statements(k)))
             if (allocated(error)) return
-            call check(error, index(failure%message, work_dir // "/refused.adm" &
+            call check(error, index(failure%message, texts_dir // "/refused.adm" &
                 & // trim(expected(k))) == 1, "message '" // failure%message // "', expected '" &
                 & // trim(expected(k)) // "'")
             if (allocated(error)) return
             deallocate(failure)
         end do
     end subroutine test_refusals
-
-    !> Run a dataset written here, writing no file, and keep its rows.
-    subroutine run_text(name, text, result, rows, error)
-        character(len=*), intent(in) :: name, text
-        type(job_result_type), intent(out) :: result
-        type(history_type), intent(out) :: rows
-        type(error_type), allocatable, intent(out) :: error
-        type(job_type) :: job
-        type(error_type), allocatable :: failure
-
-        call write_text(name, text)
-        call load_job(work_dir // "/" // name, job, error)
-        if (allocated(error)) return
-        job%output_dir = ""
-        job%quiet = .true.
-        call run_job(job, result, failure, rows)
-        if (allocated(failure)) call move_alloc(failure, error)
-    end subroutine run_text
-
-    !> Write text to work_dir/name.
-    subroutine write_text(name, text)
-        character(len=*), intent(in) :: name, text
-        integer :: unit
-
-        call execute_command_line("mkdir -p " // work_dir)
-        open(newunit=unit, file=work_dir // "/" // name, status="replace", action="write")
-        write(unit, '(a)') text
-        close(unit)
-    end subroutine write_text
 
 end module test_motions

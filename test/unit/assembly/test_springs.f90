@@ -13,17 +13,15 @@ module test_springs
     use rollcon_error, only : error_type
     use rollcon_text, only : to_text
     use rollcon_rotation, only : rotation_matrix
-    use rollcon_job, only : job_type
-    use rollcon_load, only : load_job
-    use rollcon_run_job, only : run_job, job_result_type
+    use rollcon_run_job, only : job_result_type
     use rollcon_simulation, only : history_type, status_completed
     use rollcon_testing, only : unittest_type, new_unittest, check
+    use dataset_texts, only : run_text
     implicit none
     private
 
     public :: collect_springs
 
-    character(len=*), parameter :: work_dir = "build/rollcon-test"
     real(wp), parameter :: g = 9.80665_wp
     character(len=*), parameter :: nl = new_line("a")
 
@@ -362,27 +360,5 @@ contains
         write(buffer, '(es24.16e3)') value
         text = trim(adjustl(buffer))
     end function number
-
-    !> Write text to work_dir/name, load it as a job and run it in memory.
-    subroutine run_text(name, text, result, rows, error)
-        character(len=*), intent(in) :: name, text
-        type(job_result_type), intent(out) :: result
-        type(history_type), intent(out) :: rows
-        type(error_type), allocatable, intent(out) :: error
-        type(job_type) :: job
-        type(error_type), allocatable :: failure
-        integer :: unit
-
-        call execute_command_line("mkdir -p " // work_dir)
-        open(newunit=unit, file=work_dir // "/" // name, status="replace", action="write")
-        write(unit, '(a)') text
-        close(unit)
-        call load_job(work_dir // "/" // name, job, error)
-        if (allocated(error)) return
-        job%output_dir = ""
-        job%quiet = .true.
-        call run_job(job, result, failure, rows)
-        if (allocated(failure)) call move_alloc(failure, error)
-    end subroutine run_text
 
 end module test_springs

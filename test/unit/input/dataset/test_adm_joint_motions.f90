@@ -26,17 +26,15 @@ module test_adm_joint_motions
     use rollcon_constants, only : pi
     use rollcon_error, only : error_type
     use rollcon_text, only : to_text
-    use rollcon_job, only : job_type
-    use rollcon_load, only : load_job
-    use rollcon_run_job, only : run_job, job_result_type
+    use rollcon_run_job, only : job_result_type
     use rollcon_simulation, only : history_type, status_completed
     use rollcon_testing, only : unittest_type, new_unittest, check
+    use dataset_texts, only : run_text
     implicit none
     private
 
     public :: collect_adm_joint_motions
 
-    character(len=*), parameter :: work_dir = "build/rollcon-test"
     character(len=*), parameter :: nl = new_line("a")
     real(wp), parameter :: g = 9.81_wp
     !> The shafts' bend [rad], the input's start rate [rad/s] and moments about their axes
@@ -343,27 +341,5 @@ contains
             & // to_text(result%summary%residual_max) // ", energy drift " &
             & // to_text(result%summary%energy_drift))
     end subroutine check_held
-
-    !> Run a dataset written to work_dir/name, writing no file, and keep its rows.
-    subroutine run_text(name, text, result, rows, error)
-        character(len=*), intent(in) :: name, text
-        type(job_result_type), intent(out) :: result
-        type(history_type), intent(out) :: rows
-        type(error_type), allocatable, intent(out) :: error
-        type(job_type) :: job
-        type(error_type), allocatable :: failure
-        integer :: unit
-
-        call execute_command_line("mkdir -p " // work_dir)
-        open(newunit=unit, file=work_dir // "/" // name, status="replace", action="write")
-        write(unit, '(a)') text
-        close(unit)
-        call load_job(work_dir // "/" // name, job, error)
-        if (allocated(error)) return
-        job%output_dir = ""
-        job%quiet = .true.
-        call run_job(job, result, failure, rows)
-        if (allocated(failure)) call move_alloc(failure, error)
-    end subroutine run_text
 
 end module test_adm_joint_motions
