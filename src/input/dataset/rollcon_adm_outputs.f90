@@ -341,8 +341,10 @@ contains
     !> and Fk); one that reads what rollcon has no statement for (an element function of a
     !> statement other than JOINT, JPRIM, MOTION, SFORCE, VFORCE and GFORCE; VARVAL, DIF, DIF1;
     !> a curve, AKISPL or CUBSPL) is not answered: its text is cleared and it is named in the
-    !> warning ("REQUEST F1..F8 reading BUSHING"). A statement rollcon adds is taken off
-    !> that list here as it becomes answerable (rollcon_request_answers).
+    !> warning ("REQUEST F1..F8 reading BUSHING"), as is one it cannot read at all (a function
+    !> it lacks, ADAMS's ORIENT; a slip in the text): a REQUEST never stops a run. A statement
+    !> rollcon adds is taken off that list here as it becomes answerable
+    !> (rollcon_request_answers).
     subroutine check_request_columns(where, request, model, error)
         character(len=*), intent(in) :: where
         type(adm_request_type), intent(inout) :: request
@@ -358,7 +360,16 @@ contains
             if (len(request%columns(k)%text) == 0) cycle
             call compile_expression(request%columns(k)%text, where // " F" // to_text(k), &
                 & expression, error)
-            if (allocated(error)) return
+            if (allocated(error)) then
+                ! an expression rollcon cannot read (a function it lacks, ORIENT, or a slip
+                ! in the text) only shapes ADAMS's output: named in the warning, not answered
+                call record_unused(model%unused, model%unused_count, "REQUEST F" &
+                    & // to_text(k) // " it cannot read (" // after_place(error%message, &
+                    & where // " F" // to_text(k) // ": ") // ")", request%line)
+                deallocate(error)
+                request%columns(k)%text = ""
+                cycle
+            end if
             missing = ""
             do n = 1, size(expression%inputs)
                 associate (quantity => expression%inputs(n)%quantity)
@@ -378,6 +389,20 @@ contains
             request%columns(k)%text = ""
         end do
     end subroutine check_request_columns
+
+    !> message without its leading place (where), when it starts with it.
+    pure function after_place(message, where) result(text)
+        character(len=*), intent(in) :: message, where
+        character(len=:), allocatable :: text
+        integer :: at
+
+        at = index(message, where)
+        if (at > 0) then
+            text = message(at + len(where):)
+        else
+            text = message
+        end if
+    end function after_place
 
     !> A request's text as written: COMMENT, the expressions F1 ... F8, FUNCTION=USER(...)
     !> and ROUTINE ("" for each not given); the keywords rollcon does not know are skipped.

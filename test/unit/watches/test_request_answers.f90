@@ -310,7 +310,8 @@ contains
     !> A force or an acceleration read in a force's FUNCTION is an algebraic loop: refused with
     !> the statement, its line and the function; a REQUEST's element function naming a
     !> statement the dataset lacks: refused with the REQUEST, its line and Fk; one of a kind
-    !> rollcon has no statement for (BUSHING): that column named in the warning, not answered.
+    !> rollcon has no statement for (BUSHING), or one it cannot read (ORIENT): that column named
+    !> in the warning, not answered.
     subroutine test_refusals(error)
         type(error_type), allocatable, intent(out) :: error
         character(len=*), parameter :: head = "refused" // nl // "UNITS/SYSTEM=SI" // nl &
@@ -361,6 +362,23 @@ contains
         if (allocated(error)) return
         call check(error, index(job%source%warning, "REQUEST F1..F8 reading BUSHING (line 7)") &
             & > 0 .and. result%summary%layout%column("req3_f2") > 0 .and. &
+            & result%summary%layout%column("req3_f3") == 0, "the warning: " &
+            & // job%source%warning)
+        if (allocated(error)) return
+        ! nor is an expression rollcon cannot read (ADAMS's ORIENT): named, the others answered
+        call write_text("warned.adm", head // "REQUEST/3, F2=DX(20)\F3=ORIENT(7, 1, 1, 0)" &
+            & // tail)
+        call load_job(work_dir // "/warned.adm", job, failure)
+        if (.not. allocated(failure)) then
+            job%output_dir = ""
+            job%quiet = .true.
+            call run_job(job, result, failure)
+        end if
+        call check(error, .not. allocated(failure), "REQUEST/3 reading ORIENT refused")
+        if (allocated(error)) return
+        call check(error, index(job%source%warning, "REQUEST F3 it cannot read") > 0 .and. &
+            & index(job%source%warning, "ORIENT") > 0 .and. &
+            & result%summary%layout%column("req3_f2") > 0 .and. &
             & result%summary%layout%column("req3_f3") == 0, "the warning: " &
             & // job%source%warning)
     end subroutine test_refusals
