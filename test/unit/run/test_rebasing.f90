@@ -303,7 +303,8 @@ contains
         if (allocated(error)) return
         call check(error, summary%status == status_failed .and. summary%t_reached < 3.0_wp &
             & .and. summary%rebasings(1) == 0 .and. index(refused%message, expected) == 1 &
-            & .and. index(refused%message, "): UCON ") > 0 .and. index(refused%message, &
+            & .and. index(refused%message, "): UCON/2 (line 10) gives") > 0 .and. &
+            & index(refused%message, &
             & "its UCOSUB depends on which principal axis is which") > 0 .and. &
             & index(refused%message, "the model fell") > 0 &
             & .and. summary%message == refused%message, &

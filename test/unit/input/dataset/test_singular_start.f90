@@ -259,7 +259,7 @@ contains
         call remove_folder(scratch)
         call check(error, status == 1 .and. index(message, scratch // "/disk.adm:4: PART/2: " &
             & // "the z-axis of its principal axes (its CM marker) is parallel to ground z at " &
-            & // "t = 0") > 0 .and. index(message, "; but UCON/1 gives F = ") > 0 .and. &
+            & // "t = 0") > 0 .and. index(message, "; but UCON/1 (line 9) gives F = ") > 0 .and. &
             & index(message, "test velocities added; allowed difference") > 0 .and. &
             & index(message, "its UCOSUB depends on which principal axis is which") > 0, &
             & "exit status " // to_text(status) // ": " // message)
