@@ -10,7 +10,7 @@
 !> no file to write.
 module rollcon_isolated_run
     use, intrinsic :: iso_c_binding, only : c_double
-    use, intrinsic :: iso_fortran_env, only : output_unit
+    use, intrinsic :: iso_fortran_env, only : output_unit, error_unit
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type, fatal_error, stat_ucon
     use rollcon_text, only : to_text
@@ -29,7 +29,7 @@ module rollcon_isolated_run
     use rollcon_child_process, only : isolated_task_type, stream_receiver_type, &
         & call_record_type, isolation_outcome_type, run_in_child, outcome_finished
     use rollcon_frames, only : send_frame, frame_buffer_type
-    use rollcon_isolation_text, only : outcome_text
+    use rollcon_isolation_text, only : outcome_text, quote_stderr, scratch_path
     use rollcon_ucosub_guard, only : install_guard, attach_call_record, guarded_ucosub
     use rollcon_user_build, only : build_user_library
     use rollcon_user_library, only : user_ucosub_type, load_user_routines
@@ -104,7 +104,7 @@ contains
         type(job_receiver_type) :: receiver
         type(isolation_outcome_type) :: outcome
         logical :: from_cache
-        character(len=:), allocatable :: note
+        character(len=:), allocatable :: note, stderr_path
         integer :: k
 
         started = .false.
@@ -137,14 +137,51 @@ contains
         if (allocated(options%csv_path)) receiver%csv_path = options%csv_path
         if (present(history)) receiver%history => history
         call receiver%progress%start(options%progress, options%t0, options%end_time, wall=.true.)
+        ! the child's stderr (a routine's STOP text, a backtrace) is kept apart: quoted in the
+        ! message when the routine ends the child, passed on to this stderr otherwise
+        stderr_path = scratch_path("run", 1, ".stderr")
         call run_in_child(task, real(job%call_timeout, c_double), outcome, error, &
-            & receiver=receiver)
+            & stderr_path, receiver)
         call conclude(receiver, outcome, summary, error)
+        call hand_on_stderr(stderr_path, outcome%kind /= outcome_finished, summary, error)
         started = receiver%started
         if (started .and. summary%status == status_failed) call point_at_check(job, summary, &
             & error)
         if (allocated(receiver%shapes)) shapes = receiver%shapes
     end subroutine run_isolated
+
+    !> The child's stderr at path: when the child did not finish (a STOP, a crash), its useful
+    !> lines (quote_stderr) end the run's message; otherwise every line is written to this
+    !> process's stderr, as the child would have. The file is removed.
+    subroutine hand_on_stderr(path, faulted, summary, error)
+        character(len=*), intent(in) :: path
+        logical, intent(in) :: faulted
+        type(run_summary_type), intent(inout) :: summary
+        type(error_type), allocatable, intent(inout) :: error
+        character(len=:), allocatable :: quoted
+        character(len=1000) :: line
+        integer :: unit, stat
+
+        if (faulted) then
+            quoted = quote_stderr(path)
+            if (len(quoted) > 0) then
+                summary%message = summary%message // quoted
+                if (allocated(error)) error%message = error%message // quoted
+            end if
+        else
+            open(newunit=unit, file=path, status="old", action="read", iostat=stat)
+            if (stat == 0) then
+                do
+                    read(unit, '(a)', iostat=stat) line
+                    if (stat /= 0) exit
+                    write(error_unit, '(a)') trim(line)
+                end do
+                close(unit)
+            end if
+        end if
+        open(newunit=unit, file=path, status="old", iostat=stat)
+        if (stat == 0) close(unit, status="delete")
+    end subroutine hand_on_stderr
 
     !> An integrator that failed on a run with a user's routine: its partials (the Newton
     !> matrix) are the first suspect, so the message names the command that checks them all

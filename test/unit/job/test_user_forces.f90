@@ -96,13 +96,15 @@ contains
             & "IFLAG = .FALSE."], error)
     end subroutine test_crashes
 
-    !> A STOP in an SFOSUB: the child ended before its work was done, said as for a UCOSUB.
+    !> A STOP in an SFOSUB: the child ended before its work was done, said as for a UCOSUB,
+    !> with the STOP's own text quoted from the child's stderr (which never reaches the host's).
     subroutine test_stops(error)
         type(error_type), allocatable, intent(out) :: error
 
         call expect_fault("stops", 10.0_wp, [character(len=50) :: &
             & "SFORCE/2: the process ended with exit status", &
-            & "a STOP, ERROR STOP or CALL EXIT in the SFOSUB", "inside SFOSUB call"], error)
+            & "a STOP, ERROR STOP or CALL EXIT in the SFOSUB", "inside SFOSUB call", &
+            & "its stderr: STOP spring broken"], error)
     end subroutine test_stops
 
     !> An endless loop in an SFOSUB: killed at the time limit per call (1 s here).
