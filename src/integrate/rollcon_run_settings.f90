@@ -139,7 +139,8 @@ contains
     end function uses_cvode
 
     !> The integrator settings in words: "IDA (DAE form, index 2), analytic Jacobian, rtol
-    !> 1e-8, atol 1e-10".
+    !> 1e-8, atol 1e-10"; "static equilibrium, then IDA ..." after a SIMULATE/STATIC; a static
+    !> or kinematic analysis alone integrates nothing, and says so.
     function text(self) result(words)
         class(run_settings_type), intent(in) :: self
         character(len=:), allocatable :: words
@@ -162,6 +163,15 @@ contains
         end if
         words = words // ", rtol " // to_text(self%rtol) // ", atol " // to_text(self%atol)
         if (self%linear_solver == linear_sparse) words = words // ", sparse Newton matrix (KLU)"
+        select case (self%analysis)
+        case (analysis_static)
+            words = "static equilibrium (Newton's method on the forces at rest; no integrator)"
+        case (analysis_kinematic)
+            words = "kinematic analysis (positions, velocities and accelerations solved at " &
+                & // "each output time; no integrator)"
+        case default
+            if (self%static_first) words = "static equilibrium, then " // words
+        end select
     end function text
 
 end module rollcon_run_settings

@@ -17,6 +17,7 @@ module test_analyses
     use rollcon_simulation, only : history_type, status_completed
     use rollcon_testing, only : unittest_type, new_unittest, check
     use dataset_texts, only : texts_dir, run_text, write_text
+    use rollcon_run_settings, only : analysis_static
     implicit none
     private
 
@@ -293,6 +294,18 @@ contains
         if (allocated(error)) return
         call check(error, index(result%summary%analysis_lines, "then dynamic") > 0, &
             & "the summary says static, then dynamic: " // result%summary%analysis_lines)
+        if (allocated(error)) return
+        ! the settings line names both analyses
+        call check(error, index(job%source%setting_line(), ": static equilibrium, then IDA") &
+            & > 0, "the settings line: " // job%source%setting_line())
+        if (allocated(error)) return
+        ! and a static analysis alone runs no integrator: its settings line says so
+        call load_job(texts_dir // "/static_dynamic.acf", job, error)
+        if (allocated(error)) return
+        job%source%settings%analysis = analysis_static
+        call check(error, index(job%source%setting_line(), ": static equilibrium (Newton's " &
+            & // "method on the forces at rest; no integrator)") > 0, "the settings line " &
+            & // "of a static analysis: " // job%source%setting_line())
         if (allocated(error)) return
         cx = result%summary%layout%column("X_2")
         cr = result%summary%layout%column("psidot_2")
