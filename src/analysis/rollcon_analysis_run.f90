@@ -22,7 +22,7 @@ module rollcon_analysis_run
     use rollcon_run_settings, only : analysis_static, analysis_kinematic
     use rollcon_problem, only : problem_type
     use rollcon_simulation, only : run_options_type, run_summary_type, history_type, simulate, &
-        & status_completed, status_failed, output_layout, start_summary
+        & status_completed, status_failed, output_layout, start_summary, deliver_row
     use rollcon_output_rows, only : output_row, output_time, planned_rows
     use rollcon_output_layout, only : output_layout_type
     use rollcon_csv_writer, only : csv_writer_type
@@ -233,15 +233,7 @@ contains
         rows%kinetic_max = max(rows%kinetic_max, energy - potential)
         rows%potential_min = min(rows%potential_min, potential)
         rows%potential_max = max(rows%potential_max, potential)
-        call problem%model%count_turns(q, u, restart=.false.)
-        summary%t_reached = time
-        summary%q = q
-        summary%u = u
-        summary%rows = summary%rows + 1
-        if (present(history)) call history%add(row)
-        if (rows%csv%opened) call rows%csv%write_row(row, error)
-        if (allocated(error)) return
-        if (present(sink)) call sink%put(row, error)
+        call deliver_row(problem, time, q, u, row, rows%csv, summary, error, history, sink)
     end subroutine record
 
     !> After the last row: the watches' measures and lines, the CSV closed, the CPU time;

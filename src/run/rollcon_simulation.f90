@@ -37,7 +37,7 @@ module rollcon_simulation
     !> How a run ended and what it did (rollcon_run_summary), for the callers of simulate
     public :: status_completed, status_stopped, status_failed, status_inaccurate
     !> The output rows' limit and layout (rollcon_output_rows), for the callers of simulate
-    public :: default_max_csv_bytes, output_layout, start_summary
+    public :: default_max_csv_bytes, output_layout, start_summary, deliver_row
 
     !> A run in progress: what the steps of simulate share
     type :: simulation_type
@@ -336,16 +336,8 @@ contains
                     & abs(problem%constraint_values()))
                 summary%residual_max = maxval(summary%ucon_residual_max)
             end if
-            ! each row goes on from the whole turns counted at the one before it
-            call problem%model%count_turns(q, u, restart=.false.)
-            summary%t_reached = time
-            summary%q = q
-            summary%u = u
-            summary%rows = summary%rows + 1
-            if (present(history)) call history%add(row)
-            if (self%csv%opened) call self%csv%write_row(row, error)
-            if (allocated(error)) return
-            if (present(sink)) call sink%put(row, error)
+            call deliver_row(problem, time, q, u, row, self%csv, summary, error, history, &
+                & sink)
         end associate
     end subroutine record
 
@@ -505,6 +497,29 @@ contains
 
         times = force_corners(model%forces)
     end function corner_times
+
+    !> A row at (time [s], q, u) made, as every analysis ends it: the whole turns counted from
+    !> the row before (the next goes on from them), the summary's last state and count, the
+    !> row kept (history), written (CSV) and sent (sink).
+    subroutine deliver_row(problem, time, q, u, row, csv, summary, error, history, sink)
+        type(problem_type), intent(inout) :: problem
+        real(wp), intent(in) :: time, q(:), u(:), row(:)
+        type(csv_writer_type), intent(inout) :: csv
+        type(run_summary_type), intent(inout) :: summary
+        type(error_type), allocatable, intent(out) :: error
+        type(history_type), intent(inout), optional :: history
+        class(row_sink_type), intent(inout), optional :: sink
+
+        call problem%model%count_turns(q, u, restart=.false.)
+        summary%t_reached = time
+        summary%q = q
+        summary%u = u
+        summary%rows = summary%rows + 1
+        if (present(history)) call history%add(row)
+        if (csv%opened) call csv%write_row(row, error)
+        if (allocated(error)) return
+        if (present(sink)) call sink%put(row, error)
+    end subroutine deliver_row
 
     !> The summary of a prepared problem before its first row, as every analysis starts it:
     !> its rows' layout, each UCON's largest residual (0 so far), which are position UCONs,
