@@ -52,6 +52,8 @@ contains
         if (allocated(adm%warning)) source%warning = adm%warning
         source%notes = principal_axes_text(adm)
         source%own_routines = all_named(adm)
+        source%no_ucons = .true.
+        if (allocated(adm%ucons)) source%no_ucons = size(adm%ucons) == 0
     end function new_dataset_source
 
     !> The dataset's problem with the source's settings, and its start after the

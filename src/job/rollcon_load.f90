@@ -294,8 +294,13 @@ contains
 
         if (len_trim(name) == 0) return
         if (job%source%own_routines) then
-            unused = "--ucosub " // trim(name) // " is not used: every UCON of the model " &
-                & // "names its ROUTINE"
+            if (job%source%no_ucons) then
+                unused = "--ucosub " // trim(name) // " is not used: the model has no UCON " &
+                    & // "and no force served by a user routine"
+            else
+                unused = "--ucosub " // trim(name) // " is not used: every UCON of the model " &
+                    & // "names its ROUTINE"
+            end if
             if (len(job%source%input_warning()) > 0) then
                 job%source%warning = job%source%input_warning() // "; " // unused
             else

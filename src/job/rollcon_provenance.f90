@@ -20,7 +20,7 @@ contains
     !>     rollcon 0.2.0, 2026-11-26 04:45:12 +0000: rollcon run data/coin.nml
     !>     the model's UCOSUB: disk (built in)
     !> (the second: "none (every UCON names its ROUTINE)" for a model whose every UCON has its
-    !> own routine, and a user's file with its size and hash), then a line "more user routines:
+    !> own routine, "none (the model has no UCON)" for one with no UCON, and a user's file with its size and hash), then a line "more user routines:
     !> FILE (its size and hash)" for each more file of the job (rollcon_load's add_user_file)
     function provenance_lines(job) result(text)
         type(job_type), intent(in) :: job
@@ -34,6 +34,8 @@ contains
         text = text // new_line("a") // "the model's UCOSUB: "
         if (len(job%user_file) > 0) then
             text = text // job%user_file // " (" // user_file_record(job%user_file) // ")"
+        else if (job%source%own_routines .and. job%source%no_ucons) then
+            text = text // "none (the model has no UCON)"
         else if (job%source%own_routines) then
             text = text // "none (every UCON names its ROUTINE)"
         else

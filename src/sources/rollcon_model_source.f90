@@ -37,6 +37,9 @@ module rollcon_model_source
         !> Every UCON names its own routine (a dataset's ROUTINE=, its joints'): the model's
         !> UCOSUB serves none, and the summary's record says so
         logical :: own_routines = .false.
+        !> The model has no UCON statement at all (with own_routines: its UCOSUB serves nothing
+        !> because there is nothing to serve, and the record says that instead)
+        logical :: no_ucons = .false.
     contains
         procedure(build_interface), deferred :: build
         procedure :: shapes

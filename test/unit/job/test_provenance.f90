@@ -32,7 +32,8 @@ contains
             & new_unittest("summary-names-built-in", test_built_in), &
             & new_unittest("summary-names-user-file", test_user_file), &
             & new_unittest("summary-names-each-ucon-routine", test_each_ucon), &
-            & new_unittest("unused-ucosub-file-is-said", test_unused_file)]
+            & new_unittest("unused-ucosub-file-is-said", test_unused_file), &
+            & new_unittest("summary-of-a-model-without-ucon", test_no_ucon)]
     end subroutine collect_provenance
 
     !> user_file_record of files holding "", "a" and "foobar": their sizes and the FNV-1a 64 values
@@ -177,6 +178,32 @@ contains
             & // "none (every UCON names its ROUTINE)" // new_line("a")) > 0, "the summary " &
             & // "names the unused file or does not say it is unused: " // first_lines(summary))
     end subroutine test_unused_file
+
+    !> data/pendulum.adm has no UCON (a REVOLUTE joint alone): the record says the model has
+    !> none, not that each names its routine; a --ucosub file given to it is said unused for
+    !> that reason.
+    subroutine test_no_ucon(error)
+        type(error_type), allocatable, intent(out) :: error
+        character(len=:), allocatable :: program, summary, stderr_text
+        integer :: status
+
+        call rollcon_program(program, error)
+        if (allocated(error)) return
+        call execute_command_line("rm -rf " // scratch // "/no_ucon && mkdir -p " // scratch)
+        call run_rollcon(program, "run data/pendulum.adm --ucosub ucon/adams/rolling_disk/" &
+            & // "ucosub.f -q -o " // scratch // "/no_ucon", scratch // "/no_ucon.out", &
+            & scratch // "/no_ucon.err", status)
+        stderr_text = file_text(scratch // "/no_ucon.err")
+        call check(error, status == 0, "exited " // to_text(status) // ": " // stderr_text)
+        if (allocated(error)) return
+        call check(error, index(stderr_text, "is not used: the model has no UCON") > 0, &
+            & "standard error does not say why the file is unused: " // stderr_text)
+        if (allocated(error)) return
+        summary = file_text(scratch // "/no_ucon/pendulum.adm.summary.txt")
+        call check(error, index(summary, "the model's UCOSUB: none (the model has no UCON)" &
+            & // new_line("a")) > 0 .and. index(summary, "every UCON names") == 0, &
+            & "the record does not say the model has no UCON: " // first_lines(summary))
+    end subroutine test_no_ucon
 
     !> Run rollcon with arguments; it must exit 0 with nothing on stderr.
     subroutine run_into(arguments, label, error)
