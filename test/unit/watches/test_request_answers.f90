@@ -233,11 +233,14 @@ contains
     !> SPDP(1, 1, 4, 0), at J, is -springdamper1_fz; BUSHING(2, 1, 8, 0), the torque on J's part
     !> about J's origin, is -T_z - ((r_I - r_J) x F)_z from bushing2_... and REQUEST/1's r_I -
     !> r_J; 2*VARVAL(5) is 2*var5; AKISPL and CUBSPL of TIME at the rows on the knots (t = 0,
-    !> 0.5, 1, 1.5, 2) are the SPLINE's Y there. No request is named in the warning, and the
-    !> summary gives each COMMENT with its request's line and columns.
+    !> 0.5, 1, 1.5, 2) are the SPLINE's Y there. REQUEST/4: VTORQ(4, 0, 8, 0) is VTORQUE/4's TZ,
+    !> -0.05 WZ(20), VTORQ(4, 1, 8, 0) its opposite, VTORQ(4, 0, 1, 0) (a force) zero. No
+    !> request is named in the warning, and the summary gives each COMMENT with its request's
+    !> line and columns.
     subroutine test_elements(error)
         type(error_type), allocatable, intent(out) :: error
-        !> The bushing's torque at J from its columns, and 2*VARVAL(5) against 2*var5: rounding
+        !> The bushing's torque at J from its columns, 2*VARVAL(5) against 2*var5 and the
+        !> VTORQUE's against its expression: rounding
         !> of terms below 1 N m (measured 0); a wrong sign or arm is off by the arm's moment, up
         !> to 0.08 N m (checked above 0.01 N m)
         real(wp), parameter :: tol_rounding = 1.0e-14_wp
@@ -284,7 +287,9 @@ contains
                     & r(layout%column("req3_f3"), k) == -r(layout%column("springdamper1_fz"), k) &
                     & .and. r(layout%column("req3_f4"), k) == r(layout%column("bushing2_fy"), k)
                 worst = max(worst, abs(r(layout%column("req3_f6"), k) &
-                    & - 2.0_wp*r(layout%column("var5"), k)))
+                    & - 2.0_wp*r(layout%column("var5"), k)), abs(r(layout%column("req4_f2"), k) &
+                    & + 0.05_wp*r(layout%column("req4_f3"), k)), abs(r(layout%column("req4_f4"), &
+                    & k) + r(layout%column("req4_f2"), k)), abs(r(layout%column("req4_f5"), k)))
                 time = r(1, k)
                 do m = 1, size(knots)
                     if (abs(time - knots(m)) > 1.0e-9_wp) cycle
@@ -302,9 +307,9 @@ contains
             & // "the bushing's arm moment up to " // to_text(largest) // " N m")
         if (allocated(error)) return
         ! the notes the summary prints after the record and warning (rollcon_run_job)
-        call check(error, index(job%source%model_notes(), "REQUEST/1 (line 20; req1_x ... " &
+        call check(error, index(job%source%model_notes(), "REQUEST/1 (line 22; req1_x ... " &
             & // "req1_phi): the bushing I from its J") > 0 .and. index(job%source%model_notes(), &
-            & "REQUEST/3 (line 21; req3_f2, req3_f3, req3_f4, req3_f5, req3_f6, req3_f7, " &
+            & "REQUEST/3 (line 23; req3_f2, req3_f3, req3_f4, req3_f5, req3_f6, req3_f7, " &
             & // "req3_f8): elements and curves") > 0, "the comments in the summary's notes: " &
             & // job%source%model_notes())
     end subroutine test_elements
