@@ -191,6 +191,7 @@ contains
         character(len=*), intent(in) :: where
         type(marker_type), allocatable, intent(inout) :: markers(:)
         type(error_type), allocatable, intent(out) :: error
+        character(len=:), allocatable :: statement
         integer :: n, m, ids(4), kind
 
         do n = 1, size(expression%inputs)
@@ -199,11 +200,13 @@ contains
                 if (quantity_kind(input%quantity) == kind_element_force) then
                     kind = element_kind_of(input%quantity)
                     if (.not. any(elements%kind == kind .and. elements%id == input%marker)) then
+                        statement = trim(quantity_names(input%quantity))
+                        if (kind == element_springdamper) statement = "SPRINGDAMPER"
                         call fatal_error(error, where // ": " // input_text(input) // ": no " &
-                            & // trim(quantity_names(input%quantity)) // "/" &
-                            & // to_text(input%marker) // " whose force rollcon reports in the " &
-                            & // "dataset (a RACKPIN or SCREW joint is a coupling, not " &
-                            & // "reported)", stat_input)
+                            & // statement // "/" // to_text(input%marker) // " whose force " &
+                            & // "rollcon reports in the dataset", stat_input)
+                        if (kind == element_joint) error%message = error%message // " (a " &
+                            & // "RACKPIN or SCREW joint is a coupling, not reported)"
                         return
                     end if
                     ids = [0, 0, 0, input%l]
