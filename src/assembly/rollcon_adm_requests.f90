@@ -4,9 +4,13 @@
 !> model holds them, each expression compiled (a syntax error names the file, line, REQUEST and
 !> Fk, as the reader found it) and every id it reads checked: a marker the dataset lacks, or
 !> an element function naming a statement that is not there (`JOINT(7, 0, 2, 0)`: no
-!> JOINT/7), is refused with the statement and line. The elements the force functions read
-!> are every JOINT and JPRIM the model holds, MOTION, SFORCE, VFORCE and GFORCE. A REQUEST
-!> with FUNCTION=USER(...) (a REQSUB) stays named in the dataset's warning.
+!> JOINT/7), is refused with the statement and line. Each VARVAL(id) stands for VARIABLE/id's
+!> FUNCTION and each AKISPL and CUBSPL reads its SPLINE's curve, put in place as in the
+!> forces' expressions (rollcon_adm_variables' substitute_variables and give_splines; a
+!> VARIABLE or SPLINE the dataset lacks is refused the same way). The elements the force
+!> functions read are every JOINT and JPRIM the model holds, MOTION, SFORCE, VFORCE,
+!> VTORQUE, GFORCE, BUSHING and SPRINGDAMPER. A REQUEST with FUNCTION=USER(...) (a REQSUB)
+!> stays named in the dataset's warning.
 module rollcon_adm_requests
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type, fatal_error, stat_input
@@ -21,9 +25,12 @@ module rollcon_adm_requests
     use rollcon_request_answers, only : answered_request_type, request_element_type, &
         & new_request_answer_watch, element_kind_of, answer_velocity, answer_acceleration, &
         & answer_force, answer_expressions, element_joint, element_jprim, element_motion, &
-        & element_sforce, element_vforce, element_gforce
-    use rollcon_adm_model, only : adm_model_type, force_sforce, force_vforce, &
-        & request_velocity, request_acceleration, request_force, request_expressions
+        & element_sforce, element_vforce, element_gforce, element_vtorque, element_bushing, &
+        & element_springdamper
+    use rollcon_adm_model, only : adm_model_type, force_sforce, force_vforce, force_vtorque, &
+        & force_bushing, force_springdamper, request_velocity, request_acceleration, &
+        & request_force, request_expressions
+    use rollcon_adm_variables, only : substitute_variables, give_splines
     use rollcon_adm_markers, only : adm_marker, marker_index
     use rollcon_adm_expression_parser, only : compile_expression
     implicit none
@@ -73,6 +80,12 @@ contains
                         if (len(given%columns(k)%text) == 0) cycle
                         call compile_expression(given%columns(k)%text, where // " F" &
                             & // to_text(k), request%functions(k), error)
+                        if (allocated(error)) return
+                        call substitute_variables(adm, request%functions(k), where // " F" &
+                            & // to_text(k), error)
+                        if (allocated(error)) return
+                        call give_splines(adm, request%functions(k), where // " F" &
+                            & // to_text(k), error)
                         if (allocated(error)) return
                         call check_inputs(adm, elements, request%functions(k), where // " F" &
                             & // to_text(k), markers, error)
@@ -133,8 +146,9 @@ contains
                 end associate
             end do
         end if
-        ! the dataset's SFORCE, VFORCE and GFORCE statements are the model's first forces of
-        ! a statement, in the order of the file (rollcon_adm_build)
+        ! the dataset's SFORCE, VFORCE, VTORQUE, GFORCE, SPRINGDAMPER and BUSHING statements
+        ! are the model's first forces of a statement, in the order of the file
+        ! (rollcon_adm_build)
         if (.not. allocated(adm%forces) .or. .not. allocated(model%forces)) return
         f = 0
         do k = 1, size(model%forces)
@@ -147,6 +161,12 @@ contains
                     element%kind = element_sforce
                 case (force_vforce)
                     element%kind = element_vforce
+                case (force_vtorque)
+                    element%kind = element_vtorque
+                case (force_bushing)
+                    element%kind = element_bushing
+                case (force_springdamper)
+                    element%kind = element_springdamper
                 case default
                     element%kind = element_gforce
                 end select
@@ -162,8 +182,8 @@ contains
 
     !> Every id an expression of a REQUEST reads exists (module header); the markers it reads
     !> added to `markers` (once each). `where`: "file:line: REQUEST/id Fk". What rollcon has no
-    !> statement for (VARVAL, a curve, BUSHING(...)) the reader took out of the request and
-    !> named in the warning (rollcon_adm_outputs).
+    !> statement for (DIF, BEAM(...)) the reader took out of the request and named in the
+    !> warning (rollcon_adm_outputs).
     subroutine check_inputs(adm, elements, expression, where, markers, error)
         type(adm_model_type), intent(in) :: adm
         type(request_element_type), intent(in) :: elements(:)
@@ -171,6 +191,7 @@ contains
         character(len=*), intent(in) :: where
         type(marker_type), allocatable, intent(inout) :: markers(:)
         type(error_type), allocatable, intent(out) :: error
+        character(len=:), allocatable :: statement
         integer :: n, m, ids(4), kind
 
         do n = 1, size(expression%inputs)
@@ -179,11 +200,13 @@ contains
                 if (quantity_kind(input%quantity) == kind_element_force) then
                     kind = element_kind_of(input%quantity)
                     if (.not. any(elements%kind == kind .and. elements%id == input%marker)) then
+                        statement = trim(quantity_names(input%quantity))
+                        if (kind == element_springdamper) statement = "SPRINGDAMPER"
                         call fatal_error(error, where // ": " // input_text(input) // ": no " &
-                            & // trim(quantity_names(input%quantity)) // "/" &
-                            & // to_text(input%marker) // " whose force rollcon reports in the " &
-                            & // "dataset (a RACKPIN or SCREW joint is a coupling, not " &
-                            & // "reported)", stat_input)
+                            & // statement // "/" // to_text(input%marker) // " whose force " &
+                            & // "rollcon reports in the dataset", stat_input)
+                        if (kind == element_joint) error%message = error%message // " (a " &
+                            & // "RACKPIN or SCREW joint is a coupling, not reported)"
                         return
                     end if
                     ids = [0, 0, 0, input%l]

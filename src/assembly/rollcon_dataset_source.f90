@@ -6,7 +6,8 @@
 !> repeat others set aside there (rollcon_redundancy) named in its report. Its warning names the
 !> statements of ADAMS's outputs and solver choices it read and does not use; its report
 !> gives, before the analysis's, the principal moments and axes of every part whose IP has
-!> products of inertia.
+!> products of inertia. Its notes (in the summary) give those and each REQUEST's COMMENT with
+!> the columns that answer it (request_comments_text).
 module rollcon_dataset_source
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type
@@ -18,7 +19,8 @@ module rollcon_dataset_source
     use rollcon_model_source, only : model_source_type
     use rollcon_initial_conditions, only : analyse_initial_conditions
     use rollcon_ic_report, only : ic_report_type, ic_report_text
-    use rollcon_adm_model, only : adm_model_type
+    use rollcon_adm_model, only : adm_model_type, adm_request_type, request_displacement, &
+        & request_velocity, request_acceleration, request_force, request_expressions
     use rollcon_adm_build, only : build_adm_problem
     use rollcon_adm_initial, only : adm_ic_options
     implicit none
@@ -50,7 +52,7 @@ contains
         source%settings = adm%run%settings
         source%warning = ""
         if (allocated(adm%warning)) source%warning = adm%warning
-        source%notes = principal_axes_text(adm)
+        source%notes = principal_axes_text(adm) // request_comments_text(adm)
         source%own_routines = all_named(adm)
         source%no_ucons = .true.
         if (allocated(adm%ucons)) source%no_ucons = size(adm%ucons) == 0
@@ -122,6 +124,70 @@ contains
             end associate
         end do
     end function principal_axes_text
+
+    !> One line per REQUEST that has a COMMENT (`C=`), in the order of the file: the request,
+    !> its line, the columns that answer it (docs/outputs.md) and the comment as written:
+    !> "REQUEST/2 (line 13; req2_fx ... req2_tz): JOINT FORCE"; a request whose every
+    !> expression is named in the warning, or a REQSUB's, says it has no column. "" when no
+    !> request has a comment.
+    function request_comments_text(adm) result(text)
+        type(adm_model_type), intent(in) :: adm
+        character(len=:), allocatable :: text
+        type(adm_request_type), allocatable :: listed(:)
+        logical, allocatable :: done(:)
+        integer :: n, first
+
+        text = ""
+        allocate(listed(0))
+        if (allocated(adm%requests)) listed = [listed, adm%requests]
+        if (allocated(adm%force_requests)) listed = [listed, adm%force_requests]
+        if (allocated(adm%other_requests)) listed = [listed, adm%other_requests]
+        allocate(done(size(listed)), source=.false.)
+        do n = 1, size(listed)
+            if (allocated(listed(n)%comment)) done(n) = len(listed(n)%comment) == 0
+            if (.not. allocated(listed(n)%comment)) done(n) = .true.
+        end do
+        do while (.not. all(done))
+            first = minloc(listed%line, dim=1, mask=.not. done)
+            done(first) = .true.
+            associate (request => listed(first))
+                text = text // "REQUEST/" // to_text(request%id) // " (line " &
+                    & // to_text(request%line) // "; " // request_columns(request) // "): " &
+                    & // request%comment // new_line("a")
+            end associate
+        end do
+    end function request_comments_text
+
+    !> The columns that answer a request, in words: "req2_fx ... req2_tz", "req3_f2, req3_f4",
+    !> or "no column: see the warning".
+    function request_columns(request) result(text)
+        type(adm_request_type), intent(in) :: request
+        character(len=:), allocatable :: text
+        character(len=:), allocatable :: stem
+        integer :: k
+
+        stem = "req" // to_text(request%id)
+        select case (request%kind)
+        case (request_displacement)
+            text = stem // "_x ... " // stem // "_phi"
+        case (request_velocity)
+            text = stem // "_vx ... " // stem // "_wz"
+        case (request_acceleration)
+            text = stem // "_accx ... " // stem // "_wdtz"
+        case (request_force)
+            text = stem // "_fx ... " // stem // "_tz"
+        case (request_expressions)
+            text = ""
+            do k = 1, size(request%columns)
+                if (len(request%columns(k)%text) == 0) cycle
+                if (len(text) > 0) text = text // ", "
+                text = text // stem // "_f" // to_text(k)
+            end do
+            if (len(text) == 0) text = "no column: see the warning"
+        case default
+            text = "no column: see the warning"
+        end select
+    end function request_columns
 
     !> The model's UCOSUB serves none of the dataset's UCONs (each names its ROUTINE; the
     !> joints' UCONs always have theirs): rollcon_model's served_by_model_ucosub.

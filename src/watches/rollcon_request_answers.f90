@@ -26,10 +26,14 @@
 !>   the opposite of the other part's, its moment carried to the marker);
 !> - SFORCE: translational, f along J to I at I and -f at J (ACTIONONLY: along J's z at I,
 !>   nothing at J); rotational, the torque about J's z at I and its opposite at J; VFORCE,
-!>   GFORCE: f and T in RM's axes at I, and at J the reaction on JFLOAT's part applied at I's
-!>   origin: -f and -T - (r_I - r_J) x f.
+!>   VTORQUE, GFORCE: f and T in RM's axes at I, and at J the reaction on JFLOAT's part
+!>   applied at I's origin: -f and -T - (r_I - r_J) x f;
+!> - SPRINGDAMPER, BUSHING: f and T on I's part at I's origin (rollcon_marker_force's
+!>   marker_force_action, the columns springdamper<id>_..., bushing<id>_...), and at J the
+!>   same reaction, -f and -T - (r_I - r_J) x f.
 !>
-!> `JOINT(id, jflag, comp, rm)` (and JPRIM, MOTION, SFORCE, VFORCE, GFORCE): that element's
+!> `JOINT(id, jflag, comp, rm)` (and JPRIM, MOTION, SFORCE, VFORCE, VTORQUE, GFORCE, BUSHING
+!> (ADAMS's BUSH), SPDP): that element's
 !> force (jflag 0: at I; 1: at J), comp 1 |F|, 2-4 F's x, y, z in rm's axes, 5 |T|, 6-8 T's.
 !> `FX, FY, FZ(i[, j[, k]])`, `FM`, `TX, TY, TZ`, `TM`: the sum over the elements that act at
 !> marker i (as their I or their J) and, when j is given, between i and j, in k's axes.
@@ -53,7 +57,7 @@ module rollcon_request_answers
         & count_turns
     use rollcon_marker_acceleration, only : acceleration_measure
     use rollcon_marker_force, only : marker_force_type, marker_force_values, kind_translation, &
-        & kind_rotation
+        & kind_rotation, kind_spring, marker_force_action
     use rollcon_reactions, only : reaction_site_type, reaction_sites, site_wrench, &
         & swapped_wrench, body_moment
     use rollcon_equations, only : equations_type
@@ -68,17 +72,18 @@ module rollcon_request_answers
     public :: new_request_answer_watch, element_kind_of
     public :: answer_velocity, answer_acceleration, answer_force, answer_expressions
     public :: element_joint, element_jprim, element_motion, element_sforce, element_vforce, &
-        & element_gforce
+        & element_gforce, element_vtorque, element_bushing, element_springdamper
 
     !> What a request asks for
     integer, parameter :: answer_velocity = 1, answer_acceleration = 2, answer_force = 3, &
         & answer_expressions = 4
     !> The elements whose forces the force functions read (quantity_names' JOINT, JPRIM,
-    !> MOTION, SFORCE, VFORCE, GFORCE). A statement rollcon adds later (SPRINGDAMPER, BUSHING)
-    !> becomes a kind here, its wrench at I and at J in element_wrench, and its function's name
-    !> in element_kind_of.
+    !> MOTION, SFORCE, VFORCE, GFORCE, VTORQUE, BUSHING, and SPDP of a SPRINGDAMPER). A
+    !> statement rollcon adds later becomes a kind here, its wrench at I and at J in
+    !> element_wrench, and its function's name in element_kind_of.
     integer, parameter :: element_joint = 1, element_jprim = 2, element_motion = 3, &
-        & element_sforce = 4, element_vforce = 5, element_gforce = 6
+        & element_sforce = 4, element_vforce = 5, element_gforce = 6, element_vtorque = 7, &
+        & element_bushing = 8, element_springdamper = 9
 
     !> Column suffixes of each kind of request
     character(len=*), parameter :: velocity_suffixes(6) = [character(len=5) :: "_vx", "_vy", &
@@ -155,8 +160,8 @@ contains
         watch%force_unit = force_unit
     end function new_request_answer_watch
 
-    !> The element kind of quantity code `quantity` (JOINT ... GFORCE), 0 for an element
-    !> function of a statement rollcon does not have.
+    !> The element kind of quantity code `quantity` (JOINT ... GFORCE, BUSHING, SPDP), 0 for an
+    !> element function of a statement rollcon does not have.
     pure integer function element_kind_of(quantity) result(kind)
         integer, intent(in) :: quantity
 
@@ -172,8 +177,14 @@ contains
             kind = element_sforce
         case (4)
             kind = element_vforce
+        case (5)
+            kind = element_vtorque
         case (6)
             kind = element_gforce
+        case (7)
+            kind = element_bushing
+        case (10)
+            kind = element_springdamper
         end select
     end function element_kind_of
 
@@ -504,7 +515,8 @@ contains
         wrench(4:6) = moment
     end function rows_wrench
 
-    !> An SFORCE's, VFORCE's or GFORCE's force and torque at its I or J (module header).
+    !> An SFORCE's, VFORCE's, VTORQUE's, GFORCE's, SPRINGDAMPER's or BUSHING's force and
+    !> torque at its I or J (module header).
     pure function force_wrench(force, at_j, time, q, u) result(wrench)
         type(marker_force_type), intent(in) :: force
         logical, intent(in) :: at_j
@@ -515,6 +527,19 @@ contains
 
         wrench = 0.0_wp
         if (at_j .and. force%action_only) return
+        if (force%kind == kind_spring) then
+            call marker_force_action(force, time, q, u, f, torque)
+            call marker_motion(force%i, q, u, r_i, v, axes_i, w)
+            call marker_motion(force%j, q, u, r_j, v, axes_j, w)
+            if (at_j) then
+                wrench(1:3) = -f
+                wrench(4:6) = -torque - cross(r_i - r_j, f)
+            else
+                wrench(1:3) = f
+                wrench(4:6) = torque
+            end if
+            return
+        end if
         values = marker_force_values(force, time, q, u)
         call marker_motion(force%i, q, u, r_i, v, axes_i, w)
         call marker_motion(force%j, q, u, r_j, v, axes_j, w)

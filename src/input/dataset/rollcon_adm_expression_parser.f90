@@ -206,6 +206,9 @@ contains
             do i = 1, size(quantity_names)
                 if (trim(quantity_names(i)) == name) k = i
             end do
+            ! ADAMS's own short names of two element functions
+            if (name == "BUSH") k = findloc(quantity_names, "BUSHING", dim=1)
+            if (name == "VTORQ") k = findloc(quantity_names, "VTORQUE", dim=1)
             if (k > 0) then
                 call parse_measure(p, name, k, problem)
                 return

@@ -22,7 +22,7 @@ module rollcon_adm_outputs
     use rollcon_adm_keywords, only : read_reals, argument_key, arg_place, name_index, &
         & argument_text
     use rollcon_expression, only : expression_type, quantity_kind, quantity_names, &
-        & kind_element, kind_element_force, op_akispl, op_cubspl
+        & kind_element, kind_element_force, quantity_varval
     use rollcon_adm_expression_parser, only : compile_expression
     use rollcon_adm_model, only : adm_model_type, adm_request_type, adm_unused_type, &
         & adm_reference_type, refers_to_marker, refers_to_part, refers_to_force, &
@@ -339,19 +339,20 @@ contains
 
     !> Each expression F1 ... F8 of a request compiled (a syntax error refused with `where`
     !> and Fk); one that reads what rollcon has no statement for (an element function of a
-    !> statement other than JOINT, JPRIM, MOTION, SFORCE, VFORCE and GFORCE; VARVAL, DIF, DIF1;
-    !> a curve, AKISPL or CUBSPL) is not answered: its text is cleared and it is named in the
-    !> warning ("REQUEST F1..F8 reading BUSHING"), as is one it cannot read at all (a function
-    !> it lacks, ADAMS's ORIENT; a slip in the text): a REQUEST never stops a run. A statement
-    !> rollcon adds is taken off that list here as it becomes answerable
-    !> (rollcon_request_answers).
+    !> statement other than JOINT, JPRIM, MOTION, SFORCE, VFORCE, VTORQUE, GFORCE, BUSHING and
+    !> SPRINGDAMPER's SPDP; DIF, DIF1) is not answered: its text is cleared and it is named in
+    !> the warning ("REQUEST F1..F8 reading BEAM"), as is one it cannot read at all (a function
+    !> it lacks, ADAMS's ORIENT; a slip in the text): a REQUEST never stops a run. VARVAL,
+    !> AKISPL and CUBSPL are answered: the assembly puts the VARIABLEs and curves in place as
+    !> for the forces' expressions (rollcon_adm_requests). A statement rollcon adds is taken
+    !> off that list here as it becomes answerable (rollcon_request_answers).
     subroutine check_request_columns(where, request, model, error)
         character(len=*), intent(in) :: where
         type(adm_request_type), intent(inout) :: request
         type(adm_model_type), intent(inout) :: model
         type(error_type), allocatable, intent(out) :: error
-        character(len=*), parameter :: answered(6) = [character(len=6) :: "JOINT", "JPRIM", &
-            & "MOTION", "SFORCE", "VFORCE", "GFORCE"]
+        character(len=*), parameter :: answered(9) = [character(len=7) :: "JOINT", "JPRIM", &
+            & "MOTION", "SFORCE", "VFORCE", "VTORQUE", "GFORCE", "BUSHING", "SPDP"]
         type(expression_type) :: expression
         character(len=:), allocatable :: missing
         integer :: k, n
@@ -373,16 +374,14 @@ contains
             missing = ""
             do n = 1, size(expression%inputs)
                 associate (quantity => expression%inputs(n)%quantity)
-                    if (quantity_kind(quantity) == kind_element) &
-                        & missing = trim(quantity_names(quantity))
+                    if (quantity_kind(quantity) == kind_element .and. quantity &
+                        & /= quantity_varval) missing = trim(quantity_names(quantity))
                     if (quantity_kind(quantity) == kind_element_force) then
                         if (.not. any(answered == quantity_names(quantity))) &
                             & missing = trim(quantity_names(quantity))
                     end if
                 end associate
             end do
-            if (any(expression%op == op_akispl)) missing = "AKISPL"
-            if (any(expression%op == op_cubspl)) missing = "CUBSPL"
             if (len(missing) == 0) cycle
             call record_unused(model%unused, model%unused_count, "REQUEST F1..F8 reading " &
                 & // missing, request%line)

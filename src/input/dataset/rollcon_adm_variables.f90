@@ -25,7 +25,8 @@ module rollcon_adm_variables
     implicit none
     private
 
-    public :: resolve_variables, substitute_variables, variable_program, add_plant_warning
+    public :: resolve_variables, substitute_variables, give_splines, variable_program, &
+        & add_plant_warning
 
     !> The state of a VARIABLE while they are put in place
     integer, parameter :: unresolved = 0, resolving = 1, resolved = 2
@@ -160,12 +161,40 @@ contains
         type(id_index_type) :: ids
         integer :: i, previous
 
+        if (.not. allocated(model%variables)) return
         ids = new_id_index(size(model%variables))
         do i = 1, size(model%variables)
             call ids%add(int(model%variables(i)%id, int64), i, previous)
         end do
         call substitute(model, ids, expression, where, error)
     end subroutine substitute_variables
+
+    !> The curves every AKISPL and CUBSPL of `expression` (read at `where`, "file:line:
+    !> REQUEST/3 F2") reads, fitted from the dataset's SPLINEs and given to it as
+    !> resolve_variables gives them to the statements' expressions; refused as there: a SPLINE
+    !> the dataset lacks, CUBSPL of fewer than four points. For the expressions a dataset's
+    !> reader compiles once resolve_variables has run.
+    subroutine give_splines(model, expression, where, error)
+        type(adm_model_type), intent(in) :: model
+        type(expression_type), intent(inout) :: expression
+        character(len=*), intent(in) :: where
+        type(error_type), allocatable, intent(out) :: error
+        type(spline_type), allocatable :: curves(:)
+        integer :: i
+
+        if (.not. allocated(expression%op)) return
+        if (.not. any(expression%op == op_akispl .or. expression%op == op_cubspl)) return
+        allocate(curves(0))
+        if (allocated(model%splines)) then
+            deallocate(curves)
+            allocate(curves(size(model%splines)))
+            do i = 1, size(model%splines)
+                call fit(model, i, curves(i), error)
+                if (allocated(error)) return
+            end do
+        end if
+        call give_curves(model, curves, expression, where, error)
+    end subroutine give_splines
 
     !> The expression VARVAL(id) stands for: VARIABLE/id's FUNCTION, in the dataset's units,
     !> its own VARVALs in place (its VARIABLE is at `v` in model%variables). The one place a

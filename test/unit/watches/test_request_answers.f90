@@ -4,8 +4,10 @@
 !> a pendulum's velocity and acceleration against the closed form, a force request with RM
 !> against the same vector turned, a force request between markers only an SFORCE joins
 !> against the spring's force, F1 ... F8 with FX, JOINT, SFORCE, ACCX ... against the columns
-!> they repeat and Newton's law; a marker's acceleration against the derivative of its
-!> velocity; a force or an acceleration read in a force's FUNCTION refused by statement and line.
+!> they repeat and Newton's law; SPDP, BUSH, VARVAL, AKISPL and CUBSPL against the columns of
+!> the elements and VARIABLE they read and the SPLINE's points, and the requests' COMMENTs in
+!> the summary; a marker's acceleration against the derivative of its velocity; a force or an
+!> acceleration read in a force's FUNCTION refused by statement and line.
 module test_request_answers
     use rollcon_kinds, only : wp
     use rollcon_constants, only : pi
@@ -43,6 +45,7 @@ contains
             & new_unittest("force-with-rm-turned", test_force_rm), &
             & new_unittest("pendulum-expressions", test_pendulum_expressions), &
             & new_unittest("force-between-spring-markers", test_spring), &
+            & new_unittest("elements-variables-curves-comments", test_elements), &
             & new_unittest("marker-acceleration-is-the-derivative", test_marker_acceleration), &
             & new_unittest("motion-force-function", test_motion), &
             & new_unittest("force-functions-refused-in-forces", test_refusals)]
@@ -224,6 +227,93 @@ contains
         end associate
     end subroutine test_spring
 
+    !> test/requests/elements.adm: REQUEST/3 reads SPRINGDAMPER/1 (SPDP), BUSHING/2 (BUSH, and
+    !> BUSHING as rollcon names it), VARIABLE/5 and SPLINE/6. SPDP(1, 0, 2, 0) and BUSH(2, 0, 3,
+    !> 0) are springdamper1_fx and bushing2_fy to the bit (the same force, ground axes);
+    !> SPDP(1, 1, 4, 0), at J, is -springdamper1_fz; BUSHING(2, 1, 8, 0), the torque on J's part
+    !> about J's origin, is -T_z - ((r_I - r_J) x F)_z from bushing2_... and REQUEST/1's r_I -
+    !> r_J; 2*VARVAL(5) is 2*var5; AKISPL and CUBSPL of TIME at the rows on the knots (t = 0,
+    !> 0.5, 1, 1.5, 2) are the SPLINE's Y there. REQUEST/4: VTORQ(4, 0, 8, 0) is VTORQUE/4's TZ,
+    !> -0.05 WZ(20), VTORQ(4, 1, 8, 0) its opposite, VTORQ(4, 0, 1, 0) (a force) zero. No
+    !> request is named in the warning, and the summary gives each COMMENT with its request's
+    !> line and columns.
+    subroutine test_elements(error)
+        type(error_type), allocatable, intent(out) :: error
+        !> The bushing's torque at J from its columns, 2*VARVAL(5) against 2*var5 and the
+        !> VTORQUE's against its expression: rounding
+        !> of terms below 1 N m (measured 0); a wrong sign or arm is off by the arm's moment, up
+        !> to 0.08 N m (checked above 0.01 N m)
+        real(wp), parameter :: tol_rounding = 1.0e-14_wp
+        !> A curve at a knot: the row's time is the knot to rounding (1e-16 s) times slopes
+        !> below 2, and the curve passes through its points (measured 1.4e-16); a curve read at
+        !> the wrong knot or SPLINE is off by 0.1 or more
+        real(wp), parameter :: tol_knot = 1.0e-13_wp
+        real(wp), parameter :: knots(5) = [0.0_wp, 0.5_wp, 1.0_wp, 1.5_wp, 2.0_wp], &
+            & points(5) = [0.0_wp, 0.3_wp, -0.2_wp, 0.4_wp, 0.1_wp]
+        type(job_result_type) :: result
+        type(history_type) :: rows
+        type(job_type) :: job
+        real(wp) :: arm(3), force(3), torque(3), worst, worst_curve, largest, time
+        logical :: same
+        integer :: k, m, on_knots
+
+        call load_job("test/requests/elements.adm", job, error)
+        if (allocated(error)) return
+        job%output_dir = ""
+        job%quiet = .true.
+        call run_job(job, result, error, rows)
+        if (allocated(error)) return
+        call check(error, result%summary%status == status_completed, "elements.adm: status " &
+            & // to_text(result%summary%status))
+        if (allocated(error)) return
+        call check(error, index(job%source%warning, "REQUEST") == 0, "a request named in the " &
+            & // "warning: " // job%source%warning)
+        if (allocated(error)) return
+        worst = 0.0_wp
+        worst_curve = 0.0_wp
+        largest = 0.0_wp
+        same = .true.
+        on_knots = 0
+        associate (layout => rows%layout, r => rows%rows)
+            do k = 1, rows%count
+                arm = r(layout%column("req1_x"):layout%column("req1_z"), k)
+                force = r(layout%column("bushing2_fx"):layout%column("bushing2_fz"), k)
+                torque = r(layout%column("bushing2_tx"):layout%column("bushing2_tz"), k)
+                worst = max(worst, abs(r(layout%column("req3_f5"), k) - (-torque(3) &
+                    & - (arm(1)*force(2) - arm(2)*force(1)))))
+                largest = max(largest, abs(arm(1)*force(2) - arm(2)*force(1)))
+                same = same .and. r(layout%column("req3_f2"), k) &
+                    & == r(layout%column("springdamper1_fx"), k) .and. &
+                    & r(layout%column("req3_f3"), k) == -r(layout%column("springdamper1_fz"), k) &
+                    & .and. r(layout%column("req3_f4"), k) == r(layout%column("bushing2_fy"), k)
+                worst = max(worst, abs(r(layout%column("req3_f6"), k) &
+                    & - 2.0_wp*r(layout%column("var5"), k)), abs(r(layout%column("req4_f2"), k) &
+                    & + 0.05_wp*r(layout%column("req4_f3"), k)), abs(r(layout%column("req4_f4"), &
+                    & k) + r(layout%column("req4_f2"), k)), abs(r(layout%column("req4_f5"), k)))
+                time = r(1, k)
+                do m = 1, size(knots)
+                    if (abs(time - knots(m)) > 1.0e-9_wp) cycle
+                    on_knots = on_knots + 1
+                    worst_curve = max(worst_curve, abs(r(layout%column("req3_f7"), k) &
+                        & - points(m)), abs(r(layout%column("req3_f8"), k) - points(m)))
+                end do
+            end do
+        end associate
+        call check(error, same .and. worst <= tol_rounding .and. worst_curve <= tol_knot .and. &
+            & on_knots == size(knots) .and. largest > 0.01_wp, "REQUEST/3 against the columns " &
+            & // "it repeats: the same numbers " // trim(merge("yes", "no ", same)) &
+            & // ", largest difference " // to_text(worst) // ", the curves off their points " &
+            & // "by " // to_text(worst_curve) // " at " // to_text(on_knots) // " knots, " &
+            & // "the bushing's arm moment up to " // to_text(largest) // " N m")
+        if (allocated(error)) return
+        ! the notes the summary prints after the record and warning (rollcon_run_job)
+        call check(error, index(job%source%model_notes(), "REQUEST/1 (line 22; req1_x ... " &
+            & // "req1_phi): the bushing I from its J") > 0 .and. index(job%source%model_notes(), &
+            & "REQUEST/3 (line 23; req3_f2, req3_f3, req3_f4, req3_f5, req3_f6, req3_f7, " &
+            & // "req3_f8): elements and curves") > 0, "the comments in the summary's notes: " &
+            & // job%source%model_notes())
+    end subroutine test_elements
+
     !> rollcon_marker_acceleration against the derivative of marker_motion's velocity and
     !> angular velocity along a motion of constant accelerations (q = q0 + u0 t + a t^2/2),
     !> by central differences of step h (error h^2/6 times the third derivative: below 1e-8
@@ -309,25 +399,32 @@ contains
 
     !> A force or an acceleration read in a force's FUNCTION is an algebraic loop: refused with
     !> the statement, its line and the function; a REQUEST's element function naming a
-    !> statement the dataset lacks: refused with the REQUEST, its line and Fk; one of a kind
-    !> rollcon has no statement for (BUSHING), or one it cannot read (ORIENT): that column named
-    !> in the warning, not answered.
+    !> statement the dataset lacks (JOINT/7, BUSHING/7), or a VARVAL of a VARIABLE or an AKISPL
+    !> of a SPLINE it lacks: refused with the REQUEST, its line and Fk; one of a kind rollcon has
+    !> no statement for (BEAM), or one it cannot read (ORIENT): that column named in the
+    !> warning, not answered.
     subroutine test_refusals(error)
         type(error_type), allocatable, intent(out) :: error
         character(len=*), parameter :: head = "refused" // nl // "UNITS/SYSTEM=SI" // nl &
             & // "PART/1, GROUND" // nl // "MARKER/11, PART=1, QP=0, 0, 1" // nl &
             & // "PART/2, MASS=1, CM=20, IP=0.01, 0.01, 0.01" // nl // "MARKER/20, PART=2" // nl
         character(len=*), parameter :: tail = nl // "SIMULATE/DYNAMIC, END=1, STEPS=10"
-        character(len=*), parameter :: statements(4) = [character(len=80) :: &
+        character(len=*), parameter :: statements(7) = [character(len=80) :: &
             & "SFORCE/1, TRANSLATIONAL, I=20, J=11, FUNCTION=-FX(20)", &
             & "SFORCE/1, TRANSLATIONAL, I=20, J=11, FUNCTION=ACCZ(20, 11)", &
             & "VFORCE/2, I=20, JFLOAT=11, RM=11, FX=JOINT(1, 0, 2, 0), FY=0, FZ=0", &
-            & "REQUEST/3, F2=DX(20)\F3=JOINT(7, 0, 2, 0)"]
-        character(len=*), parameter :: expected(4) = [character(len=120) :: &
+            & "REQUEST/3, F2=DX(20)\F3=JOINT(7, 0, 2, 0)", &
+            & "REQUEST/3, F2=DX(20)\F3=BUSH(7, 0, 2, 0)", &
+            & "REQUEST/3, F2=DX(20)\F3=VARVAL(9)", &
+            & "REQUEST/3, F2=DX(20)\F3=AKISPL(TIME, 0, 9)"]
+        character(len=*), parameter :: expected(7) = [character(len=120) :: &
             & "refused.adm:7: SFORCE/1 FUNCTION: FX(20): a force, which rollcon solves for", &
             & "refused.adm:7: SFORCE/1 FUNCTION: ACCZ(20, 11): an acceleration", &
             & "refused.adm:7: VFORCE/2 FX: JOINT(1, 0, 2, 0): a force", &
-            & "refused.adm:7: REQUEST/3 F3: JOINT(7, 0, 2, 0): no JOINT/7"]
+            & "refused.adm:7: REQUEST/3 F3: JOINT(7, 0, 2, 0): no JOINT/7", &
+            & "refused.adm:7: REQUEST/3 F3: BUSHING(7, 0, 2, 0): no BUSHING/7", &
+            & "refused.adm:7: REQUEST/3 F3: VARVAL(9): no VARIABLE/9", &
+            & "refused.adm:7: REQUEST/3 F3: AKISPL reads SPLINE/9, which the dataset lacks"]
         type(job_type) :: job
         type(job_result_type) :: result
         type(error_type), allocatable :: failure
@@ -350,7 +447,7 @@ contains
         end do
         ! what rollcon has no statement for is not a refusal: that column is named in the
         ! warning, the others answered
-        call write_text("warned.adm", head // "REQUEST/3, F2=DX(20)\F3=BUSHING(7, 0, 2, 0)" &
+        call write_text("warned.adm", head // "REQUEST/3, F2=DX(20)\F3=BEAM(7, 0, 2, 0)" &
             & // tail)
         call load_job(work_dir // "/warned.adm", job, failure)
         if (.not. allocated(failure)) then
@@ -358,9 +455,9 @@ contains
             job%quiet = .true.
             call run_job(job, result, failure)
         end if
-        call check(error, .not. allocated(failure), "REQUEST/3 reading BUSHING refused")
+        call check(error, .not. allocated(failure), "REQUEST/3 reading BEAM refused")
         if (allocated(error)) return
-        call check(error, index(job%source%warning, "REQUEST F1..F8 reading BUSHING (line 7)") &
+        call check(error, index(job%source%warning, "REQUEST F1..F8 reading BEAM (line 7)") &
             & > 0 .and. result%summary%layout%column("req3_f2") > 0 .and. &
             & result%summary%layout%column("req3_f3") == 0, "the warning: " &
             & // job%source%warning)
