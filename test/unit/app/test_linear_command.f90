@@ -3,8 +3,8 @@
 !> eigenvalue CSV read back equals the library's linearisation of the same dataset, with its
 !> record, header and table; a scene and a missing argument are refused with the reason and
 !> write nothing; a user's file of routines (a UCOSUB, force routines) gives the eigenvalues of
-!> the built-in routine or of the expressions it stands for, and its faults are named as in a
-!> run; --help gives the usage.
+!> the built-in routine or of the expressions it stands for, and its faults and wrong partials
+!> are named as in a run; --help gives the usage.
 module test_linear_command
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type
@@ -43,6 +43,7 @@ contains
             & new_unittest("user-ucosub-speeds", test_user_speeds), &
             & new_unittest("user-force-routines-same-eigenvalues", test_user_forces), &
             & new_unittest("user-routine-fault-named", test_user_fault), &
+            & new_unittest("user-wrong-partial-stopped", test_wrong_partial), &
             & new_unittest("help", test_help)]
     end subroutine collect_linear_command
 
@@ -445,5 +446,39 @@ contains
             & "exit status " // to_text(status) // ", stderr: " // err)
         call remove_folder(scratch)
     end subroutine test_user_fault
+
+    !> test/turntable/turntable_half_coriolis.f (two partials halved) is checked at the
+    !> consistent start, as a run's routine is: exit status 1 before any linearisation, both
+    !> entries named with the values returned and differenced, the full check's command and
+    !> --no-check; the right routine, test/turntable/turntable.f, passes and writes its CSV.
+    subroutine test_wrong_partial(error)
+        type(error_type), allocatable, intent(out) :: error
+        character(len=:), allocatable :: program, err
+        integer :: status, status_right
+
+        call rollcon_program(program, error)
+        if (allocated(error)) return
+        call remove_folder(scratch)
+        call make_folder(scratch)
+        call run_rollcon(program, "linear test/turntable/turntable.adm --ucosub " &
+            & // "test/turntable/turntable_half_coriolis.f -q -o " // scratch // "/wrong", &
+            & scratch // "/wrong.out", scratch // "/wrong.err", status)
+        call run_rollcon(program, "linear test/turntable/turntable.adm --ucosub " &
+            & // "test/turntable/turntable.f -q -o " // scratch // "/right", &
+            & scratch // "/right.out", scratch // "/right.err", status_right)
+        err = file_text(scratch // "/wrong.err")
+        call check(error, status == 1 .and. index(err, "UCON/1 ARRAY(2) = dF/d(Y_2) " &
+            & // "[derivative]: returned 1.75, differences give 3.5") > 0 .and. index(err, &
+            & "UCON/2 ARRAY(1) = dF/d(X_2) [derivative]: returned -1.75, differences give " &
+            & // "-3.5") > 0 .and. index(err, "rollcon check test/turntable/turntable_half_" &
+            & // "coriolis.f --model test/turntable/turntable.adm") > 0 .and. index(err, &
+            & "--no-check") > 0 .and. .not. file_exists(scratch // "/wrong/turntable.eigen.csv"), &
+            & "exit status " // to_text(status) // ", stderr: " // err)
+        if (allocated(error)) return
+        call check(error, status_right == 0 .and. file_exists(scratch &
+            & // "/right/turntable.eigen.csv"), "the right routine: exit status " &
+            & // to_text(status_right) // ", stderr: " // file_text(scratch // "/right.err"))
+        call remove_folder(scratch)
+    end subroutine test_wrong_partial
 
 end module test_linear_command
