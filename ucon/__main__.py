@@ -28,13 +28,17 @@ def _selected(names: list[str]) -> list[ConstraintSpec]:
     return [load_spec_file(name) if is_spec_file(name) else load_spec(name) for name in names]
 
 
-def _bound(args: argparse.Namespace) -> SimplifyBound:
-    """The time bound on simplification the command line asks for, its progress on stderr."""
+def _bound(args: argparse.Namespace, spec_file: bool) -> SimplifyBound:
+    """The time bound on simplification the command line asks for, its progress on stderr.
+    Without --simplify-seconds: DEFAULT_SIMPLIFY_SECONDS for a spec file, none for the
+    catalog's specs, whose committed files must not depend on the machine's speed."""
     seconds = args.simplify_seconds
     if seconds is not None and not seconds > 0:
         raise ValueError(f"--simplify-seconds must be a positive number of seconds, got "
                          f"{seconds:g}")
-    return SimplifyBound(seconds=DEFAULT_SIMPLIFY_SECONDS if seconds is None else seconds,
+    if seconds is None and spec_file:
+        seconds = DEFAULT_SIMPLIFY_SECONDS
+    return SimplifyBound(seconds=seconds,
                          progress=lambda line: print(line, file=sys.stderr, flush=True))
 
 
@@ -91,15 +95,14 @@ def _orphans(root: Path, expected: set[str]) -> list[str]:
 def command_write(args: argparse.Namespace) -> int:
     """Write every generated file under ``--out`` (default: the project root); a spec file's
     two files into ``--out`` itself (default: this folder)."""
-    bound = _bound(args)
     root = Path(args.out) if args.out else PROJECT_ROOT
     catalog = [name for name in args.specs if not is_spec_file(name)]
     for name in args.specs:
         if is_spec_file(name):
-            _write_spec_file(name, args, bound)
+            _write_spec_file(name, args, _bound(args, spec_file=True))
     if args.specs and not catalog:
         return 0
-    files = _files(catalog, bound)
+    files = _files(catalog, _bound(args, spec_file=False))
     for relative, text in files.items():
         _write_file(root / relative, relative, text)
     if not args.specs:
@@ -116,7 +119,7 @@ def command_check(args: argparse.Namespace) -> int:
             raise ValueError(f"{name}: check compares the catalog's generated files with the "
                              "specs of ucon/specs/; a spec file's two files are written by "
                              f"python -m ucon write {name} --out DIR")
-    files = _files(args.specs, _bound(args))
+    files = _files(args.specs, _bound(args, spec_file=False))
     differences = 0
     for relative, text in files.items():
         path = root / relative
@@ -144,7 +147,8 @@ def command_check(args: argparse.Namespace) -> int:
 def command_table(args: argparse.Namespace) -> int:
     """Print the table of non-zero entries of one spec, or of every spec."""
     specs = _selected([args.spec] if args.spec else [])
-    bound = _bound(args)
+    spec_file = bool(args.spec) and is_spec_file(args.spec)
+    bound = _bound(args, spec_file)
     print("\n".join(table(derive(spec, bound)) for spec in specs), end="")
     return 0
 
@@ -154,9 +158,10 @@ def _bound_option(command: argparse.ArgumentParser) -> None:
     command.add_argument(
         "--simplify-seconds", type=float, metavar="S",
         help="bound on the wall time SymPy's simplify may take over one spec, in seconds "
-        f"(default {DEFAULT_SIMPLIFY_SECONDS:g}); the expressions it did not reach are "
-        "kept as differentiated: exact, longer. Progress goes to stderr every "
-        "5 s")
+        f"(default: {DEFAULT_SIMPLIFY_SECONDS:g} for a spec file; none for the specs of "
+        "ucon/specs/, whose files must not depend on the machine's speed); the expressions "
+        "it did not reach are kept as differentiated: exact, longer. Progress goes to "
+        "stderr every 5 s")
 
 
 def parser() -> argparse.ArgumentParser:

@@ -27,9 +27,9 @@ from .spec import TIME, ConstraintSpec, validate
 __all__ = ["OUTPUTS", "TIME_OUTPUTS", "Entry", "Derivatives", "SimplifyBound", "derive",
            "table", "DEFAULT_SIMPLIFY_SECONDS"]
 
-#: The default bound on one spec's simplification [s]: the catalog's slowest spec takes well
-#: under it, a spec that would take many minutes is written after it, its remaining entries as
-#: differentiated.
+#: The command line's bound on the simplification of a spec file [s] (``python -m ucon write
+#: PATH/spec.py``): the catalog's slowest spec, turntable_disk, takes 6 s of CPU; a spec
+#: that would take many minutes is written after it, its remaining entries as differentiated.
 DEFAULT_SIMPLIFY_SECONDS = 120.0
 #: Least wall time between two progress lines [s].
 PROGRESS_SECONDS = 5.0
@@ -126,7 +126,7 @@ class SimplifyBound:
     """A wall-clock bound on the simplification of one spec, and its progress.
 
     Attributes:
-        seconds: the bound [s]; None for none.
+        seconds: the bound [s]; None (the default) for none.
         progress: called with a line of progress (every :data:`PROGRESS_SECONDS`, also in the
             middle of one long simplification, and when the bound runs out); None for silence.
         simplified: expressions simplified so far; ``kept``: expressions kept as
@@ -134,7 +134,7 @@ class SimplifyBound:
         ran_out: the bound ran out.
     """
 
-    seconds: float | None = DEFAULT_SIMPLIFY_SECONDS
+    seconds: float | None = None
     progress: Callable[[str], None] | None = None
     simplified: int = 0
     kept: int = 0
@@ -232,8 +232,8 @@ def time_part(expression: sympy.Expr, variables: set[sympy.Symbol]) -> sympy.Exp
 def derive(spec: ConstraintSpec, bound: SimplifyBound | None = None) -> Derivatives:
     """Validate ``spec`` and derive the non-zero entries of every output of every component.
 
-    ``bound``: the time bound on simplification and its progress (default: a silent
-    :data:`DEFAULT_SIMPLIFY_SECONDS`); an entry the bound leaves is kept as differentiated.
+    ``bound``: the time bound on simplification and its progress (default: none, silent); an
+    entry the bound leaves is kept as differentiated.
 
     Raises:
         ValueError: when the spec is invalid (see :func:`ucon.spec.validate`).
