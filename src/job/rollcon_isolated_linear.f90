@@ -4,16 +4,15 @@
 !> files into the cache; a child process loads them, builds the model with every call guarded
 !> and timed, makes the start consistent, checks the routine there when the job asks, and
 !> linearises (rollcon_linearisation) or tabulates the eigenvalues against speed
-!> (rollcon_linear_speeds) with the routine's own partials, as the run's Newton matrices use them. The child sends the
-!> report of the start and the result on its pipe (rollcon_frames); every field read back is
-!> the one computed. A routine that crashes, overruns a call or stops ends the child, and the
-!> message names the call, as a run's does.
+!> (rollcon_linear_speeds) with the routine's own partials, as a run's Newton matrices use
+!> them. The child sends the report of the start and the result on its pipe (rollcon_frames);
+!> every field read back is the one computed. A routine that crashes, overruns a call or stops
+!> ends the child, and the message names the call, as a run's does.
 module rollcon_isolated_linear
     use, intrinsic :: iso_c_binding, only : c_double
     use, intrinsic :: iso_fortran_env, only : int64
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type, fatal_error, stat_ucon
-    use rollcon_text, only : to_text
     use rollcon_wire, only : wire_writer_type, wire_reader_type
     use rollcon_problem, only : problem_type
     use rollcon_simulation, only : run_summary_type
