@@ -53,9 +53,9 @@ module rollcon_cli
         & option_spec_type("--end", "", "T", .false., " run "), &
         & option_spec_type("--steps", "", "N", .false., " run "), &
         & option_spec_type("--dtout", "", "DT", .false., " run "), &
-        & option_spec_type("--ucosub", "", "FILE|NAME", .true., " run linear "), &
-        & option_spec_type("--no-check", "", "", .false., " run "), &
-        & option_spec_type("--call-timeout", "", "SECONDS", .false., " run check "), &
+        & option_spec_type("--ucosub", "", "FILE|NAME", .true., " run linear sweep "), &
+        & option_spec_type("--no-check", "", "", .false., " run linear sweep "), &
+        & option_spec_type("--call-timeout", "", "SECONDS", .false., " run check linear sweep "), &
         & option_spec_type("--radius", "", "R", .false., " table "), &
         & option_spec_type("--state", "", "LIST", .false., " table "), &
         & option_spec_type("--ucon", "", "ID:PAR,...", .true., " check "), &

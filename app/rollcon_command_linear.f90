@@ -5,10 +5,12 @@
 module rollcon_command_linear
     use, intrinsic :: iso_fortran_env, only : output_unit, error_unit
     use rollcon, only : error_type, fatal_error, stat_input, job_type, load_job, is_dataset, &
+        & add_user_file, &
         & linear_result_type, linearise_job, write_eigen_csv, linear_table_text, wp, &
         & speed_table_type, stability_change_type, linear_speeds_job, write_speed_csv, &
         & draw_eigen_speed_figure, to_text
-    use rollcon_program, only : command_line_text, fixed_text
+    use rollcon_program, only : command_line_text, fixed_text, check_at_start
+    use rollcon_command_run, only : call_timeout_of
     use rollcon_cli, only : cli_request_type
     implicit none
     private
@@ -24,6 +26,7 @@ contains
         type(job_type) :: job
         type(linear_result_type) :: result
         character(len=:), allocatable :: path, report, written
+        integer :: k
 
         path = request%positional
         if (len(path) == 0) then
@@ -36,14 +39,18 @@ contains
                 & // "dataset, a file named MODEL.adm (docs/datasets.md)", stat_input)
             return
         end if
-        if (request%count("--ucosub") > 1) then
-            call fatal_error(error, "linear: --ucosub is given " &
-                & // trim(to_text(request%count("--ucosub"))) // " times; the linear analysis " &
-                & // "takes one built-in routine", stat_input)
-            return
-        end if
-        call load_job(path, job, error, ucosub=request%text("--ucosub", ""))
+        call load_job(path, job, error, ucosub=request%nth("--ucosub", 1))
         if (allocated(error)) return
+        ! more files of user routines, run with the first in its child process, as a run's
+        do k = 2, request%count("--ucosub")
+            call add_user_file(job, request%nth("--ucosub", k), error)
+            if (allocated(error)) return
+        end do
+        job%quiet = request%has("--quiet")
+        call call_timeout_of(request, job%call_timeout, error)
+        if (allocated(error)) return
+        ! a user's UCOSUB is checked at the consistent start, before the linearisation
+        if (.not. request%has("--no-check")) job%start_check => check_at_start
         if (len(job%source%input_warning()) > 0) write(error_unit, '(a)') "rollcon: warning: " &
             & // job%source%input_warning()
         job%output_dir = request%text("--output", "output")
@@ -127,8 +134,9 @@ contains
 
     subroutine print_linear_help()
         write(output_unit, '(a)') &
-            & "usage: rollcon linear MODEL.adm [--output DIR] [--ucosub NAME] [--quiet]", &
-            & "                      [--speeds FROM,TO,COUNT]", &
+            & "usage: rollcon linear MODEL.adm [--output DIR] [--ucosub FILE|NAME]... [--quiet]", &
+            & "                      [--speeds FROM,TO,COUNT] [--no-check]", &
+            & "                      [--call-timeout SECONDS]", &
             & "", &
             & "Linear analysis (as ADAMS's LINEAR/EIGENSOL): the dataset's model, its start made", &
             & "consistent by the initial-conditions analysis (a steady motion such as straight", &
@@ -140,9 +148,18 @@ contains
             & "file name without .adm; DIR defaults to ./output): # lines with the record, then", &
             & "the columns real,imag [1/s], one row per eigenvalue. See docs/linear.md.", &
             & "  --output DIR   folder of the CSV (made when missing)", &
-            & "  --ucosub NAME  serve the UCONs that name no ROUTINE with a built-in routine", &
-            & "                 (disk, rolling_disk, ...); a file of your own is refused: it", &
-            & "                 runs only in a child process, which linear does not use", &
+            & "  --ucosub FILE|NAME", &
+            & "                 the model's user routines, as rollcon run takes them: a file", &
+            & "                 of your own (.f, .f90, .o; given again for more files, named by", &
+            & "                 ROUTINE=FILE::NAME) serves the UCONs that name no ROUTINE and", &
+            & "                 the statements with FUNCTION=USER(...); it is compiled, cached", &
+            & "                 and run in a child process with the time limit per call, and", &
+            & "                 its own partials are the linearisation's. NAME: a built-in", &
+            & "                 routine (disk, rolling_disk, ...) when no file NAME exists", &
+            & "  --no-check     do not compare your UCOSUB's partials with differences at the", &
+            & "                 consistent start before linearising (rollcon run --help)", &
+            & "  --call-timeout SECONDS", &
+            & "                 the longest one call of your routine may take (default 10)", &
             & "  --quiet        do not print what the initial-conditions analysis moved", &
             & "  --speeds FROM,TO,COUNT", &
             & "                 eigenvalues against speed: every velocity of the start scaled", &

@@ -7,7 +7,9 @@ module rollcon_command_sweep
     use mpi_f08, only : MPI_Init, MPI_Finalize, MPI_Bcast, MPI_INTEGER, MPI_COMM_WORLD
     use rollcon, only : wp, error_type, fatal_error, stat_input, to_text, study_type, &
         & read_study, study_plan_type, study_progress_type, plan_cases, plan_study, case_count, &
-        & draw_study_map, file_lock_type, lock_study_csv
+        & draw_study_map, file_lock_type, lock_study_csv, prepare_study_routines, user_file_type
+    use rollcon_program, only : check_at_start, default_call_timeout
+    use rollcon_command_run, only : call_timeout_of
     use rollcon_cli, only : cli_request_type
     use rollcon_app_files, only : make_folder
     use rollcon_sweep_mpi, only : sweep_ranks, rank_of_world, size_of_world
@@ -32,7 +34,7 @@ contains
         type(study_progress_type) :: progress
         type(file_lock_type) :: lock
         logical :: quiet, map
-        integer :: go, rank
+        integer :: go, rank, k
 
         status = 0
         if (request%has("--help")) then
@@ -55,10 +57,22 @@ contains
         rank = rank_of_world()
         call read_study(study_path, study, error)
         if (.not. allocated(error)) then
+            ! every case's routines, as rollcon run takes them
+            allocate(study%routines(request%count("--ucosub")))
+            do k = 1, size(study%routines)
+                study%routines(k)%path = request%nth("--ucosub", k)
+            end do
+            study%call_timeout = real(default_call_timeout, wp)
+            call call_timeout_of(request, study%call_timeout, error)
+            if (.not. request%has("--no-check")) study%start_check => check_at_start
+        end if
+        if (.not. allocated(error)) then
             csv_path = output_dir // "/" // study%name // ".csv"
             if (rank == 0) then
                 ! one sweep at a time into a CSV: held until this process ends
                 call lock_study_csv(csv_path, lock, error)
+                ! a user's files compiled once, before any case: the cache serves every rank
+                if (.not. allocated(error)) call prepare_study_routines(study, error)
                 if (.not. allocated(error)) call plan_study(study, csv_path, plan, error)
             else
                 call plan_cases(study, plan)

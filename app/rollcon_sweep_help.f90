@@ -14,6 +14,7 @@ contains
     subroutine print_sweep_help()
         write(output_unit, "(a)") &
             & "usage: rollcon sweep STUDY.nml [--output DIR] [--quiet] [--no-map]", &
+            & "                     [--ucosub FILE|NAME]... [--no-check] [--call-timeout S]", &
             & "       mpirun --oversubscribe -np N rollcon sweep STUDY.nml [...]", &
             & "", &
             & "Run a parameter study (docs/studies.md): the study file names a base scene (or", &
@@ -21,6 +22,12 @@ contains
             & "'from to' samples; group%key of a scene, statement%id%keyword of a dataset), the", &
             & "rules that class each case (&classify) and the map's axes (&map). Every case", &
             & "is the ordinary simulation of its scene.", &
+            & "", &
+            & "--ucosub FILE|NAME gives every case the routines rollcon run --ucosub does: a", &
+            & "file of your own (given again for more files) compiled once into the cache", &
+            & "before the first case and run apart in every case, with the check of its", &
+            & "UCOSUB's partials at each case's start (--no-check: none) and the time limit", &
+            & "per call (--call-timeout, default 10 s); or a built-in routine by name.", &
             & "", &
             & "Writes DIR/STUDY.csv (DIR defaults to ./output): one row per case, written and", &
             & "flushed as the case ends, with its parameters, outcome (completed, theta_limit,", &

@@ -82,7 +82,7 @@ module rollcon
 
     ! the one route: a job (any input, or a model built in code), loaded and run
     use rollcon_built_model, only : built_model_source_type, new_model_source
-    use rollcon_job, only : job_type, new_job
+    use rollcon_job, only : job_type, new_job, user_file_type
     use rollcon_load, only : load_job, add_user_file, input_override_type, is_dataset, &
         & output_name, is_command_file, run_times_type, outputs_name_of
     use rollcon_run_job, only : run_job, job_result_type
@@ -115,7 +115,7 @@ module rollcon
     use rollcon_study_parameters, only : case_count
     use rollcon_study_measures, only : case_result_type, outcome_failed, outcome_refused
     use rollcon_study_run, only : study_plan_type, study_progress_type, plan_cases, plan_study, &
-        & run_case, append_row, run_study, row_file_type, lock_study_csv
+        & run_case, append_row, run_study, row_file_type, lock_study_csv, prepare_study_routines
     use rollcon_file_lock, only : file_lock_type
 
     ! pictures (docs/pictures.md)

@@ -3,13 +3,17 @@
 from __future__ import annotations
 
 import argparse
+import dataclasses
 import difflib
+import shlex
 import sys
 from pathlib import Path
 
-from . import generate_all, load_spec, load_specs, spec_names
+from . import (generate, generate_all, is_spec_file, load_spec, load_spec_file, load_specs,
+               spec_names)
 from .catalog_writer import catalog_files
-from .derive import derive, table
+from .derive import DEFAULT_SIMPLIFY_SECONDS, SimplifyBound, derive, table
+from .fortran import legacy_path, module_path
 from .reduced import reduced_files
 from .spec import ConstraintSpec
 
@@ -18,19 +22,67 @@ PROJECT_ROOT = Path(__file__).resolve().parent.parent
 
 
 def _selected(names: list[str]) -> list[ConstraintSpec]:
-    """The specs named on the command line, or every spec."""
-    return [load_spec(name) for name in names] if names else load_specs()
+    """The specs named on the command line (catalog names or spec files), or every spec."""
+    if not names:
+        return load_specs()
+    return [load_spec_file(name) if is_spec_file(name) else load_spec(name) for name in names]
 
 
-def _files(names: list[str]) -> dict[str, str]:
-    """The files of the specs named (each spec's two files), or, with no name, of every spec
-    plus the catalog of all of them and the benchmark's reduced disk and bicycle
+def _bound(args: argparse.Namespace, spec_file: bool) -> SimplifyBound:
+    """The time bound on simplification the command line asks for, its progress on stderr.
+    Without --simplify-seconds: DEFAULT_SIMPLIFY_SECONDS for a spec file, none for the
+    catalog's specs, whose committed files must not depend on the machine's speed."""
+    seconds = args.simplify_seconds
+    if seconds is not None and not seconds > 0:
+        raise ValueError(f"--simplify-seconds must be a positive number of seconds, got "
+                         f"{seconds:g}")
+    if seconds is None and spec_file:
+        seconds = DEFAULT_SIMPLIFY_SECONDS
+    return SimplifyBound(seconds=seconds,
+                         progress=lambda line: print(line, file=sys.stderr, flush=True))
+
+
+def _files(names: list[str], bound: SimplifyBound) -> dict[str, str]:
+    """The files of the catalog specs named (each spec's two files), or, with no name, of
+    every spec plus the catalog of all of them and the benchmark's reduced disk and bicycle
     (ucon/reduced/)."""
-    files = generate_all(_selected(names))
+    files = generate_all(_selected(names), bound)
     if not names:
         files.update(catalog_files(load_specs()))
         files.update(reduced_files())
     return files
+
+
+def spec_file_outputs(spec: ConstraintSpec) -> dict[str, str]:
+    """Where the files of a spec file go in ``--out DIR``, by their catalog path: side by side,
+    ``<name>_ucosub.f`` (for ``rollcon run --ucosub``, ``rollcon check`` and ADAMS) and the
+    free-form module ``rollcon_gen_<name>.f90``."""
+    return {legacy_path(spec): f"{spec.name}_ucosub.f",
+            module_path(spec): f"rollcon_gen_{spec.name}.f90"}
+
+
+def _write_file(path: Path, shown: str, text: str) -> None:
+    """Write text at path unless it holds that text already; say which."""
+    if path.is_file() and path.read_text(encoding="utf-8") == text:
+        print(f"unchanged {shown}")
+        return
+    path.parent.mkdir(parents=True, exist_ok=True)
+    with open(path, "w", encoding="utf-8", newline="\n") as stream:
+        stream.write(text)
+    print(f"wrote {shown}")
+
+
+def _write_spec_file(name: str, args: argparse.Namespace, bound: SimplifyBound) -> None:
+    """Write the two files of the spec file ``name`` into ``--out`` (default: this folder)."""
+    out = args.out or "."
+    command = f"python -m ucon write {shlex.quote(name)} --out {shlex.quote(out)}"
+    if args.simplify_seconds is not None:
+        command += f" --simplify-seconds {args.simplify_seconds:g}"
+    spec = dataclasses.replace(load_spec_file(name), command=command)
+    names = spec_file_outputs(spec)
+    for relative, text in generate(spec, bound).items():
+        target = Path(out) / names[relative]
+        _write_file(target, str(target), text)
 
 
 def _orphans(root: Path, expected: set[str]) -> list[str]:
@@ -41,18 +93,18 @@ def _orphans(root: Path, expected: set[str]) -> list[str]:
 
 
 def command_write(args: argparse.Namespace) -> int:
-    """Write every generated file under ``--out`` (default: the project root)."""
+    """Write every generated file under ``--out`` (default: the project root); a spec file's
+    two files into ``--out`` itself (default: this folder)."""
     root = Path(args.out) if args.out else PROJECT_ROOT
-    files = _files(args.specs)
+    catalog = [name for name in args.specs if not is_spec_file(name)]
+    for name in args.specs:
+        if is_spec_file(name):
+            _write_spec_file(name, args, _bound(args, spec_file=True))
+    if args.specs and not catalog:
+        return 0
+    files = _files(catalog, _bound(args, spec_file=False))
     for relative, text in files.items():
-        path = root / relative
-        if path.is_file() and path.read_text(encoding="utf-8") == text:
-            print(f"unchanged {relative}")
-            continue
-        path.parent.mkdir(parents=True, exist_ok=True)
-        with open(path, "w", encoding="utf-8", newline="\n") as stream:
-            stream.write(text)
-        print(f"wrote {relative}")
+        _write_file(root / relative, relative, text)
     if not args.specs:
         for orphan in _orphans(root, set(files)):
             print(f"ucon: warning: {orphan} is generated by no spec; delete it", file=sys.stderr)
@@ -62,7 +114,12 @@ def command_write(args: argparse.Namespace) -> int:
 def command_check(args: argparse.Namespace) -> int:
     """Regenerate in memory and compare with the files under ``--root``; 1 on any difference."""
     root = Path(args.root) if args.root else PROJECT_ROOT
-    files = _files(args.specs)
+    for name in args.specs:
+        if is_spec_file(name):
+            raise ValueError(f"{name}: check compares the catalog's generated files with the "
+                             "specs of ucon/specs/; a spec file's two files are written by "
+                             f"python -m ucon write {name} --out DIR")
+    files = _files(args.specs, _bound(args, spec_file=False))
     differences = 0
     for relative, text in files.items():
         path = root / relative
@@ -90,8 +147,21 @@ def command_check(args: argparse.Namespace) -> int:
 def command_table(args: argparse.Namespace) -> int:
     """Print the table of non-zero entries of one spec, or of every spec."""
     specs = _selected([args.spec] if args.spec else [])
-    print("\n".join(table(derive(spec)) for spec in specs), end="")
+    spec_file = bool(args.spec) and is_spec_file(args.spec)
+    bound = _bound(args, spec_file)
+    print("\n".join(table(derive(spec, bound)) for spec in specs), end="")
     return 0
+
+
+def _bound_option(command: argparse.ArgumentParser) -> None:
+    """The --simplify-seconds option of a command that derives."""
+    command.add_argument(
+        "--simplify-seconds", type=float, metavar="S",
+        help="bound on the wall time SymPy's simplify may take over one spec, in seconds "
+        f"(default: {DEFAULT_SIMPLIFY_SECONDS:g} for a spec file; none for the specs of "
+        "ucon/specs/, whose files must not depend on the machine's speed); the expressions "
+        "it did not reach are kept as differentiated: exact, longer. Progress goes to "
+        "stderr every 5 s")
 
 
 def parser() -> argparse.ArgumentParser:
@@ -104,12 +174,19 @@ def parser() -> argparse.ArgumentParser:
         "src/ucosubs/generated/rollcon_gen_catalog.f90.")
     commands = main.add_subparsers(dest="command", required=True, metavar="COMMAND")
     write = commands.add_parser(
-        "write", help="regenerate every generated file",
+        "write", help="regenerate every generated file, or write a spec file's",
         description="Regenerate the files of every spec and the catalog (or only the files "
-        "of the SPECs given). Files whose text is unchanged are left alone.")
-    write.add_argument("specs", nargs="*", metavar="SPEC", help="spec name (default: all)")
+        "of the SPECs given). A SPEC that is a file, PATH/spec.py (anywhere; it imports "
+        "ucon.spec), writes its two files into --out DIR (default: this folder): "
+        "NAME_ucosub.f and rollcon_gen_NAME.f90, NAME its SPEC's name. Files whose text "
+        "is unchanged are left alone.")
+    write.add_argument("specs", nargs="*", metavar="SPEC",
+                       help="spec name of ucon/specs/, or a spec file PATH/spec.py "
+                       "(default: every spec of ucon/specs/)")
     write.add_argument("--out", metavar="DIR",
-                       help="write under DIR instead of the project root")
+                       help="write under DIR instead of the project root (a spec file's "
+                       "files: into DIR, default this folder)")
+    _bound_option(write)
     write.set_defaults(run=command_write)
     check = commands.add_parser(
         "check", help="compare the generated files with a regeneration",
@@ -119,13 +196,16 @@ def parser() -> argparse.ArgumentParser:
     check.add_argument("specs", nargs="*", metavar="SPEC", help="spec name (default: all)")
     check.add_argument("--root", metavar="DIR",
                        help="compare with the files under DIR instead of the project root")
+    _bound_option(check)
     check.set_defaults(run=command_check)
     show = commands.add_parser(
         "table", help="print the table of non-zero entries",
         description="Print every non-zero output entry of a spec (or of every spec) with its "
         "expression, and their count by output kind.")
     show.add_argument("spec", nargs="?", metavar="SPEC",
-                      help=f"spec name, one of: {', '.join(spec_names())} (default: all)")
+                      help=f"spec name, one of: {', '.join(spec_names())}, or a spec file "
+                      "PATH/spec.py (default: all)")
+    _bound_option(show)
     show.set_defaults(run=command_table)
     return main
 

@@ -5,17 +5,34 @@ additive terms of the expanded F in which no variable appears); dF/dt; d2F/dt2; 
 d2F/dt dq_j; and d2F/dq_i dq_j (one expression per unordered pair, written to both
 triangles). Each is simplified (never into a longer expression); zeros are dropped, so the
 routine leaves those entries untouched and the caller's zeroing stands.
+
+SymPy's simplify may take minutes on one entry (a spec whose components hold square roots of
+trigonometric sums). A time bound on a spec's simplification (:class:`SimplifyBound`) keeps
+every entry it did not reach, and the one it interrupted, as differentiated: exact, only
+longer, and the one cse still shares their terms.
 """
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+import signal
+import threading
+import time
+from dataclasses import dataclass, field
+from typing import Callable
 
 import sympy
 
 from .spec import TIME, ConstraintSpec, validate
 
-__all__ = ["OUTPUTS", "TIME_OUTPUTS", "Entry", "Derivatives", "derive", "table"]
+__all__ = ["OUTPUTS", "TIME_OUTPUTS", "Entry", "Derivatives", "SimplifyBound", "derive",
+           "table", "DEFAULT_SIMPLIFY_SECONDS"]
+
+#: The command line's bound on the simplification of a spec file [s] (``python -m ucon write
+#: PATH/spec.py``): the catalog's slowest spec, turntable_disk, takes 6 s of CPU; a spec
+#: that would take many minutes is written after it, its remaining entries as differentiated.
+DEFAULT_SIMPLIFY_SECONDS = 120.0
+#: Least wall time between two progress lines [s].
+PROGRESS_SECONDS = 5.0
 
 #: Output kinds in the order the generated code and the table list them, with their labels.
 OUTPUTS: dict[str, str] = {
@@ -100,14 +117,123 @@ def simplified(expression: sympy.Expr) -> sympy.Expr:
     return sympy.simplify(expression, ratio=1)
 
 
+class _OutOfTime(Exception):
+    """Raised by the alarm inside SymPy's simplify when the bound runs out."""
+
+
+@dataclass
+class SimplifyBound:
+    """A wall-clock bound on the simplification of one spec, and its progress.
+
+    Attributes:
+        seconds: the bound [s]; None (the default) for none.
+        progress: called with a line of progress (every :data:`PROGRESS_SECONDS`, also in the
+            middle of one long simplification, and when the bound runs out); None for silence.
+        simplified: expressions simplified so far; ``kept``: expressions kept as
+            differentiated because the bound ran out (the one interrupted among them).
+        ran_out: the bound ran out.
+    """
+
+    seconds: float | None = None
+    progress: Callable[[str], None] | None = None
+    simplified: int = 0
+    kept: int = 0
+    ran_out: bool = False
+    _start: float = field(default=0.0, repr=False)
+    _last: float = field(default=0.0, repr=False)
+    _total: int = field(default=0, repr=False)
+    _name: str = field(default="", repr=False)
+
+    def start(self, name: str, total: int) -> None:
+        """Begin a spec of at most ``total`` expressions to simplify."""
+        self._name, self._total = name, total
+        self._start = self._last = time.monotonic()
+        self.simplified = self.kept = 0
+        self.ran_out = False
+
+    def _say(self, text: str) -> None:
+        if self.progress is not None:
+            self.progress(f"ucon: {self._name}: {text}")
+
+    def _tick(self, now: float) -> None:
+        """A progress line when the last is PROGRESS_SECONDS old."""
+        if now - self._last >= PROGRESS_SECONDS:
+            self._last = now
+            self._say(f"simplified {self.simplified} of at most {self._total} expressions "
+                      f"({now - self._start:.0f} s)")
+
+    def simplify(self, expression: sympy.Expr) -> sympy.Expr:
+        """``simplified(expression)`` within the bound; the expression itself once it ran out."""
+        if self.ran_out:
+            self.kept += 1
+            return expression
+        deadline = None if self.seconds is None else self._start + self.seconds
+        try:
+            result = self._bounded(expression, deadline)
+        except _OutOfTime:
+            self.ran_out = True
+            self.kept += 1
+            self._say(f"the time bound on simplification ({self.seconds:g} s, "
+                      "--simplify-seconds) ran out after "
+                      f"{self.simplified} of at most {self._total} expressions; the rest are "
+                      "kept as differentiated (exact, longer)")
+            return expression
+        self.simplified += 1
+        self._tick(time.monotonic())
+        return result
+
+    def _bounded(self, expression: sympy.Expr, deadline: float | None) -> sympy.Expr:
+        """simplified(expression), with a progress line every PROGRESS_SECONDS while it runs
+        and interrupted (_OutOfTime) at the deadline, both by SIGALRM. Off the main thread no
+        alarm can be set: the deadline is then checked between expressions only."""
+        now = time.monotonic()
+        if deadline is not None and now >= deadline:
+            raise _OutOfTime()
+        if threading.current_thread() is not threading.main_thread():
+            return simplified(expression)
+
+        def arm(now: float) -> None:
+            wait = PROGRESS_SECONDS - (now - self._last)
+            if deadline is not None:
+                wait = min(wait, deadline - now)
+            signal.setitimer(signal.ITIMER_REAL, max(wait, 1e-3))
+
+        def alarm(signum, frame) -> None:  # noqa: ARG001 - a signal handler's signature
+            now = time.monotonic()
+            if deadline is not None and now >= deadline:
+                raise _OutOfTime()
+            self._tick(now)
+            arm(now)
+
+        previous = signal.signal(signal.SIGALRM, alarm)
+        try:
+            arm(now)
+            return simplified(expression)
+        finally:
+            signal.setitimer(signal.ITIMER_REAL, 0)
+            signal.signal(signal.SIGALRM, previous)
+
+    def finish(self) -> None:
+        """The closing progress line, when the work took long enough to report or ran out."""
+        spent = time.monotonic() - self._start
+        if self.ran_out or spent >= PROGRESS_SECONDS:
+            counted = "1 expression" if self.simplified == 1 else \
+                f"{self.simplified} expressions"
+            self._say(f"simplified {counted}, {self.kept} kept as differentiated, in "
+                      f"{spent:.0f} s")
+
+
 def time_part(expression: sympy.Expr, variables: set[sympy.Symbol]) -> sympy.Expr:
     """f(t): the sum of the additive terms of the expanded F in which no variable appears."""
     terms = sympy.Add.make_args(sympy.expand(expression))
     return sympy.Add(*[term for term in terms if not term.free_symbols & variables])
 
 
-def derive(spec: ConstraintSpec) -> Derivatives:
+def derive(spec: ConstraintSpec, bound: SimplifyBound | None = None) -> Derivatives:
     """Validate ``spec`` and derive the non-zero entries of every output of every component.
+
+    ``bound``: the time bound on simplification and its progress (default: none, silent); an
+    entry the bound leaves is kept as differentiated.
 
     Raises:
         ValueError: when the spec is invalid (see :func:`ucon.spec.validate`).
@@ -118,7 +244,11 @@ def derive(spec: ConstraintSpec) -> Derivatives:
     entries: list[Entry] = []
     cache: dict[sympy.Expr, sympy.Expr] = {}
 
-    simplify = simplified if spec.simplify else (lambda expression: expression)
+    bound = bound if bound is not None else SimplifyBound()
+    # F, then its value, f(t), dF/dt, d2F/dt2, n dF/dq, n d2F/dt dq and n(n+1)/2 d2F/dq dq
+    n = len(q)
+    bound.start(spec.name, spec.ncomponents * (5 + 2 * n + n * (n + 1) // 2))
+    simplify = bound.simplify if spec.simplify else (lambda expression: expression)
 
     def add(component: int, output: str, row: int, column: int, raw: sympy.Expr) -> None:
         if raw not in cache:
@@ -143,6 +273,8 @@ def derive(spec: ConstraintSpec) -> Derivatives:
         for i, dq in enumerate(first, start=1):
             for j in range(i, len(q) + 1):
                 add(k, "dqdq", i, j, sympy.diff(dq, q[j - 1]))
+    if spec.simplify:
+        bound.finish()
     return Derivatives(spec, tuple(entries))
 
 

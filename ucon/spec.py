@@ -133,6 +133,9 @@ class ConstraintSpec:
             entries as differentiated: for specs whose components are sums of products of
             sines, cosines and parameters already (the joint primitives), where simplify
             costs minutes per spec and shortens little; the one cse still shares their terms.
+        origin: the spec file as the user named it, for a spec outside ``ucon/specs/``
+            (``python -m ucon write PATH/spec.py``); "" for the catalog's.
+        command: the command that regenerates the spec's files, for their header.
     """
 
     name: str
@@ -143,11 +146,14 @@ class ConstraintSpec:
     constraints: tuple[Constraint, ...]
     component_meaning: str = "constraint component"
     simplify: bool = True
+    origin: str = ""
+    command: str = "python -m ucon write"
 
     @property
     def source(self) -> str:
-        """Path of the spec file, relative to the project root."""
-        return f"ucon/specs/{self.name}.py"
+        """Path of the spec file: relative to the project root for the catalog's, as the user
+        named it for one outside."""
+        return self.origin or f"ucon/specs/{self.name}.py"
 
     @property
     def nvars(self) -> int:

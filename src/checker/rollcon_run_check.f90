@@ -87,9 +87,10 @@ contains
         if (len(input_path) > 4) then
             if (input_path(len(input_path) - 3:) == ".adm") whole = " --model " // input_path
         end if
-        call fatal_error(error, user_file // " fails its check at the run's consistent start " &
-            & // "(t = " // to_text(time) // " s), so the run was not started: a wrong partial " &
-            & // "slows the integrators or stops them" // found // new_line("a") // "  the " &
+        call fatal_error(error, user_file // " fails its check at the model's consistent " &
+            & // "start (t = " // to_text(time) // " s), so the analysis was not started: a " &
+            & // "wrong partial slows the integrators or stops them, and makes a linear " &
+            & // "analysis's eigenvalues wrong" // found // new_line("a") // "  the " &
             & // "whole routine, at random states: rollcon check " // user_file // whole &
             & // "; to run anyway: --no-check", stat_input)
     end subroutine check_at_start

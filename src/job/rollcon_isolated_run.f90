@@ -40,7 +40,7 @@ module rollcon_isolated_run
     implicit none
     private
 
-    public :: run_isolated
+    public :: run_isolated, compile_user_files, build_apart, hand_on_stderr
 
     !> Kinds of frame the child sends
     integer, parameter :: frame_report = 1, frame_shapes = 2, frame_started = 3, &
@@ -103,31 +103,12 @@ contains
         type(job_task_type) :: task
         type(job_receiver_type) :: receiver
         type(isolation_outcome_type) :: outcome
-        logical :: from_cache
-        character(len=:), allocatable :: note, stderr_path
-        integer :: k
+        character(len=:), allocatable :: stderr_path
 
         started = .false.
         allocate(shapes(0))
-        call build_user_library(job%user_file, job%build_options, task%library, from_cache, &
-            & error, note)
+        call compile_user_files(job, task%library, task%more_libraries, error)
         if (allocated(error)) return
-        if (.not. job%quiet .and. len(note) > 0) write(output_unit, '(a)') "UCOSUB: " // note &
-            & // ": rebuilt"
-        if (.not. job%quiet) write(output_unit, '(a)') "UCOSUB: " // job%user_file // " (" &
-            & // task%library // trim(merge(", from the cache", ", compiled now  ", &
-            & from_cache)) // ")"
-        allocate(task%more_libraries(0))
-        if (allocated(job%more_files)) deallocate(task%more_libraries)
-        if (allocated(job%more_files)) allocate(task%more_libraries(size(job%more_files)))
-        do k = 1, size(task%more_libraries)
-            call build_user_library(job%more_files(k)%path, job%build_options, &
-                & task%more_libraries(k)%path, from_cache, error, note)
-            if (allocated(error)) return
-            if (.not. job%quiet) write(output_unit, '(a)') "user routines: " &
-                & // job%more_files(k)%path // " (" // task%more_libraries(k)%path &
-                & // trim(merge(", from the cache", ", compiled now  ", from_cache)) // ")"
-        end do
         task%job = job
         task%options = options
         ! the child writes no file: this process keeps the rows
@@ -149,6 +130,92 @@ contains
             & error)
         if (allocated(receiver%shapes)) shapes = receiver%shapes
     end subroutine run_isolated
+
+    !> Compile the job's user files into the cache (rollcon_user_build), in this process: the
+    !> library of job%user_file and those of job%more_files, in order. Says which file is
+    !> served from where unless job%quiet.
+    subroutine compile_user_files(job, library, more_libraries, error)
+        type(job_type), intent(in) :: job
+        !> The shared library of job%user_file
+        character(len=:), allocatable, intent(out) :: library
+        !> Those of job%more_files, in order
+        type(user_file_type), allocatable, intent(out) :: more_libraries(:)
+        type(error_type), allocatable, intent(out) :: error
+        logical :: from_cache
+        character(len=:), allocatable :: note
+        integer :: k
+
+        allocate(more_libraries(0))
+        call build_user_library(job%user_file, job%build_options, library, from_cache, &
+            & error, note)
+        if (allocated(error)) return
+        if (.not. job%quiet .and. len(note) > 0) write(output_unit, '(a)') "UCOSUB: " // note &
+            & // ": rebuilt"
+        if (.not. job%quiet) write(output_unit, '(a)') "UCOSUB: " // job%user_file // " (" &
+            & // library // trim(merge(", from the cache", ", compiled now  ", &
+            & from_cache)) // ")"
+        if (allocated(job%more_files)) then
+            deallocate(more_libraries)
+            allocate(more_libraries(size(job%more_files)))
+        end if
+        do k = 1, size(more_libraries)
+            call build_user_library(job%more_files(k)%path, job%build_options, &
+                & more_libraries(k)%path, from_cache, error, note)
+            if (allocated(error)) return
+            if (.not. job%quiet) write(output_unit, '(a)') "user routines: " &
+                & // job%more_files(k)%path // " (" // more_libraries(k)%path &
+                & // trim(merge(", from the cache", ", compiled now  ", from_cache)) // ")"
+        end do
+    end subroutine compile_user_files
+
+    !> The child's process: load the job's libraries (compile_user_files), guard their
+    !> routines (every call recorded in record, timed by the host), build the job's model with
+    !> them and make its start consistent, then check the routine there when the job asks
+    !> (job%start_check) at time [s]. What a run apart, a linear analysis apart and a study's
+    !> case apart do before their own work.
+    subroutine build_apart(job, library, more_libraries, record, time, problem, q0, u0, &
+            & report, error)
+        type(job_type), intent(inout) :: job
+        character(len=*), intent(in) :: library
+        type(user_file_type), intent(in) :: more_libraries(:)
+        type(call_record_type), pointer, intent(in) :: record
+        !> Time of the start [s]
+        real(wp), intent(in) :: time
+        type(problem_type), intent(inout), target :: problem
+        !> The consistent start: coordinates and rates (system numbering, SI)
+        real(wp), allocatable, intent(out) :: q0(:), u0(:)
+        !> What making the start consistent changed
+        character(len=:), allocatable, intent(out) :: report
+        type(error_type), allocatable, intent(out) :: error
+        type(user_ucosub_type) :: user
+        type(user_ucosub_type) :: more(size(more_libraries))
+        procedure(ucosub_interface), pointer :: guarded
+        integer :: k
+
+        call attach_call_record(record)
+        call clear_force_routines()
+        user%source = job%user_file
+        user%library = library
+        ! its UCOSUB, if any, and its force routines (rollcon_user_forces' table)
+        call load_user_routines(user, error)
+        if (allocated(error)) return
+        do k = 1, size(more_libraries)
+            more(k)%source = job%more_files(k)%path
+            more(k)%library = more_libraries(k)%path
+            call load_user_routines(more(k), error)
+            if (allocated(error)) return
+        end do
+        call install_force_guard(record)
+        guarded => null()
+        if (associated(user%ucosub)) then
+            call install_guard(user%ucosub, as_errors=.true.)
+            guarded => guarded_ucosub
+        end if
+        call job%source%build(guarded, problem, q0, u0, report, error)
+        if (allocated(error)) return
+        if (associated(job%start_check)) call job%start_check(job%user_file, job%input_path, &
+            & problem, time, q0, u0, error)
+    end subroutine build_apart
 
     !> The child's stderr at path: when the child did not finish (a STOP, a crash), its useful
     !> lines (quote_stderr) end the run's message; otherwise every line is written to this
@@ -251,45 +318,18 @@ contains
         class(job_task_type), intent(inout) :: self
         type(call_record_type), pointer, intent(in) :: record
         type(error_type), allocatable, intent(out) :: error
-        type(user_ucosub_type) :: user
-        type(user_ucosub_type) :: more(size(self%more_libraries))
-        integer :: k
         type(problem_type), target :: problem
         type(pipe_sink_type) :: sink
         type(run_summary_type) :: summary
         type(part_shape_type), allocatable :: shapes(:)
         type(wire_writer_type) :: wire
         type(error_type), allocatable :: send_error
-        procedure(ucosub_interface), pointer :: guarded
         real(wp), allocatable :: q0(:), u0(:)
         character(len=:), allocatable :: report
 
-        call attach_call_record(record)
-        call clear_force_routines()
-        user%source = self%job%user_file
-        user%library = self%library
-        ! its UCOSUB, if any, and its force routines (rollcon_user_forces' table)
-        call load_user_routines(user, error)
+        call build_apart(self%job, self%library, self%more_libraries, record, &
+            & self%options%t0, problem, q0, u0, report, error)
         if (allocated(error)) return
-        do k = 1, size(self%more_libraries)
-            more(k)%source = self%job%more_files(k)%path
-            more(k)%library = self%more_libraries(k)%path
-            call load_user_routines(more(k), error)
-            if (allocated(error)) return
-        end do
-        call install_force_guard(record)
-        guarded => null()
-        if (associated(user%ucosub)) then
-            call install_guard(user%ucosub, as_errors=.true.)
-            guarded => guarded_ucosub
-        end if
-        call self%job%source%build(guarded, problem, q0, u0, report, error)
-        if (allocated(error)) return
-        if (associated(self%job%start_check)) then
-            call self%job%start_check(self%job%user_file, self%job%input_path, problem, &
-                & self%options%t0, q0, u0, error)
-            if (allocated(error)) return
-        end if
         call send_frame(self%stream_fd, frame_report, report, error)
         if (allocated(error)) return
         call self%job%source%shapes(problem, shapes, error)

@@ -5,7 +5,7 @@
 !> whole or not at all (written under a partial name, renamed into place when complete).
 module rollcon_linear_job
     use rollcon_kinds, only : wp
-    use rollcon_error, only : error_type, fatal_error, stat_input
+    use rollcon_error, only : error_type
     use rollcon_text, only : lower_case
     use rollcon_ucosub_contract, only : ucosub_interface
     use rollcon_output_files, only : partial_name, write_text_file, rename_file, delete_file, &
@@ -18,6 +18,7 @@ module rollcon_linear_job
     use rollcon_text, only : to_text, fixed_text
     use rollcon_job, only : job_type
     use rollcon_provenance, only : provenance_lines
+    use rollcon_isolated_linear, only : linearise_apart, linear_speeds_apart
     implicit none
     private
 
@@ -27,9 +28,10 @@ module rollcon_linear_job
 contains
 
     !> Build the job's model and its consistent start (t = 0) and linearise there. A job whose
-    !> UCONs a user's file serves is refused: that routine runs only in a child process
-    !> (docs/checker.md), which the linear analysis does not use. report: what making the
-    !> start consistent changed, in lines ("" when nothing was analysed).
+    !> routines come from a user's file (job%user_file) builds and linearises in a child
+    !> process (rollcon_isolated_linear), as its run does: the routine's own partials, its
+    !> calls guarded and timed. report: what making the start consistent changed, in lines
+    !> ("" when nothing was analysed).
     subroutine linearise_job(job, result, report, error, options)
         type(job_type), intent(inout) :: job
         type(linear_result_type), intent(out) :: result
@@ -42,16 +44,20 @@ contains
         real(wp), allocatable :: q0(:), u0(:)
 
         if (present(options)) chosen = options
-        call build_start(job, problem, q0, u0, report, error)
-        if (allocated(error)) return
-        call linearise(problem, 0.0_wp, q0, u0, chosen, result, error)
+        if (len(job%user_file) > 0) then
+            call linearise_apart(job, chosen, result, report, error)
+        else
+            call build_start(job, problem, q0, u0, report, error)
+            if (.not. allocated(error)) call linearise(problem, 0.0_wp, q0, u0, chosen, result, &
+                & error)
+        end if
         if (allocated(error) .and. len(job%source%path) > 0) &
             & error%message = job%source%path // ": " // error%message
     end subroutine linearise_job
 
     !> Build the job's model and its consistent start (t = 0), linearise at every speed of the
     !> grid (the start's velocities scaled: rollcon_linear_speeds) and find where stability
-    !> changes. Refusals as linearise_job's.
+    !> changes. A user's file runs in a child process, as for linearise_job.
     subroutine linear_speeds_job(job, speeds, table, changes, report, error, options)
         type(job_type), intent(inout) :: job
         !> Speeds [m/s]
@@ -66,11 +72,15 @@ contains
         real(wp), allocatable :: q0(:), u0(:)
 
         if (present(options)) chosen = options
-        call build_start(job, problem, q0, u0, report, error)
-        if (.not. allocated(error)) call speed_table(problem, 0.0_wp, q0, u0, speeds, chosen, &
-            & table, error)
-        if (.not. allocated(error)) call stability_changes(problem, 0.0_wp, q0, u0, table, &
-            & chosen, changes, error)
+        if (len(job%user_file) > 0) then
+            call linear_speeds_apart(job, speeds, chosen, table, changes, report, error)
+        else
+            call build_start(job, problem, q0, u0, report, error)
+            if (.not. allocated(error)) call speed_table(problem, 0.0_wp, q0, u0, speeds, &
+                & chosen, table, error)
+            if (.not. allocated(error)) call stability_changes(problem, 0.0_wp, q0, u0, table, &
+                & chosen, changes, error)
+        end if
         if (allocated(error) .and. len(job%source%path) > 0) &
             & error%message = job%source%path // ": " // error%message
     end subroutine linear_speeds_job
@@ -165,9 +175,8 @@ contains
         end do
     end function comment_lines
 
-    !> The job's problem built as a run builds it, with the consistent start at t = 0 and the
-    !> report of what making it consistent changed; a user's UCOSUB file is refused (see
-    !> linearise_job).
+    !> The job's problem built as a run builds it in this process (a built-in routine), with
+    !> the consistent start at t = 0 and the report of what making it consistent changed.
     subroutine build_start(job, problem, q0, u0, report, error)
         type(job_type), intent(inout) :: job
         type(problem_type), intent(inout), target :: problem
@@ -177,14 +186,6 @@ contains
         procedure(ucosub_interface), pointer :: routine
 
         report = ""
-        if (len(job%user_file) > 0) then
-            call fatal_error(error, "--ucosub " // job%user_file // ": the linear analysis " &
-                & // "runs built-in routines only (a user's routine runs in a child process, " &
-                & // "docs/checker.md, which it does not use); give --ucosub NAME of a " &
-                & // "built-in routine, or check and simulate your routine with rollcon check " &
-                & // "and rollcon run", stat_input)
-            return
-        end if
         routine => job%routine
         call job%source%build(routine, problem, q0, u0, report, error)
     end subroutine build_start

@@ -13,9 +13,10 @@ module rollcon_study_run
     use rollcon_file_lock, only : file_lock_type
     use rollcon_text, only : to_text
     use rollcon_simulation, only : history_type
-    use rollcon_job, only : job_type
-    use rollcon_load, only : load_job, input_override_type
+    use rollcon_job, only : job_type, user_file_type
+    use rollcon_load, only : load_job, add_user_file, input_override_type
     use rollcon_run_job, only : run_job, job_result_type
+    use rollcon_isolated_run, only : compile_user_files
     use rollcon_study_type, only : study_type
     use rollcon_study_parameters, only : case_count, case_values, value_text
     use rollcon_study_measures, only : case_result_type, outcome_refused, outcome_failed, &
@@ -26,7 +27,7 @@ module rollcon_study_run
     private
 
     public :: study_plan_type, plan_cases, plan_study, run_case, append_row, run_study
-    public :: lock_study_csv
+    public :: lock_study_csv, prepare_study_routines
     public :: row_file_type
     public :: study_progress_type
 
@@ -96,6 +97,31 @@ contains
             & // "mix their rows. Wait until it ends (then run the same command to resume), " &
             & // "or give another --output", stat_io)
     end subroutine lock_study_csv
+
+    !> The study's routines made ready before its cases: the base input loaded with them (a
+    !> file that does not exist, a name that is no built-in routine, refused here once rather
+    !> than in every case's row) and a user's files compiled into the cache, so that every case
+    !> (on any rank) finds them there. Refusals in the terms of `rollcon run --ucosub`.
+    subroutine prepare_study_routines(study, error)
+        type(study_type), intent(in) :: study
+        type(error_type), allocatable, intent(out) :: error
+        type(job_type) :: job
+        type(user_file_type), allocatable :: more_libraries(:)
+        character(len=:), allocatable :: library
+        integer :: k
+
+        if (.not. allocated(study%routines)) return
+        if (size(study%routines) == 0) return
+        call load_job(study%scene_path, job, error, ucosub=study%routines(1)%path)
+        if (allocated(error)) return
+        do k = 2, size(study%routines)
+            call add_user_file(job, study%routines(k)%path, error)
+            if (allocated(error)) return
+        end do
+        if (len(job%user_file) == 0) return
+        job%quiet = .true.
+        call compile_user_files(job, library, more_libraries, error)
+    end subroutine prepare_study_routines
 
     !> Every case's parameters, none done yet (what a worker rank needs).
     subroutine plan_cases(study, plan)
@@ -189,7 +215,9 @@ contains
 
     !> Run case i: its scene (or dataset) is the base with the case's parameters set; it is
     !> loaded and run as `rollcon run` loads and runs an input (rollcon_load, rollcon_run_job),
-    !> with the hand-checked disk UCOSUB, no files, quiet. Returns its CSV row.
+    !> with the study's routines (study%routines: the hand-checked disk UCOSUB when none; a
+    !> user's file runs apart, compiled once into the cache), no output files, quiet. Returns
+    !> its CSV row.
     subroutine run_case(study, plan, i, row, result)
         type(study_type), intent(in) :: study
         type(study_plan_type), intent(in) :: plan
@@ -202,17 +230,30 @@ contains
         type(history_type) :: history
         type(error_type), allocatable :: error
         real(wp) :: cpu_start, cpu_end
+        character(len=:), allocatable :: first
         integer :: k
 
+        first = ""
         call cpu_time(cpu_start)
         do k = 1, size(study%parameters)
             overrides(k)%name = study%parameters(k)%group // "%" // study%parameters(k)%key
             overrides(k)%value = trim(plan%texts(k, i))
         end do
-        call load_job(study%scene_path, job, error, overrides=overrides)
+        if (allocated(study%routines)) then
+            if (size(study%routines) > 0) first = study%routines(1)%path
+        end if
+        call load_job(study%scene_path, job, error, ucosub=first, overrides=overrides)
+        if (.not. allocated(error) .and. allocated(study%routines)) then
+            do k = 2, size(study%routines)
+                call add_user_file(job, study%routines(k)%path, error)
+                if (allocated(error)) exit
+            end do
+        end if
         if (.not. allocated(error)) then
             job%output_dir = ""
             job%quiet = .true.
+            if (study%call_timeout > 0.0_wp) job%call_timeout = study%call_timeout
+            job%start_check => study%start_check
             call run_job(job, ran, error, history)
         end if
         if (.not. ran%started) then

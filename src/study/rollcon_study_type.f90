@@ -4,6 +4,7 @@
 module rollcon_study_type
     use rollcon_kinds, only : wp
     use rollcon_namelist_lexer, only : line_type
+    use rollcon_job, only : user_file_type, start_check_interface
     implicit none
     private
 
@@ -72,6 +73,16 @@ module rollcon_study_type
         type(study_rule_type), allocatable :: rules(:)
         character(len=:), allocatable :: otherwise
         type(study_map_type) :: map
+        !> The routines every case's job takes, as `rollcon run --ucosub` gives them (not read
+        !> from the study file: `rollcon sweep --ucosub`): the first a file run apart or a
+        !> built-in routine's name ("" for the hand-checked disk), the others more files of
+        !> user routines (rollcon_load's add_user_file)
+        type(user_file_type), allocatable :: routines(:)
+        !> Longest one call of a user's routine may take [s] (0: the job's own default)
+        real(wp) :: call_timeout = 0.0_wp
+        !> The check of a user's UCOSUB at each case's consistent start (rollcon_job's
+        !> start_check; null: none)
+        procedure(start_check_interface), pointer, nopass :: start_check => null()
     end type study_type
 
 end module rollcon_study_type

@@ -1,8 +1,10 @@
 ! SPDX-License-Identifier: MIT
 !> Tests of `rollcon linear MODEL.adm` as a user runs it (docs/linear.md): the coin's
 !> eigenvalue CSV read back equals the library's linearisation of the same dataset, with its
-!> record, header and table; a scene, a missing argument and a user's file are refused with
-!> the reason and write nothing; --help gives the usage.
+!> record, header and table; a scene and a missing argument are refused with the reason and
+!> write nothing; a user's file of routines (a UCOSUB, force routines) gives the eigenvalues of
+!> the built-in routine or of the expressions it stands for, and its faults and wrong partials
+!> are named as in a run; --help gives the usage.
 module test_linear_command
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type
@@ -37,6 +39,11 @@ contains
             & new_unittest("bicycle-benchmark-eigenvalues", test_bicycle), &
             & new_unittest("ucosub-name-same-eigenvalues", test_ucosub_name), &
             & new_unittest("speeds-refused", test_speeds_refused), &
+            & new_unittest("user-ucosub-same-eigenvalues", test_user_ucosub), &
+            & new_unittest("user-ucosub-speeds", test_user_speeds), &
+            & new_unittest("user-force-routines-same-eigenvalues", test_user_forces), &
+            & new_unittest("user-routine-fault-named", test_user_fault), &
+            & new_unittest("user-wrong-partial-stopped", test_wrong_partial), &
             & new_unittest("help", test_help)]
     end subroutine collect_linear_command
 
@@ -125,19 +132,16 @@ contains
         count_partials = merge(1, 0, stat == 0)
     end function count_partials
 
-    !> A scene, no argument and a user's file are refused (exit status 1, the reason on
-    !> stderr), and no CSV is written.
+    !> A scene and no argument are refused (exit status 1, the reason on stderr), and no CSV
+    !> is written.
     subroutine test_refusals(error)
         type(error_type), allocatable, intent(out) :: error
         character(len=:), allocatable :: program
-        character(len=*), parameter :: arguments(3) = [character(len=80) :: &
-            & "linear data/coin.nml", "linear", &
-            & "linear data/coin.adm --ucosub ucon/adams/rolling_disk/ucosub.f"]
-        character(len=*), parameter :: messages(3) = [character(len=120) :: &
+        character(len=*), parameter :: arguments(2) = [character(len=80) :: &
+            & "linear data/coin.nml", "linear"]
+        character(len=*), parameter :: messages(2) = [character(len=120) :: &
             & "rollcon: error: data/coin.nml: not a dataset: rollcon linear takes an ADAMS " &
-            & // "dataset", "rollcon: error: rollcon linear needs a dataset, MODEL.adm", &
-            & "rollcon: error: --ucosub ucon/adams/rolling_disk/ucosub.f: the linear analysis " &
-            & // "runs built-in routines only"]
+            & // "dataset", "rollcon: error: rollcon linear needs a dataset, MODEL.adm"]
         character(len=:), allocatable :: err
         integer :: k, status
 
@@ -312,5 +316,169 @@ contains
             & "exit status " // to_text(status) // ", stdout: " // out)
         call remove_folder(scratch)
     end subroutine test_help
+
+    !> `rollcon linear ARGUMENTS -q -o DIR` (DIR under the scratch folder, named by tag): the
+    !> eigenvalues of the CSV it writes, DIR/STEM.eigen.csv, and its stdout.
+    subroutine linear_eigenvalues(program, arguments, stem, tag, re, im, out, error)
+        character(len=*), intent(in) :: program, arguments, stem, tag
+        real(wp), allocatable, intent(out) :: re(:), im(:)
+        character(len=:), allocatable, intent(out) :: out
+        type(error_type), allocatable, intent(out) :: error
+        integer :: status
+
+        call run_rollcon(program, "linear " // arguments // " -q -o " // scratch // "/" // tag, &
+            & scratch // "/" // tag // ".out", scratch // "/" // tag // ".err", status)
+        out = file_text(scratch // "/" // tag // ".out")
+        call check(error, status == 0, "linear " // arguments // ": exit status " &
+            & // to_text(status) // ", stderr: " // file_text(scratch // "/" // tag // ".err"))
+        if (allocated(error)) return
+        call read_eigen_rows(file_text(scratch // "/" // tag // "/" // stem // ".eigen.csv"), &
+            & re, im, error)
+    end subroutine linear_eigenvalues
+
+    !> `rollcon linear data/coin.adm --ucosub ucon/adams/rolling_disk/ucosub.f`: the generated
+    !> rolling disk as a user's file, compiled and run in a child process, gives the
+    !> eigenvalues of the hand-checked built-in disk (the default) to 1e-10 of the largest: the
+    !> two routines are one constraint, written apart and compiled with other flags, so their
+    !> partials differ by rounding (1e-16 relative), which the linearisation's differences of
+    !> relative step 2e-3 raise to about 1e-13 in A_red; its own error is about 1e-10 of the
+    !> largest entry (docs/linear.md). The CSV's record names the file.
+    subroutine test_user_ucosub(error)
+        type(error_type), allocatable, intent(out) :: error
+        character(len=:), allocatable :: program, out
+        real(wp), allocatable :: re(:), im(:), re_file(:), im_file(:)
+
+        call rollcon_program(program, error)
+        if (allocated(error)) return
+        call remove_folder(scratch)
+        call make_folder(scratch)
+        call linear_eigenvalues(program, "data/coin.adm", "coin", "builtin", re, im, out, &
+            & error)
+        if (allocated(error)) return
+        call linear_eigenvalues(program, "data/coin.adm --ucosub " &
+            & // "ucon/adams/rolling_disk/ucosub.f", "coin", "file", re_file, im_file, out, error)
+        if (allocated(error)) return
+        call check(error, size(re_file) == size(re) .and. size(re) == 9, "eigenvalues: " &
+            & // to_text(size(re_file)) // " with the file, " // to_text(size(re)) &
+            & // " with the built-in disk; expected 9")
+        if (allocated(error)) return
+        call check(error, maxval(abs(re_file - re) + abs(im_file - im)), 0.0_wp, &
+            & "user's file against the built-in disk [1/s]", &
+            & abs_tol=1.0e-10_wp*maxval(hypot(re, im)))
+        if (allocated(error)) return
+        call check(error, index(file_text(scratch // "/file/coin.eigen.csv"), &
+            & "ucon/adams/rolling_disk/ucosub.f") > 0, "the CSV's record does not name the file")
+        call remove_folder(scratch)
+    end subroutine test_user_ucosub
+
+    !> `--speeds 0.5,0.7,5` with the user's file: the critical speed of docs/design.md §5 to
+    !> the 6 decimals printed, as with the built-in disk (test_speeds).
+    subroutine test_user_speeds(error)
+        type(error_type), allocatable, intent(out) :: error
+        character(len=:), allocatable :: program, out
+        integer :: status
+
+        call rollcon_program(program, error)
+        if (allocated(error)) return
+        call remove_folder(scratch)
+        call make_folder(scratch)
+        call run_rollcon(program, "linear data/coin.adm --ucosub ucon/adams/rolling_disk/" &
+            & // "ucosub.f --speeds 0.5,0.7,5 -q -o " // scratch // "/out", scratch &
+            & // "/speeds.out", scratch // "/speeds.err", status)
+        out = file_text(scratch // "/speeds.out")
+        call check(error, status == 0 .and. index(out, "stability changes at 0.571925 m/s: " &
+            & // "divergent") > 0 .and. index(out, "2 after 7 structural zeros taken out") > 0 &
+            & .and. file_exists(scratch // "/out/coin.eigen-speed.csv"), "exit status " &
+            & // to_text(status) // "; stdout: " // out // "; stderr: " &
+            & // file_text(scratch // "/speeds.err"))
+        call remove_folder(scratch)
+    end subroutine test_user_speeds
+
+    !> test/user_forces/user_forces.adm with its SFOSUB and GFOSUB (two files, run apart)
+    !> linearised where it starts gives the eigenvalues of user_forces_expressions.adm, the same
+    !> forces as FUNCTION expressions, to 1e-9 of the largest: the two compute one force to
+    !> rounding, and the linearisation's differences raise that to about 1e-13 of A's scale;
+    !> 1e-9 leaves room for the stiff spring (1000 N/m on 1 kg) against the GFORCE's bushing.
+    subroutine test_user_forces(error)
+        type(error_type), allocatable, intent(out) :: error
+        character(len=:), allocatable :: program, out
+        real(wp), allocatable :: re(:), im(:), re_user(:), im_user(:)
+
+        call rollcon_program(program, error)
+        if (allocated(error)) return
+        call remove_folder(scratch)
+        call make_folder(scratch)
+        call linear_eigenvalues(program, "test/user_forces/user_forces_expressions.adm", &
+            & "user_forces_expressions", "expressions", re, im, out, error)
+        if (allocated(error)) return
+        call linear_eigenvalues(program, "test/user_forces/user_forces.adm --ucosub " &
+            & // "test/user_forces/sforce_spring.f --ucosub test/user_forces/gforce_bushing.f", &
+            & "user_forces", "routines", re_user, im_user, out, error)
+        if (allocated(error)) return
+        call check(error, size(re_user) == size(re) .and. size(re) > 0, "eigenvalues: " &
+            & // to_text(size(re_user)) // " with the routines, " // to_text(size(re)) &
+            & // " with the expressions")
+        if (allocated(error)) return
+        call check(error, maxval(abs(re_user - re) + abs(im_user - im)), 0.0_wp, &
+            & "routines against expressions [1/s]", abs_tol=1.0e-9_wp*maxval(hypot(re, im)))
+        call remove_folder(scratch)
+    end subroutine test_user_forces
+
+    !> A UCOSUB that stops the program (test/faulty_ucosubs/stops.f) ends the child process
+    !> of the linear analysis, not rollcon: exit status 1, the message naming the routine's
+    !> call and quoting its STOP, and no CSV.
+    subroutine test_user_fault(error)
+        type(error_type), allocatable, intent(out) :: error
+        character(len=:), allocatable :: program, err
+        integer :: status
+
+        call rollcon_program(program, error)
+        if (allocated(error)) return
+        call remove_folder(scratch)
+        call make_folder(scratch)
+        call run_rollcon(program, "linear data/coin.adm --ucosub test/faulty_ucosubs/stops.f " &
+            & // "-q -o " // scratch // "/out", scratch // "/fault.out", scratch &
+            & // "/fault.err", status)
+        err = file_text(scratch // "/fault.err")
+        call check(error, status == 1 .and. index(err, "rollcon: error: data/coin.adm: ") == 1 &
+            & .and. index(err, "the linear analysis did not complete") > 0 .and. index(err, &
+            & "UCON/") > 0 .and. .not. file_exists(scratch // "/out/coin.eigen.csv"), &
+            & "exit status " // to_text(status) // ", stderr: " // err)
+        call remove_folder(scratch)
+    end subroutine test_user_fault
+
+    !> test/turntable/turntable_half_coriolis.f (two partials halved) is checked at the
+    !> consistent start, as a run's routine is: exit status 1 before any linearisation, both
+    !> entries named with the values returned and differenced, the full check's command and
+    !> --no-check; the right routine, test/turntable/turntable.f, passes and writes its CSV.
+    subroutine test_wrong_partial(error)
+        type(error_type), allocatable, intent(out) :: error
+        character(len=:), allocatable :: program, err
+        integer :: status, status_right
+
+        call rollcon_program(program, error)
+        if (allocated(error)) return
+        call remove_folder(scratch)
+        call make_folder(scratch)
+        call run_rollcon(program, "linear test/turntable/turntable.adm --ucosub " &
+            & // "test/turntable/turntable_half_coriolis.f -q -o " // scratch // "/wrong", &
+            & scratch // "/wrong.out", scratch // "/wrong.err", status)
+        call run_rollcon(program, "linear test/turntable/turntable.adm --ucosub " &
+            & // "test/turntable/turntable.f -q -o " // scratch // "/right", &
+            & scratch // "/right.out", scratch // "/right.err", status_right)
+        err = file_text(scratch // "/wrong.err")
+        call check(error, status == 1 .and. index(err, "UCON/1 ARRAY(2) = dF/d(Y_2) " &
+            & // "[derivative]: returned 1.75, differences give 3.5") > 0 .and. index(err, &
+            & "UCON/2 ARRAY(1) = dF/d(X_2) [derivative]: returned -1.75, differences give " &
+            & // "-3.5") > 0 .and. index(err, "rollcon check test/turntable/turntable_half_" &
+            & // "coriolis.f --model test/turntable/turntable.adm") > 0 .and. index(err, &
+            & "--no-check") > 0 .and. .not. file_exists(scratch // "/wrong/turntable.eigen.csv"), &
+            & "exit status " // to_text(status) // ", stderr: " // err)
+        if (allocated(error)) return
+        call check(error, status_right == 0 .and. file_exists(scratch &
+            & // "/right/turntable.eigen.csv"), "the right routine: exit status " &
+            & // to_text(status_right) // ", stderr: " // file_text(scratch // "/right.err"))
+        call remove_folder(scratch)
+    end subroutine test_wrong_partial
 
 end module test_linear_command

@@ -32,6 +32,7 @@ contains
         type(unittest_type), allocatable, intent(out) :: tests(:)
 
         tests = [new_unittest("ranks-give-the-same-rows", test_ranks), &
+            & new_unittest("user-file-study", test_user_file), &
             & new_unittest("resume-after-kill", test_kill), &
             & new_unittest("bad-study-refused", test_bad_study), &
             & new_unittest("rollcon-loads-no-mpi", test_no_mpi), &
@@ -87,6 +88,62 @@ contains
         call check(error, index(file_text(scratch // "/r3.out"), "a coordinator and 2 workers") &
             & > 0, "3 ranks: not said in the output")
     end subroutine test_ranks
+
+    !> `rollcon sweep STUDY --ucosub FILE` of data/coin.adm at two gravities with the generated
+    !> rolling disk as a user's file (run apart in every case): on one process and on 2 ranks
+    !> the same two completed rows (cpu_s apart), which are not those of the hand-checked disk
+    !> built in (the study ran the file: its rounding differs). The library's suite
+    !> study-run holds each row to the case's run alone; a --ucosub naming no file is refused.
+    subroutine test_user_file(error)
+        type(error_type), allocatable, intent(out) :: error
+        character(len=:), allocatable :: program, study, one(:), two(:), builtin(:), err
+        integer :: status
+
+        call mpi_program(program, error)
+        if (allocated(error)) return
+        call make_folder(scratch)
+        call write_study("test_sweep_user_file", [character(len=60) :: "&study", &
+            & "    scene = 'data/coin.adm' /", "&grid", "    accgrav%kgrav = '-9.81 -5 2' /"], &
+            & study)
+        call remove_folder(scratch // "/u1")
+        call remove_folder(scratch // "/u2")
+        call remove_folder(scratch // "/u0")
+        call run_rollcon(program, "sweep " // study // " --ucosub ucon/adams/rolling_disk/" &
+            & // "ucosub.f --no-map -o " // scratch // "/u1", scratch // "/u1.out", scratch &
+            & // "/u1.err", status)
+        call check(error, status == 0, "one process: exit status " // to_text(status) // ": " &
+            & // file_text(scratch // "/u1.err"))
+        if (allocated(error)) return
+        call run_rollcon(mpirun // " -np 2 " // program, "sweep " // study &
+            & // " --ucosub ucon/adams/rolling_disk/ucosub.f --no-map -o " // scratch // "/u2", &
+            & scratch // "/u2.out", scratch // "/u2.err", status)
+        call check(error, status == 0, "2 ranks: exit status " // to_text(status) // ": " &
+            & // file_text(scratch // "/u2.err"))
+        if (allocated(error)) return
+        call run_rollcon(program, "sweep " // study // " --no-map -o " // scratch // "/u0", &
+            & scratch // "/u0.out", scratch // "/u0.err", status)
+        call check(error, status == 0, "built-in disk: exit status " // to_text(status))
+        if (allocated(error)) return
+        one = sorted(without_cpu(csv_rows(scratch // "/u1/test_sweep_user_file.csv")))
+        two = sorted(without_cpu(csv_rows(scratch // "/u2/test_sweep_user_file.csv")))
+        builtin = sorted(without_cpu(csv_rows(scratch // "/u0/test_sweep_user_file.csv")))
+        call check(error, size(one) == 3 .and. count(index(one, ",completed,") > 0) == 2, &
+            & "one process: expected 2 completed rows: " // file_text(scratch &
+            & // "/u1/test_sweep_user_file.csv"))
+        if (allocated(error)) return
+        call check(error, size(two) == size(one) .and. all(two == one), "2 ranks: rows differ " &
+            & // "from one process's")
+        if (allocated(error)) return
+        call check(error, size(builtin) == size(one) .and. .not. all(builtin == one), &
+            & "the rows of the file equal the built-in disk's to the last digit: was it run?")
+        if (allocated(error)) return
+        call run_rollcon(program, "sweep " // study // " --ucosub no_such_ucosub.f --no-map " &
+            & // "-o " // scratch // "/u3", scratch // "/u3.out", scratch // "/u3.err", status)
+        err = file_text(scratch // "/u3.err")
+        call check(error, status == 1 .and. index(err, "rollcon: error: --ucosub " &
+            & // "no_such_ucosub.f: no such file") == 1, "exit status " // to_text(status) &
+            & // ", stderr: " // err)
+    end subroutine test_user_file
 
     !> A worker rank killed part-way: mpirun fails, the rows written so far stay, and a rerun
     !> on one process runs only the missing cases and gives the rows of an uninterrupted run.

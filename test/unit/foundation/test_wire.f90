@@ -1,7 +1,8 @@
 ! SPDX-License-Identifier: MIT
 !> What a child process hands its parent: values packed into bytes and read back
 !> (rollcon_wire), a run's summary, layout and shapes among them (rollcon_run_wire), frames on a
-!> pipe (rollcon_frames), and a checked UCON's report through a file (rollcon_audit_transfer).
+!> pipe (rollcon_frames), a checked UCON's report through a file (rollcon_audit_transfer), and a
+!> linear analysis and its eigenvalues against speed (rollcon_isolated_linear).
 !> What is read back is what was written, bit for bit; bytes cut short are refused.
 module test_wire
     use, intrinsic :: iso_c_binding, only : c_int, c_long, c_size_t, c_char
@@ -19,6 +20,10 @@ module test_wire
     use rollcon_frames, only : send_frame, frame_buffer_type
     use rollcon_ucosub_audit, only : ucon_report_type
     use rollcon_audit_transfer, only : pack_ucon_report, unpack_ucon_report
+    use rollcon_linearisation, only : linear_result_type
+    use rollcon_linear_speeds, only : speed_table_type, stability_change_type
+    use rollcon_isolated_linear, only : pack_linear_result, unpack_linear_result, &
+        & pack_speed_table, unpack_speed_table
     use rollcon_testing, only : unittest_type, new_unittest, check
     implicit none
     private
@@ -61,7 +66,8 @@ contains
             & new_unittest("run-results-read-back", test_run_results), &
             & new_unittest("frames-whole-and-in-order", test_frames), &
             & new_unittest("frame-to-a-closed-pipe-is-an-error", test_closed_pipe), &
-            & new_unittest("check-report-read-back", test_report)]
+            & new_unittest("check-report-read-back", test_report), &
+            & new_unittest("linear-results-read-back", test_linear_results)]
     end subroutine collect_wire
 
     !> Every kind of value, extremes included (the int64 range, -0, a subnormal, NaN, texts
@@ -543,5 +549,77 @@ contains
         same_bits = size(a) == size(b)
         if (same_bits) same_bits = all(transfer(a, [0_int64]) == transfer(b, [0_int64]))
     end function same_bits
+
+    !> A linear result (a 3 x 2 basis, a 2 x 2 A_red, its eigenvalues, the independent
+    !> coordinates, the invariance and the zeros) and a table against speed with two stability
+    !> changes read back field by field, bit for bit, every byte consumed; cut short, refused.
+    subroutine test_linear_results(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(linear_result_type) :: result, back
+        type(speed_table_type) :: table, table_back
+        type(stability_change_type) :: changes(2)
+        type(stability_change_type), allocatable :: changes_back(:)
+        type(wire_writer_type) :: writer
+        type(wire_reader_type) :: reader
+        character(len=:), allocatable :: bytes
+
+        result%time = 0.25_wp
+        result%states = 3
+        result%reduced = 2
+        result%real_part = [1.5_wp, -0.0_wp]
+        result%imag_part = [2.0_wp, -2.0_wp]
+        result%reduced_matrix = reshape([1.0_wp, 2.0_wp, 3.0_wp, 4.0_wp], [2, 2])
+        result%basis = reshape([1.0_wp, 0.0_wp, 0.5_wp, 0.0_wp, 1.0_wp, -0.5_wp], [3, 2])
+        result%independent = [1, 3]
+        result%invariance = 3.0e-12_wp
+        result%invariant = .false.
+        result%zero_limit = 1.0e-6_wp
+        result%zeros = 1
+        call pack_linear_result(writer, result)
+        reader%bytes = writer%packed()
+        call unpack_linear_result(reader, back)
+        call check(error, .not. reader%failed .and. reader%at == len(reader%bytes) + 1 &
+            & .and. back%time == result%time .and. back%states == 3 .and. back%reduced == 2 &
+            & .and. all(back%real_part == result%real_part) .and. sign(1.0_wp, &
+            & back%real_part(2)) < 0.0_wp .and. all(back%imag_part == result%imag_part) &
+            & .and. all(shape(back%reduced_matrix) == [2, 2]) .and. all(back%reduced_matrix &
+            & == result%reduced_matrix) .and. all(shape(back%basis) == [3, 2]) &
+            & .and. all(back%basis == result%basis) .and. all(back%independent == [1, 3]) &
+            & .and. back%invariance == result%invariance .and. .not. back%invariant &
+            & .and. back%zero_limit == result%zero_limit .and. back%zeros == 1, &
+            & "the linear result read back differs")
+        if (allocated(error)) return
+        table%speed = [0.5_wp, 0.6_wp, 0.7_wp]
+        table%real_part = reshape([-1.0_wp, 0.5_wp, -2.0_wp, 0.1_wp, -3.0_wp, -0.2_wp], [2, 3])
+        table%imag_part = reshape([0.0_wp, 1.0_wp, 0.0_wp, 1.5_wp, 0.0_wp, 2.0_wp], [2, 3])
+        table%struck = [.true., .false., .false., .true.]
+        table%independent = [2, 4, 5, 7]
+        table%deflations = 2
+        changes(1) = stability_change_type(0.65_wp, .true., 1.75_wp, .true.)
+        changes(2) = stability_change_type(0.55_wp, .false., 0.0_wp, .false.)
+        writer = wire_writer_type()
+        call pack_speed_table(writer, table, changes)
+        bytes = writer%packed()
+        reader = wire_reader_type()
+        reader%bytes = bytes
+        call unpack_speed_table(reader, table_back, changes_back)
+        call check(error, .not. reader%failed .and. reader%at == len(bytes) + 1 .and. &
+            & all(table_back%speed == table%speed) .and. all(shape(table_back%real_part) &
+            & == [2, 3]) .and. all(table_back%real_part == table%real_part) .and. &
+            & all(table_back%imag_part == table%imag_part) .and. all(table_back%struck .eqv. &
+            & table%struck) .and. all(table_back%independent == table%independent) .and. &
+            & table_back%deflations == 2 .and. size(changes_back) == 2, &
+            & "the table against speed read back differs")
+        if (allocated(error)) return
+        call check(error, changes_back(1)%speed == 0.65_wp .and. changes_back(1)%oscillatory &
+            & .and. changes_back(1)%frequency == 1.75_wp .and. changes_back(1)%stable_above &
+            & .and. changes_back(2)%speed == 0.55_wp .and. .not. changes_back(2)%oscillatory &
+            & .and. .not. changes_back(2)%stable_above, "the stability changes read back differ")
+        if (allocated(error)) return
+        reader = wire_reader_type()
+        reader%bytes = bytes(:len(bytes) - 3)
+        call unpack_speed_table(reader, table_back, changes_back)
+        call check(error, reader%failed, "a table cut short was read")
+    end subroutine test_linear_results
 
 end module test_wire

@@ -12,16 +12,17 @@ module test_study_run
     use rollcon_scene_state, only : upright_critical_speed
     use rollcon_study_type, only : study_type
     use rollcon_study_reader, only : read_study
-    use rollcon_study_measures, only : case_result_type, outcome_completed, measure_index
+    use rollcon_study_measures, only : case_result_type, outcome_completed, measure_index, &
+        & measure_case, outcome_refused
     use rollcon_scene, only : read_scene
-    use rollcon_job, only : job_type
-    use rollcon_load, only : load_job
+    use rollcon_job, only : job_type, user_file_type
+    use rollcon_load, only : load_job, input_override_type
     use rollcon_run_job, only : run_job, job_result_type
     use rollcon_disk_reference, only : rolling_disk_ucosub
     use rollcon_simulation, only : run_summary_type, history_type
     use rollcon_output_layout, only : coord_theta
     use rollcon_study_run, only : study_plan_type, study_progress_type, plan_cases, plan_study, &
-        & run_case, append_row, run_study
+        & run_case, append_row, run_study, prepare_study_routines
     use rollcon_testing, only : unittest_type, new_unittest, check
     use study_texts, only : write_study
     use study_rows, only : csv_rows, without_cpu, sorted, remove_file, cut_after
@@ -50,7 +51,9 @@ contains
             & new_unittest("resume-after-cut", test_resume), &
             & new_unittest("other-study-csv-refused", test_other_header), &
             & new_unittest("stability-boundary", test_boundary), &
-            & new_unittest("dataset-base", test_dataset)]
+            & new_unittest("dataset-base", test_dataset), &
+            & new_unittest("user-file-cases-are-its-runs", test_user_file), &
+            & new_unittest("user-file-faults-named", test_user_file_faults)]
     end subroutine collect_study_run
 
     !> An override replaces a key of the file, adds one to a group, and adds a group: an
@@ -296,6 +299,90 @@ contains
         if (allocated(error)) return
         call check(error, case_theta_min(2) /= scene_theta_min, "gravity changed nothing")
     end subroutine test_dataset
+
+    !> A study of data/coin.adm whose cases take a user's file, the generated rolling disk
+    !> (ucon/adams/rolling_disk/ucosub.f, run apart): each case's measures are those of the
+    !> dataset run one by one with that file and the case's gravity (load_job with the
+    !> override and --ucosub's file, run_job), exactly: the same runs (CPU time apart).
+    subroutine test_user_file(error)
+        type(error_type), allocatable, intent(out) :: error
+        character(len=*), parameter :: file = "ucon/adams/rolling_disk/ucosub.f"
+        type(study_type) :: study
+        type(study_plan_type) :: plan
+        type(case_result_type) :: result, alone
+        type(job_type) :: job
+        type(job_result_type) :: ran
+        type(history_type) :: histories(2)
+        character(len=:), allocatable :: path, row
+        integer :: i, k, cpu
+
+        call write_study("test_study_user_file", [character(len=60) :: "&study", &
+            & "    scene = 'data/coin.adm' /", "&grid", "    accgrav%kgrav = '-9.81 -5 2' /"], &
+            & path)
+        call read_study(path, study, error)
+        if (allocated(error)) return
+        study%routines = [user_file_type(file)]
+        call prepare_study_routines(study, error)
+        if (allocated(error)) return
+        call plan_cases(study, plan)
+        cpu = measure_index("cpu_s")
+        do i = 1, 2
+            call run_case(study, plan, i, row, result)
+            call check(error, result%outcome == outcome_completed, "case " // to_text(i) &
+                & // ": " // trim(row))
+            if (allocated(error)) return
+            call load_job("data/coin.adm", job, error, ucosub=file, overrides=[ &
+                & input_override_type("accgrav%kgrav", trim(plan%texts(1, i)))])
+            if (allocated(error)) return
+            call check(error, job%user_file == file, "the job's routine is not the file")
+            if (allocated(error)) return
+            job%output_dir = ""
+            job%quiet = .true.
+            call run_job(job, ran, error, histories(i))
+            if (allocated(error)) return
+            call measure_case(ran%summary, histories(i), 0.0_wp, alone)
+            call check(error, all(pack(result%values == alone%values, &
+                & [(k /= cpu, k = 1, size(result%values))])) .and. all(result%known &
+                & .eqv. alone%known), "case " // to_text(i) // ": the study's measures " &
+                & // "differ from the run's alone")
+            if (allocated(error)) return
+        end do
+    end subroutine test_user_file
+
+    !> A study's routines that cannot serve are refused before any case, in `--ucosub`'s
+    !> words (a missing file, a name that is no built-in routine); a routine that stops the
+    !> program makes every case a failed row whose message quotes the STOP, the study going on.
+    subroutine test_user_file_faults(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(study_type) :: study
+        type(study_plan_type) :: plan
+        type(case_result_type) :: result
+        character(len=:), allocatable :: path, row, message
+        integer :: i
+
+        call write_study("test_study_user_faults", [character(len=60) :: "&study", &
+            & "    scene = 'data/coin.adm' /", "&grid", "    accgrav%kgrav = '-9.81 -5 2' /"], &
+            & path)
+        call read_study(path, study, error)
+        if (allocated(error)) return
+        study%routines = [user_file_type("no/such/ucosub.f")]
+        call prepare_study_routines(study, error)
+        message = "(none)"
+        if (allocated(error)) message = error%message
+        call check(error, index(message, "--ucosub no/such/ucosub.f: no such file") == 1, &
+            & "a missing file's refusal: " // message)
+        if (allocated(error)) return
+        study%routines = [user_file_type("test/faulty_ucosubs/stops.f")]
+        call prepare_study_routines(study, error)
+        if (allocated(error)) return
+        call plan_cases(study, plan)
+        do i = 1, 2
+            call run_case(study, plan, i, row, result)
+            call check(error, result%outcome /= outcome_completed .and. index(result%message, &
+                & "STOP") > 0, "case " // to_text(i) // ": " // trim(row))
+            if (allocated(error)) return
+        end do
+    end subroutine test_user_file_faults
 
     !> Six cases of the no-slip study's scene (its strike makes the rows differ).
     subroutine small_study(study, error)
