@@ -5,6 +5,7 @@ program tester
     use rollcon_testing, only : testsuite_type, new_testsuite, run_testsuite, test_counts_type
     use test_text, only : collect_text
     use test_ucovar, only : collect_ucovar
+    use test_adams_utilities, only : collect_adams_utilities
     use test_disk_reference, only : collect_disk_reference
     use test_partials_check, only : collect_partials_check
     use test_generated, only : collect_generated
@@ -123,6 +124,7 @@ program tester
 
     suites = [new_testsuite("text", collect_text), &
         & new_testsuite("ucovar", collect_ucovar), &
+        & new_testsuite("adams-utilities", collect_adams_utilities), &
         & new_testsuite("disk-reference", collect_disk_reference), &
         & new_testsuite("partials-check", collect_partials_check), &
         & new_testsuite("generated", collect_generated), &

@@ -28,7 +28,8 @@ module rollcon_adm_build
         & kind_general, kind_spring, marker_force_values, markers_coincide
     use rollcon_force, only : applied_force_type, profile_statement
     use rollcon_user_forces, only : find_force_routine, routine_kind_of, set_system_markers, &
-        & declare_user_force, evaluate_user_forces, take_user_force_error
+        & declare_user_force, evaluate_user_forces, take_user_force_error, set_system_splines
+    use rollcon_spline, only : spline_type, new_spline
     use rollcon_force_routine_contract, only : routine_names
     use rollcon_model, only : model_type, setup_model, served_by_model_ucosub, force_request_type
     use rollcon_problem, only : problem_type
@@ -206,6 +207,7 @@ contains
             markers(i) = adm_marker(adm, adm%markers(i)%id)
         end do
         call set_system_markers(markers, adm%units%length, adm%units%time)
+        call give_splines(adm)
         do i = 1, size(problem%model%forces)
             if (problem%model%forces(i)%profile /= profile_statement) cycle
             if (problem%model%forces(i)%statement%routine == 0) cycle
@@ -602,19 +604,39 @@ contains
         end associate
         call model%add_force(force)
     end subroutine add_spring
+    !> The model's SPLINEs, fitted, for a user routine's AKISPL and CUBSPL
+    !> (rollcon_user_forces' set_system_splines); the reader has checked their points.
+    subroutine give_splines(adm)
+        type(adm_model_type), intent(in) :: adm
+        type(spline_type), allocatable :: curves(:)
+        character(len=:), allocatable :: problem
+        integer :: i
+
+        allocate(curves(0))
+        if (allocated(adm%splines)) then
+            deallocate(curves)
+            allocate(curves(size(adm%splines)))
+            do i = 1, size(adm%splines)
+                call new_spline(adm%splines(i)%id, adm%splines(i)%x, adm%splines(i)%y, &
+                    & curves(i), problem, adm%splines(i)%linear_extrapolate)
+            end do
+        end if
+        call set_system_splines(curves)
+    end subroutine give_splines
+
     !> The entry of the user's routine serving a FUNCTION=USER force statement
-    !> (rollcon_user_forces' table): the model's own SFOSUB, VFOSUB or GFOSUB, or the one its
-    !> ROUTINE= names. Refused when there is none, naming the statement and what to give.
+    !> (rollcon_user_forces' table): the model's own SFOSUB, VFOSUB, GFOSUB or VTOSUB, or the
+    !> one its ROUTINE= names. Refused when there is none, naming the statement and what to
+    !> give.
     subroutine user_routine(statement, where, entry, error)
         type(adm_force_type), intent(in) :: statement
         !> "data/x.adm:12: SFORCE/2"
         character(len=*), intent(in) :: where
         integer, intent(out) :: entry
         type(error_type), allocatable, intent(out) :: error
-        character(len=*), parameter :: statements(3) = ["SFORCE", "VFORCE", "GFORCE"]
         integer :: kind
 
-        kind = routine_kind_of(statements(statement%kind))
+        kind = routine_kind_of(trim(force_names(statement%kind)))
         entry = find_force_routine(kind, statement%routine)
         if (entry > 0) return
         if (len(statement%routine) == 0) then

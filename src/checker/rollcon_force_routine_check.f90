@@ -1,8 +1,9 @@
 ! SPDX-License-Identifier: MIT
 !> `rollcon check FILE --model MODEL.adm` for a dataset whose forces are served by the file's
-!> routines (SFOSUB, VFOSUB, GFOSUB; docs/checker.md, "Checking a force routine"):
+!> routines (SFOSUB, VFOSUB, GFOSUB, VTOSUB; docs/checker.md, "Checking a force routine"):
 !>
-!> - implicit typing: the file compiled once more with gfortran's -Wconversion, each warning
+!> - implicit typing (a Fortran file; C has none): the file compiled once more with
+!>   gfortran's -Wconversion, each warning
 !>   of a conversion that may change a value (a DOUBLE PRECISION value into a variable typed
 !>   INTEGER or REAL by its first letter) a finding naming the routine and the line;
 !> - in a child process (the routines' own, with the time limit per call and the guards of a
@@ -24,7 +25,8 @@ module rollcon_force_routine_check
     use rollcon_problem, only : problem_type
     use rollcon_force, only : profile_statement
     use rollcon_ucosub_contract, only : ucosub_interface
-    use rollcon_user_build, only : user_build_options_type, build_user_library
+    use rollcon_user_build, only : user_build_options_type, build_user_library, source_kind, &
+        & kind_c
     use rollcon_user_library, only : user_ucosub_type, load_user_routines
     use rollcon_user_forces, only : clear_force_routines, evaluate_user_forces, &
         & take_user_force_error, system_notes, clear_system_notes, force_routine_label
@@ -126,6 +128,8 @@ contains
             count = count + 1
             deallocate(error)
         end if
+        ! C has no implicit typing: its declarations are the programmer's own
+        if (source_kind(file) == kind_c) return
         call implicit_typing_findings(file, options%compiler, typing, typing_count, error)
         if (allocated(error)) return
         findings = findings // typing

@@ -147,7 +147,8 @@ contains
                 & .or. index(line, "ERROR STOP") == 1 .or. index(line, "Fortran runtime") == 1 &
                 & .or. index(line, "At line") == 1 .or. (after_ucosub .and. index(line, "at ") == 1)
             after_ucosub = index(line, " in ucosub_") > 0 .or. index(line, " in sfosub_") > 0 &
-                & .or. index(line, " in vfosub_") > 0 .or. index(line, " in gfosub_") > 0
+                & .or. index(line, " in vfosub_") > 0 .or. index(line, " in gfosub_") > 0 &
+                & .or. index(line, " in vtosub_") > 0
             if (.not. useful .or. len_trim(line) == 0) cycle
             if (quoted == 0) then
                 text = "; its stderr: "

@@ -30,10 +30,10 @@ module rollcon_user_build
     private
 
     public :: user_build_options_type, build_user_library, default_cache_dir
-    public :: kind_fixed, kind_free, kind_object, source_kind
+    public :: kind_fixed, kind_free, kind_object, kind_c, source_kind
 
-    !> What the user's file is: fixed-form source, free-form source, object
-    integer, parameter :: kind_fixed = 1, kind_free = 2, kind_object = 3
+    !> What the user's file is: fixed-form source, free-form source, object, C source
+    integer, parameter :: kind_fixed = 1, kind_free = 2, kind_object = 3, kind_c = 4
 
     !> How to build
     type :: user_build_options_type
@@ -41,6 +41,8 @@ module rollcon_user_build
         character(len=:), allocatable :: cache_dir
         !> Fortran compiler, found on PATH
         character(len=64) :: compiler = "gfortran"
+        !> C compiler for a routine written in C (.c), found on PATH
+        character(len=64) :: c_compiler = "cc"
     end type user_build_options_type
 
     !> Name of the shared library inside a cache entry
@@ -83,8 +85,8 @@ contains
         if (stat /= 0) value = ""
     end subroutine environment_value
 
-    !> Kind of a file from its extension (.f .for .f77 fixed; .f90 .f95 .f03 .f08 free; .o),
-    !> 0 when not one of these.
+    !> Kind of a file from its extension (.f .for .f77 fixed; .f90 .f95 .f03 .f08 free; .o;
+    !> .c C), 0 when not one of these.
     pure function source_kind(path) result(kind)
         !> Path of the user's file
         character(len=*), intent(in) :: path
@@ -103,6 +105,8 @@ contains
             kind = kind_free
         case ("o")
             kind = kind_object
+        case ("c")
+            kind = kind_c
         end select
     end function source_kind
 
@@ -128,7 +132,7 @@ contains
         !> "" when there was nothing wrong with the cache
         character(len=:), allocatable, intent(out), optional :: note
         character(len=:), allocatable :: content, flags, cache_dir, entry, scratch, copy, &
-            & compiler, damage
+            & compiler, damage, c_compiler, compilers
         integer :: kind, ignored
         logical :: disk_full
 
@@ -137,12 +141,12 @@ contains
         kind = source_kind(path)
         if (kind == 0) then
             call fatal_error(error, path // ": expected a UCOSUB source (.f fixed form, .f90 " &
-                & // "free form) or an object file (.o)", stat_input)
+                & // "free form, .c C) or an object file (.o)", stat_input)
             return
         end if
         if (.not. file_exists(path)) then
-            call fatal_error(error, path // ": no such file; expected a UCOSUB source (.f, .f90) " &
-                & // "or object (.o)", stat_input)
+            call fatal_error(error, path // ": no such file; expected a UCOSUB source (.f, .f90, " &
+                & // ".c) or object (.o)", stat_input)
             return
         end if
         call read_bytes(path, content, error)
@@ -159,7 +163,9 @@ contains
             end if
         end if
         flags = compile_flags(kind)
-        entry = cache_dir // "/" // content_key(content, trim(options%compiler) // " " // flags)
+        compilers = trim(options%compiler)
+        if (kind == kind_c) compilers = compilers // " " // trim(options%c_compiler)
+        entry = cache_dir // "/" // content_key(content, compilers // " " // flags)
         copy = "/source" // extension_of(path)
         library = entry // "/" // library_name
         call check_entry(entry, copy, content, from_cache, damage)
@@ -168,6 +174,11 @@ contains
 
         call find_compiler(trim(options%compiler), path, compiler, error)
         if (allocated(error)) return
+        c_compiler = ""
+        if (kind == kind_c) then
+            call find_compiler(trim(options%c_compiler), path, c_compiler, error, "C")
+            if (allocated(error)) return
+        end if
         scratch = entry // ".build-" // to_text(process_id())
         ! a folder of an earlier process that had this process id
         ignored = remove_flat_folder(scratch)
@@ -176,7 +187,8 @@ contains
         if (.not. allocated(error)) call write_lines(scratch // "/rollcon_shim.f90", &
             & shim_source_lines, error)
         if (.not. allocated(error)) call compile_and_link(path, kind, compiler, &
-            & trim(options%compiler), flags, scratch, entry // ".failed/build.log", error)
+            & trim(options%compiler), flags, scratch, entry // ".failed/build.log", error, &
+            & c_compiler, trim(options%c_compiler))
         if (.not. allocated(error)) call write_library_record(scratch, error)
         if (allocated(error)) then
             call say_when_disk_full(path, cache_dir, scratch, error, disk_full)
@@ -270,28 +282,34 @@ contains
     !> The compiler to run: name itself when it holds a '/', else the first executable file
     !> of that name in the folders of PATH (as the shell would find it). An error saying so
     !> when PATH is empty or holds no such file: without a compiler no UCOSUB can be built.
-    subroutine find_compiler(name, path, compiler, error)
+    subroutine find_compiler(name, path, compiler, error, language)
         !> The compiler's name (gfortran) or path
         character(len=*), intent(in) :: name
         !> The user's file, for messages
         character(len=*), intent(in) :: path
         character(len=:), allocatable, intent(out) :: compiler
         type(error_type), allocatable, intent(out) :: error
-        character(len=:), allocatable :: search, folder
+        !> The compiler's language, for messages (default Fortran)
+        character(len=*), intent(in), optional :: language
+        character(len=:), allocatable :: search, folder, kind
         integer :: length, stat, start, colon
+
+        kind = "Fortran"
+        if (present(language)) kind = language
 
         if (index(name, "/") > 0) then
             compiler = name
             if (is_executable(name)) return
-            call fatal_error(error, path // ": cannot build this UCOSUB: the Fortran compiler " &
-                & // name // " is not an executable file", stat_io)
+            call fatal_error(error, path // ": cannot build this UCOSUB: the " // kind &
+                & // " compiler " // name // " is not an executable file", stat_io)
             return
         end if
         call get_environment_variable("PATH", length=length, status=stat)
         if (stat /= 0 .or. length == 0) then
             call fatal_error(error, path // ": cannot build this UCOSUB: PATH is " &
-                & // trim(merge("empty", "unset", stat == 0)) // ", so the Fortran compiler '" &
-                & // name // "' cannot be found; set PATH to the folders of " // name &
+                & // trim(merge("empty", "unset", stat == 0)) // ", so the " // kind &
+                & // " compiler '" // name // "' cannot be found; set PATH to the folders of " &
+                & // name &
                 & // " and the system's tools (e.g. PATH=/usr/bin:/bin)", stat_io)
             return
         end if
@@ -308,8 +326,9 @@ contains
             if (is_executable(compiler)) return
             start = start + colon
         end do
-        call fatal_error(error, path // ": cannot build this UCOSUB: the Fortran compiler '" &
-            & // name // "' is in no folder of PATH (" // search // "); install it or add its " &
+        call fatal_error(error, path // ": cannot build this UCOSUB: the " // kind &
+            & // " compiler '" // name // "' is in no folder of PATH (" // search &
+            & // "); install it or add its " &
             & // "folder to PATH", stat_io)
     end subroutine find_compiler
 
@@ -374,7 +393,8 @@ contains
 
     !> Run the compiler: the user's source, the shim, then the link; the first failure is an
     !> error quoting build.log (for the source: at the first line gfortran complains about).
-    subroutine compile_and_link(path, kind, compiler, name, flags, dir, kept_log, error)
+    subroutine compile_and_link(path, kind, compiler, name, flags, dir, kept_log, error, &
+            & c_compiler, c_name)
         character(len=*), intent(in) :: path
         integer, intent(in) :: kind
         !> The compiler's path (find_compiler) and its name, for messages
@@ -383,25 +403,35 @@ contains
         !> Where build.log is kept after a failure, for the message
         character(len=*), intent(in) :: kept_log
         type(error_type), allocatable, intent(out) :: error
-        character(len=:), allocatable :: log, object, form, diagnostics, run
+        !> The C compiler's path and name, which compiles a .c file (kind_c)
+        character(len=*), intent(in) :: c_compiler, c_name
+        character(len=:), allocatable :: log, object, form, diagnostics, run, source_run, &
+            & source_name
         integer :: stat, command_stat
 
         log = dir // "/build.log"
         run = shell_quote(compiler)
         object = shell_quote(dir // "/user.o")
+        source_run = run // " -J " // shell_quote(dir)
+        source_name = name
+        if (kind == kind_c) then
+            source_run = shell_quote(c_compiler)
+            source_name = c_name
+        end if
         if (kind == kind_object) then
             object = shell_quote(path)
         else
-            call execute_command_line(run // " -c " // flags // " -J " // shell_quote(dir) &
-                & // " " // shell_quote(path) // " -o " // object // " > " // shell_quote(log) &
-                & // " 2>&1", exitstat=stat, cmdstat=command_stat)
-            call compiler_missing(name, path, stat, command_stat, error)
+            call execute_command_line(source_run // " -c " // flags // " " // shell_quote(path) &
+                & // " -o " // object // " > " // shell_quote(log) // " 2>&1", exitstat=stat, &
+                & cmdstat=command_stat)
+            call compiler_missing(source_name, path, stat, command_stat, error)
             if (allocated(error)) return
             if (stat /= 0) then
                 form = "free form"
                 if (kind == kind_fixed) form = "fixed form, -std=legacy"
+                if (kind == kind_c) form = "C"
                 call text_head(log, quoted_lines, diagnostics)
-                call fatal_error(error, first_location(path, diagnostics) // ": " // name &
+                call fatal_error(error, first_location(path, diagnostics) // ": " // source_name &
                     & // " could not compile this UCOSUB (" // form // "); its diagnostics " &
                     & // "(all in " // kept_log // "):" // new_line("a") // diagnostics, stat_ucon)
                 return
@@ -443,7 +473,7 @@ contains
 
         ! 127 is the shell's status for a command it cannot find (or run: /bin/sh missing)
         if (command_stat /= 0 .or. stat == 127) then
-            call fatal_error(error, path // ": cannot run the Fortran compiler '" // compiler &
+            call fatal_error(error, path // ": cannot run the compiler '" // compiler &
                 & // "' (is it installed and on PATH?); rollcon needs it to build the UCOSUB", &
                 & stat_io)
         end if

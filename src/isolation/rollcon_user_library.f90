@@ -107,6 +107,7 @@ contains
 
     !> Load every routine of self%library, the library built from self%source: its UCOSUB
     !> (self%ucosub; null when it defines none) and its force routines SFOSUB, VFOSUB, GFOSUB,
+    !> VTOSUB,
     !> registered with rollcon_user_forces under the names ROUTINE= may give: FILE::NAME with
     !> FILE the file as given or its name without folder and extension (u.f: "u::SFOSUB"), and
     !> "" (the model's own, serving every statement naming no ROUTINE) when no file loaded
@@ -149,8 +150,9 @@ contains
         end do
         if (.not. found) then
             call fatal_error(error, self%source // ": defines none of the routines rollcon " &
-                & // "calls (UCOSUB, SFOSUB, VFOSUB, GFOSUB: symbols 'ucosub_', 'sfosub_', " &
-                & // "'vfosub_', 'gfosub_'); check the names in its SUBROUTINE statements, " &
+                & // "calls (UCOSUB, SFOSUB, VFOSUB, GFOSUB, VTOSUB: symbols 'ucosub_', " &
+                & // "'sfosub_', 'vfosub_', 'gfosub_', 'vtosub_'); check the names in its " &
+                & // "SUBROUTINE statements, " &
                 & // "and that they are external subroutines, not inside a module", stat_ucon)
             call self%destroy()
         end if

@@ -1,6 +1,7 @@
 ! SPDX-License-Identifier: MIT
-!> UCOVAR, ERRMES, SYSFNC, SYSARY and TIMGET for a user's routine loaded at run time: the
-!> forwarding shim compiled into the user's shared library, and the host's side of it.
+!> UCOVAR, ERRMES, SYSFNC, SYSARY, TIMGET, STEP, RCNVRT, AKISPL and CUBSPL for a user's
+!> routine loaded at run time: the forwarding shim compiled into the user's shared library,
+!> and the host's side of it.
 !>
 !> rollcon's programs are not linked with -rdynamic, so a shared library cannot resolve the
 !> user's calls to UCOVAR and ERRMES against them. The shim (source text below, written to the
@@ -12,7 +13,10 @@
 module rollcon_user_shim
     use, intrinsic :: iso_c_binding, only : c_ptr, c_funptr, c_int, c_size_t, c_char, &
         & c_double, c_funloc, c_associated, c_f_procpointer
-    use rollcon_user_forces, only : system_function, system_array, system_time
+    use rollcon_user_forces, only : system_function, system_array, system_time, system_spline
+    use rollcon_adams_utilities, only : step_utility, convert_rotation, rotation_size, &
+        & rcnvrt_success, rcnvrt_failure
+    use rollcon_spline, only : method_akima, method_cubic
     use rollcon_error, only : error_type, fatal_error, stat_ucon
     use rollcon_ucosub_contract, only : ucovar, errmes, max_ucon_vars
     use rollcon_dlopen, only : library_symbol
@@ -25,6 +29,8 @@ module rollcon_user_shim
     character(len=*), parameter :: shim_install_symbol = "rollcon_shim_install"
     !> Name of the shim's setter of SYSFNC, SYSARY and TIMGET
     character(len=*), parameter :: shim_system_symbol = "rollcon_shim_install_system"
+    !> Name of the shim's setter of STEP, RCNVRT, AKISPL and CUBSPL
+    character(len=*), parameter :: shim_utilities_symbol = "rollcon_shim_install_utilities"
 
     !> Source of the shim, free form; the host writes it to the cache as rollcon_shim.f90
     character(len=*), parameter :: shim_source_lines(*) = [character(len=96) :: &
@@ -40,6 +46,9 @@ module rollcon_user_shim
         & "    type(c_funptr), save :: sysfnc_target = c_null_funptr", &
         & "    type(c_funptr), save :: sysary_target = c_null_funptr", &
         & "    type(c_funptr), save :: timget_target = c_null_funptr", &
+        & "    type(c_funptr), save :: step_target = c_null_funptr", &
+        & "    type(c_funptr), save :: rcnvrt_target = c_null_funptr", &
+        & "    type(c_funptr), save :: spline_target = c_null_funptr", &
         & "    abstract interface", &
         & "        subroutine ucovar_hook(id, nparts, lparts, nvars, lvars) bind(c)", &
         & "            import :: c_int", &
@@ -74,6 +83,31 @@ module rollcon_user_shim
         & "            import :: c_double", &
         & "            real(c_double), intent(out) :: time", &
         & "        end subroutine timget_hook", &
+        & "        subroutine step_hook(x, x0, h0, x1, h1, iord, value, errflg) bind(c)", &
+        & "            import :: c_int, c_double", &
+        & "            real(c_double), intent(in) :: x, x0, h0, x1, h1", &
+        & "            integer(c_int), intent(in) :: iord", &
+        & "            real(c_double), intent(out) :: value", &
+        & "            integer(c_int), intent(out) :: errflg", &
+        & "        end subroutine step_hook", &
+        & "        subroutine rcnvrt_hook(sys1, sys1_length, coord1, sys2, sys2_length, &", &
+        & "                & coord2, ncoord, istat) bind(c)", &
+        & "            import :: c_int, c_size_t, c_char, c_double", &
+        & "            character(kind=c_char), intent(in) :: sys1(*), sys2(*)", &
+        & "            integer(c_size_t), value :: sys1_length, sys2_length", &
+        & "            real(c_double), intent(in) :: coord1(*)", &
+        & "            real(c_double), intent(out) :: coord2(9)", &
+        & "            integer(c_int), intent(out) :: ncoord, istat", &
+        & "        end subroutine rcnvrt_hook", &
+        & "        subroutine spline_hook(method, xval, zval, id, iord, array, errflg) &", &
+        & "                & bind(c)", &
+        & "            import :: c_int, c_double", &
+        & "            integer(c_int), value :: method", &
+        & "            real(c_double), intent(in) :: xval, zval", &
+        & "            integer(c_int), intent(in) :: id, iord", &
+        & "            real(c_double), intent(out) :: array(3)", &
+        & "            integer(c_int), intent(out) :: errflg", &
+        & "        end subroutine spline_hook", &
         & "    end interface", &
         & "end module rollcon_shim_targets", &
         & "", &
@@ -96,6 +130,17 @@ module rollcon_user_shim
         & "    sysary_target = sysary_address", &
         & "    timget_target = timget_address", &
         & "end subroutine rollcon_shim_install_system", &
+        & "", &
+        & "subroutine rollcon_shim_install_utilities(step_address, rcnvrt_address, &", &
+        & "        & spline_address) bind(c, name='rollcon_shim_install_utilities')", &
+        & "    use rollcon_shim_targets, only : c_funptr, step_target, rcnvrt_target, &", &
+        & "        & spline_target", &
+        & "    implicit none", &
+        & "    type(c_funptr), value :: step_address, rcnvrt_address, spline_address", &
+        & "    step_target = step_address", &
+        & "    rcnvrt_target = rcnvrt_address", &
+        & "    spline_target = spline_address", &
+        & "end subroutine rollcon_shim_install_utilities", &
         & "", &
         & "subroutine ucovar(id, nparts, lparts, nvars, lvars)", &
         & "    use, intrinsic :: iso_c_binding, only : c_associated, c_f_procpointer", &
@@ -176,7 +221,83 @@ module rollcon_user_shim
         & "    if (.not. c_associated(timget_target)) return", &
         & "    call c_f_procpointer(timget_target, forward_timget)", &
         & "    call forward_timget(time)", &
-        & "end subroutine timget"]
+        & "end subroutine timget", &
+        & "", &
+        & "subroutine step(x, x0, h0, x1, h1, iord, value, errflg)", &
+        & "    use, intrinsic :: iso_c_binding, only : c_associated, c_f_procpointer", &
+        & "    use rollcon_shim_targets, only : c_int, c_double, step_target, step_hook", &
+        & "    implicit none", &
+        & "    real(c_double), intent(in) :: x, x0, h0, x1, h1", &
+        & "    integer(c_int), intent(in) :: iord", &
+        & "    real(c_double), intent(out) :: value", &
+        & "    logical, intent(out) :: errflg", &
+        & "    procedure(step_hook), pointer :: forward_step", &
+        & "    integer(c_int) :: failed", &
+        & "    value = 0", &
+        & "    errflg = .true.", &
+        & "    if (.not. c_associated(step_target)) return", &
+        & "    call c_f_procpointer(step_target, forward_step)", &
+        & "    call forward_step(x, x0, h0, x1, h1, iord, value, failed)", &
+        & "    errflg = failed /= 0", &
+        & "end subroutine step", &
+        & "", &
+        & "subroutine rcnvrt(sys1, coord1, sys2, coord2, istat)", &
+        & "    use, intrinsic :: iso_c_binding, only : c_associated, c_f_procpointer", &
+        & "    use rollcon_shim_targets, only : c_int, c_size_t, c_double, rcnvrt_target, &", &
+        & "        & rcnvrt_hook", &
+        & "    implicit none", &
+        & "    character(len=*), intent(in) :: sys1, sys2", &
+        & "    real(c_double), intent(in) :: coord1(*)", &
+        & "    real(c_double), intent(out) :: coord2(*)", &
+        & "    integer(c_int), intent(out) :: istat", &
+        & "    procedure(rcnvrt_hook), pointer :: forward_rcnvrt", &
+        & "    real(c_double) :: values(9)", &
+        & "    integer(c_int) :: n", &
+        & "    istat = -10", &
+        & "    if (.not. c_associated(rcnvrt_target)) return", &
+        & "    call c_f_procpointer(rcnvrt_target, forward_rcnvrt)", &
+        & "    call forward_rcnvrt(sys1, len(sys1, kind=c_size_t), coord1, sys2, &", &
+        & "        & len(sys2, kind=c_size_t), values, n, istat)", &
+        & "    if (n > 0) coord2(1:n) = values(1:n)", &
+        & "end subroutine rcnvrt", &
+        & "", &
+        & "subroutine akispl(xval, zval, id, iord, array, errflg)", &
+        & "    use rollcon_shim_targets, only : c_int, c_double", &
+        & "    implicit none", &
+        & "    real(c_double), intent(in) :: xval, zval", &
+        & "    integer(c_int), intent(in) :: id, iord", &
+        & "    real(c_double), intent(out) :: array(3)", &
+        & "    logical, intent(out) :: errflg", &
+        & "    call rollcon_shim_spline(1_c_int, xval, zval, id, iord, array, errflg)", &
+        & "end subroutine akispl", &
+        & "", &
+        & "subroutine cubspl(xval, zval, id, iord, array, errflg)", &
+        & "    use rollcon_shim_targets, only : c_int, c_double", &
+        & "    implicit none", &
+        & "    real(c_double), intent(in) :: xval, zval", &
+        & "    integer(c_int), intent(in) :: id, iord", &
+        & "    real(c_double), intent(out) :: array(3)", &
+        & "    logical, intent(out) :: errflg", &
+        & "    call rollcon_shim_spline(2_c_int, xval, zval, id, iord, array, errflg)", &
+        & "end subroutine cubspl", &
+        & "", &
+        & "subroutine rollcon_shim_spline(method, xval, zval, id, iord, array, errflg)", &
+        & "    use, intrinsic :: iso_c_binding, only : c_associated, c_f_procpointer", &
+        & "    use rollcon_shim_targets, only : c_int, c_double, spline_target, spline_hook", &
+        & "    implicit none", &
+        & "    integer(c_int), intent(in) :: method, id, iord", &
+        & "    real(c_double), intent(in) :: xval, zval", &
+        & "    real(c_double), intent(out) :: array(3)", &
+        & "    logical, intent(out) :: errflg", &
+        & "    procedure(spline_hook), pointer :: forward_spline", &
+        & "    integer(c_int) :: failed", &
+        & "    array = 0", &
+        & "    errflg = .true.", &
+        & "    if (.not. c_associated(spline_target)) return", &
+        & "    call c_f_procpointer(spline_target, forward_spline)", &
+        & "    call forward_spline(method, xval, zval, id, iord, array, failed)", &
+        & "    errflg = failed /= 0", &
+        & "end subroutine rollcon_shim_spline"]
 
     abstract interface
         !> The shim's setter (rollcon_shim_install in the source above)
@@ -194,6 +315,14 @@ module rollcon_user_shim
             !> Addresses of host_sysfnc, host_sysary, host_timget
             type(c_funptr), value :: sysfnc_address, sysary_address, timget_address
         end subroutine install_system_interface
+        !> The shim's setter of STEP, RCNVRT, AKISPL and CUBSPL
+        !> (rollcon_shim_install_utilities)
+        subroutine install_utilities_interface(step_address, rcnvrt_address, spline_address) &
+                & bind(c)
+            import :: c_funptr
+            !> Addresses of host_step, host_rcnvrt, host_spline
+            type(c_funptr), value :: step_address, rcnvrt_address, spline_address
+        end subroutine install_utilities_interface
     end interface
 
 contains
@@ -209,6 +338,7 @@ contains
         type(c_funptr) :: address
         procedure(install_interface), pointer :: install
         procedure(install_system_interface), pointer :: install_system
+        procedure(install_utilities_interface), pointer :: install_utilities
 
         address = library_symbol(handle, shim_install_symbol)
         if (.not. c_associated(address)) then
@@ -223,7 +353,81 @@ contains
         if (.not. c_associated(address)) return
         call c_f_procpointer(address, install_system)
         call install_system(c_funloc(host_sysfnc), c_funloc(host_sysary), c_funloc(host_timget))
+        address = library_symbol(handle, shim_utilities_symbol)
+        if (.not. c_associated(address)) return
+        call c_f_procpointer(address, install_utilities)
+        call install_utilities(c_funloc(host_step), c_funloc(host_rcnvrt), &
+            & c_funloc(host_spline))
     end subroutine install_host_hooks
+
+    !> The shim's STEP lands here: rollcon_adams_utilities' step_utility.
+    subroutine host_step(x, x0, h0, x1, h1, iord, value, errflg) bind(c)
+        !> X, X0, H0, X1, H1 of the call
+        real(c_double), intent(in) :: x, x0, h0, x1, h1
+        !> Order of the derivative
+        integer(c_int), intent(in) :: iord
+        !> The step or its derivative
+        real(c_double), intent(out) :: value
+        !> 1 when the call was refused
+        integer(c_int), intent(out) :: errflg
+        logical :: failed
+
+        call step_utility(x, x0, h0, x1, h1, int(iord), value, failed)
+        errflg = merge(1_c_int, 0_c_int, failed)
+    end subroutine host_step
+
+    !> The shim's RCNVRT lands here: rollcon_adams_utilities' convert_rotation, reading
+    !> rotation_size(SYS1) values of COORD1 and giving ncoord = rotation_size(SYS2) of COORD2
+    !> (0 when refused).
+    subroutine host_rcnvrt(sys1, sys1_length, coord1, sys2, sys2_length, coord2, ncoord, &
+            & istat) bind(c)
+        !> Characters of SYS1 and SYS2
+        character(kind=c_char), intent(in) :: sys1(*), sys2(*)
+        !> Their lengths
+        integer(c_size_t), value :: sys1_length, sys2_length
+        !> The coordinates to convert
+        real(c_double), intent(in) :: coord1(*)
+        !> The converted coordinates
+        real(c_double), intent(out) :: coord2(9)
+        !> Number of coordinates in coord2
+        integer(c_int), intent(out) :: ncoord
+        !> RCNVRT's ISTAT
+        integer(c_int), intent(out) :: istat
+        character(len=:), allocatable :: from, to
+        integer :: n1, n2, status
+
+        from = to_string(sys1, sys1_length)
+        to = to_string(sys2, sys2_length)
+        coord2 = 0.0_c_double
+        ncoord = 0
+        istat = int(rcnvrt_failure, c_int)
+        n1 = rotation_size(from)
+        n2 = rotation_size(to)
+        if (n1 == 0 .or. n2 == 0) return
+        call convert_rotation(from, coord1(:n1), to, coord2(:n2), status)
+        istat = int(status, c_int)
+        if (status == rcnvrt_success) ncoord = int(n2, c_int)
+    end subroutine host_rcnvrt
+
+    !> The shim's AKISPL (method 1) and CUBSPL (method 2) land here: rollcon_user_forces'
+    !> system_spline.
+    subroutine host_spline(method, xval, zval, id, iord, array, errflg) bind(c)
+        !> 1 AKISPL, 2 CUBSPL
+        integer(c_int), value :: method
+        !> XVAL, ZVAL of the call
+        real(c_double), intent(in) :: xval, zval
+        !> SPLINE id and order of the derivative
+        integer(c_int), intent(in) :: id, iord
+        !> The value and the z derivatives
+        real(c_double), intent(out) :: array(3)
+        !> 1 when the call was refused
+        integer(c_int), intent(out) :: errflg
+        logical :: failed
+
+        call system_spline(merge(method_akima, method_cubic, method == 1), xval, zval, &
+            & int(id), int(iord), array, failed)
+        errflg = merge(1_c_int, 0_c_int, failed)
+    end subroutine host_spline
 
     !> The shim's SYSFNC lands here and goes on to rollcon_user_forces' system_function.
     subroutine host_sysfnc(name, name_length, ipar, nsize, value, errflg) bind(c)

@@ -1,6 +1,6 @@
 ! SPDX-License-Identifier: MIT
 !> Force statements served by a user's routine (FUNCTION=USER(r1, ...): SFOSUB, VFOSUB,
-!> GFOSUB; rollcon_force_routine_contract), and the utilities those routines call: SYSFNC,
+!> GFOSUB, VTOSUB; rollcon_force_routine_contract), and the utilities those routines call: SYSFNC,
 !> SYSARY and TIMGET, answering from the state the routine is called at (docs/datasets.md,
 !> "User force routines").
 !>
@@ -25,7 +25,7 @@ module rollcon_user_forces
     use rollcon_error, only : error_type, fatal_error, stat_ucon
     use rollcon_text, only : to_text, upper_case
     use rollcon_force_routine_contract, only : force_routine_interface, routine_names, &
-        & routine_results, routine_kinds, routine_statements
+        & routine_results, routine_kinds, routine_statements, routine_vtosub
     use rollcon_adams_runtime, only : take_ucon_error
     use rollcon_marker, only : marker_type
     use rollcon_measures, only : measure_value, is_state_measure, reads_rates, quantity_scale
@@ -33,6 +33,7 @@ module rollcon_user_forces
         & quantity_vm, quantity_vr, quantity_accm, quantity_wdtm, quantity_least_markers, &
         & quantity_most_markers, quantity_dx
     use rollcon_force, only : applied_force_type, profile_statement
+    use rollcon_spline, only : spline_type, spline_derivatives, method_akima, method_cubic
     use, intrinsic :: ieee_arithmetic, only : ieee_is_finite
     implicit none
     private
@@ -43,6 +44,7 @@ module rollcon_user_forces
     public :: take_user_force_error, has_user_forces, routine_kind_of
     public :: system_function, system_array, system_time, system_notes, clear_system_notes
     public :: get_force_routine, report_call_problem
+    public :: set_system_splines, system_spline
 
     !> A routine the model may use
     type :: routine_entry_type
@@ -73,6 +75,8 @@ module rollcon_user_forces
     !> The model's markers (every one a routine may name), the dataset's units
     type(marker_type), allocatable, save :: markers(:)
     real(wp), save :: length_unit = 1.0_wp, time_unit = 1.0_wp
+    !> The model's SPLINEs, the curves AKISPL and CUBSPL read
+    type(spline_type), allocatable, save :: curves(:)
     !> The state of the call under way [SI]
     real(wp), allocatable, save :: q_now(:), u_now(:)
     real(wp), save :: time_now = 0.0_wp
@@ -208,6 +212,57 @@ contains
         time_unit = time
     end subroutine set_system_markers
 
+    !> The curves AKISPL and CUBSPL may read: every SPLINE of the model, fitted.
+    subroutine set_system_splines(all_curves)
+        type(spline_type), intent(in) :: all_curves(:)
+
+        curves = all_curves
+    end subroutine set_system_splines
+
+    !> AKISPL(XVAL, ZVAL, ID, IORD, ARRAY, ERRFLG) (method_akima) and CUBSPL(...)
+    !> (method_cubic): SPLINE/id's curve at xval (Akima's fit, or the natural cubic spline),
+    !> or its derivative of order iord (0, 1, 2) in x, as the expression functions AKISPL and
+    !> CUBSPL read it (rollcon_spline), into array(1); array(2) and array(3), a surface's
+    !> derivatives in z, are 0 (a SPLINE is a curve; zval is unused). Values in the units the
+    !> SPLINE's numbers carry. ERRFLG set, and array 0, for a SPLINE the model lacks, an iord
+    !> not 0, 1 or 2, and CUBSPL of fewer than 4 points.
+    subroutine system_spline(method, xval, zval, id, iord, array, errflg)
+        integer, intent(in) :: method
+        real(wp), intent(in) :: xval, zval
+        integer, intent(in) :: id, iord
+        real(wp), intent(out) :: array(3)
+        logical, intent(out) :: errflg
+        character(len=:), allocatable :: name
+        real(wp) :: values(0:3)
+        integer :: k, found
+
+        array = 0.0_wp
+        errflg = .true.
+        name = trim(merge("AKISPL", "CUBSPL", method == method_akima))
+        if (.not. allocated(curves)) allocate(curves(0))
+        found = 0
+        do k = 1, size(curves)
+            if (curves(k)%id == id) found = k
+        end do
+        if (found == 0) then
+            call refuse(name // " names SPLINE/" // to_text(id) // ", which the model has not")
+            return
+        end if
+        if (iord < 0 .or. iord > 2) then
+            call refuse(name // " with IORD = " // to_text(iord) // ": it gives the value " &
+                & // "(0) or the first or second derivative (1, 2)")
+            return
+        end if
+        if (method == method_cubic .and. size(curves(found)%x) < 4) then
+            call refuse("CUBSPL of SPLINE/" // to_text(id) // ", which has " &
+                & // to_text(size(curves(found)%x)) // " points: the cubic spline needs 4")
+            return
+        end if
+        values = spline_derivatives(curves(found), method, xval)
+        array(1) = values(iord)
+        errflg = .false.
+    end subroutine system_spline
+
     !> True when a force of the model is served by a user's routine.
     pure logical function has_user_forces(forces)
         type(applied_force_type), intent(in) :: forces(:)
@@ -281,7 +336,12 @@ contains
                 case (1)
                     values(1) = result(1)*s%force_unit
                 case (3)
-                    values(1:3) = result(1:3)*s%force_unit
+                    if (kind == routine_vtosub) then
+                        ! a VTOSUB's RESULT is the torque TX, TY, TZ
+                        values(4:6) = result(1:3)*s%force_unit*s%length_unit
+                    else
+                        values(1:3) = result(1:3)*s%force_unit
+                    end if
                 case default
                     values(1:3) = result(1:3)*s%force_unit
                     values(4:6) = result(4:6)*s%force_unit*s%length_unit

@@ -51,7 +51,7 @@ module rollcon_adm_abbreviations
         & // "ROTATIONAl ROUtine"), &
         & place_type("VFORCE", "I Jfloat RM FX FY FZ FUnction ROutine"), &
         & place_type("GFORCE", "I Jfloat RM FX FY FZ TX TY TZ FUnction ROutine"), &
-        & place_type("VTORQUE", "I Jfloat RM TX TY TZ"), &
+        & place_type("VTORQUE", "I Jfloat RM TX TY TZ Function ROutine"), &
         & place_type("SPRINGDAMPER", "I J TRanslational Rotational K C Length Force KT CT " &
         & // "Angle TOrque"), &
         & place_type("BUSHING", "I J K C KT CT Force Torque"), &

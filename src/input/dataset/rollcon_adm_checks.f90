@@ -372,8 +372,9 @@ contains
         end if
         if (any(force%kind == [force_springdamper, force_bushing])) return
         if (force%kind == force_vtorque) then
-            if (.not. all(force%given(4:6))) call fatal_error(error, where &
-                & // ": TX=e, TY=e, TZ=e is needed", stat_input)
+            if (.not. all(force%given(4:6)) .and. .not. force%user) call fatal_error(error, &
+                & where // ": TX=e, TY=e, TZ=e (or FUNCTION=USER(r1, ..., r30)) is needed", &
+                & stat_input)
             return
         end if
         needed = merge(1, merge(3, 6, force%kind == force_vforce), force%kind == force_sforce)

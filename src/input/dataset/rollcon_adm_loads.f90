@@ -38,7 +38,7 @@ module rollcon_adm_loads
     !> constants
     character(len=*), parameter :: bushing_keys(8) = [character(len=6) :: "I", "J", "K", "C", &
         & "KT", "CT", "FORCE", "TORQUE"]
-    !> VFORCE's and GFORCE's keywords beside their components: a user's routine serves it
+    !> VFORCE's, GFORCE's and VTORQUE's keywords beside their components: a user's routine serves it
     character(len=*), parameter :: user_keys(2) = [character(len=8) :: "FUNCTION", "ROUTINE"]
 
 contains
@@ -212,7 +212,8 @@ contains
             if (force%kind == force_sforce) then
                 call argument_key(path, where, statement, k, sforce_keys, key, error)
             else if (force%kind == force_vtorque) then
-                call argument_key(path, where, statement, k, vtorque_keys, key, error)
+                call argument_key(path, where, statement, k, [character(len=8) :: &
+                    & vtorque_keys, user_keys], key, error)
             else if (force%kind == force_vforce) then
                 call argument_key(path, where, statement, k, [character(len=8) :: &
                     & gforce_keys(1:6), user_keys], key, error)
@@ -244,7 +245,8 @@ contains
                     force%user = .true.
                 else if (force%kind /= force_sforce) then
                     call fatal_error(error, at // ": a " // name // " gives its components as " &
-                        & // "FX=e, ... or is served by a user's routine, FUNCTION=USER(r1, " &
+                        & // trim(merge("TX=e, ...", "FX=e, ...", force%kind == force_vtorque)) &
+                        & // " or is served by a user's routine, FUNCTION=USER(r1, " &
                         & // "..., r30); got '" // trim(argument_text(statement%arguments(k))) &
                         & // "'", stat_input)
                     return
@@ -426,6 +428,8 @@ contains
             routine = "SFOSUB"
         case ("VFORCE")
             routine = "VFOSUB"
+        case ("VTORQUE")
+            routine = "VTOSUB"
         case default
             routine = "GFOSUB"
         end select

@@ -46,6 +46,10 @@ contains
 
         tests = [new_unittest("sfosub-gfosub-as-expressions", test_against_expressions), &
             & new_unittest("vfosub-as-expressions", test_vfosub), &
+            & new_unittest("vtosub-as-expressions", test_vtosub), &
+            & new_unittest("vtosub-returns-nan", test_vtosub_nan), &
+            & new_unittest("utilities-as-expressions", test_utilities), &
+            & new_unittest("c-sfosub-as-fortran", test_c_routine), &
             & new_unittest("two-user-files", test_two_files), &
             & new_unittest("sfosub-crashes", test_crashes), &
             & new_unittest("sfosub-stops", test_stops), &
@@ -76,6 +80,71 @@ contains
 
         call compare_twins("vforce", ["vforce_spring.f"], error)
     end subroutine test_vfosub
+
+    !> vtorque.adm (VTORQUE/5 by vtorque_spring.f's VTOSUB: a torsional spring-damper read
+    !> through SYSFNC's AX, AY, AZ and SYSARY's RVEL, in a turned marker's axes) gives the rows
+    !> of vtorque_expressions.adm to twin_tolerance: the torque lands in TX, TY, TZ, in the
+    !> dataset's force times length.
+    subroutine test_vtosub(error)
+        type(error_type), allocatable, intent(out) :: error
+
+        call compare_twins("vtorque", ["vtorque_spring.f"], error)
+    end subroutine test_vtosub
+
+    !> A VTOSUB returning NaN in TY after t = 0.1 s: the clean error of an SFOSUB's NaN,
+    !> naming the file, line and statement, the routine, the values and a TIME past 0.1.
+    subroutine test_vtosub_nan(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(history_type) :: history
+        type(error_type), allocatable :: run_error
+
+        call run_user(folder // "vtorque.adm", ["faulty/vtosub_nan.f"], 10.0_wp, history, &
+            & run_error)
+        call expect_message(run_error, [character(len=60) :: &
+            & "vtorque.adm:10: VTORQUE/5: its VTOSUB of", "faulty/vtosub_nan.f", &
+            & ", NaN, ", ") at TIME = 0.1", "a force must be finite"], error)
+    end subroutine test_vtosub_nan
+
+    !> utilities.adm (SFORCE/2 by sforce_utilities.f's SFOSUB, calling AKISPL and CUBSPL on
+    !> the model's SPLINE/3, STEP and RCNVRT) gives the rows of utilities_expressions.adm,
+    !> where the same force is written with the expression functions AKISPL, CUBSPL and STEP
+    !> and the Euler parameter in closed form, to twin_tolerance. A spline read at the wrong
+    !> x, a STEP of the wrong shape or a wrong Euler parameter moves the part by 1e-3 or more.
+    subroutine test_utilities(error)
+        type(error_type), allocatable, intent(out) :: error
+
+        call compare_twins("utilities", ["sforce_utilities.f"], error)
+    end subroutine test_utilities
+
+    !> spring.adm with sforce_spring.c, the C twin of sforce_spring.f (the prototypes of
+    !> docs/datasets.md), compiled by the system's C compiler: the rows of the Fortran
+    !> routine's run, bit for bit. Both routines do the same IEEE operations in the same
+    !> order (no reassociation at -O2 in either compiler) on the same SYSFNC values, so the
+    !> integrator sees the same numbers and takes the same steps: any difference is a
+    !> difference of the calls (an argument misread, a LOGICAL misread).
+    subroutine test_c_routine(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(history_type) :: c_run, fortran_run
+        real(wp) :: largest
+        integer :: c
+
+        call run_user(folder // "spring.adm", ["sforce_spring.c"], 10.0_wp, c_run, error)
+        if (allocated(error)) return
+        call run_user(folder // "spring.adm", ["sforce_spring.f"], 10.0_wp, fortran_run, error)
+        if (allocated(error)) return
+        if (c_run%count /= fortran_run%count .or. c_run%count < 101) then
+            call fatal_error(error, to_text(c_run%count) // " rows with the C routine, " &
+                & // to_text(fortran_run%count) // " with the Fortran one")
+            return
+        end if
+        largest = 0.0_wp
+        do c = 1, 12
+            largest = max(largest, maxval(abs(c_run%part_values(1, c) &
+                & - fortran_run%part_values(1, c))))
+        end do
+        call check(error, largest == 0.0_wp, "the C routine's rows differ from the " &
+            & // "Fortran routine's by " // to_text(largest))
+    end subroutine test_c_routine
 
     !> two_files.adm: SFORCE/2 by the first file's SFOSUB (the model's own), SFORCE/3 by the
     !> SFOSUB of the second file, which its ROUTINE=sforce_cubic::SFOSUB names (and which reads

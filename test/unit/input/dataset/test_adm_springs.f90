@@ -113,7 +113,8 @@ contains
         replaced(7) = "BUSHING/5, I=3, K=1, 2, 3"
         expected(7) = ":10: BUSHING/5 J: a BUSHING acts between I and J (J=id)"
         replaced(8) = "VTORQUE/5, I=3, JFLOAT=4, TX=1"
-        expected(8) = ":10: VTORQUE/5: TX=e, TY=e, TZ=e is needed"
+        expected(8) = ":10: VTORQUE/5: TX=e, TY=e, TZ=e (or FUNCTION=USER(r1, ..., r30)) " &
+            & // "is needed"
         replaced(9) = "VTORQUE/5, I=3, JFLOAT=4, FX=1, TX=1, TY=0, TZ=0"
         expected(9) = ":10: VTORQUE/5: 'FX' is not a VTORQUE argument*"
         replaced(10) = "SPRINGDAMPER/5, I=3, J=4, T, K=1"
