@@ -22,7 +22,8 @@
 !>
 !> Where an expression switches (an IF's condition; a STEP's, STEP5's or HAVSIN's x at x0 and
 !> x1; MIN, MAX and DIM where their arguments are equal; ABS at zero; SIGN(a, b) where a or b
-!> is zero; IMPACT's and BISTOP's x at their free lengths and the ends of their damping) it
+!> is zero; IMPACT's and BISTOP's x at their free lengths and the ends of their damping;
+!> AKISPL's and CUBSPL's x at the corners of their curve, rollcon_spline's spline_corners) it
 !> has a corner, which an integrator must not step across (docs/design.md §7): a switch on
 !> TIME alone is found here as a time (switching_times), any other is a function of the state
 !> whose zero an integrator locates (switch_values).
@@ -30,7 +31,8 @@ module rollcon_expression
     use rollcon_kinds, only : wp
     use rollcon_constants, only : pi
     use rollcon_jet, only : jet_type, jet_constant
-    use rollcon_spline, only : spline_type, method_akima, method_cubic
+    use rollcon_spline, only : spline_type, method_akima, method_cubic, spline_corners, &
+        & spline_corner_switch
     use rollcon_expression_functions, only : jet_step5, jet_shf, jet_poly, jet_cheby, &
         & jet_fourier, jet_impact, jet_bistop, jet_dim, jet_mod, jet_aint, jet_anint, jet_sign, &
         & jet_asin_domain, jet_acos_domain, jet_spline, nan_jet
@@ -203,9 +205,17 @@ contains
         j = 0
         do i = 1, size(expression%op)
             if (present(kinds) .and. present(g)) then
-                if (kinds(i) == switch_watched) call add_switch(expression%op(i), &
-                    & stack(top - operation_arity(expression%op(i), expression%constant(i)) &
-                    & + 1:top), g, j)
+                if (kinds(i) == switch_watched) then
+                    k = operation_arity(expression%op(i), expression%constant(i))
+                    if (is_spline(expression%op(i))) then
+                        ! the curve's corner switch of its x, the first argument
+                        j = j + 1
+                        g(j) = spline_corner_switch(expression%splines(spline_index(expression, &
+                            & i)), stack(top - k + 1))
+                    else
+                        call add_switch(expression%op(i), stack(top - k + 1:top), g, j)
+                    end if
+                end if
             end if
             select case (expression%op(i))
             case (op_constant)
@@ -449,7 +459,8 @@ contains
     !> The times at which the expression switches: where a switch function of an operation
     !> (switch_combinations: an IF's condition, x - x0 and x - x1 of a STEP, STEP5 or HAVSIN,
     !> a - b of MIN, MAX or DIM, the argument of ABS, ...) is a TIME + b (a /= 0, a and b
-    !> constants) and crosses zero. A switch on anything else (a state function, a
+    !> constants) and crosses zero, and where the x of AKISPL or CUBSPL, a TIME + b, meets a
+    !> corner of its curve (spline_corners). A switch on anything else (a state function, a
     !> product of TIME) is not found here: switch_kinds calls it watched. In the expression's
     !> time units, in the order the program meets them (an inner IF before the IF around it). A
     !> time that is not finite (constants whose product or sum overflows: the switch never
@@ -475,7 +486,8 @@ contains
 
     !> Number of switch functions switch_values gives for these kinds: each watched
     !> operation's (switch_combinations; two for a STEP, STEP5, HAVSIN, SIGN or IMPACT, four
-    !> for a BISTOP, one for the others).
+    !> for a BISTOP, one for the others, and one for AKISPL or CUBSPL, zero at every corner of
+    !> its curve).
     pure integer function switch_count(expression, kinds)
         type(expression_type), intent(in) :: expression
         integer, intent(in) :: kinds(:)
@@ -485,7 +497,12 @@ contains
         switch_count = 0
         do i = 1, size(kinds)
             if (kinds(i) /= switch_watched) cycle
-            call switch_combinations(expression%op(i), c, n)
+            if (is_spline(expression%op(i))) then
+                ! one switch function for all the curve's corners (spline_corner_switch)
+                n = 1
+            else
+                call switch_combinations(expression%op(i), c, n)
+            end if
             switch_count = switch_count + n
         end do
     end function switch_count
@@ -493,7 +510,8 @@ contains
     !> The switch functions of the watched switches (kinds from switch_kinds) at `time` with
     !> the inputs' values, in program order, each zero where its switch switches: an IF's
     !> condition, x - x0 and x - x1 of a STEP, STEP5 or HAVSIN, a - b of MIN(a, b), MAX(a, b)
-    !> and DIM(a, b), the argument of ABS, ... (switch_combinations). g has switch_count
+    !> and DIM(a, b), the argument of ABS, ... (switch_combinations), and AKISPL's and
+    !> CUBSPL's spline_corner_switch of their x. g has switch_count
     !> values. Allocates nothing (an event function of the integrators).
     pure subroutine switch_values(expression, time, inputs, kinds, g)
         type(expression_type), intent(in) :: expression
@@ -541,6 +559,13 @@ contains
             end select
             arity = operation_arity(op, expression%constant(i))
             top = top - arity + 1
+            if (is_spline(op)) then
+                call classify_knots(expression, i, kinds(i), times, slope(top), offset(top), &
+                    & affine(top))
+                call combine(op, arity, slope(top:top + arity - 1), &
+                    & offset(top:top + arity - 1), affine(top:top + arity - 1))
+                cycle
+            end if
             call switch_combinations(op, c, n)
             do r = 1, n
                 slopes(r) = 0.0_wp
@@ -558,6 +583,57 @@ contains
                 & affine(top:top + arity - 1))
         end do
     end subroutine analyse_switches
+
+    !> The switch of AKISPL or CUBSPL (operation i) at the corners of its curve
+    !> (spline_corners), its x = slope*TIME + offset when affine: timed at the times x meets
+    !> them when x is affine and not constant, watched when x is not affine; none for a curve
+    !> without corners (or one the expression does not hold, whose value is NaN) or a constant
+    !> x. z is not a switch: the curve does not depend on it.
+    pure subroutine classify_knots(expression, i, kind, times, slope, offset, affine)
+        type(expression_type), intent(in) :: expression
+        integer, intent(in) :: i
+        integer, intent(inout) :: kind
+        real(wp), allocatable, intent(inout) :: times(:)
+        real(wp), intent(in) :: slope, offset
+        logical, intent(in) :: affine
+        real(wp), allocatable :: corners(:)
+        integer :: s
+
+        s = spline_index(expression, i)
+        if (s == 0) return
+        corners = spline_corners(expression%splines(s))
+        if (size(corners) == 0) return
+        if (.not. affine) then
+            kind = switch_watched
+        else if (slope /= 0.0_wp) then
+            kind = switch_timed
+            call add_finite(times, (corners - offset)/slope)
+        end if
+    end subroutine classify_knots
+
+    !> True for the curves AKISPL and CUBSPL.
+    pure logical function is_spline(op)
+        integer, intent(in) :: op
+
+        is_spline = op == op_akispl .or. op == op_cubspl
+    end function is_spline
+
+    !> The place among expression%splines of the curve operation i (AKISPL or CUBSPL) reads,
+    !> 0 when the expression does not hold it.
+    pure integer function spline_index(expression, i) result(s)
+        type(expression_type), intent(in) :: expression
+        integer, intent(in) :: i
+        integer :: k
+
+        s = 0
+        if (.not. allocated(expression%splines)) return
+        do k = 1, size(expression%splines)
+            if (expression%splines(k)%id == spline_id_of(expression%constant(i))) then
+                s = k
+                return
+            end if
+        end do
+    end function spline_index
 
     !> A switch where each slope*TIME + offset (when affine) is zero: timed, its times added,
     !> when every one is affine (a constant one, of slope 0, never switches), else watched.

@@ -14,12 +14,19 @@
 !> option) the curve goes on along the straight line of its value and slope at that end. A
 !> curve needs at least 4 points for CUBSPL and at least 2 for AKISPL (ADAMS asks for 4), its
 !> x strictly increasing.
+!>
+!> A curve's **corners** are the points where a derivative jumps (spline_corners): every
+!> interior point (Akima's second derivative jumps there, the cubic spline's third), and with
+!> LINEAR_EXTRAPOLATE both end points too (where the cubic gives way to its tangent); without
+!> it the end interval's cubic goes on smoothly past the end. An integrator stops at them and
+!> starts again (docs/design.md §7).
 module rollcon_spline
     use rollcon_kinds, only : wp
     implicit none
     private
 
     public :: spline_type, new_spline, spline_derivatives, method_akima, method_cubic
+    public :: spline_corners, spline_corner_switch
 
     !> The fitting methods
     integer, parameter :: method_akima = 1, method_cubic = 2
@@ -184,5 +191,66 @@ contains
         values(2) = 2.0_wp*c + 6.0_wp*s*d
         values(3) = 6.0_wp*d
     end function spline_derivatives
+
+    !> The curve's corners [the unit of x], ascending: its interior points, and both ends as
+    !> well when it extrapolates along its end tangents (the module's comment).
+    pure function spline_corners(spline) result(corners)
+        type(spline_type), intent(in) :: spline
+        real(wp), allocatable :: corners(:)
+        integer :: first, last
+
+        call corner_range(spline, first, last)
+        corners = spline%x(first:last)
+    end function spline_corners
+
+    !> A switch function of x that is zero at every corner of the curve (spline_corners) and
+    !> changes sign there, and nowhere else: with c_1 < ... < c_m the corners, c_1 - x below the
+    !> first, (-1)^k (x - c_k)(c_(k+1) - x)/(c_(k+1) - c_k) between c_k and c_(k+1), and
+    !> (-1)^m (x - c_m) beyond the last [the unit of x]; continuous, of slope +-1 at each corner.
+    !> 0 for a curve without corners. Allocates nothing (an event function of the integrators).
+    pure real(wp) function spline_corner_switch(spline, x) result(g)
+        type(spline_type), intent(in) :: spline
+        real(wp), intent(in) :: x
+        integer :: first, last, low, high, mid, k
+
+        g = 0.0_wp
+        call corner_range(spline, first, last)
+        if (last < first) return
+        if (x < spline%x(first)) then
+            g = spline%x(first) - x
+            return
+        end if
+        ! the last corner at or below x
+        low = first
+        high = last
+        do while (low < high)
+            mid = (low + high + 1)/2
+            if (spline%x(mid) <= x) then
+                low = mid
+            else
+                high = mid - 1
+            end if
+        end do
+        k = low - first + 1
+        if (low == last) then
+            g = x - spline%x(last)
+        else
+            g = (x - spline%x(low))*(spline%x(low + 1) - x)/(spline%x(low + 1) - spline%x(low))
+        end if
+        if (mod(k, 2) == 1) g = -g
+    end function spline_corner_switch
+
+    !> The points of the curve that are corners: x(first:last) (empty when last < first).
+    pure subroutine corner_range(spline, first, last)
+        type(spline_type), intent(in) :: spline
+        integer, intent(out) :: first, last
+
+        first = 2
+        last = size(spline%x) - 1
+        if (spline%linear) then
+            first = 1
+            last = size(spline%x)
+        end if
+    end subroutine corner_range
 
 end module rollcon_spline
