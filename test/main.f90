@@ -110,6 +110,7 @@ program tester
     use test_springs, only : collect_springs
     use test_adm_springs, only : collect_adm_springs
     use test_spring_partials, only : collect_spring_partials
+    use test_force_partials, only : collect_force_partials
     use test_motion_partials, only : collect_motion_partials
     use test_redundancy, only : collect_redundancy
     use test_reactions, only : collect_reactions
@@ -229,6 +230,7 @@ program tester
         & new_testsuite("system-runs", collect_system_runs), &
         & new_testsuite("springs", collect_springs), &
         & new_testsuite("spring-partials", collect_spring_partials), &
+        & new_testsuite("force-partials", collect_force_partials), &
         & new_testsuite("motion-partials", collect_motion_partials), &
         & new_testsuite("redundancy", collect_redundancy), &
         & new_testsuite("reactions", collect_reactions), &

@@ -2,8 +2,9 @@
 !> The partials of a model's applied forces at rest: d f(q, 0, t)/dq, the stiffness the static
 !> equilibrium's Newton method needs (rollcon_static_equilibrium), exact to rounding: every
 !> force statement (SFORCE, VFORCE, GFORCE: rollcon_marker_force) evaluated in jets over the
-!> parts' coordinates (rollcon_jet; the markers by rollcon_measures' marker_jets, the
-!> expressions by rollcon_expression_jet, as a GCON's partials are found).
+!> parts' coordinates (rollcon_force_partials, the loads the integrators' Newton matrices
+!> differentiate too: the markers by rollcon_measures' marker_jets, the expressions by
+!> rollcon_expression_jet, as a GCON's partials are found).
 !>
 !> Part p's generalised force at rest (docs/design.md §3) is f = (m g + F, E^T tau): F the
 !> resultant of the loads on it, tau their moment about its centre of mass, both in ground
@@ -13,16 +14,14 @@
 !> strike) has no partials here: only datasets have a static analysis.
 module rollcon_static_forces
     use rollcon_kinds, only : wp
-    use rollcon_jet, only : jet_type, jet_constant, jet_cross, jet_dot, jet_norm, &
-        & operator(+), operator(-), operator(*), operator(/), sin, cos
+    use rollcon_jet, only : jet_type, jet_constant, jet_cross, jet_dot, operator(+), &
+        & operator(-), operator(*), sin, cos
     use rollcon_model, only : model_type
     use rollcon_force, only : profile_statement
-    use rollcon_marker_force, only : marker_force_type, kind_translation, kind_rotation, &
-        & kind_spring
+    use rollcon_marker_force, only : marker_force_type, kind_spring
+    use rollcon_force_partials, only : statement_value_jets, statement_load_jets
     use rollcon_spring_partials, only : add_spring_partials
-    use rollcon_measures, only : state_jets_type, new_state_jets, marker_jets, &
-        & expression_input_jets
-    use rollcon_expression_jet, only : evaluate_expression_jet
+    use rollcon_measures, only : state_jets_type, new_state_jets
     implicit none
     private
 
@@ -76,66 +75,21 @@ contains
         end do
     end subroutine applied_force_partials
 
-    !> One force statement's loads in jets, added to dfdq on the parts they act on.
+    !> One force statement's loads in jets (rollcon_force_partials' statement_value_jets and
+    !> statement_load_jets), added to dfdq on the parts they act on.
     subroutine statement_partials(statement, time, state, dfdq)
         type(marker_force_type), intent(in) :: statement
         real(wp), intent(in) :: time
         type(state_jets_type), intent(in) :: state
         real(wp), intent(inout) :: dfdq(:, :)
-        type(jet_type) :: values(6), r_i(3), r_j(3), axes_i(3, 3), axes_j(3, 3), axes_rm(3, 3)
-        type(jet_type) :: r_rm(3), v(3), w(3), f(3), torque(3), line(3), length
-        type(jet_type), allocatable :: inputs(:)
-        integer :: k, m
+        type(jet_type) :: points(3, 2), forces(3, 2), torques(3, 2)
+        integer :: loaded(2), l
 
-        values = jet_constant(0.0_wp)
-        do k = 1, 6
-            if (.not. statement%given(k)) cycle
-            m = size(statement%functions(k)%inputs)
-            allocate(inputs(m))
-            call expression_input_jets(statement%functions(k), statement%markers, &
-                & statement%length_unit, statement%time_unit, state, inputs)
-            values(k) = evaluate_expression_jet(statement%functions(k), &
-                & jet_constant(time/statement%time_unit), inputs)
-            deallocate(inputs)
+        call statement_load_jets(statement, statement_value_jets(statement, time, state), &
+            & state, loaded, points, forces, torques)
+        do l = 1, 2
+            call add_load(loaded(l), points(:, l), forces(:, l), torques(:, l), state, dfdq)
         end do
-        values(1:3) = values(1:3)*statement%force_unit
-        values(4:6) = values(4:6)*(statement%force_unit*statement%length_unit)
-        call marker_jets(statement%i, state, .false., r_i, axes_i, v, w)
-        call marker_jets(statement%j, state, .false., r_j, axes_j, v, w)
-        torque = jet_constant(0.0_wp)
-        select case (statement%kind)
-        case (kind_translation)
-            if (statement%action_only) then
-                line = axes_j(:, 3)
-            else
-                line = r_i - r_j
-                length = jet_norm(line)
-                line = line/length
-            end if
-            f = values(1)*line
-            call add_load(statement%i%part, r_i, f, torque, state, dfdq)
-            if (.not. statement%action_only) call add_load(statement%j%part, r_j, &
-                & jet_constant(0.0_wp) - f, torque, state, dfdq)
-        case (kind_rotation)
-            ! the value is a torque: its unit is force times length
-            torque = values(1)*statement%length_unit*axes_j(:, 3)
-            f = jet_constant(0.0_wp)
-            call add_load(statement%i%part, r_i, f, torque, state, dfdq)
-            if (.not. statement%action_only) call add_load(statement%j%part, r_j, f, &
-                & jet_constant(0.0_wp) - torque, state, dfdq)
-        case default
-            call marker_jets(statement%rm, state, .false., r_rm, axes_rm, v, w)
-            do k = 1, 3
-                f(k) = axes_rm(k, 1)*values(1) + axes_rm(k, 2)*values(2) &
-                    & + axes_rm(k, 3)*values(3)
-                torque(k) = axes_rm(k, 1)*values(4) + axes_rm(k, 2)*values(5) &
-                    & + axes_rm(k, 3)*values(6)
-            end do
-            ! VFORCE and GFORCE: the reaction acts at I's origin on JFLOAT's part
-            call add_load(statement%i%part, r_i, f, torque, state, dfdq)
-            call add_load(statement%j%part, r_i, jet_constant(0.0_wp) - f, &
-                & jet_constant(0.0_wp) - torque, state, dfdq)
-        end select
     end subroutine statement_partials
 
     !> A force f at ground point r and a torque on model part p (0: ground, nothing): their

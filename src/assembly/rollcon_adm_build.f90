@@ -26,7 +26,7 @@ module rollcon_adm_build
     use rollcon_body, only : part_type
     use rollcon_marker_force, only : kind_translation, kind_rotation, kind_vector, &
         & kind_general, kind_spring, marker_force_values, markers_coincide
-    use rollcon_force, only : applied_force_type, profile_statement
+    use rollcon_force, only : applied_force_type, profile_statement, force_couplings
     use rollcon_user_forces, only : find_force_routine, routine_kind_of, set_system_markers, &
         & declare_user_force, evaluate_user_forces, take_user_force_error, set_system_splines
     use rollcon_spline, only : spline_type, new_spline
@@ -191,7 +191,8 @@ contains
     !> The initialisation call (IFLAG = .TRUE.) of every force's user routine at the start,
     !> which declares what it reads (rollcon_user_forces), then a first evaluation there, whose
     !> values check_forces_at_start reads. The markers SYSFNC and SYSARY may name are every
-    !> marker of the dataset.
+    !> marker of the dataset. The equations' couplings are found again with the declared
+    !> parts (rollcon_force's force_couplings).
     subroutine declare_user_forces(adm, problem, q0, u0, error)
         type(adm_model_type), intent(in) :: adm
         type(problem_type), intent(inout) :: problem
@@ -214,6 +215,8 @@ contains
             call declare_user_force(problem%model%forces(i), 0.0_wp, q0, u0, error)
             if (allocated(error)) return
         end do
+        ! the declared parts join the parts each force loads in the Newton matrices' patterns
+        problem%eq%couplings = force_couplings(problem%model%forces)
         call evaluate_user_forces(problem%model%forces, 0.0_wp, q0, u0)
         call take_user_force_error(error)
     end subroutine declare_user_forces

@@ -163,10 +163,13 @@ contains
             if (eq%redundancy%set_aside > 0) then
                 ! the rows set aside carry no force, whatever the iterate's lambda_k
                 call eq%momentum_jacobian(q, u, up, merge(lambda, 0.0_wp, &
-                    & eq%redundancy%active))
+                    & eq%redundancy%active), time)
             else
-                call eq%momentum_jacobian(q, u, up, lambda)
+                call eq%momentum_jacobian(q, u, up, lambda, time)
             end if
+            ! a user force routine's difference call that failed
+            call take_user_force_error(error)
+            if (allocated(error)) return
             do j = 1, n
                 call put(j, j, cj)
                 call put(j, n + j, -1.0_wp)

@@ -14,7 +14,9 @@ module rollcon_equations
     use rollcon_model, only : model_type
     use rollcon_body, only : body_mass_and_force, body_residual_jacobian, kinetic_energy, &
         & energy_gradient
-    use rollcon_force, only : force_and_moment, add_force_partials, force_couplings
+    use rollcon_force, only : force_and_moment, add_force_partials, force_couplings, &
+        & add_expression_partials
+    use rollcon_user_force_partials, only : add_user_force_partials
     use rollcon_user_forces, only : evaluate_user_forces, take_user_force_error
     use rollcon_constraints, only : constraint_state_type, local_dot, need_value, need_first, &
         & need_second, need_time
@@ -324,11 +326,14 @@ contains
         call self%saddle%solve(self%c, a, lambda, 1, error, scaled=.true.)
     end subroutine accelerations
 
-    !> d(M a - f - C^T lambda)/dq and /du at given a, lambda (into dm_dq, dm_du).
-    subroutine momentum_jacobian(self, q, u, a, lambda)
+    !> d(M a - f - C^T lambda)/dq and /du at given a, lambda and time [s] (into dm_dq, dm_du).
+    !> A user force routine's partials are differences of calls (rollcon_user_force_partials):
+    !> a failure of one is left for take_user_force_error.
+    subroutine momentum_jacobian(self, q, u, a, lambda, time)
         class(equations_type), intent(inout) :: self
         real(wp), intent(in) :: q(:), u(:), a(:)
         real(wp), intent(in) :: lambda(:)
+        real(wp), intent(in) :: time
         real(wp) :: part_dq(6, 6), part_du(6, 6)
         integer :: p, i0, k, j, i, jj, ii
 
@@ -343,6 +348,11 @@ contains
         end do
         ! the SPRINGDAMPERs' and BUSHINGs' partials, over both of each one's parts
         call add_force_partials(self%model%forces, q, u, self%work%dm_dq, self%work%dm_du)
+        ! the force statements' expressions' (exact) and user routines' (differenced)
+        call add_expression_partials(self%model%forces, time, q, u, self%work%dm_dq, &
+            & self%work%dm_du)
+        call add_user_force_partials(self%model%forces, time, q, u, self%work%dm_dq, &
+            & self%work%dm_du)
         ! -d(C^T lambda)/dq: second partials are why ADAMS asks a UCOSUB for XMATRX
         ! (docs/design.md §4); each UCON's over its own coordinates (the rest are zeros)
         do k = 1, self%nc
@@ -388,7 +398,9 @@ contains
         associate (w => self%work)
             call self%accelerations(time, q, u, baumgarte, w%a, w%lambda, error, second=.true.)
             if (allocated(error)) return
-            call self%momentum_jacobian(q, u, w%a, w%lambda)
+            call self%momentum_jacobian(q, u, w%a, w%lambda, time)
+            call take_user_force_error(error)
+            if (allocated(error)) return
             w%rhs_top(:, :n) = -w%dm_dq
             w%rhs_top(:, n + 1:) = -w%dm_du
             call jacobian_constraint_rows(self, u, w%a, baumgarte)

@@ -33,7 +33,7 @@ contains
         type(jet_type), intent(in) :: time
         type(jet_type), intent(in) :: inputs(:)
         type(jet_type) :: value
-        type(jet_type) :: stack(max_stack)
+        type(jet_type) :: stack(max_stack), curve
         integer :: i, top, k, op, s
 
         top = 0
@@ -107,13 +107,16 @@ contains
                 k = operation_arity(op, expression%constant(i))
                 top = top - k + 1
                 if (op == op_akispl .or. op == op_cubspl) then
-                    stack(top) = nan_jet()
-                    if (.not. allocated(expression%splines)) cycle
-                    s = findloc(expression%splines%id, spline_id_of(expression%constant(i)), &
-                        & dim=1)
-                    if (s > 0) stack(top) = jet_spline(stack(top), expression%splines(s), &
-                        & merge(method_akima, method_cubic, op == op_akispl), &
-                        & spline_order_of(expression%constant(i)))
+                    ! the curve at its argument x, stack(top); NaN without the curve
+                    curve = nan_jet()
+                    if (allocated(expression%splines)) then
+                        s = findloc(expression%splines%id, &
+                            & spline_id_of(expression%constant(i)), dim=1)
+                        if (s > 0) curve = jet_spline(stack(top), expression%splines(s), &
+                            & merge(method_akima, method_cubic, op == op_akispl), &
+                            & spline_order_of(expression%constant(i)))
+                    end if
+                    stack(top) = curve
                 else
                     stack(top) = further_jet(op, stack(top:top + k - 1))
                 end if

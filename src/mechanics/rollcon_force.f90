@@ -11,13 +11,14 @@ module rollcon_force
         & markers_coincide, kind_spring
     use rollcon_text, only : to_text
     use rollcon_spring_partials, only : add_spring_partials
+    use rollcon_force_partials, only : add_expression_force_partials, statement_couplings
     use, intrinsic :: ieee_arithmetic, only : ieee_is_finite
     implicit none
     private
 
     public :: applied_force_type, force_and_moment, force_breakpoints, force_corners, pulse_stops
     public :: forces_idle_after, nonfinite_load, runaway_load, runaway_limit
-    public :: add_force_partials, force_couplings
+    public :: add_force_partials, force_couplings, add_expression_partials
     public :: profile_constant, profile_half_sine, profile_statement, frame_body, frame_tilt
 
     !> Time profiles: constant magnitude, one half-sine pulse carrying a given impulse, or a
@@ -117,9 +118,10 @@ contains
 
     !> Subtract the partials of the SPRINGDAMPERs' and BUSHINGs' generalised forces from
     !> dm_dq and dm_du, the partials of the momentum residual M a - f (rollcon_spring_partials:
-    !> exact, over both parts of each). The other forces' partials are not in the Newton
-    !> matrices: a force statement's expressions, and the fixed-direction forces (their moment
-    !> held at body components, rollcon_body's body_residual_jacobian).
+    !> exact, over both parts of each). A force statement's expressions are
+    !> add_expression_partials', a user routine's rollcon_user_force_partials'; the
+    !> fixed-direction forces' are not in the Newton matrices (their moment held at body
+    !> components, rollcon_body's body_residual_jacobian).
     pure subroutine add_force_partials(forces, q, u, dm_dq, dm_du)
         type(applied_force_type), intent(in) :: forces(:)
         !> Coordinates and rates of all parts [m, rad, m/s, rad/s]
@@ -137,19 +139,46 @@ contains
         end do
     end subroutine add_force_partials
 
-    !> The pairs of parts (model indices, 2 x m) a SPRINGDAMPER or BUSHING joins, each pair
-    !> once in either order, ground left out: where add_force_partials writes outside the
-    !> parts' own blocks, which a sparse Newton matrix keeps.
+    !> Subtract the partials of the force statements written as expressions (SFORCE, VFORCE,
+    !> GFORCE, VTORQUE with FUNCTION=) from dm_dq and dm_du at time [s] (rollcon_force_partials:
+    !> exact, forward mode over the expressions, over every part each one touches).
+    pure subroutine add_expression_partials(forces, time, q, u, dm_dq, dm_du)
+        type(applied_force_type), intent(in) :: forces(:)
+        real(wp), intent(in) :: time
+        !> Coordinates and rates of all parts [m, rad, m/s, rad/s]
+        real(wp), intent(in) :: q(:), u(:)
+        !> n x n
+        real(wp), intent(inout) :: dm_dq(:, :), dm_du(:, :)
+        integer :: i
+
+        do i = 1, size(forces)
+            if (forces(i)%profile /= profile_statement) cycle
+            call add_expression_force_partials(forces(i)%statement, time, q, u, dm_dq, dm_du)
+        end do
+    end subroutine add_expression_partials
+
+    !> The pairs of parts (model indices, 2 x m) a SPRINGDAMPER or BUSHING joins, and those a
+    !> force statement's partials join (rollcon_force_partials' statement_couplings: a part it
+    !> loads and a part whose state it reads), each pair once in either order, ground left
+    !> out: where the partials are written outside the parts' own blocks, which a sparse
+    !> Newton matrix keeps.
     pure function force_couplings(forces) result(pairs)
         type(applied_force_type), intent(in) :: forces(:)
         integer, allocatable :: pairs(:, :)
-        integer :: i, a, b, k
+        integer, allocatable :: more(:, :)
+        integer :: i, a, b, k, m
         logical :: known
 
         allocate(pairs(2, 0))
         do i = 1, size(forces)
             if (forces(i)%profile /= profile_statement) cycle
-            if (forces(i)%statement%kind /= kind_spring) cycle
+            if (forces(i)%statement%kind /= kind_spring) then
+                more = statement_couplings(forces(i)%statement)
+                do m = 1, size(more, 2)
+                    call add_pair(more(1, m), more(2, m))
+                end do
+                cycle
+            end if
             a = min(forces(i)%statement%i%part, forces(i)%statement%j%part)
             b = max(forces(i)%statement%i%part, forces(i)%statement%j%part)
             if (a <= 0 .or. a == b) cycle
@@ -159,6 +188,20 @@ contains
             end do
             if (.not. known) pairs = reshape([pairs, a, b], [2, size(pairs, 2) + 1])
         end do
+
+    contains
+
+        !> The pair (a, b), a < b, unless known.
+        pure subroutine add_pair(a, b)
+            integer, intent(in) :: a, b
+            integer :: k
+
+            do k = 1, size(pairs, 2)
+                if (pairs(1, k) == a .and. pairs(2, k) == b) return
+            end do
+            pairs = reshape([pairs, a, b], [2, size(pairs, 2) + 1])
+        end subroutine add_pair
+
     end function force_couplings
 
     !> Why the loads at (t, q, u) are not finite: the first force whose force or moment on a

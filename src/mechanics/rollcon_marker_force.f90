@@ -72,6 +72,10 @@ module rollcon_marker_force
         !> (by id), and whether they read rates and time
         integer, allocatable :: declared_markers(:)
         logical :: declared_rates = .false.
+        !> FUNCTION=USER: the model parts of those markers (ground left out), whose coordinates
+        !> (and rates, when declared_rates) its partials are differenced over
+        !> (rollcon_user_force_partials)
+        integer, allocatable :: declared_parts(:)
     end type marker_force_type
 
 contains

@@ -43,7 +43,7 @@ module rollcon_user_forces
     public :: set_system_markers, declare_user_force, evaluate_user_forces
     public :: take_user_force_error, has_user_forces, routine_kind_of
     public :: system_function, system_array, system_time, system_notes, clear_system_notes
-    public :: get_force_routine, report_call_problem
+    public :: get_force_routine, report_call_problem, difference_call
     public :: set_system_splines, system_spline
 
     !> A routine the model may use
@@ -298,6 +298,7 @@ contains
             declaring = .false.
             s%declared_markers = named
             s%declared_rates = named_rates
+            s%declared_parts = parts_of(named)
             call after_call(force, "the initialisation call (IFLAG = .TRUE.)", time, error)
         end associate
     end subroutine declare_user_force
@@ -361,6 +362,73 @@ contains
             end associate
         end do
     end subroutine evaluate_user_forces
+
+    !> A call of a force's routine with DFLAG = .TRUE. at (t, q, u), one of the differences
+    !> its partials are formed from (rollcon_user_force_partials): its values in SI (as
+    !> user_values holds them, which this call leaves as they are) and whether the call
+    !> failed (an ERRMES, a utility's refusal, a value that is not finite), the failure kept
+    !> for take_user_force_error. What it reads beyond its declaration is noted as in any
+    !> call (system_notes).
+    subroutine difference_call(force, time, q, u, values, failed)
+        type(applied_force_type), intent(in) :: force
+        !> Time [s], coordinates and rates of all parts [SI]
+        real(wp), intent(in) :: time, q(:), u(:)
+        real(wp), intent(out) :: values(6)
+        logical, intent(out) :: failed
+        type(error_type), allocatable :: error
+        real(wp) :: result(6)
+        integer :: n
+
+        associate (s => force%statement)
+            n = routine_results(table(s%routine)%kind)
+            call begin_call(time, q, u)
+            if (allocated(s%declared_markers)) then
+                allowed = s%declared_markers
+                allowed_rates = s%declared_rates
+            else if (allocated(allowed)) then
+                deallocate(allowed)
+            end if
+            result = 0.0_wp
+            call call_hook(s%routine, s%id, time/s%time_unit, s%par, size(s%par), .true., &
+                & .false., result(:n), n)
+            if (allocated(allowed)) deallocate(allowed)
+            allowed_rates = .true.
+            values = 0.0_wp
+            values(1:min(n, 3)) = result(1:min(n, 3))*s%force_unit
+            if (n == 6) values(4:6) = result(4:6)*s%force_unit*s%length_unit
+            failed = .not. all(ieee_is_finite(result(:n)))
+            if (failed) then
+                call fatal_error(error, force%name // ": its " &
+                    & // force_routine_label(s%routine) // " returned RESULT = (" &
+                    & // numbers(result(:n)) // ") in a call with DFLAG = .TRUE. at TIME = " &
+                    & // to_text(time/s%time_unit) // ": a force must be finite", stat_ucon)
+            else
+                call after_call(force, "a call with DFLAG = .TRUE.", time, error)
+                failed = allocated(error)
+            end if
+            if (allocated(error)) then
+                if (.not. allocated(pending)) call move_alloc(error, pending)
+            end if
+        end associate
+    end subroutine difference_call
+
+    !> The model parts of the markers ids (the table's markers; ground and repeats left out).
+    function parts_of(ids) result(parts)
+        integer, intent(in) :: ids(:)
+        integer, allocatable :: parts(:)
+        integer :: k, m
+
+        allocate(parts(0))
+        if (.not. allocated(markers)) return
+        do k = 1, size(ids)
+            do m = 1, size(markers)
+                if (markers(m)%id /= ids(k)) cycle
+                if (markers(m)%part > 0 .and. .not. any(parts == markers(m)%part)) &
+                    & parts = [parts, markers(m)%part]
+                exit
+            end do
+        end do
+    end function parts_of
 
     !> Move the first failure of a user routine, if any, to the caller.
     subroutine take_user_force_error(error)

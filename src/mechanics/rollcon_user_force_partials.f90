@@ -1,0 +1,134 @@
+! SPDX-License-Identifier: MIT
+!> The partials of a force served by a user's routine (SFOSUB, VFOSUB, GFOSUB, VTOSUB:
+!> rollcon_user_forces) for the integrators' Newton matrices, as ADAMS/Solver forms them: the
+!> routine's initialisation call (IFLAG = .TRUE.) declares, by the SYSFNC and SYSARY calls it
+!> makes, which markers' measures it reads and whether it reads rates; its values are
+!> differenced over the coordinates (and, when it declared rates, the rates) of those markers'
+!> parts only, each difference a call with DFLAG = .TRUE. A routine is code rollcon cannot
+!> see into, so differences are the only way to its partials; the rest of the load (the line
+!> of action, RM's axes, the arm about each part's centre) is the statement's own geometry,
+!> in jets (rollcon_force_partials), exact.
+!>
+!> The differences are central, value k's partial in state entry y being
+!> (v_k(y + h) - v_k(y - h))/(2 h) with h = eps^(1/3) max(|y|, 1) (y in m, rad, m/s or rad/s):
+!> the truncation error h^2 v'''/6 and the rounding error eps |v|/h then both stand near
+!> eps^(2/3) = 4e-11 of the values' scale (|v| and its third partials over a unit of the
+!> state), the least their sum can be. Two calls per declared entry: 24 for a routine
+!> reading the coordinates and rates of one moving part, once per Newton matrix (CVODE and
+!> IDA form one every several steps), a cost the calls of the residuals dwarf.
+!>
+!> What the routine reads beyond its declaration is left out of its partials, as ADAMS leaves
+!> it; each such read is noted (rollcon_user_forces' system_notes, which `rollcon check`
+!> reports). A difference call that fails (an ERRMES, a value that is not finite) leaves its
+!> error for take_user_force_error and its entry out.
+module rollcon_user_force_partials
+    use rollcon_kinds, only : wp
+    use rollcon_jet, only : jet_type, jet_constant
+    use rollcon_measures, only : state_jets_type
+    use rollcon_force, only : applied_force_type, profile_statement
+    use rollcon_force_partials, only : statement_parts, statement_state_jets, &
+        & add_statement_load_partials
+    use rollcon_user_forces, only : difference_call
+    implicit none
+    private
+
+    public :: add_user_force_partials, difference_step
+
+contains
+
+    !> Subtract the partials of every force served by a user's routine from dm_dq and dm_du,
+    !> the partials of the momentum residual M a - f (n x n, n = 6 parts), at (t, q, u): the
+    !> routine's values differenced over its declared state entries (module doc), the loads'
+    !> geometry exact. The values at (t, q, u) are those the last evaluation kept
+    !> (marker_force_type's user_values, evaluate_user_forces at this state).
+    subroutine add_user_force_partials(forces, time, q, u, dm_dq, dm_du)
+        type(applied_force_type), intent(in) :: forces(:)
+        !> Time [s]
+        real(wp), intent(in) :: time
+        !> Coordinates and rates of all parts [m, rad, m/s, rad/s]
+        real(wp), intent(in) :: q(:), u(:)
+        real(wp), intent(inout) :: dm_dq(:, :), dm_du(:, :)
+        type(state_jets_type) :: state
+        type(jet_type) :: values(6)
+        integer, allocatable :: parts(:)
+        real(wp), allocatable :: gradients(:, :)
+        integer :: i, k, np
+
+        do i = 1, size(forces)
+            if (forces(i)%profile /= profile_statement) cycle
+            if (forces(i)%statement%routine == 0) cycle
+            associate (s => forces(i)%statement)
+                parts = statement_parts(s)
+                np = size(parts)
+                if (np == 0) cycle
+                state = statement_state_jets(parts, q, u, .true.)
+                allocate(gradients(12*np, 6), source=0.0_wp)
+                if (allocated(s%declared_parts)) call difference_values(forces(i), parts, &
+                    & s%declared_parts, s%declared_rates, time, q, u, gradients)
+                do k = 1, 6
+                    values(k) = jet_constant(s%user_values(k))
+                    if (all(gradients(:, k) == 0.0_wp)) cycle
+                    values(k)%active = .true.
+                    values(k)%g = gradients(:, k)
+                end do
+                call add_statement_load_partials(s, values, state, q, dm_dq, dm_du)
+                deallocate(gradients)
+            end associate
+        end do
+    end subroutine add_user_force_partials
+
+    !> The step of a central difference in a state entry of value y [m, rad, m/s or rad/s]:
+    !> eps^(1/3) max(|y|, 1) (module doc).
+    elemental real(wp) function difference_step(y) result(h)
+        real(wp), intent(in) :: y
+
+        h = epsilon(1.0_wp)**(1.0_wp/3.0_wp)*max(abs(y), 1.0_wp)
+    end function difference_step
+
+    !> gradients(v, k): value k's partial in variable v of statement_state_jets(parts), by
+    !> central differences over the coordinates of the declared parts (and their rates when
+    !> rates), each call with DFLAG = .TRUE.; the other entries are left as they are.
+    subroutine difference_values(force, parts, declared, rates, time, q, u, gradients)
+        type(applied_force_type), intent(in) :: force
+        integer, intent(in) :: parts(:), declared(:)
+        logical, intent(in) :: rates
+        real(wp), intent(in) :: time, q(:), u(:)
+        real(wp), intent(inout) :: gradients(:, :)
+        real(wp), allocatable :: shifted(:)
+        real(wp) :: plus(6), minus(6), h, high, low
+        integer :: d, s, c, entry, np
+        logical :: failed_plus, failed_minus
+
+        np = size(parts)
+        do d = 1, size(declared)
+            s = findloc(parts, declared(d), dim=1)
+            if (s == 0) cycle
+            do c = 1, 6
+                entry = 6*(declared(d) - 1) + c
+                ! divided by the steps as represented: (y + h) - (y - h) may differ from 2 h
+                shifted = q
+                h = difference_step(q(entry))
+                high = q(entry) + h
+                low = q(entry) - h
+                shifted(entry) = high
+                call difference_call(force, time, shifted, u, plus, failed_plus)
+                shifted(entry) = low
+                call difference_call(force, time, shifted, u, minus, failed_minus)
+                if (.not. (failed_plus .or. failed_minus)) &
+                    & gradients(6*(s - 1) + c, :) = (plus - minus)/(high - low)
+                if (.not. rates) cycle
+                shifted = u
+                h = difference_step(u(entry))
+                high = u(entry) + h
+                low = u(entry) - h
+                shifted(entry) = high
+                call difference_call(force, time, q, shifted, plus, failed_plus)
+                shifted(entry) = low
+                call difference_call(force, time, q, shifted, minus, failed_minus)
+                if (.not. (failed_plus .or. failed_minus)) &
+                    & gradients(6*np + 6*(s - 1) + c, :) = (plus - minus)/(high - low)
+            end do
+        end do
+    end subroutine difference_values
+
+end module rollcon_user_force_partials

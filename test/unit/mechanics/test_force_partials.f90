@@ -1,0 +1,427 @@
+! SPDX-License-Identifier: MIT
+!> The Newton matrices of a model held by force statements written as expressions and by
+!> user force routines (suite force-partials; src/mechanics/rollcon_force_partials.f90,
+!> rollcon_user_force_partials.f90). Two parts in general position and motion under gravity:
+!> a translational SFORCE between them reading DM, VR and a third marker's DX, a rotational
+!> SFORCE reading AZ and WZ, a VFORCE between them in RM's axes on a moving part reading DX,
+!> VX, VY and AX, a GFORCE to the ground reading VZ, WX, AY, PSI and an AKISPL of DZ, and a
+!> VTORQUE reading WY and THETA. CVODE's d(q', u')/d(q, u) and IDA's dr/dy, dr/dy' against
+!> central differences entry by entry; the coupling of the parts in IDA's sparse pattern and
+!> CVODE's blocks. A spring-damper SFOSUB and a bushing GFOSUB written for the test (as
+!> test/user_forces/'s, through rollcon_user_forces' SYSFNC and SYSARY) give the Newton
+!> matrices of the same forces written as expressions, to the differences' error; a
+!> routine that reads a marker its initialisation call did not name is noted, and that
+!> partial left out.
+module test_force_partials
+    use rollcon_kinds, only : wp
+    use rollcon_error, only : error_type
+    use rollcon_text, only : to_text
+    use rollcon_ucosub_contract, only : ucosub_interface
+    use rollcon_disk_reference, only : rolling_disk_ucosub
+    use rollcon_problem, only : problem_type
+    use rollcon_ode_form, only : ode_form_type
+    use rollcon_dae_form, only : dae_form_type
+    use rollcon_dae, only : dae_size, dae_residual, dae_jacobian
+    use rollcon_newton_pattern, only : newton_pattern_type
+    use rollcon_adm_model, only : adm_model_type
+    use rollcon_adm_build, only : build_adm_problem
+    use rollcon_force_routine_contract, only : routine_sfosub, routine_gfosub
+    use rollcon_user_forces, only : register_force_routine, clear_force_routines, &
+        & system_function, system_array, system_notes, clear_system_notes
+    use adm_datasets, only : read_dataset
+    use rollcon_testing, only : unittest_type, new_unittest, check
+    implicit none
+    private
+
+    public :: collect_force_partials
+
+    !> Central differences of step h_fd: their truncation error h^2 f'''/6 and rounding
+    !> eps f/h_fd are below 1e-8 of the matrix's largest entry here; tol_fd, 1e-6 of it,
+    !> stands a hundred times above them, and a missing partial (stiffnesses of 30 to 400
+    !> over masses of 1.5 to 2) is 1e-2 of it or more.
+    real(wp), parameter :: tol_fd = 1.0e-6_wp, h_fd = 1.0e-6_wp
+    !> A user routine's partials are central differences of step eps^(1/3) max(|y|, 1)
+    !> (rollcon_user_force_partials): their error, h^2 v'''/6 + eps |v|/h, is near
+    !> eps^(2/3) = 4e-11 of the values' scale (measured: 8e-13 of the matrix's largest entry);
+    !> tol_user, 1e-10 of it, stands above the estimate, and a partial left out (a stiffness of
+    !> 400 over a mass of 1) is 0.3 of it.
+    real(wp), parameter :: tol_user = 1.0e-10_wp
+    character(len=200), parameter :: lines(22) = [character(len=200) :: &
+        & "expression forces", &
+        & "UNITS/SYSTEM = SI", &
+        & "PART/1, GROUND", &
+        & "MARKER/10, PART = 1, QP = 0.1, 0.2, 0.3, REULER = 10D, 20D, 30D", &
+        & "PART/2, MASS = 2, CM = 20, IP = 1, 2, 2.5, QG = 0.3, -0.2, 0.5, REULER = 40D, 70D, " &
+        & // "-20D, VX = 0.2, VY = -0.1, VZ = 0.3, WX = 0.3, WY = -0.5, WZ = 0.7", &
+        & "MARKER/20, PART = 2|MARKER/21, PART = 2, QP = 0.1, 0.05, -0.2, REULER = 15D, 35D, 5D", &
+        & "PART/3, MASS = 1.5, CM = 30, IP = 0.8, 1.1, 1.3, QG = -0.4, 0.3, 0.1, REULER = " &
+        & // "-30D, 50D, 60D, VX = -0.3, VZ = 0.1, WX = -0.4, WY = 0.2, WZ = 0.9", &
+        & "MARKER/30, PART = 3|MARKER/31, PART = 3, QP = -0.1, 0.2, 0.1, REULER = 5D, 25D, 45D", &
+        & "SFORCE/1, TRANSLATION, I = 21, J = 31, FUNCTION = -400*(DM(21, 31) - 0.3) " &
+        & // "- 5*VR(21, 31) + 20*DX(20, 10)", &
+        & "SFORCE/2, ROTATION, I = 20, J = 30, FUNCTION = -30*AZ(20, 30) - 0.8*WZ(20, 30)", &
+        & "VFORCE/3, I = 21, JFLOAT = 30, RM = 31, FX = -50*DX(21, 31, 31) - 2*VX(21, 31, 31)" &
+        & // ", FY = -60*DY(21, 31, 31) - VY(21, 31, 31, 30), FZ = -10*AX(21, 30)*DM(21, 30)", &
+        & "GFORCE/4, I = 30, JFLOAT = 10, RM = 20, FX = -3*VZ(30, 10), FY = 0, " &
+        & // "FZ = -80*AKISPL(DZ(30, 10), 0, 7), TX = -2*WX(30, 10, 20) - 5*AY(30, 10), " &
+        & // "TY = 0, TZ = -4*SIN(PSI(30, 10))", &
+        & "VTORQUE/5, I = 20, JFLOAT = 10, RM = 10, TX = -WY(20, 10, 10), TY = 0, " &
+        & // "TZ = -6*THETA(20)", &
+        & "SPLINE/7, X = -2, -1, 0, 1, 2, 3, Y = -3, -1.5, 0.2, 1, 2.5, 5", &
+        & "ACCGRAV/KGRAV = -9.81", &
+        & "INTEGRATOR/ERROR = 1e-8", &
+        & "SIMULATE/DYNAMIC, END = 1, STEPS = 10", &
+        & "END", "", "", "", ""]
+    !> The twins: one part on a spring-damper SFORCE and a bushing GFORCE to the ground, the
+    !> forces as expressions (expression_twin) and by the routines below (user_twin, whose
+    !> PAR the routines read as test/user_forces/'s sforce_spring.f and gforce_bushing.f do)
+    character(len=160), parameter :: twin_head(8) = [character(len=160) :: &
+        & "twins", &
+        & "UNITS/SYSTEM = SI", &
+        & "PART/1, GROUND|MARKER/1, PART = 1|MARKER/2, PART = 1, QP = 0, 0, 2", &
+        & "PART/2, MASS = 1, CM = 20, IP = 0.1, 0.12, 0.15, QG = 0.1, -0.2, 1, REULER = 30D, " &
+        & // "40D, 50D, VX = 0.4, VZ = -0.3, WX = 1, WY = -0.4, WZ = 2", &
+        & "MARKER/20, PART = 2, REULER = 0D, 90D, 0D", &
+        & "MARKER/21, PART = 2, QP = 0.5, 0, 0", &
+        & "PART/3, MASS = 1, CM = 30, IP = 0.1, 0.1, 0.1, QG = 1, 1, 1|MARKER/30, PART = 3", &
+        & "ACCGRAV/KGRAV = -9.81"]
+    character(len=200), parameter :: expression_twin(8) = [character(len=200) :: &
+        & "GFORCE/1, I = 21, JFLOAT = 1, RM = 1,", &
+        & ", FX = -400*(DX(21, 1, 1) - 0.5) - 4*VX(21, 1, 1, 1),", &
+        & ", FY = -400*DY(21, 1, 1) - 4*VY(21, 1, 1, 1),", &
+        & ", FZ = -400*(DZ(21, 1, 1) - 1) - 4*VZ(21, 1, 1, 1),", &
+        & ", TX = -30*AX(21, 1) - 0.5*WX(21, 1, 1),", &
+        & ", TY = -30*AY(21, 1) - 0.5*WY(21, 1, 1),", &
+        & ", TZ = -30*AZ(21, 1) - 0.5*WZ(21, 1, 1)", &
+        & "SFORCE/2, TRANSLATION, I = 20, J = 2, FUNCTION = -1000*(DM(20, 2) - 1) - 10*VR(20, 2)"]
+    character(len=200), parameter :: user_twin(2) = [character(len=200) :: &
+        & "GFORCE/1, I = 21, JFLOAT = 1, RM = 1, FUNCTION = USER(21, 1, 0.5, 0, 1, 400, 4, 30, " &
+        & // "0.5)", &
+        & "SFORCE/2, TRANSLATION, I = 20, J = 2, FUNCTION = USER(20, 2, 1000, 10, 1)"]
+    character(len=80), parameter :: tail(3) = [character(len=80) :: &
+        & "INTEGRATOR/ERROR = 1e-8", "SIMULATE/DYNAMIC, END = 1, STEPS = 10", "END"]
+    !> The GFOSUB reads marker 30 (on the free part 3) without naming it in its
+    !> initialisation call
+    logical, save :: hide_a_read = .false.
+
+contains
+
+    subroutine collect_force_partials(tests)
+        type(unittest_type), allocatable, intent(out) :: tests(:)
+
+        tests = [new_unittest("expression-forces-ode-jacobian", test_ode), &
+            & new_unittest("expression-forces-dae-jacobian-and-pattern", test_dae), &
+            & new_unittest("user-routines-against-expressions", test_user_twins), &
+            & new_unittest("user-routine-undeclared-read", test_undeclared)]
+    end subroutine collect_force_partials
+
+    !> A model built from a dataset's lines at its start (q0, u0).
+    subroutine build(text, problem, q0, u0, error)
+        character(len=*), intent(in) :: text(:)
+        type(problem_type), intent(inout), target :: problem
+        real(wp), allocatable, intent(out) :: q0(:), u0(:)
+        type(error_type), allocatable, intent(out) :: error
+        procedure(ucosub_interface), pointer :: routine
+        type(adm_model_type) :: adm
+
+        routine => rolling_disk_ucosub
+        call read_dataset("force_partials.adm", text, adm, error)
+        if (allocated(error)) return
+        call build_adm_problem(adm, routine, problem, q0, u0, error)
+        if (allocated(error)) return
+        call problem%prepare(error)
+    end subroutine build
+
+    !> d(q', u')/d(q, u) of problem at its start.
+    subroutine ode_matrix(problem, q0, u0, jac, error)
+        type(problem_type), intent(inout), target :: problem
+        real(wp), intent(in) :: q0(:), u0(:)
+        real(wp), allocatable, intent(out) :: jac(:, :)
+        type(error_type), allocatable, intent(out) :: error
+
+        allocate(jac(2*size(q0), 2*size(q0)))
+        call problem%eq%ode_jacobian(0.0_wp, q0, u0, problem%settings%baumgarte(), jac, error)
+    end subroutine ode_matrix
+
+    !> d(q', u')/d(q, u) from the partials against central differences of (u, a(q, u)); the
+    !> accelerations of part 2 depend on the coordinates and rates of part 3; parts 2 and 3
+    !> share CVODE's block.
+    subroutine test_ode(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(problem_type), target :: problem
+        type(ode_form_type) :: ode
+        real(wp), allocatable :: q0(:), u0(:), y(:), yh(:), jac(:, :), fp(:), fm(:)
+        integer, allocatable :: blocks(:)
+        real(wp) :: scale
+        integer :: j, ierr, n
+
+        call build(lines, problem, q0, u0, error)
+        if (allocated(error)) return
+        call ode%init(problem)
+        n = size(q0)
+        y = [q0, u0]
+        allocate(yh(2*n), fp(2*n), fm(2*n))
+        call ode_matrix(problem, q0, u0, jac, error)
+        if (allocated(error)) return
+        scale = maxval(abs(jac))
+        do j = 1, 2*n
+            yh = y
+            yh(j) = y(j) + h_fd
+            ierr = ode%ode_rhs(0.0_wp, yh, fp)
+            yh(j) = y(j) - h_fd
+            ierr = ierr + ode%ode_rhs(0.0_wp, yh, fm)
+            call check(error, ierr == 0, "right-hand side failed")
+            if (allocated(error)) return
+            call check(error, jac(:, j), (fp - fm)/(2.0_wp*h_fd), "ODE Jacobian column " &
+                & // to_text(j), abs_tol=tol_fd*scale)
+            if (allocated(error)) return
+        end do
+        ! the accelerations of part 2 (rows n + 1:n + 6) by the coordinates and rates of part 3
+        call check(error, maxval(abs(jac(n + 1:n + 6, 7:12))) > 1.0_wp .and. &
+            & maxval(abs(jac(n + 1:n + 6, n + 7:n + 12))) > 0.1_wp, "part 2's accelerations " &
+            & // "depend on part 3's coordinates and rates: largest partials " &
+            & // to_text(maxval(abs(jac(n + 1:n + 6, 7:12)))) // ", " &
+            & // to_text(maxval(abs(jac(n + 1:n + 6, n + 7:n + 12)))))
+        if (allocated(error)) return
+        blocks = ode%state_blocks(2*n)
+        call check(error, all(blocks == blocks(1)), "parts 2 and 3 share CVODE's block")
+        call problem%release()
+    end subroutine test_ode
+
+    !> dr/dy of the DAE residual (cj = 0) against central differences in y, and dr/dy' (cj = 1
+    !> less cj = 0) against those in y'; every entry not zero is in the sparse pattern.
+    subroutine test_dae(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(problem_type), target :: problem
+        type(dae_form_type) :: dae
+        type(newton_pattern_type) :: pattern
+        type(error_type), allocatable :: failure
+        real(wp), allocatable :: q0(:), u0(:), y(:), yp(:), yh(:), jac(:, :), jac1(:, :), &
+            & rp(:), rm(:)
+        logical, allocatable :: kept(:, :)
+        real(wp) :: scale
+        integer :: j, n, m, k
+
+        call build(lines, problem, q0, u0, error)
+        if (allocated(error)) return
+        call dae%init(problem)
+        n = size(q0)
+        m = dae_size(problem%eq)
+        y = [q0, u0]
+        ! an acceleration of no particular meaning: the residual is linear in it
+        yp = [u0, [(0.1_wp*k - 0.5_wp, k = 1, n)]]
+        allocate(jac(m, m), jac1(m, m), rp(m), rm(m), yh(m))
+        call dae_jacobian(problem%eq, 0.0_wp, 0.0_wp, y, yp, jac, failure)
+        if (.not. allocated(failure)) call dae_jacobian(problem%eq, 0.0_wp, 1.0_wp, y, yp, &
+            & jac1, failure)
+        if (allocated(failure)) then
+            call move_alloc(failure, error)
+            return
+        end if
+        scale = maxval(abs(jac))
+        do j = 1, m
+            yh = y
+            yh(j) = y(j) + h_fd
+            call dae_residual(problem%eq, 0.0_wp, yh, yp, rp, failure)
+            yh(j) = y(j) - h_fd
+            if (.not. allocated(failure)) call dae_residual(problem%eq, 0.0_wp, yh, yp, rm, &
+                & failure)
+            if (allocated(failure)) then
+                call move_alloc(failure, error)
+                return
+            end if
+            call check(error, jac(:, j), (rp - rm)/(2.0_wp*h_fd), "DAE dr/dy column " &
+                & // to_text(j), abs_tol=tol_fd*scale)
+            if (allocated(error)) return
+            yh = yp
+            yh(j) = yp(j) + h_fd
+            call dae_residual(problem%eq, 0.0_wp, y, yh, rp, failure)
+            yh(j) = yp(j) - h_fd
+            if (.not. allocated(failure)) call dae_residual(problem%eq, 0.0_wp, y, yh, rm, &
+                & failure)
+            if (allocated(failure)) then
+                call move_alloc(failure, error)
+                return
+            end if
+            call check(error, jac1(:, j) - jac(:, j), (rp - rm)/(2.0_wp*h_fd), "DAE " &
+                & // "dr/dy' column " // to_text(j), abs_tol=tol_fd*scale)
+            if (allocated(error)) return
+        end do
+        call check(error, maxval(abs(jac(n + 1:n + 6, 7:12))) > 1.0_wp, "part 2's momentum " &
+            & // "rows depend on part 3's coordinates")
+        if (allocated(error)) return
+        call dae%dae_pattern(m, pattern)
+        allocate(kept(m, m), source=.false.)
+        do j = 1, m
+            do k = pattern%starts(j) + 1, pattern%starts(j + 1)
+                kept(pattern%rows(k) + 1, j) = .true.
+            end do
+        end do
+        call check(error, .not. any(jac1 /= 0.0_wp .and. .not. kept), "the DAE pattern " &
+            & // "keeps every entry that is not zero: " // to_text(count(jac1 /= 0.0_wp &
+            & .and. .not. kept)) // " left out")
+        call problem%release()
+    end subroutine test_dae
+
+    !> The twins' ODE Jacobians agree to tol_user of the largest entry: the user routines'
+    !> partials (differences over the declared markers' parts) are the expressions' (exact);
+    !> and without the routines' partials they would not (the part's accelerations depend on
+    !> its coordinates through the forces' stiffness, entries of 400 and more).
+    subroutine test_user_twins(error)
+        type(error_type), allocatable, intent(out) :: error
+        real(wp), allocatable :: exact(:, :), differenced(:, :)
+        integer :: n, j
+
+        hide_a_read = .false.
+        call twin_matrices(exact, differenced, error)
+        if (allocated(error)) return
+        n = size(exact, 1)/2
+        ! part 2's translational accelerations by its position: the forces' stiffness alone
+        ! (the body's own partials have none there), 1000 + 400 over a mass of 1
+        call check(error, minval([maxval(abs(exact(n + 1:n + 3, 1:3))), &
+            & maxval(abs(differenced(n + 1:n + 3, 1:3)))]) > 100.0_wp, "the stiffness is in " &
+            & // "both matrices: " // to_text(maxval(abs(exact(n + 1:n + 3, 1:3)))) // ", " &
+            & // to_text(maxval(abs(differenced(n + 1:n + 3, 1:3)))))
+        if (allocated(error)) return
+        do j = 1, size(exact, 2)
+            call check(error, differenced(:, j), exact(:, j), "the user routines' ODE " &
+                & // "Jacobian, column " // to_text(j), abs_tol=tol_user*maxval(abs(exact)))
+            if (allocated(error)) return
+        end do
+    end subroutine test_user_twins
+
+    !> A GFOSUB that reads a marker of part 3 (SYSARY TDISP of marker 30) its initialisation
+    !> call did not name: the read is noted (system_notes, as rollcon check reports it), and
+    !> its partials are left out of the Newton matrix (ADAMS's rule: only the declared
+    !> dependencies are differenced), where differences of the right-hand side find them
+    !> (a stiffness of 500 on a mass of 1).
+    subroutine test_undeclared(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(problem_type), target :: problem
+        type(ode_form_type) :: ode
+        real(wp), allocatable :: q0(:), u0(:), y(:), yh(:), jac(:, :), fp(:), fm(:)
+        real(wp) :: found, left
+        integer :: j, n, ierr
+
+        call clear_force_routines()
+        call register_force_routine(routine_sfosub, "", "test_force_partials", spring_sfosub)
+        call register_force_routine(routine_gfosub, "", "test_force_partials", bushing_gfosub)
+        hide_a_read = .true.
+        call clear_system_notes()
+        call build([character(len=200) :: twin_head, user_twin, tail], problem, q0, u0, error)
+        if (.not. allocated(error)) call ode_matrix(problem, q0, u0, jac, error)
+        if (allocated(error)) then
+            hide_a_read = .false.
+            call clear_force_routines()
+            return
+        end if
+        call ode%init(problem)
+        n = size(q0)
+        y = [q0, u0]
+        allocate(fp(2*n), fm(2*n))
+        found = 0.0_wp
+        left = 0.0_wp
+        ierr = 0
+        ! part 2's accelerations (rows n + 1:n + 6) by part 3's coordinates (7:12)
+        do j = 7, 12
+            yh = y
+            yh(j) = y(j) + h_fd
+            ierr = ierr + ode%ode_rhs(0.0_wp, yh, fp)
+            yh(j) = y(j) - h_fd
+            ierr = ierr + ode%ode_rhs(0.0_wp, yh, fm)
+            found = max(found, maxval(abs((fp(n + 1:n + 6) - fm(n + 1:n + 6))/(2.0_wp*h_fd))))
+            left = max(left, maxval(abs(jac(n + 1:n + 6, j))))
+        end do
+        hide_a_read = .false.
+        call clear_force_routines()
+        call check(error, ierr == 0, "right-hand side failed")
+        if (allocated(error)) return
+        call check(error, index(system_notes(), "SYSARY('TDISP') named marker 30, which the " &
+            & // "initialisation call (IFLAG = .TRUE.) did not name") > 0, "the undeclared " &
+            & // "read is noted: " // system_notes())
+        if (allocated(error)) return
+        call check(error, maxval(abs(jac(n + 1:n + 3, 1:3))) > 100.0_wp, "the declared " &
+            & // "reads' partials are there: " // to_text(maxval(abs(jac(n + 1:n + 3, 1:3)))))
+        if (allocated(error)) return
+        call check(error, found > 100.0_wp .and. left == 0.0_wp, "the undeclared read's " &
+            & // "partials (" // to_text(found) // " by differences) are left out of the " &
+            & // "Newton matrix: " // to_text(left))
+        call problem%release()
+    end subroutine test_undeclared
+
+    !> The ODE Jacobians of the expression twin and the user twin at their start.
+    subroutine twin_matrices(exact, differenced, error)
+        real(wp), allocatable, intent(out) :: exact(:, :), differenced(:, :)
+        type(error_type), allocatable, intent(out) :: error
+        type(problem_type), target :: expressions, users
+        real(wp), allocatable :: q0(:), u0(:)
+
+        call clear_force_routines()
+        call register_force_routine(routine_sfosub, "", "test_force_partials", spring_sfosub)
+        call register_force_routine(routine_gfosub, "", "test_force_partials", bushing_gfosub)
+        call build([character(len=200) :: twin_head, expression_twin, tail], expressions, q0, &
+            & u0, error)
+        if (.not. allocated(error)) call ode_matrix(expressions, q0, u0, exact, error)
+        if (allocated(error)) then
+            call clear_force_routines()
+            return
+        end if
+        call build([character(len=200) :: twin_head, user_twin, tail], users, q0, u0, error)
+        if (.not. allocated(error)) call ode_matrix(users, q0, u0, differenced, error)
+        call clear_force_routines()
+        call expressions%release()
+        call users%release()
+    end subroutine twin_matrices
+
+    !> sforce_spring.f as a module procedure: F = -PAR(3) (DM - PAR(5)) - PAR(4) VR of markers
+    !> PAR(1), PAR(2), read with SYSFNC.
+    subroutine spring_sfosub(id, time, par, npar, dflag, iflag, result)
+        integer, intent(in) :: id
+        real(wp), intent(in) :: time
+        real(wp), intent(in) :: par(*)
+        integer, intent(in) :: npar
+        logical, intent(in) :: dflag, iflag
+        real(wp), intent(inout) :: result(*)
+        real(wp) :: dm, vr
+        logical :: failed
+
+        call system_function("DM", [nint(par(1)), nint(par(2))], dm, failed)
+        call system_function("VR", [nint(par(1)), nint(par(2))], vr, failed)
+        result(1) = -par(3)*(dm - par(5)) - par(4)*vr
+    end subroutine spring_sfosub
+
+    !> gforce_bushing.f as a module procedure: marker PAR(1) held at (PAR(3), PAR(4), PAR(5))
+    !> of marker PAR(2) by stiffness PAR(6) and damping PAR(7), its angles AX, AY, AZ by
+    !> PAR(8) and PAR(9) (SYSARY TDISP, TVEL, RVEL; SYSFNC AX, AY, AZ). With hide_a_read it
+    !> adds a force of marker 30's TDISP (part 3's), read in every call but the
+    !> initialisation call.
+    subroutine bushing_gfosub(id, time, par, npar, dflag, iflag, result)
+        integer, intent(in) :: id
+        real(wp), intent(in) :: time
+        real(wp), intent(in) :: par(*)
+        integer, intent(in) :: npar
+        logical, intent(in) :: dflag, iflag
+        real(wp), intent(inout) :: result(*)
+        character(len=2), parameter :: names(3) = ["AX", "AY", "AZ"]
+        real(wp) :: displacement(3), velocity(3), omega(3), angle(3), hidden(3)
+        integer :: ipar(4), states, k
+        logical :: failed
+
+        ipar = [nint(par(1)), nint(par(2)), nint(par(2)), nint(par(2))]
+        call system_array("TDISP", ipar(:3), displacement, states, failed)
+        call system_array("TVEL", ipar, velocity, states, failed)
+        call system_array("RVEL", ipar(:3), omega, states, failed)
+        do k = 1, 3
+            call system_function(names(k), ipar(:2), angle(k), failed)
+        end do
+        do k = 1, 3
+            result(k) = -par(6)*(displacement(k) - par(2 + k)) - par(7)*velocity(k)
+            result(3 + k) = -par(8)*angle(k) - par(9)*omega(k)
+        end do
+        if (hide_a_read .and. .not. iflag) then
+            call system_array("TDISP", [30, 1], hidden, states, failed)
+            result(1:3) = result(1:3) - 500.0_wp*hidden
+        end if
+    end subroutine bushing_gfosub
+
+end module test_force_partials
