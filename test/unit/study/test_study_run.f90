@@ -258,9 +258,8 @@ contains
         end do
     end subroutine test_boundary
 
-    !> A study of data/coin.adm: its case at the dataset's own gravity is the coin scene's run
-    !> (coin.adm gives coin.nml's rows bit for bit, docs/datasets.md), so its theta_min is the
-    !> scene's to the last bit; at another gravity it differs.
+    !> A study of data/coin.adm: its case at the dataset's own gravity is the dataset's own run,
+    !> so its theta_min is that run's to the last bit; at another gravity it differs.
     subroutine test_dataset(error)
         type(error_type), allocatable, intent(out) :: error
         type(study_type) :: study
@@ -286,7 +285,7 @@ contains
             if (allocated(error)) return
             case_theta_min(i) = result%values(measure_index("theta_min"))
         end do
-        call load_job("coin", job, error)
+        call load_job("data/coin.adm", job, error)
         if (allocated(error)) return
         job%output_dir = ""
         job%quiet = .true.
@@ -295,7 +294,8 @@ contains
         scene_theta_min = minval(history%rows(history%layout%part_column(1, coord_theta), &
             & :history%count))
         call check(error, case_theta_min(1) == scene_theta_min, "the dataset case's theta_min " &
-            & // to_text(case_theta_min(1)) // " is not the scene's " // to_text(scene_theta_min))
+            & // to_text(case_theta_min(1)) // " is not the dataset run's " &
+            & // to_text(scene_theta_min))
         if (allocated(error)) return
         call check(error, case_theta_min(2) /= scene_theta_min, "gravity changed nothing")
     end subroutine test_dataset
