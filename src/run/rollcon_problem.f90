@@ -17,7 +17,7 @@ module rollcon_problem
     use rollcon_output_layout, only : coordinate_names
     use rollcon_model, only : model_type, served_by_model_ucosub, statement_ucon
     use rollcon_equations, only : equations_type
-    use rollcon_run_settings, only : run_settings_type, drift_projection
+    use rollcon_run_settings, only : run_settings_type, drift_projection, formulation_speeds
     use rollcon_watch, only : watch_type, watch_slot_type, append_watch
     use rollcon_redundancy_watch, only : redundancy_watch_type
     use rollcon_reaction_watch, only : reaction_watch_type
@@ -57,6 +57,7 @@ module rollcon_problem
         procedure :: add_watch
         procedure :: prepare
         procedure :: accelerations
+        procedure :: diff_rates
         procedure :: choose_rows
         procedure :: routines_text
         procedure :: ucon_labels
@@ -117,6 +118,14 @@ contains
         character(len=name_length), allocatable :: names(:)
         integer :: k
 
+        if (self%model%diffs%count() > 0 .and. self%settings%formulation &
+            & == formulation_speeds) then
+            call fatal_error(error, trim(self%model%diffs%diffs(1)%name) // ": a DIFF's " &
+                & // "state is integrated in the formulations 'cvode' and 'ida' (docs/" &
+                & // "datasets.md, DIFF); the independent speeds ('maggi') integrate the " &
+                & // "parts' alone: choose another formulation", stat_input)
+            return
+        end if
         if (allocated(self%a)) deallocate(self%a)
         if (allocated(self%lambda)) deallocate(self%lambda)
         allocate(self%a(self%eq%n), self%lambda(self%eq%nc), source=0.0_wp)
@@ -163,9 +172,27 @@ contains
         real(wp), intent(in) :: time, q(:), u(:)
         type(error_type), allocatable, intent(out) :: error
 
+        call self%diff_rates(time, q, u, error)
+        if (allocated(error)) return
         call self%eq%accelerations(time, q, u, self%settings%baumgarte(), self%a, self%lambda, &
             & error)
     end subroutine accelerations
+
+    !> The DIFFs' rates DIF1 at (t, q, u) and their state DIF last set (rollcon_diff's
+    !> solve_rates, from the rates last found), set in the model for the forces that read
+    !> them (rollcon_model's set_diff_state). Nothing without DIFFs.
+    subroutine diff_rates(self, time, q, u, error)
+        class(problem_type), intent(inout) :: self
+        real(wp), intent(in) :: time, q(:), u(:)
+        type(error_type), allocatable, intent(out) :: error
+        real(wp), allocatable :: w(:)
+
+        if (self%model%diffs%count() == 0) return
+        w = self%model%diffs%w
+        call self%model%diffs%solve_rates(time, q, u, self%model%diffs%x, w, error)
+        if (allocated(error)) return
+        call self%model%set_diff_state(self%model%diffs%x, w)
+    end subroutine diff_rates
 
     !> Choose the rows to set aside as redundant at the start (t, q, u) (rollcon_redundancy,
     !> through the equations' choose_active) and say which in the user's words
