@@ -20,6 +20,7 @@ module rollcon_static_forces
     use rollcon_marker_force, only : marker_force_type, kind_translation, kind_rotation, &
         & kind_spring
     use rollcon_spring_partials, only : add_spring_partials
+    use rollcon_diff, only : diff_input_jets
     use rollcon_measures, only : state_jets_type, new_state_jets, marker_jets, &
         & expression_input_jets
     use rollcon_expression_jet, only : evaluate_expression_jet
@@ -94,6 +95,9 @@ contains
             allocate(inputs(m))
             call expression_input_jets(statement%functions(k), statement%markers, &
                 & statement%length_unit, statement%time_unit, state, inputs)
+            ! a DIFF's state, held in a static equilibrium (STATIC_HOLD)
+            if (allocated(statement%dif_ids)) call diff_input_jets(statement%functions(k), &
+                & statement%dif_ids, statement%dif(:, 1), statement%dif(:, 2), inputs)
             values(k) = evaluate_expression_jet(statement%functions(k), &
                 & jet_constant(time/statement%time_unit), inputs)
             deallocate(inputs)

@@ -599,12 +599,16 @@ contains
         do k = 1, size(adm%diffs)
             associate (diff => model%diffs%diffs(k), given => adm%diffs(k))
                 diff%id = given%id
-                diff%name = place(adm%file, given%line) // ": DIFF/" // to_text(given%id)
+                ! in messages of a run: "DIFF/3 (line 12)"
+                diff%name = "DIFF/" // to_text(given%id) // " (line " // to_text(given%line) &
+                    & // ")"
+
                 diff%function = given%function
                 diff%implicit = given%implicit
                 diff%static_hold = given%static_hold
                 diff%ic = given%ic
-                where = diff%name // " FUNCTION"
+                where = place(adm%file, given%line) // ": DIFF/" // to_text(given%id) &
+                    & // " FUNCTION"
                 call expression_markers(adm, diff%function, where, "a DIFF's FUNCTION", &
                     & diff%markers, error)
                 if (allocated(error)) return

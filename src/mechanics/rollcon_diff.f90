@@ -36,7 +36,7 @@ module rollcon_diff
     implicit none
     private
 
-    public :: diff_type, diff_set_type, diff_inputs
+    public :: diff_type, diff_set_type, diff_inputs, diff_input_jets
 
     !> Most Newton steps of solve_rates; each is exact for an equation linear in the DIF1s
     integer, parameter :: most_steps = 20
@@ -45,7 +45,7 @@ module rollcon_diff
     type :: diff_type
         !> Its id (DIF(id) reads it)
         integer :: id = 0
-        !> What it is, for messages: "data/x.adm:12: DIFF/3"
+        !> What it is, for messages: "DIFF/3 (line 12)"
         character(len=:), allocatable :: name
         !> FUNCTION, in the dataset's units (inputs: markers' measures, DIF, DIF1)
         type(expression_type) :: function
@@ -124,6 +124,28 @@ contains
             end associate
         end do
     end subroutine diff_inputs
+
+    !> The jets of an expression's DIF(id) and DIF1(id) inputs as constants, from (x, w) of
+    !> these DIFFs (ids), the other inputs left as they are (for a computation of partials in
+    !> the parts' states alone, such as a static equilibrium's, where a DIFF is held).
+    pure subroutine diff_input_jets(expression, ids, x, w, values)
+        type(expression_type), intent(in) :: expression
+        integer, intent(in) :: ids(:)
+        real(wp), intent(in) :: x(:), w(:)
+        type(jet_type), intent(inout) :: values(:)
+        real(wp) :: plain(size(values))
+        integer :: n
+
+        if (.not. allocated(expression%inputs)) return
+        plain = 0.0_wp
+        call diff_inputs(expression, ids, x, w, plain)
+        do n = 1, size(values)
+            associate (quantity => expression%inputs(n)%quantity)
+                if (quantity == quantity_dif .or. quantity == quantity_dif1) &
+                    & values(n) = jet_constant(plain(n))
+            end associate
+        end do
+    end subroutine diff_input_jets
 
     !> G(t, q, u, x, w) (module header), one per DIFF, in the FUNCTION's units.
     pure subroutine residuals(self, time, q, u, x, w, g)
