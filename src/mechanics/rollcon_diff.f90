@@ -66,6 +66,8 @@ module rollcon_diff
         real(wp) :: length_unit = 1.0_wp, time_unit = 1.0_wp
         !> The state last set: DIF of each DIFF [user's units] and DIF1 [per time unit]
         real(wp), allocatable :: x(:), w(:)
+        !> Each DIFF's id, in order (set by start)
+        integer, allocatable :: ids(:)
     contains
         procedure :: count => diff_count
         procedure :: start
@@ -92,8 +94,9 @@ contains
         class(diff_set_type), intent(inout) :: self
         integer :: k
 
-        allocate(self%x(self%count()), self%w(self%count()))
+        allocate(self%x(self%count()), self%w(self%count()), self%ids(self%count()))
         do k = 1, self%count()
+            self%ids(k) = self%diffs(k)%id
             self%x(k) = self%diffs(k)%ic(1)
             self%w(k) = self%diffs(k)%ic(2)
         end do
@@ -163,7 +166,7 @@ contains
                 allocate(values(size(diff%function%inputs)))
                 call expression_input_values(diff%function, diff%markers, self%length_unit, &
                     & self%time_unit, q, u, values)
-                call diff_inputs(diff%function, self%diffs%id, x, w, values)
+                call diff_inputs(diff%function, self%ids, x, w, values)
                 g(k) = evaluate_expression(diff%function, time/self%time_unit, values)
                 if (.not. diff%implicit) g(k) = w(k) - g(k)
                 deallocate(values)
@@ -208,7 +211,7 @@ contains
                     associate (input => diff%function%inputs(m))
                         if (input%quantity /= quantity_dif .and. &
                             & input%quantity /= quantity_dif1) cycle
-                        j = findloc(self%diffs%id, input%marker, dim=1)
+                        j = findloc(self%ids, input%marker, dim=1)
                         if (j == 0) then
                             inputs(m) = jet_constant(nan())
                         else if (input%quantity == quantity_dif) then

@@ -141,7 +141,8 @@ contains
         !> nd x (2n + nd)
         real(wp), intent(out) :: rows(:, :)
         type(error_type), allocatable, intent(out) :: error
-        real(wp), allocatable :: g(:), g_q(:, :), g_u(:, :), g_x(:, :), g_w(:, :), w(:)
+        real(wp), allocatable :: g(:), g_q(:, :), g_u(:, :), g_x(:, :), g_w(:, :), w(:), &
+            & right(:, :)
         integer, allocatable :: pivots(:)
         integer :: n, nd
 
@@ -153,14 +154,16 @@ contains
             call diffs%solve_rates(time, q, u, diffs%x, w, error, g_w, pivots)
             if (allocated(error)) return
             call diffs%partials(time, q, u, diffs%x, w, g, g_q, g_u, g_x, g_w)
-            rows(:, :n) = g_q
-            rows(:, n + 1:2*n) = g_u
-            rows(:, 2*n + 1:) = g_x
+            ! contiguous right-hand sides for LAPACK (rows is a section of the matrix)
+            allocate(right(nd, 2*n + nd))
+            right(:, :n) = g_q
+            right(:, n + 1:2*n) = g_u
+            right(:, 2*n + 1:) = g_x
             call factor_dense(g_w, pivots, error)
             if (allocated(error)) return
-            call solve_factored(g_w, pivots, rows, error)
+            call solve_factored(g_w, pivots, right, error)
             if (allocated(error)) return
-            rows = -rows/diffs%time_unit
+            rows = -right/diffs%time_unit
         end associate
     end subroutine diff_rows
 
