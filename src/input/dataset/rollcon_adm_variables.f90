@@ -155,9 +155,9 @@ contains
             call give_curves(model, curves, model%diffs(i)%function, where, error)
             if (allocated(error)) return
         end do
-        call check_plants(model, ids, error)
-        if (allocated(error)) return
         call check_diff_reads(model, error)
+        if (allocated(error)) return
+        call check_plants(model, ids, error)
     end subroutine resolve_variables
 
     !> Every DIF(id) and DIF1(id) of the expressions simulated (forces', DIFFs', VARIABLEs')
