@@ -19,7 +19,7 @@ module rollcon_analysis_run
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type, fatal_error, stat_input
     use rollcon_text, only : to_text
-    use rollcon_run_settings, only : analysis_static, analysis_kinematic
+    use rollcon_run_settings, only : analysis_static, analysis_kinematic, formulation_speeds
     use rollcon_problem, only : problem_type
     use rollcon_simulation, only : run_options_type, run_summary_type, history_type, simulate, &
         & status_completed, status_failed, output_layout, start_summary, deliver_row
@@ -98,7 +98,9 @@ contains
         end if
     end subroutine run_analysis
 
-    !> The DIFFs (rollcon_diff) an analysis can take: a kinematic analysis integrates nothing,
+    !> The DIFFs (rollcon_diff) an analysis can take: the independent speeds integrate the
+    !> parts' states alone, so a model with DIFFs is refused there; a kinematic analysis
+    !> integrates nothing,
     !> so a model with DIFFs is refused there; a static equilibrium holds each DIFF's state
     !> where it is (STATIC_HOLD), and a DIFF without STATIC_HOLD, whose equation ADAMS solves
     !> with the equilibrium (e = 0, or e(DIF, DIF1 = 0) = 0), is refused, naming it.
@@ -109,6 +111,13 @@ contains
 
         associate (diffs => problem%model%diffs)
             if (diffs%count() == 0) return
+            if (problem%settings%formulation == formulation_speeds) then
+                call fatal_error(error, trim(diffs%diffs(1)%name) // ": a DIFF's state is " &
+                    & // "integrated in the formulations 'cvode' and 'ida' (docs/datasets.md, " &
+                    & // "DIFF); the independent speeds ('maggi') integrate the parts' alone: " &
+                    & // "choose another formulation", stat_input)
+                return
+            end if
             if (problem%settings%analysis == analysis_kinematic) then
                 call fatal_error(error, trim(diffs%diffs(1)%name) // ": a kinematic analysis " &
                     & // "integrates no state, and a DIFF's is integrated: run the model " &

@@ -68,6 +68,9 @@ module rollcon_diff
         real(wp), allocatable :: x(:), w(:)
         !> Each DIFF's id, in order (set by start)
         integer, allocatable :: ids(:)
+        !> Some FUNCTION reads a DIF1 (set by start): else every DIFF is explicit and its rate
+        !> is its FUNCTION's value, no Newton step needed
+        logical :: reads_rates = .false.
     contains
         procedure :: count => diff_count
         procedure :: start
@@ -97,6 +100,8 @@ contains
         allocate(self%x(self%count()), self%w(self%count()), self%ids(self%count()))
         do k = 1, self%count()
             self%ids(k) = self%diffs(k)%id
+            if (allocated(self%diffs(k)%function%inputs)) self%reads_rates = self%reads_rates &
+                & .or. any(self%diffs(k)%function%inputs%quantity == quantity_dif1)
             self%x(k) = self%diffs(k)%ic(1)
             self%w(k) = self%diffs(k)%ic(2)
         end do
@@ -271,6 +276,27 @@ contains
 
         nd = self%count()
         if (nd == 0) return
+        if (.not. self%reads_rates) then
+            ! every DIFF explicit, no DIF1 read: w = e(t, q, u, x), G's residual at w = 0
+            w = 0.0_wp
+            call self%residuals(time, q, u, x, w, g)
+            w = -g
+            if (.not. all(ieee_is_finite(w))) then
+                call fatal_error(error, trim(self%diffs(first_nonfinite(w))%name) &
+                    & // " FUNCTION: " // self%diffs(first_nonfinite(w))%function%text &
+                    & // " is not finite at t = " // to_text(time) // " s (DIF = " &
+                    & // to_text(x(first_nonfinite(w))) // ")", stat_solver)
+                return
+            end if
+            if (present(dg_dw)) then
+                dg_dw = 0.0_wp
+                do iteration = 1, nd
+                    dg_dw(iteration, iteration) = 1.0_wp
+                end do
+            end if
+            if (present(ipiv)) ipiv = [(iteration, iteration = 1, nd)]
+            return
+        end if
         converged = .false.
         do iteration = 1, most_steps
             call self%partials(time, q, u, x, w, g, g_q, g_u, g_x, g_w)

@@ -434,7 +434,11 @@ contains
         real(wp), intent(out) :: g(:)
         real(wp), intent(in), optional :: ydot(:)
 
-        associate (n => self%problem%eq%n, nc => self%problem%eq%nc)
+        associate (n => self%problem%eq%n, nc => self%problem%eq%nc, &
+                & model => self%problem%model)
+            ! the DIFFs' state at y, for the forces' switches that read it
+            if (model%diffs%count() > 0) call model%set_diff_state(y(size(y) &
+                & - model%diffs%count() + 1:), model%diffs%w)
             if (size(y) > 2*n) then
                 ierr = self%problem%root_values(time, y(:n), y(n + 1:2*n), g, &
                     & lambda=y(2*n + 1:2*n + nc))

@@ -219,7 +219,9 @@ contains
         real(wp), intent(out) :: g(:)
         real(wp), intent(in), optional :: ydot(:)
 
-        associate (n => self%problem%eq%n)
+        associate (n => self%problem%eq%n, model => self%problem%model)
+            ! the DIFFs' state at y, for the forces' switches that read it
+            if (model%diffs%count() > 0) call model%set_diff_state(y(2*n + 1:), model%diffs%w)
             if (present(ydot)) then
                 ierr = self%problem%root_values(time, y(:n), y(n + 1:2*n), g, a=ydot(n + 1:2*n))
             else

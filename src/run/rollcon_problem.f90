@@ -17,7 +17,7 @@ module rollcon_problem
     use rollcon_output_layout, only : coordinate_names
     use rollcon_model, only : model_type, served_by_model_ucosub, statement_ucon
     use rollcon_equations, only : equations_type
-    use rollcon_run_settings, only : run_settings_type, drift_projection, formulation_speeds
+    use rollcon_run_settings, only : run_settings_type, drift_projection
     use rollcon_watch, only : watch_type, watch_slot_type, append_watch
     use rollcon_redundancy_watch, only : redundancy_watch_type
     use rollcon_reaction_watch, only : reaction_watch_type
@@ -118,14 +118,6 @@ contains
         character(len=name_length), allocatable :: names(:)
         integer :: k
 
-        if (self%model%diffs%count() > 0 .and. self%settings%formulation &
-            & == formulation_speeds) then
-            call fatal_error(error, trim(self%model%diffs%diffs(1)%name) // ": a DIFF's " &
-                & // "state is integrated in the formulations 'cvode' and 'ida' (docs/" &
-                & // "datasets.md, DIFF); the independent speeds ('maggi') integrate the " &
-                & // "parts' alone: choose another formulation", stat_input)
-            return
-        end if
         if (allocated(self%a)) deallocate(self%a)
         if (allocated(self%lambda)) deallocate(self%lambda)
         allocate(self%a(self%eq%n), self%lambda(self%eq%nc), source=0.0_wp)
