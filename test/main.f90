@@ -107,6 +107,7 @@ program tester
     use test_couplers, only : collect_couplers
     use test_motions, only : collect_motions
     use test_system_runs, only : collect_system_runs
+    use test_diff_runs, only : collect_diff_runs
     use test_springs, only : collect_springs
     use test_adm_springs, only : collect_adm_springs
     use test_spring_partials, only : collect_spring_partials
@@ -228,6 +229,7 @@ program tester
         & new_testsuite("couplers", collect_couplers), &
         & new_testsuite("motions", collect_motions), &
         & new_testsuite("system-runs", collect_system_runs), &
+        & new_testsuite("diff-runs", collect_diff_runs), &
         & new_testsuite("springs", collect_springs), &
         & new_testsuite("spring-partials", collect_spring_partials), &
         & new_testsuite("force-partials", collect_force_partials), &

@@ -17,9 +17,9 @@ module rollcon_analysis_run
     use, intrinsic :: iso_fortran_env, only : int64
     use, intrinsic :: ieee_arithmetic, only : ieee_is_finite
     use rollcon_kinds, only : wp
-    use rollcon_error, only : error_type
+    use rollcon_error, only : error_type, fatal_error, stat_input
     use rollcon_text, only : to_text
-    use rollcon_run_settings, only : analysis_static, analysis_kinematic
+    use rollcon_run_settings, only : analysis_static, analysis_kinematic, formulation_speeds
     use rollcon_problem, only : problem_type
     use rollcon_simulation, only : run_options_type, run_summary_type, history_type, simulate, &
         & status_completed, status_failed, output_layout, start_summary, deliver_row
@@ -66,6 +66,8 @@ contains
         type(static_report_type) :: report
         real(wp), allocatable :: q(:), u(:)
 
+        call check_diffs(problem, error)
+        if (allocated(error)) return
         select case (problem%settings%analysis)
         case (analysis_kinematic)
             call kinematic_run(problem, q0, u0, options, summary, error, history, sink)
@@ -95,6 +97,45 @@ contains
                 & // "(SIMULATE/STATIC, SIMULATE/DYNAMIC)" // nl // static_report_text(report)
         end if
     end subroutine run_analysis
+
+    !> The DIFFs (rollcon_diff) an analysis can take: the independent speeds integrate the
+    !> parts' states alone, so a model with DIFFs is refused there; a kinematic analysis
+    !> integrates nothing,
+    !> so a model with DIFFs is refused there; a static equilibrium holds each DIFF's state
+    !> where it is (STATIC_HOLD), and a DIFF without STATIC_HOLD, whose equation ADAMS solves
+    !> with the equilibrium (e = 0, or e(DIF, DIF1 = 0) = 0), is refused, naming it.
+    subroutine check_diffs(problem, error)
+        type(problem_type), intent(in) :: problem
+        type(error_type), allocatable, intent(out) :: error
+        integer :: k
+
+        associate (diffs => problem%model%diffs)
+            if (diffs%count() == 0) return
+            if (problem%settings%formulation == formulation_speeds) then
+                call fatal_error(error, trim(diffs%diffs(1)%name) // ": a DIFF's state is " &
+                    & // "integrated in the formulations 'cvode' and 'ida' (docs/datasets.md, " &
+                    & // "DIFF); the independent speeds ('maggi') integrate the parts' alone: " &
+                    & // "choose another formulation", stat_input)
+                return
+            end if
+            if (problem%settings%analysis == analysis_kinematic) then
+                call fatal_error(error, trim(diffs%diffs(1)%name) // ": a kinematic analysis " &
+                    & // "integrates no state, and a DIFF's is integrated: run the model " &
+                    & // "dynamic (SIMULATE/DYNAMIC)", stat_input)
+                return
+            end if
+            if (problem%settings%analysis /= analysis_static .and. &
+                & .not. problem%settings%static_first) return
+            do k = 1, diffs%count()
+                if (diffs%diffs(k)%static_hold) cycle
+                call fatal_error(error, trim(diffs%diffs(k)%name) // ": a static equilibrium " &
+                    & // "holds a DIFF's state at its value only with STATIC_HOLD; rollcon " &
+                    & // "does not solve its equation with the equilibrium (ADAMS's e = 0 " &
+                    & // "for DIF): add STATIC_HOLD, or run it dynamic alone", stat_input)
+                return
+            end do
+        end associate
+    end subroutine check_diffs
 
     !> The equilibrium's one row.
     subroutine static_run(problem, q, u, options, summary, error, history, sink)

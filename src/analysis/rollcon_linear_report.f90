@@ -39,6 +39,16 @@ contains
         if (abs(damping_ratio) < 1.0e-12_wp) damping_ratio = 0.0_wp
     end function damping_ratio
 
+    !> " and 2 DIFF states" ("" without DIFFs).
+    pure function diff_words(count) result(text)
+        integer, intent(in) :: count
+        character(len=:), allocatable :: text
+
+        text = ""
+        if (count > 0) text = " and " // to_text(count) // " DIFF state" &
+            & // trim(merge("s", " ", count > 1))
+    end function diff_words
+
     !> The table `rollcon linear` prints: a header line, one line per eigenvalue (zeros marked,
     !> with no frequency or damping), the count of zeros and the tangent space's invariance.
     function linear_table_text(result, title) result(text)
@@ -51,8 +61,9 @@ contains
         integer :: k
 
         text = "linear analysis of " // title // ": " // to_text(result%reduced) &
-            & // " independent states (" // to_text(result%states) // " coordinates and rates " &
-            & // "less " // to_text(result%states - result%reduced) // " constraint rows)" // nl
+            & // " independent states (" // to_text(result%states - result%diff_states) &
+            & // " coordinates and rates" // diff_words(result%diff_states) // " less " &
+            & // to_text(result%states - result%reduced) // " constraint rows)" // nl
         text = text // "eigenvalues, by decreasing real part; f_natural = |lambda|/(2 pi), " &
             & // "f_damped = |Im lambda|/(2 pi), zeta = -Re lambda/|lambda|" // nl
         write(line, '(a4, 2a24, 2a16, a12)') "k", "real [1/s]", "imag [1/s]", "f_natural [Hz]", &

@@ -67,8 +67,9 @@ module rollcon_linearisation
     type :: linear_result_type
         !> Time of the start [s]
         real(wp) :: time = 0.0_wp
-        !> State size 2n and the manifold's dimension d = 2n - (UCONs + position UCONs)
-        integer :: states = 0, reduced = 0
+        !> State size 2n + nd and the manifold's dimension d = 2n + nd - (UCONs + position
+        !> UCONs), nd the DIFFs' states (rollcon_diff), each a state of the linear model
+        integer :: states = 0, reduced = 0, diff_states = 0
         !> Eigenvalues of A_red [1/s], sorted by decreasing real part, then decreasing
         !> |imaginary part|, + first (a conjugate pair adjacent)
         real(wp), allocatable :: real_part(:), imag_part(:)
@@ -76,7 +77,8 @@ module rollcon_linearisation
         real(wp), allocatable :: reduced_matrix(:, :)
         !> T, 2n x d: the tangent basis (identity in the independent rows)
         real(wp), allocatable :: basis(:, :)
-        !> The independent coordinates, numbers into y = (q, u) (j <= n: q_j; else u_(j-n))
+        !> The independent coordinates, numbers into y = (q, u, x) (j <= n: q_j; j <= 2n:
+        !> u_(j-n); else the state of the (j-2n)-th DIFF)
         integer, allocatable :: independent(:)
         !> |A T - T A_red| / |A T| in scaled units (0 for an invariant tangent space)
         real(wp) :: invariance = 0.0_wp
@@ -102,13 +104,16 @@ contains
         type(linear_options_type), intent(in) :: options
         type(linear_result_type), intent(out) :: result
         type(error_type), allocatable, intent(out) :: error
-        real(wp), allocatable :: jac(:, :), scale(:), at(:, :)
+        real(wp), allocatable :: jac(:, :), scale(:), at(:, :), x0(:), w0(:)
         integer, allocatable :: dependent(:)
-        integer :: n
+        integer :: n, nd
 
         n = problem%model%n
+        nd = problem%model%diffs%count()
         result%time = time
-        result%states = 2*n
+        ! y = (q, u, x): the DIFFs' states are states of the linear model (rhs)
+        result%states = 2*n + nd
+        result%diff_states = nd
         if (size(q) /= n .or. size(u) /= n) then
             call fatal_error(error, "linearisation: q and u need " // to_text(n) &
                 & // " values each (6 per part), got " // to_text(size(q)) // " and " &
@@ -118,8 +123,16 @@ contains
         call constraint_jacobian(problem, time, q, u, jac, error)
         if (allocated(error)) return
         scale = state_scales(problem, q, u)
+        if (nd > 0) then
+            ! no constraint reads a DIFF's state: its columns are zero, its state independent
+            jac = reshape([jac, spread(0.0_wp, 1, size(jac, 1)*nd)], [size(jac, 1), 2*n + nd])
+            x0 = problem%model%diffs%x
+            w0 = problem%model%diffs%w
+            scale = [scale, max(1.0_wp, abs(x0))]
+        end if
         if (allocated(options%independent)) then
-            call given_partition(n, options%independent, dependent, result%independent, error)
+            call given_partition(2*n + nd, options%independent, dependent, &
+                & result%independent, error)
         else
             call partition(problem, jac, scale, dependent, result%independent, error)
         end if
@@ -128,6 +141,8 @@ contains
         if (allocated(error)) return
         result%reduced = size(result%independent)
         call directional_jacobian(problem, time, q, u, options, scale, result%basis, at, error)
+        ! the DIFFs' state as it was at the start
+        if (nd > 0) call problem%model%set_diff_state(x0, w0)
         if (allocated(error)) return
         result%reduced_matrix = at(result%independent, :)
         result%invariance = invariance_rest(at, result%basis, result%reduced_matrix, scale)
@@ -312,26 +327,28 @@ contains
             & scale(n + 1:), u_dependent, error)
         if (allocated(error)) return
         dependent = [q_dependent, n + u_dependent]
-        allocate(taken(2*n), source=.false.)
+        ! and the DIFFs' states (jac's last columns), each independent
+        allocate(taken(size(jac, 2)), source=.false.)
         taken(dependent) = .true.
-        independent = pack([(j, j = 1, 2*n)], .not. taken)
+        independent = pack([(j, j = 1, size(jac, 2))], .not. taken)
     end subroutine partition
 
     !> The partition of y = (q, u) with the given independent coordinates (checked: distinct
     !> numbers from 1 to 2n), the rest dependent.
-    subroutine given_partition(n, given, dependent, independent, error)
-        integer, intent(in) :: n
+    subroutine given_partition(states, given, dependent, independent, error)
+        !> Size of y: 2n, and the DIFFs' states
+        integer, intent(in) :: states
         integer, intent(in) :: given(:)
         integer, allocatable, intent(out) :: dependent(:), independent(:)
         type(error_type), allocatable, intent(out) :: error
-        logical :: taken(2*n)
+        logical :: taken(states)
         integer :: j
 
         taken = .false.
         do j = 1, size(given)
-            if (given(j) < 1 .or. given(j) > 2*n) then
+            if (given(j) < 1 .or. given(j) > states) then
                 call fatal_error(error, "linearisation: independent coordinate " &
-                    & // to_text(given(j)) // " is not one of the " // to_text(2*n) &
+                    & // to_text(given(j)) // " is not one of the " // to_text(states) &
                     & // " coordinates and rates", stat_input)
                 return
             end if
@@ -343,7 +360,7 @@ contains
             taken(given(j)) = .true.
         end do
         independent = given
-        dependent = pack([(j, j = 1, 2*n)], .not. taken)
+        dependent = pack([(j, j = 1, states)], .not. taken)
     end subroutine given_partition
 
     !> The size(rows) most independent columns of block (scaled by scale, rows to unit
@@ -482,22 +499,34 @@ contains
         slope = (plus - minus)/(2.0_wp*h)
     end subroutine central_difference
 
-    !> f(y + dy) = (u, a) of the ODE form.
+    !> f(y + dy) = (u, a, w/T) of the ODE form (rollcon_ode_form): with DIFFs, y = (q, u, x)
+    !> about the DIFFs' state x0 of the start, kept in x0 (model%diffs%x is the evaluation's).
     subroutine rhs(problem, time, q, u, alpha, dy, f, error)
         type(problem_type), intent(inout), target :: problem
         real(wp), intent(in) :: time, q(:), u(:), alpha, dy(:)
         real(wp), allocatable, intent(out) :: f(:)
         type(error_type), allocatable, intent(out) :: error
-        real(wp), allocatable :: a(:), lambda(:), qs(:), us(:)
-        integer :: n
+        real(wp), allocatable :: a(:), lambda(:), qs(:), us(:), x0(:)
+        integer :: n, nd
 
         n = size(q)
+        nd = problem%model%diffs%count()
         qs = q + dy(:n)
-        us = u + dy(n + 1:)
+        us = u + dy(n + 1:2*n)
         allocate(a(n), lambda(problem%model%nc))
+        if (nd > 0) then
+            x0 = problem%model%diffs%x
+            call problem%model%set_diff_state(x0 + dy(2*n + 1:), problem%model%diffs%w)
+            call problem%diff_rates(time, qs, us, error)
+            if (allocated(error)) return
+        end if
         call problem%eq%accelerations(time, qs, us, alpha, a, lambda, error)
-        if (allocated(error)) return
-        f = [us, a]
+        if (nd > 0) then
+            f = [us, a, problem%model%diffs%w/problem%model%diffs%time_unit]
+            call problem%model%set_diff_state(x0, problem%model%diffs%w)
+        else
+            f = [us, a]
+        end if
     end subroutine rhs
 
     !> max |A T - T A_red| / max |A T|, rows scaled by 1/scale, columns by the scaled size of

@@ -37,6 +37,8 @@ module rollcon_adm_build
     use rollcon_request_watch, only : displacement_request_type, new_request_watch
     use rollcon_variable_watch, only : watched_variable_type, new_variable_watch
     use rollcon_motion_watch, only : motion_watch_type
+    use rollcon_diff_watch, only : diff_watch_type
+    use rollcon_expression, only : quantity_dif1
     use rollcon_element_force_watch, only : element_force_watch_type, watches_elements
     use rollcon_adm_requests, only : add_request_answers
     use rollcon_adm_model, only : adm_model_type, adm_force_type, force_sforce, force_vforce, &
@@ -113,6 +115,8 @@ contains
             call add_force_statement(adm, adm%forces(i), model, error)
             if (allocated(error)) return
         end do
+        call add_diffs(adm, model, error)
+        if (allocated(error)) return
         model%gravity = adm%gravity
         ! the routine of the UCONs that name none (ADAMS's one UCOSUB per model)
         model%ucosub => fallback
@@ -136,6 +140,8 @@ contains
         ! each VARIABLE's value, a column (rollcon_variable_watch)
         call add_variable_watch(adm, problem, error)
         if (allocated(error)) return
+        ! each DIFF's DIF and DIF1, two columns (rollcon_diff_watch)
+        if (problem%model%diffs%count() > 0) call problem%add_watch(diff_watch_type())
         ! each SPRINGDAMPER's and BUSHING's force and torque, six columns
         ! (rollcon_element_force_watch)
         if (watches_elements(problem%eq)) call problem%add_watch(element_force_watch_type())
@@ -566,9 +572,64 @@ contains
                         & markers(n)]
                 end do
             end do
+            ! the DIFFs' state its expressions may read as DIF(id), DIF1(id) (rollcon_diff)
+            if (allocated(adm%diffs) .and. .not. statement%user) then
+                if (size(adm%diffs) > 0) then
+                    s%dif_ids = adm%diffs%id
+                    allocate(s%dif(size(adm%diffs), 2))
+                    s%dif(:, 1) = adm%diffs%ic(1)
+                    s%dif(:, 2) = adm%diffs%ic(2)
+                end if
+            end if
         end associate
         call model%add_force(force)
     end subroutine add_force_statement
+
+    !> The dataset's DIFFs as the model's (rollcon_diff), their markers as the model holds
+    !> them, their state at the ICs. Refused as expression_markers refuses (a DIFF's FUNCTION
+    !> reads no acceleration or force: an algebraic loop) and an IMPLICIT DIFF whose FUNCTION
+    !> reads no DIF1 (its equation cannot fix its rate).
+    subroutine add_diffs(adm, model, error)
+        type(adm_model_type), intent(in) :: adm
+        type(model_type), intent(inout) :: model
+        type(error_type), allocatable, intent(out) :: error
+        character(len=:), allocatable :: where
+        integer :: k
+
+        if (.not. allocated(adm%diffs)) return
+        if (size(adm%diffs) == 0) return
+        model%diffs%length_unit = adm%units%length
+        model%diffs%time_unit = adm%units%time
+        allocate(model%diffs%diffs(size(adm%diffs)))
+        do k = 1, size(adm%diffs)
+            associate (diff => model%diffs%diffs(k), given => adm%diffs(k))
+                diff%id = given%id
+                ! in messages of a run: "DIFF/3 (line 12)"
+                diff%name = "DIFF/" // to_text(given%id) // " (line " // to_text(given%line) &
+                    & // ")"
+
+                diff%function = given%function
+                diff%implicit = given%implicit
+                diff%static_hold = given%static_hold
+                diff%ic = given%ic
+                where = place(adm%file, given%line) // ": DIFF/" // to_text(given%id) &
+                    & // " FUNCTION"
+                call expression_markers(adm, diff%function, where, "a DIFF's FUNCTION", &
+                    & diff%markers, error)
+                if (allocated(error)) return
+                if (diff%implicit .and. .not. any(diff%function%inputs%quantity &
+                    & == quantity_dif1)) then
+                    call fatal_error(error, where // ": an IMPLICIT DIFF's equation 0 = e " &
+                        & // "must read DIF1 (its rate), else it cannot fix DIF1(" &
+                        & // to_text(diff%id) // ") (de/dDIF1 = 0, singular); write d DIF/dt " &
+                        & // "= e without IMPLICIT", stat_input)
+                    return
+                end if
+            end associate
+        end do
+        call model%diffs%start()
+        call model%set_diff_state(model%diffs%x, model%diffs%w)
+    end subroutine add_diffs
 
     !> A SPRINGDAMPER or BUSHING as a force between its markers (rollcon_spring_force), its
     !> constants in SI as read.

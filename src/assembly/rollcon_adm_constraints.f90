@@ -16,7 +16,7 @@ module rollcon_adm_constraints
     use rollcon_rotation, only : cross
     use rollcon_expression, only : expression_type, expression_input_type, evaluate_expression, &
         & op_constant, op_input, op_multiply, op_add, op_subtract, quantity_names, quantity_dx, &
-        & quantity_ax
+        & quantity_ax, quantity_dif, quantity_dif1
     use rollcon_marker, only : marker_type, marker_motion
     use rollcon_measures, only : expression_input_values, input_refusal, input_text
     use rollcon_model, only : model_type
@@ -56,6 +56,8 @@ contains
                     call fatal_error(error, where // ": " // problem, stat_input)
                     return
                 end if
+                ! DIF(id), DIF1(id): a DIFF's id, no marker (rollcon_adm_variables checks it)
+                if (input%quantity == quantity_dif .or. input%quantity == quantity_dif1) cycle
                 ids = [input%marker, input%j, input%k, input%l]
                 do m = 1, 4
                     if (ids(m) == 0) cycle

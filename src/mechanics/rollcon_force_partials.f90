@@ -24,6 +24,7 @@ module rollcon_force_partials
     use rollcon_measures, only : state_jets_type, new_state_jets, marker_jets, &
         & expression_input_jets
     use rollcon_expression_jet, only : evaluate_expression_jet
+    use rollcon_diff, only : diff_input_jets
     use rollcon_marker_force, only : marker_force_type, kind_translation, kind_rotation, &
         & kind_spring
     implicit none
@@ -115,6 +116,10 @@ contains
             allocate(inputs(m))
             call expression_input_jets(statement%functions(k), statement%markers, &
                 & statement%length_unit, statement%time_unit, state, inputs)
+            ! a DIFF's state (DIF, DIF1) as last set: a constant here, so a force's partials
+            ! in the DIFF's states are not in the Newton matrices (docs/datasets.md, DIFF)
+            if (allocated(statement%dif_ids)) call diff_input_jets(statement%functions(k), &
+                & statement%dif_ids, statement%dif(:, 1), statement%dif(:, 2), inputs)
             values(k) = evaluate_expression_jet(statement%functions(k), &
                 & jet_constant(time/statement%time_unit), inputs)
             deallocate(inputs)

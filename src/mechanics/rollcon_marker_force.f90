@@ -27,6 +27,7 @@ module rollcon_marker_force
         & switch_values
     use rollcon_marker, only : marker_type, marker_motion
     use rollcon_measures, only : expression_input_values
+    use rollcon_diff, only : diff_inputs
     use rollcon_spring_force, only : spring_type, spring_loads, spring_translational
     implicit none
     private
@@ -76,6 +77,11 @@ module rollcon_marker_force
         !> (and rates, when declared_rates) its partials are differenced over
         !> (rollcon_user_force_partials)
         integer, allocatable :: declared_parts(:)
+        !> The DIFFs its expressions read (DIF, DIF1): their ids and their state last set
+        !> (rollcon_model's set_diff_state): (k, 1) DIF, (k, 2) DIF1, user's units; not
+        !> allocated when the model has no DIFF
+        integer, allocatable :: dif_ids(:)
+        real(wp), allocatable :: dif(:, :)
     end type marker_force_type
 
 contains
@@ -138,6 +144,8 @@ contains
         ! a marker the force was not given (the builder gives every one): NaN
         call expression_input_values(expression, self%markers, self%length_unit, &
             & self%time_unit, q, u, values)
+        if (allocated(self%dif_ids)) call diff_inputs(expression, self%dif_ids, &
+            & self%dif(:, 1), self%dif(:, 2), values)
     end subroutine input_values
 
     !> A translational SFORCE (not ACTIONONLY) or SPRINGDAMPER whose I and J markers are at one

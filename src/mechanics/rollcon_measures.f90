@@ -63,8 +63,9 @@ contains
     !> Why an input cannot be read in `place` ("a force's FUNCTION", "a constraint's
     !> FUNCTION"): "" for a measure of the state. Accelerations and forces are solved for with
     !> the motion, so reading them in a FUNCTION that gives a force or a constraint makes an
-    !> algebraic loop, which rollcon does not solve; DIF and DIF1 read statements outside the
-    !> subset (a dataset's VARVALs are put in place before: rollcon_adm_variables).
+    !> algebraic loop, which rollcon does not solve; DIF and DIF1 (a DIFF's state and its rate,
+    !> rollcon_diff) are read by forces, VARIABLEs and DIFFs, not by a constraint's or a
+    !> MOTION's FUNCTION (a dataset's VARVALs are put in place before: rollcon_adm_variables).
     pure function input_refusal(input, place) result(reason)
         type(expression_input_type), intent(in) :: input
         character(len=*), intent(in) :: place
@@ -83,9 +84,10 @@ contains
             if (input%quantity == quantity_varval) then
                 reason = name // ": a VARIABLE's value, which a dataset's reader puts in " &
                     & // "place; a model built in code writes the VARIABLE's expression itself"
-            else
-                reason = name // ": DIFF statements (user differential equations, read by " &
-                    & // "DIF and DIF1) are not in the subset (docs/datasets.md)"
+            else if (index(place, "constraint") > 0 .or. index(place, "MOTION") > 0) then
+                ! a DIFF's state in a constraint would join the constraint's partials
+                reason = name // ": a DIFF's state (user differential equation), which " &
+                    & // place // " may not read: a force, a VARIABLE or another DIFF may"
             end if
         case default
             reason = name // ": a force, which rollcon solves for together with the motion " &

@@ -39,6 +39,7 @@ module rollcon_model
     use rollcon_measures, only : count_turns
     use rollcon_spring_force, only : count_spring_turns
     use rollcon_motion, only : motion_type
+    use rollcon_diff, only : diff_set_type
     use rollcon_motion_geometry, only : motion_ucon, motion_rotation, motion_b1, motion_b2, &
         & motion_b3
     implicit none
@@ -164,6 +165,9 @@ module rollcon_model
         integer :: n = 0, nc = 0, nh = 0
         !> For each UCON, its number among the holonomic ones (0 when it is a velocity UCON)
         integer, allocatable :: holonomic_number(:)
+        !> A dataset's DIFFs (user differential equations, rollcon_diff) and their state last
+        !> set (set_diff_state); none in a model without them
+        type(diff_set_type) :: diffs
     contains
         procedure :: add_part
         procedure :: add_ucon
@@ -175,6 +179,7 @@ module rollcon_model
         procedure :: add_motion
         procedure :: turn_part_axes
         procedure :: turn_ucon_geometry
+        procedure :: set_diff_state
         procedure :: statement_name
         procedure :: row_words
         procedure :: rows_text
@@ -424,6 +429,7 @@ contains
                 end associate
             end do
         end if
+        call self%diffs%count_turns(q, u, restart)
         if (.not. allocated(self%ucons)) return
         do k = 1, size(self%ucons)
             if (.not. allocated(self%ucons(k)%gcon)) cycle
@@ -586,6 +592,26 @@ contains
         self%forces = [self%forces, force]
     end subroutine add_force
 
+    !> The DIFFs' state: DIF x and DIF1 w of each [the user's units, per the dataset's time
+    !> unit], kept in diffs and given to every force statement that reads them (its dif).
+    pure subroutine set_diff_state(self, x, w)
+        class(model_type), intent(inout) :: self
+        real(wp), intent(in) :: x(:), w(:)
+        integer :: i
+
+        if (self%diffs%count() == 0) return
+        self%diffs%x = x
+        self%diffs%w = w
+        if (.not. allocated(self%forces)) return
+        do i = 1, size(self%forces)
+            associate (statement => self%forces(i)%statement)
+                if (.not. allocated(statement%dif_ids)) cycle
+                statement%dif(:, 1) = x
+                statement%dif(:, 2) = w
+            end associate
+        end do
+    end subroutine set_diff_state
+
     !> Re-base part p (model order) on its principal axes turned by rollcon_rebasing's
     !> basis_turn: its principal moments permuted, and every body-fixed quantity of the part
     !> (the markers of force statements, the points of fixed-direction forces) given in the
@@ -621,6 +647,7 @@ contains
             end associate
         end do
         call self%turn_ucon_geometry(p)
+        call self%diffs%part_rebased(p)
         do k = 1, size(self%ucons)
             if (allocated(self%ucons(k)%gcon)) call turn_gcon_markers(self%ucons(k)%gcon, p)
         end do

@@ -11,7 +11,7 @@ module rollcon_watch_columns
     private
 
     public :: contact_names, basis_pattern, request_column_patterns, motion_column_patterns
-    public :: variable_column_patterns
+    public :: variable_column_patterns, diff_column_patterns
     public :: reaction_suffixes, reaction_column_patterns, answer_column_patterns
 
     !> A rim contact's columns, in order: the constraint force on the part Fx, Fy, Fz [N]
@@ -33,6 +33,11 @@ module rollcon_watch_columns
     !> A VARIABLE's column ("<n>": the VARIABLE's id): its FUNCTION's value, in the dataset's
     !> units (rollcon_variable_watch)
     character(len=*), parameter :: variable_column_patterns(1) = [character(len=6) :: "var<n>"]
+
+    !> A DIFF's columns ("<n>": the DIFF's id): DIF(id), its state, in its user's units, and
+    !> DIF1(id), its rate, in those units per the dataset's time unit (rollcon_diff_watch)
+    character(len=*), parameter :: diff_column_patterns(2) = [character(len=11) :: &
+        & "diff<n>", "diff<n>_dot"]
 
     !> A reaction's columns after its stem: force fx, fy, fz [N] and torque tx, ty, tz [N m],
     !> ground axes

@@ -1,7 +1,9 @@
 ! SPDX-License-Identifier: MIT
 !> The DAE form of a problem (docs/design.md §4, formulation 'ida'), the DAE system IDA
-!> integrates: y = (q, u, lambda, mu), one mu per position UCON (the GGL form), and its
-!> residual and Newton matrix (rollcon_dae); the multipliers algebraic; the Newton matrix's
+!> integrates: y = (q, u, lambda, mu, x), one mu per position UCON (the GGL form), x the
+!> DIFFs' states, and its residual and Newton matrix (rollcon_dae; the DIFFs' residuals G and
+!> their exact partials, rollcon_diff, in the last rows: diff_entries); the multipliers
+!> algebraic; the Newton matrix's
 !> pattern over each part and each UCON's own coordinates; the watches' event functions, given
 !> the multipliers the state holds.
 module rollcon_dae_form
@@ -16,6 +18,8 @@ module rollcon_dae_form
     use rollcon_newton_pattern, only : newton_pattern_type
     use rollcon_output_layout, only : coord_psi
     use rollcon_problem, only : problem_type
+    use rollcon_error, only : fatal_error, stat_solver
+    use rollcon_text, only : to_text
     implicit none
     private
 
@@ -58,7 +62,7 @@ contains
     integer function state_size(self)
         class(dae_form_type), intent(in) :: self
 
-        state_size = dae_size(self%problem%eq)
+        state_size = dae_size(self%problem%eq) + self%problem%model%diffs%count()
     end function state_size
 
     !> y = (q, u, lambda, 0), y' = (u, a, 0, 0) with the accelerations and multipliers of the
@@ -76,6 +80,12 @@ contains
             y(2*n + 1:2*n + nc) = self%problem%lambda
             yp(:n) = u
             yp(n + 1:2*n) = self%problem%a
+            associate (diffs => self%problem%model%diffs, m => dae_size(self%problem%eq))
+                if (diffs%count() > 0) then
+                    y(m + 1:) = diffs%x
+                    yp(m + 1:) = diffs%w/diffs%time_unit
+                end if
+            end associate
         end associate
     end subroutine pack_state
 
@@ -86,9 +96,11 @@ contains
         real(wp), intent(out) :: q(:), u(:)
         type(error_type), allocatable, intent(out) :: error
 
-        associate (n => self%problem%eq%n)
+        associate (n => self%problem%eq%n, model => self%problem%model, &
+                & m => dae_size(self%problem%eq))
             q = y(:n)
             u = y(n + 1:2*n)
+            if (model%diffs%count() > 0) call model%set_diff_state(y(m + 1:), model%diffs%w)
         end associate
     end subroutine unpack_state
 
@@ -100,22 +112,46 @@ contains
         real(wp), intent(out) :: residual(:)
         type(error_type), allocatable :: error
 
-        associate (problem => self%problem, n => self%problem%eq%n)
-            call residual_of_dae(problem%eq, time, y, yp, residual, error)
-            if (.not. allocated(error) .and. .not. all(ieee_is_finite(residual))) &
-                & call problem%nonfinite_state(time, y(:n), y(n + 1:2*n), error)
+        associate (problem => self%problem, n => self%problem%eq%n, &
+                & m => dae_size(self%problem%eq), diffs => self%problem%model%diffs)
+            if (diffs%count() > 0) call problem%model%set_diff_state(y(m + 1:), &
+                & yp(m + 1:)*diffs%time_unit)
+            call residual_of_dae(problem%eq, time, y(:m), yp(:m), residual(:m), error)
+            if (.not. allocated(error) .and. diffs%count() > 0) call diffs%residuals(time, &
+                & y(:n), y(n + 1:2*n), y(m + 1:), yp(m + 1:)*diffs%time_unit, residual(m + 1:))
+            if (.not. allocated(error) .and. .not. all(ieee_is_finite(residual))) then
+                if (all(ieee_is_finite(residual(:m)))) then
+                    call fatal_error(error, trim(diffs%diffs(findloc(ieee_is_finite( &
+                        & residual(m + 1:)), .false., dim=1))%name) // " FUNCTION is not " &
+                        & // "finite at t = " // to_text(time) // " s", stat_solver)
+                else
+                    call problem%nonfinite_state(time, y(:n), y(n + 1:2*n), error)
+                end if
+            end if
             ierr = problem%keep_failure(error)
         end associate
     end function dae_residual
 
-    !> The Newton matrix of rollcon_dae from the UCOSUBs' partials.
+    !> The Newton matrix of rollcon_dae from the UCOSUBs' partials, and the DIFFs' rows
+    !> (diff_entries).
     integer function dae_jacobian(self, time, cj, y, yp, matrix) result(ierr)
         class(dae_form_type), intent(inout) :: self
         real(wp), intent(in) :: time, cj, y(:), yp(:)
         real(wp), intent(inout) :: matrix(:, :)
         type(error_type), allocatable :: error
 
-        call jacobian_of_dae(self%problem%eq, time, cj, y, yp, matrix, error)
+        associate (m => dae_size(self%problem%eq), diffs => self%problem%model%diffs)
+            if (diffs%count() == 0) then
+                call jacobian_of_dae(self%problem%eq, time, cj, y, yp, matrix, error)
+            else
+                call self%problem%model%set_diff_state(y(m + 1:), yp(m + 1:)*diffs%time_unit)
+                matrix = 0.0_wp
+                call jacobian_of_dae(self%problem%eq, time, cj, y(:m), yp(:m), &
+                    & matrix(:m, :m), error)
+                if (.not. allocated(error)) call diff_entries(self, time, cj, y, yp, &
+                    & dense=matrix)
+            end if
+        end associate
         ierr = self%problem%keep_failure(error)
     end function dae_jacobian
 
@@ -128,18 +164,92 @@ contains
         real(wp), intent(out) :: values(:)
         type(error_type), allocatable :: error
 
-        call sparse_jacobian_of_dae(self%problem%eq, time, cj, y, yp, starts, rows, values, &
-            & error)
+        associate (m => dae_size(self%problem%eq), diffs => self%problem%model%diffs)
+            if (diffs%count() == 0) then
+                call sparse_jacobian_of_dae(self%problem%eq, time, cj, y, yp, starts, rows, &
+                    & values, error)
+            else
+                call self%problem%model%set_diff_state(y(m + 1:), yp(m + 1:)*diffs%time_unit)
+                call sparse_jacobian_of_dae(self%problem%eq, time, cj, y(:m), yp(:m), starts, &
+                    & rows, values, error)
+                if (.not. allocated(error)) call diff_entries(self, time, cj, y, yp, &
+                    & starts=starts, rows=rows, values=values)
+            end if
+        end associate
         ierr = self%problem%keep_failure(error)
     end function dae_sparse_jacobian
 
-    !> q and u differential, the multipliers algebraic.
+    !> The DIFFs' rows of the Newton matrix dF/dy + cj dF/dy' (rollcon_diff's exact partials):
+    !> row m + k by q, u (dG_k/dq, dG_k/du) and by x (dG_k/dx + cj T dG_k/dw, w = T x'),
+    !> into the dense matrix or the compressed columns (dae_pattern keeps these entries). The
+    !> momentum rows' partials in x (a force that reads DIF) are left out, as the expression
+    !> forces' other partials are.
+    subroutine diff_entries(self, time, cj, y, yp, dense, starts, rows, values)
+        class(dae_form_type), intent(inout) :: self
+        real(wp), intent(in) :: time, cj, y(:), yp(:)
+        real(wp), intent(inout), optional :: dense(:, :)
+        integer, intent(in), optional :: starts(:), rows(:)
+        real(wp), intent(inout), optional :: values(:)
+        real(wp), allocatable :: g(:), g_q(:, :), g_u(:, :), g_x(:, :), g_w(:, :)
+        integer :: n, m, nd, k, j
+
+        n = self%problem%eq%n
+        m = dae_size(self%problem%eq)
+        associate (diffs => self%problem%model%diffs)
+            nd = diffs%count()
+            allocate(g(nd), g_q(nd, n), g_u(nd, n), g_x(nd, nd), g_w(nd, nd))
+            call diffs%partials(time, y(:n), y(n + 1:2*n), y(m + 1:), &
+                & yp(m + 1:)*diffs%time_unit, g, g_q, g_u, g_x, g_w)
+            g_x = g_x + cj*diffs%time_unit*g_w
+            do k = 1, nd
+                do j = 1, n
+                    call put(m + k, j, g_q(k, j))
+                    call put(m + k, n + j, g_u(k, j))
+                end do
+                do j = 1, nd
+                    call put(m + k, m + j, g_x(k, j))
+                end do
+            end do
+        end associate
+
+    contains
+
+        !> Entry (i, j) set (in the pattern: found by bisection of column j's 0-based rows).
+        subroutine put(i, j, value)
+            integer, intent(in) :: i, j
+            real(wp), intent(in) :: value
+            integer :: low, high, middle
+
+            if (present(dense)) then
+                dense(i, j) = value
+                return
+            end if
+            low = starts(j) + 1
+            high = starts(j + 1)
+            do while (low <= high)
+                middle = (low + high)/2
+                if (rows(middle) == i - 1) then
+                    values(middle) = value
+                    return
+                else if (rows(middle) < i - 1) then
+                    low = middle + 1
+                else
+                    high = middle - 1
+                end if
+            end do
+        end subroutine put
+    end subroutine diff_entries
+
+    !> q and u differential, the multipliers algebraic, the DIFFs' states differential.
     function dae_differential(self, n) result(kinds)
         class(dae_form_type), intent(in) :: self
         integer, intent(in) :: n
         real(wp) :: kinds(n)
+        integer :: m
 
-        kinds = dae_differential_kinds(self%problem%eq)
+        m = dae_size(self%problem%eq)
+        kinds(:m) = dae_differential_kinds(self%problem%eq)
+        kinds(m + 1:) = 1.0_wp
     end function dae_differential
 
     !> Where the Newton matrix (rollcon_dae's dae_jacobian) can be nonzero: the entries that
@@ -213,6 +323,18 @@ contains
                 end associate
             end do
         end associate
+        ! each DIFF's row by every q and u (it may read any part) and every DIFF's state
+        associate (m => dae_size(self%problem%eq), nd => self%problem%model%diffs%count())
+            do k = 1, nd
+                if (m + k > n) exit
+                do j = 1, 2*nq
+                    call keep(m + k, j)
+                end do
+                do j = 1, nd
+                    call keep(m + k, m + j)
+                end do
+            end do
+        end associate
         call pattern%from_entries(n, rows, columns, count)
 
     contains
@@ -278,6 +400,11 @@ contains
 
         associate (bl => self%problem%eq%blocks, nq => self%problem%eq%n, &
                 & nc => self%problem%eq%nc, model => self%problem%model)
+            if (model%diffs%count() > 0) then
+                ! a DIFF may read every part: one block
+                blocks = 1
+                return
+            end if
             blocks = 0
             blocks(:nq) = self%problem%coordinate_blocks()
             blocks(nq + 1:min(n, 2*nq)) = blocks(:min(nq, n - nq))
@@ -307,7 +434,11 @@ contains
         real(wp), intent(out) :: g(:)
         real(wp), intent(in), optional :: ydot(:)
 
-        associate (n => self%problem%eq%n, nc => self%problem%eq%nc)
+        associate (n => self%problem%eq%n, nc => self%problem%eq%nc, &
+                & model => self%problem%model)
+            ! the DIFFs' state at y, for the forces' switches that read it
+            if (model%diffs%count() > 0) call model%set_diff_state(y(size(y) &
+                & - model%diffs%count() + 1:), model%diffs%w)
             if (size(y) > 2*n) then
                 ierr = self%problem%root_values(time, y(:n), y(n + 1:2*n), g, &
                     & lambda=y(2*n + 1:2*n + nc))

@@ -1,8 +1,9 @@
 ! SPDX-License-Identifier: MIT
 !> The ODE form of a problem (docs/design.md §4, formulation 'cvode'), the ODE system CVODE
-!> integrates: y = (q, u), y' = (u, a) with a the accelerations of the saddle-point system at
-!> (t, q, u) (rollcon_equations, with the settings' drift control); the Newton matrix from the
-!> UCOSUBs' partials; the mass-weighted projection onto the constraints when the settings ask
+!> integrates: y = (q, u, x), y' = (u, a, w/T) with a the accelerations of the saddle-point
+!> system at (t, q, u) (rollcon_equations, with the settings' drift control), x the DIFFs'
+!> states and w their rates (rollcon_diff's solve_rates; T the dataset's time unit [s]); the
+!> Newton matrix from the UCOSUBs' partials and the DIFFs' exact partials; the mass-weighted projection onto the constraints when the settings ask
 !> for it; the watches' event functions, given the accelerations CVODE interpolates when they
 !> use them.
 module rollcon_ode_form
@@ -11,6 +12,7 @@ module rollcon_ode_form
     use rollcon_error, only : error_type
     use rollcon_dynamic_system, only : ode_system_type
     use rollcon_problem, only : problem_type
+    use rollcon_lapack, only : factor_dense, solve_factored
     implicit none
     private
 
@@ -46,14 +48,14 @@ contains
         self%problem => problem
     end subroutine init
 
-    !> 2n: the coordinates and the rates.
+    !> 2n + nd: the coordinates, the rates and the DIFFs' states.
     integer function state_size(self)
         class(ode_form_type), intent(in) :: self
 
-        state_size = 2*self%problem%eq%n
+        state_size = 2*self%problem%eq%n + self%problem%model%diffs%count()
     end function state_size
 
-    !> y = (q, u); y' is not used (0).
+    !> y = (q, u, x), x the DIFFs' state last set; y' is not used (0).
     subroutine pack_state(self, q, u, y, yp)
         class(ode_form_type), intent(inout) :: self
         real(wp), intent(in) :: q(:), u(:)
@@ -64,53 +66,106 @@ contains
             yp = 0.0_wp
             y(:n) = q
             y(n + 1:2*n) = u
+            if (self%problem%model%diffs%count() > 0) y(2*n + 1:) = self%problem%model%diffs%x
         end associate
     end subroutine pack_state
 
-    !> (q, u), y's own.
+    !> (q, u), y's own; the DIFFs' state x set in the model.
     subroutine unpack_state(self, time, y, q, u, error)
         class(ode_form_type), intent(inout) :: self
         real(wp), intent(in) :: time, y(:)
         real(wp), intent(out) :: q(:), u(:)
         type(error_type), allocatable, intent(out) :: error
 
-        associate (n => self%problem%eq%n)
+        associate (n => self%problem%eq%n, model => self%problem%model)
             q = y(:n)
             u = y(n + 1:2*n)
+            if (model%diffs%count() > 0) call model%set_diff_state(y(2*n + 1:), model%diffs%w)
         end associate
     end subroutine unpack_state
 
-    !> y' = (u, a); ierr 0 on success, -1 on failure (kept as the problem's failure).
+    !> y' = (u, a, w/T); ierr 0 on success, -1 on failure (kept as the problem's failure).
     integer function ode_rhs(self, time, y, ydot) result(ierr)
         class(ode_form_type), intent(inout) :: self
         real(wp), intent(in) :: time, y(:)
         real(wp), intent(out) :: ydot(:)
         type(error_type), allocatable :: error
 
-        associate (problem => self%problem, n => self%problem%eq%n)
-            call problem%accelerations(time, y(:n), y(n + 1:), error)
+        associate (problem => self%problem, n => self%problem%eq%n, &
+                & diffs => self%problem%model%diffs)
+            if (diffs%count() > 0) call problem%model%set_diff_state(y(2*n + 1:), diffs%w)
+            call problem%accelerations(time, y(:n), y(n + 1:2*n), error)
             if (.not. allocated(error) .and. .not. all(ieee_is_finite(problem%a))) &
                 & call problem%nonfinite_state(time, y(:n), y(n + 1:2*n), error)
             ierr = problem%keep_failure(error)
             if (ierr /= 0) return
-            ydot(:n) = y(n + 1:)
-            ydot(n + 1:) = problem%a
+            ydot(:n) = y(n + 1:2*n)
+            ydot(n + 1:2*n) = problem%a
+            if (diffs%count() > 0) ydot(2*n + 1:) = diffs%w/diffs%time_unit
         end associate
     end function ode_rhs
 
-    !> The Newton matrix d(u, a)/d(q, u) from the UCOSUBs' partials (rollcon_equations).
+    !> The Newton matrix d(u, a, w/T)/d(q, u, x) from the UCOSUBs' partials (rollcon_equations)
+    !> and the DIFFs' (diff_rows).
     integer function ode_jacobian(self, time, y, matrix) result(ierr)
         class(ode_form_type), intent(inout) :: self
         real(wp), intent(in) :: time, y(:)
         real(wp), intent(out) :: matrix(:, :)
         type(error_type), allocatable :: error
 
-        associate (problem => self%problem, n => self%problem%eq%n)
-            call problem%eq%ode_jacobian(time, y(:n), y(n + 1:), problem%settings%baumgarte(), &
-                & matrix, error)
+        associate (problem => self%problem, n => self%problem%eq%n, &
+                & diffs => self%problem%model%diffs)
+            if (diffs%count() == 0) then
+                call problem%eq%ode_jacobian(time, y(:n), y(n + 1:), &
+                    & problem%settings%baumgarte(), matrix, error)
+            else
+                matrix = 0.0_wp
+                call problem%model%set_diff_state(y(2*n + 1:), diffs%w)
+                call problem%diff_rates(time, y(:n), y(n + 1:2*n), error)
+                if (.not. allocated(error)) call problem%eq%ode_jacobian(time, y(:n), &
+                    & y(n + 1:2*n), problem%settings%baumgarte(), matrix(:2*n, :2*n), error)
+                if (.not. allocated(error)) call diff_rows(problem, time, y(:n), &
+                    & y(n + 1:2*n), matrix(2*n + 1:, :), error)
+            end if
             ierr = problem%keep_failure(error)
         end associate
     end function ode_jacobian
+
+    !> The DIFFs' rows of the ODE form's Newton matrix, d(w/T)/d(q, u, x) = -(dG/dw)^-1
+    !> dG/d(q, u, x) / T at the rates w solved there (rollcon_diff: G(t, q, u, x, w) = 0
+    !> defines w; exact partials). The accelerations' partials in x (a force that reads DIF)
+    !> are left out of the matrix, as the expression forces' other partials are.
+    subroutine diff_rows(problem, time, q, u, rows, error)
+        type(problem_type), intent(inout) :: problem
+        real(wp), intent(in) :: time, q(:), u(:)
+        !> nd x (2n + nd)
+        real(wp), intent(out) :: rows(:, :)
+        type(error_type), allocatable, intent(out) :: error
+        real(wp), allocatable :: g(:), g_q(:, :), g_u(:, :), g_x(:, :), g_w(:, :), w(:), &
+            & right(:, :)
+        integer, allocatable :: pivots(:)
+        integer :: n, nd
+
+        n = size(q)
+        associate (diffs => problem%model%diffs)
+            nd = diffs%count()
+            allocate(g(nd), g_q(nd, n), g_u(nd, n), g_x(nd, nd), g_w(nd, nd), pivots(nd))
+            w = diffs%w
+            call diffs%solve_rates(time, q, u, diffs%x, w, error, g_w, pivots)
+            if (allocated(error)) return
+            call diffs%partials(time, q, u, diffs%x, w, g, g_q, g_u, g_x, g_w)
+            ! contiguous right-hand sides for LAPACK (rows is a section of the matrix)
+            allocate(right(nd, 2*n + nd))
+            right(:, :n) = g_q
+            right(:, n + 1:2*n) = g_u
+            right(:, 2*n + 1:) = g_x
+            call factor_dense(g_w, pivots, error)
+            if (allocated(error)) return
+            call solve_factored(g_w, pivots, right, error)
+            if (allocated(error)) return
+            rows = -right/diffs%time_unit
+        end associate
+    end subroutine diff_rows
 
     !> Projection onto the constraints, when the settings ask for it and there are UCONs.
     logical function projects(self)
@@ -127,14 +182,15 @@ contains
         type(error_type), allocatable :: error
 
         associate (problem => self%problem, n => self%problem%eq%n)
-            call problem%eq%project(time, y(:n), y(n + 1:), correction(:n), correction(n + 1:), &
-                & error)
+            correction = 0.0_wp
+            call problem%eq%project(time, y(:n), y(n + 1:2*n), correction(:n), &
+                & correction(n + 1:2*n), error)
             ierr = problem%keep_failure(error)
         end associate
     end function project
 
     !> A coordinate and its rate are of the coordinate's block (rollcon_problem's
-    !> coordinate_blocks).
+    !> coordinate_blocks); with DIFFs, every state is of one block.
     function state_blocks(self, n) result(blocks)
         class(ode_form_type), intent(in) :: self
         integer, intent(in) :: n
@@ -142,7 +198,9 @@ contains
 
         associate (nq => self%problem%eq%n)
             blocks(:nq) = self%problem%coordinate_blocks()
-            blocks(nq + 1:) = blocks(:nq)
+            blocks(nq + 1:2*nq) = blocks(:nq)
+            ! a DIFF may read every part: one block
+            if (self%problem%model%diffs%count() > 0) blocks = 1
         end associate
     end function state_blocks
 
@@ -161,7 +219,9 @@ contains
         real(wp), intent(out) :: g(:)
         real(wp), intent(in), optional :: ydot(:)
 
-        associate (n => self%problem%eq%n)
+        associate (n => self%problem%eq%n, model => self%problem%model)
+            ! the DIFFs' state at y, for the forces' switches that read it
+            if (model%diffs%count() > 0) call model%set_diff_state(y(2*n + 1:), model%diffs%w)
             if (present(ydot)) then
                 ierr = self%problem%root_values(time, y(:n), y(n + 1:2*n), g, a=ydot(n + 1:2*n))
             else

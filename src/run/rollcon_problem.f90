@@ -57,6 +57,7 @@ module rollcon_problem
         procedure :: add_watch
         procedure :: prepare
         procedure :: accelerations
+        procedure :: diff_rates
         procedure :: choose_rows
         procedure :: routines_text
         procedure :: ucon_labels
@@ -163,9 +164,27 @@ contains
         real(wp), intent(in) :: time, q(:), u(:)
         type(error_type), allocatable, intent(out) :: error
 
+        call self%diff_rates(time, q, u, error)
+        if (allocated(error)) return
         call self%eq%accelerations(time, q, u, self%settings%baumgarte(), self%a, self%lambda, &
             & error)
     end subroutine accelerations
+
+    !> The DIFFs' rates DIF1 at (t, q, u) and their state DIF last set (rollcon_diff's
+    !> solve_rates, from the rates last found), set in the model for the forces that read
+    !> them (rollcon_model's set_diff_state). Nothing without DIFFs.
+    subroutine diff_rates(self, time, q, u, error)
+        class(problem_type), intent(inout) :: self
+        real(wp), intent(in) :: time, q(:), u(:)
+        type(error_type), allocatable, intent(out) :: error
+        real(wp), allocatable :: w(:)
+
+        if (self%model%diffs%count() == 0) return
+        w = self%model%diffs%w
+        call self%model%diffs%solve_rates(time, q, u, self%model%diffs%x, w, error)
+        if (allocated(error)) return
+        call self%model%set_diff_state(self%model%diffs%x, w)
+    end subroutine diff_rates
 
     !> Choose the rows to set aside as redundant at the start (t, q, u) (rollcon_redundancy,
     !> through the equations' choose_active) and say which in the user's words

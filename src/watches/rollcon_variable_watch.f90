@@ -12,6 +12,7 @@ module rollcon_variable_watch
     use rollcon_expression, only : expression_type, evaluate_expression, max_inputs
     use rollcon_marker, only : marker_type, turn_marker
     use rollcon_measures, only : expression_input_values, count_turns
+    use rollcon_diff, only : diff_inputs
     use rollcon_equations, only : equations_type
     use rollcon_run_settings, only : run_settings_type
     use rollcon_output_layout, only : name_length
@@ -122,6 +123,9 @@ contains
                     & self%time_unit, q, u, .false.)
                 call expression_input_values(variable%function, variable%markers, &
                     & self%length_unit, self%time_unit, q, u, inputs(:n))
+                ! DIF, DIF1: the DIFFs' state at the row (rollcon_diff_watch's)
+                if (eq%model%diffs%count() > 0) call diff_inputs(variable%function, &
+                    & eq%model%diffs%ids, eq%model%diffs%x, eq%model%diffs%w, inputs(:n))
                 values(k) = evaluate_expression(variable%function, time/self%time_unit, &
                     & inputs(:n))
             end associate

@@ -31,7 +31,8 @@ module rollcon_adm_abbreviations
 
     !> The table (docs/datasets.md repeats it)
     type(place_type), parameter :: table(*) = [ &
-        & place_type("statement", "ACcgrav COUpler END GCon GEar GForce INtegrator JOint JPrim " &
+        & place_type("statement", "ACcgrav COUpler DIff END GCon GEar GForce INtegrator JOint " &
+        & // "JPrim " &
         & // "MARker MOtion Output BUshing SPRingdamper VTorque " &
         & // "PArt PInput POUtput SForce SImulate SPLine UCon UNits VAriable VForce DEbug " &
         & // "EQuilibrium GRaphics IC " &
@@ -41,6 +42,7 @@ module rollcon_adm_abbreviations
         & place_type("PART", "Ground Mass Cm IP Qg Reuler VX VY VZ WX WY WZ Exact"), &
         & place_type("MARKER", "PArt Qp Reuler"), &
         & place_type("VARIABLE", "Function Ic Routine"), &
+        & place_type("DIFF", "Function IC IMplicit Static_hold Routine"), &
         & place_type("SPLINE", "X Y Z Linear_extrapolate"), &
         & place_type("PINPUT", "Variables"), &
         & place_type("POUTPUT", "Variables"), &

@@ -11,7 +11,8 @@ module rollcon_adm_model
     use rollcon_adm_joints, only : adm_joint_type
     use rollcon_adm_couplers, only : adm_gcon_type, adm_coupler_type, adm_gear_type
     use rollcon_adm_motions, only : adm_motion_type
-    use rollcon_adm_system, only : adm_variable_type, adm_spline_data_type, adm_plant_type
+    use rollcon_adm_system, only : adm_variable_type, adm_spline_data_type, adm_plant_type, &
+        & adm_diff_type
     implicit none
     private
 
@@ -224,6 +225,9 @@ module rollcon_adm_model
         type(adm_variable_type), allocatable :: variables(:)
         type(adm_spline_data_type), allocatable :: splines(:)
         type(adm_plant_type), allocatable :: plants(:)
+        !> DIFF statements, in the order of the file (rollcon_adm_system), their VARIABLEs read
+        !> in place (rollcon_adm_variables)
+        type(adm_diff_type), allocatable :: diffs(:)
         !> Gravitational acceleration, ground axes [m/s^2] (zero without ACCGRAV)
         real(wp) :: gravity(3) = 0.0_wp
         type(adm_run_type) :: run

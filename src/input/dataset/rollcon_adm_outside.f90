@@ -11,7 +11,7 @@ module rollcon_adm_outside
     public :: outside_reason
 
     !> Kinds of statement outside the subset, each with its reason
-    integer, parameter :: kinds = 6
+    integer, parameter :: kinds = 5
     character(len=*), parameter :: reasons(kinds) = [character(len=160) :: &
         & "rollcon's constraints are UCONs, JOINTs, JPRIMs, GCONs, COUPLERs and GEARs: state " &
         & // "this one as a GCON expression, or as a UCON served by a UCOSUB (ucon/)", &
@@ -21,16 +21,14 @@ module rollcon_adm_outside
         & "sensors change a run as it goes (stop it, change its step): not in the subset", &
         & "ARRAY and STRING are not in the subset: FUNCTION expressions read TIME, the " &
         & // "measures of markers, VARVAL(id) and the SPLINEs of AKISPL and CUBSPL", &
-        & "rollcon's bodies are rigid PARTs", &
-        & "user differential equations (DIFF, read by DIF and DIF1) are not in the subset: " &
-        & // "rollcon integrates the states of its parts alone"]
+        & "rollcon's bodies are rigid PARTs"]
     !> Statement names and the kind of each (statements of ADAMS's outputs are read:
     !> rollcon_adm_outputs)
-    character(len=*), parameter :: names(13) = [character(len=12) :: &
+    character(len=*), parameter :: names(12) = [character(len=12) :: &
         & "PTCV", "CVCV", "BEAM", "FIELD", "FRICTION", "CONTACT", "NFORCE", "SENSOR", &
-        & "DIFF", "ARRAY", "STRING", "FLEX_BODY", "POINT_MASS"]
+        & "ARRAY", "STRING", "FLEX_BODY", "POINT_MASS"]
     integer, parameter :: kind_of(size(names)) = [1, 1, 2, 2, 2, 2, 2, &
-        & 3, 6, 4, 4, 5, 5]
+        & 3, 4, 4, 5, 5]
 
 contains
 

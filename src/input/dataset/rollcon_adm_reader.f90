@@ -24,7 +24,7 @@ module rollcon_adm_reader
     use rollcon_adm_joints, only : read_joint
     use rollcon_adm_couplers, only : read_gcon, read_coupler, read_gear
     use rollcon_adm_motions, only : read_motion
-    use rollcon_adm_system, only : read_variable, read_spline, read_plant
+    use rollcon_adm_system, only : read_variable, read_spline, read_plant, read_diff
     use rollcon_adm_variables, only : resolve_variables, add_plant_warning
     use rollcon_adm_outside, only : outside_reason
     use rollcon_adm_outputs, only : output_statement_names, output_needs_id, &
@@ -115,8 +115,8 @@ contains
         character(len=:), allocatable :: name
         !> The ids of the parts, markers, UCONs and forces (list_of), and of the statements
         !> read and not used that take one (output_key)
-        type(id_index_type) :: ids(12), output_ids
-        integer :: i, n(12), k, previous
+        type(id_index_type) :: ids(13), output_ids
+        integer :: i, n(13), k, previous
         logical :: seen(size(statement_names)), repeated
 
         do i = 1, size(text%statements)
@@ -133,13 +133,15 @@ contains
             & model%gears(count(names == "GEAR")), model%motions(count(names == "MOTION")))
         allocate(model%variables(count(names == "VARIABLE")), &
             & model%splines(count(names == "SPLINE")), &
-            & model%plants(count(names == "PINPUT" .or. names == "POUTPUT")))
+            & model%plants(count(names == "PINPUT" .or. names == "POUTPUT")), &
+            & model%diffs(count(names == "DIFF")))
         ids = [new_id_index(size(model%parts)), new_id_index(size(model%markers)), &
             & new_id_index(size(model%ucons)), new_id_index(size(model%forces)), &
             & new_id_index(size(model%joints)), new_id_index(size(model%gcons)), &
             & new_id_index(size(model%couplers)), new_id_index(size(model%gears)), &
             & new_id_index(size(model%motions)), new_id_index(size(model%variables)), &
-            & new_id_index(size(model%splines)), new_id_index(size(model%plants))]
+            & new_id_index(size(model%splines)), new_id_index(size(model%plants)), &
+            & new_id_index(size(model%diffs))]
         output_ids = new_id_index(count([(name_index(names(i), output_statement_names) > 0, &
             & i = 1, size(names))]))
         n = 0
@@ -192,6 +194,7 @@ contains
         model%variables = model%variables(:n(10))
         model%splines = model%splines(:n(11))
         model%plants = model%plants(:n(12))
+        model%diffs = model%diffs(:n(13))
         model%requests = model%requests(:model%request_count)
         model%other_requests = model%other_requests(:model%other_request_count)
         model%unused = model%unused(:model%unused_count)
@@ -229,6 +232,8 @@ contains
             k = 11
         case ("PINPUT", "POUTPUT")
             k = 12
+        case ("DIFF")
+            k = 13
         case default
             k = 0
         end select
@@ -271,7 +276,7 @@ contains
         type(adm_statement_type), intent(in) :: statement
         logical, intent(in) :: repeated
         type(adm_model_type), intent(inout) :: model
-        integer, intent(inout) :: n(12)
+        integer, intent(inout) :: n(13)
         type(error_type), allocatable, intent(out) :: error
         character(len=:), allocatable :: where
 
@@ -331,6 +336,9 @@ contains
             n(12) = n(12) + 1
             call read_plant(path, where, statement, name == "POUTPUT", model%plants(n(12)), &
                 & error)
+        case ("DIFF")
+            n(13) = n(13) + 1
+            call read_diff(path, where, statement, model%diffs(n(13)), error)
         case ("SIMULATE")
             call read_simulate(path, where, statement, model%units, model%run, error)
         case ("INTEGRATOR")
@@ -451,7 +459,7 @@ contains
 
         needs_id = any(name == [character(len=12) :: "PART", "MARKER", "UCON", "SFORCE", &
             & "VFORCE", "GFORCE", "JOINT", "JPRIM", "GCON", "COUPLER", "GEAR", "MOTION", &
-            & "VTORQUE", "SPRINGDAMPER", "BUSHING", "VARIABLE", "SPLINE", "PINPUT", "POUTPUT"]) &
+            & "VTORQUE", "SPRINGDAMPER", "BUSHING", "VARIABLE", "SPLINE", "PINPUT", "POUTPUT", "DIFF"]) &
             & .or. output_needs_id(name)
     end function needs_id
 

@@ -8,7 +8,10 @@
 !>   points (x_i, y_i), read by AKISPL and CUBSPL (rollcon_spline); plain numbers, in whatever
 !>   units the expressions reading it give them;
 !> - `PINPUT/id, VARIABLES=id1[, ...]` and `POUTPUT/id, VARIABLES=...`: a controls plant's
-!>   inputs and outputs, the VARIABLEs an outside controller would set and read.
+!>   inputs and outputs, the VARIABLEs an outside controller would set and read;
+!> - `DIFF/id, FUNCTION=e, IC=r1[, r2][, IMPLICIT][, STATIC_HOLD]`: a user's differential
+!>   equation, its state DIF(id) integrated with the parts' (rollcon_diff): d DIF/dt = e, or
+!>   with IMPLICIT 0 = e, r1 the initial DIF and r2 the first guess of the initial DIF1.
 module rollcon_adm_system
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type, fatal_error, stat_input
@@ -20,9 +23,9 @@ module rollcon_adm_system
     implicit none
     private
 
-    public :: adm_variable_type, adm_spline_data_type, adm_plant_type
-    public :: read_variable, read_spline, read_plant
-    public :: variable_keys, spline_keys, plant_keys
+    public :: adm_variable_type, adm_spline_data_type, adm_plant_type, adm_diff_type
+    public :: read_variable, read_spline, read_plant, read_diff
+    public :: variable_keys, spline_keys, plant_keys, diff_keys
 
     !> The keywords of each statement
     character(len=*), parameter :: variable_keys(3) = [character(len=8) :: "FUNCTION", "IC", &
@@ -30,6 +33,8 @@ module rollcon_adm_system
     character(len=*), parameter :: spline_keys(4) = [character(len=18) :: "X", "Y", "Z", &
         & "LINEAR_EXTRAPOLATE"]
     character(len=*), parameter :: plant_keys(1) = [character(len=9) :: "VARIABLES"]
+    character(len=*), parameter :: diff_keys(5) = [character(len=11) :: "FUNCTION", "IC", &
+        & "IMPLICIT", "STATIC_HOLD", "ROUTINE"]
 
     !> VARIABLE/id
     type :: adm_variable_type
@@ -59,7 +64,87 @@ module rollcon_adm_system
         integer, allocatable :: variables(:)
     end type adm_plant_type
 
+    !> DIFF/id
+    type :: adm_diff_type
+        integer :: id = 0, line = 0
+        !> FUNCTION, in the dataset's units: d DIF(id)/dt (per the dataset's time unit), or
+        !> with IMPLICIT the residual 0 = e
+        type(expression_type) :: function
+        !> IC: the initial DIF(id) [the user's units] and, for an IMPLICIT DIFF, the first
+        !> guess of the initial DIF1(id) [the user's units per time unit] (0 when not given)
+        real(wp) :: ic(2) = 0.0_wp
+        logical :: implicit = .false., static_hold = .false.
+    end type adm_diff_type
+
 contains
+
+    !> DIFF/id, FUNCTION=e, IC=r1[, r2][, IMPLICIT][, STATIC_HOLD] (ADAMS's DIFF statement):
+    !> FUNCTION and IC required, IC one or two numbers (the second, DIF1's first guess, read by
+    !> an IMPLICIT DIFF alone). FUNCTION=USER(...) and ROUTINE= (a DIFSUB) are refused.
+    subroutine read_diff(path, where, statement, diff, error)
+        character(len=*), intent(in) :: path, where
+        type(adm_statement_type), intent(in) :: statement
+        type(adm_diff_type), intent(out) :: diff
+        type(error_type), allocatable, intent(out) :: error
+        character(len=:), allocatable :: key, at, text
+        real(wp), allocatable :: values(:)
+        logical :: given, ic_given
+        integer :: k
+
+        diff%id = statement%id
+        diff%line = statement%line
+        given = .false.
+        ic_given = .false.
+        do k = 1, size(statement%arguments)
+            call argument_key(path, where, statement, k, diff_keys, key, error)
+            if (allocated(error)) return
+            at = arg_place(path, where, statement%arguments(k)) // " " // key
+            select case (key)
+            case ("FUNCTION")
+                if (.not. statement%arguments(k)%assigned) then
+                    call fatal_error(error, at // ": expected one expression", stat_input)
+                    return
+                end if
+                text = argument_text(statement%arguments(k))
+                if (index(upper_case(adjustl(text)), "USER") == 1) then
+                    call fatal_error(error, at // ": FUNCTION=USER(...) (a DIFSUB) is not " &
+                        & // "supported; write the equation as an expression", stat_input)
+                    return
+                end if
+                call compile_expression(text, at, diff%function, error)
+                given = .true.
+            case ("IC")
+                call read_reals(statement%arguments(k), at, 1, 2, .false., values, error)
+                if (allocated(error)) then
+                    deallocate(error)
+                    call fatal_error(error, at // ": expected one or two numbers (IC=r1[, r2]: " &
+                        & // "the initial DIF and, for an IMPLICIT DIFF, the first guess of " &
+                        & // "the initial DIF1)", stat_input)
+                    return
+                end if
+                diff%ic(:size(values)) = values
+                ic_given = .true.
+            case ("IMPLICIT", "STATIC_HOLD")
+                if (statement%arguments(k)%assigned) then
+                    call fatal_error(error, at // " takes no value", stat_input)
+                    return
+                end if
+                if (key == "IMPLICIT") diff%implicit = .true.
+                if (key == "STATIC_HOLD") diff%static_hold = .true.
+            case ("ROUTINE")
+                call fatal_error(error, at // ": ROUTINE names a DIFSUB, which is not " &
+                    & // "supported; write the equation as a FUNCTION expression", stat_input)
+            end select
+            if (allocated(error)) return
+        end do
+        if (.not. given) then
+            call fatal_error(error, where // ": FUNCTION=e is missing (the equation: d DIF/dt " &
+                & // "= e, or with IMPLICIT 0 = e)", stat_input)
+        else if (.not. ic_given) then
+            call fatal_error(error, where // ": IC=r1 is missing (the initial value of " &
+                & // "DIF(" // to_text(diff%id) // "))", stat_input)
+        end if
+    end subroutine read_diff
 
     !> VARIABLE/id, FUNCTION=e[, IC=r]. FUNCTION=USER(...) (a VARSUB) is refused.
     subroutine read_variable(path, where, statement, variable, error)

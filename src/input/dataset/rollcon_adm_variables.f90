@@ -15,7 +15,7 @@ module rollcon_adm_variables
     use rollcon_text, only : to_text
     use rollcon_expression, only : expression_type, expression_input_type, op_input, &
         & op_time, op_akispl, op_cubspl, quantity_varval, max_stack, max_inputs, &
-        & operation_arity, spline_id_of
+        & operation_arity, spline_id_of, quantity_dif, quantity_dif1
     use rollcon_spline, only : spline_type, new_spline
     use rollcon_measures, only : is_state_measure, input_refusal, input_text
     use rollcon_adm_keywords, only : place
@@ -27,6 +27,7 @@ module rollcon_adm_variables
 
     public :: resolve_variables, substitute_variables, give_splines, variable_program, &
         & add_plant_warning
+    public :: check_diff_reads
 
     !> The state of a VARIABLE while they are put in place
     integer, parameter :: unresolved = 0, resolving = 1, resolved = 2
@@ -55,6 +56,7 @@ contains
         if (.not. allocated(model%variables)) allocate(model%variables(0))
         if (.not. allocated(model%splines)) allocate(model%splines(0))
         if (.not. allocated(model%plants)) allocate(model%plants(0))
+        if (.not. allocated(model%diffs)) allocate(model%diffs(0))
         ids = new_id_index(size(model%variables))
         do i = 1, size(model%variables)
             call ids%add(int(model%variables(i)%id, int64), i, previous)
@@ -146,8 +148,68 @@ contains
                 if (allocated(error)) return
             end do
         end if
+        do i = 1, size(model%diffs)
+            where = place(model%file, model%diffs(i)%line) // ": DIFF/" &
+                & // to_text(model%diffs(i)%id) // " FUNCTION"
+            call substitute(model, ids, model%diffs(i)%function, where, error)
+            if (allocated(error)) return
+            call give_curves(model, curves, model%diffs(i)%function, where, error)
+            if (allocated(error)) return
+        end do
+        call check_diff_reads(model, error)
+        if (allocated(error)) return
         call check_plants(model, ids, error)
     end subroutine resolve_variables
+
+    !> Every DIF(id) and DIF1(id) of the expressions simulated (forces', DIFFs', VARIABLEs')
+    !> names a DIFF of the dataset; refused, naming the statement and line, when not.
+    subroutine check_diff_reads(model, error)
+        type(adm_model_type), intent(in) :: model
+        type(error_type), allocatable, intent(out) :: error
+        integer :: i, k
+
+        do i = 1, size(model%diffs)
+            call check_reads(model%diffs(i)%function, place(model%file, model%diffs(i)%line) &
+                & // ": DIFF/" // to_text(model%diffs(i)%id) // " FUNCTION")
+            if (allocated(error)) return
+        end do
+        do i = 1, size(model%variables)
+            call check_reads(model%variables(i)%function, variable_place(model, i) &
+                & // " FUNCTION")
+            if (allocated(error)) return
+        end do
+        do i = 1, size(model%forces)
+            do k = 1, 6
+                if (.not. model%forces(i)%given(k)) cycle
+                call check_reads(model%forces(i)%functions(k), place(model%file, &
+                    & model%forces(i)%line) // ": " // force_name(model%forces(i)%kind) &
+                    & // "/" // to_text(model%forces(i)%id) // " " // trim(merge("FUNCTION", &
+                    & slot_names(k) // "      ", model%forces(i)%kind == force_sforce)))
+                if (allocated(error)) return
+            end do
+        end do
+
+    contains
+
+        !> The DIFs of one expression, read at `where`.
+        subroutine check_reads(expression, where)
+            type(expression_type), intent(in) :: expression
+            character(len=*), intent(in) :: where
+            integer :: n
+
+            if (.not. allocated(expression%inputs)) return
+            do n = 1, size(expression%inputs)
+                associate (input => expression%inputs(n))
+                    if (input%quantity /= quantity_dif .and. input%quantity /= quantity_dif1) &
+                        & cycle
+                    if (any(model%diffs%id == input%marker)) cycle
+                    call fatal_error(error, where // ": " // input_text(input) // ": no DIFF/" &
+                        & // to_text(input%marker) // " in the dataset", stat_input)
+                    return
+                end associate
+            end do
+        end subroutine check_reads
+    end subroutine check_diff_reads
 
     !> `expression` (read at `where`, "file:line: REQUEST/3 F2") with each VARVAL(id) replaced
     !> by VARIABLE/id's FUNCTION as variable_program gives it, the model's VARIABLEs already put
@@ -229,6 +291,8 @@ contains
                         call fatal_error(error, where // ": " // problem, stat_input)
                         return
                     end if
+                    if (input%quantity == quantity_dif .or. input%quantity == quantity_dif1) &
+                        & cycle
                     ids = [input%marker, input%j, input%k, input%l]
                     do m = 1, 4
                         if (ids(m) == 0) cycle

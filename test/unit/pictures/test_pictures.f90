@@ -16,7 +16,8 @@ module test_pictures
     use rollcon_gnuplot, only : gnuplot_available
     use rollcon_watch_columns, only : answer_column_patterns
     use rollcon_watch_columns, only : contact_names, request_column_patterns, &
-        & motion_column_patterns, reaction_column_patterns, variable_column_patterns
+        & motion_column_patterns, reaction_column_patterns, variable_column_patterns, &
+        & diff_column_patterns
     use rollcon_testing, only : unittest_type, new_unittest, check, skip_test
     use picture_files, only : disk_run, two_part_run, falling_run, write_run, make_folder, &
         & remove_folder, write_lines, expect_message, file_starts_with
@@ -132,7 +133,8 @@ contains
             & "F_1", "lambda_1", "F_2"]
         call read_layout(names, layout, count_reason, [character(len=name_length) :: &
             & contact_names, "basis_<id>", request_column_patterns, motion_column_patterns, &
-            & answer_column_patterns, reaction_column_patterns, variable_column_patterns])
+            & answer_column_patterns, reaction_column_patterns, variable_column_patterns, &
+            & diff_column_patterns])
         call check(error, allocated(count_reason), "read_layout accepted 17 columns for one " &
             & // "part and one UCON")
         if (allocated(error)) return

@@ -278,7 +278,7 @@ contains
             & // "|REQUEST/1, DISPLACEMENT, I=3"
         call read_dataset("refusal.adm", lines, model, refused)
         expected = file // ": 4 statements are outside the supported subset (ACCGRAV, BUSHING," &
-            & // " COUPLER, END, GCON, GEAR, GFORCE, INTEGRATOR, JOINT, JPRIM, MARKER, MOTION," &
+            & // " COUPLER, DIFF, END, GCON, GEAR, GFORCE, INTEGRATOR, JOINT, JPRIM, MARKER, MOTION," &
             & // " OUTPUT, PART, PINPUT, POUTPUT, SFORCE, SIMULATE, SPLINE, SPRINGDAMPER, UCON," &
             & // " UNITS, VARIABLE, VFORCE, VTORQUE;" &
             & // " read and not used: DEBUG, EQUILIBRIUM," &

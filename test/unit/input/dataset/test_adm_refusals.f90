@@ -13,7 +13,7 @@ module test_adm_refusals
 
     !> The supported statements, as a refusal lists them
     character(len=*), parameter :: supported = &
-        & "(ACCGRAV, BUSHING, COUPLER, END, GCON, GEAR, GFORCE, INTEGRATOR, JOINT, JPRIM," &
+        & "(ACCGRAV, BUSHING, COUPLER, DIFF, END, GCON, GEAR, GFORCE, INTEGRATOR, JOINT, JPRIM," &
         & // " MARKER, MOTION, OUTPUT, PART, PINPUT, POUTPUT, SFORCE, SIMULATE, SPLINE," &
         & // " SPRINGDAMPER, UCON, UNITS, VARIABLE, VFORCE, VTORQUE)"
 

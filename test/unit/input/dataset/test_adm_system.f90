@@ -3,8 +3,8 @@
 !> through AKISPL and CUBSPL at the knots, between them and beyond the ends against values
 !> worked by hand; VARVAL put in place, its value and its exact partials those of the
 !> expression it names; an algebraic loop among VARIABLEs refused naming each statement and
-!> line; PINPUT and POUTPUT checked and named in the warning; DIFF and what cannot be read
-!> refused by name.
+!> line; PINPUT and POUTPUT checked and named in the warning; a DIF of no DIFF, a DIFF's bad
+!> IC and what cannot be read refused by name.
 module test_adm_system
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type
@@ -198,7 +198,7 @@ contains
     subroutine test_refusals(error)
         type(error_type), allocatable, intent(out) :: error
         character(len=*), parameter :: file = "build/rollcon-test/refused.adm"
-        character(len=64), parameter :: replaced(10) = [character(len=64) :: &
+        character(len=64), parameter :: replaced(11) = [character(len=64) :: &
             & "SPLINE/1, X=0, 1, 1, 3, Y=0, 1, 0, 1", &
             & "SPLINE/1, X=0, 1, 2, Y=0, 1, 0, 1", &
             & "SPLINE/1, X=0, 1, 2, 3, Y=0, 1, 0, 1, Z=1", &
@@ -206,10 +206,11 @@ contains
             & "VARIABLE/7, FUNCTION=ACCX(3)", &
             & "VARIABLE/7, FUNCTION=VARVAL(4)", &
             & "VARIABLE/7, FUNCTION=DX(33)", &
-            & "DIFF/7, FUNCTION=-DIF(7), IC=1", &
+            & "DIFF/7, FUNCTION=-DIF(8), IC=1", &
+            & "DIFF/7, FUNCTION=-DIF(7), IC=1, 2, 3", &
             & "VARIABLE/7, FUNCTION=USER(1, 2)", &
             & "SPLINE/2, X=0, 1, 2, Y=0, 1, 0"]
-        integer, parameter :: at(size(replaced)) = [6, 6, 6, 12, 9, 9, 9, 9, 9, 7]
+        integer, parameter :: at(size(replaced)) = [6, 6, 6, 12, 9, 9, 9, 9, 9, 9, 7]
         character(len=320), parameter :: expected(size(replaced)) = [character(len=320) :: &
             & ":6: SPLINE/1 X: x must increase strictly from point to point, but x3 = 1 " &
             & // "follows x2 = 1", &
@@ -224,9 +225,9 @@ contains
             & // "solve", &
             & ":9: VARIABLE/7 FUNCTION: VARVAL(4): no VARIABLE/4 in the dataset", &
             & ":9: VARIABLE/7 FUNCTION: DX(33): no MARKER/33 in the dataset", &
-            & ":9: 'DIFF' is not a statement of the supported subset (*); user differential " &
-            & // "equations (DIFF, read by DIF and DIF1) are not in the subset: rollcon " &
-            & // "integrates the states of its parts alone", &
+            & ":9: DIFF/7 FUNCTION: DIF(8): no DIFF/8 in the dataset", &
+            & ":9: DIFF/7 IC: expected one or two numbers (IC=r1[, r2]: the initial DIF and, " &
+            & // "for an IMPLICIT DIFF, the first guess of the initial DIF1)", &
             & ":9: VARIABLE/7 FUNCTION: FUNCTION=USER(...) (a VARSUB) is not supported; " &
             & // "write the variable as an expression", &
             & ":8: SFORCE/5: CUBSPL reads SPLINE/2 (line 7), of 3 points; a cubic spline " &
