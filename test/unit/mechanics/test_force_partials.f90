@@ -20,15 +20,13 @@ module test_force_partials
     use rollcon_disk_reference, only : rolling_disk_ucosub
     use rollcon_problem, only : problem_type
     use rollcon_ode_form, only : ode_form_type
-    use rollcon_dae_form, only : dae_form_type
-    use rollcon_dae, only : dae_size, dae_residual, dae_jacobian
-    use rollcon_newton_pattern, only : newton_pattern_type
     use rollcon_adm_model, only : adm_model_type
     use rollcon_adm_build, only : build_adm_problem
     use rollcon_force_routine_contract, only : routine_sfosub, routine_gfosub
     use rollcon_user_forces, only : register_force_routine, clear_force_routines, &
         & system_function, system_array, system_notes, clear_system_notes
     use adm_datasets, only : read_dataset
+    use newton_checks, only : check_ode_matrix, check_dae_matrix
     use rollcon_testing, only : unittest_type, new_unittest, check
     implicit none
     private
@@ -149,33 +147,15 @@ contains
     subroutine test_ode(error)
         type(error_type), allocatable, intent(out) :: error
         type(problem_type), target :: problem
-        type(ode_form_type) :: ode
-        real(wp), allocatable :: q0(:), u0(:), y(:), yh(:), jac(:, :), fp(:), fm(:)
+        real(wp), allocatable :: q0(:), u0(:), jac(:, :)
         integer, allocatable :: blocks(:)
-        real(wp) :: scale
-        integer :: j, ierr, n
+        integer :: n
 
         call build(lines, problem, q0, u0, error)
         if (allocated(error)) return
-        call ode%init(problem)
-        n = size(q0)
-        y = [q0, u0]
-        allocate(yh(2*n), fp(2*n), fm(2*n))
-        call ode_matrix(problem, q0, u0, jac, error)
+        call check_ode_matrix(problem, q0, u0, h_fd, tol_fd, jac, blocks, error)
         if (allocated(error)) return
-        scale = maxval(abs(jac))
-        do j = 1, 2*n
-            yh = y
-            yh(j) = y(j) + h_fd
-            ierr = ode%ode_rhs(0.0_wp, yh, fp)
-            yh(j) = y(j) - h_fd
-            ierr = ierr + ode%ode_rhs(0.0_wp, yh, fm)
-            call check(error, ierr == 0, "right-hand side failed")
-            if (allocated(error)) return
-            call check(error, jac(:, j), (fp - fm)/(2.0_wp*h_fd), "ODE Jacobian column " &
-                & // to_text(j), abs_tol=tol_fd*scale)
-            if (allocated(error)) return
-        end do
+        n = size(q0)
         ! the accelerations of part 2 (rows n + 1:n + 6) by the coordinates and rates of part 3
         call check(error, maxval(abs(jac(n + 1:n + 6, 7:12))) > 1.0_wp .and. &
             & maxval(abs(jac(n + 1:n + 6, n + 7:n + 12))) > 0.1_wp, "part 2's accelerations " &
@@ -183,7 +163,6 @@ contains
             & // to_text(maxval(abs(jac(n + 1:n + 6, 7:12)))) // ", " &
             & // to_text(maxval(abs(jac(n + 1:n + 6, n + 7:n + 12)))))
         if (allocated(error)) return
-        blocks = ode%state_blocks(2*n)
         call check(error, all(blocks == blocks(1)), "parts 2 and 3 share CVODE's block")
         call problem%release()
     end subroutine test_ode
@@ -193,73 +172,16 @@ contains
     subroutine test_dae(error)
         type(error_type), allocatable, intent(out) :: error
         type(problem_type), target :: problem
-        type(dae_form_type) :: dae
-        type(newton_pattern_type) :: pattern
-        type(error_type), allocatable :: failure
-        real(wp), allocatable :: q0(:), u0(:), y(:), yp(:), yh(:), jac(:, :), jac1(:, :), &
-            & rp(:), rm(:)
-        logical, allocatable :: kept(:, :)
-        real(wp) :: scale
-        integer :: j, n, m, k
+        real(wp), allocatable :: q0(:), u0(:), jac(:, :)
+        integer :: n
 
         call build(lines, problem, q0, u0, error)
         if (allocated(error)) return
-        call dae%init(problem)
+        call check_dae_matrix(problem, q0, u0, h_fd, tol_fd, jac, error)
+        if (allocated(error)) return
         n = size(q0)
-        m = dae_size(problem%eq)
-        y = [q0, u0]
-        ! an acceleration of no particular meaning: the residual is linear in it
-        yp = [u0, [(0.1_wp*k - 0.5_wp, k = 1, n)]]
-        allocate(jac(m, m), jac1(m, m), rp(m), rm(m), yh(m))
-        call dae_jacobian(problem%eq, 0.0_wp, 0.0_wp, y, yp, jac, failure)
-        if (.not. allocated(failure)) call dae_jacobian(problem%eq, 0.0_wp, 1.0_wp, y, yp, &
-            & jac1, failure)
-        if (allocated(failure)) then
-            call move_alloc(failure, error)
-            return
-        end if
-        scale = maxval(abs(jac))
-        do j = 1, m
-            yh = y
-            yh(j) = y(j) + h_fd
-            call dae_residual(problem%eq, 0.0_wp, yh, yp, rp, failure)
-            yh(j) = y(j) - h_fd
-            if (.not. allocated(failure)) call dae_residual(problem%eq, 0.0_wp, yh, yp, rm, &
-                & failure)
-            if (allocated(failure)) then
-                call move_alloc(failure, error)
-                return
-            end if
-            call check(error, jac(:, j), (rp - rm)/(2.0_wp*h_fd), "DAE dr/dy column " &
-                & // to_text(j), abs_tol=tol_fd*scale)
-            if (allocated(error)) return
-            yh = yp
-            yh(j) = yp(j) + h_fd
-            call dae_residual(problem%eq, 0.0_wp, y, yh, rp, failure)
-            yh(j) = yp(j) - h_fd
-            if (.not. allocated(failure)) call dae_residual(problem%eq, 0.0_wp, y, yh, rm, &
-                & failure)
-            if (allocated(failure)) then
-                call move_alloc(failure, error)
-                return
-            end if
-            call check(error, jac1(:, j) - jac(:, j), (rp - rm)/(2.0_wp*h_fd), "DAE " &
-                & // "dr/dy' column " // to_text(j), abs_tol=tol_fd*scale)
-            if (allocated(error)) return
-        end do
         call check(error, maxval(abs(jac(n + 1:n + 6, 7:12))) > 1.0_wp, "part 2's momentum " &
             & // "rows depend on part 3's coordinates")
-        if (allocated(error)) return
-        call dae%dae_pattern(m, pattern)
-        allocate(kept(m, m), source=.false.)
-        do j = 1, m
-            do k = pattern%starts(j) + 1, pattern%starts(j + 1)
-                kept(pattern%rows(k) + 1, j) = .true.
-            end do
-        end do
-        call check(error, .not. any(jac1 /= 0.0_wp .and. .not. kept), "the DAE pattern " &
-            & // "keeps every entry that is not zero: " // to_text(count(jac1 /= 0.0_wp &
-            & .and. .not. kept)) // " left out")
         call problem%release()
     end subroutine test_dae
 
