@@ -40,7 +40,7 @@ module rollcon_adm_build
     use rollcon_element_force_watch, only : element_force_watch_type, watches_elements
     use rollcon_adm_requests, only : add_request_answers
     use rollcon_adm_model, only : adm_model_type, adm_force_type, force_sforce, force_vforce, &
-        & force_springdamper, force_bushing, force_names
+        & force_springdamper, force_bushing, force_names, request_user
     use rollcon_spring_force, only : spring_translational, spring_rotational, spring_bushing
     use rollcon_adm_state, only : part_state
     use rollcon_adm_singular, only : start_singular_parts
@@ -199,15 +199,22 @@ contains
         type(error_type), allocatable, intent(out) :: error
         type(marker_type), allocatable :: markers(:)
         integer :: i
+        logical :: user_forces, user_requests
 
-        if (.not. allocated(adm%forces)) return
-        if (.not. any(adm%forces%user)) return
+        user_forces = .false.
+        if (allocated(adm%forces)) user_forces = any(adm%forces%user)
+        user_requests = .false.
+        if (allocated(adm%other_requests)) user_requests = any(adm%other_requests%kind &
+            & == request_user)
+        if (.not. (user_forces .or. user_requests)) return
         allocate(markers(size(adm%markers)))
         do i = 1, size(adm%markers)
             markers(i) = adm_marker(adm, adm%markers(i)%id)
         end do
         call set_system_markers(markers, adm%units%length, adm%units%time)
         call give_splines(adm)
+        ! a REQSUB's calls come at the output rows (rollcon_request_answers)
+        if (.not. user_forces) return
         do i = 1, size(problem%model%forces)
             if (problem%model%forces(i)%profile /= profile_statement) cycle
             if (problem%model%forces(i)%statement%routine == 0) cycle

@@ -26,6 +26,8 @@ module rollcon_user_forces
     use rollcon_text, only : to_text, upper_case
     use rollcon_force_routine_contract, only : force_routine_interface, routine_names, &
         & routine_results, routine_kinds, routine_statements, routine_vtosub
+    use rollcon_system_routine_contract, only : request_routine_interface, routine_reqsub, &
+        & request_routine_name, request_results
     use rollcon_adams_runtime, only : take_ucon_error
     use rollcon_marker, only : marker_type
     use rollcon_measures, only : measure_value, is_state_measure, reads_rates, quantity_scale
@@ -34,7 +36,7 @@ module rollcon_user_forces
         & quantity_most_markers, quantity_dx
     use rollcon_force, only : applied_force_type, profile_statement
     use rollcon_spline, only : spline_type, spline_derivatives, method_akima, method_cubic
-    use, intrinsic :: ieee_arithmetic, only : ieee_is_finite
+    use, intrinsic :: ieee_arithmetic, only : ieee_is_finite, ieee_value, ieee_quiet_nan
     implicit none
     private
 
@@ -45,6 +47,7 @@ module rollcon_user_forces
     public :: system_function, system_array, system_time, system_notes, clear_system_notes
     public :: get_force_routine, report_call_problem
     public :: set_system_splines, system_spline
+    public :: register_request_routine, get_request_routine, call_user_request, routine_name_of
 
     !> A routine the model may use
     type :: routine_entry_type
@@ -56,6 +59,8 @@ module rollcon_user_forces
         !> The file it came from, for messages
         character(len=:), allocatable :: source
         procedure(force_routine_interface), pointer, nopass :: routine => null()
+        !> A REQSUB (kind routine_reqsub; rollcon_system_routine_contract)
+        procedure(request_routine_interface), pointer, nopass :: request => null()
     end type routine_entry_type
 
     abstract interface
@@ -114,6 +119,36 @@ contains
         table = [table, entry]
     end subroutine register_force_routine
 
+    !> Add a REQSUB to the table (kind routine_reqsub), under name ("" for the model's own).
+    subroutine register_request_routine(name, source, routine)
+        character(len=*), intent(in) :: name
+        !> The file it was built from
+        character(len=*), intent(in) :: source
+        procedure(request_routine_interface) :: routine
+        type(routine_entry_type) :: entry
+
+        if (.not. allocated(table)) allocate(table(0))
+        entry%kind = routine_reqsub
+        entry%name = name
+        entry%source = source
+        entry%request => routine
+        table = [table, entry]
+    end subroutine register_request_routine
+
+    !> The name of a kind of routine: "SFOSUB" ... "VTOSUB", "REQSUB".
+    pure function routine_name_of(kind) result(name)
+        integer, intent(in) :: kind
+        character(len=:), allocatable :: name
+
+        if (kind >= 1 .and. kind <= routine_kinds) then
+            name = trim(routine_names(kind))
+        else if (kind == routine_reqsub) then
+            name = request_routine_name
+        else
+            name = "a user routine"
+        end if
+    end function routine_name_of
+
     !> Empty the table (the direct call hook again).
     subroutine clear_force_routines()
         if (allocated(table)) deallocate(table)
@@ -148,7 +183,7 @@ contains
         label = "a user routine"
         if (.not. allocated(table)) return
         if (entry < 1 .or. entry > size(table)) return
-        label = trim(routine_names(table(entry)%kind)) // " of " // table(entry)%source
+        label = routine_name_of(table(entry)%kind) // " of " // table(entry)%source
         if (len(table(entry)%name) > 0) label = label // " (ROUTINE=" // table(entry)%name &
             & // ")"
     end function force_routine_label
@@ -180,8 +215,104 @@ contains
         logical, intent(in) :: dflag, iflag
         real(wp), intent(inout) :: result(n)
 
-        call table(entry)%routine(id, time, par, npar, dflag, iflag, result)
+        if (table(entry)%kind == routine_reqsub) then
+            call table(entry)%request(id, time, par, npar, iflag, result)
+        else
+            call table(entry)%routine(id, time, par, npar, dflag, iflag, result)
+        end if
     end subroutine direct_force_call
+
+    !> The REQSUB of entry, for a guard that calls it.
+    subroutine get_request_routine(entry, routine)
+        integer, intent(in) :: entry
+        procedure(request_routine_interface), pointer, intent(out) :: routine
+
+        routine => table(entry)%request
+    end subroutine get_request_routine
+
+    !> Call the REQSUB of entry for REQUEST/id at (t, q, u) (through the call hook): its
+    !> RESULT(8) in result. The first call for a request (declared not allocated) is preceded
+    !> by the initialisation call (IFLAG = .TRUE.), whose SYSFNC and SYSARY calls set declared
+    !> and declared_rates; later calls' reads are compared with them (system_notes). An ERRMES,
+    !> a utility's refusal or a RESULT not finite leaves an error naming `name` ("x.adm:12:
+    !> REQUEST/5") for take_user_force_error, and result NaN.
+    subroutine call_user_request(entry, id, name, par, time_unit, time, q, u, declared, &
+            & declared_rates, result)
+        integer, intent(in) :: entry, id
+        character(len=*), intent(in) :: name
+        !> The constants of USER(r1, ..., rn)
+        real(wp), intent(in) :: par(:)
+        !> The dataset's time unit [s]
+        real(wp), intent(in) :: time_unit
+        !> Time [s], coordinates and rates of all parts [SI]
+        real(wp), intent(in) :: time, q(:), u(:)
+        integer, allocatable, intent(inout) :: declared(:)
+        logical, intent(inout) :: declared_rates
+        real(wp), intent(out) :: result(request_results)
+        type(error_type), allocatable :: error
+        character(len=:), allocatable :: label
+
+        label = routine_name_of(routine_reqsub)
+        if (entry >= 1 .and. entry <= size(table)) label = force_routine_label(entry)
+        if (.not. allocated(declared)) then
+            call begin_call(time, q, u)
+            declaring = .true.
+            named = [integer ::]
+            named_rates = .false.
+            result = 0.0_wp
+            call call_hook(entry, id, time/time_unit, par, size(par), .false., .true., result, &
+                & request_results)
+            declaring = .false.
+            declared = named
+            declared_rates = named_rates
+            call request_problem("the initialisation call (IFLAG = .TRUE.)", error)
+            if (allocated(error)) then
+                result = ieee_value(0.0_wp, ieee_quiet_nan)
+                if (.not. allocated(pending)) call move_alloc(error, pending)
+                return
+            end if
+        end if
+        call begin_call(time, q, u)
+        allowed = declared
+        allowed_rates = declared_rates
+        result = 0.0_wp
+        call call_hook(entry, id, time/time_unit, par, size(par), .false., .false., result, &
+            & request_results)
+        deallocate(allowed)
+        allowed_rates = .true.
+        if (.not. all(ieee_is_finite(result))) then
+            call fatal_error(error, name // ": its " // label // " returned RESULT = (" &
+                & // numbers(result) // ") at TIME = " // to_text(time/time_unit) &
+                & // ": a request's values must be finite", stat_ucon)
+        else
+            call request_problem("the call", error)
+        end if
+        if (allocated(error)) then
+            result = ieee_value(0.0_wp, ieee_quiet_nan)
+            if (.not. allocated(pending)) call move_alloc(error, pending)
+        end if
+    contains
+        subroutine request_problem(call_name, error)
+            character(len=*), intent(in) :: call_name
+            type(error_type), allocatable, intent(out) :: error
+            type(error_type), allocatable :: reported
+            character(len=:), allocatable :: message
+            integer :: colon
+
+            call take_ucon_error(reported)
+            if (allocated(reported)) then
+                message = reported%message
+                colon = index(message, ": ")
+                if (index(message, "UCON/") == 1 .and. colon > 0) message = message(colon + 2:)
+                call fatal_error(error, name // ": its " // label // " reported an error in " &
+                    & // call_name // " at TIME = " // to_text(time/time_unit) // ": " &
+                    & // message, stat_ucon)
+            else if (len(problem) > 0) then
+                call fatal_error(error, name // ": its " // label // ", in " // call_name &
+                    & // " at TIME = " // to_text(time/time_unit) // ": " // problem, stat_ucon)
+            end if
+        end subroutine request_problem
+    end subroutine call_user_request
 
     !> The routine of entry and its kind (routine_sfosub ...), for a guard that calls it.
     subroutine get_force_routine(entry, routine, kind)
