@@ -14,7 +14,7 @@ module rollcon_adm_requests
     use rollcon_text, only : to_text, place
     use rollcon_marker, only : marker_type
     use rollcon_expression, only : expression_type, quantity_kind, quantity_names, &
-        & kind_element_force
+        & kind_element_force, quantity_varval
     use rollcon_measures, only : input_text
     use rollcon_model, only : model_type, statement_joint, statement_jprim
     use rollcon_force, only : profile_statement
@@ -212,6 +212,8 @@ contains
 
         do n = 1, size(expression%inputs)
             associate (input => expression%inputs(n))
+                ! a VARSUB's VARIABLE (VARVAL(id) left in place): no marker
+                if (input%quantity == quantity_varval) cycle
                 ids = [input%marker, input%j, input%k, input%l]
                 if (quantity_kind(input%quantity) == kind_element_force) then
                     kind = element_kind_of(input%quantity)

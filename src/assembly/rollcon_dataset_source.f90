@@ -134,9 +134,12 @@ contains
                 if (adm%forces(k)%user) all_named = .false.
             end do
         end if
-        ! so does a REQUEST served by a REQSUB
+        ! so does a REQUEST served by a REQSUB, a VARIABLE by a VARSUB
         if (allocated(adm%other_requests)) then
             if (any(adm%other_requests%kind == request_user)) all_named = .false.
+        end if
+        if (allocated(adm%variables)) then
+            if (any(adm%variables%user)) all_named = .false.
         end if
         if (.not. allocated(adm%ucons)) return
         do k = 1, size(adm%ucons)

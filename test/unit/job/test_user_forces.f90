@@ -51,6 +51,9 @@ contains
             & new_unittest("reqsub-as-expressions", test_reqsub), &
             & new_unittest("reqsub-returns-nan", test_reqsub_nan), &
             & new_unittest("reqsub-missing", test_reqsub_missing), &
+            & new_unittest("varsub-as-expression", test_varsub), &
+            & new_unittest("varsub-returns-nan", test_varsub_nan), &
+            & new_unittest("varsub-in-motion-gcon", test_varsub_refused), &
             & new_unittest("utilities-as-expressions", test_utilities), &
             & new_unittest("c-sfosub-as-fortran", test_c_routine), &
             & new_unittest("two-user-files", test_two_files), &
@@ -193,10 +196,92 @@ contains
 
         call run_user(folder // "request.adm", ["vtorque_spring.f"], 10.0_wp, history, &
             & run_error)
-        call expect_message(run_error, [character(len=70) :: &
+        call expect_message(run_error, [character(len=80) :: &
             & "request.adm:12: REQUEST/7 FUNCTION=USER(...): no REQSUB serves it", &
             & "SUBROUTINE REQSUB"], error)
     end subroutine test_reqsub_missing
+
+    !> variable.adm (SFORCE/2 reading VARVAL(3), VARIABLE/3 by variable_stretch.f's VARSUB:
+    !> DM through SYSFNC less PAR(3)) gives the rows of variable_expressions.adm (VARIABLE/3 =
+    !> DM(20, 2) - 1) to twin_tolerance in every part coordinate and rate, and its column var3
+    !> the twin's to varsub_tolerance. The equations are the same functions of the state; a
+    !> VARSUB's partials are not known and are zero where the Newton matrix takes an
+    !> expression's partials (a VARVAL jet is a constant), which may change the corrector's
+    !> iterations and so the step sequence, not what the integrator converges to: the rows may
+    !> differ by the integrators' global error (twin_tolerance, above). var3 is DM - 1 of the
+    !> same rows, so it differs by no more than the positions: varsub_tolerance =
+    !> twin_tolerance. (Measured: no difference, while a force statement's partials are not in
+    !> the Newton matrix.) A wrong free length (PAR(3) = 1.01) moves the rows by 0.086.
+    subroutine test_varsub(error)
+        type(error_type), allocatable, intent(out) :: error
+        real(wp), parameter :: varsub_tolerance = twin_tolerance
+        type(history_type) :: user, expressions
+        type(job_type) :: job
+        type(job_result_type) :: ran
+        real(wp) :: largest
+        integer :: u_column, e_column
+
+        call compare_twins("variable", ["variable_stretch.f"], error)
+        if (allocated(error)) return
+        call run_user(folder // "variable.adm", ["variable_stretch.f"], 10.0_wp, user, error)
+        if (allocated(error)) return
+        call load_job(folder // "variable_expressions.adm", job, error)
+        if (allocated(error)) return
+        job%output_dir = ""
+        job%quiet = .true.
+        call run_job(job, ran, error, expressions)
+        if (allocated(error)) return
+        u_column = user%layout%column("var3")
+        e_column = expressions%layout%column("var3")
+        if (u_column == 0 .or. e_column == 0 .or. user%count /= expressions%count) then
+            call fatal_error(error, "no column var3, or not as many rows (VARSUB run: column " &
+                & // to_text(u_column) // ", " // to_text(user%count) // " rows; expression: " &
+                & // to_text(e_column) // ", " // to_text(expressions%count) // ")")
+            return
+        end if
+        largest = maxval(abs(user%rows(u_column, :user%count) &
+            & - expressions%rows(e_column, :expressions%count)))
+        call check(error, largest <= varsub_tolerance, "var3: the VARSUB's value differs " &
+            & // "from the expression's by " // to_text(largest))
+        if (allocated(error)) return
+        ! the spring stretches and relaxes: a constant could not tell a wrong value
+        call check(error, maxval(user%rows(u_column, :user%count)) &
+            & - minval(user%rows(u_column, :user%count)) > 1.0e-2_wp, "var3 hardly moves")
+    end subroutine test_varsub
+
+    !> A VARSUB returning NaN after t = 0.1 s: a clean error naming the file, line and
+    !> VARIABLE, the routine, the value and a TIME past 0.1.
+    subroutine test_varsub_nan(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(history_type) :: history
+        type(error_type), allocatable :: run_error
+
+        call run_user(folder // "variable.adm", ["faulty/varsub_nan.f"], 10.0_wp, history, &
+            & run_error)
+        call expect_message(run_error, [character(len=60) :: &
+            & "variable.adm:10: VARIABLE/3: its VARSUB of", "faulty/varsub_nan.f", &
+            & "returned VALUE = NaN at TIME = 0.1", "a VARIABLE's value must be finite"], error)
+    end subroutine test_varsub_nan
+
+    !> A MOTION and a GCON reading a VARSUB's VARIABLE are refused, naming the statement and
+    !> line (their derivatives are taken exactly; a VARSUB's are not known).
+    subroutine test_varsub_refused(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(history_type) :: history
+        type(error_type), allocatable :: run_error
+
+        call run_user(folder // "variable_motion.adm", ["variable_stretch.f"], 10.0_wp, &
+            & history, run_error)
+        call expect_message(run_error, [character(len=80) :: &
+            & "variable_motion.adm:11: MOTION/1 FUNCTION: VARVAL(3) is the value of a VARSUB", &
+            & "a MOTION's function"], error)
+        if (allocated(error)) return
+        call run_user(folder // "variable_gcon.adm", ["variable_stretch.f"], 10.0_wp, &
+            & history, run_error)
+        call expect_message(run_error, [character(len=80) :: &
+            & "variable_gcon.adm:10: GCON/1 FUNCTION: VARVAL(3) is the value of a VARSUB", &
+            & "a GCON's function"], error)
+    end subroutine test_varsub_refused
 
     !> utilities.adm (SFORCE/2 by sforce_utilities.f's SFOSUB, calling AKISPL and CUBSPL on
     !> the model's SPLINE/3, STEP and RCNVRT) gives the rows of utilities_expressions.adm,
@@ -309,7 +394,7 @@ contains
 
         call run_user(folder // "user_forces.adm", ["gforce_bushing.f"], 10.0_wp, history, &
             & run_error)
-        call expect_message(run_error, [character(len=70) :: &
+        call expect_message(run_error, [character(len=80) :: &
             & "user_forces.adm:15: SFORCE/2 FUNCTION=USER(...): no SFOSUB serves it", &
             & "SUBROUTINE SFOSUB"], error)
     end subroutine test_missing
@@ -322,7 +407,7 @@ contains
 
         call run_user(folder // "two_files.adm", ["sforce_spring.f"], 10.0_wp, history, &
             & run_error)
-        call expect_message(run_error, [character(len=70) :: &
+        call expect_message(run_error, [character(len=80) :: &
             & "two_files.adm:13: SFORCE/3 ROUTINE=sforce_cubic::SFOSUB: no SFOSUB", &
             & "ROUTINE=FILE::SFOSUB"], error)
     end subroutine test_unknown_routine
