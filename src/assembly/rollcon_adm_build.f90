@@ -28,7 +28,9 @@ module rollcon_adm_build
         & kind_general, kind_spring, marker_force_values, markers_coincide
     use rollcon_force, only : applied_force_type, profile_statement, force_couplings
     use rollcon_user_forces, only : find_force_routine, routine_kind_of, set_system_markers, &
-        & declare_user_force, evaluate_user_forces, take_user_force_error, set_system_splines
+        & declare_user_force, evaluate_user_forces, take_user_force_error, set_system_splines, &
+        & user_variable_type, set_user_variables, declare_user_variables, evaluate_user_variables
+    use rollcon_system_routine_contract, only : routine_varsub, variable_routine_name
     use rollcon_spline, only : spline_type, new_spline
     use rollcon_force_routine_contract, only : routine_names
     use rollcon_model, only : model_type, setup_model, served_by_model_ucosub, force_request_type
@@ -42,7 +44,7 @@ module rollcon_adm_build
     use rollcon_element_force_watch, only : element_force_watch_type, watches_elements
     use rollcon_adm_requests, only : add_request_answers
     use rollcon_adm_model, only : adm_model_type, adm_force_type, force_sforce, force_vforce, &
-        & force_springdamper, force_bushing, force_names
+        & force_springdamper, force_bushing, force_names, request_user
     use rollcon_spring_force, only : spring_translational, spring_rotational, spring_bushing
     use rollcon_adm_state, only : part_state
     use rollcon_adm_singular, only : start_singular_parts
@@ -110,6 +112,9 @@ contains
         call add_expression_constraints(adm, model, q0, u0, error)
         if (allocated(error)) return
         call add_motions(adm, model, error)
+        if (allocated(error)) return
+        ! the VARIABLEs served by VARSUBs, valued before the forces that read them
+        call add_user_variables(adm, error)
         if (allocated(error)) return
         do i = 1, size(adm%forces)
             call add_force_statement(adm, adm%forces(i), model, error)
@@ -206,15 +211,32 @@ contains
         type(error_type), allocatable, intent(out) :: error
         type(marker_type), allocatable :: markers(:)
         integer :: i
+        logical :: user_forces, user_requests, user_variables
 
-        if (.not. allocated(adm%forces)) return
-        if (.not. any(adm%forces%user)) return
+        user_forces = .false.
+        if (allocated(adm%forces)) user_forces = any(adm%forces%user)
+        user_requests = .false.
+        if (allocated(adm%other_requests)) user_requests = any(adm%other_requests%kind &
+            & == request_user)
+        user_variables = .false.
+        if (allocated(adm%variables)) user_variables = any(adm%variables%user)
+        if (.not. (user_forces .or. user_requests .or. user_variables)) return
         allocate(markers(size(adm%markers)))
         do i = 1, size(adm%markers)
             markers(i) = adm_marker(adm, adm%markers(i)%id)
         end do
         call set_system_markers(markers, adm%units%length, adm%units%time)
         call give_splines(adm)
+        ! the VARSUBs first: a force may read their values
+        if (user_variables) then
+            call declare_user_variables(0.0_wp, q0, u0, error)
+            if (allocated(error)) return
+            call evaluate_user_variables(0.0_wp, q0, u0)
+            call take_user_force_error(error)
+            if (allocated(error)) return
+        end if
+        ! a REQSUB's calls come at the output rows (rollcon_request_answers)
+        if (.not. user_forces) return
         do i = 1, size(problem%model%forces)
             if (problem%model%forces(i)%profile /= profile_statement) cycle
             if (problem%model%forces(i)%statement%routine == 0) cycle
@@ -687,6 +709,51 @@ contains
         end if
         call set_system_splines(curves)
     end subroutine give_splines
+
+    !> The dataset's VARIABLEs served by VARSUBs (FUNCTION=USER), each with the entry of its
+    !> routine (the model's own VARSUB, or the one its ROUTINE= names), given to
+    !> rollcon_user_forces; refused, naming the VARIABLE and its line, when no file serves it.
+    subroutine add_user_variables(adm, error)
+        type(adm_model_type), intent(in) :: adm
+        type(error_type), allocatable, intent(out) :: error
+        type(user_variable_type), allocatable :: list(:)
+        character(len=:), allocatable :: where, routine
+        integer :: k, n
+
+        if (.not. allocated(adm%variables)) then
+            allocate(list(0))
+        else
+            allocate(list(count(adm%variables%user)))
+            n = 0
+            do k = 1, size(adm%variables)
+                if (.not. adm%variables(k)%user) cycle
+                n = n + 1
+                where = place(adm%file, adm%variables(k)%line) // ": VARIABLE/" &
+                    & // to_text(adm%variables(k)%id)
+                routine = ""
+                if (allocated(adm%variables(k)%routine)) routine = adm%variables(k)%routine
+                list(n)%id = adm%variables(k)%id
+                list(n)%par = adm%variables(k)%par
+                list(n)%name = where
+                list(n)%routine = find_force_routine(routine_varsub, routine)
+                if (list(n)%routine > 0) cycle
+                if (len(routine) == 0) then
+                    call fatal_error(error, where // " FUNCTION=USER(...): no " &
+                        & // variable_routine_name // " serves it; give the file that defines " &
+                        & // "SUBROUTINE " // variable_routine_name // " (rollcon run MODEL " &
+                        & // "--ucosub FILE; it runs in a process of its own)", stat_input)
+                else
+                    call fatal_error(error, where // " ROUTINE=" // routine // ": no " &
+                        & // variable_routine_name // " of that name among the user's files; " &
+                        & // "ROUTINE=FILE::" // variable_routine_name // " names the routine " &
+                        & // "of FILE (given with --ucosub FILE; FILE as given, or its name " &
+                        & // "without folder and extension)", stat_input)
+                end if
+                return
+            end do
+        end if
+        call set_user_variables(list, adm%units%time)
+    end subroutine add_user_variables
 
     !> The entry of the user's routine serving a FUNCTION=USER force statement
     !> (rollcon_user_forces' table): the model's own SFOSUB, VFOSUB, GFOSUB or VTOSUB, or the

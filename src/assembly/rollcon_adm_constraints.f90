@@ -16,7 +16,7 @@ module rollcon_adm_constraints
     use rollcon_rotation, only : cross
     use rollcon_expression, only : expression_type, expression_input_type, evaluate_expression, &
         & op_constant, op_input, op_multiply, op_add, op_subtract, quantity_names, quantity_dx, &
-        & quantity_ax, quantity_dif, quantity_dif1
+        & quantity_ax, quantity_dif, quantity_dif1, quantity_varval
     use rollcon_marker, only : marker_type, marker_motion
     use rollcon_measures, only : expression_input_values, input_refusal, input_text
     use rollcon_model, only : model_type
@@ -51,6 +51,9 @@ contains
         allocate(markers(0))
         do n = 1, size(expression%inputs)
             associate (input => expression%inputs(n))
+                ! VARVAL(id) left in place by the reader: a VARSUB's VARIABLE, valued at run
+                ! time (rollcon_user_forces); it names no marker
+                if (input%quantity == quantity_varval) cycle
                 problem = input_refusal(input, kind)
                 if (len(problem) > 0) then
                     call fatal_error(error, where // ": " // problem, stat_input)

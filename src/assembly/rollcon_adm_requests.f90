@@ -5,32 +5,35 @@
 !> Fk, as the reader found it) and every id it reads checked: a marker the dataset lacks, or
 !> an element function naming a statement that is not there (`JOINT(7, 0, 2, 0)`: no
 !> JOINT/7), is refused with the statement and line. Each VARVAL(id) stands for VARIABLE/id's
-!> FUNCTION and each AKISPL and CUBSPL reads its SPLINE's curve, put in place as in the
-!> forces' expressions (rollcon_adm_variables' substitute_variables and give_splines; a
-!> VARIABLE or SPLINE the dataset lacks is refused the same way). The elements the force
-!> functions read are every JOINT and JPRIM the model holds, MOTION, SFORCE, VFORCE,
-!> VTORQUE, GFORCE, BUSHING and SPRINGDAMPER. A REQUEST with FUNCTION=USER(...) (a REQSUB)
-!> stays named in the dataset's warning.
+!> FUNCTION (a VARSUB's value is read as the routine gives it) and each AKISPL and CUBSPL reads
+!> its SPLINE's curve, put in place as in the forces' expressions (rollcon_adm_variables'
+!> substitute_variables and give_splines; a VARIABLE or SPLINE the dataset lacks is refused
+!> the same way). The elements the force functions read are every JOINT and JPRIM the model
+!> holds, MOTION, SFORCE, VFORCE, VTORQUE, GFORCE, BUSHING and SPRINGDAMPER. A REQUEST with
+!> FUNCTION=USER(...) is served by the user's REQSUB (the model's own, or the one its
+!> ROUTINE= names; refused with the statement and line when there is none).
 module rollcon_adm_requests
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type, fatal_error, stat_input
     use rollcon_text, only : to_text, place
     use rollcon_marker, only : marker_type
     use rollcon_expression, only : expression_type, quantity_kind, quantity_names, &
-        & kind_element_force
+        & kind_element_force, quantity_varval
     use rollcon_measures, only : input_text
     use rollcon_model, only : model_type, statement_joint, statement_jprim
     use rollcon_force, only : profile_statement
     use rollcon_problem, only : problem_type
     use rollcon_request_answers, only : answered_request_type, request_element_type, &
         & new_request_answer_watch, element_kind_of, answer_velocity, answer_acceleration, &
-        & answer_force, answer_expressions, element_joint, element_jprim, element_motion, &
-        & element_sforce, element_vforce, element_gforce, element_vtorque, element_bushing, &
-        & element_springdamper
+        & answer_force, answer_expressions, answer_user, element_joint, element_jprim, &
+        & element_motion, element_sforce, element_vforce, element_gforce, element_vtorque, &
+        & element_bushing, element_springdamper
     use rollcon_adm_model, only : adm_model_type, force_sforce, force_vforce, force_vtorque, &
         & force_bushing, force_springdamper, request_velocity, request_acceleration, &
-        & request_force, request_expressions
+        & request_force, request_expressions, request_user
     use rollcon_adm_variables, only : substitute_variables, give_splines
+    use rollcon_system_routine_contract, only : routine_reqsub, request_routine_name
+    use rollcon_user_forces, only : find_force_routine
     use rollcon_adm_markers, only : adm_marker, marker_index
     use rollcon_adm_expression_parser, only : compile_expression
     implicit none
@@ -69,6 +72,12 @@ contains
                     request%kind = answer_force
                 case (request_expressions)
                     request%kind = answer_expressions
+                case (request_user)
+                    request%kind = answer_user
+                    call user_request(given%routine, where, request%routine, error)
+                    if (allocated(error)) return
+                    request%par = given%par
+                    request%name = where
                 case default
                     cycle
                 end select
@@ -101,6 +110,33 @@ contains
         call problem%add_watch(new_request_answer_watch(requests, elements, markers, &
             & adm%units%length, adm%units%time, adm%units%force))
     end subroutine add_request_answers
+
+    !> The entry of the REQSUB serving a REQUEST's FUNCTION=USER (rollcon_user_forces' table):
+    !> the model's own, or the one ROUTINE= names. Refused when there is none, naming the
+    !> statement and what to give.
+    subroutine user_request(routine, where, entry, error)
+        !> ROUTINE= as written ("" when not given)
+        character(len=*), intent(in) :: routine
+        !> "data/x.adm:12: REQUEST/5"
+        character(len=*), intent(in) :: where
+        integer, intent(out) :: entry
+        type(error_type), allocatable, intent(out) :: error
+
+        entry = find_force_routine(routine_reqsub, routine)
+        if (entry > 0) return
+        if (len(routine) == 0) then
+            call fatal_error(error, where // " FUNCTION=USER(...): no " // request_routine_name &
+                & // " serves it; give the file that defines SUBROUTINE " &
+                & // request_routine_name // " (rollcon run MODEL --ucosub FILE; it runs in a " &
+                & // "process of its own)", stat_input)
+        else
+            call fatal_error(error, where // " ROUTINE=" // routine // ": no " &
+                & // request_routine_name // " of that name among the user's files; " &
+                & // "ROUTINE=FILE::" // request_routine_name // " names the routine of FILE " &
+                & // "(given with --ucosub FILE; FILE as given, or its name without folder " &
+                & // "and extension)", stat_input)
+        end if
+    end subroutine user_request
 
     !> The elements whose forces the force functions read, with their markers as the model
     !> holds them (module header).
@@ -196,6 +232,8 @@ contains
 
         do n = 1, size(expression%inputs)
             associate (input => expression%inputs(n))
+                ! a VARSUB's VARIABLE (VARVAL(id) left in place): no marker
+                if (input%quantity == quantity_varval) cycle
                 ids = [input%marker, input%j, input%k, input%l]
                 if (quantity_kind(input%quantity) == kind_element_force) then
                     kind = element_kind_of(input%quantity)

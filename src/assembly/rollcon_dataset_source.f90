@@ -20,7 +20,8 @@ module rollcon_dataset_source
     use rollcon_initial_conditions, only : analyse_initial_conditions
     use rollcon_ic_report, only : ic_report_type, ic_report_text
     use rollcon_adm_model, only : adm_model_type, adm_request_type, request_displacement, &
-        & request_velocity, request_acceleration, request_force, request_expressions
+        & request_velocity, request_acceleration, request_force, request_expressions, &
+        & request_user
     use rollcon_adm_build, only : build_adm_problem
     use rollcon_adm_initial, only : adm_ic_options
     implicit none
@@ -201,6 +202,13 @@ contains
             do k = 1, size(adm%forces)
                 if (adm%forces(k)%user) all_named = .false.
             end do
+        end if
+        ! so does a REQUEST served by a REQSUB, a VARIABLE by a VARSUB
+        if (allocated(adm%other_requests)) then
+            if (any(adm%other_requests%kind == request_user)) all_named = .false.
+        end if
+        if (allocated(adm%variables)) then
+            if (any(adm%variables%user)) all_named = .false.
         end if
         if (.not. allocated(adm%ucons)) return
         do k = 1, size(adm%ucons)

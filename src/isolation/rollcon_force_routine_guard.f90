@@ -1,9 +1,10 @@
 ! SPDX-License-Identifier: MIT
-!> Calls a user's force routine (SFOSUB, VFOSUB, GFOSUB) with guarded outputs and protected
-!> inputs, and records each call where a watching host can read it (rollcon_child_process),
-!> as rollcon_ucosub_guard does for UCOSUB: RESULT is handed to the routine inside a larger
-!> buffer whose other entries hold a canary (a signalling-NaN bit pattern), and ID, TIME, PAR,
-!> NPAR, DFLAG and IFLAG reach it as copies the guard owns (PAR padded with zeros to 30
+!> Calls a user's force routine (SFOSUB, VFOSUB, GFOSUB, VTOSUB), REQSUB or VARSUB with guarded
+!> outputs and protected inputs, and records each call where a watching host can read it
+!> (rollcon_child_process), as rollcon_ucosub_guard does for UCOSUB: RESULT (a VARSUB's VALUE)
+!> is handed to the routine inside a larger buffer whose other entries hold a canary (a
+!> signalling-NaN bit pattern), and ID, TIME, PAR, NPAR, DFLAG and IFLAG (a REQSUB takes no
+!> DFLAG) reach it as copies the guard owns (PAR padded with zeros to 30
 !> entries). After the call an overwritten canary or a changed copy is reported
 !> (rollcon_user_forces' report_call_problem), so that the call's error names the statement,
 !> the routine and the entry ("wrote RESULT(7), beyond the 6 entries of a GFOSUB's RESULT").
@@ -14,10 +15,12 @@ module rollcon_force_routine_guard
     use, intrinsic :: iso_fortran_env, only : int64
     use rollcon_kinds, only : wp
     use rollcon_text, only : to_text
-    use rollcon_force_routine_contract, only : force_routine_interface, routine_names, &
-        & max_routine_par
+    use rollcon_force_routine_contract, only : force_routine_interface, max_routine_par
+    use rollcon_system_routine_contract, only : request_routine_interface, routine_reqsub, &
+        & variable_routine_interface, routine_varsub
     use rollcon_user_forces, only : force_call_interface, set_force_call_hook, &
-        & get_force_routine, report_call_problem
+        & get_force_routine, report_call_problem, get_request_routine, routine_name_of, &
+        & get_variable_routine
     use rollcon_child_process, only : call_record_type
     implicit none
     private
@@ -57,6 +60,8 @@ contains
         logical, intent(in) :: dflag, iflag
         real(wp), intent(inout) :: result(n)
         procedure(force_routine_interface), pointer :: routine
+        procedure(request_routine_interface), pointer :: request
+        procedure(variable_routine_interface), pointer :: variable
         real(wp) :: canary
         integer :: kind, i, np
 
@@ -88,15 +93,24 @@ contains
         end if
         ! Sequence association: the routine's RESULT starts at result_buffer(1), so what it
         ! writes past its entries lands on canaries.
-        call routine(id_copy, time_copy, par_copy, npar_copy, dflag_copy, iflag_copy, &
-            & result_buffer(1))
+        if (kind == routine_reqsub) then
+            call get_request_routine(entry, request)
+            call request(id_copy, time_copy, par_copy, npar_copy, iflag_copy, result_buffer(1))
+        else if (kind == routine_varsub) then
+            call get_variable_routine(entry, variable)
+            call variable(id_copy, time_copy, par_copy, npar_copy, dflag_copy, iflag_copy, &
+                & result_buffer(1))
+        else
+            call routine(id_copy, time_copy, par_copy, npar_copy, dflag_copy, iflag_copy, &
+                & result_buffer(1))
+        end if
         if (associated(record)) record%in_call = 0
         result = result_buffer(1:n)
         do i = lbound(result_buffer, 1), ubound(result_buffer, 1)
             if (i >= 1 .and. i <= n) cycle
             if (transfer(result_buffer(i), canary_bits) == canary_bits) cycle
             call report_call_problem("the routine wrote RESULT(" // to_text(i) // ") = " &
-                & // to_text(result_buffer(i)) // ", outside " // trim(routine_names(kind)) &
+                & // to_text(result_buffer(i)) // ", outside " // routine_name_of(kind) &
                 & // "'s RESULT(" // to_text(n) // ")")
             exit
         end do

@@ -6,6 +6,8 @@ module rollcon_isolation_text
     use rollcon_text, only : to_text
     use rollcon_dlopen, only : process_id
     use rollcon_force_routine_contract, only : routine_names, routine_statements, routine_kinds
+    use rollcon_system_routine_contract, only : routine_reqsub, request_routine_name, &
+        & routine_varsub, variable_routine_name
     use rollcon_child_process, only : isolation_outcome_type, outcome_signal, outcome_timeout, &
         & outcome_exit, signal_name
     implicit none
@@ -88,9 +90,18 @@ contains
         character(len=:), allocatable :: text, routine
 
         associate (record => outcome%record)
-            routine = trim(routine_names(max(1, min(routine_kinds, int(record%routine_kind)))))
-            text = trim(routine_statements(max(1, min(routine_kinds, &
-                & int(record%routine_kind))))) // "/" // to_text(int(record%ucon_id)) // ": "
+            if (record%routine_kind == routine_reqsub) then
+                routine = request_routine_name
+                text = "REQUEST/" // to_text(int(record%ucon_id)) // ": "
+            else if (record%routine_kind == routine_varsub) then
+                routine = variable_routine_name
+                text = "VARIABLE/" // to_text(int(record%ucon_id)) // ": "
+            else
+                routine = trim(routine_names(max(1, min(routine_kinds, &
+                    & int(record%routine_kind)))))
+                text = trim(routine_statements(max(1, min(routine_kinds, &
+                    & int(record%routine_kind))))) // "/" // to_text(int(record%ucon_id)) // ": "
+            end if
             select case (outcome%kind)
             case (outcome_signal)
                 text = text // "the process was killed by " // signal_name(outcome%signal)
@@ -148,7 +159,8 @@ contains
                 & .or. index(line, "At line") == 1 .or. (after_ucosub .and. index(line, "at ") == 1)
             after_ucosub = index(line, " in ucosub_") > 0 .or. index(line, " in sfosub_") > 0 &
                 & .or. index(line, " in vfosub_") > 0 .or. index(line, " in gfosub_") > 0 &
-                & .or. index(line, " in vtosub_") > 0
+                & .or. index(line, " in vtosub_") > 0 .or. index(line, " in reqsub_") > 0 &
+                & .or. index(line, " in varsub_") > 0
             if (.not. useful .or. len_trim(line) == 0) cycle
             if (quoted == 0) then
                 text = "; its stderr: "

@@ -19,7 +19,11 @@ module rollcon_user_library
     use rollcon_user_build, only : user_build_options_type, build_user_library
     use rollcon_force_routine_contract, only : force_routine_interface, routine_symbols, &
         & routine_names, routine_kinds
-    use rollcon_user_forces, only : register_force_routine, find_force_routine
+    use rollcon_system_routine_contract, only : request_routine_interface, routine_reqsub, &
+        & request_routine_name, request_routine_symbol, variable_routine_interface, &
+        & routine_varsub, variable_routine_name, variable_routine_symbol
+    use rollcon_user_forces, only : register_force_routine, find_force_routine, &
+        & register_request_routine, register_variable_routine
     implicit none
     private
 
@@ -106,8 +110,8 @@ contains
     end subroutine load_user_ucosub
 
     !> Load every routine of self%library, the library built from self%source: its UCOSUB
-    !> (self%ucosub; null when it defines none) and its force routines SFOSUB, VFOSUB, GFOSUB,
-    !> VTOSUB,
+    !> (self%ucosub; null when it defines none), its force routines SFOSUB, VFOSUB, GFOSUB,
+    !> VTOSUB, its REQSUB and its VARSUB,
     !> registered with rollcon_user_forces under the names ROUTINE= may give: FILE::NAME with
     !> FILE the file as given or its name without folder and extension (u.f: "u::SFOSUB"), and
     !> "" (the model's own, serving every statement naming no ROUTINE) when no file loaded
@@ -117,6 +121,8 @@ contains
         type(error_type), allocatable, intent(out) :: error
         type(c_funptr) :: address
         procedure(force_routine_interface), pointer :: routine
+        procedure(request_routine_interface), pointer :: request
+        procedure(variable_routine_interface), pointer :: variable
         integer :: kind
         logical :: found
 
@@ -148,10 +154,36 @@ contains
             call register_force_routine(kind, library_stem(self%source) // "::" &
                 & // trim(routine_names(kind)), self%source, routine)
         end do
+        address = library_symbol(self%handle, request_routine_symbol)
+        if (c_associated(address)) then
+            found = .true.
+            ! gfortran's external REQSUB: request_routine_interface's convention
+            call c_f_procpointer(address, request)
+            if (find_force_routine(routine_reqsub, "") == 0) call register_request_routine("", &
+                & self%source, request)
+            call register_request_routine(self%source // "::" // request_routine_name, &
+                & self%source, request)
+            call register_request_routine(library_stem(self%source) // "::" &
+                & // request_routine_name, self%source, request)
+        end if
+        address = library_symbol(self%handle, variable_routine_symbol)
+        if (c_associated(address)) then
+            found = .true.
+            ! gfortran's external VARSUB: variable_routine_interface's convention
+            call c_f_procpointer(address, variable)
+            if (find_force_routine(routine_varsub, "") == 0) &
+                & call register_variable_routine("", self%source, variable)
+            call register_variable_routine(self%source // "::" // variable_routine_name, &
+                & self%source, variable)
+            call register_variable_routine(library_stem(self%source) // "::" &
+                & // variable_routine_name, self%source, variable)
+        end if
         if (.not. found) then
             call fatal_error(error, self%source // ": defines none of the routines rollcon " &
-                & // "calls (UCOSUB, SFOSUB, VFOSUB, GFOSUB, VTOSUB: symbols 'ucosub_', " &
-                & // "'sfosub_', 'vfosub_', 'gfosub_', 'vtosub_'); check the names in its " &
+                & // "calls (UCOSUB, SFOSUB, VFOSUB, GFOSUB, VTOSUB, REQSUB, VARSUB: symbols " &
+                & // "'ucosub_', 'sfosub_', 'vfosub_', 'gfosub_', 'vtosub_', 'reqsub_', " &
+                & // "'varsub_'); " &
+                & // "check the names in its " &
                 & // "SUBROUTINE statements, " &
                 & // "and that they are external subroutines, not inside a module", stat_ucon)
             call self%destroy()

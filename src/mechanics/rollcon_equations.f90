@@ -17,7 +17,8 @@ module rollcon_equations
     use rollcon_force, only : force_and_moment, add_force_partials, force_couplings, &
         & add_expression_partials
     use rollcon_user_force_partials, only : add_user_force_partials
-    use rollcon_user_forces, only : evaluate_user_forces, take_user_force_error
+    use rollcon_user_forces, only : evaluate_user_forces, take_user_force_error, &
+        & evaluate_user_variables
     use rollcon_constraints, only : constraint_state_type, local_dot, need_value, need_first, &
         & need_second, need_time
     use rollcon_saddle_point, only : saddle_point_type
@@ -211,8 +212,9 @@ contains
         real(wp) :: applied(3), part_mass(6, 6), part_force(6)
         integer :: p, i0
 
-        ! the user's force routines at this state (FUNCTION=USER; a failure is taken by the
-        ! caller, take_user_force_error)
+        ! the user's VARSUBs, then force routines at this state (FUNCTION=USER; a failure is
+        ! taken by the caller, take_user_force_error): a force's VARVAL reads the former
+        call evaluate_user_variables(time, q, u)
         call evaluate_user_forces(self%model%forces, time, q, u)
         do p = 1, size(self%model%parts)
             i0 = 6*(p - 1)

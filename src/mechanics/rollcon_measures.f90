@@ -21,6 +21,7 @@
 !> NaN here (the assembly refuses them where they would be read).
 module rollcon_measures
     use rollcon_kinds, only : wp
+    use rollcon_user_variable_values, only : user_variable_value
     use rollcon_constants, only : pi
     use rollcon_rotation, only : times, cross, euler_angles
     use rollcon_marker, only : marker_type, marker_motion, marker_quantity
@@ -205,6 +206,11 @@ contains
 
         do k = 1, size(values)
             associate (input => expression%inputs(k))
+                ! VARVAL(id) left in place: a user VARIABLE's (a VARSUB's) value
+                if (input%quantity == quantity_varval) then
+                    values(k) = user_variable_value(input%marker)
+                    cycle
+                end if
                 call input_markers(input, markers, chosen, found)
                 values(k) = ieee_value(1.0_wp, ieee_quiet_nan)
                 if (.not. all(found) .or. .not. is_state_measure(input%quantity)) cycle
@@ -518,6 +524,12 @@ contains
 
         do k = 1, size(values)
             associate (input => expression%inputs(k))
+                ! a user VARIABLE's value: its partials are not known (docs/datasets.md, "User
+                ! routines of variables") and taken as zero
+                if (input%quantity == quantity_varval) then
+                    values(k) = jet_constant(user_variable_value(input%marker))
+                    cycle
+                end if
                 call input_markers(input, markers, chosen, found)
                 if (.not. all(found) .or. .not. is_state_measure(input%quantity)) then
                     values(k) = jet_constant(ieee_value(1.0_wp, ieee_quiet_nan))

@@ -18,6 +18,10 @@
 !>   that reports an error (ERRMES), returns a value that is not finite or reads what it did
 !>   not declare leaves an error for take_user_force_error.
 !>
+!> The same table serves REQSUBs (call_user_request, at each output row) and VARSUBs
+!> (evaluate_user_variables, before the forces at each evaluation; their values are what
+!> VARVAL reads, rollcon_user_variable_values; rollcon_system_routine_contract).
+!>
 !> Every call goes through the call hook (set_force_call_hook), which a child process points at
 !> its guard (rollcon_force_routine_guard: time limit, copies of the inputs, canaries).
 module rollcon_user_forces
@@ -26,6 +30,10 @@ module rollcon_user_forces
     use rollcon_text, only : to_text, upper_case
     use rollcon_force_routine_contract, only : force_routine_interface, routine_names, &
         & routine_results, routine_kinds, routine_statements, routine_vtosub
+    use rollcon_system_routine_contract, only : request_routine_interface, routine_reqsub, &
+        & request_routine_name, request_results, variable_routine_interface, routine_varsub, &
+        & variable_routine_name
+    use rollcon_user_variable_values, only : set_user_variable_values
     use rollcon_adams_runtime, only : take_ucon_error
     use rollcon_marker, only : marker_type
     use rollcon_measures, only : measure_value, is_state_measure, reads_rates, quantity_scale
@@ -34,7 +42,7 @@ module rollcon_user_forces
         & quantity_most_markers, quantity_dx
     use rollcon_force, only : applied_force_type, profile_statement
     use rollcon_spline, only : spline_type, spline_derivatives, method_akima, method_cubic
-    use, intrinsic :: ieee_arithmetic, only : ieee_is_finite
+    use, intrinsic :: ieee_arithmetic, only : ieee_is_finite, ieee_value, ieee_quiet_nan
     implicit none
     private
 
@@ -45,6 +53,9 @@ module rollcon_user_forces
     public :: system_function, system_array, system_time, system_notes, clear_system_notes
     public :: get_force_routine, report_call_problem, difference_call
     public :: set_system_splines, system_spline
+    public :: register_request_routine, get_request_routine, call_user_request, routine_name_of
+    public :: register_variable_routine, get_variable_routine, user_variable_type
+    public :: set_user_variables, declare_user_variables, evaluate_user_variables
 
     !> A routine the model may use
     type :: routine_entry_type
@@ -56,7 +67,27 @@ module rollcon_user_forces
         !> The file it came from, for messages
         character(len=:), allocatable :: source
         procedure(force_routine_interface), pointer, nopass :: routine => null()
+        !> A REQSUB (kind routine_reqsub; rollcon_system_routine_contract)
+        procedure(request_routine_interface), pointer, nopass :: request => null()
+        !> A VARSUB (kind routine_varsub)
+        procedure(variable_routine_interface), pointer, nopass :: variable => null()
     end type routine_entry_type
+
+    !> A VARIABLE served by a VARSUB
+    type :: user_variable_type
+        integer :: id = 0
+        !> Its VARSUB's entry in the table
+        integer :: routine = 0
+        !> The constants of USER(r1, ..., rn)
+        real(wp), allocatable :: par(:)
+        !> "x.adm:7: VARIABLE/3", for messages
+        character(len=:), allocatable :: name
+        !> What its initialisation call declared (allocated once that call is made)
+        integer, allocatable :: declared(:)
+        logical :: declared_rates = .false.
+        !> Its value at the state last evaluated, in the dataset's units
+        real(wp) :: value = 0.0_wp
+    end type user_variable_type
 
     abstract interface
         !> How a routine of the table is called: entry (its index), the statement's id, time
@@ -71,6 +102,9 @@ module rollcon_user_forces
     end interface
 
     type(routine_entry_type), allocatable, save :: table(:)
+    !> The model's VARIABLEs served by VARSUBs, and the dataset's time unit [s]
+    type(user_variable_type), allocatable, save :: variables(:)
+    real(wp), save :: variables_time_unit = 1.0_wp
     procedure(force_call_interface), pointer, save :: call_hook => direct_force_call
     !> The model's markers (every one a routine may name), the dataset's units
     type(marker_type), allocatable, save :: markers(:)
@@ -114,6 +148,182 @@ contains
         table = [table, entry]
     end subroutine register_force_routine
 
+    !> Add a REQSUB to the table (kind routine_reqsub), under name ("" for the model's own).
+    subroutine register_request_routine(name, source, routine)
+        character(len=*), intent(in) :: name
+        !> The file it was built from
+        character(len=*), intent(in) :: source
+        procedure(request_routine_interface) :: routine
+        type(routine_entry_type) :: entry
+
+        if (.not. allocated(table)) allocate(table(0))
+        entry%kind = routine_reqsub
+        entry%name = name
+        entry%source = source
+        entry%request => routine
+        table = [table, entry]
+    end subroutine register_request_routine
+
+    !> Add a VARSUB to the table (kind routine_varsub), under name ("" for the model's own).
+    subroutine register_variable_routine(name, source, routine)
+        character(len=*), intent(in) :: name
+        !> The file it was built from
+        character(len=*), intent(in) :: source
+        procedure(variable_routine_interface) :: routine
+        type(routine_entry_type) :: entry
+
+        if (.not. allocated(table)) allocate(table(0))
+        entry%kind = routine_varsub
+        entry%name = name
+        entry%source = source
+        entry%variable => routine
+        table = [table, entry]
+    end subroutine register_variable_routine
+
+    !> The VARSUB of entry, for a guard that calls it.
+    subroutine get_variable_routine(entry, routine)
+        integer, intent(in) :: entry
+        procedure(variable_routine_interface), pointer, intent(out) :: routine
+
+        routine => table(entry)%variable
+    end subroutine get_variable_routine
+
+    !> The model's VARIABLEs served by VARSUBs (each with its entry, constants and name), in a
+    !> dataset of this time unit [s]; their values start NaN until evaluated.
+    subroutine set_user_variables(list, time_unit)
+        type(user_variable_type), intent(in) :: list(:)
+        real(wp), intent(in) :: time_unit
+        real(wp), allocatable :: values(:)
+        integer, allocatable :: ids(:)
+
+        variables = list
+        variables_time_unit = time_unit
+        allocate(values(size(list)), source=ieee_value(0.0_wp, ieee_quiet_nan))
+        ! (copies: a component of an array of a derived type is not contiguous)
+        ids = variables%id
+        call set_user_variable_values(ids, values)
+    end subroutine set_user_variables
+
+    !> The initialisation call (IFLAG = .TRUE.) of every VARSUB at (t, q, u): what its SYSFNC
+    !> and SYSARY calls name is the VARIABLE's declared dependencies. An ERRMES or a utility's
+    !> refusal is an error naming the VARIABLE.
+    subroutine declare_user_variables(time, q, u, error)
+        real(wp), intent(in) :: time, q(:), u(:)
+        type(error_type), allocatable, intent(out) :: error
+        real(wp) :: value(1)
+        integer :: v
+
+        if (.not. allocated(variables)) return
+        do v = 1, size(variables)
+            associate (variable => variables(v))
+                call begin_call(time, q, u)
+                declaring = .true.
+                named = [integer ::]
+                named_rates = .false.
+                value = 0.0_wp
+                call call_hook(variable%routine, variable%id, time/variables_time_unit, &
+                    & variable%par, size(variable%par), .false., .true., value, 1)
+                declaring = .false.
+                variable%declared = named
+                variable%declared_rates = named_rates
+                call variable_problem(variable, "the initialisation call (IFLAG = .TRUE.)", &
+                    & time, error)
+                if (allocated(error)) return
+            end associate
+        end do
+    end subroutine declare_user_variables
+
+    !> Call every VARSUB at (t, q, u), in the order of the dataset, and keep the values for
+    !> VARVAL (rollcon_user_variable_values); the first failure (an ERRMES, a utility's
+    !> refusal, a value not finite) is kept for take_user_force_error.
+    subroutine evaluate_user_variables(time, q, u)
+        real(wp), intent(in) :: time, q(:), u(:)
+        type(error_type), allocatable :: error
+        real(wp) :: value(1)
+        real(wp), allocatable :: values(:)
+        integer, allocatable :: ids(:)
+        integer :: v
+
+        if (.not. allocated(variables)) return
+        if (size(variables) == 0) return
+        do v = 1, size(variables)
+            associate (variable => variables(v))
+                call begin_call(time, q, u)
+                if (allocated(variable%declared)) then
+                    allowed = variable%declared
+                    allowed_rates = variable%declared_rates
+                else if (allocated(allowed)) then
+                    deallocate(allowed)
+                end if
+                value = 0.0_wp
+                call call_hook(variable%routine, variable%id, time/variables_time_unit, &
+                    & variable%par, size(variable%par), .false., .false., value, 1)
+                if (allocated(allowed)) deallocate(allowed)
+                allowed_rates = .true.
+                variable%value = value(1)
+                if (.not. ieee_is_finite(value(1))) then
+                    call fatal_error(error, variable%name // ": its " &
+                        & // force_routine_label(variable%routine) // " returned VALUE = " &
+                        & // to_text(value(1)) // " at TIME = " &
+                        & // to_text(time/variables_time_unit) // ": a VARIABLE's value " &
+                        & // "must be finite", stat_ucon)
+                else
+                    call variable_problem(variable, "the call", time, error)
+                end if
+                if (allocated(error)) then
+                    if (.not. allocated(pending)) call move_alloc(error, pending)
+                end if
+            end associate
+        end do
+        ids = variables%id
+        values = variables%value
+        call set_user_variable_values(ids, values)
+    end subroutine evaluate_user_variables
+
+    !> After a VARSUB's call: an ERRMES it made, or a utility's refusal, as an error naming the
+    !> VARIABLE.
+    subroutine variable_problem(variable, call_name, time, error)
+        type(user_variable_type), intent(in) :: variable
+        character(len=*), intent(in) :: call_name
+        real(wp), intent(in) :: time
+        type(error_type), allocatable, intent(out) :: error
+        type(error_type), allocatable :: reported
+        character(len=:), allocatable :: message
+        integer :: colon
+
+        call take_ucon_error(reported)
+        if (allocated(reported)) then
+            message = reported%message
+            colon = index(message, ": ")
+            if (index(message, "UCON/") == 1 .and. colon > 0) message = message(colon + 2:)
+            call fatal_error(error, variable%name // ": its " &
+                & // force_routine_label(variable%routine) // " reported an error in " &
+                & // call_name // " at TIME = " // to_text(time/variables_time_unit) // ": " &
+                & // message, stat_ucon)
+        else if (len(problem) > 0) then
+            call fatal_error(error, variable%name // ": its " &
+                & // force_routine_label(variable%routine) // ", in " // call_name &
+                & // " at TIME = " // to_text(time/variables_time_unit) // ": " // problem, &
+                & stat_ucon)
+        end if
+    end subroutine variable_problem
+
+    !> The name of a kind of routine: "SFOSUB" ... "VTOSUB", "REQSUB".
+    pure function routine_name_of(kind) result(name)
+        integer, intent(in) :: kind
+        character(len=:), allocatable :: name
+
+        if (kind >= 1 .and. kind <= routine_kinds) then
+            name = trim(routine_names(kind))
+        else if (kind == routine_reqsub) then
+            name = request_routine_name
+        else if (kind == routine_varsub) then
+            name = variable_routine_name
+        else
+            name = "a user routine"
+        end if
+    end function routine_name_of
+
     !> Empty the table (the direct call hook again).
     subroutine clear_force_routines()
         if (allocated(table)) deallocate(table)
@@ -148,7 +358,7 @@ contains
         label = "a user routine"
         if (.not. allocated(table)) return
         if (entry < 1 .or. entry > size(table)) return
-        label = trim(routine_names(table(entry)%kind)) // " of " // table(entry)%source
+        label = routine_name_of(table(entry)%kind) // " of " // table(entry)%source
         if (len(table(entry)%name) > 0) label = label // " (ROUTINE=" // table(entry)%name &
             & // ")"
     end function force_routine_label
@@ -180,8 +390,106 @@ contains
         logical, intent(in) :: dflag, iflag
         real(wp), intent(inout) :: result(n)
 
-        call table(entry)%routine(id, time, par, npar, dflag, iflag, result)
+        if (table(entry)%kind == routine_reqsub) then
+            call table(entry)%request(id, time, par, npar, iflag, result)
+        else if (table(entry)%kind == routine_varsub) then
+            call table(entry)%variable(id, time, par, npar, dflag, iflag, result(1))
+        else
+            call table(entry)%routine(id, time, par, npar, dflag, iflag, result)
+        end if
     end subroutine direct_force_call
+
+    !> The REQSUB of entry, for a guard that calls it.
+    subroutine get_request_routine(entry, routine)
+        integer, intent(in) :: entry
+        procedure(request_routine_interface), pointer, intent(out) :: routine
+
+        routine => table(entry)%request
+    end subroutine get_request_routine
+
+    !> Call the REQSUB of entry for REQUEST/id at (t, q, u) (through the call hook): its
+    !> RESULT(8) in result. The first call for a request (declared not allocated) is preceded
+    !> by the initialisation call (IFLAG = .TRUE.), whose SYSFNC and SYSARY calls set declared
+    !> and declared_rates; later calls' reads are compared with them (system_notes). An ERRMES,
+    !> a utility's refusal or a RESULT not finite leaves an error naming `name` ("x.adm:12:
+    !> REQUEST/5") for take_user_force_error, and result NaN.
+    subroutine call_user_request(entry, id, name, par, time_unit, time, q, u, declared, &
+            & declared_rates, result)
+        integer, intent(in) :: entry, id
+        character(len=*), intent(in) :: name
+        !> The constants of USER(r1, ..., rn)
+        real(wp), intent(in) :: par(:)
+        !> The dataset's time unit [s]
+        real(wp), intent(in) :: time_unit
+        !> Time [s], coordinates and rates of all parts [SI]
+        real(wp), intent(in) :: time, q(:), u(:)
+        integer, allocatable, intent(inout) :: declared(:)
+        logical, intent(inout) :: declared_rates
+        real(wp), intent(out) :: result(request_results)
+        type(error_type), allocatable :: error
+        character(len=:), allocatable :: label
+
+        label = routine_name_of(routine_reqsub)
+        if (entry >= 1 .and. entry <= size(table)) label = force_routine_label(entry)
+        if (.not. allocated(declared)) then
+            call begin_call(time, q, u)
+            declaring = .true.
+            named = [integer ::]
+            named_rates = .false.
+            result = 0.0_wp
+            call call_hook(entry, id, time/time_unit, par, size(par), .false., .true., result, &
+                & request_results)
+            declaring = .false.
+            declared = named
+            declared_rates = named_rates
+            call request_problem("the initialisation call (IFLAG = .TRUE.)", error)
+            if (allocated(error)) then
+                result = ieee_value(0.0_wp, ieee_quiet_nan)
+                if (.not. allocated(pending)) call move_alloc(error, pending)
+                return
+            end if
+        end if
+        call begin_call(time, q, u)
+        allowed = declared
+        allowed_rates = declared_rates
+        result = 0.0_wp
+        call call_hook(entry, id, time/time_unit, par, size(par), .false., .false., result, &
+            & request_results)
+        deallocate(allowed)
+        allowed_rates = .true.
+        if (.not. all(ieee_is_finite(result))) then
+            call fatal_error(error, name // ": its " // label // " returned RESULT = (" &
+                & // numbers(result) // ") at TIME = " // to_text(time/time_unit) &
+                & // ": a request's values must be finite", stat_ucon)
+        else
+            call request_problem("the call", error)
+        end if
+        if (allocated(error)) then
+            result = ieee_value(0.0_wp, ieee_quiet_nan)
+            if (.not. allocated(pending)) call move_alloc(error, pending)
+        end if
+    contains
+        subroutine request_problem(call_name, error)
+            character(len=*), intent(in) :: call_name
+            type(error_type), allocatable, intent(out) :: error
+            type(error_type), allocatable :: reported
+            character(len=:), allocatable :: message
+            integer :: colon
+
+            call take_ucon_error(reported)
+            if (allocated(reported)) then
+                message = reported%message
+                colon = index(message, ": ")
+                if (index(message, "UCON/") == 1 .and. colon > 0) message = message(colon + 2:)
+                call fatal_error(error, name // ": its " // label // " reported an error in " &
+                    & // call_name // " at TIME = " // to_text(time/time_unit) // ": " &
+                    & // message, stat_ucon)
+            else if (len(problem) > 0) then
+                call fatal_error(error, name // ": its " // label // ", in " // call_name &
+                    & // " at TIME = " // to_text(time/time_unit) // ": " // problem, stat_ucon)
+            end if
+        end subroutine request_problem
+    end subroutine call_user_request
 
     !> The routine of entry and its kind (routine_sfosub ...), for a guard that calls it.
     subroutine get_force_routine(entry, routine, kind)

@@ -11,6 +11,7 @@ module rollcon_simulation
     use rollcon_error, only : error_type, fatal_error, stat_ucon
     use rollcon_text, only : to_text
     use rollcon_force, only : force_breakpoints, force_corners, forces_idle_after
+    use rollcon_user_forces, only : take_user_force_error
     use rollcon_model, only : model_type, served_by_model_ucosub
     use rollcon_integrator, only : integrator_type, integrator_statistics_type
     use rollcon_integrator_choice, only : start_integrator
@@ -302,6 +303,9 @@ contains
             call problem%accelerations(time, q, u, error)
             if (allocated(error)) return
             row = output_row(problem, self%layout, time, q, u)
+            ! a user routine a watch called (a REQSUB) that failed: its error, naming it
+            call take_user_force_error(error)
+            if (allocated(error)) return
             ! a value that is not finite is never written as a result
             if (.not. all(ieee_is_finite(row))) then
                 call problem%nonfinite_state(time, q, u, error)

@@ -14,7 +14,10 @@
 !> - `REQUEST/id, FORCE, I=[, J=][, RM=]` (those no JOINT or JPRIM answers,
 !>   rollcon_reaction_watch): `req<id>_fx ... _tz` [N, N m], FX ... TZ(I, J, RM);
 !> - `REQUEST/id, F1=e, ..., F8=e`: `req<id>_f<k>` for each expression given, its value in the
-!>   dataset's units, with every measure, acceleration and force function of rollcon_expression.
+!>   dataset's units, with every measure, acceleration and force function of rollcon_expression;
+!> - `REQUEST/id, FUNCTION=USER(r1, ...)`: `req<id>_f2, _f3, _f4, _f6, _f7, _f8`, its REQSUB's
+!>   RESULT(2:4) and RESULT(6:8) as ADAMS writes them (rollcon_system_routine_contract), the
+!>   routine called at each row through rollcon_user_forces (in the child process that runs it).
 !>
 !> The force functions, as ADAMS defines them: an element acts between its markers I and J (a
 !> JOINT's or JPRIM's, a MOTION's, an SFORCE's, a VFORCE's or GFORCE's I and JFLOAT); its force
@@ -64,19 +67,22 @@ module rollcon_request_answers
     use rollcon_run_settings, only : run_settings_type
     use rollcon_output_layout, only : name_length
     use rollcon_watch, only : watch_type
+    use rollcon_system_routine_contract, only : request_results, request_columns
+    use rollcon_user_forces, only : call_user_request
     use, intrinsic :: ieee_arithmetic, only : ieee_value, ieee_quiet_nan
     implicit none
     private
 
     public :: request_answer_watch_type, answered_request_type, request_element_type
     public :: new_request_answer_watch, element_kind_of
-    public :: answer_velocity, answer_acceleration, answer_force, answer_expressions
+    public :: answer_velocity, answer_acceleration, answer_force, answer_expressions, &
+        & answer_user
     public :: element_joint, element_jprim, element_motion, element_sforce, element_vforce, &
         & element_gforce, element_vtorque, element_bushing, element_springdamper
 
     !> What a request asks for
     integer, parameter :: answer_velocity = 1, answer_acceleration = 2, answer_force = 3, &
-        & answer_expressions = 4
+        & answer_expressions = 4, answer_user = 5
     !> The elements whose forces the force functions read (quantity_names' JOINT, JPRIM,
     !> MOTION, SFORCE, VFORCE, GFORCE, VTORQUE, BUSHING, and SPDP of a SPRINGDAMPER). A
     !> statement rollcon adds later becomes a kind here, its wrench at I and at J in
@@ -114,6 +120,14 @@ module rollcon_request_answers
         !> F1 ... F8 (answer_expressions), compiled, and which are given
         type(expression_type) :: functions(8)
         logical :: given(8) = .false.
+        !> answer_user: the REQSUB's entry in rollcon_user_forces' table, its constants, the
+        !> statement for messages ("x.adm:12: REQUEST/5"), and what its initialisation call
+        !> declared (not allocated until that call is made, at the first row)
+        integer :: routine = 0
+        real(wp), allocatable :: par(:)
+        character(len=:), allocatable :: name
+        integer, allocatable :: declared(:)
+        logical :: declared_rates = .false.
     end type answered_request_type
 
     type, extends(watch_type) :: request_answer_watch_type
@@ -243,6 +257,11 @@ contains
                         n = n + 1
                         names(n) = stem // "_f" // to_text(k)
                     end do
+                case (answer_user)
+                    do k = 1, size(request_columns)
+                        n = n + 1
+                        names(n) = stem // "_f" // to_text(request_columns(k))
+                    end do
                 case default
                     do k = 1, 6
                         n = n + 1
@@ -269,6 +288,8 @@ contains
         do r = 1, size(self%own_requests)
             if (self%own_requests(r)%kind == answer_expressions) then
                 n = n + count(self%own_requests(r)%given)
+            else if (self%own_requests(r)%kind == answer_user) then
+                n = n + size(request_columns)
             else
                 n = n + 6
             end if
@@ -291,7 +312,7 @@ contains
         real(wp), intent(in) :: time, q(:), u(:), lambda(:)
         real(wp), intent(out) :: values(:)
         type(marker_type) :: markers(4)
-        real(wp) :: wrench(6), inputs(max_inputs)
+        real(wp) :: wrench(6), inputs(max_inputs), result(request_results)
         integer :: r, k, n, m
 
         n = 0
@@ -320,6 +341,12 @@ contains
                         & lambda)
                     values(n + 1:n + 6) = in_axes(request%rm, q, u, wrench)
                     n = n + 6
+                case (answer_user)
+                    call call_user_request(request%routine, request%id, request%name, &
+                        & request%par, self%time_unit, time, q, u, request%declared, &
+                        & request%declared_rates, result)
+                    values(n + 1:n + size(request_columns)) = result(request_columns)
+                    n = n + size(request_columns)
                 case default
                     do k = 1, 8
                         if (.not. request%given(k)) cycle

@@ -17,7 +17,7 @@ module rollcon_adm_loads
     implicit none
     private
 
-    public :: read_ucon, read_accgrav, read_force, read_spring
+    public :: read_ucon, read_accgrav, read_force, read_spring, read_user_list
 
     character(len=*), parameter :: ucon_keys(2) = [character(len=8) :: "FUNCTION", "ROUTINE"]
     character(len=*), parameter :: accgrav_keys(3) = ["IGRAV", "JGRAV", "KGRAV"]

@@ -173,6 +173,8 @@ module rollcon_adm_model
         !> FUNCTION=USER(...) (its value, USER(...)) and ROUTINE= as written (request_user), ""
         !> when not given
         character(len=:), allocatable :: user, routine
+        !> The constants of FUNCTION=USER(r1, ..., rn) (request_user), the REQSUB's PAR
+        real(wp), allocatable :: par(:)
         !> A FORCE between a JOINT's or JPRIM's two markers: that statement (its place in
         !> model%joints; 0: none), and whether the request's I is the statement's J
         integer :: joint = 0

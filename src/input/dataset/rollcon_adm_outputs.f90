@@ -12,7 +12,7 @@
 !> and not used, and a run names it all in one warning (unused_warning); a REQUEST/id,
 !> DISPLACEMENT is honoured as output columns (rollcon_request_watch), and every other
 !> REQUEST is kept (its kind, markers, comment and expressions) for the assembly to answer
-!> (rollcon_adm_requests); only a FUNCTION=USER(...) one (a REQSUB) is named in the warning.
+!> (rollcon_adm_requests), a FUNCTION=USER(...) one with its REQSUB's constants.
 !> Values are not converted to SI (EQUILIBRIUM's honoured ones aside): nothing reads them.
 module rollcon_adm_outputs
     use rollcon_kinds, only : wp
@@ -24,6 +24,7 @@ module rollcon_adm_outputs
     use rollcon_expression, only : expression_type, quantity_kind, quantity_names, &
         & kind_element, kind_element_force, quantity_varval
     use rollcon_adm_expression_parser, only : compile_expression
+    use rollcon_adm_loads, only : read_user_list
     use rollcon_adm_model, only : adm_model_type, adm_request_type, adm_unused_type, &
         & adm_reference_type, refers_to_marker, refers_to_part, refers_to_force, &
         & request_displacement, request_velocity, request_acceleration, request_force, &
@@ -289,7 +290,7 @@ contains
         type(error_type), allocatable, intent(out) :: error
         logical :: measured(size(measures)), expressions
         type(adm_request_type) :: request
-        integer :: m
+        integer :: m, user_argument
 
         do m = 1, size(measures)
             measured(m) = given(name_index(measures(m), keys))
@@ -303,7 +304,7 @@ contains
                 & + merge(1, 0, expressions)), stat_input)
             return
         end if
-        call request_text(path, where, statement, request)
+        call request_text(path, where, statement, request, user_argument)
         request%id = statement%id
         request%line = statement%line
         request%i = marker(1)
@@ -312,10 +313,11 @@ contains
         if (expressions) then
             request%kind = request_expressions
             if (given(name_index("FUNCTION", keys))) then
-                ! a REQSUB: named in the warning
+                ! a REQSUB's: its constants
                 request%kind = request_user
-                call record_unused(model%unused, model%unused_count, "REQUEST FUNCTION=USER", &
-                    & statement%line)
+                call read_user_list(statement%arguments(user_argument), where // " FUNCTION", &
+                    & request%par, error, "REQSUB")
+                if (allocated(error)) return
             else
                 call check_request_columns(where, request, model, error)
                 if (allocated(error)) return
@@ -405,16 +407,19 @@ contains
 
     !> A request's text as written: COMMENT, the expressions F1 ... F8, FUNCTION=USER(...)
     !> and ROUTINE ("" for each not given); the keywords rollcon does not know are skipped.
-    subroutine request_text(path, where, statement, request)
+    subroutine request_text(path, where, statement, request, user_argument)
         character(len=*), intent(in) :: path, where
         type(adm_statement_type), intent(in) :: statement
         type(adm_request_type), intent(inout) :: request
+        !> The place of FUNCTION= among the statement's arguments (0: not given)
+        integer, intent(out), optional :: user_argument
         character(len=26), allocatable :: keys(:)
         integer, allocatable :: forms(:)
         type(error_type), allocatable :: refused
         character(len=:), allocatable :: key
         integer :: k, column
 
+        if (present(user_argument)) user_argument = 0
         request%comment = ""
         request%user = ""
         request%routine = ""
@@ -433,6 +438,7 @@ contains
                 request%comment = argument_text(statement%arguments(k))
             case ("FUNCTION")
                 request%user = argument_text(statement%arguments(k))
+                if (present(user_argument)) user_argument = k
             case ("ROUTINE")
                 request%routine = argument_text(statement%arguments(k))
             case ("F1", "F2", "F3", "F4", "F5", "F6", "F7", "F8")

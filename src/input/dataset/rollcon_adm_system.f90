@@ -17,7 +17,7 @@ module rollcon_adm_system
     use rollcon_error, only : error_type, fatal_error, stat_input
     use rollcon_text, only : to_text
     use rollcon_expression, only : expression_type
-    use rollcon_adm_lexer, only : adm_statement_type, upper_case
+    use rollcon_adm_lexer, only : adm_statement_type, adm_argument_type, upper_case
     use rollcon_adm_keywords, only : argument_key, arg_place, read_reals, argument_text
     use rollcon_adm_expression_parser, only : compile_expression
     implicit none
@@ -44,6 +44,14 @@ module rollcon_adm_system
         !> IC: ADAMS's first guess of the value for its algebraic solution [the value's units];
         !> the value itself is the FUNCTION's
         real(wp) :: ic = 0.0_wp
+        !> FUNCTION=USER(r1, ..., rn): a VARSUB's VARIABLE (its function then VARVAL(id),
+        !> read from the routine's value; rollcon_adm_variables), the USER(...) argument as
+        !> written and where ("file:line: VARIABLE/3 FUNCTION"), its constants once read
+        !> (resolve_variables), and ROUTINE= as written ("" when not given)
+        logical :: user = .false.
+        type(adm_argument_type) :: user_argument
+        character(len=:), allocatable :: user_at, routine
+        real(wp), allocatable :: par(:)
     end type adm_variable_type
 
     !> SPLINE/id
@@ -146,7 +154,8 @@ contains
         end if
     end subroutine read_diff
 
-    !> VARIABLE/id, FUNCTION=e[, IC=r]. FUNCTION=USER(...) (a VARSUB) is refused.
+    !> VARIABLE/id, FUNCTION=e[, IC=r], or FUNCTION=USER(r1, ...)[, ROUTINE=name] (a VARSUB's:
+    !> the USER(...) argument kept for resolve_variables to read).
     subroutine read_variable(path, where, statement, variable, error)
         character(len=*), intent(in) :: path, where
         type(adm_statement_type), intent(in) :: statement
@@ -159,6 +168,7 @@ contains
 
         variable%id = statement%id
         variable%line = statement%line
+        variable%routine = ""
         given = .false.
         do k = 1, size(statement%arguments)
             call argument_key(path, where, statement, k, variable_keys, key, error)
@@ -171,24 +181,30 @@ contains
                     return
                 end if
                 text = argument_text(statement%arguments(k))
+                given = .true.
                 if (index(upper_case(adjustl(text)), "USER") == 1) then
-                    call fatal_error(error, at // ": FUNCTION=USER(...) (a VARSUB) is not " &
-                        & // "supported; write the variable as an expression", stat_input)
-                    return
+                    ! a VARSUB's: its constants read as the dataset's VARIABLEs are resolved
+                    variable%user = .true.
+                    variable%user_argument = statement%arguments(k)
+                    variable%user_at = at
+                    cycle
                 end if
                 call compile_expression(text, at, variable%function, error)
-                given = .true.
             case ("IC")
                 call read_reals(statement%arguments(k), at, 1, 1, .false., values, error)
                 if (.not. allocated(error)) variable%ic = values(1)
             case ("ROUTINE")
-                call fatal_error(error, at // ": ROUTINE names a VARSUB, which is not " &
-                    & // "supported; write the variable as a FUNCTION expression", stat_input)
+                variable%routine = argument_text(statement%arguments(k))
             end select
             if (allocated(error)) return
         end do
-        if (.not. given) call fatal_error(error, where // ": FUNCTION=e is missing (the " &
-            & // "variable's value as an expression)", stat_input)
+        if (.not. given) then
+            call fatal_error(error, where // ": FUNCTION=e is missing (the " &
+                & // "variable's value as an expression)", stat_input)
+        else if (len(variable%routine) > 0 .and. .not. variable%user) then
+            call fatal_error(error, where // " ROUTINE: names a VARSUB, which serves a " &
+                & // "FUNCTION=USER(r1, ..., r30) only", stat_input)
+        end if
     end subroutine read_variable
 
     !> SPLINE/id, X=x1, ..., xn, Y=y1, ..., yn[, LINEAR_EXTRAPOLATE]: at least two points (four

@@ -21,6 +21,8 @@ module rollcon_adm_variables
     use rollcon_adm_keywords, only : place
     use rollcon_adm_ids, only : id_index_type, new_id_index
     use rollcon_adm_model, only : adm_model_type, force_sforce, force_vforce
+    use rollcon_adm_loads, only : read_user_list
+    use rollcon_adm_expression_parser, only : compile_expression
     use, intrinsic :: iso_fortran_env, only : int64
     implicit none
     private
@@ -65,11 +67,23 @@ contains
         do i = 1, size(model%markers)
             call markers%add(int(model%markers(i)%id, int64), i, previous)
         end do
+        allocate(state(size(model%variables)), source=unresolved)
         do i = 1, size(model%variables)
+            if (model%variables(i)%user) then
+                ! a VARSUB's: VARVAL(id) stays in the expressions that read it, an input
+                ! valued from the routine at run time
+                call read_user_list(model%variables(i)%user_argument, &
+                    & model%variables(i)%user_at, model%variables(i)%par, error, "VARSUB")
+                if (allocated(error)) return
+                call compile_expression("VARVAL(" // to_text(model%variables(i)%id) // ")", &
+                    & model%variables(i)%user_at, model%variables(i)%function, error)
+                if (allocated(error)) return
+                state(i) = resolved
+                cycle
+            end if
             call check_variable(model, markers, i, error)
             if (allocated(error)) return
         end do
-        allocate(state(size(model%variables)), source=unresolved)
         allocate(path(0))
         do i = 1, size(model%variables)
             if (state(i) == resolved) cycle
@@ -95,6 +109,9 @@ contains
                     & // to_text(model%motions(i)%id) // " FUNCTION"
                 call substitute(model, ids, model%motions(i)%function, where, error)
                 if (allocated(error)) return
+                call refuse_user_variables(model%motions(i)%function, where, "a MOTION's " &
+                    & // "function, whose derivatives in time rollcon takes exactly", error)
+                if (allocated(error)) return
                 if (size(model%motions(i)%function%inputs) > 0) then
                     call fatal_error(error, where // ": a MOTION's function is an expression " &
                         & // "of TIME alone (ADAMS's rule: the motion it prescribes may not " &
@@ -109,6 +126,9 @@ contains
                 where = place(model%file, model%gcons(i)%line) // ": GCON/" &
                     & // to_text(model%gcons(i)%id) // " FUNCTION"
                 call substitute(model, ids, model%gcons(i)%function, where, error)
+                if (allocated(error)) return
+                call refuse_user_variables(model%gcons(i)%function, where, "a GCON's " &
+                    & // "function, a constraint whose partials rollcon takes exactly", error)
                 if (allocated(error)) return
             end do
         end if
@@ -260,8 +280,8 @@ contains
 
     !> The expression VARVAL(id) stands for: VARIABLE/id's FUNCTION, in the dataset's units,
     !> its own VARVALs in place (its VARIABLE is at `v` in model%variables). The one place a
-    !> VARIABLE's value is defined: a VARIABLE of a user's routine (a VARSUB) would give its
-    !> value here.
+    !> VARIABLE's value is defined: a VARIABLE of a user's routine (a VARSUB) gives VARVAL(id)
+    !> itself, an input valued from the routine at run time.
     function variable_program(model, v) result(program)
         type(adm_model_type), intent(in) :: model
         integer, intent(in) :: v
@@ -269,6 +289,23 @@ contains
 
         program = model%variables(v)%function
     end function variable_program
+
+    !> An expression that needs exact derivatives (`what`: a MOTION's, a GCON's) reading a
+    !> VARSUB's VARIABLE, whose derivatives rollcon does not know, is refused naming `where`.
+    subroutine refuse_user_variables(expression, where, what, error)
+        type(expression_type), intent(in) :: expression
+        character(len=*), intent(in) :: where, what
+        type(error_type), allocatable, intent(out) :: error
+        integer :: n
+
+        if (.not. allocated(expression%inputs)) return
+        n = findloc(expression%inputs%quantity, quantity_varval, dim=1)
+        if (n == 0) return
+        call fatal_error(error, where // ": " // input_text(expression%inputs(n)) // " is " &
+            & // "the value of a VARSUB (FUNCTION=USER(...)), whose derivatives rollcon does " &
+            & // "not know, read in " // what // "; write that VARIABLE as a FUNCTION " &
+            & // "expression", stat_input)
+    end subroutine refuse_user_variables
 
     !> A VARIABLE's FUNCTION reads TIME, measures of the state of markers the dataset has, and
     !> other VARIABLEs.

@@ -48,6 +48,12 @@ contains
             & new_unittest("vfosub-as-expressions", test_vfosub), &
             & new_unittest("vtosub-as-expressions", test_vtosub), &
             & new_unittest("vtosub-returns-nan", test_vtosub_nan), &
+            & new_unittest("reqsub-as-expressions", test_reqsub), &
+            & new_unittest("reqsub-returns-nan", test_reqsub_nan), &
+            & new_unittest("reqsub-missing", test_reqsub_missing), &
+            & new_unittest("varsub-as-expression", test_varsub), &
+            & new_unittest("varsub-returns-nan", test_varsub_nan), &
+            & new_unittest("varsub-in-motion-gcon", test_varsub_refused), &
             & new_unittest("utilities-as-expressions", test_utilities), &
             & new_unittest("c-sfosub-as-fortran", test_c_routine), &
             & new_unittest("two-user-files", test_two_files), &
@@ -104,6 +110,178 @@ contains
             & "vtorque.adm:10: VTORQUE/5: its VTOSUB of", "faulty/vtosub_nan.f", &
             & ", NaN, ", ") at TIME = 0.1", "a force must be finite"], error)
     end subroutine test_vtosub_nan
+
+    !> request.adm (REQUEST/7 by request_measures.f's REQSUB: TDISP through SYSARY, WX, WY,
+    !> WZ through SYSFNC, in a turned marker's axes) gives the columns req7_f2, _f3, _f4, _f6,
+    !> _f7, _f8 of request_expressions.adm (F2 ... F8 written as those measures) at every row.
+    !> The REQUEST changes nothing of the motion, so both runs integrate the same equations
+    !> with the same arithmetic and their part columns are equal to the last bit; the request's
+    !> columns then differ only by the rounding of the unit scalings (1 here) and of PAR(3)
+    !> times the measure: 1e-13 bounds that on values of size 1 to 5 (2.5 times rates of 2),
+    !> and a component in the wrong axes or a wrong sign differs by 1e-2 or more.
+    subroutine test_reqsub(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(history_type) :: user, expressions
+        type(job_type) :: job
+        type(job_result_type) :: ran
+        real(wp) :: largest, d
+        integer :: k, c, u_column, e_column, row
+        character(len=*), parameter :: columns(6) = [character(len=7) :: "req7_f2", &
+            & "req7_f3", "req7_f4", "req7_f6", "req7_f7", "req7_f8"]
+
+        call run_user(folder // "request.adm", ["request_measures.f"], 10.0_wp, user, error)
+        if (allocated(error)) return
+        call load_job(folder // "request_expressions.adm", job, error)
+        if (allocated(error)) return
+        job%output_dir = ""
+        job%quiet = .true.
+        call run_job(job, ran, error, expressions)
+        if (allocated(error)) return
+        if (user%count /= expressions%count .or. user%count < 101) then
+            call fatal_error(error, to_text(user%count) // " rows with the REQSUB, " &
+                & // to_text(expressions%count) // " with expressions")
+            return
+        end if
+        largest = 0.0_wp
+        do c = 1, 12
+            largest = max(largest, maxval(abs(user%part_values(1, c) &
+                & - expressions%part_values(1, c))))
+        end do
+        call check(error, largest == 0.0_wp, "the part columns differ by " // to_text(largest))
+        if (allocated(error)) return
+        do k = 1, size(columns)
+            u_column = user%layout%column(columns(k))
+            e_column = expressions%layout%column(columns(k))
+            if (u_column == 0 .or. e_column == 0) then
+                call fatal_error(error, "no column " // columns(k) // " (REQSUB run: " &
+                    & // to_text(u_column) // ", expressions: " // to_text(e_column) // ")")
+                return
+            end if
+            largest = 0.0_wp
+            do row = 1, user%count
+                d = abs(user%rows(u_column, row) - expressions%rows(e_column, row))
+                largest = max(largest, d)
+            end do
+            call check(error, largest <= 1.0e-13_wp, columns(k) // ": the REQSUB's column " &
+                & // "differs from the expression's by " // to_text(largest))
+            if (allocated(error)) return
+            ! the column moves: a constant (or a zero) could not tell a wrong component
+            call check(error, maxval(user%rows(u_column, :user%count)) &
+                & - minval(user%rows(u_column, :user%count)) > 1.0e-2_wp, columns(k) &
+                & // " hardly moves over the run")
+            if (allocated(error)) return
+        end do
+    end subroutine test_reqsub
+
+    !> A REQSUB returning NaN in RESULT(3) after t = 0.1 s: a clean error naming the file, line
+    !> and REQUEST, the routine, the values and a TIME past 0.1.
+    subroutine test_reqsub_nan(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(history_type) :: history
+        type(error_type), allocatable :: run_error
+
+        call run_user(folder // "request.adm", ["faulty/reqsub_nan.f"], 10.0_wp, history, &
+            & run_error)
+        call expect_message(run_error, [character(len=60) :: &
+            & "request.adm:12: REQUEST/7: its REQSUB of", "faulty/reqsub_nan.f", &
+            & ", NaN, ", ") at TIME = 0.1", "a request's values must be finite"], error)
+    end subroutine test_reqsub_nan
+
+    !> request.adm given a file with no REQSUB: refused naming the REQUEST, its line and what
+    !> to give.
+    subroutine test_reqsub_missing(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(history_type) :: history
+        type(error_type), allocatable :: run_error
+
+        call run_user(folder // "request.adm", ["vtorque_spring.f"], 10.0_wp, history, &
+            & run_error)
+        call expect_message(run_error, [character(len=80) :: &
+            & "request.adm:12: REQUEST/7 FUNCTION=USER(...): no REQSUB serves it", &
+            & "SUBROUTINE REQSUB"], error)
+    end subroutine test_reqsub_missing
+
+    !> variable.adm (SFORCE/2 reading VARVAL(3), VARIABLE/3 by variable_stretch.f's VARSUB:
+    !> DM through SYSFNC less PAR(3)) gives the rows of variable_expressions.adm (VARIABLE/3 =
+    !> DM(20, 2) - 1) to twin_tolerance in every part coordinate and rate, and its column var3
+    !> the twin's to varsub_tolerance. The equations are the same functions of the state; a
+    !> VARSUB's partials are not known and are zero where the Newton matrix takes an
+    !> expression's partials (a VARVAL jet is a constant), which may change the corrector's
+    !> iterations and so the step sequence, not what the integrator converges to: the rows may
+    !> differ by the integrators' global error (twin_tolerance, above). var3 is DM - 1 of the
+    !> same rows, so it differs by no more than the positions: varsub_tolerance =
+    !> twin_tolerance. (Measured: no difference, while a force statement's partials are not in
+    !> the Newton matrix.) A wrong free length (PAR(3) = 1.01) moves the rows by 0.086.
+    subroutine test_varsub(error)
+        type(error_type), allocatable, intent(out) :: error
+        real(wp), parameter :: varsub_tolerance = twin_tolerance
+        type(history_type) :: user, expressions
+        type(job_type) :: job
+        type(job_result_type) :: ran
+        real(wp) :: largest
+        integer :: u_column, e_column
+
+        call compare_twins("variable", ["variable_stretch.f"], error)
+        if (allocated(error)) return
+        call run_user(folder // "variable.adm", ["variable_stretch.f"], 10.0_wp, user, error)
+        if (allocated(error)) return
+        call load_job(folder // "variable_expressions.adm", job, error)
+        if (allocated(error)) return
+        job%output_dir = ""
+        job%quiet = .true.
+        call run_job(job, ran, error, expressions)
+        if (allocated(error)) return
+        u_column = user%layout%column("var3")
+        e_column = expressions%layout%column("var3")
+        if (u_column == 0 .or. e_column == 0 .or. user%count /= expressions%count) then
+            call fatal_error(error, "no column var3, or not as many rows (VARSUB run: column " &
+                & // to_text(u_column) // ", " // to_text(user%count) // " rows; expression: " &
+                & // to_text(e_column) // ", " // to_text(expressions%count) // ")")
+            return
+        end if
+        largest = maxval(abs(user%rows(u_column, :user%count) &
+            & - expressions%rows(e_column, :expressions%count)))
+        call check(error, largest <= varsub_tolerance, "var3: the VARSUB's value differs " &
+            & // "from the expression's by " // to_text(largest))
+        if (allocated(error)) return
+        ! the spring stretches and relaxes: a constant could not tell a wrong value
+        call check(error, maxval(user%rows(u_column, :user%count)) &
+            & - minval(user%rows(u_column, :user%count)) > 1.0e-2_wp, "var3 hardly moves")
+    end subroutine test_varsub
+
+    !> A VARSUB returning NaN after t = 0.1 s: a clean error naming the file, line and
+    !> VARIABLE, the routine, the value and a TIME past 0.1.
+    subroutine test_varsub_nan(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(history_type) :: history
+        type(error_type), allocatable :: run_error
+
+        call run_user(folder // "variable.adm", ["faulty/varsub_nan.f"], 10.0_wp, history, &
+            & run_error)
+        call expect_message(run_error, [character(len=60) :: &
+            & "variable.adm:10: VARIABLE/3: its VARSUB of", "faulty/varsub_nan.f", &
+            & "returned VALUE = NaN at TIME = 0.1", "a VARIABLE's value must be finite"], error)
+    end subroutine test_varsub_nan
+
+    !> A MOTION and a GCON reading a VARSUB's VARIABLE are refused, naming the statement and
+    !> line (their derivatives are taken exactly; a VARSUB's are not known).
+    subroutine test_varsub_refused(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(history_type) :: history
+        type(error_type), allocatable :: run_error
+
+        call run_user(folder // "variable_motion.adm", ["variable_stretch.f"], 10.0_wp, &
+            & history, run_error)
+        call expect_message(run_error, [character(len=80) :: &
+            & "variable_motion.adm:11: MOTION/1 FUNCTION: VARVAL(3) is the value of a VARSUB", &
+            & "a MOTION's function"], error)
+        if (allocated(error)) return
+        call run_user(folder // "variable_gcon.adm", ["variable_stretch.f"], 10.0_wp, &
+            & history, run_error)
+        call expect_message(run_error, [character(len=80) :: &
+            & "variable_gcon.adm:10: GCON/1 FUNCTION: VARVAL(3) is the value of a VARSUB", &
+            & "a GCON's function"], error)
+    end subroutine test_varsub_refused
 
     !> utilities.adm (SFORCE/2 by sforce_utilities.f's SFOSUB, calling AKISPL and CUBSPL on
     !> the model's SPLINE/3, STEP and RCNVRT) gives the rows of utilities_expressions.adm,
@@ -216,7 +394,7 @@ contains
 
         call run_user(folder // "user_forces.adm", ["gforce_bushing.f"], 10.0_wp, history, &
             & run_error)
-        call expect_message(run_error, [character(len=70) :: &
+        call expect_message(run_error, [character(len=80) :: &
             & "user_forces.adm:15: SFORCE/2 FUNCTION=USER(...): no SFOSUB serves it", &
             & "SUBROUTINE SFOSUB"], error)
     end subroutine test_missing
@@ -229,7 +407,7 @@ contains
 
         call run_user(folder // "two_files.adm", ["sforce_spring.f"], 10.0_wp, history, &
             & run_error)
-        call expect_message(run_error, [character(len=70) :: &
+        call expect_message(run_error, [character(len=80) :: &
             & "two_files.adm:13: SFORCE/3 ROUTINE=sforce_cubic::SFOSUB: no SFOSUB", &
             & "ROUTINE=FILE::SFOSUB"], error)
     end subroutine test_unknown_routine

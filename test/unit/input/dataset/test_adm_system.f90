@@ -208,7 +208,7 @@ contains
             & "VARIABLE/7, FUNCTION=DX(33)", &
             & "DIFF/7, FUNCTION=-DIF(8), IC=1", &
             & "DIFF/7, FUNCTION=-DIF(7), IC=1, 2, 3", &
-            & "VARIABLE/7, FUNCTION=USER(1, 2)", &
+            & "VARIABLE/7, FUNCTION=1, ROUTINE=v::VARSUB", &
             & "SPLINE/2, X=0, 1, 2, Y=0, 1, 0"]
         integer, parameter :: at(size(replaced)) = [6, 6, 6, 12, 9, 9, 9, 9, 9, 9, 7]
         character(len=320), parameter :: expected(size(replaced)) = [character(len=320) :: &
@@ -228,8 +228,8 @@ contains
             & ":9: DIFF/7 FUNCTION: DIF(8): no DIFF/8 in the dataset", &
             & ":9: DIFF/7 IC: expected one or two numbers (IC=r1[, r2]: the initial DIF and, " &
             & // "for an IMPLICIT DIFF, the first guess of the initial DIF1)", &
-            & ":9: VARIABLE/7 FUNCTION: FUNCTION=USER(...) (a VARSUB) is not supported; " &
-            & // "write the variable as an expression", &
+            & ":9: VARIABLE/7 ROUTINE: names a VARSUB, which serves a FUNCTION=USER(r1, " &
+            & // "..., r30) only", &
             & ":8: SFORCE/5: CUBSPL reads SPLINE/2 (line 7), of 3 points; a cubic spline " &
             & // "needs at least 4"]
         character(len=64) :: lines(size(curves))
