@@ -122,31 +122,14 @@ contains
     subroutine test_reqsub(error)
         type(error_type), allocatable, intent(out) :: error
         type(history_type) :: user, expressions
-        type(job_type) :: job
-        type(job_result_type) :: ran
         real(wp) :: largest, d
-        integer :: k, c, u_column, e_column, row
+        integer :: k, worst, u_column, e_column, row
         character(len=*), parameter :: columns(6) = [character(len=7) :: "req7_f2", &
             & "req7_f3", "req7_f4", "req7_f6", "req7_f7", "req7_f8"]
 
-        call run_user(folder // "request.adm", ["request_measures.f"], 10.0_wp, user, error)
+        call run_twins("request", ["request_measures.f"], user, expressions, error)
         if (allocated(error)) return
-        call load_job(folder // "request_expressions.adm", job, error)
-        if (allocated(error)) return
-        job%output_dir = ""
-        job%quiet = .true.
-        call run_job(job, ran, error, expressions)
-        if (allocated(error)) return
-        if (user%count /= expressions%count .or. user%count < 101) then
-            call fatal_error(error, to_text(user%count) // " rows with the REQSUB, " &
-                & // to_text(expressions%count) // " with expressions")
-            return
-        end if
-        largest = 0.0_wp
-        do c = 1, 12
-            largest = max(largest, maxval(abs(user%part_values(1, c) &
-                & - expressions%part_values(1, c))))
-        end do
+        call part_difference(user, expressions, largest, worst)
         call check(error, largest == 0.0_wp, "the part columns differ by " // to_text(largest))
         if (allocated(error)) return
         do k = 1, size(columns)
@@ -304,7 +287,7 @@ contains
         type(error_type), allocatable, intent(out) :: error
         type(history_type) :: c_run, fortran_run
         real(wp) :: largest
-        integer :: c
+        integer :: worst
 
         call run_user(folder // "spring.adm", ["sforce_spring.c"], 10.0_wp, c_run, error)
         if (allocated(error)) return
@@ -315,11 +298,7 @@ contains
                 & // to_text(fortran_run%count) // " with the Fortran one")
             return
         end if
-        largest = 0.0_wp
-        do c = 1, 12
-            largest = max(largest, maxval(abs(c_run%part_values(1, c) &
-                & - fortran_run%part_values(1, c))))
-        end do
+        call part_difference(c_run, fortran_run, largest, worst)
         call check(error, largest == 0.0_wp, "the C routine's rows differ from the " &
             & // "Fortran routine's by " // to_text(largest))
     end subroutine test_c_routine
@@ -520,10 +499,24 @@ contains
         character(len=*), intent(in) :: name, files(:)
         type(error_type), allocatable, intent(out) :: error
         type(history_type) :: user, expressions
+        real(wp) :: largest
+        integer :: worst
+
+        call run_twins(name, files, user, expressions, error)
+        if (allocated(error)) return
+        call part_difference(user, expressions, largest, worst)
+        call check(error, largest <= twin_tolerance, name // ": the runs differ by " &
+            & // to_text(largest) // " in coordinate " // to_text(worst) // " of part 2")
+    end subroutine compare_twins
+
+    !> folder//NAME.adm run with the user's files and its twin folder//NAME_expressions.adm run
+    !> as a job: their rows (both at least 101, as many in each).
+    subroutine run_twins(name, files, user, expressions, error)
+        character(len=*), intent(in) :: name, files(:)
+        type(history_type), intent(out) :: user, expressions
+        type(error_type), allocatable, intent(out) :: error
         type(job_type) :: job
         type(job_result_type) :: ran
-        real(wp) :: largest
-        integer :: c, worst
 
         call run_user(folder // name // ".adm", files, 10.0_wp, user, error)
         if (allocated(error)) return
@@ -536,19 +529,26 @@ contains
         if (user%count /= expressions%count .or. user%count < 101) then
             call fatal_error(error, name // ": " // to_text(user%count) // " rows with user " &
                 & // "routines, " // to_text(expressions%count) // " with expressions")
-            return
         end if
+    end subroutine run_twins
+
+    !> The largest difference between two runs' rows over the first part's 12 coordinates and
+    !> rates, and the column (1..12) where it is (0 when the rows agree).
+    subroutine part_difference(a, b, largest, worst)
+        type(history_type), intent(in) :: a, b
+        real(wp), intent(out) :: largest
+        integer, intent(out) :: worst
+        integer :: c
+
         largest = 0.0_wp
         worst = 0
         do c = 1, 12
-            associate (d => maxval(abs(user%part_values(1, c) - expressions%part_values(1, c))))
+            associate (d => maxval(abs(a%part_values(1, c) - b%part_values(1, c))))
                 if (d > largest) worst = c
                 largest = max(largest, d)
             end associate
         end do
-        call check(error, largest <= twin_tolerance, name // ": the runs differ by " &
-            & // to_text(largest) // " in coordinate " // to_text(worst) // " of part 2")
-    end subroutine compare_twins
+    end subroutine part_difference
 
     !> Run folder//faulty/NAME.f (with gforce_bushing.f for GFORCE/1) on user_forces.adm with
     !> the time limit per call; the run must fail with an error holding every piece.
