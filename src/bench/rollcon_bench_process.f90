@@ -5,9 +5,9 @@
 !> (reading the scene, setting up, the summary file); and the scene file or dataset that runs a
 !> scene or a dataset with other run settings (the benchmark's whole-process column).
 module rollcon_bench_process
-    use, intrinsic :: iso_c_binding, only : c_int, c_long
     use, intrinsic :: iso_fortran_env, only : int64
     use rollcon_kinds, only : wp
+    use rollcon_clock, only : cpu_seconds, cpu_children
     use rollcon_error, only : error_type, fatal_error, stat_io
     use rollcon_text, only : to_text, shell_quote, lower_case, upper_case
     use rollcon_run_settings, only : run_settings_type
@@ -29,28 +29,6 @@ module rollcon_bench_process
         !> cpu - startup_cpu - integration_cpu: scene reading, set-up, summary
         real(wp) :: rest_cpu = 0.0_wp
     end type process_cost_type
-
-    !> struct timeval and struct rusage of Linux (x86_64 and other LP64 systems)
-    type, bind(c) :: timeval_type
-        integer(c_long) :: seconds, microseconds
-    end type timeval_type
-    type, bind(c) :: rusage_type
-        type(timeval_type) :: user, system
-        !> maxrss ... nivcsw, not read
-        integer(c_long) :: rest(14)
-    end type rusage_type
-
-    !> getrusage's who for the terminated and waited-for children (and theirs)
-    integer(c_int), parameter :: rusage_children = -1
-
-    interface
-        function c_getrusage(who, usage) result(stat) bind(c, name="getrusage")
-            import :: c_int, rusage_type
-            integer(c_int), value :: who
-            type(rusage_type), intent(out) :: usage
-            integer(c_int) :: stat
-        end function c_getrusage
-    end interface
 
 contains
 
@@ -119,25 +97,16 @@ contains
         real(wp), intent(out) :: cpu
         real(wp), intent(out), optional :: wall
         integer, intent(out) :: stat
-        type(rusage_type) :: before, after
+        real(wp) :: before
         integer(int64) :: start, finish, rate
-        integer(c_int) :: flag
 
-        flag = c_getrusage(rusage_children, before)
+        before = cpu_seconds(cpu_children)
         call system_clock(start, rate)
         call execute_command_line(command, exitstat=stat)
         call system_clock(finish)
-        flag = c_getrusage(rusage_children, after)
-        cpu = seconds(after%user) + seconds(after%system) - seconds(before%user) &
-            & - seconds(before%system)
+        cpu = cpu_seconds(cpu_children) - before
         if (present(wall)) wall = real(finish - start, wp)/real(rate, wp)
     end subroutine child_cpu
-
-    pure real(wp) function seconds(time)
-        type(timeval_type), intent(in) :: time
-
-        seconds = real(time%seconds, wp) + 1.0e-6_wp*real(time%microseconds, wp)
-    end function seconds
 
     !> A copy of the scene file source_path at path whose &run group is settings (every run
     !> key written; the source's own &run group left out): the same scene run another way.

@@ -7,7 +7,7 @@
 module rollcon_study_run
     use, intrinsic :: iso_fortran_env, only : error_unit
     use rollcon_kinds, only : wp
-    use rollcon_clock, only : wall_seconds
+    use rollcon_clock, only : wall_seconds, cpu_seconds, cpu_self, cpu_children
     use rollcon_error, only : error_type, fatal_error, stat_io
     use rollcon_c_stream, only : c_stream_type
     use rollcon_file_lock, only : file_lock_type
@@ -234,7 +234,7 @@ contains
         integer :: k
 
         first = ""
-        call cpu_time(cpu_start)
+        cpu_start = cpu_seconds(cpu_self) + cpu_seconds(cpu_children)
         do k = 1, size(study%parameters)
             overrides(k)%name = study%parameters(k)%group // "%" // study%parameters(k)%key
             overrides(k)%value = trim(plan%texts(k, i))
@@ -260,7 +260,8 @@ contains
             result%outcome = outcome_refused
             result%message = error%message
         else
-            call cpu_time(cpu_end)
+            ! the child that ran a user routine has ended and been waited for: its time counts
+            cpu_end = cpu_seconds(cpu_self) + cpu_seconds(cpu_children)
             call measure_case(ran%summary, history, cpu_end - cpu_start, result)
             if (allocated(error)) then
                 result%outcome = outcome_failed
