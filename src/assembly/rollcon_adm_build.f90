@@ -31,6 +31,7 @@ module rollcon_adm_build
         & declare_user_force, evaluate_user_forces, take_user_force_error, set_system_splines, &
         & user_variable_type, set_user_variables, declare_user_variables, evaluate_user_variables
     use rollcon_system_routine_contract, only : routine_varsub, variable_routine_name
+    use rollcon_user_data, only : user_string_type, user_array_type, set_user_data
     use rollcon_spline, only : spline_type, new_spline
     use rollcon_force_routine_contract, only : routine_names
     use rollcon_model, only : model_type, setup_model, served_by_model_ucosub, force_request_type
@@ -227,6 +228,7 @@ contains
         end do
         call set_system_markers(markers, adm%units%length, adm%units%time)
         call give_splines(adm)
+        call give_user_data(adm)
         ! the VARSUBs first: a force may read their values
         if (user_variables) then
             call declare_user_variables(0.0_wp, q0, u0, error)
@@ -709,6 +711,34 @@ contains
         end if
         call set_system_splines(curves)
     end subroutine give_splines
+
+    !> The model's STRINGs and ARRAYs, for a user routine's GTSTRG and GTARAY
+    !> (rollcon_user_data).
+    subroutine give_user_data(adm)
+        type(adm_model_type), intent(in) :: adm
+        type(user_string_type), allocatable :: strings(:)
+        type(user_array_type), allocatable :: arrays(:)
+        integer :: i
+
+        allocate(strings(0), arrays(0))
+        if (allocated(adm%strings)) then
+            deallocate(strings)
+            allocate(strings(size(adm%strings)))
+            do i = 1, size(adm%strings)
+                strings(i)%id = adm%strings(i)%id
+                strings(i)%text = adm%strings(i)%text
+            end do
+        end if
+        if (allocated(adm%arrays)) then
+            deallocate(arrays)
+            allocate(arrays(size(adm%arrays)))
+            do i = 1, size(adm%arrays)
+                arrays(i)%id = adm%arrays(i)%id
+                arrays(i)%numbers = adm%arrays(i)%numbers
+            end do
+        end if
+        call set_user_data(strings, arrays)
+    end subroutine give_user_data
 
     !> The dataset's VARIABLEs served by VARSUBs (FUNCTION=USER), each with the entry of its
     !> routine (the model's own VARSUB, or the one its ROUTINE= names), given to

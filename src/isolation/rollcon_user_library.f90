@@ -130,7 +130,8 @@ contains
         if (.not. c_associated(self%handle)) then
             call fatal_error(error, self%source // ": the shared library built from it cannot be " &
                 & // "loaded (" // last_library_error() // "); a routine may call only UCOVAR, " &
-                & // "ERRMES, SYSFNC, SYSARY, TIMGET and what it defines itself", stat_ucon)
+                & // "ERRMES, SYSFNC, SYSARY, TIMGET, STEP, RCNVRT, AKISPL, CUBSPL, GTSTRG, " &
+                & // "GTARAY, ISTRNG, RSTRNG and what it defines itself", stat_ucon)
             return
         end if
         call install_host_hooks(self%handle, self%library, error)

@@ -1,5 +1,6 @@
 ! SPDX-License-Identifier: MIT
-!> UCOVAR, ERRMES, SYSFNC, SYSARY, TIMGET, STEP, RCNVRT, AKISPL and CUBSPL for a user's
+!> UCOVAR, ERRMES, SYSFNC, SYSARY, TIMGET, STEP, RCNVRT, AKISPL, CUBSPL, GTSTRG, GTARAY,
+!> ISTRNG and RSTRNG for a user's
 !> routine loaded at run time: the forwarding shim compiled into the user's shared library,
 !> and the host's side of it.
 !>
@@ -17,6 +18,7 @@ module rollcon_user_shim
     use rollcon_adams_utilities, only : step_utility, convert_rotation, rotation_size, &
         & rcnvrt_success, rcnvrt_failure
     use rollcon_spline, only : method_akima, method_cubic
+    use rollcon_user_data, only : string_data, array_data
     use rollcon_error, only : error_type, fatal_error, stat_ucon
     use rollcon_ucosub_contract, only : ucovar, errmes, max_ucon_vars
     use rollcon_dlopen, only : library_symbol
@@ -31,6 +33,8 @@ module rollcon_user_shim
     character(len=*), parameter :: shim_system_symbol = "rollcon_shim_install_system"
     !> Name of the shim's setter of STEP, RCNVRT, AKISPL and CUBSPL
     character(len=*), parameter :: shim_utilities_symbol = "rollcon_shim_install_utilities"
+    !> Name of the shim's setter of GTSTRG and GTARAY
+    character(len=*), parameter :: shim_data_symbol = "rollcon_shim_install_data"
 
     !> Source of the shim, free form; the host writes it to the cache as rollcon_shim.f90
     character(len=*), parameter :: shim_source_lines(*) = [character(len=96) :: &
@@ -49,6 +53,8 @@ module rollcon_user_shim
         & "    type(c_funptr), save :: step_target = c_null_funptr", &
         & "    type(c_funptr), save :: rcnvrt_target = c_null_funptr", &
         & "    type(c_funptr), save :: spline_target = c_null_funptr", &
+        & "    type(c_funptr), save :: gtstrg_target = c_null_funptr", &
+        & "    type(c_funptr), save :: gtaray_target = c_null_funptr", &
         & "    abstract interface", &
         & "        subroutine ucovar_hook(id, nparts, lparts, nvars, lvars) bind(c)", &
         & "            import :: c_int", &
@@ -108,6 +114,19 @@ module rollcon_user_shim
         & "            real(c_double), intent(out) :: array(3)", &
         & "            integer(c_int), intent(out) :: errflg", &
         & "        end subroutine spline_hook", &
+        & "        subroutine gtstrg_hook(id, string, capacity, nchars, istat) bind(c)", &
+        & "            import :: c_int, c_size_t, c_char", &
+        & "            integer(c_int), intent(in) :: id", &
+        & "            character(kind=c_char), intent(inout) :: string(*)", &
+        & "            integer(c_size_t), value :: capacity", &
+        & "            integer(c_int), intent(out) :: nchars, istat", &
+        & "        end subroutine gtstrg_hook", &
+        & "        subroutine gtaray_hook(id, array, number, istat) bind(c)", &
+        & "            import :: c_int, c_double", &
+        & "            integer(c_int), intent(in) :: id", &
+        & "            real(c_double), intent(inout) :: array(*)", &
+        & "            integer(c_int), intent(out) :: number, istat", &
+        & "        end subroutine gtaray_hook", &
         & "    end interface", &
         & "end module rollcon_shim_targets", &
         & "", &
@@ -141,6 +160,15 @@ module rollcon_user_shim
         & "    rcnvrt_target = rcnvrt_address", &
         & "    spline_target = spline_address", &
         & "end subroutine rollcon_shim_install_utilities", &
+        & "", &
+        & "subroutine rollcon_shim_install_data(gtstrg_address, gtaray_address) &", &
+        & "        & bind(c, name='rollcon_shim_install_data')", &
+        & "    use rollcon_shim_targets, only : c_funptr, gtstrg_target, gtaray_target", &
+        & "    implicit none", &
+        & "    type(c_funptr), value :: gtstrg_address, gtaray_address", &
+        & "    gtstrg_target = gtstrg_address", &
+        & "    gtaray_target = gtaray_address", &
+        & "end subroutine rollcon_shim_install_data", &
         & "", &
         & "subroutine ucovar(id, nparts, lparts, nvars, lvars)", &
         & "    use, intrinsic :: iso_c_binding, only : c_associated, c_f_procpointer", &
@@ -297,7 +325,65 @@ module rollcon_user_shim
         & "    call c_f_procpointer(spline_target, forward_spline)", &
         & "    call forward_spline(method, xval, zval, id, iord, array, failed)", &
         & "    errflg = failed /= 0", &
-        & "end subroutine rollcon_shim_spline"]
+        & "end subroutine rollcon_shim_spline", &
+        & "", &
+        & "subroutine gtstrg(id, string, nchars, istat)", &
+        & "    use, intrinsic :: iso_c_binding, only : c_associated, c_f_procpointer", &
+        & "    use rollcon_shim_targets, only : c_int, c_size_t, gtstrg_target, gtstrg_hook", &
+        & "    implicit none", &
+        & "    integer(c_int), intent(in) :: id", &
+        & "    character(len=*), intent(out) :: string", &
+        & "    integer(c_int), intent(out) :: nchars, istat", &
+        & "    procedure(gtstrg_hook), pointer :: forward_gtstrg", &
+        & "    string = ' '", &
+        & "    nchars = 0", &
+        & "    istat = -2", &
+        & "    if (.not. c_associated(gtstrg_target)) return", &
+        & "    call c_f_procpointer(gtstrg_target, forward_gtstrg)", &
+        & "    call forward_gtstrg(id, string, len(string, kind=c_size_t), nchars, istat)", &
+        & "end subroutine gtstrg", &
+        & "", &
+        & "subroutine gtaray(id, array, number, istat)", &
+        & "    use, intrinsic :: iso_c_binding, only : c_associated, c_f_procpointer", &
+        & "    use rollcon_shim_targets, only : c_int, c_double, gtaray_target, gtaray_hook", &
+        & "    implicit none", &
+        & "    integer(c_int), intent(in) :: id", &
+        & "    real(c_double), intent(inout) :: array(*)", &
+        & "    integer(c_int), intent(out) :: number, istat", &
+        & "    procedure(gtaray_hook), pointer :: forward_gtaray", &
+        & "    number = 0", &
+        & "    istat = -2", &
+        & "    if (.not. c_associated(gtaray_target)) return", &
+        & "    call c_f_procpointer(gtaray_target, forward_gtaray)", &
+        & "    call forward_gtaray(id, array, number, istat)", &
+        & "end subroutine gtaray", &
+        & "", &
+        & "subroutine istrng(number, string, length, istat)", &
+        & "    implicit none", &
+        & "    integer, intent(in) :: number", &
+        & "    character(len=*), intent(out) :: string", &
+        & "    integer, intent(out) :: length, istat", &
+        & "    character(len=24) :: text", &
+        & "    write(text, '(i0)') number", &
+        & "    length = len_trim(text)", &
+        & "    string = text(:length)", &
+        & "    istat = 0", &
+        & "    if (length > len(string)) istat = -1", &
+        & "end subroutine istrng", &
+        & "", &
+        & "subroutine rstrng(reel, string, length, istat)", &
+        & "    implicit none", &
+        & "    double precision, intent(in) :: reel", &
+        & "    character(len=*), intent(out) :: string", &
+        & "    integer, intent(out) :: length, istat", &
+        & "    character(len=32) :: text", &
+        & "    write(text, '(es24.16e3)') reel", &
+        & "    text = adjustl(text)", &
+        & "    length = len_trim(text)", &
+        & "    string = text(:length)", &
+        & "    istat = 0", &
+        & "    if (length > len(string)) istat = -1", &
+        & "end subroutine rstrng"]
 
     abstract interface
         !> The shim's setter (rollcon_shim_install in the source above)
@@ -323,6 +409,12 @@ module rollcon_user_shim
             !> Addresses of host_step, host_rcnvrt, host_spline
             type(c_funptr), value :: step_address, rcnvrt_address, spline_address
         end subroutine install_utilities_interface
+        !> The shim's setter of GTSTRG and GTARAY (rollcon_shim_install_data)
+        subroutine install_data_interface(gtstrg_address, gtaray_address) bind(c)
+            import :: c_funptr
+            !> Addresses of host_gtstrg, host_gtaray
+            type(c_funptr), value :: gtstrg_address, gtaray_address
+        end subroutine install_data_interface
     end interface
 
 contains
@@ -339,6 +431,7 @@ contains
         procedure(install_interface), pointer :: install
         procedure(install_system_interface), pointer :: install_system
         procedure(install_utilities_interface), pointer :: install_utilities
+        procedure(install_data_interface), pointer :: install_data
 
         address = library_symbol(handle, shim_install_symbol)
         if (.not. c_associated(address)) then
@@ -358,6 +451,10 @@ contains
         call c_f_procpointer(address, install_utilities)
         call install_utilities(c_funloc(host_step), c_funloc(host_rcnvrt), &
             & c_funloc(host_spline))
+        address = library_symbol(handle, shim_data_symbol)
+        if (.not. c_associated(address)) return
+        call c_f_procpointer(address, install_data)
+        call install_data(c_funloc(host_gtstrg), c_funloc(host_gtaray))
     end subroutine install_host_hooks
 
     !> The shim's STEP lands here: rollcon_adams_utilities' step_utility.
@@ -428,6 +525,42 @@ contains
             & int(id), int(iord), array, failed)
         errflg = merge(1_c_int, 0_c_int, failed)
     end subroutine host_spline
+
+    !> The shim's GTSTRG lands here: rollcon_user_data's string_data, the text written into
+    !> the caller's capacity characters.
+    subroutine host_gtstrg(id, string, capacity, nchars, istat) bind(c)
+        !> STRING id
+        integer(c_int), intent(in) :: id
+        !> The caller's STRING argument, and its length
+        character(kind=c_char), intent(inout) :: string(*)
+        integer(c_size_t), value :: capacity
+        !> Length of the text [characters]; rollcon_user_data's istat
+        integer(c_int), intent(out) :: nchars, istat
+        character(len=max(0, int(min(capacity, int(huge(1), c_size_t))))) :: text
+        integer :: i, n, status
+
+        call string_data(int(id), text, n, status)
+        do i = 1, len(text)
+            string(i) = text(i:i)
+        end do
+        nchars = int(n, c_int)
+        istat = int(status, c_int)
+    end subroutine host_gtstrg
+
+    !> The shim's GTARAY lands here: rollcon_user_data's array_data.
+    subroutine host_gtaray(id, array, number, istat) bind(c)
+        !> ARRAY id
+        integer(c_int), intent(in) :: id
+        !> The caller's storage, at least the ARRAY's size
+        real(c_double), intent(inout) :: array(*)
+        !> Number of values written; rollcon_user_data's istat
+        integer(c_int), intent(out) :: number, istat
+        integer :: n, status
+
+        call array_data(int(id), array, n, status)
+        number = int(n, c_int)
+        istat = int(status, c_int)
+    end subroutine host_gtaray
 
     !> The shim's SYSFNC lands here and goes on to rollcon_user_forces' system_function.
     subroutine host_sysfnc(name, name_length, ipar, nsize, value, errflg) bind(c)

@@ -31,10 +31,10 @@ module rollcon_adm_abbreviations
 
     !> The table (docs/datasets.md repeats it)
     type(place_type), parameter :: table(*) = [ &
-        & place_type("statement", "ACcgrav COUpler DIff END GCon GEar GForce INtegrator JOint " &
+        & place_type("statement", "ACcgrav ARray COUpler DIff END GCon GEar GForce INtegrator JOint " &
         & // "JPrim " &
         & // "MARker MOtion Output BUshing SPRingdamper VTorque " &
-        & // "PArt PInput POUtput SForce SImulate SPLine UCon UNits VAriable VForce DEbug " &
+        & // "PArt PInput POUtput SForce SImulate SPLine STring UCon UNits VAriable VForce DEbug " &
         & // "EQuilibrium GRaphics IC " &
         & // "Kinematics LIst MRequest NOlist PReferences REQuest RESults"), &
         & place_type("command", "SImulate INTegrator Output STOp DEBug PReferences " &
@@ -44,6 +44,8 @@ module rollcon_adm_abbreviations
         & place_type("VARIABLE", "Function Ic Routine"), &
         & place_type("DIFF", "Function IC IMplicit Static_hold Routine"), &
         & place_type("SPLINE", "X Y Z Linear_extrapolate"), &
+        & place_type("STRING", "String"), &
+        & place_type("ARRAY", "X Y U IC Size Numbers Variables"), &
         & place_type("PINPUT", "Variables"), &
         & place_type("POUTPUT", "Variables"), &
         & place_type("UCON", "Function Routine"), &

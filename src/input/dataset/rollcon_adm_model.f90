@@ -11,6 +11,7 @@ module rollcon_adm_model
     use rollcon_adm_joints, only : adm_joint_type
     use rollcon_adm_couplers, only : adm_gcon_type, adm_coupler_type, adm_gear_type
     use rollcon_adm_motions, only : adm_motion_type
+    use rollcon_adm_data, only : adm_string_type, adm_array_type
     use rollcon_adm_system, only : adm_variable_type, adm_spline_data_type, adm_plant_type, &
         & adm_diff_type
     implicit none
@@ -230,6 +231,10 @@ module rollcon_adm_model
         !> DIFF statements, in the order of the file (rollcon_adm_system), their VARIABLEs read
         !> in place (rollcon_adm_variables)
         type(adm_diff_type), allocatable :: diffs(:)
+        !> STRING and ARRAY statements, each in the order of the file (rollcon_adm_data): the
+        !> data user routines read with GTSTRG and GTARAY
+        type(adm_string_type), allocatable :: strings(:)
+        type(adm_array_type), allocatable :: arrays(:)
         !> Gravitational acceleration, ground axes [m/s^2] (zero without ACCGRAV)
         real(wp) :: gravity(3) = 0.0_wp
         type(adm_run_type) :: run

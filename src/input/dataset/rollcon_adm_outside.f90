@@ -11,7 +11,7 @@ module rollcon_adm_outside
     public :: outside_reason
 
     !> Kinds of statement outside the subset, each with its reason
-    integer, parameter :: kinds = 5
+    integer, parameter :: kinds = 4
     character(len=*), parameter :: reasons(kinds) = [character(len=160) :: &
         & "rollcon's constraints are UCONs, JOINTs, JPRIMs, GCONs, COUPLERs and GEARs: state " &
         & // "this one as a GCON expression, or as a UCON served by a UCOSUB (ucon/)", &
@@ -19,16 +19,13 @@ module rollcon_adm_outside
         & // "BUSHING are not in the subset: write the force as a GFORCE with FUNCTION " &
         & // "expressions", &
         & "sensors change a run as it goes (stop it, change its step): not in the subset", &
-        & "ARRAY and STRING are not in the subset: FUNCTION expressions read TIME, the " &
-        & // "measures of markers, VARVAL(id) and the SPLINEs of AKISPL and CUBSPL", &
         & "rollcon's bodies are rigid PARTs"]
     !> Statement names and the kind of each (statements of ADAMS's outputs are read:
     !> rollcon_adm_outputs)
-    character(len=*), parameter :: names(12) = [character(len=12) :: &
+    character(len=*), parameter :: names(10) = [character(len=12) :: &
         & "PTCV", "CVCV", "BEAM", "FIELD", "FRICTION", "CONTACT", "NFORCE", "SENSOR", &
-        & "ARRAY", "STRING", "FLEX_BODY", "POINT_MASS"]
-    integer, parameter :: kind_of(size(names)) = [1, 1, 2, 2, 2, 2, 2, &
-        & 3, 4, 4, 5, 5]
+        & "FLEX_BODY", "POINT_MASS"]
+    integer, parameter :: kind_of(size(names)) = [1, 1, 2, 2, 2, 2, 2, 3, 4, 4]
 
 contains
 

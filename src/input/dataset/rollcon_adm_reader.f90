@@ -25,6 +25,7 @@ module rollcon_adm_reader
     use rollcon_adm_couplers, only : read_gcon, read_coupler, read_gear
     use rollcon_adm_motions, only : read_motion
     use rollcon_adm_system, only : read_variable, read_spline, read_plant, read_diff
+    use rollcon_adm_data, only : read_string, read_array
     use rollcon_adm_variables, only : resolve_variables, add_plant_warning
     use rollcon_adm_outside, only : outside_reason
     use rollcon_adm_outputs, only : output_statement_names, output_needs_id, &
@@ -115,8 +116,8 @@ contains
         character(len=:), allocatable :: name
         !> The ids of the parts, markers, UCONs and forces (list_of), and of the statements
         !> read and not used that take one (output_key)
-        type(id_index_type) :: ids(13), output_ids
-        integer :: i, n(13), k, previous
+        type(id_index_type) :: ids(15), output_ids
+        integer :: i, n(15), k, previous
         logical :: seen(size(statement_names)), repeated
 
         do i = 1, size(text%statements)
@@ -134,14 +135,16 @@ contains
         allocate(model%variables(count(names == "VARIABLE")), &
             & model%splines(count(names == "SPLINE")), &
             & model%plants(count(names == "PINPUT" .or. names == "POUTPUT")), &
-            & model%diffs(count(names == "DIFF")))
+            & model%diffs(count(names == "DIFF")), model%strings(count(names == "STRING")), &
+            & model%arrays(count(names == "ARRAY")))
         ids = [new_id_index(size(model%parts)), new_id_index(size(model%markers)), &
             & new_id_index(size(model%ucons)), new_id_index(size(model%forces)), &
             & new_id_index(size(model%joints)), new_id_index(size(model%gcons)), &
             & new_id_index(size(model%couplers)), new_id_index(size(model%gears)), &
             & new_id_index(size(model%motions)), new_id_index(size(model%variables)), &
             & new_id_index(size(model%splines)), new_id_index(size(model%plants)), &
-            & new_id_index(size(model%diffs))]
+            & new_id_index(size(model%diffs)), new_id_index(size(model%strings)), &
+            & new_id_index(size(model%arrays))]
         output_ids = new_id_index(count([(name_index(names(i), output_statement_names) > 0, &
             & i = 1, size(names))]))
         n = 0
@@ -195,6 +198,8 @@ contains
         model%splines = model%splines(:n(11))
         model%plants = model%plants(:n(12))
         model%diffs = model%diffs(:n(13))
+        model%strings = model%strings(:n(14))
+        model%arrays = model%arrays(:n(15))
         model%requests = model%requests(:model%request_count)
         model%other_requests = model%other_requests(:model%other_request_count)
         model%unused = model%unused(:model%unused_count)
@@ -203,7 +208,7 @@ contains
 
     !> The list a statement's element goes to: 1 parts, 2 markers, 3 UCONs, 4 forces, 5 joints,
     !> 6 GCONs, 7 COUPLERs, 8 GEARs, 9 MOTIONs, 10 VARIABLEs, 11 SPLINEs, 12 PINPUTs and
-    !> POUTPUTs; 0 none.
+    !> POUTPUTs, 13 DIFFs, 14 STRINGs, 15 ARRAYs; 0 none.
     elemental integer function list_of(name) result(k)
         character(len=*), intent(in) :: name
 
@@ -234,6 +239,10 @@ contains
             k = 12
         case ("DIFF")
             k = 13
+        case ("STRING")
+            k = 14
+        case ("ARRAY")
+            k = 15
         case default
             k = 0
         end select
@@ -276,7 +285,7 @@ contains
         type(adm_statement_type), intent(in) :: statement
         logical, intent(in) :: repeated
         type(adm_model_type), intent(inout) :: model
-        integer, intent(inout) :: n(13)
+        integer, intent(inout) :: n(15)
         type(error_type), allocatable, intent(out) :: error
         character(len=:), allocatable :: where
 
@@ -339,6 +348,12 @@ contains
         case ("DIFF")
             n(13) = n(13) + 1
             call read_diff(path, where, statement, model%diffs(n(13)), error)
+        case ("STRING")
+            n(14) = n(14) + 1
+            call read_string(path, where, statement, model%strings(n(14)), error)
+        case ("ARRAY")
+            n(15) = n(15) + 1
+            call read_array(path, where, statement, model%arrays(n(15)), error)
         case ("SIMULATE")
             call read_simulate(path, where, statement, model%units, model%run, error)
         case ("INTEGRATOR")
@@ -459,7 +474,8 @@ contains
 
         needs_id = any(name == [character(len=12) :: "PART", "MARKER", "UCON", "SFORCE", &
             & "VFORCE", "GFORCE", "JOINT", "JPRIM", "GCON", "COUPLER", "GEAR", "MOTION", &
-            & "VTORQUE", "SPRINGDAMPER", "BUSHING", "VARIABLE", "SPLINE", "PINPUT", "POUTPUT", "DIFF"]) &
+            & "VTORQUE", "SPRINGDAMPER", "BUSHING", "VARIABLE", "SPLINE", "PINPUT", "POUTPUT", "DIFF", &
+            & "STRING", "ARRAY"]) &
             & .or. output_needs_id(name)
     end function needs_id
 

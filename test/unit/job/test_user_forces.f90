@@ -55,6 +55,7 @@ contains
             & new_unittest("varsub-returns-nan", test_varsub_nan), &
             & new_unittest("varsub-in-motion-gcon", test_varsub_refused), &
             & new_unittest("utilities-as-expressions", test_utilities), &
+            & new_unittest("data-utilities-as-expressions", test_data_utilities), &
             & new_unittest("c-sfosub-as-fortran", test_c_routine), &
             & new_unittest("two-user-files", test_two_files), &
             & new_unittest("sfosub-crashes", test_crashes), &
@@ -276,6 +277,18 @@ contains
 
         call compare_twins("utilities", ["sforce_utilities.f"], error)
     end subroutine test_utilities
+
+    !> data.adm (SFORCE/2 by sforce_data.f's SFOSUB, reading its constants from ARRAY/5 with
+    !> GTARAY and its sense from STRING/7 with GTSTRG, and checking GTARAY's and GTSTRG's
+    !> answers for a missing id and a short STRING, ISTRNG's and RSTRNG's texts, as it goes:
+    !> a wrong answer stops the run) gives the rows of data_expressions.adm, the same force
+    !> with the numbers written in, to twin_tolerance. A number read from the wrong place, or
+    !> the sense reversed, moves the part by far more.
+    subroutine test_data_utilities(error)
+        type(error_type), allocatable, intent(out) :: error
+
+        call compare_twins("data", ["sforce_data.f"], error)
+    end subroutine test_data_utilities
 
     !> spring.adm with sforce_spring.c, the C twin of sforce_spring.f (the prototypes of
     !> docs/datasets.md), compiled by the system's C compiler: the rows of the Fortran

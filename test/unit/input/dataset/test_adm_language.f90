@@ -169,7 +169,7 @@ contains
         replaced(1) = "S/5, I=3, J=4, TRANSLATION, FUNCTION=TIME"
         expected(1) = ":10: 'S' is too short an abbreviation of a statement: the shortest ADAMS" &
             & // " takes are SF for SFORCE, SI for SIMULATE, SPL for SPLINE, SPR for" &
-            & // " SPRINGDAMPER (docs/datasets.md, Abbreviations)"
+            & // " SPRINGDAMPER, ST for STRING (docs/datasets.md, Abbreviations)"
         replaced(2) = "G/5, I=3, FX=0, FY=0, FZ=1, TX=0, TY=0, TZ=0"
         expected(2) = ":10: 'G' is too short an abbreviation of a statement: the shortest ADAMS" &
             & // " takes are GC for GCON, GE for GEAR, GF for GFORCE, GR for GRAPHICS" &

@@ -13,9 +13,9 @@ module test_adm_refusals
 
     !> The supported statements, as a refusal lists them
     character(len=*), parameter :: supported = &
-        & "(ACCGRAV, BUSHING, COUPLER, DIFF, END, GCON, GEAR, GFORCE, INTEGRATOR, JOINT, JPRIM," &
-        & // " MARKER, MOTION, OUTPUT, PART, PINPUT, POUTPUT, SFORCE, SIMULATE, SPLINE," &
-        & // " SPRINGDAMPER, UCON, UNITS, VARIABLE, VFORCE, VTORQUE)"
+        & "(ACCGRAV, ARRAY, BUSHING, COUPLER, DIFF, END, GCON, GEAR, GFORCE, INTEGRATOR, JOINT," &
+        & // " JPRIM, MARKER, MOTION, OUTPUT, PART, PINPUT, POUTPUT, SFORCE, SIMULATE, SPLINE," &
+        & // " SPRINGDAMPER, STRING, UCON, UNITS, VARIABLE, VFORCE, VTORQUE)"
 
 contains
 
@@ -38,8 +38,8 @@ contains
     !> Statements outside the subset, ambiguous, misplaced, repeated, with or without an id.
     subroutine test_statements(error)
         type(error_type), allocatable, intent(out) :: error
-        character(len=120) :: replaced(13)
-        character(len=480) :: expected(13)
+        character(len=120) :: replaced(16)
+        character(len=480) :: expected(16)
 
         replaced(1) = "PTCV/9, I=3, J=4"
         expected(1) = ":7: 'PTCV' is not a statement of the supported subset " // supported &
@@ -60,10 +60,11 @@ contains
             & // "; force elements other than SFORCE, VFORCE, GFORCE, VTORQUE, SPRINGDAMPER" &
             & // " and BUSHING are not in the subset: write the force as a GFORCE with" &
             & // " FUNCTION expressions"
-        replaced(5) = "ARRAY/1, NUMBERS=1, 2"
-        expected(5) = ":7: 'ARRAY' is not a statement of the supported subset " // supported &
-            & // "; ARRAY and STRING are not in the subset: FUNCTION expressions read TIME," &
-            & // " the measures of markers, VARVAL(id) and the SPLINEs of AKISPL and CUBSPL"
+        replaced(5) = "ARRAY/1, X, SIZE=2"
+        expected(5) = ":7: ARRAY/1 X: an ARRAY of the inputs, states or outputs of an LSE, " &
+            & // "GSE or TFSISO (X, Y, U, VARIABLES) is not supported: those statements are " &
+            & // "not in the subset; an ARRAY here holds NUMBERS=r1, ... for a user's " &
+            & // "routine (GTARAY)"
         replaced(6) = "FLEX_BODY/1"
         expected(6) = ":7: 'FLEX_BODY' is not a statement of the supported subset " // supported &
             & // "; rollcon's bodies are rigid PARTs"
@@ -72,7 +73,7 @@ contains
         replaced(8) = "S/1, I=3"
         expected(8) = ":7: 'S' is too short an abbreviation of a statement: the shortest ADAMS" &
             & // " takes are SF for SFORCE, SI for SIMULATE, SPL for SPLINE, SPR for" &
-            & // " SPRINGDAMPER (docs/datasets.md, Abbreviations)"
+            & // " SPRINGDAMPER, ST for STRING (docs/datasets.md, Abbreviations)"
         replaced(9) = "END|PART/6, MASS=1"
         expected(9) = ":15: a statement after END"
         replaced(10) = "INTEGRATOR/ERROR=1e-8|INTEG/ERROR=1e-9"
@@ -83,7 +84,17 @@ contains
         expected(12) = ":7: MARKER needs an id (MARKER/id, ...)"
         replaced(13) = "OUTPUT/REQSAVE=1"
         expected(13) = ":13: OUTPUT REQSAVE takes no value"
-        call check_refusals(error, [7, 7, 7, 7, 7, 7, 7, 7, 14, 12, 9, 7, 13], replaced, expected)
+        ! the data of user routines (GTARAY, GTSTRG)
+        replaced(14) = "ARRAY/2, IC, SIZE=3, NUMBERS=1, 2"
+        expected(14) = ":7: ARRAY/2: SIZE=3 but NUMBERS gives 2 values"
+        replaced(15) = "ARRAY/4, IC"
+        expected(15) = ":7: ARRAY/4: NUMBERS=r1, ... is missing (an ARRAY holds the numbers a " &
+            & // "user's routine reads with GTARAY)"
+        replaced(16) = "STRING/3"
+        expected(16) = ":7: STRING/3: STRING=text is missing (a STRING holds the text a " &
+            & // "user's routine reads with GTSTRG)"
+        call check_refusals(error, [7, 7, 7, 7, 7, 7, 7, 7, 14, 12, 9, 7, 13, 7, 7, 7], &
+            & replaced, expected)
     end subroutine test_statements
 
     !> Unknown, ambiguous, repeated keywords and values of the wrong form.
