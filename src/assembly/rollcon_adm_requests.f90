@@ -18,7 +18,7 @@ module rollcon_adm_requests
     use rollcon_text, only : to_text, place
     use rollcon_marker, only : marker_type
     use rollcon_expression, only : expression_type, quantity_kind, quantity_names, &
-        & kind_element_force, quantity_varval
+        & kind_element_force, quantity_varval, quantity_dif, quantity_dif1
     use rollcon_measures, only : input_text
     use rollcon_model, only : model_type, statement_joint, statement_jprim
     use rollcon_force, only : profile_statement
@@ -217,9 +217,9 @@ contains
     end function model_elements
 
     !> Every id an expression of a REQUEST reads exists (module header); the markers it reads
-    !> added to `markers` (once each). `where`: "file:line: REQUEST/id Fk". What rollcon has no
-    !> statement for (DIF, BEAM(...)) the reader took out of the request and named in the
-    !> warning (rollcon_adm_outputs).
+    !> added to `markers` (once each); a DIF(id) or DIF1(id) names a DIFF of the dataset.
+    !> `where`: "file:line: REQUEST/id Fk". What rollcon has no statement for (BEAM(...)) the
+    !> reader took out of the request and named in the warning (rollcon_adm_outputs).
     subroutine check_inputs(adm, elements, expression, where, markers, error)
         type(adm_model_type), intent(in) :: adm
         type(request_element_type), intent(in) :: elements(:)
@@ -234,6 +234,12 @@ contains
             associate (input => expression%inputs(n))
                 ! a VARSUB's VARIABLE (VARVAL(id) left in place): no marker
                 if (input%quantity == quantity_varval) cycle
+                if (input%quantity == quantity_dif .or. input%quantity == quantity_dif1) then
+                    if (any(adm%diffs%id == input%marker)) cycle
+                    call fatal_error(error, where // ": " // input_text(input) // ": no DIFF/" &
+                        & // to_text(input%marker) // " in the dataset", stat_input)
+                    return
+                end if
                 ids = [input%marker, input%j, input%k, input%l]
                 if (quantity_kind(input%quantity) == kind_element_force) then
                     kind = element_kind_of(input%quantity)

@@ -56,7 +56,8 @@ module rollcon_expression
     public :: quantity_dm, quantity_vm, quantity_vr, quantity_wm, quantity_ax, quantity_yaw, &
         & quantity_accx, quantity_accm, quantity_wdtx, quantity_wdtm, quantity_fx, quantity_fm, &
         & quantity_tx, quantity_tm, quantity_varval, quantity_dif, quantity_dif1, &
-        & quantity_joint, quantity_least_markers, quantity_most_markers, quantity_kind
+        & quantity_joint, quantity_orient, quantity_least_markers, quantity_most_markers, &
+        & quantity_kind, orient_systems, orient_components
     public :: kind_length, kind_velocity, kind_angular_velocity, kind_angle, kind_acceleration, &
         & kind_angular_acceleration, kind_force, kind_torque, kind_element, kind_element_force
 
@@ -109,35 +110,45 @@ module rollcon_expression
     !> Measures of markers and values of other statements an expression reads; quantity code
     !> q is quantity_names(q). The markers each takes (i, j, k, l; those not given are the
     !> ground origin and axes): quantity_least_markers to quantity_most_markers. The element
-    !> functions (JOINT ... CONTACT) take (id, jflag, comp, rm), VARVAL, DIF and DIF1 an id.
-    character(len=*), parameter :: quantity_names(57) = [character(len=8) :: "DX", "DY", "DZ", &
+    !> functions (JOINT ... CONTACT) take (id, jflag, comp, rm), VARVAL, DIF and DIF1 an id;
+    !> ORIENT(system, component, i[, j]) its system and component (expression_input_type's) and
+    !> markers i, j.
+    character(len=*), parameter :: quantity_names(58) = [character(len=8) :: "DX", "DY", "DZ", &
         & "VX", "VY", "VZ", "WX", "WY", "WZ", "PSI", "THETA", "PHI", "DM", "VM", "VR", "WM", &
         & "AX", "AY", "AZ", "YAW", "PITCH", "ROLL", "ACCX", "ACCY", "ACCZ", "ACCM", "WDTX", &
         & "WDTY", "WDTZ", "WDTM", "FX", "FY", "FZ", "FM", "TX", "TY", "TZ", "TM", "VARVAL", &
         & "DIF", "DIF1", "JOINT", "JPRIM", "MOTION", "SFORCE", "VFORCE", "VTORQUE", "GFORCE", &
-        & "BUSHING", "BEAM", "FIELD", "SPDP", "NFORCE", "PTCV", "CVCV", "FRICTION", "CONTACT"]
+        & "BUSHING", "BEAM", "FIELD", "SPDP", "NFORCE", "PTCV", "CVCV", "FRICTION", "CONTACT", &
+        & "ORIENT"]
     !> First code of each group (x, y, z or psi, theta, phi follow in order)
     integer, parameter :: quantity_dx = 1, quantity_vx = 4, quantity_wx = 7, quantity_psi = 10, &
         & quantity_dm = 13, quantity_vm = 14, quantity_vr = 15, quantity_wm = 16, &
         & quantity_ax = 17, quantity_yaw = 20, quantity_accx = 23, quantity_accm = 26, &
         & quantity_wdtx = 27, quantity_wdtm = 30, quantity_fx = 31, quantity_fm = 34, &
         & quantity_tx = 35, quantity_tm = 38, quantity_varval = 39, quantity_dif = 40, &
-        & quantity_dif1 = 41, quantity_joint = 42
-    integer, parameter :: quantity_least_markers(57) = [1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, &
+        & quantity_dif1 = 41, quantity_joint = 42, quantity_orient = 58
+    !> ADAMS's ORIENT: the orientation systems (1 to 29) and the number of components of each:
+    !> 1-24 three angles, 25 AX, AY, AZ, 26 YAW, PITCH, ROLL, 27 four Euler parameters, 28
+    !> three Rodrigues parameters, 29 nine direction cosines (docs/datasets.md, "ORIENT")
+    integer, parameter :: orient_systems = 29
+    integer, parameter :: orient_components(orient_systems) = [3, 3, 3, 3, 3, 3, 3, 3, 3, 3, &
+        & 3, 3, 3, 3, 3, 3, 3, 3, 3, 3, 3, 3, 3, 3, 3, 3, 4, 3, 9]
+    integer, parameter :: quantity_least_markers(58) = [1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, &
         & 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, &
-        & 1, 4, 4, 4, 4, 4, 4, 4, 4, 4, 4, 4, 4, 4, 4, 4, 4]
-    integer, parameter :: quantity_most_markers(57) = [3, 3, 3, 4, 4, 4, 3, 3, 3, 2, 2, 2, 2, &
+        & 1, 4, 4, 4, 4, 4, 4, 4, 4, 4, 4, 4, 4, 4, 4, 4, 4, 1]
+    integer, parameter :: quantity_most_markers(58) = [3, 3, 3, 4, 4, 4, 3, 3, 3, 2, 2, 2, 2, &
         & 3, 3, 2, 2, 2, 2, 2, 2, 2, 4, 4, 4, 3, 4, 4, 4, 3, 3, 3, 3, 3, 3, 3, 3, 3, 1, 1, 1, &
-        & 4, 4, 4, 4, 4, 4, 4, 4, 4, 4, 4, 4, 4, 4, 4, 4]
+        & 4, 4, 4, 4, 4, 4, 4, 4, 4, 4, 4, 4, 4, 4, 4, 4, 2]
     !> What each measures, for its units: a length, a velocity, an angular velocity, an angle,
     !> an acceleration, an angular acceleration, a force, a torque, the value of a VARIABLE or
-    !> DIFF (its own units), an element's force or torque (by its comp)
+    !> DIFF (its own units), an element's force or torque (by its comp); ORIENT's angles and
+    !> parameters are counted as angles (no unit to scale)
     integer, parameter :: kind_length = 1, kind_velocity = 2, kind_angular_velocity = 3, &
         & kind_angle = 4, kind_acceleration = 5, kind_angular_acceleration = 6, kind_force = 7, &
         & kind_torque = 8, kind_element = 9, kind_element_force = 10
-    integer, parameter :: quantity_kind(57) = [1, 1, 1, 2, 2, 2, 3, 3, 3, 4, 4, 4, 1, 2, 2, &
+    integer, parameter :: quantity_kind(58) = [1, 1, 1, 2, 2, 2, 3, 3, 3, 4, 4, 4, 1, 2, 2, &
         & 3, 4, 4, 4, 4, 4, 4, 5, 5, 5, 5, 6, 6, 6, 6, 7, 7, 7, 7, 8, 8, 8, 8, 9, 9, 9, 10, &
-        & 10, 10, 10, 10, 10, 10, 10, 10, 10, 10, 10, 10, 10, 10, 10]
+        & 10, 10, 10, 10, 10, 10, 10, 10, 10, 10, 10, 10, 10, 10, 10, 4]
 
     !> One measure (or value of another statement) an expression reads
     type :: expression_input_type
@@ -149,6 +160,8 @@ module rollcon_expression
         !> Markers j, k and l (0: not given, the ground origin and axes); for an element
         !> function jflag, comp and rm
         integer :: j = 0, k = 0, l = 0
+        !> ORIENT's orientation system (1 to orient_systems) and component (0 for the others)
+        integer :: system = 0, component = 0
     end type expression_input_type
 
     !> A compiled expression

@@ -12,7 +12,17 @@
 !>   AZ(i, j) = atan2(x_i . y_j, x_i . x_j), counting whole turns as ADAMS does (the branch
 !>   nearest the value where the turns were last counted, count_turns);
 !> - PSI, THETA, PHI(i, j): the body 3-1-3 angles of i's axes in j's; YAW, PITCH, ROLL(i, j):
-!>   the body 3-2-1 angles, PITCH the negative of the second (ADAMS's automotive sign).
+!>   the body 3-2-1 angles, PITCH the negative of the second (ADAMS's automotive sign);
+!> - ORIENT(system, component, i, j): i's axes in j's, A = A_j^T A_i, in ADAMS's orientation
+!>   system 1 to 24 (the body-fixed, then the space-fixed, Euler sequences 1-2-3, 2-3-1,
+!>   3-1-2, 1-3-2, 2-1-3, 3-2-1, 1-2-1, 1-3-1, 2-1-2, 2-3-2, 3-1-3, 3-2-3), 27 (the Euler
+!>   parameters e0 >= 0, e1, e2, e3), 28 (the Rodrigues parameters) or 29 (the direction
+!>   cosines: x_i's in j's axes, then y_i's, then z_i's), as rollcon_adams_utilities'
+!>   RCNVRT converts the matrix (its "Bijk", "Sijk", EULPAR, RODPAR, COSINES); systems 25 and
+!>   26 (AX, AY, AZ; YAW, PITCH, ROLL) are read as those measures (rollcon_adm_expression_
+!>   parser). The numbering: the Adams Solver reference, "ORIENT" (systems 1 to 12), and
+!>   BETA CAE's ANSA scripting reference of the same function, ansa.kinetics.Orient (1 to 29).
+!>   A value path only: no jet, so only a REQUEST reads it (input_refusal).
 !>
 !> Each measure has a value path (real numbers from rollcon_marker's marker_motion: every
 !> right-hand side of a force) and a jet path (the same definitions over the parts' q and u
@@ -23,6 +33,7 @@ module rollcon_measures
     use rollcon_kinds, only : wp
     use rollcon_user_variable_values, only : user_variable_value
     use rollcon_constants, only : pi
+    use rollcon_adams_utilities, only : convert_rotation, rcnvrt_success
     use rollcon_rotation, only : times, cross, euler_angles
     use rollcon_marker, only : marker_type, marker_motion, marker_quantity
     use rollcon_jet, only : jet_type, jet_constant, jet_variable, jet_dot, jet_cross, &
@@ -32,7 +43,8 @@ module rollcon_measures
         & quantity_vx, quantity_wx, quantity_psi, quantity_dm, quantity_vm, quantity_vr, &
         & quantity_wm, quantity_ax, quantity_yaw, quantity_kind, kind_length, kind_velocity, &
         & kind_angular_velocity, kind_acceleration, kind_angular_acceleration, kind_element, &
-        & kind_element_force, quantity_names, quantity_accm, quantity_wdtm, quantity_varval
+        & kind_element_force, quantity_names, quantity_accm, quantity_wdtm, quantity_varval, &
+        & quantity_orient
     use, intrinsic :: ieee_arithmetic, only : ieee_value, ieee_quiet_nan
     implicit none
     private
@@ -76,6 +88,13 @@ contains
         reason = ""
         if (is_state_measure(input%quantity)) return
         name = input_text(input)
+        if (input%quantity == quantity_orient) then
+            reason = name // ": ORIENT of system " // trim(adjustl(int_text(input%system))) &
+                & // " is answered in a REQUEST only: rollcon has no exact partials of it, " &
+                & // "which " // place // " needs (its systems 25 and 26, AX, AY, AZ and YAW, " &
+                & // "PITCH, ROLL, are read anywhere)"
+            return
+        end if
         select case (quantity_kind(input%quantity))
         case (kind_acceleration, kind_angular_acceleration)
             reason = name // ": an acceleration, which rollcon knows only once it has solved " &
@@ -97,14 +116,23 @@ contains
         end select
     end function input_refusal
 
-    !> An input as written: "DX(21, 11)", "VM(21, 0, 31)", "JOINT(3, 0, 2, 0)"; the ids not
-    !> given left out.
+    !> An input as written: "DX(21, 11)", "VM(21, 0, 31)", "JOINT(3, 0, 2, 0)",
+    !> "ORIENT(27, 1, 21, 11)"; the ids not given left out. An element function is named as
+    !> ADAMS names the function (BUSH, VTORQ; the statements are BUSHING, VTORQUE).
     pure function input_text(input) result(text)
         type(expression_input_type), intent(in) :: input
         character(len=:), allocatable :: text
         integer :: ids(4), last, m
         character(len=12) :: buffer
 
+        if (input%quantity == quantity_orient) then
+            text = "ORIENT(" // trim(adjustl(int_text(input%system))) // ", " &
+                & // trim(adjustl(int_text(input%component))) // ", " &
+                & // trim(adjustl(int_text(input%marker)))
+            if (input%j /= 0) text = text // ", " // trim(adjustl(int_text(input%j)))
+            text = text // ")"
+            return
+        end if
         ids = [input%marker, input%j, input%k, input%l]
         ! VM, VR, ACCM, WDTM are written (i, j, l)
         if (any(input%quantity == [quantity_vm, quantity_vr, quantity_accm, quantity_wdtm])) &
@@ -114,7 +142,14 @@ contains
             if (ids(m) /= 0) last = m
         end do
         if (quantity_kind(input%quantity) == kind_element_force) last = 4
-        text = trim(quantity_names(input%quantity)) // "("
+        select case (trim(quantity_names(input%quantity)))
+        case ("BUSHING")
+            text = "BUSH("
+        case ("VTORQUE")
+            text = "VTORQ("
+        case default
+            text = trim(quantity_names(input%quantity)) // "("
+        end select
         do m = 1, last
             write(buffer, '(i0)') ids(m)
             if (m > 1) text = text // ", "
@@ -122,6 +157,14 @@ contains
         end do
         text = text // ")"
     end function input_text
+
+    !> A whole number as text (blanks around it).
+    pure function int_text(n) result(text)
+        integer, intent(in) :: n
+        character(len=12) :: text
+
+        write(text, '(i0)') n
+    end function int_text
 
     !> True for a measure that reads the parts' rates (velocities, angular velocities).
     elemental logical function reads_rates(quantity)
@@ -213,6 +256,10 @@ contains
                 end if
                 call input_markers(input, markers, chosen, found)
                 values(k) = ieee_value(1.0_wp, ieee_quiet_nan)
+                if (input%quantity == quantity_orient .and. all(found)) then
+                    values(k) = orient_value(input%system, input%component, chosen, q, u)
+                    cycle
+                end if
                 if (.not. all(found) .or. .not. is_state_measure(input%quantity)) cycle
                 ! the scales as the one-marker forms have always been computed
                 scale = 1.0_wp
@@ -319,6 +366,44 @@ contains
             value = ieee_value(value, ieee_quiet_nan)
         end select
     end function measure_value
+
+    !> ORIENT(system, component, i, j) of markers(1) (i) and markers(2) (j) at (q, u) (module
+    !> header): radians for the angles, no unit for the parameters and cosines; NaN for a
+    !> system the function does not take here (25, 26: read as AX ... ROLL) and for the
+    !> Rodrigues parameters of a half turn (infinite).
+    pure function orient_value(system, component, markers, q, u) result(value)
+        integer, intent(in) :: system, component
+        type(marker_type), intent(in) :: markers(4)
+        real(wp), intent(in) :: q(:), u(:)
+        real(wp) :: value
+        character(len=*), parameter :: sequences(12) = [character(len=3) :: "123", "231", &
+            & "312", "132", "213", "321", "121", "131", "212", "232", "313", "323"]
+        character(len=:), allocatable :: name
+        real(wp) :: r(3), v(3), w(3), axes_i(3, 3), axes_j(3, 3), coord(9)
+        integer :: istat
+
+        value = ieee_value(value, ieee_quiet_nan)
+        select case (system)
+        case (1:12)
+            name = "B" // sequences(system)
+        case (13:24)
+            name = "S" // sequences(system - 12)
+        case (27)
+            name = "EULPAR"
+        case (28)
+            name = "RODPAR"
+        case (29)
+            name = "COSINES"
+        case default
+            return
+        end select
+        call marker_motion(markers(1), q, u, r, v, axes_i, w)
+        call marker_motion(markers(2), q, u, r, v, axes_j, w)
+        call convert_rotation("COSINES", reshape(matmul(transpose(axes_j), axes_i), [9]), &
+            & name, coord, istat)
+        if (istat == rcnvrt_success .and. component >= 1 .and. component <= 9) &
+            & value = coord(component)
+    end function orient_value
 
     !> AX (axis 1), AY (2), AZ (3) of axes a_i in a_j, in (-pi, pi].
     pure real(wp) function axis_angle(axis, a_i, a_j) result(angle)

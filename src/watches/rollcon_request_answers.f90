@@ -14,7 +14,9 @@
 !> - `REQUEST/id, FORCE, I=[, J=][, RM=]` (those no JOINT or JPRIM answers,
 !>   rollcon_reaction_watch): `req<id>_fx ... _tz` [N, N m], FX ... TZ(I, J, RM);
 !> - `REQUEST/id, F1=e, ..., F8=e`: `req<id>_f<k>` for each expression given, its value in the
-!>   dataset's units, with every measure, acceleration and force function of rollcon_expression;
+!>   dataset's units, with every measure, acceleration and force function of rollcon_expression,
+!>   ORIENT, and DIF(id), DIF1(id): the DIFF's state at the row and its rate solved there (as
+!>   its columns diff<id>, diff<id>_dot, rollcon_diff_watch);
 !> - `REQUEST/id, FUNCTION=USER(r1, ...)`: `req<id>_f2, _f3, _f4, _f6, _f7, _f8`, its REQSUB's
 !>   RESULT(2:4) and RESULT(6:8) as ADAMS writes them (rollcon_system_routine_contract), the
 !>   routine called at each row through rollcon_user_forces (in the child process that runs it).
@@ -69,6 +71,7 @@ module rollcon_request_answers
     use rollcon_watch, only : watch_type
     use rollcon_system_routine_contract, only : request_results, request_columns
     use rollcon_user_forces, only : call_user_request
+    use rollcon_diff, only : diff_inputs
     use, intrinsic :: ieee_arithmetic, only : ieee_value, ieee_quiet_nan
     implicit none
     private
@@ -313,8 +316,20 @@ contains
         real(wp), intent(out) :: values(:)
         type(marker_type) :: markers(4)
         real(wp) :: wrench(6), inputs(max_inputs), result(request_results)
+        real(wp), allocatable :: dif1(:)
+        type(error_type), allocatable :: error
         integer :: r, k, n, m
 
+        ! the DIFFs' rates at the row, solved from their equations there (as their columns,
+        ! rollcon_diff_watch); NaN where they cannot be solved (the run has stopped on that)
+        associate (diffs => eq%model%diffs)
+            allocate(dif1(diffs%count()))
+            if (diffs%count() > 0) then
+                dif1 = diffs%w
+                call diffs%solve_rates(time, q, u, diffs%x, dif1, error)
+                if (allocated(error)) dif1 = nan()
+            end if
+        end associate
         n = 0
         do r = 1, size(self%requests)
             associate (request => self%requests(r))
@@ -356,6 +371,8 @@ contains
                                 & self%time_unit, q, u, .false.)
                             call input_values(self, eq, expression, time, q, u, lambda, &
                                 & inputs(:m))
+                            if (eq%model%diffs%count() > 0) call diff_inputs(expression, &
+                                & eq%model%diffs%ids, eq%model%diffs%x, dif1, inputs(:m))
                             n = n + 1
                             values(n) = evaluate_expression(expression, time/self%time_unit, &
                                 & inputs(:m))

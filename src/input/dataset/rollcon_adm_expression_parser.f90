@@ -16,7 +16,8 @@ module rollcon_adm_expression_parser
         & op_negate, op_if, function_names, function_codes, function_arguments, quantity_names, &
         & quantity_least_markers, quantity_most_markers, quantity_kind, kind_element_force, &
         & max_arguments, op_akispl, op_cubspl, spline_reference, quantity_vm, quantity_vr, &
-        & quantity_accm, quantity_wdtm
+        & quantity_accm, quantity_wdtm, quantity_orient, quantity_ax, quantity_yaw, &
+        & orient_systems, orient_components
     use rollcon_adm_expression_scan, only : parser_type, emit, emit_constant, expect, peek, &
         & here, skip_blanks, skip_digits, read_name, is_digit, is_letter, column_text, &
         & exponent_follows
@@ -209,6 +210,10 @@ contains
             ! ADAMS's own short names of two element functions
             if (name == "BUSH") k = findloc(quantity_names, "BUSHING", dim=1)
             if (name == "VTORQ") k = findloc(quantity_names, "VTORQUE", dim=1)
+            if (k == quantity_orient) then
+                call parse_orient(p, name, problem)
+                return
+            end if
             if (k > 0) then
                 call parse_measure(p, name, k, problem)
                 return
@@ -332,7 +337,7 @@ contains
         character(len=*), intent(in) :: name
         integer, intent(in) :: quantity
         character(len=:), allocatable, intent(inout) :: problem
-        integer :: ids(4), count, k, slot, least, most
+        integer :: ids(4), count, least, most
         character(len=:), allocatable :: form
         type(expression_input_type) :: input
 
@@ -391,6 +396,61 @@ contains
             input%l = ids(3)
             input%k = 0
         end if
+        call add_input(p, input, problem)
+    end subroutine parse_measure
+
+    !> ORIENT(system, component, i[, j]): ADAMS's orientation of marker i's axes in j's (0 or
+    !> not given: the ground's) in another convention (docs/datasets.md, "ORIENT"); system a
+    !> whole number from 1 to orient_systems, component from 1 to its count
+    !> (orient_components). Systems 25 and 26 are AX, AY, AZ and YAW, PITCH, ROLL of (i, j),
+    !> read as those measures.
+    subroutine parse_orient(p, name, problem)
+        type(parser_type), intent(inout) :: p
+        character(len=*), intent(in) :: name
+        character(len=:), allocatable, intent(inout) :: problem
+        integer :: system, component, i, j
+        type(expression_input_type) :: input
+
+        system = 1
+        j = 0
+        call expect(p, "(", problem)
+        if (len(problem) == 0) call read_whole(p, name // "'s system", 1, orient_systems, &
+            & system, problem)
+        if (len(problem) == 0) call expect(p, ",", problem)
+        if (len(problem) == 0) call read_whole(p, name // "'s component", 1, &
+            & orient_components(system), component, problem)
+        if (len(problem) == 0) call expect(p, ",", problem)
+        if (len(problem) == 0) call read_whole(p, name // "'s i", 1, huge(1), i, problem)
+        if (len(problem) == 0 .and. peek(p) == ",") then
+            p%at = p%at + 1
+            call read_whole(p, name // "'s j", 0, huge(1), j, problem)
+        end if
+        if (len(problem) == 0) call expect(p, ")", problem)
+        if (len(problem) > 0) then
+            problem = problem // " (" // name // " is written " // name // "(system, " &
+                & // "component, i[, j]): system 1 to " // to_text(orient_systems) // ", i and " &
+                & // "j marker ids, j 0 or left out for the ground's axes)"
+            return
+        end if
+        select case (system)
+        case (25)
+            input = expression_input_type(marker=i, quantity=quantity_ax + component - 1, j=j)
+        case (26)
+            input = expression_input_type(marker=i, quantity=quantity_yaw + component - 1, j=j)
+        case default
+            input = expression_input_type(marker=i, quantity=quantity_orient, j=j, &
+                & system=system, component=component)
+        end select
+        call add_input(p, input, problem)
+    end subroutine parse_orient
+
+    !> An input of the expression at the parser's place (one per distinct measure).
+    subroutine add_input(p, input, problem)
+        type(parser_type), intent(inout) :: p
+        type(expression_input_type), intent(in) :: input
+        character(len=:), allocatable, intent(inout) :: problem
+        integer :: k, slot
+
         slot = 0
         do k = 1, size(p%inputs)
             if (same_input(p%inputs(k), input)) slot = k
@@ -407,7 +467,7 @@ contains
         ! the input's number rides in the constant slot of its operation
         call emit_constant(p, real(slot, wp))
         p%op(p%count) = op_input
-    end subroutine parse_measure
+    end subroutine add_input
 
     !> How a measure is written, for messages: "DX(i[, j[, k]])".
     pure function measure_form(name, quantity) result(form)
@@ -482,7 +542,8 @@ contains
         type(expression_input_type), intent(in) :: a, b
 
         same_input = a%marker == b%marker .and. a%quantity == b%quantity .and. a%j == b%j &
-            & .and. a%k == b%k .and. a%l == b%l
+            & .and. a%k == b%k .and. a%l == b%l .and. a%system == b%system &
+            & .and. a%component == b%component
     end function same_input
 
     recursive subroutine parse_if(p, problem)

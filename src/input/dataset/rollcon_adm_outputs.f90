@@ -22,7 +22,7 @@ module rollcon_adm_outputs
     use rollcon_adm_keywords, only : read_reals, argument_key, arg_place, name_index, &
         & argument_text
     use rollcon_expression, only : expression_type, quantity_kind, quantity_names, &
-        & kind_element, kind_element_force, quantity_varval
+        & kind_element, kind_element_force, quantity_varval, quantity_dif, quantity_dif1
     use rollcon_adm_expression_parser, only : compile_expression
     use rollcon_adm_loads, only : read_user_list
     use rollcon_adm_model, only : adm_model_type, adm_request_type, adm_unused_type, &
@@ -342,12 +342,14 @@ contains
     !> Each expression F1 ... F8 of a request compiled (a syntax error refused with `where`
     !> and Fk); one that reads what rollcon has no statement for (an element function of a
     !> statement other than JOINT, JPRIM, MOTION, SFORCE, VFORCE, VTORQUE, GFORCE, BUSHING and
-    !> SPRINGDAMPER's SPDP; DIF, DIF1) is not answered: its text is cleared and it is named in
-    !> the warning ("REQUEST F1..F8 reading BEAM"), as is one it cannot read at all (a function
-    !> it lacks, ADAMS's ORIENT; a slip in the text): a REQUEST never stops a run. VARVAL,
-    !> AKISPL and CUBSPL are answered: the assembly puts the VARIABLEs and curves in place as
-    !> for the forces' expressions (rollcon_adm_requests). A statement rollcon adds is taken
-    !> off that list here as it becomes answerable (rollcon_request_answers).
+    !> SPRINGDAMPER's SPDP) is not answered: its text is cleared and it is named in the
+    !> warning ("REQUEST F1..F8 reading BEAM"), as is one it cannot read at all (a function it
+    !> lacks, an ORIENT of a system it does not know; a slip in the text): a REQUEST never
+    !> stops a run. VARVAL, AKISPL, CUBSPL, DIF, DIF1 and ORIENT are answered: the assembly
+    !> puts the VARIABLEs and curves in place as for the forces' expressions
+    !> (rollcon_adm_requests), the row's DIFF states and ORIENT's angles are read where the
+    !> columns are filled (rollcon_request_answers). A statement rollcon adds is taken off
+    !> that list here as it becomes answerable.
     subroutine check_request_columns(where, request, model, error)
         character(len=*), intent(in) :: where
         type(adm_request_type), intent(inout) :: request
@@ -364,8 +366,9 @@ contains
             call compile_expression(request%columns(k)%text, where // " F" // to_text(k), &
                 & expression, error)
             if (allocated(error)) then
-                ! an expression rollcon cannot read (a function it lacks, ORIENT, or a slip
-                ! in the text) only shapes ADAMS's output: named in the warning, not answered
+                ! an expression rollcon cannot read (a function it lacks, an ORIENT system it
+                ! does not know, or a slip in the text) only shapes ADAMS's output: named in
+                ! the warning, not answered
                 call record_unused(model%unused, model%unused_count, "REQUEST F" &
                     & // to_text(k) // " it cannot read (" // after_place(error%message, &
                     & where // " F" // to_text(k) // ": ") // ")", request%line)
@@ -376,8 +379,9 @@ contains
             missing = ""
             do n = 1, size(expression%inputs)
                 associate (quantity => expression%inputs(n)%quantity)
-                    if (quantity_kind(quantity) == kind_element .and. quantity &
-                        & /= quantity_varval) missing = trim(quantity_names(quantity))
+                    if (quantity_kind(quantity) == kind_element .and. .not. any(quantity &
+                        & == [quantity_varval, quantity_dif, quantity_dif1])) &
+                        & missing = trim(quantity_names(quantity))
                     if (quantity_kind(quantity) == kind_element_force) then
                         if (.not. any(answered == quantity_names(quantity))) &
                             & missing = trim(quantity_names(quantity))

@@ -7,7 +7,9 @@
 !> they repeat and Newton's law; SPDP, BUSH, VARVAL, AKISPL and CUBSPL against the columns of
 !> the elements and VARIABLE they read and the SPLINE's points, and the requests' COMMENTs in
 !> the summary; a marker's acceleration against the derivative of its velocity; a force or an
-!> acceleration read in a force's FUNCTION refused by statement and line.
+!> acceleration read in a force's FUNCTION refused by statement and line; ADAMS's ORIENT of a
+!> part turned by known angles against those angles and the Euler parameters worked by hand,
+!> and DIF, DIF1 against the DIFF's own columns.
 module test_request_answers
     use rollcon_kinds, only : wp
     use rollcon_constants, only : pi
@@ -48,7 +50,9 @@ contains
             & new_unittest("elements-variables-curves-comments", test_elements), &
             & new_unittest("marker-acceleration-is-the-derivative", test_marker_acceleration), &
             & new_unittest("motion-force-function", test_motion), &
-            & new_unittest("force-functions-refused-in-forces", test_refusals)]
+            & new_unittest("force-functions-refused-in-forces", test_refusals), &
+            & new_unittest("orient-of-known-angles", test_orient), &
+            & new_unittest("dif-reads-the-diff-columns", test_dif)]
     end subroutine collect_request_answers
 
     !> test/requests/pendulum.adm, REQUEST/4 (VELOCITY) and /5 (ACCELERATION) of the centre
@@ -399,32 +403,39 @@ contains
 
     !> A force or an acceleration read in a force's FUNCTION is an algebraic loop: refused with
     !> the statement, its line and the function; a REQUEST's element function naming a
-    !> statement the dataset lacks (JOINT/7, BUSHING/7), or a VARVAL of a VARIABLE or an AKISPL
-    !> of a SPLINE it lacks: refused with the REQUEST, its line and Fk; one of a kind rollcon has
-    !> no statement for (BEAM), or one it cannot read (ORIENT): that column named in the
-    !> warning, not answered.
+    !> statement the dataset lacks (JOINT/7, BUSH(7, ...): no BUSHING/7, the function named as
+    !> written and ADAMS names it, the statement in full), a VARVAL of a VARIABLE, an AKISPL of
+    !> a SPLINE or a DIF1 of a DIFF it lacks: refused with the REQUEST, its line and Fk; an
+    !> ORIENT (of a system with no exact partials) in a force: refused; one of a kind rollcon
+    !> has no statement for (BEAM), or one it cannot read (an ORIENT system ADAMS does not
+    !> have, 30): that column named in the warning, not answered.
     subroutine test_refusals(error)
         type(error_type), allocatable, intent(out) :: error
         character(len=*), parameter :: head = "refused" // nl // "UNITS/SYSTEM=SI" // nl &
             & // "PART/1, GROUND" // nl // "MARKER/11, PART=1, QP=0, 0, 1" // nl &
             & // "PART/2, MASS=1, CM=20, IP=0.01, 0.01, 0.01" // nl // "MARKER/20, PART=2" // nl
         character(len=*), parameter :: tail = nl // "SIMULATE/DYNAMIC, END=1, STEPS=10"
-        character(len=*), parameter :: statements(7) = [character(len=80) :: &
+        character(len=*), parameter :: statements(9) = [character(len=80) :: &
             & "SFORCE/1, TRANSLATIONAL, I=20, J=11, FUNCTION=-FX(20)", &
             & "SFORCE/1, TRANSLATIONAL, I=20, J=11, FUNCTION=ACCZ(20, 11)", &
             & "VFORCE/2, I=20, JFLOAT=11, RM=11, FX=JOINT(1, 0, 2, 0), FY=0, FZ=0", &
             & "REQUEST/3, F2=DX(20)\F3=JOINT(7, 0, 2, 0)", &
             & "REQUEST/3, F2=DX(20)\F3=BUSH(7, 0, 2, 0)", &
             & "REQUEST/3, F2=DX(20)\F3=VARVAL(9)", &
-            & "REQUEST/3, F2=DX(20)\F3=AKISPL(TIME, 0, 9)"]
-        character(len=*), parameter :: expected(7) = [character(len=120) :: &
+            & "REQUEST/3, F2=DX(20)\F3=AKISPL(TIME, 0, 9)", &
+            & "SFORCE/1, TRANSLATIONAL, I=20, J=11, FUNCTION=ORIENT(27, 1, 20)", &
+            & "REQUEST/3, F2=DX(20)\F3=DIF1(9)"]
+        character(len=*), parameter :: expected(9) = [character(len=120) :: &
             & "refused.adm:7: SFORCE/1 FUNCTION: FX(20): a force, which rollcon solves for", &
             & "refused.adm:7: SFORCE/1 FUNCTION: ACCZ(20, 11): an acceleration", &
             & "refused.adm:7: VFORCE/2 FX: JOINT(1, 0, 2, 0): a force", &
             & "refused.adm:7: REQUEST/3 F3: JOINT(7, 0, 2, 0): no JOINT/7", &
-            & "refused.adm:7: REQUEST/3 F3: BUSHING(7, 0, 2, 0): no BUSHING/7", &
+            & "refused.adm:7: REQUEST/3 F3: BUSH(7, 0, 2, 0): no BUSHING/7", &
             & "refused.adm:7: REQUEST/3 F3: VARVAL(9): no VARIABLE/9", &
-            & "refused.adm:7: REQUEST/3 F3: AKISPL reads SPLINE/9, which the dataset lacks"]
+            & "refused.adm:7: REQUEST/3 F3: AKISPL reads SPLINE/9, which the dataset lacks", &
+            & "refused.adm:7: SFORCE/1 FUNCTION: ORIENT(27, 1, 20): ORIENT of system 27 is " &
+            & // "answered in a REQUEST only", &
+            & "refused.adm:7: REQUEST/3 F3: DIF1(9): no DIFF/9 in the dataset"]
         type(job_type) :: job
         type(job_result_type) :: result
         type(error_type), allocatable :: failure
@@ -462,8 +473,9 @@ contains
             & result%summary%layout%column("req3_f3") == 0, "the warning: " &
             & // job%source%warning)
         if (allocated(error)) return
-        ! nor is an expression rollcon cannot read (ADAMS's ORIENT): named, the others answered
-        call write_text("warned.adm", head // "REQUEST/3, F2=DX(20)\F3=ORIENT(7, 1, 1, 0)" &
+        ! nor is an expression rollcon cannot read (an ORIENT system that is not ADAMS's):
+        ! named, the others answered
+        call write_text("warned.adm", head // "REQUEST/3, F2=DX(20)\F3=ORIENT(30, 1, 20)" &
             & // tail)
         call load_job(work_dir // "/warned.adm", job, failure)
         if (.not. allocated(failure)) then
@@ -473,12 +485,117 @@ contains
         end if
         call check(error, .not. allocated(failure), "REQUEST/3 reading ORIENT refused")
         if (allocated(error)) return
-        call check(error, index(job%source%warning, "REQUEST F3 it cannot read") > 0 .and. &
-            & index(job%source%warning, "ORIENT") > 0 .and. &
+        call check(error, index(job%source%warning, "REQUEST F3 it cannot read (ORIENT's " &
+            & // "system must be a whole number from 1 to 29") > 0 .and. &
             & result%summary%layout%column("req3_f2") > 0 .and. &
             & result%summary%layout%column("req3_f3") == 0, "the warning: " &
             & // job%source%warning)
     end subroutine test_refusals
+
+    !> test/requests/orient.adm: MARKER/21's axes are A = Rz(30) Rx(40) Ry(50) (degrees) in
+    !> the ground's, Rx(40) Ry(50) in MARKER/11's (the dataset's header), at every row (no
+    !> force, no speed). Worked by hand: ORIENT(3, ...) (body 3-1-2) is 30, 40, 50; ORIENT(17,
+    !> ...) (space 2-1-3) 50, 40, 30; ORIENT(1, ..., 21, 11) (body 1-2-3) 40, 50, 0; the Euler
+    !> parameters (27) the Hamilton product of the three half-angle quaternions (c + s axis),
+    !> relative to MARKER/11 (c20 + s20 i)(c25 + s25 j) = (c20 c25, s20 c25, c20 s25,
+    !> s20 s25), the Rodrigues parameter (28) their e3/e0 = tan20 tan25; the direction
+    !> cosines (29) of z_21 in ground axes Rz(30) Rx(40) (sin50, 0, cos50) = (c30 s50 + s30 s40
+    !> c50, s30 s50 - c30 s40 c50, c40 c50); systems 11, 25, 26 the same numbers as PSI, PHI,
+    !> AZ and YAW.
+    subroutine test_orient(error)
+        type(error_type), allocatable, intent(out) :: error
+        !> Angles through the matrix of REULERs read in degrees and an atan2 of its entries:
+        !> rounding of a few 1e-16 (measured 1.1e-16); a wrong sequence or sign is off by 0.1
+        !> or more
+        real(wp), parameter :: tol = 1.0e-14_wp
+        real(wp), parameter :: d = pi/180.0_wp
+        type(job_result_type) :: result
+        type(history_type) :: rows
+        real(wp) :: expected(8, 4), e(0:3), worst
+        character(len=8) :: where_worst
+        integer :: k, c, r, column
+
+        call run_dataset("test/requests/orient.adm", result, rows, error)
+        if (allocated(error)) return
+        expected = 0.0_wp
+        expected(1:6, 1) = [30.0_wp, 40.0_wp, 50.0_wp, 50.0_wp, 40.0_wp, 30.0_wp]*d
+        expected(1:3, 2) = [40.0_wp, 50.0_wp, 0.0_wp]*d
+        e = hamilton(half_turn(1, 40.0_wp*d), half_turn(2, 50.0_wp*d))
+        expected(4:7, 2) = e
+        expected(8, 2) = tan(20.0_wp*d)*tan(25.0_wp*d)
+        expected(1:4, 3) = hamilton(hamilton(half_turn(3, 30.0_wp*d), half_turn(1, 40.0_wp*d)), &
+            & half_turn(2, 50.0_wp*d))
+        expected(5:7, 3) = [cos(30*d)*sin(50*d) + sin(30*d)*sin(40*d)*cos(50*d), &
+            & sin(30*d)*sin(50*d) - cos(30*d)*sin(40*d)*cos(50*d), cos(40*d)*cos(50*d)]
+        worst = 0.0_wp
+        where_worst = ""
+        associate (layout => rows%layout, x => rows%rows)
+            do r = 1, 4
+                do c = 1, 8
+                    if (r == 1 .and. c > 6) cycle
+                    if (r == 4 .and. (c == 1 .or. c == 4 .or. c == 5 .or. c > 6)) cycle
+                    column = layout%column("req" // to_text(r) // "_f" // to_text(c))
+                    call check(error, column > 0, "no column req" // to_text(r) // "_f" &
+                        & // to_text(c))
+                    if (allocated(error)) return
+                    do k = 1, rows%count
+                        if (abs(x(column, k) - expected(c, r)) <= worst) cycle
+                        worst = abs(x(column, k) - expected(c, r))
+                        where_worst = "req" // to_text(r) // "_f" // to_text(c)
+                    end do
+                end do
+            end do
+        end associate
+        call check(error, worst <= tol .and. rows%count == 11, "ORIENT against the angles " &
+            & // "worked by hand: off by " // to_text(worst) // " at " // trim(where_worst))
+    end subroutine test_orient
+
+    !> test/requests/orient.adm's DIFF/1 (d DIF/dt = 2 TIME, from 0): REQUEST/4's DIF(1) and
+    !> DIF1(1) are its columns diff1 and diff1_dot at every row, to the bit (the same state and
+    !> the same solve of its equation), and DIF1 is 2 t exactly (its FUNCTION at the row).
+    subroutine test_dif(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(job_result_type) :: result
+        type(history_type) :: rows
+        logical :: same
+        integer :: k
+
+        call run_dataset("test/requests/orient.adm", result, rows, error)
+        if (allocated(error)) return
+        same = rows%count == 11
+        associate (layout => rows%layout, x => rows%rows)
+            do k = 1, rows%count
+                same = same .and. x(layout%column("req4_f4"), k) == x(layout%column("diff1"), k) &
+                    & .and. x(layout%column("req4_f5"), k) == x(layout%column("diff1_dot"), k) &
+                    & .and. x(layout%column("req4_f5"), k) == 2.0_wp*x(1, k)
+            end do
+            call check(error, same .and. x(layout%column("req4_f4"), rows%count) > 0.99_wp, &
+                & "DIF(1), DIF1(1) of REQUEST/4 against diff1, diff1_dot and 2 t: last row " &
+                & // to_text(x(layout%column("req4_f4"), rows%count)) // ", " &
+                & // to_text(x(layout%column("req4_f5"), rows%count)))
+        end associate
+    end subroutine test_dif
+
+    !> The unit quaternion (cos(angle/2), sin(angle/2) e_axis) of a turn about axis 1, 2, 3.
+    pure function half_turn(axis, angle) result(e)
+        integer, intent(in) :: axis
+        real(wp), intent(in) :: angle
+        real(wp) :: e(0:3)
+
+        e = 0.0_wp
+        e(0) = cos(angle/2.0_wp)
+        e(axis) = sin(angle/2.0_wp)
+    end function half_turn
+
+    !> The Hamilton product a b of quaternions (scalar first): the turn b then a, in a's axes.
+    pure function hamilton(a, b) result(e)
+        real(wp), intent(in) :: a(0:3), b(0:3)
+        real(wp) :: e(0:3)
+
+        e(0) = a(0)*b(0) - dot_product(a(1:3), b(1:3))
+        e(1:3) = a(0)*b(1:3) + b(0)*a(1:3) + [a(2)*b(3) - a(3)*b(2), a(3)*b(1) - a(1)*b(3), &
+            & a(1)*b(2) - a(2)*b(1)]
+    end function hamilton
 
     !> Run a dataset without files, its rows kept; a run that does not complete is an error.
     subroutine run_dataset(path, result, rows, error)
