@@ -7,7 +7,7 @@ module rollcon_command_check
         & check_user_ucosub_isolated, read_ucon_request, report_text, write_report_json, &
         & user_build_options_type
     use rollcon_program, only : sampling_ranges, default_call_timeout, max_check_states, &
-        & states_refusal, dataset_ucon_requests, dataset_has_user_forces, check_force_routines
+        & states_refusal, dataset_ucon_requests, dataset_has_user_routines, check_user_routines
     use rollcon_cli, only : cli_request_type
     use rollcon_command_run, only : call_timeout_of
     implicit none
@@ -29,18 +29,29 @@ contains
         type(user_check_options_type) :: options
         type(user_check_report_type) :: report
         type(user_ucosub_type) :: user
-        character(len=:), allocatable :: library
+        character(len=:), allocatable :: library, note
         real(wp) :: call_timeout
+        !> The status of the check of the force, variable and request routines
+        integer :: routines_status
 
         status = 0
+        routines_status = 0
         if (request%has("--help")) then
             call print_help()
             return
         end if
         if (request%has("--model") .and. len(request%positional) > 0) then
-            if (dataset_has_user_forces(request%text("--model", ""))) then
-                call check_forces(request, status, error)
-                return
+            if (dataset_has_user_routines(request%text("--model", ""))) then
+                call check_routines(request, routines_status, error)
+                if (allocated(error)) return
+                status = routines_status
+                ! the UCONs the file's UCOSUB serves, if any, are checked next
+                allocate(requests(0))
+                call dataset_ucon_requests(request%text("--model", ""), requests, note, error)
+                if (allocated(error)) then
+                    deallocate(error)
+                    return
+                end if
             end if
         end if
         call read_requests(request, requests, options, call_timeout, error)
@@ -64,12 +75,14 @@ contains
                 & user%library, user%from_cache, error)
         end if
         if (.not. report%clean()) status = 1
+        status = max(status, routines_status)
         call user%destroy()
     end subroutine check_command
 
-    !> `check FILE --model MODEL.adm` for a dataset whose forces FILE's routines serve
-    !> (rollcon_force_routine_check): the findings, a line each; status 1 when there are some.
-    subroutine check_forces(request, status, error)
+    !> `check FILE --model MODEL.adm` for a dataset whose force, variable or request statements
+    !> FILE's routines serve (rollcon_user_routine_check): the findings, a line each; status 1
+    !> when there are some.
+    subroutine check_routines(request, status, error)
         type(cli_request_type), intent(in) :: request
         integer, intent(out) :: status
         type(error_type), allocatable, intent(out) :: error
@@ -85,10 +98,10 @@ contains
         seed = 1
         call request%integer_value("--seed", seed, seed, -huge(1), error)
         if (allocated(error)) return
-        call check_force_routines(request%positional, request%text("--model", ""), build, &
+        call check_user_routines(request%positional, request%text("--model", ""), build, &
             & call_timeout, seed, findings, count, error)
         if (allocated(error)) return
-        write(output_unit, '(a)') "check: the force routines of " // request%positional &
+        write(output_unit, '(a)') "check: the user routines of " // request%positional &
             & // " on " // request%text("--model", "") // " (the start and 20 states about it)"
         if (count == 0) then
             write(output_unit, '(a)') "verdict: clean"
@@ -97,7 +110,7 @@ contains
             write(output_unit, '(a, i0, a)') "verdict: ", count, " finding(s)"
             status = 1
         end if
-    end subroutine check_forces
+    end subroutine check_routines
 
     !> The UCON statements to check (--ucon, --model) and the check's options.
     subroutine read_requests(request, requests, options, call_timeout, error)
@@ -166,7 +179,10 @@ contains
             & "                 each UCON the routine serves (ids positive and distinct, one", &
             & "                 number per comma-separated field, at most 30 PAR)", &
             & "  --model MODEL.adm  every UCON of an ADAMS dataset that names no ROUTINE (those", &
-            & "                 the model's own UCOSUB serves), with its id and PAR", &
+            & "                 the model's own UCOSUB serves), with its id and PAR; and every", &
+            & "                 SFORCE, VFORCE, GFORCE, VTORQUE, VARIABLE or REQUEST with", &
+            & "                 FUNCTION=USER(...) at the start and 20 states about it: hidden", &
+            & "                 state, NaN, jumps, SYSFNC/SYSARY reads not declared, typing", &
             & "  --states N     random states per UCON (default 25, at most 100000)", &
             & "  --seed S       seed of the states (default 1); a run is reproducible", &
             & "  --json OUT     also write the report as JSON to OUT", &

@@ -78,6 +78,7 @@ program tester
     use test_bench, only : collect_bench
     use test_check_reliability, only : collect_check_reliability
     use test_check_findings, only : collect_check_findings
+    use test_user_routine_check, only : collect_user_routine_check
     use test_input_files, only : collect_input_files
     use test_input_refusals, only : collect_input_refusals
     use test_system_calls, only : collect_system_calls
@@ -200,6 +201,7 @@ program tester
         & new_testsuite("bench", collect_bench), &
         & new_testsuite("check-reliability", collect_check_reliability), &
         & new_testsuite("check-findings", collect_check_findings), &
+        & new_testsuite("user-routine-check", collect_user_routine_check), &
         & new_testsuite("input-files", collect_input_files), &
         & new_testsuite("input-refusals", collect_input_refusals), &
         & new_testsuite("system-calls", collect_system_calls), &

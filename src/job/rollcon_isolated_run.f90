@@ -250,31 +250,41 @@ contains
         if (stat == 0) close(unit, status="delete")
     end subroutine hand_on_stderr
 
-    !> An integrator that failed on a run with a user's routine: its partials (the Newton
-    !> matrix) are the first suspect, so the message names the command that checks them all
-    !> (the start's check saw one state). Not for a routine that crashed, overran or stopped
-    !> (stat_ucon: the message names the call already).
+    !> An integrator that failed on a run with a user's routines: they are the first suspect
+    !> (a wrong partial of a UCOSUB makes a wrong Newton matrix; hidden state, a jump or a NaN
+    !> in a force, variable or request routine stalls the steps), so the message names the
+    !> command that checks them at many states (the start's check saw one state, and only a
+    !> UCOSUB's partials). Not for a routine that crashed, overran or stopped, nor for one
+    !> whose failure is the message (stat_ucon, or "SFOSUB of FILE ...": it names the call).
     subroutine point_at_check(job, summary, error)
         type(job_type), intent(in) :: job
         type(run_summary_type), intent(inout) :: summary
         type(error_type), allocatable, intent(inout) :: error
         character(len=:), allocatable :: hint
+        logical :: dataset
 
         if (allocated(error)) then
             if (error%stat == stat_ucon) return
         end if
-        ! a force routine's failure names its routine and call already (rollcon_user_forces:
-        ! "its SFOSUB of FILE ..."); the partials check is a UCOSUB's
-        if (index(summary%message, "FOSUB of ") > 0) return
-        hint = "; the run's UCONs are served by " // job%user_file // ": rollcon check " &
-            & // job%user_file
+        ! a user routine's failure names its routine and call already (rollcon_user_forces'
+        ! labels: "its SFOSUB of FILE", "its VARSUB of FILE", ...)
+        if (index(summary%message, "SUB of ") > 0) return
+        dataset = .false.
         if (allocated(job%input_path)) then
-            if (len(job%input_path) > 4) then
-                if (job%input_path(len(job%input_path) - 3:) == ".adm") hint = hint &
-                    & // " --model " // job%input_path
-            end if
+            if (len(job%input_path) > 4) dataset = job%input_path(len(job%input_path) - 3:) &
+                & == ".adm"
         end if
-        hint = hint // " checks its partials at many states (a wrong one stalls the integrators)"
+        if (dataset) then
+            ! `check FILE --model` checks every kind of routine the dataset's statements use
+            hint = "; the run's user routines are in " // job%user_file // ": rollcon check " &
+                & // job%user_file // " --model " // job%input_path // " checks them at many " &
+                & // "states (a wrong partial of a UCOSUB, hidden state, a NaN or a jump in a " &
+                & // "force, variable or request routine: each stalls the integrators)"
+        else
+            hint = "; the run's UCONs are served by " // job%user_file // ": rollcon check " &
+                & // job%user_file // " checks its partials at many states (a wrong one " &
+                & // "stalls the integrators)"
+        end if
         summary%message = summary%message // hint
         if (allocated(error)) error%message = error%message // hint
     end subroutine point_at_check

@@ -56,6 +56,7 @@ module rollcon_user_forces
     public :: register_request_routine, get_request_routine, call_user_request, routine_name_of
     public :: register_variable_routine, get_variable_routine, user_variable_type
     public :: set_user_variables, declare_user_variables, evaluate_user_variables
+    public :: evaluate_user_variable, user_variable_list
 
     !> A routine the model may use
     type :: routine_entry_type
@@ -238,47 +239,65 @@ contains
     !> refusal, a value not finite) is kept for take_user_force_error.
     subroutine evaluate_user_variables(time, q, u)
         real(wp), intent(in) :: time, q(:), u(:)
+        integer :: v
+
+        if (.not. allocated(variables)) return
+        do v = 1, size(variables)
+            call evaluate_user_variable(v, time, q, u)
+        end do
+    end subroutine evaluate_user_variables
+
+    !> Call the VARSUB of the v-th user VARIABLE (user_variable_list's order) at (t, q, u) and
+    !> keep its value for VARVAL; a failure is kept for take_user_force_error, as
+    !> evaluate_user_variables keeps it.
+    subroutine evaluate_user_variable(v, time, q, u)
+        integer, intent(in) :: v
+        real(wp), intent(in) :: time, q(:), u(:)
         type(error_type), allocatable :: error
         real(wp) :: value(1)
         real(wp), allocatable :: values(:)
         integer, allocatable :: ids(:)
-        integer :: v
 
-        if (.not. allocated(variables)) return
-        if (size(variables) == 0) return
-        do v = 1, size(variables)
-            associate (variable => variables(v))
-                call begin_call(time, q, u)
-                if (allocated(variable%declared)) then
-                    allowed = variable%declared
-                    allowed_rates = variable%declared_rates
-                else if (allocated(allowed)) then
-                    deallocate(allowed)
-                end if
-                value = 0.0_wp
-                call call_hook(variable%routine, variable%id, time/variables_time_unit, &
-                    & variable%par, size(variable%par), .false., .false., value, 1)
-                if (allocated(allowed)) deallocate(allowed)
-                allowed_rates = .true.
-                variable%value = value(1)
-                if (.not. ieee_is_finite(value(1))) then
-                    call fatal_error(error, variable%name // ": its " &
-                        & // force_routine_label(variable%routine) // " returned VALUE = " &
-                        & // to_text(value(1)) // " at TIME = " &
-                        & // to_text(time/variables_time_unit) // ": a VARIABLE's value " &
-                        & // "must be finite", stat_ucon)
-                else
-                    call variable_problem(variable, "the call", time, error)
-                end if
-                if (allocated(error)) then
-                    if (.not. allocated(pending)) call move_alloc(error, pending)
-                end if
-            end associate
-        end do
+        associate (variable => variables(v))
+            call begin_call(time, q, u)
+            if (allocated(variable%declared)) then
+                allowed = variable%declared
+                allowed_rates = variable%declared_rates
+            else if (allocated(allowed)) then
+                deallocate(allowed)
+            end if
+            value = 0.0_wp
+            call call_hook(variable%routine, variable%id, time/variables_time_unit, &
+                & variable%par, size(variable%par), .false., .false., value, 1)
+            if (allocated(allowed)) deallocate(allowed)
+            allowed_rates = .true.
+            variable%value = value(1)
+            if (.not. ieee_is_finite(value(1))) then
+                call fatal_error(error, variable%name // ": its " &
+                    & // force_routine_label(variable%routine) // " returned VALUE = " &
+                    & // to_text(value(1)) // " at TIME = " &
+                    & // to_text(time/variables_time_unit) // ": a VARIABLE's value " &
+                    & // "must be finite", stat_ucon)
+            else
+                call variable_problem(variable, "the call", time, error)
+            end if
+            if (allocated(error)) then
+                if (.not. allocated(pending)) call move_alloc(error, pending)
+            end if
+        end associate
         ids = variables%id
         values = variables%value
         call set_user_variable_values(ids, values)
-    end subroutine evaluate_user_variables
+    end subroutine evaluate_user_variable
+
+    !> The model's VARIABLEs served by VARSUBs (set_user_variables' list, with what their
+    !> initialisation calls declared and their last values), none before it is set.
+    function user_variable_list() result(list)
+        type(user_variable_type), allocatable :: list(:)
+
+        allocate(list(0))
+        if (allocated(variables)) list = variables
+    end function user_variable_list
 
     !> After a VARSUB's call: an ERRMES it made, or a utility's refusal, as an error naming the
     !> VARIABLE.

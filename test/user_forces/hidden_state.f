@@ -1,6 +1,8 @@
 C     rollcon test routine (suite user-forces): sforce_spring.f's SFOSUB with hidden state,
-C     as `rollcon check` must report it: a SAVEd call counter adds 1e-3 N a call, so the same
-C     inputs give another RESULT each time.
+C     as `rollcon check` must report it: a SAVEd call counter flips the sign of a 1000 N term
+C     at each call, so the same inputs give another RESULT each time; a run of it stalls (the
+C     steps' Newton iterations meet another force at each call) and fails, its message
+C     pointing at `rollcon check`.
       SUBROUTINE SFOSUB(ID, TIME, PAR, NPAR, DFLAG, IFLAG, RESULT)
       IMPLICIT NONE
       INTEGER ID, NPAR
@@ -16,5 +18,5 @@ C     inputs give another RESULT each time.
       CALL SYSFNC('DM', IPAR, 2, DM, ERRFLG)
       CALL SYSFNC('VR', IPAR, 2, VR, ERRFLG)
       CALLS = CALLS + 1
-      RESULT = -PAR(3)*(DM - PAR(5)) - PAR(4)*VR + 1.0D-3*CALLS
+      RESULT = -PAR(3)*(DM - PAR(5)) - PAR(4)*VR + 1.0D3*(-1)**CALLS
       END

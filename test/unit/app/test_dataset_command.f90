@@ -335,7 +335,7 @@ contains
         call remove_folder(scratch)
         call check(error, status_unchecked /= 0 .and. index(unchecked_err, "CVODE") > 0 .and. &
             & index(unchecked_err, "rollcon check test/turntable/turntable_half_coriolis.f " &
-            & // "--model test/turntable/turntable_cvode.adm checks its partials") > 0, &
+            & // "--model test/turntable/turntable_cvode.adm checks them at many states") > 0, &
             & "a failed run with a user's routine: exit " // to_text(status_unchecked) &
             & // ", stderr: " // unchecked_err)
     end subroutine test_checked_before_run

@@ -13,6 +13,7 @@ module test_ida_first_step
     use rollcon_link_chain, only : link_chain_dataset
     use rollcon_testing, only : unittest_type, new_unittest, check
     use motion_runs, only : run_dataset_text
+    use command_runs, only : count_of
     implicit none
     private
 
@@ -73,21 +74,6 @@ contains
         call check(error, worst <= tol, "the light chain moves otherwise than the heavy one by " &
             & // to_text(worst))
     end subroutine test_light_chain
-
-    !> How many times part occurs in text.
-    pure integer function count_of(text, part) result(n)
-        character(len=*), intent(in) :: text, part
-        integer :: at, found
-
-        n = 0
-        at = 1
-        do
-            found = index(text(at:), part)
-            if (found == 0) return
-            n = n + 1
-            at = at + found + len(part) - 1
-        end do
-    end function count_of
 
     !> text with every old replaced by new.
     pure function replaced(text, old, new) result(out)

@@ -18,7 +18,8 @@ module test_user_forces
     use rollcon_output_files, only : make_folders, write_text_file
     use rollcon_user_forces, only : system_function, system_array
     use rollcon_user_build, only : user_build_options_type
-    use rollcon_force_routine_check, only : check_force_routines
+    use rollcon_user_routine_check, only : check_user_routines
+    use command_runs, only : file_text
     implicit none
     private
 
@@ -69,7 +70,8 @@ contains
             & new_unittest("utilities-outside-a-call", test_utilities_refuse), &
             & new_unittest("check-reports-implicit-typing", test_check_typing), &
             & new_unittest("check-clean-spring", test_check_clean), &
-            & new_unittest("check-reports-hidden-state", test_check_hidden)]
+            & new_unittest("check-reports-hidden-state", test_check_hidden), &
+            & new_unittest("failure-points-at-check", test_failure_points_at_check)]
     end subroutine collect_user_forces
 
     !> user_forces.adm (SFORCE/2 by sforce_spring.f's SFOSUB, GFORCE/1 by gforce_bushing.f's
@@ -493,7 +495,35 @@ contains
             & to_text(count) // " findings: " // findings)
     end subroutine test_check_hidden
 
-    !> check_force_routines of folder//file on spring.adm, the tests' cache, seed 1.
+    !> spring.adm with hidden_state.f (a force that flips its sign at each call) and at most
+    !> 200 steps an output interval: IDA fails with too much work, and its message names the
+    !> command that checks the routines (`rollcon check FILE --model MODEL`), since the
+    !> failure names no routine of its own.
+    subroutine test_failure_points_at_check(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(history_type) :: history
+        type(error_type), allocatable :: run_error
+        character(len=:), allocatable :: text, model
+        integer :: at
+
+        text = file_text(folder // "spring.adm")
+        at = index(text, "ACCGRAV")
+        call check(error, at > 0, folder // "spring.adm has no ACCGRAV")
+        if (allocated(error)) return
+        call make_folders(scratch, error)
+        if (allocated(error)) return
+        model = scratch // "/few_steps.adm"
+        call write_text_file(model, text(:at - 1) // "INTEGRATOR/MAXSTEPS = 200" &
+            & // new_line("a") // text(at:), error)
+        if (allocated(error)) return
+        call run_user(model, ["hidden_state.f"], 10.0_wp, history, run_error)
+        call expect_message(run_error, [character(len=200) :: "IDA_TOO_MUCH_WORK", &
+            & "the run's user routines are in " // folder // "hidden_state.f: rollcon check " &
+            & // folder // "hidden_state.f --model " // model // " checks them at many states"], &
+            & error)
+    end subroutine test_failure_points_at_check
+
+    !> check_user_routines of folder//file on spring.adm, the tests' cache, seed 1.
     subroutine check_file(file, findings, count, error)
         character(len=*), intent(in) :: file
         character(len=:), allocatable, intent(out) :: findings
@@ -502,7 +532,7 @@ contains
         type(user_build_options_type) :: options
 
         options%cache_dir = test_cache
-        call check_force_routines(folder // file, folder // "spring.adm", options, 10.0_wp, 1, &
+        call check_user_routines(folder // file, folder // "spring.adm", options, 10.0_wp, 1, &
             & findings, count, error)
     end subroutine check_file
 

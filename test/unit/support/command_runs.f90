@@ -8,7 +8,7 @@ module command_runs
     private
 
     public :: rollcon_program, run_rollcon, file_text, file_exists, line_count, mount_small, &
-        & unmount
+        & unmount, count_of
 
 contains
 
@@ -111,5 +111,20 @@ contains
             if (text(i:i) == new_line("a")) line_count = line_count + 1
         end do
     end function line_count
+
+    !> How many times part occurs in text.
+    pure integer function count_of(text, part) result(n)
+        character(len=*), intent(in) :: text, part
+        integer :: at, found
+
+        n = 0
+        at = 1
+        do
+            found = index(text(at:), part)
+            if (found == 0) return
+            n = n + 1
+            at = at + found + len(part) - 1
+        end do
+    end function count_of
 
 end module command_runs

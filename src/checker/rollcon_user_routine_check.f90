@@ -1,0 +1,666 @@
+! SPDX-License-Identifier: MIT
+!> `rollcon check FILE --model MODEL.adm` for a dataset whose statements are served by the
+!> file's routines (docs/checker.md, "Checking a force, variable or request routine"): every
+!> kind rollcon serves but UCOSUB (which rollcon_ucosub_audit checks), each a row of one table
+!> (checked_kinds): SFOSUB, VFOSUB, GFOSUB, VTOSUB (force statements), VARSUB (VARIABLE) and
+!> REQSUB (REQUEST).
+!>
+!> - implicit typing (a Fortran file; C has none): the file compiled once more with
+!>   gfortran's -Wconversion, each warning
+!>   of a conversion that may change a value (a DOUBLE PRECISION value into a variable typed
+!>   INTEGER or REAL by its first letter) a finding naming the routine and the line;
+!> - in a child process (the routines' own, with the time limit per call and the guards of a
+!>   run, rollcon_force_routine_guard), the model built as a run builds it (the
+!>   initialisation calls included) and every statement a user's routine serves called at its
+!>   start and at random states about it: the same inputs twice must give the same outputs
+!>   (no hidden state), the outputs must be finite, and continuous over the states probed (a
+!>   jump found by halving the way from the start to each state: the change across a step
+!>   that does not shrink as the step does), and the SYSFNC and SYSARY calls must name only
+!>   what the initialisation call named. Each finding names the statement (file and line),
+!>   the routine, the call and the state.
+module rollcon_user_routine_check
+    use rollcon_kinds, only : wp
+    use rollcon_error, only : error_type, stat_ucon
+    use rollcon_text, only : to_text, shell_quote, upper_case
+    use rollcon_adm_model, only : adm_model_type, request_user
+    use rollcon_adm_reader, only : read_adm
+    use rollcon_job, only : job_type
+    use rollcon_load, only : load_job
+    use rollcon_problem, only : problem_type
+    use rollcon_force, only : profile_statement
+    use rollcon_ucosub_contract, only : ucosub_interface
+    use rollcon_system_routine_contract, only : request_results, request_columns
+    use rollcon_user_build, only : user_build_options_type, build_user_library, source_kind, &
+        & kind_c
+    use rollcon_user_library, only : user_ucosub_type, load_user_routines
+    use rollcon_user_forces, only : clear_force_routines, evaluate_user_forces, &
+        & take_user_force_error, system_notes, clear_system_notes, force_routine_label, &
+        & call_user_request, evaluate_user_variable, user_variable_list, user_variable_type
+    use rollcon_user_variable_values, only : user_variable_value
+    use rollcon_request_answers, only : request_answer_watch_type, answer_user
+    use rollcon_force_routine_guard, only : install_force_guard
+    use rollcon_ucosub_guard, only : install_guard, attach_call_record, guarded_ucosub
+    use rollcon_child_process, only : isolated_task_type, stream_receiver_type, &
+        & call_record_type, isolation_outcome_type, run_in_child, outcome_finished
+    use rollcon_frames, only : send_frame, frame_buffer_type
+    use rollcon_isolation_text, only : outcome_text
+    use, intrinsic :: ieee_arithmetic, only : ieee_is_finite
+    implicit none
+    private
+
+    public :: dataset_has_user_routines, check_user_routines, implicit_typing_findings
+
+    !> States probed about the start, besides the start itself
+    integer, parameter :: probed_states = 20
+    !> Halvings of the way from the start to a state in the search for a jump: the last step
+    !> is 2**-40 (1e-12) of the way, where a force with a stiffness of 1e8 (in the dataset's
+    !> units) changes by 1e-5 over a way of 0.1
+    integer, parameter :: halvings = 40
+    !> A jump is a change across the last step beyond this fraction of the outputs' scale
+    !> (1 + their largest magnitude) that is still more than half the change across the step
+    !> ten halvings before: a continuous output's change falls some 1000-fold over ten
+    !> halvings, a jump's does not fall
+    real(wp), parameter :: jump_fraction = 1.0e-3_wp
+    integer, parameter :: jump_lag = 10
+
+    abstract interface
+        !> True when the dataset has a statement of the kind served by a user's routine.
+        logical function in_dataset_interface(adm)
+            import :: adm_model_type
+            type(adm_model_type), intent(in) :: adm
+        end function in_dataset_interface
+
+        !> How many statements of the kind the built problem holds (served by a user's
+        !> routine or not).
+        integer function count_interface(problem)
+            import :: problem_type
+            type(problem_type), intent(in), target :: problem
+        end function count_interface
+
+        !> The k-th statement and its routine for findings, "x.adm:9: SFORCE/2, its SFOSUB
+        !> of f.f"; "" when no user's routine serves it.
+        function label_interface(problem, k) result(label)
+            import :: problem_type
+            type(problem_type), intent(in), target :: problem
+            integer, intent(in) :: k
+            character(len=:), allocatable :: label
+        end function label_interface
+
+        !> The outputs of the k-th statement's routine called at (time [s], q, u [SI]); error
+        !> for a call that failed (an ERRMES, a utility's refusal, outputs not finite).
+        subroutine values_interface(problem, k, time, q, u, values, error)
+            import :: problem_type, wp, error_type
+            type(problem_type), intent(inout), target :: problem
+            integer, intent(in) :: k
+            real(wp), intent(in) :: time, q(:), u(:)
+            real(wp), allocatable, intent(out) :: values(:)
+            type(error_type), allocatable, intent(out) :: error
+        end subroutine values_interface
+    end interface
+
+    !> A kind of user routine the check probes: a row of checked_kinds
+    type :: checked_kind_type
+        !> What its outputs are called in ADAMS's calling sequence: RESULT, VALUE
+        character(len=6) :: output = "RESULT"
+        procedure(in_dataset_interface), pointer, nopass :: in_dataset => null()
+        procedure(count_interface), pointer, nopass :: count => null()
+        procedure(label_interface), pointer, nopass :: label => null()
+        procedure(values_interface), pointer, nopass :: values => null()
+    end type checked_kind_type
+
+    !> The child's work
+    type, extends(isolated_task_type) :: routine_check_task_type
+        type(job_type) :: job
+        character(len=:), allocatable :: library
+        integer :: seed = 1
+    contains
+        procedure :: run => run_routine_check
+    end type routine_check_task_type
+
+    !> In this process: the findings the child sends, a line each
+    type, extends(stream_receiver_type) :: findings_receiver_type
+        type(frame_buffer_type) :: frames
+        character(len=:), allocatable :: text
+        integer :: count = 0
+    contains
+        procedure :: receive
+    end type findings_receiver_type
+
+contains
+
+    !> The kinds of user routine the check probes, a row each: what the outputs are called,
+    !> and how the dataset's statements of the kind are found, named and evaluated.
+    function checked_kinds() result(kinds)
+        type(checked_kind_type), allocatable :: kinds(:)
+
+        kinds = [checked_kind_type("RESULT", user_forces_in, force_count, force_label, &
+            & force_values), &
+            & checked_kind_type("VALUE", user_variables_in, variable_count, variable_label, &
+            & variable_values), &
+            & checked_kind_type("RESULT", user_requests_in, request_count, request_label, &
+            & request_values)]
+    end function checked_kinds
+
+    !> True when the dataset at path has a statement served by a user's routine of a kind
+    !> this check probes (checked_kinds).
+    function dataset_has_user_routines(path) result(has)
+        character(len=*), intent(in) :: path
+        logical :: has
+        type(adm_model_type) :: adm
+        type(error_type), allocatable :: error
+        type(checked_kind_type), allocatable :: kinds(:)
+        integer :: k
+
+        has = .false.
+        call read_adm(path, adm, error)
+        if (allocated(error)) return
+        kinds = checked_kinds()
+        do k = 1, size(kinds)
+            has = has .or. kinds(k)%in_dataset(adm)
+        end do
+    end function dataset_has_user_routines
+
+    !> Check the user routines of file on the dataset at model: findings (a line each, "" for
+    !> none) and their number. error is for what prevents the check (the file does not build,
+    !> the model does not read).
+    subroutine check_user_routines(file, model, options, call_timeout, seed, findings, count, &
+            & error)
+        character(len=*), intent(in) :: file, model
+        type(user_build_options_type), intent(in) :: options
+        !> Longest one call may take [s]
+        real(wp), intent(in) :: call_timeout
+        !> Seed of the probed states
+        integer, intent(in) :: seed
+        character(len=:), allocatable, intent(out) :: findings
+        integer, intent(out) :: count
+        type(error_type), allocatable, intent(out) :: error
+        type(routine_check_task_type) :: task
+        type(findings_receiver_type) :: receiver
+        type(isolation_outcome_type) :: outcome
+        character(len=:), allocatable :: typing
+        logical :: from_cache
+        integer :: typing_count
+
+        findings = ""
+        count = 0
+        call build_user_library(file, options, task%library, from_cache, error)
+        if (allocated(error)) return
+        call load_job(model, task%job, error, ucosub=file)
+        if (allocated(error)) return
+        task%job%build_options = options
+        task%seed = seed
+        receiver%text = ""
+        call run_in_child(task, real(call_timeout, wp), outcome, error, receiver=receiver)
+        findings = receiver%text
+        count = receiver%count
+        if (outcome%kind /= outcome_finished) then
+            findings = findings // "[crash] " // outcome_text(outcome) // new_line("a")
+            count = count + 1
+            if (allocated(error)) deallocate(error)
+        else if (allocated(error)) then
+            if (error%stat /= stat_ucon) return
+            ! a routine's failure in the initialisation call is a finding too
+            findings = findings // "[error] " // error%message // new_line("a")
+            count = count + 1
+            deallocate(error)
+        end if
+        ! C has no implicit typing: its declarations are the programmer's own
+        if (source_kind(file) == kind_c) return
+        call implicit_typing_findings(file, options%compiler, typing, typing_count, error)
+        if (allocated(error)) return
+        findings = findings // typing
+        count = count + typing_count
+    end subroutine check_user_routines
+
+    !> The file compiled again with -Wconversion (-fsyntax-only): each warning of a conversion
+    !> that may change a value, "[typing] FILE:LINE (in SUBROUTINE NAME): what gfortran says:
+    !> the source line", a line each. Under IMPLICIT typing a variable named from I to N is
+    !> INTEGER and any other REAL, so `KR = PAR(3)` truncates the stiffness and `C1 = PAR(4)`
+    !> keeps seven digits of the damping.
+    subroutine implicit_typing_findings(file, compiler, findings, count, error)
+        character(len=*), intent(in) :: file, compiler
+        character(len=:), allocatable, intent(out) :: findings
+        integer, intent(out) :: count
+        type(error_type), allocatable, intent(out) :: error
+        character(len=:), allocatable :: log, command, flags
+        character(len=1000) :: line
+        character(len=:), allocatable :: source_line, routine
+        integer :: unit, stat, colon, number, at
+
+        findings = ""
+        count = 0
+        log = "/tmp/rollcon-typing-" // to_text(getpid_value()) // ".log"
+        flags = "-fsyntax-only -Wconversion"
+        if (index(file, ".f90") == 0) flags = flags // " -std=legacy"
+        command = trim(compiler) // " " // flags // " " // shell_quote(file) // " -J /tmp > " &
+            & // shell_quote(log) // " 2>&1"
+        call execute_command_line(command, exitstat=stat)
+        open(newunit=unit, file=log, status="old", action="read", iostat=stat)
+        if (stat /= 0) return
+        number = 0
+        do
+            read(unit, '(a)', iostat=stat) line
+            if (stat /= 0) exit
+            ! "FILE:LINE:COLUMN:" then, lines later, "Warning: ... conversion from ..."
+            if (index(line, file // ":") == 1) then
+                colon = index(line(len(file) + 2:), ":")
+                if (colon > 1) read(line(len(file) + 2:len(file) + colon), *, iostat=stat) number
+                cycle
+            end if
+            at = index(line, "Warning:")
+            if (at == 0 .or. index(line, "onversion") == 0) cycle
+            call source_context(file, number, source_line, routine)
+            findings = findings // "[typing] " // file // ":" // to_text(number) // " (in " &
+                & // routine // "): " // trim(line(at + 9:)) // ": " // source_line &
+                & // " (an IMPLICIT type? declare it DOUBLE PRECISION)" // new_line("a")
+            count = count + 1
+        end do
+        close(unit, status="delete")
+    end subroutine implicit_typing_findings
+
+    !> The source line number of file, and the SUBROUTINE it is in ("?" when not found).
+    subroutine source_context(file, number, text, routine)
+        character(len=*), intent(in) :: file
+        integer, intent(in) :: number
+        character(len=:), allocatable, intent(out) :: text, routine
+        character(len=400) :: line
+        integer :: unit, stat, k, at
+
+        text = "?"
+        routine = "?"
+        open(newunit=unit, file=file, status="old", action="read", iostat=stat)
+        if (stat /= 0) return
+        do k = 1, number
+            read(unit, '(a)', iostat=stat) line
+            if (stat /= 0) exit
+            at = index(upper_case(line), "SUBROUTINE ")
+            if (at > 0 .and. line(1:1) /= "C" .and. line(1:1) /= "c" .and. line(1:1) /= "!") &
+                & then
+                routine = trim(adjustl(line(at + 11:)))
+                if (index(routine, "(") > 0) routine = routine(:index(routine, "(") - 1)
+                routine = "SUBROUTINE " // trim(routine)
+            end if
+            if (k == number) text = "'" // trim(adjustl(line)) // "'"
+        end do
+        close(unit)
+    end subroutine source_context
+
+    !> This process's id.
+    function getpid_value() result(pid)
+        use rollcon_dlopen, only : process_id
+        integer :: pid
+
+        pid = process_id()
+    end function getpid_value
+
+    !> In the child: load the routines, build the model (the initialisation calls), then probe
+    !> every statement of every kind (checked_kinds) served by a user's routine at the same
+    !> states: the start, and probed_states random states about it (positions within 0.05 m or
+    !> rad, rates within 0.5 m/s or rad/s, the time within the run's span).
+    subroutine run_routine_check(self, record, error)
+        class(routine_check_task_type), intent(inout) :: self
+        type(call_record_type), pointer, intent(in) :: record
+        type(error_type), allocatable, intent(out) :: error
+        type(user_ucosub_type) :: user
+        type(problem_type), target :: problem
+        type(checked_kind_type), allocatable :: kinds(:)
+        procedure(ucosub_interface), pointer :: guarded
+        real(wp), allocatable :: q0(:), u0(:), q(:, :), u(:, :)
+        real(wp) :: times(0:probed_states), span
+        character(len=:), allocatable :: report, label
+        integer :: s, i, n, kind
+        integer, allocatable :: seed(:)
+
+        call attach_call_record(record)
+        call clear_force_routines()
+        user%source = self%job%user_file
+        user%library = self%library
+        call load_user_routines(user, error)
+        if (allocated(error)) return
+        call install_force_guard(record)
+        guarded => null()
+        if (associated(user%ucosub)) then
+            call install_guard(user%ucosub, as_errors=.true.)
+            guarded => guarded_ucosub
+        end if
+        call clear_system_notes()
+        call self%job%source%build(guarded, problem, q0, u0, report, error)
+        if (allocated(error)) return
+        call random_seed(size=n)
+        allocate(seed(n))
+        seed = self%seed + 7919*[(i, i = 1, n)]
+        call random_seed(put=seed)
+        allocate(q(size(q0), 0:probed_states), u(size(u0), 0:probed_states))
+        call random_number(q)
+        call random_number(u)
+        call random_number(times)
+        span = problem%settings%end_time
+        if (.not. span > 0.0_wp) span = 1.0_wp
+        do s = 0, probed_states
+            q(:, s) = q0 + 0.1_wp*(q(:, s) - 0.5_wp)
+            u(:, s) = u0 + (u(:, s) - 0.5_wp)
+        end do
+        times = span*times
+        q(:, 0) = q0
+        u(:, 0) = u0
+        times(0) = 0.0_wp
+        kinds = checked_kinds()
+        do kind = 1, size(kinds)
+            do i = 1, kinds(kind)%count(problem)
+                label = kinds(kind)%label(problem, i)
+                if (len(label) == 0) cycle
+                call probe(kinds(kind), i, label)
+            end do
+        end do
+    contains
+        !> The checks of one statement at every state.
+        subroutine probe(row, k, label)
+            type(checked_kind_type), intent(in) :: row
+            integer, intent(in) :: k
+            character(len=*), intent(in) :: label
+            real(wp), allocatable :: start(:), first(:), second(:)
+            character(len=:), allocatable :: where, reported
+            type(error_type), allocatable :: failure
+            integer :: s
+
+            reported = ""
+            do s = 0, probed_states
+                where = label // " at state " // to_text(s) // trim(merge(" (the start)", &
+                    & "            ", s == 0)) // ", in the call with IFLAG = .FALSE., t = " &
+                    & // to_text(times(s)) // " s"
+                call clear_system_notes()
+                call row%values(problem, k, times(s), q(:, s), u(:, s), first, failure)
+                if (.not. allocated(failure)) call row%values(problem, k, times(s), q(:, s), &
+                    & u(:, s), second, failure)
+                if (allocated(failure)) then
+                    ! a routine that fails is probed no further: the first failure says it
+                    call finding(trim(merge("[finite]", "[error] ", index(failure%message, &
+                        & "must be finite") > 0)) // " " // where // ": " &
+                        & // failure_text(failure%message, label))
+                    return
+                end if
+                if (s == 0) start = first
+                if (any(first /= second)) then
+                    call finding("[hidden state] " // where // ": the same inputs gave " &
+                        & // trim(row%output) // " " // numbers(first) // " and then " &
+                        & // numbers(second))
+                else if (s > 0) then
+                    call continuity(row, k, s, start, first, where)
+                end if
+                call declaration_notes(where, reported)
+            end do
+        end subroutine probe
+
+        !> A jump of the k-th statement's outputs on the way from the start (outputs start)
+        !> to state s (outputs there): the way halved, the half with the larger change kept,
+        !> halvings times (module header).
+        subroutine continuity(row, k, s, start, there, where)
+            type(checked_kind_type), intent(in) :: row
+            integer, intent(in) :: k, s
+            real(wp), intent(in) :: start(:), there(:)
+            character(len=*), intent(in) :: where
+            real(wp), allocatable :: low(:), high(:), middle(:)
+            real(wp) :: changes(0:halvings), a, b, c, scale
+            type(error_type), allocatable :: failure
+            integer :: h
+
+            low = start
+            high = there
+            a = 0.0_wp
+            b = 1.0_wp
+            changes(0) = maxval(abs(high - low))
+            scale = 1.0_wp + max(maxval(abs(start)), maxval(abs(there)))
+            do h = 1, halvings
+                c = 0.5_wp*(a + b)
+                call row%values(problem, k, times(0) + c*(times(s) - times(0)), q(:, 0) &
+                    & + c*(q(:, s) - q(:, 0)), u(:, 0) + c*(u(:, s) - u(:, 0)), middle, failure)
+                ! a failure on the way is found where it is when the state probed is near it
+                if (allocated(failure)) return
+                if (maxval(abs(middle - low)) >= maxval(abs(high - middle))) then
+                    b = c
+                    high = middle
+                else
+                    a = c
+                    low = middle
+                end if
+                changes(h) = maxval(abs(high - low))
+            end do
+            if (changes(halvings) <= jump_fraction*scale) return
+            if (changes(halvings) <= 0.5_wp*changes(halvings - jump_lag)) return
+            call finding("[jump] " // where // ": on the way from the start to this state, " &
+                & // trim(row%output) // " jumps from " // numbers(low) // " to " &
+                & // numbers(high) // " at " // to_text(a) // " of the way, across a step of " &
+                & // "1e-12 of it (a discontinuity the integrator cannot step over)")
+        end subroutine continuity
+
+        !> What the utilities noted in the calls at a state (a marker or a rate its
+        !> initialisation call did not declare), each note once a statement.
+        subroutine declaration_notes(where, reported)
+            character(len=*), intent(in) :: where
+            character(len=:), allocatable, intent(inout) :: reported
+            character(len=:), allocatable :: notes
+            integer :: end_of_line
+
+            notes = system_notes()
+            do while (len(notes) > 0)
+                end_of_line = index(notes, new_line("a"))
+                if (end_of_line == 0) end_of_line = len(notes) + 1
+                if (index(reported, notes(:end_of_line - 1) // new_line("a")) == 0) then
+                    call finding("[declaration] " // where // ": " // notes(:end_of_line - 1))
+                    reported = reported // notes(:end_of_line - 1) // new_line("a")
+                end if
+                notes = notes(min(end_of_line + 1, len(notes) + 1):)
+            end do
+        end subroutine declaration_notes
+
+        subroutine finding(text)
+            character(len=*), intent(in) :: text
+            type(error_type), allocatable :: ignored
+
+            call send_frame(self%stream_fd, 1, text, ignored)
+        end subroutine finding
+    end subroutine run_routine_check
+
+    !> A force statement with FUNCTION=USER(...) in the dataset (SFORCE, VFORCE, GFORCE,
+    !> VTORQUE).
+    logical function user_forces_in(adm) result(has)
+        type(adm_model_type), intent(in) :: adm
+
+        has = .false.
+        if (allocated(adm%forces)) has = any(adm%forces%user)
+    end function user_forces_in
+
+    !> The model's forces (statements and built-in elements alike).
+    integer function force_count(problem) result(n)
+        type(problem_type), intent(in), target :: problem
+
+        n = size(problem%model%forces)
+    end function force_count
+
+    !> "x.adm:9: SFORCE/2, its SFOSUB of f.f"; "" for a force no user's routine serves.
+    function force_label(problem, k) result(label)
+        type(problem_type), intent(in), target :: problem
+        integer, intent(in) :: k
+        character(len=:), allocatable :: label
+
+        label = ""
+        associate (force => problem%model%forces(k))
+            if (force%profile /= profile_statement) return
+            if (force%statement%routine == 0) return
+            label = force%name // ", its " // force_routine_label(force%statement%routine)
+        end associate
+    end function force_label
+
+    !> The force's values (SI; force then torque) as its routine gives them.
+    subroutine force_values(problem, k, time, q, u, values, error)
+        type(problem_type), intent(inout), target :: problem
+        integer, intent(in) :: k
+        real(wp), intent(in) :: time, q(:), u(:)
+        real(wp), allocatable, intent(out) :: values(:)
+        type(error_type), allocatable, intent(out) :: error
+
+        call evaluate_user_forces(problem%model%forces(k:k), time, q, u)
+        values = problem%model%forces(k)%statement%user_values
+        call take_user_force_error(error)
+    end subroutine force_values
+
+    !> A VARIABLE with FUNCTION=USER(...) in the dataset.
+    logical function user_variables_in(adm) result(has)
+        type(adm_model_type), intent(in) :: adm
+
+        has = .false.
+        if (allocated(adm%variables)) has = any(adm%variables%user)
+    end function user_variables_in
+
+    !> The model's VARIABLEs served by a VARSUB.
+    integer function variable_count(problem) result(n)
+        type(problem_type), intent(in), target :: problem
+
+        n = size(user_variable_list())
+    end function variable_count
+
+    !> "x.adm:10: VARIABLE/3, its VARSUB of f.f".
+    function variable_label(problem, k) result(label)
+        type(problem_type), intent(in), target :: problem
+        integer, intent(in) :: k
+        character(len=:), allocatable :: label
+        type(user_variable_type), allocatable :: list(:)
+
+        list = user_variable_list()
+        label = list(k)%name // ", its " // force_routine_label(list(k)%routine)
+    end function variable_label
+
+    !> The VARIABLE's VALUE as its VARSUB gives it (the dataset's units).
+    subroutine variable_values(problem, k, time, q, u, values, error)
+        type(problem_type), intent(inout), target :: problem
+        integer, intent(in) :: k
+        real(wp), intent(in) :: time, q(:), u(:)
+        real(wp), allocatable, intent(out) :: values(:)
+        type(error_type), allocatable, intent(out) :: error
+        type(user_variable_type), allocatable :: list(:)
+
+        call evaluate_user_variable(k, time, q, u)
+        list = user_variable_list()
+        values = [user_variable_value(list(k)%id)]
+        call take_user_force_error(error)
+    end subroutine variable_values
+
+    !> A REQUEST with FUNCTION=USER(...) in the dataset.
+    logical function user_requests_in(adm) result(has)
+        type(adm_model_type), intent(in) :: adm
+
+        has = .false.
+        if (allocated(adm%other_requests)) has = any(adm%other_requests%kind == request_user)
+    end function user_requests_in
+
+    !> The requests the problem's request watch answers (none without one).
+    integer function request_count(problem) result(n)
+        type(problem_type), intent(in), target :: problem
+        type(request_answer_watch_type), pointer :: watch
+
+        n = 0
+        watch => request_watch(problem)
+        if (associated(watch)) n = size(watch%own_requests)
+    end function request_count
+
+    !> "x.adm:12: REQUEST/7, its REQSUB of f.f"; "" for a request no user's routine serves.
+    function request_label(problem, k) result(label)
+        type(problem_type), intent(in), target :: problem
+        integer, intent(in) :: k
+        character(len=:), allocatable :: label
+        type(request_answer_watch_type), pointer :: watch
+
+        label = ""
+        watch => request_watch(problem)
+        associate (request => watch%own_requests(k))
+            if (request%kind /= answer_user) return
+            label = request%name // ", its " // force_routine_label(request%routine)
+        end associate
+    end function request_label
+
+    !> The request's RESULT(2:4) and RESULT(6:8), the entries ADAMS writes, as its REQSUB
+    !> gives them (its first call is preceded by its initialisation call, as in a run).
+    subroutine request_values(problem, k, time, q, u, values, error)
+        type(problem_type), intent(inout), target :: problem
+        integer, intent(in) :: k
+        real(wp), intent(in) :: time, q(:), u(:)
+        real(wp), allocatable, intent(out) :: values(:)
+        type(error_type), allocatable, intent(out) :: error
+        type(request_answer_watch_type), pointer :: watch
+        real(wp) :: result(request_results)
+
+        watch => request_watch(problem)
+        associate (request => watch%own_requests(k))
+            call call_user_request(request%routine, request%id, request%name, request%par, &
+                & watch%time_unit, time, q, u, request%declared, request%declared_rates, result)
+        end associate
+        values = result(request_columns)
+        call take_user_force_error(error)
+    end subroutine request_values
+
+    !> The problem's request watch (rollcon_adm_requests adds one at most); null when none.
+    function request_watch(problem) result(watch)
+        type(problem_type), intent(in), target :: problem
+        type(request_answer_watch_type), pointer :: watch
+        integer :: w
+
+        watch => null()
+        do w = 1, size(problem%watches)
+            select type (found => problem%watches(w)%watch)
+            type is (request_answer_watch_type)
+                watch => found
+                return
+            end select
+        end do
+    end function request_watch
+
+    !> A routine's error message without the statement and routine it starts with, which the
+    !> finding names before it ("x.adm:9: SFORCE/2: its SFOSUB of f.f returned ..." after the
+    !> label "x.adm:9: SFORCE/2, its SFOSUB of f.f": "returned ...").
+    function failure_text(message, label) result(text)
+        character(len=*), intent(in) :: message, label
+        character(len=:), allocatable :: text, prefix
+        integer :: comma
+
+        text = message
+        comma = index(label, ", its ")
+        if (comma == 0) return
+        prefix = label(:comma - 1) // ": its " // label(comma + 6:)
+        if (index(message, prefix) == 1) text = adjustl(message(len(prefix) + 1:))
+        if (index(text, ", ") == 1) text = text(3:)
+    end function failure_text
+
+    !> "(1.5, -2)" of values.
+    function numbers(values) result(text)
+        real(wp), intent(in) :: values(:)
+        character(len=:), allocatable :: text
+        integer :: k
+
+        text = "("
+        do k = 1, size(values)
+            if (k > 1) text = text // ", "
+            text = text // to_text(values(k))
+        end do
+        text = text // ")"
+    end function numbers
+
+    !> Bytes from the child: each finding a line.
+    subroutine receive(self, bytes)
+        class(findings_receiver_type), intent(inout) :: self
+        character(len=*), intent(in) :: bytes
+        character(len=:), allocatable :: payload
+        integer :: kind
+        logical :: found
+
+        call self%frames%add(bytes)
+        do
+            call self%frames%next(kind, payload, found)
+            if (.not. found) exit
+            if (.not. allocated(self%text)) self%text = ""
+            self%text = self%text // payload
+            if (payload(len(payload):) /= new_line("a")) self%text = self%text // new_line("a")
+            self%count = self%count + 1
+        end do
+    end subroutine receive
+
+end module rollcon_user_routine_check

@@ -1,0 +1,274 @@
+! SPDX-License-Identifier: MIT
+!> `rollcon check FILE --model MODEL.adm` on VARSUBs and REQSUBs (suite user-routine-check;
+!> rollcon_user_routine_check): the routines of the user-forces suite checked clean, and each
+!> fault test/user_forces/checked/planted_faults.f plants (chosen by a fourth constant of
+!> USER(...)) reported by its rule, naming the statement and its line, the routine and the
+!> state; an implicit-typing slip reported with its line and routine.
+module test_user_routine_check
+    use rollcon_kinds, only : wp
+    use rollcon_error, only : error_type
+    use rollcon_text, only : to_text
+    use rollcon_testing, only : unittest_type, new_unittest, check
+    use rollcon_output_files, only : make_folders, write_text_file
+    use rollcon_user_build, only : user_build_options_type
+    use rollcon_user_routine_check, only : check_user_routines
+    use command_runs, only : file_text, count_of
+    implicit none
+    private
+
+    public :: collect_user_routine_check
+
+    !> The test data
+    character(len=*), parameter :: folder = "test/user_forces/"
+    character(len=*), parameter :: faults = folder // "checked/planted_faults.f"
+    !> The tests' cache of compiled routines (the user-ucosub suite's)
+    character(len=*), parameter :: test_cache = "build/rollcon-test-user-cache"
+    !> Scratch folder of the suite: the datasets with a fault chosen
+    character(len=*), parameter :: scratch = "build/test_user_routine_check"
+    !> Findings at every state probed: the start and 20 states about it
+    integer, parameter :: every_state = 21
+    !> The planted jump, SIGN(0.1, VZ): from -0.1 to 0.1. The check halves the way to the
+    !> jump 40 times, so the two outputs it quotes differ from the jump by the smooth part's
+    !> change over 2**-40 of the way (of order 1e-12: the displacement's rate is of order 1):
+    !> 1e-9 catches a search that stopped tenfold short (2**-10 of the way: 1e-3)
+    real(wp), parameter :: planted_jump = 0.2_wp, jump_tolerance = 1.0e-9_wp
+
+contains
+
+    subroutine collect_user_routine_check(tests)
+        type(unittest_type), allocatable, intent(out) :: tests(:)
+
+        tests = [new_unittest("varsub-clean", test_varsub_clean), &
+            & new_unittest("reqsub-clean", test_reqsub_clean), &
+            & new_unittest("varsub-hidden-state", test_varsub_hidden), &
+            & new_unittest("reqsub-hidden-state", test_reqsub_hidden), &
+            & new_unittest("varsub-nan", test_varsub_nan), &
+            & new_unittest("reqsub-nan", test_reqsub_nan), &
+            & new_unittest("varsub-jump", test_varsub_jump), &
+            & new_unittest("reqsub-jump", test_reqsub_jump), &
+            & new_unittest("varsub-undeclared-sysary", test_varsub_undeclared), &
+            & new_unittest("reqsub-undeclared-sysary", test_reqsub_undeclared), &
+            & new_unittest("varsub-implicit-typing", test_varsub_typing)]
+    end subroutine collect_user_routine_check
+
+    !> variable_stretch.f on variable.adm (declared types, no state, smooth, its SYSFNC call
+    !> that of its initialisation call): clean.
+    subroutine test_varsub_clean(error)
+        type(error_type), allocatable, intent(out) :: error
+
+        call expect_clean(folder // "variable_stretch.f", folder // "variable.adm", error)
+    end subroutine test_varsub_clean
+
+    !> request_measures.f on request.adm: clean.
+    subroutine test_reqsub_clean(error)
+        type(error_type), allocatable, intent(out) :: error
+
+        call expect_clean(folder // "request_measures.f", folder // "request.adm", error)
+    end subroutine test_reqsub_clean
+
+    !> A SAVEd call counter in VALUE: [hidden state] at every state.
+    subroutine test_varsub_hidden(error)
+        type(error_type), allocatable, intent(out) :: error
+
+        call expect_fault("variable", 1, "[hidden state]", every_state, error)
+    end subroutine test_varsub_hidden
+
+    !> The same counter in RESULT(4).
+    subroutine test_reqsub_hidden(error)
+        type(error_type), allocatable, intent(out) :: error
+
+        call expect_fault("request", 1, "[hidden state]", every_state, error)
+    end subroutine test_reqsub_hidden
+
+    !> 0/0 in VALUE past 0.1 s: one [finite] finding quoting the NaN (the routine is probed no
+    !> further).
+    subroutine test_varsub_nan(error)
+        type(error_type), allocatable, intent(out) :: error
+        character(len=:), allocatable :: findings
+
+        call expect_fault("variable", 2, "[finite]", 1, error, findings)
+        if (allocated(error)) return
+        call check(error, index(findings, "returned VALUE = NaN") > 0, findings)
+    end subroutine test_varsub_nan
+
+    !> The same in RESULT(4).
+    subroutine test_reqsub_nan(error)
+        type(error_type), allocatable, intent(out) :: error
+        character(len=:), allocatable :: findings
+
+        call expect_fault("request", 2, "[finite]", 1, error, findings)
+        if (allocated(error)) return
+        call check(error, index(findings, "returned RESULT = (") > 0 .and. index(findings, &
+            & "NaN") > 0, findings)
+    end subroutine test_reqsub_nan
+
+    !> SIGN(0.1, VZ) in VALUE: [jump] findings only, the first quoting a jump of 0.2.
+    subroutine test_varsub_jump(error)
+        type(error_type), allocatable, intent(out) :: error
+
+        call expect_jump("variable", 1, error)
+    end subroutine test_varsub_jump
+
+    !> The same in RESULT(4) (the third of the six entries ADAMS writes).
+    subroutine test_reqsub_jump(error)
+        type(error_type), allocatable, intent(out) :: error
+
+        call expect_jump("request", 6, error)
+    end subroutine test_reqsub_jump
+
+    !> SYSARY('TVEL') read in the evaluations but not in the initialisation call: one
+    !> [declaration] finding (a note is reported once a statement) naming the call.
+    subroutine test_varsub_undeclared(error)
+        type(error_type), allocatable, intent(out) :: error
+
+        call expect_undeclared("variable", error)
+    end subroutine test_varsub_undeclared
+
+    !> The same in the REQSUB.
+    subroutine test_reqsub_undeclared(error)
+        type(error_type), allocatable, intent(out) :: error
+
+        call expect_undeclared("request", error)
+    end subroutine test_reqsub_undeclared
+
+    !> implicit_varsub.f on variable.adm: exactly one finding, its slip of implicit typing
+    !> (LFREE, INTEGER by its first letter, receiving PAR(3)), naming the line and the routine.
+    subroutine test_varsub_typing(error)
+        type(error_type), allocatable, intent(out) :: error
+        character(len=:), allocatable :: findings
+        integer :: count
+
+        call check_file(folder // "checked/implicit_varsub.f", folder // "variable.adm", &
+            & findings, count, error)
+        if (allocated(error)) return
+        call check(error, count == 1 .and. index(findings, "[typing] " // folder &
+            & // "checked/implicit_varsub.f:15 (in SUBROUTINE VARSUB)") > 0 .and. &
+            & index(findings, "REAL(8) to INTEGER(4)") > 0 .and. index(findings, &
+            & "'LFREE = PAR(3)'") > 0, to_text(count) // " findings: " // findings)
+    end subroutine test_varsub_typing
+
+    !> file on model: no finding.
+    subroutine expect_clean(file, model, error)
+        character(len=*), intent(in) :: file, model
+        type(error_type), allocatable, intent(out) :: error
+        character(len=:), allocatable :: findings
+        integer :: count
+
+        call check_file(file, model, findings, count, error)
+        if (allocated(error)) return
+        call check(error, count == 0, to_text(count) // " findings: " // findings)
+    end subroutine expect_clean
+
+    !> The jump's finding of model (variable or request) with fault 3: every finding a [jump],
+    !> some; the first's two quoted outputs (entries values each) differ by planted_jump.
+    subroutine expect_jump(model, values, error)
+        character(len=*), intent(in) :: model
+        integer, intent(in) :: values
+        type(error_type), allocatable, intent(out) :: error
+        character(len=:), allocatable :: findings
+        real(wp) :: before(values), after(values)
+        integer :: count, jumps, at, close, stat
+
+        call run_fault(model, 3, findings, count, error)
+        if (allocated(error)) return
+        jumps = count_of(findings, "[jump] ")
+        call check(error, count >= 1 .and. jumps == count, to_text(count) // " findings: " &
+            & // findings)
+        if (allocated(error)) return
+        ! "... jumps from (a, ...) to (b, ...) at ..."
+        at = index(findings, " jumps from (") + 13
+        close = at + index(findings(at:), ")") - 2
+        read(findings(at:close), *, iostat=stat) before
+        if (stat == 0) then
+            at = close + 7
+            close = at + index(findings(at:), ")") - 2
+            read(findings(at:close), *, iostat=stat) after
+        end if
+        call check(error, stat == 0, "the jump's outputs do not read: " // findings)
+        if (allocated(error)) return
+        call check(error, abs(maxval(abs(after - before)) - planted_jump) <= jump_tolerance, &
+            & "the jump quoted is " // to_text(maxval(abs(after - before))) // ", planted " &
+            & // to_text(planted_jump) // ": " // findings)
+    end subroutine expect_jump
+
+    !> The [declaration] finding of model (variable or request) with fault 4.
+    subroutine expect_undeclared(model, error)
+        character(len=*), intent(in) :: model
+        type(error_type), allocatable, intent(out) :: error
+        character(len=:), allocatable :: findings
+
+        call expect_fault(model, 4, "[declaration]", 1, error, findings)
+        if (allocated(error)) return
+        call check(error, index(findings, "SYSARY('TVEL') read velocities, which the " &
+            & // "initialisation call (IFLAG = .TRUE.) did not read") > 0, findings)
+    end subroutine expect_undeclared
+
+    !> model (variable or request) with fault checked: count findings, every one rule's,
+    !> naming the statement and its line, the routine and the state (the first's).
+    subroutine expect_fault(model, fault, rule, count, error, findings)
+        character(len=*), intent(in) :: model
+        integer, intent(in) :: fault
+        character(len=*), intent(in) :: rule
+        integer, intent(in) :: count
+        type(error_type), allocatable, intent(out) :: error
+        character(len=:), allocatable, intent(out), optional :: findings
+        character(len=:), allocatable :: found, statement
+        integer :: found_count
+
+        call run_fault(model, fault, found, found_count, error)
+        if (allocated(error)) return
+        if (model == "variable") then
+            statement = "variable_" // to_text(fault) // ".adm:10: VARIABLE/3, its VARSUB of "
+        else
+            statement = "request_" // to_text(fault) // ".adm:12: REQUEST/7, its REQSUB of "
+        end if
+        call check(error, found_count == count .and. count_of(found, rule // " ") == count &
+            & .and. index(found, rule // " " // scratch // "/" // statement // faults &
+            & // " at state ") > 0, to_text(found_count) // " findings (" // to_text(count) &
+            & // " " // rule // " expected): " // found)
+        if (present(findings)) findings = found
+    end subroutine expect_fault
+
+    !> planted_faults.f on MODEL.adm (variable or request) with fault as its fourth constant
+    !> (written to the scratch folder as MODEL_FAULT.adm): the findings and their number.
+    subroutine run_fault(model, fault, findings, count, error)
+        character(len=*), intent(in) :: model
+        integer, intent(in) :: fault
+        character(len=:), allocatable, intent(out) :: findings
+        integer, intent(out) :: count
+        type(error_type), allocatable, intent(out) :: error
+        character(len=:), allocatable :: text, constants, path
+        integer :: at
+
+        if (model == "variable") then
+            constants = "USER(20, 2, 1)"
+        else
+            constants = "USER(20, 2, 2.5)"
+        end if
+        text = file_text(folder // model // ".adm")
+        at = index(text, constants)
+        call check(error, at > 0, folder // model // ".adm has no " // constants)
+        if (allocated(error)) return
+        text = text(:at + len(constants) - 2) // ", " // to_text(fault) // ")" &
+            & // text(at + len(constants):)
+        call make_folders(scratch, error)
+        if (allocated(error)) return
+        path = scratch // "/" // model // "_" // to_text(fault) // ".adm"
+        call write_text_file(path, text, error)
+        if (allocated(error)) return
+        call check_file(faults, path, findings, count, error)
+    end subroutine run_fault
+
+    !> check_user_routines of file on model, the tests' cache, seed 1, a call's limit 10 s.
+    subroutine check_file(file, model, findings, count, error)
+        character(len=*), intent(in) :: file, model
+        character(len=:), allocatable, intent(out) :: findings
+        integer, intent(out) :: count
+        type(error_type), allocatable, intent(out) :: error
+        type(user_build_options_type) :: options
+
+        options%cache_dir = test_cache
+        call check_user_routines(file, model, options, 10.0_wp, 1, findings, count, error)
+    end subroutine check_file
+
+end module test_user_routine_check
