@@ -53,7 +53,7 @@ module rollcon_cli
         & option_spec_type("--end", "", "T", .false., " run "), &
         & option_spec_type("--steps", "", "N", .false., " run "), &
         & option_spec_type("--dtout", "", "DT", .false., " run "), &
-        & option_spec_type("--ucosub", "", "FILE|NAME", .true., " run linear sweep "), &
+        & option_spec_type("--ucosub", "", "FILE|NAME", .true., " run linear sweep check "), &
         & option_spec_type("--no-check", "", "", .false., " run linear sweep "), &
         & option_spec_type("--call-timeout", "", "SECONDS", .false., " run check linear sweep "), &
         & option_spec_type("--radius", "", "R", .false., " table "), &

@@ -5,7 +5,7 @@ module rollcon_command_check
     use rollcon, only : wp, error_type, fatal_error, stat_input, user_ucosub_type, &
         & new_user_ucosub, ucon_request_type, user_check_options_type, user_check_report_type, &
         & check_user_ucosub_isolated, read_ucon_request, report_text, write_report_json, &
-        & user_build_options_type
+        & user_build_options_type, user_file_type
     use rollcon_program, only : sampling_ranges, default_call_timeout, max_check_states, &
         & states_refusal, dataset_ucon_requests, dataset_has_user_routines, check_user_routines
     use rollcon_cli, only : cli_request_type
@@ -87,9 +87,10 @@ contains
         integer, intent(out) :: status
         type(error_type), allocatable, intent(out) :: error
         type(user_build_options_type) :: build
+        type(user_file_type), allocatable :: more_files(:)
         character(len=:), allocatable :: findings
         real(wp) :: call_timeout
-        integer :: count, seed
+        integer :: count, seed, k
 
         status = 0
         call_timeout = real(default_call_timeout, wp)
@@ -98,10 +99,16 @@ contains
         seed = 1
         call request%integer_value("--seed", seed, seed, -huge(1), error)
         if (allocated(error)) return
+        ! the model's other files of routines, as `rollcon run` takes them
+        allocate(more_files(request%count("--ucosub")))
+        do k = 1, size(more_files)
+            more_files(k)%path = request%nth("--ucosub", k)
+        end do
         call check_user_routines(request%positional, request%text("--model", ""), build, &
-            & call_timeout, seed, findings, count, error)
+            & call_timeout, seed, findings, count, error, more_files)
         if (allocated(error)) return
         write(output_unit, '(a)') "check: the user routines of " // request%positional &
+            & // trim(merge(" and more files", "               ", size(more_files) > 0)) &
             & // " on " // request%text("--model", "") // " (the start and 20 states about it)"
         if (count == 0) then
             write(output_unit, '(a)') "verdict: clean"

@@ -24,22 +24,18 @@ module rollcon_user_routine_check
     use rollcon_text, only : to_text, shell_quote, upper_case
     use rollcon_adm_model, only : adm_model_type, request_user
     use rollcon_adm_reader, only : read_adm
-    use rollcon_job, only : job_type
-    use rollcon_load, only : load_job
+    use rollcon_job, only : job_type, user_file_type
+    use rollcon_load, only : load_job, add_user_file
+    use rollcon_isolated_run, only : compile_user_files, build_apart
     use rollcon_problem, only : problem_type
     use rollcon_force, only : profile_statement
-    use rollcon_ucosub_contract, only : ucosub_interface
     use rollcon_system_routine_contract, only : request_results, request_columns
-    use rollcon_user_build, only : user_build_options_type, build_user_library, source_kind, &
-        & kind_c
-    use rollcon_user_library, only : user_ucosub_type, load_user_routines
-    use rollcon_user_forces, only : clear_force_routines, evaluate_user_forces, &
+    use rollcon_user_build, only : user_build_options_type, source_kind, kind_c
+    use rollcon_user_forces, only : evaluate_user_forces, &
         & take_user_force_error, system_notes, clear_system_notes, force_routine_label, &
         & call_user_request, evaluate_user_variable, user_variable_list, user_variable_type
     use rollcon_user_variable_values, only : user_variable_value
     use rollcon_request_answers, only : request_answer_watch_type, answer_user
-    use rollcon_force_routine_guard, only : install_force_guard
-    use rollcon_ucosub_guard, only : install_guard, attach_call_record, guarded_ucosub
     use rollcon_child_process, only : isolated_task_type, stream_receiver_type, &
         & call_record_type, isolation_outcome_type, run_in_child, outcome_finished
     use rollcon_frames, only : send_frame, frame_buffer_type
@@ -111,7 +107,9 @@ module rollcon_user_routine_check
     !> The child's work
     type, extends(isolated_task_type) :: routine_check_task_type
         type(job_type) :: job
+        !> The libraries of the job's files: its first, and its more files in order
         character(len=:), allocatable :: library
+        type(user_file_type), allocatable :: more_libraries(:)
         integer :: seed = 1
     contains
         procedure :: run => run_routine_check
@@ -160,11 +158,12 @@ contains
         end do
     end function dataset_has_user_routines
 
-    !> Check the user routines of file on the dataset at model: findings (a line each, "" for
-    !> none) and their number. error is for what prevents the check (the file does not build,
-    !> the model does not read).
+    !> Check the user routines of file (and of more_files, for a model whose statements name
+    !> routines of several files: ROUTINE=FILE::NAME) on the dataset at model: findings (a
+    !> line each, "" for none) and their number. error is for what prevents the check (a file
+    !> does not build, the model does not read).
     subroutine check_user_routines(file, model, options, call_timeout, seed, findings, count, &
-            & error)
+            & error, more_files)
         character(len=*), intent(in) :: file, model
         type(user_build_options_type), intent(in) :: options
         !> Longest one call may take [s]
@@ -174,20 +173,31 @@ contains
         character(len=:), allocatable, intent(out) :: findings
         integer, intent(out) :: count
         type(error_type), allocatable, intent(out) :: error
+        !> The other files of the model's routines (as `rollcon run --ucosub` takes them)
+        type(user_file_type), intent(in), optional :: more_files(:)
         type(routine_check_task_type) :: task
         type(findings_receiver_type) :: receiver
         type(isolation_outcome_type) :: outcome
+        type(user_file_type), allocatable :: files(:)
         character(len=:), allocatable :: typing
-        logical :: from_cache
-        integer :: typing_count
+        integer :: typing_count, k
 
         findings = ""
         count = 0
-        call build_user_library(file, options, task%library, from_cache, error)
-        if (allocated(error)) return
         call load_job(model, task%job, error, ucosub=file)
         if (allocated(error)) return
+        files = [user_file_type(file)]
+        if (present(more_files)) then
+            do k = 1, size(more_files)
+                call add_user_file(task%job, more_files(k)%path, error)
+                if (allocated(error)) return
+            end do
+            files = [files, more_files]
+        end if
         task%job%build_options = options
+        task%job%quiet = .true.
+        call compile_user_files(task%job, task%library, task%more_libraries, error)
+        if (allocated(error)) return
         task%seed = seed
         receiver%text = ""
         call run_in_child(task, real(call_timeout, wp), outcome, error, receiver=receiver)
@@ -204,12 +214,15 @@ contains
             count = count + 1
             deallocate(error)
         end if
-        ! C has no implicit typing: its declarations are the programmer's own
-        if (source_kind(file) == kind_c) return
-        call implicit_typing_findings(file, options%compiler, typing, typing_count, error)
-        if (allocated(error)) return
-        findings = findings // typing
-        count = count + typing_count
+        do k = 1, size(files)
+            ! C has no implicit typing: its declarations are the programmer's own
+            if (source_kind(files(k)%path) == kind_c) cycle
+            call implicit_typing_findings(files(k)%path, options%compiler, typing, &
+                & typing_count, error)
+            if (allocated(error)) return
+            findings = findings // typing
+            count = count + typing_count
+        end do
     end subroutine check_user_routines
 
     !> The file compiled again with -Wconversion (-fsyntax-only): each warning of a conversion
@@ -301,30 +314,20 @@ contains
         class(routine_check_task_type), intent(inout) :: self
         type(call_record_type), pointer, intent(in) :: record
         type(error_type), allocatable, intent(out) :: error
-        type(user_ucosub_type) :: user
         type(problem_type), target :: problem
         type(checked_kind_type), allocatable :: kinds(:)
-        procedure(ucosub_interface), pointer :: guarded
         real(wp), allocatable :: q0(:), u0(:), q(:, :), u(:, :)
         real(wp) :: times(0:probed_states), span
         character(len=:), allocatable :: report, label
         integer :: s, i, n, kind
         integer, allocatable :: seed(:)
 
-        call attach_call_record(record)
-        call clear_force_routines()
-        user%source = self%job%user_file
-        user%library = self%library
-        call load_user_routines(user, error)
-        if (allocated(error)) return
-        call install_force_guard(record)
-        guarded => null()
-        if (associated(user%ucosub)) then
-            call install_guard(user%ucosub, as_errors=.true.)
-            guarded => guarded_ucosub
-        end if
         call clear_system_notes()
-        call self%job%source%build(guarded, problem, q0, u0, report, error)
+        ! the job's routines loaded, guarded and the model built as a run apart does it (no
+        ! start check: the UCONs' partials are checked on their own)
+        self%job%start_check => null()
+        call build_apart(self%job, self%library, self%more_libraries, record, 0.0_wp, &
+            & problem, q0, u0, report, error)
         if (allocated(error)) return
         call random_seed(size=n)
         allocate(seed(n))

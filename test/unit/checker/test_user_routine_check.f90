@@ -12,6 +12,7 @@ module test_user_routine_check
     use rollcon_output_files, only : make_folders, write_text_file
     use rollcon_user_build, only : user_build_options_type
     use rollcon_user_routine_check, only : check_user_routines
+    use rollcon_job, only : user_file_type
     use command_runs, only : file_text, count_of
     implicit none
     private
@@ -48,7 +49,8 @@ contains
             & new_unittest("reqsub-jump", test_reqsub_jump), &
             & new_unittest("varsub-undeclared-sysary", test_varsub_undeclared), &
             & new_unittest("reqsub-undeclared-sysary", test_reqsub_undeclared), &
-            & new_unittest("varsub-implicit-typing", test_varsub_typing)]
+            & new_unittest("varsub-implicit-typing", test_varsub_typing), &
+            & new_unittest("two-files-checked", test_two_files)]
     end subroutine collect_user_routine_check
 
     !> variable_stretch.f on variable.adm (declared types, no state, smooth, its SYSFNC call
@@ -259,16 +261,46 @@ contains
         call check_file(faults, path, findings, count, error)
     end subroutine run_fault
 
-    !> check_user_routines of file on model, the tests' cache, seed 1, a call's limit 10 s.
-    subroutine check_file(file, model, findings, count, error)
+    !> two_files.adm, whose SFORCE/3 names the routine of a second file
+    !> (ROUTINE=sforce_cubic::SFOSUB): with that file given as a run takes it, the check is
+    !> clean; with a file of that name holding hidden_state.f's SFOSUB instead, every finding
+    !> is SFORCE/3's hidden state, at every state, and SFORCE/2 (the first file's) has none.
+    subroutine test_two_files(error)
+        type(error_type), allocatable, intent(out) :: error
+        character(len=:), allocatable :: findings, path
+        integer :: count
+
+        call check_file(folder // "sforce_spring.f", folder // "two_files.adm", findings, &
+            & count, error, [user_file_type(folder // "sforce_cubic.f")])
+        if (allocated(error)) return
+        call check(error, count == 0, to_text(count) // " findings: " // findings)
+        if (allocated(error)) return
+        call make_folders(scratch // "/second", error)
+        if (allocated(error)) return
+        path = scratch // "/second/sforce_cubic.f"
+        call write_text_file(path, file_text(folder // "hidden_state.f"), error)
+        if (allocated(error)) return
+        call check_file(folder // "sforce_spring.f", folder // "two_files.adm", findings, &
+            & count, error, [user_file_type(path)])
+        if (allocated(error)) return
+        call check(error, count == every_state .and. count_of(findings, "[hidden state]") &
+            & == count .and. count_of(findings, "SFORCE/3") == count .and. &
+            & count_of(findings, "SFORCE/2") == 0, to_text(count) // " findings: " // findings)
+    end subroutine test_two_files
+
+    !> check_user_routines of file (and more files) on model, the tests' cache, seed 1, a
+    !> call's limit 10 s.
+    subroutine check_file(file, model, findings, count, error, more_files)
         character(len=*), intent(in) :: file, model
         character(len=:), allocatable, intent(out) :: findings
         integer, intent(out) :: count
         type(error_type), allocatable, intent(out) :: error
+        type(user_file_type), intent(in), optional :: more_files(:)
         type(user_build_options_type) :: options
 
         options%cache_dir = test_cache
-        call check_user_routines(file, model, options, 10.0_wp, 1, findings, count, error)
+        call check_user_routines(file, model, options, 10.0_wp, 1, findings, count, error, &
+            & more_files)
     end subroutine check_file
 
 end module test_user_routine_check
