@@ -39,6 +39,11 @@ module rollcon_contact_watch
     !> the integration error of the velocities, ~ rtol s; where instead the direction has
     !> turned by 90 degrees the remaining slip is of the slip's own size, orders larger
     real(wp), parameter :: slip_allowance = 1.0e3_wp
+    !> The guards of a stop, as fractions of the slip speed taken as zero: the first, where
+    !> the slip's direction is aimed at again so that the root of its component is the stop;
+    !> the second, should that root not come (a direction that never settles), the stop itself
+    !> within 5e-4 of that speed, ~1e-12 s for the data/ scenes
+    real(wp), parameter :: guard_first = 0.5_wp, guard_second = 5.0e-4_wp
     !> Modes, as the `mode` column writes them
     integer, parameter, public :: mode_rolling = 0, mode_sliding = 1
 
@@ -65,6 +70,8 @@ module rollcon_contact_watch
         !> The slip's direction at the last switch (or re-reference): its component along it
         !> is the event function of sliding
         real(wp) :: slip_reference(2) = [1.0_wp, 0.0_wp]
+        !> The guard of a stop in effect (guard_first or guard_second)
+        real(wp) :: guard = guard_first
         !> The tolerances of the run (prepare)
         real(wp) :: rtol = 0.0_wp, atol = 0.0_wp
         !> The switches so far: times [s] and the modes entered
@@ -131,6 +138,7 @@ contains
         self%rtol = settings%rtol
         self%atol = settings%atol
         self%slip_reference = self%initial_direction
+        self%guard = guard_first
         associate (contact => eq%contact)
             contact%tangential = self%tangential
             contact%normal = self%normal
@@ -198,14 +206,20 @@ contains
         end if
         if (self%friction() .and. eq%contact%sliding) then
             ! sliding: the slip's component along its direction at the last switch, and its
-            ! speed above half of what is taken as zero (the guard where the direction has not
-            ! settled as the slip vanishes)
+            ! speed above a fraction (guard) of what is taken as zero
             slip = self%slip_velocity(q, u)
             g(m) = dot_product(slip, self%slip_reference)
-            g(m + 1) = norm2(slip) - 0.5_wp*self%slip_zero(u)
+            g(m + 1) = norm2(slip) - self%guard*self%slip_zero(u)
             if (.not. self%stop_on_liftoff) return
         end if
-        if (present(lambda)) then
+        if (self%friction()) then
+            ! the friction rolling needs from the equations at this very state: the
+            ! integrator's interpolated accelerations are off by its local error (6e-7 of
+            ! mu_static in data/coin_slipping.nml), which would move the switch
+            call eq%accelerations(time, q, u, settings%baumgarte(), self%a, self%lambda, error)
+            if (allocated(error)) return
+            force = eq%constraint_force(self%part, self%lambda)
+        else if (present(lambda)) then
             ! only C is needed: first partials, no saddle-point solve
             call eq%constraint_matrix_at(time, q, u, error)
             if (allocated(error)) return
@@ -228,7 +242,7 @@ contains
         class(contact_watch_type), intent(in) :: self
         type(equations_type), intent(in) :: eq
 
-        roots_use_accelerations = self%root_count(eq) > 0
+        roots_use_accelerations = self%stop_on_liftoff .and. .not. self%friction()
     end function roots_use_accelerations
 
     !> The lift-off: the run stops.
@@ -315,9 +329,21 @@ contains
         if (.not. self%friction()) return
         if (eq%contact%sliding) then
             slip = self%slip_velocity(q, u)
-            if (norm2(slip) > self%slip_zero(u)) then
+            if (self%guard == guard_first .and. dot_product(slip, self%slip_reference) &
+                & > 0.5_wp*norm2(slip)) then
+                ! the first guard, the slip's component along the reference still most of it:
+                ! the slip is stopping; aimed at its direction now, the component's root is
+                ! the stop itself, and the second guard backs it
                 self%slip_reference = slip/norm2(slip)
                 eq%contact%reference = self%slip_reference
+                self%guard = guard_second
+                return
+            end if
+            if (norm2(slip) > self%slip_zero(u)) then
+                ! the direction turned by 90 degrees: a new reference
+                self%slip_reference = slip/norm2(slip)
+                eq%contact%reference = self%slip_reference
+                self%guard = guard_first
                 return
             end if
             eq%contact%sliding = .false.
@@ -334,6 +360,7 @@ contains
         self%slip_reference = -force(1:2)/norm2(force(1:2))
         eq%contact%reference = self%slip_reference
         eq%contact%sliding = .true.
+        self%guard = guard_first
         call eq%accelerations(time, q, u, 0.0_wp, self%a, self%lambda, error)
         if (allocated(error)) return
         if (self%current_mode() /= mode_sliding) call self%switch_to(mode_sliding, time)
