@@ -18,7 +18,7 @@ module rollcon_contact_watch
     use rollcon_error, only : error_type, fatal_error, stat_input
     use rollcon_text, only : to_text
     use rollcon_equations, only : equations_type
-    use rollcon_run_settings, only : run_settings_type
+    use rollcon_run_settings, only : run_settings_type, formulation_cvode
     use rollcon_output_layout, only : name_length
     !> The columns it adds, in order (named where a CSV reader finds them too)
     use rollcon_watch_columns, only : contact_names, contact_mode_names
@@ -124,10 +124,17 @@ contains
         if (allocated(self%lambda)) deallocate(self%lambda)
         allocate(self%a(eq%n), self%lambda(eq%nc), source=0.0_wp)
         self%height_residual_max = 0.0_wp
+        if (allocated(self%switch_times)) deallocate(self%switch_times, self%switch_modes)
         allocate(self%switch_times(0), self%switch_modes(0))
         self%mode_time = 0.0_wp
         self%started = .false.
         if (.not. self%friction()) return
+        if (settings%formulation /= formulation_cvode) then
+            ! sliding's friction is coupled in the ODE form's accelerations (rollcon_equations)
+            call fatal_error(error, "a contact with Coulomb friction (mu_static > 0) is " &
+                & // "integrated in the ODE form only: formulation = 'cvode'", stat_input)
+            return
+        end if
         if (eq%nc < 3 .or. any(self%tangential > eq%nc) .or. self%normal > eq%nc) then
             call fatal_error(error, "the contact's rows " // to_text(self%tangential(1)) // ", " &
                 & // to_text(self%tangential(2)) // " and " // to_text(self%normal) &
