@@ -33,17 +33,14 @@ module rollcon_contact_watch
     !> local errors add up like a random walk (rollcon_drift); measured on the data/ scenes,
     !> sound runs reach at most 0.82 of sqrt(N) (atol + rtol R), drift = 'none' 4.8 to 7800
     real(wp), parameter :: height_allowance = 3.0_wp
-    !> K_S of the slip speed taken as zero where the slip's component along its reference
-    !> direction vanishes: K_S (atol + rtol s), s = |v_G| + R |omega|. At a true stop every
-    !> component vanishes together (the slip's direction settles as the speed falls), leaving
-    !> the integration error of the velocities, ~ rtol s; where instead the direction has
-    !> turned by 90 degrees the remaining slip is of the slip's own size, orders larger
-    real(wp), parameter :: slip_allowance = 1.0e3_wp
-    !> The guards of a stop, as fractions of the slip speed taken as zero: the first, where
-    !> the slip's direction is aimed at again so that the root of its component is the stop;
-    !> the second, should that root not come (a direction that never settles), the stop itself
-    !> within 5e-4 of that speed, ~1e-12 s for the data/ scenes
-    real(wp), parameter :: guard_first = 0.5_wp, guard_second = 5.0e-4_wp
+    !> The guards of a stop, in units of the slip's integration error e = atol + rtol s,
+    !> s = |v_G| + R |omega| (slip_error): the first, at 500 e, where the reference is aimed
+    !> at the slip's direction again, so that its component's root is the stop; the second, at
+    !> e/2, the stop itself should the integrator not reach that root first (in 3-D it cannot
+    !> step past the stop, where the friction's direction turns over). A slip within e of zero
+    !> is zero: the slip is not known better, so neither is the stop's time (e over the slip's
+    !> deceleration: 7.6e-12 s in data/sliding_coin.nml, ~3e-8 s in data/coin_slipping.nml)
+    real(wp), parameter :: guard_first = 500.0_wp, guard_second = 0.5_wp
     !> Modes, as the `mode` column writes them
     integer, parameter, public :: mode_rolling = 0, mode_sliding = 1
 
@@ -72,8 +69,11 @@ module rollcon_contact_watch
         real(wp) :: slip_reference(2) = [1.0_wp, 0.0_wp]
         !> The guard of a stop in effect (guard_first or guard_second)
         real(wp) :: guard = guard_first
-        !> The tolerances of the run (prepare)
-        real(wp) :: rtol = 0.0_wp, atol = 0.0_wp
+        !> A slide is starting from rest: its slip not yet past the first guard (no stop is
+        !> looked for until it is)
+        logical :: starting = .false.
+        !> The tolerances of the run and its Baumgarte rate in effect [1/s] (prepare)
+        real(wp) :: rtol = 0.0_wp, atol = 0.0_wp, baumgarte = 0.0_wp
         !> The switches so far: times [s] and the modes entered
         real(wp), allocatable :: switch_times(:)
         integer, allocatable :: switch_modes(:)
@@ -97,7 +97,8 @@ module rollcon_contact_watch
         procedure :: slip_velocity
         procedure :: switch_to
         procedure :: current_mode
-        procedure :: slip_zero
+        procedure :: slip_error
+        procedure :: begin_sliding
     end type contact_watch_type
 
 contains
@@ -144,8 +145,10 @@ contains
         end if
         self%rtol = settings%rtol
         self%atol = settings%atol
+        self%baumgarte = settings%baumgarte()
         self%slip_reference = self%initial_direction
         self%guard = guard_first
+        self%starting = .false.
         associate (contact => eq%contact)
             contact%tangential = self%tangential
             contact%normal = self%normal
@@ -184,7 +187,8 @@ contains
         end associate
     end function slip_velocity
 
-    !> The lift-off, when watched.
+    !> The lift-off, when watched; with friction two more, the mode's (last but one) and the
+    !> guard of a stop (last).
     pure integer function root_count(self, eq)
         class(contact_watch_type), intent(in) :: self
         type(equations_type), intent(in) :: eq
@@ -195,7 +199,10 @@ contains
     !> The normal force on the part + liftoff_force. The normal force comes from the multipliers
     !> when a DAE state gives them (IDA), else from the accelerations when the integrator gives
     !> them (CVODE's polynomial: no UCOSUB call and no solve), else from a saddle-point solve as
-    !> in a right-hand side.
+    !> in a right-hand side. With friction, rolling: mu_static F_n - |F_t| and a positive
+    !> constant, F from a saddle-point solve; sliding: v_s . s_ref and |v_s| - guard times the
+    !> slip's integration error (a slide starting from rest: a positive constant and |v_s| -
+    !> the first guard) (docs/design.md §5, "Contact modes").
     subroutine roots(self, eq, settings, time, q, u, g, error, lambda, a)
         class(contact_watch_type), intent(inout) :: self
         type(equations_type), intent(inout) :: eq
@@ -213,10 +220,15 @@ contains
         end if
         if (self%friction() .and. eq%contact%sliding) then
             ! sliding: the slip's component along its direction at the last switch, and its
-            ! speed above a fraction (guard) of what is taken as zero
+            ! speed above its guard
             slip = self%slip_velocity(q, u)
-            g(m) = dot_product(slip, self%slip_reference)
-            g(m + 1) = norm2(slip) - self%guard*self%slip_zero(u)
+            if (self%starting) then
+                ! a slide starting from rest: its slip growing past the first guard
+                g(m + 1) = norm2(slip) - guard_first*self%slip_error(u)
+            else
+                g(m) = dot_product(slip, self%slip_reference)
+                g(m + 1) = norm2(slip) - self%guard*self%slip_error(u)
+            end if
             if (.not. self%stop_on_liftoff) return
         end if
         if (self%friction()) then
@@ -320,12 +332,13 @@ contains
 
     !> The mode's event fired at (t, q, u). Rolling: |F_t| reached mu_static F_n, so the
     !> contact slides, its slip starting against the friction rolling needed (-F_t / |F_t|).
-    !> Sliding: the slip's component along its reference vanished. Where the whole slip is
-    !> within slip_allowance (atol + rtol s) of zero the contact rolls, if rolling's friction
-    !> is admissible there (|F_t| <= mu_static F_n), else it slides on against the friction
-    !> rolling would need; where it is not (the slip's direction turned by 90 degrees) the
-    !> reference becomes the slip's direction now and the contact slides on. An error when
-    !> the sliding equations are ill-posed there (Painlevé: rollcon_equations).
+    !> Sliding from rest, its slip past the first guard: stops are looked for from now on.
+    !> Sliding otherwise, a slip above its integration error e: the reference is aimed at the
+    !> slip's direction (its direction turned by 90 degrees, or the first guard), the second
+    !> guard watching below the first. A slip within e of zero is a stop: the contact rolls if
+    !> rolling's friction is admissible there (|F_t| <= mu_static F_n), else it slides on
+    !> against the friction rolling would need. An error when the sliding equations are
+    !> ill-posed there (Painlevé: rollcon_equations).
     subroutine restart_problem(self, eq, time, q, u, error)
         class(contact_watch_type), intent(inout) :: self
         type(equations_type), intent(inout) :: eq
@@ -334,56 +347,76 @@ contains
         real(wp) :: force(3), slip(2)
 
         if (.not. self%friction()) return
-        if (eq%contact%sliding) then
-            slip = self%slip_velocity(q, u)
-            if (self%guard == guard_first .and. dot_product(slip, self%slip_reference) &
-                & > 0.5_wp*norm2(slip)) then
-                ! the first guard, the slip's component along the reference still most of it:
-                ! the slip is stopping; aimed at its direction now, the component's root is
-                ! the stop itself, and the second guard backs it
-                self%slip_reference = slip/norm2(slip)
-                eq%contact%reference = self%slip_reference
-                self%guard = guard_second
-                return
-            end if
-            if (norm2(slip) > self%slip_zero(u)) then
-                ! the direction turned by 90 degrees: a new reference
-                self%slip_reference = slip/norm2(slip)
-                eq%contact%reference = self%slip_reference
-                self%guard = guard_first
-                return
-            end if
-            eq%contact%sliding = .false.
+        if (.not. eq%contact%sliding) then
+            ! rolling, |F_t| reached mu_static F_n: it slides
+            call self%begin_sliding(eq, time, q, u, error)
+            return
         end if
-        ! rolling here: the friction it needs
-        call eq%accelerations(time, q, u, 0.0_wp, self%a, self%lambda, error)
+        if (self%starting) then
+            ! the starting slide's slip has grown past the first guard
+            self%starting = .false.
+            return
+        end if
+        slip = self%slip_velocity(q, u)
+        if (norm2(slip) > self%slip_error(u)) then
+            ! not a stop: the direction turned by 90 degrees, or the first guard; the
+            ! reference aimed at the slip's direction now, and below the first guard the
+            ! second one watches
+            self%slip_reference = slip/norm2(slip)
+            eq%contact%reference = self%slip_reference
+            self%guard = merge(guard_second, guard_first, norm2(slip) <= guard_first &
+                & *self%slip_error(u))
+            return
+        end if
+        eq%contact%sliding = .false.
+        ! the slip stopped: rolling, if the friction it needs is admissible here
+        call eq%accelerations(time, q, u, self%baumgarte, self%a, self%lambda, error)
         if (allocated(error)) return
         force = eq%constraint_force(self%part, self%lambda)
         if (norm2(force(1:2)) <= self%mu_static*force(3)) then
-            if (self%current_mode() /= mode_rolling) call self%switch_to(mode_rolling, time)
+            call self%switch_to(mode_rolling, time)
             return
         end if
-        ! it slides, against the friction rolling needs
-        self%slip_reference = -force(1:2)/norm2(force(1:2))
+        call self%begin_sliding(eq, time, q, u, error)
+    end subroutine restart_problem
+
+    !> Slide from (t, q, u), rolling there (eq%contact%sliding false), against the friction
+    !> rolling needs there (s_ref = -F_t / |F_t|); a switch unless it was sliding already (a
+    !> stop where rolling is not admissible). An error when sliding is ill-posed there.
+    subroutine begin_sliding(self, eq, time, q, u, error)
+        class(contact_watch_type), intent(inout) :: self
+        type(equations_type), intent(inout) :: eq
+        real(wp), intent(in) :: time, q(:), u(:)
+        type(error_type), allocatable, intent(out) :: error
+        real(wp) :: force(3)
+
+        call eq%accelerations(time, q, u, self%baumgarte, self%a, self%lambda, error)
+        if (allocated(error)) return
+        force = eq%constraint_force(self%part, self%lambda)
+        if (norm2(force(1:2)) > 0.0_wp) then
+            self%slip_reference = -force(1:2)/norm2(force(1:2))
+        end if
         eq%contact%reference = self%slip_reference
         eq%contact%sliding = .true.
         self%guard = guard_first
-        call eq%accelerations(time, q, u, 0.0_wp, self%a, self%lambda, error)
+        self%starting = .true.
+        ! Painlevé's refusal, here rather than at the integrator's first evaluation
+        call eq%accelerations(time, q, u, self%baumgarte, self%a, self%lambda, error)
         if (allocated(error)) return
         if (self%current_mode() /= mode_sliding) call self%switch_to(mode_sliding, time)
-    end subroutine restart_problem
+    end subroutine begin_sliding
 
-    !> The slip speed taken as zero [m/s]: slip_allowance (atol + rtol s), s = |v_G| + R |omega|
-    !> (|omega| bounded by the Euler-angle rates' norm) at the rates u.
-    pure real(wp) function slip_zero(self, u)
+    !> The slip's integration error [m/s]: atol + rtol s, s = |v_G| + R |omega| (|omega|
+    !> bounded by the Euler-angle rates' norm) at the rates u.
+    pure real(wp) function slip_error(self, u)
         class(contact_watch_type), intent(in) :: self
         real(wp), intent(in) :: u(:)
         integer :: i0
 
         i0 = 6*(self%part - 1)
-        slip_zero = slip_allowance*(self%atol + self%rtol*(norm2(u(i0 + 1:i0 + 3)) &
-            & + self%radius*norm2(u(i0 + 4:i0 + 6))))
-    end function slip_zero
+        slip_error = self%atol + self%rtol*(norm2(u(i0 + 1:i0 + 3)) &
+            & + self%radius*norm2(u(i0 + 4:i0 + 6)))
+    end function slip_error
 
     !> The mode the contact is in: the last switch's, or the initial one.
     pure integer function current_mode(self)
