@@ -39,7 +39,7 @@ module rollcon_contact_watch
     !> e/2, the stop itself should the integrator not reach that root first (in 3-D it cannot
     !> step past the stop, where the friction's direction turns over). A slip within e of zero
     !> is zero: the slip is not known better, so neither is the stop's time (e over the slip's
-    !> deceleration: 7.6e-12 s in data/sliding_coin.nml, ~3e-8 s in data/coin_slipping.nml)
+    !> deceleration: 7.6e-12 s in data/sliding_coin.nml, ~2e-8 s in data/coin_slipping.nml)
     real(wp), parameter :: guard_first = 500.0_wp, guard_second = 0.5_wp
     !> Modes, as the `mode` column writes them
     integer, parameter, public :: mode_rolling = 0, mode_sliding = 1
