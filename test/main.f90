@@ -117,6 +117,7 @@ program tester
     use test_redundancy, only : collect_redundancy
     use test_reactions, only : collect_reactions
     use test_request_answers, only : collect_request_answers
+    use test_contact_modes, only : collect_contact_modes
     implicit none
     type(testsuite_type), allocatable :: suites(:)
     type(test_counts_type) :: counts
@@ -238,7 +239,8 @@ program tester
         & new_testsuite("motion-partials", collect_motion_partials), &
         & new_testsuite("redundancy", collect_redundancy), &
         & new_testsuite("reactions", collect_reactions), &
-        & new_testsuite("requests", collect_request_answers)]
+        & new_testsuite("requests", collect_request_answers), &
+        & new_testsuite("contact-modes", collect_contact_modes)]
 
     if (command_argument_count() >= 1) then
         call get_command_argument(1, argument)

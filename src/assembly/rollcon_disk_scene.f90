@@ -16,7 +16,7 @@ module rollcon_disk_scene
     use rollcon_gen_disk_height, only : disk_height_ucosub, disk_height_par, disk_height_time_free
     use rollcon_problem, only : problem_type
     use rollcon_theta_watch, only : theta_watch_type, new_theta_watch
-    use rollcon_contact_watch, only : contact_watch_type
+    use rollcon_contact_watch, only : contact_watch_type, mode_sliding
     use rollcon_scene, only : scene_type, height_position
     use rollcon_scene_state, only : disk_mass_properties, disk_initial_state
     implicit none
@@ -130,8 +130,8 @@ contains
         ! what the disk scene watches: its theta limit (a stop, in the disk's words), then its
         ! contact with the ground; the rows' contact columns and the lift-off come from there
         call problem%add_watch(disk_theta_watch(scene))
-        call problem%add_watch(disk_contact_watch(scene, disk%mass))
         call disk_initial_state(scene, q0, u0)
+        call problem%add_watch(disk_contact_watch(scene, disk%mass, q0, u0))
     end subroutine build_disk_problem
 
     !> The disk's theta limit: a stop at &limits theta_min, worded for the disk.
@@ -148,12 +148,14 @@ contains
     !> weight m g, plus m R |omega0|^2 (the centripetal force of the initial spin, which sets
     !> the normal force without gravity), plus the strike's peak force; a lift-off is a normal
     !> force below -max(liftoff_fraction, liftoff_per_rtol rtol) times it.
-    pure function disk_contact_watch(scene, mass) result(watch)
+    pure function disk_contact_watch(scene, mass, q0, u0) result(watch)
         type(scene_type), intent(in) :: scene
         !> Disk mass [kg]
         real(wp), intent(in) :: mass
+        !> The start [m, rad, m/s, rad/s]: with &contact, a start that slips starts sliding
+        real(wp), intent(in) :: q0(6), u0(6)
         type(contact_watch_type) :: watch
-        real(wp) :: spin_squared, force_scale
+        real(wp) :: spin_squared, force_scale, slip(2)
 
         ! |omega|^2 with omega = psidot e_Z + thetadot e_x1 + phidot e_z2 (docs/design.md §3):
         ! e_x1 is normal to both others, and e_Z . e_z2 = cos(theta)
@@ -170,6 +172,18 @@ contains
         watch%radius = scene%disk%radius
         watch%stop_on_liftoff = scene%limits%stop_on_liftoff
         watch%liftoff_force = max(liftoff_fraction, liftoff_per_rtol*scene%run%rtol)*force_scale
+        if (.not. scene%contact%enabled) return
+        ! the no-slip UCONs 1 and 2 are the contact point's horizontal velocity, UCON 3 its
+        ! height's (docs/design.md §5)
+        watch%mu_static = scene%contact%mu_static
+        watch%mu_kinetic = scene%contact%mu_kinetic
+        watch%tangential = [1, 2]
+        watch%normal = 3
+        slip = watch%slip_velocity(q0, u0)
+        if (norm2(slip) > 0.0_wp) then
+            watch%initial_mode = mode_sliding
+            watch%initial_direction = slip/norm2(slip)
+        end if
     end function disk_contact_watch
 
 end module rollcon_disk_scene

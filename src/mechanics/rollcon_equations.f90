@@ -10,7 +10,7 @@
 !> multiplier is zero, and every solve here goes over the active rows only.
 module rollcon_equations
     use rollcon_kinds, only : wp
-    use rollcon_error, only : error_type
+    use rollcon_error, only : error_type, fatal_error, stat_ucon
     use rollcon_model, only : model_type
     use rollcon_body, only : body_mass_and_force, body_residual_jacobian, kinetic_energy, &
         & energy_gradient
@@ -26,6 +26,8 @@ module rollcon_equations
     use rollcon_ode_workspace, only : ode_workspace_type
     use rollcon_redundancy, only : redundancy_type
     use rollcon_redundancy_words, only : set_aside_words
+    use rollcon_sliding_contact, only : sliding_contact_type, painleve_margin
+    use rollcon_text, only : to_text
     implicit none
     private
 
@@ -58,6 +60,9 @@ module rollcon_equations
         !> The pairs of parts a SPRINGDAMPER or BUSHING joins (2 x m, rollcon_force's
         !> force_couplings): their momentum rows' partials in each other's states
         integer, allocatable :: couplings(:, :)
+        !> A contact's mode: while it slides its tangential rows are dropped (inactive, as rows
+        !> set aside are) and its friction enters every solve (rollcon_sliding_contact)
+        type(sliding_contact_type) :: contact
     contains
         procedure :: release => release_equations
         procedure :: init
@@ -80,6 +85,8 @@ module rollcon_equations
         procedure :: reported_multipliers
         procedure :: active_rows
         procedure :: active_rows_of
+        procedure :: masked
+        procedure :: friction_coupling
     end type equations_type
 
 contains
@@ -191,7 +198,16 @@ contains
 
         active_rows_of = .true.
         if (allocated(self%redundancy%active)) active_rows_of = self%redundancy%active(k)
+        if (self%contact%sliding) active_rows_of = active_rows_of &
+            & .and. all(self%contact%tangential /= k)
     end function active_rows_of
+
+    !> Some rows are inactive: set aside as redundant, or a sliding contact's tangential ones.
+    pure logical function masked(self)
+        class(equations_type), intent(in) :: self
+
+        masked = self%redundancy%set_aside > 0 .or. self%contact%sliding
+    end function masked
 
     !> Which rows are active (all of them until a choice sets some aside).
     pure function active_rows(self) result(active)
@@ -200,6 +216,7 @@ contains
 
         active = .true.
         if (allocated(self%redundancy%active)) active = self%redundancy%active
+        if (self%contact%sliding) active(self%contact%tangential) = .false.
     end function active_rows
 
     !> Mass matrix and f = -(M a - f) at a = 0, part by part. Only the parts' diagonal blocks
@@ -318,15 +335,58 @@ contains
         call self%constraint_rows(u, baumgarte)
         ! M^-1 f in the factorisation's own LAPACK calls (those of M^-1 C^T)
         a = self%force
-        if (self%redundancy%set_aside > 0) then
-            call self%saddle%factor(self%mass, self%c, nc, error, a, self%redundancy%active)
+        if (self%masked()) then
+            call self%saddle%factor(self%mass, self%c, nc, error, a, self%active_rows())
         else
             call self%saddle%factor(self%mass, self%c, nc, error, a)
         end if
         if (allocated(error)) return
         lambda = self%gamma
         call self%saddle%solve(self%c, a, lambda, 1, error, scaled=.true.)
+        if (allocated(error) .or. .not. self%contact%sliding) return
+        call self%friction_coupling(time, q, a, lambda, error)
     end subroutine accelerations
+
+    !> A sliding contact's friction in the accelerations a and multipliers lambda of the
+    !> saddle-point system without it (its tangential rows dropped, factored): the second
+    !> right-hand side (D, 0), the normal force of the coupled system, and a and lambda with
+    !> the friction -mu F_n D (rollcon_sliding_contact, docs/design.md §5 "Contact modes").
+    !> Refused (stat_ucon) where the coupled system is singular or its normal force's
+    !> coefficient has the wrong sign (Painlevé's paradox).
+    subroutine friction_coupling(self, time, q, a, lambda, error)
+        class(equations_type), intent(inout) :: self
+        real(wp), intent(in) :: time, q(:)
+        real(wp), intent(inout) :: a(:), lambda(:)
+        type(error_type), allocatable, intent(out) :: error
+        real(wp) :: s(2), c_nz
+
+        associate (contact => self%contact, t => self%contact%tangential, &
+                & n_row => self%contact%normal)
+            contact%slip = [self%constraints%value(t(1)), self%constraints%value(t(2))]
+            s = contact%direction(contact%slip)
+            contact%unit_a = s(1)*self%c(t(1), :) + s(2)*self%c(t(2), :)
+            contact%unit_lambda = 0.0_wp
+            call self%saddle%solve(self%c, contact%unit_a, contact%unit_lambda, 1, error)
+            if (allocated(error)) return
+            c_nz = self%c(n_row, contact%height_column)
+            contact%denominator = 1.0_wp + contact%mu*c_nz*contact%unit_lambda(n_row)
+            if (.not. contact%denominator >= painleve_margin) then
+                call fatal_error(error, "sliding is ill-posed at t = " // to_text(time) &
+                    & // " s (theta = " // to_text(q(contact%height_column + 2)) // " rad): " &
+                    & // "with mu_kinetic = " // to_text(contact%mu) // " the friction " &
+                    & // "coupling 1 + mu dFn/dFt = " // to_text(contact%denominator) &
+                    & // " leaves the normal force without a unique positive solution " &
+                    & // "(Painlevé's paradox); the sliding equations are not integrated", &
+                    & stat_ucon)
+                return
+            end if
+            contact%normal_force = c_nz*lambda(n_row)/contact%denominator
+            a = a - contact%mu*contact%normal_force*contact%unit_a
+            lambda = lambda - contact%mu*contact%normal_force*contact%unit_lambda
+            contact%friction = -contact%mu*contact%normal_force*s
+            contact%power = abs(dot_product(contact%friction, contact%slip))
+        end associate
+    end subroutine friction_coupling
 
     !> d(M a - f - C^T lambda)/dq and /du at given a, lambda and time [s] (into dm_dq, dm_du).
     !> A user force routine's partials are differences of calls (rollcon_user_force_partials):
@@ -524,9 +584,9 @@ contains
                 end if
             end do
         end associate
-        if (self%redundancy%set_aside > 0) then
+        if (self%masked()) then
             call self%saddle%factor(self%mass, self%c, self%nc, error, &
-                & active=self%redundancy%active)
+                & active=self%active_rows())
         else
             call self%saddle%factor(self%mass, self%c, self%nc, error)
         end if

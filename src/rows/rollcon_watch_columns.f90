@@ -10,7 +10,8 @@ module rollcon_watch_columns
     implicit none
     private
 
-    public :: contact_names, basis_pattern, request_column_patterns, motion_column_patterns
+    public :: contact_names, contact_mode_names, basis_pattern, request_column_patterns
+    public :: motion_column_patterns
     public :: variable_column_patterns, diff_column_patterns
     public :: reaction_suffixes, reaction_column_patterns, answer_column_patterns
 
@@ -19,6 +20,10 @@ module rollcon_watch_columns
     !> |F_tangential| / Fn [-] (0 when Fn <= 0) and the height residual Z - R sin(theta) [m]
     character(len=*), parameter :: contact_names(6) = [character(len=15) :: "Fx", "Fy", "Fz", &
         & "Fn", "mu_needed", "height_residual"]
+    !> A rim contact's columns with friction (&contact), after those six: the mode (0 rolling,
+    !> 1 sliding) and the contact point's slip velocity, ground X and Y [m/s]
+    character(len=*), parameter :: contact_mode_names(3) = [character(len=15) :: "mode", &
+        & "slip_x", "slip_y"]
     !> The basis column of a part ("<id>": the part's id)
     character(len=*), parameter :: basis_pattern = "basis_<id>"
     !> A displacement request's columns ("<n>": the request's id): marker I from marker J,

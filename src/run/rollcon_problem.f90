@@ -325,12 +325,14 @@ contains
         ucon_id = self%model%ucons(k)%id
     end function ucon_id
 
-    !> Each UCON's residual F_k at the last evaluation.
+    !> Each UCON's residual F_k at the last evaluation; zero for the rows a sliding contact
+    !> has dropped (their F is the slip velocity, not a residual: rollcon_sliding_contact).
     pure function constraint_values(self) result(values)
         class(problem_type), intent(in) :: self
         real(wp) :: values(self%eq%nc)
 
         values = self%eq%constraints%value
+        if (self%eq%contact%sliding) values(self%eq%contact%tangential) = 0.0_wp
     end function constraint_values
 
     !> The settings ask for the projection onto the constraints (drift 'projection') and there
@@ -531,7 +533,8 @@ contains
     !> velocity UCON (F linear in u, F = C u + c: the forces' power lambda_k C u is -lambda_k c).
     !> Zero, up to rounding, for constraints fixed in space and time (a rolling contact on
     !> fixed ground: F = C(q) u, c = 0; a joint: no explicit time); a moving constraint's (a
-    !> turntable, a driven motion) is of the size of the power it puts in. Calls no UCOSUB.
+    !> turntable, a driven motion) is of the size of the power it puts in. A sliding contact's
+    !> friction adds the power it dissipates, mu_k F_n |v_slip|. Calls no UCOSUB.
     pure function constraint_power(self, u) result(power)
         class(problem_type), intent(in) :: self
         !> The rates of the last evaluation
@@ -551,6 +554,8 @@ contains
                 end if
             end do
         end associate
+        ! a sliding contact's friction: the power it dissipates (rollcon_sliding_contact)
+        if (self%eq%contact%sliding) power = power + self%eq%contact%power
     end function constraint_power
 
     !> Free what the problem holds outside Fortran's memory (its equations' KLU factors): a

@@ -6,16 +6,24 @@
 !> force turns negative (the part would leave the ground, which a rolling constraint cannot
 !> represent); and it judges the height residual, the position-level form of the contact that
 !> a velocity-level UCON holds only through its integral, against what the tolerances promise.
+!>
+!> With Coulomb friction (mu_static > 0) it also owns the contact's mode (the equations'
+!> sliding_contact_type, docs/design.md §5 "Contact modes"): rolling until |F_t| reaches
+!> mu_static F_n, sliding until the slip velocity's component along its direction at the last
+!> switch falls to zero; each switch an event located by the integrator's root finding, after
+!> which the run restarts the integrator (action_restart). It then adds the mode and the slip
+!> velocity to the rows, and lists the switches and the time in each mode in the summary.
 module rollcon_contact_watch
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type, fatal_error, stat_input
     use rollcon_text, only : to_text
     use rollcon_equations, only : equations_type
-    use rollcon_run_settings, only : run_settings_type
+    use rollcon_run_settings, only : run_settings_type, formulation_cvode
     use rollcon_output_layout, only : name_length
     !> The columns it adds, in order (named where a CSV reader finds them too)
-    use rollcon_watch_columns, only : contact_names
-    use rollcon_watch, only : watch_type, watch_event_type, watch_measure_type, action_stop
+    use rollcon_watch_columns, only : contact_names, contact_mode_names
+    use rollcon_watch, only : watch_type, watch_event_type, watch_measure_type, action_stop, &
+        & action_restart
     implicit none
     private
 
@@ -25,6 +33,16 @@ module rollcon_contact_watch
     !> local errors add up like a random walk (rollcon_drift); measured on the data/ scenes,
     !> sound runs reach at most 0.82 of sqrt(N) (atol + rtol R), drift = 'none' 4.8 to 7800
     real(wp), parameter :: height_allowance = 3.0_wp
+    !> The guards of a stop, in units of the slip's integration error e = atol + rtol s,
+    !> s = |v_G| + R |omega| (slip_error): the first, at 500 e, where the reference is aimed
+    !> at the slip's direction again, so that its component's root is the stop; the second, at
+    !> e/2, the stop itself should the integrator not reach that root first (in 3-D it cannot
+    !> step past the stop, where the friction's direction turns over). A slip within e of zero
+    !> is zero: the slip is not known better, so neither is the stop's time (e over the slip's
+    !> deceleration: 7.6e-12 s in data/sliding_coin.nml, ~2e-8 s in data/coin_slipping.nml)
+    real(wp), parameter :: guard_first = 500.0_wp, guard_second = 0.5_wp
+    !> Modes, as the `mode` column writes them
+    integer, parameter, public :: mode_rolling = 0, mode_sliding = 1
 
     type, extends(watch_type) :: contact_watch_type
         !> The part in contact (model order) and its rim radius [m] > 0
@@ -39,6 +57,30 @@ module rollcon_contact_watch
         real(wp) :: height_residual_max = 0.0_wp
         !> Scratch of an event function that must solve for the multipliers
         real(wp), allocatable :: a(:), lambda(:)
+        !> Coulomb friction at the contact: modes watched (mu_static > 0) [-]
+        real(wp) :: mu_static = 0.0_wp, mu_kinetic = 0.0_wp
+        !> The contact's rows in model order: tangential (X, Y) and normal
+        integer :: tangential(2) = [1, 2], normal = 3
+        !> Mode at the start, and the slip's direction there when sliding (unit, X and Y)
+        integer :: initial_mode = mode_rolling
+        real(wp) :: initial_direction(2) = [1.0_wp, 0.0_wp]
+        !> The slip's direction at the last switch (or re-reference): its component along it
+        !> is the event function of sliding
+        real(wp) :: slip_reference(2) = [1.0_wp, 0.0_wp]
+        !> The guard of a stop in effect (guard_first or guard_second)
+        real(wp) :: guard = guard_first
+        !> A slide is starting from rest: its slip not yet past the first guard (no stop is
+        !> looked for until it is)
+        logical :: starting = .false.
+        !> The tolerances of the run and its Baumgarte rate in effect [1/s] (prepare)
+        real(wp) :: rtol = 0.0_wp, atol = 0.0_wp, baumgarte = 0.0_wp
+        !> The switches so far: times [s] and the modes entered
+        real(wp), allocatable :: switch_times(:)
+        integer, allocatable :: switch_modes(:)
+        !> Time spent in each mode up to the last switch [s], the mode's start and the time of
+        !> the last output row [s]
+        real(wp) :: mode_time(0:1) = 0.0_wp, mode_since = 0.0_wp, last_time = 0.0_wp
+        logical :: started = .false.
     contains
         procedure :: prepare
         procedure :: root_count
@@ -49,6 +91,14 @@ module rollcon_contact_watch
         procedure :: fill_columns
         procedure :: measures
         procedure :: height_residual
+        procedure :: restart_problem
+        procedure :: summary_lines
+        procedure :: friction
+        procedure :: slip_velocity
+        procedure :: switch_to
+        procedure :: current_mode
+        procedure :: slip_error
+        procedure :: begin_sliding
     end type contact_watch_type
 
 contains
@@ -75,20 +125,84 @@ contains
         if (allocated(self%lambda)) deallocate(self%lambda)
         allocate(self%a(eq%n), self%lambda(eq%nc), source=0.0_wp)
         self%height_residual_max = 0.0_wp
+        if (allocated(self%switch_times)) deallocate(self%switch_times, self%switch_modes)
+        allocate(self%switch_times(0), self%switch_modes(0))
+        self%mode_time = 0.0_wp
+        self%started = .false.
+        if (.not. self%friction()) return
+        if (settings%formulation /= formulation_cvode) then
+            ! sliding's friction is coupled in the ODE form's accelerations (rollcon_equations)
+            call fatal_error(error, "a contact with Coulomb friction (mu_static > 0) is " &
+                & // "integrated in the ODE form only: formulation = 'cvode'", stat_input)
+            return
+        end if
+        if (eq%nc < 3 .or. any(self%tangential > eq%nc) .or. self%normal > eq%nc) then
+            call fatal_error(error, "the contact's rows " // to_text(self%tangential(1)) // ", " &
+                & // to_text(self%tangential(2)) // " and " // to_text(self%normal) &
+                & // " are not all among the model's " // to_text(eq%nc) // " constraints", &
+                & stat_input)
+            return
+        end if
+        self%rtol = settings%rtol
+        self%atol = settings%atol
+        self%baumgarte = settings%baumgarte()
+        self%slip_reference = self%initial_direction
+        self%guard = guard_first
+        self%starting = .false.
+        associate (contact => eq%contact)
+            contact%tangential = self%tangential
+            contact%normal = self%normal
+            contact%height_column = 6*(self%part - 1) + 3
+            contact%mu = self%mu_kinetic
+            contact%reference = self%initial_direction
+            contact%sliding = self%initial_mode == mode_sliding
+            if (allocated(contact%unit_a)) deallocate(contact%unit_a, contact%unit_lambda)
+            allocate(contact%unit_a(eq%n), contact%unit_lambda(eq%nc), source=0.0_wp)
+        end associate
     end subroutine prepare
 
-    !> The lift-off, when watched.
+    !> Modes are watched: the contact has Coulomb friction.
+    pure logical function friction(self)
+        class(contact_watch_type), intent(in) :: self
+
+        friction = self%mu_static > 0.0_wp
+    end function friction
+
+    !> Velocity of the rim's material point at the contact, ground X and Y [m/s]: v_G + omega x
+    !> r_GC with r_GC = -R e_y2, written out in the 3-1-3 angles (docs/design.md §5, the no-slip
+    !> constraint's F1 and F2).
+    pure function slip_velocity(self, q, u) result(slip)
+        class(contact_watch_type), intent(in) :: self
+        real(wp), intent(in) :: q(:), u(:)
+        real(wp) :: slip(2)
+        real(wp) :: spin
+        integer :: i0
+
+        i0 = 6*(self%part - 1)
+        associate (psi => q(i0 + 4), theta => q(i0 + 5), psidot => u(i0 + 4), &
+                & thetadot => u(i0 + 5), phidot => u(i0 + 6), r => self%radius)
+            spin = phidot + psidot*cos(theta)
+            slip(1) = u(i0 + 1) + r*cos(psi)*spin - r*thetadot*sin(psi)*sin(theta)
+            slip(2) = u(i0 + 2) + r*sin(psi)*spin + r*thetadot*cos(psi)*sin(theta)
+        end associate
+    end function slip_velocity
+
+    !> The lift-off, when watched; with friction two more, the mode's (last but one) and the
+    !> guard of a stop (last).
     pure integer function root_count(self, eq)
         class(contact_watch_type), intent(in) :: self
         type(equations_type), intent(in) :: eq
 
-        root_count = merge(1, 0, self%stop_on_liftoff)
+        root_count = merge(1, 0, self%stop_on_liftoff) + merge(2, 0, self%friction())
     end function root_count
 
     !> The normal force on the part + liftoff_force. The normal force comes from the multipliers
     !> when a DAE state gives them (IDA), else from the accelerations when the integrator gives
     !> them (CVODE's polynomial: no UCOSUB call and no solve), else from a saddle-point solve as
-    !> in a right-hand side.
+    !> in a right-hand side. With friction, rolling: mu_static F_n - |F_t| and a positive
+    !> constant, F from a saddle-point solve; sliding: v_s . s_ref and |v_s| - guard times the
+    !> slip's integration error (a slide starting from rest: a positive constant and |v_s| -
+    !> the first guard) (docs/design.md §5, "Contact modes").
     subroutine roots(self, eq, settings, time, q, u, g, error, lambda, a)
         class(contact_watch_type), intent(inout) :: self
         type(equations_type), intent(inout) :: eq
@@ -97,9 +211,34 @@ contains
         real(wp), intent(out) :: g(:)
         type(error_type), allocatable, intent(out) :: error
         real(wp), intent(in), optional :: lambda(:), a(:)
-        real(wp) :: force(3)
+        real(wp) :: force(3), slip(2)
+        integer :: m
 
-        if (present(lambda)) then
+        if (self%friction()) then
+            m = self%root_count(eq) - 1
+            g(m:m + 1) = 1.0_wp
+        end if
+        if (self%friction() .and. eq%contact%sliding) then
+            ! sliding: the slip's component along its direction at the last switch, and its
+            ! speed above its guard
+            slip = self%slip_velocity(q, u)
+            if (self%starting) then
+                ! a slide starting from rest: its slip growing past the first guard
+                g(m + 1) = norm2(slip) - guard_first*self%slip_error(u)
+            else
+                g(m) = dot_product(slip, self%slip_reference)
+                g(m + 1) = norm2(slip) - self%guard*self%slip_error(u)
+            end if
+            if (.not. self%stop_on_liftoff) return
+        end if
+        if (self%friction()) then
+            ! the friction rolling needs from the equations at this very state: the
+            ! integrator's interpolated accelerations are off by its local error (6e-7 of
+            ! mu_static in data/coin_slipping.nml), which would move the switch
+            call eq%accelerations(time, q, u, settings%baumgarte(), self%a, self%lambda, error)
+            if (allocated(error)) return
+            force = eq%constraint_force(self%part, self%lambda)
+        else if (present(lambda)) then
             ! only C is needed: first partials, no saddle-point solve
             call eq%constraint_matrix_at(time, q, u, error)
             if (allocated(error)) return
@@ -111,7 +250,10 @@ contains
             if (allocated(error)) return
             force = eq%constraint_force(self%part, self%lambda)
         end if
-        g(1) = force(3) + self%liftoff_force
+        if (self%stop_on_liftoff) g(1) = force(3) + self%liftoff_force
+        ! rolling: the friction that static friction can give less the friction rolling needs
+        if (self%friction() .and. .not. eq%contact%sliding) g(m) = self%mu_static*force(3) &
+            & - norm2(force(1:2))
     end subroutine roots
 
     !> The lift-off's normal force comes from the accelerations when they are given.
@@ -119,7 +261,7 @@ contains
         class(contact_watch_type), intent(in) :: self
         type(equations_type), intent(in) :: eq
 
-        roots_use_accelerations = self%root_count(eq) > 0
+        roots_use_accelerations = self%stop_on_liftoff .and. .not. self%friction()
     end function roots_use_accelerations
 
     !> The lift-off: the run stops.
@@ -132,6 +274,13 @@ contains
         integer :: p
 
         p = self%part
+        if (self%friction() .and. k >= self%root_count(eq) - 1) then
+            ! the mode's event: restart_problem decides and switches
+            event%action = action_restart
+            event%limit = "contact_mode"
+            event%message = "the contact's mode event at t = " // to_text(time) // " s"
+            return
+        end if
         event%action = action_stop
         event%limit = "liftoff"
         event%message = "the normal contact force turned negative (below -" &
@@ -146,8 +295,13 @@ contains
         type(equations_type), intent(in) :: eq
         character(len=name_length), allocatable, intent(out) :: names(:)
 
-        allocate(names(size(contact_names)))
-        names(:) = contact_names
+        if (self%friction()) then
+            allocate(names(size(contact_names) + size(contact_mode_names)))
+            names(size(contact_names) + 1:) = contact_mode_names
+        else
+            allocate(names(size(contact_names)))
+        end if
+        names(:size(contact_names)) = contact_names
     end subroutine column_names
 
     !> Force, normal force, friction needed, height residual (and its largest magnitude).
@@ -159,6 +313,8 @@ contains
         real(wp) :: force(3), height
 
         force = eq%constraint_force(self%part, lambda)
+        ! sliding: the friction is a force of the contact's too (rollcon_sliding_contact)
+        if (eq%contact%sliding) force(1:2) = force(1:2) + eq%contact%friction
         height = self%height_residual(q)
         self%height_residual_max = max(self%height_residual_max, abs(height))
         values(1:3) = force
@@ -166,7 +322,154 @@ contains
         values(5) = 0.0_wp
         if (force(3) > 0.0_wp) values(5) = norm2(force(1:2))/force(3)
         values(6) = height
+        if (.not. self%started) self%mode_since = time
+        self%started = .true.
+        self%last_time = time
+        if (.not. self%friction()) return
+        values(7) = merge(mode_sliding, mode_rolling, eq%contact%sliding)
+        values(8:9) = self%slip_velocity(q, u)
     end subroutine fill_columns
+
+    !> The mode's event fired at (t, q, u). Rolling: |F_t| reached mu_static F_n, so the
+    !> contact slides, its slip starting against the friction rolling needed (-F_t / |F_t|).
+    !> Sliding from rest, its slip past the first guard: stops are looked for from now on.
+    !> Sliding otherwise, a slip above its integration error e: the reference is aimed at the
+    !> slip's direction (its direction turned by 90 degrees, or the first guard), the second
+    !> guard watching below the first. A slip within e of zero is a stop: the contact rolls if
+    !> rolling's friction is admissible there (|F_t| <= mu_static F_n), else it slides on
+    !> against the friction rolling would need. An error when the sliding equations are
+    !> ill-posed there (Painlevé: rollcon_equations).
+    subroutine restart_problem(self, eq, time, q, u, error)
+        class(contact_watch_type), intent(inout) :: self
+        type(equations_type), intent(inout) :: eq
+        real(wp), intent(in) :: time, q(:), u(:)
+        type(error_type), allocatable, intent(out) :: error
+        real(wp) :: force(3), slip(2)
+
+        if (.not. self%friction()) return
+        if (.not. eq%contact%sliding) then
+            ! rolling, |F_t| reached mu_static F_n: it slides
+            call self%begin_sliding(eq, time, q, u, error)
+            return
+        end if
+        if (self%starting) then
+            ! the starting slide's slip has grown past the first guard
+            self%starting = .false.
+            return
+        end if
+        slip = self%slip_velocity(q, u)
+        if (norm2(slip) > self%slip_error(u)) then
+            ! not a stop: the direction turned by 90 degrees, or the first guard; the
+            ! reference aimed at the slip's direction now, and below the first guard the
+            ! second one watches
+            self%slip_reference = slip/norm2(slip)
+            eq%contact%reference = self%slip_reference
+            self%guard = merge(guard_second, guard_first, norm2(slip) <= guard_first &
+                & *self%slip_error(u))
+            return
+        end if
+        eq%contact%sliding = .false.
+        ! the slip stopped: rolling, if the friction it needs is admissible here
+        call eq%accelerations(time, q, u, self%baumgarte, self%a, self%lambda, error)
+        if (allocated(error)) return
+        force = eq%constraint_force(self%part, self%lambda)
+        if (norm2(force(1:2)) <= self%mu_static*force(3)) then
+            call self%switch_to(mode_rolling, time)
+            return
+        end if
+        call self%begin_sliding(eq, time, q, u, error)
+    end subroutine restart_problem
+
+    !> Slide from (t, q, u), rolling there (eq%contact%sliding false), against the friction
+    !> rolling needs there (s_ref = -F_t / |F_t|); a switch unless it was sliding already (a
+    !> stop where rolling is not admissible). An error when sliding is ill-posed there.
+    subroutine begin_sliding(self, eq, time, q, u, error)
+        class(contact_watch_type), intent(inout) :: self
+        type(equations_type), intent(inout) :: eq
+        real(wp), intent(in) :: time, q(:), u(:)
+        type(error_type), allocatable, intent(out) :: error
+        real(wp) :: force(3)
+
+        call eq%accelerations(time, q, u, self%baumgarte, self%a, self%lambda, error)
+        if (allocated(error)) return
+        force = eq%constraint_force(self%part, self%lambda)
+        if (norm2(force(1:2)) > 0.0_wp) then
+            self%slip_reference = -force(1:2)/norm2(force(1:2))
+        end if
+        eq%contact%reference = self%slip_reference
+        eq%contact%sliding = .true.
+        self%guard = guard_first
+        self%starting = .true.
+        ! Painlevé's refusal, here rather than at the integrator's first evaluation
+        call eq%accelerations(time, q, u, self%baumgarte, self%a, self%lambda, error)
+        if (allocated(error)) return
+        if (self%current_mode() /= mode_sliding) call self%switch_to(mode_sliding, time)
+    end subroutine begin_sliding
+
+    !> The slip's integration error [m/s]: atol + rtol s, s = |v_G| + R |omega| (|omega|
+    !> bounded by the Euler-angle rates' norm) at the rates u.
+    pure real(wp) function slip_error(self, u)
+        class(contact_watch_type), intent(in) :: self
+        real(wp), intent(in) :: u(:)
+        integer :: i0
+
+        i0 = 6*(self%part - 1)
+        slip_error = self%atol + self%rtol*(norm2(u(i0 + 1:i0 + 3)) &
+            & + self%radius*norm2(u(i0 + 4:i0 + 6)))
+    end function slip_error
+
+    !> The mode the contact is in: the last switch's, or the initial one.
+    pure integer function current_mode(self)
+        class(contact_watch_type), intent(in) :: self
+
+        current_mode = self%initial_mode
+        if (allocated(self%switch_modes)) then
+            if (size(self%switch_modes) > 0) current_mode = self%switch_modes(size( &
+                & self%switch_modes))
+        end if
+    end function current_mode
+
+    !> Record a switch into mode at time [s], and the time spent in the mode it leaves.
+    subroutine switch_to(self, mode, time)
+        class(contact_watch_type), intent(inout) :: self
+        integer, intent(in) :: mode
+        real(wp), intent(in) :: time
+
+        self%mode_time(self%current_mode()) = self%mode_time(self%current_mode()) + time &
+            & - self%mode_since
+        self%mode_since = time
+        self%switch_times = [self%switch_times, time]
+        self%switch_modes = [self%switch_modes, mode]
+    end subroutine switch_to
+
+    !> With friction: every switch, "t = 0.113263 s: sliding → rolling", and the time spent in
+    !> each mode up to the last row.
+    function summary_lines(self, eq) result(text)
+        class(contact_watch_type), intent(in) :: self
+        type(equations_type), intent(in) :: eq
+        character(len=:), allocatable :: text
+        character(len=*), parameter :: names(0:1) = [character(len=7) :: "rolling", "sliding"]
+        real(wp) :: spent(0:1)
+        integer :: k, from
+
+        text = ""
+        if (.not. self%friction()) return
+        from = self%initial_mode
+        text = "contact: starts " // trim(names(from)) // " (mu_static " &
+            & // to_text(self%mu_static) // ", mu_kinetic " // to_text(self%mu_kinetic) &
+            & // "), " // to_text(size(self%switch_times)) // " switch" &
+            & // trim(merge("  ", "es", size(self%switch_times) == 1)) // new_line("a")
+        do k = 1, size(self%switch_times)
+            text = text // "  t = " // to_text(self%switch_times(k)) // " s: " &
+                & // trim(names(from)) // " → " // trim(names(self%switch_modes(k))) &
+                & // new_line("a")
+            from = self%switch_modes(k)
+        end do
+        spent = self%mode_time
+        spent(from) = spent(from) + max(0.0_wp, self%last_time - self%mode_since)
+        text = text // "  time rolling " // to_text(spent(mode_rolling)) // " s, sliding " &
+            & // to_text(spent(mode_sliding)) // " s" // new_line("a")
+    end function summary_lines
 
     !> Z - R sin(theta) of the part in contact [m].
     pure real(wp) function height_residual(self, q)

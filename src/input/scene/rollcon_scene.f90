@@ -88,6 +88,9 @@ contains
         call spin_from_speed(path, groups, new, error)
         if (allocated(error)) return
         new%strike%enabled = any([(groups(k)%name == "strike", k = 1, size(groups))])
+        new%contact%enabled = any([(groups(k)%name == "contact", k = 1, size(groups))])
+        if (key_line(groups, "contact", "mu_kinetic") == 0) &
+            & new%contact%mu_kinetic = new%contact%mu_static
         new%initial%z_given = key_line(groups, "initial", "z") > 0
         new%initial%velocity_given = key_line(groups, "initial", "xdot") > 0 &
             & .or. key_line(groups, "initial", "ydot") > 0 &

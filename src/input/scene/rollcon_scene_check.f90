@@ -9,7 +9,7 @@ module rollcon_scene_check
     use rollcon_text, only : to_text
     use rollcon_namelist_lexer, only : group_type
     use rollcon_namelist_bytes, only : visible
-    use rollcon_scene_type, only : scene_type
+    use rollcon_scene_type, only : scene_type, formulation_cvode
     use rollcon_physical_ranges, only : light
     use rollcon_run_keys, only : run_choice_rule
     use rollcon_scene_state, only : disk_mass_properties, angular_velocity, disk_initial_state
@@ -60,6 +60,21 @@ contains
             call run_choice_rule(r%run_settings_type, key, expected, got)
             call require(len(key) == 0, "run", key, expected, got)
         end associate
+        if (scene%contact%enabled) then
+            associate (c => scene%contact)
+                call require(key_line(groups, "contact", "mu_static") > 0, "contact", &
+                    & "mu_static", "given in a &contact group (the friction coefficient " &
+                    & // "that ends rolling)", "none")
+                call require(c%mu_kinetic <= c%mu_static, "contact", "mu_kinetic", &
+                    & "<= mu_static = " // to_text(c%mu_static) // " (kinetic friction " &
+                    & // "exceeding static would stop a slip that rolling cannot hold)", &
+                    & to_text(c%mu_kinetic))
+                ! the friction-coupled accelerations are the ODE form's (docs/design.md §5)
+                call require(scene%run%formulation == formulation_cvode, "run", &
+                    & "formulation", "'cvode' in a scene with &contact (the contact's modes " &
+                    & // "are integrated in the ODE form)", "another")
+            end associate
+        end if
         if (allocated(error)) return
         call check_contact(path, groups, scene, error)
         if (allocated(error)) return
@@ -95,7 +110,8 @@ contains
         end if
     end subroutine key_error
 
-    !> A given z must put the rim on the ground; a given velocity must roll without slip.
+    !> A given z must put the rim on the ground; a given velocity must roll without slip, or,
+    !> with &contact, keep the rim on the ground (zdot; xdot and ydot may slip).
     subroutine check_contact(path, groups, scene, error)
         character(len=*), intent(in) :: path
         type(group_type), intent(in) :: groups(:)
@@ -123,13 +139,17 @@ contains
                 tolerance = contact_tol*(scene%disk%radius*norm2(angular_velocity(scene)) &
                     & + 1.0e-12_wp)
                 do k = 1, 3
-                    if (lines(k) == 0) then
+                    ! with friction a key not given takes its rolling value
+                    if (lines(k) == 0 .and. scene%contact%enabled) given(k) = u(k)
+                    if (lines(k) == 0 .and. .not. scene%contact%enabled) then
                         call input_error(error, visible(path), maxval(lines), velocity_keys(k), &
                             & "in &initial must be given with the other velocity keys (all of " &
                             & // "xdot, ydot, zdot or none); rolling without slip it is " &
                             & // to_text(u(k)) // " [m/s]")
                         return
                     end if
+                    ! with friction the rim may slip along the ground, never into it
+                    if (scene%contact%enabled .and. k < 3) cycle
                     if (.not. abs(given(k) - u(k)) <= tolerance) then
                         call key_error(path, groups, "initial", velocity_keys(k), "must be " &
                             & // to_text(u(k)) // " [m/s] to roll without slip (v_G = R omega " &
@@ -138,6 +158,9 @@ contains
                     end if
                 end do
             end if
+            ! with friction the rim may slip along the ground, so the centre's horizontal
+            ! velocity is the one given
+            if (scene%contact%enabled .and. i%velocity_given) u(1:2) = given(1:2)
             i%xdot = u(1)
             i%ydot = u(2)
             i%zdot = u(3)

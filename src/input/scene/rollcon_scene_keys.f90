@@ -19,12 +19,15 @@ module rollcon_scene_keys
 
     !> Groups of a scene file, in the order the documentation gives them
     character(len=*), parameter :: scene_groups(*) = [character(len=11) :: "disk", &
-        & "environment", "initial", "strike", "run", "limits"]
+        & "environment", "initial", "strike", "run", "limits", "contact"]
 
     !> Densities [kg/m^3]: lighter than air is not a disk; 1e5 is four times osmium's
     real(wp), parameter :: density_min = 1.0e-3_wp, density_max = 1.0e5_wp
     !> Largest impulse [N s]
     real(wp), parameter :: impulse_max = 1.0e9_wp
+    !> Largest friction coefficient [-]: far above any pair of real surfaces (rubber on dry
+    !> rough stone reaches about 1.5); the contact never slides below it in practice
+    real(wp), parameter :: friction_max = 100.0_wp
 
 contains
 
@@ -63,7 +66,11 @@ contains
                 & height_velocity), option_type("position", height_position)]), &
                 & real_key("limits", "theta_min", l%theta_min, "rad", 0.0_wp, pi, &
                 & upper_open=.true.), &
-                & logical_key("limits", "stop_on_liftoff", l%stop_on_liftoff)]
+                & logical_key("limits", "stop_on_liftoff", l%stop_on_liftoff), &
+                & real_key("contact", "mu_static", scene%contact%mu_static, "", 0.0_wp, &
+                & friction_max, lower_open=.true.), &
+                & real_key("contact", "mu_kinetic", scene%contact%mu_kinetic, "", 0.0_wp, &
+                & friction_max, lower_open=.true.)]
         end associate
     end subroutine bind_keys
 

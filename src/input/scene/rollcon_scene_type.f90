@@ -12,7 +12,7 @@ module rollcon_scene_type
     private
 
     public :: scene_type, scene_disk_type, scene_environment_type, scene_initial_type
-    public :: scene_strike_type, scene_run_type, scene_limits_type
+    public :: scene_strike_type, scene_run_type, scene_limits_type, scene_contact_type
     public :: formulation_cvode, formulation_ida, method_bdf, method_adams
     public :: drift_none, drift_projection, drift_baumgarte
     public :: jacobian_analytic, jacobian_dq, height_velocity, height_position
@@ -67,6 +67,18 @@ module rollcon_scene_type
         real(wp) :: impulse = 0.01_wp
     end type scene_strike_type
 
+    !> &contact: Coulomb friction at the rim's contact (docs/design.md §5, "Contact modes").
+    !> Without the group the disk rolls without slip whatever force that takes.
+    type :: scene_contact_type
+        !> The file has a &contact group
+        logical :: enabled = .false.
+        !> Static friction coefficient [-]: rolling holds while |F_t| < mu_static F_n
+        real(wp) :: mu_static = 0.0_wp
+        !> Kinetic friction coefficient [-] (mu_static when not given): sliding's friction force
+        !> is mu_kinetic F_n against the slip velocity
+        real(wp) :: mu_kinetic = 0.0_wp
+    end type scene_contact_type
+
     !> &run: how to integrate (rollcon_run_settings), and the form of the contact's height
     type, extends(run_settings_type) :: scene_run_type
         !> height_velocity or height_position
@@ -93,6 +105,7 @@ module rollcon_scene_type
         type(scene_strike_type) :: strike
         type(scene_run_type) :: run
         type(scene_limits_type) :: limits
+        type(scene_contact_type) :: contact
     end type scene_type
 
 end module rollcon_scene_type

@@ -44,6 +44,7 @@ contains
             & new_unittest("velocity-slips", test_velocity_slips), &
             & new_unittest("velocity-incomplete", test_velocity_incomplete), &
             & new_unittest("speed-with-phidot", test_speed_with_phidot), &
+            & new_unittest("contact-keys-refused", test_contact_keys), &
             & new_unittest("huge-values-refused", test_huge_values), &
             & new_unittest("faster-than-light-refused", test_speed_of_light), &
             & new_unittest("tiny-values-refused", test_tiny_values), &
@@ -325,6 +326,45 @@ contains
             & "@:4: 'ydot' in &initial must be given with the other velocity keys", &
             & "rolling without slip it is 0 [m/s]"])
     end subroutine test_velocity_incomplete
+
+    !> &contact: mu_static must be given, mu_kinetic may not exceed it, the formulation must
+    !> be the ODE form's, and a start may slip along the ground but never into it.
+    subroutine test_contact_keys(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(scene_type) :: scene
+
+        call expect_input_error(error, "contact_no_mu", [character(len=width) :: &
+            & "&run formulation = 'cvode' /", "&contact", "  mu_kinetic = 0.2", "/"], &
+            & [character(len=width) :: "'mu_static' in &contact must be given in a &contact " &
+            & // "group"])
+        if (allocated(error)) return
+        call expect_input_error(error, "contact_kinetic", [character(len=width) :: &
+            & "&run formulation = 'cvode' /", "&contact", "  mu_static = 0.3", &
+            & "  mu_kinetic = 0.4", "/"], [character(len=width) :: &
+            & "@:4: 'mu_kinetic' in &contact must be <= mu_static = 0.3", "got 0.4"])
+        if (allocated(error)) return
+        call expect_input_error(error, "contact_ida", [character(len=width) :: &
+            & "&contact mu_static = 0.3 /"], [character(len=width) :: &
+            & "'formulation' in &run must be 'cvode' in a scene with &contact"])
+        if (allocated(error)) return
+        call expect_input_error(error, "contact_zero", [character(len=width) :: &
+            & "&run formulation = 'cvode' /", "&contact mu_static = 0.0 /"], &
+            & [character(len=width) :: "@:2: 'mu_static'"])
+        if (allocated(error)) return
+        call expect_input_error(error, "contact_into_ground", [character(len=width) :: &
+            & "&run formulation = 'cvode' /", "&contact mu_static = 0.3 /", &
+            & "&initial xdot = 1.0, zdot = 0.01 /"], [character(len=width) :: &
+            & "@:3: 'zdot' in &initial must be 0 [m/s] to roll without slip"])
+        if (allocated(error)) return
+        call expect_accepted("contact_thrown", [character(len=width) :: &
+            & "&run formulation = 'cvode' /", "&contact mu_static = 0.3 /", &
+            & "&initial xdot = 1.0 /"], scene, error)
+        if (allocated(error)) return
+        ! thrown without spin: the slip kept, the rim on the ground, mu_kinetic = mu_static
+        call check(error, [scene%initial%xdot, scene%initial%ydot, scene%initial%zdot, &
+            & scene%contact%mu_kinetic], [1.0_wp, 0.0_wp, 0.0_wp, 0.3_wp], &
+            & "xdot, ydot, zdot, mu_kinetic", abs_tol=tol_exact)
+    end subroutine test_contact_keys
 
     !> speed and phidot both set the spin: one of them.
     subroutine test_speed_with_phidot(error)
