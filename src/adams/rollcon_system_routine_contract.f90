@@ -1,6 +1,7 @@
 ! SPDX-License-Identifier: MIT
 !> The user subroutines of ADAMS/Solver's system elements rollcon serves, with ADAMS's calling
-!> sequence (docs/datasets.md, "User routines of requests", "User routines of variables"):
+!> sequence (docs/datasets.md, "User routines of requests", "... of variables", "... of
+!> motions"):
 !>
 !>     SUBROUTINE REQSUB(ID, TIME, PAR, NPAR, IFLAG, RESULT)
 !>     INTEGER ID, NPAR; DOUBLE PRECISION TIME, PAR(*), RESULT(8); LOGICAL IFLAG
@@ -8,6 +9,13 @@
 !>     SUBROUTINE VARSUB(ID, TIME, PAR, NPAR, DFLAG, IFLAG, VALUE)
 !>     INTEGER ID, NPAR; DOUBLE PRECISION TIME, PAR(*), VALUE; LOGICAL DFLAG, IFLAG
 !>
+!>     SUBROUTINE MOTSUB(ID, TIME, PAR, NPAR, IORD, IFLAG, VALUE)
+!>     INTEGER ID, NPAR, IORD; DOUBLE PRECISION TIME, PAR(*), VALUE; LOGICAL IFLAG
+!>
+!> MOTSUB computes the displacement a MOTION/id, FUNCTION=USER(r1, ...) prescribes at TIME
+!> (IORD = 0) and its first and second TIME derivatives (IORD = 1, 2), in the dataset's units;
+!> a MOTION is a function of TIME alone, so a MOTSUB reads no
+!> state (its initialisation call may declare none).
 !> VARSUB computes the value of a VARIABLE/id, FUNCTION=USER(r1, ...), read by VARVAL(id).
 !> REQSUB computes the eight values of a REQUEST/id, FUNCTION=USER(r1, ...); ADAMS writes
 !> RESULT(2:4) and RESULT(6:8) (request_columns), the components, and so does rollcon. IFLAG =
@@ -28,6 +36,8 @@ module rollcon_system_routine_contract
     public :: request_columns
     public :: variable_routine_interface, routine_varsub, variable_routine_name, &
         & variable_routine_symbol
+    public :: motion_routine_interface, routine_motsub, motion_routine_name, &
+        & motion_routine_symbol, motion_orders
 
     !> The kind of a REQSUB in the table of a model's routines (after the force routines')
     integer, parameter :: routine_reqsub = routine_kinds + 1
@@ -38,6 +48,12 @@ module rollcon_system_routine_contract
     integer, parameter :: routine_varsub = routine_kinds + 2
     character(len=*), parameter :: variable_routine_name = "VARSUB", &
         & variable_routine_symbol = "varsub_"
+    !> The kind of a MOTSUB, its name and symbol
+    integer, parameter :: routine_motsub = routine_kinds + 3
+    character(len=*), parameter :: motion_routine_name = "MOTSUB", &
+        & motion_routine_symbol = "motsub_"
+    !> The orders IORD of TIME derivative a MOTSUB is asked for: 0 (the displacement), 1, 2
+    integer, parameter :: motion_orders = 2
     !> Number of RESULT entries of a REQSUB
     integer, parameter :: request_results = 8
     !> The entries ADAMS writes (the components of the two vectors; 1 and 5 are not written)
@@ -84,6 +100,27 @@ module rollcon_system_routine_contract
             !> The variable's value
             real(wp), intent(inout) :: value
         end subroutine variable_routine_interface
+
+        !> A user-written MOTION, called exactly as ADAMS/Solver calls MOTSUB: the displacement
+        !> it prescribes, or a TIME derivative of it, in the dataset's units (a length, or an
+        !> angle in radians, per time unit to the power IORD).
+        subroutine motion_routine_interface(id, time, par, npar, iord, iflag, value)
+            import :: wp
+            !> Id of the MOTION (MOTION/3: 3)
+            integer, intent(in) :: id
+            !> Simulation time, dataset units
+            real(wp), intent(in) :: time
+            !> Constants of FUNCTION=USER(r1, ..., r30)
+            real(wp), intent(in) :: par(*)
+            !> Number of constants
+            integer, intent(in) :: npar
+            !> The order of the TIME derivative asked for: 0, 1 or 2 (motion_orders)
+            integer, intent(in) :: iord
+            !> True in the initialisation call
+            logical, intent(in) :: iflag
+            !> The displacement (IORD = 0) or its IORD-th TIME derivative
+            real(wp), intent(inout) :: value
+        end subroutine motion_routine_interface
     end interface
 
 end module rollcon_system_routine_contract

@@ -30,8 +30,10 @@ module rollcon_adm_build
     use rollcon_user_forces, only : find_force_routine, routine_kind_of, set_system_markers, &
         & declare_user_force, evaluate_user_forces, take_user_force_error, set_system_splines, &
         & user_variable_type, set_user_variables, declare_user_variables, evaluate_user_variables
+    use rollcon_user_forces, only : user_motion_type, set_user_motions
     use rollcon_system_routine_contract, only : routine_varsub, variable_routine_name
     use rollcon_user_data, only : user_string_type, user_array_type, set_user_data
+    use rollcon_system_routine_contract, only : routine_motsub, motion_routine_name
     use rollcon_spline, only : spline_type, new_spline
     use rollcon_force_routine_contract, only : routine_names
     use rollcon_model, only : model_type, setup_model, served_by_model_ucosub, force_request_type
@@ -392,7 +394,8 @@ contains
     !> TRANSLATIONAL or CYLINDRICAL joint along J's z axis, ROTATION a REVOLUTE or CYLINDRICAL
     !> one about it; between markers, X, Y, Z, B1, B2, B3 (rollcon_motion_geometry). The
     !> function's integrals (VELOCITY, ACCELERATION) are anchored over the run's span
-    !> (prepare_motion). A refusal names the statement's line.
+    !> (prepare_motion). A MOTION of FUNCTION=USER(...) is served by a MOTSUB (add_user_motions).
+    !> A refusal names the statement's line.
     subroutine add_motions(adm, model, error)
         type(adm_model_type), intent(in) :: adm
         type(model_type), intent(inout) :: model
@@ -403,6 +406,8 @@ contains
         real(wp) :: horizon
 
         if (.not. allocated(adm%motions)) return
+        call add_user_motions(adm, error)
+        if (allocated(error)) return
         horizon = adm%run%settings%end_time
         do k = 1, size(adm%motions)
             associate (statement => adm%motions(k))
@@ -454,6 +459,7 @@ contains
                     & initial_velocity=statement%initial_velocity)
                 if (any(component == [motion_x, motion_y, motion_z])) &
                     & motion%value_unit = adm%units%length
+                motion%user = statement%user
                 call prepare_motion(motion, horizon)
                 call model%add_motion(motion, component, statement%joint /= 0, &
                     & adm_marker(adm, i), adm_marker(adm, j), error, line=statement%line)
@@ -461,6 +467,56 @@ contains
             end associate
         end do
     end subroutine add_motions
+
+    !> The dataset's MOTIONs served by MOTSUBs (FUNCTION=USER), each with the entry of its
+    !> routine (the model's own MOTSUB, or the one its ROUTINE= names), given to
+    !> rollcon_user_forces with the markers SYSFNC and SYSARY may name (a MOTSUB that reads one
+    !> is refused there, naming what it read); refused, naming the MOTION and its line, when no
+    !> file serves it.
+    subroutine add_user_motions(adm, error)
+        type(adm_model_type), intent(in) :: adm
+        type(error_type), allocatable, intent(out) :: error
+        type(user_motion_type), allocatable :: list(:)
+        type(marker_type), allocatable :: markers(:)
+        character(len=:), allocatable :: where, routine
+        integer :: k, n
+
+        allocate(list(count(adm%motions%user)))
+        if (size(list) == 0) return
+        n = 0
+        do k = 1, size(adm%motions)
+            if (.not. adm%motions(k)%user) cycle
+            n = n + 1
+            where = place(adm%file, adm%motions(k)%line) // ": MOTION/" &
+                & // to_text(adm%motions(k)%id)
+            routine = ""
+            if (allocated(adm%motions(k)%routine)) routine = adm%motions(k)%routine
+            list(n)%id = adm%motions(k)%id
+            list(n)%par = adm%motions(k)%par
+            list(n)%name = where
+            list(n)%routine = find_force_routine(routine_motsub, routine)
+            if (list(n)%routine > 0) cycle
+            if (len(routine) == 0) then
+                call fatal_error(error, where // " FUNCTION=USER(...): no " &
+                    & // motion_routine_name // " serves it; give the file that defines " &
+                    & // "SUBROUTINE " // motion_routine_name // " (rollcon run MODEL " &
+                    & // "--ucosub FILE; it runs in a process of its own)", stat_input)
+            else
+                call fatal_error(error, where // " ROUTINE=" // routine // ": no " &
+                    & // motion_routine_name // " of that name among the user's files; " &
+                    & // "ROUTINE=FILE::" // motion_routine_name // " names the routine " &
+                    & // "of FILE (given with --ucosub FILE; FILE as given, or its name " &
+                    & // "without folder and extension)", stat_input)
+            end if
+            return
+        end do
+        call set_user_motions(list, adm%units%time)
+        allocate(markers(size(adm%markers)))
+        do k = 1, size(adm%markers)
+            markers(k) = adm_marker(adm, adm%markers(k)%id)
+        end do
+        call set_system_markers(markers, adm%units%length, adm%units%time)
+    end subroutine add_user_motions
 
     !> rollcon_motion's code of a MOTION's form as the reader gives it (rollcon_adm_motions).
     pure integer function motion_form(form)

@@ -1,10 +1,11 @@
 ! SPDX-License-Identifier: MIT
-!> Calls a user's force routine (SFOSUB, VFOSUB, GFOSUB, VTOSUB), REQSUB or VARSUB with guarded
-!> outputs and protected inputs, and records each call where a watching host can read it
-!> (rollcon_child_process), as rollcon_ucosub_guard does for UCOSUB: RESULT (a VARSUB's VALUE)
-!> is handed to the routine inside a larger buffer whose other entries hold a canary (a
-!> signalling-NaN bit pattern), and ID, TIME, PAR, NPAR, DFLAG and IFLAG (a REQSUB takes no
-!> DFLAG) reach it as copies the guard owns (PAR padded with zeros to 30
+!> Calls a user's force routine (SFOSUB, VFOSUB, GFOSUB, VTOSUB), REQSUB, VARSUB or MOTSUB with
+!> guarded outputs and protected inputs, and records each call where a watching host can read
+!> it (rollcon_child_process), as rollcon_ucosub_guard does for UCOSUB: RESULT (a VARSUB's or
+!> MOTSUB's VALUE) is handed to the routine inside a larger buffer whose other entries hold a
+!> canary (a signalling-NaN bit pattern), and ID, TIME, PAR, NPAR, DFLAG and IFLAG (a REQSUB
+!> takes no DFLAG; a MOTSUB takes IORD in its place) reach it as copies the guard owns (PAR
+!> padded with zeros to 30
 !> entries). After the call an overwritten canary or a changed copy is reported
 !> (rollcon_user_forces' report_call_problem), so that the call's error names the statement,
 !> the routine and the entry ("wrote RESULT(7), beyond the 6 entries of a GFOSUB's RESULT").
@@ -18,9 +19,11 @@ module rollcon_force_routine_guard
     use rollcon_force_routine_contract, only : force_routine_interface, max_routine_par
     use rollcon_system_routine_contract, only : request_routine_interface, routine_reqsub, &
         & variable_routine_interface, routine_varsub
+    use rollcon_system_routine_contract, only : motion_routine_interface, routine_motsub
     use rollcon_user_forces, only : force_call_interface, set_force_call_hook, &
         & get_force_routine, report_call_problem, get_request_routine, routine_name_of, &
         & get_variable_routine
+    use rollcon_user_forces, only : get_motion_routine, user_motion_order
     use rollcon_child_process, only : call_record_type
     implicit none
     private
@@ -38,6 +41,7 @@ module rollcon_force_routine_guard
     real(wp), save :: time_copy
     real(wp), allocatable, save :: par_copy(:)
     logical, save :: dflag_copy, iflag_copy
+    integer, save :: iord_copy
 
 contains
 
@@ -62,8 +66,9 @@ contains
         procedure(force_routine_interface), pointer :: routine
         procedure(request_routine_interface), pointer :: request
         procedure(variable_routine_interface), pointer :: variable
+        procedure(motion_routine_interface), pointer :: motion
         real(wp) :: canary
-        integer :: kind, i, np
+        integer :: kind, i, np, iord
 
         call get_force_routine(entry, routine, kind)
         canary = transfer(canary_bits, canary)
@@ -82,6 +87,8 @@ contains
         npar_copy = npar
         dflag_copy = dflag
         iflag_copy = iflag
+        iord = user_motion_order()
+        iord_copy = iord
         if (associated(record)) then
             record%routine_kind = kind
             record%ucon_id = id
@@ -99,6 +106,10 @@ contains
         else if (kind == routine_varsub) then
             call get_variable_routine(entry, variable)
             call variable(id_copy, time_copy, par_copy, npar_copy, dflag_copy, iflag_copy, &
+                & result_buffer(1))
+        else if (kind == routine_motsub) then
+            call get_motion_routine(entry, motion)
+            call motion(id_copy, time_copy, par_copy, npar_copy, iord_copy, iflag_copy, &
                 & result_buffer(1))
         else
             call routine(id_copy, time_copy, par_copy, npar_copy, dflag_copy, iflag_copy, &
@@ -128,6 +139,7 @@ contains
             & // "which it may only read")
         if (iflag_copy .neqv. iflag) call report_call_problem("the routine changed IFLAG, " &
             & // "which it may only read")
+        if (iord_copy /= iord) call changed("IORD", 0, real(iord, wp), real(iord_copy, wp))
     contains
         subroutine changed(name, k, before, after)
             character(len=*), intent(in) :: name

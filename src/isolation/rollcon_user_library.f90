@@ -22,8 +22,11 @@ module rollcon_user_library
     use rollcon_system_routine_contract, only : request_routine_interface, routine_reqsub, &
         & request_routine_name, request_routine_symbol, variable_routine_interface, &
         & routine_varsub, variable_routine_name, variable_routine_symbol
+    use rollcon_system_routine_contract, only : motion_routine_interface, routine_motsub, &
+        & motion_routine_name, motion_routine_symbol
     use rollcon_user_forces, only : register_force_routine, find_force_routine, &
         & register_request_routine, register_variable_routine
+    use rollcon_user_forces, only : register_motion_routine
     implicit none
     private
 
@@ -111,7 +114,7 @@ contains
 
     !> Load every routine of self%library, the library built from self%source: its UCOSUB
     !> (self%ucosub; null when it defines none), its force routines SFOSUB, VFOSUB, GFOSUB,
-    !> VTOSUB, its REQSUB and its VARSUB,
+    !> VTOSUB, its REQSUB, its VARSUB and its MOTSUB,
     !> registered with rollcon_user_forces under the names ROUTINE= may give: FILE::NAME with
     !> FILE the file as given or its name without folder and extension (u.f: "u::SFOSUB"), and
     !> "" (the model's own, serving every statement naming no ROUTINE) when no file loaded
@@ -123,6 +126,7 @@ contains
         procedure(force_routine_interface), pointer :: routine
         procedure(request_routine_interface), pointer :: request
         procedure(variable_routine_interface), pointer :: variable
+        procedure(motion_routine_interface), pointer :: motion
         integer :: kind
         logical :: found
 
@@ -179,11 +183,23 @@ contains
             call register_variable_routine(library_stem(self%source) // "::" &
                 & // variable_routine_name, self%source, variable)
         end if
+        address = library_symbol(self%handle, motion_routine_symbol)
+        if (c_associated(address)) then
+            found = .true.
+            ! gfortran's external MOTSUB: motion_routine_interface's convention
+            call c_f_procpointer(address, motion)
+            if (find_force_routine(routine_motsub, "") == 0) &
+                & call register_motion_routine("", self%source, motion)
+            call register_motion_routine(self%source // "::" // motion_routine_name, &
+                & self%source, motion)
+            call register_motion_routine(library_stem(self%source) // "::" &
+                & // motion_routine_name, self%source, motion)
+        end if
         if (.not. found) then
             call fatal_error(error, self%source // ": defines none of the routines rollcon " &
-                & // "calls (UCOSUB, SFOSUB, VFOSUB, GFOSUB, VTOSUB, REQSUB, VARSUB: symbols " &
-                & // "'ucosub_', 'sfosub_', 'vfosub_', 'gfosub_', 'vtosub_', 'reqsub_', " &
-                & // "'varsub_'); " &
+                & // "calls (UCOSUB, SFOSUB, VFOSUB, GFOSUB, VTOSUB, REQSUB, VARSUB, MOTSUB: " &
+                & // "symbols 'ucosub_', 'sfosub_', 'vfosub_', 'gfosub_', 'vtosub_', " &
+                & // "'reqsub_', 'varsub_', 'motsub_'); " &
                 & // "check the names in its " &
                 & // "SUBROUTINE statements, " &
                 & // "and that they are external subroutines, not inside a module", stat_ucon)

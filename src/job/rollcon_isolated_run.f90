@@ -33,7 +33,7 @@ module rollcon_isolated_run
     use rollcon_ucosub_guard, only : install_guard, attach_call_record, guarded_ucosub
     use rollcon_user_build, only : build_user_library
     use rollcon_user_library, only : user_ucosub_type, load_user_routines
-    use rollcon_user_forces, only : clear_force_routines
+    use rollcon_user_forces, only : clear_force_routines, check_user_motions
     use rollcon_force_routine_guard, only : install_force_guard
     use rollcon_job, only : job_type, user_file_type
     use rollcon_analysis_run, only : run_analysis
@@ -171,8 +171,9 @@ contains
     !> The child's process: load the job's libraries (compile_user_files), guard their
     !> routines (every call recorded in record, timed by the host), build the job's model with
     !> them and make its start consistent, then check the routine there when the job asks
-    !> (job%start_check) at time [s]. What a run apart, a linear analysis apart and a study's
-    !> case apart do before their own work.
+    !> (job%start_check; with it, the MOTSUBs' derivatives: check_user_motions) at time [s].
+    !> What a run apart, a linear analysis apart and a study's case apart do before their own
+    !> work.
     subroutine build_apart(job, library, more_libraries, record, time, problem, q0, u0, &
             & report, error)
         type(job_type), intent(inout) :: job
@@ -213,8 +214,11 @@ contains
         end if
         call job%source%build(guarded, problem, q0, u0, report, error)
         if (allocated(error)) return
-        if (associated(job%start_check)) call job%start_check(job%user_file, job%input_path, &
-            & problem, time, q0, u0, error)
+        if (.not. associated(job%start_check)) return
+        call job%start_check(job%user_file, job%input_path, problem, time, q0, u0, error)
+        if (allocated(error)) return
+        ! the MOTSUBs' IORD = 1, 2 against differences of their IORD = 0, 1
+        call check_user_motions(time, q0, u0, error)
     end subroutine build_apart
 
     !> The child's stderr at path: when the child did not finish (a STOP, a crash), its useful

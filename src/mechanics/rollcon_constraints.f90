@@ -11,7 +11,9 @@ module rollcon_constraints
     use rollcon_model, only : model_type, ucon_statement_type, statement_ucon
     use rollcon_text, only : to_text
     use rollcon_gcon, only : evaluate_gcon
-    use rollcon_motion, only : motion_displacement, motion_residual
+    use rollcon_motion, only : motion_displacement, motion_residual, motion_user_jet, &
+        & displacement_residual
+    use rollcon_user_forces, only : call_user_motion
     implicit none
     private
 
@@ -114,7 +116,7 @@ contains
         !> Set when a UCOSUB reports an error or returns a non-finite value
         type(error_type), allocatable, intent(out) :: error
         real(wp) :: scalar, array(max_ucon_vars), xmatrx(max_ucon_vars, max_ucon_vars)
-        real(wp) :: ucon_time, h(0:2)
+        real(wp) :: ucon_time, h(0:2), user_values(0:2)
         integer :: k, i, idrsel(3)
         logical :: first, second
 
@@ -147,8 +149,18 @@ contains
                     if (ucon%converted) call to_si(ucon, 0, idrsel /= 0, scalar, array, xmatrx)
                     if (idrsel(1) /= 0) self%value(k) = scalar
                     ! a MOTION: F = s(q) - h(t), s the routine's value (rollcon_motion)
-                    if (idrsel(1) /= 0 .and. allocated(ucon%motion)) self%value(k) = &
-                        & motion_residual(ucon%motion, time, scalar)
+                    if (idrsel(1) /= 0 .and. allocated(ucon%motion)) then
+                        if (ucon%motion%user) then
+                            ! a MOTSUB's displacement (IORD = 0)
+                            call call_user_motion(ucon%motion%id, time, q, u, [0], &
+                                & user_values, error)
+                            if (allocated(error)) return
+                            h = motion_user_jet(ucon%motion, user_values)
+                            self%value(k) = displacement_residual(ucon%motion, h(0), scalar)
+                        else
+                            self%value(k) = motion_residual(ucon%motion, time, scalar)
+                        end if
+                    end if
                     if (first) call scatter_row(ucon, array, self%grad_q(k, :), &
                         & self%grad_u(k, :))
                     if (second) call place_hessian(ucon, self%slot(:, k), self%local_count(k), &
@@ -157,7 +169,16 @@ contains
                 ! a MOTION's time partials are its time part's: dF/dt = -h', d2F/dt2 = -h'',
                 ! d2F/dt dq = 0 (its routine is time-free)
                 if (iand(needs, need_time) /= 0 .and. allocated(ucon%motion)) then
-                    h = motion_displacement(ucon%motion, time)
+                    if (ucon%motion%user) then
+                        ! a MOTSUB's first and second TIME derivatives (IORD = 1, 2)
+                        call call_user_motion(ucon%motion%id, time, q, u, [1, 2], &
+                            & user_values, error)
+                        if (allocated(error)) return
+                        user_values(0) = 0.0_wp
+                        h = motion_user_jet(ucon%motion, user_values)
+                    else
+                        h = motion_displacement(ucon%motion, time)
+                    end if
                     self%dt(k) = -h(1)
                     self%dtt(k) = -h(2)
                 end if

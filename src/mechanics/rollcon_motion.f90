@@ -22,6 +22,11 @@
 !> expression's switching times (an IF, STEP or HAVSIN on TIME - c, ...: rollcon_expression's
 !> switching_times) as panel ends; over a run they are kept at anchor_count + 1 equally spaced
 !> times (prepare_motion), so that each evaluation integrates from the anchor before it only.
+!>
+!> A MOTION whose FUNCTION is USER(r1, ...) (motion_type's user) is a DISPLACEMENT served by a
+!> MOTSUB: h, h', h'' are its values at IORD = 0, 1, 2, which the caller obtains from the
+!> routine (rollcon_user_forces' call_user_motion) and converts here (motion_user_jet); it has
+!> no corners (the routine is opaque: where it switches is not known).
 module rollcon_motion
     use rollcon_kinds, only : wp
     use rollcon_constants, only : pi
@@ -32,7 +37,7 @@ module rollcon_motion
     private
 
     public :: motion_type, motion_displacement, motion_residual, motion_corners
-    public :: prepare_motion, motion_integrals
+    public :: prepare_motion, motion_integrals, motion_user_jet, displacement_residual
     public :: motion_form_displacement, motion_form_velocity, motion_form_acceleration
 
     !> What FUNCTION gives: the displacement, its rate, or its second derivative
@@ -59,8 +64,10 @@ module rollcon_motion
         !> MOTION/id, and the statement for messages ("data/x.adm:12: MOTION/3")
         integer :: id = 0
         character(len=:), allocatable :: name
-        !> FUNCTION, an expression of TIME alone, in the dataset's units
+        !> FUNCTION, an expression of TIME alone, in the dataset's units (unused when user)
         type(expression_type) :: function
+        !> FUNCTION=USER(r1, ...): a DISPLACEMENT served by the MOTSUB of MOTION/id
+        logical :: user = .false.
         !> motion_form_displacement, motion_form_velocity or motion_form_acceleration
         integer :: form = motion_form_displacement
         !> The coordinate is an angle: F is brought into (-pi, pi]
@@ -103,6 +110,17 @@ contains
         jet = scale*jet*[1.0_wp, 1.0_wp/motion%time_unit, 1.0_wp/motion%time_unit**2]
     end function function_jet
 
+    !> h, h', h'' [SI] from a MOTSUB's values at IORD = 0, 1, 2 (values(iord), in the dataset's
+    !> units: value_unit per time_unit^iord), as function_jet scales an expression's.
+    pure function motion_user_jet(motion, values) result(h)
+        type(motion_type), intent(in) :: motion
+        real(wp), intent(in) :: values(0:2)
+        real(wp) :: h(0:2)
+
+        h = motion%value_unit*values*[1.0_wp, 1.0_wp/motion%time_unit, &
+            & 1.0_wp/motion%time_unit**2]
+    end function motion_user_jet
+
     !> h(t), h'(t), h''(t): the displacement the MOTION imposes at time t [s] and its first
     !> two derivatives [m, m/s, m/s^2; rad, rad/s, rad/s^2].
     pure function motion_displacement(motion, time) result(h)
@@ -136,9 +154,19 @@ contains
         real(wp) :: h(0:2)
 
         h = motion_displacement(motion, time)
-        residual = coordinate - h(0)
-        if (motion%rotational) residual = residual - 2.0_wp*pi*anint(residual/(2.0_wp*pi))
+        residual = displacement_residual(motion, h(0), coordinate)
     end function motion_residual
+
+    !> F = s - h from the coordinate s [m or rad] and the displacement h the MOTION imposes (an
+    !> angle's difference brought into (-pi, pi]).
+    pure real(wp) function displacement_residual(motion, displacement, coordinate) &
+            & result(residual)
+        type(motion_type), intent(in) :: motion
+        real(wp), intent(in) :: displacement, coordinate
+
+        residual = coordinate - displacement
+        if (motion%rotational) residual = residual - 2.0_wp*pi*anint(residual/(2.0_wp*pi))
+    end function displacement_residual
 
     !> The function's switching times [s], ascending and each once (rollcon_expression's
     !> switching_times in the function's time unit, converted): the corners of the motion,
@@ -150,8 +178,10 @@ contains
         real(wp) :: t
         integer :: k, j
 
-        found = switching_times(motion%function)*motion%time_unit
         allocate(times(0))
+        ! a MOTSUB is opaque: its switching times are not known
+        if (motion%user) return
+        found = switching_times(motion%function)*motion%time_unit
         do k = 1, size(found)
             if (any(times == found(k))) cycle
             times = [times, found(k)]
@@ -179,7 +209,8 @@ contains
         motion%corners = motion_corners(motion)
         motion%panel = 0.0_wp
         if (allocated(motion%integrals)) deallocate(motion%integrals)
-        if (motion%form == motion_form_displacement .or. .not. horizon > 0.0_wp) return
+        if (motion%form == motion_form_displacement .or. motion%user &
+            & .or. .not. horizon > 0.0_wp) return
         allocate(motion%integrals(2, 0:anchor_count))
         motion%integrals(:, 0) = 0.0_wp
         ! the anchors at k panel exactly, where motion_integrals starts from them

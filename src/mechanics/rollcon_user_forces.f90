@@ -20,19 +20,22 @@
 !>
 !> The same table serves REQSUBs (call_user_request, at each output row) and VARSUBs
 !> (evaluate_user_variables, before the forces at each evaluation; their values are what
-!> VARVAL reads, rollcon_user_variable_values; rollcon_system_routine_contract).
+!> VARVAL reads, rollcon_user_variable_values; rollcon_system_routine_contract), and MOTSUBs
+!> (call_user_motion, when the constraints are evaluated: a MOTION's displacement and its
+!> TIME derivatives).
 !>
 !> Every call goes through the call hook (set_force_call_hook), which a child process points at
 !> its guard (rollcon_force_routine_guard: time limit, copies of the inputs, canaries).
 module rollcon_user_forces
     use rollcon_kinds, only : wp
-    use rollcon_error, only : error_type, fatal_error, stat_ucon
+    use rollcon_error, only : error_type, fatal_error, stat_ucon, stat_input
     use rollcon_text, only : to_text, upper_case
     use rollcon_force_routine_contract, only : force_routine_interface, routine_names, &
         & routine_results, routine_kinds, routine_statements, routine_vtosub
     use rollcon_system_routine_contract, only : request_routine_interface, routine_reqsub, &
         & request_routine_name, request_results, variable_routine_interface, routine_varsub, &
-        & variable_routine_name
+        & variable_routine_name, motion_routine_interface, routine_motsub, motion_routine_name, &
+        & motion_orders
     use rollcon_user_variable_values, only : set_user_variable_values
     use rollcon_adams_runtime, only : take_ucon_error
     use rollcon_marker, only : marker_type
@@ -57,6 +60,8 @@ module rollcon_user_forces
     public :: register_variable_routine, get_variable_routine, user_variable_type
     public :: set_user_variables, declare_user_variables, evaluate_user_variables
     public :: evaluate_user_variable, user_variable_list
+    public :: register_motion_routine, get_motion_routine, user_motion_order, user_motion_type
+    public :: set_user_motions, call_user_motion, check_user_motions
 
     !> A routine the model may use
     type :: routine_entry_type
@@ -72,7 +77,22 @@ module rollcon_user_forces
         procedure(request_routine_interface), pointer, nopass :: request => null()
         !> A VARSUB (kind routine_varsub)
         procedure(variable_routine_interface), pointer, nopass :: variable => null()
+        !> A MOTSUB (kind routine_motsub)
+        procedure(motion_routine_interface), pointer, nopass :: motion => null()
     end type routine_entry_type
+
+    !> A MOTION served by a MOTSUB
+    type :: user_motion_type
+        integer :: id = 0
+        !> Its MOTSUB's entry in the table
+        integer :: routine = 0
+        !> The constants of USER(r1, ..., rn)
+        real(wp), allocatable :: par(:)
+        !> "x.adm:7: MOTION/3", for messages
+        character(len=:), allocatable :: name
+        !> Its initialisation call (IFLAG = .TRUE.) has been made
+        logical :: initialised = .false.
+    end type user_motion_type
 
     !> A VARIABLE served by a VARSUB
     type :: user_variable_type
@@ -106,6 +126,11 @@ module rollcon_user_forces
     !> The model's VARIABLEs served by VARSUBs, and the dataset's time unit [s]
     type(user_variable_type), allocatable, save :: variables(:)
     real(wp), save :: variables_time_unit = 1.0_wp
+    !> The model's MOTIONs served by MOTSUBs, the dataset's time unit [s], and the IORD of the
+    !> MOTSUB call under way (user_motion_order)
+    type(user_motion_type), allocatable, save :: motions(:)
+    real(wp), save :: motions_time_unit = 1.0_wp
+    integer, save :: motion_order = 0
     procedure(force_call_interface), pointer, save :: call_hook => direct_force_call
     !> The model's markers (every one a routine may name), the dataset's units
     type(marker_type), allocatable, save :: markers(:)
@@ -327,6 +352,211 @@ contains
         end if
     end subroutine variable_problem
 
+    !> Add a MOTSUB to the table (kind routine_motsub), under name ("" for the model's own).
+    subroutine register_motion_routine(name, source, routine)
+        character(len=*), intent(in) :: name
+        !> The file it was built from
+        character(len=*), intent(in) :: source
+        procedure(motion_routine_interface) :: routine
+        type(routine_entry_type) :: entry
+
+        if (.not. allocated(table)) allocate(table(0))
+        entry%kind = routine_motsub
+        entry%name = name
+        entry%source = source
+        entry%motion => routine
+        table = [table, entry]
+    end subroutine register_motion_routine
+
+    !> The MOTSUB of entry, for a guard that calls it.
+    subroutine get_motion_routine(entry, routine)
+        integer, intent(in) :: entry
+        procedure(motion_routine_interface), pointer, intent(out) :: routine
+
+        routine => table(entry)%motion
+    end subroutine get_motion_routine
+
+    !> The IORD of the MOTSUB call under way (0 outside one), for a guard that makes it.
+    integer function user_motion_order() result(iord)
+        iord = motion_order
+    end function user_motion_order
+
+    !> The model's MOTIONs served by MOTSUBs (each with its entry, constants and name), in a
+    !> dataset of this time unit [s]; none initialised yet.
+    subroutine set_user_motions(list, time_unit)
+        type(user_motion_type), intent(in) :: list(:)
+        real(wp), intent(in) :: time_unit
+
+        motions = list
+        motions_time_unit = time_unit
+    end subroutine set_user_motions
+
+    !> The MOTSUB of MOTION/id at time [s] for each IORD of orders (0, 1, 2): values(iord), in
+    !> the dataset's units (a length or an angle per time unit to the power IORD); the entries
+    !> not asked for are NaN. The first call for a MOTION is preceded by its initialisation
+    !> call (IFLAG = .TRUE.). A MOTION is a function of TIME alone (ADAMS's rule): a call that
+    !> reads the state through SYSFNC or SYSARY (at IFLAG, a declared dependency) is an error,
+    !> as are an ERRMES, a utility's refusal and a value that is not finite, each naming the
+    !> MOTION (its file and line), the routine, the call and the TIME. (t, q, u) [SI] are the
+    !> state the utilities would answer from.
+    subroutine call_user_motion(id, time, q, u, orders, values, error)
+        integer, intent(in) :: id
+        real(wp), intent(in) :: time, q(:), u(:)
+        integer, intent(in) :: orders(:)
+        real(wp), intent(out) :: values(0:motion_orders)
+        type(error_type), allocatable, intent(out) :: error
+        real(wp) :: value(1)
+        integer :: m, k
+
+        values = ieee_value(0.0_wp, ieee_quiet_nan)
+        m = 0
+        if (allocated(motions)) m = findloc(motions%id, id, dim=1)
+        if (m == 0) then
+            call fatal_error(error, "MOTION/" // to_text(id) // ": no MOTSUB was given for " &
+                & // "it (set_user_motions)", stat_ucon)
+            return
+        end if
+        associate (motion => motions(m))
+            if (.not. motion%initialised) then
+                call motion_call(motion, 0, .true., value, error)
+                if (allocated(error)) return
+                motion%initialised = .true.
+            end if
+            do k = 1, size(orders)
+                call motion_call(motion, orders(k), .false., value, error)
+                if (allocated(error)) return
+                values(orders(k)) = value(1)
+            end do
+        end associate
+    contains
+        !> One call of the MOTION's routine, with IORD = iord, and what went wrong in it.
+        subroutine motion_call(motion, iord, iflag, value, error)
+            type(user_motion_type), intent(in) :: motion
+            integer, intent(in) :: iord
+            logical, intent(in) :: iflag
+            real(wp), intent(out) :: value(1)
+            type(error_type), allocatable, intent(out) :: error
+            type(error_type), allocatable :: reported
+            character(len=:), allocatable :: call_name, message, at
+            integer :: colon
+
+            call begin_call(time, q, u)
+            ! what the call reads is collected, and refused below
+            declaring = .true.
+            named = [integer ::]
+            named_rates = .false.
+            motion_order = iord
+            value = 0.0_wp
+            call call_hook(motion%routine, motion%id, time/motions_time_unit, motion%par, &
+                & size(motion%par), .false., iflag, value, 1)
+            declaring = .false.
+            motion_order = 0
+            call_name = "the call with IORD = " // to_text(iord)
+            if (iflag) call_name = "the initialisation call (IFLAG = .TRUE.)"
+            at = motion%name // ": its " // force_routine_label(motion%routine)
+            call take_ucon_error(reported)
+            if (allocated(reported)) then
+                message = reported%message
+                colon = index(message, ": ")
+                if (index(message, "UCON/") == 1 .and. colon > 0) message = message(colon + 2:)
+                call fatal_error(error, at // " reported an error in " // call_name &
+                    & // " at TIME = " // to_text(time/motions_time_unit) // ": " // message, &
+                    & stat_ucon)
+            else if (len(problem) > 0) then
+                call fatal_error(error, at // ", in " // call_name // " at TIME = " &
+                    & // to_text(time/motions_time_unit) // ": " // problem, stat_ucon)
+            else if (size(named) > 0 .or. named_rates) then
+                call fatal_error(error, at // ", in " // call_name // " at TIME = " &
+                    & // to_text(time/motions_time_unit) // ", read the state through " &
+                    & // "SYSFNC or SYSARY (markers " // integers(named) // "): a MOTION is " &
+                    & // "a function of TIME alone (ADAMS's rule: the motion it prescribes " &
+                    & // "may not depend on the state); compute it from TIME and PAR", &
+                    & stat_ucon)
+            else if (.not. iflag .and. .not. ieee_is_finite(value(1))) then
+                call fatal_error(error, at // " returned VALUE = " // to_text(value(1)) &
+                    & // " in " // call_name // " at TIME = " &
+                    & // to_text(time/motions_time_unit) // ": a MOTION's displacement and " &
+                    & // "its TIME derivatives must be finite", stat_ucon)
+            end if
+        end subroutine motion_call
+    end subroutine call_user_motion
+
+    !> The check of every MOTSUB at a run's start (time [s], q, u [SI]), before the first step:
+    !> its IORD = 1 and IORD = 2 values against sixth-order central differences (step h and
+    !> h/4, h = 1e-3 of the dataset's time unit) of its own IORD = 0 and IORD = 1 values, as a
+    !> UCOSUB's partials are checked (rollcon_partials_check): the fine difference's own error
+    !> is estimated as |coarse - fine|/(4^6 - 1), and an entry is wrong when it differs from the
+    !> fine difference by more than 1e-8 and more than ten times that estimate, relative to
+    !> the largest of the value and the values differenced. A wrong entry is an error naming
+    !> the MOTION and its line, the IORD, the value returned and the differences' value, and
+    !> the option that runs anyway (--no-check); a failing call's error passes through.
+    subroutine check_user_motions(time, q, u, error)
+        real(wp), intent(in) :: time, q(:), u(:)
+        type(error_type), allocatable, intent(out) :: error
+        !> The difference step [dataset time units], its refinement, the tolerance
+        real(wp), parameter :: step = 1.0e-3_wp, rel_tol = 1.0e-8_wp
+        integer, parameter :: refinement = 4
+        !> Sixth-order central first-difference weights at -3h .. 3h, over 60 h
+        real(wp), parameter :: weights(-3:3) = [-1.0_wp, 9.0_wp, -45.0_wp, 0.0_wp, 45.0_wp, &
+            & -9.0_wp, 1.0_wp]/60.0_wp
+        real(wp) :: values(0:motion_orders), line(-3:3), fine_line(-3:3), returned, coarse, &
+            & fine, scale, deviation, truncation, unit_time, h
+        character(len=:), allocatable :: found
+        integer :: m, iord, j
+
+        if (.not. allocated(motions)) return
+        found = ""
+        unit_time = motions_time_unit
+        h = step*unit_time
+        do m = 1, size(motions)
+            do iord = 1, motion_orders
+                call call_user_motion(motions(m)%id, time, q, u, [iord], values, error)
+                if (allocated(error)) return
+                returned = values(iord)
+                do j = -3, 3
+                    call call_user_motion(motions(m)%id, time + j*h, q, u, [iord - 1], values, &
+                        & error)
+                    if (allocated(error)) return
+                    line(j) = values(iord - 1)
+                    call call_user_motion(motions(m)%id, time + j*h/refinement, q, u, &
+                        & [iord - 1], values, error)
+                    if (allocated(error)) return
+                    fine_line(j) = values(iord - 1)
+                end do
+                coarse = dot_product(weights, line)/step
+                fine = dot_product(weights, fine_line)/(step/refinement)
+                scale = max(abs(returned), maxval(abs(line)), tiny(1.0_wp))
+                deviation = abs(returned - fine)/scale
+                truncation = abs(coarse - fine)/scale/(real(refinement, wp)**6 - 1.0_wp)
+                if (deviation <= max(rel_tol, 10.0_wp*truncation)) cycle
+                found = found // new_line("a") // "  " // motions(m)%name // ": its " &
+                    & // force_routine_label(motions(m)%routine) // " returned VALUE = " &
+                    & // to_text(returned) // " at IORD = " // to_text(iord) // ", TIME = " &
+                    & // to_text(time/unit_time) // ", where differences of its IORD = " &
+                    & // to_text(iord - 1) // " values give " // to_text(fine)
+            end do
+        end do
+        if (len(found) == 0) return
+        call fatal_error(error, "the check at the start found MOTSUB values that are not the " &
+            & // "TIME derivatives of its displacement (IORD = 1 the rate of IORD = 0, IORD " &
+            & // "= 2 the rate of IORD = 1):" // found // new_line("a") // "The MOTION's " &
+            & // "position and velocity equations would disagree. Run anyway with " &
+            & // "--no-check.", stat_input)
+    end subroutine check_user_motions
+
+    !> "20, 2": whole numbers for messages.
+    pure function integers(list) result(text)
+        integer, intent(in) :: list(:)
+        character(len=:), allocatable :: text
+        integer :: k
+
+        text = ""
+        do k = 1, size(list)
+            if (k > 1) text = text // ", "
+            text = text // to_text(list(k))
+        end do
+    end function integers
+
     !> The name of a kind of routine: "SFOSUB" ... "VTOSUB", "REQSUB".
     pure function routine_name_of(kind) result(name)
         integer, intent(in) :: kind
@@ -338,6 +568,8 @@ contains
             name = request_routine_name
         else if (kind == routine_varsub) then
             name = variable_routine_name
+        else if (kind == routine_motsub) then
+            name = motion_routine_name
         else
             name = "a user routine"
         end if
@@ -413,6 +645,8 @@ contains
             call table(entry)%request(id, time, par, npar, iflag, result)
         else if (table(entry)%kind == routine_varsub) then
             call table(entry)%variable(id, time, par, npar, dflag, iflag, result(1))
+        else if (table(entry)%kind == routine_motsub) then
+            call table(entry)%motion(id, time, par, npar, motion_order, iflag, result(1))
         else
             call table(entry)%routine(id, time, par, npar, dflag, iflag, result)
         end if

@@ -63,7 +63,7 @@ module rollcon_adm_abbreviations
         & // "Translational Universal I J IC ICTran ICRot Delta_v Maximum_deformation " &
         & // "RAckpin SCrew PLanar PD PItch"), &
         & place_type("MOTION", "JOint I J Translation ROTation TRANSLATIONAl ROTATIONAl X Y Z " &
-        & // "B1 B2 B3 Displacement Velocity Acceleration Function ICDisp ICVel"), &
+        & // "B1 B2 B3 Displacement Velocity Acceleration Function ICDisp ICVel ROUtine"), &
         & place_type("JPRIM", "Atpoint INLine INPlane PArallel_axes PErpendicular " &
         & // "Orientation I J"), &
         & place_type("GCON", "I Function"), &

@@ -2,14 +2,16 @@
 !> Dataset statement MOTION (docs/datasets.md, "MOTION"): a displacement, velocity or
 !> acceleration prescribed as a function of time, on a joint (`JOINT=id, TRANSLATION|ROTATION`)
 !> or between two markers (`I=id, J=id, X|Y|Z|B1|B2|B3`), read and checked as the text states
-!> it. The model makes each one a UCON with an explicit time part (model%add_motion), which
-!> also judges the markers' parts; the assembly finds the joint's markers and type.
+!> it; `FUNCTION=USER(r1, ...)[, ROUTINE=name]` is a DISPLACEMENT served by a MOTSUB (the
+!> USER(...) argument kept for rollcon_adm_variables to read its constants). The model makes
+!> each one a UCON with an explicit time part (model%add_motion), which also judges the
+!> markers' parts; the assembly finds the joint's markers and type.
 module rollcon_adm_motions
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type, fatal_error, stat_input
     use rollcon_text, only : to_text
     use rollcon_expression, only : expression_type, quantity_varval
-    use rollcon_adm_lexer, only : adm_statement_type
+    use rollcon_adm_lexer, only : adm_statement_type, adm_argument_type, upper_case
     use rollcon_adm_keywords, only : argument_key, arg_place, read_integer, read_reals, &
         & argument_text
     use rollcon_adm_units, only : units_type
@@ -24,9 +26,10 @@ module rollcon_adm_motions
     integer, parameter :: motion_displacement_form = 1, motion_velocity_form = 2, &
         & motion_acceleration_form = 3
     !> MOTION's keywords; TRANSLATIONAL and ROTATIONAL are the spellings ADAMS/View writes
-    character(len=*), parameter :: motion_keys(19) = [character(len=13) :: "JOINT", "I", "J", &
+    character(len=*), parameter :: motion_keys(20) = [character(len=13) :: "JOINT", "I", "J", &
         & "TRANSLATION", "ROTATION", "TRANSLATIONAL", "ROTATIONAL", "X", "Y", "Z", "B1", "B2", &
-        & "B3", "DISPLACEMENT", "VELOCITY", "ACCELERATION", "FUNCTION", "ICDISP", "ICVEL"]
+        & "B3", "DISPLACEMENT", "VELOCITY", "ACCELERATION", "FUNCTION", "ICDISP", "ICVEL", &
+        & "ROUTINE"]
     !> The components: on a joint, or between markers
     character(len=*), parameter :: joint_components(2) = [character(len=11) :: "TRANSLATION", &
         & "ROTATION"]
@@ -46,6 +49,13 @@ module rollcon_adm_motions
         type(expression_type) :: function
         !> ICDISP [m or rad] and ICVEL [m/s or rad/s], SI
         real(wp) :: initial_displacement = 0.0_wp, initial_velocity = 0.0_wp
+        !> FUNCTION=USER(r1, ..., rn): served by a MOTSUB (function then unused), the USER(...)
+        !> argument as written and where ("file:line: MOTION/3 FUNCTION"), its constants once
+        !> read (resolve_variables), and ROUTINE= as written ("" when not given)
+        logical :: user = .false.
+        type(adm_argument_type) :: user_argument
+        character(len=:), allocatable :: user_at, routine
+        real(wp), allocatable :: par(:)
     end type adm_motion_type
 
 contains
@@ -60,7 +70,7 @@ contains
         type(units_type), intent(in) :: units
         type(adm_motion_type), intent(out) :: motion
         type(error_type), allocatable, intent(out) :: error
-        character(len=:), allocatable :: key, at, form_at, at_icdisp, at_icvel
+        character(len=:), allocatable :: key, at, form_at, at_icdisp, at_icvel, routine_at
         real(wp), allocatable :: values(:)
         integer :: k, icdisp, icvel
         logical :: given_function, angle
@@ -68,6 +78,7 @@ contains
 
         motion%id = statement%id
         motion%line = statement%line
+        motion%routine = ""
         icdisp = 0
         icvel = 0
         form_at = ""
@@ -106,8 +117,21 @@ contains
                         & motion_acceleration_form, key == "VELOCITY"), key == "DISPLACEMENT")
                 end if
             case ("FUNCTION")
-                call read_function(statement, k, at, motion%function, error)
                 given_function = .true.
+                if (statement%arguments(k)%assigned) then
+                    if (index(upper_case(adjustl(argument_text(statement%arguments(k)))), &
+                        & "USER") == 1) then
+                        ! a MOTSUB's: its constants read with the dataset's VARIABLEs
+                        motion%user = .true.
+                        motion%user_argument = statement%arguments(k)
+                        motion%user_at = at
+                        cycle
+                    end if
+                end if
+                call read_function(statement, k, at, motion%function, error)
+            case ("ROUTINE")
+                motion%routine = argument_text(statement%arguments(k))
+                routine_at = at
             case ("ICDISP")
                 icdisp = k
                 at_icdisp = at
@@ -122,6 +146,19 @@ contains
         if (.not. given_function) then
             call fatal_error(error, where // ": FUNCTION=e is missing (the displacement, " &
                 & // "velocity or acceleration as an expression of TIME)", stat_input)
+            return
+        end if
+        if (len(motion%routine) > 0 .and. .not. motion%user) then
+            call fatal_error(error, routine_at // ": names a MOTSUB, which serves a " &
+                & // "FUNCTION=USER(r1, ..., r30) only", stat_input)
+            return
+        end if
+        if (motion%user .and. motion%form /= motion_displacement_form) then
+            call fatal_error(error, form_at // ": a MOTSUB (FUNCTION=USER(...)) serves a " &
+                & // "DISPLACEMENT MOTION here: rollcon integrates a VELOCITY or ACCELERATION " &
+                & // "function by quadrature of its expression; write the MOTSUB's " &
+                & // "displacement (IORD = 0, 1, 2), or the function as an expression of TIME", &
+                & stat_input)
             return
         end if
         ! the initial conditions, in the units of the direction's coordinate
@@ -152,8 +189,7 @@ contains
     end subroutine read_motion
 
     !> FUNCTION=e: an expression of TIME alone (ADAMS's rule for a MOTION), VARVAL(id) of a
-    !> VARIABLE of TIME alone among it; USER(...) (a
-    !> MOTSUB) is not supported.
+    !> VARIABLE of TIME alone among it (USER(...), a MOTSUB's, is read by read_motion).
     subroutine read_function(statement, k, at, function, error)
         type(adm_statement_type), intent(in) :: statement
         integer, intent(in) :: k
@@ -167,12 +203,6 @@ contains
             return
         end if
         text = argument_text(statement%arguments(k))
-        if (index(adjustl(text), "USER") == 1 .or. index(adjustl(text), "user") == 1) then
-            call fatal_error(error, at // ": FUNCTION=USER(...): user routines of this kind " &
-                & // "(MOTSUB, a MOTION's) are not supported; " &
-                & // "write the motion as an expression of TIME", stat_input)
-            return
-        end if
         call compile_expression(text, at, function, error)
         if (allocated(error)) return
         ! a VARIABLE it reads is judged once every VARIABLE is read (rollcon_adm_variables)

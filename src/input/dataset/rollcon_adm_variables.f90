@@ -105,6 +105,13 @@ contains
         end do
         if (allocated(model%motions)) then
             do i = 1, size(model%motions)
+                if (model%motions(i)%user) then
+                    ! a MOTSUB's: its constants; it has no expression
+                    call read_user_list(model%motions(i)%user_argument, &
+                        & model%motions(i)%user_at, model%motions(i)%par, error, "MOTSUB")
+                    if (allocated(error)) return
+                    cycle
+                end if
                 where = place(model%file, model%motions(i)%line) // ": MOTION/" &
                     & // to_text(model%motions(i)%id) // " FUNCTION"
                 call substitute(model, ids, model%motions(i)%function, where, error)
@@ -162,6 +169,7 @@ contains
         end if
         if (allocated(model%motions)) then
             do i = 1, size(model%motions)
+                if (model%motions(i)%user) cycle
                 where = place(model%file, model%motions(i)%line) // ": MOTION/" &
                     & // to_text(model%motions(i)%id) // " FUNCTION"
                 call give_curves(model, curves, model%motions(i)%function, where, error)

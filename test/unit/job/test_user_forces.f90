@@ -2,9 +2,11 @@
 !> Force statements served by a user's routines (suite user-forces): SFOSUB and GFOSUB files
 !> written for the test (test/user_forces/, reading SYSFNC, SYSARY and TIMGET), run apart in a
 !> child process, against the same forces written as FUNCTION expressions and run here; a
-!> model with two files of routines (ROUTINE=FILE::SFOSUB); the faults of the UCOSUB corpus
-!> planted in an SFOSUB, each a clean error naming the statement; and the refusals of a model
-!> whose user routine is missing or of a kind rollcon does not run.
+!> model with two files of routines (ROUTINE=FILE::SFOSUB); MOTSUBs against their MOTIONs
+!> written as expressions, on IDA and CVODE, and the start's check of their derivatives; the
+!> faults of the UCOSUB corpus planted in an SFOSUB, each a clean error naming the statement;
+!> and the refusals of a model whose user routine is missing or of a kind rollcon does not
+!> run.
 module test_user_forces
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type, fatal_error
@@ -20,6 +22,8 @@ module test_user_forces
     use rollcon_user_build, only : user_build_options_type
     use rollcon_user_routine_check, only : check_user_routines
     use command_runs, only : file_text
+    use rollcon_run_check, only : check_at_start
+    use rollcon_run_settings, only : formulation_cvode, formulation_ida
     implicit none
     private
 
@@ -66,7 +70,12 @@ contains
             & new_unittest("sfosub-returns-nan", test_nan), &
             & new_unittest("sfosub-missing", test_missing), &
             & new_unittest("routine-names-no-file", test_unknown_routine), &
-            & new_unittest("motion-user-unsupported", test_motion_user), &
+            & new_unittest("motsub-refusals", test_motion_user), &
+            & new_unittest("motsub-as-expression", test_motsub), &
+            & new_unittest("motsub-two-files", test_motsub_two_files), &
+            & new_unittest("motsub-wrong-rate", test_motsub_wrong_rate), &
+            & new_unittest("motsub-crashes", test_motsub_crashes), &
+            & new_unittest("motsub-reads-state", test_motsub_reads_state), &
             & new_unittest("utilities-outside-a-call", test_utilities_refuse), &
             & new_unittest("check-reports-implicit-typing", test_check_typing), &
             & new_unittest("check-clean-spring", test_check_clean), &
@@ -406,30 +415,174 @@ contains
             & "ROUTINE=FILE::SFOSUB"], error)
     end subroutine test_unknown_routine
 
-    !> A MOTION with FUNCTION=USER(...): refused as a user routine of a kind rollcon does not
-    !> run, not as an unknown name.
+    !> The MOTSUB refusals, each naming the MOTION and its line: a VELOCITY MOTION of
+    !> FUNCTION=USER(...) (a MOTSUB serves a DISPLACEMENT: rollcon integrates a velocity's
+    !> expression by quadrature), a ROUTINE with no FUNCTION=USER, and motion.adm run with a
+    !> file that has no MOTSUB.
     subroutine test_motion_user(error)
         type(error_type), allocatable, intent(out) :: error
         type(job_type) :: job
+        type(history_type) :: history
         type(error_type), allocatable :: load_error
-        character(len=:), allocatable :: path
+        character(len=:), allocatable :: path, text
+        character(len=*), parameter :: nl = new_line("a")
 
         call make_folders(scratch, error)
         if (allocated(error)) return
         path = scratch // "/motion_user.adm"
-        call write_text_file(path, "a MOTION served by a MOTSUB" // new_line("a") &
-            & // "PART/1, GROUND" // new_line("a") // "MARKER/1, PART = 1" // new_line("a") &
-            & // "PART/2, MASS = 1, CM = 20, IP = 1, 1, 1" // new_line("a") &
-            & // "MARKER/20, PART = 2" // new_line("a") &
-            & // "JOINT/1, TRANSLATIONAL, I = 20, J = 1" // new_line("a") &
-            & // "MOTION/1, JOINT = 1, TRANSLATION, FUNCTION = USER(1, 2)" // new_line("a") &
-            & // "SIMULATE/DYNAMIC, END = 1, STEPS = 10" // new_line("a") // "END" &
-            & // new_line("a"), error)
+        text = "a MOTION served by a MOTSUB" // nl // "PART/1, GROUND" // nl &
+            & // "MARKER/1, PART = 1" // nl // "PART/2, MASS = 1, CM = 20, IP = 1, 1, 1" // nl &
+            & // "MARKER/20, PART = 2" // nl // "JOINT/1, TRANSLATIONAL, I = 20, J = 1" // nl
+        call write_text_file(path, text // "MOTION/1, JOINT = 1, TRANSLATION, VELOCITY, " &
+            & // "FUNCTION = USER(1, 2)" // nl // "SIMULATE/DYNAMIC, END = 1, STEPS = 10" // nl &
+            & // "END" // nl, error)
         if (allocated(error)) return
         call load_job(path, job, load_error)
-        call expect_message(load_error, [character(len=60) :: "MOTION/1", &
-            & "user routines of this kind", "are not supported"], error)
+        call expect_message(load_error, [character(len=70) :: "motion_user.adm:7: MOTION/1", &
+            & "VELOCITY: a MOTSUB (FUNCTION=USER(...)) serves a DISPLACEMENT MOTION"], error)
+        if (allocated(error)) return
+        call write_text_file(path, text // "MOTION/1, JOINT = 1, TRANSLATION, " &
+            & // "FUNCTION = TIME, ROUTINE = u::MOTSUB" // nl &
+            & // "SIMULATE/DYNAMIC, END = 1, STEPS = 10" // nl // "END" // nl, error)
+        if (allocated(error)) return
+        call load_job(path, job, load_error)
+        call expect_message(load_error, [character(len=70) :: "motion_user.adm:7: MOTION/1", &
+            & "ROUTINE: names a MOTSUB, which serves a FUNCTION=USER"], error)
+        if (allocated(error)) return
+        call run_user(folder // "motion.adm", ["sforce_spring.f"], 10.0_wp, history, &
+            & load_error)
+        call expect_message(load_error, [character(len=70) :: &
+            & "motion.adm:17: MOTION/1 FUNCTION=USER(...): no MOTSUB serves it", &
+            & "SUBROUTINE MOTSUB"], error)
     end subroutine test_motion_user
+
+    !> motion.adm (REVOLUTE JOINT/1 turned by motsub_sine.f's MOTSUB, PAR(1) SIN(PAR(2) TIME)
+    !> and its derivatives; a pendulum hinged on the rotor) gives the rows of
+    !> motion_expressions.adm (the MOTION's FUNCTION = 0.5*SIN(3*TIME)) to motsub_tolerance in
+    !> every column, on IDA and on CVODE. The MOTSUB's IORD = 0, 1, 2 values take the place of
+    !> the expression's value and first and second TIME derivatives (forward mode in jets) in
+    !> the same equations, computed with the same operations in the same order (measured: the
+    !> rows agree bit for bit on both integrators); motsub_tolerance allows a few roundings
+    !> of difference carried through the run without a change of the step sequence. A
+    !> frequency off by 1e-5 (PAR(2) = 3.00001) moves the rows by 1.4e-5.
+    subroutine test_motsub(error)
+        type(error_type), allocatable, intent(out) :: error
+
+        call compare_motion_twins("motion", ["motsub_sine.f"], formulation_ida, error)
+        if (allocated(error)) return
+        call compare_motion_twins("motion", ["motsub_sine.f"], formulation_cvode, error)
+    end subroutine test_motsub
+
+    !> motion_two_files.adm (in millimetres): MOTION/1 by the model's MOTSUB (motsub_sine.f),
+    !> MOTION/2 by the MOTSUB its ROUTINE=motsub_lift::MOTSUB names, a lift of 40 (1 - COS(5
+    !> TIME)) mm: the rows of its expression twin to motsub_tolerance in every column (among
+    !> them motion2_fz, the lift's force, 3 kg (h'' + g): h'' in mm/s^2 converted to SI), on
+    !> IDA.
+    subroutine test_motsub_two_files(error)
+        type(error_type), allocatable, intent(out) :: error
+
+        call compare_motion_twins("motion_two_files", ["motsub_sine.f", "motsub_lift.f"], &
+            & formulation_ida, error)
+    end subroutine test_motsub_two_files
+
+    !> A MOTSUB whose IORD = 1 is twice the rate of its IORD = 0 (faulty/motsub_wrong_rate.f)
+    !> is stopped by the run's start check (the job's start_check, as `rollcon run` sets it),
+    !> naming the MOTION and its line, the IORD, the value returned (3 at TIME = 0) and the
+    !> differences' (1.5), and --no-check.
+    subroutine test_motsub_wrong_rate(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(history_type) :: history
+        type(error_type), allocatable :: run_error
+
+        call run_user(folder // "motion.adm", ["faulty/motsub_wrong_rate.f"], 10.0_wp, &
+            & history, run_error, checked=.true.)
+        call expect_message(run_error, [character(len=70) :: &
+            & "motion.adm:17: MOTION/1: its MOTSUB of", "faulty/motsub_wrong_rate.f", &
+            & "returned VALUE = 3 at IORD = 1, TIME = 0", &
+            & "differences of its IORD = 0 values give 1.5", "--no-check"], error)
+        if (allocated(error)) return
+        ! the right routine passes the same check
+        call run_user(folder // "motion.adm", ["motsub_sine.f"], 10.0_wp, history, error, &
+            & checked=.true.)
+    end subroutine test_motsub_wrong_rate
+
+    !> A write through a wild index in a MOTSUB kills the child by SIGSEGV: the error names the
+    !> MOTION, the signal and the call (not the initialisation call), as for an SFOSUB.
+    subroutine test_motsub_crashes(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(history_type) :: history
+        type(error_type), allocatable :: run_error
+
+        call run_user(folder // "motion.adm", ["faulty/motsub_crashes.f"], 10.0_wp, history, &
+            & run_error)
+        call expect_message(run_error, [character(len=50) :: &
+            & "MOTION/1: the process was killed by SIGSEGV", "inside MOTSUB call", &
+            & "IFLAG = .FALSE."], error)
+    end subroutine test_motsub_crashes
+
+    !> A MOTSUB whose initialisation call reads the state (SYSFNC('DX') of markers 31, 1) is
+    !> refused before the run, naming the MOTION, its line and the markers: a MOTION is a
+    !> function of TIME alone.
+    subroutine test_motsub_reads_state(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(history_type) :: history
+        type(error_type), allocatable :: run_error
+
+        call run_user(folder // "motion.adm", ["faulty/motsub_reads_state.f"], 10.0_wp, &
+            & history, run_error)
+        call expect_message(run_error, [character(len=80) :: &
+            & "motion.adm:17: MOTION/1: its MOTSUB of", &
+            & "in the initialisation call (IFLAG = .TRUE.) at TIME = 0, read the state", &
+            & "(markers 31, 1): a MOTION is a function of TIME alone"], error)
+    end subroutine test_motsub_reads_state
+
+    !> NAME.adm run with files (apart) and NAME_expressions.adm run here, both with this
+    !> formulation: as many rows (at least 101), each column equal to motsub_tolerance of its
+    !> largest magnitude (at least 1).
+    subroutine compare_motion_twins(name, files, formulation, error)
+        character(len=*), intent(in) :: name, files(:)
+        integer, intent(in) :: formulation
+        type(error_type), allocatable, intent(out) :: error
+        !> See test_motsub
+        real(wp), parameter :: motsub_tolerance = 1.0e-10_wp
+        type(history_type) :: user, expressions
+        type(job_type) :: job
+        type(job_result_type) :: ran
+        real(wp) :: largest, scale
+        integer :: c, worst
+
+        call run_user(folder // name // ".adm", files, 10.0_wp, user, error, &
+            & formulation=formulation)
+        if (allocated(error)) return
+        call load_job(folder // name // "_expressions.adm", job, error)
+        if (allocated(error)) return
+        job%output_dir = ""
+        job%quiet = .true.
+        job%source%settings%formulation = formulation
+        call run_job(job, ran, error, expressions)
+        if (allocated(error)) return
+        if (user%count /= expressions%count .or. user%count < 101 .or. size(user%rows, 1) &
+            & /= size(expressions%rows, 1)) then
+            call fatal_error(error, name // ": " // to_text(user%count) // " rows of " &
+                & // to_text(size(user%rows, 1)) // " with MOTSUBs, " &
+                & // to_text(expressions%count) // " of " // to_text(size(expressions%rows, 1)) &
+                & // " with expressions")
+            return
+        end if
+        largest = 0.0_wp
+        worst = 0
+        do c = 1, size(user%rows, 1)
+            scale = max(1.0_wp, maxval(abs(expressions%rows(c, :expressions%count))))
+            associate (d => maxval(abs(user%rows(c, :user%count) &
+                & - expressions%rows(c, :expressions%count)))/scale)
+                if (d > largest) worst = c
+                largest = max(largest, d)
+            end associate
+        end do
+        call check(error, largest <= motsub_tolerance, name // " (formulation " &
+            & // to_text(formulation) // "): the runs differ by " // to_text(largest) &
+            & // " (relative) in column " // to_text(worst))
+    end subroutine compare_motion_twins
 
     !> SYSFNC and SYSARY refuse what they do not know, an acceleration, and a marker the model
     !> has not (here: no model at all), setting ERRFLG and giving zeros.
@@ -632,12 +785,15 @@ contains
     end subroutine expect_message
 
     !> Run a dataset with the user's files (folder//files(k)), no output files, every row
-    !> kept; a run that does not complete is an error.
-    subroutine run_user(path, files, timeout, history, error)
+    !> kept; a run that does not complete is an error. Optionally with another formulation
+    !> (formulation_cvode ...), and checked at the start as `rollcon run` checks (checked).
+    subroutine run_user(path, files, timeout, history, error, formulation, checked)
         character(len=*), intent(in) :: path, files(:)
         real(wp), intent(in) :: timeout
         type(history_type), intent(out) :: history
         type(error_type), allocatable, intent(out) :: error
+        integer, intent(in), optional :: formulation
+        logical, intent(in), optional :: checked
         type(job_type) :: job
         type(job_result_type) :: ran
         integer :: k
@@ -652,6 +808,10 @@ contains
         job%quiet = .true.
         job%call_timeout = timeout
         job%build_options%cache_dir = test_cache
+        if (present(formulation)) job%source%settings%formulation = formulation
+        if (present(checked)) then
+            if (checked) job%start_check => check_at_start
+        end if
         call run_job(job, ran, error, history)
         if (allocated(error)) return
         if (ran%summary%status /= status_completed) call fatal_error(error, path // ": " &
