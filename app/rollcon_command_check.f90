@@ -79,8 +79,8 @@ contains
         call user%destroy()
     end subroutine check_command
 
-    !> `check FILE --model MODEL.adm` for a dataset whose force, variable or request statements
-    !> FILE's routines serve (rollcon_user_routine_check): the findings, a line each; status 1
+    !> `check FILE --model MODEL.adm [--ucosub MORE]...` for a dataset whose force, variable,
+    !> request or motion statements FILE's (and MORE's) routines serve (rollcon_user_routine_check): the findings, a line each; status 1
     !> when there are some.
     subroutine check_routines(request, status, error)
         type(cli_request_type), intent(in) :: request
@@ -173,7 +173,7 @@ contains
         write(output_unit, '(a)') &
             & "usage: rollcon check FILE --ucon ID:PAR1,PAR2,... [--ucon ...] [--states N]", &
             & "                          [--seed S] [--json OUT] [--call-timeout SECONDS]", &
-            & "       rollcon check FILE --model MODEL.adm [...]", &
+            & "       rollcon check FILE --model MODEL.adm [--ucosub MORE]... [...]", &
             & "", &
             & "Check a UCOSUB written for ADAMS/Solver, without ADAMS. FILE is its source (.f", &
             & "fixed form, compiled with -std=legacy; .f90 free form) or an object (.o, built", &
@@ -187,9 +187,13 @@ contains
             & "                 number per comma-separated field, at most 30 PAR)", &
             & "  --model MODEL.adm  every UCON of an ADAMS dataset that names no ROUTINE (those", &
             & "                 the model's own UCOSUB serves), with its id and PAR; and every", &
-            & "                 SFORCE, VFORCE, GFORCE, VTORQUE, VARIABLE or REQUEST with", &
-            & "                 FUNCTION=USER(...) at the start and 20 states about it: hidden", &
-            & "                 state, NaN, jumps, SYSFNC/SYSARY reads not declared, typing", &
+            & "                 SFORCE, VFORCE, GFORCE, VTORQUE, VARIABLE, REQUEST or MOTION", &
+            & "                 with FUNCTION=USER(...) at the start and 20 states about it:", &
+            & "                 hidden state, NaN, jumps, SYSFNC/SYSARY reads not declared,", &
+            & "                 typing", &
+            & "  --ucosub MORE  with --model: another file of the model's routines (those its", &
+            & "                 statements name as ROUTINE=MORE::NAME), as rollcon run takes", &
+            & "                 it; repeat for each", &
             & "  --states N     random states per UCON (default 25, at most 100000)", &
             & "  --seed S       seed of the states (default 1); a run is reproducible", &
             & "  --json OUT     also write the report as JSON to OUT", &

@@ -29,11 +29,13 @@ module rollcon_user_routine_check
     use rollcon_isolated_run, only : compile_user_files, build_apart
     use rollcon_problem, only : problem_type
     use rollcon_force, only : profile_statement
-    use rollcon_system_routine_contract, only : request_results, request_columns
+    use rollcon_system_routine_contract, only : request_results, request_columns, &
+        & motion_orders
     use rollcon_user_build, only : user_build_options_type, source_kind, kind_c
     use rollcon_user_forces, only : evaluate_user_forces, &
         & take_user_force_error, system_notes, clear_system_notes, force_routine_label, &
-        & call_user_request, evaluate_user_variable, user_variable_list, user_variable_type
+        & call_user_request, evaluate_user_variable, user_variable_list, user_variable_type, &
+        & user_motion_list, user_motion_type, call_user_motion
     use rollcon_user_variable_values, only : user_variable_value
     use rollcon_request_answers, only : request_answer_watch_type, answer_user
     use rollcon_child_process, only : isolated_task_type, stream_receiver_type, &
@@ -136,7 +138,9 @@ contains
             & checked_kind_type("VALUE", user_variables_in, variable_count, variable_label, &
             & variable_values), &
             & checked_kind_type("RESULT", user_requests_in, request_count, request_label, &
-            & request_values)]
+            & request_values), &
+            & checked_kind_type("VALUE", user_motions_in, motion_count, &
+            & motion_label, motion_values)]
     end function checked_kinds
 
     !> True when the dataset at path has a statement served by a user's routine of a kind
@@ -547,6 +551,48 @@ contains
         values = [user_variable_value(list(k)%id)]
         call take_user_force_error(error)
     end subroutine variable_values
+
+    !> A MOTION with FUNCTION=USER(...) in the dataset.
+    logical function user_motions_in(adm) result(has)
+        type(adm_model_type), intent(in) :: adm
+
+        has = .false.
+        if (allocated(adm%motions)) has = any(adm%motions%user)
+    end function user_motions_in
+
+    !> The model's MOTIONs served by a MOTSUB.
+    integer function motion_count(problem) result(n)
+        type(problem_type), intent(in), target :: problem
+
+        n = size(user_motion_list())
+    end function motion_count
+
+    !> "x.adm:7: MOTION/3, its MOTSUB of f.f".
+    function motion_label(problem, k) result(label)
+        type(problem_type), intent(in), target :: problem
+        integer, intent(in) :: k
+        character(len=:), allocatable :: label
+        type(user_motion_type), allocatable :: list(:)
+
+        list = user_motion_list()
+        label = list(k)%name // ", its " // force_routine_label(list(k)%routine)
+    end function motion_label
+
+    !> The MOTION's VALUE with IORD = 0, 1 and 2 as its MOTSUB gives them (the dataset's
+    !> units); a function of time alone, so the state is not read.
+    subroutine motion_values(problem, k, time, q, u, values, error)
+        type(problem_type), intent(inout), target :: problem
+        integer, intent(in) :: k
+        real(wp), intent(in) :: time, q(:), u(:)
+        real(wp), allocatable, intent(out) :: values(:)
+        type(error_type), allocatable, intent(out) :: error
+        type(user_motion_type), allocatable :: list(:)
+        real(wp) :: orders(0:motion_orders)
+
+        list = user_motion_list()
+        call call_user_motion(list(k)%id, time, q, u, [0, 1, 2], orders, error)
+        values = orders(0:2)
+    end subroutine motion_values
 
     !> A REQUEST with FUNCTION=USER(...) in the dataset.
     logical function user_requests_in(adm) result(has)

@@ -61,7 +61,7 @@ module rollcon_user_forces
     public :: set_user_variables, declare_user_variables, evaluate_user_variables
     public :: evaluate_user_variable, user_variable_list
     public :: register_motion_routine, get_motion_routine, user_motion_order, user_motion_type
-    public :: set_user_motions, call_user_motion, check_user_motions
+    public :: set_user_motions, call_user_motion, check_user_motions, user_motion_list
 
     !> A routine the model may use
     type :: routine_entry_type
@@ -323,6 +323,14 @@ contains
         allocate(list(0))
         if (allocated(variables)) list = variables
     end function user_variable_list
+
+    !> The MOTIONs served by a MOTSUB (set_user_motions's), for rollcon check.
+    function user_motion_list() result(list)
+        type(user_motion_type), allocatable :: list(:)
+
+        allocate(list(0))
+        if (allocated(motions)) list = motions
+    end function user_motion_list
 
     !> After a VARSUB's call: an ERRMES it made, or a utility's refusal, as an error naming the
     !> VARIABLE.

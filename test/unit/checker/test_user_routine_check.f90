@@ -50,7 +50,8 @@ contains
             & new_unittest("varsub-undeclared-sysary", test_varsub_undeclared), &
             & new_unittest("reqsub-undeclared-sysary", test_reqsub_undeclared), &
             & new_unittest("varsub-implicit-typing", test_varsub_typing), &
-            & new_unittest("two-files-checked", test_two_files)]
+            & new_unittest("two-files-checked", test_two_files), &
+            & new_unittest("motsub-checked", test_motsub)]
     end subroutine collect_user_routine_check
 
     !> variable_stretch.f on variable.adm (declared types, no state, smooth, its SYSFNC call
@@ -287,6 +288,24 @@ contains
             & == count .and. count_of(findings, "SFORCE/3") == count .and. &
             & count_of(findings, "SFORCE/2") == 0, to_text(count) // " findings: " // findings)
     end subroutine test_two_files
+
+    !> motion.adm's MOTSUB (motsub_sine.f) is clean; the same with a SAVEd counter that moves
+    !> the acceleration (IORD = 2) by 1e-3 at each call is [hidden state] at every state,
+    !> naming MOTION/1.
+    subroutine test_motsub(error)
+        type(error_type), allocatable, intent(out) :: error
+        character(len=:), allocatable :: findings
+        integer :: count
+
+        call expect_clean(folder // "motsub_sine.f", folder // "motion.adm", error)
+        if (allocated(error)) return
+        call check_file(folder // "checked/motsub_hidden.f", folder // "motion.adm", findings, &
+            & count, error)
+        if (allocated(error)) return
+        call check(error, count == every_state .and. count_of(findings, "[hidden state]") &
+            & == count .and. count_of(findings, "MOTION/1, its MOTSUB") == count, &
+            & to_text(count) // " findings: " // findings)
+    end subroutine test_motsub
 
     !> check_user_routines of file (and more files) on model, the tests' cache, seed 1, a
     !> call's limit 10 s.
