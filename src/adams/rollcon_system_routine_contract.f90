@@ -8,7 +8,12 @@
 !>     SUBROUTINE VARSUB(ID, TIME, PAR, NPAR, DFLAG, IFLAG, VALUE)
 !>     INTEGER ID, NPAR; DOUBLE PRECISION TIME, PAR(*), VALUE; LOGICAL DFLAG, IFLAG
 !>
+!>     SUBROUTINE DIFSUB(ID, TIME, PAR, NPAR, DFLAG, IFLAG, VALUE)
+!>     (VARSUB's calling sequence: variable_routine_interface)
+!>
 !> VARSUB computes the value of a VARIABLE/id, FUNCTION=USER(r1, ...), read by VARVAL(id).
+!> DIFSUB computes, for a DIFF/id, FUNCTION=USER(r1, ...), the rate d DIF(id)/dt, or with
+!> IMPLICIT the residual e of its equation 0 = e (which reads DIF1 through SYSFNC('DIF1')).
 !> REQSUB computes the eight values of a REQUEST/id, FUNCTION=USER(r1, ...); ADAMS writes
 !> RESULT(2:4) and RESULT(6:8) (request_columns), the components, and so does rollcon. IFLAG =
 !> .TRUE. is the initialisation call, whose SYSFNC and SYSARY calls declare what the routine
@@ -28,6 +33,7 @@ module rollcon_system_routine_contract
     public :: request_columns
     public :: variable_routine_interface, routine_varsub, variable_routine_name, &
         & variable_routine_symbol
+    public :: routine_difsub, diff_routine_name, diff_routine_symbol
 
     !> The kind of a REQSUB in the table of a model's routines (after the force routines')
     integer, parameter :: routine_reqsub = routine_kinds + 1
@@ -38,6 +44,10 @@ module rollcon_system_routine_contract
     integer, parameter :: routine_varsub = routine_kinds + 2
     character(len=*), parameter :: variable_routine_name = "VARSUB", &
         & variable_routine_symbol = "varsub_"
+    !> The kind of a DIFSUB, its name and symbol (it is called as a VARSUB is)
+    integer, parameter :: routine_difsub = routine_kinds + 4
+    character(len=*), parameter :: diff_routine_name = "DIFSUB", &
+        & diff_routine_symbol = "difsub_"
     !> Number of RESULT entries of a REQSUB
     integer, parameter :: request_results = 8
     !> The entries ADAMS writes (the components of the two vectors; 1 and 5 are not written)
@@ -66,6 +76,7 @@ module rollcon_system_routine_contract
 
         !> A user-written VARIABLE, called exactly as ADAMS/Solver calls VARSUB; the value in
         !> the units the routine computes it in (SYSFNC and SYSARY answer in the dataset's).
+        !> A DIFSUB is called the same way (ID a DIFF's, VALUE its rate or implicit residual).
         subroutine variable_routine_interface(id, time, par, npar, dflag, iflag, value)
             import :: wp
             !> Id of the VARIABLE (VARIABLE/3: 3)
@@ -76,7 +87,7 @@ module rollcon_system_routine_contract
             real(wp), intent(in) :: par(*)
             !> Number of constants
             integer, intent(in) :: npar
-            !> True in a call made to form a difference (rollcon makes none: false)
+            !> True in a call made to form a difference of the partials
             logical, intent(in) :: dflag
             !> True in the initialisation call, where SYSFNC and SYSARY calls declare what the
             !> routine reads

@@ -218,10 +218,10 @@ contains
                 ! FUNCTION=USER(...) where no user routine serves the statement (SFORCE,
                 ! VFORCE, GFORCE and UCON read theirs before any expression)
                 problem = "USER(...): user routines of this kind (this statement's user " &
-                    & // "subroutine: MOTSUB of a MOTION, DIFSUB of a DIFF, ...) are not " &
-                    & // "supported; rollcon runs the user routines of UCON (UCOSUB), SFORCE " &
-                    & // "(SFOSUB), VFORCE (VFOSUB), GFORCE (GFOSUB), VTORQUE (VTOSUB), " &
-                    & // "VARIABLE (VARSUB) and REQUEST (REQSUB) (docs/datasets.md, User force " &
+                    & // "subroutine: MOTSUB of a MOTION, ...) are not supported; rollcon " &
+                    & // "runs the user routines of UCON (UCOSUB), SFORCE (SFOSUB), VFORCE " &
+                    & // "(VFOSUB), GFORCE (GFOSUB), VTORQUE (VTOSUB), VARIABLE (VARSUB), " &
+                    & // "REQUEST (REQSUB) and DIFF (DIFSUB) (docs/datasets.md, User force " &
                     & // "routines); write this FUNCTION as an expression"
                 return
             end if
