@@ -10,12 +10,14 @@
 !>     IMPLICIT:  e(t, q, u, x, w) = 0,
 !>
 !> the residuals G(t, q, u, x, w) of all DIFFs together. A formulation that integrates an ODE
-!> needs w at (t, q, u, x): solve_rates solves G = 0 for it by Newton's method over the exact
+!> needs w at (t, q, u, x): solve_rates solves G = 0 for it by Newton's method over the
 !> partials dG/dw (one step when no equation reads a DIF1: then dG/dw is the identity on
 !> the explicit ones), as ADAMS solves a DIFF that reads DIF1s; a DAE formulation takes G
-!> itself as its residual, with IDA's w. The partials of G with respect to q, u, x and w
-!> (partials) are exact: forward mode over the expression (rollcon_expression_jet, through
-!> rollcon_measures' jets of the markers' measures), never differences.
+!> itself as its residual, with IDA's w. The partials of an expression's G with respect to
+!> q, u, x and w (partials) are exact: forward mode over the expression
+!> (rollcon_expression_jet, through rollcon_measures' jets of the markers' measures), never
+!> differences; a DIFSUB's are differenced (below), the only way into code rollcon cannot
+!> see.
 !>
 !> A DIFF/id, FUNCTION=USER(r1, ...) is served by a user's DIFSUB (rollcon_user_forces'
 !> call_diff_routine): its VALUE is e, read at (t, q, u, x, w) through SYSFNC and SYSARY
@@ -157,8 +159,9 @@ contains
         end do
     end subroutine residuals
 
-    !> G and its exact partials at (t, q, u, x, w): g_q(k, j) = dG_k/dq_j, g_u, g_x, g_w
-    !> likewise (forward mode over each FUNCTION, first order; module header). nd = count():
+    !> G and its partials at (t, q, u, x, w): g_q(k, j) = dG_k/dq_j, g_u, g_x, g_w likewise
+    !> (forward mode over each FUNCTION, first order; a DIFSUB's by central differences over
+    !> its declaration, routine_partials; module header). nd = count():
     !> g_q, g_u are nd x size(q), g_x, g_w nd x nd.
     subroutine partials(self, time, q, u, x, w, g, g_q, g_u, g_x, g_w)
         class(diff_set_type), intent(in) :: self
