@@ -1,7 +1,7 @@
 ! SPDX-License-Identifier: MIT
 !> The user subroutines of ADAMS/Solver's system elements rollcon serves, with ADAMS's calling
 !> sequence (docs/datasets.md, "User routines of requests", "... of variables", "... of
-!> motions"):
+!> motions", "... of differential equations"):
 !>
 !>     SUBROUTINE REQSUB(ID, TIME, PAR, NPAR, IFLAG, RESULT)
 !>     INTEGER ID, NPAR; DOUBLE PRECISION TIME, PAR(*), RESULT(8); LOGICAL IFLAG
@@ -12,11 +12,16 @@
 !>     SUBROUTINE MOTSUB(ID, TIME, PAR, NPAR, IORD, IFLAG, VALUE)
 !>     INTEGER ID, NPAR, IORD; DOUBLE PRECISION TIME, PAR(*), VALUE; LOGICAL IFLAG
 !>
+!>     SUBROUTINE DIFSUB(ID, TIME, PAR, NPAR, DFLAG, IFLAG, VALUE)
+!>     (VARSUB's calling sequence: variable_routine_interface)
+!>
 !> MOTSUB computes the displacement a MOTION/id, FUNCTION=USER(r1, ...) prescribes at TIME
 !> (IORD = 0) and its first and second TIME derivatives (IORD = 1, 2), in the dataset's units;
 !> a MOTION is a function of TIME alone, so a MOTSUB reads no
 !> state (its initialisation call may declare none).
 !> VARSUB computes the value of a VARIABLE/id, FUNCTION=USER(r1, ...), read by VARVAL(id).
+!> DIFSUB computes, for a DIFF/id, FUNCTION=USER(r1, ...), the rate d DIF(id)/dt, or with
+!> IMPLICIT the residual e of its equation 0 = e (which reads DIF1 through SYSFNC('DIF1')).
 !> REQSUB computes the eight values of a REQUEST/id, FUNCTION=USER(r1, ...); ADAMS writes
 !> RESULT(2:4) and RESULT(6:8) (request_columns), the components, and so does rollcon. IFLAG =
 !> .TRUE. is the initialisation call, whose SYSFNC and SYSARY calls declare what the routine
@@ -38,6 +43,7 @@ module rollcon_system_routine_contract
         & variable_routine_symbol
     public :: motion_routine_interface, routine_motsub, motion_routine_name, &
         & motion_routine_symbol, motion_orders
+    public :: routine_difsub, diff_routine_name, diff_routine_symbol
 
     !> The kind of a REQSUB in the table of a model's routines (after the force routines')
     integer, parameter :: routine_reqsub = routine_kinds + 1
@@ -54,6 +60,10 @@ module rollcon_system_routine_contract
         & motion_routine_symbol = "motsub_"
     !> The orders IORD of TIME derivative a MOTSUB is asked for: 0 (the displacement), 1, 2
     integer, parameter :: motion_orders = 2
+    !> The kind of a DIFSUB, its name and symbol (it is called as a VARSUB is)
+    integer, parameter :: routine_difsub = routine_kinds + 4
+    character(len=*), parameter :: diff_routine_name = "DIFSUB", &
+        & diff_routine_symbol = "difsub_"
     !> Number of RESULT entries of a REQSUB
     integer, parameter :: request_results = 8
     !> The entries ADAMS writes (the components of the two vectors; 1 and 5 are not written)
@@ -82,6 +92,7 @@ module rollcon_system_routine_contract
 
         !> A user-written VARIABLE, called exactly as ADAMS/Solver calls VARSUB; the value in
         !> the units the routine computes it in (SYSFNC and SYSARY answer in the dataset's).
+        !> A DIFSUB is called the same way (ID a DIFF's, VALUE its rate or implicit residual).
         subroutine variable_routine_interface(id, time, par, npar, dflag, iflag, value)
             import :: wp
             !> Id of the VARIABLE (VARIABLE/3: 3)
@@ -92,7 +103,7 @@ module rollcon_system_routine_contract
             real(wp), intent(in) :: par(*)
             !> Number of constants
             integer, intent(in) :: npar
-            !> True in a call made to form a difference (rollcon makes none: false)
+            !> True in a call made to form a difference of the partials
             logical, intent(in) :: dflag
             !> True in the initialisation call, where SYSFNC and SYSARY calls declare what the
             !> routine reads

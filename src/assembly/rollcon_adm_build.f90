@@ -31,7 +31,8 @@ module rollcon_adm_build
         & declare_user_force, evaluate_user_forces, take_user_force_error, set_system_splines, &
         & user_variable_type, set_user_variables, declare_user_variables, evaluate_user_variables
     use rollcon_user_forces, only : user_motion_type, set_user_motions
-    use rollcon_system_routine_contract, only : routine_varsub, variable_routine_name
+    use rollcon_system_routine_contract, only : routine_varsub, variable_routine_name, &
+        & routine_difsub, diff_routine_name
     use rollcon_user_data, only : user_string_type, user_array_type, set_user_data
     use rollcon_system_routine_contract, only : routine_motsub, motion_routine_name
     use rollcon_spline, only : spline_type, new_spline
@@ -49,6 +50,7 @@ module rollcon_adm_build
     use rollcon_adm_model, only : adm_model_type, adm_force_type, force_sforce, force_vforce, &
         & force_springdamper, force_bushing, force_names, request_user
     use rollcon_spring_force, only : spring_translational, spring_rotational, spring_bushing
+    use rollcon_adm_system, only : adm_diff_type
     use rollcon_adm_state, only : part_state
     use rollcon_adm_singular, only : start_singular_parts
     use rollcon_adm_markers, only : adm_marker, marker_index
@@ -214,7 +216,7 @@ contains
         type(error_type), allocatable, intent(out) :: error
         type(marker_type), allocatable :: markers(:)
         integer :: i
-        logical :: user_forces, user_requests, user_variables
+        logical :: user_forces, user_requests, user_variables, user_diffs
 
         user_forces = .false.
         if (allocated(adm%forces)) user_forces = any(adm%forces%user)
@@ -223,7 +225,9 @@ contains
             & == request_user)
         user_variables = .false.
         if (allocated(adm%variables)) user_variables = any(adm%variables%user)
-        if (.not. (user_forces .or. user_requests .or. user_variables)) return
+        user_diffs = .false.
+        if (allocated(adm%diffs)) user_diffs = any(adm%diffs%user)
+        if (.not. (user_forces .or. user_requests .or. user_variables .or. user_diffs)) return
         allocate(markers(size(adm%markers)))
         do i = 1, size(adm%markers)
             markers(i) = adm_marker(adm, adm%markers(i)%id)
@@ -237,6 +241,13 @@ contains
             if (allocated(error)) return
             call evaluate_user_variables(0.0_wp, q0, u0)
             call take_user_force_error(error)
+            if (allocated(error)) return
+            ! the parts a VARSUB declared join those of the forces that read its VARVAL
+            problem%eq%couplings = force_couplings(problem%model%forces)
+        end if
+        ! the DIFSUBs' declarations, at the DIFFs' ICs
+        if (user_diffs) then
+            call problem%model%diffs%declare_routines(0.0_wp, q0, u0, error)
             if (allocated(error)) return
         end if
         ! a REQSUB's calls come at the output rows (rollcon_request_answers)
@@ -668,7 +679,9 @@ contains
     !> The dataset's DIFFs as the model's (rollcon_diff), their markers as the model holds
     !> them, their state at the ICs. Refused as expression_markers refuses (a DIFF's FUNCTION
     !> reads no acceleration or force: an algebraic loop) and an IMPLICIT DIFF whose FUNCTION
-    !> reads no DIF1 (its equation cannot fix its rate).
+    !> reads no DIF1 (its equation cannot fix its rate). A DIFF of FUNCTION=USER(...) takes the
+    !> entry of its DIFSUB (the model's own, or the one its ROUTINE= names), refused, naming
+    !> the DIFF and its line, when no file serves it.
     subroutine add_diffs(adm, model, error)
         type(adm_model_type), intent(in) :: adm
         type(model_type), intent(inout) :: model
@@ -694,6 +707,13 @@ contains
                 diff%ic = given%ic
                 where = place(adm%file, given%line) // ": DIFF/" // to_text(given%id) &
                     & // " FUNCTION"
+                if (given%user) then
+                    call diff_routine(given, where, diff%routine, error)
+                    if (allocated(error)) return
+                    diff%par = given%par
+                    allocate(diff%markers(0))
+                    cycle
+                end if
                 call expression_markers(adm, diff%function, where, "a DIFF's FUNCTION", &
                     & diff%markers, error)
                 if (allocated(error)) return
@@ -710,6 +730,33 @@ contains
         call model%diffs%start()
         call model%set_diff_state(model%diffs%x, model%diffs%w)
     end subroutine add_diffs
+
+    !> The entry of the DIFSUB serving a DIFF of FUNCTION=USER(...) (at `where`): the model's
+    !> own, or the one its ROUTINE= names; refused, saying what to give, when none does.
+    subroutine diff_routine(given, where, entry, error)
+        type(adm_diff_type), intent(in) :: given
+        character(len=*), intent(in) :: where
+        integer, intent(out) :: entry
+        type(error_type), allocatable, intent(out) :: error
+        character(len=:), allocatable :: routine
+
+        routine = ""
+        if (allocated(given%routine)) routine = given%routine
+        entry = find_force_routine(routine_difsub, routine)
+        if (entry > 0) return
+        if (len(routine) == 0) then
+            call fatal_error(error, where // "=USER(...): no " // diff_routine_name &
+                & // " serves it; give the file that defines SUBROUTINE " // diff_routine_name &
+                & // " (rollcon run MODEL --ucosub FILE; it runs in a process of its own)", &
+                & stat_input)
+        else
+            call fatal_error(error, where // " ROUTINE=" // routine // ": no " &
+                & // diff_routine_name // " of that name among the user's files; " &
+                & // "ROUTINE=FILE::" // diff_routine_name // " names the routine of FILE " &
+                & // "(given with --ucosub FILE; FILE as given, or its name without folder " &
+                & // "and extension)", stat_input)
+        end if
+    end subroutine diff_routine
 
     !> A SPRINGDAMPER or BUSHING as a force between its markers (rollcon_spring_force), its
     !> constants in SI as read.

@@ -214,6 +214,10 @@ contains
         if (allocated(adm%motions)) then
             if (any(adm%motions%user)) all_named = .false.
         end if
+        ! and a DIFF by a DIFSUB
+        if (allocated(adm%diffs)) then
+            if (any(adm%diffs%user)) all_named = .false.
+        end if
         if (.not. allocated(adm%ucons)) return
         do k = 1, size(adm%ucons)
             if (served_by_model_ucosub(adm%ucons(k)%routine)) all_named = .false.

@@ -18,7 +18,7 @@ module rollcon_force_routine_guard
     use rollcon_text, only : to_text
     use rollcon_force_routine_contract, only : force_routine_interface, max_routine_par
     use rollcon_system_routine_contract, only : request_routine_interface, routine_reqsub, &
-        & variable_routine_interface, routine_varsub
+        & variable_routine_interface, routine_varsub, routine_difsub
     use rollcon_system_routine_contract, only : motion_routine_interface, routine_motsub
     use rollcon_user_forces, only : force_call_interface, set_force_call_hook, &
         & get_force_routine, report_call_problem, get_request_routine, routine_name_of, &
@@ -103,7 +103,8 @@ contains
         if (kind == routine_reqsub) then
             call get_request_routine(entry, request)
             call request(id_copy, time_copy, par_copy, npar_copy, iflag_copy, result_buffer(1))
-        else if (kind == routine_varsub) then
+        else if (kind == routine_varsub .or. kind == routine_difsub) then
+            ! a DIFSUB is called as a VARSUB is
             call get_variable_routine(entry, variable)
             call variable(id_copy, time_copy, par_copy, npar_copy, dflag_copy, iflag_copy, &
                 & result_buffer(1))

@@ -7,7 +7,8 @@ module rollcon_isolation_text
     use rollcon_dlopen, only : process_id
     use rollcon_force_routine_contract, only : routine_names, routine_statements, routine_kinds
     use rollcon_system_routine_contract, only : routine_reqsub, request_routine_name, &
-        & routine_varsub, variable_routine_name, routine_motsub, motion_routine_name
+        & routine_varsub, variable_routine_name, routine_motsub, motion_routine_name, &
+        & routine_difsub, diff_routine_name
     use rollcon_child_process, only : isolation_outcome_type, outcome_signal, outcome_timeout, &
         & outcome_exit, signal_name
     implicit none
@@ -99,6 +100,9 @@ contains
             else if (record%routine_kind == routine_motsub) then
                 routine = motion_routine_name
                 text = "MOTION/" // to_text(int(record%ucon_id)) // ": "
+            else if (record%routine_kind == routine_difsub) then
+                routine = diff_routine_name
+                text = "DIFF/" // to_text(int(record%ucon_id)) // ": "
             else
                 routine = trim(routine_names(max(1, min(routine_kinds, &
                     & int(record%routine_kind)))))
@@ -163,7 +167,8 @@ contains
             after_ucosub = index(line, " in ucosub_") > 0 .or. index(line, " in sfosub_") > 0 &
                 & .or. index(line, " in vfosub_") > 0 .or. index(line, " in gfosub_") > 0 &
                 & .or. index(line, " in vtosub_") > 0 .or. index(line, " in reqsub_") > 0 &
-                & .or. index(line, " in varsub_") > 0 .or. index(line, " in motsub_") > 0
+                & .or. index(line, " in varsub_") > 0 .or. index(line, " in motsub_") > 0 &
+                & .or. index(line, " in difsub_") > 0
             if (.not. useful .or. len_trim(line) == 0) cycle
             if (quoted == 0) then
                 text = "; its stderr: "

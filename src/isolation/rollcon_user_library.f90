@@ -21,11 +21,12 @@ module rollcon_user_library
         & routine_names, routine_kinds
     use rollcon_system_routine_contract, only : request_routine_interface, routine_reqsub, &
         & request_routine_name, request_routine_symbol, variable_routine_interface, &
-        & routine_varsub, variable_routine_name, variable_routine_symbol
+        & routine_varsub, variable_routine_name, variable_routine_symbol, routine_difsub, &
+        & diff_routine_name, diff_routine_symbol
     use rollcon_system_routine_contract, only : motion_routine_interface, routine_motsub, &
         & motion_routine_name, motion_routine_symbol
     use rollcon_user_forces, only : register_force_routine, find_force_routine, &
-        & register_request_routine, register_variable_routine
+        & register_request_routine, register_variable_routine, register_diff_routine
     use rollcon_user_forces, only : register_motion_routine
     implicit none
     private
@@ -114,7 +115,7 @@ contains
 
     !> Load every routine of self%library, the library built from self%source: its UCOSUB
     !> (self%ucosub; null when it defines none), its force routines SFOSUB, VFOSUB, GFOSUB,
-    !> VTOSUB, its REQSUB, its VARSUB and its MOTSUB,
+    !> VTOSUB, its REQSUB, its VARSUB, its MOTSUB and its DIFSUB,
     !> registered with rollcon_user_forces under the names ROUTINE= may give: FILE::NAME with
     !> FILE the file as given or its name without folder and extension (u.f: "u::SFOSUB"), and
     !> "" (the model's own, serving every statement naming no ROUTINE) when no file loaded
@@ -195,11 +196,23 @@ contains
             call register_motion_routine(library_stem(self%source) // "::" &
                 & // motion_routine_name, self%source, motion)
         end if
+        address = library_symbol(self%handle, diff_routine_symbol)
+        if (c_associated(address)) then
+            found = .true.
+            ! gfortran's external DIFSUB: VARSUB's calling sequence
+            call c_f_procpointer(address, variable)
+            if (find_force_routine(routine_difsub, "") == 0) &
+                & call register_diff_routine("", self%source, variable)
+            call register_diff_routine(self%source // "::" // diff_routine_name, self%source, &
+                & variable)
+            call register_diff_routine(library_stem(self%source) // "::" // diff_routine_name, &
+                & self%source, variable)
+        end if
         if (.not. found) then
             call fatal_error(error, self%source // ": defines none of the routines rollcon " &
-                & // "calls (UCOSUB, SFOSUB, VFOSUB, GFOSUB, VTOSUB, REQSUB, VARSUB, MOTSUB: " &
-                & // "symbols 'ucosub_', 'sfosub_', 'vfosub_', 'gfosub_', 'vtosub_', " &
-                & // "'reqsub_', 'varsub_', 'motsub_'); " &
+                & // "calls (UCOSUB, SFOSUB, VFOSUB, GFOSUB, VTOSUB, REQSUB, VARSUB, MOTSUB, " &
+                & // "DIFSUB: symbols 'ucosub_', 'sfosub_', 'vfosub_', 'gfosub_', 'vtosub_', " &
+                & // "'reqsub_', 'varsub_', 'motsub_', 'difsub_'); " &
                 & // "check the names in its " &
                 & // "SUBROUTINE statements, " &
                 & // "and that they are external subroutines, not inside a module", stat_ucon)

@@ -10,16 +10,26 @@
 !>     IMPLICIT:  e(t, q, u, x, w) = 0,
 !>
 !> the residuals G(t, q, u, x, w) of all DIFFs together. A formulation that integrates an ODE
-!> needs w at (t, q, u, x): solve_rates solves G = 0 for it by Newton's method over the exact
+!> needs w at (t, q, u, x): solve_rates solves G = 0 for it by Newton's method over the
 !> partials dG/dw (one step when no equation reads a DIF1: then dG/dw is the identity on
 !> the explicit ones), as ADAMS solves a DIFF that reads DIF1s; a DAE formulation takes G
-!> itself as its residual, with IDA's w. The partials of G with respect to q, u, x and w
-!> (partials) are exact: forward mode over the expression (rollcon_expression_jet, through
-!> rollcon_measures' jets of the markers' measures), never differences.
+!> itself as its residual, with IDA's w. The partials of an expression's G with respect to
+!> q, u, x and w (partials) are exact: forward mode over the expression
+!> (rollcon_expression_jet, through rollcon_measures' jets of the markers' measures), never
+!> differences; a DIFSUB's are differenced (below), the only way into code rollcon cannot
+!> see.
+!>
+!> A DIFF/id, FUNCTION=USER(r1, ...) is served by a user's DIFSUB (rollcon_user_forces'
+!> call_diff_routine): its VALUE is e, read at (t, q, u, x, w) through SYSFNC and SYSARY
+!> (SYSFNC('DIF', id), SYSFNC('DIF1', id) for the DIFFs' state). Its partials are central
+!> differences (rollcon_central_differences) over what its initialisation call (IFLAG =
+!> .TRUE.) declared: the coordinates of the parts of the markers it named (and their rates
+!> when it read rates), the DIFs and the DIF1s it named; each call with DFLAG = .TRUE., as
+!> ADAMS/Solver forms a routine's partials.
 !>
 !> The forces and VARIABLEs read DIF and DIF1 through the values set in their statements
-!> (diff_inputs); the formulations set them before every evaluation (rollcon_model's
-!> set_diff_state).
+!> (diff_inputs, rollcon_diff_inputs); the formulations set them before every evaluation
+!> (rollcon_model's set_diff_state).
 module rollcon_diff
     use, intrinsic :: ieee_arithmetic, only : ieee_is_finite
     use rollcon_kinds, only : wp
@@ -33,6 +43,10 @@ module rollcon_diff
     use rollcon_marker, only : marker_type, turn_marker
     use rollcon_measures, only : expression_input_values, expression_input_jets, &
         & state_jets_type, new_state_jets, count_turns
+    use rollcon_diff_inputs, only : diff_inputs, diff_input_jets
+    use rollcon_user_forces, only : routine_declaration_type, declare_diff_routine, &
+        & call_diff_routine, take_user_force_error
+    use rollcon_central_differences, only : central_differences
     implicit none
     private
 
@@ -57,6 +71,12 @@ module rollcon_diff
         logical :: static_hold = .false.
         !> IC: the initial DIF [user's units] and DIF1's first guess [user's units / time unit]
         real(wp) :: ic(2) = 0.0_wp
+        !> FUNCTION=USER(r1, ...): the entry of its DIFSUB in rollcon_user_forces' table (0:
+        !> FUNCTION is an expression), the constants, and what its initialisation call declared
+        !> (declare_routines)
+        integer :: routine = 0
+        real(wp), allocatable :: par(:)
+        type(routine_declaration_type) :: declaration
     end type diff_type
 
     !> A model's DIFFs and their state last set
@@ -74,6 +94,7 @@ module rollcon_diff
     contains
         procedure :: count => diff_count
         procedure :: start
+        procedure :: declare_routines
         procedure :: residuals
         procedure :: partials
         procedure :: solve_rates
@@ -93,7 +114,7 @@ contains
 
     !> The state at the start: x the ICs' first values, w their second (a first guess for
     !> solve_rates).
-    pure subroutine start(self)
+    subroutine start(self)
         class(diff_set_type), intent(inout) :: self
         integer :: k
 
@@ -102,61 +123,15 @@ contains
             self%ids(k) = self%diffs(k)%id
             if (allocated(self%diffs(k)%function%inputs)) self%reads_rates = self%reads_rates &
                 & .or. any(self%diffs(k)%function%inputs%quantity == quantity_dif1)
+            ! a DIFSUB may read DIF1s until its declaration says (declare_routines)
+            if (self%diffs(k)%routine > 0) self%reads_rates = .true.
             self%x(k) = self%diffs(k)%ic(1)
             self%w(k) = self%diffs(k)%ic(2)
         end do
     end subroutine start
 
-    !> The values of an expression's DIF(id) and DIF1(id) inputs from (x, w) of these DIFFs
-    !> (ids), the other inputs left as they are. A DIF of no DIFF among ids is NaN (the
-    !> dataset's reader refuses it first).
-    pure subroutine diff_inputs(expression, ids, x, w, values)
-        type(expression_type), intent(in) :: expression
-        integer, intent(in) :: ids(:)
-        real(wp), intent(in) :: x(:), w(:)
-        real(wp), intent(inout) :: values(:)
-        integer :: n, k
-
-        if (.not. allocated(expression%inputs)) return
-        do n = 1, size(values)
-            associate (input => expression%inputs(n))
-                if (input%quantity /= quantity_dif .and. input%quantity /= quantity_dif1) cycle
-                k = findloc(ids, input%marker, dim=1)
-                values(n) = nan()
-                if (k == 0) cycle
-                if (input%quantity == quantity_dif) then
-                    values(n) = x(k)
-                else
-                    values(n) = w(k)
-                end if
-            end associate
-        end do
-    end subroutine diff_inputs
-
-    !> The jets of an expression's DIF(id) and DIF1(id) inputs as constants, from (x, w) of
-    !> these DIFFs (ids), the other inputs left as they are (for a computation of partials in
-    !> the parts' states alone, such as a static equilibrium's, where a DIFF is held).
-    pure subroutine diff_input_jets(expression, ids, x, w, values)
-        type(expression_type), intent(in) :: expression
-        integer, intent(in) :: ids(:)
-        real(wp), intent(in) :: x(:), w(:)
-        type(jet_type), intent(inout) :: values(:)
-        real(wp) :: plain(size(values))
-        integer :: n
-
-        if (.not. allocated(expression%inputs)) return
-        plain = 0.0_wp
-        call diff_inputs(expression, ids, x, w, plain)
-        do n = 1, size(values)
-            associate (quantity => expression%inputs(n)%quantity)
-                if (quantity == quantity_dif .or. quantity == quantity_dif1) &
-                    & values(n) = jet_constant(plain(n))
-            end associate
-        end do
-    end subroutine diff_input_jets
-
     !> G(t, q, u, x, w) (module header), one per DIFF, in the FUNCTION's units.
-    pure subroutine residuals(self, time, q, u, x, w, g)
+    subroutine residuals(self, time, q, u, x, w, g)
         class(diff_set_type), intent(in) :: self
         !> Time [s]; coordinates and rates of all parts [m, rad, m/s, rad/s]
         real(wp), intent(in) :: time, q(:), u(:)
@@ -168,6 +143,11 @@ contains
 
         do k = 1, self%count()
             associate (diff => self%diffs(k))
+                if (diff%routine > 0) then
+                    g(k) = routine_value(self, k, time, q, u, x, w, .false.)
+                    if (.not. diff%implicit) g(k) = w(k) - g(k)
+                    cycle
+                end if
                 allocate(values(size(diff%function%inputs)))
                 call expression_input_values(diff%function, diff%markers, self%length_unit, &
                     & self%time_unit, q, u, values)
@@ -179,10 +159,11 @@ contains
         end do
     end subroutine residuals
 
-    !> G and its exact partials at (t, q, u, x, w): g_q(k, j) = dG_k/dq_j, g_u, g_x, g_w
-    !> likewise (forward mode over each FUNCTION, first order; module header). nd = count():
+    !> G and its partials at (t, q, u, x, w): g_q(k, j) = dG_k/dq_j, g_u, g_x, g_w likewise
+    !> (forward mode over each FUNCTION, first order; a DIFSUB's by central differences over
+    !> its declaration, routine_partials; module header). nd = count():
     !> g_q, g_u are nd x size(q), g_x, g_w nd x nd.
-    pure subroutine partials(self, time, q, u, x, w, g, g_q, g_u, g_x, g_w)
+    subroutine partials(self, time, q, u, x, w, g, g_q, g_u, g_x, g_w)
         class(diff_set_type), intent(in) :: self
         real(wp), intent(in) :: time, q(:), u(:), x(:), w(:)
         real(wp), intent(out) :: g(:), g_q(:, :), g_u(:, :), g_x(:, :), g_w(:, :)
@@ -209,6 +190,11 @@ contains
             & u_variable, total, .false.)
         do k = 1, nd
             associate (diff => self%diffs(k))
+                if (diff%routine > 0) then
+                    call routine_partials(self, k, time, q, u, x, w, g(k), g_q(k, :), &
+                        & g_u(k, :), g_x(k, :), g_w(k, :))
+                    cycle
+                end if
                 allocate(inputs(size(diff%function%inputs)))
                 call expression_input_jets(diff%function, diff%markers, self%length_unit, &
                     & self%time_unit, state, inputs)
@@ -281,9 +267,15 @@ contains
             w = 0.0_wp
             call self%residuals(time, q, u, x, w, g)
             w = -g
+            if (any(self%diffs%routine > 0)) then
+                call take_user_force_error(error)
+                if (allocated(error)) return
+            end if
             if (.not. all(ieee_is_finite(w))) then
+                call take_user_force_error(error)
+                if (allocated(error)) return
                 call fatal_error(error, trim(self%diffs(first_nonfinite(w))%name) &
-                    & // " FUNCTION: " // self%diffs(first_nonfinite(w))%function%text &
+                    & // " FUNCTION: " // equation_text(self%diffs(first_nonfinite(w))) &
                     & // " is not finite at t = " // to_text(time) // " s (DIF = " &
                     & // to_text(x(first_nonfinite(w))) // ")", stat_solver)
                 return
@@ -300,9 +292,11 @@ contains
         converged = .false.
         do iteration = 1, most_steps
             call self%partials(time, q, u, x, w, g, g_q, g_u, g_x, g_w)
+            call take_user_force_error(error)
+            if (allocated(error)) return
             if (.not. all(ieee_is_finite(g)) .or. .not. all(ieee_is_finite(g_w))) then
                 call fatal_error(error, trim(self%diffs(first_nonfinite(g))%name) &
-                    & // " FUNCTION: " // self%diffs(first_nonfinite(g))%function%text &
+                    & // " FUNCTION: " // equation_text(self%diffs(first_nonfinite(g))) &
                     & // " is not finite at t = " // to_text(time) // " s (DIF = " &
                     & // to_text(x(first_nonfinite(g))) // ")", stat_solver)
                 return
@@ -331,6 +325,162 @@ contains
         if (present(dg_dw)) dg_dw = g_w
         if (present(ipiv)) ipiv = pivots
     end subroutine solve_rates
+
+    !> The initialisation call (IFLAG = .TRUE.) of every DIFSUB at (t, q, u) and the DIFFs'
+    !> state last set (x, w): each one's declaration (rollcon_user_forces'
+    !> declare_diff_routine), and reads_rates again (a DIFSUB that named no DIF1 reads none).
+    !> An ERRMES or a utility's refusal is an error naming the DIFF.
+    subroutine declare_routines(self, time, q, u, error)
+        class(diff_set_type), intent(inout) :: self
+        !> Time [s], coordinates and rates of all parts [SI]
+        real(wp), intent(in) :: time, q(:), u(:)
+        type(error_type), allocatable, intent(out) :: error
+        integer :: k
+
+        if (.not. any(self%diffs%routine > 0)) return
+        self%reads_rates = .false.
+        do k = 1, self%count()
+            associate (diff => self%diffs(k))
+                if (diff%routine > 0) then
+                    call declare_diff_routine(diff%routine, diff%id, diff%name, diff%par, &
+                        & self%time_unit, time, q, u, self%ids, self%x, self%w, &
+                        & diff%declaration, error)
+                    if (allocated(error)) return
+                    self%reads_rates = self%reads_rates .or. size(diff%declaration%dif1s) > 0
+                else if (allocated(diff%function%inputs)) then
+                    self%reads_rates = self%reads_rates &
+                        & .or. any(diff%function%inputs%quantity == quantity_dif1)
+                end if
+            end associate
+        end do
+    end subroutine declare_routines
+
+    !> VALUE of DIFF k's DIFSUB at (t, q, u, x, w) (e: G_k is e, IMPLICIT, or w_k - e); NaN when
+    !> the call failed (its error kept for take_user_force_error). dflag: a difference's call.
+    function routine_value(self, k, time, q, u, x, w, dflag) result(g)
+        type(diff_set_type), intent(in) :: self
+        integer, intent(in) :: k
+        real(wp), intent(in) :: time, q(:), u(:), x(:), w(:)
+        logical, intent(in) :: dflag
+        real(wp) :: g
+        real(wp) :: value
+        logical :: failed
+
+        associate (diff => self%diffs(k))
+            call call_diff_routine(diff%routine, diff%id, diff%name, diff%par, &
+                & self%time_unit, time, q, u, self%ids, x, w, dflag, diff%declaration, value, &
+                & failed)
+            g = value
+            if (failed) g = nan()
+        end associate
+    end function routine_value
+
+    !> G_k of DIFF k, a DIFSUB's, and its partials (rows of partials' g_q, g_u, g_x, g_w): its
+    !> VALUE's by central differences over the declared entries (module header), the rest
+    !> zero; an explicit DIFF's G_k = w_k - VALUE has the exact 1 of w_k.
+    subroutine routine_partials(self, k, time, q, u, x, w, g, g_q, g_u, g_x, g_w)
+        type(diff_set_type), intent(in) :: self
+        integer, intent(in) :: k
+        real(wp), intent(in) :: time, q(:), u(:), x(:), w(:)
+        real(wp), intent(out) :: g, g_q(:), g_u(:), g_x(:), g_w(:)
+        integer, allocatable :: entries(:)
+        real(wp), allocatable :: block(:, :)
+        integer :: p, c
+
+        g = routine_value(self, k, time, q, u, x, w, .false.)
+        g_q = 0.0_wp
+        g_u = 0.0_wp
+        g_x = 0.0_wp
+        g_w = 0.0_wp
+        associate (declared => self%diffs(k)%declaration)
+            if (.not. allocated(declared%markers)) then
+                if (.not. self%diffs(k)%implicit) then
+                    g = w(k) - g
+                    g_w(k) = 1.0_wp
+                end if
+                return
+            end if
+            entries = [((6*(declared%parts(p) - 1) + c, c = 1, 6), &
+                & p = 1, size(declared%parts))]
+            allocate(block(size(entries), 1))
+            block = 0.0_wp
+            call central_differences(q, entries, coordinates_moved, block)
+            g_q(entries) = block(:, 1)
+            if (declared%rates) then
+                block = 0.0_wp
+                call central_differences(u, entries, rates_moved, block)
+                g_u(entries) = block(:, 1)
+            end if
+            entries = pack([(p, p = 1, self%count())], [(any(declared%difs == self%ids(p)), &
+                & p = 1, self%count())])
+            deallocate(block)
+            allocate(block(size(entries), 1), source=0.0_wp)
+            call central_differences(x, entries, states_moved, block)
+            g_x(entries) = block(:, 1)
+            entries = pack([(p, p = 1, self%count())], [(any(declared%dif1s == self%ids(p)), &
+                & p = 1, self%count())])
+            deallocate(block)
+            allocate(block(size(entries), 1), source=0.0_wp)
+            call central_differences(w, entries, rates_of_states_moved, block)
+            g_w(entries) = block(:, 1)
+        end associate
+        if (.not. self%diffs(k)%implicit) then
+            g = w(k) - g
+            g_q = -g_q
+            g_u = -g_u
+            g_x = -g_x
+            g_w = -g_w
+            g_w(k) = g_w(k) + 1.0_wp
+        end if
+
+    contains
+
+        subroutine coordinates_moved(shifted, values, failed)
+            real(wp), intent(in) :: shifted(:)
+            real(wp), intent(out) :: values(:)
+            logical, intent(out) :: failed
+
+            values(1) = routine_value(self, k, time, shifted, u, x, w, .true.)
+            failed = .not. ieee_is_finite(values(1))
+        end subroutine coordinates_moved
+
+        subroutine rates_moved(shifted, values, failed)
+            real(wp), intent(in) :: shifted(:)
+            real(wp), intent(out) :: values(:)
+            logical, intent(out) :: failed
+
+            values(1) = routine_value(self, k, time, q, shifted, x, w, .true.)
+            failed = .not. ieee_is_finite(values(1))
+        end subroutine rates_moved
+
+        subroutine states_moved(shifted, values, failed)
+            real(wp), intent(in) :: shifted(:)
+            real(wp), intent(out) :: values(:)
+            logical, intent(out) :: failed
+
+            values(1) = routine_value(self, k, time, q, u, shifted, w, .true.)
+            failed = .not. ieee_is_finite(values(1))
+        end subroutine states_moved
+
+        subroutine rates_of_states_moved(shifted, values, failed)
+            real(wp), intent(in) :: shifted(:)
+            real(wp), intent(out) :: values(:)
+            logical, intent(out) :: failed
+
+            values(1) = routine_value(self, k, time, q, u, x, shifted, .true.)
+            failed = .not. ieee_is_finite(values(1))
+        end subroutine rates_of_states_moved
+
+    end subroutine routine_partials
+
+    !> A DIFF's equation for messages: its FUNCTION, or USER(...) for a DIFSUB's.
+    function equation_text(diff) result(text)
+        type(diff_type), intent(in) :: diff
+        character(len=:), allocatable :: text
+
+        text = "USER(...) (its DIFSUB)"
+        if (diff%routine == 0 .and. allocated(diff%function%text)) text = diff%function%text
+    end function equation_text
 
     !> The message of a singular dG/dw.
     function singular_text(self) result(text)

@@ -18,7 +18,8 @@ module rollcon_equations
         & add_expression_partials
     use rollcon_user_force_partials, only : add_user_force_partials
     use rollcon_user_forces, only : evaluate_user_forces, take_user_force_error, &
-        & evaluate_user_variables
+        & evaluate_user_variables, difference_user_variables, clear_user_variable_partials, &
+        & set_system_diff_state
     use rollcon_constraints, only : constraint_state_type, local_dot, need_value, need_first, &
         & need_second, need_time
     use rollcon_saddle_point, only : saddle_point_type
@@ -231,6 +232,9 @@ contains
 
         ! the user's VARSUBs, then force routines at this state (FUNCTION=USER; a failure is
         ! taken by the caller, take_user_force_error): a force's VARVAL reads the former
+        ! (their SYSFNC('DIF') and SYSFNC('DIF1') read the DIFFs' state last set)
+        if (self%model%diffs%count() > 0) call set_system_diff_state(self%model%diffs%ids, &
+            & self%model%diffs%x, self%model%diffs%w)
         call evaluate_user_variables(time, q, u)
         call evaluate_user_forces(self%model%forces, time, q, u)
         do p = 1, size(self%model%parts)
@@ -410,9 +414,12 @@ contains
         end do
         ! the SPRINGDAMPERs' and BUSHINGs' partials, over both of each one's parts
         call add_force_partials(self%model%forces, q, u, self%work%dm_dq, self%work%dm_du)
-        ! the force statements' expressions' (exact) and user routines' (differenced)
+        ! the force statements' expressions' (exact; a VARSUB's VARVAL with its differenced
+        ! partials) and user routines' (differenced)
+        call difference_user_variables(time, q, u)
         call add_expression_partials(self%model%forces, time, q, u, self%work%dm_dq, &
             & self%work%dm_du)
+        call clear_user_variable_partials()
         call add_user_force_partials(self%model%forces, time, q, u, self%work%dm_dq, &
             & self%work%dm_du)
         ! -d(C^T lambda)/dq: second partials are why ADAMS asks a UCOSUB for XMATRX

@@ -24,7 +24,9 @@ module rollcon_force_partials
     use rollcon_measures, only : state_jets_type, new_state_jets, marker_jets, &
         & expression_input_jets
     use rollcon_expression_jet, only : evaluate_expression_jet
-    use rollcon_diff, only : diff_input_jets
+    use rollcon_diff_inputs, only : diff_input_jets
+    use rollcon_expression, only : quantity_varval
+    use rollcon_user_variable_values, only : user_variable_parts
     use rollcon_marker_force, only : marker_force_type, kind_translation, kind_rotation, &
         & kind_spring
     implicit none
@@ -43,7 +45,8 @@ contains
     pure function statement_parts(statement) result(parts)
         type(marker_force_type), intent(in) :: statement
         integer, allocatable :: parts(:)
-        integer :: k
+        integer, allocatable :: parts_read(:)
+        integer :: k, m, p
 
         allocate(parts(0))
         call add_part(statement%i%part)
@@ -59,6 +62,18 @@ contains
                 call add_part(statement%declared_parts(k))
             end do
         end if
+        ! the parts a VARSUB's value read through VARVAL depends on (its differences)
+        do k = 1, 6
+            if (.not. statement%given(k)) cycle
+            if (.not. allocated(statement%functions(k)%inputs)) cycle
+            do m = 1, size(statement%functions(k)%inputs)
+                if (statement%functions(k)%inputs(m)%quantity /= quantity_varval) cycle
+                parts_read = user_variable_parts(statement%functions(k)%inputs(m)%marker)
+                do p = 1, size(parts_read)
+                    call add_part(parts_read(p))
+                end do
+            end do
+        end do
 
     contains
 

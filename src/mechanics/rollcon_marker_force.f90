@@ -27,7 +27,7 @@ module rollcon_marker_force
         & switch_values
     use rollcon_marker, only : marker_type, marker_motion
     use rollcon_measures, only : expression_input_values
-    use rollcon_diff, only : diff_inputs
+    use rollcon_diff_inputs, only : diff_inputs
     use rollcon_spring_force, only : spring_type, spring_loads, spring_translational
     implicit none
     private

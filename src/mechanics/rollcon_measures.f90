@@ -31,7 +31,7 @@
 !> NaN here (the assembly refuses them where they would be read).
 module rollcon_measures
     use rollcon_kinds, only : wp
-    use rollcon_user_variable_values, only : user_variable_value
+    use rollcon_user_variable_values, only : user_variable_value, user_variable_jet
     use rollcon_constants, only : pi
     use rollcon_adams_utilities, only : convert_rotation, rcnvrt_success
     use rollcon_rotation, only : times, cross, euler_angles
@@ -609,10 +609,11 @@ contains
 
         do k = 1, size(values)
             associate (input => expression%inputs(k))
-                ! a user VARIABLE's value: its partials are not known (docs/datasets.md, "User
-                ! routines of variables") and taken as zero
+                ! a user VARIABLE's value, with the partials its VARSUB's differences gave
+                ! where a Newton matrix is formed (docs/datasets.md, "User routines of
+                ! variables"), else a constant
                 if (input%quantity == quantity_varval) then
-                    values(k) = jet_constant(user_variable_value(input%marker))
+                    values(k) = user_variable_jet(input%marker, state%parts, state%q, state%u)
                     cycle
                 end if
                 call input_markers(input, markers, chosen, found)

@@ -9,13 +9,10 @@
 !> of action, RM's axes, the arm about each part's centre) is the statement's own geometry,
 !> in jets (rollcon_force_partials), exact.
 !>
-!> The differences are central, value k's partial in state entry y being
-!> (v_k(y + h) - v_k(y - h))/(2 h) with h = eps^(1/3) max(|y|, 1) (y in m, rad, m/s or rad/s):
-!> the truncation error h^2 v'''/6 and the rounding error eps |v|/h then both stand near
-!> eps^(2/3) = 4e-11 of the values' scale (|v| and its third partials over a unit of the
-!> state), the least their sum can be. Two calls per declared entry: 24 for a routine
-!> reading the coordinates and rates of one moving part, once per Newton matrix (CVODE and
-!> IDA form one every several steps), a cost the calls of the residuals dwarf.
+!> The differences are central, of step eps^(1/3) max(|y|, 1) (rollcon_central_differences,
+!> which VARSUBs and DIFSUBs are differenced with too). Two calls per declared entry: 24 for a
+!> routine reading the coordinates and rates of one moving part, once per Newton matrix
+!> (CVODE and IDA form one every several steps), a cost the calls of the residuals dwarf.
 !>
 !> What the routine reads beyond its declaration is left out of its partials, as ADAMS leaves
 !> it; each such read is noted (rollcon_user_forces' system_notes, which `rollcon check`
@@ -29,10 +26,11 @@ module rollcon_user_force_partials
     use rollcon_force_partials, only : statement_parts, statement_state_jets, &
         & add_statement_load_partials
     use rollcon_user_forces, only : difference_call
+    use rollcon_central_differences, only : central_differences
     implicit none
     private
 
-    public :: add_user_force_partials, difference_step
+    public :: add_user_force_partials
 
 contains
 
@@ -77,58 +75,56 @@ contains
         end do
     end subroutine add_user_force_partials
 
-    !> The step of a central difference in a state entry of value y [m, rad, m/s or rad/s]:
-    !> eps^(1/3) max(|y|, 1) (module doc).
-    elemental real(wp) function difference_step(y) result(h)
-        real(wp), intent(in) :: y
-
-        h = epsilon(1.0_wp)**(1.0_wp/3.0_wp)*max(abs(y), 1.0_wp)
-    end function difference_step
-
     !> gradients(v, k): value k's partial in variable v of statement_state_jets(parts), by
-    !> central differences over the coordinates of the declared parts (and their rates when
-    !> rates), each call with DFLAG = .TRUE.; the other entries are left as they are.
+    !> central differences (rollcon_central_differences) over the coordinates of the declared
+    !> parts (and their rates when rates), each call with DFLAG = .TRUE.; the other entries
+    !> are left as they are.
     subroutine difference_values(force, parts, declared, rates, time, q, u, gradients)
         type(applied_force_type), intent(in) :: force
         integer, intent(in) :: parts(:), declared(:)
         logical, intent(in) :: rates
         real(wp), intent(in) :: time, q(:), u(:)
         real(wp), intent(inout) :: gradients(:, :)
-        real(wp), allocatable :: shifted(:)
-        real(wp) :: plus(6), minus(6), h, high, low
-        integer :: d, s, c, entry, np
-        logical :: failed_plus, failed_minus
+        integer, allocatable :: entries(:), rows(:)
+        real(wp), allocatable :: block(:, :)
+        integer :: d, s, c, np
 
         np = size(parts)
+        entries = [integer ::]
+        rows = [integer ::]
         do d = 1, size(declared)
             s = findloc(parts, declared(d), dim=1)
             if (s == 0) cycle
-            do c = 1, 6
-                entry = 6*(declared(d) - 1) + c
-                ! divided by the steps as represented: (y + h) - (y - h) may differ from 2 h
-                shifted = q
-                h = difference_step(q(entry))
-                high = q(entry) + h
-                low = q(entry) - h
-                shifted(entry) = high
-                call difference_call(force, time, shifted, u, plus, failed_plus)
-                shifted(entry) = low
-                call difference_call(force, time, shifted, u, minus, failed_minus)
-                if (.not. (failed_plus .or. failed_minus)) &
-                    & gradients(6*(s - 1) + c, :) = (plus - minus)/(high - low)
-                if (.not. rates) cycle
-                shifted = u
-                h = difference_step(u(entry))
-                high = u(entry) + h
-                low = u(entry) - h
-                shifted(entry) = high
-                call difference_call(force, time, q, shifted, plus, failed_plus)
-                shifted(entry) = low
-                call difference_call(force, time, q, shifted, minus, failed_minus)
-                if (.not. (failed_plus .or. failed_minus)) &
-                    & gradients(6*np + 6*(s - 1) + c, :) = (plus - minus)/(high - low)
-            end do
+            entries = [entries, [(6*(declared(d) - 1) + c, c = 1, 6)]]
+            rows = [rows, [(6*(s - 1) + c, c = 1, 6)]]
         end do
+        allocate(block(size(entries), 6))
+        block = gradients(rows, :)
+        call central_differences(q, entries, coordinates_moved, block)
+        gradients(rows, :) = block
+        if (.not. rates) return
+        block = gradients(6*np + rows, :)
+        call central_differences(u, entries, rates_moved, block)
+        gradients(6*np + rows, :) = block
+
+    contains
+
+        subroutine coordinates_moved(shifted, values, failed)
+            real(wp), intent(in) :: shifted(:)
+            real(wp), intent(out) :: values(:)
+            logical, intent(out) :: failed
+
+            call difference_call(force, time, shifted, u, values, failed)
+        end subroutine coordinates_moved
+
+        subroutine rates_moved(shifted, values, failed)
+            real(wp), intent(in) :: shifted(:)
+            real(wp), intent(out) :: values(:)
+            logical, intent(out) :: failed
+
+            call difference_call(force, time, q, shifted, values, failed)
+        end subroutine rates_moved
+
     end subroutine difference_values
 
 end module rollcon_user_force_partials

@@ -18,11 +18,14 @@
 !>   that reports an error (ERRMES), returns a value that is not finite or reads what it did
 !>   not declare leaves an error for take_user_force_error.
 !>
-!> The same table serves REQSUBs (call_user_request, at each output row) and VARSUBs
+!> The same table serves REQSUBs (call_user_request, at each output row), VARSUBs
 !> (evaluate_user_variables, before the forces at each evaluation; their values are what
-!> VARVAL reads, rollcon_user_variable_values; rollcon_system_routine_contract), and MOTSUBs
+!> VARVAL reads, rollcon_user_variable_values, and their differences over their declared
+!> state, difference_user_variables, the partials VARVAL's jets carry), MOTSUBs
 !> (call_user_motion, when the constraints are evaluated: a MOTION's displacement and its
-!> TIME derivatives).
+!> TIME derivatives) and DIFSUBs (declare_diff_routine, call_diff_routine: the equations of
+!> rollcon_diff). SYSFNC('DIF') and SYSFNC('DIF1') answer from the DIFFs' state of the call
+!> (set_system_diff_state).
 !>
 !> Every call goes through the call hook (set_force_call_hook), which a child process points at
 !> its guard (rollcon_force_routine_guard: time limit, copies of the inputs, canaries).
@@ -35,16 +38,18 @@ module rollcon_user_forces
     use rollcon_system_routine_contract, only : request_routine_interface, routine_reqsub, &
         & request_routine_name, request_results, variable_routine_interface, routine_varsub, &
         & variable_routine_name, motion_routine_interface, routine_motsub, motion_routine_name, &
-        & motion_orders
-    use rollcon_user_variable_values, only : set_user_variable_values
+        & motion_orders, routine_difsub, diff_routine_name
+    use rollcon_user_variable_values, only : set_user_variable_values, &
+        & set_user_variable_partials, clear_user_variable_partials, set_user_variable_parts
     use rollcon_adams_runtime, only : take_ucon_error
     use rollcon_marker, only : marker_type
     use rollcon_measures, only : measure_value, is_state_measure, reads_rates, quantity_scale
     use rollcon_expression, only : quantity_names, quantity_psi, quantity_wx, quantity_vx, &
         & quantity_vm, quantity_vr, quantity_accm, quantity_wdtm, quantity_least_markers, &
-        & quantity_most_markers, quantity_dx
+        & quantity_most_markers, quantity_dx, quantity_dif, quantity_dif1
     use rollcon_force, only : applied_force_type, profile_statement
     use rollcon_spline, only : spline_type, spline_derivatives, method_akima, method_cubic
+    use rollcon_central_differences, only : central_differences
     use, intrinsic :: ieee_arithmetic, only : ieee_is_finite, ieee_value, ieee_quiet_nan
     implicit none
     private
@@ -62,6 +67,9 @@ module rollcon_user_forces
     public :: evaluate_user_variable, user_variable_list
     public :: register_motion_routine, get_motion_routine, user_motion_order, user_motion_type
     public :: set_user_motions, call_user_motion, check_user_motions, user_motion_list
+    public :: difference_user_variables, clear_user_variable_partials
+    public :: register_diff_routine, routine_declaration_type, set_system_diff_state
+    public :: declare_diff_routine, call_diff_routine
 
     !> A routine the model may use
     type :: routine_entry_type
@@ -93,6 +101,13 @@ module rollcon_user_forces
         !> Its initialisation call (IFLAG = .TRUE.) has been made
         logical :: initialised = .false.
     end type user_motion_type
+    !> What a routine's initialisation call (IFLAG = .TRUE.) declared it reads through SYSFNC
+    !> and SYSARY: markers (and their model parts), whether rates, and the DIFFs whose DIF
+    !> and DIF1 it reads (ids)
+    type :: routine_declaration_type
+        integer, allocatable :: markers(:), parts(:), difs(:), dif1s(:)
+        logical :: rates = .false.
+    end type routine_declaration_type
 
     !> A VARIABLE served by a VARSUB
     type :: user_variable_type
@@ -140,9 +155,15 @@ module rollcon_user_forces
     !> The state of the call under way [SI]
     real(wp), allocatable, save :: q_now(:), u_now(:)
     real(wp), save :: time_now = 0.0_wp
-    !> An initialisation call is under way: the markers named are collected
+    !> The DIFFs' state SYSFNC('DIF') and SYSFNC('DIF1') answer from: ids, DIF and DIF1 [the
+    !> user's units, per the dataset's time unit]
+    integer, allocatable, save :: diff_ids(:)
+    real(wp), allocatable, save :: diff_x(:), diff_w(:)
+    !> An initialisation call is under way: the markers (and DIFFs) named are collected
     logical, save :: declaring = .false.
-    integer, allocatable, save :: named(:)
+    integer, allocatable, save :: named(:), named_difs(:), named_dif1s(:)
+    !> A DIFSUB's declaration in force during its call (allowed_difs allocated then)
+    integer, allocatable, save :: allowed_difs(:), allowed_dif1s(:)
     logical, save :: named_rates = .false.
     !> The declaration of the statement whose routine is being called (an evaluation)
     integer, allocatable, save :: allowed(:)
@@ -206,7 +227,24 @@ contains
         table = [table, entry]
     end subroutine register_variable_routine
 
-    !> The VARSUB of entry, for a guard that calls it.
+    !> Add a DIFSUB to the table (kind routine_difsub), under name ("" for the model's own); it
+    !> is called as a VARSUB is.
+    subroutine register_diff_routine(name, source, routine)
+        character(len=*), intent(in) :: name
+        !> The file it was built from
+        character(len=*), intent(in) :: source
+        procedure(variable_routine_interface) :: routine
+        type(routine_entry_type) :: entry
+
+        if (.not. allocated(table)) allocate(table(0))
+        entry%kind = routine_difsub
+        entry%name = name
+        entry%source = source
+        entry%variable => routine
+        table = [table, entry]
+    end subroutine register_diff_routine
+
+    !> The VARSUB (or DIFSUB) of entry, for a guard that calls it.
     subroutine get_variable_routine(entry, routine)
         integer, intent(in) :: entry
         procedure(variable_routine_interface), pointer, intent(out) :: routine
@@ -231,12 +269,15 @@ contains
     end subroutine set_user_variables
 
     !> The initialisation call (IFLAG = .TRUE.) of every VARSUB at (t, q, u): what its SYSFNC
-    !> and SYSARY calls name is the VARIABLE's declared dependencies. An ERRMES or a utility's
-    !> refusal is an error naming the VARIABLE.
+    !> and SYSARY calls name is the VARIABLE's declared dependencies (their parts given to
+    !> rollcon_user_variable_values). An ERRMES or a utility's refusal is an error naming the
+    !> VARIABLE.
     subroutine declare_user_variables(time, q, u, error)
         real(wp), intent(in) :: time, q(:), u(:)
         type(error_type), allocatable, intent(out) :: error
         real(wp) :: value(1)
+        logical, allocatable :: parts_read(:, :)
+        integer, allocatable :: parts(:)
         integer :: v
 
         if (.not. allocated(variables)) return
@@ -257,6 +298,12 @@ contains
                 if (allocated(error)) return
             end associate
         end do
+        allocate(parts_read(size(variables), size(q)/6), source=.false.)
+        do v = 1, size(variables)
+            parts = parts_of(variables(v)%declared)
+            parts_read(v, parts) = .true.
+        end do
+        call set_user_variable_parts(parts_read)
     end subroutine declare_user_variables
 
     !> Call every VARSUB at (t, q, u), in the order of the dataset, and keep the values for
@@ -278,38 +325,13 @@ contains
     subroutine evaluate_user_variable(v, time, q, u)
         integer, intent(in) :: v
         real(wp), intent(in) :: time, q(:), u(:)
-        type(error_type), allocatable :: error
-        real(wp) :: value(1)
         real(wp), allocatable :: values(:)
+        real(wp) :: value
         integer, allocatable :: ids(:)
+        logical :: failed
 
-        associate (variable => variables(v))
-            call begin_call(time, q, u)
-            if (allocated(variable%declared)) then
-                allowed = variable%declared
-                allowed_rates = variable%declared_rates
-            else if (allocated(allowed)) then
-                deallocate(allowed)
-            end if
-            value = 0.0_wp
-            call call_hook(variable%routine, variable%id, time/variables_time_unit, &
-                & variable%par, size(variable%par), .false., .false., value, 1)
-            if (allocated(allowed)) deallocate(allowed)
-            allowed_rates = .true.
-            variable%value = value(1)
-            if (.not. ieee_is_finite(value(1))) then
-                call fatal_error(error, variable%name // ": its " &
-                    & // force_routine_label(variable%routine) // " returned VALUE = " &
-                    & // to_text(value(1)) // " at TIME = " &
-                    & // to_text(time/variables_time_unit) // ": a VARIABLE's value " &
-                    & // "must be finite", stat_ucon)
-            else
-                call variable_problem(variable, "the call", time, error)
-            end if
-            if (allocated(error)) then
-                if (.not. allocated(pending)) call move_alloc(error, pending)
-            end if
-        end associate
+        call variable_call(variables(v), time, q, u, .false., value, failed)
+        variables(v)%value = value
         ids = variables%id
         values = variables%value
         call set_user_variable_values(ids, values)
@@ -331,6 +353,230 @@ contains
         allocate(list(0))
         if (allocated(motions)) list = motions
     end function user_motion_list
+
+    !> One call of a VARSUB at (t, q, u) (DFLAG dflag), its value in the dataset's units and
+    !> whether it failed (an ERRMES, a utility's refusal, a value not finite: the failure kept
+    !> for take_user_force_error).
+    subroutine variable_call(variable, time, q, u, dflag, value, failed)
+        type(user_variable_type), intent(in) :: variable
+        real(wp), intent(in) :: time, q(:), u(:)
+        logical, intent(in) :: dflag
+        real(wp), intent(out) :: value
+        logical, intent(out) :: failed
+        type(error_type), allocatable :: error
+        real(wp) :: result(1)
+        character(len=:), allocatable :: call_name
+
+        call begin_call(time, q, u)
+        if (allocated(variable%declared)) then
+            allowed = variable%declared
+            allowed_rates = variable%declared_rates
+        else if (allocated(allowed)) then
+            deallocate(allowed)
+        end if
+        result = 0.0_wp
+        call call_hook(variable%routine, variable%id, time/variables_time_unit, variable%par, &
+            & size(variable%par), dflag, .false., result, 1)
+        if (allocated(allowed)) deallocate(allowed)
+        allowed_rates = .true.
+        value = result(1)
+        call_name = ""
+        if (dflag) call_name = " in a call with DFLAG = .TRUE."
+        if (.not. ieee_is_finite(value)) then
+            call fatal_error(error, variable%name // ": its " &
+                & // force_routine_label(variable%routine) // " returned VALUE = " &
+                & // to_text(value) // call_name // " at TIME = " &
+                & // to_text(time/variables_time_unit) // ": a VARIABLE's value must be " &
+                & // "finite", stat_ucon)
+        else if (dflag) then
+            call variable_problem(variable, "a call with DFLAG = .TRUE.", time, error)
+        else
+            call variable_problem(variable, "the call", time, error)
+        end if
+        failed = allocated(error)
+        if (allocated(error)) then
+            if (.not. allocated(pending)) call move_alloc(error, pending)
+        end if
+    end subroutine variable_call
+
+    !> The partials of every VARSUB's value at (t, q, u) [dataset's units per m, rad, m/s,
+    !> rad/s], by central differences (rollcon_central_differences) over the coordinates of
+    !> the parts its initialisation call declared (and their rates when it declared rates),
+    !> each call with DFLAG = .TRUE.; given to rollcon_user_variable_values, where VARVAL's
+    !> jets read them (clear_user_variable_partials forgets them). The values VARVAL reads
+    !> are left as evaluate_user_variables set them. A failed call leaves its entry 0 and its
+    !> error for take_user_force_error.
+    subroutine difference_user_variables(time, q, u)
+        real(wp), intent(in) :: time, q(:), u(:)
+        real(wp), allocatable :: dv_dq(:, :), dv_du(:, :), block(:, :)
+        integer, allocatable :: entries(:), parts(:), ids(:)
+        integer :: v, k, c
+
+        if (.not. allocated(variables)) return
+        if (size(variables) == 0) return
+        allocate(dv_dq(size(variables), size(q)), dv_du(size(variables), size(u)), &
+            & source=0.0_wp)
+        do v = 1, size(variables)
+            if (.not. allocated(variables(v)%declared)) cycle
+            parts = parts_of(variables(v)%declared)
+            entries = [((6*(parts(k) - 1) + c, c = 1, 6), k = 1, size(parts))]
+            if (size(entries) == 0) cycle
+            allocate(block(size(entries), 1), source=0.0_wp)
+            call central_differences(q, entries, coordinates_moved, block)
+            dv_dq(v, entries) = block(:, 1)
+            if (variables(v)%declared_rates) then
+                block = 0.0_wp
+                call central_differences(u, entries, rates_moved, block)
+                dv_du(v, entries) = block(:, 1)
+            end if
+            deallocate(block)
+        end do
+        ids = variables%id
+        call set_user_variable_partials(ids, dv_dq, dv_du)
+
+    contains
+
+        subroutine coordinates_moved(shifted, values, failed)
+            real(wp), intent(in) :: shifted(:)
+            real(wp), intent(out) :: values(:)
+            logical, intent(out) :: failed
+
+            call variable_call(variables(v), time, shifted, u, .true., values(1), failed)
+        end subroutine coordinates_moved
+
+        subroutine rates_moved(shifted, values, failed)
+            real(wp), intent(in) :: shifted(:)
+            real(wp), intent(out) :: values(:)
+            logical, intent(out) :: failed
+
+            call variable_call(variables(v), time, q, shifted, .true., values(1), failed)
+        end subroutine rates_moved
+
+    end subroutine difference_user_variables
+
+    !> The initialisation call (IFLAG = .TRUE.) of the DIFSUB of entry for DIFF/id at (t, q, u)
+    !> and the DIFFs' state (ids, x, w): what its SYSFNC and SYSARY calls name (markers, DIF
+    !> and DIF1 of DIFFs) is its declaration. An ERRMES or a utility's refusal is an error
+    !> naming `name` ("DIFF/3 (line 12)").
+    subroutine declare_diff_routine(entry, id, name, par, time_unit, time, q, u, ids, x, w, &
+            & declaration, error)
+        integer, intent(in) :: entry, id
+        character(len=*), intent(in) :: name
+        !> The constants of USER(r1, ..., rn); the dataset's time unit [s]
+        real(wp), intent(in) :: par(:), time_unit
+        !> Time [s], coordinates and rates of all parts [SI]
+        real(wp), intent(in) :: time, q(:), u(:)
+        !> The DIFFs' ids, DIF and DIF1 [the user's units, per the dataset's time unit]
+        integer, intent(in) :: ids(:)
+        real(wp), intent(in) :: x(:), w(:)
+        type(routine_declaration_type), intent(out) :: declaration
+        type(error_type), allocatable, intent(out) :: error
+        real(wp) :: result(1)
+
+        call begin_call(time, q, u)
+        call set_system_diff_state(ids, x, w)
+        declaring = .true.
+        named = [integer ::]
+        named_difs = [integer ::]
+        named_dif1s = [integer ::]
+        named_rates = .false.
+        result = 0.0_wp
+        call call_hook(entry, id, time/time_unit, par, size(par), .false., .true., result, 1)
+        declaring = .false.
+        declaration%markers = named
+        declaration%parts = parts_of(named)
+        declaration%rates = named_rates
+        declaration%difs = named_difs
+        declaration%dif1s = named_dif1s
+        call diff_problem(entry, name, "the initialisation call (IFLAG = .TRUE.)", &
+            & time/time_unit, error)
+    end subroutine declare_diff_routine
+
+    !> A call of the DIFSUB of entry for DIFF/id at (t, q, u) and the DIFFs' state (ids, x, w),
+    !> with DFLAG dflag: VALUE (the rate d DIF/dt per the dataset's time unit, or an IMPLICIT
+    !> DIFF's residual) and whether the call failed (an ERRMES, a utility's refusal, a VALUE
+    !> not finite: the error, naming `name`, kept for take_user_force_error). What it reads
+    !> beyond its declaration is noted (system_notes).
+    subroutine call_diff_routine(entry, id, name, par, time_unit, time, q, u, ids, x, w, &
+            & dflag, declaration, value, failed)
+        integer, intent(in) :: entry, id
+        character(len=*), intent(in) :: name
+        real(wp), intent(in) :: par(:), time_unit, time, q(:), u(:)
+        integer, intent(in) :: ids(:)
+        real(wp), intent(in) :: x(:), w(:)
+        logical, intent(in) :: dflag
+        type(routine_declaration_type), intent(in) :: declaration
+        real(wp), intent(out) :: value
+        logical, intent(out) :: failed
+        type(error_type), allocatable :: error
+        real(wp) :: result(1)
+        character(len=:), allocatable :: call_name
+
+        call_name = "the call"
+        if (dflag) call_name = "a call with DFLAG = .TRUE."
+        call begin_call(time, q, u)
+        call set_system_diff_state(ids, x, w)
+        if (allocated(declaration%markers)) then
+            allowed = declaration%markers
+            allowed_rates = declaration%rates
+            allowed_difs = declaration%difs
+            allowed_dif1s = declaration%dif1s
+        end if
+        result = 0.0_wp
+        call call_hook(entry, id, time/time_unit, par, size(par), dflag, .false., result, 1)
+        if (allocated(allowed)) deallocate(allowed)
+        if (allocated(allowed_difs)) deallocate(allowed_difs, allowed_dif1s)
+        allowed_rates = .true.
+        value = result(1)
+        if (.not. ieee_is_finite(value)) then
+            call fatal_error(error, name // ": its " // force_routine_label(entry) &
+                & // " returned VALUE = " // to_text(value) // " in " // call_name &
+                & // " at TIME = " // to_text(time/time_unit) // ": a DIFF's equation must " &
+                & // "be finite", stat_ucon)
+        else
+            call diff_problem(entry, name, call_name, time/time_unit, error)
+        end if
+        failed = allocated(error)
+        if (allocated(error)) then
+            if (.not. allocated(pending)) call move_alloc(error, pending)
+        end if
+    end subroutine call_diff_routine
+
+    !> After a DIFSUB's call: an ERRMES it made, or a utility's refusal, as an error naming the
+    !> DIFF (name) and the routine; time in the dataset's unit.
+    subroutine diff_problem(entry, name, call_name, time, error)
+        integer, intent(in) :: entry
+        character(len=*), intent(in) :: name, call_name
+        real(wp), intent(in) :: time
+        type(error_type), allocatable, intent(out) :: error
+        type(error_type), allocatable :: reported
+        character(len=:), allocatable :: message
+        integer :: colon
+
+        call take_ucon_error(reported)
+        if (allocated(reported)) then
+            message = reported%message
+            colon = index(message, ": ")
+            if (index(message, "UCON/") == 1 .and. colon > 0) message = message(colon + 2:)
+            call fatal_error(error, name // ": its " // force_routine_label(entry) &
+                & // " reported an error in " // call_name // " at TIME = " // to_text(time) &
+                & // ": " // message, stat_ucon)
+        else if (len(problem) > 0) then
+            call fatal_error(error, name // ": its " // force_routine_label(entry) // ", in " &
+                & // call_name // " at TIME = " // to_text(time) // ": " // problem, stat_ucon)
+        end if
+    end subroutine diff_problem
+
+    !> The DIFFs' state SYSFNC('DIF', id) and SYSFNC('DIF1', id) answer from (rollcon_diff's
+    !> DIF and DIF1 of the DIFFs of these ids) [the user's units, per the dataset's time unit].
+    subroutine set_system_diff_state(ids, x, w)
+        integer, intent(in) :: ids(:)
+        real(wp), intent(in) :: x(:), w(:)
+
+        diff_ids = ids
+        diff_x = x
+        diff_w = w
+    end subroutine set_system_diff_state
 
     !> After a VARSUB's call: an ERRMES it made, or a utility's refusal, as an error naming the
     !> VARIABLE.
@@ -578,6 +824,8 @@ contains
             name = variable_routine_name
         else if (kind == routine_motsub) then
             name = motion_routine_name
+        else if (kind == routine_difsub) then
+            name = diff_routine_name
         else
             name = "a user routine"
         end if
@@ -651,7 +899,8 @@ contains
 
         if (table(entry)%kind == routine_reqsub) then
             call table(entry)%request(id, time, par, npar, iflag, result)
-        else if (table(entry)%kind == routine_varsub) then
+        else if (table(entry)%kind == routine_varsub .or. table(entry)%kind == routine_difsub) &
+            & then
             call table(entry)%variable(id, time, par, npar, dflag, iflag, result(1))
         else if (table(entry)%kind == routine_motsub) then
             call table(entry)%motion(id, time, par, npar, motion_order, iflag, result(1))
@@ -1065,7 +1314,8 @@ contains
     !> SYSFNC(FNCNAM, IPAR, NSIZE, VALUE, ERRFLG): one measure of markers IPAR(1:NSIZE) at the
     !> call's state, in the dataset's units: DX, DY, DZ, DM, VX, VY, VZ, VM, VR, WX, WY, WZ,
     !> WM, AX, AY, AZ, PSI, THETA, PHI, YAW, PITCH, ROLL with the markers as a FUNCTION
-    !> expression takes them (docs/datasets.md, "Measures of markers"). ERRFLG is set, and
+    !> expression takes them (docs/datasets.md, "Measures of markers"), and DIF(id), DIF1(id)
+    !> of a DIFF (IPAR(1) = id; NSIZE = 1) from set_system_diff_state's. ERRFLG is set, and
     !> VALUE 0, for a name rollcon does not know or a marker the model has not; a measure of
     !> acceleration or force is refused (the algebraic loop of input_refusal).
     subroutine system_function(name, ipar, value, errflg)
@@ -1081,7 +1331,11 @@ contains
         if (quantity == 0) then
             call refuse("SYSFNC('" // trim(name) // "'): not a function rollcon's SYSFNC " &
                 & // "knows (DX, DY, DZ, DM, VX, VY, VZ, VM, VR, WX, WY, WZ, WM, AX, AY, AZ, " &
-                & // "PSI, THETA, PHI, YAW, PITCH, ROLL)")
+                & // "PSI, THETA, PHI, YAW, PITCH, ROLL, DIF, DIF1)")
+            return
+        end if
+        if (quantity == quantity_dif .or. quantity == quantity_dif1) then
+            call diff_measure(quantity, ipar, value, errflg)
             return
         end if
         if (.not. is_state_measure(quantity)) then
@@ -1099,6 +1353,52 @@ contains
         end if
         call measure(quantity, ipar, "SYSFNC('" // trim(name) // "')", value, errflg)
     end subroutine system_function
+
+    !> SYSFNC('DIF', [id]) (quantity_dif) or SYSFNC('DIF1', [id]): DIF or DIF1 of DIFF/id
+    !> from the state set_system_diff_state gave; the DIFF recorded (a declaration) or
+    !> compared with a DIFSUB's declaration (an evaluation).
+    subroutine diff_measure(quantity, ipar, value, errflg)
+        integer, intent(in) :: quantity, ipar(:)
+        real(wp), intent(out) :: value
+        logical, intent(out) :: errflg
+        character(len=:), allocatable :: call_name
+        integer :: k
+
+        value = 0.0_wp
+        errflg = .true.
+        call_name = "SYSFNC('" // trim(merge("DIF ", "DIF1", quantity == quantity_dif)) // "')"
+        if (size(ipar) /= 1) then
+            call refuse(call_name // " with NSIZE = " // to_text(size(ipar)) // ": it takes " &
+                & // "one id, the DIFF's")
+            return
+        end if
+        k = 0
+        if (allocated(diff_ids)) k = findloc(diff_ids, ipar(1), dim=1)
+        if (k == 0) then
+            call refuse(call_name // " names DIFF/" // to_text(ipar(1)) // ", which the model " &
+                & // "has not")
+            return
+        end if
+        if (declaring) then
+            if (.not. allocated(named_difs)) named_difs = [integer ::]
+            if (.not. allocated(named_dif1s)) named_dif1s = [integer ::]
+            if (quantity == quantity_dif .and. .not. any(named_difs == ipar(1))) &
+                & named_difs = [named_difs, ipar(1)]
+            if (quantity == quantity_dif1 .and. .not. any(named_dif1s == ipar(1))) &
+                & named_dif1s = [named_dif1s, ipar(1)]
+        else if (allocated(allowed_difs)) then
+            if (quantity == quantity_dif .and. .not. any(allowed_difs == ipar(1)) .or. &
+                & quantity == quantity_dif1 .and. .not. any(allowed_dif1s == ipar(1))) &
+                & call add_note(call_name // " named DIFF/" // to_text(ipar(1)) // ", which " &
+                & // "the initialisation call (IFLAG = .TRUE.) did not name")
+        end if
+        if (quantity == quantity_dif) then
+            value = diff_x(k)
+        else
+            value = diff_w(k)
+        end if
+        errflg = .false.
+    end subroutine diff_measure
 
     !> SYSARY(FNCNAM, IPAR, NSIZE, STATES, NSTATES, ERRFLG): TDISP(i[, j[, k]]) = (DX, DY, DZ),
     !> TVEL(i[, j[, k[, l]]]) = (VX, VY, VZ), RVEL(i[, j[, k]]) = (WX, WY, WZ) and

@@ -20,6 +20,7 @@ module rollcon_dae_form
     use rollcon_problem, only : problem_type
     use rollcon_error, only : fatal_error, stat_solver
     use rollcon_text, only : to_text
+    use rollcon_user_forces, only : take_user_force_error
     implicit none
     private
 
@@ -119,6 +120,8 @@ contains
             call residual_of_dae(problem%eq, time, y(:m), yp(:m), residual(:m), error)
             if (.not. allocated(error) .and. diffs%count() > 0) call diffs%residuals(time, &
                 & y(:n), y(n + 1:2*n), y(m + 1:), yp(m + 1:)*diffs%time_unit, residual(m + 1:))
+            ! a DIFSUB that failed: its error, naming it
+            if (.not. allocated(error) .and. diffs%count() > 0) call take_user_force_error(error)
             if (.not. allocated(error) .and. .not. all(ieee_is_finite(residual))) then
                 if (all(ieee_is_finite(residual(:m)))) then
                     call fatal_error(error, trim(diffs%diffs(findloc(ieee_is_finite( &

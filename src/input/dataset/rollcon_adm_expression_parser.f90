@@ -223,10 +223,10 @@ contains
                 ! FUNCTION=USER(...) where no user routine serves the statement (SFORCE,
                 ! VFORCE, GFORCE and UCON read theirs before any expression)
                 problem = "USER(...): user routines of this kind (this statement's user " &
-                    & // "subroutine: DIFSUB of a DIFF, ...) are not " &
-                    & // "supported; rollcon runs the user routines of UCON (UCOSUB), SFORCE " &
-                    & // "(SFOSUB), VFORCE (VFOSUB), GFORCE (GFOSUB), VTORQUE (VTOSUB), " &
-                    & // "VARIABLE (VARSUB), MOTION (MOTSUB) and REQUEST (REQSUB) " &
+                    & // "subroutine: COUSUB of a COUPLER, ...) are not supported; rollcon " &
+                    & // "runs the user routines of UCON (UCOSUB), SFORCE (SFOSUB), VFORCE " &
+                    & // "(VFOSUB), GFORCE (GFOSUB), VTORQUE (VTOSUB), VARIABLE (VARSUB), " &
+                    & // "MOTION (MOTSUB), REQUEST (REQSUB) and DIFF (DIFSUB) " &
                     & // "(docs/datasets.md, User force " &
                     & // "routines); write this FUNCTION as an expression"
                 return

@@ -82,13 +82,21 @@ module rollcon_adm_system
         !> guess of the initial DIF1(id) [the user's units per time unit] (0 when not given)
         real(wp) :: ic(2) = 0.0_wp
         logical :: implicit = .false., static_hold = .false.
+        !> FUNCTION=USER(r1, ..., rn): a DIFSUB's DIFF (its function not compiled), the
+        !> USER(...) argument as written and where, its constants once read
+        !> (resolve_variables), and ROUTINE= as written ("" when not given)
+        logical :: user = .false.
+        type(adm_argument_type) :: user_argument
+        character(len=:), allocatable :: user_at, routine
+        real(wp), allocatable :: par(:)
     end type adm_diff_type
 
 contains
 
     !> DIFF/id, FUNCTION=e, IC=r1[, r2][, IMPLICIT][, STATIC_HOLD] (ADAMS's DIFF statement):
     !> FUNCTION and IC required, IC one or two numbers (the second, DIF1's first guess, read by
-    !> an IMPLICIT DIFF alone). FUNCTION=USER(...) and ROUTINE= (a DIFSUB) are refused.
+    !> an IMPLICIT DIFF alone). FUNCTION=USER(r1, ...)[, ROUTINE=name] is a DIFSUB's: the
+    !> USER(...) argument kept for resolve_variables to read.
     subroutine read_diff(path, where, statement, diff, error)
         character(len=*), intent(in) :: path, where
         type(adm_statement_type), intent(in) :: statement
@@ -101,6 +109,7 @@ contains
 
         diff%id = statement%id
         diff%line = statement%line
+        diff%routine = ""
         given = .false.
         ic_given = .false.
         do k = 1, size(statement%arguments)
@@ -114,13 +123,15 @@ contains
                     return
                 end if
                 text = argument_text(statement%arguments(k))
+                given = .true.
                 if (index(upper_case(adjustl(text)), "USER") == 1) then
-                    call fatal_error(error, at // ": FUNCTION=USER(...) (a DIFSUB) is not " &
-                        & // "supported; write the equation as an expression", stat_input)
-                    return
+                    ! a DIFSUB's: its constants read as the dataset's VARIABLEs are resolved
+                    diff%user = .true.
+                    diff%user_argument = statement%arguments(k)
+                    diff%user_at = at
+                    cycle
                 end if
                 call compile_expression(text, at, diff%function, error)
-                given = .true.
             case ("IC")
                 call read_reals(statement%arguments(k), at, 1, 2, .false., values, error)
                 if (allocated(error)) then
@@ -140,8 +151,7 @@ contains
                 if (key == "IMPLICIT") diff%implicit = .true.
                 if (key == "STATIC_HOLD") diff%static_hold = .true.
             case ("ROUTINE")
-                call fatal_error(error, at // ": ROUTINE names a DIFSUB, which is not " &
-                    & // "supported; write the equation as a FUNCTION expression", stat_input)
+                diff%routine = argument_text(statement%arguments(k))
             end select
             if (allocated(error)) return
         end do
@@ -151,6 +161,9 @@ contains
         else if (.not. ic_given) then
             call fatal_error(error, where // ": IC=r1 is missing (the initial value of " &
                 & // "DIF(" // to_text(diff%id) // "))", stat_input)
+        else if (len(diff%routine) > 0 .and. .not. diff%user) then
+            call fatal_error(error, where // " ROUTINE: names a DIFSUB, which serves a " &
+                & // "FUNCTION=USER(r1, ..., r30) only", stat_input)
         end if
     end subroutine read_diff
 

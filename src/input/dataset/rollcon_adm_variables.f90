@@ -177,6 +177,13 @@ contains
             end do
         end if
         do i = 1, size(model%diffs)
+            if (model%diffs(i)%user) then
+                ! a DIFSUB's: its constants
+                call read_user_list(model%diffs(i)%user_argument, model%diffs(i)%user_at, &
+                    & model%diffs(i)%par, error, "DIFSUB")
+                if (allocated(error)) return
+                cycle
+            end if
             where = place(model%file, model%diffs(i)%line) // ": DIFF/" &
                 & // to_text(model%diffs(i)%id) // " FUNCTION"
             call substitute(model, ids, model%diffs(i)%function, where, error)

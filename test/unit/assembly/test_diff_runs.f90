@@ -6,6 +6,9 @@
 !> form's Newton matrices against central differences of their right-hand side and residual,
 !> entry by entry; the linear analysis of a mass on a spring with a lag of its position
 !> (eigenvalues +-2i and -1/tau); and the refusals, each naming the statement and its line.
+!> The same two DIFFs served by a DIFSUB written for the test (registered here, reading
+!> SYSFNC's DX, VX, DY, WZ, DIF and DIF1) give the Newton matrices' DIFF rows of their
+!> expression twin, to the differences' error.
 module test_diff_runs
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type
@@ -21,6 +24,11 @@ module test_diff_runs
     use rollcon_linearisation, only : linear_options_type, linear_result_type
     use rollcon_linear_job, only : linearise_job
     use rollcon_testing, only : unittest_type, new_unittest, check
+    use rollcon_adm_model, only : adm_model_type
+    use rollcon_adm_build, only : build_adm_problem
+    use rollcon_user_forces, only : register_diff_routine, clear_force_routines, &
+        & system_function
+    use adm_datasets, only : read_dataset
     implicit none
     private
 
@@ -42,6 +50,7 @@ contains
         tests = [new_unittest("lag-explicit-and-implicit-closed-form-cvode-and-ida", test_lag), &
             & new_unittest("integral-action-force-reads-dif-closed-form", test_integral), &
             & new_unittest("newton-matrix-diff-rows-against-differences", test_newton), &
+            & new_unittest("difsub-newton-rows-against-expression-twin", test_difsub_newton), &
             & new_unittest("linear-analysis-lag-eigenvalue", test_linear), &
             & new_unittest("refusals-name-the-statement", test_refusals)]
     end subroutine collect_diff_runs
@@ -246,6 +255,140 @@ contains
             & "DAE form: the DIFFs' rows against differences, largest difference " &
             & // to_text(worst) // " of entries up to " // to_text(largest))
     end subroutine test_newton
+
+    !> test_newton's two DIFFs (DIFF/1 explicit, DIFF/2 IMPLICIT) served by newton_difsub
+    !> (the same functions, read through SYSFNC) give the DIFF rows of the ODE form's and the
+    !> DAE form's Newton matrices of the expressions (exact partials). The DIFSUB's partials
+    !> are central differences of step eps^(1/3) max(|y|, 1) over what its IFLAG call declared
+    !> (rollcon_central_differences): their error h^2 v'''/6 + eps |v|/h stands near eps^(2/3)
+    !> = 4e-11 of the values' scale (functions of unit size here; entries up to 1.1 in the ODE
+    !> form's rows, 16 in the DAE form's). Measured: 3.4e-12 and 1.3e-11, 3.0e-12 and 8.2e-13
+    !> of the largest entry; 2e-11 of it leaves a factor of 7 over the larger and fails on a
+    !> tenfold loss. Without the DIFSUB's partials the IMPLICIT DIFF's dG/dDIF1 is 0: the
+    !> Newton matrix fails (singular), and dG/dq of SIN(DX), dG/dDIF are entries of order 1.
+    subroutine test_difsub_newton(error)
+        type(error_type), allocatable, intent(out) :: error
+        real(wp), parameter :: tol = 2.0e-11_wp, cj = 7.0_wp
+        character(len=120), parameter :: head(5) = [character(len=120) :: &
+            & "newton twins", "PART/1, GROUND|MARKER/1, PART = 1", &
+            & "PART/2, MASS = 2, CM = 20, IP = 1, 2, 3, QG = 0.3, 0.2, 0.1, REULER = 0.4D, " &
+            & // "0.5D, 0.6D, VX = 0.7, VY = -0.2, WZ = 0.9", &
+            & "MARKER/20, PART = 2, QP = 0.1, 0, 0", "ACCGRAV/KGRAV = -9.80665"]
+        character(len=120), parameter :: expressions(2) = [character(len=120) :: &
+            & "DIFF/1, FUNCTION = SIN(DX(20))*VX(20) - DIF(1)*DIF1(2) + DIF(2), IC = 0.3", &
+            & "DIFF/2, FUNCTION = DIF1(2)*(2 + DIF(1)**2) - DY(20)*WZ(20) + DIF(2), " &
+            & // "IC = -0.2, 0.1, IMPLICIT"]
+        character(len=120), parameter :: users(2) = [character(len=120) :: &
+            & "DIFF/1, FUNCTION = USER(20), IC = 0.3", &
+            & "DIFF/2, FUNCTION = USER(20), IC = -0.2, 0.1, IMPLICIT"]
+        character(len=120), parameter :: tail(2) = [character(len=120) :: &
+            & "SIMULATE/DYNAMIC, END = 1, STEPS = 10", "END"]
+        real(wp), allocatable :: exact(:, :), differenced(:, :)
+        character(len=:), allocatable :: name
+        real(wp) :: largest, worst
+        integer :: form, n, rows
+
+        do form = 1, 2
+            call clear_force_routines()
+            call register_diff_routine("", "test_diff_runs", newton_difsub)
+            call twin_matrix([character(len=120) :: head, expressions, tail], form, exact, n, &
+                & error)
+            if (.not. allocated(error)) call twin_matrix([character(len=120) :: head, users, &
+                & tail], form, differenced, n, error)
+            call clear_force_routines()
+            if (allocated(error)) return
+            rows = size(exact, 1) - 1
+            name = "ODE"
+            if (form == 2) name = "DAE"
+            largest = maxval(abs(exact(rows:, :)))
+            worst = maxval(abs(differenced(rows:, :) - exact(rows:, :)))
+            call check(error, largest > 0.5_wp, name // " form: the DIFF rows hold entries of " &
+                & // "order 1")
+            if (allocated(error)) return
+            call check(error, worst <= tol*largest, name // " form: the DIFSUB's DIFF rows " &
+                & // "differ from the expressions' by " // to_text(worst) // " of entries up " &
+                & // "to " // to_text(largest))
+            if (allocated(error)) return
+        end do
+
+    contains
+
+        !> The ODE form's (form 1) or the DAE form's (2) Newton matrix of the dataset `lines`
+        !> at t = 0.3 s from its start (the DAE form's DIF1s moved off the solved rates, as in
+        !> test_newton); n the parts' coordinates.
+        subroutine twin_matrix(lines, form, matrix, n, error)
+            character(len=*), intent(in) :: lines(:)
+            integer, intent(in) :: form
+            real(wp), allocatable, intent(out) :: matrix(:, :)
+            integer, intent(out) :: n
+            type(error_type), allocatable, intent(out) :: error
+            type(adm_model_type) :: adm
+            type(problem_type), target :: problem
+            type(ode_form_type) :: ode
+            type(dae_form_type) :: dae
+            procedure(ucosub_interface), pointer :: routine
+            real(wp), allocatable :: q0(:), u0(:), y(:), yp(:)
+            integer :: ns, ierr
+
+            routine => null()
+            call read_dataset("difsub_newton.adm", lines, adm, error)
+            if (allocated(error)) return
+            call build_adm_problem(adm, routine, problem, q0, u0, error)
+            if (allocated(error)) return
+            call problem%prepare(error)
+            if (allocated(error)) return
+            n = size(q0)
+            if (form == 1) then
+                call ode%init(problem)
+                ns = ode%state_size()
+                allocate(y(ns), yp(ns), matrix(ns, ns))
+                call ode%pack_state(q0, u0, y, yp)
+                ierr = ode%ode_jacobian(0.3_wp, y, matrix)
+            else
+                call dae%init(problem)
+                call problem%accelerations(0.3_wp, q0, u0, error)
+                if (allocated(error)) return
+                ns = dae%state_size()
+                allocate(y(ns), yp(ns), matrix(ns, ns))
+                call dae%pack_state(q0, u0, y, yp)
+                yp(ns - 1:) = yp(ns - 1:) + [0.05_wp, -0.03_wp]
+                matrix = 0.0_wp
+                ierr = dae%dae_jacobian(0.3_wp, cj, y, yp, matrix)
+            end if
+            call check(error, ierr == 0, trim(lines(1)) // ": the Newton matrix")
+            call problem%release()
+        end subroutine twin_matrix
+
+    end subroutine test_difsub_newton
+
+    !> test_newton's DIFF/1 (explicit: VALUE is d DIF/dt) and DIFF/2 (IMPLICIT: VALUE is the
+    !> residual), of marker PAR(1), through SYSFNC's DX, VX, DY, WZ, DIF and DIF1; ADAMS's
+    !> calling sequence (rollcon_system_routine_contract).
+    subroutine newton_difsub(id, time, par, npar, dflag, iflag, value)
+        integer, intent(in) :: id
+        real(wp), intent(in) :: time
+        real(wp), intent(in) :: par(*)
+        integer, intent(in) :: npar
+        logical, intent(in) :: dflag, iflag
+        real(wp), intent(inout) :: value
+        real(wp) :: dx, vx, dy, wz, dif1, dif2, rate2
+        integer :: marker
+        logical :: failed
+
+        marker = nint(par(1))
+        call system_function("DIF", [1], dif1, failed)
+        call system_function("DIF", [2], dif2, failed)
+        call system_function("DIF1", [2], rate2, failed)
+        if (id == 1) then
+            call system_function("DX", [marker], dx, failed)
+            call system_function("VX", [marker], vx, failed)
+            value = sin(dx)*vx - dif1*rate2 + dif2
+        else
+            call system_function("DY", [marker], dy, failed)
+            call system_function("WZ", [marker], wz, failed)
+            value = rate2*(2.0_wp + dif1**2) - dy*wz + dif2
+        end if
+    end subroutine newton_difsub
 
     !> A 2 kg mass on a spring to ground (k = 8 N/m, omega = 2 rad/s) with a lag of its x,
     !> tau = 0.25 s: the linear model has 13 states (12 of the part, 1 of the DIFF), the

@@ -3,10 +3,11 @@
 !> written for the test (test/user_forces/, reading SYSFNC, SYSARY and TIMGET), run apart in a
 !> child process, against the same forces written as FUNCTION expressions and run here; a
 !> model with two files of routines (ROUTINE=FILE::SFOSUB); MOTSUBs against their MOTIONs
-!> written as expressions, on IDA and CVODE, and the start's check of their derivatives; the
-!> faults of the UCOSUB corpus planted in an SFOSUB, each a clean error naming the statement;
-!> and the refusals of a model whose user routine is missing or of a kind rollcon does not
-!> run.
+!> written as expressions, on IDA and CVODE, and the start's check of their derivatives; a
+!> DIFSUB (diff_lag.f, a first-order lag, explicit and IMPLICIT) against its closed form and
+!> its expression twin on CVODE and IDA, and a crash planted in it; the faults of the UCOSUB
+!> corpus planted in an SFOSUB, each a clean error naming the statement; and the refusals of a
+!> model whose user routine is missing or of a kind rollcon does not run.
 module test_user_forces
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type, fatal_error
@@ -59,6 +60,8 @@ contains
             & new_unittest("varsub-as-expression", test_varsub), &
             & new_unittest("varsub-returns-nan", test_varsub_nan), &
             & new_unittest("varsub-in-motion-gcon", test_varsub_refused), &
+            & new_unittest("difsub-lag-closed-form-and-twin", test_difsub), &
+            & new_unittest("difsub-crashes", test_difsub_crashes), &
             & new_unittest("utilities-as-expressions", test_utilities), &
             & new_unittest("data-utilities-as-expressions", test_data_utilities), &
             & new_unittest("c-sfosub-as-fortran", test_c_routine), &
@@ -200,13 +203,12 @@ contains
     !> DM through SYSFNC less PAR(3)) gives the rows of variable_expressions.adm (VARIABLE/3 =
     !> DM(20, 2) - 1) to twin_tolerance in every part coordinate and rate, and its column var3
     !> the twin's to varsub_tolerance. The equations are the same functions of the state; a
-    !> VARSUB's partials are not known and are zero where the Newton matrix takes an
-    !> expression's partials (a VARVAL jet is a constant), which may change the corrector's
-    !> iterations and so the step sequence, not what the integrator converges to: the rows may
-    !> differ by the integrators' global error (twin_tolerance, above). var3 is DM - 1 of the
-    !> same rows, so it differs by no more than the positions: varsub_tolerance =
-    !> twin_tolerance. (Measured: no difference, while a force statement's partials are not in
-    !> the Newton matrix.) A wrong free length (PAR(3) = 1.01) moves the rows by 0.086.
+    !> VARSUB's partials are differences where the expression's are exact (the force-partials
+    !> suite), which may change the corrector's iterations and so the step sequence, not what
+    !> the integrator converges to: the rows may differ by the integrators' global error
+    !> (twin_tolerance, above). var3 is DM - 1 of the same rows, so it differs by no more than
+    !> the positions: varsub_tolerance = twin_tolerance. A wrong free length (PAR(3) = 1.01)
+    !> moves the rows by 0.086.
     subroutine test_varsub(error)
         type(error_type), allocatable, intent(out) :: error
         real(wp), parameter :: varsub_tolerance = twin_tolerance
@@ -257,6 +259,112 @@ contains
             & "variable.adm:10: VARIABLE/3: its VARSUB of", "faulty/varsub_nan.f", &
             & "returned VALUE = NaN at TIME = 0.1", "a VARIABLE's value must be finite"], error)
     end subroutine test_varsub_nan
+
+    !> DIFF/3 (explicit) and DIFF/4 (IMPLICIT) served by diff_lag.f's DIFSUB, the lag of a
+    !> part moving at 1 m/s along x (X = t) with tau = 0.5 s: both are x = t - tau (1 -
+    !> e^(-t/tau)), x' = 1 - e^(-t/tau). On CVODE and on IDA, the columns diff3, diff3_dot,
+    !> diff4, diff4_dot against that closed form and against the expression twin (the diff-runs
+    !> suite's lag, FUNCTION = (DX(20) - DIF(3))/0.5 and 0.5*DIF1(4) - (DX(20) - DIF(4))).
+    !> At ERROR = 1e-10 over 2 s, measured from the closed form: 1.9e-9 (CVODE) and 1.0e-9
+    !> (IDA) for the states, twice that for the rates; tol = 1.5e-8 leaves a factor of 4 over
+    !> the larger (a tau 1 % off moves the state by 5e-3). From the twin: 0 and 4.4e-16 (the
+    !> routine's arithmetic is the expression's; its differenced partials, 4e-11 from the
+    !> exact ones, steer only the corrector's iterations): held to 1e-10, a tenth of the
+    !> integrators' own error, so a run that wandered within that error would fail.
+    subroutine test_difsub(error)
+        type(error_type), allocatable, intent(out) :: error
+        real(wp), parameter :: tol = 1.5e-8_wp, twin_tol = 1.0e-10_wp, tau = 0.5_wp
+        character(len=*), parameter :: formulations(2) = ["CVODE", "IDA  "]
+        character(len=*), parameter :: nl = new_line("a")
+        character(len=*), parameter :: mover = "lag" // nl // "PART/1, GROUND" // nl &
+            & // "MARKER/1, PART = 1" // nl // "PART/2, MASS = 1, CM = 20, IP = 1, 1, 1, " &
+            & // "VX = 1" // nl // "MARKER/20, PART = 2" // nl &
+            & // "ACCGRAV/IGRAV = 0, JGRAV = 0, KGRAV = 0" // nl
+        character(len=*), parameter :: users = "DIFF/3, FUNCTION = USER(20, 0.5, 0), IC = 0" &
+            & // nl // "DIFF/4, FUNCTION = USER(20, 0.5, 1), IC = 0, 1, IMPLICIT" // nl
+        character(len=*), parameter :: expressions = "DIFF/3, FUNCTION = (DX(20) - DIF(3))/0.5" &
+            & // ", IC = 0" // nl // "DIFF/4, FUNCTION = 0.5*DIF1(4) - (DX(20) - DIF(4)), " &
+            & // "IC = 0, 1, IMPLICIT" // nl
+        character(len=*), parameter :: names(4) = [character(len=9) :: "diff3", "diff3_dot", &
+            & "diff4", "diff4_dot"]
+        type(history_type) :: user, twin
+        type(job_type) :: job
+        type(job_result_type) :: ran
+        character(len=:), allocatable :: tail, path
+        real(wp) :: t, closed(4), worst(4), apart(4)
+        integer :: f, k, c, uc, ec
+
+        call make_folders(scratch, error)
+        if (allocated(error)) return
+        do f = 1, size(formulations)
+            tail = "INTEGRATOR/ERROR = 1e-10, FORMULATION = " // trim(formulations(f)) // nl &
+                & // "SIMULATE/DYNAMIC, END = 2, STEPS = 100" // nl // "END" // nl
+            path = scratch // "/difsub_" // trim(formulations(f)) // ".adm"
+            call write_text_file(path, mover // users // tail, error)
+            if (allocated(error)) return
+            call run_user(path, ["diff_lag.f"], 10.0_wp, user, error)
+            if (allocated(error)) return
+            path = scratch // "/difsub_" // trim(formulations(f)) // "_expressions.adm"
+            call write_text_file(path, mover // expressions // tail, error)
+            if (allocated(error)) return
+            call load_job(path, job, error)
+            if (allocated(error)) return
+            job%output_dir = ""
+            job%quiet = .true.
+            ! (a fresh history: run_job adds to the one it is given)
+            twin = history_type()
+            call run_job(job, ran, error, twin)
+            if (allocated(error)) return
+            call check(error, user%count == 101 .and. twin%count == 101, &
+                & trim(formulations(f)) // ": 101 rows each (" // to_text(user%count) // ", " &
+                & // to_text(twin%count) // ")")
+            if (allocated(error)) return
+            worst = 0.0_wp
+            apart = 0.0_wp
+            do c = 1, 4
+                uc = user%layout%column(trim(names(c)))
+                ec = twin%layout%column(trim(names(c)))
+                call check(error, uc > 0 .and. ec > 0, "column " // trim(names(c)))
+                if (allocated(error)) return
+                do k = 1, user%count
+                    t = user%rows(1, k)
+                    closed = [t - tau*(1.0_wp - exp(-t/tau)), 1.0_wp - exp(-t/tau), &
+                        & t - tau*(1.0_wp - exp(-t/tau)), 1.0_wp - exp(-t/tau)]
+                    worst(c) = max(worst(c), abs(user%rows(uc, k) - closed(c)))
+                    apart(c) = max(apart(c), abs(user%rows(uc, k) - twin%rows(ec, k)))
+                end do
+            end do
+            call check(error, all(worst <= tol) .and. all(apart <= twin_tol), &
+                & trim(formulations(f)) // ": the DIFSUB's columns from the closed form: " &
+                & // "explicit x " // to_text(worst(1)) // ", x' " // to_text(worst(2)) &
+                & // "; implicit x " // to_text(worst(3)) // ", x' " // to_text(worst(4)) &
+                & // "; from the expression twin: " // to_text(maxval(apart)))
+            if (allocated(error)) return
+        end do
+    end subroutine test_difsub
+
+    !> A crash planted in a DIFSUB (a write through a wild index after the initialisation
+    !> call): the clean error of an SFOSUB's crash, naming the DIFF and the routine's call.
+    subroutine test_difsub_crashes(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(history_type) :: history
+        type(error_type), allocatable :: run_error
+        character(len=*), parameter :: nl = new_line("a")
+        character(len=:), allocatable :: path
+
+        call make_folders(scratch, error)
+        if (allocated(error)) return
+        path = scratch // "/difsub_crash.adm"
+        call write_text_file(path, "lag" // nl // "PART/1, GROUND" // nl // "MARKER/1, " &
+            & // "PART = 1" // nl // "PART/2, MASS = 1, CM = 20, IP = 1, 1, 1, VX = 1" // nl &
+            & // "MARKER/20, PART = 2" // nl // "DIFF/3, FUNCTION = USER(20, 0.5), IC = 0" &
+            & // nl // "SIMULATE/DYNAMIC, END = 1, STEPS = 10" // nl // "END" // nl, error)
+        if (allocated(error)) return
+        call run_user(path, ["faulty/difsub_crashes.f"], 10.0_wp, history, run_error)
+        call expect_message(run_error, [character(len=50) :: &
+            & "DIFF/3: the process was killed by SIGSEGV", "inside DIFSUB call", &
+            & "IFLAG = .FALSE."], error)
+    end subroutine test_difsub_crashes
 
     !> A MOTION and a GCON reading a VARSUB's VARIABLE are refused, naming the statement and
     !> line (their derivatives are taken exactly; a VARSUB's are not known).

@@ -11,7 +11,9 @@
 !> test/user_forces/'s, through rollcon_user_forces' SYSFNC and SYSARY) give the Newton
 !> matrices of the same forces written as expressions, to the differences' error; a
 !> routine that reads a marker its initialisation call did not name is noted, and that
-!> partial left out.
+!> partial left out. A force reading VARVAL of a VARSUB written for the test has the Newton
+!> matrix of its twin reading an expression VARIABLE (the VARSUB's partials differenced over
+!> its declared markers' parts, one of them a part the force does not join).
 module test_force_partials
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type
@@ -24,7 +26,8 @@ module test_force_partials
     use rollcon_adm_build, only : build_adm_problem
     use rollcon_force_routine_contract, only : routine_sfosub, routine_gfosub
     use rollcon_user_forces, only : register_force_routine, clear_force_routines, &
-        & system_function, system_array, system_notes, clear_system_notes
+        & system_function, system_array, system_notes, clear_system_notes, &
+        & register_variable_routine
     use adm_datasets, only : read_dataset
     use newton_checks, only : check_ode_matrix, check_dae_matrix
     use rollcon_testing, only : unittest_type, new_unittest, check
@@ -110,7 +113,8 @@ contains
         tests = [new_unittest("expression-forces-ode-jacobian", test_ode), &
             & new_unittest("expression-forces-dae-jacobian-and-pattern", test_dae), &
             & new_unittest("user-routines-against-expressions", test_user_twins), &
-            & new_unittest("user-routine-undeclared-read", test_undeclared)]
+            & new_unittest("user-routine-undeclared-read", test_undeclared), &
+            & new_unittest("varsub-read-by-force-against-expression", test_varsub_twins)]
     end subroutine collect_force_partials
 
     !> A model built from a dataset's lines at its start (q0, u0).
@@ -270,6 +274,71 @@ contains
             & // "Newton matrix: " // to_text(left))
         call problem%release()
     end subroutine test_undeclared
+
+    !> SFORCE/2 of the twins reading VARVAL(3), VARIABLE/3 = DM(20, 2) - 1 + 0.2 DX(30) as an
+    !> expression and as stretch_varsub's VALUE (the same, through SYSFNC): the ODE Jacobians
+    !> agree to tol_user of the largest entry (the VARSUB's partials are differences of the
+    !> same step and error as a force routine's, above), including part 2's accelerations by
+    !> part 3's coordinates, which only the VARSUB's declared marker 30 brings in. With the
+    !> VARSUB's partials taken as zero its stiffness (1000 over a mass of 1) would be missing.
+    subroutine test_varsub_twins(error)
+        type(error_type), allocatable, intent(out) :: error
+        character(len=200), parameter :: spring(1) = [character(len=200) :: &
+            & "SFORCE/2, TRANSLATION, I = 20, J = 2, FUNCTION = -1000*VARVAL(3) - 10*VR(20, 2)"]
+        character(len=200), parameter :: expression(1) = [character(len=200) :: &
+            & "VARIABLE/3, FUNCTION = DM(20, 2) - 1 + 0.2*DX(30)"]
+        character(len=200), parameter :: user(1) = [character(len=200) :: &
+            & "VARIABLE/3, FUNCTION = USER(20, 2, 1, 30, 0.2)"]
+        type(problem_type), target :: expressions, users
+        real(wp), allocatable :: q0(:), u0(:), exact(:, :), differenced(:, :)
+        integer :: n, j
+
+        call clear_force_routines()
+        call register_variable_routine("", "test_force_partials", stretch_varsub)
+        call build([character(len=200) :: twin_head, expression, spring, tail], expressions, &
+            & q0, u0, error)
+        if (.not. allocated(error)) call ode_matrix(expressions, q0, u0, exact, error)
+        if (.not. allocated(error)) call build([character(len=200) :: twin_head, user, spring, &
+            & tail], users, q0, u0, error)
+        if (.not. allocated(error)) call ode_matrix(users, q0, u0, differenced, error)
+        call clear_force_routines()
+        if (allocated(error)) return
+        n = size(exact, 1)/2
+        ! part 2's translational accelerations by its position, and by part 3's x
+        call check(error, minval([maxval(abs(exact(n + 1:n + 3, 1:3))), &
+            & maxval(abs(differenced(n + 1:n + 3, 1:3)))]) > 100.0_wp, "the stiffness is in " &
+            & // "both matrices: " // to_text(maxval(abs(exact(n + 1:n + 3, 1:3)))) // ", " &
+            & // to_text(maxval(abs(differenced(n + 1:n + 3, 1:3)))))
+        if (allocated(error)) return
+        call check(error, maxval(abs(differenced(n + 1:n + 3, 7))) > 10.0_wp, "part 3's x " &
+            & // "moves part 2 through the VARSUB: " &
+            & // to_text(maxval(abs(differenced(n + 1:n + 3, 7)))))
+        if (allocated(error)) return
+        do j = 1, size(exact, 2)
+            call check(error, differenced(:, j), exact(:, j), "the VARSUB twin's ODE " &
+                & // "Jacobian, column " // to_text(j), abs_tol=tol_user*maxval(abs(exact)))
+            if (allocated(error)) return
+        end do
+        call expressions%release()
+        call users%release()
+    end subroutine test_varsub_twins
+
+    !> A VARSUB: DM(PAR(1), PAR(2)) - PAR(3) + PAR(5) DX(PAR(4)) (SYSFNC), ADAMS's calling
+    !> sequence (rollcon_system_routine_contract).
+    subroutine stretch_varsub(id, time, par, npar, dflag, iflag, value)
+        integer, intent(in) :: id
+        real(wp), intent(in) :: time
+        real(wp), intent(in) :: par(*)
+        integer, intent(in) :: npar
+        logical, intent(in) :: dflag, iflag
+        real(wp), intent(inout) :: value
+        real(wp) :: dm, dx
+        logical :: failed
+
+        call system_function("DM", [nint(par(1)), nint(par(2))], dm, failed)
+        call system_function("DX", [nint(par(4))], dx, failed)
+        value = dm - par(3) + par(5)*dx
+    end subroutine stretch_varsub
 
     !> The ODE Jacobians of the expression twin and the user twin at their start.
     subroutine twin_matrices(exact, differenced, error)
