@@ -80,8 +80,8 @@ contains
     end subroutine check_command
 
     !> `check FILE --model MODEL.adm [--ucosub MORE]...` for a dataset whose force, variable,
-    !> request or motion statements FILE's (and MORE's) routines serve (rollcon_user_routine_check): the findings, a line each; status 1
-    !> when there are some.
+    !> request, motion or DIFF statements FILE's (and MORE's) routines serve
+    !> (rollcon_user_routine_check): the findings, a line each; status 1 when there are some.
     subroutine check_routines(request, status, error)
         type(cli_request_type), intent(in) :: request
         integer, intent(out) :: status
@@ -187,10 +187,10 @@ contains
             & "                 number per comma-separated field, at most 30 PAR)", &
             & "  --model MODEL.adm  every UCON of an ADAMS dataset that names no ROUTINE (those", &
             & "                 the model's own UCOSUB serves), with its id and PAR; and every", &
-            & "                 SFORCE, VFORCE, GFORCE, VTORQUE, VARIABLE, REQUEST or MOTION", &
-            & "                 with FUNCTION=USER(...) at the start and 20 states about it:", &
-            & "                 hidden state, NaN, jumps, SYSFNC/SYSARY reads not declared,", &
-            & "                 typing", &
+            & "                 SFORCE, VFORCE, GFORCE, VTORQUE, VARIABLE, REQUEST, MOTION or", &
+            & "                 DIFF with FUNCTION=USER(...) at the start and 20 states about", &
+            & "                 it: hidden state, NaN, jumps, SYSFNC/SYSARY reads not", &
+            & "                 declared, typing", &
             & "  --ucosub MORE  with --model: another file of the model's routines (those its", &
             & "                 statements name as ROUTINE=MORE::NAME), as rollcon run takes", &
             & "                 it; repeat for each", &

@@ -35,7 +35,7 @@ module rollcon_user_routine_check
     use rollcon_user_forces, only : evaluate_user_forces, &
         & take_user_force_error, system_notes, clear_system_notes, force_routine_label, &
         & call_user_request, evaluate_user_variable, user_variable_list, user_variable_type, &
-        & user_motion_list, user_motion_type, call_user_motion
+        & user_motion_list, user_motion_type, call_user_motion, call_diff_routine
     use rollcon_user_variable_values, only : user_variable_value
     use rollcon_request_answers, only : request_answer_watch_type, answer_user
     use rollcon_child_process, only : isolated_task_type, stream_receiver_type, &
@@ -140,7 +140,8 @@ contains
             & checked_kind_type("RESULT", user_requests_in, request_count, request_label, &
             & request_values), &
             & checked_kind_type("VALUE", user_motions_in, motion_count, &
-            & motion_label, motion_values)]
+            & motion_label, motion_values), &
+            & checked_kind_type("VALUE", user_diffs_in, diff_count, diff_label, diff_values)]
     end function checked_kinds
 
     !> True when the dataset at path has a statement served by a user's routine of a kind
@@ -593,6 +594,53 @@ contains
         call call_user_motion(list(k)%id, time, q, u, [0, 1, 2], orders, error)
         values = orders(0:2)
     end subroutine motion_values
+
+    !> A DIFF with FUNCTION=USER(...) in the dataset.
+    logical function user_diffs_in(adm) result(has)
+        type(adm_model_type), intent(in) :: adm
+
+        has = .false.
+        if (allocated(adm%diffs)) has = any(adm%diffs%user)
+    end function user_diffs_in
+
+    !> The model's DIFFs (those a DIFSUB serves are labelled).
+    integer function diff_count(problem) result(n)
+        type(problem_type), intent(in), target :: problem
+
+        n = problem%model%diffs%count()
+    end function diff_count
+
+    !> "DIFF/3 (line 12), its DIFSUB of f.f"; "" for a DIFF of an expression.
+    function diff_label(problem, k) result(label)
+        type(problem_type), intent(in), target :: problem
+        integer, intent(in) :: k
+        character(len=:), allocatable :: label
+
+        label = ""
+        associate (diff => problem%model%diffs%diffs(k))
+            if (diff%routine /= 0) label = diff%name // ", its " &
+                & // force_routine_label(diff%routine)
+        end associate
+    end function diff_label
+
+    !> The DIFF's VALUE as its DIFSUB gives it (a rate per the dataset's time unit, or an
+    !> IMPLICIT DIFF's residual), the DIFFs' own state held at the start's (DIF at the ICs).
+    subroutine diff_values(problem, k, time, q, u, values, error)
+        type(problem_type), intent(inout), target :: problem
+        integer, intent(in) :: k
+        real(wp), intent(in) :: time, q(:), u(:)
+        real(wp), allocatable, intent(out) :: values(:)
+        type(error_type), allocatable, intent(out) :: error
+        real(wp) :: value
+        logical :: failed
+
+        associate (set => problem%model%diffs, diff => problem%model%diffs%diffs(k))
+            call call_diff_routine(diff%routine, diff%id, diff%name, diff%par, set%time_unit, &
+                & time, q, u, set%ids, set%x, set%w, .false., diff%declaration, value, failed)
+        end associate
+        values = [value]
+        call take_user_force_error(error)
+    end subroutine diff_values
 
     !> A REQUEST with FUNCTION=USER(...) in the dataset.
     logical function user_requests_in(adm) result(has)

@@ -51,7 +51,8 @@ contains
             & new_unittest("reqsub-undeclared-sysary", test_reqsub_undeclared), &
             & new_unittest("varsub-implicit-typing", test_varsub_typing), &
             & new_unittest("two-files-checked", test_two_files), &
-            & new_unittest("motsub-checked", test_motsub)]
+            & new_unittest("motsub-checked", test_motsub), &
+            & new_unittest("difsub-checked", test_difsub)]
     end subroutine collect_user_routine_check
 
     !> variable_stretch.f on variable.adm (declared types, no state, smooth, its SYSFNC call
@@ -306,6 +307,41 @@ contains
             & == count .and. count_of(findings, "MOTION/1, its MOTSUB") == count, &
             & to_text(count) // " findings: " // findings)
     end subroutine test_motsub
+
+    !> The user-forces suite's lag (a part moving along x at 1 m/s, DIFF/3 explicit and DIFF/4
+    !> IMPLICIT served by diff_lag.f's DIFSUB, reading DX, DIF and DIF1) is clean; an explicit
+    !> DIFF/3 served by a DIFSUB whose SAVEd counter moves its rate by 1e-3 at each call is
+    !> [hidden state] at every state, naming DIFF/3 (line 7).
+    subroutine test_difsub(error)
+        type(error_type), allocatable, intent(out) :: error
+        character(len=*), parameter :: nl = new_line("a")
+        character(len=*), parameter :: mover = "lag" // nl // "PART/1, GROUND" // nl &
+            & // "MARKER/1, PART = 1" // nl // "PART/2, MASS = 1, CM = 20, IP = 1, 1, 1, " &
+            & // "VX = 1" // nl // "MARKER/20, PART = 2" // nl &
+            & // "ACCGRAV/IGRAV = 0, JGRAV = 0, KGRAV = 0" // nl
+        character(len=*), parameter :: tail = "SIMULATE/DYNAMIC, END = 2, STEPS = 100" // nl &
+            & // "END" // nl
+        character(len=:), allocatable :: findings, path
+        integer :: count
+
+        call make_folders(scratch, error)
+        if (allocated(error)) return
+        path = scratch // "/difsub_lag.adm"
+        call write_text_file(path, mover // "DIFF/3, FUNCTION = USER(20, 0.5, 0), IC = 0" // nl &
+            & // "DIFF/4, FUNCTION = USER(20, 0.5, 1), IC = 0, 1, IMPLICIT" // nl // tail, error)
+        if (allocated(error)) return
+        call expect_clean(folder // "diff_lag.f", path, error)
+        if (allocated(error)) return
+        path = scratch // "/difsub_hidden.adm"
+        call write_text_file(path, mover // "DIFF/3, FUNCTION = USER(20, 0.5), IC = 0" // nl &
+            & // tail, error)
+        if (allocated(error)) return
+        call check_file(folder // "checked/difsub_hidden.f", path, findings, count, error)
+        if (allocated(error)) return
+        call check(error, count == every_state .and. count_of(findings, "[hidden state]") &
+            & == count .and. count_of(findings, "DIFF/3 (line 7), its DIFSUB") == count, &
+            & to_text(count) // " findings: " // findings)
+    end subroutine test_difsub
 
     !> check_user_routines of file (and more files) on model, the tests' cache, seed 1, a
     !> call's limit 10 s.
