@@ -370,7 +370,8 @@ contains
             & "compared with the cheapest reduced run within it, and (outside --quick) so is", &
             & "the whole 'rollcon run' of its setting as a child. Each row splits its CPU time", &
             & "into right-hand sides (or residuals), event functions, output rows (counts times", &
-            & "unit costs measured in the same run) and SUNDIALS' remainder. Outside --quick, the", &
+            & "unit costs measured in the same run) and SUNDIALS' remainder. " &
+            & // "Outside --quick, the", &
             & "whole process 'rollcon run SCENE' is timed as a child (DIR/bench_process.csv).", &
             & "Writes DIR/bench.csv and DIR/bench_<scene>.png (gnuplot); DIR defaults to output.", &
             & "The first line names the machine and the SUNDIALS build measured (the library", &

@@ -107,7 +107,8 @@ contains
             & // " speeds from " // to_text(grid(1)) // " to " &
             & // to_text(grid(2)) // " m/s (every velocity of the start scaled), " &
             & // trim(int_text(size(table%real_part, 1))) // " after " &
-            & // trim(int_text(count(table%struck) + table%deflations)) // " structural zeros taken out"
+            & // trim(int_text(count(table%struck) + table%deflations)) &
+            & // " structural zeros taken out"
         if (size(changes) == 0) write(output_unit, '(a)') "stability does not change in that range"
         do k = 1, size(changes)
             write(output_unit, '(a)') "stability changes at " // fixed_text(changes(k)%speed, 6) &
@@ -143,7 +144,8 @@ contains
             & "rolling, or an equilibrium), linearised on its constraint manifold in independent", &
             & "coordinates and speeds (no eigenvalues from the constraint rows or Baumgarte", &
             & "terms). Prints every eigenvalue [1/s], by decreasing real part, with its undamped", &
-            & "natural frequency |lambda|/(2 pi) and damped frequency |Im lambda|/(2 pi) [Hz] and", &
+            & "natural frequency |lambda|/(2 pi) and damped frequency " &
+            & // "|Im lambda|/(2 pi) [Hz] and", &
             & "its damping ratio -Re lambda/|lambda|, and writes DIR/MODEL.eigen.csv (MODEL the", &
             & "file name without .adm; DIR defaults to ./output): # lines with the record, then", &
             & "the columns real,imag [1/s], one row per eigenvalue. See docs/linear.md.", &

@@ -7,7 +7,8 @@ module rollcon_text
     implicit none
     private
 
-    public :: to_text, fixed_text, single_quoted, shell_quote, lower_case, upper_case, unquoted, comma_list
+    public :: to_text, fixed_text, single_quoted, shell_quote, lower_case, upper_case, unquoted
+    public :: comma_list
     public :: place
 
     !> Decimal text of an integer or a real

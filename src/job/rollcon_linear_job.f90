@@ -114,7 +114,8 @@ contains
         text = comment_lines(provenance_lines(job)) // "# eigenvalues [1/s] of the " &
             & // "linearisation on the constraint manifold against the speed [m/s] of the " &
             & // "first moving part (every velocity of the start scaled), the structural " &
-            & // "zeros taken out (" // to_text(count(table%struck) + table%deflations) // "), by decreasing " &
+            & // "zeros taken out (" // to_text(count(table%struck) + table%deflations) &
+            & // "), by decreasing " &
             & // "real part (docs/linear.md)" // new_line("a")
         do k = 1, size(changes)
             write(number, '(es24.16e3)') changes(k)%speed
@@ -230,7 +231,8 @@ contains
         call make_folders(job%output_dir, error)
         if (allocated(error)) return
         partial = partial_name(job%output_dir, eigen_stem(job), ".eigen.csv")
-        text = comment_lines(provenance_lines(job)) // "# eigenvalues [1/s] of the linearisation on the constraint manifold at " &
+        text = comment_lines(provenance_lines(job)) // "# eigenvalues [1/s] of the " &
+            & // "linearisation on the constraint manifold at " &
             & // "t = 0 s (docs/linear.md), by decreasing real part" // new_line("a") &
             & // eigen_csv_rows(result)
         call write_text_file(partial, text(:len(text) - 1), error)

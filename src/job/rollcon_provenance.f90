@@ -20,7 +20,8 @@ contains
     !>     rollcon 0.2.0, 2026-11-26 04:45:12 +0000: rollcon run data/coin.nml
     !>     the model's UCOSUB: disk (built in)
     !> (the second: "none (every UCON names its ROUTINE)" for a model whose every UCON has its
-    !> own routine, "none (the model has no UCON)" for one with no UCON, and a user's file with its size and hash), then a line "more user routines:
+    !> own routine, "none (the model has no UCON)" for one with no UCON, and a user's file with its
+    !> size and hash), then a line "more user routines:
     !> FILE (its size and hash)" for each more file of the job (rollcon_load's add_user_file)
     function provenance_lines(job) result(text)
         type(job_type), intent(in) :: job

@@ -289,7 +289,8 @@ contains
         if (idrsel(3) /= xmatrx_none) finite = finite .and. &
             & all(ieee_is_finite(xmatrx(:nvars, :nvars)))
         if (.not. finite) then
-            call ucon_error(error, id, "F = " // gcon%expression%text // " or its partials are not finite at t = " &
+            call ucon_error(error, id, "F = " // gcon%expression%text &
+                & // " or its partials are not finite at t = " &
                 & // to_text(time) // " s with IDRSEL = (" // to_text(idrsel(1)) // ", " &
                 & // to_text(idrsel(2)) // ", " // to_text(idrsel(3)) // "): a function " &
                 & // "outside its domain, or a measure where it has no derivative (a distance " &

@@ -4,8 +4,8 @@
 !> velocity, 3-1-3 angles of its axes), from ground in ground axes (docs/datasets-model.md).
 !>
 !> A marker on a part is fixed in the part's principal axes at its centre of mass (the CM
-!> marker's frame), so it moves with the part's coordinates q(6 (p - 1) + 1 : 6 p) (docs/design.md §3);
-!> a ground marker (part 0) is fixed in ground.
+!> marker's frame), so it moves with the part's coordinates q(6 (p - 1) + 1 : 6 p) (docs/design.md
+!> §3); a ground marker (part 0) is fixed in ground.
 module rollcon_marker
     use rollcon_kinds, only : wp
     use rollcon_rotation, only : rotation_matrix, times, cross, euler_angles

@@ -406,7 +406,8 @@ contains
     end subroutine add_element
 
     !> Count the whole turns of every AX, AY, AZ the model's expressions read (its force
-    !> statements' and GCONs') and of its rotational SPRINGDAMPERs' angles at (q, u): rollcon_measures' count_turns. A run makes it at its
+    !> statements' and GCONs') and of its rotational SPRINGDAMPERs' angles at (q, u):
+    !> rollcon_measures' count_turns. A run makes it at its
     !> start (restart true: each angle on its branch in (-pi, pi]) and at every output row.
     pure subroutine count_model_turns(self, q, u, restart)
         class(model_type), intent(inout) :: self

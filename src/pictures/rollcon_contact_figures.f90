@@ -28,7 +28,8 @@ module rollcon_contact_figures
 
 contains
 
-    !> The data the figures need, one row per output row (thinned: rollcon_figure_rows): t, X, Y, contact x, y, theta, psidot,
+    !> The data the figures need, one row per output row (thinned: rollcon_figure_rows): t, X, Y,
+    !> contact x, y, theta, psidot,
     !> phidot, |E - E(t0)|/|E(t0)|, |E - E(t_end)|/|E(t_end)|, normal and tangential force,
     !> mu_needed, then |F_k| for each UCON and |height_residual| (at least residual_floor).
     subroutine write_contact_data(path, run, error)

@@ -23,7 +23,8 @@ module rollcon_study_map
     !> Points of the critical speed curve across the range of the x parameter
     integer, parameter, public :: curve_points = 200
     !> Title of the critical speed curve in the key
-    character(len=*), parameter, public :: curve_title = "analytic critical speed v_c of straight rolling"
+    character(len=*), parameter, public :: curve_title = &
+        & "analytic critical speed v_c of straight rolling"
     !> Colours of the rules' classes in rule order (again from the first past the last), of
     !> the class of cases no rule fits, of failed and of refused cases
     character(len=*), parameter :: rule_colours(7) = [character(len=7) :: "#d62728", &

@@ -3,7 +3,8 @@
 !> integrates: y = (q, u, x), y' = (u, a, w/T) with a the accelerations of the saddle-point
 !> system at (t, q, u) (rollcon_equations, with the settings' drift control), x the DIFFs'
 !> states and w their rates (rollcon_diff's solve_rates; T the dataset's time unit [s]); the
-!> Newton matrix from the UCOSUBs' partials and the DIFFs' exact partials; the mass-weighted projection onto the constraints when the settings ask
+!> Newton matrix from the UCOSUBs' partials and the DIFFs' exact partials; the mass-weighted
+!> projection onto the constraints when the settings ask
 !> for it; the watches' event functions, given the accelerations CVODE interpolates when they
 !> use them.
 module rollcon_ode_form

@@ -98,7 +98,8 @@ contains
 
     !> A part that a disk routine holds on the ground (a UCON that names rolling_disk,
     !> disk_height or the hand-checked disk as its ROUTINE, whose PAR holds the radius R after
-    !> the codes, in the model's length unit; a UCON served by the model's UCOSUB may be any) is drawn as a disk of that radius about its body z axis (the
+    !> the codes, in the model's length unit; a UCON served by the model's UCOSUB may be any) is
+    !> drawn as a disk of that radius about its body z axis (the
     !> routines' axle): its thickness that of a uniform disk with the part's mass and moment A
     !> about a diameter, h^2 = 12 A/m - 3 R^2, at most R/10 (a wheel's moments are a rim's,
     !> not a uniform disk's) and 0 when the moments give none.

@@ -31,8 +31,8 @@ module rollcon_adm_abbreviations
 
     !> The table (docs/datasets.md repeats it)
     type(place_type), parameter :: table(*) = [ &
-        & place_type("statement", "ACcgrav ARray COUpler DIff END GCon GEar GForce INtegrator JOint " &
-        & // "JPrim " &
+        & place_type("statement", "ACcgrav ARray COUpler DIff END GCon GEar GForce INtegrator " &
+        & // "JOint JPrim " &
         & // "MARker MOtion Output BUshing SPRingdamper VTorque " &
         & // "PArt PInput POUtput SForce SImulate SPLine STring UCon UNits VAriable VForce DEbug " &
         & // "EQuilibrium GRaphics IC " &

@@ -366,7 +366,8 @@ contains
         if (allocated(error)) return
         if (any(force%kind == [force_sforce, force_springdamper, force_bushing]) &
             & .and. force%j == 0) then
-            call fatal_error(error, where // " J: " // trim(merge("an", "a ", force%kind == force_sforce)) // " " // name &
+            call fatal_error(error, where // " J: " &
+                & // trim(merge("an", "a ", force%kind == force_sforce)) // " " // name &
                 & // " acts between I and J (J=id)", stat_input)
             return
         end if

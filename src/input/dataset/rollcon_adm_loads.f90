@@ -402,7 +402,8 @@ contains
                 & // "LENGTH and FORCE (KT, CT, ANGLE and TORQUE are a ROTATIONAL one's)", &
                 & stat_input)
         else if (.not. force%translation .and. len(translational_at) > 0) then
-            call fatal_error(error, translational_at // ": a ROTATIONAL SPRINGDAMPER takes KT, CT, " &
+            call fatal_error(error, translational_at &
+                & // ": a ROTATIONAL SPRINGDAMPER takes KT, CT, " &
                 & // "ANGLE and TORQUE (K, C, LENGTH and FORCE are a TRANSLATIONAL one's)", &
                 & stat_input)
         end if

@@ -60,7 +60,8 @@ module rollcon_adm_model
         !> Part frame in ground: origin [m] and 3-1-3 Euler angles [rad]
         real(wp) :: qg(3) = 0.0_wp, reuler(3) = 0.0_wp
         !> Initial velocity of the CM marker, ground axes [m/s], and angular velocity, CM
-        !> marker axes (ADAMS's WX, WY, WZ; not the principal axes) [rad/s]; only the components given (the rest are left to the model)
+        !> marker axes (ADAMS's WX, WY, WZ; not the principal axes) [rad/s]; only the components
+        !> given (the rest are left to the model)
         real(wp) :: velocity(3) = 0.0_wp, angular_velocity(3) = 0.0_wp
         logical :: velocity_given(3) = .false., angular_velocity_given(3) = .false.
         !> EXACT=X:Y:Z:PSI:THETA:PHI: the principal axes' coordinates the initial-conditions

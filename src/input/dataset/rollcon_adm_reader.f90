@@ -474,8 +474,8 @@ contains
 
         needs_id = any(name == [character(len=12) :: "PART", "MARKER", "UCON", "SFORCE", &
             & "VFORCE", "GFORCE", "JOINT", "JPRIM", "GCON", "COUPLER", "GEAR", "MOTION", &
-            & "VTORQUE", "SPRINGDAMPER", "BUSHING", "VARIABLE", "SPLINE", "PINPUT", "POUTPUT", "DIFF", &
-            & "STRING", "ARRAY"]) &
+            & "VTORQUE", "SPRINGDAMPER", "BUSHING", "VARIABLE", "SPLINE", "PINPUT", "POUTPUT", &
+            & "DIFF", "STRING", "ARRAY"]) &
             & .or. output_needs_id(name)
     end function needs_id
 

@@ -264,7 +264,8 @@ contains
             & "with --ucosub turntable_ball: exit status " // to_text(status_hinted))
     end subroutine test_forgotten_ucosub
 
-    !> `run MODEL.adm --ucosub FILE` checks the routine at the consistent start first: test/turntable/turntable.adm (a
+    !> `run MODEL.adm --ucosub FILE` checks the routine at the consistent start first:
+    !> test/turntable/turntable.adm (a
     !> puck carried round at 3.5 rad/s by two velocity UCONs) with its right routine runs with
     !> nothing on stderr and ends, one turn later, where X = 0.1 cos(W t), Y = 0.1 sin(W t)
     !> put it, (0.1, 0) m: measured 2.2e-8 m off at rtol 1e-8 (the dataset's default), so

@@ -326,8 +326,8 @@ contains
     subroutine test_marker_acceleration(error)
         type(error_type), allocatable, intent(out) :: error
         !> Central differences of step 1e-5: truncation h^2/6 times third derivatives of order
-        !> 10 (~2e-10) and rounding 1e-16/1e-5 = 1e-11 (measured 7e-10, falling as h^2: 7e-8 at h = 1e-4); a missing term of the
-        !> formulas is of order 1
+        !> 10 (~2e-10) and rounding 1e-16/1e-5 = 1e-11 (measured 7e-10, falling as h^2: 7e-8 at h =
+        !> 1e-4); a missing term of the formulas is of order 1
         real(wp), parameter :: h = 1.0e-5_wp, tol_difference = 2.0e-9_wp
         !> The spin: rounding
         real(wp), parameter :: tol_spin = 1.0e-13_wp

@@ -128,8 +128,8 @@ contains
             & // new_line("a") .and. index(summary, "warning: " // warning // new_line("a")) &
             & > 0 .and. index(summary, "status: completed at t = 0.5 s") > 0, "exit status " &
             & // to_text(status) // "; stderr: " // stderr // "; summary: " // summary)
-        if (.not. allocated(error)) call read_output_csv(scratch // "/out/outputs.adm.csv", layout, &
-            & rows, error)
+        if (.not. allocated(error)) call read_output_csv(scratch // "/out/outputs.adm.csv", &
+            & layout, rows, error)
         call remove_folder(scratch)
         if (allocated(error)) return
         call check(error, rows%count == 11 .and. layout%column("req1_x") > 0 .and. &
@@ -341,7 +341,8 @@ contains
         call check(error, status_run == 0 .and. status_plot == 0 .and. line_count(stderr) == 1 &
             & .and. index(stderr, "rollcon: warning: " // path // ": read and checked but not " &
             & // "used: GRAPHICS (line ") == 1 .and. index(summary, "status: completed at t = " &
-            & // "10 s") > 0 .and. file_exists(scratch // "/out/coin.adm_path.png"), "exit statuses " &
+            & // "10 s") > 0 .and. file_exists(scratch // "/out/coin.adm_path.png"), &
+            & "exit statuses " &
             & // to_text(status_run) // ", " // to_text(status_plot) // "; stderr: " // stderr &
             & // file_text(scratch // "/plot.err") // "; summary: " // summary)
         if (.not. allocated(error)) call read_output_csv(scratch // "/out/coin.adm.csv", layout, &

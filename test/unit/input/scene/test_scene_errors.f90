@@ -160,7 +160,8 @@ contains
         if (allocated(error)) return
         call expect_input_error(error, "type_string", [character(len=width) :: &
             & "&run formulation = ida /"], [character(len=width) :: &
-            & "@:1: 'formulation' in &run must be 'ida', 'cvode' or 'maggi' (a quoted string), got ida"])
+            & "@:1: 'formulation' in &run must be 'ida', 'cvode' or 'maggi' (a quoted string), " &
+            & // "got ida"])
         if (allocated(error)) return
         call expect_input_error(error, "two_values", [character(len=width) :: &
             & "&disk radius = 0.1 0.2 /"], [character(len=width) :: &
@@ -241,7 +242,8 @@ contains
 
         call expect_input_error(error, "choice", [character(len=width) :: &
             & "&run", "  formulation = 'RK4'", "/"], [character(len=width) :: &
-            & "@:2: 'formulation' in &run must be 'ida', 'cvode' or 'maggi' (a quoted string), got 'RK4'"])
+            & "@:2: 'formulation' in &run must be 'ida', 'cvode' or 'maggi' (a quoted string), " &
+            & // "got 'RK4'"])
         if (allocated(error)) return
         call expect_input_error(error, "choice_drift", [character(len=width) :: &
             & "&run formulation = 'cvode', drift = 'stabilise' /"], [character(len=width) :: &
