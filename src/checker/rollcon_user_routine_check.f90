@@ -21,7 +21,7 @@
 module rollcon_user_routine_check
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type, stat_ucon
-    use rollcon_text, only : to_text, shell_quote, upper_case
+    use rollcon_text, only : to_text, shell_quote, upper_case, number_list
     use rollcon_adm_model, only : adm_model_type, request_user
     use rollcon_adm_reader, only : read_adm
     use rollcon_job, only : job_type, user_file_type
@@ -390,8 +390,8 @@ contains
                 if (s == 0) start = first
                 if (any(first /= second)) then
                     call finding("[hidden state] " // where // ": the same inputs gave " &
-                        & // trim(row%output) // " " // numbers(first) // " and then " &
-                        & // numbers(second))
+                        & // trim(row%output) // " (" // number_list(first) // ") and then (" &
+                        & // number_list(second) // ")")
                 else if (s > 0) then
                     call continuity(row, k, s, start, first, where)
                 end if
@@ -436,9 +436,9 @@ contains
             if (changes(halvings) <= jump_fraction*scale) return
             if (changes(halvings) <= 0.5_wp*changes(halvings - jump_lag)) return
             call finding("[jump] " // where // ": on the way from the start to this state, " &
-                & // trim(row%output) // " jumps from " // numbers(low) // " to " &
-                & // numbers(high) // " at " // to_text(a) // " of the way, across a step of " &
-                & // "1e-12 of it (a discontinuity the integrator cannot step over)")
+                & // trim(row%output) // " jumps from (" // number_list(low) // ") to (" &
+                & // number_list(high) // ") at " // to_text(a) // " of the way, across a step " &
+                & // "of 1e-12 of it (a discontinuity the integrator cannot step over)")
         end subroutine continuity
 
         !> What the utilities noted in the calls at a state (a marker or a rate its
@@ -727,19 +727,6 @@ contains
         if (index(text, ", ") == 1) text = text(3:)
     end function failure_text
 
-    !> "(1.5, -2)" of values.
-    function numbers(values) result(text)
-        real(wp), intent(in) :: values(:)
-        character(len=:), allocatable :: text
-        integer :: k
-
-        text = "("
-        do k = 1, size(values)
-            if (k > 1) text = text // ", "
-            text = text // to_text(values(k))
-        end do
-        text = text // ")"
-    end function numbers
 
     !> Bytes from the child: each finding a line.
     subroutine receive(self, bytes)

@@ -8,7 +8,7 @@ module rollcon_text
     private
 
     public :: to_text, fixed_text, single_quoted, shell_quote, lower_case, upper_case, unquoted
-    public :: comma_list
+    public :: comma_list, number_list
     public :: place
 
     !> Decimal text of an integer or a real
@@ -198,6 +198,19 @@ contains
             text = text // trim(words(k))
         end do
     end function comma_list
+
+    !> The numbers as to_text writes them, separated by ", " (for messages that quote values).
+    function number_list(values) result(text)
+        real(wp), intent(in) :: values(:)
+        character(len=:), allocatable :: text
+        integer :: k
+
+        text = ""
+        do k = 1, size(values)
+            if (k > 1) text = text // ", "
+            text = text // to_text(values(k))
+        end do
+    end function number_list
 
     !> Where a statement of an input file stands, as messages begin: "data/coin.adm:12".
     pure function place(path, line) result(text)

@@ -32,7 +32,7 @@
 module rollcon_user_forces
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type, fatal_error, stat_ucon, stat_input
-    use rollcon_text, only : to_text, upper_case
+    use rollcon_text, only : to_text, upper_case, number_list
     use rollcon_force_routine_contract, only : force_routine_interface, routine_names, &
         & routine_results, routine_kinds, routine_statements, routine_vtosub
     use rollcon_system_routine_contract, only : request_routine_interface, routine_reqsub, &
@@ -187,13 +187,23 @@ contains
         procedure(force_routine_interface) :: routine
         type(routine_entry_type) :: entry
 
+        entry%routine => routine
+        call append_entry(entry, kind, name, source)
+    end subroutine register_force_routine
+
+    !> Append entry (its routine pointer set) to the table as a routine of kind, under name
+    !> ("" for the model's own), built from the file source.
+    subroutine append_entry(entry, kind, name, source)
+        type(routine_entry_type), intent(inout) :: entry
+        integer, intent(in) :: kind
+        character(len=*), intent(in) :: name, source
+
         if (.not. allocated(table)) allocate(table(0))
         entry%kind = kind
         entry%name = name
         entry%source = source
-        entry%routine => routine
         table = [table, entry]
-    end subroutine register_force_routine
+    end subroutine append_entry
 
     !> Add a REQSUB to the table (kind routine_reqsub), under name ("" for the model's own).
     subroutine register_request_routine(name, source, routine)
@@ -203,12 +213,8 @@ contains
         procedure(request_routine_interface) :: routine
         type(routine_entry_type) :: entry
 
-        if (.not. allocated(table)) allocate(table(0))
-        entry%kind = routine_reqsub
-        entry%name = name
-        entry%source = source
         entry%request => routine
-        table = [table, entry]
+        call append_entry(entry, routine_reqsub, name, source)
     end subroutine register_request_routine
 
     !> Add a VARSUB to the table (kind routine_varsub), under name ("" for the model's own).
@@ -219,12 +225,8 @@ contains
         procedure(variable_routine_interface) :: routine
         type(routine_entry_type) :: entry
 
-        if (.not. allocated(table)) allocate(table(0))
-        entry%kind = routine_varsub
-        entry%name = name
-        entry%source = source
         entry%variable => routine
-        table = [table, entry]
+        call append_entry(entry, routine_varsub, name, source)
     end subroutine register_variable_routine
 
     !> Add a DIFSUB to the table (kind routine_difsub), under name ("" for the model's own); it
@@ -236,12 +238,8 @@ contains
         procedure(variable_routine_interface) :: routine
         type(routine_entry_type) :: entry
 
-        if (.not. allocated(table)) allocate(table(0))
-        entry%kind = routine_difsub
-        entry%name = name
-        entry%source = source
         entry%variable => routine
-        table = [table, entry]
+        call append_entry(entry, routine_difsub, name, source)
     end subroutine register_diff_routine
 
     !> The VARSUB (or DIFSUB) of entry, for a guard that calls it.
@@ -614,12 +612,8 @@ contains
         procedure(motion_routine_interface) :: routine
         type(routine_entry_type) :: entry
 
-        if (.not. allocated(table)) allocate(table(0))
-        entry%kind = routine_motsub
-        entry%name = name
-        entry%source = source
         entry%motion => routine
-        table = [table, entry]
+        call append_entry(entry, routine_motsub, name, source)
     end subroutine register_motion_routine
 
     !> The MOTSUB of entry, for a guard that calls it.
@@ -969,7 +963,7 @@ contains
         allowed_rates = .true.
         if (.not. all(ieee_is_finite(result))) then
             call fatal_error(error, name // ": its " // label // " returned RESULT = (" &
-                & // numbers(result) // ") at TIME = " // to_text(time/time_unit) &
+                & // number_list(result) // ") at TIME = " // to_text(time/time_unit) &
                 & // ": a request's values must be finite", stat_ucon)
         else
             call request_problem("the call", error)
@@ -1169,7 +1163,8 @@ contains
                 if (.not. all(ieee_is_finite(result(:n)))) then
                     call fatal_error(error, forces(i)%name // ": its " &
                         & // force_routine_label(s%routine) // " returned RESULT = (" &
-                        & // numbers(result(:n)) // ") at TIME = " // to_text(time/s%time_unit) &
+                        & // number_list(result(:n)) // ") at TIME = " &
+                        & // to_text(time/s%time_unit) &
                         & // ": a force must be finite", stat_ucon)
                 else
                     call after_call(forces(i), "the call", time, error)
@@ -1218,7 +1213,7 @@ contains
             if (failed) then
                 call fatal_error(error, force%name // ": its " &
                     & // force_routine_label(s%routine) // " returned RESULT = (" &
-                    & // numbers(result(:n)) // ") in a call with DFLAG = .TRUE. at TIME = " &
+                    & // number_list(result(:n)) // ") in a call with DFLAG = .TRUE. at TIME = " &
                     & // to_text(time/s%time_unit) // ": a force must be finite", stat_ucon)
             else
                 call after_call(force, "a call with DFLAG = .TRUE.", time, error)
@@ -1560,17 +1555,5 @@ contains
         notes = notes // text // new_line("a")
     end subroutine add_note
 
-    !> "1.5, -2" of values.
-    function numbers(values) result(text)
-        real(wp), intent(in) :: values(:)
-        character(len=:), allocatable :: text
-        integer :: k
-
-        text = ""
-        do k = 1, size(values)
-            if (k > 1) text = text // ", "
-            text = text // to_text(values(k))
-        end do
-    end function numbers
 
 end module rollcon_user_forces
