@@ -28,7 +28,8 @@ module rollcon_cvode
         & FCVodeSetLinearSolver, FCVodeSetJacFn, FCVodeSetMaxNumSteps, FCVodeSetStopTime, &
         & FCVode, FCVodeRootInit, FCVodeGetRootInfo, FCVodeSetProjFn, FCVodeFree, &
         & FCVodeGetNumSteps, FCVodeGetNumRhsEvals, FCVodeGetNumJacEvals, &
-        & FCVodeGetNumLinRhsEvals, FCVodeGetNumErrTestFails, FCVodeGetNumGEvals, FCVodeGetDky, &
+        & FCVodeGetNumLinRhsEvals, FCVodeGetNumErrTestFails, FCVodeGetNumNonlinSolvConvFails, &
+        & FCVodeGetNumGEvals, FCVodeGetDky, &
         & FCVodeSetErrFile, &
         & FCVodeReInit, &
         & CV_BDF, CV_ADAMS, CV_NORMAL, &
@@ -153,6 +154,7 @@ contains
         if (check(flag, "CVodeSetUserData", error)) return
         flag = FCVodeSStolerances(self%memory, settings%rtol, settings%atol)
         if (check(flag, "CVodeSStolerances", error)) return
+        self%max_steps = settings%max_steps
         flag = FCVodeSetMaxNumSteps(self%memory, int(settings%max_steps, c_long))
         if (check(flag, "CVodeSetMaxNumSteps", error)) return
         if (settings%jacobian == jacobian_none) then
@@ -277,7 +279,12 @@ contains
         if (check(flag, "CVodeSetStopTime", error)) return
         ! where the integrator was, should it fail before it sets t_return
         t_return(1) = self%t_now
-        flag = FCVode(self%memory, t_out, self%y, t_return, CV_NORMAL)
+        if (associated(self%watch)) then
+            call chunked(flag)
+            if (allocated(error)) return
+        else
+            flag = FCVode(self%memory, t_out, self%y, t_return, CV_NORMAL)
+        end if
         t_reached = t_return(1)
         self%t_now = t_reached
         y = self%values
@@ -290,6 +297,46 @@ contains
         self%failed_flag = int(flag)
         call solver_failure(error, "CVODE", t_reached, int(flag), flag_meaning(flag), &
             & self%data%system)
+
+    contains
+
+        !> The max_steps budget in chunks of chunk_steps, the watch told between them. CVode
+        !> called again after CV_TOO_MUCH_WORK goes on from its step as if it had not returned
+        !> (CVODE guide, CVode: the step counter of the limit is per call), so the steps and
+        !> the state are those of one call.
+        subroutine chunked(status)
+            integer(c_int), intent(out) :: status
+            integer :: taken, chunk
+            real(wp) :: t_start
+            integer :: before
+
+            taken = 0
+            do
+                chunk = min(self%chunk_steps, self%max_steps - taken)
+                status = FCVodeSetMaxNumSteps(self%memory, int(chunk, c_long))
+                if (check(status, "CVodeSetMaxNumSteps", error)) return
+                t_start = t_return(1)
+                before = rejected()
+                status = FCVode(self%memory, t_out, self%y, t_return, CV_NORMAL)
+                taken = taken + chunk
+                if (status /= CV_TOO_MUCH_WORK .or. taken >= self%max_steps) exit
+                call self%watch%between_chunks(t_start, t_return(1), t_out, chunk, &
+                    & rejected() - before)
+            end do
+        end subroutine chunked
+
+        !> Steps rejected so far: by the error test or for want of the corrector's convergence.
+        integer function rejected()
+            integer(c_long) :: count(1)
+            integer(c_int) :: ignored_flag
+
+            count(1) = 0
+            ignored_flag = FCVodeGetNumErrTestFails(self%memory, count)
+            rejected = int(count(1))
+            count(1) = 0
+            ignored_flag = FCVodeGetNumNonlinSolvConvFails(self%memory, count)
+            rejected = rejected + int(count(1))
+        end function rejected
     end subroutine advance
 
     !> Steps, right-hand sides (own and for difference-quotient Jacobians), Jacobians,

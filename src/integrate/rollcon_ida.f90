@@ -29,7 +29,8 @@ module rollcon_ida
         & FIDASetStopTime, FIDASolve, FIDASetNonlinConvCoef, &
         & FIDARootInit, FIDAGetRootInfo, FIDASetId, FIDASetSuppressAlg, FIDAFree, FIDAReInit, &
         & FIDAGetNumSteps, FIDAGetNumResEvals, FIDAGetNumJacEvals, FIDAGetNumLinResEvals, &
-        & FIDAGetNumErrTestFails, FIDAGetNumGEvals, FIDASetErrFile, FIDAGetLastStep, &
+        & FIDAGetNumErrTestFails, FIDAGetNumNonlinSolvConvFails, FIDAGetNumGEvals, &
+        & FIDASetErrFile, FIDAGetLastStep, &
         & IDA_NORMAL, IDA_SUCCESS, &
         & IDA_ROOT_RETURN, &
         & IDA_TSTOP_RETURN, IDA_TOO_MUCH_WORK, IDA_TOO_MUCH_ACC, IDA_ERR_FAIL, IDA_CONV_FAIL
@@ -184,6 +185,7 @@ contains
         if (check(flag, "IDASetUserData", error)) return
         flag = FIDAWFtolerances(self%memory, c_funloc(weights))
         if (check(flag, "IDAWFtolerances", error)) return
+        self%max_steps = settings%max_steps
         flag = FIDASetMaxNumSteps(self%memory, int(settings%max_steps, c_long))
         if (check(flag, "IDASetMaxNumSteps", error)) return
         flag = FIDASetNonlinConvCoef(self%memory, newton_fraction(self%data))
@@ -366,19 +368,62 @@ contains
             if (self%fine_until > self%t_now) then
                 ! the careful start after a restart: the finer stretch first, then the run's
                 ! own tolerances on the same history
-                status = FIDASolve(self%memory, min(t_out, self%fine_until), t_return, self%y, &
-                    & self%yp, IDA_NORMAL)
+                call chunked(min(t_out, self%fine_until), status)
                 if ((status == IDA_SUCCESS .or. status == IDA_TSTOP_RETURN) &
                     & .and. t_return(1) >= self%fine_until) then
                     self%data%scale = 1.0_wp
                     ignored = FIDASetNonlinConvCoef(self%memory, newton_fraction(self%data))
-                    if (status == IDA_SUCCESS .and. t_return(1) < t_out) status = &
-                        & FIDASolve(self%memory, t_out, t_return, self%y, self%yp, IDA_NORMAL)
+                    if (status == IDA_SUCCESS .and. t_return(1) < t_out) &
+                        & call chunked(t_out, status)
                 end if
             else
-                status = FIDASolve(self%memory, t_out, t_return, self%y, self%yp, IDA_NORMAL)
+                call chunked(t_out, status)
             end if
         end subroutine solve
+
+        !> IDASolve towards t_goal; with a watch, the max_steps budget in chunks of
+        !> chunk_steps, the watch told between them. IDASolve called again after
+        !> IDA_TOO_MUCH_WORK goes on from its step as if it had not returned (IDA guide,
+        !> IDASolve: the step counter of the limit is per call), so the steps and the state are
+        !> those of one call.
+        subroutine chunked(t_goal, status)
+            real(wp), intent(in) :: t_goal
+            integer(c_int), intent(out) :: status
+            integer :: taken, chunk
+            real(wp) :: t_start
+            integer :: before
+
+            if (.not. associated(self%watch)) then
+                status = FIDASolve(self%memory, t_goal, t_return, self%y, self%yp, IDA_NORMAL)
+                return
+            end if
+            taken = 0
+            do
+                chunk = min(self%chunk_steps, self%max_steps - taken)
+                status = FIDASetMaxNumSteps(self%memory, int(chunk, c_long))
+                if (status /= IDA_SUCCESS) return
+                t_start = t_return(1)
+                before = rejected()
+                status = FIDASolve(self%memory, t_goal, t_return, self%y, self%yp, IDA_NORMAL)
+                taken = taken + chunk
+                if (status /= IDA_TOO_MUCH_WORK .or. taken >= self%max_steps) exit
+                call self%watch%between_chunks(t_start, t_return(1), t_out, chunk, &
+                    & rejected() - before)
+            end do
+        end subroutine chunked
+
+        !> Steps rejected so far: by the error test or for want of the corrector's convergence.
+        integer function rejected()
+            integer(c_long) :: count(1)
+            integer(c_int) :: ignored_flag
+
+            count(1) = 0
+            ignored_flag = FIDAGetNumErrTestFails(self%memory, count)
+            rejected = int(count(1))
+            count(1) = 0
+            ignored_flag = FIDAGetNumNonlinSolvConvFails(self%memory, count)
+            rejected = rejected + int(count(1))
+        end function rejected
     end subroutine advance
 
     !> Steps, residuals (own and for difference-quotient Jacobians), Jacobians, test failures.

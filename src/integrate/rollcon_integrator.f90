@@ -13,7 +13,8 @@ module rollcon_integrator
     implicit none
     private
 
-    public :: integrator_type, integrator_statistics_type, solver_failure
+    public :: integrator_type, integrator_statistics_type, solver_failure, chunk_watch_type, &
+        & chunk_steps_default
 
     !> What an integrator did since it was set up or last started again
     type :: integrator_statistics_type
@@ -28,9 +29,27 @@ module rollcon_integrator
         procedure :: add => statistics_add
     end type integrator_statistics_type
 
+    !> Internal steps an integrator takes in one call to SUNDIALS when a watch listens: the
+    !> max_steps budget of an output interval is spent in chunks of this many, the watch told
+    !> between them (docs/design.md, "A long output interval")
+    integer, parameter :: chunk_steps_default = 500
+
+    !> What a run does between two chunks of an integrator's steps on a long way to the next
+    !> output time: a progress line, a warning when the steps grind
+    type, abstract :: chunk_watch_type
+    contains
+        procedure(between_chunks_interface), deferred :: between_chunks
+    end type chunk_watch_type
+
     type, abstract :: integrator_type
         !> The flag of the last failed step (0 when none failed)
         integer :: failed_flag = 0
+        !> Internal steps allowed towards one output time (run_settings_type%max_steps)
+        integer :: max_steps = 500000
+        !> Steps per call to SUNDIALS while watch is associated (the budget is max_steps still)
+        integer :: chunk_steps = chunk_steps_default
+        !> Told between chunks; none: the whole budget in one call
+        class(chunk_watch_type), pointer :: watch => null()
         !> The time the integrator reached last [s]
         real(wp) :: t_now = 0.0_wp
         !> After a root return: non-zero for every event function that fired (its direction)
@@ -43,6 +62,16 @@ module rollcon_integrator
     end type integrator_type
 
     abstract interface
+        !> A chunk of steps [t_start, t_reached] [s] towards the output time t_out [s] ended
+        !> short of it: steps internal steps taken in it, failures of them rejected (by the
+        !> error test or for want of the corrector's convergence).
+        subroutine between_chunks_interface(self, t_start, t_reached, t_out, steps, failures)
+            import :: chunk_watch_type, wp
+            class(chunk_watch_type), intent(inout) :: self
+            real(wp), intent(in) :: t_start, t_reached, t_out
+            integer, intent(in) :: steps, failures
+        end subroutine between_chunks_interface
+
         !> Start again from (t0, y0, yp0) with everything else as set up and no history: the
         !> state was changed from outside (its coordinates re-based), or an input has a corner
         !> at t0 (careful false: the integrator begins as it would at a start).

@@ -44,7 +44,7 @@ module rollcon_isolated_run
 
     !> Kinds of frame the child sends
     integer, parameter :: frame_report = 1, frame_shapes = 2, frame_started = 3, &
-        & frame_layout = 4, frame_row = 5, frame_summary = 6
+        & frame_layout = 4, frame_row = 5, frame_summary = 6, frame_time = 7
 
     !> The child's work
     type, extends(isolated_task_type) :: job_task_type
@@ -64,6 +64,7 @@ module rollcon_isolated_run
     contains
         procedure :: open => pipe_open
         procedure :: put => pipe_put
+        procedure :: between_chunks => pipe_between_chunks
     end type pipe_sink_type
 
     !> In this process: what the child sent, written and kept as it comes
@@ -82,6 +83,8 @@ module rollcon_isolated_run
         type(history_type), pointer :: history => null()
         type(progress_type) :: progress
         real(wp) :: t0 = 0.0_wp, end_time = 1.0_wp
+        !> What the warning of grinding steps says to run (check_hint)
+        character(len=:), allocatable :: check_hint
         !> The first failure here (a write of the CSV, a frame that does not read)
         type(error_type), allocatable :: failure
     contains
@@ -118,6 +121,7 @@ contains
         if (allocated(options%csv_path)) receiver%csv_path = options%csv_path
         if (present(history)) receiver%history => history
         call receiver%progress%start(options%progress, options%t0, options%end_time, wall=.true.)
+        receiver%check_hint = check_hint(job)
         ! the child's stderr (a routine's STOP text, a backtrace) is kept apart: quoted in the
         ! message when the routine ends the child, passed on to this stderr otherwise
         stderr_path = scratch_path("run", 1, ".stderr")
@@ -265,7 +269,6 @@ contains
         type(run_summary_type), intent(inout) :: summary
         type(error_type), allocatable, intent(inout) :: error
         character(len=:), allocatable :: hint
-        logical :: dataset
 
         if (allocated(error)) then
             if (error%stat == stat_ucon) return
@@ -273,6 +276,18 @@ contains
         ! a user routine's failure names its routine and call already (rollcon_user_forces'
         ! labels: "its SFOSUB of FILE", "its VARSUB of FILE", ...)
         if (index(summary%message, "SUB of ") > 0) return
+        hint = "; " // check_hint(job)
+        summary%message = summary%message // hint
+        if (allocated(error)) error%message = error%message // hint
+    end subroutine point_at_check
+
+    !> Where the run's user routines are and the command that checks them at many states, for
+    !> a failure's message (point_at_check) and the warning of grinding steps (take_frame).
+    function check_hint(job) result(hint)
+        type(job_type), intent(in) :: job
+        character(len=:), allocatable :: hint
+        logical :: dataset
+
         dataset = .false.
         if (allocated(job%input_path)) then
             if (len(job%input_path) > 4) dataset = job%input_path(len(job%input_path) - 3:) &
@@ -280,18 +295,16 @@ contains
         end if
         if (dataset) then
             ! `check FILE --model` checks every kind of routine the dataset's statements use
-            hint = "; the run's user routines are in " // job%user_file // ": rollcon check " &
+            hint = "the run's user routines are in " // job%user_file // ": rollcon check " &
                 & // job%user_file // " --model " // job%input_path // " checks them at many " &
                 & // "states (a wrong partial of a UCOSUB, hidden state, a NaN or a jump in a " &
                 & // "force, variable or request routine: each stalls the integrators)"
         else
-            hint = "; the run's UCONs are served by " // job%user_file // ": rollcon check " &
+            hint = "the run's UCONs are served by " // job%user_file // ": rollcon check " &
                 & // job%user_file // " checks its partials at many states (a wrong one " &
                 & // "stalls the integrators)"
         end if
-        summary%message = summary%message // hint
-        if (allocated(error)) error%message = error%message // hint
-    end subroutine point_at_check
+    end function check_hint
 
     !> The run's summary from what the child sent and how it ended: its own summary when it
     !> finished, else a failure at the last row received, naming the call it ended in.
@@ -382,6 +395,20 @@ contains
         call send_frame(self%fd, frame_row, bytes, error)
     end subroutine pipe_put
 
+    !> The child's run is at time [s] between rows; grinding: its steps grind. Sent as the
+    !> time's bytes and "1" or "0".
+    subroutine pipe_between_chunks(self, time, grinding)
+        class(pipe_sink_type), intent(inout) :: self
+        real(wp), intent(in) :: time
+        logical, intent(in) :: grinding
+        type(error_type), allocatable :: ignored
+        character(len=8) :: bytes
+
+        bytes = transfer(time, bytes)
+        ! a pipe that fails here fails again at the next row, which reports it
+        call send_frame(self%fd, frame_time, bytes // merge("1", "0", grinding), ignored)
+    end subroutine pipe_between_chunks
+
     !> Bytes from the child: every whole frame in them taken.
     subroutine receive(self, bytes)
         class(job_receiver_type), intent(inout) :: self
@@ -406,6 +433,7 @@ contains
         type(wire_reader_type) :: wire
         type(error_type), allocatable :: error
         real(wp), allocatable :: row(:)
+        real(wp) :: time
 
         wire%bytes = payload
         select case (kind)
@@ -432,6 +460,18 @@ contains
                 if (associated(self%history)) call self%history%add(row)
                 if (self%csv%opened) call self%csv%write_row(row, error)
                 call self%progress%report(row(1))
+            end if
+        case (frame_time)
+            if (len(payload) /= 9) then
+                wire%failed = .true.
+            else
+                time = transfer(payload(1:8), time)
+                call self%progress%report(time)
+                if (payload(9:9) == "1") write(error_unit, '(a)') "rollcon: warning: at t = " &
+                    & // to_text(time) // " s the steps grind (their mean step is below a " &
+                    & // "ten-thousandth of the way to the next output time and a quarter of " &
+                    & // "them are rejected: far finer than the tolerance needs); " &
+                    & // self%check_hint
             end if
         case (frame_summary)
             call unpack_summary(wire, self%summary)

@@ -15,6 +15,7 @@ module rollcon_row_sink
     contains
         procedure(open_interface), deferred :: open
         procedure(put_interface), deferred :: put
+        procedure :: between_chunks
     end type row_sink_type
 
     abstract interface
@@ -34,5 +35,15 @@ module rollcon_row_sink
             type(error_type), allocatable, intent(out) :: error
         end subroutine put_interface
     end interface
+
+contains
+
+    !> The run is at time [s] on a long way to its next row; grinding: its steps grind (once a
+    !> run, rollcon_grind_watch). Nothing here: a sink that passes them on overrides it.
+    subroutine between_chunks(self, time, grinding)
+        class(row_sink_type), intent(inout) :: self
+        real(wp), intent(in) :: time
+        logical, intent(in) :: grinding
+    end subroutine between_chunks
 
 end module rollcon_row_sink

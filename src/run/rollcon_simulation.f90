@@ -24,6 +24,7 @@ module rollcon_simulation
     use rollcon_csv_writer, only : csv_writer_type
     use rollcon_row_sink, only : row_sink_type
     use rollcon_progress, only : progress_type
+    use rollcon_grind_watch, only : grind_watch_type
     use rollcon_run_summary, only : run_summary_type, status_completed, status_stopped, &
         & status_failed, status_inaccurate, judge_drift
     use rollcon_output_layout, only : output_layout_type
@@ -78,6 +79,8 @@ module rollcon_simulation
         real(wp) :: cpu_start = 0.0_wp
         !> Progress lines on stderr (options%progress)
         type(progress_type) :: progress
+        !> Told between the integrator's chunks of steps: progress, grinding steps
+        type(grind_watch_type) :: chunk_watch
     contains
         procedure :: begin
         procedure :: start
@@ -108,7 +111,8 @@ contains
         !> When present, every output row is also kept here
         type(history_type), intent(inout), optional :: history
         !> When present, every output row is also handed to it
-        class(row_sink_type), intent(inout), optional :: sink
+        ! target: the run's chunk watch tells it of the time between rows
+        class(row_sink_type), intent(inout), optional, target :: sink
         ! target: the integrator keeps pointers to the run's system
         type(simulation_type), target :: run
         real(wp) :: t_out
@@ -121,6 +125,8 @@ contains
             call run%finish(summary, error)
             return
         end if
+        run%chunk_watch%progress => run%progress
+        if (present(sink)) run%chunk_watch%sink => sink
         k_output = 1
         do while (k_output <= n_output)
             t_out = output_time(options, k_output)
@@ -131,6 +137,8 @@ contains
                 run%t = t_out
                 root = 0
             else
+                ! whichever integrator the last start made tells the watch
+                run%integrator%watch => run%chunk_watch
                 call run%integrator%advance(t_out, run%next_stop(run%t), run%t, run%y, &
                     & run%yp, root, error)
             end if

@@ -22,7 +22,9 @@ module test_user_forces
     use rollcon_user_forces, only : system_function, system_array
     use rollcon_user_build, only : user_build_options_type
     use rollcon_user_routine_check, only : check_user_routines
-    use command_runs, only : file_text
+    use command_runs, only : file_text, rollcon_program, run_rollcon
+    use rollcon_integrator, only : chunk_steps_default
+    use rollcon_grind_watch, only : grinds
     use rollcon_run_check, only : check_at_start
     use rollcon_run_settings, only : formulation_cvode, formulation_ida
     implicit none
@@ -83,7 +85,9 @@ contains
             & new_unittest("check-reports-implicit-typing", test_check_typing), &
             & new_unittest("check-clean-spring", test_check_clean), &
             & new_unittest("check-reports-hidden-state", test_check_hidden), &
-            & new_unittest("failure-points-at-check", test_failure_points_at_check)]
+            & new_unittest("failure-points-at-check", test_failure_points_at_check), &
+            & new_unittest("grinding-points-at-check", test_grinding_points_at_check), &
+            & new_unittest("sound-run-no-grinding", test_sound_run_no_grinding)]
     end subroutine collect_user_forces
 
     !> user_forces.adm (SFORCE/2 by sforce_spring.f's SFOSUB, GFORCE/1 by gforce_bushing.f's
@@ -783,6 +787,98 @@ contains
             & // folder // "hidden_state.f --model " // model // " checks them at many states"], &
             & error)
     end subroutine test_failure_points_at_check
+
+    !> `rollcon run` of spring.adm with hidden_state.f's SFOSUB (a 1000 N term flipping sign
+    !> at each call) and MAXSTEPS 4 chunks (chunk_steps_default each): the steps grind (mean
+    !> step near 1e-7 of the 0.01 s output interval, half of them rejected: measured), so
+    !> standard error warns once, after the first chunk, naming `rollcon check FILE --model
+    !> MODEL`, before the run fails at MAXSTEPS.
+    subroutine test_grinding_points_at_check(error)
+        type(error_type), allocatable, intent(out) :: error
+        character(len=:), allocatable :: text, model, program, said, command
+        integer :: at, status
+
+        text = file_text(folder // "spring.adm")
+        at = index(text, "ACCGRAV")
+        call check(error, at > 0, folder // "spring.adm has no ACCGRAV")
+        if (allocated(error)) return
+        call make_folders(scratch // "/grinding", error)
+        if (allocated(error)) return
+        model = scratch // "/grinding.adm"
+        call write_text_file(model, text(:at - 1) // "INTEGRATOR/MAXSTEPS = " &
+            & // to_text(4*chunk_steps_default) // new_line("a") // text(at:), error)
+        if (allocated(error)) return
+        call rollcon_program(program, error)
+        if (allocated(error)) return
+        call run_rollcon(program, "run " // model // " --ucosub " // folder // "hidden_state.f" &
+            & // " -q -o " // scratch // "/grinding", scratch // "/grinding.out", &
+            & scratch // "/grinding.err", status)
+        said = file_text(scratch // "/grinding.err")
+        call check(error, status /= 0, "the run of hidden_state.f did not fail: " // said)
+        if (allocated(error)) return
+        command = "rollcon check " // folder // "hidden_state.f --model " // model
+        at = index(said, "rollcon: warning: at t = ")
+        call check(error, at > 0 .and. index(said, "the steps grind") > at &
+            & .and. index(said(at:), command) > 0, "no warning of grinding steps naming `" &
+            & // command // "` in: " // said)
+        if (allocated(error)) return
+        call check(error, count_of(said, "the steps grind") == 1, "the warning of grinding " &
+            & // "steps is not written once: " // said)
+        if (allocated(error)) return
+        ! the criterion on chunks of 500 steps towards an output time 0.01 s away: this run's
+        ! (measured: mean step 5e-6 to 9e-6 of the way, half rejected) grinds; the same small
+        ! steps with sforce_spring.f's share rejected (8 of 538), or the same share rejected
+        ! at steps of 1e-3 of the way (a corner), do not
+        call check(error, grinds(0.0_wp, 500*7.0e-8_wp, 0.01_wp, 500, 250) &
+            & .and. .not. grinds(0.0_wp, 500*7.0e-8_wp, 0.01_wp, 500, 8) &
+            & .and. .not. grinds(0.0_wp, 500*1.0e-5_wp, 0.01_wp, 500, 250), &
+            & "the criterion of grinding steps misjudges a chunk")
+    end subroutine test_grinding_points_at_check
+
+    !> The same model with sforce_spring.f's SFOSUB (the spring without hidden state) in one
+    !> output interval of 2 s: more steps than chunk_steps_default towards it (the watch is
+    !> told between chunks), none grinding, the run completes without a warning.
+    subroutine test_sound_run_no_grinding(error)
+        type(error_type), allocatable, intent(out) :: error
+        character(len=:), allocatable :: program, said, summary
+        integer :: status, at, steps, stat
+
+        call make_folders(scratch // "/sound", error)
+        if (allocated(error)) return
+        call rollcon_program(program, error)
+        if (allocated(error)) return
+        call run_rollcon(program, "run " // folder // "spring.adm --ucosub " // folder &
+            & // "sforce_spring.f --end 2 --steps 1 -q -o " // scratch // "/sound", &
+            & scratch // "/sound.out", scratch // "/sound.err", status)
+        said = file_text(scratch // "/sound.err")
+        call check(error, status == 0, "exited " // to_text(status) // ": " // said)
+        if (allocated(error)) return
+        call check(error, index(said, "warning") == 0, "a warning on a sound run: " // said)
+        if (allocated(error)) return
+        summary = file_text(scratch // "/sound/spring.adm.summary.txt")
+        at = index(summary, new_line("a") // "steps ")
+        steps = 0
+        stat = 1
+        if (at > 0) read(summary(at + 7:), *, iostat=stat) steps
+        call check(error, stat == 0 .and. steps > chunk_steps_default, "the run took " &
+            & // to_text(steps) // " steps, not more than a chunk's " &
+            & // to_text(chunk_steps_default) // ": no chunk was watched")
+    end subroutine test_sound_run_no_grinding
+
+    !> Occurrences of part in text.
+    pure integer function count_of(text, part)
+        character(len=*), intent(in) :: text, part
+        integer :: from, at
+
+        count_of = 0
+        from = 1
+        do
+            at = index(text(from:), part)
+            if (at == 0) exit
+            count_of = count_of + 1
+            from = from + at + len(part) - 1
+        end do
+    end function count_of
 
     !> check_user_routines of folder//file on spring.adm, the tests' cache, seed 1.
     subroutine check_file(file, findings, count, error)
