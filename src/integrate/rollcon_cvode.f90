@@ -11,7 +11,8 @@ module rollcon_cvode
     use rollcon_text, only : to_text
     use rollcon_run_settings, only : run_settings_type, method_adams, jacobian_none
     use rollcon_dynamic_system, only : ode_system_type
-    use rollcon_integrator, only : integrator_type, integrator_statistics_type, solver_failure
+    use rollcon_integrator, only : integrator_type, integrator_statistics_type, solver_failure, &
+        & chunk_steps_default
     use fsundials_context_mod, only : FSUNContext_Create, FSUNContext_Free
     use fsundials_nvector_mod, only : N_Vector, FN_VDestroy, FN_VGetArrayPointer
     use fsundials_matrix_mod, only : SUNMatrix, FSUNMatDestroy
@@ -300,10 +301,10 @@ contains
 
     contains
 
-        !> The max_steps budget in chunks of chunk_steps, the watch told between them. CVode
-        !> called again after CV_TOO_MUCH_WORK goes on from its step as if it had not returned
-        !> (CVODE guide, CVode: the step counter of the limit is per call), so the steps and
-        !> the state are those of one call.
+        !> The max_steps budget in chunks of chunk_steps_default, the watch told between them.
+        !> CVode called again after CV_TOO_MUCH_WORK goes on from its step as if it had not
+        !> returned (CVODE guide, CVode: the step counter of the limit is per call), so the
+        !> steps and the state are those of one call.
         subroutine chunked(status)
             integer(c_int), intent(out) :: status
             integer :: taken, chunk
@@ -312,7 +313,7 @@ contains
 
             taken = 0
             do
-                chunk = min(self%chunk_steps, self%max_steps - taken)
+                chunk = min(chunk_steps_default, self%max_steps - taken)
                 status = FCVodeSetMaxNumSteps(self%memory, int(chunk, c_long))
                 if (check(status, "CVodeSetMaxNumSteps", error)) return
                 t_start = t_return(1)

@@ -11,7 +11,8 @@ module rollcon_ida
     use rollcon_text, only : to_text
     use rollcon_run_settings, only : run_settings_type
     use rollcon_dynamic_system, only : dae_system_type
-    use rollcon_integrator, only : integrator_type, integrator_statistics_type, solver_failure
+    use rollcon_integrator, only : integrator_type, integrator_statistics_type, solver_failure, &
+        & chunk_steps_default
     use fsundials_context_mod, only : FSUNContext_Create, FSUNContext_Free
     use fsundials_types_mod, only : SUNTRUE
     use fsundials_nvector_mod, only : N_Vector, FN_VDestroy, FN_VGetArrayPointer
@@ -382,7 +383,7 @@ contains
         end subroutine solve
 
         !> IDASolve towards t_goal; with a watch, the max_steps budget in chunks of
-        !> chunk_steps, the watch told between them. IDASolve called again after
+        !> chunk_steps_default, the watch told between them. IDASolve called again after
         !> IDA_TOO_MUCH_WORK goes on from its step as if it had not returned (IDA guide,
         !> IDASolve: the step counter of the limit is per call), so the steps and the state are
         !> those of one call.
@@ -399,7 +400,7 @@ contains
             end if
             taken = 0
             do
-                chunk = min(self%chunk_steps, self%max_steps - taken)
+                chunk = min(chunk_steps_default, self%max_steps - taken)
                 status = FIDASetMaxNumSteps(self%memory, int(chunk, c_long))
                 if (status /= IDA_SUCCESS) return
                 t_start = t_return(1)

@@ -46,9 +46,7 @@ module rollcon_integrator
         integer :: failed_flag = 0
         !> Internal steps allowed towards one output time (run_settings_type%max_steps)
         integer :: max_steps = 500000
-        !> Steps per call to SUNDIALS while watch is associated (the budget is max_steps still)
-        integer :: chunk_steps = chunk_steps_default
-        !> Told between chunks; none: the whole budget in one call
+        !> Told between chunks of chunk_steps_default steps; none: the whole budget in one call
         class(chunk_watch_type), pointer :: watch => null()
         !> The time the integrator reached last [s]
         real(wp) :: t_now = 0.0_wp
