@@ -432,7 +432,8 @@ contains
                 if (kind == kind_c) form = "C"
                 call text_head(log, quoted_lines, diagnostics)
                 call fatal_error(error, first_location(path, diagnostics) // ": " // source_name &
-                    & // " could not compile this UCOSUB (" // form // "); its diagnostics " &
+                    & // " could not compile this file of user routines (" // form // "); its " &
+                    & // "diagnostics " &
                     & // "(all in " // kept_log // "):" // new_line("a") // diagnostics, stat_ucon)
                 return
             end if

@@ -48,7 +48,7 @@ contains
         message = error%message
         deallocate(error)
         call expect_in(error, message, path // ":" // to_text(number) // ": gfortran could " &
-            & // "not compile this UCOSUB")
+            & // "not compile this file of user routines")
         if (allocated(error)) return
         call expect_in(error, message, "xmatrix")
     end subroutine test_does_not_compile
