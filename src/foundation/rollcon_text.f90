@@ -18,6 +18,11 @@ module rollcon_text
         module procedure :: real_to_text
     end interface to_text
 
+    !> The numbers, real or integer, as to_text writes them, separated by ", "
+    interface number_list
+        module procedure real_list, integer_list
+    end interface number_list
+
 contains
 
     !> Shortest decimal text of an integer.
@@ -200,7 +205,7 @@ contains
     end function comma_list
 
     !> The numbers as to_text writes them, separated by ", " (for messages that quote values).
-    function number_list(values) result(text)
+    function real_list(values) result(text)
         real(wp), intent(in) :: values(:)
         character(len=:), allocatable :: text
         integer :: k
@@ -210,7 +215,20 @@ contains
             if (k > 1) text = text // ", "
             text = text // to_text(values(k))
         end do
-    end function number_list
+    end function real_list
+
+    !> Whole numbers as to_text writes them, separated by ", " ("20, 2").
+    function integer_list(values) result(text)
+        integer, intent(in) :: values(:)
+        character(len=:), allocatable :: text
+        integer :: k
+
+        text = ""
+        do k = 1, size(values)
+            if (k > 1) text = text // ", "
+            text = text // to_text(values(k))
+        end do
+    end function integer_list
 
     !> Where a statement of an input file stands, as messages begin: "data/coin.adm:12".
     pure function place(path, line) result(text)

@@ -716,7 +716,7 @@ contains
             else if (size(named) > 0 .or. named_rates) then
                 call fatal_error(error, at // ", in " // call_name // " at TIME = " &
                     & // to_text(time/motions_time_unit) // ", read the state through " &
-                    & // "SYSFNC or SYSARY (markers " // integers(named) // "): a MOTION is " &
+                    & // "SYSFNC or SYSARY (markers " // number_list(named) // "): a MOTION is " &
                     & // "a function of TIME alone (ADAMS's rule: the motion it prescribes " &
                     & // "may not depend on the state); compute it from TIME and PAR", &
                     & stat_ucon)
@@ -791,19 +791,6 @@ contains
             & // "position and velocity equations would disagree. Run anyway with " &
             & // "--no-check.", stat_input)
     end subroutine check_user_motions
-
-    !> "20, 2": whole numbers for messages.
-    pure function integers(list) result(text)
-        integer, intent(in) :: list(:)
-        character(len=:), allocatable :: text
-        integer :: k
-
-        text = ""
-        do k = 1, size(list)
-            if (k > 1) text = text // ", "
-            text = text // to_text(list(k))
-        end do
-    end function integers
 
     !> The name of a kind of routine: "SFOSUB" ... "VTOSUB", "REQSUB".
     pure function routine_name_of(kind) result(name)
