@@ -28,6 +28,7 @@ module rollcon_equations
     use rollcon_redundancy, only : redundancy_type
     use rollcon_redundancy_words, only : set_aside_words
     use rollcon_sliding_contact, only : sliding_contact_type, painleve_margin
+    use rollcon_rim_dissipation, only : rim_dissipation_type
     use rollcon_text, only : to_text
     implicit none
     private
@@ -64,6 +65,13 @@ module rollcon_equations
         !> A contact's mode: while it slides its tangential rows are dropped (inactive, as rows
         !> set aside are) and its friction enters every solve (rollcon_sliding_contact)
         type(sliding_contact_type) :: contact
+        !> A rim's rolling resistance and air layer (rollcon_rim_dissipation): the air's force
+        !> is applied (assemble), rolling resistance's coupled to the normal force in every
+        !> solve (resistance_coupling)
+        type(rim_dissipation_type) :: dissipation
+        !> Scratch of rolling resistance's second right-hand side: accelerations (n) and
+        !> multipliers (nc)
+        real(wp), allocatable :: resistance_a(:), resistance_lambda(:)
     contains
         procedure :: release => release_equations
         procedure :: init
@@ -88,6 +96,7 @@ module rollcon_equations
         procedure :: active_rows_of
         procedure :: masked
         procedure :: friction_coupling
+        procedure :: resistance_coupling
     end type equations_type
 
 contains
@@ -111,6 +120,8 @@ contains
         end associate
         call self%work%init(self%n, self%nc, self%nh, size(model%parts))
         call self%redundancy%init(self%nc, self%blocks)
+        if (allocated(self%resistance_a)) deallocate(self%resistance_a, self%resistance_lambda)
+        allocate(self%resistance_a(self%n), self%resistance_lambda(self%nc), source=0.0_wp)
         if (allocated(model%forces)) then
             self%couplings = force_couplings(model%forces)
         else
@@ -246,6 +257,12 @@ contains
             self%mass(i0 + 1:i0 + 6, i0 + 1:i0 + 6) = part_mass
             self%force(i0 + 1:i0 + 6) = part_force
         end do
+        ! the air layer under a rim: a generalised force on psi (rollcon_rim_dissipation)
+        if (self%dissipation%air > 0.0_wp .and. self%dissipation%part > 0) then
+            i0 = 6*(self%dissipation%part - 1)
+            self%force(i0 + 4) = self%force(i0 + 4) + self%dissipation%air_force(q(i0 + 5), &
+                & u(i0 + 4))
+        end if
     end subroutine assemble
 
     !> C (velocity UCON: dF/du; position UCON: dF/dq) and gamma, from the last evaluation.
@@ -347,9 +364,70 @@ contains
         if (allocated(error)) return
         lambda = self%gamma
         call self%saddle%solve(self%c, a, lambda, 1, error, scaled=.true.)
-        if (allocated(error) .or. .not. self%contact%sliding) return
-        call self%friction_coupling(time, q, a, lambda, error)
+        if (allocated(error)) return
+        if (self%dissipation%rolling_resistance > 0.0_wp) then
+            call self%resistance_coupling(time, q, u, a, lambda, error)
+        else if (self%contact%sliding) then
+            call self%friction_coupling(time, q, a, lambda, error)
+        end if
     end subroutine accelerations
+
+    !> Rolling resistance (rollcon_rim_dissipation), and a sliding contact's friction with it,
+    !> in the accelerations a and multipliers lambda of the saddle-point system without them
+    !> (factored): both are generalised forces -F_n G proportional to the normal force, G =
+    !> delta sign(phidot) e_phi (+ mu_k (s_1 c_t1 + s_2 c_t2) while sliding), coupled exactly
+    !> as friction_coupling couples the friction alone: the second right-hand side (G, 0)
+    !> gives (a1, lambda1), F_n (1 + c_nz lambda1_n) = c_nz lambda0_n, a = a0 - F_n a1,
+    !> lambda = lambda0 - F_n lambda1 (docs/design.md §5, "Dissipation"). Refused (stat_ucon)
+    !> where 1 + c_nz lambda1_n < painleve_margin (no unique normal force).
+    subroutine resistance_coupling(self, time, q, u, a, lambda, error)
+        class(equations_type), intent(inout) :: self
+        real(wp), intent(in) :: time, q(:), u(:)
+        real(wp), intent(inout) :: a(:), lambda(:)
+        type(error_type), allocatable, intent(out) :: error
+        real(wp) :: s(2), c_nz, rolling, denominator, normal_force
+        integer :: phi_column
+
+        associate (diss => self%dissipation, contact => self%contact, n_row => &
+                & self%dissipation%normal, t => self%contact%tangential, &
+                & g => self%resistance_a, g_lambda => self%resistance_lambda)
+            phi_column = 6*(diss%part - 1) + 6
+            g = 0.0_wp
+            rolling = diss%rolling_direction(u(phi_column))
+            g(phi_column) = diss%rolling_resistance*rolling
+            if (contact%sliding) then
+                contact%slip = [self%constraints%value(t(1)), self%constraints%value(t(2))]
+                s = contact%direction(contact%slip)
+                g = g + contact%mu*(s(1)*self%c(t(1), :) + s(2)*self%c(t(2), :))
+            end if
+            g_lambda = 0.0_wp
+            call self%saddle%solve(self%c, g, g_lambda, 1, error)
+            if (allocated(error)) return
+            c_nz = self%c(n_row, diss%height_column)
+            denominator = 1.0_wp + c_nz*g_lambda(n_row)
+            if (.not. denominator >= painleve_margin) then
+                call fatal_error(error, "the normal force is ill-posed at t = " &
+                    & // to_text(time) // " s (theta = " &
+                    & // to_text(q(diss%height_column + 2)) // " rad): the forces " &
+                    & // "proportional to it (rolling resistance, sliding friction) feed " &
+                    & // "back into it with 1 + dFn/dFn = " // to_text(denominator) &
+                    & // ", leaving it without a unique positive solution; the equations " &
+                    & // "are not integrated", stat_ucon)
+                return
+            end if
+            normal_force = c_nz*lambda(n_row)/denominator
+            a = a - normal_force*g
+            lambda = lambda - normal_force*g_lambda
+            diss%normal_force = normal_force
+            diss%rolling_power = diss%rolling_resistance*normal_force*rolling*u(phi_column)
+            if (contact%sliding) then
+                contact%denominator = denominator
+                contact%normal_force = normal_force
+                contact%friction = -contact%mu*normal_force*s
+                contact%power = abs(dot_product(contact%friction, contact%slip))
+            end if
+        end associate
+    end subroutine resistance_coupling
 
     !> A sliding contact's friction in the accelerations a and multipliers lambda of the
     !> saddle-point system without it (its tangential rows dropped, factored): the second

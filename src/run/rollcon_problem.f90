@@ -75,6 +75,7 @@ module rollcon_problem
         procedure :: keep_failure
         procedure :: failure_text
         procedure :: constraint_power
+        procedure :: dissipated_power
         procedure :: release => release_problem
     end type problem_type
 
@@ -557,6 +558,16 @@ contains
         ! a sliding contact's friction: the power it dissipates (rollcon_sliding_contact)
         if (self%eq%contact%sliding) power = power + self%eq%contact%power
     end function constraint_power
+
+    !> The power a rim's rolling resistance and air layer dissipated at the last evaluation
+    !> (accelerations) [W], >= 0 while the rim presses on the ground (rollcon_rim_dissipation);
+    !> 0 without them. The energy judge adds its integral to the energy (rollcon_simulation).
+    pure real(wp) function dissipated_power(self)
+        class(problem_type), intent(in) :: self
+
+        dissipated_power = 0.0_wp
+        if (self%eq%dissipation%active()) dissipated_power = self%eq%dissipation%power()
+    end function dissipated_power
 
     !> Free what the problem holds outside Fortran's memory (its equations' KLU factors): a
     !> process running many models one after another (a study's cases) would keep every one's

@@ -49,6 +49,9 @@ module rollcon_run_summary
         !> The explicit work of the constraint forces over those rows [J]: the integral of
         !> problem%constraint_power by the trapezoidal rule (a moving constraint's work)
         real(wp) :: constraint_work = 0.0_wp
+        !> The energy a rim's rolling resistance and air layer dissipated over those rows [J]
+        !> (problem%dissipated_power by the trapezoidal rule): the energy judged is E plus it
+        real(wp) :: dissipated_work = 0.0_wp
         !> False when an applied force acts after the reference time (rollcon_force
         !> forces_idle_after) or the constraints do work (constraint_work beyond work_fraction of
         !> the drift allowed, rollcon_drift): the energy is then not conserved, and its drift

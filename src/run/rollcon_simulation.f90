@@ -65,13 +65,19 @@ module rollcon_simulation
         logical :: have_reference = .false.
         !> Over the rows from the reference on (the judged rows): their count, the largest
         !> |E - E_reference| [J], the largest kinetic energy and the potential energy's range
-        !> [J], the sum of what one step's tolerance allows the energy [J], the explicit work of
+        !> [J] (|E + W - E_reference| with a rim's dissipated work W), the sum of what one step's
+        !> tolerance allows the energy [J], the explicit work of
         !> the constraint forces [J] and the power and time of the last row [W, s]
         integer :: judged_rows = 0
         real(wp) :: energy_change = 0.0_wp, kinetic_max = 0.0_wp
         real(wp) :: potential_min = huge(1.0_wp), potential_max = -huge(1.0_wp)
         real(wp) :: step_energy_sum = 0.0_wp, constraint_work = 0.0_wp
         real(wp) :: last_power = 0.0_wp, last_time = 0.0_wp
+        !> A rim's dissipation (problem%dissipated_power) over the judged rows: its work [J]
+        !> by the trapezoidal rule, that rule's estimated error [J] and the last two rows'
+        !> powers [W]
+        real(wp) :: dissipated_work = 0.0_wp, dissipation_uncertainty = 0.0_wp
+        real(wp) :: last_dissipation(2) = 0.0_wp
         !> Counters of the integrator's segments before its last restart
         type(integrator_statistics_type) :: earlier
         !> Re-basings of each part (model order)
@@ -302,7 +308,7 @@ contains
         type(error_type), allocatable, intent(out) :: error
         type(history_type), intent(inout), optional :: history
         class(row_sink_type), intent(inout), optional :: sink
-        real(wp) :: energy, potential, power
+        real(wp) :: energy, potential, power, dissipation
         real(wp), allocatable :: row(:)
 
         call self%system%unpack_state(self%t, self%y, self%q, self%u, error)
@@ -330,8 +336,22 @@ contains
                 self%have_reference = .true.
                 potential = problem%eq%potential_energy(q)
                 power = problem%constraint_power(u)
-                self%energy_change = max(self%energy_change, &
-                    & abs(energy - summary%energy_reference))
+                ! a rim's dissipation: its work W by the trapezoidal rule, whose error over a
+                ! row's step h is h^3 |P''| / 12, estimated as h |P_i - 2 P_(i-1) + P_(i-2)| / 12
+                ! from the last three rows; the energy plus W is judged, less the estimates' sum
+                dissipation = problem%dissipated_power()
+                if (self%judged_rows > 0) then
+                    self%dissipated_work = self%dissipated_work + 0.5_wp*(dissipation &
+                        & + self%last_dissipation(1))*(time - self%last_time)
+                    if (self%judged_rows > 1) self%dissipation_uncertainty = &
+                        & self%dissipation_uncertainty + (time - self%last_time) &
+                        & *abs(dissipation - 2.0_wp*self%last_dissipation(1) &
+                        & + self%last_dissipation(2))/12.0_wp
+                end if
+                self%last_dissipation = [dissipation, self%last_dissipation(1)]
+                self%energy_change = max(self%energy_change, max(0.0_wp, &
+                    & abs(energy + self%dissipated_work - summary%energy_reference) &
+                    & - self%dissipation_uncertainty))
                 self%kinetic_max = max(self%kinetic_max, energy - potential)
                 self%potential_min = min(self%potential_min, potential)
                 self%potential_max = max(self%potential_max, potential)
@@ -651,6 +671,7 @@ contains
                 & self%energy_change/summary%energy_scale
             summary%energy_step = self%step_energy_sum/real(self%judged_rows, wp)
             summary%constraint_work = self%constraint_work
+            summary%dissipated_work = self%dissipated_work
         end if
         call cpu_time(cpu_now)
         summary%cpu_seconds = cpu_now - self%cpu_start

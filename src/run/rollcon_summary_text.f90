@@ -70,7 +70,16 @@ contains
         type(run_summary_type), intent(in) :: summary
         character(len=:), allocatable :: text
 
-        if (summary%energy_scale > 0.0_wp) then
+        if (summary%energy_scale > 0.0_wp .and. summary%dissipated_work /= 0.0_wp) then
+            ! a rim's dissipation: the energy plus the work it took is what is conserved
+            text = "energy drift: " // scientific(summary%energy_drift) &
+                & // " of the energy scale " // scientific(summary%energy_scale) &
+                & // " J (largest |E + W - E0| " &
+                & // scientific(summary%energy_drift*summary%energy_scale) // " J, W the " &
+                & // scientific(summary%dissipated_work) // " J dissipated, E0 = " &
+                & // to_text(summary%energy_reference) // " J after the last applied force)" &
+                & // allowed(summary%energy_bound, "")
+        else if (summary%energy_scale > 0.0_wp) then
             text = "energy drift: " // scientific(summary%energy_drift) &
                 & // " of the energy scale " // scientific(summary%energy_scale) &
                 & // " J (largest |E - E0| " &

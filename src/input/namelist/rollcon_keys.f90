@@ -25,7 +25,7 @@ module rollcon_keys
     !> A key: where it belongs, what it takes, where its value goes
     type :: key_type
         character(len=11) :: group = ""
-        character(len=15) :: name = ""
+        character(len=24) :: name = ""
         integer :: kind = kind_real
         !> Unit, for messages and docs ("" when none)
         character(len=8) :: unit = ""

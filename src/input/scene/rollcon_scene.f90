@@ -89,6 +89,7 @@ contains
         if (allocated(error)) return
         new%strike%enabled = any([(groups(k)%name == "strike", k = 1, size(groups))])
         new%contact%enabled = any([(groups(k)%name == "contact", k = 1, size(groups))])
+        new%dissipation%enabled = any([(groups(k)%name == "dissipation", k = 1, size(groups))])
         if (key_line(groups, "contact", "mu_kinetic") == 0) &
             & new%contact%mu_kinetic = new%contact%mu_static
         new%initial%z_given = key_line(groups, "initial", "z") > 0

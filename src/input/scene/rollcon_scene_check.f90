@@ -75,6 +75,14 @@ contains
                     & // "are integrated in the ODE form)", "another")
             end associate
         end if
+        if (scene%dissipation%rolling_resistance > 0.0_wp &
+            & .or. scene%dissipation%air_viscosity > 0.0_wp) then
+            ! rolling resistance is coupled to the normal force in the ODE form's
+            ! accelerations (docs/design.md §5, "Dissipation")
+            call require(scene%run%formulation == formulation_cvode, "run", "formulation", &
+                & "'cvode' in a scene with &dissipation (its laws are integrated in the ODE " &
+                & // "form)", "another")
+        end if
         if (allocated(error)) return
         call check_contact(path, groups, scene, error)
         if (allocated(error)) return

@@ -19,7 +19,7 @@ module rollcon_scene_keys
 
     !> Groups of a scene file, in the order the documentation gives them
     character(len=*), parameter :: scene_groups(*) = [character(len=11) :: "disk", &
-        & "environment", "initial", "strike", "run", "limits", "contact"]
+        & "environment", "initial", "strike", "run", "limits", "contact", "dissipation"]
 
     !> Densities [kg/m^3]: lighter than air is not a disk; 1e5 is four times osmium's
     real(wp), parameter :: density_min = 1.0e-3_wp, density_max = 1.0e5_wp
@@ -28,6 +28,9 @@ module rollcon_scene_keys
     !> Largest friction coefficient [-]: far above any pair of real surfaces (rubber on dry
     !> rough stone reaches about 1.5); the contact never slides below it in practice
     real(wp), parameter :: friction_max = 100.0_wp
+    !> Largest air viscosity [Pa s]: a thousand times glycerol's (1.4 Pa s at 20 C); air is
+    !> 1.8e-5
+    real(wp), parameter :: viscosity_max = 1.0e3_wp
 
 contains
 
@@ -70,7 +73,11 @@ contains
                 & real_key("contact", "mu_static", scene%contact%mu_static, "", 0.0_wp, &
                 & friction_max, lower_open=.true.), &
                 & real_key("contact", "mu_kinetic", scene%contact%mu_kinetic, "", 0.0_wp, &
-                & friction_max, lower_open=.true.)]
+                & friction_max, lower_open=.true.), &
+                & real_key("dissipation", "rolling_resistance", &
+                & scene%dissipation%rolling_resistance, "m", 0.0_wp, length_max), &
+                & real_key("dissipation", "air_viscosity", scene%dissipation%air_viscosity, &
+                & "Pa s", 0.0_wp, viscosity_max)]
         end associate
     end subroutine bind_keys
 

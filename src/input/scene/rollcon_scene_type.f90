@@ -13,6 +13,7 @@ module rollcon_scene_type
 
     public :: scene_type, scene_disk_type, scene_environment_type, scene_initial_type
     public :: scene_strike_type, scene_run_type, scene_limits_type, scene_contact_type
+    public :: scene_dissipation_type
     public :: formulation_cvode, formulation_ida, method_bdf, method_adams
     public :: drift_none, drift_projection, drift_baumgarte
     public :: jacobian_analytic, jacobian_dq, height_velocity, height_position
@@ -79,6 +80,18 @@ module rollcon_scene_type
         real(wp) :: mu_kinetic = 0.0_wp
     end type scene_contact_type
 
+    !> &dissipation: rolling resistance and the air layer under the rim (docs/design.md §5,
+    !> "Dissipation"). Without the group (or with both zero) the rim dissipates nothing.
+    type :: scene_dissipation_type
+        !> The file has a &dissipation group
+        logical :: enabled = .false.
+        !> Rolling resistance's lever arm delta [m] >= 0: the energy lost per length rolled
+        !> is delta F_n / R
+        real(wp) :: rolling_resistance = 0.0_wp
+        !> Dynamic viscosity of the air under the disk [Pa s] >= 0 (Moffatt's air layer)
+        real(wp) :: air_viscosity = 0.0_wp
+    end type scene_dissipation_type
+
     !> &run: how to integrate (rollcon_run_settings), and the form of the contact's height
     type, extends(run_settings_type) :: scene_run_type
         !> height_velocity or height_position
@@ -106,6 +119,7 @@ module rollcon_scene_type
         type(scene_run_type) :: run
         type(scene_limits_type) :: limits
         type(scene_contact_type) :: contact
+        type(scene_dissipation_type) :: dissipation
     end type scene_type
 
 end module rollcon_scene_type

@@ -255,6 +255,7 @@ contains
         summary%energy_scale = 0.75_wp
         summary%energy_step = 2.5e-11_wp
         summary%constraint_work = 1.25e-3_wp
+        summary%dissipated_work = 5.0e-2_wp
         summary%energy_conserved = .false.
         summary%layout = new_output_layout([2, 5], [11, 12, 13], &
             & [character(len=16) :: "height_2", "normal_force_2"])
@@ -295,11 +296,12 @@ contains
             & "status, message, limit, flag, energy conserved")
         if (allocated(error)) return
         call check(error, same_bits([back%t_reached, back%energy_reference, back%energy_drift, &
-            & back%energy_scale, back%energy_step, back%constraint_work, back%residual_max, &
-            & back%energy_bound, back%cpu_seconds], [summary%t_reached, &
+            & back%energy_scale, back%energy_step, back%constraint_work, back%dissipated_work, &
+            & back%residual_max, back%energy_bound, back%cpu_seconds], [summary%t_reached, &
             & summary%energy_reference, summary%energy_drift, summary%energy_scale, &
-            & summary%energy_step, summary%constraint_work, summary%residual_max, &
-            & summary%energy_bound, summary%cpu_seconds]), "the scalar reals")
+            & summary%energy_step, summary%constraint_work, summary%dissipated_work, &
+            & summary%residual_max, summary%energy_bound, summary%cpu_seconds]), &
+            & "the scalar reals")
         if (allocated(error)) return
         call check(error, same_bits(back%q, summary%q) .and. same_bits(back%u, summary%u) &
             & .and. same_bits(back%ucon_residual_max, summary%ucon_residual_max), &
