@@ -1,7 +1,8 @@
 ! SPDX-License-Identifier: MIT
 !> Turns a disk scene into a problem (the scene's assembly): the disk as a rigid part, three
-!> no-slip UCONs served by a rolling-disk UCOSUB, gravity, the strike, solver settings, the
-!> watches of its theta limit and its rim contact, and the initial state.
+!> no-slip UCONs served by a rolling-disk UCOSUB, gravity, the strike, the rim's dissipation,
+!> solver settings, the watches of its theta limit, its rim contact and its dissipation, and
+!> the initial state.
 module rollcon_disk_scene
     use rollcon_kinds, only : wp
     use rollcon_constants, only : pi
@@ -17,6 +18,8 @@ module rollcon_disk_scene
     use rollcon_problem, only : problem_type
     use rollcon_theta_watch, only : theta_watch_type, new_theta_watch
     use rollcon_contact_watch, only : contact_watch_type, mode_sliding
+    use rollcon_dissipation_watch, only : dissipation_watch_type
+    use rollcon_rim_dissipation, only : air_coefficient
     use rollcon_scene, only : scene_type, height_position
     use rollcon_scene_state, only : disk_mass_properties, disk_initial_state
     implicit none
@@ -132,6 +135,18 @@ contains
         call problem%add_watch(disk_theta_watch(scene))
         call disk_initial_state(scene, q0, u0)
         call problem%add_watch(disk_contact_watch(scene, disk%mass, q0, u0))
+        if (scene%dissipation%rolling_resistance > 0.0_wp &
+            & .or. scene%dissipation%air_viscosity > 0.0_wp) then
+            ! the rim's rolling resistance and air layer (docs/design.md §5, "Dissipation"):
+            ! the normal force is UCON 3's, the centre height Z the part's third coordinate
+            problem%eq%dissipation%part = disk_part
+            problem%eq%dissipation%normal = 3
+            problem%eq%dissipation%height_column = 3
+            problem%eq%dissipation%rolling_resistance = scene%dissipation%rolling_resistance
+            problem%eq%dissipation%air = air_coefficient(scene%dissipation%air_viscosity, &
+                & scene%disk%radius)
+            call problem%add_watch(dissipation_watch_type(part=disk_part))
+        end if
     end subroutine build_disk_problem
 
     !> The disk's theta limit: a stop at &limits theta_min, worded for the disk.

@@ -1,16 +1,18 @@
 ! SPDX-License-Identifier: MIT
 !> The names of the columns rollcon's own watches add to a run's rows (rollcon_output_layout):
 !> written by the watches, recognised by a reader of the CSV. A rim contact's six
-!> (rollcon_contact_watch), the basis of every part a re-basing run records
-!> (rollcon_theta_watch), the six of each displacement request (rollcon_request_watch), the
-!> force or torque of each MOTION (rollcon_motion_watch), the value of each VARIABLE
-!> (rollcon_variable_watch), those of the other requests (rollcon_request_answers), and the
-!> six of each statement's reaction and of each force request (rollcon_reaction_watch).
+!> (rollcon_contact_watch), a rim's dissipation's three (rollcon_dissipation_watch), the basis
+!> of every part a re-basing run records (rollcon_theta_watch), the six of each displacement
+!> request (rollcon_request_watch), the force or torque of each MOTION (rollcon_motion_watch),
+!> the value of each VARIABLE (rollcon_variable_watch), those of the other requests
+!> (rollcon_request_answers), and the six of each statement's reaction and of each force
+!> request (rollcon_reaction_watch).
 module rollcon_watch_columns
     implicit none
     private
 
-    public :: contact_names, contact_mode_names, basis_pattern, request_column_patterns
+    public :: contact_names, contact_mode_names, dissipation_names, basis_pattern
+    public :: request_column_patterns
     public :: motion_column_patterns
     public :: variable_column_patterns, diff_column_patterns
     public :: reaction_suffixes, reaction_column_patterns, answer_column_patterns
@@ -24,6 +26,11 @@ module rollcon_watch_columns
     !> 1 sliding) and the contact point's slip velocity, ground X and Y [m/s]
     character(len=*), parameter :: contact_mode_names(3) = [character(len=15) :: "mode", &
         & "slip_x", "slip_y"]
+    !> A rim's dissipation's columns (&dissipation, rollcon_dissipation_watch): the power
+    !> rolling resistance and the air layer dissipate [W] and the energy both have dissipated
+    !> since the start [J]
+    character(len=*), parameter :: dissipation_names(3) = [character(len=15) :: &
+        & "rolling_power", "air_power", "dissipated"]
     !> The basis column of a part ("<id>": the part's id)
     character(len=*), parameter :: basis_pattern = "basis_<id>"
     !> A displacement request's columns ("<n>": the request's id): marker I from marker J,

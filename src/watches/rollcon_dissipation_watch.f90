@@ -1,0 +1,276 @@
+! SPDX-License-Identifier: MIT
+!> A rim's dissipation (rollcon_rim_dissipation) watched: the power rolling resistance and the
+!> air layer dissipate and the energy dissipated since the start, as columns of every row; in
+!> the summary the energy each law dissipated and, for a disk settling to its finite-time
+!> singularity (Euler's disk), the fit of its precession rate Omega = |psidot| to
+!> Omega ~ (t0 - t)^(-n) (fit_singularity; docs/design.md §5, "Dissipation").
+module rollcon_dissipation_watch
+    use rollcon_kinds, only : wp
+    use rollcon_error, only : error_type, fatal_error, stat_input
+    use rollcon_text, only : to_text
+    use rollcon_equations, only : equations_type
+    use rollcon_run_settings, only : run_settings_type
+    use rollcon_output_layout, only : name_length
+    use rollcon_watch_columns, only : dissipation_names
+    use rollcon_watch, only : watch_type
+    use, intrinsic :: ieee_arithmetic, only : ieee_is_finite
+    implicit none
+    private
+
+    public :: dissipation_watch_type, fit_singularity, singularity_fit_type
+
+    !> Fraction of the rows' time span left out at its start by the fit: the start's own
+    !> transient (a state near, not at, steady precession nutates before it settles)
+    real(wp), parameter :: skipped_fraction = 0.1_wp
+    !> Fewest rows a fit takes
+    integer, parameter :: fit_rows_min = 8
+    !> The range of t0 - t_end searched, as fractions of the fitted rows' time span: from a
+    !> millionth (a run that ends right at the singularity) to the span itself
+    real(wp), parameter :: gap_min_fraction = 1.0e-6_wp, gap_max_fraction = 1.0_wp
+
+    !> A fit of Omega ~ (t0 - t)^(-n)
+    type :: singularity_fit_type
+        !> A fit was made (enough rows, all rates positive and finite)
+        logical :: made = .false.
+        !> The singular time [s], the exponent n [-], the rms residual of log Omega [-], the
+        !> rows fitted and the decades of t0 - t they span
+        real(wp) :: t0 = 0.0_wp, exponent = 0.0_wp, residual = 0.0_wp, decades = 0.0_wp
+        integer :: rows = 0
+    end type singularity_fit_type
+
+    type, extends(watch_type) :: dissipation_watch_type
+        !> The part whose rim dissipates (model order)
+        integer :: part = 1
+        !> The rows so far: time [s] and Omega = |psidot| [rad/s] (grown by doubling)
+        real(wp), allocatable :: times(:), rates(:)
+        integer :: rows = 0
+        !> The energy each law dissipated since the first row [J] (trapezoidal rule over the
+        !> rows), and the last row's powers [W]
+        real(wp) :: rolling_work = 0.0_wp, air_work = 0.0_wp
+        real(wp) :: last_rolling = 0.0_wp, last_air = 0.0_wp
+    contains
+        procedure :: prepare
+        procedure :: column_names
+        procedure :: fill_columns
+        procedure :: summary_lines
+    end type dissipation_watch_type
+
+contains
+
+    !> The part must be one of the model's; the rows are sized for the run's output times.
+    subroutine prepare(self, eq, settings, error)
+        class(dissipation_watch_type), intent(inout) :: self
+        type(equations_type), intent(inout) :: eq
+        type(run_settings_type), intent(in) :: settings
+        type(error_type), allocatable, intent(out) :: error
+        integer :: capacity
+
+        if (self%part < 1 .or. self%part > size(eq%model%parts)) then
+            call fatal_error(error, "the dissipating part is number " // to_text(self%part) &
+                & // " in model order; the model has " // to_text(size(eq%model%parts)) &
+                & // " parts", stat_input)
+            return
+        end if
+        capacity = 64
+        if (settings%output_step > 0.0_wp) capacity = capacity + nint(min(1.0e7_wp, &
+            & settings%end_time/settings%output_step))
+        if (allocated(self%times)) deallocate(self%times, self%rates)
+        allocate(self%times(capacity), self%rates(capacity), source=0.0_wp)
+        self%rows = 0
+        self%rolling_work = 0.0_wp
+        self%air_work = 0.0_wp
+    end subroutine prepare
+
+    subroutine column_names(self, eq, names)
+        class(dissipation_watch_type), intent(in) :: self
+        type(equations_type), intent(in) :: eq
+        character(len=name_length), allocatable, intent(out) :: names(:)
+
+        names = dissipation_names
+    end subroutine column_names
+
+    !> The powers of the last evaluation at this row [W] and the energy dissipated [J]; the
+    !> row's time and Omega kept for the fit.
+    subroutine fill_columns(self, eq, time, q, u, lambda, values)
+        class(dissipation_watch_type), intent(inout) :: self
+        type(equations_type), intent(in) :: eq
+        real(wp), intent(in) :: time, q(:), u(:), lambda(:)
+        real(wp), intent(out) :: values(:)
+        real(wp), allocatable :: grown(:)
+        real(wp) :: step
+
+        associate (rolling => eq%dissipation%rolling_power, air => eq%dissipation%air_power)
+            if (self%rows > 0) then
+                step = time - self%times(self%rows)
+                self%rolling_work = self%rolling_work + 0.5_wp*(rolling + self%last_rolling)*step
+                self%air_work = self%air_work + 0.5_wp*(air + self%last_air)*step
+            end if
+            self%last_rolling = rolling
+            self%last_air = air
+            values(1) = rolling
+            values(2) = air
+            values(3) = self%rolling_work + self%air_work
+        end associate
+        if (self%rows == size(self%times)) then
+            ! more rows than the output times (events' rows): twice the room
+            allocate(grown(2*size(self%times)), source=0.0_wp)
+            grown(:self%rows) = self%times(:self%rows)
+            call move_alloc(grown, self%times)
+            allocate(grown(2*size(self%rates)), source=0.0_wp)
+            grown(:self%rows) = self%rates(:self%rows)
+            call move_alloc(grown, self%rates)
+        end if
+        self%rows = self%rows + 1
+        self%times(self%rows) = time
+        self%rates(self%rows) = abs(u(6*(self%part - 1) + 4))
+    end subroutine fill_columns
+
+    !> The energy each law dissipated, and the fit of the singularity.
+    function summary_lines(self, eq) result(text)
+        class(dissipation_watch_type), intent(in) :: self
+        type(equations_type), intent(in) :: eq
+        character(len=:), allocatable :: text
+        type(singularity_fit_type) :: fit
+
+        text = "dissipation: rolling resistance delta = " &
+            & // to_text(eq%dissipation%rolling_resistance) // " m dissipated " &
+            & // to_text(self%rolling_work) // " J, the air layer (coefficient pi/4 mu R^3 = " &
+            & // to_text(eq%dissipation%air) // " N m s) " // to_text(self%air_work) // " J" &
+            & // new_line("a")
+        if (self%rows == 0) return
+        fit = fit_singularity(self%times(:self%rows), self%rates(:self%rows))
+        if (.not. fit%made) return
+        text = text // "finite-time singularity: Omega = |psidot| ~ (t0 - t)^(-n) fitted " &
+            & // "over " // to_text(fit%rows) // " rows spanning " &
+            & // to_text(real(nint(100.0_wp*fit%decades), wp)/100.0_wp) &
+            & // " decades of t0 - t: t0 = " // to_text(fit%t0) // " s, n = " &
+            & // to_text(fit%exponent) // " (rms residual of ln Omega " &
+            & // to_text(fit%residual) // ")" // new_line("a")
+    end function summary_lines
+
+    !> Fit of Omega ~ (t0 - t)^(-n) to rows (t_i, Omega_i), t ascending [s, rad/s]: the rows
+    !> after the first tenth of their time span (the start's transient) up to the largest
+    !> Omega (t_end; after it the disk falls flat, the law broken down), a straight line of
+    !> ln Omega against ln(t0 - t) by weighted least squares, each row weighted by the span
+    !> of ln(t0 - t) it stands for (its share of time over t0 - t_i, so that every decade
+    !> counts alike, not only the many rows far from t0), and t0 > t_end the one that
+    !> minimises the weighted mean square residual: a scan of 64 values of ln(t0 - t_end)
+    !> over [ln(1e-6 T), ln T] (T the fitted rows' span) and a golden-section search about
+    !> the best. Not made with fewer than fit_rows_min rows or a rate not positive and finite.
+    pure function fit_singularity(times, rates) result(fit)
+        real(wp), intent(in) :: times(:), rates(:)
+        type(singularity_fit_type) :: fit
+        integer, parameter :: scan = 64, golden_steps = 60
+        real(wp), parameter :: golden = 0.6180339887498949_wp
+        real(wp) :: span, t_end, lo, hi, z, best, value, a, b, c, d, fc, fd, slope
+        integer :: first, n, k, best_k
+
+        ! up to the largest rate: after it the disk falls flat faster than it precesses
+        ! (Moffatt's breakdown of the steady approximation), no part of the law
+        if (size(times) < fit_rows_min) return
+        n = maxloc(rates, dim=1)
+        if (n < fit_rows_min) return
+        t_end = times(n)
+        span = t_end - times(1)
+        if (.not. span > 0.0_wp) return
+        first = 1
+        do while (times(first) < times(1) + skipped_fraction*span)
+            first = first + 1
+        end do
+        if (n - first + 1 < fit_rows_min) return
+        if (.not. all(rates(first:) > 0.0_wp .and. ieee_is_finite(rates(first:)))) return
+        span = t_end - times(first)
+        lo = log(gap_min_fraction*span)
+        hi = log(gap_max_fraction*span)
+        best = huge(1.0_wp)
+        best_k = 0
+        do k = 0, scan
+            z = lo + (hi - lo)*real(k, wp)/real(scan, wp)
+            call line(z, value, slope)
+            if (value < best) then
+                best = value
+                best_k = k
+            end if
+        end do
+        a = lo + (hi - lo)*real(max(best_k - 1, 0), wp)/real(scan, wp)
+        b = lo + (hi - lo)*real(min(best_k + 1, scan), wp)/real(scan, wp)
+        c = b - golden*(b - a)
+        d = a + golden*(b - a)
+        call line(c, fc, slope)
+        call line(d, fd, slope)
+        do k = 1, golden_steps
+            if (fc < fd) then
+                b = d
+                d = c
+                fd = fc
+                c = b - golden*(b - a)
+                call line(c, fc, slope)
+            else
+                a = c
+                c = d
+                fc = fd
+                d = a + golden*(b - a)
+                call line(d, fd, slope)
+            end if
+        end do
+        z = 0.5_wp*(a + b)
+        call line(z, value, slope)
+        fit%made = .true.
+        fit%t0 = t_end + exp(z)
+        fit%exponent = -slope
+        fit%residual = sqrt(value)
+        fit%rows = n - first + 1
+        fit%decades = log10((fit%t0 - times(first))/(fit%t0 - t_end))
+
+    contains
+
+        !> The weighted mean square residual and the slope of the line at t0 = t_end + e^z.
+        pure subroutine line(z, residual, slope)
+            real(wp), intent(in) :: z
+            real(wp), intent(out) :: residual, slope
+            real(wp) :: t0, w, x, y, sw, sx, sy, sxx, sxy, mean_x, mean_y, intercept
+            integer :: i
+
+            t0 = t_end + exp(z)
+            sw = 0.0_wp
+            sx = 0.0_wp
+            sy = 0.0_wp
+            sxx = 0.0_wp
+            sxy = 0.0_wp
+            do i = first, n
+                w = weight(i, t0)
+                x = log(t0 - times(i))
+                y = log(rates(i))
+                sw = sw + w
+                sx = sx + w*x
+                sy = sy + w*y
+            end do
+            mean_x = sx/sw
+            mean_y = sy/sw
+            do i = first, n
+                w = weight(i, t0)
+                x = log(t0 - times(i)) - mean_x
+                y = log(rates(i)) - mean_y
+                sxx = sxx + w*x*x
+                sxy = sxy + w*x*y
+            end do
+            slope = sxy/sxx
+            intercept = mean_y - slope*mean_x
+            residual = 0.0_wp
+            do i = first, n
+                residual = residual + weight(i, t0)*(log(rates(i)) - intercept &
+                    & - slope*log(t0 - times(i)))**2
+            end do
+            residual = residual/sw
+        end subroutine line
+
+        !> Row i's weight: half the time to its neighbours over t0 - t_i.
+        pure real(wp) function weight(i, t0)
+            integer, intent(in) :: i
+            real(wp), intent(in) :: t0
+
+            weight = 0.5_wp*(times(min(i + 1, n)) - times(max(i - 1, first)))/(t0 - times(i))
+        end function weight
+    end function fit_singularity
+
+end module rollcon_dissipation_watch
