@@ -11,6 +11,8 @@ module rollcon_figures
     use rollcon_run_record, only : run_record_type, read_run, rolls_on_rim
     use rollcon_output_layout, only : coord_x, coord_phi
     use rollcon_contact_figures, only : contact_figure_names, write_contact_data, contact_script
+    use rollcon_singularity_figure, only : has_singularity, write_singularity_data, &
+        & singularity_script, singularity_figure_name
     use rollcon_figure_text, only : drift, residual_floor, title, output, figure_preamble
     use rollcon_gnuplot, only : require_gnuplot, run_gnuplot, gnuplot_string, base_name, &
         & remove_file
@@ -67,6 +69,12 @@ contains
             call write_contact_data(data_path, run, error)
             if (.not. allocated(error)) text = contact_script(base_name(csv_path, ".csv"), &
                 & prefix, data_path, run)
+            ! a disk settling to its finite-time singularity: Omega against t0 - t
+            if (.not. allocated(error) .and. has_singularity(run)) then
+                call write_singularity_data(prefix // "_singularity.dat", run, error)
+                if (.not. allocated(error)) text = text // singularity_script(base_name( &
+                    & csv_path, ".csv"), prefix, prefix // "_singularity.dat", run)
+            end if
         else
             call write_model_data(data_path, run, error)
             if (.not. allocated(error)) text = model_script(base_name(csv_path, ".csv"), &
@@ -100,6 +108,7 @@ contains
         end if
         call remove_file(script_path)
         call remove_file(data_path)
+        call remove_file(prefix // "_singularity.dat")
         if (present(files)) then
             length = 0
             do i = 1, size(names)
@@ -112,14 +121,16 @@ contains
         end if
     end subroutine plot_output
 
-    !> The names of the figures of a run: figure_names for a disk scene, else
-    !> model_figure_names.
+    !> The names of the figures of a run: figure_names for a disk scene (and the singularity's
+    !> for one settling to it, rollcon_singularity_figure), else model_figure_names.
     pure function figures_of(run) result(names)
         type(run_record_type), intent(in) :: run
         character(len=:), allocatable :: names(:)
 
         if (rolls_on_rim(run)) then
             names = figure_names
+            if (has_singularity(run)) names = [character(len=max(len(names), &
+                & len(singularity_figure_name))) :: names, singularity_figure_name]
         else
             names = model_figure_names
         end if
@@ -136,6 +147,7 @@ contains
         do i = 1, size(model_figure_names)
             call remove_file(figure_file(csv_path, output_dir, model_figure_names(i)))
         end do
+        call remove_file(figure_file(csv_path, output_dir, singularity_figure_name))
     end subroutine remove_figures
 
     !> The PNG file of a figure: output_dir/<base>_<figure>.png, <base> the CSV's file name

@@ -7,17 +7,19 @@ module test_pictures
     use rollcon_error, only : error_type
     use rollcon_text, only : to_text
     use rollcon_simulation, only : history_type
-    use rollcon_output_layout, only : output_layout_type, read_layout, name_length
+    use rollcon_output_layout, only : output_layout_type, read_layout, name_length, &
+        & new_output_layout, coord_psidot
     use rollcon_animation_rows, only : frame_rows
     use rollcon_csv_reader, only : read_output_csv
     use rollcon_run_record, only : run_record_type
     use rollcon_figures, only : plot_output, figure_file, figure_names, model_figure_names
+    use rollcon_singularity_figure, only : singularity_figure_name
     use rollcon_gif, only : animate_output
     use rollcon_gnuplot, only : gnuplot_available
     use rollcon_watch_columns, only : answer_column_patterns
     use rollcon_watch_columns, only : contact_names, contact_mode_names, request_column_patterns, &
         & motion_column_patterns, reaction_column_patterns, variable_column_patterns, &
-        & diff_column_patterns
+        & diff_column_patterns, dissipation_names
     use rollcon_testing, only : unittest_type, new_unittest, check, skip_test
     use picture_files, only : disk_run, two_part_run, falling_run, write_run, make_folder, &
         & remove_folder, write_lines, expect_message, file_starts_with
@@ -44,6 +46,7 @@ contains
             & new_unittest("csv-bad-header", test_csv_header), &
             & new_unittest("csv-bad-rows", test_csv_rows), &
             & new_unittest("plot-disk-scene-figures", test_plot_disk), &
+            & new_unittest("plot-settling-disk-singularity", test_plot_singularity), &
             & new_unittest("plot-two-part-figures", test_plot_model), &
             & new_unittest("plot-model-without-ucon", test_plot_no_ucon), &
             & new_unittest("plot-missing-csv", test_plot_missing), &
@@ -223,6 +226,30 @@ contains
 
         call plot_and_check(error, disk_run(), "disk", figure_names)
     end subroutine test_plot_disk
+
+    !> A disk scene's CSV with a rim's dissipation whose precession rate rises as
+    !> 30 (2 s - t)^(-1/6) gets the singularity's figure too (skipped without gnuplot).
+    subroutine test_plot_singularity(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(run_record_type) :: base, run
+        real(wp), allocatable :: row(:)
+        integer :: j
+
+        base = disk_run()
+        run%layout = new_output_layout([1], [1, 2, 3], [character(len=name_length) :: &
+            & contact_names, dissipation_names])
+        run%shapes = base%shapes
+        do j = 1, base%history%count
+            associate (t => base%history%rows(1, j))
+                row = [base%history%rows(:, j), 0.0_wp, 1.0e-3_wp, 1.0e-3_wp*t]
+                row(run%layout%part_column(1, coord_psidot)) = 30.0_wp*(2.0_wp - t) &
+                    & **(-1.0_wp/6.0_wp)
+            end associate
+            call run%history%add(row)
+        end do
+        call plot_and_check(error, run, "settling", [character(len=11) :: figure_names, &
+            & singularity_figure_name])
+    end subroutine test_plot_singularity
 
     !> A model of two parts gets the figures for any parts (skipped without gnuplot).
     subroutine test_plot_model(error)
