@@ -57,8 +57,8 @@ contains
 
         fit = rows_fit(run)
         message = "a write failed"
-        open(newunit=unit, file=path, status="replace", action="write", iostat=stat, &
-            & iomsg=message)
+        open(newunit=unit, file=path, status="replace", action="write", access="stream", &
+            & form="formatted", iostat=stat, iomsg=message)
         if (stat /= 0) then
             call fatal_error(error, path // ": cannot write the plot data: " // trim(message), &
                 & stat_io)

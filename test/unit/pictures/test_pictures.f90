@@ -135,8 +135,8 @@ contains
             & "phi_1", "Xdot_1", "Ydot_1", "Zdot_1", "psidot_1", "thetadot_1", "phidot_1", "E", &
             & "F_1", "lambda_1", "F_2"]
         call read_layout(names, layout, count_reason, [character(len=name_length) :: &
-            & contact_names, contact_mode_names, "basis_<id>", request_column_patterns, &
-            & motion_column_patterns, &
+            & contact_names, contact_mode_names, dissipation_names, "basis_<id>", &
+            & request_column_patterns, motion_column_patterns, &
             & answer_column_patterns, reaction_column_patterns, variable_column_patterns, &
             & diff_column_patterns])
         call check(error, allocated(count_reason), "read_layout accepted 17 columns for one " &
