@@ -79,7 +79,7 @@ contains
     end subroutine write_singularity_data
 
     !> The gnuplot lines drawing the figure from the data file (after the run's other
-    !> figures, whose preamble it shares).
+    !> figures, whose preamble it shares), with the fitted line C (t0 - t)^(-n).
     pure function singularity_script(name, prefix, data_path, run) result(text)
         character(len=*), intent(in) :: name, prefix, data_path
         type(run_record_type), intent(in) :: run
@@ -87,25 +87,17 @@ contains
         character(len=*), parameter :: nl = new_line("a")
         type(singularity_fit_type) :: fit
         character(len=:), allocatable :: data
-        real(wp) :: t_last, rate_last, scale
 
         fit = rows_fit(run)
         data = gnuplot_string(data_path)
-        ! the fitted line through the rows' geometric centre is drawn through the largest
-        ! rate's row instead (the end of the fitted rows): C (t0 - t)^(-n)
-        t_last = run%history%rows(1, maxloc(abs(run%history%rows(run%layout%part_column(1, &
-            & coord_psidot), :run%history%count)), dim=1))
-        rate_last = maxval(abs(run%history%rows(run%layout%part_column(1, coord_psidot), &
-            & :run%history%count)))
-        scale = rate_last*(fit%t0 - t_last)**fit%exponent
         text = output(prefix, singularity_figure_name) &
             & // title(name // ": precession rate against the time left, t0 = " &
             & // to_text(real(nint(fit%t0*1.0e4_wp), wp)/1.0e4_wp) // " s fitted") &
             & // "set xlabel 't0 - t [s]'" // nl // "set ylabel 'Ω = |dψ/dt| [rad/s]'" // nl &
-            & // "set logscale xy" // nl // "set format x '10^{%L}'" // nl &
+            & // "set logscale xy" // nl // "set format x '%g'" // nl &
             & // "set format y '%g'" // nl // "set key top right" // nl &
             & // "plot " // data // " using 1:2 with lines lw 1.5 title 'Ω (the run)', " &
-            & // to_text(scale) // "*x**(-" // to_text(fit%exponent) // ") with lines " &
+            & // to_text(fit%prefactor) // "*x**(-" // to_text(fit%exponent) // ") with lines " &
             & // "dashtype 2 lw 1.2 title " // gnuplot_string("fit: (t0 - t)^(-" &
             & // to_text(real(nint(fit%exponent*1.0e4_wp), wp)/1.0e4_wp) // ")") // nl &
             & // "unset logscale xy" // nl // "unset output" // nl

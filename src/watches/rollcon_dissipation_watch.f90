@@ -36,6 +36,8 @@ module rollcon_dissipation_watch
         !> rows fitted and the decades of t0 - t they span
         real(wp) :: t0 = 0.0_wp, exponent = 0.0_wp, residual = 0.0_wp, decades = 0.0_wp
         integer :: rows = 0
+        !> The line's prefactor C of Omega = C (t0 - t)^(-n) [rad/s^(1-n)]
+        real(wp) :: prefactor = 0.0_wp
     end type singularity_fit_type
 
     type, extends(watch_type) :: dissipation_watch_type
@@ -162,7 +164,7 @@ contains
         type(singularity_fit_type) :: fit
         integer, parameter :: scan = 64, golden_steps = 60
         real(wp), parameter :: golden = 0.6180339887498949_wp
-        real(wp) :: span, t_end, lo, hi, z, best, value, a, b, c, d, fc, fd, slope
+        real(wp) :: span, t_end, lo, hi, z, best, value, a, b, c, d, fc, fd, slope, intercept
         integer :: first, n, k, best_k
 
         ! up to the largest rate: after it the disk falls flat faster than it precesses
@@ -186,7 +188,7 @@ contains
         best_k = 0
         do k = 0, scan
             z = lo + (hi - lo)*real(k, wp)/real(scan, wp)
-            call line(z, value, slope)
+            call line(z, value, slope, intercept)
             if (value < best) then
                 best = value
                 best_k = k
@@ -196,26 +198,27 @@ contains
         b = lo + (hi - lo)*real(min(best_k + 1, scan), wp)/real(scan, wp)
         c = b - golden*(b - a)
         d = a + golden*(b - a)
-        call line(c, fc, slope)
-        call line(d, fd, slope)
+        call line(c, fc, slope, intercept)
+        call line(d, fd, slope, intercept)
         do k = 1, golden_steps
             if (fc < fd) then
                 b = d
                 d = c
                 fd = fc
                 c = b - golden*(b - a)
-                call line(c, fc, slope)
+                call line(c, fc, slope, intercept)
             else
                 a = c
                 c = d
                 fc = fd
                 d = a + golden*(b - a)
-                call line(d, fd, slope)
+                call line(d, fd, slope, intercept)
             end if
         end do
         z = 0.5_wp*(a + b)
-        call line(z, value, slope)
+        call line(z, value, slope, intercept)
         fit%made = .true.
+        fit%prefactor = exp(intercept)
         fit%t0 = t_end + exp(z)
         fit%exponent = -slope
         fit%residual = sqrt(value)
@@ -224,11 +227,12 @@ contains
 
     contains
 
-        !> The weighted mean square residual and the slope of the line at t0 = t_end + e^z.
-        pure subroutine line(z, residual, slope)
+        !> The weighted mean square residual, the slope and the intercept of the line at
+        !> t0 = t_end + e^z.
+        pure subroutine line(z, residual, slope, intercept)
             real(wp), intent(in) :: z
-            real(wp), intent(out) :: residual, slope
-            real(wp) :: t0, w, x, y, sw, sx, sy, sxx, sxy, mean_x, mean_y, intercept
+            real(wp), intent(out) :: residual, slope, intercept
+            real(wp) :: t0, w, x, y, sw, sx, sy, sxx, sxy, mean_x, mean_y
             integer :: i
 
             t0 = t_end + exp(z)

@@ -288,8 +288,8 @@ contains
     end subroutine test_energy_judge
 
     !> The fit on rows of an exact law Omega = 3 (t0 - t)^(-n) (n = 1/6 and 1/3, t0 = 2 s,
-    !> rows 1 ms apart to 1.99 s, then a fall as the disk's after its breakdown): t0 and n
-    !> come back to the rounding of the search (golden section to 1e-12 of the scanned
+    !> rows 1 ms apart to 1.99 s, then a fall as the disk's after its breakdown): t0, n and
+    !> C = 3 come back to the rounding of the search (golden section to 1e-12 of the scanned
     !> range), bound 1e-6.
     subroutine test_fit_exact(error)
         type(error_type), allocatable, intent(out) :: error
@@ -316,6 +316,8 @@ contains
             call check(error, fit%exponent, exponents(k), "n", abs_tol=tol)
             if (allocated(error)) return
             call check(error, fit%t0, 2.0_wp, "t0 [s]", abs_tol=tol)
+            if (allocated(error)) return
+            call check(error, fit%prefactor, 3.0_wp, "C of C (t0 - t)^(-n)", rel_tol=tol)
             if (allocated(error)) return
         end do
     end subroutine test_fit_exact
