@@ -10,7 +10,8 @@ module rollcon_watch_columns
     implicit none
     private
 
-    public :: contact_names, contact_mode_names, basis_pattern, request_column_patterns
+    public :: contact_names, contact_mode_names, contact_mode_words, basis_pattern
+    public :: request_column_patterns
     public :: motion_column_patterns
     public :: variable_column_patterns, diff_column_patterns
     public :: reaction_suffixes, reaction_column_patterns, answer_column_patterns
@@ -24,6 +25,11 @@ module rollcon_watch_columns
     !> 1 sliding) and the contact point's slip velocity, ground X and Y [m/s]
     character(len=*), parameter :: contact_mode_names(3) = [character(len=15) :: "mode", &
         & "slip_x", "slip_y"]
+    !> The contact's modes in words, by the number the `mode` column writes (0 rolling, 1
+    !> sliding): the summary's, a study's measures' (t_rolling, t_sliding) and the pictures'
+    !> legend's. A mode is the next number and the next word here.
+    character(len=*), parameter :: contact_mode_words(0:1) = [character(len=7) :: "rolling", &
+        & "sliding"]
     !> The basis column of a part ("<id>": the part's id)
     character(len=*), parameter :: basis_pattern = "basis_<id>"
     !> A displacement request's columns ("<n>": the request's id): marker I from marker J,
