@@ -21,7 +21,8 @@ module rollcon_contact_figures
     implicit none
     private
 
-    public :: write_contact_data, contact_script, path_modes, mode_path, mode_switches
+    public :: write_contact_data, contact_script, path_modes, mode_path, mode_switches, &
+        & mode_colour_values
 
     !> The figures, each written as DIR/<base>_<name>.png
     character(len=*), parameter, public :: contact_figure_names(7) = [character(len=11) :: "path", &
@@ -132,6 +133,24 @@ contains
             if (any(modes == m)) present = [present, m]
         end do
     end subroutine path_modes
+
+    !> The colour of each row's mode (mode_colours) as the number gnuplot's `lc rgb variable`
+    !> takes (256^2 red + 256 green + blue): the animation's path coloured by mode.
+    pure function mode_colour_values(modes) result(values)
+        !> The mode at each row (path_modes)
+        integer, intent(in) :: modes(:)
+        integer :: values(size(modes))
+        integer :: j, red, green, blue
+
+        do j = 1, size(modes)
+            associate (hex => mode_colours(modulo(modes(j), size(mode_colours))))
+                read(hex(2:3), '(z2)') red
+                read(hex(4:5), '(z2)') green
+                read(hex(6:7), '(z2)') blue
+            end associate
+            values(j) = 65536*red + 256*green + blue
+        end do
+    end function mode_colour_values
 
     !> values (a path's coordinate at each row) where the path is drawn in mode `wanted`: at
     !> the rows in that mode and at the row after each of its stretches, so that the stretch

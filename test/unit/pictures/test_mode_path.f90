@@ -1,8 +1,8 @@
 ! SPDX-License-Identifier: MIT
 !> The contact point's path coloured by the contact's mode (suite mode-path): a run whose rows
 !> carry the `mode` column (Coulomb friction) has its path split by that column into one line
-!> per mode, each stretch joined to the next, and its switches marked; a run without it keeps
-!> the one line of the contact point.
+!> per mode, each stretch joined to the next, and its switches marked, and the animation's path
+!> takes each point's mode's colour; a run without it keeps the one line of the contact point.
 module test_mode_path
     use, intrinsic :: ieee_arithmetic, only : ieee_is_nan
     use rollcon_kinds, only : wp
@@ -12,10 +12,12 @@ module test_mode_path
     use rollcon_watch_columns, only : contact_names, contact_mode_names
     use rollcon_run_record, only : run_record_type
     use rollcon_contact_figures, only : mode_path, mode_switches, write_contact_data, &
-        & contact_script
+        & contact_script, mode_colour_values
+    use rollcon_gif, only : animate_output
+    use rollcon_gnuplot, only : gnuplot_available
     use rollcon_figure_text, only : residual_floor
-    use rollcon_testing, only : unittest_type, new_unittest, check
-    use picture_files, only : disk_run, make_folder, remove_folder, run_rows
+    use rollcon_testing, only : unittest_type, new_unittest, check, skip_test
+    use picture_files, only : disk_run, make_folder, remove_folder, run_rows, write_run
     implicit none
     private
 
@@ -34,7 +36,8 @@ contains
 
         tests = [new_unittest("split-follows-mode-column", test_split), &
             & new_unittest("figure-data-by-mode", test_data), &
-            & new_unittest("script-lines-by-mode", test_script)]
+            & new_unittest("script-lines-by-mode", test_script), &
+            & new_unittest("animation-path-by-mode", test_animation)]
     end subroutine collect_mode_path
 
     !> Modes 0 0 1 1 1 0 2 2 0 over values 1 to 9: each mode's line holds its own rows and the
@@ -171,6 +174,44 @@ contains
             & "the path's plot does not draw a line per mode: " &
             & // text(index(text, "paths on the ground"):))
     end subroutine test_script
+
+    !> The animation's path: each point takes its mode's colour, the figure's (#1f77b4 rolling,
+    !> #d62728 sliding) as gnuplot's rgb number, so equal modes give equal colours and a change
+    !> of mode a change of colour; the GIF of a run with a mode column draws its path in those
+    !> (lc rgb variable), one without it in one colour (skipped without gnuplot).
+    subroutine test_animation(error)
+        type(error_type), allocatable, intent(out) :: error
+        integer, parameter :: modes(5) = [0, 1, 1, 0, 2]
+        integer :: colours(5), frames, modes_of_run(run_rows)
+        character(len=:), allocatable :: script, plain
+
+        colours = mode_colour_values(modes)
+        call check(error, colours(1) == int(z'1f77b4') .and. colours(2) == int(z'd62728') &
+            & .and. colours(3) == colours(2) .and. colours(4) == colours(1) &
+            & .and. all(colours(5) /= colours(:4)), "the path's colours do not follow the " &
+            & // "modes 0 1 1 0 2: " // to_text(colours(1)) // " " // to_text(colours(2)) &
+            & // " " // to_text(colours(3)) // " " // to_text(colours(4)) // " " &
+            & // to_text(colours(5)))
+        if (allocated(error)) return
+        if (.not. gnuplot_available()) then
+            call skip_test(error, "gnuplot not found (Debian gnuplot-nox; bash .ci/setup)")
+            return
+        end if
+        call make_folder(scratch)
+        call write_run(scratch // "/modes.csv", mode_run(modes_of_run), .true., error)
+        if (.not. allocated(error)) call animate_output(scratch // "/modes.csv", scratch &
+            & // "/modes.gif", frames, error, script)
+        if (.not. allocated(error)) call write_run(scratch // "/plain.csv", disk_run(), .true., &
+            & error)
+        if (.not. allocated(error)) call animate_output(scratch // "/plain.csv", scratch &
+            & // "/plain.gif", frames, error, plain)
+        call remove_folder(scratch)
+        if (allocated(error)) return
+        call check(error, index(script, "using 1:2:3:4 with lines lw 2 lc rgb variable") > 0 &
+            & .and. index(plain, "lc rgb variable") == 0 .and. index(plain, &
+            & "using 1:2:3 with lines lw 2 lc rgb") > 0, "the GIF's path is not coloured by " &
+            & // "mode with a mode column, in one colour without")
+    end subroutine test_animation
 
     !> disk_run with the contact's mode columns: rows 11 to 20 sliding, the others rolling
     !> (modes), the slip zero.
