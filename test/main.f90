@@ -72,6 +72,7 @@ program tester
     use test_adm_physical, only : collect_adm_physical
     use test_study_paths, only : collect_study_paths
     use test_figure_rows, only : collect_figure_rows
+    use test_mode_path, only : collect_mode_path
     use test_wire, only : collect_wire
     use test_least_squares, only : collect_least_squares
     use test_small_dense, only : collect_small_dense
@@ -197,6 +198,7 @@ program tester
         & new_testsuite("adm-physical", collect_adm_physical), &
         & new_testsuite("study-paths", collect_study_paths), &
         & new_testsuite("figure-rows", collect_figure_rows), &
+        & new_testsuite("mode-path", collect_mode_path), &
         & new_testsuite("wire", collect_wire), &
         & new_testsuite("least-squares", collect_least_squares), &
         & new_testsuite("small-dense", collect_small_dense), &

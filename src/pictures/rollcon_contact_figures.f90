@@ -2,8 +2,11 @@
 !> The figures of a run of one part rolling on a rim, the columns of its rim contact among its
 !> rows (rollcon_contact_watch): paths of the centre and the contact point, theta, the
 !> precession and spin rates, energy drift, constraint residuals with the height residual, the
-!> contact force and the friction coefficient it needs.
+!> contact force and the friction coefficient it needs. A run whose rows carry the contact's
+!> mode (Coulomb friction: the `mode` column) gets its contact point's path coloured by mode,
+!> with its switches marked.
 module rollcon_contact_figures
+    use, intrinsic :: ieee_arithmetic, only : ieee_value, ieee_quiet_nan
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type, fatal_error, stat_io
     use rollcon_text, only : to_text
@@ -14,10 +17,12 @@ module rollcon_contact_figures
     use rollcon_gnuplot, only : gnuplot_string
     use rollcon_output_files, only : close_checked
     use rollcon_figure_rows, only : write_figure_rows
+    use rollcon_watch_columns, only : contact_mode_words
     implicit none
     private
 
-    public :: write_contact_data, contact_script
+    public :: write_contact_data, contact_script, path_modes, mode_path, mode_switches, &
+        & mode_colour_values
 
     !> The figures, each written as DIR/<base>_<name>.png
     character(len=*), parameter, public :: contact_figure_names(7) = [character(len=11) :: "path", &
@@ -25,13 +30,20 @@ module rollcon_contact_figures
     !> Columns of the data file written for gnuplot, before one |F_k| column per UCON and the
     !> height residual
     integer, parameter :: data_columns = 13
+    !> Colours of the contact point's path in each mode, by the mode's number (0 rolling, 1
+    !> sliding, then again from the first past the last), and of the switches' marks
+    character(len=*), parameter :: mode_colours(0:3) = [character(len=7) :: "#1f77b4", &
+        & "#d62728", "#ff7f0e", "#9467bd"]
+    character(len=*), parameter :: switch_colour = "#000000"
 
 contains
 
     !> The data the figures need, one row per output row (thinned: rollcon_figure_rows): t, X, Y,
     !> contact x, y, theta, psidot,
     !> phidot, |E - E(t0)|/|E(t0)|, |E - E(t_end)|/|E(t_end)|, normal and tangential force,
-    !> mu_needed, then |F_k| for each UCON and |height_residual| (at least residual_floor).
+    !> mu_needed, then |F_k| for each UCON and |height_residual| (at least residual_floor);
+    !> with a `mode` column, then the contact point's y in each mode present (path_modes, in
+    !> that order: mode_path) and at each switch (mode_switches), NaN elsewhere.
     subroutine write_contact_data(path, run, error)
         !> Data file to write
         character(len=*), intent(in) :: path
@@ -39,8 +51,9 @@ contains
         type(run_record_type), intent(in) :: run
         type(error_type), allocatable, intent(out) :: error
         real(wp) :: c(3), first_energy, last_energy
-        real(wp), allocatable :: data(:, :)
+        real(wp), allocatable :: data(:, :), by_mode(:, :), wider(:, :)
         logical, allocatable :: paired(:)
+        integer, allocatable :: modes(:), present(:)
         character(len=256) :: message
         integer :: unit, stat, j, k, n, fx, fy, fz, mu, height
 
@@ -61,7 +74,7 @@ contains
                     & // trim(message), stat_io)
                 return
             end if
-            allocate(data(13 + size(layout%ucon_ids), n))
+            allocate(data(data_columns + size(layout%ucon_ids) + 1, n))
             do j = 1, n
                 associate (r => run%history%rows(:, j))
                     c = path_point(run, 1, j)
@@ -78,8 +91,22 @@ contains
                         & max(abs(r(height)), residual_floor)]
                 end associate
             end do
-            ! thinned to what a figure shows; the paths (columns 2 to 5) by their own rows
+            ! thinned to what a figure shows; the paths (columns 2 to 5, and the contact
+            ! point's by mode) by their own rows
             paired = [(k >= 2 .and. k <= 5, k = 1, size(data, 1))]
+            call path_modes(run, modes, present)
+            if (size(present) > 0) then
+                allocate(by_mode(size(present) + 1, n))
+                do k = 1, size(present)
+                    by_mode(k, :) = mode_path(modes, data(5, :), present(k))
+                end do
+                by_mode(size(present) + 1, :) = mode_switches(modes, data(5, :))
+                allocate(wider(size(data, 1) + size(by_mode, 1), n))
+                wider(:size(data, 1), :) = data
+                wider(size(data, 1) + 1:, :) = by_mode
+                call move_alloc(wider, data)
+                paired = [paired, spread(.true., 1, size(by_mode, 1))]
+            end if
             call write_figure_rows(unit, data, paired, stat)
         end associate
         call close_checked(unit, path, error)
@@ -87,6 +114,115 @@ contains
         if (stat /= 0) call fatal_error(error, path // ": cannot write the plot data: " &
             & // trim(message), stat_io)
     end subroutine write_contact_data
+
+    !> The contact's mode at each row (the `mode` column, rounded) and the modes present, in
+    !> increasing order; none of either when the run has no `mode` column (no friction).
+    pure subroutine path_modes(run, modes, present)
+        type(run_record_type), intent(in) :: run
+        integer, allocatable, intent(out) :: modes(:), present(:)
+        integer :: column, m
+
+        allocate(present(0))
+        column = run%layout%column("mode")
+        if (column == 0) then
+            allocate(modes(0))
+            return
+        end if
+        modes = nint(run%history%rows(column, :run%history%count))
+        do m = minval(modes), maxval(modes)
+            if (any(modes == m)) present = [present, m]
+        end do
+    end subroutine path_modes
+
+    !> The colour of each row's mode (mode_colours) as the number gnuplot's `lc rgb variable`
+    !> takes (256^2 red + 256 green + blue): the animation's path coloured by mode.
+    pure function mode_colour_values(modes) result(values)
+        !> The mode at each row (path_modes)
+        integer, intent(in) :: modes(:)
+        integer :: values(size(modes))
+        integer :: j, red, green, blue
+
+        do j = 1, size(modes)
+            associate (hex => mode_colours(modulo(modes(j), size(mode_colours))))
+                read(hex(2:3), '(z2)') red
+                read(hex(4:5), '(z2)') green
+                read(hex(6:7), '(z2)') blue
+            end associate
+            values(j) = 65536*red + 256*green + blue
+        end do
+    end function mode_colour_values
+
+    !> values (a path's coordinate at each row) where the path is drawn in mode `wanted`: at
+    !> the rows in that mode and at the row after each of its stretches, so that the stretch
+    !> joins the next mode's where that begins; NaN elsewhere (gnuplot breaks a line there).
+    pure function mode_path(modes, values, wanted) result(drawn)
+        !> The mode at each row, and the coordinate
+        integer, intent(in) :: modes(:)
+        real(wp), intent(in) :: values(:)
+        integer, intent(in) :: wanted
+        real(wp) :: drawn(size(values))
+        integer :: j
+
+        drawn = ieee_value(1.0_wp, ieee_quiet_nan)
+        do j = 1, size(values)
+            if (modes(j) == wanted) then
+                drawn(j) = values(j)
+            else if (j > 1) then
+                if (modes(j - 1) == wanted) drawn(j) = values(j)
+            end if
+        end do
+    end function mode_path
+
+    !> values at the first row of each mode after a switch (its mode differs from the row
+    !> before's), NaN elsewhere: a switch lies between that row and the one before.
+    pure function mode_switches(modes, values) result(marked)
+        integer, intent(in) :: modes(:)
+        real(wp), intent(in) :: values(:)
+        real(wp) :: marked(size(values))
+        integer :: j
+
+        marked = ieee_value(1.0_wp, ieee_quiet_nan)
+        do j = 2, size(values)
+            if (modes(j) /= modes(j - 1)) marked(j) = values(j)
+        end do
+    end function mode_switches
+
+    !> The plot of the paths: the contact point (one line per mode present, with the
+    !> switches marked, when the rows carry the mode) and the centre.
+    pure function path_plot(data, run) result(text)
+        character(len=*), intent(in) :: data
+        type(run_record_type), intent(in) :: run
+        character(len=:), allocatable :: text
+        integer, allocatable :: modes(:), present(:)
+        character(len=:), allocatable :: word
+        integer :: k, first
+
+        call path_modes(run, modes, present)
+        if (size(present) == 0) then
+            text = "plot " // data // " using 4:5 with lines lw 1.5 title 'contact point', " &
+                & // data // " using 2:3 with lines lw 1.5 title 'centre'"
+            return
+        end if
+        ! the columns after the residuals (write_contact_data)
+        first = data_columns + size(run%layout%ucon_ids) + 2
+        text = "plot "
+        do k = 1, size(present)
+            if (present(k) >= lbound(contact_mode_words, 1) .and. present(k) &
+                & <= ubound(contact_mode_words, 1)) then
+                word = trim(contact_mode_words(present(k)))
+            else
+                word = "mode " // to_text(present(k))
+            end if
+            text = text // data // " using 4:" // to_text(first + k - 1) &
+                & // " with lines lw 2 lc rgb '" &
+                & // mode_colours(modulo(present(k), size(mode_colours))) // "' title " &
+                & // gnuplot_string("contact point, " // word) // ", "
+        end do
+        text = text // data // " using 4:" // to_text(first + size(present)) &
+            & // " with points pt 7 ps 0.6 lc rgb '" // switch_colour // "' title " &
+            & // "'mode switch (first row after)', " &
+            & // data // " using 2:3 with lines lw 1.5 lc rgb 'gray50' title 'centre'"
+    end function path_plot
 
     !> The gnuplot script drawing every figure from the data file. Long because it is the
     !> figures' text, one figure after the other.
@@ -105,8 +241,7 @@ contains
             & // title(name // ": paths on the ground (equal axes)") &
             & // "set xlabel 'X [m]'" // nl // "set ylabel 'Y [m]'" // nl &
             & // "set size ratio -1" // nl &
-            & // "plot " // data // " using 4:5 with lines lw 1.5 title 'contact point', " &
-            & // data // " using 2:3 with lines lw 1.5 title 'centre'" // nl &
+            & // path_plot(data, run) // nl &
             & // "set size noratio" // nl // "set xlabel 't [s]'" // nl
         text = text // output(prefix, "theta") &
             & // title(name // ": tilt θ (π/2 upright, 0 and π flat)") &

@@ -11,6 +11,7 @@ module rollcon_gif
     use rollcon_output_layout, only : coord_z
     use rollcon_run_record, only : run_record_type, read_run, pose, path_point, ground_bounds
     use rollcon_figure_rows, only : path_stride
+    use rollcon_contact_figures, only : path_modes, mode_colour_values
     use rollcon_part_shapes, only : shape_disk, shape_extent
     use rollcon_disk_mesh, only : disk_points, face_triangle, is_marked, disk_sides, &
         & disk_point_count
@@ -197,11 +198,13 @@ contains
         if (stat == 0) write(unit, '(a, /)', iostat=stat) ""
     end subroutine write_ellipsoid
 
-    !> The path of every part over every row, data set p - 1 for part p.
+    !> The path of every part over every row, data set p - 1 for part p; with the contact's
+    !> mode (a `mode` column), a fourth column, the colour of each point's mode.
     subroutine write_paths(path, run, error)
         character(len=*), intent(in) :: path
         type(run_record_type), intent(in) :: run
         type(error_type), allocatable, intent(out) :: error
+        integer, allocatable :: modes(:), present(:), colours(:)
         integer :: unit, stat, p, j, stride
 
         open(newunit=unit, file=path, status="replace", action="write", access="stream", &
@@ -210,11 +213,19 @@ contains
             call fatal_error(error, path // ": cannot write the animation data", stat_io)
             return
         end if
-        ! every path_stride-th row (rollcon_figure_rows): the frames draw the path up to theirs
+        ! every path_stride-th row (rollcon_figure_rows): the frames draw the path up to theirs;
+        ! with the contact's mode, each point's colour after it (the disk in contact: one part)
         stride = path_stride(run%history%count)
+        call path_modes(run, modes, present)
+        if (size(present) > 0) colours = mode_colour_values(modes)
         do p = 1, size(run%shapes)
             do j = 1, run%history%count, stride
-                if (stat == 0) write(unit, point_format, iostat=stat) path_point(run, p, j)
+                if (size(present) > 0) then
+                    if (stat == 0) write(unit, '(3(es16.8e3, 1x), i0)', iostat=stat) &
+                        & path_point(run, p, j), colours(j)
+                else
+                    if (stat == 0) write(unit, point_format, iostat=stat) path_point(run, p, j)
+                end if
             end do
             if (stat == 0) write(unit, '(a, /)', iostat=stat) ""
         end do
@@ -232,7 +243,8 @@ contains
         character(len=:), allocatable :: text
         character(len=*), parameter :: nl = new_line("a")
         real(wp) :: low(2), high(2), z_low, z_high, extent
-        character(len=:), allocatable :: times, last_rows, parts, set, optimize, shading
+        character(len=:), allocatable :: times, last_rows, parts, set, optimize, shading, &
+            & path_style
         character(len=32) :: buffer
         integer :: k, p
 
@@ -261,6 +273,10 @@ contains
                 & // to_text((rows(k) - 1)/path_stride(run%history%count))
         end do
         parts = to_text(size(run%shapes))
+        ! the path in one colour, or with the contact's mode in its mode's (write_paths)
+        path_style = "using 1:2:3 with lines lw 2 lc rgb '" // colour_path // "'"
+        if (run%layout%column("mode") > 0) path_style = "using 1:2:3:4 with lines lw 2 " &
+            & // "lc rgb variable"
         ! An ellipsoid is shaded (pm3d lighting) so that its shape reads in 3-D; gnuplot's GIF
         ! palette optimisation blackens shaded facets, so it is kept for disks alone (unshaded,
         ! as their faces are flat).
@@ -293,8 +309,7 @@ contains
             & // gnuplot_string(name // "   t = %5.2f s   (X, Y in m)") &
             & // ", frame_time[k]) at screen 0.04, 0.93" // nl &
             & // "    splot for [p = 1:" // parts // "] " // gnuplot_string(path_path) &
-            & // " index (p - 1) every ::0::last_row[k] using 1:2:3 with lines lw 2 lc rgb '" &
-            & // colour_path // "', \" // nl &
+            & // " index (p - 1) every ::0::last_row[k] " // path_style // ", \" // nl &
             & // "        for [p = 1:" // parts // "] " // gnuplot_string(frames_path) &
             & // " index " // set // " using 1:2:3 with polygons fillstyle solid 1.0 " &
             & // "fillcolor rgb '" // colour_face // "', \" // nl &

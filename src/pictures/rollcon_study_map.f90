@@ -220,7 +220,8 @@ contains
     end function map_settings
 
     !> The plot command: one element per class that occurs (filled cells of the grid's
-    !> spacing, or filled points for random samples), titled with its count, then the curve.
+    !> spacing, or filled points for random samples), titled with its name (legend_words) and
+    !> count, then the curve.
     pure function map_plot(study, classes, cases, curve) result(text)
         type(study_type), intent(in) :: study
         character(len=*), intent(in) :: classes(:)
@@ -250,13 +251,26 @@ contains
             end if
             if (n > 0) text = text // ", \" // nl // "    "
             text = text // "$class_" // to_text(k) // " " // style // " title " &
-                & // gnuplot_string(trim(classes(k)) // " (" &
+                & // gnuplot_string(legend_words(trim(classes(k))) // " (" &
                 & // to_text(count(cases%class == k)) // ")")
             n = n + 1
         end do
         if (curve) text = text // ", \" // nl // "    $curve using 1:2 with lines lw 2.5 " &
             & // "lc rgb '#000000' title " // gnuplot_string(curve_title)
     end function map_plot
+
+    !> A class's name as the key writes it: its underscores as blanks (a rule's class is a
+    !> namelist key, which holds none: `slides_then_rolls` reads "slides then rolls").
+    pure function legend_words(class) result(words)
+        character(len=*), intent(in) :: class
+        character(len=len(class)) :: words
+        integer :: i
+
+        words = class
+        do i = 1, len(words)
+            if (words(i:i) == "_") words(i:i) = " "
+        end do
+    end function legend_words
 
     !> Half the grid spacing of parameter k, 0 when its cases are not on a grid of at
     !> least two points.

@@ -11,7 +11,8 @@ module rollcon_watch_columns
     implicit none
     private
 
-    public :: contact_names, contact_mode_names, dissipation_names, basis_pattern
+    public :: contact_names, contact_mode_names, contact_mode_words, dissipation_names, &
+        & basis_pattern
     public :: request_column_patterns
     public :: motion_column_patterns
     public :: variable_column_patterns, diff_column_patterns
@@ -31,6 +32,11 @@ module rollcon_watch_columns
     !> since the start [J]
     character(len=*), parameter :: dissipation_names(3) = [character(len=15) :: &
         & "rolling_power", "air_power", "dissipated"]
+    !> The contact's modes in words, by the number the `mode` column writes (0 rolling, 1
+    !> sliding): the summary's, a study's measures' (t_rolling, t_sliding) and the pictures'
+    !> legend's. A mode is the next number and the next word here.
+    character(len=*), parameter :: contact_mode_words(0:1) = [character(len=7) :: "rolling", &
+        & "sliding"]
     !> The basis column of a part ("<id>": the part's id)
     character(len=*), parameter :: basis_pattern = "basis_<id>"
     !> A displacement request's columns ("<n>": the request's id): marker I from marker J,

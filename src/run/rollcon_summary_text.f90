@@ -164,8 +164,9 @@ contains
         end do
     end function ucon_label
 
-    !> Each watch measure: "largest height residual |Z - R sin(theta)|: 1.2E-09 m, allowed
-    !> 3.4E-08 m".
+    !> Each watch measure judged against a bound: "largest height residual |Z - R sin(theta)|:
+    !> 1.2E-09 m, allowed 3.4E-08 m". A measure without a bound is for tables (a study's row,
+    !> such as a contact's switches): the watch's own lines say it.
     function measure_lines(summary) result(text)
         type(run_summary_type), intent(in) :: summary
         character(len=:), allocatable :: text
@@ -175,6 +176,7 @@ contains
         if (.not. allocated(summary%measures)) return
         do k = 1, size(summary%measures)
             associate (m => summary%measures(k))
+                if (.not. m%bound > 0.0_wp) cycle
                 text = text // m%label // ": " // scientific(m%value) // " " // m%unit &
                     & // allowed(m%bound, " " // m%unit) // nl
             end associate

@@ -4,9 +4,11 @@
 module rollcon_study_measures
     use rollcon_kinds, only : wp
     use rollcon_constants, only : pi
+    use rollcon_watch, only : watch_measure_type
     use rollcon_simulation, only : run_summary_type, history_type, status_completed, &
         & status_stopped, status_failed, status_inaccurate
     use rollcon_output_layout, only : coord_theta
+    use rollcon_watch_columns, only : contact_mode_words
     implicit none
     private
 
@@ -22,19 +24,26 @@ module rollcon_study_measures
     character(len=*), parameter :: outcome_words(6) = [character(len=11) :: "completed", &
         & "theta_limit", "liftoff", "inaccurate", "failed", "refused"]
 
+    !> The contact's modes (0 rolling, 1 sliding: rollcon_watch_columns)
+    integer, parameter :: modes = size(contact_mode_words)
     !> Measures, in CSV column order, and their units. Over the output rows of the part in
     !> contact: theta's least and largest value, the largest tilt from upright |pi/2 - theta|,
     !> the largest friction coefficient rolling needs, the least normal force and the first
-    !> time it is negative; from the summary: the time reached, the energy drift (relative),
-    !> the largest UCON residual, the integrator steps; and the case's CPU time.
-    character(len=*), parameter :: measure_names(11) = [character(len=13) :: "t_reached", &
-        & "theta_min", "theta_max", "tilt_max", "mu_max", "fn_min", "t_fn_negative", &
-        & "energy_drift", "residual_max", "steps", "cpu_s"]
-    character(len=*), parameter :: measure_units(11) = [character(len=5) :: "s", "rad", "rad", &
-        & "rad", "-", "N", "s", "-", "", "-", "s"]
+    !> time it is negative; of a contact with Coulomb friction (rollcon_contact_watch): its
+    !> mode switches and the time in each mode from the run's summary (t_rolling, t_sliding, a
+    !> column per mode), and its mode at the last row (mode_end, the `mode` column's number);
+    !> from the summary: the time reached, the energy drift (relative), the largest UCON
+    !> residual, the integrator steps; and the case's CPU time.
+    character(len=*), parameter :: measure_names(13 + modes) = [character(len=13) :: &
+        & "t_reached", "theta_min", "theta_max", "tilt_max", "mu_max", "fn_min", &
+        & "t_fn_negative", "switches", "t_" // contact_mode_words, &
+        & "mode_end", "energy_drift", "residual_max", "steps", "cpu_s"]
+    character(len=*), parameter :: measure_units(13 + modes) = [character(len=5) :: "s", &
+        & "rad", "rad", "rad", "-", "N", "s", "-", spread("s", 1, modes), "-", "-", "", "-", "s"]
     integer, parameter :: i_t_reached = 1, i_theta_min = 2, i_theta_max = 3, i_tilt_max = 4, &
-        & i_mu_max = 5, i_fn_min = 6, i_t_fn_negative = 7, i_energy_drift = 8, &
-        & i_residual_max = 9, i_steps = 10, i_cpu = 11
+        & i_mu_max = 5, i_fn_min = 6, i_t_fn_negative = 7, i_switches = 8, i_mode_time = 9, &
+        & i_mode_end = i_mode_time + modes, i_energy_drift = i_mode_end + 1, &
+        & i_residual_max = i_mode_end + 2, i_steps = i_mode_end + 3, i_cpu = i_mode_end + 4
 
     !> What a study records of one case
     type :: case_result_type
@@ -71,7 +80,8 @@ contains
         real(wp), intent(in) :: cpu_seconds
         type(case_result_type), intent(inout) :: result
         real(wp), allocatable :: theta(:), fn(:), t(:)
-        integer :: first, normal, needed
+        type(watch_measure_type) :: taken
+        integer :: first, normal, needed, mode, k
 
         select case (summary%status)
         case (status_completed)
@@ -93,6 +103,13 @@ contains
         call put(i_residual_max, summary%residual_max)
         call put(i_steps, real(summary%steps, wp))
         call put(i_cpu, cpu_seconds)
+        ! a contact with friction's switches and time in each mode (rollcon_contact_watch)
+        taken = summary%measure("switches")
+        if (len(taken%name) > 0) call put(i_switches, taken%value)
+        do k = 1, modes
+            taken = summary%measure("time_" // trim(contact_mode_words(k - 1)))
+            if (len(taken%name) > 0) call put(i_mode_time + k - 1, taken%value)
+        end do
         if (history%count == 0) return
         associate (layout => history%layout, n => history%count)
             theta = history%rows(layout%part_column(1, coord_theta), :n)
@@ -100,6 +117,8 @@ contains
             call put(i_theta_max, maxval(theta))
             call put(i_tilt_max, maxval(abs(pi/2 - theta)))
             ! the contact's measures, when a rim contact is watched (rollcon_contact_watch)
+            mode = layout%column("mode")
+            if (mode > 0) call put(i_mode_end, history%rows(mode, n))
             normal = layout%column("Fn")
             needed = layout%column("mu_needed")
             if (normal == 0 .or. needed == 0) return

@@ -21,7 +21,7 @@ module rollcon_contact_watch
     use rollcon_run_settings, only : run_settings_type, formulation_cvode
     use rollcon_output_layout, only : name_length
     !> The columns it adds, in order (named where a CSV reader finds them too)
-    use rollcon_watch_columns, only : contact_names, contact_mode_names
+    use rollcon_watch_columns, only : contact_names, contact_mode_names, contact_mode_words
     use rollcon_watch, only : watch_type, watch_event_type, watch_measure_type, action_stop, &
         & action_restart
     implicit none
@@ -93,6 +93,7 @@ module rollcon_contact_watch
         procedure :: height_residual
         procedure :: restart_problem
         procedure :: summary_lines
+        procedure :: time_in_modes
         procedure :: friction
         procedure :: slip_velocity
         procedure :: switch_to
@@ -448,28 +449,37 @@ contains
         class(contact_watch_type), intent(in) :: self
         type(equations_type), intent(in) :: eq
         character(len=:), allocatable :: text
-        character(len=*), parameter :: names(0:1) = [character(len=7) :: "rolling", "sliding"]
         real(wp) :: spent(0:1)
         integer :: k, from
 
         text = ""
         if (.not. self%friction()) return
         from = self%initial_mode
-        text = "contact: starts " // trim(names(from)) // " (mu_static " &
+        text = "contact: starts " // trim(contact_mode_words(from)) // " (mu_static " &
             & // to_text(self%mu_static) // ", mu_kinetic " // to_text(self%mu_kinetic) &
             & // "), " // to_text(size(self%switch_times)) // " switch" &
             & // trim(merge("  ", "es", size(self%switch_times) == 1)) // new_line("a")
         do k = 1, size(self%switch_times)
             text = text // "  t = " // to_text(self%switch_times(k)) // " s: " &
-                & // trim(names(from)) // " → " // trim(names(self%switch_modes(k))) &
+                & // trim(contact_mode_words(from)) // " → " &
+                & // trim(contact_mode_words(self%switch_modes(k))) &
                 & // new_line("a")
             from = self%switch_modes(k)
         end do
-        spent = self%mode_time
-        spent(from) = spent(from) + max(0.0_wp, self%last_time - self%mode_since)
+        spent = self%time_in_modes()
         text = text // "  time rolling " // to_text(spent(mode_rolling)) // " s, sliding " &
             & // to_text(spent(mode_sliding)) // " s" // new_line("a")
     end function summary_lines
+
+    !> Time spent in each mode [s], by mode number, up to the last output row.
+    pure function time_in_modes(self) result(spent)
+        class(contact_watch_type), intent(in) :: self
+        real(wp) :: spent(lbound(self%mode_time, 1):ubound(self%mode_time, 1))
+
+        spent = self%mode_time
+        spent(self%current_mode()) = spent(self%current_mode()) &
+            & + max(0.0_wp, self%last_time - self%mode_since)
+    end function time_in_modes
 
     !> Z - R sin(theta) of the part in contact [m].
     pure real(wp) function height_residual(self, q)
@@ -489,6 +499,8 @@ contains
         type(run_settings_type), intent(in) :: settings
         integer, intent(in) :: steps
         type(watch_measure_type), allocatable :: taken(:)
+        real(wp), allocatable :: spent(:)
+        integer :: k
 
         allocate(taken(1))
         taken(1)%name = "height_residual"
@@ -499,6 +511,16 @@ contains
             & *(settings%atol + settings%rtol*self%radius)
         taken(1)%bound_rule = to_text(height_allowance) // " sqrt(N) (atol + rtol R)"
         taken(1)%remedy = "height = 'position'"
+        if (.not. self%friction()) return
+        ! with friction, for tables (a study's row), not judged: the switches and the time in
+        ! each mode (time_rolling, time_sliding), as the summary's lines say them
+        taken = [taken, watch_measure_type(name="switches", label="contact mode switches", &
+            & unit="", value=real(size(self%switch_times), wp))]
+        spent = self%time_in_modes()
+        do k = 1, size(spent)
+            taken = [taken, watch_measure_type(name="time_" // trim(contact_mode_words(k - 1)), &
+                & label="time " // trim(contact_mode_words(k - 1)), unit="s", value=spent(k))]
+        end do
     end function measures
 
 end module rollcon_contact_watch

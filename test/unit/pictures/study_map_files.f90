@@ -42,8 +42,8 @@ contains
             & // "gnuplot-nox; bash .ci/setup)")
     end function have_gnuplot
 
-    !> Write scratch/grid.nml (thickness by speed, classes falls and stable, the critical speed
-    !> curve) and read it; write scratch/grid.csv: every case, stable from stable_speed up,
+    !> Write scratch/grid.nml (thickness by speed, classes falls_over and stable, the critical
+    !> speed curve) and read it; write scratch/grid.csv: every case, stable from stable_speed up,
     !> one failed with a quoted message holding commas and quotes, one refused, and a last
     !> line cut short (a case being written).
     subroutine grid_study(study, error)
@@ -57,7 +57,7 @@ contains
         call write_lines(scratch // "/grid.nml", [character(len=width) :: &
             & "&study scene = 'data/upright.nml', title = 'Upright stability (test map)' /", &
             & "&grid disk%thickness = '0.003 0.03 4', initial%speed = '0.2 1.0 5' /", &
-            & "&classify falls = 'tilt_max > 1', otherwise = 'stable' /", &
+            & "&classify falls_over = 'tilt_max > 1', otherwise = 'stable' /", &
             & "&map x = 'disk%thickness', y = 'initial%speed', curve = 'critical_speed' /"])
         call read_study(scratch // "/grid.nml", study, error)
         if (allocated(error)) return
@@ -66,14 +66,14 @@ contains
             point = grid_point(i)
             rows(i + 1) = to_text(i) // "," // to_text(point(1)) // "," // to_text(point(2))
             if (i == failed_case) then
-                rows(i + 1) = trim(rows(i + 1)) // ",failed,failed,-3,1.5" // repeat(",", 10) &
+                rows(i + 1) = trim(rows(i + 1)) // ",failed,failed,-3,1.5" // repeat(",", 14) &
                     & // ',"IDASolve failed, flag -3 at t = 1.5: ""error test"", again"'
             else if (i == refused_case) then
-                rows(i + 1) = trim(rows(i + 1)) // ",refused,refused,0" // repeat(",", 11) &
+                rows(i + 1) = trim(rows(i + 1)) // ",refused,refused,0" // repeat(",", 15) &
                     & // ',"disk%thickness: out of range, 0.003 to 0.03"'
             else
                 rows(i + 1) = trim(rows(i + 1)) // ",completed," &
-                    & // trim(merge("stable", "falls ", point(2) >= stable_speed)) // ",0" &
+                    & // trim(merge("stable    ", "falls_over", point(2) >= stable_speed)) // ",0" &
                     & // measures() // ',""'
             end if
         end do
@@ -117,11 +117,12 @@ contains
         end do
     end subroutine count_classes
 
-    !> The measures of a completed case, made up, t_fn_negative empty (a comma before each).
+    !> The measures of a completed case, made up, t_fn_negative and the contact's modes' empty
+    !> (a scene without friction; a comma before each).
     pure function measures() result(fields)
         character(len=:), allocatable :: fields
 
-        fields = ",10,1.5,1.6,0.07,0.12,3.1,,1e-9,2e-12,812,0.41"
+        fields = ",10,1.5,1.6,0.07,0.12,3.1,,,,,,1e-9,2e-12,812,0.41"
     end function measures
 
     !> The file exists and starts with the PNG signature.

@@ -297,7 +297,8 @@ contains
     end subroutine test_failures_name_ucon
 
     !> The summary names every part and UCON, and prints the height residual only with a
-    !> contact and "none" for a model without UCONs.
+    !> contact, with its bound, and "none" for a model without UCONs; a measure without a bound
+    !> (a study's, such as a contact's switches) is not among its lines.
     subroutine test_summary_text(error)
         type(error_type), allocatable, intent(out) :: error
         type(run_summary_type) :: summary
@@ -321,17 +322,23 @@ contains
             & .and. index(text, "  UCON 13: 3.000E-012 (position level)") > 0 &
             & .and. index(text, "height residual") == 0, "summary: " // text)
         if (allocated(error)) return
-        allocate(summary%measures(1))
+        allocate(summary%measures(2))
         summary%measures(1)%name = "height_residual"
         summary%measures(1)%label = "largest height residual |Z - R sin(theta)|"
         summary%measures(1)%unit = "m"
         summary%measures(1)%value = 4.0e-9_wp
+        summary%measures(1)%bound = 2.0e-7_wp
+        summary%measures(2)%name = "switches"
+        summary%measures(2)%label = "contact mode switches"
+        summary%measures(2)%unit = ""
+        summary%measures(2)%value = 3.0_wp
         summary%layout%ucon_ids = [integer ::]
         summary%ucon_residual_max = [real(wp) ::]
         text = run_summary_text("scene", "out.csv", summary)
-        call check(error, index(text, "largest height residual |Z - R sin(theta)|: 4.000E-009 m") &
-            & > 0 .and. index(text, "largest constraint residual: none (the model has no UCON)") &
-            & > 0, "summary: " // text)
+        call check(error, index(text, "largest height residual |Z - R sin(theta)|: 4.000E-009 m" &
+            & // ", allowed 2.000E-007 m") > 0 .and. index(text, "largest constraint residual: " &
+            & // "none (the model has no UCON)") > 0 .and. index(text, "contact mode switches") &
+            & == 0, "summary: " // text)
     end subroutine test_summary_text
 
     !> The two-part model as a job's source (new_model_source, with the theta watch added),

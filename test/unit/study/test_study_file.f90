@@ -60,11 +60,19 @@ contains
         call check(error, study%rules(1)%measure == "tilt_max" .and. study%rules(1)%bound &
             & == 0.3_wp, "upright_stability: falls when tilt_max > 0.3")
         if (allocated(error)) return
-        call read_study("data/no_slip_validity.nml", study, error)
+        call read_study("data/friction_needed.nml", study, error)
         if (allocated(error)) return
         call check(error, case_count(study) == 41*29 .and. size(study%rules) == 4 &
-            & .and. study%rules(1)%class == "lifts_off", "no_slip_validity: 1189 cases, " &
+            & .and. study%rules(1)%class == "lifts_off", "friction_needed: 1189 cases, " &
             & // "4 rules, lift-off first")
+        if (allocated(error)) return
+        call read_study("data/no_slip_validity.nml", study, error)
+        if (allocated(error)) return
+        call check(error, case_count(study) == 41*29 .and. size(study%rules) == 3 &
+            & .and. study%rules(1)%class == "lifts_off" .and. study%rules(2)%measure &
+            & == "mode_end" .and. study%rules(3)%measure == "t_sliding" .and. study%otherwise &
+            & == "keeps rolling", "no_slip_validity: 1189 cases, lift-off, sliding at the " &
+            & // "end, some time sliding, else keeps rolling")
     end subroutine test_shipped
 
     !> The first parameter varies slowest, both ends are included, and the values are the

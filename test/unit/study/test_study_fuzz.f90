@@ -31,7 +31,8 @@ module test_study_fuzz
     integer, parameter :: seed = 20260525
     !> The shipped studies
     character(len=*), parameter :: shipped(*) = [character(len=30) :: &
-        & "data/upright_stability.nml", "data/no_slip_validity.nml", "data/bench_sweep.nml"]
+        & "data/upright_stability.nml", "data/no_slip_validity.nml", "data/bench_sweep.nml", &
+        & "data/friction_needed.nml"]
     !> A study by random samples, with every key of its groups
     character(len=*), parameter :: random_study(*) = [character(len=60) :: &
         & "! random samples of the coin's speed and tilt", &

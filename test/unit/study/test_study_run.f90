@@ -3,7 +3,8 @@
 !> with its parameters set; failed and refused cases are rows and the study goes on; the rows
 !> do not depend on the order the cases run in; a rerun after an interruption completes the
 !> CSV without running again what it holds; the classes of the upright-stability study
-!> change at the analytic critical speed of docs/design.md §5.
+!> change at the analytic critical speed of docs/design.md §5; the classes of the no-slip
+!> validity study (the struck coin on a table with friction) read what its run did.
 module test_study_run
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type
@@ -51,6 +52,7 @@ contains
             & new_unittest("resume-after-cut", test_resume), &
             & new_unittest("other-study-csv-refused", test_other_header), &
             & new_unittest("stability-boundary", test_boundary), &
+            & new_unittest("modes-classed-from-the-run", test_modes), &
             & new_unittest("dataset-base", test_dataset), &
             & new_unittest("user-file-cases-are-its-runs", test_user_file), &
             & new_unittest("user-file-faults-named", test_user_file_faults)]
@@ -257,6 +259,100 @@ contains
             if (allocated(error)) return
         end do
     end subroutine test_boundary
+
+    !> data/no_slip_validity.nml, the struck coin on a table (mu_s 0.5, mu_k 0.4), at four
+    !> strikes whose runs did four things (docs/studies.md): at 1 m/s, no strike keeps rolling,
+    !> 0.1 N s slides and rolls again, 0.3 N s lifts the disk off; at 0.15 m/s, 0.05 N s
+    !> leaves it sliding at the end. Each case's measures are its own run's: the time in each
+    !> mode adds up to the time reached; the rows' mode column (every output_step) agrees with
+    !> the summary's switches (the rows see at most as many, with the same parity: a slide
+    !> between two rows is unseen) and time sliding (the rows' intervals that start sliding,
+    !> within one output step per switch and one for the run's last row); the
+    !> case that keeps rolling never needed more friction than mu_static.
+    subroutine test_modes(error)
+        type(error_type), allocatable, intent(out) :: error
+        real(wp), parameter :: impulses(4) = [0.0_wp, 0.1_wp, 0.3_wp, 0.05_wp], &
+            & speeds(4) = [1.0_wp, 1.0_wp, 1.0_wp, 0.15_wp]
+        character(len=*), parameter :: expected(4) = [character(len=17) :: "keeps rolling", &
+            & "slides_then_rolls", "lifts_off", "slides_to_the_end"]
+        !> The base scene's mu_static and output step [s]
+        real(wp), parameter :: mu_static = 0.5_wp, output_step = 0.002_wp
+        !> The times in the modes are differences of event times up to a few seconds: they add
+        !> up to the time reached within a few roundings of it
+        real(wp), parameter :: tol_sum = 1.0e-12_wp
+        type(study_type) :: study
+        type(study_plan_type) :: plan
+        type(case_result_type) :: result
+        type(job_type) :: job
+        type(job_result_type) :: ran
+        type(history_type) :: history, no_rows
+        character(len=:), allocatable :: row
+        real(wp) :: switches, sliding, rolling, row_sliding
+        integer :: c, k, mode, row_switches
+        integer, allocatable :: modes(:)
+
+        call read_study("data/no_slip_validity.nml", study, error)
+        if (allocated(error)) return
+        do c = 1, size(impulses)
+            study%parameters(1)%lower = impulses(c)
+            study%parameters(1)%upper = impulses(c)
+            study%parameters(1)%count = 1
+            study%parameters(2)%lower = speeds(c)
+            study%parameters(2)%upper = speeds(c)
+            study%parameters(2)%count = 1
+            call plan_cases(study, plan)
+            call run_case(study, plan, 1, row, result)
+            call check(error, result%class == trim(expected(c)), "impulse " &
+                & // to_text(impulses(c)) // " N s at " // to_text(speeds(c)) // " m/s: " &
+                & // "class " // result%class // ", expected " // trim(expected(c)) // ": " // row)
+            if (allocated(error)) return
+            switches = result%values(measure_index("switches"))
+            rolling = result%values(measure_index("t_rolling"))
+            sliding = result%values(measure_index("t_sliding"))
+            call check(error, result%known(measure_index("switches")) .and. abs(rolling &
+                & + sliding - result%values(measure_index("t_reached"))) <= tol_sum, "case " &
+                & // to_text(c) // ": the times in the modes do not add up to the time " &
+                & // "reached: " // row)
+            if (allocated(error)) return
+            ! the same run alone, its rows' mode column
+            call load_job(study%scene_path, job, error, overrides=[ &
+                & input_override_type("strike%impulse", trim(plan%texts(1, 1))), &
+                & input_override_type("initial%speed", trim(plan%texts(2, 1)))])
+            if (allocated(error)) return
+            job%output_dir = ""
+            job%quiet = .true.
+            ! run_job adds rows to those the history holds
+            history = no_rows
+            call run_job(job, ran, error, history)
+            if (allocated(error)) return
+            mode = history%layout%column("mode")
+            modes = nint(history%rows(mode, :history%count))
+            row_switches = count(modes(2:) /= modes(:history%count - 1))
+            row_sliding = 0.0_wp
+            do k = 1, history%count - 1
+                if (modes(k) == 1) row_sliding = row_sliding + history%rows(1, k + 1) &
+                    & - history%rows(1, k)
+            end do
+            call check(error, row_switches <= nint(switches) .and. modulo(nint(switches) &
+                & - row_switches, 2) == 0 .and. abs(row_sliding - sliding) <= output_step &
+                & *(switches + 1.0_wp) .and. modes(history%count) &
+                & == nint(result%values(measure_index("mode_end"))), "case " // to_text(c) &
+                & // ": the rows' modes (" // to_text(row_switches) // " switches, " &
+                & // to_text(row_sliding) // " s sliding, ending in mode " &
+                & // to_text(modes(history%count)) // ") disagree with the measures: " // row)
+            if (allocated(error)) return
+            if (c == 1) then
+                call check(error, nint(switches) == 0 .and. sliding == 0.0_wp &
+                    & .and. result%values(measure_index("mu_max")) <= mu_static, "the case " &
+                    & // "that keeps rolling switched, or needed more friction than " &
+                    & // "mu_static: " // row)
+            else
+                call check(error, nint(switches) >= 1 .and. sliding > 0.0_wp, "case " &
+                    & // to_text(c) // " never slid: " // row)
+            end if
+            if (allocated(error)) return
+        end do
+    end subroutine test_modes
 
     !> A study of data/coin.adm: its case at the dataset's own gravity is the dataset's own run,
     !> so its theta_min is that run's to the last bit; at another gravity it differs.
