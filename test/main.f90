@@ -118,6 +118,7 @@ program tester
     use test_reactions, only : collect_reactions
     use test_request_answers, only : collect_request_answers
     use test_contact_modes, only : collect_contact_modes
+    use test_contact_flight, only : collect_contact_flight
     implicit none
     type(testsuite_type), allocatable :: suites(:)
     type(test_counts_type) :: counts
@@ -240,7 +241,8 @@ program tester
         & new_testsuite("redundancy", collect_redundancy), &
         & new_testsuite("reactions", collect_reactions), &
         & new_testsuite("requests", collect_request_answers), &
-        & new_testsuite("contact-modes", collect_contact_modes)]
+        & new_testsuite("contact-modes", collect_contact_modes), &
+        & new_testsuite("contact-flight", collect_contact_flight)]
 
     if (command_argument_count() >= 1) then
         call get_command_argument(1, argument)

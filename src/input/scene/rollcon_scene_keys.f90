@@ -70,7 +70,9 @@ contains
                 & real_key("contact", "mu_static", scene%contact%mu_static, "", 0.0_wp, &
                 & friction_max, lower_open=.true.), &
                 & real_key("contact", "mu_kinetic", scene%contact%mu_kinetic, "", 0.0_wp, &
-                & friction_max, lower_open=.true.)]
+                & friction_max, lower_open=.true.), &
+                & real_key("contact", "restitution", scene%contact%restitution, "", 0.0_wp, &
+                & 1.0_wp)]
         end associate
     end subroutine bind_keys
 
