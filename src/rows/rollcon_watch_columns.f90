@@ -21,7 +21,8 @@ module rollcon_watch_columns
     character(len=*), parameter :: contact_names(6) = [character(len=15) :: "Fx", "Fy", "Fz", &
         & "Fn", "mu_needed", "height_residual"]
     !> A rim contact's columns with friction (&contact), after those six: the mode (0 rolling,
-    !> 1 sliding) and the contact point's slip velocity, ground X and Y [m/s]
+    !> 1 sliding, 2 flight) and the contact point's slip velocity, ground X and Y [m/s] (in
+    !> flight the rim's lowest point's horizontal velocity)
     character(len=*), parameter :: contact_mode_names(3) = [character(len=15) :: "mode", &
         & "slip_x", "slip_y"]
     !> The basis column of a part ("<id>": the part's id)
