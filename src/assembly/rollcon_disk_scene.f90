@@ -17,7 +17,7 @@ module rollcon_disk_scene
     use rollcon_gen_disk_height, only : disk_height_ucosub, disk_height_par, disk_height_time_free
     use rollcon_problem, only : problem_type
     use rollcon_theta_watch, only : theta_watch_type, new_theta_watch
-    use rollcon_contact_watch, only : contact_watch_type, mode_sliding
+    use rollcon_contact_watch, only : contact_watch_type, mode_sliding, mode_flight
     use rollcon_dissipation_watch, only : dissipation_watch_type
     use rollcon_rim_dissipation, only : air_coefficient
     use rollcon_scene, only : scene_type, height_position
@@ -167,7 +167,8 @@ contains
         type(scene_type), intent(in) :: scene
         !> Disk mass [kg]
         real(wp), intent(in) :: mass
-        !> The start [m, rad, m/s, rad/s]: with &contact, a start that slips starts sliding
+        !> The start [m, rad, m/s, rad/s]: with &contact, a start that slips starts sliding,
+        !> and with a restitution a start above the ground starts in flight
         real(wp), intent(in) :: q0(6), u0(6)
         type(contact_watch_type) :: watch
         real(wp) :: spin_squared, force_scale, slip(2)
@@ -194,11 +195,21 @@ contains
         watch%mu_kinetic = scene%contact%mu_kinetic
         watch%tangential = [1, 2]
         watch%normal = 3
+        ! a restitution given: flight and impacts modelled, a lift-off a switch (not a stop)
+        watch%flight = scene%contact%flight
+        watch%restitution = scene%contact%restitution
+        if (watch%flight) watch%stop_on_liftoff = .false.
+        ! a start slips when its slip is above the slip's integration error, atol + rtol (|v_G|
+        ! + R |omega|) (rollcon_contact_watch): the no-slip rates the reader completes leave a
+        ! slip of rounding (1e-17 m/s), which is none
         slip = watch%slip_velocity(q0, u0)
-        if (norm2(slip) > 0.0_wp) then
+        if (norm2(slip) > scene%run%atol + scene%run%rtol*(norm2(u0(1:3)) &
+            & + scene%disk%radius*norm2(u0(4:6)))) then
             watch%initial_mode = mode_sliding
             watch%initial_direction = slip/norm2(slip)
         end if
+        ! the reader puts a rim on the ground at exactly R sin(theta)
+        if (watch%flight .and. watch%height_residual(q0) > 0.0_wp) watch%initial_mode = mode_flight
     end function disk_contact_watch
 
 end module rollcon_disk_scene

@@ -210,15 +210,16 @@ contains
 
         active_rows_of = .true.
         if (allocated(self%redundancy%active)) active_rows_of = self%redundancy%active(k)
-        if (self%contact%sliding) active_rows_of = active_rows_of &
-            & .and. all(self%contact%tangential /= k)
+        if (self%contact%dropped(k)) active_rows_of = .false.
     end function active_rows_of
 
-    !> Some rows are inactive: set aside as redundant, or a sliding contact's tangential ones.
+    !> Some rows are inactive: set aside as redundant, or a contact's a sliding or flying
+    !> part drops.
     pure logical function masked(self)
         class(equations_type), intent(in) :: self
 
-        masked = self%redundancy%set_aside > 0 .or. self%contact%sliding
+        masked = self%redundancy%set_aside > 0 .or. self%contact%sliding &
+            & .or. self%contact%flying
     end function masked
 
     !> Which rows are active (all of them until a choice sets some aside).
@@ -228,7 +229,9 @@ contains
 
         active = .true.
         if (allocated(self%redundancy%active)) active = self%redundancy%active
-        if (self%contact%sliding) active(self%contact%tangential) = .false.
+        if (self%contact%sliding .or. self%contact%flying) &
+            & active(self%contact%tangential) = .false.
+        if (self%contact%flying) active(self%contact%normal) = .false.
     end function active_rows
 
     !> Mass matrix and f = -(M a - f) at a = 0, part by part. Only the parts' diagonal blocks
@@ -615,14 +618,15 @@ contains
 
         n = self%n
         dq = 0.0_wp
-        if (self%nh > 0 .and. self%redundancy%set_aside > 0) then
-            ! the active position UCONs alone (those set aside repeat them)
+        if (self%nh > 0 .and. self%masked()) then
+            ! the active position UCONs alone (those set aside repeat them; a flying
+            ! contact's height is no constraint)
             call self%constraints%evaluate(self%model, time, q, u, need_value + need_first, error)
             if (allocated(error)) return
             call self%assemble(time, q, u)
             rows = 0
             do k = 1, self%nc
-                if (self%model%holonomic_number(k) == 0 .or. .not. self%redundancy%active(k)) &
+                if (self%model%holonomic_number(k) == 0 .or. .not. self%active_rows_of(k)) &
                     & cycle
                 rows = rows + 1
                 self%work%holonomic_rows(rows, :) = self%constraints%grad_q(k, :)

@@ -1,7 +1,8 @@
 ! SPDX-License-Identifier: MIT
-!> A contact's mode in the equations of motion: rolling (its no-slip rows hold) or sliding
+!> A contact's mode in the equations of motion: rolling (its no-slip rows hold), sliding
 !> (its two tangential rows are dropped and a Coulomb friction force mu_k F_n acts at the
-!> contact point against the slip velocity). The equations (rollcon_equations) read it in every
+!> contact point against the slip velocity) or flight (all three rows dropped: the part is a
+!> free rigid body). The equations (rollcon_equations) read it in every
 !> solve; the contact's watch (rollcon_contact_watch) owns it and switches it at its events.
 !>
 !> Sliding's accelerations are exact, not lagged: the friction's magnitude depends on the
@@ -30,6 +31,8 @@ module rollcon_sliding_contact
     type :: sliding_contact_type
         !> The contact slides (its tangential rows dropped, friction acting)
         logical :: sliding = .false.
+        !> The part flies (the contact's three rows dropped, no contact force)
+        logical :: flying = .false.
         !> Its rows in the model's constraints: the two tangential (the contact point's
         !> horizontal velocity, X then Y) and the normal one
         integer :: tangential(2) = 0, normal = 0
@@ -45,10 +48,13 @@ module rollcon_sliding_contact
         !> and the Painlevé denominator 1 + mu c_nz lambda1_n [-]
         real(wp) :: slip(2) = 0.0_wp, normal_force = 0.0_wp, friction(2) = 0.0_wp
         real(wp) :: power = 0.0_wp, denominator = 1.0_wp
+        !> Kinetic energy the impacts have taken so far [J] >= 0 (rollcon_contact_impact)
+        real(wp) :: impact_loss = 0.0_wp
         !> Scratch of the second right-hand side: accelerations (n) and multipliers (nc)
         real(wp), allocatable :: unit_a(:), unit_lambda(:)
     contains
         procedure :: direction
+        procedure :: dropped
     end type sliding_contact_type
 
 contains
@@ -68,5 +74,15 @@ contains
             s = self%reference
         end if
     end function direction
+
+    !> Whether the mode drops row k of the model's constraints: a tangential row while
+    !> sliding or flying, the normal row while flying.
+    pure logical function dropped(self, k)
+        class(sliding_contact_type), intent(in) :: self
+        integer, intent(in) :: k
+
+        dropped = (self%sliding .or. self%flying) .and. any(self%tangential == k)
+        if (self%flying .and. self%normal == k) dropped = .true.
+    end function dropped
 
 end module rollcon_sliding_contact

@@ -24,7 +24,8 @@ module rollcon_watch_columns
     character(len=*), parameter :: contact_names(6) = [character(len=15) :: "Fx", "Fy", "Fz", &
         & "Fn", "mu_needed", "height_residual"]
     !> A rim contact's columns with friction (&contact), after those six: the mode (0 rolling,
-    !> 1 sliding) and the contact point's slip velocity, ground X and Y [m/s]
+    !> 1 sliding, 2 flight) and the contact point's slip velocity, ground X and Y [m/s] (in
+    !> flight the rim's lowest point's horizontal velocity)
     character(len=*), parameter :: contact_mode_names(3) = [character(len=15) :: "mode", &
         & "slip_x", "slip_y"]
     !> A rim's dissipation's columns (&dissipation, rollcon_dissipation_watch): the power
@@ -33,10 +34,10 @@ module rollcon_watch_columns
     character(len=*), parameter :: dissipation_names(3) = [character(len=15) :: &
         & "rolling_power", "air_power", "dissipated"]
     !> The contact's modes in words, by the number the `mode` column writes (0 rolling, 1
-    !> sliding): the summary's, a study's measures' (t_rolling, t_sliding) and the pictures'
-    !> legend's. A mode is the next number and the next word here.
-    character(len=*), parameter :: contact_mode_words(0:1) = [character(len=7) :: "rolling", &
-        & "sliding"]
+    !> sliding, 2 flight): the summary's, a study's measures' (t_rolling, t_sliding, t_flight)
+    !> and the pictures' legend's. A mode is the next number and the next word here.
+    character(len=*), parameter :: contact_mode_words(0:2) = [character(len=7) :: "rolling", &
+        & "sliding", "flight"]
     !> The basis column of a part ("<id>": the part's id)
     character(len=*), parameter :: basis_pattern = "basis_<id>"
     !> A displacement request's columns ("<n>": the request's id): marker I from marker J,

@@ -326,14 +326,17 @@ contains
         ucon_id = self%model%ucons(k)%id
     end function ucon_id
 
-    !> Each UCON's residual F_k at the last evaluation; zero for the rows a sliding contact
-    !> has dropped (their F is the slip velocity, not a residual: rollcon_sliding_contact).
+    !> Each UCON's residual F_k at the last evaluation; zero for the rows a sliding or flying
+    !> contact has dropped (their F is the slip velocity, or the contact point's velocity in
+    !> flight, not a residual: rollcon_sliding_contact).
     pure function constraint_values(self) result(values)
         class(problem_type), intent(in) :: self
         real(wp) :: values(self%eq%nc)
 
         values = self%eq%constraints%value
-        if (self%eq%contact%sliding) values(self%eq%contact%tangential) = 0.0_wp
+        if (self%eq%contact%sliding .or. self%eq%contact%flying) &
+            & values(self%eq%contact%tangential) = 0.0_wp
+        if (self%eq%contact%flying) values(self%eq%contact%normal) = 0.0_wp
     end function constraint_values
 
     !> The settings ask for the projection onto the constraints (drift 'projection') and there

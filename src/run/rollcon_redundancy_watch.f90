@@ -85,7 +85,8 @@ contains
     subroutine restart_problem(self, eq, time, q, u, error)
         class(redundancy_watch_type), intent(inout) :: self
         type(equations_type), intent(inout) :: eq
-        real(wp), intent(in) :: time, q(:), u(:)
+        real(wp), intent(in) :: time, q(:)
+        real(wp), intent(inout) :: u(:)
         type(error_type), allocatable, intent(out) :: error
         logical :: changed
         integer :: b

@@ -78,6 +78,8 @@ module rollcon_simulation
         !> powers [W]
         real(wp) :: dissipated_work = 0.0_wp, dissipation_uncertainty = 0.0_wp
         real(wp) :: last_dissipation(2) = 0.0_wp
+        !> The energy a contact's impacts had taken at the last judged row [J]
+        real(wp) :: impact_loss = 0.0_wp
         !> Counters of the integrator's segments before its last restart
         type(integrator_statistics_type) :: earlier
         !> Re-basings of each part (model order)
@@ -359,6 +361,11 @@ contains
                     & u, problem%settings%rtol, problem%settings%atol)
                 if (self%judged_rows > 0) self%constraint_work = self%constraint_work &
                     & + 0.5_wp*(power + self%last_power)*(time - self%last_time)
+                ! the energy a contact's impacts took since the last row: its impulses' work
+                ! (rollcon_contact_impact)
+                self%constraint_work = self%constraint_work + problem%eq%contact%impact_loss &
+                    & - self%impact_loss
+                self%impact_loss = problem%eq%contact%impact_loss
                 self%last_power = power
                 self%last_time = time
                 self%judged_rows = self%judged_rows + 1
@@ -444,7 +451,8 @@ contains
         end if
     end subroutine handle_events
 
-    !> Re-base the given parts at the current state (rollcon_rebase_step), then start the
+    !> Re-base the given parts at the current state (self%q, self%u, as handle_events unpacked
+    !> it and the watches' restart_problem left it: rollcon_rebase_step), then start the
     !> integrator again from the same physical state in the new coordinates, on the
     !> constraints, with y' from the saddle-point system for IDA (mu = 0): restart_state.
     subroutine rebase(self, parts, refusal, fell, error)
@@ -458,8 +466,6 @@ contains
         real(wp), allocatable :: q(:), u(:)
         integer :: k
 
-        call self%system%unpack_state(self%t, self%y, self%q, self%u, error)
-        if (allocated(error)) return
         q = self%q
         u = self%u
         fell = .false.

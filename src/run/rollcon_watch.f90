@@ -136,11 +136,13 @@ contains
     end function fired
 
     !> The change an event of action_restart asks for, made at (t, q, u) before the run starts
-    !> the integrator again from that state (default: none).
+    !> the integrator again from that state (default: none). A watch may change the rates u
+    !> there (an impact's jump of the velocities); the run restarts from the rates it leaves.
     subroutine restart_problem(self, eq, time, q, u, error)
         class(watch_type), intent(inout) :: self
         type(equations_type), intent(inout) :: eq
-        real(wp), intent(in) :: time, q(:), u(:)
+        real(wp), intent(in) :: time, q(:)
+        real(wp), intent(inout) :: u(:)
         type(error_type), allocatable, intent(out) :: error
     end subroutine restart_problem
 

@@ -10,14 +10,18 @@
 !> With Coulomb friction (mu_static > 0) it also owns the contact's mode (the equations'
 !> sliding_contact_type, docs/design.md §5 "Contact modes"): rolling until |F_t| reaches
 !> mu_static F_n, sliding until the slip velocity's component along its direction at the last
-!> switch falls to zero; each switch an event located by the integrator's root finding, after
-!> which the run restarts the integrator (action_restart). It then adds the mode and the slip
-!> velocity to the rows, and lists the switches and the time in each mode in the summary.
+!> switch falls to zero; with a restitution (flight modelled) also flight, from where the
+!> normal force falls to zero to where the rim's lowest point comes down to the ground, and
+!> there an impact (rollcon_contact_impact). Each switch is an event located by the
+!> integrator's root finding, after which the run restarts the integrator (action_restart).
+!> It then adds the mode and the slip velocity to the rows, and lists the switches, the
+!> impacts and the time in each mode in the summary.
 module rollcon_contact_watch
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type, fatal_error, stat_input
     use rollcon_text, only : to_text
     use rollcon_equations, only : equations_type
+    use rollcon_contact_impact, only : impact_type, contact_impact
     use rollcon_run_settings, only : run_settings_type, formulation_cvode
     use rollcon_output_layout, only : name_length
     !> The columns it adds, in order (named where a CSV reader finds them too)
@@ -42,7 +46,31 @@ module rollcon_contact_watch
     !> deceleration: 7.6e-12 s in data/sliding_coin.nml, ~2e-8 s in data/coin_slipping.nml)
     real(wp), parameter :: guard_first = 500.0_wp, guard_second = 0.5_wp
     !> Modes, as the `mode` column writes them
-    integer, parameter, public :: mode_rolling = 0, mode_sliding = 1
+    integer, parameter, public :: mode_rolling = 0, mode_sliding = 1, mode_flight = 2
+    !> The capture rule, in units of the height's integration error atol + rtol R: an impact
+    !> whose rebound would lift the rim's lowest point less than capture_factor times it (its
+    !> normal speed v after the impact and that point's normal acceleration a in flight there,
+    !> a < 0: v^2 / (2 |a|)) is plastic instead (e = 0), and the contact goes on on the ground.
+    !> A flight that low is not resolved: the root of its landing is uncertain by the height's
+    !> error over the speed, which is 1/(4 capture_factor) of the flight's time at the capture
+    !> height, and a ball's bounces below it would be infinitely many in a finite time
+    real(wp), parameter, public :: capture_factor = 100.0_wp
+
+    !> What a switch did besides changing the mode: an impact's impulse and energies, and the
+    !> value of the event function where it fired (a touchdown's height of the rim's lowest
+    !> point [m], a lift-off's normal force [N]; 0 for the friction's switches)
+    type, public :: contact_switch_type
+        !> The switch is an impact (a touchdown), and it was captured (plastic, e = 0)
+        logical :: impact = .false., captured = .false.
+        !> Restitution applied [-], normal and tangential impulse [N s]
+        real(wp) :: restitution = 0.0_wp, normal_impulse = 0.0_wp, tangential_impulse = 0.0_wp
+        !> The rim's lowest point's normal velocity before the impact [m/s] (< 0) and after
+        real(wp) :: approach = 0.0_wp, rebound = 0.0_wp
+        !> Energy (kinetic plus potential) before and after the impact [J]
+        real(wp) :: energy_before = 0.0_wp, energy_after = 0.0_wp
+        !> The event function's value at the switch (height [m] or normal force [N])
+        real(wp) :: event_value = 0.0_wp
+    end type contact_switch_type
 
     type, extends(watch_type) :: contact_watch_type
         !> The part in contact (model order) and its rim radius [m] > 0
@@ -59,6 +87,10 @@ module rollcon_contact_watch
         real(wp), allocatable :: a(:), lambda(:)
         !> Coulomb friction at the contact: modes watched (mu_static > 0) [-]
         real(wp) :: mu_static = 0.0_wp, mu_kinetic = 0.0_wp
+        !> Flight and impacts are modelled (with friction only), with this restitution [-]:
+        !> a lift-off is then a switch to flight, never a stop
+        logical :: flight = .false.
+        real(wp) :: restitution = 0.0_wp
         !> The contact's rows in model order: tangential (X, Y) and normal
         integer :: tangential(2) = [1, 2], normal = 3
         !> Mode at the start, and the slip's direction there when sliding (unit, X and Y)
@@ -74,12 +106,14 @@ module rollcon_contact_watch
         logical :: starting = .false.
         !> The tolerances of the run and its Baumgarte rate in effect [1/s] (prepare)
         real(wp) :: rtol = 0.0_wp, atol = 0.0_wp, baumgarte = 0.0_wp
-        !> The switches so far: times [s] and the modes entered
+        !> The switches so far: times [s], the modes entered (an impact that bounces enters
+        !> flight again) and what each did
         real(wp), allocatable :: switch_times(:)
         integer, allocatable :: switch_modes(:)
+        type(contact_switch_type), allocatable :: switch_details(:)
         !> Time spent in each mode up to the last switch [s], the mode's start and the time of
         !> the last output row [s]
-        real(wp) :: mode_time(0:1) = 0.0_wp, mode_since = 0.0_wp, last_time = 0.0_wp
+        real(wp) :: mode_time(0:2) = 0.0_wp, mode_since = 0.0_wp, last_time = 0.0_wp
         logical :: started = .false.
     contains
         procedure :: prepare
@@ -100,6 +134,11 @@ module rollcon_contact_watch
         procedure :: current_mode
         procedure :: slip_error
         procedure :: begin_sliding
+        procedure :: aim_sliding
+        procedure :: normal_velocity
+        procedure :: touchdown
+        procedure :: settle
+        procedure :: normal_root
     end type contact_watch_type
 
 contains
@@ -127,7 +166,8 @@ contains
         allocate(self%a(eq%n), self%lambda(eq%nc), source=0.0_wp)
         self%height_residual_max = 0.0_wp
         if (allocated(self%switch_times)) deallocate(self%switch_times, self%switch_modes)
-        allocate(self%switch_times(0), self%switch_modes(0))
+        if (allocated(self%switch_details)) deallocate(self%switch_details)
+        allocate(self%switch_times(0), self%switch_modes(0), self%switch_details(0))
         self%mode_time = 0.0_wp
         self%started = .false.
         if (.not. self%friction()) return
@@ -157,6 +197,8 @@ contains
             contact%mu = self%mu_kinetic
             contact%reference = self%initial_direction
             contact%sliding = self%initial_mode == mode_sliding
+            contact%flying = self%initial_mode == mode_flight
+            contact%impact_loss = 0.0_wp
             if (allocated(contact%unit_a)) deallocate(contact%unit_a, contact%unit_lambda)
             allocate(contact%unit_a(eq%n), contact%unit_lambda(eq%nc), source=0.0_wp)
         end associate
@@ -188,14 +230,22 @@ contains
         end associate
     end function slip_velocity
 
-    !> The lift-off, when watched; with friction two more, the mode's (last but one) and the
+    !> The lift-off, when watched (a stop) or flight is modelled (a switch, and in flight the
+    !> touchdown): the first; with friction two more, the mode's (last but one) and the
     !> guard of a stop (last).
     pure integer function root_count(self, eq)
         class(contact_watch_type), intent(in) :: self
         type(equations_type), intent(in) :: eq
 
-        root_count = merge(1, 0, self%stop_on_liftoff) + merge(2, 0, self%friction())
+        root_count = merge(1, 0, self%normal_root()) + merge(2, 0, self%friction())
     end function root_count
+
+    !> The first event function is the normal one: the lift-off's, or in flight the touchdown's.
+    pure logical function normal_root(self)
+        class(contact_watch_type), intent(in) :: self
+
+        normal_root = self%stop_on_liftoff .or. self%flight
+    end function normal_root
 
     !> The normal force on the part + liftoff_force. The normal force comes from the multipliers
     !> when a DAE state gives them (IDA), else from the accelerations when the integrator gives
@@ -203,7 +253,9 @@ contains
     !> in a right-hand side. With friction, rolling: mu_static F_n - |F_t| and a positive
     !> constant, F from a saddle-point solve; sliding: v_s . s_ref and |v_s| - guard times the
     !> slip's integration error (a slide starting from rest: a positive constant and |v_s| -
-    !> the first guard) (docs/design.md §5, "Contact modes").
+    !> the first guard) (docs/design.md §5, "Contact modes"). With flight modelled the normal
+    !> force itself (its zero a lift-off), and in flight the height of the rim's lowest point
+    !> Z - R sin(theta) (its zero a touchdown) and two positive constants.
     subroutine roots(self, eq, settings, time, q, u, g, error, lambda, a)
         class(contact_watch_type), intent(inout) :: self
         type(equations_type), intent(inout) :: eq
@@ -219,6 +271,11 @@ contains
             m = self%root_count(eq) - 1
             g(m:m + 1) = 1.0_wp
         end if
+        if (eq%contact%flying) then
+            ! the rim's lowest point's height above the ground
+            g(1) = self%height_residual(q)
+            return
+        end if
         if (self%friction() .and. eq%contact%sliding) then
             ! sliding: the slip's component along its direction at the last switch, and its
             ! speed above its guard
@@ -230,7 +287,7 @@ contains
                 g(m) = dot_product(slip, self%slip_reference)
                 g(m + 1) = norm2(slip) - self%guard*self%slip_error(u)
             end if
-            if (.not. self%stop_on_liftoff) return
+            if (.not. self%normal_root()) return
         end if
         if (self%friction()) then
             ! the friction rolling needs from the equations at this very state: the
@@ -252,6 +309,8 @@ contains
             force = eq%constraint_force(self%part, self%lambda)
         end if
         if (self%stop_on_liftoff) g(1) = force(3) + self%liftoff_force
+        ! flight modelled: the lift-off is where the normal force reaches zero itself
+        if (self%flight) g(1) = force(3)
         ! rolling: the friction that static friction can give less the friction rolling needs
         if (self%friction() .and. .not. eq%contact%sliding) g(m) = self%mu_static*force(3) &
             & - norm2(force(1:2))
@@ -265,7 +324,8 @@ contains
         roots_use_accelerations = self%stop_on_liftoff .and. .not. self%friction()
     end function roots_use_accelerations
 
-    !> The lift-off: the run stops.
+    !> The lift-off: the run stops; with flight modelled, or a mode's event: the contact
+    !> switches (restart_problem).
     function fired(self, eq, k, time, q, u) result(event)
         class(contact_watch_type), intent(in) :: self
         type(equations_type), intent(in) :: eq
@@ -275,7 +335,8 @@ contains
         integer :: p
 
         p = self%part
-        if (self%friction() .and. k >= self%root_count(eq) - 1) then
+        if ((self%friction() .and. k >= self%root_count(eq) - 1) .or. (self%flight .and. k &
+            & == 1)) then
             ! the mode's event: restart_problem decides and switches
             event%action = action_restart
             event%limit = "contact_mode"
@@ -305,7 +366,9 @@ contains
         names(:size(contact_names)) = contact_names
     end subroutine column_names
 
-    !> Force, normal force, friction needed, height residual (and its largest magnitude).
+    !> Force, normal force, friction needed, height residual (and its largest magnitude, on the
+    !> ground: in flight it is the rim's lowest point's height); with friction the mode and the
+    !> slip velocity (in flight the lowest point's horizontal velocity).
     subroutine fill_columns(self, eq, time, q, u, lambda, values)
         class(contact_watch_type), intent(inout) :: self
         type(equations_type), intent(in) :: eq
@@ -317,7 +380,8 @@ contains
         ! sliding: the friction is a force of the contact's too (rollcon_sliding_contact)
         if (eq%contact%sliding) force(1:2) = force(1:2) + eq%contact%friction
         height = self%height_residual(q)
-        self%height_residual_max = max(self%height_residual_max, abs(height))
+        if (.not. eq%contact%flying) self%height_residual_max = max(self%height_residual_max, &
+            & abs(height))
         values(1:3) = force
         values(4) = force(3)
         values(5) = 0.0_wp
@@ -328,6 +392,7 @@ contains
         self%last_time = time
         if (.not. self%friction()) return
         values(7) = merge(mode_sliding, mode_rolling, eq%contact%sliding)
+        if (eq%contact%flying) values(7) = mode_flight
         values(8:9) = self%slip_velocity(q, u)
     end subroutine fill_columns
 
@@ -339,15 +404,38 @@ contains
     !> guard watching below the first. A slip within e of zero is a stop: the contact rolls if
     !> rolling's friction is admissible there (|F_t| <= mu_static F_n), else it slides on
     !> against the friction rolling would need. An error when the sliding equations are
-    !> ill-posed there (Painlevé: rollcon_equations).
+    !> ill-posed there (Painlevé: rollcon_equations). With flight modelled: on the ground, a
+    !> normal force that is no longer positive is a lift-off (the part flies); in flight, the
+    !> rim's lowest point on the ground approaching it is a touchdown, an impact (touchdown),
+    !> and u the rates after it.
     subroutine restart_problem(self, eq, time, q, u, error)
         class(contact_watch_type), intent(inout) :: self
         type(equations_type), intent(inout) :: eq
-        real(wp), intent(in) :: time, q(:), u(:)
+        real(wp), intent(in) :: time, q(:)
+        real(wp), intent(inout) :: u(:)
         type(error_type), allocatable, intent(out) :: error
+        type(contact_switch_type) :: detail
         real(wp) :: force(3), slip(2)
 
         if (.not. self%friction()) return
+        if (eq%contact%flying) then
+            call self%touchdown(eq, time, q, u, error)
+            return
+        end if
+        if (self%flight) then
+            call eq%accelerations(time, q, u, self%baumgarte, self%a, self%lambda, error)
+            if (allocated(error)) return
+            force = eq%constraint_force(self%part, self%lambda)
+            if (.not. force(3) > 0.0_wp) then
+                ! the normal force reached zero: the part leaves the ground
+                eq%contact%sliding = .false.
+                eq%contact%flying = .true.
+                self%starting = .false.
+                detail%event_value = force(3)
+                call self%switch_to(mode_flight, time, detail)
+                return
+            end if
+        end if
         if (.not. eq%contact%sliding) then
             ! rolling, |F_t| reached mu_static F_n: it slides
             call self%begin_sliding(eq, time, q, u, error)
@@ -363,10 +451,7 @@ contains
             ! not a stop: the direction turned by 90 degrees, or the first guard; the
             ! reference aimed at the slip's direction now, and below the first guard the
             ! second one watches
-            self%slip_reference = slip/norm2(slip)
-            eq%contact%reference = self%slip_reference
-            self%guard = merge(guard_second, guard_first, norm2(slip) <= guard_first &
-                & *self%slip_error(u))
+            call self%aim_sliding(eq, slip, u)
             return
         end if
         eq%contact%sliding = .false.
@@ -381,14 +466,30 @@ contains
         call self%begin_sliding(eq, time, q, u, error)
     end subroutine restart_problem
 
+    !> Sliding with the slip slip (ground X, Y) [m/s] above its integration error at the rates
+    !> u: the reference aimed at the slip's direction, the first guard above it and the second
+    !> below (no switch recorded).
+    subroutine aim_sliding(self, eq, slip, u)
+        class(contact_watch_type), intent(inout) :: self
+        type(equations_type), intent(inout) :: eq
+        real(wp), intent(in) :: slip(2), u(:)
+
+        self%slip_reference = slip/norm2(slip)
+        eq%contact%reference = self%slip_reference
+        self%guard = merge(guard_second, guard_first, norm2(slip) <= guard_first &
+            & *self%slip_error(u))
+    end subroutine aim_sliding
+
     !> Slide from (t, q, u), rolling there (eq%contact%sliding false), against the friction
     !> rolling needs there (s_ref = -F_t / |F_t|); a switch unless it was sliding already (a
-    !> stop where rolling is not admissible). An error when sliding is ill-posed there.
-    subroutine begin_sliding(self, eq, time, q, u, error)
+    !> stop where rolling is not admissible) or record is false. An error when sliding is
+    !> ill-posed there.
+    subroutine begin_sliding(self, eq, time, q, u, error, record)
         class(contact_watch_type), intent(inout) :: self
         type(equations_type), intent(inout) :: eq
         real(wp), intent(in) :: time, q(:), u(:)
         type(error_type), allocatable, intent(out) :: error
+        logical, intent(in), optional :: record
         real(wp) :: force(3)
 
         call eq%accelerations(time, q, u, self%baumgarte, self%a, self%lambda, error)
@@ -404,8 +505,145 @@ contains
         ! Painlevé's refusal, here rather than at the integrator's first evaluation
         call eq%accelerations(time, q, u, self%baumgarte, self%a, self%lambda, error)
         if (allocated(error)) return
+        if (present(record)) then
+            if (.not. record) return
+        end if
         if (self%current_mode() /= mode_sliding) call self%switch_to(mode_sliding, time)
     end subroutine begin_sliding
+
+    !> The normal velocity of the rim's lowest point, Z' - R cos(theta) theta' [m/s] (the
+    !> no-slip constraint's F3: docs/design.md §5).
+    pure real(wp) function normal_velocity(self, q, u)
+        class(contact_watch_type), intent(in) :: self
+        real(wp), intent(in) :: q(:), u(:)
+        integer :: i0
+
+        i0 = 6*(self%part - 1)
+        normal_velocity = u(i0 + 3) - self%radius*cos(q(i0 + 5))*u(i0 + 5)
+    end function normal_velocity
+
+    !> In flight, the rim's lowest point reached the ground at (t, q, u). Approaching it
+    !> (normal velocity < 0): the impact's impulse P at that point (rollcon_contact_impact:
+    !> W = J M^-1 J^T from the contact's three rows J, mu_kinetic, the restitution) changes the
+    !> rates to u + M^-1 J^T P. A rebound that would lift that point less than the capture
+    !> height (capture_factor) is captured: compression's impulse alone (e = 0). After a
+    !> rebound the part flies on; otherwise it settles on the ground (settle). Not approaching
+    !> (a rise through the ground level after a lift-off just below it): nothing changes.
+    subroutine touchdown(self, eq, time, q, u, error)
+        class(contact_watch_type), intent(inout) :: self
+        type(equations_type), intent(inout) :: eq
+        real(wp), intent(in) :: time, q(:)
+        real(wp), intent(inout) :: u(:)
+        type(error_type), allocatable, intent(out) :: error
+        type(contact_switch_type) :: detail
+        type(impact_type) :: impact
+        real(wp) :: jacobian(3, eq%n), minv_jt(eq%n, 3), w(3, 3), rebound(size(u)), fall
+        real(wp) :: apex
+        integer :: rows(3), i0
+
+        detail%event_value = self%height_residual(q)
+        detail%approach = self%normal_velocity(q, u)
+        if (.not. detail%approach < 0.0_wp) return
+        ! the saddle-point factors at this state: M^-1 by parts (every row dropped in flight)
+        call eq%accelerations(time, q, u, self%baumgarte, self%a, self%lambda, error)
+        if (allocated(error)) return
+        rows = [self%tangential(1), self%tangential(2), self%normal]
+        jacobian = eq%c(rows, :)
+        minv_jt = transpose(jacobian)
+        call eq%saddle%apply_inverse_mass(minv_jt, 3, error)
+        if (allocated(error)) return
+        w = matmul(jacobian, minv_jt)
+        w = 0.5_wp*(w + transpose(w))
+        call contact_impact(w, matmul(jacobian, u), self%mu_kinetic, self%restitution, impact, &
+            & error)
+        if (allocated(error)) then
+            error%message = "at t = " // to_text(time) // " s " // error%message
+            return
+        end if
+        detail%impact = .true.
+        detail%energy_before = eq%energy(q, u)
+        rebound = u + matmul(minv_jt, impact%impulse)
+        detail%captured = .not. impact%velocity(3) > 0.0_wp
+        if (.not. detail%captured) then
+            ! the capture rule: the rebound's height, from the lowest point's normal
+            ! acceleration in flight after the impact
+            call eq%accelerations(time, q, rebound, self%baumgarte, self%a, self%lambda, error)
+            if (allocated(error)) return
+            i0 = 6*(self%part - 1)
+            fall = self%a(i0 + 3) - self%radius*(cos(q(i0 + 5))*self%a(i0 + 5) &
+                & - sin(q(i0 + 5))*rebound(i0 + 5)**2)
+            if (fall < 0.0_wp) then
+                apex = impact%velocity(3)**2/(2.0_wp*abs(fall))
+                detail%captured = apex <= capture_factor*(self%atol + self%rtol*self%radius)
+            end if
+        end if
+        if (detail%captured .and. self%restitution > 0.0_wp) then
+            u = u + matmul(minv_jt, impact%compression)
+            detail%normal_impulse = impact%compression(3)
+            detail%tangential_impulse = norm2(impact%compression(1:2))
+            detail%restitution = 0.0_wp
+        else
+            u = rebound
+            detail%normal_impulse = impact%impulse(3)
+            detail%tangential_impulse = norm2(impact%impulse(1:2))
+            detail%restitution = self%restitution
+        end if
+        detail%captured = detail%captured .and. self%restitution > 0.0_wp
+        detail%rebound = self%normal_velocity(q, u)
+        detail%energy_after = eq%energy(q, u)
+        eq%contact%impact_loss = eq%contact%impact_loss + max(0.0_wp, detail%energy_before &
+            & - detail%energy_after)
+        if (detail%restitution > 0.0_wp) then
+            ! a rebound: it flies on
+            call self%switch_to(mode_flight, time, detail)
+            return
+        end if
+        call self%settle(eq, time, q, u, detail, error)
+    end subroutine touchdown
+
+    !> After an impact that leaves the rim's lowest point at rest normally (e = 0 or
+    !> captured), at (t, q, u): the contact on the ground, sliding where the impact left a slip
+    !> above its integration error, else rolling where rolling's friction is admissible
+    !> (|F_t| <= mu_static F_n), else sliding against the friction rolling would need; flight
+    !> again where that mode's normal force is not positive (the ground cannot hold the part).
+    !> The switch recorded with the impact's detail.
+    subroutine settle(self, eq, time, q, u, detail, error)
+        class(contact_watch_type), intent(inout) :: self
+        type(equations_type), intent(inout) :: eq
+        real(wp), intent(in) :: time, q(:), u(:)
+        type(contact_switch_type), intent(in) :: detail
+        type(error_type), allocatable, intent(out) :: error
+        real(wp) :: force(3), slip(2)
+        integer :: mode
+
+        eq%contact%flying = .false.
+        eq%contact%sliding = .false.
+        self%starting = .false.
+        slip = self%slip_velocity(q, u)
+        if (norm2(slip) > self%slip_error(u)) then
+            eq%contact%sliding = .true.
+            call self%aim_sliding(eq, slip, u)
+        else
+            call eq%accelerations(time, q, u, self%baumgarte, self%a, self%lambda, error)
+            if (allocated(error)) return
+            force = eq%constraint_force(self%part, self%lambda)
+            if (norm2(force(1:2)) > self%mu_static*force(3)) then
+                call self%begin_sliding(eq, time, q, u, error, record=.false.)
+                if (allocated(error)) return
+            end if
+        end if
+        call eq%accelerations(time, q, u, self%baumgarte, self%a, self%lambda, error)
+        if (allocated(error)) return
+        force = eq%constraint_force(self%part, self%lambda)
+        mode = merge(mode_sliding, mode_rolling, eq%contact%sliding)
+        if (.not. force(3) > 0.0_wp) then
+            eq%contact%sliding = .false.
+            eq%contact%flying = .true.
+            self%starting = .false.
+            mode = mode_flight
+        end if
+        call self%switch_to(mode, time, detail)
+    end subroutine settle
 
     !> The slip's integration error [m/s]: atol + rtol s, s = |v_G| + R |omega| (|omega|
     !> bounded by the Euler-angle rates' norm) at the rates u.
@@ -430,45 +668,70 @@ contains
         end if
     end function current_mode
 
-    !> Record a switch into mode at time [s], and the time spent in the mode it leaves.
-    subroutine switch_to(self, mode, time)
+    !> Record a switch into mode at time [s] (with what it did, detail), and the time spent in
+    !> the mode it leaves.
+    subroutine switch_to(self, mode, time, detail)
         class(contact_watch_type), intent(inout) :: self
         integer, intent(in) :: mode
         real(wp), intent(in) :: time
+        type(contact_switch_type), intent(in), optional :: detail
+        type(contact_switch_type) :: made
 
+        if (present(detail)) made = detail
         self%mode_time(self%current_mode()) = self%mode_time(self%current_mode()) + time &
             & - self%mode_since
         self%mode_since = time
         self%switch_times = [self%switch_times, time]
         self%switch_modes = [self%switch_modes, mode]
+        self%switch_details = [self%switch_details, made]
     end subroutine switch_to
 
-    !> With friction: every switch, "t = 0.113263 s: sliding → rolling", and the time spent in
-    !> each mode up to the last row.
+    !> With friction: every switch, "t = 0.113263 s: sliding → rolling", an impact's with its
+    !> restitution, impulses and energy, and the time spent in each mode up to the last row.
     function summary_lines(self, eq) result(text)
         class(contact_watch_type), intent(in) :: self
         type(equations_type), intent(in) :: eq
         character(len=:), allocatable :: text
-        real(wp) :: spent(0:1)
-        integer :: k, from
+        real(wp) :: spent(0:2)
+        integer :: k, from, impacts
 
         text = ""
         if (.not. self%friction()) return
         from = self%initial_mode
-        text = "contact: starts " // trim(contact_mode_words(from)) // " (mu_static " &
-            & // to_text(self%mu_static) // ", mu_kinetic " // to_text(self%mu_kinetic) &
-            & // "), " // to_text(size(self%switch_times)) // " switch" &
-            & // trim(merge("  ", "es", size(self%switch_times) == 1)) // new_line("a")
+        text = "contact: starts " // trim(merge("in flight", contact_mode_words(from) // "  ", &
+            & from == mode_flight)) // " (mu_static " // to_text(self%mu_static) // ", mu_kinetic " &
+            & // to_text(self%mu_kinetic)
+        if (self%flight) text = text // ", restitution " // to_text(self%restitution)
+        text = text // "), " // to_text(size(self%switch_times)) // " switch" &
+            & // trim(merge("  ", "es", size(self%switch_times) == 1))
+        if (self%flight) then
+            impacts = count(self%switch_details%impact)
+            text = text // " (" // to_text(impacts) // " impact" // trim(merge("  ", "s ", &
+                & impacts == 1)) // ")"
+        end if
+        text = text // new_line("a")
         do k = 1, size(self%switch_times)
             text = text // "  t = " // to_text(self%switch_times(k)) // " s: " &
                 & // trim(contact_mode_words(from)) // " → " &
-                & // trim(contact_mode_words(self%switch_modes(k))) &
-                & // new_line("a")
+                & // trim(contact_mode_words(self%switch_modes(k)))
+            associate (d => self%switch_details(k))
+                if (d%impact) then
+                    text = text // " (impact" // trim(merge(", captured", "          ", &
+                        & d%captured)) // ": e " // to_text(d%restitution) &
+                        & // ", normal impulse " // to_text(d%normal_impulse) &
+                        & // " N s, tangential " // to_text(d%tangential_impulse) &
+                        & // " N s, energy " // to_text(d%energy_after - d%energy_before) &
+                        & // " J)"
+                end if
+            end associate
+            text = text // new_line("a")
             from = self%switch_modes(k)
         end do
         spent = self%time_in_modes()
         text = text // "  time rolling " // to_text(spent(mode_rolling)) // " s, sliding " &
-            & // to_text(spent(mode_sliding)) // " s" // new_line("a")
+            & // to_text(spent(mode_sliding)) // " s"
+        if (self%flight) text = text // ", flight " // to_text(spent(mode_flight)) // " s"
+        text = text // new_line("a")
     end function summary_lines
 
     !> Time spent in each mode [s], by mode number, up to the last output row.

@@ -92,6 +92,7 @@ contains
         new%dissipation%enabled = any([(groups(k)%name == "dissipation", k = 1, size(groups))])
         if (key_line(groups, "contact", "mu_kinetic") == 0) &
             & new%contact%mu_kinetic = new%contact%mu_static
+        new%contact%flight = key_line(groups, "contact", "restitution") > 0
         new%initial%z_given = key_line(groups, "initial", "z") > 0
         new%initial%velocity_given = key_line(groups, "initial", "xdot") > 0 &
             & .or. key_line(groups, "initial", "ydot") > 0 &

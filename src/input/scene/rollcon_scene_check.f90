@@ -118,8 +118,10 @@ contains
         end if
     end subroutine key_error
 
-    !> A given z must put the rim on the ground; a given velocity must roll without slip, or,
-    !> with &contact, keep the rim on the ground (zdot; xdot and ydot may slip).
+    !> A given z must put the rim on the ground, or above it when &contact has a restitution
+    !> (the disk starts in flight, its centre's velocity the keys given, 0 for those not given);
+    !> on the ground a given velocity must roll without slip, or, with &contact, keep the rim on
+    !> the ground (zdot; xdot and ydot may slip).
     subroutine check_contact(path, groups, scene, error)
         character(len=*), intent(in) :: path
         type(group_type), intent(in) :: groups(:)
@@ -135,9 +137,23 @@ contains
         derived%initial%velocity_given = .false.
         call disk_initial_state(derived, q, u)
         associate (i => scene%initial)
+            if (i%z_given .and. scene%contact%flight .and. i%z > q(3) &
+                & + contact_tol*scene%disk%radius) then
+                ! flight modelled and the rim above the ground: the disk starts in flight, its
+                ! centre's velocity as given, 0 where not given (a disk let go)
+                i%velocity_given = .true.
+                return
+            end if
             if (i%z_given .and. .not. abs(i%z - q(3)) <= contact_tol*scene%disk%radius) then
-                call key_error(path, groups, "initial", "z", "must be R sin(theta) = " &
-                    & // to_text(q(3)) // " [m] (rim on the ground), got " // to_text(i%z), error)
+                if (scene%contact%flight) then
+                    call key_error(path, groups, "initial", "z", "must be at least R sin(theta) " &
+                        & // "= " // to_text(q(3)) // " [m] (the rim on the ground, or above " &
+                        & // "it: in flight), got " // to_text(i%z), error)
+                else
+                    call key_error(path, groups, "initial", "z", "must be R sin(theta) = " &
+                        & // to_text(q(3)) // " [m] (rim on the ground), got " &
+                        & // to_text(i%z), error)
+                end if
                 return
             end if
             i%z = q(3)

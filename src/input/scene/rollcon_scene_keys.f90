@@ -74,6 +74,8 @@ contains
                 & friction_max, lower_open=.true.), &
                 & real_key("contact", "mu_kinetic", scene%contact%mu_kinetic, "", 0.0_wp, &
                 & friction_max, lower_open=.true.), &
+                & real_key("contact", "restitution", scene%contact%restitution, "", 0.0_wp, &
+                & 1.0_wp), &
                 & real_key("dissipation", "rolling_resistance", &
                 & scene%dissipation%rolling_resistance, "m", 0.0_wp, length_max), &
                 & real_key("dissipation", "air_viscosity", scene%dissipation%air_viscosity, &

@@ -46,9 +46,11 @@ module rollcon_scene_type
         !> Rolling speed [m/s] of the centre along the heading (cos psi, sin psi, 0), when
         !> given instead of phidot: phidot = -speed/radius - psidot cos(theta)
         real(wp) :: speed = 0.0_wp
-        !> Centre position [m]; z is R sin(theta) after a read, given or not
+        !> Centre position [m]; z is R sin(theta) after a read, given or not, unless given
+        !> above it with flight modelled (&contact restitution: the disk starts in flight)
         real(wp) :: x = 0.0_wp, y = 0.0_wp, z = 0.0_wp
-        !> Centre velocity [m/s]; the no-slip value after a read, given or not
+        !> Centre velocity [m/s]; the no-slip value after a read, given or not (with &contact
+        !> xdot and ydot may slip; a start in flight has the values given, 0 if not)
         real(wp) :: xdot = 0.0_wp, ydot = 0.0_wp, zdot = 0.0_wp
         !> z was given in the file
         logical :: z_given = .false.
@@ -78,6 +80,12 @@ module rollcon_scene_type
         !> Kinetic friction coefficient [-] (mu_static when not given): sliding's friction force
         !> is mu_kinetic F_n against the slip velocity
         real(wp) :: mu_kinetic = 0.0_wp
+        !> Restitution given: the disk may leave the ground (flight) and come down on it (an
+        !> impact); without it a lift-off ends the run as &limits stop_on_liftoff says
+        logical :: flight = .false.
+        !> Poisson's coefficient of restitution of an impact [-], 0 <= e <= 1: the normal
+        !> impulse of restitution is e times that of compression (docs/design.md §5)
+        real(wp) :: restitution = 0.0_wp
     end type scene_contact_type
 
     !> &dissipation: rolling resistance and the air layer under the rim (docs/design.md §5,

@@ -22,7 +22,7 @@ module test_contact_modes
     implicit none
     private
 
-    public :: collect_contact_modes
+    public :: collect_contact_modes, run_scene
 
 contains
 

@@ -45,6 +45,7 @@ contains
             & new_unittest("velocity-incomplete", test_velocity_incomplete), &
             & new_unittest("speed-with-phidot", test_speed_with_phidot), &
             & new_unittest("contact-keys-refused", test_contact_keys), &
+            & new_unittest("flight-start", test_flight_start), &
             & new_unittest("huge-values-refused", test_huge_values), &
             & new_unittest("faster-than-light-refused", test_speed_of_light), &
             & new_unittest("tiny-values-refused", test_tiny_values), &
@@ -367,6 +368,54 @@ contains
             & scene%contact%mu_kinetic], [1.0_wp, 0.0_wp, 0.0_wp, 0.3_wp], &
             & "xdot, ydot, zdot, mu_kinetic", abs_tol=tol_exact)
     end subroutine test_contact_keys
+
+    !> &contact restitution: within [0, 1]; with it a z above R sin(theta) starts in flight
+    !> (the centre's velocity as given, 0 where not), a z below it is refused; without it a z
+    !> above is refused as off the contact.
+    subroutine test_flight_start(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(scene_type) :: scene
+
+        call expect_input_error(error, "restitution_high", [character(len=width) :: &
+            & "&run formulation = 'cvode' /", "&contact mu_static = 0.3, restitution = 1.5 /"], &
+            & [character(len=width) :: "@:2: 'restitution'"])
+        if (allocated(error)) return
+        call expect_input_error(error, "restitution_negative", [character(len=width) :: &
+            & "&run formulation = 'cvode' /", "&contact mu_static = 0.3, restitution = -0.1 /"], &
+            & [character(len=width) :: "@:2: 'restitution'"])
+        if (allocated(error)) return
+        call expect_input_error(error, "flight_no_restitution", [character(len=width) :: &
+            & "&run formulation = 'cvode' /", "&contact mu_static = 0.3 /", &
+            & "&initial z = 0.2 /"], [character(len=width) :: &
+            & "@:3: 'z' in &initial must be R sin(theta) = 0.1 [m] (rim on the ground)"])
+        if (allocated(error)) return
+        call expect_input_error(error, "flight_into_ground", [character(len=width) :: &
+            & "&run formulation = 'cvode' /", "&contact mu_static = 0.3, restitution = 0.5 /", &
+            & "&initial z = 0.05 /"], [character(len=width) :: &
+            & "@:3: 'z' in &initial must be at least R sin(theta) = 0.1 [m]", "got 0.05"])
+        if (allocated(error)) return
+        call expect_accepted("flight_dropped", [character(len=width) :: &
+            & "&run formulation = 'cvode' /", "&contact mu_static = 0.3, restitution = 0.5 /", &
+            & "&initial z = 0.2, phidot = 3.0, ydot = 0.5 /"], scene, error)
+        if (allocated(error)) return
+        ! in flight: z kept, the velocity as given and 0 where not (not rolling's 0.3 m/s)
+        call check(error, [scene%initial%z, scene%initial%xdot, scene%initial%ydot, &
+            & scene%initial%zdot, scene%contact%restitution], [0.2_wp, 0.0_wp, 0.5_wp, &
+            & 0.0_wp, 0.5_wp], "z, xdot, ydot, zdot, restitution", abs_tol=tol_exact)
+        if (allocated(error)) return
+        call check(error, scene%contact%flight .and. scene%initial%velocity_given, &
+            & "flight modelled, the velocity the scene's")
+        if (allocated(error)) return
+        call expect_accepted("flight_on_ground", [character(len=width) :: &
+            & "&run formulation = 'cvode' /", "&contact mu_static = 0.3, restitution = 0.0 /", &
+            & "&initial phidot = -1.0 /"], scene, error)
+        if (allocated(error)) return
+        ! on the ground: rolling's velocity, e = 0 given is flight modelled
+        call check(error, [scene%initial%z, scene%initial%xdot], [0.1_wp, 0.1_wp], &
+            & "z, xdot on the ground", abs_tol=tol_exact)
+        if (allocated(error)) return
+        call check(error, scene%contact%flight, "restitution = 0 given: flight modelled")
+    end subroutine test_flight_start
 
     !> speed and phidot both set the spin: one of them.
     subroutine test_speed_with_phidot(error)
