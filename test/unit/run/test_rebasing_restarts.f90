@@ -60,10 +60,10 @@ module test_rebasing_restarts
     !> data/ball_on_turntable.adm restarted as after a re-basing at 1000 times without one
     !> drifts 1.2e-7 m (7.4e-9 m not restarted), each restart climbing back from order 1 at
     !> steps the orbit sets. No re-basing threshold from 0.05 to 0.7 rad, careful stretch or
-    !> first step holds the ratio to 2 at every ERROR from 1e-9 to 1e-12; a restart that keeps
-    !> IDA's history would, and needs IDA's private memory (docs/rebasing.md). 10 holds 7 and
-    !> fails a plain restart (ratio 18); with the tilt rate held to atol alone, the error test
-    !> failing on most steps of both balls, the ratio is 0.25
+    !> first step holds the ratio to 2 at every ERROR from 1e-9 to 1e-12, nor a restart that
+    !> keeps IDA's history (4.0 at 1e-10; docs/rebasing.md). 10 holds 7 and fails a plain
+    !> restart (ratio 18); with the tilt rate held to atol alone, the error test failing on
+    !> most steps of both balls, the ratio is 0.25
     real(wp), parameter :: most_drift_ratio = 10.0_wp
 
 contains
