@@ -59,11 +59,11 @@ module test_rebasing_restarts
     !> ERROR = 1e-9, 1e-11 and 1e-12): what is left of +3.5e-7 m gained far from the
     !> singularity and -1.6e-7 m lost on the approach to the threshold; restarts alone make as
     !> much (data/ball_on_turntable.adm restarted as after a re-basing at 1000 times without
-    !> one drifts 1.2e-7 m, 7.4e-9 m not restarted). No re-basing threshold from 0.05 to 0.7 rad, careful stretch or
-    !> first step holds the ratio to 2 at every ERROR from 1e-9 to 1e-12, nor a restart that
-    !> keeps IDA's history (4.0 at 1e-10; docs/rebasing.md). 10 holds 7 and fails a plain
-    !> restart (ratio 18); with the tilt rate held to atol alone, the error test failing on
-    !> most steps of both balls, the ratio is 0.25
+    !> one drifts 1.2e-7 m, 7.4e-9 m not restarted). No re-basing threshold from 0.05 to
+    !> 0.7 rad, careful stretch or first step holds the ratio to 2 at every ERROR from 1e-9
+    !> to 1e-12, nor a restart that keeps IDA's history (4.0 at 1e-10; docs/rebasing.md). 10
+    !> holds 7 and fails a plain restart (ratio 18); with the tilt rate held to atol alone, the
+    !> error test failing on most steps of both balls, the ratio is 0.25
     real(wp), parameter :: most_drift_ratio = 10.0_wp
 
 contains
