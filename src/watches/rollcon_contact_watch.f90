@@ -699,8 +699,8 @@ contains
         if (.not. self%friction()) return
         from = self%initial_mode
         text = "contact: starts " // trim(merge("in flight", contact_mode_words(from) // "  ", &
-            & from == mode_flight)) // " (mu_static " // to_text(self%mu_static) // ", mu_kinetic " &
-            & // to_text(self%mu_kinetic)
+            & from == mode_flight)) // " (mu_static " // to_text(self%mu_static) &
+            & // ", mu_kinetic " // to_text(self%mu_kinetic)
         if (self%flight) text = text // ", restitution " // to_text(self%restitution)
         text = text // "), " // to_text(size(self%switch_times)) // " switch" &
             & // trim(merge("  ", "es", size(self%switch_times) == 1))
