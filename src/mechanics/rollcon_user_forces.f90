@@ -2,7 +2,10 @@
 !> Force statements served by a user's routine (FUNCTION=USER(r1, ...): SFOSUB, VFOSUB,
 !> GFOSUB, VTOSUB; rollcon_force_routine_contract), and the utilities those routines call: SYSFNC,
 !> SYSARY and TIMGET, answering from the state the routine is called at (docs/datasets.md,
-!> "User force routines").
+!> "User force routines"), and the accelerations from those set_system_accelerations gave last
+!> (the equations' iterate of the algebraic loop a force reading them makes, or IDA's u':
+!> rollcon_equations' loop_accelerations, rollcon_dae; docs/datasets.md, "Accelerations read
+!> by a force routine").
 !>
 !> ADAMS's utilities take no handle, so what they read is module state, as
 !> rollcon_adams_runtime's: the table of routines the model may use (register_force_routine:
@@ -50,6 +53,9 @@ module rollcon_user_forces
     use rollcon_force, only : applied_force_type, profile_statement
     use rollcon_spline, only : spline_type, spline_derivatives, method_akima, method_cubic
     use rollcon_central_differences, only : central_differences
+    use rollcon_marker_acceleration, only : acceleration_measure
+    use rollcon_expression, only : quantity_kind, kind_acceleration, kind_angular_acceleration, &
+        & quantity_accx, quantity_wdtx
     use, intrinsic :: ieee_arithmetic, only : ieee_is_finite, ieee_value, ieee_quiet_nan
     implicit none
     private
@@ -70,6 +76,7 @@ module rollcon_user_forces
     public :: difference_user_variables, clear_user_variable_partials
     public :: register_diff_routine, routine_declaration_type, set_system_diff_state
     public :: declare_diff_routine, call_diff_routine
+    public :: set_system_accelerations, reads_accelerations, acceleration_difference_call
 
     !> A routine the model may use
     type :: routine_entry_type
@@ -154,6 +161,10 @@ module rollcon_user_forces
     type(spline_type), allocatable, save :: curves(:)
     !> The state of the call under way [SI]
     real(wp), allocatable, save :: q_now(:), u_now(:)
+    !> The accelerations SYSARY('TACC'|'RACC') and SYSFNC('ACCX' ... 'WDTM') answer from [SI]:
+    !> those set_system_accelerations gave last (an iterate of the algebraic loop's solve, or
+    !> IDA's u'), zero before any
+    real(wp), allocatable, save :: a_now(:)
     real(wp), save :: time_now = 0.0_wp
     !> The DIFFs' state SYSFNC('DIF') and SYSFNC('DIF1') answer from: ids, DIF and DIF1 [the
     !> user's units, per the dataset's time unit]
@@ -164,10 +175,10 @@ module rollcon_user_forces
     integer, allocatable, save :: named(:), named_difs(:), named_dif1s(:)
     !> A DIFSUB's declaration in force during its call (allowed_difs allocated then)
     integer, allocatable, save :: allowed_difs(:), allowed_dif1s(:)
-    logical, save :: named_rates = .false.
+    logical, save :: named_rates = .false., named_accelerations = .false.
     !> The declaration of the statement whose routine is being called (an evaluation)
     integer, allocatable, save :: allowed(:)
-    logical, save :: allowed_rates = .true.
+    logical, save :: allowed_rates = .true., allowed_accelerations = .true.
     !> What the utilities found wrong in the call under way ("" for nothing), and the notes
     !> of every call since clear_system_notes (for rollcon check)
     character(len=:), allocatable, save :: problem, notes
@@ -1091,12 +1102,14 @@ contains
             declaring = .true.
             named = [integer ::]
             named_rates = .false.
+            named_accelerations = .false.
             result = 0.0_wp
             call call_hook(s%routine, s%id, time/s%time_unit, s%par, size(s%par), .false., &
                 & .true., result(:n), n)
             declaring = .false.
             s%declared_markers = named
             s%declared_rates = named_rates
+            s%declared_accelerations = named_accelerations
             s%declared_parts = parts_of(named)
             call after_call(force, "the initialisation call (IFLAG = .TRUE.)", time, error)
         end associate
@@ -1122,6 +1135,7 @@ contains
                 if (allocated(s%declared_markers)) then
                     allowed = s%declared_markers
                     allowed_rates = s%declared_rates
+                    allowed_accelerations = s%declared_accelerations
                 else if (allocated(allowed)) then
                     ! not declared yet: nothing to compare with
                     deallocate(allowed)
@@ -1131,6 +1145,7 @@ contains
                     & .false., .false., result(:n), n)
                 if (allocated(allowed)) deallocate(allowed)
                 allowed_rates = .true.
+                allowed_accelerations = .true.
                 values = 0.0_wp
                 select case (n)
                 case (1)
@@ -1185,6 +1200,7 @@ contains
             if (allocated(s%declared_markers)) then
                 allowed = s%declared_markers
                 allowed_rates = s%declared_rates
+                allowed_accelerations = s%declared_accelerations
             else if (allocated(allowed)) then
                 deallocate(allowed)
             end if
@@ -1193,9 +1209,15 @@ contains
                 & .false., result(:n), n)
             if (allocated(allowed)) deallocate(allowed)
             allowed_rates = .true.
+            allowed_accelerations = .true.
             values = 0.0_wp
-            values(1:min(n, 3)) = result(1:min(n, 3))*s%force_unit
-            if (n == 6) values(4:6) = result(4:6)*s%force_unit*s%length_unit
+            if (table(s%routine)%kind == routine_vtosub) then
+                ! a VTOSUB's RESULT is the torque TX, TY, TZ (as evaluate_user_forces keeps it)
+                values(4:6) = result(1:3)*s%force_unit*s%length_unit
+            else
+                values(1:min(n, 3)) = result(1:min(n, 3))*s%force_unit
+                if (n == 6) values(4:6) = result(4:6)*s%force_unit*s%length_unit
+            end if
             failed = .not. all(ieee_is_finite(result(:n)))
             if (failed) then
                 call fatal_error(error, force%name // ": its " &
@@ -1296,10 +1318,13 @@ contains
     !> SYSFNC(FNCNAM, IPAR, NSIZE, VALUE, ERRFLG): one measure of markers IPAR(1:NSIZE) at the
     !> call's state, in the dataset's units: DX, DY, DZ, DM, VX, VY, VZ, VM, VR, WX, WY, WZ,
     !> WM, AX, AY, AZ, PSI, THETA, PHI, YAW, PITCH, ROLL with the markers as a FUNCTION
-    !> expression takes them (docs/datasets.md, "Measures of markers"), and DIF(id), DIF1(id)
+    !> expression takes them (docs/datasets.md, "Measures of markers"), the accelerations
+    !> ACCX, ACCY, ACCZ, ACCM, WDTX, WDTY, WDTZ, WDTM (rollcon_marker_acceleration) from the
+    !> accelerations set_system_accelerations gave (the algebraic loop a force reading them
+    !> makes is solved by the equations: rollcon_equations, rollcon_dae), and DIF(id), DIF1(id)
     !> of a DIFF (IPAR(1) = id; NSIZE = 1) from set_system_diff_state's. ERRFLG is set, and
-    !> VALUE 0, for a name rollcon does not know or a marker the model has not; a measure of
-    !> acceleration or force is refused (the algebraic loop of input_refusal).
+    !> VALUE 0, for a name rollcon does not know or a marker the model has not; a force
+    !> measure (FX ... TM) and an element's force are refused.
     subroutine system_function(name, ipar, value, errflg)
         character(len=*), intent(in) :: name
         integer, intent(in) :: ipar(:)
@@ -1320,10 +1345,11 @@ contains
             call diff_measure(quantity, ipar, value, errflg)
             return
         end if
-        if (.not. is_state_measure(quantity)) then
-            call refuse("SYSFNC('" // trim(name) // "'): an acceleration or a force, which " &
-                & // "rollcon knows only once it has solved for the forces; read by a force " &
-                & // "it makes an algebraic loop rollcon does not solve")
+        if (.not. is_state_measure(quantity) .and. .not. is_acceleration(quantity)) then
+            call refuse("SYSFNC('" // trim(name) // "'): a force, which rollcon's SYSFNC " &
+                & // "does not answer (the state's measures, the accelerations ACCX ... WDTM, " &
+                & // "DIF and DIF1 are answered); read by a force it makes an algebraic loop " &
+                & // "rollcon does not solve")
             return
         end if
         if (size(ipar) < quantity_least_markers(quantity) .or. size(ipar) &
@@ -1384,9 +1410,10 @@ contains
 
     !> SYSARY(FNCNAM, IPAR, NSIZE, STATES, NSTATES, ERRFLG): TDISP(i[, j[, k]]) = (DX, DY, DZ),
     !> TVEL(i[, j[, k[, l]]]) = (VX, VY, VZ), RVEL(i[, j[, k]]) = (WX, WY, WZ) and
-    !> RDISP(i[, j]) = (PSI, THETA, PHI), in the dataset's units; NSTATES = 3. TACC and RACC
-    !> are refused (an acceleration read by a force is an algebraic loop rollcon does not
-    !> solve), as is a name rollcon does not know: ERRFLG set, NSTATES = 0.
+    !> RDISP(i[, j]) = (PSI, THETA, PHI), TACC(i[, j[, k[, l]]]) = (ACCX, ACCY, ACCZ) and
+    !> RACC(i[, j[, k[, l]]]) = (WDTX, WDTY, WDTZ), in the dataset's units; NSTATES = 3. The
+    !> accelerations are those set_system_accelerations gave (system_function). A name rollcon
+    !> does not know is refused: ERRFLG set, NSTATES = 0.
     subroutine system_array(name, ipar, states, nstates, errflg)
         character(len=*), intent(in) :: name
         integer, intent(in) :: ipar(:)
@@ -1413,14 +1440,15 @@ contains
         case ("RDISP")
             first = quantity_psi
             most = 2
-        case ("TACC", "RACC")
-            call refuse("SYSARY('" // word // "'): an acceleration, which rollcon knows only " &
-                & // "once it has solved for the forces; read by a force it makes an " &
-                & // "algebraic loop rollcon does not solve")
-            return
+        case ("TACC")
+            first = quantity_accx
+            most = 4
+        case ("RACC")
+            first = quantity_wdtx
+            most = 4
         case default
             call refuse("SYSARY('" // trim(name) // "'): not an array rollcon's SYSARY knows " &
-                & // "(TDISP, TVEL, RDISP, RVEL)")
+                & // "(TDISP, TVEL, RDISP, RVEL, TACC, RACC)")
             return
         end select
         if (size(ipar) < 1 .or. size(ipar) > most) then
@@ -1437,6 +1465,58 @@ contains
         end do
         nstates = 3
     end subroutine system_array
+
+    !> True for ACCX ... ACCM and WDTX ... WDTM (quantity codes of rollcon_expression).
+    elemental logical function is_acceleration(quantity)
+        integer, intent(in) :: quantity
+
+        is_acceleration = .false.
+        if (quantity < 1 .or. quantity > size(quantity_kind)) return
+        is_acceleration = quantity_kind(quantity) == kind_acceleration &
+            & .or. quantity_kind(quantity) == kind_angular_acceleration
+    end function is_acceleration
+
+    !> The accelerations of all parts [m/s^2, rad/s^2; SI] that SYSARY('TACC'|'RACC') and
+    !> SYSFNC('ACCX' ... 'WDTM') answer from until the next call of this (rollcon_equations'
+    !> iterates of its algebraic loop, rollcon_dae's u').
+    subroutine set_system_accelerations(a)
+        real(wp), intent(in) :: a(:)
+
+        a_now = a
+    end subroutine set_system_accelerations
+
+    !> True when a force of the model is served by a routine whose initialisation call read
+    !> accelerations (its values then depend on the accelerations: an algebraic loop).
+    pure logical function reads_accelerations(forces)
+        type(applied_force_type), intent(in) :: forces(:)
+        integer :: i
+
+        reads_accelerations = .false.
+        do i = 1, size(forces)
+            if (forces(i)%profile /= profile_statement) cycle
+            if (forces(i)%statement%routine == 0) cycle
+            if (forces(i)%statement%declared_accelerations) reads_accelerations = .true.
+        end do
+    end function reads_accelerations
+
+    !> difference_call at (t, q, u) with the accelerations a [SI] its SYSARY and SYSFNC calls
+    !> read; the accelerations set before are restored after it.
+    subroutine acceleration_difference_call(force, time, q, u, a, values, failed)
+        type(applied_force_type), intent(in) :: force
+        real(wp), intent(in) :: time, q(:), u(:), a(:)
+        real(wp), intent(out) :: values(6)
+        logical, intent(out) :: failed
+        real(wp), allocatable :: kept(:)
+
+        if (allocated(a_now)) then
+            kept = a_now
+        else
+            allocate(kept(size(a)), source=0.0_wp)
+        end if
+        a_now = a
+        call difference_call(force, time, q, u, values, failed)
+        a_now = kept
+    end subroutine acceleration_difference_call
 
     !> TIMGET(TIME): the time of the call, in the dataset's unit.
     function system_time() result(time)
@@ -1486,6 +1566,15 @@ contains
             call refuse(call_name // ": IPAR(1) must name a marker, got 0")
             return
         end if
+        if (is_acceleration(quantity)) then
+            call note_reads(ids, .true., call_name, accelerations=.true.)
+            if (.not. allocated(a_now)) allocate(a_now(size(u_now)), source=0.0_wp)
+            if (size(a_now) /= size(u_now)) a_now = [(0.0_wp, m = 1, size(u_now))]
+            value = acceleration_measure(quantity, chosen, q_now, u_now, a_now)*time_unit**2
+            if (quantity_kind(quantity) == kind_acceleration) value = value/length_unit
+            errflg = .false.
+            return
+        end if
         call note_reads(ids, reads_rates(quantity), call_name)
         scale = 1.0_wp
         if (quantity < quantity_psi) scale = 1.0_wp/length_unit
@@ -1499,18 +1588,24 @@ contains
     !> Record the markers and rates a call reads (initialisation), or note what it reads that
     !> its initialisation call did not name (an evaluation: ADAMS would leave it out of the
     !> force's dependencies).
-    subroutine note_reads(ids, rates, call_name)
+    subroutine note_reads(ids, rates, call_name, accelerations)
         integer, intent(in) :: ids(4)
         logical, intent(in) :: rates
         character(len=*), intent(in) :: call_name
+        !> The call reads accelerations (absent: not)
+        logical, intent(in), optional :: accelerations
         integer :: m
+        logical :: reads_a
 
+        reads_a = .false.
+        if (present(accelerations)) reads_a = accelerations
         if (declaring) then
             do m = 1, 4
                 if (ids(m) == 0) cycle
                 if (.not. any(named == ids(m))) named = [named, ids(m)]
             end do
             named_rates = named_rates .or. rates
+            named_accelerations = named_accelerations .or. reads_a
             return
         end if
         if (.not. allocated(allowed)) return
@@ -1522,6 +1617,8 @@ contains
         end do
         if (rates .and. .not. allowed_rates) call add_note(call_name // " read velocities, " &
             & // "which the initialisation call (IFLAG = .TRUE.) did not read")
+        if (reads_a .and. .not. allowed_accelerations) call add_note(call_name // " read " &
+            & // "accelerations, which the initialisation call (IFLAG = .TRUE.) did not read")
     end subroutine note_reads
 
     !> A utility refuses a call: ERRFLG is set, and the call's error says why.
