@@ -35,7 +35,8 @@ module rollcon_user_routine_check
     use rollcon_user_forces, only : evaluate_user_forces, &
         & take_user_force_error, system_notes, clear_system_notes, force_routine_label, &
         & call_user_request, evaluate_user_variable, user_variable_list, user_variable_type, &
-        & user_motion_list, user_motion_type, call_user_motion, call_diff_routine
+        & user_motion_list, user_motion_type, call_user_motion, call_diff_routine, &
+        & evaluate_user_variables
     use rollcon_user_variable_values, only : user_variable_value
     use rollcon_request_answers, only : request_answer_watch_type, answer_user
     use rollcon_child_process, only : isolated_task_type, stream_receiver_type, &
@@ -507,6 +508,8 @@ contains
         real(wp), allocatable, intent(out) :: values(:)
         type(error_type), allocatable, intent(out) :: error
 
+        ! the VARSUBs at the probed state: SYSFNC('VARVAL') reads their values there
+        call evaluate_user_variables(time, q, u)
         call evaluate_user_forces(problem%model%forces(k:k), time, q, u)
         values = problem%model%forces(k)%statement%user_values
         call take_user_force_error(error)
@@ -634,6 +637,8 @@ contains
         real(wp) :: value
         logical :: failed
 
+        ! the VARSUBs at the probed state: SYSFNC('VARVAL') reads their values there
+        call evaluate_user_variables(time, q, u)
         associate (set => problem%model%diffs, diff => problem%model%diffs%diffs(k))
             call call_diff_routine(diff%routine, diff%id, diff%name, diff%par, set%time_unit, &
                 & time, q, u, set%ids, set%x, set%w, .false., diff%declaration, value, failed)
@@ -687,6 +692,8 @@ contains
         real(wp) :: result(request_results)
 
         watch => request_watch(problem)
+        ! the VARSUBs at the probed state: SYSFNC('VARVAL') reads their values there
+        call evaluate_user_variables(time, q, u)
         associate (request => watch%own_requests(k))
             call call_user_request(request%routine, request%id, request%name, request%par, &
                 & watch%time_unit, time, q, u, request%declared, request%declared_rates, result)

@@ -75,6 +75,9 @@ module rollcon_marker_force
         !> with the accelerations, rollcon_equations' and rollcon_dae's algebraic loop)
         integer, allocatable :: declared_markers(:)
         logical :: declared_rates = .false., declared_accelerations = .false.
+        !> FUNCTION=USER: its initialisation call read a VARSUB's value (SYSFNC('VARVAL')): its
+        !> difference calls evaluate the VARSUBs at the shifted state
+        logical :: declared_variables = .false.
         !> FUNCTION=USER: the model parts of those markers (ground left out), whose coordinates
         !> (and rates, when declared_rates) its partials are differenced over
         !> (rollcon_user_force_partials)

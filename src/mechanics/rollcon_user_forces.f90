@@ -49,7 +49,7 @@ module rollcon_user_forces
     use rollcon_measures, only : measure_value, is_state_measure, reads_rates, quantity_scale
     use rollcon_expression, only : quantity_names, quantity_psi, quantity_wx, quantity_vx, &
         & quantity_vm, quantity_vr, quantity_accm, quantity_wdtm, quantity_least_markers, &
-        & quantity_most_markers, quantity_dx, quantity_dif, quantity_dif1
+        & quantity_most_markers, quantity_dx, quantity_dif, quantity_dif1, quantity_varval
     use rollcon_force, only : applied_force_type, profile_statement
     use rollcon_spline, only : spline_type, spline_derivatives, method_akima, method_cubic
     use rollcon_central_differences, only : central_differences
@@ -165,6 +165,8 @@ module rollcon_user_forces
     !> those set_system_accelerations gave last (an iterate of the algebraic loop's solve, or
     !> IDA's u'), zero before any
     real(wp), allocatable, save :: a_now(:)
+    !> A force routine's call is under way (the accelerations are answered to it alone)
+    logical, save :: force_call = .false.
     real(wp), save :: time_now = 0.0_wp
     !> The DIFFs' state SYSFNC('DIF') and SYSFNC('DIF1') answer from: ids, DIF and DIF1 [the
     !> user's units, per the dataset's time unit]
@@ -176,6 +178,8 @@ module rollcon_user_forces
     !> A DIFSUB's declaration in force during its call (allowed_difs allocated then)
     integer, allocatable, save :: allowed_difs(:), allowed_dif1s(:)
     logical, save :: named_rates = .false., named_accelerations = .false.
+    !> The initialisation call under way read a VARSUB's value (SYSFNC('VARVAL'))
+    logical, save :: named_variables = .false.
     !> The declaration of the statement whose routine is being called (an evaluation)
     integer, allocatable, save :: allowed(:)
     logical, save :: allowed_rates = .true., allowed_accelerations = .true.
@@ -1103,13 +1107,17 @@ contains
             named = [integer ::]
             named_rates = .false.
             named_accelerations = .false.
+            named_variables = .false.
             result = 0.0_wp
+            force_call = .true.
             call call_hook(s%routine, s%id, time/s%time_unit, s%par, size(s%par), .false., &
                 & .true., result(:n), n)
+            force_call = .false.
             declaring = .false.
             s%declared_markers = named
             s%declared_rates = named_rates
             s%declared_accelerations = named_accelerations
+            s%declared_variables = named_variables
             s%declared_parts = parts_of(named)
             call after_call(force, "the initialisation call (IFLAG = .TRUE.)", time, error)
         end associate
@@ -1141,8 +1149,10 @@ contains
                     deallocate(allowed)
                 end if
                 result = 0.0_wp
+                force_call = .true.
                 call call_hook(s%routine, s%id, time/s%time_unit, s%par, size(s%par), &
                     & .false., .false., result(:n), n)
+                force_call = .false.
                 if (allocated(allowed)) deallocate(allowed)
                 allowed_rates = .true.
                 allowed_accelerations = .true.
@@ -1192,10 +1202,18 @@ contains
         logical, intent(out) :: failed
         type(error_type), allocatable :: error
         real(wp) :: result(6)
+        real(wp), allocatable :: kept(:)
+        integer, allocatable :: ids(:)
         integer :: n
 
         associate (s => force%statement)
             n = routine_results(table(s%routine)%kind)
+            ! the VARSUBs its SYSFNC('VARVAL') reads, at the shifted state (their values at
+            ! the state itself restored after)
+            if (s%declared_variables .and. allocated(variables)) then
+                kept = variables%value
+                call evaluate_user_variables(time, q, u)
+            end if
             call begin_call(time, q, u)
             if (allocated(s%declared_markers)) then
                 allowed = s%declared_markers
@@ -1205,11 +1223,18 @@ contains
                 deallocate(allowed)
             end if
             result = 0.0_wp
+            force_call = .true.
             call call_hook(s%routine, s%id, time/s%time_unit, s%par, size(s%par), .true., &
                 & .false., result(:n), n)
+            force_call = .false.
             if (allocated(allowed)) deallocate(allowed)
             allowed_rates = .true.
             allowed_accelerations = .true.
+            if (allocated(kept)) then
+                variables%value = kept
+                ids = variables%id
+                call set_user_variable_values(ids, kept)
+            end if
             values = 0.0_wp
             if (table(s%routine)%kind == routine_vtosub) then
                 ! a VTOSUB's RESULT is the torque TX, TY, TZ (as evaluate_user_forces keeps it)
@@ -1338,11 +1363,16 @@ contains
         if (quantity == 0) then
             call refuse("SYSFNC('" // trim(name) // "'): not a function rollcon's SYSFNC " &
                 & // "knows (DX, DY, DZ, DM, VX, VY, VZ, VM, VR, WX, WY, WZ, WM, AX, AY, AZ, " &
-                & // "PSI, THETA, PHI, YAW, PITCH, ROLL, DIF, DIF1)")
+                & // "PSI, THETA, PHI, YAW, PITCH, ROLL, ACCX, ACCY, ACCZ, ACCM, WDTX, WDTY, " &
+                & // "WDTZ, WDTM, DIF, DIF1, VARVAL)")
             return
         end if
         if (quantity == quantity_dif .or. quantity == quantity_dif1) then
             call diff_measure(quantity, ipar, value, errflg)
+            return
+        end if
+        if (quantity == quantity_varval) then
+            call variable_measure(ipar, value, errflg)
             return
         end if
         if (.not. is_state_measure(quantity) .and. .not. is_acceleration(quantity)) then
@@ -1361,6 +1391,46 @@ contains
         end if
         call measure(quantity, ipar, "SYSFNC('" // trim(name) // "')", value, errflg)
     end subroutine system_function
+
+    !> SYSFNC('VARVAL', [id]): the value of VARIABLE/id, served by a VARSUB, as evaluated at the
+    !> state of the call (evaluate_user_variables: a run's and rollcon check's evaluations
+    !> call the VARSUBs first, a difference call at its shifted state), in its own units. An
+    !> initialisation call that reads it declares the VARSUB's markers and rates as its own
+    !> (its value depends on them); a VARIABLE no VARSUB serves is refused.
+    subroutine variable_measure(ipar, value, errflg)
+        integer, intent(in) :: ipar(:)
+        real(wp), intent(out) :: value
+        logical, intent(out) :: errflg
+        integer :: k, m
+
+        value = 0.0_wp
+        errflg = .true.
+        if (size(ipar) /= 1) then
+            call refuse("SYSFNC('VARVAL') with NSIZE = " // to_text(size(ipar)) // ": it " &
+                & // "takes one id, the VARIABLE's")
+            return
+        end if
+        k = 0
+        if (allocated(variables)) k = findloc(variables%id, ipar(1), dim=1)
+        if (k == 0) then
+            call refuse("SYSFNC('VARVAL') names VARIABLE/" // to_text(ipar(1)) // ", which " &
+                & // "no VARSUB serves (rollcon's SYSFNC answers a VARSUB's VARIABLE; a " &
+                & // "routine computes an expression's value itself)")
+            return
+        end if
+        if (declaring) then
+            named_variables = .true.
+            if (allocated(variables(k)%declared)) then
+                do m = 1, size(variables(k)%declared)
+                    if (.not. any(named == variables(k)%declared(m))) &
+                        & named = [named, variables(k)%declared(m)]
+                end do
+                named_rates = named_rates .or. variables(k)%declared_rates
+            end if
+        end if
+        value = variables(k)%value
+        errflg = .false.
+    end subroutine variable_measure
 
     !> SYSFNC('DIF', [id]) (quantity_dif) or SYSFNC('DIF1', [id]): DIF or DIF1 of DIFF/id
     !> from the state set_system_diff_state gave; the DIFF recorded (a declaration) or
@@ -1566,7 +1636,12 @@ contains
             call refuse(call_name // ": IPAR(1) must name a marker, got 0")
             return
         end if
-        if (is_acceleration(quantity)) then
+        if (is_acceleration(quantity) .and. .not. force_call) then
+            call refuse(call_name // ": an acceleration, which rollcon answers to a force " &
+                & // "routine alone (SFOSUB, VFOSUB, VTOSUB, GFOSUB: their algebraic loop is " &
+                & // "solved); a VARSUB, DIFSUB, MOTSUB or REQSUB may not read it")
+            return
+        else if (is_acceleration(quantity)) then
             call note_reads(ids, .true., call_name, accelerations=.true.)
             if (.not. allocated(a_now)) allocate(a_now(size(u_now)), source=0.0_wp)
             if (size(a_now) /= size(u_now)) a_now = [(0.0_wp, m = 1, size(u_now))]
