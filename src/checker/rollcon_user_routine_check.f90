@@ -583,7 +583,8 @@ contains
     end function motion_label
 
     !> The MOTION's VALUE with IORD = 0, 1 and 2 as its MOTSUB gives them (the dataset's
-    !> units); a function of time alone, so the state is not read.
+    !> units), or those ADAMS asks of it (a VELOCITY's 0 and 1, an ACCELERATION's 0); a
+    !> function of time alone, so the state is not read.
     subroutine motion_values(problem, k, time, q, u, values, error)
         type(problem_type), intent(inout), target :: problem
         integer, intent(in) :: k
@@ -592,10 +593,12 @@ contains
         type(error_type), allocatable, intent(out) :: error
         type(user_motion_type), allocatable :: list(:)
         real(wp) :: orders(0:motion_orders)
+        integer :: iord
 
         list = user_motion_list()
-        call call_user_motion(list(k)%id, time, q, u, [0, 1, 2], orders, error)
-        values = orders(0:2)
+        call call_user_motion(list(k)%id, time, q, u, [(iord, iord = 0, list(k)%highest)], &
+            & orders, error)
+        values = orders(0:list(k)%highest)
     end subroutine motion_values
 
     !> A DIFF with FUNCTION=USER(...) in the dataset.

@@ -107,6 +107,9 @@ module rollcon_user_forces
         character(len=:), allocatable :: name
         !> Its initialisation call (IFLAG = .TRUE.) has been made
         logical :: initialised = .false.
+        !> The highest IORD it is called with (ADAMS's): 2 for a DISPLACEMENT, 1 for a
+        !> VELOCITY (f, f'), 0 for an ACCELERATION (f)
+        integer :: highest = motion_orders
     end type user_motion_type
     !> What a routine's initialisation call (IFLAG = .TRUE.) declared it reads through SYSFNC
     !> and SYSARY: markers (and their model parts), whether rates, and the DIFFs whose DIF
@@ -655,7 +658,8 @@ contains
     end subroutine set_user_motions
 
     !> The MOTSUB of MOTION/id at time [s] for each IORD of orders (0, 1, 2): values(iord), in
-    !> the dataset's units (a length or an angle per time unit to the power IORD); the entries
+    !> the dataset's units (a length or an angle per time unit to the power IORD, and one more
+    !> for a VELOCITY motion's, two more for an ACCELERATION motion's); the entries
     !> not asked for are NaN. The first call for a MOTION is preceded by its initialisation
     !> call (IFLAG = .TRUE.). A MOTION is a function of TIME alone (ADAMS's rule): a call that
     !> reads the state through SYSFNC or SYSARY (at IFLAG, a declared dependency) is an error,
@@ -772,7 +776,7 @@ contains
         unit_time = motions_time_unit
         h = step*unit_time
         do m = 1, size(motions)
-            do iord = 1, motion_orders
+            do iord = 1, motions(m)%highest
                 call call_user_motion(motions(m)%id, time, q, u, [iord], values, error)
                 if (allocated(error)) return
                 returned = values(iord)
@@ -801,7 +805,7 @@ contains
         end do
         if (len(found) == 0) return
         call fatal_error(error, "the check at the start found MOTSUB values that are not the " &
-            & // "TIME derivatives of its displacement (IORD = 1 the rate of IORD = 0, IORD " &
+            & // "TIME derivatives of its function (IORD = 1 the rate of IORD = 0, IORD " &
             & // "= 2 the rate of IORD = 1):" // found // new_line("a") // "The MOTION's " &
             & // "position and velocity equations would disagree. Run anyway with " &
             & // "--no-check.", stat_input)

@@ -81,6 +81,8 @@ contains
             & new_unittest("motsub-refusals", test_motion_user), &
             & new_unittest("motsub-as-expression", test_motsub), &
             & new_unittest("motsub-two-files", test_motsub_two_files), &
+            & new_unittest("motsub-velocity-acceleration", test_motsub_rates), &
+            & new_unittest("motsub-velocity-wrong-rate", test_motsub_velocity_wrong_rate), &
             & new_unittest("motsub-wrong-rate", test_motsub_wrong_rate), &
             & new_unittest("motsub-crashes", test_motsub_crashes), &
             & new_unittest("motsub-reads-state", test_motsub_reads_state), &
@@ -611,10 +613,8 @@ contains
             & "ROUTINE=FILE::SFOSUB"], error)
     end subroutine test_unknown_routine
 
-    !> The MOTSUB refusals, each naming the MOTION and its line: a VELOCITY MOTION of
-    !> FUNCTION=USER(...) (a MOTSUB serves a DISPLACEMENT: rollcon integrates a velocity's
-    !> expression by quadrature), a ROUTINE with no FUNCTION=USER, and motion.adm run with a
-    !> file that has no MOTSUB.
+    !> The MOTSUB refusals, each naming the MOTION and its line: a ROUTINE with no
+    !> FUNCTION=USER, and motion.adm run with a file that has no MOTSUB.
     subroutine test_motion_user(error)
         type(error_type), allocatable, intent(out) :: error
         type(job_type) :: job
@@ -629,14 +629,6 @@ contains
         text = "a MOTION served by a MOTSUB" // nl // "PART/1, GROUND" // nl &
             & // "MARKER/1, PART = 1" // nl // "PART/2, MASS = 1, CM = 20, IP = 1, 1, 1" // nl &
             & // "MARKER/20, PART = 2" // nl // "JOINT/1, TRANSLATIONAL, I = 20, J = 1" // nl
-        call write_text_file(path, text // "MOTION/1, JOINT = 1, TRANSLATION, VELOCITY, " &
-            & // "FUNCTION = USER(1, 2)" // nl // "SIMULATE/DYNAMIC, END = 1, STEPS = 10" // nl &
-            & // "END" // nl, error)
-        if (allocated(error)) return
-        call load_job(path, job, load_error)
-        call expect_message(load_error, [character(len=70) :: "motion_user.adm:7: MOTION/1", &
-            & "VELOCITY: a MOTSUB (FUNCTION=USER(...)) serves a DISPLACEMENT MOTION"], error)
-        if (allocated(error)) return
         call write_text_file(path, text // "MOTION/1, JOINT = 1, TRANSLATION, " &
             & // "FUNCTION = TIME, ROUTINE = u::MOTSUB" // nl &
             & // "SIMULATE/DYNAMIC, END = 1, STEPS = 10" // nl // "END" // nl, error)
@@ -680,6 +672,51 @@ contains
         call compare_motion_twins("motion_two_files", ["motsub_sine.f", "motsub_lift.f"], &
             & formulation_ida, error)
     end subroutine test_motsub_two_files
+
+    !> motion_velocity.adm and motion_acceleration.adm: motion.adm's rotor turned by a VELOCITY
+    !> MOTION whose MOTSUB (motsub_rates.f) returns 1.5 COS(3 TIME) at IORD = 0 and its rate
+    !> at IORD = 1, and by an ACCELERATION MOTION (ICVEL = 1.5) whose MOTSUB returns -4.5
+    !> SIN(3 TIME) at IORD = 0 (ADAMS asks no more of them; the routine stops on any other
+    !> IORD): the rows of their expression twins (the same functions as FUNCTION
+    !> expressions) to motsub_tolerance in every column, on IDA and CVODE. The MOTSUB's f is
+    !> integrated by the expression's quadrature at the same points, the same operations
+    !> computing f there, so the displacements agree to round-off; f' (IORD = 1) stands for
+    !> the expression's forward-mode derivative, which rounds otherwise in its last bits.
+    subroutine test_motsub_rates(error)
+        type(error_type), allocatable, intent(out) :: error
+
+        call compare_motion_twins("motion_velocity", ["motsub_rates.f"], formulation_ida, &
+            & error)
+        if (allocated(error)) return
+        call compare_motion_twins("motion_velocity", ["motsub_rates.f"], formulation_cvode, &
+            & error)
+        if (allocated(error)) return
+        call compare_motion_twins("motion_acceleration", ["motsub_rates.f"], formulation_ida, &
+            & error)
+        if (allocated(error)) return
+        call compare_motion_twins("motion_acceleration", ["motsub_rates.f"], &
+            & formulation_cvode, error)
+    end subroutine test_motsub_rates
+
+    !> A VELOCITY MOTION's MOTSUB whose IORD = 1 is its IORD = 0's rate plus 1
+    !> (faulty/motsub_velocity_wrong_rate.f) is stopped by the run's start check, naming the
+    !> MOTION and its line, IORD = 1, the value returned (1 at TIME = 0, where the rate is 0)
+    !> and --no-check; the right routine (motsub_rates.f) passes the same check.
+    subroutine test_motsub_velocity_wrong_rate(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(history_type) :: history
+        type(error_type), allocatable :: run_error
+
+        call run_user(folder // "motion_velocity.adm", ["faulty/motsub_velocity_wrong_rate.f"], &
+            & 10.0_wp, history, run_error, checked=.true.)
+        call expect_message(run_error, [character(len=80) :: &
+            & "motion_velocity.adm:17: MOTION/1: its MOTSUB of", &
+            & "returned VALUE = 1 at IORD = 1, TIME = 0, where differences of its IORD = 0", &
+            & "--no-check"], error)
+        if (allocated(error)) return
+        call run_user(folder // "motion_velocity.adm", ["motsub_rates.f"], 10.0_wp, history, &
+            & error, checked=.true.)
+    end subroutine test_motsub_velocity_wrong_rate
 
     !> A MOTSUB whose IORD = 1 is twice the rate of its IORD = 0 (faulty/motsub_wrong_rate.f)
     !> is stopped by the run's start check (the job's start_check, as `rollcon run` sets it),
