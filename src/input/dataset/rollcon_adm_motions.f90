@@ -4,8 +4,8 @@
 !> or between two markers (`I=id, J=id, X|Y|Z|B1|B2|B3`), read and checked as the text states
 !> it; `FUNCTION=USER(r1, ...)[, ROUTINE=name]` is served by a MOTSUB (a function of any
 !> form, with ADAMS's IORD; the USER(...) argument kept for rollcon_adm_variables to read its
-!> constants). The model makes each one a UCON with an explicit time part (model%add_motion), which also judges the
-!> markers' parts; the assembly finds the joint's markers and type.
+!> constants). The model makes each one a UCON with an explicit time part (model%add_motion),
+!> which also judges the markers' parts; the assembly finds the joint's markers and type.
 module rollcon_adm_motions
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type, fatal_error, stat_input
