@@ -56,6 +56,7 @@ module rollcon_adm_build
     use rollcon_adm_markers, only : adm_marker, marker_index
     use rollcon_adm_constraints, only : add_expression_constraints, expression_markers
     use rollcon_adm_motions, only : motion_velocity_form, motion_acceleration_form
+    use rollcon_motion, only : take_motion_error, motion_highest_order
     use rollcon_motion, only : motion_type, prepare_motion, motion_form_displacement, &
         & motion_form_velocity, motion_form_acceleration
     use rollcon_motion_geometry, only : motion_x, motion_y, motion_z, motion_b1, motion_b2, &
@@ -472,6 +473,9 @@ contains
                     & motion%value_unit = adm%units%length
                 motion%user = statement%user
                 call prepare_motion(motion, horizon)
+                ! a MOTSUB's VELOCITY or ACCELERATION called for the anchors of its integrals
+                call take_motion_error(error)
+                if (allocated(error)) return
                 call model%add_motion(motion, component, statement%joint /= 0, &
                     & adm_marker(adm, i), adm_marker(adm, j), error, line=statement%line)
                 if (allocated(error)) return
@@ -505,6 +509,7 @@ contains
             list(n)%id = adm%motions(k)%id
             list(n)%par = adm%motions(k)%par
             list(n)%name = where
+            list(n)%highest = motion_highest_order(motion_form(adm%motions(k)%form))
             list(n)%routine = find_force_routine(routine_motsub, routine)
             if (list(n)%routine > 0) cycle
             if (len(routine) == 0) then

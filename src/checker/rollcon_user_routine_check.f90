@@ -35,7 +35,8 @@ module rollcon_user_routine_check
     use rollcon_user_forces, only : evaluate_user_forces, &
         & take_user_force_error, system_notes, clear_system_notes, force_routine_label, &
         & call_user_request, evaluate_user_variable, user_variable_list, user_variable_type, &
-        & user_motion_list, user_motion_type, call_user_motion, call_diff_routine
+        & user_motion_list, user_motion_type, call_user_motion, call_diff_routine, &
+        & evaluate_user_variables
     use rollcon_user_variable_values, only : user_variable_value
     use rollcon_request_answers, only : request_answer_watch_type, answer_user
     use rollcon_child_process, only : isolated_task_type, stream_receiver_type, &
@@ -507,6 +508,8 @@ contains
         real(wp), allocatable, intent(out) :: values(:)
         type(error_type), allocatable, intent(out) :: error
 
+        ! the VARSUBs at the probed state: SYSFNC('VARVAL') reads their values there
+        call evaluate_user_variables(time, q, u)
         call evaluate_user_forces(problem%model%forces(k:k), time, q, u)
         values = problem%model%forces(k)%statement%user_values
         call take_user_force_error(error)
@@ -580,7 +583,8 @@ contains
     end function motion_label
 
     !> The MOTION's VALUE with IORD = 0, 1 and 2 as its MOTSUB gives them (the dataset's
-    !> units); a function of time alone, so the state is not read.
+    !> units), or those ADAMS asks of it (a VELOCITY's 0 and 1, an ACCELERATION's 0); a
+    !> function of time alone, so the state is not read.
     subroutine motion_values(problem, k, time, q, u, values, error)
         type(problem_type), intent(inout), target :: problem
         integer, intent(in) :: k
@@ -589,10 +593,12 @@ contains
         type(error_type), allocatable, intent(out) :: error
         type(user_motion_type), allocatable :: list(:)
         real(wp) :: orders(0:motion_orders)
+        integer :: iord
 
         list = user_motion_list()
-        call call_user_motion(list(k)%id, time, q, u, [0, 1, 2], orders, error)
-        values = orders(0:2)
+        call call_user_motion(list(k)%id, time, q, u, [(iord, iord = 0, list(k)%highest)], &
+            & orders, error)
+        values = orders(0:list(k)%highest)
     end subroutine motion_values
 
     !> A DIFF with FUNCTION=USER(...) in the dataset.
@@ -634,6 +640,8 @@ contains
         real(wp) :: value
         logical :: failed
 
+        ! the VARSUBs at the probed state: SYSFNC('VARVAL') reads their values there
+        call evaluate_user_variables(time, q, u)
         associate (set => problem%model%diffs, diff => problem%model%diffs%diffs(k))
             call call_diff_routine(diff%routine, diff%id, diff%name, diff%par, set%time_unit, &
                 & time, q, u, set%ids, set%x, set%w, .false., diff%declaration, value, failed)
@@ -687,6 +695,8 @@ contains
         real(wp) :: result(request_results)
 
         watch => request_watch(problem)
+        ! the VARSUBs at the probed state: SYSFNC('VARVAL') reads their values there
+        call evaluate_user_variables(time, q, u)
         associate (request => watch%own_requests(k))
             call call_user_request(request%routine, request%id, request%name, request%par, &
                 & watch%time_unit, time, q, u, request%declared, request%declared_rates, result)

@@ -11,6 +11,7 @@ module rollcon_constraints
     use rollcon_model, only : model_type, ucon_statement_type, statement_ucon
     use rollcon_text, only : to_text
     use rollcon_gcon, only : evaluate_gcon
+    use rollcon_motion, only : take_motion_error, motion_form_displacement
     use rollcon_motion, only : motion_displacement, motion_residual, motion_user_jet, &
         & displacement_residual
     use rollcon_user_forces, only : call_user_motion
@@ -150,7 +151,8 @@ contains
                     if (idrsel(1) /= 0) self%value(k) = scalar
                     ! a MOTION: F = s(q) - h(t), s the routine's value (rollcon_motion)
                     if (idrsel(1) /= 0 .and. allocated(ucon%motion)) then
-                        if (ucon%motion%user) then
+                        if (ucon%motion%user .and. ucon%motion%form &
+                            & == motion_form_displacement) then
                             ! a MOTSUB's displacement (IORD = 0)
                             call call_user_motion(ucon%motion%id, time, q, u, [0], &
                                 & user_values, error)
@@ -159,6 +161,9 @@ contains
                             self%value(k) = displacement_residual(ucon%motion, h(0), scalar)
                         else
                             self%value(k) = motion_residual(ucon%motion, time, scalar)
+                            ! a MOTSUB's VELOCITY or ACCELERATION, integrated there
+                            call take_motion_error(error)
+                            if (allocated(error)) return
                         end if
                     end if
                     if (first) call scatter_row(ucon, array, self%grad_q(k, :), &
@@ -169,7 +174,7 @@ contains
                 ! a MOTION's time partials are its time part's: dF/dt = -h', d2F/dt2 = -h'',
                 ! d2F/dt dq = 0 (its routine is time-free)
                 if (iand(needs, need_time) /= 0 .and. allocated(ucon%motion)) then
-                    if (ucon%motion%user) then
+                    if (ucon%motion%user .and. ucon%motion%form == motion_form_displacement) then
                         ! a MOTSUB's first and second TIME derivatives (IORD = 1, 2)
                         call call_user_motion(ucon%motion%id, time, q, u, [1, 2], &
                             & user_values, error)
@@ -178,6 +183,8 @@ contains
                         h = motion_user_jet(ucon%motion, user_values)
                     else
                         h = motion_displacement(ucon%motion, time)
+                        call take_motion_error(error)
+                        if (allocated(error)) return
                     end if
                     self%dt(k) = -h(1)
                     self%dtt(k) = -h(2)

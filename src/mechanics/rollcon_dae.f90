@@ -7,11 +7,16 @@
 !>     dF_k/dq u + dF_k/dt = 0       position UCON k (its velocity form)
 !>     F_h = 0                       position UCON h (with mu_h)
 !>
-!> which has index 2 with every constraint enforced directly: no drift by construction. A row
+!> which has index 2 with every constraint enforced directly: no drift by construction. A force
+!> served by a user's routine that reads accelerations (SYSARY('TACC'|'RACC'), SYSFNC('ACCX'
+!> ... 'WDTM')) reads u' itself: f = f(q, u, u', t) makes no loop here, as in ADAMS's DAE
+!> form, and its partials in u' (differenced over what the routine declared,
+!> rollcon_user_force_partials) enter the Newton matrix scaled by cj, beside M's. A row
 !> set aside as redundant (rollcon_redundancy) keeps its place: its equation is lambda_k = 0
 !> (and mu_h = 0 for a position UCON's), and its multipliers appear nowhere else.
 module rollcon_dae
-    use rollcon_user_forces, only : take_user_force_error
+    use rollcon_user_forces, only : take_user_force_error, set_system_accelerations, &
+        & reads_accelerations
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type, fatal_error
     use rollcon_text, only : to_text
@@ -48,8 +53,10 @@ contains
         real(wp), intent(out) :: r(:)
         type(error_type), allocatable, intent(out) :: error
         integer :: n, nc, needs, k, h, j, i0, jj
-        logical :: aside
+        logical :: aside, loop
 
+        loop = .false.
+        if (allocated(eq%model%forces)) loop = reads_accelerations(eq%model%forces)
         n = eq%n
         nc = eq%nc
         needs = need_value + need_first
@@ -59,6 +66,8 @@ contains
             & bl => eq%blocks)
             call cs%evaluate(eq%model, time, q, u, needs, error)
             if (allocated(error)) return
+            ! a user's force routine that reads accelerations reads IDA's u' (no loop to solve)
+            if (loop) call set_system_accelerations(up)
             call eq%assemble(time, q, u)
             call take_user_force_error(error)
             if (allocated(error)) return
@@ -145,9 +154,11 @@ contains
         real(wp), intent(inout), optional :: jac(:, :)
         integer, intent(in), optional :: starts(:), rows(:)
         real(wp), intent(inout), optional :: values(:)
-        logical :: aside, dense
+        logical :: aside, dense, loop
         integer :: n, nc, k, h, i, j, row, ii, jj, i0, outside(2)
 
+        loop = .false.
+        if (allocated(eq%model%forces)) loop = reads_accelerations(eq%model%forces)
         n = eq%n
         nc = eq%nc
         dense = present(jac)
@@ -158,6 +169,7 @@ contains
             call cs%evaluate(eq%model, time, q, u, need_value + need_first + need_second &
                 & + need_time, error)
             if (allocated(error)) return
+            if (loop) call set_system_accelerations(up)
             call eq%assemble(time, q, u)
             call eq%constraint_rows(u, 0.0_wp)  ! the DAE form keeps F itself: no Baumgarte terms
             if (eq%redundancy%set_aside > 0) then
@@ -170,6 +182,12 @@ contains
             ! a user force routine's difference call that failed
             call take_user_force_error(error)
             if (allocated(error)) return
+            ! the partials in u' of the forces whose routines read accelerations (they read
+            ! IDA's u'), which enter scaled by cj as M does
+            if (loop) then
+                call eq%acceleration_partials(time, q, u, up, error)
+                if (allocated(error)) return
+            end if
             do j = 1, n
                 call put(j, j, cj)
                 call put(j, n + j, -1.0_wp)
@@ -180,7 +198,12 @@ contains
                 do j = i0 + 1, i0 + 6
                     do i = i0 + 1, i0 + 6
                         call put(n + i, j, dm_dq(i, j))
-                        call put(n + i, n + j, eq%work%dm_du(i, j) + cj*eq%mass(i, j))
+                        if (loop) then
+                            call put(n + i, n + j, eq%work%dm_du(i, j) + cj*(eq%mass(i, j) &
+                                & + eq%work%dm_da(i, j)))
+                        else
+                            call put(n + i, n + j, eq%work%dm_du(i, j) + cj*eq%mass(i, j))
+                        end if
                     end do
                 end do
             end do
@@ -189,6 +212,15 @@ contains
                 call copy_coupling(eq%couplings(1, k), eq%couplings(2, k))
                 call copy_coupling(eq%couplings(2, k), eq%couplings(1, k))
             end do
+            ! a routine reading another part's accelerations: its partials between the parts
+            if (loop) then
+                do j = 1, n
+                    do i = 1, n
+                        if ((i - 1)/6 == (j - 1)/6 .or. eq%work%dm_da(i, j) == 0.0_wp) cycle
+                        call subtract(n + i, n + j, -cj*eq%work%dm_da(i, j))
+                    end do
+                end do
+            end if
             do k = 1, nc
                 associate (at => bl%ucon_coordinates(bl%ucon_start(k):bl%ucon_start(k + 1) - 1))
                     do jj = 1, size(at)

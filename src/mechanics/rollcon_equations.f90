@@ -15,11 +15,13 @@ module rollcon_equations
     use rollcon_body, only : body_mass_and_force, body_residual_jacobian, kinetic_energy, &
         & energy_gradient
     use rollcon_force, only : force_and_moment, add_force_partials, force_couplings, &
-        & add_expression_partials
-    use rollcon_user_force_partials, only : add_user_force_partials
+        & add_expression_partials, profile_statement
+    use rollcon_user_force_partials, only : add_user_force_partials, &
+        & add_user_force_acceleration_partials
     use rollcon_user_forces, only : evaluate_user_forces, take_user_force_error, &
         & evaluate_user_variables, difference_user_variables, clear_user_variable_partials, &
-        & set_system_diff_state
+        & set_system_diff_state, set_system_accelerations, reads_accelerations
+    use rollcon_lapack, only : factor_dense, solve_factored
     use rollcon_constraints, only : constraint_state_type, local_dot, need_value, need_first, &
         & need_second, need_time
     use rollcon_saddle_point, only : saddle_point_type
@@ -97,6 +99,7 @@ module rollcon_equations
         procedure :: masked
         procedure :: friction_coupling
         procedure :: resistance_coupling
+        procedure :: acceleration_partials
     end type equations_type
 
 contains
@@ -353,6 +356,12 @@ contains
         end if
         call self%constraints%evaluate(self%model, time, q, u, needs, error)
         if (allocated(error)) return
+        if (allocated(self%model%forces)) then
+            if (reads_accelerations(self%model%forces)) then
+                call loop_accelerations(self, time, q, u, baumgarte, a, lambda, error)
+                return
+            end if
+        end if
         call self%assemble(time, q, u)
         call take_user_force_error(error)
         if (allocated(error)) return
@@ -431,6 +440,132 @@ contains
             end if
         end associate
     end subroutine resistance_coupling
+    !> The accelerations and multipliers of a model where a user's force routine reads
+    !> accelerations (SYSARY('TACC'|'RACC'), SYSFNC('ACCX' ... 'WDTM')): the algebraic loop
+    !> M a - f(q, u, a, t) - C^T lambda = 0, C a = gamma, solved by Newton's method on (a,
+    !> lambda) as ADAMS solves it, from the accelerations the routines read last. Each
+    !> iteration evaluates the forces at the iterate a_k (rollcon_user_forces'
+    !> set_system_accelerations), their partials in a by central differences over what each
+    !> routine declared (rollcon_user_force_partials; the first iteration's serve every one),
+    !> and solves
+    !>
+    !>     [M + dm/da, -C^T; C, 0] (a, lambda) = (f(a_k) + dm/da a_k, gamma)
+    !>
+    !> densely (LU, LAPACK; a row set aside: lambda_k = 0). Converged when no acceleration
+    !> moved by more than 1e-10 max(|a|_inf, 1) [SI]: the partials' relative error is about
+    !> 4e-11 (rollcon_central_differences), so each iteration shrinks the error by that
+    !> factor at least and the one that follows such a step would move a by some 1e-20 of
+    !> it, below round-off; a force linear in a (a virtual mass) converges in two. At most
+    !> 20 iterations, else an error naming the statements whose routines read accelerations.
+    !> The LU factors stay in work%loop_matrix for ode_jacobian. A sliding contact (a scene's,
+    !> never a dataset's) is not combined with it.
+    subroutine loop_accelerations(self, time, q, u, baumgarte, a, lambda, error)
+        type(equations_type), intent(inout) :: self
+        real(wp), intent(in) :: time, q(:), u(:), baumgarte
+        real(wp), intent(out) :: a(:), lambda(:)
+        type(error_type), allocatable, intent(out) :: error
+        integer, parameter :: most_iterations = 20
+        real(wp), parameter :: settled = 1.0e-10_wp
+        real(wp), allocatable :: x(:, :)
+        real(wp) :: change
+        logical, allocatable :: active(:)
+        integer :: n, nc, k, iteration
+        character(len=:), allocatable :: names
+
+        n = self%n
+        nc = self%nc
+        if (.not. allocated(self%work%loop_matrix)) allocate(self%work%loop_matrix(n + nc, &
+            & n + nc), self%work%loop_pivots(n + nc))
+        allocate(x(n + nc, 1))
+        active = self%active_rows()
+        if (.not. allocated(self%work%loop_a)) allocate(self%work%loop_a(n), source=0.0_wp)
+        a = self%work%loop_a
+        change = huge(1.0_wp)
+        do iteration = 1, most_iterations
+            call set_system_accelerations(a)
+            call self%assemble(time, q, u)
+            call take_user_force_error(error)
+            if (allocated(error)) return
+            if (iteration == 1) then
+                call self%acceleration_partials(time, q, u, a, error)
+                if (allocated(error)) return
+                call self%constraint_rows(u, baumgarte)
+                associate (m => self%work%loop_matrix)
+                    m = 0.0_wp
+                    m(:n, :n) = self%mass + self%work%dm_da
+                    do k = 1, nc
+                        if (active(k)) then
+                            m(:n, n + k) = -self%c(k, :)
+                            m(n + k, :n) = self%c(k, :)
+                        else
+                            m(n + k, n + k) = 1.0_wp
+                        end if
+                    end do
+                end associate
+                call factor_dense(self%work%loop_matrix, self%work%loop_pivots, error)
+                if (allocated(error)) then
+                    error%message = loop_names(self) // ": the saddle-point matrix of the " &
+                        & // "equations with the accelerations they read, [M - df/da, -C^T; " &
+                        & // "C, 0], is singular at t = " // to_text(time) // " s: " &
+                        & // error%message
+                    return
+                end if
+            end if
+            x(:n, 1) = self%force + matmul(self%work%dm_da, a)
+            x(n + 1:, 1) = merge(self%gamma, 0.0_wp, active)
+            call solve_factored(self%work%loop_matrix, self%work%loop_pivots, x, error)
+            if (allocated(error)) return
+            change = maxval(abs(x(:n, 1) - a))
+            a = x(:n, 1)
+            lambda = x(n + 1:, 1)
+            if (change <= settled*max(maxval(abs(a)), 1.0_wp)) exit
+        end do
+        ! the forces and the routines' accelerations at the solution
+        call set_system_accelerations(a)
+        call self%assemble(time, q, u)
+        call take_user_force_error(error)
+        if (allocated(error)) return
+        self%work%loop_a = a
+        if (change > settled*max(maxval(abs(a)), 1.0_wp)) then
+            names = loop_names(self)
+            call fatal_error(error, names // ": the accelerations these forces' routines " &
+                & // "read did not settle in " // to_text(most_iterations) // " Newton " &
+                & // "iterations at t = " // to_text(time) // " s (the last moved them by " &
+                & // to_text(change) // " m/s^2 or rad/s^2): a force that is far from linear " &
+                & // "in the accelerations it reads", stat_ucon)
+        end if
+    end subroutine loop_accelerations
+
+    !> The statements whose user routines read accelerations, "SFORCE/3 (line 12), ...".
+    function loop_names(self) result(names)
+        type(equations_type), intent(in) :: self
+        character(len=:), allocatable :: names
+        integer :: i
+
+        names = ""
+        do i = 1, size(self%model%forces)
+            if (self%model%forces(i)%profile /= profile_statement) cycle
+            if (self%model%forces(i)%statement%routine == 0) cycle
+            if (.not. self%model%forces(i)%statement%declared_accelerations) cycle
+            if (len(names) > 0) names = names // ", "
+            names = names // self%model%forces(i)%name
+        end do
+    end function loop_names
+
+    !> work%dm_da: the partials in the accelerations a of the momentum residual's forces (M a
+    !> itself left out) at (t, q, u, a), the forces evaluated there (assemble) before: the
+    !> forces whose routines read accelerations, differenced (rollcon_user_force_partials).
+    !> A failed difference call's error is returned.
+    subroutine acceleration_partials(self, time, q, u, a, error)
+        class(equations_type), intent(inout) :: self
+        real(wp), intent(in) :: time, q(:), u(:), a(:)
+        type(error_type), allocatable, intent(out) :: error
+
+        self%work%dm_da = 0.0_wp
+        call add_user_force_acceleration_partials(self%model%forces, time, q, u, a, &
+            & self%work%dm_da)
+        call take_user_force_error(error)
+    end subroutine acceleration_partials
 
     !> A sliding contact's friction in the accelerations a and multipliers lambda of the
     !> saddle-point system without it (its tangential rows dropped, factored): the second
@@ -554,7 +689,12 @@ contains
             w%rhs_top(:, :n) = -w%dm_dq
             w%rhs_top(:, n + 1:) = -w%dm_du
             call jacobian_constraint_rows(self, u, w%a, baumgarte)
-            call self%saddle%solve(self%c, w%rhs_top, w%rhs_bottom, 2*n, error)
+            if (reads_accelerations(self%model%forces)) then
+                ! the algebraic loop's saddle-point matrix, with the forces' partials in a
+                call loop_solve(self, error)
+            else
+                call self%saddle%solve(self%c, w%rhs_top, w%rhs_bottom, 2*n, error)
+            end if
         end associate
         if (allocated(error)) return
         jac = 0.0_wp
@@ -563,6 +703,29 @@ contains
         end do
         jac(n + 1:, :) = self%work%rhs_top
     end subroutine ode_jacobian
+
+    !> Solve the algebraic loop's saddle-point system (loop_accelerations' factors) for the
+    !> Jacobian's right-hand sides work%rhs_top, work%rhs_bottom (2n columns each), in place.
+    subroutine loop_solve(self, error)
+        type(equations_type), intent(inout) :: self
+        type(error_type), allocatable, intent(out) :: error
+        real(wp), allocatable :: x(:, :)
+        logical, allocatable :: active(:)
+        integer :: n, k
+
+        n = self%n
+        active = self%active_rows()
+        allocate(x(n + self%nc, 2*n))
+        x(:n, :) = self%work%rhs_top
+        x(n + 1:, :) = self%work%rhs_bottom
+        do k = 1, self%nc
+            if (.not. active(k)) x(n + k, :) = 0.0_wp
+        end do
+        call solve_factored(self%work%loop_matrix, self%work%loop_pivots, x, error)
+        if (allocated(error)) return
+        self%work%rhs_top = x(:n, :)
+        self%work%rhs_bottom = x(n + 1:, :)
+    end subroutine loop_solve
 
     !> Constraint rows of the Jacobian's right-hand sides, -d(C a - gamma)/d(q, u) at fixed a,
     !> into rhs_bottom.

@@ -70,9 +70,14 @@ module rollcon_marker_force
         !> marker_force_values gives them (SI; rollcon_user_forces' evaluate_user_forces)
         real(wp) :: user_values(6) = 0.0_wp
         !> FUNCTION=USER: the markers its initialisation call's SYSFNC and SYSARY calls named
-        !> (by id), and whether they read rates and time
+        !> (by id), and whether they read rates, and accelerations (SYSARY('TACC'|'RACC'),
+        !> SYSFNC('ACCX' ... 'WDTM'): the routine's values then enter the equations of motion
+        !> with the accelerations, rollcon_equations' and rollcon_dae's algebraic loop)
         integer, allocatable :: declared_markers(:)
-        logical :: declared_rates = .false.
+        logical :: declared_rates = .false., declared_accelerations = .false.
+        !> FUNCTION=USER: its initialisation call read a VARSUB's value (SYSFNC('VARVAL')): its
+        !> difference calls evaluate the VARSUBs at the shifted state
+        logical :: declared_variables = .false.
         !> FUNCTION=USER: the model parts of those markers (ground left out), whose coordinates
         !> (and rates, when declared_rates) its partials are differenced over
         !> (rollcon_user_force_partials)

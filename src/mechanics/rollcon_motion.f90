@@ -23,22 +23,32 @@
 !> switching_times) as panel ends; over a run they are kept at anchor_count + 1 equally spaced
 !> times (prepare_motion), so that each evaluation integrates from the anchor before it only.
 !>
-!> A MOTION whose FUNCTION is USER(r1, ...) (motion_type's user) is a DISPLACEMENT served by a
-!> MOTSUB: h, h', h'' are its values at IORD = 0, 1, 2, which the caller obtains from the
-!> routine (rollcon_user_forces' call_user_motion) and converts here (motion_user_jet); it has
-!> no corners (the routine is opaque: where it switches is not known).
+!> A MOTION whose FUNCTION is USER(r1, ...) (motion_type's user) is served by a MOTSUB with
+!> ADAMS's IORD, the order of the TIME derivative of f asked for: a DISPLACEMENT's h, h', h''
+!> are its values at IORD = 0, 1, 2, which the caller obtains from the routine (rollcon_user_
+!> forces' call_user_motion) and converts here (motion_user_jet); a VELOCITY's f and f' are
+!> its values at IORD = 0, 1 and an ACCELERATION's f its value at IORD = 0 (ADAMS never asks
+!> more of them), integrated here as an expression's f is, by the same quadrature at the same
+!> points (motion_displacement: the MOTSUB called at each), so that a MOTSUB and the
+!> expression it computes give the same h to round-off. A call that fails leaves its error
+!> for take_motion_error. A MOTSUB has no corners (the routine is opaque: where it switches
+!> is not known).
 module rollcon_motion
     use rollcon_kinds, only : wp
     use rollcon_constants, only : pi
     use rollcon_expression, only : expression_type, switching_times, evaluate_expression
     use rollcon_jet, only : jet_type, jet_variable
     use rollcon_expression_jet, only : evaluate_expression_jet
+    use rollcon_error, only : error_type
+    use rollcon_user_forces, only : call_user_motion
+    use, intrinsic :: ieee_arithmetic, only : ieee_value, ieee_quiet_nan
     implicit none
     private
 
     public :: motion_type, motion_displacement, motion_residual, motion_corners
     public :: prepare_motion, motion_integrals, motion_user_jet, displacement_residual
     public :: motion_form_displacement, motion_form_velocity, motion_form_acceleration
+    public :: take_motion_error, motion_highest_order
 
     !> What FUNCTION gives: the displacement, its rate, or its second derivative
     integer, parameter :: motion_form_displacement = 1, motion_form_velocity = 2, &
@@ -85,25 +95,70 @@ module rollcon_motion
         real(wp), allocatable :: integrals(:, :)
     end type motion_type
 
+    !> The first failure of a MOTSUB call made here (motion_displacement, prepare_motion), not
+    !> yet taken (take_motion_error)
+    type(error_type), allocatable, save :: pending
+
 contains
+
+    !> Move the first failure of a MOTSUB called by motion_displacement, motion_residual or
+    !> prepare_motion, if any, to the caller.
+    subroutine take_motion_error(error)
+        type(error_type), allocatable, intent(out) :: error
+
+        if (allocated(pending)) call move_alloc(pending, error)
+    end subroutine take_motion_error
+
+    !> The highest IORD a MOTSUB serving a MOTION of this form is called with (ADAMS's): 2 for
+    !> a DISPLACEMENT, 1 for a VELOCITY, 0 for an ACCELERATION.
+    pure integer function motion_highest_order(form) result(order)
+        integer, intent(in) :: form
+
+        order = 3 - form
+    end function motion_highest_order
+
+    !> The MOTSUB of a VELOCITY or ACCELERATION MOTION at time [s]: f and its TIME derivatives
+    !> of orders 0 .. highest (the rest NaN), in the dataset's units (value_unit per
+    !> time_unit^(form - 1 + iord)); a failure kept for take_motion_error (its values NaN).
+    function user_function(motion, time, highest) result(f)
+        type(motion_type), intent(in) :: motion
+        real(wp), intent(in) :: time
+        integer, intent(in) :: highest
+        real(wp) :: f(0:2)
+        real(wp) :: none(0)
+        type(error_type), allocatable :: error
+        integer :: k
+
+        call call_user_motion(motion%id, time, none, none, [(k, k = 0, highest)], f, error)
+        if (allocated(error)) then
+            f = ieee_value(0.0_wp, ieee_quiet_nan)
+            if (.not. allocated(pending)) call move_alloc(error, pending)
+        end if
+    end function user_function
 
     !> The function's value and first two derivatives at time t [s], SI: [m, m/s, m/s^2] per
     !> unit of form (a displacement's; a velocity's ...; radians for an angle).
-    pure function function_jet(motion, time) result(jet)
+    function function_jet(motion, time) result(jet)
         type(motion_type), intent(in) :: motion
         real(wp), intent(in) :: time
         real(wp) :: jet(0:2)
         real(wp) :: scale
         type(jet_type) :: f, none(0)
 
-        ! TIME the one variable, to second order
-        f = evaluate_expression_jet(motion%function, jet_variable(time/motion%time_unit, 1, 1, &
-            & .true.), none)
-        jet = [f%v, 0.0_wp, 0.0_wp]
-        ! a function that does not change with time is a constant jet: no partials held
-        if (f%active) then
-            jet(1) = f%g(1)
-            if (allocated(f%h)) jet(2) = f%h(1, 1)
+        if (motion%user) then
+            ! the MOTSUB's f and the derivatives ADAMS asks of it (the others unused here)
+            jet = user_function(motion, time, motion_highest_order(motion%form))
+            jet(motion_highest_order(motion%form) + 1:) = 0.0_wp
+        else
+            ! TIME the one variable, to second order
+            f = evaluate_expression_jet(motion%function, jet_variable(time/motion%time_unit, &
+                & 1, 1, .true.), none)
+            jet = [f%v, 0.0_wp, 0.0_wp]
+            ! a function that does not change with time is a constant jet: no partials held
+            if (f%active) then
+                jet(1) = f%g(1)
+                if (allocated(f%h)) jet(2) = f%h(1, 1)
+            end if
         end if
         ! f is in value_unit / time_unit^(form - 1); each derivative divides by time_unit
         scale = motion%value_unit/motion%time_unit**(motion%form - 1)
@@ -123,7 +178,7 @@ contains
 
     !> h(t), h'(t), h''(t): the displacement the MOTION imposes at time t [s] and its first
     !> two derivatives [m, m/s, m/s^2; rad, rad/s, rad/s^2].
-    pure function motion_displacement(motion, time) result(h)
+    function motion_displacement(motion, time) result(h)
         type(motion_type), intent(in) :: motion
         real(wp), intent(in) :: time
         real(wp) :: h(0:2)
@@ -146,7 +201,7 @@ contains
 
     !> F = s - h(t) from the coordinate s the geometric routine measured at time t [s] (an
     !> angle's difference brought into (-pi, pi]).
-    pure real(wp) function motion_residual(motion, time, coordinate) result(residual)
+    real(wp) function motion_residual(motion, time, coordinate) result(residual)
         type(motion_type), intent(in) :: motion
         real(wp), intent(in) :: time
         !> s(q) [m or rad]
@@ -201,7 +256,7 @@ contains
 
     !> Before a run to `horizon` [s]: the corners, and for VELOCITY and ACCELERATION the
     !> anchors of the integrals over [0, horizon].
-    pure subroutine prepare_motion(motion, horizon)
+    subroutine prepare_motion(motion, horizon)
         type(motion_type), intent(inout) :: motion
         real(wp), intent(in) :: horizon
         integer :: k
@@ -209,8 +264,7 @@ contains
         motion%corners = motion_corners(motion)
         motion%panel = 0.0_wp
         if (allocated(motion%integrals)) deallocate(motion%integrals)
-        if (motion%form == motion_form_displacement .or. motion%user &
-            & .or. .not. horizon > 0.0_wp) return
+        if (motion%form == motion_form_displacement .or. .not. horizon > 0.0_wp) return
         allocate(motion%integrals(2, 0:anchor_count))
         motion%integrals(:, 0) = 0.0_wp
         ! the anchors at k panel exactly, where motion_integrals starts from them
@@ -223,7 +277,7 @@ contains
 
     !> The integrals of f and of tau f from 0 to t [s] (SI): from the anchor before t when
     !> prepare_motion kept them, else from 0.
-    pure function motion_integrals(motion, time) result(values)
+    function motion_integrals(motion, time) result(values)
         type(motion_type), intent(in) :: motion
         real(wp), intent(in) :: time
         real(wp) :: values(2)
@@ -239,7 +293,7 @@ contains
     end function motion_integrals
 
     !> The integrals of f and tau f from a to b [s], panels ending at the corners between them.
-    pure function integral(motion, a, b) result(values)
+    function integral(motion, a, b) result(values)
         type(motion_type), intent(in) :: motion
         real(wp), intent(in) :: a, b
         real(wp) :: values(2)
@@ -263,7 +317,7 @@ contains
 
     !> Adaptive Gauss-Legendre on [a, b]: a panel is kept when its two halves agree with it,
     !> else halved (an explicit stack of panels, depth at most max_depth).
-    pure function adaptive(motion, a, b) result(values)
+    function adaptive(motion, a, b) result(values)
         type(motion_type), intent(in) :: motion
         real(wp), intent(in) :: a, b
         real(wp) :: values(2)
@@ -300,11 +354,11 @@ contains
     end function adaptive
 
     !> Gauss-Legendre (8 points) on [a, b] of f, tau f and |f|.
-    pure function gauss(motion, a, b) result(values)
+    function gauss(motion, a, b) result(values)
         type(motion_type), intent(in) :: motion
         real(wp), intent(in) :: a, b
         real(wp) :: values(4)
-        real(wp) :: centre, half, tau, f, none(0)
+        real(wp) :: centre, half, tau, f, none(0), sampled(0:2)
         integer :: k, side
 
         values = 0.0_wp
@@ -314,8 +368,13 @@ contains
             do side = -1, 1, 2
                 tau = centre + side*half*gauss_nodes(k)
                 ! the value alone (in SI: value_unit per time_unit^(form - 1))
-                f = evaluate_expression(motion%function, tau/motion%time_unit, none) &
-                    & *motion%value_unit/motion%time_unit**(motion%form - 1)
+                if (motion%user) then
+                    sampled = user_function(motion, tau, 0)
+                    f = sampled(0)*motion%value_unit/motion%time_unit**(motion%form - 1)
+                else
+                    f = evaluate_expression(motion%function, tau/motion%time_unit, none) &
+                        & *motion%value_unit/motion%time_unit**(motion%form - 1)
+                end if
                 values = values + gauss_weights(k)*[f, tau*f, abs(f), abs(tau*f)]
             end do
         end do

@@ -20,6 +20,13 @@ module rollcon_ode_workspace
         real(wp), allocatable :: rhs_top(:, :), rhs_bottom(:, :)
         !> Jacobian blocks of the momentum rows d(M a - f - C^T lambda)/d(q, u)
         real(wp), allocatable :: dm_dq(:, :), dm_du(:, :)
+        !> d(M a - f)/da: the mass matrix's part of it left out, the partials of the forces
+        !> whose user routines read accelerations (rollcon_equations' algebraic loop); and the
+        !> LU factors (with pivots) of that loop's saddle-point matrix, (n + nc) square
+        real(wp), allocatable :: dm_da(:, :), loop_matrix(:, :)
+        integer, allocatable :: loop_pivots(:)
+        !> The loop's last accelerations, where its next solve starts (allocated by it)
+        real(wp), allocatable :: loop_a(:)
         !> Accelerations, multipliers, projected coordinates
         real(wp), allocatable :: a(:), lambda(:), q(:)
     contains
@@ -37,7 +44,7 @@ contains
         allocate(self%moments(3, parts), source=0.0_wp)
         allocate(self%holonomic_rows(nh, n), self%rhs_top(n, 2*n), self%rhs_bottom(nc, 2*n), &
             & source=0.0_wp)
-        allocate(self%dm_dq(n, n), self%dm_du(n, n), source=0.0_wp)
+        allocate(self%dm_dq(n, n), self%dm_du(n, n), self%dm_da(n, n), source=0.0_wp)
         allocate(self%a(n), self%lambda(nc), self%q(n), source=0.0_wp)
     end subroutine init
 

@@ -25,12 +25,12 @@ module rollcon_user_force_partials
     use rollcon_force, only : applied_force_type, profile_statement
     use rollcon_force_partials, only : statement_parts, statement_state_jets, &
         & add_statement_load_partials
-    use rollcon_user_forces, only : difference_call
+    use rollcon_user_forces, only : difference_call, acceleration_difference_call
     use rollcon_central_differences, only : central_differences
     implicit none
     private
 
-    public :: add_user_force_partials
+    public :: add_user_force_partials, add_user_force_acceleration_partials
 
 contains
 
@@ -74,6 +74,73 @@ contains
             end associate
         end do
     end subroutine add_user_force_partials
+
+    !> Subtract the partials in the accelerations a of every force whose routine read
+    !> accelerations at its initialisation call (SYSARY('TACC'|'RACC'), SYSFNC('ACCX' ...
+    !> 'WDTM')) from dm_da, the partials of the momentum residual M a - f in a (n x n), at
+    !> (t, q, u, a): its values differenced over the accelerations of its declared parts
+    !> (central differences, rollcon_central_differences, each call with DFLAG = .TRUE.), the
+    !> load's geometry exact (rollcon_force_partials, which takes them where a rate's partials
+    !> go: the geometry depends on q alone). The values at (t, q, u, a) are those the last
+    !> evaluation kept (evaluate_user_forces with these accelerations set).
+    subroutine add_user_force_acceleration_partials(forces, time, q, u, a, dm_da)
+        type(applied_force_type), intent(in) :: forces(:)
+        real(wp), intent(in) :: time
+        !> Coordinates, rates and accelerations of all parts [SI]
+        real(wp), intent(in) :: q(:), u(:), a(:)
+        real(wp), intent(inout) :: dm_da(:, :)
+        type(state_jets_type) :: state
+        type(jet_type) :: values(6)
+        integer, allocatable :: parts(:), entries(:), rows(:)
+        real(wp), allocatable :: gradients(:, :), block(:, :), ignored(:, :)
+        integer :: i, k, np, d, p, c
+
+        allocate(ignored(size(dm_da, 1), size(dm_da, 2)))
+        do i = 1, size(forces)
+            if (forces(i)%profile /= profile_statement) cycle
+            if (forces(i)%statement%routine == 0) cycle
+            if (.not. forces(i)%statement%declared_accelerations) cycle
+            associate (s => forces(i)%statement)
+                parts = statement_parts(s)
+                np = size(parts)
+                if (np == 0 .or. .not. allocated(s%declared_parts)) cycle
+                state = statement_state_jets(parts, q, u, .true.)
+                allocate(gradients(12*np, 6), source=0.0_wp)
+                entries = [integer ::]
+                rows = [integer ::]
+                do d = 1, size(s%declared_parts)
+                    p = findloc(parts, s%declared_parts(d), dim=1)
+                    if (p == 0) cycle
+                    entries = [entries, [(6*(s%declared_parts(d) - 1) + c, c = 1, 6)]]
+                    rows = [rows, [(6*np + 6*(p - 1) + c, c = 1, 6)]]
+                end do
+                allocate(block(size(entries), 6), source=0.0_wp)
+                call central_differences(a, entries, accelerations_moved, block)
+                gradients(rows, :) = block
+                do k = 1, 6
+                    values(k) = jet_constant(s%user_values(k))
+                    if (all(gradients(:, k) == 0.0_wp)) cycle
+                    values(k)%active = .true.
+                    values(k)%g = gradients(:, k)
+                end do
+                ! the load's partials in the rates' slots are its partials in a
+                ignored = 0.0_wp
+                call add_statement_load_partials(s, values, state, q, ignored, dm_da)
+                deallocate(gradients, block)
+            end associate
+        end do
+
+    contains
+
+        subroutine accelerations_moved(shifted, values, failed)
+            real(wp), intent(in) :: shifted(:)
+            real(wp), intent(out) :: values(:)
+            logical, intent(out) :: failed
+
+            call acceleration_difference_call(forces(i), time, q, u, shifted, values, failed)
+        end subroutine accelerations_moved
+
+    end subroutine add_user_force_acceleration_partials
 
     !> gradients(v, k): value k's partial in variable v of statement_state_jets(parts), by
     !> central differences (rollcon_central_differences) over the coordinates of the declared

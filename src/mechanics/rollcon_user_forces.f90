@@ -2,7 +2,10 @@
 !> Force statements served by a user's routine (FUNCTION=USER(r1, ...): SFOSUB, VFOSUB,
 !> GFOSUB, VTOSUB; rollcon_force_routine_contract), and the utilities those routines call: SYSFNC,
 !> SYSARY and TIMGET, answering from the state the routine is called at (docs/datasets.md,
-!> "User force routines").
+!> "User force routines"), and the accelerations from those set_system_accelerations gave last
+!> (the equations' iterate of the algebraic loop a force reading them makes, or IDA's u':
+!> rollcon_equations' loop_accelerations, rollcon_dae; docs/datasets.md, "Accelerations read
+!> by a force routine").
 !>
 !> ADAMS's utilities take no handle, so what they read is module state, as
 !> rollcon_adams_runtime's: the table of routines the model may use (register_force_routine:
@@ -46,10 +49,13 @@ module rollcon_user_forces
     use rollcon_measures, only : measure_value, is_state_measure, reads_rates, quantity_scale
     use rollcon_expression, only : quantity_names, quantity_psi, quantity_wx, quantity_vx, &
         & quantity_vm, quantity_vr, quantity_accm, quantity_wdtm, quantity_least_markers, &
-        & quantity_most_markers, quantity_dx, quantity_dif, quantity_dif1
+        & quantity_most_markers, quantity_dx, quantity_dif, quantity_dif1, quantity_varval
     use rollcon_force, only : applied_force_type, profile_statement
     use rollcon_spline, only : spline_type, spline_derivatives, method_akima, method_cubic
     use rollcon_central_differences, only : central_differences
+    use rollcon_marker_acceleration, only : acceleration_measure
+    use rollcon_expression, only : quantity_kind, kind_acceleration, kind_angular_acceleration, &
+        & quantity_accx, quantity_wdtx
     use, intrinsic :: ieee_arithmetic, only : ieee_is_finite, ieee_value, ieee_quiet_nan
     implicit none
     private
@@ -70,6 +76,7 @@ module rollcon_user_forces
     public :: difference_user_variables, clear_user_variable_partials
     public :: register_diff_routine, routine_declaration_type, set_system_diff_state
     public :: declare_diff_routine, call_diff_routine
+    public :: set_system_accelerations, reads_accelerations, acceleration_difference_call
 
     !> A routine the model may use
     type :: routine_entry_type
@@ -100,6 +107,9 @@ module rollcon_user_forces
         character(len=:), allocatable :: name
         !> Its initialisation call (IFLAG = .TRUE.) has been made
         logical :: initialised = .false.
+        !> The highest IORD it is called with (ADAMS's): 2 for a DISPLACEMENT, 1 for a
+        !> VELOCITY (f, f'), 0 for an ACCELERATION (f)
+        integer :: highest = motion_orders
     end type user_motion_type
     !> What a routine's initialisation call (IFLAG = .TRUE.) declared it reads through SYSFNC
     !> and SYSARY: markers (and their model parts), whether rates, and the DIFFs whose DIF
@@ -154,6 +164,12 @@ module rollcon_user_forces
     type(spline_type), allocatable, save :: curves(:)
     !> The state of the call under way [SI]
     real(wp), allocatable, save :: q_now(:), u_now(:)
+    !> The accelerations SYSARY('TACC'|'RACC') and SYSFNC('ACCX' ... 'WDTM') answer from [SI]:
+    !> those set_system_accelerations gave last (an iterate of the algebraic loop's solve, or
+    !> IDA's u'), zero before any
+    real(wp), allocatable, save :: a_now(:)
+    !> A force routine's call is under way (the accelerations are answered to it alone)
+    logical, save :: force_call = .false.
     real(wp), save :: time_now = 0.0_wp
     !> The DIFFs' state SYSFNC('DIF') and SYSFNC('DIF1') answer from: ids, DIF and DIF1 [the
     !> user's units, per the dataset's time unit]
@@ -164,10 +180,12 @@ module rollcon_user_forces
     integer, allocatable, save :: named(:), named_difs(:), named_dif1s(:)
     !> A DIFSUB's declaration in force during its call (allowed_difs allocated then)
     integer, allocatable, save :: allowed_difs(:), allowed_dif1s(:)
-    logical, save :: named_rates = .false.
+    logical, save :: named_rates = .false., named_accelerations = .false.
+    !> The initialisation call under way read a VARSUB's value (SYSFNC('VARVAL'))
+    logical, save :: named_variables = .false.
     !> The declaration of the statement whose routine is being called (an evaluation)
     integer, allocatable, save :: allowed(:)
-    logical, save :: allowed_rates = .true.
+    logical, save :: allowed_rates = .true., allowed_accelerations = .true.
     !> What the utilities found wrong in the call under way ("" for nothing), and the notes
     !> of every call since clear_system_notes (for rollcon check)
     character(len=:), allocatable, save :: problem, notes
@@ -640,7 +658,8 @@ contains
     end subroutine set_user_motions
 
     !> The MOTSUB of MOTION/id at time [s] for each IORD of orders (0, 1, 2): values(iord), in
-    !> the dataset's units (a length or an angle per time unit to the power IORD); the entries
+    !> the dataset's units (a length or an angle per time unit to the power IORD, and one more
+    !> for a VELOCITY motion's, two more for an ACCELERATION motion's); the entries
     !> not asked for are NaN. The first call for a MOTION is preceded by its initialisation
     !> call (IFLAG = .TRUE.). A MOTION is a function of TIME alone (ADAMS's rule): a call that
     !> reads the state through SYSFNC or SYSARY (at IFLAG, a declared dependency) is an error,
@@ -757,7 +776,7 @@ contains
         unit_time = motions_time_unit
         h = step*unit_time
         do m = 1, size(motions)
-            do iord = 1, motion_orders
+            do iord = 1, motions(m)%highest
                 call call_user_motion(motions(m)%id, time, q, u, [iord], values, error)
                 if (allocated(error)) return
                 returned = values(iord)
@@ -786,7 +805,7 @@ contains
         end do
         if (len(found) == 0) return
         call fatal_error(error, "the check at the start found MOTSUB values that are not the " &
-            & // "TIME derivatives of its displacement (IORD = 1 the rate of IORD = 0, IORD " &
+            & // "TIME derivatives of its function (IORD = 1 the rate of IORD = 0, IORD " &
             & // "= 2 the rate of IORD = 1):" // found // new_line("a") // "The MOTION's " &
             & // "position and velocity equations would disagree. Run anyway with " &
             & // "--no-check.", stat_input)
@@ -1091,12 +1110,18 @@ contains
             declaring = .true.
             named = [integer ::]
             named_rates = .false.
+            named_accelerations = .false.
+            named_variables = .false.
             result = 0.0_wp
+            force_call = .true.
             call call_hook(s%routine, s%id, time/s%time_unit, s%par, size(s%par), .false., &
                 & .true., result(:n), n)
+            force_call = .false.
             declaring = .false.
             s%declared_markers = named
             s%declared_rates = named_rates
+            s%declared_accelerations = named_accelerations
+            s%declared_variables = named_variables
             s%declared_parts = parts_of(named)
             call after_call(force, "the initialisation call (IFLAG = .TRUE.)", time, error)
         end associate
@@ -1122,15 +1147,19 @@ contains
                 if (allocated(s%declared_markers)) then
                     allowed = s%declared_markers
                     allowed_rates = s%declared_rates
+                    allowed_accelerations = s%declared_accelerations
                 else if (allocated(allowed)) then
                     ! not declared yet: nothing to compare with
                     deallocate(allowed)
                 end if
                 result = 0.0_wp
+                force_call = .true.
                 call call_hook(s%routine, s%id, time/s%time_unit, s%par, size(s%par), &
                     & .false., .false., result(:n), n)
+                force_call = .false.
                 if (allocated(allowed)) deallocate(allowed)
                 allowed_rates = .true.
+                allowed_accelerations = .true.
                 values = 0.0_wp
                 select case (n)
                 case (1)
@@ -1177,25 +1206,47 @@ contains
         logical, intent(out) :: failed
         type(error_type), allocatable :: error
         real(wp) :: result(6)
+        real(wp), allocatable :: kept(:)
+        integer, allocatable :: ids(:)
         integer :: n
 
         associate (s => force%statement)
             n = routine_results(table(s%routine)%kind)
+            ! the VARSUBs its SYSFNC('VARVAL') reads, at the shifted state (their values at
+            ! the state itself restored after)
+            if (s%declared_variables .and. allocated(variables)) then
+                kept = variables%value
+                call evaluate_user_variables(time, q, u)
+            end if
             call begin_call(time, q, u)
             if (allocated(s%declared_markers)) then
                 allowed = s%declared_markers
                 allowed_rates = s%declared_rates
+                allowed_accelerations = s%declared_accelerations
             else if (allocated(allowed)) then
                 deallocate(allowed)
             end if
             result = 0.0_wp
+            force_call = .true.
             call call_hook(s%routine, s%id, time/s%time_unit, s%par, size(s%par), .true., &
                 & .false., result(:n), n)
+            force_call = .false.
             if (allocated(allowed)) deallocate(allowed)
             allowed_rates = .true.
+            allowed_accelerations = .true.
+            if (allocated(kept)) then
+                variables%value = kept
+                ids = variables%id
+                call set_user_variable_values(ids, kept)
+            end if
             values = 0.0_wp
-            values(1:min(n, 3)) = result(1:min(n, 3))*s%force_unit
-            if (n == 6) values(4:6) = result(4:6)*s%force_unit*s%length_unit
+            if (table(s%routine)%kind == routine_vtosub) then
+                ! a VTOSUB's RESULT is the torque TX, TY, TZ (as evaluate_user_forces keeps it)
+                values(4:6) = result(1:3)*s%force_unit*s%length_unit
+            else
+                values(1:min(n, 3)) = result(1:min(n, 3))*s%force_unit
+                if (n == 6) values(4:6) = result(4:6)*s%force_unit*s%length_unit
+            end if
             failed = .not. all(ieee_is_finite(result(:n)))
             if (failed) then
                 call fatal_error(error, force%name // ": its " &
@@ -1296,10 +1347,13 @@ contains
     !> SYSFNC(FNCNAM, IPAR, NSIZE, VALUE, ERRFLG): one measure of markers IPAR(1:NSIZE) at the
     !> call's state, in the dataset's units: DX, DY, DZ, DM, VX, VY, VZ, VM, VR, WX, WY, WZ,
     !> WM, AX, AY, AZ, PSI, THETA, PHI, YAW, PITCH, ROLL with the markers as a FUNCTION
-    !> expression takes them (docs/datasets.md, "Measures of markers"), and DIF(id), DIF1(id)
+    !> expression takes them (docs/datasets.md, "Measures of markers"), the accelerations
+    !> ACCX, ACCY, ACCZ, ACCM, WDTX, WDTY, WDTZ, WDTM (rollcon_marker_acceleration) from the
+    !> accelerations set_system_accelerations gave (the algebraic loop a force reading them
+    !> makes is solved by the equations: rollcon_equations, rollcon_dae), and DIF(id), DIF1(id)
     !> of a DIFF (IPAR(1) = id; NSIZE = 1) from set_system_diff_state's. ERRFLG is set, and
-    !> VALUE 0, for a name rollcon does not know or a marker the model has not; a measure of
-    !> acceleration or force is refused (the algebraic loop of input_refusal).
+    !> VALUE 0, for a name rollcon does not know or a marker the model has not; a force
+    !> measure (FX ... TM) and an element's force are refused.
     subroutine system_function(name, ipar, value, errflg)
         character(len=*), intent(in) :: name
         integer, intent(in) :: ipar(:)
@@ -1313,17 +1367,23 @@ contains
         if (quantity == 0) then
             call refuse("SYSFNC('" // trim(name) // "'): not a function rollcon's SYSFNC " &
                 & // "knows (DX, DY, DZ, DM, VX, VY, VZ, VM, VR, WX, WY, WZ, WM, AX, AY, AZ, " &
-                & // "PSI, THETA, PHI, YAW, PITCH, ROLL, DIF, DIF1)")
+                & // "PSI, THETA, PHI, YAW, PITCH, ROLL, ACCX, ACCY, ACCZ, ACCM, WDTX, WDTY, " &
+                & // "WDTZ, WDTM, DIF, DIF1, VARVAL)")
             return
         end if
         if (quantity == quantity_dif .or. quantity == quantity_dif1) then
             call diff_measure(quantity, ipar, value, errflg)
             return
         end if
-        if (.not. is_state_measure(quantity)) then
-            call refuse("SYSFNC('" // trim(name) // "'): an acceleration or a force, which " &
-                & // "rollcon knows only once it has solved for the forces; read by a force " &
-                & // "it makes an algebraic loop rollcon does not solve")
+        if (quantity == quantity_varval) then
+            call variable_measure(ipar, value, errflg)
+            return
+        end if
+        if (.not. is_state_measure(quantity) .and. .not. is_acceleration(quantity)) then
+            call refuse("SYSFNC('" // trim(name) // "'): a force, which rollcon's SYSFNC " &
+                & // "does not answer (the state's measures, the accelerations ACCX ... WDTM, " &
+                & // "DIF and DIF1 are answered); read by a force it makes an algebraic loop " &
+                & // "rollcon does not solve")
             return
         end if
         if (size(ipar) < quantity_least_markers(quantity) .or. size(ipar) &
@@ -1335,6 +1395,46 @@ contains
         end if
         call measure(quantity, ipar, "SYSFNC('" // trim(name) // "')", value, errflg)
     end subroutine system_function
+
+    !> SYSFNC('VARVAL', [id]): the value of VARIABLE/id, served by a VARSUB, as evaluated at the
+    !> state of the call (evaluate_user_variables: a run's and rollcon check's evaluations
+    !> call the VARSUBs first, a difference call at its shifted state), in its own units. An
+    !> initialisation call that reads it declares the VARSUB's markers and rates as its own
+    !> (its value depends on them); a VARIABLE no VARSUB serves is refused.
+    subroutine variable_measure(ipar, value, errflg)
+        integer, intent(in) :: ipar(:)
+        real(wp), intent(out) :: value
+        logical, intent(out) :: errflg
+        integer :: k, m
+
+        value = 0.0_wp
+        errflg = .true.
+        if (size(ipar) /= 1) then
+            call refuse("SYSFNC('VARVAL') with NSIZE = " // to_text(size(ipar)) // ": it " &
+                & // "takes one id, the VARIABLE's")
+            return
+        end if
+        k = 0
+        if (allocated(variables)) k = findloc(variables%id, ipar(1), dim=1)
+        if (k == 0) then
+            call refuse("SYSFNC('VARVAL') names VARIABLE/" // to_text(ipar(1)) // ", which " &
+                & // "no VARSUB serves (rollcon's SYSFNC answers a VARSUB's VARIABLE; a " &
+                & // "routine computes an expression's value itself)")
+            return
+        end if
+        if (declaring) then
+            named_variables = .true.
+            if (allocated(variables(k)%declared)) then
+                do m = 1, size(variables(k)%declared)
+                    if (.not. any(named == variables(k)%declared(m))) &
+                        & named = [named, variables(k)%declared(m)]
+                end do
+                named_rates = named_rates .or. variables(k)%declared_rates
+            end if
+        end if
+        value = variables(k)%value
+        errflg = .false.
+    end subroutine variable_measure
 
     !> SYSFNC('DIF', [id]) (quantity_dif) or SYSFNC('DIF1', [id]): DIF or DIF1 of DIFF/id
     !> from the state set_system_diff_state gave; the DIFF recorded (a declaration) or
@@ -1384,9 +1484,10 @@ contains
 
     !> SYSARY(FNCNAM, IPAR, NSIZE, STATES, NSTATES, ERRFLG): TDISP(i[, j[, k]]) = (DX, DY, DZ),
     !> TVEL(i[, j[, k[, l]]]) = (VX, VY, VZ), RVEL(i[, j[, k]]) = (WX, WY, WZ) and
-    !> RDISP(i[, j]) = (PSI, THETA, PHI), in the dataset's units; NSTATES = 3. TACC and RACC
-    !> are refused (an acceleration read by a force is an algebraic loop rollcon does not
-    !> solve), as is a name rollcon does not know: ERRFLG set, NSTATES = 0.
+    !> RDISP(i[, j]) = (PSI, THETA, PHI), TACC(i[, j[, k[, l]]]) = (ACCX, ACCY, ACCZ) and
+    !> RACC(i[, j[, k[, l]]]) = (WDTX, WDTY, WDTZ), in the dataset's units; NSTATES = 3. The
+    !> accelerations are those set_system_accelerations gave (system_function). A name rollcon
+    !> does not know is refused: ERRFLG set, NSTATES = 0.
     subroutine system_array(name, ipar, states, nstates, errflg)
         character(len=*), intent(in) :: name
         integer, intent(in) :: ipar(:)
@@ -1413,14 +1514,15 @@ contains
         case ("RDISP")
             first = quantity_psi
             most = 2
-        case ("TACC", "RACC")
-            call refuse("SYSARY('" // word // "'): an acceleration, which rollcon knows only " &
-                & // "once it has solved for the forces; read by a force it makes an " &
-                & // "algebraic loop rollcon does not solve")
-            return
+        case ("TACC")
+            first = quantity_accx
+            most = 4
+        case ("RACC")
+            first = quantity_wdtx
+            most = 4
         case default
             call refuse("SYSARY('" // trim(name) // "'): not an array rollcon's SYSARY knows " &
-                & // "(TDISP, TVEL, RDISP, RVEL)")
+                & // "(TDISP, TVEL, RDISP, RVEL, TACC, RACC)")
             return
         end select
         if (size(ipar) < 1 .or. size(ipar) > most) then
@@ -1437,6 +1539,58 @@ contains
         end do
         nstates = 3
     end subroutine system_array
+
+    !> True for ACCX ... ACCM and WDTX ... WDTM (quantity codes of rollcon_expression).
+    elemental logical function is_acceleration(quantity)
+        integer, intent(in) :: quantity
+
+        is_acceleration = .false.
+        if (quantity < 1 .or. quantity > size(quantity_kind)) return
+        is_acceleration = quantity_kind(quantity) == kind_acceleration &
+            & .or. quantity_kind(quantity) == kind_angular_acceleration
+    end function is_acceleration
+
+    !> The accelerations of all parts [m/s^2, rad/s^2; SI] that SYSARY('TACC'|'RACC') and
+    !> SYSFNC('ACCX' ... 'WDTM') answer from until the next call of this (rollcon_equations'
+    !> iterates of its algebraic loop, rollcon_dae's u').
+    subroutine set_system_accelerations(a)
+        real(wp), intent(in) :: a(:)
+
+        a_now = a
+    end subroutine set_system_accelerations
+
+    !> True when a force of the model is served by a routine whose initialisation call read
+    !> accelerations (its values then depend on the accelerations: an algebraic loop).
+    pure logical function reads_accelerations(forces)
+        type(applied_force_type), intent(in) :: forces(:)
+        integer :: i
+
+        reads_accelerations = .false.
+        do i = 1, size(forces)
+            if (forces(i)%profile /= profile_statement) cycle
+            if (forces(i)%statement%routine == 0) cycle
+            if (forces(i)%statement%declared_accelerations) reads_accelerations = .true.
+        end do
+    end function reads_accelerations
+
+    !> difference_call at (t, q, u) with the accelerations a [SI] its SYSARY and SYSFNC calls
+    !> read; the accelerations set before are restored after it.
+    subroutine acceleration_difference_call(force, time, q, u, a, values, failed)
+        type(applied_force_type), intent(in) :: force
+        real(wp), intent(in) :: time, q(:), u(:), a(:)
+        real(wp), intent(out) :: values(6)
+        logical, intent(out) :: failed
+        real(wp), allocatable :: kept(:)
+
+        if (allocated(a_now)) then
+            kept = a_now
+        else
+            allocate(kept(size(a)), source=0.0_wp)
+        end if
+        a_now = a
+        call difference_call(force, time, q, u, values, failed)
+        a_now = kept
+    end subroutine acceleration_difference_call
 
     !> TIMGET(TIME): the time of the call, in the dataset's unit.
     function system_time() result(time)
@@ -1486,6 +1640,20 @@ contains
             call refuse(call_name // ": IPAR(1) must name a marker, got 0")
             return
         end if
+        if (is_acceleration(quantity) .and. .not. force_call) then
+            call refuse(call_name // ": an acceleration, which rollcon answers to a force " &
+                & // "routine alone (SFOSUB, VFOSUB, VTOSUB, GFOSUB: their algebraic loop is " &
+                & // "solved); a VARSUB, DIFSUB, MOTSUB or REQSUB may not read it")
+            return
+        else if (is_acceleration(quantity)) then
+            call note_reads(ids, .true., call_name, accelerations=.true.)
+            if (.not. allocated(a_now)) allocate(a_now(size(u_now)), source=0.0_wp)
+            if (size(a_now) /= size(u_now)) a_now = [(0.0_wp, m = 1, size(u_now))]
+            value = acceleration_measure(quantity, chosen, q_now, u_now, a_now)*time_unit**2
+            if (quantity_kind(quantity) == kind_acceleration) value = value/length_unit
+            errflg = .false.
+            return
+        end if
         call note_reads(ids, reads_rates(quantity), call_name)
         scale = 1.0_wp
         if (quantity < quantity_psi) scale = 1.0_wp/length_unit
@@ -1499,18 +1667,24 @@ contains
     !> Record the markers and rates a call reads (initialisation), or note what it reads that
     !> its initialisation call did not name (an evaluation: ADAMS would leave it out of the
     !> force's dependencies).
-    subroutine note_reads(ids, rates, call_name)
+    subroutine note_reads(ids, rates, call_name, accelerations)
         integer, intent(in) :: ids(4)
         logical, intent(in) :: rates
         character(len=*), intent(in) :: call_name
+        !> The call reads accelerations (absent: not)
+        logical, intent(in), optional :: accelerations
         integer :: m
+        logical :: reads_a
 
+        reads_a = .false.
+        if (present(accelerations)) reads_a = accelerations
         if (declaring) then
             do m = 1, 4
                 if (ids(m) == 0) cycle
                 if (.not. any(named == ids(m))) named = [named, ids(m)]
             end do
             named_rates = named_rates .or. rates
+            named_accelerations = named_accelerations .or. reads_a
             return
         end if
         if (.not. allocated(allowed)) return
@@ -1522,6 +1696,8 @@ contains
         end do
         if (rates .and. .not. allowed_rates) call add_note(call_name // " read velocities, " &
             & // "which the initialisation call (IFLAG = .TRUE.) did not read")
+        if (reads_a .and. .not. allowed_accelerations) call add_note(call_name // " read " &
+            & // "accelerations, which the initialisation call (IFLAG = .TRUE.) did not read")
     end subroutine note_reads
 
     !> A utility refuses a call: ERRFLG is set, and the call's error says why.

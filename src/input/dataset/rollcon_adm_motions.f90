@@ -2,10 +2,10 @@
 !> Dataset statement MOTION (docs/datasets.md, "MOTION"): a displacement, velocity or
 !> acceleration prescribed as a function of time, on a joint (`JOINT=id, TRANSLATION|ROTATION`)
 !> or between two markers (`I=id, J=id, X|Y|Z|B1|B2|B3`), read and checked as the text states
-!> it; `FUNCTION=USER(r1, ...)[, ROUTINE=name]` is a DISPLACEMENT served by a MOTSUB (the
-!> USER(...) argument kept for rollcon_adm_variables to read its constants). The model makes
-!> each one a UCON with an explicit time part (model%add_motion), which also judges the
-!> markers' parts; the assembly finds the joint's markers and type.
+!> it; `FUNCTION=USER(r1, ...)[, ROUTINE=name]` is served by a MOTSUB (a function of any
+!> form, with ADAMS's IORD; the USER(...) argument kept for rollcon_adm_variables to read its
+!> constants). The model makes each one a UCON with an explicit time part (model%add_motion),
+!> which also judges the markers' parts; the assembly finds the joint's markers and type.
 module rollcon_adm_motions
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type, fatal_error, stat_input
@@ -151,14 +151,6 @@ contains
         if (len(motion%routine) > 0 .and. .not. motion%user) then
             call fatal_error(error, routine_at // ": names a MOTSUB, which serves a " &
                 & // "FUNCTION=USER(r1, ..., r30) only", stat_input)
-            return
-        end if
-        if (motion%user .and. motion%form /= motion_displacement_form) then
-            call fatal_error(error, form_at // ": a MOTSUB (FUNCTION=USER(...)) serves a " &
-                & // "DISPLACEMENT MOTION here: rollcon integrates a VELOCITY or ACCELERATION " &
-                & // "function by quadrature of its expression; write the MOTSUB's " &
-                & // "displacement (IORD = 0, 1, 2), or the function as an expression of TIME", &
-                & stat_input)
             return
         end if
         ! the initial conditions, in the units of the direction's coordinate

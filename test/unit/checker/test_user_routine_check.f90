@@ -52,7 +52,8 @@ contains
             & new_unittest("varsub-implicit-typing", test_varsub_typing), &
             & new_unittest("two-files-checked", test_two_files), &
             & new_unittest("motsub-checked", test_motsub), &
-            & new_unittest("difsub-checked", test_difsub)]
+            & new_unittest("difsub-checked", test_difsub), &
+            & new_unittest("varval-at-probed-state", test_varval_probed)]
     end subroutine collect_user_routine_check
 
     !> variable_stretch.f on variable.adm (declared types, no state, smooth, its SYSFNC call
@@ -289,6 +290,40 @@ contains
             & == count .and. count_of(findings, "SFORCE/3") == count .and. &
             & count_of(findings, "SFORCE/2") == 0, to_text(count) // " findings: " // findings)
     end subroutine test_two_files
+
+    !> variable_sign.adm: an SFOSUB (sforce_variable_sign.f) returning -5 SIGN(1, VARVAL(3))
+    !> through SYSFNC('VARVAL'), VARIABLE/3 a VARSUB's stretch (variable_stretch.f) of 0.01 at
+    !> the start that changes sign on the way to some probed states: the check evaluates the
+    !> VARSUB at each probed state, so it finds the SFOSUB's jump there ([jump] findings, all
+    !> of SFORCE/2, the first quoting a jump of 10: the force is constant on each side, so
+    !> exactly 10), and none of the VARSUB (its stretch is continuous). Read at the start's
+    !> value, VARVAL would make the force constant and the jump go unseen.
+    subroutine test_varval_probed(error)
+        type(error_type), allocatable, intent(out) :: error
+        character(len=:), allocatable :: findings
+        real(wp) :: before, after
+        integer :: count, at, close, stat
+
+        call check_file(folder // "sforce_variable_sign.f", folder // "variable_sign.adm", &
+            & findings, count, error, [user_file_type(folder // "variable_stretch.f")])
+        if (allocated(error)) return
+        call check(error, count >= 1 .and. count_of(findings, "[jump] ") == count .and. &
+            & count_of(findings, "variable_sign.adm:12: SFORCE/2, its SFOSUB") == count, &
+            & to_text(count) // " findings: " // findings)
+        if (allocated(error)) return
+        at = index(findings, " jumps from (") + 13
+        close = at + index(findings(at:), ")") - 2
+        read(findings(at:close), *, iostat=stat) before
+        if (stat == 0) then
+            at = close + 7
+            close = at + index(findings(at:), ")") - 2
+            read(findings(at:close), *, iostat=stat) after
+        end if
+        call check(error, stat == 0, "the jump's outputs do not read: " // findings)
+        if (allocated(error)) return
+        call check(error, abs(abs(after - before) - 10.0_wp) <= jump_tolerance, "the jump " &
+            & // "quoted is " // to_text(abs(after - before)) // ", not 10: " // findings)
+    end subroutine test_varval_probed
 
     !> motion.adm's MOTSUB (motsub_sine.f) is clean; the same with a SAVEd counter that moves
     !> the acceleration (IORD = 2) by 1e-3 at each call is [hidden state] at every state,

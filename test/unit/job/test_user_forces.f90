@@ -27,6 +27,7 @@ module test_user_forces
     use rollcon_grind_watch, only : grinds
     use rollcon_run_check, only : check_at_start
     use rollcon_run_settings, only : formulation_cvode, formulation_ida
+    use rollcon_output_layout, only : coord_x, coord_z, coord_theta, coord_psidot, coord_phidot
     implicit none
     private
 
@@ -56,6 +57,8 @@ contains
             & new_unittest("vfosub-as-expressions", test_vfosub), &
             & new_unittest("vtosub-as-expressions", test_vtosub), &
             & new_unittest("vtosub-returns-nan", test_vtosub_nan), &
+            & new_unittest("sfosub-vfosub-virtual-mass", test_virtual_mass), &
+            & new_unittest("vtosub-virtual-inertia", test_virtual_inertia), &
             & new_unittest("reqsub-as-expressions", test_reqsub), &
             & new_unittest("reqsub-returns-nan", test_reqsub_nan), &
             & new_unittest("reqsub-missing", test_reqsub_missing), &
@@ -78,6 +81,8 @@ contains
             & new_unittest("motsub-refusals", test_motion_user), &
             & new_unittest("motsub-as-expression", test_motsub), &
             & new_unittest("motsub-two-files", test_motsub_two_files), &
+            & new_unittest("motsub-velocity-acceleration", test_motsub_rates), &
+            & new_unittest("motsub-velocity-wrong-rate", test_motsub_velocity_wrong_rate), &
             & new_unittest("motsub-wrong-rate", test_motsub_wrong_rate), &
             & new_unittest("motsub-crashes", test_motsub_crashes), &
             & new_unittest("motsub-reads-state", test_motsub_reads_state), &
@@ -115,6 +120,87 @@ contains
 
         call compare_twins("vtorque", ["vtorque_spring.f"], error)
     end subroutine test_vtosub
+
+    !> virtual_mass.adm: an SFOSUB returning -1.5 ACCZ and a VFOSUB returning (3, 0, 0) - 0.5
+    !> TACC (virtual_mass.f) on parts of mass 2 and 1 falling under g = 9.81: the algebraic
+    !> loop solved, part 2 falls at Z'' = -2 g/3.5 and part 3 moves at X'' = 3/1.5, Z'' =
+    !> -g/1.5, on IDA (its residual reads u') and on CVODE (the ODE form's Newton iteration),
+    !> and the rows are those of virtual_mass_expressions.adm (the virtual masses added to
+    !> the parts, the loop gone) to twin_tolerance.
+    !> Tolerance: the closed forms are quadratics in t, which BDF (IDA, CVODE's default) of
+    !> order 2 and more reproduces to the nonlinear solves' residuals; the runs' local error
+    !> tests (rtol 1e-8, atol 1e-10) keep the rows within twin_tolerance (1e-6) of them over
+    !> the 1 s run. Leaving the loop out (the accelerations read as 0) moves part 2 by 1.2 m,
+    !> and a virtual mass 1 % wrong by 2e-2 m.
+    subroutine test_virtual_mass(error)
+        type(error_type), allocatable, intent(out) :: error
+        real(wp), parameter :: g = 9.81_wp
+        type(history_type) :: history
+        integer :: formulations(2), f
+
+        formulations = [formulation_ida, formulation_cvode]
+        do f = 1, 2
+            call run_user(folder // "virtual_mass.adm", ["virtual_mass.f"], 10.0_wp, history, &
+                & error, formulation=formulations(f))
+            if (allocated(error)) return
+            call closed_form(history, 1, coord_z, 5.0_wp, 0.5_wp, -2.0_wp*g/3.5_wp, error)
+            if (allocated(error)) return
+            call closed_form(history, 2, coord_x, 1.0_wp, -0.2_wp, 3.0_wp/1.5_wp, error)
+            if (allocated(error)) return
+            call closed_form(history, 2, coord_z, 5.0_wp, 0.0_wp, -g/1.5_wp, error)
+            if (allocated(error)) return
+        end do
+        call compare_twins("virtual_mass", ["virtual_mass.f"], error)
+    end subroutine test_virtual_mass
+
+    !> virtual_inertia.adm: a VTOSUB returning (0, 0, 0.6) - 0.05 RACC (virtual_inertia.f) on a
+    !> part of IZZ 0.15 spinning about ground Z at 1 rad/s: its angular velocity about Z,
+    !> psi' + phi' cos(theta), grows at 0.6/(0.15 + 0.05) = 3 rad/s^2 at every row, on IDA and
+    !> CVODE, to twin_tolerance (the tolerance of test_virtual_mass: a linear rate, which the
+    !> integrators reproduce to their nonlinear solves' residuals; the loop left out gives 4
+    !> rad/s^2, a rate 1 % wrong 3e-2 rad/s at the end); and the rows are those of
+    !> virtual_inertia_expressions.adm (IZZ 0.2, the torque 0.6) to twin_tolerance.
+    subroutine test_virtual_inertia(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(history_type) :: history
+        real(wp), allocatable :: spin(:), time(:)
+        integer :: formulations(2), f
+
+        formulations = [formulation_ida, formulation_cvode]
+        do f = 1, 2
+            call run_user(folder // "virtual_inertia.adm", ["virtual_inertia.f"], 10.0_wp, &
+                & history, error, formulation=formulations(f))
+            if (allocated(error)) return
+            time = history%column(1)
+            spin = history%part_values(1, coord_psidot) + history%part_values(1, coord_phidot) &
+                & *cos(history%part_values(1, coord_theta))
+            call check(error, maxval(abs(spin - (1.0_wp + 3.0_wp*time))) <= twin_tolerance, &
+                & "virtual_inertia (formulation " // to_text(formulations(f)) // "): the spin " &
+                & // "differs from 1 + 3 t by " // to_text(maxval(abs(spin - (1.0_wp &
+                & + 3.0_wp*time)))) // " rad/s")
+            if (allocated(error)) return
+        end do
+        call compare_twins("virtual_inertia", ["virtual_inertia.f"], error)
+    end subroutine test_virtual_inertia
+
+    !> Coordinate c of the p-th moving part at every row against x0 + v0 t + a t^2/2, and its
+    !> rate against v0 + a t, within twin_tolerance (test_virtual_mass).
+    subroutine closed_form(history, p, c, x0, v0, a, error)
+        type(history_type), intent(in) :: history
+        integer, intent(in) :: p, c
+        real(wp), intent(in) :: x0, v0, a
+        type(error_type), allocatable, intent(out) :: error
+        real(wp), allocatable :: time(:)
+        real(wp) :: position, rate
+
+        time = history%column(1)
+        position = maxval(abs(history%part_values(p, c) - (x0 + v0*time + 0.5_wp*a*time**2)))
+        rate = maxval(abs(history%part_values(p, c + 6) - (v0 + a*time)))
+        call check(error, max(position, rate) <= twin_tolerance .and. time(history%count) &
+            & > 0.99_wp, "part " // to_text(p) // ", coordinate " // to_text(c) &
+            & // ": differs from its closed form by " // to_text(position) // " (and its " &
+            & // "rate by " // to_text(rate) // ") over " // to_text(history%count) // " rows")
+    end subroutine closed_form
 
     !> A VTOSUB returning NaN in TY after t = 0.1 s: the clean error of an SFOSUB's NaN,
     !> naming the file, line and statement, the routine, the values and a TIME past 0.1.
@@ -527,10 +613,8 @@ contains
             & "ROUTINE=FILE::SFOSUB"], error)
     end subroutine test_unknown_routine
 
-    !> The MOTSUB refusals, each naming the MOTION and its line: a VELOCITY MOTION of
-    !> FUNCTION=USER(...) (a MOTSUB serves a DISPLACEMENT: rollcon integrates a velocity's
-    !> expression by quadrature), a ROUTINE with no FUNCTION=USER, and motion.adm run with a
-    !> file that has no MOTSUB.
+    !> The MOTSUB refusals, each naming the MOTION and its line: a ROUTINE with no
+    !> FUNCTION=USER, and motion.adm run with a file that has no MOTSUB.
     subroutine test_motion_user(error)
         type(error_type), allocatable, intent(out) :: error
         type(job_type) :: job
@@ -545,14 +629,6 @@ contains
         text = "a MOTION served by a MOTSUB" // nl // "PART/1, GROUND" // nl &
             & // "MARKER/1, PART = 1" // nl // "PART/2, MASS = 1, CM = 20, IP = 1, 1, 1" // nl &
             & // "MARKER/20, PART = 2" // nl // "JOINT/1, TRANSLATIONAL, I = 20, J = 1" // nl
-        call write_text_file(path, text // "MOTION/1, JOINT = 1, TRANSLATION, VELOCITY, " &
-            & // "FUNCTION = USER(1, 2)" // nl // "SIMULATE/DYNAMIC, END = 1, STEPS = 10" // nl &
-            & // "END" // nl, error)
-        if (allocated(error)) return
-        call load_job(path, job, load_error)
-        call expect_message(load_error, [character(len=70) :: "motion_user.adm:7: MOTION/1", &
-            & "VELOCITY: a MOTSUB (FUNCTION=USER(...)) serves a DISPLACEMENT MOTION"], error)
-        if (allocated(error)) return
         call write_text_file(path, text // "MOTION/1, JOINT = 1, TRANSLATION, " &
             & // "FUNCTION = TIME, ROUTINE = u::MOTSUB" // nl &
             & // "SIMULATE/DYNAMIC, END = 1, STEPS = 10" // nl // "END" // nl, error)
@@ -596,6 +672,51 @@ contains
         call compare_motion_twins("motion_two_files", ["motsub_sine.f", "motsub_lift.f"], &
             & formulation_ida, error)
     end subroutine test_motsub_two_files
+
+    !> motion_velocity.adm and motion_acceleration.adm: motion.adm's rotor turned by a VELOCITY
+    !> MOTION whose MOTSUB (motsub_rates.f) returns 1.5 COS(3 TIME) at IORD = 0 and its rate
+    !> at IORD = 1, and by an ACCELERATION MOTION (ICVEL = 1.5) whose MOTSUB returns -4.5
+    !> SIN(3 TIME) at IORD = 0 (ADAMS asks no more of them; the routine stops on any other
+    !> IORD): the rows of their expression twins (the same functions as FUNCTION
+    !> expressions) to motsub_tolerance in every column, on IDA and CVODE. The MOTSUB's f is
+    !> integrated by the expression's quadrature at the same points, the same operations
+    !> computing f there, so the displacements agree to round-off; f' (IORD = 1) stands for
+    !> the expression's forward-mode derivative, which rounds otherwise in its last bits.
+    subroutine test_motsub_rates(error)
+        type(error_type), allocatable, intent(out) :: error
+
+        call compare_motion_twins("motion_velocity", ["motsub_rates.f"], formulation_ida, &
+            & error)
+        if (allocated(error)) return
+        call compare_motion_twins("motion_velocity", ["motsub_rates.f"], formulation_cvode, &
+            & error)
+        if (allocated(error)) return
+        call compare_motion_twins("motion_acceleration", ["motsub_rates.f"], formulation_ida, &
+            & error)
+        if (allocated(error)) return
+        call compare_motion_twins("motion_acceleration", ["motsub_rates.f"], &
+            & formulation_cvode, error)
+    end subroutine test_motsub_rates
+
+    !> A VELOCITY MOTION's MOTSUB whose IORD = 1 is its IORD = 0's rate plus 1
+    !> (faulty/motsub_velocity_wrong_rate.f) is stopped by the run's start check, naming the
+    !> MOTION and its line, IORD = 1, the value returned (1 at TIME = 0, where the rate is 0)
+    !> and --no-check; the right routine (motsub_rates.f) passes the same check.
+    subroutine test_motsub_velocity_wrong_rate(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(history_type) :: history
+        type(error_type), allocatable :: run_error
+
+        call run_user(folder // "motion_velocity.adm", ["faulty/motsub_velocity_wrong_rate.f"], &
+            & 10.0_wp, history, run_error, checked=.true.)
+        call expect_message(run_error, [character(len=80) :: &
+            & "motion_velocity.adm:17: MOTION/1: its MOTSUB of", &
+            & "returned VALUE = 1 at IORD = 1, TIME = 0, where differences of its IORD = 0", &
+            & "--no-check"], error)
+        if (allocated(error)) return
+        call run_user(folder // "motion_velocity.adm", ["motsub_rates.f"], 10.0_wp, history, &
+            & error, checked=.true.)
+    end subroutine test_motsub_velocity_wrong_rate
 
     !> A MOTSUB whose IORD = 1 is twice the rate of its IORD = 0 (faulty/motsub_wrong_rate.f)
     !> is stopped by the run's start check (the job's start_check, as `rollcon run` sets it),
@@ -696,22 +817,23 @@ contains
             & // " (relative) in column " // to_text(worst))
     end subroutine compare_motion_twins
 
-    !> SYSFNC and SYSARY refuse what they do not know, an acceleration, and a marker the model
-    !> has not (here: no model at all), setting ERRFLG and giving zeros.
+    !> SYSFNC and SYSARY refuse what they do not know, a force measure (FX), and a marker the
+    !> model has not (here: no model at all, so RACC's markers too), setting ERRFLG and giving
+    !> zeros.
     subroutine test_utilities_refuse(error)
         type(error_type), allocatable, intent(out) :: error
         real(wp) :: value, states(3)
         integer :: nstates
-        logical :: unknown, acceleration, no_marker, array_acceleration
+        logical :: unknown, force, no_marker, array_acceleration
 
         call system_function("XYZZY", [1, 2], value, unknown)
-        call system_function("ACCX", [1, 2], value, acceleration)
+        call system_function("FX", [1, 2], value, force)
         call system_array("RACC", [1, 2], states, nstates, array_acceleration)
         call system_function("DM", [987654, 2], value, no_marker)
-        call check(error, unknown .and. acceleration .and. no_marker .and. array_acceleration &
+        call check(error, unknown .and. force .and. no_marker .and. array_acceleration &
             & .and. value == 0.0_wp .and. nstates == 0 .and. all(states == 0.0_wp), &
-            & "ERRFLG: unknown " // merge("T", "F", unknown) // ", ACCX " &
-            & // merge("T", "F", acceleration) // ", RACC " // merge("T", "F", &
+            & "ERRFLG: unknown " // merge("T", "F", unknown) // ", FX " &
+            & // merge("T", "F", force) // ", RACC " // merge("T", "F", &
             & array_acceleration) // ", missing marker " // merge("T", "F", no_marker))
     end subroutine test_utilities_refuse
 
