@@ -208,6 +208,7 @@ contains
         class(row_sink_type), intent(inout), optional :: sink
         real(wp), allocatable :: q(:), u(:)
         character(len=:), allocatable :: refusal
+        type(watch_event_type) :: event
         logical :: fell
         integer :: k
 
@@ -252,10 +253,26 @@ contains
         if (allocated(error)) return
         ! the whole turns of the expressions' angles counted from here (rollcon_measures)
         call problem%model%count_turns(q, u, restart=.true.)
+        ! the modes the watches set at the start (rolling resistance's sign)
+        do k = 1, size(problem%watches)
+            call problem%watches(k)%watch%start_problem(problem%eq, options%t0, q, u, error)
+            if (allocated(error)) return
+        end do
         call self%start(q, u, error)
         if (allocated(error)) return
         call self%record(summary, error, history, sink)
-        if (.not. allocated(refusal) .or. allocated(error)) return
+        if (allocated(error)) return
+        ! a watch's stop at the start: the first row is the run
+        do k = 1, size(problem%watches)
+            event = problem%watches(k)%watch%stop_request()
+            if (event%action /= action_stop) cycle
+            summary%status = status_stopped
+            summary%message = event%message
+            summary%limit = event%limit
+            n_output = 0
+            return
+        end do
+        if (.not. allocated(refusal)) return
         ! a re-basing refused: the run cannot go on as asked: a fall ends it at its first row,
         ! anything else is a failure (docs/rebasing.md)
         if (fell) then
@@ -393,6 +410,7 @@ contains
         type(history_type), intent(inout), optional :: history
         class(row_sink_type), intent(inout), optional :: sink
         type(watch_event_type), allocatable :: events(:)
+        type(watch_event_type) :: stop_event
         character(len=:), allocatable :: refusal
         integer, allocatable :: owners(:)
         integer :: r, w, k, stopping
@@ -425,6 +443,16 @@ contains
             call self%problem%watches(owners(k))%watch%restart_problem(self%problem%eq, &
                 & self%t, self%q, self%u, error)
             if (allocated(error)) return
+            ! a state the watch's equations do not model: the run stops at its row
+            stop_event = self%problem%watches(owners(k))%watch%stop_request()
+            if (stop_event%action == action_stop) then
+                stop_here = .true.
+                call self%record(summary, error, history, sink)
+                summary%status = status_stopped
+                summary%message = stop_event%message
+                summary%limit = stop_event%limit
+                return
+            end if
         end do
         if (all(events%action == action_corner)) then
             ! only corners: the integrator starts again with no history, once where a switch

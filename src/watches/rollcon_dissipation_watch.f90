@@ -4,6 +4,16 @@
 !> the summary the energy each law dissipated and, for a disk settling to its finite-time
 !> singularity (Euler's disk), the fit of its precession rate Omega = |psidot| to
 !> Omega ~ (t0 - t)^(-n) (fit_singularity; docs/design.md §5, "Dissipation").
+!>
+!> Rolling resistance's law Q_phi = -delta F_n sign(phidot) switches at phidot = 0, where it is
+!> set-valued (|Q_phi| <= delta F_n): the watch's event function is phidot, its root located
+!> by the integrator, and there (and at a start at phidot = 0) the law's sign is decided from
+!> the equations at that state and held until the next root (decide_rolling_sign): phidot
+!> leaves zero in the direction it would take without the resistance when the resistance
+!> cannot hold it; when it can, phidot is held at zero by the moment it needs (the equations'
+!> held_coupling) and the event function is delta F_n less that moment's size, whose root
+!> releases it in the direction the moment held. Held while the contact slides or flies is
+!> not modelled: the run stops there.
 module rollcon_dissipation_watch
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type, fatal_error, stat_input
@@ -12,7 +22,7 @@ module rollcon_dissipation_watch
     use rollcon_run_settings, only : run_settings_type
     use rollcon_output_layout, only : name_length
     use rollcon_watch_columns, only : dissipation_names
-    use rollcon_watch, only : watch_type
+    use rollcon_watch, only : watch_type, watch_event_type, action_stop, action_restart
     use, intrinsic :: ieee_arithmetic, only : ieee_is_finite
     implicit none
     private
@@ -27,6 +37,8 @@ module rollcon_dissipation_watch
     !> The range of t0 - t_end searched, as fractions of the fitted rows' time span: from a
     !> millionth (a run that ends right at the singularity) to the span itself
     real(wp), parameter :: gap_min_fraction = 1.0e-6_wp, gap_max_fraction = 1.0_wp
+    !> The kinds of rolling resistance's switches (dissipation_watch_type%switch_kinds)
+    integer, parameter, public :: switch_sign = 1, switch_hold = 2, switch_release = 3
 
     !> A fit of Omega ~ (t0 - t)^(-n)
     type :: singularity_fit_type
@@ -50,8 +62,25 @@ module rollcon_dissipation_watch
         !> rows), and the last row's powers [W]
         real(wp) :: rolling_work = 0.0_wp, air_work = 0.0_wp
         real(wp) :: last_rolling = 0.0_wp, last_air = 0.0_wp
+        !> Baumgarte rate of the run [1/s]; scratch accelerations and multipliers
+        real(wp) :: baumgarte = 0.0_wp
+        real(wp), allocatable :: a(:), lambda(:)
+        !> The law's switches: their times [s], phidot there [rad/s] and kinds (switch_sign:
+        !> a new sign at a root of phidot or the start, switch_hold, switch_release)
+        real(wp), allocatable :: switch_times(:), switch_rates(:)
+        integer, allocatable :: switch_kinds(:)
+        !> A held rolling resistance found (action_stop), else action_restart
+        type(watch_event_type) :: held
     contains
         procedure :: prepare
+        procedure :: root_count
+        procedure :: roots
+        procedure :: fired
+        procedure :: restart_problem
+        procedure :: start_problem
+        procedure :: stop_request
+        procedure :: decide_rolling_sign
+        procedure :: note_switch
         procedure :: column_names
         procedure :: fill_columns
         procedure :: summary_lines
@@ -81,7 +110,171 @@ contains
         self%rows = 0
         self%rolling_work = 0.0_wp
         self%air_work = 0.0_wp
+        self%baumgarte = settings%baumgarte()
+        if (allocated(self%a)) deallocate(self%a, self%lambda)
+        allocate(self%a(eq%n), self%lambda(eq%nc), source=0.0_wp)
+        if (allocated(self%switch_times)) deallocate(self%switch_times, self%switch_rates, &
+            & self%switch_kinds)
+        allocate(self%switch_times(0), self%switch_rates(0), self%switch_kinds(0))
+        self%held = watch_event_type(action=action_restart)
+        eq%dissipation%sign_given = .false.
+        eq%dissipation%rolling_sign = 0.0_wp
+        eq%dissipation%held = .false.
+        eq%dissipation%held_moment = 0.0_wp
     end subroutine prepare
+
+    !> One event function while rolling resistance acts: phidot.
+    pure integer function root_count(self, eq)
+        class(dissipation_watch_type), intent(in) :: self
+        type(equations_type), intent(in) :: eq
+
+        root_count = merge(1, 0, eq%dissipation%rolling_resistance > 0.0_wp)
+    end function root_count
+
+    !> phidot [rad/s], the rolling rate whose sign rolling resistance's law takes; while held,
+    !> delta F_n - |Q_phi| [N m] from the equations at this state (the held moment's room).
+    subroutine roots(self, eq, settings, time, q, u, g, error, lambda, a)
+        class(dissipation_watch_type), intent(inout) :: self
+        type(equations_type), intent(inout) :: eq
+        type(run_settings_type), intent(in) :: settings
+        real(wp), intent(in) :: time, q(:), u(:)
+        real(wp), intent(out) :: g(:)
+        type(error_type), allocatable, intent(out) :: error
+        real(wp), intent(in), optional :: lambda(:), a(:)
+
+        if (eq%dissipation%held) then
+            call eq%accelerations(time, q, u, self%baumgarte, self%a, self%lambda, error)
+            if (allocated(error)) return
+            g(1) = eq%dissipation%rolling_resistance*eq%dissipation%normal_force &
+                & - abs(eq%dissipation%held_moment)
+            return
+        end if
+        g(1) = u(6*self%part)
+    end subroutine roots
+
+    !> phidot reached zero: the law's sign is decided there (restart_problem).
+    function fired(self, eq, k, time, q, u) result(event)
+        class(dissipation_watch_type), intent(in) :: self
+        type(equations_type), intent(in) :: eq
+        integer, intent(in) :: k
+        real(wp), intent(in) :: time, q(:), u(:)
+        type(watch_event_type) :: event
+
+        event%action = action_restart
+        event%limit = "rolling_resistance"
+        event%message = "phidot reached zero at t = " // to_text(time) // " s"
+    end function fired
+
+    !> At a root of phidot = 0: the law's sign decided (decide_rolling_sign); at the held
+    !> moment's reaching delta F_n: released, the law's sign that of the departure, against
+    !> the moment that held (phiddot's sign without it).
+    subroutine restart_problem(self, eq, time, q, u, error)
+        class(dissipation_watch_type), intent(inout) :: self
+        type(equations_type), intent(inout) :: eq
+        real(wp), intent(in) :: time, q(:)
+        real(wp), intent(inout) :: u(:)
+        type(error_type), allocatable, intent(out) :: error
+
+        if (eq%dissipation%held) then
+            call eq%accelerations(time, q, u, self%baumgarte, self%a, self%lambda, error)
+            if (allocated(error)) return
+            eq%dissipation%held = .false.
+            call self%note_switch(time, u, switch_release)
+            if (eq%dissipation%held_moment /= 0.0_wp) then
+                eq%dissipation%rolling_sign = -sign(1.0_wp, eq%dissipation%held_moment)
+                return
+            end if
+        end if
+        call self%decide_rolling_sign(eq, time, q, u, error)
+    end subroutine restart_problem
+
+    !> A switch of the law at time [s] with the rates u, of a kind (switch_sign, ...).
+    subroutine note_switch(self, time, u, kind)
+        class(dissipation_watch_type), intent(inout) :: self
+        real(wp), intent(in) :: time, u(:)
+        integer, intent(in) :: kind
+
+        self%switch_times = [self%switch_times, time]
+        self%switch_rates = [self%switch_rates, u(6*self%part)]
+        self%switch_kinds = [self%switch_kinds, kind]
+    end subroutine note_switch
+
+    !> At the start: the law's sign is phidot's, or decided at phidot = 0.
+    subroutine start_problem(self, eq, time, q, u, error)
+        class(dissipation_watch_type), intent(inout) :: self
+        type(equations_type), intent(inout) :: eq
+        real(wp), intent(in) :: time, q(:), u(:)
+        type(error_type), allocatable, intent(out) :: error
+
+        if (.not. eq%dissipation%rolling_resistance > 0.0_wp) return
+        if (u(6*self%part) /= 0.0_wp) then
+            eq%dissipation%sign_given = .true.
+            eq%dissipation%rolling_sign = sign(1.0_wp, u(6*self%part))
+            return
+        end if
+        call self%decide_rolling_sign(eq, time, q, u, error)
+    end subroutine start_problem
+
+    !> The held rolling resistance's stop, when decide_rolling_sign found one.
+    function stop_request(self) result(event)
+        class(dissipation_watch_type), intent(in) :: self
+        type(watch_event_type) :: event
+
+        event = self%held
+    end function stop_request
+
+    !> Rolling resistance's sign at a state (t, q, u) with phidot at zero (the start, or a
+    !> root), where the law is set-valued (|Q_phi| <= delta F_n): phiddot_0 from the equations
+    !> without it; s = sign(phiddot_0), then phiddot_s with the law Q_phi = -delta F_n s (its
+    !> normal force coupled as in every solve). When s phiddot_s > 0 the moment needed to hold
+    !> phidot = 0 exceeds delta F_n: phidot leaves zero with sign s, and s is held until the
+    !> next root. Otherwise (phiddot_0 = 0 too) the resistance holds the rim's run still:
+    !> held (the equations' held_coupling) while the contact rolls; while it slides or flies
+    !> that is not modelled, and held becomes a stop with its message.
+    subroutine decide_rolling_sign(self, eq, time, q, u, error)
+        class(dissipation_watch_type), intent(inout) :: self
+        type(equations_type), intent(inout) :: eq
+        real(wp), intent(in) :: time, q(:), u(:)
+        type(error_type), allocatable, intent(out) :: error
+        real(wp) :: free, resisted, s
+        integer :: i
+
+        i = 6*self%part
+        eq%dissipation%sign_given = .true.
+        eq%dissipation%held = .false.
+        eq%dissipation%rolling_sign = 0.0_wp
+        call eq%accelerations(time, q, u, self%baumgarte, self%a, self%lambda, error)
+        if (allocated(error)) return
+        free = self%a(i)
+        resisted = 0.0_wp
+        s = 0.0_wp
+        if (free /= 0.0_wp) then
+            s = sign(1.0_wp, free)
+            eq%dissipation%rolling_sign = s
+            call eq%accelerations(time, q, u, self%baumgarte, self%a, self%lambda, error)
+            if (allocated(error)) return
+            resisted = self%a(i)
+            if (s*resisted > 0.0_wp) then
+                call self%note_switch(time, u, switch_sign)
+                return
+            end if
+        end if
+        eq%dissipation%rolling_sign = 0.0_wp
+        if (.not. (eq%contact%sliding .or. eq%contact%flying)) then
+            eq%dissipation%held = .true.
+            call self%note_switch(time, u, switch_hold)
+            return
+        end if
+        self%held%action = action_stop
+        self%held%limit = "rolling_held"
+        self%held%message = "rolling resistance holds the rim's run still at t = " &
+            & // to_text(time) // " s (theta = " // to_text(q(i - 1)) // " rad, psidot = " &
+            & // to_text(u(i - 2)) // " rad/s, phidot = " // to_text(u(i)) // " rad/s) " &
+            & // "while the contact slides or flies: phiddot would be " // to_text(free) &
+            & // " rad/s^2 without it and " // to_text(resisted) // " rad/s^2 against it, " &
+            & // "so the moment needed to hold phidot = 0 is within delta F_n; that held " &
+            & // "state is not modelled, the run stops here"
+    end subroutine decide_rolling_sign
 
     subroutine column_names(self, eq, names)
         class(dissipation_watch_type), intent(in) :: self
@@ -139,6 +332,14 @@ contains
             & // to_text(self%rolling_work) // " J, the air layer (coefficient pi/4 mu R^3 = " &
             & // to_text(eq%dissipation%air) // " N m s) " // to_text(self%air_work) // " J" &
             & // new_line("a")
+        if (allocated(self%switch_kinds)) then
+            if (size(self%switch_kinds) > 0) text = text // "rolling resistance's law: " &
+                & // to_text(count(self%switch_kinds == switch_sign)) // " signs taken at " &
+                & // "phidot = 0, held " // to_text(count(self%switch_kinds == switch_hold)) &
+                & // " times (phidot = 0 under the moment it needs), released " &
+                & // to_text(count(self%switch_kinds == switch_release)) // " times" &
+                & // new_line("a")
+        end if
         if (self%rows == 0) return
         fit = fit_singularity(self%times(:self%rows), self%rates(:self%rows))
         if (.not. fit%made) return
