@@ -37,6 +37,17 @@ module rollcon_dissipation_watch
     !> The range of t0 - t_end searched, as fractions of the fitted rows' time span: from a
     !> millionth (a run that ends right at the singularity) to the span itself
     real(wp), parameter :: gap_min_fraction = 1.0e-6_wp, gap_max_fraction = 1.0_wp
+    !> When a fit is the run's singularity (singularity_fit_type%settles): the rows end within
+    !> this fraction of the fitted rows' span after the largest rate (the run stopped at the
+    !> breakdown: the flat limit theta_min or a lift-off, not run on past a peak), the rate
+    !> grew over the fitted rows by at least this factor, the rms residual of ln Omega is at
+    !> most this, and t0 lies inside the searched range, not at its near end (a fit that
+    !> runs to that end has no minimum: the rates do not diverge). data/euler_disk.nml:
+    !> 0.001 of the span, growth 3.0, residual 0.0074, t0 - t_end = 9.6e-3 s (8e-4 of span);
+    !> a spinning coin that bounces on (/work/tools/combo.nml's kind): rows 0.69 of the span
+    !> past the peak, t0 at the range's end
+    real(wp), parameter :: settle_tail_fraction = 0.05_wp, settle_growth_min = 2.0_wp, &
+        & settle_residual_max = 0.05_wp
     !> The kinds of rolling resistance's switches (dissipation_watch_type%switch_kinds)
     integer, parameter, public :: switch_sign = 1, switch_hold = 2, switch_release = 3
 
@@ -44,6 +55,8 @@ module rollcon_dissipation_watch
     type :: singularity_fit_type
         !> A fit was made (enough rows, all rates positive and finite)
         logical :: made = .false.
+        !> The fit is a singularity the run ends at (the rule at settle_tail_fraction)
+        logical :: settles = .false.
         !> The singular time [s], the exponent n [-], the rms residual of log Omega [-], the
         !> rows fitted and the decades of t0 - t they span
         real(wp) :: t0 = 0.0_wp, exponent = 0.0_wp, residual = 0.0_wp, decades = 0.0_wp
@@ -342,7 +355,8 @@ contains
         end if
         if (self%rows == 0) return
         fit = fit_singularity(self%times(:self%rows), self%rates(:self%rows))
-        if (.not. fit%made) return
+        ! a fit only of a run that ends at its singularity (settles); else nothing to say
+        if (.not. (fit%made .and. fit%settles)) return
         text = text // "finite-time singularity: Omega = |psidot| ~ (t0 - t)^(-n) fitted " &
             & // "over " // to_text(fit%rows) // " rows spanning " &
             & // to_text(real(nint(100.0_wp*fit%decades), wp)/100.0_wp) &
@@ -360,6 +374,7 @@ contains
     !> minimises the weighted mean square residual: a scan of 64 values of ln(t0 - t_end)
     !> over [ln(1e-6 T), ln T] (T the fitted rows' span) and a golden-section search about
     !> the best. Not made with fewer than fit_rows_min rows or a rate not positive and finite.
+    !> settles: the rule at settle_tail_fraction (the rows end at the singularity).
     pure function fit_singularity(times, rates) result(fit)
         real(wp), intent(in) :: times(:), rates(:)
         type(singularity_fit_type) :: fit
@@ -425,6 +440,12 @@ contains
         fit%residual = sqrt(value)
         fit%rows = n - first + 1
         fit%decades = log10((fit%t0 - times(first))/(fit%t0 - t_end))
+        ! the run ends at this singularity: its rows stop soon after the peak, the rate grew,
+        ! the line fits, t0 is a minimum inside the range searched
+        fit%settles = times(size(times)) - t_end <= settle_tail_fraction*span &
+            & .and. rates(n) >= settle_growth_min*rates(first) &
+            & .and. fit%residual <= settle_residual_max &
+            & .and. z > lo + 2.0_wp*(hi - lo)/real(scan, wp)
 
     contains
 
