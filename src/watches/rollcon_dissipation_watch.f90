@@ -78,9 +78,10 @@ module rollcon_dissipation_watch
         !> Baumgarte rate of the run [1/s]; scratch accelerations and multipliers
         real(wp) :: baumgarte = 0.0_wp
         real(wp), allocatable :: a(:), lambda(:)
-        !> The law's switches: their times [s], phidot there [rad/s] and kinds (switch_sign:
-        !> a new sign at a root of phidot or the start, switch_hold, switch_release)
-        real(wp), allocatable :: switch_times(:), switch_rates(:)
+        !> The law's switches: their times [s], phidot there [rad/s], the held moment's room
+        !> delta F_n - |Q_phi| there [N m] (at a release; else 0) and kinds (switch_sign: a
+        !> new sign at a root of phidot or the start, switch_hold, switch_release)
+        real(wp), allocatable :: switch_times(:), switch_rates(:), switch_rooms(:)
         integer, allocatable :: switch_kinds(:)
         !> A held rolling resistance found (action_stop), else action_restart
         type(watch_event_type) :: held
@@ -127,8 +128,9 @@ contains
         if (allocated(self%a)) deallocate(self%a, self%lambda)
         allocate(self%a(eq%n), self%lambda(eq%nc), source=0.0_wp)
         if (allocated(self%switch_times)) deallocate(self%switch_times, self%switch_rates, &
-            & self%switch_kinds)
-        allocate(self%switch_times(0), self%switch_rates(0), self%switch_kinds(0))
+            & self%switch_rooms, self%switch_kinds)
+        allocate(self%switch_times(0), self%switch_rates(0), self%switch_rooms(0), &
+            & self%switch_kinds(0))
         self%held = watch_event_type(action=action_restart)
         eq%dissipation%sign_given = .false.
         eq%dissipation%rolling_sign = 0.0_wp
@@ -192,7 +194,8 @@ contains
             call eq%accelerations(time, q, u, self%baumgarte, self%a, self%lambda, error)
             if (allocated(error)) return
             eq%dissipation%held = .false.
-            call self%note_switch(time, u, switch_release)
+            call self%note_switch(time, u, switch_release, eq%dissipation%rolling_resistance &
+                & *eq%dissipation%normal_force - abs(eq%dissipation%held_moment))
             if (eq%dissipation%held_moment /= 0.0_wp) then
                 eq%dissipation%rolling_sign = -sign(1.0_wp, eq%dissipation%held_moment)
                 return
@@ -201,15 +204,18 @@ contains
         call self%decide_rolling_sign(eq, time, q, u, error)
     end subroutine restart_problem
 
-    !> A switch of the law at time [s] with the rates u, of a kind (switch_sign, ...).
-    subroutine note_switch(self, time, u, kind)
+    !> A switch of the law at time [s] with the rates u, of a kind (switch_sign, ...), the
+    !> held moment's room there [N m] (0 but at a release).
+    subroutine note_switch(self, time, u, kind, room)
         class(dissipation_watch_type), intent(inout) :: self
         real(wp), intent(in) :: time, u(:)
         integer, intent(in) :: kind
+        real(wp), intent(in) :: room
 
         self%switch_times = [self%switch_times, time]
         self%switch_rates = [self%switch_rates, u(6*self%part)]
         self%switch_kinds = [self%switch_kinds, kind]
+        self%switch_rooms = [self%switch_rooms, room]
     end subroutine note_switch
 
     !> At the start: the law's sign is phidot's, or decided at phidot = 0.
@@ -268,14 +274,14 @@ contains
             if (allocated(error)) return
             resisted = self%a(i)
             if (s*resisted > 0.0_wp) then
-                call self%note_switch(time, u, switch_sign)
+                call self%note_switch(time, u, switch_sign, 0.0_wp)
                 return
             end if
         end if
         eq%dissipation%rolling_sign = 0.0_wp
         if (.not. (eq%contact%sliding .or. eq%contact%flying)) then
             eq%dissipation%held = .true.
-            call self%note_switch(time, u, switch_hold)
+            call self%note_switch(time, u, switch_hold, 0.0_wp)
             return
         end if
         self%held%action = action_stop
