@@ -411,6 +411,7 @@ contains
         class(row_sink_type), intent(inout), optional :: sink
         type(watch_event_type), allocatable :: events(:)
         type(watch_event_type) :: stop_event
+        real(wp), allocatable :: rates_before(:)
         character(len=:), allocatable :: refusal
         integer, allocatable :: owners(:)
         integer :: r, w, k, stopping
@@ -438,6 +439,7 @@ contains
             return
         end if
         ! the changes the watches ask for (each once)
+        rates_before = self%u
         do k = 1, size(events)
             if (events(k)%action /= action_restart .or. any(owners(:k - 1) == owners(k))) cycle
             call self%problem%watches(owners(k))%watch%restart_problem(self%problem%eq, &
@@ -454,6 +456,14 @@ contains
                 return
             end if
         end do
+        if (any(self%u /= rates_before)) then
+            ! the rates jumped (an impact): every watch sets its modes for the new state
+            do k = 1, size(self%problem%watches)
+                call self%problem%watches(k)%watch%start_problem(self%problem%eq, self%t, &
+                    & self%q, self%u, error)
+                if (allocated(error)) return
+            end do
+        end if
         if (all(events%action == action_corner)) then
             ! only corners: the integrator starts again with no history, once where a switch
             ! fired (IDA may report a root again at the time it was started from)

@@ -148,8 +148,9 @@ contains
         type(error_type), allocatable, intent(out) :: error
     end subroutine restart_problem
 
-    !> The problem's state at the start (t, q, u), before the integrator is set up on it: a
-    !> watch may set a mode of the equations there (default: nothing).
+    !> A new state (t, q, u): the start, before the integrator is set up on it, or rates that
+    !> a watch's restart_problem made jump (an impact): a watch may set a mode of the
+    !> equations there (default: nothing).
     subroutine start_problem(self, eq, time, q, u, error)
         class(watch_type), intent(inout) :: self
         type(equations_type), intent(inout) :: eq

@@ -12,8 +12,8 @@
 !> leaves zero in the direction it would take without the resistance when the resistance
 !> cannot hold it; when it can, phidot is held at zero by the moment it needs (the equations'
 !> held_coupling) and the event function is delta F_n less that moment's size, whose root
-!> releases it in the direction the moment held. Held while the contact slides or flies is
-!> not modelled: the run stops there.
+!> releases it in the direction the moment held. Held while the contact slides is not
+!> modelled: the run stops there.
 module rollcon_dissipation_watch
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type, fatal_error, stat_input
@@ -218,7 +218,8 @@ contains
         self%switch_rooms = [self%switch_rooms, room]
     end subroutine note_switch
 
-    !> At the start: the law's sign is phidot's, or decided at phidot = 0.
+    !> At the start, or after rates that jumped (an impact): the law's sign is phidot's, or
+    !> decided at phidot = 0; not held.
     subroutine start_problem(self, eq, time, q, u, error)
         class(dissipation_watch_type), intent(inout) :: self
         type(equations_type), intent(inout) :: eq
@@ -226,6 +227,7 @@ contains
         type(error_type), allocatable, intent(out) :: error
 
         if (.not. eq%dissipation%rolling_resistance > 0.0_wp) return
+        eq%dissipation%held = .false.
         if (u(6*self%part) /= 0.0_wp) then
             eq%dissipation%sign_given = .true.
             eq%dissipation%rolling_sign = sign(1.0_wp, u(6*self%part))
@@ -248,8 +250,8 @@ contains
     !> normal force coupled as in every solve). When s phiddot_s > 0 the moment needed to hold
     !> phidot = 0 exceeds delta F_n: phidot leaves zero with sign s, and s is held until the
     !> next root. Otherwise (phiddot_0 = 0 too) the resistance holds the rim's run still:
-    !> held (the equations' held_coupling) while the contact rolls; while it slides or flies
-    !> that is not modelled, and held becomes a stop with its message.
+    !> held (the equations' held_coupling) while the contact rolls; while it slides that is
+    !> not modelled, and held becomes a stop with its message (in flight the law is idle).
     subroutine decide_rolling_sign(self, eq, time, q, u, error)
         class(dissipation_watch_type), intent(inout) :: self
         type(equations_type), intent(inout) :: eq
@@ -278,8 +280,14 @@ contains
                 return
             end if
         end if
+        if (eq%contact%flying) then
+            ! in flight F_n = 0: the law does not act, nothing holds phidot
+            eq%dissipation%rolling_sign = s
+            call self%note_switch(time, u, switch_sign, 0.0_wp)
+            return
+        end if
         eq%dissipation%rolling_sign = 0.0_wp
-        if (.not. (eq%contact%sliding .or. eq%contact%flying)) then
+        if (.not. eq%contact%sliding) then
             eq%dissipation%held = .true.
             call self%note_switch(time, u, switch_hold, 0.0_wp)
             return
@@ -289,7 +297,7 @@ contains
         self%held%message = "rolling resistance holds the rim's run still at t = " &
             & // to_text(time) // " s (theta = " // to_text(q(i - 1)) // " rad, psidot = " &
             & // to_text(u(i - 2)) // " rad/s, phidot = " // to_text(u(i)) // " rad/s) " &
-            & // "while the contact slides or flies: phiddot would be " // to_text(free) &
+            & // "while the contact slides: phiddot would be " // to_text(free) &
             & // " rad/s^2 without it and " // to_text(resisted) // " rad/s^2 against it, " &
             & // "so the moment needed to hold phidot = 0 is within delta F_n; that held " &
             & // "state is not modelled, the run stops here"
