@@ -361,8 +361,9 @@ contains
             & // new_line("a")
         if (allocated(self%switch_kinds)) then
             if (size(self%switch_kinds) > 0) text = text // "rolling resistance's law: " &
-                & // to_text(count(self%switch_kinds == switch_sign)) // " signs taken at " &
-                & // "phidot = 0, held " // to_text(count(self%switch_kinds == switch_hold)) &
+                & // "its sign taken at phidot = 0 " &
+                & // to_text(count(self%switch_kinds == switch_sign)) // " times, held " &
+                & // to_text(count(self%switch_kinds == switch_hold)) &
                 & // " times (phidot = 0 under the moment it needs), released " &
                 & // to_text(count(self%switch_kinds == switch_release)) // " times" &
                 & // new_line("a")
