@@ -100,6 +100,7 @@ module rollcon_equations
         procedure :: friction_coupling
         procedure :: resistance_coupling
         procedure :: acceleration_partials
+        procedure :: held_coupling
     end type equations_type
 
 contains
@@ -377,7 +378,9 @@ contains
         lambda = self%gamma
         call self%saddle%solve(self%c, a, lambda, 1, error, scaled=.true.)
         if (allocated(error)) return
-        if (self%dissipation%rolling_resistance > 0.0_wp) then
+        if (self%dissipation%held) then
+            call self%held_coupling(time, q, a, lambda, error)
+        else if (self%dissipation%rolling_resistance > 0.0_wp) then
             call self%resistance_coupling(time, q, u, a, lambda, error)
         else if (self%contact%sliding) then
             call self%friction_coupling(time, q, a, lambda, error)
@@ -566,6 +569,52 @@ contains
             & self%work%dm_da)
         call take_user_force_error(error)
     end subroutine acceleration_partials
+
+    !> A held rolling resistance (rollcon_rim_dissipation: phidot held at zero by the moment
+    !> it needs, within delta F_n) in the accelerations a and multipliers lambda of the
+    !> saddle-point system without it (factored): the generalised force Q_phi on phi alone
+    !> that makes phiddot = 0, from the second right-hand side (e_phi, 0) giving (a1, lambda1):
+    !> Q_phi = -a0_phi / a1_phi, a = a0 + Q_phi a1, lambda = lambda0 + Q_phi lambda1 (the
+    !> constraint phidot = 0 with Q_phi its multiplier); Q_phi and the normal force recorded.
+    !> Refused (stat_ucon) while the contact slides or flies (not modelled: the friction's
+    !> coupling to Q_phi through F_n) or where a1_phi is not positive.
+    subroutine held_coupling(self, time, q, a, lambda, error)
+        class(equations_type), intent(inout) :: self
+        real(wp), intent(in) :: time, q(:)
+        real(wp), intent(inout) :: a(:), lambda(:)
+        type(error_type), allocatable, intent(out) :: error
+        real(wp) :: moment
+        integer :: phi_column
+
+        associate (diss => self%dissipation, g => self%resistance_a, &
+                & g_lambda => self%resistance_lambda)
+            phi_column = 6*(diss%part - 1) + 6
+            if (self%contact%sliding .or. self%contact%flying) then
+                call fatal_error(error, "at t = " // to_text(time) // " s rolling resistance " &
+                    & // "holds phidot = 0 while the contact slides or flies, which is not " &
+                    & // "modelled", stat_ucon)
+                return
+            end if
+            g = 0.0_wp
+            g(phi_column) = 1.0_wp
+            g_lambda = 0.0_wp
+            call self%saddle%solve(self%c, g, g_lambda, 1, error)
+            if (allocated(error)) return
+            if (.not. g(phi_column) > 0.0_wp) then
+                call fatal_error(error, "at t = " // to_text(time) // " s (theta = " &
+                    & // to_text(q(diss%height_column + 2)) // " rad) a moment on phi does " &
+                    & // "not turn phi: the held rolling resistance is undetermined", stat_ucon)
+                return
+            end if
+            moment = -a(phi_column)/g(phi_column)
+            a = a + moment*g
+            a(phi_column) = 0.0_wp
+            lambda = lambda + moment*g_lambda
+            diss%held_moment = moment
+            diss%normal_force = self%c(diss%normal, diss%height_column)*lambda(diss%normal)
+            diss%rolling_power = 0.0_wp
+        end associate
+    end subroutine held_coupling
 
     !> A sliding contact's friction in the accelerations a and multipliers lambda of the
     !> saddle-point system without it (its tangential rows dropped, factored): the second

@@ -37,6 +37,15 @@ module rollcon_rim_dissipation
         real(wp) :: rolling_resistance = 0.0_wp
         !> The air layer's coefficient c = (pi/4) mu_air R^3 [N m s] >= 0 (air_coefficient)
         real(wp) :: air = 0.0_wp
+        !> The sign of rolling resistance's law in effect, held between the roots of phidot = 0
+        !> that rollcon_dissipation_watch locates: +1 or -1 (Q_phi = -delta F_n rolling_sign),
+        !> 0 for none; used when sign_given, else sign(phidot) (docs/design.md §5)
+        real(wp) :: rolling_sign = 0.0_wp
+        logical :: sign_given = .false.
+        !> Held: phidot stays zero under the moment it needs (held_moment, on phi [N m]), while
+        !> that is within delta F_n (rollcon_equations' held_coupling; the watch releases it)
+        logical :: held = .false.
+        real(wp) :: held_moment = 0.0_wp
         !> At the last solve: the normal force [N] and the power each law dissipates [W] >= 0
         real(wp) :: normal_force = 0.0_wp, rolling_power = 0.0_wp, air_power = 0.0_wp
     contains
@@ -74,15 +83,20 @@ contains
         self%air_power = -q_psi*psidot
     end function air_force
 
-    !> sign(phidot) (0 at phidot = 0): the generalised force of rolling resistance per unit
-    !> delta F_n is minus this on phi.
+    !> The law's sign: rolling_sign when the watch gave it (held between the roots of
+    !> phidot = 0, so that no step crosses the switch), else sign(phidot) (0 at phidot = 0):
+    !> the generalised force of rolling resistance per unit delta F_n is minus this on phi.
     pure real(wp) function rolling_direction(self, phidot)
         class(rim_dissipation_type), intent(in) :: self
         real(wp), intent(in) :: phidot
 
         rolling_direction = 0.0_wp
-        if (self%rolling_resistance > 0.0_wp .and. phidot /= 0.0_wp) &
-            & rolling_direction = sign(1.0_wp, phidot)
+        if (.not. self%rolling_resistance > 0.0_wp) return
+        if (self%sign_given) then
+            rolling_direction = self%rolling_sign
+        else if (phidot /= 0.0_wp) then
+            rolling_direction = sign(1.0_wp, phidot)
+        end if
     end function rolling_direction
 
     !> The power both laws dissipated at the last solve [W] >= 0.

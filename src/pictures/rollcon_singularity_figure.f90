@@ -23,7 +23,8 @@ module rollcon_singularity_figure
 
 contains
 
-    !> The run's rows have a rim's dissipation and its rates a fit of the singularity.
+    !> The run's rows have a rim's dissipation and its rates a fit of a singularity the run
+    !> ends at (singularity_fit_type%settles).
     pure function has_singularity(run) result(has)
         type(run_record_type), intent(in) :: run
         logical :: has
@@ -32,7 +33,7 @@ contains
         has = .false.
         if (run%layout%column("dissipated") == 0) return
         fit = rows_fit(run)
-        has = fit%made
+        has = fit%made .and. fit%settles
     end function has_singularity
 
     !> The fit of the run's rows (t, |psidot| of its first part).

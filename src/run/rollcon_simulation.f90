@@ -208,6 +208,7 @@ contains
         class(row_sink_type), intent(inout), optional :: sink
         real(wp), allocatable :: q(:), u(:)
         character(len=:), allocatable :: refusal
+        type(watch_event_type) :: event
         logical :: fell
         integer :: k
 
@@ -252,10 +253,26 @@ contains
         if (allocated(error)) return
         ! the whole turns of the expressions' angles counted from here (rollcon_measures)
         call problem%model%count_turns(q, u, restart=.true.)
+        ! the modes the watches set at the start (rolling resistance's sign)
+        do k = 1, size(problem%watches)
+            call problem%watches(k)%watch%start_problem(problem%eq, options%t0, q, u, error)
+            if (allocated(error)) return
+        end do
         call self%start(q, u, error)
         if (allocated(error)) return
         call self%record(summary, error, history, sink)
-        if (.not. allocated(refusal) .or. allocated(error)) return
+        if (allocated(error)) return
+        ! a watch's stop at the start: the first row is the run
+        do k = 1, size(problem%watches)
+            event = problem%watches(k)%watch%stop_request()
+            if (event%action /= action_stop) cycle
+            summary%status = status_stopped
+            summary%message = event%message
+            summary%limit = event%limit
+            n_output = 0
+            return
+        end do
+        if (.not. allocated(refusal)) return
         ! a re-basing refused: the run cannot go on as asked: a fall ends it at its first row,
         ! anything else is a failure (docs/rebasing.md)
         if (fell) then
@@ -393,6 +410,8 @@ contains
         type(history_type), intent(inout), optional :: history
         class(row_sink_type), intent(inout), optional :: sink
         type(watch_event_type), allocatable :: events(:)
+        type(watch_event_type) :: stop_event
+        real(wp), allocatable :: rates_before(:)
         character(len=:), allocatable :: refusal
         integer, allocatable :: owners(:)
         integer :: r, w, k, stopping
@@ -420,12 +439,31 @@ contains
             return
         end if
         ! the changes the watches ask for (each once)
+        rates_before = self%u
         do k = 1, size(events)
             if (events(k)%action /= action_restart .or. any(owners(:k - 1) == owners(k))) cycle
             call self%problem%watches(owners(k))%watch%restart_problem(self%problem%eq, &
                 & self%t, self%q, self%u, error)
             if (allocated(error)) return
+            ! a state the watch's equations do not model: the run stops at its row
+            stop_event = self%problem%watches(owners(k))%watch%stop_request()
+            if (stop_event%action == action_stop) then
+                stop_here = .true.
+                call self%record(summary, error, history, sink)
+                summary%status = status_stopped
+                summary%message = stop_event%message
+                summary%limit = stop_event%limit
+                return
+            end if
         end do
+        if (any(self%u /= rates_before)) then
+            ! the rates jumped (an impact): every watch sets its modes for the new state
+            do k = 1, size(self%problem%watches)
+                call self%problem%watches(k)%watch%start_problem(self%problem%eq, self%t, &
+                    & self%q, self%u, error)
+                if (allocated(error)) return
+            end do
+        end if
         if (all(events%action == action_corner)) then
             ! only corners: the integrator starts again with no history, once where a switch
             ! fired (IDA may report a root again at the time it was started from)

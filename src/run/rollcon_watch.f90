@@ -66,6 +66,8 @@ module rollcon_watch
         procedure :: roots_use_accelerations
         procedure :: fired
         procedure :: restart_problem
+        procedure :: start_problem
+        procedure :: stop_request
         procedure :: part_rebased
         procedure :: parts_to_rebase
         procedure :: column_names
@@ -145,6 +147,26 @@ contains
         real(wp), intent(inout) :: u(:)
         type(error_type), allocatable, intent(out) :: error
     end subroutine restart_problem
+
+    !> A new state (t, q, u): the start, before the integrator is set up on it, or rates that
+    !> a watch's restart_problem made jump (an impact): a watch may set a mode of the
+    !> equations there (default: nothing).
+    subroutine start_problem(self, eq, time, q, u, error)
+        class(watch_type), intent(inout) :: self
+        type(equations_type), intent(inout) :: eq
+        real(wp), intent(in) :: time, q(:), u(:)
+        type(error_type), allocatable, intent(out) :: error
+    end subroutine start_problem
+
+    !> A stop the watch's last start_problem or restart_problem found (a state its equations
+    !> do not model): the run records the row there and stops with this event (action
+    !> action_stop); any other action: none (the default).
+    function stop_request(self) result(event)
+        class(watch_type), intent(in) :: self
+        type(watch_event_type) :: event
+
+        event%action = action_restart
+    end function stop_request
 
     !> The run re-based part p (model order): its coordinates are now in its principal axes
     !> turned once more (docs/rebasing.md).

@@ -4,6 +4,16 @@
 !> the summary the energy each law dissipated and, for a disk settling to its finite-time
 !> singularity (Euler's disk), the fit of its precession rate Omega = |psidot| to
 !> Omega ~ (t0 - t)^(-n) (fit_singularity; docs/design.md §5, "Dissipation").
+!>
+!> Rolling resistance's law Q_phi = -delta F_n sign(phidot) switches at phidot = 0, where it is
+!> set-valued (|Q_phi| <= delta F_n): the watch's event function is phidot, its root located
+!> by the integrator, and there (and at a start at phidot = 0) the law's sign is decided from
+!> the equations at that state and held until the next root (decide_rolling_sign): phidot
+!> leaves zero in the direction it would take without the resistance when the resistance
+!> cannot hold it; when it can, phidot is held at zero by the moment it needs (the equations'
+!> held_coupling) and the event function is delta F_n less that moment's size, whose root
+!> releases it in the direction the moment held. Held while the contact slides is not
+!> modelled: the run stops there.
 module rollcon_dissipation_watch
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type, fatal_error, stat_input
@@ -12,7 +22,7 @@ module rollcon_dissipation_watch
     use rollcon_run_settings, only : run_settings_type
     use rollcon_output_layout, only : name_length
     use rollcon_watch_columns, only : dissipation_names
-    use rollcon_watch, only : watch_type
+    use rollcon_watch, only : watch_type, watch_event_type, action_stop, action_restart
     use, intrinsic :: ieee_arithmetic, only : ieee_is_finite
     implicit none
     private
@@ -27,11 +37,26 @@ module rollcon_dissipation_watch
     !> The range of t0 - t_end searched, as fractions of the fitted rows' time span: from a
     !> millionth (a run that ends right at the singularity) to the span itself
     real(wp), parameter :: gap_min_fraction = 1.0e-6_wp, gap_max_fraction = 1.0_wp
+    !> When a fit is the run's singularity (singularity_fit_type%settles): the rows end within
+    !> this fraction of the fitted rows' span after the largest rate (the run stopped at the
+    !> breakdown: the flat limit theta_min or a lift-off, not run on past a peak), the rate
+    !> grew over the fitted rows by at least this factor, the rms residual of ln Omega is at
+    !> most this, and t0 lies inside the searched range, not at its near end (a fit that
+    !> runs to that end has no minimum: the rates do not diverge). data/euler_disk.nml:
+    !> 0.001 of the span, growth 3.0, residual 0.0074, t0 - t_end = 9.6e-3 s (8e-4 of span);
+    !> a spinning coin that bounces on (/work/tools/combo.nml's kind): rows 0.69 of the span
+    !> past the peak, t0 at the range's end
+    real(wp), parameter :: settle_tail_fraction = 0.05_wp, settle_growth_min = 2.0_wp, &
+        & settle_residual_max = 0.05_wp
+    !> The kinds of rolling resistance's switches (dissipation_watch_type%switch_kinds)
+    integer, parameter, public :: switch_sign = 1, switch_hold = 2, switch_release = 3
 
     !> A fit of Omega ~ (t0 - t)^(-n)
     type :: singularity_fit_type
         !> A fit was made (enough rows, all rates positive and finite)
         logical :: made = .false.
+        !> The fit is a singularity the run ends at (the rule at settle_tail_fraction)
+        logical :: settles = .false.
         !> The singular time [s], the exponent n [-], the rms residual of log Omega [-], the
         !> rows fitted and the decades of t0 - t they span
         real(wp) :: t0 = 0.0_wp, exponent = 0.0_wp, residual = 0.0_wp, decades = 0.0_wp
@@ -50,8 +75,26 @@ module rollcon_dissipation_watch
         !> rows), and the last row's powers [W]
         real(wp) :: rolling_work = 0.0_wp, air_work = 0.0_wp
         real(wp) :: last_rolling = 0.0_wp, last_air = 0.0_wp
+        !> Baumgarte rate of the run [1/s]; scratch accelerations and multipliers
+        real(wp) :: baumgarte = 0.0_wp
+        real(wp), allocatable :: a(:), lambda(:)
+        !> The law's switches: their times [s], phidot there [rad/s], the held moment's room
+        !> delta F_n - |Q_phi| there [N m] (at a release; else 0) and kinds (switch_sign: a
+        !> new sign at a root of phidot or the start, switch_hold, switch_release)
+        real(wp), allocatable :: switch_times(:), switch_rates(:), switch_rooms(:)
+        integer, allocatable :: switch_kinds(:)
+        !> A held rolling resistance found (action_stop), else action_restart
+        type(watch_event_type) :: held
     contains
         procedure :: prepare
+        procedure :: root_count
+        procedure :: roots
+        procedure :: fired
+        procedure :: restart_problem
+        procedure :: start_problem
+        procedure :: stop_request
+        procedure :: decide_rolling_sign
+        procedure :: note_switch
         procedure :: column_names
         procedure :: fill_columns
         procedure :: summary_lines
@@ -81,7 +124,184 @@ contains
         self%rows = 0
         self%rolling_work = 0.0_wp
         self%air_work = 0.0_wp
+        self%baumgarte = settings%baumgarte()
+        if (allocated(self%a)) deallocate(self%a, self%lambda)
+        allocate(self%a(eq%n), self%lambda(eq%nc), source=0.0_wp)
+        if (allocated(self%switch_times)) deallocate(self%switch_times, self%switch_rates, &
+            & self%switch_rooms, self%switch_kinds)
+        allocate(self%switch_times(0), self%switch_rates(0), self%switch_rooms(0), &
+            & self%switch_kinds(0))
+        self%held = watch_event_type(action=action_restart)
+        eq%dissipation%sign_given = .false.
+        eq%dissipation%rolling_sign = 0.0_wp
+        eq%dissipation%held = .false.
+        eq%dissipation%held_moment = 0.0_wp
     end subroutine prepare
+
+    !> One event function while rolling resistance acts: phidot.
+    pure integer function root_count(self, eq)
+        class(dissipation_watch_type), intent(in) :: self
+        type(equations_type), intent(in) :: eq
+
+        root_count = merge(1, 0, eq%dissipation%rolling_resistance > 0.0_wp)
+    end function root_count
+
+    !> phidot [rad/s], the rolling rate whose sign rolling resistance's law takes; while held,
+    !> delta F_n - |Q_phi| [N m] from the equations at this state (the held moment's room).
+    subroutine roots(self, eq, settings, time, q, u, g, error, lambda, a)
+        class(dissipation_watch_type), intent(inout) :: self
+        type(equations_type), intent(inout) :: eq
+        type(run_settings_type), intent(in) :: settings
+        real(wp), intent(in) :: time, q(:), u(:)
+        real(wp), intent(out) :: g(:)
+        type(error_type), allocatable, intent(out) :: error
+        real(wp), intent(in), optional :: lambda(:), a(:)
+
+        if (eq%dissipation%held) then
+            call eq%accelerations(time, q, u, self%baumgarte, self%a, self%lambda, error)
+            if (allocated(error)) return
+            g(1) = eq%dissipation%rolling_resistance*eq%dissipation%normal_force &
+                & - abs(eq%dissipation%held_moment)
+            return
+        end if
+        g(1) = u(6*self%part)
+    end subroutine roots
+
+    !> phidot reached zero: the law's sign is decided there (restart_problem).
+    function fired(self, eq, k, time, q, u) result(event)
+        class(dissipation_watch_type), intent(in) :: self
+        type(equations_type), intent(in) :: eq
+        integer, intent(in) :: k
+        real(wp), intent(in) :: time, q(:), u(:)
+        type(watch_event_type) :: event
+
+        event%action = action_restart
+        event%limit = "rolling_resistance"
+        event%message = "phidot reached zero at t = " // to_text(time) // " s"
+    end function fired
+
+    !> At a root of phidot = 0: the law's sign decided (decide_rolling_sign); at the held
+    !> moment's reaching delta F_n: released, the law's sign that of the departure, against
+    !> the moment that held (phiddot's sign without it).
+    subroutine restart_problem(self, eq, time, q, u, error)
+        class(dissipation_watch_type), intent(inout) :: self
+        type(equations_type), intent(inout) :: eq
+        real(wp), intent(in) :: time, q(:)
+        real(wp), intent(inout) :: u(:)
+        type(error_type), allocatable, intent(out) :: error
+
+        if (eq%dissipation%held) then
+            call eq%accelerations(time, q, u, self%baumgarte, self%a, self%lambda, error)
+            if (allocated(error)) return
+            eq%dissipation%held = .false.
+            call self%note_switch(time, u, switch_release, eq%dissipation%rolling_resistance &
+                & *eq%dissipation%normal_force - abs(eq%dissipation%held_moment))
+            if (eq%dissipation%held_moment /= 0.0_wp) then
+                eq%dissipation%rolling_sign = -sign(1.0_wp, eq%dissipation%held_moment)
+                return
+            end if
+        end if
+        call self%decide_rolling_sign(eq, time, q, u, error)
+    end subroutine restart_problem
+
+    !> A switch of the law at time [s] with the rates u, of a kind (switch_sign, ...), the
+    !> held moment's room there [N m] (0 but at a release).
+    subroutine note_switch(self, time, u, kind, room)
+        class(dissipation_watch_type), intent(inout) :: self
+        real(wp), intent(in) :: time, u(:)
+        integer, intent(in) :: kind
+        real(wp), intent(in) :: room
+
+        self%switch_times = [self%switch_times, time]
+        self%switch_rates = [self%switch_rates, u(6*self%part)]
+        self%switch_kinds = [self%switch_kinds, kind]
+        self%switch_rooms = [self%switch_rooms, room]
+    end subroutine note_switch
+
+    !> At the start, or after rates that jumped (an impact): the law's sign is phidot's, or
+    !> decided at phidot = 0; not held.
+    subroutine start_problem(self, eq, time, q, u, error)
+        class(dissipation_watch_type), intent(inout) :: self
+        type(equations_type), intent(inout) :: eq
+        real(wp), intent(in) :: time, q(:), u(:)
+        type(error_type), allocatable, intent(out) :: error
+
+        if (.not. eq%dissipation%rolling_resistance > 0.0_wp) return
+        eq%dissipation%held = .false.
+        if (u(6*self%part) /= 0.0_wp) then
+            eq%dissipation%sign_given = .true.
+            eq%dissipation%rolling_sign = sign(1.0_wp, u(6*self%part))
+            return
+        end if
+        call self%decide_rolling_sign(eq, time, q, u, error)
+    end subroutine start_problem
+
+    !> The held rolling resistance's stop, when decide_rolling_sign found one.
+    function stop_request(self) result(event)
+        class(dissipation_watch_type), intent(in) :: self
+        type(watch_event_type) :: event
+
+        event = self%held
+    end function stop_request
+
+    !> Rolling resistance's sign at a state (t, q, u) with phidot at zero (the start, or a
+    !> root), where the law is set-valued (|Q_phi| <= delta F_n): phiddot_0 from the equations
+    !> without it; s = sign(phiddot_0), then phiddot_s with the law Q_phi = -delta F_n s (its
+    !> normal force coupled as in every solve). When s phiddot_s > 0 the moment needed to hold
+    !> phidot = 0 exceeds delta F_n: phidot leaves zero with sign s, and s is held until the
+    !> next root. Otherwise (phiddot_0 = 0 too) the resistance holds the rim's run still:
+    !> held (the equations' held_coupling) while the contact rolls; while it slides that is
+    !> not modelled, and held becomes a stop with its message (in flight the law is idle).
+    subroutine decide_rolling_sign(self, eq, time, q, u, error)
+        class(dissipation_watch_type), intent(inout) :: self
+        type(equations_type), intent(inout) :: eq
+        real(wp), intent(in) :: time, q(:), u(:)
+        type(error_type), allocatable, intent(out) :: error
+        real(wp) :: free, resisted, s
+        integer :: i
+
+        i = 6*self%part
+        eq%dissipation%sign_given = .true.
+        eq%dissipation%held = .false.
+        eq%dissipation%rolling_sign = 0.0_wp
+        call eq%accelerations(time, q, u, self%baumgarte, self%a, self%lambda, error)
+        if (allocated(error)) return
+        free = self%a(i)
+        resisted = 0.0_wp
+        s = 0.0_wp
+        if (free /= 0.0_wp) then
+            s = sign(1.0_wp, free)
+            eq%dissipation%rolling_sign = s
+            call eq%accelerations(time, q, u, self%baumgarte, self%a, self%lambda, error)
+            if (allocated(error)) return
+            resisted = self%a(i)
+            if (s*resisted > 0.0_wp) then
+                call self%note_switch(time, u, switch_sign, 0.0_wp)
+                return
+            end if
+        end if
+        if (eq%contact%flying) then
+            ! in flight F_n = 0: the law does not act, nothing holds phidot
+            eq%dissipation%rolling_sign = s
+            call self%note_switch(time, u, switch_sign, 0.0_wp)
+            return
+        end if
+        eq%dissipation%rolling_sign = 0.0_wp
+        if (.not. eq%contact%sliding) then
+            eq%dissipation%held = .true.
+            call self%note_switch(time, u, switch_hold, 0.0_wp)
+            return
+        end if
+        self%held%action = action_stop
+        self%held%limit = "rolling_held"
+        self%held%message = "rolling resistance holds the rim's run still at t = " &
+            & // to_text(time) // " s (theta = " // to_text(q(i - 1)) // " rad, psidot = " &
+            & // to_text(u(i - 2)) // " rad/s, phidot = " // to_text(u(i)) // " rad/s) " &
+            & // "while the contact slides: phiddot would be " // to_text(free) &
+            & // " rad/s^2 without it and " // to_text(resisted) // " rad/s^2 against it, " &
+            & // "so the moment needed to hold phidot = 0 is within delta F_n; that held " &
+            & // "state is not modelled, the run stops here"
+    end subroutine decide_rolling_sign
 
     subroutine column_names(self, eq, names)
         class(dissipation_watch_type), intent(in) :: self
@@ -139,9 +359,19 @@ contains
             & // to_text(self%rolling_work) // " J, the air layer (coefficient pi/4 mu R^3 = " &
             & // to_text(eq%dissipation%air) // " N m s) " // to_text(self%air_work) // " J" &
             & // new_line("a")
+        if (allocated(self%switch_kinds)) then
+            if (size(self%switch_kinds) > 0) text = text // "rolling resistance's law: " &
+                & // "its sign taken at phidot = 0 " &
+                & // to_text(count(self%switch_kinds == switch_sign)) // " times, held " &
+                & // to_text(count(self%switch_kinds == switch_hold)) &
+                & // " times (phidot = 0 under the moment it needs), released " &
+                & // to_text(count(self%switch_kinds == switch_release)) // " times" &
+                & // new_line("a")
+        end if
         if (self%rows == 0) return
         fit = fit_singularity(self%times(:self%rows), self%rates(:self%rows))
-        if (.not. fit%made) return
+        ! a fit only of a run that ends at its singularity (settles); else nothing to say
+        if (.not. (fit%made .and. fit%settles)) return
         text = text // "finite-time singularity: Omega = |psidot| ~ (t0 - t)^(-n) fitted " &
             & // "over " // to_text(fit%rows) // " rows spanning " &
             & // to_text(real(nint(100.0_wp*fit%decades), wp)/100.0_wp) &
@@ -159,6 +389,7 @@ contains
     !> minimises the weighted mean square residual: a scan of 64 values of ln(t0 - t_end)
     !> over [ln(1e-6 T), ln T] (T the fitted rows' span) and a golden-section search about
     !> the best. Not made with fewer than fit_rows_min rows or a rate not positive and finite.
+    !> settles: the rule at settle_tail_fraction (the rows end at the singularity).
     pure function fit_singularity(times, rates) result(fit)
         real(wp), intent(in) :: times(:), rates(:)
         type(singularity_fit_type) :: fit
@@ -224,6 +455,12 @@ contains
         fit%residual = sqrt(value)
         fit%rows = n - first + 1
         fit%decades = log10((fit%t0 - times(first))/(fit%t0 - t_end))
+        ! the run ends at this singularity: its rows stop soon after the peak, the rate grew,
+        ! the line fits, t0 is a minimum inside the range searched
+        fit%settles = times(size(times)) - t_end <= settle_tail_fraction*span &
+            & .and. rates(n) >= settle_growth_min*rates(first) &
+            & .and. fit%residual <= settle_residual_max &
+            & .and. z > lo + 2.0_wp*(hi - lo)/real(scan, wp)
 
     contains
 

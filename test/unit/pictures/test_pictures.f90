@@ -228,21 +228,25 @@ contains
     end subroutine test_plot_disk
 
     !> A disk scene's CSV with a rim's dissipation whose precession rate rises as
-    !> 30 (2 s - t)^(-1/6) gets the singularity's figure too (skipped without gnuplot).
+    !> 30 (t0 - t)^(-1/6) to its last row, t0 a thousandth of the rows' span after it (a run
+    !> ending at its singularity), gets the singularity's figure too (skipped without gnuplot).
     subroutine test_plot_singularity(error)
         type(error_type), allocatable, intent(out) :: error
         type(run_record_type) :: base, run
         real(wp), allocatable :: row(:)
+        real(wp) :: t0
         integer :: j
 
         base = disk_run()
+        t0 = base%history%rows(1, base%history%count) + 1.0e-3_wp &
+            & *(base%history%rows(1, base%history%count) - base%history%rows(1, 1))
         run%layout = new_output_layout([1], [1, 2, 3], [character(len=name_length) :: &
             & contact_names, dissipation_names])
         run%shapes = base%shapes
         do j = 1, base%history%count
             associate (t => base%history%rows(1, j))
                 row = [base%history%rows(:, j), 0.0_wp, 1.0e-3_wp, 1.0e-3_wp*t]
-                row(run%layout%part_column(1, coord_psidot)) = 30.0_wp*(2.0_wp - t) &
+                row(run%layout%part_column(1, coord_psidot)) = 30.0_wp*(t0 - t) &
                     & **(-1.0_wp/6.0_wp)
             end associate
             call run%history%add(row)
