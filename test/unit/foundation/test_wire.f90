@@ -256,6 +256,8 @@ contains
         summary%energy_step = 2.5e-11_wp
         summary%constraint_work = 1.25e-3_wp
         summary%dissipated_work = 5.0e-2_wp
+        summary%friction_work = 3.0e-2_wp
+        summary%impact_work = 1.0e-2_wp
         summary%energy_conserved = .false.
         summary%layout = new_output_layout([2, 5], [11, 12, 13], &
             & [character(len=16) :: "height_2", "normal_force_2"])
@@ -297,10 +299,10 @@ contains
         if (allocated(error)) return
         call check(error, same_bits([back%t_reached, back%energy_reference, back%energy_drift, &
             & back%energy_scale, back%energy_step, back%constraint_work, back%dissipated_work, &
-            & back%residual_max, back%energy_bound, back%cpu_seconds], [summary%t_reached, &
+            & back%friction_work, back%impact_work, back%residual_max, back%energy_bound, back%cpu_seconds], [summary%t_reached, &
             & summary%energy_reference, summary%energy_drift, summary%energy_scale, &
             & summary%energy_step, summary%constraint_work, summary%dissipated_work, &
-            & summary%residual_max, summary%energy_bound, summary%cpu_seconds]), &
+            & summary%friction_work, summary%impact_work, summary%residual_max, summary%energy_bound, summary%cpu_seconds]), &
             & "the scalar reals")
         if (allocated(error)) return
         call check(error, same_bits(back%q, summary%q) .and. same_bits(back%u, summary%u) &
