@@ -315,7 +315,7 @@ contains
         type(error_type), allocatable, intent(out) :: error
         type(history_type), intent(inout), optional :: history
         class(row_sink_type), intent(inout), optional :: sink
-        real(wp) :: energy, potential, power, dissipation, friction, rim, impacts
+        real(wp) :: energy, potential, power, dissipation, friction, rim, impacts, estimate
         real(wp), allocatable :: row(:)
 
         call self%system%unpack_state(self%t, self%y, self%q, self%u, error)
@@ -355,10 +355,16 @@ contains
                         & + self%last_dissipation(1))*(time - self%dissipation_time)
                     self%friction_work = self%friction_work + 0.5_wp*(friction &
                         & + self%last_friction)*(time - self%dissipation_time)
-                    if (self%judged_rows > 1) self%dissipation_uncertainty = &
-                        & self%dissipation_uncertainty + (time - self%dissipation_time) &
-                        & *abs(dissipation - 2.0_wp*self%last_dissipation(1) &
-                        & + self%last_dissipation(2))/12.0_wp
+                    if (self%judged_rows > 1) then
+                        estimate = (time - self%dissipation_time)*abs(dissipation &
+                            & - 2.0_wp*self%last_dissipation(1) + self%last_dissipation(2)) &
+                            & /12.0_wp
+                        ! a friction's first step, which had no estimate of its own, takes
+                        ! this one too (a rim's dissipation alone starts smoothly from rest)
+                        if (self%judged_rows == 2 .and. (friction /= 0.0_wp .or. &
+                            & self%last_friction /= 0.0_wp)) estimate = 2.0_wp*estimate
+                        self%dissipation_uncertainty = self%dissipation_uncertainty + estimate
+                    end if
                 end if
                 impacts = problem%eq%contact%impact_loss - self%impact_loss
                 self%impact_loss = problem%eq%contact%impact_loss
@@ -748,6 +754,10 @@ contains
             summary%friction_work = self%friction_work
             summary%impact_work = self%impact_work
             summary%dissipation_uncertainty = self%dissipation_uncertainty
+            ! a friction's work over fewer than three rows: no estimate of the rule's error, so
+            ! W is known only to within itself
+            if (self%judged_rows < 3) summary%dissipation_uncertainty = max( &
+                & summary%dissipation_uncertainty, self%friction_work)
         end if
         call cpu_time(cpu_now)
         summary%cpu_seconds = cpu_now - self%cpu_start
