@@ -538,7 +538,7 @@ contains
     !> Zero, up to rounding, for constraints fixed in space and time (a rolling contact on
     !> fixed ground: F = C(q) u, c = 0; a joint: no explicit time); a moving constraint's (a
     !> turntable, a driven motion) is of the size of the power it puts in. A sliding contact's
-    !> friction adds the power it dissipates, mu_k F_n |v_slip|. Calls no UCOSUB.
+    !> friction is no constraint force: its power is dissipated_power's. Calls no UCOSUB.
     pure function constraint_power(self, u) result(power)
         class(problem_type), intent(in) :: self
         !> The rates of the last evaluation
@@ -558,19 +558,22 @@ contains
                 end if
             end do
         end associate
-        ! a sliding contact's friction: the power it dissipates (rollcon_sliding_contact)
-        if (self%eq%contact%sliding) power = power + self%eq%contact%power
     end function constraint_power
 
-    !> The power a rim's rolling resistance and air layer dissipated at the last evaluation
-    !> (accelerations) [W], >= 0 while the rim presses on the ground (rollcon_rim_dissipation);
-    !> 0 without them. The energy judge adds its integral to the energy (rollcon_simulation).
-    pure real(wp) function dissipated_power(self)
+    !> The power dissipated at the last evaluation (accelerations) [W], each >= 0: a sliding
+    !> contact's friction, mu_k F_n |v_slip| (rollcon_sliding_contact), and a rim's rolling
+    !> resistance and air layer while the rim presses on the ground (rollcon_rim_dissipation);
+    !> 0 without them. The energy judge adds their integral to the energy (rollcon_simulation).
+    pure subroutine dissipated_power(self, friction, rim)
         class(problem_type), intent(in) :: self
+        !> The friction's power and the rim's dissipation's [W]
+        real(wp), intent(out) :: friction, rim
 
-        dissipated_power = 0.0_wp
-        if (self%eq%dissipation%active()) dissipated_power = self%eq%dissipation%power()
-    end function dissipated_power
+        friction = 0.0_wp
+        if (self%eq%contact%sliding) friction = self%eq%contact%power
+        rim = 0.0_wp
+        if (self%eq%dissipation%active()) rim = self%eq%dissipation%power()
+    end subroutine dissipated_power
 
     !> Free what the problem holds outside Fortran's memory (its equations' KLU factors): a
     !> process running many models one after another (a study's cases) would keep every one's

@@ -73,11 +73,15 @@ module rollcon_simulation
         real(wp) :: potential_min = huge(1.0_wp), potential_max = -huge(1.0_wp)
         real(wp) :: step_energy_sum = 0.0_wp, constraint_work = 0.0_wp
         real(wp) :: last_power = 0.0_wp, last_time = 0.0_wp
-        !> A rim's dissipation (problem%dissipated_power) over the judged rows: its work [J]
-        !> by the trapezoidal rule, that rule's estimated error [J] and the last two rows'
-        !> powers [W]
+        !> The dissipated power (problem%dissipated_power: a sliding contact's friction, a rim's
+        !> rolling resistance and air) over the judged rows: its work [J] by the trapezoidal
+        !> rule plus the impacts' losses, that rule's estimated error [J], the last two rows'
+        !> powers [W], and the parts of the work the friction and the impacts did [J]
         real(wp) :: dissipated_work = 0.0_wp, dissipation_uncertainty = 0.0_wp
-        real(wp) :: last_dissipation(2) = 0.0_wp
+        real(wp) :: last_dissipation(2) = 0.0_wp, last_friction = 0.0_wp
+        real(wp) :: friction_work = 0.0_wp, impact_work = 0.0_wp
+        !> The time of the quadrature's last point (a row or a switch) and of the one before [s]
+        real(wp) :: dissipation_time = 0.0_wp, before_last_time = 0.0_wp
         !> The energy a contact's impacts had taken at the last judged row [J]
         real(wp) :: impact_loss = 0.0_wp
         !> Counters of the integrator's segments before its last restart
@@ -95,6 +99,7 @@ module rollcon_simulation
         procedure :: next_stop
         procedure :: record
         procedure :: handle_events
+        procedure :: split_dissipation
         procedure :: rebase
         procedure :: repartition
         procedure :: restart_at_corner
@@ -327,7 +332,7 @@ contains
         type(error_type), allocatable, intent(out) :: error
         type(history_type), intent(inout), optional :: history
         class(row_sink_type), intent(inout), optional :: sink
-        real(wp) :: energy, potential, power, dissipation
+        real(wp) :: energy, potential, power, dissipation, friction, rim, impacts, estimate
         real(wp), allocatable :: row(:)
 
         call self%system%unpack_state(self%t, self%y, self%q, self%u, error)
@@ -355,19 +360,39 @@ contains
                 self%have_reference = .true.
                 potential = problem%eq%potential_energy(q)
                 power = problem%constraint_power(u)
-                ! a rim's dissipation: its work W by the trapezoidal rule, whose error over a
-                ! row's step h is h^3 |P''| / 12, estimated as h |P_i - 2 P_(i-1) + P_(i-2)| / 12
-                ! from the last three rows; the energy plus W is judged, less the estimates' sum
-                dissipation = problem%dissipated_power()
+                ! the dissipated power (friction, rolling resistance, air): its work W by the
+                ! trapezoidal rule, whose error over a row's step h is h^3 |P''| / 12, estimated
+                ! as h |P_i - 2 P_(i-1) + P_(i-2)| / 12 from the last three rows; the impacts'
+                ! losses since the last row (their impulses' work, rollcon_contact_impact) added
+                ! exactly; the energy plus W is judged, less the estimates' sum
+                call problem%dissipated_power(friction, rim)
+                dissipation = friction + rim
                 if (self%judged_rows > 0) then
                     self%dissipated_work = self%dissipated_work + 0.5_wp*(dissipation &
-                        & + self%last_dissipation(1))*(time - self%last_time)
-                    if (self%judged_rows > 1) self%dissipation_uncertainty = &
-                        & self%dissipation_uncertainty + (time - self%last_time) &
-                        & *abs(dissipation - 2.0_wp*self%last_dissipation(1) &
-                        & + self%last_dissipation(2))/12.0_wp
+                        & + self%last_dissipation(1))*(time - self%dissipation_time)
+                    self%friction_work = self%friction_work + 0.5_wp*(friction &
+                        & + self%last_friction)*(time - self%dissipation_time)
+                    if (self%judged_rows > 1) then
+                        estimate = (time - self%dissipation_time)*abs(dissipation &
+                            & - 2.0_wp*self%last_dissipation(1) + self%last_dissipation(2)) &
+                            & /12.0_wp
+                        ! a friction's first step, which had no estimate of its own, takes
+                        ! this one too (a rim's dissipation alone starts smoothly from rest)
+                        if (self%judged_rows == 2 .and. (friction /= 0.0_wp .or. &
+                            & self%last_friction /= 0.0_wp)) estimate = 2.0_wp*estimate
+                        self%dissipation_uncertainty = self%dissipation_uncertainty + estimate
+                    end if
+                end if
+                impacts = problem%eq%contact%impact_loss - self%impact_loss
+                self%impact_loss = problem%eq%contact%impact_loss
+                if (impacts /= 0.0_wp) then
+                    self%dissipated_work = self%dissipated_work + impacts
+                    self%impact_work = self%impact_work + impacts
                 end if
                 self%last_dissipation = [dissipation, self%last_dissipation(1)]
+                self%last_friction = friction
+                self%before_last_time = self%dissipation_time
+                self%dissipation_time = time
                 self%energy_change = max(self%energy_change, max(0.0_wp, &
                     & abs(energy + self%dissipated_work - summary%energy_reference) &
                     & - self%dissipation_uncertainty))
@@ -378,11 +403,6 @@ contains
                     & u, problem%settings%rtol, problem%settings%atol)
                 if (self%judged_rows > 0) self%constraint_work = self%constraint_work &
                     & + 0.5_wp*(power + self%last_power)*(time - self%last_time)
-                ! the energy a contact's impacts took since the last row: its impulses' work
-                ! (rollcon_contact_impact)
-                self%constraint_work = self%constraint_work + problem%eq%contact%impact_loss &
-                    & - self%impact_loss
-                self%impact_loss = problem%eq%contact%impact_loss
                 self%last_power = power
                 self%last_time = time
                 self%judged_rows = self%judged_rows + 1
@@ -438,7 +458,12 @@ contains
             summary%limit = events(stopping)%limit
             return
         end if
-        ! the changes the watches ask for (each once)
+        ! the changes the watches ask for (each once), the dissipated work's quadrature split
+        ! there (the power jumps or kinks at a switch of a contact's mode)
+        if (any(events%action == action_restart)) then
+            call self%split_dissipation(.false., error)
+            if (allocated(error)) return
+        end if
         rates_before = self%u
         do k = 1, size(events)
             if (events(k)%action /= action_restart .or. any(owners(:k - 1) == owners(k))) cycle
@@ -464,6 +489,10 @@ contains
                 if (allocated(error)) return
             end do
         end if
+        if (any(events%action == action_restart)) then
+            call self%split_dissipation(.true., error)
+            if (allocated(error)) return
+        end if
         if (all(events%action == action_corner)) then
             ! only corners: the integrator starts again with no history, once where a switch
             ! fired (IDA may report a root again at the time it was started from)
@@ -488,6 +517,50 @@ contains
             end if
         end if
     end subroutine handle_events
+
+    !> Split the dissipated work's trapezoidal rule at a switch of a contact's mode, where the
+    !> friction's power jumps (a touchdown into sliding) or kinks (a slide's start or end): a
+    !> step of the rule across it would be wrong by up to the jump times the row step. Before
+    !> the switch (after = .false.), the rule's piece from the last point (a row or a switch)
+    !> to the switch, at the power of the mode that ends, with its estimated error
+    !> h^3 |P''| / 12 from the second divided difference of the last two points and the
+    !> switch; after it, the switch is the rule's last point, at the power of the mode that
+    !> starts (the next row's estimate, from the second difference of the two powers at the
+    !> switch and its own, so takes in the jump). The state is self%q, self%u at self%t;
+    !> nothing is done before the first judged row.
+    subroutine split_dissipation(self, after, error)
+        class(simulation_type), intent(inout) :: self
+        logical, intent(in) :: after
+        type(error_type), allocatable, intent(out) :: error
+        real(wp) :: friction, rim, dissipation, h0, h1
+
+        if (self%judged_rows == 0) return
+        associate (problem => self%problem)
+            call problem%accelerations(self%t, self%q, self%u, error)
+            if (allocated(error)) return
+            call problem%dissipated_power(friction, rim)
+        end associate
+        dissipation = friction + rim
+        if (after) then
+            self%last_dissipation(1) = dissipation
+            self%last_friction = friction
+            return
+        end if
+        if (.not. self%t > self%dissipation_time) return
+        h1 = self%t - self%dissipation_time
+        self%dissipated_work = self%dissipated_work + 0.5_wp*(dissipation &
+            & + self%last_dissipation(1))*h1
+        self%friction_work = self%friction_work + 0.5_wp*(friction + self%last_friction)*h1
+        h0 = self%dissipation_time - self%before_last_time
+        if (self%judged_rows > 1 .and. h0 > 0.0_wp) self%dissipation_uncertainty = &
+            & self%dissipation_uncertainty + h1**3/12.0_wp &
+            & *abs(2.0_wp*((dissipation - self%last_dissipation(1))/h1 &
+            & - (self%last_dissipation(1) - self%last_dissipation(2))/h0)/(h0 + h1))
+        self%last_dissipation = [dissipation, self%last_dissipation(1)]
+        self%last_friction = friction
+        self%before_last_time = self%dissipation_time
+        self%dissipation_time = self%t
+    end subroutine split_dissipation
 
     !> Re-base the given parts at the current state (self%q, self%u, as handle_events unpacked
     !> it and the watches' restart_problem left it: rollcon_rebase_step), then start the
@@ -716,6 +789,13 @@ contains
             summary%energy_step = self%step_energy_sum/real(self%judged_rows, wp)
             summary%constraint_work = self%constraint_work
             summary%dissipated_work = self%dissipated_work
+            summary%friction_work = self%friction_work
+            summary%impact_work = self%impact_work
+            summary%dissipation_uncertainty = self%dissipation_uncertainty
+            ! a friction's work over fewer than three rows: no estimate of the rule's error, so
+            ! W is known only to within itself
+            if (self%judged_rows < 3) summary%dissipation_uncertainty = max( &
+                & summary%dissipation_uncertainty, self%friction_work)
         end if
         call cpu_time(cpu_now)
         summary%cpu_seconds = cpu_now - self%cpu_start

@@ -71,12 +71,13 @@ contains
         character(len=:), allocatable :: text
 
         if (summary%energy_scale > 0.0_wp .and. summary%dissipated_work /= 0.0_wp) then
-            ! a rim's dissipation: the energy plus the work it took is what is conserved
+            ! a dissipation: the energy plus the work it took is what is conserved
             text = "energy drift: " // scientific(summary%energy_drift) &
                 & // " of the energy scale " // scientific(summary%energy_scale) &
                 & // " J (largest |E + W - E0| " &
                 & // scientific(summary%energy_drift*summary%energy_scale) // " J, W the " &
-                & // scientific(summary%dissipated_work) // " J dissipated, E0 = " &
+                & // scientific(summary%dissipated_work) // " J dissipated" &
+                & // dissipation_parts(summary) // ", E0 = " &
                 & // to_text(summary%energy_reference) // " J after the last applied force)" &
                 & // allowed(summary%energy_bound, "")
         else if (summary%energy_scale > 0.0_wp) then
@@ -90,10 +91,35 @@ contains
             text = "energy drift: none to judge (nothing moved after the last applied force, " &
                 & // "E0 = " // to_text(summary%energy_reference) // " J)"
         end if
-        if (.not. summary%energy_conserved) text = text &
-            & // "; not judged: an applied force acting until the end, or a moving " &
-            & // "constraint, does work"
+        if (.not. summary%energy_conserved) then
+            text = text // "; not judged: an applied force acting until the end, or a moving " &
+                & // "constraint, does work"
+        else if (.not. summary%dissipation_resolved) then
+            text = text // "; not judged: the output rows do not resolve the dissipated " &
+                & // "power (W known to " // scientific(summary%dissipation_uncertainty) &
+                & // " J, more than the drift allowed; a finer output_step resolves it)"
+        end if
     end function energy_line
+
+    !> What W holds when a contact's friction or impacts took part of it: " by friction
+    !> 1.234E-02 J, impacts 5.000E-03 J, rolling resistance and air 1.000E-04 J" (each part
+    !> that is not 0); "" when W is a rim's rolling resistance and air alone.
+    function dissipation_parts(summary) result(text)
+        type(run_summary_type), intent(in) :: summary
+        character(len=:), allocatable :: text
+        real(wp) :: rim
+
+        text = ""
+        if (summary%friction_work == 0.0_wp .and. summary%impact_work == 0.0_wp) return
+        rim = summary%dissipated_work - summary%friction_work - summary%impact_work
+        if (summary%friction_work /= 0.0_wp) text = text // ", friction " &
+            & // scientific(summary%friction_work) // " J"
+        if (summary%impact_work /= 0.0_wp) text = text // ", impacts " &
+            & // scientific(summary%impact_work) // " J"
+        if (abs(rim) > 1.0e-12_wp*abs(summary%dissipated_work)) text = text &
+            & // ", rolling resistance and air " // scientific(rim) // " J"
+        text = " by" // text(2:)
+    end function dissipation_parts
 
     !> "final state of part <id>:" and its coordinates beside their rates, for every part.
     function final_state(summary) result(text)

@@ -256,6 +256,10 @@ contains
         summary%energy_step = 2.5e-11_wp
         summary%constraint_work = 1.25e-3_wp
         summary%dissipated_work = 5.0e-2_wp
+        summary%friction_work = 3.0e-2_wp
+        summary%impact_work = 1.0e-2_wp
+        summary%dissipation_uncertainty = 2.0e-3_wp
+        summary%dissipation_resolved = .false.
         summary%energy_conserved = .false.
         summary%layout = new_output_layout([2, 5], [11, 12, 13], &
             & [character(len=16) :: "height_2", "normal_force_2"])
@@ -297,11 +301,14 @@ contains
         if (allocated(error)) return
         call check(error, same_bits([back%t_reached, back%energy_reference, back%energy_drift, &
             & back%energy_scale, back%energy_step, back%constraint_work, back%dissipated_work, &
+            & back%friction_work, back%impact_work, back%dissipation_uncertainty, &
             & back%residual_max, back%energy_bound, back%cpu_seconds], [summary%t_reached, &
             & summary%energy_reference, summary%energy_drift, summary%energy_scale, &
             & summary%energy_step, summary%constraint_work, summary%dissipated_work, &
-            & summary%residual_max, summary%energy_bound, summary%cpu_seconds]), &
-            & "the scalar reals")
+            & summary%friction_work, summary%impact_work, summary%dissipation_uncertainty, &
+            & summary%residual_max, summary%energy_bound, summary%cpu_seconds]) .and. &
+            & (back%dissipation_resolved .eqv. summary%dissipation_resolved), &
+            & "the scalar reals, W resolved")
         if (allocated(error)) return
         call check(error, same_bits(back%q, summary%q) .and. same_bits(back%u, summary%u) &
             & .and. same_bits(back%ucon_residual_max, summary%ucon_residual_max), &
