@@ -27,7 +27,7 @@ module rollcon_run_summary
         !> Why it stopped, when it did not complete
         character(len=:), allocatable :: message
         !> The limit that stopped it (status_stopped), a word of the watch that set it:
-        !> "theta_limit", "liftoff"; "" when none did
+        !> "theta_limit", "liftoff", "fall", "rolling_held", …; "" when none did
         character(len=:), allocatable :: limit
         !> SUNDIALS' flag when the integrator failed (status_failed), else 0
         integer :: solver_flag = 0

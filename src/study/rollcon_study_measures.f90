@@ -14,15 +14,21 @@ module rollcon_study_measures
 
     public :: case_result_type, measure_names, measure_units, measure_index, measure_case
     public :: outcome_words, outcome_completed, outcome_theta_limit, outcome_liftoff, &
-        & outcome_inaccurate, outcome_failed, outcome_refused
+        & outcome_fall, outcome_rolling_held, outcome_stopped, outcome_inaccurate, &
+        & outcome_failed, outcome_refused
 
-    !> How a case ended: completed; stopped by the theta limit or by lift-off; reached its end
-    !> or a limit with results beyond what its tolerances promise; failed (the integrator or
-    !> the UCOSUB); refused (its scene does not read, e.g. a value out of range)
+    !> How a case ended: completed; stopped by the theta limit, by lift-off, by a fall (a part
+    !> whose routine refuses its re-basing, docs/rebasing.md), by the rolling resistance
+    !> holding the rim still while it slides, or by another watch's limit (`stopped`); reached
+    !> its end or a limit with results beyond what its tolerances promise; failed (the
+    !> integrator or the UCOSUB); refused (its scene does not read, e.g. a value out of range).
+    !> failed and refused stay last (rollcon_study_rules reserves outcome_failed onwards)
     integer, parameter :: outcome_completed = 1, outcome_theta_limit = 2, outcome_liftoff = 3, &
-        & outcome_inaccurate = 4, outcome_failed = 5, outcome_refused = 6
-    character(len=*), parameter :: outcome_words(6) = [character(len=11) :: "completed", &
-        & "theta_limit", "liftoff", "inaccurate", "failed", "refused"]
+        & outcome_fall = 4, outcome_rolling_held = 5, outcome_stopped = 6, &
+        & outcome_inaccurate = 7, outcome_failed = 8, outcome_refused = 9
+    character(len=*), parameter :: outcome_words(9) = [character(len=12) :: "completed", &
+        & "theta_limit", "liftoff", "fall", "rolling_held", "stopped", "inaccurate", "failed", &
+        & "refused"]
 
     !> The contact's modes (0 rolling, 1 sliding: rollcon_watch_columns)
     integer, parameter :: modes = size(contact_mode_words)
@@ -87,8 +93,8 @@ contains
         case (status_completed)
             result%outcome = outcome_completed
         case (status_stopped)
-            ! the watch that stopped the run names its limit (rollcon_watch)
-            result%outcome = merge(outcome_liftoff, outcome_theta_limit, summary%limit == "liftoff")
+            ! the watch that stopped the run names its limit (rollcon_watch, rollcon_simulation)
+            result%outcome = stop_outcome(summary%limit)
         case (status_inaccurate)
             result%outcome = outcome_inaccurate
         case default
@@ -141,5 +147,25 @@ contains
         end subroutine put
 
     end subroutine measure_case
+
+    !> The outcome of a run stopped by a watch's limit (status_stopped), from the limit's word
+    !> (run_summary_type%limit): theta_limit, liftoff, fall, rolling_held; any other word (or
+    !> none) is `stopped`.
+    pure integer function stop_outcome(limit) result(outcome)
+        character(len=:), allocatable, intent(in) :: limit
+
+        outcome = outcome_stopped
+        if (.not. allocated(limit)) return
+        select case (limit)
+        case ("theta_limit")
+            outcome = outcome_theta_limit
+        case ("liftoff")
+            outcome = outcome_liftoff
+        case ("fall")
+            outcome = outcome_fall
+        case ("rolling_held")
+            outcome = outcome_rolling_held
+        end select
+    end function stop_outcome
 
 end module rollcon_study_measures

@@ -14,13 +14,13 @@ module test_study_run
     use rollcon_study_type, only : study_type
     use rollcon_study_reader, only : read_study
     use rollcon_study_measures, only : case_result_type, outcome_completed, measure_index, &
-        & measure_case, outcome_refused
+        & measure_case, outcome_refused, outcome_words
     use rollcon_scene, only : read_scene
     use rollcon_job, only : job_type, user_file_type
     use rollcon_load, only : load_job, input_override_type
     use rollcon_run_job, only : run_job, job_result_type
     use rollcon_disk_reference, only : rolling_disk_ucosub
-    use rollcon_simulation, only : run_summary_type, history_type
+    use rollcon_simulation, only : run_summary_type, history_type, status_stopped
     use rollcon_output_layout, only : coord_theta
     use rollcon_study_run, only : study_plan_type, study_progress_type, plan_cases, plan_study, &
         & run_case, append_row, run_study, prepare_study_routines
@@ -55,7 +55,8 @@ contains
             & new_unittest("modes-classed-from-the-run", test_modes), &
             & new_unittest("dataset-base", test_dataset), &
             & new_unittest("user-file-cases-are-its-runs", test_user_file), &
-            & new_unittest("user-file-faults-named", test_user_file_faults)]
+            & new_unittest("user-file-faults-named", test_user_file_faults), &
+            & new_unittest("stops-named-by-their-limit", test_stop_outcomes)]
     end subroutine collect_study_run
 
     !> An override replaces a key of the file, adds one to a group, and adds a group: an
@@ -525,5 +526,30 @@ contains
         item%key = key
         item%value = value
     end function override
+
+    !> A case stopped by a watch is classed by the limit that stopped it: a fall of a re-based
+    !> part and the rolling resistance holding a sliding rim are not the theta limit, and a
+    !> limit the study has no word for is `stopped`
+    subroutine test_stop_outcomes(error)
+        type(error_type), allocatable, intent(out) :: error
+        character(len=*), parameter :: limits(5) = [character(len=12) :: "theta_limit", &
+            & "liftoff", "fall", "rolling_held", "redundancy"]
+        character(len=*), parameter :: expected(5) = [character(len=12) :: "theta_limit", &
+            & "liftoff", "fall", "rolling_held", "stopped"]
+        type(run_summary_type) :: summary
+        type(history_type) :: history
+        type(case_result_type) :: result
+        integer :: k
+
+        do k = 1, size(limits)
+            summary%status = status_stopped
+            summary%limit = trim(limits(k))
+            call measure_case(summary, history, 0.0_wp, result)
+            call check(error, trim(outcome_words(result%outcome)) == trim(expected(k)), &
+                & "a stop at limit " // trim(limits(k)) // " is classed " &
+                & // trim(outcome_words(result%outcome)) // ", expected " // trim(expected(k)))
+            if (allocated(error)) return
+        end do
+    end subroutine test_stop_outcomes
 
 end module test_study_run
