@@ -18,6 +18,12 @@
 !> it; each such read is noted (rollcon_user_forces' system_notes, which `rollcon check`
 !> reports). A difference call that fails (an ERRMES, a value that is not finite) leaves its
 !> error for take_user_force_error and its entry out.
+!>
+!> The partials in the accelerations, where a routine reads them (the algebraic loop of
+!> rollcon_equations and rollcon_dae), are differenced the same way: a force routine's over
+!> the accelerations of its declared parts (add_user_force_acceleration_partials), a VARSUB's
+!> chained through an expression force's exact partials in VARVAL
+!> (add_variable_acceleration_partials).
 module rollcon_user_force_partials
     use rollcon_kinds, only : wp
     use rollcon_jet, only : jet_type, jet_constant

@@ -3,9 +3,11 @@
 !> GFOSUB, VTOSUB; rollcon_force_routine_contract), and the utilities those routines call: SYSFNC,
 !> SYSARY and TIMGET, answering from the state the routine is called at (docs/datasets.md,
 !> "User force routines"), and the accelerations from those set_system_accelerations gave last
-!> (the equations' iterate of the algebraic loop a force reading them makes, or IDA's u':
-!> rollcon_equations' loop_accelerations, rollcon_dae; docs/datasets.md, "Accelerations read
-!> by a force routine").
+!> (the equations' iterate of the algebraic loop a force or VARSUB reading them makes, or
+!> IDA's u': rollcon_equations' loop_accelerations, rollcon_dae; the accelerations solved
+!> before a DIFSUB's rates, rollcon_problem; the output row's for a REQSUB: docs/datasets.md,
+!> "Accelerations read by a force routine" and "... by the other user routines"). A MOTSUB
+!> reads none (ADAMS's rule: call_user_motion refuses it).
 !>
 !> ADAMS's utilities take no handle, so what they read is module state, as
 !> rollcon_adams_runtime's: the table of routines the model may use (register_force_routine:
@@ -24,7 +26,8 @@
 !> The same table serves REQSUBs (call_user_request, at each output row), VARSUBs
 !> (evaluate_user_variables, before the forces at each evaluation; their values are what
 !> VARVAL reads, rollcon_user_variable_values, and their differences over their declared
-!> state, difference_user_variables, the partials VARVAL's jets carry), MOTSUBs
+!> state, difference_user_variables, the partials VARVAL's jets carry, and over the
+!> accelerations, difference_variable_accelerations, for the algebraic loop), MOTSUBs
 !> (call_user_motion, when the constraints are evaluated: a MOTION's displacement and its
 !> TIME derivatives) and DIFSUBs (declare_diff_routine, call_diff_routine: the equations of
 !> rollcon_diff). SYSFNC('DIF') and SYSFNC('DIF1') answer from the DIFFs' state of the call
@@ -176,7 +179,7 @@ module rollcon_user_forces
     !> those set_system_accelerations gave last (an iterate of the algebraic loop's solve, or
     !> IDA's u'), zero before any
     real(wp), allocatable, save :: a_now(:)
-    !> A force routine's call is under way (the accelerations are answered to it alone)
+    !> A force routine's call is under way
     logical, save :: force_call = .false.
     real(wp), save :: time_now = 0.0_wp
     !> The DIFFs' state SYSFNC('DIF') and SYSFNC('DIF1') answer from: ids, DIF and DIF1 [the
@@ -1399,7 +1402,8 @@ contains
     !> expression takes them (docs/datasets.md, "Measures of markers"), the accelerations
     !> ACCX, ACCY, ACCZ, ACCM, WDTX, WDTY, WDTZ, WDTM (rollcon_marker_acceleration) from the
     !> accelerations set_system_accelerations gave (the algebraic loop a force reading them
-    !> makes is solved by the equations: rollcon_equations, rollcon_dae), and DIF(id), DIF1(id)
+    !> makes is solved by the equations: rollcon_equations, rollcon_dae; a MOTSUB's read is
+    !> recorded for call_user_motion's refusal, ERRFLG clear), and DIF(id), DIF1(id)
     !> of a DIFF (IPAR(1) = id; NSIZE = 1) from set_system_diff_state's. ERRFLG is set, and
     !> VALUE 0, for a name rollcon does not know or a marker the model has not; a force
     !> measure (FX ... TM) and an element's force are refused.
