@@ -978,58 +978,57 @@ contains
             if (allocated(a_now)) kept = a_now
             a_now = accelerations
         end if
-        call request_calls()
-        if (present(accelerations)) then
+        label = routine_name_of(routine_reqsub)
+        if (entry >= 1 .and. entry <= size(table)) label = force_routine_label(entry)
+        if (.not. allocated(declared)) then
+            call begin_call(time, q, u)
+            declaring = .true.
+            named = [integer ::]
+            named_rates = .false.
+            result = 0.0_wp
+            call call_hook(entry, id, time/time_unit, par, size(par), .false., .true., result, &
+                & request_results)
+            declaring = .false.
+            declared = named
+            declared_rates = named_rates
+            call request_problem("the initialisation call (IFLAG = .TRUE.)", error)
+            if (allocated(error)) then
+                result = ieee_value(0.0_wp, ieee_quiet_nan)
+                if (.not. allocated(pending)) call move_alloc(error, pending)
+                call restore_accelerations()
+                return
+            end if
+        end if
+        call begin_call(time, q, u)
+        allowed = declared
+        allowed_rates = declared_rates
+        result = 0.0_wp
+        call call_hook(entry, id, time/time_unit, par, size(par), .false., .false., result, &
+            & request_results)
+        deallocate(allowed)
+        allowed_rates = .true.
+        if (.not. all(ieee_is_finite(result))) then
+            call fatal_error(error, name // ": its " // label // " returned RESULT = (" &
+                & // number_list(result) // ") at TIME = " // to_text(time/time_unit) &
+                & // ": a request's values must be finite", stat_ucon)
+        else
+            call request_problem("the call", error)
+        end if
+        if (allocated(error)) then
+            result = ieee_value(0.0_wp, ieee_quiet_nan)
+            if (.not. allocated(pending)) call move_alloc(error, pending)
+        end if
+        call restore_accelerations()
+    contains
+        !> The accelerations set before the call again (those given were for it alone).
+        subroutine restore_accelerations()
+            if (.not. present(accelerations)) return
             if (allocated(kept)) then
                 a_now = kept
             else
                 deallocate(a_now)
             end if
-        end if
-    contains
-        !> The initialisation call when none was made, then the call.
-        subroutine request_calls()
-
-            label = routine_name_of(routine_reqsub)
-            if (entry >= 1 .and. entry <= size(table)) label = force_routine_label(entry)
-            if (.not. allocated(declared)) then
-                call begin_call(time, q, u)
-                declaring = .true.
-                named = [integer ::]
-                named_rates = .false.
-                result = 0.0_wp
-                call call_hook(entry, id, time/time_unit, par, size(par), .false., .true., result, &
-                    & request_results)
-                declaring = .false.
-                declared = named
-                declared_rates = named_rates
-                call request_problem("the initialisation call (IFLAG = .TRUE.)", error)
-                if (allocated(error)) then
-                    result = ieee_value(0.0_wp, ieee_quiet_nan)
-                    if (.not. allocated(pending)) call move_alloc(error, pending)
-                    return
-                end if
-            end if
-            call begin_call(time, q, u)
-            allowed = declared
-            allowed_rates = declared_rates
-            result = 0.0_wp
-            call call_hook(entry, id, time/time_unit, par, size(par), .false., .false., result, &
-                & request_results)
-            deallocate(allowed)
-            allowed_rates = .true.
-            if (.not. all(ieee_is_finite(result))) then
-                call fatal_error(error, name // ": its " // label // " returned RESULT = (" &
-                    & // number_list(result) // ") at TIME = " // to_text(time/time_unit) &
-                    & // ": a request's values must be finite", stat_ucon)
-            else
-                call request_problem("the call", error)
-            end if
-            if (allocated(error)) then
-                result = ieee_value(0.0_wp, ieee_quiet_nan)
-                if (.not. allocated(pending)) call move_alloc(error, pending)
-            end if
-        end subroutine request_calls
+        end subroutine restore_accelerations
 
         subroutine request_problem(call_name, error)
             character(len=*), intent(in) :: call_name
