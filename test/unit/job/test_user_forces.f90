@@ -194,7 +194,10 @@ contains
     !> accelerations), and the VARIABLEs' columns are 1.5 and 0.5 times those; DIFF/6
     !> (explicit) and DIFF/7 (IMPLICIT), served by its DIFSUB, integrate ACCZ(20) and
     !> ACCZ(30) from 0: -2 g t/3.5 and -g t/1.5 (and their rates the accelerations); and the
-    !> rows of part 2 are those of accelerations_read_expressions.adm (the masses added).
+    !> rows of part 2 are those of accelerations_read_expressions.adm (the masses added). On
+    !> CVODE the first solve starts from zero accelerations: with the VARSUBs' partials left
+    !> out of the loop's matrix its Newton iteration would contract by 0.75 (part 2) and 0.5
+    !> (part 3) a step, and 20 steps would stop the run unsettled.
     !> Tolerances: the parts' closed forms to twin_tolerance, as test_virtual_mass (measured:
     !> 2e-15 on IDA, 7e-8 on CVODE; the VARIABLEs read as 0 move part 2 by 1.2 m); the
     !> VARIABLEs and DIFFs, a constant and a line the integrators reproduce to their
