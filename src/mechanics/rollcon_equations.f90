@@ -534,10 +534,10 @@ contains
         self%work%loop_a = a
         if (change > settled*max(maxval(abs(a)), 1.0_wp)) then
             names = loop_names(self)
-            call fatal_error(error, names // ": the accelerations these forces' routines " &
+            call fatal_error(error, names // ": the accelerations these statements' routines " &
                 & // "read did not settle in " // to_text(most_iterations) // " Newton " &
                 & // "iterations at t = " // to_text(time) // " s (the last moved them by " &
-                & // to_text(change) // " m/s^2 or rad/s^2): a force that is far from linear " &
+                & // to_text(change) // " m/s^2 or rad/s^2): a force or VARIABLE far from linear " &
                 & // "in the accelerations it reads", stat_ucon)
         end if
     end subroutine loop_accelerations
