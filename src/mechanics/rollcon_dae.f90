@@ -9,9 +9,10 @@
 !>
 !> which has index 2 with every constraint enforced directly: no drift by construction. A force
 !> served by a user's routine that reads accelerations (SYSARY('TACC'|'RACC'), SYSFNC('ACCX'
-!> ... 'WDTM')) reads u' itself: f = f(q, u, u', t) makes no loop here, as in ADAMS's DAE
-!> form, and its partials in u' (differenced over what the routine declared,
-!> rollcon_user_force_partials) enter the Newton matrix scaled by cj, beside M's. A row
+!> ... 'WDTM')), or a VARSUB a force reads, reads u' itself: f = f(q, u, u', t) makes no
+!> loop here, as in ADAMS's DAE form, and its partials in u' (differenced over what the
+!> routine declared, rollcon_user_force_partials; rollcon_equations' acceleration_partials)
+!> enter the Newton matrix scaled by cj, beside M's. A row
 !> set aside as redundant (rollcon_redundancy) keeps its place: its equation is lambda_k = 0
 !> (and mu_h = 0 for a position UCON's), and its multipliers appear nowhere else.
 module rollcon_dae

@@ -27,6 +27,14 @@
 !> when it read rates), the DIFs and the DIF1s it named; each call with DFLAG = .TRUE., as
 !> ADAMS/Solver forms a routine's partials.
 !>
+!> A DIFSUB may read the accelerations (SYSARY('TACC'|'RACC'), SYSFNC('ACCX' ... 'WDTM')):
+!> they are answered from rollcon_user_forces' set_system_accelerations, which the
+!> formulations set before they evaluate G (IDA: its u'; the ODE form: the accelerations
+!> solved at (t, q, u), before the rates are solved again), and its partials in them
+!> (acceleration_partials, differenced as its others) enter the Newton matrices: scaled by
+!> cj beside dG/du on IDA, chained through da/d(q, u) in the ODE form (docs/datasets.md,
+!> "Accelerations read by a user routine").
+!>
 !> The forces and VARIABLEs read DIF and DIF1 through the values set in their statements
 !> (diff_inputs, rollcon_diff_inputs); the formulations set them before every evaluation
 !> (rollcon_model's set_diff_state).
@@ -45,7 +53,8 @@ module rollcon_diff
         & state_jets_type, new_state_jets, count_turns
     use rollcon_diff_inputs, only : diff_inputs, diff_input_jets
     use rollcon_user_forces, only : routine_declaration_type, declare_diff_routine, &
-        & call_diff_routine, take_user_force_error
+        & call_diff_routine, take_user_force_error, set_system_accelerations, &
+        & system_accelerations
     use rollcon_central_differences, only : central_differences
     implicit none
     private
@@ -97,6 +106,8 @@ module rollcon_diff
         procedure :: declare_routines
         procedure :: residuals
         procedure :: partials
+        procedure :: reads_accelerations
+        procedure :: acceleration_partials
         procedure :: solve_rates
         procedure :: part_rebased
         procedure :: count_turns => count_diff_turns
@@ -239,6 +250,66 @@ contains
             end associate
         end do
     end subroutine partials
+
+    !> True when the initialisation call of a DIFF's DIFSUB read accelerations.
+    pure logical function reads_accelerations(self) result(reads)
+        class(diff_set_type), intent(in) :: self
+        integer :: k
+
+        reads = .false.
+        do k = 1, self%count()
+            if (self%diffs(k)%routine == 0) cycle
+            if (self%diffs(k)%declaration%accelerations) reads = .true.
+        end do
+    end function reads_accelerations
+
+    !> g_a(k, j) = dG_k/da_j at (t, q, u, x, w) and the accelerations a [SI] (nd x size(a)):
+    !> for a DIFSUB whose initialisation call read accelerations, central differences
+    !> (rollcon_central_differences) of its VALUE over the accelerations of its declared
+    !> parts, each call with DFLAG = .TRUE. and the shifted accelerations answered to it
+    !> (those set before restored after); an explicit DIFF's G_k = w_k - VALUE takes the
+    !> opposite sign. The other rows are 0 (an expression reads no acceleration). A failed
+    !> call leaves its entry 0 and its error for take_user_force_error.
+    subroutine acceleration_partials(self, time, q, u, x, w, a, g_a)
+        class(diff_set_type), intent(in) :: self
+        real(wp), intent(in) :: time, q(:), u(:), x(:), w(:), a(:)
+        real(wp), intent(out) :: g_a(:, :)
+        real(wp), allocatable :: kept(:), block(:, :)
+        integer, allocatable :: entries(:)
+        integer :: k, p, c
+
+        g_a = 0.0_wp
+        if (.not. self%reads_accelerations()) return
+        kept = system_accelerations(size(a))
+        do k = 1, self%count()
+            if (self%diffs(k)%routine == 0) cycle
+            associate (declared => self%diffs(k)%declaration)
+                if (.not. declared%accelerations) cycle
+                entries = [((6*(declared%parts(p) - 1) + c, c = 1, 6), &
+                    & p = 1, size(declared%parts))]
+            end associate
+            if (size(entries) == 0) cycle
+            allocate(block(size(entries), 1), source=0.0_wp)
+            call central_differences(a, entries, accelerations_moved, block)
+            g_a(k, entries) = block(:, 1)
+            if (.not. self%diffs(k)%implicit) g_a(k, :) = -g_a(k, :)
+            deallocate(block)
+        end do
+        call set_system_accelerations(kept)
+
+    contains
+
+        subroutine accelerations_moved(shifted, values, failed)
+            real(wp), intent(in) :: shifted(:)
+            real(wp), intent(out) :: values(:)
+            logical, intent(out) :: failed
+
+            call set_system_accelerations(shifted)
+            values(1) = routine_value(self, k, time, q, u, x, w, .true.)
+            failed = .not. ieee_is_finite(values(1))
+        end subroutine accelerations_moved
+
+    end subroutine acceleration_partials
 
     !> The DIF1s w that solve G(t, q, u, x, w) = 0 (module header), from the first guess w, by
     !> Newton's method over dG/dw; dg_dw is left factored (LU, pivots ipiv) at the solution

@@ -17,10 +17,12 @@ module rollcon_equations
     use rollcon_force, only : force_and_moment, add_force_partials, force_couplings, &
         & add_expression_partials, profile_statement
     use rollcon_user_force_partials, only : add_user_force_partials, &
-        & add_user_force_acceleration_partials
+        & add_user_force_acceleration_partials, add_variable_acceleration_partials
     use rollcon_user_forces, only : evaluate_user_forces, take_user_force_error, &
         & evaluate_user_variables, difference_user_variables, clear_user_variable_partials, &
-        & set_system_diff_state, set_system_accelerations, reads_accelerations
+        & set_system_diff_state, set_system_accelerations, reads_accelerations, &
+        & variables_read_accelerations, variables_reading_accelerations, &
+        & difference_variable_accelerations, user_variable_list, user_variable_type
     use rollcon_lapack, only : factor_dense, solve_factored
     use rollcon_constraints, only : constraint_state_type, local_dot, need_value, need_first, &
         & need_second, need_time
@@ -444,7 +446,8 @@ contains
         end associate
     end subroutine resistance_coupling
     !> The accelerations and multipliers of a model where a user's force routine reads
-    !> accelerations (SYSARY('TACC'|'RACC'), SYSFNC('ACCX' ... 'WDTM')): the algebraic loop
+    !> accelerations (SYSARY('TACC'|'RACC'), SYSFNC('ACCX' ... 'WDTM')), or a VARSUB does
+    !> (a force reading its VARVAL reads them through it): the algebraic loop
     !> M a - f(q, u, a, t) - C^T lambda = 0, C a = gamma, solved by Newton's method on (a,
     !> lambda) as ADAMS solves it, from the accelerations the routines read last. Each
     !> iteration evaluates the forces at the iterate a_k (rollcon_user_forces'
@@ -531,15 +534,16 @@ contains
         self%work%loop_a = a
         if (change > settled*max(maxval(abs(a)), 1.0_wp)) then
             names = loop_names(self)
-            call fatal_error(error, names // ": the accelerations these forces' routines " &
+            call fatal_error(error, names // ": the accelerations these statements' routines " &
                 & // "read did not settle in " // to_text(most_iterations) // " Newton " &
                 & // "iterations at t = " // to_text(time) // " s (the last moved them by " &
-                & // to_text(change) // " m/s^2 or rad/s^2): a force that is far from linear " &
+                & // to_text(change) // " m/s^2 or rad/s^2): a force or VARIABLE far from linear " &
                 & // "in the accelerations it reads", stat_ucon)
         end if
     end subroutine loop_accelerations
 
-    !> The statements whose user routines read accelerations, "SFORCE/3 (line 12), ...".
+    !> The statements whose user routines read accelerations, "SFORCE/3 (line 12), ...", then
+    !> the VARIABLEs whose VARSUBs do.
     function loop_names(self) result(names)
         type(equations_type), intent(in) :: self
         character(len=:), allocatable :: names
@@ -553,20 +557,38 @@ contains
             if (len(names) > 0) names = names // ", "
             names = names // self%model%forces(i)%name
         end do
+        if (variables_read_accelerations()) then
+            if (len(names) > 0) names = names // ", "
+            names = names // variables_reading_accelerations()
+        end if
     end function loop_names
 
     !> work%dm_da: the partials in the accelerations a of the momentum residual's forces (M a
     !> itself left out) at (t, q, u, a), the forces evaluated there (assemble) before: the
-    !> forces whose routines read accelerations, differenced (rollcon_user_force_partials).
-    !> A failed difference call's error is returned.
+    !> forces whose routines read accelerations (directly, or through a VARSUB's VARVAL),
+    !> differenced, and the expression forces reading VARVAL of a VARSUB that reads them, the
+    !> VARSUB's partials differenced and chained through the expressions' exact ones
+    !> (rollcon_user_force_partials). A failed difference call's error is returned.
     subroutine acceleration_partials(self, time, q, u, a, error)
         class(equations_type), intent(inout) :: self
         real(wp), intent(in) :: time, q(:), u(:), a(:)
         type(error_type), allocatable, intent(out) :: error
+        type(user_variable_type), allocatable :: variables(:)
+        real(wp), allocatable :: dv_da(:, :)
+        integer, allocatable :: ids(:)
 
         self%work%dm_da = 0.0_wp
         call add_user_force_acceleration_partials(self%model%forces, time, q, u, a, &
             & self%work%dm_da)
+        if (variables_read_accelerations()) then
+            variables = user_variable_list()
+            ! (a copy: a component of an array of a derived type is not contiguous)
+            ids = variables%id
+            allocate(dv_da(size(variables), size(a)))
+            call difference_variable_accelerations(time, q, u, a, dv_da)
+            call add_variable_acceleration_partials(self%model%forces, time, q, u, ids, &
+                & dv_da, self%work%dm_da)
+        end if
         call take_user_force_error(error)
     end subroutine acceleration_partials
 

@@ -18,19 +18,30 @@
 !> it; each such read is noted (rollcon_user_forces' system_notes, which `rollcon check`
 !> reports). A difference call that fails (an ERRMES, a value that is not finite) leaves its
 !> error for take_user_force_error and its entry out.
+!>
+!> The partials in the accelerations, where a routine reads them (the algebraic loop of
+!> rollcon_equations and rollcon_dae), are differenced the same way: a force routine's over
+!> the accelerations of its declared parts (add_user_force_acceleration_partials), a VARSUB's
+!> chained through an expression force's exact partials in VARVAL
+!> (add_variable_acceleration_partials).
 module rollcon_user_force_partials
     use rollcon_kinds, only : wp
     use rollcon_jet, only : jet_type, jet_constant
     use rollcon_measures, only : state_jets_type
     use rollcon_force, only : applied_force_type, profile_statement
+    use rollcon_marker_force, only : marker_force_type
     use rollcon_force_partials, only : statement_parts, statement_state_jets, &
-        & add_statement_load_partials
+        & add_statement_load_partials, add_expression_force_partials
+    use rollcon_expression, only : quantity_varval
+    use rollcon_user_variable_values, only : set_user_variable_partials, &
+        & clear_user_variable_partials
     use rollcon_user_forces, only : difference_call, acceleration_difference_call
     use rollcon_central_differences, only : central_differences
     implicit none
     private
 
     public :: add_user_force_partials, add_user_force_acceleration_partials
+    public :: add_variable_acceleration_partials
 
 contains
 
@@ -141,6 +152,74 @@ contains
         end subroutine accelerations_moved
 
     end subroutine add_user_force_acceleration_partials
+
+    !> Subtract from dm_da (n x n) the partials in the accelerations of every force written as
+    !> an expression that reads VARVAL of a VARSUB whose initialisation call read
+    !> accelerations: d(load)/d VARVAL (exact, the expression's jets: rollcon_force_partials)
+    !> times d VARVAL/da (dv_da(k, j) for the VARIABLE ids(k): rollcon_user_forces'
+    !> difference_variable_accelerations). VARVAL's jets carry dv_da in the rates' slots (and
+    !> nothing in the coordinates'), so the statement's partials in the rates with them, less
+    !> its partials in the rates without them, are that product (the jets are linear in their
+    !> seeds); the load's geometry depends on q alone. The VARVAL partials set before are
+    !> cleared (the equations set them where they form dm_dq and dm_du, and clear them after).
+    !> A force routine reading VARVAL is served by add_user_force_acceleration_partials (the
+    !> VARSUB's accelerations join its declaration).
+    subroutine add_variable_acceleration_partials(forces, time, q, u, ids, dv_da, dm_da)
+        type(applied_force_type), intent(in) :: forces(:)
+        real(wp), intent(in) :: time
+        !> Coordinates and rates of all parts [SI]
+        real(wp), intent(in) :: q(:), u(:)
+        !> The user VARIABLEs' ids and their partials in the accelerations (size(ids) x n)
+        integer, intent(in) :: ids(:)
+        real(wp), intent(in) :: dv_da(:, :)
+        real(wp), intent(inout) :: dm_da(:, :)
+        real(wp), allocatable :: zero(:, :), ignored(:, :), without(:, :), with(:, :)
+        integer :: i
+
+        if (size(ids) == 0) return
+        if (all(dv_da == 0.0_wp)) return
+        allocate(zero(size(dv_da, 1), size(dv_da, 2)), source=0.0_wp)
+        allocate(ignored(size(dm_da, 1), size(dm_da, 2)), without(size(dm_da, 1), &
+            & size(dm_da, 2)), with(size(dm_da, 1), size(dm_da, 2)))
+        do i = 1, size(forces)
+            if (forces(i)%profile /= profile_statement) cycle
+            if (forces(i)%statement%routine > 0) cycle
+            if (.not. reads_loop_variable(forces(i)%statement)) cycle
+            ignored = 0.0_wp
+            without = 0.0_wp
+            with = 0.0_wp
+            call clear_user_variable_partials()
+            call add_expression_force_partials(forces(i)%statement, time, q, u, ignored, &
+                & without)
+            call set_user_variable_partials(ids, zero, dv_da)
+            call add_expression_force_partials(forces(i)%statement, time, q, u, ignored, with)
+            dm_da = dm_da + (with - without)
+        end do
+        call clear_user_variable_partials()
+
+    contains
+
+        !> The statement's expressions read VARVAL of a VARIABLE whose dv_da row is not zero.
+        logical function reads_loop_variable(statement) result(reads)
+            type(marker_force_type), intent(in) :: statement
+            integer :: k, m, v
+
+            reads = .false.
+            do k = 1, 6
+                if (.not. statement%given(k)) cycle
+                if (.not. allocated(statement%functions(k)%inputs)) cycle
+                do m = 1, size(statement%functions(k)%inputs)
+                    associate (input => statement%functions(k)%inputs(m))
+                        if (input%quantity /= quantity_varval) cycle
+                        v = findloc(ids, input%marker, dim=1)
+                        if (v == 0) cycle
+                        if (any(dv_da(v, :) /= 0.0_wp)) reads = .true.
+                    end associate
+                end do
+            end do
+        end function reads_loop_variable
+
+    end subroutine add_variable_acceleration_partials
 
     !> gradients(v, k): value k's partial in variable v of statement_state_jets(parts), by
     !> central differences (rollcon_central_differences) over the coordinates of the declared

@@ -3,9 +3,11 @@
 !> GFOSUB, VTOSUB; rollcon_force_routine_contract), and the utilities those routines call: SYSFNC,
 !> SYSARY and TIMGET, answering from the state the routine is called at (docs/datasets.md,
 !> "User force routines"), and the accelerations from those set_system_accelerations gave last
-!> (the equations' iterate of the algebraic loop a force reading them makes, or IDA's u':
-!> rollcon_equations' loop_accelerations, rollcon_dae; docs/datasets.md, "Accelerations read
-!> by a force routine").
+!> (the equations' iterate of the algebraic loop a force or VARSUB reading them makes, or
+!> IDA's u': rollcon_equations' loop_accelerations, rollcon_dae; the accelerations solved
+!> before a DIFSUB's rates, rollcon_problem; the output row's for a REQSUB: docs/datasets.md,
+!> "Accelerations read by a force routine" and "... by the other user routines"). A MOTSUB
+!> reads none (ADAMS's rule: call_user_motion refuses it).
 !>
 !> ADAMS's utilities take no handle, so what they read is module state, as
 !> rollcon_adams_runtime's: the table of routines the model may use (register_force_routine:
@@ -24,7 +26,8 @@
 !> The same table serves REQSUBs (call_user_request, at each output row), VARSUBs
 !> (evaluate_user_variables, before the forces at each evaluation; their values are what
 !> VARVAL reads, rollcon_user_variable_values, and their differences over their declared
-!> state, difference_user_variables, the partials VARVAL's jets carry), MOTSUBs
+!> state, difference_user_variables, the partials VARVAL's jets carry, and over the
+!> accelerations, difference_variable_accelerations, for the algebraic loop), MOTSUBs
 !> (call_user_motion, when the constraints are evaluated: a MOTION's displacement and its
 !> TIME derivatives) and DIFSUBs (declare_diff_routine, call_diff_routine: the equations of
 !> rollcon_diff). SYSFNC('DIF') and SYSFNC('DIF1') answer from the DIFFs' state of the call
@@ -77,6 +80,8 @@ module rollcon_user_forces
     public :: register_diff_routine, routine_declaration_type, set_system_diff_state
     public :: declare_diff_routine, call_diff_routine
     public :: set_system_accelerations, reads_accelerations, acceleration_difference_call
+    public :: variables_read_accelerations, variables_reading_accelerations
+    public :: difference_variable_accelerations, system_accelerations
 
     !> A routine the model may use
     type :: routine_entry_type
@@ -112,11 +117,11 @@ module rollcon_user_forces
         integer :: highest = motion_orders
     end type user_motion_type
     !> What a routine's initialisation call (IFLAG = .TRUE.) declared it reads through SYSFNC
-    !> and SYSARY: markers (and their model parts), whether rates, and the DIFFs whose DIF
-    !> and DIF1 it reads (ids)
+    !> and SYSARY: markers (and their model parts), whether rates and accelerations, and the
+    !> DIFFs whose DIF and DIF1 it reads (ids)
     type :: routine_declaration_type
         integer, allocatable :: markers(:), parts(:), difs(:), dif1s(:)
-        logical :: rates = .false.
+        logical :: rates = .false., accelerations = .false.
     end type routine_declaration_type
 
     !> A VARIABLE served by a VARSUB
@@ -131,6 +136,10 @@ module rollcon_user_forces
         !> What its initialisation call declared (allocated once that call is made)
         integer, allocatable :: declared(:)
         logical :: declared_rates = .false.
+        !> Its initialisation call read accelerations (SYSARY('TACC'|'RACC'), SYSFNC('ACCX'
+        !> ... 'WDTM')): a force that reads it closes the algebraic loop a force routine
+        !> reading accelerations does (reads_accelerations)
+        logical :: declared_accelerations = .false.
         !> Its value at the state last evaluated, in the dataset's units
         real(wp) :: value = 0.0_wp
     end type user_variable_type
@@ -156,6 +165,8 @@ module rollcon_user_forces
     type(user_motion_type), allocatable, save :: motions(:)
     real(wp), save :: motions_time_unit = 1.0_wp
     integer, save :: motion_order = 0
+    !> A MOTSUB's call is under way (what it reads through SYSFNC and SYSARY is refused)
+    logical, save :: motion_calling = .false.
     procedure(force_call_interface), pointer, save :: call_hook => direct_force_call
     !> The model's markers (every one a routine may name), the dataset's units
     type(marker_type), allocatable, save :: markers(:)
@@ -168,7 +179,7 @@ module rollcon_user_forces
     !> those set_system_accelerations gave last (an iterate of the algebraic loop's solve, or
     !> IDA's u'), zero before any
     real(wp), allocatable, save :: a_now(:)
-    !> A force routine's call is under way (the accelerations are answered to it alone)
+    !> A force routine's call is under way
     logical, save :: force_call = .false.
     real(wp), save :: time_now = 0.0_wp
     !> The DIFFs' state SYSFNC('DIF') and SYSFNC('DIF1') answer from: ids, DIF and DIF1 [the
@@ -303,12 +314,14 @@ contains
                 declaring = .true.
                 named = [integer ::]
                 named_rates = .false.
+                named_accelerations = .false.
                 value = 0.0_wp
                 call call_hook(variable%routine, variable%id, time/variables_time_unit, &
                     & variable%par, size(variable%par), .false., .true., value, 1)
                 declaring = .false.
                 variable%declared = named
                 variable%declared_rates = named_rates
+                variable%declared_accelerations = named_accelerations
                 call variable_problem(variable, "the initialisation call (IFLAG = .TRUE.)", &
                     & time, error)
                 if (allocated(error)) return
@@ -387,6 +400,7 @@ contains
         if (allocated(variable%declared)) then
             allowed = variable%declared
             allowed_rates = variable%declared_rates
+            allowed_accelerations = variable%declared_accelerations
         else if (allocated(allowed)) then
             deallocate(allowed)
         end if
@@ -395,6 +409,7 @@ contains
             & size(variable%par), dflag, .false., result, 1)
         if (allocated(allowed)) deallocate(allowed)
         allowed_rates = .true.
+        allowed_accelerations = .true.
         value = result(1)
         call_name = ""
         if (dflag) call_name = " in a call with DFLAG = .TRUE."
@@ -496,12 +511,14 @@ contains
         named_difs = [integer ::]
         named_dif1s = [integer ::]
         named_rates = .false.
+        named_accelerations = .false.
         result = 0.0_wp
         call call_hook(entry, id, time/time_unit, par, size(par), .false., .true., result, 1)
         declaring = .false.
         declaration%markers = named
         declaration%parts = parts_of(named)
         declaration%rates = named_rates
+        declaration%accelerations = named_accelerations
         declaration%difs = named_difs
         declaration%dif1s = named_dif1s
         call diff_problem(entry, name, "the initialisation call (IFLAG = .TRUE.)", &
@@ -535,6 +552,7 @@ contains
         if (allocated(declaration%markers)) then
             allowed = declaration%markers
             allowed_rates = declaration%rates
+            allowed_accelerations = declaration%accelerations
             allowed_difs = declaration%difs
             allowed_dif1s = declaration%dif1s
         end if
@@ -543,6 +561,7 @@ contains
         if (allocated(allowed)) deallocate(allowed)
         if (allocated(allowed_difs)) deallocate(allowed_difs, allowed_dif1s)
         allowed_rates = .true.
+        allowed_accelerations = .true.
         value = result(1)
         if (.not. ieee_is_finite(value)) then
             call fatal_error(error, name // ": its " // force_routine_label(entry) &
@@ -713,10 +732,13 @@ contains
             named = [integer ::]
             named_rates = .false.
             motion_order = iord
+            motion_calling = .true.
+            named_accelerations = .false.
             value = 0.0_wp
             call call_hook(motion%routine, motion%id, time/motions_time_unit, motion%par, &
                 & size(motion%par), .false., iflag, value, 1)
             declaring = .false.
+            motion_calling = .false.
             motion_order = 0
             call_name = "the call with IORD = " // to_text(iord)
             if (iflag) call_name = "the initialisation call (IFLAG = .TRUE.)"
@@ -732,6 +754,14 @@ contains
             else if (len(problem) > 0) then
                 call fatal_error(error, at // ", in " // call_name // " at TIME = " &
                     & // to_text(time/motions_time_unit) // ": " // problem, stat_ucon)
+            else if (named_accelerations) then
+                call fatal_error(error, at // ", in " // call_name // " at TIME = " &
+                    & // to_text(time/motions_time_unit) // ", read accelerations through " &
+                    & // "SYSFNC or SYSARY (markers " // number_list(named) // "): a MOTSUB " &
+                    & // "may not call SYSFNC or SYSARY (ADAMS's rule: a MOTION is a " &
+                    & // "function of TIME alone, and the accelerations it would read are " &
+                    & // "those the motion it prescribes determines); compute it from TIME " &
+                    & // "and PAR", stat_ucon)
             else if (size(named) > 0 .or. named_rates) then
                 call fatal_error(error, at // ", in " // call_name // " at TIME = " &
                     & // to_text(time/motions_time_unit) // ", read the state through " &
@@ -922,9 +952,12 @@ contains
     !> by the initialisation call (IFLAG = .TRUE.), whose SYSFNC and SYSARY calls set declared
     !> and declared_rates; later calls' reads are compared with them (system_notes). An ERRMES,
     !> a utility's refusal or a RESULT not finite leaves an error naming `name` ("x.adm:12:
-    !> REQUEST/5") for take_user_force_error, and result NaN.
+    !> REQUEST/5") for take_user_force_error, and result NaN. The accelerations its SYSARY
+    !> ('TACC', 'RACC') and SYSFNC ('ACCX' ... 'WDTM') calls read are those of the output row,
+    !> known there (accelerations: all parts' [SI]; absent: those set_system_accelerations
+    !> gave last); those set before are restored after the call.
     subroutine call_user_request(entry, id, name, par, time_unit, time, q, u, declared, &
-            & declared_rates, result)
+            & declared_rates, result, accelerations)
         integer, intent(in) :: entry, id
         character(len=*), intent(in) :: name
         !> The constants of USER(r1, ..., rn)
@@ -936,9 +969,15 @@ contains
         integer, allocatable, intent(inout) :: declared(:)
         logical, intent(inout) :: declared_rates
         real(wp), intent(out) :: result(request_results)
+        real(wp), intent(in), optional :: accelerations(:)
         type(error_type), allocatable :: error
         character(len=:), allocatable :: label
+        real(wp), allocatable :: kept(:)
 
+        if (present(accelerations)) then
+            if (allocated(a_now)) kept = a_now
+            a_now = accelerations
+        end if
         label = routine_name_of(routine_reqsub)
         if (entry >= 1 .and. entry <= size(table)) label = force_routine_label(entry)
         if (.not. allocated(declared)) then
@@ -956,6 +995,7 @@ contains
             if (allocated(error)) then
                 result = ieee_value(0.0_wp, ieee_quiet_nan)
                 if (.not. allocated(pending)) call move_alloc(error, pending)
+                call restore_accelerations()
                 return
             end if
         end if
@@ -978,7 +1018,18 @@ contains
             result = ieee_value(0.0_wp, ieee_quiet_nan)
             if (.not. allocated(pending)) call move_alloc(error, pending)
         end if
+        call restore_accelerations()
     contains
+        !> The accelerations set before the call again (those given were for it alone).
+        subroutine restore_accelerations()
+            if (.not. present(accelerations)) return
+            if (allocated(kept)) then
+                a_now = kept
+            else
+                deallocate(a_now)
+            end if
+        end subroutine restore_accelerations
+
         subroutine request_problem(call_name, error)
             character(len=*), intent(in) :: call_name
             type(error_type), allocatable, intent(out) :: error
@@ -1350,7 +1401,8 @@ contains
     !> expression takes them (docs/datasets.md, "Measures of markers"), the accelerations
     !> ACCX, ACCY, ACCZ, ACCM, WDTX, WDTY, WDTZ, WDTM (rollcon_marker_acceleration) from the
     !> accelerations set_system_accelerations gave (the algebraic loop a force reading them
-    !> makes is solved by the equations: rollcon_equations, rollcon_dae), and DIF(id), DIF1(id)
+    !> makes is solved by the equations: rollcon_equations, rollcon_dae; a MOTSUB's read is
+    !> recorded for call_user_motion's refusal, ERRFLG clear), and DIF(id), DIF1(id)
     !> of a DIFF (IPAR(1) = id; NSIZE = 1) from set_system_diff_state's. ERRFLG is set, and
     !> VALUE 0, for a name rollcon does not know or a marker the model has not; a force
     !> measure (FX ... TM) and an element's force are refused.
@@ -1430,6 +1482,8 @@ contains
                         & named = [named, variables(k)%declared(m)]
                 end do
                 named_rates = named_rates .or. variables(k)%declared_rates
+                named_accelerations = named_accelerations &
+                    & .or. variables(k)%declared_accelerations
             end if
         end if
         value = variables(k)%value
@@ -1559,19 +1613,103 @@ contains
         a_now = a
     end subroutine set_system_accelerations
 
+    !> The accelerations the utilities answer from [SI] (set_system_accelerations'; zeros of
+    !> size n before any).
+    function system_accelerations(n) result(a)
+        integer, intent(in) :: n
+        real(wp) :: a(n)
+
+        a = 0.0_wp
+        if (allocated(a_now)) then
+            if (size(a_now) == n) a = a_now
+        end if
+    end function system_accelerations
+
     !> True when a force of the model is served by a routine whose initialisation call read
-    !> accelerations (its values then depend on the accelerations: an algebraic loop).
+    !> accelerations, or a VARSUB's did (variables_read_accelerations): the forces' values
+    !> then depend on the accelerations, an algebraic loop (a force routine's directly, an
+    !> expression's or routine's through VARVAL).
     pure logical function reads_accelerations(forces)
         type(applied_force_type), intent(in) :: forces(:)
         integer :: i
 
-        reads_accelerations = .false.
+        reads_accelerations = variables_read_accelerations()
+        if (reads_accelerations) return
         do i = 1, size(forces)
             if (forces(i)%profile /= profile_statement) cycle
             if (forces(i)%statement%routine == 0) cycle
             if (forces(i)%statement%declared_accelerations) reads_accelerations = .true.
         end do
     end function reads_accelerations
+
+    !> True when the initialisation call of a VARSUB of the model read accelerations.
+    pure logical function variables_read_accelerations() result(reads)
+        reads = .false.
+        if (.not. allocated(variables)) return
+        reads = any(variables%declared_accelerations)
+    end function variables_read_accelerations
+
+    !> "VARIABLE/3 (line 12), ...": the VARIABLEs whose VARSUBs read accelerations, for the
+    !> messages of the algebraic loop they make ("" for none).
+    function variables_reading_accelerations() result(names)
+        character(len=:), allocatable :: names
+        integer :: v
+
+        names = ""
+        if (.not. allocated(variables)) return
+        do v = 1, size(variables)
+            if (.not. variables(v)%declared_accelerations) cycle
+            if (len(names) > 0) names = names // ", "
+            names = names // variables(v)%name
+        end do
+    end function variables_reading_accelerations
+
+    !> The partials of every VARSUB's value in the accelerations a [SI] at (t, q, u, a):
+    !> dv_da(v, j) = d VALUE_v/d a(j) [dataset's units per m/s^2, rad/s^2], by central
+    !> differences (rollcon_central_differences) over the accelerations of the parts of the
+    !> markers its initialisation call named, for the VARSUBs whose initialisation call read
+    !> accelerations (the other rows 0); each call with DFLAG = .TRUE. and the shifted
+    !> accelerations answered to its SYSARY and SYSFNC calls, those set before restored after.
+    !> The values VARVAL reads are left as they were. A failed call leaves its entry 0 and its
+    !> error for take_user_force_error.
+    subroutine difference_variable_accelerations(time, q, u, a, dv_da)
+        real(wp), intent(in) :: time, q(:), u(:), a(:)
+        real(wp), intent(out) :: dv_da(:, :)
+        real(wp), allocatable :: kept(:), block(:, :)
+        integer, allocatable :: entries(:), parts(:)
+        integer :: v, k, c
+
+        dv_da = 0.0_wp
+        if (.not. allocated(variables)) return
+        if (allocated(a_now)) then
+            kept = a_now
+        else
+            allocate(kept(size(a)), source=0.0_wp)
+        end if
+        do v = 1, size(variables)
+            if (.not. variables(v)%declared_accelerations) cycle
+            parts = parts_of(variables(v)%declared)
+            entries = [((6*(parts(k) - 1) + c, c = 1, 6), k = 1, size(parts))]
+            if (size(entries) == 0) cycle
+            allocate(block(size(entries), 1), source=0.0_wp)
+            call central_differences(a, entries, accelerations_moved, block)
+            dv_da(v, entries) = block(:, 1)
+            deallocate(block)
+        end do
+        a_now = kept
+
+    contains
+
+        subroutine accelerations_moved(shifted, values, failed)
+            real(wp), intent(in) :: shifted(:)
+            real(wp), intent(out) :: values(:)
+            logical, intent(out) :: failed
+
+            a_now = shifted
+            call variable_call(variables(v), time, q, u, .true., values(1), failed)
+        end subroutine accelerations_moved
+
+    end subroutine difference_variable_accelerations
 
     !> difference_call at (t, q, u) with the accelerations a [SI] its SYSARY and SYSFNC calls
     !> read; the accelerations set before are restored after it.
@@ -1640,10 +1778,10 @@ contains
             call refuse(call_name // ": IPAR(1) must name a marker, got 0")
             return
         end if
-        if (is_acceleration(quantity) .and. .not. force_call) then
-            call refuse(call_name // ": an acceleration, which rollcon answers to a force " &
-                & // "routine alone (SFOSUB, VFOSUB, VTOSUB, GFOSUB: their algebraic loop is " &
-                & // "solved); a VARSUB, DIFSUB, MOTSUB or REQSUB may not read it")
+        if (is_acceleration(quantity) .and. motion_calling) then
+            ! a MOTSUB's call: recorded, and refused by call_user_motion (ADAMS's rule)
+            call note_reads(ids, .true., call_name, accelerations=.true.)
+            errflg = .false.
             return
         else if (is_acceleration(quantity)) then
             call note_reads(ids, .true., call_name, accelerations=.true.)

@@ -20,7 +20,7 @@ module rollcon_dae_form
     use rollcon_problem, only : problem_type
     use rollcon_error, only : fatal_error, stat_solver
     use rollcon_text, only : to_text
-    use rollcon_user_forces, only : take_user_force_error
+    use rollcon_user_forces, only : take_user_force_error, set_system_accelerations
     implicit none
     private
 
@@ -118,6 +118,10 @@ contains
             if (diffs%count() > 0) call problem%model%set_diff_state(y(m + 1:), &
                 & yp(m + 1:)*diffs%time_unit)
             call residual_of_dae(problem%eq, time, y(:m), yp(:m), residual(:m), error)
+            ! a DIFSUB reading accelerations reads IDA's u'
+            if (diffs%count() > 0) then
+                if (diffs%reads_accelerations()) call set_system_accelerations(yp(n + 1:2*n))
+            end if
             if (.not. allocated(error) .and. diffs%count() > 0) call diffs%residuals(time, &
                 & y(:n), y(n + 1:2*n), y(m + 1:), yp(m + 1:)*diffs%time_unit, residual(m + 1:))
             ! a DIFSUB that failed: its error, naming it
@@ -183,7 +187,9 @@ contains
     end function dae_sparse_jacobian
 
     !> The DIFFs' rows of the Newton matrix dF/dy + cj dF/dy' (rollcon_diff's exact partials):
-    !> row m + k by q, u (dG_k/dq, dG_k/du) and by x (dG_k/dx + cj T dG_k/dw, w = T x'),
+    !> row m + k by q, u (dG_k/dq, dG_k/du + cj dG_k/da for a DIFSUB reading the
+    !> accelerations, IDA's u': rollcon_diff's acceleration_partials) and by x (dG_k/dx + cj
+    !> T dG_k/dw, w = T x'),
     !> into the dense matrix or the compressed columns (dae_pattern keeps these entries). The
     !> momentum rows' partials in x (a force that reads DIF) are left out, as the expression
     !> forces' other partials are.
@@ -193,7 +199,7 @@ contains
         real(wp), intent(inout), optional :: dense(:, :)
         integer, intent(in), optional :: starts(:), rows(:)
         real(wp), intent(inout), optional :: values(:)
-        real(wp), allocatable :: g(:), g_q(:, :), g_u(:, :), g_x(:, :), g_w(:, :)
+        real(wp), allocatable :: g(:), g_q(:, :), g_u(:, :), g_x(:, :), g_w(:, :), g_a(:, :)
         integer :: n, m, nd, k, j
 
         n = self%problem%eq%n
@@ -201,8 +207,15 @@ contains
         associate (diffs => self%problem%model%diffs)
             nd = diffs%count()
             allocate(g(nd), g_q(nd, n), g_u(nd, n), g_x(nd, nd), g_w(nd, nd))
+            if (diffs%reads_accelerations()) call set_system_accelerations(yp(n + 1:2*n))
             call diffs%partials(time, y(:n), y(n + 1:2*n), y(m + 1:), &
                 & yp(m + 1:)*diffs%time_unit, g, g_q, g_u, g_x, g_w)
+            if (diffs%reads_accelerations()) then
+                allocate(g_a(nd, n))
+                call diffs%acceleration_partials(time, y(:n), y(n + 1:2*n), y(m + 1:), &
+                    & yp(m + 1:)*diffs%time_unit, yp(n + 1:2*n), g_a)
+                g_u = g_u + cj*g_a
+            end if
             g_x = g_x + cj*diffs%time_unit*g_w
             do k = 1, nd
                 do j = 1, n

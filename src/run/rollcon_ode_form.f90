@@ -14,6 +14,7 @@ module rollcon_ode_form
     use rollcon_dynamic_system, only : ode_system_type
     use rollcon_problem, only : problem_type
     use rollcon_lapack, only : factor_dense, solve_factored
+    use rollcon_user_forces, only : set_system_accelerations
     implicit none
     private
 
@@ -125,8 +126,11 @@ contains
                 call problem%diff_rates(time, y(:n), y(n + 1:2*n), error)
                 if (.not. allocated(error)) call problem%eq%ode_jacobian(time, y(:n), &
                     & y(n + 1:2*n), problem%settings%baumgarte(), matrix(:2*n, :2*n), error)
+                ! a DIFSUB reading accelerations reads those ode_jacobian solved for
+                if (.not. allocated(error) .and. diffs%reads_accelerations()) &
+                    & call set_system_accelerations(problem%eq%work%a)
                 if (.not. allocated(error)) call diff_rows(problem, time, y(:n), &
-                    & y(n + 1:2*n), matrix(2*n + 1:, :), error)
+                    & y(n + 1:2*n), matrix(n + 1:2*n, :2*n), matrix(2*n + 1:, :), error)
             end if
             ierr = problem%keep_failure(error)
         end associate
@@ -134,16 +138,19 @@ contains
 
     !> The DIFFs' rows of the ODE form's Newton matrix, d(w/T)/d(q, u, x) = -(dG/dw)^-1
     !> dG/d(q, u, x) / T at the rates w solved there (rollcon_diff: G(t, q, u, x, w) = 0
-    !> defines w; exact partials). The accelerations' partials in x (a force that reads DIF)
-    !> are left out of the matrix, as the expression forces' other partials are.
-    subroutine diff_rows(problem, time, q, u, rows, error)
+    !> defines w; exact partials). A DIFSUB reading accelerations adds dG/da da/d(q, u) to
+    !> dG/d(q, u) (its partials in a differenced, rollcon_diff's acceleration_partials;
+    !> da/d(q, u) the Newton matrix's acceleration rows, accelerations_rows: n x 2n). The
+    !> accelerations' partials in x (a force that reads DIF) are left out of the matrix, as
+    !> the expression forces' other partials are.
+    subroutine diff_rows(problem, time, q, u, accelerations_rows, rows, error)
         type(problem_type), intent(inout) :: problem
-        real(wp), intent(in) :: time, q(:), u(:)
+        real(wp), intent(in) :: time, q(:), u(:), accelerations_rows(:, :)
         !> nd x (2n + nd)
         real(wp), intent(out) :: rows(:, :)
         type(error_type), allocatable, intent(out) :: error
         real(wp), allocatable :: g(:), g_q(:, :), g_u(:, :), g_x(:, :), g_w(:, :), w(:), &
-            & right(:, :)
+            & right(:, :), g_a(:, :)
         integer, allocatable :: pivots(:)
         integer :: n, nd
 
@@ -160,6 +167,11 @@ contains
             right(:, :n) = g_q
             right(:, n + 1:2*n) = g_u
             right(:, 2*n + 1:) = g_x
+            if (diffs%reads_accelerations()) then
+                allocate(g_a(nd, n))
+                call diffs%acceleration_partials(time, q, u, diffs%x, w, problem%eq%work%a, g_a)
+                right(:, :2*n) = right(:, :2*n) + matmul(g_a, accelerations_rows)
+            end if
             call factor_dense(g_w, pivots, error)
             if (allocated(error)) return
             call solve_factored(g_w, pivots, right, error)

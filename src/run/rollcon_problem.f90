@@ -17,6 +17,7 @@ module rollcon_problem
     use rollcon_output_layout, only : coordinate_names
     use rollcon_model, only : model_type, served_by_model_ucosub, statement_ucon
     use rollcon_equations, only : equations_type
+    use rollcon_user_forces, only : set_system_accelerations
     use rollcon_run_settings, only : run_settings_type, drift_projection
     use rollcon_watch, only : watch_type, watch_slot_type, append_watch
     use rollcon_redundancy_watch, only : redundancy_watch_type
@@ -159,7 +160,10 @@ contains
     end subroutine add_own_watches
 
     !> Accelerations and multipliers at (t, q, u) into self%a and self%lambda, with the
-    !> settings' drift control.
+    !> settings' drift control. Where a DIFSUB reads accelerations, the DIFFs' rates are
+    !> solved again with the accelerations found (set for the utilities,
+    !> rollcon_user_forces' set_system_accelerations): a force reading such a DIFF's DIF1
+    !> reads its rate at the accelerations last found.
     subroutine accelerations(self, time, q, u, error)
         class(problem_type), intent(inout) :: self
         real(wp), intent(in) :: time, q(:), u(:)
@@ -169,6 +173,11 @@ contains
         if (allocated(error)) return
         call self%eq%accelerations(time, q, u, self%settings%baumgarte(), self%a, self%lambda, &
             & error)
+        if (allocated(error)) return
+        if (self%model%diffs%count() == 0) return
+        if (.not. self%model%diffs%reads_accelerations()) return
+        call set_system_accelerations(self%a)
+        call self%diff_rates(time, q, u, error)
     end subroutine accelerations
 
     !> The DIFFs' rates DIF1 at (t, q, u) and their state DIF last set (rollcon_diff's

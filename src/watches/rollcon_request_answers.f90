@@ -19,7 +19,9 @@
 !>   its columns diff<id>, diff<id>_dot, rollcon_diff_watch);
 !> - `REQUEST/id, FUNCTION=USER(r1, ...)`: `req<id>_f2, _f3, _f4, _f6, _f7, _f8`, its REQSUB's
 !>   RESULT(2:4) and RESULT(6:8) as ADAMS writes them (rollcon_system_routine_contract), the
-!>   routine called at each row through rollcon_user_forces (in the child process that runs it).
+!>   routine called at each row through rollcon_user_forces (in the child process that runs it),
+!>   its SYSARY('TACC'|'RACC') and SYSFNC('ACCX' ... 'WDTM') answered with the row's
+!>   accelerations.
 !>
 !> The force functions, as ADAMS defines them: an element acts between its markers I and J (a
 !> JOINT's or JPRIM's, a MOTION's, an SFORCE's, a VFORCE's or GFORCE's I and JFLOAT); its force
@@ -359,7 +361,7 @@ contains
                 case (answer_user)
                     call call_user_request(request%routine, request%id, request%name, &
                         & request%par, self%time_unit, time, q, u, request%declared, &
-                        & request%declared_rates, result)
+                        & request%declared_rates, result, accelerations=self%a)
                     values(n + 1:n + size(request_columns)) = result(request_columns)
                     n = n + size(request_columns)
                 case default

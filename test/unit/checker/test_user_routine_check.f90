@@ -53,7 +53,8 @@ contains
             & new_unittest("two-files-checked", test_two_files), &
             & new_unittest("motsub-checked", test_motsub), &
             & new_unittest("difsub-checked", test_difsub), &
-            & new_unittest("varval-at-probed-state", test_varval_probed)]
+            & new_unittest("varval-at-probed-state", test_varval_probed), &
+            & new_unittest("accelerations-read-checked", test_accelerations_read)]
     end subroutine collect_user_routine_check
 
     !> variable_stretch.f on variable.adm (declared types, no state, smooth, its SYSFNC call
@@ -324,6 +325,31 @@ contains
         call check(error, abs(abs(after - before) - 10.0_wp) <= jump_tolerance, "the jump " &
             & // "quoted is " // to_text(abs(after - before)) // ", not 10: " // findings)
     end subroutine test_varval_probed
+
+    !> accelerations_read.f's VARSUB, SFOSUB (reading the VARSUB's VARVAL) and DIFSUB, which
+    !> read accelerations (SYSFNC('ACCZ')), are clean on accelerations_read.adm, and its REQSUB
+    !> (SYSARY('TACC', 'RACC')) on request_accelerations.adm: the check answers their reads
+    !> (the accelerations last set) as a run does, where a refusal would be a finding at
+    !> every call; a MOTSUB reading TACC (faulty/motsub_accelerations.f) is one finding naming
+    !> MOTION/1 and ADAMS's rule.
+    subroutine test_accelerations_read(error)
+        type(error_type), allocatable, intent(out) :: error
+        character(len=:), allocatable :: findings
+        integer :: count
+
+        call expect_clean(folder // "accelerations_read.f", folder // "accelerations_read.adm", &
+            & error)
+        if (allocated(error)) return
+        call expect_clean(folder // "accelerations_read.f", folder &
+            & // "request_accelerations.adm", error)
+        if (allocated(error)) return
+        call check_file(folder // "faulty/motsub_accelerations.f", folder // "motion.adm", &
+            & findings, count, error)
+        if (allocated(error)) return
+        call check(error, count == 1 .and. count_of(findings, "motion.adm:17: MOTION/1") == 1 &
+            & .and. count_of(findings, "a MOTSUB may not call SYSFNC or SYSARY") == 1, &
+            & to_text(count) // " findings: " // findings)
+    end subroutine test_accelerations_read
 
     !> motion.adm's MOTSUB (motsub_sine.f) is clean; the same with a SAVEd counter that moves
     !> the acceleration (IORD = 2) by 1e-3 at each call is [hidden state] at every state,

@@ -59,6 +59,9 @@ contains
             & new_unittest("vtosub-returns-nan", test_vtosub_nan), &
             & new_unittest("sfosub-vfosub-virtual-mass", test_virtual_mass), &
             & new_unittest("vtosub-virtual-inertia", test_virtual_inertia), &
+            & new_unittest("varsub-difsub-read-accelerations", test_accelerations_read), &
+            & new_unittest("reqsub-reads-accelerations", test_reqsub_accelerations), &
+            & new_unittest("motsub-reads-accelerations", test_motsub_accelerations), &
             & new_unittest("reqsub-as-expressions", test_reqsub), &
             & new_unittest("reqsub-returns-nan", test_reqsub_nan), &
             & new_unittest("reqsub-missing", test_reqsub_missing), &
@@ -182,6 +185,132 @@ contains
         end do
         call compare_twins("virtual_inertia", ["virtual_inertia.f"], error)
     end subroutine test_virtual_inertia
+
+    !> accelerations_read.adm: VARIABLE/3 = 1.5 ACCZ(20) and VARIABLE/5 = 0.5 ACCZ(30), served by
+    !> accelerations_read.f's VARSUB, read by SFORCE/3's expression (-VARVAL(3)) and by
+    !> SFORCE/4's SFOSUB (SYSFNC('VARVAL')): virtual masses on parts of mass 2 and 1 falling
+    !> under g = 9.81, so part 2 falls at Z'' = -2 g/3.5 and part 3 at -g/1.5, on IDA (the
+    !> VARSUB reads the residual's u') and CVODE (the ODE form's Newton iteration on the
+    !> accelerations), and the VARIABLEs' columns are 1.5 and 0.5 times those; DIFF/6
+    !> (explicit) and DIFF/7 (IMPLICIT), served by its DIFSUB, integrate ACCZ(20) and
+    !> ACCZ(30) from 0: -2 g t/3.5 and -g t/1.5 (and their rates the accelerations); and the
+    !> rows of part 2 are those of accelerations_read_expressions.adm (the masses added). On
+    !> CVODE the first solve starts from zero accelerations: with the VARSUBs' partials left
+    !> out of the loop's matrix its Newton iteration would contract by 0.75 (part 2) and 0.5
+    !> (part 3) a step, and 20 steps would stop the run unsettled.
+    !> Tolerances: the parts' closed forms to twin_tolerance, as test_virtual_mass (measured:
+    !> 2e-15 on IDA, 7e-8 on CVODE; the VARIABLEs read as 0 move part 2 by 1.2 m); the
+    !> VARIABLEs and DIFFs, a constant and a line the integrators reproduce to their
+    !> nonlinear solves' residuals, to 1e-8 (measured 2e-15 on both; a DIFF reading the other
+    !> part's acceleration is off by 0.9 t, one reading zero by 5.6 t, and a virtual mass 1 %
+    !> off moves var3 by 5e-2).
+    subroutine test_accelerations_read(error)
+        type(error_type), allocatable, intent(out) :: error
+        real(wp), parameter :: g = 9.81_wp, tol = 1.0e-8_wp
+        character(len=*), parameter :: names(6) = [character(len=9) :: "var3", "var5", &
+            & "diff6", "diff6_dot", "diff7", "diff7_dot"]
+        type(history_type) :: history
+        real(wp), allocatable :: time(:), expected(:)
+        real(wp) :: worst
+        integer :: formulations(2), f, k, c
+
+        formulations = [formulation_ida, formulation_cvode]
+        do f = 1, 2
+            call run_user(folder // "accelerations_read.adm", ["accelerations_read.f"], &
+                & 10.0_wp, history, error, formulation=formulations(f))
+            if (allocated(error)) return
+            call closed_form(history, 1, coord_z, 5.0_wp, 0.5_wp, -2.0_wp*g/3.5_wp, error)
+            if (allocated(error)) return
+            call closed_form(history, 2, coord_z, 5.0_wp, 0.0_wp, -g/1.5_wp, error)
+            if (allocated(error)) return
+            time = history%column(1)
+            do k = 1, size(names)
+                select case (k)
+                case (1)
+                    expected = [(-1.5_wp*2.0_wp*g/3.5_wp, c = 1, size(time))]
+                case (2)
+                    expected = [(-0.5_wp*g/1.5_wp, c = 1, size(time))]
+                case (3)
+                    expected = -2.0_wp*g/3.5_wp*time
+                case (4)
+                    expected = [(-2.0_wp*g/3.5_wp, c = 1, size(time))]
+                case (5)
+                    expected = -g/1.5_wp*time
+                case default
+                    expected = [(-g/1.5_wp, c = 1, size(time))]
+                end select
+                c = history%layout%column(trim(names(k)))
+                if (c == 0) then
+                    call fatal_error(error, "no column " // trim(names(k)))
+                    return
+                end if
+                worst = maxval(abs(history%rows(c, :history%count) - expected))
+                call check(error, worst <= tol, "accelerations_read (formulation " &
+                    & // to_text(formulations(f)) // "): " // trim(names(k)) // " differs " &
+                    & // "from its closed form by " // to_text(worst))
+                if (allocated(error)) return
+            end do
+        end do
+        call compare_twins("accelerations_read", ["accelerations_read.f"], error)
+    end subroutine test_accelerations_read
+
+    !> request_accelerations.adm: REQUEST/7 served by accelerations_read.f's REQSUB (marker
+    !> 21's TACC and RACC through SYSARY) and REQUEST/8 the same six accelerations written as
+    !> ACCX ... WDTZ, in one run on IDA and on CVODE: at every row the REQSUB's columns are the
+    !> expressions'. Both are read at the row from the same accelerations with the same
+    !> procedure (rollcon_marker_acceleration) and the dataset's units are 1, so they agree to
+    !> the last bit but for rounding: 1e-13 on values up to 9. Each column moves by more than
+    !> 1e-2 over the run (a constant could not tell a wrong component); accelerations read as
+    !> zero, or another marker's, differ by 0.8 or more.
+    subroutine test_reqsub_accelerations(error)
+        type(error_type), allocatable, intent(out) :: error
+        character(len=*), parameter :: columns(6) = [character(len=2) :: "f2", "f3", "f4", &
+            & "f6", "f7", "f8"]
+        type(history_type) :: history
+        real(wp) :: largest
+        integer :: formulations(2), f, k, user, expression
+
+        formulations = [formulation_ida, formulation_cvode]
+        do f = 1, 2
+            call run_user(folder // "request_accelerations.adm", ["accelerations_read.f"], &
+                & 10.0_wp, history, error, formulation=formulations(f))
+            if (allocated(error)) return
+            do k = 1, size(columns)
+                user = history%layout%column("req7_" // columns(k))
+                expression = history%layout%column("req8_" // columns(k))
+                if (user == 0 .or. expression == 0) then
+                    call fatal_error(error, "no column req7_" // columns(k) // " or req8_" &
+                        & // columns(k))
+                    return
+                end if
+                largest = maxval(abs(history%rows(user, :history%count) &
+                    & - history%rows(expression, :history%count)))
+                call check(error, largest <= 1.0e-13_wp, "formulation " &
+                    & // to_text(formulations(f)) // ": req7_" // columns(k) // ", the " &
+                    & // "REQSUB's, differs from the expression's by " // to_text(largest))
+                if (allocated(error)) return
+                call check(error, maxval(history%rows(user, :history%count)) &
+                    & - minval(history%rows(user, :history%count)) > 1.0e-2_wp, "req7_" &
+                    & // columns(k) // " hardly moves over the run")
+                if (allocated(error)) return
+            end do
+        end do
+    end subroutine test_reqsub_accelerations
+
+    !> A MOTSUB reading an acceleration (SYSARY('TACC')) is refused before the run, naming the
+    !> MOTION, its line, the markers and ADAMS's rule (a MOTSUB calls no SYSFNC or SYSARY).
+    subroutine test_motsub_accelerations(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(history_type) :: history
+        type(error_type), allocatable :: run_error
+
+        call run_user(folder // "motion.adm", ["faulty/motsub_accelerations.f"], 10.0_wp, &
+            & history, run_error)
+        call expect_message(run_error, [character(len=80) :: &
+            & "motion.adm:17: MOTION/1: its MOTSUB of", &
+            & "read accelerations through SYSFNC or SYSARY (markers 31)", &
+            & "a MOTSUB may not call SYSFNC or SYSARY (ADAMS's rule"], error)
+    end subroutine test_motsub_accelerations
 
     !> Coordinate c of the p-th moving part at every row against x0 + v0 t + a t^2/2, and its
     !> rate against v0 + a t, within twin_tolerance (test_virtual_mass).
