@@ -1,0 +1,18 @@
+C     rollcon test routine (suite force-measures): a pivot friction proportional to the
+C     joint's reaction, -PAR(1) FM(20, 10) WZ(20, 10), both read through SYSFNC.
+      SUBROUTINE SFOSUB(ID, TIME, PAR, NPAR, DFLAG, IFLAG, RESULT)
+      IMPLICIT NONE
+      INTEGER ID, NPAR
+      DOUBLE PRECISION TIME, PAR(*), RESULT(1)
+      LOGICAL DFLAG, IFLAG
+      INTEGER IPAR(2)
+      DOUBLE PRECISION REACTION, RATE
+      LOGICAL ERRFLG
+      IPAR(1) = 20
+      IPAR(2) = 10
+      CALL SYSFNC('FM', IPAR, 2, REACTION, ERRFLG)
+      CALL ERRMES(ERRFLG, 'SYSFNC FM failed', ID, 'STOP')
+      CALL SYSFNC('WZ', IPAR, 2, RATE, ERRFLG)
+      CALL ERRMES(ERRFLG, 'SYSFNC WZ failed', ID, 'STOP')
+      RESULT(1) = -PAR(1)*REACTION*RATE
+      END
