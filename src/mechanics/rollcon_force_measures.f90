@@ -15,8 +15,9 @@
 !>   at the state, or from the values its routine gave at this state (rollcon_user_forces
 !>   calls the routines that read force measures after the others).
 !>
-!> A force measure that would sum the force of a routine that reads force measures itself
-!> (its own included) is a cycle of forces this does not iterate: refused, naming both
+!> A force routine's force measure that would sum the force of a routine that reads force
+!> measures itself (its own included) is a cycle of forces this does not iterate (a REQSUB's,
+!> read at an output row once every force is known, makes none): refused, naming both
 !> statements, unless that force's share of what is read is zero by its kind (a rotational
 !> SFORCE's or a VTORQUE's force, a translational SFORCE's torque, a VFORCE's torque at its
 !> I), which is left out. A MOTION's force is not summed (SYSFNC('MOTION') is refused).
@@ -49,11 +50,16 @@ module rollcon_force_measures
 contains
 
     !> Read the force measures from model (a target that outlives its use: the equations'
-    !> own) and answer SYSFNC's force measures through rollcon_user_forces' hook.
+    !> own) and answer SYSFNC's force measures through rollcon_user_forces' hook; the hook
+    !> set again for the same model costs nothing.
     subroutine set_force_measure_model(model)
         type(model_type), intent(in), target :: model
         procedure(force_measure_interface), pointer :: hook
 
+        if (associated(measured, model)) then
+            ! the same model: its sites as they are (a REQSUB's rows set it at every row)
+            if (allocated(sites)) return
+        end if
         measured => model
         sites = reaction_sites(model)
         hook => answer_force_measure
@@ -132,7 +138,8 @@ contains
             logical, intent(in) :: at_j
 
             associate (force => measured%forces(f)%statement, other => measured%forces(f)%name)
-                if (force%routine > 0 .and. force%declared_forces) then
+                ! (a REQSUB, caller "", reads every force at its row: no cycle)
+                if (len(caller) > 0 .and. force%routine > 0 .and. force%declared_forces) then
                     if (other == caller .and. zero_share(f, at_j)) return
                     problem = "it sums the force of " // other // ", whose routine reads " &
                         & // "force measures too: a cycle of forces reading each other, which " &
@@ -219,7 +226,8 @@ contains
                     if (measured%forces(f)%statement%id /= ids(1)) cycle
                     if (statement_word(measured%forces(f)%name) /= wanted) cycle
                     associate (force => measured%forces(f)%statement)
-                        if (force%routine > 0 .and. force%declared_forces) then
+                        if (len(caller) > 0 .and. force%routine > 0 .and. &
+                            & force%declared_forces) then
                             problem = "the force of " // measured%forces(f)%name // ", whose " &
                                 & // "routine reads force measures: a cycle of forces " &
                                 & // "reading each other, which rollcon does not solve"

@@ -5,7 +5,10 @@
 !> "User force routines"), and the accelerations from those set_system_accelerations gave last
 !> (the equations' iterate of the algebraic loop a force reading them makes, or IDA's u':
 !> rollcon_equations' loop_accelerations, rollcon_dae; docs/datasets.md, "Accelerations read
-!> by a force routine").
+!> by a force routine"), and the force measures (FX ... TM, an element's force JOINT ... SPDP)
+!> from the multipliers set_system_constraint_forces gave last (the same loop's iterate, IDA's
+!> unknowns), summed by rollcon_force_measures through a hook (force_measure; docs/datasets.md,
+!> "Force measures read by a user's routine").
 !>
 !> ADAMS's utilities take no handle, so what they read is module state, as
 !> rollcon_adams_runtime's: the table of routines the model may use (register_force_routine:
@@ -1473,9 +1476,9 @@ contains
     !> ACCX, ACCY, ACCZ, ACCM, WDTX, WDTY, WDTZ, WDTM (rollcon_marker_acceleration) from the
     !> accelerations set_system_accelerations gave (the algebraic loop a force reading them
     !> makes is solved by the equations: rollcon_equations, rollcon_dae), and DIF(id), DIF1(id)
-    !> of a DIFF (IPAR(1) = id; NSIZE = 1) from set_system_diff_state's. ERRFLG is set, and
-    !> VALUE 0, for a name rollcon does not know or a marker the model has not; a force
-    !> measure (FX ... TM) and an element's force are refused.
+    !> of a DIFF (IPAR(1) = id; NSIZE = 1) from set_system_diff_state's, and the force
+    !> measures FX ... TM and an element's force JOINT ... SPDP (force_measure). ERRFLG is
+    !> set, and VALUE 0, for a name rollcon does not know or a marker the model has not.
     subroutine system_function(name, ipar, value, errflg)
         character(len=*), intent(in) :: name
         integer, intent(in) :: ipar(:)
@@ -1553,7 +1556,8 @@ contains
         end if
         if (.not. associated(measure_hook) .or. .not. allocated(c_now)) then
             call refuse(call_name // ": a force, which rollcon answers once the model's " &
-                & // "equations are set up (a run, or rollcon check's probes); here they are not")
+                & // "equations are set up (a force routine in a run and in rollcon check's " &
+                & // "probes, a REQSUB at a run's output rows); here they are not")
             return
         end if
         if (element) then

@@ -61,7 +61,7 @@ module rollcon_request_answers
     use rollcon_measures, only : measure_value, expression_input_values, input_markers, &
         & count_turns
     use rollcon_marker_acceleration, only : acceleration_measure
-    use rollcon_force_measures, only : force_wrench
+    use rollcon_force_measures, only : force_wrench, set_force_measure_model
     use rollcon_reactions, only : reaction_site_type, reaction_sites, site_wrench, &
         & swapped_wrench, body_moment
     use rollcon_equations, only : equations_type
@@ -357,6 +357,7 @@ contains
                     n = n + 6
                 case (answer_user)
                     ! the reactions its SYSFNC force measures read: the row's
+                    call set_force_measure_model(eq%model)
                     call set_system_constraint_forces(eq%c, lambda)
                     call call_user_request(request%routine, request%id, request%name, &
                         & request%par, self%time_unit, time, q, u, request%declared, &

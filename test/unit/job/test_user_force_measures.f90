@@ -49,6 +49,7 @@ contains
             & new_unittest("element-force-read-ida", test_force_read_ida), &
             & new_unittest("element-force-read-cvode", test_force_read_cvode), &
             & new_unittest("force-reading-itself-refused", test_cycle_refused), &
+            & new_unittest("reqsub-force-measures", test_reqsub), &
             & new_unittest("check-joint-friction", test_check_friction)]
     end subroutine collect_user_force_measures
 
@@ -116,6 +117,41 @@ contains
             if (allocated(error)) return
         end do
     end subroutine test_cycle_refused
+
+    !> joint_friction.adm's REQUEST/5, its REQSUB reading FM(20, 10), FX(20, 10, 22) and
+    !> TZ(20, 10) through SYSFNC at each output row, gives REQUEST/6's columns (the same
+    !> functions as expressions, rollcon_request_answers) at every row to 1e-12 of max(1,
+    !> |value|): both sum the same reaction (the row's multipliers) and the same friction
+    !> torque, in another order, with the dataset's unit scalings of 1. FX in ground's axes
+    !> instead of marker 22's differs by some 10 N, TZ without the friction by its size,
+    !> which the test requires to exceed 0.1 N m somewhere.
+    subroutine test_reqsub(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(history_type) :: history
+        real(wp), allocatable :: read(:), written(:)
+        real(wp) :: largest
+        integer :: k
+
+        call run_user(folder // "joint_friction.adm", "joint_friction.f", formulation_ida, &
+            & history, error)
+        if (allocated(error)) return
+        do k = 2, 4
+            if (history%layout%column("req5_f" // to_text(k)) == 0 .or. &
+                & history%layout%column("req6_f" // to_text(k)) == 0) then
+                call fatal_error(error, "no column req5_f" // to_text(k) // " or req6_f" &
+                    & // to_text(k))
+                return
+            end if
+            read = history%column(history%layout%column("req5_f" // to_text(k)))
+            written = history%column(history%layout%column("req6_f" // to_text(k)))
+            largest = maxval(abs(read - written)/max(1.0_wp, abs(written)))
+            call check(error, largest <= 1.0e-12_wp, "req5_f" // to_text(k) // " differs " &
+                & // "from req6_f" // to_text(k) // " by " // to_text(largest) // " (relative)")
+            if (allocated(error)) return
+        end do
+        call check(error, maxval(abs(written)) > 0.1_wp, "TZ(20, 10) is at most " &
+            & // to_text(maxval(abs(written))) // " N m: the friction torque is not summed")
+    end subroutine test_reqsub
 
     !> `rollcon check joint_friction.f --model joint_friction.adm`: no finding. Its FM is
     !> answered at every probed state (the equations solved there): a refused SYSFNC would be
