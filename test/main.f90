@@ -67,6 +67,7 @@ program tester
     use test_sweep_mpi, only : collect_sweep_mpi
     use test_run_apart, only : collect_run_apart
     use test_user_forces, only : collect_user_forces
+    use test_user_force_measures, only : collect_user_force_measures
     use test_provenance, only : collect_provenance
     use test_ucosub_units, only : collect_ucosub_units
     use test_adm_physical, only : collect_adm_physical
@@ -194,6 +195,7 @@ program tester
         & new_testsuite("sweep-mpi", collect_sweep_mpi), &
         & new_testsuite("run-apart", collect_run_apart), &
         & new_testsuite("user-forces", collect_user_forces), &
+        & new_testsuite("force-measures", collect_user_force_measures), &
         & new_testsuite("provenance", collect_provenance), &
         & new_testsuite("ucosub-units", collect_ucosub_units), &
         & new_testsuite("adm-physical", collect_adm_physical), &

@@ -29,7 +29,8 @@ module rollcon_adm_build
     use rollcon_force, only : applied_force_type, profile_statement, force_couplings
     use rollcon_user_forces, only : find_force_routine, routine_kind_of, set_system_markers, &
         & declare_user_force, evaluate_user_forces, take_user_force_error, set_system_splines, &
-        & user_variable_type, set_user_variables, declare_user_variables, evaluate_user_variables
+        & user_variable_type, set_user_variables, declare_user_variables, evaluate_user_variables, &
+        & set_system_constraint_forces
     use rollcon_user_forces, only : user_motion_type, set_user_motions
     use rollcon_system_routine_contract, only : routine_varsub, variable_routine_name, &
         & routine_difsub, diff_routine_name
@@ -233,9 +234,15 @@ contains
         do i = 1, size(adm%markers)
             markers(i) = adm_marker(adm, adm%markers(i)%id)
         end do
-        call set_system_markers(markers, adm%units%length, adm%units%time)
+        call set_system_markers(markers, adm%units%length, adm%units%time, adm%units%force)
         call give_splines(adm)
         call give_user_data(adm)
+        ! the constraint rows at the start, which SYSFNC's force measures read a JOINT's
+        ! reaction from in the initialisation calls (with no multipliers yet: the equations
+        ! set them at every evaluation)
+        call problem%eq%constraint_matrix_at(0.0_wp, q0, u0, error)
+        if (allocated(error)) return
+        call set_system_constraint_forces(problem%eq%c, [(0.0_wp, i = 1, problem%eq%nc)])
         ! the VARSUBs first: a force may read their values
         if (user_variables) then
             call declare_user_variables(0.0_wp, q0, u0, error)
@@ -531,7 +538,7 @@ contains
         do k = 1, size(adm%markers)
             markers(k) = adm_marker(adm, adm%markers(k)%id)
         end do
-        call set_system_markers(markers, adm%units%length, adm%units%time)
+        call set_system_markers(markers, adm%units%length, adm%units%time, adm%units%force)
     end subroutine add_user_motions
 
     !> rollcon_motion's code of a MOTION's form as the reader gives it (rollcon_adm_motions).

@@ -17,7 +17,9 @@
 !>   jump found by halving the way from the start to each state: the change across a step
 !>   that does not shrink as the step does), and the SYSFNC and SYSARY calls must name only
 !>   what the initialisation call named. Each finding names the statement (file and line),
-!>   the routine, the call and the state.
+!>   the routine, the call and the state. A force routine that reads SYSFNC's force measures
+!>   (a JOINT's reaction, another force) is called with the equations solved at each probed
+!>   state (its multipliers and forces there are what it reads).
 module rollcon_user_routine_check
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type, stat_ucon
@@ -500,16 +502,33 @@ contains
         end associate
     end function force_label
 
-    !> The force's values (SI; force then torque) as its routine gives them.
+    !> The force's values (SI; force then torque) as its routine gives them. A routine that
+    !> reads force measures (a JOINT's reaction, another force) is called with the model's
+    !> equations solved at the probed state first (rollcon_equations' accelerations: the
+    !> multipliers there, and every force at that state, are what its SYSFNC calls read).
     subroutine force_values(problem, k, time, q, u, values, error)
         type(problem_type), intent(inout), target :: problem
         integer, intent(in) :: k
         real(wp), intent(in) :: time, q(:), u(:)
         real(wp), allocatable, intent(out) :: values(:)
         type(error_type), allocatable, intent(out) :: error
+        real(wp), allocatable :: a(:), lambda(:)
 
         ! the VARSUBs at the probed state: SYSFNC('VARVAL') reads their values there
         call evaluate_user_variables(time, q, u)
+        if (problem%model%forces(k)%statement%declared_forces) then
+            allocate(a(problem%eq%n), lambda(problem%eq%nc))
+            ! the loop's solve from the same start at every probe: the same inputs, the same
+            ! multipliers to the last bit
+            if (allocated(problem%eq%work%loop_a)) problem%eq%work%loop_a = 0.0_wp
+            if (allocated(problem%eq%work%loop_lambda)) problem%eq%work%loop_lambda = 0.0_wp
+            call problem%eq%accelerations(time, q, u, 0.0_wp, a, lambda, error)
+            if (allocated(error)) then
+                error%message = "the equations at the probed state, whose constraint forces " &
+                    & // "its SYSFNC force measures read: " // error%message
+                return
+            end if
+        end if
         call evaluate_user_forces(problem%model%forces(k:k), time, q, u)
         values = problem%model%forces(k)%statement%user_values
         call take_user_force_error(error)

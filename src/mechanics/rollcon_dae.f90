@@ -12,12 +12,15 @@
 !> ... 'WDTM')), or a VARSUB a force reads, reads u' itself: f = f(q, u, u', t) makes no
 !> loop here, as in ADAMS's DAE form, and its partials in u' (differenced over what the
 !> routine declared, rollcon_user_force_partials; rollcon_equations' acceleration_partials)
-!> enter the Newton matrix scaled by cj, beside M's. A row
+!> enter the Newton matrix scaled by cj, beside M's. Likewise a force whose routine reads a
+!> constraint's reaction (SYSFNC's force measures, rollcon_force_measures) reads the
+!> multipliers lambda among the unknowns y: its partials in them (differenced over the rows
+!> it declared) enter the momentum rows' lambda columns beside -C^T. A row
 !> set aside as redundant (rollcon_redundancy) keeps its place: its equation is lambda_k = 0
 !> (and mu_h = 0 for a position UCON's), and its multipliers appear nowhere else.
 module rollcon_dae
     use rollcon_user_forces, only : take_user_force_error, set_system_accelerations, &
-        & reads_accelerations
+        & reads_accelerations, reads_constraint_forces, set_system_constraint_forces
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type, fatal_error
     use rollcon_text, only : to_text
@@ -54,10 +57,14 @@ contains
         real(wp), intent(out) :: r(:)
         type(error_type), allocatable, intent(out) :: error
         integer :: n, nc, needs, k, h, j, i0, jj
-        logical :: aside, loop
+        logical :: aside, loop, multipliers
 
         loop = .false.
-        if (allocated(eq%model%forces)) loop = reads_accelerations(eq%model%forces)
+        multipliers = .false.
+        if (allocated(eq%model%forces)) then
+            loop = reads_accelerations(eq%model%forces)
+            multipliers = reads_constraint_forces(eq%model%forces)
+        end if
         n = eq%n
         nc = eq%nc
         needs = need_value + need_first
@@ -67,8 +74,10 @@ contains
             & bl => eq%blocks)
             call cs%evaluate(eq%model, time, q, u, needs, error)
             if (allocated(error)) return
-            ! a user's force routine that reads accelerations reads IDA's u' (no loop to solve)
+            ! a user's force routine that reads accelerations reads IDA's u' (no loop to solve),
+            ! one that reads a constraint's reaction the unknowns' lambda
             if (loop) call set_system_accelerations(up)
+            if (multipliers) call set_reactions(eq, lambda)
             call eq%assemble(time, q, u)
             call take_user_force_error(error)
             if (allocated(error)) return
@@ -155,11 +164,15 @@ contains
         real(wp), intent(inout), optional :: jac(:, :)
         integer, intent(in), optional :: starts(:), rows(:)
         real(wp), intent(inout), optional :: values(:)
-        logical :: aside, dense, loop
+        logical :: aside, dense, loop, multipliers
         integer :: n, nc, k, h, i, j, row, ii, jj, i0, outside(2)
 
         loop = .false.
-        if (allocated(eq%model%forces)) loop = reads_accelerations(eq%model%forces)
+        multipliers = .false.
+        if (allocated(eq%model%forces)) then
+            loop = reads_accelerations(eq%model%forces)
+            multipliers = reads_constraint_forces(eq%model%forces)
+        end if
         n = eq%n
         nc = eq%nc
         dense = present(jac)
@@ -171,6 +184,7 @@ contains
                 & + need_time, error)
             if (allocated(error)) return
             if (loop) call set_system_accelerations(up)
+            if (multipliers) call set_reactions(eq, lambda)
             call eq%assemble(time, q, u)
             call eq%constraint_rows(u, 0.0_wp)  ! the DAE form keeps F itself: no Baumgarte terms
             if (eq%redundancy%set_aside > 0) then
@@ -187,6 +201,11 @@ contains
             ! IDA's u'), which enter scaled by cj as M does
             if (loop) then
                 call eq%acceleration_partials(time, q, u, up, error)
+                if (allocated(error)) return
+            end if
+            ! the partials in lambda of the forces whose routines read a constraint's reaction
+            if (multipliers) then
+                call eq%multiplier_partials(time, q, u, lambda, error)
                 if (allocated(error)) return
             end if
             do j = 1, n
@@ -246,6 +265,14 @@ contains
                         j = at(jj)
                         call put(n + j, row, -eq%c(k, j))
                     end do
+                    ! a force reading this row's reaction: its partials in lambda_k (on the
+                    ! parts it loads; the DAE form's pattern keeps them)
+                    if (multipliers) then
+                        do i = 1, n
+                            if (eq%work%dm_dlambda(i, k) /= 0.0_wp) &
+                                & call subtract(n + i, row, -eq%work%dm_dlambda(i, k))
+                        end do
+                    end if
                     if (h > 0) then
                         ! mu_h G_h's partials and G_h u's
                         do jj = 1, size(at)
@@ -346,5 +373,20 @@ contains
             end do
         end subroutine copy_coupling
     end subroutine write_jacobian
+
+    !> The constraint rows and multipliers a force routine's SYSFNC force measures read (the
+    !> constraints evaluated at the state before): the unknowns' lambda, a row set aside
+    !> carrying none.
+    subroutine set_reactions(eq, lambda)
+        type(equations_type), intent(inout) :: eq
+        real(wp), intent(in) :: lambda(:)
+
+        call eq%constraint_matrix()
+        if (eq%redundancy%set_aside > 0) then
+            call set_system_constraint_forces(eq%c, merge(lambda, 0.0_wp, eq%redundancy%active))
+        else
+            call set_system_constraint_forces(eq%c, lambda)
+        end if
+    end subroutine set_reactions
 
 end module rollcon_dae

@@ -17,12 +17,15 @@ module rollcon_equations
     use rollcon_force, only : force_and_moment, add_force_partials, force_couplings, &
         & add_expression_partials, profile_statement
     use rollcon_user_force_partials, only : add_user_force_partials, &
-        & add_user_force_acceleration_partials, add_variable_acceleration_partials
+        & add_user_force_acceleration_partials, add_variable_acceleration_partials, &
+        & add_user_force_multiplier_partials
     use rollcon_user_forces, only : evaluate_user_forces, take_user_force_error, &
         & evaluate_user_variables, difference_user_variables, clear_user_variable_partials, &
         & set_system_diff_state, set_system_accelerations, reads_accelerations, &
         & variables_read_accelerations, variables_reading_accelerations, &
-        & difference_variable_accelerations, user_variable_list, user_variable_type
+        & difference_variable_accelerations, user_variable_list, user_variable_type, &
+        & has_user_forces, reads_constraint_forces, set_system_constraint_forces
+    use rollcon_force_measures, only : set_force_measure_model
     use rollcon_lapack, only : factor_dense, solve_factored
     use rollcon_constraints, only : constraint_state_type, local_dot, need_value, need_first, &
         & need_second, need_time
@@ -102,6 +105,8 @@ module rollcon_equations
         procedure :: friction_coupling
         procedure :: resistance_coupling
         procedure :: acceleration_partials
+        procedure :: multiplier_partials
+        procedure :: reads_loop
         procedure :: held_coupling
     end type equations_type
 
@@ -130,10 +135,23 @@ contains
         allocate(self%resistance_a(self%n), self%resistance_lambda(self%nc), source=0.0_wp)
         if (allocated(model%forces)) then
             self%couplings = force_couplings(model%forces)
+            ! the force measures a user's routine reads through SYSFNC are this model's
+            if (has_user_forces(model%forces)) call set_force_measure_model(model)
         else
             allocate(self%couplings(2, 0))
         end if
     end subroutine init
+
+    !> A user's force routine reads what the equations solve for (accelerations, or a
+    !> constraint's reaction): the algebraic loop of loop_accelerations.
+    logical function reads_loop(self)
+        class(equations_type), intent(in) :: self
+
+        reads_loop = .false.
+        if (.not. allocated(self%model%forces)) return
+        reads_loop = reads_accelerations(self%model%forces) &
+            & .or. reads_constraint_forces(self%model%forces)
+    end function reads_loop
 
     !> Choose the rows to set aside at (t, q, u) (rollcon_redundancy's choose: every block's
     !> rank from the tolerance) and say which in the user's words (redundancy%words): leaves C
@@ -359,11 +377,9 @@ contains
         end if
         call self%constraints%evaluate(self%model, time, q, u, needs, error)
         if (allocated(error)) return
-        if (allocated(self%model%forces)) then
-            if (reads_accelerations(self%model%forces)) then
-                call loop_accelerations(self, time, q, u, baumgarte, a, lambda, error)
-                return
-            end if
+        if (self%reads_loop()) then
+            call loop_accelerations(self, time, q, u, baumgarte, a, lambda, error)
+            return
         end if
         call self%assemble(time, q, u)
         call take_user_force_error(error)
@@ -447,18 +463,22 @@ contains
     end subroutine resistance_coupling
     !> The accelerations and multipliers of a model where a user's force routine reads
     !> accelerations (SYSARY('TACC'|'RACC'), SYSFNC('ACCX' ... 'WDTM')), or a VARSUB does
-    !> (a force reading its VARVAL reads them through it): the algebraic loop
-    !> M a - f(q, u, a, t) - C^T lambda = 0, C a = gamma, solved by Newton's method on (a,
-    !> lambda) as ADAMS solves it, from the accelerations the routines read last. Each
-    !> iteration evaluates the forces at the iterate a_k (rollcon_user_forces'
-    !> set_system_accelerations), their partials in a by central differences over what each
-    !> routine declared (rollcon_user_force_partials; the first iteration's serve every one),
-    !> and solves
+    !> (a force reading its VARVAL reads them through it), or a constraint's reaction
+    !> (SYSFNC's force measures summing a JOINT's or JPRIM's, rollcon_force_measures):
+    !> the algebraic loop M a - f(q, u, a, lambda, t) - C^T lambda = 0, C a = gamma, solved by
+    !> Newton's method on (a, lambda) as ADAMS solves it, from the accelerations and
+    !> multipliers the routines read last. Each iteration evaluates the forces at the iterate
+    !> (a_k, lambda_k) (rollcon_user_forces' set_system_accelerations,
+    !> set_system_constraint_forces), their partials in a and lambda by central differences
+    !> over what each routine declared (rollcon_user_force_partials; the first iteration's
+    !> serve every one), and solves
     !>
-    !>     [M + dm/da, -C^T; C, 0] (a, lambda) = (f(a_k) + dm/da a_k, gamma)
+    !>     [M + dm/da, -C^T + dm/dlambda; C, 0] (a, lambda)
+    !>         = (f(a_k, lambda_k) + dm/da a_k + dm/dlambda lambda_k, gamma)
     !>
     !> densely (LU, LAPACK; a row set aside: lambda_k = 0). Converged when no acceleration
-    !> moved by more than 1e-10 max(|a|_inf, 1) [SI]: the partials' relative error is about
+    !> moved by more than 1e-10 max(|a|_inf, 1) [SI] and no multiplier by more than 1e-10
+    !> max(|lambda|_inf, 1): the partials' relative error is about
     !> 4e-11 (rollcon_central_differences), so each iteration shrinks the error by that
     !> factor at least and the one that follows such a step would move a by some 1e-20 of
     !> it, below round-off; a force linear in a (a virtual mass) converges in two. At most
@@ -473,8 +493,9 @@ contains
         integer, parameter :: most_iterations = 20
         real(wp), parameter :: settled = 1.0e-10_wp
         real(wp), allocatable :: x(:, :)
-        real(wp) :: change
+        real(wp) :: change, moved
         logical, allocatable :: active(:)
+        logical :: multipliers
         integer :: n, nc, k, iteration
         character(len=:), allocatable :: names
 
@@ -485,23 +506,39 @@ contains
         allocate(x(n + nc, 1))
         active = self%active_rows()
         if (.not. allocated(self%work%loop_a)) allocate(self%work%loop_a(n), source=0.0_wp)
+        if (.not. allocated(self%work%loop_lambda)) allocate(self%work%loop_lambda(nc), &
+            & source=0.0_wp)
+        if (.not. allocated(self%work%dm_dlambda)) allocate(self%work%dm_dlambda(n, nc), &
+            & source=0.0_wp)
         a = self%work%loop_a
+        lambda = merge(self%work%loop_lambda, 0.0_wp, active)
+        multipliers = reads_constraint_forces(self%model%forces)
+        ! the constraint rows the force measures read a reaction from (the constraints were
+        ! evaluated at (t, q, u) by the caller)
+        if (multipliers) call self%constraint_matrix()
         change = huge(1.0_wp)
+        moved = huge(1.0_wp)
         do iteration = 1, most_iterations
             call set_system_accelerations(a)
+            if (multipliers) call set_system_constraint_forces(self%c, lambda)
             call self%assemble(time, q, u)
             call take_user_force_error(error)
             if (allocated(error)) return
             if (iteration == 1) then
                 call self%acceleration_partials(time, q, u, a, error)
                 if (allocated(error)) return
+                self%work%dm_dlambda = 0.0_wp
+                if (multipliers) then
+                    call self%multiplier_partials(time, q, u, lambda, error)
+                    if (allocated(error)) return
+                end if
                 call self%constraint_rows(u, baumgarte)
                 associate (m => self%work%loop_matrix)
                     m = 0.0_wp
                     m(:n, :n) = self%mass + self%work%dm_da
                     do k = 1, nc
                         if (active(k)) then
-                            m(:n, n + k) = -self%c(k, :)
+                            m(:n, n + k) = -self%c(k, :) + self%work%dm_dlambda(:, k)
                             m(n + k, :n) = self%c(k, :)
                         else
                             m(n + k, n + k) = 1.0_wp
@@ -518,28 +555,42 @@ contains
                 end if
             end if
             x(:n, 1) = self%force + matmul(self%work%dm_da, a)
+            if (multipliers) x(:n, 1) = x(:n, 1) + matmul(self%work%dm_dlambda, lambda)
             x(n + 1:, 1) = merge(self%gamma, 0.0_wp, active)
             call solve_factored(self%work%loop_matrix, self%work%loop_pivots, x, error)
             if (allocated(error)) return
             change = maxval(abs(x(:n, 1) - a))
+            moved = 0.0_wp
+            if (nc > 0) moved = maxval(abs(x(n + 1:, 1) - lambda))
             a = x(:n, 1)
             lambda = x(n + 1:, 1)
-            if (change <= settled*max(maxval(abs(a)), 1.0_wp)) exit
+            if (loop_settled()) exit
         end do
-        ! the forces and the routines' accelerations at the solution
+        ! the forces and the routines' accelerations and reactions at the solution
         call set_system_accelerations(a)
+        if (multipliers) call set_system_constraint_forces(self%c, lambda)
         call self%assemble(time, q, u)
         call take_user_force_error(error)
         if (allocated(error)) return
         self%work%loop_a = a
-        if (change > settled*max(maxval(abs(a)), 1.0_wp)) then
+        self%work%loop_lambda = lambda
+        if (.not. loop_settled()) then
             names = loop_names(self)
-            call fatal_error(error, names // ": the accelerations these statements' routines " &
-                & // "read did not settle in " // to_text(most_iterations) // " Newton " &
-                & // "iterations at t = " // to_text(time) // " s (the last moved them by " &
-                & // to_text(change) // " m/s^2 or rad/s^2): a force or VARIABLE far from linear " &
-                & // "in the accelerations it reads", stat_ucon)
+            call fatal_error(error, names // ": the accelerations and constraint forces " &
+                & // "these statements' routines read did not settle in " &
+                & // to_text(most_iterations) // " Newton iterations at t = " // to_text(time) &
+                & // " s (the last moved the accelerations by " // to_text(change) &
+                & // " m/s^2 or rad/s^2, the multipliers by " // to_text(moved) // "): a " &
+                & // "force or VARIABLE far from linear in what it reads", stat_ucon)
         end if
+
+    contains
+
+        logical function loop_settled()
+            loop_settled = change <= settled*max(maxval(abs(a)), 1.0_wp)
+            if (multipliers .and. nc > 0) loop_settled = loop_settled &
+                & .and. moved <= settled*max(maxval(abs(lambda)), 1.0_wp)
+        end function loop_settled
     end subroutine loop_accelerations
 
     !> The statements whose user routines read accelerations, "SFORCE/3 (line 12), ...", then
@@ -553,7 +604,8 @@ contains
         do i = 1, size(self%model%forces)
             if (self%model%forces(i)%profile /= profile_statement) cycle
             if (self%model%forces(i)%statement%routine == 0) cycle
-            if (.not. self%model%forces(i)%statement%declared_accelerations) cycle
+            if (.not. self%model%forces(i)%statement%declared_accelerations .and. .not. &
+                & self%model%forces(i)%statement%declared_forces) cycle
             if (len(names) > 0) names = names // ", "
             names = names // self%model%forces(i)%name
         end do
@@ -591,6 +643,23 @@ contains
         end if
         call take_user_force_error(error)
     end subroutine acceleration_partials
+
+    !> work%dm_dlambda: the partials in the multipliers lambda of the momentum residual's
+    !> forces at (t, q, u, lambda), the forces evaluated there (assemble) before: the forces
+    !> whose routines read a constraint's reaction, differenced (rollcon_user_force_partials).
+    !> A failed difference call's error is returned.
+    subroutine multiplier_partials(self, time, q, u, lambda, error)
+        class(equations_type), intent(inout) :: self
+        real(wp), intent(in) :: time, q(:), u(:), lambda(:)
+        type(error_type), allocatable, intent(out) :: error
+
+        if (.not. allocated(self%work%dm_dlambda)) allocate(self%work%dm_dlambda(self%n, &
+            & self%nc))
+        self%work%dm_dlambda = 0.0_wp
+        call add_user_force_multiplier_partials(self%model%forces, time, q, u, lambda, &
+            & self%work%dm_dlambda)
+        call take_user_force_error(error)
+    end subroutine multiplier_partials
 
     !> A held rolling resistance (rollcon_rim_dissipation: phidot held at zero by the moment
     !> it needs, within delta F_n) in the accelerations a and multipliers lambda of the
@@ -760,8 +829,9 @@ contains
             w%rhs_top(:, :n) = -w%dm_dq
             w%rhs_top(:, n + 1:) = -w%dm_du
             call jacobian_constraint_rows(self, u, w%a, baumgarte)
-            if (reads_accelerations(self%model%forces)) then
+            if (self%reads_loop()) then
                 ! the algebraic loop's saddle-point matrix, with the forces' partials in a
+                ! and lambda
                 call loop_solve(self, error)
             else
                 call self%saddle%solve(self%c, w%rhs_top, w%rhs_bottom, 2*n, error)

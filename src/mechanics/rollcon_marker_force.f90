@@ -78,6 +78,13 @@ module rollcon_marker_force
         !> FUNCTION=USER: its initialisation call read a VARSUB's value (SYSFNC('VARVAL')): its
         !> difference calls evaluate the VARSUBs at the shifted state
         logical :: declared_variables = .false.
+        !> FUNCTION=USER: its initialisation call read a force measure (SYSFNC('FX' ... 'TM'),
+        !> or an element's force, SYSFNC('JOINT' ... 'SPDP')), and the constraint rows (model
+        !> order) whose multipliers those measures sum (a JOINT's or JPRIM's reaction): its
+        !> values then enter the equations with the multipliers, rollcon_equations' and
+        !> rollcon_dae's algebraic loop (rollcon_force_measures)
+        logical :: declared_forces = .false.
+        integer, allocatable :: declared_rows(:)
         !> FUNCTION=USER: the model parts of those markers (ground left out), whose coordinates
         !> (and rates, when declared_rates) its partials are differenced over
         !> (rollcon_user_force_partials)

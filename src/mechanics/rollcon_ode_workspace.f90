@@ -25,8 +25,13 @@ module rollcon_ode_workspace
         !> LU factors (with pivots) of that loop's saddle-point matrix, (n + nc) square
         real(wp), allocatable :: dm_da(:, :), loop_matrix(:, :)
         integer, allocatable :: loop_pivots(:)
-        !> The loop's last accelerations, where its next solve starts (allocated by it)
-        real(wp), allocatable :: loop_a(:)
+        !> The loop's last accelerations and multipliers, where its next solve starts
+        !> (allocated by it)
+        real(wp), allocatable :: loop_a(:), loop_lambda(:)
+        !> d(M a - f)/dlambda (n x nc): the partials of the forces whose user routines read a
+        !> constraint's reaction (SYSFNC's force measures) in its multipliers (allocated by the
+        !> loop, or the DAE's Newton matrix, when a routine reads them)
+        real(wp), allocatable :: dm_dlambda(:, :)
         !> Accelerations, multipliers, projected coordinates
         real(wp), allocatable :: a(:), lambda(:), q(:)
     contains

@@ -35,13 +35,15 @@ module rollcon_user_force_partials
     use rollcon_expression, only : quantity_varval
     use rollcon_user_variable_values, only : set_user_variable_partials, &
         & clear_user_variable_partials
-    use rollcon_user_forces, only : difference_call, acceleration_difference_call
+    use rollcon_user_forces, only : difference_call, acceleration_difference_call, &
+        & multiplier_difference_call
     use rollcon_central_differences, only : central_differences
     implicit none
     private
 
     public :: add_user_force_partials, add_user_force_acceleration_partials
     public :: add_variable_acceleration_partials
+    public :: add_user_force_multiplier_partials
 
 contains
 
@@ -220,6 +222,72 @@ contains
         end function reads_loop_variable
 
     end subroutine add_variable_acceleration_partials
+    !> Subtract the partials in the multipliers lambda of every force whose routine read a
+    !> constraint's reaction at its initialisation call (SYSFNC's force measures summing a
+    !> JOINT's or JPRIM's reaction: marker_force_type's declared_rows) from dm_dlambda, the
+    !> partials of the momentum residual M a - f in lambda (n x nc), at (t, q, u, lambda):
+    !> its values differenced over the multipliers of the declared rows alone (central
+    !> differences, rollcon_central_differences, each call with DFLAG = .TRUE.), each column
+    !> carried to the momentum rows by the load's geometry (rollcon_force_partials, exact:
+    !> the generalised force is linear in the values at fixed q, so the column is the
+    !> geometry's image of the values' partials, taken where a rate's partials go). The values
+    !> at (t, q, u, lambda) are those the last evaluation kept.
+    subroutine add_user_force_multiplier_partials(forces, time, q, u, lambda, dm_dlambda)
+        type(applied_force_type), intent(in) :: forces(:)
+        real(wp), intent(in) :: time
+        !> Coordinates and rates of all parts [SI], multipliers
+        real(wp), intent(in) :: q(:), u(:), lambda(:)
+        real(wp), intent(inout) :: dm_dlambda(:, :)
+        type(state_jets_type) :: state
+        type(jet_type) :: values(6)
+        integer, allocatable :: parts(:)
+        real(wp), allocatable :: block(:, :), ignored(:, :), image(:, :)
+        integer :: i, k, np, r, column
+
+        allocate(ignored(size(dm_dlambda, 1), size(dm_dlambda, 1)), &
+            & image(size(dm_dlambda, 1), size(dm_dlambda, 1)))
+        do i = 1, size(forces)
+            if (forces(i)%profile /= profile_statement) cycle
+            if (forces(i)%statement%routine == 0) cycle
+            if (.not. allocated(forces(i)%statement%declared_rows)) cycle
+            if (size(forces(i)%statement%declared_rows) == 0) cycle
+            associate (s => forces(i)%statement, rows => forces(i)%statement%declared_rows)
+                parts = statement_parts(s)
+                np = size(parts)
+                if (np == 0) cycle
+                state = statement_state_jets(parts, q, u, .true.)
+                allocate(block(size(rows), 6), source=0.0_wp)
+                call central_differences(lambda, rows, multipliers_moved, block)
+                ! the first part's first rate: the slot each column's partials are taken in
+                column = 6*(parts(1) - 1) + 1
+                do r = 1, size(rows)
+                    do k = 1, 6
+                        values(k) = jet_constant(s%user_values(k))
+                        if (block(r, k) == 0.0_wp) cycle
+                        values(k)%active = .true.
+                        allocate(values(k)%g(12*np), source=0.0_wp)
+                        values(k)%g(6*np + 1) = block(r, k)
+                    end do
+                    ignored = 0.0_wp
+                    image = 0.0_wp
+                    call add_statement_load_partials(s, values, state, q, ignored, image)
+                    dm_dlambda(:, rows(r)) = dm_dlambda(:, rows(r)) + image(:, column)
+                end do
+                deallocate(block)
+            end associate
+        end do
+
+    contains
+
+        subroutine multipliers_moved(shifted, values, failed)
+            real(wp), intent(in) :: shifted(:)
+            real(wp), intent(out) :: values(:)
+            logical, intent(out) :: failed
+
+            call multiplier_difference_call(forces(i), time, q, u, shifted, values, failed)
+        end subroutine multipliers_moved
+
+    end subroutine add_user_force_multiplier_partials
 
     !> gradients(v, k): value k's partial in variable v of statement_state_jets(parts), by
     !> central differences (rollcon_central_differences) over the coordinates of the declared

@@ -6,8 +6,11 @@
 !> (the equations' iterate of the algebraic loop a force or VARSUB reading them makes, or
 !> IDA's u': rollcon_equations' loop_accelerations, rollcon_dae; the accelerations solved
 !> before a DIFSUB's rates, rollcon_problem; the output row's for a REQSUB: docs/datasets.md,
-!> "Accelerations read by a force routine" and "... by the other user routines"). A MOTSUB
-!> reads none (ADAMS's rule: call_user_motion refuses it).
+!> "Accelerations read by a force routine" and "... by the other user routines"; a MOTSUB
+!> reads none: ADAMS's rule, call_user_motion refuses it), and the force measures (FX ... TM,
+!> an element's force JOINT ... SPDP) from the multipliers set_system_constraint_forces gave
+!> last (the same loop's iterate, IDA's unknowns), summed by rollcon_force_measures through a
+!> hook (force_measure; docs/datasets.md, "Force measures read by a user's routine").
 !>
 !> ADAMS's utilities take no handle, so what they read is module state, as
 !> rollcon_adams_runtime's: the table of routines the model may use (register_force_routine:
@@ -58,7 +61,10 @@ module rollcon_user_forces
     use rollcon_central_differences, only : central_differences
     use rollcon_marker_acceleration, only : acceleration_measure
     use rollcon_expression, only : quantity_kind, kind_acceleration, kind_angular_acceleration, &
-        & quantity_accx, quantity_wdtx
+        & quantity_accx, quantity_wdtx, kind_force, kind_torque, kind_element_force, &
+        & quantity_fx, quantity_fm, quantity_tx
+    use rollcon_marker, only : marker_motion
+    use rollcon_rotation, only : transpose_times
     use, intrinsic :: ieee_arithmetic, only : ieee_is_finite, ieee_value, ieee_quiet_nan
     implicit none
     private
@@ -82,6 +88,8 @@ module rollcon_user_forces
     public :: set_system_accelerations, reads_accelerations, acceleration_difference_call
     public :: variables_read_accelerations, variables_reading_accelerations
     public :: difference_variable_accelerations, system_accelerations
+    public :: force_measure_interface, set_force_measure_hook, set_system_constraint_forces
+    public :: reads_constraint_forces, multiplier_difference_call
 
     !> A routine the model may use
     type :: routine_entry_type
@@ -154,6 +162,25 @@ module rollcon_user_forces
             logical, intent(in) :: dflag, iflag
             real(wp), intent(inout) :: result(n)
         end subroutine force_call_interface
+
+        !> How a force measure is answered (rollcon_force_measures, which knows the model):
+        !> quantity FX ... TM (ids: the markers I and J, J 0 for none) or an element's force
+        !> JOINT ... SPDP (ids: the element's id and JFLAG), for the force named caller ("" for
+        !> a REQSUB), at (t, q, u) [SI] with the constraint rows c (nc x n) and multipliers
+        !> lambda: wrench, the force and torque [N, N m] in ground axes on the part of the
+        !> marker (the torque about its origin), rows the constraint rows whose multipliers it
+        !> sums, read_markers the markers of the forces it sums (their state is what it depends
+        !> on); problem "" or why it cannot be answered.
+        subroutine force_measure_interface(quantity, ids, caller, time, q, u, c, lambda, &
+                & wrench, rows, read_markers, problem)
+            import :: wp
+            integer, intent(in) :: quantity, ids(2)
+            character(len=*), intent(in) :: caller
+            real(wp), intent(in) :: time, q(:), u(:), c(:, :), lambda(:)
+            real(wp), intent(out) :: wrench(6)
+            integer, allocatable, intent(out) :: rows(:), read_markers(:)
+            character(len=:), allocatable, intent(out) :: problem
+        end subroutine force_measure_interface
     end interface
 
     type(routine_entry_type), allocatable, save :: table(:)
@@ -170,7 +197,21 @@ module rollcon_user_forces
     procedure(force_call_interface), pointer, save :: call_hook => direct_force_call
     !> The model's markers (every one a routine may name), the dataset's units
     type(marker_type), allocatable, save :: markers(:)
-    real(wp), save :: length_unit = 1.0_wp, time_unit = 1.0_wp
+    real(wp), save :: length_unit = 1.0_wp, time_unit = 1.0_wp, force_unit = 1.0_wp
+    !> Who answers the force measures (rollcon_force_measures), null until the equations set
+    !> it; the constraint rows [per m or rad, or s] and multipliers they read, as
+    !> set_system_constraint_forces gave them last (an iterate of the algebraic loop, IDA's
+    !> unknowns, the solve at an output row)
+    procedure(force_measure_interface), pointer, save :: measure_hook => null()
+    real(wp), allocatable, save :: c_now(:, :), lambda_now(:)
+    !> The force whose routine is called ("data/x.adm:12: SFORCE/3"; "" for any other call),
+    !> and whether a REQSUB's call is under way (a force measure is answered to these alone)
+    character(len=:), allocatable, save :: caller_now
+    logical, save :: request_call = .false.
+    !> An initialisation call's force measures: whether it read any, the constraint rows they
+    !> summed; the rows of the declaration in force during an evaluation
+    logical, save :: named_forces = .false.
+    integer, allocatable, save :: named_rows(:), allowed_rows(:)
     !> The model's SPLINEs, the curves AKISPL and CUBSPL read
     type(spline_type), allocatable, save :: curves(:)
     !> The state of the call under way [SI]
@@ -986,8 +1027,10 @@ contains
             named = [integer ::]
             named_rates = .false.
             result = 0.0_wp
+            request_call = .true.
             call call_hook(entry, id, time/time_unit, par, size(par), .false., .true., result, &
                 & request_results)
+            request_call = .false.
             declaring = .false.
             declared = named
             declared_rates = named_rates
@@ -1003,8 +1046,10 @@ contains
         allowed = declared
         allowed_rates = declared_rates
         result = 0.0_wp
+        request_call = .true.
         call call_hook(entry, id, time/time_unit, par, size(par), .false., .false., result, &
             & request_results)
+        request_call = .false.
         deallocate(allowed)
         allowed_rates = .true.
         if (.not. all(ieee_is_finite(result))) then
@@ -1071,15 +1116,72 @@ contains
     end subroutine report_call_problem
 
     !> The markers SYSFNC and SYSARY may name (every marker of the model) and the dataset's
-    !> units [m, s] the routines compute in.
-    subroutine set_system_markers(all_markers, length, time)
+    !> units [m, s, N] the routines compute in (force absent: 1 N).
+    subroutine set_system_markers(all_markers, length, time, force)
         type(marker_type), intent(in) :: all_markers(:)
         real(wp), intent(in) :: length, time
+        real(wp), intent(in), optional :: force
 
         markers = all_markers
         length_unit = length
         time_unit = time
+        force_unit = 1.0_wp
+        if (present(force)) force_unit = force
     end subroutine set_system_markers
+
+    !> Who answers SYSFNC's force measures (rollcon_force_measures' answer; null: nobody, and
+    !> they are refused).
+    subroutine set_force_measure_hook(hook)
+        procedure(force_measure_interface), pointer, intent(in) :: hook
+
+        measure_hook => hook
+    end subroutine set_force_measure_hook
+
+    !> The constraint rows c (nc x n: dF/du, or dF/dq for a position UCON) and multipliers
+    !> lambda [the rows' units] SYSFNC's force measures read a JOINT's or JPRIM's reaction
+    !> from until the next call of this (rollcon_equations' iterates of its algebraic loop,
+    !> rollcon_dae's unknowns, an output row's solve).
+    subroutine set_system_constraint_forces(c, lambda)
+        real(wp), intent(in) :: c(:, :), lambda(:)
+
+        c_now = c
+        lambda_now = lambda
+    end subroutine set_system_constraint_forces
+
+    !> True when a force of the model is served by a routine whose initialisation call read
+    !> a force measure summing a constraint's reaction (its values then depend on the
+    !> multipliers: an algebraic loop).
+    pure logical function reads_constraint_forces(forces)
+        type(applied_force_type), intent(in) :: forces(:)
+        integer :: i
+
+        reads_constraint_forces = .false.
+        do i = 1, size(forces)
+            if (forces(i)%profile /= profile_statement) cycle
+            if (forces(i)%statement%routine == 0) cycle
+            if (.not. allocated(forces(i)%statement%declared_rows)) cycle
+            if (size(forces(i)%statement%declared_rows) > 0) reads_constraint_forces = .true.
+        end do
+    end function reads_constraint_forces
+
+    !> difference_call at (t, q, u) with the multipliers lambda its force measures read; the
+    !> multipliers set before are restored after it.
+    subroutine multiplier_difference_call(force, time, q, u, lambda, values, failed)
+        type(applied_force_type), intent(in) :: force
+        real(wp), intent(in) :: time, q(:), u(:), lambda(:)
+        real(wp), intent(out) :: values(6)
+        logical, intent(out) :: failed
+        real(wp), allocatable :: kept(:)
+
+        if (allocated(lambda_now)) then
+            kept = lambda_now
+        else
+            allocate(kept(size(lambda)), source=0.0_wp)
+        end if
+        lambda_now = lambda
+        call difference_call(force, time, q, u, values, failed)
+        lambda_now = kept
+    end subroutine multiplier_difference_call
 
     !> The curves AKISPL and CUBSPL may read: every SPLINE of the model, fitted.
     subroutine set_system_splines(all_curves)
@@ -1163,12 +1265,18 @@ contains
             named_rates = .false.
             named_accelerations = .false.
             named_variables = .false.
+            named_forces = .false.
+            named_rows = [integer ::]
             result = 0.0_wp
             force_call = .true.
+            caller_now = force%name
             call call_hook(s%routine, s%id, time/s%time_unit, s%par, size(s%par), .false., &
                 & .true., result(:n), n)
+            caller_now = ""
             force_call = .false.
             declaring = .false.
+            s%declared_forces = named_forces
+            s%declared_rows = named_rows
             s%declared_markers = named
             s%declared_rates = named_rates
             s%declared_accelerations = named_accelerations
@@ -1179,16 +1287,25 @@ contains
     end subroutine declare_user_force
 
     !> Call every user routine of forces at (t, q, u) and keep its values (SI) for the pure
-    !> force procedures; the first failure is kept for take_user_force_error.
+    !> force procedures; the first failure is kept for take_user_force_error. The routines
+    !> that read force measures are called after the others (the forces they sum are then
+    !> those at this state; rollcon_force_measures refuses one force measure reading another
+    !> such routine's force).
     subroutine evaluate_user_forces(forces, time, q, u)
-        type(applied_force_type), intent(inout) :: forces(:)
+        ! (a target: the force measures read the forces through the model while they change)
+        type(applied_force_type), intent(inout), target :: forces(:)
         !> Time [s], coordinates and rates of all parts [SI]
         real(wp), intent(in) :: time, q(:), u(:)
         type(error_type), allocatable :: error
         real(wp) :: result(6), values(6)
-        integer :: i, n, kind
+        integer, allocatable :: order(:)
+        integer :: i, k, n, kind
 
-        do i = 1, size(forces)
+        ! the routines reading no force measure first, in the dataset's order
+        order = [pack([(i, i = 1, size(forces))], .not. forces%statement%declared_forces), &
+            & pack([(i, i = 1, size(forces))], forces%statement%declared_forces)]
+        do k = 1, size(order)
+            i = order(k)
             if (forces(i)%profile /= profile_statement) cycle
             associate (s => forces(i)%statement)
                 if (s%routine == 0) cycle
@@ -1203,12 +1320,16 @@ contains
                     ! not declared yet: nothing to compare with
                     deallocate(allowed)
                 end if
+                if (allocated(s%declared_rows)) allowed_rows = s%declared_rows
                 result = 0.0_wp
                 force_call = .true.
+                caller_now = forces(i)%name
                 call call_hook(s%routine, s%id, time/s%time_unit, s%par, size(s%par), &
                     & .false., .false., result(:n), n)
+                caller_now = ""
                 force_call = .false.
                 if (allocated(allowed)) deallocate(allowed)
+                if (allocated(allowed_rows)) deallocate(allowed_rows)
                 allowed_rates = .true.
                 allowed_accelerations = .true.
                 values = 0.0_wp
@@ -1277,12 +1398,16 @@ contains
             else if (allocated(allowed)) then
                 deallocate(allowed)
             end if
+            if (allocated(s%declared_rows)) allowed_rows = s%declared_rows
             result = 0.0_wp
             force_call = .true.
+            caller_now = force%name
             call call_hook(s%routine, s%id, time/s%time_unit, s%par, size(s%par), .true., &
                 & .false., result(:n), n)
+            caller_now = ""
             force_call = .false.
             if (allocated(allowed)) deallocate(allowed)
+            if (allocated(allowed_rows)) deallocate(allowed_rows)
             allowed_rates = .true.
             allowed_accelerations = .true.
             if (allocated(kept)) then
@@ -1381,6 +1506,8 @@ contains
             ! ERRMES keeps its message as a UCON's: "UCON/2: ..."
             colon = index(message, ": ")
             if (index(message, "UCON/") == 1 .and. colon > 0) message = message(colon + 2:)
+            ! the utility's refusal that the routine's ERRMES reports, when there is one
+            if (len(problem) > 0) message = message // " (" // problem // ")"
             call fatal_error(error, force%name // ": its " &
                 & // force_routine_label(force%statement%routine) // " reported an error in " &
                 & // call_name // " at TIME = " // to_text(time/force%statement%time_unit) &
@@ -1403,9 +1530,9 @@ contains
     !> accelerations set_system_accelerations gave (the algebraic loop a force reading them
     !> makes is solved by the equations: rollcon_equations, rollcon_dae; a MOTSUB's read is
     !> recorded for call_user_motion's refusal, ERRFLG clear), and DIF(id), DIF1(id)
-    !> of a DIFF (IPAR(1) = id; NSIZE = 1) from set_system_diff_state's. ERRFLG is set, and
-    !> VALUE 0, for a name rollcon does not know or a marker the model has not; a force
-    !> measure (FX ... TM) and an element's force are refused.
+    !> of a DIFF (IPAR(1) = id; NSIZE = 1) from set_system_diff_state's, and the force
+    !> measures FX ... TM and an element's force JOINT ... SPDP (force_measure). ERRFLG is
+    !> set, and VALUE 0, for a name rollcon does not know or a marker the model has not.
     subroutine system_function(name, ipar, value, errflg)
         character(len=*), intent(in) :: name
         integer, intent(in) :: ipar(:)
@@ -1431,11 +1558,13 @@ contains
             call variable_measure(ipar, value, errflg)
             return
         end if
+        if (any(quantity_kind(quantity) == [kind_force, kind_torque, kind_element_force])) then
+            call force_measure(quantity, ipar, value, errflg)
+            return
+        end if
         if (.not. is_state_measure(quantity) .and. .not. is_acceleration(quantity)) then
-            call refuse("SYSFNC('" // trim(name) // "'): a force, which rollcon's SYSFNC " &
-                & // "does not answer (the state's measures, the accelerations ACCX ... WDTM, " &
-                & // "DIF and DIF1 are answered); read by a force it makes an algebraic loop " &
-                & // "rollcon does not solve")
+            call refuse("SYSFNC('" // trim(name) // "'): not a function rollcon's SYSFNC " &
+                & // "answers")
             return
         end if
         if (size(ipar) < quantity_least_markers(quantity) .or. size(ipar) &
@@ -1447,6 +1576,154 @@ contains
         end if
         call measure(quantity, ipar, "SYSFNC('" // trim(name) // "')", value, errflg)
     end subroutine system_function
+
+    !> SYSFNC's force measures, in the dataset's units (force; force times length), as a
+    !> REQUEST's expression reads them (docs/datasets.md, "Force measures read by a user's
+    !> routine"): FX, FY, FZ, FM, TX, TY, TZ, TM (IPAR = i[, j[, k]]): the force and torque at
+    !> marker i of the elements acting there (as their I or J) and, with j, between i and j,
+    !> in k's axes (ground's when none); an element's force JOINT, JPRIM, SFORCE, VFORCE,
+    !> VTORQUE, GFORCE, BUSHING, SPDP (IPAR = id, jflag[, comp[, rm]]: at its I (jflag 0) or J
+    !> (1); comp 1 |F|, 2-4 F's x, y, z in rm's axes, 5 |T|, 6-8 T's; comp absent: 1). The
+    !> sums are rollcon_force_measures' (the hook), from the multipliers and constraint rows
+    !> set_system_constraint_forces gave; answered to a force routine and a REQSUB alone. At
+    !> the initialisation call the constraint rows summed and the markers of the forces summed
+    !> are declared (the force's dependencies; named_forces).
+    subroutine force_measure(quantity, ipar, value, errflg)
+        integer, intent(in) :: quantity, ipar(:)
+        real(wp), intent(out) :: value
+        logical, intent(out) :: errflg
+        character(len=:), allocatable :: call_name, why
+        integer, allocatable :: rows(:), read_markers(:)
+        real(wp) :: wrench(6), resolved(6), r(3), v(3), axes(3, 3), w(3)
+        integer :: ids(4), element_ids(2), comp, axes_marker, m, k
+        logical :: element, found
+
+        value = 0.0_wp
+        errflg = .true.
+        call_name = "SYSFNC('" // trim(quantity_names(quantity)) // "')"
+        element = quantity_kind(quantity) == kind_element_force
+        if (.not. force_call .and. .not. request_call) then
+            call refuse(call_name // ": a force, which rollcon answers to a force routine " &
+                & // "(SFOSUB, VFOSUB, VTOSUB, GFOSUB) and a REQSUB alone; a VARSUB, DIFSUB " &
+                & // "or MOTSUB is evaluated before the forces it would read")
+            return
+        end if
+        if (.not. associated(measure_hook) .or. .not. allocated(c_now)) then
+            call refuse(call_name // ": a force, which rollcon answers once the model's " &
+                & // "equations are set up (a force routine in a run and in rollcon check's " &
+                & // "probes, a REQSUB at a run's output rows); here they are not")
+            return
+        end if
+        if (element) then
+            if (size(ipar) < 2 .or. size(ipar) > 4) then
+                call refuse(call_name // " with NSIZE = " // to_text(size(ipar)) // ": it " &
+                    & // "takes 2 to 4 values (id, jflag[, comp[, rm]])")
+                return
+            end if
+            comp = 1
+            if (size(ipar) >= 3) comp = ipar(3)
+            axes_marker = 0
+            if (size(ipar) >= 4) axes_marker = ipar(4)
+            if (ipar(2) < 0 .or. ipar(2) > 1 .or. comp < 1 .or. comp > 8) then
+                call refuse(call_name // " with jflag = " // to_text(ipar(2)) // ", comp = " &
+                    & // to_text(comp) // ": jflag is 0 (at I) or 1 (at J), comp 1 to 8")
+                return
+            end if
+            element_ids = ipar(1:2)
+            ids = [axes_marker, 0, 0, 0]
+        else
+            if (size(ipar) < 1 .or. size(ipar) > 3) then
+                call refuse(call_name // " with NSIZE = " // to_text(size(ipar)) // ": it " &
+                    & // "takes 1 to 3 marker ids")
+                return
+            end if
+            ids = 0
+            ids(:size(ipar)) = ipar
+            if (ids(1) == 0) then
+                call refuse(call_name // ": IPAR(1) must name a marker, got 0")
+                return
+            end if
+            element_ids = ids(1:2)
+            axes_marker = ids(3)
+            comp = 0
+        end if
+        ! every marker named must be the model's
+        do m = 1, 4
+            if (ids(m) == 0) cycle
+            found = .false.
+            do k = 1, size(markers)
+                if (markers(k)%id == ids(m)) found = .true.
+            end do
+            if (.not. found) then
+                call refuse(call_name // " names marker " // to_text(ids(m)) &
+                    & // ", which the model has not")
+                return
+            end if
+        end do
+        if (.not. allocated(caller_now)) caller_now = ""
+        if (.not. allocated(lambda_now)) allocate(lambda_now(size(c_now, 1)), source=0.0_wp)
+        call measure_hook(quantity, element_ids, caller_now, time_now, q_now, u_now, c_now, &
+            & lambda_now, wrench, rows, read_markers, why)
+        if (len(why) > 0) then
+            call refuse(call_name // ": " // why)
+            return
+        end if
+        call note_reads(ids, .false., call_name)
+        if (declaring) then
+            if (.not. allocated(named_rows)) named_rows = [integer ::]
+            named_forces = .true.
+            do m = 1, size(rows)
+                if (.not. any(named_rows == rows(m))) named_rows = [named_rows, rows(m)]
+            end do
+            do m = 1, size(read_markers)
+                if (.not. any(named == read_markers(m))) named = [named, read_markers(m)]
+            end do
+            ! the forces summed may read rates
+            if (size(read_markers) > 0) named_rates = .true.
+        else if (allocated(allowed_rows)) then
+            if (any([(.not. any(allowed_rows == rows(m)), m = 1, size(rows))])) &
+                & call add_note(call_name // " read a constraint's reaction the " &
+                & // "initialisation call (IFLAG = .TRUE.) did not read")
+        end if
+        resolved = wrench
+        if (axes_marker /= 0) then
+            do k = 1, size(markers)
+                if (markers(k)%id /= axes_marker) cycle
+                call marker_motion(markers(k), q_now, u_now, r, v, axes, w)
+                resolved(1:3) = transpose_times(axes, wrench(1:3))
+                resolved(4:6) = transpose_times(axes, wrench(4:6))
+                exit
+            end do
+        end if
+        if (element) then
+            select case (comp)
+            case (1)
+                value = norm2(wrench(1:3))
+            case (2:4)
+                value = resolved(comp - 1)
+            case (5)
+                value = norm2(wrench(4:6))
+            case default
+                value = resolved(comp - 2)
+            end select
+            value = value/force_unit
+            if (comp >= 5) value = value/length_unit
+        else
+            select case (quantity)
+            case (quantity_fx:quantity_fx + 2)
+                value = resolved(quantity - quantity_fx + 1)
+            case (quantity_fm)
+                value = norm2(wrench(1:3))
+            case (quantity_tx:quantity_tx + 2)
+                value = resolved(quantity - quantity_tx + 4)
+            case default
+                value = norm2(wrench(4:6))
+            end select
+            value = value/force_unit
+            if (quantity >= quantity_tx) value = value/length_unit
+        end if
+        errflg = .false.
+    end subroutine force_measure
 
     !> SYSFNC('VARVAL', [id]): the value of VARIABLE/id, served by a VARSUB, as evaluated at the
     !> state of the call (evaluate_user_variables: a run's and rollcon check's evaluations

@@ -21,6 +21,8 @@ module rollcon_dae_form
     use rollcon_error, only : fatal_error, stat_solver
     use rollcon_text, only : to_text
     use rollcon_user_forces, only : take_user_force_error, set_system_accelerations
+    use rollcon_force, only : profile_statement
+    use rollcon_force_partials, only : statement_parts
     implicit none
     private
 
@@ -284,7 +286,7 @@ contains
         class(dae_form_type), intent(in) :: self
         integer, intent(in) :: n
         type(newton_pattern_type), intent(out) :: pattern
-        integer, allocatable :: rows(:), columns(:)
+        integer, allocatable :: rows(:), columns(:), parts(:)
         integer :: nq, nc, k, h, j, i0, row, column, count, a, b
 
         ! each element's block as a list of entries (repeats dropped by from_entries): memory
@@ -339,6 +341,27 @@ contains
                 end associate
             end do
         end associate
+        ! a force whose routine reads a constraint's reaction: the momentum rows of the parts
+        ! it loads by the multipliers of the rows it declared (rollcon_dae)
+        if (allocated(self%problem%model%forces)) then
+            do k = 1, size(self%problem%model%forces)
+                associate (force => self%problem%model%forces(k))
+                    if (force%profile /= profile_statement) cycle
+                    if (.not. allocated(force%statement%declared_rows)) cycle
+                    parts = statement_parts(force%statement)
+                    do j = 1, size(force%statement%declared_rows)
+                        column = 2*nq + force%statement%declared_rows(j)
+                        if (column > n) cycle
+                        do b = 1, size(parts)
+                            do a = 1, 6
+                                if (6*(parts(b) - 1) + a > min(nq, n - nq)) cycle
+                                call keep(nq + 6*(parts(b) - 1) + a, column)
+                            end do
+                        end do
+                    end do
+                end associate
+            end do
+        end if
         ! each DIFF's row by every q and u (it may read any part) and every DIFF's state
         associate (m => dae_size(self%problem%eq), nd => self%problem%model%diffs%count())
             do k = 1, nd

@@ -63,8 +63,7 @@ module rollcon_request_answers
     use rollcon_measures, only : measure_value, expression_input_values, input_markers, &
         & count_turns
     use rollcon_marker_acceleration, only : acceleration_measure
-    use rollcon_marker_force, only : marker_force_type, marker_force_values, kind_translation, &
-        & kind_rotation, kind_spring, marker_force_action
+    use rollcon_force_measures, only : force_wrench, set_force_measure_model
     use rollcon_reactions, only : reaction_site_type, reaction_sites, site_wrench, &
         & swapped_wrench, body_moment
     use rollcon_equations, only : equations_type
@@ -72,7 +71,7 @@ module rollcon_request_answers
     use rollcon_output_layout, only : name_length
     use rollcon_watch, only : watch_type
     use rollcon_system_routine_contract, only : request_results, request_columns
-    use rollcon_user_forces, only : call_user_request
+    use rollcon_user_forces, only : call_user_request, set_system_constraint_forces
     use rollcon_diff, only : diff_inputs
     use, intrinsic :: ieee_arithmetic, only : ieee_value, ieee_quiet_nan
     implicit none
@@ -359,6 +358,9 @@ contains
                     values(n + 1:n + 6) = in_axes(request%rm, q, u, wrench)
                     n = n + 6
                 case (answer_user)
+                    ! the reactions its SYSFNC force measures read: the row's
+                    call set_force_measure_model(eq%model)
+                    call set_system_constraint_forces(eq%c, lambda)
                     call call_user_request(request%routine, request%id, request%name, &
                         & request%par, self%time_unit, time, q, u, request%declared, &
                         & request%declared_rates, result, accelerations=self%a)
@@ -560,59 +562,6 @@ contains
         wrench(1:3) = force
         wrench(4:6) = moment
     end function rows_wrench
-
-    !> An SFORCE's, VFORCE's, VTORQUE's, GFORCE's, SPRINGDAMPER's or BUSHING's force and
-    !> torque at its I or J (module header).
-    pure function force_wrench(force, at_j, time, q, u) result(wrench)
-        type(marker_force_type), intent(in) :: force
-        logical, intent(in) :: at_j
-        real(wp), intent(in) :: time, q(:), u(:)
-        real(wp) :: wrench(6)
-        real(wp) :: values(6), r_i(3), r_j(3), axes_i(3, 3), axes_j(3, 3), axes_rm(3, 3), &
-            & v(3), w(3), r(3), f(3), torque(3)
-
-        wrench = 0.0_wp
-        if (at_j .and. force%action_only) return
-        if (force%kind == kind_spring) then
-            call marker_force_action(force, time, q, u, f, torque)
-            call marker_motion(force%i, q, u, r_i, v, axes_i, w)
-            call marker_motion(force%j, q, u, r_j, v, axes_j, w)
-            if (at_j) then
-                wrench(1:3) = -f
-                wrench(4:6) = -torque - cross(r_i - r_j, f)
-            else
-                wrench(1:3) = f
-                wrench(4:6) = torque
-            end if
-            return
-        end if
-        values = marker_force_values(force, time, q, u)
-        call marker_motion(force%i, q, u, r_i, v, axes_i, w)
-        call marker_motion(force%j, q, u, r_j, v, axes_j, w)
-        select case (force%kind)
-        case (kind_translation)
-            if (force%action_only) then
-                f = values(1)*axes_j(:, 3)
-            else
-                f = values(1)*(r_i - r_j)/norm2(r_i - r_j)
-            end if
-            wrench(1:3) = merge(-f, f, at_j)
-        case (kind_rotation)
-            torque = values(1)*force%length_unit*axes_j(:, 3)
-            wrench(4:6) = merge(-torque, torque, at_j)
-        case default
-            call marker_motion(force%rm, q, u, r, v, axes_rm, w)
-            f = times(axes_rm, values(1:3))
-            torque = times(axes_rm, values(4:6))
-            if (at_j) then
-                wrench(1:3) = -f
-                wrench(4:6) = -torque - cross(r_i - r_j, f)
-            else
-                wrench(1:3) = f
-                wrench(4:6) = torque
-            end if
-        end select
-    end function force_wrench
 
     pure function nan()
         real(wp) :: nan

@@ -1,0 +1,235 @@
+! SPDX-License-Identifier: MIT
+!> Force measures read by a user's force routine through SYSFNC (suite force-measures; data
+!> and routines in test/user_forces/): a pendulum's pivot friction proportional to the
+!> revolute joint's reaction, FM(I, J), an algebraic loop in the joint's multipliers, against
+!> the same pendulum whose routine computes the reaction in closed form; a VFOSUB reading a
+!> spring's force through SFORCE(id, jflag, comp, rm) and FZ(i, j, k) against the same VFORCE
+!> written with the spring's expression; each on IDA (the multipliers among its unknowns) and
+!> CVODE (Newton on the accelerations and multipliers); a force reading its own force
+!> refused; and `rollcon check` of the friction routine, its force measures answered at
+!> every probed state.
+module test_user_force_measures
+    use rollcon_kinds, only : wp
+    use rollcon_error, only : error_type, fatal_error
+    use rollcon_text, only : to_text
+    use rollcon_testing, only : unittest_type, new_unittest, check
+    use rollcon_history, only : history_type
+    use rollcon_job, only : job_type
+    use rollcon_load, only : load_job
+    use rollcon_run_job, only : run_job, job_result_type
+    use rollcon_simulation, only : status_completed
+    use rollcon_user_build, only : user_build_options_type
+    use rollcon_user_routine_check, only : check_user_routines
+    use rollcon_run_settings, only : formulation_cvode, formulation_ida
+    implicit none
+    private
+
+    public :: collect_user_force_measures
+
+    !> The test data
+    character(len=*), parameter :: folder = "test/user_forces/"
+    !> The tests' cache of compiled routines (the user-ucosub suite's)
+    character(len=*), parameter :: test_cache = "build/rollcon-test-user-cache"
+    !> Largest difference allowed between a run and its twin in every coordinate and rate of
+    !> the first part [m, rad, m/s, rad/s]: both integrate at rtol 1e-8, atol 1e-10 (the
+    !> datasets' default) equations that are the same functions of the state, reached by
+    !> different arithmetic (a loop solved to 1e-10 relative against a closed form, an element
+    !> summed against its expression), which can change the step sequence: the rows then differ
+    !> by the integrators' global error, bounded by 1e-6 (100 rtol over a 1 s run of motions of
+    !> size 1). What each twin would differ by with the force measure lost is in each test.
+    real(wp), parameter :: twin_tolerance = 1.0e-6_wp
+
+contains
+
+    subroutine collect_user_force_measures(tests)
+        type(unittest_type), allocatable, intent(out) :: tests(:)
+
+        tests = [new_unittest("joint-reaction-friction-ida", test_friction_ida), &
+            & new_unittest("joint-reaction-friction-cvode", test_friction_cvode), &
+            & new_unittest("element-force-read-ida", test_force_read_ida), &
+            & new_unittest("element-force-read-cvode", test_force_read_cvode), &
+            & new_unittest("force-reading-itself-refused", test_cycle_refused), &
+            & new_unittest("reqsub-force-measures", test_reqsub), &
+            & new_unittest("check-joint-friction", test_check_friction)]
+    end subroutine collect_user_force_measures
+
+    !> joint_friction.adm (a pivot friction -0.05 FM(20, 10) WZ(20, 10), the revolute joint's
+    !> reaction read through SYSFNC: a loop, the reaction depending on the torque through the
+    !> angular acceleration) gives the rows of joint_friction_twin.adm (the reaction from
+    !> Newton's and Euler's laws in the routine) to twin_tolerance on IDA. The pendulum with
+    !> no friction (the reaction read as 0) differs by 0.27 rad in its angle psi and 0.85 in
+    !> the rows over the run: a friction a tenth of its size, by some 0.24 rad.
+    subroutine test_friction_ida(error)
+        type(error_type), allocatable, intent(out) :: error
+
+        call compare_twins("joint_friction.adm", "joint_friction.f", "joint_friction_twin.adm", &
+            & "joint_friction_twin.f", formulation_ida, error)
+    end subroutine test_friction_ida
+
+    !> test_friction_ida on CVODE (the ODE form: Newton on the accelerations and multipliers).
+    subroutine test_friction_cvode(error)
+        type(error_type), allocatable, intent(out) :: error
+
+        call compare_twins("joint_friction.adm", "joint_friction.f", "joint_friction_twin.adm", &
+            & "joint_friction_twin.f", formulation_cvode, error)
+    end subroutine test_friction_cvode
+
+    !> force_read.adm (VFORCE/4's VFOSUB reading SFORCE/1's force through SYSFNC's SFORCE(1,
+    !> 0, 2, 2) and FZ(20, 2, 2)) gives the rows of force_read_expressions.adm (the spring's
+    !> expression written into the VFORCE) to twin_tolerance on IDA; part 3's rows are
+    !> compared (the pushed part). The force read as 0 moves it by 0.43 m in X and 4.5 m in
+    !> Z over the run.
+    subroutine test_force_read_ida(error)
+        type(error_type), allocatable, intent(out) :: error
+
+        call compare_twins("force_read.adm", "force_read.f", "force_read_expressions.adm", &
+            & "", formulation_ida, error, part=2)
+    end subroutine test_force_read_ida
+
+    !> test_force_read_ida on CVODE.
+    subroutine test_force_read_cvode(error)
+        type(error_type), allocatable, intent(out) :: error
+
+        call compare_twins("force_read.adm", "force_read.f", "force_read_expressions.adm", &
+            & "", formulation_cvode, error, part=2)
+    end subroutine test_force_read_cvode
+
+    !> force_cycle.adm: VFORCE/4's routine reads FZ(30, 2, 2), a sum holding its own force:
+    !> refused with an error naming the statement, its line and the cycle.
+    subroutine test_cycle_refused(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(history_type) :: history
+        type(error_type), allocatable :: run_error
+        character(len=*), parameter :: pieces(3) = [character(len=40) :: &
+            & "force_cycle.adm:14: VFORCE/4", "SYSFNC('FZ')", "a cycle of forces"]
+        integer :: k
+
+        call run_user(folder // "force_cycle.adm", "force_read.f", formulation_ida, history, &
+            & run_error)
+        if (.not. allocated(run_error)) then
+            call fatal_error(error, "force_cycle.adm ran: a force reading its own force " &
+                & // "was not refused")
+            return
+        end if
+        do k = 1, size(pieces)
+            call check(error, index(run_error%message, trim(pieces(k))) > 0, "the error does " &
+                & // "not say '" // trim(pieces(k)) // "': " // run_error%message)
+            if (allocated(error)) return
+        end do
+    end subroutine test_cycle_refused
+
+    !> joint_friction.adm's REQUEST/5, its REQSUB reading FM(20, 10), FX(20, 10, 22) and
+    !> TZ(20, 10) through SYSFNC at each output row, gives REQUEST/6's columns (the same
+    !> functions as expressions, rollcon_request_answers) at every row to 1e-12 of max(1,
+    !> |value|): both sum the same reaction (the row's multipliers) and the same friction
+    !> torque, in another order, with the dataset's unit scalings of 1. FX in ground's axes
+    !> instead of marker 22's differs by some 10 N, TZ without the friction by its size,
+    !> which the test requires to exceed 0.1 N m somewhere.
+    subroutine test_reqsub(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(history_type) :: history
+        real(wp), allocatable :: read(:), written(:)
+        real(wp) :: largest
+        integer :: k
+
+        call run_user(folder // "joint_friction.adm", "joint_friction.f", formulation_ida, &
+            & history, error)
+        if (allocated(error)) return
+        do k = 2, 4
+            if (history%layout%column("req5_f" // to_text(k)) == 0 .or. &
+                & history%layout%column("req6_f" // to_text(k)) == 0) then
+                call fatal_error(error, "no column req5_f" // to_text(k) // " or req6_f" &
+                    & // to_text(k))
+                return
+            end if
+            read = history%column(history%layout%column("req5_f" // to_text(k)))
+            written = history%column(history%layout%column("req6_f" // to_text(k)))
+            largest = maxval(abs(read - written)/max(1.0_wp, abs(written)))
+            call check(error, largest <= 1.0e-12_wp, "req5_f" // to_text(k) // " differs " &
+                & // "from req6_f" // to_text(k) // " by " // to_text(largest) // " (relative)")
+            if (allocated(error)) return
+        end do
+        call check(error, maxval(abs(written)) > 0.1_wp, "TZ(20, 10) is at most " &
+            & // to_text(maxval(abs(written))) // " N m: the friction torque is not summed")
+    end subroutine test_reqsub
+
+    !> `rollcon check joint_friction.f --model joint_friction.adm`: no finding. Its FM is
+    !> answered at every probed state (the equations solved there): a refused SYSFNC would be
+    !> an [error] finding, an FM that moved between the two calls at a state [hidden state],
+    !> and the routine's declaration covers what it reads (no [declaration] note).
+    subroutine test_check_friction(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(user_build_options_type) :: options
+        character(len=:), allocatable :: findings
+        integer :: count
+
+        options%cache_dir = test_cache
+        call check_user_routines(folder // "joint_friction.f", folder // "joint_friction.adm", &
+            & options, 10.0_wp, 1, findings, count, error)
+        if (allocated(error)) return
+        call check(error, count == 0, to_text(count) // " findings: " // findings)
+    end subroutine test_check_friction
+
+    !> Run model with file and twin with twin_file ("" for none) on the formulation; both
+    !> complete with as many rows (at least 101), equal to twin_tolerance in every coordinate
+    !> and rate of the part-th part (1 absent).
+    subroutine compare_twins(model, file, twin, twin_file, formulation, error, part)
+        character(len=*), intent(in) :: model, file, twin, twin_file
+        integer, intent(in) :: formulation
+        type(error_type), allocatable, intent(out) :: error
+        integer, intent(in), optional :: part
+        type(history_type) :: user, other
+        real(wp) :: largest, d
+        integer :: c, worst, p
+
+        p = 1
+        if (present(part)) p = part
+        call run_user(folder // model, file, formulation, user, error)
+        if (allocated(error)) return
+        call run_user(folder // twin, twin_file, formulation, other, error)
+        if (allocated(error)) return
+        if (user%count /= other%count .or. user%count < 101) then
+            call fatal_error(error, model // ": " // to_text(user%count) // " rows, its twin " &
+                & // to_text(other%count))
+            return
+        end if
+        largest = 0.0_wp
+        worst = 0
+        do c = 1, 12
+            d = maxval(abs(user%part_values(p, c) - other%part_values(p, c)))
+            if (d > largest) worst = c
+            largest = max(largest, d)
+        end do
+        call check(error, largest <= twin_tolerance, model // " (formulation " &
+            & // to_text(formulation) // "): the runs differ by " // to_text(largest) &
+            & // " in column " // to_text(worst) // " of part " // to_text(p))
+    end subroutine compare_twins
+
+    !> Run path with the user's file ("" for none: the expressions run here) on the
+    !> formulation; its rows in history. A run that does not complete is an error.
+    subroutine run_user(path, file, formulation, history, error)
+        character(len=*), intent(in) :: path, file
+        integer, intent(in) :: formulation
+        type(history_type), intent(out) :: history
+        type(error_type), allocatable, intent(out) :: error
+        type(job_type) :: job
+        type(job_result_type) :: ran
+
+        if (len(file) > 0) then
+            call load_job(path, job, error, ucosub=folder // file)
+        else
+            call load_job(path, job, error)
+        end if
+        if (allocated(error)) return
+        job%output_dir = ""
+        job%quiet = .true.
+        job%call_timeout = 10.0_wp
+        job%build_options%cache_dir = test_cache
+        job%source%settings%formulation = formulation
+        call run_job(job, ran, error, history)
+        if (allocated(error)) return
+        if (ran%summary%status /= status_completed) call fatal_error(error, path // ": " &
+            & // ran%summary%message)
+    end subroutine run_user
+
+end module test_user_force_measures
