@@ -1301,9 +1301,17 @@ contains
         integer, allocatable :: order(:)
         integer :: i, k, n, kind
 
-        ! the routines reading no force measure first, in the dataset's order
-        order = [pack([(i, i = 1, size(forces))], .not. forces%statement%declared_forces), &
-            & pack([(i, i = 1, size(forces))], forces%statement%declared_forces)]
+        ! the routines reading no force measure first, in the dataset's order (a loop: a
+        ! mask of the component forces%statement%declared_forces would be an array temporary)
+        allocate(order(size(forces)))
+        n = 0
+        do kind = 0, 1
+            do i = 1, size(forces)
+                if (forces(i)%statement%declared_forces .neqv. kind == 1) cycle
+                n = n + 1
+                order(n) = i
+            end do
+        end do
         do k = 1, size(order)
             i = order(k)
             if (forces(i)%profile /= profile_statement) cycle
