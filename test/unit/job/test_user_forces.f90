@@ -27,7 +27,8 @@ module test_user_forces
     use rollcon_grind_watch, only : grinds
     use rollcon_run_check, only : check_at_start
     use rollcon_run_settings, only : formulation_cvode, formulation_ida
-    use rollcon_output_layout, only : coord_x, coord_y, coord_z, coord_theta, coord_psidot, coord_phidot
+    use rollcon_output_layout, only : coord_x, coord_y, coord_z, coord_theta, coord_psidot, &
+        & coord_phidot
     implicit none
     private
 
