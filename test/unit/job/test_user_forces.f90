@@ -72,6 +72,7 @@ contains
             & new_unittest("data-utilities-as-expressions", test_data_utilities), &
             & new_unittest("c-sfosub-as-fortran", test_c_routine), &
             & new_unittest("two-user-files", test_two_files), &
+            & new_unittest("field-sfosub-gfosub-as-expressions", test_field_forces), &
             & new_unittest("sfosub-by-its-own-name", test_named_sfosub), &
             & new_unittest("ucons-of-two-files-as-gcons", test_ucon_two_files), &
             & new_unittest("ucon-routine-refusals", test_ucon_refusals), &
@@ -538,6 +539,49 @@ contains
 
         call compare_twins("two_files", ["sforce_spring.f", "sforce_cubic.f "], error)
     end subroutine test_two_files
+
+    !> field_forces.adm, the field's user_force_routines.adm as it came (GFORCE/1 with
+    !> USER(21, 20, 21, 20, 0.5, 0, 1000, 10, 1000, 10, 100, 1, 1), SFORCE/2 with USER(20, 2,
+    !> 1000, 10, 1)), runs with field_forces.f's GFOSUB and SFOSUB (reading SYSARY's TDISP and
+    !> TVEL, SYSFNC's WX, WY, WZ) and gives the rows of its expression twin to twin_tolerance.
+    !> Its part starts at rest and only bounces on the spring, where the GFOSUB's offset stays
+    !> at its free value; so the same pair is run again with the part thrown and spinning
+    !> (VX = 0.4, VZ = -0.3, WX = 1, WZ = 2 added to both), where every term of the GFOSUB acts.
+    subroutine test_field_forces(error)
+        type(error_type), allocatable, intent(out) :: error
+        character(len=*), parameter :: at_rest = "QG = 0, 0, 1" // new_line("a"), &
+            & thrown = "QG = 0, 0, 1, VX = 0.4, VZ = -0.3, WX = 1, WZ = 2" // new_line("a")
+        type(job_type) :: job
+        type(job_result_type) :: ran
+        type(history_type) :: user, expressions
+        real(wp) :: largest
+        integer :: worst
+
+        call compare_twins("field_forces", ["field_forces.f"], error)
+        if (allocated(error)) return
+        call make_folders(scratch, error)
+        if (allocated(error)) return
+        call write_text_file(scratch // "/field_thrown.adm", replaced(file_text(folder &
+            & // "field_forces.adm"), at_rest, thrown), error)
+        if (allocated(error)) return
+        call write_text_file(scratch // "/field_thrown_expressions.adm", replaced(file_text( &
+            & folder // "field_forces_expressions.adm"), at_rest, thrown), error)
+        if (allocated(error)) return
+        call run_user(scratch // "/field_thrown.adm", [character(len=20) :: "field_forces.f"], &
+            & 10.0_wp, user, error)
+        if (allocated(error)) return
+        call load_job(scratch // "/field_thrown_expressions.adm", job, error)
+        if (allocated(error)) return
+        job%output_dir = ""
+        job%quiet = .true.
+        call run_job(job, ran, error, expressions)
+        if (allocated(error)) return
+        call part_difference(user, expressions, largest, worst)
+        call check(error, user%count == expressions%count .and. user%count >= 101 .and. &
+            & largest <= twin_tolerance, "thrown: " // to_text(user%count) // " rows, " &
+            & // to_text(expressions%count) // " of the twin; they differ by " &
+            & // to_text(largest) // " in coordinate " // to_text(worst) // " of part 2")
+    end subroutine test_field_forces
 
     !> two_files.adm with SFORCE/3 served by sforce_harden.f's HARDEN, a subroutine of its own
     !> name with SFOSUB's calling sequence (ROUTINE=sforce_harden::HARDEN): the rows of
