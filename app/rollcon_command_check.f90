@@ -7,7 +7,8 @@ module rollcon_command_check
         & check_user_ucosub_isolated, read_ucon_request, report_text, write_report_json, &
         & user_build_options_type, user_file_type
     use rollcon_program, only : sampling_ranges, default_call_timeout, max_check_states, &
-        & states_refusal, dataset_ucon_requests, dataset_has_user_routines, check_user_routines
+        & states_refusal, dataset_ucon_requests, dataset_has_user_routines, check_user_routines, &
+        & routine_units_lines
     use rollcon_cli, only : cli_request_type
     use rollcon_command_run, only : call_timeout_of
     implicit none
@@ -88,7 +89,7 @@ contains
         type(error_type), allocatable, intent(out) :: error
         type(user_build_options_type) :: build
         type(user_file_type), allocatable :: more_files(:)
-        character(len=:), allocatable :: findings
+        character(len=:), allocatable :: findings, units
         real(wp) :: call_timeout
         integer :: count, seed, k
 
@@ -110,6 +111,10 @@ contains
         write(output_unit, '(a)') "check: the user routines of " // request%positional &
             & // trim(merge(" and more files", "               ", size(more_files) > 0)) &
             & // " on " // request%text("--model", "") // " (the start and 20 states about it)"
+        ! what "units as documented" means for each routine checked (docs/checker.md)
+        call routine_units_lines(request%text("--model", ""), units, error)
+        if (allocated(error)) return
+        write(output_unit, '(a)', advance="no") units
         if (count == 0) then
             write(output_unit, '(a)') "verdict: clean"
         else

@@ -27,7 +27,7 @@ module rollcon_adm_build
     use rollcon_marker_force, only : kind_translation, kind_rotation, kind_vector, &
         & kind_general, kind_spring, marker_force_values, markers_coincide
     use rollcon_force, only : applied_force_type, profile_statement, force_couplings
-    use rollcon_user_forces, only : find_force_routine, routine_kind_of, set_system_markers, &
+    use rollcon_user_forces, only : routine_kind_of, set_system_markers, &
         & declare_user_force, evaluate_user_forces, take_user_force_error, set_system_splines, &
         & user_variable_type, set_user_variables, declare_user_variables, evaluate_user_variables, &
         & set_system_constraint_forces
@@ -38,6 +38,9 @@ module rollcon_adm_build
     use rollcon_system_routine_contract, only : routine_motsub, motion_routine_name
     use rollcon_spline, only : spline_type, new_spline
     use rollcon_force_routine_contract, only : routine_names
+    use rollcon_user_ucosubs, only : find_named_routine, find_named_ucosub, bind_user_ucon, &
+        & user_ucosub_entry, user_ucosub_files, find_user_ucosub, mark_user_ucosub_used, &
+        & user_ucosub_unused, is_library_routine
     use rollcon_model, only : model_type, setup_model, served_by_model_ucosub, force_request_type
     use rollcon_problem, only : problem_type
     use rollcon_theta_watch, only : new_theta_watch
@@ -309,20 +312,33 @@ contains
         end do
     end subroutine check_forces_at_start
 
-    !> Each UCON with its routine: the built-in one ROUTINE=name names (refused, where
-    !> ROUTINE= was written, when there is none), else the model's (none given: refused).
+    !> Each UCON with its routine: the built-in one ROUTINE=name names, else the user's
+    !> subroutine ROUTINE=library::name names (any subroutine with UCOSUB's calling sequence
+    !> in the `--ucosub` file library: rollcon_user_ucosubs), else the model's (none given, or
+    !> several user files defining UCOSUB: refused). Refused too: a user file's UCOSUB that
+    !> serves no UCON (a constraint given and not applied).
     subroutine add_ucons(adm, fallback, model, error)
         type(adm_model_type), intent(in) :: adm
         procedure(ucosub_interface), pointer, intent(in) :: fallback
         type(model_type), intent(inout) :: model
         type(error_type), allocatable, intent(out) :: error
         procedure(ucosub_interface), pointer :: routine
+        character(len=:), allocatable :: files, unused
         logical :: time_free, found
-        integer :: k
+        integer :: k, entry, defining
 
+        call user_ucosub_files(files, defining)
         do k = 1, size(adm%ucons)
             associate (ucon => adm%ucons(k))
                 if (served_by_model_ucosub(ucon%routine)) then
+                    if (defining > 1) then
+                        call fatal_error(error, place(adm%file, ucon%line) // ": UCON/" &
+                            & // to_text(ucon%id) // " names no ROUTINE, and several files " &
+                            & // "given define UCOSUB (" // files // "): name the one that " &
+                            & // "serves it, ROUTINE=FILE::UCOSUB (FILE as given, or its name " &
+                            & // "without folder and extension)", stat_input)
+                        return
+                    end if
                     if (.not. associated(fallback)) then
                         call fatal_error(error, place(adm%file, ucon%line) // ": UCON/" &
                             & // to_text(ucon%id) // ": no UCOSUB serves this UCON: name a " &
@@ -331,21 +347,62 @@ contains
                             & // "FILE|NAME)", stat_input)
                         return
                     end if
+                    call mark_user_ucosub_used(find_user_ucosub(""))
                     call model%add_ucon(ucon%id, ucon%par, line=ucon%line)
                     cycle
                 end if
                 call find_builtin_ucosub(trim(ucon%routine), routine, time_free, found)
-                if (.not. found) then
-                    call fatal_error(error, ucon%routine_at // ": '" // trim(ucon%routine) &
-                        & // "' is not a built-in UCOSUB (" // builtin_ucosub_names() // "); a " &
-                        & // "routine of your own is given with rollcon run MODEL.adm --ucosub " &
-                        & // "FILE", stat_input)
+                if (found) then
+                    call model%add_ucon(ucon%id, ucon%par, routine, time_free=time_free, &
+                        & routine=trim(ucon%routine), line=ucon%line)
+                    cycle
+                end if
+                entry = find_named_ucosub(trim(ucon%routine))
+                if (entry == 0) then
+                    if (is_library_routine(ucon%routine)) then
+                        call fatal_error(error, ucon%routine_at // ": '" // trim(ucon%routine) &
+                            & // "' is neither a built-in UCOSUB (" // builtin_ucosub_names() &
+                            & // ") nor a subroutine of a user's file: ROUTINE=FILE::NAME " &
+                            & // "names the subroutine NAME, with UCOSUB's calling sequence, " &
+                            & // "of FILE given with rollcon run MODEL.adm --ucosub FILE (FILE " &
+                            & // "as given, or its name without folder and extension)", &
+                            & stat_input)
+                    else
+                        call fatal_error(error, ucon%routine_at // ": '" // trim(ucon%routine) &
+                            & // "' is not a built-in UCOSUB (" // builtin_ucosub_names() &
+                            & // "); a routine of your own is named ROUTINE=FILE::NAME, FILE " &
+                            & // "given with rollcon run MODEL.adm --ucosub FILE", stat_input)
+                    end if
                     return
                 end if
-                call model%add_ucon(ucon%id, ucon%par, routine, time_free=time_free, &
+                ! the user's routine runs behind the entry point (a child's guard), which
+                ! finds it by the UCON's id
+                call bind_user_ucon(ucon%id, entry)
+                call user_ucosub_entry(routine)
+                call model%add_ucon(ucon%id, ucon%par, routine, time_free=.false., &
                     & routine=trim(ucon%routine), line=ucon%line)
             end associate
         end do
+        unused = user_ucosub_unused()
+        if (len(unused) > 0) then
+            call fatal_error(error, adm%file // ": " // unused // " defines a UCOSUB that " &
+                & // "serves no UCON of the model (a constraint given and not applied): a UCON " &
+                & // "names it with ROUTINE=" // library_name(unused) // "::UCOSUB, or one " &
+                & // "naming no ROUTINE takes it when it is the only file defining UCOSUB; " &
+                & // "leave the file out if the model does not use it", stat_input)
+            return
+        end if
+    contains
+        !> A file's name without folder and extension
+        function library_name(path) result(stem)
+            character(len=*), intent(in) :: path
+            character(len=:), allocatable :: stem
+            integer :: dot
+
+            stem = path(index(path, "/", back=.true.) + 1:)
+            dot = index(stem, ".", back=.true.)
+            if (dot > 1) stem = stem(:dot - 1)
+        end function library_name
     end subroutine add_ucons
 
     !> Each JOINT and JPRIM, in the order of the file, between its markers as the model holds
@@ -517,7 +574,7 @@ contains
             list(n)%par = adm%motions(k)%par
             list(n)%name = where
             list(n)%highest = motion_highest_order(motion_form(adm%motions(k)%form))
-            list(n)%routine = find_force_routine(routine_motsub, routine)
+            list(n)%routine = find_named_routine(routine_motsub, routine)
             if (list(n)%routine > 0) cycle
             if (len(routine) == 0) then
                 call fatal_error(error, where // " FUNCTION=USER(...): no " &
@@ -754,7 +811,7 @@ contains
 
         routine = ""
         if (allocated(given%routine)) routine = given%routine
-        entry = find_force_routine(routine_difsub, routine)
+        entry = find_named_routine(routine_difsub, routine)
         if (entry > 0) return
         if (len(routine) == 0) then
             call fatal_error(error, where // "=USER(...): no " // diff_routine_name &
@@ -880,7 +937,7 @@ contains
                 list(n)%id = adm%variables(k)%id
                 list(n)%par = adm%variables(k)%par
                 list(n)%name = where
-                list(n)%routine = find_force_routine(routine_varsub, routine)
+                list(n)%routine = find_named_routine(routine_varsub, routine)
                 if (list(n)%routine > 0) cycle
                 if (len(routine) == 0) then
                     call fatal_error(error, where // " FUNCTION=USER(...): no " &
@@ -913,7 +970,7 @@ contains
         integer :: kind
 
         kind = routine_kind_of(trim(force_names(statement%kind)))
-        entry = find_force_routine(kind, statement%routine)
+        entry = find_named_routine(kind, statement%routine)
         if (entry > 0) return
         if (len(statement%routine) == 0) then
             call fatal_error(error, where // " FUNCTION=USER(...): no " &
@@ -923,9 +980,10 @@ contains
         else
             call fatal_error(error, where // " ROUTINE=" // statement%routine // ": no " &
                 & // trim(routine_names(kind)) // " of that name among the user's files; " &
-                & // "ROUTINE=FILE::" // trim(routine_names(kind)) // " names the routine of " &
-                & // "FILE (given with --ucosub FILE; FILE as given, or its name without " &
-                & // "folder and extension)", stat_input)
+                & // "ROUTINE=FILE::NAME names the subroutine NAME of FILE, with " &
+                & // trim(routine_names(kind)) // "'s calling sequence (FILE given with " &
+                & // "--ucosub FILE; as given, or its name without folder and extension)", &
+                & stat_input)
         end if
     end subroutine user_routine
 

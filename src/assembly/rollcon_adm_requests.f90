@@ -33,7 +33,7 @@ module rollcon_adm_requests
         & request_force, request_expressions, request_user
     use rollcon_adm_variables, only : substitute_variables, give_splines
     use rollcon_system_routine_contract, only : routine_reqsub, request_routine_name
-    use rollcon_user_forces, only : find_force_routine
+    use rollcon_user_ucosubs, only : find_named_routine
     use rollcon_adm_markers, only : adm_marker, marker_index
     use rollcon_adm_expression_parser, only : compile_expression
     implicit none
@@ -122,7 +122,7 @@ contains
         integer, intent(out) :: entry
         type(error_type), allocatable, intent(out) :: error
 
-        entry = find_force_routine(routine_reqsub, routine)
+        entry = find_named_routine(routine_reqsub, routine)
         if (entry > 0) return
         if (len(routine) == 0) then
             call fatal_error(error, where // " FUNCTION=USER(...): no " // request_routine_name &

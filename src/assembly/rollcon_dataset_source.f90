@@ -14,6 +14,7 @@ module rollcon_dataset_source
     use rollcon_text, only : to_text
     use rollcon_rotation, only : euler_angles
     use rollcon_ucosub_contract, only : ucosub_interface
+    use rollcon_ucosub_catalog, only : find_builtin_ucosub
     use rollcon_model, only : served_by_model_ucosub
     use rollcon_problem, only : problem_type
     use rollcon_model_source, only : model_source_type
@@ -192,8 +193,10 @@ contains
 
     !> The model's UCOSUB serves none of the dataset's UCONs (each names its ROUTINE; the
     !> joints' UCONs always have theirs): rollcon_model's served_by_model_ucosub.
-    pure logical function all_named(adm)
+    logical function all_named(adm)
         type(adm_model_type), intent(in) :: adm
+        procedure(ucosub_interface), pointer :: builtin
+        logical :: time_free, found
         integer :: k
 
         all_named = .true.
@@ -221,6 +224,9 @@ contains
         if (.not. allocated(adm%ucons)) return
         do k = 1, size(adm%ucons)
             if (served_by_model_ucosub(adm%ucons(k)%routine)) all_named = .false.
+            ! a routine of a user's file (ROUTINE=FILE::NAME) needs that file
+            call find_builtin_ucosub(trim(adm%ucons(k)%routine), builtin, time_free, found)
+            if (.not. found) all_named = .false.
         end do
     end function all_named
 

@@ -15,6 +15,7 @@ module rollcon_run_check
     use rollcon_problem, only : problem_type
     use rollcon_output_layout, only : coordinate_names
     use rollcon_model, only : served_by_model_ucosub
+    use rollcon_user_ucosubs, only : find_user_ucosub, user_ucosub_source
     use rollcon_partials_check, only : ucon_check_options_type, ucon_check_result_type, &
         & check_ucon_state
     implicit none
@@ -42,16 +43,36 @@ contains
         type(error_type), allocatable, intent(out) :: error
         type(ucon_check_options_type) :: options
         type(ucon_check_result_type) :: result
-        character(len=:), allocatable :: found, whole
+        character(len=:), allocatable :: found, whole, statement, files, source
         real(wp), allocatable :: values(:)
         integer, allocatable :: codes(:)
         real(wp) :: ucon_time
-        integer :: k, i, m, before
+        integer :: k, i, m, before, named, line
 
         found = ""
+        files = ""
         do k = 1, problem%model%nc
             associate (ucon => problem%model%ucons(k))
-                if (.not. served_by_model_ucosub(ucon%routine)) cycle
+                ! the model's UCOSUB, or a user's routine its ROUTINE=FILE::NAME names
+                named = 0
+                if (.not. served_by_model_ucosub(ucon%routine)) then
+                    named = find_user_ucosub(ucon%routine)
+                    if (named == 0) cycle
+                end if
+                line = 0
+                if (ucon%statement > 0) line = problem%model%statements(ucon%statement)%line
+                statement = "UCON/" // to_text(ucon%id)
+                source = user_file
+                if (named > 0) source = user_ucosub_source(named)
+                if (line > 0 .and. named > 0) then
+                    statement = statement // " (line " // to_text(line) // ", ROUTINE=" &
+                        & // ucon%routine // " of " // source // ")"
+                else if (line > 0) then
+                    statement = statement // " (line " // to_text(line) // ")"
+                else if (named > 0) then
+                    statement = statement // " (ROUTINE=" // ucon%routine // " of " // source &
+                        & // ")"
+                end if
                 values = [(merge(u(ucon%coordinate(i)), q(ucon%coordinate(i)), &
                     & ucon%velocity(i)), i = 1, ucon%nvars)]
                 codes = merge(code_rate, code_coordinate, ucon%velocity(:ucon%nvars))
@@ -65,13 +86,18 @@ contains
                 call check_ucon_state(ucon%ucosub, ucon%id, ucon%par, codes, ucon_time, &
                     & values, options, result, error)
                 if (allocated(error)) then
-                    error%message = error%message // " (in the check of the routine at the " &
-                        & // "run's consistent start; --no-check skips it)"
+                    error%message = statement // ": " // error%message // " (in the check of " &
+                        & // "the routine at the run's consistent start; --no-check skips it)"
                     return
+                end if
+                if (size(result%mismatches) > before .and. index(", " // files // ",", ", " &
+                    & // source // ",") == 0) then
+                    if (len(files) > 0) files = files // ", "
+                    files = files // source
                 end if
                 do m = before + 1, size(result%mismatches)
                     associate (wrong => result%mismatches(m))
-                        found = found // new_line("a") // "  UCON/" // to_text(ucon%id) &
+                        found = found // new_line("a") // "  " // statement &
                             & // " " // entry_text(problem, ucon%coordinate, ucon%velocity, &
                             & wrong%output, wrong%row, wrong%column) &
                             & // " [" // wrong%rule // "]: returned " &
@@ -87,11 +113,11 @@ contains
         if (len(input_path) > 4) then
             if (input_path(len(input_path) - 3:) == ".adm") whole = " --model " // input_path
         end if
-        call fatal_error(error, user_file // " fails its check at the model's consistent " &
+        call fatal_error(error, files // " fails its check at the model's consistent " &
             & // "start (t = " // to_text(time) // " s), so the analysis was not started: a " &
             & // "wrong partial slows the integrators or stops them, and makes a linear " &
             & // "analysis's eigenvalues wrong" // found // new_line("a") // "  the " &
-            & // "whole routine, at random states: rollcon check " // user_file // whole &
+            & // "whole routine, at random states: rollcon check " // files // whole &
             & // "; to run anyway: --no-check", stat_input)
     end subroutine check_at_start
 

@@ -24,7 +24,9 @@ module rollcon_user_routine_check
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type, stat_ucon
     use rollcon_text, only : to_text, shell_quote, upper_case, number_list
-    use rollcon_adm_model, only : adm_model_type, request_user
+    use rollcon_adm_model, only : adm_model_type, request_user, force_sforce, force_vforce, &
+        & force_gforce, force_vtorque
+    use rollcon_adm_units, only : unit_names
     use rollcon_adm_reader, only : read_adm
     use rollcon_job, only : job_type, user_file_type
     use rollcon_load, only : load_job, add_user_file
@@ -50,6 +52,7 @@ module rollcon_user_routine_check
     private
 
     public :: dataset_has_user_routines, check_user_routines, implicit_typing_findings
+    public :: routine_units_lines
 
     !> States probed about the start, besides the start itself
     integer, parameter :: probed_states = 20
@@ -232,6 +235,97 @@ contains
             count = count + typing_count
         end do
     end subroutine check_user_routines
+
+    !> What "units as documented" means for each statement of the dataset at model served by a
+    !> user's routine, a line each ("units: SFORCE/2 (line 13), its SFOSUB: ..."): every answer
+    !> of SYSFNC and SYSARY arrives in the dataset's UNITS (force, mass, length, time by their
+    !> names; angles in radians, rates per its time unit), and each output is read in them,
+    !> as ADAMS reads it (a force in the force unit, a torque in force times length, a MOTSUB's
+    !> rotation in radians). "" when none is; error when the dataset does not read.
+    subroutine routine_units_lines(model, lines, error)
+        character(len=*), intent(in) :: model
+        character(len=:), allocatable, intent(out) :: lines
+        type(error_type), allocatable, intent(out) :: error
+        type(adm_model_type) :: adm
+        character(len=:), allocatable :: force, mass, length, time, answers, torque
+        character(len=*), parameter :: nl = new_line("a")
+        integer :: k
+
+        lines = ""
+        call read_adm(model, adm, error)
+        if (allocated(error)) return
+        call unit_names(adm%units, force, mass, length, time)
+        answers = ": SYSFNC and SYSARY answer in " // force // ", " // mass // ", " // length &
+            & // ", " // time // " (the dataset's UNITS), angles in radians, velocities in " &
+            & // length // "/" // time // ", angular velocities in radians/" // time // "; "
+        torque = force // "*" // length
+        if (allocated(adm%forces)) then
+            do k = 1, size(adm%forces)
+                associate (f => adm%forces(k))
+                    if (.not. f%user) cycle
+                    select case (f%kind)
+                    case (force_sforce)
+                        if (f%translation) then
+                            call add("SFORCE", f%id, f%line, "SFOSUB", "RESULT is read as the " &
+                                & // "force along the line from J to I, in " // force)
+                        else
+                            call add("SFORCE", f%id, f%line, "SFOSUB", "RESULT is read as the " &
+                                & // "torque about J's z axis, in " // torque)
+                        end if
+                    case (force_vforce)
+                        call add("VFORCE", f%id, f%line, "VFOSUB", "RESULT(1:3) is read as " &
+                            & // "the force in RM's axes, in " // force)
+                    case (force_vtorque)
+                        call add("VTORQUE", f%id, f%line, "VTOSUB", "RESULT(1:3) is read as " &
+                            & // "the torque in RM's axes, in " // torque)
+                    case (force_gforce)
+                        call add("GFORCE", f%id, f%line, "GFOSUB", "RESULT(1:3) is read as " &
+                            & // "the force in RM's axes, in " // force // ", RESULT(4:6) as " &
+                            & // "the torque, in " // torque)
+                    end select
+                end associate
+            end do
+        end if
+        if (allocated(adm%variables)) then
+            do k = 1, size(adm%variables)
+                if (.not. adm%variables(k)%user) cycle
+                call add("VARIABLE", adm%variables(k)%id, adm%variables(k)%line, "VARSUB", &
+                    & "VALUE is read in the dataset's units of what it stands for (as the " &
+                    & // "FUNCTION it replaces)")
+            end do
+        end if
+        if (allocated(adm%other_requests)) then
+            do k = 1, size(adm%other_requests)
+                if (adm%other_requests(k)%kind /= request_user) cycle
+                call add("REQUEST", adm%other_requests(k)%id, adm%other_requests(k)%line, &
+                    & "REQSUB", "RESULT(2:4), RESULT(6:8) are written as they are, in the " &
+                    & // "dataset's units of the measures they report")
+            end do
+        end if
+        if (allocated(adm%motions)) then
+            do k = 1, size(adm%motions)
+                if (.not. adm%motions(k)%user) cycle
+                call add("MOTION", adm%motions(k)%id, adm%motions(k)%line, "MOTSUB", &
+                    & "VALUE is read as the joint's displacement in " // length // " (a " &
+                    & // "translation) or radians (a rotation), its derivatives per " // time)
+            end do
+        end if
+        if (allocated(adm%diffs)) then
+            do k = 1, size(adm%diffs)
+                if (.not. adm%diffs(k)%user) cycle
+                call add("DIFF", adm%diffs(k)%id, adm%diffs(k)%line, "DIFSUB", "VALUE is " &
+                    & // "read as d DIF/dt in the equation's own units per " // time)
+            end do
+        end if
+    contains
+        subroutine add(statement, id, line, routine, outputs)
+            character(len=*), intent(in) :: statement, routine, outputs
+            integer, intent(in) :: id, line
+
+            lines = lines // "units: " // statement // "/" // to_text(id) // " (line " &
+                & // to_text(line) // "), its " // routine // answers // outputs // nl
+        end subroutine add
+    end subroutine routine_units_lines
 
     !> The file compiled again with -Wconversion (-fsyntax-only): each warning of a conversion
     !> that may change a value, "[typing] FILE:LINE (in SUBROUTINE NAME): what gfortran says:

@@ -10,8 +10,8 @@
 !>
 !> Only the file the caller names is ever compiled or loaded.
 module rollcon_user_library
-    use, intrinsic :: iso_c_binding, only : c_ptr, c_funptr, c_null_ptr, c_associated, &
-        & c_f_procpointer
+    use, intrinsic :: iso_c_binding, only : c_ptr, c_funptr, c_null_ptr, c_null_funptr, &
+        & c_associated, c_f_procpointer
     use rollcon_error, only : error_type, fatal_error, stat_ucon
     use rollcon_ucosub_contract, only : ucosub_interface
     use rollcon_dlopen, only : open_library, library_symbol, close_library, last_library_error
@@ -28,14 +28,26 @@ module rollcon_user_library
     use rollcon_user_forces, only : register_force_routine, find_force_routine, &
         & register_request_routine, register_variable_routine, register_diff_routine
     use rollcon_user_forces, only : register_motion_routine
+    use rollcon_user_ucosubs, only : register_user_ucosub, find_user_ucosub, set_routine_resolver
     implicit none
     private
 
     public :: user_ucosub_type, user_build_options_type, new_user_ucosub, load_user_ucosub, &
-        & ucosub_symbol, load_user_routines, library_stem
+        & ucosub_symbol, load_user_routines, library_stem, library_named
 
     !> Symbol of an external subroutine UCOSUB compiled by gfortran
     character(len=*), parameter :: ucosub_symbol = "ucosub_"
+
+    !> A library load_user_routines opened, for routines named by any name
+    !> (ROUTINE=library::name: resolve_symbol)
+    type :: opened_library_type
+        character(len=:), allocatable :: source
+        type(c_ptr) :: handle = c_null_ptr
+        !> A statement names one of its subroutines by name
+        logical :: named = .false.
+    end type opened_library_type
+
+    type(opened_library_type), allocatable, save :: opened(:)
 
     !> A loaded UCOSUB; call destroy when done (ucosub dangles afterwards)
     type :: user_ucosub_type
@@ -51,6 +63,9 @@ module rollcon_user_library
         procedure(ucosub_interface), pointer, nopass :: ucosub => null()
         !> dlopen handle
         type(c_ptr) :: handle = c_null_ptr
+        !> It defines none of the routines of fixed name (load_user_routines with
+        !> named_only): only a statement's ROUTINE=FILE::NAME can use it
+        logical :: defines_none = .false.
     contains
         !> Close the library
         procedure :: destroy => user_ucosub_destroy
@@ -114,15 +129,22 @@ contains
     end subroutine load_user_ucosub
 
     !> Load every routine of self%library, the library built from self%source: its UCOSUB
-    !> (self%ucosub; null when it defines none), its force routines SFOSUB, VFOSUB, GFOSUB,
+    !> (self%ucosub; null when it defines none; registered with rollcon_user_ucosubs as
+    !> "FILE::UCOSUB", and as the model's own, "", when no file loaded before defines one),
+    !> its force routines SFOSUB, VFOSUB, GFOSUB,
     !> VTOSUB, its REQSUB, its VARSUB, its MOTSUB and its DIFSUB,
     !> registered with rollcon_user_forces under the names ROUTINE= may give: FILE::NAME with
     !> FILE the file as given or its name without folder and extension (u.f: "u::SFOSUB"), and
     !> "" (the model's own, serving every statement naming no ROUTINE) when no file loaded
-    !> before defines one of that kind. An error when it defines none of them.
-    subroutine load_user_routines(self, error)
+    !> before defines one of that kind. An error when it defines none of them. Any other
+    !> subroutine of the file is found when a statement names it (ROUTINE=FILE::NAME:
+    !> rollcon_user_ucosubs' resolve_routine, served by resolve_symbol).
+    subroutine load_user_routines(self, error, named_only)
         type(user_ucosub_type), intent(inout) :: self
         type(error_type), allocatable, intent(out) :: error
+        !> A file defining none of them is kept (self%defines_none) for the routines
+        !> statements name by name; the caller refuses it when none does (library_named)
+        logical, intent(in), optional :: named_only
         type(c_funptr) :: address
         procedure(force_routine_interface), pointer :: routine
         procedure(request_routine_interface), pointer :: request
@@ -146,7 +168,18 @@ contains
         end if
         address = library_symbol(self%handle, ucosub_symbol)
         found = c_associated(address)
-        if (found) call c_f_procpointer(address, self%ucosub)
+        if (found) then
+            call c_f_procpointer(address, self%ucosub)
+            ! the model's own UCOSUB is the first file's that defines one; with several, a
+            ! UCON naming no ROUTINE is refused (rollcon_adm_build's add_ucons)
+            if (find_user_ucosub("") == 0) call register_user_ucosub("", self%source, &
+                & self%ucosub)
+            call register_user_ucosub(self%source // "::UCOSUB", self%source, self%ucosub)
+            call register_user_ucosub(library_stem(self%source) // "::UCOSUB", self%source, &
+                & self%ucosub)
+        end if
+        call remember_library(self%source, self%handle)
+        call set_routine_resolver(resolve_symbol)
         do kind = 1, routine_kinds
             address = library_symbol(self%handle, trim(routine_symbols(kind)))
             if (.not. c_associated(address)) cycle
@@ -208,6 +241,10 @@ contains
             call register_diff_routine(library_stem(self%source) // "::" // diff_routine_name, &
                 & self%source, variable)
         end if
+        self%defines_none = .not. found
+        if (.not. found .and. present(named_only)) then
+            if (named_only) return
+        end if
         if (.not. found) then
             call fatal_error(error, self%source // ": defines none of the routines rollcon " &
                 & // "calls (UCOSUB, SFOSUB, VFOSUB, GFOSUB, VTOSUB, REQSUB, VARSUB, MOTSUB, " &
@@ -219,6 +256,72 @@ contains
             call self%destroy()
         end if
     end subroutine load_user_routines
+
+    !> The address of subroutine name (any case) in the library built from library (a file
+    !> as load_user_routines was given it, or its name without folder and extension), and that
+    !> file: gfortran's symbol of an external subroutine (name in lower case and "_"), else a
+    !> C function's (name in lower case). A null address when neither is found.
+    subroutine resolve_symbol(library, name, address, source)
+        character(len=*), intent(in) :: library, name
+        type(c_funptr), intent(out) :: address
+        character(len=:), allocatable, intent(out) :: source
+        character(len=:), allocatable :: symbol
+        integer :: k, i
+
+        address = c_null_funptr
+        source = ""
+        if (.not. allocated(opened)) return
+        symbol = name
+        do i = 1, len(symbol)
+            if (symbol(i:i) >= "A" .and. symbol(i:i) <= "Z") symbol(i:i) = &
+                & achar(iachar(symbol(i:i)) + 32)
+        end do
+        do k = size(opened), 1, -1
+            if (opened(k)%source /= library .and. library_stem(opened(k)%source) /= library) &
+                & cycle
+            if (.not. c_associated(opened(k)%handle)) cycle
+            address = library_symbol(opened(k)%handle, symbol // "_")
+            if (.not. c_associated(address)) address = library_symbol(opened(k)%handle, symbol)
+            if (c_associated(address)) then
+                source = opened(k)%source
+                opened(k)%named = .true.
+            end if
+            return
+        end do
+    end subroutine resolve_symbol
+
+    !> Append a library opened from source to the list resolve_symbol searches.
+    subroutine remember_library(source, handle)
+        character(len=*), intent(in) :: source
+        type(c_ptr), intent(in) :: handle
+        type(opened_library_type), allocatable :: longer(:)
+        integer :: k, n
+
+        n = 0
+        if (allocated(opened)) n = size(opened)
+        allocate(longer(n + 1))
+        do k = 1, n
+            call move_alloc(opened(k)%source, longer(k)%source)
+            longer(k)%handle = opened(k)%handle
+            longer(k)%named = opened(k)%named
+        end do
+        longer(n + 1)%source = source
+        longer(n + 1)%handle = handle
+        call move_alloc(longer, opened)
+    end subroutine remember_library
+
+    !> True when a statement named a subroutine of the library built from source by its name
+    !> (resolve_symbol found it).
+    logical function library_named(source)
+        character(len=*), intent(in) :: source
+        integer :: k
+
+        library_named = .false.
+        if (.not. allocated(opened)) return
+        do k = 1, size(opened)
+            if (opened(k)%source == source .and. opened(k)%named) library_named = .true.
+        end do
+    end function library_named
 
     !> The name of a file without its folder and extension ("test/x/sfo_b.f": "sfo_b").
     pure function library_stem(path) result(stem)
@@ -236,7 +339,14 @@ contains
         !> The loaded routine
         class(user_ucosub_type), intent(inout) :: self
 
+        integer :: k
+
         nullify(self%ucosub)
+        if (allocated(opened)) then
+            do k = 1, size(opened)
+                if (c_associated(opened(k)%handle, self%handle)) opened(k)%handle = c_null_ptr
+            end do
+        end if
         call close_library(self%handle)
     end subroutine user_ucosub_destroy
 

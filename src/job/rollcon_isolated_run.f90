@@ -32,7 +32,9 @@ module rollcon_isolated_run
     use rollcon_isolation_text, only : outcome_text, quote_stderr, scratch_path
     use rollcon_ucosub_guard, only : install_guard, attach_call_record, guarded_ucosub
     use rollcon_user_build, only : build_user_library
-    use rollcon_user_library, only : user_ucosub_type, load_user_routines
+    use rollcon_user_library, only : user_ucosub_type, load_user_routines, library_named
+    use rollcon_user_ucosubs, only : clear_user_ucosubs, find_user_ucosub, &
+        & dispatch_user_ucosub, set_user_ucosub_entry
     use rollcon_user_forces, only : clear_force_routines, check_user_motions
     use rollcon_force_routine_guard, only : install_force_guard
     use rollcon_job, only : job_type, user_file_type
@@ -199,31 +201,55 @@ contains
 
         call attach_call_record(record)
         call clear_force_routines()
+        call clear_user_ucosubs()
         user%source = job%user_file
         user%library = library
-        ! its UCOSUB, if any, and its force routines (rollcon_user_forces' table)
-        call load_user_routines(user, error)
+        ! its UCOSUBs and force routines (rollcon_user_ucosubs', rollcon_user_forces' tables);
+        ! a file may define only routines the dataset names by name (ROUTINE=FILE::NAME)
+        call load_user_routines(user, error, named_only=.true.)
         if (allocated(error)) return
         do k = 1, size(more_libraries)
             more(k)%source = job%more_files(k)%path
             more(k)%library = more_libraries(k)%path
-            call load_user_routines(more(k), error)
+            call load_user_routines(more(k), error, named_only=.true.)
             if (allocated(error)) return
         end do
         call install_force_guard(record)
+        ! every user UCOSUB behind one guard, which finds each UCON's routine by its id
+        call install_guard(dispatch_user_ucosub, as_errors=.true.)
+        call set_user_ucosub_entry(guarded_ucosub)
         guarded => null()
-        if (associated(user%ucosub)) then
-            call install_guard(user%ucosub, as_errors=.true.)
-            guarded => guarded_ucosub
-        end if
+        if (find_user_ucosub("") > 0) guarded => guarded_ucosub
         call job%source%build(guarded, problem, q0, u0, report, error)
         if (allocated(error)) return
+        call refuse_unused(user, error)
+        if (allocated(error)) return
+        do k = 1, size(more)
+            call refuse_unused(more(k), error)
+            if (allocated(error)) return
+        end do
         if (.not. associated(job%start_check)) return
         call job%start_check(job%user_file, job%input_path, problem, time, q0, u0, error)
         if (allocated(error)) return
         ! the MOTSUBs' IORD = 1, 2 against differences of their IORD = 0, 1
         call check_user_motions(time, q0, u0, error)
     end subroutine build_apart
+
+    !> A user's file that defines none of the routines of fixed name (UCOSUB, SFOSUB, ...)
+    !> and none of whose subroutines a statement names (ROUTINE=FILE::NAME): refused, as a
+    !> file that serves nothing.
+    subroutine refuse_unused(user, error)
+        type(user_ucosub_type), intent(in) :: user
+        type(error_type), allocatable, intent(out) :: error
+
+        if (.not. user%defines_none .or. library_named(user%source)) return
+        call fatal_error(error, user%source // ": defines none of the routines rollcon calls " &
+            & // "(UCOSUB, SFOSUB, VFOSUB, GFOSUB, VTOSUB, REQSUB, VARSUB, MOTSUB, DIFSUB: " &
+            & // "symbols 'ucosub_', 'sfosub_', ...), and no statement names one of its " &
+            & // "subroutines (ROUTINE=FILE::NAME); check the names in its SUBROUTINE " &
+            & // "statements and ROUTINE=, and that they are external subroutines, not inside " &
+            & // "a module", stat_ucon)
+    end subroutine refuse_unused
 
     !> The child's stderr at path: when the child did not finish (a STOP, a crash), its useful
     !> lines (quote_stderr) end the run's message; otherwise every line is written to this

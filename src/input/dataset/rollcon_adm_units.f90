@@ -15,7 +15,7 @@ module rollcon_adm_units
     implicit none
     private
 
-    public :: units_type, set_unit, unit_keywords
+    public :: units_type, set_unit, unit_keywords, unit_names
 
     !> Factors to SI: a value v in dataset units is v * factor in SI
     type :: units_type
@@ -82,5 +82,34 @@ contains
             end select
         end select
     end subroutine set_unit
+
+    !> The dataset's units by their names: force, mass, length and time ("NEWTON", "KILOGRAM",
+    !> "METER", "SECOND" for SI); a factor no name has is written as the factor to SI.
+    subroutine unit_names(units, force, mass, length, time)
+        type(units_type), intent(in) :: units
+        character(len=:), allocatable, intent(out) :: force, mass, length, time
+
+        force = name_of(units%force, force_names, force_factors)
+        mass = name_of(units%mass, mass_names, mass_factors)
+        length = name_of(units%length, length_names, length_factors)
+        time = name_of(units%time, time_names, time_factors)
+    contains
+        function name_of(factor, names, factors) result(name)
+            real(wp), intent(in) :: factor, factors(:)
+            character(len=*), intent(in) :: names(:)
+            character(len=:), allocatable :: name
+            character(len=24) :: written
+            integer :: k
+
+            do k = 1, size(factors)
+                if (abs(factor - factors(k)) <= 1.0e-12_wp*factors(k)) then
+                    name = trim(names(k))
+                    return
+                end if
+            end do
+            write(written, '(es24.16)') factor
+            name = trim(adjustl(written)) // " SI"
+        end function name_of
+    end subroutine unit_names
 
 end module rollcon_adm_units

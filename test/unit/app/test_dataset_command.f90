@@ -315,11 +315,11 @@ contains
             & rows%count)) // ") m, not (0.1, 0) within " // tol_turn)
         if (allocated(error)) return
         call check(error, status_slipped /= 0 .and. index(slipped_err, "fails its check") > 0 &
-            & .and. index(slipped_err, "UCON/1 ARRAY(2) = dF/d(Y_2) [derivative]: returned " &
-            & // "1.75, differences give 3.5") > 0 .and. index(slipped_err, "UCON/2 ARRAY(1) " &
-            & // "= dF/d(X_2)") > 0 .and. index(slipped_err, "rollcon check " &
-            & // "test/turntable/turntable_half_coriolis.f --model " // model) > 0 .and. &
-            & index(slipped_err, "--no-check") > 0 .and. .not. slipped_csv, &
+            & .and. index(slipped_err, "UCON/1 (line 8) ARRAY(2) = dF/d(Y_2) [derivative]: " &
+            & // "returned 1.75, differences give 3.5") > 0 .and. index(slipped_err, &
+            & "UCON/2 (line 9) ARRAY(1) = dF/d(X_2)") > 0 .and. index(slipped_err, &
+            & "rollcon check test/turntable/turntable_half_coriolis.f --model " // model) > 0 &
+            & .and. index(slipped_err, "--no-check") > 0 .and. .not. slipped_csv, &
             & "the slipped routine: exit " // to_text(status_slipped) // ", stderr: " &
             & // slipped_err)
         if (allocated(error)) return

@@ -467,10 +467,10 @@ contains
             & // "test/turntable/turntable.f -q -o " // scratch // "/right", &
             & scratch // "/right.out", scratch // "/right.err", status_right)
         err = file_text(scratch // "/wrong.err")
-        call check(error, status == 1 .and. index(err, "UCON/1 ARRAY(2) = dF/d(Y_2) " &
+        call check(error, status == 1 .and. index(err, "UCON/1 (line 8) ARRAY(2) = dF/d(Y_2) " &
             & // "[derivative]: returned 1.75, differences give 3.5") > 0 .and. index(err, &
-            & "UCON/2 ARRAY(1) = dF/d(X_2) [derivative]: returned -1.75, differences give " &
-            & // "-3.5") > 0 .and. index(err, "rollcon check test/turntable/turntable_half_" &
+            & "UCON/2 (line 9) ARRAY(1) = dF/d(X_2) [derivative]: returned -1.75, differences " &
+            & // "give -3.5") > 0 .and. index(err, "rollcon check test/turntable/turntable_half_" &
             & // "coriolis.f --model test/turntable/turntable.adm") > 0 .and. index(err, &
             & "--no-check") > 0 .and. .not. file_exists(scratch // "/wrong/turntable.eigen.csv"), &
             & "exit status " // to_text(status) // ", stderr: " // err)

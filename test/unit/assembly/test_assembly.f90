@@ -51,7 +51,8 @@ contains
             & new_unittest("joint-markers-the-model-refuses", test_joint_markers)]
     end subroutine collect_assembly
 
-    !> ROUTINE=my_lib::ucosub reads (a name), and the assembly refuses it where it was written.
+    !> ROUTINE=my_lib::ucosub reads (a name), and the assembly refuses it where it was written
+    !> when no user's file my_lib is given (none is, here).
     subroutine test_routine(error)
         type(error_type), allocatable, intent(out) :: error
         character(len=len(base) + 60) :: lines(size(base))
@@ -60,9 +61,10 @@ contains
         disk => rolling_disk_ucosub
         lines = base
         lines(8) = "UCON/1, FUNCTION=USER(2, 21, 1), ROUTINE=my_lib::ucosub"
-        call refused(lines, disk, ":8: UCON/1 ROUTINE: 'my_lib::ucosub' is not a built-in " &
-            & // "UCOSUB " // builtin // "; a routine of your own is given with rollcon run " &
-            & // "MODEL.adm --ucosub FILE", error)
+        call refused(lines, disk, ":8: UCON/1 ROUTINE: 'my_lib::ucosub' is neither a " &
+            & // "built-in UCOSUB " // builtin // " nor a subroutine of a user's file: " &
+            & // "ROUTINE=FILE::NAME names the subroutine NAME, with UCOSUB's calling sequence, " &
+            & // "of FILE given with rollcon run MODEL.adm --ucosub FILE", error)
     end subroutine test_routine
 
     !> A UCON that names no ROUTINE, and no model's UCOSUB to serve it.

@@ -13,10 +13,20 @@ module test_partials_check
     use rollcon_disk_reference, only : rolling_disk_ucosub
     use rollcon_random_states, only : seed_state, draw_state
     use rollcon_testing, only : unittest_type, new_unittest, check
+    use rollcon_ucosub_contract, only : scalar_value, array_dq, xmatrx_none, xmatrx_dqdq
+    use rollcon_ucon_call, only : evaluate_ucon
+    use rollcon_user_library, only : user_ucosub_type, user_build_options_type, new_user_ucosub
+    use rollcon_output_files, only : make_folders, write_text_file
+    use command_runs, only : file_text, rollcon_program, run_rollcon
     implicit none
     private
 
     public :: collect_partials_check
+
+    !> The incline disk's generated routine and the tests' cache of compiled routines
+    character(len=*), parameter :: incline_routine = "test/incline/incline_roll_ucosub.f"
+    character(len=*), parameter :: test_cache = "build/rollcon-test-user-cache"
+    character(len=*), parameter :: scratch = "build/test_partials_check"
 
     real(wp), parameter :: generic_q(8) = [0.1_wp, 0.02_wp, -0.01_wp, 0.3_wp, 1.2_wp, 0.5_wp, &
         & -0.2_wp, -1.0_wp]
@@ -36,7 +46,8 @@ contains
             & new_unittest("hidden-state", test_hidden_state), &
             & new_unittest("random-states-xorshift64", test_random_sequence), &
             & new_unittest("random-states-in-ranges", test_random_ranges), &
-            & new_unittest("sharp-bend-judged-at-a-finer-step", test_sharp_bend)]
+            & new_unittest("sharp-bend-judged-at-a-finer-step", test_sharp_bend), &
+            & new_unittest("incline-disk-near-its-singularity", test_incline_disk)]
     end subroutine collect_partials_check
 
     !> Run the checker on component 2 of a disk-like routine at the generic state.
@@ -321,5 +332,160 @@ contains
         if (allocated(error)) return
         call expect_finding(error, result, "derivative", 1, 0)
     end subroutine test_sharp_bend
+
+    !> test/incline/incline_roll_ucosub.f, written by the project's generator from our spec
+    !> test/incline/incline_roll_spec.py (a disk of radius 0.1 m rolling on a plane tilted by
+    !> alpha = 20 degrees about X), at a state whose axle is 0.01 rad from the incline's
+    !> normal, near the spec's singularity (the disk flat on the plane, where the contact
+    !> direction's norm sqrt(1 - (n.k)^2) vanishes): there the sixth-order quotients at the
+    !> checker's step (1e-3) miss some exact entry by more than the tolerance 1e-8 (measured
+    !> here, so the state is one a fixed threshold calls a mismatch), and the check, which
+    !> judges such an entry again at a quarter of the step against the quotients' own error,
+    !> finds nothing in any of the three components (the quotients at 1e-3 miss by 4.2e-5,
+    !> measured, 4000 times the tolerance). A copy with dF/dpsi of component 1 returned 0.1 %
+    !> too large (a slip 1e5 times the tolerance) is found at the same state. Through the
+    !> program, with the dataset test/incline/incline_roll.adm (its disk spinning at that
+    !> state): `rollcon check FILE --model` is CLEAN and the run, which checks the routine at
+    !> its consistent start, completes with nothing on stderr; the copy gets a MISMATCH from
+    !> the check and stops the run, naming UCON/1 (line 12) and ARRAY(4).
+    subroutine test_incline_disk(error)
+        type(error_type), allocatable, intent(out) :: error
+        real(wp), parameter :: alpha = 0.3490658503988659_wp, radius = 0.1_wp
+        integer, parameter :: codes(8) = [21, 22, 23, 14, 15, 24, 25, 26]
+        type(user_ucosub_type) :: user, slipped
+        type(user_build_options_type) :: build
+        type(ucon_check_options_type) :: options
+        type(ucon_check_result_type) :: result
+        real(wp) :: q(8), worst_coarse, par(12)
+        character(len=:), allocatable :: text, copy
+        integer :: component, at
+
+        ! Xdot, Ydot, Zdot, psi, theta (alpha + 0.01: the axle 0.01 rad from the normal),
+        ! psidot, thetadot, phidot: a disk spinning and wobbling near flat
+        q = [0.3_wp, -0.2_wp, 0.05_wp, 0.0_wp, alpha + 0.01_wp, 1.5_wp, 0.5_wp, 8.0_wp]
+        build%cache_dir = test_cache
+        call new_user_ucosub(user, incline_routine, error, build)
+        if (allocated(error)) return
+        worst_coarse = 0.0_wp
+        do component = 1, 3
+            par = [2.0_wp, real(codes, wp), radius, alpha, real(component, wp)]
+            worst_coarse = max(worst_coarse, coarse_deviation(user, par, q, options%step, error))
+            if (allocated(error)) exit
+            call check_ucon_state(user%ucosub, component, par, codes, 0.0_wp, q, options, &
+                & result, error)
+            if (allocated(error)) exit
+            call check(error, size(result%mismatches), 0, "findings on the generated routine, " &
+                & // "component " // to_text(component))
+            if (allocated(error)) exit
+        end do
+        call user%destroy()
+        if (allocated(error)) return
+        call check(error, worst_coarse > options%rel_tol, "the quotients at the step 1e-3 " &
+            & // "miss the exact entries by at most " // to_text(worst_coarse) &
+            & // ": the state is not one where a fixed threshold fails")
+        if (allocated(error)) return
+        ! the slip: ARRAY(4) of component 1 (the first ARRAY(5) follows it) scaled by 1.001
+        text = file_text(incline_routine)
+        at = index(text, "            ARRAY(5) = ")
+        if (at == 0) then
+            call check(error, .false., incline_routine // ": no ARRAY(5) to plant the slip at")
+            return
+        end if
+        copy = text(:at - 1) // "            ARRAY(4) = 1.001D0*ARRAY(4)" // new_line("a") &
+            & // text(at:)
+        call make_folders(scratch, error)
+        if (allocated(error)) return
+        call write_text_file(scratch // "/incline_roll_slipped.f", copy, error)
+        if (allocated(error)) return
+        call new_user_ucosub(slipped, scratch // "/incline_roll_slipped.f", error, build)
+        if (allocated(error)) return
+        par = [2.0_wp, real(codes, wp), radius, alpha, 1.0_wp]
+        call check_ucon_state(slipped%ucosub, 1, par, codes, 0.0_wp, q, options, result, &
+            & error)
+        call slipped%destroy()
+        if (allocated(error)) return
+        call expect_finding(error, result, "derivative", 4, 0)
+        if (allocated(error)) return
+        call program_verdicts(incline_routine, .true., error)
+        if (allocated(error)) return
+        call program_verdicts(scratch // "/incline_roll_slipped.f", .false., error)
+    end subroutine test_incline_disk
+
+    !> `rollcon check routine --model test/incline/incline_roll.adm` and `rollcon run` of that
+    !> dataset with the routine: clean (CLEAN; the run completes, stderr empty) or not (a
+    !> MISMATCH; the run stops at its start naming UCON/1 (line 12)'s ARRAY(4)).
+    subroutine program_verdicts(routine, clean, error)
+        character(len=*), intent(in) :: routine
+        logical, intent(in) :: clean
+        type(error_type), allocatable, intent(out) :: error
+        character(len=*), parameter :: model = "test/incline/incline_roll.adm"
+        character(len=:), allocatable :: program, checked, ran_err
+        integer :: check_status, run_status
+
+        call rollcon_program(program, error)
+        if (allocated(error)) return
+        call run_rollcon(program, "check " // routine // " --model " // model, scratch &
+            & // "/check.out", scratch // "/check.err", check_status)
+        call run_rollcon(program, "run " // model // " --ucosub " // routine // " -q -o " &
+            & // scratch // "/run", scratch // "/run.out", scratch // "/run.err", run_status)
+        checked = file_text(scratch // "/check.out")
+        ran_err = file_text(scratch // "/run.err")
+        if (clean) then
+            call check(error, check_status == 0 .and. index(checked, "verdict: CLEAN: 3 " &
+                & // "UCON(s) checked, no mismatch") > 0 .and. run_status == 0 .and. &
+                & len_trim(ran_err) == 0, routine // ": check exit " // to_text(check_status) &
+                & // ", run exit " // to_text(run_status) // "; check: " // checked &
+                & // "; run's stderr: " // ran_err)
+        else
+            call check(error, check_status /= 0 .and. index(checked, "MISMATCH") > 0 .and. &
+                & run_status /= 0 .and. index(ran_err, "UCON/1 (line 12) ARRAY(4) = " &
+                & // "dF/d(psi_2) [derivative]") > 0, routine // ": check exit " &
+                & // to_text(check_status) // ", run exit " // to_text(run_status) &
+                & // "; check: " // checked // "; run's stderr: " // ran_err)
+        end if
+    end subroutine program_verdicts
+
+    !> The largest relative deviation of the sixth-order quotients at the step step (relative,
+    !> as the checker's) from the routine's own dF/dq and d2F/dq dq at q (PAR par), each judged
+    !> against the largest magnitude of the entry and its differenced values: what a check
+    !> with a fixed threshold compares with it.
+    function coarse_deviation(user, par, q, step, error) result(worst)
+        type(user_ucosub_type), intent(in) :: user
+        real(wp), intent(in) :: par(:), q(:), step
+        type(error_type), allocatable, intent(out) :: error
+        real(wp) :: worst
+        real(wp), parameter :: weights(-3:3) = [-1.0_wp, 9.0_wp, -45.0_wp, 0.0_wp, 45.0_wp, &
+            & -9.0_wp, 1.0_wp] / 60.0_wp
+        real(wp) :: q30(30), f, a(30), x(30, 30), f_line(-3:3), a_line(30, -3:3), h, quotient
+        real(wp) :: scratch_x(30, 30)
+        integer :: n, i, j, k
+
+        worst = 0.0_wp
+        n = size(q)
+        q30 = 0.0_wp
+        q30(:n) = q
+        call evaluate_ucon(user%ucosub, int(par(12)), 0.0_wp, q30, par, [scalar_value, &
+            & array_dq, xmatrx_dqdq], f, a, x, error)
+        if (allocated(error)) return
+        do j = 1, n
+            h = step*max(1.0_wp, abs(q(j)))
+            do k = -3, 3
+                q30(:n) = q
+                q30(j) = q(j) + k*h
+                call evaluate_ucon(user%ucosub, int(par(12)), 0.0_wp, q30, par, &
+                    & [scalar_value, array_dq, xmatrx_none], f_line(k), a_line(:, k), &
+                    & scratch_x, error)
+                if (allocated(error)) return
+            end do
+            quotient = dot_product(weights, f_line)/h
+            worst = max(worst, abs(quotient - a(j))/max(abs(a(j)), maxval(abs(f_line)), &
+                & tiny(1.0_wp)))
+            do i = 1, n
+                quotient = dot_product(weights, a_line(i, :))/h
+                worst = max(worst, abs(quotient - x(i, j))/max(abs(x(i, j)), &
+                    & maxval(abs(a_line(i, :))), tiny(1.0_wp)))
+            end do
+        end do
+    end function coarse_deviation
 
 end module test_partials_check

@@ -11,9 +11,9 @@ module test_user_routine_check
     use rollcon_testing, only : unittest_type, new_unittest, check
     use rollcon_output_files, only : make_folders, write_text_file
     use rollcon_user_build, only : user_build_options_type
-    use rollcon_user_routine_check, only : check_user_routines
+    use rollcon_user_routine_check, only : check_user_routines, routine_units_lines
     use rollcon_job, only : user_file_type
-    use command_runs, only : file_text, count_of
+    use command_runs, only : file_text, count_of, rollcon_program, run_rollcon
     implicit none
     private
 
@@ -54,7 +54,8 @@ contains
             & new_unittest("motsub-checked", test_motsub), &
             & new_unittest("difsub-checked", test_difsub), &
             & new_unittest("varval-at-probed-state", test_varval_probed), &
-            & new_unittest("accelerations-read-checked", test_accelerations_read)]
+            & new_unittest("accelerations-read-checked", test_accelerations_read), &
+            & new_unittest("units-line-per-routine", test_units_lines)]
     end subroutine collect_user_routine_check
 
     !> variable_stretch.f on variable.adm (declared types, no state, smooth, its SYSFNC call
@@ -418,5 +419,50 @@ contains
         call check_user_routines(file, model, options, 10.0_wp, 1, findings, count, error, &
             & more_files)
     end subroutine check_file
+
+    !> `rollcon check FILE --model` prints, for each statement a user's routine serves, a line
+    !> saying the units its SYSFNC and SYSARY answers arrive in and its outputs are read in:
+    !> the field's dataset (SI) gets one for GFORCE/1 (force in NEWTON, torque in
+    !> NEWTON*METER) and one for SFORCE/2, before the verdict; the same dataset in MMKS with a
+    !> rotational SFORCE gets METER replaced by MILLIMETER, the torque in NEWTON*MILLIMETER
+    !> and the angular velocities in radians/SECOND (the library call the command makes).
+    subroutine test_units_lines(error)
+        type(error_type), allocatable, intent(out) :: error
+        character(len=*), parameter :: answers = ": SYSFNC and SYSARY answer in NEWTON, " &
+            & // "KILOGRAM, METER, SECOND (the dataset's UNITS), angles in radians, velocities " &
+            & // "in METER/SECOND, angular velocities in radians/SECOND; "
+        character(len=:), allocatable :: program, out, text, lines, mmks
+        integer :: status
+
+        call make_folders(scratch, error)
+        if (allocated(error)) return
+        call rollcon_program(program, error)
+        if (allocated(error)) return
+        call run_rollcon(program, "check " // folder // "field_forces.f --model " // folder &
+            & // "field_forces.adm", scratch // "/units.out", scratch // "/units.err", status)
+        out = file_text(scratch // "/units.out")
+        call check(error, status == 0 .and. index(out, "units: GFORCE/1 (line 12), its GFOSUB" &
+            & // answers // "RESULT(1:3) is read as the force in RM's axes, in NEWTON, " &
+            & // "RESULT(4:6) as the torque, in NEWTON*METER") > 0 .and. index(out, "units: " &
+            & // "SFORCE/2 (line 13), its SFOSUB" // answers // "RESULT is read as the force " &
+            & // "along the line from J to I, in NEWTON") > 0 .and. index(out, "units: ") &
+            & < index(out, "verdict: clean"), "exit " // to_text(status) // ": " // out)
+        if (allocated(error)) return
+        text = file_text(folder // "field_forces.adm")
+        mmks = text(:index(text, "UNITS/") - 1) // "UNITS/SYSTEM = MMKS" // new_line("a") &
+            & // text(index(text, "PART/1"):index(text, "SFORCE/2") - 1) // "SFORCE/2, " &
+            & // "ROTATION, I = 20, J = 2, FUNCTION = USER(20, 2, 1000, 10, 1)" // new_line("a") &
+            & // "SIMULATE/DYNAMIC, END = 1, STEPS = 10" // new_line("a") // "END" &
+            & // new_line("a")
+        call write_text_file(scratch // "/units_mmks.adm", mmks, error)
+        if (allocated(error)) return
+        call routine_units_lines(scratch // "/units_mmks.adm", lines, error)
+        if (allocated(error)) return
+        call check(error, index(lines, "units: SFORCE/2 (line 13), its SFOSUB: SYSFNC and " &
+            & // "SYSARY answer in NEWTON, KILOGRAM, MILLIMETER, SECOND (the dataset's UNITS), " &
+            & // "angles in radians, velocities in MILLIMETER/SECOND, angular velocities in " &
+            & // "radians/SECOND; RESULT is read as the torque about J's z axis, in " &
+            & // "NEWTON*MILLIMETER") > 0 .and. index(lines, "GFORCE/1 (line 12)") > 0, lines)
+    end subroutine test_units_lines
 
 end module test_user_routine_check

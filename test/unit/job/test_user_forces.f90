@@ -27,7 +27,8 @@ module test_user_forces
     use rollcon_grind_watch, only : grinds
     use rollcon_run_check, only : check_at_start
     use rollcon_run_settings, only : formulation_cvode, formulation_ida
-    use rollcon_output_layout, only : coord_x, coord_z, coord_theta, coord_psidot, coord_phidot
+    use rollcon_output_layout, only : coord_x, coord_y, coord_z, coord_theta, coord_psidot, &
+        & coord_phidot
     implicit none
     private
 
@@ -74,6 +75,11 @@ contains
             & new_unittest("data-utilities-as-expressions", test_data_utilities), &
             & new_unittest("c-sfosub-as-fortran", test_c_routine), &
             & new_unittest("two-user-files", test_two_files), &
+            & new_unittest("field-sfosub-gfosub-as-expressions", test_field_forces), &
+            & new_unittest("sfosub-by-its-own-name", test_named_sfosub), &
+            & new_unittest("ucons-of-two-files-as-gcons", test_ucon_two_files), &
+            & new_unittest("ucon-routine-refusals", test_ucon_refusals), &
+            & new_unittest("ucon-named-routine-checked-at-start", test_ucon_named_checked), &
             & new_unittest("sfosub-crashes", test_crashes), &
             & new_unittest("sfosub-stops", test_stops), &
             & new_unittest("sfosub-endless-loop", test_endless), &
@@ -663,6 +669,195 @@ contains
         call compare_twins("two_files", ["sforce_spring.f", "sforce_cubic.f "], error)
     end subroutine test_two_files
 
+    !> field_forces.adm, the field's user_force_routines.adm as it came (GFORCE/1 with
+    !> USER(21, 20, 21, 20, 0.5, 0, 1000, 10, 1000, 10, 100, 1, 1), SFORCE/2 with USER(20, 2,
+    !> 1000, 10, 1)), runs with field_forces.f's GFOSUB and SFOSUB (reading SYSARY's TDISP and
+    !> TVEL, SYSFNC's WX, WY, WZ) and gives the rows of its expression twin to twin_tolerance.
+    !> Its part starts at rest and only bounces on the spring, where the GFOSUB's offset stays
+    !> at its free value; so the same pair is run again with the part thrown and spinning
+    !> (VX = 0.4, VZ = -0.3, WX = 1, WZ = 2 added to both), where every term of the GFOSUB acts.
+    subroutine test_field_forces(error)
+        type(error_type), allocatable, intent(out) :: error
+        character(len=*), parameter :: at_rest = "QG = 0, 0, 1" // new_line("a"), &
+            & thrown = "QG = 0, 0, 1, VX = 0.4, VZ = -0.3, WX = 1, WZ = 2" // new_line("a")
+        type(job_type) :: job
+        type(job_result_type) :: ran
+        type(history_type) :: user, expressions
+        real(wp) :: largest
+        integer :: worst
+
+        call compare_twins("field_forces", ["field_forces.f"], error)
+        if (allocated(error)) return
+        call make_folders(scratch, error)
+        if (allocated(error)) return
+        call write_text_file(scratch // "/field_thrown.adm", replaced(file_text(folder &
+            & // "field_forces.adm"), at_rest, thrown), error)
+        if (allocated(error)) return
+        call write_text_file(scratch // "/field_thrown_expressions.adm", replaced(file_text( &
+            & folder // "field_forces_expressions.adm"), at_rest, thrown), error)
+        if (allocated(error)) return
+        call run_user(scratch // "/field_thrown.adm", [character(len=20) :: "field_forces.f"], &
+            & 10.0_wp, user, error)
+        if (allocated(error)) return
+        call load_job(scratch // "/field_thrown_expressions.adm", job, error)
+        if (allocated(error)) return
+        job%output_dir = ""
+        job%quiet = .true.
+        call run_job(job, ran, error, expressions)
+        if (allocated(error)) return
+        call part_difference(user, expressions, largest, worst)
+        call check(error, user%count == expressions%count .and. user%count >= 101 .and. &
+            & largest <= twin_tolerance, "thrown: " // to_text(user%count) // " rows, " &
+            & // to_text(expressions%count) // " of the twin; they differ by " &
+            & // to_text(largest) // " in coordinate " // to_text(worst) // " of part 2")
+    end subroutine test_field_forces
+
+    !> two_files.adm with SFORCE/3 served by sforce_harden.f's HARDEN, a subroutine of its own
+    !> name with SFOSUB's calling sequence (ROUTINE=sforce_harden::HARDEN): the rows of
+    !> two_files_expressions.adm to twin_tolerance, as with the routine named SFOSUB.
+    subroutine test_named_sfosub(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(job_type) :: job
+        type(job_result_type) :: ran
+        type(history_type) :: user, expressions
+        character(len=:), allocatable :: path
+        real(wp) :: largest
+        integer :: worst
+
+        call make_folders(scratch, error)
+        if (allocated(error)) return
+        path = scratch // "/two_files_named.adm"
+        call write_text_file(path, replaced(file_text(folder // "two_files.adm"), &
+            & "ROUTINE = sforce_cubic::SFOSUB", "ROUTINE = sforce_harden::HARDEN"), error)
+        if (allocated(error)) return
+        call run_user(path, [character(len=40) :: "sforce_spring.f", "sforce_harden.f"], &
+            & 10.0_wp, user, error)
+        if (allocated(error)) return
+        call load_job(folder // "two_files_expressions.adm", job, error)
+        if (allocated(error)) return
+        job%output_dir = ""
+        job%quiet = .true.
+        call run_job(job, ran, error, expressions)
+        if (allocated(error)) return
+        call part_difference(user, expressions, largest, worst)
+        call check(error, user%count == expressions%count .and. user%count >= 101 .and. &
+            & largest <= twin_tolerance, "HARDEN: " // to_text(user%count) // " rows, " &
+            & // to_text(expressions%count) // " of the twin; they differ by " &
+            & // to_text(largest) // " in coordinate " // to_text(worst) // " of part 2")
+    end subroutine test_named_sfosub
+
+    !> ucon_two_files.adm: UCON/1 served by ucon_turn_velocity.f's TURNVEL (a velocity
+    !> constraint), UCON/2 by ucon_circle.f's CIRCLE (a position constraint), each named by
+    !> ROUTINE=FILE::NAME, neither called UCOSUB: the rows of its GCON twin
+    !> ucon_two_files_expressions.adm to twin_tolerance, and the exact motion X = R cos(W t),
+    !> Y = R sin(W t) at the end (one turn, back at (0.1, 0) m): within 2e-7 m, the bound
+    !> turntable.adm's one-turn run meets with the same steps (2.2e-8 m measured there), so a
+    !> tenfold loss is caught; a constraint served by the wrong routine (both by TURNVEL, say)
+    !> leaves the circle by far more.
+    subroutine test_ucon_two_files(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(history_type) :: user, expressions
+        real(wp) :: largest, x_end, y_end
+        real(wp), allocatable :: x(:), y(:)
+        integer :: worst
+
+        call run_twins("ucon_two_files", [character(len=40) :: "ucon_turn_velocity.f", &
+            & "ucon_circle.f"], user, expressions, error)
+        if (allocated(error)) return
+        call part_difference(user, expressions, largest, worst)
+        call check(error, largest <= twin_tolerance, "ucon_two_files: the runs differ by " &
+            & // to_text(largest) // " in coordinate " // to_text(worst) // " of part 2")
+        if (allocated(error)) return
+        x = user%part_values(1, coord_x)
+        y = user%part_values(1, coord_y)
+        x_end = x(size(x))
+        y_end = y(size(y))
+        call check(error, abs(x_end - 0.1_wp) <= 2.0e-7_wp .and. abs(y_end) <= 2.0e-7_wp, &
+            & "after one turn (X, Y) = (" // to_text(x_end) // ", " // to_text(y_end) &
+            & // ") m, not (0.1, 0) within 2e-7 m")
+    end subroutine test_ucon_two_files
+
+    !> The refusals of UCON routines of several files, each naming the file or the statement
+    !> and its line: a UCON naming no ROUTINE when two files define UCOSUB (turntable.adm with
+    !> turntable.f and its slipped twin); a file whose UCOSUB serves no UCON (ucon_two_files.adm
+    !> given turntable.f too); ROUTINE=FILE::NAME naming no subroutine of the file.
+    subroutine test_ucon_refusals(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(history_type) :: history
+        type(error_type), allocatable :: run_error
+        character(len=:), allocatable :: path
+
+        call run_user("test/turntable/turntable.adm", [character(len=50) :: &
+            & "../turntable/turntable.f", "../turntable/turntable_half_coriolis.f"], 10.0_wp, &
+            & history, run_error)
+        call expect_message(run_error, [character(len=100) :: &
+            & "turntable.adm:8: UCON/1 names no ROUTINE, and several files given define " &
+            & // "UCOSUB", &
+            & "test/user_forces/../turntable/turntable.f, test/user_forces/../turntable/" &
+            & // "turntable_half_coriolis.f", "ROUTINE=FILE::UCOSUB"], error)
+        if (allocated(error)) return
+        call run_user(folder // "ucon_two_files.adm", [character(len=50) :: &
+            & "ucon_turn_velocity.f", "ucon_circle.f", "../turntable/turntable.f"], 10.0_wp, &
+            & history, run_error)
+        call expect_message(run_error, [character(len=90) :: "test/user_forces/../turntable/" &
+            & // "turntable.f defines a UCOSUB that serves no UCON", &
+            & "ROUTINE=turntable::UCOSUB"], error)
+        if (allocated(error)) return
+        call make_folders(scratch, error)
+        if (allocated(error)) return
+        path = scratch // "/ucon_no_such.adm"
+        call write_text_file(path, replaced(file_text(folder // "ucon_two_files.adm"), &
+            & "ucon_circle::circle", "ucon_circle::ellipse"), error)
+        if (allocated(error)) return
+        call run_user(path, [character(len=50) :: "ucon_turn_velocity.f", "ucon_circle.f"], &
+            & 10.0_wp, history, run_error)
+        call expect_message(run_error, [character(len=90) :: &
+            & "ucon_no_such.adm:10: UCON/2 ROUTINE: 'ucon_circle::ellipse' is neither", &
+            & "nor a subroutine of a user's file"], error)
+    end subroutine test_ucon_refusals
+
+    !> The check at the start covers a routine a UCON names: ucon_circle_wrong.f's CIRCLE
+    !> (dF/dX returned as X, half its value) stops the run, naming UCON/2, its line, its
+    !> ROUTINE and file, the entry and both values (0.1 returned for X = 0.1 m; the
+    !> differences give 0.2).
+    subroutine test_ucon_named_checked(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(history_type) :: history
+        type(error_type), allocatable :: run_error
+        character(len=:), allocatable :: path
+
+        call make_folders(scratch, error)
+        if (allocated(error)) return
+        path = scratch // "/ucon_wrong.adm"
+        call write_text_file(path, replaced(file_text(folder // "ucon_two_files.adm"), &
+            & "ucon_circle::circle", "ucon_circle_wrong::CIRCLE"), error)
+        if (allocated(error)) return
+        call run_user(path, [character(len=50) :: "ucon_turn_velocity.f", &
+            & "ucon_circle_wrong.f"], 10.0_wp, history, run_error, checked=.true.)
+        call expect_message(run_error, [character(len=120) :: &
+            & "test/user_forces/ucon_circle_wrong.f fails its check", &
+            & "UCON/2 (line 10, ROUTINE=ucon_circle_wrong::CIRCLE of " &
+            & // "test/user_forces/ucon_circle_wrong.f) ARRAY(1) = dF/d(X_2)", &
+            & "returned 0.1, differences give 0.2"], error)
+    end subroutine test_ucon_named_checked
+
+    !> text with every occurrence of old replaced by new.
+    function replaced(text, old, new) result(out)
+        character(len=*), intent(in) :: text, old, new
+        character(len=:), allocatable :: out
+        integer :: at, from
+
+        out = ""
+        from = 1
+        do
+            at = index(text(from:), old)
+            if (at == 0) exit
+            out = out // text(from:from + at - 2) // new
+            from = from + at - 1 + len(old)
+        end do
+        out = out // text(from:)
+    end function replaced
+
     !> A write through a wild index in an SFOSUB kills the child by SIGSEGV: the error names
     !> the statement, the signal and the call (not the initialisation call).
     subroutine test_crashes(error)
@@ -739,7 +934,7 @@ contains
             & run_error)
         call expect_message(run_error, [character(len=80) :: &
             & "two_files.adm:13: SFORCE/3 ROUTINE=sforce_cubic::SFOSUB: no SFOSUB", &
-            & "ROUTINE=FILE::SFOSUB"], error)
+            & "ROUTINE=FILE::NAME names the subroutine NAME of FILE, with SFOSUB's"], error)
     end subroutine test_unknown_routine
 
     !> The MOTSUB refusals, each naming the MOTION and its line: a ROUTINE with no
