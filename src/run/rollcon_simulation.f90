@@ -346,6 +346,7 @@ contains
             call problem%accelerations(time, q, u, error)
             if (allocated(error)) return
             ! the rim's laws' work to this row, as the integrator integrated it, for its columns
+            ! (the works are those of problem%powers_at: friction, rolling resistance, air)
             if (integrated) then
                 problem%eq%dissipation%rolling_work = self%integrator%work(2)
                 problem%eq%dissipation%air_work = self%integrator%work(3)
