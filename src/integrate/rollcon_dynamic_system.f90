@@ -35,6 +35,8 @@ module rollcon_dynamic_system
         procedure :: state_blocks
         procedure :: worn
         procedure :: release
+        procedure :: power_count
+        procedure :: powers
     end type dynamic_system_type
 
     !> A system CVODE integrates: y' = f(t, y), its Newton matrix, an optional projection
@@ -209,6 +211,26 @@ contains
 
         worn = .false.
     end function worn
+
+    !> Number of the powers the system dissipates (powers), each integrated over time by the
+    !> integrator with the state: the work they did (docs/design.md §7, "Dissipated work").
+    !> Default: none.
+    integer function power_count(self)
+        class(dynamic_system_type), intent(in) :: self
+
+        power_count = 0
+    end function power_count
+
+    !> The powers the system dissipates at the state y at time [s]: power_count() values [W],
+    !> each >= 0. ierr as the callbacks' (a failure kept for failure_text). Default: none.
+    integer function powers(self, time, y, values) result(ierr)
+        class(dynamic_system_type), intent(inout) :: self
+        real(wp), intent(in) :: time, y(:)
+        real(wp), intent(out) :: values(:)
+
+        values = 0.0_wp
+        ierr = 0
+    end function powers
 
     !> Free what the system holds outside Fortran's memory, when a run is done. Default:
     !> nothing.

@@ -52,6 +52,11 @@ module rollcon_integrator
         real(wp) :: t_now = 0.0_wp
         !> After a root return: non-zero for every event function that fired (its direction)
         integer(c_int), allocatable :: fired(:)
+        !> The work [J] each of the system's dissipated powers (dynamic_system_type powers) did
+        !> from the start to t_now, integrated with the state over the integrator's own steps
+        !> (docs/design.md §7, "Dissipated work"); not allocated when the integrator does not
+        !> integrate them (the system has none, or the integrator cannot)
+        real(wp), allocatable :: work(:)
     contains
         procedure(restart_interface), deferred :: restart
         procedure(advance_interface), deferred :: advance

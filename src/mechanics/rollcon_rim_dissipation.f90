@@ -48,6 +48,10 @@ module rollcon_rim_dissipation
         real(wp) :: held_moment = 0.0_wp
         !> At the last solve: the normal force [N] and the power each law dissipates [W] >= 0
         real(wp) :: normal_force = 0.0_wp, rolling_power = 0.0_wp, air_power = 0.0_wp
+        !> The work each law did from the run's start to the state of the row being made [J]
+        !> >= 0: its power integrated with the state by the integrator, set by the run
+        !> (rollcon_simulation) before each row for the row's columns
+        real(wp) :: rolling_work = 0.0_wp, air_work = 0.0_wp
     contains
         procedure :: active
         procedure :: air_force

@@ -77,6 +77,8 @@ module rollcon_problem
         procedure :: failure_text
         procedure :: constraint_power
         procedure :: dissipated_power
+        procedure :: dissipates
+        procedure :: powers_at
         procedure :: release => release_problem
     end type problem_type
 
@@ -583,6 +585,35 @@ contains
         rim = 0.0_wp
         if (self%eq%dissipation%active()) rim = self%eq%dissipation%power()
     end subroutine dissipated_power
+
+    !> The model can dissipate: a contact with friction (it may slide) or a rim's dissipation.
+    !> Its powers (powers_at) are then integrated with the state (rollcon_dynamic_system
+    !> power_count).
+    pure logical function dissipates(self)
+        class(problem_type), intent(in) :: self
+
+        dissipates = self%eq%contact%mu > 0.0_wp .or. self%eq%dissipation%active()
+    end function dissipates
+
+    !> The powers dissipated at (time [s], q, u), from an evaluation there (accelerations):
+    !> values = (friction, rolling resistance, air layer) [W], each >= 0 (dissipated_power's
+    !> parts). error: the evaluation's.
+    subroutine powers_at(self, time, q, u, values, error)
+        class(problem_type), intent(inout) :: self
+        real(wp), intent(in) :: time, q(:), u(:)
+        !> Size 3
+        real(wp), intent(out) :: values(:)
+        type(error_type), allocatable, intent(out) :: error
+        real(wp) :: friction, rim
+
+        values = 0.0_wp
+        call self%accelerations(time, q, u, error)
+        if (allocated(error)) return
+        call self%dissipated_power(friction, rim)
+        values(1) = friction
+        if (rim /= 0.0_wp) values(2:3) = [self%eq%dissipation%rolling_power, &
+            & self%eq%dissipation%air_power]
+    end subroutine powers_at
 
     !> Free what the problem holds outside Fortran's memory (its equations' KLU factors): a
     !> process running many models one after another (a study's cases) would keep every one's

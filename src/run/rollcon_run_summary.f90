@@ -50,18 +50,21 @@ module rollcon_run_summary
         !> problem%constraint_power by the trapezoidal rule (a moving constraint's work)
         real(wp) :: constraint_work = 0.0_wp
         !> The energy dissipated over those rows [J]: a sliding contact's friction's and a rim's
-        !> rolling resistance's and air layer's work (problem%dissipated_power by the
-        !> trapezoidal rule) and the impacts' losses (exact, rollcon_contact_impact): the energy
-        !> judged is E plus it. Its parts the friction's and the impacts' [J]
+        !> rolling resistance's and air layer's work (problem%dissipated_power integrated with
+        !> the state by the integrator: integrator_type work; by the trapezoidal rule over the
+        !> rows from one that does not) and the impacts' losses (exact,
+        !> rollcon_contact_impact): the energy judged is E plus it. Its parts the friction's and
+        !> the impacts' [J]
         real(wp) :: dissipated_work = 0.0_wp, friction_work = 0.0_wp, impact_work = 0.0_wp
-        !> The trapezoidal rule's estimated error in dissipated_work [J] (rollcon_simulation
-        !> record), subtracted from |E + W - E0|; beyond the drift allowed the rows do not
-        !> resolve the dissipated power and the energy is not judged (dissipation_resolved)
+        !> The rows' trapezoidal rule's estimated error in dissipated_work [J]
+        !> (rollcon_simulation record), subtracted from |E + W - E0|; 0 when the integrator
+        !> integrated W with the state. Beyond the drift allowed the rows do not resolve the
+        !> dissipated power and the energy is not judged (dissipation_resolved)
         real(wp) :: dissipation_uncertainty = 0.0_wp
-        !> False when a contact's friction or impacts dissipated and dissipation_uncertainty
-        !> exceeds the drift allowed: the output rows are too far apart for the dissipated work
-        !> to be known to the allowance (a finer output_step resolves it), and the energy is
-        !> not judged
+        !> False when W came from the rows' rule, a contact's friction or impacts dissipated
+        !> and dissipation_uncertainty exceeds the drift allowed: the output rows are too far
+        !> apart for the dissipated work to be known to the allowance (a finer output_step
+        !> resolves it), and the energy is not judged
         logical :: dissipation_resolved = .true.
         !> False when an applied force acts after the reference time (rollcon_force
         !> forces_idle_after) or the constraints do work (constraint_work beyond work_fraction of
@@ -160,8 +163,9 @@ contains
             if (summary%constraint_work > work_fraction*allowed) &
                 & summary%energy_conserved = .false.
             ! a contact's friction or impacts in a dissipated work known only to more than the
-            ! allowance: no verdict either way (a rim's rolling resistance and air alone vary
-            ! smoothly: the estimate is subtracted and the drift judged)
+            ! allowance (from the rows' rule: W integrated with the state has no such estimate):
+            ! no verdict either way (a rim's rolling resistance and air alone vary smoothly: the
+            ! estimate is subtracted and the drift judged)
             if (summary%dissipation_uncertainty > allowed .and. (summary%friction_work /= 0.0_wp &
                 & .or. summary%impact_work /= 0.0_wp)) summary%dissipation_resolved = .false.
             if (summary%energy_conserved .and. summary%dissipation_resolved) &

@@ -74,9 +74,10 @@ module rollcon_simulation
         real(wp) :: step_energy_sum = 0.0_wp, constraint_work = 0.0_wp
         real(wp) :: last_power = 0.0_wp, last_time = 0.0_wp
         !> The dissipated power (problem%dissipated_power: a sliding contact's friction, a rim's
-        !> rolling resistance and air) over the judged rows: its work [J] by the trapezoidal
-        !> rule plus the impacts' losses, that rule's estimated error [J], the last two rows'
-        !> powers [W], and the parts of the work the friction and the impacts did [J]
+        !> rolling resistance and air) over the judged rows: its work [J] (integrated with the
+        !> state by the integrator, or by the trapezoidal rule over the rows from one that does
+        !> not) plus the impacts' losses, the rows' rule's estimated error [J], the last two
+        !> rows' powers [W], and the parts of the work the friction and the impacts did [J]
         real(wp) :: dissipated_work = 0.0_wp, dissipation_uncertainty = 0.0_wp
         real(wp) :: last_dissipation(2) = 0.0_wp, last_friction = 0.0_wp
         real(wp) :: friction_work = 0.0_wp, impact_work = 0.0_wp
@@ -84,6 +85,8 @@ module rollcon_simulation
         real(wp) :: dissipation_time = 0.0_wp, before_last_time = 0.0_wp
         !> The energy a contact's impacts had taken at the last judged row [J]
         real(wp) :: impact_loss = 0.0_wp
+        !> The integrator's dissipated works (integrator_type work) at the first judged row [J]
+        real(wp), allocatable :: work_reference(:)
         !> Counters of the integrator's segments before its last restart
         type(integrator_statistics_type) :: earlier
         !> Re-basings of each part (model order)
@@ -334,12 +337,20 @@ contains
         class(row_sink_type), intent(inout), optional :: sink
         real(wp) :: energy, potential, power, dissipation, friction, rim, impacts, estimate
         real(wp), allocatable :: row(:)
+        logical :: integrated
 
         call self%system%unpack_state(self%t, self%y, self%q, self%u, error)
         if (allocated(error)) return
+        integrated = allocated(self%integrator%work)
         associate (problem => self%problem, q => self%q, u => self%u, time => self%t)
             call problem%accelerations(time, q, u, error)
             if (allocated(error)) return
+            ! the rim's laws' work to this row, as the integrator integrated it, for its columns
+            ! (the works are those of problem%powers_at: friction, rolling resistance, air)
+            if (integrated) then
+                problem%eq%dissipation%rolling_work = self%integrator%work(2)
+                problem%eq%dissipation%air_work = self%integrator%work(3)
+            end if
             row = output_row(problem, self%layout, time, q, u)
             ! a user routine a watch called (a REQSUB) that failed: its error, naming it
             call take_user_force_error(error)
@@ -360,14 +371,22 @@ contains
                 self%have_reference = .true.
                 potential = problem%eq%potential_energy(q)
                 power = problem%constraint_power(u)
-                ! the dissipated power (friction, rolling resistance, air): its work W by the
-                ! trapezoidal rule, whose error over a row's step h is h^3 |P''| / 12, estimated
-                ! as h |P_i - 2 P_(i-1) + P_(i-2)| / 12 from the last three rows; the impacts'
+                ! the dissipated power (friction, rolling resistance, air): its work W since the
+                ! first judged row, as the integrator integrated it with the state; or, from an
+                ! integrator that does not, by the trapezoidal rule over the rows, whose error
+                ! over a row's step h is h^3 |P''| / 12, estimated as
+                ! h |P_i - 2 P_(i-1) + P_(i-2)| / 12 from the last three rows; the impacts'
                 ! losses since the last row (their impulses' work, rollcon_contact_impact) added
-                ! exactly; the energy plus W is judged, less the estimates' sum
+                ! exactly; the energy plus W is judged, less the estimates' sum (0 for W
+                ! integrated)
                 call problem%dissipated_power(friction, rim)
                 dissipation = friction + rim
-                if (self%judged_rows > 0) then
+                if (integrated) then
+                    if (self%judged_rows == 0) self%work_reference = self%integrator%work
+                    self%friction_work = self%integrator%work(1) - self%work_reference(1)
+                    self%dissipated_work = sum(self%integrator%work - self%work_reference) &
+                        & + self%impact_work
+                else if (self%judged_rows > 0) then
                     self%dissipated_work = self%dissipated_work + 0.5_wp*(dissipation &
                         & + self%last_dissipation(1))*(time - self%dissipation_time)
                     self%friction_work = self%friction_work + 0.5_wp*(friction &
@@ -518,7 +537,8 @@ contains
         end if
     end subroutine handle_events
 
-    !> Split the dissipated work's trapezoidal rule at a switch of a contact's mode, where the
+    !> From an integrator that does not integrate the dissipated work (integrator_type work
+    !> not allocated): split the rows' trapezoidal rule at a switch of a contact's mode, where the
     !> friction's power jumps (a touchdown into sliding) or kinks (a slide's start or end): a
     !> step of the rule across it would be wrong by up to the jump times the row step. Before
     !> the switch (after = .false.), the rule's piece from the last point (a row or a switch)
@@ -534,7 +554,8 @@ contains
         type(error_type), allocatable, intent(out) :: error
         real(wp) :: friction, rim, dissipation, h0, h1
 
-        if (self%judged_rows == 0) return
+        ! a work integrated with the state is not the rows'
+        if (self%judged_rows == 0 .or. allocated(self%integrator%work)) return
         associate (problem => self%problem)
             call problem%accelerations(self%t, self%q, self%u, error)
             if (allocated(error)) return
@@ -792,9 +813,10 @@ contains
             summary%friction_work = self%friction_work
             summary%impact_work = self%impact_work
             summary%dissipation_uncertainty = self%dissipation_uncertainty
-            ! a friction's work over fewer than three rows: no estimate of the rule's error, so
-            ! W is known only to within itself
-            if (self%judged_rows < 3) summary%dissipation_uncertainty = max( &
+            ! a friction's work by the rows' rule over fewer than three rows: no estimate of
+            ! the rule's error, so W is known only to within itself
+            if (self%judged_rows < 3 .and. .not. allocated(self%work_reference)) &
+                & summary%dissipation_uncertainty = max( &
                 & summary%dissipation_uncertainty, self%friction_work)
         end if
         call cpu_time(cpu_now)
