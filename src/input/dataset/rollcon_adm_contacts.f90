@@ -117,6 +117,10 @@ contains
                 end if
                 select case (key)
                 case ("IGEOM", "JGEOM")
+                    if (.not. argument%assigned) then
+                        call fatal_error(error, at // ": expected a GRAPHICS id", stat_input)
+                        return
+                    end if
                     if (size(argument%values) /= 1) then
                         call fatal_error(error, at // ": expected one GRAPHICS id, got " &
                             & // to_text(size(argument%values)) // " (rollcon's contact is " &
@@ -156,7 +160,10 @@ contains
                     contact%restitution = values(1)
                     contact%restitution_given = .true.
                 case ("COULOMB_FRICTION")
-                    if (.not. argument%assigned .or. size(argument%values) /= 1) then
+                    if (.not. argument%assigned) then
+                        call fatal_error(error, at // ": expected ON", stat_input)
+                        return
+                    else if (size(argument%values) /= 1) then
                         call fatal_error(error, at // ": expected ON", stat_input)
                         return
                     end if

@@ -43,7 +43,9 @@ contains
             & new_unittest("sphere-bounces-to-e-squared", test_sphere_bounce), &
             & new_unittest("coin-contact-dataset-as-its-scene", test_coin_dataset), &
             & new_unittest("contact-geometries-read", test_geometries), &
-            & new_unittest("contact-refusals-name-line-and-key", test_refusals)]
+            & new_unittest("contact-refusals-name-line-and-key", test_refusals), &
+            & new_unittest("contact-rolling-resistance-decelerates-the-rim", &
+            & test_rolling_resistance)]
     end subroutine collect_contact_datasets
 
     !> Read and build a dataset (initial conditions as rollcon run makes them), run it to its
@@ -419,6 +421,70 @@ contains
                 & // expected // "': " // refused%message)
         end subroutine expect_refusal
     end subroutine test_refusals
+
+    !> rollcon's own key ROLLING_RESISTANCE=delta on a rim's CONTACT: the coin upright, rolling
+    !> straight along +X at v0 = 1 m/s (phidot = -v0/R), takes the moment Q_phi = -delta F_n
+    !> sign(phidot) = delta m g (rollcon_rim_dissipation), so (C + m R^2) phidot' = delta m g
+    !> with C = m R^2 / 2: the centre slows at (2/3) delta g / R, uniformly (the friction this
+    !> needs, (2/3) delta m g / R, is 7e-4 of the weight: it keeps rolling). On a sphere the key
+    !> is refused (a rim's law).
+    subroutine test_rolling_resistance(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(error_type), allocatable :: refused
+        ! Speed at every row against v0 - (2/3) delta g t / R [m/s]: a linear solution the
+        ! integrator at rtol 1e-8 (the default) follows to its local error times the steps;
+        ! measured 1.1e-14, bound 1e-10 (the law's own size over 0.5 s is 3.3e-3 m/s)
+        real(wp), parameter :: speed_tol = 1.0e-10_wp
+        real(wp), parameter :: delta = 1.0e-4_wp, radius = 0.1_wp, g = 9.81_wp
+        type(adm_model_type) :: adm
+        type(history_type) :: history
+        type(contact_watch_type) :: contact
+        character(len=:), allocatable :: text, path
+        real(wp), allocatable :: time(:), xdot(:), mode(:)
+        integer :: k
+
+        call make_folders(folder, error)
+        if (allocated(error)) return
+        text = replaced(replaced(coin_text("UNITS/SYSTEM=SI", ", ROLLING_RESISTANCE=1.0E-4", &
+            & "0.1", "0"), "WZ=0", "WZ=-10"), "END=0.01", "END=0.5")
+        path = folder // "/rolling_resistance.adm"
+        call write_text_file(path, text, error)
+        if (allocated(error)) return
+        call run_contact_dataset(path, adm, history, contact, error)
+        if (allocated(error)) return
+        time = history%column(1)
+        xdot = history%column(history%layout%part_column(1, coord_xdot))
+        mode = history%column(history%layout%column("mode"))
+        call check(error, all(nint(mode) == mode_rolling), "it rolls throughout")
+        if (allocated(error)) return
+        do k = 1, history%count
+            call check(error, xdot(k), 1.0_wp - 2.0_wp/3.0_wp*delta*g/radius*time(k), &
+                & "speed at t = " // to_text(time(k)) // " s [m/s]", abs_tol=speed_tol)
+            if (allocated(error)) return
+        end do
+        call check(error, history%layout%column("rolling_power") > 0, "the dissipation's " &
+            & // "columns are in the rows")
+        if (allocated(error)) return
+        path = folder // "/sphere_resistance.adm"
+        text = "ball" // new_line("a") // "UNITS/SYSTEM=SI" // new_line("a") &
+            & // "PART/1, GROUND" // new_line("a") // "MARKER/1, PART=1" // new_line("a") &
+            & // "PART/2, MASS=1, CM=21, IP=1.0E-3, 1.0E-3, 1.0E-3, QG=0, 0, 0.05" &
+            & // new_line("a") // "MARKER/21, PART=2, REULER=0D, 90D, 0D" // new_line("a") &
+            & // "GRAPHICS/1, PLANE, RM=1" // new_line("a") &
+            & // "GRAPHICS/2, ELLIPSOID, CM=21, XSCALE=0.1, YSCALE=0.1, ZSCALE=0.1" &
+            & // new_line("a") // "CONTACT/3, IGEOM=2, JGEOM=1, MU_STATIC=0.3, " &
+            & // "ROLLING_RESISTANCE=1.0E-4" // new_line("a") &
+            & // "SIMULATE/DYNAMIC, END=0.01, DTOUT=0.001" // new_line("a") &
+            & // "INTEGRATOR/FORMULATION=CVODE" // new_line("a") // "END" // new_line("a")
+        call write_text_file(path, text, error)
+        if (allocated(error)) return
+        call run_contact_dataset(path, adm, history, contact, refused)
+        call check(error, allocated(refused), "ROLLING_RESISTANCE on a sphere refused")
+        if (allocated(error)) return
+        call check(error, index(refused%message, "CONTACT/3: ROLLING_RESISTANCE and " &
+            & // "AIR_VISCOSITY are a rim's laws") > 0, "the refusal names CONTACT/3 and why: " &
+            & // refused%message)
+    end subroutine test_rolling_resistance
 
     !> text with its first `old` replaced by `new`.
     pure function replaced(text, old, new) result(out)
