@@ -194,7 +194,10 @@ contains
         integer :: k
 
         level%name = "velocity"
-        level%ucon = [(k, k = 1, problem%model%nc)]
+        ! a contact's rows its mode drops at the start (a sliding or flying start: the
+        ! equations' contact, rollcon_sliding_contact) are not made to hold
+        level%ucon = pack([(k, k = 1, problem%model%nc)], [(.not. &
+            & problem%eq%contact%dropped(k), k = 1, problem%model%nc)])
         call name_rows(level, problem%model)
         report%velocity_rows = size(level%ucon)
         if (size(level%ucon) == 0) return
@@ -379,7 +382,7 @@ contains
         type(ic_options_type), intent(in) :: options
         type(level_type), intent(inout) :: level
         type(error_type), allocatable, intent(out) :: error
-        integer :: k, m
+        integer :: k, m, row
 
         m = size(level%ucon)
         call problem%eq%constraints%evaluate(problem%model, time, q, u, need_value + need_first &
@@ -389,12 +392,13 @@ contains
             & level%tolerance(m))
         associate (cs => problem%eq%constraints)
             do k = 1, m
-                if (problem%model%ucons(k)%holonomic) then
-                    level%rows(k, :) = cs%grad_q(k, :)
-                    level%residual(k) = dot_product(cs%grad_q(k, :), u) + cs%dt(k)
+                row = level%ucon(k)
+                if (problem%model%ucons(row)%holonomic) then
+                    level%rows(k, :) = cs%grad_q(row, :)
+                    level%residual(k) = dot_product(cs%grad_q(row, :), u) + cs%dt(row)
                 else
-                    level%rows(k, :) = cs%grad_u(k, :)
-                    level%residual(k) = cs%value(k)
+                    level%rows(k, :) = cs%grad_u(row, :)
+                    level%residual(k) = cs%value(row)
                 end if
                 level%tolerance(k) = tolerance(options%atol, options%rtol, level%rows(k, :), u, &
                     & level%residual(k))

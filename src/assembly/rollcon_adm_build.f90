@@ -57,6 +57,7 @@ module rollcon_adm_build
     use rollcon_adm_system, only : adm_diff_type
     use rollcon_adm_state, only : part_state
     use rollcon_adm_singular, only : start_singular_parts
+    use rollcon_adm_contact, only : contact_shape_type, add_contact_ucons, add_contact_watch
     use rollcon_adm_markers, only : adm_marker, marker_index
     use rollcon_adm_constraints, only : add_expression_constraints, expression_markers
     use rollcon_adm_motions, only : motion_velocity_form, motion_acceleration_form
@@ -95,7 +96,8 @@ contains
         type(error_type), allocatable, intent(out) :: error
         type(model_type) :: model
         procedure(ucosub_interface), pointer :: fallback
-        integer :: i, p
+        type(contact_shape_type) :: contact
+        integer :: i, p, contact_rows(3)
 
         fallback => null()
         if (present(default_ucosub)) fallback => default_ucosub
@@ -108,6 +110,9 @@ contains
         ! every UCOSUB, built-in or the user's, computes in the dataset's units, as in ADAMS
         model%ucosub_units = ucosub_units_type(length=adm%units%length, time=adm%units%time)
         call add_ucons(adm, fallback, model, error)
+        if (allocated(error)) return
+        ! a CONTACT's no-slip rows, right after the UCONs (rollcon_adm_contact)
+        call add_contact_ucons(adm, model, contact, contact_rows, error)
         if (allocated(error)) return
         call add_joints(adm, model, error)
         if (allocated(error)) return
@@ -165,6 +170,9 @@ contains
         if (allocated(error)) return
         ! a part flat at t = 0 starts in turned axes (docs/rebasing.md): its model part too
         call start_singular_parts(adm, problem, q0, u0, adm_theta_min, error)
+        if (allocated(error)) return
+        ! a CONTACT's modes, from this start (rollcon_adm_contact)
+        call add_contact_watch(adm, contact, contact_rows, problem, q0, u0, error)
         if (allocated(error)) return
         call declare_user_forces(adm, problem, q0, u0, error)
         if (allocated(error)) return

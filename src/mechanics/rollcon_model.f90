@@ -175,6 +175,7 @@ module rollcon_model
         procedure :: add_jprim
         procedure :: add_force
         procedure :: add_gcon
+        procedure :: add_element_ucons
         procedure :: count_turns => count_model_turns
         procedure :: add_motion
         procedure :: turn_part_axes
@@ -384,6 +385,47 @@ contains
         call add_element(self, ucon, ucon%routine, id, line)
         self%ucons = [self%ucons, ucon]
     end subroutine add_gcon
+
+    !> Append the equations of one element its user wrote as one statement (a dataset's
+    !> CONTACT: its three no-slip rows), each a UCON served by ucosub with its constants
+    !> par(:, k) and named by equations(k) in the user's words, all under one statement of
+    !> kind statement_element named `name` ("CONTACT/1") at `line`. They take the ids after the
+    !> largest UCON id of the model, as a joint's UCONs do; their rows follow the model's
+    !> UCONs so far, in order.
+    subroutine add_element_ucons(self, name, id, line, ucosub, routine, time_free, par, &
+            & equations)
+        class(model_type), intent(inout) :: self
+        character(len=*), intent(in) :: name
+        !> The statement's id and line (0: none)
+        integer, intent(in) :: id, line
+        procedure(ucosub_interface) :: ucosub
+        !> The routine's name (a built-in's), and whether its F is free of time
+        character(len=*), intent(in) :: routine
+        logical, intent(in) :: time_free
+        !> Constants of each equation (columns)
+        real(wp), intent(in) :: par(:, :)
+        character(len=*), intent(in) :: equations(:)
+        type(ucon_statement_type) :: ucon
+        integer :: k, next_id, statement
+
+        if (.not. allocated(self%ucons)) allocate(self%ucons(0))
+        next_id = 0
+        if (size(self%ucons) > 0) next_id = maxval(self%ucons%id)
+        do k = 1, size(par, 2)
+            ucon%id = next_id + k
+            ucon%par = par(:, k)
+            ucon%ucosub => ucosub
+            ucon%routine = routine
+            ucon%time_free = time_free
+            if (k == 1) then
+                call add_element(self, ucon, name, id, line)
+                statement = ucon%statement
+            end if
+            ucon%statement = statement
+            ucon%equation = trim(equations(k))
+            self%ucons = [self%ucons, ucon]
+        end do
+    end subroutine add_element_ucons
 
     !> Give ucon, one equation of an element (a GCON, a MOTION, a coupling), a statement of its
     !> own: kind statement_element, named `name` ("MOTION/1"), at `line` (absent: 0).

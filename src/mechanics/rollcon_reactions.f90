@@ -44,7 +44,8 @@ module rollcon_reactions
 contains
 
     !> The reaction sites of a set-up model, in the order of its statements: one per JOINT and
-    !> JPRIM, one per part a UCON holds (in model order).
+    !> JPRIM, one per part a UCON holds (in model order); none for a dataset's CONTACT (its
+    !> contact watch reports its force).
     function reaction_sites(model) result(sites)
         type(model_type), intent(in) :: model
         type(reaction_site_type), allocatable :: sites(:)
@@ -57,6 +58,11 @@ contains
         do s = 1, size(model%statements)
             rows = pack([(k, k = 1, model%nc)], model%ucons(:model%nc)%statement == s)
             if (size(rows) == 0) cycle
+            ! a dataset's CONTACT: its force is its contact watch's columns (Fx ... Fn, with the
+            ! friction while it slides), which the multipliers of its rows alone are not
+            if (model%statements(s)%kind == statement_element) then
+                if (index(model%statements(s)%name, "CONTACT/") == 1) cycle
+            end if
             associate (statement => model%statements(s))
                 site%statement = s
                 site%rows = rows

@@ -1,11 +1,14 @@
 ! SPDX-License-Identifier: MIT
-!> A rim rolling on the ground: the contact of a part that touches the ground plane Z = 0 as a
-!> rim of radius R about its body z-axis (a rolling disk, a coin, a wheel). The watch adds the
-!> constraint force on the part, its normal part, the friction coefficient rolling needs and the
-!> height residual Z - R sin(theta) to every output row; it may stop the run where the normal
-!> force turns negative (the part would leave the ground, which a rolling constraint cannot
-!> represent); and it judges the height residual, the position-level form of the contact that
-!> a velocity-level UCON holds only through its integral, against what the tolerances promise.
+!> A rim or a sphere rolling on the ground: the contact of a part that touches the ground plane
+!> Z = 0 as a rim of radius R about its body z-axis (a rolling disk, a coin, a wheel), its
+!> lowest point R e_y2 below the centre, or as a sphere of radius R about its centre of mass,
+!> its lowest point G - R e_Z (a ball: a dataset's CONTACT, rollcon_adm_contact). The watch
+!> adds the constraint force on the part, its normal part, the friction coefficient rolling
+!> needs and the height residual (a rim's Z - R sin(theta), a sphere's Z - R) to every output
+!> row; it may stop the run where the normal force turns negative (the part would leave the
+!> ground, which a rolling constraint cannot represent); and it judges the height residual,
+!> the position-level form of the contact that a velocity-level UCON holds only through its
+!> integral, against what the tolerances promise.
 !>
 !> With Coulomb friction (mu_static > 0) it also owns the contact's mode (the equations'
 !> sliding_contact_type, docs/design.md §5 "Contact modes"): rolling until |F_t| reaches
@@ -73,9 +76,11 @@ module rollcon_contact_watch
     end type contact_switch_type
 
     type, extends(watch_type) :: contact_watch_type
-        !> The part in contact (model order) and its rim radius [m] > 0
+        !> The part in contact (model order) and its rim's (or sphere's) radius [m] > 0
         integer :: part = 1
         real(wp) :: radius = 0.0_wp
+        !> The part touches the ground as a sphere about its centre of mass (else as a rim)
+        logical :: sphere = .false.
         !> Stop where the normal force falls below -liftoff_force: a real lift-off, not the
         !> rounding noise of a force that is zero
         logical :: stop_on_liftoff = .false.
@@ -130,6 +135,7 @@ module rollcon_contact_watch
         procedure :: time_in_modes
         procedure :: friction
         procedure :: slip_velocity
+        procedure :: angular_velocity
         procedure :: switch_to
         procedure :: current_mode
         procedure :: slip_error
@@ -211,17 +217,23 @@ contains
         friction = self%mu_static > 0.0_wp
     end function friction
 
-    !> Velocity of the rim's material point at the contact, ground X and Y [m/s]: v_G + omega x
-    !> r_GC with r_GC = -R e_y2, written out in the 3-1-3 angles (docs/design.md §5, the no-slip
-    !> constraint's F1 and F2).
+    !> Velocity of the part's material point at the contact, ground X and Y [m/s]: v_G + omega x
+    !> r_GC with r_GC = -R e_y2 for a rim, written out in the 3-1-3 angles (docs/design.md §5,
+    !> the no-slip constraint's F1 and F2), and r_GC = -R e_Z for a sphere: (v_x - R omega_Y,
+    !> v_y + R omega_X) (ucon/specs/rolling_sphere.py's F1 and F2).
     pure function slip_velocity(self, q, u) result(slip)
         class(contact_watch_type), intent(in) :: self
         real(wp), intent(in) :: q(:), u(:)
         real(wp) :: slip(2)
-        real(wp) :: spin
+        real(wp) :: spin, omega(3)
         integer :: i0
 
         i0 = 6*(self%part - 1)
+        if (self%sphere) then
+            omega = self%angular_velocity(q, u)
+            slip = [u(i0 + 1) - self%radius*omega(2), u(i0 + 2) + self%radius*omega(1)]
+            return
+        end if
         associate (psi => q(i0 + 4), theta => q(i0 + 5), psidot => u(i0 + 4), &
                 & thetadot => u(i0 + 5), phidot => u(i0 + 6), r => self%radius)
             spin = phidot + psidot*cos(theta)
@@ -229,6 +241,22 @@ contains
             slip(2) = u(i0 + 2) + r*sin(psi)*spin + r*thetadot*cos(psi)*sin(theta)
         end associate
     end function slip_velocity
+
+    !> The part's angular velocity, ground components [rad/s]: omega = psidot e_Z + thetadot e_x1
+    !> + phidot e_z2 (docs/design.md §3).
+    pure function angular_velocity(self, q, u) result(omega)
+        class(contact_watch_type), intent(in) :: self
+        real(wp), intent(in) :: q(:), u(:)
+        real(wp) :: omega(3)
+        integer :: i0
+
+        i0 = 6*(self%part - 1)
+        associate (psi => q(i0 + 4), theta => q(i0 + 5), psidot => u(i0 + 4), &
+                & thetadot => u(i0 + 5), phidot => u(i0 + 6))
+            omega = [thetadot*cos(psi) + phidot*sin(theta)*sin(psi), &
+                & thetadot*sin(psi) - phidot*sin(theta)*cos(psi), psidot + phidot*cos(theta)]
+        end associate
+    end function angular_velocity
 
     !> The lift-off, when watched (a stop) or flight is modelled (a switch, and in flight the
     !> touchdown): the first; with friction two more, the mode's (last but one) and the
@@ -350,6 +378,11 @@ contains
             & // " s (theta = " // to_text(q(6*p - 1)) // " rad, thetadot = " &
             & // to_text(u(6*p - 1)) // " rad/s): the disk would leave the " &
             & // "ground, which a rolling constraint cannot represent"
+        if (self%sphere) event%message = "the normal contact force turned negative (below -" &
+            & // to_text(self%liftoff_force) // " N) at t = " // to_text(time) &
+            & // " s (Z = " // to_text(q(6*p - 3)) // " m, Zdot = " // to_text(u(6*p - 3)) &
+            & // " m/s): the sphere would leave the ground, which a rolling constraint " &
+            & // "cannot represent (a restitution models its flight)"
     end function fired
 
     subroutine column_names(self, eq, names)
@@ -511,14 +544,18 @@ contains
         if (self%current_mode() /= mode_sliding) call self%switch_to(mode_sliding, time)
     end subroutine begin_sliding
 
-    !> The normal velocity of the rim's lowest point, Z' - R cos(theta) theta' [m/s] (the
-    !> no-slip constraint's F3: docs/design.md §5).
+    !> The normal velocity of the lowest point: a rim's Z' - R cos(theta) theta' (the no-slip
+    !> constraint's F3: docs/design.md §5), a sphere's Z' [m/s].
     pure real(wp) function normal_velocity(self, q, u)
         class(contact_watch_type), intent(in) :: self
         real(wp), intent(in) :: q(:), u(:)
         integer :: i0
 
         i0 = 6*(self%part - 1)
+        if (self%sphere) then
+            normal_velocity = u(i0 + 3)
+            return
+        end if
         normal_velocity = u(i0 + 3) - self%radius*cos(q(i0 + 5))*u(i0 + 5)
     end function normal_velocity
 
@@ -570,7 +607,8 @@ contains
             call eq%accelerations(time, q, rebound, self%baumgarte, self%a, self%lambda, error)
             if (allocated(error)) return
             i0 = 6*(self%part - 1)
-            fall = self%a(i0 + 3) - self%radius*(cos(q(i0 + 5))*self%a(i0 + 5) &
+            fall = self%a(i0 + 3)
+            if (.not. self%sphere) fall = fall - self%radius*(cos(q(i0 + 5))*self%a(i0 + 5) &
                 & - sin(q(i0 + 5))*rebound(i0 + 5)**2)
             if (fall < 0.0_wp) then
                 apex = impact%velocity(3)**2/(2.0_wp*abs(fall))
@@ -744,7 +782,8 @@ contains
             & + max(0.0_wp, self%last_time - self%mode_since)
     end function time_in_modes
 
-    !> Z - R sin(theta) of the part in contact [m].
+    !> The height of the lowest point of the part in contact [m]: a rim's Z - R sin(theta), a
+    !> sphere's Z - R.
     pure real(wp) function height_residual(self, q)
         class(contact_watch_type), intent(in) :: self
         !> Coordinates of every part
@@ -752,6 +791,10 @@ contains
         integer :: i0
 
         i0 = 6*(self%part - 1)
+        if (self%sphere) then
+            height_residual = q(i0 + 3) - self%radius
+            return
+        end if
         height_residual = q(i0 + 3) - self%radius*sin(q(i0 + 5))
     end function height_residual
 
@@ -768,6 +811,7 @@ contains
         allocate(taken(1))
         taken(1)%name = "height_residual"
         taken(1)%label = "largest height residual |Z - R sin(theta)|"
+        if (self%sphere) taken(1)%label = "largest height residual |Z - R|"
         taken(1)%unit = "m"
         taken(1)%value = self%height_residual_max
         taken(1)%bound = height_allowance*sqrt(real(max(1, steps), wp)) &

@@ -31,8 +31,8 @@ module rollcon_adm_abbreviations
 
     !> The table (docs/datasets.md repeats it)
     type(place_type), parameter :: table(*) = [ &
-        & place_type("statement", "ACcgrav ARray COUpler DIff END GCon GEar GForce INtegrator " &
-        & // "JOint JPrim " &
+        & place_type("statement", "ACcgrav ARray CONtact COUpler DIff END GCon GEar GForce " &
+        & // "INtegrator JOint JPrim " &
         & // "MARker MOtion Output BUshing SPRingdamper VTorque " &
         & // "PArt PInput POUtput SForce SImulate SPLine STring UCon UNits VAriable VForce DEbug " &
         & // "EQuilibrium GRaphics IC " &
@@ -69,6 +69,12 @@ module rollcon_adm_abbreviations
         & place_type("GCON", "I Function"), &
         & place_type("COUPLER", "Joints Type Scales Function Routine"), &
         & place_type("GEAR", "Joints Cv"), &
+        & place_type("CONTACT", "IGeom JGeom IFlip_geometry JFlip_geometry IMpact POisson " &
+        & // "STIFfness DAmping DMax Exponent PEnalty Restitution_coefficient NORMAL_Function " &
+        & // "NORMAL_Routine Coulomb_friction MU_Static MU_Dynamic " &
+        & // "STICtion_transition_velocity FRICTION_Transition_velocity FRICTION_Function " &
+        & // "FRICTION_Routine Augmented_lagrangian_formulation ROlling_resistance " &
+        & // "AIr_viscosity"), &
         & place_type("SIMULATE", "DYnamic End STEps DTout DUration STAtic Kinematic " &
         & // "Transient Initial_conditions"), &
         & place_type("INTEGRATOR", "Error RTol ATol MAXSteps BAumgarte Formulation MEthod " &

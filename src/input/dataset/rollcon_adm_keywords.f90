@@ -26,9 +26,9 @@ module rollcon_adm_keywords
 
     !> The statements of the subset that are simulated (rollcon_adm_outputs has those read and
     !> not used)
-    character(len=*), parameter :: statement_names(28) = [character(len=12) :: "ACCGRAV", &
-        & "ARRAY", "BUSHING", "COUPLER", "DIFF", "END", "GCON", "GEAR", "GFORCE", "INTEGRATOR", &
-        & "JOINT", "JPRIM", &
+    character(len=*), parameter :: statement_names(29) = [character(len=12) :: "ACCGRAV", &
+        & "ARRAY", "BUSHING", "CONTACT", "COUPLER", "DIFF", "END", "GCON", "GEAR", "GFORCE", &
+        & "INTEGRATOR", "JOINT", "JPRIM", &
         & "MARKER", "MOTION", "OUTPUT", "PART", "PINPUT", "POUTPUT", "SFORCE", "SIMULATE", &
         & "SPLINE", "SPRINGDAMPER", "STRING", "UCON", "UNITS", "VARIABLE", "VFORCE", &
         & "VTORQUE"]

@@ -12,6 +12,7 @@ module rollcon_adm_model
     use rollcon_adm_couplers, only : adm_gcon_type, adm_coupler_type, adm_gear_type
     use rollcon_adm_motions, only : adm_motion_type
     use rollcon_adm_data, only : adm_string_type, adm_array_type
+    use rollcon_adm_contacts, only : adm_contact_type, adm_graphics_type
     use rollcon_adm_system, only : adm_variable_type, adm_spline_data_type, adm_plant_type, &
         & adm_diff_type
     implicit none
@@ -236,6 +237,11 @@ module rollcon_adm_model
         !> data user routines read with GTSTRG and GTARAY
         type(adm_string_type), allocatable :: strings(:)
         type(adm_array_type), allocatable :: arrays(:)
+        !> CONTACT statements, in the order of the file (rollcon_adm_contacts), and the
+        !> GRAPHICS of the shapes a CONTACT can name (ELLIPSOID, CYLINDER, PLANE), in the order
+        !> of the file
+        type(adm_contact_type), allocatable :: contacts(:)
+        type(adm_graphics_type), allocatable :: graphics(:)
         !> Gravitational acceleration, ground axes [m/s^2] (zero without ACCGRAV)
         real(wp) :: gravity(3) = 0.0_wp
         type(adm_run_type) :: run

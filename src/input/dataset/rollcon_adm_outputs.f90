@@ -20,11 +20,13 @@ module rollcon_adm_outputs
     use rollcon_text, only : to_text
     use rollcon_adm_lexer, only : adm_statement_type, adm_argument_type, upper_case
     use rollcon_adm_keywords, only : read_reals, argument_key, arg_place, name_index, &
-        & argument_text
+        & argument_text, read_integer
     use rollcon_expression, only : expression_type, quantity_kind, quantity_names, &
         & kind_element, kind_element_force, quantity_varval, quantity_dif, quantity_dif1
     use rollcon_adm_expression_parser, only : compile_expression
     use rollcon_adm_loads, only : read_user_list
+    use rollcon_adm_contacts, only : adm_graphics_type, graphics_ellipsoid, graphics_cylinder, &
+        & graphics_plane
     use rollcon_adm_model, only : adm_model_type, adm_request_type, adm_unused_type, &
         & adm_reference_type, refers_to_marker, refers_to_part, refers_to_force, &
         & request_displacement, request_velocity, request_acceleration, request_force, &
@@ -219,11 +221,68 @@ contains
                 & // to_text(count(given .and. is_one_of(keys, shapes))), stat_input)
             if (.not. allocated(error)) call record_unused(model%unused, model%unused_count, &
                 & name, statement%line)
+            ! a shape a CONTACT can name: kept for it (rollcon_adm_contacts)
+            if (.not. allocated(error)) call keep_graphics(path, where, statement, keys, model, &
+                & error)
         case ("OUTPUT", "EQUILIBRIUM")
         case default
             call record_unused(model%unused, model%unused_count, name, statement%line)
         end select
     end subroutine read_output_statement
+
+    !> A GRAPHICS of ELLIPSOID, CYLINDER or PLANE kept in model%graphics with its marker (CM,
+    !> or RM), RADIUS, LENGTH, XSCALE, YSCALE, ZSCALE (lengths in SI), for a CONTACT that names
+    !> it; another shape is not kept. Its keys are checked already (read_output_statement).
+    subroutine keep_graphics(path, where, statement, keys, model, error)
+        character(len=*), intent(in) :: path, where
+        type(adm_statement_type), intent(in) :: statement
+        !> GRAPHICS's keywords (statement_keywords)
+        character(len=*), intent(in) :: keys(:)
+        type(adm_model_type), intent(inout) :: model
+        type(error_type), allocatable, intent(out) :: error
+        type(adm_graphics_type) :: graphics
+        type(error_type), allocatable :: refused
+        character(len=:), allocatable :: key, at
+        real(wp), allocatable :: values(:)
+        integer :: k
+
+        graphics%id = statement%id
+        graphics%line = statement%line
+        do k = 1, size(statement%arguments)
+            call argument_key(path, where, statement, k, keys, key, refused)
+            if (allocated(refused)) then
+                deallocate(refused)
+                cycle
+            end if
+            at = arg_place(path, where, statement%arguments(k)) // " " // key
+            select case (key)
+            case ("ELLIPSOID")
+                graphics%shape = graphics_ellipsoid
+            case ("CYLINDER")
+                graphics%shape = graphics_cylinder
+            case ("PLANE")
+                graphics%shape = graphics_plane
+            case ("CM", "RM")
+                call read_integer(statement%arguments(k), at, graphics%marker, error)
+            case ("RADIUS", "LENGTH", "XSCALE", "YSCALE", "ZSCALE")
+                call read_reals(statement%arguments(k), at, 1, 1, .false., values, error, &
+                    & factor=model%units%length)
+                if (allocated(error)) return
+                select case (key)
+                case ("RADIUS")
+                    graphics%radius = values(1)
+                case ("LENGTH")
+                    graphics%length = values(1)
+                case default
+                    graphics%scales(name_index(key, ["XSCALE", "YSCALE", "ZSCALE"])) = values(1)
+                end select
+            end select
+            if (allocated(error)) return
+        end do
+        if (graphics%shape == 0) return
+        if (.not. allocated(model%graphics)) allocate(model%graphics(0))
+        model%graphics = [model%graphics, graphics]
+    end subroutine keep_graphics
 
     !> One argument of EQUILIBRIUM: ERROR, IMBALANCE (force units), TLIMIT (length units),
     !> ALIMIT (an angle) and MAXIT set the static equilibrium's limits (run settings, in SI);

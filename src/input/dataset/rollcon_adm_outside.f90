@@ -22,10 +22,10 @@ module rollcon_adm_outside
         & "rollcon's bodies are rigid PARTs"]
     !> Statement names and the kind of each (statements of ADAMS's outputs are read:
     !> rollcon_adm_outputs)
-    character(len=*), parameter :: names(10) = [character(len=12) :: &
-        & "PTCV", "CVCV", "BEAM", "FIELD", "FRICTION", "CONTACT", "NFORCE", "SENSOR", &
+    character(len=*), parameter :: names(9) = [character(len=12) :: &
+        & "PTCV", "CVCV", "BEAM", "FIELD", "FRICTION", "NFORCE", "SENSOR", &
         & "FLEX_BODY", "POINT_MASS"]
-    integer, parameter :: kind_of(size(names)) = [1, 1, 2, 2, 2, 2, 2, 3, 4, 4]
+    integer, parameter :: kind_of(size(names)) = [1, 1, 2, 2, 2, 2, 3, 4, 4]
 
 contains
 

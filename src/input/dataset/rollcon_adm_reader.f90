@@ -26,10 +26,11 @@ module rollcon_adm_reader
     use rollcon_adm_motions, only : read_motion
     use rollcon_adm_system, only : read_variable, read_spline, read_plant, read_diff
     use rollcon_adm_data, only : read_string, read_array
+    use rollcon_adm_contacts, only : read_contact
     use rollcon_adm_variables, only : resolve_variables, add_plant_warning
     use rollcon_adm_outside, only : outside_reason
     use rollcon_adm_outputs, only : output_statement_names, output_needs_id, &
-        & read_output_statement, unused_warning, answer_force_requests
+        & read_output_statement, unused_warning, answer_force_requests, record_unused
     use rollcon_adm_overrides, only : adm_override_type, apply_adm_overrides
     implicit none
     private
@@ -116,8 +117,8 @@ contains
         character(len=:), allocatable :: name
         !> The ids of the parts, markers, UCONs and forces (list_of), and of the statements
         !> read and not used that take one (output_key)
-        type(id_index_type) :: ids(15), output_ids
-        integer :: i, n(15), k, previous
+        type(id_index_type) :: ids(16), output_ids
+        integer :: i, n(16), k, previous
         logical :: seen(size(statement_names)), repeated
 
         do i = 1, size(text%statements)
@@ -137,6 +138,7 @@ contains
             & model%plants(count(names == "PINPUT" .or. names == "POUTPUT")), &
             & model%diffs(count(names == "DIFF")), model%strings(count(names == "STRING")), &
             & model%arrays(count(names == "ARRAY")))
+        allocate(model%contacts(count(names == "CONTACT")))
         ids = [new_id_index(size(model%parts)), new_id_index(size(model%markers)), &
             & new_id_index(size(model%ucons)), new_id_index(size(model%forces)), &
             & new_id_index(size(model%joints)), new_id_index(size(model%gcons)), &
@@ -144,7 +146,7 @@ contains
             & new_id_index(size(model%motions)), new_id_index(size(model%variables)), &
             & new_id_index(size(model%splines)), new_id_index(size(model%plants)), &
             & new_id_index(size(model%diffs)), new_id_index(size(model%strings)), &
-            & new_id_index(size(model%arrays))]
+            & new_id_index(size(model%arrays)), new_id_index(size(model%contacts))]
         output_ids = new_id_index(count([(name_index(names(i), output_statement_names) > 0, &
             & i = 1, size(names))]))
         n = 0
@@ -200,6 +202,9 @@ contains
         model%diffs = model%diffs(:n(13))
         model%strings = model%strings(:n(14))
         model%arrays = model%arrays(:n(15))
+        model%contacts = model%contacts(:n(16))
+        if (.not. allocated(model%graphics)) allocate(model%graphics(0))
+        call note_contact_keys(model)
         model%requests = model%requests(:model%request_count)
         model%other_requests = model%other_requests(:model%other_request_count)
         model%unused = model%unused(:model%unused_count)
@@ -208,7 +213,7 @@ contains
 
     !> The list a statement's element goes to: 1 parts, 2 markers, 3 UCONs, 4 forces, 5 joints,
     !> 6 GCONs, 7 COUPLERs, 8 GEARs, 9 MOTIONs, 10 VARIABLEs, 11 SPLINEs, 12 PINPUTs and
-    !> POUTPUTs, 13 DIFFs, 14 STRINGs, 15 ARRAYs; 0 none.
+    !> POUTPUTs, 13 DIFFs, 14 STRINGs, 15 ARRAYs, 16 CONTACTs; 0 none.
     elemental integer function list_of(name) result(k)
         character(len=*), intent(in) :: name
 
@@ -243,6 +248,8 @@ contains
             k = 14
         case ("ARRAY")
             k = 15
+        case ("CONTACT")
+            k = 16
         case default
             k = 0
         end select
@@ -285,7 +292,7 @@ contains
         type(adm_statement_type), intent(in) :: statement
         logical, intent(in) :: repeated
         type(adm_model_type), intent(inout) :: model
-        integer, intent(inout) :: n(15)
+        integer, intent(inout) :: n(16)
         type(error_type), allocatable, intent(out) :: error
         character(len=:), allocatable :: where
 
@@ -354,6 +361,10 @@ contains
         case ("ARRAY")
             n(15) = n(15) + 1
             call read_array(path, where, statement, model%arrays(n(15)), error)
+        case ("CONTACT")
+            n(16) = n(16) + 1
+            call read_contact(path, where, statement, model%units%length, &
+                & model%contacts(n(16)), error)
         case ("SIMULATE")
             call read_simulate(path, where, statement, model%units, model%run, error)
         case ("INTEGRATOR")
@@ -475,7 +486,7 @@ contains
         needs_id = any(name == [character(len=12) :: "PART", "MARKER", "UCON", "SFORCE", &
             & "VFORCE", "GFORCE", "JOINT", "JPRIM", "GCON", "COUPLER", "GEAR", "MOTION", &
             & "VTORQUE", "SPRINGDAMPER", "BUSHING", "VARIABLE", "SPLINE", "PINPUT", "POUTPUT", &
-            & "DIFF", "STRING", "ARRAY"]) &
+            & "DIFF", "STRING", "ARRAY", "CONTACT"]) &
             & .or. output_needs_id(name)
     end function needs_id
 
@@ -513,5 +524,37 @@ contains
             end do
         end do
     end subroutine read_units
+
+    !> The CONTACTs' keys read and not used (ADAMS's penalty force and friction
+    !> regularisation: rollcon_adm_contacts) named in the run's warning, and the GRAPHICS a
+    !> CONTACT names taken out of it (they are used: the contact's geometry).
+    subroutine note_contact_keys(model)
+        type(adm_model_type), intent(inout) :: model
+        integer :: c, k, j, kept, g
+        logical :: named
+
+        do c = 1, size(model%contacts)
+            do k = 1, size(model%contacts(c)%unused)
+                call record_unused(model%unused, model%unused_count, &
+                    & trim(model%contacts(c)%unused(k)), model%contacts(c)%unused_lines(k))
+            end do
+        end do
+        if (size(model%contacts) == 0 .or. model%unused_count == 0) return
+        kept = 0
+        do j = 1, model%unused_count
+            named = .false.
+            if (model%unused(j)%what == "GRAPHICS") then
+                do g = 1, size(model%graphics)
+                    if (model%graphics(g)%line /= model%unused(j)%line) cycle
+                    named = any(model%contacts%igeom == model%graphics(g)%id) &
+                        & .or. any(model%contacts%jgeom == model%graphics(g)%id)
+                end do
+            end if
+            if (named) cycle
+            kept = kept + 1
+            if (kept < j) model%unused(kept) = model%unused(j)
+        end do
+        model%unused_count = kept
+    end subroutine note_contact_keys
 
 end module rollcon_adm_reader

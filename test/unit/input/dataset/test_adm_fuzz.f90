@@ -40,7 +40,7 @@ module test_adm_fuzz
     !> The shipped datasets
     character(len=*), parameter :: shipped(*) = [character(len=17) :: "ball_on_turntable", &
         & "ball_tumbling", "chaplygin_sled", "coin", "disk_and_sphere", "disk_height", &
-        & "turntable_disk"]
+        & "turntable_disk", "sliding_coin", "sphere_bounce"]
     !> A dataset with every statement and keyword of the subset, in millimetres
     character(len=76), parameter :: every_statement(*) = [character(len=76) :: &
         & "every statement: each keyword of the subset once", &

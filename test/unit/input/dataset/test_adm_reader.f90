@@ -242,8 +242,8 @@ contains
         lines_at = [3, 4, 6, 7, 7, 10, 12, 13, 16, 16, 17, 6, 18, 11]
         replaced(1) = "PTCV/9, I=4, J=5"
         expected(1) = file // "3: 'PTCV' is not a statement of the supported subset (ACCGRAV, " &
-            & // "ARRAY, BUSHING, COUPLER, DIFF, END, GCON, GEAR, GFORCE, INTEGRATOR, JOINT, " &
-            & // "JPRIM, MARKER, MOTION, OUTPUT, PART, PINPUT, POUTPUT, SFORCE, SIMULATE, " &
+            & // "ARRAY, BUSHING, CONTACT, COUPLER, DIFF, END, GCON, GEAR, GFORCE, INTEGRATOR, " &
+            & // "JOINT, JPRIM, MARKER, MOTION, OUTPUT, PART, PINPUT, POUTPUT, SFORCE, SIMULATE, " &
             & // "SPLINE, SPRINGDAMPER, STRING, UCON, UNITS, VARIABLE, VFORCE, VTORQUE)"
         replaced(2) = "PART/2, MASS=0.7351, CM=3, IP=1, 1, 1, 1.5, 0, 0"
         expected(2) = file // "4: PART/2 IP: the inertia tensor [[xx, -xy, -xz], [-xy, yy, -yz]"

@@ -13,7 +13,8 @@ module test_adm_refusals
 
     !> The supported statements, as a refusal lists them
     character(len=*), parameter :: supported = &
-        & "(ACCGRAV, ARRAY, BUSHING, COUPLER, DIFF, END, GCON, GEAR, GFORCE, INTEGRATOR, JOINT," &
+        & "(ACCGRAV, ARRAY, BUSHING, CONTACT, COUPLER, DIFF, END, GCON, GEAR, GFORCE, " &
+        & // "INTEGRATOR, JOINT," &
         & // " JPRIM, MARKER, MOTION, OUTPUT, PART, PINPUT, POUTPUT, SFORCE, SIMULATE, SPLINE," &
         & // " SPRINGDAMPER, STRING, UCON, UNITS, VARIABLE, VFORCE, VTORQUE)"
 
