@@ -22,7 +22,7 @@ module rollcon_contact_watch
     use rollcon_text, only : to_text
     use rollcon_equations, only : equations_type
     use rollcon_contact_impact, only : impact_type, contact_impact
-    use rollcon_run_settings, only : run_settings_type, formulation_cvode
+    use rollcon_run_settings, only : run_settings_type, formulation_speeds
     use rollcon_output_layout, only : name_length
     !> The columns it adds, in order (named where a CSV reader finds them too)
     use rollcon_watch_columns, only : contact_names, contact_mode_names, contact_mode_words
@@ -171,10 +171,12 @@ contains
         self%mode_time = 0.0_wp
         self%started = .false.
         if (.not. self%friction()) return
-        if (settings%formulation /= formulation_cvode) then
+        if (settings%formulation == formulation_speeds) then
             ! sliding's friction is coupled in the ODE form's accelerations (rollcon_equations)
+            ! and the DAE form's residual (rollcon_dae), the modes' rows dropped in both
             call fatal_error(error, "a contact with Coulomb friction (mu_static > 0) is " &
-                & // "integrated in the ODE form only: formulation = 'cvode'", stat_input)
+                & // "integrated in the ODE or DAE form: formulation = 'cvode' or 'ida'", &
+                & stat_input)
             return
         end if
         if (eq%nc < 3 .or. any(self%tangential > eq%nc) .or. self%normal > eq%nc) then

@@ -60,7 +60,7 @@ contains
             & test_rolling_resistance), &
             & new_unittest("energy-judge-both-directions", test_energy_judge), &
             & new_unittest("fit-recovers-a-known-singularity", test_fit_exact), &
-            & new_unittest("dissipation-needs-cvode", test_needs_cvode), &
+            & new_unittest("dissipation-refused-in-speeds", test_refused_in_speeds), &
             & new_unittest("rolling-resistance-held-at-phidot-zero", test_held_start), &
             & new_unittest("rolling-resistance-sign-at-located-roots", test_sign_roots), &
             & new_unittest("singularity-reported-only-when-settling", test_settling_rule)]
@@ -331,20 +331,22 @@ contains
         end do
     end subroutine test_fit_exact
 
-    !> &dissipation asks formulation = 'cvode' (rolling resistance is coupled in the ODE
-    !> form's accelerations), saying so.
-    subroutine test_needs_cvode(error)
+    !> &dissipation asks formulation = 'cvode' or 'ida' (rolling resistance is coupled to the
+    !> normal force in the ODE form's accelerations and the DAE form's residual, not in
+    !> independent speeds), saying so.
+    subroutine test_refused_in_speeds(error)
         type(error_type), allocatable, intent(out) :: error
         type(scene_type) :: scene
         type(error_type), allocatable :: refusal
 
         call read_scene_lines("air.nml", lines_of([character(len=40) :: &
-            & "&dissipation air_viscosity = 1.8e-5 /"]), scene, refusal)
-        call check(error, allocated(refusal), "&dissipation with the default 'ida' is refused")
+            & "&run formulation = 'maggi' /", "&dissipation air_viscosity = 1.8e-5 /"]), &
+            & scene, refusal)
+        call check(error, allocated(refusal), "&dissipation with 'maggi' is refused")
         if (allocated(error)) return
-        call check(error, index(refusal%message, "'cvode' in a scene with &dissipation") > 0, &
-            & "the refusal names the formulation: " // refusal%message)
-    end subroutine test_needs_cvode
+        call check(error, index(refusal%message, "'cvode' or 'ida' in a scene with " &
+            & // "&dissipation") > 0, "the refusal names the formulations: " // refusal%message)
+    end subroutine test_refused_in_speeds
 
     !> The coin at phidot = 0 with theta-dot = 0: phiddot is 0 without the resistance (the
     !> rolling disk's phi equation has only thetadot's terms there), so the resistance holds
