@@ -55,6 +55,9 @@ module rollcon_contact_watch
     !> error over the speed, which is 1/(4 capture_factor) of the flight's time at the capture
     !> height, and a ball's bounces below it would be infinitely many in a finite time
     real(wp), parameter, public :: capture_factor = 100.0_wp
+    !> The lead of the touchdown's event function while the rim's lowest point rises [s]
+    !> (roots): any positive time keeps it positive there and continuous at the apex
+    real(wp), parameter :: rising_lead = 1.0_wp
 
     !> What a switch did besides changing the mode: an impact's impulse and energies, and the
     !> value of the event function where it fired (a touchdown's height of the rim's lowest
@@ -274,8 +277,12 @@ contains
             g(m:m + 1) = 1.0_wp
         end if
         if (eq%contact%flying) then
-            ! the rim's lowest point's height above the ground
-            g(1) = self%height_residual(q)
+            ! the rim's lowest point's height above the ground, led while it rises by its
+            ! normal velocity over rising_lead: the same function where it falls (the
+            ! touchdown's root), positive from a rebound on, where the height is zero to
+            ! rounding (IDA, started again there, would report that zero again at each start)
+            g(1) = self%height_residual(q) + rising_lead*max(0.0_wp, &
+                & self%normal_velocity(q, u))
             return
         end if
         if (self%friction() .and. eq%contact%sliding) then
