@@ -59,6 +59,8 @@ contains
         tests = [new_unittest("air-layer-omega-exponent-one-sixth", test_air_layer), &
             & new_unittest("rolling-resistance-omega-exponent-one-third", &
             & test_rolling_resistance), &
+            & new_unittest("rolling-resistance-on-ida", test_rolling_resistance_ida), &
+            & new_unittest("rolling-resistance-held-on-ida", test_held_start_ida), &
             & new_unittest("air-layer-on-ida-as-on-cvode", test_air_layer_ida), &
             & new_unittest("energy-judge-both-directions", test_energy_judge), &
             & new_unittest("fit-recovers-a-known-singularity", test_fit_exact), &
@@ -234,6 +236,23 @@ contains
     !> order (from (3/2) m g R dalpha/dt = -delta m g Omega, Omega^2 alpha = m g R / A).
     subroutine test_rolling_resistance(error)
         type(error_type), allocatable, intent(out) :: error
+
+        call rolling_resistance("cvode", error)
+    end subroutine test_rolling_resistance
+
+    !> test_rolling_resistance in the DAE form (IDA): rolling resistance -delta F_n sign(phidot)
+    !> from the DAE's normal multiplier in its residual; the same checks and bounds (measured
+    !> n = 0.33374, t0 = 5.64685 s, as on CVODE to 4e-7 s).
+    subroutine test_rolling_resistance_ida(error)
+        type(error_type), allocatable, intent(out) :: error
+
+        call rolling_resistance("ida", error)
+    end subroutine test_rolling_resistance_ida
+
+    !> test_rolling_resistance's checks, the scene integrated in the formulation named.
+    subroutine rolling_resistance(formulation, error)
+        character(len=*), intent(in) :: formulation
+        type(error_type), allocatable, intent(out) :: error
         ! t0 against the closed form [-, relative]: as for the air layer, the leading order in
         ! alpha and cos(theta) = 1 - alpha^2 / 2 in |phidot|; measured 9.5e-4 (t0 = 5.6468 s
         ! against 5.6414 s), bound 2e-2
@@ -253,8 +272,8 @@ contains
             & "&initial theta = 0.05, psidot = 88.59410973150383,", &
             & "    phidot = -88.48339016379967 /", &
             & "&dissipation rolling_resistance = 1.0e-5 /", &
-            & "&run end_time = 8.0, output_step = 0.001, formulation = 'cvode' /", &
-            & "&limits theta_min = 0.001 /"]), scene, error)
+            & "&run end_time = 8.0, output_step = 0.001, formulation = '" // formulation &
+            & // "' /", "&limits theta_min = 0.001 /"]), scene, error)
         if (allocated(error)) return
         call run_scene(scene, history, summary, watch, error)
         if (allocated(error)) return
@@ -281,7 +300,7 @@ contains
             & rel_tol=t0_tol)
         if (allocated(error)) return
         call check_energy(history, "rolling resistance", balance_tol, error)
-    end subroutine test_rolling_resistance
+    end subroutine rolling_resistance
 
     !> The judge of data/euler_disk.nml's run, given the drift its rows show (less the
     !> trapezoidal rule's estimated error, as the run measures it) with the
@@ -388,6 +407,22 @@ contains
     !> flipped at every step took 400,000), its energy never rises.
     subroutine test_held_start(error)
         type(error_type), allocatable, intent(out) :: error
+
+        call held_start(formulation_cvode, error)
+    end subroutine test_held_start
+
+    !> test_held_start in the DAE form (IDA): while held, phi's momentum row is phidot' = 0
+    !> (the held moment acts on phi alone); the same checks and bounds.
+    subroutine test_held_start_ida(error)
+        type(error_type), allocatable, intent(out) :: error
+
+        call held_start(formulation_ida, error)
+    end subroutine test_held_start_ida
+
+    !> test_held_start's checks, both runs integrated in the given formulation.
+    subroutine held_start(formulation, error)
+        integer, intent(in) :: formulation
+        type(error_type), allocatable, intent(out) :: error
         ! steps with the resistance over steps without [-]: measured 1031 against 977 (1.06);
         ! a tenfold margin
         real(wp), parameter :: steps_ratio_max = 10.0_wp
@@ -418,6 +453,8 @@ contains
             & "&initial theta = 1.2, psidot = 10.0, phidot = 0.0 /", &
             & "&dissipation air_viscosity = 1.0e-30 /", coin_run]), free_scene, error)
         if (allocated(error)) return
+        scene%run%formulation = formulation
+        free_scene%run%formulation = formulation
         call run_scene(scene, history, summary, watch, error)
         if (allocated(error)) return
         call run_scene(free_scene, free_history, free_summary, free_watch, error)
@@ -450,7 +487,7 @@ contains
         rise = maxval(energy(2:) - energy(:size(energy) - 1))
         call check(error, rise <= rise_tol, "the energy rises by " // to_text(rise) &
             & // " J between rows (bound " // to_text(rise_tol) // " J)")
-    end subroutine test_held_start
+    end subroutine held_start
 
     !> The coin starting at phidot = 0.5 rad/s: phidot changes sign again and again; each
     !> change is a root located by the integrator (phidot ~ 0 there) where the law takes a new
