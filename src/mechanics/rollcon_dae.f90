@@ -13,7 +13,11 @@
 !> form, and its partials in u' (differenced over what the routine declared,
 !> rollcon_user_force_partials) enter the Newton matrix scaled by cj, beside M's. A row
 !> set aside as redundant (rollcon_redundancy) keeps its place: its equation is lambda_k = 0
-!> (and mu_h = 0 for a position UCON's), and its multipliers appear nowhere else.
+!> (and mu_h = 0 for a position UCON's), and its multipliers appear nowhere else; so does a
+!> row a contact's mode drops (rollcon_sliding_contact: sliding, flight). Sliding's friction
+!> -mu_k F_n D and rolling resistance's -delta F_n sign(phidot) take F_n = c_nz lambda_n from
+!> the unknowns themselves, and a held phidot's row is phidot' = 0 (add_mode_forces;
+!> docs/design.md §5, "Contact modes", "Dissipation").
 module rollcon_dae
     use rollcon_user_forces, only : take_user_force_error, set_system_accelerations, &
         & reads_accelerations
@@ -248,7 +252,7 @@ contains
         real(wp), intent(inout), optional :: values(:)
         logical :: aside, dense, loop
         integer :: n, nc, k, h, i, j, row, ii, jj, i0, outside(2)
-        real(wp) :: effective(eq%nc), m(2), s(2), slip(2)
+        real(wp) :: m(2), s(2), slip(2)
 
         loop = .false.
         if (allocated(eq%model%forces)) loop = reads_accelerations(eq%model%forces)
@@ -276,13 +280,19 @@ contains
             if (eq%contact%sliding .or. eq%contact%flying) then
                 ! the rows the mode drops carry no force, sliding's friction its multipliers
                 ! on the tangential rows (friction_multipliers): their second partials in
-                ! dm/dq as a constraint force's
-                effective = merge(lambda, 0.0_wp, eq%active_rows())
-                if (eq%contact%sliding) then
-                    call friction_multipliers(eq, lambda, m, s, slip)
-                    effective(eq%contact%tangential) = m
-                end if
-                call eq%momentum_jacobian(q, u, up, effective, time)
+                ! dm/dq as a constraint force's (into the equations' scratch multipliers, free
+                ! after Painlevé's test: no allocation)
+                associate (effective => eq%work%lambda)
+                    do k = 1, nc
+                        effective(k) = 0.0_wp
+                        if (eq%active_rows_of(k)) effective(k) = lambda(k)
+                    end do
+                    if (eq%contact%sliding) then
+                        call friction_multipliers(eq, lambda, m, s, slip)
+                        effective(eq%contact%tangential) = m
+                    end if
+                    call eq%momentum_jacobian(q, u, up, effective, time)
+                end associate
             else if (eq%redundancy%set_aside > 0) then
                 ! the rows set aside carry no force, whatever the iterate's lambda_k
                 call eq%momentum_jacobian(q, u, up, merge(lambda, 0.0_wp, &

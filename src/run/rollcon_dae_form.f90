@@ -265,6 +265,9 @@ contains
     !> state of neighbouring parts by every other would keep 1661. A model with rows set aside
     !> (rollcon_redundancy) keeps the diagonal of every lambda_k and mu_h too, where a row set
     !> aside has its equation lambda_k = 0 (mu_h = 0): whichever rows a choice again sets aside.
+    !> A contact whose modes are watched keeps the diagonal of its three rows (a mode drops
+    !> them), and a contact or a rim's dissipation the column of its normal multiplier in the
+    !> part's momentum rows (sliding's friction, rolling resistance: rollcon_dae).
     !> Gathered as each element's entries (rollcon_newton_pattern's from_entries): memory and
     !> time O(entries), no n x n array.
     subroutine dae_pattern(self, n, pattern)

@@ -260,7 +260,8 @@ contains
     !> slip's integration error (a slide starting from rest: a positive constant and |v_s| -
     !> the first guard) (docs/design.md §5, "Contact modes"). With flight modelled the normal
     !> force itself (its zero a lift-off), and in flight the height of the rim's lowest point
-    !> Z - R sin(theta) (its zero a touchdown) and two positive constants.
+    !> Z - R sin(theta), led while it rises by rising_lead times its normal velocity (its zero
+    !> a touchdown), and two positive constants.
     subroutine roots(self, eq, settings, time, q, u, g, error, lambda, a)
         class(contact_watch_type), intent(inout) :: self
         type(equations_type), intent(inout) :: eq
