@@ -55,6 +55,10 @@ module rollcon_ida
     !> The finest relative tolerance of that stretch [-]: 1000 eps, where the corrector of the
     !> index-2 DAE still converges (at 100 eps it fails on the first steps)
     real(wp), parameter :: finest_rtol = 1.0e3_wp*epsilon(1.0_wp)
+    !> The shortest careful stretch, relative to its start time [-]: IDA refuses an output
+    !> closer to its start than 2 eps of the time (IDA_ILL_INPUT, "tout too close to t0"), and
+    !> locates a root to 100 eps of it; a stretch shorter than that is none
+    real(wp), parameter :: restart_span_min = 1.0e2_wp*epsilon(1.0_wp)
     !> IDA's Newton iteration stops when its error is estimated below this fraction of the
     !> error weights (IDASetNonlinConvCoef; IDA's own default 0.33). What it leaves in each step
     !> is in the history whose differences estimate the local error and choose the order, where
@@ -272,7 +276,11 @@ contains
                 return
             end if
         end if
-        if (h_last(1) > 0.0_wp) self%fine_span = restart_fine_steps*h_last(1)
+        ! a last step too short to make a stretch IDA can start over (within the time's
+        ! round-off: a root reported again just after the restart it was started from, a
+        ! touchdown's rebound through the ground level) keeps the stretch of before
+        if (restart_fine_steps*h_last(1) > restart_span_min*abs(t0)) &
+            & self%fine_span = restart_fine_steps*h_last(1)
         self%fine_until = t0 + self%fine_span
         if (self%fine_span > 0.0_wp) self%data%scale = min(1.0_wp, &
             & max(restart_tolerance_factor, finest_rtol/self%data%rtol))

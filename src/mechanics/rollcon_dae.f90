@@ -17,7 +17,11 @@
 !> multipliers lambda among the unknowns y: its partials in them (differenced over the rows
 !> it declared) enter the momentum rows' lambda columns beside -C^T. A row
 !> set aside as redundant (rollcon_redundancy) keeps its place: its equation is lambda_k = 0
-!> (and mu_h = 0 for a position UCON's), and its multipliers appear nowhere else.
+!> (and mu_h = 0 for a position UCON's), and its multipliers appear nowhere else; so does a
+!> row a contact's mode drops (rollcon_sliding_contact: sliding, flight). Sliding's friction
+!> -mu_k F_n D and rolling resistance's -delta F_n sign(phidot) take F_n = c_nz lambda_n from
+!> the unknowns themselves, and a held phidot's row is phidot' = 0 (add_mode_forces;
+!> docs/design.md §5, "Contact modes", "Dissipation").
 module rollcon_dae
     use rollcon_user_forces, only : take_user_force_error, set_system_accelerations, &
         & reads_accelerations, reads_constraint_forces, set_system_constraint_forces
@@ -96,6 +100,8 @@ contains
                 h = eq%model%holonomic_number(k)
                 aside = .false.
                 if (eq%redundancy%set_aside > 0) aside = .not. eq%redundancy%active(k)
+                ! a row the contact's mode drops (sliding, flight) is set aside alike
+                if (eq%contact%dropped(k)) aside = .true.
                 if (aside) then
                     r(2*n + k) = lambda(k)
                     if (h > 0) r(2*n + nc + h) = mu(h)
@@ -119,8 +125,98 @@ contains
                     end if
                 end associate
             end do
+            if (mode_forces(eq)) call add_mode_forces(eq, u, up, lambda, r(n + 1:2*n))
         end associate
     end subroutine dae_residual
+
+    !> The contact's mode or the rim's dissipation adds forces of the normal multiplier (or
+    !> holds phidot): sliding's friction, rolling resistance, its held phidot.
+    pure logical function mode_forces(eq)
+        type(equations_type), intent(in) :: eq
+
+        mode_forces = eq%contact%sliding .or. (eq%dissipation%part > 0 &
+            & .and. (eq%dissipation%rolling_resistance > 0.0_wp .or. eq%dissipation%held))
+    end function mode_forces
+
+    !> Row k's gradient in C at coordinate j, from the last evaluation (dF/dq for a position
+    !> UCON, dF/du for a velocity UCON).
+    pure real(wp) function row_gradient(eq, k, j)
+        type(equations_type), intent(in) :: eq
+        integer, intent(in) :: k, j
+
+        if (eq%model%holonomic_number(k) > 0) then
+            row_gradient = eq%constraints%grad_q(k, j)
+        else
+            row_gradient = eq%constraints%grad_u(k, j)
+        end if
+    end function row_gradient
+
+    !> The normal force [N] c_nz lambda_n of normal row n_row (height column z) at the
+    !> multipliers lambda: the force's vertical component on the part (C^T lambda's Z entry).
+    pure real(wp) function normal_force_of(eq, n_row, z, lambda)
+        type(equations_type), intent(in) :: eq
+        integer, intent(in) :: n_row, z
+        real(wp), intent(in) :: lambda(:)
+
+        normal_force_of = row_gradient(eq, n_row, z)*lambda(n_row)
+    end function normal_force_of
+
+    !> The sliding friction's multipliers on the contact's two tangential rows (dropped while it
+    !> slides): the friction -mu_k F_n D, D = s_1 c_t1 + s_2 c_t2 (rollcon_sliding_contact), is
+    !> -C_t^T m with m = -mu_k F_n s, F_n = c_nz lambda_n from the DAE's own normal multiplier
+    !> and s the slip's direction (the tangential rows' values: the contact point's velocity).
+    !> Also the slip [m/s] and its speed.
+    pure subroutine friction_multipliers(eq, lambda, m, s, slip)
+        type(equations_type), intent(in) :: eq
+        real(wp), intent(in) :: lambda(:)
+        real(wp), intent(out) :: m(2), s(2), slip(2)
+
+        associate (contact => eq%contact, t => eq%contact%tangential)
+            slip = [eq%constraints%value(t(1)), eq%constraints%value(t(2))]
+            s = contact%direction(slip)
+            m = -contact%mu*normal_force_of(eq, contact%normal, contact%height_column, lambda)*s
+        end associate
+    end subroutine friction_multipliers
+
+    !> The forces a contact's mode and a rim's dissipation add to the momentum rows r
+    !> (M u' - f - C^T lambda, n), from the DAE's normal multiplier itself (docs/design.md §5):
+    !> sliding's friction -mu_k F_n D as its multipliers m on the tangential rows
+    !> (friction_multipliers: r - C_t^T m), rolling resistance's -delta F_n sign(phidot) on phi
+    !> (rollcon_rim_dissipation), and held rolling resistance's moment, whatever phidot' = 0
+    !> needs, by phi's row replaced with phidot' = 0 (the moment acts on phi alone, so the
+    !> other rows are those of the held motion).
+    pure subroutine add_mode_forces(eq, u, up, lambda, r)
+        type(equations_type), intent(in) :: eq
+        real(wp), intent(in) :: u(:), up(:), lambda(:)
+        real(wp), intent(inout) :: r(:)
+        real(wp) :: m(2), s(2), slip(2)
+        integer :: i, j, jj, phi
+
+        if (eq%contact%sliding) then
+            call friction_multipliers(eq, lambda, m, s, slip)
+            associate (bl => eq%blocks, t => eq%contact%tangential)
+                do i = 1, 2
+                    associate (at => bl%ucon_coordinates(bl%ucon_start(t(i)): &
+                            & bl%ucon_start(t(i) + 1) - 1))
+                        do jj = 1, size(at)
+                            j = at(jj)
+                            r(j) = r(j) - m(i)*row_gradient(eq, t(i), j)
+                        end do
+                    end associate
+                end do
+            end associate
+        end if
+        associate (diss => eq%dissipation)
+            if (diss%part == 0) return
+            phi = 6*(diss%part - 1) + 6
+            if (diss%held) then
+                r(phi) = up(phi)
+            else if (diss%rolling_resistance > 0.0_wp) then
+                r(phi) = r(phi) + diss%rolling_resistance*diss%rolling_direction(u(phi)) &
+                    & *normal_force_of(eq, diss%normal, diss%height_column, lambda)
+            end if
+        end associate
+    end subroutine add_mode_forces
 
     !> Newton matrix dr/dy + cj dr/dy', analytic from the UCOSUB's first and second partials,
     !> into the dense matrix jac ((2n + nc + nh) square, cleared first). Written part by part
@@ -166,6 +262,7 @@ contains
         real(wp), intent(inout), optional :: values(:)
         logical :: aside, dense, loop, multipliers
         integer :: n, nc, k, h, i, j, row, ii, jj, i0, outside(2)
+        real(wp) :: m(2), s(2), slip(2)
 
         loop = .false.
         multipliers = .false.
@@ -180,6 +277,14 @@ contains
         associate (q => y(:n), u => y(n + 1:2*n), lambda => y(2*n + 1:2*n + nc), &
             & mu => y(2*n + nc + 1:), up => yp(n + 1:2*n), cs => eq%constraints, &
             & bl => eq%blocks, dm_dq => eq%work%dm_dq)
+            if (mode_forces(eq)) then
+                ! Painlevé's test of the forces proportional to the normal force, as the ODE
+                ! form makes it at every evaluation (rollcon_equations: 1 + mu c_nz lambda1_n),
+                ! here at every Newton matrix: where it fails, this matrix is singular or
+                ! nearly so and sliding is ill-posed
+                call eq%accelerations(time, q, u, 0.0_wp, eq%work%a, eq%work%lambda, error)
+                if (allocated(error)) return
+            end if
             call cs%evaluate(eq%model, time, q, u, need_value + need_first + need_second &
                 & + need_time, error)
             if (allocated(error)) return
@@ -187,7 +292,23 @@ contains
             if (multipliers) call set_reactions(eq, lambda)
             call eq%assemble(time, q, u)
             call eq%constraint_rows(u, 0.0_wp)  ! the DAE form keeps F itself: no Baumgarte terms
-            if (eq%redundancy%set_aside > 0) then
+            if (eq%contact%sliding .or. eq%contact%flying) then
+                ! the rows the mode drops carry no force, sliding's friction its multipliers
+                ! on the tangential rows (friction_multipliers): their second partials in
+                ! dm/dq as a constraint force's (into the equations' scratch multipliers, free
+                ! after Painlevé's test: no allocation)
+                associate (effective => eq%work%lambda)
+                    do k = 1, nc
+                        effective(k) = 0.0_wp
+                        if (eq%active_rows_of(k)) effective(k) = lambda(k)
+                    end do
+                    if (eq%contact%sliding) then
+                        call friction_multipliers(eq, lambda, m, s, slip)
+                        effective(eq%contact%tangential) = m
+                    end if
+                    call eq%momentum_jacobian(q, u, up, effective, time)
+                end associate
+            else if (eq%redundancy%set_aside > 0) then
                 ! the rows set aside carry no force, whatever the iterate's lambda_k
                 call eq%momentum_jacobian(q, u, up, merge(lambda, 0.0_wp, &
                     & eq%redundancy%active), time)
@@ -255,6 +376,7 @@ contains
                 row = 2*n + k
                 aside = .false.
                 if (eq%redundancy%set_aside > 0) aside = .not. eq%redundancy%active(k)
+                if (eq%contact%dropped(k)) aside = .true.
                 if (aside) then
                     call put(row, row, 1.0_wp)
                     if (h > 0) call put(2*n + nc + h, 2*n + nc + h, 1.0_wp)
@@ -299,12 +421,85 @@ contains
                     end if
                 end associate
             end do
+            if (mode_forces(eq)) call mode_entries(u, lambda)
         end associate
         if (outside(1) > 0) call fatal_error(error, "the DAE's Newton matrix has entry (" &
             & // to_text(outside(1)) // ", " // to_text(outside(2)) // ") outside its " &
             & // "sparse pattern (the DAE form's dae_pattern misses an element's block)")
 
     contains
+
+        !> The partials of add_mode_forces' terms not in dm/dq: sliding's friction by the normal
+        !> multiplier (F_n = c_nz lambda_n) and by u and q through the slip's direction
+        !> (ds/dv = (I - s s^T) / |v|, dv/du and dv/dq the tangential rows' gradients; none at
+        !> zero slip, where s is the reference), exact; rolling resistance's by the normal
+        !> multiplier; a held phidot's row, phidot' alone. c_nz's own partials in q (zero for
+        !> a rim: the normal row's Z' coefficient is 1) are left out.
+        subroutine mode_entries(u, lambda)
+            real(wp), intent(in) :: u(:), lambda(:)
+            real(wp) :: projector(2, 2), speed, c_nz, weight, turned
+            integer :: a, b, ia, ib, e, phi, column
+
+            if (eq%contact%sliding) then
+                associate (contact => eq%contact, t => eq%contact%tangential)
+                    call friction_multipliers(eq, lambda, m, s, slip)
+                    c_nz = row_gradient(eq, contact%normal, contact%height_column)
+                    column = 2*n + contact%normal
+                    speed = norm2(slip)
+                    projector = 0.0_wp
+                    if (speed > 0.0_wp) then
+                        projector = -reshape([1.0_wp - s(1)**2, -s(1)*s(2), -s(1)*s(2), &
+                            & 1.0_wp - s(2)**2], [2, 2])/speed
+                        ! d m / d v = -mu F_n (I - s s^T) / |v|
+                        projector = contact%mu*c_nz*lambda(contact%normal)*projector
+                    end if
+                    do a = 1, 2
+                        associate (at => eq%blocks%ucon_coordinates(eq%blocks%ucon_start( &
+                                & t(a)):eq%blocks%ucon_start(t(a) + 1) - 1))
+                            do ia = 1, size(at)
+                                i = at(ia)
+                                ! d(-c_ta m_a)/d lambda_n = mu c_nz s_a c_ta
+                                call subtract(n + i, column, -contact%mu*c_nz*s(a)*eq%c(t(a), i))
+                                do b = 1, 2
+                                    if (projector(a, b) == 0.0_wp) cycle
+                                    associate (by => eq%blocks%ucon_coordinates( &
+                                            & eq%blocks%ucon_start(t(b)): &
+                                            & eq%blocks%ucon_start(t(b) + 1) - 1))
+                                        weight = -eq%c(t(a), i)*projector(a, b)
+                                        do ib = 1, size(by)
+                                            j = by(ib)
+                                            call subtract(n + i, n + j, &
+                                                & -weight*eq%constraints%grad_u(t(b), j))
+                                            call subtract(n + i, j, &
+                                                & -weight*eq%constraints%grad_q(t(b), j))
+                                        end do
+                                    end associate
+                                end do
+                            end do
+                        end associate
+                    end do
+                end associate
+            end if
+            associate (diss => eq%dissipation)
+                if (diss%part == 0) return
+                phi = 6*(diss%part - 1) + 6
+                if (diss%held) then
+                    ! phi's momentum row is phidot' = 0
+                    if (dense) then
+                        jac(n + phi, :) = 0.0_wp
+                    else
+                        do e = 1, size(rows)
+                            if (rows(e) == n + phi - 1) values(e) = 0.0_wp
+                        end do
+                    end if
+                    call put(n + phi, n + phi, cj)
+                else if (diss%rolling_resistance > 0.0_wp) then
+                    turned = diss%rolling_resistance*diss%rolling_direction(u(phi))
+                    call subtract(n + phi, 2*n + diss%normal, &
+                        & -turned*row_gradient(eq, diss%normal, diss%height_column))
+                end if
+            end associate
+        end subroutine mode_entries
 
         !> Entry (i, j) = value.
         subroutine put(i, j, value)

@@ -280,6 +280,9 @@ contains
     !> state of neighbouring parts by every other would keep 1661. A model with rows set aside
     !> (rollcon_redundancy) keeps the diagonal of every lambda_k and mu_h too, where a row set
     !> aside has its equation lambda_k = 0 (mu_h = 0): whichever rows a choice again sets aside.
+    !> A contact whose modes are watched keeps the diagonal of its three rows (a mode drops
+    !> them), and a contact or a rim's dissipation the column of its normal multiplier in the
+    !> part's momentum rows (sliding's friction, rolling resistance: rollcon_dae).
     !> Gathered as each element's entries (rollcon_newton_pattern's from_entries): memory and
     !> time O(entries), no n x n array.
     subroutine dae_pattern(self, n, pattern)
@@ -362,6 +365,20 @@ contains
                 end associate
             end do
         end if
+        ! a contact's modes (rollcon_contact_watch) and a rim's dissipation: the rows a mode
+        ! drops keep their diagonal (lambda_k = 0), and the part's momentum rows its normal
+        ! multiplier's column (sliding's friction, rolling resistance: rollcon_dae's
+        ! add_mode_forces); their partials in q and u are in the part's blocks
+        associate (contact => self%problem%eq%contact, diss => self%problem%eq%dissipation)
+            if (contact%normal > 0) then
+                do k = 1, 2
+                    if (2*nq + contact%tangential(k) <= n) call keep(2*nq &
+                        & + contact%tangential(k), 2*nq + contact%tangential(k))
+                end do
+                call keep_normal(contact%height_column, contact%normal)
+            end if
+            if (diss%part > 0) call keep_normal(diss%height_column, diss%normal)
+        end associate
         ! each DIFF's row by every q and u (it may read any part) and every DIFF's state
         associate (m => dae_size(self%problem%eq), nd => self%problem%model%diffs%count())
             do k = 1, nd
@@ -387,6 +404,20 @@ contains
             call append(rows, counted, i)
             call append(columns, count, j)
         end subroutine keep
+
+        !> The diagonal of normal row n_row, and its column in the momentum rows of the part
+        !> whose height is coordinate z.
+        subroutine keep_normal(z, n_row)
+            integer, intent(in) :: z, n_row
+            integer :: i0, ia
+
+            if (2*nq + n_row > n .or. z < 1 .or. z > nq) return
+            call keep(2*nq + n_row, 2*nq + n_row)
+            i0 = 6*((z - 1)/6)
+            do ia = 1, 6
+                call keep(nq + i0 + ia, 2*nq + n_row)
+            end do
+        end subroutine keep_normal
 
         !> The momentum rows of part a by part b's coordinates and rates.
         subroutine keep_coupling(a, b)

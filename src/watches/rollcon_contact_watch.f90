@@ -25,7 +25,7 @@ module rollcon_contact_watch
     use rollcon_text, only : to_text
     use rollcon_equations, only : equations_type
     use rollcon_contact_impact, only : impact_type, contact_impact
-    use rollcon_run_settings, only : run_settings_type, formulation_cvode
+    use rollcon_run_settings, only : run_settings_type, formulation_speeds
     use rollcon_output_layout, only : name_length
     !> The columns it adds, in order (named where a CSV reader finds them too)
     use rollcon_watch_columns, only : contact_names, contact_mode_names, contact_mode_words
@@ -58,6 +58,9 @@ module rollcon_contact_watch
     !> error over the speed, which is 1/(4 capture_factor) of the flight's time at the capture
     !> height, and a ball's bounces below it would be infinitely many in a finite time
     real(wp), parameter, public :: capture_factor = 100.0_wp
+    !> The lead of the touchdown's event function while the rim's lowest point rises [s]
+    !> (roots): any positive time keeps it positive there and continuous at the apex
+    real(wp), parameter :: rising_lead = 1.0_wp
 
     !> What a switch did besides changing the mode: an impact's impulse and energies, and the
     !> value of the event function where it fired (a touchdown's height of the rim's lowest
@@ -177,10 +180,12 @@ contains
         self%mode_time = 0.0_wp
         self%started = .false.
         if (.not. self%friction()) return
-        if (settings%formulation /= formulation_cvode) then
+        if (settings%formulation == formulation_speeds) then
             ! sliding's friction is coupled in the ODE form's accelerations (rollcon_equations)
+            ! and the DAE form's residual (rollcon_dae), the modes' rows dropped in both
             call fatal_error(error, "a contact with Coulomb friction (mu_static > 0) is " &
-                & // "integrated in the ODE form only: formulation = 'cvode'", stat_input)
+                & // "integrated in the ODE or DAE form: formulation = 'cvode' or 'ida'", &
+                & stat_input)
             return
         end if
         if (eq%nc < 3 .or. any(self%tangential > eq%nc) .or. self%normal > eq%nc) then
@@ -283,7 +288,8 @@ contains
     !> slip's integration error (a slide starting from rest: a positive constant and |v_s| -
     !> the first guard) (docs/design.md §5, "Contact modes"). With flight modelled the normal
     !> force itself (its zero a lift-off), and in flight the height of the rim's lowest point
-    !> Z - R sin(theta) (its zero a touchdown) and two positive constants.
+    !> Z - R sin(theta), led while it rises by rising_lead times its normal velocity (its zero
+    !> a touchdown), and two positive constants.
     subroutine roots(self, eq, settings, time, q, u, g, error, lambda, a)
         class(contact_watch_type), intent(inout) :: self
         type(equations_type), intent(inout) :: eq
@@ -300,8 +306,12 @@ contains
             g(m:m + 1) = 1.0_wp
         end if
         if (eq%contact%flying) then
-            ! the rim's lowest point's height above the ground
-            g(1) = self%height_residual(q)
+            ! the rim's lowest point's height above the ground, led while it rises by its
+            ! normal velocity over rising_lead: the same function where it falls (the
+            ! touchdown's root), positive from a rebound on, where the height is zero to
+            ! rounding (IDA, started again there, would report that zero again at each start)
+            g(1) = self%height_residual(q) + rising_lead*max(0.0_wp, &
+                & self%normal_velocity(q, u))
             return
         end if
         if (self%friction() .and. eq%contact%sliding) then

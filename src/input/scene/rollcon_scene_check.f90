@@ -9,7 +9,8 @@ module rollcon_scene_check
     use rollcon_text, only : to_text
     use rollcon_namelist_lexer, only : group_type
     use rollcon_namelist_bytes, only : visible
-    use rollcon_scene_type, only : scene_type, formulation_cvode
+    use rollcon_scene_type, only : scene_type
+    use rollcon_run_settings, only : formulation_speeds
     use rollcon_physical_ranges, only : light
     use rollcon_run_keys, only : run_choice_rule
     use rollcon_scene_state, only : disk_mass_properties, angular_velocity, disk_initial_state
@@ -69,19 +70,20 @@ contains
                     & "<= mu_static = " // to_text(c%mu_static) // " (kinetic friction " &
                     & // "exceeding static would stop a slip that rolling cannot hold)", &
                     & to_text(c%mu_kinetic))
-                ! the friction-coupled accelerations are the ODE form's (docs/design.md §5)
-                call require(scene%run%formulation == formulation_cvode, "run", &
-                    & "formulation", "'cvode' in a scene with &contact (the contact's modes " &
-                    & // "are integrated in the ODE form)", "another")
+                ! the modes drop rows: the ODE and DAE forms model it, not independent speeds
+                ! (docs/design.md §5)
+                call require(scene%run%formulation /= formulation_speeds, "run", &
+                    & "formulation", "'cvode' or 'ida' in a scene with &contact (the " &
+                    & // "contact's modes are integrated in the ODE and DAE forms)", "'maggi'")
             end associate
         end if
         if (scene%dissipation%rolling_resistance > 0.0_wp &
             & .or. scene%dissipation%air_viscosity > 0.0_wp) then
             ! rolling resistance is coupled to the normal force in the ODE form's
-            ! accelerations (docs/design.md §5, "Dissipation")
-            call require(scene%run%formulation == formulation_cvode, "run", "formulation", &
-                & "'cvode' in a scene with &dissipation (its laws are integrated in the ODE " &
-                & // "form)", "another")
+            ! accelerations and the DAE form's residual (docs/design.md §5, "Dissipation")
+            call require(scene%run%formulation /= formulation_speeds, "run", "formulation", &
+                & "'cvode' or 'ida' in a scene with &dissipation (its laws are integrated in " &
+                & // "the ODE and DAE forms)", "'maggi'")
         end if
         if (allocated(error)) return
         call check_contact(path, groups, scene, error)

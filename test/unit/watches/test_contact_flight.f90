@@ -18,6 +18,7 @@ module test_contact_flight
     use rollcon_contact_watch, only : contact_watch_type, mode_rolling, mode_flight, &
         & capture_factor
     use rollcon_contact_impact, only : impact_type, contact_impact
+    use rollcon_run_settings, only : formulation_cvode, formulation_ida
     use test_contact_modes, only : run_scene, judge_counted
     use scene_texts, only : read_text
     use disk_states, only : seed_random
@@ -34,6 +35,7 @@ contains
 
         tests = [new_unittest("impact-law-never-adds-energy", test_impact_law), &
             & new_unittest("dropped-coin-bounces-to-e-squared", test_dropped_coin), &
+            & new_unittest("dropped-coin-bounces-to-e-squared-on-ida", test_dropped_coin_ida), &
             & new_unittest("dropped-coin-judged-with-impact-losses", test_impact_judge), &
             & new_unittest("flight-is-ballistic", test_ballistic), &
             & new_unittest("spinning-coin-impacts-dissipate", test_spinning_impacts), &
@@ -206,6 +208,23 @@ contains
     !> sequence would reach only at T (1 + 2 e / (1 - e)).
     subroutine test_dropped_coin(error)
         type(error_type), allocatable, intent(out) :: error
+
+        call dropped_coin(formulation_cvode, error)
+    end subroutine test_dropped_coin
+
+    !> test_dropped_coin in the DAE form (IDA): in flight the contact's three rows dropped
+    !> (their multipliers zero), IDA restarted from a consistent state after every impact;
+    !> the same closed forms to the same bounds.
+    subroutine test_dropped_coin_ida(error)
+        type(error_type), allocatable, intent(out) :: error
+
+        call dropped_coin(formulation_ida, error)
+    end subroutine test_dropped_coin_ida
+
+    !> test_dropped_coin's checks, the scene integrated in the given formulation.
+    subroutine dropped_coin(formulation, error)
+        integer, intent(in) :: formulation
+        type(error_type), allocatable, intent(out) :: error
         ! Impact times [s] and approach speeds [m/s]: each flight ends at a root of the height
         ! Z - R, integrated to its error d = atol + rtol R, so the root is off by d / v_k at
         ! the approach speed v_k, and the next flight's length by as much; summed over the
@@ -236,6 +255,7 @@ contains
 
         call scene_from("dropped_coin", lines, scene, error)
         if (allocated(error)) return
+        scene%run%formulation = formulation
         call run_scene(scene, history, summary, contact, error)
         if (allocated(error)) return
         call check(error, summary%status == status_completed, "completed: " // summary%message)
@@ -310,7 +330,7 @@ contains
         end do
         ! at rest on the ground after the capture
         call check(error, z(history%count), r, "Z at the end [m]", abs_tol=height_tol)
-    end subroutine test_dropped_coin
+    end subroutine dropped_coin
 
     !> The inverse of a 3 x 3 matrix (cofactors over the determinant).
     pure function invert3(a) result(b)

@@ -19,6 +19,7 @@ module test_contact_modes
     use rollcon_output_layout, only : coord_x, coord_xdot
     use rollcon_contact_watch, only : contact_watch_type, mode_rolling, mode_sliding
     use rollcon_sliding_contact, only : painleve_margin
+    use rollcon_run_settings, only : formulation_cvode, formulation_ida
     use rollcon_testing, only : unittest_type, new_unittest, check
     implicit none
     private
@@ -35,7 +36,10 @@ contains
             & test_coin_slipping), &
             & new_unittest("friction-work-judged-both-directions", test_friction_judge), &
             & new_unittest("painleve-refused", test_painleve), &
-            & new_unittest("no-contact-keys-no-mode-columns", test_no_contact_columns)]
+            & new_unittest("no-contact-keys-no-mode-columns", test_no_contact_columns), &
+            & new_unittest("sliding-coin-rolls-at-t-star-on-ida", test_sliding_coin_ida), &
+            & new_unittest("struck-coin-on-ida-switches-as-on-cvode", test_slipping_ida), &
+            & new_unittest("painleve-refused-on-ida", test_painleve_ida)]
     end subroutine collect_contact_modes
 
     !> Run a scene (its own settings, every output row kept) and copy its contact watch.
@@ -74,6 +78,24 @@ contains
     !> state gives the state at t*.
     subroutine test_sliding_coin(error)
         type(error_type), allocatable, intent(out) :: error
+
+        call sliding_coin(formulation_cvode, error)
+    end subroutine test_sliding_coin
+
+    !> data/sliding_coin.nml in the DAE form (IDA): the friction -mu_k c_nz lambda_n D in its
+    !> residual, the tangential rows' multipliers zero while it slides, IDA restarted at the
+    !> switch; the same closed forms to the same bounds (measured: t* off by 7.6e-12 s, the
+    !> speed by 0, the energy by 1e-16 J, as on CVODE).
+    subroutine test_sliding_coin_ida(error)
+        type(error_type), allocatable, intent(out) :: error
+
+        call sliding_coin(formulation_ida, error)
+    end subroutine test_sliding_coin_ida
+
+    !> test_sliding_coin's checks, the scene integrated in the given formulation.
+    subroutine sliding_coin(formulation, error)
+        integer, intent(in) :: formulation
+        type(error_type), allocatable, intent(out) :: error
         ! Switch time [s]: the slip crosses zero at 3 mu g = 8.8 m/s^2, so the slip's error at
         ! rtol 1e-10 and the stop's second guard (5e-4 of the slip taken as zero, 1.3e-7 m/s)
         ! put it within ~1e-11 s; measured 7.6e-12 s, bound 1e-10 s
@@ -103,6 +125,7 @@ contains
 
         call read_scene("data/sliding_coin.nml", scene, error)
         if (allocated(error)) return
+        scene%run%formulation = formulation
         call run_scene(scene, history, summary, contact, error)
         if (allocated(error)) return
         if (summary%status /= status_completed) then
@@ -150,7 +173,7 @@ contains
                 & // "while sliding, t = " // to_text(time(k)) // " s [J]", abs_tol=rise_tol)
             if (allocated(error)) return
         end do
-    end subroutine test_sliding_coin
+    end subroutine sliding_coin
 
     !> The energy judge of runs whose contact slides (rollcon_simulation record, judge_drift):
     !> the friction's power mu_k F_n |v_slip| is dissipated work W, integrated with the state
@@ -337,6 +360,65 @@ contains
         end do
     end subroutine test_coin_slipping
 
+    !> data/coin_slipping.nml in the DAE form (IDA) and the ODE form (CVODE), the same
+    !> tolerances: the same switches, in the same order, at the same times to the event's
+    !> and the integration's tolerances; its energy never rises while it slides.
+    subroutine test_slipping_ida(error)
+        type(error_type), allocatable, intent(out) :: error
+        ! The first switch's time [s]: both runs roll the same motion to it, each to its
+        ! global error at rtol 1e-8 (the slip's stop and the friction's event are located to
+        ! ~2e-8 s: rollcon_contact_watch's guards); measured 2.3e-8 s apart, bound 1e-7 s
+        ! (at rtol 1e-7, atol 1e-9 the two runs' first switches are 2.3e-7 s apart)
+        real(wp), parameter :: first_tol = 1.0e-7_wp
+        ! Every later switch's time [s]: the runs' global errors grow through each slide
+        ! (the spin reaches 360 rad/s before theta_min), measured at most 2.7e-7 s apart
+        ! (the ninth switch), bound 2e-6 s (at rtol 1e-7, atol 1e-9: up to 3.8e-6 s apart)
+        real(wp), parameter :: later_tol = 2.0e-6_wp
+        ! A rise of the energy between sliding rows [J]: test_coin_slipping's bound
+        real(wp), parameter :: rise_tol = 1.0e-7_wp
+        type(scene_type) :: scene
+        type(history_type) :: history, ode_history
+        type(run_summary_type) :: summary, ode_summary
+        type(contact_watch_type) :: contact, ode_contact
+        real(wp), allocatable :: energy(:), mode(:), time(:)
+        integer :: k
+
+        call read_scene("data/coin_slipping.nml", scene, error)
+        if (allocated(error)) return
+        call run_scene(scene, ode_history, ode_summary, ode_contact, error)
+        if (allocated(error)) return
+        scene%run%formulation = formulation_ida
+        call run_scene(scene, history, summary, contact, error)
+        if (allocated(error)) return
+        call check(error, summary%status == ode_summary%status .and. summary%limit &
+            & == ode_summary%limit, "both end alike: " // summary%message)
+        if (allocated(error)) return
+        call check(error, size(contact%switch_times), size(ode_contact%switch_times), &
+            & "switches on IDA and on CVODE")
+        if (allocated(error)) return
+        call check(error, size(contact%switch_times) >= 2, "at least two switches")
+        if (allocated(error)) return
+        do k = 1, size(contact%switch_times)
+            call check(error, contact%switch_modes(k), ode_contact%switch_modes(k), "mode " &
+                & // "entered at switch " // to_text(k))
+            if (allocated(error)) return
+            call check(error, contact%switch_times(k), ode_contact%switch_times(k), "switch " &
+                & // to_text(k) // " on IDA against CVODE [s]", abs_tol=merge(first_tol, &
+                & later_tol, k == 1))
+            if (allocated(error)) return
+        end do
+        energy = history%column(history%layout%energy_column())
+        mode = history%column(history%layout%column("mode"))
+        time = history%column(1)
+        do k = 2, history%count
+            if (nint(mode(k)) /= mode_sliding .or. nint(mode(k - 1)) /= mode_sliding) cycle
+            call check(error, max(0.0_wp, energy(k) - energy(k - 1)), 0.0_wp, "energy rise " &
+                & // "while sliding on IDA, t = " // to_text(time(k)) // " s [J]", &
+                & abs_tol=rise_tol)
+            if (allocated(error)) return
+        end do
+    end subroutine test_slipping_ida
+
     !> A thin disk at rest at tilt theta, slipping along -e_y2's horizontal part (away from its
     !> centre's side), with no spin: the normal force of sliding solves
     !> F_n (1 - mu R^2 sin(theta) cos(theta) / (A/m + R^2 cos^2(theta))) = ..., A the moment
@@ -345,6 +427,22 @@ contains
     !> is refused at its start with Painlevé named and that coefficient; just below the paradox
     !> it slides.
     subroutine test_painleve(error)
+        type(error_type), allocatable, intent(out) :: error
+
+        call painleve(formulation_cvode, error)
+    end subroutine test_painleve
+
+    !> test_painleve in the DAE form (IDA), whose Newton matrix is singular where the ODE
+    !> form's coupling is: refused with the same message and coefficient, integrated below.
+    subroutine test_painleve_ida(error)
+        type(error_type), allocatable, intent(out) :: error
+
+        call painleve(formulation_ida, error)
+    end subroutine test_painleve_ida
+
+    !> test_painleve's checks, the scene integrated in the given formulation.
+    subroutine painleve(formulation, error)
+        integer, intent(in) :: formulation
         type(error_type), allocatable, intent(out) :: error
         ! The coefficient is one solve with the saddle-point factors: rounding, ~1e-15; the
         ! message prints it in full, so 1e-12 relative
@@ -366,6 +464,7 @@ contains
         scene%run%end_time = 0.01_wp
         scene%run%output_step = 0.01_wp
         scene%limits%theta_min = 0.05_wp
+        scene%run%formulation = formulation
         call disk_mass_properties(scene, mass, inertia)
         s = sin(scene%initial%theta)
         c = cos(scene%initial%theta)
@@ -411,7 +510,7 @@ contains
             & == status_stopped, "sliding below the paradox runs: " // summary%message)
         if (allocated(error)) return
         call check(error, contact%initial_mode, mode_sliding, "it slides from the start")
-    end subroutine test_painleve
+    end subroutine painleve
 
     !> A scene without &contact: no mode columns, no events of modes, no summary lines.
     subroutine test_no_contact_columns(error)

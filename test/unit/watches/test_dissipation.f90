@@ -26,6 +26,7 @@ module test_dissipation
     use rollcon_simulation, only : run_options_type, simulate, history_type, run_summary_type, &
         & status_stopped, status_inaccurate, status_completed
     use rollcon_run_summary, only : judge_drift
+    use rollcon_run_settings, only : formulation_cvode, formulation_ida
     use rollcon_dissipation_watch, only : dissipation_watch_type, fit_singularity, &
         & singularity_fit_type, switch_sign, switch_hold, switch_release
     use rollcon_rim_dissipation, only : air_coefficient
@@ -58,10 +59,13 @@ contains
         tests = [new_unittest("air-layer-omega-exponent-one-sixth", test_air_layer), &
             & new_unittest("rolling-resistance-omega-exponent-one-third", &
             & test_rolling_resistance), &
+            & new_unittest("rolling-resistance-on-ida", test_rolling_resistance_ida), &
+            & new_unittest("rolling-resistance-held-on-ida", test_held_start_ida), &
+            & new_unittest("air-layer-on-ida-as-on-cvode", test_air_layer_ida), &
             & new_unittest("energy-judge-both-directions", test_energy_judge), &
             & new_unittest("work-with-the-state-judged-at-coarse-rows", test_work_with_state), &
             & new_unittest("fit-recovers-a-known-singularity", test_fit_exact), &
-            & new_unittest("dissipation-needs-cvode", test_needs_cvode), &
+            & new_unittest("dissipation-refused-in-speeds", test_refused_in_speeds), &
             & new_unittest("rolling-resistance-held-at-phidot-zero", test_held_start), &
             & new_unittest("rolling-resistance-sign-at-located-roots", test_sign_roots), &
             & new_unittest("singularity-reported-only-when-settling", test_settling_rule)]
@@ -144,6 +148,37 @@ contains
     !> alpha0^3 m / (2 pi mu R); the run stops at the theta limit, its energy judged sound.
     subroutine test_air_layer(error)
         type(error_type), allocatable, intent(out) :: error
+        type(singularity_fit_type) :: fit
+
+        call air_layer(formulation_cvode, fit, error)
+    end subroutine test_air_layer
+
+    !> data/euler_disk.nml in the DAE form (IDA): the air layer's force in its residual;
+    !> test_air_layer's checks, and the fit against the ODE form's (CVODE's) run.
+    subroutine test_air_layer_ida(error)
+        type(error_type), allocatable, intent(out) :: error
+        ! The fitted exponent and t0 of the two runs [-, s]: the same equations at rtol 1e-8,
+        ! the fit over the same rows; measured 4.9e-6 and 6.1e-7 s apart, bound 2e-5 and
+        ! 3e-6 s (at rtol 1e-7, atol 1e-9 the two runs' are 3.3e-5 and 4.0e-6 s apart)
+        real(wp), parameter :: exponent_between = 2.0e-5_wp, t0_between = 3.0e-6_wp
+        type(singularity_fit_type) :: fit, ode_fit
+
+        call air_layer(formulation_ida, fit, error)
+        if (allocated(error)) return
+        call air_layer(formulation_cvode, ode_fit, error)
+        if (allocated(error)) return
+        call check(error, fit%exponent, ode_fit%exponent, "exponent on IDA against CVODE", &
+            & abs_tol=exponent_between)
+        if (allocated(error)) return
+        call check(error, fit%t0, ode_fit%t0, "t0 on IDA against CVODE [s]", &
+            & abs_tol=t0_between)
+    end subroutine test_air_layer_ida
+
+    !> test_air_layer's checks in the given formulation, and the fit made.
+    subroutine air_layer(formulation, fit, error)
+        integer, intent(in) :: formulation
+        type(singularity_fit_type), intent(out) :: fit
+        type(error_type), allocatable, intent(out) :: error
         ! t0 against Moffatt's closed form [-, relative]: his form is the leading order in
         ! alpha (E = (3/2) m g R alpha and A = m R^2 / 4 for a thin disk; 3 mm of thickness
         ! adds h^2 / (3 R^2) = 3e-4 to A) and the fit puts t0 within its rows' spacing
@@ -158,11 +193,11 @@ contains
         type(history_type) :: history
         type(run_summary_type) :: summary
         type(dissipation_watch_type) :: watch
-        type(singularity_fit_type) :: fit
         real(wp) :: mass, inertia(3), alpha0, t0_moffatt
 
         call read_scene("data/euler_disk.nml", scene, error)
         if (allocated(error)) return
+        scene%run%formulation = formulation
         call run_scene(scene, history, summary, watch, error)
         if (allocated(error)) return
         call check(error, summary%status == status_stopped .and. summary%limit &
@@ -197,12 +232,29 @@ contains
         end associate
         if (allocated(error)) return
         call check_energy(history, "air layer", balance_tol, error)
-    end subroutine test_air_layer
+    end subroutine air_layer
 
     !> The coin of euler_disk.nml with rolling resistance delta = 1e-5 m instead of the air:
     !> Omega ~ (t0 - t)^(-1/3), t0 = alpha0^(3/2) R / (delta Omega0 alpha0^(1/2)) to leading
     !> order (from (3/2) m g R dalpha/dt = -delta m g Omega, Omega^2 alpha = m g R / A).
     subroutine test_rolling_resistance(error)
+        type(error_type), allocatable, intent(out) :: error
+
+        call rolling_resistance("cvode", error)
+    end subroutine test_rolling_resistance
+
+    !> test_rolling_resistance in the DAE form (IDA): rolling resistance -delta F_n sign(phidot)
+    !> from the DAE's normal multiplier in its residual; the same checks and bounds (measured
+    !> n = 0.33374, t0 = 5.64685 s, as on CVODE to 4e-7 s).
+    subroutine test_rolling_resistance_ida(error)
+        type(error_type), allocatable, intent(out) :: error
+
+        call rolling_resistance("ida", error)
+    end subroutine test_rolling_resistance_ida
+
+    !> test_rolling_resistance's checks, the scene integrated in the formulation named.
+    subroutine rolling_resistance(formulation, error)
+        character(len=*), intent(in) :: formulation
         type(error_type), allocatable, intent(out) :: error
         ! t0 against the closed form [-, relative]: as for the air layer, the leading order in
         ! alpha and cos(theta) = 1 - alpha^2 / 2 in |phidot|; measured 9.5e-4 (t0 = 5.6468 s
@@ -223,8 +275,8 @@ contains
             & "&initial theta = 0.05, psidot = 88.59410973150383,", &
             & "    phidot = -88.48339016379967 /", &
             & "&dissipation rolling_resistance = 1.0e-5 /", &
-            & "&run end_time = 8.0, output_step = 0.001, formulation = 'cvode' /", &
-            & "&limits theta_min = 0.001 /"]), scene, error)
+            & "&run end_time = 8.0, output_step = 0.001, formulation = '" // formulation &
+            & // "' /", "&limits theta_min = 0.001 /"]), scene, error)
         if (allocated(error)) return
         call run_scene(scene, history, summary, watch, error)
         if (allocated(error)) return
@@ -251,7 +303,7 @@ contains
             & rel_tol=t0_tol)
         if (allocated(error)) return
         call check_energy(history, "rolling resistance", balance_tol, error)
-    end subroutine test_rolling_resistance
+    end subroutine rolling_resistance
 
     !> The judge of data/euler_disk.nml's run, given the drift its rows show with the
     !> dissipated work (its `dissipated` column, integrated with the state) counted once
@@ -385,20 +437,22 @@ contains
         end do
     end subroutine test_fit_exact
 
-    !> &dissipation asks formulation = 'cvode' (rolling resistance is coupled in the ODE
-    !> form's accelerations), saying so.
-    subroutine test_needs_cvode(error)
+    !> &dissipation asks formulation = 'cvode' or 'ida' (rolling resistance is coupled to the
+    !> normal force in the ODE form's accelerations and the DAE form's residual, not in
+    !> independent speeds), saying so.
+    subroutine test_refused_in_speeds(error)
         type(error_type), allocatable, intent(out) :: error
         type(scene_type) :: scene
         type(error_type), allocatable :: refusal
 
         call read_scene_lines("air.nml", lines_of([character(len=40) :: &
-            & "&dissipation air_viscosity = 1.8e-5 /"]), scene, refusal)
-        call check(error, allocated(refusal), "&dissipation with the default 'ida' is refused")
+            & "&run formulation = 'maggi' /", "&dissipation air_viscosity = 1.8e-5 /"]), &
+            & scene, refusal)
+        call check(error, allocated(refusal), "&dissipation with 'maggi' is refused")
         if (allocated(error)) return
-        call check(error, index(refusal%message, "'cvode' in a scene with &dissipation") > 0, &
-            & "the refusal names the formulation: " // refusal%message)
-    end subroutine test_needs_cvode
+        call check(error, index(refusal%message, "'cvode' or 'ida' in a scene with " &
+            & // "&dissipation") > 0, "the refusal names the formulations: " // refusal%message)
+    end subroutine test_refused_in_speeds
 
     !> The coin at phidot = 0 with theta-dot = 0: phiddot is 0 without the resistance (the
     !> rolling disk's phi equation has only thetadot's terms there), so the resistance holds
@@ -406,6 +460,22 @@ contains
     !> the run takes about the steps of the same coin without the resistance (a law whose sign
     !> flipped at every step took 400,000), its energy never rises.
     subroutine test_held_start(error)
+        type(error_type), allocatable, intent(out) :: error
+
+        call held_start(formulation_cvode, error)
+    end subroutine test_held_start
+
+    !> test_held_start in the DAE form (IDA): while held, phi's momentum row is phidot' = 0
+    !> (the held moment acts on phi alone); the same checks and bounds.
+    subroutine test_held_start_ida(error)
+        type(error_type), allocatable, intent(out) :: error
+
+        call held_start(formulation_ida, error)
+    end subroutine test_held_start_ida
+
+    !> test_held_start's checks, both runs integrated in the given formulation.
+    subroutine held_start(formulation, error)
+        integer, intent(in) :: formulation
         type(error_type), allocatable, intent(out) :: error
         ! steps with the resistance over steps without [-]: measured 1031 against 977 (1.06);
         ! a tenfold margin
@@ -437,6 +507,8 @@ contains
             & "&initial theta = 1.2, psidot = 10.0, phidot = 0.0 /", &
             & "&dissipation air_viscosity = 1.0e-30 /", coin_run]), free_scene, error)
         if (allocated(error)) return
+        scene%run%formulation = formulation
+        free_scene%run%formulation = formulation
         call run_scene(scene, history, summary, watch, error)
         if (allocated(error)) return
         call run_scene(free_scene, free_history, free_summary, free_watch, error)
@@ -469,7 +541,7 @@ contains
         rise = maxval(energy(2:) - energy(:size(energy) - 1))
         call check(error, rise <= rise_tol, "the energy rises by " // to_text(rise) &
             & // " J between rows (bound " // to_text(rise_tol) // " J)")
-    end subroutine test_held_start
+    end subroutine held_start
 
     !> The coin starting at phidot = 0.5 rad/s: phidot changes sign again and again; each
     !> change is a root located by the integrator (phidot ~ 0 there) where the law takes a new

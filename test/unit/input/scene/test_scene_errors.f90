@@ -346,9 +346,10 @@ contains
             & "  mu_kinetic = 0.4", "/"], [character(len=width) :: &
             & "@:4: 'mu_kinetic' in &contact must be <= mu_static = 0.3", "got 0.4"])
         if (allocated(error)) return
-        call expect_input_error(error, "contact_ida", [character(len=width) :: &
-            & "&contact mu_static = 0.3 /"], [character(len=width) :: &
-            & "'formulation' in &run must be 'cvode' in a scene with &contact"])
+        call expect_input_error(error, "contact_maggi", [character(len=width) :: &
+            & "&run formulation = 'maggi' /", "&contact mu_static = 0.3 /"], &
+            & [character(len=width) :: "'formulation' in &run must be 'cvode' or 'ida' in a " &
+            & // "scene with &contact"])
         if (allocated(error)) return
         call expect_input_error(error, "contact_zero", [character(len=width) :: &
             & "&run formulation = 'cvode' /", "&contact mu_static = 0.0 /"], &
