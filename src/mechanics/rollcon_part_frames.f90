@@ -8,7 +8,8 @@
 !> builds its model in code call the same functions, so both give the model the same numbers.
 !>
 !> A part whose principal z-axis starts parallel to ground z, where the angles are singular,
-!> starts in its principal axes turned as a re-basing turns them (basis 1, docs/rebasing.md).
+!> starts in its principal axes turned as a re-basing turns them (basis 1 or 20,
+!> docs/rebasing.md).
 module rollcon_part_frames
     use rollcon_kinds, only : wp
     use rollcon_rotation, only : rotation_matrix, euler_angles
@@ -21,6 +22,7 @@ module rollcon_part_frames
 
     !> Below this sin(theta) of the principal axes at t = 0 (as for the scenes), the angle
     !> rates, which divide by it, cannot be written in those axes: the part starts in basis 1
+    !> or 20
     real(wp), parameter :: min_sin_theta = 1.0e-3_wp
 
 contains
