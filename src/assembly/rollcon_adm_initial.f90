@@ -3,7 +3,7 @@
 !> problem with every part's EXACT coordinates held and its given velocities kept.
 module rollcon_adm_initial
     use rollcon_kinds, only : wp
-    use rollcon_rebasing, only : basis_turn
+    use rollcon_rebasing, only : basis_axes
     use rollcon_problem, only : problem_type
     use rollcon_initial_conditions, only : ic_options_type, ic_options_of
     use rollcon_adm_model, only : adm_model_type
@@ -20,8 +20,8 @@ contains
     !> marker's axes) is kept unless the UCONs cannot be met with it, and one it leaves out is
     !> an "inexact" zero, free to move: the analysis holds the given ones
     !> (ic_options_type's given_velocity, with the CM marker's axes in the principal axes the
-    !> model holds the part in: its principal axes, turned by basis_turn when it starts in
-    !> basis 1).
+    !> model holds the part in: its principal axes, turned to the basis it starts in,
+    !> problem%start_bases).
     pure function adm_ic_options(adm, problem) result(options)
         type(adm_model_type), intent(in) :: adm
         type(problem_type), intent(in) :: problem
@@ -41,7 +41,7 @@ contains
             options%given_velocity(4:6, p) = adm%parts(i)%angular_velocity_given
             ! omega in the CM marker's axes = principal omega_0 = principal T omega_1
             axes = adm%parts(i)%principal
-            if (problem%start_bases(p) == 1) axes = matmul(axes, basis_turn)
+            axes = matmul(axes, basis_axes(problem%start_bases(p)))
             options%given_axes(:, :, p) = axes
         end do
     end function adm_ic_options

@@ -3,7 +3,7 @@
 !> of its PART's QG and REULER, its CM marker's QP and REULER, its principal axes, VX, VY, VZ
 !> and WX, WY, WZ): the centre of mass and the 3-1-3 Euler angles of the principal axes, and
 !> their rates. A part whose principal z-axis starts parallel to ground z, where the angles are
-!> singular, is given in its principal axes turned as a re-basing turns them (basis 1,
+!> singular, is given in its principal axes turned as a re-basing turns them (basis 1 or 20,
 !> docs/rebasing.md).
 module rollcon_adm_state
     use rollcon_kinds, only : wp
@@ -18,8 +18,8 @@ contains
 
     !> q = (X, Y, Z, psi, theta, phi) [m, rad] and u = dq/dt of a non-ground part, in the
     !> basis `basis` of its principal axes: 0, the CM marker's axes (turned onto those of an
-    !> IP with products), or 1, those axes turned by basis_turn when they start at the
-    !> singularity (starts_singular).
+    !> IP with products), or 1 or 20, those axes turned about x or y (rollcon_part_frames'
+    !> part_start) when they start at the singularity (starts_singular).
     pure subroutine part_state(model, part, q, u, basis)
         type(adm_model_type), intent(in) :: model
         type(adm_part_type), intent(in) :: part

@@ -34,9 +34,10 @@ module rollcon_built_model
         !> With consistent_start: the coordinates the analysis holds as given (6 per part, in
         !> model order, as EXACT= in a dataset); unallocated: none
         logical, allocatable :: exact_q(:)
-        !> The basis each part's start is in (model order; unallocated: all 0): 1 for a part
-        !> that starts in its principal axes turned as a re-basing turns them (part_start's
-        !> basis, the model's part turned to match by model%turn_part_axes)
+        !> The basis each part's start is in (model order; unallocated: all 0): its number
+        !> (rollcon_rebasing's basis_axes), 1 or 20 for a part that starts in its principal
+        !> axes turned as a re-basing turns them (part_start's basis, the model's part turned
+        !> to match by model%turn_part_axes)
         integer, allocatable :: start_bases(:)
     contains
         procedure :: build

@@ -579,15 +579,16 @@ contains
 
     !> Part p's principal axes were turned (a re-basing): the markers the FUNCTIONs read in
     !> its new axes.
-    pure subroutine part_rebased(self, p)
+    pure subroutine part_rebased(self, p, turn)
         class(diff_set_type), intent(inout) :: self
-        integer, intent(in) :: p
+        !> The part (model order) and the re-basing's turn (rollcon_rebasing)
+        integer, intent(in) :: p, turn
         integer :: k, m
 
         do k = 1, self%count()
             if (.not. allocated(self%diffs(k)%markers)) cycle
             do m = 1, size(self%diffs(k)%markers)
-                call turn_marker(self%diffs(k)%markers(m), p)
+                call turn_marker(self%diffs(k)%markers(m), p, turn)
             end do
         end do
     end subroutine part_rebased

@@ -319,15 +319,16 @@ contains
 
     !> A GCON's markers on part p given in p's turned principal axes (rollcon_marker's
     !> turn_marker), when the part is re-based.
-    pure subroutine turn_gcon_markers(gcon, p)
+    pure subroutine turn_gcon_markers(gcon, p, turn)
         type(gcon_type), intent(inout) :: gcon
-        integer, intent(in) :: p
+        !> The part re-based (model order) and the re-basing's turn (rollcon_rebasing)
+        integer, intent(in) :: p, turn
         integer :: k
 
         do k = 1, size(gcon%markers)
-            call turn_marker(gcon%markers(k), p)
+            call turn_marker(gcon%markers(k), p, turn)
         end do
-        call turn_marker(gcon%reaction, p)
+        call turn_marker(gcon%reaction, p, turn)
     end subroutine turn_gcon_markers
 
 end module rollcon_gcon

@@ -96,19 +96,22 @@ contains
         end if
     end function marker_quantity
 
-    !> A marker of part p given in p's principal axes turned by a re-basing (rollcon_rebasing);
-    !> a marker of another part is left as it is. Its axes are then no longer the part's
-    !> principal axes: a CM marker's angles are computed from its axes from here on.
-    pure subroutine turn_marker(marker, p)
+    !> A marker of part p given in p's principal axes turned by a re-basing (rollcon_rebasing's
+    !> turn_about_x or turn_about_y); a marker of another part is left as it is. Its axes are
+    !> then no longer the part's principal axes: a CM marker's angles are computed from its
+    !> axes from here on.
+    pure subroutine turn_marker(marker, p, turn)
         type(marker_type), intent(inout) :: marker
         !> The part re-based
         integer, intent(in) :: p
+        !> The re-basing's turn
+        integer, intent(in) :: turn
         integer :: axis
 
         if (marker%part /= p) return
-        marker%point = to_new_basis(marker%point)
+        marker%point = to_new_basis(marker%point, turn)
         do axis = 1, 3
-            marker%axes(:, axis) = to_new_basis(marker%axes(:, axis))
+            marker%axes(:, axis) = to_new_basis(marker%axes(:, axis), turn)
         end do
         marker%principal = .false.
     end subroutine turn_marker

@@ -655,26 +655,30 @@ contains
         end do
     end subroutine set_diff_state
 
-    !> Re-base part p (model order) on its principal axes turned by rollcon_rebasing's
-    !> basis_turn: its principal moments permuted, and every body-fixed quantity of the part
-    !> (the markers of force statements, the points of fixed-direction forces) given in the
-    !> new axes. A CM marker then no longer has the part's principal axes (its angles are
-    !> computed from its axes). A force applied in a disk's tilt frame cannot be turned: refused.
-    subroutine turn_part_axes(self, p, error)
+    !> Re-base part p (model order) on its principal axes turned by `turn` (rollcon_rebasing's
+    !> turn_about_x or turn_about_y): its principal moments permuted, and every body-fixed
+    !> quantity of the part (the markers of force statements, the points of fixed-direction
+    !> forces) given in the new axes. A CM marker then no longer has the part's principal axes
+    !> (its angles are computed from its axes). A force applied in a disk's tilt frame cannot
+    !> be turned: refused.
+    subroutine turn_part_axes(self, p, turn, error)
         class(model_type), intent(inout) :: self
+        !> Part index (model order)
         integer, intent(in) :: p
+        !> The turn
+        integer, intent(in) :: turn
         type(error_type), allocatable, intent(out) :: error
         integer :: i, k
 
         do i = 1, size(self%forces)
             associate (force => self%forces(i))
                 if (force%profile == profile_statement) then
-                    call turn_marker(force%statement%i, p)
-                    call turn_marker(force%statement%j, p)
-                    call turn_marker(force%statement%rm, p)
+                    call turn_marker(force%statement%i, p, turn)
+                    call turn_marker(force%statement%j, p, turn)
+                    call turn_marker(force%statement%rm, p, turn)
                     if (allocated(force%statement%markers)) then
                         do k = 1, size(force%statement%markers)
-                            call turn_marker(force%statement%markers(k), p)
+                            call turn_marker(force%statement%markers(k), p, turn)
                         end do
                     end if
                 else if (force%part == p) then
@@ -685,31 +689,34 @@ contains
                             & // "other principal axes", stat_input)
                         return
                     end if
-                    force%point = to_new_basis(force%point)
+                    force%point = to_new_basis(force%point, turn)
                 end if
             end associate
         end do
-        call self%turn_ucon_geometry(p)
-        call self%diffs%part_rebased(p)
+        call self%turn_ucon_geometry(p, turn)
+        call self%diffs%part_rebased(p, turn)
         do k = 1, size(self%ucons)
-            if (allocated(self%ucons(k)%gcon)) call turn_gcon_markers(self%ucons(k)%gcon, p)
+            if (allocated(self%ucons(k)%gcon)) call turn_gcon_markers(self%ucons(k)%gcon, p, &
+                & turn)
         end do
         if (allocated(self%statements)) then
             do k = 1, size(self%statements)
-                call turn_marker(self%statements(k)%i, p)
-                call turn_marker(self%statements(k)%j, p)
+                call turn_marker(self%statements(k)%i, p, turn)
+                call turn_marker(self%statements(k)%j, p, turn)
             end do
         end if
-        self%parts(p)%inertia = rebased_inertia(self%parts(p)%inertia)
+        self%parts(p)%inertia = rebased_inertia(self%parts(p)%inertia, turn)
     end subroutine turn_part_axes
 
     !> The PAR entries of every UCON that hold geometry fixed in part p (a joint's marker
     !> origins and axes, in the part's principal axes) given in the part's turned axes, so that
     !> the UCON's F stays the same across a re-basing (docs/rebasing.md).
-    subroutine turn_ucon_geometry(self, p)
+    subroutine turn_ucon_geometry(self, p, turn)
         class(model_type), intent(inout) :: self
         !> Part index (model order)
         integer, intent(in) :: p
+        !> The re-basing's turn (rollcon_rebasing's turn_about_x or turn_about_y)
+        integer, intent(in) :: turn
         integer :: k, i, s
 
         if (.not. allocated(self%ucons)) return
@@ -719,7 +726,7 @@ contains
                 do i = 1, size(ucon%geometry_par)
                     if (ucon%geometry_parts(i) /= p) cycle
                     s = ucon%geometry_par(i)
-                    ucon%par(s:s + 2) = to_new_basis(ucon%par(s:s + 2))
+                    ucon%par(s:s + 2) = to_new_basis(ucon%par(s:s + 2), turn)
                 end do
             end associate
         end do

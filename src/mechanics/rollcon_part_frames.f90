@@ -8,11 +8,13 @@
 !> builds its model in code call the same functions, so both give the model the same numbers.
 !>
 !> A part whose principal z-axis starts parallel to ground z, where the angles are singular,
-!> starts in its principal axes turned as a re-basing turns them (basis 1, docs/rebasing.md).
+!> starts in its principal axes turned as a re-basing turns them (basis 1 or 20,
+!> docs/rebasing.md).
 module rollcon_part_frames
     use rollcon_kinds, only : wp
     use rollcon_rotation, only : rotation_matrix, euler_angles
-    use rollcon_rebasing, only : basis_turn, to_new_basis, angle_rates
+    use rollcon_rebasing, only : basis_turns, to_new_basis, angle_rates, chosen_turn, &
+        & next_basis
     implicit none
     private
 
@@ -20,6 +22,7 @@ module rollcon_part_frames
 
     !> Below this sin(theta) of the principal axes at t = 0 (as for the scenes), the angle
     !> rates, which divide by it, cannot be written in those axes: the part starts in basis 1
+    !> or 20
     real(wp), parameter :: min_sin_theta = 1.0e-3_wp
 
 contains
@@ -48,8 +51,9 @@ contains
 
     !> The start of a part: q = (X, Y, Z, psi, theta, phi) [m, rad] of its centre of mass and
     !> principal axes, and u = dq/dt, in basis 0 (the principal axes themselves) or, when they
-    !> start at the singularity (starts_singular), in basis 1: R T, omega' turned with T^T
-    !> (T = basis_turn).
+    !> start at the singularity (starts_singular), in those axes turned as a re-basing turns
+    !> them (rollcon_rebasing's chosen_turn: about body y when |omega'_x| > |omega'_y|, else
+    !> about body x): R T, omega' turned with T^T (T = basis_turns(:, :, turn)), basis 20 or 1.
     pure subroutine part_start(frame_origin, frame_angles, cm_origin, cm_angles, principal, &
             & velocity, angular_velocity, q, u, basis)
         !> The part frame's origin in ground (QG) [m] and 3-1-3 Euler angles (REULER) [rad]
@@ -62,9 +66,10 @@ contains
         !> velocity in the CM marker's axes [rad/s] (WX, WY, WZ)
         real(wp), intent(in) :: velocity(3), angular_velocity(3)
         real(wp), intent(out) :: q(6), u(6)
-        !> The basis of q and u: 0 or 1
+        !> The basis of q and u: 0, 1 (turned about x) or 20 (turned about y)
         integer, intent(out), optional :: basis
         real(wp) :: r_part(3, 3), r_cm(3, 3), omega(3)
+        integer :: turn
 
         r_part = rotation_matrix(frame_angles(1), frame_angles(2), frame_angles(3))
         q(1:3) = frame_origin + matmul(r_part, cm_origin)
@@ -73,9 +78,10 @@ contains
         omega = matmul(transpose(principal), angular_velocity)
         if (present(basis)) basis = 0
         if (starts_singular(r_cm)) then
-            r_cm = matmul(r_cm, basis_turn)
-            omega = to_new_basis(omega)
-            if (present(basis)) basis = 1
+            turn = chosen_turn(omega)
+            r_cm = matmul(r_cm, basis_turns(:, :, turn))
+            omega = to_new_basis(omega, turn)
+            if (present(basis)) basis = next_basis(0, turn)
         end if
         q(4:6) = euler_angles(r_cm)
         u(1:3) = velocity

@@ -45,10 +45,16 @@ module rollcon_problem
         !> The first failure inside a callback, for the caller to report
         type(error_type), allocatable :: failure
         !> For each part (model order), the basis its start and the model's part are given in
-        !> (docs/rebasing.md): 0, its own axes, unless the part starts where those are singular
-        !> (a dataset's part flat at t = 0: 1). A run counts these as re-basings before its first
-        !> row. Set by init to 0
+        !> (docs/rebasing.md; its number, rollcon_rebasing's basis_axes): 0, its own axes,
+        !> unless the part starts where those are singular (a dataset's part flat at t = 0: 1
+        !> or 20). A run counts the turns that reach it (turns_from_own) as re-basings before
+        !> its first row. Set by init to 0
         integer, allocatable :: start_bases(:)
+        !> The turn of every re-basing during a run: 0, the one rollcon_rebasing's chosen_turn
+        !> picks at the part's state (docs/rebasing.md); turn_about_x or turn_about_y, that
+        !> one at every re-basing (to measure what a re-basing costs where the choice would
+        !> avoid it)
+        integer :: rebase_turn = 0
         !> The rows the choice at the start set aside (choose_rows), in the user's words:
         !> "JOINT/3 (line 40): its rotation about J's x and rotation about J's y repeat JOINT/1
         !> (line 37), JOINT/2 (line 38) and JOINT/4 (line 39); set aside" ("" when none)

@@ -13,7 +13,8 @@ module rollcon_rebase_step
     use rollcon_model, only : ucon_statement_type, statement_ucon
     use rollcon_ucosub_catalog, only : builtin_ucosub_name
     use rollcon_constraints, only : need_value, need_first
-    use rollcon_rebasing, only : rebased_state
+    use rollcon_rebasing, only : rebased_state, chosen_turn, turn_about_x, turn_about_y
+    use rollcon_rotation, only : rate_matrix, times
     use rollcon_dynamic_system, only : dynamic_system_type
     implicit none
     private
@@ -35,11 +36,15 @@ module rollcon_rebase_step
 
 contains
 
-    !> Re-base part p (model order) at (time, q, u). Before anything changes, every UCON on the
-    !> part is evaluated at the same physical state in both bases (compare_bases): when some F
-    !> differs by more than allowed, the part is not re-based and `refusal` names the part, the
-    !> UCON and the time. Otherwise the model's part is turned and q and u hold the new basis's
-    !> values (the caller counts the re-basing). A UCOSUB's own failure is an error.
+    !> Re-base part p (model order) at (time, q, u), by the turn chosen_turn picks there
+    !> (problem%rebase_turn when set). Before anything changes, every UCON on the part is
+    !> evaluated at the same physical state in both bases (compare_bases): when some F
+    !> differs by more than allowed, the other turn is tried (unless the turn is forced: a
+    !> routine that takes body x, or body y, as an axis keeps its F under the turn about that
+    !> axis alone); when it differs there too, the part is not re-based and `refusal` names the
+    !> part, the UCON and the time (the first turn's values). Otherwise the model's part is
+    !> turned and q and u hold the new basis's values (the caller counts the re-basing, with
+    !> `turn`). A UCOSUB's own failure is an error.
     !>
     !> A fall (`fell`): the UCON that refuses is a built-in routine. Every built-in routine
     !> keeps the contract but the contacts whose geometry is the body's own z-axis (a disk's
@@ -48,7 +53,7 @@ contains
     !> a state the model cannot pass. `refusal` then says what fell, when, and where it lies. A
     !> user's routine that refuses is named as breaking the contract (or lying flat: rollcon
     !> cannot tell which).
-    subroutine rebase_part(problem, p, time, q, u, refusal, error, fell)
+    subroutine rebase_part(problem, p, time, q, u, turn, refusal, error, fell)
         type(problem_type), intent(inout) :: problem
         !> Part index (model order)
         integer, intent(in) :: p
@@ -56,25 +61,46 @@ contains
         real(wp), intent(in) :: time
         !> Coordinates and rates of all parts [m, rad, m/s, rad/s]
         real(wp), intent(inout) :: q(:), u(:)
+        !> The turn (rollcon_rebasing's turn_about_x or turn_about_y)
+        integer, intent(out) :: turn
         !> Why the part cannot be re-based (unallocated when it was)
         character(len=:), allocatable, intent(out) :: refusal
         type(error_type), allocatable, intent(out) :: error
         !> The refusal is a fall (see above)
         logical, intent(out), optional :: fell
-        type(basis_difference_type) :: found
-        real(wp), allocatable :: q_new(:), u_new(:)
+        type(basis_difference_type) :: found, found_other
+        real(wp), allocatable :: q_new(:), u_new(:), q_other(:), u_other(:)
         character(len=:), allocatable :: routine
         logical :: time_free
-        integer :: i0
+        integer :: i0, other
 
         if (present(fell)) fell = .false.
         i0 = 6*(p - 1)
         q_new = q
         u_new = u
+        turn = problem%rebase_turn
+        if (turn == 0) turn = chosen_turn(times(rate_matrix(q(i0 + 5), q(i0 + 6)), &
+            & u(i0 + 4:i0 + 6)))
         call rebased_state(q(i0 + 1:i0 + 6), u(i0 + 1:i0 + 6), q_new(i0 + 1:i0 + 6), &
-            & u_new(i0 + 1:i0 + 6))
-        call compare_bases(problem, p, time, q, u, q_new, u_new, found, error)
+            & u_new(i0 + 1:i0 + 6), turn)
+        call compare_bases(problem, p, time, q, u, q_new, u_new, turn, found, error)
         if (allocated(error)) return
+        if (found%k > 0 .and. problem%rebase_turn == 0) then
+            other = merge(turn_about_x, turn_about_y, turn == turn_about_y)
+            q_other = q
+            u_other = u
+            call rebased_state(q(i0 + 1:i0 + 6), u(i0 + 1:i0 + 6), q_other(i0 + 1:i0 + 6), &
+                & u_other(i0 + 1:i0 + 6), other)
+            call compare_bases(problem, p, time, q, u, q_other, u_other, other, &
+                & found_other, error)
+            if (allocated(error)) return
+            if (found_other%k == 0) then
+                turn = other
+                q_new = q_other
+                u_new = u_other
+                found = found_other
+            end if
+        end if
         if (found%k > 0) then
             routine = builtin_ucosub_name(problem%model%ucons(found%k)%ucosub, time_free)
             if (len(routine) > 0) then
@@ -93,7 +119,7 @@ contains
                 & // "on the ground: the model fell)"
             return
         end if
-        call problem%model%turn_part_axes(p, error)
+        call problem%model%turn_part_axes(p, turn, error)
         if (allocated(error)) return
         q = q_new
         u = u_new
@@ -144,10 +170,10 @@ contains
 
     !> The UCOSUB contract of a re-basing (docs/rebasing.md): every UCON on part p (a UCON
     !> with a variable of the part) evaluated at (time, q, u) and at (time, q_new, u_new), the
-    !> same physical state in two bases of the part. `found` is the first whose F differs by
-    !> more than atol + max(rtol, basis_rtol_floor) s_k (s_k: the sizes of F's terms at
-    !> (q, u), term_sizes); found%k = 0 when none does.
-    subroutine compare_bases(problem, p, time, q, u, q_new, u_new, found, error)
+    !> same physical state in two bases of the part, the second the first turned by `turn`.
+    !> `found` is the first whose F differs by more than atol + max(rtol, basis_rtol_floor) s_k
+    !> (s_k: the sizes of F's terms at (q, u), term_sizes); found%k = 0 when none does.
+    subroutine compare_bases(problem, p, time, q, u, q_new, u_new, turn, found, error)
         type(problem_type), intent(inout) :: problem
         !> Part index (model order)
         integer, intent(in) :: p
@@ -155,6 +181,8 @@ contains
         real(wp), intent(in) :: time
         !> Coordinates and rates of all parts in the two bases [m, rad, m/s, rad/s]
         real(wp), intent(in) :: q(:), u(:), q_new(:), u_new(:)
+        !> The turn from the first basis to the second (rollcon_rebasing)
+        integer, intent(in) :: turn
         type(basis_difference_type), intent(out) :: found
         type(error_type), allocatable, intent(out) :: error
         real(wp), allocatable :: f_old(:), f_new(:), scale(:)
@@ -173,7 +201,7 @@ contains
             ! the new basis with the geometry the driver owns turned with it (a joint's
             ! markers), as turn_part_axes will leave it; put back after the comparison
             saved = problem%model%ucons
-            call problem%model%turn_ucon_geometry(p)
+            call problem%model%turn_ucon_geometry(p, turn)
             call constraints%evaluate(problem%model, time, q_new, u_new, need_value, error)
             problem%model%ucons = saved
             if (allocated(error)) return

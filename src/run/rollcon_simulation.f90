@@ -32,6 +32,7 @@ module rollcon_simulation
         & output_layout, output_row, output_time
     use rollcon_history, only : history_type
     use rollcon_rebase_step, only : rebase_part, restart_state
+    use rollcon_rebasing, only : turns_from_own
     implicit none
     private
 
@@ -596,15 +597,15 @@ contains
         logical, intent(out) :: fell
         type(error_type), allocatable, intent(out) :: error
         real(wp), allocatable :: q(:), u(:)
-        integer :: k
+        integer :: k, turn
 
         q = self%q
         u = self%u
         fell = .false.
         do k = 1, size(parts)
-            call rebase_part(self%problem, parts(k), self%t, q, u, refusal, error, fell)
+            call rebase_part(self%problem, parts(k), self%t, q, u, turn, refusal, error, fell)
             if (allocated(error) .or. allocated(refusal)) return
-            call self%count_rebasing(parts(k))
+            call self%count_rebasing(parts(k), turn)
         end do
         call restart_state(self%problem, self%system, self%t, q, u, self%y, self%yp, error)
         if (allocated(error)) return
@@ -736,37 +737,39 @@ contains
         !> The refusal is a fall (rollcon_rebase_step)
         logical, intent(out) :: fell
         type(error_type), allocatable, intent(out) :: error
-        integer, allocatable :: parts(:)
-        integer :: w, k
+        integer, allocatable :: parts(:), turns(:)
+        integer :: w, k, turn
 
         fell = .false.
         if (allocated(self%problem%start_bases)) then
             do k = 1, size(self%problem%start_bases)
-                do w = 1, self%problem%start_bases(k)
-                    call self%count_rebasing(k)
+                turns = turns_from_own(self%problem%start_bases(k))
+                do w = 1, size(turns)
+                    call self%count_rebasing(k, turns(w))
                 end do
             end do
         end if
         do w = 1, size(self%problem%watches)
             parts = self%problem%watches(w)%watch%parts_to_rebase(self%problem%eq, q)
             do k = 1, size(parts)
-                call rebase_part(self%problem, parts(k), self%options%t0, q, u, refusal, error, &
-                    & fell)
+                call rebase_part(self%problem, parts(k), self%options%t0, q, u, turn, refusal, &
+                    & error, fell)
                 if (allocated(error) .or. allocated(refusal)) return
-                call self%count_rebasing(parts(k))
+                call self%count_rebasing(parts(k), turn)
             end do
         end do
     end subroutine rebase_at_start
 
-    !> One more re-basing of part p (model order), told to every watch.
-    subroutine count_rebasing(self, p)
+    !> One more re-basing of part p (model order), by `turn` (rollcon_rebasing), told to every
+    !> watch.
+    subroutine count_rebasing(self, p, turn)
         class(simulation_type), intent(inout) :: self
-        integer, intent(in) :: p
+        integer, intent(in) :: p, turn
         integer :: w
 
         self%bases(p) = self%bases(p) + 1
         do w = 1, size(self%problem%watches)
-            call self%problem%watches(w)%watch%part_rebased(p)
+            call self%problem%watches(w)%watch%part_rebased(p, turn)
         end do
     end subroutine count_rebasing
 

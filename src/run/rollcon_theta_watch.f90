@@ -17,6 +17,7 @@ module rollcon_theta_watch
     use rollcon_run_settings, only : run_settings_type
     use rollcon_output_layout, only : name_length
     use rollcon_watch, only : watch_type, watch_event_type, action_stop, action_rebase
+    use rollcon_rebasing, only : turn_about_y, next_basis
     implicit none
     private
 
@@ -35,6 +36,11 @@ module rollcon_theta_watch
         integer :: worded_part = 0
         !> For each part (model order), its re-basings in the run so far
         integer, allocatable :: bases(:)
+        !> For each part (model order), its re-basings about body y in the run so far
+        integer, allocatable :: turns_about_y(:)
+        !> For each part (model order), the number of the basis its coordinates are in
+        !> (rollcon_rebasing's basis_axes: 0 for its own principal axes)
+        integer, allocatable :: basis_numbers(:)
         !> The parts, forces, UCONs (a joint's geometry in PAR) and statements (a joint's marker
         !> I) in the parts' own principal axes, as prepare found them: a run that re-based parts
         !> leaves the model turned; the next prepare gives it back its own axes
@@ -89,6 +95,8 @@ contains
         end if
         if (allocated(self%bases)) deallocate(self%bases)
         allocate(self%bases(size(eq%model%parts)), source=0)
+        self%turns_about_y = self%bases
+        self%basis_numbers = self%bases
     end subroutine prepare
 
     !> One per part (none when theta_min < 0: the limit is off).
@@ -165,11 +173,14 @@ contains
         end if
     end function limit_words
 
-    subroutine part_rebased(self, p)
+    subroutine part_rebased(self, p, turn)
         class(theta_watch_type), intent(inout) :: self
-        integer, intent(in) :: p
+        !> The part (model order) and the re-basing's turn (rollcon_rebasing)
+        integer, intent(in) :: p, turn
 
         self%bases(p) = self%bases(p) + 1
+        if (turn == turn_about_y) self%turns_about_y(p) = self%turns_about_y(p) + 1
+        self%basis_numbers(p) = next_basis(self%basis_numbers(p), turn)
     end subroutine part_rebased
 
     !> With re-basing, every part whose sin(theta) is at or below sin(theta_min) at the start.
@@ -202,17 +213,18 @@ contains
         end do
     end subroutine column_names
 
-    !> Each part's basis number.
+    !> Each part's basis number (rollcon_rebasing's basis_axes).
     subroutine fill_columns(self, eq, time, q, u, lambda, values)
         class(theta_watch_type), intent(inout) :: self
         type(equations_type), intent(in) :: eq
         real(wp), intent(in) :: time, q(:), u(:), lambda(:)
         real(wp), intent(out) :: values(:)
 
-        if (size(values) > 0) values = real(self%bases, wp)
+        if (size(values) > 0) values = real(self%basis_numbers, wp)
     end subroutine fill_columns
 
-    !> "re-basings of the principal axes (docs/rebasing.md): part 1: 0, part 2: 104".
+    !> "re-basings of the principal axes (docs/rebasing.md): part 1: 0, part 2: 104 (100
+    !> about x, 4 about y)".
     function summary_lines(self, eq) result(text)
         class(theta_watch_type), intent(in) :: self
         type(equations_type), intent(in) :: eq
@@ -226,6 +238,9 @@ contains
             if (p > 1) text = text // ","
             text = text // " part " // to_text(eq%model%parts(p)%id) // ": " &
                 & // to_text(self%bases(p))
+            if (self%bases(p) > 0) text = text // " (" &
+                & // to_text(self%bases(p) - self%turns_about_y(p)) // " about x, " &
+                & // to_text(self%turns_about_y(p)) // " about y)"
         end do
         text = text // new_line("a")
     end function summary_lines

@@ -170,9 +170,10 @@ contains
 
     !> The run re-based part p (model order): its coordinates are now in its principal axes
     !> turned once more (docs/rebasing.md).
-    subroutine part_rebased(self, p)
+    subroutine part_rebased(self, p, turn)
         class(watch_type), intent(inout) :: self
-        integer, intent(in) :: p
+        !> The part (model order) and the re-basing's turn (rollcon_rebasing)
+        integer, intent(in) :: p, turn
     end subroutine part_rebased
 
     !> The parts (model order) to re-base before the first row, at the start (q) as given

@@ -97,15 +97,16 @@ contains
     end subroutine prepare
 
     !> Part p's principal axes were turned: its markers in the new axes, as the model's.
-    subroutine part_rebased(self, p)
+    subroutine part_rebased(self, p, turn)
         class(request_watch_type), intent(inout) :: self
-        integer, intent(in) :: p
+        !> The part (model order) and the re-basing's turn (rollcon_rebasing)
+        integer, intent(in) :: p, turn
         integer :: k
 
         do k = 1, size(self%requests)
-            call turn_marker(self%requests(k)%i, p)
-            call turn_marker(self%requests(k)%j, p)
-            call turn_marker(self%requests(k)%rm, p)
+            call turn_marker(self%requests(k)%i, p, turn)
+            call turn_marker(self%requests(k)%j, p, turn)
+            call turn_marker(self%requests(k)%rm, p, turn)
         end do
     end subroutine part_rebased
 

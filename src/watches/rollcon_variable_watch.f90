@@ -81,14 +81,15 @@ contains
     end subroutine prepare
 
     !> Part p's principal axes were turned: its markers in the new axes, as the model's.
-    subroutine part_rebased(self, p)
+    subroutine part_rebased(self, p, turn)
         class(variable_watch_type), intent(inout) :: self
-        integer, intent(in) :: p
+        !> The part (model order) and the re-basing's turn (rollcon_rebasing)
+        integer, intent(in) :: p, turn
         integer :: k, m
 
         do k = 1, size(self%variables)
             do m = 1, size(self%variables(k)%markers)
-                call turn_marker(self%variables(k)%markers(m), p)
+                call turn_marker(self%variables(k)%markers(m), p, turn)
             end do
         end do
     end subroutine part_rebased

@@ -377,8 +377,8 @@ contains
 
     !> part_marker: a marker given in its part's frame is in the principal axes at the centre
     !> of mass (R_cm^T (origin - cm_origin)), so part_start's pose of the part puts it back at
-    !> its place in ground. part_start of a part whose CM marker's z is along ground z starts in
-    !> basis 1 (theta = pi/2) with the same angular velocity.
+    !> its place in ground. part_start of a part whose CM marker's z is along ground z, spinning
+    !> mostly about its y, starts in basis 1 (theta = pi/2) with the same angular velocity.
     subroutine test_frames(error)
         type(error_type), allocatable, intent(out) :: error
         real(wp), parameter :: frame_origin(3) = [1.0_wp, -2.0_wp, 0.5_wp]
@@ -402,7 +402,8 @@ contains
             & + matmul(r_frame, origin)))) <= tol_f, "marker back in ground off by " &
             & // to_text(maxval(abs(in_ground - (frame_origin + matmul(r_frame, origin))))))
         if (allocated(error)) return
-        ! the CM marker's z along ground z: basis 1, the axes turned 90 degrees about x
+        ! the CM marker's z along ground z: basis 1, the axes turned 90 degrees about x (the
+        ! rule's turn: |omega_y| > |omega_x|)
         call part_start(frame_origin, [0.0_wp, 0.0_wp, 0.0_wp], cm_origin, &
             & [0.5_wp, 0.0_wp, 0.0_wp], rotation_matrix(0.0_wp, 0.0_wp, 0.0_wp), &
             & [0.0_wp, 0.0_wp, 0.0_wp], omega, q, u, basis)

@@ -18,7 +18,8 @@ module rebasing_models
     implicit none
     private
 
-    public :: run_dataset, tumbling_sphere, spinning_sphere, falling_disk, sphere_near_flat
+    public :: run_dataset, build_dataset, tumbling_sphere, spinning_sphere, falling_disk
+    public :: sphere_near_flat
     public :: sphere_radius, sphere_speed, sphere_end, users_disk
 
     !> Sphere radius [m], speed of its centre along +X [m/s], end of its runs [s]: 10 rad/s,
@@ -132,8 +133,10 @@ contains
     end function falling_disk
 
     !> Write text as build/rebasing-<tag>.adm, read and build it, run it (rows kept in
-    !> history, and written to csv_path when given), and delete the dataset.
-    subroutine run_dataset(tag, text, summary, history, error, csv_path, default_ucosub)
+    !> history, and written to csv_path when given), and delete the dataset. rebase_turn: the
+    !> problem's (0, the turn the rule picks, unless given).
+    subroutine run_dataset(tag, text, summary, history, error, csv_path, default_ucosub, &
+            & rebase_turn)
         character(len=*), intent(in) :: tag, text
         type(run_summary_type), intent(out) :: summary
         type(history_type), intent(out) :: history
@@ -141,11 +144,33 @@ contains
         character(len=*), intent(in), optional :: csv_path
         !> The model's UCOSUB, serving the UCONs that name no ROUTINE
         procedure(ucosub_interface), optional :: default_ucosub
-        procedure(ucosub_interface), pointer :: model_ucosub
+        integer, intent(in), optional :: rebase_turn
         type(adm_model_type) :: adm
         type(problem_type), target :: problem
         type(run_options_type) :: options
         real(wp), allocatable :: q0(:), u0(:)
+
+        call build_dataset(tag, text, adm, problem, q0, u0, error, default_ucosub)
+        if (allocated(error)) return
+        if (present(rebase_turn)) problem%rebase_turn = rebase_turn
+        options%end_time = adm%run%settings%end_time
+        options%output_step = adm%run%settings%output_step
+        options%progress = .false.
+        if (present(csv_path)) options%csv_path = csv_path
+        call simulate(problem, q0, u0, options, summary, error, history)
+    end subroutine run_dataset
+
+    !> Write text as build/rebasing-<tag>.adm, read and build it (its start q0, u0), and
+    !> delete the dataset.
+    subroutine build_dataset(tag, text, adm, problem, q0, u0, error, default_ucosub)
+        character(len=*), intent(in) :: tag, text
+        type(adm_model_type), intent(out) :: adm
+        type(problem_type), target, intent(inout) :: problem
+        real(wp), allocatable, intent(out) :: q0(:), u0(:)
+        type(error_type), allocatable, intent(out) :: error
+        !> The model's UCOSUB, serving the UCONs that name no ROUTINE
+        procedure(ucosub_interface), optional :: default_ucosub
+        procedure(ucosub_interface), pointer :: model_ucosub
         type(error_type), allocatable :: delete_error
         character(len=:), allocatable :: path
 
@@ -158,13 +183,7 @@ contains
         model_ucosub => null()
         if (present(default_ucosub)) model_ucosub => default_ucosub
         call build_adm_problem(adm, model_ucosub, problem=problem, q0=q0, u0=u0, error=error)
-        if (allocated(error)) return
-        options%end_time = adm%run%settings%end_time
-        options%output_step = adm%run%settings%output_step
-        options%progress = .false.
-        if (present(csv_path)) options%csv_path = csv_path
-        call simulate(problem, q0, u0, options, summary, error, history)
-    end subroutine run_dataset
+    end subroutine build_dataset
 
     !> A user's rolling-disk UCOSUB (no built-in routine, for the driver): the hand-checked
     !> disk's F, which takes body z as the axle.

@@ -137,11 +137,13 @@ contains
     end subroutine build_dataset
 
     !> Build the dataset of text (build_dataset) and run it, its rows kept in history.
-    subroutine run_analysed(tag, text, summary, history, error)
+    subroutine run_analysed(tag, text, summary, history, error, rebase_turn)
         character(len=*), intent(in) :: tag, text
         type(run_summary_type), intent(out) :: summary
         type(history_type), intent(out) :: history
         type(error_type), allocatable, intent(out) :: error
+        !> The turn of every re-basing (problem%rebase_turn; default 0, the rule's)
+        integer, intent(in), optional :: rebase_turn
         type(problem_type), target :: problem
         type(run_options_type) :: options
         real(wp), allocatable :: q0(:), u0(:)
@@ -150,6 +152,7 @@ contains
             & error)
         if (allocated(error)) return
         options%progress = .false.
+        if (present(rebase_turn)) problem%rebase_turn = rebase_turn
         call simulate(problem, q0, u0, options, summary, error, history)
     end subroutine run_analysed
 

@@ -34,12 +34,14 @@ contains
     !> Run data/<name>.adm on the given formulation to end_time [s] (the dataset's end when
     !> absent), with rtol = atol = tolerance when present (the dataset's otherwise). The run
     !> must reach its end, completed.
-    subroutine run_model(name, formulation, run, error, end_time, tolerance)
+    subroutine run_model(name, formulation, run, error, end_time, tolerance, rebase_turn)
         character(len=*), intent(in) :: name
         integer, intent(in) :: formulation
         type(model_run_type), intent(out) :: run
         type(error_type), allocatable, intent(out) :: error
         real(wp), intent(in), optional :: end_time, tolerance
+        !> The turn of every re-basing (problem%rebase_turn; default 0, the rule's)
+        integer, intent(in), optional :: rebase_turn
         type(adm_model_type) :: adm
         type(problem_type), target :: problem
         type(run_options_type) :: options
@@ -55,6 +57,7 @@ contains
         call build_adm_problem(adm, disk, problem, q0, u0, error)
         if (allocated(error)) return
         problem%settings%formulation = formulation
+        if (present(rebase_turn)) problem%rebase_turn = rebase_turn
         if (present(tolerance)) then
             problem%settings%rtol = tolerance
             problem%settings%atol = tolerance

@@ -12,6 +12,7 @@ module test_models
         & test_disk_height_ida, test_disk_height_cvode
     use rollcon_text, only : to_text
     use rollcon_testing, only : unittest_type, new_unittest, check
+    use rollcon_rebasing, only : turn_about_x
     implicit none
     private
 
@@ -193,19 +194,23 @@ contains
         integer, intent(in) :: formulation
         real(wp), intent(in) :: end_time
         type(error_type), allocatable, intent(out) :: error
-        !> The dataset (default ball_on_turntable); ball_tumbling must be re-based > 100 times
+        !> The dataset (default ball_on_turntable); ball_tumbling, every re-basing turned about x
+        !> (the rule would re-base it once: docs/rebasing.md), must be re-based > 100 times
         character(len=*), intent(in), optional :: dataset
         type(model_run_type) :: run
         character(len=:), allocatable :: name
         real(wp) :: orbit_rate, angle, previous, turn, phase_error, shape_error
-        integer :: i
+        integer :: i, forced
 
         name = "ball_on_turntable"
         if (present(dataset)) name = dataset
+        forced = 0
+        if (name == "ball_tumbling") forced = turn_about_x
         if (formulation == formulation_cvode) then
-            call run_model(name, formulation, run, error, end_time, cvode_ball_tolerance)
+            call run_model(name, formulation, run, error, end_time, cvode_ball_tolerance, &
+                & rebase_turn=forced)
         else
-            call run_model(name, formulation, run, error, end_time)
+            call run_model(name, formulation, run, error, end_time, rebase_turn=forced)
         end if
         if (allocated(error)) return
         if (name == "ball_tumbling") then
