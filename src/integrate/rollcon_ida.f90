@@ -282,10 +282,14 @@ contains
         if (restart_fine_steps*h_last(1) > restart_span_min*abs(t0)) &
             & self%fine_span = restart_fine_steps*h_last(1)
         self%fine_until = t0 + self%fine_span
-        if (self%fine_span > 0.0_wp) self%data%scale = min(1.0_wp, &
-            & max(restart_tolerance_factor, finest_rtol/self%data%rtol))
+        ! the run's own Newton coefficient, set before the finer stretch: IDA reads it only on
+        ! the first call after IDAReInit (its epsNewt is set from it in IDASolve's first-call
+        ! block), so whatever is set there stays for the rest of the run, the careful stretch's
+        ! finer weights included
         flag = FIDASetNonlinConvCoef(self%memory, newton_fraction(self%data))
         if (check(flag, "IDASetNonlinConvCoef", error)) return
+        if (self%fine_span > 0.0_wp) self%data%scale = min(1.0_wp, &
+            & max(restart_tolerance_factor, finest_rtol/self%data%rtol))
     end subroutine restart
 
     !> Integrate towards t_out (never past t_stop); y, yp at t_reached; root fired (0 if none).
@@ -381,7 +385,6 @@ contains
                 if ((status == IDA_SUCCESS .or. status == IDA_TSTOP_RETURN) &
                     & .and. t_return(1) >= self%fine_until) then
                     self%data%scale = 1.0_wp
-                    ignored = FIDASetNonlinConvCoef(self%memory, newton_fraction(self%data))
                     if (status == IDA_SUCCESS .and. t_return(1) < t_out) &
                         & call chunked(t_out, status)
                 end if

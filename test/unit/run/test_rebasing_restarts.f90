@@ -60,16 +60,16 @@ module test_rebasing_restarts
     !> The least re-basings of the tumbling ball with the turn about x forced (1000 in 20 turns)
     integer, parameter :: least_forced = 900
     !> The re-based ball's orbit drifts at most most_drift_ratio times as much as the same
-    !> motion never re-based. Measured (IDA, 20 turns, the orbit radius |v|/wc), re-based once
-    !> by the rule against the axes on a cone: 1.1e-7, 3.5e-8, 3.6e-8, 4.0e-9 m at ERROR =
-    !> 1e-9, 1e-10, 1e-11, 1e-12 against 6.2e-8, 1.9e-8, 6.6e-9, 1.5e-9 m (ratios 1.7, 1.8,
-    !> 5.4, 2.7): the one careful restart leaves IDA's Newton coefficient at the careful
-    !> stretch's for the rest of the run (docs/rebasing.md); from a plain restart the ball
-    !> drifts as data/ball_on_turntable.adm, in the same coordinates and never re-based, does
-    !> (1.4e-7, 8.5e-9, 2.2e-9, 4.6e-11 m). Every re-basing turned about x (1000): 1.0e-6,
-    !> 1.4e-7, 4.4e-8, 1.4e-9 m (ratios 16, 7, 7, 0.9). 10 holds 1.8 and fails the 1000
-    !> re-basings of a plain restart (ratio 18)
-    real(wp), parameter :: most_drift_ratio = 10.0_wp
+    !> motion never re-based (the axes on a cone). Measured (IDA, ERROR = 1e-10, 20 turns, the
+    !> orbit radius |v|/wc): re-based once by the rule, 4.9e-9 m against the cone's 1.9e-8 m
+    !> (ratio 0.26; 1.7, 0.26, 0.25, 0.27 at ERROR = 1e-9 to 1e-12: docs/rebasing.md); a
+    !> tenfold loss (2.6) fails 2
+    real(wp), parameter :: most_drift_ratio = 2.0_wp
+    !> With the turn about x forced, the ~1000 careful restarts' own cost (each starts IDA
+    !> again at order 1): 7.9e-8 m, ratio 4.1 (91,887 steps); 5 holds it and fails the same
+    !> re-basings restarted plainly (ratio 18, docs/rebasing.md) or with the careful
+    !> stretch's Newton coefficient left for the rest of the run (ratio 7)
+    real(wp), parameter :: most_forced_ratio = 5.0_wp
 
 contains
 
@@ -174,8 +174,8 @@ contains
     !> data/ball_tumbling.adm against the same motion with its axes on a cone (never
     !> re-based): re-based once by the rule, and about 1000 times in 20 turns with the turn
     !> about x forced (the careful restart's cost at each), the orbit radius |v|/wc drifts at
-    !> most most_drift_ratio times as much. (data/ball_on_turntable.adm, whose Euler-angle
-    !> rates are constant, drifts less than either: docs/rebasing.md.)
+    !> most most_drift_ratio (most_forced_ratio) times as much. (data/ball_on_turntable.adm,
+    !> whose Euler-angle rates are constant: docs/rebasing.md.)
     subroutine test_tumbling_drift(error)
         type(error_type), allocatable, intent(out) :: error
         type(model_run_type) :: tumbling
@@ -201,8 +201,9 @@ contains
                 & // ": re-basings " // to_text(tumbling%summary%rebasings(1)))
             if (allocated(error)) return
             drift_rebased = radius_drift(tumbling%history)
-            call check(error, drift_never > 0.0_wp .and. drift_rebased <= most_drift_ratio &
-                & * drift_never, "turn " // to_text(forced) // ": the orbit radius drifts " &
+            call check(error, drift_never > 0.0_wp .and. drift_rebased <= merge( &
+                & most_drift_ratio, most_forced_ratio, forced == 0)*drift_never, "turn " &
+                & // to_text(forced) // ": the orbit radius drifts " &
                 & // to_text(drift_rebased) // " m re-based, " // to_text(drift_never) &
                 & // " m never re-based: ratio " &
                 & // to_text(drift_rebased/max(drift_never, tiny(1.0_wp))))
