@@ -14,7 +14,7 @@ module rollcon_adm_contact
     use rollcon_ucosub_catalog, only : find_builtin_ucosub, builtin_ucosub_par
     use rollcon_model, only : model_type
     use rollcon_problem, only : problem_type
-    use rollcon_run_settings, only : formulation_cvode
+    use rollcon_run_settings, only : formulation_speeds
     use rollcon_contact_watch, only : contact_watch_type, mode_sliding, mode_flight
     use rollcon_dissipation_watch, only : dissipation_watch_type
     use rollcon_rim_dissipation, only : air_coefficient
@@ -274,8 +274,8 @@ contains
     !> flying start's three, are not made to hold). The start slides where its slip is above
     !> its integration error (atol + rtol (|v_G| + R |omega|)), flies where flight is modelled
     !> (RESTITUTION_COEFFICIENT) and the sphere or rim is above the ground. Refused, with
-    !> CONTACT/id and why: an integrator other than CVODE (the contact's modes are the ODE
-    !> form's), a start below the ground or above it without a restitution, a part the
+    !> CONTACT/id and why: FORMULATION=MAGGI (the contact's modes are the ODE and DAE
+    !> forms'), a start below the ground or above it without a restitution, a part the
     !> dataset constrains otherwise, and rolling resistance or an air layer on a sphere.
     subroutine add_contact_watch(adm, shape, rows, problem, q0, u0, error)
         type(adm_model_type), intent(in) :: adm
@@ -291,10 +291,11 @@ contains
         if (.not. allocated(adm%contacts)) return
         if (size(adm%contacts) == 0) return
         associate (contact => adm%contacts(1), settings => problem%settings)
-            if (settings%formulation /= formulation_cvode) then
+            if (settings%formulation == formulation_speeds) then
                 call fatal_error(error, shape%where // ": a CONTACT's modes (rolling, " &
-                    & // "sliding, flight) are integrated in the ODE form only: write " &
-                    & // "INTEGRATOR/FORMULATION=CVODE", stat_input)
+                    & // "sliding, flight) are integrated in the ODE form (CVODE) and the DAE " &
+                    & // "form (IDA), not in independent speeds: write " &
+                    & // "INTEGRATOR/FORMULATION=CVODE or IDA", stat_input)
                 return
             end if
             ! the part is the contact's alone: the contact's force is the part's constraint

@@ -22,6 +22,7 @@ module test_contact_datasets
         & status_completed
     use rollcon_output_layout, only : coord_x, coord_z, coord_xdot, coord_zdot
     use rollcon_output_files, only : write_text_file, make_folders
+    use rollcon_input_files, only : read_input_file, text_input_limit
     use rollcon_contact_watch, only : contact_watch_type, mode_rolling, mode_sliding, &
         & mode_flight
     use test_contact_modes, only : run_scene
@@ -41,6 +42,7 @@ contains
 
         tests = [new_unittest("sphere-thrown-rolls-at-five-sevenths", test_sphere_thrown), &
             & new_unittest("sphere-bounces-to-e-squared", test_sphere_bounce), &
+            & new_unittest("sphere-thrown-and-bounced-on-ida", test_spheres_on_ida), &
             & new_unittest("coin-contact-dataset-as-its-scene", test_coin_dataset), &
             & new_unittest("contact-geometries-read", test_geometries), &
             & new_unittest("contact-refusals-name-line-and-key", test_refusals), &
@@ -96,6 +98,14 @@ contains
     !> then rolls uniformly, so the end state gives the state at t*.
     subroutine test_sphere_thrown(error)
         type(error_type), allocatable, intent(out) :: error
+
+        call sphere_thrown("data/sphere_thrown.adm", error)
+    end subroutine test_sphere_thrown
+
+    !> The thrown ball's checks on the dataset at path (test_sphere_thrown).
+    subroutine sphere_thrown(path, error)
+        character(len=*), intent(in) :: path
+        type(error_type), allocatable, intent(out) :: error
         ! Switch time [s]: the slip falls at (7/2) mu g = 10.3 m/s^2 and is known to its
         ! integration error at rtol 1e-10 and the stop's guard, ~1e-10 m/s: ~1e-11 s;
         ! measured 7.0e-12 s, bound 5e-11 s (a tenfold loss, 7e-11 s, fails)
@@ -121,7 +131,7 @@ contains
         real(wp), allocatable :: time(:), energy(:), slip_x(:), slip_y(:), mode(:)
         integer :: k, e
 
-        call run_contact_dataset("data/sphere_thrown.adm", adm, history, contact, error)
+        call run_contact_dataset(path, adm, history, contact, error)
         if (allocated(error)) return
         v0 = adm%parts(2)%velocity(1)
         mu = adm%contacts(1)%mu_dynamic
@@ -170,7 +180,7 @@ contains
         end do
         call check(error, count(nint(mode) == mode_sliding), int(t_star/0.001_wp) + 1, &
             & "rows sliding (t = 0 to t*)")
-    end subroutine test_sphere_thrown
+    end subroutine sphere_thrown
 
     !> data/sphere_bounce.adm: a ball let go at rest with its lowest point h = 0.1 m up, e =
     !> 0.8. It lands at t = sqrt(2 h / g) and leaves at e times its landing speed, so in its
@@ -178,6 +188,14 @@ contains
     !> the same at every row of it) is e^2 h. Every impact's rebound is -e times its approach
     !> until the capture, and none raises the energy; the ball ends on the ground, rolling.
     subroutine test_sphere_bounce(error)
+        type(error_type), allocatable, intent(out) :: error
+
+        call sphere_bounce("data/sphere_bounce.adm", error)
+    end subroutine test_sphere_bounce
+
+    !> The dropped ball's checks on the dataset at path (test_sphere_bounce).
+    subroutine sphere_bounce(path, error)
+        character(len=*), intent(in) :: path
         type(error_type), allocatable, intent(out) :: error
         ! Landing time [s]: the touchdown's root to the event tolerance (~1e-11 s at rtol
         ! 1e-10); measured 2.1e-11 s, bound 1e-10 s (the first apex below would shift by
@@ -197,7 +215,7 @@ contains
         real(wp), allocatable :: time(:), z(:), zdot(:)
         integer :: k, flights
 
-        call run_contact_dataset("data/sphere_bounce.adm", adm, history, contact, error)
+        call run_contact_dataset(path, adm, history, contact, error)
         if (allocated(error)) return
         radius = contact%radius
         h = adm%parts(2)%qg(3) - radius
@@ -242,7 +260,37 @@ contains
             if (allocated(error)) return
         end do
         call check(error, flights > 100, "the first flight spans rows, got " // to_text(flights))
-    end subroutine test_sphere_bounce
+    end subroutine sphere_bounce
+
+    !> The thrown and the dropped ball in the DAE form (INTEGRATOR/FORMULATION=IDA, the
+    !> datasets otherwise as shipped): the same closed forms to the same bounds (IDA's
+    !> residual carries sliding's friction from the normal multiplier, flight's rows dropped:
+    !> rollcon_dae; each switch restarts IDA from the consistent state).
+    subroutine test_spheres_on_ida(error)
+        type(error_type), allocatable, intent(out) :: error
+        character(len=*), parameter :: names(2) = [character(len=13) :: "sphere_thrown", &
+            & "sphere_bounce"]
+        character(len=:), allocatable :: text, path
+        integer :: k
+
+        call make_folders(folder, error)
+        if (allocated(error)) return
+        do k = 1, size(names)
+            call read_input_file("data/" // trim(names(k)) // ".adm", "dataset", &
+                & text_input_limit, text, error)
+            if (allocated(error)) return
+            path = folder // "/" // trim(names(k)) // "_ida.adm"
+            call write_text_file(path, replaced(text, "FORMULATION=CVODE", "FORMULATION=IDA"), &
+                & error)
+            if (allocated(error)) return
+            if (k == 1) call sphere_thrown(path, error)
+            if (k == 2) call sphere_bounce(path, error)
+            if (allocated(error)) then
+                error%message = "on IDA: " // error%message
+                return
+            end if
+        end do
+    end subroutine test_spheres_on_ida
 
     !> data/sliding_coin.adm, the coin as a dataset CONTACT on its rim (a CYLINDER about its
     !> axis), thrown along its plane at 1 m/s without spin, mu = 0.3: it rolls at
@@ -368,8 +416,8 @@ contains
     end function coin_text
 
     !> What rollcon cannot honour is refused with the file, the CONTACT's line, the key and
-    !> why: a user-written normal law, frictionless sliding, a plane off Z = 0, and IDA (the
-    !> contact's modes are the ODE form's).
+    !> why: a user-written normal law, frictionless sliding, a plane off Z = 0, and MAGGI (the
+    !> contact's modes are the ODE and DAE forms').
     subroutine test_refusals(error)
         type(error_type), allocatable, intent(out) :: error
         character(len=:), allocatable :: path
@@ -387,9 +435,9 @@ contains
             & error)
         if (allocated(error)) return
         call expect_refusal(replaced(coin_text("UNITS/SYSTEM=SI", "", "0.1", "0"), &
-            & "FORMULATION=CVODE", "FORMULATION=IDA"), "refused.adm:13: CONTACT/7: a " &
+            & "FORMULATION=CVODE", "FORMULATION=MAGGI"), "refused.adm:13: CONTACT/7: a " &
             & // "CONTACT's modes (rolling, sliding, flight) are integrated in the ODE form " &
-            & // "only: write INTEGRATOR/FORMULATION=CVODE", error)
+            & // "(CVODE) and the DAE form (IDA), not in independent speeds", error)
 
     contains
 
