@@ -20,7 +20,8 @@
 !> read at an output row once every force is known, makes none): refused, naming both
 !> statements, unless that force's share of what is read is zero by its kind (a rotational
 !> SFORCE's or a VTORQUE's force, a translational SFORCE's torque, a VFORCE's torque at its
-!> I), which is left out. A MOTION's force is not summed (SYSFNC('MOTION') is refused).
+!> I), which is left out. A MOTION's force is not summed: SYSFNC('MOTION') is refused, and
+!> so is FX ... TM in a model with a MOTION (the sum could leave its force out).
 !>
 !> The model is the one the equations were set up with (set_force_measure_model, called by
 !> rollcon_equations' init): one model per process, as rollcon_user_forces' utilities have.
@@ -32,7 +33,7 @@ module rollcon_force_measures
     use rollcon_marker_force, only : marker_force_type, marker_force_values, kind_translation, &
         & kind_rotation, kind_vector, kind_spring, marker_force_action
     use rollcon_force, only : profile_statement
-    use rollcon_model, only : model_type, statement_joint, statement_jprim
+    use rollcon_model, only : model_type, statement_joint, statement_jprim, statement_element
     use rollcon_reactions, only : reaction_site_type, reaction_sites, site_wrench, &
         & swapped_wrench
     use rollcon_expression, only : quantity_names, quantity_tx, quantity_kind, &
@@ -95,6 +96,18 @@ contains
         torque_half = quantity >= quantity_tx
         at = ids(1)
         between = ids(2)
+        ! a MOTION's force is not summed (its markers are not the mechanics' to know): a sum
+        ! that might hold one is refused rather than answered without it
+        if (allocated(measured%statements)) then
+            do s = 1, size(measured%statements)
+                if (measured%statements(s)%kind /= statement_element) cycle
+                if (index(measured%statements(s)%name, "MOTION/") /= 1) cycle
+                problem = name // " in a model with " // measured%statements(s)%name &
+                    & // ": rollcon's force measures do not sum a MOTION's force, so the sum " &
+                    & // "would leave it out where it acts"
+                return
+            end do
+        end if
         do s = 1, size(sites)
             if (.not. sites(s)%at_marker) cycle
             associate (statement => measured%statements(sites(s)%statement))

@@ -49,6 +49,7 @@ contains
             & new_unittest("element-force-read-ida", test_force_read_ida), &
             & new_unittest("element-force-read-cvode", test_force_read_cvode), &
             & new_unittest("force-reading-itself-refused", test_cycle_refused), &
+            & new_unittest("force-measure-beside-a-motion-refused", test_motion_refused), &
             & new_unittest("reqsub-force-measures", test_reqsub), &
             & new_unittest("check-joint-friction", test_check_friction)]
     end subroutine collect_user_force_measures
@@ -117,6 +118,31 @@ contains
             if (allocated(error)) return
         end do
     end subroutine test_cycle_refused
+
+    !> force_motion.adm: SFORCE/3's routine reads FM(20, 10) in a model with MOTION/7, whose
+    !> force the measures do not sum: refused (not answered without it), the error naming the
+    !> statement, the call and the MOTION.
+    subroutine test_motion_refused(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(history_type) :: history
+        type(error_type), allocatable :: run_error
+        character(len=*), parameter :: pieces(3) = [character(len=40) :: "SFORCE/3", &
+            & "SYSFNC('FM')", "MOTION/7"]
+        integer :: k
+
+        call run_user(folder // "force_motion.adm", "joint_friction.f", formulation_ida, &
+            & history, run_error)
+        if (.not. allocated(run_error)) then
+            call fatal_error(error, "force_motion.adm ran: a force measure that leaves a " &
+                & // "MOTION's force out was answered")
+            return
+        end if
+        do k = 1, size(pieces)
+            call check(error, index(run_error%message, trim(pieces(k))) > 0, "the error does " &
+                & // "not say '" // trim(pieces(k)) // "': " // run_error%message)
+            if (allocated(error)) return
+        end do
+    end subroutine test_motion_refused
 
     !> joint_friction.adm's REQUEST/5, its REQSUB reading FM(20, 10), FX(20, 10, 22) and
     !> TZ(20, 10) through SYSFNC at each output row, gives REQUEST/6's columns (the same
