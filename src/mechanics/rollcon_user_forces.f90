@@ -1298,77 +1298,69 @@ contains
         real(wp), intent(in) :: time, q(:), u(:)
         type(error_type), allocatable :: error
         real(wp) :: result(6), values(6)
-        integer, allocatable :: order(:)
-        integer :: i, k, n, kind
+        integer :: i, pass, n, kind
 
-        ! the routines reading no force measure first, in the dataset's order (a loop: a
-        ! mask of the component forces%statement%declared_forces would be an array temporary)
-        allocate(order(size(forces)))
-        n = 0
-        do kind = 0, 1
+        ! the routines reading no force measure first (pass 0), in the dataset's order, then
+        ! those that read them (pass 1): no order array, an evaluation allocates nothing
+        do pass = 0, 1
             do i = 1, size(forces)
-                if (forces(i)%statement%declared_forces .neqv. kind == 1) cycle
-                n = n + 1
-                order(n) = i
-            end do
-        end do
-        do k = 1, size(order)
-            i = order(k)
-            if (forces(i)%profile /= profile_statement) cycle
-            associate (s => forces(i)%statement)
-                if (s%routine == 0) cycle
-                kind = table(s%routine)%kind
-                n = routine_results(kind)
-                call begin_call(time, q, u)
-                if (allocated(s%declared_markers)) then
-                    allowed = s%declared_markers
-                    allowed_rates = s%declared_rates
-                    allowed_accelerations = s%declared_accelerations
-                else if (allocated(allowed)) then
-                    ! not declared yet: nothing to compare with
-                    deallocate(allowed)
-                end if
-                if (allocated(s%declared_rows)) allowed_rows = s%declared_rows
-                result = 0.0_wp
-                force_call = .true.
-                caller_now = forces(i)%name
-                call call_hook(s%routine, s%id, time/s%time_unit, s%par, size(s%par), &
-                    & .false., .false., result(:n), n)
-                caller_now = ""
-                force_call = .false.
-                if (allocated(allowed)) deallocate(allowed)
-                if (allocated(allowed_rows)) deallocate(allowed_rows)
-                allowed_rates = .true.
-                allowed_accelerations = .true.
-                values = 0.0_wp
-                select case (n)
-                case (1)
-                    values(1) = result(1)*s%force_unit
-                case (3)
-                    if (kind == routine_vtosub) then
-                        ! a VTOSUB's RESULT is the torque TX, TY, TZ
-                        values(4:6) = result(1:3)*s%force_unit*s%length_unit
-                    else
-                        values(1:3) = result(1:3)*s%force_unit
+                if (forces(i)%statement%declared_forces .neqv. pass == 1) cycle
+                if (forces(i)%profile /= profile_statement) cycle
+                associate (s => forces(i)%statement)
+                    if (s%routine == 0) cycle
+                    kind = table(s%routine)%kind
+                    n = routine_results(kind)
+                    call begin_call(time, q, u)
+                    if (allocated(s%declared_markers)) then
+                        allowed = s%declared_markers
+                        allowed_rates = s%declared_rates
+                        allowed_accelerations = s%declared_accelerations
+                    else if (allocated(allowed)) then
+                        ! not declared yet: nothing to compare with
+                        deallocate(allowed)
                     end if
-                case default
-                    values(1:3) = result(1:3)*s%force_unit
-                    values(4:6) = result(4:6)*s%force_unit*s%length_unit
-                end select
-                s%user_values = values
-                if (.not. all(ieee_is_finite(result(:n)))) then
-                    call fatal_error(error, forces(i)%name // ": its " &
-                        & // force_routine_label(s%routine) // " returned RESULT = (" &
-                        & // number_list(result(:n)) // ") at TIME = " &
-                        & // to_text(time/s%time_unit) &
-                        & // ": a force must be finite", stat_ucon)
-                else
-                    call after_call(forces(i), "the call", time, error)
-                end if
-                if (allocated(error)) then
-                    if (.not. allocated(pending)) call move_alloc(error, pending)
-                end if
-            end associate
+                    if (allocated(s%declared_rows)) allowed_rows = s%declared_rows
+                    result = 0.0_wp
+                    force_call = .true.
+                    caller_now = forces(i)%name
+                    call call_hook(s%routine, s%id, time/s%time_unit, s%par, size(s%par), &
+                        & .false., .false., result(:n), n)
+                    caller_now = ""
+                    force_call = .false.
+                    if (allocated(allowed)) deallocate(allowed)
+                    if (allocated(allowed_rows)) deallocate(allowed_rows)
+                    allowed_rates = .true.
+                    allowed_accelerations = .true.
+                    values = 0.0_wp
+                    select case (n)
+                    case (1)
+                        values(1) = result(1)*s%force_unit
+                    case (3)
+                        if (kind == routine_vtosub) then
+                            ! a VTOSUB's RESULT is the torque TX, TY, TZ
+                            values(4:6) = result(1:3)*s%force_unit*s%length_unit
+                        else
+                            values(1:3) = result(1:3)*s%force_unit
+                        end if
+                    case default
+                        values(1:3) = result(1:3)*s%force_unit
+                        values(4:6) = result(4:6)*s%force_unit*s%length_unit
+                    end select
+                    s%user_values = values
+                    if (.not. all(ieee_is_finite(result(:n)))) then
+                        call fatal_error(error, forces(i)%name // ": its " &
+                            & // force_routine_label(s%routine) // " returned RESULT = (" &
+                            & // number_list(result(:n)) // ") at TIME = " &
+                            & // to_text(time/s%time_unit) &
+                            & // ": a force must be finite", stat_ucon)
+                    else
+                        call after_call(forces(i), "the call", time, error)
+                    end if
+                    if (allocated(error)) then
+                        if (.not. allocated(pending)) call move_alloc(error, pending)
+                    end if
+                end associate
+            end do
         end do
     end subroutine evaluate_user_forces
 
