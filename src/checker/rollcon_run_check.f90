@@ -43,7 +43,7 @@ contains
         type(error_type), allocatable, intent(out) :: error
         type(ucon_check_options_type) :: options
         type(ucon_check_result_type) :: result
-        character(len=:), allocatable :: found, whole, statement, files, source
+        character(len=:), allocatable :: found, whole, statement, files, source, prefix
         real(wp), allocatable :: values(:)
         integer, allocatable :: codes(:)
         real(wp) :: ucon_time
@@ -86,6 +86,10 @@ contains
                 call check_ucon_state(ucon%ucosub, ucon%id, ucon%par, codes, ucon_time, &
                     & values, options, result, error)
                 if (allocated(error)) then
+                    ! the guard's message names the UCON already: its words after that name
+                    prefix = "UCON/" // to_text(ucon%id) // ": "
+                    if (index(error%message, prefix) == 1) &
+                        & error%message = error%message(len(prefix) + 1:)
                     error%message = statement // ": " // error%message // " (in the check of " &
                         & // "the routine at the run's consistent start; --no-check skips it)"
                     return
