@@ -52,6 +52,9 @@ module rollcon_rim_dissipation
         !> >= 0: its power integrated with the state by the integrator, set by the run
         !> (rollcon_simulation) before each row for the row's columns
         real(wp) :: rolling_work = 0.0_wp, air_work = 0.0_wp
+        !> The run's integrator integrates those works (CVODE); false (IDA): the dissipation
+        !> watch sums them over the rows by the trapezoidal rule instead
+        logical :: works_integrated = .false.
     contains
         procedure :: active
         procedure :: air_force

@@ -348,6 +348,7 @@ contains
             if (allocated(error)) return
             ! the rim's laws' work to this row, as the integrator integrated it, for its columns
             ! (the works are those of problem%powers_at: friction, rolling resistance, air)
+            problem%eq%dissipation%works_integrated = integrated
             if (integrated) then
                 problem%eq%dissipation%rolling_work = self%integrator%work(2)
                 problem%eq%dissipation%air_work = self%integrator%work(3)

@@ -1,8 +1,8 @@
 ! SPDX-License-Identifier: MIT
 !> A rim's dissipation (rollcon_rim_dissipation) watched: the power rolling resistance and the
 !> air layer dissipate and the energy dissipated since the start (integrated with the state by
-!> the integrator), as columns of every row; in
-!> the summary the energy each law dissipated and, for a disk settling to its finite-time
+!> CVODE; by the trapezoidal rule over the rows on IDA), as columns of every row; in the
+!> summary the energy each law dissipated and, for a disk settling to its finite-time
 !> singularity (Euler's disk), the fit of its precession rate Omega = |psidot| to
 !> Omega ~ (t0 - t)^(-n) (fit_singularity; docs/design.md §5, "Dissipation").
 !>
@@ -73,8 +73,11 @@ module rollcon_dissipation_watch
         real(wp), allocatable :: times(:), rates(:)
         integer :: rows = 0
         !> The energy each law dissipated from the start to the last row [J] (its power
-        !> integrated with the state: rollcon_rim_dissipation's rolling_work, air_work)
+        !> integrated with the state: rollcon_rim_dissipation's rolling_work, air_work; from
+        !> an integrator that does not integrate them, the trapezoidal rule over the rows),
+        !> and the last row's powers [W]
         real(wp) :: rolling_work = 0.0_wp, air_work = 0.0_wp
+        real(wp) :: last_rolling = 0.0_wp, last_air = 0.0_wp
         !> Baumgarte rate of the run [1/s]; scratch accelerations and multipliers
         real(wp) :: baumgarte = 0.0_wp
         real(wp), allocatable :: a(:), lambda(:)
@@ -124,6 +127,8 @@ contains
         self%rows = 0
         self%rolling_work = 0.0_wp
         self%air_work = 0.0_wp
+        self%last_rolling = 0.0_wp
+        self%last_air = 0.0_wp
         eq%dissipation%rolling_work = 0.0_wp
         eq%dissipation%air_work = 0.0_wp
         self%baumgarte = settings%baumgarte()
@@ -322,12 +327,23 @@ contains
         real(wp), intent(in) :: time, q(:), u(:), lambda(:)
         real(wp), intent(out) :: values(:)
         real(wp), allocatable :: grown(:)
+        real(wp) :: step
 
-        self%rolling_work = eq%dissipation%rolling_work
-        self%air_work = eq%dissipation%air_work
-        values(1) = eq%dissipation%rolling_power
-        values(2) = eq%dissipation%air_power
-        values(3) = self%rolling_work + self%air_work
+        associate (rolling => eq%dissipation%rolling_power, air => eq%dissipation%air_power)
+            if (eq%dissipation%works_integrated) then
+                self%rolling_work = eq%dissipation%rolling_work
+                self%air_work = eq%dissipation%air_work
+            else if (self%rows > 0) then
+                step = time - self%times(self%rows)
+                self%rolling_work = self%rolling_work + 0.5_wp*(rolling + self%last_rolling)*step
+                self%air_work = self%air_work + 0.5_wp*(air + self%last_air)*step
+            end if
+            self%last_rolling = rolling
+            self%last_air = air
+            values(1) = rolling
+            values(2) = air
+            values(3) = self%rolling_work + self%air_work
+        end associate
         if (self%rows == size(self%times)) then
             ! more rows than the output times (events' rows): twice the room
             allocate(grown(2*size(self%times)), source=0.0_wp)
