@@ -44,7 +44,8 @@ contains
             & new_unittest("two-parts-run-and-pictures", test_two_parts), &
             & new_unittest("default-and-unknown-routine", test_refusals), &
             & new_unittest("forgotten-ucosub-hint", test_forgotten_ucosub), &
-            & new_unittest("user-routine-checked-before-run", test_checked_before_run)]
+            & new_unittest("user-routine-checked-before-run", test_checked_before_run), &
+            & new_unittest("contact-dataset-as-its-scene", test_contact_dataset)]
     end subroutine collect_dataset_command
 
     !> `run data/coin.adm --ucosub disk` writes the rows `run coin` writes, bit for bit, under
@@ -340,5 +341,50 @@ contains
             & "a failed run with a user's routine: exit " // to_text(status_unchecked) &
             & // ", stderr: " // unchecked_err)
     end subroutine test_checked_before_run
+
+    !> `run data/sliding_coin.adm` (the coin on an ADAMS CONTACT) through the program completes
+    !> and lists in its summary the one switch `run data/sliding_coin.nml` lists, at the same
+    !> instant to every digit written (the same equations, routine and tolerances:
+    !> contact-datasets measures 0 between them), both exiting 0.
+    subroutine test_contact_dataset(error)
+        type(error_type), allocatable, intent(out) :: error
+        character(len=*), parameter :: switch = " s: sliding → rolling"
+        character(len=:), allocatable :: program, adm, nml, line_adm, line_nml
+        integer :: status_adm, status_nml
+
+        call rollcon_program(program, error)
+        if (allocated(error)) return
+        call make_folder(scratch)
+        call run_rollcon(program, "run data/sliding_coin.adm -q -o " // scratch // "/contact", &
+            & scratch // "/adm.out", scratch // "/adm.err", status_adm)
+        call run_rollcon(program, "run data/sliding_coin.nml -q -o " // scratch // "/contact", &
+            & scratch // "/nml.out", scratch // "/nml.err", status_nml)
+        adm = file_text(scratch // "/contact/sliding_coin.adm.summary.txt")
+        nml = file_text(scratch // "/contact/sliding_coin.summary.txt")
+        call remove_folder(scratch)
+        line_adm = switch_line(adm)
+        line_nml = switch_line(nml)
+        call check(error, status_adm == 0 .and. status_nml == 0 .and. index(adm, &
+            & "status: completed at t = 0.5 s") > 0 .and. len(line_adm) > 0 .and. line_adm &
+            & == line_nml, "exit statuses " // to_text(status_adm) // ", " &
+            & // to_text(status_nml) // "; the dataset's switch '" // line_adm &
+            & // "', the scene's '" // line_nml // "'; summary: " // adm)
+
+    contains
+
+        !> The summary's line "  t = ... s: sliding → rolling" ("" if none).
+        function switch_line(text) result(line)
+            character(len=*), intent(in) :: text
+            character(len=:), allocatable :: line
+            integer :: at, first
+
+            line = ""
+            at = index(text, switch)
+            if (at == 0) return
+            first = index(text(:at), new_line("a"), back=.true.) + 1
+            line = text(first:at + len(switch) - 1)
+        end function switch_line
+
+    end subroutine test_contact_dataset
 
 end module test_dataset_command
