@@ -41,8 +41,8 @@ module test_dissipation
     !> quasi-steady law is exact along the steady family, and the run leaves it only by the
     !> slow dissipation's own lag (its time scale, t0 - t, over the precession period: above
     !> 30 over the fitted rows) and the last rows before the breakdown; measured 0.0060 (air:
-    !> n = 0.1727) and 0.0004 (rolling resistance: n = 0.3337); the issue's bound 0.02, a
-    !> wrong law (k = 2 gives 1/4, 0.08 from 1/6) far outside it
+    !> n = 0.1727) and 0.0004 (rolling resistance: n = 0.3337); the bound 0.02 is a quarter
+    !> of the distance to a wrong law's exponent (k = 2 gives 1/4, 0.08 from 1/6)
     real(wp), parameter :: exponent_tol = 0.02_wp
     !> A coin of 0.1 m tilted to theta = 1.2 precessing at psidot = 10 rad/s, phidot = 0
     !> exactly, rolling resistance delta = 1e-4 m (its lines but &dissipation and &run)
