@@ -217,10 +217,10 @@ class SimplifyBound:
         """The closing progress line, when the work took long enough to report or ran out."""
         spent = time.monotonic() - self._start
         if self.ran_out or spent >= PROGRESS_SECONDS:
-            counted = "1 expression" if self.simplified == 1 else \
-                f"{self.simplified} expressions"
-            self._say(f"simplified {counted}, {self.kept} kept as differentiated, in "
-                      f"{spent:.0f} s")
+            distinct = self.simplified + self.kept
+            self._say(f"{distinct} distinct expressions (a repeated one is simplified once): "
+                      f"{self.simplified} simplified, {self.kept} kept as differentiated; "
+                      f"{spent:.0f} s for the whole derivation (the bound is on simplification)")
 
 
 def time_part(expression: sympy.Expr, variables: set[sympy.Symbol]) -> sympy.Expr:
