@@ -53,9 +53,11 @@ contains
         type(unittest_type), allocatable, intent(out) :: tests(:)
 
         tests = [new_unittest("ball-rolls-on-the-table-as-its-ucons", test_rolling_orbit), &
+            & new_unittest("disk-rolls-on-the-table-as-its-ucons", test_disk_orbit), &
             & new_unittest("ball-dropped-on-the-table-bounces", test_dropped), &
             & new_unittest("ball-set-down-slides-then-rolls", test_set_down), &
             & new_unittest("slow-table-stops-the-slip-as-a-belt", test_slow_table), &
+            & new_unittest("ball-set-down-on-ida", test_set_down_ida), &
             & new_unittest("turntable-refusals-name-line-and-why", test_refusals)]
     end subroutine collect_contact_turntable
 
@@ -201,14 +203,88 @@ contains
                 & hypot(x_ucon(k) - 0.1_wp*cos(time(k)), y_ucon(k) - 0.1_wp*sin(time(k))))
             apart = max(apart, hypot(x(k) - x_ucon(k), y(k) - y_ucon(k)))
         end do
-        write(*, '(a, es10.3, a, es10.3)') "    orbit: off the circle ", worst, &
-            & " m, the two runs apart ", apart
         call check(error, worst <= orbit_tol, "the centre on the (2/7) Omega circle: off by " &
             & // to_text(worst) // " m")
         if (allocated(error)) return
         call check(error, apart <= same_tol, "the CONTACT's centre is the UCONs': apart by " &
             & // to_text(apart) // " m")
     end subroutine test_rolling_orbit
+
+    !> data/turntable_disk.adm through a CONTACT: its three turntable_disk UCONs replaced by a
+    !> table driven in the VELOCITY form (FUNCTION=3: Omega = 3 rad/s) and a CONTACT on the
+    !> coin's CYLINDER (the rim of radius 0.1 m). Upright, the coin circles the axis at
+    !> C Omega / (C + m R^2) = Omega/3 = 1 rad/s on X = 0.5 sin t, Y = -0.5 cos t
+    !> (docs/models.md, "Disk on a turntable"), rolling throughout, every row's centre the
+    !> UCON dataset's.
+    subroutine test_disk_orbit(error)
+        type(error_type), allocatable, intent(out) :: error
+        ! Both runs against the circle over two turns (4 pi s): the UCON dataset's own test
+        ! (turntable-disk-steady) allows 6e-7 and measures 1.9e-7 on IDA; measured here
+        ! 2.4e-8 m, bound 1e-7 m
+        real(wp), parameter :: orbit_tol = 1.0e-7_wp
+        ! The two runs' centres against each other: the same rows integrated with and without
+        ! the table's states; measured 3.1e-8 m, bound 1e-7 m
+        real(wp), parameter :: same_tol = 1.0e-7_wp
+        type(adm_model_type) :: adm
+        type(history_type) :: ucons, contacts
+        type(run_summary_type) :: summary
+        type(contact_watch_type) :: contact, none
+        character(len=:), allocatable :: text, path
+        real(wp), allocatable :: time(:), x(:), y(:), x_ucon(:), y_ucon(:), mode(:)
+        real(wp) :: worst, apart
+        integer :: k
+
+        call run_dataset("data/turntable_disk.adm", adm, ucons, summary, none, error)
+        if (allocated(error)) return
+        call edited("data/turntable_disk.adm", [character(len=80) :: "UCON/1", "!", "UCON/2", &
+            & "!", "UCON/3", "!", ", ROUTINE=turntable_disk", "!", ", ROUTINE=turntable_disk", &
+            & "!", ", ROUTINE=turntable_disk", "!"], text, error)
+        if (allocated(error)) return
+        text = text(:index(text, "SIMULATE/") - 1) // replaced(table_text("3", "0"), &
+            & "ROTATION,", "ROTATION, VELOCITY,") // "GRAPHICS/2, CYLINDER, CM=21, " &
+            & // "RADIUS=0.1, LENGTH=0.003" // new_line("a") // "CONTACT/1, IGEOM=2, " &
+            & // "JGEOM=1, MU_STATIC=0.5" // new_line("a") // text(index(text, "SIMULATE/"):)
+        call written("turntable_disk_contact.adm", text, path, error)
+        if (allocated(error)) return
+        call run_dataset(path, adm, contacts, summary, contact, error)
+        if (allocated(error)) return
+        call check(error, contact%table_rate, 3.0_wp, "the table's rate, from the VELOCITY " &
+            & // "form [rad/s]")
+        if (allocated(error)) return
+        call check(error, .not. contact%sphere .and. contact%initial_mode == mode_rolling .and. &
+            & size(contact%switch_times) == 0, "the rim rolls throughout")
+        if (allocated(error)) return
+        time = contacts%column(1)
+        x = contacts%column(contacts%layout%part_column(contact%part, coord_x))
+        y = contacts%column(contacts%layout%part_column(contact%part, coord_y))
+        x_ucon = ucons%column(ucons%layout%part_column(1, coord_x))
+        y_ucon = ucons%column(ucons%layout%part_column(1, coord_y))
+        mode = contacts%column(contacts%layout%column("mode"))
+        call check(error, all(nint(mode) == mode_rolling), "every row rolling")
+        if (allocated(error)) return
+        worst = 0.0_wp
+        apart = 0.0_wp
+        do k = 1, contacts%count
+            worst = max(worst, hypot(x(k) - 0.5_wp*sin(time(k)), y(k) + 0.5_wp*cos(time(k))))
+            apart = max(apart, hypot(x(k) - x_ucon(k), y(k) - y_ucon(k)))
+        end do
+        call check(error, worst <= orbit_tol, "the centre on the Omega/3 circle: off by " &
+            & // to_text(worst) // " m")
+        if (allocated(error)) return
+        call check(error, apart <= same_tol, "the CONTACT's centre is the UCONs': apart by " &
+            & // to_text(apart) // " m")
+    end subroutine test_disk_orbit
+
+    !> text with its first old replaced by new.
+    pure function replaced(text, old, new) result(out)
+        character(len=*), intent(in) :: text, old, new
+        character(len=:), allocatable :: out
+        integer :: at
+
+        at = index(text, old)
+        out = text
+        if (at > 0) out = text(:at - 1) // new // text(at + len(old):)
+    end function replaced
 
     !> A table PART/3 (CM MARKER/31 at the origin) on JOINT/1, REVOLUTE to the ground's
     !> MARKER/11 (added) about ground Z, driven by MOTION/1 with FUNCTION=motion, and its top
@@ -325,9 +401,6 @@ contains
             apex = z(k) - contact%radius - top + zdot(k)**2/(2.0_wp*g)
             worst = max(worst, abs(apex - e**2*h))
         end do
-        write(*, '(a, es10.3, a, 2es10.3)') "    dropped: apex off by ", worst, &
-            & " m; after the impact (X', Y') off by ", abs(xdot(first)), &
-            & abs(ydot(first) - mu*(1.0_wp + e)*sqrt(2.0_wp*g*h))
         call check(error, flights > 50, "the first flight spans rows, got " // to_text(flights))
         if (allocated(error)) return
         call check(error, worst <= apex_tol, "first apex e^2 h: off by " // to_text(worst) &
@@ -350,8 +423,6 @@ contains
         rolled = time(last) - time(first)
         rate = (turn + 2.0_wp*acos(-1.0_wp)*real(floor(2.0_wp/7.0_wp*10.0_wp*rolled &
             & /(2.0_wp*acos(-1.0_wp)) + 0.5_wp), wp))/rolled
-        write(*, '(a, es10.3)') "    dropped: rolling orbit rate off by ", &
-            & abs(rate - 2.0_wp/7.0_wp*10.0_wp)
         call check(error, rate, 2.0_wp/7.0_wp*10.0_wp, "the rolling orbit's rate, (2/7) " &
             & // "Omega [rad/s]", abs_tol=rate_tol)
         if (allocated(error)) return
@@ -379,10 +450,20 @@ contains
         call set_down(0.1_wp, error)
     end subroutine test_slow_table
 
-    !> test_set_down at the table's rate omega [rad/s].
-    subroutine set_down(omega, error)
+    !> test_set_down in the DAE form (INTEGRATOR/FORMULATION=IDA: sliding's friction in the
+    !> residual through the normal multiplier), to the same bounds.
+    subroutine test_set_down_ida(error)
+        type(error_type), allocatable, intent(out) :: error
+
+        call set_down(10.0_wp, error, "IDA")
+    end subroutine test_set_down_ida
+
+    !> test_set_down at the table's rate omega [rad/s], with the formulation CVODE or the one
+    !> given.
+    subroutine set_down(omega, error, formulation)
         real(wp), intent(in) :: omega
         type(error_type), allocatable, intent(out) :: error
+        character(len=*), intent(in), optional :: formulation
         ! Switch time [s]: the slip falls at (7/2) mu g ~ 7 m/s^2, known to its integration
         ! error ~1e-10 m/s (the ground's thrown ball: measured 7e-12 s); the reduced
         ! equations' RK4 at 2e-6 s steps is good to ~1e-15 s; bound 5e-11 s
@@ -415,6 +496,8 @@ contains
             & ", RESTITUTION_COEFFICIENT=0.5", "", "FUNCTION=10*TIME", "FUNCTION=" &
             & // trim(adjustl(rate_text)) // "*TIME", "END=3,", "END=1,"], text, error)
         if (allocated(error)) return
+        if (present(formulation)) text = replaced(text, "FORMULATION=CVODE", "FORMULATION=" &
+            & // formulation)
         call written("ball_set_down_on_turntable.adm", text, path, error)
         if (allocated(error)) return
         call run_dataset(path, adm, history, summary, contact, error)
@@ -431,8 +514,6 @@ contains
         call reduced_slide(omega, mu*g, cmplx(rho, 0.0_wp, wp), cmplx(0.0_wp, 0.0_wp, wp), &
             & t_star, x, v, friction_work, drive_work)
         friction_work = mass*friction_work
-        write(*, '(a, es10.3, a, es10.3)') "    set down: t* = ", t_star, ", switch off by ", &
-            & abs(contact%switch_times(1) - t_star)
         ! the stop is known to the slip's error over the rate |s| falls at, at least
         ! (7/2) mu g - Omega |v| (on the fast table the drive's term takes most of the
         ! friction's: |s| falls at 0.77 m/s^2 near the stop, its direction swinging about it).
@@ -448,14 +529,11 @@ contains
         walk = 1.5_wp*sqrt(real(summary%steps, wp))*(contact%rtol*omega*rho + contact%atol)
         stop_tol = max(time_tol, walk/(3.5_wp*mu*g - omega*abs(v)))
         end_tol = max(state_tol, walk)
-        write(*, '(a, es10.3)') "    set down: the stop's bound ", stop_tol
         call check(error, contact%switch_times(1), t_star, "the slip's stop, from the reduced " &
             & // "equations [s]", abs_tol=stop_tol)
         if (allocated(error)) return
         if (omega < 1.0_wp) then
             belt = 2.0_wp*omega*rho/(7.0_wp*mu*g)
-            write(*, '(a, es10.3)') "    set down: the belt's stop off by (relative) ", &
-                & abs(t_star/belt - 1.0_wp)
             call check(error, t_star, belt, "the slow table's stop, the belt's 2 Omega rho / " &
                 & // "(7 mu g) [s]", rel_tol=belt_tol)
             if (allocated(error)) return
@@ -468,11 +546,6 @@ contains
         x = x + v*(turn - 1.0_wp)/cmplx(0.0_wp, nu, wp)
         v = v*turn
         row = history%rows(:, history%count)
-        write(*, '(a, 2es10.3)') "    set down: end state off by ", abs(cmplx(row( &
-            & history%layout%part_column(contact%part, coord_x)), row(history%layout% &
-            & part_column(contact%part, coord_y)), wp) - x), abs(cmplx(row(history%layout% &
-            & part_column(contact%part, coord_xdot)), row(history%layout%part_column( &
-            & contact%part, coord_ydot)), wp) - v)
         call check(error, row(history%layout%part_column(contact%part, coord_x)), real(x), &
             & "X at the end [m]", abs_tol=end_tol)
         if (allocated(error)) return
@@ -492,19 +565,22 @@ contains
         kinetic = 0.5_wp*mass*abs(v)**2 + 0.5_wp*inertia*abs(w)**2/radius**2
         e = history%layout%energy_column()
         gained = history%rows(e, history%count) - history%rows(e, 1)
-        write(*, '(a, es10.3)') "    set down: energy's change off by ", abs(gained - kinetic)
         call check(error, gained, kinetic, "the energy's change, the ball's kinetic energy " &
             & // "from the reduced equations [J]", abs_tol=energy_tol)
         if (allocated(error)) return
+        ! the friction's work: CVODE integrates it with the state, to its tolerances (rtol
+        ! 1e-10; measured 1.3e-10 J of 0.066 J on the fast table, bound 1e-8 relative); IDA
+        ! by the trapezoidal rule over the rows, whose estimated error the run reports
+        ! (dissipation_uncertainty, 1.2e-7 J for 1.0e-7 J measured), bound twice that
         call check(error, summary%friction_work, friction_work, "the friction's work, " &
-            & // "integral of mu m g |s| [J]", rel_tol=1.0e-6_wp)
+            & // "integral of mu m g |s| [J]", abs_tol=1.0e-8_wp*friction_work &
+            & + 2.0_wp*summary%dissipation_uncertainty)
         if (allocated(error)) return
         ! the energy's balance: the ball gained the drive's work less the friction's, the
         ! table's motion being prescribed; the energy rises by no more than the drive's work
-        write(*, '(a, es10.3)') "    set down: energy's balance off by ", abs(gained &
-            & - (drive_work - summary%friction_work))
         call check(error, gained, drive_work - summary%friction_work, "the energy's change, " &
-            & // "the drive's work less the friction's [J]", abs_tol=energy_tol)
+            & // "the drive's work less the friction's [J]", abs_tol=energy_tol &
+            & + 2.0_wp*summary%dissipation_uncertainty)
         if (allocated(error)) return
         call check(error, .not. summary%energy_conserved, "a driven table's energy is not " &
             & // "judged as conserved")
