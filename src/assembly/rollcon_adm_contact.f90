@@ -3,8 +3,10 @@
 !> the ground's plane, its three no-slip rows served by a built-in routine (a sphere:
 !> rolling_sphere; a rim: the hand-checked disk, the scenes' routine) under the user's
 !> CONTACT/id, and the contact's watch (rollcon_contact_watch) with its Coulomb friction,
-!> restitution and modes, as a disk scene builds it (rollcon_disk_scene's disk_contact_watch).
-!> docs/datasets.md, "CONTACT", says what is read and what is refused.
+!> restitution and modes, as a disk scene builds it (rollcon_disk_scene's disk_contact_watch);
+!> or on a turntable's top (rollcon_adm_turntable), its rows relative to the table
+!> (turntable_ball, turntable_disk). docs/datasets.md, "CONTACT" and "CONTACT on a turntable",
+!> says what is read and what is refused.
 module rollcon_adm_contact
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type, fatal_error, stat_input
@@ -57,7 +59,8 @@ module rollcon_adm_contact
 contains
 
     !> The contact's part and shape from its IGEOM and JGEOM: one a PLANE on the ground whose
-    !> RM has its origin at Z = 0 and its z along ground +Z (rollcon's ground plane), the other
+    !> RM has its origin at Z = 0 and its z along ground +Z (rollcon's ground plane), or on a
+    !> turntable (find_turntable: the table's errors with its JOINT or MOTION), the other
     !> on a part: an ELLIPSOID of equal XSCALE, YSCALE, ZSCALE (a sphere of radius XSCALE/2)
     !> centred at the part's centre of mass, or a CYLINDER whose axis (its CM marker's z) is
     !> the part's principal z-axis through the centre of mass (a rim of radius RADIUS in the
@@ -245,7 +248,8 @@ contains
 
     !> The CONTACT's three no-slip rows (its point's velocity along ground X, Y, and its
     !> height's rate), appended to the model's UCONs as CONTACT/id's equations: the routine
-    !> computes in the dataset's units (its radius in them, as a UCON's PAR). A dataset has at
+    !> computes in the dataset's units (its radius in them, as a UCON's PAR); on a turntable
+    !> the rows are relative to the table (table_routine). A dataset has at
     !> most one CONTACT (the equations hold one contact's mode: rollcon_sliding_contact);
     !> a second is refused. rows: the rows' numbers in model order (tangential X, Y, normal).
     subroutine add_contact_ucons(adm, model, shape, rows, error)
