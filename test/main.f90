@@ -123,6 +123,7 @@ program tester
     use test_dissipation, only : collect_dissipation
     use test_contact_flight, only : collect_contact_flight
     use test_contact_datasets, only : collect_contact_datasets
+    use test_contact_turntable, only : collect_contact_turntable
     implicit none
     type(testsuite_type), allocatable :: suites(:)
     type(test_counts_type) :: counts
@@ -250,6 +251,7 @@ program tester
         & new_testsuite("contact-modes", collect_contact_modes), &
         & new_testsuite("contact-flight", collect_contact_flight), &
         & new_testsuite("contact-datasets", collect_contact_datasets), &
+        & new_testsuite("contact-turntable", collect_contact_turntable), &
         & new_testsuite("dissipation", collect_dissipation)]
 
     if (command_argument_count() >= 1) then

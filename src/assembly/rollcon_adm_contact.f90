@@ -3,8 +3,10 @@
 !> the ground's plane, its three no-slip rows served by a built-in routine (a sphere:
 !> rolling_sphere; a rim: the hand-checked disk, the scenes' routine) under the user's
 !> CONTACT/id, and the contact's watch (rollcon_contact_watch) with its Coulomb friction,
-!> restitution and modes, as a disk scene builds it (rollcon_disk_scene's disk_contact_watch).
-!> docs/datasets.md, "CONTACT", says what is read and what is refused.
+!> restitution and modes, as a disk scene builds it (rollcon_disk_scene's disk_contact_watch);
+!> or on a turntable's top (rollcon_adm_turntable), its rows relative to the table
+!> (turntable_ball, turntable_disk). docs/datasets.md, "CONTACT" and "CONTACT on a turntable",
+!> says what is read and what is refused.
 module rollcon_adm_contact
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type, fatal_error, stat_input
@@ -21,6 +23,7 @@ module rollcon_adm_contact
     use rollcon_adm_model, only : adm_model_type, adm_part_type, adm_marker_type
     use rollcon_adm_contacts, only : adm_contact_type, adm_graphics_type, graphics_ellipsoid, &
         & graphics_cylinder, graphics_plane
+    use rollcon_adm_turntable, only : turntable_type, find_turntable
     implicit none
     private
 
@@ -35,6 +38,9 @@ module rollcon_adm_contact
     real(wp), parameter :: liftoff_fraction = 1.0e-5_wp, liftoff_per_rtol = 100.0_wp
     !> The routines of the no-slip rows: a sphere's, a rim's
     character(len=*), parameter :: sphere_routine = "rolling_sphere", rim_routine = "disk"
+    !> The routines of the no-slip rows relative to a turntable: a sphere's, a rim's
+    character(len=*), parameter :: sphere_table_routine = "turntable_ball", &
+        & rim_table_routine = "turntable_disk"
 
     !> What a CONTACT is, as rollcon models it
     type :: contact_shape_type
@@ -45,12 +51,16 @@ module rollcon_adm_contact
         !> A sphere (else a rim), its radius [m]
         logical :: sphere = .false.
         real(wp) :: radius = 0.0_wp
+        !> The plane is a turntable's top (else the ground's), and the table
+        logical :: on_table = .false.
+        type(turntable_type) :: table
     end type contact_shape_type
 
 contains
 
     !> The contact's part and shape from its IGEOM and JGEOM: one a PLANE on the ground whose
-    !> RM has its origin at Z = 0 and its z along ground +Z (rollcon's ground plane), the other
+    !> RM has its origin at Z = 0 and its z along ground +Z (rollcon's ground plane), or on a
+    !> turntable (find_turntable: the table's errors with its JOINT or MOTION), the other
     !> on a part: an ELLIPSOID of equal XSCALE, YSCALE, ZSCALE (a sphere of radius XSCALE/2)
     !> centred at the part's centre of mass, or a CYLINDER whose axis (its CM marker's z) is
     !> the part's principal z-axis through the centre of mass (a rim of radius RADIUS in the
@@ -102,7 +112,13 @@ contains
             error%message = graphics_at(plane) // " RM: " // error%message
             return
         end if
-        if (.not. adm%parts(p)%ground .or. abs(origin(3)) > geometry_tolerance &
+        if (.not. adm%parts(p)%ground) then
+            ! a plane on a moving part: a turntable's top (rollcon_adm_turntable)
+            shape%on_table = .true.
+            call find_turntable(adm, shape%where, plane%marker, plane%line, p, shape%table, &
+                & error)
+            if (allocated(error)) return
+        else if (abs(origin(3)) > geometry_tolerance &
             & .or. axis(3) < 1.0_wp - geometry_tolerance) then
             call fatal_error(error, graphics_at(plane) // ": " // shape%name // "'s plane " &
                 & // "must be the ground plane Z = 0 with its normal +Z: a PLANE on the " &
@@ -121,6 +137,12 @@ contains
         if (adm%parts(p)%ground) then
             call fatal_error(error, graphics_at(body) // ": " // shape%name // "'s sphere or " &
                 & // "cylinder is on the ground; it must be on a moving part", stat_input)
+            return
+        end if
+        if (shape%on_table .and. p == shape%table%part) then
+            call fatal_error(error, graphics_at(body) // ": " // shape%name // "'s sphere or " &
+                & // "cylinder is on the turntable PART/" // to_text(shape%table%part_id) &
+                & // " whose top is its plane; it must be on another part", stat_input)
             return
         end if
         shape%part_id = adm%parts(p)%id
@@ -226,7 +248,8 @@ contains
 
     !> The CONTACT's three no-slip rows (its point's velocity along ground X, Y, and its
     !> height's rate), appended to the model's UCONs as CONTACT/id's equations: the routine
-    !> computes in the dataset's units (its radius in them, as a UCON's PAR). A dataset has at
+    !> computes in the dataset's units (its radius in them, as a UCON's PAR); on a turntable
+    !> the rows are relative to the table (table_routine). A dataset has at
     !> most one CONTACT (the equations hold one contact's mode: rollcon_sliding_contact);
     !> a second is refused. rows: the rows' numbers in model order (tangential X, Y, normal).
     subroutine add_contact_ucons(adm, model, shape, rows, error)
@@ -236,7 +259,7 @@ contains
         integer, intent(out) :: rows(3)
         type(error_type), allocatable, intent(out) :: error
         procedure(ucosub_interface), pointer :: routine
-        real(wp), allocatable :: par(:), pars(:, :)
+        real(wp), allocatable :: par(:), pars(:, :), parameters(:)
         character(len=:), allocatable :: name
         logical :: time_free, found
         integer :: k
@@ -255,10 +278,11 @@ contains
         if (allocated(error)) return
         name = merge(sphere_routine, rim_routine // "          ", shape%sphere)
         name = trim(name)
+        parameters = [shape%radius/adm%units%length]
+        if (shape%on_table) call table_routine(shape, adm%units%length, name, parameters)
         call find_builtin_ucosub(name, routine, time_free, found)
         do k = 1, 3
-            call builtin_ucosub_par(name, shape%part_id, [shape%radius/adm%units%length], k, &
-                & par, error)
+            call builtin_ucosub_par(name, shape%part_id, parameters, k, par, error)
             if (allocated(error)) return
             if (k == 1) allocate(pars(size(par), 3))
             pars(:, k) = par
@@ -268,6 +292,29 @@ contains
             & routine, name, time_free, pars, [character(len=40) :: &
             & "no slip along ground X", "no slip along ground Y", "height held (its rate)"])
     end subroutine add_contact_ucons
+
+    !> The routine of a contact's rows on a turntable and its physical parameters, in the
+    !> dataset's units (length: its length unit [m]; the rate per its time unit): a sphere's
+    !> turntable_ball (radius, rate, the axis' X and Y), a rim's turntable_disk (radius, the
+    !> axis' X and Y, the mean rate, no ripple) (ucon/specs/turntable_ball.py,
+    !> turntable_disk.py): the no-slip rows relative to the table.
+    pure subroutine table_routine(shape, length, name, parameters)
+        type(contact_shape_type), intent(in) :: shape
+        real(wp), intent(in) :: length
+        character(len=:), allocatable, intent(out) :: name
+        real(wp), allocatable, intent(out) :: parameters(:)
+
+        associate (table => shape%table)
+            if (shape%sphere) then
+                name = sphere_table_routine
+                parameters = [shape%radius/length, table%dataset_rate, table%axis/length]
+            else
+                name = rim_table_routine
+                parameters = [shape%radius/length, table%axis/length, table%dataset_rate, &
+                    & 0.0_wp, 0.0_wp]
+            end if
+        end associate
+    end subroutine table_routine
 
     !> The contact's watch on the problem (after problem%init), its start's mode set in the
     !> equations for the initial-conditions analysis (a sliding start's tangential rows, a
@@ -324,6 +371,12 @@ contains
             watch%flight = contact%restitution_given
             watch%restitution = contact%restitution
             watch%stop_on_liftoff = .not. watch%flight
+            if (shape%on_table) then
+                ! the plane is a turntable's top: heights from it, slips relative to it
+                watch%plane_height = shape%table%height
+                watch%table_rate = shape%table%rate
+                watch%table_axis = shape%table%axis
+            end if
             ! force scale: the weight plus the centripetal force of the initial spin
             omega = watch%angular_velocity(q0, u0)
             force_scale = problem%model%parts(shape%part)%mass*(norm2(adm%gravity) &

@@ -555,7 +555,11 @@ contains
     !> Zero, up to rounding, for constraints fixed in space and time (a rolling contact on
     !> fixed ground: F = C(q) u, c = 0; a joint: no explicit time); a moving constraint's (a
     !> turntable, a driven motion) is of the size of the power it puts in. A sliding contact's
-    !> friction is no constraint force: its power is dissipated_power's. Calls no UCOSUB.
+    !> friction is no constraint force: the power it dissipates, mu_k F_n |v_s| with v_s the
+    !> slip relative to the plane, is dissipated_power's; on a moving plane (a turntable, whose
+    !> tangential rows are F = C u + c, c minus the plane's velocity at the contact) the
+    !> friction F_t also does the drive's work, its power on the part being F_t . C u =
+    !> F_t . v_s - F_t . c: |F_t . c| is added (0 on the ground). Calls no UCOSUB.
     pure function constraint_power(self, u) result(power)
         class(problem_type), intent(in) :: self
         !> The rates of the last evaluation
@@ -574,8 +578,26 @@ contains
                         & - dot_product(cs%grad_u(k, :), u)))
                 end if
             end do
+            if (self%eq%contact%sliding) power = power + abs(sliding_drive_power(self%eq, u))
         end associate
     end function constraint_power
+
+    !> The power a sliding contact's friction takes from the motion of its plane at the last
+    !> evaluation [W]: -F_t . c, c = F - C u of the two tangential rows (minus the plane's
+    !> velocity at the contact; 0 on the ground, whose rows have none).
+    pure real(wp) function sliding_drive_power(eq, u) result(power)
+        type(equations_type), intent(in) :: eq
+        !> The rates of the last evaluation
+        real(wp), intent(in) :: u(:)
+        integer :: j, k
+
+        power = 0.0_wp
+        do j = 1, 2
+            k = eq%contact%tangential(j)
+            power = power - eq%contact%friction(j)*(eq%constraints%value(k) &
+                & - dot_product(eq%constraints%grad_u(k, :), u))
+        end do
+    end function sliding_drive_power
 
     !> The power dissipated at the last evaluation (accelerations) [W], each >= 0: a sliding
     !> contact's friction, mu_k F_n |v_slip| (rollcon_sliding_contact), and a rim's rolling

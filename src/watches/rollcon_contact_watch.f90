@@ -89,6 +89,10 @@ module rollcon_contact_watch
         logical :: stop_on_liftoff = .false.
         !> Lift-off threshold [N] >= 0, a small fraction of the model's force scale
         real(wp) :: liftoff_force = 0.0_wp
+        !> The plane's height Z [m] (the ground's 0, a turntable's top), and a turntable's rate
+        !> about ground +Z [rad/s] and its axis' X and Y [m]: the plane's material point at r
+        !> moves at table_rate e_Z x (r - axis) (0: the ground)
+        real(wp) :: plane_height = 0.0_wp, table_rate = 0.0_wp, table_axis(2) = 0.0_wp
         !> Largest |Z - R sin(theta)| over the output rows so far [m]
         real(wp) :: height_residual_max = 0.0_wp
         !> Scratch of an event function that must solve for the multipliers
@@ -138,6 +142,7 @@ module rollcon_contact_watch
         procedure :: time_in_modes
         procedure :: friction
         procedure :: slip_velocity
+        procedure :: table_velocity
         procedure :: angular_velocity
         procedure :: switch_to
         procedure :: current_mode
@@ -222,10 +227,12 @@ contains
         friction = self%mu_static > 0.0_wp
     end function friction
 
-    !> Velocity of the part's material point at the contact, ground X and Y [m/s]: v_G + omega x
-    !> r_GC with r_GC = -R e_y2 for a rim, written out in the 3-1-3 angles (docs/design.md §5,
-    !> the no-slip constraint's F1 and F2), and r_GC = -R e_Z for a sphere: (v_x - R omega_Y,
-    !> v_y + R omega_X) (ucon/specs/rolling_sphere.py's F1 and F2).
+    !> Velocity of the part's material point at the contact, ground X and Y [m/s], relative to
+    !> the plane's there: v_G + omega x r_GC with r_GC = -R e_y2 for a rim, written out in the
+    !> 3-1-3 angles (docs/design.md §5, the no-slip constraint's F1 and F2), and r_GC = -R e_Z
+    !> for a sphere: (v_x - R omega_Y, v_y + R omega_X) (ucon/specs/rolling_sphere.py's F1 and
+    !> F2); on a turntable less the table's velocity there (table_velocity: the F1 and F2 of
+    !> ucon/specs/turntable_ball.py, turntable_disk.py).
     pure function slip_velocity(self, q, u) result(slip)
         class(contact_watch_type), intent(in) :: self
         real(wp), intent(in) :: q(:), u(:)
@@ -237,15 +244,36 @@ contains
         if (self%sphere) then
             omega = self%angular_velocity(q, u)
             slip = [u(i0 + 1) - self%radius*omega(2), u(i0 + 2) + self%radius*omega(1)]
-            return
+        else
+            associate (psi => q(i0 + 4), theta => q(i0 + 5), psidot => u(i0 + 4), &
+                    & thetadot => u(i0 + 5), phidot => u(i0 + 6), r => self%radius)
+                spin = phidot + psidot*cos(theta)
+                slip(1) = u(i0 + 1) + r*cos(psi)*spin - r*thetadot*sin(psi)*sin(theta)
+                slip(2) = u(i0 + 2) + r*sin(psi)*spin + r*thetadot*cos(psi)*sin(theta)
+            end associate
         end if
-        associate (psi => q(i0 + 4), theta => q(i0 + 5), psidot => u(i0 + 4), &
-                & thetadot => u(i0 + 5), phidot => u(i0 + 6), r => self%radius)
-            spin = phidot + psidot*cos(theta)
-            slip(1) = u(i0 + 1) + r*cos(psi)*spin - r*thetadot*sin(psi)*sin(theta)
-            slip(2) = u(i0 + 2) + r*sin(psi)*spin + r*thetadot*cos(psi)*sin(theta)
-        end associate
+        if (self%table_rate /= 0.0_wp) slip = slip - self%table_velocity(q)
     end function slip_velocity
+
+    !> The plane's material velocity at the contact point, ground X and Y [m/s]: a turntable's
+    !> Omega e_Z x (r_C - c) = Omega (-(Y_C - c_Y), X_C - c_X), r_C the sphere's G - R e_Z or
+    !> the rim's G - R e_y2 (its horizontal part G + R cos(theta) (sin(psi), -cos(psi))); the
+    !> ground's 0.
+    pure function table_velocity(self, q) result(velocity)
+        class(contact_watch_type), intent(in) :: self
+        real(wp), intent(in) :: q(:)
+        real(wp) :: velocity(2)
+        real(wp) :: point(2)
+        integer :: i0
+
+        velocity = 0.0_wp
+        if (self%table_rate == 0.0_wp) return
+        i0 = 6*(self%part - 1)
+        point = q(i0 + 1:i0 + 2) - self%table_axis
+        if (.not. self%sphere) point = point + self%radius*cos(q(i0 + 5)) &
+            & *[sin(q(i0 + 4)), -cos(q(i0 + 4))]
+        velocity = self%table_rate*[-point(2), point(1)]
+    end function table_velocity
 
     !> The part's angular velocity, ground components [rad/s]: omega = psidot e_Z + thetadot e_x1
     !> + phidot e_z2 (docs/design.md §3).
@@ -585,7 +613,7 @@ contains
         type(contact_switch_type) :: detail
         type(impact_type) :: impact
         real(wp) :: jacobian(3, eq%n), minv_jt(eq%n, 3), w(3, 3), rebound(size(u)), fall
-        real(wp) :: apex
+        real(wp) :: apex, table(3), drive, applied(3)
         integer :: rows(3), i0
 
         detail%event_value = self%height_residual(q)
@@ -601,8 +629,12 @@ contains
         if (allocated(error)) return
         w = matmul(jacobian, minv_jt)
         w = 0.5_wp*(w + transpose(w))
-        call contact_impact(w, matmul(jacobian, u), self%mu_kinetic, self%restitution, impact, &
-            & error)
+        ! the point's velocity relative to the plane (a turntable's moves: its rows are
+        ! J u - (V_table, 0), and its impulse acts on the part alone, the table's motion
+        ! prescribed)
+        table = [self%table_velocity(q), 0.0_wp]
+        call contact_impact(w, matmul(jacobian, u) - table, self%mu_kinetic, self%restitution, &
+            & impact, error)
         if (allocated(error)) then
             error%message = "at t = " // to_text(time) // " s " // error%message
             return
@@ -627,11 +659,13 @@ contains
         end if
         if (detail%captured .and. self%restitution > 0.0_wp) then
             u = u + matmul(minv_jt, impact%compression)
+            applied = impact%compression
             detail%normal_impulse = impact%compression(3)
             detail%tangential_impulse = norm2(impact%compression(1:2))
             detail%restitution = 0.0_wp
         else
             u = rebound
+            applied = impact%impulse
             detail%normal_impulse = impact%impulse(3)
             detail%tangential_impulse = norm2(impact%impulse(1:2))
             detail%restitution = self%restitution
@@ -639,8 +673,13 @@ contains
         detail%captured = detail%captured .and. self%restitution > 0.0_wp
         detail%rebound = self%normal_velocity(q, u)
         detail%energy_after = eq%energy(q, u)
+        ! the loss relative to the plane: on a turntable the energy's change is that loss
+        ! less the table's velocity at the point times the impulse (the drive's work: the
+        ! part's velocity there is the relative one plus the table's)
+        drive = 0.0_wp
+        if (self%table_rate /= 0.0_wp) drive = dot_product(table, applied)
         eq%contact%impact_loss = eq%contact%impact_loss + max(0.0_wp, detail%energy_before &
-            & - detail%energy_after)
+            & - detail%energy_after + drive)
         if (detail%restitution > 0.0_wp) then
             ! a rebound: it flies on
             call self%switch_to(mode_flight, time, detail)
@@ -792,8 +831,8 @@ contains
             & + max(0.0_wp, self%last_time - self%mode_since)
     end function time_in_modes
 
-    !> The height of the lowest point of the part in contact [m]: a rim's Z - R sin(theta), a
-    !> sphere's Z - R.
+    !> The height of the lowest point of the part in contact above the plane [m]: a rim's
+    !> Z - R sin(theta) - h, a sphere's Z - R - h, h the plane's height (0: the ground).
     pure real(wp) function height_residual(self, q)
         class(contact_watch_type), intent(in) :: self
         !> Coordinates of every part
@@ -802,10 +841,10 @@ contains
 
         i0 = 6*(self%part - 1)
         if (self%sphere) then
-            height_residual = q(i0 + 3) - self%radius
+            height_residual = q(i0 + 3) - self%radius - self%plane_height
             return
         end if
-        height_residual = q(i0 + 3) - self%radius*sin(q(i0 + 5))
+        height_residual = q(i0 + 3) - self%radius*sin(q(i0 + 5)) - self%plane_height
     end function height_residual
 
     !> The largest height residual, bound K_H sqrt(N) (atol + rtol R).
