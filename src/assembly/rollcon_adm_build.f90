@@ -30,7 +30,7 @@ module rollcon_adm_build
     use rollcon_user_forces, only : routine_kind_of, set_system_markers, &
         & declare_user_force, evaluate_user_forces, take_user_force_error, set_system_splines, &
         & user_variable_type, set_user_variables, declare_user_variables, evaluate_user_variables, &
-        & set_system_constraint_forces
+        & set_system_constraint_forces, declare_variable_rows
     use rollcon_user_forces, only : user_motion_type, set_user_motions
     use rollcon_system_routine_contract, only : routine_varsub, variable_routine_name, &
         & routine_difsub, diff_routine_name
@@ -261,7 +261,10 @@ contains
             call evaluate_user_variables(0.0_wp, q0, u0)
             call take_user_force_error(error)
             if (allocated(error)) return
-            ! the parts a VARSUB declared join those of the forces that read its VARVAL
+            ! the parts a VARSUB declared join those of the forces that read its VARVAL, the
+            ! reactions it read the expressions' declared rows
+            if (allocated(problem%model%forces)) &
+                & call declare_variable_rows(problem%model%forces)
             problem%eq%couplings = force_couplings(problem%model%forces)
         end if
         ! the DIFSUBs' declarations, at the DIFFs' ICs

@@ -18,13 +18,14 @@ module rollcon_equations
         & add_expression_partials, profile_statement
     use rollcon_user_force_partials, only : add_user_force_partials, &
         & add_user_force_acceleration_partials, add_variable_acceleration_partials, &
-        & add_user_force_multiplier_partials
+        & add_user_force_multiplier_partials, add_variable_multiplier_partials
     use rollcon_user_forces, only : evaluate_user_forces, take_user_force_error, &
         & evaluate_user_variables, difference_user_variables, clear_user_variable_partials, &
         & set_system_diff_state, set_system_accelerations, reads_accelerations, &
         & variables_read_accelerations, variables_reading_accelerations, &
         & difference_variable_accelerations, user_variable_list, user_variable_type, &
-        & has_user_forces, reads_constraint_forces, set_system_constraint_forces
+        & reads_constraint_forces, set_system_constraint_forces, &
+        & variables_read_constraint_forces, difference_variable_multipliers
     use rollcon_force_measures, only : set_force_measure_model
     use rollcon_lapack, only : factor_dense, solve_factored
     use rollcon_constraints, only : constraint_state_type, local_dot, need_value, need_first, &
@@ -135,11 +136,12 @@ contains
         allocate(self%resistance_a(self%n), self%resistance_lambda(self%nc), source=0.0_wp)
         if (allocated(model%forces)) then
             self%couplings = force_couplings(model%forces)
-            ! the force measures a user's routine reads through SYSFNC are this model's
-            if (has_user_forces(model%forces)) call set_force_measure_model(model)
         else
             allocate(self%couplings(2, 0))
         end if
+        ! the force measures a user's routine (a force's, a VARSUB's, a DIFSUB's) reads
+        ! through SYSFNC are this model's
+        call set_force_measure_model(model, refresh=.true.)
     end subroutine init
 
     !> A user's force routine reads what the equations solve for (accelerations, or a
@@ -646,18 +648,32 @@ contains
 
     !> work%dm_dlambda: the partials in the multipliers lambda of the momentum residual's
     !> forces at (t, q, u, lambda), the forces evaluated there (assemble) before: the forces
-    !> whose routines read a constraint's reaction, differenced (rollcon_user_force_partials).
-    !> A failed difference call's error is returned.
+    !> whose routines read a constraint's reaction, differenced (rollcon_user_force_partials),
+    !> and the expression forces reading VARVAL of a VARSUB that reads one, the VARSUB's
+    !> partials differenced over the rows it declared and chained through the expressions'
+    !> exact ones. A failed difference call's error is returned.
     subroutine multiplier_partials(self, time, q, u, lambda, error)
         class(equations_type), intent(inout) :: self
         real(wp), intent(in) :: time, q(:), u(:), lambda(:)
         type(error_type), allocatable, intent(out) :: error
+        type(user_variable_type), allocatable :: variables(:)
+        real(wp), allocatable :: dv_dlambda(:, :)
+        integer, allocatable :: ids(:)
 
         if (.not. allocated(self%work%dm_dlambda)) allocate(self%work%dm_dlambda(self%n, &
             & self%nc))
         self%work%dm_dlambda = 0.0_wp
         call add_user_force_multiplier_partials(self%model%forces, time, q, u, lambda, &
             & self%work%dm_dlambda)
+        if (variables_read_constraint_forces()) then
+            variables = user_variable_list()
+            ! (a copy: a component of an array of a derived type is not contiguous)
+            ids = variables%id
+            allocate(dv_dlambda(size(variables), self%nc))
+            call difference_variable_multipliers(time, q, u, lambda, dv_dlambda)
+            call add_variable_multiplier_partials(self%model%forces, time, q, u, ids, &
+                & dv_dlambda, self%work%dm_dlambda)
+        end if
         call take_user_force_error(error)
     end subroutine multiplier_partials
 

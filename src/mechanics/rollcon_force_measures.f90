@@ -6,22 +6,26 @@
 !> REQUEST's expression reads them (rollcon_request_answers, docs/datasets.md, "Force
 !> measures read by a user's routine"):
 !>
-!> - a JOINT's or JPRIM's reaction from the multipliers of its rows (rollcon_reactions'
-!>   site_wrench at I, swapped_wrench at J), the multipliers those rollcon_user_forces'
-!>   set_system_constraint_forces gave: the equations' iterate of the algebraic loop a force
-!>   reading them makes (rollcon_equations' loop_accelerations), IDA's unknowns
-!>   (rollcon_dae), the solve at an output row;
+!> - a JOINT's, JPRIM's or MOTION's reaction from the multipliers of its rows
+!>   (rollcon_reactions' site_wrench at I, swapped_wrench at J; a MOTION's markers are its
+!>   JOINT's, or its own I and J: the model's statement holds them), the multipliers those
+!>   rollcon_user_forces' set_system_constraint_forces gave: the equations' iterate of the
+!>   algebraic loop a force reading them makes (rollcon_equations' loop_accelerations), IDA's
+!>   unknowns (rollcon_dae), the solve at an output row;
 !> - a force statement's force and torque at its I or J (force_wrench), from its expressions
 !>   at the state, or from the values its routine gave at this state (rollcon_user_forces
 !>   calls the routines that read force measures after the others).
 !>
 !> A force routine's force measure that would sum the force of a routine that reads force
 !> measures itself (its own included) is a cycle of forces this does not iterate (a REQSUB's,
-!> read at an output row once every force is known, makes none): refused, naming both
-!> statements, unless that force's share of what is read is zero by its kind (a rotational
-!> SFORCE's or a VTORQUE's force, a translational SFORCE's torque, a VFORCE's torque at its
-!> I), which is left out. A MOTION's force is not summed: SYSFNC('MOTION') is refused, and
-!> so is FX ... TM in a model with a MOTION (the sum could leave its force out).
+!> read at an output row once every force is known, makes none, nor a DIFSUB's, called once
+!> the forces and multipliers of the state are solved): refused, naming both statements,
+!> unless that force's share of what is read is zero by its kind (a rotational SFORCE's or a
+!> VTORQUE's force, a translational SFORCE's torque, a VFORCE's torque at its I), which is
+!> left out. A VARSUB is called before every force (the forces may read its value): its
+!> force measures sum the reactions (the multipliers are the loop's unknowns) and the forces
+!> written as expressions that read no VARIABLE; a force served by a routine, or whose
+!> expression reads a VARVAL, is refused the same way unless its share is zero by its kind.
 !>
 !> The model is the one the equations were set up with (set_force_measure_model, called by
 !> rollcon_equations' init): one model per process, as rollcon_user_forces' utilities have.
@@ -37,7 +41,7 @@ module rollcon_force_measures
     use rollcon_reactions, only : reaction_site_type, reaction_sites, site_wrench, &
         & swapped_wrench
     use rollcon_expression, only : quantity_names, quantity_tx, quantity_kind, &
-        & kind_element_force
+        & kind_element_force, quantity_varval
     use rollcon_user_forces, only : set_force_measure_hook, force_measure_interface
     implicit none
     private
@@ -52,20 +56,72 @@ contains
 
     !> Read the force measures from model (a target that outlives its use: the equations'
     !> own) and answer SYSFNC's force measures through rollcon_user_forces' hook; the hook
-    !> set again for the same model costs nothing.
-    subroutine set_force_measure_model(model)
+    !> set again for the same model costs nothing, unless refresh (the equations' init: a new
+    !> model may sit where an old one was) asks for its sites again.
+    subroutine set_force_measure_model(model, refresh)
         type(model_type), intent(in), target :: model
+        logical, intent(in), optional :: refresh
         procedure(force_measure_interface), pointer :: hook
+        logical :: again
 
-        if (associated(measured, model)) then
+        again = .false.
+        if (present(refresh)) again = refresh
+        if (associated(measured, model) .and. .not. again) then
             ! the same model: its sites as they are (a REQSUB's rows set it at every row)
             if (allocated(sites)) return
         end if
         measured => model
         sites = reaction_sites(model)
+        call add_motion_sites(model, sites)
         hook => answer_force_measure
         call set_force_measure_hook(hook)
     end subroutine set_force_measure_model
+
+    !> A site at its markers for each MOTION of the model (reaction_sites gives a MOTION's
+    !> reaction on each part it holds, at the centre of mass, as its columns report it): its
+    !> force and torque on the part of its I at I, as a JOINT's (on the ground: minus the
+    !> reaction on J's part, its moment carried to I).
+    subroutine add_motion_sites(model, sites)
+        type(model_type), intent(in) :: model
+        type(reaction_site_type), allocatable, intent(inout) :: sites(:)
+        type(reaction_site_type), allocatable :: grown(:)
+        type(reaction_site_type) :: site
+        integer :: s, k
+
+        if (.not. allocated(model%statements)) return
+        do s = 1, size(model%statements)
+            if (.not. is_motion(s)) cycle
+            associate (statement => model%statements(s))
+                if (statement%i%part == 0 .and. statement%j_part == 0) cycle
+                site%statement = s
+                site%rows = pack([(k, k = 1, model%nc)], model%ucons(:model%nc)%statement == s)
+                if (size(site%rows) == 0) cycle
+                site%at_marker = .true.
+                site%on_ground = statement%i%part == 0
+                site%part = merge(statement%j_part, statement%i%part, site%on_ground)
+                site%stem = "motion" // to_text(statement%id)
+            end associate
+            ! (element by element: gfortran 12 may mishandle an array constructor of a type
+            ! with allocatable components)
+            allocate(grown(size(sites) + 1))
+            do k = 1, size(sites)
+                grown(k) = sites(k)
+            end do
+            grown(size(grown)) = site
+            call move_alloc(grown, sites)
+        end do
+
+    contains
+
+        logical function is_motion(s)
+            integer, intent(in) :: s
+
+            is_motion = model%statements(s)%kind == statement_element
+            if (.not. is_motion) return
+            is_motion = index(model%statements(s)%name, "MOTION/") == 1
+            if (is_motion) is_motion = model%statements(s)%i%id /= 0
+        end function is_motion
+    end subroutine add_motion_sites
 
     !> rollcon_user_forces' force_measure_interface (module header): the wrench [N, N m], ground
     !> axes, on the part of the marker read, the torque about its origin.
@@ -78,7 +134,7 @@ contains
         integer, allocatable, intent(out) :: rows(:), read_markers(:)
         character(len=:), allocatable, intent(out) :: problem
         character(len=:), allocatable :: name
-        logical :: torque_half
+        logical :: torque_half, variable_caller
         integer :: s, f, at, between
 
         wrench = 0.0_wp
@@ -89,6 +145,8 @@ contains
             return
         end if
         name = trim(quantity_names(quantity))
+        ! a VARSUB's call (module header)
+        variable_caller = statement_word(caller) == "VARIABLE"
         if (quantity_kind(quantity) == kind_element_force) then
             call element_measure()
             return
@@ -96,18 +154,6 @@ contains
         torque_half = quantity >= quantity_tx
         at = ids(1)
         between = ids(2)
-        ! a MOTION's force is not summed (its markers are not the mechanics' to know): a sum
-        ! that might hold one is refused rather than answered without it
-        if (allocated(measured%statements)) then
-            do s = 1, size(measured%statements)
-                if (measured%statements(s)%kind /= statement_element) cycle
-                if (index(measured%statements(s)%name, "MOTION/") /= 1) cycle
-                problem = name // " in a model with " // measured%statements(s)%name &
-                    & // ": rollcon's force measures do not sum a MOTION's force, so the sum " &
-                    & // "would leave it out where it acts"
-                return
-            end do
-        end if
         do s = 1, size(sites)
             if (.not. sites(s)%at_marker) cycle
             associate (statement => measured%statements(sites(s)%statement))
@@ -151,7 +197,17 @@ contains
             logical, intent(in) :: at_j
 
             associate (force => measured%forces(f)%statement, other => measured%forces(f)%name)
-                ! (a REQSUB, caller "", reads every force at its row: no cycle)
+                if (variable_caller) then
+                    if (.not. known_before_variables(f)) then
+                        if (zero_share(f, at_j)) return
+                        problem = variable_refusal(f)
+                        return
+                    end if
+                    wrench = wrench + force_wrench(force, at_j, time, q, u)
+                    call add_markers(f)
+                    return
+                end if
+                ! (a REQSUB and a DIFSUB, caller "", read every force of the state: no cycle)
                 if (len(caller) > 0 .and. force%routine > 0 .and. force%declared_forces) then
                     if (other == caller .and. zero_share(f, at_j)) return
                     problem = "it sums the force of " // other // ", whose routine reads " &
@@ -164,6 +220,39 @@ contains
                 call add_markers(f)
             end associate
         end subroutine add_force
+
+        !> Force f's value is known when a VARSUB is called: written as an expression that
+        !> reads no VARVAL (module header).
+        logical function known_before_variables(f)
+            integer, intent(in) :: f
+            integer :: k, m
+
+            associate (force => measured%forces(f)%statement)
+                known_before_variables = force%routine == 0
+                if (.not. known_before_variables) return
+                if (.not. allocated(force%markers)) return
+                do k = 1, 6
+                    if (.not. force%given(k)) cycle
+                    if (.not. allocated(force%functions(k)%inputs)) cycle
+                    do m = 1, size(force%functions(k)%inputs)
+                        if (force%functions(k)%inputs(m)%quantity == quantity_varval) &
+                            & known_before_variables = .false.
+                    end do
+                end do
+            end associate
+        end function known_before_variables
+
+        !> Why a VARSUB's force measure does not sum force f (module header).
+        function variable_refusal(f) result(why)
+            integer, intent(in) :: f
+            character(len=:), allocatable :: why
+
+            why = "it sums the force of " // measured%forces(f)%name // ", which rollcon " &
+                & // "evaluates after the VARIABLEs (a force served by a routine, or reading " &
+                & // "VARVAL, may read them): a VARSUB's force measures sum the reactions of " &
+                & // "JOINTs, JPRIMs and MOTIONs and the forces written as expressions that " &
+                & // "read no VARIABLE"
+        end function variable_refusal
 
         !> Force f's share of what is read is zero by its kind (module header).
         logical function zero_share(f, at_j)
@@ -208,6 +297,19 @@ contains
             logical :: at_j
 
             at_j = ids(2) == 1
+            if (name == "MOTION") then
+                do s = 1, size(sites)
+                    if (.not. sites(s)%at_marker) cycle
+                    associate (statement => measured%statements(sites(s)%statement))
+                        if (statement%kind /= statement_element) cycle
+                        if (statement%name /= "MOTION/" // to_text(ids(1))) cycle
+                    end associate
+                    call add_site(s, at_j)
+                    return
+                end do
+                problem = "no MOTION/" // to_text(ids(1)) // " in the model"
+                return
+            end if
             if (name == "JOINT" .or. name == "JPRIM") then
                 do s = 1, size(sites)
                     if (.not. sites(s)%at_marker) cycle
@@ -230,7 +332,8 @@ contains
             if (.not. any(wanted == [character(len=12) :: "SFORCE", "VFORCE", "VTORQUE", &
                 & "GFORCE", "BUSHING", "SPRINGDAMPER"])) then
                 problem = "an element's force rollcon's SYSFNC does not answer (JOINT, JPRIM, " &
-                    & // "SFORCE, VFORCE, VTORQUE, GFORCE, BUSHING and SPDP are answered)"
+                    & // "MOTION, SFORCE, VFORCE, VTORQUE, GFORCE, BUSHING and SPDP are " &
+                    & // "answered)"
                 return
             end if
             if (allocated(measured%forces)) then
@@ -239,8 +342,12 @@ contains
                     if (measured%forces(f)%statement%id /= ids(1)) cycle
                     if (statement_word(measured%forces(f)%name) /= wanted) cycle
                     associate (force => measured%forces(f)%statement)
-                        if (len(caller) > 0 .and. force%routine > 0 .and. &
-                            & force%declared_forces) then
+                        if (variable_caller .and. .not. known_before_variables(f)) then
+                            problem = variable_refusal(f)
+                            return
+                        end if
+                        if (len(caller) > 0 .and. .not. variable_caller .and. &
+                            & force%routine > 0 .and. force%declared_forces) then
                             problem = "the force of " // measured%forces(f)%name // ", whose " &
                                 & // "routine reads force measures: a cycle of forces " &
                                 & // "reading each other, which rollcon does not solve"

@@ -67,9 +67,9 @@ module rollcon_model
         character(len=:), allocatable :: name
         !> The line of the dataset it was written on (0: a model built in code, no line)
         integer :: line = 0
-        !> A JOINT's or JPRIM's markers I and J as the model holds them (part 0: the ground;
-        !> their origins and axes in the part's principal axes, turned with the part at each
-        !> re-basing), and the part of its marker J (model order, 0: the ground)
+        !> A JOINT's, JPRIM's or MOTION's markers I and J as the model holds them (part 0: the
+        !> ground; their origins and axes in the part's principal axes, turned with the part at
+        !> each re-basing), and the part of its marker J (model order, 0: the ground)
         type(marker_type) :: i, j
         integer :: j_part = 0
     end type statement_type
@@ -526,6 +526,10 @@ contains
                 statement%id = motion%id
                 statement%name = "MOTION/" // to_text(motion%id)
                 if (present(line)) statement%line = line
+                ! its markers, where its reaction acts (rollcon_force_measures)
+                statement%i = i
+                statement%j = j
+                statement%j_part = j%part
             end associate
         end associate
     end subroutine add_motion

@@ -42,7 +42,7 @@ module rollcon_user_force_partials
     private
 
     public :: add_user_force_partials, add_user_force_acceleration_partials
-    public :: add_variable_acceleration_partials
+    public :: add_variable_acceleration_partials, add_variable_multiplier_partials
     public :: add_user_force_multiplier_partials
 
 contains
@@ -222,6 +222,44 @@ contains
         end function reads_loop_variable
 
     end subroutine add_variable_acceleration_partials
+    !> Subtract from dm_dlambda (n x nc) the partials in the multipliers of every force written
+    !> as an expression that reads VARVAL of a VARSUB whose initialisation call read a
+    !> constraint's reaction: d(load)/d VARVAL (exact, the expression's jets) times
+    !> d VARVAL/d lambda (dv_dlambda(k, r) for the VARIABLE ids(k): rollcon_user_forces'
+    !> difference_variable_multipliers), as add_variable_acceleration_partials chains
+    !> d VARVAL/da: VARVAL's jets carry the partials in up to n multipliers at a time in the
+    !> rates' slots, and the statement's partials in the rates with them, less without them,
+    !> are those columns. A force routine reading VARVAL is served by
+    !> add_user_force_multiplier_partials (the VARSUB's rows join its declaration).
+    subroutine add_variable_multiplier_partials(forces, time, q, u, ids, dv_dlambda, &
+            & dm_dlambda)
+        type(applied_force_type), intent(in) :: forces(:)
+        real(wp), intent(in) :: time
+        !> Coordinates and rates of all parts [SI]
+        real(wp), intent(in) :: q(:), u(:)
+        !> The user VARIABLEs' ids and their partials in the multipliers (size(ids) x nc)
+        integer, intent(in) :: ids(:)
+        real(wp), intent(in) :: dv_dlambda(:, :)
+        real(wp), intent(inout) :: dm_dlambda(:, :)
+        real(wp), allocatable :: slots(:, :), partials(:, :)
+        integer :: n, first, last
+
+        if (size(ids) == 0) return
+        if (all(dv_dlambda == 0.0_wp)) return
+        n = size(dm_dlambda, 1)
+        allocate(slots(size(ids), n), partials(n, n))
+        do first = 1, size(dv_dlambda, 2), n
+            last = min(first + n - 1, size(dv_dlambda, 2))
+            if (all(dv_dlambda(:, first:last) == 0.0_wp)) cycle
+            slots = 0.0_wp
+            slots(:, :last - first + 1) = dv_dlambda(:, first:last)
+            partials = 0.0_wp
+            call add_variable_acceleration_partials(forces, time, q, u, ids, slots, partials)
+            dm_dlambda(:, first:last) = dm_dlambda(:, first:last) &
+                & + partials(:, :last - first + 1)
+        end do
+    end subroutine add_variable_multiplier_partials
+
     !> Subtract the partials in the multipliers lambda of every force whose routine read a
     !> constraint's reaction at its initialisation call (SYSFNC's force measures summing a
     !> JOINT's or JPRIM's reaction: marker_force_type's declared_rows) from dm_dlambda, the

@@ -10,7 +10,9 @@
 !> reads none: ADAMS's rule, call_user_motion refuses it), and the force measures (FX ... TM,
 !> an element's force JOINT ... SPDP) from the multipliers set_system_constraint_forces gave
 !> last (the same loop's iterate, IDA's unknowns), summed by rollcon_force_measures through a
-!> hook (force_measure; docs/datasets.md, "Force measures read by a user's routine").
+!> hook (force_measure; docs/datasets.md, "Force measures read by a user's routine"), to a
+!> force routine, a VARSUB (its partials in the multipliers differenced,
+!> difference_variable_multipliers), a DIFSUB and a REQSUB; a MOTSUB reads none.
 !>
 !> ADAMS's utilities take no handle, so what they read is module state, as
 !> rollcon_adams_runtime's: the table of routines the model may use (register_force_routine:
@@ -88,6 +90,8 @@ module rollcon_user_forces
     public :: set_system_accelerations, reads_accelerations, acceleration_difference_call
     public :: variables_read_accelerations, variables_reading_accelerations
     public :: difference_variable_accelerations, system_accelerations
+    public :: variables_read_constraint_forces, difference_variable_multipliers
+    public :: declare_variable_rows
     public :: force_measure_interface, set_force_measure_hook, set_system_constraint_forces
     public :: reads_constraint_forces, multiplier_difference_call
 
@@ -148,6 +152,10 @@ module rollcon_user_forces
         !> ... 'WDTM')): a force that reads it closes the algebraic loop a force routine
         !> reading accelerations does (reads_accelerations)
         logical :: declared_accelerations = .false.
+        !> The constraint rows whose reactions its initialisation call's force measures summed
+        !> (SYSFNC('JOINT'), FX ... TM over a JOINT: its value then depends on the multipliers,
+        !> an algebraic loop with the forces that read it; allocated once that call is made)
+        integer, allocatable :: declared_rows(:)
         !> Its value at the state last evaluated, in the dataset's units
         real(wp) :: value = 0.0_wp
     end type user_variable_type
@@ -208,6 +216,12 @@ module rollcon_user_forces
     !> and whether a REQSUB's call is under way (a force measure is answered to these alone)
     character(len=:), allocatable, save :: caller_now
     logical, save :: request_call = .false.
+    !> A VARSUB's or a DIFSUB's call is under way (a force measure is answered to these too)
+    logical, save :: variable_calling = .false., diff_calling = .false.
+    !> The constraint rows whose reactions the DIFSUBs' initialisation calls read (their
+    !> values then depend on the multipliers, which the equations then solve for at every
+    !> state: reads_constraint_forces)
+    integer, allocatable, save :: diff_rows(:)
     !> An initialisation call's force measures: whether it read any, the constraint rows they
     !> summed; the rows of the declaration in force during an evaluation
     logical, save :: named_forces = .false.
@@ -356,11 +370,18 @@ contains
                 named = [integer ::]
                 named_rates = .false.
                 named_accelerations = .false.
+                named_forces = .false.
+                named_rows = [integer ::]
                 value = 0.0_wp
+                variable_calling = .true.
+                caller_now = variable%name
                 call call_hook(variable%routine, variable%id, time/variables_time_unit, &
                     & variable%par, size(variable%par), .false., .true., value, 1)
+                caller_now = ""
+                variable_calling = .false.
                 declaring = .false.
                 variable%declared = named
+                variable%declared_rows = named_rows
                 variable%declared_rates = named_rates
                 variable%declared_accelerations = named_accelerations
                 call variable_problem(variable, "the initialisation call (IFLAG = .TRUE.)", &
@@ -445,10 +466,16 @@ contains
         else if (allocated(allowed)) then
             deallocate(allowed)
         end if
+        if (allocated(variable%declared_rows)) allowed_rows = variable%declared_rows
         result = 0.0_wp
+        variable_calling = .true.
+        caller_now = variable%name
         call call_hook(variable%routine, variable%id, time/variables_time_unit, variable%par, &
             & size(variable%par), dflag, .false., result, 1)
+        caller_now = ""
+        variable_calling = .false.
         if (allocated(allowed)) deallocate(allowed)
+        if (allocated(allowed_rows)) deallocate(allowed_rows)
         allowed_rates = .true.
         allowed_accelerations = .true.
         value = result(1)
@@ -544,6 +571,7 @@ contains
         type(routine_declaration_type), intent(out) :: declaration
         type(error_type), allocatable, intent(out) :: error
         real(wp) :: result(1)
+        integer :: k
 
         call begin_call(time, q, u)
         call set_system_diff_state(ids, x, w)
@@ -553,9 +581,17 @@ contains
         named_dif1s = [integer ::]
         named_rates = .false.
         named_accelerations = .false.
+        named_forces = .false.
+        named_rows = [integer ::]
         result = 0.0_wp
+        diff_calling = .true.
+        caller_now = ""
         call call_hook(entry, id, time/time_unit, par, size(par), .false., .true., result, 1)
+        diff_calling = .false.
         declaring = .false.
+        if (.not. allocated(diff_rows)) diff_rows = [integer ::]
+        diff_rows = [diff_rows, pack(named_rows, [(.not. any(diff_rows == named_rows(k)), &
+            & k = 1, size(named_rows))])]
         declaration%markers = named
         declaration%parts = parts_of(named)
         declaration%rates = named_rates
@@ -598,7 +634,10 @@ contains
             allowed_dif1s = declaration%dif1s
         end if
         result = 0.0_wp
+        diff_calling = .true.
+        caller_now = ""
         call call_hook(entry, id, time/time_unit, par, size(par), dflag, .false., result, 1)
+        diff_calling = .false.
         if (allocated(allowed)) deallocate(allowed)
         if (allocated(allowed_difs)) deallocate(allowed_difs, allowed_dif1s)
         allowed_rates = .true.
@@ -634,6 +673,8 @@ contains
             message = reported%message
             colon = index(message, ": ")
             if (index(message, "UCON/") == 1 .and. colon > 0) message = message(colon + 2:)
+            ! the utility's refusal that the routine's ERRMES reports, when there is one
+            if (len(problem) > 0) message = message // " (" // problem // ")"
             call fatal_error(error, name // ": its " // force_routine_label(entry) &
                 & // " reported an error in " // call_name // " at TIME = " // to_text(time) &
                 & // ": " // message, stat_ucon)
@@ -670,6 +711,8 @@ contains
             message = reported%message
             colon = index(message, ": ")
             if (index(message, "UCON/") == 1 .and. colon > 0) message = message(colon + 2:)
+            ! the utility's refusal that the routine's ERRMES reports, when there is one
+            if (len(problem) > 0) message = message // " (" // problem // ")"
             call fatal_error(error, variable%name // ": its " &
                 & // force_routine_label(variable%routine) // " reported an error in " &
                 & // call_name // " at TIME = " // to_text(time/variables_time_unit) // ": " &
@@ -789,6 +832,8 @@ contains
                 message = reported%message
                 colon = index(message, ": ")
                 if (index(message, "UCON/") == 1 .and. colon > 0) message = message(colon + 2:)
+                ! the utility's refusal that the routine's ERRMES reports, when there is one
+                if (len(problem) > 0) message = message // " (" // problem // ")"
                 call fatal_error(error, at // " reported an error in " // call_name &
                     & // " at TIME = " // to_text(time/motions_time_unit) // ": " // message, &
                     & stat_ucon)
@@ -902,11 +947,12 @@ contains
         end if
     end function routine_name_of
 
-    !> Empty the table (the direct call hook again).
+    !> Empty the table (the direct call hook again; the DIFSUBs' rows forgotten).
     subroutine clear_force_routines()
         if (allocated(table)) deallocate(table)
         allocate(table(0))
         call_hook => direct_force_call
+        diff_rows = [integer ::]
     end subroutine clear_force_routines
 
     !> The entry serving a statement of kind that names routine ("" for the model's own): its
@@ -1116,7 +1162,8 @@ contains
     end subroutine report_call_problem
 
     !> The markers SYSFNC and SYSARY may name (every marker of the model) and the dataset's
-    !> units [m, s, N] the routines compute in (force absent: 1 N).
+    !> units [m, s, N] the routines compute in (force absent: 1 N); a new model's (the
+    !> DIFSUBs' rows forgotten).
     subroutine set_system_markers(all_markers, length, time, force)
         type(marker_type), intent(in) :: all_markers(:)
         real(wp), intent(in) :: length, time
@@ -1127,6 +1174,8 @@ contains
         time_unit = time
         force_unit = 1.0_wp
         if (present(force)) force_unit = force
+        ! a new model: its DIFSUBs have read no reaction yet
+        diff_rows = [integer ::]
     end subroutine set_system_markers
 
     !> Who answers SYSFNC's force measures (rollcon_force_measures' answer; null: nobody, and
@@ -1150,12 +1199,17 @@ contains
 
     !> True when a force of the model is served by a routine whose initialisation call read
     !> a force measure summing a constraint's reaction (its values then depend on the
-    !> multipliers: an algebraic loop).
+    !> multipliers: an algebraic loop), or a VARSUB's or a DIFSUB's did (the equations then
+    !> give the routines the multipliers at every state: the loop of the forces reading the
+    !> VARIABLE, the reaction a DIFF integrates).
     pure logical function reads_constraint_forces(forces)
         type(applied_force_type), intent(in) :: forces(:)
         integer :: i
 
-        reads_constraint_forces = .false.
+        reads_constraint_forces = variables_read_constraint_forces()
+        if (allocated(diff_rows)) then
+            if (size(diff_rows) > 0) reads_constraint_forces = .true.
+        end if
         do i = 1, size(forces)
             if (forces(i)%profile /= profile_statement) cycle
             if (forces(i)%statement%routine == 0) cycle
@@ -1163,6 +1217,97 @@ contains
             if (size(forces(i)%statement%declared_rows) > 0) reads_constraint_forces = .true.
         end do
     end function reads_constraint_forces
+
+    !> True when a VARSUB's initialisation call read a force measure summing a constraint's
+    !> reaction (user_variable_type's declared_rows).
+    pure logical function variables_read_constraint_forces() result(reads)
+        integer :: v
+
+        reads = .false.
+        if (.not. allocated(variables)) return
+        do v = 1, size(variables)
+            if (.not. allocated(variables(v)%declared_rows)) cycle
+            if (size(variables(v)%declared_rows) > 0) reads = .true.
+        end do
+    end function variables_read_constraint_forces
+
+    !> dv_dlambda(v, k): the partial of the v-th user VARIABLE (user_variable_list's order) in
+    !> the multiplier of row k at (t, q, u, lambda), by central differences
+    !> (rollcon_central_differences) over the rows its initialisation call's force measures
+    !> summed (declared_rows), each call with DFLAG = .TRUE.; zero elsewhere and for the
+    !> VARIABLEs that read no reaction. The multipliers and values set before are restored.
+    subroutine difference_variable_multipliers(time, q, u, lambda, dv_dlambda)
+        real(wp), intent(in) :: time, q(:), u(:), lambda(:)
+        real(wp), intent(out) :: dv_dlambda(:, :)
+        real(wp), allocatable :: kept(:), block(:, :), values(:)
+        integer :: v
+
+        dv_dlambda = 0.0_wp
+        if (.not. allocated(variables)) return
+        if (allocated(lambda_now)) then
+            kept = lambda_now
+        else
+            allocate(kept(size(lambda)), source=0.0_wp)
+        end if
+        values = variables%value
+        do v = 1, size(variables)
+            if (.not. allocated(variables(v)%declared_rows)) cycle
+            if (size(variables(v)%declared_rows) == 0) cycle
+            allocate(block(size(variables(v)%declared_rows), 1), source=0.0_wp)
+            call central_differences(lambda, variables(v)%declared_rows, multipliers_moved, &
+                & block)
+            dv_dlambda(v, variables(v)%declared_rows) = block(:, 1)
+            deallocate(block)
+        end do
+        lambda_now = kept
+        variables%value = values
+
+    contains
+
+        subroutine multipliers_moved(shifted, moved, failed)
+            real(wp), intent(in) :: shifted(:)
+            real(wp), intent(out) :: moved(:)
+            logical, intent(out) :: failed
+
+            lambda_now = shifted
+            call variable_call(variables(v), time, q, u, .true., moved(1), failed)
+        end subroutine multipliers_moved
+
+    end subroutine difference_variable_multipliers
+
+    !> The constraint rows whose reactions the VARSUBs of the VARIABLEs an expression force
+    !> reads (VARVAL) summed, as the force's declared_rows (the DAE form's sparse pattern
+    !> keeps the momentum rows of the parts it loads by those rows' multipliers); a force
+    !> served by a routine has them from its initialisation call.
+    subroutine declare_variable_rows(forces)
+        type(applied_force_type), intent(inout) :: forces(:)
+        integer, allocatable :: rows(:)
+        integer :: i, k, m, v, r
+
+        if (.not. allocated(variables)) return
+        do i = 1, size(forces)
+            if (forces(i)%profile /= profile_statement) cycle
+            associate (s => forces(i)%statement)
+                if (s%routine > 0) cycle
+                rows = [integer ::]
+                do k = 1, 6
+                    if (.not. s%given(k)) cycle
+                    if (.not. allocated(s%functions(k)%inputs)) cycle
+                    do m = 1, size(s%functions(k)%inputs)
+                        if (s%functions(k)%inputs(m)%quantity /= quantity_varval) cycle
+                        v = findloc(variables%id, s%functions(k)%inputs(m)%marker, dim=1)
+                        if (v == 0) cycle
+                        if (.not. allocated(variables(v)%declared_rows)) cycle
+                        do r = 1, size(variables(v)%declared_rows)
+                            if (.not. any(rows == variables(v)%declared_rows(r))) &
+                                & rows = [rows, variables(v)%declared_rows(r)]
+                        end do
+                    end do
+                end do
+                if (size(rows) > 0) s%declared_rows = rows
+            end associate
+        end do
+    end subroutine declare_variable_rows
 
     !> difference_call at (t, q, u) with the multipliers lambda its force measures read; the
     !> multipliers set before are restored after it.
@@ -1602,10 +1747,10 @@ contains
         errflg = .true.
         call_name = "SYSFNC('" // trim(quantity_names(quantity)) // "')"
         element = quantity_kind(quantity) == kind_element_force
-        if (.not. force_call .and. .not. request_call) then
+        if (.not. (force_call .or. request_call .or. variable_calling .or. diff_calling)) then
             call refuse(call_name // ": a force, which rollcon answers to a force routine " &
-                & // "(SFOSUB, VFOSUB, VTOSUB, GFOSUB) and a REQSUB alone; a VARSUB, DIFSUB " &
-                & // "or MOTSUB is evaluated before the forces it would read")
+                & // "(SFOSUB, VFOSUB, VTOSUB, GFOSUB), a VARSUB, a DIFSUB and a REQSUB; a " &
+                & // "MOTSUB's MOTION is a function of TIME alone")
             return
         end if
         if (.not. associated(measure_hook) .or. .not. allocated(c_now)) then
@@ -1761,6 +1906,14 @@ contains
                 named_rates = named_rates .or. variables(k)%declared_rates
                 named_accelerations = named_accelerations &
                     & .or. variables(k)%declared_accelerations
+            end if
+            ! the reactions it reads: the force's values depend on their multipliers
+            if (allocated(variables(k)%declared_rows)) then
+                if (.not. allocated(named_rows)) named_rows = [integer ::]
+                do m = 1, size(variables(k)%declared_rows)
+                    if (.not. any(named_rows == variables(k)%declared_rows(m))) &
+                        & named_rows = [named_rows, variables(k)%declared_rows(m)]
+                end do
             end if
         end if
         value = variables(k)%value

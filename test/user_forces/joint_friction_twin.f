@@ -1,17 +1,38 @@
-C     rollcon test routine (suite force-measures): joint_friction.f's friction with the
+C     rollcon test routines (suite force-measures): joint_friction.f's friction with the
 C     joint's reaction in closed form. The centre of mass is at R = DX, DY(22, 10) from the
 C     pivot, turning at W = WZ(20, 10); with the friction torque T about the pivot, Euler's
 C     law there gives the angular acceleration A = ((R x M G)_Z + T)/(IZZ + M |R|^2), and
 C     Newton's law the reaction F = M (A Z x R - W^2 R - G), G = (0, -PAR(4), 0). T =
 C     -PAR(1) |F| W is solved by fixed-point iteration (a contraction: dT/dT = PAR(1) W M |R|
-C     /(IZZ + M |R|^2) is about 0.1 here) to the last bits.
+C     /(IZZ + M |R|^2) is about 0.1 here) to the last bits (REACTS).
+C     SFOSUB: the friction torque T. DIFSUB: the reaction |F|, the rate of a DIFF
+C     integrating it (variable_friction_twin.adm).
       SUBROUTINE SFOSUB(ID, TIME, PAR, NPAR, DFLAG, IFLAG, RESULT)
       IMPLICIT NONE
       INTEGER ID, NPAR
       DOUBLE PRECISION TIME, PAR(*), RESULT(1)
       LOGICAL DFLAG, IFLAG
+      DOUBLE PRECISION T, F
+      CALL REACTS(ID, PAR, T, F)
+      RESULT(1) = T
+      END
+
+      SUBROUTINE DIFSUB(ID, TIME, PAR, NPAR, DFLAG, IFLAG, VALUE)
+      IMPLICIT NONE
+      INTEGER ID, NPAR
+      DOUBLE PRECISION TIME, PAR(*), VALUE
+      LOGICAL DFLAG, IFLAG
+      DOUBLE PRECISION T
+      CALL REACTS(ID, PAR, T, VALUE)
+      END
+
+C     The friction torque T and the reaction |F| at the state of the call (above).
+      SUBROUTINE REACTS(ID, PAR, T, F)
+      IMPLICIT NONE
+      INTEGER ID
+      DOUBLE PRECISION PAR(*), T, F
       INTEGER IPAR(2), K
-      DOUBLE PRECISION RX, RY, W, M, IZZ, G, A, T, FX, FY, LAST
+      DOUBLE PRECISION RX, RY, W, M, IZZ, G, A, FX, FY, LAST
       LOGICAL ERRFLG
       IPAR(1) = 22
       IPAR(2) = 10
@@ -34,5 +55,8 @@ C     /(IZZ + M |R|^2) is about 0.1 here) to the last bits.
          T = -PAR(1)*SQRT(FX**2 + FY**2)*W
          IF (ABS(T - LAST) .LE. 1.0D-16*ABS(T)) GO TO 20
    10 CONTINUE
-   20 RESULT(1) = T
+   20 A = (-RX*M*G + T)/(IZZ + M*(RX**2 + RY**2))
+      FX = M*(-A*RY - W**2*RX)
+      FY = M*(A*RX - W**2*RY + G)
+      F = SQRT(FX**2 + FY**2)
       END

@@ -4,10 +4,13 @@
 !> revolute joint's reaction, FM(I, J), an algebraic loop in the joint's multipliers, against
 !> the same pendulum whose routine computes the reaction in closed form; a VFOSUB reading a
 !> spring's force through SFORCE(id, jflag, comp, rm) and FZ(i, j, k) against the same VFORCE
-!> written with the spring's expression; each on IDA (the multipliers among its unknowns) and
-!> CVODE (Newton on the accelerations and multipliers); a force reading its own force
-!> refused; and `rollcon check` of the friction routine, its force measures answered at
-!> every probed state.
+!> written with the spring's expression; the friction written as a VARIABLE whose VARSUB
+!> reads the reaction, and a DIFF whose DIFSUB integrates it, against the closed form; each
+!> on IDA (the multipliers among its unknowns) and CVODE (Newton on the accelerations and
+!> multipliers); a crank driven by a MOTION, its driving torque read as TZ, TM and
+!> SYSFNC('MOTION') against the closed form; a force reading its own force refused, and a
+!> MOTSUB reading one; and `rollcon check` of the friction routine, its force measures
+!> answered at every probed state.
 module test_user_force_measures
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type, fatal_error
@@ -38,6 +41,11 @@ module test_user_force_measures
     !> by the integrators' global error, bounded by 1e-6 (100 rtol over a 1 s run of motions of
     !> size 1). What each twin would differ by with the force measure lost is in each test.
     real(wp), parameter :: twin_tolerance = 1.0e-6_wp
+    !> Largest difference allowed between a DIFF integrating a reaction (some 20 to 40 N over
+    !> 1 s) and its twin's [N s, N]: the twins' rows differ by the integrators' global error
+    !> (above), the reaction by M g = 20 N per radian of the angle's, and the DIFF integrates
+    !> that over 1 s: 20 twin_tolerance (measured 4.8e-7 on CVODE, 5.3e-6 on IDA).
+    real(wp), parameter :: diff_tolerance = 2.0e-5_wp
 
 contains
 
@@ -49,7 +57,11 @@ contains
             & new_unittest("element-force-read-ida", test_force_read_ida), &
             & new_unittest("element-force-read-cvode", test_force_read_cvode), &
             & new_unittest("force-reading-itself-refused", test_cycle_refused), &
-            & new_unittest("force-measure-beside-a-motion-refused", test_motion_refused), &
+            & new_unittest("variable-reaction-friction-ida", test_variable_friction_ida), &
+            & new_unittest("variable-reaction-friction-cvode", test_variable_friction_cvode), &
+            & new_unittest("variable-reading-its-reader-refused", test_variable_cycle), &
+            & new_unittest("motion-driving-torque", test_motion_torque), &
+            & new_unittest("motsub-force-measure-refused", test_motsub_refused), &
             & new_unittest("reqsub-force-measures", test_reqsub), &
             & new_unittest("check-joint-friction", test_check_friction)]
     end subroutine collect_user_force_measures
@@ -119,22 +131,50 @@ contains
         end do
     end subroutine test_cycle_refused
 
-    !> force_motion.adm: SFORCE/3's routine reads FM(20, 10) in a model with MOTION/7, whose
-    !> force the measures do not sum: refused (not answered without it), the error naming the
-    !> statement, the call and the MOTION.
-    subroutine test_motion_refused(error)
+    !> variable_friction.adm (the pivot friction -0.05 VARVAL(4) WZ(20, 10), VARIABLE/4's
+    !> VARSUB reading the joint's reaction as SYSFNC('JOINT', 1, 0, 1): the loop in the
+    !> joint's multipliers closed through the VARIABLE; VARIABLE/5 the same reaction as FM(20,
+    !> 10), SFORCE/8 the difference of the two) gives the rows of variable_friction_twin.adm
+    !> (the reaction in closed form) to twin_tolerance on IDA, as test_friction_ida (the
+    !> friction lost moves the angle by 0.27 rad); and DIFF/9, whose DIFSUB integrates the
+    !> reaction read as SYSFNC('JOINT', 1, 0, 1), gives the twin's (its DIFSUB computing the
+    !> reaction in closed form) to diff_tolerance (below). The reaction read as 0 leaves the
+    !> DIFF at 0, 22 N s from the twin's at the end.
+    subroutine test_variable_friction_ida(error)
+        type(error_type), allocatable, intent(out) :: error
+
+        call compare_twins("variable_friction.adm", "variable_friction.f", &
+            & "variable_friction_twin.adm", "joint_friction_twin.f", formulation_ida, error, &
+            & diff="diff9")
+    end subroutine test_variable_friction_ida
+
+    !> test_variable_friction_ida on CVODE (Newton on the accelerations and multipliers, the
+    !> VARSUB evaluated at each iterate and differenced over the joint's rows).
+    subroutine test_variable_friction_cvode(error)
+        type(error_type), allocatable, intent(out) :: error
+
+        call compare_twins("variable_friction.adm", "variable_friction.f", &
+            & "variable_friction_twin.adm", "joint_friction_twin.f", formulation_cvode, error, &
+            & diff="diff9")
+    end subroutine test_variable_friction_cvode
+
+    !> variable_cycle.adm: VARIABLE/5's VARSUB reads TM(20, 10), which sums SFORCE/3's torque,
+    !> -0.05 VARVAL(5): refused with an error naming the VARIABLE, its line, the call and the
+    !> SFORCE (the force is evaluated after the VARIABLEs it reads).
+    subroutine test_variable_cycle(error)
         type(error_type), allocatable, intent(out) :: error
         type(history_type) :: history
         type(error_type), allocatable :: run_error
-        character(len=*), parameter :: pieces(3) = [character(len=40) :: "SFORCE/3", &
-            & "SYSFNC('FM')", "MOTION/7"]
+        character(len=*), parameter :: pieces(4) = [character(len=40) :: &
+            & "variable_cycle.adm:14: VARIABLE/5", "SYSFNC('TM')", "SFORCE/3", &
+            & "evaluates after the VARIABLEs"]
         integer :: k
 
-        call run_user(folder // "force_motion.adm", "joint_friction.f", formulation_ida, &
+        call run_user(folder // "variable_cycle.adm", "variable_friction.f", formulation_ida, &
             & history, run_error)
         if (.not. allocated(run_error)) then
-            call fatal_error(error, "force_motion.adm ran: a force measure that leaves a " &
-                & // "MOTION's force out was answered")
+            call fatal_error(error, "variable_cycle.adm ran: a VARIABLE reading the force " &
+                & // "that reads it was not refused")
             return
         end if
         do k = 1, size(pieces)
@@ -142,7 +182,101 @@ contains
                 & // "not say '" // trim(pieces(k)) // "': " // run_error%message)
             if (allocated(error)) return
         end do
-    end subroutine test_motion_refused
+    end subroutine test_variable_cycle
+
+    !> motion_crank.adm: MOTION/7 turns the crank at theta = 1.5 t + 0.5 t^2 on its revolute
+    !> JOINT/1, the centre of mass (M = 2 kg, 1 m from the pivot, IZZ = 0.1 kg m^2) at phi =
+    !> theta - 30 degrees under gravity g = 9.81 along -Y. The driving torque on the crank is
+    !> T = (IZZ + M) theta'' + M g cos(phi) and the joint's force F = M (a - g), a = theta''
+    !> (-sin, cos)(phi) - theta'^2 (cos, sin)(phi). At every row REQUEST/5's REQSUB reads
+    !> TZ(20, 10) = T (the MOTION's torque summed with the joint's reaction, which has no
+    !> Z torque), TM(20, 10) = |T| (the crank's motion is planar: no other torque),
+    !> SYSFNC('MOTION', 7, 0, 8) = T and SYSFNC('MOTION', 7, 1, 8) = -T (at J, on the ground,
+    !> whose origin is I's), FM(20, 10) = |F| and FX(20, 10) = F_x (the MOTION's force is zero:
+    !> it turns the joint), and REQUEST/6's expressions TZ(20, 10) and MOTION(7, 0, 8, 0) give
+    !> T: each within 1e-10 [N m, N] of its closed form, on IDA and CVODE. The MOTION holds
+    !> the crank's angle at every row to round-off and the row's multipliers are solved there,
+    !> so what is left is round-off in the solve and the sums (measured 1.7e-13, T being some
+    !> 20 N m): 1e-10 is that with a wide margin; the MOTION's torque left out is T itself,
+    !> between 2 and 22 N m, and its torque taken at the centre of mass instead of I differs
+    !> by M g cos(phi), the same size.
+    subroutine test_motion_torque(error)
+        type(error_type), allocatable, intent(out) :: error
+        real(wp), parameter :: tolerance = 1.0e-10_wp, gravity = 9.81_wp, mass = 2.0_wp, &
+            & izz = 0.1_wp, pi = acos(-1.0_wp)
+        character(len=*), parameter :: columns(8) = [character(len=8) :: "req5_f2", "req5_f3", &
+            & "req5_f4", "req5_f6", "req5_f7", "req5_f8", "req6_f2", "req6_f3"]
+        type(history_type) :: history
+        real(wp), allocatable :: time(:), phi(:), rate(:), torque(:), fx(:), fy(:), &
+            & expected(:), found(:)
+        real(wp) :: largest
+        integer, parameter :: formulations(2) = [formulation_cvode, formulation_ida]
+        integer :: k, f, formulation
+
+        do f = 1, size(formulations)
+            formulation = formulations(f)
+            call run_user(folder // "motion_crank.adm", "motion_crank.f", formulation, history, &
+                & error)
+            if (allocated(error)) return
+            time = history%column(1)
+            phi = 1.5_wp*time + 0.5_wp*time**2 - pi/6.0_wp
+            rate = 1.5_wp + time
+            torque = (izz + mass)*1.0_wp + mass*gravity*cos(phi)
+            fx = mass*(-sin(phi) - rate**2*cos(phi))
+            fy = mass*(cos(phi) - rate**2*sin(phi) + gravity)
+            do k = 1, size(columns)
+                if (history%layout%column(trim(columns(k))) == 0) then
+                    call fatal_error(error, "no column " // trim(columns(k)))
+                    return
+                end if
+                found = history%column(history%layout%column(trim(columns(k))))
+                select case (k)
+                case (2)
+                    expected = abs(torque)
+                case (4)
+                    expected = -torque
+                case (5)
+                    expected = sqrt(fx**2 + fy**2)
+                case (6)
+                    expected = fx
+                case default
+                    expected = torque
+                end select
+                largest = maxval(abs(found - expected))
+                call check(error, largest <= tolerance .and. time(history%count) > 0.99_wp, &
+                    & "motion_crank.adm (formulation " // to_text(formulation) // "): " &
+                    & // trim(columns(k)) // " differs from its closed form by " &
+                    & // to_text(largest))
+                if (allocated(error)) return
+            end do
+        end do
+    end subroutine test_motion_torque
+
+    !> A MOTSUB reading a force measure (SYSFNC('FM') of the hinge of motion.adm's pendulum) is
+    !> refused before the run, naming the MOTION, its line, the call and ADAMS's rule (a
+    !> MOTION is a function of TIME alone).
+    subroutine test_motsub_refused(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(history_type) :: history
+        type(error_type), allocatable :: run_error
+        character(len=*), parameter :: pieces(3) = [character(len=60) :: &
+            & "motion.adm:17: MOTION/1: its MOTSUB of", "SYSFNC('FM')", &
+            & "a MOTSUB's MOTION is a function of TIME alone"]
+        integer :: k
+
+        call run_user(folder // "motion.adm", "faulty/motsub_force_measure.f", &
+            & formulation_ida, history, run_error)
+        if (.not. allocated(run_error)) then
+            call fatal_error(error, "motion.adm ran: a MOTSUB reading a force measure was " &
+                & // "not refused")
+            return
+        end if
+        do k = 1, size(pieces)
+            call check(error, index(run_error%message, trim(pieces(k))) > 0, "the error does " &
+                & // "not say '" // trim(pieces(k)) // "': " // run_error%message)
+            if (allocated(error)) return
+        end do
+    end subroutine test_motsub_refused
 
     !> joint_friction.adm's REQUEST/5, its REQSUB reading FM(20, 10), FX(20, 10, 22) and
     !> TZ(20, 10) through SYSFNC at each output row, gives REQUEST/6's columns (the same
@@ -198,13 +332,16 @@ contains
 
     !> Run model with file and twin with twin_file ("" for none) on the formulation; both
     !> complete with as many rows (at least 101), equal to twin_tolerance in every coordinate
-    !> and rate of the part-th part (1 absent).
-    subroutine compare_twins(model, file, twin, twin_file, formulation, error, part)
+    !> and rate of the part-th part (1 absent), and, given diff, in that DIFF's column (and
+    !> its rate's, diff // "_dot") to diff_tolerance.
+    subroutine compare_twins(model, file, twin, twin_file, formulation, error, part, diff)
         character(len=*), intent(in) :: model, file, twin, twin_file
         integer, intent(in) :: formulation
         type(error_type), allocatable, intent(out) :: error
         integer, intent(in), optional :: part
+        character(len=*), intent(in), optional :: diff
         type(history_type) :: user, other
+        character(len=:), allocatable :: name
         real(wp) :: largest, d
         integer :: c, worst, p
 
@@ -229,6 +366,21 @@ contains
         call check(error, largest <= twin_tolerance, model // " (formulation " &
             & // to_text(formulation) // "): the runs differ by " // to_text(largest) &
             & // " in column " // to_text(worst) // " of part " // to_text(p))
+        if (allocated(error) .or. .not. present(diff)) return
+        do c = 1, 2
+            name = diff
+            if (c == 2) name = diff // "_dot"
+            if (user%layout%column(name) == 0 .or. other%layout%column(name) == 0) then
+                call fatal_error(error, model // ": no column " // name)
+                return
+            end if
+            d = maxval(abs(user%column(user%layout%column(name)) &
+                & - other%column(other%layout%column(name))))
+            call check(error, d <= diff_tolerance, model // " (formulation " &
+                & // to_text(formulation) // "): " // name // " differs from its twin's by " &
+                & // to_text(d))
+            if (allocated(error)) return
+        end do
     end subroutine compare_twins
 
     !> Run path with the user's file ("" for none: the expressions run here) on the

@@ -13,7 +13,10 @@
 !> routine that reads a marker its initialisation call did not name is noted, and that
 !> partial left out. A force reading VARVAL of a VARSUB written for the test has the Newton
 !> matrix of its twin reading an expression VARIABLE (the VARSUB's partials differenced over
-!> its declared markers' parts, one of them a part the force does not join).
+!> its declared markers' parts, one of them a part the force does not join). A force reading
+!> VARVAL of a VARSUB that reads a joint's reaction (SYSFNC('JOINT')) has IDA's dr/dy of
+!> central differences, its columns in the multipliers included (the VARSUB's partials in
+!> them differenced and chained through the expression).
 module test_force_partials
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type
@@ -21,6 +24,7 @@ module test_force_partials
     use rollcon_ucosub_contract, only : ucosub_interface
     use rollcon_disk_reference, only : rolling_disk_ucosub
     use rollcon_problem, only : problem_type
+    use rollcon_dae, only : dae_size, dae_residual, dae_jacobian
     use rollcon_ode_form, only : ode_form_type
     use rollcon_adm_model, only : adm_model_type
     use rollcon_adm_build, only : build_adm_problem
@@ -114,7 +118,8 @@ contains
             & new_unittest("expression-forces-dae-jacobian-and-pattern", test_dae), &
             & new_unittest("user-routines-against-expressions", test_user_twins), &
             & new_unittest("user-routine-undeclared-read", test_undeclared), &
-            & new_unittest("varsub-read-by-force-against-expression", test_varsub_twins)]
+            & new_unittest("varsub-read-by-force-against-expression", test_varsub_twins), &
+            & new_unittest("varsub-reading-reaction-dae-jacobian", test_varsub_reaction)]
     end subroutine collect_force_partials
 
     !> A model built from a dataset's lines at its start (q0, u0).
@@ -322,6 +327,101 @@ contains
         call expressions%release()
         call users%release()
     end subroutine test_varsub_twins
+
+    !> A pendulum on a revolute joint whose axis is tilted in ground (its markers turned by
+    !> 30, 40, 50 degrees), held by the rotational SFORCE/3 = -0.2 VARVAL(4) - 3 AZ(20, 10),
+    !> VARIABLE/4 served by reaction_varsub: |F| of JOINT/1 at I, SYSFNC('JOINT', 1, 0, 1).
+    !> IDA's dr/dy (cj = 0) at the start with the multipliers lambda_k = 2 + k (away from a
+    !> zero reaction, where |F| has a kink) and mu = 0 against central differences of step
+    !> h_fd in every unknown, to tol_fd of its largest entry (the VARSUB's partials are
+    !> differences of error 4e-11 of their scale, above; measured 1.7e-9 for a largest entry
+    !> of 6.9); and its columns in the multipliers differ from the same pendulum's without
+    !> the VARIABLE (C^T alone) by the friction's partials, 0.2 d|F|/dlambda (measured 0.14),
+    !> which the test requires to exceed 1e-2, over a thousand times tol_fd's bound here:
+    !> left out, the columns would fail.
+    subroutine test_varsub_reaction(error)
+        type(error_type), allocatable, intent(out) :: error
+        character(len=200), parameter :: pendulum(8) = [character(len=200) :: &
+            & "pendulum", "UNITS/SYSTEM = SI", &
+            & "PART/1, GROUND|MARKER/10, PART = 1, REULER = 30D, 40D, 50D", &
+            & "PART/2, MASS = 2, CM = 22, IP = 0.1, 0.12, 0.15, REULER = 30D, 40D, 50D", &
+            & "MARKER/20, PART = 2|MARKER/22, PART = 2, QP = 0.8, -0.5, 0.3", &
+            & "JOINT/1, REVOLUTE, I = 20, J = 10", "ACCGRAV/KGRAV = -9.81", &
+            & "VARIABLE/4, FUNCTION = USER(1)"]
+        character(len=200), parameter :: friction(1) = [character(len=200) :: &
+            & "SFORCE/3, ROTATIONAL, I = 20, J = 10, FUNCTION = -0.2*VARVAL(4) - 3*AZ(20, 10)"]
+        character(len=200), parameter :: bare(1) = [character(len=200) :: &
+            & "SFORCE/3, ROTATIONAL, I = 20, J = 10, FUNCTION = -3*AZ(20, 10)"]
+        type(problem_type), target :: problem
+        real(wp), allocatable :: q0(:), u0(:), with(:, :), without(:, :)
+        real(wp) :: largest
+        integer :: n
+
+        call clear_force_routines()
+        call register_variable_routine("", "test_force_partials", reaction_varsub)
+        call build([character(len=200) :: pendulum, friction, tail], problem, q0, u0, error)
+        if (.not. allocated(error)) call differenced_dae(problem, q0, u0, with, error)
+        if (allocated(error)) then
+            call clear_force_routines()
+            return
+        end if
+        call problem%release()
+        call build([character(len=200) :: pendulum, bare, tail], problem, q0, u0, error)
+        if (.not. allocated(error)) call differenced_dae(problem, q0, u0, without, error)
+        call clear_force_routines()
+        if (allocated(error)) return
+        n = size(q0)
+        largest = maxval(abs(with(:, 2*n + 1:2*n + problem%eq%nc) &
+            & - without(:, 2*n + 1:2*n + problem%eq%nc)))
+        call check(error, largest > 1.0e-2_wp, "the friction's partials in the multipliers " &
+            & // "are at most " // to_text(largest))
+        call problem%release()
+    end subroutine test_varsub_reaction
+
+    !> dr/dy of problem's DAE residual (cj = 0) at (0, y = (q0, u0, lambda_k = 2 + k, mu = 0),
+    !> y' = (u0, a_k = 0.1 k - 0.5)) checked against central differences of step h_fd in every
+    !> unknown, to tol_fd of its largest entry.
+    subroutine differenced_dae(problem, q0, u0, jac, error)
+        type(problem_type), intent(inout), target :: problem
+        real(wp), intent(in) :: q0(:), u0(:)
+        real(wp), allocatable, intent(out) :: jac(:, :)
+        type(error_type), allocatable, intent(out) :: error
+        real(wp), allocatable :: y(:), yp(:), yh(:), rp(:), rm(:)
+        integer :: j, m, n, k
+
+        n = size(q0)
+        m = dae_size(problem%eq)
+        y = [q0, u0, [(2.0_wp + k, k = 1, problem%eq%nc)], [(0.0_wp, k = 1, m - 2*n &
+            & - problem%eq%nc)]]
+        yp = [u0, [(0.1_wp*k - 0.5_wp, k = 1, n)], [(0.0_wp, k = 1, m - 2*n)]]
+        allocate(jac(m, m), rp(m), rm(m))
+        call dae_jacobian(problem%eq, 0.0_wp, 0.0_wp, y, yp, jac, error)
+        if (allocated(error)) return
+        do j = 1, m
+            yh = y
+            yh(j) = y(j) + h_fd
+            call dae_residual(problem%eq, 0.0_wp, yh, yp, rp, error)
+            yh(j) = y(j) - h_fd
+            if (.not. allocated(error)) call dae_residual(problem%eq, 0.0_wp, yh, yp, rm, error)
+            if (allocated(error)) return
+            call check(error, jac(:, j), (rp - rm)/(2.0_wp*h_fd), "DAE dr/dy column " &
+                & // to_text(j) // " of " // to_text(m), abs_tol=tol_fd*maxval(abs(jac)))
+            if (allocated(error)) return
+        end do
+    end subroutine differenced_dae
+
+    !> A VARSUB: |F| of JOINT/1 at its I, SYSFNC('JOINT', [1, 0, 1]).
+    subroutine reaction_varsub(id, time, par, npar, dflag, iflag, value)
+        integer, intent(in) :: id
+        real(wp), intent(in) :: time
+        real(wp), intent(in) :: par(*)
+        integer, intent(in) :: npar
+        logical, intent(in) :: dflag, iflag
+        real(wp), intent(inout) :: value
+        logical :: failed
+
+        call system_function("JOINT", [1, 0, 1], value, failed)
+    end subroutine reaction_varsub
 
     !> A VARSUB: DM(PAR(1), PAR(2)) - PAR(3) + PAR(5) DX(PAR(4)) (SYSFNC), ADAMS's calling
     !> sequence (rollcon_system_routine_contract).
