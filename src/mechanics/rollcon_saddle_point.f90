@@ -150,7 +150,8 @@ contains
         self%blocked = present(blocks)
         self%by_blocks = .false.
         if (allocated(self%block_schur)) deallocate(self%block_schur, self%gathered, &
-            & self%sparse_gathered, self%schur_start, self%part_blocked, self%rotational_rows, self%block_shares)
+            & self%sparse_gathered, self%schur_start, self%part_blocked, self%rotational_rows, &
+            & self%block_shares)
         if (allocated(self%sparse)) then
             do b = 1, size(self%sparse)
                 call self%sparse(b)%release()
