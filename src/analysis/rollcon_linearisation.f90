@@ -177,12 +177,12 @@ contains
                 if (ucons(k)%holonomic) then
                     ! d2F/dq dq's column j is zero off the UCON's own coordinates
                     do j = 1, n
-                        jac(row, j) = 0.0_wp + cs%dt_grad_q(k, j)
+                        jac(row, j) = 0.0_wp + 0.0_wp
                     end do
                     associate (at => cs%local(:cs%local_count(k), k))
                         do jj = 1, size(at)
                             jac(row, at(jj)) = local_dot(cs%hqq(:, jj, k), u, at) &
-                                & + cs%dt_grad_q(k, at(jj))
+                                & + cs%dt_grad_q(jj, k)
                         end do
                     end associate
                     jac(row, n + 1:) = cs%grad_q(k, :)

@@ -31,7 +31,9 @@ module rollcon_constraints
         real(wp), allocatable :: grad_q(:, :), grad_u(:, :)
         !> dF_k/dt and d2F_k/dt2
         real(wp), allocatable :: dt(:), dtt(:)
-        !> d2F_k/dt dq_j and d2F_k/dt du_j
+        !> d2F_k/dt dq_i and d2F_k/dt du_i over UCON k's own coordinates: dt_grad_q(a, k) with
+        !> i = local(a, k) (width, nc), zero past local_count(k); off them they are zeros, not
+        !> stored (memory grows as the number of UCONs, not as nc n)
         real(wp), allocatable :: dt_grad_q(:, :), dt_grad_u(:, :)
         !> Each UCON's own coordinates, ascending and each once (a rate and its coordinate
         !> share one): local(1:local_count(k), k), at most `width` (12 for a UCON on two parts)
@@ -68,8 +70,7 @@ contains
                 & self%grad_u, self%dt_grad_q, self%dt_grad_u, self%hqq, self%hqu, self%local, &
                 & self%local_count, self%slot, self%plain_hessian)
             allocate(self%value(nc), self%dt(nc), self%dtt(nc), source=0.0_wp)
-            allocate(self%grad_q(nc, n), self%grad_u(nc, n), self%dt_grad_q(nc, n), &
-                & self%dt_grad_u(nc, n), source=0.0_wp)
+            allocate(self%grad_q(nc, n), self%grad_u(nc, n), source=0.0_wp)
             allocate(self%local(max_ucon_vars, nc), self%slot(max_ucon_vars, nc), &
                 & self%local_count(nc), source=0)
             allocate(self%plain_hessian(nc), source=.false.)
@@ -100,7 +101,7 @@ contains
                 end associate
             end do
             allocate(self%hqq(self%width, self%width, nc), self%hqu(self%width, self%width, nc), &
-                & source=0.0_wp)
+                & self%dt_grad_q(self%width, nc), self%dt_grad_u(self%width, nc), source=0.0_wp)
         end associate
     end subroutine allocate_state
 
@@ -199,7 +200,8 @@ contains
                     if (ucon%converted) call to_si(ucon, 1, [.true., .true., .false.], scalar, &
                         & array, xmatrx)
                     self%dt(k) = scalar
-                    call scatter_row(ucon, array, self%dt_grad_q(k, :), self%dt_grad_u(k, :))
+                    call place_row(ucon, self%slot(:, k), array, self%dt_grad_q(:, k), &
+                        & self%dt_grad_u(:, k))
                     if (ucon%holonomic) then
                         call evaluate_one(ucon, ucon_time, self%local_q, [scalar_dtt, &
                             & array_none, xmatrx_none], scalar, array, xmatrx, error)
@@ -294,6 +296,30 @@ contains
             end if
         end do
     end subroutine scatter_row
+
+    !> Place a UCON's partials ARRAY over its own coordinates (`slot` gives each variable's
+    !> place): its coordinates' d/dq and its rates' d/du, each place's other kind zero, as
+    !> scatter_row does over the system's.
+    pure subroutine place_row(ucon, slot, array, local_q, local_u)
+        type(ucon_statement_type), intent(in) :: ucon
+        integer, intent(in) :: slot(:)
+        real(wp), intent(in) :: array(:)
+        !> d/dq and d/du over the UCON's own coordinates (width)
+        real(wp), intent(inout) :: local_q(:), local_u(:)
+        integer :: i
+
+        do i = 1, ucon%nvars
+            local_q(slot(i)) = 0.0_wp
+            local_u(slot(i)) = 0.0_wp
+        end do
+        do i = 1, ucon%nvars
+            if (ucon%velocity(i)) then
+                local_u(slot(i)) = array(i)
+            else
+                local_q(slot(i)) = array(i)
+            end if
+        end do
+    end subroutine place_row
 
     !> Place a UCON's second partials (XMATRX) in its compact d2F/dq dq and d2F/dq du (over its
     !> own coordinates: `slot` gives each variable's place; d2F/du du is zero: F is linear in

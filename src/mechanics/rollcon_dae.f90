@@ -407,7 +407,7 @@ contains
                         do jj = 1, size(at)
                             j = at(jj)
                             call put(row, j, local_dot(cs%hqq(:, jj, k), u, at) &
-                                & + cs%dt_grad_q(k, j))
+                                & + cs%dt_grad_q(jj, k))
                             call put(j, 2*n + nc + h, -cs%grad_q(k, j))
                             call put(row, n + j, cs%grad_q(k, j))
                             call put(2*n + nc + h, j, cs%grad_q(k, j))

@@ -85,6 +85,7 @@ module rollcon_equations
         procedure :: init
         procedure :: accelerations
         procedure :: ode_jacobian
+        procedure :: size_ode_form
         procedure :: project
         procedure :: energy
         procedure :: potential_energy
@@ -314,7 +315,7 @@ contains
                 if (self%model%ucons(k)%holonomic) then
                     rate = sparse_dot(cs%grad_q(k, :), u, at(first:last)) + cs%dt(k)
                     self%gamma(k) = -local_quadratic_form(cs%hqq(:, :, k), u, at(first:last)) &
-                        & - 2.0_wp*sparse_dot(cs%dt_grad_q(k, :), u, at(first:last)) &
+                        & - 2.0_wp*local_dot(cs%dt_grad_q(:, k), u, at(first:last)) &
                         & - cs%dtt(k) - 2.0_wp*alpha*rate - alpha**2*cs%value(k)
                 else
                     self%gamma(k) = -sparse_dot(cs%grad_q(k, :), u, at(first:last)) - cs%dt(k) &
@@ -631,6 +632,7 @@ contains
         real(wp), allocatable :: dv_da(:, :)
         integer, allocatable :: ids(:)
 
+        if (.not. allocated(self%work%dm_da)) allocate(self%work%dm_da(self%n, self%n))
         self%work%dm_da = 0.0_wp
         call add_user_force_acceleration_partials(self%model%forces, time, q, u, a, &
             & self%work%dm_da)
@@ -822,6 +824,15 @@ contains
         end do
     end subroutine momentum_jacobian
 
+    !> The arrays of the ODE form's Jacobian and projection (ode_jacobian, project), sized once
+    !> by a formulation that forms them at every step (CVODE's); IDA's leaves them unallocated
+    !> (n x 2n and more: a long chain's largest) unless it projects.
+    subroutine size_ode_form(self)
+        class(equations_type), intent(inout) :: self
+
+        call self%work%size_ode_form(self%n, self%nc, self%nh)
+    end subroutine size_ode_form
+
     !> Jacobian of the ODE right-hand side (q, u)' = (u, a(q, u, t)): da/dy = -K^-1 dG/dy with
     !> G = (M a - f - C^T lambda, C a - gamma) at fixed (a, lambda). For position UCONs the
     !> third partials of F in dgamma/dq are not available and are left out.
@@ -836,6 +847,7 @@ contains
         integer :: n, j
 
         n = self%n
+        call self%work%size_right_hand_sides(n, self%nc, 2*n)
         associate (w => self%work)
             call self%accelerations(time, q, u, baumgarte, w%a, w%lambda, error, second=.true.)
             if (allocated(error)) return
@@ -906,19 +918,19 @@ contains
                             j = at(jj)
                             rhs_bottom(k, j) = -local_dot(cs%hqq(:, jj, k), a, at) &
                                 & - 2.0_wp*alpha*(local_dot(cs%hqq(:, jj, k), u, at) &
-                                & + cs%dt_grad_q(k, j)) - alpha**2*cs%grad_q(k, j)
+                                & + cs%dt_grad_q(jj, k)) - alpha**2*cs%grad_q(k, j)
                             rhs_bottom(k, n + j) = -2.0_wp*local_dot(cs%hqq(:, jj, k), u, at) &
-                                & - 2.0_wp*cs%dt_grad_q(k, j) - 2.0_wp*alpha*cs%grad_q(k, j)
+                                & - 2.0_wp*cs%dt_grad_q(jj, k) - 2.0_wp*alpha*cs%grad_q(k, j)
                         end do
                     else
                         ! C a - gamma = dF/du a + dF/dq u + dF/dt + alpha F
                         do jj = 1, size(at)
                             j = at(jj)
                             rhs_bottom(k, j) = -(local_dot(cs%hqu(jj, :, k), a, at) &
-                                & + local_dot(cs%hqq(:, jj, k), u, at) + cs%dt_grad_q(k, j) &
+                                & + local_dot(cs%hqq(:, jj, k), u, at) + cs%dt_grad_q(jj, k) &
                                 & + alpha*cs%grad_q(k, j))
                             rhs_bottom(k, n + j) = -(cs%grad_q(k, j) &
-                                & + local_dot(cs%hqu(:, jj, k), u, at) + cs%dt_grad_u(k, j) &
+                                & + local_dot(cs%hqu(:, jj, k), u, at) + cs%dt_grad_u(jj, k) &
                                 & + alpha*cs%grad_u(k, j))
                         end do
                     end if
@@ -938,6 +950,10 @@ contains
 
         n = self%n
         dq = 0.0_wp
+        ! (sized by size_ode_form in CVODE's forms; IDA's rebasing projects on a first use)
+        call self%work%size_right_hand_sides(n, self%nc, 1)
+        if (self%nh > 0 .and. .not. allocated(self%work%holonomic_rows)) &
+            & allocate(self%work%holonomic_rows(self%nh, n), source=0.0_wp)
         if (self%nh > 0 .and. self%masked()) then
             ! the active position UCONs alone (those set aside repeat them; a flying
             ! contact's height is no constraint)

@@ -188,14 +188,13 @@ contains
                     if (eq%model%ucons(k)%holonomic) then
                         ! d2F/dq dq's column j is zero off the UCON's own coordinates
                         do j = 1, n
-                            self%dud_dq(k, j) = -(0.0_wp + cs%dt_grad_q(k, j) &
-                                & + alpha*cs%grad_q(k, j))
+                            self%dud_dq(k, j) = -(0.0_wp + 0.0_wp + alpha*cs%grad_q(k, j))
                         end do
                         associate (at => cs%local(:cs%local_count(k), k))
                             do jj = 1, size(at)
                                 j = at(jj)
                                 self%dud_dq(k, j) = -(local_dot(cs%hqq(:, jj, k), u, at) &
-                                    & + cs%dt_grad_q(k, j) + alpha*cs%grad_q(k, j))
+                                    & + cs%dt_grad_q(jj, k) + alpha*cs%grad_q(k, j))
                             end do
                         end associate
                     else

@@ -13,16 +13,20 @@ module rollcon_ode_workspace
     type :: ode_workspace_type
         !> Applied moment about each part's centre, ground components [N m] (3, parts)
         real(wp), allocatable :: moments(:, :)
-        !> Rows of C of the position UCONs alone (nh, n), for the position projection
+        !> Rows of C of the position UCONs alone (nh, n), for the position projection (sized as
+        !> the right-hand sides: a run that never projects holds none)
         real(wp), allocatable :: holonomic_rows(:, :)
         !> Right-hand sides of the Jacobian's and the projection's solves: momentum rows (n, 2n)
-        !> and constraint rows (nc, 2n)
+        !> and constraint rows (nc, 2n) for the Jacobian, one column of each for the projection
+        !> (sized by the ODE forms' init, size_ode_form, else by a first use: IDA's runs form
+        !> no ODE Jacobian)
         real(wp), allocatable :: rhs_top(:, :), rhs_bottom(:, :)
         !> Jacobian blocks of the momentum rows d(M a - f - C^T lambda)/d(q, u)
         real(wp), allocatable :: dm_dq(:, :), dm_du(:, :)
         !> d(M a - f)/da: the mass matrix's part of it left out, the partials of the forces
-        !> whose user routines read accelerations (rollcon_equations' algebraic loop); and the
-        !> LU factors (with pivots) of that loop's saddle-point matrix, (n + nc) square
+        !> whose user routines read accelerations (rollcon_equations' algebraic loop; allocated
+        !> by its first evaluation, none where no routine reads accelerations); and the LU
+        !> factors (with pivots) of that loop's saddle-point matrix, (n + nc) square
         real(wp), allocatable :: dm_da(:, :), loop_matrix(:, :)
         integer, allocatable :: loop_pivots(:)
         !> The loop's last accelerations and multipliers, where its next solve starts
@@ -36,6 +40,8 @@ module rollcon_ode_workspace
         real(wp), allocatable :: a(:), lambda(:), q(:)
     contains
         procedure :: init
+        procedure :: size_right_hand_sides
+        procedure :: size_ode_form
     end type ode_workspace_type
 
 contains
@@ -47,10 +53,34 @@ contains
         integer, intent(in) :: n, nc, nh, parts
 
         allocate(self%moments(3, parts), source=0.0_wp)
-        allocate(self%holonomic_rows(nh, n), self%rhs_top(n, 2*n), self%rhs_bottom(nc, 2*n), &
-            & source=0.0_wp)
-        allocate(self%dm_dq(n, n), self%dm_du(n, n), self%dm_da(n, n), source=0.0_wp)
+        allocate(self%dm_dq(n, n), self%dm_du(n, n), source=0.0_wp)
         allocate(self%a(n), self%lambda(nc), self%q(n), source=0.0_wp)
     end subroutine init
+
+    !> The arrays of the ODE form's Jacobian and projection (CVODE's forms, which form them at
+    !> every step; IDA's, which does not, leaves them to a first use): the right-hand sides'
+    !> 2 n columns and, with position UCONs (nh > 0), the projection's rows. Once, before a run.
+    subroutine size_ode_form(self, n, nc, nh)
+        class(ode_workspace_type), intent(inout) :: self
+        integer, intent(in) :: n, nc, nh
+
+        call self%size_right_hand_sides(n, nc, 2*n)
+        if (nh > 0 .and. .not. allocated(self%holonomic_rows)) &
+            & allocate(self%holonomic_rows(nh, n), source=0.0_wp)
+    end subroutine size_ode_form
+
+    !> rhs_top (n x columns) and rhs_bottom (nc x columns), zero, unless they hold as many
+    !> columns already: the Jacobian's 2 n, or the projection's 1. Allocates on a first use
+    !> only (and once more where a run projects before it forms an ODE Jacobian).
+    subroutine size_right_hand_sides(self, n, nc, columns)
+        class(ode_workspace_type), intent(inout) :: self
+        integer, intent(in) :: n, nc, columns
+
+        if (allocated(self%rhs_top)) then
+            if (size(self%rhs_top, 2) >= columns) return
+            deallocate(self%rhs_top, self%rhs_bottom)
+        end if
+        allocate(self%rhs_top(n, columns), self%rhs_bottom(nc, columns), source=0.0_wp)
+    end subroutine size_right_hand_sides
 
 end module rollcon_ode_workspace

@@ -12,7 +12,12 @@
 !> UCONs first: their rows are chosen among themselves (a position UCON also holds its
 !> position, which the velocity rows cannot), then fixed in front while the others are
 !> pivoted. |R(k,k)| of a unit column is its distance from the span of those chosen before it:
-!> a row whose distance is at most rank_tolerance repeats them and is set aside.
+!> a row whose distance is at most rank_tolerance repeats them and is set aside. A block of
+!> sparse_schur_rows rows or more (a long chain, one block: its dense QRs would cost the cube of
+!> its rows and hold rows x coordinates) has its rank found first by SuiteSparseQR on the same
+!> unit columns held sparse (rollcon_sparse_qr, the same tolerance): all rows independent, all
+!> are kept without a dense QR; else the dense choice above decides which rows repeat others,
+!> as on a small block.
 !>
 !> A set-aside row's multiplier is zero; the constraint force C^T lambda is the same for any
 !> split of it between dependent rows, so the split reported (multipliers) is the one of least
@@ -27,7 +32,9 @@ module rollcon_redundancy
     use rollcon_error, only : error_type
     use rollcon_lapack, only : pivoted_columns
     use rollcon_least_squares, only : minimum_norm_solve, smallest_singular_value
+    use rollcon_sparse_qr, only : sparse_rank
     use rollcon_constraint_blocks, only : constraint_blocks_type
+    use rollcon_saddle_point, only : sparse_schur_rows
     implicit none
     private
 
@@ -162,6 +169,13 @@ contains
         changed = .false.
         rows = blocks%block_rows(b)
         m = size(rows)
+        if (m >= sparse_schur_rows .and. (first .or. self%kept(b) == m)) then
+            ! a large block (a long chain: its dense QRs would cost the cube of its rows): its
+            ! rank found sparse first, the dense choice only where rows repeat others
+            call choose_sparse_block(self, b, c, mass, blocks, holonomic, first, changed, &
+                & error)
+            if (allocated(error) .or. .not. self%redundant(b)) return
+        end if
         call unit_columns(c, mass, blocks%block_coordinates(b), rows, a, norms)
         position = pack([(k, k = 1, m)], holonomic(rows))
         allocate(leading(m), source=.false.)
@@ -199,6 +213,86 @@ contains
             if (allocated(error)) return
         end if
     end subroutine choose_block
+
+    !> choose_block for a large block b: the rank of its unit columns (sparse_unit_columns) by
+    !> SuiteSparseQR with rank_tolerance. Every row independent: all kept, each row's distance
+    !> its |R(k,k)| in SPQR's order, redundant(b) false. Else only redundant(b) is set (true),
+    !> for choose_block's dense choice, which decides which rows repeat others as on a small
+    !> block (the same rows, distances and messages).
+    subroutine choose_sparse_block(self, b, c, mass, blocks, holonomic, first, changed, error)
+        type(redundancy_type), intent(inout) :: self
+        integer, intent(in) :: b
+        real(wp), intent(in) :: c(:, :), mass(:, :)
+        type(constraint_blocks_type), intent(in) :: blocks
+        logical, intent(in) :: holonomic(:), first
+        logical, intent(out) :: changed
+        type(error_type), allocatable, intent(out) :: error
+        integer, allocatable :: rows(:), column_start(:), row(:), order(:)
+        real(wp), allocatable :: values(:), diagonal(:)
+        logical, allocatable :: before(:)
+        integer :: m, rank
+
+        changed = .false.
+        rows = blocks%block_rows(b)
+        m = size(rows)
+        call sparse_unit_columns(c, mass, blocks, rows, column_start, row, values)
+        allocate(order(m), diagonal(m))
+        call sparse_rank(size(c, 2), column_start, row, values, rank_tolerance, rank, order, &
+            & diagonal, error)
+        if (allocated(error)) return
+        self%redundant(b) = rank < m
+        if (self%redundant(b)) return
+        before = self%active(rows)
+        self%active(rows) = .true.
+        changed = any(.not. before)
+        if (first) then
+            self%kept(b) = m
+            self%kept_position(b) = count(holonomic(rows))
+            self%distance(rows(order)) = diagonal
+        end if
+        self%measure_chosen(b) = 0.0_wp
+    end subroutine choose_sparse_block
+
+    !> The unit columns of unit_columns for the rows k, in compressed columns (1-based), over
+    !> the system's coordinates (n rows, size(c, 2)): each row's column nonzero over the parts
+    !> of its UCON's own coordinates only (c is zero on the block's other parts, and so are
+    !> unit_columns' entries there), 6 per part, ascending.
+    subroutine sparse_unit_columns(c, mass, blocks, rows, column_start, row, values)
+        real(wp), intent(in) :: c(:, :), mass(:, :)
+        type(constraint_blocks_type), intent(in) :: blocks
+        integer, intent(in) :: rows(:)
+        integer, allocatable, intent(out) :: column_start(:), row(:)
+        real(wp), allocatable, intent(out) :: values(:)
+        real(wp) :: factor(3, 3), x(3), rotational(3, 3), length
+        integer :: i, k, x0, p, last, i0, e, first_entry
+
+        allocate(column_start(size(rows) + 1))
+        allocate(row(6*(blocks%ucon_start(size(blocks%ucon_start)) - 1)), &
+            & values(6*(blocks%ucon_start(size(blocks%ucon_start)) - 1)))
+        e = 0
+        column_start(1) = 1
+        do i = 1, size(rows)
+            k = rows(i)
+            first_entry = e + 1
+            last = 0
+            do x0 = blocks%ucon_start(k), blocks%ucon_start(k + 1) - 1
+                p = (blocks%ucon_coordinates(x0) - 1)/6 + 1
+                if (p == last) cycle
+                last = p
+                i0 = 6*(p - 1)
+                rotational = mass(i0 + 4:i0 + 6, i0 + 4:i0 + 6)
+                factor = cholesky_3(rotational)
+                row(e + 1:e + 6) = i0 + [1, 2, 3, 4, 5, 6]
+                values(e + 1:e + 3) = c(k, i0 + 1:i0 + 3)/sqrt(mass(i0 + 1, i0 + 1))
+                x = c(k, i0 + 4:i0 + 6)
+                values(e + 4:e + 6) = forward_3(factor, x)
+                e = e + 6
+            end do
+            length = norm2(values(first_entry:e))
+            if (length > 0.0_wp) values(first_entry:e) = values(first_entry:e)/length
+            column_start(i + 1) = e + 1
+        end do
+    end subroutine sparse_unit_columns
 
     !> How many leading entries of a pivoted QR's |R(k,k)| exceed rank_tolerance.
     pure integer function leading_count(diagonal)

@@ -48,6 +48,9 @@ module rollcon_saddle_point
     !> has smaller blocks (data/bicycle.adm's, the largest, 21 rows), and keeps the dense path's
     !> numbers bit for bit.
     integer, parameter :: sparse_schur_rows = 40
+    !> Right-hand sides a sparse block's solve hands KLU at a time: klu_solve's own group of
+    !> columns (KLU 1.3: four), so that each is solved as in one call with all of them
+    integer, parameter :: klu_group = 4
 
     !> Factors of one saddle-point matrix and the workspace to solve with them
     type :: saddle_point_type
@@ -61,7 +64,8 @@ module rollcon_saddle_point
         real(wp), allocatable :: rotational(:, :, :)
         !> M^-1 C^T (n, nc), columns 1..rows in use
         real(wp), allocatable :: minv_ct(:, :)
-        !> LU factors of S (leading dimension nc) and their pivots
+        !> LU factors of S unblocked (leading dimension nc; allocated by the first factorisation
+        !> that is not by blocks) and the pivots
         real(wp), allocatable :: schur(:, :)
         integer, allocatable :: pivots(:)
         !> Factorisations done since init: one per saddle-point solve of a new matrix
@@ -71,8 +75,11 @@ module rollcon_saddle_point
         logical :: blocked = .false.
         type(constraint_blocks_type) :: blocks
         !> Each block's LU factors of S, packed (offset of block b: schur_start(b)), and the
-        !> right-hand sides of one block gathered (most_rows, up to 2 n columns)
+        !> right-hand sides of one dense block gathered (its most rows, up to 2 n columns)
         real(wp), allocatable :: block_schur(:), gathered(:, :)
+        !> The right-hand sides of one sparse block gathered, klu_group at a time (its most
+        !> rows, klu_group)
+        real(wp), allocatable :: sparse_gathered(:, :)
         integer, allocatable :: schur_start(:)
         !> For each entry of a dense block's S (packed as block_schur): whether its two UCONs
         !> share a part (else the entry is an exact zero, not summed)
@@ -131,11 +138,11 @@ contains
         self%rows = 0
         self%factorisations = 0
         if (allocated(self%part_mass)) deallocate(self%part_mass, self%rotational, self%minv_ct, &
-            & self%schur, self%pivots)
+            & self%pivots)
+        if (allocated(self%schur)) deallocate(self%schur)
         allocate(self%part_mass(self%parts), source=0.0_wp)
         allocate(self%rotational(3, 3, self%parts), source=0.0_wp)
         allocate(self%minv_ct(n, max(nc, 1)), source=0.0_wp)
-        allocate(self%schur(max(nc, 1), max(nc, 1)), source=0.0_wp)
         allocate(self%pivots(max(nc, 1)), source=0)
         if (allocated(self%active)) deallocate(self%active)
         allocate(self%active(max(nc, 1)), source=.true.)
@@ -143,7 +150,8 @@ contains
         self%blocked = present(blocks)
         self%by_blocks = .false.
         if (allocated(self%block_schur)) deallocate(self%block_schur, self%gathered, &
-            & self%schur_start, self%part_blocked, self%rotational_rows, self%block_shares)
+            & self%sparse_gathered, self%schur_start, self%part_blocked, self%rotational_rows, &
+            & self%block_shares)
         if (allocated(self%sparse)) then
             do b = 1, size(self%sparse)
                 call self%sparse(b)%release()
@@ -178,8 +186,19 @@ contains
             if (self%block_sparse(b)) m = 0
             self%schur_start(b + 1) = self%schur_start(b) + m*m
         end do
+        ! a dense block's right-hand sides gathered (a sparse block's solve in KLU's columns)
+        m = 0
+        do b = 1, blocks%count
+            if (.not. self%block_sparse(b)) m = max(m, blocks%row_start(b + 1) &
+                & - blocks%row_start(b))
+        end do
         allocate(self%block_schur(max(self%schur_start(blocks%count + 1) - 1, 1)), &
-            & self%gathered(max(blocks%most_rows, 1), max(2*n, 1)), source=0.0_wp)
+            & self%gathered(max(m, 1), max(2*n, 1)), source=0.0_wp)
+        m = 0
+        do b = 1, blocks%count
+            if (self%block_sparse(b)) m = max(m, blocks%row_start(b + 1) - blocks%row_start(b))
+        end do
+        allocate(self%sparse_gathered(max(m, 1), klu_group), source=0.0_wp)
         call find_shares(self)
         if (any(self%block_sparse)) then
             call sparse_pattern(self, failure)
@@ -392,6 +411,9 @@ contains
             if (allocated(error)) return
         end if
         if (rows == 0) return
+        ! S unblocked (rows x rows in nc x nc): allocated by the first factorisation that needs
+        ! it, none on a model whose solves all go by blocks
+        if (.not. allocated(self%schur)) allocate(self%schur(self%nc, self%nc), source=0.0_wp)
         do k = 1, rows
             self%minv_ct(:, k) = c(k, :)
         end do
@@ -671,27 +693,32 @@ contains
         real(wp), intent(inout) :: r1(self%n, m), r2(self%rows, m)
         type(error_type), allocatable, intent(out) :: error
         real(wp) :: total
-        integer :: i, k, x, col, rows_b
+        integer :: i, k, x, col, rows_b, first, width
 
-        associate (blocks => self%blocks)
+        associate (blocks => self%blocks, chunk => self%sparse_gathered)
             rows_b = blocks%row_start(b + 1) - blocks%row_start(b)
-            do col = 1, m
-                do i = 1, rows_b
-                    k = blocks%rows(blocks%row_start(b) + i - 1)
-                    total = 0.0_wp
-                    do x = blocks%ucon_start(k), blocks%ucon_start(k + 1) - 1
-                        total = total + c(k, blocks%ucon_coordinates(x)) &
-                            & *r1(blocks%ucon_coordinates(x), col)
+            ! size(chunk, 2) right-hand sides at a time, KLU's own group (klu_solve takes them
+            ! four by four): the same arithmetic on each as all at once, in a rows x 4 array
+            do first = 1, m, size(chunk, 2)
+                width = min(size(chunk, 2), m - first + 1)
+                do col = 1, width
+                    do i = 1, rows_b
+                        k = blocks%rows(blocks%row_start(b) + i - 1)
+                        total = 0.0_wp
+                        do x = blocks%ucon_start(k), blocks%ucon_start(k + 1) - 1
+                            total = total + c(k, blocks%ucon_coordinates(x)) &
+                                & *r1(blocks%ucon_coordinates(x), first + col - 1)
+                        end do
+                        chunk(i, col) = r2(k, first + col - 1) - total
+                        if (self%masked) then
+                            if (.not. self%active(k)) chunk(i, col) = 0.0_wp
+                        end if
                     end do
-                    self%gathered(i, col) = r2(k, col) - total
-                    if (self%masked) then
-                        if (.not. self%active(k)) self%gathered(i, col) = 0.0_wp
-                    end if
                 end do
+                call self%sparse(b)%solve(chunk, size(chunk, 1), width, error)
+                if (allocated(error)) return
+                call scatter_rows(blocks, b, chunk, width, r2(:, first:first + width - 1))
             end do
-            call self%sparse(b)%solve(self%gathered, size(self%gathered, 1), m, error)
-            if (allocated(error)) return
-            call scatter_rows(blocks, b, self%gathered, m, r2)
         end associate
     end subroutine solve_sparse_block
 

@@ -50,6 +50,8 @@ contains
         type(problem_type), intent(inout), target :: problem
 
         self%problem => problem
+        ! its Jacobian's and projection's arrays, once (no evaluation allocates)
+        call problem%eq%size_ode_form()
     end subroutine init
 
     !> 2n + nd: the coordinates, the rates and the DIFFs' states.

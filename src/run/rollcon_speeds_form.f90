@@ -55,6 +55,8 @@ contains
         type(problem_type), intent(inout), target :: problem
 
         self%problem => problem
+        ! the ODE form's Jacobian and projection arrays, which its own are formed from, once
+        call problem%eq%size_ode_form()
         call self%speeds%init(problem%eq)
         if (allocated(self%q)) deallocate(self%q, self%u, self%du)
         allocate(self%q(problem%eq%n), self%u(problem%eq%n), self%du(problem%eq%n), &

@@ -2,11 +2,13 @@
 !> The linear algebra of the initial-conditions analysis (rollcon_least_squares) on matrices
 !> whose answers are known in closed form: the least-norm solution of an underdetermined
 !> system, the least-squares solution of an inconsistent one, the rank as the angle between
-!> unit rows against rcond, and the left null space.
+!> unit rows against rcond, and the left null space; and the rank of a sparse matrix by
+!> SuiteSparseQR (rollcon_sparse_qr), the large blocks' of the redundancy choice.
 module test_least_squares
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type
     use rollcon_least_squares, only : minimum_norm_solve, left_null_space
+    use rollcon_sparse_qr, only : sparse_rank
     use rollcon_testing, only : unittest_type, new_unittest, check
     implicit none
     private
@@ -31,7 +33,8 @@ contains
             & new_unittest("least-squares-of-inconsistent", test_inconsistent), &
             & new_unittest("rank-from-the-angle-of-rows", test_rank), &
             & new_unittest("left-null-space", test_left_null), &
-            & new_unittest("empty-matrices", test_empty)]
+            & new_unittest("empty-matrices", test_empty), &
+            & new_unittest("sparse-rank-from-the-angle-of-columns", test_sparse_rank)]
     end subroutine collect_least_squares
 
     !> x1 + x2 = 1, x2 + x3 = 2: the solution of least norm is A^T (A A^T)^-1 b = (0, 1, 1)
@@ -150,5 +153,46 @@ contains
         call check(error, all(null == reshape([1.0_wp, 0.0_wp, 0.0_wp, 1.0_wp], [2, 2])), &
             & "the identity")
     end subroutine test_empty
+
+    !> SuiteSparseQR's rank of unit columns in compressed columns: the columns e1, e2 and
+    !> (e1 + e2)/sqrt(2) of 3 rows have rank 2, the one SPQR takes last at distance 0 from the
+    !> others' span, the second at distance sqrt(1 - (u . v)^2) from the first's (unit u, v);
+    !> two unit columns at an angle a have rank 1 at a = 1e-10 rad and rank 2 at 1e-6 rad
+    !> (tolerance rcond), the second's distance from the first's span sin(a). Each |R(k,k)| a
+    !> Householder QR's, within a few roundings of its closed form (tol_svd).
+    subroutine test_sparse_rank(error)
+        type(error_type), allocatable, intent(out) :: error
+        real(wp), parameter :: close_angle = 1.0e-10_wp, apart_angle = 1.0e-6_wp
+        integer :: rank, order(3), pair(2), k
+        real(wp) :: diagonal(3), distance(2), columns(3, 3)
+
+        columns = 0.0_wp
+        columns(1, 1) = 1.0_wp
+        columns(2, 2) = 1.0_wp
+        columns(1:2, 3) = 1.0_wp/sqrt(2.0_wp)
+        call sparse_rank(3, [1, 2, 3, 5], [1, 2, 1, 2], [1.0_wp, 1.0_wp, &
+            & [1.0_wp, 1.0_wp]/sqrt(2.0_wp)], rcond, rank, order, diagonal, error)
+        if (allocated(error)) return
+        call check(error, rank, 2, "e1, e2, (e1 + e2)/sqrt(2): rank 2")
+        if (allocated(error)) return
+        call check(error, all([(any(order == k), k = 1, 3)]), "order: each column once")
+        if (allocated(error)) return
+        call check(error, diagonal, [1.0_wp, sqrt(1.0_wp - dot_product(columns(:, order(1)), &
+            & columns(:, order(2)))**2), 0.0_wp], "|R(k,k)|: 1, the second's distance from " &
+            & // "the first, 0 for the column in the others' span", abs_tol=tol_svd)
+        if (allocated(error)) return
+        call sparse_rank(2, [1, 2, 4], [1, 1, 2], [1.0_wp, cos(close_angle), &
+            & sin(close_angle)], rcond, rank, pair, distance, error)
+        if (allocated(error)) return
+        call check(error, rank, 1, "columns 1e-10 rad apart")
+        if (allocated(error)) return
+        call sparse_rank(2, [1, 2, 4], [1, 1, 2], [1.0_wp, cos(apart_angle), &
+            & sin(apart_angle)], rcond, rank, pair, distance, error)
+        if (allocated(error)) return
+        call check(error, rank, 2, "columns 1e-6 rad apart")
+        if (allocated(error)) return
+        call check(error, distance, [1.0_wp, sin(apart_angle)], &
+            & "|R(k,k)|: 1, then the distance sin(a)", abs_tol=tol_svd)
+    end subroutine test_sparse_rank
 
 end module test_least_squares

@@ -389,7 +389,7 @@ contains
                     & + need_first + need_time, error)
                 if (allocated(error)) return
                 dt(pass) = abs(problem%eq%constraints%dt(1)) &
-                    & + sum(abs(problem%eq%constraints%dt_grad_q(1, :)))
+                    & + sum(abs(problem%eq%constraints%dt_grad_q(:, 1)))
             end associate
         end do
         call check(error, dt(1) > 1.0e-3_wp, "time partials of the turntable's F1 asked for: " &

@@ -201,7 +201,7 @@ contains
         ! the second difference divides rounding by step^2: 1e-16/1e-6 = 1e-10, and 1e-7
         call check(error, state%dtt(1), second, what // " d2F/dt2", abs_tol=1.0e-7_wp)
         if (allocated(error)) return
-        call check(error, all(state%dt_grad_q(1, :) == 0.0_wp), what // " d2F/dt dq is zero")
+        call check(error, all(state%dt_grad_q(:, 1) == 0.0_wp), what // " d2F/dt dq is zero")
     end subroutine check_partials
 
     !> s(q) at q_state from the markers' ground frames (docs/datasets.md, "MOTION").

@@ -38,7 +38,8 @@ contains
             & new_unittest("cart-on-its-circle-independent-speeds", test_cart_speeds), &
             & new_unittest("contradictory-loop-refused", test_contradictory), &
             & new_unittest("fourbar-linear-hanging", test_linear), &
-            & new_unittest("least-norm-split-independent-of-units", test_units)]
+            & new_unittest("least-norm-split-independent-of-units", test_units), &
+            & new_unittest("large-block-sets-aside-the-loops-rows", test_large_block)]
     end subroutine collect_redundancy
 
     !> test/redundant/fourbar.adm: a parallelogram of four REVOLUTEs (3 redundant equations)
@@ -484,6 +485,30 @@ contains
         call check(error, moment, [0.0_wp, 0.0_wp, 0.0_wp], "the hinges' moments about the " &
             & // "centre of mass [N m]", abs_tol=tol_same)
     end subroutine test_units
+
+    !> test/redundant/fourbar_chain.adm: the four-bar with a chain of 8 links hanging from its
+    !> coupler, one block of 60 rows, 3 of them redundant: large enough for SuiteSparseQR's rank
+    !> (40 rows or more), which finds it short, so the dense choice decides. The rows set aside
+    !> and the words that say so are the four-bar's alone (the same statements on the same
+    !> lines), none of the chain's (JOINT/51 to 58).
+    subroutine test_large_block(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(job_result_type) :: alone, with_chain
+        type(history_type) :: rows
+        character(len=:), allocatable :: words
+
+        call run_dataset("test/redundant/fourbar.adm", "", alone, rows, error)
+        if (allocated(error)) return
+        call run_dataset("test/redundant/fourbar_chain.adm", "", with_chain, rows, error)
+        if (allocated(error)) return
+        words = set_aside_words(with_chain%summary%watch_lines)
+        call check(error, len(words) > 0 .and. index(words, "JOINT/5") == 0, &
+            & "the loop's rows set aside, none of the chain's: " // words)
+        if (allocated(error)) return
+        call check(error, words == set_aside_words(alone%summary%watch_lines), &
+            & "the same rows and words as the four-bar alone: " // words // " against " &
+            & // set_aside_words(alone%summary%watch_lines))
+    end subroutine test_large_block
 
     !> The summary's words of the rows set aside (its warning line, "" without one).
     function set_aside_words(summary) result(words)
