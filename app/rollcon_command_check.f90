@@ -7,8 +7,8 @@ module rollcon_command_check
         & check_user_ucosub_isolated, read_ucon_request, report_text, write_report_json, &
         & user_build_options_type, user_file_type
     use rollcon_program, only : sampling_ranges, default_call_timeout, max_check_states, &
-        & states_refusal, dataset_ucon_requests, dataset_has_user_routines, check_user_routines, &
-        & routine_units_lines
+        & states_refusal, dataset_has_user_routines, check_user_routines, routine_units_lines, &
+        & check_dataset_ucons
     use rollcon_cli, only : cli_request_type
     use rollcon_command_run, only : call_timeout_of
     implicit none
@@ -30,30 +30,17 @@ contains
         type(user_check_options_type) :: options
         type(user_check_report_type) :: report
         type(user_ucosub_type) :: user
-        character(len=:), allocatable :: library, note
+        character(len=:), allocatable :: library
         real(wp) :: call_timeout
-        !> The status of the check of the force, variable and request routines
-        integer :: routines_status
 
         status = 0
-        routines_status = 0
         if (request%has("--help")) then
             call print_help()
             return
         end if
         if (request%has("--model") .and. len(request%positional) > 0) then
-            if (dataset_has_user_routines(request%text("--model", ""))) then
-                call check_routines(request, routines_status, error)
-                if (allocated(error)) return
-                status = routines_status
-                ! the UCONs the file's UCOSUB serves, if any, are checked next
-                allocate(requests(0))
-                call dataset_ucon_requests(request%text("--model", ""), requests, note, error)
-                if (allocated(error)) then
-                    deallocate(error)
-                    return
-                end if
-            end if
+            call check_model(request, status, error)
+            return
         end if
         call read_requests(request, requests, options, call_timeout, error)
         if (allocated(error)) return
@@ -69,16 +56,85 @@ contains
             call user%destroy()
             return
         end if
-        write(output_unit, '(a)') report_text(report, request%positional, trim(library))
-        if (request%has("--json")) then
-            ! every write checked: a report that did not reach the disk fails the command
-            call write_report_json(request%text("--json", ""), report, request%positional, &
-                & user%library, user%from_cache, error)
-        end if
-        if (.not. report%clean()) status = 1
-        status = max(status, routines_status)
+        call write_report(request, report, request%positional, library, user%library, &
+            & user%from_cache, status, error)
         call user%destroy()
     end subroutine check_command
+
+    !> `check FILE --model MODEL.adm [--ucosub MORE]...`: the dataset's statements served by
+    !> FILE's (and MORE's) routines of every kind but UCOSUB (check_routines), then every UCON
+    !> a user's routine serves, against that routine (check_dataset_ucons: one naming no
+    !> ROUTINE against the model's UCOSUB, one naming ROUTINE=FILE::NAME against that
+    !> subroutine). status: the worse of the two; error when neither has anything to check.
+    subroutine check_model(request, status, error)
+        type(cli_request_type), intent(in) :: request
+        integer, intent(out) :: status
+        type(error_type), allocatable, intent(out) :: error
+        type(ucon_request_type), allocatable :: given(:)
+        type(user_check_options_type) :: options
+        type(user_check_report_type) :: report
+        type(user_build_options_type) :: build
+        type(user_file_type), allocatable :: files(:)
+        character(len=:), allocatable :: library, notes, model, sources
+        real(wp) :: call_timeout
+        integer :: checked, k
+        logical :: routines, from_cache
+
+        status = 0
+        model = request%text("--model", "")
+        routines = dataset_has_user_routines(model)
+        if (routines) then
+            call check_routines(request, status, error)
+            if (allocated(error)) return
+        end if
+        call read_requests(request, given, options, call_timeout, error)
+        if (allocated(error)) return
+        ! the model's files of routines as `rollcon run` takes them: FILE, then each MORE
+        allocate(files(1 + request%count("--ucosub")))
+        files(1)%path = request%positional
+        sources = request%positional
+        do k = 2, size(files)
+            files(k)%path = request%nth("--ucosub", k - 1)
+            sources = sources // ", " // files(k)%path
+        end do
+        call check_dataset_ucons(files, model, build, given, options, call_timeout, checked, &
+            & report, library, from_cache, notes, error)
+        if (allocated(error)) return
+        if (checked == 0) then
+            if (routines) return
+            call fatal_error(error, model // ": no UCON statement is served by the files " &
+                & // "given (" // sources // "; each UCON names a built-in ROUTINE) and no " &
+                & // "other statement by a user's routine: nothing to check", stat_input)
+            return
+        end if
+        write(output_unit, '(a)', advance="no") notes
+        call write_report(request, report, sources, library // merge(" (from the cache)", &
+            & " (compiled now)  ", from_cache), library, from_cache, k, error)
+        status = max(status, k)
+    end subroutine check_model
+
+    !> The report as text on standard output (report_text) and, with --json, as JSON; status
+    !> 1 when it has findings, 0 else.
+    subroutine write_report(request, report, source, library, library_path, from_cache, &
+            & status, error)
+        type(cli_request_type), intent(in) :: request
+        type(user_check_report_type), intent(in) :: report
+        !> The user's file(s), the libraries (with whether from the cache), for the text; the
+        !> library's path and whether from the cache, for the JSON
+        character(len=*), intent(in) :: source, library, library_path
+        logical, intent(in) :: from_cache
+        integer, intent(out) :: status
+        type(error_type), allocatable, intent(out) :: error
+
+        status = 0
+        write(output_unit, '(a)') report_text(report, source, trim(library))
+        if (request%has("--json")) then
+            ! every write checked: a report that did not reach the disk fails the command
+            call write_report_json(request%text("--json", ""), report, source, library_path, &
+                & from_cache, error)
+        end if
+        if (.not. report%clean()) status = 1
+    end subroutine write_report
 
     !> `check FILE --model MODEL.adm [--ucosub MORE]...` for a dataset whose force, variable,
     !> request, motion or DIFF statements FILE's (and MORE's) routines serve
@@ -124,7 +180,8 @@ contains
         end if
     end subroutine check_routines
 
-    !> The UCON statements to check (--ucon, --model) and the check's options.
+    !> The UCON statements given (--ucon; a dataset's, --model, are check_model's) and the
+    !> check's options.
     subroutine read_requests(request, requests, options, call_timeout, error)
         type(cli_request_type), intent(in) :: request
         type(ucon_request_type), allocatable, intent(out) :: requests(:)
@@ -132,7 +189,6 @@ contains
         real(wp), intent(out) :: call_timeout
         type(error_type), allocatable, intent(out) :: error
         type(ucon_request_type) :: one
-        character(len=:), allocatable :: note
         integer :: k
 
         allocate(requests(0))
@@ -146,12 +202,7 @@ contains
             if (allocated(error)) return
             requests = [requests, one]
         end do
-        if (request%has("--model")) then
-            call dataset_ucon_requests(request%text("--model", ""), requests, note, error)
-            if (allocated(error)) return
-            if (len(note) > 0) write(output_unit, '(a)') note
-        end if
-        if (size(requests) == 0) then
+        if (size(requests) == 0 .and. .not. request%has("--model")) then
             call fatal_error(error, "check: no --ucon ID:PAR1,PAR2,... or --model MODEL.adm " &
                 & // "given; the routine is called as these UCON statements would call it", &
                 & stat_input)
@@ -190,8 +241,11 @@ contains
             & "                 the routine is called with this ID, PAR and NPAR; repeat for", &
             & "                 each UCON the routine serves (ids positive and distinct, one", &
             & "                 number per comma-separated field, at most 30 PAR)", &
-            & "  --model MODEL.adm  every UCON of an ADAMS dataset that names no ROUTINE (those", &
-            & "                 the model's own UCOSUB serves), with its id and PAR; and every", &
+            & "  --model MODEL.adm  every UCON of an ADAMS dataset a user's routine serves, with", &
+            & "                 its id and PAR, against that routine: the model's own UCOSUB", &
+            & "                 for one naming no ROUTINE, NAME of FILE for one naming", &
+            & "                 ROUTINE=FILE::NAME (a file given, or its name without folder", &
+            & "                 and extension); and every", &
             & "                 SFORCE, VFORCE, GFORCE, VTORQUE, VARIABLE, REQUEST, MOTION or", &
             & "                 DIFF with FUNCTION=USER(...) at the start and 20 states about", &
             & "                 it: hidden state, NaN, jumps, SYSFNC/SYSARY reads not", &

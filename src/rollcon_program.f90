@@ -17,6 +17,7 @@ module rollcon_program
     use rollcon_user_routine_check, only : dataset_has_user_routines, check_user_routines, &
         & routine_units_lines
     use rollcon_run_check, only : check_at_start
+    use rollcon_dataset_ucon_check, only : check_dataset_ucons
 
     ! rollcon bench: speed against accuracy, and the cost as models grow
     use rollcon_benchmark, only : method_type, benchmark_methods, benchmark_row_type, &

@@ -78,8 +78,12 @@ contains
         character(len=:), allocatable :: json
         integer :: g, i
 
-        json = '  {"id": ' // to_text(ucon%id) // ', "par": [' // real_list(ucon%par, ",") &
-            & // '], "declared": ' // logical_json(ucon%declared)
+        json = '  {"id": ' // to_text(ucon%id)
+        ! the statement as its dataset names it, when the UCON came from one (--model)
+        if (allocated(ucon%statement)) json = json // ', "statement": ' &
+            & // json_string(ucon%statement)
+        json = json // ', "par": [' // real_list(ucon%par, ",") // '], "declared": ' &
+            & // logical_json(ucon%declared)
         if (ucon%declared) then
             json = json // ', "parts": [' // integer_list(ucon%parts) // '], "codes": [' &
                 & // integer_list(ucon%codes) // '], "names": ['

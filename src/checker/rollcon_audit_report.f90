@@ -64,10 +64,16 @@ contains
         integer :: i, g, r, o
         character(len=16) :: worst
 
-        if (size(ucon%par) > 0) then
-            text = "UCON/" // to_text(ucon%id) // "  PAR = " // real_list(ucon%par, ", ") // nl
+        ! the statement as its dataset names it (its line, its ROUTINE), else UCON/id
+        if (allocated(ucon%statement)) then
+            text = ucon%statement
         else
-            text = "UCON/" // to_text(ucon%id) // "  PAR: none (NPAR = 0)" // nl
+            text = "UCON/" // to_text(ucon%id)
+        end if
+        if (size(ucon%par) > 0) then
+            text = text // "  PAR = " // real_list(ucon%par, ", ") // nl
+        else
+            text = text // "  PAR: none (NPAR = 0)" // nl
         end if
         if (ucon%declared) then
             text = text // "  UCOVAR: " // to_text(size(ucon%codes)) // " variables:"

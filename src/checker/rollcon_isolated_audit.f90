@@ -101,6 +101,9 @@ contains
             end if
             call remove_file(stderr_path)
             if (allocated(error)) exit
+            ! the statement as the dataset names it stays here (the child sends the findings)
+            if (allocated(requests(k)%statement)) report%ucons(k)%statement = &
+                & requests(k)%statement
         end do
     end subroutine check_user_ucosub_isolated
 

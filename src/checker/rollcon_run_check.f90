@@ -16,6 +16,7 @@ module rollcon_run_check
     use rollcon_output_layout, only : coordinate_names
     use rollcon_model, only : served_by_model_ucosub
     use rollcon_user_ucosubs, only : find_user_ucosub, user_ucosub_source
+    use rollcon_user_library, only : loaded_source
     use rollcon_partials_check, only : ucon_check_options_type, ucon_check_result_type, &
         & check_ucon_state
     implicit none
@@ -34,7 +35,8 @@ contains
     !> numbering, SI; each UCON gets its variables and the time in its own units, as in the
     !> run). Any finding is an error (stat_input) listing each wrong entry (UCON/id, output,
     !> entry, the value returned and the differences' value), the command of the full check
-    !> (rollcon check user_file --model input_path) and the option that runs anyway
+    !> (rollcon check user_file [--ucosub MORE]... --model input_path, the run's files in the
+    !> order loaded) and the option that runs anyway
     !> (--no-check). Errors of the routine itself (ERRMES, a non-finite output) pass through.
     subroutine check_at_start(user_file, input_path, problem, time, q, u, error)
         character(len=*), intent(in) :: user_file, input_path
@@ -112,16 +114,28 @@ contains
             end associate
         end do
         if (len(found) == 0) return
-        ! a dataset's UCONs are named by --model; a scene's by --ucon (docs/checker.md)
-        whole = " --ucon ID:PAR1,PAR2,..."
+        ! a dataset's UCONs are named by --model, with the run's files as the run takes them
+        ! (the check finds each UCON's routine as the run does); a scene's by --ucon
+        ! (docs/checker.md)
+        whole = files // " --ucon ID:PAR1,PAR2,..."
         if (len(input_path) > 4) then
-            if (input_path(len(input_path) - 3:) == ".adm") whole = " --model " // input_path
+            if (input_path(len(input_path) - 3:) == ".adm") then
+                whole = user_file
+                k = 1
+                do
+                    k = k + 1
+                    source = loaded_source(k)
+                    if (len(source) == 0) exit
+                    if (source /= user_file) whole = whole // " --ucosub " // source
+                end do
+                whole = whole // " --model " // input_path
+            end if
         end if
         call fatal_error(error, files // " fails its check at the model's consistent " &
             & // "start (t = " // to_text(time) // " s), so the analysis was not started: a " &
             & // "wrong partial slows the integrators or stops them, and makes a linear " &
             & // "analysis's eigenvalues wrong" // found // new_line("a") // "  the " &
-            & // "whole routine, at random states: rollcon check " // files // whole &
+            & // "whole routine, at random states: rollcon check " // whole &
             & // "; to run anyway: --no-check", stat_input)
     end subroutine check_at_start
 

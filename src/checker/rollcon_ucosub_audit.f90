@@ -41,6 +41,9 @@ module rollcon_ucosub_audit
         !> The units the routine computes in (a dataset's, for --model): the random states are
         !> drawn in SI's ranges and passed in these units, as a run passes them
         type(ucosub_units_type) :: units
+        !> The statement as its dataset names it, for the report ("UCON/2 (line 10,
+        !> ROUTINE=u::CIRCLE of u.f)"); unallocated for a UCON given as --ucon ID:PAR
+        character(len=:), allocatable :: statement
     end type ucon_request_type
 
     !> How many states, from which seed, compared how
@@ -82,6 +85,8 @@ module rollcon_ucosub_audit
     !> What was found for one UCON
     type :: ucon_report_type
         integer :: id = 0
+        !> The request's statement, when it has one (the report's heading of the UCON)
+        character(len=:), allocatable :: statement
         real(wp), allocatable :: par(:)
         !> True when the initialisation call declared its variables without a mistake
         logical :: declared = .false.
@@ -133,6 +138,8 @@ contains
         do k = 1, size(requests)
             report%ucons(k)%id = requests(k)%id
             report%ucons(k)%par = requests(k)%par
+            if (allocated(requests(k)%statement)) report%ucons(k)%statement = &
+                & requests(k)%statement
             allocate(report%ucons(k)%groups(0))
             call note_stage(0)
             call declare(guarded_ucosub, requests(k), registry, report%ucons(k))

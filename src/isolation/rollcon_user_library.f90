@@ -33,7 +33,7 @@ module rollcon_user_library
     private
 
     public :: user_ucosub_type, user_build_options_type, new_user_ucosub, load_user_ucosub, &
-        & ucosub_symbol, load_user_routines, library_stem, library_named
+        & ucosub_symbol, load_user_routines, library_stem, library_named, loaded_source
 
     !> Symbol of an external subroutine UCOSUB compiled by gfortran
     character(len=*), parameter :: ucosub_symbol = "ucosub_"
@@ -322,6 +322,32 @@ contains
             if (opened(k)%source == source .and. opened(k)%named) library_named = .true.
         end do
     end function library_named
+
+    !> The k-th file whose library load_user_routines opened and is open, in the order loaded
+    !> (a run's first file, then its more files), each once; "" past the last.
+    function loaded_source(k) result(source)
+        integer, intent(in) :: k
+        character(len=:), allocatable :: source
+        integer :: i, j, n
+        logical :: again
+
+        source = ""
+        if (.not. allocated(opened)) return
+        n = 0
+        do i = 1, size(opened)
+            if (.not. c_associated(opened(i)%handle)) cycle
+            again = .false.
+            do j = 1, i - 1
+                again = again .or. (opened(j)%source == opened(i)%source .and. &
+                    & c_associated(opened(j)%handle))
+            end do
+            if (again) cycle
+            n = n + 1
+            if (n < k) cycle
+            source = opened(i)%source
+            return
+        end do
+    end function loaded_source
 
     !> The name of a file without its folder and extension ("test/x/sfo_b.f": "sfo_b").
     pure function library_stem(path) result(stem)

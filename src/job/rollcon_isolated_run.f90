@@ -34,8 +34,13 @@ module rollcon_isolated_run
     use rollcon_user_build, only : build_user_library
     use rollcon_user_library, only : user_ucosub_type, load_user_routines, library_named
     use rollcon_user_ucosubs, only : clear_user_ucosubs, find_user_ucosub, &
-        & dispatch_user_ucosub, set_user_ucosub_entry
-    use rollcon_user_forces, only : clear_force_routines, check_user_motions
+        & dispatch_user_ucosub, set_user_ucosub_entry, user_ucosub_source
+    use rollcon_user_forces, only : clear_force_routines, check_user_motions, find_force_routine
+    use rollcon_model, only : served_by_model_ucosub
+    use rollcon_force_routine_contract, only : routine_kinds, routine_names
+    use rollcon_system_routine_contract, only : routine_reqsub, request_routine_name, &
+        & routine_varsub, variable_routine_name, routine_motsub, motion_routine_name, &
+        & routine_difsub, diff_routine_name
     use rollcon_force_routine_guard, only : install_force_guard
     use rollcon_job, only : job_type, user_file_type
     use rollcon_analysis_run, only : run_analysis
@@ -46,7 +51,8 @@ module rollcon_isolated_run
 
     !> Kinds of frame the child sends
     integer, parameter :: frame_report = 1, frame_shapes = 2, frame_started = 3, &
-        & frame_layout = 4, frame_row = 5, frame_summary = 6, frame_time = 7
+        & frame_layout = 4, frame_row = 5, frame_summary = 6, frame_time = 7, &
+        & frame_defined = 8
 
     !> The child's work
     type, extends(isolated_task_type) :: job_task_type
@@ -87,6 +93,8 @@ module rollcon_isolated_run
         real(wp) :: t0 = 0.0_wp, end_time = 1.0_wp
         !> What the warning of grinding steps says to run (check_hint)
         character(len=:), allocatable :: check_hint
+        !> What the user's files define (defined_text), once the child sent it
+        character(len=:), allocatable :: defined
         !> The first failure here (a write of the CSV, a frame that does not read)
         type(error_type), allocatable :: failure
     contains
@@ -97,7 +105,7 @@ module rollcon_isolated_run
 contains
 
     !> Run job, whose routine is job%user_file, in a child process (see the module's header).
-    subroutine run_isolated(job, options, summary, shapes, started, error, history)
+    subroutine run_isolated(job, options, summary, shapes, started, error, history, defined)
         type(job_type), intent(in) :: job
         type(run_options_type), intent(in) :: options
         type(run_summary_type), intent(out) :: summary
@@ -105,6 +113,10 @@ contains
         logical, intent(out) :: started
         type(error_type), allocatable, intent(out) :: error
         type(history_type), intent(inout), target, optional :: history
+        !> What the user's files define, as the child found them once it built the model
+        !> (defined_text: the file of the model's own UCOSUB, then a line of words per file);
+        !> unallocated when the child sent none
+        character(len=:), allocatable, intent(out), optional :: defined
         type(job_task_type) :: task
         type(job_receiver_type) :: receiver
         type(isolation_outcome_type) :: outcome
@@ -135,6 +147,7 @@ contains
         if (started .and. summary%status == status_failed) call point_at_check(job, summary, &
             & error)
         if (allocated(receiver%shapes)) shapes = receiver%shapes
+        if (present(defined) .and. allocated(receiver%defined)) defined = receiver%defined
     end subroutine run_isolated
 
     !> Compile the job's user files into the cache (rollcon_user_build), in this process: the
@@ -155,9 +168,10 @@ contains
         call build_user_library(job%user_file, job%build_options, library, from_cache, &
             & error, note)
         if (allocated(error)) return
-        if (.not. job%quiet .and. len(note) > 0) write(output_unit, '(a)') "UCOSUB: " // note &
-            & // ": rebuilt"
-        if (.not. job%quiet) write(output_unit, '(a)') "UCOSUB: " // job%user_file // " (" &
+        ! what a file defines is known only once the child loaded it: the run's record says it
+        if (.not. job%quiet .and. len(note) > 0) write(output_unit, '(a)') "user routines: " &
+            & // note // ": rebuilt"
+        if (.not. job%quiet) write(output_unit, '(a)') "user routines: " // job%user_file // " (" &
             & // library // trim(merge(", from the cache", ", compiled now  ", &
             & from_cache)) // ")"
         if (allocated(job%more_files)) then
@@ -234,6 +248,69 @@ contains
         ! the MOTSUBs' IORD = 1, 2 against differences of their IORD = 0, 1
         call check_user_motions(time, q0, u0, error)
     end subroutine build_apart
+
+    !> In the child, once the job's model is built with its files loaded: the file whose
+    !> UCOSUB is the model's own (serving a UCON that names no ROUTINE; "" when none is), then a
+    !> line per file (job%user_file, then job%more_files) of what it defines, in words: the
+    !> routines of fixed name it defines ("UCOSUB, SFOSUB") and "routines named by ROUTINE="
+    !> when a statement names one of its subroutines by name; each line ends in a newline.
+    !> For the run's record (rollcon_provenance's provenance_lines).
+    function defined_text(job, problem) result(text)
+        type(job_type), intent(in) :: job
+        type(problem_type), intent(in) :: problem
+        character(len=:), allocatable :: text
+        integer :: k
+
+        text = ""
+        if (find_user_ucosub("") > 0) then
+            do k = 1, problem%model%nc
+                if (.not. served_by_model_ucosub(problem%model%ucons(k)%routine)) cycle
+                text = user_ucosub_source(find_user_ucosub(""))
+                exit
+            end do
+        end if
+        text = text // new_line("a") // file_words(job%user_file) // new_line("a")
+        if (allocated(job%more_files)) then
+            do k = 1, size(job%more_files)
+                text = text // file_words(job%more_files(k)%path) // new_line("a")
+            end do
+        end if
+    contains
+        !> What the file at source defines, in words ("" for nothing).
+        function file_words(source) result(words)
+            character(len=*), intent(in) :: source
+            character(len=:), allocatable :: words
+            integer :: kind
+
+            words = ""
+            if (find_user_ucosub(source // "::UCOSUB") > 0) words = listed(words, "UCOSUB")
+            do kind = 1, routine_kinds
+                if (find_force_routine(kind, source // "::" // trim(routine_names(kind))) > 0) &
+                    & words = listed(words, trim(routine_names(kind)))
+            end do
+            if (find_force_routine(routine_reqsub, source // "::" // request_routine_name) > 0) &
+                & words = listed(words, request_routine_name)
+            if (find_force_routine(routine_varsub, source // "::" // variable_routine_name) &
+                & > 0) words = listed(words, variable_routine_name)
+            if (find_force_routine(routine_motsub, source // "::" // motion_routine_name) > 0) &
+                & words = listed(words, motion_routine_name)
+            if (find_force_routine(routine_difsub, source // "::" // diff_routine_name) > 0) &
+                & words = listed(words, diff_routine_name)
+            if (library_named(source)) words = listed(words, "routines named by ROUTINE=")
+        end function file_words
+    end function defined_text
+
+    !> list with word added after ", " (word alone for an empty list).
+    pure function listed(list, word) result(longer)
+        character(len=*), intent(in) :: list, word
+        character(len=:), allocatable :: longer
+
+        if (len(list) == 0) then
+            longer = word
+        else
+            longer = list // ", " // word
+        end if
+    end function listed
 
     !> A user's file that defines none of the routines of fixed name (UCOSUB, SFOSUB, ...)
     !> and none of whose subroutines a statement names (ROUTINE=FILE::NAME): refused, as a
@@ -385,6 +462,8 @@ contains
         if (allocated(error)) return
         call send_frame(self%stream_fd, frame_report, report, error)
         if (allocated(error)) return
+        call send_frame(self%stream_fd, frame_defined, defined_text(self%job, problem), error)
+        if (allocated(error)) return
         call self%job%source%shapes(problem, shapes, error)
         if (allocated(error)) return
         call pack_shapes(wire, shapes)
@@ -502,6 +581,8 @@ contains
         case (frame_summary)
             call unpack_summary(wire, self%summary)
             self%has_summary = .not. wire%failed
+        case (frame_defined)
+            self%defined = payload
         case default
             wire%failed = .true.
         end select

@@ -21,18 +21,58 @@ contains
     !>     the model's UCOSUB: disk (built in)
     !> (the second: "none (every UCON names its ROUTINE)" for a model whose every UCON has its
     !> own routine, "none (the model has no UCON)" for one with no UCON, and a user's file with its
-    !> size and hash), then a line "more user routines:
-    !> FILE (its size and hash)" for each more file of the job (rollcon_load's add_user_file)
-    function provenance_lines(job) result(text)
+    !> size and hash), then the job's files of user routines. With defined (what the run's child
+    !> found the files define: rollcon_isolated_run's defined_text, the file of the model's own
+    !> UCOSUB, "" for none, then a line of words per file), the second line names the file whose
+    !> UCOSUB served the model's UCONs, or none, and each file that does more than that gets a
+    !> line "user routines: FILE (SFOSUB, ...; its size and hash)"; without it (no child told),
+    !> the job's first file is named as the model's UCOSUB and each more file as "more user
+    !> routines: FILE (its size and hash)" (rollcon_load's add_user_file).
+    function provenance_lines(job, defined) result(text)
         type(job_type), intent(in) :: job
-        character(len=:), allocatable :: text
-        integer :: k
+        character(len=*), intent(in), optional :: defined
+        character(len=:), allocatable :: text, own, words, path
+        integer :: k, start, finish, more
 
         text = version_text() // ", " // time_stamp()
         if (allocated(job%command_line)) then
             if (len(job%command_line) > 0) text = text // ": " // job%command_line
         end if
         text = text // new_line("a") // "the model's UCOSUB: "
+        if (present(defined)) then
+            ! the first line: the file of the model's own UCOSUB; then the files' words
+            finish = index(defined, new_line("a"))
+            if (finish == 0) finish = len(defined) + 1
+            own = defined(:finish - 1)
+            if (len(own) > 0) then
+                text = text // own // " (" // user_file_record(own) // ")"
+            else if (job%source%no_ucons) then
+                text = text // "none (the model has no UCON)"
+            else
+                text = text // "none (every UCON names its ROUTINE)"
+            end if
+            text = text // new_line("a")
+            more = 0
+            if (allocated(job%more_files)) more = size(job%more_files)
+            do k = 0, more
+                start = finish + 1
+                if (start > len(defined)) exit
+                finish = start - 1 + index(defined(start:), new_line("a"))
+                if (finish < start) finish = len(defined) + 1
+                words = defined(start:finish - 1)
+                if (k == 0) then
+                    path = job%user_file
+                else
+                    path = job%more_files(k)%path
+                end if
+                ! a file whose one role is the model's UCOSUB is named on that line
+                if (path == own .and. words == "UCOSUB") cycle
+                if (len(words) > 0) words = words // "; "
+                text = text // "user routines: " // path // " (" // words &
+                    & // user_file_record(path) // ")" // new_line("a")
+            end do
+            return
+        end if
         if (len(job%user_file) > 0) then
             text = text // job%user_file // " (" // user_file_record(job%user_file) // ")"
         else if (job%source%own_routines .and. job%source%no_ucons) then

@@ -42,6 +42,9 @@ module rollcon_run_job
         !> The simulation began: false when the job was refused before (its model could not be
         !> built, its start not made consistent)
         logical :: started = .false.
+        !> What the user's files define, for the run's record (rollcon_isolated_run's
+        !> run_isolated, rollcon_provenance's provenance_lines); unallocated for a run here
+        character(len=:), allocatable :: defined
     end type job_result_type
 
     !> The output files of a job: final and partial names
@@ -75,7 +78,7 @@ contains
         end if
         if (len(job%user_file) > 0) then
             call run_isolated(job, options, result%summary, shapes, result%started, run_error, &
-                & history)
+                & history, result%defined)
         else
             call run_here(job, options, result%summary, shapes, result%started, run_error, &
                 & history)
@@ -173,7 +176,11 @@ contains
             return
         end if
         ! once: the summary and the .parts file carry the same time and hash
-        record = provenance_lines(job)
+        if (allocated(result%defined)) then
+            record = provenance_lines(job, result%defined)
+        else
+            record = provenance_lines(job)
+        end if
         if (.not. allocated(run_error)) then
             result%csv_path = files%csv
             result%summary_text = record // warning_line(job) // job%source%model_notes() &

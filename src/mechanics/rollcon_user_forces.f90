@@ -191,7 +191,9 @@ module rollcon_user_forces
         end subroutine force_measure_interface
     end interface
 
+    !> The routines, table(:table_count); the table grows by doubling (append_entry)
     type(routine_entry_type), allocatable, save :: table(:)
+    integer, save :: table_count = 0
     !> The model's VARIABLEs served by VARSUBs, and the dataset's time unit [s]
     type(user_variable_type), allocatable, save :: variables(:)
     real(wp), save :: variables_time_unit = 1.0_wp
@@ -276,17 +278,45 @@ contains
     end subroutine register_force_routine
 
     !> Append entry (its routine pointer set) to the table as a routine of kind, under name
-    !> ("" for the model's own), built from the file source.
+    !> ("" for the model's own), built from the file source. The table grows by doubling, as
+    !> the code's growing arrays do (docs/design.md §4), its entries' strings moved
+    !> (move_alloc) and pointers copied: never a reallocating assignment of the whole table,
+    !> which copies every entry's allocatable components at each append, in whichever process
+    !> (a forked child's too) appends.
     subroutine append_entry(entry, kind, name, source)
-        type(routine_entry_type), intent(inout) :: entry
+        type(routine_entry_type), intent(in) :: entry
         integer, intent(in) :: kind
         character(len=*), intent(in) :: name, source
+        type(routine_entry_type), allocatable :: grown(:)
+        integer :: k
 
-        if (.not. allocated(table)) allocate(table(0))
-        entry%kind = kind
-        entry%name = name
-        entry%source = source
-        table = [table, entry]
+        if (.not. allocated(table)) then
+            allocate(table(0))
+            table_count = 0
+        end if
+        if (table_count == size(table)) then
+            allocate(grown(max(8, 2*size(table))))
+            do k = 1, table_count
+                grown(k)%kind = table(k)%kind
+                call move_alloc(table(k)%name, grown(k)%name)
+                call move_alloc(table(k)%source, grown(k)%source)
+                grown(k)%routine => table(k)%routine
+                grown(k)%request => table(k)%request
+                grown(k)%variable => table(k)%variable
+                grown(k)%motion => table(k)%motion
+            end do
+            call move_alloc(grown, table)
+        end if
+        table_count = table_count + 1
+        associate (added => table(table_count))
+            added%kind = kind
+            added%name = name
+            added%source = source
+            added%routine => entry%routine
+            added%request => entry%request
+            added%variable => entry%variable
+            added%motion => entry%motion
+        end associate
     end subroutine append_entry
 
     !> Add a REQSUB to the table (kind routine_reqsub), under name ("" for the model's own).
@@ -951,6 +981,7 @@ contains
     subroutine clear_force_routines()
         if (allocated(table)) deallocate(table)
         allocate(table(0))
+        table_count = 0
         call_hook => direct_force_call
         diff_rows = [integer ::]
     end subroutine clear_force_routines
@@ -966,7 +997,7 @@ contains
 
         entry = 0
         if (.not. allocated(table)) return
-        do k = 1, size(table)
+        do k = 1, table_count
             if (table(k)%kind /= kind) cycle
             if (upper_case(trim(table(k)%name)) /= upper_case(trim(routine))) cycle
             entry = k
@@ -981,7 +1012,7 @@ contains
 
         label = "a user routine"
         if (.not. allocated(table)) return
-        if (entry < 1 .or. entry > size(table)) return
+        if (entry < 1 .or. entry > table_count) return
         label = routine_name_of(table(entry)%kind) // " of " // table(entry)%source
         if (len(table(entry)%name) > 0) label = label // " (ROUTINE=" // table(entry)%name &
             & // ")"
@@ -1066,7 +1097,7 @@ contains
             a_now = accelerations
         end if
         label = routine_name_of(routine_reqsub)
-        if (entry >= 1 .and. entry <= size(table)) label = force_routine_label(entry)
+        if (entry >= 1 .and. entry <= table_count) label = force_routine_label(entry)
         if (.not. allocated(declared)) then
             call begin_call(time, q, u)
             declaring = .true.

@@ -11,7 +11,8 @@ module rollcon_csv_reader
     use rollcon_watch_columns, only : answer_column_patterns
     use rollcon_watch_columns, only : contact_names, contact_mode_names, dissipation_names, &
         & basis_pattern, request_column_patterns, motion_column_patterns, &
-        & reaction_column_patterns, variable_column_patterns, diff_column_patterns
+        & reaction_column_patterns, variable_column_patterns, diff_column_patterns, &
+        & element_reaction_column_patterns, element_force_column_patterns
     use, intrinsic :: ieee_arithmetic, only : ieee_is_finite
     use, intrinsic :: ieee_exceptions, only : ieee_set_flag, ieee_overflow, ieee_underflow
     implicit none
@@ -127,11 +128,13 @@ contains
         end do
         ! the watches' columns rollcon writes: a rim contact's (and its modes'), a rim's
         ! dissipation's, a part's principal basis, a dataset's displacement requests, its
-        ! MOTIONs' forces, its other requests, the statements' reactions, its VARIABLEs'
-        ! values, its DIFFs' states
+        ! MOTIONs' forces, its other requests, the statements' reactions (the elements' of one
+        ! equation too), its SPRINGDAMPERs' and BUSHINGs' forces, its VARIABLEs' values, its
+        ! DIFFs' states
         call read_layout(names, layout, message, [character(len=name_length) :: contact_names, &
             & contact_mode_names, dissipation_names, basis_pattern, request_column_patterns, &
             & motion_column_patterns, answer_column_patterns, reaction_column_patterns, &
+            & element_reaction_column_patterns, element_force_column_patterns, &
             & variable_column_patterns, diff_column_patterns])
         if (.not. allocated(message)) return
         ! A one-part header without the part's id (t, X, ...): say what it is.

@@ -5,8 +5,9 @@
 !> of every part a re-basing run records (rollcon_theta_watch), the six of each displacement
 !> request (rollcon_request_watch), the force or torque of each MOTION (rollcon_motion_watch),
 !> the value of each VARIABLE (rollcon_variable_watch), those of the other requests
-!> (rollcon_request_answers), and the six of each statement's reaction and of each force
-!> request (rollcon_reaction_watch).
+!> (rollcon_request_answers), the six of each statement's reaction and of each force request
+!> (rollcon_reaction_watch), and the six of each SPRINGDAMPER and BUSHING
+!> (rollcon_element_force_watch).
 module rollcon_watch_columns
     implicit none
     private
@@ -17,6 +18,7 @@ module rollcon_watch_columns
     public :: motion_column_patterns
     public :: variable_column_patterns, diff_column_patterns
     public :: reaction_suffixes, reaction_column_patterns, answer_column_patterns
+    public :: element_reaction_column_patterns, element_force_column_patterns
 
     !> A rim contact's columns, in order: the constraint force on the part Fx, Fy, Fz [N]
     !> (ground components), its normal part Fn [N], the friction coefficient rolling needs
@@ -75,6 +77,35 @@ module rollcon_watch_columns
         & "ucon<n>_part<id>_fz", "ucon<n>_part<id>_tx", "ucon<n>_part<id>_ty", &
         & "ucon<n>_part<id>_tz", "req<n>_fx", "req<n>_fy", "req<n>_fz", "req<n>_tx", &
         & "req<n>_ty", "req<n>_tz"]
+    !> The reaction columns of the statements of one equation the program serves, as
+    !> rollcon_reactions names them (the statement's name in lower case without its slash: a
+    !> GCON, a MOTION, a COUPLER, a GEAR; "<n>": its id, "<id>": a part's id): on the part it
+    !> holds, at its centre of mass, as a UCON's; on each of several parts
+    !> (gcon<n>_part<id>_fx ..., and a RACKPIN's or SCREW JOINT's joint<n>_part<id>_fx ...)
+    character(len=*), parameter :: element_reaction_column_patterns(54) = &
+        & [character(len=22) :: &
+        & "gcon<n>_fx", "gcon<n>_fy", "gcon<n>_fz", "gcon<n>_tx", "gcon<n>_ty", "gcon<n>_tz", &
+        & "motion<n>_fx", "motion<n>_fy", "motion<n>_fz", "motion<n>_tx", "motion<n>_ty", &
+        & "motion<n>_tz", "coupler<n>_fx", "coupler<n>_fy", "coupler<n>_fz", "coupler<n>_tx", &
+        & "coupler<n>_ty", "coupler<n>_tz", "gear<n>_fx", "gear<n>_fy", "gear<n>_fz", &
+        & "gear<n>_tx", "gear<n>_ty", "gear<n>_tz", "gcon<n>_part<id>_fx", &
+        & "gcon<n>_part<id>_fy", "gcon<n>_part<id>_fz", "gcon<n>_part<id>_tx", &
+        & "gcon<n>_part<id>_ty", "gcon<n>_part<id>_tz", "motion<n>_part<id>_fx", &
+        & "motion<n>_part<id>_fy", "motion<n>_part<id>_fz", "motion<n>_part<id>_tx", &
+        & "motion<n>_part<id>_ty", "motion<n>_part<id>_tz", "coupler<n>_part<id>_fx", &
+        & "coupler<n>_part<id>_fy", "coupler<n>_part<id>_fz", "coupler<n>_part<id>_tx", &
+        & "coupler<n>_part<id>_ty", "coupler<n>_part<id>_tz", "gear<n>_part<id>_fx", &
+        & "gear<n>_part<id>_fy", "gear<n>_part<id>_fz", "gear<n>_part<id>_tx", &
+        & "gear<n>_part<id>_ty", "gear<n>_part<id>_tz", "joint<n>_part<id>_fx", &
+        & "joint<n>_part<id>_fy", "joint<n>_part<id>_fz", "joint<n>_part<id>_tx", &
+        & "joint<n>_part<id>_ty", "joint<n>_part<id>_tz"]
+    !> A SPRINGDAMPER's and a BUSHING's columns ("<n>": its id): the force and torque on the
+    !> part of its marker I, at I's origin, ground axes (rollcon_element_force_watch)
+    character(len=*), parameter :: element_force_column_patterns(12) = &
+        & [character(len=18) :: &
+        & "springdamper<n>_fx", "springdamper<n>_fy", "springdamper<n>_fz", &
+        & "springdamper<n>_tx", "springdamper<n>_ty", "springdamper<n>_tz", "bushing<n>_fx", &
+        & "bushing<n>_fy", "bushing<n>_fz", "bushing<n>_tx", "bushing<n>_ty", "bushing<n>_tz"]
     !> The other requests' columns ("<n>": the request's id): a VELOCITY's vx, vy, vz [m/s]
     !> and wx, wy, wz [rad/s], an ACCELERATION's accx, accy, accz [m/s^2] and wdtx, wdty,
     !> wdtz [rad/s^2] (in RM's axes), each expression F1 ... F8 given (the dataset's units); a

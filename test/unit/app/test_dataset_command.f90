@@ -133,7 +133,7 @@ contains
     end subroutine test_user_file
 
     !> `check FILE --model MODEL.adm` checks every UCON the model's routine serves, with the
-    !> dataset's ids and PAR.
+    !> dataset's ids and PAR, each headed by its statement and line.
     subroutine test_check_model(error)
         type(error_type), allocatable, intent(out) :: error
         character(len=:), allocatable :: program, out
@@ -146,8 +146,9 @@ contains
             & scratch // "/check.out", scratch // "/check.err", status)
         out = file_text(scratch // "/check.out")
         call remove_folder(scratch)
-        call check(error, status == 0 .and. index(out, "UCON/1  PAR = 2, 21, 22, 23, 14, 15, " &
-            & // "24, 25, 26, 0.1, 1") > 0 .and. index(out, "UCON/3  PAR = 2,") > 0 .and. &
+        call check(error, status == 0 .and. index(out, "UCON/1 (line 38)  PAR = 2, 21, 22, 23, " &
+            & // "14, 15, 24, 25, 26, 0.1, 1") > 0 .and. index(out, "UCON/3 (line 40)  PAR = " &
+            & // "2,") > 0 .and. &
             & index(out, "verdict: CLEAN: 3 UCON(s) checked") > 0, "exit status " &
             & // to_text(status) // ", report: " // out)
     end subroutine test_check_model

@@ -3,7 +3,8 @@
 !> rollcon_user_routine_check): the routines of the user-forces suite checked clean, and each
 !> fault test/user_forces/checked/planted_faults.f plants (chosen by a fourth constant of
 !> USER(...)) reported by its rule, naming the statement and its line, the routine and the
-!> state; an implicit-typing slip reported with its line and routine.
+!> state; an implicit-typing slip reported with its line and routine; the UCONs of a model of
+!> two files, each naming its routine (ROUTINE=FILE::NAME), checked against that routine.
 module test_user_routine_check
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type
@@ -13,6 +14,11 @@ module test_user_routine_check
     use rollcon_user_build, only : user_build_options_type
     use rollcon_user_routine_check, only : check_user_routines, routine_units_lines
     use rollcon_job, only : user_file_type
+    use rollcon_ucosub_audit, only : ucon_request_type, user_check_options_type, &
+        & user_check_report_type
+    use rollcon_audit_report, only : report_text
+    use rollcon_check_rules, only : rule_derivative
+    use rollcon_dataset_ucon_check, only : check_dataset_ucons
     use command_runs, only : file_text, count_of, rollcon_program, run_rollcon
     implicit none
     private
@@ -55,7 +61,8 @@ contains
             & new_unittest("difsub-checked", test_difsub), &
             & new_unittest("varval-at-probed-state", test_varval_probed), &
             & new_unittest("accelerations-read-checked", test_accelerations_read), &
-            & new_unittest("units-line-per-routine", test_units_lines)]
+            & new_unittest("units-line-per-routine", test_units_lines), &
+            & new_unittest("named-ucons-checked", test_named_ucons)]
     end subroutine collect_user_routine_check
 
     !> variable_stretch.f on variable.adm (declared types, no state, smooth, its SYSFNC call
@@ -464,5 +471,85 @@ contains
             & // "radians/SECOND; RESULT is read as the torque about J's z axis, in " &
             & // "NEWTON*MILLIMETER") > 0 .and. index(lines, "GFORCE/1 (line 12)") > 0, lines)
     end subroutine test_units_lines
+
+    !> `rollcon check A.f --ucosub B.f --model M.adm` checks every UCON against the routine its
+    !> ROUTINE=FILE::NAME names (rollcon_dataset_ucon_check): ucon_two_files.adm's UCON/1
+    !> (TURNVEL of ucon_turn_velocity.f) and UCON/2 (CIRCLE of ucon_circle.f) both clean, each
+    !> headed by its statement, line, ROUTINE and file (the library call). With UCON/2 naming
+    !> ucon_circle_wrong.f's CIRCLE (dF/dX returned as X, half of 2X) and turntable.f given too
+    !> (the program): exit 1, UCON/1 clean, UCON/2 named with its line and ROUTINE, its ARRAY(1)
+    !> returned at half the differences' value and XMATRX(1,1), the derivative of that ARRAY(1),
+    !> at twice it (2 against 1), and turntable.f said to serve no UCON. The ratios are
+    !> exact but for rounding: sixth-order differences of a quadratic (F) and of a linear
+    !> ARRAY are exact up to rounding of order 1e-10 relative at the check's steps; 1e-6
+    !> catches any other factor.
+    subroutine test_named_ucons(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(user_build_options_type) :: build
+        type(user_check_options_type) :: options
+        type(user_check_report_type) :: report
+        type(ucon_request_type), allocatable :: given(:)
+        character(len=:), allocatable :: library, notes, text, program, out, model
+        logical :: from_cache
+        integer :: checked, status, g
+        real(wp) :: array_ratio, xmatrx_ratio
+
+        build%cache_dir = test_cache
+        options%states = 5
+        allocate(given(0))
+        call check_dataset_ucons([user_file_type(folder // "ucon_turn_velocity.f"), &
+            & user_file_type(folder // "ucon_circle.f")], folder // "ucon_two_files.adm", &
+            & build, given, options, 10.0_wp, checked, report, library, from_cache, notes, &
+            & error)
+        if (allocated(error)) return
+        text = report_text(report, "two files", library)
+        call check(error, checked == 2 .and. report%clean() .and. report%ucons(1)%states == 5 &
+            & .and. report%ucons(2)%states == 5 .and. index(text, "UCON/1 (line 9, " &
+            & // "ROUTINE=ucon_turn_velocity::TURNVEL of " // folder // "ucon_turn_velocity.f)" &
+            & // "  PAR = 2, 3.5") > 0 .and. index(text, "UCON/2 (line 10, ROUTINE=" &
+            & // "ucon_circle::circle of " // folder // "ucon_circle.f)  PAR = 2, 0.1") > 0 &
+            & .and. len(notes) == 0, to_text(checked) // " checked; notes: " // notes // text)
+        if (allocated(error)) return
+        call make_folders(scratch, error)
+        if (allocated(error)) return
+        model = scratch // "/ucon_wrong.adm"
+        text = file_text(folder // "ucon_two_files.adm")
+        g = index(text, "ucon_circle::circle")
+        call write_text_file(model, text(:g - 1) // "ucon_circle_wrong::CIRCLE" &
+            & // text(g + len("ucon_circle::circle"):), error)
+        if (allocated(error)) return
+        call check_dataset_ucons([user_file_type(folder // "ucon_turn_velocity.f"), &
+            & user_file_type(folder // "ucon_circle_wrong.f")], model, build, given, options, &
+            & 10.0_wp, checked, report, library, from_cache, notes, error)
+        if (allocated(error)) return
+        array_ratio = 0.0_wp
+        xmatrx_ratio = 0.0_wp
+        do g = 1, size(report%ucons(2)%groups)
+            associate (group => report%ucons(2)%groups(g))
+                if (group%code /= rule_derivative .or. group%row /= 1) cycle
+                if (group%output == "ARRAY (dF/dq)") array_ratio = group%returned/group%expected
+                if (group%output == "XMATRX (d2F/dq dq)" .and. group%column == 1) &
+                    & xmatrx_ratio = group%returned/group%expected
+            end associate
+        end do
+        call check(error, checked == 2 .and. size(report%ucons(1)%groups) == 0 .and. &
+            & size(report%ucons(2)%groups) == 2 .and. abs(array_ratio - 0.5_wp) <= 1.0e-6_wp &
+            & .and. abs(xmatrx_ratio - 2.0_wp) <= 1.0e-6_wp, "ARRAY(1) returned/differences " &
+            & // to_text(array_ratio) // ", XMATRX(1,1) " // to_text(xmatrx_ratio) // ": " &
+            & // report_text(report, "two files", library))
+        if (allocated(error)) return
+        call rollcon_program(program, error)
+        if (allocated(error)) return
+        call run_rollcon(program, "check " // folder // "ucon_turn_velocity.f --ucosub " &
+            & // folder // "ucon_circle_wrong.f --ucosub test/turntable/turntable.f --model " &
+            & // model // " --states 5", scratch // "/named.out", scratch // "/named.err", status)
+        out = file_text(scratch // "/named.out")
+        call check(error, status == 1 .and. index(out, "check: test/turntable/turntable.f " &
+            & // "serves no UCON of " // model) > 0 .and. index(out, "UCON/2 (line 10, " &
+            & // "ROUTINE=ucon_circle_wrong::CIRCLE of " // folder // "ucon_circle_wrong.f)") &
+            & > 0 .and. index(out, "ARRAY(1) = dF/d(X): 5 of 5 states") > 0 .and. index(out, &
+            & "verdict: MISMATCHES in 1 of 2 UCON(s)") > 0, "exit " // to_text(status) // ": " &
+            & // out // file_text(scratch // "/named.err"))
+    end subroutine test_named_ucons
 
 end module test_user_routine_check

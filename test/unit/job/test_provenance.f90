@@ -33,7 +33,8 @@ contains
             & new_unittest("summary-names-user-file", test_user_file), &
             & new_unittest("summary-names-each-ucon-routine", test_each_ucon), &
             & new_unittest("unused-ucosub-file-is-said", test_unused_file), &
-            & new_unittest("summary-of-a-model-without-ucon", test_no_ucon)]
+            & new_unittest("summary-of-a-model-without-ucon", test_no_ucon), &
+            & new_unittest("summary-says-what-files-define", test_files_define)]
     end subroutine collect_provenance
 
     !> user_file_record of files holding "", "a" and "foobar": their sizes and the FNV-1a 64 values
@@ -204,6 +205,41 @@ contains
             & // new_line("a")) > 0 .and. index(summary, "every UCON names") == 0, &
             & "the record does not say the model has no UCON: " // first_lines(summary))
     end subroutine test_no_ucon
+
+    !> The record words each user file by what it defines, as the run's child found it: a
+    !> first file defining only an SFOSUB (spring.adm, no UCON) is no "model's UCOSUB" but
+    !> "user routines: FILE (SFOSUB; size and hash)"; two files whose subroutines the UCONs
+    !> name (ucon_two_files.adm) are each "routines named by ROUTINE=", and the model's UCOSUB
+    !> served none.
+    subroutine test_files_define(error)
+        type(error_type), allocatable, intent(out) :: error
+        character(len=*), parameter :: spring = "test/user_forces/sforce_spring.f", &
+            & velocity = "test/user_forces/ucon_turn_velocity.f", &
+            & circle = "test/user_forces/ucon_circle.f"
+        character(len=:), allocatable :: summary
+        character(len=1), parameter :: nl = new_line("a")
+
+        call run_into("run test/user_forces/spring.adm --ucosub " // spring // " -q -o " &
+            & // scratch // "/defines", "defines", error)
+        if (allocated(error)) return
+        summary = file_text(scratch // "/defines/spring.adm.summary.txt")
+        call check(error, index(summary, nl // "the model's UCOSUB: none (the model has no " &
+            & // "UCON)" // nl // "user routines: " // spring // " (SFOSUB; " &
+            & // user_file_record(spring) // ")" // nl) > 0 .and. index(summary, "the model's " &
+            & // "UCOSUB: " // spring) == 0, "the record does not say the file defines an " &
+            & // "SFOSUB: " // first_lines(summary))
+        if (allocated(error)) return
+        call run_into("run test/user_forces/ucon_two_files.adm --ucosub " // velocity &
+            & // " --ucosub " // circle // " -q -o " // scratch // "/defines", "defines", error)
+        if (allocated(error)) return
+        summary = file_text(scratch // "/defines/ucon_two_files.adm.summary.txt")
+        call check(error, index(summary, nl // "the model's UCOSUB: none (every UCON names " &
+            & // "its ROUTINE)" // nl // "user routines: " // velocity // " (routines named by " &
+            & // "ROUTINE=; " // user_file_record(velocity) // ")" // nl // "user routines: " &
+            & // circle // " (routines named by ROUTINE=; " // user_file_record(circle) // ")" &
+            & // nl) > 0, "the record does not word the two files by what they define: " &
+            & // first_lines(summary))
+    end subroutine test_files_define
 
     !> Run rollcon with arguments; it must exit 0 with nothing on stderr.
     subroutine run_into(arguments, label, error)

@@ -14,7 +14,7 @@ module test_user_forces
     use rollcon_text, only : to_text
     use rollcon_testing, only : unittest_type, new_unittest, check
     use rollcon_history, only : history_type
-    use rollcon_job, only : job_type
+    use rollcon_job, only : job_type, user_file_type
     use rollcon_load, only : load_job, add_user_file
     use rollcon_run_job, only : run_job, job_result_type
     use rollcon_simulation, only : status_completed
@@ -22,6 +22,9 @@ module test_user_forces
     use rollcon_user_forces, only : system_function, system_array
     use rollcon_user_build, only : user_build_options_type
     use rollcon_user_routine_check, only : check_user_routines
+    use rollcon_ucosub_audit, only : ucon_request_type, user_check_options_type, &
+        & user_check_report_type
+    use rollcon_dataset_ucon_check, only : check_dataset_ucons
     use command_runs, only : file_text, rollcon_program, run_rollcon
     use rollcon_integrator, only : chunk_steps_default
     use rollcon_grind_watch, only : grinds
@@ -78,6 +81,7 @@ contains
             & new_unittest("field-sfosub-gfosub-as-expressions", test_field_forces), &
             & new_unittest("sfosub-by-its-own-name", test_named_sfosub), &
             & new_unittest("ucons-of-two-files-as-gcons", test_ucon_two_files), &
+            & new_unittest("ucon-of-c-by-routine", test_ucon_c_routine), &
             & new_unittest("ucon-routine-refusals", test_ucon_refusals), &
             & new_unittest("ucon-named-routine-checked-at-start", test_ucon_named_checked), &
             & new_unittest("sfosub-crashes", test_crashes), &
@@ -777,6 +781,59 @@ contains
             & // ") m, not (0.1, 0) within 2e-7 m")
     end subroutine test_ucon_two_files
 
+    !> ucon_two_files.adm with ucon_circle.c, the C twin of ucon_circle.f (CIRCLE as circle_,
+    !> every argument by address, XMATRX in column order), given in its place: the same
+    !> ROUTINE=ucon_circle::circle names it (the file's name without folder and extension).
+    !> Run with the check at the start, its rows are the Fortran twin's bit for bit: both do
+    !> the same IEEE operations in the same order (X*X + Y*Y - R*R, 2*X, 2*Y; no FMA at either
+    !> compiler's -O2 on x86-64's base instructions), so the integrator takes the same steps
+    !> and any difference is one of the call (an argument misread, XMATRX transposed or
+    !> misplaced). `rollcon check` of the C file on the model (check_dataset_ucons): clean, 2
+    !> UCONs, UCON/2 named with its line and ROUTINE as the C file's.
+    subroutine test_ucon_c_routine(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(history_type) :: c_run, fortran_run
+        type(user_build_options_type) :: build
+        type(user_check_options_type) :: options
+        type(user_check_report_type) :: report
+        type(ucon_request_type), allocatable :: given(:)
+        character(len=:), allocatable :: library, notes
+        real(wp) :: largest
+        integer :: worst, checked
+        logical :: from_cache
+
+        call run_user(folder // "ucon_two_files.adm", [character(len=40) :: &
+            & "ucon_turn_velocity.f", "ucon_circle.c"], 10.0_wp, c_run, error, checked=.true.)
+        if (allocated(error)) return
+        call run_user(folder // "ucon_two_files.adm", [character(len=40) :: &
+            & "ucon_turn_velocity.f", "ucon_circle.f"], 10.0_wp, fortran_run, error, &
+            & checked=.true.)
+        if (allocated(error)) return
+        if (c_run%count /= fortran_run%count .or. c_run%count < 101) then
+            call fatal_error(error, to_text(c_run%count) // " rows with the C routine, " &
+                & // to_text(fortran_run%count) // " with the Fortran one")
+            return
+        end if
+        call part_difference(c_run, fortran_run, largest, worst)
+        call check(error, largest == 0.0_wp, "the C routine's rows differ from the " &
+            & // "Fortran routine's by " // to_text(largest) // " in coordinate " &
+            & // to_text(worst))
+        if (allocated(error)) return
+        build%cache_dir = test_cache
+        options%states = 5
+        allocate(given(0))
+        call check_dataset_ucons([user_file_type(folder // "ucon_turn_velocity.f"), &
+            & user_file_type(folder // "ucon_circle.c")], folder // "ucon_two_files.adm", &
+            & build, given, options, 10.0_wp, checked, report, library, from_cache, notes, &
+            & error)
+        if (allocated(error)) return
+        call check(error, checked == 2 .and. report%clean() .and. report%ucons(2)%statement &
+            & == "UCON/2 (line 10, ROUTINE=ucon_circle::circle of " // folder &
+            & // "ucon_circle.c)" .and. report%ucons(2)%states == 5, to_text(checked) &
+            & // " UCONs checked, " // to_text(report%findings()) // " finding(s); UCON/2: " &
+            & // report%ucons(2)%statement)
+    end subroutine test_ucon_c_routine
+
     !> The refusals of UCON routines of several files, each naming the file or the statement
     !> and its line: a UCON naming no ROUTINE when two files define UCOSUB (turntable.adm with
     !> turntable.f and its slipped twin); a file whose UCOSUB serves no UCON (ucon_two_files.adm
@@ -819,7 +876,8 @@ contains
     !> The check at the start covers a routine a UCON names: ucon_circle_wrong.f's CIRCLE
     !> (dF/dX returned as X, half its value) stops the run, naming UCON/2, its line, its
     !> ROUTINE and file, the entry and both values (0.1 returned for X = 0.1 m; the
-    !> differences give 0.2).
+    !> differences give 0.2), and the command that checks the model's UCONs at random states
+    !> with the run's two files as the run takes them.
     subroutine test_ucon_named_checked(error)
         type(error_type), allocatable, intent(out) :: error
         type(history_type) :: history
@@ -834,11 +892,13 @@ contains
         if (allocated(error)) return
         call run_user(path, [character(len=50) :: "ucon_turn_velocity.f", &
             & "ucon_circle_wrong.f"], 10.0_wp, history, run_error, checked=.true.)
-        call expect_message(run_error, [character(len=120) :: &
+        call expect_message(run_error, [character(len=160) :: &
             & "test/user_forces/ucon_circle_wrong.f fails its check", &
             & "UCON/2 (line 10, ROUTINE=ucon_circle_wrong::CIRCLE of " &
             & // "test/user_forces/ucon_circle_wrong.f) ARRAY(1) = dF/d(X_2)", &
-            & "returned 0.1, differences give 0.2"], error)
+            & "returned 0.1, differences give 0.2", "at random states: rollcon check " &
+            & // "test/user_forces/ucon_turn_velocity.f --ucosub test/user_forces/" &
+            & // "ucon_circle_wrong.f --model " // path // ";"], error)
     end subroutine test_ucon_named_checked
 
     !> text with every occurrence of old replaced by new.

@@ -16,7 +16,8 @@ module test_pictures
     use rollcon_singularity_figure, only : singularity_figure_name
     use rollcon_gif, only : animate_output
     use rollcon_gnuplot, only : gnuplot_available
-    use rollcon_watch_columns, only : answer_column_patterns
+    use rollcon_watch_columns, only : answer_column_patterns, &
+        & element_reaction_column_patterns, element_force_column_patterns
     use rollcon_watch_columns, only : contact_names, contact_mode_names, request_column_patterns, &
         & motion_column_patterns, reaction_column_patterns, variable_column_patterns, &
         & diff_column_patterns, dissipation_names
@@ -45,6 +46,7 @@ contains
             & new_unittest("csv-missing-file", test_csv_missing), &
             & new_unittest("csv-bad-header", test_csv_header), &
             & new_unittest("csv-bad-rows", test_csv_rows), &
+            & new_unittest("csv-reads-every-documented-column", test_csv_documented), &
             & new_unittest("plot-disk-scene-figures", test_plot_disk), &
             & new_unittest("plot-settling-disk-singularity", test_plot_singularity), &
             & new_unittest("plot-two-part-figures", test_plot_model), &
@@ -123,7 +125,7 @@ contains
         character(len=*), parameter :: part = "X_1,Y_1,Z_1,psi_1,theta_1,phi_1,Xdot_1,Ydot_1," &
             & // "Zdot_1,psidot_1,thetadot_1,phidot_1"
         character(len=*), parameter :: prefix = "not the header 'rollcon run' writes: "
-        character(len=2000) :: headers(5), expected(5)
+        character(len=4000) :: headers(5), expected(5)
         type(error_type), allocatable :: failure
         type(output_layout_type) :: layout
         type(history_type) :: history
@@ -137,17 +139,18 @@ contains
         call read_layout(names, layout, count_reason, [character(len=name_length) :: &
             & contact_names, contact_mode_names, dissipation_names, "basis_<id>", &
             & request_column_patterns, motion_column_patterns, &
-            & answer_column_patterns, reaction_column_patterns, variable_column_patterns, &
-            & diff_column_patterns])
+            & answer_column_patterns, reaction_column_patterns, &
+            & element_reaction_column_patterns, element_force_column_patterns, &
+            & variable_column_patterns, diff_column_patterns])
         call check(error, allocated(count_reason), "read_layout accepted 17 columns for one " &
             & // "part and one UCON")
         if (allocated(error)) return
-        headers = [character(len=2000) :: "time,X,Y", &
+        headers = [character(len=4000) :: "time,X,Y", &
             & "t,X,Y,Z,psi,theta,phi,Xdot,Ydot,Zdot,psidot,thetadot,phidot,E,Fx", &
             & "t," // part // ",E,F_1,lambda_1,F_2", &
             & "t," // part // ",E,F_1,lambda_2", &
             & "t," // part // "," // repeat("E", 40)]
-        expected = [character(len=2000) :: prefix // "column 1 must be t, got 'time'", &
+        expected = [character(len=4000) :: prefix // "column 1 must be t, got 'time'", &
             & prefix // "column 2 must be X_<part id>, got 'X' (a CSV of an older rollcon, whose " &
             & // "columns did not name the part: run the scene again)", &
             & prefix // count_reason, &
@@ -166,6 +169,99 @@ contains
         end do
         call remove_folder(scratch)
     end subroutine test_csv_header
+
+    !> A header with one of each column docs/outputs.md documents after the multipliers (its
+    !> tables: a rim contact's, its modes', the dissipation's, a part's basis, a displacement
+    !> request's, a MOTION's force and torque, a VARIABLE's, a DIFF's, a SPRINGDAMPER's and a
+    !> BUSHING's, the other requests' (VELOCITY, ACCELERATION, Fk, FORCE), and the reactions of
+    !> a JOINT, a JPRIM, a UCON (on one part and on several) and of the elements of one
+    !> equation, a GCON, a MOTION, a COUPLER, a GEAR and a RACKPIN or SCREW JOINT, on one part
+    !> and on several) reads, every column found where it was written; the same header with a
+    !> column outputs.md does not document (gcon_fx: no id; spring1_fx) is refused naming it.
+    subroutine test_csv_documented(error)
+        type(error_type), allocatable, intent(out) :: error
+        character(len=*), parameter :: path = scratch // "/documented.csv"
+        character(len=*), parameter :: suffixes(6) = [character(len=3) :: "_fx", "_fy", &
+            & "_fz", "_tx", "_ty", "_tz"]
+        character(len=*), parameter :: answers(12) = [character(len=5) :: "vx", "vy", "vz", &
+            & "wx", "wy", "wz", "accx", "accy", "accz", "wdtx", "wdty", "wdtz"]
+        character(len=*), parameter :: stems(16) = [character(len=16) :: "springdamper9", &
+            & "bushing10", "req12", "joint13", "jprim14", "ucon15", "ucon16_part2", "gcon17", &
+            & "motion18", "coupler19", "gear20", "joint21_part2", "gcon22_part2", &
+            & "motion23_part2", "coupler24_part2", "gear25_part2"]
+        character(len=name_length), allocatable :: names(:)
+        character(len=:), allocatable :: header, row, lines(:)
+        character(len=20) :: wrong(2)
+        type(error_type), allocatable :: failure
+        type(output_layout_type) :: layout
+        type(history_type) :: history
+        integer :: i, j, missing
+
+        names = [character(len=name_length) :: "Fx", "Fy", "Fz", "Fn", "mu_needed", &
+            & "height_residual", "mode", "slip_x", "slip_y", "rolling_power", "air_power", &
+            & "dissipated", "basis_2", "req1_x", "req1_y", "req1_z", "req1_psi", "req1_theta", &
+            & "req1_phi", "motion4_force", "motion5_torque", "var7", "diff8", "diff8_dot"]
+        ! one name at a time (gfortran 12 miscomputes the length of a typed constructor's
+        ! implied-do of concatenations)
+        do i = 1, size(answers)
+            call add("req11_" // trim(answers(i)))
+        end do
+        do i = 1, 8
+            call add("req11_f" // to_text(i))
+        end do
+        do i = 1, size(stems)
+            do j = 1, 6
+                call add(trim(stems(i)) // suffixes(j))
+            end do
+        end do
+        header = "t,X_2,Y_2,Z_2,psi_2,theta_2,phi_2,Xdot_2,Ydot_2,Zdot_2,psidot_2,thetadot_2," &
+            & // "phidot_2,E,F_1,lambda_1"
+        do i = 1, size(names)
+            header = header // "," // trim(names(i))
+        end do
+        row = "0" // repeat(",0", 15 + size(names))
+        call make_folder(scratch)
+        ! (each line assigned apart: gfortran 12 writes past a typed constructor of
+        ! concatenations of deferred length)
+        allocate(character(len=len(header) + 30) :: lines(2))
+        lines(1) = header
+        lines(2) = row
+        call write_lines(path, lines)
+        call read_output_csv(path, layout, history, failure)
+        if (allocated(failure)) then
+            call check(error, .false., "a documented column refused: " // failure%message)
+            return
+        end if
+        missing = 0
+        do i = 1, size(names)
+            if (layout%column(trim(names(i))) /= 16 + i) missing = i
+        end do
+        call check(error, missing == 0 .and. history%count == 1, "column " &
+            & // to_text(missing + 16) // " not found where written")
+        if (allocated(error)) return
+        wrong = [character(len=20) :: "gcon_fx", "spring1_fx"]
+        do i = 1, size(wrong)
+            lines(1) = header // "," // trim(wrong(i))
+            lines(2) = row // ",0"
+            call write_lines(path, lines)
+            call read_output_csv(path, layout, history, failure)
+            call check(error, allocated(failure), trim(wrong(i)) // " accepted")
+            if (allocated(error)) return
+            call check(error, index(failure%message, "column " // to_text(17 + size(names)) &
+                & // " must be one of ") > 0 .and. index(failure%message, "got '" &
+                & // trim(wrong(i)) // "'") > 0, failure%message)
+            if (allocated(error)) return
+        end do
+    contains
+        !> Append name to names.
+        subroutine add(name)
+            character(len=*), intent(in) :: name
+            character(len=name_length) :: one(1)
+
+            one(1) = name
+            names = [names, one]
+        end subroutine add
+    end subroutine test_csv_documented
 
     !> Rows with too few values, a NaN, a word, or no rows at all.
     subroutine test_csv_rows(error)
