@@ -85,6 +85,9 @@ contains
             & new_unittest("sfosub-endless-loop", test_endless), &
             & new_unittest("sfosub-writes-outside-result", test_writes_outside), &
             & new_unittest("sfosub-returns-nan", test_nan), &
+            & new_unittest("sfosub-divides-by-zero", test_divide_by_zero), &
+            & new_unittest("sfosub-endless-initialisation", test_endless_init), &
+            & new_unittest("sfosub-changes-read-only-arguments", test_changes_arguments), &
             & new_unittest("sfosub-missing", test_missing), &
             & new_unittest("routine-names-no-file", test_unknown_routine), &
             & new_unittest("motsub-refusals", test_motion_user), &
@@ -909,6 +912,54 @@ contains
             & "returned RESULT = (NaN) at TIME = 0.1", &
             & "a force must be finite"], error)
     end subroutine test_nan
+
+    !> An integer division by zero, NPAR / IZERO, in an SFOSUB: the child is killed by SIGFPE
+    !> and the error names the statement, the signal and the call (not the initialisation
+    !> call), as the UCOSUB corpus's divide_by_zero.f.
+    subroutine test_divide_by_zero(error)
+        type(error_type), allocatable, intent(out) :: error
+
+        call expect_fault("divide_by_zero", 10.0_wp, [character(len=70) :: &
+            & "SFORCE/2: the process was killed by SIGFPE", &
+            & "inside SFOSUB call", &
+            & "IFLAG = .FALSE."], error)
+    end subroutine test_divide_by_zero
+
+    !> An endless loop in an SFOSUB's initialisation call: killed at the time limit per call
+    !> (1 s here), the call named as the initialisation call (IFLAG = .TRUE.), before any row.
+    subroutine test_endless_init(error)
+        type(error_type), allocatable, intent(out) :: error
+
+        call expect_fault("endless_init", 1.0_wp, [character(len=70) :: &
+            & "SFORCE/2: a call of the SFOSUB did not return", &
+            & "within 1 s, the time limit", &
+            & "IFLAG = .TRUE., TIME = 0"], error)
+    end subroutine test_endless_init
+
+    !> An SFOSUB changing PAR(3), TIME or ID, which it may only read (ADAMS may pass them in
+    !> read-only memory), in its first call after the initialisation call: the guard's copies
+    !> see it, and the error names the statement, its line, the file, the argument and the
+    !> values before and after (PAR(3) the stiffness 1000 raised by 1, ID 2 by 1; TIME moved by
+    !> 1 s from the call's time, a value the test does not know, so only its name is matched).
+    subroutine test_changes_arguments(error)
+        type(error_type), allocatable, intent(out) :: error
+        character(len=*), parameter :: names(3) = [character(len=12) :: "changes_par", &
+            & "changes_time", "changes_id"]
+        character(len=*), parameter :: changes(3) = [character(len=44) :: &
+            & "the routine changed PAR(3) from 1000 to 1001", "the routine changed TIME from", &
+            & "the routine changed ID from 2 to 3"]
+        integer :: k
+
+        do k = 1, size(names)
+            call expect_fault(trim(names(k)), 10.0_wp, [character(len=60) :: &
+                & "user_forces.adm:15: SFORCE/2: its SFOSUB of", trim(names(k)) // ".f", &
+                & changes(k), "which it may only read"], error)
+            if (allocated(error)) then
+                error%message = trim(names(k)) // ".f: " // error%message
+                return
+            end if
+        end do
+    end subroutine test_changes_arguments
 
     !> user_forces.adm with only the GFOSUB's file: SFORCE/2 is refused before any call,
     !> naming its line and the routine it needs.
