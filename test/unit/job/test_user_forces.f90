@@ -88,6 +88,7 @@ contains
             & new_unittest("sfosub-divides-by-zero", test_divide_by_zero), &
             & new_unittest("sfosub-endless-initialisation", test_endless_init), &
             & new_unittest("sfosub-changes-read-only-arguments", test_changes_arguments), &
+            & new_unittest("ucosub-stop-names-line", test_ucosub_stop_line), &
             & new_unittest("sfosub-missing", test_missing), &
             & new_unittest("routine-names-no-file", test_unknown_routine), &
             & new_unittest("motsub-refusals", test_motion_user), &
@@ -589,8 +590,9 @@ contains
             & // nl // "SIMULATE/DYNAMIC, END = 1, STEPS = 10" // nl // "END" // nl, error)
         if (allocated(error)) return
         call run_user(path, ["faulty/difsub_crashes.f"], 10.0_wp, history, run_error)
-        call expect_message(run_error, [character(len=50) :: &
-            & "DIFF/3: the process was killed by SIGSEGV", "inside DIFSUB call", &
+        call expect_message(run_error, [character(len=70) :: &
+            & "difsub_crash.adm:6: DIFF/3: the process was killed by SIGSEGV", &
+            & "inside DIFSUB call", &
             & "IFLAG = .FALSE."], error)
     end subroutine test_difsub_crashes
 
@@ -866,8 +868,9 @@ contains
     subroutine test_crashes(error)
         type(error_type), allocatable, intent(out) :: error
 
-        call expect_fault("crashes", 10.0_wp, [character(len=50) :: &
-            & "SFORCE/2: the process was killed by SIGSEGV", "inside SFOSUB call", &
+        call expect_fault("crashes", 10.0_wp, [character(len=70) :: &
+            & "user_forces.adm:15: SFORCE/2: the process was killed by SIGSEGV", &
+            & "inside SFOSUB call", &
             & "IFLAG = .FALSE."], error)
     end subroutine test_crashes
 
@@ -876,8 +879,8 @@ contains
     subroutine test_stops(error)
         type(error_type), allocatable, intent(out) :: error
 
-        call expect_fault("stops", 10.0_wp, [character(len=50) :: &
-            & "SFORCE/2: the process ended with exit status", &
+        call expect_fault("stops", 10.0_wp, [character(len=70) :: &
+            & "user_forces.adm:15: SFORCE/2: the process ended with exit status", &
             & "a STOP, ERROR STOP or CALL EXIT in the SFOSUB", "inside SFOSUB call", &
             & "its stderr: STOP spring broken"], error)
     end subroutine test_stops
@@ -886,8 +889,9 @@ contains
     subroutine test_endless(error)
         type(error_type), allocatable, intent(out) :: error
 
-        call expect_fault("endless", 1.0_wp, [character(len=50) :: &
-            & "SFORCE/2: a call of the SFOSUB did not return", "within 1 s, the time limit", &
+        call expect_fault("endless", 1.0_wp, [character(len=70) :: &
+            & "user_forces.adm:15: SFORCE/2: a call of the SFOSUB did not return", &
+            & "within 1 s, the time limit", &
             & "IFLAG = .FALSE."], error)
     end subroutine test_endless
 
@@ -920,7 +924,7 @@ contains
         type(error_type), allocatable, intent(out) :: error
 
         call expect_fault("divide_by_zero", 10.0_wp, [character(len=70) :: &
-            & "SFORCE/2: the process was killed by SIGFPE", &
+            & "user_forces.adm:15: SFORCE/2: the process was killed by SIGFPE", &
             & "inside SFOSUB call", &
             & "IFLAG = .FALSE."], error)
     end subroutine test_divide_by_zero
@@ -931,7 +935,7 @@ contains
         type(error_type), allocatable, intent(out) :: error
 
         call expect_fault("endless_init", 1.0_wp, [character(len=70) :: &
-            & "SFORCE/2: a call of the SFOSUB did not return", &
+            & "user_forces.adm:15: SFORCE/2: a call of the SFOSUB did not return", &
             & "within 1 s, the time limit", &
             & "IFLAG = .TRUE., TIME = 0"], error)
     end subroutine test_endless_init
@@ -960,6 +964,21 @@ contains
             end if
         end do
     end subroutine test_changes_arguments
+
+    !> The coin dataset run with the UCOSUB corpus's stops.f (a STOP in its first evaluation
+    !> call): the error begins as a force routine's does, with the UCON's file and line
+    !> (data/coin.adm:38: UCON/1), then what ended the process and the call.
+    subroutine test_ucosub_stop_line(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(history_type) :: history
+        type(error_type), allocatable :: run_error
+
+        call run_user("data/coin.adm", ["../faulty_ucosubs/stops.f"], 10.0_wp, history, &
+            & run_error)
+        call expect_message(run_error, [character(len=60) :: &
+            & "data/coin.adm:38: UCON/1: the process ended with exit status", &
+            & "inside UCOSUB call", "IFLAG = 0"], error)
+    end subroutine test_ucosub_stop_line
 
     !> user_forces.adm with only the GFOSUB's file: SFORCE/2 is refused before any call,
     !> naming its line and the routine it needs.
@@ -1123,8 +1142,9 @@ contains
 
         call run_user(folder // "motion.adm", ["faulty/motsub_crashes.f"], 10.0_wp, history, &
             & run_error)
-        call expect_message(run_error, [character(len=50) :: &
-            & "MOTION/1: the process was killed by SIGSEGV", "inside MOTSUB call", &
+        call expect_message(run_error, [character(len=70) :: &
+            & "motion.adm:17: MOTION/1: the process was killed by SIGSEGV", &
+            & "inside MOTSUB call", &
             & "IFLAG = .FALSE."], error)
     end subroutine test_motsub_crashes
 
