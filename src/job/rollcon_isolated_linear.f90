@@ -24,8 +24,7 @@ module rollcon_isolated_linear
     use rollcon_frames, only : send_frame, frame_buffer_type
     use rollcon_isolation_text, only : outcome_text, scratch_path
     use rollcon_job, only : job_type, user_file_type
-    use rollcon_isolated_run, only : compile_user_files, build_apart, hand_on_stderr, &
-        & statement_place
+    use rollcon_isolated_run, only : compile_user_files, build_apart, hand_on_stderr
     implicit none
     private
 
@@ -137,8 +136,8 @@ contains
         call run_in_child(task, real(job%call_timeout, c_double), outcome, error, &
             & stderr_path, receiver)
         if (outcome%kind /= outcome_finished .and. .not. allocated(error)) &
-            & call fatal_error(error, outcome_text(outcome, statement_place(job, &
-            & outcome%record)) // "; the linear analysis did not complete", stat_ucon)
+            & call fatal_error(error, outcome_text(outcome) // "; the linear analysis did " &
+            & // "not complete", stat_ucon)
         unused%message = ""
         call hand_on_stderr(stderr_path, outcome%kind /= outcome_finished, unused, error)
         if (allocated(error)) return

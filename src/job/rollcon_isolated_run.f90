@@ -388,8 +388,13 @@ contains
         type is (dataset_source_type)
             associate (adm => source%adm)
                 select case (keyword)
+                ! (loops, not the lists' id components: those would be copied into temporaries)
                 case ("UCON")
-                    if (allocated(adm%ucons)) line = line_of(adm%ucons%id, adm%ucons%line)
+                    if (allocated(adm%ucons)) then
+                        do k = 1, size(adm%ucons)
+                            if (adm%ucons(k)%id == id) line = adm%ucons(k)%line
+                        end do
+                    end if
                 case ("REQUEST")
                     if (allocated(adm%requests)) line = request_line(adm%requests)
                     if (line == 0 .and. allocated(adm%force_requests)) &
@@ -397,12 +402,23 @@ contains
                     if (line == 0 .and. allocated(adm%other_requests)) &
                         & line = request_line(adm%other_requests)
                 case ("VARIABLE")
-                    if (allocated(adm%variables)) line = line_of(adm%variables%id, &
-                        & adm%variables%line)
+                    if (allocated(adm%variables)) then
+                        do k = 1, size(adm%variables)
+                            if (adm%variables(k)%id == id) line = adm%variables(k)%line
+                        end do
+                    end if
                 case ("MOTION")
-                    if (allocated(adm%motions)) line = line_of(adm%motions%id, adm%motions%line)
+                    if (allocated(adm%motions)) then
+                        do k = 1, size(adm%motions)
+                            if (adm%motions(k)%id == id) line = adm%motions(k)%line
+                        end do
+                    end if
                 case ("DIFF")
-                    if (allocated(adm%diffs)) line = line_of(adm%diffs%id, adm%diffs%line)
+                    if (allocated(adm%diffs)) then
+                        do k = 1, size(adm%diffs)
+                            if (adm%diffs(k)%id == id) line = adm%diffs(k)%line
+                        end do
+                    end if
                 case default
                     if (allocated(adm%forces)) then
                         do k = 1, size(adm%forces)
@@ -418,20 +434,15 @@ contains
             end associate
         end select
     contains
-        !> The line of the statement of this id among ids (0: none).
-        pure integer function line_of(ids, lines)
-            integer, intent(in) :: ids(:), lines(:)
-            integer :: i
-
-            line_of = 0
-            i = findloc(ids, id, dim=1)
-            if (i > 0) line_of = lines(i)
-        end function line_of
-
+        !> The line of the request of this id among requests (0: none).
         pure integer function request_line(requests)
             type(adm_request_type), intent(in) :: requests(:)
+            integer :: i
 
-            request_line = line_of(requests%id, requests%line)
+            request_line = 0
+            do i = 1, size(requests)
+                if (requests(i)%id == id) request_line = requests(i)%line
+            end do
         end function request_line
     end function statement_place
 
