@@ -5,10 +5,10 @@ module rollcon_command_check
     use rollcon, only : wp, error_type, fatal_error, stat_input, user_ucosub_type, &
         & new_user_ucosub, ucon_request_type, user_check_options_type, user_check_report_type, &
         & check_user_ucosub_isolated, read_ucon_request, report_text, write_report_json, &
-        & user_build_options_type, user_file_type
+        & user_build_options_type, user_file_type, to_text
     use rollcon_program, only : sampling_ranges, default_call_timeout, max_check_states, &
         & states_refusal, dataset_has_user_routines, check_user_routines, routine_units_lines, &
-        & check_dataset_ucons
+        & check_dataset_ucons, check_tally_type
     use rollcon_cli, only : cli_request_type
     use rollcon_command_run, only : call_timeout_of
     implicit none
@@ -145,7 +145,8 @@ contains
         type(error_type), allocatable, intent(out) :: error
         type(user_build_options_type) :: build
         type(user_file_type), allocatable :: more_files(:)
-        character(len=:), allocatable :: findings, units
+        character(len=:), allocatable :: findings, units, done
+        type(check_tally_type) :: tally
         real(wp) :: call_timeout
         integer :: count, seed, k
 
@@ -162,7 +163,7 @@ contains
             more_files(k)%path = request%nth("--ucosub", k)
         end do
         call check_user_routines(request%positional, request%text("--model", ""), build, &
-            & call_timeout, seed, findings, count, error, more_files)
+            & call_timeout, seed, findings, count, error, more_files, tally)
         if (allocated(error)) return
         write(output_unit, '(a)') "check: the user routines of " // request%positional &
             & // trim(merge(" and more files", "               ", size(more_files) > 0)) &
@@ -171,11 +172,15 @@ contains
         call routine_units_lines(request%text("--model", ""), units, error)
         if (allocated(error)) return
         write(output_unit, '(a)', advance="no") units
+        ! what was checked, as the UCOSUB check's verdict counts its UCONs and comparisons
+        done = to_text(tally%statements) // " statement(s) checked at " &
+            & // to_text(tally%states) // " states each, " // to_text(tally%calls) &
+            & // " calls of their routines, " // to_text(tally%compared) // " values compared"
         if (count == 0) then
-            write(output_unit, '(a)') "verdict: clean"
+            write(output_unit, '(a)') "verdict: clean: " // done // ", no finding"
         else
             write(output_unit, '(a)', advance="no") findings
-            write(output_unit, '(a, i0, a)') "verdict: ", count, " finding(s)"
+            write(output_unit, '(a)') "verdict: " // to_text(count) // " finding(s); " // done
             status = 1
         end if
     end subroutine check_routines

@@ -15,7 +15,7 @@ module rollcon_program
     use rollcon_ucosub_audit, only : sampling_ranges, max_check_states, states_refusal
     use rollcon_ucon_request, only : dataset_ucon_requests
     use rollcon_user_routine_check, only : dataset_has_user_routines, check_user_routines, &
-        & routine_units_lines
+        & routine_units_lines, check_tally_type
     use rollcon_run_check, only : check_at_start
     use rollcon_dataset_ucon_check, only : check_dataset_ucons
 

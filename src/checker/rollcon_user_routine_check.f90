@@ -30,7 +30,7 @@ module rollcon_user_routine_check
     use rollcon_adm_reader, only : read_adm
     use rollcon_job, only : job_type, user_file_type
     use rollcon_load, only : load_job, add_user_file
-    use rollcon_isolated_run, only : compile_user_files, build_apart
+    use rollcon_isolated_run, only : compile_user_files, build_apart, statement_place
     use rollcon_problem, only : problem_type
     use rollcon_force, only : profile_statement
     use rollcon_system_routine_contract, only : request_results, request_columns, &
@@ -52,7 +52,7 @@ module rollcon_user_routine_check
     private
 
     public :: dataset_has_user_routines, check_user_routines, implicit_typing_findings
-    public :: routine_units_lines
+    public :: routine_units_lines, check_tally_type
 
     !> States probed about the start, besides the start itself
     integer, parameter :: probed_states = 20
@@ -123,11 +123,22 @@ module rollcon_user_routine_check
         procedure :: run => run_routine_check
     end type routine_check_task_type
 
-    !> In this process: the findings the child sends, a line each
+    !> What a check did: the statements it probed, the states each was probed at, the calls
+    !> of their routines, and the outputs' values compared (each value of a call with its
+    !> repeat's, for hidden state)
+    type :: check_tally_type
+        integer :: statements = 0, states = 0, calls = 0, compared = 0
+    end type check_tally_type
+
+    !> Frame kinds the child sends: a finding's line, the tally (four whole numbers)
+    integer, parameter :: frame_finding = 1, frame_tally = 2
+
+    !> In this process: the findings the child sends, a line each, and its tally
     type, extends(stream_receiver_type) :: findings_receiver_type
         type(frame_buffer_type) :: frames
         character(len=:), allocatable :: text
         integer :: count = 0
+        type(check_tally_type) :: tally
     contains
         procedure :: receive
     end type findings_receiver_type
@@ -174,7 +185,7 @@ contains
     !> line each, "" for none) and their number. error is for what prevents the check (a file
     !> does not build, the model does not read).
     subroutine check_user_routines(file, model, options, call_timeout, seed, findings, count, &
-            & error, more_files)
+            & error, more_files, tally)
         character(len=*), intent(in) :: file, model
         type(user_build_options_type), intent(in) :: options
         !> Longest one call may take [s]
@@ -186,6 +197,8 @@ contains
         type(error_type), allocatable, intent(out) :: error
         !> The other files of the model's routines (as `rollcon run --ucosub` takes them)
         type(user_file_type), intent(in), optional :: more_files(:)
+        !> What the check did (the child's tally; zero when it ended early)
+        type(check_tally_type), intent(out), optional :: tally
         type(routine_check_task_type) :: task
         type(findings_receiver_type) :: receiver
         type(isolation_outcome_type) :: outcome
@@ -214,8 +227,10 @@ contains
         call run_in_child(task, real(call_timeout, wp), outcome, error, receiver=receiver)
         findings = receiver%text
         count = receiver%count
+        if (present(tally)) tally = receiver%tally
         if (outcome%kind /= outcome_finished) then
-            findings = findings // "[crash] " // outcome_text(outcome) // new_line("a")
+            findings = findings // "[crash] " // outcome_text(outcome, &
+                & statement_place(task%job, outcome%record)) // new_line("a")
             count = count + 1
             if (allocated(error)) deallocate(error)
         else if (allocated(error)) then
@@ -423,6 +438,11 @@ contains
         character(len=:), allocatable :: report, label
         integer :: s, i, n, kind
         integer, allocatable :: seed(:)
+        type(check_tally_type) :: tally
+        type(error_type), allocatable :: ignored
+        ! a statement's first hidden state's finding (probe), and the states that showed it
+        character(len=:), allocatable :: hidden
+        integer :: hidden_states
 
         call clear_system_notes()
         ! the job's routines loaded, guarded and the model built as a run apart does it (no
@@ -457,8 +477,13 @@ contains
                 call probe(kinds(kind), i, label)
             end do
         end do
+        tally%states = probed_states + 1
+        call send_frame(self%stream_fd, frame_tally, number_list([tally%statements, &
+            & tally%states, tally%calls, tally%compared]), ignored)
     contains
-        !> The checks of one statement at every state.
+        !> The checks of one statement at every state. Hidden state is one finding, the first
+        !> state's, with the number of states that showed it (as a UCOSUB's findings are
+        !> grouped); every other finding is its state's.
         subroutine probe(row, k, label)
             type(checked_kind_type), intent(in) :: row
             integer, intent(in) :: k
@@ -469,32 +494,53 @@ contains
             integer :: s
 
             reported = ""
+            hidden = ""
+            hidden_states = 0
+            tally%statements = tally%statements + 1
             do s = 0, probed_states
                 where = label // " at state " // to_text(s) // trim(merge(" (the start)", &
                     & "            ", s == 0)) // ", in the call with IFLAG = .FALSE., t = " &
                     & // to_text(times(s)) // " s"
                 call clear_system_notes()
+                tally%calls = tally%calls + 1
                 call row%values(problem, k, times(s), q(:, s), u(:, s), first, failure)
-                if (.not. allocated(failure)) call row%values(problem, k, times(s), q(:, s), &
-                    & u(:, s), second, failure)
+                if (.not. allocated(failure)) then
+                    tally%calls = tally%calls + 1
+                    call row%values(problem, k, times(s), q(:, s), u(:, s), second, failure)
+                end if
                 if (allocated(failure)) then
+                    call hidden_finding(s)
                     ! a routine that fails is probed no further: the first failure says it
                     call finding(trim(merge("[finite]", "[error] ", index(failure%message, &
                         & "must be finite") > 0)) // " " // where // ": " &
                         & // failure_text(failure%message, label))
                     return
                 end if
+                tally%compared = tally%compared + size(first)
                 if (s == 0) start = first
                 if (any(first /= second)) then
-                    call finding("[hidden state] " // where // ": the same inputs gave " &
-                        & // trim(row%output) // " (" // number_list(first) // ") and then (" &
-                        & // number_list(second) // ")")
+                    hidden_states = hidden_states + 1
+                    if (hidden_states == 1) hidden = "[hidden state] " // where &
+                        & // ": the same inputs gave " // trim(row%output) // " (" &
+                        & // number_list(first) // ") and then (" // number_list(second) // ")"
                 else if (s > 0) then
                     call continuity(row, k, s, start, first, where)
                 end if
                 call declaration_notes(where, reported)
             end do
+            call hidden_finding(probed_states + 1)
         end subroutine probe
+
+        !> probe's finding of hidden state: the first state's, and how many of the states
+        !> compared (all, or those before a failure) showed it.
+        subroutine hidden_finding(compared)
+            integer, intent(in) :: compared
+
+            if (hidden_states == 0) return
+            call finding(hidden // "; so in " // to_text(hidden_states) // " of the " &
+                & // to_text(compared) // " states probed")
+            hidden_states = 0
+        end subroutine hidden_finding
 
         !> A jump of the k-th statement's outputs on the way from the start (outputs start)
         !> to state s (outputs there): the way halved, the half with the larger change kept,
@@ -517,6 +563,7 @@ contains
             scale = 1.0_wp + max(maxval(abs(start)), maxval(abs(there)))
             do h = 1, halvings
                 c = 0.5_wp*(a + b)
+                tally%calls = tally%calls + 1
                 call row%values(problem, k, times(0) + c*(times(s) - times(0)), q(:, 0) &
                     & + c*(q(:, s) - q(:, 0)), u(:, 0) + c*(u(:, s) - u(:, 0)), middle, failure)
                 ! a failure on the way is found where it is when the state probed is near it
@@ -562,7 +609,7 @@ contains
             character(len=*), intent(in) :: text
             type(error_type), allocatable :: ignored
 
-            call send_frame(self%stream_fd, 1, text, ignored)
+            call send_frame(self%stream_fd, frame_finding, text, ignored)
         end subroutine finding
     end subroutine run_routine_check
 
@@ -851,18 +898,24 @@ contains
     end function failure_text
 
 
-    !> Bytes from the child: each finding a line.
+    !> Bytes from the child: each finding a line, and the tally.
     subroutine receive(self, bytes)
         class(findings_receiver_type), intent(inout) :: self
         character(len=*), intent(in) :: bytes
         character(len=:), allocatable :: payload
-        integer :: kind
+        integer :: kind, stat, numbers(4)
         logical :: found
 
         call self%frames%add(bytes)
         do
             call self%frames%next(kind, payload, found)
             if (.not. found) exit
+            if (kind == frame_tally) then
+                read(payload, *, iostat=stat) numbers
+                if (stat == 0) self%tally = check_tally_type(numbers(1), numbers(2), &
+                    & numbers(3), numbers(4))
+                cycle
+            end if
             if (.not. allocated(self%text)) self%text = ""
             self%text = self%text // payload
             if (payload(len(payload):) /= new_line("a")) self%text = self%text // new_line("a")

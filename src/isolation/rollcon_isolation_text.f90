@@ -10,11 +10,11 @@ module rollcon_isolation_text
         & routine_varsub, variable_routine_name, routine_motsub, motion_routine_name, &
         & routine_difsub, diff_routine_name
     use rollcon_child_process, only : isolation_outcome_type, outcome_signal, outcome_timeout, &
-        & outcome_exit, signal_name
+        & outcome_exit, signal_name, call_record_type
     implicit none
     private
 
-    public :: outcome_text, quote_stderr, scratch_path
+    public :: outcome_text, outcome_statement, quote_stderr, scratch_path
 
     !> Lines of the child's stderr quoted at most
     integer, parameter :: quoted_lines = 4
@@ -22,20 +22,25 @@ module rollcon_isolation_text
 contains
 
     !> "UCON/1: the UCOSUB was killed by SIGFPE (...) in call 57, IFLAG = 0, IDRSEL = (1, 1, 1),
-    !> TIME = 2.5, Q = (...), state 3": what happened and the call it happened in.
-    function outcome_text(outcome) result(text)
+    !> TIME = 2.5, Q = (...), state 3": what happened and the call it happened in. `where`, the
+    !> statement as its user wrote it ("model.adm:12: UCON/1", the caller's from the dataset),
+    !> takes the place of the statement the record names (outcome_statement: "UCON/1"), as
+    !> every other error of a user's routine names it.
+    function outcome_text(outcome, where) result(text)
         !> How the child ended
         type(isolation_outcome_type), intent(in) :: outcome
+        !> The statement whose routine was called, with its file and line
+        character(len=*), intent(in), optional :: where
         character(len=:), allocatable :: text
         integer :: i, n
 
         if (outcome%record%routine_kind > 0) then
-            text = force_outcome_text(outcome)
+            text = force_outcome_text(outcome, statement_named(outcome%record, where))
             return
         end if
         associate (record => outcome%record)
             text = ""
-            if (record%calls > 0) text = "UCON/" // to_text(int(record%ucon_id)) // ": "
+            if (record%calls > 0) text = statement_named(record, where) // ": "
             select case (outcome%kind)
             case (outcome_signal)
                 text = text // "the process was killed by " // signal_name(outcome%signal)
@@ -84,31 +89,65 @@ contains
         end associate
     end function outcome_text
 
+    !> The statement whose routine a record's call is of, as its keyword and id: UCON/1 (a
+    !> UCOSUB), SFORCE/2 (an SFOSUB), VFORCE, GFORCE, VTORQUE, REQUEST, VARIABLE, MOTION, DIFF;
+    !> routine, the routine's name (UCOSUB, SFOSUB, ...).
+    subroutine outcome_statement(record, keyword, id, routine)
+        type(call_record_type), intent(in) :: record
+        character(len=:), allocatable, intent(out) :: keyword, routine
+        integer, intent(out) :: id
+
+        id = int(record%ucon_id)
+        if (record%routine_kind == routine_reqsub) then
+            keyword = "REQUEST"
+            routine = request_routine_name
+        else if (record%routine_kind == routine_varsub) then
+            keyword = "VARIABLE"
+            routine = variable_routine_name
+        else if (record%routine_kind == routine_motsub) then
+            keyword = "MOTION"
+            routine = motion_routine_name
+        else if (record%routine_kind == routine_difsub) then
+            keyword = "DIFF"
+            routine = diff_routine_name
+        else if (record%routine_kind > 0) then
+            keyword = trim(routine_statements(min(routine_kinds, int(record%routine_kind))))
+            routine = trim(routine_names(min(routine_kinds, int(record%routine_kind))))
+        else
+            keyword = "UCON"
+            routine = "UCOSUB"
+        end if
+    end subroutine outcome_statement
+
+    !> where when given and not empty, else the record's statement, "SFORCE/2".
+    function statement_named(record, where) result(text)
+        type(call_record_type), intent(in) :: record
+        character(len=*), intent(in), optional :: where
+        character(len=:), allocatable :: text, keyword, routine
+        integer :: id
+
+        if (present(where)) then
+            if (len(where) > 0) then
+                text = where
+                return
+            end if
+        end if
+        call outcome_statement(record, keyword, id, routine)
+        text = keyword // "/" // to_text(id)
+    end function statement_named
+
     !> outcome_text for a force routine's call: "SFORCE/2: the process was killed by SIGSEGV
-    !> (...), inside SFOSUB call 57: IFLAG = .FALSE., TIME = 0.25".
-    function force_outcome_text(outcome) result(text)
+    !> (...), inside SFOSUB call 57: IFLAG = .FALSE., TIME = 0.25", the statement named as
+    !> `named` says.
+    function force_outcome_text(outcome, named) result(text)
         type(isolation_outcome_type), intent(in) :: outcome
-        character(len=:), allocatable :: text, routine
+        character(len=*), intent(in) :: named
+        character(len=:), allocatable :: text, routine, keyword
+        integer :: id
 
         associate (record => outcome%record)
-            if (record%routine_kind == routine_reqsub) then
-                routine = request_routine_name
-                text = "REQUEST/" // to_text(int(record%ucon_id)) // ": "
-            else if (record%routine_kind == routine_varsub) then
-                routine = variable_routine_name
-                text = "VARIABLE/" // to_text(int(record%ucon_id)) // ": "
-            else if (record%routine_kind == routine_motsub) then
-                routine = motion_routine_name
-                text = "MOTION/" // to_text(int(record%ucon_id)) // ": "
-            else if (record%routine_kind == routine_difsub) then
-                routine = diff_routine_name
-                text = "DIFF/" // to_text(int(record%ucon_id)) // ": "
-            else
-                routine = trim(routine_names(max(1, min(routine_kinds, &
-                    & int(record%routine_kind)))))
-                text = trim(routine_statements(max(1, min(routine_kinds, &
-                    & int(record%routine_kind))))) // "/" // to_text(int(record%ucon_id)) // ": "
-            end if
+            call outcome_statement(record, keyword, id, routine)
+            text = named // ": "
             select case (outcome%kind)
             case (outcome_signal)
                 text = text // "the process was killed by " // signal_name(outcome%signal)

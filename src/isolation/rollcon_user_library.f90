@@ -102,6 +102,7 @@ contains
         type(user_ucosub_type), intent(inout) :: self
         type(error_type), allocatable, intent(out) :: error
         type(c_funptr) :: address
+        character(len=:), allocatable :: defined
 
         self%handle = open_library(self%library)
         if (.not. c_associated(self%handle)) then
@@ -117,16 +118,58 @@ contains
         end if
         address = library_symbol(self%handle, ucosub_symbol)
         if (.not. c_associated(address)) then
-            call fatal_error(error, self%source // ": defines no subroutine UCOSUB (symbol '" &
-                & // ucosub_symbol // "' not found: " // last_library_error() // "); check the " &
-                & // "name in its SUBROUTINE statement, and that UCOSUB is an external " &
-                & // "subroutine, not inside a module", stat_ucon)
+            defined = other_routines(self%handle)
+            if (len(defined) > 0) then
+                ! a file of another kind of routine: what it defines, and the check it takes
+                call fatal_error(error, self%source // ": defines no subroutine UCOSUB; it " &
+                    & // "defines " // defined // ", checked on the dataset whose statements " &
+                    & // "call it (FUNCTION=USER(...)): rollcon check " // self%source &
+                    & // " --model MODEL.adm", stat_ucon)
+            else
+                call fatal_error(error, self%source // ": defines no subroutine UCOSUB " &
+                    & // "(symbol '" // ucosub_symbol // "' not found: " &
+                    & // last_library_error() // "); check the name in its SUBROUTINE " &
+                    & // "statement, and that UCOSUB is an external subroutine, not inside " &
+                    & // "a module", stat_ucon)
+            end if
             call self%destroy()
             return
         end if
         ! The symbol is gfortran's external UCOSUB, whose calling convention is ucosub_interface.
         call c_f_procpointer(address, self%ucosub)
     end subroutine load_user_ucosub
+
+    !> The routines other than UCOSUB a loaded library defines, of the kinds rollcon serves
+    !> ("SFOSUB and VARSUB"); "" for none.
+    function other_routines(handle) result(text)
+        type(c_ptr), intent(in) :: handle
+        character(len=:), allocatable :: text
+        character(len=6), allocatable :: names(:)
+        integer :: kind, k
+
+        allocate(names(0))
+        do kind = 1, routine_kinds
+            if (c_associated(library_symbol(handle, trim(routine_symbols(kind))))) &
+                & names = [character(len=6) :: names, routine_names(kind)]
+        end do
+        if (c_associated(library_symbol(handle, request_routine_symbol))) &
+            & names = [character(len=6) :: names, request_routine_name]
+        if (c_associated(library_symbol(handle, variable_routine_symbol))) &
+            & names = [character(len=6) :: names, variable_routine_name]
+        if (c_associated(library_symbol(handle, motion_routine_symbol))) &
+            & names = [character(len=6) :: names, motion_routine_name]
+        if (c_associated(library_symbol(handle, diff_routine_symbol))) &
+            & names = [character(len=6) :: names, diff_routine_name]
+        text = ""
+        do k = 1, size(names)
+            if (k > 1 .and. k == size(names)) then
+                text = text // " and "
+            else if (k > 1) then
+                text = text // ", "
+            end if
+            text = text // trim(names(k))
+        end do
+    end function other_routines
 
     !> Load every routine of self%library, the library built from self%source: its UCOSUB
     !> (self%ucosub; null when it defines none; registered with rollcon_user_ucosubs as

@@ -13,7 +13,7 @@ module rollcon_isolated_run
     use, intrinsic :: iso_fortran_env, only : output_unit, error_unit
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type, fatal_error, stat_ucon
-    use rollcon_text, only : to_text
+    use rollcon_text, only : to_text, place
     use rollcon_ucosub_contract, only : ucosub_interface
     use rollcon_wire, only : wire_writer_type, wire_reader_type
     use rollcon_output_layout, only : output_layout_type
@@ -29,7 +29,10 @@ module rollcon_isolated_run
     use rollcon_child_process, only : isolated_task_type, stream_receiver_type, &
         & call_record_type, isolation_outcome_type, run_in_child, outcome_finished
     use rollcon_frames, only : send_frame, frame_buffer_type
-    use rollcon_isolation_text, only : outcome_text, quote_stderr, scratch_path
+    use rollcon_isolation_text, only : outcome_text, outcome_statement, quote_stderr, &
+        & scratch_path
+    use rollcon_dataset_source, only : dataset_source_type
+    use rollcon_adm_model, only : adm_model_type, adm_request_type, force_names
     use rollcon_ucosub_guard, only : install_guard, attach_call_record, guarded_ucosub
     use rollcon_user_build, only : build_user_library
     use rollcon_user_library, only : user_ucosub_type, load_user_routines, library_named
@@ -47,7 +50,7 @@ module rollcon_isolated_run
     implicit none
     private
 
-    public :: run_isolated, compile_user_files, build_apart, hand_on_stderr
+    public :: run_isolated, compile_user_files, build_apart, hand_on_stderr, statement_place
 
     !> Kinds of frame the child sends
     integer, parameter :: frame_report = 1, frame_shapes = 2, frame_started = 3, &
@@ -141,7 +144,7 @@ contains
         stderr_path = scratch_path("run", 1, ".stderr")
         call run_in_child(task, real(job%call_timeout, c_double), outcome, error, &
             & stderr_path, receiver)
-        call conclude(receiver, outcome, summary, error)
+        call conclude(job, receiver, outcome, summary, error)
         call hand_on_stderr(stderr_path, outcome%kind /= outcome_finished, summary, error)
         started = receiver%started
         if (started .and. summary%status == status_failed) call point_at_check(job, summary, &
@@ -411,7 +414,9 @@ contains
 
     !> The run's summary from what the child sent and how it ended: its own summary when it
     !> finished, else a failure at the last row received, naming the call it ended in.
-    subroutine conclude(receiver, outcome, summary, error)
+    subroutine conclude(job, receiver, outcome, summary, error)
+        !> The job run (its dataset names the statement of a routine that failed)
+        type(job_type), intent(in) :: job
         type(job_receiver_type), intent(inout) :: receiver
         type(isolation_outcome_type), intent(in) :: outcome
         type(run_summary_type), intent(out) :: summary
@@ -430,8 +435,8 @@ contains
         end if
         summary%rows = receiver%rows
         if (outcome%kind /= outcome_finished .and. .not. allocated(error)) then
-            call fatal_error(error, outcome_text(outcome) // "; the run did not complete", &
-                & stat_ucon)
+            call fatal_error(error, outcome_text(outcome, statement_place(job, outcome%record)) &
+                & // "; the run did not complete", stat_ucon)
         end if
         if (allocated(receiver%failure) .and. .not. allocated(error)) &
             & call move_alloc(receiver%failure, error)
@@ -440,6 +445,83 @@ contains
             summary%message = error%message
         end if
     end subroutine conclude
+
+    !> The statement whose user routine a child's call record is of, as its user wrote it,
+    !> "data/x.adm:15: SFORCE/2" (the form of every other error of a user's routine), for a
+    !> job of a dataset holding that statement; "" otherwise (a scene's UCONs have no line:
+    !> outcome_text then names "UCON/1").
+    function statement_place(job, record) result(where)
+        type(job_type), intent(in) :: job
+        type(call_record_type), intent(in) :: record
+        character(len=:), allocatable :: where
+        character(len=:), allocatable :: keyword, routine
+        integer :: id, line, k
+
+        where = ""
+        if (.not. allocated(job%source)) return
+        call outcome_statement(record, keyword, id, routine)
+        line = 0
+        select type (source => job%source)
+        type is (dataset_source_type)
+            associate (adm => source%adm)
+                select case (keyword)
+                ! (loops, not the lists' id components: those would be copied into temporaries)
+                case ("UCON")
+                    if (allocated(adm%ucons)) then
+                        do k = 1, size(adm%ucons)
+                            if (adm%ucons(k)%id == id) line = adm%ucons(k)%line
+                        end do
+                    end if
+                case ("REQUEST")
+                    if (allocated(adm%requests)) line = request_line(adm%requests)
+                    if (line == 0 .and. allocated(adm%force_requests)) &
+                        & line = request_line(adm%force_requests)
+                    if (line == 0 .and. allocated(adm%other_requests)) &
+                        & line = request_line(adm%other_requests)
+                case ("VARIABLE")
+                    if (allocated(adm%variables)) then
+                        do k = 1, size(adm%variables)
+                            if (adm%variables(k)%id == id) line = adm%variables(k)%line
+                        end do
+                    end if
+                case ("MOTION")
+                    if (allocated(adm%motions)) then
+                        do k = 1, size(adm%motions)
+                            if (adm%motions(k)%id == id) line = adm%motions(k)%line
+                        end do
+                    end if
+                case ("DIFF")
+                    if (allocated(adm%diffs)) then
+                        do k = 1, size(adm%diffs)
+                            if (adm%diffs(k)%id == id) line = adm%diffs(k)%line
+                        end do
+                    end if
+                case default
+                    if (allocated(adm%forces)) then
+                        do k = 1, size(adm%forces)
+                            if (adm%forces(k)%id /= id) cycle
+                            if (trim(force_names(adm%forces(k)%kind)) /= keyword) cycle
+                            line = adm%forces(k)%line
+                            exit
+                        end do
+                    end if
+                end select
+                if (line > 0) where = place(adm%file, line) // ": " // keyword // "/" &
+                    & // to_text(id)
+            end associate
+        end select
+    contains
+        !> The line of the request of this id among requests (0: none).
+        pure integer function request_line(requests)
+            type(adm_request_type), intent(in) :: requests(:)
+            integer :: i
+
+            request_line = 0
+            do i = 1, size(requests)
+                if (requests(i)%id == id) request_line = requests(i)%line
+            end do
+        end function request_line
+    end function statement_place
 
     !> In the child: load the routine, guard it, build, make the start consistent, check the
     !> routine there when the job asks (job%start_check) and simulate, sending everything to

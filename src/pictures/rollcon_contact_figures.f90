@@ -4,7 +4,9 @@
 !> precession and spin rates, energy drift, constraint residuals with the height residual, the
 !> contact force and the friction coefficient it needs. A run whose rows carry the contact's
 !> mode (Coulomb friction: the `mode` column) gets its contact point's path coloured by mode,
-!> with its switches marked.
+!> with its switches marked, and, given the contact's friction coefficients, its friction
+!> figure the lines of mu_static and mu_kinetic. Path figures of any run colour the contact's
+!> part by mode through path_modes, mode_path, mode_switches and mode_title.
 module rollcon_contact_figures
     use, intrinsic :: ieee_arithmetic, only : ieee_value, ieee_quiet_nan
     use rollcon_kinds, only : wp
@@ -13,7 +15,9 @@ module rollcon_contact_figures
     use rollcon_output_layout, only : coord_x, coord_y, coord_theta, coord_psidot, &
         & coord_phidot
     use rollcon_run_record, only : run_record_type, path_point
-    use rollcon_figure_text, only : drift, residual_floor, title, output, figure_preamble
+    use rollcon_part_shapes, only : shape_extent
+    use rollcon_figure_text, only : drift, residual_floor, title, output, figure_preamble, &
+        & path_axis_ranges
     use rollcon_gnuplot, only : gnuplot_string
     use rollcon_output_files, only : close_checked
     use rollcon_figure_rows, only : write_figure_rows
@@ -22,7 +26,7 @@ module rollcon_contact_figures
     private
 
     public :: write_contact_data, contact_script, path_modes, mode_path, mode_switches, &
-        & mode_colour_values
+        & mode_colour_values, mode_title, mode_colour, switch_colour
 
     !> The figures, each written as DIR/<base>_<name>.png
     character(len=*), parameter, public :: contact_figure_names(7) = [character(len=11) :: "path", &
@@ -187,6 +191,28 @@ contains
         end do
     end function mode_switches
 
+    !> The mode's word in the legend: rolling, sliding, flight (contact_mode_words), or
+    !> 'mode N' for a number it has no word for.
+    pure function mode_title(mode) result(word)
+        integer, intent(in) :: mode
+        character(len=:), allocatable :: word
+
+        if (mode >= lbound(contact_mode_words, 1) .and. mode <= ubound(contact_mode_words, 1)) &
+            & then
+            word = trim(contact_mode_words(mode))
+        else
+            word = "mode " // to_text(mode)
+        end if
+    end function mode_title
+
+    !> The colour of a mode's stretches of a path ("#rrggbb": rolling blue, sliding red, ...).
+    pure function mode_colour(mode) result(colour)
+        integer, intent(in) :: mode
+        character(len=7) :: colour
+
+        colour = mode_colours(modulo(mode, size(mode_colours)))
+    end function mode_colour
+
     !> The plot of the paths: the contact point (one line per mode present, with the
     !> switches marked, when the rows carry the mode) and the centre.
     pure function path_plot(data, run) result(text)
@@ -194,7 +220,6 @@ contains
         type(run_record_type), intent(in) :: run
         character(len=:), allocatable :: text
         integer, allocatable :: modes(:), present(:)
-        character(len=:), allocatable :: word
         integer :: k, first
 
         call path_modes(run, modes, present)
@@ -207,16 +232,9 @@ contains
         first = data_columns + size(run%layout%ucon_ids) + 2
         text = "plot "
         do k = 1, size(present)
-            if (present(k) >= lbound(contact_mode_words, 1) .and. present(k) &
-                & <= ubound(contact_mode_words, 1)) then
-                word = trim(contact_mode_words(present(k)))
-            else
-                word = "mode " // to_text(present(k))
-            end if
             text = text // data // " using 4:" // to_text(first + k - 1) &
-                & // " with lines lw 2 lc rgb '" &
-                & // mode_colours(modulo(present(k), size(mode_colours))) // "' title " &
-                & // gnuplot_string("contact point, " // word) // ", "
+                & // " with lines lw 2 lc rgb '" // mode_colour(present(k)) // "' title " &
+                & // gnuplot_string("contact point, " // mode_title(present(k))) // ", "
         end do
         text = text // data // " using 4:" // to_text(first + size(present)) &
             & // " with points pt 7 ps 0.6 lc rgb '" // switch_colour // "' title " &
@@ -225,24 +243,42 @@ contains
     end function path_plot
 
     !> The gnuplot script drawing every figure from the data file. Long because it is the
-    !> figures' text, one figure after the other.
-    pure function contact_script(name, prefix, data_path, run) result(text)
+    !> figures' text, one figure after the other. The path's axes span at least
+    !> path_axis_ranges's (a straight path drawn straight); with the contact's friction
+    !> coefficients the friction figure draws them as lines, what mu_needed may reach while
+    !> rolling (mu_static) and what it is while sliding (mu_kinetic).
+    pure function contact_script(name, prefix, data_path, run, friction) result(text)
         !> The run's name, the figures' path less _<figure>.png, the data file
         character(len=*), intent(in) :: name, prefix, data_path
         type(run_record_type), intent(in) :: run
+        !> The contact's mu_static and mu_kinetic (the run's summary: rollcon_run_record's
+        !> read_friction), when it has friction
+        real(wp), intent(in), optional :: friction(2)
         character(len=:), allocatable :: text
         character(len=*), parameter :: nl = new_line("a")
-        character(len=:), allocatable :: data, residuals
+        character(len=:), allocatable :: data, residuals, ranges
+        real(wp), allocatable :: x(:), y(:)
+        real(wp) :: point(3)
         integer :: k, nucons
 
         data = gnuplot_string(data_path)
+        ! every point the path's figure draws: the centre and the contact point
+        allocate(x(2*run%history%count), y(2*run%history%count))
+        do k = 1, run%history%count
+            point = path_point(run, 1, k)
+            x(2*k - 1:2*k) = [run%history%rows(run%layout%part_column(1, coord_x), k), point(1)]
+            y(2*k - 1:2*k) = [run%history%rows(run%layout%part_column(1, coord_y), k), point(2)]
+        end do
+        ranges = ""
+        if (size(run%shapes) >= 1) ranges = path_axis_ranges(x, y, shape_extent(run%shapes(1)))
         text = figure_preamble(name)
         text = text // output(prefix, "path") &
             & // title(name // ": paths on the ground (equal axes)") &
             & // "set xlabel 'X [m]'" // nl // "set ylabel 'Y [m]'" // nl &
-            & // "set size ratio -1" // nl &
+            & // "set size ratio -1" // nl // ranges &
             & // path_plot(data, run) // nl &
             & // "set size noratio" // nl // "set xlabel 't [s]'" // nl
+        if (len(ranges) > 0) text = text // "set autoscale xy" // nl
         text = text // output(prefix, "theta") &
             & // title(name // ": tilt θ (π/2 upright, 0 and π flat)") &
             & // "set ylabel 'θ [rad]'" // nl &
@@ -286,9 +322,34 @@ contains
             & // data // " using 1:12 with lines lw 1.5 title 'tangential'" // nl
         text = text // output(prefix, "friction") &
             & // title(name // ": friction coefficient needed to roll (|tangential|/normal)") &
-            & // "set ylabel 'μ needed'" // nl &
-            & // "plot " // data // " using 1:13 with lines lw 1.5 title 'μ needed'" // nl &
-            & // "unset output" // nl
+            & // "set ylabel 'μ needed'" // nl
+        ! room above mu_static's line, which would lie on the frame at the autoscaled top
+        if (present(friction)) text = text // "set offsets 0, 0, graph 0.08, 0" // nl
+        text = text // "plot " // data // " using 1:13 with lines lw 1.5 title 'μ needed'"
+        if (present(friction)) text = text // friction_lines(friction) // nl // "unset offsets"
+        text = text // nl // "unset output" // nl
     end function contact_script
+
+    !> The friction figure's lines of the contact's coefficients, to follow its plot command:
+    !> mu_static dashed, mu_kinetic dotted (one line when they are equal). Rows are often
+    !> farther apart than a rise of mu_needed to mu_static takes (a few ms), so the curve
+    !> alone need not show where rolling gave way.
+    pure function friction_lines(friction) result(text)
+        !> mu_static, mu_kinetic
+        real(wp), intent(in) :: friction(2)
+        character(len=:), allocatable :: text
+
+        if (friction(2) == friction(1)) then
+            text = ", " // to_text(friction(1)) // " with lines dashtype 2 lw 1.5 lc rgb '" &
+                & // mode_colour(1) // "' title " // gnuplot_string("μs = μk = " &
+                & // to_text(friction(1)))
+            return
+        end if
+        text = ", " // to_text(friction(1)) // " with lines dashtype 2 lw 1.5 lc rgb '" &
+            & // mode_colour(0) // "' title " // gnuplot_string("μs = " // to_text(friction(1)) &
+            & // " (static: rolling holds below)") // ", " // to_text(friction(2)) &
+            & // " with lines dashtype 3 lw 1.5 lc rgb '" // mode_colour(1) // "' title " &
+            & // gnuplot_string("μk = " // to_text(friction(2)) // " (kinetic: sliding)")
+    end function friction_lines
 
 end module rollcon_contact_figures

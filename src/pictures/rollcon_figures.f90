@@ -4,16 +4,22 @@
 !> (paths on the ground, theta, the precession and spin rates, energy drift, constraint
 !> residuals, contact force and the friction coefficient it needs: rollcon_contact_figures);
 !> any other model's gets a set for any parts (paths and heights of the centres of mass, Euler
-!> angles, energy drift, UCON residuals and multipliers).
+!> angles, energy drift, UCON residuals and multipliers), the path of a part a CONTACT holds
+!> coloured by the contact's mode as the contact's figures colour theirs.
 module rollcon_figures
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type, fatal_error, stat_io
-    use rollcon_run_record, only : run_record_type, read_run, rolls_on_rim
-    use rollcon_output_layout, only : coord_x, coord_phi
-    use rollcon_contact_figures, only : contact_figure_names, write_contact_data, contact_script
+    use rollcon_run_record, only : run_record_type, read_run, rolls_on_rim, read_friction, &
+        & contact_part
+    use rollcon_output_layout, only : coord_x, coord_y, coord_phi
+    use rollcon_part_shapes, only : shape_extent
+    use rollcon_contact_figures, only : contact_figure_names, write_contact_data, &
+        & contact_script, path_modes, mode_path, mode_switches, mode_title, mode_colour, &
+        & switch_colour
     use rollcon_singularity_figure, only : has_singularity, write_singularity_data, &
         & singularity_script, singularity_figure_name
-    use rollcon_figure_text, only : drift, residual_floor, title, output, figure_preamble
+    use rollcon_figure_text, only : drift, residual_floor, title, output, figure_preamble, &
+        & path_axis_ranges
     use rollcon_gnuplot, only : require_gnuplot, run_gnuplot, gnuplot_string, base_name, &
         & remove_file
     use rollcon_text, only : to_text
@@ -22,7 +28,8 @@ module rollcon_figures
     implicit none
     private
 
-    public :: plot_output, figure_file, figure_names, model_figure_names, figures_of
+    public :: plot_output, figure_file, figure_names, model_figure_names, figures_of, &
+        & write_model_data, model_script
 
     !> The figures of a part rolling on a rim, each written as DIR/<base>_<name>.png
     character(len=*), parameter :: figure_names(7) = contact_figure_names
@@ -54,6 +61,8 @@ contains
         character(len=:), allocatable, intent(out), optional :: script
         type(run_record_type) :: run
         character(len=:), allocatable :: prefix, data_path, script_path, names(:), text
+        real(wp) :: friction(2)
+        logical :: has_friction
         integer :: i, unit, stat, size_bytes, length
 
         call read_run(csv_path, run, error)
@@ -67,8 +76,11 @@ contains
         names = figures_of(run)
         if (rolls_on_rim(run)) then
             call write_contact_data(data_path, run, error)
-            if (.not. allocated(error)) text = contact_script(base_name(csv_path, ".csv"), &
-                & prefix, data_path, run)
+            call read_friction(csv_path, friction, has_friction)
+            if (.not. allocated(error) .and. has_friction) text = contact_script(base_name( &
+                & csv_path, ".csv"), prefix, data_path, run, friction)
+            if (.not. allocated(error) .and. .not. has_friction) text = contact_script( &
+                & base_name(csv_path, ".csv"), prefix, data_path, run)
             ! a disk settling to its finite-time singularity: Omega against t0 - t
             if (.not. allocated(error) .and. has_singularity(run)) then
                 call write_singularity_data(prefix // "_singularity.dat", run, error)
@@ -166,15 +178,20 @@ contains
 
     !> The data of the model figures, one row per output row: t; X, Y, Z, psi, theta, phi of
     !> each part; |E - E(t0)|/|E(t0)|, |E - E(t_end)|/|E(t_end)|; |F_k| of each UCON (at least
-    !> residual_floor); lambda_k of each UCON.
+    !> residual_floor); lambda_k of each UCON; with the contact's mode (a `mode` column), the Y
+    !> of the contact's part (contact_part) in each mode present (path_modes, in that order:
+    !> mode_path) and at each switch (mode_switches), NaN elsewhere.
     subroutine write_model_data(path, run, error)
+        !> Data file to write
         character(len=*), intent(in) :: path
+        !> A run read by read_run
         type(run_record_type), intent(in) :: run
         type(error_type), allocatable, intent(out) :: error
-        real(wp), allocatable :: row(:), data(:, :)
+        real(wp), allocatable :: row(:), data(:, :), wider(:, :)
         logical, allocatable :: paired(:)
+        integer, allocatable :: modes(:), present(:)
         character(len=256) :: message
-        integer :: unit, stat, j, p, n, nucons, np, c
+        integer :: unit, stat, j, p, n, nucons, np, c, k
 
         n = run%history%count
         nucons = size(run%layout%ucon_ids)
@@ -205,6 +222,21 @@ contains
         end associate
         ! thinned to what a figure shows; each part's X and Y (its path) by their own rows
         paired = [(c > 1 .and. c <= 1 + 6*np .and. mod(c - 2, 6) < 2, c = 1, size(data, 1))]
+        ! the contact's part's Y in each mode present and at each switch, paired with its X
+        call path_modes(run, modes, present)
+        p = contact_part(run)
+        if (size(present) > 0 .and. p > 0) then
+            allocate(wider(size(data, 1) + size(present) + 1, n))
+            wider(:size(data, 1), :) = data
+            do k = 1, size(present)
+                wider(size(data, 1) + k, :) = mode_path(modes, data(1 + 6*(p - 1) + 2, :), &
+                    & present(k))
+            end do
+            wider(size(data, 1) + size(present) + 1, :) = mode_switches(modes, &
+                & data(1 + 6*(p - 1) + 2, :))
+            call move_alloc(wider, data)
+            paired = [paired, spread(.true., 1, size(present) + 1)]
+        end if
         call write_figure_rows(unit, data, paired, stat)
         call close_checked(unit, path, error)
         if (allocated(error)) return
@@ -213,6 +245,8 @@ contains
     end subroutine write_model_data
 
     !> The gnuplot script of the model figures (data columns as write_model_data writes them).
+    !> The path's axes span at least path_axis_ranges's for the largest part (a straight path
+    !> drawn straight); the contact's part's path is drawn a line per mode, its switches marked.
     pure function model_script(name, prefix, data_path, run) result(text)
         !> The run's name, the figures' path less _<figure>.png, the data file
         character(len=*), intent(in) :: name, prefix, data_path
@@ -220,16 +254,18 @@ contains
         character(len=:), allocatable :: text
         character(len=*), parameter :: nl = new_line("a")
         character(len=*), parameter :: angle_names(3) = [character(len=5) :: "ψ", "θ", "φ"]
-        character(len=:), allocatable :: data
+        character(len=:), allocatable :: data, ranges
         integer :: c
 
         data = gnuplot_string(data_path)
+        ranges = path_ranges(run)
         text = figure_preamble(name) // output(prefix, "path") &
             & // title(name // ": paths of the centres of mass (equal axes)") &
             & // "set xlabel 'X [m]'" // nl // "set ylabel 'Y [m]'" // nl &
-            & // "set size ratio -1" // nl &
+            & // "set size ratio -1" // nl // ranges &
             & // "plot" // part_curves(data, run, 1, 2, " centre of mass") // nl &
             & // "set size noratio" // nl // "set xlabel 't [s]'" // nl
+        if (len(ranges) > 0) text = text // "set autoscale xy" // nl
         text = text // output(prefix, "height") &
             & // title(name // ": height Z of the centres of mass") &
             & // "set ylabel 'Z [m]'" // nl // "plot" // part_curves(data, run, 0, 3, "") // nl
@@ -243,6 +279,26 @@ contains
         text = text // "unset multiplot" // nl // ucon_figures(name, prefix, data, run)
     end function model_script
 
+    !> The lines that give the paths' figure its least span (path_axis_ranges): over every
+    !> part's centre of mass, the largest part's size the floor.
+    pure function path_ranges(run) result(text)
+        type(run_record_type), intent(in) :: run
+        character(len=:), allocatable :: text
+        real(wp), allocatable :: x(:), y(:)
+        real(wp) :: extent
+        integer :: p, n
+
+        n = run%history%count
+        allocate(x(0), y(0))
+        do p = 1, size(run%layout%part_ids)
+            x = [x, run%history%rows(run%layout%part_column(p, coord_x), :n)]
+            y = [y, run%history%rows(run%layout%part_column(p, coord_y), :n)]
+        end do
+        extent = 0.0_wp
+        if (size(run%shapes) > 0) extent = maxval(shape_extent(run%shapes))
+        text = path_axis_ranges(x, y, extent)
+    end function path_ranges
+
     !> The curves of a quantity of every part, for a plot command: data column x against data
     !> column y of each part's X, Y, Z, psi, theta, phi (1 .. 6; 0 is t), titled 'part <id>'
     !> and what.
@@ -254,12 +310,34 @@ contains
         character(len=:), allocatable :: curves
         integer :: p
 
+        integer, allocatable :: modes(:), present(:)
+        integer :: k, contact, first
+
         curves = ""
+        call path_modes(run, modes, present)
+        contact = 0
+        ! the path (X, Y) of the contact's part by mode: the columns after the multipliers
+        if (x == 1 .and. y == 2 .and. size(present) > 0) contact = contact_part(run)
+        first = 4 + 6*size(run%layout%part_ids) + 2*size(run%layout%ucon_ids)
         do p = 1, size(run%layout%part_ids)
-            curves = curves // merge(", ", "  ", p > 1) // data // " using " &
-                & // to_text(column(p, x)) // ":" // to_text(column(p, y)) &
-                & // " with lines lw 1.5 title " &
-                & // gnuplot_string("part " // to_text(run%layout%part_ids(p)) // what)
+            if (p /= contact) then
+                curves = curves // merge(", ", "  ", p > 1) // data // " using " &
+                    & // to_text(column(p, x)) // ":" // to_text(column(p, y)) &
+                    & // " with lines lw 1.5 title " &
+                    & // gnuplot_string("part " // to_text(run%layout%part_ids(p)) // what)
+                cycle
+            end if
+            do k = 1, size(present)
+                curves = curves // merge(", ", "  ", p > 1 .or. k > 1) // data // " using " &
+                    & // to_text(column(p, x)) // ":" // to_text(first + k - 1) &
+                    & // " with lines lw 2 lc rgb '" // mode_colour(present(k)) &
+                    & // "' title " // gnuplot_string("part " &
+                    & // to_text(run%layout%part_ids(p)) // what // ", " &
+                    & // mode_title(present(k)))
+            end do
+            curves = curves // ", " // data // " using " // to_text(column(p, x)) // ":" &
+                & // to_text(first + size(present)) // " with points pt 7 ps 0.6 lc rgb '" &
+                & // switch_colour // "' title 'mode switch (first row after)'"
         end do
     contains
         !> Data column of part p's coordinate c (write_model_data); t for c = 0.

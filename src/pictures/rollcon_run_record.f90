@@ -19,6 +19,7 @@ module rollcon_run_record
     private
 
     public :: run_record_type, read_run, pose, rolls_on_rim, path_point, ground_bounds
+    public :: read_friction, contact_part
 
     !> A run's output, ready to draw
     type :: run_record_type
@@ -203,6 +204,82 @@ contains
             if (layout%column(trim(contact_names(k))) == 0) has_contact_columns = .false.
         end do
     end function has_contact_columns
+
+    !> The contact's friction coefficients, mu_static and mu_kinetic, from the summary the run
+    !> wrote beside its CSV (DIR/NAME.summary.txt for DIR/NAME.csv), whose line
+    !> 'contact: starts rolling (mu_static 0.5, mu_kinetic 0.4), 10 switches' gives them
+    !> (docs/outputs.md); found is false without that file or that line (a run without
+    !> friction), and for numbers that do not read as 0 < mu_kinetic <= mu_static.
+    subroutine read_friction(csv_path, friction, found)
+        !> Output CSV of `rollcon run`
+        character(len=*), intent(in) :: csv_path
+        !> mu_static, mu_kinetic [-]
+        real(wp), intent(out) :: friction(2)
+        logical, intent(out) :: found
+        !> The line, and what comes before each number: "(mu_static 0.5, mu_kinetic 0.4)"
+        character(len=*), parameter :: start = "contact: starts ", &
+            & keys(2) = [character(len=12) :: "(mu_static", ", mu_kinetic"]
+        character(len=:), allocatable :: summary, marker
+        character(len=4096) :: line
+        integer :: unit, stat, k, at, finish
+
+        found = .false.
+        friction = 0.0_wp
+        summary = csv_path
+        if (len(csv_path) >= 4) then
+            if (csv_path(len(csv_path) - 3:) == ".csv") summary = csv_path(:len(csv_path) - 4)
+        end if
+        summary = summary // ".summary.txt"
+        open(newunit=unit, file=summary, status="old", action="read", iostat=stat)
+        if (stat /= 0) return
+        do
+            read(unit, '(a)', iostat=stat) line
+            if (stat /= 0) exit
+            if (index(line, start) /= 1) cycle
+            found = .true.
+            do k = 1, size(keys)
+                marker = trim(keys(k)) // " "
+                at = index(line, marker)
+                if (at == 0) then
+                    found = .false.
+                    exit
+                end if
+                at = at + len(marker)
+                finish = scan(line(at:), ",)")
+                stat = 1
+                if (finish > 1) read(line(at:at + finish - 2), *, iostat=stat) friction(k)
+                if (stat /= 0) found = .false.
+            end do
+            exit
+        end do
+        close(unit)
+        if (found) found = friction(2) > 0.0_wp .and. friction(2) <= friction(1)
+        if (.not. found) friction = 0.0_wp
+    end subroutine read_friction
+
+    !> The part (model order) a run's contact holds on the ground, 0 for a run without the
+    !> contact's columns: the part whose lowest point (a disk's rim's, an ellipsoid's centre
+    !> less its semi-axis c, a sphere's radius) is nearest the first row's height_residual, the
+    !> contact point's height the contact watch writes.
+    pure integer function contact_part(run)
+        type(run_record_type), intent(in) :: run
+        real(wp) :: point(3), gap, nearest
+        integer :: p
+
+        contact_part = 0
+        if (.not. has_contact_columns(run%layout) .or. run%history%count < 1) return
+        nearest = huge(1.0_wp)
+        do p = 1, size(run%shapes)
+            point = path_point(run, p, 1)
+            if (run%shapes(p)%kind /= shape_disk) point(3) = point(3) &
+                & - run%shapes(p)%semi_axes(3)
+            gap = abs(point(3) - run%history%rows(run%layout%column("height_residual"), 1))
+            if (gap < nearest) then
+                nearest = gap
+                contact_part = p
+            end if
+        end do
+    end function contact_part
 
     !> "1, 2, 7"
     pure function id_list(ids) result(text)

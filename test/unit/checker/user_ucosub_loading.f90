@@ -53,10 +53,18 @@ contains
         call expect_in(error, message, "xmatrix")
     end subroutine test_does_not_compile
 
+    !> A file without UCOSUB is refused; one of a force routine (an SFOSUB, given to the
+    !> UCOSUB check by mistake) is refused naming what it defines and the command that checks
+    !> it, on the dataset its statements are in.
     subroutine test_no_ucosub(error)
         type(error_type), allocatable, intent(out) :: error
+        character(len=*), parameter :: force_file = "test/user_forces/sforce_spring.f"
 
         call expect_load_error(error, faulty // "no_ucosub.f", "defines no subroutine UCOSUB")
+        if (allocated(error)) return
+        call expect_load_error(error, force_file, force_file // ": defines no subroutine " &
+            & // "UCOSUB; it defines SFOSUB, checked on the dataset whose statements call it " &
+            & // "(FUNCTION=USER(...)): rollcon check " // force_file // " --model MODEL.adm")
     end subroutine test_no_ucosub
 
     subroutine test_missing_file(error)

@@ -3,21 +3,27 @@
 !> carry the `mode` column (Coulomb friction) has its path split by that column into one line
 !> per mode, each stretch joined to the next, and its switches marked, and the animation's path
 !> takes each point's mode's colour; a run without it keeps the one line of the contact point.
+!> A sphere's CONTACT (a dataset's, its part an ellipsoid: the model figures) gets its part's
+!> path coloured the same way; a straight path's axes span at least the part's size; the
+!> friction figure draws the contact's mu_static and mu_kinetic, read from the summary.
 module test_mode_path
     use, intrinsic :: ieee_arithmetic, only : ieee_is_nan
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type
     use rollcon_text, only : to_text
-    use rollcon_output_layout, only : new_output_layout
+    use rollcon_output_layout, only : new_output_layout, coord_x
     use rollcon_watch_columns, only : contact_names, contact_mode_names
-    use rollcon_run_record, only : run_record_type
+    use rollcon_run_record, only : run_record_type, read_friction, contact_part
     use rollcon_contact_figures, only : mode_path, mode_switches, write_contact_data, &
         & contact_script, mode_colour_values
+    use rollcon_figures, only : write_model_data, model_script, plot_output
+    use rollcon_part_shapes, only : shape_ellipsoid
     use rollcon_gif, only : animate_output
     use rollcon_gnuplot, only : gnuplot_available
-    use rollcon_figure_text, only : residual_floor
+    use rollcon_figure_text, only : residual_floor, path_axis_ranges
     use rollcon_testing, only : unittest_type, new_unittest, check, skip_test
-    use picture_files, only : disk_run, make_folder, remove_folder, run_rows, write_run
+    use picture_files, only : disk_run, make_folder, remove_folder, run_rows, write_run, &
+        & write_lines, disk_radius
     implicit none
     private
 
@@ -28,6 +34,12 @@ module test_mode_path
     !> Columns of the figures' data before those of the modes: 13, one per UCON (3), the
     !> height residual (rollcon_contact_figures)
     integer, parameter :: before_modes = 13 + 3 + 1
+    !> The sphere run's radius [m], speed along X [m/s] and rows sliding (the rest rolling)
+    real(wp), parameter :: sphere_radius = 0.05_wp, sphere_speed = 0.5_wp
+    integer, parameter :: sliding_rows = 10
+    !> Columns of the model figures' data before those of the modes: t, 6 of the part, 2
+    !> drifts, 3 residuals, 3 multipliers (rollcon_figures' write_model_data)
+    integer, parameter :: model_before_modes = 1 + 6 + 2 + 3 + 3
 
 contains
 
@@ -37,7 +49,10 @@ contains
         tests = [new_unittest("split-follows-mode-column", test_split), &
             & new_unittest("figure-data-by-mode", test_data), &
             & new_unittest("script-lines-by-mode", test_script), &
-            & new_unittest("animation-path-by-mode", test_animation)]
+            & new_unittest("animation-path-by-mode", test_animation), &
+            & new_unittest("sphere-contact-path-by-mode", test_sphere_path), &
+            & new_unittest("straight-path-least-span", test_straight_path), &
+            & new_unittest("friction-lines-from-summary", test_friction_lines)]
     end subroutine collect_mode_path
 
     !> Modes 0 0 1 1 1 0 2 2 0 over values 1 to 9: each mode's line holds its own rows and the
@@ -212,6 +227,241 @@ contains
             & "using 1:2:3 with lines lw 2 lc rgb") > 0, "the GIF's path is not coloured by " &
             & // "mode with a mode column, in one colour without")
     end subroutine test_animation
+
+    !> A sphere's CONTACT drawn by the model figures: the contact's part is found (the one
+    !> part, its lowest point at the height residual), its path's data holds its Y in the
+    !> sliding column on the sliding rows and the row after, in the rolling column from the
+    !> switch on, NaN elsewhere, the switch at the first rolling row; the path plot draws a
+    !> line per mode in the disk figures' colours with the legend's words, the switch as
+    !> points, and not the part's one plain line; and gnuplot draws the set (skipped without
+    !> it).
+    subroutine test_sphere_path(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(run_record_type) :: run
+        real(wp) :: row(model_before_modes + 3)
+        character(len=:), allocatable :: path, text
+        character(len=:), allocatable :: files(:)
+        integer :: unit, j, stat
+        logical :: rolling, sliding, switched
+
+        run = sphere_run()
+        call check(error, contact_part(run) == 1, "the contact's part is " &
+            & // to_text(contact_part(run)) // ", not the run's one part")
+        if (allocated(error)) return
+        call make_folder(scratch)
+        path = scratch // "/model.dat"
+        call write_model_data(path, run, error)
+        if (allocated(error)) return
+        open(newunit=unit, file=path, status="old", action="read")
+        do j = 1, run_rows
+            read(unit, *, iostat=stat) row
+            call check(error, stat == 0, path // ": row " // to_text(j) // " does not hold " &
+                & // to_text(size(row)) // " numbers")
+            if (allocated(error)) exit
+            sliding = j <= sliding_rows + 1
+            rolling = j > sliding_rows
+            switched = j == sliding_rows + 1
+            call check(error, drawn(row(model_before_modes + 1), rolling) &
+                & .and. drawn(row(model_before_modes + 2), sliding) &
+                & .and. drawn(row(model_before_modes + 3), switched), "row " // to_text(j) &
+                & // ": rolling, sliding, switch columns " &
+                & // to_text(row(model_before_modes + 1)) // ", " &
+                & // to_text(row(model_before_modes + 2)) // ", " &
+                & // to_text(row(model_before_modes + 3)) // ", Y " // to_text(row(3)))
+            if (allocated(error)) exit
+        end do
+        close(unit)
+        if (allocated(error)) return
+        text = model_script("sphere", "out/sphere", "out/sphere.dat", run)
+        call check(error, index(text, "using 2:" // to_text(model_before_modes + 1) &
+            & // " with lines lw 2 lc rgb '#1f77b4' title 'part 2 centre of mass, rolling'") &
+            & > 0 .and. index(text, "using 2:" // to_text(model_before_modes + 2) &
+            & // " with lines lw 2 lc rgb '#d62728' title 'part 2 centre of mass, sliding'") &
+            & > 0 .and. index(text, "using 2:" // to_text(model_before_modes + 3) &
+            & // " with points") > 0 .and. index(text, "using 2:3 ") == 0, &
+            & "the sphere's path is not drawn a line per mode: " &
+            & // text(:index(text, "set size noratio")))
+        if (allocated(error)) return
+        if (.not. gnuplot_available()) then
+            call remove_folder(scratch)
+            call skip_test(error, "gnuplot not found (Debian gnuplot-nox; bash .ci/setup)")
+            return
+        end if
+        call write_run(scratch // "/sphere.csv", run, .true., error)
+        if (.not. allocated(error)) call plot_output(scratch // "/sphere.csv", scratch, error, &
+            & files)
+        call remove_folder(scratch)
+        if (allocated(error)) return
+        call check(error, size(files) == 6, "the sphere run drew " // to_text(size(files)) &
+            & // " figures, not the model's 6")
+
+    contains
+
+        !> Drawn there (the part's Y) or not (NaN)
+        logical function drawn(value, there)
+            real(wp), intent(in) :: value
+            logical, intent(in) :: there
+
+            if (there) then
+                drawn = value == row(3)
+            else
+                drawn = ieee_is_nan(value)
+            end if
+        end function drawn
+
+    end subroutine test_sphere_path
+
+    !> A path along X (1e-16 of round-off in Y, as a sliding coin's) gets a Y axis spanning
+    !> the part's diameter, centred on the path, and keeps X's autoscaled; a circle far wider
+    !> than its part gets neither axis set; the disk run's arc, narrower than the disk along
+    !> Y, gets Y widened to the disk's diameter.
+    subroutine test_straight_path(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(run_record_type) :: run
+        real(wp) :: low, high, angles(100)
+        integer :: j
+        character(len=:), allocatable :: text
+
+        run = sphere_run()
+        ! round-off in Y, as a run straight along X has
+        do j = 1, run%history%count
+            run%history%rows(run%layout%part_column(1, coord_x) + 1, j) = &
+                & 1.0e-16_wp*real(modulo(j, 3) - 1, wp)
+        end do
+        angles = [(0.0628_wp*real(j, wp), j = 1, size(angles))]
+        text = model_script("sphere", "out/sphere", "out/sphere.dat", run)
+        call axis_range(text, "y", low, high)
+        ! the X path spans 0.25 m: a tenth of it (0.025 m) is below the diameter, 0.1 m; the
+        ! middle of the Y values is 0 to their round-off
+        call check(error, abs(high - low - 2.0_wp*sphere_radius) <= 1.0e-15_wp &
+            & .and. abs(high + low) <= 1.0e-15_wp .and. index(text, "set xrange") == 0, &
+            & "the straight path's Y axis is [" // to_text(low) // ":" // to_text(high) &
+            & // "], not the diameter about 0, or X is set: " &
+            & // text(:index(text, "set size noratio")))
+        if (allocated(error)) return
+        call check(error, index(text, "set autoscale xy") > index(text, "set yrange"), &
+            & "the figures after the path do not autoscale again")
+        if (allocated(error)) return
+        ! a circle of radius 1 m drawn for a part of 0.1 m: both axes wide enough, none set
+        call check(error, len(path_axis_ranges(cos(angles), sin(angles), 0.1_wp)) == 0, &
+            & "a circle of 1 m got an axis range: " // path_axis_ranges(cos(angles), &
+            & sin(angles), 0.1_wp))
+        if (allocated(error)) return
+        ! the disk run's arc, 0.25 m along X and 0.14 m along Y, its contact point and centre
+        ! both counted: Y is widened to the disk's diameter (0.2 m), X is not
+        text = contact_script("disk", "out/disk", "out/disk.dat", disk_run())
+        call axis_range(text, "y", low, high)
+        call check(error, abs(high - low - 2.0_wp*disk_radius) <= 1.0e-12_wp .and. &
+            & index(text, "set xrange") == 0, "the disk run's Y axis is [" // to_text(low) &
+            & // ":" // to_text(high) // "], not the disk's diameter, or X is set: " &
+            & // text(:index(text, "set size noratio")))
+    end subroutine test_straight_path
+
+    !> The friction figure: mu_static and mu_kinetic read from the run's summary line (the
+    !> documented "contact: starts ... (mu_static 0.5, mu_kinetic 0.4)") and drawn as a
+    !> dashed and a dotted line, one line when they are equal; none without friction (a
+    !> summary without the line, or no summary); a summary whose mu_kinetic exceeds
+    !> mu_static is not read.
+    subroutine test_friction_lines(error)
+        type(error_type), allocatable, intent(out) :: error
+        real(wp) :: friction(2)
+        logical :: found
+        character(len=:), allocatable :: text
+
+        call make_folder(scratch)
+        call write_lines(scratch // "/run.summary.txt", [character(len=80) :: &
+            & "status: completed", "contact: starts rolling (mu_static 0.5, mu_kinetic 0.4), " &
+            & // "10 switches", "  time rolling 2.5 s, sliding 1.2 s"])
+        call read_friction(scratch // "/run.csv", friction, found)
+        call check(error, found .and. all(friction == [0.5_wp, 0.4_wp]), "the summary's " &
+            & // "friction read as " // to_text(friction(1)) // ", " // to_text(friction(2)))
+        if (allocated(error)) return
+        call write_lines(scratch // "/bounce.summary.txt", [character(len=90) :: &
+            & "contact: starts in flight (mu_static 0.3, mu_kinetic 0.3, restitution 0.5), " &
+            & // "1 switch"])
+        call read_friction(scratch // "/bounce.csv", friction, found)
+        call check(error, found .and. all(friction == 0.3_wp), "the flight summary's " &
+            & // "friction read as " // to_text(friction(1)) // ", " // to_text(friction(2)))
+        if (allocated(error)) return
+        call write_lines(scratch // "/plain.summary.txt", [character(len=40) :: &
+            & "status: completed"])
+        call read_friction(scratch // "/plain.csv", friction, found)
+        call check(error, .not. found, "a summary without friction gave some")
+        if (allocated(error)) return
+        call write_lines(scratch // "/wrong.summary.txt", [character(len=80) :: &
+            & "contact: starts rolling (mu_static 0.4, mu_kinetic 0.5), 1 switch"])
+        call read_friction(scratch // "/wrong.csv", friction, found)
+        call check(error, .not. found, "mu_kinetic above mu_static was read")
+        if (allocated(error)) return
+        call read_friction(scratch // "/none.csv", friction, found)
+        call remove_folder(scratch)
+        call check(error, .not. found, "no summary gave friction")
+        if (allocated(error)) return
+        text = contact_script("disk", "out/disk", "out/disk.dat", disk_run(), [0.5_wp, 0.4_wp])
+        call check(error, index(text, ", 0.5 with lines dashtype 2") > 0 .and. index(text, &
+            & ", 0.4 with lines dashtype 3") > 0 .and. index(text, "title 'μs = 0.5") > 0 &
+            & .and. index(text, "title 'μk = 0.4") > 0 .and. index(text, "title 'μ needed'") &
+            & < index(text, ", 0.5 with lines dashtype 2"), "the friction figure does not " &
+            & // "draw μs and μk: " // text(index(text, "friction coefficient"):))
+        if (allocated(error)) return
+        text = contact_script("disk", "out/disk", "out/disk.dat", disk_run(), [0.3_wp, 0.3_wp])
+        call check(error, index(text, "title 'μs = μk = 0.3'") > 0 .and. index(text, &
+            & "dashtype 3") == 0, "equal μs and μk are not one line")
+        if (allocated(error)) return
+        text = contact_script("disk", "out/disk", "out/disk.dat", disk_run())
+        call check(error, index(text, "dashtype 2 lw 1.5") == 0, "a run without friction " &
+            & // "draws friction lines")
+    end subroutine test_friction_lines
+
+    !> The value range of "set <axis>range [low:high]" in a script (both 0 when absent).
+    subroutine axis_range(text, axis, low, high)
+        character(len=*), intent(in) :: text, axis
+        real(wp), intent(out) :: low, high
+        integer :: at, colon, close, stat
+
+        low = 0.0_wp
+        high = 0.0_wp
+        at = index(text, "set " // axis // "range [")
+        if (at == 0) return
+        at = at + len("set " // axis // "range [")
+        colon = at + index(text(at:), ":") - 1
+        close = at + index(text(at:), "]") - 1
+        read(text(at:colon - 1), *, iostat=stat) low
+        read(text(colon + 1:close - 1), *, iostat=stat) high
+    end subroutine axis_range
+
+    !> A ball of radius sphere_radius (part 2, an ellipsoid of equal semi-axes) on a CONTACT
+    !> (the contact's columns with its modes, 3 UCONs) moving along X at sphere_speed, its
+    !> centre at Z = R (height residual 0): sliding for the first sliding_rows rows, then
+    !> rolling.
+    function sphere_run() result(run)
+        type(run_record_type) :: run
+        real(wp), allocatable :: row(:)
+        real(wp) :: t
+        integer :: j
+
+        run%layout = new_output_layout([2], [1, 2, 3], [contact_names, contact_mode_names])
+        allocate(run%shapes(1))
+        run%shapes(1)%id = 2
+        run%shapes(1)%kind = shape_ellipsoid
+        run%shapes(1)%semi_axes = sphere_radius
+        allocate(row(size(run%layout%header())))
+        do j = 1, run_rows
+            t = 0.01_wp*real(j - 1, wp)
+            row = 0.0_wp
+            row(1) = t
+            associate (c => run%layout%part_column(1, coord_x))
+                row(c:c + 2) = [sphere_speed*t, 0.0_wp, sphere_radius]
+                row(c + 4) = 2.0_wp*atan(1.0_wp)
+                row(c + 6) = sphere_speed
+            end associate
+            row(run%layout%energy_column()) = 0.125_wp
+            row(run%layout%column("Fz")) = 9.81_wp
+            row(run%layout%column("Fn")) = 9.81_wp
+            row(run%layout%column("mode")) = merge(1.0_wp, 0.0_wp, j <= sliding_rows)
+            call run%history%add(row)
+        end do
+    end function sphere_run
 
     !> disk_run with the contact's mode columns: rows 11 to 20 sliding, the others rolling
     !> (modes), the slip zero.

@@ -1,0 +1,22 @@
+C     rollcon test data (suite user-forces): the spring-damper SFOSUB of ../sforce_spring.f
+C     with one planted fault, run on ../user_forces.adm (test/unit/job/test_user_forces.f90).
+C     FAULT: every call after the initialisation call changes an argument the routine may
+C     only read: PAR(3), the spring's stiffness, raised by 1 N/m.
+C     EXPECTED: the error: SFORCE/2's SFOSUB changed PAR, which it may only read.
+      SUBROUTINE SFOSUB(ID, TIME, PAR, NPAR, DFLAG, IFLAG, RESULT)
+      IMPLICIT NONE
+      INTEGER ID, NPAR
+      DOUBLE PRECISION TIME, PAR(*), RESULT(*)
+      LOGICAL DFLAG, IFLAG
+      INTEGER IPAR(2), IZERO
+      DOUBLE PRECISION DM, VR
+      LOGICAL ERRFLG
+      IPAR(1) = NINT(PAR(1))
+      IPAR(2) = NINT(PAR(2))
+      CALL SYSFNC('DM', IPAR, 2, DM, ERRFLG)
+      CALL SYSFNC('VR', IPAR, 2, VR, ERRFLG)
+C     PAR(2) - 2 is zero: an index or divisor the compiler cannot see
+      IZERO = NINT(PAR(2)) - 2
+      RESULT(1) = -PAR(3)*(DM - PAR(5)) - PAR(4)*VR
+      IF (.NOT. IFLAG) PAR(3) = PAR(3) + 1.0D0
+      END
