@@ -349,11 +349,12 @@ contains
     pure function constraint_values(self) result(values)
         class(problem_type), intent(in) :: self
         real(wp) :: values(self%eq%nc)
+        integer :: k
 
         values = self%eq%constraints%value
-        if (self%eq%contact%sliding .or. self%eq%contact%flying) &
-            & values(self%eq%contact%tangential) = 0.0_wp
-        if (self%eq%contact%flying) values(self%eq%contact%normal) = 0.0_wp
+        do k = 1, self%eq%nc
+            if (self%eq%mode_drops(k)) values(k) = 0.0_wp
+        end do
     end function constraint_values
 
     !> The settings ask for the projection onto the constraints (drift 'projection') and there
@@ -587,7 +588,7 @@ contains
         real(wp), intent(out) :: friction, rim
 
         friction = 0.0_wp
-        if (self%eq%contact%sliding) friction = self%eq%contact%power
+        friction = self%eq%friction_powers()
         rim = 0.0_wp
         if (self%eq%dissipation%active()) rim = self%eq%dissipation%power()
     end subroutine dissipated_power
@@ -599,6 +600,8 @@ contains
         class(problem_type), intent(in) :: self
 
         dissipates = self%eq%contact%mu > 0.0_wp .or. self%eq%dissipation%active()
+        if (allocated(self%eq%more_contacts)) dissipates = dissipates &
+            & .or. any(self%eq%more_contacts%mu > 0.0_wp)
     end function dissipates
 
     !> The powers dissipated at (time [s], q, u), from an evaluation there (accelerations):
