@@ -552,8 +552,9 @@ contains
     end function coin_text
 
     !> What rollcon cannot honour is refused with the file, the CONTACT's line, the key and
-    !> why: a user-written normal law, frictionless sliding, a plane off Z = 0, and MAGGI (the
-    !> contact's modes are the ODE and DAE forms').
+    !> why: a user-written normal law, frictionless sliding, a plane off Z = 0, MAGGI (the
+    !> contact's modes are the ODE and DAE forms'), a second CONTACT on the same part, and a
+    !> rim's dissipation in a dataset of several CONTACTs.
     subroutine test_refusals(error)
         type(error_type), allocatable, intent(out) :: error
         character(len=:), allocatable :: path
@@ -574,6 +575,20 @@ contains
             & "FORMULATION=CVODE", "FORMULATION=MAGGI"), "refused.adm:13: CONTACT/7: a " &
             & // "CONTACT's modes (rolling, sliding, flight) are integrated in the ODE form " &
             & // "(CVODE) and the DAE form (IDA), not in independent speeds", error)
+        if (allocated(error)) return
+        ! several CONTACTs: a second on the coin's part, and a rim's dissipation beside a ball's
+        call expect_refusal(replaced(coin_text("UNITS/SYSTEM=SI", "", "0.1", "0"), &
+            & "SIMULATE/", "CONTACT/8, IGEOM=2, JGEOM=1, MU_STATIC=0.3" // new_line("a") &
+            & // "SIMULATE/"), "refused.adm:13: CONTACT/7: PART/2 is constrained by " &
+            & // "CONTACT/8", error)
+        if (allocated(error)) return
+        call expect_refusal(replaced(coin_text("UNITS/SYSTEM=SI", ", ROLLING_RESISTANCE=1E-5", &
+            & "0.1", "0"), "SIMULATE/", "PART/4, MASS=1, CM=41, IP=1E-3, 1E-3, 1E-3, " &
+            & // "QG=0, 0.5, 0.05" // new_line("a") // "MARKER/41, PART=4, REULER=0D, 90D, 0D" &
+            & // new_line("a") // "GRAPHICS/5, ELLIPSOID, CM=41, XSCALE=0.1, YSCALE=0.1, " &
+            & // "ZSCALE=0.1" // new_line("a") // "CONTACT/8, IGEOM=5, JGEOM=1, MU_STATIC=0.3" &
+            & // new_line("a") // "SIMULATE/"), "refused.adm:13: CONTACT/7: ROLLING_RESISTANCE " &
+            & // "and AIR_VISCOSITY are modelled for a dataset's only CONTACT", error)
 
     contains
 
