@@ -197,7 +197,7 @@ contains
         ! a contact's rows its mode drops at the start (a sliding or flying start: the
         ! equations' contact, rollcon_sliding_contact) are not made to hold
         level%ucon = pack([(k, k = 1, problem%model%nc)], [(.not. &
-            & problem%eq%contact%dropped(k), k = 1, problem%model%nc)])
+            & problem%eq%mode_drops(k), k = 1, problem%model%nc)])
         call name_rows(level, problem%model)
         report%velocity_rows = size(level%ucon)
         if (size(level%ucon) == 0) return

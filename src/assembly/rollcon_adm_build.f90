@@ -96,8 +96,9 @@ contains
         type(error_type), allocatable, intent(out) :: error
         type(model_type) :: model
         procedure(ucosub_interface), pointer :: fallback
-        type(contact_shape_type) :: contact
-        integer :: i, p, contact_rows(3)
+        type(contact_shape_type), allocatable :: contact(:)
+        integer, allocatable :: contact_rows(:, :)
+        integer :: i, p
 
         fallback => null()
         if (present(default_ucosub)) fallback => default_ucosub
@@ -111,7 +112,7 @@ contains
         model%ucosub_units = ucosub_units_type(length=adm%units%length, time=adm%units%time)
         call add_ucons(adm, fallback, model, error)
         if (allocated(error)) return
-        ! a CONTACT's no-slip rows, right after the UCONs (rollcon_adm_contact)
+        ! each CONTACT's no-slip rows, right after the UCONs (rollcon_adm_contact)
         call add_contact_ucons(adm, model, contact, contact_rows, error)
         if (allocated(error)) return
         call add_joints(adm, model, error)
@@ -171,7 +172,7 @@ contains
         ! a part flat at t = 0 starts in turned axes (docs/rebasing.md): its model part too
         call start_singular_parts(adm, problem, q0, u0, adm_theta_min, error)
         if (allocated(error)) return
-        ! a CONTACT's modes, from this start (rollcon_adm_contact)
+        ! each CONTACT's modes, from this start (rollcon_adm_contact)
         call add_contact_watch(adm, contact, contact_rows, problem, q0, u0, error)
         if (allocated(error)) return
         call declare_user_forces(adm, problem, q0, u0, error)

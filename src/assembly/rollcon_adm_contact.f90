@@ -16,6 +16,8 @@ module rollcon_adm_contact
     use rollcon_ucosub_catalog, only : find_builtin_ucosub, builtin_ucosub_par
     use rollcon_model, only : model_type
     use rollcon_problem, only : problem_type
+    use rollcon_sliding_contact, only : sliding_contact_type
+    use rollcon_watch_columns, only : contact_column_prefix
     use rollcon_run_settings, only : formulation_speeds
     use rollcon_contact_watch, only : contact_watch_type, mode_sliding, mode_flight
     use rollcon_dissipation_watch, only : dissipation_watch_type
@@ -246,51 +248,54 @@ contains
         end associate
     end subroutine marker_in_ground
 
-    !> The CONTACT's three no-slip rows (its point's velocity along ground X, Y, and its
+    !> Each CONTACT's three no-slip rows (its point's velocity along ground X, Y, and its
     !> height's rate), appended to the model's UCONs as CONTACT/id's equations: the routine
     !> computes in the dataset's units (its radius in them, as a UCON's PAR); on a turntable
-    !> the rows are relative to the table (table_routine). A dataset has at
-    !> most one CONTACT (the equations hold one contact's mode: rollcon_sliding_contact);
-    !> a second is refused. rows: the rows' numbers in model order (tangential X, Y, normal).
-    subroutine add_contact_ucons(adm, model, shape, rows, error)
+    !> the rows are relative to the table (table_routine). shapes: each CONTACT's, in the
+    !> dataset's order; rows(:, c): CONTACT c's rows' numbers in model order (tangential X, Y,
+    !> normal). Each contact has its own mode (the equations' contact for the first, their
+    !> more_contacts for the others: add_contact_watch).
+    subroutine add_contact_ucons(adm, model, shapes, rows, error)
         type(adm_model_type), intent(in) :: adm
         type(model_type), intent(inout) :: model
-        type(contact_shape_type), intent(out) :: shape
-        integer, intent(out) :: rows(3)
+        type(contact_shape_type), allocatable, intent(out) :: shapes(:)
+        integer, allocatable, intent(out) :: rows(:, :)
         type(error_type), allocatable, intent(out) :: error
         procedure(ucosub_interface), pointer :: routine
         real(wp), allocatable :: par(:), pars(:, :), parameters(:)
         character(len=:), allocatable :: name
         logical :: time_free, found
-        integer :: k
+        integer :: k, c
 
-        rows = 0
+        allocate(shapes(0), rows(3, 0))
         if (.not. allocated(adm%contacts)) return
-        if (size(adm%contacts) == 0) return
-        if (size(adm%contacts) > 1) then
-            call fatal_error(error, place(adm%file, adm%contacts(2)%line) // ": CONTACT/" &
-                & // to_text(adm%contacts(2)%id) // ": a second CONTACT (rollcon models one " &
-                & // "contact per dataset: its mode, rolling, sliding or flight, is the " &
-                & // "equations' one)", stat_input)
-            return
-        end if
-        call contact_shape(adm, adm%contacts(1), shape, error)
-        if (allocated(error)) return
-        name = merge(sphere_routine, rim_routine // "          ", shape%sphere)
-        name = trim(name)
-        parameters = [shape%radius/adm%units%length]
-        if (shape%on_table) call table_routine(shape, adm%units%length, name, parameters)
-        call find_builtin_ucosub(name, routine, time_free, found)
-        do k = 1, 3
-            call builtin_ucosub_par(name, shape%part_id, parameters, k, par, error)
+        deallocate(shapes, rows)
+        allocate(shapes(size(adm%contacts)), rows(3, size(adm%contacts)))
+        do c = 1, size(adm%contacts)
+            call contact_shape(adm, adm%contacts(c), shapes(c), error)
             if (allocated(error)) return
-            if (k == 1) allocate(pars(size(par), 3))
-            pars(:, k) = par
+            associate (shape => shapes(c))
+                name = merge(sphere_routine, rim_routine // "          ", shape%sphere)
+                name = trim(name)
+                parameters = [shape%radius/adm%units%length]
+                if (shape%on_table) call table_routine(shape, adm%units%length, name, parameters)
+                call find_builtin_ucosub(name, routine, time_free, found)
+                do k = 1, 3
+                    call builtin_ucosub_par(name, shape%part_id, parameters, k, par, error)
+                    if (allocated(error)) return
+                    if (k == 1) then
+                        if (allocated(pars)) deallocate(pars)
+                        allocate(pars(size(par), 3))
+                    end if
+                    pars(:, k) = par
+                end do
+                rows(:, c) = size(model%ucons) + [1, 2, 3]
+                call model%add_element_ucons(shape%name, adm%contacts(c)%id, &
+                    & adm%contacts(c)%line, routine, name, time_free, pars, &
+                    & [character(len=40) :: "no slip along ground X", &
+                    & "no slip along ground Y", "height held (its rate)"])
+            end associate
         end do
-        rows = size(model%ucons) + [1, 2, 3]
-        call model%add_element_ucons(shape%name, adm%contacts(1)%id, adm%contacts(1)%line, &
-            & routine, name, time_free, pars, [character(len=40) :: &
-            & "no slip along ground X", "no slip along ground Y", "height held (its rate)"])
     end subroutine add_contact_ucons
 
     !> The routine of a contact's rows on a turntable and its physical parameters, in the
@@ -324,8 +329,47 @@ contains
     !> CONTACT/id and why: FORMULATION=MAGGI (the contact's modes are the ODE and DAE
     !> forms'), a start below the ground or above it without a restitution, a part the
     !> dataset constrains otherwise, and rolling resistance or an air layer on a sphere.
-    subroutine add_contact_watch(adm, shape, rows, problem, q0, u0, error)
+    !> Several CONTACTs: each its own mode (the first the equations' contact, CONTACT c their
+    !> more_contacts(c - 1)), its own watch, its columns' names starting "contact<id>_" and
+    !> its summary's lines "CONTACT/id (line n)"; ROLLING_RESISTANCE and AIR_VISCOSITY are
+    !> then refused (the equations hold one rim's dissipation). shapes and rows as
+    !> add_contact_ucons made them.
+    subroutine add_contact_watch(adm, shapes, rows, problem, q0, u0, error)
         type(adm_model_type), intent(in) :: adm
+        type(contact_shape_type), intent(in) :: shapes(:)
+        integer, intent(in) :: rows(:, :)
+        type(problem_type), intent(inout), target :: problem
+        real(wp), intent(in) :: q0(:), u0(:)
+        type(error_type), allocatable, intent(out) :: error
+        integer :: c
+
+        if (size(shapes) == 0) return
+        if (allocated(problem%eq%more_contacts)) deallocate(problem%eq%more_contacts)
+        if (size(shapes) > 1) then
+            allocate(problem%eq%more_contacts(size(shapes) - 1))
+            do c = 1, size(shapes)
+                if (adm%contacts(c)%rolling_resistance > 0.0_wp &
+                    & .or. adm%contacts(c)%air_viscosity > 0.0_wp) then
+                    call fatal_error(error, shapes(c)%where // ": ROLLING_RESISTANCE and " &
+                        & // "AIR_VISCOSITY are modelled for a dataset's only CONTACT (the " &
+                        & // "rim's dissipation is one rim's: docs/design.md §5, " &
+                        & // "Dissipation); this dataset has " // to_text(size(shapes)), &
+                        & stat_input)
+                    return
+                end if
+            end do
+        end if
+        do c = 1, size(shapes)
+            call add_one_contact_watch(adm, c, shapes(c), rows(:, c), problem, q0, u0, error)
+            if (allocated(error)) return
+        end do
+    end subroutine add_contact_watch
+
+    !> CONTACT c's watch (add_contact_watch), its mode the equations' contact (c = 1) or
+    !> more_contacts(c - 1).
+    subroutine add_one_contact_watch(adm, c, shape, rows, problem, q0, u0, error)
+        type(adm_model_type), intent(in) :: adm
+        integer, intent(in) :: c
         type(contact_shape_type), intent(in) :: shape
         integer, intent(in) :: rows(3)
         type(problem_type), intent(inout), target :: problem
@@ -335,9 +379,7 @@ contains
         real(wp) :: slip(2), height, tolerance, force_scale, omega(3)
         integer :: i0, k, j
 
-        if (.not. allocated(adm%contacts)) return
-        if (size(adm%contacts) == 0) return
-        associate (contact => adm%contacts(1), settings => problem%settings)
+        associate (contact => adm%contacts(c), settings => problem%settings)
             if (settings%formulation == formulation_speeds) then
                 call fatal_error(error, shape%where // ": a CONTACT's modes (rolling, " &
                     & // "sliding, flight) are integrated in the ODE form (CVODE) and the DAE " &
@@ -361,6 +403,14 @@ contains
                 end do
             end do
             i0 = 6*(shape%part - 1)
+            watch%slot = c - 1
+            if (size(adm%contacts) > 1) then
+                watch%label = shape%name // " (line " // to_text(contact%line) // ")"
+                ! contact_column_prefix, "contact<n>_", with the CONTACT's id
+                k = index(contact_column_prefix, "<n>")
+                watch%column_prefix = contact_column_prefix(:k - 1) // to_text(contact%id) &
+                    & // contact_column_prefix(k + 3:)
+            end if
             watch%part = shape%part
             watch%radius = shape%radius
             watch%sphere = shape%sphere
@@ -402,10 +452,11 @@ contains
             if (watch%flight .and. height > tolerance) watch%initial_mode = mode_flight
             ! the start's mode, for the initial-conditions analysis (the watch sets it again
             ! when the run starts)
-            problem%eq%contact%tangential = rows(1:2)
-            problem%eq%contact%normal = rows(3)
-            problem%eq%contact%sliding = watch%initial_mode == mode_sliding
-            problem%eq%contact%flying = watch%initial_mode == mode_flight
+            if (c == 1) then
+                call start_mode(problem%eq%contact)
+            else
+                call start_mode(problem%eq%more_contacts(c - 1))
+            end if
             call problem%add_watch(watch)
             if (contact%rolling_resistance > 0.0_wp .or. contact%air_viscosity > 0.0_wp) then
                 if (shape%sphere) then
@@ -424,6 +475,18 @@ contains
                 call problem%add_watch(dissipation_watch_type(part=shape%part))
             end if
         end associate
-    end subroutine add_contact_watch
+
+    contains
+
+        !> The start's mode in the equations' contact.
+        subroutine start_mode(mode)
+            type(sliding_contact_type), intent(inout) :: mode
+
+            mode%tangential = rows(1:2)
+            mode%normal = rows(3)
+            mode%sliding = watch%initial_mode == mode_sliding
+            mode%flying = watch%initial_mode == mode_flight
+        end subroutine start_mode
+    end subroutine add_one_contact_watch
 
 end module rollcon_adm_contact

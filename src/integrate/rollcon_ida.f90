@@ -31,7 +31,7 @@ module rollcon_ida
         & FIDARootInit, FIDAGetRootInfo, FIDASetId, FIDASetSuppressAlg, FIDAFree, FIDAReInit, &
         & FIDAGetNumSteps, FIDAGetNumResEvals, FIDAGetNumJacEvals, FIDAGetNumLinResEvals, &
         & FIDAGetNumErrTestFails, FIDAGetNumNonlinSolvConvFails, FIDAGetNumGEvals, &
-        & FIDASetErrFile, FIDAGetLastStep, &
+        & FIDASetErrFile, FIDAGetLastStep, FIDAGetCurrentTime, FIDAGetDky, &
         & IDA_NORMAL, IDA_SUCCESS, &
         & IDA_ROOT_RETURN, &
         & IDA_TSTOP_RETURN, IDA_TOO_MUCH_WORK, IDA_TOO_MUCH_ACC, IDA_ERR_FAIL, IDA_CONV_FAIL
@@ -115,13 +115,31 @@ module rollcon_ida
         !> second try of a first step that failed starts from (advance)
         real(wp) :: t_begin = 0.0_wp
         real(c_double), allocatable :: begin_values(:), begin_rates(:)
+        !> The dissipated work (integrator_type work), as CVODE integrates it: the state
+        !> interpolated on the last step (IDAGetDky) and its storage, the time the work is
+        !> integrated to (IDA's own tn, the end of its last step) [s], the work there and at
+        !> t_begin [J], the powers' evaluations since the start or restart
+        type(N_Vector), pointer :: dense => null()
+        real(c_double), allocatable :: dense_values(:)
+        real(wp) :: t_work = 0.0_wp
+        real(wp), allocatable :: work_end(:), work_begin(:)
+        integer :: power_evaluations = 0
     contains
         procedure :: start
         procedure :: restart
         procedure :: advance
         procedure :: statistics
         procedure :: destroy
+        procedure :: integrate_work
+        procedure :: step_work
     end type ida_integrator_type
+
+    !> The dissipated work's rule on each step: Gauss-Legendre's two points on [0, 1] and their
+    !> weights, exact on cubics, on IDA's interpolant within the step, as CVODE's
+    !> (rollcon_cvode; docs/design.md §7, "Dissipated work")
+    real(wp), parameter :: gauss_nodes(2) = [0.5_wp - sqrt(3.0_wp)/6.0_wp, &
+        & 0.5_wp + sqrt(3.0_wp)/6.0_wp]
+    real(wp), parameter :: gauss_weights(2) = [0.5_wp, 0.5_wp]
 
 contains
 
@@ -240,6 +258,23 @@ contains
         self%t_begin = t0
         self%begin_values = self%values
         self%begin_rates = self%rates
+        if (allocated(self%work)) deallocate(self%work, self%work_end, self%work_begin)
+        self%power_evaluations = 0
+        if (system%power_count() > 0) then
+            allocate(self%work(system%power_count()), self%work_end(system%power_count()), &
+                & self%work_begin(system%power_count()), source=0.0_wp)
+            self%t_work = t0
+            if (allocated(self%dense_values)) deallocate(self%dense_values)
+            allocate(self%dense_values(size(y0)), source=0.0_wp)
+            if (associated(self%dense)) call FN_VDestroy(self%dense)
+            self%dense => FN_VMake_Serial(int(size(y0), c_int64_t), self%dense_values, &
+                & self%context)
+            if (.not. associated(self%dense)) then
+                call fatal_error(error, "IDA: could not create the interpolated state", &
+                    & stat_solver)
+                return
+            end if
+        end if
     end subroutine start
 
     !> Start again from consistent (t0, y0, yp0) with the settings, tolerances, callbacks and
@@ -265,6 +300,13 @@ contains
         self%t_begin = t0
         self%begin_values = self%values
         self%begin_rates = self%rates
+        ! the work goes on from its value at the restart's time (the last return's)
+        if (allocated(self%work)) then
+            self%work_end = self%work
+            self%work_begin = self%work
+            self%t_work = t0
+            self%power_evaluations = 0
+        end if
         flag = FIDAReInit(self%memory, t0, self%y, self%yp)
         if (check(flag, "IDAReInit", error)) return
         self%data%scale = 1.0_wp
@@ -326,6 +368,7 @@ contains
         flag = FIDASetStopTime(self%memory, t_stop)
         if (check(flag, "IDASetStopTime", error)) return
         call solve(flag)
+        if (allocated(error)) return
         if (flag == IDA_CONV_FAIL) then
             taken(1) = -1
             if (FIDAGetNumSteps(self%memory, taken) /= IDA_SUCCESS) taken(1) = -1
@@ -333,11 +376,13 @@ contains
                 self%values(:) = self%begin_values
                 self%rates(:) = self%begin_rates
                 self%t_now = self%t_begin
+                call begin_work()
                 flag = FIDAReInit(self%memory, self%t_begin, self%y, self%yp)
                 if (check(flag, "IDAReInit", error)) return
                 flag = FIDASetInitStep(self%memory, first_step_fraction*(t_out - self%t_begin))
                 if (check(flag, "IDASetInitStep", error)) return
                 call solve(flag)
+                if (allocated(error)) return
                 ! IDA's own choice again for any later restart (0: IDA estimates it)
                 ignored = FIDASetInitStep(self%memory, 0.0_wp)
             end if
@@ -348,6 +393,7 @@ contains
             self%values(:) = self%begin_values
             self%rates(:) = self%begin_rates
             self%t_now = self%t_begin
+            call begin_work()
             self%data%scale = 1.0_wp
             self%fine_until = self%t_begin
             flag = FIDAReInit(self%memory, self%t_begin, self%y, self%yp)
@@ -355,6 +401,7 @@ contains
             flag = FIDASetNonlinConvCoef(self%memory, newton_fraction(self%data))
             if (check(flag, "IDASetNonlinConvCoef", error)) return
             call solve(flag)
+            if (allocated(error)) return
         end if
         t_reached = t_return(1)
         self%t_now = t_reached
@@ -371,6 +418,14 @@ contains
             & self%data%system)
 
     contains
+
+        !> The work back at the start or restart's, with its state (a second try from there).
+        subroutine begin_work()
+            if (.not. allocated(self%work)) return
+            self%work_end = self%work_begin
+            self%work = self%work_begin
+            self%t_work = self%t_begin
+        end subroutine begin_work
 
         !> IDASolve towards t_out, t_return set: after a restart, the careful start first.
         subroutine solve(status)
@@ -405,6 +460,10 @@ contains
             real(wp) :: t_start
             integer :: before
 
+            if (allocated(self%work)) then
+                call stepwise(t_goal, status)
+                return
+            end if
             if (.not. associated(self%watch)) then
                 status = FIDASolve(self%memory, t_goal, t_return, self%y, self%yp, IDA_NORMAL)
                 return
@@ -423,6 +482,43 @@ contains
                     & rejected() - before)
             end do
         end subroutine chunked
+
+        !> As chunked, one step a call (IDA's mxstep 1), the dissipated work integrated over
+        !> each step as it is taken (integrate_work): IDASolve goes on after IDA_TOO_MUCH_WORK
+        !> as if it had not returned, so the steps, the roots and the state are those of one
+        !> call with the whole budget. The watch is told every chunk_steps_default steps.
+        subroutine stepwise(t_goal, status)
+            real(wp), intent(in) :: t_goal
+            integer(c_int), intent(out) :: status
+            integer :: taken, before
+            real(wp) :: t_start
+
+            status = FIDASetMaxNumSteps(self%memory, 1_c_long)
+            if (status /= IDA_SUCCESS) return
+            taken = 0
+            t_start = t_return(1)
+            before = rejected()
+            do
+                status = FIDASolve(self%memory, t_goal, t_return, self%y, self%yp, IDA_NORMAL)
+                if (status /= IDA_SUCCESS .and. status /= IDA_TSTOP_RETURN .and. status &
+                    & /= IDA_ROOT_RETURN .and. status /= IDA_TOO_MUCH_WORK) exit
+                call self%integrate_work(t_return(1), error)
+                if (allocated(error)) then
+                    ! the power's failure: as a failed step, its message the error's
+                    status = IDA_ERR_FAIL
+                    return
+                end if
+                if (status /= IDA_TOO_MUCH_WORK) exit
+                taken = taken + 1
+                if (taken >= self%max_steps) exit
+                if (associated(self%watch) .and. mod(taken, chunk_steps_default) == 0) then
+                    call self%watch%between_chunks(t_start, t_return(1), t_out, &
+                        & chunk_steps_default, rejected() - before)
+                    t_start = t_return(1)
+                    before = rejected()
+                end if
+            end do
+        end subroutine stepwise
 
         !> Steps rejected so far: by the error test or for want of the corrector's convergence.
         integer function rejected()
@@ -450,7 +546,9 @@ contains
         counts%steps = int(count(1))
         flag = FIDAGetNumResEvals(self%memory, count)
         flag = FIDAGetNumLinResEvals(self%memory, extra)
-        counts%functions = int(count(1) + extra(1))
+        ! and the dissipated powers' evaluations (integrate_work), each an evaluation as one
+        ! of the residual's
+        counts%functions = int(count(1) + extra(1)) + self%power_evaluations
         flag = FIDAGetNumJacEvals(self%memory, count)
         counts%jacobians = int(count(1))
         flag = FIDAGetNumErrTestFails(self%memory, count)
@@ -496,6 +594,9 @@ contains
         integer(c_int) :: flag
 
         if (c_associated(self%memory)) call FIDAFree(self%memory)
+        if (associated(self%dense)) call FN_VDestroy(self%dense)
+        nullify(self%dense)
+        if (allocated(self%work)) deallocate(self%work, self%work_end, self%work_begin)
         if (associated(self%solver)) flag = FSUNLinSolFree(self%solver)
         if (associated(self%matrix)) call FSUNMatDestroy(self%matrix)
         if (associated(self%id)) call FN_VDestroy(self%id)
@@ -508,6 +609,61 @@ contains
         self%data%sparse = .false.
         if (allocated(self%fired)) deallocate(self%fired)
     end subroutine destroy
+
+    !> After a return of IDASolve at t_returned [s]: the dissipated work integrated over the
+    !> step it took, from t_work to its tn (step_work), and the work at t_returned (work): the
+    !> work at tn less the integral from t_returned to tn (a row or a root within the step).
+    subroutine integrate_work(self, t_returned, error)
+        class(ida_integrator_type), intent(inout) :: self
+        real(wp), intent(in) :: t_returned
+        type(error_type), allocatable, intent(out) :: error
+        real(c_double) :: t_current(1)
+        real(wp), allocatable :: piece(:)
+        integer(c_int) :: flag
+
+        flag = FIDAGetCurrentTime(self%memory, t_current)
+        if (check(flag, "IDAGetCurrentTime", error)) return
+        if (t_current(1) > self%t_work) then
+            call self%step_work(self%t_work, t_current(1), piece, error)
+            if (allocated(error)) return
+            self%work_end = self%work_end + piece
+            self%t_work = t_current(1)
+        end if
+        self%work = self%work_end
+        if (t_returned < self%t_work) then
+            call self%step_work(t_returned, self%t_work, piece, error)
+            if (allocated(error)) return
+            self%work = self%work_end - piece
+        end if
+    end subroutine integrate_work
+
+    !> The integral [J] of each dissipated power over [t_from, t_to] [s], within IDA's last
+    !> step: Gauss-Legendre's rule (gauss_nodes) on the state IDA interpolates there
+    !> (IDAGetDky), the system's powers at each node.
+    subroutine step_work(self, t_from, t_to, piece, error)
+        class(ida_integrator_type), intent(inout) :: self
+        real(wp), intent(in) :: t_from, t_to
+        real(wp), allocatable, intent(out) :: piece(:)
+        type(error_type), allocatable, intent(out) :: error
+        real(wp), allocatable :: power(:)
+        real(wp) :: time
+        integer(c_int) :: flag
+        integer :: k
+
+        allocate(piece(size(self%work)), power(size(self%work)), source=0.0_wp)
+        do k = 1, size(gauss_nodes)
+            time = t_from + gauss_nodes(k)*(t_to - t_from)
+            flag = FIDAGetDky(self%memory, time, 0_c_int, self%dense)
+            if (check(flag, "IDAGetDky (the state for the dissipated work)", error)) return
+            self%power_evaluations = self%power_evaluations + 1
+            if (self%data%system%powers(time, self%dense_values, power) /= 0) then
+                call solver_failure(error, "IDA", time, -1, "the dissipated power could " &
+                    & // "not be evaluated", self%data%system)
+                return
+            end if
+            piece = piece + gauss_weights(k)*(t_to - t_from)*power
+        end do
+    end subroutine step_work
 
     function check(flag, routine, error) result(failed)
         integer(c_int), intent(in) :: flag

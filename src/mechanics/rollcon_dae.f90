@@ -30,6 +30,7 @@ module rollcon_dae
     use rollcon_text, only : to_text
     use rollcon_constraints, only : local_dot, need_value, need_first, need_second, need_time
     use rollcon_equations, only : equations_type, sparse_dot
+    use rollcon_sliding_contact, only : sliding_contact_type
     implicit none
     private
 
@@ -101,7 +102,7 @@ contains
                 aside = .false.
                 if (eq%redundancy%set_aside > 0) aside = .not. eq%redundancy%active(k)
                 ! a row the contact's mode drops (sliding, flight) is set aside alike
-                if (eq%contact%dropped(k)) aside = .true.
+                if (eq%mode_drops(k)) aside = .true.
                 if (aside) then
                     r(2*n + k) = lambda(k)
                     if (h > 0) r(2*n + nc + h) = mu(h)
@@ -134,7 +135,7 @@ contains
     pure logical function mode_forces(eq)
         type(equations_type), intent(in) :: eq
 
-        mode_forces = eq%contact%sliding .or. (eq%dissipation%part > 0 &
+        mode_forces = eq%contact%sliding .or. eq%more_sliding() .or. (eq%dissipation%part > 0 &
             & .and. (eq%dissipation%rolling_resistance > 0.0_wp .or. eq%dissipation%held))
     end function mode_forces
 
@@ -166,12 +167,14 @@ contains
     !> -C_t^T m with m = -mu_k F_n s, F_n = c_nz lambda_n from the DAE's own normal multiplier
     !> and s the slip's direction (the tangential rows' values: the contact point's velocity).
     !> Also the slip [m/s] and its speed.
-    pure subroutine friction_multipliers(eq, lambda, m, s, slip)
+    pure subroutine friction_multipliers(eq, contact, lambda, m, s, slip)
         type(equations_type), intent(in) :: eq
+        !> The sliding contact: eq's contact or one of its more_contacts
+        type(sliding_contact_type), intent(in) :: contact
         real(wp), intent(in) :: lambda(:)
         real(wp), intent(out) :: m(2), s(2), slip(2)
 
-        associate (contact => eq%contact, t => eq%contact%tangential)
+        associate (t => contact%tangential)
             slip = [eq%constraints%value(t(1)), eq%constraints%value(t(2))]
             s = contact%direction(slip)
             m = -contact%mu*normal_force_of(eq, contact%normal, contact%height_column, lambda)*s
@@ -189,22 +192,13 @@ contains
         type(equations_type), intent(in) :: eq
         real(wp), intent(in) :: u(:), up(:), lambda(:)
         real(wp), intent(inout) :: r(:)
-        real(wp) :: m(2), s(2), slip(2)
-        integer :: i, j, jj, phi
+        integer :: phi, k
 
-        if (eq%contact%sliding) then
-            call friction_multipliers(eq, lambda, m, s, slip)
-            associate (bl => eq%blocks, t => eq%contact%tangential)
-                do i = 1, 2
-                    associate (at => bl%ucon_coordinates(bl%ucon_start(t(i)): &
-                            & bl%ucon_start(t(i) + 1) - 1))
-                        do jj = 1, size(at)
-                            j = at(jj)
-                            r(j) = r(j) - m(i)*row_gradient(eq, t(i), j)
-                        end do
-                    end associate
-                end do
-            end associate
+        if (eq%contact%sliding) call add_friction(eq%contact, r)
+        if (allocated(eq%more_contacts)) then
+            do k = 1, size(eq%more_contacts)
+                if (eq%more_contacts(k)%sliding) call add_friction(eq%more_contacts(k), r)
+            end do
         end if
         associate (diss => eq%dissipation)
             if (diss%part == 0) return
@@ -216,6 +210,30 @@ contains
                     & *normal_force_of(eq, diss%normal, diss%height_column, lambda)
             end if
         end associate
+
+    contains
+
+        !> A sliding contact's friction: r - C_t^T m (friction_multipliers).
+        pure subroutine add_friction(contact, r)
+            type(sliding_contact_type), intent(in) :: contact
+            !> The momentum rows (n)
+            real(wp), intent(inout) :: r(:)
+            real(wp) :: m(2), s(2), slip(2)
+            integer :: i, j, jj
+
+            call friction_multipliers(eq, contact, lambda, m, s, slip)
+            associate (bl => eq%blocks, t => contact%tangential)
+                do i = 1, 2
+                    associate (at => bl%ucon_coordinates(bl%ucon_start(t(i)): &
+                            & bl%ucon_start(t(i) + 1) - 1))
+                        do jj = 1, size(at)
+                            j = at(jj)
+                            r(j) = r(j) - m(i)*row_gradient(eq, t(i), j)
+                        end do
+                    end associate
+                end do
+            end associate
+        end subroutine add_friction
     end subroutine add_mode_forces
 
     !> Newton matrix dr/dy + cj dr/dy', analytic from the UCOSUB's first and second partials,
@@ -292,7 +310,8 @@ contains
             if (multipliers) call set_reactions(eq, lambda)
             call eq%assemble(time, q, u)
             call eq%constraint_rows(u, 0.0_wp)  ! the DAE form keeps F itself: no Baumgarte terms
-            if (eq%contact%sliding .or. eq%contact%flying) then
+            if (eq%contact%sliding .or. eq%contact%flying .or. eq%more_sliding() &
+                & .or. eq%more_flying()) then
                 ! the rows the mode drops carry no force, sliding's friction its multipliers
                 ! on the tangential rows (friction_multipliers): their second partials in
                 ! dm/dq as a constraint force's (into the equations' scratch multipliers, free
@@ -303,8 +322,16 @@ contains
                         if (eq%active_rows_of(k)) effective(k) = lambda(k)
                     end do
                     if (eq%contact%sliding) then
-                        call friction_multipliers(eq, lambda, m, s, slip)
+                        call friction_multipliers(eq, eq%contact, lambda, m, s, slip)
                         effective(eq%contact%tangential) = m
+                    end if
+                    if (allocated(eq%more_contacts)) then
+                        do k = 1, size(eq%more_contacts)
+                            if (.not. eq%more_contacts(k)%sliding) cycle
+                            call friction_multipliers(eq, eq%more_contacts(k), lambda, m, s, &
+                                & slip)
+                            effective(eq%more_contacts(k)%tangential) = m
+                        end do
                     end if
                     call eq%momentum_jacobian(q, u, up, effective, time)
                 end associate
@@ -376,7 +403,7 @@ contains
                 row = 2*n + k
                 aside = .false.
                 if (eq%redundancy%set_aside > 0) aside = .not. eq%redundancy%active(k)
-                if (eq%contact%dropped(k)) aside = .true.
+                if (eq%mode_drops(k)) aside = .true.
                 if (aside) then
                     call put(row, row, 1.0_wp)
                     if (h > 0) call put(2*n + nc + h, 2*n + nc + h, 1.0_wp)
@@ -437,48 +464,15 @@ contains
         !> a rim: the normal row's Z' coefficient is 1) are left out.
         subroutine mode_entries(u, lambda)
             real(wp), intent(in) :: u(:), lambda(:)
-            real(wp) :: projector(2, 2), speed, c_nz, weight, turned
-            integer :: a, b, ia, ib, e, phi, column
+            real(wp) :: turned
+            integer :: e, phi, k
 
-            if (eq%contact%sliding) then
-                associate (contact => eq%contact, t => eq%contact%tangential)
-                    call friction_multipliers(eq, lambda, m, s, slip)
-                    c_nz = row_gradient(eq, contact%normal, contact%height_column)
-                    column = 2*n + contact%normal
-                    speed = norm2(slip)
-                    projector = 0.0_wp
-                    if (speed > 0.0_wp) then
-                        projector = -reshape([1.0_wp - s(1)**2, -s(1)*s(2), -s(1)*s(2), &
-                            & 1.0_wp - s(2)**2], [2, 2])/speed
-                        ! d m / d v = -mu F_n (I - s s^T) / |v|
-                        projector = contact%mu*c_nz*lambda(contact%normal)*projector
-                    end if
-                    do a = 1, 2
-                        associate (at => eq%blocks%ucon_coordinates(eq%blocks%ucon_start( &
-                                & t(a)):eq%blocks%ucon_start(t(a) + 1) - 1))
-                            do ia = 1, size(at)
-                                i = at(ia)
-                                ! d(-c_ta m_a)/d lambda_n = mu c_nz s_a c_ta
-                                call subtract(n + i, column, -contact%mu*c_nz*s(a)*eq%c(t(a), i))
-                                do b = 1, 2
-                                    if (projector(a, b) == 0.0_wp) cycle
-                                    associate (by => eq%blocks%ucon_coordinates( &
-                                            & eq%blocks%ucon_start(t(b)): &
-                                            & eq%blocks%ucon_start(t(b) + 1) - 1))
-                                        weight = -eq%c(t(a), i)*projector(a, b)
-                                        do ib = 1, size(by)
-                                            j = by(ib)
-                                            call subtract(n + i, n + j, &
-                                                & -weight*eq%constraints%grad_u(t(b), j))
-                                            call subtract(n + i, j, &
-                                                & -weight*eq%constraints%grad_q(t(b), j))
-                                        end do
-                                    end associate
-                                end do
-                            end do
-                        end associate
-                    end do
-                end associate
+            if (eq%contact%sliding) call friction_entries(eq%contact, lambda)
+            if (allocated(eq%more_contacts)) then
+                do k = 1, size(eq%more_contacts)
+                    if (eq%more_contacts(k)%sliding) call friction_entries(eq%more_contacts(k), &
+                        & lambda)
+                end do
             end if
             associate (diss => eq%dissipation)
                 if (diss%part == 0) return
@@ -500,6 +494,54 @@ contains
                 end if
             end associate
         end subroutine mode_entries
+
+        !> A sliding contact's friction's partials (mode_entries): by its normal multiplier and
+        !> through the slip's direction by u and q.
+        subroutine friction_entries(contact, lambda)
+            type(sliding_contact_type), intent(in) :: contact
+            real(wp), intent(in) :: lambda(:)
+            real(wp) :: projector(2, 2), speed, c_nz, weight
+            integer :: a, b, ia, ib, column
+
+            associate (t => contact%tangential)
+                call friction_multipliers(eq, contact, lambda, m, s, slip)
+                c_nz = row_gradient(eq, contact%normal, contact%height_column)
+                column = 2*n + contact%normal
+                speed = norm2(slip)
+                projector = 0.0_wp
+                if (speed > 0.0_wp) then
+                    projector = -reshape([1.0_wp - s(1)**2, -s(1)*s(2), -s(1)*s(2), &
+                        & 1.0_wp - s(2)**2], [2, 2])/speed
+                    ! d m / d v = -mu F_n (I - s s^T) / |v|
+                    projector = contact%mu*c_nz*lambda(contact%normal)*projector
+                end if
+                do a = 1, 2
+                    associate (at => eq%blocks%ucon_coordinates(eq%blocks%ucon_start( &
+                            & t(a)):eq%blocks%ucon_start(t(a) + 1) - 1))
+                        do ia = 1, size(at)
+                            i = at(ia)
+                            ! d(-c_ta m_a)/d lambda_n = mu c_nz s_a c_ta
+                            call subtract(n + i, column, -contact%mu*c_nz*s(a)*eq%c(t(a), i))
+                            do b = 1, 2
+                                if (projector(a, b) == 0.0_wp) cycle
+                                associate (by => eq%blocks%ucon_coordinates( &
+                                        & eq%blocks%ucon_start(t(b)): &
+                                        & eq%blocks%ucon_start(t(b) + 1) - 1))
+                                    weight = -eq%c(t(a), i)*projector(a, b)
+                                    do ib = 1, size(by)
+                                        j = by(ib)
+                                        call subtract(n + i, n + j, &
+                                            & -weight*eq%constraints%grad_u(t(b), j))
+                                        call subtract(n + i, j, &
+                                            & -weight*eq%constraints%grad_q(t(b), j))
+                                    end do
+                                end associate
+                            end do
+                        end do
+                    end associate
+                end do
+            end associate
+        end subroutine friction_entries
 
         !> Entry (i, j) = value.
         subroutine put(i, j, value)

@@ -73,6 +73,9 @@ module rollcon_equations
         !> A contact's mode: while it slides its tangential rows are dropped (inactive, as rows
         !> set aside are) and its friction enters every solve (rollcon_sliding_contact)
         type(sliding_contact_type) :: contact
+        !> The modes of a dataset's further contacts (its second CONTACT on), each its own
+        !> (rollcon_contact_watch's slot k): dropped rows and friction as contact's
+        type(sliding_contact_type), allocatable :: more_contacts(:)
         !> A rim's rolling resistance and air layer (rollcon_rim_dissipation): the air's force
         !> is applied (assemble), rolling resistance's coupled to the normal force in every
         !> solve (resistance_coupling)
@@ -105,6 +108,12 @@ module rollcon_equations
         procedure :: active_rows_of
         procedure :: masked
         procedure :: friction_coupling
+        procedure :: contacts_friction_coupling
+        procedure :: mode_drops
+        procedure :: more_sliding
+        procedure :: more_flying
+        procedure :: impact_losses
+        procedure :: friction_powers
         procedure :: resistance_coupling
         procedure :: acceleration_partials
         procedure :: multiplier_partials
@@ -237,8 +246,61 @@ contains
 
         active_rows_of = .true.
         if (allocated(self%redundancy%active)) active_rows_of = self%redundancy%active(k)
-        if (self%contact%dropped(k)) active_rows_of = .false.
+        if (self%mode_drops(k)) active_rows_of = .false.
     end function active_rows_of
+
+    !> Whether a contact's mode drops row k (rollcon_sliding_contact's dropped, over the
+    !> contact and the further contacts).
+    pure logical function mode_drops(self, k)
+        class(equations_type), intent(in) :: self
+        integer, intent(in) :: k
+        integer :: j
+
+        mode_drops = self%contact%dropped(k)
+        if (mode_drops .or. .not. allocated(self%more_contacts)) return
+        do j = 1, size(self%more_contacts)
+            if (self%more_contacts(j)%dropped(k)) mode_drops = .true.
+        end do
+    end function mode_drops
+
+    !> A further contact (more_contacts) slides.
+    pure logical function more_sliding(self)
+        class(equations_type), intent(in) :: self
+
+        more_sliding = .false.
+        if (allocated(self%more_contacts)) more_sliding = any(self%more_contacts%sliding)
+    end function more_sliding
+
+    !> A further contact (more_contacts) flies.
+    pure logical function more_flying(self)
+        class(equations_type), intent(in) :: self
+
+        more_flying = .false.
+        if (allocated(self%more_contacts)) more_flying = any(self%more_contacts%flying)
+    end function more_flying
+
+    !> Kinetic energy every contact's impacts have taken so far [J] >= 0.
+    pure real(wp) function impact_losses(self)
+        class(equations_type), intent(in) :: self
+
+        impact_losses = self%contact%impact_loss
+        if (allocated(self%more_contacts)) impact_losses = impact_losses &
+            & + sum(self%more_contacts%impact_loss)
+    end function impact_losses
+
+    !> The power the sliding contacts' friction dissipates at the last solve [W] >= 0.
+    pure real(wp) function friction_powers(self)
+        class(equations_type), intent(in) :: self
+        integer :: j
+
+        friction_powers = 0.0_wp
+        if (self%contact%sliding) friction_powers = self%contact%power
+        if (.not. allocated(self%more_contacts)) return
+        do j = 1, size(self%more_contacts)
+            if (self%more_contacts(j)%sliding) friction_powers = friction_powers &
+                & + self%more_contacts(j)%power
+        end do
+    end function friction_powers
 
     !> Some rows are inactive: set aside as redundant, or a contact's a sliding or flying
     !> part drops.
@@ -246,19 +308,27 @@ contains
         class(equations_type), intent(in) :: self
 
         masked = self%redundancy%set_aside > 0 .or. self%contact%sliding &
-            & .or. self%contact%flying
+            & .or. self%contact%flying .or. self%more_sliding() .or. self%more_flying()
     end function masked
 
     !> Which rows are active (all of them until a choice sets some aside).
     pure function active_rows(self) result(active)
         class(equations_type), intent(in) :: self
         logical :: active(self%nc)
+        integer :: k
 
         active = .true.
         if (allocated(self%redundancy%active)) active = self%redundancy%active
         if (self%contact%sliding .or. self%contact%flying) &
             & active(self%contact%tangential) = .false.
         if (self%contact%flying) active(self%contact%normal) = .false.
+        if (.not. allocated(self%more_contacts)) return
+        do k = 1, size(self%more_contacts)
+            associate (contact => self%more_contacts(k))
+                if (contact%sliding .or. contact%flying) active(contact%tangential) = .false.
+                if (contact%flying) active(contact%normal) = .false.
+            end associate
+        end do
     end function active_rows
 
     !> Mass matrix and f = -(M a - f) at a = 0, part by part. Only the parts' diagonal blocks
@@ -403,6 +473,8 @@ contains
             call self%held_coupling(time, q, a, lambda, error)
         else if (self%dissipation%rolling_resistance > 0.0_wp) then
             call self%resistance_coupling(time, q, u, a, lambda, error)
+        else if (self%more_sliding()) then
+            call self%contacts_friction_coupling(time, q, a, lambda, error)
         else if (self%contact%sliding) then
             call self%friction_coupling(time, q, a, lambda, error)
         end if
@@ -765,6 +837,163 @@ contains
             contact%power = abs(dot_product(contact%friction, contact%slip))
         end associate
     end subroutine friction_coupling
+
+    !> Several sliding contacts' friction (the contact and more_contacts) in the accelerations a
+    !> and multipliers lambda of the saddle-point system without it (factored): each sliding
+    !> contact i its second right-hand side (D_i, 0) giving (a_i, lambda_i) (unit_response),
+    !> and by linearity the normal forces of the coupled system solve
+    !> F_n,i + sum_j mu_j c_nz,i lambda_j(n_i) F_n,j = c_nz,i lambda0(n_i), the single contact's
+    !> F_n (1 + mu c_nz lambda1_n) = c_nz lambda0_n (friction_coupling) for one; then
+    !> a = a0 - sum_j mu_j F_n,j a_j and lambda likewise (docs/design.md §5, "Contact modes").
+    !> Contacts on parts nothing else joins do not couple (lambda_j(n_i) = 0 for i /= j).
+    !> Refused (stat_ucon) where a contact's own coefficient 1 + mu c_nz lambda_i(n_i) is
+    !> below painleve_margin (Painlevé's paradox, as friction_coupling) or the coupled system
+    !> is singular.
+    subroutine contacts_friction_coupling(self, time, q, a, lambda, error)
+        class(equations_type), intent(inout) :: self
+        real(wp), intent(in) :: time, q(:)
+        real(wp), intent(inout) :: a(:), lambda(:)
+        type(error_type), allocatable, intent(out) :: error
+        real(wp) :: coupling(1 + size(self%more_contacts), 1 + size(self%more_contacts))
+        real(wp) :: forces(1 + size(self%more_contacts)), c_nz(1 + size(self%more_contacts))
+        real(wp) :: pivot, factor
+        integer :: which(1 + size(self%more_contacts)), rows(1 + size(self%more_contacts))
+        integer :: m, i, j, k, best
+
+        ! the sliding contacts: 0 the contact, j more_contacts(j)
+        m = 0
+        if (self%contact%sliding) then
+            m = 1
+            which(1) = 0
+            call unit_response(self%contact, self%saddle, self%c, self%constraints%value, error)
+            if (allocated(error)) return
+        end if
+        do j = 1, size(self%more_contacts)
+            if (.not. self%more_contacts(j)%sliding) cycle
+            m = m + 1
+            which(m) = j
+            call unit_response(self%more_contacts(j), self%saddle, self%c, &
+                & self%constraints%value, error)
+            if (allocated(error)) return
+        end do
+        do i = 1, m
+            if (which(i) == 0) then
+                rows(i) = self%contact%normal
+                c_nz(i) = self%c(rows(i), self%contact%height_column)
+            else
+                rows(i) = self%more_contacts(which(i))%normal
+                c_nz(i) = self%c(rows(i), self%more_contacts(which(i))%height_column)
+            end if
+            forces(i) = c_nz(i)*lambda(rows(i))
+        end do
+        do j = 1, m
+            do i = 1, m
+                if (which(j) == 0) then
+                    coupling(i, j) = self%contact%mu*c_nz(i) &
+                        & *self%contact%unit_lambda(rows(i))
+                else
+                    coupling(i, j) = self%more_contacts(which(j))%mu*c_nz(i) &
+                        & *self%more_contacts(which(j))%unit_lambda(rows(i))
+                end if
+            end do
+            coupling(j, j) = coupling(j, j) + 1.0_wp
+        end do
+        do i = 1, m
+            if (which(i) == 0) then
+                self%contact%denominator = coupling(i, i)
+            else
+                self%more_contacts(which(i))%denominator = coupling(i, i)
+            end if
+            if (.not. coupling(i, i) >= painleve_margin) then
+                call fatal_error(error, "sliding is ill-posed at t = " // to_text(time) &
+                    & // " s (Z = " // to_text(q(height_of(i))) // " m): the friction " &
+                    & // "coupling 1 + mu dFn/dFt = " // to_text(coupling(i, i)) &
+                    & // " of the contact of the part whose centre height is coordinate " &
+                    & // to_text(height_of(i)) // " leaves the normal force without a " &
+                    & // "unique positive solution (Painlevé's paradox); the sliding " &
+                    & // "equations are not integrated", stat_ucon)
+                return
+            end if
+        end do
+        ! the m normal forces: Gaussian elimination with partial pivoting (m is small)
+        do k = 1, m
+            best = k - 1 + maxloc(abs(coupling(k:m, k)), dim=1)
+            if (best /= k) then
+                coupling([k, best], :) = coupling([best, k], :)
+                forces([k, best]) = forces([best, k])
+            end if
+            pivot = coupling(k, k)
+            if (.not. abs(pivot) >= painleve_margin) then
+                call fatal_error(error, "sliding is ill-posed at t = " // to_text(time) &
+                    & // " s: the sliding contacts' normal forces have no unique solution " &
+                    & // "(their friction couplings make a singular system)", stat_ucon)
+                return
+            end if
+            do i = k + 1, m
+                factor = coupling(i, k)/pivot
+                coupling(i, k:m) = coupling(i, k:m) - factor*coupling(k, k:m)
+                forces(i) = forces(i) - factor*forces(k)
+            end do
+        end do
+        do k = m, 1, -1
+            forces(k) = (forces(k) - dot_product(coupling(k, k + 1:m), forces(k + 1:m))) &
+                & /coupling(k, k)
+        end do
+        do i = 1, m
+            if (which(i) == 0) then
+                call apply_friction(self%contact, forces(i), a, lambda)
+            else
+                call apply_friction(self%more_contacts(which(i)), forces(i), a, lambda)
+            end if
+        end do
+
+    contains
+
+        !> Sliding contact i's centre height's coordinate.
+        pure integer function height_of(i)
+            integer, intent(in) :: i
+
+            if (which(i) == 0) then
+                height_of = self%contact%height_column
+            else
+                height_of = self%more_contacts(which(i))%height_column
+            end if
+        end function height_of
+    end subroutine contacts_friction_coupling
+
+    !> A sliding contact's slip (its tangential rows' values) and its response to a unit force
+    !> along the slip's direction s at its point: (D, 0), D = s_1 c_t1 + s_2 c_t2, solved in
+    !> the saddle-point factors into (unit_a, unit_lambda). An error when the solve fails.
+    subroutine unit_response(contact, saddle, c, values, error)
+        type(sliding_contact_type), intent(inout) :: contact
+        type(saddle_point_type), intent(inout) :: saddle
+        !> The constraints' matrix (nc x n) and the rows' values
+        real(wp), intent(in) :: c(:, :), values(:)
+        type(error_type), allocatable, intent(out) :: error
+        real(wp) :: s(2)
+
+        associate (t => contact%tangential)
+            contact%slip = [values(t(1)), values(t(2))]
+            s = contact%direction(contact%slip)
+            contact%unit_a = s(1)*c(t(1), :) + s(2)*c(t(2), :)
+        end associate
+        contact%unit_lambda = 0.0_wp
+        call saddle%solve(c, contact%unit_a, contact%unit_lambda, 1, error)
+    end subroutine unit_response
+
+    !> A sliding contact's friction -mu F_n D with normal force normal_force [N] added to the
+    !> accelerations a and multipliers lambda (its unit response's), and its force and power.
+    pure subroutine apply_friction(contact, normal_force, a, lambda)
+        type(sliding_contact_type), intent(inout) :: contact
+        real(wp), intent(in) :: normal_force
+        real(wp), intent(inout) :: a(:), lambda(:)
+
+        contact%normal_force = normal_force
+        a = a - contact%mu*normal_force*contact%unit_a
+        lambda = lambda - contact%mu*normal_force*contact%unit_lambda
+        contact%friction = -contact%mu*normal_force*contact%direction(contact%slip)
+        contact%power = abs(dot_product(contact%friction, contact%slip))
+    end subroutine apply_friction
 
     !> d(M a - f - C^T lambda)/dq and /du at given a, lambda and time [s] (into dm_dq, dm_du).
     !> A user force routine's partials are differences of calls (rollcon_user_force_partials):

@@ -10,6 +10,7 @@ module rollcon_csv_reader
     use rollcon_input_files, only : input_file_type, csv_input_limit
     use rollcon_watch_columns, only : answer_column_patterns
     use rollcon_watch_columns, only : contact_names, contact_mode_names, dissipation_names, &
+        & contact_column_patterns, &
         & basis_pattern, request_column_patterns, motion_column_patterns, &
         & reaction_column_patterns, variable_column_patterns, diff_column_patterns, &
         & element_reaction_column_patterns, element_force_column_patterns
@@ -126,7 +127,8 @@ contains
             count = count + 1
             names(count) = trim(adjustl(field))
         end do
-        ! the watches' columns rollcon writes: a rim contact's (and its modes'), a rim's
+        ! the watches' columns rollcon writes: a rim contact's (and its modes'; of several
+        ! contacts each one's after its prefix), a rim's
         ! dissipation's, a part's principal basis, a dataset's displacement requests, its
         ! MOTIONs' forces, its other requests, the statements' reactions (the elements' of one
         ! equation too), its SPRINGDAMPERs' and BUSHINGs' forces, its VARIABLEs' values, its
@@ -135,7 +137,7 @@ contains
             & contact_mode_names, dissipation_names, basis_pattern, request_column_patterns, &
             & motion_column_patterns, answer_column_patterns, reaction_column_patterns, &
             & element_reaction_column_patterns, element_force_column_patterns, &
-            & variable_column_patterns, diff_column_patterns])
+            & variable_column_patterns, diff_column_patterns, contact_column_patterns])
         if (.not. allocated(message)) return
         ! A one-part header without the part's id (t, X, ...): say what it is.
         if (count > 1) then

@@ -13,7 +13,7 @@ module rollcon_watch_columns
     private
 
     public :: contact_names, contact_mode_names, contact_mode_words, dissipation_names, &
-        & basis_pattern
+        & basis_pattern, contact_column_prefix, contact_column_patterns
     public :: request_column_patterns
     public :: motion_column_patterns
     public :: variable_column_patterns, diff_column_patterns
@@ -30,6 +30,13 @@ module rollcon_watch_columns
     !> flight the rim's lowest point's horizontal velocity)
     character(len=*), parameter :: contact_mode_names(3) = [character(len=15) :: "mode", &
         & "slip_x", "slip_y"]
+    !> Where a model has several contacts (a dataset's CONTACTs), each contact's columns are
+    !> contact_names and contact_mode_names after this prefix ("<n>": its CONTACT's id)
+    character(len=*), parameter :: contact_column_prefix = "contact<n>_"
+    character(len=*), parameter :: contact_column_patterns(9) = [character(len=26) :: &
+        & "contact<n>_Fx", "contact<n>_Fy", "contact<n>_Fz", "contact<n>_Fn", &
+        & "contact<n>_mu_needed", "contact<n>_height_residual", "contact<n>_mode", &
+        & "contact<n>_slip_x", "contact<n>_slip_y"]
     !> A rim's dissipation's columns (&dissipation, rollcon_dissipation_watch): the power
     !> rolling resistance and the air layer dissipate [W] and the energy both have dissipated
     !> since the start [J]

@@ -17,6 +17,7 @@ module rollcon_problem
     use rollcon_output_layout, only : coordinate_names
     use rollcon_model, only : model_type, served_by_model_ucosub, statement_ucon
     use rollcon_equations, only : equations_type
+    use rollcon_sliding_contact, only : sliding_contact_type
     use rollcon_user_forces, only : set_system_accelerations
     use rollcon_run_settings, only : run_settings_type, drift_projection
     use rollcon_watch, only : watch_type, watch_slot_type, append_watch
@@ -349,11 +350,12 @@ contains
     pure function constraint_values(self) result(values)
         class(problem_type), intent(in) :: self
         real(wp) :: values(self%eq%nc)
+        integer :: k
 
         values = self%eq%constraints%value
-        if (self%eq%contact%sliding .or. self%eq%contact%flying) &
-            & values(self%eq%contact%tangential) = 0.0_wp
-        if (self%eq%contact%flying) values(self%eq%contact%normal) = 0.0_wp
+        do k = 1, self%eq%nc
+            if (self%eq%mode_drops(k)) values(k) = 0.0_wp
+        end do
     end function constraint_values
 
     !> The settings ask for the projection onto the constraints (drift 'projection') and there
@@ -578,23 +580,32 @@ contains
                         & - dot_product(cs%grad_u(k, :), u)))
                 end if
             end do
-            if (self%eq%contact%sliding) power = power + abs(sliding_drive_power(self%eq, u))
+            if (self%eq%contact%sliding) power = power &
+                & + abs(sliding_drive_power(self%eq, self%eq%contact, u))
+            if (allocated(self%eq%more_contacts)) then
+                do k = 1, size(self%eq%more_contacts)
+                    if (self%eq%more_contacts(k)%sliding) power = power &
+                        & + abs(sliding_drive_power(self%eq, self%eq%more_contacts(k), u))
+                end do
+            end if
         end associate
     end function constraint_power
 
     !> The power a sliding contact's friction takes from the motion of its plane at the last
     !> evaluation [W]: -F_t . c, c = F - C u of the two tangential rows (minus the plane's
-    !> velocity at the contact; 0 on the ground, whose rows have none).
-    pure real(wp) function sliding_drive_power(eq, u) result(power)
+    !> velocity at the contact; 0 on the ground, whose rows have none). contact: the
+    !> equations' contact or one of their more_contacts.
+    pure real(wp) function sliding_drive_power(eq, contact, u) result(power)
         type(equations_type), intent(in) :: eq
+        type(sliding_contact_type), intent(in) :: contact
         !> The rates of the last evaluation
         real(wp), intent(in) :: u(:)
         integer :: j, k
 
         power = 0.0_wp
         do j = 1, 2
-            k = eq%contact%tangential(j)
-            power = power - eq%contact%friction(j)*(eq%constraints%value(k) &
+            k = contact%tangential(j)
+            power = power - contact%friction(j)*(eq%constraints%value(k) &
                 & - dot_product(eq%constraints%grad_u(k, :), u))
         end do
     end function sliding_drive_power
@@ -609,7 +620,7 @@ contains
         real(wp), intent(out) :: friction, rim
 
         friction = 0.0_wp
-        if (self%eq%contact%sliding) friction = self%eq%contact%power
+        friction = self%eq%friction_powers()
         rim = 0.0_wp
         if (self%eq%dissipation%active()) rim = self%eq%dissipation%power()
     end subroutine dissipated_power
@@ -621,6 +632,8 @@ contains
         class(problem_type), intent(in) :: self
 
         dissipates = self%eq%contact%mu > 0.0_wp .or. self%eq%dissipation%active()
+        if (allocated(self%eq%more_contacts)) dissipates = dissipates &
+            & .or. any(self%eq%more_contacts%mu > 0.0_wp)
     end function dissipates
 
     !> The powers dissipated at (time [s], q, u), from an evaluation there (accelerations):

@@ -404,8 +404,8 @@ contains
                         self%dissipation_uncertainty = self%dissipation_uncertainty + estimate
                     end if
                 end if
-                impacts = problem%eq%contact%impact_loss - self%impact_loss
-                self%impact_loss = problem%eq%contact%impact_loss
+                impacts = problem%eq%impact_losses() - self%impact_loss
+                self%impact_loss = problem%eq%impact_losses()
                 if (impacts /= 0.0_wp) then
                     self%dissipated_work = self%dissipated_work + impacts
                     self%impact_work = self%impact_work + impacts

@@ -24,6 +24,7 @@ module rollcon_contact_watch
     use rollcon_error, only : error_type, fatal_error, stat_input
     use rollcon_text, only : to_text
     use rollcon_equations, only : equations_type
+    use rollcon_sliding_contact, only : sliding_contact_type
     use rollcon_contact_impact, only : impact_type, contact_impact
     use rollcon_run_settings, only : run_settings_type, formulation_speeds
     use rollcon_output_layout, only : name_length
@@ -127,6 +128,13 @@ module rollcon_contact_watch
         !> the last output row [s]
         real(wp) :: mode_time(0:2) = 0.0_wp, mode_since = 0.0_wp, last_time = 0.0_wp
         logical :: started = .false.
+        !> Its mode in the equations: 0 their contact, k their more_contacts(k) (a dataset's
+        !> further CONTACTs)
+        integer :: slot = 0
+        !> The user's statement, "CONTACT/2 (line 44)", where a model has several contacts: it
+        !> names the summary's lines, and "contact<id>_" (column_prefix) starts the columns'
+        !> and the measures' names; empty for one contact (the names as they are)
+        character(len=:), allocatable :: label, column_prefix
     contains
         procedure :: prepare
         procedure :: root_count
@@ -153,6 +161,15 @@ module rollcon_contact_watch
         procedure :: touchdown
         procedure :: settle
         procedure :: normal_root
+        procedure :: prepare_contact
+        procedure :: prefix
+        procedure :: named
+        procedure :: sliding_in
+        procedure :: flying_in
+        procedure :: friction_in
+        procedure :: set_mode_flags
+        procedure :: set_reference
+        procedure :: add_impact_loss
     end type contact_watch_type
 
 contains
@@ -206,19 +223,124 @@ contains
         self%slip_reference = self%initial_direction
         self%guard = guard_first
         self%starting = .false.
-        associate (contact => eq%contact)
-            contact%tangential = self%tangential
-            contact%normal = self%normal
-            contact%height_column = 6*(self%part - 1) + 3
-            contact%mu = self%mu_kinetic
-            contact%reference = self%initial_direction
-            contact%sliding = self%initial_mode == mode_sliding
-            contact%flying = self%initial_mode == mode_flight
-            contact%impact_loss = 0.0_wp
-            if (allocated(contact%unit_a)) deallocate(contact%unit_a, contact%unit_lambda)
-            allocate(contact%unit_a(eq%n), contact%unit_lambda(eq%nc), source=0.0_wp)
-        end associate
+        if (self%slot == 0) then
+            call self%prepare_contact(eq%contact, eq%n, eq%nc)
+        else if (.not. allocated(eq%more_contacts)) then
+            error = no_slot()
+        else if (self%slot > size(eq%more_contacts)) then
+            error = no_slot()
+        else
+            call self%prepare_contact(eq%more_contacts(self%slot), eq%n, eq%nc)
+        end if
+
+    contains
+
+        function no_slot() result(made)
+            type(error_type), allocatable :: made
+
+            call fatal_error(made, "the contact's mode is the equations' further contact " &
+                & // to_text(self%slot) // ", which they do not hold", stat_input)
+        end function no_slot
     end subroutine prepare
+
+    !> The contact's mode in the equations (eq's contact, or one of its more_contacts) at the
+    !> start: its rows, its part's height coordinate, mu_kinetic, the initial mode and slip
+    !> direction, no impact loss, and the scratch of its unit response (n accelerations, nc
+    !> multipliers).
+    subroutine prepare_contact(self, contact, n, nc)
+        class(contact_watch_type), intent(in) :: self
+        type(sliding_contact_type), intent(inout) :: contact
+        integer, intent(in) :: n, nc
+
+        contact%tangential = self%tangential
+        contact%normal = self%normal
+        contact%height_column = 6*(self%part - 1) + 3
+        contact%mu = self%mu_kinetic
+        contact%reference = self%initial_direction
+        contact%sliding = self%initial_mode == mode_sliding
+        contact%flying = self%initial_mode == mode_flight
+        contact%impact_loss = 0.0_wp
+        if (allocated(contact%unit_a)) deallocate(contact%unit_a, contact%unit_lambda)
+        allocate(contact%unit_a(n), contact%unit_lambda(nc), source=0.0_wp)
+    end subroutine prepare_contact
+
+    !> Its contact slides (the equations' contact, or more_contacts(slot)).
+    pure logical function sliding_in(self, eq)
+        class(contact_watch_type), intent(in) :: self
+        type(equations_type), intent(in) :: eq
+
+        if (self%slot == 0) then
+            sliding_in = eq%contact%sliding
+        else
+            sliding_in = eq%more_contacts(self%slot)%sliding
+        end if
+    end function sliding_in
+
+    !> Its contact flies.
+    pure logical function flying_in(self, eq)
+        class(contact_watch_type), intent(in) :: self
+        type(equations_type), intent(in) :: eq
+
+        if (self%slot == 0) then
+            flying_in = eq%contact%flying
+        else
+            flying_in = eq%more_contacts(self%slot)%flying
+        end if
+    end function flying_in
+
+    !> Its contact's sliding friction on the part at the last solve [N], ground X and Y.
+    pure function friction_in(self, eq) result(friction)
+        class(contact_watch_type), intent(in) :: self
+        type(equations_type), intent(in) :: eq
+        real(wp) :: friction(2)
+
+        if (self%slot == 0) then
+            friction = eq%contact%friction
+        else
+            friction = eq%more_contacts(self%slot)%friction
+        end if
+    end function friction_in
+
+    !> Set its contact's mode: sliding, flying (both false: rolling).
+    pure subroutine set_mode_flags(self, eq, sliding, flying)
+        class(contact_watch_type), intent(in) :: self
+        type(equations_type), intent(inout) :: eq
+        logical, intent(in) :: sliding, flying
+
+        if (self%slot == 0) then
+            eq%contact%sliding = sliding
+            eq%contact%flying = flying
+        else
+            eq%more_contacts(self%slot)%sliding = sliding
+            eq%more_contacts(self%slot)%flying = flying
+        end if
+    end subroutine set_mode_flags
+
+    !> Its contact's slip direction at zero slip: the watch's slip_reference.
+    pure subroutine set_reference(self, eq)
+        class(contact_watch_type), intent(in) :: self
+        type(equations_type), intent(inout) :: eq
+
+        if (self%slot == 0) then
+            eq%contact%reference = self%slip_reference
+        else
+            eq%more_contacts(self%slot)%reference = self%slip_reference
+        end if
+    end subroutine set_reference
+
+    !> Add an impact's loss of energy [J] >= 0 to its contact's.
+    pure subroutine add_impact_loss(self, eq, loss)
+        class(contact_watch_type), intent(in) :: self
+        type(equations_type), intent(inout) :: eq
+        real(wp), intent(in) :: loss
+
+        if (self%slot == 0) then
+            eq%contact%impact_loss = eq%contact%impact_loss + loss
+        else
+            eq%more_contacts(self%slot)%impact_loss = eq%more_contacts(self%slot)%impact_loss &
+                & + loss
+        end if
+    end subroutine add_impact_loss
 
     !> Modes are watched: the contact has Coulomb friction.
     pure logical function friction(self)
@@ -333,7 +455,7 @@ contains
             m = self%root_count(eq) - 1
             g(m:m + 1) = 1.0_wp
         end if
-        if (eq%contact%flying) then
+        if (self%flying_in(eq)) then
             ! the rim's lowest point's height above the ground, led while it rises by its
             ! normal velocity over rising_lead: the same function where it falls (the
             ! touchdown's root), positive from a rebound on, where the height is zero to
@@ -342,7 +464,7 @@ contains
                 & self%normal_velocity(q, u))
             return
         end if
-        if (self%friction() .and. eq%contact%sliding) then
+        if (self%friction() .and. self%sliding_in(eq)) then
             ! sliding: the slip's component along its direction at the last switch, and its
             ! speed above its guard
             slip = self%slip_velocity(q, u)
@@ -378,7 +500,7 @@ contains
         ! flight modelled: the lift-off is where the normal force reaches zero itself
         if (self%flight) g(1) = force(3)
         ! rolling: the friction that static friction can give less the friction rolling needs
-        if (self%friction() .and. .not. eq%contact%sliding) g(m) = self%mu_static*force(3) &
+        if (self%friction() .and. .not. self%sliding_in(eq)) g(m) = self%mu_static*force(3) &
             & - norm2(force(1:2))
     end subroutine roots
 
@@ -427,6 +549,7 @@ contains
         class(contact_watch_type), intent(in) :: self
         type(equations_type), intent(in) :: eq
         character(len=name_length), allocatable, intent(out) :: names(:)
+        integer :: k
 
         if (self%friction()) then
             allocate(names(size(contact_names) + size(contact_mode_names)))
@@ -435,7 +558,28 @@ contains
             allocate(names(size(contact_names)))
         end if
         names(:size(contact_names)) = contact_names
+        if (len(self%prefix()) > 0) names = [character(len=name_length) :: &
+            & (self%prefix() // trim(names(k)), k = 1, size(names))]
     end subroutine column_names
+
+    !> The start of its columns' and measures' names: column_prefix ("contact<id>_") where a
+    !> model has several contacts, else empty.
+    pure function prefix(self) result(text)
+        class(contact_watch_type), intent(in) :: self
+        character(len=:), allocatable :: text
+
+        text = ""
+        if (allocated(self%column_prefix)) text = self%column_prefix
+    end function prefix
+
+    !> The start of its summary's lines: label and ": " where a model has several contacts.
+    pure function named(self) result(text)
+        class(contact_watch_type), intent(in) :: self
+        character(len=:), allocatable :: text
+
+        text = ""
+        if (allocated(self%label)) text = self%label // ": "
+    end function named
 
     !> Force, normal force, friction needed, height residual (and its largest magnitude, on the
     !> ground: in flight it is the rim's lowest point's height); with friction the mode and the
@@ -449,9 +593,9 @@ contains
 
         force = eq%constraint_force(self%part, lambda)
         ! sliding: the friction is a force of the contact's too (rollcon_sliding_contact)
-        if (eq%contact%sliding) force(1:2) = force(1:2) + eq%contact%friction
+        if (self%sliding_in(eq)) force(1:2) = force(1:2) + self%friction_in(eq)
         height = self%height_residual(q)
-        if (.not. eq%contact%flying) self%height_residual_max = max(self%height_residual_max, &
+        if (.not. self%flying_in(eq)) self%height_residual_max = max(self%height_residual_max, &
             & abs(height))
         values(1:3) = force
         values(4) = force(3)
@@ -462,8 +606,8 @@ contains
         self%started = .true.
         self%last_time = time
         if (.not. self%friction()) return
-        values(7) = merge(mode_sliding, mode_rolling, eq%contact%sliding)
-        if (eq%contact%flying) values(7) = mode_flight
+        values(7) = merge(mode_sliding, mode_rolling, self%sliding_in(eq))
+        if (self%flying_in(eq)) values(7) = mode_flight
         values(8:9) = self%slip_velocity(q, u)
     end subroutine fill_columns
 
@@ -489,7 +633,7 @@ contains
         real(wp) :: force(3), slip(2)
 
         if (.not. self%friction()) return
-        if (eq%contact%flying) then
+        if (self%flying_in(eq)) then
             call self%touchdown(eq, time, q, u, error)
             return
         end if
@@ -499,15 +643,14 @@ contains
             force = eq%constraint_force(self%part, self%lambda)
             if (.not. force(3) > 0.0_wp) then
                 ! the normal force reached zero: the part leaves the ground
-                eq%contact%sliding = .false.
-                eq%contact%flying = .true.
+                call self%set_mode_flags(eq, .false., .true.)
                 self%starting = .false.
                 detail%event_value = force(3)
                 call self%switch_to(mode_flight, time, detail)
                 return
             end if
         end if
-        if (.not. eq%contact%sliding) then
+        if (.not. self%sliding_in(eq)) then
             ! rolling, |F_t| reached mu_static F_n: it slides
             call self%begin_sliding(eq, time, q, u, error)
             return
@@ -525,7 +668,7 @@ contains
             call self%aim_sliding(eq, slip, u)
             return
         end if
-        eq%contact%sliding = .false.
+        call self%set_mode_flags(eq, .false., .false.)
         ! the slip stopped: rolling, if the friction it needs is admissible here
         call eq%accelerations(time, q, u, self%baumgarte, self%a, self%lambda, error)
         if (allocated(error)) return
@@ -546,12 +689,12 @@ contains
         real(wp), intent(in) :: slip(2), u(:)
 
         self%slip_reference = slip/norm2(slip)
-        eq%contact%reference = self%slip_reference
+        call self%set_reference(eq)
         self%guard = merge(guard_second, guard_first, norm2(slip) <= guard_first &
             & *self%slip_error(u))
     end subroutine aim_sliding
 
-    !> Slide from (t, q, u), rolling there (eq%contact%sliding false), against the friction
+    !> Slide from (t, q, u), rolling there (its contact not sliding), against the friction
     !> rolling needs there (s_ref = -F_t / |F_t|); a switch unless it was sliding already (a
     !> stop where rolling is not admissible) or record is false. An error when sliding is
     !> ill-posed there.
@@ -569,8 +712,8 @@ contains
         if (norm2(force(1:2)) > 0.0_wp) then
             self%slip_reference = -force(1:2)/norm2(force(1:2))
         end if
-        eq%contact%reference = self%slip_reference
-        eq%contact%sliding = .true.
+        call self%set_reference(eq)
+        call self%set_mode_flags(eq, .true., .false.)
         self%guard = guard_first
         self%starting = .true.
         ! Painlevé's refusal, here rather than at the integrator's first evaluation
@@ -678,8 +821,8 @@ contains
         ! part's velocity there is the relative one plus the table's)
         drive = 0.0_wp
         if (self%table_rate /= 0.0_wp) drive = dot_product(table, applied)
-        eq%contact%impact_loss = eq%contact%impact_loss + max(0.0_wp, detail%energy_before &
-            & - detail%energy_after + drive)
+        call self%add_impact_loss(eq, max(0.0_wp, detail%energy_before - detail%energy_after &
+            & + drive))
         if (detail%restitution > 0.0_wp) then
             ! a rebound: it flies on
             call self%switch_to(mode_flight, time, detail)
@@ -703,12 +846,11 @@ contains
         real(wp) :: force(3), slip(2)
         integer :: mode
 
-        eq%contact%flying = .false.
-        eq%contact%sliding = .false.
+        call self%set_mode_flags(eq, .false., .false.)
         self%starting = .false.
         slip = self%slip_velocity(q, u)
         if (norm2(slip) > self%slip_error(u)) then
-            eq%contact%sliding = .true.
+            call self%set_mode_flags(eq, .true., .false.)
             call self%aim_sliding(eq, slip, u)
         else
             call eq%accelerations(time, q, u, self%baumgarte, self%a, self%lambda, error)
@@ -722,10 +864,9 @@ contains
         call eq%accelerations(time, q, u, self%baumgarte, self%a, self%lambda, error)
         if (allocated(error)) return
         force = eq%constraint_force(self%part, self%lambda)
-        mode = merge(mode_sliding, mode_rolling, eq%contact%sliding)
+        mode = merge(mode_sliding, mode_rolling, self%sliding_in(eq))
         if (.not. force(3) > 0.0_wp) then
-            eq%contact%sliding = .false.
-            eq%contact%flying = .true.
+            call self%set_mode_flags(eq, .false., .true.)
             self%starting = .false.
             mode = mode_flight
         end if
@@ -785,7 +926,9 @@ contains
         text = ""
         if (.not. self%friction()) return
         from = self%initial_mode
-        text = "contact: starts " // trim(merge("in flight", contact_mode_words(from) // "  ", &
+        text = "contact: starts "
+        if (allocated(self%label)) text = self%label // ": starts "
+        text = text // trim(merge("in flight", contact_mode_words(from) // "  ", &
             & from == mode_flight)) // " (mu_static " // to_text(self%mu_static) &
             & // ", mu_kinetic " // to_text(self%mu_kinetic)
         if (self%flight) text = text // ", restitution " // to_text(self%restitution)
@@ -798,7 +941,8 @@ contains
         end if
         text = text // new_line("a")
         do k = 1, size(self%switch_times)
-            text = text // "  t = " // to_text(self%switch_times(k)) // " s: " &
+            text = text // "  " // self%named() // "t = " // to_text(self%switch_times(k)) &
+                & // " s: " &
                 & // trim(contact_mode_words(from)) // " → " &
                 & // trim(contact_mode_words(self%switch_modes(k)))
             associate (d => self%switch_details(k))
@@ -815,8 +959,8 @@ contains
             from = self%switch_modes(k)
         end do
         spent = self%time_in_modes()
-        text = text // "  time rolling " // to_text(spent(mode_rolling)) // " s, sliding " &
-            & // to_text(spent(mode_sliding)) // " s"
+        text = text // "  " // self%named() // "time rolling " // to_text(spent(mode_rolling)) &
+            & // " s, sliding " // to_text(spent(mode_sliding)) // " s"
         if (self%flight) text = text // ", flight " // to_text(spent(mode_flight)) // " s"
         text = text // new_line("a")
     end function summary_lines
@@ -867,7 +1011,10 @@ contains
             & *(settings%atol + settings%rtol*self%radius)
         taken(1)%bound_rule = to_text(height_allowance) // " sqrt(N) (atol + rtol R)"
         taken(1)%remedy = "height = 'position'"
-        if (.not. self%friction()) return
+        if (.not. self%friction()) then
+            call name_them()
+            return
+        end if
         ! with friction, for tables (a study's row), not judged: the switches and the time in
         ! each mode (time_rolling, time_sliding), as the summary's lines say them
         taken = [taken, watch_measure_type(name="switches", label="contact mode switches", &
@@ -877,6 +1024,20 @@ contains
             taken = [taken, watch_measure_type(name="time_" // trim(contact_mode_words(k - 1)), &
                 & label="time " // trim(contact_mode_words(k - 1)), unit="s", value=spent(k))]
         end do
+        call name_them()
+
+    contains
+
+        !> Several contacts: each measure's name and label its contact's.
+        subroutine name_them()
+            integer :: j
+
+            if (len(self%prefix()) == 0) return
+            do j = 1, size(taken)
+                taken(j)%name = self%prefix() // taken(j)%name
+                taken(j)%label = self%named() // taken(j)%label
+            end do
+        end subroutine name_them
     end function measures
 
 end module rollcon_contact_watch

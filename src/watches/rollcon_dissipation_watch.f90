@@ -1,7 +1,8 @@
 ! SPDX-License-Identifier: MIT
 !> A rim's dissipation (rollcon_rim_dissipation) watched: the power rolling resistance and the
 !> air layer dissipate and the energy dissipated since the start (integrated with the state by
-!> CVODE; by the trapezoidal rule over the rows on IDA), as columns of every row; in the
+!> CVODE and IDA; by the trapezoidal rule over the rows on an integrator that does not), as
+!> columns of every row; in the
 !> summary the energy each law dissipated and, for a disk settling to its finite-time
 !> singularity (Euler's disk), the fit of its precession rate Omega = |psidot| to
 !> Omega ~ (t0 - t)^(-n) (fit_singularity; docs/design.md §5, "Dissipation").

@@ -20,7 +20,7 @@ module test_pictures
         & element_reaction_column_patterns, element_force_column_patterns
     use rollcon_watch_columns, only : contact_names, contact_mode_names, request_column_patterns, &
         & motion_column_patterns, reaction_column_patterns, variable_column_patterns, &
-        & diff_column_patterns, dissipation_names
+        & diff_column_patterns, dissipation_names, contact_column_patterns
     use rollcon_testing, only : unittest_type, new_unittest, check, skip_test
     use picture_files, only : disk_run, two_part_run, falling_run, write_run, make_folder, &
         & remove_folder, write_lines, expect_message, file_starts_with
@@ -141,7 +141,7 @@ contains
             & request_column_patterns, motion_column_patterns, &
             & answer_column_patterns, reaction_column_patterns, &
             & element_reaction_column_patterns, element_force_column_patterns, &
-            & variable_column_patterns, diff_column_patterns])
+            & variable_column_patterns, diff_column_patterns, contact_column_patterns])
         call check(error, allocated(count_reason), "read_layout accepted 17 columns for one " &
             & // "part and one UCON")
         if (allocated(error)) return
