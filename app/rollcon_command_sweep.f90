@@ -21,8 +21,10 @@ module rollcon_command_sweep
 
 contains
 
-    !> Run the study the command names. error is set on rank 0
-    !> only; the other ranks return with status 1 when the study could not run.
+    !> Run the study the command names. error is set on rank 0 only, and only rank 0's status
+    !> says whether the study ran: the other ranks return status 0 always. A worker that
+    !> exited 1 first would let mpirun end the job, and so rank 0, before rank 0 had written
+    !> its message (the job's exit status is non-zero when rank 0's is).
     subroutine sweep_command(request, status, error)
         type(cli_request_type), intent(in) :: request
         !> 0 when every case of the study is in the CSV, 1 otherwise
@@ -87,7 +89,7 @@ contains
         call MPI_Finalize()
         if (rank /= 0) then
             if (allocated(error)) deallocate(error)
-            if (go == 1) status = 0
+            status = 0
             return
         end if
         if (go == 0 .and. .not. allocated(error)) call fatal_error(error, "the study " &
