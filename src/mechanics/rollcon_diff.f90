@@ -54,7 +54,7 @@ module rollcon_diff
     use rollcon_diff_inputs, only : diff_inputs, diff_input_jets
     use rollcon_user_forces, only : routine_declaration_type, declare_diff_routine, &
         & call_diff_routine, take_user_force_error, set_system_accelerations, &
-        & system_accelerations
+        & system_accelerations, set_system_multipliers, system_multipliers
     use rollcon_central_differences, only : central_differences
     implicit none
     private
@@ -108,6 +108,8 @@ module rollcon_diff
         procedure :: partials
         procedure :: reads_accelerations
         procedure :: acceleration_partials
+        procedure :: reads_constraint_forces
+        procedure :: multiplier_partials
         procedure :: solve_rates
         procedure :: part_rebased
         procedure :: count_turns => count_diff_turns
@@ -310,6 +312,68 @@ contains
         end subroutine accelerations_moved
 
     end subroutine acceleration_partials
+
+    !> True when the initialisation call of a DIFF's DIFSUB read a constraint's reaction
+    !> (SYSFNC's force measures summing a JOINT's, JPRIM's or MOTION's multipliers: the
+    !> declaration's rows).
+    pure logical function reads_constraint_forces(self) result(reads)
+        class(diff_set_type), intent(in) :: self
+        integer :: k
+
+        reads = .false.
+        do k = 1, self%count()
+            if (self%diffs(k)%routine == 0) cycle
+            if (.not. allocated(self%diffs(k)%declaration%rows)) cycle
+            if (size(self%diffs(k)%declaration%rows) > 0) reads = .true.
+        end do
+    end function reads_constraint_forces
+
+    !> g_lambda(k, r) = dG_k/dlambda_r at (t, q, u, x, w) and the multipliers the force
+    !> measures read (rollcon_user_forces' system_multipliers: the state's, set by the
+    !> formulation before; nd x nc): for a DIFSUB whose initialisation call read a
+    !> constraint's reaction, central differences (rollcon_central_differences) of its VALUE
+    !> over the multipliers of the rows it declared, as a VARSUB's (each call with DFLAG =
+    !> .TRUE., the shifted multipliers answered to it, those set before restored after); an
+    !> explicit DIFF's G_k = w_k - VALUE takes the opposite sign. The other entries are 0 (an
+    !> expression reads no reaction). A failed call leaves its entry 0 and its error for
+    !> take_user_force_error.
+    subroutine multiplier_partials(self, time, q, u, x, w, g_lambda)
+        class(diff_set_type), intent(in) :: self
+        real(wp), intent(in) :: time, q(:), u(:), x(:), w(:)
+        real(wp), intent(out) :: g_lambda(:, :)
+        real(wp), allocatable :: kept(:), block(:, :)
+        integer :: k
+
+        g_lambda = 0.0_wp
+        if (.not. self%reads_constraint_forces()) return
+        kept = system_multipliers(size(g_lambda, 2))
+        do k = 1, self%count()
+            if (self%diffs(k)%routine == 0) cycle
+            if (.not. allocated(self%diffs(k)%declaration%rows)) cycle
+            if (size(self%diffs(k)%declaration%rows) == 0) cycle
+            associate (rows => self%diffs(k)%declaration%rows)
+                allocate(block(size(rows), 1), source=0.0_wp)
+                call central_differences(kept, rows, multipliers_moved, block)
+                g_lambda(k, rows) = block(:, 1)
+                deallocate(block)
+            end associate
+            if (.not. self%diffs(k)%implicit) g_lambda(k, :) = -g_lambda(k, :)
+        end do
+        call set_system_multipliers(kept)
+
+    contains
+
+        subroutine multipliers_moved(shifted, values, failed)
+            real(wp), intent(in) :: shifted(:)
+            real(wp), intent(out) :: values(:)
+            logical, intent(out) :: failed
+
+            call set_system_multipliers(shifted)
+            values(1) = routine_value(self, k, time, q, u, x, w, .true.)
+            failed = .not. ieee_is_finite(values(1))
+        end subroutine multipliers_moved
+
+    end subroutine multiplier_partials
 
     !> The DIF1s w that solve G(t, q, u, x, w) = 0 (module header), from the first guess w, by
     !> Newton's method over dG/dw; dg_dw is left factored (LU, pivots ipiv) at the solution

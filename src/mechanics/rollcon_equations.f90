@@ -600,34 +600,9 @@ contains
             call take_user_force_error(error)
             if (allocated(error)) return
             if (iteration == 1) then
-                call self%acceleration_partials(time, q, u, a, error)
+                call form_loop_matrix(self, time, q, u, a, lambda, active, multipliers, error)
                 if (allocated(error)) return
-                self%work%dm_dlambda = 0.0_wp
-                if (multipliers) then
-                    call self%multiplier_partials(time, q, u, lambda, error)
-                    if (allocated(error)) return
-                end if
                 call self%constraint_rows(u, baumgarte)
-                associate (m => self%work%loop_matrix)
-                    m = 0.0_wp
-                    m(:n, :n) = self%mass + self%work%dm_da
-                    do k = 1, nc
-                        if (active(k)) then
-                            m(:n, n + k) = -self%c(k, :) + self%work%dm_dlambda(:, k)
-                            m(n + k, :n) = self%c(k, :)
-                        else
-                            m(n + k, n + k) = 1.0_wp
-                        end if
-                    end do
-                end associate
-                call factor_dense(self%work%loop_matrix, self%work%loop_pivots, error)
-                if (allocated(error)) then
-                    error%message = loop_names(self) // ": the saddle-point matrix of the " &
-                        & // "equations with the accelerations they read, [M - df/da, -C^T; " &
-                        & // "C, 0], is singular at t = " // to_text(time) // " s: " &
-                        & // error%message
-                    return
-                end if
             end if
             x(:n, 1) = self%force + matmul(self%work%dm_da, a)
             if (multipliers) x(:n, 1) = x(:n, 1) + matmul(self%work%dm_dlambda, lambda)
@@ -667,6 +642,48 @@ contains
                 & .and. moved <= settled*max(maxval(abs(lambda)), 1.0_wp)
         end function loop_settled
     end subroutine loop_accelerations
+
+    !> The algebraic loop's saddle-point matrix [M + dm/da, -C^T + dm/dlambda; C, 0] at the
+    !> iterate (a, lambda), the forces evaluated there (assemble) before and C at (t, q, u)
+    !> (a row set aside, not active: lambda_k = 0), LU-factored into work%loop_matrix,
+    !> work%loop_pivots; the forces' partials in a and lambda (acceleration_partials,
+    !> multiplier_partials: the latter only when multipliers, a routine reading a reaction)
+    !> into the work. A failed difference call's error, or a singular matrix's naming the
+    !> statements whose routines read the unknowns, is returned.
+    subroutine form_loop_matrix(self, time, q, u, a, lambda, active, multipliers, error)
+        type(equations_type), intent(inout) :: self
+        real(wp), intent(in) :: time, q(:), u(:), a(:), lambda(:)
+        logical, intent(in) :: active(:), multipliers
+        type(error_type), allocatable, intent(out) :: error
+        integer :: n, k
+
+        n = self%n
+        call self%acceleration_partials(time, q, u, a, error)
+        if (allocated(error)) return
+        self%work%dm_dlambda = 0.0_wp
+        if (multipliers) then
+            call self%multiplier_partials(time, q, u, lambda, error)
+            if (allocated(error)) return
+        end if
+        associate (m => self%work%loop_matrix)
+            m = 0.0_wp
+            m(:n, :n) = self%mass + self%work%dm_da
+            do k = 1, self%nc
+                if (active(k)) then
+                    m(:n, n + k) = -self%c(k, :) + self%work%dm_dlambda(:, k)
+                    m(n + k, :n) = self%c(k, :)
+                else
+                    m(n + k, n + k) = 1.0_wp
+                end if
+            end do
+        end associate
+        call factor_dense(self%work%loop_matrix, self%work%loop_pivots, error)
+        if (allocated(error)) then
+            error%message = loop_names(self) // ": the saddle-point matrix of the " &
+                & // "equations with the accelerations they read, [M - df/da, -C^T; " &
+                & // "C, 0], is singular at t = " // to_text(time) // " s: " // error%message
+        end if
+    end subroutine form_loop_matrix
 
     !> The statements whose user routines read accelerations, "SFORCE/3 (line 12), ...", then
     !> the VARIABLEs whose VARSUBs do.
@@ -1088,7 +1105,13 @@ contains
             call jacobian_constraint_rows(self, u, w%a, baumgarte)
             if (self%reads_loop()) then
                 ! the algebraic loop's saddle-point matrix, with the forces' partials in a
-                ! and lambda
+                ! and lambda at the solution (the loop factored them at its first iterate,
+                ! which a force nonlinear in what it reads, |F| of a reaction, makes another
+                ! matrix), assembled there by the loop's last evaluation
+                if (reads_constraint_forces(self%model%forces)) call self%constraint_matrix()
+                call form_loop_matrix(self, time, q, u, w%a, w%lambda, self%active_rows(), &
+                    & reads_constraint_forces(self%model%forces), error)
+                if (allocated(error)) return
                 call loop_solve(self, error)
             else
                 call self%saddle%solve(self%c, w%rhs_top, w%rhs_bottom, 2*n, error)

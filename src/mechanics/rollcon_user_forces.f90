@@ -94,6 +94,7 @@ module rollcon_user_forces
     public :: declare_variable_rows
     public :: force_measure_interface, set_force_measure_hook, set_system_constraint_forces
     public :: reads_constraint_forces, multiplier_difference_call
+    public :: set_system_multipliers, system_multipliers
 
     !> A routine the model may use
     type :: routine_entry_type
@@ -134,6 +135,9 @@ module rollcon_user_forces
     type :: routine_declaration_type
         integer, allocatable :: markers(:), parts(:), difs(:), dif1s(:)
         logical :: rates = .false., accelerations = .false.
+        !> The constraint rows whose reactions its force measures summed (SYSFNC('JOINT'), FX
+        !> ... TM over a JOINT: a DIFSUB's value then depends on those rows' multipliers)
+        integer, allocatable :: rows(:)
     end type routine_declaration_type
 
     !> A VARIABLE served by a VARSUB
@@ -628,6 +632,7 @@ contains
         declaration%accelerations = named_accelerations
         declaration%difs = named_difs
         declaration%dif1s = named_dif1s
+        declaration%rows = named_rows
         call diff_problem(entry, name, "the initialisation call (IFLAG = .TRUE.)", &
             & time/time_unit, error)
     end subroutine declare_diff_routine
@@ -663,11 +668,15 @@ contains
             allowed_difs = declaration%difs
             allowed_dif1s = declaration%dif1s
         end if
+        if (allocated(declaration%rows)) then
+            if (size(declaration%rows) > 0) allowed_rows = declaration%rows
+        end if
         result = 0.0_wp
         diff_calling = .true.
         caller_now = ""
         call call_hook(entry, id, time/time_unit, par, size(par), dflag, .false., result, 1)
         diff_calling = .false.
+        if (allocated(allowed_rows)) deallocate(allowed_rows)
         if (allocated(allowed)) deallocate(allowed)
         if (allocated(allowed_difs)) deallocate(allowed_difs, allowed_dif1s)
         allowed_rates = .true.
@@ -1227,6 +1236,27 @@ contains
         c_now = c
         lambda_now = lambda
     end subroutine set_system_constraint_forces
+
+    !> The multipliers the force measures read, the constraint rows kept (a DIFSUB's partials
+    !> in them are differenced with the rows of the state: rollcon_diff's
+    !> multiplier_partials).
+    subroutine set_system_multipliers(lambda)
+        real(wp), intent(in) :: lambda(:)
+
+        lambda_now = lambda
+    end subroutine set_system_multipliers
+
+    !> The multipliers the force measures read (set_system_constraint_forces' or
+    !> set_system_multipliers'; zeros of size nc before any).
+    function system_multipliers(nc) result(lambda)
+        integer, intent(in) :: nc
+        real(wp) :: lambda(nc)
+
+        lambda = 0.0_wp
+        if (allocated(lambda_now)) then
+            if (size(lambda_now) == nc) lambda = lambda_now
+        end if
+    end function system_multipliers
 
     !> True when a force of the model is served by a routine whose initialisation call read
     !> a force measure summing a constraint's reaction (its values then depend on the

@@ -192,7 +192,10 @@ contains
 
     !> The DIFFs' rows of the Newton matrix dF/dy + cj dF/dy' (rollcon_diff's exact partials):
     !> row m + k by q, u (dG_k/dq, dG_k/du + cj dG_k/da for a DIFSUB reading the
-    !> accelerations, IDA's u': rollcon_diff's acceleration_partials) and by x (dG_k/dx + cj
+    !> accelerations, IDA's u': rollcon_diff's acceleration_partials), by the multipliers of
+    !> the rows whose reactions a DIFSUB's force measures read (dG_k/dlambda, IDA's lambda:
+    !> rollcon_diff's multiplier_partials, differenced over the rows its initialisation call
+    !> declared; a row set aside carries no reaction, its column none) and by x (dG_k/dx + cj
     !> T dG_k/dw, w = T x'),
     !> into the dense matrix or the compressed columns (dae_pattern keeps these entries). The
     !> momentum rows' partials in x (a force that reads DIF) are left out, as the expression
@@ -203,8 +206,9 @@ contains
         real(wp), intent(inout), optional :: dense(:, :)
         integer, intent(in), optional :: starts(:), rows(:)
         real(wp), intent(inout), optional :: values(:)
-        real(wp), allocatable :: g(:), g_q(:, :), g_u(:, :), g_x(:, :), g_w(:, :), g_a(:, :)
-        integer :: n, m, nd, k, j
+        real(wp), allocatable :: g(:), g_q(:, :), g_u(:, :), g_x(:, :), g_w(:, :), g_a(:, :), &
+            & g_lambda(:, :)
+        integer :: n, m, nd, k, j, r
 
         n = self%problem%eq%n
         m = dae_size(self%problem%eq)
@@ -221,6 +225,27 @@ contains
                 g_u = g_u + cj*g_a
             end if
             g_x = g_x + cj*diffs%time_unit*g_w
+            if (diffs%reads_constraint_forces()) then
+                ! the multipliers the residual's DIFSUBs read: IDA's (rollcon_dae's
+                ! set_reactions, made by the momentum rows' Newton matrix before)
+                allocate(g_lambda(nd, self%problem%eq%nc))
+                call diffs%multiplier_partials(time, y(:n), y(n + 1:2*n), y(m + 1:), &
+                    & yp(m + 1:)*diffs%time_unit, g_lambda)
+                associate (redundancy => self%problem%eq%redundancy)
+                    if (redundancy%set_aside > 0) then
+                        do r = 1, size(g_lambda, 2)
+                            if (.not. redundancy%active(r)) g_lambda(:, r) = 0.0_wp
+                        end do
+                    end if
+                end associate
+                do k = 1, nd
+                    if (.not. allocated(diffs%diffs(k)%declaration%rows)) cycle
+                    do j = 1, size(diffs%diffs(k)%declaration%rows)
+                        r = diffs%diffs(k)%declaration%rows(j)
+                        call put(m + k, 2*n + r, g_lambda(k, r))
+                    end do
+                end do
+            end if
             do k = 1, nd
                 do j = 1, n
                     call put(m + k, j, g_q(k, j))
@@ -381,13 +406,21 @@ contains
             end if
             if (diss%part > 0) call keep_normal(diss%height_column, diss%normal)
         end associate
-        ! each DIFF's row by every q and u (it may read any part) and every DIFF's state
-        associate (m => dae_size(self%problem%eq), nd => self%problem%model%diffs%count())
+        ! each DIFF's row by every q and u (it may read any part), by the multipliers of the
+        ! rows whose reactions its DIFSUB declared, and by every DIFF's state
+        associate (m => dae_size(self%problem%eq), nd => self%problem%model%diffs%count(), &
+                & diffs => self%problem%model%diffs%diffs)
             do k = 1, nd
                 if (m + k > n) exit
                 do j = 1, 2*nq
                     call keep(m + k, j)
                 end do
+                if (allocated(diffs(k)%declaration%rows)) then
+                    do j = 1, size(diffs(k)%declaration%rows)
+                        if (diffs(k)%declaration%rows(j) <= nc) &
+                            & call keep(m + k, 2*nq + diffs(k)%declaration%rows(j))
+                    end do
+                end if
                 do j = 1, nd
                     call keep(m + k, m + j)
                 end do

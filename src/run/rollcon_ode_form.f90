@@ -144,7 +144,11 @@ contains
     !> dG/d(q, u, x) / T at the rates w solved there (rollcon_diff: G(t, q, u, x, w) = 0
     !> defines w; exact partials). A DIFSUB reading accelerations adds dG/da da/d(q, u) to
     !> dG/d(q, u) (its partials in a differenced, rollcon_diff's acceleration_partials;
-    !> da/d(q, u) the Newton matrix's acceleration rows, accelerations_rows: n x 2n). The
+    !> da/d(q, u) the Newton matrix's acceleration rows, accelerations_rows: n x 2n); one
+    !> reading a constraint's reaction adds dG/dlambda dlambda/d(q, u) (its partials in the
+    !> multipliers of the rows it declared differenced, rollcon_diff's multiplier_partials;
+    !> dlambda/d(q, u) solved with da/d(q, u) by the equations' ode_jacobian, the work's
+    !> rhs_bottom: nc x 2n). The
     !> accelerations' partials in x (a force that reads DIF) are left out of the matrix, as
     !> the expression forces' other partials are.
     subroutine diff_rows(problem, time, q, u, accelerations_rows, rows, error)
@@ -154,7 +158,7 @@ contains
         real(wp), intent(out) :: rows(:, :)
         type(error_type), allocatable, intent(out) :: error
         real(wp), allocatable :: g(:), g_q(:, :), g_u(:, :), g_x(:, :), g_w(:, :), w(:), &
-            & right(:, :), g_a(:, :)
+            & right(:, :), g_a(:, :), g_lambda(:, :)
         integer, allocatable :: pivots(:)
         integer :: n, nd
 
@@ -175,6 +179,13 @@ contains
                 allocate(g_a(nd, n))
                 call diffs%acceleration_partials(time, q, u, diffs%x, w, problem%eq%work%a, g_a)
                 right(:, :2*n) = right(:, :2*n) + matmul(g_a, accelerations_rows)
+            end if
+            if (diffs%reads_constraint_forces()) then
+                ! the multipliers solved at (t, q, u) (the equations' loop set them for the
+                ! force measures) and their partials in (q, u) beside the accelerations'
+                allocate(g_lambda(nd, problem%eq%nc))
+                call diffs%multiplier_partials(time, q, u, diffs%x, w, g_lambda)
+                right(:, :2*n) = right(:, :2*n) + matmul(g_lambda, problem%eq%work%rhs_bottom)
             end if
             call factor_dense(g_w, pivots, error)
             if (allocated(error)) return

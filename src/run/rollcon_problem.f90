@@ -169,10 +169,11 @@ contains
     end subroutine add_own_watches
 
     !> Accelerations and multipliers at (t, q, u) into self%a and self%lambda, with the
-    !> settings' drift control. Where a DIFSUB reads accelerations, the DIFFs' rates are
-    !> solved again with the accelerations found (set for the utilities,
-    !> rollcon_user_forces' set_system_accelerations): a force reading such a DIFF's DIF1
-    !> reads its rate at the accelerations last found.
+    !> settings' drift control. Where a DIFSUB reads accelerations or a constraint's
+    !> reaction, the DIFFs' rates are solved again with the accelerations found (set for the
+    !> utilities, rollcon_user_forces' set_system_accelerations) and the multipliers (the
+    !> equations set them for the force measures): a force reading such a DIFF's DIF1 reads
+    !> its rate at the accelerations last found.
     subroutine accelerations(self, time, q, u, error)
         class(problem_type), intent(inout) :: self
         real(wp), intent(in) :: time, q(:), u(:)
@@ -184,8 +185,11 @@ contains
             & error)
         if (allocated(error)) return
         if (self%model%diffs%count() == 0) return
-        if (.not. self%model%diffs%reads_accelerations()) return
-        call set_system_accelerations(self%a)
+        if (self%model%diffs%reads_accelerations()) then
+            call set_system_accelerations(self%a)
+        else if (.not. self%model%diffs%reads_constraint_forces()) then
+            return
+        end if
         call self%diff_rates(time, q, u, error)
     end subroutine accelerations
 

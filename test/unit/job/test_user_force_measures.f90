@@ -7,7 +7,9 @@
 !> written with the spring's expression; the friction written as a VARIABLE whose VARSUB
 !> reads the reaction, and a DIFF whose DIFSUB integrates it, against the closed form; each
 !> on IDA (the multipliers among its unknowns) and CVODE (Newton on the accelerations and
-!> multipliers); a crank driven by a MOTION, its driving torque read as TZ, TM and
+!> multipliers), and that model's steps, evaluations and Newton matrices against its twin's
+!> (the DIFSUB's and VARSUB's partials in the multipliers in the Newton matrices); a crank
+!> driven by a MOTION, its driving torque read as TZ, TM and
 !> SYSFNC('MOTION') against the closed form; a force reading its own force refused, and a
 !> MOTSUB reading one; and `rollcon check` of the friction routine, its force measures
 !> answered at every probed state.
@@ -20,7 +22,7 @@ module test_user_force_measures
     use rollcon_job, only : job_type
     use rollcon_load, only : load_job
     use rollcon_run_job, only : run_job, job_result_type
-    use rollcon_simulation, only : status_completed
+    use rollcon_simulation, only : status_completed, run_summary_type
     use rollcon_user_build, only : user_build_options_type
     use rollcon_user_routine_check, only : check_user_routines
     use rollcon_run_settings, only : formulation_cvode, formulation_ida
@@ -60,6 +62,8 @@ contains
             & new_unittest("variable-reaction-friction-ida", test_variable_friction_ida), &
             & new_unittest("variable-reaction-friction-cvode", test_variable_friction_cvode), &
             & new_unittest("variable-reading-its-reader-refused", test_variable_cycle), &
+            & new_unittest("difsub-reaction-newton-counts-ida", test_difsub_counts_ida), &
+            & new_unittest("difsub-reaction-newton-counts-cvode", test_difsub_counts_cvode), &
             & new_unittest("motion-driving-torque", test_motion_torque), &
             & new_unittest("motsub-force-measure-refused", test_motsub_refused), &
             & new_unittest("reqsub-force-measures", test_reqsub), &
@@ -157,6 +161,56 @@ contains
             & "variable_friction_twin.adm", "joint_friction_twin.f", formulation_cvode, error, &
             & diff="diff9")
     end subroutine test_variable_friction_cvode
+
+    !> variable_friction.adm (its friction VARIABLE's VARSUB and its DIFF's DIFSUB reading the
+    !> joint's reaction) on IDA takes no more steps, residual evaluations (its Newton
+    !> iterations, and the matrices' difference calls) and Newton matrices than 1.25 times
+    !> variable_friction_twin.adm (the same equations, the reaction in closed form: no
+    !> multiplier read, Newton matrices exact to the differences' error) takes: with the DIFF's
+    !> partials in the multipliers in IDA's matrix (and, on CVODE, the loop's matrix at its
+    !> solution and the DIFF's chain through dlambda/d(q, u)), the two runs' Newton matrices
+    !> are the same functions' partials and the counts differ by the step sequence's jitter
+    !> alone (measured on IDA 244, 505, 40 against the twin's 278, 508, 42). Without them
+    !> IDA took 442 steps, 922 residuals and 206 matrices (1.6 to 4.9 times the twin's), the
+    !> Newton iteration of the DIFF's row lagging the multipliers: 1.25 separates the two.
+    subroutine test_difsub_counts_ida(error)
+        type(error_type), allocatable, intent(out) :: error
+
+        call compare_counts(formulation_ida, error)
+    end subroutine test_difsub_counts_ida
+
+    !> test_difsub_counts_ida on CVODE (measured 159 steps, 192 right-hand sides, 3 Newton
+    !> matrices against the twin's 162, 195, 3; without the partials 187, 563, 6: the
+    !> right-hand sides 2.9 times the twin's, the matrices 2 times).
+    subroutine test_difsub_counts_cvode(error)
+        type(error_type), allocatable, intent(out) :: error
+
+        call compare_counts(formulation_cvode, error)
+    end subroutine test_difsub_counts_cvode
+
+    !> variable_friction.adm's steps, evaluations and Newton matrices on the formulation, each
+    !> at most 1.25 times variable_friction_twin.adm's (test_difsub_counts_ida).
+    subroutine compare_counts(formulation, error)
+        integer, intent(in) :: formulation
+        type(error_type), allocatable, intent(out) :: error
+        real(wp), parameter :: most = 1.25_wp
+        type(history_type) :: history
+        type(run_summary_type) :: user, twin
+
+        call run_user(folder // "variable_friction.adm", "variable_friction.f", formulation, &
+            & history, error, user)
+        if (allocated(error)) return
+        call run_user(folder // "variable_friction_twin.adm", "joint_friction_twin.f", &
+            & formulation, history, error, twin)
+        if (allocated(error)) return
+        call check(error, user%steps <= most*twin%steps .and. user%functions <= most &
+            & *twin%functions .and. user%jacobians <= most*twin%jacobians .and. twin%steps > 0, &
+            & "variable_friction.adm took " // to_text(user%steps) // " steps, " &
+            & // to_text(user%functions) // " evaluations, " // to_text(user%jacobians) &
+            & // " Newton matrices; its twin " // to_text(twin%steps) // ", " &
+            & // to_text(twin%functions) // ", " // to_text(twin%jacobians) // " (formulation " &
+            & // to_text(formulation) // ")")
+    end subroutine compare_counts
 
     !> variable_cycle.adm: VARIABLE/5's VARSUB reads TM(20, 10), which sums SFORCE/3's torque,
     !> -0.05 VARVAL(5): refused with an error naming the VARIABLE, its line, the call and the
@@ -385,11 +439,13 @@ contains
 
     !> Run path with the user's file ("" for none: the expressions run here) on the
     !> formulation; its rows in history. A run that does not complete is an error.
-    subroutine run_user(path, file, formulation, history, error)
+    subroutine run_user(path, file, formulation, history, error, summary)
         character(len=*), intent(in) :: path, file
         integer, intent(in) :: formulation
         type(history_type), intent(out) :: history
         type(error_type), allocatable, intent(out) :: error
+        !> The run's summary (its integrator's counts)
+        type(run_summary_type), intent(out), optional :: summary
         type(job_type) :: job
         type(job_result_type) :: ran
 
@@ -408,6 +464,7 @@ contains
         if (allocated(error)) return
         if (ran%summary%status /= status_completed) call fatal_error(error, path // ": " &
             & // ran%summary%message)
+        if (present(summary)) summary = ran%summary
     end subroutine run_user
 
 end module test_user_force_measures

@@ -16,7 +16,12 @@
 !> its declared markers' parts, one of them a part the force does not join). A force reading
 !> VARVAL of a VARSUB that reads a joint's reaction (SYSFNC('JOINT')) has IDA's dr/dy of
 !> central differences, its columns in the multipliers included (the VARSUB's partials in
-!> them differenced and chained through the expression).
+!> them differenced and chained through the expression), and CVODE's d(q', u')/d(q, u) of
+!> them (the loop's partials in the multipliers chained through the saddle-point solve). A
+!> DIFF whose DIFSUB integrates a joint's reaction has the DIFF's rows of IDA's and CVODE's
+!> Newton matrices of central differences of the residual and of the right-hand side (its
+!> partials in the multipliers differenced over the rows it declared: IDA's columns in
+!> lambda, CVODE's chain through dlambda/d(q, u)).
 module test_force_partials
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type
@@ -24,14 +29,15 @@ module test_force_partials
     use rollcon_ucosub_contract, only : ucosub_interface
     use rollcon_disk_reference, only : rolling_disk_ucosub
     use rollcon_problem, only : problem_type
-    use rollcon_dae, only : dae_size, dae_residual, dae_jacobian
     use rollcon_ode_form, only : ode_form_type
     use rollcon_adm_model, only : adm_model_type
     use rollcon_adm_build, only : build_adm_problem
     use rollcon_force_routine_contract, only : routine_sfosub, routine_gfosub
     use rollcon_user_forces, only : register_force_routine, clear_force_routines, &
         & system_function, system_array, system_notes, clear_system_notes, &
-        & register_variable_routine
+        & register_variable_routine, register_diff_routine
+    use rollcon_dae_form, only : dae_form_type
+    use rollcon_newton_pattern, only : newton_pattern_type
     use adm_datasets, only : read_dataset
     use newton_checks, only : check_ode_matrix, check_dae_matrix
     use rollcon_testing, only : unittest_type, new_unittest, check
@@ -119,7 +125,9 @@ contains
             & new_unittest("user-routines-against-expressions", test_user_twins), &
             & new_unittest("user-routine-undeclared-read", test_undeclared), &
             & new_unittest("varsub-read-by-force-against-expression", test_varsub_twins), &
-            & new_unittest("varsub-reading-reaction-dae-jacobian", test_varsub_reaction)]
+            & new_unittest("varsub-reading-reaction-dae-jacobian", test_varsub_reaction), &
+            & new_unittest("varsub-reading-reaction-ode-jacobian", test_varsub_reaction_ode), &
+            & new_unittest("difsub-reading-reaction-newton-matrices", test_difsub_reaction)]
     end subroutine collect_force_partials
 
     !> A model built from a dataset's lines at its start (q0, u0).
@@ -333,7 +341,8 @@ contains
     !> VARIABLE/4 served by reaction_varsub: |F| of JOINT/1 at I, SYSFNC('JOINT', 1, 0, 1).
     !> IDA's dr/dy (cj = 0) at the start with the multipliers lambda_k = 2 + k (away from a
     !> zero reaction, where |F| has a kink) and mu = 0 against central differences of step
-    !> h_fd in every unknown, to tol_fd of its largest entry (the VARSUB's partials are
+    !> h_fd in every unknown (newton_checks' check_dae_matrix, which checks dr/dy' and the
+    !> sparse pattern too), to tol_fd of its largest entry (the VARSUB's partials are
     !> differences of error 4e-11 of their scale, above; measured 1.7e-9 for a largest entry
     !> of 6.9); and its columns in the multipliers differ from the same pendulum's without
     !> the VARIABLE (C^T alone) by the friction's partials, 0.2 d|F|/dlambda (measured 0.14),
@@ -360,14 +369,16 @@ contains
         call clear_force_routines()
         call register_variable_routine("", "test_force_partials", reaction_varsub)
         call build([character(len=200) :: pendulum, friction, tail], problem, q0, u0, error)
-        if (.not. allocated(error)) call differenced_dae(problem, q0, u0, with, error)
+        if (.not. allocated(error)) call check_dae_matrix(problem, q0, u0, h_fd, tol_fd, with, &
+            & error)
         if (allocated(error)) then
             call clear_force_routines()
             return
         end if
         call problem%release()
         call build([character(len=200) :: pendulum, bare, tail], problem, q0, u0, error)
-        if (.not. allocated(error)) call differenced_dae(problem, q0, u0, without, error)
+        if (.not. allocated(error)) call check_dae_matrix(problem, q0, u0, h_fd, tol_fd, &
+            & without, error)
         call clear_force_routines()
         if (allocated(error)) return
         n = size(q0)
@@ -378,37 +389,192 @@ contains
         call problem%release()
     end subroutine test_varsub_reaction
 
-    !> dr/dy of problem's DAE residual (cj = 0) at (0, y = (q0, u0, lambda_k = 2 + k, mu = 0),
-    !> y' = (u0, a_k = 0.1 k - 0.5)) checked against central differences of step h_fd in every
-    !> unknown, to tol_fd of its largest entry.
-    subroutine differenced_dae(problem, q0, u0, jac, error)
-        type(problem_type), intent(inout), target :: problem
-        real(wp), intent(in) :: q0(:), u0(:)
-        real(wp), allocatable, intent(out) :: jac(:, :)
+    !> test_varsub_reaction's pendulum (held by -0.2 VARVAL(4) - 3 AZ(20, 10), VARIABLE/4's
+    !> VARSUB reading |F| of JOINT/1) at its start, at rest: CVODE's d(q', u')/d(q, u) against
+    !> central differences of the right-hand side (which solves the loop in the accelerations
+    !> and multipliers at each state), entry by entry, to tol_fd of its largest entry
+    !> (newton_checks' check_ode_matrix; the VARSUB's partials are differences of error 4e-11
+    !> of their scale). The chain through the VARIABLE runs from dlambda/d(q, u) (the loop's
+    !> saddle-point matrix with the friction's partials in the multipliers) into the
+    !> accelerations. At rest the terms the ODE form leaves out, the constraints' third
+    !> partials in dgamma/dq (rollcon_equations' ode_jacobian), multiply u twice and vanish:
+    !> the matrix is exact there, and so is the same pendulum's without the VARIABLE (-3 AZ
+    !> alone), also checked. The friction's share, the difference of the two matrices
+    !> (measured 1.3 of entries up to 8.5), must exceed a thousand times the tolerance's
+    !> bound. The loop's matrix formed at its first iterate (multipliers 0 at the first call,
+    !> where |F| has a kink) instead of at the solution misses 2e-2 in d(a_x)/d(q_4): 2e3
+    !> times tol_fd's bound.
+    subroutine test_varsub_reaction_ode(error)
         type(error_type), allocatable, intent(out) :: error
-        real(wp), allocatable :: y(:), yp(:), yh(:), rp(:), rm(:)
-        integer :: j, m, n, k
+        character(len=200), parameter :: pendulum(8) = [character(len=200) :: &
+            & "pendulum", "UNITS/SYSTEM = SI", &
+            & "PART/1, GROUND|MARKER/10, PART = 1, REULER = 30D, 40D, 50D", &
+            & "PART/2, MASS = 2, CM = 22, IP = 0.1, 0.12, 0.15, REULER = 30D, 40D, 50D", &
+            & "MARKER/20, PART = 2|MARKER/22, PART = 2, QP = 0.8, -0.5, 0.3", &
+            & "JOINT/1, REVOLUTE, I = 20, J = 10", "ACCGRAV/KGRAV = -9.81", &
+            & "VARIABLE/4, FUNCTION = USER(1)"]
+        character(len=200), parameter :: friction(1) = [character(len=200) :: &
+            & "SFORCE/3, ROTATIONAL, I = 20, J = 10, FUNCTION = -0.2*VARVAL(4) - 3*AZ(20, 10)"]
+        character(len=200), parameter :: bare(1) = [character(len=200) :: &
+            & "SFORCE/3, ROTATIONAL, I = 20, J = 10, FUNCTION = -3*AZ(20, 10)"]
+        type(problem_type), target :: problem
+        real(wp), allocatable :: q0(:), u0(:), with(:, :), without(:, :)
+        integer, allocatable :: blocks(:)
+        real(wp) :: share
 
-        n = size(q0)
-        m = dae_size(problem%eq)
-        y = [q0, u0, [(2.0_wp + k, k = 1, problem%eq%nc)], [(0.0_wp, k = 1, m - 2*n &
-            & - problem%eq%nc)]]
-        yp = [u0, [(0.1_wp*k - 0.5_wp, k = 1, n)], [(0.0_wp, k = 1, m - 2*n)]]
-        allocate(jac(m, m), rp(m), rm(m))
-        call dae_jacobian(problem%eq, 0.0_wp, 0.0_wp, y, yp, jac, error)
+        call clear_force_routines()
+        call register_variable_routine("", "test_force_partials", reaction_varsub)
+        call build([character(len=200) :: pendulum, friction, tail], problem, q0, u0, error)
+        if (.not. allocated(error)) call check(error, all(u0 == 0.0_wp), "the pendulum starts " &
+            & // "at rest")
+        if (.not. allocated(error)) call check_ode_matrix(problem, q0, u0, h_fd, tol_fd, with, &
+            & blocks, error)
+        if (allocated(error)) then
+            call clear_force_routines()
+            return
+        end if
+        call problem%release()
+        call build([character(len=200) :: pendulum(:7), bare, tail], problem, q0, u0, error)
+        if (.not. allocated(error)) call check_ode_matrix(problem, q0, u0, h_fd, tol_fd, &
+            & without, blocks, error)
+        call clear_force_routines()
         if (allocated(error)) return
-        do j = 1, m
-            yh = y
-            yh(j) = y(j) + h_fd
-            call dae_residual(problem%eq, 0.0_wp, yh, yp, rp, error)
-            yh(j) = y(j) - h_fd
-            if (.not. allocated(error)) call dae_residual(problem%eq, 0.0_wp, yh, yp, rm, error)
-            if (allocated(error)) return
-            call check(error, jac(:, j), (rp - rm)/(2.0_wp*h_fd), "DAE dr/dy column " &
-                & // to_text(j) // " of " // to_text(m), abs_tol=tol_fd*maxval(abs(jac)))
-            if (allocated(error)) return
+        share = maxval(abs(with - without))
+        call check(error, share > 1.0e3_wp*tol_fd*maxval(abs(with)), "the friction's share " &
+            & // "of the ODE Jacobian is " // to_text(share) // " of entries up to " &
+            & // to_text(maxval(abs(with))))
+        call problem%release()
+    end subroutine test_varsub_reaction_ode
+
+    !> A pendulum on a revolute joint tilted in ground (as test_varsub_reaction's, no friction)
+    !> with DIFF/9, whose DIFSUB (reaction_difsub) integrates |F| of JOINT/1 at I,
+    !> SYSFNC('JOINT', 1, 0, 1), plus 0.3 DIF(9): the DIFF's row of IDA's Newton matrix dF/dy
+    !> + cj dF/dy' (cj = 7) at the start, the multipliers solved there and moved by 0.5 + 0.25
+    !> k (IDA's iterate need not be the solution), against central differences of the
+    !> residual in every unknown (y and y' together, y' by cj h), and the sparse pattern keeps
+    !> its entries in the multipliers; and the DIFF's row of CVODE's d(q', u', x')/d(q, u, x)
+    !> at rest against central differences of the right-hand side (whose multipliers are
+    !> solved at each state). The DIFSUB's partials are differences of error 4e-11 of their
+    !> scale (|F| near 20 N); the residual's and right-hand side's differences of step 1e-6
+    !> are within 1e-8 of the largest entry; tol_fd, 1e-6 of it, stands a hundred times above
+    !> (measured: 1.6e-9 of entries up to 6.7 on IDA, 4.8e-9 of entries up to 11 on CVODE).
+    !> The partials in the multipliers left out fail both: IDA's row then misses d|F|/dlambda
+    !> (direction cosines of the reaction, up to 0.85; the test requires them above 1e-2),
+    !> CVODE's d|F|/dlambda dlambda/d(q, u) (entries up to 5.5, where the row keeps 0.3).
+    subroutine test_difsub_reaction(error)
+        type(error_type), allocatable, intent(out) :: error
+        real(wp), parameter :: cj = 7.0_wp
+        character(len=200), parameter :: pendulum(8) = [character(len=200) :: &
+            & "pendulum", "UNITS/SYSTEM = SI", &
+            & "PART/1, GROUND|MARKER/10, PART = 1, REULER = 30D, 40D, 50D", &
+            & "PART/2, MASS = 2, CM = 22, IP = 0.1, 0.12, 0.15, REULER = 30D, 40D, 50D", &
+            & "MARKER/20, PART = 2|MARKER/22, PART = 2, QP = 0.8, -0.5, 0.3", &
+            & "JOINT/1, REVOLUTE, I = 20, J = 10", "ACCGRAV/KGRAV = -9.81", &
+            & "DIFF/9, FUNCTION = USER(1), IC = 0.5"]
+        type(problem_type), target :: problem
+        type(dae_form_type) :: dae
+        type(ode_form_type) :: ode
+        type(newton_pattern_type) :: pattern
+        real(wp), allocatable :: q0(:), u0(:), y(:), yp(:), matrix(:, :), plus(:), minus(:), &
+            & yd(:), ypd(:), column(:)
+        real(wp) :: worst, largest, in_lambda
+        integer :: n, nc, ns, j, k, ierr
+        logical :: kept
+
+        call clear_force_routines()
+        call register_diff_routine("", "test_force_partials", reaction_difsub)
+        call build([character(len=200) :: pendulum, tail], problem, q0, u0, error)
+        if (allocated(error)) then
+            call clear_force_routines()
+            return
+        end if
+        n = size(q0)
+        nc = problem%eq%nc
+        ! IDA: the DIFF's row (the last) by every unknown
+        call dae%init(problem)
+        call problem%accelerations(0.0_wp, q0, u0, error)
+        if (allocated(error)) then
+            call clear_force_routines()
+            return
+        end if
+        ns = dae%state_size()
+        allocate(y(ns), yp(ns), matrix(ns, ns), plus(ns), minus(ns))
+        call dae%pack_state(q0, u0, y, yp)
+        y(2*n + 1:2*n + nc) = y(2*n + 1:2*n + nc) + [(0.5_wp + 0.25_wp*k, k = 1, nc)]
+        matrix = 0.0_wp
+        ierr = dae%dae_jacobian(0.0_wp, cj, y, yp, matrix)
+        worst = 0.0_wp
+        do j = 1, ns
+            yd = y
+            ypd = yp
+            yd(j) = y(j) + h_fd
+            ypd(j) = yp(j) + cj*h_fd
+            ierr = ierr + dae%dae_residual(0.0_wp, yd, ypd, plus)
+            yd(j) = y(j) - h_fd
+            ypd(j) = yp(j) - cj*h_fd
+            ierr = ierr + dae%dae_residual(0.0_wp, yd, ypd, minus)
+            worst = max(worst, abs(matrix(ns, j) - (plus(ns) - minus(ns))/(2.0_wp*h_fd)))
         end do
-    end subroutine differenced_dae
+        largest = maxval(abs(matrix(ns, :)))
+        in_lambda = maxval(abs(matrix(ns, 2*n + 1:2*n + nc)))
+        call dae%dae_pattern(ns, pattern)
+        kept = .true.
+        do j = 2*n + 1, 2*n + nc
+            if (matrix(ns, j) == 0.0_wp) cycle
+            kept = kept .and. any(pattern%rows(pattern%starts(j) + 1:pattern%starts(j + 1)) &
+                & == ns - 1)
+        end do
+        call check(error, ierr == 0 .and. in_lambda > 1.0e-2_wp .and. worst <= tol_fd*largest &
+            & .and. kept, "IDA: the DIFF's row against differences of the residual: largest " &
+            & // "difference " // to_text(worst) // " of entries up to " // to_text(largest) &
+            & // ", in the multipliers up to " // to_text(in_lambda) // merge(" (kept)    ", &
+            & " (not kept)", kept) // " (ierr " // to_text(ierr) // ")")
+        if (allocated(error)) then
+            call clear_force_routines()
+            return
+        end if
+        ! CVODE: the DIFF's row (the last) by (q, u, x)
+        call ode%init(problem)
+        ns = ode%state_size()
+        deallocate(y, yp, matrix, plus, minus)
+        allocate(y(ns), yp(ns), matrix(ns, ns), plus(ns), minus(ns))
+        call ode%pack_state(q0, u0, y, yp)
+        ierr = ode%ode_jacobian(0.0_wp, y, matrix)
+        worst = 0.0_wp
+        do j = 1, ns
+            yd = y
+            yd(j) = y(j) + h_fd
+            ierr = ierr + ode%ode_rhs(0.0_wp, yd, plus)
+            yd(j) = y(j) - h_fd
+            ierr = ierr + ode%ode_rhs(0.0_wp, yd, minus)
+            column = (plus - minus)/(2.0_wp*h_fd)
+            worst = max(worst, abs(matrix(ns, j) - column(ns)))
+        end do
+        largest = maxval(abs(matrix(ns, :)))
+        call clear_force_routines()
+        call check(error, ierr == 0 .and. largest > 1.0_wp .and. worst <= tol_fd*largest, &
+            & "CVODE: the DIFF's row against differences of the right-hand side: largest " &
+            & // "difference " // to_text(worst) // " of entries up to " // to_text(largest) &
+            & // " (ierr " // to_text(ierr) // ")")
+        call problem%release()
+    end subroutine test_difsub_reaction
+
+    !> A DIFSUB: |F| of JOINT/1 at its I, SYSFNC('JOINT', [1, 0, 1]), plus 0.3 DIF(9).
+    subroutine reaction_difsub(id, time, par, npar, dflag, iflag, value)
+        integer, intent(in) :: id
+        real(wp), intent(in) :: time
+        real(wp), intent(in) :: par(*)
+        integer, intent(in) :: npar
+        logical, intent(in) :: dflag, iflag
+        real(wp), intent(inout) :: value
+        real(wp) :: state
+        logical :: failed
+
+        call system_function("JOINT", [1, 0, 1], value, failed)
+        call system_function("DIF", [9], state, failed)
+        value = value + 0.3_wp*state
+    end subroutine reaction_difsub
+
 
     !> A VARSUB: |F| of JOINT/1 at its I, SYSFNC('JOINT', [1, 0, 1]).
     subroutine reaction_varsub(id, time, par, npar, dflag, iflag, value)

@@ -3,8 +3,9 @@
 !> kind of partial (spring-partials, force-partials): CVODE's d(q', u')/d(q, u) against
 !> differences of the ODE form's right-hand side, and IDA's dr/dy (cj = 0) and dr/dy' (cj = 1
 !> less cj = 0) against differences of the DAE residual in y and in y', every entry that is
-!> not zero kept by IDA's sparse pattern. The caller chooses the step and the tolerance (its
-!> own model's scales) and checks the couplings it expects in the matrices returned.
+!> not zero kept by IDA's sparse pattern, the multipliers' columns (and the GGL multipliers')
+!> among them. The caller chooses the step and the tolerance (its own model's scales) and
+!> checks the couplings it expects in the matrices returned.
 module newton_checks
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type
@@ -58,10 +59,13 @@ contains
         blocks = ode%state_blocks(2*n)
     end subroutine check_ode_matrix
 
-    !> IDA's dr/dy (jac, m x m, cj = 0) at (0, y = (q0, u0), y' = (u0, an acceleration of no
-    !> particular meaning: the residual is linear in it)) against central differences of step h
-    !> in y, and dr/dy' against those in y', each column to tol times dr/dy's largest entry;
-    !> every entry of dr/dy (cj = 1) that is not zero is in the DAE form's sparse pattern.
+    !> IDA's dr/dy (jac, m x m, cj = 0) at (0, y = (q0, u0, lambda, mu), y' = (u0, an
+    !> acceleration of no particular meaning: the residual is linear in it, 0 for the
+    !> multipliers)) against central differences of step h in y, and dr/dy' against those in
+    !> y', each column to tol times dr/dy's largest entry: every column, the multipliers'
+    !> included (lambda_k = 2 + k, away from a zero reaction, where a force measure |F| has a
+    !> kink; mu = 0, as on a consistent state); every entry of dr/dy (cj = 1) that is not zero
+    !> is in the DAE form's sparse pattern.
     subroutine check_dae_matrix(problem, q0, u0, h, tol, jac, error)
         type(problem_type), intent(inout), target :: problem
         real(wp), intent(in) :: q0(:), u0(:), h, tol
@@ -72,13 +76,14 @@ contains
         real(wp), allocatable :: y(:), yp(:), yh(:), jac1(:, :), rp(:), rm(:)
         logical, allocatable :: kept(:, :)
         real(wp) :: scale
-        integer :: j, n, m, k
+        integer :: j, n, m, k, nc
 
         call dae%init(problem)
         n = size(q0)
         m = dae_size(problem%eq)
-        y = [q0, u0]
-        yp = [u0, [(0.1_wp*k - 0.5_wp, k = 1, n)]]
+        nc = problem%eq%nc
+        y = [q0, u0, [(2.0_wp + k, k = 1, nc)], [(0.0_wp, k = 1, m - 2*n - nc)]]
+        yp = [u0, [(0.1_wp*k - 0.5_wp, k = 1, n)], [(0.0_wp, k = 1, m - 2*n)]]
         allocate(jac(m, m), jac1(m, m), rp(m), rm(m), yh(m))
         call dae_jacobian(problem%eq, 0.0_wp, 0.0_wp, y, yp, jac, error)
         if (.not. allocated(error)) call dae_jacobian(problem%eq, 0.0_wp, 1.0_wp, y, yp, &
