@@ -33,7 +33,12 @@
 !> solved at (t, q, u), before the rates are solved again), and its partials in them
 !> (acceleration_partials, differenced as its others) enter the Newton matrices: scaled by
 !> cj beside dG/du on IDA, chained through da/d(q, u) in the ODE form (docs/datasets.md,
-!> "Accelerations read by a user routine").
+!> "Accelerations read by a user routine"). A DIFSUB may read a constraint's reaction
+!> (SYSFNC's force measures summing a JOINT's, JPRIM's or MOTION's multipliers), answered from
+!> the multipliers the formulations set (IDA: its lambda; the ODE form: those solved at (t, q,
+!> u)); its partials in the multipliers of the rows its initialisation call's force measures
+!> summed (multiplier_partials, differenced as its others) enter the Newton matrices: by
+!> IDA's lambda columns, chained through dlambda/d(q, u) in the ODE form.
 !>
 !> The forces and VARIABLEs read DIF and DIF1 through the values set in their statements
 !> (diff_inputs, rollcon_diff_inputs); the formulations set them before every evaluation

@@ -1107,8 +1107,7 @@ contains
                 ! the algebraic loop's saddle-point matrix, with the forces' partials in a
                 ! and lambda at the solution (the loop factored them at its first iterate,
                 ! which a force nonlinear in what it reads, |F| of a reaction, makes another
-                ! matrix), assembled there by the loop's last evaluation
-                if (reads_constraint_forces(self%model%forces)) call self%constraint_matrix()
+                ! matrix), assembled there by the loop's last evaluation (C too)
                 call form_loop_matrix(self, time, q, u, w%a, w%lambda, self%active_rows(), &
                     & reads_constraint_forces(self%model%forces), error)
                 if (allocated(error)) return

@@ -76,7 +76,11 @@ contains
     !> Why an input cannot be read in `place` ("a force's FUNCTION", "a constraint's
     !> FUNCTION"): "" for a measure of the state. Accelerations and forces are solved for with
     !> the motion, so reading them in a FUNCTION that gives a force or a constraint makes an
-    !> algebraic loop, which rollcon does not solve; DIF and DIF1 (a DIFF's state and its rate,
+    !> algebraic loop, which rollcon does not solve for an expression; a force (a reaction, an
+    !> applied force) read in a VARIABLE's, a DIFF's or a force's FUNCTION would need partials
+    !> the expressions' jets do not carry (a reaction's in the coordinates at fixed
+    !> multipliers), and the reason names the routine that may read it through SYSFNC
+    !> (routine_reading); DIF and DIF1 (a DIFF's state and its rate,
     !> rollcon_diff) are read by forces, VARIABLEs and DIFFs, not by a constraint's or a
     !> MOTION's FUNCTION (a dataset's VARVALs are put in place before: rollcon_adm_variables).
     pure function input_refusal(input, place) result(reason)
@@ -111,10 +115,40 @@ contains
             end if
         case default
             reason = name // ": a force, which rollcon solves for together with the motion " &
-                & // "(a reaction, or a force that may depend on this one); read in " // place &
-                & // " it makes an algebraic loop rollcon does not solve"
+                & // "(a reaction, or a force that may depend on this one); read in " // place
+            if (len(routine_reading(place)) > 0) then
+                ! a VARIABLE's, a DIFF's or a force's: the loop is solved for a routine's
+                ! reads, whose partials are differenced; an expression's are exact jets
+                reason = reason // " it needs partials rollcon's expressions do not carry " &
+                    & // "(their exact forward-mode partials are the markers' measures'; a " &
+                    & // "reaction's in the coordinates, at fixed multipliers, are the " &
+                    & // "constraints' second partials through the joint's markers, and an " &
+                    & // "expression is never differenced): read it in " &
+                    & // routine_reading(place) // " through SYSFNC (docs/datasets.md, " &
+                    & // "'Force measures read by a user's routine')"
+            else
+                reason = reason // " it makes an algebraic loop rollcon does not solve"
+            end if
         end select
     end function input_refusal
+
+    !> The user routine that may read a force measure where `place` (input_refusal's) may
+    !> not: "a VARSUB" for a VARIABLE's FUNCTION, "a DIFSUB" for a DIFF's, "a force routine
+    !> (FUNCTION=USER: SFOSUB, VFOSUB, VTOSUB, GFOSUB)" for a force's; "" for a constraint's or
+    !> a MOTION's (a MOTSUB reads none: a MOTION is a function of TIME alone).
+    pure function routine_reading(place) result(routine)
+        character(len=*), intent(in) :: place
+        character(len=:), allocatable :: routine
+
+        routine = ""
+        if (index(place, "VARIABLE") > 0) then
+            routine = "a VARSUB"
+        else if (index(place, "DIFF") > 0) then
+            routine = "a DIFSUB"
+        else if (index(place, "force") > 0) then
+            routine = "a force routine (FUNCTION=USER: SFOSUB, VFOSUB, VTOSUB, GFOSUB)"
+        end if
+    end function routine_reading
 
     !> An input as written: "DX(21, 11)", "VM(21, 0, 31)", "JOINT(3, 0, 2, 0)",
     !> "ORIENT(27, 1, 21, 11)"; the ids not given left out. An element function is named as

@@ -62,6 +62,7 @@ contains
             & new_unittest("variable-reaction-friction-ida", test_variable_friction_ida), &
             & new_unittest("variable-reaction-friction-cvode", test_variable_friction_cvode), &
             & new_unittest("variable-reading-its-reader-refused", test_variable_cycle), &
+            & new_unittest("expression-reading-reaction-refused", test_expression_refused), &
             & new_unittest("difsub-reaction-newton-counts-ida", test_difsub_counts_ida), &
             & new_unittest("difsub-reaction-newton-counts-cvode", test_difsub_counts_cvode), &
             & new_unittest("motion-driving-torque", test_motion_torque), &
@@ -161,6 +162,42 @@ contains
             & "variable_friction_twin.adm", "joint_friction_twin.f", formulation_cvode, error, &
             & diff="diff9")
     end subroutine test_variable_friction_cvode
+
+    !> expression_friction.adm (VARIABLE/4, FUNCTION = FM(20, 10): variable_friction.adm's
+    !> VARSUB written as an expression) and expression_diff.adm (DIFF/9, FUNCTION = JOINT(1, 0,
+    !> 1, 0)): refused before the run, naming the statement, its line, the function read, the
+    !> reason (partials the expressions' jets do not carry) and the routine that may read it
+    !> (a VARSUB, a DIFSUB), on IDA and CVODE alike (the refusal is the reader's).
+    subroutine test_expression_refused(error)
+        type(error_type), allocatable, intent(out) :: error
+        character(len=*), parameter :: files(2) = [character(len=24) :: &
+            & "expression_friction.adm", "expression_diff.adm"]
+        character(len=60), parameter :: pieces(4, 2) = reshape([character(len=60) :: &
+            & "expression_friction.adm:15: VARIABLE/4 FUNCTION", "FM(20, 10): a force", &
+            & "partials rollcon's expressions do not carry", "read it in a VARSUB through SYSFNC", &
+            & "expression_diff.adm:14: DIFF/9 FUNCTION", "JOINT(1, 0, 1, 0): a force", &
+            & "partials rollcon's expressions do not carry", &
+            & "read it in a DIFSUB through SYSFNC"], [4, 2])
+        type(history_type) :: history
+        type(error_type), allocatable :: run_error
+        integer :: f, k
+
+        do f = 1, size(files)
+            call run_user(folder // trim(files(f)), "", formulation_cvode, history, run_error)
+            if (.not. allocated(run_error)) then
+                call fatal_error(error, trim(files(f)) // " ran: an expression reading a " &
+                    & // "reaction was not refused")
+                return
+            end if
+            do k = 1, size(pieces, 1)
+                call check(error, index(run_error%message, trim(pieces(k, f))) > 0, "the " &
+                    & // "error does not say '" // trim(pieces(k, f)) // "': " &
+                    & // run_error%message)
+                if (allocated(error)) return
+            end do
+            deallocate(run_error)
+        end do
+    end subroutine test_expression_refused
 
     !> variable_friction.adm (its friction VARIABLE's VARSUB and its DIFF's DIFSUB reading the
     !> joint's reaction) on IDA takes no more steps, residual evaluations (its Newton
