@@ -32,8 +32,8 @@ contains
     !> process (rollcon_isolated_linear), as its run does: the routine's own partials, its
     !> calls guarded and timed. report: what making the start consistent changed, in lines
     !> ("" when nothing was analysed). defined: what the user's files define, as the child
-    !> found them (unallocated for a built-in routine), for the record of write_eigen_csv, worded
-    !> as a run's (rollcon_provenance's provenance_lines).
+    !> found them ("" for a built-in routine), for the record of write_eigen_csv, worded as a
+    !> run's (rollcon_provenance's provenance_lines).
     subroutine linearise_job(job, result, report, error, options, defined)
         type(job_type), intent(inout) :: job
         type(linear_result_type), intent(out) :: result
@@ -50,6 +50,7 @@ contains
         character(len=:), allocatable :: told
 
         if (present(options)) chosen = options
+        if (present(defined)) defined = ""
         if (len(job%user_file) > 0) then
             call linearise_apart(job, chosen, result, report, error, told)
             if (present(defined) .and. allocated(told)) call move_alloc(told, defined)
@@ -84,6 +85,7 @@ contains
         character(len=:), allocatable :: told
 
         if (present(options)) chosen = options
+        if (present(defined)) defined = ""
         if (len(job%user_file) > 0) then
             call linear_speeds_apart(job, speeds, chosen, table, changes, report, error, told)
             if (present(defined) .and. allocated(told)) call move_alloc(told, defined)
@@ -116,9 +118,9 @@ contains
         type(stability_change_type), intent(in) :: changes(:)
         character(len=:), allocatable, intent(out) :: path
         type(error_type), allocatable, intent(out) :: error
-        character(len=:), allocatable, intent(in), optional :: defined
+        character(len=*), intent(in), optional :: defined
         type(error_type), allocatable :: cleanup_error
-        character(len=:), allocatable :: partial, text, record
+        character(len=:), allocatable :: partial, text
         character(len=26) :: number
         integer :: k, i
 
@@ -126,12 +128,7 @@ contains
         call make_folders(job%output_dir, error)
         if (allocated(error)) return
         partial = partial_name(job%output_dir, eigen_stem(job), ".eigen-speed.csv")
-        ! the record worded as a run's when the child told what the files define
-        record = provenance_lines(job)
-        if (present(defined)) then
-            if (allocated(defined)) record = provenance_lines(job, defined)
-        end if
-        text = comment_lines(record) // "# eigenvalues [1/s] of the " &
+        text = comment_lines(provenance_lines(job, defined)) // "# eigenvalues [1/s] of the " &
             & // "linearisation on the constraint manifold against the speed [m/s] of the " &
             & // "first moving part (every velocity of the start scaled), the structural " &
             & // "zeros taken out (" // to_text(count(table%struck) + table%deflations) &
@@ -246,20 +243,15 @@ contains
         !> The file written
         character(len=:), allocatable, intent(out) :: path
         type(error_type), allocatable, intent(out) :: error
-        character(len=:), allocatable, intent(in), optional :: defined
+        character(len=*), intent(in), optional :: defined
         type(error_type), allocatable :: cleanup_error
-        character(len=:), allocatable :: partial, text, record
+        character(len=:), allocatable :: partial, text
 
         path = eigen_csv_path(job)
         call make_folders(job%output_dir, error)
         if (allocated(error)) return
         partial = partial_name(job%output_dir, eigen_stem(job), ".eigen.csv")
-        ! the record worded as a run's when the child told what the files define
-        record = provenance_lines(job)
-        if (present(defined)) then
-            if (allocated(defined)) record = provenance_lines(job, defined)
-        end if
-        text = comment_lines(record) // "# eigenvalues [1/s] of the " &
+        text = comment_lines(provenance_lines(job, defined)) // "# eigenvalues [1/s] of the " &
             & // "linearisation on the constraint manifold at " &
             & // "t = 0 s (docs/linear.md), by decreasing real part" // new_line("a") &
             & // eigen_csv_rows(result)
