@@ -25,7 +25,7 @@ contains
         type(error_type), allocatable, intent(out) :: error
         type(job_type) :: job
         type(linear_result_type) :: result
-        character(len=:), allocatable :: path, report, written
+        character(len=:), allocatable :: path, report, written, defined
         integer :: k
 
         path = request%positional
@@ -59,7 +59,7 @@ contains
             call speeds_command(request, path, job, error)
             return
         end if
-        call linearise_job(job, result, report, error)
+        call linearise_job(job, result, report, error, defined=defined)
         if (allocated(error)) return
         if (.not. request%has("--quiet") .and. len(report) > 0) write(output_unit, '(a)') report
         write(output_unit, '(a)') linear_table_text(result, path // " at t = 0 s")
@@ -67,7 +67,7 @@ contains
             & // ": the tangent space of the constraints is not invariant at the start (the " &
             & // "start is no steady motion): the eigenvalues are those of the equations " &
             & // "frozen there"
-        call write_eigen_csv(job, result, written, error)
+        call write_eigen_csv(job, result, written, error, defined)
         if (allocated(error)) return
         write(output_unit, '(a)') "output: " // written
     end subroutine linear_command
@@ -81,7 +81,7 @@ contains
         type(error_type), allocatable, intent(out) :: error
         type(speed_table_type) :: table
         type(stability_change_type), allocatable :: changes(:)
-        character(len=:), allocatable :: report, written, png
+        character(len=:), allocatable :: report, written, png, defined
         real(wp) :: grid(3)
         real(wp), allocatable :: speeds(:)
         integer :: points, k
@@ -100,7 +100,7 @@ contains
         ! both ends exactly as given
         speeds = [(grid(1)*real(points - 1 - k, wp)/real(points - 1, wp) &
             & + grid(2)*real(k, wp)/real(points - 1, wp), k = 0, points - 1)]
-        call linear_speeds_job(job, speeds, table, changes, report, error)
+        call linear_speeds_job(job, speeds, table, changes, report, error, defined=defined)
         if (allocated(error)) return
         if (.not. request%has("--quiet") .and. len(report) > 0) write(output_unit, '(a)') report
         write(output_unit, '(a)') "eigenvalues of " // path // " at " // trim(int_text(points)) &
@@ -116,7 +116,7 @@ contains
                 & "divergent (a real eigenvalue: capsize)", changes(k)%oscillatory)) &
                 & // merge("; stable above", "; stable below", changes(k)%stable_above)
         end do
-        call write_speed_csv(job, table, changes, written, error)
+        call write_speed_csv(job, table, changes, written, error, defined)
         if (allocated(error)) return
         write(output_unit, '(a)') "output: " // written
         png = written(:len(written) - len(".csv")) // ".png"

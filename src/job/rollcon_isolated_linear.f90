@@ -24,15 +24,17 @@ module rollcon_isolated_linear
     use rollcon_frames, only : send_frame, frame_buffer_type
     use rollcon_isolation_text, only : outcome_text, scratch_path
     use rollcon_job, only : job_type, user_file_type
-    use rollcon_isolated_run, only : compile_user_files, build_apart, hand_on_stderr
+    use rollcon_isolated_run, only : compile_user_files, build_apart, hand_on_stderr, &
+        & defined_text
     implicit none
     private
 
     public :: linearise_apart, linear_speeds_apart
     public :: pack_linear_result, unpack_linear_result, pack_speed_table, unpack_speed_table
 
-    !> Kinds of frame the child sends: the start's report, then the result
-    integer, parameter :: frame_report = 1, frame_result = 2
+    !> Kinds of frame the child sends: the start's report, what the user's files define (for
+    !> the record, as a run's child sends it), then the result
+    integer, parameter :: frame_report = 1, frame_result = 2, frame_defined = 3
     !> What the child computes: the eigenvalues at the start, or against speed
     integer, parameter :: work_linear = 1, work_speeds = 2
 
@@ -54,6 +56,8 @@ module rollcon_isolated_linear
     type, extends(stream_receiver_type) :: linear_receiver_type
         type(frame_buffer_type) :: frames
         character(len=:), allocatable :: report, result
+        !> What the user's files define (rollcon_isolated_run's defined_text), once sent
+        character(len=:), allocatable :: defined
         logical :: has_result = .false.
         !> A frame of a kind the child does not send
         logical :: garbled = .false.
@@ -65,13 +69,16 @@ contains
 
     !> The job's model linearised at its consistent start (t = 0), its routine job%user_file
     !> run in a child process (see the module's header); as rollcon_linear_job's
-    !> linearise_job otherwise. report: what making the start consistent changed.
-    subroutine linearise_apart(job, options, result, report, error)
+    !> linearise_job otherwise. report: what making the start consistent changed; defined:
+    !> what the user's files define, as the child found them (for the record,
+    !> rollcon_provenance's provenance_lines).
+    subroutine linearise_apart(job, options, result, report, error, defined)
         type(job_type), intent(in) :: job
         type(linear_options_type), intent(in) :: options
         type(linear_result_type), intent(out) :: result
         character(len=:), allocatable, intent(out) :: report
         type(error_type), allocatable, intent(out) :: error
+        character(len=:), allocatable, intent(out) :: defined
         type(linear_task_type) :: task
         type(linear_receiver_type) :: receiver
         type(wire_reader_type) :: wire
@@ -81,6 +88,7 @@ contains
         allocate(task%speeds(0))
         call run_task_apart(job, task, receiver, report, error)
         if (allocated(error)) return
+        if (allocated(receiver%defined)) call move_alloc(receiver%defined, defined)
         wire%bytes = receiver%result
         call unpack_linear_result(wire, result)
         if (wire%failed) call fatal_error(error, "the child process's linear analysis does " &
@@ -88,8 +96,10 @@ contains
     end subroutine linearise_apart
 
     !> The eigenvalues against speed at the job's consistent start (rollcon_linear_speeds'
-    !> speed_table and stability_changes), its routine job%user_file run in a child process.
-    subroutine linear_speeds_apart(job, speeds, options, table, changes, report, error)
+    !> speed_table and stability_changes), its routine job%user_file run in a child process;
+    !> defined as linearise_apart's.
+    subroutine linear_speeds_apart(job, speeds, options, table, changes, report, error, &
+            & defined)
         type(job_type), intent(in) :: job
         !> Speeds [m/s]
         real(wp), intent(in) :: speeds(:)
@@ -98,6 +108,7 @@ contains
         type(stability_change_type), allocatable, intent(out) :: changes(:)
         character(len=:), allocatable, intent(out) :: report
         type(error_type), allocatable, intent(out) :: error
+        character(len=:), allocatable, intent(out) :: defined
         type(linear_task_type) :: task
         type(linear_receiver_type) :: receiver
         type(wire_reader_type) :: wire
@@ -108,6 +119,7 @@ contains
         task%speeds = speeds
         call run_task_apart(job, task, receiver, report, error)
         if (allocated(error)) return
+        if (allocated(receiver%defined)) call move_alloc(receiver%defined, defined)
         wire%bytes = receiver%result
         call unpack_speed_table(wire, table, changes)
         if (wire%failed) call fatal_error(error, "the child process's eigenvalues against " &
@@ -148,7 +160,7 @@ contains
     end subroutine run_task_apart
 
     !> In the child: build as a run apart does (build_apart), then linearise or tabulate, and
-    !> send the report and the result.
+    !> send the report, what the user's files define and the result.
     subroutine run_linear_task(self, record, error)
         class(linear_task_type), intent(inout) :: self
         type(call_record_type), pointer, intent(in) :: record
@@ -165,6 +177,8 @@ contains
             & problem, q0, u0, report, error)
         if (allocated(error)) return
         call send_frame(self%stream_fd, frame_report, report, error)
+        if (allocated(error)) return
+        call send_frame(self%stream_fd, frame_defined, defined_text(self%job, problem), error)
         if (allocated(error)) return
         if (self%work == work_linear) then
             call linearise(problem, 0.0_wp, q0, u0, self%options, result, error)
@@ -196,6 +210,8 @@ contains
             select case (kind)
             case (frame_report)
                 self%report = payload
+            case (frame_defined)
+                self%defined = payload
             case (frame_result)
                 self%result = payload
                 self%has_result = .true.

@@ -51,6 +51,7 @@ module rollcon_isolated_run
     private
 
     public :: run_isolated, compile_user_files, build_apart, hand_on_stderr, statement_place
+    public :: defined_text
 
     !> Kinds of frame the child sends
     integer, parameter :: frame_report = 1, frame_shapes = 2, frame_started = 3, &
@@ -257,7 +258,7 @@ contains
     !> line per file (job%user_file, then job%more_files) of what it defines, in words: the
     !> routines of fixed name it defines ("UCOSUB, SFOSUB") and "routines named by ROUTINE="
     !> when a statement names one of its subroutines by name; each line ends in a newline.
-    !> For the run's record (rollcon_provenance's provenance_lines).
+    !> For the record of a run or a linear analysis (rollcon_provenance's provenance_lines).
     function defined_text(job, problem) result(text)
         type(job_type), intent(in) :: job
         type(problem_type), intent(in) :: problem

@@ -31,21 +31,29 @@ contains
     !> routines come from a user's file (job%user_file) builds and linearises in a child
     !> process (rollcon_isolated_linear), as its run does: the routine's own partials, its
     !> calls guarded and timed. report: what making the start consistent changed, in lines
-    !> ("" when nothing was analysed).
-    subroutine linearise_job(job, result, report, error, options)
+    !> ("" when nothing was analysed). defined: what the user's files define, as the child
+    !> found them ("" for a built-in routine), for the record of write_eigen_csv, worded as a
+    !> run's (rollcon_provenance's provenance_lines).
+    subroutine linearise_job(job, result, report, error, options, defined)
         type(job_type), intent(inout) :: job
         type(linear_result_type), intent(out) :: result
         character(len=:), allocatable, intent(out) :: report
         type(error_type), allocatable, intent(out) :: error
         !> How to linearise (default: no Baumgarte terms, the default step)
         type(linear_options_type), intent(in), optional :: options
+        character(len=:), allocatable, intent(out), optional :: defined
         type(problem_type), target :: problem
         type(linear_options_type) :: chosen
         real(wp), allocatable :: q0(:), u0(:)
+        ! what the child told, through a local: gfortran 12 loses an optional deferred-length
+        ! argument passed on as an optional one
+        character(len=:), allocatable :: told
 
         if (present(options)) chosen = options
+        if (present(defined)) defined = ""
         if (len(job%user_file) > 0) then
-            call linearise_apart(job, chosen, result, report, error)
+            call linearise_apart(job, chosen, result, report, error, told)
+            if (present(defined) .and. allocated(told)) call move_alloc(told, defined)
         else
             call build_start(job, problem, q0, u0, report, error)
             if (.not. allocated(error)) call linearise(problem, 0.0_wp, q0, u0, chosen, result, &
@@ -57,8 +65,9 @@ contains
 
     !> Build the job's model and its consistent start (t = 0), linearise at every speed of the
     !> grid (the start's velocities scaled: rollcon_linear_speeds) and find where stability
-    !> changes. A user's file runs in a child process, as for linearise_job.
-    subroutine linear_speeds_job(job, speeds, table, changes, report, error, options)
+    !> changes. A user's file runs in a child process, as for linearise_job; defined as
+    !> linearise_job's, for write_speed_csv's record.
+    subroutine linear_speeds_job(job, speeds, table, changes, report, error, options, defined)
         type(job_type), intent(inout) :: job
         !> Speeds [m/s]
         real(wp), intent(in) :: speeds(:)
@@ -67,13 +76,19 @@ contains
         character(len=:), allocatable, intent(out) :: report
         type(error_type), allocatable, intent(out) :: error
         type(linear_options_type), intent(in), optional :: options
+        character(len=:), allocatable, intent(out), optional :: defined
         type(problem_type), target :: problem
         type(linear_options_type) :: chosen
         real(wp), allocatable :: q0(:), u0(:)
+        ! what the child told, through a local: gfortran 12 loses an optional deferred-length
+        ! argument passed on as an optional one
+        character(len=:), allocatable :: told
 
         if (present(options)) chosen = options
+        if (present(defined)) defined = ""
         if (len(job%user_file) > 0) then
-            call linear_speeds_apart(job, speeds, chosen, table, changes, report, error)
+            call linear_speeds_apart(job, speeds, chosen, table, changes, report, error, told)
+            if (present(defined) .and. allocated(told)) call move_alloc(told, defined)
         else
             call build_start(job, problem, q0, u0, report, error)
             if (.not. allocated(error)) call speed_table(problem, 0.0_wp, q0, u0, speeds, &
@@ -95,13 +110,15 @@ contains
 
     !> Write the eigenvalues against speed to speed_csv_path(job), whole or not at all: the
     !> record and the stability changes as # lines, then `speed,real_1,imag_1,...` [m/s, 1/s]
-    !> and one row per speed.
-    subroutine write_speed_csv(job, table, changes, path, error)
+    !> and one row per speed. defined: linear_speeds_job's, when it gave one (the record then
+    !> words the user's files by what they define, as a run's does).
+    subroutine write_speed_csv(job, table, changes, path, error, defined)
         type(job_type), intent(in) :: job
         type(speed_table_type), intent(in) :: table
         type(stability_change_type), intent(in) :: changes(:)
         character(len=:), allocatable, intent(out) :: path
         type(error_type), allocatable, intent(out) :: error
+        character(len=*), intent(in), optional :: defined
         type(error_type), allocatable :: cleanup_error
         character(len=:), allocatable :: partial, text
         character(len=26) :: number
@@ -111,7 +128,7 @@ contains
         call make_folders(job%output_dir, error)
         if (allocated(error)) return
         partial = partial_name(job%output_dir, eigen_stem(job), ".eigen-speed.csv")
-        text = comment_lines(provenance_lines(job)) // "# eigenvalues [1/s] of the " &
+        text = comment_lines(provenance_lines(job, defined)) // "# eigenvalues [1/s] of the " &
             & // "linearisation on the constraint manifold against the speed [m/s] of the " &
             & // "first moving part (every velocity of the start scaled), the structural " &
             & // "zeros taken out (" // to_text(count(table%struck) + table%deflations) &
@@ -217,13 +234,16 @@ contains
     !> Write the eigenvalues to eigen_csv_path(job) (the folder made when missing): the
     !> record (rollcon_provenance) and a line saying what the numbers are, as # comments, then
     !> `real,imag` [1/s] and one row per eigenvalue. Written under a partial name and renamed
-    !> into place: an earlier file stays whole until the new one is.
-    subroutine write_eigen_csv(job, result, path, error)
+    !> into place: an earlier file stays whole until the new one is. defined: linearise_job's,
+    !> when it gave one (the record then words the user's files by what they define, as a
+    !> run's does).
+    subroutine write_eigen_csv(job, result, path, error, defined)
         type(job_type), intent(in) :: job
         type(linear_result_type), intent(in) :: result
         !> The file written
         character(len=:), allocatable, intent(out) :: path
         type(error_type), allocatable, intent(out) :: error
+        character(len=*), intent(in), optional :: defined
         type(error_type), allocatable :: cleanup_error
         character(len=:), allocatable :: partial, text
 
@@ -231,7 +251,7 @@ contains
         call make_folders(job%output_dir, error)
         if (allocated(error)) return
         partial = partial_name(job%output_dir, eigen_stem(job), ".eigen.csv")
-        text = comment_lines(provenance_lines(job)) // "# eigenvalues [1/s] of the " &
+        text = comment_lines(provenance_lines(job, defined)) // "# eigenvalues [1/s] of the " &
             & // "linearisation on the constraint manifold at " &
             & // "t = 0 s (docs/linear.md), by decreasing real part" // new_line("a") &
             & // eigen_csv_rows(result)

@@ -25,21 +25,25 @@ contains
     !> found the files define: rollcon_isolated_run's defined_text, the file of the model's own
     !> UCOSUB, "" for none, then a line of words per file), the second line names the file whose
     !> UCOSUB served the model's UCONs, or none, and each file that does more than that gets a
-    !> line "user routines: FILE (SFOSUB, ...; its size and hash)"; without it (no child told),
-    !> the job's first file is named as the model's UCOSUB and each more file as "more user
-    !> routines: FILE (its size and hash)" (rollcon_load's add_user_file).
+    !> line "user routines: FILE (SFOSUB, ...; its size and hash)"; without it or with it ""
+    !> (no child told: a built-in routine), the job's first file is named as the model's UCOSUB
+    !> and each more file as "more user routines: FILE (its size and hash)" (rollcon_load's
+    !> add_user_file).
     function provenance_lines(job, defined) result(text)
         type(job_type), intent(in) :: job
         character(len=*), intent(in), optional :: defined
         character(len=:), allocatable :: text, own, words, path
         integer :: k, start, finish, more
+        logical :: told
 
         text = version_text() // ", " // time_stamp()
         if (allocated(job%command_line)) then
             if (len(job%command_line) > 0) text = text // ": " // job%command_line
         end if
         text = text // new_line("a") // "the model's UCOSUB: "
-        if (present(defined)) then
+        told = .false.
+        if (present(defined)) told = len(defined) > 0
+        if (told) then
             ! the first line: the file of the model's own UCOSUB; then the files' words
             finish = index(defined, new_line("a"))
             if (finish == 0) finish = len(defined) + 1

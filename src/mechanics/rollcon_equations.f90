@@ -113,6 +113,7 @@ module rollcon_equations
         procedure :: more_sliding
         procedure :: more_flying
         procedure :: impact_losses
+        procedure :: impact_drive_works
         procedure :: friction_powers
         procedure :: resistance_coupling
         procedure :: acceleration_partials
@@ -287,6 +288,19 @@ contains
         if (allocated(self%more_contacts)) impact_losses = impact_losses &
             & + sum(self%more_contacts%impact_loss)
     end function impact_losses
+
+    !> Work the drives of moving planes (turntables) have done on the parts in every contact's
+    !> impacts so far [J], signed (sliding_contact_type's impact_drive_work; 0 on the ground).
+    pure real(wp) function impact_drive_works(self)
+        class(equations_type), intent(in) :: self
+        integer :: k
+
+        impact_drive_works = self%contact%impact_drive_work
+        if (.not. allocated(self%more_contacts)) return
+        do k = 1, size(self%more_contacts)
+            impact_drive_works = impact_drive_works + self%more_contacts(k)%impact_drive_work
+        end do
+    end function impact_drive_works
 
     !> The power the sliding contacts' friction dissipates at the last solve [W] >= 0.
     pure real(wp) function friction_powers(self)

@@ -50,6 +50,10 @@ module rollcon_sliding_contact
         real(wp) :: power = 0.0_wp, denominator = 1.0_wp
         !> Kinetic energy the impacts have taken so far [J] >= 0 (rollcon_contact_impact)
         real(wp) :: impact_loss = 0.0_wp
+        !> Work the drive of a moving plane (a turntable's MOTION) has done on the part in the
+        !> impacts so far [J], signed: each impulse P times the table's velocity under the
+        !> contact point, V_table . P (0 on the ground)
+        real(wp) :: impact_drive_work = 0.0_wp
         !> Scratch of the second right-hand side: accelerations (n) and multipliers (nc)
         real(wp), allocatable :: unit_a(:), unit_lambda(:)
     contains

@@ -24,6 +24,7 @@ module rollcon_problem
     use rollcon_redundancy_watch, only : redundancy_watch_type
     use rollcon_reaction_watch, only : reaction_watch_type
     use rollcon_output_layout, only : name_length
+    use rollcon_dynamic_system, only : dynamic_system_type
     implicit none
     private
 
@@ -60,6 +61,9 @@ module rollcon_problem
         !> "JOINT/3 (line 40): its rotation about J's x and rotation about J's y repeat JOINT/1
         !> (line 37), JOINT/2 (line 38) and JOINT/4 (line 39); set aside" ("" when none)
         character(len=:), allocatable :: set_aside_text
+        !> The coordinates and rates the dissipated powers are evaluated at (state_powers;
+        !> n each, sized by prepare): no evaluation of them allocates
+        real(wp), allocatable :: power_q(:), power_u(:)
     contains
         procedure :: init
         procedure :: add_watch
@@ -86,6 +90,8 @@ module rollcon_problem
         procedure :: dissipated_power
         procedure :: dissipates
         procedure :: powers_at
+        procedure :: power_count
+        procedure :: state_powers
         procedure :: release => release_problem
     end type problem_type
 
@@ -132,6 +138,8 @@ contains
         if (allocated(self%a)) deallocate(self%a)
         if (allocated(self%lambda)) deallocate(self%lambda)
         allocate(self%a(self%eq%n), self%lambda(self%eq%nc), source=0.0_wp)
+        if (allocated(self%power_q)) deallocate(self%power_q, self%power_u)
+        allocate(self%power_q(self%eq%n), self%power_u(self%eq%n), source=0.0_wp)
         if (allocated(self%failure)) deallocate(self%failure)
         if (.not. allocated(self%watches)) allocate(self%watches(0))
         call add_own_watches(self)
@@ -659,6 +667,40 @@ contains
         if (rim /= 0.0_wp) values(2:3) = [self%eq%dissipation%rolling_power, &
             & self%eq%dissipation%air_power]
     end subroutine powers_at
+
+    !> The number of powers a formulation of the problem integrates with its state
+    !> (rollcon_dynamic_system's power_count): the three of powers_at when the problem can
+    !> dissipate (dissipates), else none. The ODE, DAE and independent-speeds forms all answer
+    !> with it.
+    integer function power_count(self)
+        class(problem_type), intent(in) :: self
+
+        power_count = merge(3, 0, self%dissipates())
+    end function power_count
+
+    !> The powers dissipated at the state y of system, a formulation of this problem, at time
+    !> [s] (rollcon_dynamic_system's powers): (q, u) read from y by the system's unpack_state
+    !> into the problem's own arrays (sized by prepare: nothing is allocated), then powers_at
+    !> [W], values of size 3. ierr 0, or -1 with the failure kept as the problem's
+    !> (keep_failure). The ODE, DAE and independent-speeds forms all answer with it. self is a
+    !> target: the system changes it through its pointer to the problem.
+    integer function state_powers(self, system, time, y, values) result(ierr)
+        class(problem_type), intent(inout), target :: self
+        class(dynamic_system_type), intent(inout) :: system
+        real(wp), intent(in) :: time, y(:)
+        real(wp), intent(out) :: values(:)
+        type(error_type), allocatable :: error
+
+        values = 0.0_wp
+        if (.not. allocated(self%power_q)) then
+            ! a problem evaluated without prepare: sized once, here
+            allocate(self%power_q(self%eq%n), self%power_u(self%eq%n), source=0.0_wp)
+        end if
+        call system%unpack_state(time, y, self%power_q, self%power_u, error)
+        if (.not. allocated(error)) call self%powers_at(time, self%power_q, self%power_u, &
+            & values, error)
+        ierr = self%keep_failure(error)
+    end function state_powers
 
     !> Free what the problem holds outside Fortran's memory (its equations' KLU factors): a
     !> process running many models one after another (a study's cases) would keep every one's

@@ -56,6 +56,12 @@ module rollcon_run_summary
         !> rollcon_contact_impact): the energy judged is E plus it. Its parts the friction's and
         !> the impacts' [J]
         real(wp) :: dissipated_work = 0.0_wp, friction_work = 0.0_wp, impact_work = 0.0_wp
+        !> The work the drives of moving planes (a turntable's MOTION) did on the parts in the
+        !> impacts over those rows [J], signed: V_table . P of each impulse P
+        !> (rollcon_contact_watch), exact as the impacts' losses are; the energy judged is E + W
+        !> less it. (The drives' work between impacts, a sliding contact's on a turntable or a
+        !> moving constraint's, is constraint_work's, which leaves the energy not judged.)
+        real(wp) :: drive_work = 0.0_wp
         !> The rows' trapezoidal rule's estimated error in dissipated_work [J]
         !> (rollcon_simulation record), subtracted from |E + W - E0|; 0 when the integrator
         !> integrated W with the state. Beyond the drift allowed the rows do not resolve the

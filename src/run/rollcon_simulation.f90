@@ -86,6 +86,10 @@ module rollcon_simulation
         real(wp) :: dissipation_time = 0.0_wp, before_last_time = 0.0_wp
         !> The energy a contact's impacts had taken at the last judged row [J]
         real(wp) :: impact_loss = 0.0_wp
+        !> The work the drives of moving planes (turntables) had done in the impacts at the last
+        !> judged row, and over the judged rows [J], signed (rollcon_equations'
+        !> impact_drive_works): the energy judged is E + W less it
+        real(wp) :: impact_drive = 0.0_wp, drive_work = 0.0_wp
         !> The integrator's dissipated works (integrator_type work) at the first judged row [J]
         real(wp), allocatable :: work_reference(:)
         !> Counters of the integrator's segments before its last restart
@@ -336,7 +340,8 @@ contains
         type(error_type), allocatable, intent(out) :: error
         type(history_type), intent(inout), optional :: history
         class(row_sink_type), intent(inout), optional :: sink
-        real(wp) :: energy, potential, power, dissipation, friction, rim, impacts, estimate
+        real(wp) :: energy, potential, power, dissipation, friction, rim, impacts, estimate, &
+            & drive
         real(wp), allocatable :: row(:)
         logical :: integrated
 
@@ -410,12 +415,19 @@ contains
                     self%dissipated_work = self%dissipated_work + impacts
                     self%impact_work = self%impact_work + impacts
                 end if
+                ! an impact on a turntable: the table's drive did work V_table . P in it (its
+                ! motion prescribed, its MOTION's impulse takes the reaction), which the
+                ! energy takes beside the loss: E + W - D is what is conserved
+                drive = problem%eq%impact_drive_works() - self%impact_drive
+                self%impact_drive = problem%eq%impact_drive_works()
+                self%drive_work = self%drive_work + drive
                 self%last_dissipation = [dissipation, self%last_dissipation(1)]
                 self%last_friction = friction
                 self%before_last_time = self%dissipation_time
                 self%dissipation_time = time
                 self%energy_change = max(self%energy_change, max(0.0_wp, &
-                    & abs(energy + self%dissipated_work - summary%energy_reference) &
+                    & abs(energy + self%dissipated_work - self%drive_work &
+                    & - summary%energy_reference) &
                     & - self%dissipation_uncertainty))
                 self%kinetic_max = max(self%kinetic_max, energy - potential)
                 self%potential_min = min(self%potential_min, potential)
@@ -816,6 +828,7 @@ contains
             summary%dissipated_work = self%dissipated_work
             summary%friction_work = self%friction_work
             summary%impact_work = self%impact_work
+            summary%drive_work = self%drive_work
             summary%dissipation_uncertainty = self%dissipation_uncertainty
             ! a friction's work by the rows' rule over fewer than three rows: no estimate of
             ! the rule's error, so W is known only to within itself

@@ -231,28 +231,21 @@ contains
         call self%speeds%partition%release()
     end subroutine release
 
-    !> The powers the problem dissipates (friction, rolling resistance, air: 3) when it can
-    !> dissipate (problem_type dissipates), else none.
+    !> The powers the problem dissipates: rollcon_problem's power_count.
     integer function power_count(self)
         class(speeds_form_type), intent(in) :: self
 
-        power_count = merge(3, 0, self%problem%dissipates())
+        power_count = self%problem%power_count()
     end function power_count
 
-    !> The powers dissipated at the state y at time [s] (problem_type powers_at) [W]; ierr 0,
-    !> or -1 with the evaluation's failure kept as the problem's.
+    !> The powers dissipated at the state y at time [s] [W]: rollcon_problem's state_powers,
+    !> (q, u) read from y by this form's unpack_state.
     integer function powers(self, time, y, values) result(ierr)
         class(speeds_form_type), intent(inout) :: self
         real(wp), intent(in) :: time, y(:)
         real(wp), intent(out) :: values(:)
-        type(error_type), allocatable :: error
-        real(wp), allocatable :: q(:), u(:)
 
-        values = 0.0_wp
-        allocate(q(self%problem%eq%n), u(self%problem%eq%n))
-        call self%unpack_state(time, y, q, u, error)
-        if (.not. allocated(error)) call self%problem%powers_at(time, q, u, values, error)
-        ierr = self%problem%keep_failure(error)
+        ierr = self%problem%state_powers(self, time, y, values)
     end function powers
 
 end module rollcon_speeds_form

@@ -70,14 +70,20 @@ contains
         type(run_summary_type), intent(in) :: summary
         character(len=:), allocatable :: text
 
-        if (summary%energy_scale > 0.0_wp .and. summary%dissipated_work /= 0.0_wp) then
-            ! a dissipation: the energy plus the work it took is what is conserved
+        if (summary%energy_scale > 0.0_wp .and. (summary%dissipated_work /= 0.0_wp .or. &
+            & summary%drive_work /= 0.0_wp)) then
+            ! a dissipation: the energy plus the work it took is what is conserved, less the
+            ! work a turntable's drive did in the impacts on it (D)
             text = "energy drift: " // scientific(summary%energy_drift) &
                 & // " of the energy scale " // scientific(summary%energy_scale) &
-                & // " J (largest |E + W - E0| " &
+                & // " J (largest |E + W" // trim(merge(" - D", "    ", &
+                & summary%drive_work /= 0.0_wp)) // " - E0| " &
                 & // scientific(summary%energy_drift*summary%energy_scale) // " J, W the " &
                 & // scientific(summary%dissipated_work) // " J dissipated" &
-                & // dissipation_parts(summary) // ", E0 = " &
+                & // dissipation_parts(summary)
+            if (summary%drive_work /= 0.0_wp) text = text // ", D the " &
+                & // scientific(summary%drive_work) // " J the table's drive did in the impacts"
+            text = text // ", E0 = " &
                 & // to_text(summary%energy_reference) // " J after the last applied force)" &
                 & // allowed(summary%energy_bound, "")
         else if (summary%energy_scale > 0.0_wp) then

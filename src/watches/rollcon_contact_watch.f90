@@ -260,6 +260,7 @@ contains
         contact%sliding = self%initial_mode == mode_sliding
         contact%flying = self%initial_mode == mode_flight
         contact%impact_loss = 0.0_wp
+        contact%impact_drive_work = 0.0_wp
         if (allocated(contact%unit_a)) deallocate(contact%unit_a, contact%unit_lambda)
         allocate(contact%unit_a(n), contact%unit_lambda(nc), source=0.0_wp)
     end subroutine prepare_contact
@@ -328,17 +329,21 @@ contains
         end if
     end subroutine set_reference
 
-    !> Add an impact's loss of energy [J] >= 0 to its contact's.
-    pure subroutine add_impact_loss(self, eq, loss)
+    !> Add an impact's loss of energy [J] >= 0 and the work its table's drive did in it [J]
+    !> (signed; 0 on the ground) to its contact's.
+    pure subroutine add_impact_loss(self, eq, loss, drive)
         class(contact_watch_type), intent(in) :: self
         type(equations_type), intent(inout) :: eq
-        real(wp), intent(in) :: loss
+        real(wp), intent(in) :: loss, drive
 
         if (self%slot == 0) then
             eq%contact%impact_loss = eq%contact%impact_loss + loss
+            eq%contact%impact_drive_work = eq%contact%impact_drive_work + drive
         else
-            eq%more_contacts(self%slot)%impact_loss = eq%more_contacts(self%slot)%impact_loss &
-                & + loss
+            associate (contact => eq%more_contacts(self%slot))
+                contact%impact_loss = contact%impact_loss + loss
+                contact%impact_drive_work = contact%impact_drive_work + drive
+            end associate
         end if
     end subroutine add_impact_loss
 
@@ -822,7 +827,7 @@ contains
         drive = 0.0_wp
         if (self%table_rate /= 0.0_wp) drive = dot_product(table, applied)
         call self%add_impact_loss(eq, max(0.0_wp, detail%energy_before - detail%energy_after &
-            & + drive))
+            & + drive), drive)
         if (detail%restitution > 0.0_wp) then
             ! a rebound: it flies on
             call self%switch_to(mode_flight, time, detail)

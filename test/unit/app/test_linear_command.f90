@@ -13,6 +13,7 @@ module test_linear_command
     use rollcon_load, only : load_job
     use rollcon_linearisation, only : linear_result_type
     use rollcon_linear_job, only : linearise_job
+    use rollcon_provenance, only : user_file_record
     use rollcon_testing, only : unittest_type, new_unittest, check
     use picture_files, only : make_folder, remove_folder
     use command_runs, only : rollcon_program, run_rollcon, file_text, file_exists
@@ -42,6 +43,7 @@ contains
             & new_unittest("user-ucosub-same-eigenvalues", test_user_ucosub), &
             & new_unittest("user-ucosub-speeds", test_user_speeds), &
             & new_unittest("user-force-routines-same-eigenvalues", test_user_forces), &
+            & new_unittest("user-routines-record-as-run", test_user_record), &
             & new_unittest("user-routine-fault-named", test_user_fault), &
             & new_unittest("user-wrong-partial-stopped", test_wrong_partial), &
             & new_unittest("help", test_help)]
@@ -423,6 +425,56 @@ contains
             & "routines against expressions [1/s]", abs_tol=1.0e-9_wp*maxval(hypot(re, im)))
         call remove_folder(scratch)
     end subroutine test_user_forces
+
+    !> `rollcon linear` with two files of force routines (user_forces.adm, no UCON) words its
+    !> CSV's record as `rollcon run` words its summary's, each file by what the child found
+    !> it defines: "the model's UCOSUB: none (the model has no UCON)", then "user routines:
+    !> FILE (SFOSUB; size and hash)" and "(GFOSUB; ...)"; not the older wording that named the
+    !> first file as the model's UCOSUB and the second "more user routines".
+    subroutine test_user_record(error)
+        type(error_type), allocatable, intent(out) :: error
+        character(len=*), parameter :: spring = "test/user_forces/sforce_spring.f", &
+            & bushing = "test/user_forces/gforce_bushing.f"
+        character(len=1), parameter :: nl = new_line("a")
+        character(len=:), allocatable :: program, files, lines(:), csv, summary
+        integer :: status, k
+        logical :: worded(2)
+
+        call rollcon_program(program, error)
+        if (allocated(error)) return
+        call remove_folder(scratch)
+        call make_folder(scratch)
+        files = "test/user_forces/user_forces.adm --ucosub " // spring // " --ucosub " // bushing
+        call run_rollcon(program, "linear " // files // " -q -o " // scratch // "/record", &
+            & scratch // "/record.out", scratch // "/record.err", status)
+        call check(error, status == 0, "linear: exit status " // to_text(status) &
+            & // ", stderr: " // file_text(scratch // "/record.err"))
+        if (allocated(error)) return
+        call run_rollcon(program, "run " // files // " --end 0.01 --steps 1 -q -o " // scratch &
+            & // "/record", scratch // "/run.out", scratch // "/run.err", status)
+        call check(error, status == 0, "run: exit status " // to_text(status) // ", stderr: " &
+            & // file_text(scratch // "/run.err"))
+        if (allocated(error)) return
+        lines = [character(len=200) :: "the model's UCOSUB: none (the model has no UCON)", &
+            & "user routines: " // spring // " (SFOSUB; " // user_file_record(spring) // ")", &
+            & "user routines: " // bushing // " (GFOSUB; " // user_file_record(bushing) // ")"]
+        csv = file_text(scratch // "/record/user_forces.eigen.csv")
+        summary = file_text(scratch // "/record/user_forces.adm.summary.txt")
+        ! the lines in order, each whole: the summary's plain, the CSV's as # comments
+        worded = .true.
+        do k = 1, size(lines) - 1
+            worded(1) = worded(1) .and. index(summary, nl // trim(lines(k)) // nl &
+                & // trim(lines(k + 1)) // nl) > 0
+            worded(2) = worded(2) .and. index(csv, nl // "# " // trim(lines(k)) // nl // "# " &
+                & // trim(lines(k + 1)) // nl) > 0
+        end do
+        call check(error, worded(1), "the run's record is not worded as expected: " &
+            & // summary(:min(len(summary), 600)))
+        if (allocated(error)) return
+        call check(error, worded(2) .and. index(csv, "more user routines") == 0, "the linear " &
+            & // "CSV's record is not worded as the run's summary: " // csv(:min(len(csv), 600)))
+        call remove_folder(scratch)
+    end subroutine test_user_record
 
     !> A UCOSUB that stops the program (test/faulty_ucosubs/stops.f) ends the child process
     !> of the linear analysis, not rollcon: exit status 1, the message naming the routine's

@@ -83,6 +83,7 @@ contains
             & new_unittest("cvode-run-allocates-nothing", test_cvode_run), &
             & new_unittest("ida-run-allocates-nothing", test_ida_run), &
             & new_unittest("independent-speeds-allocate-nothing", test_independent_speeds), &
+            & new_unittest("dissipated-powers-allocate-nothing", test_powers), &
             & new_unittest("liftoff-root-without-solve", test_liftoff_root), &
             & new_unittest("event-rates-only-when-used", test_event_rates), &
             & new_unittest("time-free-ucon-skips-time-partials", test_time_free), &
@@ -90,12 +91,14 @@ contains
     end subroutine collect_allocations
 
     !> The tipping coin (paper's disk, 0.01 rad off upright, 0.1 m/s), CVODE Adams + Baumgarte
-    !> with the lift-off event on, at a generic state when `generic`.
-    subroutine coin_problem(problem, q, u, generic, error)
+    !> with the lift-off event on, at a generic state when `generic`; on a table with Coulomb
+    !> friction and the rim's rolling resistance and air layer when `dissipating`.
+    subroutine coin_problem(problem, q, u, generic, error, dissipating)
         type(problem_type), intent(inout), target :: problem
         real(wp), intent(out) :: q(6), u(6)
         logical, intent(in) :: generic
         type(error_type), allocatable, intent(out) :: error
+        logical, intent(in), optional :: dissipating
         type(scene_type) :: scene
 
         scene%run%formulation = choice_code("formulation", "cvode")
@@ -114,6 +117,17 @@ contains
             scene%initial%psidot = 1.3_wp
             scene%initial%thetadot = -0.6_wp
             scene%initial%phidot = -4.0_wp
+        end if
+        if (present(dissipating)) then
+            if (dissipating) then
+                ! steel on a table (data/coin_slipping.nml), and data/euler_disk.nml's rim
+                scene%contact%enabled = .true.
+                scene%contact%mu_static = 0.5_wp
+                scene%contact%mu_kinetic = 0.4_wp
+                scene%dissipation%enabled = .true.
+                scene%dissipation%rolling_resistance = 1.0e-4_wp
+                scene%dissipation%air_viscosity = 1.8e-5_wp
+            end if
         end if
         call build_disk_problem(scene, rolling_disk_ucosub, problem, q, u, error)
         if (allocated(error)) return
@@ -296,6 +310,75 @@ contains
             & // "speeds from t = 0.1 s to " // to_text(t) // " s")
         call cvode%destroy()
     end subroutine test_independent_speeds
+
+    !> The powers a dissipating coin's three forms integrate with their state (friction,
+    !> rolling resistance, air: the one routine of rollcon_problem, state_powers) allocate
+    !> nothing per call, and the three forms give the same powers at the same (q, u): the ODE
+    !> and DAE forms read it from y exactly, the independent speeds solve the dependent rates
+    !> from y = (q, v) to round-off of a solve of condition ~1e3 (tol_reaction's reasoning).
+    subroutine test_powers(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(problem_type), target :: problem
+        type(ode_form_type) :: ode
+        type(dae_form_type) :: dae
+        type(speeds_form_type) :: speeds
+        real(wp) :: q(6), u(6), y(12), powers(3, 3), ys(9), yps(9)
+        real(wp), allocatable :: yd(:), ypd(:)
+        integer(c_long) :: start, calls
+        integer :: i, ierr
+
+        if (malloc_counting() == 0) then
+            call skip_test(error, "malloc is not interposed on this C library")
+            return
+        end if
+        call coin_problem(problem, q, u, .true., error, dissipating=.true.)
+        if (allocated(error)) return
+        call ode%init(problem)
+        call dae%init(problem)
+        call speeds%init(problem)
+        call check(error, ode%power_count() == 3 .and. dae%power_count() == 3 &
+            & .and. speeds%power_count() == 3, "powers integrated by the ODE, DAE and " &
+            & // "speeds forms: " // to_text(ode%power_count()) // ", " &
+            & // to_text(dae%power_count()) // ", " // to_text(speeds%power_count()) &
+            & // ", expected 3 each (friction, rolling resistance, air)")
+        if (allocated(error)) return
+        call problem%accelerations(0.0_wp, q, u, error)
+        if (allocated(error)) return
+        y = [q, u]
+        allocate(yd(dae%state_size()), ypd(dae%state_size()))
+        call dae%pack_state(q, u, yd, ypd)
+        call speeds%pack_state(q, u, ys, yps)
+        ! one call of each first: anything allocated on a first use only is not counted
+        ierr = ode%powers(0.0_wp, y, powers(:, 1))
+        ierr = ierr + dae%powers(0.0_wp, yd, powers(:, 2))
+        ierr = ierr + speeds%powers(0.0_wp, ys, powers(:, 3))
+        start = malloc_count()
+        do i = 1, repeats
+            ierr = ierr + ode%powers(0.0_wp, y, powers(:, 1))
+            ierr = ierr + dae%powers(0.0_wp, yd, powers(:, 2))
+            ierr = ierr + speeds%powers(0.0_wp, ys, powers(:, 3))
+        end do
+        calls = malloc_count() - start
+        call check_none(error, calls, "the dissipated powers of the ODE, DAE and speeds " &
+            & // "forms, " // to_text(repeats) // " times each,")
+        if (allocated(error)) return
+        call check(error, ierr == 0, "a powers callback failed: " // problem%failure_text())
+        if (allocated(error)) return
+        ! the rim presses on the table at the generic state: rolling resistance and air work
+        call check(error, powers(2, 1) > 0.0_wp .and. powers(3, 1) > 0.0_wp, &
+            & "rolling resistance's and air's powers at the generic state, W: " &
+            & // to_text(powers(2, 1)) // ", " // to_text(powers(3, 1)))
+        if (allocated(error)) return
+        call check(error, all(powers(:, 2) == powers(:, 1)), "the DAE form's powers differ " &
+            & // "from the ODE form's at the same (q, u)")
+        if (allocated(error)) return
+        do i = 1, 3
+            call check(error, powers(i, 3), powers(i, 1), "power " // to_text(i) &
+                & // " in independent speeds against the ODE form's, W", &
+                & rel_tol=tol_reaction, abs_tol=tol_reaction*maxval(powers(:, 1)))
+            if (allocated(error)) return
+        end do
+    end subroutine test_powers
 
     !> The CVODE event function given the accelerations: the normal force it returns (less the
     !> lift-off threshold the root adds) is the one a saddle-point solve gives at the same
