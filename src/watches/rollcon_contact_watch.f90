@@ -965,7 +965,7 @@ contains
                         ! the table's drive's work V . P as well
                         text = text // "energy in the table's frame " // to_text(d%energy_after &
                             & - d%energy_before - d%drive) // " J (in the ground's " &
-                            & // to_text(d%energy_after - d%energy_before) // " J)"
+                            & // to_text(d%energy_after - d%energy_before) // " J))"
                     else
                         text = text // "energy " // to_text(d%energy_after - d%energy_before) &
                             & // " J)"

@@ -409,7 +409,8 @@ contains
                 & // to_text(e) // ", normal impulse " // to_text(d%normal_impulse) &
                 & // " N s, tangential " // to_text(d%tangential_impulse) // " N s, energy in " &
                 & // "the table's frame " // to_text(d%energy_after - d%energy_before - d%drive) &
-                & // " J (in the ground's " // to_text(d%energy_after - d%energy_before) // " J)"
+                & // " J (in the ground's " // to_text(d%energy_after - d%energy_before) &
+                & // " J))" // new_line("a")
             call check(error, index(summary%watch_lines, line) > 0, "the summary's first " &
                 & // "impact is not '" // line // "': " // summary%watch_lines)
             if (allocated(error)) return
