@@ -100,9 +100,10 @@ contains
     !> coordinates and rates at every row as in its own one-contact dataset, the coin's
     !> `dissipated` column as its alone, the ball's switch listed under its CONTACT, and the
     !> coin's speed v0 - (2/3) delta g t / R (test_rolling_resistance's law), on CVODE; on
-    !> IDA the pair is refused, naming the rim's CONTACT and FORMULATION=CVODE. While the ball slides (to 0.097 s) its friction acts beside
-    !> the rim's resistance: with either left out, or the resistance coupled to the ball's
-    !> normal force, a part would leave its alone run by 1e-3 (the law over 0.1 s) to 0.3 m/s.
+    !> IDA the pair is refused, naming the rim's CONTACT and FORMULATION=CVODE. While the
+    !> ball slides (to 0.097 s) its friction acts beside the rim's resistance: with either
+    !> left out, or the resistance coupled to the ball's normal force, a part would leave its
+    !> alone run by 1e-3 (the law over 0.1 s) to 0.3 m/s.
     subroutine test_rim_beside_ball(error)
         type(error_type), allocatable, intent(out) :: error
         ! A coordinate or rate against the part's run alone [SI]: both runs integrate the same
