@@ -493,7 +493,12 @@ contains
                 problem%eq%dissipation%rolling_resistance = contact%rolling_resistance
                 problem%eq%dissipation%air = air_coefficient(contact%air_viscosity, &
                     & shape%radius)
-                call problem%add_watch(dissipation_watch_type(part=shape%part))
+                if (size(adm%contacts) > 1) then
+                    call problem%add_watch(dissipation_watch_type(part=shape%part, &
+                        & label=shape%name // " (line " // to_text(contact%line) // ")"))
+                else
+                    call problem%add_watch(dissipation_watch_type(part=shape%part))
+                end if
             end if
         end associate
 

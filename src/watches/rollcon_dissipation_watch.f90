@@ -73,6 +73,9 @@ module rollcon_dissipation_watch
     type, extends(watch_type) :: dissipation_watch_type
         !> The part whose rim dissipates (model order)
         integer :: part = 1
+        !> Of a dataset's several CONTACTs, the rim's ("CONTACT/7 (line 13)"), which starts
+        !> the summary's lines
+        character(len=:), allocatable :: label
         !> The rows so far: time [s] and Omega = |psidot| [rad/s] (grown by doubling)
         real(wp), allocatable :: times(:), rates(:)
         integer :: rows = 0
@@ -383,13 +386,16 @@ contains
         type(singularity_fit_type) :: fit
         integer :: k
 
-        text = "dissipation: rolling resistance delta = " &
+        text = ""
+        if (allocated(self%label)) text = self%label // ": "
+        text = text // "dissipation: rolling resistance delta = " &
             & // to_text(eq%dissipation%rolling_resistance) // " m dissipated " &
             & // to_text(self%rolling_work) // " J, the air layer (coefficient pi/4 mu R^3 = " &
             & // to_text(eq%dissipation%air) // " N m s) " // to_text(self%air_work) // " J" &
             & // new_line("a")
         if (allocated(self%switch_kinds)) then
             if (size(self%switch_kinds) > 0) then
+                if (allocated(self%label)) text = text // self%label // ": "
                 text = text // "rolling resistance's law: its sign taken at phidot = 0 " &
                     & // times(count(self%switch_kinds == switch_sign)) // ", held " &
                     & // times(count(self%switch_kinds == switch_hold)) // " (phidot = 0 " &

@@ -131,8 +131,8 @@ contains
             call run_text("pair_" // form, dataset(ball_lines // coin_lines, form), pair, &
                 & summary, error)
             if (allocated(error)) return
-            call check(error, index(summary%watch_lines, "dissipation: rolling " &
-                & // "resistance delta = 0.0001 m") > 0 .and. index(summary%watch_lines, &
+            call check(error, index(summary%watch_lines, "CONTACT/7 (line 17): dissipation: " &
+                & // "rolling resistance delta = 0.0001 m") > 0 .and. index(summary%watch_lines, &
                 & "CONTACT/1 (line 11): t = ") > 0, form // ": the pair's summary has no " &
                 & // "dissipation or no switch of the ball: " // summary%watch_lines)
             if (allocated(error)) return
