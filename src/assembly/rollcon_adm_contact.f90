@@ -18,7 +18,7 @@ module rollcon_adm_contact
     use rollcon_problem, only : problem_type
     use rollcon_sliding_contact, only : sliding_contact_type
     use rollcon_watch_columns, only : contact_column_prefix
-    use rollcon_run_settings, only : formulation_speeds
+    use rollcon_run_settings, only : formulation_speeds, formulation_ida
     use rollcon_contact_watch, only : contact_watch_type, mode_sliding, mode_flight
     use rollcon_dissipation_watch, only : dissipation_watch_type
     use rollcon_rim_dissipation, only : air_coefficient
@@ -192,7 +192,7 @@ contains
                     & // "cylinder must have its axis (its CM marker's z) along PART/" &
                     & // to_text(shape%part_id) // "'s principal z-axis through its centre " &
                     & // "of mass: rollcon models it as the rim of the section through the " &
-                    & // "centre of mass (the rolling disk, docs/design.md §5)", stat_input)
+                    & // "centre of mass (the rolling disk, docs/design.md section 5)", stat_input)
                 return
             end if
         case default
@@ -329,11 +329,12 @@ contains
     !> CONTACT/id and why: FORMULATION=MAGGI (the contact's modes are the ODE and DAE
     !> forms'), a start below the ground or above it without a restitution, a part the
     !> dataset constrains otherwise, and rolling resistance or an air layer on a sphere.
-    !> Several CONTACTs: each its own mode (the first the equations' contact, CONTACT c their
-    !> more_contacts(c - 1)), its own watch, its columns' names starting "contact<id>_" and
-    !> its summary's lines "CONTACT/id (line n)"; ROLLING_RESISTANCE and AIR_VISCOSITY are
-    !> then refused (the equations hold one rim's dissipation). shapes and rows as
-    !> add_contact_ucons made them.
+    !> Several CONTACTs: each its own mode (the equations' contact for the one whose rim
+    !> dissipates, else for the first; the others their more_contacts, in the dataset's order),
+    !> its own watch, its columns' names starting "contact<id>_" and its summary's lines
+    !> "CONTACT/id (line n)"; ROLLING_RESISTANCE and AIR_VISCOSITY on one of them (a second
+    !> refused: the equations hold one rim's dissipation), in the ODE form (CVODE; refused on
+    !> IDA). shapes and rows as add_contact_ucons made them.
     subroutine add_contact_watch(adm, shapes, rows, problem, q0, u0, error)
         type(adm_model_type), intent(in) :: adm
         type(contact_shape_type), intent(in) :: shapes(:)
@@ -341,35 +342,55 @@ contains
         type(problem_type), intent(inout), target :: problem
         real(wp), intent(in) :: q0(:), u0(:)
         type(error_type), allocatable, intent(out) :: error
-        integer :: c
+        integer :: c, rim, slots(size(shapes))
 
         if (size(shapes) == 0) return
         if (allocated(problem%eq%more_contacts)) deallocate(problem%eq%more_contacts)
-        if (size(shapes) > 1) then
-            allocate(problem%eq%more_contacts(size(shapes) - 1))
-            do c = 1, size(shapes)
-                if (adm%contacts(c)%rolling_resistance > 0.0_wp &
-                    & .or. adm%contacts(c)%air_viscosity > 0.0_wp) then
-                    call fatal_error(error, shapes(c)%where // ": ROLLING_RESISTANCE and " &
-                        & // "AIR_VISCOSITY are modelled for a dataset's only CONTACT (the " &
-                        & // "rim's dissipation is one rim's: docs/design.md §5, " &
-                        & // "Dissipation); this dataset has " // to_text(size(shapes)), &
-                        & stat_input)
-                    return
-                end if
-            end do
-        end if
+        if (size(shapes) > 1) allocate(problem%eq%more_contacts(size(shapes) - 1))
+        ! the CONTACT whose rim dissipates, if any: at most one (the equations hold one rim's
+        ! rolling resistance and air layer, with the contact's mode: docs/design.md §5)
+        rim = 0
         do c = 1, size(shapes)
-            call add_one_contact_watch(adm, c, shapes(c), rows(:, c), problem, q0, u0, error)
+            if (.not. (adm%contacts(c)%rolling_resistance > 0.0_wp &
+                & .or. adm%contacts(c)%air_viscosity > 0.0_wp)) cycle
+            if (rim > 0) then
+                call fatal_error(error, shapes(c)%where // ": ROLLING_RESISTANCE and " &
+                    & // "AIR_VISCOSITY are modelled on one CONTACT of a dataset (the " &
+                    & // "equations hold one rim's dissipation: docs/design.md section 5, " &
+                    & // "Dissipation), and " // shapes(rim)%name // " (line " &
+                    & // to_text(adm%contacts(rim)%line) // ") gives them already", stat_input)
+                return
+            end if
+            rim = c
+        end do
+        if (rim > 0 .and. size(shapes) > 1 .and. &
+            & problem%settings%formulation == formulation_ida) then
+            ! beside further contacts the DAE form's Newton iteration has not been made to
+            ! converge with the rim's laws (IDA stalls at the start): CVODE integrates them
+            call fatal_error(error, shapes(rim)%where // ": ROLLING_RESISTANCE and " &
+                & // "AIR_VISCOSITY beside other CONTACTs are integrated in the ODE form: " &
+                & // "write INTEGRATOR/FORMULATION=CVODE (the DAE form, IDA, takes them on a " &
+                & // "dataset's only CONTACT)", stat_input)
+            return
+        end if
+        ! each CONTACT's mode in the equations: the dissipating rim's is their contact (slot
+        ! 0), whose mode its rolling resistance couples to; the others their more_contacts in
+        ! the dataset's order
+        slots = [(c - 1, c = 1, size(shapes))]
+        if (rim > 1) slots = [(merge(0, merge(c, c - 1, c < rim), c == rim), &
+            & c = 1, size(shapes))]
+        do c = 1, size(shapes)
+            call add_one_contact_watch(adm, c, slots(c), shapes(c), rows(:, c), problem, q0, &
+                & u0, error)
             if (allocated(error)) return
         end do
     end subroutine add_contact_watch
 
-    !> CONTACT c's watch (add_contact_watch), its mode the equations' contact (c = 1) or
-    !> more_contacts(c - 1).
-    subroutine add_one_contact_watch(adm, c, shape, rows, problem, q0, u0, error)
+    !> CONTACT c's watch (add_contact_watch), its mode the equations' contact (slot 0) or
+    !> more_contacts(slot).
+    subroutine add_one_contact_watch(adm, c, slot, shape, rows, problem, q0, u0, error)
         type(adm_model_type), intent(in) :: adm
-        integer, intent(in) :: c
+        integer, intent(in) :: c, slot
         type(contact_shape_type), intent(in) :: shape
         integer, intent(in) :: rows(3)
         type(problem_type), intent(inout), target :: problem
@@ -403,7 +424,7 @@ contains
                 end do
             end do
             i0 = 6*(shape%part - 1)
-            watch%slot = c - 1
+            watch%slot = slot
             if (size(adm%contacts) > 1) then
                 watch%label = shape%name // " (line " // to_text(contact%line) // ")"
                 ! contact_column_prefix, "contact<n>_", with the CONTACT's id
@@ -452,16 +473,16 @@ contains
             if (watch%flight .and. height > tolerance) watch%initial_mode = mode_flight
             ! the start's mode, for the initial-conditions analysis (the watch sets it again
             ! when the run starts)
-            if (c == 1) then
+            if (slot == 0) then
                 call start_mode(problem%eq%contact)
             else
-                call start_mode(problem%eq%more_contacts(c - 1))
+                call start_mode(problem%eq%more_contacts(slot))
             end if
             call problem%add_watch(watch)
             if (contact%rolling_resistance > 0.0_wp .or. contact%air_viscosity > 0.0_wp) then
                 if (shape%sphere) then
                     call fatal_error(error, shape%where // ": ROLLING_RESISTANCE and " &
-                        & // "AIR_VISCOSITY are a rim's laws (docs/design.md §5, " &
+                        & // "AIR_VISCOSITY are a rim's laws (docs/design.md section 5, " &
                         & // "Dissipation); a sphere takes neither", stat_input)
                     return
                 end if
@@ -472,7 +493,12 @@ contains
                 problem%eq%dissipation%rolling_resistance = contact%rolling_resistance
                 problem%eq%dissipation%air = air_coefficient(contact%air_viscosity, &
                     & shape%radius)
-                call problem%add_watch(dissipation_watch_type(part=shape%part))
+                if (size(adm%contacts) > 1) then
+                    call problem%add_watch(dissipation_watch_type(part=shape%part, &
+                        & label=shape%name // " (line " // to_text(contact%line) // ")"))
+                else
+                    call problem%add_watch(dissipation_watch_type(part=shape%part))
+                end if
             end if
         end associate
 

@@ -483,10 +483,17 @@ contains
         lambda = self%gamma
         call self%saddle%solve(self%c, a, lambda, 1, error, scaled=.true.)
         if (allocated(error)) return
-        if (self%dissipation%held) then
-            call self%held_coupling(time, q, a, lambda, error)
-        else if (self%dissipation%rolling_resistance > 0.0_wp) then
-            call self%resistance_coupling(time, q, u, a, lambda, error)
+        if (self%dissipation%held .or. self%dissipation%rolling_resistance > 0.0_wp) then
+            ! the rim's (the contact's) laws, then any further contact's sliding friction:
+            ! each contact holds a part nothing else constrains, so they do not couple
+            if (self%dissipation%held) then
+                call self%held_coupling(time, q, a, lambda, error)
+            else
+                call self%resistance_coupling(time, q, u, a, lambda, error)
+            end if
+            if (allocated(error)) return
+            if (self%more_sliding()) call self%contacts_friction_coupling(time, q, a, lambda, &
+                & error, more_only=.true.)
         else if (self%more_sliding()) then
             call self%contacts_friction_coupling(time, q, a, lambda, error)
         else if (self%contact%sliding) then
@@ -877,23 +884,32 @@ contains
     !> F_n (1 + mu c_nz lambda1_n) = c_nz lambda0_n (friction_coupling) for one; then
     !> a = a0 - sum_j mu_j F_n,j a_j and lambda likewise (docs/design.md §5, "Contact modes").
     !> Contacts on parts nothing else joins do not couple (lambda_j(n_i) = 0 for i /= j).
+    !> more_only: the further contacts alone, after a rim's laws coupled the contact's
+    !> (resistance_coupling, held_coupling; a dataset's CONTACTs hold parts nothing else
+    !> constrains, so this order is exact).
     !> Refused (stat_ucon) where a contact's own coefficient 1 + mu c_nz lambda_i(n_i) is
     !> below painleve_margin (Painlevé's paradox, as friction_coupling) or the coupled system
     !> is singular.
-    subroutine contacts_friction_coupling(self, time, q, a, lambda, error)
+    subroutine contacts_friction_coupling(self, time, q, a, lambda, error, more_only)
         class(equations_type), intent(inout) :: self
         real(wp), intent(in) :: time, q(:)
         real(wp), intent(inout) :: a(:), lambda(:)
         type(error_type), allocatable, intent(out) :: error
+        !> The further contacts (more_contacts) alone: the contact's friction is already in a
+        !> and lambda (resistance_coupling's, with a rim's rolling resistance)
+        logical, intent(in), optional :: more_only
         real(wp) :: coupling(1 + size(self%more_contacts), 1 + size(self%more_contacts))
         real(wp) :: forces(1 + size(self%more_contacts)), c_nz(1 + size(self%more_contacts))
         real(wp) :: pivot, factor
         integer :: which(1 + size(self%more_contacts)), rows(1 + size(self%more_contacts))
         integer :: m, i, j, k, best
+        logical :: only_more
 
         ! the sliding contacts: 0 the contact, j more_contacts(j)
+        only_more = .false.
+        if (present(more_only)) only_more = more_only
         m = 0
-        if (self%contact%sliding) then
+        if (self%contact%sliding .and. .not. only_more) then
             m = 1
             which(1) = 0
             call unit_response(self%contact, self%saddle, self%c, self%constraints%value, error)

@@ -26,7 +26,7 @@ module rollcon_contact_figures
     private
 
     public :: write_contact_data, contact_script, path_modes, mode_path, mode_switches, &
-        & mode_colour_values, mode_title, mode_colour, switch_colour
+        & mode_colour_values, mode_title, mode_colour, switch_colour, friction_lines
 
     !> The figures, each written as DIR/<base>_<name>.png
     character(len=*), parameter, public :: contact_figure_names(7) = [character(len=11) :: "path", &
@@ -121,20 +121,27 @@ contains
 
     !> The contact's mode at each row (the `mode` column, rounded) and the modes present, in
     !> increasing order; none of either when the run has no `mode` column (no friction).
-    pure subroutine path_modes(run, modes, present)
+    !> prefix: of a dataset's several CONTACTs, the one whose columns start so ("contact2_":
+    !> its contact2_mode).
+    pure subroutine path_modes(run, modes, modes_present, prefix)
         type(run_record_type), intent(in) :: run
-        integer, allocatable, intent(out) :: modes(:), present(:)
+        integer, allocatable, intent(out) :: modes(:), modes_present(:)
+        character(len=*), intent(in), optional :: prefix
         integer :: column, m
 
-        allocate(present(0))
-        column = run%layout%column("mode")
+        allocate(modes_present(0))
+        if (present(prefix)) then
+            column = run%layout%column(trim(prefix) // "mode")
+        else
+            column = run%layout%column("mode")
+        end if
         if (column == 0) then
             allocate(modes(0))
             return
         end if
         modes = nint(run%history%rows(column, :run%history%count))
         do m = minval(modes), maxval(modes)
-            if (any(modes == m)) present = [present, m]
+            if (any(modes == m)) modes_present = [modes_present, m]
         end do
     end subroutine path_modes
 

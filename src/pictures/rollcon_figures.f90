@@ -15,7 +15,9 @@ module rollcon_figures
     use rollcon_part_shapes, only : shape_extent
     use rollcon_contact_figures, only : contact_figure_names, write_contact_data, &
         & contact_script, path_modes, mode_path, mode_switches, mode_title, mode_colour, &
-        & switch_colour
+        & switch_colour, friction_lines
+    use rollcon_watch_columns, only : contact_prefixes, contact_column_prefix
+    use rollcon_output_layout, only : name_length
     use rollcon_singularity_figure, only : has_singularity, write_singularity_data, &
         & singularity_script, singularity_figure_name
     use rollcon_figure_text, only : drift, residual_floor, title, output, figure_preamble, &
@@ -29,13 +31,29 @@ module rollcon_figures
     private
 
     public :: plot_output, figure_file, figure_names, model_figure_names, figures_of, &
-        & write_model_data, model_script
+        & write_model_data, model_script, drawn_contact_type, drawn_contacts, &
+        & model_friction_figure
 
     !> The figures of a part rolling on a rim, each written as DIR/<base>_<name>.png
     character(len=*), parameter :: figure_names(7) = contact_figure_names
     !> The figures of any other model, each written as DIR/<base>_<name>.png
     character(len=*), parameter :: model_figure_names(6) = [character(len=11) :: "path", &
         & "height", "angles", "energy", "residuals", "multipliers"]
+    !> The figure a model with contacts adds: the friction coefficient each needs
+    character(len=*), parameter :: model_friction_figure = "friction"
+
+    !> A contact of a run's rows (contact_prefixes), as the model figures draw it: the prefix
+    !> of its columns ("" for a model's one contact), its CONTACT's id (0 for the one
+    !> contact), its part (contact_part; 0: none found), its mode at each row and the modes
+    !> present (path_modes), the data column of its part's Y in its first mode present
+    !> (write_model_data; the others and the switches after it; 0: not drawn by mode) and of
+    !> its mu_needed (0: none)
+    type :: drawn_contact_type
+        character(len=name_length) :: prefix = ""
+        integer :: id = 0, part = 0, first = 0, mu_column = 0
+        integer, allocatable :: modes(:), present(:)
+    end type drawn_contact_type
+
     !> The multipliers' axis: λ_k carries the power (velocity UCON) or work (position UCON) per
     !> unit of F_k, as its generalised force is λ_k ∂F_k/∂q̇ (or ∂F_k/∂q): a force for F in m/s
     !> or m (the coin's λ_1, λ_2, λ_3 are its contact force), a moment for F in rad/s or rad
@@ -90,7 +108,7 @@ contains
         else
             call write_model_data(data_path, run, error)
             if (.not. allocated(error)) text = model_script(base_name(csv_path, ".csv"), &
-                & prefix, data_path, run)
+                & prefix, data_path, run, contact_frictions(csv_path, run))
         end if
         if (allocated(error)) return
         if (present(script)) script = text
@@ -134,7 +152,8 @@ contains
     end subroutine plot_output
 
     !> The names of the figures of a run: figure_names for a disk scene (and the singularity's
-    !> for one settling to it, rollcon_singularity_figure), else model_figure_names.
+    !> for one settling to it, rollcon_singularity_figure), else model_figure_names, and the
+    !> friction figure (model_friction_figure) for a model with contacts.
     pure function figures_of(run) result(names)
         type(run_record_type), intent(in) :: run
         character(len=:), allocatable :: names(:)
@@ -145,6 +164,8 @@ contains
                 & len(singularity_figure_name))) :: names, singularity_figure_name]
         else
             names = model_figure_names
+            if (size(contact_prefixes(run%layout)) > 0) names = [character(len=max(len(names), &
+                & len(model_friction_figure))) :: names, model_friction_figure]
         end if
     end function figures_of
 
@@ -178,9 +199,10 @@ contains
 
     !> The data of the model figures, one row per output row: t; X, Y, Z, psi, theta, phi of
     !> each part; |E - E(t0)|/|E(t0)|, |E - E(t_end)|/|E(t_end)|; |F_k| of each UCON (at least
-    !> residual_floor); lambda_k of each UCON; with the contact's mode (a `mode` column), the Y
-    !> of the contact's part (contact_part) in each mode present (path_modes, in that order:
-    !> mode_path) and at each switch (mode_switches), NaN elsewhere.
+    !> residual_floor); lambda_k of each UCON; for each contact with its mode (a `mode`
+    !> column, or contact<id>_mode of several), the Y of the contact's part (contact_part) in
+    !> each mode present (path_modes, in that order: mode_path) and at each switch
+    !> (mode_switches), NaN elsewhere; then each contact's mu_needed (drawn_contacts).
     subroutine write_model_data(path, run, error)
         !> Data file to write
         character(len=*), intent(in) :: path
@@ -189,7 +211,7 @@ contains
         type(error_type), allocatable, intent(out) :: error
         real(wp), allocatable :: row(:), data(:, :), wider(:, :)
         logical, allocatable :: paired(:)
-        integer, allocatable :: modes(:), present(:)
+        type(drawn_contact_type), allocatable :: contacts(:)
         character(len=256) :: message
         integer :: unit, stat, j, p, n, nucons, np, c, k
 
@@ -222,21 +244,34 @@ contains
         end associate
         ! thinned to what a figure shows; each part's X and Y (its path) by their own rows
         paired = [(c > 1 .and. c <= 1 + 6*np .and. mod(c - 2, 6) < 2, c = 1, size(data, 1))]
-        ! the contact's part's Y in each mode present and at each switch, paired with its X
-        call path_modes(run, modes, present)
-        p = contact_part(run)
-        if (size(present) > 0 .and. p > 0) then
-            allocate(wider(size(data, 1) + size(present) + 1, n))
+        ! each contact's part's Y in each mode present and at each switch, paired with its X,
+        ! then each contact's mu_needed (drawn_contacts: the columns in that order)
+        contacts = drawn_contacts(run)
+        do c = 1, size(contacts)
+            p = contacts(c)%part
+            if (contacts(c)%first == 0) cycle
+            associate (modes => contacts(c)%modes, present => contacts(c)%present)
+                allocate(wider(size(data, 1) + size(present) + 1, n))
+                wider(:size(data, 1), :) = data
+                do k = 1, size(present)
+                    wider(size(data, 1) + k, :) = mode_path(modes, data(1 + 6*(p - 1) + 2, :), &
+                        & present(k))
+                end do
+                wider(size(data, 1) + size(present) + 1, :) = mode_switches(modes, &
+                    & data(1 + 6*(p - 1) + 2, :))
+                call move_alloc(wider, data)
+                paired = [paired, spread(.true., 1, size(present) + 1)]
+            end associate
+        end do
+        do c = 1, size(contacts)
+            if (contacts(c)%mu_column == 0) cycle
+            allocate(wider(size(data, 1) + 1, n))
             wider(:size(data, 1), :) = data
-            do k = 1, size(present)
-                wider(size(data, 1) + k, :) = mode_path(modes, data(1 + 6*(p - 1) + 2, :), &
-                    & present(k))
-            end do
-            wider(size(data, 1) + size(present) + 1, :) = mode_switches(modes, &
-                & data(1 + 6*(p - 1) + 2, :))
+            wider(size(data, 1) + 1, :) = run%history%rows(run%layout%column( &
+                & trim(contacts(c)%prefix) // "mu_needed"), :n)
             call move_alloc(wider, data)
-            paired = [paired, spread(.true., 1, size(present) + 1)]
-        end if
+            paired = [paired, .false.]
+        end do
         call write_figure_rows(unit, data, paired, stat)
         call close_checked(unit, path, error)
         if (allocated(error)) return
@@ -247,10 +282,13 @@ contains
     !> The gnuplot script of the model figures (data columns as write_model_data writes them).
     !> The path's axes span at least path_axis_ranges's for the largest part (a straight path
     !> drawn straight); the contact's part's path is drawn a line per mode, its switches marked.
-    pure function model_script(name, prefix, data_path, run) result(text)
+    pure function model_script(name, prefix, data_path, run, frictions) result(text)
         !> The run's name, the figures' path less _<figure>.png, the data file
         character(len=*), intent(in) :: name, prefix, data_path
         type(run_record_type), intent(in) :: run
+        !> Each contact's mu_static and mu_kinetic (drawn_contacts' order; 0, 0 where the
+        !> summary does not give them: contact_frictions)
+        real(wp), intent(in), optional :: frictions(:, :)
         character(len=:), allocatable :: text
         character(len=*), parameter :: nl = new_line("a")
         character(len=*), parameter :: angle_names(3) = [character(len=5) :: "ψ", "θ", "φ"]
@@ -277,7 +315,121 @@ contains
                 & // "plot" // part_curves(data, run, 0, 3 + c, "") // nl
         end do
         text = text // "unset multiplot" // nl // ucon_figures(name, prefix, data, run)
+        if (present(frictions)) then
+            text = text // friction_figure(name, prefix, data, run, frictions)
+        else
+            text = text // friction_figure(name, prefix, data, run, &
+                & reshape([real(wp) :: ], [2, 0]))
+        end if
     end function model_script
+
+    !> The friction figure of a model with contacts: each contact's mu_needed (|F_t| / F_n)
+    !> against t, titled by its CONTACT where there are several, and its mu_static and
+    !> mu_kinetic where frictions gives them (one contact: the contact figures' lines,
+    !> friction_lines; several: each contact's dashed and dotted in its curve's colour).
+    !> Empty for a model without contacts.
+    pure function friction_figure(name, prefix, data, run, frictions) result(text)
+        character(len=*), intent(in) :: name, prefix, data
+        type(run_record_type), intent(in) :: run
+        real(wp), intent(in) :: frictions(:, :)
+        character(len=:), allocatable :: text
+        character(len=*), parameter :: nl = new_line("a")
+        type(drawn_contact_type), allocatable :: contacts(:)
+        character(len=:), allocatable :: curves, label
+        real(wp) :: f(2)
+        logical :: known
+        integer :: c
+
+        text = ""
+        contacts = drawn_contacts(run)
+        if (size(contacts) == 0) return
+        curves = ""
+        do c = 1, size(contacts)
+            if (contacts(c)%mu_column == 0) cycle
+            f = 0.0_wp
+            if (size(frictions, 2) >= c) f = frictions(:, c)
+            known = f(1) > 0.0_wp .and. f(2) > 0.0_wp
+            if (contacts(c)%id == 0) then
+                curves = curves // merge(", ", "  ", len(curves) > 0) // data // " using 1:" &
+                    & // to_text(contacts(c)%mu_column) // " with lines lw 1.5 title 'μ needed'"
+                if (known) curves = curves // friction_lines(f)
+                cycle
+            end if
+            label = "CONTACT/" // to_text(contacts(c)%id)
+            if (contacts(c)%part > 0) label = label // " (part " &
+                & // to_text(run%layout%part_ids(contacts(c)%part)) // ")"
+            curves = curves // merge(", ", "  ", len(curves) > 0) // data // " using 1:" &
+                & // to_text(contacts(c)%mu_column) // " with lines lw 1.5 lt " // to_text(c) &
+                & // " title " // gnuplot_string(label // ": μ needed")
+            if (.not. known) cycle
+            curves = curves // ", " // to_text(f(1)) // " with lines dashtype 2 lw 1.2 lt " &
+                & // to_text(c) // " title " // gnuplot_string(label // ": μs = " &
+                & // to_text(f(1)))
+            if (f(2) /= f(1)) curves = curves // ", " // to_text(f(2)) // " with lines " &
+                & // "dashtype 3 lw 1.2 lt " // to_text(c) // " title " &
+                & // gnuplot_string(label // ": μk = " // to_text(f(2)))
+        end do
+        ! gnuplot refuses a plot with no defined point: no contact's mu_needed column
+        if (len(curves) == 0) curves = " " // data // " using 1:(0) with lines title " &
+            & // "'no mu_needed column'"
+        text = output(prefix, model_friction_figure) &
+            & // title(name // ": friction coefficient each contact needs to roll " &
+            & // "(|tangential|/normal)") // "set ylabel 'μ needed'" // nl &
+            & // "set offsets 0, 0, graph 0.08, 0" // nl // "plot" // curves // nl &
+            & // "unset offsets" // nl // "unset output" // nl
+    end function friction_figure
+
+    !> The contacts of a run's rows as the model figures draw them (drawn_contact_type), in
+    !> the order of their columns: the data columns after the multipliers hold each drawn
+    !> contact's modes present and switches in turn, then each one's mu_needed.
+    pure function drawn_contacts(run) result(contacts)
+        type(run_record_type), intent(in) :: run
+        type(drawn_contact_type), allocatable :: contacts(:)
+        character(len=name_length), allocatable :: prefixes(:)
+        integer :: c, column, stem
+
+        prefixes = contact_prefixes(run%layout)
+        allocate(contacts(size(prefixes)))
+        column = 4 + 6*size(run%layout%part_ids) + 2*size(run%layout%ucon_ids)
+        stem = index(contact_column_prefix, "<n>") - 1
+        do c = 1, size(prefixes)
+            contacts(c)%prefix = prefixes(c)
+            if (len_trim(prefixes(c)) > stem + 1) read(prefixes(c)(stem + 1:len_trim( &
+                & prefixes(c)) - 1), *) contacts(c)%id
+            contacts(c)%part = contact_part(run, trim(prefixes(c)))
+            call path_modes(run, contacts(c)%modes, contacts(c)%present, trim(prefixes(c)))
+            if (size(contacts(c)%present) > 0 .and. contacts(c)%part > 0) then
+                contacts(c)%first = column
+                column = column + size(contacts(c)%present) + 1
+            end if
+        end do
+        do c = 1, size(prefixes)
+            if (run%layout%column(trim(prefixes(c)) // "mu_needed") == 0) cycle
+            contacts(c)%mu_column = column
+            column = column + 1
+        end do
+    end function drawn_contacts
+
+    !> Each contact's mu_static and mu_kinetic (drawn_contacts' order) from the run's summary
+    !> beside its CSV (read_friction); 0, 0 for a contact it does not give them.
+    function contact_frictions(csv_path, run) result(frictions)
+        character(len=*), intent(in) :: csv_path
+        type(run_record_type), intent(in) :: run
+        real(wp), allocatable :: frictions(:, :)
+        type(drawn_contact_type), allocatable :: contacts(:)
+        logical :: found
+        integer :: c
+
+        contacts = drawn_contacts(run)
+        allocate(frictions(2, size(contacts)), source=0.0_wp)
+        do c = 1, size(contacts)
+            if (contacts(c)%id == 0) then
+                call read_friction(csv_path, frictions(:, c), found)
+            else
+                call read_friction(csv_path, frictions(:, c), found, contacts(c)%id)
+            end if
+        end do
+    end function contact_frictions
 
     !> The lines that give the paths' figure its least span (path_axis_ranges): over every
     !> part's centre of mass, the largest part's size the floor.
@@ -301,7 +453,8 @@ contains
 
     !> The curves of a quantity of every part, for a plot command: data column x against data
     !> column y of each part's X, Y, Z, psi, theta, phi (1 .. 6; 0 is t), titled 'part <id>'
-    !> and what.
+    !> and what; the path (X, Y) of each part a contact holds a line per mode of that
+    !> contact's, its switches marked (one legend entry for all).
     pure function part_curves(data, run, x, y, what) result(curves)
         character(len=*), intent(in) :: data
         type(run_record_type), intent(in) :: run
@@ -310,34 +463,48 @@ contains
         character(len=:), allocatable :: curves
         integer :: p
 
-        integer, allocatable :: modes(:), present(:)
-        integer :: k, contact, first
+        type(drawn_contact_type), allocatable :: contacts(:)
+        integer :: k, c, found
+        logical :: switch_titled
 
         curves = ""
-        call path_modes(run, modes, present)
-        contact = 0
-        ! the path (X, Y) of the contact's part by mode: the columns after the multipliers
-        if (x == 1 .and. y == 2 .and. size(present) > 0) contact = contact_part(run)
-        first = 4 + 6*size(run%layout%part_ids) + 2*size(run%layout%ucon_ids)
+        ! the path (X, Y) of each contact's part by its mode: the columns after the
+        ! multipliers (drawn_contacts)
+        allocate(contacts(0))
+        if (x == 1 .and. y == 2) contacts = drawn_contacts(run)
+        switch_titled = .false.
         do p = 1, size(run%layout%part_ids)
-            if (p /= contact) then
+            found = 0
+            do c = 1, size(contacts)
+                if (contacts(c)%part == p .and. contacts(c)%first > 0) found = c
+            end do
+            if (found == 0) then
                 curves = curves // merge(", ", "  ", p > 1) // data // " using " &
                     & // to_text(column(p, x)) // ":" // to_text(column(p, y)) &
                     & // " with lines lw 1.5 title " &
                     & // gnuplot_string("part " // to_text(run%layout%part_ids(p)) // what)
                 cycle
             end if
-            do k = 1, size(present)
-                curves = curves // merge(", ", "  ", p > 1 .or. k > 1) // data // " using " &
-                    & // to_text(column(p, x)) // ":" // to_text(first + k - 1) &
-                    & // " with lines lw 2 lc rgb '" // mode_colour(present(k)) &
-                    & // "' title " // gnuplot_string("part " &
-                    & // to_text(run%layout%part_ids(p)) // what // ", " &
-                    & // mode_title(present(k)))
-            end do
-            curves = curves // ", " // data // " using " // to_text(column(p, x)) // ":" &
-                & // to_text(first + size(present)) // " with points pt 7 ps 0.6 lc rgb '" &
-                & // switch_colour // "' title 'mode switch (first row after)'"
+            associate (present => contacts(found)%present, first => contacts(found)%first)
+                do k = 1, size(present)
+                    curves = curves // merge(", ", "  ", p > 1 .or. k > 1) // data &
+                        & // " using " // to_text(column(p, x)) // ":" &
+                        & // to_text(first + k - 1) // " with lines lw 2 lc rgb '" &
+                        & // mode_colour(present(k)) // "' title " // gnuplot_string("part " &
+                        & // to_text(run%layout%part_ids(p)) // what // ", " &
+                        & // mode_title(present(k)))
+                end do
+                ! the switches' marks, one legend entry for every contact's
+                curves = curves // ", " // data // " using " // to_text(column(p, x)) // ":" &
+                    & // to_text(first + size(present)) // " with points pt 7 ps 0.6 lc rgb '" &
+                    & // switch_colour // "' "
+                if (switch_titled) then
+                    curves = curves // "notitle"
+                else
+                    curves = curves // "title 'mode switch (first row after)'"
+                end if
+                switch_titled = .true.
+            end associate
         end do
     contains
         !> Data column of part p's coordinate c (write_model_data); t for c = 0.

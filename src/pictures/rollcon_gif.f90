@@ -8,8 +8,10 @@ module rollcon_gif
     use rollcon_error, only : error_type, fatal_error, stat_io
     use rollcon_text, only : to_text
     use rollcon_output_files, only : close_checked
-    use rollcon_output_layout, only : coord_z
-    use rollcon_run_record, only : run_record_type, read_run, pose, path_point, ground_bounds
+    use rollcon_output_layout, only : coord_z, name_length
+    use rollcon_run_record, only : run_record_type, read_run, pose, path_point, ground_bounds, &
+        & contact_part
+    use rollcon_watch_columns, only : contact_prefixes
     use rollcon_figure_rows, only : path_stride
     use rollcon_contact_figures, only : path_modes, mode_colour_values
     use rollcon_part_shapes, only : shape_disk, shape_extent
@@ -198,14 +200,20 @@ contains
         if (stat == 0) write(unit, '(a, /)', iostat=stat) ""
     end subroutine write_ellipsoid
 
-    !> The path of every part over every row, data set p - 1 for part p; with the contact's
-    !> mode (a `mode` column), a fourth column, the colour of each point's mode.
+    !> The path of every part over every row, data set p - 1 for part p; with a contact's
+    !> mode (a `mode` column, or contact<id>_mode of several), a fourth column: the colour of
+    !> each point's mode for the part that contact holds (contact_part; each contact its own
+    !> part's), grey for a part no contact holds.
     subroutine write_paths(path, run, error)
         character(len=*), intent(in) :: path
         type(run_record_type), intent(in) :: run
         type(error_type), allocatable, intent(out) :: error
-        integer, allocatable :: modes(:), present(:), colours(:)
-        integer :: unit, stat, p, j, stride
+        !> The colour of a part no contact holds, as gnuplot's `lc rgb variable` takes it
+        integer, parameter :: grey = 128*65536 + 128*256 + 128
+        character(len=name_length), allocatable :: prefixes(:)
+        integer, allocatable :: modes(:), present(:), colours(:, :)
+        logical :: by_mode
+        integer :: unit, stat, p, j, stride, c, held
 
         open(newunit=unit, file=path, status="replace", action="write", access="stream", &
             & form="formatted", iostat=stat)
@@ -216,13 +224,21 @@ contains
         ! every path_stride-th row (rollcon_figure_rows): the frames draw the path up to theirs;
         ! with the contact's mode, each point's colour after it (the disk in contact: one part)
         stride = path_stride(run%history%count)
-        call path_modes(run, modes, present)
-        if (size(present) > 0) colours = mode_colour_values(modes)
+        allocate(colours(run%history%count, size(run%shapes)), source=grey)
+        by_mode = .false.
+        prefixes = contact_prefixes(run%layout)
+        do c = 1, size(prefixes)
+            call path_modes(run, modes, present, trim(prefixes(c)))
+            held = contact_part(run, trim(prefixes(c)))
+            if (size(present) == 0 .or. held == 0) cycle
+            by_mode = .true.
+            colours(:, held) = mode_colour_values(modes)
+        end do
         do p = 1, size(run%shapes)
             do j = 1, run%history%count, stride
-                if (size(present) > 0) then
+                if (by_mode) then
                     if (stat == 0) write(unit, '(3(es16.8e3, 1x), i0)', iostat=stat) &
-                        & path_point(run, p, j), colours(j)
+                        & path_point(run, p, j), colours(j, p)
                 else
                     if (stat == 0) write(unit, point_format, iostat=stat) path_point(run, p, j)
                 end if
@@ -234,6 +250,22 @@ contains
         if (stat /= 0) call fatal_error(error, path // ": cannot write the animation data", &
             & stat_io)
     end subroutine write_paths
+
+    !> Some contact's part's path is coloured by its mode (write_paths' fourth column).
+    pure logical function modes_drawn(run)
+        type(run_record_type), intent(in) :: run
+        character(len=name_length), allocatable :: prefixes(:)
+        integer, allocatable :: modes(:), present(:)
+        integer :: c
+
+        modes_drawn = .false.
+        prefixes = contact_prefixes(run%layout)
+        do c = 1, size(prefixes)
+            call path_modes(run, modes, present, trim(prefixes(c)))
+            if (size(present) > 0 .and. contact_part(run, trim(prefixes(c))) > 0) &
+                & modes_drawn = .true.
+        end do
+    end function modes_drawn
 
     !> The gnuplot script drawing the frames, with fixed axes round the whole motion.
     function script(name, gif_path, frames_path, path_path, run, rows) result(text)
@@ -275,8 +307,7 @@ contains
         parts = to_text(size(run%shapes))
         ! the path in one colour, or with the contact's mode in its mode's (write_paths)
         path_style = "using 1:2:3 with lines lw 2 lc rgb '" // colour_path // "'"
-        if (run%layout%column("mode") > 0) path_style = "using 1:2:3:4 with lines lw 2 " &
-            & // "lc rgb variable"
+        if (modes_drawn(run)) path_style = "using 1:2:3:4 with lines lw 2 lc rgb variable"
         ! An ellipsoid is shaded (pm3d lighting) so that its shape reads in 3-D; gnuplot's GIF
         ! palette optimisation blackens shaded facets, so it is kept for disks alone (unshaded,
         ! as their faces are flat).

@@ -208,14 +208,18 @@ contains
     !> The contact's friction coefficients, mu_static and mu_kinetic, from the summary the run
     !> wrote beside its CSV (DIR/NAME.summary.txt for DIR/NAME.csv), whose line
     !> 'contact: starts rolling (mu_static 0.5, mu_kinetic 0.4), 10 switches' gives them
-    !> (docs/outputs.md); found is false without that file or that line (a run without
-    !> friction), and for numbers that do not read as 0 < mu_kinetic <= mu_static.
-    subroutine read_friction(csv_path, friction, found)
+    !> (docs/outputs.md), or, given contact_id, the line of that CONTACT of several
+    !> ('CONTACT/2 (line 40): starts ...'); found is false without that file or that line (a
+    !> run without friction), and for numbers that do not read as 0 < mu_kinetic <= mu_static.
+    subroutine read_friction(csv_path, friction, found, contact_id)
         !> Output CSV of `rollcon run`
         character(len=*), intent(in) :: csv_path
         !> mu_static, mu_kinetic [-]
         real(wp), intent(out) :: friction(2)
         logical, intent(out) :: found
+        !> Of a dataset's several CONTACTs, this one's id: its line
+        !> 'CONTACT/2 (line 40): starts sliding (mu_static 0.2, mu_kinetic 0.2), ...'
+        integer, intent(in), optional :: contact_id
         !> The line, and what comes before each number: "(mu_static 0.5, mu_kinetic 0.4)"
         character(len=*), parameter :: start = "contact: starts ", &
             & keys(2) = [character(len=12) :: "(mu_static", ", mu_kinetic"]
@@ -235,7 +239,12 @@ contains
         do
             read(unit, '(a)', iostat=stat) line
             if (stat /= 0) exit
-            if (index(line, start) /= 1) cycle
+            if (present(contact_id)) then
+                if (index(line, "CONTACT/" // to_text(contact_id) // " (") /= 1 &
+                    & .or. index(line, "): starts ") == 0) cycle
+            else if (index(line, start) /= 1) then
+                cycle
+            end if
             found = .true.
             do k = 1, size(keys)
                 marker = trim(keys(k)) // " "
@@ -258,27 +267,98 @@ contains
     end subroutine read_friction
 
     !> The part (model order) a run's contact holds on the ground, 0 for a run without the
-    !> contact's columns: the part whose lowest point (a disk's rim's, an ellipsoid's centre
-    !> less its semi-axis c, a sphere's radius) is nearest the first row's height_residual, the
-    !> contact point's height the contact watch writes.
-    pure integer function contact_part(run)
+    !> contact's columns. The contact's height_residual is its part's lowest point (a disk's
+    !> rim's, an ellipsoid's centre less its semi-axis c, a sphere's radius) less the plane's
+    !> height (the ground's 0, a turntable's top), so the part's lowest point less it is the
+    !> same at every row, to rounding: of the parts for which it is (all parts when none is),
+    !> the one whose difference at the first row is nearest zero; of parts equally near (two
+    !> balls on the same ground), the one whose lowest point's velocity v_G + omega x (r_C -
+    !> r_G) is nearest the contact's slip (slip_x, slip_y) over the rows. prefix: of a
+    !> dataset's several CONTACTs, the one whose columns start so ("contact2_": its
+    !> contact2_height_residual).
+    pure integer function contact_part(run, prefix)
         type(run_record_type), intent(in) :: run
-        real(wp) :: point(3), gap, nearest
-        integer :: p
+        character(len=*), intent(in), optional :: prefix
+        !> Rounding of the heights' difference [m]: the CSV's shortest round-trip numbers and
+        !> the .parts file's 17 digits give it to 1e-16 of the heights; 1e-9 m
+        real(wp), parameter :: same_height = 1.0e-9_wp
+        character(len=:), allocatable :: start
+        real(wp) :: gap(size(run%shapes)), spread(size(run%shapes)), slip(size(run%shapes))
+        real(wp) :: low, high, difference, nearest
+        logical :: steady(size(run%shapes)), tied(size(run%shapes))
+        integer :: p, j, height, slip_x, slip_y
 
         contact_part = 0
-        if (.not. has_contact_columns(run%layout) .or. run%history%count < 1) return
-        nearest = huge(1.0_wp)
+        start = ""
+        if (present(prefix)) start = trim(prefix)
+        height = run%layout%column(start // "height_residual")
+        if (run%history%count < 1 .or. height == 0 .or. size(run%shapes) == 0) return
+        if (.not. present(prefix) .and. .not. has_contact_columns(run%layout)) return
         do p = 1, size(run%shapes)
-            point = path_point(run, p, 1)
+            low = huge(1.0_wp)
+            high = -huge(1.0_wp)
+            do j = 1, run%history%count
+                difference = lowest_point(p, j) - run%history%rows(height, j)
+                if (j == 1) gap(p) = abs(difference)
+                low = min(low, difference)
+                high = max(high, difference)
+            end do
+            spread(p) = high - low
+        end do
+        steady = spread <= same_height
+        if (.not. any(steady)) steady = .true.
+        nearest = minval(gap, mask=steady)
+        tied = steady .and. gap <= nearest + same_height
+        contact_part = findloc(tied, .true., dim=1)
+        slip_x = run%layout%column(start // "slip_x")
+        slip_y = run%layout%column(start // "slip_y")
+        if (count(tied) < 2 .or. slip_x == 0 .or. slip_y == 0) return
+        slip = huge(1.0_wp)
+        do p = 1, size(run%shapes)
+            if (.not. tied(p)) cycle
+            slip(p) = 0.0_wp
+            do j = 1, run%history%count
+                slip(p) = slip(p) + norm2(point_velocity(p, j) &
+                    & - [run%history%rows(slip_x, j), run%history%rows(slip_y, j)])
+            end do
+        end do
+        contact_part = minloc(slip, dim=1)
+
+    contains
+
+        !> Part p's lowest point's height at row j [m].
+        pure real(wp) function lowest_point(p, j)
+            integer, intent(in) :: p, j
+            real(wp) :: point(3)
+
+            point = path_point(run, p, j)
             if (run%shapes(p)%kind /= shape_disk) point(3) = point(3) &
                 & - run%shapes(p)%semi_axes(3)
-            gap = abs(point(3) - run%history%rows(run%layout%column("height_residual"), 1))
-            if (gap < nearest) then
-                nearest = gap
-                contact_part = p
+            lowest_point = point(3)
+        end function lowest_point
+
+        !> The ground X and Y velocity of part p's material point at its lowest point at row j
+        !> [m/s]: v_G + omega x (r_C - r_G), omega from the row's 3-1-3 angles and rates (the
+        !> physical angular velocity, whatever basis the row's angles are in).
+        pure function point_velocity(p, j) result(velocity)
+            integer, intent(in) :: p, j
+            real(wp) :: velocity(2)
+            real(wp) :: q(12), omega(3), arm(3), centre(3), v(3)
+
+            q = run%history%rows(run%layout%part_column(p, coord_x):run%layout%part_column(p, &
+                & coord_x) + 11, j)
+            omega = q(10)*[0.0_wp, 0.0_wp, 1.0_wp] + q(11)*[cos(q(4)), sin(q(4)), 0.0_wp] &
+                & + q(12)*[sin(q(5))*sin(q(4)), -sin(q(5))*cos(q(4)), cos(q(5))]
+            centre = q(1:3)
+            if (run%shapes(p)%kind == shape_disk) then
+                arm = path_point(run, p, j) - centre
+            else
+                arm = [0.0_wp, 0.0_wp, -run%shapes(p)%semi_axes(3)]
             end if
-        end do
+            v = q(7:9) + [omega(2)*arm(3) - omega(3)*arm(2), omega(3)*arm(1) &
+                & - omega(1)*arm(3), omega(1)*arm(2) - omega(2)*arm(1)]
+            velocity = v(1:2)
+        end function point_velocity
     end function contact_part
 
     !> "1, 2, 7"

@@ -9,11 +9,12 @@
 !> (rollcon_reaction_watch), and the six of each SPRINGDAMPER and BUSHING
 !> (rollcon_element_force_watch).
 module rollcon_watch_columns
+    use rollcon_output_layout, only : output_layout_type, name_length
     implicit none
     private
 
     public :: contact_names, contact_mode_names, contact_mode_words, dissipation_names, &
-        & basis_pattern, contact_column_prefix, contact_column_patterns
+        & basis_pattern, contact_column_prefix, contact_column_patterns, contact_prefixes
     public :: request_column_patterns
     public :: motion_column_patterns
     public :: variable_column_patterns, diff_column_patterns
@@ -122,5 +123,35 @@ module rollcon_watch_columns
         & "req<n>_accx", "req<n>_accy", "req<n>_accz", "req<n>_wdtx", "req<n>_wdty", &
         & "req<n>_wdtz", "req<n>_f1", "req<n>_f2", "req<n>_f3", "req<n>_f4", "req<n>_f5", &
         & "req<n>_f6", "req<n>_f7", "req<n>_f8"]
+
+contains
+
+    !> The contacts whose columns a layout holds, each by the prefix of its columns, in column
+    !> order: "" (blank) for a model's one contact (Fn, mode, ... unprefixed), "contact<id>_"
+    !> (contact_column_prefix) for each of a dataset's several CONTACTs; none without a
+    !> contact's columns. A contact is found by its normal force's column, `Fn` after its
+    !> prefix.
+    pure function contact_prefixes(layout) result(prefixes)
+        type(output_layout_type), intent(in) :: layout
+        character(len=name_length), allocatable :: prefixes(:)
+        character(len=:), allocatable :: name, stem, id
+        integer :: j
+
+        allocate(prefixes(0))
+        if (.not. allocated(layout%extra)) return
+        ! "contact", the prefix before its "<n>"
+        stem = contact_column_prefix(:index(contact_column_prefix, "<n>") - 1)
+        do j = 1, size(layout%extra)
+            name = trim(layout%extra(j))
+            if (name == "Fn") then
+                prefixes = [character(len=name_length) :: prefixes, ""]
+            else if (len(name) > len(stem) + 3) then
+                if (index(name, stem) /= 1 .or. name(len(name) - 2:) /= "_Fn") cycle
+                id = name(len(stem) + 1:len(name) - 3)
+                if (verify(id, "0123456789") /= 0) cycle
+                prefixes = [character(len=name_length) :: prefixes, name(:len(name) - 2)]
+            end if
+        end do
+    end function contact_prefixes
 
 end module rollcon_watch_columns

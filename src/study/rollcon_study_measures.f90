@@ -8,7 +8,8 @@ module rollcon_study_measures
     use rollcon_simulation, only : run_summary_type, history_type, status_completed, &
         & status_stopped, status_failed, status_inaccurate
     use rollcon_output_layout, only : coord_theta
-    use rollcon_watch_columns, only : contact_mode_words
+    use rollcon_watch_columns, only : contact_mode_words, contact_prefixes
+    use rollcon_output_layout, only : name_length
     implicit none
     private
 
@@ -39,7 +40,12 @@ module rollcon_study_measures
     !> mode switches and the time in each mode from the run's summary (t_rolling, t_sliding, a
     !> column per mode), and its mode at the last row (mode_end, the `mode` column's number);
     !> from the summary: the time reached, the energy drift (relative), the largest UCON
-    !> residual, the integrator steps; and the case's CPU time.
+    !> residual, the integrator steps; and the case's CPU time. A model with several contacts
+    !> (a dataset's CONTACTs, their columns contact<id>_...) has its contact measures over
+    !> all of them: mu_max the largest of any, fn_min the least, t_fn_negative the first row
+    !> where any is negative, switches their sum, t_rolling ... each contact's time in the mode
+    !> averaged over the contacts (so that they add up to t_reached), mode_end the highest
+    !> mode number any is in at the last row (0 only when every contact rolls).
     character(len=*), parameter :: measure_names(13 + modes) = [character(len=13) :: &
         & "t_reached", "theta_min", "theta_max", "tilt_max", "mu_max", "fn_min", &
         & "t_fn_negative", "switches", "t_" // contact_mode_words, &
@@ -86,8 +92,11 @@ contains
         real(wp), intent(in) :: cpu_seconds
         type(case_result_type), intent(inout) :: result
         real(wp), allocatable :: theta(:), fn(:), t(:)
+        character(len=name_length), allocatable :: prefixes(:)
         type(watch_measure_type) :: taken
-        integer :: first, normal, needed, mode, k
+        real(wp) :: total, mode_end, mu_max, fn_min
+        integer :: first, normal, needed, mode, k, c
+        logical :: found, have_mode, have_force
 
         select case (summary%status)
         case (status_completed)
@@ -109,12 +118,31 @@ contains
         call put(i_residual_max, summary%residual_max)
         call put(i_steps, real(summary%steps, wp))
         call put(i_cpu, cpu_seconds)
-        ! a contact with friction's switches and time in each mode (rollcon_contact_watch)
-        taken = summary%measure("switches")
-        if (len(taken%name) > 0) call put(i_switches, taken%value)
+        ! each contact by its columns' prefix ("" for a model's one contact)
+        prefixes = contact_prefixes(history%layout)
+        if (size(prefixes) == 0) prefixes = [character(len=name_length) :: ""]
+        ! a contact with friction's switches and time in each mode (rollcon_contact_watch):
+        ! summed, and averaged, over the contacts
+        total = 0.0_wp
+        found = .false.
+        do c = 1, size(prefixes)
+            taken = summary%measure(trim(prefixes(c)) // "switches")
+            if (len(taken%name) == 0) cycle
+            found = .true.
+            total = total + taken%value
+        end do
+        if (found) call put(i_switches, total)
         do k = 1, modes
-            taken = summary%measure("time_" // trim(contact_mode_words(k - 1)))
-            if (len(taken%name) > 0) call put(i_mode_time + k - 1, taken%value)
+            total = 0.0_wp
+            found = .false.
+            do c = 1, size(prefixes)
+                taken = summary%measure(trim(prefixes(c)) // "time_" &
+                    & // trim(contact_mode_words(k - 1)))
+                if (len(taken%name) == 0) cycle
+                found = .true.
+                total = total + taken%value
+            end do
+            if (found) call put(i_mode_time + k - 1, total/real(size(prefixes), wp))
         end do
         if (history%count == 0) return
         associate (layout => history%layout, n => history%count)
@@ -122,17 +150,38 @@ contains
             call put(i_theta_min, minval(theta))
             call put(i_theta_max, maxval(theta))
             call put(i_tilt_max, maxval(abs(pi/2 - theta)))
-            ! the contact's measures, when a rim contact is watched (rollcon_contact_watch)
-            mode = layout%column("mode")
-            if (mode > 0) call put(i_mode_end, history%rows(mode, n))
-            normal = layout%column("Fn")
-            needed = layout%column("mu_needed")
-            if (normal == 0 .or. needed == 0) return
+            ! the contacts' measures, when contacts are watched (rollcon_contact_watch)
             t = history%rows(1, :n)
-            fn = history%rows(normal, :n)
-            call put(i_mu_max, maxval(history%rows(needed, :n)))
-            call put(i_fn_min, minval(fn))
-            first = findloc(fn < 0.0_wp, .true., dim=1)
+            first = 0
+            have_mode = .false.
+            have_force = .false.
+            do c = 1, size(prefixes)
+                mode = layout%column(trim(prefixes(c)) // "mode")
+                if (mode > 0) then
+                    if (have_mode) mode_end = max(mode_end, history%rows(mode, n))
+                    if (.not. have_mode) mode_end = history%rows(mode, n)
+                    have_mode = .true.
+                end if
+                normal = layout%column(trim(prefixes(c)) // "Fn")
+                needed = layout%column(trim(prefixes(c)) // "mu_needed")
+                if (normal == 0 .or. needed == 0) cycle
+                fn = history%rows(normal, :n)
+                if (have_force) then
+                    mu_max = max(mu_max, maxval(history%rows(needed, :n)))
+                    fn_min = min(fn_min, minval(fn))
+                else
+                    mu_max = maxval(history%rows(needed, :n))
+                    fn_min = minval(fn)
+                end if
+                have_force = .true.
+                k = findloc(fn < 0.0_wp, .true., dim=1)
+                if (k > 0 .and. (first == 0 .or. k < first)) first = k
+            end do
+            if (have_mode) call put(i_mode_end, mode_end)
+            if (have_force) then
+                call put(i_mu_max, mu_max)
+                call put(i_fn_min, fn_min)
+            end if
             if (first > 0) call put(i_t_fn_negative, t(first))
         end associate
 

@@ -73,8 +73,13 @@ module rollcon_contact_watch
         real(wp) :: restitution = 0.0_wp, normal_impulse = 0.0_wp, tangential_impulse = 0.0_wp
         !> The rim's lowest point's normal velocity before the impact [m/s] (< 0) and after
         real(wp) :: approach = 0.0_wp, rebound = 0.0_wp
-        !> Energy (kinetic plus potential) before and after the impact [J]
+        !> Energy (kinetic plus potential) before and after the impact [J], in the ground's
+        !> frame
         real(wp) :: energy_before = 0.0_wp, energy_after = 0.0_wp
+        !> On a turntable, the work of the impulse P at the table's material velocity V there,
+        !> V . P [J] (0 on the ground): the table's drive's share of the ground-frame change,
+        !> so that the change in the table's frame is energy_after - energy_before - drive
+        real(wp) :: drive = 0.0_wp
         !> The event function's value at the switch (height [m] or normal force [N])
         real(wp) :: event_value = 0.0_wp
     end type contact_switch_type
@@ -826,6 +831,7 @@ contains
         ! part's velocity there is the relative one plus the table's)
         drive = 0.0_wp
         if (self%table_rate /= 0.0_wp) drive = dot_product(table, applied)
+        detail%drive = drive
         call self%add_impact_loss(eq, max(0.0_wp, detail%energy_before - detail%energy_after &
             & + drive), drive)
         if (detail%restitution > 0.0_wp) then
@@ -920,7 +926,10 @@ contains
     end subroutine switch_to
 
     !> With friction: every switch, "t = 0.113263 s: sliding → rolling", an impact's with its
-    !> restitution, impulses and energy, and the time spent in each mode up to the last row.
+    !> restitution, impulses and energy change (kinetic plus potential) [J]; on a turntable
+    !> that change in the table's frame, where the impact's loss is (the part's velocities
+    !> relative to the table: the ground frame's change less the drive's work V . P), with
+    !> the ground frame's after it; and the time spent in each mode up to the last row.
     function summary_lines(self, eq) result(text)
         class(contact_watch_type), intent(in) :: self
         type(equations_type), intent(in) :: eq
@@ -955,9 +964,17 @@ contains
                     text = text // " (impact" // trim(merge(", captured", "          ", &
                         & d%captured)) // ": e " // to_text(d%restitution) &
                         & // ", normal impulse " // to_text(d%normal_impulse) &
-                        & // " N s, tangential " // to_text(d%tangential_impulse) &
-                        & // " N s, energy " // to_text(d%energy_after - d%energy_before) &
-                        & // " J)"
+                        & // " N s, tangential " // to_text(d%tangential_impulse) // " N s, "
+                    if (self%table_rate /= 0.0_wp) then
+                        ! the loss is the table frame's: the ground frame's change holds
+                        ! the table's drive's work V . P as well
+                        text = text // "energy in the table's frame " // to_text(d%energy_after &
+                            & - d%energy_before - d%drive) // " J (in the ground's " &
+                            & // to_text(d%energy_after - d%energy_before) // " J))"
+                    else
+                        text = text // "energy " // to_text(d%energy_after - d%energy_before) &
+                            & // " J)"
+                    end if
                 end if
             end associate
             text = text // new_line("a")

@@ -52,6 +52,9 @@ module rollcon_dissipation_watch
         & settle_residual_max = 0.05_wp
     !> The kinds of rolling resistance's switches (dissipation_watch_type%switch_kinds)
     integer, parameter, public :: switch_sign = 1, switch_hold = 2, switch_release = 3
+    !> The law's switches the summary lists one by one (the rest are counted): a coin whose
+    !> phidot changes sign again and again has hundreds
+    integer, parameter :: listed_switches = 50
 
     !> A fit of Omega ~ (t0 - t)^(-n)
     type :: singularity_fit_type
@@ -70,6 +73,9 @@ module rollcon_dissipation_watch
     type, extends(watch_type) :: dissipation_watch_type
         !> The part whose rim dissipates (model order)
         integer :: part = 1
+        !> Of a dataset's several CONTACTs, the rim's ("CONTACT/7 (line 13)"), which starts
+        !> the summary's lines
+        character(len=:), allocatable :: label
         !> The rows so far: time [s] and Omega = |psidot| [rad/s] (grown by doubling)
         real(wp), allocatable :: times(:), rates(:)
         integer :: rows = 0
@@ -260,15 +266,25 @@ contains
     !> next root. Otherwise (phiddot_0 = 0 too) the resistance holds the rim's run still:
     !> held (the equations' held_coupling) while the contact rolls; while it slides that is
     !> not modelled, and held becomes a stop with its message (in flight the law is idle).
+    !> A switch is noted (note_switch) where the law changes: a sign is taken where there was
+    !> none, or held, or another; a root that leaves the sign in effect as it was (an
+    !> integrator reporting again the root it restarted from) is none.
     subroutine decide_rolling_sign(self, eq, time, q, u, error)
         class(dissipation_watch_type), intent(inout) :: self
         type(equations_type), intent(inout) :: eq
         real(wp), intent(in) :: time, q(:), u(:)
         type(error_type), allocatable, intent(out) :: error
-        real(wp) :: free, resisted, s
+        real(wp) :: free, resisted, s, previous
+        logical :: kept
         integer :: i
 
         i = 6*self%part
+        ! the sign in effect, where a root leaves it as it was (an integrator reporting again
+        ! the root of phidot = 0 it restarted from: IDA after a release, where phidot leaves
+        ! zero in the released direction) no new sign is taken
+        previous = eq%dissipation%rolling_sign
+        kept = eq%dissipation%sign_given .and. .not. eq%dissipation%held &
+            & .and. previous /= 0.0_wp
         eq%dissipation%sign_given = .true.
         eq%dissipation%held = .false.
         eq%dissipation%rolling_sign = 0.0_wp
@@ -284,14 +300,16 @@ contains
             if (allocated(error)) return
             resisted = self%a(i)
             if (s*resisted > 0.0_wp) then
-                call self%note_switch(time, u, switch_sign, 0.0_wp)
+                if (.not. (kept .and. s == previous)) call self%note_switch(time, u, &
+                    & switch_sign, 0.0_wp)
                 return
             end if
         end if
         if (eq%contact%flying) then
             ! in flight F_n = 0: the law does not act, nothing holds phidot
             eq%dissipation%rolling_sign = s
-            call self%note_switch(time, u, switch_sign, 0.0_wp)
+            if (.not. (kept .and. s == previous)) call self%note_switch(time, u, switch_sign, &
+                & 0.0_wp)
             return
         end if
         eq%dissipation%rolling_sign = 0.0_wp
@@ -359,26 +377,47 @@ contains
         self%rates(self%rows) = abs(u(6*(self%part - 1) + 4))
     end subroutine fill_columns
 
-    !> The energy each law dissipated, and the fit of the singularity.
+    !> The energy each law dissipated; the law's switches counted by kind, then each at its
+    !> time, once (the first listed_switches of them); and the fit of the singularity.
     function summary_lines(self, eq) result(text)
         class(dissipation_watch_type), intent(in) :: self
         type(equations_type), intent(in) :: eq
         character(len=:), allocatable :: text
         type(singularity_fit_type) :: fit
+        integer :: k
 
-        text = "dissipation: rolling resistance delta = " &
+        text = ""
+        if (allocated(self%label)) text = self%label // ": "
+        text = text // "dissipation: rolling resistance delta = " &
             & // to_text(eq%dissipation%rolling_resistance) // " m dissipated " &
             & // to_text(self%rolling_work) // " J, the air layer (coefficient pi/4 mu R^3 = " &
             & // to_text(eq%dissipation%air) // " N m s) " // to_text(self%air_work) // " J" &
             & // new_line("a")
         if (allocated(self%switch_kinds)) then
-            if (size(self%switch_kinds) > 0) text = text // "rolling resistance's law: " &
-                & // "its sign taken at phidot = 0 " &
-                & // to_text(count(self%switch_kinds == switch_sign)) // " times, held " &
-                & // to_text(count(self%switch_kinds == switch_hold)) &
-                & // " times (phidot = 0 under the moment it needs), released " &
-                & // to_text(count(self%switch_kinds == switch_release)) // " times" &
-                & // new_line("a")
+            if (size(self%switch_kinds) > 0) then
+                if (allocated(self%label)) text = text // self%label // ": "
+                text = text // "rolling resistance's law: its sign taken at phidot = 0 " &
+                    & // times(count(self%switch_kinds == switch_sign)) // ", held " &
+                    & // times(count(self%switch_kinds == switch_hold)) // " (phidot = 0 " &
+                    & // "under the moment it needs), released " &
+                    & // times(count(self%switch_kinds == switch_release)) // new_line("a")
+                ! each switch once, as the contact's summary lists its switches
+                do k = 1, min(size(self%switch_kinds), listed_switches)
+                    text = text // "  t = " // to_text(self%switch_times(k)) // " s: "
+                    select case (self%switch_kinds(k))
+                    case (switch_hold)
+                        text = text // "held at phidot = 0"
+                    case (switch_release)
+                        text = text // "released, phidot leaving zero"
+                    case default
+                        text = text // "its sign taken at phidot = 0"
+                    end select
+                    text = text // new_line("a")
+                end do
+                if (size(self%switch_kinds) > listed_switches) text = text // "  … and " &
+                    & // to_text(size(self%switch_kinds) - listed_switches) // " more" &
+                    & // new_line("a")
+            end if
         end if
         if (self%rows == 0) return
         fit = fit_singularity(self%times(:self%rows), self%rates(:self%rows))
@@ -390,6 +429,16 @@ contains
             & // " decades of t0 - t: t0 = " // to_text(fit%t0) // " s, n = " &
             & // to_text(fit%exponent) // " (rms residual of ln Omega " &
             & // to_text(fit%residual) // ")" // new_line("a")
+
+    contains
+
+        !> "1 time", "3 times".
+        pure function times(n) result(words)
+            integer, intent(in) :: n
+            character(len=:), allocatable :: words
+
+            words = to_text(n) // trim(merge(" time ", " times", n == 1))
+        end function times
     end function summary_lines
 
     !> Fit of Omega ~ (t0 - t)^(-n) to rows (t_i, Omega_i), t ascending [s, rad/s]: the rows

@@ -5,18 +5,21 @@
 !> takes each point's mode's colour; a run without it keeps the one line of the contact point.
 !> A sphere's CONTACT (a dataset's, its part an ellipsoid: the model figures) gets its part's
 !> path coloured the same way; a straight path's axes span at least the part's size; the
-!> friction figure draws the contact's mu_static and mu_kinetic, read from the summary.
+!> friction figure draws the contact's mu_static and mu_kinetic, read from the summary. A
+!> dataset's two CONTACTs (columns contact1_..., contact2_...) each colour their own part's path
+!> by their own mode, and the friction figure draws each one's mu_needed and coefficients.
 module test_mode_path
     use, intrinsic :: ieee_arithmetic, only : ieee_is_nan
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type
     use rollcon_text, only : to_text
-    use rollcon_output_layout, only : new_output_layout, coord_x
+    use rollcon_output_layout, only : new_output_layout, coord_x, name_length
     use rollcon_watch_columns, only : contact_names, contact_mode_names
     use rollcon_run_record, only : run_record_type, read_friction, contact_part
     use rollcon_contact_figures, only : mode_path, mode_switches, write_contact_data, &
         & contact_script, mode_colour_values
-    use rollcon_figures, only : write_model_data, model_script, plot_output
+    use rollcon_figures, only : write_model_data, model_script, plot_output, &
+        & drawn_contact_type, drawn_contacts
     use rollcon_part_shapes, only : shape_ellipsoid
     use rollcon_gif, only : animate_output
     use rollcon_gnuplot, only : gnuplot_available
@@ -52,7 +55,8 @@ contains
             & new_unittest("animation-path-by-mode", test_animation), &
             & new_unittest("sphere-contact-path-by-mode", test_sphere_path), &
             & new_unittest("straight-path-least-span", test_straight_path), &
-            & new_unittest("friction-lines-from-summary", test_friction_lines)]
+            & new_unittest("friction-lines-from-summary", test_friction_lines), &
+            & new_unittest("every-contact-path-and-friction", test_two_contacts)]
     end subroutine collect_mode_path
 
     !> Modes 0 0 1 1 1 0 2 2 0 over values 1 to 9: each mode's line holds its own rows and the
@@ -292,8 +296,8 @@ contains
             & files)
         call remove_folder(scratch)
         if (allocated(error)) return
-        call check(error, size(files) == 6, "the sphere run drew " // to_text(size(files)) &
-            & // " figures, not the model's 6")
+        call check(error, size(files) == 7, "the sphere run drew " // to_text(size(files)) &
+            & // " figures, not the model's 6 and the friction figure")
 
     contains
 
@@ -412,6 +416,201 @@ contains
         call check(error, index(text, "dashtype 2 lw 1.5") == 0, "a run without friction " &
             & // "draws friction lines")
     end subroutine test_friction_lines
+
+    !> Two balls (parts 2 and 3, r = sphere_radius, on the ground at Y = 0 and 0.5 m, sliding
+    !> along X without spin at 0.5 and 1 m/s) under CONTACT/1 and CONTACT/2, whose columns are
+    !> contact1_... and contact2_...: CONTACT/1 slides over rows 1 to 10 and rolls after,
+    !> CONTACT/2 rolls over rows 1 to 5 and slides after, its slip 1 m/s and CONTACT/1's 0.5
+    !> m/s. Each contact finds its own part, though both lie at the same height, by its slip:
+    !> the part whose lowest point moves so; the model figures' data holds each part's Y in its
+    !> own contact's mode columns (part 3's Y, 0.5, in CONTACT/2's sliding column from row 6
+    !> on, NaN before), then each contact's mu_needed; the path draws a line per mode of each
+    !> contact's part, the switches' marks one legend entry; the friction figure each
+    !> contact's mu_needed and its mu_static and mu_kinetic, read from its summary line; and
+    !> gnuplot draws the seven figures (skipped without it).
+    subroutine test_two_contacts(error)
+        type(error_type), allocatable, intent(out) :: error
+        real(wp), parameter :: speeds(2) = [0.5_wp, 1.0_wp], sides(2) = [0.0_wp, 0.5_wp], &
+            & mus(2) = [0.3_wp, 0.2_wp]
+        !> Columns of the data before the modes: t, 6 of each part, 2 drifts, 6 residuals, 6
+        !> multipliers
+        integer, parameter :: before = 1 + 12 + 2 + 6 + 6
+        type(run_record_type) :: run
+        type(drawn_contact_type), allocatable :: contacts(:)
+        character(len=name_length), allocatable :: names(:)
+        character(len=:), allocatable :: path, text, files(:)
+        real(wp), allocatable :: row(:)
+        real(wp) :: t, data(before + 8), friction(2)
+        integer :: j, k, c, unit, stat, mode(2)
+        logical :: found
+
+        allocate(names(0))
+        do c = 1, 2
+            do k = 1, size(contact_names)
+                names = [character(len=name_length) :: names, "contact" // to_text(c) // "_" &
+                    & // trim(contact_names(k))]
+            end do
+            do k = 1, size(contact_mode_names)
+                names = [character(len=name_length) :: names, "contact" // to_text(c) // "_" &
+                    & // trim(contact_mode_names(k))]
+            end do
+        end do
+        run%layout = new_output_layout([2, 3], [1, 2, 3, 4, 5, 6], names)
+        allocate(run%shapes(2))
+        do c = 1, 2
+            run%shapes(c)%id = c + 1
+            run%shapes(c)%kind = shape_ellipsoid
+            run%shapes(c)%semi_axes = sphere_radius
+        end do
+        allocate(row(size(run%layout%header())))
+        do j = 1, run_rows
+            t = 0.01_wp*real(j - 1, wp)
+            row = 0.0_wp
+            row(1) = t
+            mode = [merge(1, 0, j <= sliding_rows), merge(1, 0, j > 5)]
+            do c = 1, 2
+                associate (x => run%layout%part_column(c, coord_x), &
+                        & prefix => "contact" // to_text(c) // "_")
+                    row(x:x + 2) = [speeds(c)*t, sides(c), sphere_radius]
+                    row(x + 4) = 2.0_wp*atan(1.0_wp)
+                    row(x + 6) = speeds(c)
+                    row(run%layout%column(prefix // "Fz")) = 9.81_wp
+                    row(run%layout%column(prefix // "Fn")) = 9.81_wp
+                    row(run%layout%column(prefix // "mode")) = real(mode(c), wp)
+                    row(run%layout%column(prefix // "mu_needed")) = mus(c)*real(mode(c), wp)
+                    row(run%layout%column(prefix // "slip_x")) = speeds(c)
+                end associate
+            end do
+            row(run%layout%energy_column()) = 0.625_wp
+            call run%history%add(row)
+        end do
+        contacts = drawn_contacts(run)
+        call check(error, size(contacts) == 2, "contacts found: " // to_text(size(contacts)))
+        if (allocated(error)) return
+        call check(error, contacts(1)%id == 1 .and. contacts(2)%id == 2 .and. &
+            & contacts(1)%part == 1 .and. contacts(2)%part == 2, "CONTACT/" &
+            & // to_text(contacts(1)%id) // " holds part number " // to_text(contacts(1)%part) &
+            & // ", CONTACT/" // to_text(contacts(2)%id) // " part number " &
+            & // to_text(contacts(2)%part) // ", not 1 and 2 by their slips")
+        if (allocated(error)) return
+        call check(error, contacts(1)%first == before + 1 .and. contacts(2)%first == before + 4 &
+            & .and. contacts(1)%mu_column == before + 7 .and. contacts(2)%mu_column &
+            & == before + 8, "the contacts' data columns: " // to_text(contacts(1)%first) &
+            & // ", " // to_text(contacts(2)%first) // ", " // to_text(contacts(1)%mu_column) &
+            & // ", " // to_text(contacts(2)%mu_column))
+        if (allocated(error)) return
+        call make_folder(scratch)
+        path = scratch // "/two.dat"
+        call write_model_data(path, run, error)
+        if (allocated(error)) return
+        open(newunit=unit, file=path, status="old", action="read")
+        do j = 1, run_rows
+            read(unit, *, iostat=stat) data
+            call check(error, stat == 0, path // ": row " // to_text(j) // " does not hold " &
+                & // to_text(size(data)) // " numbers")
+            if (allocated(error)) exit
+            ! CONTACT/1's sliding column: part 2's Y (0) on its sliding rows and the row after;
+            ! CONTACT/2's: part 3's (0.5) from row 6 on; their mu_needed
+            call check(error, same(data(before + 2), 0.0_wp, j <= sliding_rows + 1) &
+                & .and. same(data(before + 5), 0.5_wp, j > 5) &
+                & .and. same(data(before + 4), 0.5_wp, j <= 6) &
+                & .and. data(before + 7) == mus(1)*merge(1.0_wp, 0.0_wp, j <= sliding_rows) &
+                & .and. data(before + 8) == mus(2)*merge(1.0_wp, 0.0_wp, j > 5), "row " &
+                & // to_text(j) // ": columns " // to_text(data(before + 2)) // ", " &
+                & // to_text(data(before + 4)) // ", " // to_text(data(before + 5)) // ", " &
+                & // to_text(data(before + 7)) // ", " // to_text(data(before + 8)))
+            if (allocated(error)) exit
+        end do
+        close(unit)
+        if (allocated(error)) then
+            call remove_folder(scratch)
+            return
+        end if
+        text = model_script("two", "out/two", "out/two.dat", run, reshape([0.3_wp, 0.3_wp, &
+            & 0.2_wp, 0.1_wp], [2, 2]))
+        call check(error, index(text, "using 2:" // to_text(before + 2) // " with lines lw 2 " &
+            & // "lc rgb '#d62728' title 'part 2 centre of mass, sliding'") > 0 .and. &
+            & index(text, "using 8:" // to_text(before + 5) // " with lines lw 2 lc rgb " &
+            & // "'#d62728' title 'part 3 centre of mass, sliding'") > 0 .and. &
+            & index(text, "using 8:" // to_text(before + 4) // " with lines lw 2 lc rgb " &
+            & // "'#1f77b4' title 'part 3 centre of mass, rolling'") > 0 .and. &
+            & index(text, "using 2:3 ") == 0 .and. index(text, "using 8:9 ") == 0 .and. &
+            & count_of(text, "title 'mode switch") == 1, &
+            & "each part's path is not drawn a line per mode of its own contact: " &
+            & // text(:index(text, "set size noratio")))
+        if (allocated(error)) return
+        call check(error, index(text, "using 1:" // to_text(before + 7) // " with lines lw 1.5 " &
+            & // "lt 1 title 'CONTACT/1 (part 2): μ needed'") > 0 .and. index(text, &
+            & "using 1:" // to_text(before + 8) // " with lines lw 1.5 lt 2 title " &
+            & // "'CONTACT/2 (part 3): μ needed'") > 0 .and. index(text, ", 0.3 with lines " &
+            & // "dashtype 2 lw 1.2 lt 1 title 'CONTACT/1 (part 2): μs = 0.3'") > 0 .and. &
+            & index(text, "CONTACT/1 (part 2): μk") == 0 .and. index(text, ", 0.1 with " &
+            & // "lines dashtype 3 lw 1.2 lt 2 title 'CONTACT/2 (part 3): μk = 0.1'") > 0, &
+            & "the friction figure does not draw each contact's: " &
+            & // text(index(text, "friction coefficient"):))
+        if (allocated(error)) return
+        ! each contact's coefficients from its own summary line
+        call write_run(scratch // "/two.csv", run, .true., error)
+        if (allocated(error)) return
+        call write_lines(scratch // "/two.summary.txt", [character(len=120) :: &
+            & "CONTACT/1 (line 38): starts sliding (mu_static 0.3, mu_kinetic 0.3, " &
+            & // "restitution 0.5), 1 switch (0 impacts)", &
+            & "  CONTACT/1 (line 38): t = 0.1 s: sliding → rolling", &
+            & "CONTACT/2 (line 40): starts rolling (mu_static 0.2, mu_kinetic 0.1), 1 switch"])
+        do c = 1, 2
+            call read_friction(scratch // "/two.csv", friction, found, c)
+            if (c == 1) call check(error, found .and. friction(1) == 0.3_wp .and. friction(2) &
+                & == 0.3_wp, "CONTACT/1's friction read as " // to_text(friction(1)) // ", " &
+                & // to_text(friction(2)))
+            if (c == 2) call check(error, found .and. friction(1) == 0.2_wp .and. friction(2) &
+                & == 0.1_wp, "CONTACT/2's friction read as " // to_text(friction(1)) // ", " &
+                & // to_text(friction(2)))
+            if (allocated(error)) exit
+        end do
+        if (.not. allocated(error)) call read_friction(scratch // "/two.csv", friction, found, 3)
+        if (.not. allocated(error)) call check(error, .not. found, "CONTACT/3's friction found")
+        if (allocated(error) .or. .not. gnuplot_available()) then
+            call remove_folder(scratch)
+            if (.not. allocated(error)) call skip_test(error, "gnuplot not found (Debian " &
+                & // "gnuplot-nox; bash .ci/setup)")
+            return
+        end if
+        call plot_output(scratch // "/two.csv", scratch, error, files, text)
+        call remove_folder(scratch)
+        if (allocated(error)) return
+        call check(error, size(files) == 7 .and. index(text, "CONTACT/2 (part 3): μk = 0.1") &
+            & > 0, "the two contacts' run drew " // to_text(size(files)) // " figures (not " &
+            & // "the model's 6 and the friction figure), or not from the summary's friction")
+
+    contains
+
+        !> Drawn there with this value, or not (NaN)
+        logical function same(value, expected, there)
+            real(wp), intent(in) :: value, expected
+            logical, intent(in) :: there
+
+            if (there) then
+                same = value == expected
+            else
+                same = ieee_is_nan(value)
+            end if
+        end function same
+
+        !> How many times word occurs in text.
+        pure integer function count_of(text, word) result(n)
+            character(len=*), intent(in) :: text, word
+            integer :: at, found
+
+            n = 0
+            at = 1
+            do
+                found = index(text(at:), word)
+                if (found == 0) return
+                n = n + 1
+                at = at + found + len(word) - 1
+            end do
+        end function count_of
+    end subroutine test_two_contacts
 
     !> The value range of "set <axis>range [low:high]" in a script (both 0 when absent).
     subroutine axis_range(text, axis, low, high)

@@ -53,6 +53,7 @@ contains
             & new_unittest("other-study-csv-refused", test_other_header), &
             & new_unittest("stability-boundary", test_boundary), &
             & new_unittest("modes-classed-from-the-run", test_modes), &
+            & new_unittest("modes-measured-over-every-contact", test_contacts_modes), &
             & new_unittest("dataset-base", test_dataset), &
             & new_unittest("user-file-cases-are-its-runs", test_user_file), &
             & new_unittest("user-file-faults-named", test_user_file_faults), &
@@ -354,6 +355,73 @@ contains
             if (allocated(error)) return
         end do
     end subroutine test_modes
+
+    !> A study of data/two_spheres_thrown.adm, its second ball's MU_DYNAMIC 0.1 and 0.2 (the
+    !> dataset's): the contact measures are over both CONTACTs. Each ball's slip stops at
+    !> t* = 2 v0 / (7 mu g) (the dataset's comments): the first's at 0.0970827 s, the
+    !> second's, at mu = 0.1, at 0.582 s, after the run's 0.4 s, and at 0.2 at 0.291248 s. So
+    !> the switches are 1 and 2 (their sum), t_sliding the mean of the balls' sliding times
+    !> ((t1* + 0.4)/2, then (t1* + t2*)/2) with t_rolling the rest of 0.4 s, mode_end 1 with
+    !> the second still sliding and 0 with both rolling at the end, mu_max the first ball's
+    !> mu 0.3 (a sliding ball's |F_t|/F_n is its mu; rolling needs none), fn_min m g.
+    subroutine test_contacts_modes(error)
+        type(error_type), allocatable, intent(out) :: error
+        !> The switch times are roots located to the event tolerance at rtol 1e-10 (the
+        !> two-spheres test measures 1e-11 s); bound 1e-9 s on their mean
+        real(wp), parameter :: time_tol = 1.0e-9_wp
+        !> mu_needed while sliding is |mu F_n| / F_n to rounding; bound 1e-12
+        real(wp), parameter :: mu_tol = 1.0e-12_wp
+        !> F_n = m g on the level table, to rounding of the multipliers (1e-14 of 9.81 N);
+        !> bound 1e-10 relative
+        real(wp), parameter :: fn_tol = 1.0e-10_wp
+        real(wp), parameter :: g = 9.81_wp, end_time = 0.4_wp
+        real(wp), parameter :: mu2(2) = [0.1_wp, 0.2_wp]
+        type(study_type) :: study
+        type(study_plan_type) :: plan
+        type(case_result_type) :: result
+        character(len=:), allocatable :: path, row
+        real(wp) :: t1, t2, sliding
+        integer :: c
+
+        call write_study("test_study_contacts", [character(len=60) :: "&study", &
+            & "    scene = 'data/two_spheres_thrown.adm' /", "&grid", &
+            & "    contact%2%mu_dynamic = '0.1 0.2 2' /"], path)
+        call read_study(path, study, error)
+        if (allocated(error)) return
+        call plan_cases(study, plan)
+        t1 = 2.0_wp*1.0_wp/(7.0_wp*0.3_wp*g)
+        do c = 1, 2
+            call run_case(study, plan, c, row, result)
+            call check(error, result%outcome == outcome_completed, "case " // to_text(c) &
+                & // ": " // row)
+            if (allocated(error)) return
+            t2 = min(2.0_wp*2.0_wp/(7.0_wp*mu2(c)*g), end_time)
+            sliding = 0.5_wp*(t1 + t2)
+            call check(error, result%values(measure_index("switches")), real(c, wp), &
+                & "case " // to_text(c) // ": switches of both contacts: " // row)
+            if (allocated(error)) return
+            call check(error, result%values(measure_index("t_sliding")), sliding, "case " &
+                & // to_text(c) // ": t_sliding, the balls' mean [s]: " // row, &
+                & abs_tol=time_tol)
+            if (allocated(error)) return
+            call check(error, result%values(measure_index("t_rolling")), end_time - sliding, &
+                & "case " // to_text(c) // ": t_rolling, the balls' mean [s]: " // row, &
+                & abs_tol=time_tol)
+            if (allocated(error)) return
+            call check(error, result%values(measure_index("t_flight")), 0.0_wp, "case " &
+                & // to_text(c) // ": t_flight [s]: " // row)
+            if (allocated(error)) return
+            call check(error, result%values(measure_index("mode_end")), real(2 - c, wp), &
+                & "case " // to_text(c) // ": mode_end, the highest of the contacts': " // row)
+            if (allocated(error)) return
+            call check(error, result%values(measure_index("mu_max")), 0.3_wp, "case " &
+                & // to_text(c) // ": mu_max, the first ball's mu: " // row, abs_tol=mu_tol)
+            if (allocated(error)) return
+            call check(error, result%values(measure_index("fn_min")), g, "case " &
+                & // to_text(c) // ": fn_min, m g [N]: " // row, rel_tol=fn_tol)
+            if (allocated(error)) return
+        end do
+    end subroutine test_contacts_modes
 
     !> A study of data/coin.adm: its case at the dataset's own gravity is the dataset's own run,
     !> so its theta_min is that run's to the last bit; at another gravity it differs.

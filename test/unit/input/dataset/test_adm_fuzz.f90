@@ -37,10 +37,12 @@ module test_adm_fuzz
     real(wp), parameter :: least_share = 0.05_wp
     !> Seed of the mutations: the same datasets on every run
     integer, parameter :: seed = 20260522
-    !> The shipped datasets
-    character(len=*), parameter :: shipped(*) = [character(len=17) :: "ball_on_turntable", &
+    !> The shipped datasets (those with a CONTACT among them: one contact, several, on a
+    !> turntable)
+    character(len=*), parameter :: shipped(*) = [character(len=25) :: "ball_on_turntable", &
         & "ball_tumbling", "chaplygin_sled", "coin", "disk_and_sphere", "disk_height", &
-        & "turntable_disk", "sliding_coin", "sphere_bounce"]
+        & "turntable_disk", "sliding_coin", "sphere_bounce", "sphere_thrown", &
+        & "two_spheres_thrown", "ball_and_coin", "ball_dropped_on_turntable"]
     !> A dataset with every statement and keyword of the subset, in millimetres
     character(len=76), parameter :: every_statement(*) = [character(len=76) :: &
         & "every statement: each keyword of the subset once", &
@@ -92,7 +94,9 @@ module test_adm_fuzz
         & "J=", "JFLOAT=", "RM=", "FX=", "TZ=", "ROTATION", "ACTIONONLY", "TIME", "PI", "DTOR", &
         & "IF(", "STEP(", "HAVSIN(", "SIN(", "LOG(", "DX(3)", "THETA(", "SYSTEM=", "CGS", &
         & "LENGTH=", "INCH", "KILOMETER", "TIME=HOUR", "ERROR=", "FORMULATION=", "CVODE", &
-        & "DYNAMIC", "END=", "STEPS=", "DTOUT=", "MAXSTEPS=", "/", "\", "!"]
+        & "DYNAMIC", "END=", "STEPS=", "DTOUT=", "MAXSTEPS=", "CONTACT", "GRAPHICS", &
+        & "IGEOM=", "JGEOM=", "ELLIPSOID", "CYLINDER", "PLANE", "MU_STATIC=", "MU_DYNAMIC=", &
+        & "RESTITUTION=", "ROLLING_RES=", "AIR_VISC=", "REVOLUTE", "MOTION", "/", "\", "!"]
 
 contains
 
@@ -313,8 +317,10 @@ contains
 
     !> A clean read: one ground part; every other part with a mass and principal moments > 0
     !> that meet the triangle inequality; every value finite; every marker on a part; UCONs
-    !> with 1 to 30 finite constants; the run within the ranges of &run; every expression a
-    !> program of finite constants that leaves one value.
+    !> with 1 to 30 finite constants; every CONTACT's coefficients within their documented
+    !> ranges (MU_STATIC in (0, 100], MU_DYNAMIC in (0, MU_STATIC], the restitution in [0, 1],
+    !> the dissipation's >= 0 and finite) and its GRAPHICS' sizes finite; the run within the
+    !> ranges of &run; every expression a program of finite constants that leaves one value.
     subroutine check_clean(model, m, error)
         type(adm_model_type), intent(in) :: model
         integer, intent(in) :: m
@@ -344,6 +350,24 @@ contains
             ok = ok .and. size(model%ucons(i)%par) >= 1 .and. size(model%ucons(i)%par) <= 30 &
                 & .and. all(ieee_is_finite(model%ucons(i)%par))
         end do
+        if (allocated(model%contacts)) then
+            do i = 1, size(model%contacts)
+                associate (c => model%contacts(i))
+                    ok = ok .and. c%mu_static > 0.0_wp .and. c%mu_static <= 100.0_wp &
+                        & .and. c%mu_dynamic > 0.0_wp .and. c%mu_dynamic <= c%mu_static &
+                        & .and. c%restitution >= 0.0_wp .and. c%restitution <= 1.0_wp &
+                        & .and. c%rolling_resistance >= 0.0_wp .and. c%air_viscosity >= 0.0_wp &
+                        & .and. ieee_is_finite(c%rolling_resistance) &
+                        & .and. ieee_is_finite(c%air_viscosity)
+                end associate
+            end do
+        end if
+        if (allocated(model%graphics)) then
+            do i = 1, size(model%graphics)
+                ok = ok .and. all(ieee_is_finite([model%graphics(i)%radius, &
+                    & model%graphics(i)%length, model%graphics(i)%scales]))
+            end do
+        end if
         associate (r => model%run%settings)
             ok = ok .and. r%end_time >= 1.0e-9_wp .and. r%end_time <= 1.0e9_wp &
                 & .and. r%output_step >= 1.0e-9_wp .and. r%output_step <= r%end_time &
