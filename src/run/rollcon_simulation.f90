@@ -409,6 +409,9 @@ contains
                         self%dissipation_uncertainty = self%dissipation_uncertainty + estimate
                     end if
                 end if
+                ! the impacts before the first judged row took their losses out of its energy
+                ! E0 already: not work since E0 (an impact during a force pulse)
+                if (self%judged_rows == 0) self%impact_loss = problem%eq%impact_losses()
                 impacts = problem%eq%impact_losses() - self%impact_loss
                 self%impact_loss = problem%eq%impact_losses()
                 if (impacts /= 0.0_wp) then

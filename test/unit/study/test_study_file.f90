@@ -69,10 +69,16 @@ contains
         call read_study("data/no_slip_validity.nml", study, error)
         if (allocated(error)) return
         call check(error, case_count(study) == 41*29 .and. size(study%rules) == 3 &
-            & .and. study%rules(1)%class == "lifts_off" .and. study%rules(2)%measure &
+            & .and. study%rules(1)%measure == "t_flight" .and. study%rules(2)%measure &
             & == "mode_end" .and. study%rules(3)%measure == "t_sliding" .and. study%otherwise &
-            & == "keeps rolling", "no_slip_validity: 1189 cases, lift-off, sliding at the " &
+            & == "keeps rolling", "no_slip_validity: 1189 cases, a flight, sliding at the " &
             & // "end, some time sliding, else keeps rolling")
+        if (allocated(error)) return
+        ! the table's friction: one value each of mu_static and mu_kinetic, in every row
+        call check(error, size(study%parameters) == 4 .and. study%parameters(3)%key &
+            & == "mu_static" .and. study%parameters(3)%count == 1 .and. study%parameters(4)%key &
+            & == "mu_kinetic" .and. study%parameters(4)%count == 1, "no_slip_validity: " &
+            & // "impulse, speed, and one mu_static and one mu_kinetic")
     end subroutine test_shipped
 
     !> The first parameter varies slowest, both ends are included, and the values are the

@@ -21,7 +21,7 @@ module test_study_run
     use rollcon_run_job, only : run_job, job_result_type
     use rollcon_disk_reference, only : rolling_disk_ucosub
     use rollcon_simulation, only : run_summary_type, history_type, status_stopped
-    use rollcon_output_layout, only : coord_theta
+    use rollcon_output_layout, only : coord_theta, coord_zdot
     use rollcon_study_run, only : study_plan_type, study_progress_type, plan_cases, plan_study, &
         & run_case, append_row, run_study, prepare_study_routines
     use rollcon_testing, only : unittest_type, new_unittest, check
@@ -54,6 +54,7 @@ contains
             & new_unittest("stability-boundary", test_boundary), &
             & new_unittest("modes-classed-from-the-run", test_modes), &
             & new_unittest("modes-measured-over-every-contact", test_contacts_modes), &
+            & new_unittest("struck-coin-classes-by-physics", test_struck_physics), &
             & new_unittest("dataset-base", test_dataset), &
             & new_unittest("user-file-cases-are-its-runs", test_user_file), &
             & new_unittest("user-file-faults-named", test_user_file_faults), &
@@ -262,21 +263,22 @@ contains
         end do
     end subroutine test_boundary
 
-    !> data/no_slip_validity.nml, the struck coin on a table (mu_s 0.5, mu_k 0.4), at four
-    !> strikes whose runs did four things (docs/studies.md): at 1 m/s, no strike keeps rolling,
-    !> 0.1 N s slides and rolls again, 0.3 N s lifts the disk off; at 0.15 m/s, 0.05 N s
-    !> leaves it sliding at the end. Each case's measures are its own run's: the time in each
-    !> mode adds up to the time reached; the rows' mode column (every output_step) agrees with
-    !> the summary's switches (the rows see at most as many, with the same parity: a slide
-    !> between two rows is unseen) and time sliding (the rows' intervals that start sliding,
-    !> within one output step per switch and one for the run's last row); the
-    !> case that keeps rolling never needed more friction than mu_static.
+    !> data/no_slip_validity.nml, the struck coin on a table (mu_s 0.5, mu_k 0.4, restitution
+    !> 0.5), at four strikes whose runs did four things (docs/studies.md): at 1 m/s, no strike
+    !> keeps rolling, 0.1 N s slides and rolls again, 0.3 N s hops (flies, lands and goes
+    !> on); at 0.15 m/s, 0.05 N s leaves it sliding at the end. Each case's measures are its
+    !> own run's: the time in each mode adds up to the time reached; the rows' mode column
+    !> (every output_step) agrees with the summary's switches (the rows see at most as many;
+    !> without flight with the same parity: a slide between two rows is unseen, while an
+    !> impact that bounces is a switch from flight to flight) and time sliding (the rows'
+    !> intervals that start sliding, within one output step per switch and one for the run's
+    !> last row); the case that keeps rolling never needed more friction than mu_static.
     subroutine test_modes(error)
         type(error_type), allocatable, intent(out) :: error
         real(wp), parameter :: impulses(4) = [0.0_wp, 0.1_wp, 0.3_wp, 0.05_wp], &
             & speeds(4) = [1.0_wp, 1.0_wp, 1.0_wp, 0.15_wp]
         character(len=*), parameter :: expected(4) = [character(len=17) :: "keeps rolling", &
-            & "slides_then_rolls", "lifts_off", "slides_to_the_end"]
+            & "slides_then_rolls", "hops", "slides_to_the_end"]
         !> The base scene's mu_static and output step [s]
         real(wp), parameter :: mu_static = 0.5_wp, output_step = 0.002_wp
         !> The times in the modes are differences of event times up to a few seconds: they add
@@ -289,7 +291,7 @@ contains
         type(job_result_type) :: ran
         type(history_type) :: history, no_rows
         character(len=:), allocatable :: row
-        real(wp) :: switches, sliding, rolling, row_sliding
+        real(wp) :: switches, sliding, rolling, flight, row_sliding
         integer :: c, k, mode, row_switches
         integer, allocatable :: modes(:)
 
@@ -311,8 +313,10 @@ contains
             switches = result%values(measure_index("switches"))
             rolling = result%values(measure_index("t_rolling"))
             sliding = result%values(measure_index("t_sliding"))
+            flight = result%values(measure_index("t_flight"))
             call check(error, result%known(measure_index("switches")) .and. abs(rolling &
-                & + sliding - result%values(measure_index("t_reached"))) <= tol_sum, "case " &
+                & + sliding + flight - result%values(measure_index("t_reached"))) <= tol_sum, &
+                & "case " &
                 & // to_text(c) // ": the times in the modes do not add up to the time " &
                 & // "reached: " // row)
             if (allocated(error)) return
@@ -335,8 +339,9 @@ contains
                 if (modes(k) == 1) row_sliding = row_sliding + history%rows(1, k + 1) &
                     & - history%rows(1, k)
             end do
-            call check(error, row_switches <= nint(switches) .and. modulo(nint(switches) &
-                & - row_switches, 2) == 0 .and. abs(row_sliding - sliding) <= output_step &
+            call check(error, row_switches <= nint(switches) .and. (flight > 0.0_wp .or. &
+                & modulo(nint(switches) - row_switches, 2) == 0) .and. abs(row_sliding &
+                & - sliding) <= output_step &
                 & *(switches + 1.0_wp) .and. modes(history%count) &
                 & == nint(result%values(measure_index("mode_end"))), "case " // to_text(c) &
                 & // ": the rows' modes (" // to_text(row_switches) // " switches, " &
@@ -422,6 +427,146 @@ contains
             if (allocated(error)) return
         end do
     end subroutine test_contacts_modes
+
+    !> data/no_slip_validity.nml's classes against the physics of three of its cases at
+    !> 1 m/s, each asserted from runs, mu_static the study's own (its &grid value): the
+    !> no-slip model's run of the same case (data/struck_rolling.nml, the same disk, strike
+    !> and tolerances without friction's limit) says where rolling needs more friction than
+    !> mu_static, and the case's own run what the contact did.
+    !> - 0.025 N s: the no-slip run never needs more than mu_static F_n and its normal force
+    !>   stays positive, so rolling is admissible throughout and Coulomb's contact never
+    !>   leaves it: the case keeps rolling (its class the study's otherwise), no switch, and
+    !>   its motion is the no-slip run's (theta_min the same).
+    !> - 0.1 N s: the no-slip run needs more than mu_static F_n (its normal force positive),
+    !>   so the rim must slide, starting where rolling's need first passes mu_static: the
+    !>   case's first sliding row is the no-slip run's first row above mu_static (both runs are
+    !>   the same motion until then); no flight; a sliding class.
+    !> - 0.2 N s: the case's normal force reaches zero (fn_min 0) and the disk flies: every
+    !>   pair of successive flight rows has the centre's vertical speed fall by g dt (a free
+    !>   flight) or rise (an impact between them: the table only pushes), at least one a free
+    !>   flight; it comes down and ends on the table (mode_end not flight); class hops.
+    subroutine test_struck_physics(error)
+        type(error_type), allocatable, intent(out) :: error
+        real(wp), parameter :: impulses(3) = [0.025_wp, 0.1_wp, 0.2_wp], speed = 1.0_wp
+        !> The base scene's gravity [m/s^2] and output step [s]
+        real(wp), parameter :: g = 9.81_wp, output_step = 0.002_wp
+        !> theta_min of the rolling case against the no-slip run's [rad]: while the contact
+        !> rolls, the Coulomb run integrates the same equations with the same steps (its mode
+        !> events watch, and never fire), so the two agree to rounding; measured 0 (the same
+        !> bits), bound 1e-12 rad (a single slide of 2 ms changes theta by far more)
+        real(wp), parameter :: tol_theta = 1.0e-12_wp
+        !> A free flight's change of the vertical speed over a row, zdot(k+1) - zdot(k) + g dt
+        !> [m/s]: in flight zdot is linear in t, which BDF integrates exactly, so only rounding
+        !> of speeds ~1 m/s remains; measured 3.0e-15, bound 1e-12 (a bounce, whose rebound
+        !> is at least the capture's least resolved speed, changes it by far more)
+        real(wp), parameter :: tol_flight = 1.0e-12_wp
+        type(study_type) :: study
+        type(study_plan_type) :: plan
+        type(case_result_type) :: result
+        type(history_type) :: coulomb, no_slip
+        character(len=:), allocatable :: row
+        real(wp) :: mu_static, change
+        real(wp), allocatable :: modes(:), needed(:), fn(:), zdot(:), time(:)
+        integer :: c, k, first_sliding, first_over, free_flights
+
+        call read_study("data/no_slip_validity.nml", study, error)
+        if (allocated(error)) return
+        k = findloc([(study%parameters(c)%key == "mu_static", c = 1, &
+            & size(study%parameters))], .true., dim=1)
+        call check(error, k > 0, "the study gives contact%mu_static in its &grid")
+        if (allocated(error)) return
+        mu_static = study%parameters(k)%lower
+        do c = 1, size(impulses)
+            study%parameters(1)%lower = impulses(c)
+            study%parameters(1)%upper = impulses(c)
+            study%parameters(1)%count = 1
+            study%parameters(2)%lower = speed
+            study%parameters(2)%upper = speed
+            study%parameters(2)%count = 1
+            call plan_cases(study, plan)
+            call run_case(study, plan, 1, row, result)
+            call run_rows(study%scene_path, plan, coulomb, error)
+            if (allocated(error)) return
+            call run_rows("data/struck_rolling.nml", plan, no_slip, error)
+            if (allocated(error)) return
+            modes = coulomb%rows(coulomb%layout%column("mode"), :coulomb%count)
+            needed = no_slip%rows(no_slip%layout%column("mu_needed"), :no_slip%count)
+            fn = no_slip%rows(no_slip%layout%column("Fn"), :no_slip%count)
+            select case (c)
+            case (1)
+                call check(error, maxval(needed) <= mu_static .and. minval(fn) > 0.0_wp, &
+                    & "the weak strike's no-slip run needs at most mu_static " &
+                    & // to_text(mu_static) // " (" // to_text(maxval(needed)) // ") and " &
+                    & // "pushes throughout (Fn >= " // to_text(minval(fn)) // " N)")
+                if (allocated(error)) return
+                call check(error, result%class == study%otherwise .and. nint(result%values( &
+                    & measure_index("switches"))) == 0, "rolling admissible throughout, yet " &
+                    & // "the case did not keep rolling: " // row)
+                if (allocated(error)) return
+                call check(error, abs(result%values(measure_index("theta_min")) &
+                    & - minval(no_slip%rows(no_slip%layout%part_column(1, coord_theta), &
+                    & :no_slip%count))) <= tol_theta, "the rolling case's theta_min is not " &
+                    & // "the no-slip run's: " // row)
+                if (allocated(error)) return
+            case (2)
+                first_over = findloc(needed > mu_static, .true., dim=1)
+                first_sliding = findloc(nint(modes) == 1, .true., dim=1)
+                call check(error, first_over > 0 .and. minval(fn) > 0.0_wp, "the no-slip " &
+                    & // "run of " // to_text(impulses(c)) // " N s needs more than mu_static " &
+                    & // "with its normal force positive")
+                if (allocated(error)) return
+                call check(error, first_sliding == first_over .and. result%values( &
+                    & measure_index("t_sliding")) > 0.0_wp .and. result%values( &
+                    & measure_index("t_flight")) == 0.0_wp .and. index(result%class, &
+                    & "slides") == 1, "rolling needs more than mu_static from t = " &
+                    & // to_text(no_slip%rows(1, max(first_over, 1))) // " s, the case " &
+                    & // "slides from row " // to_text(first_sliding) // " (the no-slip run " &
+                    & // "passes mu_static at row " // to_text(first_over) // "): " // row)
+                if (allocated(error)) return
+            case (3)
+                call check(error, result%class == "hops" .and. result%values( &
+                    & measure_index("fn_min")) == 0.0_wp .and. result%values( &
+                    & measure_index("t_flight")) > 0.0_wp .and. nint(result%values( &
+                    & measure_index("mode_end"))) /= 2, "the strong strike's normal force " &
+                    & // "did not vanish into a flight that lands: " // row)
+                if (allocated(error)) return
+                zdot = coulomb%rows(coulomb%layout%part_column(1, coord_zdot), :coulomb%count)
+                time = coulomb%rows(1, :coulomb%count)
+                free_flights = 0
+                do k = 1, coulomb%count - 1
+                    if (nint(modes(k)) /= 2 .or. nint(modes(k + 1)) /= 2) cycle
+                    change = zdot(k + 1) - zdot(k) + g*(time(k + 1) - time(k))
+                    call check(error, change >= -tol_flight, "in flight from t = " &
+                        & // to_text(time(k)) // " s the centre fell faster than gravity " &
+                        & // "pulls it: " // to_text(change) // " m/s")
+                    if (allocated(error)) return
+                    if (abs(change) <= tol_flight) free_flights = free_flights + 1
+                end do
+                call check(error, free_flights > 0, "no free flight between two rows: " // row)
+                if (allocated(error)) return
+            end select
+        end do
+
+    contains
+
+        !> The case of the plan's first values, run alone on the scene at path, its rows.
+        subroutine run_rows(path, plan, history, error)
+            character(len=*), intent(in) :: path
+            type(study_plan_type), intent(in) :: plan
+            type(history_type), intent(out) :: history
+            type(error_type), allocatable, intent(out) :: error
+            type(job_type) :: job
+            type(job_result_type) :: ran
+
+            call load_job(path, job, error, overrides=[ &
+                & input_override_type("strike%impulse", trim(plan%texts(1, 1))), &
+                & input_override_type("initial%speed", trim(plan%texts(2, 1)))])
+            if (allocated(error)) return
+            job%output_dir = ""
+            job%quiet = .true.
+            call run_job(job, ran, error, history)
+        end subroutine run_rows
+    end subroutine test_struck_physics
 
     !> A study of data/coin.adm: its case at the dataset's own gravity is the dataset's own run,
     !> so its theta_min is that run's to the last bit; at another gravity it differs.

@@ -20,7 +20,8 @@ module test_contact_datasets
     use rollcon_scene, only : scene_type, read_scene
     use rollcon_simulation, only : run_options_type, simulate, history_type, run_summary_type, &
         & status_completed
-    use rollcon_output_layout, only : coord_x, coord_z, coord_xdot, coord_zdot
+    use rollcon_output_layout, only : coord_x, coord_z, coord_xdot, coord_ydot, &
+        & coord_zdot
     use rollcon_output_files, only : write_text_file, make_folders
     use rollcon_input_files, only : read_input_file, text_input_limit
     use rollcon_contact_watch, only : contact_watch_type, mode_rolling, mode_sliding, &
@@ -42,6 +43,7 @@ contains
         type(unittest_type), allocatable, intent(out) :: tests(:)
 
         tests = [new_unittest("sphere-thrown-rolls-at-five-sevenths", test_sphere_thrown), &
+            & new_unittest("sphere-thrown-with-side-spin-slips-straight", test_side_spin), &
             & new_unittest("sphere-bounces-to-e-squared", test_sphere_bounce), &
             & new_unittest("sphere-thrown-and-bounced-on-ida", test_spheres_on_ida), &
             & new_unittest("coin-contact-dataset-as-its-scene", test_coin_dataset), &
@@ -201,6 +203,112 @@ contains
         call check(error, count(nint(mode) == mode_sliding), int(t_star/0.001_wp) + 1, &
             & "rows sliding (t = 0 to t*)")
     end subroutine sphere_thrown
+
+    !> A ball thrown with a side spin, so that its slip is not along its centre's velocity and
+    !> the slip's direction could turn (data/sphere_thrown.adm's ball, m = 1 kg, R = 0.05 m,
+    !> I = 2 m R^2 / 5, mu = 0.3, thrown along +X at v0 = 1 m/s with omega0 = (10, 0, 20)
+    !> rad/s in ground axes: a spin about the throw's own axis and one about the vertical).
+    !> The contact point is at r = -R Z from the centre, so the slip is v_s = v + omega x r
+    !> = (v_x - R omega_y, v_y + R omega_x): v_s0 = (1, 0.5) m/s, at 26.6 degrees to v0
+    !> (omega_z slips nothing). Sliding, the friction F = -mu m g s_hat (s_hat = v_s/|v_s|)
+    !> gives m v' = F and I omega' = r x F, so (omega' x r) = ((r x F) x r)/I = R^2 F/I
+    !> (r normal to F), and v_s' = F/m + R^2 F/I = -(1 + 5/2) mu g s_hat = -(7/2) mu g s_hat:
+    !> the slip shrinks along its own direction, which stays s_hat0, and vanishes at
+    !> t* = |v_s0|/((7/2) mu g) = 0.108542 s; the centre then moves at v0 - mu g t* s_hat0
+    !> = v0 - (2/7) v_s0 = (5/7, -1/7) m/s and rolls on at it (rolling on a level plane keeps
+    !> the centre's velocity: the friction that rolling needs is zero). omega_z is kept
+    !> (the friction's moment about the centre, r x F, is horizontal).
+    subroutine test_side_spin(error)
+        type(error_type), allocatable, intent(out) :: error
+        character(len=*), parameter :: nl = new_line("a")
+        ! The bounds are the integration's global error at rtol 1e-10: unlike the planar
+        ! throw's, whose every coordinate is a polynomial in t that BDF integrates nearly
+        ! exactly, this ball's orientation turns about a tilting axis (the Euler angles are
+        ! not polynomials), so the speeds carry an error of ~1e-9 m/s; at RTOL=1e-11 every
+        ! measured error below fell 3 to 25 times (measured, so it is that error, not the law).
+        ! Switch time [s]: the slip's error over its deceleration (7/2) mu g = 10.3 m/s^2;
+        ! measured 4.7e-10 s, bound 2e-9 s (a tenfold loss fails)
+        real(wp), parameter :: time_tol = 2.0e-9_wp
+        ! Velocity after the switch [m/s]: sliding keeps the angular momentum about the
+        ! contact point, so the rolling velocity is v0 - (2/7) v_s0 whenever the switch
+        ! fires; measured 4.4e-10 (X) and 1.5e-9 (Y), bound 5e-9 (a tenfold loss fails)
+        real(wp), parameter :: speed_tol = 5.0e-9_wp
+        ! The slip's turn while sliding, |s_hat0 x v_s| / |v_s|: nothing turns it; the slip's
+        ! error across s_hat0, ~1e-9 m/s, over the least slip of a sliding row, (7/2) mu g
+        ! (t* - 0.108 s) = 5.6e-3 m/s; measured 1.4e-7 (at that row), bound 5e-7 (a slip
+        ! turning at a thousandth of its angle to v0, 5e-4 rad, fails a thousandfold)
+        real(wp), parameter :: turn_tol = 5.0e-7_wp
+        real(wp), parameter :: v0(2) = [1.0_wp, 0.0_wp], omega0(3) = [10.0_wp, 0.0_wp, &
+            & 20.0_wp], radius = 0.05_wp, mu = 0.3_wp, g = 9.81_wp
+        character(len=:), allocatable :: path
+        type(adm_model_type) :: adm
+        type(history_type) :: history
+        type(contact_watch_type) :: contact
+        real(wp) :: slip0(2), s_hat(2), t_star, v_end(2), turn
+        real(wp), allocatable :: time(:), mode(:), slip_x(:), slip_y(:)
+        integer :: k, sliding_rows
+
+        slip0 = [v0(1) - radius*omega0(2), v0(2) + radius*omega0(1)]
+        s_hat = slip0/norm2(slip0)
+        t_star = norm2(slip0)/(3.5_wp*mu*g)
+        v_end = v0 - 2.0_wp/7.0_wp*slip0
+        call make_folders(folder, error)
+        if (allocated(error)) return
+        path = folder // "/side_spin.adm"
+        ! the CM marker turned 90 degrees about x, as data/sphere_thrown.adm's: its axes are
+        ! ground (X, Z, -Y), so WX, WY, WZ about them are omega0's X, Z and -Y components
+        call write_text_file(path, "sphere thrown with a side spin" // nl &
+            & // "UNITS/SYSTEM=SI" // nl // "PART/1, GROUND" // nl // "MARKER/1, PART=1" // nl &
+            & // "PART/2, MASS=1, CM=21, IP=1.0E-3, 1.0E-3, 1.0E-3, QG=0, 0, 0.05" // nl &
+            & // ", VX=1, WX=10, WY=20, WZ=0" // nl &
+            & // "MARKER/21, PART=2, REULER=0D, 90D, 0D" // nl // "ACCGRAV/KGRAV=-9.81" // nl &
+            & // "GRAPHICS/1, PLANE, RM=1, XMIN=-1, XMAX=1, YMIN=-1, YMAX=1" // nl &
+            & // "GRAPHICS/2, ELLIPSOID, CM=21, XSCALE=0.1, YSCALE=0.1, ZSCALE=0.1" // nl &
+            & // "CONTACT/1, IGEOM=2, JGEOM=1, POISSON, RESTITUTION_COEFFICIENT=0.5" // nl &
+            & // ", COULOMB_FRICTION=ON, MU_STATIC=0.3, MU_DYNAMIC=0.3" // nl &
+            & // "SIMULATE/DYNAMIC, END=0.3, DTOUT=0.001" // nl &
+            & // "INTEGRATOR/FORMULATION=CVODE, RTOL=1.0E-10, ATOL=1.0E-12" // nl // "END" // nl, &
+            & error)
+        if (allocated(error)) return
+        call run_contact_dataset(path, adm, history, contact, error)
+        if (allocated(error)) return
+        call check(error, contact%initial_mode, mode_sliding, "the thrown ball starts sliding")
+        if (allocated(error)) return
+        call check(error, size(contact%switch_times), 1, "one switch")
+        if (allocated(error)) return
+        call check(error, contact%switch_modes(1), mode_rolling, "the switch is to rolling")
+        if (allocated(error)) return
+        call check(error, contact%switch_times(1), t_star, "t* = |v_s0|/((7/2) mu g) [s]", &
+            & abs_tol=time_tol)
+        if (allocated(error)) return
+        associate (last => history%count)
+            call check(error, history%rows(history%layout%part_column(1, coord_xdot), last), &
+                & v_end(1), "X velocity after the switch, v0 - (2/7) v_s0 [m/s]", &
+                & abs_tol=speed_tol)
+            if (allocated(error)) return
+            call check(error, history%rows(history%layout%part_column(1, coord_ydot), last), &
+                & v_end(2), "Y velocity after the switch, -(2/7) v_s0_y [m/s]", &
+                & abs_tol=speed_tol)
+            if (allocated(error)) return
+        end associate
+        time = history%column(1)
+        mode = history%column(history%layout%column("mode"))
+        slip_x = history%column(history%layout%column("slip_x"))
+        slip_y = history%column(history%layout%column("slip_y"))
+        sliding_rows = 0
+        do k = 1, history%count
+            if (nint(mode(k)) /= mode_sliding) cycle
+            sliding_rows = sliding_rows + 1
+            ! the slip's component across s_hat0, relative to its size; and along it, positive
+            turn = abs(s_hat(1)*slip_y(k) - s_hat(2)*slip_x(k))/hypot(slip_x(k), slip_y(k))
+            call check(error, s_hat(1)*slip_x(k) + s_hat(2)*slip_y(k) > 0.0_wp .and. turn &
+                & <= turn_tol, "the slip along s_hat0 = (" // to_text(s_hat(1)) // ", " &
+                & // to_text(s_hat(2)) // ") while sliding, t = " // to_text(time(k)) &
+                & // " s: (" // to_text(slip_x(k)) // ", " // to_text(slip_y(k)) // ") m/s")
+            if (allocated(error)) return
+        end do
+        call check(error, sliding_rows, int(t_star/0.001_wp) + 1, "rows sliding (t = 0 to t*)")
+    end subroutine test_side_spin
 
     !> data/sphere_bounce.adm: a ball let go at rest with its lowest point h = 0.1 m up, e =
     !> 0.8. It lands at t = sqrt(2 h / g) and leaves at e times its landing speed, so in its

@@ -37,10 +37,64 @@ contains
             & new_unittest("dropped-coin-bounces-to-e-squared", test_dropped_coin), &
             & new_unittest("dropped-coin-bounces-to-e-squared-on-ida", test_dropped_coin_ida), &
             & new_unittest("dropped-coin-judged-with-impact-losses", test_impact_judge), &
+            & new_unittest("impact-during-the-strike-not-in-the-work", test_impact_in_pulse), &
             & new_unittest("flight-is-ballistic", test_ballistic), &
             & new_unittest("spinning-coin-impacts-dissipate", test_spinning_impacts), &
             & new_unittest("lift-off-where-normal-force-vanishes", test_liftoff)]
     end subroutine collect_contact_flight
+
+    !> The energy judge of a run whose impact comes during a force pulse: the struck coin of
+    !> data/struck_slipping.nml (mu_s 0.5, mu_k 0.4, e 0.5) at 1.2 m/s struck with 0.1875 N s
+    !> slides, lifts off and lands, captured, before the 10 ms pulse ends. The energy is judged
+    !> from E0, the first row at or after the pulse's end, so that impact's loss is already out
+    !> of E0 and is not work since it: the impacts' work W counts only the impacts after the
+    !> pulse (their losses exact, rollcon_contact_impact), and the run is sound (counted, it
+    !> made the drift 5.2e-5 J against 7.8e-6 J allowed: INACCURATE, measured before the fix).
+    subroutine test_impact_in_pulse(error)
+        type(error_type), allocatable, intent(out) :: error
+        ! The impacts' work after the pulse [J]: a sum of the exact losses; bound 1e-15 J of
+        ! rounding on losses of ~1e-4 J
+        real(wp), parameter :: work_tol = 1.0e-15_wp
+        real(wp), parameter :: pulse_end = 0.51_wp
+        character(len=60), parameter :: lines(*) = [character(len=60) :: &
+            & "&disk", "radius = 0.1", "thickness = 0.003", "density = 7800.0", "/", &
+            & "&initial", "speed = 1.2", "/", &
+            & "&strike", "time = 0.5", "duration = 0.01", "impulse = 0.1875", "/", &
+            & "&contact", "mu_static = 0.5", "mu_kinetic = 0.4", "restitution = 0.5", "/", &
+            & "&run", "end_time = 1.0", "output_step = 0.002", "formulation = 'cvode'", &
+            & "rtol = 1.0e-8", "atol = 1.0e-10", "/"]
+        type(scene_type) :: scene
+        type(history_type) :: history
+        type(run_summary_type) :: summary
+        type(contact_watch_type) :: contact
+        real(wp) :: after
+        integer :: k, during
+
+        call scene_from("struck_in_pulse", lines, scene, error)
+        if (allocated(error)) return
+        call run_scene(scene, history, summary, contact, error)
+        if (allocated(error)) return
+        during = 0
+        after = 0.0_wp
+        do k = 1, size(contact%switch_times)
+            associate (d => contact%switch_details(k))
+                if (.not. d%impact) cycle
+                if (contact%switch_times(k) < pulse_end) then
+                    during = during + 1
+                else
+                    after = after + (d%energy_before - d%energy_after)
+                end if
+            end associate
+        end do
+        call check(error, during > 0, "an impact during the pulse (before t = 0.51 s)")
+        if (allocated(error)) return
+        call check(error, summary%status == status_completed .and. summary%energy_drift &
+            & <= summary%energy_bound, "judged sound: drift " // to_text(summary%energy_drift) &
+            & // ", bound " // to_text(summary%energy_bound) // ": " // summary%message)
+        if (allocated(error)) return
+        call check(error, summary%impact_work, after, "the impacts' work since E0: the " &
+            & // "losses of the impacts after the pulse [J]", abs_tol=work_tol)
+    end subroutine test_impact_in_pulse
 
     !> Read a scene from its lines (test/unit/support/scene_texts).
     subroutine scene_from(name, lines, scene, error)
