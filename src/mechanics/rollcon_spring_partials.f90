@@ -28,7 +28,7 @@ module rollcon_spring_partials
 
 contains
 
-    !> Subtract the element's partials of the generalised forces from dm_dq and dm_du, the
+    !> Subtract the element's partials of the generalised forces from dm (dm/dq, dm/du), the
     !> partials of the momentum residual M a - f (rollcon_equations' momentum_jacobian), over
     !> the rows and columns of I's and J's parts (dm: dense or on pairs of parts, which hold
     !> the element's two: rollcon_momentum_partials).

@@ -168,7 +168,7 @@ contains
     !> nothing in the coordinates'), so the statement's partials in the rates with them, less
     !> its partials in the rates without them, are that product (the jets are linear in their
     !> seeds); the load's geometry depends on q alone. The VARVAL partials set before are
-    !> cleared (the equations set them where they form dm_dq and dm_du, and clear them after).
+    !> cleared (the equations set them where they form dm/dq and dm/du, and clear them after).
     !> A force routine reading VARVAL is served by add_user_force_acceleration_partials (the
     !> VARSUB's accelerations join its declaration).
     subroutine add_variable_acceleration_partials(forces, time, q, u, ids, dv_da, dm_da)
