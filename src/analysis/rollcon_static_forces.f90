@@ -21,6 +21,7 @@ module rollcon_static_forces
     use rollcon_marker_force, only : marker_force_type, kind_spring
     use rollcon_force_partials, only : statement_value_jets, statement_load_jets
     use rollcon_spring_partials, only : add_spring_partials
+    use rollcon_momentum_partials, only : momentum_partials_type
     use rollcon_measures, only : state_jets_type, new_state_jets
     implicit none
     private
@@ -41,7 +42,7 @@ contains
         real(wp), intent(out) :: dfdq(:, :)
         type(state_jets_type) :: state
         integer, allocatable :: parts(:), q_variable(:, :), u_variable(:, :)
-        real(wp), allocatable :: residual_q(:, :), residual_u(:, :)
+        type(momentum_partials_type) :: residual
         integer :: np, n, s, c, i
 
         n = size(q)
@@ -61,13 +62,11 @@ contains
             associate (statement => model%forces(i)%statement)
                 if (statement%kind == kind_spring) then
                     ! the partials of the momentum residual M a - f: -df/dq
-                    if (.not. allocated(residual_q)) allocate(residual_q(n, n), &
-                        & residual_u(n, n))
-                    residual_q = 0.0_wp
-                    residual_u = 0.0_wp
+                    if (.not. allocated(residual%dq)) call residual%init_dense(n)
+                    call residual%clear()
                     call add_spring_partials(statement%spring, statement%i, statement%j, q, &
-                        & spread(0.0_wp, 1, n), residual_q, residual_u)
-                    dfdq = dfdq - residual_q
+                        & spread(0.0_wp, 1, n), residual)
+                    dfdq = dfdq - residual%dq
                 else
                     call statement_partials(statement, time, state, dfdq)
                 end if

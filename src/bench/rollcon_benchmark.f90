@@ -473,7 +473,7 @@ contains
         real(wp), allocatable :: y(:), ydot(:), yd(:), ypd(:), r(:), matrix(:, :), lu(:, :), b(:, :)
         character(len=:), allocatable :: report
         integer, allocatable :: pivots(:)
-        integer :: i, ierr, n
+        integer :: i, ierr, n, j
 
         routine => job%routine
         call job%source%build(routine, problem, q0, u0, report, error)
@@ -497,7 +497,10 @@ contains
         allocate(matrix(n, n))
         call problem%accelerations(0.0_wp, q0, u0, error)
         if (allocated(error)) return
-        matrix(:problem%eq%n, :problem%eq%n) = problem%eq%mass
+        matrix(:problem%eq%n, :problem%eq%n) = 0.0_wp
+        do j = 1, problem%eq%n/6
+            matrix(6*j - 5:6*j, 6*j - 5:6*j) = problem%eq%mass(:, :, j)
+        end do
         matrix(:problem%eq%n, problem%eq%n + 1:) = -transpose(problem%eq%c)
         matrix(problem%eq%n + 1:, :problem%eq%n) = problem%eq%c
         matrix(problem%eq%n + 1:, problem%eq%n + 1:) = 0.0_wp

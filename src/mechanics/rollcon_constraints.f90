@@ -27,7 +27,10 @@ module rollcon_constraints
     type :: constraint_state_type
         !> F_k
         real(wp), allocatable :: value(:)
-        !> dF_k/dq_j and dF_k/du_j
+        !> dF_k/dq_j and dF_k/du_j (nc, n). A position UCON has no rate among its variables
+        !> (rollcon_model's holonomic), so its row of grad_u is zero; where every UCON is one,
+        !> grad_u is all zeros and is held as (nc, 0): no row of it is read (memory,
+        !> docs/design.md §4 "Memory")
         real(wp), allocatable :: grad_q(:, :), grad_u(:, :)
         !> dF_k/dt and d2F_k/dt2
         real(wp), allocatable :: dt(:), dtt(:)
@@ -64,13 +67,23 @@ contains
         type(model_type), intent(in) :: model
 
         integer :: k, i, a, j, count
+        logical :: rates
 
         associate (n => model%n, nc => model%nc)
             if (allocated(self%value)) deallocate(self%value, self%dt, self%dtt, self%grad_q, &
                 & self%grad_u, self%dt_grad_q, self%dt_grad_u, self%hqq, self%hqu, self%local, &
                 & self%local_count, self%slot, self%plain_hessian)
             allocate(self%value(nc), self%dt(nc), self%dtt(nc), source=0.0_wp)
-            allocate(self%grad_q(nc, n), self%grad_u(nc, n), source=0.0_wp)
+            allocate(self%grad_q(nc, n), source=0.0_wp)
+            rates = .false.
+            do k = 1, nc
+                if (.not. model%ucons(k)%holonomic) rates = .true.
+            end do
+            if (rates) then
+                allocate(self%grad_u(nc, n), source=0.0_wp)
+            else
+                allocate(self%grad_u(nc, 0))
+            end if
             allocate(self%local(max_ucon_vars, nc), self%slot(max_ucon_vars, nc), &
                 & self%local_count(nc), source=0)
             allocate(self%plain_hessian(nc), source=.false.)
@@ -167,8 +180,12 @@ contains
                             if (allocated(error)) return
                         end if
                     end if
-                    if (first) call scatter_row(ucon, array, self%grad_q(k, :), &
-                        & self%grad_u(k, :))
+                    if (first .and. size(self%grad_u, 2) == 0) then
+                        ! every UCON a position UCON: no rates, no dF/du
+                        call scatter_row(ucon, array, self%grad_q(k, :))
+                    else if (first) then
+                        call scatter_row(ucon, array, self%grad_q(k, :), self%grad_u(k, :))
+                    end if
                     if (second) call place_hessian(ucon, self%slot(:, k), self%local_count(k), &
                         & self%plain_hessian(k), xmatrx, self%hqq(:, :, k), self%hqu(:, :, k))
                 end if
@@ -280,13 +297,15 @@ contains
     pure subroutine scatter_row(ucon, array, row_q, row_u)
         type(ucon_statement_type), intent(in) :: ucon
         real(wp), intent(in) :: array(:)
-        !> d/dq and d/du rows of the system
-        real(wp), intent(inout) :: row_q(:), row_u(:)
+        !> d/dq and d/du rows of the system (d/du absent where no UCON has a rate: a position
+        !> UCON's variables are coordinates only)
+        real(wp), intent(inout) :: row_q(:)
+        real(wp), intent(inout), optional :: row_u(:)
         integer :: i
 
         do i = 1, ucon%nvars
             row_q(ucon%coordinate(i)) = 0.0_wp
-            row_u(ucon%coordinate(i)) = 0.0_wp
+            if (present(row_u)) row_u(ucon%coordinate(i)) = 0.0_wp
         end do
         do i = 1, ucon%nvars
             if (ucon%velocity(i)) then

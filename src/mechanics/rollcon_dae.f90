@@ -94,7 +94,7 @@ contains
             do i0 = 0, n - 6, 6
                 do j = i0 + 1, i0 + 6
                     r(n + i0 + 1:n + i0 + 6) = r(n + i0 + 1:n + i0 + 6) &
-                        & + eq%mass(i0 + 1:i0 + 6, j)*up(j)
+                        & + eq%mass(:, j - i0, i0/6 + 1)*up(j)
                 end do
             end do
             do k = 1, nc
@@ -294,7 +294,7 @@ contains
         outside = 0
         associate (q => y(:n), u => y(n + 1:2*n), lambda => y(2*n + 1:2*n + nc), &
             & mu => y(2*n + nc + 1:), up => yp(n + 1:2*n), cs => eq%constraints, &
-            & bl => eq%blocks, dm_dq => eq%work%dm_dq)
+            & bl => eq%blocks, dm => eq%work%dm)
             if (mode_forces(eq)) then
                 ! Painlevé's test of the forces proportional to the normal force, as the ODE
                 ! form makes it at every evaluation (rollcon_equations: 1 + mu c_nz lambda1_n),
@@ -365,12 +365,13 @@ contains
             do i0 = 0, n - 6, 6
                 do j = i0 + 1, i0 + 6
                     do i = i0 + 1, i0 + 6
-                        call put(n + i, j, dm_dq(i, j))
+                        call put(n + i, j, dm%q_at(i, j))
                         if (loop) then
-                            call put(n + i, n + j, eq%work%dm_du(i, j) + cj*(eq%mass(i, j) &
-                                & + eq%work%dm_da(i, j)))
+                            call put(n + i, n + j, dm%u_at(i, j) + cj*(eq%mass(i - i0, &
+                                & j - i0, i0/6 + 1) + eq%work%dm_da(i, j)))
                         else
-                            call put(n + i, n + j, eq%work%dm_du(i, j) + cj*eq%mass(i, j))
+                            call put(n + i, n + j, dm%u_at(i, j) + cj*eq%mass(i - i0, j - i0, &
+                                & i0/6 + 1))
                         end if
                     end do
                 end do
@@ -393,7 +394,7 @@ contains
                 associate (at => bl%ucon_coordinates(bl%ucon_start(k):bl%ucon_start(k + 1) - 1))
                     do jj = 1, size(at)
                         do ii = 1, size(at)
-                            call put(n + at(ii), at(jj), dm_dq(at(ii), at(jj)))
+                            call put(n + at(ii), at(jj), dm%q_at(at(ii), at(jj)))
                         end do
                     end do
                 end associate
@@ -604,8 +605,8 @@ contains
             c0 = 6*(b - 1)
             do jb = 1, 6
                 do ia = 1, 6
-                    call put(n + r0 + ia, c0 + jb, eq%work%dm_dq(r0 + ia, c0 + jb))
-                    call put(n + r0 + ia, n + c0 + jb, eq%work%dm_du(r0 + ia, c0 + jb))
+                    call put(n + r0 + ia, c0 + jb, eq%work%dm%q_at(r0 + ia, c0 + jb))
+                    call put(n + r0 + ia, n + c0 + jb, eq%work%dm%u_at(r0 + ia, c0 + jb))
                 end do
             end do
         end subroutine copy_coupling

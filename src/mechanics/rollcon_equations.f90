@@ -56,8 +56,10 @@ module rollcon_equations
         !> Sizes: coordinates, constraints, holonomic constraints
         integer :: n = 0, nc = 0, nh = 0
         !> The system as last assembled: mass matrix, applied and inertial forces f, constraint
-        !> matrix C, gamma
-        real(wp), allocatable :: mass(:, :), force(:), c(:, :), gamma(:)
+        !> matrix C, gamma. M is block diagonal, one 6 x 6 block per part (the part's
+        !> coordinates): mass(:, :, p) is part p's block, the others are zeros, not stored
+        !> (memory linear in the model, docs/design.md §4 "Memory")
+        real(wp), allocatable :: mass(:, :, :), force(:), c(:, :), gamma(:)
         !> The constraints' blocks (UCONs sharing parts), and the saddle-point system's factors,
         !> as the last accelerations call left them
         type(constraint_blocks_type) :: blocks
@@ -139,21 +141,59 @@ contains
         call self%saddle%init(self%n, self%nc, self%blocks)
         associate (n => self%n, nc => self%nc)
             if (allocated(self%mass)) deallocate(self%mass, self%force, self%c, self%gamma)
-            allocate(self%mass(n, n), self%force(n), self%c(nc, n), self%gamma(nc), source=0.0_wp)
+            allocate(self%mass(6, 6, size(model%parts)), self%force(n), self%c(nc, n), &
+                & self%gamma(nc), source=0.0_wp)
         end associate
-        call self%work%init(self%n, self%nc, self%nh, size(model%parts))
-        call self%redundancy%init(self%nc, self%blocks)
-        if (allocated(self%resistance_a)) deallocate(self%resistance_a, self%resistance_lambda)
-        allocate(self%resistance_a(self%n), self%resistance_lambda(self%nc), source=0.0_wp)
         if (allocated(model%forces)) then
             self%couplings = force_couplings(model%forces)
         else
+            if (allocated(self%couplings)) deallocate(self%couplings)
             allocate(self%couplings(2, 0))
         end if
+        call self%work%init(self%n, self%nc, self%nh, size(model%parts), &
+            & joined_parts(self%couplings, self%blocks))
+        call self%redundancy%init(self%nc, self%blocks)
+        if (allocated(self%resistance_a)) deallocate(self%resistance_a, self%resistance_lambda)
+        allocate(self%resistance_a(self%n), self%resistance_lambda(self%nc), source=0.0_wp)
         ! the force measures a user's routine (a force's, a VARSUB's, a DIFSUB's) reads
         ! through SYSFNC are this model's
         call set_force_measure_model(model, refresh=.true.)
     end subroutine init
+
+    !> The pairs of parts (2 x m) where dm/dq and dm/du have entries outside the parts' own
+    !> blocks: the force elements' couplings (rollcon_force's force_couplings) and every two
+    !> parts of one UCON (its second partials in -d(C^T lambda)/dq, momentum_jacobian).
+    pure function joined_parts(couplings, blocks) result(pairs)
+        integer, intent(in) :: couplings(:, :)
+        type(constraint_blocks_type), intent(in) :: blocks
+        integer, allocatable :: pairs(:, :)
+        integer :: k, i, j, m, a, b
+
+        m = size(couplings, 2)
+        do k = 1, size(blocks%ucon_start) - 1
+            i = blocks%ucon_start(k + 1) - blocks%ucon_start(k)
+            m = m + i*i
+        end do
+        allocate(pairs(2, m))
+        m = size(couplings, 2)
+        pairs(:, :m) = couplings
+        do k = 1, size(blocks%ucon_start) - 1
+            do i = blocks%ucon_start(k), blocks%ucon_start(k + 1) - 1
+                a = (blocks%ucon_coordinates(i) - 1)/6 + 1
+                do j = blocks%ucon_start(k), blocks%ucon_start(k + 1) - 1
+                    b = (blocks%ucon_coordinates(j) - 1)/6 + 1
+                    if (a >= b) cycle
+                    ! (a repeat of the pair before it is dropped here; others by init_blocks)
+                    if (m > size(couplings, 2)) then
+                        if (pairs(1, m) == a .and. pairs(2, m) == b) cycle
+                    end if
+                    m = m + 1
+                    pairs(:, m) = [a, b]
+                end do
+            end do
+        end do
+        pairs = pairs(:, :m)
+    end function joined_parts
 
     !> A user's force routine reads what the equations solve for (accelerations, or a
     !> constraint's reaction): the algebraic loop of loop_accelerations.
@@ -345,9 +385,9 @@ contains
         end do
     end function active_rows
 
-    !> Mass matrix and f = -(M a - f) at a = 0, part by part. Only the parts' diagonal blocks
-    !> are written: the others stay zero from init. A user's force routine that fails leaves
-    !> its error for take_user_force_error (rollcon_user_forces).
+    !> Mass matrix (its parts' blocks) and f = -(M a - f) at a = 0, part by part. A user's
+    !> force routine that fails leaves its error for take_user_force_error
+    !> (rollcon_user_forces).
     subroutine assemble(self, time, q, u)
         class(equations_type), intent(inout) :: self
         real(wp), intent(in) :: time
@@ -368,7 +408,7 @@ contains
                 & self%work%moments(:, p))
             call body_mass_and_force(self%model%parts(p), q(i0 + 1:i0 + 6), u(i0 + 1:i0 + 6), &
                 & applied, self%work%moments(:, p), self%model%gravity, part_mass, part_force)
-            self%mass(i0 + 1:i0 + 6, i0 + 1:i0 + 6) = part_mass
+            self%mass(:, :, p) = part_mass
             self%force(i0 + 1:i0 + 6) = part_force
         end do
         ! the air layer under a rim: a generalised force on psi (rollcon_rim_dissipation)
@@ -592,7 +632,7 @@ contains
         real(wp) :: change, moved
         logical, allocatable :: active(:)
         logical :: multipliers
-        integer :: n, nc, k, iteration
+        integer :: n, nc, k, iteration, p, i0
         character(len=:), allocatable :: names
 
         n = self%n
@@ -676,7 +716,7 @@ contains
         real(wp), intent(in) :: time, q(:), u(:), a(:), lambda(:)
         logical, intent(in) :: active(:), multipliers
         type(error_type), allocatable, intent(out) :: error
-        integer :: n, k
+        integer :: n, k, p, i0
 
         n = self%n
         call self%acceleration_partials(time, q, u, a, error)
@@ -688,7 +728,13 @@ contains
         end if
         associate (m => self%work%loop_matrix)
             m = 0.0_wp
-            m(:n, :n) = self%mass + self%work%dm_da
+            ! (0 + dm/da off the parts' blocks: M's zeros added, as a dense M adds them)
+            m(:n, :n) = 0.0_wp + self%work%dm_da
+            do p = 1, size(self%model%parts)
+                i0 = 6*(p - 1)
+                m(i0 + 1:i0 + 6, i0 + 1:i0 + 6) = self%mass(:, :, p) &
+                    & + self%work%dm_da(i0 + 1:i0 + 6, i0 + 1:i0 + 6)
+            end do
             do k = 1, self%nc
                 if (active(k)) then
                     m(:n, n + k) = -self%c(k, :) + self%work%dm_dlambda(:, k)
@@ -1042,7 +1088,8 @@ contains
         contact%power = abs(dot_product(contact%friction, contact%slip))
     end subroutine apply_friction
 
-    !> d(M a - f - C^T lambda)/dq and /du at given a, lambda and time [s] (into dm_dq, dm_du).
+    !> d(M a - f - C^T lambda)/dq and /du at given a, lambda and time [s] (into work%dm: on the
+    !> pairs of parts the elements and UCONs join).
     !> A user force routine's partials are differences of calls (rollcon_user_force_partials):
     !> a failure of one is left for take_user_force_error.
     subroutine momentum_jacobian(self, q, u, a, lambda, time)
@@ -1050,28 +1097,41 @@ contains
         real(wp), intent(in) :: q(:), u(:), a(:)
         real(wp), intent(in) :: lambda(:)
         real(wp), intent(in) :: time
+        integer :: attempt
+
+        ! a user's routine that declared a part at its first call (after init gathered the
+        ! pairs) writes a pair not held: held from then on, and written again
+        do attempt = 1, 2
+            call fill_momentum_jacobian(self, q, u, a, lambda, time)
+            if (self%work%dm%missed_count == 0) exit
+            call self%work%dm%grow()
+        end do
+    end subroutine momentum_jacobian
+
+    !> momentum_jacobian's partials into work%dm as it holds its pairs.
+    subroutine fill_momentum_jacobian(self, q, u, a, lambda, time)
+        class(equations_type), intent(inout) :: self
+        real(wp), intent(in) :: q(:), u(:), a(:)
+        real(wp), intent(in) :: lambda(:)
+        real(wp), intent(in) :: time
         real(wp) :: part_dq(6, 6), part_du(6, 6)
         integer :: p, i0, k, j, i, jj, ii
 
-        self%work%dm_dq = 0.0_wp
-        self%work%dm_du = 0.0_wp
+        call self%work%dm%clear()
         do p = 1, size(self%model%parts)
             i0 = 6*(p - 1)
             call body_residual_jacobian(self%model%parts(p), q(i0 + 1:i0 + 6), u(i0 + 1:i0 + 6), &
                 & a(i0 + 1:i0 + 6), self%work%moments(:, p), part_dq, part_du)
-            self%work%dm_dq(i0 + 1:i0 + 6, i0 + 1:i0 + 6) = part_dq
-            self%work%dm_du(i0 + 1:i0 + 6, i0 + 1:i0 + 6) = part_du
+            call self%work%dm%set_part(p, part_dq, part_du)
         end do
         ! the SPRINGDAMPERs' and BUSHINGs' partials, over both of each one's parts
-        call add_force_partials(self%model%forces, q, u, self%work%dm_dq, self%work%dm_du)
+        call add_force_partials(self%model%forces, q, u, self%work%dm)
         ! the force statements' expressions' (exact; a VARSUB's VARVAL with its differenced
         ! partials) and user routines' (differenced)
         call difference_user_variables(time, q, u)
-        call add_expression_partials(self%model%forces, time, q, u, self%work%dm_dq, &
-            & self%work%dm_du)
+        call add_expression_partials(self%model%forces, time, q, u, self%work%dm)
         call clear_user_variable_partials()
-        call add_user_force_partials(self%model%forces, time, q, u, self%work%dm_dq, &
-            & self%work%dm_du)
+        call add_user_force_partials(self%model%forces, time, q, u, self%work%dm)
         ! -d(C^T lambda)/dq: second partials are why ADAMS asks a UCOSUB for XMATRX
         ! (docs/design.md §4); each UCON's over its own coordinates (the rest are zeros)
         do k = 1, self%nc
@@ -1082,8 +1142,8 @@ contains
                         j = at(jj)
                         do ii = 1, size(at)
                             i = at(ii)
-                            self%work%dm_dq(i, j) = self%work%dm_dq(i, j) &
-                                & - lambda(k)*self%constraints%hqq(ii, jj, k)
+                            call self%work%dm%subtract_q_entry(i, j, &
+                                & lambda(k)*self%constraints%hqq(ii, jj, k))
                         end do
                     end do
                 else
@@ -1091,14 +1151,14 @@ contains
                         j = at(jj)
                         do ii = 1, size(at)
                             i = at(ii)
-                            self%work%dm_dq(i, j) = self%work%dm_dq(i, j) &
-                                & - lambda(k)*self%constraints%hqu(jj, ii, k)
+                            call self%work%dm%subtract_q_entry(i, j, &
+                                & lambda(k)*self%constraints%hqu(jj, ii, k))
                         end do
                     end do
                 end if
             end associate
         end do
-    end subroutine momentum_jacobian
+    end subroutine fill_momentum_jacobian
 
     !> The arrays of the ODE form's Jacobian and projection (ode_jacobian, project), sized once
     !> by a formulation that forms them at every step (CVODE's); IDA's leaves them unallocated
@@ -1130,8 +1190,7 @@ contains
             call self%momentum_jacobian(q, u, w%a, w%lambda, time)
             call take_user_force_error(error)
             if (allocated(error)) return
-            w%rhs_top(:, :n) = -w%dm_dq
-            w%rhs_top(:, n + 1:) = -w%dm_du
+            call w%dm%scatter_negated(w%rhs_top)
             call jacobian_constraint_rows(self, u, w%a, baumgarte)
             if (self%reads_loop()) then
                 ! the algebraic loop's saddle-point matrix, with the forces' partials in a

@@ -11,6 +11,7 @@ module rollcon_force
         & markers_coincide, kind_spring
     use rollcon_text, only : to_text
     use rollcon_spring_partials, only : add_spring_partials
+    use rollcon_momentum_partials, only : momentum_partials_type
     use rollcon_force_partials, only : add_expression_force_partials, statement_couplings
     use, intrinsic :: ieee_arithmetic, only : ieee_is_finite
     implicit none
@@ -117,43 +118,43 @@ contains
     end subroutine force_and_moment
 
     !> Subtract the partials of the SPRINGDAMPERs' and BUSHINGs' generalised forces from
-    !> dm_dq and dm_du, the partials of the momentum residual M a - f (rollcon_spring_partials:
-    !> exact, over both parts of each). A force statement's expressions are
-    !> add_expression_partials', a user routine's rollcon_user_force_partials'; the
-    !> fixed-direction forces' are not in the Newton matrices (their moment held at body
-    !> components, rollcon_body's body_residual_jacobian).
-    pure subroutine add_force_partials(forces, q, u, dm_dq, dm_du)
+    !> dm (dm/dq, dm/du: rollcon_momentum_partials), the partials of the momentum residual
+    !> M a - f (rollcon_spring_partials: exact, over both parts of each). A force statement's
+    !> expressions are add_expression_partials', a user routine's
+    !> rollcon_user_force_partials'; the fixed-direction forces' are not in the Newton
+    !> matrices (their moment held at body components, rollcon_body's body_residual_jacobian).
+    pure subroutine add_force_partials(forces, q, u, dm)
         type(applied_force_type), intent(in) :: forces(:)
         !> Coordinates and rates of all parts [m, rad, m/s, rad/s]
         real(wp), intent(in) :: q(:), u(:)
-        !> n x n
-        real(wp), intent(inout) :: dm_dq(:, :), dm_du(:, :)
+        !> n x n, dense or on pairs of parts holding force_couplings'
+        type(momentum_partials_type), intent(inout) :: dm
         integer :: i
 
         do i = 1, size(forces)
             if (forces(i)%profile /= profile_statement) cycle
             associate (s => forces(i)%statement)
                 if (s%kind == kind_spring) call add_spring_partials(s%spring, s%i, s%j, q, u, &
-                    & dm_dq, dm_du)
+                    & dm)
             end associate
         end do
     end subroutine add_force_partials
 
     !> Subtract the partials of the force statements written as expressions (SFORCE, VFORCE,
-    !> GFORCE, VTORQUE with FUNCTION=) from dm_dq and dm_du at time [s] (rollcon_force_partials:
+    !> GFORCE, VTORQUE with FUNCTION=) from dm (dm/dq, dm/du) at time [s] (rollcon_force_partials:
     !> exact, forward mode over the expressions, over every part each one touches).
-    pure subroutine add_expression_partials(forces, time, q, u, dm_dq, dm_du)
+    pure subroutine add_expression_partials(forces, time, q, u, dm)
         type(applied_force_type), intent(in) :: forces(:)
         real(wp), intent(in) :: time
         !> Coordinates and rates of all parts [m, rad, m/s, rad/s]
         real(wp), intent(in) :: q(:), u(:)
-        !> n x n
-        real(wp), intent(inout) :: dm_dq(:, :), dm_du(:, :)
+        !> n x n, dense or on pairs of parts holding force_couplings'
+        type(momentum_partials_type), intent(inout) :: dm
         integer :: i
 
         do i = 1, size(forces)
             if (forces(i)%profile /= profile_statement) cycle
-            call add_expression_force_partials(forces(i)%statement, time, q, u, dm_dq, dm_du)
+            call add_expression_force_partials(forces(i)%statement, time, q, u, dm)
         end do
     end subroutine add_expression_partials
 

@@ -17,6 +17,7 @@
 !> every coordinate and rate y of the parts touched.
 module rollcon_force_partials
     use rollcon_kinds, only : wp
+    use rollcon_momentum_partials, only : momentum_partials_type
     use rollcon_rotation, only : rate_matrix
     use rollcon_marker, only : marker_type
     use rollcon_jet, only : jet_type, jet_constant, jet_dot, jet_cross, jet_norm, &
@@ -195,18 +196,19 @@ contains
         torques(:, 2) = jet_constant(0.0_wp) - torque
     end subroutine statement_load_jets
 
-    !> Subtract an expression force statement's partials of the generalised forces from dm_dq
-    !> and dm_du, the partials of the momentum residual M a - f (n x n, n = 6 parts), over the
-    !> rows of the parts it loads and the columns of the parts it touches (statement_parts).
+    !> Subtract an expression force statement's partials of the generalised forces from dm
+    !> (dm/dq, dm/du), the partials of the momentum residual M a - f (n x n, n = 6 parts: dense
+    !> or on pairs of parts, rollcon_momentum_partials), over the rows of the parts it loads
+    !> and the columns of the parts it touches (statement_parts).
     !> A SPRINGDAMPER or BUSHING (rollcon_spring_partials) and a user's routine
     !> (rollcon_user_force_partials) are not served here: nothing is added.
-    pure subroutine add_expression_force_partials(statement, time, q, u, dm_dq, dm_du)
+    pure subroutine add_expression_force_partials(statement, time, q, u, dm)
         type(marker_force_type), intent(in) :: statement
         !> Time [s]
         real(wp), intent(in) :: time
         !> Coordinates and rates of all parts [m, rad, m/s, rad/s]
         real(wp), intent(in) :: q(:), u(:)
-        real(wp), intent(inout) :: dm_dq(:, :), dm_du(:, :)
+        type(momentum_partials_type), intent(inout) :: dm
         type(state_jets_type) :: state
         integer, allocatable :: parts(:)
 
@@ -215,24 +217,24 @@ contains
         if (size(parts) == 0) return
         state = statement_state_jets(parts, q, u, .true.)
         call add_statement_load_partials(statement, statement_value_jets(statement, time, &
-            & state), state, q, dm_dq, dm_du)
+            & state), state, q, dm)
     end subroutine add_expression_force_partials
 
     !> Subtract the partials of the loads of a statement whose values are the jets `values`
-    !> (over the variables of state, statement_state_jets of statement_parts) from dm_dq and
-    !> dm_du (module doc: s dF/dy and B^T d(R^T M)/dy, rows of each loaded part, columns of
+    !> (over the variables of state, statement_state_jets of statement_parts) from dm (dm/dq,
+    !> dm/du: module doc: s dF/dy and B^T d(R^T M)/dy, rows of each loaded part, columns of
     !> every part held).
-    pure subroutine add_statement_load_partials(statement, values, state, q, dm_dq, dm_du)
+    pure subroutine add_statement_load_partials(statement, values, state, q, dm)
         type(marker_force_type), intent(in) :: statement
         type(jet_type), intent(in) :: values(6)
         type(state_jets_type), intent(in) :: state
         !> Coordinates of all parts [m, rad]
         real(wp), intent(in) :: q(:)
-        real(wp), intent(inout) :: dm_dq(:, :), dm_du(:, :)
+        type(momentum_partials_type), intent(inout) :: dm
         type(jet_type) :: points(3, 2), forces(3, 2), torques(3, 2), centre(3), rotation(3, 3), &
             & moment(3), local(3), dummy(3)
         type(marker_type) :: frame
-        integer :: loaded(2), l, p, np, c, k, a, row0, column0, variable
+        integer :: loaded(2), l, p, np, c, k, a, variable
         real(wp) :: b(3, 3), d_force(3), d_body(3)
 
         call statement_load_jets(statement, values, state, loaded, points, forces, torques)
@@ -248,28 +250,22 @@ contains
                 local(k) = jet_dot(rotation(:, k), moment)
             end do
             b = rate_matrix(q(6*(p - 1) + 5), q(6*(p - 1) + 6))
-            row0 = 6*(p - 1)
             do c = 1, np
-                column0 = 6*(state%parts(c) - 1)
                 do k = 1, 6
                     variable = 6*(c - 1) + k
                     do a = 1, 3
                         d_force(a) = partial(forces(a, l), variable)
                         d_body(a) = partial(local(a), variable)
                     end do
-                    dm_dq(row0 + 1:row0 + 3, column0 + k) = &
-                        & dm_dq(row0 + 1:row0 + 3, column0 + k) - d_force
-                    dm_dq(row0 + 4:row0 + 6, column0 + k) = &
-                        & dm_dq(row0 + 4:row0 + 6, column0 + k) - matmul(transpose(b), d_body)
+                    call dm%subtract_q(p, state%parts(c), k, 1, d_force)
+                    call dm%subtract_q(p, state%parts(c), k, 4, matmul(transpose(b), d_body))
                     variable = 6*np + 6*(c - 1) + k
                     do a = 1, 3
                         d_force(a) = partial(forces(a, l), variable)
                         d_body(a) = partial(local(a), variable)
                     end do
-                    dm_du(row0 + 1:row0 + 3, column0 + k) = &
-                        & dm_du(row0 + 1:row0 + 3, column0 + k) - d_force
-                    dm_du(row0 + 4:row0 + 6, column0 + k) = &
-                        & dm_du(row0 + 4:row0 + 6, column0 + k) - matmul(transpose(b), d_body)
+                    call dm%subtract_u(p, state%parts(c), k, 1, d_force)
+                    call dm%subtract_u(p, state%parts(c), k, 4, matmul(transpose(b), d_body))
                 end do
             end do
         end do

@@ -4,6 +4,7 @@
 !> every call). The equations own one; nothing outside the mechanics layer reads it.
 module rollcon_ode_workspace
     use rollcon_kinds, only : wp
+    use rollcon_momentum_partials, only : momentum_partials_type
     implicit none
     private
 
@@ -21,8 +22,10 @@ module rollcon_ode_workspace
         !> (sized by the ODE forms' init, size_ode_form, else by a first use: IDA's runs form
         !> no ODE Jacobian)
         real(wp), allocatable :: rhs_top(:, :), rhs_bottom(:, :)
-        !> Jacobian blocks of the momentum rows d(M a - f - C^T lambda)/d(q, u)
-        real(wp), allocatable :: dm_dq(:, :), dm_du(:, :)
+        !> Jacobian blocks of the momentum rows d(M a - f - C^T lambda)/d(q, u), dm/dq and
+        !> dm/du, on the pairs of parts the elements join (rollcon_momentum_partials: memory
+        !> linear in the model, no n x n array)
+        type(momentum_partials_type) :: dm
         !> d(M a - f)/da: the mass matrix's part of it left out, the partials of the forces
         !> whose user routines read accelerations (rollcon_equations' algebraic loop; allocated
         !> by its first evaluation, none where no routine reads accelerations); and the LU
@@ -47,13 +50,15 @@ module rollcon_ode_workspace
 contains
 
     !> Size the arrays for n coordinates, nc constraints of which nh are position UCONs, and
-    !> the given number of parts.
-    subroutine init(self, n, nc, nh, parts)
+    !> the given number of parts, dm/dq and dm/du on every part and the pairs of parts given
+    !> (2 x m: those a force element or a UCON joins).
+    subroutine init(self, n, nc, nh, parts, pairs)
         class(ode_workspace_type), intent(out) :: self
         integer, intent(in) :: n, nc, nh, parts
+        integer, intent(in) :: pairs(:, :)
 
         allocate(self%moments(3, parts), source=0.0_wp)
-        allocate(self%dm_dq(n, n), self%dm_du(n, n), source=0.0_wp)
+        call self%dm%init_blocks(parts, pairs)
         allocate(self%a(n), self%lambda(nc), self%q(n), source=0.0_wp)
     end subroutine init
 

@@ -114,10 +114,10 @@ contains
 
     !> The first choice, every block's: its rank from rank_tolerance (module text), at the
     !> state where c (nc x n: dF/du of a velocity UCON, dF/dq of a position UCON) and mass
-    !> (n x n, the parts' 6 x 6 blocks) were assembled.
+    !> (the parts' 6 x 6 blocks, 6 x 6 x parts) were assembled.
     subroutine choose(self, c, mass, blocks, holonomic, error)
         class(redundancy_type), intent(inout) :: self
-        real(wp), intent(in) :: c(:, :), mass(:, :)
+        real(wp), intent(in) :: c(:, :), mass(:, :, :)
         type(constraint_blocks_type), intent(in) :: blocks
         !> Which rows are position UCONs
         logical, intent(in) :: holonomic(:)
@@ -139,7 +139,7 @@ contains
     subroutine rechoose(self, b, c, mass, blocks, holonomic, changed, error)
         class(redundancy_type), intent(inout) :: self
         integer, intent(in) :: b
-        real(wp), intent(in) :: c(:, :), mass(:, :)
+        real(wp), intent(in) :: c(:, :), mass(:, :, :)
         type(constraint_blocks_type), intent(in) :: blocks
         logical, intent(in) :: holonomic(:)
         logical, intent(out) :: changed
@@ -155,7 +155,7 @@ contains
     subroutine choose_block(self, b, c, mass, blocks, holonomic, first, changed, error)
         type(redundancy_type), intent(inout) :: self
         integer, intent(in) :: b
-        real(wp), intent(in) :: c(:, :), mass(:, :)
+        real(wp), intent(in) :: c(:, :), mass(:, :, :)
         type(constraint_blocks_type), intent(in) :: blocks
         logical, intent(in) :: holonomic(:), first
         logical, intent(out) :: changed
@@ -222,7 +222,7 @@ contains
     subroutine choose_sparse_block(self, b, c, mass, blocks, holonomic, first, changed, error)
         type(redundancy_type), intent(inout) :: self
         integer, intent(in) :: b
-        real(wp), intent(in) :: c(:, :), mass(:, :)
+        real(wp), intent(in) :: c(:, :), mass(:, :, :)
         type(constraint_blocks_type), intent(in) :: blocks
         logical, intent(in) :: holonomic(:), first
         logical, intent(out) :: changed
@@ -258,7 +258,7 @@ contains
     !> of its UCON's own coordinates only (c is zero on the block's other parts, and so are
     !> unit_columns' entries there), 6 per part, ascending.
     subroutine sparse_unit_columns(c, mass, blocks, rows, column_start, row, values)
-        real(wp), intent(in) :: c(:, :), mass(:, :)
+        real(wp), intent(in) :: c(:, :), mass(:, :, :)
         type(constraint_blocks_type), intent(in) :: blocks
         integer, intent(in) :: rows(:)
         integer, allocatable, intent(out) :: column_start(:), row(:)
@@ -280,10 +280,10 @@ contains
                 if (p == last) cycle
                 last = p
                 i0 = 6*(p - 1)
-                rotational = mass(i0 + 4:i0 + 6, i0 + 4:i0 + 6)
+                rotational = mass(4:6, 4:6, p)
                 factor = cholesky_3(rotational)
                 row(e + 1:e + 6) = i0 + [1, 2, 3, 4, 5, 6]
-                values(e + 1:e + 3) = c(k, i0 + 1:i0 + 3)/sqrt(mass(i0 + 1, i0 + 1))
+                values(e + 1:e + 3) = c(k, i0 + 1:i0 + 3)/sqrt(mass(1, 1, p))
                 x = c(k, i0 + 4:i0 + 6)
                 values(e + 4:e + 6) = forward_3(factor, x)
                 e = e + 6
@@ -311,7 +311,7 @@ contains
     function margin(self, b, c, mass, blocks, error) result(value)
         class(redundancy_type), intent(in) :: self
         integer, intent(in) :: b
-        real(wp), intent(in) :: c(:, :), mass(:, :)
+        real(wp), intent(in) :: c(:, :), mass(:, :, :)
         type(constraint_blocks_type), intent(in) :: blocks
         type(error_type), allocatable, intent(out) :: error
         real(wp) :: value
@@ -330,7 +330,7 @@ contains
     !> (module text) of the same constraint force C^T lambda; the other blocks' are untouched.
     subroutine multipliers(self, c, mass, blocks, lambda, error)
         class(redundancy_type), intent(in) :: self
-        real(wp), intent(in) :: c(:, :), mass(:, :)
+        real(wp), intent(in) :: c(:, :), mass(:, :, :)
         type(constraint_blocks_type), intent(in) :: blocks
         !> The multipliers of the active rows (0 for those set aside) on entry
         real(wp), intent(inout) :: lambda(:)
@@ -368,7 +368,7 @@ contains
     subroutine dependency(self, k, c, mass, blocks, coefficients, error)
         class(redundancy_type), intent(in) :: self
         integer, intent(in) :: k
-        real(wp), intent(in) :: c(:, :), mass(:, :)
+        real(wp), intent(in) :: c(:, :), mass(:, :, :)
         type(constraint_blocks_type), intent(in) :: blocks
         real(wp), intent(out) :: coefficients(:)
         type(error_type), allocatable, intent(out) :: error
@@ -392,7 +392,7 @@ contains
     !> The columns L^-1 c_k^T over the coordinates (6 per part, ascending) for the rows k,
     !> each of unit length (a zero row stays zero) unless unscaled; norms their lengths.
     subroutine unit_columns(c, mass, coordinates, rows, a, norms, unscaled)
-        real(wp), intent(in) :: c(:, :), mass(:, :)
+        real(wp), intent(in) :: c(:, :), mass(:, :, :)
         integer, intent(in) :: coordinates(:), rows(:)
         real(wp), allocatable, intent(out) :: a(:, :), norms(:)
         logical, intent(in), optional :: unscaled
@@ -406,10 +406,10 @@ contains
         do p = 1, size(coordinates)/6
             j0 = 6*(p - 1)
             i0 = coordinates(j0 + 1) - 1
-            rotational = mass(i0 + 4:i0 + 6, i0 + 4:i0 + 6)
+            rotational = mass(4:6, 4:6, i0/6 + 1)
             factor = cholesky_3(rotational)
             do i = 1, size(rows)
-                a(j0 + 1:j0 + 3, i) = c(rows(i), i0 + 1:i0 + 3)/sqrt(mass(i0 + 1, i0 + 1))
+                a(j0 + 1:j0 + 3, i) = c(rows(i), i0 + 1:i0 + 3)/sqrt(mass(1, 1, i0/6 + 1))
                 x = c(rows(i), i0 + 4:i0 + 6)
                 a(j0 + 4:j0 + 6, i) = forward_3(factor, x)
             end do

@@ -28,8 +28,9 @@ contains
     function set_aside_words(model, redundancy, c, mass, blocks, involved, error) result(text)
         type(model_type), intent(in) :: model
         type(redundancy_type), intent(in) :: redundancy
-        !> The constraint rows (nc x n) and the mass matrix (n x n) of the choice
-        real(wp), intent(in) :: c(:, :), mass(:, :)
+        !> The constraint rows (nc x n) and the mass matrix (its parts' 6 x 6 blocks) of the
+        !> choice
+        real(wp), intent(in) :: c(:, :), mass(:, :, :)
         type(constraint_blocks_type), intent(in) :: blocks
         logical, intent(out) :: involved(:)
         type(error_type), allocatable, intent(out) :: error

@@ -62,8 +62,19 @@ module rollcon_saddle_point
         real(wp), allocatable :: part_mass(:)
         !> Cholesky factor (lower) of each part's rotational mass block (3, 3, parts)
         real(wp), allocatable :: rotational(:, :, :)
-        !> M^-1 C^T (n, nc), columns 1..rows in use
+        !> M^-1 C^T (n, nc), columns 1..rows in use: allocated by the first factorisation that
+        !> is not by blocks (the projection's rows), none on a model whose solves all go by
+        !> blocks
         real(wp), allocatable :: minv_ct(:, :)
+        !> M^-1 C^T by blocks, each UCON's column over the coordinates where it can be nonzero
+        !> (M is block diagonal by parts): a dense block's UCON over the block's coordinates, a
+        !> sparse block's over its own parts' (6 each, as ucon_parts). Column k is
+        !> minv_values(minv_start(k) : minv_start(k + 1) - 1); memory linear in the model
+        !> (docs/design.md §4 "Memory")
+        real(wp), allocatable :: minv_values(:)
+        integer, allocatable :: minv_start(:)
+        !> Each coordinate's place in its block's coordinates (0 for a part in no block)
+        integer, allocatable :: coordinate_place(:)
         !> LU factors of S unblocked (leading dimension nc; allocated by the first factorisation
         !> that is not by blocks) and the pivots
         real(wp), allocatable :: schur(:, :)
@@ -137,12 +148,13 @@ contains
         self%parts = n/6
         self%rows = 0
         self%factorisations = 0
-        if (allocated(self%part_mass)) deallocate(self%part_mass, self%rotational, self%minv_ct, &
-            & self%pivots)
+        if (allocated(self%part_mass)) deallocate(self%part_mass, self%rotational, self%pivots)
+        if (allocated(self%minv_ct)) deallocate(self%minv_ct)
+        if (allocated(self%minv_values)) deallocate(self%minv_values, self%minv_start, &
+            & self%coordinate_place)
         if (allocated(self%schur)) deallocate(self%schur)
         allocate(self%part_mass(self%parts), source=0.0_wp)
         allocate(self%rotational(3, 3, self%parts), source=0.0_wp)
-        allocate(self%minv_ct(n, max(nc, 1)), source=0.0_wp)
         allocate(self%pivots(max(nc, 1)), source=0)
         if (allocated(self%active)) deallocate(self%active)
         allocate(self%active(max(nc, 1)), source=.true.)
@@ -202,9 +214,72 @@ contains
         call find_shares(self)
         if (any(self%block_sparse)) then
             call sparse_pattern(self, failure)
-            if (allocated(failure) .and. present(error)) call move_alloc(failure, error)
+            if (allocated(failure)) then
+                if (present(error)) call move_alloc(failure, error)
+                return
+            end if
         end if
+        call size_columns(self)
     end subroutine init
+
+    !> The places of M^-1 C^T's columns by blocks (minv_start, coordinate_place) and their
+    !> values, zero.
+    subroutine size_columns(self)
+        type(saddle_point_type), intent(inout) :: self
+        integer :: b, i, k, total, width
+
+        associate (blocks => self%blocks, nc => self%nc)
+            allocate(self%coordinate_place(self%n), source=0)
+            allocate(self%minv_start(nc + 1))
+            do b = 1, blocks%count
+                do i = blocks%coordinate_start(b), blocks%coordinate_start(b + 1) - 1
+                    self%coordinate_place(blocks%coordinates(i)) = i &
+                        & - blocks%coordinate_start(b) + 1
+                end do
+            end do
+            ! a UCON in no block (none) has an empty column
+            self%minv_start = 1
+            total = 0
+            do k = 1, nc
+                self%minv_start(k) = total + 1
+                b = blocks%row_block(k)
+                width = 0
+                if (b > 0) then
+                    if (self%block_sparse(b)) then
+                        width = 6*(self%ucon_part_start(k + 1) - self%ucon_part_start(k))
+                    else
+                        width = blocks%coordinate_start(b + 1) - blocks%coordinate_start(b)
+                    end if
+                end if
+                total = total + width
+            end do
+            self%minv_start(nc + 1) = total + 1
+            allocate(self%minv_values(max(total, 1)), source=0.0_wp)
+        end associate
+    end subroutine size_columns
+
+    !> Where part p's six rows of M^-1 c_k^T are in minv_values (offset: rows offset + 1 ..
+    !> offset + 6), -1 where the column holds none (an exact zero there).
+    pure integer function part_offset(self, p, k) result(offset)
+        type(saddle_point_type), intent(in) :: self
+        integer, intent(in) :: p, k
+        integer :: b, x
+
+        offset = -1
+        b = self%blocks%row_block(k)
+        if (b <= 0) return
+        if (self%block_sparse(b)) then
+            do x = self%ucon_part_start(k), self%ucon_part_start(k + 1) - 1
+                if (self%ucon_parts(x) == p) then
+                    offset = self%minv_start(k) - 1 + 6*(x - self%ucon_part_start(k))
+                    return
+                end if
+            end do
+        else
+            if (self%coordinate_place(6*(p - 1) + 1) == 0) return
+            offset = self%minv_start(k) - 2 + self%coordinate_place(6*(p - 1) + 1)
+        end if
+    end function part_offset
 
     !> For each entry (k, l) of every dense block's S, whether UCONs k and l share a part: M is
     !> block diagonal by parts, so M^-1 c_l^T is zero outside l's parts, and c_k outside k's
@@ -352,7 +427,8 @@ contains
         end associate
     end subroutine sparse_pattern
 
-    !> Factor the saddle-point matrix of mass (n x n, block structure above) and the first
+    !> Factor the saddle-point matrix of mass (n x n, block structure above: given as its
+    !> parts' blocks) and the first
     !> `rows` rows of c (rows x n, leading dimension nc). With r1, the first step of a solve for
     !> one right-hand side is taken too, r1 := M^-1 r1, in the LAPACK calls that give M^-1 C^T
     !> (solve then with `scaled`): the numbers apply_inverse_mass gives, at one call per part
@@ -360,8 +436,8 @@ contains
     !> text).
     subroutine factor(self, mass, c, rows, error, r1, active)
         class(saddle_point_type), intent(inout) :: self
-        !> Mass matrix [kg, kg m^2]
-        real(wp), intent(in) :: mass(:, :)
+        !> Mass matrix [kg, kg m^2]: its parts' 6 x 6 blocks (6, 6, parts)
+        real(wp), intent(in) :: mass(:, :, :)
         !> Constraint rows; with the blocks, row k is zero outside UCON k's own coordinates
         !> (constraint_blocks_type's ucon_coordinates), over which the blocks' sums run
         real(wp), intent(in) :: c(:, :)
@@ -373,7 +449,7 @@ contains
         real(wp), intent(inout), optional :: r1(:)
         !> Which of the nc rows take part (rows must be nc); the others are set aside
         logical, intent(in), optional :: active(:)
-        integer :: p, i0, k, j, info
+        integer :: p, k, j, info
 
         self%rows = rows
         self%masked = .false.
@@ -381,9 +457,8 @@ contains
         if (self%masked) self%active(:rows) = active(:rows)
         self%factorisations = self%factorisations + 1
         do p = 1, self%parts
-            i0 = 6*(p - 1)
-            self%part_mass(p) = mass(i0 + 1, i0 + 1)
-            self%rotational(:, :, p) = mass(i0 + 4:i0 + 6, i0 + 4:i0 + 6)
+            self%part_mass(p) = mass(1, 1, p)
+            self%rotational(:, :, p) = mass(4:6, 4:6, p)
             call dpotf2("L", 3, self%rotational(1, 1, p), 3, info)
             if (info > 0) then
                 call fatal_error(error, "the rotational mass matrix of part number " &
@@ -414,6 +489,8 @@ contains
         ! S unblocked (rows x rows in nc x nc): allocated by the first factorisation that needs
         ! it, none on a model whose solves all go by blocks
         if (.not. allocated(self%schur)) allocate(self%schur(self%nc, self%nc), source=0.0_wp)
+        if (.not. allocated(self%minv_ct)) allocate(self%minv_ct(self%n, max(self%nc, 1)), &
+            & source=0.0_wp)
         do k = 1, rows
             self%minv_ct(:, k) = c(k, :)
         end do
@@ -537,7 +614,8 @@ contains
                         total = 0.0_wp
                         do x = blocks%ucon_start(k), blocks%ucon_start(k + 1) - 1
                             jj = blocks%ucon_coordinates(x)
-                            total = total + c(k, jj)*self%minv_ct(jj, kj)
+                            total = total + c(k, jj)*self%minv_values(self%minv_start(kj) - 1 &
+                                & + self%coordinate_place(jj))
                         end do
                         self%block_schur(e) = total
                     end do
@@ -558,7 +636,7 @@ contains
         integer, intent(in) :: m
         real(wp), intent(inout) :: r1(self%n, m), r2(self%rows, m)
         type(error_type), allocatable, intent(out) :: error
-        integer :: b, i, j, k, rows_b, first, last, col
+        integer :: b, i, j, k, rows_b, first, last, col, x
 
         associate (blocks => self%blocks)
             do b = 1, blocks%count
@@ -594,14 +672,16 @@ contains
                         ! a sparse block's column of M^-1 C^T is over its UCON's parts only
                         do j = self%ucon_part_start(k), self%ucon_part_start(k + 1) - 1
                             i = 6*(self%ucon_parts(j) - 1)
+                            x = self%minv_start(k) - 1 + 6*(j - self%ucon_part_start(k))
                             r1(i + 1:i + 6, col) = r1(i + 1:i + 6, col) &
-                                & + r2(k, col)*self%minv_ct(i + 1:i + 6, k)
+                                & + r2(k, col)*self%minv_values(x + 1:x + 6)
                         end do
                         cycle
                     end if
+                    x = self%minv_start(k) - blocks%coordinate_start(b)
                     do j = blocks%coordinate_start(b), blocks%coordinate_start(b + 1) - 1
                         i = blocks%coordinates(j)
-                        r1(i, col) = r1(i, col) + r2(k, col)*self%minv_ct(i, k)
+                        r1(i, col) = r1(i, col) + r2(k, col)*self%minv_values(x + j)
                     end do
                 end do
             end do
@@ -618,7 +698,7 @@ contains
         real(wp), intent(in) :: c(:, :)
         type(error_type), allocatable, intent(out) :: error
         real(wp), intent(inout), optional :: r1(:)
-        integer :: i, k, i0, col, extra
+        integer :: i, k, i0, col, extra, o
 
         extra = merge(1, 0, present(r1))
         i0 = 6*(p - 1)
@@ -630,7 +710,8 @@ contains
             col = extra
             do i = 1, size(ucons)
                 k = ucons(i)
-                self%minv_ct(i0 + 1:i0 + 3, k) = c(k, i0 + 1:i0 + 3)/self%part_mass(p)
+                o = part_offset(self, p, k)
+                self%minv_values(o + 1:o + 3) = c(k, i0 + 1:i0 + 3)/self%part_mass(p)
                 col = col + 1
                 rot(:, col) = c(k, i0 + 4:i0 + 6)
             end do
@@ -639,7 +720,8 @@ contains
             col = extra
             do i = 1, size(ucons)
                 col = col + 1
-                self%minv_ct(i0 + 4:i0 + 6, ucons(i)) = rot(:, col)
+                o = part_offset(self, p, ucons(i))
+                self%minv_values(o + 4:o + 6) = rot(:, col)
             end do
         end associate
     end subroutine part_inverse_mass
@@ -671,7 +753,8 @@ contains
                     total = 0.0_wp
                     do x = self%entry_coordinate_start(e), self%entry_coordinate_start(e + 1) - 1
                         j = self%entry_coordinates(x)
-                        total = total + c(k, j)*self%minv_ct(j, l)
+                        total = total + c(k, j)*self%minv_values(part_offset(self, (j - 1)/6 &
+                            & + 1, l) + mod(j - 1, 6) + 1)
                     end do
                     if (self%masked) then
                         if (.not. (self%active(k) .and. self%active(l))) &
@@ -730,7 +813,8 @@ contains
 
         do i = self%blocks%row_start(b), self%blocks%row_start(b + 1) - 1
             k = self%blocks%rows(i)
-            if (.not. self%active(k)) self%minv_ct(:, k) = 0.0_wp
+            if (.not. self%active(k)) self%minv_values(self%minv_start(k): &
+                & self%minv_start(k + 1) - 1) = 0.0_wp
         end do
     end subroutine set_aside_columns
 

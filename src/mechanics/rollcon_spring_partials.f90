@@ -13,6 +13,7 @@
 !> derivative. A part that is both I's and J's feels no net load: nothing is added.
 module rollcon_spring_partials
     use rollcon_kinds, only : wp
+    use rollcon_momentum_partials, only : momentum_partials_type
     use rollcon_rotation, only : rate_matrix
     use rollcon_marker, only : marker_type
     use rollcon_jet, only : jet_type, jet_constant, jet_dot, jet_cross, jet_norm, &
@@ -27,16 +28,17 @@ module rollcon_spring_partials
 
 contains
 
-    !> Subtract the element's partials of the generalised forces from dm_dq and dm_du, the
+    !> Subtract the element's partials of the generalised forces from dm (dm/dq, dm/du), the
     !> partials of the momentum residual M a - f (rollcon_equations' momentum_jacobian), over
-    !> the rows and columns of I's and J's parts (n x n, n = 6 parts).
-    pure subroutine add_spring_partials(self, i, j, q, u, dm_dq, dm_du)
+    !> the rows and columns of I's and J's parts (dm: dense or on pairs of parts, which hold
+    !> the element's two: rollcon_momentum_partials).
+    pure subroutine add_spring_partials(self, i, j, q, u, dm)
         type(spring_type), intent(in) :: self
         !> The markers I and J
         type(marker_type), intent(in) :: i, j
         !> Coordinates and rates of all parts [m, rad, m/s, rad/s]
         real(wp), intent(in) :: q(:), u(:)
-        real(wp), intent(inout) :: dm_dq(:, :), dm_du(:, :)
+        type(momentum_partials_type), intent(inout) :: dm
         type(state_jets_type) :: state
         type(jet_type) :: force(3), torque(3), moment(3), local(3), centre(3), rotation(3, 3), &
             & point(3), axes(3, 3), dummy(3)
@@ -44,7 +46,7 @@ contains
         integer, allocatable :: parts(:), q_variable(:, :), u_variable(:, :)
         real(wp), allocatable :: q_parts(:, :), u_parts(:, :)
         real(wp) :: b(3, 3), sign_of
-        integer :: s, c, n, k, row0, column0
+        integer :: s, c, n, k
 
         if (i%part == j%part) return
         parts = pack([i%part, j%part], [i%part, j%part] > 0)
@@ -71,24 +73,22 @@ contains
                 local(k) = jet_dot(rotation(:, k), moment)
             end do
             b = rate_matrix(q_parts(5, s), q_parts(6, s))
-            row0 = 6*(parts(s) - 1)
             do c = 1, size(parts)
-                column0 = 6*(parts(c) - 1)
                 do k = 1, 6
-                    call subtract(6*(c - 1) + k, dm_dq(row0 + 1:row0 + 6, column0 + k))
-                    call subtract(6*size(parts) + 6*(c - 1) + k, &
-                        & dm_du(row0 + 1:row0 + 6, column0 + k))
+                    call dm%subtract_q(parts(s), parts(c), k, 1, column(6*(c - 1) + k))
+                    call dm%subtract_u(parts(s), parts(c), k, 1, &
+                        & column(6*size(parts) + 6*(c - 1) + k))
                 end do
             end do
         end do
 
     contains
 
-        !> Column `variable` of the generalised force's partials (s F, B^T R^T M) subtracted
-        !> from `column` (the rows of the part).
-        pure subroutine subtract(variable, column)
+        !> Column `variable` of the generalised force's partials (s F, B^T R^T M) on the rows
+        !> of the part, to be subtracted.
+        pure function column(variable)
             integer, intent(in) :: variable
-            real(wp), intent(inout) :: column(6)
+            real(wp) :: column(6)
             real(wp) :: d_force(3), d_body(3)
             integer :: a
 
@@ -96,9 +96,9 @@ contains
                 d_force(a) = partial(force(a), variable)
                 d_body(a) = partial(local(a), variable)
             end do
-            column(1:3) = column(1:3) - sign_of*d_force
-            column(4:6) = column(4:6) - sign_of*matmul(transpose(b), d_body)
-        end subroutine subtract
+            column(1:3) = sign_of*d_force
+            column(4:6) = sign_of*matmul(transpose(b), d_body)
+        end function column
 
     end subroutine add_spring_partials
 

@@ -26,6 +26,7 @@
 !> (add_variable_acceleration_partials).
 module rollcon_user_force_partials
     use rollcon_kinds, only : wp
+    use rollcon_momentum_partials, only : momentum_partials_type
     use rollcon_jet, only : jet_type, jet_constant
     use rollcon_measures, only : state_jets_type
     use rollcon_force, only : applied_force_type, profile_statement
@@ -47,18 +48,19 @@ module rollcon_user_force_partials
 
 contains
 
-    !> Subtract the partials of every force served by a user's routine from dm_dq and dm_du,
-    !> the partials of the momentum residual M a - f (n x n, n = 6 parts), at (t, q, u): the
+    !> Subtract the partials of every force served by a user's routine from dm (dm/dq, dm/du),
+    !> the partials of the momentum residual M a - f (n x n, n = 6 parts: dense or on pairs of
+    !> parts holding the force's, rollcon_momentum_partials), at (t, q, u): the
     !> routine's values differenced over its declared state entries (module doc), the loads'
     !> geometry exact. The values at (t, q, u) are those the last evaluation kept
     !> (marker_force_type's user_values, evaluate_user_forces at this state).
-    subroutine add_user_force_partials(forces, time, q, u, dm_dq, dm_du)
+    subroutine add_user_force_partials(forces, time, q, u, dm)
         type(applied_force_type), intent(in) :: forces(:)
         !> Time [s]
         real(wp), intent(in) :: time
         !> Coordinates and rates of all parts [m, rad, m/s, rad/s]
         real(wp), intent(in) :: q(:), u(:)
-        real(wp), intent(inout) :: dm_dq(:, :), dm_du(:, :)
+        type(momentum_partials_type), intent(inout) :: dm
         type(state_jets_type) :: state
         type(jet_type) :: values(6)
         integer, allocatable :: parts(:)
@@ -82,7 +84,7 @@ contains
                     values(k)%active = .true.
                     values(k)%g = gradients(:, k)
                 end do
-                call add_statement_load_partials(s, values, state, q, dm_dq, dm_du)
+                call add_statement_load_partials(s, values, state, q, dm)
                 deallocate(gradients)
             end associate
         end do
@@ -105,10 +107,11 @@ contains
         type(state_jets_type) :: state
         type(jet_type) :: values(6)
         integer, allocatable :: parts(:), entries(:), rows(:)
-        real(wp), allocatable :: gradients(:, :), block(:, :), ignored(:, :)
+        real(wp), allocatable :: gradients(:, :), block(:, :)
+        type(momentum_partials_type) :: image
         integer :: i, k, np, d, p, c
 
-        allocate(ignored(size(dm_da, 1), size(dm_da, 2)))
+        call image%init_dense(size(dm_da, 1))
         do i = 1, size(forces)
             if (forces(i)%profile /= profile_statement) cycle
             if (forces(i)%statement%routine == 0) cycle
@@ -137,8 +140,10 @@ contains
                     values(k)%g = gradients(:, k)
                 end do
                 ! the load's partials in the rates' slots are its partials in a
-                ignored = 0.0_wp
-                call add_statement_load_partials(s, values, state, q, ignored, dm_da)
+                image%dq = 0.0_wp
+                image%du = dm_da
+                call add_statement_load_partials(s, values, state, q, image)
+                dm_da = image%du
                 deallocate(gradients, block)
             end associate
         end do
@@ -163,7 +168,7 @@ contains
     !> nothing in the coordinates'), so the statement's partials in the rates with them, less
     !> its partials in the rates without them, are that product (the jets are linear in their
     !> seeds); the load's geometry depends on q alone. The VARVAL partials set before are
-    !> cleared (the equations set them where they form dm_dq and dm_du, and clear them after).
+    !> cleared (the equations set them where they form dm/dq and dm/du, and clear them after).
     !> A force routine reading VARVAL is served by add_user_force_acceleration_partials (the
     !> VARSUB's accelerations join its declaration).
     subroutine add_variable_acceleration_partials(forces, time, q, u, ids, dv_da, dm_da)
@@ -175,27 +180,26 @@ contains
         integer, intent(in) :: ids(:)
         real(wp), intent(in) :: dv_da(:, :)
         real(wp), intent(inout) :: dm_da(:, :)
-        real(wp), allocatable :: zero(:, :), ignored(:, :), without(:, :), with(:, :)
+        real(wp), allocatable :: zero(:, :)
+        type(momentum_partials_type) :: without, with
         integer :: i
 
         if (size(ids) == 0) return
         if (all(dv_da == 0.0_wp)) return
         allocate(zero(size(dv_da, 1), size(dv_da, 2)), source=0.0_wp)
-        allocate(ignored(size(dm_da, 1), size(dm_da, 2)), without(size(dm_da, 1), &
-            & size(dm_da, 2)), with(size(dm_da, 1), size(dm_da, 2)))
+        call without%init_dense(size(dm_da, 1))
+        call with%init_dense(size(dm_da, 1))
         do i = 1, size(forces)
             if (forces(i)%profile /= profile_statement) cycle
             if (forces(i)%statement%routine > 0) cycle
             if (.not. reads_loop_variable(forces(i)%statement)) cycle
-            ignored = 0.0_wp
-            without = 0.0_wp
-            with = 0.0_wp
+            call without%clear()
+            call with%clear()
             call clear_user_variable_partials()
-            call add_expression_force_partials(forces(i)%statement, time, q, u, ignored, &
-                & without)
+            call add_expression_force_partials(forces(i)%statement, time, q, u, without)
             call set_user_variable_partials(ids, zero, dv_da)
-            call add_expression_force_partials(forces(i)%statement, time, q, u, ignored, with)
-            dm_da = dm_da + (with - without)
+            call add_expression_force_partials(forces(i)%statement, time, q, u, with)
+            dm_da = dm_da + (with%du - without%du)
         end do
         call clear_user_variable_partials()
 
@@ -279,11 +283,11 @@ contains
         type(state_jets_type) :: state
         type(jet_type) :: values(6)
         integer, allocatable :: parts(:)
-        real(wp), allocatable :: block(:, :), ignored(:, :), image(:, :)
+        real(wp), allocatable :: block(:, :)
+        type(momentum_partials_type) :: image
         integer :: i, k, np, r, column
 
-        allocate(ignored(size(dm_dlambda, 1), size(dm_dlambda, 1)), &
-            & image(size(dm_dlambda, 1), size(dm_dlambda, 1)))
+        call image%init_dense(size(dm_dlambda, 1))
         do i = 1, size(forces)
             if (forces(i)%profile /= profile_statement) cycle
             if (forces(i)%statement%routine == 0) cycle
@@ -306,10 +310,9 @@ contains
                         allocate(values(k)%g(12*np), source=0.0_wp)
                         values(k)%g(6*np + 1) = block(r, k)
                     end do
-                    ignored = 0.0_wp
-                    image = 0.0_wp
-                    call add_statement_load_partials(s, values, state, q, ignored, image)
-                    dm_dlambda(:, rows(r)) = dm_dlambda(:, rows(r)) + image(:, column)
+                    call image%clear()
+                    call add_statement_load_partials(s, values, state, q, image)
+                    dm_dlambda(:, rows(r)) = dm_dlambda(:, rows(r)) + image%du(:, column)
                 end do
                 deallocate(block)
             end associate

@@ -271,7 +271,8 @@ contains
         associate (c => problem%eq%constraints)
             sizes = abs(c%value)
             do j = 1, size(q)
-                sizes = sizes + abs(c%grad_u(:, j)*u(j))
+                ! (no dF/du where every UCON is a position UCON: its terms are zeros)
+                if (size(c%grad_u, 2) > 0) sizes = sizes + abs(c%grad_u(:, j)*u(j))
                 if (mod(j - 1, 6) < 3) then
                     sizes = sizes + abs(c%grad_q(:, j)*q(j))
                 else

@@ -257,7 +257,7 @@ contains
         call problem%accelerations(0.0_wp, q, u, error)
         if (allocated(error)) return
         kkt = 0.0_wp
-        kkt(:6, :6) = problem%eq%mass
+        kkt(:6, :6) = problem%eq%mass(:, :, 1)
         do k = 1, 3
             kkt(:6, 6 + k) = -problem%eq%c(k, :)
             kkt(6 + k, :6) = problem%eq%c(k, :)

@@ -41,6 +41,7 @@ module test_force_partials
     use adm_datasets, only : read_dataset
     use newton_checks, only : check_ode_matrix, check_dae_matrix
     use rollcon_testing, only : unittest_type, new_unittest, check
+    use rollcon_momentum_partials, only : momentum_partials_type
     implicit none
     private
 
@@ -127,7 +128,8 @@ contains
             & new_unittest("varsub-read-by-force-against-expression", test_varsub_twins), &
             & new_unittest("varsub-reading-reaction-dae-jacobian", test_varsub_reaction), &
             & new_unittest("varsub-reading-reaction-ode-jacobian", test_varsub_reaction_ode), &
-            & new_unittest("difsub-reading-reaction-newton-matrices", test_difsub_reaction)]
+            & new_unittest("difsub-reading-reaction-newton-matrices", test_difsub_reaction), &
+            & new_unittest("momentum-partials-on-pairs-as-dense", test_pairs_as_dense)]
     end subroutine collect_force_partials
 
     !> A model built from a dataset's lines at its start (q0, u0).
@@ -680,5 +682,93 @@ contains
             result(1:3) = result(1:3) - 500.0_wp*hidden
         end if
     end subroutine bushing_gfosub
+
+    !> dm/dq and dm/du held on pairs of parts (rollcon_momentum_partials: the equations'
+    !> storage, linear in the model) against the same writes into dense n x n matrices: every
+    !> entry of a held pair equal bit for bit (the same operations), every other entry of the
+    !> dense matrices an exact zero, scatter_negated the dense matrices negated; a write to a
+    !> pair not held is noted as missed (not lost silently) and grow holds it from then on,
+    !> keeping the pairs held before.
+    subroutine test_pairs_as_dense(error)
+        type(error_type), allocatable, intent(out) :: error
+        integer, parameter :: parts = 4, n = 6*parts
+        type(momentum_partials_type) :: blocks, dense
+        real(wp) :: x(n, 2*n), values(6), block(6, 6)
+        integer :: i, j, k, a, b, step
+
+        call blocks%init_blocks(parts, reshape([1, 2, 3, 2, 2, 1, 0, 4], [2, 4]))
+        call dense%init_dense(n)
+        ! pairs held: each part with itself, (1, 2), (2, 3) both ways (repeats and ground
+        ! dropped): 4 + 4 blocks
+        call check(error, size(blocks%block_q, 3) == 8, "blocks held: " &
+            & // to_text(size(blocks%block_q, 3)))
+        if (allocated(error)) return
+        do step = 1, 40
+            ! a deterministic spread of writes over the held pairs
+            a = mod(step, parts) + 1
+            b = a
+            if (mod(step, 3) == 1 .and. a <= 3) b = merge(2, a + 1, a == 3)
+            if (mod(step, 3) == 2 .and. a == 2) b = 1
+            k = mod(7*step, 6) + 1
+            do i = 1, 6
+                values(i) = sin(1.3_wp*step + 0.7_wp*i)
+            end do
+            block = reshape([(cos(0.1_wp*step*i), i = 1, 36)], [6, 6])
+            select case (mod(step, 4))
+            case (0)
+                call blocks%subtract_q(a, b, k, 1, values(:3))
+                call dense%subtract_q(a, b, k, 1, values(:3))
+                call blocks%subtract_u(a, b, k, 4, values(4:))
+                call dense%subtract_u(a, b, k, 4, values(4:))
+            case (1)
+                call blocks%subtract_q(a, b, k, 1, values)
+                call dense%subtract_q(a, b, k, 1, values)
+                call blocks%subtract_u(a, b, k, 1, values)
+                call dense%subtract_u(a, b, k, 1, values)
+            case (2)
+                call blocks%subtract_q_entry(6*(a - 1) + k, 6*(b - 1) + 7 - k, values(2))
+                call dense%subtract_q_entry(6*(a - 1) + k, 6*(b - 1) + 7 - k, values(2))
+            case default
+                if (step < 10) then
+                    call blocks%set_part(a, block, -block)
+                    call dense%set_part(a, block, -block)
+                end if
+            end select
+        end do
+        call check(error, blocks%missed_count == 0, "no write missed a held pair")
+        if (allocated(error)) return
+        do j = 1, n
+            do i = 1, n
+                a = (i - 1)/6 + 1
+                b = (j - 1)/6 + 1
+                if (blocks%pair(a, b) > 0) then
+                    call check(error, blocks%q_at(i, j) == dense%dq(i, j) .and. &
+                        & blocks%u_at(i, j) == dense%du(i, j), "entry (" // to_text(i) // ", " &
+                        & // to_text(j) // ") as dense: " // to_text(blocks%q_at(i, j)) &
+                        & // " against " // to_text(dense%dq(i, j)))
+                else
+                    call check(error, dense%dq(i, j) == 0.0_wp .and. dense%du(i, j) == 0.0_wp &
+                        & .and. blocks%q_at(i, j) == 0.0_wp, "entry (" // to_text(i) // ", " &
+                        & // to_text(j) // ") off the pairs is zero")
+                end if
+                if (allocated(error)) return
+            end do
+        end do
+        call blocks%scatter_negated(x)
+        call check(error, all(x(:, :n) == -dense%dq) .and. all(x(:, n + 1:) == -dense%du), &
+            & "scatter_negated gives -dm/dq, -dm/du")
+        if (allocated(error)) return
+        ! part 4 joins no other part: a write to (1, 4) is missed, then held after grow (both
+        ! ways round: 10 blocks)
+        call blocks%subtract_q(1, 4, 2, 1, [1.0_wp])
+        call check(error, blocks%missed_count == 1 .and. blocks%q_at(1, 20) == 0.0_wp, &
+            & "a write outside the pairs is noted as missed")
+        if (allocated(error)) return
+        call blocks%grow()
+        call blocks%subtract_q(1, 4, 2, 1, [1.0_wp])
+        call check(error, blocks%missed_count == 0 .and. blocks%q_at(1, 20) == -1.0_wp .and. &
+            & size(blocks%block_q, 3) == 10 .and. blocks%pair(2, 3) > 0, "grow holds the " &
+            & // "missed pair and the pairs before")
+    end subroutine test_pairs_as_dense
 
 end module test_force_partials

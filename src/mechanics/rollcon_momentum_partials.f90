@@ -1,0 +1,359 @@
+! SPDX-License-Identifier: MIT
+!> The partials of the momentum residual M a - f - C^T lambda in the coordinates q and the
+!> rates u (dm/dq, dm/du: n x n, n = 6 parts), held as what they are: each force element and
+!> each UCON writes only the rows of the parts it loads by the columns of the parts it reads,
+!> so the matrices are 6 x 6 blocks on pairs of parts (a part with itself, the two parts of a
+!> SPRINGDAMPER or BUSHING, a force statement's loaded part with each part it reads: rollcon_
+!> force's force_couplings, and every two parts of one UCON). Held as those blocks
+!> (`init_blocks`: memory linear in the model, docs/design.md §4 "Memory"), or dense
+!> (`init_dense`: n x n, for a caller that wants every entry, e.g. the partials in the
+!> accelerations of rollcon_user_force_partials). Each entry is written with the same
+!> operations in the same order either way, so the numbers are the same bit for bit; an entry
+!> of no pair is an exact zero. A write to a pair not held (a part a user's routine declared
+!> at its first call, after the pairs were gathered) is noted (`missed`): the caller adds the
+!> pairs (`grow`) and writes again, so that no partial is lost.
+module rollcon_momentum_partials
+    use rollcon_kinds, only : wp
+    implicit none
+    private
+
+    public :: momentum_partials_type
+
+    !> dm/dq and dm/du, dense or on pairs of parts
+    type :: momentum_partials_type
+        !> Coordinates (6 per part) and parts
+        integer :: n = 0, parts = 0
+        !> Held on pairs of parts (else dense)
+        logical :: blocked = .false.
+        !> Dense: dm/dq and dm/du (n, n)
+        real(wp), allocatable :: dq(:, :), du(:, :)
+        !> On pairs: block e is rows of part row_part(e) by columns of part pair_part(e), (6, 6,
+        !> pairs); part a's pairs are pair_start(a) : pair_start(a + 1) - 1, their column parts
+        !> ascending
+        real(wp), allocatable :: block_q(:, :, :), block_u(:, :, :)
+        integer, allocatable :: pair_start(:), pair_part(:)
+        !> Pairs written to but not held since the last grow (2, missed_count)
+        integer :: missed_count = 0
+        integer, allocatable :: missed(:, :)
+    contains
+        procedure :: init_dense
+        procedure :: init_blocks
+        procedure :: clear
+        procedure :: grow
+        procedure :: pair
+        procedure :: set_part
+        procedure :: subtract_q
+        procedure :: subtract_u
+        procedure :: subtract_q_entry
+        procedure :: q_at
+        procedure :: u_at
+        procedure :: scatter_negated
+    end type momentum_partials_type
+
+contains
+
+    !> Dense n x n matrices, zero (n = 6 parts).
+    subroutine init_dense(self, n)
+        class(momentum_partials_type), intent(inout) :: self
+        integer, intent(in) :: n
+
+        call forget(self)
+        self%n = n
+        self%parts = n/6
+        self%blocked = .false.
+        allocate(self%dq(n, n), self%du(n, n), source=0.0_wp)
+    end subroutine init_dense
+
+    !> Blocks on every part with itself and on the pairs of parts given (2 x m, model indices;
+    !> either order, repeats and parts outside 1..parts ignored), both ways round; zero.
+    subroutine init_blocks(self, parts, pairs)
+        class(momentum_partials_type), intent(inout) :: self
+        integer, intent(in) :: parts
+        integer, intent(in) :: pairs(:, :)
+        integer, allocatable :: count(:), column(:), start(:)
+        integer :: k, a, b, e, first, last, kept, i, j, held
+
+        call forget(self)
+        self%n = 6*parts
+        self%parts = parts
+        self%blocked = .true.
+        ! each part's column parts (itself and both ends of each pair), by counting
+        allocate(count(parts), source=1)
+        do k = 1, size(pairs, 2)
+            a = pairs(1, k)
+            b = pairs(2, k)
+            if (a < 1 .or. b < 1 .or. a > parts .or. b > parts .or. a == b) cycle
+            count(a) = count(a) + 1
+            count(b) = count(b) + 1
+        end do
+        allocate(start(parts + 1))
+        start(1) = 1
+        do a = 1, parts
+            start(a + 1) = start(a) + count(a)
+        end do
+        allocate(column(start(parts + 1) - 1))
+        count = 0
+        do a = 1, parts
+            column(start(a)) = a
+            count(a) = 1
+        end do
+        do k = 1, size(pairs, 2)
+            a = pairs(1, k)
+            b = pairs(2, k)
+            if (a < 1 .or. b < 1 .or. a > parts .or. b > parts .or. a == b) cycle
+            column(start(a) + count(a)) = b
+            count(a) = count(a) + 1
+            column(start(b) + count(b)) = a
+            count(b) = count(b) + 1
+        end do
+        ! each part's list ascending (insertion: a few each) and each once
+        allocate(self%pair_start(parts + 1))
+        self%pair_start(1) = 1
+        kept = 0
+        do a = 1, parts
+            first = start(a)
+            last = start(a + 1) - 1
+            do i = first + 1, last
+                held = column(i)
+                j = i - 1
+                do while (j >= first)
+                    if (column(j) <= held) exit
+                    column(j + 1) = column(j)
+                    j = j - 1
+                end do
+                column(j + 1) = held
+            end do
+            do i = first, last
+                if (i > first) then
+                    if (column(i) == column(i - 1)) cycle
+                end if
+                kept = kept + 1
+                column(kept) = column(i)
+            end do
+            self%pair_start(a + 1) = kept + 1
+        end do
+        self%pair_part = column(:kept)
+        e = kept
+        allocate(self%block_q(6, 6, e), self%block_u(6, 6, e), source=0.0_wp)
+    end subroutine init_blocks
+
+    !> Pair (a, b) was written to but is not held.
+    pure subroutine note_missed(self, a, b)
+        class(momentum_partials_type), intent(inout) :: self
+        integer, intent(in) :: a, b
+        integer, allocatable :: more(:, :)
+
+        if (.not. allocated(self%missed)) allocate(self%missed(2, 4))
+        if (self%missed_count == size(self%missed, 2)) then
+            allocate(more(2, 2*self%missed_count))
+            more(:, :self%missed_count) = self%missed
+            call move_alloc(more, self%missed)
+        end if
+        self%missed_count = self%missed_count + 1
+        self%missed(:, self%missed_count) = [a, b]
+    end subroutine note_missed
+
+    !> The pairs held and those missed since (blocks on pairs only), zero: once a write has
+    !> missed a pair, before writing again.
+    subroutine grow(self)
+        class(momentum_partials_type), intent(inout) :: self
+        integer, allocatable :: pairs(:, :)
+        integer :: a, e, m
+
+        if (.not. self%blocked .or. self%missed_count == 0) return
+        allocate(pairs(2, size(self%pair_part) + self%missed_count))
+        m = 0
+        do a = 1, self%parts
+            do e = self%pair_start(a), self%pair_start(a + 1) - 1
+                m = m + 1
+                pairs(:, m) = [a, self%pair_part(e)]
+            end do
+        end do
+        pairs(:, m + 1:) = self%missed(:, :self%missed_count)
+        self%missed_count = 0
+        call self%init_blocks(self%parts, pairs)
+    end subroutine grow
+
+    !> Free everything.
+    pure subroutine forget(self)
+        type(momentum_partials_type), intent(inout) :: self
+
+        if (allocated(self%dq)) deallocate(self%dq, self%du)
+        if (allocated(self%block_q)) deallocate(self%block_q, self%block_u)
+        if (allocated(self%pair_start)) deallocate(self%pair_start, self%pair_part)
+    end subroutine forget
+
+    !> Every entry zero.
+    pure subroutine clear(self)
+        class(momentum_partials_type), intent(inout) :: self
+
+        if (self%blocked) then
+            self%block_q = 0.0_wp
+            self%block_u = 0.0_wp
+        else
+            self%dq = 0.0_wp
+            self%du = 0.0_wp
+        end if
+    end subroutine clear
+
+    !> The block of rows of part a by columns of part b (bisection of a's pairs), 0 where the
+    !> pair holds none.
+    pure integer function pair(self, a, b) result(e)
+        class(momentum_partials_type), intent(in) :: self
+        integer, intent(in) :: a, b
+        integer :: low, high, middle
+
+        e = 0
+        if (a < 1 .or. a > self%parts) return
+        low = self%pair_start(a)
+        high = self%pair_start(a + 1) - 1
+        do while (low <= high)
+            middle = (low + high)/2
+            if (self%pair_part(middle) == b) then
+                e = middle
+                return
+            else if (self%pair_part(middle) < b) then
+                low = middle + 1
+            else
+                high = middle - 1
+            end if
+        end do
+    end function pair
+
+    !> Part p's own 6 x 6 blocks set to dq and du.
+    pure subroutine set_part(self, p, dq, du)
+        class(momentum_partials_type), intent(inout) :: self
+        integer, intent(in) :: p
+        real(wp), intent(in) :: dq(6, 6), du(6, 6)
+        integer :: i0, e
+
+        if (self%blocked) then
+            e = self%pair(p, p)
+            self%block_q(:, :, e) = dq
+            self%block_u(:, :, e) = du
+        else
+            i0 = 6*(p - 1)
+            self%dq(i0 + 1:i0 + 6, i0 + 1:i0 + 6) = dq
+            self%du(i0 + 1:i0 + 6, i0 + 1:i0 + 6) = du
+        end if
+    end subroutine set_part
+
+    !> dm/dq's rows first .. first + size(values) - 1 of part a (1..6) in column k (1..6) of
+    !> part b, less values. Nothing where the pair holds no block (no element writes there).
+    pure subroutine subtract_q(self, a, b, k, first, values)
+        class(momentum_partials_type), intent(inout) :: self
+        integer, intent(in) :: a, b, k, first
+        real(wp), intent(in) :: values(:)
+        integer :: e, last
+
+        last = first + size(values) - 1
+        if (self%blocked) then
+            e = self%pair(a, b)
+            if (e == 0) then
+                call note_missed(self, a, b)
+                return
+            end if
+            self%block_q(first:last, k, e) = self%block_q(first:last, k, e) - values
+        else
+            self%dq(6*(a - 1) + first:6*(a - 1) + last, 6*(b - 1) + k) = &
+                & self%dq(6*(a - 1) + first:6*(a - 1) + last, 6*(b - 1) + k) - values
+        end if
+    end subroutine subtract_q
+
+    !> dm/du's, as subtract_q.
+    pure subroutine subtract_u(self, a, b, k, first, values)
+        class(momentum_partials_type), intent(inout) :: self
+        integer, intent(in) :: a, b, k, first
+        real(wp), intent(in) :: values(:)
+        integer :: e, last
+
+        last = first + size(values) - 1
+        if (self%blocked) then
+            e = self%pair(a, b)
+            if (e == 0) then
+                call note_missed(self, a, b)
+                return
+            end if
+            self%block_u(first:last, k, e) = self%block_u(first:last, k, e) - values
+        else
+            self%du(6*(a - 1) + first:6*(a - 1) + last, 6*(b - 1) + k) = &
+                & self%du(6*(a - 1) + first:6*(a - 1) + last, 6*(b - 1) + k) - values
+        end if
+    end subroutine subtract_u
+
+    !> dm/dq's entry (i, j) (coordinate numbers) less value.
+    pure subroutine subtract_q_entry(self, i, j, value)
+        class(momentum_partials_type), intent(inout) :: self
+        integer, intent(in) :: i, j
+        real(wp), intent(in) :: value
+        integer :: e
+
+        if (self%blocked) then
+            e = self%pair((i - 1)/6 + 1, (j - 1)/6 + 1)
+            if (e == 0) then
+                call note_missed(self, (i - 1)/6 + 1, (j - 1)/6 + 1)
+                return
+            end if
+            associate (entry => self%block_q(mod(i - 1, 6) + 1, mod(j - 1, 6) + 1, e))
+                entry = entry - value
+            end associate
+        else
+            self%dq(i, j) = self%dq(i, j) - value
+        end if
+    end subroutine subtract_q_entry
+
+    !> dm/dq's entry (i, j) (coordinate numbers; 0 off the pairs).
+    pure real(wp) function q_at(self, i, j) result(value)
+        class(momentum_partials_type), intent(in) :: self
+        integer, intent(in) :: i, j
+        integer :: e
+
+        if (self%blocked) then
+            value = 0.0_wp
+            e = self%pair((i - 1)/6 + 1, (j - 1)/6 + 1)
+            if (e > 0) value = self%block_q(mod(i - 1, 6) + 1, mod(j - 1, 6) + 1, e)
+        else
+            value = self%dq(i, j)
+        end if
+    end function q_at
+
+    !> dm/du's entry (i, j), as q_at.
+    pure real(wp) function u_at(self, i, j) result(value)
+        class(momentum_partials_type), intent(in) :: self
+        integer, intent(in) :: i, j
+        integer :: e
+
+        if (self%blocked) then
+            value = 0.0_wp
+            e = self%pair((i - 1)/6 + 1, (j - 1)/6 + 1)
+            if (e > 0) value = self%block_u(mod(i - 1, 6) + 1, mod(j - 1, 6) + 1, e)
+        else
+            value = self%du(i, j)
+        end if
+    end function u_at
+
+    !> (-dm/dq, -dm/du) into the n x 2n array x, every entry written (an entry off the pairs
+    !> -0, as negating the dense zero gives).
+    pure subroutine scatter_negated(self, x)
+        class(momentum_partials_type), intent(in) :: self
+        real(wp), intent(inout) :: x(:, :)
+        integer :: a, e, i0, j0, n
+
+        n = self%n
+        if (.not. self%blocked) then
+            x(:, :n) = -self%dq
+            x(:, n + 1:2*n) = -self%du
+            return
+        end if
+        x(:, :2*n) = -0.0_wp
+        do a = 1, self%parts
+            i0 = 6*(a - 1)
+            do e = self%pair_start(a), self%pair_start(a + 1) - 1
+                j0 = 6*(self%pair_part(e) - 1)
+                x(i0 + 1:i0 + 6, j0 + 1:j0 + 6) = -self%block_q(:, :, e)
+                x(i0 + 1:i0 + 6, n + j0 + 1:n + j0 + 6) = -self%block_u(:, :, e)
+            end do
+        end do
+    end subroutine scatter_negated
+
+end module rollcon_momentum_partials
