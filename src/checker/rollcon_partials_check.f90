@@ -65,8 +65,8 @@ module rollcon_partials_check
         integer :: compared = 0
         !> Largest |returned - expected| / scale over all compared entries
         real(wp) :: worst = 0.0_wp
-        !> Entries that agree with their differences but whose differences could not see an
-        !> error of checkable_fraction of the entry (compare): not checkable at this state
+        !> Entries whose differences do not know them to checkable_fraction (compare): not
+        !> checkable at this state, neither a finding nor a pass
         integer :: not_checkable = 0
     end type ucon_check_result_type
 
@@ -77,8 +77,9 @@ module rollcon_partials_check
     integer, parameter :: max_levels = 10
 
     !> An entry whose allowance (error_multiple times the difference's estimated error)
-    !> reaches this fraction of its scale is not checkable at that state: the differences
-    !> could not see an error of a tenth of the entry, so agreeing with them says nothing
+    !> reaches this fraction of the differences' own scale (their value, the values
+    !> differenced, the output's other entries) is not checkable at that state: the
+    !> differences do not know it to a tenth, so neither agreeing nor differing says anything
     real(wp), parameter :: checkable_fraction = 0.1_wp
 
     !> An entry that agrees with its differences stops the halving of the steps once their
@@ -127,6 +128,7 @@ contains
         real(wp) :: q30(max_ucon_vars), f, ft, ftt, a(max_ucon_vars), atq(max_ucon_vars)
         real(wp) :: x(max_ucon_vars, max_ucon_vars), scratch(max_ucon_vars, max_ucon_vars)
         real(wp) :: returned(max_ucon_vars + 2), output_scale(max_ucon_vars + 2)
+        real(wp) :: other_scale(max_ucon_vars + 2)
         real(wp) :: center(max_ucon_vars + 2)
         real(wp) :: a_scale, x_scale, atq_scale
         real(wp) :: f_again, a_again(max_ucon_vars), x_again(max_ucon_vars, max_ucon_vars)
@@ -177,9 +179,13 @@ contains
             returned(2:n + 1) = x(:n, j)
             output_scale(1) = a_scale
             output_scale(2:n + 1) = x_scale
+            other_scale(1) = largest_other(a(:n), j)
+            do i = 1, n
+                other_scale(1 + i) = largest_other_entry(x, n, i, j)
+            end do
             call judge_line(ucosub, id, time, q30, par, j, n + 1, &
                 & options%step*max(1.0_wp, abs(q30(j))), center(:n + 1), returned(:n + 1), &
-                & output_scale(:n + 1), options, result, error)
+                & output_scale(:n + 1), other_scale(:n + 1), options, result, error)
             if (allocated(error)) return
         end do
         ! Along time: dF/dt from F, d2F/dt2 from dF/dt, d2F/dt dq from dF/dq.
@@ -191,9 +197,13 @@ contains
         returned(3:n + 2) = atq(:n)
         output_scale(1:2) = 0.0_wp
         output_scale(3:n + 2) = atq_scale
+        other_scale(1:2) = 0.0_wp
+        do i = 1, n
+            other_scale(2 + i) = largest_other(atq(:n), i)
+        end do
         call judge_line(ucosub, id, time, q30, par, 0, n + 2, &
             & options%step*max(1.0_wp, abs(time)), center(:n + 2), returned(:n + 2), &
-            & output_scale(:n + 2), options, result, error)
+            & output_scale(:n + 2), other_scale(:n + 2), options, result, error)
         if (allocated(error)) return
 
         call check_rules(ucosub, id, time, q30, par, codes, x, result, error)
@@ -343,7 +353,7 @@ contains
     !> (j = 0). Each entry's sixth-order central quotient D(h) is taken at the steps h0, h0/2,
     !> h0/4, ... (at most max_levels of them), and the error of each quotient but the first
     !> and the last is estimated from its neighbours as
-    !>     E(h) = max(|D(2h) - D(h)|, |D(h) - D(h/2)|) + w sigma (1/h + 1/2h + 1/4h) + 8 eps s:
+    !>     E(h) = max(|D(2h) - D(h)|, |D(h) - D(h/2)|) + w sigma (2/h + 1/h + 1/2h) + 8 eps s:
     !> truncation, bounded by the changes to the steps twice and half as long (D(2h)'s
     !> truncation error is 64 times D(h)'s once the step resolves the function, so the change
     !> overstates D(h)'s; before that the change is as large as the errors themselves; both
@@ -362,7 +372,7 @@ contains
     !> yet has grown at two steps in a row (round-off rules there: finer steps only make it
     !> worse). Each entry is then compared (compare).
     subroutine judge_line(ucosub, id, time, q30, par, j, count, h0, center, returned, &
-            & output_scale, options, result, error)
+            & output_scale, other_scale, options, result, error)
         procedure(ucosub_interface) :: ucosub
         !> UCON id; the line: variable j, or time for j = 0; number of entries
         integer, intent(in) :: id, j, count
@@ -371,6 +381,10 @@ contains
         !> The values differenced at the state itself, the returned entries, and each entry's
         !> output's largest magnitude (count of each)
         real(wp), intent(in) :: center(:), returned(:), output_scale(:)
+        !> Each entry's output's largest magnitude but for the entry itself (and its twin
+        !> across XMATRX's diagonal): with the values differenced and the differences, the
+        !> scale the differences' trust is judged on, which a wrong returned entry cannot raise
+        real(wp), intent(in) :: other_scale(:)
         type(ucon_check_options_type), intent(in) :: options
         type(ucon_check_result_type), intent(inout) :: result
         type(error_type), allocatable, intent(out) :: error
@@ -431,19 +445,19 @@ contains
         do i = 1, count
             if (j > 0 .and. i == 1) then
                 call compare(result, options, "ARRAY (dF/dq)", j, 0, best(i), estimate(i), &
-                    & returned(i), scale(i))
+                    & returned(i), scale(i), max(magnitude(i), other_scale(i)))
             else if (j > 0) then
                 call compare(result, options, "XMATRX (d2F/dq dq)", i - 1, j, best(i), &
-                    & estimate(i), returned(i), scale(i))
+                    & estimate(i), returned(i), scale(i), max(magnitude(i), other_scale(i)))
             else if (i == 1) then
                 call compare(result, options, "SCALAR (dF/dt)", 0, 0, best(i), estimate(i), &
-                    & returned(i), scale(i))
+                    & returned(i), scale(i), max(magnitude(i), other_scale(i)))
             else if (i == 2) then
                 call compare(result, options, "SCALAR (d2F/dt2)", 0, 0, best(i), estimate(i), &
-                    & returned(i), scale(i))
+                    & returned(i), scale(i), max(magnitude(i), other_scale(i)))
             else
                 call compare(result, options, "ARRAY (d2F/dt dq)", i - 2, 0, best(i), &
-                    & estimate(i), returned(i), scale(i))
+                    & estimate(i), returned(i), scale(i), max(magnitude(i), other_scale(i)))
             end if
         end do
     end subroutine judge_line
@@ -484,35 +498,66 @@ contains
     end subroutine line_values
 
     !> Compare one returned entry with its expected value (the differences' best quotient)
-    !> and that quotient's estimated error (judge_line). The entry is wrong when they differ
-    !> by more than options%error_multiple times the estimate; otherwise, when that allowance
-    !> reaches checkable_fraction of the entry's scale (the differences could not see an
-    !> error of that size: at a singularity of the routine, say), the entry is not checkable
-    !> at this state and counted so; otherwise it passes.
+    !> and that quotient's estimated error (judge_line). When the allowance,
+    !> options%error_multiple times the estimate, reaches checkable_fraction of the larger of
+    !> the expected value and trust (the values differenced, the other entries of the output)
+    !> the differences do not know the entry to a tenth (at a singularity of the routine, or
+    !> where no step resolves the function): the entry is not checkable at this state, counted
+    !> so, neither a finding nor a pass. Otherwise it is wrong when it differs from the
+    !> expected value by more than the allowance.
     pure subroutine compare(result, options, output, row, column, expected, estimate, &
-            & returned, scale)
+            & returned, scale, trust)
         type(ucon_check_result_type), intent(inout) :: result
         type(ucon_check_options_type), intent(in) :: options
         character(len=*), intent(in) :: output
         integer, intent(in) :: row, column
         !> The differences' value, its estimated error, the routine's value, the entry's scale
-        !> (the largest of the returned entry, the values differenced, the output's entries)
-        real(wp), intent(in) :: expected, estimate, returned, scale
-        real(wp) :: deviation
+        !> (the largest of the returned entry, the values differenced, the output's entries),
+        !> and the scale without the returned entry (the values differenced, the others)
+        real(wp), intent(in) :: expected, estimate, returned, scale, trust
+        real(wp) :: deviation, allowance
 
         deviation = abs(returned - expected)
+        allowance = options%error_multiple*estimate
         result%compared = result%compared + 1
         if (ieee_is_finite(deviation/scale)) then
             result%worst = max(result%worst, deviation/scale)
         else
             result%worst = huge(1.0_wp)
         end if
-        if (.not. (deviation <= options%error_multiple*estimate)) then
-            call add(result, rule_derivative, output, row, column, expected, returned)
-        else if (options%error_multiple*estimate >= checkable_fraction*scale) then
+        if (allowance >= checkable_fraction*max(abs(expected), trust, tiny(1.0_wp))) then
             result%not_checkable = result%not_checkable + 1
+        else if (.not. (deviation <= allowance)) then
+            call add(result, rule_derivative, output, row, column, expected, returned)
         end if
     end subroutine compare
+
+    !> The largest |v(l)| over l /= k (0 when v has no other entry).
+    pure real(wp) function largest_other(v, k) result(largest)
+        real(wp), intent(in) :: v(:)
+        integer, intent(in) :: k
+        integer :: l
+
+        largest = 0.0_wp
+        do l = 1, size(v)
+            if (l /= k) largest = max(largest, abs(v(l)))
+        end do
+    end function largest_other
+
+    !> The largest |x(r, c)| over the declared n by n block but for (i, j) and (j, i).
+    pure real(wp) function largest_other_entry(x, n, i, j) result(largest)
+        real(wp), intent(in) :: x(:, :)
+        integer, intent(in) :: n, i, j
+        integer :: r, c
+
+        largest = 0.0_wp
+        do c = 1, n
+            do r = 1, n
+                if ((r == i .and. c == j) .or. (r == j .and. c == i)) cycle
+                largest = max(largest, abs(x(r, c)))
+            end do
+        end do
+    end function largest_other_entry
 
     !> Append a mismatch.
     pure subroutine add(result, code, output, row, column, expected, returned)

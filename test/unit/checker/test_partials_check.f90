@@ -58,7 +58,8 @@ contains
             & new_unittest("sharp-bend-judged-at-a-finer-step", test_sharp_bend), &
             & new_unittest("incline-disk-near-its-singularity", test_incline_disk), &
             & new_unittest("incline-disk-random-states-clean", test_incline_states), &
-            & new_unittest("slip-1e-5-well-conditioned-found", test_small_slip)]
+            & new_unittest("slip-1e-5-well-conditioned-found", test_small_slip), &
+            & new_unittest("unresolved-entries-not-checkable", test_not_checkable)]
     end subroutine collect_partials_check
 
     !> Run the checker on component 2 of a disk-like routine at the generic state.
@@ -322,8 +323,9 @@ contains
     !> A right routine where the function bends sharply: sin(200 X) at the step h = 1e-3
     !> leaves the sixth-order quotient (k h)^6/140 = 4.6e-7 off, 46 times the fixed tolerance
     !> 1e-8 the checker once used, and the quotient at h/4 is good to 1.1e-10: no finding, and
-    !> the largest deviation reported (from the quotient the check settles on) below 1e-8. The same routine with dF/dX 0.1 % too large is still
-    !> found (a deviation 1e5 times the quotients' error).
+    !> the largest deviation reported (from the quotient the check settles on) below 1e-8.
+    !> The same routine with dF/dX 0.1 % too large is still found (a deviation 1e5 times the
+    !> quotients' error).
     subroutine test_sharp_bend(error)
         type(error_type), allocatable, intent(out) :: error
         type(ucon_check_result_type) :: result
@@ -421,6 +423,48 @@ contains
         if (allocated(error)) return
         call program_verdicts(scratch // "/incline_roll_slipped.f", .false., error)
     end subroutine test_incline_disk
+
+    !> F = sqrt(X**2 + c**2), c = PAR(1) [m]: |X| rounded off within c of X = 0, every
+    !> partial exact (dF/dX = X/F, d2F/dX2 = c**2/F**3).
+    subroutine kink_ucosub(id, time, q, par, npar, idrsel, iflag, scalar, array, xmatrx)
+        integer, intent(in) :: id, npar, idrsel(3), iflag
+        real(wp), intent(in) :: time, q(30), par(*)
+        real(wp), intent(inout) :: scalar, array(30), xmatrx(30, 30)
+        real(wp) :: f
+
+        f = sqrt(q(1)**2 + par(1)**2)
+        if (idrsel(1) == 1) scalar = f
+        if (idrsel(2) == 1) array(1) = q(1)/f
+        if (idrsel(3) == 1) xmatrx(1, 1) = par(1)**2/f**3
+    end subroutine kink_ucosub
+
+    !> kink_ucosub with c = 1e-9 m at X = 3e-9 m: every step the check takes (1e-3 m down to
+    !> 2e-6 m) straddles the bend, so no quotient knows dF/dX (0.95) or d2F/dX2 (3.2e7 1/m):
+    !> at every step they change as much as they are. Both entries are counted not checkable
+    !> here, neither a mismatch (the returned values are exact) nor a pass; the time entries
+    !> (F holds no time: zero, and their differences exactly zero) pass. A check that called
+    !> the two right or wrong fails here.
+    subroutine test_not_checkable(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(ucon_check_result_type) :: result
+        type(ucon_check_options_type) :: options
+        integer :: i
+
+        call check_ucon_state(kink_ucosub, 1, [1.0e-9_wp], [11], 0.2_wp, [3.0e-9_wp], &
+            & options, result, error)
+        if (allocated(error)) return
+        do i = 1, size(result%mismatches)
+            call check(error, .false., "a finding where no step resolves the function: " &
+                & // result%mismatches(i)%output // " (" // to_text(result%mismatches(i)%row) &
+                & // "," // to_text(result%mismatches(i)%column) // "), returned " &
+                & // to_text(result%mismatches(i)%returned) // ", differences give " &
+                & // to_text(result%mismatches(i)%expected))
+            if (allocated(error)) return
+        end do
+        call check(error, result%not_checkable, 2, "entries not checkable")
+        if (allocated(error)) return
+        call check(error, result%compared, 5, "entries compared")
+    end subroutine test_not_checkable
 
     !> test/incline/incline_roll_ucosub.f (generated, exact) at every state `rollcon check FILE
     !> --model test/incline/incline_roll.adm --states 2000` draws with seeds 1 and 2 (the same
