@@ -33,8 +33,8 @@ contains
         json = '{"file": ' // json_string(source) // ', "library": ' // json_string(library) &
             & // ', "from_cache": ' // logical_json(from_cache) // ',' // nl &
             & // ' "states": ' // to_text(report%options%states) // ', "seed": ' &
-            & // to_text(report%options%seed) // ', "rel_tol": ' &
-            & // number(report%options%compare%rel_tol) // ', "ranges": ['
+            & // to_text(report%options%seed) // ', "error_multiple": ' &
+            & // number(report%options%compare%error_multiple) // ', "ranges": ['
         do i = 1, size(ranges)
             if (i > 1) json = json // ", "
             json = json // json_string(trim(ranges(i)))
@@ -94,8 +94,8 @@ contains
             json = json // ']'
         end if
         json = json // ',' // nl // '   "states": ' // to_text(ucon%states) // ', "compared": ' &
-            & // to_text(ucon%compared) // ', "worst_relative_deviation": ' // number(ucon%worst) &
-            & // ', "groups": ['
+            & // to_text(ucon%compared) // ', "not_checkable": ' // to_text(ucon%not_checkable) &
+            & // ', "worst_relative_deviation": ' // number(ucon%worst) // ', "groups": ['
         do g = 1, size(ucon%groups)
             if (g > 1) json = json // ','
             json = json // nl // group_json(ucon, ucon%groups(g))

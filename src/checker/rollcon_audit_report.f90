@@ -84,6 +84,9 @@ contains
             text = text // nl // "  " // to_text(ucon%states) // " states, " &
                 & // to_text(ucon%compared) // " entries compared, largest relative deviation " &
                 & // trim(adjustl(worst))
+            if (ucon%not_checkable > 0) text = text // "; " // to_text(ucon%not_checkable) &
+                & // " entries not checkable here (the differences do not know them to a " &
+                & // "tenth: a singularity of the routine near the state)"
         else if (process_ended(ucon)) then
             text = text // "  the check of this UCON ended with its process (below)"
         else

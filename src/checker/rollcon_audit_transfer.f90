@@ -41,6 +41,7 @@ contains
         call put_ints(wire, ucon%codes)
         call wire%put_int(int(ucon%states, int64))
         call wire%put_int(int(ucon%compared, int64))
+        call wire%put_int(int(ucon%not_checkable, int64))
         call wire%put_real(ucon%worst)
         call wire%put_logical(allocated(ucon%groups))
         if (allocated(ucon%groups)) then
@@ -73,6 +74,7 @@ contains
         call get_ints(wire, ucon%codes)
         ucon%states = int(wire%get_int())
         ucon%compared = int(wire%get_int())
+        ucon%not_checkable = int(wire%get_int())
         ucon%worst = wire%get_real()
         if (wire%get_logical()) then
             count = wire%get_int()

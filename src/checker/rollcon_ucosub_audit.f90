@@ -94,6 +94,9 @@ module rollcon_ucosub_audit
         integer, allocatable :: parts(:), codes(:)
         !> States checked and entries compared
         integer :: states = 0, compared = 0
+        !> Compared entries whose differences' own error was too large to judge them
+        !> (rollcon_partials_check's compare): not checkable at those states
+        integer :: not_checkable = 0
         !> Largest relative deviation among the compared entries
         real(wp) :: worst = 0.0_wp
         type(finding_group_type), allocatable :: groups(:)
@@ -263,6 +266,7 @@ contains
                 & options%compare, result, error)
             ucon%states = ucon%states + 1
             ucon%compared = ucon%compared + result%compared
+            ucon%not_checkable = ucon%not_checkable + result%not_checkable
             ucon%worst = max(ucon%worst, result%worst)
             call record_violations(ucon, s, time, q)
             if (allocated(error)) then

@@ -40,7 +40,9 @@ module rollcon_user_routine_check
         & take_user_force_error, system_notes, clear_system_notes, force_routine_label, &
         & call_user_request, evaluate_user_variable, user_variable_list, user_variable_type, &
         & user_motion_list, user_motion_type, call_user_motion, call_diff_routine, &
-        & evaluate_user_variables
+        & evaluate_user_variables, get_force_routine
+    use rollcon_force_routine_contract, only : force_routine_interface, routine_sfosub, &
+        & routine_vfosub, routine_vtosub
     use rollcon_user_variable_values, only : user_variable_value
     use rollcon_request_answers, only : request_answer_watch_type, answer_user
     use rollcon_child_process, only : isolated_task_type, stream_receiver_type, &
@@ -643,7 +645,8 @@ contains
         end associate
     end function force_label
 
-    !> The force's values (SI; force then torque) as its routine gives them. A routine that
+    !> The force's values as its routine gives them (SI): RESULT's entries of its kind, an
+    !> SFOSUB's 1, a VFOSUB's or VTOSUB's 3, a GFOSUB's 6 (force then torque). A routine that
     !> reads force measures (a JOINT's reaction, another force) is called with the model's
     !> equations solved at the probed state first (rollcon_equations' accelerations: the
     !> multipliers there, and every force at that state, are what its SYSFNC calls read).
@@ -654,6 +657,8 @@ contains
         real(wp), allocatable, intent(out) :: values(:)
         type(error_type), allocatable, intent(out) :: error
         real(wp), allocatable :: a(:), lambda(:)
+        procedure(force_routine_interface), pointer :: routine
+        integer :: kind
 
         ! the VARSUBs at the probed state: SYSFNC('VARVAL') reads their values there
         call evaluate_user_variables(time, q, u)
@@ -673,6 +678,17 @@ contains
         call evaluate_user_forces(problem%model%forces(k:k), time, q, u)
         values = problem%model%forces(k)%statement%user_values
         call take_user_force_error(error)
+        ! only the entries of RESULT the routine's kind defines, in its order (the statement
+        ! holds force then torque: an SFOSUB's one value first, a VTOSUB's torque last)
+        call get_force_routine(problem%model%forces(k)%statement%routine, routine, kind)
+        select case (kind)
+        case (routine_sfosub)
+            values = values(1:1)
+        case (routine_vfosub)
+            values = values(1:3)
+        case (routine_vtosub)
+            values = values(4:6)
+        end select
     end subroutine force_values
 
     !> A VARIABLE with FUNCTION=USER(...) in the dataset.

@@ -905,8 +905,9 @@ contains
 
     !> The check of every MOTSUB at a run's start (time [s], q, u [SI]), before the first step:
     !> its IORD = 1 and IORD = 2 values against sixth-order central differences (step h and
-    !> h/4, h = 1e-3 of the dataset's time unit) of its own IORD = 0 and IORD = 1 values, as a
-    !> UCOSUB's partials are checked (rollcon_partials_check): the fine difference's own error
+    !> h/4, h = 1e-3 of the dataset's time unit) of its own IORD = 0 and IORD = 1 values (a
+    !> UCOSUB's partials are judged otherwise, against the differences' estimated truncation and
+    !> round-off: rollcon_partials_check): the fine difference's own error
     !> is estimated as |coarse - fine|/(4^6 - 1), and an entry is wrong when it differs from the
     !> fine difference by more than 1e-8 and more than ten times that estimate, relative to
     !> the largest of the value and the values differenced. A wrong entry is an error naming

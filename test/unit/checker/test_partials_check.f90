@@ -6,7 +6,7 @@ module test_partials_check
     use rollcon_kinds, only : wp
     use rollcon_constants, only : pi
     use rollcon_error, only : error_type
-    use rollcon_text, only : to_text
+    use rollcon_text, only : to_text, number_list
     use rollcon_partials_check, only : ucon_check_options_type, ucon_check_result_type, &
         & check_ucon_state
     use rollcon_disk_par, only : disk_par, disk_codes
@@ -28,6 +28,15 @@ module test_partials_check
     character(len=*), parameter :: test_cache = "build/rollcon-test-user-cache"
     character(len=*), parameter :: scratch = "build/test_partials_check"
 
+    !> The fixed relative tolerance the checker once judged every entry by (1e-8 of the
+    !> largest value compared): a right routine's deviations stay below it where the
+    !> differences resolve the function, and the states below are chosen where they do not
+    real(wp), parameter :: fixed_tolerance = 1.0e-8_wp
+
+    !> The entry test_small_slip's routine returns 1e-5 too large: ARRAY(row) when column is
+    !> 0, else XMATRX(row, column) and XMATRX(column, row)
+    integer :: slip_row = 0, slip_column = 0
+
     real(wp), parameter :: generic_q(8) = [0.1_wp, 0.02_wp, -0.01_wp, 0.3_wp, 1.2_wp, 0.5_wp, &
         & -0.2_wp, -1.0_wp]
 
@@ -47,7 +56,10 @@ contains
             & new_unittest("random-states-xorshift64", test_random_sequence), &
             & new_unittest("random-states-in-ranges", test_random_ranges), &
             & new_unittest("sharp-bend-judged-at-a-finer-step", test_sharp_bend), &
-            & new_unittest("incline-disk-near-its-singularity", test_incline_disk)]
+            & new_unittest("incline-disk-near-its-singularity", test_incline_disk), &
+            & new_unittest("incline-disk-random-states-clean", test_incline_states), &
+            & new_unittest("slip-1e-5-well-conditioned-found", test_small_slip), &
+            & new_unittest("unresolved-entries-not-checkable", test_not_checkable)]
     end subroutine collect_partials_check
 
     !> Run the checker on component 2 of a disk-like routine at the generic state.
@@ -309,10 +321,11 @@ contains
     end subroutine sharp_bend_ucosub
 
     !> A right routine where the function bends sharply: sin(200 X) at the step h = 1e-3
-    !> leaves the sixth-order quotient (k h)^6/140 = 4.6e-7 off, 46 times the tolerance 1e-8,
-    !> and the quotient at h/4 is good to 1.1e-10: no finding, and the largest deviation
-    !> reported below the tolerance. The same routine with dF/dX 0.1 % too large is still
-    !> found (a deviation 1e5 times the quotients' error).
+    !> leaves the sixth-order quotient (k h)^6/140 = 4.6e-7 off, 46 times the fixed tolerance
+    !> 1e-8 the checker once used, and the quotient at h/4 is good to 1.1e-10: no finding, and
+    !> the largest deviation reported (from the quotient the check settles on) below 1e-8.
+    !> The same routine with dF/dX 0.1 % too large is still found (a deviation 1e5 times the
+    !> quotients' error).
     subroutine test_sharp_bend(error)
         type(error_type), allocatable, intent(out) :: error
         type(ucon_check_result_type) :: result
@@ -324,7 +337,7 @@ contains
         if (allocated(error)) return
         call check(error, size(result%mismatches), 0, "findings on a right routine")
         if (allocated(error)) return
-        call check(error, result%worst <= options%rel_tol, "largest deviation " &
+        call check(error, result%worst <= fixed_tolerance, "largest deviation " &
             & // to_text(result%worst) // " after the finer step")
         if (allocated(error)) return
         call check_ucon_state(sharp_bend_ucosub, 1, [200.0_wp, 1.001_wp], [11, 12], 0.2_wp, &
@@ -338,9 +351,9 @@ contains
     !> alpha = 20 degrees about X), at a state whose axle is 0.01 rad from the incline's
     !> normal, near the spec's singularity (the disk flat on the plane, where the contact
     !> direction's norm sqrt(1 - (n.k)^2) vanishes): there the sixth-order quotients at the
-    !> checker's step (1e-3) miss some exact entry by more than the tolerance 1e-8 (measured
-    !> here, so the state is one a fixed threshold calls a mismatch), and the check, which
-    !> judges such an entry again at a quarter of the step against the quotients' own error,
+    !> checker's step (1e-3) miss some exact entry by more than the fixed tolerance 1e-8
+    !> (measured here, so the state is one a fixed threshold calls a mismatch), and the check,
+    !> which judges each entry against the differences' own estimated error at halved steps,
     !> finds nothing in any of the three components (the quotients at 1e-3 miss by 4.2e-5,
     !> measured, 4000 times the tolerance). A copy with dF/dpsi of component 1 returned 0.1 %
     !> too large (a slip 1e5 times the tolerance) is found at the same state. Through the
@@ -380,7 +393,7 @@ contains
         end do
         call user%destroy()
         if (allocated(error)) return
-        call check(error, worst_coarse > options%rel_tol, "the quotients at the step 1e-3 " &
+        call check(error, worst_coarse > fixed_tolerance, "the quotients at the step 1e-3 " &
             & // "miss the exact entries by at most " // to_text(worst_coarse) &
             & // ": the state is not one where a fixed threshold fails")
         if (allocated(error)) return
@@ -410,6 +423,186 @@ contains
         if (allocated(error)) return
         call program_verdicts(scratch // "/incline_roll_slipped.f", .false., error)
     end subroutine test_incline_disk
+
+    !> F = sqrt(X**2 + c**2), c = PAR(1) [m]: |X| rounded off within c of X = 0, every
+    !> partial exact (dF/dX = X/F, d2F/dX2 = c**2/F**3).
+    subroutine kink_ucosub(id, time, q, par, npar, idrsel, iflag, scalar, array, xmatrx)
+        integer, intent(in) :: id, npar, idrsel(3), iflag
+        real(wp), intent(in) :: time, q(30), par(*)
+        real(wp), intent(inout) :: scalar, array(30), xmatrx(30, 30)
+        real(wp) :: f
+
+        f = sqrt(q(1)**2 + par(1)**2)
+        if (idrsel(1) == 1) scalar = f
+        if (idrsel(2) == 1) array(1) = q(1)/f
+        if (idrsel(3) == 1) xmatrx(1, 1) = par(1)**2/f**3
+    end subroutine kink_ucosub
+
+    !> kink_ucosub with c = 1e-9 m at X = 3e-9 m: every step the check takes (1e-3 m down to
+    !> 2e-6 m) straddles the bend, so no quotient knows dF/dX (0.95) or d2F/dX2 (3.2e7 1/m):
+    !> at every step they change as much as they are. Both entries are counted not checkable
+    !> here, neither a mismatch (the returned values are exact) nor a pass; the time entries
+    !> (F holds no time: zero, and their differences exactly zero) pass. A check that called
+    !> the two right or wrong fails here.
+    subroutine test_not_checkable(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(ucon_check_result_type) :: result
+        type(ucon_check_options_type) :: options
+        integer :: i
+
+        call check_ucon_state(kink_ucosub, 1, [1.0e-9_wp], [11], 0.2_wp, [3.0e-9_wp], &
+            & options, result, error)
+        if (allocated(error)) return
+        do i = 1, size(result%mismatches)
+            call check(error, .false., "a finding where no step resolves the function: " &
+                & // result%mismatches(i)%output // " (" // to_text(result%mismatches(i)%row) &
+                & // "," // to_text(result%mismatches(i)%column) // "), returned " &
+                & // to_text(result%mismatches(i)%returned) // ", differences give " &
+                & // to_text(result%mismatches(i)%expected))
+            if (allocated(error)) return
+        end do
+        call check(error, result%not_checkable, 2, "entries not checkable")
+        if (allocated(error)) return
+        call check(error, result%compared, 5, "entries compared")
+    end subroutine test_not_checkable
+
+    !> test/incline/incline_roll_ucosub.f (generated, exact) at every state `rollcon check FILE
+    !> --model test/incline/incline_roll.adm --states 2000` draws with seeds 1 and 2 (the same
+    !> generator, seed and UCON id; 12000 states, a few seconds): no finding. Among them the
+    !> two where the fixed tolerance 1e-8 once found three false mismatches (seed 1, UCON/1
+    !> state 1470: XMATRX(4,5) and (5,5), the quotients at the step 1e-3 6e-4 off, the axle
+    !> 0.02 rad from the incline's normal; UCON/2 state 183: XMATRX(5,5) 6e-8 off, its values
+    !> carrying some 2000 eps of rounding there): at both the quotients at the first step miss
+    !> the exact entries by more than 1e-8 (measured, so the test holds states a fixed
+    !> threshold fails).
+    subroutine test_incline_states(error)
+        type(error_type), allocatable, intent(out) :: error
+        real(wp), parameter :: alpha = 0.3490658503988659_wp, radius = 0.1_wp
+        integer, parameter :: codes(8) = [21, 22, 23, 14, 15, 24, 25, 26], states = 2000
+        integer, parameter :: hard_ucon(2) = [1, 2], hard_state(2) = [1470, 183]
+        type(user_ucosub_type) :: user
+        type(user_build_options_type) :: build
+        type(ucon_check_options_type) :: options
+        type(ucon_check_result_type) :: result
+        real(wp) :: q(8), par(12), time, worst_coarse
+        integer(int64) :: random
+        character(len=:), allocatable :: first
+        integer :: seed, component, s, found, checked
+        logical :: hard
+
+        build%cache_dir = test_cache
+        call new_user_ucosub(user, incline_routine, error, build)
+        if (allocated(error)) return
+        worst_coarse = huge(1.0_wp)
+        found = 0
+        checked = 0
+        first = ""
+        outer: do seed = 1, 2
+            do component = 1, 3
+                par = [2.0_wp, real(codes, wp), radius, alpha, real(component, wp)]
+                random = seed_state(seed, component)
+                do s = 1, states
+                    call draw_state(random, codes, q, time)
+                    hard = seed == 1 .and. any(hard_ucon == component .and. hard_state == s)
+                    if (hard) then
+                        worst_coarse = min(worst_coarse, coarse_deviation(user, par, q, &
+                            & options%step, error))
+                        if (allocated(error)) exit outer
+                    end if
+                    result = ucon_check_result_type()
+                    call check_ucon_state(user%ucosub, component, par, codes, time, q, &
+                        & options, result, error)
+                    if (allocated(error)) exit outer
+                    checked = checked + 1
+                    found = found + size(result%mismatches)
+                    if (size(result%mismatches) > 0 .and. len(first) == 0) first = "seed " &
+                        & // to_text(seed) // ", UCON/" // to_text(component) // ", state " &
+                        & // to_text(s) // ": " // result%mismatches(1)%output // " (" &
+                        & // to_text(result%mismatches(1)%row) // "," &
+                        & // to_text(result%mismatches(1)%column) // ") returned " &
+                        & // to_text(result%mismatches(1)%returned) // ", differences give " &
+                        & // to_text(result%mismatches(1)%expected) // " at time " &
+                        & // to_text(time) // ", q " // number_list(q)
+                end do
+            end do
+        end do outer
+        call user%destroy()
+        if (allocated(error)) return
+        call check(error, checked == 2*3*states .and. found == 0, to_text(found) &
+            & // " findings in " // to_text(checked) // " states of the exact routine; the " &
+            & // "first: " // first)
+        if (allocated(error)) return
+        call check(error, worst_coarse > fixed_tolerance, "at the two hard states the " &
+            & // "quotients at the step 1e-3 miss the exact entries by " // to_text(worst_coarse) &
+            & // " at least: not states where a fixed threshold fails")
+    end subroutine test_incline_states
+
+    !> The hand-checked disk with one entry 1e-5 too large (slip_row, slip_column).
+    subroutine small_slip_ucosub(id, time, q, par, npar, idrsel, iflag, scalar, array, xmatrx)
+        integer, intent(in) :: id, npar, idrsel(3), iflag
+        real(wp), intent(in) :: time, q(30), par(*)
+        real(wp), intent(inout) :: scalar, array(30), xmatrx(30, 30)
+        real(wp), parameter :: slip = 1.0e-5_wp
+
+        call rolling_disk_ucosub(id, time, q, par, npar, idrsel, iflag, scalar, array, xmatrx)
+        if (iflag /= 0) return
+        if (slip_column == 0 .and. idrsel(2) == 1) then
+            array(slip_row) = (1.0_wp + slip)*array(slip_row)
+        else if (slip_column > 0 .and. idrsel(3) == 1) then
+            xmatrx(slip_row, slip_column) = (1.0_wp + slip)*xmatrx(slip_row, slip_column)
+            if (slip_row /= slip_column) xmatrx(slip_column, slip_row) = (1.0_wp + slip) &
+                & *xmatrx(slip_column, slip_row)
+        end if
+    end subroutine small_slip_ucosub
+
+    !> A slip of 1e-5 (relative) in a well-conditioned entry is still found, so the estimate of
+    !> the differences' error did not get loose: at the generic state, component 2 of the
+    !> hand-checked disk, the largest entry of ARRAY and the largest of XMATRX (both triangles),
+    !> each returned 1e-5 too large, each a derivative finding at that entry and nowhere else
+    !> in its output (the right routine is clean: correct-routine-clean). A check that lets a
+    !> tenth of the slip through misses it.
+    subroutine test_small_slip(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(ucon_check_result_type) :: result
+        real(wp) :: q30(30), f, a(30), x(30, 30)
+        integer :: loc(2), i
+
+        q30 = 0.0_wp
+        q30(:8) = generic_q
+        call evaluate_ucon(rolling_disk_ucosub, 1, 0.0_wp, q30, disk_par(1, 0.1_wp, 2), &
+            & [scalar_value, array_dq, xmatrx_dqdq], f, a, x, error)
+        if (allocated(error)) return
+        slip_row = maxloc(abs(a(:8)), dim=1)
+        slip_column = 0
+        call run_check(small_slip_ucosub, result, error)
+        if (allocated(error)) return
+        call expect_finding(error, result, "derivative", slip_row, 0)
+        if (allocated(error)) return
+        do i = 1, size(result%mismatches)
+            call check(error, result%mismatches(i)%output /= "ARRAY (dF/dq)" .or. &
+                & result%mismatches(i)%row == slip_row, "a finding at ARRAY(" &
+                & // to_text(result%mismatches(i)%row) // "), the slip is at ARRAY(" &
+                & // to_text(slip_row) // ")")
+            if (allocated(error)) return
+        end do
+        loc = maxloc(abs(x(:8, :8)))
+        slip_row = loc(1)
+        slip_column = loc(2)
+        call run_check(small_slip_ucosub, result, error)
+        if (allocated(error)) return
+        call expect_finding(error, result, "derivative", slip_row, slip_column)
+        if (allocated(error)) return
+        do i = 1, size(result%mismatches)
+            call check(error, result%mismatches(i)%output == "XMATRX (d2F/dq dq)" .and. &
+                & (result%mismatches(i)%row == slip_row .and. result%mismatches(i)%column &
+                & == slip_column .or. result%mismatches(i)%row == slip_column .and. &
+                & result%mismatches(i)%column == slip_row), "a finding at " &
+                & // result%mismatches(i)%output // " (" // to_text(result%mismatches(i)%row) &
+                & // "," // to_text(result%mismatches(i)%column) // "), the slip is at (" &
+                & // to_text(slip_row) // "," // to_text(slip_column) // ")")
+            if (allocated(error)) return
+        end do
+    end subroutine test_small_slip
 
     !> `rollcon check routine --model test/incline/incline_roll.adm` and `rollcon run` of that
     !> dataset with the routine: clean (CLEAN; the run completes, stderr empty) or not (a

@@ -306,7 +306,27 @@ contains
             & .and. count_of(findings, "SFORCE/3") == 1 .and. count_of(findings, "SFORCE/2") &
             & == 0 .and. index(findings, at_every_state) > 0, to_text(count) // " findings: " &
             & // findings)
+        if (allocated(error)) return
+        ! an SFOSUB's RESULT is one value: the finding quotes one value of each call (the
+        ! statement's six force and torque values once came out as six), the two 2000 N apart
+        call check(error, one_value_after(findings, "the same inputs gave RESULT (") .and. &
+            & one_value_after(findings, ") and then ("), "the hidden-state finding quotes " &
+            & // "more than the SFOSUB's one RESULT value: " // findings)
     end subroutine test_two_files
+
+    !> True when text holds lead followed by a single value (no comma) and ")".
+    logical function one_value_after(text, lead) result(one)
+        character(len=*), intent(in) :: text, lead
+        integer :: at, close
+
+        one = .false.
+        at = index(text, lead)
+        if (at == 0) return
+        at = at + len(lead)
+        close = index(text(at:), ")")
+        if (close <= 1) return
+        one = index(text(at:at + close - 2), ",") == 0
+    end function one_value_after
 
     !> variable_sign.adm: an SFOSUB (sforce_variable_sign.f) returning -5 SIGN(1, VARVAL(3))
     !> through SYSFNC('VARVAL'), VARIABLE/3 a VARSUB's stretch (variable_stretch.f) of 0.01 at
@@ -467,11 +487,11 @@ contains
         if (allocated(error)) return
         ! the clean verdict counts what was checked: GFORCE/1 and SFORCE/2 at the start and 20
         ! states, each called twice there (hidden state) and 40 times on the way to each of the
-        ! 20 (the search for a jump): 2 (2 21 + 20 40) = 1684 calls; each force's six values
-        ! (the RESULT a force routine may fill, rollcon_marker_force's user_values: an
-        ! SFOSUB's unused five are compared too) at each of the 21 states: 2 21 6 = 252
+        ! 20 (the search for a jump): 2 (2 21 + 20 40) = 1684 calls; the RESULT entries each
+        ! routine's kind defines (the GFOSUB's six, the SFOSUB's one) at each of the 21
+        ! states: 21 (6 + 1) = 147
         call check(error, index(out, "verdict: clean: 2 statement(s) checked at 21 states " &
-            & // "each, 1684 calls of their routines, 252 values compared, no finding") > 0, &
+            & // "each, 1684 calls of their routines, 147 values compared, no finding") > 0, &
             & "the clean verdict does not count the check: " // out)
         if (allocated(error)) return
         text = file_text(folder // "field_forces.adm")
