@@ -457,27 +457,34 @@ contains
         end associate
     end subroutine velocity_rows
 
-    !> The values that moved by more than ic_fraction atol, positions then rates.
+    !> The values that moved by more than ic_fraction atol, positions then rates (counted
+    !> first, then listed: a start that moves every value of a long chain lists them in linear
+    !> time).
     pure subroutine list_changes(problem, q_old, q_new, u_old, u_new, atol, report)
         type(problem_type), intent(in) :: problem
         real(wp), intent(in) :: q_old(:), q_new(:), u_old(:), u_new(:), atol
         type(ic_report_type), intent(inout) :: report
-        integer :: j, p, c
+        logical :: moved(2*size(q_old))
+        integer :: j, p, c, i, listed
 
-        allocate(report%changes(0))
+        do j = 1, size(q_old)
+            moved(j) = .not. abs(q_new(j) - q_old(j)) <= ic_fraction*atol
+            moved(size(q_old) + j) = .not. abs(u_new(j) - u_old(j)) <= ic_fraction*atol
+        end do
+        allocate(report%changes(count(moved)))
+        listed = 0
         do j = 1, 2*size(q_old)
+            if (.not. moved(j)) cycle
+            listed = listed + 1
             p = (mod(j - 1, size(q_old)))/6 + 1
             c = mod(j - 1, 6) + 1
             if (j <= size(q_old)) then
-                if (abs(q_new(j) - q_old(j)) <= ic_fraction*atol) cycle
-                report%changes = [report%changes, ic_change_type(problem%model%parts(p)%id, c, &
-                    & q_old(j), q_new(j))]
+                report%changes(listed) = ic_change_type(problem%model%parts(p)%id, c, &
+                    & q_old(j), q_new(j))
             else
-                associate (i => j - size(q_old))
-                    if (abs(u_new(i) - u_old(i)) <= ic_fraction*atol) cycle
-                    report%changes = [report%changes, ic_change_type( &
-                        & problem%model%parts(p)%id, c + 6, u_old(i), u_new(i))]
-                end associate
+                i = j - size(q_old)
+                report%changes(listed) = ic_change_type(problem%model%parts(p)%id, c + 6, &
+                    & u_old(i), u_new(i))
             end if
         end do
     end subroutine list_changes
