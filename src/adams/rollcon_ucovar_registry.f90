@@ -4,6 +4,8 @@ module rollcon_ucovar_registry
     use rollcon_error, only : error_type, ucon_error
     use rollcon_text, only : to_text
     use rollcon_ucosub_contract, only : max_ucon_vars, is_valid_code, code_name
+    use rollcon_id_index, only : id_index_type
+    use, intrinsic :: iso_fortran_env, only : int64
     implicit none
     private
 
@@ -21,8 +23,15 @@ module rollcon_ucovar_registry
 
     !> Every declaration made so far, one entry per UCON id
     type :: ucovar_registry_type
-        !> Declarations, in the order they were made
+        !> Declarations, in the order they were made: entries(1:count()); past them, spare
+        !> capacity (doubled when full, so that n declarations cost O(n), not O(n^2))
         type(ucon_variables_type), allocatable :: entries(:)
+        !> How many entries are declarations (-1: every one of entries, as a registry given
+        !> its entries by hand)
+        integer :: used = -1
+        !> The entry of each UCON id (found in constant time: n declarations are checked for
+        !> repeats in O(n))
+        type(id_index_type) :: index
     contains
         !> Validate and record one UCOVAR call
         procedure :: declare => registry_declare
@@ -100,9 +109,35 @@ contains
         entry%id = id
         entry%parts = lparts(:nvars)
         entry%codes = lvars(:nvars)
-        if (.not. allocated(self%entries)) allocate(self%entries(0))
-        self%entries = [self%entries, entry]
+        call append_entry(self, entry)
     end subroutine registry_declare
+
+    !> Append an entry, the capacity doubled first when entries is full, and index its id.
+    pure subroutine append_entry(self, entry)
+        class(ucovar_registry_type), intent(inout) :: self
+        type(ucon_variables_type), intent(in) :: entry
+        type(ucon_variables_type), allocatable :: grown(:)
+        integer :: k, count, previous
+
+        count = self%count()
+        if (.not. allocated(self%entries)) allocate(self%entries(0))
+        if (count == size(self%entries)) then
+            allocate(grown(max(8, 2*count)))
+            do k = 1, count
+                grown(k) = self%entries(k)
+            end do
+            call move_alloc(grown, self%entries)
+        end if
+        ! entries given by hand (used = -1) are indexed before the first one appended
+        if (self%used < 0) then
+            do k = 1, count
+                call self%index%add(int(self%entries(k)%id, int64), k, previous)
+            end do
+        end if
+        self%used = count + 1
+        self%entries(self%used) = entry
+        call self%index%add(int(entry%id, int64), self%used, previous)
+    end subroutine append_entry
 
     !> Index of the entry for a UCON id, 0 when the id has not been declared.
     pure function registry_find(self, id) result(index)
@@ -112,6 +147,10 @@ contains
         integer, intent(in) :: id
         integer :: index
 
+        if (self%used >= 0) then
+            index = self%index%find(int(id, int64))
+            return
+        end if
         if (allocated(self%entries)) then
             do index = 1, size(self%entries)
                 if (self%entries(index)%id == id) return
@@ -127,7 +166,11 @@ contains
         integer :: count
 
         count = 0
-        if (allocated(self%entries)) count = size(self%entries)
+        if (self%used >= 0) then
+            count = self%used
+        else if (allocated(self%entries)) then
+            count = size(self%entries)
+        end if
     end function registry_size
 
 end module rollcon_ucovar_registry

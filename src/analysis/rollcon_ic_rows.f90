@@ -11,7 +11,7 @@ module rollcon_ic_rows
     implicit none
     private
 
-    public :: level_type, tolerance, least_change, verdict, name_rows
+    public :: level_type, tolerance, least_change, verdict, name_rows, dense_rows
     public :: ic_fraction, ic_rcond
 
     !> A UCON is met when |F_k| <= ic_fraction (atol + rtol s_k), s_k the size of the terms of
@@ -32,8 +32,20 @@ module rollcon_ic_rows
         !> The model whose UCONs the rows are, for their names in the user's words (name_rows;
         !> without it a row is named "UCON/<id>")
         type(model_type), pointer :: model => null()
-        !> Rows over the system's coordinates (or rates), residuals, tolerances
-        real(wp), allocatable :: rows(:, :), residual(:), tolerance(:)
+        !> Residuals, tolerances
+        real(wp), allocatable :: residual(:), tolerance(:)
+        !> The rows over the system's coordinates (or rates), compressed: row i's entries at
+        !> start(i) .. start(i + 1) - 1 of column and value, over its UCON's own coordinates in
+        !> ascending order (zeros among them kept), of `columns` in all. Memory and time grow
+        !> as the number of UCONs, not as m n (docs/design.md §4, "Many parts": start-up); a
+        !> level whose rows are given whole (rows allocated) has none
+        integer :: columns = 0
+        integer, allocatable :: start(:), column(:)
+        real(wp), allocatable :: value(:)
+        !> The rows whole (m x columns): given so by a caller (held_steps' reduced rows), else
+        !> made from the compressed ones (dense_rows) only where a least-squares solve or a
+        !> verdict needs them, when the rows are not met
+        real(wp), allocatable :: rows(:, :)
     end type level_type
 
 contains
@@ -59,6 +71,25 @@ contains
             & + abs(residual - dot_product(row, x))))
     end function tolerance
 
+    !> The rows of a level whole (m x n): level%rows when given so, else made from the
+    !> compressed rows (zeros off them).
+    pure function dense_rows(level) result(rows)
+        type(level_type), intent(in) :: level
+        real(wp), allocatable :: rows(:, :)
+        integer :: i, e
+
+        if (allocated(level%rows)) then
+            rows = level%rows
+            return
+        end if
+        allocate(rows(size(level%start) - 1, level%columns), source=0.0_wp)
+        do i = 1, size(level%start) - 1
+            do e = level%start(i), level%start(i + 1) - 1
+                rows(i, level%column(e)) = level%value(e)
+            end do
+        end do
+    end function dense_rows
+
     !> The rows restricted to the free columns, scaled by the weights and to unit length (a row
     !> with nothing free left stays zero).
     pure subroutine unit_rows(level, free, weight, a, row_scale)
@@ -69,20 +100,22 @@ contains
         !> 1 / length of each scaled row (1 for a zero row)
         real(wp), allocatable, intent(out) :: row_scale(:)
         real(wp) :: length
+        real(wp), allocatable :: rows(:, :)
         integer :: i, j, col
 
+        rows = dense_rows(level)
         allocate(a(size(level%ucon), count(free)), row_scale(size(level%ucon)))
         col = 0
         do j = 1, size(free)
             if (.not. free(j)) cycle
             col = col + 1
-            a(:, col) = level%rows(:, j)*weight(j)
+            a(:, col) = rows(:, j)*weight(j)
         end do
         do i = 1, size(a, 1)
             length = norm2(a(i, :))
             row_scale(i) = 1.0_wp
             ! a row that only the held values carry is no row at all for the solve
-            if (length <= ic_rcond*norm2(level%rows(i, :)*weight)) then
+            if (length <= ic_rcond*norm2(rows(i, :)*weight)) then
                 a(i, :) = 0.0_wp
             else
                 row_scale(i) = 1.0_wp/length

@@ -25,8 +25,8 @@ module rollcon_initial_conditions
     use rollcon_error, only : error_type, fatal_error, stat_input
     use rollcon_text, only : to_text
     use rollcon_ic_rows, only : level_type, tolerance, least_change, verdict, ic_fraction, &
-        & name_rows, ic_rcond
-    use rollcon_constraints, only : need_value, need_first, need_time
+        & name_rows, ic_rcond, dense_rows
+    use rollcon_constraints, only : constraint_state_type, need_value, need_first, need_time
     use rollcon_least_squares, only : left_null_space
     use rollcon_rotation, only : rate_matrix
     use rollcon_problem, only : problem_type
@@ -285,7 +285,7 @@ contains
         logical, intent(out) :: met
         type(error_type), allocatable, intent(out) :: error
         type(level_type) :: reduced
-        real(wp), allocatable :: basis(:, :), dz(:), scaled(:, :)
+        real(wp), allocatable :: basis(:, :), dz(:), scaled(:, :), rows(:, :)
         integer :: rank, i, j
 
         scaled = held
@@ -306,12 +306,14 @@ contains
             met = all(abs(level%residual) <= level%tolerance)
             if (met .or. report%velocity_steps >= max_velocity_steps .or. size(basis, 2) == 0) &
                 & exit
-            reduced%rows = matmul(level%rows, basis)
+            rows = dense_rows(level)
+            reduced%rows = matmul(rows, basis)
+            reduced%columns = size(basis, 2)
             ! a row that only the held rates carry (its part in the free coordinates z is
             ! rounding) is no row for the solve: judged, as unit_rows judges, against the whole
             ! weighted row, so that rounding is never scaled up to a step
             do i = 1, size(reduced%rows, 1)
-                if (norm2(reduced%rows(i, :)) <= ic_rcond*norm2(level%rows(i, :)*weight)) &
+                if (norm2(reduced%rows(i, :)) <= ic_rcond*norm2(rows(i, :)*weight)) &
                     & reduced%rows(i, :) = 0.0_wp
             end do
             reduced%residual = level%residual
@@ -341,13 +343,59 @@ contains
     pure function holonomic_ucons(problem) result(list)
         type(problem_type), intent(in) :: problem
         integer, allocatable :: list(:)
-        integer :: k
+        integer :: k, h
 
-        allocate(list(0))
+        allocate(list(count([(problem%model%ucons(k)%holonomic, k = 1, problem%model%nc)])))
+        h = 0
         do k = 1, problem%model%nc
-            if (problem%model%ucons(k)%holonomic) list = [list, k]
+            if (.not. problem%model%ucons(k)%holonomic) cycle
+            h = h + 1
+            list(h) = k
         end do
     end function holonomic_ucons
+
+    !> The compressed rows of a level (rollcon_ic_rows' level_type): row i over the own
+    !> coordinates of UCON level%ucon(i) (cs%local), sized once; n columns.
+    pure subroutine shape_rows(level, cs, n)
+        type(level_type), intent(inout) :: level
+        type(constraint_state_type), intent(in) :: cs
+        integer, intent(in) :: n
+        integer :: i, m
+
+        if (allocated(level%start)) return
+        m = size(level%ucon)
+        allocate(level%start(m + 1), level%residual(m), level%tolerance(m))
+        level%start(1) = 1
+        do i = 1, m
+            level%start(i + 1) = level%start(i) + cs%local_count(level%ucon(i))
+        end do
+        allocate(level%column(level%start(m + 1) - 1), level%value(level%start(m + 1) - 1))
+        do i = 1, m
+            associate (k => level%ucon(i))
+                level%column(level%start(i):level%start(i + 1) - 1) &
+                    & = cs%local(:cs%local_count(k), k)
+            end associate
+        end do
+        level%columns = n
+    end subroutine shape_rows
+
+    !> Row i of a level: UCON k's partials over its own coordinates, of F over q (position)
+    !> or over u (velocity, of a velocity UCON).
+    pure subroutine fill_row(level, i, cs, k, position)
+        type(level_type), intent(inout) :: level
+        integer, intent(in) :: i, k
+        type(constraint_state_type), intent(in) :: cs
+        logical, intent(in) :: position
+        integer :: e
+
+        do e = level%start(i), level%start(i + 1) - 1
+            if (position) then
+                level%value(e) = cs%grad_q(k, level%column(e))
+            else
+                level%value(e) = cs%grad_u(k, level%column(e))
+            end if
+        end do
+    end subroutine fill_row
 
     !> Rows dF_h/dq, residuals F_h and tolerances of the position UCONs at (t, q).
     subroutine position_rows(problem, time, q, u, options, level, error)
@@ -362,14 +410,15 @@ contains
         call problem%eq%constraints%evaluate(problem%model, time, q, u, need_value + need_first, &
             & error)
         if (allocated(error)) return
-        if (.not. allocated(level%rows)) allocate(level%rows(m, size(q)), level%residual(m), &
-            & level%tolerance(m))
         associate (cs => problem%eq%constraints)
+            call shape_rows(level, cs, size(q))
             do i = 1, m
-                level%rows(i, :) = cs%grad_q(level%ucon(i), :)
+                call fill_row(level, i, cs, level%ucon(i), .true.)
                 level%residual(i) = cs%value(level%ucon(i))
-                level%tolerance(i) = tolerance(options%atol, options%rtol, level%rows(i, :), q, &
-                    & level%residual(i))
+                associate (e => level%start(i), f => level%start(i + 1) - 1)
+                    level%tolerance(i) = tolerance(options%atol, options%rtol, &
+                        & level%value(e:f), q(level%column(e:f)), level%residual(i))
+                end associate
             end do
         end associate
     end subroutine position_rows
@@ -388,45 +437,54 @@ contains
         call problem%eq%constraints%evaluate(problem%model, time, q, u, need_value + need_first &
             & + need_time, error)
         if (allocated(error)) return
-        if (.not. allocated(level%rows)) allocate(level%rows(m, size(u)), level%residual(m), &
-            & level%tolerance(m))
         associate (cs => problem%eq%constraints)
+            call shape_rows(level, cs, size(u))
             do k = 1, m
                 row = level%ucon(k)
-                if (problem%model%ucons(row)%holonomic) then
-                    level%rows(k, :) = cs%grad_q(row, :)
-                    level%residual(k) = dot_product(cs%grad_q(row, :), u) + cs%dt(row)
-                else
-                    level%rows(k, :) = cs%grad_u(row, :)
-                    level%residual(k) = cs%value(row)
-                end if
-                level%tolerance(k) = tolerance(options%atol, options%rtol, level%rows(k, :), u, &
-                    & level%residual(k))
+                associate (e => level%start(k), f => level%start(k + 1) - 1)
+                    if (problem%model%ucons(row)%holonomic) then
+                        call fill_row(level, k, cs, row, .true.)
+                        level%residual(k) = dot_product(level%value(e:f), u(level%column(e:f))) &
+                            & + cs%dt(row)
+                    else
+                        call fill_row(level, k, cs, row, .false.)
+                        level%residual(k) = cs%value(row)
+                    end if
+                    level%tolerance(k) = tolerance(options%atol, options%rtol, &
+                        & level%value(e:f), u(level%column(e:f)), level%residual(k))
+                end associate
             end do
         end associate
     end subroutine velocity_rows
 
-    !> The values that moved by more than ic_fraction atol, positions then rates.
+    !> The values that moved by more than ic_fraction atol, positions then rates (counted
+    !> first, then listed: a start that moves every value of a long chain lists them in linear
+    !> time).
     pure subroutine list_changes(problem, q_old, q_new, u_old, u_new, atol, report)
         type(problem_type), intent(in) :: problem
         real(wp), intent(in) :: q_old(:), q_new(:), u_old(:), u_new(:), atol
         type(ic_report_type), intent(inout) :: report
-        integer :: j, p, c
+        logical :: moved(2*size(q_old))
+        integer :: j, p, c, i, listed
 
-        allocate(report%changes(0))
+        do j = 1, size(q_old)
+            moved(j) = .not. abs(q_new(j) - q_old(j)) <= ic_fraction*atol
+            moved(size(q_old) + j) = .not. abs(u_new(j) - u_old(j)) <= ic_fraction*atol
+        end do
+        allocate(report%changes(count(moved)))
+        listed = 0
         do j = 1, 2*size(q_old)
+            if (.not. moved(j)) cycle
+            listed = listed + 1
             p = (mod(j - 1, size(q_old)))/6 + 1
             c = mod(j - 1, 6) + 1
             if (j <= size(q_old)) then
-                if (abs(q_new(j) - q_old(j)) <= ic_fraction*atol) cycle
-                report%changes = [report%changes, ic_change_type(problem%model%parts(p)%id, c, &
-                    & q_old(j), q_new(j))]
+                report%changes(listed) = ic_change_type(problem%model%parts(p)%id, c, &
+                    & q_old(j), q_new(j))
             else
-                associate (i => j - size(q_old))
-                    if (abs(u_new(i) - u_old(i)) <= ic_fraction*atol) cycle
-                    report%changes = [report%changes, ic_change_type( &
-                        & problem%model%parts(p)%id, c + 6, u_old(i), u_new(i))]
-                end associate
+                i = j - size(q_old)
+                report%changes(listed) = ic_change_type(problem%model%parts(p)%id, c + 6, &
+                    & u_old(i), u_new(i))
             end if
         end do
     end subroutine list_changes

@@ -110,12 +110,15 @@ contains
         end do
         ! every UCOSUB, built-in or the user's, computes in the dataset's units, as in ADAMS
         model%ucosub_units = ucosub_units_type(length=adm%units%length, time=adm%units%time)
+        ! the UCONs, contacts and joints added with the model's arrays grown by doubling
+        ! (model%open_additions: linear in their number), closed before anything reads them
+        call model%open_additions()
         call add_ucons(adm, fallback, model, error)
-        if (allocated(error)) return
         ! each CONTACT's no-slip rows, right after the UCONs (rollcon_adm_contact)
-        call add_contact_ucons(adm, model, contact, contact_rows, error)
-        if (allocated(error)) return
-        call add_joints(adm, model, error)
+        if (.not. allocated(error)) call add_contact_ucons(adm, model, contact, contact_rows, &
+            & error)
+        if (.not. allocated(error)) call add_joints(adm, model, error)
+        call model%close_additions()
         if (allocated(error)) return
         allocate(q0(6*size(model%parts)), u0(6*size(model%parts)))
         p = 0
@@ -465,7 +468,7 @@ contains
                     error%message = place(adm%file, joint%line) // ": " // error%message
                     return
                 end if
-                statements(k) = size(model%statements)
+                statements(k) = model%statement_count()
             end associate
         end do
         if (.not. allocated(adm%force_requests)) return

@@ -289,7 +289,7 @@ contains
                     end if
                     pars(:, k) = par
                 end do
-                rows(:, c) = size(model%ucons) + [1, 2, 3]
+                rows(:, c) = model%ucon_count() + [1, 2, 3]
                 call model%add_element_ucons(shape%name, adm%contacts(c)%id, &
                     & adm%contacts(c)%line, routine, name, time_free, pars, &
                     & [character(len=40) :: "no slip along ground X", &

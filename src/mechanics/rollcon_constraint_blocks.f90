@@ -7,6 +7,7 @@
 !> variables (which parts a UCON touches never changes during a run).
 module rollcon_constraint_blocks
     use rollcon_model, only : model_type
+    use rollcon_ucosub_contract, only : max_ucon_vars
     implicit none
     private
 
@@ -108,28 +109,42 @@ contains
         end do
     end subroutine init
 
-    !> Each UCON's coordinates, ascending and each once (a rate and its coordinate share one).
+    !> Each UCON's coordinates, ascending and each once (a rate and its coordinate share one):
+    !> counted first, then filled (O(nc) in all; the list grown by a copy per UCON was
+    !> O(nc^2), a sizeable share of a long chain's start-up).
     subroutine ucon_lists(self, model)
         type(constraint_blocks_type), intent(inout) :: self
         type(model_type), intent(in) :: model
-        integer, allocatable :: list(:)
-        integer :: k, i, total
+        integer :: list(max_ucon_vars)
+        integer :: k, count
 
         if (allocated(self%ucon_start)) deallocate(self%ucon_start, self%ucon_coordinates)
-        allocate(self%ucon_start(model%nc + 1), self%ucon_coordinates(0))
+        allocate(self%ucon_start(model%nc + 1))
         self%ucon_start(1) = 1
         do k = 1, model%nc
-            associate (ucon => model%ucons(k))
-                list = [integer ::]
-                do i = 1, ucon%nvars
-                    if (.not. any(list == ucon%coordinate(i))) list = [list, ucon%coordinate(i)]
-                end do
-            end associate
-            list = ascending(list)
-            self%ucon_coordinates = [self%ucon_coordinates, list]
-            total = size(self%ucon_coordinates)
-            self%ucon_start(k + 1) = total + 1
+            call distinct(model%ucons(k)%coordinate(:model%ucons(k)%nvars), list, count)
+            self%ucon_start(k + 1) = self%ucon_start(k) + count
         end do
+        allocate(self%ucon_coordinates(self%ucon_start(model%nc + 1) - 1))
+        do k = 1, model%nc
+            call distinct(model%ucons(k)%coordinate(:model%ucons(k)%nvars), list, count)
+            self%ucon_coordinates(self%ucon_start(k):self%ucon_start(k + 1) - 1) &
+                & = ascending(list(:count))
+        end do
+    contains
+        !> The distinct values of coordinates, in their first order: list(:count)
+        pure subroutine distinct(coordinates, list, count)
+            integer, intent(in) :: coordinates(:)
+            integer, intent(out) :: list(:), count
+            integer :: i
+
+            count = 0
+            do i = 1, size(coordinates)
+                if (any(list(:count) == coordinates(i))) cycle
+                count = count + 1
+                list(count) = coordinates(i)
+            end do
+        end subroutine distinct
     end subroutine ucon_lists
 
     !> The values in ascending order (insertion sort: for the short lists of a block's UCONs

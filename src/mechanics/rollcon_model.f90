@@ -42,6 +42,8 @@ module rollcon_model
     use rollcon_diff, only : diff_set_type
     use rollcon_motion_geometry, only : motion_ucon, motion_rotation, motion_b1, motion_b2, &
         & motion_b3
+    use rollcon_id_index, only : id_index_type, new_id_index
+    use, intrinsic :: iso_fortran_env, only : int64
     implicit none
     private
 
@@ -168,7 +170,17 @@ module rollcon_model
         !> A dataset's DIFFs (user differential equations, rollcon_diff) and their state last
         !> set (set_diff_state); none in a model without them
         type(diff_set_type) :: diffs
+        !> While additions are open (open_additions to close_additions: a builder adding many
+        !> statements), how many of ucons and statements are the model's (past them, spare
+        !> capacity, doubled when full: n additions then copy O(n) elements in all, not the
+        !> O(n^2) of arrays grown by one at each), and the largest UCON id so far; -1 when
+        !> closed: ucons and statements are then exactly the model's, as everywhere else
+        integer :: open_ucons = -1, open_statements = 0, open_largest_id = 0
     contains
+        procedure :: open_additions
+        procedure :: close_additions
+        procedure :: ucon_count
+        procedure :: statement_count
         procedure :: add_part
         procedure :: add_ucon
         procedure :: add_joint
@@ -222,8 +234,8 @@ contains
         statement%kind = statement_ucon
         statement%id = id
         if (present(line)) statement%line = line
-        call append_statement(self%statements, statement)
-        ucon%statement = size(self%statements)
+        call push_statement(self, statement)
+        ucon%statement = self%statement_count()
         ucon%equation = ""
         ucon%id = id
         ucon%par = par
@@ -236,8 +248,7 @@ contains
             end if
         end if
         if (present(time_free)) ucon%time_free = time_free
-        if (.not. allocated(self%ucons)) allocate(self%ucons(0))
-        self%ucons = [self%ucons, ucon]
+        call push_ucon(self, ucon)
     end subroutine add_ucon
 
     !> True when the model's UCOSUB serves a UCON whose own routine is named `routine` (""
@@ -326,9 +337,8 @@ contains
         statement%i = i
         statement%j = j
         statement%j_part = j%part
-        call append_statement(self%statements, statement)
-        next_id = 0
-        if (size(self%ucons) > 0) next_id = maxval(self%ucons%id)
+        call push_statement(self, statement)
+        next_id = largest_ucon_id(self)
         do k = 1, size(ucons)
             next_id = next_id + 1
             ucon%id = next_id
@@ -338,9 +348,9 @@ contains
             ucon%time_free = .true.
             ucon%geometry_par = ucons(k)%geometry_par
             ucon%geometry_parts = ucons(k)%geometry_parts
-            ucon%statement = size(self%statements)
+            ucon%statement = self%statement_count()
             ucon%equation = ucons(k)%equation
-            self%ucons = [self%ucons, ucon]
+            call push_ucon(self, ucon)
         end do
     end subroutine add_primitives
 
@@ -377,13 +387,13 @@ contains
             return
         end if
         ucon%id = 1
-        if (size(self%ucons) > 0) ucon%id = maxval(self%ucons%id) + 1
+        if (self%ucon_count() > 0) ucon%id = largest_ucon_id(self) + 1
         ucon%par = [real(wp) :: ]
         ucon%routine = "GCON/" // to_text(id)
         if (present(name)) ucon%routine = name
         ucon%time_free = .not. expression%uses_time
         call add_element(self, ucon, ucon%routine, id, line)
-        self%ucons = [self%ucons, ucon]
+        call push_ucon(self, ucon)
     end subroutine add_gcon
 
     !> Append the equations of one element its user wrote as one statement (a dataset's
@@ -409,8 +419,7 @@ contains
         integer :: k, next_id, statement
 
         if (.not. allocated(self%ucons)) allocate(self%ucons(0))
-        next_id = 0
-        if (size(self%ucons) > 0) next_id = maxval(self%ucons%id)
+        next_id = largest_ucon_id(self)
         do k = 1, size(par, 2)
             ucon%id = next_id + k
             ucon%par = par(:, k)
@@ -423,7 +432,7 @@ contains
             end if
             ucon%statement = statement
             ucon%equation = trim(equations(k))
-            self%ucons = [self%ucons, ucon]
+            call push_ucon(self, ucon)
         end do
     end subroutine add_element_ucons
 
@@ -441,9 +450,8 @@ contains
         statement%id = id
         statement%name = name
         if (present(line)) statement%line = line
-        if (.not. allocated(self%statements)) allocate(self%statements(0))
-        call append_statement(self%statements, statement)
-        ucon%statement = size(self%statements)
+        call push_statement(self, statement)
+        ucon%statement = self%statement_count()
         ucon%equation = ""
     end subroutine add_element
 
@@ -510,12 +518,11 @@ contains
         part_ids = self%parts%id
         call motion_ucon(motion%name, component, joint, i, j, part_ids, ucon, error)
         if (allocated(error)) return
-        next_id = 0
-        if (size(self%ucons) > 0) next_id = maxval(self%ucons%id)
+        next_id = largest_ucon_id(self)
         ! its own time partials: not time-free (rollcon_constraints asks the motion for them)
         call self%add_ucon(next_id + 1, ucon%par, ucon%ucosub, time_free=.false., &
             & routine=ucon%routine)
-        associate (added => self%ucons(size(self%ucons)))
+        associate (added => self%ucons(self%ucon_count()))
             added%geometry_par = ucon%geometry_par
             added%geometry_parts = ucon%geometry_parts
             allocate(added%motion, source=motion)
@@ -549,6 +556,144 @@ contains
         grown(size(grown)) = statement
         call move_alloc(grown, statements)
     end subroutine append_statement
+
+    !> Open the model to many additions (a dataset's builder adding its UCONs and joints): from
+    !> here to close_additions, add_ucon, add_joint, add_jprim, add_gcon, add_element_ucons
+    !> and add_motion grow model%ucons and model%statements by doubling their capacity, so that
+    !> n of them cost O(n) in all (docs/design.md §4, "Many parts": start-up). Meanwhile only
+    !> ucon_count() and statement_count() tell how many there are (the arrays hold spare
+    !> entries past them): close the additions before anything else reads the model.
+    !> setup_model closes them if they are open. Opening them again while open does nothing.
+    pure subroutine open_additions(self)
+        class(model_type), intent(inout) :: self
+
+        if (self%open_ucons >= 0) return
+        if (.not. allocated(self%ucons)) allocate(self%ucons(0))
+        if (.not. allocated(self%statements)) allocate(self%statements(0))
+        self%open_ucons = size(self%ucons)
+        self%open_statements = size(self%statements)
+        self%open_largest_id = 0
+        if (size(self%ucons) > 0) self%open_largest_id = maxval(self%ucons%id)
+    end subroutine open_additions
+
+    !> Close the additions open_additions opened: model%ucons and model%statements cut to the
+    !> model's own (one copy of each). Nothing when they are not open.
+    pure subroutine close_additions(self)
+        class(model_type), intent(inout) :: self
+        type(ucon_statement_type), allocatable :: ucons(:)
+        type(statement_type), allocatable :: statements(:)
+        integer :: k
+
+        if (self%open_ucons < 0) return
+        if (size(self%ucons) /= self%open_ucons) then
+            allocate(ucons(self%open_ucons))
+            do k = 1, self%open_ucons
+                ucons(k) = self%ucons(k)
+            end do
+            call move_alloc(ucons, self%ucons)
+        end if
+        if (size(self%statements) /= self%open_statements) then
+            allocate(statements(self%open_statements))
+            do k = 1, self%open_statements
+                statements(k) = self%statements(k)
+            end do
+            call move_alloc(statements, self%statements)
+        end if
+        self%open_ucons = -1
+        self%open_statements = 0
+        self%open_largest_id = 0
+    end subroutine close_additions
+
+    !> The model's UCONs so far (size(model%ucons) once the additions are closed).
+    pure integer function ucon_count(self) result(count)
+        class(model_type), intent(in) :: self
+
+        if (self%open_ucons >= 0) then
+            count = self%open_ucons
+        else if (allocated(self%ucons)) then
+            count = size(self%ucons)
+        else
+            count = 0
+        end if
+    end function ucon_count
+
+    !> The model's statements so far (size(model%statements) once the additions are closed).
+    pure integer function statement_count(self) result(count)
+        class(model_type), intent(in) :: self
+
+        if (self%open_ucons >= 0) then
+            count = self%open_statements
+        else if (allocated(self%statements)) then
+            count = size(self%statements)
+        else
+            count = 0
+        end if
+    end function statement_count
+
+    !> The largest UCON id of the model so far (0 without UCONs): a joint's UCONs take the ids
+    !> after it.
+    pure integer function largest_ucon_id(self) result(id)
+        class(model_type), intent(in) :: self
+
+        id = 0
+        if (self%open_ucons >= 0) then
+            id = self%open_largest_id
+        else if (allocated(self%ucons)) then
+            if (size(self%ucons) > 0) id = maxval(self%ucons%id)
+        end if
+    end function largest_ucon_id
+
+    !> Append a UCON: one more entry, or with the additions open, the next of the spare ones
+    !> (the capacity doubled first when none is left).
+    pure subroutine push_ucon(self, ucon)
+        class(model_type), intent(inout) :: self
+        type(ucon_statement_type), intent(in) :: ucon
+        type(ucon_statement_type), allocatable :: grown(:)
+        integer :: k
+
+        if (.not. allocated(self%ucons)) allocate(self%ucons(0))
+        if (self%open_ucons < 0) then
+            allocate(grown(size(self%ucons) + 1))
+            do k = 1, size(self%ucons)
+                grown(k) = self%ucons(k)
+            end do
+            grown(size(grown)) = ucon
+            call move_alloc(grown, self%ucons)
+            return
+        end if
+        if (self%open_ucons == size(self%ucons)) then
+            allocate(grown(max(8, 2*size(self%ucons))))
+            do k = 1, self%open_ucons
+                grown(k) = self%ucons(k)
+            end do
+            call move_alloc(grown, self%ucons)
+        end if
+        self%open_ucons = self%open_ucons + 1
+        self%ucons(self%open_ucons) = ucon
+        self%open_largest_id = max(self%open_largest_id, ucon%id)
+    end subroutine push_ucon
+
+    !> Append a statement, as push_ucon appends a UCON.
+    pure subroutine push_statement(self, statement)
+        class(model_type), intent(inout) :: self
+        type(statement_type), intent(in) :: statement
+        type(statement_type), allocatable :: grown(:)
+        integer :: k
+
+        if (self%open_ucons < 0) then
+            call append_statement(self%statements, statement)
+            return
+        end if
+        if (self%open_statements == size(self%statements)) then
+            allocate(grown(max(8, 2*size(self%statements))))
+            do k = 1, self%open_statements
+                grown(k) = self%statements(k)
+            end do
+            call move_alloc(grown, self%statements)
+        end if
+        self%open_statements = self%open_statements + 1
+        self%statements(self%open_statements) = statement
+    end subroutine push_statement
 
     !> "JOINT/3 (line 40)", "UCON/5" (no line for a model built in code) of statement s.
     pure function statement_name(self, s) result(name)
@@ -742,9 +887,13 @@ contains
         type(error_type), allocatable, intent(out) :: error
         character(len=:), allocatable :: model_name
         logical :: model_time_free
-        integer :: k, i, p, entry
+        integer :: k, i, p, entry, previous
         integer, allocatable :: declared_parts(:), declared_codes(:), part_ids(:)
+        !> The model's parts and UCONs by id (found in constant time: the set-up is linear in
+        !> the model's size, docs/design.md §4 "Many parts": start-up)
+        type(id_index_type) :: parts_by_id, ucons_by_id
 
+        call model%close_additions()
         if (.not. allocated(model%parts)) allocate(model%parts(0))
         if (.not. allocated(model%ucons)) allocate(model%ucons(0))
         if (.not. allocated(model%forces)) allocate(model%forces(0))
@@ -791,6 +940,12 @@ contains
         model%n = 6*size(model%parts)
         model%nc = size(model%ucons)
         model%registry = ucovar_registry_type()
+        parts_by_id = new_id_index(size(model%parts))
+        do p = 1, size(model%parts)
+            ! a later part of an id already held is not stored: the first one is found
+            call parts_by_id%add(int(model%parts(p)%id, int64), p, previous)
+        end do
+        ucons_by_id = new_id_index(model%nc)
         allocate(model%holonomic_number(model%nc), source=0)
         model%nh = 0
         do k = 1, model%nc
@@ -800,7 +955,8 @@ contains
                         & // " constants; at most " // to_text(max_ucon_par))
                     return
                 end if
-                if (count(model%ucons(:k)%id == ucon%id) > 1) then
+                call ucons_by_id%add(int(ucon%id, int64), k, previous)
+                if (previous > 0) then
                     call ucon_error(error, ucon%id, "the id is used by two UCON statements")
                     return
                 end if
@@ -819,7 +975,7 @@ contains
                     ucon%velocity = is_velocity_code(declared%codes)
                     allocate(ucon%coordinate(ucon%nvars))
                     do i = 1, ucon%nvars
-                        p = findloc(model%parts%id, declared%parts(i), dim=1)
+                        p = parts_by_id%find(int(declared%parts(i), int64))
                         if (p == 0) then
                             call ucon_error(error, ucon%id, "UCOVAR variable " // to_text(i) &
                                 & // " (" // code_name(declared%codes(i)) // ") belongs to part " &

@@ -127,33 +127,40 @@ contains
         text = " by" // text(2:)
     end function dissipation_parts
 
-    !> "final state of part <id>:" and its coordinates beside their rates, for every part.
+    !> "final state of part <id>:" and its coordinates beside their rates, for every part (built
+    !> by append_text: linear in the parts, where text = text // line copied the text so far
+    !> at every line, a sizeable share of a run of hundreds of parts).
     function final_state(summary) result(text)
         type(run_summary_type), intent(in) :: summary
-        character(len=:), allocatable :: text
+        character(len=:), allocatable :: text, lines
         character(len=32) :: value
-        integer :: p, i, i0
+        integer :: p, i, i0, used
 
         text = ""
         if (.not. allocated(summary%q) .or. .not. allocated(summary%layout%part_ids)) return
+        used = 0
         do p = 1, size(summary%layout%part_ids)
-            text = text // "final state of part " // to_text(summary%layout%part_ids(p)) // ":" &
-                & // nl
+            call append_text(lines, used, "final state of part " &
+                & // to_text(summary%layout%part_ids(p)) // ":" // nl)
             i0 = 6*(p - 1)
             do i = 1, 6
                 write(value, '(es23.15e3)') summary%q(i0 + i)
-                text = text // "  " // quantity_names(i) // trim(value)
+                call append_text(lines, used, "  " // quantity_names(i) // trim(value))
                 write(value, '(es23.15e3)') summary%u(i0 + i)
-                text = text // "    " // quantity_names(6 + i) // trim(value) // nl
+                call append_text(lines, used, "    " // quantity_names(6 + i) // trim(value) &
+                    & // nl)
             end do
         end do
+        if (used > 0) text = lines(:used)
     end function final_state
 
-    !> The largest residual over the rows and UCONs, then each UCON's with its level.
+    !> The largest residual over the rows and UCONs, then each UCON's with its level (its
+    !> label the next line of summary%ucon_labels, read once from start to end).
     function residual_lines(summary) result(text)
         type(run_summary_type), intent(in) :: summary
-        character(len=:), allocatable :: text
-        integer :: k
+        character(len=:), allocatable :: text, lines, label
+        integer :: k, used, first, last
+        logical :: labelled
 
         if (.not. allocated(summary%ucon_residual_max)) then
             text = ""
@@ -163,38 +170,55 @@ contains
             text = "largest constraint residual: none (the model has no UCON)" // nl
             return
         end if
-        text = "largest constraint residual: " // scientific(summary%residual_max) &
+        used = 0
+        call append_text(lines, used, "largest constraint residual: " &
+            & // scientific(summary%residual_max) &
             & // " (velocity level: its coordinates' units per s; position level: their units)" &
-            & // nl
+            & // nl)
+        ! UCON k in the user's words: line k of summary%ucon_labels, else (no labels, or none
+        ! left) "UCON <id>"
+        labelled = allocated(summary%ucon_labels)
+        first = 1
         do k = 1, size(summary%ucon_residual_max)
-            text = text // "  " // ucon_label(summary, k) // ": " &
-                & // scientific(summary%ucon_residual_max(k))
+            label = "UCON " // to_text(summary%layout%ucon_ids(k))
+            if (labelled) then
+                last = index(summary%ucon_labels(first:), nl)
+                if (last == 0) then
+                    labelled = .false.
+                else
+                    last = first + last - 1
+                    label = summary%ucon_labels(first:last - 1)
+                    first = last + 1
+                end if
+            end if
+            call append_text(lines, used, "  " // label // ": " &
+                & // scientific(summary%ucon_residual_max(k)))
             if (summary%ucon_position(k)) then
-                text = text // " (position level)" // nl
+                call append_text(lines, used, " (position level)" // nl)
             else
-                text = text // " (velocity level)" // nl
+                call append_text(lines, used, " (velocity level)" // nl)
             end if
         end do
+        text = lines(:used)
     end function residual_lines
 
-    !> UCON k in the user's words: line k of summary%ucon_labels, else "UCON <id>".
-    function ucon_label(summary, k) result(label)
-        type(run_summary_type), intent(in) :: summary
-        integer, intent(in) :: k
-        character(len=:), allocatable :: label
-        integer :: first, last, line
+    !> Append piece to text(:used), text's length doubled first when the piece does not fit:
+    !> n pieces cost time linear in their total length.
+    pure subroutine append_text(text, used, piece)
+        character(len=:), allocatable, intent(inout) :: text
+        integer, intent(inout) :: used
+        character(len=*), intent(in) :: piece
+        character(len=:), allocatable :: larger
 
-        label = "UCON " // to_text(summary%layout%ucon_ids(k))
-        if (.not. allocated(summary%ucon_labels)) return
-        first = 1
-        do line = 1, k
-            last = index(summary%ucon_labels(first:), new_line("a"))
-            if (last == 0) return
-            last = first + last - 1
-            if (line == k) label = summary%ucon_labels(first:last - 1)
-            first = last + 1
-        end do
-    end function ucon_label
+        if (.not. allocated(text)) allocate(character(len=max(256, len(piece))) :: text)
+        if (used + len(piece) > len(text)) then
+            allocate(character(len=max(2*len(text), used + len(piece))) :: larger)
+            larger(:used) = text(:used)
+            call move_alloc(larger, text)
+        end if
+        text(used + 1:used + len(piece)) = piece
+        used = used + len(piece)
+    end subroutine append_text
 
     !> Each watch measure judged against a bound: "largest height residual |Z - R sin(theta)|:
     !> 1.2E-09 m, allowed 3.4E-08 m". A measure without a bound is for tables (a study's row,

@@ -16,7 +16,7 @@ module rollcon_adm_checks
         & force_springdamper, force_bushing, force_vtorque, force_names
     use rollcon_adm_joints, only : adm_joint_type
     use rollcon_adm_motions, only : adm_motion_type
-    use rollcon_adm_ids, only : id_index_type, new_id_index
+    use rollcon_id_index, only : id_index_type, new_id_index
     use rollcon_adm_run, only : no_simulate_message
     use, intrinsic :: iso_fortran_env, only : int64
     implicit none

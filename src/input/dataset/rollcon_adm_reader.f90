@@ -12,7 +12,7 @@ module rollcon_adm_reader
     use rollcon_namelist_lexer, only : line_type
     use rollcon_adm_lexer, only : adm_text_type, adm_statement_type, adm_argument_type, &
         & lex_adm_lines, read_dataset_lines
-    use rollcon_adm_ids, only : id_index_type, new_id_index
+    use rollcon_id_index, only : id_index_type, new_id_index
     use rollcon_adm_keywords, only : resolve_keyword, statement_names, argument_key, &
         & arg_place, place, name_index
     use rollcon_adm_units, only : units_type, set_unit, unit_keywords

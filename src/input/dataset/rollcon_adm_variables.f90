@@ -19,7 +19,7 @@ module rollcon_adm_variables
     use rollcon_spline, only : spline_type, new_spline
     use rollcon_measures, only : is_state_measure, input_refusal, input_text
     use rollcon_adm_keywords, only : place
-    use rollcon_adm_ids, only : id_index_type, new_id_index
+    use rollcon_id_index, only : id_index_type, new_id_index
     use rollcon_adm_model, only : adm_model_type, force_sforce, force_vforce
     use rollcon_adm_loads, only : read_user_list
     use rollcon_adm_expression_parser, only : compile_expression

@@ -3,6 +3,7 @@
 module test_ucovar
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type
+    use rollcon_text, only : to_text
     use rollcon_ucosub_contract, only : ucovar
     use rollcon_ucovar_registry, only : ucovar_registry_type
     use rollcon_ucon_call, only : declare_ucon
@@ -29,6 +30,7 @@ contains
             & new_unittest("duplicate-variable", test_duplicate), &
             & new_unittest("bad-part-id", test_bad_part), &
             & new_unittest("declared-twice", test_twice), &
+            & new_unittest("many-declarations-found-by-id", test_many), &
             & new_unittest("no-ucovar-call", test_no_call), &
             & new_unittest("wrong-id", test_wrong_id), &
             & new_unittest("outside-initialisation", test_outside)]
@@ -134,6 +136,47 @@ contains
         call registry%declare(12, 1, [1], 1, [12], found)
         call expect_error(error, found, "UCOVAR called twice")
     end subroutine test_twice
+
+    !> 3000 declarations in a scrambled order of ids (the registry grows by doubling and finds
+    !> an id through its index, rollcon_id_index): each id found at its own entry with its own
+    !> part and code, an id never declared not found, the count exact, and a repeat of an id
+    !> declared long before still refused.
+    subroutine test_many(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(ucovar_registry_type) :: registry
+        type(error_type), allocatable :: found
+        integer, parameter :: many = 3000
+        integer :: k, id, entry
+
+        do k = 1, many
+            ! 7919 is prime to 3000: the ids 1000 .. 3999 in a scrambled order, each once
+            id = 1000 + mod(7919*k, many)
+            call registry%declare(id, 1, [id], 1, [11 + mod(id, 6)], error)
+            if (allocated(error)) return
+        end do
+        call check(error, registry%count() == many, "count")
+        if (allocated(error)) return
+        do id = 1000, 1000 + many - 1
+            entry = registry%find(id)
+            call check(error, entry > 0, "id " // to_text(id) // " not found")
+            if (allocated(error)) return
+            call check(error, registry%entries(entry)%id == id .and. &
+                & all(registry%entries(entry)%parts == [id]) .and. &
+                & all(registry%entries(entry)%codes == [11 + mod(id, 6)]), &
+                & "id " // to_text(id) // ": the entry found is another's")
+            if (allocated(error)) return
+        end do
+        call check(error, registry%find(999) == 0 .and. registry%find(1000 + many) == 0, &
+            & "an id never declared is found")
+        if (allocated(error)) return
+        id = 1000 + mod(7919, many)
+        call registry%declare(id, 1, [1], 1, [12], found)
+        call check(error, allocated(found), "UCON/" // to_text(id) // " declared twice: no error")
+        if (allocated(error)) return
+        call check(error, index(found%message, "UCON/" // to_text(id) // ": UCOVAR called twice") &
+            & == 1 .and. registry%count() == many, "UCON/" // to_text(id) &
+            & // " declared twice: " // found%message)
+    end subroutine test_many
 
     !> A routine whose initialisation call forgets UCOVAR.
     subroutine silent_ucosub(id, time, q, par, npar, idrsel, iflag, scalar, array, xmatrx)

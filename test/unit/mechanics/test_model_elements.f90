@@ -49,6 +49,7 @@ contains
             & new_unittest("inline-to-ground-closed-form", test_inline_ground), &
             & new_unittest("origins-in-the-model-length-unit", test_length_unit), &
             & new_unittest("refusals", test_refusals), &
+            & new_unittest("open-additions-as-one-by-one", test_open_additions), &
             & new_unittest("part-marker-and-start", test_frames)]
     end subroutine collect_model_elements
 
@@ -374,6 +375,101 @@ contains
         end subroutine refused
 
     end subroutine test_refusals
+
+    !> The same 61 statements (UCON/20, then 30 REVOLUTE joints and 30 ATPOINT primitives in
+    !> turn, a UCON/500 among them) added one by one and with the additions open (the arrays
+    !> grown by doubling, model%open_additions): while open, the counts are the statements' and
+    !> UCONs' so far, not the arrays' capacity; closed, the two models have the same UCONs (id,
+    !> statement, equation, routine, constants) and statements (kind, id, line), and set up to
+    !> the same coordinates. A joint's UCONs take the ids after the largest so far (UCON/500's
+    !> among them), which the open additions track without reading the arrays.
+    subroutine test_open_additions(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(model_type) :: one_by_one, open
+        type(marker_type) :: i, j
+        integer :: k, ucons, statements
+
+        call two_parts(one_by_one, i, j, error)
+        if (allocated(error)) return
+        call two_parts(open, i, j, error)
+        if (allocated(error)) return
+        call open%open_additions()
+        call add_all(one_by_one, error)
+        if (allocated(error)) return
+        call add_all(open, error)
+        if (allocated(error)) return
+        ucons = size(one_by_one%ucons)
+        statements = size(one_by_one%statements)
+        ! 1 + 30*5 + 30*3 + 1 UCONs in 62 statements
+        call check(error, ucons == 242 .and. statements == 62, "one by one: " &
+            & // to_text(ucons) // " UCONs in " // to_text(statements) // " statements")
+        if (allocated(error)) return
+        call check(error, open%ucon_count() == ucons .and. open%statement_count() &
+            & == statements .and. size(open%ucons) >= ucons, "open: counts " &
+            & // to_text(open%ucon_count()) // " and " // to_text(open%statement_count()))
+        if (allocated(error)) return
+        call open%close_additions()
+        call check(error, size(open%ucons) == ucons .and. size(open%statements) == statements &
+            & .and. open%ucon_count() == ucons, "closed: " // to_text(size(open%ucons)) &
+            & // " UCONs in " // to_text(size(open%statements)) // " statements")
+        if (allocated(error)) return
+        do k = 1, ucons
+            associate (a => one_by_one%ucons(k), b => open%ucons(k))
+                call check(error, a%id == b%id .and. a%statement == b%statement .and. &
+                    & a%equation == b%equation .and. a%routine == b%routine .and. &
+                    & size(a%par) == size(b%par), "UCON " // to_text(k) // " differs")
+                if (allocated(error)) return
+                call check(error, all(a%par == b%par), "UCON " // to_text(k) // "'s constants")
+                if (allocated(error)) return
+            end associate
+        end do
+        ! UCON/20, 14 joints' and primitives' UCONs 21 .. 132, joint 15's 133 .. 137, UCON/500,
+        ! then primitive 15's 501 .. 503 and the rest on to 623
+        call check(error, open%ucons(118)%id == 137 .and. open%ucons(119)%id == 500 .and. &
+            & open%ucons(120)%id == 501 .and. open%ucons(ucons)%id == 623, "the ids after " &
+            & // "UCON/500: " // to_text(open%ucons(120)%id) // " ... " &
+            & // to_text(open%ucons(ucons)%id))
+        if (allocated(error)) return
+        do k = 1, statements
+            associate (a => one_by_one%statements(k), b => open%statements(k))
+                call check(error, a%kind == b%kind .and. a%id == b%id .and. a%line == b%line, &
+                    & "statement " // to_text(k) // " differs")
+                if (allocated(error)) return
+            end associate
+        end do
+        call setup_model(one_by_one, error)
+        if (allocated(error)) return
+        call setup_model(open, error)
+        if (allocated(error)) return
+        do k = 1, ucons
+            call check(error, one_by_one%ucons(k)%nvars == open%ucons(k)%nvars, "nvars")
+            if (allocated(error)) return
+            call check(error, all(one_by_one%ucons(k)%coordinate == open%ucons(k)%coordinate), &
+                & "UCON " // to_text(k) // "'s coordinates")
+            if (allocated(error)) return
+        end do
+    contains
+        subroutine add_all(model, error)
+            type(model_type), intent(inout) :: model
+            type(error_type), allocatable, intent(out) :: error
+            procedure(ucosub_interface), pointer :: knife
+            real(wp), allocatable :: par(:)
+            logical :: time_free, found
+            integer :: n
+
+            call find_builtin_ucosub("knife_edge", knife, time_free, found)
+            call builtin_ucosub_par("knife_edge", 9, [real(wp) ::], 1, par, error)
+            if (allocated(error)) return
+            do n = 1, 30
+                call model%add_joint(n, "REVOLUTE", i, j, error, line=10 + n)
+                if (allocated(error)) return
+                if (n == 15) call model%add_ucon(500, par, knife, time_free=time_free, &
+                    & routine="knife_edge", line=100)
+                call model%add_jprim(100 + n, "ATPOINT", i, j, error, line=200 + n)
+                if (allocated(error)) return
+            end do
+        end subroutine add_all
+    end subroutine test_open_additions
 
     !> part_marker: a marker given in its part's frame is in the principal axes at the centre
     !> of mass (R_cm^T (origin - cm_origin)), so part_start's pose of the part puts it back at
