@@ -390,9 +390,9 @@ contains
 
         do e = level%start(i), level%start(i + 1) - 1
             if (position) then
-                level%value(e) = cs%grad_q(k, level%column(e))
+                level%value(e) = cs%grad_q_entry(k, level%column(e))
             else
-                level%value(e) = cs%grad_u(k, level%column(e))
+                level%value(e) = cs%grad_u_entry(k, level%column(e))
             end if
         end do
     end subroutine fill_row

@@ -141,7 +141,7 @@ contains
         do k = 1, problem%eq%nc
             h = problem%model%holonomic_number(k)
             if (h == 0) cycle
-            g(h, :) = problem%eq%constraints%grad_q(k, :)
+            call problem%eq%constraints%fill_grad_q_row(k, g(h, :))
             f(h) = problem%eq%constraints%value(k)
         end do
     end subroutine position_rows

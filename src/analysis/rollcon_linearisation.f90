@@ -185,25 +185,26 @@ contains
                                 & + cs%dt_grad_q(jj, k)
                         end do
                     end associate
-                    jac(row, n + 1:) = cs%grad_q(k, :)
+                    call cs%fill_grad_q_row(k, jac(row, n + 1:))
                     kept(row:row + 1) = problem%eq%active_rows_of(k)
-                    residual = dot_product(cs%grad_q(k, :), u) + cs%dt(k)
+                    residual = cs%grad_q_dot(k, u) + cs%dt(k)
+                    ! (the tolerances read the rows of dF/dq and dF/du just placed in jac)
                     call check_met(problem, k, "its rate", residual, &
                         & tolerance(problem%settings%atol, problem%settings%rtol, &
-                        & cs%grad_q(k, :), u, residual)/ic_fraction, error)
+                        & jac(row, n + 1:), u, residual)/ic_fraction, error)
                     if (allocated(error)) return
                     row = row + 1
-                    jac(row, :n) = cs%grad_q(k, :)
+                    call cs%fill_grad_q_row(k, jac(row, :n))
                     call check_met(problem, k, "F", cs%value(k), &
                         & tolerance(problem%settings%atol, problem%settings%rtol, &
-                        & cs%grad_q(k, :), q, cs%value(k))/ic_fraction, error)
+                        & jac(row, :n), q, cs%value(k))/ic_fraction, error)
                 else
-                    jac(row, :n) = cs%grad_q(k, :)
-                    jac(row, n + 1:) = cs%grad_u(k, :)
+                    call cs%fill_grad_q_row(k, jac(row, :n))
+                    call cs%fill_grad_u_row(k, jac(row, n + 1:))
                     kept(row) = problem%eq%active_rows_of(k)
                     call check_met(problem, k, "F", cs%value(k), &
                         & tolerance(problem%settings%atol, problem%settings%rtol, &
-                        & cs%grad_u(k, :), u, cs%value(k))/ic_fraction, error)
+                        & jac(row, n + 1:), u, cs%value(k))/ic_fraction, error)
                 end if
                 if (allocated(error)) return
             end do

@@ -199,7 +199,7 @@ contains
                 end associate
                 if (h == 0) cycle
                 now%residual(n + h) = cs%value(k)
-                now%jacobian(n + h, :n) = cs%grad_q(k, :)
+                call cs%fill_grad_q_row(k, now%jacobian(n + h, :n))
             end do
             now%force = 0.0_wp
             now%moment = 0.0_wp
@@ -216,8 +216,9 @@ contains
             do k = 1, nc
                 h = problem%model%holonomic_number(k)
                 if (h == 0) cycle
+                ! (the row's dF/dq, set above)
                 size_k = tolerance(problem%settings%atol, problem%settings%rtol, &
-                    & cs%grad_q(k, :), q, cs%value(k))
+                    & now%jacobian(n + h, :n), q, cs%value(k))
                 if (abs(cs%value(k)) > size_k) now%met = .false.
                 if (abs(cs%value(k)) >= now%constraint) then
                     now%constraint = abs(cs%value(k))
@@ -282,7 +283,7 @@ contains
         real(wp), intent(in) :: time, q(:)
         type(static_report_type), intent(inout) :: report
         type(error_type), allocatable, intent(out) :: error
-        real(wp) :: u(size(q)), limit
+        real(wp) :: u(size(q)), row(size(q)), limit
         integer :: k
 
         u = 0.0_wp
@@ -291,9 +292,10 @@ contains
         if (allocated(error)) return
         do k = 1, problem%eq%nc
             if (problem%model%holonomic_number(k) > 0) cycle
+            call problem%eq%constraints%fill_grad_u_row(k, row)
             associate (value => problem%eq%constraints%value(k))
                 limit = tolerance(problem%settings%atol, problem%settings%rtol, &
-                    & problem%eq%constraints%grad_u(k, :), u, value)
+                    & row, u, value)
                 report%constraint_residual = max(report%constraint_residual, abs(value))
                 if (abs(value) > limit) then
                     call fatal_error(error, "static equilibrium: " &

@@ -27,11 +27,15 @@ module rollcon_constraints
     type :: constraint_state_type
         !> F_k
         real(wp), allocatable :: value(:)
-        !> dF_k/dq_j and dF_k/du_j (nc, n). A position UCON has no rate among its variables
-        !> (rollcon_model's holonomic), so its row of grad_u is zero; where every UCON is one,
-        !> grad_u is all zeros and is held as (nc, 0): no row of it is read (memory,
-        !> docs/design.md §4 "Memory")
-        real(wp), allocatable :: grad_q(:, :), grad_u(:, :)
+        !> dF_k/dq_i and dF_k/du_i over UCON k's own coordinates: grad_q_local(a, k) with
+        !> i = local(a, k) (width, nc), zero past local_count(k); off them they are zeros, not
+        !> stored (memory grows as the number of UCONs, not as nc n: docs/design.md §4
+        !> "Memory"). A position UCON has no rate among its variables (rollcon_model's
+        !> holonomic), so its grad_u_local is zero. Read them through grad_q_dot, grad_q_entry,
+        !> fill_grad_q_row and their grad_u twins.
+        real(wp), allocatable :: grad_q_local(:, :), grad_u_local(:, :)
+        !> Some UCON has a rate among its variables (a velocity UCON)
+        logical :: rates = .false.
         !> dF_k/dt and d2F_k/dt2
         real(wp), allocatable :: dt(:), dtt(:)
         !> d2F_k/dt dq_i and d2F_k/dt du_i over UCON k's own coordinates: dt_grad_q(a, k) with
@@ -57,6 +61,8 @@ module rollcon_constraints
     contains
         procedure :: allocate => allocate_state
         procedure :: evaluate => evaluate_constraints
+        procedure :: grad_q_dot, grad_u_dot, grad_q_entry, grad_u_entry
+        procedure :: fill_grad_q_row, fill_grad_u_row
     end type constraint_state_type
 
 contains
@@ -70,20 +76,16 @@ contains
         logical :: rates
 
         associate (n => model%n, nc => model%nc)
-            if (allocated(self%value)) deallocate(self%value, self%dt, self%dtt, self%grad_q, &
-                & self%grad_u, self%dt_grad_q, self%dt_grad_u, self%hqq, self%hqu, self%local, &
-                & self%local_count, self%slot, self%plain_hessian)
+            if (allocated(self%value)) deallocate(self%value, self%dt, self%dtt, &
+                & self%grad_q_local, self%grad_u_local, self%dt_grad_q, self%dt_grad_u, &
+                & self%hqq, self%hqu, self%local, self%local_count, self%slot, &
+                & self%plain_hessian)
             allocate(self%value(nc), self%dt(nc), self%dtt(nc), source=0.0_wp)
-            allocate(self%grad_q(nc, n), source=0.0_wp)
             rates = .false.
             do k = 1, nc
                 if (.not. model%ucons(k)%holonomic) rates = .true.
             end do
-            if (rates) then
-                allocate(self%grad_u(nc, n), source=0.0_wp)
-            else
-                allocate(self%grad_u(nc, 0))
-            end if
+            self%rates = rates
             allocate(self%local(max_ucon_vars, nc), self%slot(max_ucon_vars, nc), &
                 & self%local_count(nc), source=0)
             allocate(self%plain_hessian(nc), source=.false.)
@@ -114,7 +116,9 @@ contains
                 end associate
             end do
             allocate(self%hqq(self%width, self%width, nc), self%hqu(self%width, self%width, nc), &
-                & self%dt_grad_q(self%width, nc), self%dt_grad_u(self%width, nc), source=0.0_wp)
+                & self%dt_grad_q(self%width, nc), self%dt_grad_u(self%width, nc), &
+                & self%grad_q_local(self%width, nc), self%grad_u_local(self%width, nc), &
+                & source=0.0_wp)
         end associate
     end subroutine allocate_state
 
@@ -180,12 +184,8 @@ contains
                             if (allocated(error)) return
                         end if
                     end if
-                    if (first .and. size(self%grad_u, 2) == 0) then
-                        ! every UCON a position UCON: no rates, no dF/du
-                        call scatter_row(ucon, array, self%grad_q(k, :))
-                    else if (first) then
-                        call scatter_row(ucon, array, self%grad_q(k, :), self%grad_u(k, :))
-                    end if
+                    if (first) call place_row(ucon, self%slot(:, k), array, &
+                        & self%grad_q_local(:, k), self%grad_u_local(:, k))
                     if (second) call place_hessian(ucon, self%slot(:, k), self%local_count(k), &
                         & self%plain_hessian(k), xmatrx, self%hqq(:, :, k), self%hqu(:, :, k))
                 end if
@@ -291,34 +291,87 @@ contains
         end associate
     end subroutine to_si
 
-    !> Scatter a UCON's first partials (ARRAY) onto the system's coordinates and rates. Only the
-    !> UCON's own coordinates are written (zeroed, then set): the others are zero from
-    !> allocate_state and stay so, and a model of N parts costs N times one.
-    pure subroutine scatter_row(ucon, array, row_q, row_u)
-        type(ucon_statement_type), intent(in) :: ucon
-        real(wp), intent(in) :: array(:)
-        !> d/dq and d/du rows of the system (d/du absent where no UCON has a rate: a position
-        !> UCON's variables are coordinates only)
-        real(wp), intent(inout) :: row_q(:)
-        real(wp), intent(inout), optional :: row_u(:)
-        integer :: i
+    !> Row k of dF/dq times v (v over the system's coordinates, n): the sum over UCON k's own
+    !> coordinates in ascending order, as the dense row's dot product sums its nonzeros.
+    pure real(wp) function grad_q_dot(self, k, v) result(total)
+        class(constraint_state_type), intent(in) :: self
+        integer, intent(in) :: k
+        real(wp), intent(in) :: v(:)
+        integer :: a
 
-        do i = 1, ucon%nvars
-            row_q(ucon%coordinate(i)) = 0.0_wp
-            if (present(row_u)) row_u(ucon%coordinate(i)) = 0.0_wp
+        total = 0.0_wp
+        do a = 1, self%local_count(k)
+            total = total + self%grad_q_local(a, k)*v(self%local(a, k))
         end do
-        do i = 1, ucon%nvars
-            if (ucon%velocity(i)) then
-                row_u(ucon%coordinate(i)) = array(i)
-            else
-                row_q(ucon%coordinate(i)) = array(i)
-            end if
+    end function grad_q_dot
+
+    !> Row k of dF/du times v (n), as grad_q_dot.
+    pure real(wp) function grad_u_dot(self, k, v) result(total)
+        class(constraint_state_type), intent(in) :: self
+        integer, intent(in) :: k
+        real(wp), intent(in) :: v(:)
+        integer :: a
+
+        total = 0.0_wp
+        do a = 1, self%local_count(k)
+            total = total + self%grad_u_local(a, k)*v(self%local(a, k))
         end do
-    end subroutine scatter_row
+    end function grad_u_dot
+
+    !> dF_k/dq_j (j a system coordinate; zero off UCON k's own coordinates).
+    pure real(wp) function grad_q_entry(self, k, j) result(entry)
+        class(constraint_state_type), intent(in) :: self
+        integer, intent(in) :: k, j
+        integer :: a
+
+        entry = 0.0_wp
+        do a = 1, self%local_count(k)
+            if (self%local(a, k) == j) entry = self%grad_q_local(a, k)
+        end do
+    end function grad_q_entry
+
+    !> dF_k/du_j (zero off UCON k's own coordinates).
+    pure real(wp) function grad_u_entry(self, k, j) result(entry)
+        class(constraint_state_type), intent(in) :: self
+        integer, intent(in) :: k, j
+        integer :: a
+
+        entry = 0.0_wp
+        do a = 1, self%local_count(k)
+            if (self%local(a, k) == j) entry = self%grad_u_local(a, k)
+        end do
+    end function grad_u_entry
+
+    !> Row k of dF/dq written whole into row (n: the dense analyses' row; zeros off UCON k's
+    !> own coordinates).
+    pure subroutine fill_grad_q_row(self, k, row)
+        class(constraint_state_type), intent(in) :: self
+        integer, intent(in) :: k
+        real(wp), intent(out) :: row(:)
+        integer :: a
+
+        row = 0.0_wp
+        do a = 1, self%local_count(k)
+            row(self%local(a, k)) = self%grad_q_local(a, k)
+        end do
+    end subroutine fill_grad_q_row
+
+    !> Row k of dF/du written whole into row (n), as fill_grad_q_row.
+    pure subroutine fill_grad_u_row(self, k, row)
+        class(constraint_state_type), intent(in) :: self
+        integer, intent(in) :: k
+        real(wp), intent(out) :: row(:)
+        integer :: a
+
+        row = 0.0_wp
+        do a = 1, self%local_count(k)
+            row(self%local(a, k)) = self%grad_u_local(a, k)
+        end do
+    end subroutine fill_grad_u_row
 
     !> Place a UCON's partials ARRAY over its own coordinates (`slot` gives each variable's
     !> place): its coordinates' d/dq and its rates' d/du, each place's other kind zero, as
-    !> scatter_row does over the system's.
+    !> a dense row would over the system's.
     pure subroutine place_row(ucon, slot, array, local_q, local_u)
         type(ucon_statement_type), intent(in) :: ucon
         integer, intent(in) :: slot(:)
@@ -346,7 +399,7 @@ contains
     !> ascending order) has its XMATRX copied whole, every entry of its corner written, and its
     !> hqu never written (zero since allocate_state); another has the count x count corner of
     !> its own coordinates cleared (the rest is never written and stays zero), then set, as
-    !> scatter_row does: no two variables of one kind share a slot, so the entries set do not
+    !> place_row does: no two variables of one kind share a slot, so the entries set do not
     !> overlap.
     pure subroutine place_hessian(ucon, slot, count, plain, xmatrx, hqq, hqu)
         type(ucon_statement_type), intent(in) :: ucon

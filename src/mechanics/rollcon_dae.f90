@@ -29,7 +29,7 @@ module rollcon_dae
     use rollcon_error, only : error_type, fatal_error
     use rollcon_text, only : to_text
     use rollcon_constraints, only : local_dot, need_value, need_first, need_second, need_time
-    use rollcon_equations, only : equations_type, sparse_dot
+    use rollcon_equations, only : equations_type
     use rollcon_sliding_contact, only : sliding_contact_type
     implicit none
     private
@@ -112,15 +112,15 @@ contains
                     if (h > 0) then
                         do jj = 1, size(at)
                             j = at(jj)
-                            r(j) = r(j) - mu(h)*cs%grad_q(k, j)
-                            r(n + j) = r(n + j) - lambda(k)*cs%grad_q(k, j)
+                            r(j) = r(j) - mu(h)*cs%grad_q_local(jj, k)
+                            r(n + j) = r(n + j) - lambda(k)*cs%grad_q_local(jj, k)
                         end do
-                        r(2*n + k) = sparse_dot(cs%grad_q(k, :), u, at) + cs%dt(k)
+                        r(2*n + k) = cs%grad_q_dot(k, u) + cs%dt(k)
                         r(2*n + nc + h) = cs%value(k)
                     else
                         do jj = 1, size(at)
                             j = at(jj)
-                            r(n + j) = r(n + j) - lambda(k)*cs%grad_u(k, j)
+                            r(n + j) = r(n + j) - lambda(k)*cs%grad_u_local(jj, k)
                         end do
                         r(2*n + k) = cs%value(k)
                     end if
@@ -146,9 +146,9 @@ contains
         integer, intent(in) :: k, j
 
         if (eq%model%holonomic_number(k) > 0) then
-            row_gradient = eq%constraints%grad_q(k, j)
+            row_gradient = eq%constraints%grad_q_entry(k, j)
         else
-            row_gradient = eq%constraints%grad_u(k, j)
+            row_gradient = eq%constraints%grad_u_entry(k, j)
         end if
     end function row_gradient
 
@@ -436,15 +436,15 @@ contains
                             j = at(jj)
                             call put(row, j, local_dot(cs%hqq(:, jj, k), u, at) &
                                 & + cs%dt_grad_q(jj, k))
-                            call put(j, 2*n + nc + h, -cs%grad_q(k, j))
-                            call put(row, n + j, cs%grad_q(k, j))
-                            call put(2*n + nc + h, j, cs%grad_q(k, j))
+                            call put(j, 2*n + nc + h, -cs%grad_q_local(jj, k))
+                            call put(row, n + j, cs%grad_q_local(jj, k))
+                            call put(2*n + nc + h, j, cs%grad_q_local(jj, k))
                         end do
                     else
                         do jj = 1, size(at)
                             j = at(jj)
-                            call put(row, j, cs%grad_q(k, j))
-                            call put(row, n + j, cs%grad_u(k, j))
+                            call put(row, j, cs%grad_q_local(jj, k))
+                            call put(row, n + j, cs%grad_u_local(jj, k))
                         end do
                     end if
                 end associate
@@ -532,9 +532,9 @@ contains
                                     do ib = 1, size(by)
                                         j = by(ib)
                                         call subtract(n + i, n + j, &
-                                            & -weight*eq%constraints%grad_u(t(b), j))
+                                            & -weight*eq%constraints%grad_u_local(ib, t(b)))
                                         call subtract(n + i, j, &
-                                            & -weight*eq%constraints%grad_q(t(b), j))
+                                            & -weight*eq%constraints%grad_q_local(ib, t(b)))
                                     end do
                                 end associate
                             end do

@@ -437,12 +437,12 @@ contains
                 first = self%blocks%ucon_start(k)
                 last = self%blocks%ucon_start(k + 1) - 1
                 if (self%model%ucons(k)%holonomic) then
-                    rate = sparse_dot(cs%grad_q(k, :), u, at(first:last)) + cs%dt(k)
+                    rate = cs%grad_q_dot(k, u) + cs%dt(k)
                     self%gamma(k) = -local_quadratic_form(cs%hqq(:, :, k), u, at(first:last)) &
                         & - 2.0_wp*local_dot(cs%dt_grad_q(:, k), u, at(first:last)) &
                         & - cs%dtt(k) - 2.0_wp*alpha*rate - alpha**2*cs%value(k)
                 else
-                    self%gamma(k) = -sparse_dot(cs%grad_q(k, :), u, at(first:last)) - cs%dt(k) &
+                    self%gamma(k) = -cs%grad_q_dot(k, u) - cs%dt(k) &
                         & - alpha*cs%value(k)
                 end if
             end do
@@ -453,15 +453,17 @@ contains
     !> row over its UCON's coordinates (the others are zero from init, and stay so).
     subroutine constraint_matrix(self)
         class(equations_type), intent(inout) :: self
-        integer :: k, i, j
+        integer :: k, i, j, a
 
         do k = 1, self%nc
             do i = self%blocks%ucon_start(k), self%blocks%ucon_start(k + 1) - 1
                 j = self%blocks%ucon_coordinates(i)
+                ! its place among the UCON's own coordinates (the same ascending list)
+                a = i - self%blocks%ucon_start(k) + 1
                 if (self%model%ucons(k)%holonomic) then
-                    self%c(k, j) = self%constraints%grad_q(k, j)
+                    self%c(k, j) = self%constraints%grad_q_local(a, k)
                 else
-                    self%c(k, j) = self%constraints%grad_u(k, j)
+                    self%c(k, j) = self%constraints%grad_u_local(a, k)
                 end if
             end do
         end do
@@ -1258,9 +1260,10 @@ contains
                             j = at(jj)
                             rhs_bottom(k, j) = -local_dot(cs%hqq(:, jj, k), a, at) &
                                 & - 2.0_wp*alpha*(local_dot(cs%hqq(:, jj, k), u, at) &
-                                & + cs%dt_grad_q(jj, k)) - alpha**2*cs%grad_q(k, j)
+                                & + cs%dt_grad_q(jj, k)) - alpha**2*cs%grad_q_local(jj, k)
                             rhs_bottom(k, n + j) = -2.0_wp*local_dot(cs%hqq(:, jj, k), u, at) &
-                                & - 2.0_wp*cs%dt_grad_q(jj, k) - 2.0_wp*alpha*cs%grad_q(k, j)
+                                & - 2.0_wp*cs%dt_grad_q(jj, k) &
+                                & - 2.0_wp*alpha*cs%grad_q_local(jj, k)
                         end do
                     else
                         ! C a - gamma = dF/du a + dF/dq u + dF/dt + alpha F
@@ -1268,10 +1271,10 @@ contains
                             j = at(jj)
                             rhs_bottom(k, j) = -(local_dot(cs%hqu(jj, :, k), a, at) &
                                 & + local_dot(cs%hqq(:, jj, k), u, at) + cs%dt_grad_q(jj, k) &
-                                & + alpha*cs%grad_q(k, j))
-                            rhs_bottom(k, n + j) = -(cs%grad_q(k, j) &
+                                & + alpha*cs%grad_q_local(jj, k))
+                            rhs_bottom(k, n + j) = -(cs%grad_q_local(jj, k) &
                                 & + local_dot(cs%hqu(:, jj, k), u, at) + cs%dt_grad_u(jj, k) &
-                                & + alpha*cs%grad_u(k, j))
+                                & + alpha*cs%grad_u_local(jj, k))
                         end do
                     end if
                 end associate
@@ -1305,7 +1308,7 @@ contains
                 if (self%model%holonomic_number(k) == 0 .or. .not. self%active_rows_of(k)) &
                     & cycle
                 rows = rows + 1
-                self%work%holonomic_rows(rows, :) = self%constraints%grad_q(k, :)
+                call self%constraints%fill_grad_q_row(k, self%work%holonomic_rows(rows, :))
                 self%work%rhs_bottom(rows, 1) = -self%constraints%value(k)
             end do
             call self%saddle%factor(self%mass, self%work%holonomic_rows, rows, error)
@@ -1323,7 +1326,7 @@ contains
             do k = 1, self%nc
                 h = self%model%holonomic_number(k)
                 if (h == 0) cycle
-                self%work%holonomic_rows(h, :) = self%constraints%grad_q(k, :)
+                call self%constraints%fill_grad_q_row(k, self%work%holonomic_rows(h, :))
                 self%work%rhs_bottom(h, 1) = -self%constraints%value(k)
             end do
             call self%saddle%factor(self%mass, self%work%holonomic_rows, self%nh, error)
@@ -1343,7 +1346,7 @@ contains
         associate (cs => self%constraints)
             do k = 1, self%nc
                 if (self%model%ucons(k)%holonomic) then
-                    self%work%rhs_bottom(k, 1) = -(dot_product(cs%grad_q(k, :), u) + cs%dt(k))
+                    self%work%rhs_bottom(k, 1) = -(cs%grad_q_dot(k, u) + cs%dt(k))
                 else
                     self%work%rhs_bottom(k, 1) = -cs%value(k)
                 end if

@@ -21,7 +21,7 @@ module rollcon_independent_speeds
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type
     use rollcon_constraints, only : local_dot, need_value, need_first, need_time
-    use rollcon_equations, only : equations_type, sparse_dot
+    use rollcon_equations, only : equations_type
     use rollcon_speed_partition, only : speed_partition_type
     implicit none
     private
@@ -121,14 +121,12 @@ contains
         call eq%constraints%evaluate(eq%model, time, q, u, needs, error)
         if (allocated(error)) return
         call eq%constraint_matrix()
-        associate (cs => eq%constraints, bl => eq%blocks)
+        associate (cs => eq%constraints)
             do k = 1, self%rows
                 if (eq%model%ucons(k)%holonomic) then
                     ! over the UCON's own coordinates (its partials are zero elsewhere): the
                     ! dense sum's nonzero terms in their order, O(1) a UCON, not O(n)
-                    self%r(k) = -(sparse_dot(cs%grad_q(k, :), u, &
-                        & bl%ucon_coordinates(bl%ucon_start(k):bl%ucon_start(k + 1) - 1)) &
-                        & + cs%dt(k) + alpha*cs%value(k))
+                    self%r(k) = -(cs%grad_q_dot(k, u) + cs%dt(k) + alpha*cs%value(k))
                 else
                     self%r(k) = -cs%value(k)
                 end if
@@ -186,19 +184,21 @@ contains
             associate (cs => eq%constraints)
                 do k = 1, self%rows
                     if (eq%model%ucons(k)%holonomic) then
-                        ! d2F/dq dq's column j is zero off the UCON's own coordinates
+                        ! d2F/dq dq's column j and dF/dq's entry are zero off the UCON's own
+                        ! coordinates: there the sum below is -(0 + 0 + alpha 0)
                         do j = 1, n
-                            self%dud_dq(k, j) = -(0.0_wp + 0.0_wp + alpha*cs%grad_q(k, j))
+                            self%dud_dq(k, j) = -(0.0_wp + 0.0_wp + alpha*0.0_wp)
                         end do
                         associate (at => cs%local(:cs%local_count(k), k))
                             do jj = 1, size(at)
                                 j = at(jj)
                                 self%dud_dq(k, j) = -(local_dot(cs%hqq(:, jj, k), u, at) &
-                                    & + cs%dt_grad_q(jj, k) + alpha*cs%grad_q(k, j))
+                                    & + cs%dt_grad_q(jj, k) + alpha*cs%grad_q_local(jj, k))
                             end do
                         end associate
                     else
-                        self%dud_dq(k, :) = -cs%grad_q(k, :)
+                        call cs%fill_grad_q_row(k, self%dud_dq(k, :))
+                        self%dud_dq(k, :) = -self%dud_dq(k, :)
                     end if
                     self%dud_dv(k, :) = -eq%c(k, self%partition%independent)
                 end do

@@ -250,16 +250,17 @@ contains
                 if (self%eq%redundancy%active(k)) cycle
                 if (self%model%ucons(k)%holonomic) then
                     position = cs%value(k)
-                    allowed_position = atol + rtol*(sum(abs(cs%grad_q(k, :)*q)) &
-                        & + abs(position - dot_product(cs%grad_q(k, :), q)))
-                    rate = dot_product(cs%grad_q(k, :), u) + cs%dt(k)
-                    allowed_rate = atol + rtol*(sum(abs(cs%grad_q(k, :)*u)) + abs(cs%dt(k)))
+                    allowed_position = atol + rtol*(abs_terms(cs%grad_q_local(:, k), q) &
+                        & + abs(position - cs%grad_q_dot(k, q)))
+                    rate = cs%grad_q_dot(k, u) + cs%dt(k)
+                    allowed_rate = atol + rtol*(abs_terms(cs%grad_q_local(:, k), u) &
+                        & + abs(cs%dt(k)))
                 else
                     position = 0.0_wp
                     allowed_position = 1.0_wp
                     rate = cs%value(k)
-                    allowed_rate = atol + rtol*(sum(abs(cs%grad_u(k, :)*u)) &
-                        & + abs(rate - dot_product(cs%grad_u(k, :), u)))
+                    allowed_rate = atol + rtol*(abs_terms(cs%grad_u_local(:, k), u) &
+                        & + abs(rate - cs%grad_u_dot(k, u)))
                 end if
                 if (abs(position) <= allowed_position .and. abs(rate) <= allowed_rate) cycle
                 call fatal_error(error, self%model%row_words(k) // " repeats the other " &
@@ -272,6 +273,20 @@ contains
                 return
             end do
         end associate
+    contains
+        !> sum_a |row(a) v(i)|, i = local(a, k), over UCON k's own coordinates: the dense row's
+        !> sum(abs(row v)) without its zero terms, in its order
+        pure real(wp) function abs_terms(row, v) result(total)
+            real(wp), intent(in) :: row(:), v(:)
+            integer :: a
+
+            total = 0.0_wp
+            associate (cs => self%eq%constraints)
+                do a = 1, cs%local_count(k)
+                    total = total + abs(row(a)*v(cs%local(a, k)))
+                end do
+            end associate
+        end function abs_terms
     end subroutine check_set_aside
 
     !> Which routine serves each statement, in words: "UCON 1: the model's UCOSUB, UCON 4:
@@ -589,7 +604,7 @@ contains
                     power = power + abs(self%lambda(k)*cs%dt(k))
                 else
                     power = power + abs(self%lambda(k)*(cs%value(k) &
-                        & - dot_product(cs%grad_u(k, :), u)))
+                        & - cs%grad_u_dot(k, u)))
                 end if
             end do
             if (self%eq%contact%sliding) power = power &
@@ -618,7 +633,7 @@ contains
         do j = 1, 2
             k = contact%tangential(j)
             power = power - contact%friction(j)*(eq%constraints%value(k) &
-                & - dot_product(eq%constraints%grad_u(k, :), u))
+                & - eq%constraints%grad_u_dot(k, u))
         end do
     end function sliding_drive_power
 

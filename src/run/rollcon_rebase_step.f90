@@ -266,18 +266,22 @@ contains
         type(problem_type), intent(in) :: problem
         real(wp), intent(in) :: q(:), u(:)
         real(wp) :: sizes(problem%eq%nc)
-        integer :: j
+        integer :: k, a, j
 
         associate (c => problem%eq%constraints)
             sizes = abs(c%value)
-            do j = 1, size(q)
-                ! (no dF/du where every UCON is a position UCON: its terms are zeros)
-                if (size(c%grad_u, 2) > 0) sizes = sizes + abs(c%grad_u(:, j)*u(j))
-                if (mod(j - 1, 6) < 3) then
-                    sizes = sizes + abs(c%grad_q(:, j)*q(j))
-                else
-                    sizes = sizes + abs(c%grad_q(:, j))
-                end if
+            ! over each UCON's own coordinates, ascending (its partials are zero elsewhere)
+            do k = 1, size(sizes)
+                do a = 1, c%local_count(k)
+                    j = c%local(a, k)
+                    ! (no dF/du where every UCON is a position UCON: its terms are zeros)
+                    if (c%rates) sizes(k) = sizes(k) + abs(c%grad_u_local(a, k)*u(j))
+                    if (mod(j - 1, 6) < 3) then
+                        sizes(k) = sizes(k) + abs(c%grad_q_local(a, k)*q(j))
+                    else
+                        sizes(k) = sizes(k) + abs(c%grad_q_local(a, k))
+                    end if
+                end do
             end do
         end associate
     end function term_sizes

@@ -87,10 +87,10 @@ contains
         call b%evaluate(converted, 1.3_wp, q, u, needs, error)
         if (allocated(error)) return
         call same("F", a%value, b%value, error)
-        if (.not. allocated(error)) call same("dF/dq", pack(a%grad_q, .true.), &
-            & pack(b%grad_q, .true.), error)
-        if (.not. allocated(error)) call same("dF/du", pack(a%grad_u, .true.), &
-            & pack(b%grad_u, .true.), error)
+        if (.not. allocated(error)) call same("dF/dq", pack(a%grad_q_local, .true.), &
+            & pack(b%grad_q_local, .true.), error)
+        if (.not. allocated(error)) call same("dF/du", pack(a%grad_u_local, .true.), &
+            & pack(b%grad_u_local, .true.), error)
         if (.not. allocated(error)) call same("d2F/dq dq", pack(a%hqq, .true.), &
             & pack(b%hqq, .true.), error)
         if (.not. allocated(error)) call same("d2F/dq du", pack(a%hqu, .true.), &

@@ -131,6 +131,7 @@ contains
         type(error_type), allocatable, intent(out) :: error
         type(constraint_state_type) :: state
         real(wp) :: q(6), u(6), hqq_a(6, 6), hqq_b(6, 6), hqu_a(6, 6), hqu_b(6, 6)
+        real(wp) :: row_a(6), row_b(6)
         integer :: k
 
         call setup_model(model, error)
@@ -147,10 +148,14 @@ contains
             call check(error, state%value(b), state%value(a), "F at state " // to_text(k), &
                 & abs_tol=tol)
             if (allocated(error)) return
-            call check(error, state%grad_q(b, :), state%grad_q(a, :), "dF/dq at state " &
+            call state%fill_grad_q_row(a, row_a)
+            call state%fill_grad_q_row(b, row_b)
+            call check(error, row_b, row_a, "dF/dq at state " &
                 & // to_text(k), abs_tol=tol)
             if (allocated(error)) return
-            call check(error, state%grad_u(b, :), state%grad_u(a, :), "dF/du at state " &
+            call state%fill_grad_u_row(a, row_a)
+            call state%fill_grad_u_row(b, row_b)
+            call check(error, row_b, row_a, "dF/du at state " &
                 & // to_text(k), abs_tol=tol)
             if (allocated(error)) return
             call square(state, a, hqq_a, hqu_a)

@@ -316,7 +316,7 @@ contains
         if (allocated(error)) return
         allocate(residual(problem%eq%nc))
         do k = 1, problem%eq%nc
-            residual(k) = dot_product(problem%eq%constraints%grad_q(k, :), u2) &
+            residual(k) = problem%eq%constraints%grad_q_dot(k, u2) &
                 & + problem%eq%constraints%dt(k)
         end do
         call check(error, residual, [(0.0_wp, k = 1, problem%eq%nc)], "the UCONs' velocity " &

@@ -163,7 +163,7 @@ contains
                 f(k) = probe%value(1)
             end do
             difference = (f(-2) - 8.0_wp*f(-1) + 8.0_wp*f(1) - f(2))/(12.0_wp*step)
-            call check(error, state%grad_q(1, n), difference, what // " dF/dq(" &
+            call check(error, state%grad_q_entry(1, n), difference, what // " dF/dq(" &
                 & // to_text(n) // ")", abs_tol=tol)
             if (allocated(error)) return
         end do
@@ -175,7 +175,7 @@ contains
                 q(n) = q(n) + k*step
                 call probe%evaluate(model, t_check, q, 0.0_wp*q, need_first, error)
                 if (allocated(error)) return
-                g(:, k) = probe%grad_q(1, :)
+                call probe%fill_grad_q_row(1, g(:, k))
             end do
             do a = 1, state%local_count(1)
                 associate (m => state%local(a, 1))
