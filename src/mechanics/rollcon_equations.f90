@@ -41,7 +41,7 @@ module rollcon_equations
     implicit none
     private
 
-    public :: equations_type, sparse_dot
+    public :: equations_type
 
     !> The equations of a model held elsewhere, and what evaluating them fills (allocated once,
     !> in init; no evaluation allocates). The saddle-point factors live in `saddle`, the scratch
@@ -1365,19 +1365,6 @@ contains
         if (allocated(error)) return
         du = self%work%rhs_top(:, 1)
     end subroutine project
-
-    !> x . y over the given coordinates (ascending).
-    pure function sparse_dot(x, y, at) result(total)
-        real(wp), intent(in) :: x(:), y(:)
-        integer, intent(in) :: at(:)
-        real(wp) :: total
-        integer :: i
-
-        total = 0.0_wp
-        do i = 1, size(at)
-            total = total + x(at(i))*y(at(i))
-        end do
-    end function sparse_dot
 
     !> u^T H u with H over a UCON's own coordinates `at` (ascending; h(i, j) belongs to at(i),
     !> at(j)), summed as the dense quadratic form.
