@@ -297,12 +297,8 @@ contains
         class(constraint_state_type), intent(in) :: self
         integer, intent(in) :: k
         real(wp), intent(in) :: v(:)
-        integer :: a
 
-        total = 0.0_wp
-        do a = 1, self%local_count(k)
-            total = total + self%grad_q_local(a, k)*v(self%local(a, k))
-        end do
+        total = local_dot(self%grad_q_local(:, k), v, self%local(:self%local_count(k), k))
     end function grad_q_dot
 
     !> Row k of dF/du times v (n), as grad_q_dot.
@@ -310,36 +306,24 @@ contains
         class(constraint_state_type), intent(in) :: self
         integer, intent(in) :: k
         real(wp), intent(in) :: v(:)
-        integer :: a
 
-        total = 0.0_wp
-        do a = 1, self%local_count(k)
-            total = total + self%grad_u_local(a, k)*v(self%local(a, k))
-        end do
+        total = local_dot(self%grad_u_local(:, k), v, self%local(:self%local_count(k), k))
     end function grad_u_dot
 
     !> dF_k/dq_j (j a system coordinate; zero off UCON k's own coordinates).
     pure real(wp) function grad_q_entry(self, k, j) result(entry)
         class(constraint_state_type), intent(in) :: self
         integer, intent(in) :: k, j
-        integer :: a
 
-        entry = 0.0_wp
-        do a = 1, self%local_count(k)
-            if (self%local(a, k) == j) entry = self%grad_q_local(a, k)
-        end do
+        entry = local_entry(self%local_count(k), self%local(:, k), self%grad_q_local(:, k), j)
     end function grad_q_entry
 
     !> dF_k/du_j (zero off UCON k's own coordinates).
     pure real(wp) function grad_u_entry(self, k, j) result(entry)
         class(constraint_state_type), intent(in) :: self
         integer, intent(in) :: k, j
-        integer :: a
 
-        entry = 0.0_wp
-        do a = 1, self%local_count(k)
-            if (self%local(a, k) == j) entry = self%grad_u_local(a, k)
-        end do
+        entry = local_entry(self%local_count(k), self%local(:, k), self%grad_u_local(:, k), j)
     end function grad_u_entry
 
     !> Row k of dF/dq written whole into row (n: the dense analyses' row; zeros off UCON k's
@@ -348,12 +332,8 @@ contains
         class(constraint_state_type), intent(in) :: self
         integer, intent(in) :: k
         real(wp), intent(out) :: row(:)
-        integer :: a
 
-        row = 0.0_wp
-        do a = 1, self%local_count(k)
-            row(self%local(a, k)) = self%grad_q_local(a, k)
-        end do
+        call fill_local_row(self%local_count(k), self%local(:, k), self%grad_q_local(:, k), row)
     end subroutine fill_grad_q_row
 
     !> Row k of dF/du written whole into row (n), as fill_grad_q_row.
@@ -361,13 +341,35 @@ contains
         class(constraint_state_type), intent(in) :: self
         integer, intent(in) :: k
         real(wp), intent(out) :: row(:)
+
+        call fill_local_row(self%local_count(k), self%local(:, k), self%grad_u_local(:, k), row)
+    end subroutine fill_grad_u_row
+
+    !> The entry in system coordinate j of a row held over a UCON's own coordinates (local, its
+    !> first count; zero off them).
+    pure real(wp) function local_entry(count, local, values, j) result(entry)
+        integer, intent(in) :: count, local(:), j
+        real(wp), intent(in) :: values(:)
+        integer :: a
+
+        entry = 0.0_wp
+        do a = 1, count
+            if (local(a) == j) entry = values(a)
+        end do
+    end function local_entry
+
+    !> Such a row written whole into row (the system's coordinates; zeros off its own).
+    pure subroutine fill_local_row(count, local, values, row)
+        integer, intent(in) :: count, local(:)
+        real(wp), intent(in) :: values(:)
+        real(wp), intent(out) :: row(:)
         integer :: a
 
         row = 0.0_wp
-        do a = 1, self%local_count(k)
-            row(self%local(a, k)) = self%grad_u_local(a, k)
+        do a = 1, count
+            row(local(a)) = values(a)
         end do
-    end subroutine fill_grad_u_row
+    end subroutine fill_local_row
 
     !> Place a UCON's partials ARRAY over its own coordinates (`slot` gives each variable's
     !> place): its coordinates' d/dq and its rates' d/du, each place's other kind zero, as

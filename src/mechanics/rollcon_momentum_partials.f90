@@ -244,20 +244,8 @@ contains
         class(momentum_partials_type), intent(inout) :: self
         integer, intent(in) :: a, b, k, first
         real(wp), intent(in) :: values(:)
-        integer :: e, last
 
-        last = first + size(values) - 1
-        if (self%blocked) then
-            e = self%pair(a, b)
-            if (e == 0) then
-                call note_missed(self, a, b)
-                return
-            end if
-            self%block_q(first:last, k, e) = self%block_q(first:last, k, e) - values
-        else
-            self%dq(6*(a - 1) + first:6*(a - 1) + last, 6*(b - 1) + k) = &
-                & self%dq(6*(a - 1) + first:6*(a - 1) + last, 6*(b - 1) + k) - values
-        end if
+        call subtract_pair(self, a, b, k, first, values, .false.)
     end subroutine subtract_q
 
     !> dm/du's, as subtract_q.
@@ -265,7 +253,17 @@ contains
         class(momentum_partials_type), intent(inout) :: self
         integer, intent(in) :: a, b, k, first
         real(wp), intent(in) :: values(:)
-        integer :: e, last
+
+        call subtract_pair(self, a, b, k, first, values, .true.)
+    end subroutine subtract_u
+
+    !> subtract_q's work (of_u false) and subtract_u's (of_u true).
+    pure subroutine subtract_pair(self, a, b, k, first, values, of_u)
+        class(momentum_partials_type), intent(inout) :: self
+        integer, intent(in) :: a, b, k, first
+        real(wp), intent(in) :: values(:)
+        logical, intent(in) :: of_u
+        integer :: e, last, i0, j
 
         last = first + size(values) - 1
         if (self%blocked) then
@@ -274,12 +272,21 @@ contains
                 call note_missed(self, a, b)
                 return
             end if
-            self%block_u(first:last, k, e) = self%block_u(first:last, k, e) - values
+            if (of_u) then
+                self%block_u(first:last, k, e) = self%block_u(first:last, k, e) - values
+            else
+                self%block_q(first:last, k, e) = self%block_q(first:last, k, e) - values
+            end if
         else
-            self%du(6*(a - 1) + first:6*(a - 1) + last, 6*(b - 1) + k) = &
-                & self%du(6*(a - 1) + first:6*(a - 1) + last, 6*(b - 1) + k) - values
+            i0 = 6*(a - 1)
+            j = 6*(b - 1) + k
+            if (of_u) then
+                self%du(i0 + first:i0 + last, j) = self%du(i0 + first:i0 + last, j) - values
+            else
+                self%dq(i0 + first:i0 + last, j) = self%dq(i0 + first:i0 + last, j) - values
+            end if
         end if
-    end subroutine subtract_u
+    end subroutine subtract_pair
 
     !> dm/dq's entry (i, j) (coordinate numbers) less value.
     pure subroutine subtract_q_entry(self, i, j, value)

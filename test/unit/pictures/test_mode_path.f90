@@ -25,6 +25,7 @@ module test_mode_path
     use rollcon_gnuplot, only : gnuplot_available
     use rollcon_figure_text, only : residual_floor, path_axis_ranges
     use rollcon_testing, only : unittest_type, new_unittest, check, skip_test
+    use command_runs, only : count_of
     use picture_files, only : disk_run, make_folder, remove_folder, run_rows, write_run, &
         & write_lines, disk_radius
     implicit none
@@ -595,21 +596,6 @@ contains
                 same = ieee_is_nan(value)
             end if
         end function same
-
-        !> How many times word occurs in text.
-        pure integer function count_of(text, word) result(n)
-            character(len=*), intent(in) :: text, word
-            integer :: at, found
-
-            n = 0
-            at = 1
-            do
-                found = index(text(at:), word)
-                if (found == 0) return
-                n = n + 1
-                at = at + found + len(word) - 1
-            end do
-        end function count_of
     end subroutine test_two_contacts
 
     !> The value range of "set <axis>range [low:high]" in a script (both 0 when absent).

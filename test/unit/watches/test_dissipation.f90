@@ -32,6 +32,7 @@ module test_dissipation
     use rollcon_rim_dissipation, only : air_coefficient
     use rollcon_output_layout, only : coord_psidot, coord_theta
     use rollcon_testing, only : unittest_type, new_unittest, check
+    use command_runs, only : count_of
     implicit none
     private
 
@@ -544,8 +545,8 @@ contains
             & // "phidot leaving zero" // new_line("a")) > 0, "the summary's switches: " &
             & // summary%watch_lines)
         if (allocated(error)) return
-        call check(error, occurrences(summary%watch_lines, "released, phidot") == 1 .and. &
-            & occurrences(summary%watch_lines, "sign taken") == 1, "the release listed once, " &
+        call check(error, count_of(summary%watch_lines, "released, phidot") == 1 .and. &
+            & count_of(summary%watch_lines, "sign taken") == 1, "the release listed once, " &
             & // "'sign taken' only in the count: " // summary%watch_lines)
         if (allocated(error)) return
         release = watch%switch_times(2)
@@ -575,21 +576,6 @@ contains
             text = text // " " // to_text(kinds(k))
         end do
     end function kinds_text
-
-    !> How many times word occurs in text.
-    pure integer function occurrences(text, word) result(n)
-        character(len=*), intent(in) :: text, word
-        integer :: at, found
-
-        n = 0
-        at = 1
-        do
-            found = index(text(at:), word)
-            if (found == 0) return
-            n = n + 1
-            at = at + found + len(word) - 1
-        end do
-    end function occurrences
 
     !> The coin starting at phidot = 0.5 rad/s: phidot changes sign again and again; each
     !> change is a root located by the integrator (phidot ~ 0 there) where the law takes a new
