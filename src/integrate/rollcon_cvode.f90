@@ -43,16 +43,6 @@ module rollcon_cvode
 
     public :: cvode_integrator_type
 
-    !> The dissipated work's rule on each step: Gauss-Legendre's two points on [0, 1] and their
-    !> weights, exact on cubics; the power along CVODE's interpolant is smooth within a step
-    !> (its switches are located roots, where the integrator starts again). Its error is far
-    !> below the state's: three points change W by at most 2.9e-11 J (a rolling coin with rolling
-    !> resistance, 0.03 J dissipated) and 9e-12 J (data/euler_disk.nml, 0.05 J), where
-    !> |E + W - E0| is 1.6e-7 J and 1.3e-8 J (docs/design.md §7, "Dissipated work")
-    real(wp), parameter :: gauss_nodes(2) = [0.5_wp - sqrt(3.0_wp)/6.0_wp, &
-        & 0.5_wp + sqrt(3.0_wp)/6.0_wp]
-    real(wp), parameter :: gauss_weights(2) = [0.5_wp, 0.5_wp]
-
     ! SUNDIALS' fixed-point solver, from the C library itself (libsundials_cvode holds it): its
     ! Fortran module is a library rollcon does not otherwise link
     interface
@@ -109,22 +99,17 @@ module rollcon_cvode
         !> Storage behind y
         real(c_double), allocatable :: values(:)
         !> The dissipated work (integrator_type work): the state interpolated on the last step
-        !> and its storage, the time the work is integrated to (CVODE's own tn, the end of
-        !> its last step) [s], the work there [J], the powers' evaluations since the start or
-        !> restart
+        !> (CVodeGetDky, for powers_at) and its storage
         type(N_Vector), pointer :: dense => null()
         real(c_double), allocatable :: dense_values(:)
-        real(wp) :: t_work = 0.0_wp
-        real(wp), allocatable :: work_end(:)
-        integer :: power_evaluations = 0
     contains
         procedure :: start
         procedure :: restart
         procedure :: advance
         procedure :: statistics
         procedure :: destroy
-        procedure :: integrate_work
-        procedure :: step_work
+        procedure :: step_end
+        procedure :: powers_at
     end type cvode_integrator_type
 
 contains
@@ -477,60 +462,37 @@ contains
         if (allocated(self%fired)) deallocate(self%fired)
     end subroutine destroy
 
-    !> After a return of CVode at t_returned [s]: the dissipated work integrated over the step
-    !> it took, from t_work to its tn (step_work), and the work at t_returned (work): the
-    !> work at tn less the integral from t_returned to tn (a row or a root within the step).
-    subroutine integrate_work(self, t_returned, error)
+    !> The end of CVODE's last step, its tn [s] (integrator_type step_end).
+    subroutine step_end(self, t_end, error)
         class(cvode_integrator_type), intent(inout) :: self
-        real(wp), intent(in) :: t_returned
+        real(wp), intent(out) :: t_end
         type(error_type), allocatable, intent(out) :: error
         real(c_double) :: t_current(1)
-        real(wp), allocatable :: piece(:)
         integer(c_int) :: flag
 
+        t_end = 0.0_wp
         flag = FCVodeGetCurrentTime(self%memory, t_current)
         if (check(flag, "CVodeGetCurrentTime", error)) return
-        if (t_current(1) > self%t_work) then
-            call self%step_work(self%t_work, t_current(1), piece, error)
-            if (allocated(error)) return
-            self%work_end = self%work_end + piece
-            self%t_work = t_current(1)
-        end if
-        self%work = self%work_end
-        if (t_returned < self%t_work) then
-            call self%step_work(t_returned, self%t_work, piece, error)
-            if (allocated(error)) return
-            self%work = self%work_end - piece
-        end if
-    end subroutine integrate_work
+        t_end = t_current(1)
+    end subroutine step_end
 
-    !> The integral [J] of each dissipated power over [t_from, t_to] [s], within CVODE's last
-    !> step: Gauss-Legendre's rule (gauss_nodes) on the state CVODE interpolates there
-    !> (CVodeGetDky), the system's powers at each node.
-    subroutine step_work(self, t_from, t_to, piece, error)
+    !> The dissipated powers [W] at time [s] within CVODE's last step, on the state it
+    !> interpolates there (CVodeGetDky; integrator_type powers_at).
+    subroutine powers_at(self, time, power, error)
         class(cvode_integrator_type), intent(inout) :: self
-        real(wp), intent(in) :: t_from, t_to
-        real(wp), allocatable, intent(out) :: piece(:)
+        real(wp), intent(in) :: time
+        real(wp), intent(out) :: power(:)
         type(error_type), allocatable, intent(out) :: error
-        real(wp), allocatable :: power(:)
-        real(wp) :: time
         integer(c_int) :: flag
-        integer :: k
 
-        allocate(piece(size(self%work)), power(size(self%work)), source=0.0_wp)
-        do k = 1, size(gauss_nodes)
-            time = t_from + gauss_nodes(k)*(t_to - t_from)
-            flag = FCVodeGetDky(self%memory, time, 0_c_int, self%dense)
-            if (check(flag, "CVodeGetDky (the state for the dissipated work)", error)) return
-            self%power_evaluations = self%power_evaluations + 1
-            if (self%data%system%powers(time, self%dense_values, power) /= 0) then
-                call solver_failure(error, "CVODE", time, -1, "the dissipated power could " &
-                    & // "not be evaluated", self%data%system)
-                return
-            end if
-            piece = piece + gauss_weights(k)*(t_to - t_from)*power
-        end do
-    end subroutine step_work
+        power = 0.0_wp
+        flag = FCVodeGetDky(self%memory, time, 0_c_int, self%dense)
+        if (check(flag, "CVodeGetDky (the state for the dissipated work)", error)) return
+        if (self%data%system%powers(time, self%dense_values, power) /= 0) then
+            call solver_failure(error, "CVODE", time, -1, "the dissipated power could " &
+                & // "not be evaluated", self%data%system)
+        end if
+    end subroutine powers_at
 
     !> SUNDIALS' fused vector operations that CVODE uses, on a serial vector (CVODE's own vectors
     !> are clones of its state vector and inherit them, so this comes before CVodeInit): the

@@ -57,12 +57,33 @@ module rollcon_integrator
         !> (docs/design.md §7, "Dissipated work"); not allocated when the integrator does not
         !> integrate them (the system has none, or the integrator cannot)
         real(wp), allocatable :: work(:)
+        !> The time the work is integrated to (the integrator's own tn, the end of its last
+        !> step) [s], the work there [J], the powers' evaluations since the start or restart;
+        !> the scratch of one step's integral and of one node's powers (sized by their first
+        !> use, so that a step allocates nothing)
+        real(wp) :: t_work = 0.0_wp
+        real(wp), allocatable :: work_end(:)
+        integer :: power_evaluations = 0
+        real(wp), allocatable, private :: work_piece(:), work_power(:)
     contains
         procedure(restart_interface), deferred :: restart
         procedure(advance_interface), deferred :: advance
         procedure(statistics_interface), deferred :: statistics
         procedure(destroy_interface), deferred :: destroy
+        procedure(step_end_interface), deferred :: step_end
+        procedure(powers_at_interface), deferred :: powers_at
+        procedure :: integrate_work
     end type integrator_type
+
+    !> The dissipated work's rule on each step: Gauss-Legendre's two points on [0, 1] and their
+    !> weights, exact on cubics; the power along the integrator's interpolant is smooth within
+    !> a step (its switches are located roots, where the integrator starts again). Its error is
+    !> far below the state's: three points change W by at most 2.9e-11 J (a rolling coin with
+    !> rolling resistance, 0.03 J dissipated) and 9e-12 J (data/euler_disk.nml, 0.05 J), where
+    !> |E + W - E0| is 1.6e-7 J and 1.3e-8 J (docs/design.md §7, "Dissipated work")
+    real(wp), parameter :: gauss_nodes(2) = [0.5_wp - sqrt(3.0_wp)/6.0_wp, &
+        & 0.5_wp + sqrt(3.0_wp)/6.0_wp]
+    real(wp), parameter :: gauss_weights(2) = [0.5_wp, 0.5_wp]
 
     abstract interface
         !> A chunk of steps [t_start, t_reached] [s] towards the output time t_out [s] ended
@@ -112,9 +133,77 @@ module rollcon_integrator
             import :: integrator_type
             class(integrator_type), intent(inout) :: self
         end subroutine destroy_interface
+
+        !> The end of the integrator's last step, its own tn [s] (an error if it cannot say).
+        subroutine step_end_interface(self, t_end, error)
+            import :: integrator_type, wp, error_type
+            class(integrator_type), intent(inout) :: self
+            real(wp), intent(out) :: t_end
+            type(error_type), allocatable, intent(out) :: error
+        end subroutine step_end_interface
+
+        !> The system's dissipated powers [W] (power_count of them) at time [s] within the last
+        !> step, on the state the integrator interpolates there; an error names a failure.
+        subroutine powers_at_interface(self, time, power, error)
+            import :: integrator_type, wp, error_type
+            class(integrator_type), intent(inout) :: self
+            real(wp), intent(in) :: time
+            real(wp), intent(out) :: power(:)
+            type(error_type), allocatable, intent(out) :: error
+        end subroutine powers_at_interface
     end interface
 
 contains
+
+    !> After a return of the integrator at t_returned [s]: the dissipated work integrated over
+    !> the step it took, from t_work to its end (step_end), and the work at t_returned (work):
+    !> the work at the step's end less the integral from t_returned to it (a row or a root
+    !> within the step). Each integral is Gauss-Legendre's rule (gauss_nodes) on the powers at
+    !> the interpolated state (powers_at). An error is powers_at's or step_end's.
+    subroutine integrate_work(self, t_returned, error)
+        class(integrator_type), intent(inout) :: self
+        real(wp), intent(in) :: t_returned
+        type(error_type), allocatable, intent(out) :: error
+        real(wp) :: t_current
+
+        if (.not. allocated(self%work_piece)) then
+            allocate(self%work_piece(size(self%work)), self%work_power(size(self%work)))
+        else if (size(self%work_piece) /= size(self%work)) then
+            deallocate(self%work_piece, self%work_power)
+            allocate(self%work_piece(size(self%work)), self%work_power(size(self%work)))
+        end if
+        call self%step_end(t_current, error)
+        if (allocated(error)) return
+        if (t_current > self%t_work) then
+            call step_work(self, self%t_work, t_current, error)
+            if (allocated(error)) return
+            self%work_end = self%work_end + self%work_piece
+            self%t_work = t_current
+        end if
+        self%work = self%work_end
+        if (t_returned < self%t_work) then
+            call step_work(self, t_returned, self%t_work, error)
+            if (allocated(error)) return
+            self%work = self%work_end - self%work_piece
+        end if
+    end subroutine integrate_work
+
+    !> work_piece: the integral [J] of each dissipated power over [t_from, t_to] [s], within
+    !> the integrator's last step (integrate_work).
+    subroutine step_work(self, t_from, t_to, error)
+        class(integrator_type), intent(inout) :: self
+        real(wp), intent(in) :: t_from, t_to
+        type(error_type), allocatable, intent(out) :: error
+        integer :: k
+
+        self%work_piece = 0.0_wp
+        do k = 1, size(gauss_nodes)
+            self%power_evaluations = self%power_evaluations + 1
+            call self%powers_at(t_from + gauss_nodes(k)*(t_to - t_from), self%work_power, error)
+            if (allocated(error)) return
+            self%work_piece = self%work_piece + gauss_weights(k)*(t_to - t_from)*self%work_power
+        end do
+    end subroutine step_work
 
     !> Sum of two sets of counters (a run's segments between restarts).
     pure subroutine statistics_add(self, other)
