@@ -32,6 +32,7 @@ module rollcon_equations
         & need_second, need_time
     use rollcon_saddle_point, only : saddle_point_type
     use rollcon_constraint_blocks, only : constraint_blocks_type
+    use rollcon_constraint_matrix, only : constraint_matrix_type
     use rollcon_ode_workspace, only : ode_workspace_type
     use rollcon_redundancy, only : redundancy_type
     use rollcon_redundancy_words, only : set_aside_words
@@ -60,6 +61,9 @@ module rollcon_equations
         !> coordinates): mass(:, :, p) is part p's block, the others are zeros, not stored
         !> (memory linear in the model, docs/design.md §4 "Memory")
         real(wp), allocatable :: mass(:, :, :), force(:), c(:, :), gamma(:)
+        !> C held by rows over each UCON's own coordinates (rollcon_constraint_matrix), filled
+        !> with c by constraint_matrix
+        type(constraint_matrix_type) :: cm
         !> The constraints' blocks (UCONs sharing parts), and the saddle-point system's factors,
         !> as the last accelerations call left them
         type(constraint_blocks_type) :: blocks
@@ -139,6 +143,7 @@ contains
         call self%constraints%allocate(model)
         call self%blocks%init(model)
         call self%saddle%init(self%n, self%nc, self%blocks)
+        call self%cm%init(self%n, self%nc, self%blocks%ucon_start, self%blocks%ucon_coordinates)
         associate (n => self%n, nc => self%nc)
             if (allocated(self%mass)) deallocate(self%mass, self%force, self%c, self%gamma)
             allocate(self%mass(6, 6, size(model%parts)), self%force(n), self%c(nc, n), &
@@ -465,6 +470,7 @@ contains
                 else
                     self%c(k, j) = self%constraints%grad_u_local(a, k)
                 end if
+                self%cm%value(i) = self%c(k, j)
             end do
         end do
     end subroutine constraint_matrix

@@ -281,7 +281,7 @@ contains
     !> (rollcon_saddle_point: the same sums without their exact-zero terms; -0 and +0 compare
     !> equal), for the accelerations and for two more right-hand sides, whether each disk's
     !> UCONs come in one run (1, 2, 3 | 4, 5, 6: one LAPACK solve per part and run) or
-    !> interleaved (1, 3, 5 | 2, 4, 6: runs of one).
+    !> interleaved (1, 3, 5 | 2, 4, 6: runs of one). C as held by rows: check_constraint_rows.
     subroutine test_saddle_blocks(error)
         type(error_type), allocatable, intent(out) :: error
         type(model_type), target :: models(2)
@@ -332,6 +332,8 @@ contains
                 call check(error, problem%eq%saddle%by_blocks .and. problem%eq%blocks%count == 2, &
                     & "the two disks' system was not solved by its two blocks")
                 if (allocated(error)) return
+                call check_constraint_rows(problem, error)
+                if (allocated(error)) return
                 call dense%init(18, 6)
                 call dense%factor(problem%eq%mass, problem%eq%c, 6, error)
                 if (allocated(error)) return
@@ -362,6 +364,76 @@ contains
             end associate
         end do
     end subroutine test_saddle_blocks
+
+    !> C as the equations hold it (rollcon_constraint_matrix: rows over each UCON's own
+    !> coordinates) against the UCONs' first partials read densely (dF/du, or dF/dq for a
+    !> position UCON: rollcon_constraints' fill rows, an independent accessor): every entry,
+    !> exact zeros off a UCON's part included, and each row operation (entry, gather, row_dot,
+    !> add_row, times, transpose_times, dense) against the same sums on the dense rows. The
+    !> entries agree exactly; the sums run over the same nonzero terms, in an order a vectorised
+    !> dot_product or matmul may change: 1e-15 (products) and 1e-14 (sums of n terms) of their
+    !> scale is rounding, a wrong or missing entry is O(1) of it.
+    subroutine check_constraint_rows(problem, error)
+        type(problem_type), intent(in) :: problem
+        type(error_type), allocatable, intent(out) :: error
+        real(wp), allocatable :: rows(:, :), d(:, :), y(:), z(:)
+        real(wp) :: v(problem%eq%n), w(problem%eq%nc), part_slice(6)
+        integer :: k, j, n, nc
+
+        n = problem%eq%n
+        nc = problem%eq%nc
+        allocate(rows(nc, n), y(n), z(n))
+        do k = 1, nc
+            if (problem%model%ucons(k)%holonomic) then
+                call problem%eq%constraints%fill_grad_q_row(k, y)
+            else
+                call problem%eq%constraints%fill_grad_u_row(k, y)
+            end if
+            rows(k, :) = y
+        end do
+        v = [(sin(1.3_wp*j) + 0.1_wp*j, j = 1, n)]
+        w = [(cos(0.7_wp*j), j = 1, nc)]
+        call problem%eq%cm%dense(d)
+        call check(error, all(d == rows), "C by rows differs from the UCONs' partials")
+        if (allocated(error)) return
+        call check(error, count(rows /= 0.0_wp) <= size(problem%eq%cm%value) .and. &
+            & size(problem%eq%cm%value) < n*nc, "C by rows holds " &
+            & // to_text(size(problem%eq%cm%value)) // " entries for " &
+            & // to_text(count(rows /= 0.0_wp)) // " nonzeros of " // to_text(n*nc))
+        if (allocated(error)) return
+        do k = 1, nc
+            do j = 1, n
+                call check(error, problem%eq%cm%entry(k, j) == rows(k, j), "entry (" &
+                    & // to_text(k) // ", " // to_text(j) // ")")
+                if (allocated(error)) return
+            end do
+            do j = 1, n/6
+                call problem%eq%cm%gather(k, 6*(j - 1) + 1, part_slice)
+                call check(error, all(part_slice == rows(k, 6*j - 5:6*j)), "gather of row " &
+                    & // to_text(k) // " at part " // to_text(j))
+                if (allocated(error)) return
+            end do
+            call check(error, abs(problem%eq%cm%row_dot(k, v) - dot_product(rows(k, :), v)) &
+                & <= 1.0e-15_wp*sum(abs(rows(k, :)*v)), "row_dot of row " // to_text(k))
+            if (allocated(error)) return
+            call problem%eq%cm%fill_row(k, y)
+            call check(error, all(y == rows(k, :)), "fill_row of row " // to_text(k))
+            if (allocated(error)) return
+            y = v
+            call problem%eq%cm%add_row(k, 0.5_wp, y)
+            call check(error, all(abs(y - (v + 0.5_wp*rows(k, :))) <= spacing(abs(y))), &
+                & "add_row of row " // to_text(k))
+            if (allocated(error)) return
+        end do
+        call problem%eq%cm%times(v, w)
+        call check(error, maxval(abs(w - matmul(rows, v))) <= 1.0e-14_wp*maxval(abs(rows)) &
+            & *sum(abs(v)), "C v")
+        if (allocated(error)) return
+        w = [(cos(0.7_wp*j), j = 1, nc)]
+        call problem%eq%cm%transpose_times(w, z)
+        call check(error, maxval(abs(z - matmul(w, rows))) <= 1.0e-14_wp*maxval(abs(rows)) &
+            & *sum(abs(w)), "C^T lambda")
+    end subroutine check_constraint_rows
 
     !> The equations evaluate the problem's own model, not a copy of it: gravity changed there
     !> after set-up changes the accelerations, affinely (a = M^-1 (f + C^T lambda) with gravity
