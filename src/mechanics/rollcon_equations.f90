@@ -226,10 +226,10 @@ contains
         if (allocated(error)) return
         call self%assemble(time, q, u)
         call self%constraint_matrix()
-        call self%redundancy%choose(self%c, self%mass, self%blocks, &
+        call self%redundancy%choose(self%cm, self%mass, self%blocks, &
             & self%model%holonomic_number > 0, error)
         if (allocated(error)) return
-        self%redundancy%words = set_aside_words(self%model, self%redundancy, self%c, self%mass, &
+        self%redundancy%words = set_aside_words(self%model, self%redundancy, self%cm, self%mass, &
             & self%blocks, self%redundancy%involved, error)
     end subroutine choose_active
 
@@ -246,7 +246,7 @@ contains
         call self%constraint_matrix_at(time, q, u, error)
         if (allocated(error)) return
         call self%assemble(time, q, u)
-        call self%redundancy%rechoose(b, self%c, self%mass, self%blocks, &
+        call self%redundancy%rechoose(b, self%cm, self%mass, self%blocks, &
             & self%model%holonomic_number > 0, changed, error)
     end subroutine choose_block_again
 
@@ -266,7 +266,7 @@ contains
         do b = 1, self%blocks%count
             if (.not. self%redundancy%redundant(b)) cycle
             i = i + 1
-            g(i) = self%redundancy%margin(b, self%c, self%mass, self%blocks, error)
+            g(i) = self%redundancy%margin(b, self%cm, self%mass, self%blocks, error)
             if (allocated(error)) return
         end do
     end subroutine redundancy_margins
@@ -282,7 +282,7 @@ contains
 
         reported = lambda
         if (self%redundancy%set_aside == 0) return
-        call self%redundancy%multipliers(self%c, self%mass, self%blocks, reported, error)
+        call self%redundancy%multipliers(self%cm, self%mass, self%blocks, reported, error)
     end subroutine reported_multipliers
 
     !> Whether row k is active (every row is until a choice sets some aside).

@@ -82,14 +82,15 @@ contains
         state_size = self%n + self%ni
     end function state_size
 
-    !> Choose the partition at (q, u) from the constraint matrix eq%c as the last evaluation
-    !> left it (an accelerations call at that state).
+    !> Choose the partition at (q, u) from the constraint matrix eq%cm (C by rows over each
+    !> UCON's own coordinates) as the last evaluation left it (an accelerations call at that
+    !> state).
     subroutine choose(self, eq, error)
         class(independent_speeds_type), intent(inout) :: self
         type(equations_type), intent(in) :: eq
         type(error_type), allocatable, intent(out) :: error
 
-        call self%partition%choose(eq%c, error)
+        call self%partition%choose(eq%cm, error)
     end subroutine choose
 
     !> y = (q, u_i) for the partition chosen.
@@ -104,7 +105,7 @@ contains
 
     !> The rates u at (t, q) from the independent speeds v: the dependent ones solved from the
     !> velocity-level constraints (module text), alpha the Baumgarte rate in effect [1/s].
-    !> Leaves eq%c and C_d's factors at q.
+    !> Leaves eq%cm (C by rows) and C_d's factors at q.
     subroutine speeds(self, eq, time, q, v, alpha, u, error)
         class(independent_speeds_type), intent(inout) :: self
         type(equations_type), intent(inout) :: eq
@@ -132,7 +133,7 @@ contains
                 end if
             end do
         end associate
-        call self%partition%factor(eq%c, error)
+        call self%partition%factor(eq%cm, error)
         if (allocated(error)) return
         call self%partition%solve(self%r, 1, error)
         if (allocated(error)) return
@@ -168,7 +169,7 @@ contains
         !> (n + ni) square
         real(wp), intent(out) :: jac(:, :)
         type(error_type), allocatable, intent(out) :: error
-        integer :: n, nc, ni, i, j, jj, k, row
+        integer :: n, nc, ni, i, j, jj, k, row, x
 
         n = self%n
         nc = self%nc
@@ -200,7 +201,15 @@ contains
                         call cs%fill_grad_q_row(k, self%dud_dq(k, :))
                         self%dud_dq(k, :) = -self%dud_dq(k, :)
                     end if
-                    self%dud_dv(k, :) = -eq%c(k, self%partition%independent)
+                    ! -C(k, independent speeds): -0 off the UCON's own coordinates, as the
+                    ! dense row's zeros negated
+                    do j = 1, ni
+                        self%dud_dv(k, j) = -0.0_wp
+                    end do
+                    do x = eq%cm%start(k), eq%cm%start(k + 1) - 1
+                        j = independent_slot(self%partition%independent, eq%cm%column(x))
+                        if (j > 0) self%dud_dv(k, j) = -eq%cm%value(x)
+                    end do
                 end do
             end associate
             call self%partition%solve(self%dud_dq, n, error)
@@ -233,5 +242,27 @@ contains
             end do
         end do
     end subroutine jacobian
+
+    !> The slot of coordinate j among the independent speeds (ascending) by bisection; 0 when
+    !> j is a dependent speed.
+    pure integer function independent_slot(independent, j) result(slot)
+        integer, intent(in) :: independent(:), j
+        integer :: low, high, middle
+
+        slot = 0
+        low = 1
+        high = size(independent)
+        do while (low <= high)
+            middle = (low + high)/2
+            if (independent(middle) == j) then
+                slot = middle
+                return
+            else if (independent(middle) < j) then
+                low = middle + 1
+            else
+                high = middle - 1
+            end if
+        end do
+    end function independent_slot
 
 end module rollcon_independent_speeds

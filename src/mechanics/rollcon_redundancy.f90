@@ -34,6 +34,7 @@ module rollcon_redundancy
     use rollcon_least_squares, only : minimum_norm_solve, smallest_singular_value
     use rollcon_sparse_qr, only : sparse_rank
     use rollcon_constraint_blocks, only : constraint_blocks_type
+    use rollcon_constraint_matrix, only : constraint_matrix_type
     use rollcon_saddle_point, only : sparse_schur_rows
     implicit none
     private
@@ -113,11 +114,13 @@ contains
     end subroutine init
 
     !> The first choice, every block's: its rank from rank_tolerance (module text), at the
-    !> state where c (nc x n: dF/du of a velocity UCON, dF/dq of a position UCON) and mass
+    !> state where c (C, nc x n by rows over each UCON's own coordinates,
+    !> rollcon_constraint_matrix: dF/du of a velocity UCON, dF/dq of a position UCON) and mass
     !> (the parts' 6 x 6 blocks, 6 x 6 x parts) were assembled.
     subroutine choose(self, c, mass, blocks, holonomic, error)
         class(redundancy_type), intent(inout) :: self
-        real(wp), intent(in) :: c(:, :), mass(:, :, :)
+        type(constraint_matrix_type), intent(in) :: c
+        real(wp), intent(in) :: mass(:, :, :)
         type(constraint_blocks_type), intent(in) :: blocks
         !> Which rows are position UCONs
         logical, intent(in) :: holonomic(:)
@@ -139,7 +142,8 @@ contains
     subroutine rechoose(self, b, c, mass, blocks, holonomic, changed, error)
         class(redundancy_type), intent(inout) :: self
         integer, intent(in) :: b
-        real(wp), intent(in) :: c(:, :), mass(:, :, :)
+        type(constraint_matrix_type), intent(in) :: c
+        real(wp), intent(in) :: mass(:, :, :)
         type(constraint_blocks_type), intent(in) :: blocks
         logical, intent(in) :: holonomic(:)
         logical, intent(out) :: changed
@@ -155,7 +159,8 @@ contains
     subroutine choose_block(self, b, c, mass, blocks, holonomic, first, changed, error)
         type(redundancy_type), intent(inout) :: self
         integer, intent(in) :: b
-        real(wp), intent(in) :: c(:, :), mass(:, :, :)
+        type(constraint_matrix_type), intent(in) :: c
+        real(wp), intent(in) :: mass(:, :, :)
         type(constraint_blocks_type), intent(in) :: blocks
         logical, intent(in) :: holonomic(:), first
         logical, intent(out) :: changed
@@ -222,7 +227,8 @@ contains
     subroutine choose_sparse_block(self, b, c, mass, blocks, holonomic, first, changed, error)
         type(redundancy_type), intent(inout) :: self
         integer, intent(in) :: b
-        real(wp), intent(in) :: c(:, :), mass(:, :, :)
+        type(constraint_matrix_type), intent(in) :: c
+        real(wp), intent(in) :: mass(:, :, :)
         type(constraint_blocks_type), intent(in) :: blocks
         logical, intent(in) :: holonomic(:), first
         logical, intent(out) :: changed
@@ -237,7 +243,7 @@ contains
         m = size(rows)
         call sparse_unit_columns(c, mass, blocks, rows, column_start, row, values)
         allocate(order(m), diagonal(m))
-        call sparse_rank(size(c, 2), column_start, row, values, rank_tolerance, rank, order, &
+        call sparse_rank(c%n, column_start, row, values, rank_tolerance, rank, order, &
             & diagonal, error)
         if (allocated(error)) return
         self%redundant(b) = rank < m
@@ -254,16 +260,17 @@ contains
     end subroutine choose_sparse_block
 
     !> The unit columns of unit_columns for the rows k, in compressed columns (1-based), over
-    !> the system's coordinates (n rows, size(c, 2)): each row's column nonzero over the parts
-    !> of its UCON's own coordinates only (c is zero on the block's other parts, and so are
-    !> unit_columns' entries there), 6 per part, ascending.
+    !> the system's coordinates (n rows, c%n): each row's column nonzero over the parts of its
+    !> UCON's own coordinates only (C, held by rows over each UCON's own coordinates, is zero on
+    !> the block's other parts, and so are unit_columns' entries there), 6 per part, ascending.
     subroutine sparse_unit_columns(c, mass, blocks, rows, column_start, row, values)
-        real(wp), intent(in) :: c(:, :), mass(:, :, :)
+        type(constraint_matrix_type), intent(in) :: c
+        real(wp), intent(in) :: mass(:, :, :)
         type(constraint_blocks_type), intent(in) :: blocks
         integer, intent(in) :: rows(:)
         integer, allocatable, intent(out) :: column_start(:), row(:)
         real(wp), allocatable, intent(out) :: values(:)
-        real(wp) :: factor(3, 3), x(3), rotational(3, 3), length
+        real(wp) :: factor(3, 3), rotational(3, 3), length, entries(6)
         integer :: i, k, x0, p, last, i0, e, first_entry
 
         allocate(column_start(size(rows) + 1))
@@ -283,9 +290,8 @@ contains
                 rotational = mass(4:6, 4:6, p)
                 factor = cholesky_3(rotational)
                 row(e + 1:e + 6) = i0 + [1, 2, 3, 4, 5, 6]
-                values(e + 1:e + 3) = c(k, i0 + 1:i0 + 3)/sqrt(mass(1, 1, p))
-                x = c(k, i0 + 4:i0 + 6)
-                values(e + 4:e + 6) = forward_3(factor, x)
+                call c%gather(k, i0 + 1, entries)
+                values(e + 1:e + 6) = part_unit(mass(1, 1, p), factor, entries)
                 e = e + 6
             end do
             length = norm2(values(first_entry:e))
@@ -311,7 +317,8 @@ contains
     function margin(self, b, c, mass, blocks, error) result(value)
         class(redundancy_type), intent(in) :: self
         integer, intent(in) :: b
-        real(wp), intent(in) :: c(:, :), mass(:, :, :)
+        type(constraint_matrix_type), intent(in) :: c
+        real(wp), intent(in) :: mass(:, :, :)
         type(constraint_blocks_type), intent(in) :: blocks
         type(error_type), allocatable, intent(out) :: error
         real(wp) :: value
@@ -330,36 +337,48 @@ contains
     !> (module text) of the same constraint force C^T lambda; the other blocks' are untouched.
     subroutine multipliers(self, c, mass, blocks, lambda, error)
         class(redundancy_type), intent(in) :: self
-        real(wp), intent(in) :: c(:, :), mass(:, :, :)
+        type(constraint_matrix_type), intent(in) :: c
+        real(wp), intent(in) :: mass(:, :, :)
         type(constraint_blocks_type), intent(in) :: blocks
         !> The multipliers of the active rows (0 for those set aside) on entry
         real(wp), intent(inout) :: lambda(:)
         type(error_type), allocatable, intent(out) :: error
-        real(wp), allocatable :: a(:, :), norms(:), force(:, :), scaled(:, :), split(:), &
-            & length(:)
+        real(wp), allocatable :: a(:, :), norms(:), force(:), scaled(:), split(:)
         integer, allocatable :: rows(:), coordinates(:)
-        integer :: b, i, rank
+        real(wp) :: factor(3, 3), rotational(3, 3), entries(6)
+        integer :: b, i, rank, p, i0, j0
 
         do b = 1, blocks%count
             if (.not. self%redundant(b)) cycle
             rows = blocks%block_rows(b)
             coordinates = blocks%block_coordinates(b)
-            ! the constraint force over the block's coordinates (a row over the system's)
-            allocate(force(1, size(c, 2)), source=0.0_wp)
+            ! the constraint force over the block's coordinates (6 per part, ascending), and
+            ! L^-1 of it (unit_columns' metric, not scaled to unit length)
+            allocate(force(size(coordinates)), scaled(size(coordinates)), source=0.0_wp)
             do i = 1, size(rows)
-                force(1, coordinates) = force(1, coordinates) &
-                    & + lambda(rows(i))*c(rows(i), coordinates)
+                do p = 1, size(coordinates)/6
+                    j0 = 6*(p - 1)
+                    call c%gather(rows(i), coordinates(j0 + 1), entries)
+                    force(j0 + 1:j0 + 6) = force(j0 + 1:j0 + 6) + lambda(rows(i))*entries
+                end do
+            end do
+            do p = 1, size(coordinates)/6
+                j0 = 6*(p - 1)
+                i0 = coordinates(j0 + 1) - 1
+                rotational = mass(4:6, 4:6, i0/6 + 1)
+                factor = cholesky_3(rotational)
+                scaled(j0 + 1:j0 + 6) = part_unit(mass(1, 1, i0/6 + 1), factor, &
+                    & force(j0 + 1:j0 + 6))
             end do
             call unit_columns(c, mass, coordinates, rows, a, norms)
-            call unit_columns(force, mass, coordinates, [1], scaled, length, unscaled=.true.)
             allocate(split(size(rows)))
-            call minimum_norm_solve(a, scaled(:, 1), rank_tolerance, split, rank, error)
+            call minimum_norm_solve(a, scaled, rank_tolerance, split, rank, error)
             if (allocated(error)) return
             do i = 1, size(rows)
                 lambda(rows(i)) = 0.0_wp
                 if (norms(i) > 0.0_wp) lambda(rows(i)) = split(i)/norms(i)
             end do
-            deallocate(force, split)
+            deallocate(force, scaled, split)
         end do
     end subroutine multipliers
 
@@ -368,7 +387,8 @@ contains
     subroutine dependency(self, k, c, mass, blocks, coefficients, error)
         class(redundancy_type), intent(in) :: self
         integer, intent(in) :: k
-        real(wp), intent(in) :: c(:, :), mass(:, :, :)
+        type(constraint_matrix_type), intent(in) :: c
+        real(wp), intent(in) :: mass(:, :, :)
         type(constraint_blocks_type), intent(in) :: blocks
         real(wp), intent(out) :: coefficients(:)
         type(error_type), allocatable, intent(out) :: error
@@ -389,19 +409,17 @@ contains
         coefficients(rows) = x
     end subroutine dependency
 
-    !> The columns L^-1 c_k^T over the coordinates (6 per part, ascending) for the rows k,
-    !> each of unit length (a zero row stays zero) unless unscaled; norms their lengths.
-    subroutine unit_columns(c, mass, coordinates, rows, a, norms, unscaled)
-        real(wp), intent(in) :: c(:, :), mass(:, :, :)
+    !> The columns L^-1 c_k^T over the coordinates (6 per part, ascending) for the rows k of C
+    !> (c: by rows over each UCON's own coordinates, zero elsewhere), each of unit length (a
+    !> zero row stays zero); norms their lengths.
+    subroutine unit_columns(c, mass, coordinates, rows, a, norms)
+        type(constraint_matrix_type), intent(in) :: c
+        real(wp), intent(in) :: mass(:, :, :)
         integer, intent(in) :: coordinates(:), rows(:)
         real(wp), allocatable, intent(out) :: a(:, :), norms(:)
-        logical, intent(in), optional :: unscaled
-        real(wp) :: factor(3, 3), x(3), rotational(3, 3)
+        real(wp) :: factor(3, 3), rotational(3, 3), entries(6)
         integer :: p, i0, j0, i
-        logical :: scale
 
-        scale = .true.
-        if (present(unscaled)) scale = .not. unscaled
         allocate(a(size(coordinates), size(rows)), norms(size(rows)))
         do p = 1, size(coordinates)/6
             j0 = 6*(p - 1)
@@ -409,16 +427,26 @@ contains
             rotational = mass(4:6, 4:6, i0/6 + 1)
             factor = cholesky_3(rotational)
             do i = 1, size(rows)
-                a(j0 + 1:j0 + 3, i) = c(rows(i), i0 + 1:i0 + 3)/sqrt(mass(1, 1, i0/6 + 1))
-                x = c(rows(i), i0 + 4:i0 + 6)
-                a(j0 + 4:j0 + 6, i) = forward_3(factor, x)
+                call c%gather(rows(i), i0 + 1, entries)
+                a(j0 + 1:j0 + 6, i) = part_unit(mass(1, 1, i0/6 + 1), factor, entries)
             end do
         end do
         do i = 1, size(rows)
             norms(i) = norm2(a(:, i))
-            if (scale .and. norms(i) > 0.0_wp) a(:, i) = a(:, i)/norms(i)
+            if (norms(i) > 0.0_wp) a(:, i) = a(:, i)/norms(i)
         end do
     end subroutine unit_columns
+
+    !> A part's six entries x of a row of C (or of a force over its coordinates) in the unit
+    !> metric, L^-1 x: translations over sqrt(m) (m: mass11, the part's mass), the angles by
+    !> the lower Cholesky factor (factor) of their 3 x 3 block of M.
+    pure function part_unit(mass11, factor, x) result(y)
+        real(wp), intent(in) :: mass11, factor(3, 3), x(6)
+        real(wp) :: y(6)
+
+        y(1:3) = x(1:3)/sqrt(mass11)
+        y(4:6) = forward_3(factor, x(4:6))
+    end function part_unit
 
     !> The lower Cholesky factor of a symmetric positive definite 3 x 3 matrix.
     pure function cholesky_3(m) result(l)

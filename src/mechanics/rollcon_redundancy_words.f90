@@ -10,6 +10,7 @@ module rollcon_redundancy_words
     use rollcon_model, only : model_type, statement_joint, statement_jprim
     use rollcon_redundancy, only : redundancy_type
     use rollcon_constraint_blocks, only : constraint_blocks_type
+    use rollcon_constraint_matrix, only : constraint_matrix_type
     implicit none
     private
 
@@ -28,15 +29,16 @@ contains
     function set_aside_words(model, redundancy, c, mass, blocks, involved, error) result(text)
         type(model_type), intent(in) :: model
         type(redundancy_type), intent(in) :: redundancy
-        !> The constraint rows (nc x n) and the mass matrix (its parts' 6 x 6 blocks) of the
-        !> choice
-        real(wp), intent(in) :: c(:, :), mass(:, :, :)
+        !> The constraint rows (C, nc x n by rows over each UCON's own coordinates) and the
+        !> mass matrix (its parts' 6 x 6 blocks) of the choice
+        type(constraint_matrix_type), intent(in) :: c
+        real(wp), intent(in) :: mass(:, :, :)
         type(constraint_blocks_type), intent(in) :: blocks
         logical, intent(out) :: involved(:)
         type(error_type), allocatable, intent(out) :: error
         character(len=:), allocatable :: text
-        real(wp) :: coefficients(size(c, 1))
-        logical :: flagged(size(c, 1)), repeated(size(c, 1)), own(size(c, 1))
+        real(wp) :: coefficients(c%nc)
+        logical :: flagged(c%nc), repeated(c%nc), own(c%nc)
         integer :: s, k
 
         text = ""

@@ -4,7 +4,9 @@
 !> columns chosen by LAPACK's QR with column pivoting (dgeqp3), the dependent speeds; the
 !> n - nc others are the independent speeds an integrator carries. With C_d the chosen
 !> columns, C u = b gives u_d = C_d^-1 (b - C_i u_i), solved with C_d's LU factors (dgetf2,
-!> dgetrs). All of it goes block by block over the constraints' blocks
+!> dgetrs). C is held by rows over each UCON's own coordinates (rollcon_constraint_matrix);
+!> each block's rows are gathered from it at its coordinates into the workspace, never as a
+!> whole nc x n array. All of it goes block by block over the constraints' blocks
 !> (rollcon_constraint_blocks: UCONs that share no part do not couple), so each block chooses
 !> its own columns and N independent disks cost N times one. How well a block's choice still
 !> suits the state is the growth of its dependent speeds, the largest entry of C_d^-1 C_i
@@ -21,6 +23,7 @@ module rollcon_speed_partition
     use rollcon_lapack, only : dgeqp3, dgetf2, dgetrs, lapack_info_error
     use rollcon_constraint_blocks, only : constraint_blocks_type, ascending
     use rollcon_sparse_lu, only : sparse_lu_type
+    use rollcon_constraint_matrix, only : constraint_matrix_type
     implicit none
     private
 
@@ -66,10 +69,11 @@ module rollcon_speed_partition
         !> speeds of now
         logical, allocatable :: block_sparse(:), analysed(:)
         type(sparse_lu_type), allocatable :: sparse(:)
-        !> Of a sparse block b's entries, from value_start(b): the UCON (row of c) and the
-        !> coordinate (column of c) of each, in KLU's order of values
-        integer, allocatable :: value_start(:), value_ucon(:), value_coordinate(:)
-        !> A coordinate's column in the block being analysed (0: not a dependent speed of it)
+        !> Of a sparse block b's entries, from value_start(b): the index of each in C by rows
+        !> (c%value, whose pattern is the blocks' ucon_start/ucon_coordinates), in KLU's order
+        !> of values
+        integer, allocatable :: value_start(:), value_entry(:)
+        !> A coordinate's column in the block being gathered or analysed (0 otherwise)
         integer, allocatable :: column_of(:)
     contains
         procedure :: init
@@ -110,7 +114,7 @@ contains
             & self%lu_start, self%pivots, self%growth_chosen, self%qr, self%tau, self%work, &
             & self%basis, self%buffer, self%jpvt, self%trial, self%is_dependent, &
             & self%block_sparse, self%analysed, self%sparse, self%value_start, self%column_of)
-        if (allocated(self%value_ucon)) deallocate(self%value_ucon, self%value_coordinate)
+        if (allocated(self%value_entry)) deallocate(self%value_entry)
         associate (bl => self%blocks)
             allocate(self%dependent(nc), self%independent(n - nc), self%trial(max(nc, 1)))
             allocate(self%lu_start(bl%count + 1), self%growth_chosen(max(bl%count, 1)))
@@ -169,13 +173,14 @@ contains
         end if
     end subroutine whole_block
 
-    !> Choose the partition for the constraint matrix c (nc x n): in each block the first
-    !> columns of QR with column pivoting are the dependent speeds; then factor C_d. An error
-    !> when c has not full row rank (a dependent block is singular).
+    !> Choose the partition for the constraint matrix c (C, nc x n by rows over each UCON's own
+    !> coordinates, rollcon_constraint_matrix): in each block the first columns of QR with
+    !> column pivoting are the dependent speeds; then factor C_d. An error when c has not full
+    !> row rank (a dependent block is singular).
     subroutine choose(self, c, error)
         class(speed_partition_type), intent(inout) :: self
         !> Velocity-level constraint rows [UCON unit per rate unit]
-        real(wp), intent(in) :: c(:, :)
+        type(constraint_matrix_type), intent(in) :: c
         type(error_type), allocatable, intent(out) :: error
         integer :: b
 
@@ -202,18 +207,22 @@ contains
     subroutine choose_block(self, b, c, error)
         type(speed_partition_type), intent(inout) :: self
         integer, intent(in) :: b
-        real(wp), intent(in) :: c(:, :)
+        type(constraint_matrix_type), intent(in) :: c
         type(error_type), allocatable, intent(out) :: error
         integer :: i, j, m, columns, info
 
         associate (bl => self%blocks)
             m = bl%row_start(b + 1) - bl%row_start(b)
             columns = bl%coordinate_start(b + 1) - bl%coordinate_start(b)
+            ! the block's rows at its coordinates (the zeros off each UCON's own ones)
+            self%qr(:m, :columns) = 0.0_wp
             do j = 1, columns
-                do i = 1, m
-                    self%qr(i, j) = c(bl%rows(bl%row_start(b) + i - 1), &
-                        & bl%coordinates(bl%coordinate_start(b) + j - 1))
-                end do
+                self%column_of(bl%coordinates(bl%coordinate_start(b) + j - 1)) = j
+            end do
+            call gather_block(c, bl%rows(bl%row_start(b):bl%row_start(b + 1) - 1), &
+                & self%column_of, self%qr, size(self%qr, 1))
+            do j = 1, columns
+                self%column_of(bl%coordinates(bl%coordinate_start(b) + j - 1)) = 0
             end do
             self%jpvt(:columns) = 0
             call dgeqp3(m, columns, self%qr, size(self%qr, 1), self%jpvt, self%tau, self%work, &
@@ -229,12 +238,13 @@ contains
         end associate
     end subroutine choose_block
 
-    !> LU factors of each block's C_d = c(block's rows, its dependent speeds).
+    !> LU factors of each block's C_d = C(block's rows, its dependent speeds), c by rows over
+    !> each UCON's own coordinates.
     subroutine factor(self, c, error)
         class(speed_partition_type), intent(inout) :: self
-        real(wp), intent(in) :: c(:, :)
+        type(constraint_matrix_type), intent(in) :: c
         type(error_type), allocatable, intent(out) :: error
-        integer :: b, i, j, m, first, info
+        integer :: b, j, m, first, info
 
         associate (bl => self%blocks)
             do b = 1, bl%count
@@ -245,11 +255,14 @@ contains
                     if (allocated(error)) return
                     cycle
                 end if
+                self%lu(self%lu_start(b):self%lu_start(b) + m*m - 1) = 0.0_wp
                 do j = 1, m
-                    do i = 1, m
-                        self%lu(self%lu_start(b) + i - 1 + m*(j - 1)) = &
-                            & c(bl%rows(first + i - 1), self%dependent(first + j - 1))
-                    end do
+                    self%column_of(self%dependent(first + j - 1)) = j
+                end do
+                call gather_block(c, bl%rows(first:first + m - 1), self%column_of, &
+                    & self%lu(self%lu_start(b)), m)
+                do j = 1, m
+                    self%column_of(self%dependent(first + j - 1)) = 0
                 end do
                 call dgetf2(m, m, self%lu(self%lu_start(b)), m, self%pivots(first), info)
                 if (info > 0) then
@@ -300,11 +313,12 @@ contains
         end associate
     end subroutine solve
 
-    !> The largest growth max |C_d^-1 C_i| of the blocks for the matrix c, with the factors of
-    !> the last factor call, which must be of this c.
+    !> The largest growth max |C_d^-1 C_i| of the blocks for the matrix c (C by rows over each
+    !> UCON's own coordinates), with the factors of the last factor call, which must be of
+    !> this c.
     function growth(self, c) result(largest)
         class(speed_partition_type), intent(inout) :: self
-        real(wp), intent(in) :: c(:, :)
+        type(constraint_matrix_type), intent(in) :: c
         real(wp) :: largest
         integer :: b
 
@@ -319,9 +333,9 @@ contains
     function block_growth(self, b, c) result(largest)
         type(speed_partition_type), intent(inout) :: self
         integer, intent(in) :: b
-        real(wp), intent(in) :: c(:, :)
+        type(constraint_matrix_type), intent(in) :: c
         real(wp) :: largest
-        integer :: i, j, m, columns, free, first, info, coordinate
+        integer :: j, m, columns, free, first, info, coordinate
         type(error_type), allocatable :: error
 
         largest = 0.0_wp
@@ -329,16 +343,21 @@ contains
             first = bl%row_start(b)
             m = bl%row_start(b + 1) - first
             columns = bl%coordinate_start(b + 1) - bl%coordinate_start(b)
+            ! C_i: the block's rows at its independent speeds
             free = 0
             do j = 1, columns
                 coordinate = bl%coordinates(bl%coordinate_start(b) + j - 1)
                 if (any(self%dependent(first:first + m - 1) == coordinate)) cycle
                 free = free + 1
-                do i = 1, m
-                    self%basis(i, free) = c(bl%rows(first + i - 1), coordinate)
-                end do
+                self%column_of(coordinate) = free
             end do
             if (free == 0) return
+            self%basis(:m, :free) = 0.0_wp
+            call gather_block(c, bl%rows(first:first + m - 1), self%column_of, self%basis, &
+                & size(self%basis, 1))
+            do j = 1, columns
+                self%column_of(bl%coordinates(bl%coordinate_start(b) + j - 1)) = 0
+            end do
             largest = huge(1.0_wp)
             if (self%block_sparse(b)) then
                 call self%sparse(b)%solve(self%basis, size(self%basis, 1), free, error)
@@ -351,14 +370,15 @@ contains
         end associate
     end function block_growth
 
-    !> True when the partition no longer suits c: some block's C_d (factored again here)
+    !> True when the partition no longer suits c (C by rows over each UCON's own
+    !> coordinates): some block's C_d (factored again here)
     !> singular, or its growth above its choice's divided by worn_ratio while QR with pivoting
     !> would now choose other columns there. A block whose choice would stay keeps it, with
     !> the growth of now as its reference. The partition itself is never changed here (the
     !> integrator's state is in its speeds): a worn one is chosen again by choose.
     function worn(self, c) result(is_worn)
         class(speed_partition_type), intent(inout) :: self
-        real(wp), intent(in) :: c(:, :)
+        type(constraint_matrix_type), intent(in) :: c
         logical :: is_worn
         type(error_type), allocatable :: error
         real(wp) :: now
@@ -387,12 +407,13 @@ contains
     end function worn
 
     !> Block b's C_d (a sparse block) factored by KLU: its pattern analysed first when the
-    !> dependent speeds changed since, then its values taken from c. The error of a singular
+    !> dependent speeds changed since, then its values taken from c (C by rows, at the entries
+    !> analyse_block kept). The error of a singular
     !> C_d is the dense path's.
     subroutine factor_sparse(self, b, c, error)
         type(speed_partition_type), intent(inout) :: self
         integer, intent(in) :: b
-        real(wp), intent(in) :: c(:, :)
+        type(constraint_matrix_type), intent(in) :: c
         type(error_type), allocatable, intent(out) :: error
         type(error_type), allocatable :: failure
         integer :: e, offset
@@ -404,7 +425,7 @@ contains
         offset = self%value_start(b) - 1
         associate (values => self%sparse(b)%values)
             do e = 1, size(values)
-                values(e) = c(self%value_ucon(offset + e), self%value_coordinate(offset + e))
+                values(e) = c%value(self%value_entry(offset + e))
             end do
         end associate
         call self%sparse(b)%factor(failure)
@@ -421,8 +442,8 @@ contains
         type(speed_partition_type), intent(inout) :: self
         integer, intent(in) :: b
         type(error_type), allocatable, intent(out) :: error
-        integer, allocatable :: column_start(:), row(:), ucon(:), coordinate(:), fill(:)
-        integer :: first, m, i, j, k, x, q, entries, e
+        integer, allocatable :: column_start(:), row(:), entry(:), fill(:)
+        integer :: first, m, i, j, k, x, entries, e
 
         associate (bl => self%blocks)
             first = bl%row_start(b)
@@ -443,55 +464,69 @@ contains
                 column_start(j + 1) = column_start(j) + column_start(j + 1)
             end do
             entries = column_start(m + 1) - 1
-            allocate(row(entries), ucon(entries), coordinate(entries))
+            allocate(row(entries), entry(entries))
             ! rows ascending within each column: the rows are taken in order
             do i = 1, m
                 k = bl%rows(first + i - 1)
                 do x = bl%ucon_start(k), bl%ucon_start(k + 1) - 1
-                    q = bl%ucon_coordinates(x)
-                    j = self%column_of(q)
+                    j = self%column_of(bl%ucon_coordinates(x))
                     if (j == 0) cycle
                     e = column_start(j) + fill(j)
                     fill(j) = fill(j) + 1
                     row(e) = i
-                    ucon(e) = k
-                    coordinate(e) = q
+                    entry(e) = x
                 end do
             end do
             do j = 1, m
                 self%column_of(self%dependent(first + j - 1)) = 0
             end do
         end associate
-        call place_entries(self, b, ucon, coordinate)
+        call place_entries(self, b, entry)
         call self%sparse(b)%analyse(m, column_start, row, error)
         if (allocated(error)) return
         self%analysed(b) = .true.
     end subroutine analyse_block
 
-    !> Block b's entries (their UCONs and coordinates) into value_ucon and value_coordinate,
-    !> from value_start(b); the later blocks' slices move with it when its count changed.
-    subroutine place_entries(self, b, ucon, coordinate)
+    !> Block b's entries (their indices in C by rows) into value_entry from value_start(b); the
+    !> later blocks' slices move with it when its count changed.
+    subroutine place_entries(self, b, entry)
         type(speed_partition_type), intent(inout) :: self
-        integer, intent(in) :: b, ucon(:), coordinate(:)
-        integer, allocatable :: before_u(:), after_u(:), before_c(:), after_c(:)
+        integer, intent(in) :: b, entry(:)
+        integer, allocatable :: before(:), after(:)
         integer :: start, old_end, count
 
-        if (.not. allocated(self%value_ucon)) then
-            allocate(self%value_ucon(0), self%value_coordinate(0))
+        if (.not. allocated(self%value_entry)) then
+            allocate(self%value_entry(0))
             self%value_start = 1
         end if
         count = size(self%value_start) - 1
         start = self%value_start(b)
         old_end = self%value_start(b + 1) - 1
-        before_u = self%value_ucon(:start - 1)
-        before_c = self%value_coordinate(:start - 1)
-        after_u = self%value_ucon(old_end + 1:)
-        after_c = self%value_coordinate(old_end + 1:)
-        self%value_ucon = [before_u, ucon, after_u]
-        self%value_coordinate = [before_c, coordinate, after_c]
+        before = self%value_entry(:start - 1)
+        after = self%value_entry(old_end + 1:)
+        self%value_entry = [before, entry, after]
         self%value_start(b + 1:count + 1) = self%value_start(b + 1:count + 1) &
-            & + size(ucon) - (old_end - start + 1)
+            & + size(entry) - (old_end - start + 1)
     end subroutine place_entries
+
+    !> The rows of C (c, by rows over each UCON's own coordinates) given in rows, at the
+    !> coordinates numbered in column_of (coordinate -> column of a; 0: left out), into a
+    !> (leading dimension lda; row i of a is rows(i)). a's entries there must be zero on entry
+    !> (those off each UCON's own coordinates stay so). O(the rows' entries), no allocation.
+    pure subroutine gather_block(c, rows, column_of, a, lda)
+        type(constraint_matrix_type), intent(in) :: c
+        integer, intent(in) :: rows(:), column_of(:), lda
+        real(wp), intent(inout) :: a(lda, *)
+        integer :: i, k, x, j
+
+        do i = 1, size(rows)
+            k = rows(i)
+            do x = c%start(k), c%start(k + 1) - 1
+                j = column_of(c%column(x))
+                if (j > 0) a(i, j) = c%value(x)
+            end do
+        end do
+    end subroutine gather_block
 
     !> Free the sparse blocks' KLU objects (the holder of a copy must not call it: the copy
     !> shares them).

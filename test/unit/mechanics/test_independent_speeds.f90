@@ -15,6 +15,7 @@ module test_independent_speeds
         & status_completed
     use motion_runs, only : run_in_memory, tipping_coin
     use rollcon_speed_partition, only : speed_partition_type
+    use rollcon_constraint_matrix, only : constraint_matrix_type
     use rollcon_scene, only : scene_type
     use rollcon_disk_scene, only : build_disk_problem
     use rollcon_disk_reference, only : rolling_disk_ucosub
@@ -241,21 +242,23 @@ contains
     subroutine test_partition_worn(error)
         type(error_type), allocatable, intent(out) :: error
         type(speed_partition_type) :: partition
-        real(wp) :: c(1, 3)
+        ! the row by rows: its three rates its own coordinates
+        type(constraint_matrix_type) :: c
 
         call partition%init(3, 1)
-        c(1, :) = [1.0_wp, 0.0_wp, 0.1_wp]
+        call c%init(3, 1, [1, 4], [1, 2, 3])
+        c%value = [1.0_wp, 0.0_wp, 0.1_wp]
         call partition%choose(c, error)
         if (allocated(error)) return
         call check(error, all(partition%dependent == [1]) .and. all(partition%independent &
             & == [2, 3]), "first choice: rate 1 dependent")
         if (allocated(error)) return
         ! psi = 0.3 rad: growth tan 0.3 = 0.31, QR would still choose rate 1 (cos > sin)
-        c(1, :) = [cos(0.3_wp), sin(0.3_wp), 0.1_wp]
+        c%value = [cos(0.3_wp), sin(0.3_wp), 0.1_wp]
         call check(error, .not. partition%worn(c), "not worn at psi = 0.3 rad")
         if (allocated(error)) return
         ! psi = 1.4 rad: growth tan 1.4 = 5.8, QR chooses rate 2
-        c(1, :) = [cos(1.4_wp), sin(1.4_wp), 0.1_wp]
+        c%value = [cos(1.4_wp), sin(1.4_wp), 0.1_wp]
         call check(error, partition%worn(c), "worn at psi = 1.4 rad")
         if (allocated(error)) return
         call check(error, all(partition%dependent == [1]), "worn leaves the partition as it was")
