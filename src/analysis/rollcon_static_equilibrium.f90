@@ -157,7 +157,7 @@ contains
         type(iterate_type), intent(inout) :: now
         type(error_type), allocatable, intent(out) :: error
         real(wp), allocatable :: u(:), dfdq(:, :)
-        integer :: n, nc, nh, k, h, ii, jj, i, j, p
+        integer :: n, nc, nh, k, h, ii, jj, i, j, p, x_c
         real(wp) :: size_k
 
         n = problem%eq%n
@@ -176,9 +176,17 @@ contains
             call applied_force_partials(problem%model, time, q, dfdq)
             now%residual = 0.0_wp
             now%jacobian = 0.0_wp
-            now%residual(:n) = eq%force + matmul(lambda, eq%c)
+            ! f + C^T lambda, C by rows over each UCON's coordinates (its entries alone: the
+            ! same sums as the dense product's, less exact zeros)
+            call eq%cm%transpose_times(lambda, now%residual(:n))
+            now%residual(:n) = eq%force + now%residual(:n)
             now%jacobian(:n, :n) = dfdq
-            now%jacobian(:n, n + 1:) = transpose(eq%c)
+            do k = 1, nc
+                ! C^T's column k: row k's entries
+                do x_c = eq%cm%start(k), eq%cm%start(k + 1) - 1
+                    now%jacobian(eq%cm%column(x_c), n + k) = eq%cm%value(x_c)
+                end do
+            end do
             do k = 1, nc
                 h = problem%model%holonomic_number(k)
                 associate (at => eq%blocks%ucon_coordinates(eq%blocks%ucon_start(k): &

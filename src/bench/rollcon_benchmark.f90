@@ -501,9 +501,15 @@ contains
         do j = 1, problem%eq%n/6
             matrix(6*j - 5:6*j, 6*j - 5:6*j) = problem%eq%mass(:, :, j)
         end do
-        matrix(:problem%eq%n, problem%eq%n + 1:) = -transpose(problem%eq%c)
-        matrix(problem%eq%n + 1:, :problem%eq%n) = problem%eq%c
-        matrix(problem%eq%n + 1:, problem%eq%n + 1:) = 0.0_wp
+        ! -C^T and C (C held by rows over each UCON's coordinates; the others zero)
+        matrix(:problem%eq%n, problem%eq%n + 1:) = 0.0_wp
+        matrix(problem%eq%n + 1:, :) = 0.0_wp
+        do i = 1, problem%eq%nc
+            do j = problem%eq%cm%start(i), problem%eq%cm%start(i + 1) - 1
+                matrix(problem%eq%cm%column(j), problem%eq%n + i) = -problem%eq%cm%value(j)
+                matrix(problem%eq%n + i, problem%eq%cm%column(j)) = problem%eq%cm%value(j)
+            end do
+        end do
         allocate(lu(n, n), b(n, 1), pivots(n))
         call cpu_time(start)
         do i = 1, count

@@ -279,7 +279,7 @@ contains
         integer, intent(in), optional :: starts(:), rows(:)
         real(wp), intent(inout), optional :: values(:)
         logical :: aside, dense, loop, multipliers
-        integer :: n, nc, k, h, i, j, row, ii, jj, i0, outside(2)
+        integer :: n, nc, k, h, i, j, row, ii, jj, i0, outside(2), x
         real(wp) :: m(2), s(2), slip(2)
 
         loop = .false.
@@ -411,9 +411,9 @@ contains
                     cycle
                 end if
                 associate (at => bl%ucon_coordinates(bl%ucon_start(k):bl%ucon_start(k + 1) - 1))
-                    do jj = 1, size(at)
-                        j = at(jj)
-                        call put(n + j, row, -eq%c(k, j))
+                    ! -C^T's column: row k's entries (C by rows over the UCON's coordinates)
+                    do x = eq%cm%start(k), eq%cm%start(k + 1) - 1
+                        call put(n + eq%cm%column(x), row, -eq%cm%value(x))
                     end do
                     ! a force reading this row's reaction: its partials in lambda_k (on the
                     ! parts it loads; the DAE form's pattern keeps them)
@@ -501,7 +501,7 @@ contains
         subroutine friction_entries(contact, lambda)
             type(sliding_contact_type), intent(in) :: contact
             real(wp), intent(in) :: lambda(:)
-            real(wp) :: projector(2, 2), speed, c_nz, weight
+            real(wp) :: projector(2, 2), speed, c_nz, weight, c_ti
             integer :: a, b, ia, ib, column
 
             associate (t => contact%tangential)
@@ -521,14 +521,17 @@ contains
                             & t(a)):eq%blocks%ucon_start(t(a) + 1) - 1))
                         do ia = 1, size(at)
                             i = at(ia)
+                            ! C(t_a, i): row t_a's entry ia (C's pattern is the rows' own
+                            ! coordinates, the same ascending list as at)
+                            c_ti = eq%cm%value(eq%cm%start(t(a)) + ia - 1)
                             ! d(-c_ta m_a)/d lambda_n = mu c_nz s_a c_ta
-                            call subtract(n + i, column, -contact%mu*c_nz*s(a)*eq%c(t(a), i))
+                            call subtract(n + i, column, -contact%mu*c_nz*s(a)*c_ti)
                             do b = 1, 2
                                 if (projector(a, b) == 0.0_wp) cycle
                                 associate (by => eq%blocks%ucon_coordinates( &
                                         & eq%blocks%ucon_start(t(b)): &
                                         & eq%blocks%ucon_start(t(b) + 1) - 1))
-                                    weight = -eq%c(t(a), i)*projector(a, b)
+                                    weight = -c_ti*projector(a, b)
                                     do ib = 1, size(by)
                                         j = by(ib)
                                         call subtract(n + i, n + j, &
@@ -612,18 +615,18 @@ contains
         end subroutine copy_coupling
     end subroutine write_jacobian
 
-    !> The constraint rows and multipliers a force routine's SYSFNC force measures read (the
-    !> constraints evaluated at the state before): the unknowns' lambda, a row set aside
-    !> carrying none.
+    !> The constraint rows (C by rows over each UCON's coordinates) and multipliers a force
+    !> routine's SYSFNC force measures read (the constraints evaluated at the state before):
+    !> the unknowns' lambda, a row set aside carrying none.
     subroutine set_reactions(eq, lambda)
         type(equations_type), intent(inout) :: eq
         real(wp), intent(in) :: lambda(:)
 
         call eq%constraint_matrix()
         if (eq%redundancy%set_aside > 0) then
-            call set_system_constraint_forces(eq%c, merge(lambda, 0.0_wp, eq%redundancy%active))
+            call set_system_constraint_forces(eq%cm, merge(lambda, 0.0_wp, eq%redundancy%active))
         else
-            call set_system_constraint_forces(eq%c, lambda)
+            call set_system_constraint_forces(eq%cm, lambda)
         end if
     end subroutine set_reactions
 

@@ -664,7 +664,7 @@ contains
         moved = huge(1.0_wp)
         do iteration = 1, most_iterations
             call set_system_accelerations(a)
-            if (multipliers) call set_system_constraint_forces(self%c, lambda)
+            if (multipliers) call set_system_constraint_forces(self%cm, lambda)
             call self%assemble(time, q, u)
             call take_user_force_error(error)
             if (allocated(error)) return
@@ -687,7 +687,7 @@ contains
         end do
         ! the forces and the routines' accelerations and reactions at the solution
         call set_system_accelerations(a)
-        if (multipliers) call set_system_constraint_forces(self%c, lambda)
+        if (multipliers) call set_system_constraint_forces(self%cm, lambda)
         call self%assemble(time, q, u)
         call take_user_force_error(error)
         if (allocated(error)) return

@@ -43,6 +43,7 @@ module rollcon_force_measures
     use rollcon_expression, only : quantity_names, quantity_tx, quantity_kind, &
         & kind_element_force, quantity_varval
     use rollcon_user_forces, only : set_force_measure_hook, force_measure_interface
+    use rollcon_constraint_matrix, only : constraint_matrix_type
     implicit none
     private
 
@@ -129,7 +130,8 @@ contains
             & read_markers, problem)
         integer, intent(in) :: quantity, ids(2)
         character(len=*), intent(in) :: caller
-        real(wp), intent(in) :: time, q(:), u(:), c(:, :), lambda(:)
+        real(wp), intent(in) :: time, q(:), u(:), lambda(:)
+        type(constraint_matrix_type), intent(in) :: c
         real(wp), intent(out) :: wrench(6)
         integer, allocatable, intent(out) :: rows(:), read_markers(:)
         character(len=:), allocatable, intent(out) :: problem

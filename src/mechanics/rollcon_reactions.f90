@@ -20,6 +20,7 @@ module rollcon_reactions
     use rollcon_marker, only : marker_type
     use rollcon_model, only : model_type, statement_type, statement_joint, statement_jprim, &
         & statement_element
+    use rollcon_constraint_matrix, only : constraint_matrix_type
     implicit none
     private
 
@@ -130,20 +131,23 @@ contains
 
     !> A site's force and torque (fx, fy, fz, tx, ty, tz) [N, N m], ground axes: on the part of
     !> marker I at marker I (a JOINT or JPRIM), or on the part at its centre of mass (a UCON);
-    !> from the constraint rows c (nc x n: dF/du, or dF/dq for a position UCON) and the
-    !> multipliers lambda at the coordinates q.
+    !> from the constraint rows c (C, nc x n: dF/du, or dF/dq for a position UCON, by rows over
+    !> each UCON's coordinates; the site's rows read on the part's six) and the multipliers
+    !> lambda (nc) at the coordinates q (n).
     pure function site_wrench(model, site, c, lambda, q) result(wrench)
         type(model_type), intent(in) :: model
         type(reaction_site_type), intent(in) :: site
-        real(wp), intent(in) :: c(:, :), lambda(:), q(:)
+        type(constraint_matrix_type), intent(in) :: c
+        real(wp), intent(in) :: lambda(:), q(:)
         real(wp) :: wrench(6)
-        real(wp) :: generalised(6), rotation(3, 3), force(3), moment(3)
+        real(wp) :: generalised(6), row(6), rotation(3, 3), force(3), moment(3)
         integer :: i0, i
 
         i0 = 6*(site%part - 1)
         generalised = 0.0_wp
         do i = 1, size(site%rows)
-            generalised = generalised + lambda(site%rows(i))*c(site%rows(i), i0 + 1:i0 + 6)
+            call c%gather(site%rows(i), i0 + 1, row)
+            generalised = generalised + lambda(site%rows(i))*row
         end do
         rotation = rotation_matrix(q(i0 + 4), q(i0 + 5), q(i0 + 6))
         force = generalised(1:3)

@@ -67,6 +67,7 @@ module rollcon_user_forces
         & quantity_fx, quantity_fm, quantity_tx
     use rollcon_marker, only : marker_motion
     use rollcon_rotation, only : transpose_times
+    use rollcon_constraint_matrix, only : constraint_matrix_type
     use, intrinsic :: ieee_arithmetic, only : ieee_is_finite, ieee_value, ieee_quiet_nan
     implicit none
     private
@@ -178,17 +179,19 @@ module rollcon_user_forces
         !> How a force measure is answered (rollcon_force_measures, which knows the model):
         !> quantity FX ... TM (ids: the markers I and J, J 0 for none) or an element's force
         !> JOINT ... SPDP (ids: the element's id and JFLAG), for the force named caller ("" for
-        !> a REQSUB), at (t, q, u) [SI] with the constraint rows c (nc x n) and multipliers
-        !> lambda: wrench, the force and torque [N, N m] in ground axes on the part of the
-        !> marker (the torque about its origin), rows the constraint rows whose multipliers it
-        !> sums, read_markers the markers of the forces it sums (their state is what it depends
-        !> on); problem "" or why it cannot be answered.
+        !> a REQSUB), at (t, q, u) [SI] with the constraint rows c (C, nc x n, by rows over each
+        !> UCON's coordinates) and multipliers lambda (nc): wrench, the force and torque
+        !> [N, N m] in ground axes on the part of the marker (the torque about its origin), rows
+        !> the constraint rows whose multipliers it sums, read_markers the markers of the forces
+        !> it sums (their state is what it depends on); problem "" or why it cannot be
+        !> answered.
         subroutine force_measure_interface(quantity, ids, caller, time, q, u, c, lambda, &
                 & wrench, rows, read_markers, problem)
-            import :: wp
+            import :: wp, constraint_matrix_type
             integer, intent(in) :: quantity, ids(2)
             character(len=*), intent(in) :: caller
-            real(wp), intent(in) :: time, q(:), u(:), c(:, :), lambda(:)
+            real(wp), intent(in) :: time, q(:), u(:), lambda(:)
+            type(constraint_matrix_type), intent(in) :: c
             real(wp), intent(out) :: wrench(6)
             integer, allocatable, intent(out) :: rows(:), read_markers(:)
             character(len=:), allocatable, intent(out) :: problem
@@ -213,11 +216,12 @@ module rollcon_user_forces
     type(marker_type), allocatable, save :: markers(:)
     real(wp), save :: length_unit = 1.0_wp, time_unit = 1.0_wp, force_unit = 1.0_wp
     !> Who answers the force measures (rollcon_force_measures), null until the equations set
-    !> it; the constraint rows [per m or rad, or s] and multipliers they read, as
-    !> set_system_constraint_forces gave them last (an iterate of the algebraic loop, IDA's
-    !> unknowns, the solve at an output row)
+    !> it; the constraint rows [per m or rad, or s] (C by rows over each UCON's coordinates)
+    !> and multipliers they read, as set_system_constraint_forces gave them last (an iterate of
+    !> the algebraic loop, IDA's unknowns, the solve at an output row; none before the first)
     procedure(force_measure_interface), pointer, save :: measure_hook => null()
-    real(wp), allocatable, save :: c_now(:, :), lambda_now(:)
+    type(constraint_matrix_type), save :: c_now
+    real(wp), allocatable, save :: lambda_now(:)
     !> The force whose routine is called ("data/x.adm:12: SFORCE/3"; "" for any other call),
     !> and whether a REQSUB's call is under way (a force measure is answered to these alone)
     character(len=:), allocatable, save :: caller_now
@@ -1227,16 +1231,46 @@ contains
         measure_hook => hook
     end subroutine set_force_measure_hook
 
-    !> The constraint rows c (nc x n: dF/du, or dF/dq for a position UCON) and multipliers
-    !> lambda [the rows' units] SYSFNC's force measures read a JOINT's or JPRIM's reaction
-    !> from until the next call of this (rollcon_equations' iterates of its algebraic loop,
-    !> rollcon_dae's unknowns, an output row's solve).
+    !> The constraint rows c (C, nc x n: dF/du, or dF/dq for a position UCON, by rows over each
+    !> UCON's coordinates) and multipliers lambda (nc) [the rows' units] SYSFNC's force
+    !> measures read a JOINT's or JPRIM's reaction from until the next call of this
+    !> (rollcon_equations' iterates of its algebraic loop, rollcon_dae's unknowns, an output
+    !> row's solve). Called at every evaluation on those paths: the rows' pattern is copied
+    !> when it changes (the first call, or another model's equations), otherwise only their
+    !> values, into arrays of the same size (nothing allocated).
     subroutine set_system_constraint_forces(c, lambda)
-        real(wp), intent(in) :: c(:, :), lambda(:)
+        type(constraint_matrix_type), intent(in) :: c
+        real(wp), intent(in) :: lambda(:)
 
-        c_now = c
+        if (same_pattern(c_now, c)) then
+            c_now%value = c%value
+        else
+            c_now = c
+        end if
         lambda_now = lambda
     end subroutine set_system_constraint_forces
+
+    !> True when a and b hold the same pattern (sizes, row starts and columns), so that b's
+    !> values may be copied into a's array as they are.
+    pure logical function same_pattern(a, b)
+        type(constraint_matrix_type), intent(in) :: a, b
+        integer :: x
+
+        same_pattern = .false.
+        if (a%n /= b%n .or. a%nc /= b%nc) return
+        if (.not. (allocated(a%start) .and. allocated(a%column) .and. allocated(a%value) &
+            & .and. allocated(b%start) .and. allocated(b%column) .and. allocated(b%value))) &
+            & return
+        if (size(a%start) /= size(b%start) .or. size(a%column) /= size(b%column) .or. &
+            & size(a%value) /= size(b%value)) return
+        do x = 1, size(a%start)
+            if (a%start(x) /= b%start(x)) return
+        end do
+        do x = 1, size(a%column)
+            if (a%column(x) /= b%column(x)) return
+        end do
+        same_pattern = .true.
+    end function same_pattern
 
     !> The multipliers the force measures read, the constraint rows kept (a DIFSUB's partials
     !> in them are differenced with the rows of the state: rollcon_diff's
@@ -1815,7 +1849,7 @@ contains
                 & // "MOTSUB's MOTION is a function of TIME alone")
             return
         end if
-        if (.not. associated(measure_hook) .or. .not. allocated(c_now)) then
+        if (.not. associated(measure_hook) .or. .not. allocated(c_now%value)) then
             call refuse(call_name // ": a force, which rollcon answers once the model's " &
                 & // "equations are set up (a force routine in a run and in rollcon check's " &
                 & // "probes, a REQSUB at a run's output rows); here they are not")
@@ -1868,7 +1902,7 @@ contains
             end if
         end do
         if (.not. allocated(caller_now)) caller_now = ""
-        if (.not. allocated(lambda_now)) allocate(lambda_now(size(c_now, 1)), source=0.0_wp)
+        if (.not. allocated(lambda_now)) allocate(lambda_now(c_now%nc), source=0.0_wp)
         call measure_hook(quantity, element_ids, caller_now, time_now, q_now, u_now, c_now, &
             & lambda_now, wrench, rows, read_markers, why)
         if (len(why) > 0) then

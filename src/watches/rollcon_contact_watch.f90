@@ -767,7 +767,7 @@ contains
         type(impact_type) :: impact
         real(wp) :: jacobian(3, eq%n), minv_jt(eq%n, 3), w(3, 3), rebound(size(u)), fall
         real(wp) :: apex, table(3), drive, applied(3)
-        integer :: rows(3), i0
+        integer :: rows(3), i0, i
 
         detail%event_value = self%height_residual(q)
         detail%approach = self%normal_velocity(q, u)
@@ -776,7 +776,10 @@ contains
         call eq%accelerations(time, q, u, self%baumgarte, self%a, self%lambda, error)
         if (allocated(error)) return
         rows = [self%tangential(1), self%tangential(2), self%normal]
-        jacobian = eq%c(rows, :)
+        ! the contact's three rows of C (held by rows over each UCON's coordinates), dense
+        do i = 1, 3
+            call eq%cm%fill_row(rows(i), jacobian(i, :))
+        end do
         minv_jt = transpose(jacobian)
         call eq%saddle%apply_inverse_mass(minv_jt, 3, error)
         if (allocated(error)) return

@@ -67,6 +67,7 @@ module rollcon_request_answers
     use rollcon_reactions, only : reaction_site_type, reaction_sites, site_wrench, &
         & swapped_wrench, body_moment
     use rollcon_equations, only : equations_type
+    use rollcon_constraint_matrix, only : constraint_matrix_type
     use rollcon_run_settings, only : run_settings_type
     use rollcon_output_layout, only : name_length
     use rollcon_watch, only : watch_type
@@ -361,7 +362,7 @@ contains
                 case (answer_user)
                     ! the reactions its SYSFNC force measures read: the row's
                     call set_force_measure_model(eq%model)
-                    call set_system_constraint_forces(eq%c, lambda)
+                    call set_system_constraint_forces(eq%cm, lambda)
                     call call_user_request(request%routine, request%id, request%name, &
                         & request%par, self%time_unit, time, q, u, request%declared, &
                         & request%declared_rates, result, accelerations=self%a)
@@ -517,13 +518,13 @@ contains
             case (element_joint, element_jprim)
                 s = findloc(self%sites%statement, element%place, dim=1)
                 if (s == 0) return
-                wrench = site_wrench(eq%model, self%sites(s), eq%c, lambda, q)
+                wrench = site_wrench(eq%model, self%sites(s), eq%cm, lambda, q)
                 if (at_j) wrench = swapped_wrench(eq%model, self%sites(s), wrench, q)
             case (element_motion)
                 if (at_j) then
-                    wrench = rows_wrench(eq%c, lambda, element%place, element%j, element%i, q)
+                    wrench = rows_wrench(eq%cm, lambda, element%place, element%j, element%i, q)
                 else
-                    wrench = rows_wrench(eq%c, lambda, element%place, element%i, element%j, q)
+                    wrench = rows_wrench(eq%cm, lambda, element%place, element%i, element%j, q)
                 end if
             case default
                 wrench = force_wrench(eq%model%forces(element%place)%statement, at_j, time, q, u)
@@ -535,14 +536,16 @@ contains
     !> origin, ground axes (from the generalised force lambda_k c_k on the part's coordinates,
     !> as rollcon_reactions); a marker on the ground: the opposite of what it exerts on
     !> `other`'s part, its moment taken about `marker` (the row depends on the two markers'
-    !> relative pose); both on the ground: zero.
+    !> relative pose); both on the ground: zero. c: the constraint rows (C, nc x n, by rows over
+    !> each UCON's coordinates), row k read on the part's six; lambda (nc), q (n).
     pure function rows_wrench(c, lambda, k, marker, other, q) result(wrench)
-        real(wp), intent(in) :: c(:, :), lambda(:)
+        type(constraint_matrix_type), intent(in) :: c
+        real(wp), intent(in) :: lambda(:)
         integer, intent(in) :: k
         type(marker_type), intent(in) :: marker, other
         real(wp), intent(in) :: q(:)
         real(wp) :: wrench(6)
-        real(wp) :: generalised(6), rotation(3, 3), force(3), moment(3)
+        real(wp) :: generalised(6), row(6), rotation(3, 3), force(3), moment(3)
         integer :: p, i0
 
         wrench = 0.0_wp
@@ -550,7 +553,8 @@ contains
         if (p == 0) p = other%part
         if (p == 0) return
         i0 = 6*(p - 1)
-        generalised = lambda(k)*c(k, i0 + 1:i0 + 6)
+        call c%gather(k, i0 + 1, row)
+        generalised = lambda(k)*row
         rotation = rotation_matrix(q(i0 + 4), q(i0 + 5), q(i0 + 6))
         force = generalised(1:3)
         moment = times(rotation, body_moment(q(i0 + 5), q(i0 + 6), generalised(4:6)))

@@ -19,6 +19,7 @@ module test_allocations
     use rollcon_speeds_form, only : speeds_form_type
     use rollcon_run_settings, only : method_adams, drift_baumgarte, drift_projection
     use rollcon_dae, only : dae_size, dae_residual, dae_jacobian
+    use rollcon_user_forces, only : set_system_constraint_forces, system_multipliers
     use rollcon_cvode, only : cvode_integrator_type
     use rollcon_ida, only : ida_integrator_type
     use rollcon_contact_watch, only : contact_watch_type
@@ -84,6 +85,7 @@ contains
             & new_unittest("ida-run-allocates-nothing", test_ida_run), &
             & new_unittest("independent-speeds-allocate-nothing", test_independent_speeds), &
             & new_unittest("dissipated-powers-allocate-nothing", test_powers), &
+            & new_unittest("constraint-forces-set-allocate-nothing", test_constraint_forces), &
             & new_unittest("liftoff-root-without-solve", test_liftoff_root), &
             & new_unittest("event-rates-only-when-used", test_event_rates), &
             & new_unittest("time-free-ucon-skips-time-partials", test_time_free), &
@@ -316,6 +318,47 @@ contains
     !> nothing per call, and the three forms give the same powers at the same (q, u): the ODE
     !> and DAE forms read it from y exactly, the independent speeds solve the dependent rates
     !> from y = (q, v) to round-off of a solve of condition ~1e3 (tol_reaction's reasoning).
+    !> The constraint rows and multipliers SYSFNC's force measures read, set at every
+    !> evaluation of the algebraic loop's iterates and of IDA's residuals
+    !> (set_system_constraint_forces): after the first call, a call with the same rows copies
+    !> their values alone and allocates nothing.
+    subroutine test_constraint_forces(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(problem_type), target :: problem
+        real(wp) :: q(6), u(6)
+        real(wp), allocatable :: lambda(:)
+        integer(c_long) :: start, calls
+        integer :: i
+
+        if (malloc_counting() == 0) then
+            call skip_test(error, "malloc is not interposed on this C library")
+            return
+        end if
+        call coin_problem(problem, q, u, .true., error)
+        if (allocated(error)) return
+        call problem%accelerations(0.0_wp, q, u, error)
+        if (allocated(error)) return
+        lambda = problem%lambda
+        call check(error, size(lambda) == problem%eq%cm%nc .and. size(lambda) > 0, &
+            & "the coin's multipliers: " // to_text(size(lambda)) // ", its rows: " &
+            & // to_text(problem%eq%cm%nc))
+        if (allocated(error)) return
+        ! the first call takes the rows' pattern
+        call set_system_constraint_forces(problem%eq%cm, lambda)
+        start = malloc_count()
+        do i = 1, repeats
+            lambda(1) = lambda(1) + 1.0_wp
+            call set_system_constraint_forces(problem%eq%cm, lambda)
+        end do
+        calls = malloc_count() - start
+        call check_none(error, calls, "set_system_constraint_forces, " // to_text(repeats) &
+            & // " times,")
+        if (allocated(error)) return
+        ! the multipliers the force measures read are the last ones given (exact copies)
+        call check(error, all(system_multipliers(size(lambda)) == lambda), &
+            & "the multipliers kept are not the last ones given")
+    end subroutine test_constraint_forces
+
     subroutine test_powers(error)
         type(error_type), allocatable, intent(out) :: error
         type(problem_type), target :: problem
