@@ -335,11 +335,11 @@ contains
                 call check_constraint_rows(problem, error)
                 if (allocated(error)) return
                 call dense%init(18, 6)
-                call dense%factor(problem%eq%mass, problem%eq%c, 6, error)
+                call dense%factor(problem%eq%mass, problem%eq%cm, 6, error)
                 if (allocated(error)) return
                 a = problem%eq%force
                 lambda = problem%eq%gamma
-                call dense%solve(problem%eq%c, a, lambda, 1, error)
+                call dense%solve(problem%eq%cm, a, lambda, 1, error)
                 if (allocated(error)) return
                 call check(error, all(problem%a == a) .and. all(problem%lambda == lambda), &
                     & "accelerations or multipliers by blocks differ from the dense path's, " &
@@ -354,9 +354,9 @@ contains
                 r2(:, 2) = [(cos(real(i, wp)), i = 1, 6)]
                 s1 = r1
                 s2 = r2
-                call problem%eq%saddle%solve(problem%eq%c, r1, r2, 2, error)
+                call problem%eq%saddle%solve(problem%eq%cm, r1, r2, 2, error)
                 if (allocated(error)) return
-                call dense%solve(problem%eq%c, s1, s2, 2, error)
+                call dense%solve(problem%eq%cm, s1, s2, 2, error)
                 if (allocated(error)) return
                 call check(error, all(r1 == s1) .and. all(r2 == s2), "two right-hand sides by " &
                     & // "blocks differ from the dense path's, order " // to_text(order))
