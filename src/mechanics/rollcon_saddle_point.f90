@@ -163,7 +163,7 @@ contains
         if (allocated(self%part_mass)) deallocate(self%part_mass, self%rotational, self%pivots)
         if (allocated(self%minv_ct)) deallocate(self%minv_ct)
         if (allocated(self%row_scratch)) deallocate(self%row_scratch)
-        allocate(self%row_scratch(max(n, 1)), source=0.0_wp)
+        allocate(self%row_scratch(n), source=0.0_wp)
         if (allocated(self%minv_values)) deallocate(self%minv_values, self%minv_start, &
             & self%coordinate_place)
         if (allocated(self%schur)) deallocate(self%schur)
