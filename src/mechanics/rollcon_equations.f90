@@ -523,13 +523,13 @@ contains
         ! M^-1 f in the factorisation's own LAPACK calls (those of M^-1 C^T)
         a = self%force
         if (self%masked()) then
-            call self%saddle%factor(self%mass, self%c, nc, error, a, self%active_rows())
+            call self%saddle%factor(self%mass, self%cm, nc, error, a, self%active_rows())
         else
-            call self%saddle%factor(self%mass, self%c, nc, error, a)
+            call self%saddle%factor(self%mass, self%cm, nc, error, a)
         end if
         if (allocated(error)) return
         lambda = self%gamma
-        call self%saddle%solve(self%c, a, lambda, 1, error, scaled=.true.)
+        call self%saddle%solve(self%cm, a, lambda, 1, error, scaled=.true.)
         if (allocated(error)) return
         if (self%dissipation%held .or. self%dissipation%rolling_resistance > 0.0_wp) then
             ! the rim's (the contact's) laws, then any further contact's sliding friction:
@@ -575,12 +575,12 @@ contains
             if (contact%sliding) then
                 contact%slip = [self%constraints%value(t(1)), self%constraints%value(t(2))]
                 s = contact%direction(contact%slip)
-                g = g + contact%mu*(s(1)*self%c(t(1), :) + s(2)*self%c(t(2), :))
+                call combine_rows(self%cm, t, s, g, contact%mu)
             end if
             g_lambda = 0.0_wp
-            call self%saddle%solve(self%c, g, g_lambda, 1, error)
+            call self%saddle%solve(self%cm, g, g_lambda, 1, error)
             if (allocated(error)) return
-            c_nz = self%c(n_row, diss%height_column)
+            c_nz = self%cm%entry(n_row, diss%height_column)
             denominator = 1.0_wp + c_nz*g_lambda(n_row)
             if (.not. denominator >= painleve_margin) then
                 call fatal_error(error, "the normal force is ill-posed at t = " &
@@ -724,7 +724,7 @@ contains
         real(wp), intent(in) :: time, q(:), u(:), a(:), lambda(:)
         logical, intent(in) :: active(:), multipliers
         type(error_type), allocatable, intent(out) :: error
-        integer :: n, k, p, i0
+        integer :: n, k, p, i0, j
 
         n = self%n
         call self%acceleration_partials(time, q, u, a, error)
@@ -745,8 +745,10 @@ contains
             end do
             do k = 1, self%nc
                 if (active(k)) then
-                    m(:n, n + k) = -self%c(k, :) + self%work%dm_dlambda(:, k)
-                    m(n + k, :n) = self%c(k, :)
+                    call self%cm%fill_row(k, m(n + k, :n))
+                    do j = 1, n
+                        m(j, n + k) = -m(n + k, j) + self%work%dm_dlambda(j, k)
+                    end do
                 else
                     m(n + k, n + k) = 1.0_wp
                 end if
@@ -871,7 +873,7 @@ contains
             g = 0.0_wp
             g(phi_column) = 1.0_wp
             g_lambda = 0.0_wp
-            call self%saddle%solve(self%c, g, g_lambda, 1, error)
+            call self%saddle%solve(self%cm, g, g_lambda, 1, error)
             if (allocated(error)) return
             if (.not. g(phi_column) > 0.0_wp) then
                 call fatal_error(error, "at t = " // to_text(time) // " s (theta = " &
@@ -884,7 +886,8 @@ contains
             a(phi_column) = 0.0_wp
             lambda = lambda + moment*g_lambda
             diss%held_moment = moment
-            diss%normal_force = self%c(diss%normal, diss%height_column)*lambda(diss%normal)
+            diss%normal_force = self%cm%entry(diss%normal, diss%height_column) &
+                & *lambda(diss%normal)
             diss%rolling_power = 0.0_wp
         end associate
     end subroutine held_coupling
@@ -906,11 +909,11 @@ contains
                 & n_row => self%contact%normal)
             contact%slip = [self%constraints%value(t(1)), self%constraints%value(t(2))]
             s = contact%direction(contact%slip)
-            contact%unit_a = s(1)*self%c(t(1), :) + s(2)*self%c(t(2), :)
+            call combine_rows(self%cm, t, s, contact%unit_a)
             contact%unit_lambda = 0.0_wp
-            call self%saddle%solve(self%c, contact%unit_a, contact%unit_lambda, 1, error)
+            call self%saddle%solve(self%cm, contact%unit_a, contact%unit_lambda, 1, error)
             if (allocated(error)) return
-            c_nz = self%c(n_row, contact%height_column)
+            c_nz = self%cm%entry(n_row, contact%height_column)
             contact%denominator = 1.0_wp + contact%mu*c_nz*contact%unit_lambda(n_row)
             if (.not. contact%denominator >= painleve_margin) then
                 call fatal_error(error, "sliding is ill-posed at t = " // to_text(time) &
@@ -966,24 +969,24 @@ contains
         if (self%contact%sliding .and. .not. only_more) then
             m = 1
             which(1) = 0
-            call unit_response(self%contact, self%saddle, self%c, self%constraints%value, error)
+            call unit_response(self%contact, self%saddle, self%cm, self%constraints%value, error)
             if (allocated(error)) return
         end if
         do j = 1, size(self%more_contacts)
             if (.not. self%more_contacts(j)%sliding) cycle
             m = m + 1
             which(m) = j
-            call unit_response(self%more_contacts(j), self%saddle, self%c, &
+            call unit_response(self%more_contacts(j), self%saddle, self%cm, &
                 & self%constraints%value, error)
             if (allocated(error)) return
         end do
         do i = 1, m
             if (which(i) == 0) then
                 rows(i) = self%contact%normal
-                c_nz(i) = self%c(rows(i), self%contact%height_column)
+                c_nz(i) = self%cm%entry(rows(i), self%contact%height_column)
             else
                 rows(i) = self%more_contacts(which(i))%normal
-                c_nz(i) = self%c(rows(i), self%more_contacts(which(i))%height_column)
+                c_nz(i) = self%cm%entry(rows(i), self%more_contacts(which(i))%height_column)
             end if
             forces(i) = c_nz(i)*lambda(rows(i))
         end do
@@ -1068,19 +1071,62 @@ contains
     subroutine unit_response(contact, saddle, c, values, error)
         type(sliding_contact_type), intent(inout) :: contact
         type(saddle_point_type), intent(inout) :: saddle
-        !> The constraints' matrix (nc x n) and the rows' values
-        real(wp), intent(in) :: c(:, :), values(:)
+        !> The constraints' matrix C (nc x n, by rows over each UCON's coordinates)
+        type(constraint_matrix_type), intent(in) :: c
+        !> The rows' values (nc)
+        real(wp), intent(in) :: values(:)
         type(error_type), allocatable, intent(out) :: error
         real(wp) :: s(2)
 
         associate (t => contact%tangential)
             contact%slip = [values(t(1)), values(t(2))]
             s = contact%direction(contact%slip)
-            contact%unit_a = s(1)*c(t(1), :) + s(2)*c(t(2), :)
+            call combine_rows(c, t, s, contact%unit_a)
         end associate
         contact%unit_lambda = 0.0_wp
         call saddle%solve(c, contact%unit_a, contact%unit_lambda, 1, error)
     end subroutine unit_response
+
+    !> s(1) C(t(1), :) + s(2) C(t(2), :) over all n columns into y, or with f, f times it added
+    !> to y: C by rows over each UCON's coordinates, both rows walked together (columns
+    !> ascending) with the exact zeros off their patterns summed as the dense rows' are, so
+    !> the numbers are those of the dense expression. No allocation.
+    pure subroutine combine_rows(c, t, s, y, f)
+        type(constraint_matrix_type), intent(in) :: c
+        !> The two rows (a contact's tangential UCONs)
+        integer, intent(in) :: t(2)
+        !> Their coefficients
+        real(wp), intent(in) :: s(2)
+        !> The combination (n), or what it is added to with f
+        real(wp), intent(inout) :: y(:)
+        real(wp), intent(in), optional :: f
+        real(wp) :: c1, c2
+        integer :: j, x1, x2
+
+        x1 = c%start(t(1))
+        x2 = c%start(t(2))
+        do j = 1, size(y)
+            c1 = 0.0_wp
+            if (x1 < c%start(t(1) + 1)) then
+                if (c%column(x1) == j) then
+                    c1 = c%value(x1)
+                    x1 = x1 + 1
+                end if
+            end if
+            c2 = 0.0_wp
+            if (x2 < c%start(t(2) + 1)) then
+                if (c%column(x2) == j) then
+                    c2 = c%value(x2)
+                    x2 = x2 + 1
+                end if
+            end if
+            if (present(f)) then
+                y(j) = y(j) + f*(s(1)*c1 + s(2)*c2)
+            else
+                y(j) = s(1)*c1 + s(2)*c2
+            end if
+        end do
+    end subroutine combine_rows
 
     !> A sliding contact's friction -mu F_n D with normal force normal_force [N] added to the
     !> accelerations a and multipliers lambda (its unit response's), and its force and power.
@@ -1210,7 +1256,7 @@ contains
                 if (allocated(error)) return
                 call loop_solve(self, error)
             else
-                call self%saddle%solve(self%c, w%rhs_top, w%rhs_bottom, 2*n, error)
+                call self%saddle%solve(self%cm, w%rhs_top, w%rhs_bottom, 2*n, error)
             end if
         end associate
         if (allocated(error)) return
@@ -1317,11 +1363,7 @@ contains
                 call self%constraints%fill_grad_q_row(k, self%work%holonomic_rows(rows, :))
                 self%work%rhs_bottom(rows, 1) = -self%constraints%value(k)
             end do
-            call self%saddle%factor(self%mass, self%work%holonomic_rows, rows, error)
-            if (allocated(error)) return
-            self%work%rhs_top(:, 1) = 0.0_wp
-            call self%saddle%solve(self%work%holonomic_rows, self%work%rhs_top(:, 1), &
-                & self%work%rhs_bottom(:, 1), 1, error)
+            call solve_holonomic(self, rows, error)
             if (allocated(error)) return
             dq = self%work%rhs_top(:, 1)
         else if (self%nh > 0) then
@@ -1335,11 +1377,7 @@ contains
                 call self%constraints%fill_grad_q_row(k, self%work%holonomic_rows(h, :))
                 self%work%rhs_bottom(h, 1) = -self%constraints%value(k)
             end do
-            call self%saddle%factor(self%mass, self%work%holonomic_rows, self%nh, error)
-            if (allocated(error)) return
-            self%work%rhs_top(:, 1) = 0.0_wp
-            call self%saddle%solve(self%work%holonomic_rows, self%work%rhs_top(:, 1), &
-                & self%work%rhs_bottom(:, 1), 1, error)
+            call solve_holonomic(self, self%nh, error)
             if (allocated(error)) return
             dq = self%work%rhs_top(:, 1)
         end if
@@ -1359,18 +1397,44 @@ contains
             end do
         end associate
         if (self%masked()) then
-            call self%saddle%factor(self%mass, self%c, self%nc, error, &
+            call self%saddle%factor(self%mass, self%cm, self%nc, error, &
                 & active=self%active_rows())
         else
-            call self%saddle%factor(self%mass, self%c, self%nc, error)
+            call self%saddle%factor(self%mass, self%cm, self%nc, error)
         end if
         if (allocated(error)) return
         self%work%rhs_top(:, 1) = 0.0_wp
-        call self%saddle%solve(self%c, self%work%rhs_top(:, 1), self%work%rhs_bottom(:, 1), 1, &
+        call self%saddle%solve(self%cm, self%work%rhs_top(:, 1), self%work%rhs_bottom(:, 1), 1, &
             & error)
         if (allocated(error)) return
         du = self%work%rhs_top(:, 1)
     end subroutine project
+
+    !> project's position step: [M, -G^T; G, 0] (dq, nu) = (0, r) for the first `rows` rows of
+    !> work%holonomic_rows (G, written whole) and of work%rhs_bottom (r), dq into
+    !> work%rhs_top(:, 1). When they are all nc rows (every UCON a position UCON, none set
+    !> aside) G is C (dF/dq, by rows over each UCON's coordinates: constraint_matrix at the
+    !> state of the rows), solved by the constraints' blocks; fewer rows go the saddle point's
+    !> dense path on G.
+    subroutine solve_holonomic(self, rows, error)
+        type(equations_type), intent(inout) :: self
+        integer, intent(in) :: rows
+        type(error_type), allocatable, intent(out) :: error
+
+        self%work%rhs_top(:, 1) = 0.0_wp
+        if (rows == self%nc) then
+            call self%constraint_matrix()
+            call self%saddle%factor(self%mass, self%cm, rows, error)
+            if (allocated(error)) return
+            call self%saddle%solve(self%cm, self%work%rhs_top(:, 1), &
+                & self%work%rhs_bottom(:, 1), 1, error)
+        else
+            call self%saddle%factor_rows(self%mass, self%work%holonomic_rows, rows, error)
+            if (allocated(error)) return
+            call self%saddle%solve_rows(self%work%holonomic_rows, self%work%rhs_top(:, 1), &
+                & self%work%rhs_bottom(:, 1), 1, error)
+        end if
+    end subroutine solve_holonomic
 
     !> u^T H u with H over a UCON's own coordinates `at` (ascending; h(i, j) belongs to at(i),
     !> at(j)), summed as the dense quadratic form.
@@ -1446,18 +1510,19 @@ contains
     end function energy_tolerance
 
     !> Constraint force on part p, ground components [N]: the translational rows of C^T lambda,
-    !> with C as left by the last accelerations call.
+    !> with C (by rows over each UCON's coordinates) as left by the last accelerations call.
     pure function constraint_force(self, p, lambda) result(force)
         class(equations_type), intent(in) :: self
         integer, intent(in) :: p
         real(wp), intent(in) :: lambda(:)
         real(wp) :: force(3)
-
+        real(wp) :: translational(3)
         integer :: k
 
         force = 0.0_wp
         do k = 1, size(lambda)
-            force = force + lambda(k)*self%c(k, 6*(p - 1) + 1:6*(p - 1) + 3)
+            call self%cm%gather(k, 6*(p - 1) + 1, translational)
+            force = force + lambda(k)*translational
         end do
     end function constraint_force
 

@@ -22,6 +22,11 @@
 !> numbers to round-off. Nothing here allocates after init, except KLU's first factorisation
 !> of a sparse block (and a fresh one when reusing the pivot order would lose accuracy).
 !>
+!> C comes by rows over each UCON's coordinates (rollcon_constraint_matrix, the blocks' pattern):
+!> the block paths read its entries where they are (index x of ucon_coordinates), the dense path
+!> fills one row at a time into a row of n (row_scratch) and sums as over the dense matrix. The
+!> projection's position rows come as a dense array (factor_rows, solve_rows): the dense path.
+!>
 !> Rows set aside (rollcon_redundancy: a redundant row, given as `active` false to factor) keep
 !> their place: their multiplier is zero, their row and column of S become the identity's and
 !> their right-hand side zero, so lambda_k = 0 and they add nothing to a. Without rows set
@@ -34,6 +39,7 @@ module rollcon_saddle_point
     use rollcon_small_dense, only : factor_lu, solve_lu, solve_cholesky3
     use rollcon_sparse_lu, only : sparse_lu_type
     use rollcon_constraint_blocks, only : constraint_blocks_type, ascending
+    use rollcon_constraint_matrix, only : constraint_matrix_type
     use rollcon_int_buffer, only : append, trimmed
     implicit none
     private
@@ -66,6 +72,9 @@ module rollcon_saddle_point
         !> is not by blocks (the projection's rows), none on a model whose solves all go by
         !> blocks
         real(wp), allocatable :: minv_ct(:, :)
+        !> One row of C written whole (n): the dense path's sums run over it as over a row of the
+        !> dense matrix (allocated by init)
+        real(wp), allocatable :: row_scratch(:)
         !> M^-1 C^T by blocks, each UCON's column over the coordinates where it can be nonzero
         !> (M is block diagonal by parts): a dense block's UCON over the block's coordinates, a
         !> sparse block's over its own parts' (6 each, as ucon_parts). Column k is
@@ -116,14 +125,17 @@ module rollcon_saddle_point
         integer, allocatable :: ucon_part_start(:), ucon_parts(:), part_ucon_start(:), &
             & part_ucons(:), row_local(:)
         !> The sparse blocks' entries of S, in the order of their KLU values (block b's from
-        !> entry_start(b)): S(entry_row(e), entry_column(e)) (UCON numbers) sums c(k, j)
-        !> M^-1 c_l^T(j) over j = entry_coordinates(entry_coordinate_start(e) : ...)
+        !> entry_start(b)): S(entry_row(e), entry_column(e)) (UCON numbers k, l) sums C(k, j)
+        !> M^-1 c_l^T(j) over j = ucon_coordinates(q) (the blocks'), q = entry_places(
+        !> entry_coordinate_start(e) : ...): q is also C's entry (rollcon_constraint_matrix)
         integer, allocatable :: entry_start(:), entry_row(:), entry_column(:), &
-            & entry_coordinate_start(:), entry_coordinates(:)
+            & entry_coordinate_start(:), entry_places(:)
     contains
         procedure :: init
         procedure :: factor
         procedure :: solve
+        procedure :: factor_rows
+        procedure :: solve_rows
         procedure :: apply_inverse_mass
         procedure :: release
     end type saddle_point_type
@@ -150,6 +162,8 @@ contains
         self%factorisations = 0
         if (allocated(self%part_mass)) deallocate(self%part_mass, self%rotational, self%pivots)
         if (allocated(self%minv_ct)) deallocate(self%minv_ct)
+        if (allocated(self%row_scratch)) deallocate(self%row_scratch)
+        allocate(self%row_scratch(n), source=0.0_wp)
         if (allocated(self%minv_values)) deallocate(self%minv_values, self%minv_start, &
             & self%coordinate_place)
         if (allocated(self%schur)) deallocate(self%schur)
@@ -173,7 +187,7 @@ contains
         if (allocated(self%ucon_parts)) deallocate(self%ucon_part_start, self%ucon_parts, &
             & self%part_ucon_start, self%part_ucons, self%row_local, self%entry_start, &
             & self%entry_row, self%entry_column, self%entry_coordinate_start, &
-            & self%entry_coordinates)
+            & self%entry_places)
         self%sparse_from = sparse_schur_rows
         if (present(sparse_from)) self%sparse_from = sparse_from
         if (.not. self%blocked) return
@@ -404,8 +418,7 @@ contains
                             p = (blocks%ucon_coordinates(q) - 1)/6 + 1
                             shared = any(self%ucon_parts(self%ucon_part_start(l): &
                                 & self%ucon_part_start(l + 1) - 1) == p)
-                            if (shared) call append(self%entry_coordinates, coordinates, &
-                                & blocks%ucon_coordinates(q))
+                            if (shared) call append(self%entry_places, coordinates, q)
                         end do
                         call append(self%entry_coordinate_start, starts, coordinates + 1)
                     end do
@@ -422,25 +435,25 @@ contains
             end do
             call trimmed(self%entry_row, entries)
             call trimmed(self%entry_column, entries)
-            call trimmed(self%entry_coordinates, coordinates)
+            call trimmed(self%entry_places, coordinates)
             call trimmed(self%entry_coordinate_start, starts)
         end associate
     end subroutine sparse_pattern
 
     !> Factor the saddle-point matrix of mass (n x n, block structure above: given as its
-    !> parts' blocks) and the first
-    !> `rows` rows of c (rows x n, leading dimension nc). With r1, the first step of a solve for
-    !> one right-hand side is taken too, r1 := M^-1 r1, in the LAPACK calls that give M^-1 C^T
-    !> (solve then with `scaled`): the numbers apply_inverse_mass gives, at one call per part
-    !> fewer. With active (nc, all the rows), the rows it marks false are set aside (module
-    !> text).
+    !> parts' blocks) and the first `rows` rows of C (nc x n, by rows over each UCON's own
+    !> coordinates). With r1, the first step of a solve for one right-hand side is taken too,
+    !> r1 := M^-1 r1, in the LAPACK calls that give M^-1 C^T (solve then with `scaled`): the
+    !> numbers apply_inverse_mass gives, at one call per part fewer. With active (nc, all the
+    !> rows), the rows it marks false are set aside (module text).
     subroutine factor(self, mass, c, rows, error, r1, active)
         class(saddle_point_type), intent(inout) :: self
         !> Mass matrix [kg, kg m^2]: its parts' 6 x 6 blocks (6, 6, parts)
         real(wp), intent(in) :: mass(:, :, :)
-        !> Constraint rows; with the blocks, row k is zero outside UCON k's own coordinates
-        !> (constraint_blocks_type's ucon_coordinates), over which the blocks' sums run
-        real(wp), intent(in) :: c(:, :)
+        !> C by rows, row k over UCON k's own coordinates; with the blocks, its pattern is
+        !> theirs (constraint_blocks_type's ucon_start, ucon_coordinates: the same index), over
+        !> which the blocks' sums run
+        type(constraint_matrix_type), intent(in) :: c
         !> How many rows of c take part
         integer, intent(in) :: rows
         !> Set when a mass block is not positive definite or the constraints are dependent
@@ -449,7 +462,54 @@ contains
         real(wp), intent(inout), optional :: r1(:)
         !> Which of the nc rows take part (rows must be nc); the others are set aside
         logical, intent(in), optional :: active(:)
-        integer :: p, k, j, info
+        integer :: p
+
+        call factor_mass(self, mass, rows, error, active)
+        if (allocated(error)) return
+        self%by_blocks = self%blocked .and. rows == self%nc .and. rows > 0
+        if (self%by_blocks) then
+            call factor_blocks(self, c, error, r1)
+            if (allocated(error) .or. .not. present(r1)) return
+            ! the parts no UCON touches, alone
+            do p = 1, self%parts
+                if (self%part_blocked(p)) cycle
+                call inverse_mass_of_part(self, p, r1, error)
+                if (allocated(error)) return
+            end do
+            return
+        end if
+        call factor_dense(self, rows, error, r1, c=c)
+    end subroutine factor
+
+    !> factor for constraint rows given as a dense array d (rows x n, leading dimension at
+    !> least rows: the projection's position rows, fewer than nc), always by the dense path;
+    !> solve then with solve_rows.
+    subroutine factor_rows(self, mass, d, rows, error)
+        class(saddle_point_type), intent(inout) :: self
+        !> Mass matrix [kg, kg m^2]: its parts' 6 x 6 blocks (6, 6, parts)
+        real(wp), intent(in) :: mass(:, :, :)
+        !> Constraint rows (at least rows x n)
+        real(wp), intent(in) :: d(:, :)
+        !> How many rows of d take part (at most nc)
+        integer, intent(in) :: rows
+        !> Set when a mass block is not positive definite or the constraints are dependent
+        type(error_type), allocatable, intent(out) :: error
+
+        call factor_mass(self, mass, rows, error)
+        if (allocated(error)) return
+        self%by_blocks = .false.
+        call factor_dense(self, rows, error, d=d)
+    end subroutine factor_rows
+
+    !> factor's first step: the rows taken, those set aside (active, as factor's) and the
+    !> Cholesky factors of the parts' rotational mass blocks (dpotf2).
+    subroutine factor_mass(self, mass, rows, error, active)
+        type(saddle_point_type), intent(inout) :: self
+        real(wp), intent(in) :: mass(:, :, :)
+        integer, intent(in) :: rows
+        type(error_type), allocatable, intent(out) :: error
+        logical, intent(in), optional :: active(:)
+        integer :: p, info
 
         self%rows = rows
         self%masked = .false.
@@ -469,18 +529,19 @@ contains
             call lapack_info_error("dpotf2", info, error)
             if (allocated(error)) return
         end do
-        self%by_blocks = self%blocked .and. rows == self%nc .and. rows > 0
-        if (self%by_blocks) then
-            call factor_blocks(self, c, error, r1)
-            if (allocated(error) .or. .not. present(r1)) return
-            ! the parts no UCON touches, alone
-            do p = 1, self%parts
-                if (self%part_blocked(p)) cycle
-                call inverse_mass_of_part(self, p, r1, error)
-                if (allocated(error)) return
-            end do
-            return
-        end if
+    end subroutine factor_mass
+
+    !> The dense path of factor (rows x rows S in nc x nc, M^-1 C^T in n x nc), on C by rows
+    !> (c) or dense (d): each row written whole (n) and summed over as a row of the dense matrix.
+    subroutine factor_dense(self, rows, error, r1, c, d)
+        type(saddle_point_type), intent(inout) :: self
+        integer, intent(in) :: rows
+        type(error_type), allocatable, intent(out) :: error
+        real(wp), intent(inout), optional :: r1(:)
+        type(constraint_matrix_type), intent(in), optional :: c
+        real(wp), intent(in), optional :: d(:, :)
+        integer :: k, j, info
+
         if (present(r1)) then
             call self%apply_inverse_mass(r1, 1, error)
             if (allocated(error)) return
@@ -492,7 +553,11 @@ contains
         if (.not. allocated(self%minv_ct)) allocate(self%minv_ct(self%n, max(self%nc, 1)), &
             & source=0.0_wp)
         do k = 1, rows
-            self%minv_ct(:, k) = c(k, :)
+            if (present(c)) then
+                call c%fill_row(k, self%minv_ct(:, k))
+            else
+                self%minv_ct(:, k) = d(k, :)
+            end if
         end do
         call self%apply_inverse_mass(self%minv_ct, rows, error)
         if (allocated(error)) return
@@ -501,9 +566,11 @@ contains
                 if (.not. self%active(k)) self%minv_ct(:, k) = 0.0_wp
             end do
         end if
-        do j = 1, rows
-            do k = 1, rows
-                self%schur(k, j) = dot_product(c(k, :), self%minv_ct(:, j))
+        ! row k of C written whole once, then its products with every column of M^-1 C^T
+        do k = 1, rows
+            call whole_row(self, k, c, d)
+            do j = 1, rows
+                self%schur(k, j) = dot_product(self%row_scratch, self%minv_ct(:, j))
             end do
         end do
         if (self%masked) then
@@ -515,13 +582,27 @@ contains
         end if
         call factor_lu(rows, self%schur, self%nc, self%pivots, info)
         call lapack_info_error("dgetf2 (constraint Schur complement)", info, error)
-    end subroutine factor
+    end subroutine factor_dense
+
+    !> Row k of C written whole into row_scratch (n): from c by rows, else from the dense d.
+    subroutine whole_row(self, k, c, d)
+        type(saddle_point_type), intent(inout) :: self
+        integer, intent(in) :: k
+        type(constraint_matrix_type), intent(in), optional :: c
+        real(wp), intent(in), optional :: d(:, :)
+
+        if (present(c)) then
+            call c%fill_row(k, self%row_scratch)
+        else
+            self%row_scratch(:) = d(k, :)
+        end if
+    end subroutine whole_row
 
     !> Solve for m right-hand sides: r1 (n x m) becomes a, r2 (rows x m) becomes lambda;
-    !> c must be the matrix given to factor.
+    !> c (C by rows over each UCON's coordinates) must be the matrix given to factor.
     subroutine solve(self, c, r1, r2, m, error, scaled)
         class(saddle_point_type), intent(inout) :: self
-        real(wp), intent(in) :: c(:, :)
+        type(constraint_matrix_type), intent(in) :: c
         !> Number of right-hand sides
         integer, intent(in) :: m
         !> Momentum rows on entry, accelerations on exit (leading dimension n)
@@ -531,7 +612,6 @@ contains
         type(error_type), allocatable, intent(out) :: error
         !> r1 holds M^-1 times the momentum rows already (factor's r1)
         logical, intent(in), optional :: scaled
-        integer :: j, k
         logical :: done
 
         done = .false.
@@ -545,9 +625,43 @@ contains
             call solve_blocks(self, c, r1, r2, m, error)
             return
         end if
-        do j = 1, m
-            do k = 1, self%rows
-                r2(k, j) = r2(k, j) - dot_product(c(k, :), r1(:, j))
+        call solve_dense(self, r1, r2, m, c=c)
+    end subroutine solve
+
+    !> solve after factor_rows: d the dense rows given to it, r1 (n x m) becomes a, r2
+    !> (rows x m) becomes lambda.
+    subroutine solve_rows(self, d, r1, r2, m, error)
+        class(saddle_point_type), intent(inout) :: self
+        !> Constraint rows (at least rows x n), those given to factor_rows
+        real(wp), intent(in) :: d(:, :)
+        !> Number of right-hand sides
+        integer, intent(in) :: m
+        !> Momentum rows on entry, accelerations on exit (leading dimension n)
+        real(wp), intent(inout) :: r1(self%n, m)
+        !> Constraint rows on entry, multipliers on exit (leading dimension rows)
+        real(wp), intent(inout) :: r2(self%rows, m)
+        type(error_type), allocatable, intent(out) :: error
+
+        call self%apply_inverse_mass(r1, m, error)
+        if (allocated(error)) return
+        if (self%rows == 0) return
+        call solve_dense(self, r1, r2, m, d=d)
+    end subroutine solve_rows
+
+    !> The dense path of solve, after r1 := M^-1 r1, on C by rows (c) or dense (d).
+    subroutine solve_dense(self, r1, r2, m, c, d)
+        type(saddle_point_type), intent(inout) :: self
+        integer, intent(in) :: m
+        real(wp), intent(inout) :: r1(self%n, m), r2(self%rows, m)
+        type(constraint_matrix_type), intent(in), optional :: c
+        real(wp), intent(in), optional :: d(:, :)
+        integer :: j, k
+
+        ! row k of C written whole once, then its products with every right-hand side
+        do k = 1, self%rows
+            call whole_row(self, k, c, d)
+            do j = 1, m
+                r2(k, j) = r2(k, j) - dot_product(self%row_scratch, r1(:, j))
             end do
         end do
         if (self%masked) then
@@ -561,13 +675,13 @@ contains
                 r1(:, j) = r1(:, j) + r2(k, j)*self%minv_ct(:, k)
             end do
         end do
-    end subroutine solve
+    end subroutine solve_dense
 
     !> The block path of factor: M^-1 C^T over each block's parts and rows (and M^-1 r1 there,
     !> with r1), each block's S from its rows and coordinates, and its LU factors (dgetf2).
     subroutine factor_blocks(self, c, error, r1)
         type(saddle_point_type), intent(inout) :: self
-        real(wp), intent(in) :: c(:, :)
+        type(constraint_matrix_type), intent(in) :: c
         type(error_type), allocatable, intent(out) :: error
         real(wp), intent(inout), optional :: r1(:)
         real(wp) :: total
@@ -592,9 +706,10 @@ contains
                 m = blocks%row_start(b + 1) - blocks%row_start(b)
                 s0 = self%schur_start(b) - 1
                 if (self%masked) call set_aside_columns(self, b)
-                ! each entry over UCON k's own coordinates (c(k, :) is zero elsewhere), and an
-                ! exact zero where k and kj share no part: the terms the block's dense sum has
-                ! beyond these are exact zeros, which change no sum
+                ! each entry over UCON k's own coordinates (C(k, :) is zero elsewhere: c's entry
+                ! x is C(k, ucon_coordinates(x))), and an exact zero where k and kj share no
+                ! part: the terms the block's dense sum has beyond these are exact zeros, which
+                ! change no sum
                 do j = 1, m
                     kj = blocks%rows(blocks%row_start(b) + j - 1)
                     do i = 1, m
@@ -614,7 +729,7 @@ contains
                         total = 0.0_wp
                         do x = blocks%ucon_start(k), blocks%ucon_start(k + 1) - 1
                             jj = blocks%ucon_coordinates(x)
-                            total = total + c(k, jj)*self%minv_values(self%minv_start(kj) - 1 &
+                            total = total + c%value(x)*self%minv_values(self%minv_start(kj) - 1 &
                                 & + self%coordinate_place(jj))
                         end do
                         self%block_schur(e) = total
@@ -632,7 +747,7 @@ contains
     !> The block path of solve, after r1 := M^-1 r1: lambda block by block, then a.
     subroutine solve_blocks(self, c, r1, r2, m, error)
         type(saddle_point_type), intent(inout) :: self
-        real(wp), intent(in) :: c(:, :)
+        type(constraint_matrix_type), intent(in) :: c
         integer, intent(in) :: m
         real(wp), intent(inout) :: r1(self%n, m), r2(self%rows, m)
         type(error_type), allocatable, intent(out) :: error
@@ -651,9 +766,8 @@ contains
                 do col = 1, m
                     do i = 1, rows_b
                         k = blocks%rows(blocks%row_start(b) + i - 1)
-                        self%gathered(i, col) = r2(k, col) - block_dot(c, k, r1(:, col), &
-                            & blocks%ucon_coordinates(blocks%ucon_start(k): &
-                            & blocks%ucon_start(k + 1) - 1))
+                        self%gathered(i, col) = r2(k, col) - block_dot(c, blocks, k, &
+                            & r1(:, col))
                         if (self%masked) then
                             if (.not. self%active(k)) self%gathered(i, col) = 0.0_wp
                         end if
@@ -691,13 +805,15 @@ contains
     !> M^-1 c_k^T over part p for each UCON k of ucons (zero elsewhere, as the dense path
     !> leaves it), and M^-1 r1 there with r1: the translational rows divided by the mass, the
     !> rotational rows of every UCON (and of r1) in one dpotrs, column by column the solves of
-    !> one call per UCON.
+    !> one call per UCON. c: C by rows, each UCON's row over its own coordinates (zeros off
+    !> them, as the dense row's).
     subroutine part_inverse_mass(self, p, ucons, c, error, r1)
         type(saddle_point_type), intent(inout) :: self
         integer, intent(in) :: p, ucons(:)
-        real(wp), intent(in) :: c(:, :)
+        type(constraint_matrix_type), intent(in) :: c
         type(error_type), allocatable, intent(out) :: error
         real(wp), intent(inout), optional :: r1(:)
+        real(wp) :: part_row(6)
         integer :: i, k, i0, col, extra, o
 
         extra = merge(1, 0, present(r1))
@@ -711,9 +827,11 @@ contains
             do i = 1, size(ucons)
                 k = ucons(i)
                 o = part_offset(self, p, k)
-                self%minv_values(o + 1:o + 3) = c(k, i0 + 1:i0 + 3)/self%part_mass(p)
+                ! C(k, i0 + 1 : i0 + 6), zero where UCON k has no coordinate of part p
+                call c%gather(k, i0 + 1, part_row)
+                self%minv_values(o + 1:o + 3) = part_row(1:3)/self%part_mass(p)
                 col = col + 1
-                rot(:, col) = c(k, i0 + 4:i0 + 6)
+                rot(:, col) = part_row(4:6)
             end do
             call solve_cholesky3(self%rotational(:, :, p), col, rot, 3)
             if (present(r1)) r1(i0 + 4:i0 + 6) = rot(:, 1)
@@ -731,11 +849,11 @@ contains
     subroutine factor_sparse_block(self, b, c, error, r1)
         type(saddle_point_type), intent(inout) :: self
         integer, intent(in) :: b
-        real(wp), intent(in) :: c(:, :)
+        type(constraint_matrix_type), intent(in) :: c
         type(error_type), allocatable, intent(out) :: error
         real(wp), intent(inout), optional :: r1(:)
         real(wp) :: total
-        integer :: j, k, p, e, l, x
+        integer :: j, k, p, e, l, x, q
 
         associate (blocks => self%blocks)
             do j = blocks%coordinate_start(b), blocks%coordinate_start(b + 1) - 1, 6
@@ -752,8 +870,9 @@ contains
                     l = self%entry_column(e)
                     total = 0.0_wp
                     do x = self%entry_coordinate_start(e), self%entry_coordinate_start(e + 1) - 1
-                        j = self%entry_coordinates(x)
-                        total = total + c(k, j)*self%minv_values(part_offset(self, (j - 1)/6 &
+                        q = self%entry_places(x)
+                        j = blocks%ucon_coordinates(q)
+                        total = total + c%value(q)*self%minv_values(part_offset(self, (j - 1)/6 &
                             & + 1, l) + mod(j - 1, 6) + 1)
                     end do
                     if (self%masked) then
@@ -772,7 +891,7 @@ contains
     subroutine solve_sparse_block(self, b, c, r1, r2, m, error)
         type(saddle_point_type), intent(inout) :: self
         integer, intent(in) :: b, m
-        real(wp), intent(in) :: c(:, :)
+        type(constraint_matrix_type), intent(in) :: c
         real(wp), intent(inout) :: r1(self%n, m), r2(self%rows, m)
         type(error_type), allocatable, intent(out) :: error
         real(wp) :: total
@@ -789,7 +908,7 @@ contains
                         k = blocks%rows(blocks%row_start(b) + i - 1)
                         total = 0.0_wp
                         do x = blocks%ucon_start(k), blocks%ucon_start(k + 1) - 1
-                            total = total + c(k, blocks%ucon_coordinates(x)) &
+                            total = total + c%value(x) &
                                 & *r1(blocks%ucon_coordinates(x), first + col - 1)
                         end do
                         chunk(i, col) = r2(k, first + col - 1) - total
@@ -834,17 +953,20 @@ contains
         end do
     end subroutine scatter_rows
 
-    !> Row k of c times x over the given coordinates (ascending): the dense dot product's
-    !> terms that are not exact zeros, in its order.
-    pure function block_dot(c, k, x, coordinates) result(total)
-        real(wp), intent(in) :: c(:, :), x(:)
-        integer, intent(in) :: k, coordinates(:)
+    !> Row k of C times v (n) over UCON k's own coordinates (the blocks' ucon_coordinates,
+    !> ascending, c's pattern): the dense dot product's terms that are not exact zeros, in its
+    !> order.
+    pure function block_dot(c, blocks, k, v) result(total)
+        type(constraint_matrix_type), intent(in) :: c
+        type(constraint_blocks_type), intent(in) :: blocks
+        integer, intent(in) :: k
+        real(wp), intent(in) :: v(:)
         real(wp) :: total
-        integer :: j
+        integer :: x
 
         total = 0.0_wp
-        do j = 1, size(coordinates)
-            total = total + c(k, coordinates(j))*x(coordinates(j))
+        do x = blocks%ucon_start(k), blocks%ucon_start(k + 1) - 1
+            total = total + c%value(x)*v(blocks%ucon_coordinates(x))
         end do
     end function block_dot
 

@@ -282,6 +282,8 @@ contains
     !> equal), for the accelerations and for two more right-hand sides, whether each disk's
     !> UCONs come in one run (1, 2, 3 | 4, 5, 6: one LAPACK solve per part and run) or
     !> interleaved (1, 3, 5 | 2, 4, 6: runs of one). C as held by rows: check_constraint_rows.
+    !> The dense path on C given as a dense array (factor_rows, solve_rows: the projection's
+    !> position rows) is the dense path on C by rows: the same numbers exactly, too.
     subroutine test_saddle_blocks(error)
         type(error_type), allocatable, intent(out) :: error
         type(model_type), target :: models(2)
@@ -289,6 +291,8 @@ contains
         type(part_type) :: part
         type(saddle_point_type) :: dense
         real(wp) :: q(18), u(18), a(18), lambda(6), r1(18, 2), r2(6, 2), s1(18, 2), s2(6, 2)
+        real(wp) :: t1(18, 2), t2(6, 2)
+        real(wp), allocatable :: c_dense(:, :)
         integer :: order, k, i
 
         do order = 1, 2
@@ -335,11 +339,11 @@ contains
                 call check_constraint_rows(problem, error)
                 if (allocated(error)) return
                 call dense%init(18, 6)
-                call dense%factor(problem%eq%mass, problem%eq%c, 6, error)
+                call dense%factor(problem%eq%mass, problem%eq%cm, 6, error)
                 if (allocated(error)) return
                 a = problem%eq%force
                 lambda = problem%eq%gamma
-                call dense%solve(problem%eq%c, a, lambda, 1, error)
+                call dense%solve(problem%eq%cm, a, lambda, 1, error)
                 if (allocated(error)) return
                 call check(error, all(problem%a == a) .and. all(problem%lambda == lambda), &
                     & "accelerations or multipliers by blocks differ from the dense path's, " &
@@ -354,12 +358,27 @@ contains
                 r2(:, 2) = [(cos(real(i, wp)), i = 1, 6)]
                 s1 = r1
                 s2 = r2
-                call problem%eq%saddle%solve(problem%eq%c, r1, r2, 2, error)
+                t1 = r1
+                t2 = r2
+                call problem%eq%saddle%solve(problem%eq%cm, r1, r2, 2, error)
                 if (allocated(error)) return
-                call dense%solve(problem%eq%c, s1, s2, 2, error)
+                call dense%solve(problem%eq%cm, s1, s2, 2, error)
                 if (allocated(error)) return
                 call check(error, all(r1 == s1) .and. all(r2 == s2), "two right-hand sides by " &
                     & // "blocks differ from the dense path's, order " // to_text(order))
+                if (allocated(error)) return
+                call problem%eq%cm%dense(c_dense)
+                call dense%factor_rows(problem%eq%mass, c_dense, 6, error)
+                if (allocated(error)) return
+                a = problem%eq%force
+                lambda = problem%eq%gamma
+                call dense%solve_rows(c_dense, a, lambda, 1, error)
+                if (allocated(error)) return
+                call dense%solve_rows(c_dense, t1, t2, 2, error)
+                if (allocated(error)) return
+                call check(error, all(problem%a == a) .and. all(problem%lambda == lambda) &
+                    & .and. all(r1 == t1) .and. all(r2 == t2), "the dense path on C given " &
+                    & // "dense (factor_rows) differs from the blocks', order " // to_text(order))
                 if (allocated(error)) return
             end associate
         end do
