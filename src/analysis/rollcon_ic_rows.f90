@@ -189,8 +189,7 @@ contains
     !> The least weighted change dx of the free values that minimises the scaled residuals: by
     !> LAPACK's SVD (dgelss) on the rows made whole, or, with sparse_columns free columns or
     !> more, by SuiteSparseQR on them compressed (sparse_minimum_norm: the same least-norm
-    !> change when the rows are consistent; with contradictory rows the dependent ones are met
-    !> only as far as they follow from the others, where the SVD spreads the misfit).
+    !> change, the rank judged by Heath's rule with the same threshold).
     subroutine least_change(level, free, weight, dx, error)
         type(level_type), intent(in) :: level
         logical, intent(in) :: free(:)

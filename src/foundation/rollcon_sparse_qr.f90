@@ -100,13 +100,14 @@ contains
 
     !> The x (n) of least norm among those that minimise |A x - b|, A the m x n matrix given by
     !> its rows (1-based: row i's entries at row_start(i) .. row_start(i + 1) - 1 of column and
-    !> values, columns ascending; m = size(row_start) - 1), b (m). SuiteSparseQR factors A^T
-    !> (A^T E = Q R, rows of A whose norm after the reflections of those before them is at most
-    !> tolerance dead, Heath's rule) and x = Q (R^-T E^T b): in the row space of A, so of least
-    !> norm, and meeting every row kept (the dead ones as far as they follow from those: exactly
-    !> when the rows are consistent; a dense SVD would spread the misfit of inconsistent rows
-    !> over them all). Memory and time grow as the nonzeros of A and of R, not as m n.
-    !> Error (stat_lapack) when SPQR fails (out of memory).
+    !> values, columns ascending; m = size(row_start) - 1), b (m): the SVD's minimum-norm
+    !> solution (rollcon_least_squares' minimum_norm_solve) with the rank judged by Heath's rule.
+    !> SuiteSparseQR factors A^T (A^T E = Q [R11 R12], rows of A whose norm after the
+    !> reflections of those before them is at most tolerance dead); all rows live, x = Q R^-T
+    !> E^T b (SPQR's min2norm scheme); else the dead rows are the combinations R11^-1 R12 of the
+    !> live ones A_L, the misfit is spread over all rows by SPQR's least squares on [I; K], and
+    !> x is the least-norm solution of A_L x = v (rollcon_spqr.c). Memory and time grow as the
+    !> nonzeros of A and of R, not as m n. Error (stat_lapack) when SPQR fails (out of memory).
     subroutine sparse_minimum_norm(n, row_start, column, values, b, tolerance, x, error)
         integer, intent(in) :: n, row_start(:), column(:)
         real(wp), intent(in) :: values(:), b(:), tolerance

@@ -200,9 +200,11 @@ contains
 
     !> SuiteSparseQR's least-norm solution from rows: x1 + x2 = 1, x2 + x3 = 2 gives (0, 1, 1)
     !> as the SVD's (test_underdetermined); with the row x1 + 2 x2 + x3 = 3 added, their sum
-    !> (dependent and consistent), still (0, 1, 1); a row of 1e-10 x (1, 0, 0) = 1 besides, of
-    !> norm below the tolerance, is dead and not met, as the SVD's rcond leaves it.
-    !> A Householder QR of order-one rows: within a few tens of roundings (tol_svd).
+    !> (dependent and consistent), still (0, 1, 1); with it = 4 instead (contradictory), the
+    !> misfit spread over the three rows: A_L x = v = (4/3, 7/3) minimises (v1 - 1)^2 + (v2 -
+    !> 2)^2 + (v1 + v2 - 4)^2, and x = (1/9, 11/9, 10/9) is the least-norm solution of it, the
+    !> SVD's (dgelss) answer. A Householder QR of order-one rows: within a few tens of
+    !> roundings (tol_svd).
     subroutine test_sparse_least_norm(error)
         type(error_type), allocatable, intent(out) :: error
         real(wp) :: x(3)
@@ -219,11 +221,11 @@ contains
         call check(error, x, [0.0_wp, 1.0_wp, 1.0_wp], "least norm with a dependent row", &
             & abs_tol=tol_svd)
         if (allocated(error)) return
-        call sparse_minimum_norm(3, [1, 3, 5, 6], [1, 2, 2, 3, 1], [1.0_wp, 1.0_wp, 1.0_wp, &
-            & 1.0_wp, 1.0e-10_wp], [1.0_wp, 2.0_wp, 1.0_wp], rcond, x, error)
+        call sparse_minimum_norm(3, [1, 3, 5, 8], [1, 2, 2, 3, 1, 2, 3], [1.0_wp, 1.0_wp, &
+            & 1.0_wp, 1.0_wp, 1.0_wp, 2.0_wp, 1.0_wp], [1.0_wp, 2.0_wp, 4.0_wp], rcond, x, error)
         if (allocated(error)) return
-        call check(error, x, [0.0_wp, 1.0_wp, 1.0_wp], "a row below the tolerance left out", &
-            & abs_tol=tol_svd)
+        call check(error, x, [1.0_wp, 11.0_wp, 10.0_wp]/9.0_wp, "least squares of least norm " &
+            & // "with a contradictory dependent row", abs_tol=tol_svd)
     end subroutine test_sparse_least_norm
 
     !> The rows of SuiteSparseQR's dependency: unit rows e1, e2, (e1 + e2)/sqrt(2) and e3 have
