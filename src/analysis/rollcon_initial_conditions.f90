@@ -15,7 +15,10 @@
 !> rates that keep them, and only when the UCONs cannot be met so are they moved with the rest
 !> (given_moved in the report); velocities not given are ADAMS's "inexact" zeros, free. Rows
 !> are scaled to unit length before each solve (LAPACK dgelss, rcond below), so that rank and
-!> least squares are judged by the constraints' geometry, not by their units.
+!> least squares are judged by the constraints' geometry, not by their units. A large model
+!> (options%sparse_columns free columns or more) is solved and judged by SuiteSparseQR on the
+!> compressed rows, its given velocities held part by part (rollcon_ic_rows, part_held_steps):
+!> no m x n or n x n array (docs/initial-conditions.md).
 !> Refusals (stat_input), naming the statements and lines the user wrote: contradictory
 !> (dependent rows, not all met), no convergence (independent rows still unmet after
 !> max_iterations). Dependent rows that are all met are redundant, not refused: the run sets
