@@ -7,12 +7,13 @@ module rollcon_ic_rows
     use rollcon_error, only : error_type, fatal_error, stat_input
     use rollcon_text, only : to_text
     use rollcon_least_squares, only : minimum_norm_solve, left_null_space
+    use rollcon_sparse_qr, only : sparse_minimum_norm, sparse_dependent_rows
     use rollcon_model, only : model_type
     implicit none
     private
 
     public :: level_type, tolerance, least_change, verdict, name_rows, dense_rows
-    public :: ic_fraction, ic_rcond
+    public :: ic_fraction, ic_rcond, sparse_ic_columns
 
     !> A UCON is met when |F_k| <= ic_fraction (atol + rtol s_k), s_k the size of the terms of
     !> F_k (sum over its variables of |dF_k/dx_j x_j|, plus the rest of F): a hundredth of the
@@ -24,6 +25,16 @@ module rollcon_ic_rows
     !> A UCON takes part in a dependency when its entry in a left null vector of the rows
     !> exceeds this (the entries of uninvolved rows are rounding, ~1e-16)
     real(wp), parameter :: involvement = 1.0e-6_wp
+    !> A level with at least this many free columns (100 parts' coordinates) is solved and
+    !> judged sparse, by SuiteSparseQR on its compressed rows (rollcon_sparse_qr), below it by
+    !> LAPACK's SVD on the rows made whole. The SVD holds the m x n free rows and costs
+    !> O(m n^2) a step: on a chain (5 rows a link, 6 columns a part) 600 columns are 500 rows,
+    !> 2.4 MB and ~2e8 flops a step, and it grows as the square and the cube of the model
+    !> (640 links: 160 MB, 3e11 flops), against the QR's nonzeros, linear in the model on a
+    !> chain (a row touches two links). Every shipped dataset, scene and test model but the
+    !> sparse path's own tests has fewer (data/bicycle.adm: 8 parts, 48 columns), and keeps the
+    !> SVD's numbers bit for bit
+    integer, parameter :: sparse_ic_columns = 600
     !> One level's rows (position or velocity): what is solved and what it is called
     type :: level_type
         character(len=:), allocatable :: name
@@ -46,6 +57,9 @@ module rollcon_ic_rows
         !> made from the compressed ones (dense_rows) only where a least-squares solve or a
         !> verdict needs them, when the rows are not met
         real(wp), allocatable :: rows(:, :)
+        !> Free columns from which the level goes the sparse way (sparse_ic_columns unless the
+        !> caller chooses: rollcon_initial_conditions' options)
+        integer :: sparse_columns = sparse_ic_columns
     end type level_type
 
 contains
@@ -124,19 +138,78 @@ contains
         end do
     end subroutine unit_rows
 
-    !> The least weighted change dx of the free values that minimises the scaled residuals.
+    !> unit_rows kept compressed (a level's start, column and value, never given whole): row i's
+    !> entries at row_start(i) .. row_start(i + 1) - 1 of column (numbered among the free
+    !> columns, ascending) and values; a row that only the held values carry has none.
+    pure subroutine sparse_unit_rows(level, free, weight, row_start, column, values, row_scale)
+        type(level_type), intent(in) :: level
+        logical, intent(in) :: free(:)
+        real(wp), intent(in) :: weight(:)
+        integer, allocatable, intent(out) :: row_start(:), column(:)
+        real(wp), allocatable, intent(out) :: values(:)
+        real(wp), allocatable, intent(out) :: row_scale(:)
+        integer, allocatable :: free_number(:)
+        real(wp) :: length, whole
+        integer :: i, j, e, m, k, first
+
+        m = size(level%start) - 1
+        allocate(free_number(size(free)), row_start(m + 1), row_scale(m))
+        allocate(column(level%start(m + 1) - 1), values(level%start(m + 1) - 1))
+        k = 0
+        do j = 1, size(free)
+            if (free(j)) k = k + 1
+            free_number(j) = k
+        end do
+        k = 0
+        row_start(1) = 1
+        do i = 1, m
+            first = k + 1
+            whole = 0.0_wp
+            do e = level%start(i), level%start(i + 1) - 1
+                j = level%column(e)
+                whole = whole + (level%value(e)*weight(j))**2
+                if (.not. free(j)) cycle
+                k = k + 1
+                column(k) = free_number(j)
+                values(k) = level%value(e)*weight(j)
+            end do
+            length = norm2(values(first:k))
+            row_scale(i) = 1.0_wp
+            ! a row that only the held values carry is no row at all for the solve
+            if (length <= ic_rcond*sqrt(whole)) then
+                k = first - 1
+            else
+                row_scale(i) = 1.0_wp/length
+                values(first:k) = values(first:k)*row_scale(i)
+            end if
+            row_start(i + 1) = k + 1
+        end do
+    end subroutine sparse_unit_rows
+
+    !> The least weighted change dx of the free values that minimises the scaled residuals: by
+    !> LAPACK's SVD (dgelss) on the rows made whole, or, with sparse_columns free columns or
+    !> more, by SuiteSparseQR on them compressed (sparse_minimum_norm: the same least-norm
+    !> change, the rank judged by Heath's rule with the same threshold).
     subroutine least_change(level, free, weight, dx, error)
         type(level_type), intent(in) :: level
         logical, intent(in) :: free(:)
         real(wp), intent(in) :: weight(:)
         real(wp), allocatable, intent(out) :: dx(:)
         type(error_type), allocatable, intent(out) :: error
-        real(wp), allocatable :: a(:, :), row_scale(:), y(:)
+        real(wp), allocatable :: a(:, :), row_scale(:), y(:), values(:)
+        integer, allocatable :: row_start(:), column(:)
         integer :: rank, j, col
 
-        call unit_rows(level, free, weight, a, row_scale)
-        allocate(y(size(a, 2)), dx(size(free)))
-        call minimum_norm_solve(a, -level%residual*row_scale, ic_rcond, y, rank, error)
+        if (count(free) >= level%sparse_columns) then
+            call sparse_unit_rows(level, free, weight, row_start, column, values, row_scale)
+            allocate(y(count(free)), dx(size(free)))
+            call sparse_minimum_norm(count(free), row_start, column, values, &
+                & -level%residual*row_scale, ic_rcond, y, error)
+        else
+            call unit_rows(level, free, weight, a, row_scale)
+            allocate(y(size(a, 2)), dx(size(free)))
+            call minimum_norm_solve(a, -level%residual*row_scale, ic_rcond, y, rank, error)
+        end if
         if (allocated(error)) return
         dx = 0.0_wp
         col = 0
@@ -150,7 +223,10 @@ contains
     !> Refuse what the rows left. Met, the rows may be dependent (redundant): the run sets aside
     !> those that repeat others (rollcon_redundancy) and says which. Not met: contradictory when
     !> the rows over the free columns are dependent (one UCON alone: its free columns are
-    !> gone), else no convergence.
+    !> gone), else no convergence. Rank and the rows in a dependency: by the SVD's left null
+    !> space, or, with sparse_columns free columns or more, by SuiteSparseQR's QR of the
+    !> compressed rows' transpose (sparse_dependent_rows: Heath's rule with the same threshold,
+    !> the rows unit), the same messages.
     subroutine verdict(level, free, weight, met, steps, error)
         type(level_type), intent(in) :: level
         logical, intent(in) :: free(:)
@@ -158,20 +234,28 @@ contains
         logical, intent(in) :: met
         integer, intent(in) :: steps
         type(error_type), allocatable, intent(out) :: error
-        real(wp), allocatable :: a(:, :), row_scale(:), null(:, :)
+        real(wp), allocatable :: a(:, :), row_scale(:), null(:, :), values(:)
+        integer, allocatable :: row_start(:), column(:)
         logical, allocatable :: involved(:)
         integer :: rank, i, m
 
         m = size(level%ucon)
         ! redundant rows that are all met: consistent, the run sets the repeated ones aside
         if (met) return
-        call unit_rows(level, free, weight, a, row_scale)
-        call left_null_space(a, ic_rcond, rank, null, error)
-        if (allocated(error)) return
         allocate(involved(m))
-        do i = 1, m
-            involved(i) = any(abs(null(i, :)) > involvement)
-        end do
+        if (count(free) >= level%sparse_columns) then
+            call sparse_unit_rows(level, free, weight, row_start, column, values, row_scale)
+            call sparse_dependent_rows(count(free), row_start, column, values, ic_rcond, &
+                & involvement, rank, involved, error)
+            if (allocated(error)) return
+        else
+            call unit_rows(level, free, weight, a, row_scale)
+            call left_null_space(a, ic_rcond, rank, null, error)
+            if (allocated(error)) return
+            do i = 1, m
+                involved(i) = any(abs(null(i, :)) > involvement)
+            end do
+        end if
         if (rank < m .and. count(involved) == 1) then
             call fatal_error(error, "initial conditions: " // ucon_list(level, involved) &
                 & // " cannot be met at " // level%name // " level with the values marked " &

@@ -15,7 +15,10 @@
 !> rates that keep them, and only when the UCONs cannot be met so are they moved with the rest
 !> (given_moved in the report); velocities not given are ADAMS's "inexact" zeros, free. Rows
 !> are scaled to unit length before each solve (LAPACK dgelss, rcond below), so that rank and
-!> least squares are judged by the constraints' geometry, not by their units.
+!> least squares are judged by the constraints' geometry, not by their units. A large model
+!> (options%sparse_columns free columns or more) is solved and judged by SuiteSparseQR on the
+!> compressed rows, its given velocities held part by part (rollcon_ic_rows, part_held_steps):
+!> no m x n or n x n array (docs/initial-conditions.md).
 !> Refusals (stat_input), naming the statements and lines the user wrote: contradictory
 !> (dependent rows, not all met), no convergence (independent rows still unmet after
 !> max_iterations). Dependent rows that are all met are redundant, not refused: the run sets
@@ -25,7 +28,7 @@ module rollcon_initial_conditions
     use rollcon_error, only : error_type, fatal_error, stat_input
     use rollcon_text, only : to_text
     use rollcon_ic_rows, only : level_type, tolerance, least_change, verdict, ic_fraction, &
-        & name_rows, ic_rcond, dense_rows
+        & name_rows, ic_rcond, dense_rows, sparse_ic_columns
     use rollcon_constraints, only : constraint_state_type, need_value, need_first, need_time
     use rollcon_least_squares, only : left_null_space
     use rollcon_rotation, only : rate_matrix
@@ -61,6 +64,10 @@ module rollcon_initial_conditions
         real(wp) :: rtol = 1.0e-8_wp, atol = 1.0e-10_wp
         !> Most Gauss-Newton iterations on the position UCONs (ADAMS's IC MAXIT default)
         integer :: max_iterations = 25
+        !> Free columns from which a level goes the sparse way (rollcon_ic_rows'
+        !> sparse_ic_columns, whose comment gives the choice): SuiteSparseQR's least squares and
+        !> verdict, and velocities given held part by part (part_held_steps)
+        integer :: sparse_columns = sparse_ic_columns
     end type ic_options_type
 
 contains
@@ -147,6 +154,7 @@ contains
         logical :: met, stalled
 
         level%name = "position"
+        level%sparse_columns = options%sparse_columns
         level%ucon = holonomic_ucons(problem)
         call name_rows(level, problem%model)
         report%position_rows = size(level%ucon)
@@ -190,10 +198,11 @@ contains
         type(error_type), allocatable, intent(out) :: error
         type(level_type) :: level
         real(wp), allocatable :: du(:), held(:, :), u_given(:)
-        logical :: met
-        integer :: k
+        logical :: met, large
+        integer :: k, held_count
 
         level%name = "velocity"
+        level%sparse_columns = options%sparse_columns
         ! a contact's rows its mode drops at the start (a sliding or flying start: the
         ! equations' contact, rollcon_sliding_contact) are not made to hold
         level%ucon = pack([(k, k = 1, problem%model%nc)], [(.not. &
@@ -201,11 +210,23 @@ contains
         call name_rows(level, problem%model)
         report%velocity_rows = size(level%ucon)
         if (size(level%ucon) == 0) return
-        held = held_rows(problem, q, options, free)
-        if (size(held, 1) > 0) then
+        ! a large model's held rows are never made whole: they are taken part by part
+        large = count(free) >= options%sparse_columns
+        if (large) then
+            held_count = count_held(options, free)
+        else
+            held = held_rows(problem, q, options, free)
+            held_count = size(held, 1)
+        end if
+        if (held_count > 0) then
             u_given = u
-            call held_steps(problem, time, q, u, options, held, weight, level, report, met, &
-                & error)
+            if (large) then
+                call part_held_steps(problem, time, q, u, options, free, weight, level, report, &
+                    & met, error)
+            else
+                call held_steps(problem, time, q, u, options, held, weight, level, report, met, &
+                    & error)
+            end if
             if (allocated(error)) return
             if (met) then
                 report%velocity_residual = maxval(abs(level%residual))
@@ -300,6 +321,8 @@ contains
         reduced%name = level%name
         reduced%ucon = level%ucon
         reduced%ids = level%ids
+        ! its rows are given whole: the SVD's way at any size
+        reduced%sparse_columns = huge(1)
         do
             call velocity_rows(problem, time, q, u, options, level, error)
             if (allocated(error)) return
@@ -325,6 +348,155 @@ contains
             u = u + matmul(basis, dz)
         end do
     end subroutine held_steps
+
+    !> The number of held rows held_rows would make: none without a velocity given, else one
+    !> per velocity given and per rate marked exact.
+    pure integer function count_held(options, free)
+        type(ic_options_type), intent(in) :: options
+        logical, intent(in) :: free(:)
+
+        count_held = 0
+        if (.not. allocated(options%given_velocity)) return
+        if (.not. any(options%given_velocity)) return
+        count_held = count(options%given_velocity) + count(.not. free)
+    end function count_held
+
+    !> held_steps on a large model, with no n x n or m x n array: each held row (a velocity
+    !> given, a rate marked exact) lies on one part's 6 rates, so (held W) is block diagonal by
+    !> parts and so is the orthonormal basis Z of its null space: part p's block, 6 x (6 - r_p),
+    !> from the SVD of its own held rows (left_null_space, 6 x h_p, rank r_p; the identity for a
+    !> part with none). The reduced rows (rows W Z) stay compressed, each over the reduced
+    !> columns of its UCON's parts, and are solved by SuiteSparseQR (rollcon_ic_rows'
+    !> least_change, sparse way). The least weighted change is the same as held_steps' (any
+    !> orthonormal basis of the same null space gives it) up to rounding, and but for a part
+    !> whose held rows are near dependent: its rank is judged against its own largest singular
+    !> value rather than the whole model's (both with ic_rcond).
+    subroutine part_held_steps(problem, time, q, u, options, free, weight, level, report, &
+            & met, error)
+        type(problem_type), intent(inout), target :: problem
+        real(wp), intent(in) :: time, q(:)
+        real(wp), intent(inout) :: u(:)
+        type(ic_options_type), intent(in) :: options
+        logical, intent(in) :: free(:)
+        real(wp), intent(in) :: weight(:)
+        type(level_type), intent(inout) :: level
+        type(ic_report_type), intent(inout) :: report
+        logical, intent(out) :: met
+        type(error_type), allocatable, intent(out) :: error
+        type(level_type) :: reduced
+        real(wp), allocatable :: basis(:, :, :), dz(:), null(:, :)
+        integer, allocatable :: kept(:), z0(:)
+        real(wp) :: held(12, 6), b(3, 3), whole, length
+        integer :: parts, p, k, i0, h, rank, j, i, e, f, c, out, first
+
+        parts = size(q)/6
+        allocate(basis(6, 6, parts), source=0.0_wp)
+        allocate(kept(parts), z0(parts + 1))
+        z0(1) = 0
+        do p = 1, parts
+            i0 = 6*(p - 1)
+            h = 0
+            held = 0.0_wp
+            if (p <= size(options%given_velocity, 2)) then
+                b = rate_matrix(q(i0 + 5), q(i0 + 6))
+                do k = 1, 6
+                    if (.not. options%given_velocity(k, p)) cycle
+                    h = h + 1
+                    if (k <= 3) then
+                        held(h, k) = 1.0_wp
+                    else
+                        held(h, 4:6) = matmul(options%given_axes(k - 3, :, p), b)
+                    end if
+                end do
+            end if
+            do j = 1, 6
+                if (free(i0 + j)) cycle
+                h = h + 1
+                held(h, :) = 0.0_wp
+                held(h, j) = 1.0_wp
+            end do
+            if (h == 0) then
+                kept(p) = 6
+                do j = 1, 6
+                    basis(j, j, p) = 1.0_wp
+                end do
+            else
+                do j = 1, 6
+                    held(:h, j) = held(:h, j)*weight(i0 + j)
+                end do
+                call left_null_space(transpose(held(:h, :)), ic_rcond, rank, null, error)
+                if (allocated(error)) return
+                kept(p) = size(null, 2)
+                basis(:, :kept(p), p) = null
+            end if
+            do j = 1, 6
+                basis(j, :, p) = basis(j, :, p)*weight(i0 + j)
+            end do
+            z0(p + 1) = z0(p) + kept(p)
+        end do
+        reduced%name = level%name
+        reduced%ucon = level%ucon
+        reduced%ids = level%ids
+        reduced%sparse_columns = 0
+        reduced%columns = z0(parts + 1)
+        do
+            call velocity_rows(problem, time, q, u, options, level, error)
+            if (allocated(error)) return
+            met = all(abs(level%residual) <= level%tolerance)
+            if (met .or. report%velocity_steps >= max_velocity_steps .or. reduced%columns == 0) &
+                & exit
+            ! the rows times Z, part by part, over the reduced columns z0(p) + 1 .. z0(p + 1) of
+            ! each part a row touches (a row's columns ascend, so its parts come in runs)
+            if (.not. allocated(reduced%start)) then
+                allocate(reduced%start(size(level%ucon) + 1), &
+                    & reduced%column(6*size(level%column)), reduced%value(6*size(level%column)))
+            end if
+            out = 0
+            reduced%start(1) = 1
+            do i = 1, size(level%ucon)
+                first = out + 1
+                whole = 0.0_wp
+                e = level%start(i)
+                do while (e < level%start(i + 1))
+                    p = (level%column(e) - 1)/6 + 1
+                    f = e
+                    do while (f + 1 < level%start(i + 1))
+                        if ((level%column(f + 1) - 1)/6 + 1 /= p) exit
+                        f = f + 1
+                    end do
+                    do c = 1, kept(p)
+                        out = out + 1
+                        reduced%column(out) = z0(p) + c
+                        reduced%value(out) = 0.0_wp
+                        do j = e, f
+                            reduced%value(out) = reduced%value(out) + level%value(j) &
+                                & *basis(level%column(j) - 6*(p - 1), c, p)
+                        end do
+                    end do
+                    do j = e, f
+                        whole = whole + (level%value(j)*weight(level%column(j)))**2
+                    end do
+                    e = f + 1
+                end do
+                ! a row that only the held rates carry (its part in the free coordinates z is
+                ! rounding) is no row for the solve, judged as held_steps judges it
+                length = norm2(reduced%value(first:out))
+                if (length <= ic_rcond*sqrt(whole)) reduced%value(first:out) = 0.0_wp
+                reduced%start(i + 1) = out + 1
+            end do
+            reduced%residual = level%residual
+            reduced%tolerance = level%tolerance
+            call least_change(reduced, spread(.true., 1, reduced%columns), &
+                & spread(1.0_wp, 1, reduced%columns), dz, error)
+            if (allocated(error)) return
+            report%velocity_steps = report%velocity_steps + 1
+            do p = 1, parts
+                i0 = 6*(p - 1)
+                u(i0 + 1:i0 + 6) = u(i0 + 1:i0 + 6) &
+                    & + matmul(basis(:, :kept(p), p), dz(z0(p) + 1:z0(p + 1)))
+            end do
+        end do
+    end subroutine part_held_steps
 
     !> Shorten dq along its direction so that no Euler angle changes by more than angle_limit.
     pure subroutine limit_angles(dq)

@@ -5,7 +5,10 @@
 !> those before it is at most the tolerance counted dependent (Heath's rule; Davis, ACM TOMS
 !> 38(1), 2011). For matrices whose nonzeros grow as their order and whose dense pivoted QR
 !> (rollcon_lapack's pivoted_columns) would cost the cube of it: the unit rows of a long
-!> chain's joints (rollcon_redundancy).
+!> chain's joints (rollcon_redundancy). On a matrix given by its rows (each ascending in its
+!> columns): the least-squares solution of least norm (sparse_minimum_norm) and which rows take
+!> part in a dependency (sparse_dependent_rows), both through the QR of its transpose: the
+!> initial-conditions analysis on a large model (rollcon_ic_rows).
 module rollcon_sparse_qr
     use, intrinsic :: iso_c_binding, only : c_int, c_double
     use rollcon_kinds, only : wp
@@ -14,7 +17,7 @@ module rollcon_sparse_qr
     implicit none
     private
 
-    public :: sparse_rank
+    public :: sparse_rank, sparse_minimum_norm, sparse_dependent_rows
 
     interface
         function rollcon_spqr_rank(m, n, ap, ai, ax, tol, order, diagonal, status) &
@@ -29,6 +32,31 @@ module rollcon_sparse_qr
             integer(c_int), intent(out) :: status
             integer(c_int) :: rank
         end function rollcon_spqr_rank
+
+        function rollcon_spqr_min_norm(m, n, rp, rj, rx, tol, b, x, status) result(info) &
+                & bind(c, name="rollcon_spqr_min_norm")
+            import :: c_int, c_double
+            integer(c_int), value :: m, n
+            integer(c_int), intent(in) :: rp(*), rj(*)
+            real(c_double), intent(in) :: rx(*)
+            real(c_double), value :: tol
+            real(c_double), intent(in) :: b(*)
+            real(c_double), intent(out) :: x(*)
+            integer(c_int), intent(out) :: status
+            integer(c_int) :: info
+        end function rollcon_spqr_min_norm
+
+        function rollcon_spqr_dependent(m, n, rp, rj, rx, tol, involvement, involved, status) &
+                & result(rank) bind(c, name="rollcon_spqr_dependent")
+            import :: c_int, c_double
+            integer(c_int), value :: m, n
+            integer(c_int), intent(in) :: rp(*), rj(*)
+            real(c_double), intent(in) :: rx(*)
+            real(c_double), value :: tol, involvement
+            integer(c_int), intent(out) :: involved(*)
+            integer(c_int), intent(out) :: status
+            integer(c_int) :: rank
+        end function rollcon_spqr_dependent
     end interface
 
 contains
@@ -69,5 +97,85 @@ contains
         order = int(found(:n)) + 1
         diagonal = real(lengths(:n), wp)
     end subroutine sparse_rank
+
+    !> The x (n) of least norm among those that minimise |A x - b|, A the m x n matrix given by
+    !> its rows (1-based: row i's entries at row_start(i) .. row_start(i + 1) - 1 of column and
+    !> values, columns ascending; m = size(row_start) - 1), b (m): the SVD's minimum-norm
+    !> solution (rollcon_least_squares' minimum_norm_solve) with the rank judged by Heath's rule.
+    !> SuiteSparseQR factors A^T (A^T E = Q [R11 R12], rows of A whose norm after the
+    !> reflections of those before them is at most tolerance dead); all rows live, x = Q R^-T
+    !> E^T b (SPQR's min2norm scheme); else the dead rows are the combinations R11^-1 R12 of the
+    !> live ones A_L, the misfit is spread over all rows by SPQR's least squares on [I; K], and
+    !> x is the least-norm solution of A_L x = v (rollcon_spqr.c). Memory and time grow as the
+    !> nonzeros of A and of R, not as m n. Error (stat_lapack) when SPQR fails (out of memory).
+    subroutine sparse_minimum_norm(n, row_start, column, values, b, tolerance, x, error)
+        integer, intent(in) :: n, row_start(:), column(:)
+        real(wp), intent(in) :: values(:), b(:), tolerance
+        real(wp), intent(out) :: x(:)
+        type(error_type), allocatable, intent(out) :: error
+        integer(c_int), allocatable :: rp(:), rj(:)
+        real(c_double), allocatable :: rx(:), found(:)
+        integer(c_int) :: status
+        integer :: m, nnz
+
+        m = size(row_start) - 1
+        x = 0.0_wp
+        if (m == 0 .or. n == 0) return
+        nnz = row_start(m + 1) - 1
+        rp = int(row_start - 1, c_int)
+        rj = int(column(:nnz) - 1, c_int)
+        rx = real(values(:nnz), c_double)
+        allocate(found(n))
+        if (rollcon_spqr_min_norm(int(m, c_int), int(n, c_int), rp, rj, rx, &
+                & real(tolerance, c_double), real(b, c_double), found, status) < 0) then
+            call fatal_error(error, "SuiteSparseQR could not solve a sparse least-squares " &
+                & // "problem of " // to_text(m) // " rows and " // to_text(n) &
+                & // " columns: CHOLMOD status " // to_text(int(status)), stat_lapack)
+            return
+        end if
+        x = real(found, wp)
+    end subroutine sparse_minimum_norm
+
+    !> The rank of the m x n matrix A given by its rows (as sparse_minimum_norm), rows of norm at
+    !> most tolerance after the reflections of those before them dependent (Heath's rule), and
+    !> involved (m): the rows that have an entry above involvement in a unit vector w with
+    !> A^T w = 0 (they take part in a dependency). The null vectors come from R of SPQR's QR of
+    !> A^T, one per dependent row, by back substitution on R's triangle: no m x n array. Error
+    !> (stat_lapack) when SPQR fails (out of memory).
+    subroutine sparse_dependent_rows(n, row_start, column, values, tolerance, involvement, &
+            & rank, involved, error)
+        integer, intent(in) :: n, row_start(:), column(:)
+        real(wp), intent(in) :: values(:), tolerance, involvement
+        integer, intent(out) :: rank
+        logical, intent(out) :: involved(:)
+        type(error_type), allocatable, intent(out) :: error
+        integer(c_int), allocatable :: rp(:), rj(:), flags(:)
+        real(c_double), allocatable :: rx(:)
+        integer(c_int) :: status
+        integer :: m, nnz
+
+        m = size(row_start) - 1
+        rank = 0
+        involved = .false.
+        if (m == 0) return
+        nnz = row_start(m + 1) - 1
+        rp = int(row_start - 1, c_int)
+        rj = int(column(:max(nnz, 0)) - 1, c_int)
+        rx = real(values(:max(nnz, 0)), c_double)
+        if (nnz == 0) then
+            rj = [0_c_int]
+            rx = [0.0_c_double]
+        end if
+        allocate(flags(m))
+        rank = int(rollcon_spqr_dependent(int(m, c_int), int(max(n, 1), c_int), rp, rj, rx, &
+            & real(tolerance, c_double), real(involvement, c_double), flags, status))
+        if (rank < 0) then
+            call fatal_error(error, "SuiteSparseQR could not factor a sparse matrix of " &
+                & // to_text(m) // " rows and " // to_text(n) // " columns: CHOLMOD status " &
+                & // to_text(int(status)), stat_lapack)
+            return
+        end if
+        involved = flags /= 0
+    end subroutine sparse_dependent_rows
 
 end module rollcon_sparse_qr

@@ -2,7 +2,7 @@
 !> The initial-conditions analysis (rollcon_initial_conditions): a perturbed coin start
 !> recovered, the documented weights, exact values held, redundant UCONs met and set aside by
 !> name, contradictory and unreachable UCONs refused by name, and the namelist scenes' starts
-!> as its special case.
+!> as its special case; a long chain on the sparse way (ic_chain).
 module test_initial_conditions
     use, intrinsic :: ieee_arithmetic, only : ieee_value, ieee_quiet_nan
     use rollcon_kinds, only : wp
@@ -17,6 +17,7 @@ module test_initial_conditions
     use ic_scene_starts, only : test_scene_starts, test_scene_velocities
     use ic_datasets, only : test_exact_read, test_exact_refused, test_dataset_exact, &
         & test_dataset_run, test_given_kept, test_defaulted_moved, test_given_contradicted
+    use ic_chain, only : test_chain_sparse_start, test_chain_sparse_contradiction
     use rollcon_testing, only : unittest_type, new_unittest, check
     implicit none
     private
@@ -56,7 +57,9 @@ contains
             & new_unittest("dataset-run-report", test_dataset_run), &
             & new_unittest("given-velocities-kept", test_given_kept), &
             & new_unittest("defaulted-velocities-moved", test_defaulted_moved), &
-            & new_unittest("given-velocities-contradicted", test_given_contradicted)]
+            & new_unittest("given-velocities-contradicted", test_given_contradicted), &
+            & new_unittest("long-chain-sparse-start", test_chain_sparse_start), &
+            & new_unittest("long-chain-sparse-contradiction", test_chain_sparse_contradiction)]
     end subroutine collect_initial_conditions
 
     !> The coin with F1, F2 and the height Z - R sin(theta) as a position UCON.

@@ -3,12 +3,13 @@
 !> whose answers are known in closed form: the least-norm solution of an underdetermined
 !> system, the least-squares solution of an inconsistent one, the rank as the angle between
 !> unit rows against rcond, and the left null space; and the rank of a sparse matrix by
-!> SuiteSparseQR (rollcon_sparse_qr), the large blocks' of the redundancy choice.
+!> SuiteSparseQR (rollcon_sparse_qr), the large blocks' of the redundancy choice, and its
+!> least-norm solution and dependent rows, a large model's initial-conditions analysis'.
 module test_least_squares
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type
     use rollcon_least_squares, only : minimum_norm_solve, left_null_space
-    use rollcon_sparse_qr, only : sparse_rank
+    use rollcon_sparse_qr, only : sparse_rank, sparse_minimum_norm, sparse_dependent_rows
     use rollcon_testing, only : unittest_type, new_unittest, check
     implicit none
     private
@@ -34,7 +35,9 @@ contains
             & new_unittest("rank-from-the-angle-of-rows", test_rank), &
             & new_unittest("left-null-space", test_left_null), &
             & new_unittest("empty-matrices", test_empty), &
-            & new_unittest("sparse-rank-from-the-angle-of-columns", test_sparse_rank)]
+            & new_unittest("sparse-rank-from-the-angle-of-columns", test_sparse_rank), &
+            & new_unittest("sparse-least-norm", test_sparse_least_norm), &
+            & new_unittest("sparse-dependent-rows", test_sparse_dependent)]
     end subroutine collect_least_squares
 
     !> x1 + x2 = 1, x2 + x3 = 2: the solution of least norm is A^T (A A^T)^-1 b = (0, 1, 1)
@@ -194,5 +197,63 @@ contains
         call check(error, distance, [1.0_wp, sin(apart_angle)], &
             & "|R(k,k)|: 1, then the distance sin(a)", abs_tol=tol_svd)
     end subroutine test_sparse_rank
+
+    !> SuiteSparseQR's least-norm solution from rows: x1 + x2 = 1, x2 + x3 = 2 gives (0, 1, 1)
+    !> as the SVD's (test_underdetermined); with the row x1 + 2 x2 + x3 = 3 added, their sum
+    !> (dependent and consistent), still (0, 1, 1); with it = 4 instead (contradictory), the
+    !> misfit spread over the three rows: A_L x = v = (4/3, 7/3) minimises (v1 - 1)^2 + (v2 -
+    !> 2)^2 + (v1 + v2 - 4)^2, and x = (1/9, 11/9, 10/9) is the least-norm solution of it, the
+    !> SVD's (dgelss) answer. A Householder QR of order-one rows: within a few tens of
+    !> roundings (tol_svd).
+    subroutine test_sparse_least_norm(error)
+        type(error_type), allocatable, intent(out) :: error
+        real(wp) :: x(3)
+
+        call sparse_minimum_norm(3, [1, 3, 5], [1, 2, 2, 3], [1.0_wp, 1.0_wp, 1.0_wp, 1.0_wp], &
+            & [1.0_wp, 2.0_wp], rcond, x, error)
+        if (allocated(error)) return
+        call check(error, x, [0.0_wp, 1.0_wp, 1.0_wp], "least norm of two rows", &
+            & abs_tol=tol_svd)
+        if (allocated(error)) return
+        call sparse_minimum_norm(3, [1, 3, 5, 8], [1, 2, 2, 3, 1, 2, 3], [1.0_wp, 1.0_wp, &
+            & 1.0_wp, 1.0_wp, 1.0_wp, 2.0_wp, 1.0_wp], [1.0_wp, 2.0_wp, 3.0_wp], rcond, x, error)
+        if (allocated(error)) return
+        call check(error, x, [0.0_wp, 1.0_wp, 1.0_wp], "least norm with a dependent row", &
+            & abs_tol=tol_svd)
+        if (allocated(error)) return
+        call sparse_minimum_norm(3, [1, 3, 5, 8], [1, 2, 2, 3, 1, 2, 3], [1.0_wp, 1.0_wp, &
+            & 1.0_wp, 1.0_wp, 1.0_wp, 2.0_wp, 1.0_wp], [1.0_wp, 2.0_wp, 4.0_wp], rcond, x, error)
+        if (allocated(error)) return
+        call check(error, x, [1.0_wp, 11.0_wp, 10.0_wp]/9.0_wp, "least squares of least norm " &
+            & // "with a contradictory dependent row", abs_tol=tol_svd)
+    end subroutine test_sparse_least_norm
+
+    !> The rows of SuiteSparseQR's dependency: unit rows e1, e2, (e1 + e2)/sqrt(2) and e3 have
+    !> rank 3, the first three in the dependency and e3 not; two rows 1e-10 rad apart (below
+    !> rcond) count as one, both in it, and 1e-6 rad apart as two, none in any. Exact flags.
+    subroutine test_sparse_dependent(error)
+        type(error_type), allocatable, intent(out) :: error
+        real(wp), parameter :: close_angle = 1.0e-10_wp, apart_angle = 1.0e-6_wp
+        logical :: involved(4), pair(2)
+        integer :: rank
+
+        call sparse_dependent_rows(3, [1, 2, 3, 5, 6], [1, 2, 1, 2, 3], [1.0_wp, 1.0_wp, &
+            & [1.0_wp, 1.0_wp]/sqrt(2.0_wp), 1.0_wp], rcond, 1.0e-6_wp, rank, involved, error)
+        if (allocated(error)) return
+        call check(error, rank, 3, "e1, e2, (e1 + e2)/sqrt(2), e3: rank 3")
+        if (allocated(error)) return
+        call check(error, all(involved .eqv. [.true., .true., .true., .false.]), &
+            & "the first three rows in the dependency, e3 not")
+        if (allocated(error)) return
+        call sparse_dependent_rows(2, [1, 2, 4], [1, 1, 2], [1.0_wp, cos(close_angle), &
+            & sin(close_angle)], rcond, 1.0e-6_wp, rank, pair, error)
+        if (allocated(error)) return
+        call check(error, rank == 1 .and. all(pair), "rows 1e-10 rad apart: one, both in it")
+        if (allocated(error)) return
+        call sparse_dependent_rows(2, [1, 2, 4], [1, 1, 2], [1.0_wp, cos(apart_angle), &
+            & sin(apart_angle)], rcond, 1.0e-6_wp, rank, pair, error)
+        if (allocated(error)) return
+        call check(error, rank == 2 .and. .not. any(pair), "rows 1e-6 rad apart: two, free")
+    end subroutine test_sparse_dependent
 
 end module test_least_squares
