@@ -56,13 +56,14 @@ module rollcon_equations
         type(constraint_state_type) :: constraints
         !> Sizes: coordinates, constraints, holonomic constraints
         integer :: n = 0, nc = 0, nh = 0
-        !> The system as last assembled: mass matrix, applied and inertial forces f, constraint
-        !> matrix C, gamma. M is block diagonal, one 6 x 6 block per part (the part's
-        !> coordinates): mass(:, :, p) is part p's block, the others are zeros, not stored
-        !> (memory linear in the model, docs/design.md §4 "Memory")
-        real(wp), allocatable :: mass(:, :, :), force(:), c(:, :), gamma(:)
-        !> C held by rows over each UCON's own coordinates (rollcon_constraint_matrix), filled
-        !> with c by constraint_matrix
+        !> The system as last assembled: mass matrix, applied and inertial forces f, gamma. M is
+        !> block diagonal, one 6 x 6 block per part (the part's coordinates): mass(:, :, p) is
+        !> part p's block, the others are zeros, not stored (memory linear in the model,
+        !> docs/design.md §4 "Memory")
+        real(wp), allocatable :: mass(:, :, :), force(:), gamma(:)
+        !> The constraint matrix C (nc x n), held by rows over each UCON's own coordinates
+        !> (rollcon_constraint_matrix; the other entries are exact zeros, not stored): filled
+        !> by constraint_matrix
         type(constraint_matrix_type) :: cm
         !> The constraints' blocks (UCONs sharing parts), and the saddle-point system's factors,
         !> as the last accelerations call left them
@@ -145,8 +146,8 @@ contains
         call self%saddle%init(self%n, self%nc, self%blocks)
         call self%cm%init(self%n, self%nc, self%blocks%ucon_start, self%blocks%ucon_coordinates)
         associate (n => self%n, nc => self%nc)
-            if (allocated(self%mass)) deallocate(self%mass, self%force, self%c, self%gamma)
-            allocate(self%mass(6, 6, size(model%parts)), self%force(n), self%c(nc, n), &
+            if (allocated(self%mass)) deallocate(self%mass, self%force, self%gamma)
+            allocate(self%mass(6, 6, size(model%parts)), self%force(n), &
                 & self%gamma(nc), source=0.0_wp)
         end associate
         if (allocated(model%forces)) then
@@ -455,22 +456,20 @@ contains
     end subroutine constraint_rows
 
     !> C alone (velocity UCON: dF/du; position UCON: dF/dq), from first partials only: each
-    !> row over its UCON's coordinates (the others are zero from init, and stay so).
+    !> row over its UCON's coordinates, the pattern C is held on.
     subroutine constraint_matrix(self)
         class(equations_type), intent(inout) :: self
-        integer :: k, i, j, a
+        integer :: k, i, a
 
         do k = 1, self%nc
             do i = self%blocks%ucon_start(k), self%blocks%ucon_start(k + 1) - 1
-                j = self%blocks%ucon_coordinates(i)
                 ! its place among the UCON's own coordinates (the same ascending list)
                 a = i - self%blocks%ucon_start(k) + 1
                 if (self%model%ucons(k)%holonomic) then
-                    self%c(k, j) = self%constraints%grad_q_local(a, k)
+                    self%cm%value(i) = self%constraints%grad_q_local(a, k)
                 else
-                    self%c(k, j) = self%constraints%grad_u_local(a, k)
+                    self%cm%value(i) = self%constraints%grad_u_local(a, k)
                 end if
-                self%cm%value(i) = self%c(k, j)
             end do
         end do
     end subroutine constraint_matrix
@@ -1341,43 +1340,34 @@ contains
         real(wp), intent(in) :: time, q(:), u(:)
         real(wp), intent(out) :: dq(:), du(:)
         type(error_type), allocatable, intent(out) :: error
-        integer :: n, k, h, rows
+        integer :: n, k
 
         n = self%n
         dq = 0.0_wp
         ! (sized by size_ode_form in CVODE's forms; IDA's rebasing projects on a first use)
         call self%work%size_right_hand_sides(n, self%nc, 1)
-        if (self%nh > 0 .and. .not. allocated(self%work%holonomic_rows)) &
-            & allocate(self%work%holonomic_rows(self%nh, n), source=0.0_wp)
-        if (self%nh > 0 .and. self%masked()) then
-            ! the active position UCONs alone (those set aside repeat them; a flying
-            ! contact's height is no constraint)
+        if (self%nh > 0) then
             call self%constraints%evaluate(self%model, time, q, u, need_value + need_first, error)
             if (allocated(error)) return
             call self%assemble(time, q, u)
-            rows = 0
-            do k = 1, self%nc
-                if (self%model%holonomic_number(k) == 0 .or. .not. self%active_rows_of(k)) &
-                    & cycle
-                rows = rows + 1
-                call self%constraints%fill_grad_q_row(k, self%work%holonomic_rows(rows, :))
-                self%work%rhs_bottom(rows, 1) = -self%constraints%value(k)
-            end do
-            call solve_holonomic(self, rows, error)
+            call self%constraint_matrix()
+            ! only the active position UCONs constrain q: [M, -G^T; G, 0] (dq, nu) = (0, -F_h),
+            ! G their rows of C (dF/dq); the other rows (velocity UCONs, rows set aside as
+            ! repeating others, a flying contact's height) are set aside in the factorisation
+            ! (rollcon_saddle_point: their rows and columns of S those of the identity, their
+            ! multipliers zero), so G is solved by the constraints' blocks with C as held
+            associate (held => self%work%projection_rows)
+                do k = 1, self%nc
+                    held(k) = self%model%holonomic_number(k) > 0 .and. self%active_rows_of(k)
+                    self%work%rhs_bottom(k, 1) = 0.0_wp
+                    if (held(k)) self%work%rhs_bottom(k, 1) = -self%constraints%value(k)
+                end do
+                call self%saddle%factor(self%mass, self%cm, self%nc, error, active=held)
+            end associate
             if (allocated(error)) return
-            dq = self%work%rhs_top(:, 1)
-        else if (self%nh > 0) then
-            call self%constraints%evaluate(self%model, time, q, u, need_value + need_first, error)
-            if (allocated(error)) return
-            call self%assemble(time, q, u)
-            ! only position UCONs constrain q: [M, -G^T; G, 0] (dq, nu) = (0, -F_h)
-            do k = 1, self%nc
-                h = self%model%holonomic_number(k)
-                if (h == 0) cycle
-                call self%constraints%fill_grad_q_row(k, self%work%holonomic_rows(h, :))
-                self%work%rhs_bottom(h, 1) = -self%constraints%value(k)
-            end do
-            call solve_holonomic(self, self%nh, error)
+            self%work%rhs_top(:, 1) = 0.0_wp
+            call self%saddle%solve(self%cm, self%work%rhs_top(:, 1), self%work%rhs_bottom(:, 1), &
+                & 1, error)
             if (allocated(error)) return
             dq = self%work%rhs_top(:, 1)
         end if
@@ -1409,32 +1399,6 @@ contains
         if (allocated(error)) return
         du = self%work%rhs_top(:, 1)
     end subroutine project
-
-    !> project's position step: [M, -G^T; G, 0] (dq, nu) = (0, r) for the first `rows` rows of
-    !> work%holonomic_rows (G, written whole) and of work%rhs_bottom (r), dq into
-    !> work%rhs_top(:, 1). When they are all nc rows (every UCON a position UCON, none set
-    !> aside) G is C (dF/dq, by rows over each UCON's coordinates: constraint_matrix at the
-    !> state of the rows), solved by the constraints' blocks; fewer rows go the saddle point's
-    !> dense path on G.
-    subroutine solve_holonomic(self, rows, error)
-        type(equations_type), intent(inout) :: self
-        integer, intent(in) :: rows
-        type(error_type), allocatable, intent(out) :: error
-
-        self%work%rhs_top(:, 1) = 0.0_wp
-        if (rows == self%nc) then
-            call self%constraint_matrix()
-            call self%saddle%factor(self%mass, self%cm, rows, error)
-            if (allocated(error)) return
-            call self%saddle%solve(self%cm, self%work%rhs_top(:, 1), &
-                & self%work%rhs_bottom(:, 1), 1, error)
-        else
-            call self%saddle%factor_rows(self%mass, self%work%holonomic_rows, rows, error)
-            if (allocated(error)) return
-            call self%saddle%solve_rows(self%work%holonomic_rows, self%work%rhs_top(:, 1), &
-                & self%work%rhs_bottom(:, 1), 1, error)
-        end if
-    end subroutine solve_holonomic
 
     !> u^T H u with H over a UCON's own coordinates `at` (ascending; h(i, j) belongs to at(i),
     !> at(j)), summed as the dense quadratic form.

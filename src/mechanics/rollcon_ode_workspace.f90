@@ -14,9 +14,9 @@ module rollcon_ode_workspace
     type :: ode_workspace_type
         !> Applied moment about each part's centre, ground components [N m] (3, parts)
         real(wp), allocatable :: moments(:, :)
-        !> Rows of C of the position UCONs alone (nh, n), for the position projection (sized as
-        !> the right-hand sides: a run that never projects holds none)
-        real(wp), allocatable :: holonomic_rows(:, :)
+        !> The rows the position projection solves (nc): the active position UCONs' (the
+        !> others are set aside in its factorisation of C)
+        logical, allocatable :: projection_rows(:)
         !> Right-hand sides of the Jacobian's and the projection's solves: momentum rows (n, 2n)
         !> and constraint rows (nc, 2n) for the Jacobian, one column of each for the projection
         !> (sized by the ODE forms' init, size_ode_form, else by a first use: IDA's runs form
@@ -60,18 +60,17 @@ contains
         allocate(self%moments(3, parts), source=0.0_wp)
         call self%dm%init_blocks(parts, pairs)
         allocate(self%a(n), self%lambda(nc), self%q(n), source=0.0_wp)
+        allocate(self%projection_rows(nc), source=.false.)
     end subroutine init
 
     !> The arrays of the ODE form's Jacobian and projection (CVODE's forms, which form them at
     !> every step; IDA's, which does not, leaves them to a first use): the right-hand sides'
-    !> 2 n columns and, with position UCONs (nh > 0), the projection's rows. Once, before a run.
+    !> 2 n columns (the projection's one among them). Once, before a run.
     subroutine size_ode_form(self, n, nc, nh)
         class(ode_workspace_type), intent(inout) :: self
         integer, intent(in) :: n, nc, nh
 
         call self%size_right_hand_sides(n, nc, 2*n)
-        if (nh > 0 .and. .not. allocated(self%holonomic_rows)) &
-            & allocate(self%holonomic_rows(nh, n), source=0.0_wp)
     end subroutine size_ode_form
 
     !> rhs_top (n x columns) and rhs_bottom (nc x columns), zero, unless they hold as many

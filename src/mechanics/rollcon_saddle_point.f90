@@ -25,11 +25,12 @@
 !> C comes by rows over each UCON's coordinates (rollcon_constraint_matrix, the blocks' pattern):
 !> the block paths read its entries where they are (index x of ucon_coordinates), the dense path
 !> fills one row at a time into a row of n (row_scratch) and sums as over the dense matrix. The
-!> projection's position rows come as a dense array (factor_rows, solve_rows): the dense path.
+!> position projection solves C too, its rows other than the active position UCONs' set aside.
 !>
-!> Rows set aside (rollcon_redundancy: a redundant row, given as `active` false to factor) keep
-!> their place: their multiplier is zero, their row and column of S become the identity's and
-!> their right-hand side zero, so lambda_k = 0 and they add nothing to a. Without rows set
+!> Rows set aside (rollcon_redundancy: a redundant row; the projection's velocity rows; given as
+!> `active` false to factor) keep their place: their multiplier is zero, their row and column of
+!> S become the identity's and their right-hand side zero, so lambda_k = 0 and they add nothing
+!> to a. Without rows set
 !> aside every operation is the one above.
 module rollcon_saddle_point
     use rollcon_kinds, only : wp
@@ -134,8 +135,6 @@ module rollcon_saddle_point
         procedure :: init
         procedure :: factor
         procedure :: solve
-        procedure :: factor_rows
-        procedure :: solve_rows
         procedure :: apply_inverse_mass
         procedure :: release
     end type saddle_point_type
@@ -481,26 +480,6 @@ contains
         call factor_dense(self, rows, error, r1, c=c)
     end subroutine factor
 
-    !> factor for constraint rows given as a dense array d (rows x n, leading dimension at
-    !> least rows: the projection's position rows, fewer than nc), always by the dense path;
-    !> solve then with solve_rows.
-    subroutine factor_rows(self, mass, d, rows, error)
-        class(saddle_point_type), intent(inout) :: self
-        !> Mass matrix [kg, kg m^2]: its parts' 6 x 6 blocks (6, 6, parts)
-        real(wp), intent(in) :: mass(:, :, :)
-        !> Constraint rows (at least rows x n)
-        real(wp), intent(in) :: d(:, :)
-        !> How many rows of d take part (at most nc)
-        integer, intent(in) :: rows
-        !> Set when a mass block is not positive definite or the constraints are dependent
-        type(error_type), allocatable, intent(out) :: error
-
-        call factor_mass(self, mass, rows, error)
-        if (allocated(error)) return
-        self%by_blocks = .false.
-        call factor_dense(self, rows, error, d=d)
-    end subroutine factor_rows
-
     !> factor's first step: the rows taken, those set aside (active, as factor's) and the
     !> Cholesky factors of the parts' rotational mass blocks (dpotf2).
     subroutine factor_mass(self, mass, rows, error, active)
@@ -627,26 +606,6 @@ contains
         end if
         call solve_dense(self, r1, r2, m, c=c)
     end subroutine solve
-
-    !> solve after factor_rows: d the dense rows given to it, r1 (n x m) becomes a, r2
-    !> (rows x m) becomes lambda.
-    subroutine solve_rows(self, d, r1, r2, m, error)
-        class(saddle_point_type), intent(inout) :: self
-        !> Constraint rows (at least rows x n), those given to factor_rows
-        real(wp), intent(in) :: d(:, :)
-        !> Number of right-hand sides
-        integer, intent(in) :: m
-        !> Momentum rows on entry, accelerations on exit (leading dimension n)
-        real(wp), intent(inout) :: r1(self%n, m)
-        !> Constraint rows on entry, multipliers on exit (leading dimension rows)
-        real(wp), intent(inout) :: r2(self%rows, m)
-        type(error_type), allocatable, intent(out) :: error
-
-        call self%apply_inverse_mass(r1, m, error)
-        if (allocated(error)) return
-        if (self%rows == 0) return
-        call solve_dense(self, r1, r2, m, d=d)
-    end subroutine solve_rows
 
     !> The dense path of solve, after r1 := M^-1 r1, on C by rows (c) or dense (d).
     subroutine solve_dense(self, r1, r2, m, c, d)
