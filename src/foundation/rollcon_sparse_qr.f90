@@ -8,7 +8,11 @@
 !> chain's joints (rollcon_redundancy). On a matrix given by its rows (each ascending in its
 !> columns): the least-squares solution of least norm (sparse_minimum_norm) and which rows take
 !> part in a dependency (sparse_dependent_rows), both through the QR of its transpose: the
-!> initial-conditions analysis on a large model (rollcon_ic_rows).
+!> initial-conditions analysis on a large model (rollcon_ic_rows). With the columns' order held
+!> (SPQR_ORDERING_FIXED, some columns put first): which columns a greedy choice in that order
+!> keeps and their distances |R(k,k)| (sparse_grouped_rank), and how a last column is a
+!> combination of the others (sparse_combination): which rows of a large block of joints
+!> repeat others (rollcon_redundancy).
 module rollcon_sparse_qr
     use, intrinsic :: iso_c_binding, only : c_int, c_double
     use rollcon_kinds, only : wp
@@ -17,7 +21,8 @@ module rollcon_sparse_qr
     implicit none
     private
 
-    public :: sparse_rank, sparse_minimum_norm, sparse_dependent_rows
+    public :: sparse_rank, sparse_minimum_norm, sparse_dependent_rows, sparse_grouped_rank, &
+        & sparse_combination
 
     interface
         function rollcon_spqr_rank(m, n, ap, ai, ax, tol, order, diagonal, status) &
@@ -57,6 +62,34 @@ module rollcon_sparse_qr
             integer(c_int), intent(out) :: status
             integer(c_int) :: rank
         end function rollcon_spqr_dependent
+
+        function rollcon_spqr_grouped_rank(m, n, ap, ai, ax, tol, group, fill, bound, order, &
+                & diagonal, status) result(rank) bind(c, name="rollcon_spqr_grouped_rank")
+            import :: c_int, c_double
+            integer(c_int), value :: m, n
+            integer(c_int), intent(in) :: ap(*), ai(*)
+            real(c_double), intent(in) :: ax(*)
+            real(c_double), value :: tol
+            integer(c_int), intent(in) :: group(*)
+            integer(c_int), value :: fill
+            real(c_double), value :: bound
+            integer(c_int), intent(out) :: order(*)
+            real(c_double), intent(out) :: diagonal(*)
+            integer(c_int), intent(out) :: status
+            integer(c_int) :: rank
+        end function rollcon_spqr_grouped_rank
+
+        function rollcon_spqr_combination(m, n, ap, ai, ax, tol, x, status) result(rank) &
+                & bind(c, name="rollcon_spqr_combination")
+            import :: c_int, c_double
+            integer(c_int), value :: m, n
+            integer(c_int), intent(in) :: ap(*), ai(*)
+            real(c_double), intent(in) :: ax(*)
+            real(c_double), value :: tol
+            real(c_double), intent(out) :: x(*)
+            integer(c_int), intent(out) :: status
+            integer(c_int) :: rank
+        end function rollcon_spqr_combination
     end interface
 
 contains
@@ -177,5 +210,101 @@ contains
         end if
         involved = flags /= 0
     end subroutine sparse_dependent_rows
+
+    !> The greedy choice of independent columns of the m x n matrix given in compressed columns
+    !> (as sparse_rank) in a column order that puts the columns j with leading(j) first: within
+    !> each group (leading, the others) in COLAMD's fill-reducing order (fill_reducing), or as
+    !> given. SuiteSparseQR factors the columns in that order held (SPQR_ORDERING_FIXED): a
+    !> column whose norm after the reflections of the columns kept before it is at most
+    !> tolerance repeats them (Heath's rule) and is not kept; tolerance < 0: every column kept.
+    !> With bound > 1, then swaps of strong rank-revealing QR (Gu and Eisenstat, SIAM J. Sci.
+    !> Comput. 17(4), 1996): a column not kept, the combination c of those kept, is kept instead
+    !> of a kept column j not leading where |c_j| > bound (the kept columns' volume |det R11|
+    !> grows by |c_j|), refactored until none is left (rollcon_spqr.c): the choice of the
+    !> better-conditioned rows that a pivoted QR makes, which the greedy order alone does not.
+    !> rank: the columns kept; order (n): those kept in that order, then the others in it;
+    !> diagonal (n): |R(k,k)| of a kept column order(k), its distance from the span of those
+    !> kept before it, 0 for the others. Memory grows as the nonzeros of the matrix and of R;
+    !> time as them for each factorisation, and a round of swaps as the columns not kept times
+    !> R's nonzeros. Error (stat_lapack) when SPQR fails (out of memory).
+    subroutine sparse_grouped_rank(m, column_start, row, values, tolerance, leading, &
+            & fill_reducing, bound, rank, order, diagonal, error)
+        integer, intent(in) :: m, column_start(:), row(:)
+        real(wp), intent(in) :: values(:), tolerance
+        logical, intent(in) :: leading(:), fill_reducing
+        real(wp), intent(in) :: bound
+        integer, intent(out) :: rank, order(:)
+        real(wp), intent(out) :: diagonal(:)
+        type(error_type), allocatable, intent(out) :: error
+        integer(c_int), allocatable :: ap(:), ai(:), found(:), group(:)
+        real(c_double), allocatable :: ax(:), lengths(:)
+        integer(c_int) :: status
+        integer :: n, nnz
+
+        n = size(column_start) - 1
+        rank = 0
+        if (n == 0) return
+        nnz = column_start(n + 1) - 1
+        ap = int(column_start - 1, c_int)
+        allocate(ai(max(nnz, 1)), ax(max(nnz, 1)))
+        ai = 0
+        ax = 0.0_c_double
+        ai(:nnz) = int(row(:nnz) - 1, c_int)
+        ax(:nnz) = real(values(:nnz), c_double)
+        group = merge(0_c_int, 1_c_int, leading)
+        allocate(found(n), lengths(n))
+        rank = int(rollcon_spqr_grouped_rank(int(max(m, 1), c_int), int(n, c_int), ap, ai, ax, &
+            & real(tolerance, c_double), group, merge(1_c_int, 0_c_int, fill_reducing), &
+            & real(bound, c_double), found, lengths, status))
+        if (rank < 0) then
+            call fatal_error(error, "SuiteSparseQR could not factor a sparse matrix of " &
+                & // to_text(m) // " rows and " // to_text(n) // " columns: CHOLMOD status " &
+                & // to_text(int(status)), stat_lapack)
+            return
+        end if
+        order = int(found) + 1
+        diagonal = real(lengths, wp)
+    end subroutine sparse_grouped_rank
+
+    !> How the last column b of the m x n matrix [A b] given in compressed columns (as
+    !> sparse_rank) lies in the span of the others: x (n - 1) with A x the projection of b on
+    !> the span of A's columns kept by a greedy choice in their order (Heath's rule with
+    !> tolerance, as sparse_grouped_rank), 0 on those not kept: R11^-1 R(kept, b) from
+    !> SuiteSparseQR's QR of [A b] in that order held, by back substitution. When A's columns
+    !> are independent, the least-squares solution of A x = b. rank: A's columns kept. Error
+    !> (stat_lapack) when SPQR fails (out of memory).
+    subroutine sparse_combination(m, column_start, row, values, tolerance, x, rank, error)
+        integer, intent(in) :: m, column_start(:), row(:)
+        real(wp), intent(in) :: values(:), tolerance
+        real(wp), intent(out) :: x(:)
+        integer, intent(out) :: rank
+        type(error_type), allocatable, intent(out) :: error
+        integer(c_int), allocatable :: ap(:), ai(:)
+        real(c_double), allocatable :: ax(:), found(:)
+        integer(c_int) :: status
+        integer :: n, nnz
+
+        n = size(column_start) - 1
+        x = 0.0_wp
+        rank = 0
+        if (n < 2) return
+        nnz = column_start(n + 1) - 1
+        ap = int(column_start - 1, c_int)
+        allocate(ai(max(nnz, 1)), ax(max(nnz, 1)))
+        ai = 0
+        ax = 0.0_c_double
+        ai(:nnz) = int(row(:nnz) - 1, c_int)
+        ax(:nnz) = real(values(:nnz), c_double)
+        allocate(found(n))
+        rank = int(rollcon_spqr_combination(int(max(m, 1), c_int), int(n, c_int), ap, ai, ax, &
+            & real(tolerance, c_double), found, status))
+        if (rank < 0) then
+            call fatal_error(error, "SuiteSparseQR could not factor a sparse matrix of " &
+                & // to_text(m) // " rows and " // to_text(n) // " columns: CHOLMOD status " &
+                & // to_text(int(status)), stat_lapack)
+            return
+        end if
+        x = real(found(:n - 1), wp)
+    end subroutine sparse_combination
 
 end module rollcon_sparse_qr

@@ -329,3 +329,287 @@ int rollcon_spqr_dependent(int m, int n, const int *rp, const int *rj, const dou
     cholmod_l_finish(&common);
     return good ? (int)rank : -1;
 }
+
+/* The m x n matrix (ap, ai, ax: compressed columns, 0-based) as a CHOLMOD matrix with its
+ * columns in the order perm (perm[k]: the column put k-th); NULL when CHOLMOD cannot allocate
+ * it. */
+static cholmod_sparse *permuted_columns(int m, int n, const int *ap, const int *ai,
+                                        const double *ax, const SuiteSparse_long *perm,
+                                        cholmod_common *common)
+{
+    cholmod_sparse *a;
+    SuiteSparse_long *p, *i, q = 0, s;
+    double *x;
+    int k, j, nnz = ap[n];
+
+    a = cholmod_l_allocate_sparse((size_t)m, (size_t)n, (size_t)(nnz > 0 ? nnz : 1), 1, 1, 0,
+                                  CHOLMOD_REAL, common);
+    if (a == NULL) return NULL;
+    p = a->p;
+    i = a->i;
+    x = a->x;
+    p[0] = 0;
+    for (k = 0; k < n; k++) {
+        j = (int)perm[k];
+        for (s = ap[j]; s < ap[j + 1]; s++, q++) {
+            i[q] = ai[s];
+            x[q] = ax[s];
+        }
+        p[k + 1] = q;
+    }
+    return a;
+}
+
+/* SuiteSparseQR of the columns of (ap, ai, ax) in the order perm held (SPQR_ORDERING_FIXED),
+ * rank tolerance tol (< 0: none). With a fixed order SPQR leaves R "squeezed": the dead
+ * columns in place, without a pivot row; a column is live when its last entry is on the next
+ * pivot row. live[j] (for column j of the matrix given): whether it is; pivot[i]: the column
+ * of R (0-based, in the order held) whose diagonal is on row i; *r, *e: SPQR's R and E (to be
+ * freed). Returns the rank, or -1 when SPQR failed. */
+static SuiteSparse_long factor_held(int m, int n, const int *ap, const int *ai, const double *ax,
+                                    const SuiteSparse_long *perm, double tol, int *live,
+                                    SuiteSparse_long *pivot, cholmod_sparse **r,
+                                    SuiteSparse_long **e, cholmod_common *common)
+{
+    cholmod_sparse *a;
+    SuiteSparse_long rank, k, pivots = 0, *rp, *ri;
+
+    *r = NULL;
+    *e = NULL;
+    a = permuted_columns(m, n, ap, ai, ax, perm, common);
+    if (a == NULL) return -1;
+    rank = SuiteSparseQR_C(SPQR_ORDERING_FIXED, tol < 0.0 ? SPQR_NO_TOL : tol, 0, 0, a, NULL,
+                           NULL, NULL, NULL, r, e, NULL, NULL, NULL, common);
+    cholmod_l_free_sparse(&a, common);
+    if (rank < 0 || *r == NULL) return -1;
+    rp = (*r)->p;
+    ri = (*r)->i;
+    for (k = 0; k < n; k++) {
+        SuiteSparse_long j = perm[*e == NULL ? k : (*e)[k]];
+        live[j] = rp[k + 1] > rp[k] && ri[rp[k + 1] - 1] == pivots && pivots < rank;
+        if (live[j]) pivot[pivots++] = k;
+    }
+    return pivots == rank ? rank : -1;
+}
+
+/* c (the pivots before R's column k) = R11^-1 R(:, k) for a column k of a squeezed R
+ * (factor_held): the combination of the live columns before it that is its projection on
+ * their span (back substitution on R's triangle). */
+static void squeezed_combination(const cholmod_sparse *r, const SuiteSparse_long *pivot,
+                                 SuiteSparse_long pivots, SuiteSparse_long k, double *c)
+{
+    const SuiteSparse_long *rp = r->p, *ri = r->i;
+    const double *rx = r->x;
+    SuiteSparse_long j, p, q;
+
+    for (j = 0; j < pivots; j++) c[j] = 0.0;
+    for (p = rp[k]; p < rp[k + 1]; p++) {
+        if (ri[p] < pivots) c[ri[p]] = rx[p];
+    }
+    for (j = pivots - 1; j >= 0; j--) {
+        q = pivot[j];
+        c[j] /= rx[rp[q + 1] - 1];
+        for (p = rp[q]; p < rp[q + 1] - 1; p++) c[ri[p]] -= rx[p] * c[j];
+    }
+}
+
+/* The columns of the m x n matrix (ap, ai, ax) chosen greedily in an order that holds every
+ * column j with group[j] = 0 before the others, within each group in COLAMD's fill-reducing
+ * order of the whole matrix (fill nonzero: CHOLMOD's colamd on A^T, which orders the columns
+ * of A for A^T A) or as given (fill zero): SuiteSparseQR with that order held and rank
+ * tolerance tol (factor_held; Heath's rule, tol < 0: every column live). A column is dead when
+ * its norm after the reflections of the live columns before it is at most tol: the live ones
+ * are those a greedy choice in that order keeps. Then, with bound > 1, swaps (Gu and
+ * Eisenstat's strong rank-revealing QR, SIAM J. Sci. Comput. 17(4), 1996, on the combinations
+ * R11^-1 R12): a dead column k is the combination c of the live ones; where |c_j| > bound for
+ * a live column j of group 1, k is kept instead of j, which multiplies the live columns'
+ * volume (|det R11|) by |c_j|: in a round, the largest such |c_j| of each dead column whose
+ * combination touches no column of a swap made before it in the round (the swaps of a round
+ * then do not change each other's combinations); then the live columns of group 1 before the
+ * dead ones, refactored, until no swap is left (at most 50 rounds). Afterwards no live column
+ * of group 1 takes part in a dead one's combination with a coefficient above bound. order[k]
+ * (0-based): the live columns in the order of elimination, then the dead ones in it;
+ * diagonal[k] |R(k,k)| of live column order[k] (its distance from the span of the live columns
+ * before it), 0 for the dead. Returns the rank, or -1 when CHOLMOD or SPQR failed (status:
+ * CHOLMOD's status). */
+int rollcon_spqr_grouped_rank(int m, int n, const int *ap, const int *ai, const double *ax,
+                              double tol, const int *group, int fill, double bound, int *order,
+                              double *diagonal, int *status)
+{
+    cholmod_common common;
+    cholmod_sparse *at = NULL, *r = NULL, *given = NULL;
+    SuiteSparse_long *perm = NULL, *colamd = NULL, *e = NULL, *pivot = NULL, *rp, rank = -1,
+                     k, j, q, g, pivots, best, round;
+    int *live = NULL, *tier = NULL, *touched = NULL, result = -1, swaps, clean;
+    double *rx, *c = NULL;
+
+    cholmod_l_start(&common);
+    perm = malloc(sizeof(SuiteSparse_long) * (size_t)(n > 0 ? n : 1));
+    colamd = malloc(sizeof(SuiteSparse_long) * (size_t)(n > 0 ? n : 1));
+    pivot = malloc(sizeof(SuiteSparse_long) * (size_t)(n > 0 ? n : 1));
+    live = malloc(sizeof(int) * (size_t)(n > 0 ? n : 1));
+    tier = malloc(sizeof(int) * (size_t)(n > 0 ? n : 1));
+    touched = malloc(sizeof(int) * (size_t)(n > 0 ? n : 1));
+    c = malloc(sizeof(double) * (size_t)(n > 0 ? n : 1));
+    if (perm == NULL || colamd == NULL || pivot == NULL || live == NULL || tier == NULL ||
+        touched == NULL || c == NULL)
+        goto done;
+    for (k = 0; k < n; k++) colamd[k] = k;
+    if (fill && n > 1) {
+        given = permuted_columns(m, n, ap, ai, ax, colamd, &common);
+        if (given != NULL) at = cholmod_l_transpose(given, 0, &common);
+        if (at == NULL || !cholmod_l_colamd(at, NULL, 0, 1, colamd, &common)) goto done;
+    }
+    /* tier 0: group 0; tier 1: the others (after a round of swaps, 1: live, 2: dead) */
+    for (j = 0; j < n; j++) tier[j] = group[j] != 0;
+    for (round = 0;; round++) {
+        q = 0;
+        for (g = 0; g < 3; g++) {
+            for (k = 0; k < n; k++) {
+                if (tier[colamd[k]] == g) perm[q++] = colamd[k];
+            }
+        }
+        if (r != NULL) cholmod_l_free_sparse(&r, &common);
+        if (e != NULL) cholmod_l_free(n, sizeof(SuiteSparse_long), e, &common);
+        rank = factor_held(m, n, ap, ai, ax, perm, tol, live, pivot, &r, &e, &common);
+        if (rank < 0) goto done;
+        if (!(bound > 1.0) || round >= 50) break;
+        /* a round of swaps */
+        swaps = 0;
+        pivots = 0;
+        for (j = 0; j < n; j++) touched[j] = 0;
+        for (k = 0; k < n; k++) {
+            SuiteSparse_long dead = perm[e == NULL ? k : e[k]];
+            if (pivots < rank && pivot[pivots] == k) {
+                pivots++;
+                continue;
+            }
+            if (group[dead] == 0 || touched[dead]) continue;
+            squeezed_combination(r, pivot, pivots, k, c);
+            best = -1;
+            clean = 1;
+            for (j = 0; j < pivots; j++) {
+                SuiteSparse_long column;
+                if (c[j] == 0.0) continue;
+                column = perm[e == NULL ? pivot[j] : e[pivot[j]]];
+                if (touched[column]) clean = 0;
+                if (group[column] != 0 && (best < 0 || fabs(c[j]) > fabs(c[best]))) best = j;
+            }
+            if (!clean || best < 0 || !(fabs(c[best]) > bound)) continue;
+            for (j = 0; j < pivots; j++) {
+                if (c[j] != 0.0) touched[perm[e == NULL ? pivot[j] : e[pivot[j]]]] = 1;
+            }
+            touched[dead] = 1;
+            live[dead] = 1;
+            live[perm[e == NULL ? pivot[best] : e[pivot[best]]]] = 0;
+            swaps++;
+        }
+        if (swaps == 0) break;
+        for (j = 0; j < n; j++) {
+            if (group[j] != 0) tier[j] = live[j] ? 1 : 2;
+        }
+    }
+    /* the live columns in the order of elimination, then the dead ones in it */
+    rp = r->p;
+    rx = r->x;
+    pivots = 0;
+    for (k = 0; k < rank; k++) {
+        q = pivot[k];
+        order[k] = (int)perm[e == NULL ? q : e[q]];
+        diagonal[k] = fabs(rx[rp[q + 1] - 1]);
+    }
+    q = rank;
+    for (k = 0; k < n; k++) {
+        if (pivots < rank && pivot[pivots] == k) {
+            pivots++;
+            continue;
+        }
+        order[q] = (int)perm[e == NULL ? k : e[k]];
+        diagonal[q] = 0.0;
+        q++;
+    }
+    result = q == n ? (int)rank : -1;
+done:
+    *status = common.status;
+    if (r != NULL) cholmod_l_free_sparse(&r, &common);
+    if (e != NULL) cholmod_l_free(n, sizeof(SuiteSparse_long), e, &common);
+    if (at != NULL) cholmod_l_free_sparse(&at, &common);
+    if (given != NULL) cholmod_l_free_sparse(&given, &common);
+    free(perm);
+    free(colamd);
+    free(pivot);
+    free(live);
+    free(tier);
+    free(touched);
+    free(c);
+    cholmod_l_finish(&common);
+    return result;
+}
+
+/* How the last column b of the m x n matrix (ap, ai, ax) lies in the span of the others A:
+ * SuiteSparseQR with the columns in the order given (SPQR_ORDERING_FIXED) and rank tolerance
+ * tol, [A b] = Q R with R squeezed (rollcon_spqr_grouped_rank); x (n - 1) = R11^-1 R(live, b)
+ * over A's live columns (back substitution on R's triangle), 0 on its dead ones: A x is the
+ * projection of b on the span of A, so x is a least-squares solution of A x = b (the only one
+ * when A's columns are all live). Returns the rank of A, or -1 when SPQR failed (status). */
+int rollcon_spqr_combination(int m, int n, const int *ap, const int *ai, const double *ax,
+                             double tol, double *x, int *status)
+{
+    cholmod_common common;
+    cholmod_sparse *a = NULL, *r = NULL;
+    SuiteSparse_long *perm = NULL, *e = NULL, *rp, *ri, *pivot = NULL, rank = -1, k, j, p,
+                     pivots, last;
+    double *rx, *c = NULL;
+    int result = -1;
+
+    cholmod_l_start(&common);
+    perm = malloc(sizeof(SuiteSparse_long) * (size_t)(n > 0 ? n : 1));
+    pivot = malloc(sizeof(SuiteSparse_long) * (size_t)(n > 0 ? n : 1));
+    c = malloc(sizeof(double) * (size_t)(n > 0 ? n : 1));
+    if (perm == NULL || pivot == NULL || c == NULL || n < 1) goto done;
+    for (k = 0; k < n; k++) perm[k] = k;
+    for (k = 0; k + 1 < n; k++) x[k] = 0.0;
+    a = permuted_columns(m, n, ap, ai, ax, perm, &common);
+    if (a == NULL) goto done;
+    rank = SuiteSparseQR_C(SPQR_ORDERING_FIXED, tol, 0, 0, a, NULL, NULL, NULL, NULL, &r, &e,
+                           NULL, NULL, NULL, &common);
+    if (rank < 0 || r == NULL) goto done;
+    rp = r->p;
+    ri = r->i;
+    rx = r->x;
+    /* pivot[i]: the column of R whose diagonal is on row i (the i-th live one); last: b's */
+    pivots = 0;
+    last = -1;
+    for (k = 0; k < n; k++) {
+        if ((e == NULL ? k : e[k]) == n - 1) {
+            last = k;
+            break;
+        }
+        if (rp[k + 1] > rp[k] && ri[rp[k + 1] - 1] == pivots && pivots < rank) {
+            pivot[pivots++] = k;
+        }
+    }
+    if (last < 0) goto done;
+    /* R(:, b) on the pivot rows of the live columns before it, then R11^-1 of it */
+    for (j = 0; j < pivots; j++) c[j] = 0.0;
+    for (p = rp[last]; p < rp[last + 1]; p++) {
+        if (ri[p] < pivots) c[ri[p]] = rx[p];
+    }
+    for (j = pivots - 1; j >= 0; j--) {
+        k = pivot[j];
+        c[j] /= rx[rp[k + 1] - 1];
+        for (p = rp[k]; p < rp[k + 1] - 1; p++) c[ri[p]] -= rx[p] * c[j];
+    }
+    for (j = 0; j < pivots; j++) x[e == NULL ? pivot[j] : e[pivot[j]]] = c[j];
+    result = (int)pivots;
+done:
+    *status = common.status;
+    if (r != NULL) cholmod_l_free_sparse(&r, &common);
+    if (e != NULL) cholmod_l_free(n, sizeof(SuiteSparse_long), e, &common);
+    if (a != NULL) cholmod_l_free_sparse(&a, &common);
+    free(perm);
+    free(pivot);
+    free(c);
+    cholmod_l_finish(&common);
+    return result;
+}

@@ -32,7 +32,7 @@ module rollcon_redundancy
     use rollcon_error, only : error_type
     use rollcon_lapack, only : pivoted_columns
     use rollcon_least_squares, only : minimum_norm_solve, smallest_singular_value
-    use rollcon_sparse_qr, only : sparse_rank
+    use rollcon_sparse_qr, only : sparse_grouped_rank, sparse_combination, sparse_minimum_norm
     use rollcon_constraint_blocks, only : constraint_blocks_type
     use rollcon_constraint_matrix, only : constraint_matrix_type
     use rollcon_saddle_point, only : sparse_schur_rows
@@ -55,6 +55,12 @@ module rollcon_redundancy
     !> times worse conditioned than at the choice, and its multipliers' errors grow with it.
     !> The speed partition's worn_ratio (rollcon_speed_partition), measured there
     real(wp), parameter :: measure_ratio = 0.3_wp
+    !> A large block's sparse choice (choose_sparse_block) keeps a row set aside instead of a
+    !> row kept where the kept one's coefficient in its combination exceeds this: Gu and
+    !> Eisenstat's f of a strong rank-revealing QR (their bounds: the kept rows' singular
+    !> values within a factor sqrt(1 + f^2 r (m - r)) of the best); 2: each swap at least
+    !> doubles the volume of the rows kept, so swaps are few
+    real(wp), parameter :: swap_bound = 2.0_wp
 
     !> The rows set aside, block by block
     type :: redundancy_type
@@ -73,6 +79,10 @@ module rollcon_redundancy
         !> For each row, its distance |R(k,k)| at the first choice (the rank gap; 0 for a row
         !> pivoted past its block's coordinates)
         real(wp), allocatable :: distance(:)
+        !> For each row of a large block (sparse_schur_rows rows or more), its place in the
+        !> column order of the block's last sparse choice (the rows kept first): the order its
+        !> measure's QR holds (margin), 0 on a small block
+        integer, allocatable :: sequence(:)
         !> Choices made since init (the first included), and the choices again that changed
         !> the rows set aside
         integer :: choices = 0, changes = 0
@@ -105,8 +115,9 @@ contains
         self%choices = 0
         self%changes = 0
         if (allocated(self%active)) deallocate(self%active, self%kept, self%kept_position, &
-            & self%measure_chosen, self%redundant, self%distance, self%involved)
+            & self%measure_chosen, self%redundant, self%distance, self%involved, self%sequence)
         allocate(self%active(nc), source=.true.)
+        allocate(self%sequence(nc), source=0)
         allocate(self%involved(nc), source=.false.)
         allocate(self%kept(blocks%count), self%kept_position(blocks%count), source=0)
         allocate(self%measure_chosen(blocks%count), self%distance(nc), source=0.0_wp)
@@ -174,12 +185,12 @@ contains
         changed = .false.
         rows = blocks%block_rows(b)
         m = size(rows)
-        if (m >= sparse_schur_rows .and. (first .or. self%kept(b) == m)) then
-            ! a large block (a long chain: its dense QRs would cost the cube of its rows): its
-            ! rank found sparse first, the dense choice only where rows repeat others
+        if (m >= sparse_schur_rows) then
+            ! a large block (a long chain: its dense QRs would cost the cube of its rows and
+            ! hold rows x coordinates): the choice by SuiteSparseQR
             call choose_sparse_block(self, b, c, mass, blocks, holonomic, first, changed, &
                 & error)
-            if (allocated(error) .or. .not. self%redundant(b)) return
+            return
         end if
         call unit_columns(c, mass, blocks%block_coordinates(b), rows, a, norms)
         position = pack([(k, k = 1, m)], holonomic(rows))
@@ -219,11 +230,15 @@ contains
         end if
     end subroutine choose_block
 
-    !> choose_block for a large block b: the rank of its unit columns (sparse_unit_columns) by
-    !> SuiteSparseQR with rank_tolerance. Every row independent: all kept, each row's distance
-    !> its |R(k,k)| in SPQR's order, redundant(b) false. Else only redundant(b) is set (true),
-    !> for choose_block's dense choice, which decides which rows repeat others as on a small
-    !> block (the same rows, distances and messages).
+    !> choose_block for a large block b (module text): its unit columns held sparse
+    !> (sparse_unit_columns), the choice of SuiteSparseQR with the column order held
+    !> (sparse_grouped_rank, rank_tolerance). The position UCONs' columns first among
+    !> themselves (COLAMD's order): rp kept (first: by the tolerance; else kept_position(b), the
+    !> first rp of those kept then those not); then every column, those rp in front and the
+    !> others after them (COLAMD's order within each): r kept likewise (first: by the
+    !> tolerance; else kept(b)). A column kept is farther than rank_tolerance from the span of
+    !> those kept before it; one not kept lies within it. Distances: |R(k,k)| in that order (0
+    !> for a row set aside); the measure: sparse_measure of the rows kept, in that order.
     subroutine choose_sparse_block(self, b, c, mass, blocks, holonomic, first, changed, error)
         type(redundancy_type), intent(inout) :: self
         integer, intent(in) :: b
@@ -233,43 +248,104 @@ contains
         logical, intent(in) :: holonomic(:), first
         logical, intent(out) :: changed
         type(error_type), allocatable, intent(out) :: error
-        integer, allocatable :: rows(:), column_start(:), row(:), order(:)
-        real(wp), allocatable :: values(:), diagonal(:)
-        logical, allocatable :: before(:)
-        integer :: m, rank
+        integer, allocatable :: rows(:), column_start(:), row(:), order(:), position(:), &
+            & position_start(:), position_row(:), position_order(:)
+        real(wp), allocatable :: values(:), diagonal(:), position_values(:), &
+            & position_diagonal(:)
+        logical, allocatable :: before(:), leading(:)
+        integer :: m, r, rp, k, rank
 
         changed = .false.
         rows = blocks%block_rows(b)
         m = size(rows)
+        position = pack([(k, k = 1, m)], holonomic(rows))
+        allocate(leading(m), source=.false.)
+        rp = 0
+        if (size(position) > 0) then
+            call sparse_unit_columns(c, mass, blocks, rows(position), position_start, &
+                & position_row, position_values)
+            allocate(position_order(size(position)), position_diagonal(size(position)))
+            call sparse_grouped_rank(c%n, position_start, position_row, position_values, &
+                & rank_tolerance, [(.false., k = 1, size(position))], .true., swap_bound, rp, &
+                & position_order, position_diagonal, error)
+            if (allocated(error)) return
+            if (.not. first) rp = self%kept_position(b)
+            leading(position(position_order(:rp))) = .true.
+        end if
         call sparse_unit_columns(c, mass, blocks, rows, column_start, row, values)
         allocate(order(m), diagonal(m))
-        call sparse_rank(c%n, column_start, row, values, rank_tolerance, rank, order, &
-            & diagonal, error)
+        call sparse_grouped_rank(c%n, column_start, row, values, rank_tolerance, leading, &
+            & .true., swap_bound, rank, order, diagonal, error)
         if (allocated(error)) return
-        self%redundant(b) = rank < m
-        if (self%redundant(b)) return
+        r = rank
+        if (.not. first) r = self%kept(b)
         before = self%active(rows)
-        self%active(rows) = .true.
-        changed = any(.not. before)
+        self%active(rows) = .false.
+        self%active(rows(order(:r))) = .true.
+        changed = any(before .neqv. self%active(rows))
+        do k = 1, m
+            self%sequence(rows(order(k))) = k
+        end do
         if (first) then
-            self%kept(b) = m
-            self%kept_position(b) = count(holonomic(rows))
+            self%kept(b) = r
+            self%kept_position(b) = rp
             self%distance(rows(order)) = diagonal
         end if
+        self%redundant(b) = r < m
         self%measure_chosen(b) = 0.0_wp
+        if (self%redundant(b)) then
+            self%measure_chosen(b) = sparse_measure(self, b, c, mass, blocks, error)
+            if (allocated(error)) return
+        end if
     end subroutine choose_sparse_block
+
+    !> The measure of a large block b's rows kept (module text): the smallest |R(k,k)| of
+    !> SuiteSparseQR's QR of their unit columns in the order of its last choice (sequence)
+    !> held. It is at least their smallest singular value (sigma_min <= min |R(k,k)| for any
+    !> QR) and, R's determinant being the product of the singular values, it falls to zero
+    !> where theirs does: where the rows kept lose their rank. The order held makes it a
+    !> continuous function of the state (a watched event function).
+    function sparse_measure(self, b, c, mass, blocks, error) result(value)
+        type(redundancy_type), intent(in) :: self
+        integer, intent(in) :: b
+        type(constraint_matrix_type), intent(in) :: c
+        real(wp), intent(in) :: mass(:, :, :)
+        type(constraint_blocks_type), intent(in) :: blocks
+        type(error_type), allocatable, intent(out) :: error
+        real(wp) :: value
+        integer, allocatable :: rows(:), placed(:), column_start(:), row(:), order(:)
+        real(wp), allocatable :: values(:), diagonal(:)
+        integer :: k, rank
+
+        value = 0.0_wp
+        rows = blocks%block_rows(b)
+        allocate(placed(size(rows)), source=0)
+        do k = 1, size(rows)
+            if (self%active(rows(k))) placed(self%sequence(rows(k))) = rows(k)
+        end do
+        rows = pack(placed, placed > 0)
+        if (size(rows) == 0) return
+        call sparse_unit_columns(c, mass, blocks, rows, column_start, row, values)
+        allocate(order(size(rows)), diagonal(size(rows)))
+        call sparse_grouped_rank(c%n, column_start, row, values, -1.0_wp, &
+            & [(.true., k = 1, size(rows))], .false., 0.0_wp, rank, order, diagonal, error)
+        if (allocated(error)) return
+        value = minval(diagonal)
+    end function sparse_measure
 
     !> The unit columns of unit_columns for the rows k, in compressed columns (1-based), over
     !> the system's coordinates (n rows, c%n): each row's column nonzero over the parts of its
     !> UCON's own coordinates only (C, held by rows over each UCON's own coordinates, is zero on
     !> the block's other parts, and so are unit_columns' entries there), 6 per part, ascending.
-    subroutine sparse_unit_columns(c, mass, blocks, rows, column_start, row, values)
+    subroutine sparse_unit_columns(c, mass, blocks, rows, column_start, row, values, norms)
         type(constraint_matrix_type), intent(in) :: c
         real(wp), intent(in) :: mass(:, :, :)
         type(constraint_blocks_type), intent(in) :: blocks
         integer, intent(in) :: rows(:)
         integer, allocatable, intent(out) :: column_start(:), row(:)
         real(wp), allocatable, intent(out) :: values(:)
+        !> The columns' lengths before they were scaled to unit length
+        real(wp), intent(out), optional :: norms(:)
         real(wp) :: factor(3, 3), rotational(3, 3), length, entries(6)
         integer :: i, k, x0, p, last, i0, e, first_entry
 
@@ -295,6 +371,7 @@ contains
                 e = e + 6
             end do
             length = norm2(values(first_entry:e))
+            if (present(norms)) norms(i) = length
             if (length > 0.0_wp) values(first_entry:e) = values(first_entry:e)/length
             column_start(i + 1) = e + 1
         end do
@@ -328,6 +405,11 @@ contains
         value = 1.0_wp
         if (.not. self%redundant(b)) return
         rows = blocks%block_rows(b)
+        if (size(rows) >= sparse_schur_rows) then
+            value = sparse_measure(self, b, c, mass, blocks, error) &
+                & - measure_ratio*self%measure_chosen(b)
+            return
+        end if
         rows = pack(rows, self%active(rows))
         call unit_columns(c, mass, blocks%block_coordinates(b), rows, a, norms)
         value = smallest_singular_value(a, error) - measure_ratio*self%measure_chosen(b)
@@ -351,6 +433,11 @@ contains
         do b = 1, blocks%count
             if (.not. self%redundant(b)) cycle
             rows = blocks%block_rows(b)
+            if (size(rows) >= sparse_schur_rows) then
+                call sparse_multipliers(b, c, mass, blocks, lambda, error)
+                if (allocated(error)) return
+                cycle
+            end if
             coordinates = blocks%block_coordinates(b)
             ! the constraint force over the block's coordinates (6 per part, ascending), and
             ! L^-1 of it (unit_columns' metric, not scaled to unit length)
@@ -399,6 +486,10 @@ contains
         coefficients = 0.0_wp
         b = blocks%row_block(k)
         rows = blocks%block_rows(b)
+        if (size(rows) >= sparse_schur_rows) then
+            call sparse_dependency(self, k, c, mass, blocks, coefficients, error)
+            return
+        end if
         rows = pack(rows, self%active(rows))
         coordinates = blocks%block_coordinates(b)
         call unit_columns(c, mass, coordinates, rows, a, norms)
@@ -408,6 +499,114 @@ contains
         if (allocated(error)) return
         coefficients(rows) = x
     end subroutine dependency
+
+    !> dependency for a set-aside row k of a large block: the active rows' unit columns in
+    !> the order of the block's last choice (sequence), then k's, held sparse; how k's is the
+    !> combination of theirs by SuiteSparseQR with that order held (sparse_combination). The
+    !> active rows independent, it is the least-squares solution, the only one, the one of
+    !> least norm; no rows x coordinates array.
+    subroutine sparse_dependency(self, k, c, mass, blocks, coefficients, error)
+        type(redundancy_type), intent(in) :: self
+        integer, intent(in) :: k
+        type(constraint_matrix_type), intent(in) :: c
+        real(wp), intent(in) :: mass(:, :, :)
+        type(constraint_blocks_type), intent(in) :: blocks
+        real(wp), intent(out) :: coefficients(:)
+        type(error_type), allocatable, intent(out) :: error
+        integer, allocatable :: rows(:), placed(:), column_start(:), row(:)
+        real(wp), allocatable :: values(:), x(:)
+        integer :: i, rank
+
+        coefficients = 0.0_wp
+        rows = blocks%block_rows(blocks%row_block(k))
+        allocate(placed(size(rows)), source=0)
+        do i = 1, size(rows)
+            if (self%active(rows(i))) placed(self%sequence(rows(i))) = rows(i)
+        end do
+        rows = [pack(placed, placed > 0), k]
+        call sparse_unit_columns(c, mass, blocks, rows, column_start, row, values)
+        allocate(x(size(rows) - 1))
+        call sparse_combination(c%n, column_start, row, values, rank_tolerance, x, rank, error)
+        if (allocated(error)) return
+        coefficients(rows(:size(rows) - 1)) = x
+    end subroutine sparse_dependency
+
+    !> multipliers for a large block b: the least-norm split of the same force in the unit
+    !> metric by SuiteSparseQR (sparse_minimum_norm, rank_tolerance) on the block's unit
+    !> columns held sparse (sparse_unit_columns, by rows over the system's coordinates), with
+    !> the force over them: no rows x coordinates array and no SVD.
+    subroutine sparse_multipliers(b, c, mass, blocks, lambda, error)
+        integer, intent(in) :: b
+        type(constraint_matrix_type), intent(in) :: c
+        real(wp), intent(in) :: mass(:, :, :)
+        type(constraint_blocks_type), intent(in) :: blocks
+        real(wp), intent(inout) :: lambda(:)
+        type(error_type), allocatable, intent(out) :: error
+        integer, allocatable :: rows(:), coordinates(:), column_start(:), row(:), &
+            & row_start(:), column(:)
+        real(wp), allocatable :: values(:), by_rows(:), force(:), scaled(:), norms(:), split(:)
+        real(wp) :: factor(3, 3), rotational(3, 3), entries(6)
+        integer :: i, p, i0, j0
+
+        rows = blocks%block_rows(b)
+        coordinates = blocks%block_coordinates(b)
+        ! the constraint force over the system's coordinates, L^-1 of it on the block's parts
+        allocate(force(c%n), scaled(c%n), source=0.0_wp)
+        do i = 1, size(rows)
+            do p = 1, size(coordinates)/6
+                j0 = coordinates(6*(p - 1) + 1) - 1
+                call c%gather(rows(i), j0 + 1, entries)
+                force(j0 + 1:j0 + 6) = force(j0 + 1:j0 + 6) + lambda(rows(i))*entries
+            end do
+        end do
+        do p = 1, size(coordinates)/6
+            i0 = coordinates(6*(p - 1) + 1) - 1
+            rotational = mass(4:6, 4:6, i0/6 + 1)
+            factor = cholesky_3(rotational)
+            scaled(i0 + 1:i0 + 6) = part_unit(mass(1, 1, i0/6 + 1), factor, &
+                & force(i0 + 1:i0 + 6))
+        end do
+        allocate(norms(size(rows)), split(size(rows)))
+        call sparse_unit_columns(c, mass, blocks, rows, column_start, row, values, norms)
+        call columns_to_rows(c%n, column_start, row, values, row_start, column, by_rows)
+        call sparse_minimum_norm(size(rows), row_start, column, by_rows, scaled, &
+            & rank_tolerance, split, error)
+        if (allocated(error)) return
+        do i = 1, size(rows)
+            lambda(rows(i)) = 0.0_wp
+            if (norms(i) > 0.0_wp) lambda(rows(i)) = split(i)/norms(i)
+        end do
+    end subroutine sparse_multipliers
+
+    !> The m-row matrix given in compressed columns (column_start, row, values; 1-based) by its
+    !> rows (row_start, column, by_rows), each row's columns ascending (a counting sort).
+    pure subroutine columns_to_rows(m, column_start, row, values, row_start, column, by_rows)
+        integer, intent(in) :: m, column_start(:), row(:)
+        real(wp), intent(in) :: values(:)
+        integer, allocatable, intent(out) :: row_start(:), column(:)
+        real(wp), allocatable, intent(out) :: by_rows(:)
+        integer, allocatable :: next(:)
+        integer :: j, e, nnz
+
+        nnz = column_start(size(column_start)) - 1
+        allocate(row_start(m + 1), source=0)
+        allocate(column(nnz), by_rows(nnz))
+        do e = 1, nnz
+            row_start(row(e) + 1) = row_start(row(e) + 1) + 1
+        end do
+        row_start(1) = 1
+        do j = 1, m
+            row_start(j + 1) = row_start(j + 1) + row_start(j)
+        end do
+        next = row_start(:m)
+        do j = 1, size(column_start) - 1
+            do e = column_start(j), column_start(j + 1) - 1
+                column(next(row(e))) = j
+                by_rows(next(row(e))) = values(e)
+                next(row(e)) = next(row(e)) + 1
+            end do
+        end do
+    end subroutine columns_to_rows
 
     !> The columns L^-1 c_k^T over the coordinates (6 per part, ascending) for the rows k of C
     !> (c: by rows over each UCON's own coordinates, zero elsewhere), each of unit length (a
