@@ -4,8 +4,8 @@
 !> ordered to reduce fill (SPQR_ORDERING_DEFAULT), a column whose norm after the reflections of
 !> those before it is at most the tolerance counted dependent (Heath's rule; Davis, ACM TOMS
 !> 38(1), 2011). For matrices whose nonzeros grow as their order and whose dense pivoted QR
-!> (rollcon_lapack's pivoted_columns) would cost the cube of it: the unit rows of a long
-!> chain's joints (rollcon_redundancy). On a matrix given by its rows (each ascending in its
+!> (rollcon_lapack's pivoted_columns) would cost the cube of it (sparse_rank). On a matrix given
+!> by its rows (each ascending in its
 !> columns): the least-squares solution of least norm (sparse_minimum_norm) and which rows take
 !> part in a dependency (sparse_dependent_rows), both through the QR of its transpose: the
 !> initial-conditions analysis on a large model (rollcon_ic_rows). With the columns' order held

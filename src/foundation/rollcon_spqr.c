@@ -1,6 +1,9 @@
 /* SPDX-License-Identifier: MIT */
 /* SuiteSparseQR (SuiteSparse's rank-revealing sparse QR) for rollcon_sparse_qr: the numerical
- * rank of one sparse matrix and, column by column in the order SPQR eliminated them, |R(k,k)|.
+ * rank of one sparse matrix and, column by column in the order SPQR eliminated them, |R(k,k)|;
+ * the least-norm solution and the dependent rows of a matrix given by its rows; the greedy
+ * choice of columns in an order held, with strong rank-revealing swaps, and a last column's
+ * combination of the others (the order held: SPQR_ORDERING_FIXED, R left squeezed).
  * In C so that CHOLMOD's structs (cholmod_common, cholmod_sparse) stay out of Fortran. The
  * matrix comes in compressed columns, 0-based, int indices; CHOLMOD's "long" interface, the
  * one SuiteSparseQR_C takes, is given a copy in its own index type.

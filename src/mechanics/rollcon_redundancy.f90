@@ -14,10 +14,15 @@
 !> pivoted. |R(k,k)| of a unit column is its distance from the span of those chosen before it:
 !> a row whose distance is at most rank_tolerance repeats them and is set aside. A block of
 !> sparse_schur_rows rows or more (a long chain, one block: its dense QRs would cost the cube of
-!> its rows and hold rows x coordinates) has its rank found first by SuiteSparseQR on the same
-!> unit columns held sparse (rollcon_sparse_qr, the same tolerance): all rows independent, all
-!> are kept without a dense QR; else the dense choice above decides which rows repeat others,
-!> as on a small block.
+!> its rows and hold rows x coordinates) is chosen by SuiteSparseQR on the same unit columns
+!> held sparse (rollcon_sparse_qr's sparse_grouped_rank, the same tolerance), with the column
+!> order held: the position UCONs' first among themselves, then every column with those kept
+!> in front, each a greedy choice in that order (COLAMD's within each group) followed by the
+!> swaps of a strong rank-revealing QR (swap_bound), which keep the better-conditioned rows a
+!> pivoted QR would; its distances are |R(k,k)| in that order, its measure, the words'
+!> dependencies and the multipliers' split come from sparse factors (choose_sparse_block,
+!> sparse_measure, sparse_dependency, sparse_multipliers): no rows x coordinates array and no
+!> SVD. The rows it sets aside may differ from the dense choice's, equally valid.
 !>
 !> A set-aside row's multiplier is zero; the constraint force C^T lambda is the same for any
 !> split of it between dependent rows, so the split reported (multipliers) is the one of least
@@ -25,8 +30,10 @@
 !> choice wears when the configuration moves (a cart's redundant row changes with its
 !> heading): its measure, the smallest singular value of the active unit columns (the Schur
 !> complement of the active rows has condition sigma_max^2 / sigma_min^2, sigma_max <=
-!> sqrt(rows)), is watched against its value at the choice (margin), and a block is chosen
-!> again (rechoose) with the same number of rows when it has fallen to measure_ratio of it.
+!> sqrt(rows); on a large block the smallest |R(k,k)| of their sparse QR in the order of the
+!> choice held, at least sigma_min and zero where it is: sparse_measure), is watched against its
+!> value at the choice (margin), and a block is chosen again (rechoose) with the same number of
+!> rows when it has fallen to measure_ratio of it.
 module rollcon_redundancy
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type
@@ -77,7 +84,7 @@ module rollcon_redundancy
         real(wp), allocatable :: measure_chosen(:)
         logical, allocatable :: redundant(:)
         !> For each row, its distance |R(k,k)| at the first choice (the rank gap; 0 for a row
-        !> pivoted past its block's coordinates)
+        !> pivoted past its block's coordinates, and on a large block for a row set aside)
         real(wp), allocatable :: distance(:)
         !> For each row of a large block (sparse_schur_rows rows or more), its place in the
         !> column order of the block's last sparse choice (the rows kept first): the order its
@@ -166,7 +173,8 @@ contains
         self%set_aside = count(.not. self%active)
     end subroutine rechoose
 
-    !> Block b's choice (first: its ranks from the tolerance; else those of the first choice).
+    !> Block b's choice (first: its ranks from the tolerance; else those of the first choice):
+    !> dense below sparse_schur_rows rows, else choose_sparse_block.
     subroutine choose_block(self, b, c, mass, blocks, holonomic, first, changed, error)
         type(redundancy_type), intent(inout) :: self
         integer, intent(in) :: b

@@ -1,7 +1,8 @@
 ! SPDX-License-Identifier: MIT
 !> The rows set aside as redundant (rollcon_redundancy) chosen again when their choice wears:
 !> one event function per block with rows set aside, its margin (the smallest singular value of
-!> the block's active unit rows less measure_ratio of its value at the choice), so that the
+!> the block's active unit rows, on a large block the smallest |R(k,k)| of their sparse QR,
+!> less measure_ratio of its value at the choice), so that the
 !> integrator finds where the choice has worn at whatever step it happens, not only at an
 !> output row. When one fires the run chooses the block's rows again at that state
 !> (restart_problem, with the ranks of the first choice) and starts the integrator again from

@@ -3,13 +3,17 @@
 !> whose answers are known in closed form: the least-norm solution of an underdetermined
 !> system, the least-squares solution of an inconsistent one, the rank as the angle between
 !> unit rows against rcond, and the left null space; and the rank of a sparse matrix by
-!> SuiteSparseQR (rollcon_sparse_qr), the large blocks' of the redundancy choice, and its
-!> least-norm solution and dependent rows, a large model's initial-conditions analysis'.
+!> SuiteSparseQR (rollcon_sparse_qr), the choice of its columns in an order held with the
+!> swaps of a strong rank-revealing QR and a column's combination of the others (the large
+!> blocks' of the redundancy choice), and its least-norm solution and dependent rows, a large
+!> model's initial-conditions analysis'.
 module test_least_squares
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type
+    use rollcon_text, only : to_text
     use rollcon_least_squares, only : minimum_norm_solve, left_null_space
-    use rollcon_sparse_qr, only : sparse_rank, sparse_minimum_norm, sparse_dependent_rows
+    use rollcon_sparse_qr, only : sparse_rank, sparse_minimum_norm, sparse_dependent_rows, &
+        & sparse_grouped_rank, sparse_combination
     use rollcon_testing, only : unittest_type, new_unittest, check
     implicit none
     private
@@ -36,6 +40,7 @@ contains
             & new_unittest("left-null-space", test_left_null), &
             & new_unittest("empty-matrices", test_empty), &
             & new_unittest("sparse-rank-from-the-angle-of-columns", test_sparse_rank), &
+            & new_unittest("sparse-choice-held-order-and-swaps", test_sparse_choice), &
             & new_unittest("sparse-least-norm", test_sparse_least_norm), &
             & new_unittest("sparse-dependent-rows", test_sparse_dependent)]
     end subroutine collect_least_squares
@@ -197,6 +202,56 @@ contains
         call check(error, distance, [1.0_wp, sin(apart_angle)], &
             & "|R(k,k)|: 1, then the distance sin(a)", abs_tol=tol_svd)
     end subroutine test_sparse_rank
+
+    !> The sparse choice with the order held (sparse_grouped_rank) on a = e1, b = (e1 + t e2)/s
+    !> (s = sqrt(1 + t^2), t = 1e-3) and c = e2, in that order: without swaps the greedy keeps a
+    !> and b (distances 1 and t/s) and sets c aside, c = (s b - a)/t; with swaps (bound 2) c is
+    !> kept instead of b, its coefficient s/t the largest (distances 1 and 1). b leading
+    !> (held first): b, a kept greedily, a's coefficient -1/t, so c is kept instead of a
+    !> (distances 1 and 1/s, c's from b). sparse_combination of c over (a, b): (-1/t, s/t).
+    !> Each within a few roundings of its closed form, amplified by 1/t in the combination
+    !> (tol_svd/t).
+    subroutine test_sparse_choice(error)
+        type(error_type), allocatable, intent(out) :: error
+        real(wp), parameter :: t = 1.0e-3_wp
+        integer, parameter :: column_start(4) = [1, 2, 4, 5], row(4) = [1, 1, 2, 2]
+        real(wp) :: s, values(4), diagonal(3), x(2)
+        integer :: rank, order(3)
+
+        s = sqrt(1.0_wp + t**2)
+        values = [1.0_wp, 1.0_wp/s, t/s, 1.0_wp]
+        call sparse_grouped_rank(2, column_start, row, values, rcond, [.false., .false., &
+            & .false.], .false., 0.0_wp, rank, order, diagonal, error)
+        if (allocated(error)) return
+        call check(error, rank == 2 .and. all(order == [1, 2, 3]), "greedy: a, b kept, c " &
+            & // "set aside: rank " // to_text(rank))
+        if (allocated(error)) return
+        call check(error, diagonal, [1.0_wp, t/s, 0.0_wp], "greedy: distances", abs_tol=tol_svd)
+        if (allocated(error)) return
+        call sparse_grouped_rank(2, column_start, row, values, rcond, [.false., .false., &
+            & .false.], .false., 2.0_wp, rank, order, diagonal, error)
+        if (allocated(error)) return
+        call check(error, rank == 2 .and. all(order == [1, 3, 2]), "swapped: a, c kept, b " &
+            & // "set aside")
+        if (allocated(error)) return
+        call check(error, diagonal, [1.0_wp, 1.0_wp, 0.0_wp], "swapped: distances", &
+            & abs_tol=tol_svd)
+        if (allocated(error)) return
+        call sparse_grouped_rank(2, column_start, row, values, rcond, [.false., .true., &
+            & .false.], .false., 2.0_wp, rank, order, diagonal, error)
+        if (allocated(error)) return
+        call check(error, rank == 2 .and. all(order == [2, 3, 1]), "b leading: b, c kept, a " &
+            & // "set aside")
+        if (allocated(error)) return
+        call check(error, diagonal, [1.0_wp, 1.0_wp/s, 0.0_wp], "b leading: distances", &
+            & abs_tol=tol_svd)
+        if (allocated(error)) return
+        call sparse_combination(2, column_start, row, values, rcond, x, rank, error)
+        if (allocated(error)) return
+        call check(error, rank, 2, "combination: a and b kept")
+        if (allocated(error)) return
+        call check(error, x, [-1.0_wp/t, s/t], "c over a and b", abs_tol=tol_svd/t)
+    end subroutine test_sparse_choice
 
     !> SuiteSparseQR's least-norm solution from rows: x1 + x2 = 1, x2 + x3 = 2 gives (0, 1, 1)
     !> as the SVD's (test_underdetermined); with the row x1 + 2 x2 + x3 = 3 added, their sum
