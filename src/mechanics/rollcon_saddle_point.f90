@@ -92,7 +92,8 @@ module rollcon_saddle_point
         !> Factorisations done since init: one per saddle-point solve of a new matrix
         integer :: factorisations = 0
         !> The constraints' blocks, when given to init (then the factorisations of all nc rows
-        !> go block by block; those of fewer rows, the projection's, stay dense)
+        !> go block by block; without them, or with fewer rows, the dense path: the tests'
+        !> reference)
         logical :: blocked = .false.
         type(constraint_blocks_type) :: blocks
         !> Each block's LU factors of S, packed (offset of block b: schur_start(b)), and the
