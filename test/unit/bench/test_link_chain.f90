@@ -6,7 +6,8 @@
 !> (dae_sparse_jacobian) is the dense one's bit for bit; IDA with KLU moves the chain and the disks
 !> as the dense matrix does; linear_solver = 'auto' picks KLU on large sparse matrices only;
 !> the saddle-point system's Schur complement goes sparse (KLU) on a long chain's block only,
-!> with the dense path's accelerations; `rollcon bench` prints the per-part scaling table.
+!> with the dense path's accelerations; `rollcon bench` prints the per-part scaling table; the
+!> memory a run takes per link is flat in the chain's length.
 module test_link_chain
     use, intrinsic :: iso_c_binding, only : c_associated
     use, intrinsic :: iso_fortran_env, only : int64
@@ -19,6 +20,7 @@ module test_link_chain
     use rollcon_run_job, only : run_job, job_result_type
     use rollcon_simulation, only : history_type, status_completed
     use rollcon_link_chain, only : link_chain_dataset
+    use rollcon_bench_scaling, only : scaling_row_type, measure_scaling
     use rollcon_disk_fleet, only : disk_fleet_dataset
     use rollcon_constraint_blocks, only : constraint_blocks_type
     use rollcon_problem, only : problem_type
@@ -56,7 +58,8 @@ contains
             & new_unittest("pattern-holds-the-jacobian", test_pattern), &
             & new_unittest("ida-klu-same-motion", test_klu_motion), &
             & new_unittest("auto-solver-choice", test_auto), &
-            & new_unittest("bench-prints-scaling-table", test_bench_table)]
+            & new_unittest("bench-prints-scaling-table", test_bench_table), &
+            & new_unittest("memory-per-link-flat", test_memory_flat)]
     end subroutine collect_link_chain
 
     !> Write the dataset text as name.adm, run it, keep its history.
@@ -476,5 +479,33 @@ contains
 
         same_bits = transfer(a, 1_int64) == transfer(b, 1_int64)
     end function same_bits
+
+    !> What a run of the chain takes per link is flat (`bench scaling`'s measure: the run's peak
+    !> resident memory over what the process held before it, per link, the heap's free memory
+    !> returned first), on the default (IDA, KLU at this size) from 128 to 512 links. Measured
+    !> (release build, 2026-11-30): 97 kB a link at 128, 98 at 256, 83 at 640; a storage of
+    !> 30 N^2 reals (C when it was dense, nc x n) adds 240 N bytes a link, 31 kB at 128 and
+    !> 123 at 512, so 512's figure would be 1.7 times 128's; any array of nc x n or n x n
+    !> grows at least so. 1.3 times lets the per-run overhead and the allocator's rounding vary
+    !> and catches such a term. Memory does not depend on the machine's load.
+    subroutine test_memory_flat(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(scaling_row_type), allocatable :: rows(:)
+
+        call make_folders(folder // "/memory", error)
+        if (allocated(error)) return
+        call measure_scaling(folder // "/memory", [128, 512], 0.2_wp, rows, error, &
+            & only=[character(len=30) :: "chain-default"])
+        if (allocated(error)) return
+        call check(error, size(rows) == 2, "two runs measured, got " // to_text(size(rows)))
+        if (allocated(error)) return
+        call check(error, rows(1)%memory_per_part > 0.0_wp .and. rows(2)%memory_per_part > &
+            & 0.0_wp .and. rows(2)%memory_per_part <= 1.3_wp*rows(1)%memory_per_part, &
+            & "memory per link " // to_text(rows(1)%memory_per_part) // " kB at 128 links, " &
+            & // to_text(rows(2)%memory_per_part) // " kB at 512")
+        if (allocated(error)) return
+        call check(error, rows(1)%status == "completed" .and. rows(2)%status == "completed", &
+            & "the chains' runs: " // rows(1)%status // "; " // rows(2)%status)
+    end subroutine test_memory_flat
 
 end module test_link_chain
