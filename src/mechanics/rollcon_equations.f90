@@ -1105,20 +1105,8 @@ contains
         x1 = c%start(t(1))
         x2 = c%start(t(2))
         do j = 1, size(y)
-            c1 = 0.0_wp
-            if (x1 < c%start(t(1) + 1)) then
-                if (c%column(x1) == j) then
-                    c1 = c%value(x1)
-                    x1 = x1 + 1
-                end if
-            end if
-            c2 = 0.0_wp
-            if (x2 < c%start(t(2) + 1)) then
-                if (c%column(x2) == j) then
-                    c2 = c%value(x2)
-                    x2 = x2 + 1
-                end if
-            end if
+            call c%entry_along(t(1), j, x1, c1)
+            call c%entry_along(t(2), j, x2, c2)
             if (present(f)) then
                 y(j) = y(j) + f*(s(1)*c1 + s(2)*c2)
             else

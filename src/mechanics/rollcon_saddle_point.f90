@@ -726,7 +726,7 @@ contains
                 do col = 1, m
                     do i = 1, rows_b
                         k = blocks%rows(blocks%row_start(b) + i - 1)
-                        self%gathered(i, col) = r2(k, col) - block_dot(c, blocks, k, &
+                        self%gathered(i, col) = r2(k, col) - c%row_dot(k, &
                             & r1(:, col))
                         if (self%masked) then
                             if (.not. self%active(k)) self%gathered(i, col) = 0.0_wp
@@ -912,23 +912,6 @@ contains
             end do
         end do
     end subroutine scatter_rows
-
-    !> Row k of C times v (n) over UCON k's own coordinates (the blocks' ucon_coordinates,
-    !> ascending, c's pattern): the dense dot product's terms that are not exact zeros, in its
-    !> order.
-    pure function block_dot(c, blocks, k, v) result(total)
-        type(constraint_matrix_type), intent(in) :: c
-        type(constraint_blocks_type), intent(in) :: blocks
-        integer, intent(in) :: k
-        real(wp), intent(in) :: v(:)
-        real(wp) :: total
-        integer :: x
-
-        total = 0.0_wp
-        do x = blocks%ucon_start(k), blocks%ucon_start(k + 1) - 1
-            total = total + c%value(x)*v(blocks%ucon_coordinates(x))
-        end do
-    end function block_dot
 
     !> x := M^-1 x over part p's rows, for one column x (n).
     subroutine inverse_mass_of_part(self, p, x, error)

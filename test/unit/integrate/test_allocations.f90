@@ -313,11 +313,6 @@ contains
         call cvode%destroy()
     end subroutine test_independent_speeds
 
-    !> The powers a dissipating coin's three forms integrate with their state (friction,
-    !> rolling resistance, air: the one routine of rollcon_problem, state_powers) allocate
-    !> nothing per call, and the three forms give the same powers at the same (q, u): the ODE
-    !> and DAE forms read it from y exactly, the independent speeds solve the dependent rates
-    !> from y = (q, v) to round-off of a solve of condition ~1e3 (tol_reaction's reasoning).
     !> The constraint rows and multipliers SYSFNC's force measures read, set at every
     !> evaluation of the algebraic loop's iterates and of IDA's residuals
     !> (set_system_constraint_forces): after the first call, a call with the same rows copies
@@ -359,6 +354,11 @@ contains
             & "the multipliers kept are not the last ones given")
     end subroutine test_constraint_forces
 
+    !> The powers a dissipating coin's three forms integrate with their state (friction,
+    !> rolling resistance, air: the one routine of rollcon_problem, state_powers) allocate
+    !> nothing per call, and the three forms give the same powers at the same (q, u): the ODE
+    !> and DAE forms read it from y exactly, the independent speeds solve the dependent rates
+    !> from y = (q, v) to round-off of a solve of condition ~1e3 (tol_reaction's reasoning).
     subroutine test_powers(error)
         type(error_type), allocatable, intent(out) :: error
         type(problem_type), target :: problem
