@@ -7,7 +7,7 @@
 !> lift-off event function no saddle-point solve under CVODE, a time-free UCON no time-partial
 !> calls, a threaded BLAS no second thread.
 module test_allocations
-    use, intrinsic :: iso_c_binding, only : c_int, c_long, c_ptr, c_null_ptr, c_funptr, c_char, &
+    use, intrinsic :: iso_c_binding, only : c_int, c_long, c_long_long, c_ptr, c_null_ptr, c_funptr, c_char, &
         & c_null_char, c_associated, c_f_procpointer
     use rollcon_lapack, only : use_one_blas_thread
     use rollcon_kinds, only : wp
@@ -20,6 +20,7 @@ module test_allocations
     use rollcon_run_settings, only : method_adams, drift_baumgarte, drift_projection
     use rollcon_dae, only : dae_size, dae_residual, dae_jacobian
     use rollcon_cvode, only : cvode_integrator_type
+    use rollcon_integrator, only : integrator_statistics_type
     use rollcon_ida, only : ida_integrator_type
     use rollcon_contact_watch, only : contact_watch_type
     use rollcon_model, only : model_type, setup_model
@@ -30,6 +31,12 @@ module test_allocations
     use rollcon_disk_scene, only : build_disk_problem
     use rollcon_disk_reference, only : rolling_disk_ucosub
     use rollcon_gen_turntable_disk, only : turntable_disk_ucosub, turntable_disk_par
+    use rollcon_output_files, only : write_text_file, make_folders
+    use rollcon_disk_fleet, only : disk_fleet_dataset
+    use rollcon_adm_model, only : adm_model_type
+    use rollcon_adm_reader, only : read_adm
+    use rollcon_adm_build, only : build_adm_problem
+    use rollcon_ucosub_contract, only : ucosub_interface
     use rollcon_testing, only : unittest_type, new_unittest, check, skip_test
     implicit none
     private
@@ -48,6 +55,16 @@ module test_allocations
             import :: c_int
             integer(c_int) :: counting
         end function malloc_counting
+
+        !> The largest single request to malloc, calloc or realloc since the last reset [bytes]
+        function malloc_largest() result(bytes) bind(c, name="rollcon_malloc_largest")
+            import :: c_long_long
+            integer(c_long_long) :: bytes
+        end function malloc_largest
+
+        !> Forget the largest request so far
+        subroutine malloc_reset_largest() bind(c, name="rollcon_malloc_reset_largest")
+        end subroutine malloc_reset_largest
 
         !> A symbol of the loaded libraries (POSIX; c_null_ptr is glibc's RTLD_DEFAULT)
         function dlsym(handle, symbol) result(address) bind(c, name="dlsym")
@@ -83,6 +100,7 @@ contains
             & new_unittest("cvode-run-allocates-nothing", test_cvode_run), &
             & new_unittest("ida-run-allocates-nothing", test_ida_run), &
             & new_unittest("independent-speeds-allocate-nothing", test_independent_speeds), &
+            & new_unittest("cvode-sparse-holds-no-square", test_cvode_sparse_memory), &
             & new_unittest("dissipated-powers-allocate-nothing", test_powers), &
             & new_unittest("liftoff-root-without-solve", test_liftoff_root), &
             & new_unittest("event-rates-only-when-used", test_event_rates), &
@@ -165,8 +183,15 @@ contains
         y = [q, u]
         m = dae_size(problem%eq)
         allocate(yd(m), ypd(m), r(m), jd(m, m), source=0.0_wp)
-        ! one call of each first: anything allocated on a first use only is not counted
+        ! one call of each first: anything allocated on a first use only is not counted (the
+        ! Jacobian's right-hand sides are sized by its first evaluation, rollcon_ode_form)
         ierr = ode%ode_rhs(0.0_wp, y, ydot)
+        call problem%eq%ode_jacobian(0.0_wp, q, u, problem%settings%baumgarte(), jac, failure)
+        if (.not. allocated(failure)) call problem%eq%project(0.0_wp, q, u, dq, du, failure)
+        if (allocated(failure)) then
+            call move_alloc(failure, error)
+            return
+        end if
         yd(:12) = y
         yd(13:) = problem%lambda
         ypd(:12) = ydot
@@ -310,6 +335,76 @@ contains
             & // "speeds from t = 0.1 s to " // to_text(t) // " s")
         call cvode%destroy()
     end subroutine test_independent_speeds
+
+    !> CVODE's sparse Newton matrix (KLU) on the ODE form of 64 independent disks (384
+    !> coordinates, 768 states, 64 blocks of 12) holds nothing that grows as the model's
+    !> square: its Newton matrix formed block by block (rollcon_ode_form, the equations'
+    !> ode_jacobian_blocks), no single request to the allocator while CVODE starts and steps
+    !> reaches the bound below (an n_y x n_y array of reals is 4.7 MB, the n x 2n right-hand
+    !> sides of the dense Jacobian 2.4 MB); and its steps allocate nothing.
+    subroutine test_cvode_sparse_memory(error)
+        type(error_type), allocatable, intent(out) :: error
+        integer, parameter :: disks = 64
+        !> An eighth of an n_y x n_y array of reals (n_y = 12 x 64 = 768: 590 kB). A run by
+        !> blocks asks for at most 230 kB at once, linear in the model (115 kB with 32 disks,
+        !> measured 2026-11-30: SUNDIALS' and KLU's arrays over the states and the blocks'
+        !> entries); the dense Jacobian's n x 2n right-hand sides (2.4 MB) are 4 times the
+        !> bound, the n_y x n_y matrix (4.7 MB) 8 times
+        integer(c_long_long), parameter :: bound = 8_c_long_long*(12_c_long_long*disks)**2/8
+        character(len=*), parameter :: folder = "build/rollcon-test/allocations"
+        type(problem_type), target :: problem
+        type(ode_form_type), target :: ode
+        type(cvode_integrator_type), target :: cvode
+        type(adm_model_type) :: adm
+        procedure(ucosub_interface), pointer :: disk
+        real(wp), allocatable :: q0(:), u0(:), y(:), yp(:)
+        real(wp) :: t
+        integer(c_long_long) :: largest
+        integer(c_long) :: start, calls
+        type(integrator_statistics_type) :: counts
+        integer :: k, root
+
+        if (malloc_counting() == 0) then
+            call skip_test(error, "malloc is not interposed on this C library")
+            return
+        end if
+        call make_folders(folder, error)
+        if (allocated(error)) return
+        call write_text_file(folder // "/fleet_klu.adm", disk_fleet_dataset(disks, 0.5_wp, &
+            & 1.0_wp, 0.05_wp, "FORMULATION=CVODE, METHOD=ADAMS, DRIFT=BAUMGARTE, RTOL=1e-8, " &
+            & // "ATOL=1e-10, SOLVER=SPARSE"), error)
+        if (allocated(error)) return
+        call read_adm(folder // "/fleet_klu.adm", adm, error)
+        if (allocated(error)) return
+        disk => rolling_disk_ucosub
+        call build_adm_problem(adm, disk, problem, q0, u0, error)
+        if (.not. allocated(error)) call problem%prepare(error)
+        if (allocated(error)) return
+        call ode%init(problem)
+        y = [q0, u0]
+        allocate(yp(size(y)), source=0.0_wp)
+        call malloc_reset_largest()
+        call cvode%start(ode, problem%settings, 0.0_wp, y, yp, 1.0_wp, error)
+        if (.not. allocated(error)) call cvode%advance(0.05_wp, 1.0_wp, t, y, yp, root, error)
+        largest = malloc_largest()
+        start = malloc_count()
+        do k = 2, 4
+            if (allocated(error) .or. root /= 0) exit
+            call cvode%advance(0.05_wp*k, 1.0_wp, t, y, yp, root, error)
+        end do
+        calls = malloc_count() - start
+        if (allocated(error)) return
+        counts = cvode%statistics()
+        call check(error, counts%sparse .and. counts%jacobians > 0, "the run formed no sparse " &
+            & // "Newton matrix")
+        if (.not. allocated(error)) call check(error, largest < bound, "CVODE with KLU on " &
+            & // to_text(disks) // " disks asked for " // to_text(int(largest)) &
+            & // " bytes at once, bound " // to_text(int(bound)))
+        if (.not. allocated(error)) call check_none(error, calls, "CVODE Adams with KLU on " &
+            & // to_text(disks) // " disks from t = 0.05 s to " // to_text(t) // " s")
+        call cvode%destroy()
+        call problem%release()
+    end subroutine test_cvode_sparse_memory
 
     !> The powers a dissipating coin's three forms integrate with their state (friction,
     !> rolling resistance, air: the one routine of rollcon_problem, state_powers) allocate
