@@ -7,8 +7,8 @@
 !> lift-off event function no saddle-point solve under CVODE, a time-free UCON no time-partial
 !> calls, a threaded BLAS no second thread.
 module test_allocations
-    use, intrinsic :: iso_c_binding, only : c_int, c_long, c_long_long, c_ptr, c_null_ptr, c_funptr, c_char, &
-        & c_null_char, c_associated, c_f_procpointer
+    use, intrinsic :: iso_c_binding, only : c_int, c_long, c_long_long, c_ptr, c_null_ptr, &
+        & c_funptr, c_char, c_null_char, c_associated, c_f_procpointer
     use rollcon_lapack, only : use_one_blas_thread
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type

@@ -2,9 +2,9 @@
 /* Counts the calls to malloc, calloc and realloc of the whole test program, the bytes they
  * ask for and the largest single request, for the allocation tests (test_allocations.f90,
  * test_adm_text.f90): defining these symbols in the executable interposes them for every
- * caller (gfortran's ALLOCATE, array temporaries, libgfortran, SUNDIALS). glibc exports the real allocator as __libc_malloc &
- * co.; elsewhere nothing is interposed and rollcon_malloc_counting() says so, and the tests
- * skip. */
+ * caller (gfortran's ALLOCATE, array temporaries, libgfortran, SUNDIALS). glibc exports the
+ * real allocator as __libc_malloc & co.; elsewhere nothing is interposed and
+ * rollcon_malloc_counting() says so, and the tests skip. */
 #include <stdlib.h>
 
 static long calls = 0;
