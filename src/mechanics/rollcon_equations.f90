@@ -95,6 +95,8 @@ module rollcon_equations
         procedure :: accelerations
         procedure :: ode_jacobian
         procedure :: ode_jacobian_blocks
+        procedure :: prepare_jacobian_blocks
+        procedure :: jacobian_block
         procedure :: size_ode_form
         procedure :: project
         procedure :: energy
@@ -1299,30 +1301,20 @@ contains
         !> The entries, in the pattern's places
         real(wp), intent(out) :: values(:)
         type(error_type), allocatable, intent(out) :: error
-        integer :: n, j, c, nb, listed, m, v0
+        integer :: n, j, c, nb, listed, v0
 
         n = self%n
-        if (self%reads_loop()) then
-            call fatal_error(error, "the ODE form's Jacobian by blocks does not serve an " &
-                & // "algebraic loop (a force reading accelerations or reactions)", stat_ucon)
-            return
-        end if
-        call size_blocks(self, starts, rows, error)
+        call check_ode_pattern(self, starts, rows, error)
+        if (allocated(error)) return
+        call self%prepare_jacobian_blocks(time, q, u, baumgarte, error)
         if (allocated(error)) return
         associate (w => self%work)
-            call self%accelerations(time, q, u, baumgarte, w%a, w%lambda, error, second=.true.)
-            if (allocated(error)) return
-            call self%momentum_jacobian(q, u, w%a, w%lambda, time)
-            call take_user_force_error(error)
-            if (allocated(error)) return
             ! each block at its first coordinate (its column's first row)
             do j = 1, n
                 if (rows(starts(j) + 1) + 1 /= j) cycle
                 nb = (starts(j + 1) - starts(j))/2
-                call place_block(self, j, rows(starts(j) + 1:starts(j) + nb), listed, m)
-                call block_right_hand_sides(self, j, nb, listed, u, w%a, baumgarte)
-                call self%saddle%solve_local(self%cm, w%block_coordinates(:nb), w%block_place, &
-                    & w%block_list(:listed), w%block_top, w%block_bottom, 2*nb, error)
+                call self%jacobian_block(rows(starts(j) + 1:starts(j) + nb), u, baumgarte, &
+                    & listed, error)
                 if (allocated(error)) return
                 ! q' = u: the identity in the rates' columns; a's rows the solution
                 do c = 1, nb
@@ -1338,63 +1330,42 @@ contains
         end associate
     end subroutine ode_jacobian_blocks
 
-    !> The pattern of ode_jacobian_blocks checked (each coordinate's column and its rate's: the
-    !> same rows, the block's coordinates then their rates, the coordinate among them) and the
-    !> work arrays sized: by a first use, and again only for a larger block.
-    subroutine size_blocks(self, starts, rows, error)
-        type(equations_type), intent(inout) :: self
+    !> The pattern of ode_jacobian_blocks checked: each coordinate's column and its rate's hold
+    !> the same rows, the block's coordinates (whole parts) then their rates, the coordinate
+    !> among them.
+    subroutine check_ode_pattern(self, starts, rows, error)
+        type(equations_type), intent(in) :: self
         integer, intent(in) :: starts(:), rows(:)
         type(error_type), allocatable, intent(out) :: error
-        integer :: n, j, i, b, nb, most, most_rows, listed, m
+        integer :: n, j, i, nb
 
         n = self%n
-        associate (w => self%work, bl => self%blocks)
-            if (.not. allocated(w%coordinate_block)) then
-                allocate(w%coordinate_block(n), w%block_place(n), w%block_mark(n), &
-                    & w%block_coordinates(n), source=0)
-                allocate(w%block_list(max(bl%count, 1)), source=0)
-                allocate(w%block_seen(max(bl%count, 1)), source=.false.)
-                do b = 1, bl%count
-                    w%coordinate_block(bl%coordinates(bl%coordinate_start(b): &
-                        & bl%coordinate_start(b + 1) - 1)) = b
-                end do
-            end if
-            if (size(starts) /= 2*n + 1) then
-                call fatal_error(error, "the ODE form's Jacobian by blocks: a pattern of " &
-                    & // to_text(size(starts) - 1) // " columns for " // to_text(2*n) &
-                    & // " states", stat_ucon)
+        if (size(starts) /= 2*n + 1) then
+            call fatal_error(error, "the ODE form's Jacobian by blocks: a pattern of " &
+                & // to_text(size(starts) - 1) // " columns for " // to_text(2*n) &
+                & // " states", stat_ucon)
+            return
+        end if
+        do j = 1, n
+            nb = (starts(j + 1) - starts(j))/2
+            if (nb < 1 .or. 2*nb /= starts(j + 1) - starts(j) .or. starts(n + j + 1) &
+                    & - starts(n + j) /= 2*nb .or. mod(nb, 6) /= 0) then
+                call pattern_error()
                 return
             end if
-            most = 0
-            most_rows = 0
-            do j = 1, n
-                nb = (starts(j + 1) - starts(j))/2
-                if (nb < 1 .or. 2*nb /= starts(j + 1) - starts(j) .or. starts(n + j + 1) &
-                        & - starts(n + j) /= 2*nb .or. mod(nb, 6) /= 0) then
+            if (.not. any(rows(starts(j) + 1:starts(j) + nb) == j - 1)) then
+                call pattern_error()
+                return
+            end if
+            do i = 1, nb
+                if (rows(starts(j) + nb + i) /= rows(starts(j) + i) + n .or. &
+                        & rows(starts(n + j) + i) /= rows(starts(j) + i) .or. &
+                        & rows(starts(n + j) + nb + i) /= rows(starts(j) + nb + i)) then
                     call pattern_error()
                     return
                 end if
-                do i = 1, nb
-                    if (rows(starts(j) + nb + i) /= rows(starts(j) + i) + n .or. &
-                            & rows(starts(n + j) + i) /= rows(starts(j) + i) .or. &
-                            & rows(starts(n + j) + nb + i) /= rows(starts(j) + nb + i)) then
-                        call pattern_error()
-                        return
-                    end if
-                end do
-                if (rows(starts(j) + 1) + 1 /= j) cycle
-                most = max(most, nb)
-                call place_block(self, j, rows(starts(j) + 1:starts(j) + nb), listed, m)
-                most_rows = max(most_rows, m)
             end do
-            if (allocated(w%block_top)) then
-                if (size(w%block_top, 1) >= most .and. size(w%block_bottom, 1) >= most_rows) &
-                    & return
-                deallocate(w%block_top, w%block_bottom)
-            end if
-            allocate(w%block_top(most, 2*most), w%block_bottom(max(most_rows, 1), 2*most), &
-                & source=0.0_wp)
-        end associate
+        end do
 
     contains
 
@@ -1403,12 +1374,82 @@ contains
                 & // "'s pattern is not its coordinates' block and their rates", stat_ucon)
         end subroutine pattern_error
 
-    end subroutine size_blocks
+    end subroutine check_ode_pattern
+
+    !> The first step of the ODE form's Jacobian by blocks (ode_jacobian_blocks, and the
+    !> independent speeds' by blocks): the accelerations and multipliers at (t, q, u), the
+    !> saddle point factored by blocks, the momentum rows' partials; then jacobian_block for
+    !> each block. Not for the algebraic loop (reads_loop: its (n + nc)-square matrix is dense
+    !> anyway): an error there.
+    subroutine prepare_jacobian_blocks(self, time, q, u, baumgarte, error)
+        class(equations_type), intent(inout) :: self
+        real(wp), intent(in) :: time, q(:), u(:)
+        !> Baumgarte rate in effect [1/s], 0 without Baumgarte terms
+        real(wp), intent(in) :: baumgarte
+        type(error_type), allocatable, intent(out) :: error
+        integer :: b
+
+        if (self%reads_loop()) then
+            call fatal_error(error, "the ODE form's Jacobian by blocks does not serve an " &
+                & // "algebraic loop (a force reading accelerations or reactions)", stat_ucon)
+            return
+        end if
+        associate (w => self%work, bl => self%blocks)
+            if (.not. allocated(w%coordinate_block)) then
+                allocate(w%coordinate_block(self%n), w%block_place(self%n), &
+                    & w%block_mark(self%n), w%block_coordinates(self%n), source=0)
+                allocate(w%block_list(max(bl%count, 1)), source=0)
+                allocate(w%block_seen(max(bl%count, 1)), source=.false.)
+                do b = 1, bl%count
+                    w%coordinate_block(bl%coordinates(bl%coordinate_start(b): &
+                        & bl%coordinate_start(b + 1) - 1)) = b
+                end do
+            end if
+            call self%accelerations(time, q, u, baumgarte, w%a, w%lambda, error, second=.true.)
+            if (allocated(error)) return
+            call self%momentum_jacobian(q, u, w%a, w%lambda, time)
+            call take_user_force_error(error)
+        end associate
+    end subroutine prepare_jacobian_blocks
+
+    !> One block of ode_jacobian's matrix, after prepare_jacobian_blocks: the block of the
+    !> coordinates given 0-based (ascending, whole parts; a block of coordinate_blocks: every
+    !> coordinate its entries reach) placed (work%block_coordinates(:nb), block_place, its
+    !> constraints' blocks block_list(:listed), ascending), its right-hand sides over its own
+    !> columns (block_right_hand_sides) solved by the saddle point over its rows and parts
+    !> (solve_local): work%block_top(:nb, :nb) is da/dq and (:nb, nb + 1 : 2 nb) da/du over
+    !> the block, ode_jacobian's entries bit for bit. The work arrays grow to a larger block
+    !> (allocated by the first evaluations only).
+    subroutine jacobian_block(self, coordinates, u, baumgarte, listed, error)
+        class(equations_type), intent(inout) :: self
+        integer, intent(in) :: coordinates(:)
+        real(wp), intent(in) :: u(:)
+        !> Baumgarte rate in effect [1/s], 0 without Baumgarte terms
+        real(wp), intent(in) :: baumgarte
+        integer, intent(out) :: listed
+        type(error_type), allocatable, intent(out) :: error
+        integer :: nb, m, first
+
+        nb = size(coordinates)
+        first = coordinates(1) + 1
+        call place_block(self, first, coordinates, listed, m)
+        associate (w => self%work)
+            if (allocated(w%block_top)) then
+                if (size(w%block_top, 1) < nb .or. size(w%block_bottom, 1) < max(m, 1)) &
+                    & deallocate(w%block_top, w%block_bottom)
+            end if
+            if (.not. allocated(w%block_top)) allocate(w%block_top(nb, 2*nb), &
+                & w%block_bottom(max(m, 1), 2*nb), source=0.0_wp)
+            call block_right_hand_sides(self, first, nb, listed, u, w%a, baumgarte)
+            call self%saddle%solve_local(self%cm, w%block_coordinates(:nb), w%block_place, &
+                & w%block_list(:listed), w%block_top, w%block_bottom, 2*nb, error)
+        end associate
+    end subroutine jacobian_block
 
     !> The block whose first coordinate is `first`, its coordinates given 0-based (ascending,
     !> whole parts): work%block_coordinates(:size(coordinates)), each one's place there
-    !> (block_place, block_mark = first), its constraints' blocks (block_list(:listed), in the
-    !> order of its coordinates) and their UCONs (m).
+    !> (block_place, block_mark = first), its constraints' blocks (block_list(:listed),
+    !> ascending) and their UCONs (m).
     subroutine place_block(self, first, coordinates, listed, m)
         type(equations_type), intent(inout) :: self
         integer, intent(in) :: first, coordinates(:)
@@ -1433,6 +1474,18 @@ contains
             end do
             do i = 1, listed
                 w%block_seen(w%block_list(i)) = .false.
+            end do
+            ! ascending (insertion: a block joins few): their rows, UCON by UCON, in the
+            ! order of the slots and rows of the whole model
+            do i = 2, listed
+                b = w%block_list(i)
+                j = i - 1
+                do while (j >= 1)
+                    if (w%block_list(j) <= b) exit
+                    w%block_list(j + 1) = w%block_list(j)
+                    j = j - 1
+                end do
+                w%block_list(j + 1) = b
             end do
         end associate
     end subroutine place_block
