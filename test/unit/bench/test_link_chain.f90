@@ -24,6 +24,7 @@ module test_link_chain
     use rollcon_problem, only : problem_type
     use rollcon_dae_form, only : dae_form_type
     use rollcon_ode_form, only : ode_form_type
+    use rollcon_speeds_form, only : speeds_form_type
     use rollcon_newton_pattern, only : newton_pattern_type, pattern_of_blocks
     use rollcon_saddle_point, only : saddle_point_type, sparse_schur_rows
     use rollcon_run_settings, only : run_settings_type, linear_auto, linear_dense, &
@@ -56,6 +57,7 @@ contains
             & new_unittest("sparse-schur-as-dense", test_sparse_schur), &
             & new_unittest("pattern-holds-the-jacobian", test_pattern), &
             & new_unittest("cvode-sparse-jacobian-as-dense", test_cvode_blocks), &
+            & new_unittest("speeds-sparse-jacobian-as-dense", test_speeds_blocks), &
             & new_unittest("ida-klu-same-motion", test_klu_motion), &
             & new_unittest("auto-solver-choice", test_auto), &
             & new_unittest("bench-prints-scaling-table", test_bench_table)]
@@ -425,6 +427,88 @@ contains
             & size(problem%eq%work%block_top, 1) <= 6*maxval(block_sizes(state_blocks)), &
             & name // ": the blocks' right-hand sides larger than the largest block")
     end subroutine check_ode_blocks
+
+    !> The independent speeds' sparse Newton matrix (ode_sparse_jacobian: rollcon_independent_
+    !> speeds' jacobian_blocks, no n_y x n_y array) against their dense one at a generic state,
+    !> as test_cvode_blocks: bit for bit over the state blocks' pattern, zero outside it; on
+    !> the same three models in FORMULATION=MAGGI.
+    subroutine test_speeds_blocks(error)
+        type(error_type), allocatable, intent(out) :: error
+        character(len=*), parameter :: maggi = "FORMULATION=MAGGI, METHOD=ADAMS, " &
+            & // "DRIFT=BAUMGARTE, SOLVER=SPARSE"
+        character(len=:), allocatable :: disks
+        integer :: at
+
+        disks = disk_fleet_dataset(3, 0.5_wp, 0.2_wp, 0.1_wp, maggi)
+        at = index(disks, "ACCGRAV/")
+        disks = disks(:at - 1) // "SPRINGDAMPER/1, TRANSLATIONAL, I = 20, J = 30, K = 200, " &
+            & // "C = 4, LENGTH = 0.5" // new_line("a") // disks(at:)
+        call check_speeds_blocks("fleet_spring_maggi", disks, 2, error)
+        if (allocated(error)) return
+        call check_speeds_blocks("chain_maggi_3", link_chain_dataset(3, 0.1_wp, 0.05_wp, maggi), &
+            & 1, error)
+        if (allocated(error)) return
+        call check_speeds_blocks("chain_maggi_9", link_chain_dataset(9, 0.1_wp, 0.05_wp, maggi), &
+            & 1, error)
+    end subroutine test_speeds_blocks
+
+    !> The independent speeds' sparse Newton matrix against their dense one
+    !> (test_speeds_blocks), on a dataset whose states fall in `blocks` blocks.
+    subroutine check_speeds_blocks(name, text, blocks, error)
+        character(len=*), intent(in) :: name, text
+        integer, intent(in) :: blocks
+        type(error_type), allocatable, intent(out) :: error
+        type(problem_type), target :: problem
+        type(speeds_form_type) :: speeds
+        type(newton_pattern_type) :: pattern
+        real(wp), allocatable :: q0(:), u0(:), y(:), yp(:), matrix(:, :), values(:)
+        logical, allocatable :: kept(:, :)
+        integer, allocatable :: state_blocks(:)
+        integer :: n, i, j, e, ierr, missed
+
+        call problem_of(name, text, problem, q0, u0, error)
+        if (.not. allocated(error)) call problem%prepare(error)
+        if (allocated(error)) return
+        call speeds%init(problem)
+        call problem%accelerations(0.0_wp, q0, u0, error)
+        if (allocated(error)) return
+        n = speeds%state_size()
+        allocate(y(n), yp(n), matrix(n, n), kept(n, n))
+        call speeds%pack_state(q0, u0, y, yp)
+        state_blocks = speeds%state_blocks(n)
+        call check(error, size(unique(state_blocks)), blocks, name // ": state blocks")
+        if (allocated(error)) return
+        ! the coordinates moved off the start and every speed changed: a generic state
+        y(:size(q0)) = y(:size(q0)) + [(1.0e-3_wp*cos(real(i, wp)), i = 1, size(q0))]
+        y(size(q0) + 1:) = y(size(q0) + 1:) + [(0.1_wp*sin(real(i, wp)), i = 1, n - size(q0))]
+        ierr = speeds%ode_jacobian(0.0_wp, y, matrix)
+        call check(error, ierr, 0, name // ": the dense Newton matrix " // speeds%failure_text())
+        if (allocated(error)) return
+        pattern = pattern_of_blocks(state_blocks)
+        allocate(values(pattern%entries()))
+        values = huge(1.0_wp)
+        ierr = speeds%ode_sparse_jacobian(0.0_wp, y, pattern%starts, pattern%rows, values)
+        call check(error, ierr, 0, name // ": the sparse Newton matrix " &
+            & // speeds%failure_text())
+        if (allocated(error)) return
+        kept = .false.
+        missed = 0
+        do j = 1, n
+            do e = pattern%starts(j) + 1, pattern%starts(j + 1)
+                kept(pattern%rows(e) + 1, j) = .true.
+                if (.not. same_bits(values(e), matrix(pattern%rows(e) + 1, j))) &
+                    & missed = missed + 1
+            end do
+        end do
+        call check(error, missed, 0, name // ": entries of the sparse Newton matrix not the " &
+            & // "dense one's (of " // to_text(pattern%entries()) // ")")
+        if (allocated(error)) return
+        call check(error, count(matrix /= 0.0_wp .and. .not. kept), 0, name &
+            & // ": nonzero entries of the dense matrix outside the blocks")
+        if (allocated(error)) return
+        call check(error, .not. allocated(speeds%dense_jacobian), name // ": the sparse " &
+            & // "matrix went through the dense one")
+    end subroutine check_speeds_blocks
 
     !> The distinct values of v.
     pure function unique(v) result(kept)

@@ -308,7 +308,9 @@ contains
         call problem%accelerations(0.0_wp, q, u, error)
         if (allocated(error)) return
         call speeds%pack_state(q, u, y, yp)
+        ! one call of each first: the Newton matrix's arrays are sized by its first evaluation
         ierr = speeds%ode_rhs(0.0_wp, y, ydot)
+        ierr = ierr + speeds%ode_jacobian(0.0_wp, y, jac)
         start = malloc_count()
         do i = 1, repeats
             ierr = ierr + speeds%ode_rhs(0.0_wp, y, ydot)
@@ -336,24 +338,41 @@ contains
         call cvode%destroy()
     end subroutine test_independent_speeds
 
-    !> CVODE's sparse Newton matrix (KLU) on the ODE form of 64 independent disks (384
-    !> coordinates, 768 states, 64 blocks of 12) holds nothing that grows as the model's
-    !> square: its Newton matrix formed block by block (rollcon_ode_form, the equations'
-    !> ode_jacobian_blocks), no single request to the allocator while CVODE starts and steps
-    !> reaches the bound below (an n_y x n_y array of reals is 4.7 MB, the n x 2n right-hand
-    !> sides of the dense Jacobian 2.4 MB); and its steps allocate nothing.
+    !> CVODE's sparse Newton matrix (KLU) on 64 independent disks (384 coordinates; 64 blocks
+    !> of 12 states in the ODE form, 768 states, of 9 in independent speeds, 576) holds
+    !> nothing that grows as the model's square: its Newton matrix formed block by block
+    !> (rollcon_ode_form and the equations' ode_jacobian_blocks; rollcon_speeds_form and
+    !> rollcon_independent_speeds' jacobian_blocks), no single request to the allocator while
+    !> CVODE starts and steps reaches the bound of sparse_run; and its steps allocate nothing.
     subroutine test_cvode_sparse_memory(error)
         type(error_type), allocatable, intent(out) :: error
+
+        if (malloc_counting() == 0) then
+            call skip_test(error, "malloc is not interposed on this C library")
+            return
+        end if
+        call sparse_run("CVODE", error)
+        if (allocated(error)) return
+        call sparse_run("MAGGI", error)
+    end subroutine test_cvode_sparse_memory
+
+    !> One run of test_cvode_sparse_memory, in the FORMULATION given (CVODE: the ODE form,
+    !> MAGGI: independent speeds).
+    subroutine sparse_run(formulation, error)
+        character(len=*), intent(in) :: formulation
+        type(error_type), allocatable, intent(out) :: error
         integer, parameter :: disks = 64
-        !> An eighth of an n_y x n_y array of reals (n_y = 12 x 64 = 768: 590 kB). A run by
-        !> blocks asks for at most 230 kB at once, linear in the model (115 kB with 32 disks,
-        !> measured 2026-11-30: SUNDIALS' and KLU's arrays over the states and the blocks'
-        !> entries); the dense Jacobian's n x 2n right-hand sides (2.4 MB) are 4 times the
-        !> bound, the n_y x n_y matrix (4.7 MB) 8 times
+        !> An eighth of the ODE form's n_y x n_y array of reals (n_y = 12 x 64 = 768: 590 kB).
+        !> A run by blocks asks for at most 230 kB at once, linear in the model (115 kB with
+        !> 32 disks, measured 2026-11-30: SUNDIALS' and KLU's arrays over the states and the
+        !> blocks' entries); the dense ODE Jacobian's n x 2n right-hand sides (2.4 MB) are 4
+        !> times the bound, its n_y x n_y matrix (4.7 MB) 8 times, the independent speeds'
+        !> (576 square, 2.7 MB) 4.5 times and their ODE form's Jacobian (2n square) 8 times
         integer(c_long_long), parameter :: bound = 8_c_long_long*(12_c_long_long*disks)**2/8
         character(len=*), parameter :: folder = "build/rollcon-test/allocations"
         type(problem_type), target :: problem
         type(ode_form_type), target :: ode
+        type(speeds_form_type), target :: speeds
         type(cvode_integrator_type), target :: cvode
         type(adm_model_type) :: adm
         procedure(ucosub_interface), pointer :: disk
@@ -363,16 +382,14 @@ contains
         integer(c_long) :: start, calls
         type(integrator_statistics_type) :: counts
         integer :: k, root
+        logical :: in_speeds
 
-        if (malloc_counting() == 0) then
-            call skip_test(error, "malloc is not interposed on this C library")
-            return
-        end if
+        in_speeds = formulation == "MAGGI"
         call make_folders(folder, error)
         if (allocated(error)) return
         call write_text_file(folder // "/fleet_klu.adm", disk_fleet_dataset(disks, 0.5_wp, &
-            & 1.0_wp, 0.05_wp, "FORMULATION=CVODE, METHOD=ADAMS, DRIFT=BAUMGARTE, RTOL=1e-8, " &
-            & // "ATOL=1e-10, SOLVER=SPARSE"), error)
+            & 1.0_wp, 0.05_wp, "FORMULATION=" // formulation // ", METHOD=ADAMS, " &
+            & // "DRIFT=BAUMGARTE, RTOL=1e-8, ATOL=1e-10, SOLVER=SPARSE"), error)
         if (allocated(error)) return
         call read_adm(folder // "/fleet_klu.adm", adm, error)
         if (allocated(error)) return
@@ -380,11 +397,23 @@ contains
         call build_adm_problem(adm, disk, problem, q0, u0, error)
         if (.not. allocated(error)) call problem%prepare(error)
         if (allocated(error)) return
-        call ode%init(problem)
-        y = [q0, u0]
-        allocate(yp(size(y)), source=0.0_wp)
+        if (in_speeds) then
+            call speeds%init(problem)
+            call problem%accelerations(0.0_wp, q0, u0, error)
+            if (allocated(error)) return
+            allocate(y(speeds%state_size()), yp(speeds%state_size()), source=0.0_wp)
+            call speeds%pack_state(q0, u0, y, yp)
+        else
+            call ode%init(problem)
+            y = [q0, u0]
+            allocate(yp(size(y)), source=0.0_wp)
+        end if
         call malloc_reset_largest()
-        call cvode%start(ode, problem%settings, 0.0_wp, y, yp, 1.0_wp, error)
+        if (in_speeds) then
+            call cvode%start(speeds, problem%settings, 0.0_wp, y, yp, 1.0_wp, error)
+        else
+            call cvode%start(ode, problem%settings, 0.0_wp, y, yp, 1.0_wp, error)
+        end if
         if (.not. allocated(error)) call cvode%advance(0.05_wp, 1.0_wp, t, y, yp, root, error)
         largest = malloc_largest()
         start = malloc_count()
@@ -395,16 +424,17 @@ contains
         calls = malloc_count() - start
         if (allocated(error)) return
         counts = cvode%statistics()
-        call check(error, counts%sparse .and. counts%jacobians > 0, "the run formed no sparse " &
-            & // "Newton matrix")
-        if (.not. allocated(error)) call check(error, largest < bound, "CVODE with KLU on " &
-            & // to_text(disks) // " disks asked for " // to_text(int(largest)) &
-            & // " bytes at once, bound " // to_text(int(bound)))
-        if (.not. allocated(error)) call check_none(error, calls, "CVODE Adams with KLU on " &
-            & // to_text(disks) // " disks from t = 0.05 s to " // to_text(t) // " s")
+        call check(error, counts%sparse .and. counts%jacobians > 0, formulation // ": the " &
+            & // "run formed no sparse Newton matrix")
+        if (.not. allocated(error)) call check(error, largest < bound, formulation &
+            & // " with KLU on " // to_text(disks) // " disks asked for " &
+            & // to_text(int(largest)) // " bytes at once, bound " // to_text(int(bound)))
+        if (.not. allocated(error)) call check_none(error, calls, formulation // " Adams " &
+            & // "with KLU on " // to_text(disks) // " disks from t = 0.05 s to " &
+            & // to_text(t) // " s")
         call cvode%destroy()
         call problem%release()
-    end subroutine test_cvode_sparse_memory
+    end subroutine sparse_run
 
     !> The powers a dissipating coin's three forms integrate with their state (friction,
     !> rolling resistance, air: the one routine of rollcon_problem, state_powers) allocate
