@@ -29,7 +29,8 @@ module rollcon_independent_speeds
 
     public :: independent_speeds_type
 
-    !> The partition and the workspace of the formulation (allocated once, in init)
+    !> The partition and the workspace of the formulation (allocated in init; the Newton
+    !> matrix's, dense or by blocks, by its first evaluations)
     type :: independent_speeds_type
         !> Rates, constraint rows partitioned (the active ones), independent speeds n - nc, and
         !> the model's rows (active or set aside)
