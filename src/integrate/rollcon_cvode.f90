@@ -13,6 +13,7 @@ module rollcon_cvode
     use rollcon_text, only : to_text
     use rollcon_run_settings, only : run_settings_type, method_adams, jacobian_none
     use rollcon_dynamic_system, only : ode_system_type
+    use rollcon_newton_pattern, only : newton_pattern_type, pattern_of_blocks
     use rollcon_integrator, only : integrator_type, integrator_statistics_type, solver_failure, &
         & chunk_steps_default
     use fsundials_context_mod, only : FSUNContext_Create, FSUNContext_Free
@@ -79,11 +80,12 @@ module rollcon_cvode
         !> whether they use y' (roots_use_rates): the interpolation is made only then
         integer :: root_count = 0
         logical :: roots_use_rates = .false.
-        !> Sparse Newton matrices: the system's Jacobian in full (its work space), and each
-        !> state's block (entries kept: those of one block)
+        !> Sparse Newton matrices: each state's block (entries kept: those of one block) and
+        !> their pattern by columns (rollcon_newton_pattern), which the system fills
+        !> (ode_sparse_jacobian): no size(y)-square array
         logical :: sparse = .false.
-        real(c_double), allocatable :: full(:, :)
         integer, allocatable :: blocks(:)
+        type(newton_pattern_type) :: pattern
     end type callback_data_type
 
     !> One CVODE integration of an ODE system
@@ -226,10 +228,10 @@ contains
             self%data%sparse = settings%sparse_newton(size(y0), &
                 & block_entries(self%data%blocks))
             if (self%data%sparse) then
-                ! room for every entry of the blocks (block_entries); KLU factors those given
-                allocate(self%data%full(size(y0), size(y0)), source=0.0_wp)
+                ! room for every entry of the blocks; KLU factors those given
+                self%data%pattern = pattern_of_blocks(self%data%blocks)
                 self%matrix => FSUNSparseMatrix(int(size(y0), c_int64_t), int(size(y0), &
-                    & c_int64_t), int(max(block_entries(self%data%blocks), 1), c_int64_t), &
+                    & c_int64_t), int(max(self%data%pattern%entries(), 1), c_int64_t), &
                     & CSC_MAT, self%context)
                 if (associated(self%matrix)) &
                     & self%solver => FSUNLinSol_KLU(self%y, self%matrix, self%context)
@@ -288,8 +290,9 @@ contains
         blocks = self%data%system%state_blocks(size(y0))
         if (all(blocks == self%data%blocks)) return
         self%data%blocks = blocks
+        self%data%pattern = pattern_of_blocks(blocks)
         flag = FSUNLinSol_KLUReInit(self%solver, self%matrix, &
-            & int(max(block_entries(blocks), 1), c_int64_t), SUNKLU_REINIT_PARTIAL)
+            & int(max(self%data%pattern%entries(), 1), c_int64_t), SUNKLU_REINIT_PARTIAL)
         if (check(flag, "SUNLinSol_KLUReInit", error)) return
     end subroutine restart
 
@@ -456,8 +459,9 @@ contains
         self%data%memory = c_null_ptr
         if (allocated(self%values)) deallocate(self%values)
         if (allocated(self%data%rate_values)) deallocate(self%data%rate_values)
-        if (allocated(self%data%full)) deallocate(self%data%full)
         if (allocated(self%data%blocks)) deallocate(self%data%blocks)
+        if (allocated(self%data%pattern%starts)) deallocate(self%data%pattern%starts, &
+            & self%data%pattern%rows)
         self%data%sparse = .false.
         if (allocated(self%fired)) deallocate(self%fired)
     end subroutine destroy
@@ -574,7 +578,9 @@ contains
     end function jacobian
 
     !> The system's Jacobian, kept over its blocks (entries (i, j) of states of one block,
-    !> zeros included, so the pattern KLU analysed stays), as a compressed-column matrix.
+    !> zeros included, so the pattern KLU analysed stays), as a compressed-column matrix: the
+    !> system writes the values straight into KLU's (ode_sparse_jacobian), the pattern is
+    !> copied beside them (SUNDIALS zeroes the matrix before each evaluation).
     integer(c_int) function sparse_jacobian(t, y, fy, jac, user_data, tmp1, tmp2, tmp3) &
             & result(ierr) bind(c, name="rollcon_cvode_sparse_jacobian")
         real(c_double), value :: t
@@ -584,12 +590,11 @@ contains
         type(callback_data_type), pointer :: data
         real(c_double), pointer :: yv(:), values(:), first_value(:)
         integer(c_int64_t), pointer :: rows(:), starts(:), first_index(:)
-        integer :: i, j, next, capacity
+        integer :: entries, capacity
 
         call c_f_pointer(user_data, data)
         yv => FN_VGetArrayPointer(y)
-        ierr = int(data%system%ode_jacobian(t, yv, data%full), c_int)
-        if (ierr /= 0) return
+        entries = data%pattern%entries()
         ! SUNDIALS' Fortran interface hands the first element: the arrays by their sizes
         capacity = int(FSUNSparseMatrix_NNZ(jac))
         first_value => FSUNSparseMatrix_Data(jac)
@@ -598,28 +603,26 @@ contains
         call c_f_pointer(c_loc(first_index(1)), rows, [capacity])
         first_index => FSUNSparseMatrix_IndexPointers(jac)
         call c_f_pointer(c_loc(first_index(1)), starts, [size(yv) + 1])
-        next = 0
-        do j = 1, size(yv)
-            starts(j) = int(next, c_int64_t)
-            do i = 1, size(yv)
-                if (data%blocks(i) /= data%blocks(j)) cycle
-                next = next + 1
-                values(next) = data%full(i, j)
-                rows(next) = int(i - 1, c_int64_t)
-            end do
-        end do
-        starts(size(yv) + 1) = int(next, c_int64_t)
+        ierr = int(data%system%ode_sparse_jacobian(t, yv, data%pattern%starts, &
+            & data%pattern%rows, values(:entries)), c_int)
+        if (ierr /= 0) return
+        starts(:) = int(data%pattern%starts, c_int64_t)
+        rows(:entries) = int(data%pattern%rows, c_int64_t)
     end function sparse_jacobian
 
-    !> Entries of a matrix kept over blocks: the sum of each block's size squared.
+    !> Entries of a matrix kept over blocks: the sum of each block's size squared (by
+    !> counting: linear in the states).
     pure integer function block_entries(blocks) result(total)
         integer, intent(in) :: blocks(:)
-        integer :: b
+        integer, allocatable :: sizes(:)
+        integer :: i, low
 
-        total = 0
-        do b = minval(blocks), maxval(blocks)
-            total = total + count(blocks == b)**2
+        low = minval(blocks)
+        allocate(sizes(maxval(blocks) - low + 1), source=0)
+        do i = 1, size(blocks)
+            sizes(blocks(i) - low + 1) = sizes(blocks(i) - low + 1) + 1
         end do
+        total = sum(sizes**2)
     end function block_entries
 
     integer(c_int) function projection(t, ycur, corr, eps_proj, err, user_data) result(ierr) &

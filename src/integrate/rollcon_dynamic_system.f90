@@ -20,7 +20,7 @@ module rollcon_dynamic_system
     implicit none
     private
 
-    public :: dynamic_system_type, ode_system_type, dae_system_type
+    public :: dynamic_system_type, ode_system_type, dae_system_type, dense_sparse_jacobian
 
     !> What every system provides, whichever integrator takes it
     type, abstract :: dynamic_system_type
@@ -41,9 +41,14 @@ module rollcon_dynamic_system
 
     !> A system CVODE integrates: y' = f(t, y), its Newton matrix, an optional projection
     type, abstract, extends(dynamic_system_type) :: ode_system_type
+        !> The dense Newton matrix whose entries the default ode_sparse_jacobian copies
+        !> (size(y) square, allocated by its first call: none for a system that forms its sparse
+        !> matrix by blocks)
+        real(wp), allocatable :: dense_jacobian(:, :)
     contains
         procedure(ode_rhs_interface), deferred :: ode_rhs
         procedure(ode_jacobian_interface), deferred :: ode_jacobian
+        procedure :: ode_sparse_jacobian
         procedure :: projects
         procedure :: project
         procedure :: roots_use_rates
@@ -237,6 +242,46 @@ contains
     subroutine release(self)
         class(dynamic_system_type), intent(inout) :: self
     end subroutine release
+
+    !> The Newton matrix df/dy at (t, y) over the entries its state_blocks keep (those of states
+    !> of one block), compressed by columns: column j's rows (0-based, ascending: every state of
+    !> j's block) rows(starts(j) + 1 : starts(j + 1)), their values in values (the same places;
+    !> CVODE's sparse Newton matrix). Default: ode_jacobian's dense matrix, formed whole in
+    !> dense_jacobian (size(y) square, allocated by the first call), its entries there copied:
+    !> for a system of one block, or whose blocks are small (the independent speeds,
+    !> rollcon's benchmark's reduced models); a system that grows overrides it and forms the
+    !> matrix by blocks (rollcon_ode_form), with no such array.
+    integer function ode_sparse_jacobian(self, time, y, starts, rows, values) result(ierr)
+        class(ode_system_type), intent(inout) :: self
+        real(wp), intent(in) :: time, y(:)
+        integer, intent(in) :: starts(:), rows(:)
+        real(wp), intent(out) :: values(:)
+
+        ierr = dense_sparse_jacobian(self, time, y, starts, rows, values)
+    end function ode_sparse_jacobian
+
+    !> ode_sparse_jacobian's default, for a system that overrides it to call on some models:
+    !> the entries of its dense ode_jacobian, formed whole in its dense_jacobian.
+    integer function dense_sparse_jacobian(self, time, y, starts, rows, values) result(ierr)
+        class(ode_system_type), intent(inout) :: self
+        real(wp), intent(in) :: time, y(:)
+        integer, intent(in) :: starts(:), rows(:)
+        real(wp), intent(out) :: values(:)
+        integer :: j, x
+
+        if (allocated(self%dense_jacobian)) then
+            if (size(self%dense_jacobian, 1) /= size(y)) deallocate(self%dense_jacobian)
+        end if
+        if (.not. allocated(self%dense_jacobian)) &
+            & allocate(self%dense_jacobian(size(y), size(y)), source=0.0_wp)
+        ierr = self%ode_jacobian(time, y, self%dense_jacobian)
+        if (ierr /= 0) return
+        do j = 1, size(y)
+            do x = starts(j) + 1, starts(j + 1)
+                values(x) = self%dense_jacobian(rows(x) + 1, j)
+            end do
+        end do
+    end function dense_sparse_jacobian
 
     !> The system keeps its states on a constraint manifold by projection (CVODE's projection
     !> interface) when true. Default: it does not.

@@ -116,30 +116,51 @@ contains
         self%rows = self%rows(:next)
     end subroutine from_relation
 
-    !> Every entry (i, j) of states of one block: blocks(i) == blocks(j).
+    !> Every entry (i, j) of states of one block: blocks(i) == blocks(j). Each block's states
+    !> listed once, by a count (block numbers from their least to their largest: a model's
+    !> blocks number at most its states), each column then given its block's list: memory and
+    !> time linear in the states and entries (no pass over every (i, j)).
     function pattern_of_blocks(blocks) result(pattern)
         integer, intent(in) :: blocks(:)
         type(newton_pattern_type) :: pattern
-        integer :: i, j, next, b, total
+        integer, allocatable :: member_start(:), members(:), filled(:)
+        integer :: low, b, i, j, n, total
 
-        total = 0
-        if (size(blocks) > 0) then
-            do b = minval(blocks), maxval(blocks)
-                total = total + count(blocks == b)**2
-            end do
+        n = size(blocks)
+        pattern%n = n
+        if (n == 0) then
+            allocate(pattern%starts(1), pattern%rows(0))
+            pattern%starts(1) = 0
+            return
         end if
-        pattern%n = size(blocks)
-        allocate(pattern%starts(pattern%n + 1), pattern%rows(total))
-        next = 0
-        do j = 1, pattern%n
-            pattern%starts(j) = next
-            do i = 1, pattern%n
-                if (blocks(i) /= blocks(j)) cycle
-                next = next + 1
-                pattern%rows(next) = i - 1
-            end do
+        low = minval(blocks)
+        allocate(member_start(maxval(blocks) - low + 2), source=0)
+        do i = 1, n
+            b = blocks(i) - low + 1
+            member_start(b + 1) = member_start(b + 1) + 1
         end do
-        pattern%starts(pattern%n + 1) = next
+        total = 0
+        do b = 2, size(member_start)
+            total = total + member_start(b)**2
+        end do
+        member_start(1) = 1
+        do b = 1, size(member_start) - 1
+            member_start(b + 1) = member_start(b + 1) + member_start(b)
+        end do
+        allocate(members(n), filled(size(member_start) - 1), source=0)
+        do i = 1, n
+            b = blocks(i) - low + 1
+            members(member_start(b) + filled(b)) = i - 1
+            filled(b) = filled(b) + 1
+        end do
+        allocate(pattern%starts(n + 1), pattern%rows(total))
+        pattern%starts(1) = 0
+        do j = 1, n
+            b = blocks(j) - low + 1
+            pattern%starts(j + 1) = pattern%starts(j) + member_start(b + 1) - member_start(b)
+            pattern%rows(pattern%starts(j) + 1:pattern%starts(j + 1)) = &
+                & members(member_start(b):member_start(b + 1) - 1)
+        end do
     end function pattern_of_blocks
 
     !> Zero the pattern's entries of the dense matrix full (the others are left as they are).

@@ -24,6 +24,7 @@ module rollcon_constraint_matrix
     contains
         procedure :: init
         procedure :: entry
+        procedure :: entry_along
         procedure :: gather
         procedure :: row_dot
         procedure :: add_row
@@ -65,6 +66,22 @@ contains
             end if
         end do
     end function entry
+
+    !> C(k, j) on a walk along row k with j ascending: x is the row's next entry (start(k) at
+    !> the walk's start), moved past column j when the row has it; zero off the pattern. A
+    !> whole row read as the dense one, one entry a column, without a search.
+    pure subroutine entry_along(self, k, j, x, value)
+        class(constraint_matrix_type), intent(in) :: self
+        integer, intent(in) :: k, j
+        integer, intent(inout) :: x
+        real(wp), intent(out) :: value
+
+        value = 0.0_wp
+        if (x >= self%start(k + 1)) return
+        if (self%column(x) /= j) return
+        value = self%value(x)
+        x = x + 1
+    end subroutine entry_along
 
     !> out(i) = C(k, first + i - 1) for i = 1..size(out): a contiguous slice of row k (a part's
     !> six coordinates, say), zeros off its pattern. The slice must lie in 1..n.

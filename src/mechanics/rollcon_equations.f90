@@ -95,6 +95,9 @@ module rollcon_equations
         procedure :: init
         procedure :: accelerations
         procedure :: ode_jacobian
+        procedure :: ode_jacobian_blocks
+        procedure :: prepare_jacobian_blocks
+        procedure :: jacobian_block
         procedure :: size_ode_form
         procedure :: project
         procedure :: energy
@@ -1105,20 +1108,8 @@ contains
         x1 = c%start(t(1))
         x2 = c%start(t(2))
         do j = 1, size(y)
-            c1 = 0.0_wp
-            if (x1 < c%start(t(1) + 1)) then
-                if (c%column(x1) == j) then
-                    c1 = c%value(x1)
-                    x1 = x1 + 1
-                end if
-            end if
-            c2 = 0.0_wp
-            if (x2 < c%start(t(2) + 1)) then
-                if (c%column(x2) == j) then
-                    c2 = c%value(x2)
-                    x2 = x2 + 1
-                end if
-            end if
+            call c%entry_along(t(1), j, x1, c1)
+            call c%entry_along(t(2), j, x2, c2)
             if (present(f)) then
                 y(j) = y(j) + f*(s(1)*c1 + s(2)*c2)
             else
@@ -1215,11 +1206,19 @@ contains
 
     !> The arrays of the ODE form's Jacobian and projection (ode_jacobian, project), sized once
     !> by a formulation that forms them at every step (CVODE's); IDA's leaves them unallocated
-    !> (n x 2n and more: a long chain's largest) unless it projects.
-    subroutine size_ode_form(self)
+    !> (n x 2n and more: a long chain's largest) unless it projects. With dense_jacobian false
+    !> the dense Jacobian's n x 2n right-hand sides are left to its first evaluation: a run
+    !> whose Newton matrix is sparse forms it by blocks (ode_jacobian_blocks) and never holds
+    !> them.
+    subroutine size_ode_form(self, dense_jacobian)
         class(equations_type), intent(inout) :: self
+        !> Size the dense Jacobian's right-hand sides too (default true)
+        logical, intent(in), optional :: dense_jacobian
+        logical :: dense
 
-        call self%work%size_ode_form(self%n, self%nc, self%nh)
+        dense = .true.
+        if (present(dense_jacobian)) dense = dense_jacobian
+        call self%work%size_ode_form(self%n, self%nc, dense)
     end subroutine size_ode_form
 
     !> Jacobian of the ODE right-hand side (q, u)' = (u, a(q, u, t)): da/dy = -K^-1 dG/dy with
@@ -1266,6 +1265,272 @@ contains
         jac(n + 1:, :) = self%work%rhs_top
     end subroutine ode_jacobian
 
+    !> ode_jacobian's matrix d(q', u')/d(q, u) over a pattern by the coordinates' blocks,
+    !> compressed by columns (CVODE's sparse Newton matrix, rollcon_ode_form): column j's rows
+    !> (0-based, ascending) rows(starts(j) + 1 : starts(j + 1)) are the coordinates of
+    !> coordinate j's block then their rates (the same rows for the rate's column n + j), its
+    !> values written in values at the same places. Formed block by block, with no n x 2 n
+    !> array: each block's right-hand sides over its own coordinates' columns (dm/dq, dm/du on
+    !> its pairs of parts, the constraint rows of its UCONs), solved by the saddle point over
+    !> its own rows and parts (saddle_point_type's solve_local), into work%block_top and
+    !> block_bottom (the largest block's size). A pattern's block holds every coordinate its
+    !> entries can reach (rollcon_problem's coordinate_blocks: the constraints' blocks joined by
+    !> the force elements'), so each entry is ode_jacobian's, bit for bit (the same operations
+    !> in the same order). Not for the algebraic loop (reads_loop: its (n + nc)-square matrix
+    !> is dense anyway): an error there, as for a pattern not by blocks.
+    subroutine ode_jacobian_blocks(self, time, q, u, baumgarte, starts, rows, values, error)
+        class(equations_type), intent(inout) :: self
+        real(wp), intent(in) :: time, q(:), u(:)
+        !> Baumgarte rate in effect [1/s], 0 without Baumgarte terms
+        real(wp), intent(in) :: baumgarte
+        !> The pattern (2 n + 1 column starts, 0-based; the rows, 0-based)
+        integer, intent(in) :: starts(:), rows(:)
+        !> The entries, in the pattern's places
+        real(wp), intent(out) :: values(:)
+        type(error_type), allocatable, intent(out) :: error
+        integer :: n, j, c, nb, listed, v0
+
+        n = self%n
+        call check_ode_pattern(self, starts, rows, error)
+        if (allocated(error)) return
+        call self%prepare_jacobian_blocks(time, q, u, baumgarte, error)
+        if (allocated(error)) return
+        associate (w => self%work)
+            ! each block at its first coordinate (its column's first row)
+            do j = 1, n
+                if (rows(starts(j) + 1) + 1 /= j) cycle
+                nb = (starts(j + 1) - starts(j))/2
+                call self%jacobian_block(rows(starts(j) + 1:starts(j) + nb), u, baumgarte, &
+                    & listed, error)
+                if (allocated(error)) return
+                ! q' = u: the identity in the rates' columns; a's rows the solution
+                do c = 1, nb
+                    v0 = starts(w%block_coordinates(c))
+                    values(v0 + 1:v0 + nb) = 0.0_wp
+                    values(v0 + nb + 1:v0 + 2*nb) = w%block_top(:nb, c)
+                    v0 = starts(n + w%block_coordinates(c))
+                    values(v0 + 1:v0 + nb) = 0.0_wp
+                    values(v0 + c) = 1.0_wp
+                    values(v0 + nb + 1:v0 + 2*nb) = w%block_top(:nb, nb + c)
+                end do
+            end do
+        end associate
+    end subroutine ode_jacobian_blocks
+
+    !> The pattern of ode_jacobian_blocks checked: each coordinate's column and its rate's hold
+    !> the same rows, the block's coordinates (whole parts) then their rates, the coordinate
+    !> among them.
+    subroutine check_ode_pattern(self, starts, rows, error)
+        type(equations_type), intent(in) :: self
+        integer, intent(in) :: starts(:), rows(:)
+        type(error_type), allocatable, intent(out) :: error
+        integer :: n, j, i, nb
+
+        n = self%n
+        if (size(starts) /= 2*n + 1) then
+            call fatal_error(error, "the ODE form's Jacobian by blocks: a pattern of " &
+                & // to_text(size(starts) - 1) // " columns for " // to_text(2*n) &
+                & // " states", stat_ucon)
+            return
+        end if
+        do j = 1, n
+            nb = (starts(j + 1) - starts(j))/2
+            if (nb < 1 .or. 2*nb /= starts(j + 1) - starts(j) .or. starts(n + j + 1) &
+                    & - starts(n + j) /= 2*nb .or. mod(nb, 6) /= 0) then
+                call pattern_error()
+                return
+            end if
+            if (.not. any(rows(starts(j) + 1:starts(j) + nb) == j - 1)) then
+                call pattern_error()
+                return
+            end if
+            do i = 1, nb
+                if (rows(starts(j) + nb + i) /= rows(starts(j) + i) + n .or. &
+                        & rows(starts(n + j) + i) /= rows(starts(j) + i) .or. &
+                        & rows(starts(n + j) + nb + i) /= rows(starts(j) + nb + i)) then
+                    call pattern_error()
+                    return
+                end if
+            end do
+        end do
+
+    contains
+
+        subroutine pattern_error()
+            call fatal_error(error, "the ODE form's Jacobian by blocks: column " // to_text(j) &
+                & // "'s pattern is not its coordinates' block and their rates", stat_ucon)
+        end subroutine pattern_error
+
+    end subroutine check_ode_pattern
+
+    !> The first step of the ODE form's Jacobian by blocks (ode_jacobian_blocks, and the
+    !> independent speeds' by blocks): the accelerations and multipliers at (t, q, u), the
+    !> saddle point factored by blocks, the momentum rows' partials; then jacobian_block for
+    !> each block. Not for the algebraic loop (reads_loop: its (n + nc)-square matrix is dense
+    !> anyway): an error there.
+    subroutine prepare_jacobian_blocks(self, time, q, u, baumgarte, error)
+        class(equations_type), intent(inout) :: self
+        real(wp), intent(in) :: time, q(:), u(:)
+        !> Baumgarte rate in effect [1/s], 0 without Baumgarte terms
+        real(wp), intent(in) :: baumgarte
+        type(error_type), allocatable, intent(out) :: error
+        integer :: b
+
+        if (self%reads_loop()) then
+            call fatal_error(error, "the ODE form's Jacobian by blocks does not serve an " &
+                & // "algebraic loop (a force reading accelerations or reactions)", stat_ucon)
+            return
+        end if
+        associate (w => self%work, bl => self%blocks)
+            if (.not. allocated(w%coordinate_block)) then
+                allocate(w%coordinate_block(self%n), w%block_place(self%n), &
+                    & w%block_mark(self%n), w%block_coordinates(self%n), source=0)
+                allocate(w%block_list(max(bl%count, 1)), source=0)
+                allocate(w%block_seen(max(bl%count, 1)), source=.false.)
+                do b = 1, bl%count
+                    w%coordinate_block(bl%coordinates(bl%coordinate_start(b): &
+                        & bl%coordinate_start(b + 1) - 1)) = b
+                end do
+            end if
+            call self%accelerations(time, q, u, baumgarte, w%a, w%lambda, error, second=.true.)
+            if (allocated(error)) return
+            call self%momentum_jacobian(q, u, w%a, w%lambda, time)
+            call take_user_force_error(error)
+        end associate
+    end subroutine prepare_jacobian_blocks
+
+    !> One block of ode_jacobian's matrix, after prepare_jacobian_blocks: the block of the
+    !> coordinates given 0-based (ascending, whole parts; a block of coordinate_blocks: every
+    !> coordinate its entries reach) placed (work%block_coordinates(:nb), block_place, its
+    !> constraints' blocks block_list(:listed), ascending), its right-hand sides over its own
+    !> columns (block_right_hand_sides) solved by the saddle point over its rows and parts
+    !> (solve_local): work%block_top(:nb, :nb) is da/dq and (:nb, nb + 1 : 2 nb) da/du over
+    !> the block, ode_jacobian's entries bit for bit. The work arrays grow to a larger block
+    !> (allocated by the first evaluations only).
+    subroutine jacobian_block(self, coordinates, u, baumgarte, listed, error)
+        class(equations_type), intent(inout) :: self
+        integer, intent(in) :: coordinates(:)
+        real(wp), intent(in) :: u(:)
+        !> Baumgarte rate in effect [1/s], 0 without Baumgarte terms
+        real(wp), intent(in) :: baumgarte
+        integer, intent(out) :: listed
+        type(error_type), allocatable, intent(out) :: error
+        integer :: nb, m, first
+
+        nb = size(coordinates)
+        first = coordinates(1) + 1
+        call place_block(self, first, coordinates, listed, m)
+        associate (w => self%work)
+            if (allocated(w%block_top)) then
+                if (size(w%block_top, 1) < nb .or. size(w%block_bottom, 1) < max(m, 1)) &
+                    & deallocate(w%block_top, w%block_bottom)
+            end if
+            if (.not. allocated(w%block_top)) allocate(w%block_top(nb, 2*nb), &
+                & w%block_bottom(max(m, 1), 2*nb), source=0.0_wp)
+            call block_right_hand_sides(self, first, nb, listed, u, w%a, baumgarte)
+            call self%saddle%solve_local(self%cm, w%block_coordinates(:nb), w%block_place, &
+                & w%block_list(:listed), w%block_top, w%block_bottom, 2*nb, error)
+        end associate
+    end subroutine jacobian_block
+
+    !> The block whose first coordinate is `first`, its coordinates given 0-based (ascending,
+    !> whole parts): work%block_coordinates(:size(coordinates)), each one's place there
+    !> (block_place, block_mark = first), its constraints' blocks (block_list(:listed),
+    !> ascending) and their UCONs (m).
+    subroutine place_block(self, first, coordinates, listed, m)
+        type(equations_type), intent(inout) :: self
+        integer, intent(in) :: first, coordinates(:)
+        integer, intent(out) :: listed, m
+        integer :: i, b, j
+
+        associate (w => self%work, bl => self%blocks)
+            listed = 0
+            m = 0
+            do i = 1, size(coordinates)
+                j = coordinates(i) + 1
+                w%block_coordinates(i) = j
+                w%block_place(j) = i
+                w%block_mark(j) = first
+                b = w%coordinate_block(j)
+                if (b == 0) cycle
+                if (w%block_seen(b)) cycle
+                w%block_seen(b) = .true.
+                listed = listed + 1
+                w%block_list(listed) = b
+                m = m + bl%row_start(b + 1) - bl%row_start(b)
+            end do
+            do i = 1, listed
+                w%block_seen(w%block_list(i)) = .false.
+            end do
+            ! ascending (insertion: a block joins few): their rows, UCON by UCON, in the
+            ! order of the slots and rows of the whole model
+            do i = 2, listed
+                b = w%block_list(i)
+                j = i - 1
+                do while (j >= 1)
+                    if (w%block_list(j) <= b) exit
+                    w%block_list(j + 1) = w%block_list(j)
+                    j = j - 1
+                end do
+                w%block_list(j + 1) = b
+            end do
+        end associate
+    end subroutine place_block
+
+    !> The right-hand sides of the block place_block placed (first coordinate `first`, nb
+    !> coordinates, `listed` constraints' blocks), over its own columns (its coordinates, then
+    !> their rates): work%block_top (nb x 2 nb) -dm/dq, -dm/du on its pairs of parts (-0
+    !> elsewhere, as scatter_negated writes), block_bottom (its UCONs x 2 nb) the constraint
+    !> rows of jacobian_constraint_rows (0 elsewhere).
+    subroutine block_right_hand_sides(self, first, nb, listed, u, a, alpha)
+        type(equations_type), intent(inout) :: self
+        integer, intent(in) :: first, nb, listed
+        real(wp), intent(in) :: u(:), a(:)
+        real(wp), intent(in) :: alpha
+        integer :: i, e, p, l0, j0, jb, b, r, k, jj, j, x
+
+        associate (w => self%work, dm => self%work%dm, bl => self%blocks)
+            w%block_top(:nb, :2*nb) = -0.0_wp
+            do i = 1, nb, 6
+                p = (w%block_coordinates(i) - 1)/6 + 1
+                l0 = i - 1
+                if (dm%blocked) then
+                    do e = dm%pair_start(p), dm%pair_start(p + 1) - 1
+                        jb = 6*(dm%pair_part(e) - 1) + 1
+                        ! a pair outside the block (none that the pattern's blocks do not hold,
+                        ! but a part a user's routine declared late) is not kept
+                        if (w%block_mark(jb) /= first) cycle
+                        j0 = w%block_place(jb) - 1
+                        w%block_top(l0 + 1:l0 + 6, j0 + 1:j0 + 6) = -dm%block_q(:, :, e)
+                        w%block_top(l0 + 1:l0 + 6, nb + j0 + 1:nb + j0 + 6) = -dm%block_u(:, :, e)
+                    end do
+                else
+                    do j = 1, nb
+                        jb = w%block_coordinates(j)
+                        do x = 1, 6
+                            w%block_top(l0 + x, j) = -dm%dq(w%block_coordinates(l0 + x), jb)
+                            w%block_top(l0 + x, nb + j) = -dm%du(w%block_coordinates(l0 + x), jb)
+                        end do
+                    end do
+                end if
+            end do
+            r = 0
+            do i = 1, listed
+                b = w%block_list(i)
+                do x = bl%row_start(b), bl%row_start(b + 1) - 1
+                    k = bl%rows(x)
+                    r = r + 1
+                    w%block_bottom(r, :2*nb) = 0.0_wp
+                    do jj = 1, bl%ucon_start(k + 1) - bl%ucon_start(k)
+                        j = w%block_place(bl%ucon_coordinates(bl%ucon_start(k) + jj - 1))
+                        call constraint_row_partials(self, k, jj, u, a, alpha, &
+                            & w%block_bottom(r, j), w%block_bottom(r, nb + j))
+                    end do
+                end do
+            end do
+        end associate
+    end subroutine block_right_hand_sides
+
     !> Solve the algebraic loop's saddle-point system (loop_accelerations' factors) for the
     !> Jacobian's right-hand sides work%rhs_top, work%rhs_bottom (2n columns each), in place.
     subroutine loop_solve(self, error)
@@ -1302,36 +1567,45 @@ contains
         ! each UCON's row over its own coordinates; the rest are zeros (-(0) as the dense sums
         ! gave, written as +0 here)
         self%work%rhs_bottom = 0.0_wp
-        associate (cs => self%constraints, rhs_bottom => self%work%rhs_bottom)
-            do k = 1, self%nc
-                associate (at => self%blocks%ucon_coordinates(self%blocks%ucon_start(k): &
-                        & self%blocks%ucon_start(k + 1) - 1))
-                    if (self%model%ucons(k)%holonomic) then
-                        do jj = 1, size(at)
-                            j = at(jj)
-                            rhs_bottom(k, j) = -local_dot(cs%hqq(:, jj, k), a, at) &
-                                & - 2.0_wp*alpha*(local_dot(cs%hqq(:, jj, k), u, at) &
-                                & + cs%dt_grad_q(jj, k)) - alpha**2*cs%grad_q_local(jj, k)
-                            rhs_bottom(k, n + j) = -2.0_wp*local_dot(cs%hqq(:, jj, k), u, at) &
-                                & - 2.0_wp*cs%dt_grad_q(jj, k) &
-                                & - 2.0_wp*alpha*cs%grad_q_local(jj, k)
-                        end do
-                    else
-                        ! C a - gamma = dF/du a + dF/dq u + dF/dt + alpha F
-                        do jj = 1, size(at)
-                            j = at(jj)
-                            rhs_bottom(k, j) = -(local_dot(cs%hqu(jj, :, k), a, at) &
-                                & + local_dot(cs%hqq(:, jj, k), u, at) + cs%dt_grad_q(jj, k) &
-                                & + alpha*cs%grad_q_local(jj, k))
-                            rhs_bottom(k, n + j) = -(cs%grad_q_local(jj, k) &
-                                & + local_dot(cs%hqu(:, jj, k), u, at) + cs%dt_grad_u(jj, k) &
-                                & + alpha*cs%grad_u_local(jj, k))
-                        end do
-                    end if
-                end associate
+        do k = 1, self%nc
+            do jj = 1, self%blocks%ucon_start(k + 1) - self%blocks%ucon_start(k)
+                j = self%blocks%ucon_coordinates(self%blocks%ucon_start(k) + jj - 1)
+                call constraint_row_partials(self, k, jj, u, a, alpha, &
+                    & self%work%rhs_bottom(k, j), self%work%rhs_bottom(k, n + j))
             end do
-        end associate
+        end do
     end subroutine jacobian_constraint_rows
+
+    !> Row k's entries of -d(C a - gamma)/d(q, u) at fixed a in its jj-th coordinate (of its own,
+    !> the blocks' ucon_coordinates): of_q in the coordinate, of_u in its rate.
+    subroutine constraint_row_partials(self, k, jj, u, a, alpha, of_q, of_u)
+        type(equations_type), intent(in) :: self
+        integer, intent(in) :: k, jj
+        real(wp), intent(in) :: u(:), a(:)
+        !> Baumgarte rate in effect [1/s], 0 without Baumgarte terms
+        real(wp), intent(in) :: alpha
+        real(wp), intent(out) :: of_q, of_u
+
+        associate (cs => self%constraints, at => self%blocks%ucon_coordinates( &
+                & self%blocks%ucon_start(k):self%blocks%ucon_start(k + 1) - 1))
+            if (self%model%ucons(k)%holonomic) then
+                of_q = -local_dot(cs%hqq(:, jj, k), a, at) &
+                    & - 2.0_wp*alpha*(local_dot(cs%hqq(:, jj, k), u, at) &
+                    & + cs%dt_grad_q(jj, k)) - alpha**2*cs%grad_q_local(jj, k)
+                of_u = -2.0_wp*local_dot(cs%hqq(:, jj, k), u, at) &
+                    & - 2.0_wp*cs%dt_grad_q(jj, k) &
+                    & - 2.0_wp*alpha*cs%grad_q_local(jj, k)
+            else
+                ! C a - gamma = dF/du a + dF/dq u + dF/dt + alpha F
+                of_q = -(local_dot(cs%hqu(jj, :, k), a, at) &
+                    & + local_dot(cs%hqq(:, jj, k), u, at) + cs%dt_grad_q(jj, k) &
+                    & + alpha*cs%grad_q_local(jj, k))
+                of_u = -(cs%grad_q_local(jj, k) &
+                    & + local_dot(cs%hqu(:, jj, k), u, at) + cs%dt_grad_u(jj, k) &
+                    & + alpha*cs%grad_u_local(jj, k))
+            end if
+        end associate
+    end subroutine constraint_row_partials
 
     !> Correction (dq, du) that puts (q, u) back on the constraints: a mass-weighted least
     !> change, one Newton step for position UCONs, exact for velocity UCONs (linear in u).

@@ -19,7 +19,8 @@
 !> independent speeds are the mechanism's own.
 module rollcon_independent_speeds
     use rollcon_kinds, only : wp
-    use rollcon_error, only : error_type
+    use rollcon_error, only : error_type, fatal_error, stat_ucon
+    use rollcon_text, only : to_text
     use rollcon_constraints, only : local_dot, need_value, need_first, need_time
     use rollcon_equations, only : equations_type
     use rollcon_speed_partition, only : speed_partition_type
@@ -28,7 +29,8 @@ module rollcon_independent_speeds
 
     public :: independent_speeds_type
 
-    !> The partition and the workspace of the formulation (allocated once, in init)
+    !> The partition and the workspace of the formulation (allocated in init; the Newton
+    !> matrix's, dense or by blocks, by its first evaluations)
     type :: independent_speeds_type
         !> Rates, constraint rows partitioned (the active ones), independent speeds n - nc, and
         !> the model's rows (active or set aside)
@@ -36,10 +38,18 @@ module rollcon_independent_speeds
         !> Which rows were active when the partition was sized (init)
         logical, allocatable :: active(:)
         type(speed_partition_type) :: partition
-        !> The ODE form's Jacobian d(q', u')/d(q, u) (2n x 2n)
+        !> The dense Newton matrix's (jacobian): the ODE form's Jacobian d(q', u')/d(q, u)
+        !> (2n x 2n), -C_d^-1 dr/dq (nc x n) and -C_d^-1 C_i (nc x ni), the dependent speeds'
+        !> partials (allocated by its first evaluation: none on the sparse path)
         real(wp), allocatable :: full(:, :)
-        !> -C_d^-1 dr/dq (nc x n) and -C_d^-1 C_i (nc x ni): the dependent speeds' partials
         real(wp), allocatable :: dud_dq(:, :), dud_dv(:, :)
+        !> The sparse Newton matrix's (jacobian_blocks): one block's dependent speeds' partials
+        !> (its UCONs x its coordinates, x its independent speeds; grown to the largest block
+        !> by the first evaluations), each coordinate's slot (0: independent) and independent
+        !> speed (0: dependent), each slot's row in its block's, one block's independent
+        !> speeds' coordinates
+        real(wp), allocatable :: block_dq(:, :), block_dv(:, :)
+        integer, allocatable :: slot_of(:), speed_of(:), local_row(:), block_speeds(:)
         !> Right-hand side of the dependent speeds' solve (nc)
         real(wp), allocatable :: r(:)
     contains
@@ -50,6 +60,8 @@ module rollcon_independent_speeds
         procedure :: speeds
         procedure :: rhs
         procedure :: jacobian
+        procedure :: by_blocks
+        procedure :: jacobian_blocks
     end type independent_speeds_type
 
 contains
@@ -70,9 +82,13 @@ contains
             call self%partition%init(self%n, self%nc, eq%blocks%active_subset(self%active), &
                 & self%rows)
         end if
-        if (allocated(self%full)) deallocate(self%full, self%dud_dq, self%dud_dv, self%r)
-        allocate(self%full(2*self%n, 2*self%n), self%dud_dq(max(self%rows, 1), self%n), &
-            & self%dud_dv(max(self%rows, 1), self%ni), self%r(max(self%rows, 1)), source=0.0_wp)
+        if (allocated(self%full)) deallocate(self%full, self%dud_dq, self%dud_dv)
+        if (allocated(self%block_dq)) deallocate(self%block_dq, self%block_dv)
+        if (allocated(self%r)) deallocate(self%r, self%slot_of, self%speed_of, self%local_row, &
+            & self%block_speeds)
+        allocate(self%r(max(self%rows, 1)), source=0.0_wp)
+        allocate(self%slot_of(self%n), self%speed_of(self%n), self%local_row(max(self%rows, 1)), &
+            & self%block_speeds(self%n), source=0)
     end subroutine init
 
     !> Size of the integrator's state: n coordinates and n - nc independent speeds.
@@ -176,6 +192,9 @@ contains
         ni = self%ni
         call self%speeds(eq, time, y(:n), y(n + 1:), alpha, u, error)
         if (allocated(error)) return
+        if (.not. allocated(self%full)) allocate(self%full(2*n, 2*n), &
+            & self%dud_dq(max(self%rows, 1), n), self%dud_dv(max(self%rows, 1), ni), &
+            & source=0.0_wp)
         ! C_d's factors stay those of q: the evaluation below changes neither q nor C
         call eq%ode_jacobian(time, y(:n), u, alpha, self%full, error)
         if (allocated(error)) return
@@ -264,5 +283,200 @@ contains
             end if
         end do
     end function independent_slot
+
+    !> The Newton matrix can be formed by blocks (jacobian_blocks): no rows set aside (the
+    !> partition's blocks are then the equations') and no algebraic loop.
+    logical function by_blocks(self, eq)
+        class(independent_speeds_type), intent(in) :: self
+        type(equations_type), intent(in) :: eq
+
+        by_blocks = self%nc == self%rows .and. .not. eq%reads_loop()
+    end function by_blocks
+
+    !> jacobian's matrix d(u, a_i)/d(q, v) over the pattern of the form's state blocks,
+    !> compressed by columns (CVODE's sparse Newton matrix): column j's rows (0-based,
+    !> ascending) rows(starts(j) + 1 : starts(j + 1)) are the coordinates of state j's block,
+    !> then its block's independent speeds (n + i), values written at the same places; formed
+    !> block by block with no n x n array: the ODE form's block (the equations'
+    !> jacobian_block), the dependent speeds' partials over the block's UCONs and columns,
+    !> C_d^-1 by the partition's blocks there (solve_block), and the chain rule's sums as
+    !> jacobian makes them (over the block's slots, ascending: the others add exact zeros it
+    !> skips), so each entry is jacobian's bit for bit. Only where by_blocks; u is work space
+    !> of size n.
+    subroutine jacobian_blocks(self, eq, time, y, alpha, u, starts, rows, values, error)
+        class(independent_speeds_type), intent(inout) :: self
+        type(equations_type), intent(inout) :: eq
+        real(wp), intent(in) :: time, y(:), alpha
+        real(wp), intent(out) :: u(:)
+        integer, intent(in) :: starts(:), rows(:)
+        real(wp), intent(out) :: values(:)
+        type(error_type), allocatable, intent(out) :: error
+        integer :: n, j, nb, nv, listed, m, i, b, r, x, k, c, s, t, a, slot, v0, place
+        real(wp) :: total, slope
+
+        n = self%n
+        call self%speeds(eq, time, y(:n), y(n + 1:), alpha, u, error)
+        if (allocated(error)) return
+        self%slot_of = 0
+        self%speed_of = 0
+        do k = 1, self%nc
+            self%slot_of(self%partition%dependent(k)) = k
+        end do
+        do i = 1, self%ni
+            self%speed_of(self%partition%independent(i)) = i
+        end do
+        ! C_d's factors stay those of q: the evaluation below changes neither q nor C
+        call eq%prepare_jacobian_blocks(time, y(:n), u, alpha, error)
+        if (allocated(error)) return
+        associate (w => eq%work, bl => self%partition%blocks, cs => eq%constraints)
+            do j = 1, n
+                if (rows(starts(j) + 1) + 1 /= j) cycle
+                nb = count(rows(starts(j) + 1:starts(j + 1)) < n)
+                nv = starts(j + 1) - starts(j) - nb
+                call eq%jacobian_block(rows(starts(j) + 1:starts(j) + nb), u, alpha, listed, &
+                    & error)
+                if (allocated(error)) return
+                ! the block's independent speeds (ascending: their coordinates' order)
+                s = 0
+                do c = 1, nb
+                    if (self%speed_of(w%block_coordinates(c)) == 0) cycle
+                    s = s + 1
+                    self%block_speeds(s) = w%block_coordinates(c)
+                end do
+                m = 0
+                do i = 1, listed
+                    m = m + bl%row_start(w%block_list(i) + 1) - bl%row_start(w%block_list(i))
+                end do
+                if (s /= nv) then
+                    call fatal_error(error, "independent speeds by blocks: column " &
+                        & // to_text(j) // "'s pattern holds " // to_text(nv) // " speeds, " &
+                        & // "its block " // to_text(s), stat_ucon)
+                    return
+                end if
+                call size_block(self, m, nb, nv)
+                ! -dr/dq (module text) and -C_i over the block's UCONs and columns, row by
+                ! row of its constraints' blocks (their UCONs in order), as jacobian's rows
+                r = 0
+                do i = 1, listed
+                    b = w%block_list(i)
+                    do x = bl%row_start(b), bl%row_start(b + 1) - 1
+                        k = bl%rows(x)
+                        r = r + 1
+                        self%local_row(x) = r
+                        associate (at => cs%local(:cs%local_count(k), k))
+                            if (eq%model%ucons(k)%holonomic) then
+                                self%block_dq(r, :nb) = -(0.0_wp + 0.0_wp + alpha*0.0_wp)
+                                do a = 1, size(at)
+                                    self%block_dq(r, w%block_place(at(a))) = &
+                                        & -(local_dot(cs%hqq(:, a, k), u, at) &
+                                        & + cs%dt_grad_q(a, k) + alpha*cs%grad_q_local(a, k))
+                                end do
+                            else
+                                self%block_dq(r, :nb) = 0.0_wp
+                                do a = 1, size(at)
+                                    self%block_dq(r, w%block_place(at(a))) = &
+                                        & cs%grad_q_local(a, k)
+                                end do
+                                self%block_dq(r, :nb) = -self%block_dq(r, :nb)
+                            end if
+                        end associate
+                        do t = 1, nv
+                            self%block_dv(r, t) = -eq%cm%entry(k, self%block_speeds(t))
+                        end do
+                    end do
+                end do
+                ! C_d^-1 by the partition's blocks: row r is then slot x's (local_row(x) = r)
+                r = 0
+                do i = 1, listed
+                    b = w%block_list(i)
+                    call self%partition%solve_block(b, self%block_dq(r + 1, 1), &
+                        & size(self%block_dq, 1), nb, error)
+                    if (allocated(error)) return
+                    if (nv > 0) call self%partition%solve_block(b, self%block_dv(r + 1, 1), &
+                        & size(self%block_dv, 1), nv, error)
+                    if (allocated(error)) return
+                    r = r + bl%row_start(b + 1) - bl%row_start(b)
+                end do
+                ! columns of the coordinates: q' rows (du_d/dq, 0), v' rows (the chain rule)
+                do c = 1, nb
+                    v0 = starts(w%block_coordinates(c))
+                    do i = 1, nb
+                        slot = self%slot_of(w%block_coordinates(i))
+                        values(v0 + i) = 0.0_wp
+                        if (slot > 0) values(v0 + i) = self%block_dq(self%local_row(slot), c)
+                    end do
+                    do t = 1, nv
+                        place = w%block_place(self%block_speeds(t))
+                        total = w%block_top(place, c)
+                        do x = 1, m
+                            slope = w%block_top(place, nb + w%block_place( &
+                                & self%partition%dependent(slot_at(x))))
+                            if (slope == 0.0_wp) cycle
+                            total = total + slope*self%block_dq(x, c)
+                        end do
+                        values(v0 + nb + t) = total
+                    end do
+                end do
+                ! columns of the independent speeds: q' rows (du_d/dv, the identity), v' rows
+                do s = 1, nv
+                    v0 = starts(n + self%speed_of(self%block_speeds(s)))
+                    do i = 1, nb
+                        slot = self%slot_of(w%block_coordinates(i))
+                        values(v0 + i) = 0.0_wp
+                        if (slot > 0) then
+                            values(v0 + i) = self%block_dv(self%local_row(slot), s)
+                        else if (w%block_coordinates(i) == self%block_speeds(s)) then
+                            values(v0 + i) = 1.0_wp
+                        end if
+                    end do
+                    do t = 1, nv
+                        place = w%block_place(self%block_speeds(t))
+                        total = w%block_top(place, nb + w%block_place(self%block_speeds(s)))
+                        do x = 1, m
+                            slope = w%block_top(place, nb + w%block_place( &
+                                & self%partition%dependent(slot_at(x))))
+                            if (slope == 0.0_wp) cycle
+                            total = total + slope*self%block_dv(x, s)
+                        end do
+                        values(v0 + nb + t) = total
+                    end do
+                end do
+            end do
+        end associate
+
+    contains
+
+        !> The slot of the block's x-th row (its constraints' blocks' slots, in order)
+        integer function slot_at(x) result(slot)
+            integer, intent(in) :: x
+            integer :: ii, rows_b
+
+            slot = x
+            do ii = 1, listed
+                rows_b = self%partition%blocks%row_start(eq%work%block_list(ii) + 1) &
+                    & - self%partition%blocks%row_start(eq%work%block_list(ii))
+                if (slot <= rows_b) then
+                    slot = self%partition%blocks%row_start(eq%work%block_list(ii)) + slot - 1
+                    return
+                end if
+                slot = slot - rows_b
+            end do
+        end function slot_at
+
+    end subroutine jacobian_blocks
+
+    !> block_dq (m x nb) and block_dv (m x nv) at least, grown (a first use or a larger block).
+    subroutine size_block(self, m, nb, nv)
+        type(independent_speeds_type), intent(inout) :: self
+        integer, intent(in) :: m, nb, nv
+
+        if (allocated(self%block_dq)) then
+            if (size(self%block_dq, 1) >= max(m, 1) .and. size(self%block_dq, 2) >= nb .and. &
+                & size(self%block_dv, 2) >= max(nv, 1)) return
+            deallocate(self%block_dq, self%block_dv)
+        end if
+        allocate(self%block_dq(max(m, 1), nb), self%block_dv(max(m, 1), max(nv, 1)), &
+            & source=0.0_wp)
+    end subroutine size_block
 
 end module rollcon_independent_speeds

@@ -41,6 +41,19 @@ module rollcon_ode_workspace
         real(wp), allocatable :: dm_dlambda(:, :)
         !> Accelerations, multipliers, projected coordinates
         real(wp), allocatable :: a(:), lambda(:), q(:)
+        !> The ODE form's Jacobian block by block (rollcon_equations' ode_jacobian_blocks, CVODE's
+        !> sparse Newton matrix), in place of rhs_top and rhs_bottom: one block's right-hand
+        !> sides, momentum rows (its most coordinates x twice those) and constraint rows (its
+        !> most UCONs x the same), sized by a first use to the largest block (memory linear in
+        !> the model where the blocks are bounded, docs/design.md §4 "Memory")
+        real(wp), allocatable :: block_top(:, :), block_bottom(:, :)
+        !> Each coordinate's constraints' block (0: a part no UCON holds), its row in its
+        !> block's right-hand sides, and the block it was last placed in (its first
+        !> coordinate); one block's coordinates, and its constraints' blocks (n, n, n, n,
+        !> blocks: allocated by a first use)
+        integer, allocatable :: coordinate_block(:), block_place(:), block_mark(:), &
+            & block_coordinates(:), block_list(:)
+        logical, allocatable :: block_seen(:)
     contains
         procedure :: init
         procedure :: size_right_hand_sides
@@ -64,13 +77,16 @@ contains
     end subroutine init
 
     !> The arrays of the ODE form's Jacobian and projection (CVODE's forms, which form them at
-    !> every step; IDA's, which does not, leaves them to a first use): the right-hand sides'
-    !> 2 n columns (the projection's one among them). Once, before a run.
-    subroutine size_ode_form(self, n, nc, nh)
+    !> every step; IDA's, which does not, leaves them to a first use): with `jacobian` the
+    !> right-hand sides' 2 n columns of the dense Jacobian (ode_jacobian; else they are sized
+    !> by a first use, the projection's one column, and the sparse one, ode_jacobian_blocks,
+    !> never holds them). Once, before a run.
+    subroutine size_ode_form(self, n, nc, jacobian)
         class(ode_workspace_type), intent(inout) :: self
-        integer, intent(in) :: n, nc, nh
+        integer, intent(in) :: n, nc
+        logical, intent(in) :: jacobian
 
-        call self%size_right_hand_sides(n, nc, 2*n)
+        if (jacobian) call self%size_right_hand_sides(n, nc, 2*n)
     end subroutine size_ode_form
 
     !> rhs_top (n x columns) and rhs_bottom (nc x columns), zero, unless they hold as many

@@ -92,7 +92,8 @@ module rollcon_saddle_point
         !> Factorisations done since init: one per saddle-point solve of a new matrix
         integer :: factorisations = 0
         !> The constraints' blocks, when given to init (then the factorisations of all nc rows
-        !> go block by block; those of fewer rows, the projection's, stay dense)
+        !> go block by block; without them, or with fewer rows, the dense path: the tests'
+        !> reference)
         logical :: blocked = .false.
         type(constraint_blocks_type) :: blocks
         !> Each block's LU factors of S, packed (offset of block b: schur_start(b)), and the
@@ -135,6 +136,7 @@ module rollcon_saddle_point
         procedure :: init
         procedure :: factor
         procedure :: solve
+        procedure :: solve_local
         procedure :: apply_inverse_mass
         procedure :: release
     end type saddle_point_type
@@ -703,6 +705,146 @@ contains
         end associate
     end subroutine factor_blocks
 
+    !> solve (after factor by blocks, all nc rows) for right-hand sides that are nonzero only
+    !> over some of the constraints' blocks and their parts (a state block of the ODE form's
+    !> Newton matrix: rollcon_equations' ode_jacobian_blocks), held locally: r1's rows are the
+    !> coordinates listed (whole parts, ascending; place(j) is coordinate j's row there), r2's
+    !> rows the UCONs of the blocks listed, block after block, each block's in its order
+    !> (constraint_blocks_type's rows). Touches only those rows, blocks and parts: each entry
+    !> is the number solve gives over all n coordinates and nc rows (the same operations in the
+    !> same order; the rows and columns left out add exact zeros to none of these), at a cost
+    !> and memory that follow the block.
+    subroutine solve_local(self, c, coordinates, place, blocks, r1, r2, m, error)
+        class(saddle_point_type), intent(inout) :: self
+        !> C by rows over each UCON's coordinates, as given to factor
+        type(constraint_matrix_type), intent(in) :: c
+        !> The coordinates of r1's rows (whole parts, ascending), and each coordinate's row
+        !> there (n; read at the coordinates listed only)
+        integer, intent(in) :: coordinates(:), place(:)
+        !> The constraints' blocks whose UCONs are r2's rows
+        integer, intent(in) :: blocks(:)
+        !> Number of right-hand sides
+        integer, intent(in) :: m
+        !> Momentum rows on entry, accelerations on exit (rows: the coordinates listed)
+        real(wp), intent(inout) :: r1(:, :)
+        !> Constraint rows on entry, multipliers on exit (rows: the blocks' UCONs)
+        real(wp), intent(inout) :: r2(:, :)
+        type(error_type), allocatable, intent(out) :: error
+
+        if (.not. self%by_blocks .and. self%rows > 0) then
+            call fatal_error(error, "saddle point: a solve restricted to blocks needs the " &
+                & // "factors by blocks (all the constraint rows)", stat_lapack)
+            return
+        end if
+        call local_solve(self, c, coordinates, place, blocks, size(r1, 1), size(r2, 1), r1, &
+            & r2, m, error)
+    end subroutine solve_local
+
+    !> solve_local's work, on r1 (ld1 x m) and r2 (ld2 x m) as explicit-shape arrays (the
+    !> parts' rotational rows handed over strided, as apply_inverse_mass does).
+    subroutine local_solve(self, c, coordinates, place, blocks, ld1, ld2, r1, r2, m, error)
+        type(saddle_point_type), intent(inout) :: self
+        type(constraint_matrix_type), intent(in) :: c
+        integer, intent(in) :: coordinates(:), place(:), blocks(:), ld1, ld2, m
+        real(wp), intent(inout) :: r1(ld1, m), r2(ld2, m)
+        type(error_type), allocatable, intent(out) :: error
+        integer :: i, l, p, b, k, x, j, col, first, width, offset, rows_b, r0, il
+
+        ! r1 := M^-1 r1, part by part, as apply_inverse_mass
+        do l = 1, size(coordinates), 6
+            p = (coordinates(l) - 1)/6 + 1
+            r1(l:l + 2, :m) = r1(l:l + 2, :m)/self%part_mass(p)
+            call solve_cholesky3(self%rotational(:, :, p), m, r1(l + 3, 1), ld1)
+        end do
+        if (self%rows == 0) return
+        associate (bl => self%blocks)
+            ! lambda, block by block (solve_blocks, solve_sparse_block)
+            r0 = 0
+            do i = 1, size(blocks)
+                b = blocks(i)
+                rows_b = bl%row_start(b + 1) - bl%row_start(b)
+                if (self%block_sparse(b)) then
+                    associate (chunk => self%sparse_gathered)
+                        do first = 1, m, size(chunk, 2)
+                            width = min(size(chunk, 2), m - first + 1)
+                            do col = 1, width
+                                call gather_local(self, c, b, place, r1(:, first + col - 1), &
+                                    & r2(r0 + 1:r0 + rows_b, first + col - 1), chunk(:, col))
+                            end do
+                            call self%sparse(b)%solve(chunk, size(chunk, 1), width, error)
+                            if (allocated(error)) return
+                            r2(r0 + 1:r0 + rows_b, first:first + width - 1) = &
+                                & chunk(:rows_b, :width)
+                        end do
+                    end associate
+                else
+                    do col = 1, m
+                        call gather_local(self, c, b, place, r1(:, col), r2(r0 + 1:r0 + rows_b, &
+                            & col), self%gathered(:, col))
+                    end do
+                    call solve_lu(rows_b, m, self%block_schur(self%schur_start(b)), rows_b, &
+                        & self%pivots(bl%row_start(b)), self%gathered, size(self%gathered, 1))
+                    r2(r0 + 1:r0 + rows_b, :m) = self%gathered(:rows_b, :m)
+                end if
+                r0 = r0 + rows_b
+            end do
+            ! a = M^-1 (r1 + C^T lambda): each row's column of M^-1 C^T over its block, a
+            ! block's rows ascending as solve_blocks adds them (the other blocks' columns are
+            ! zero on these coordinates)
+            do col = 1, m
+                r0 = 0
+                do i = 1, size(blocks)
+                    b = blocks(i)
+                    do il = bl%row_start(b), bl%row_start(b + 1) - 1
+                        k = bl%rows(il)
+                        r0 = r0 + 1
+                        if (self%block_sparse(b)) then
+                            do j = self%ucon_part_start(k), self%ucon_part_start(k + 1) - 1
+                                l = place(6*(self%ucon_parts(j) - 1) + 1)
+                                x = self%minv_start(k) - 1 + 6*(j - self%ucon_part_start(k))
+                                r1(l:l + 5, col) = r1(l:l + 5, col) &
+                                    & + r2(r0, col)*self%minv_values(x + 1:x + 6)
+                            end do
+                            cycle
+                        end if
+                        offset = self%minv_start(k) - bl%coordinate_start(b)
+                        do j = bl%coordinate_start(b), bl%coordinate_start(b + 1) - 1
+                            l = place(bl%coordinates(j))
+                            r1(l, col) = r1(l, col) + r2(r0, col)*self%minv_values(offset + j)
+                        end do
+                    end do
+                end do
+            end do
+        end associate
+    end subroutine local_solve
+
+    !> Block b's rows of r2 - C M^-1 r1 (M^-1 r1 given) for one right-hand side held locally
+    !> (r1 over the coordinates by place, r2 over the block's rows), each over its UCON's
+    !> coordinates as solve sums it (C's row_dot); zero for a row set aside.
+    pure subroutine gather_local(self, c, b, place, r1, r2, gathered)
+        type(saddle_point_type), intent(in) :: self
+        type(constraint_matrix_type), intent(in) :: c
+        integer, intent(in) :: b, place(:)
+        real(wp), intent(in) :: r1(:), r2(:)
+        real(wp), intent(inout) :: gathered(:)
+        real(wp) :: total
+        integer :: i, k, x
+
+        associate (bl => self%blocks)
+            do i = 1, bl%row_start(b + 1) - bl%row_start(b)
+                k = bl%rows(bl%row_start(b) + i - 1)
+                total = 0.0_wp
+                do x = bl%ucon_start(k), bl%ucon_start(k + 1) - 1
+                    total = total + c%value(x)*r1(place(bl%ucon_coordinates(x)))
+                end do
+                gathered(i) = r2(i) - total
+                if (self%masked) then
+                    if (.not. self%active(k)) gathered(i) = 0.0_wp
+                end if
+            end do
+        end associate
+    end subroutine gather_local
+
     !> The block path of solve, after r1 := M^-1 r1: lambda block by block, then a.
     subroutine solve_blocks(self, c, r1, r2, m, error)
         type(saddle_point_type), intent(inout) :: self
@@ -725,7 +867,7 @@ contains
                 do col = 1, m
                     do i = 1, rows_b
                         k = blocks%rows(blocks%row_start(b) + i - 1)
-                        self%gathered(i, col) = r2(k, col) - block_dot(c, blocks, k, &
+                        self%gathered(i, col) = r2(k, col) - c%row_dot(k, &
                             & r1(:, col))
                         if (self%masked) then
                             if (.not. self%active(k)) self%gathered(i, col) = 0.0_wp
@@ -911,23 +1053,6 @@ contains
             end do
         end do
     end subroutine scatter_rows
-
-    !> Row k of C times v (n) over UCON k's own coordinates (the blocks' ucon_coordinates,
-    !> ascending, c's pattern): the dense dot product's terms that are not exact zeros, in its
-    !> order.
-    pure function block_dot(c, blocks, k, v) result(total)
-        type(constraint_matrix_type), intent(in) :: c
-        type(constraint_blocks_type), intent(in) :: blocks
-        integer, intent(in) :: k
-        real(wp), intent(in) :: v(:)
-        real(wp) :: total
-        integer :: x
-
-        total = 0.0_wp
-        do x = blocks%ucon_start(k), blocks%ucon_start(k + 1) - 1
-            total = total + c%value(x)*v(blocks%ucon_coordinates(x))
-        end do
-    end function block_dot
 
     !> x := M^-1 x over part p's rows, for one column x (n).
     subroutine inverse_mass_of_part(self, p, x, error)

@@ -80,6 +80,7 @@ module rollcon_speed_partition
         procedure :: choose
         procedure :: factor
         procedure :: solve
+        procedure :: solve_block
         procedure :: growth
         procedure :: worn
         procedure :: release
@@ -312,6 +313,30 @@ contains
             end do
         end associate
     end subroutine solve
+
+    !> solve for block b alone: x (leading dimension ldx, m columns) holds on entry the
+    !> block's rows of the right-hand sides, in the block's order of its UCONs (constraint_
+    !> blocks_type's rows), and on exit C_d^-1 of them by the block's slots (row i: slot
+    !> row_start(b) + i - 1), as solve leaves them in those slots: the same operations (the
+    !> independent speeds' Newton matrix by blocks).
+    subroutine solve_block(self, b, x, ldx, m, error)
+        class(speed_partition_type), intent(inout) :: self
+        integer, intent(in) :: b, ldx, m
+        real(wp), intent(inout) :: x(ldx, *)
+        type(error_type), allocatable, intent(out) :: error
+        integer :: first, rows, info
+
+        if (self%nc == 0) return
+        first = self%blocks%row_start(b)
+        rows = self%blocks%row_start(b + 1) - first
+        if (self%block_sparse(b)) then
+            call self%sparse(b)%solve(x, ldx, m, error)
+            return
+        end if
+        call dgetrs("N", rows, m, self%lu(self%lu_start(b)), rows, self%pivots(first), x, ldx, &
+            & info)
+        call lapack_info_error("dgetrs (dependent speeds)", info, error)
+    end subroutine solve_block
 
     !> The largest growth max |C_d^-1 C_i| of the blocks for the matrix c (C by rows over each
     !> UCON's own coordinates), with the factors of the last factor call, which must be of

@@ -11,7 +11,7 @@ module rollcon_ode_form
     use, intrinsic :: ieee_arithmetic, only : ieee_is_finite
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type
-    use rollcon_dynamic_system, only : ode_system_type
+    use rollcon_dynamic_system, only : ode_system_type, dense_sparse_jacobian
     use rollcon_problem, only : problem_type
     use rollcon_lapack, only : factor_dense, solve_factored
     use rollcon_user_forces, only : set_system_accelerations
@@ -31,6 +31,7 @@ module rollcon_ode_form
         procedure :: unpack_state
         procedure :: ode_rhs
         procedure :: ode_jacobian
+        procedure :: ode_sparse_jacobian
         procedure :: projects
         procedure :: project
         procedure :: state_blocks
@@ -50,8 +51,10 @@ contains
         type(problem_type), intent(inout), target :: problem
 
         self%problem => problem
-        ! its Jacobian's and projection's arrays, once (no evaluation allocates)
-        call problem%eq%size_ode_form()
+        ! its projection's arrays, once (no evaluation allocates); the Jacobian's by its first
+        ! evaluation, dense (n x 2n right-hand sides) or by blocks (CVODE's sparse Newton
+        ! matrix: no n x 2n array)
+        call problem%eq%size_ode_form(dense_jacobian=.false.)
     end subroutine init
 
     !> 2n + nd: the coordinates, the rates and the DIFFs' states.
@@ -139,6 +142,30 @@ contains
             ierr = problem%keep_failure(error)
         end associate
     end function ode_jacobian
+
+    !> The Newton matrix over its state_blocks' entries, compressed by columns (CVODE's sparse
+    !> one; rollcon_dynamic_system's ode_sparse_jacobian): formed block by block by the
+    !> equations' ode_jacobian_blocks, no size(y)-square array nor n x 2n right-hand sides,
+    !> each entry ode_jacobian's. With DIFFs (one block of every state: the dense matrix is
+    !> the block) or an algebraic loop (whose (n + nc)-square matrix is dense anyway), the
+    !> dense matrix's entries (ode_system_type's).
+    integer function ode_sparse_jacobian(self, time, y, starts, rows, values) result(ierr)
+        class(ode_form_type), intent(inout) :: self
+        real(wp), intent(in) :: time, y(:)
+        integer, intent(in) :: starts(:), rows(:)
+        real(wp), intent(out) :: values(:)
+        type(error_type), allocatable :: error
+
+        associate (problem => self%problem, n => self%problem%eq%n)
+            if (problem%model%diffs%count() > 0 .or. problem%eq%reads_loop()) then
+                ierr = dense_sparse_jacobian(self, time, y, starts, rows, values)
+                return
+            end if
+            call problem%eq%ode_jacobian_blocks(time, y(:n), y(n + 1:2*n), &
+                & problem%settings%baumgarte(), starts, rows, values, error)
+            ierr = problem%keep_failure(error)
+        end associate
+    end function ode_sparse_jacobian
 
     !> The DIFFs' rows of the ODE form's Newton matrix, d(w/T)/d(q, u, x) = -(dG/dw)^-1
     !> dG/d(q, u, x) / T at the rates w solved there (rollcon_diff: G(t, q, u, x, w) = 0

@@ -11,7 +11,7 @@ module rollcon_speeds_form
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type
     use rollcon_independent_speeds, only : independent_speeds_type
-    use rollcon_dynamic_system, only : ode_system_type
+    use rollcon_dynamic_system, only : ode_system_type, dense_sparse_jacobian
     use rollcon_problem, only : problem_type
     implicit none
     private
@@ -35,6 +35,7 @@ module rollcon_speeds_form
         procedure :: worn
         procedure :: ode_rhs
         procedure :: ode_jacobian
+        procedure :: ode_sparse_jacobian
         procedure :: projects
         procedure :: project
         procedure :: state_blocks
@@ -55,8 +56,9 @@ contains
         type(problem_type), intent(inout), target :: problem
 
         self%problem => problem
-        ! the ODE form's Jacobian and projection arrays, which its own are formed from, once
-        call problem%eq%size_ode_form()
+        ! the ODE form's projection arrays, once; its Jacobian's (which this form's is formed
+        ! from) by the first evaluation, dense (n x 2n) or by blocks (no n x 2n array)
+        call problem%eq%size_ode_form(dense_jacobian=.false.)
         call self%speeds%init(problem%eq)
         if (allocated(self%q)) deallocate(self%q, self%u, self%du)
         allocate(self%q(problem%eq%n), self%u(problem%eq%n), self%du(problem%eq%n), &
@@ -156,6 +158,29 @@ contains
             ierr = problem%keep_failure(error)
         end associate
     end function ode_jacobian
+
+    !> The Newton matrix over its state_blocks' entries, compressed by columns (CVODE's sparse
+    !> one; rollcon_dynamic_system's ode_sparse_jacobian): formed block by block
+    !> (rollcon_independent_speeds' jacobian_blocks), no size(y)-square array, each entry
+    !> ode_jacobian's; with rows set aside or an algebraic loop, the dense matrix's entries
+    !> (ode_system_type's).
+    integer function ode_sparse_jacobian(self, time, y, starts, rows, values) result(ierr)
+        class(speeds_form_type), intent(inout) :: self
+        real(wp), intent(in) :: time, y(:)
+        integer, intent(in) :: starts(:), rows(:)
+        real(wp), intent(out) :: values(:)
+        type(error_type), allocatable :: error
+
+        associate (problem => self%problem)
+            if (.not. self%speeds%by_blocks(problem%eq)) then
+                ierr = dense_sparse_jacobian(self, time, y, starts, rows, values)
+                return
+            end if
+            call self%speeds%jacobian_blocks(problem%eq, time, y, problem%settings%baumgarte(), &
+                & self%u, starts, rows, values, error)
+            ierr = problem%keep_failure(error)
+        end associate
+    end function ode_sparse_jacobian
 
     !> Projection of q onto the position UCONs, when the settings ask for it and there are
     !> some (the velocity UCONs hold by construction).

@@ -6,7 +6,8 @@
 !> (dae_sparse_jacobian) is the dense one's bit for bit; IDA with KLU moves the chain and the disks
 !> as the dense matrix does; linear_solver = 'auto' picks KLU on large sparse matrices only;
 !> the saddle-point system's Schur complement goes sparse (KLU) on a long chain's block only,
-!> with the dense path's accelerations; `rollcon bench` prints the per-part scaling table.
+!> with the dense path's accelerations; `rollcon bench` prints the per-part scaling table; the
+!> memory a run takes per link is flat in the chain's length.
 module test_link_chain
     use, intrinsic :: iso_c_binding, only : c_associated
     use, intrinsic :: iso_fortran_env, only : int64
@@ -19,10 +20,13 @@ module test_link_chain
     use rollcon_run_job, only : run_job, job_result_type
     use rollcon_simulation, only : history_type, status_completed
     use rollcon_link_chain, only : link_chain_dataset
+    use rollcon_bench_scaling, only : scaling_row_type, measure_scaling
     use rollcon_disk_fleet, only : disk_fleet_dataset
     use rollcon_constraint_blocks, only : constraint_blocks_type
     use rollcon_problem, only : problem_type
     use rollcon_dae_form, only : dae_form_type
+    use rollcon_ode_form, only : ode_form_type
+    use rollcon_speeds_form, only : speeds_form_type
     use rollcon_newton_pattern, only : newton_pattern_type, pattern_of_blocks
     use rollcon_saddle_point, only : saddle_point_type, sparse_schur_rows
     use rollcon_run_settings, only : run_settings_type, linear_auto, linear_dense, &
@@ -54,9 +58,12 @@ contains
             & new_unittest("chain-start", test_start), &
             & new_unittest("sparse-schur-as-dense", test_sparse_schur), &
             & new_unittest("pattern-holds-the-jacobian", test_pattern), &
+            & new_unittest("cvode-sparse-jacobian-as-dense", test_cvode_blocks), &
+            & new_unittest("speeds-sparse-jacobian-as-dense", test_speeds_blocks), &
             & new_unittest("ida-klu-same-motion", test_klu_motion), &
             & new_unittest("auto-solver-choice", test_auto), &
-            & new_unittest("bench-prints-scaling-table", test_bench_table)]
+            & new_unittest("bench-prints-scaling-table", test_bench_table), &
+            & new_unittest("memory-per-link-flat", test_memory_flat)]
     end subroutine collect_link_chain
 
     !> Write the dataset text as name.adm, run it, keep its history.
@@ -341,6 +348,197 @@ contains
             & // to_text(blocks%entries()))
     end subroutine check_pattern
 
+    !> CVODE's sparse Newton matrix of the ODE form, formed block by block (ode_sparse_jacobian:
+    !> the equations' ode_jacobian_blocks, no n x 2n array) over the pattern of its state
+    !> blocks, against the dense one (ode_jacobian) at a generic state: every entry the same,
+    !> bit for bit (the same operations in the same order: the blocks leave out only exact
+    !> zeros), and the dense matrix zero outside the pattern. On 3 disks, two of them joined by
+    !> a SPRINGDAMPER (a state block of two constraints' blocks beside one of one), a chain of
+    !> 3 links (one block, S dense) and of 9 (45 rows: S sparse, KLU).
+    subroutine test_cvode_blocks(error)
+        type(error_type), allocatable, intent(out) :: error
+        character(len=*), parameter :: cvode = "FORMULATION=CVODE, METHOD=ADAMS, " &
+            & // "DRIFT=BAUMGARTE, SOLVER=SPARSE"
+        character(len=:), allocatable :: disks
+        integer :: at
+
+        disks = disk_fleet_dataset(3, 0.5_wp, 0.2_wp, 0.1_wp, cvode)
+        at = index(disks, "ACCGRAV/")
+        disks = disks(:at - 1) // "SPRINGDAMPER/1, TRANSLATIONAL, I = 20, J = 30, K = 200, " &
+            & // "C = 4, LENGTH = 0.5" // new_line("a") // disks(at:)
+        call check_ode_blocks("fleet_spring", disks, 2, error)
+        if (allocated(error)) return
+        call check_ode_blocks("chain_ode_3", link_chain_dataset(3, 0.1_wp, 0.05_wp, cvode), 1, &
+            & error)
+        if (allocated(error)) return
+        call check_ode_blocks("chain_ode_9", link_chain_dataset(9, 0.1_wp, 0.05_wp, cvode), 1, &
+            & error)
+    end subroutine test_cvode_blocks
+
+    !> The ODE form's sparse Newton matrix against its dense one (test_cvode_blocks), on a
+    !> dataset whose states fall in `blocks` blocks.
+    subroutine check_ode_blocks(name, text, blocks, error)
+        character(len=*), intent(in) :: name, text
+        integer, intent(in) :: blocks
+        type(error_type), allocatable, intent(out) :: error
+        type(problem_type), target :: problem
+        type(ode_form_type) :: ode
+        type(newton_pattern_type) :: pattern
+        real(wp), allocatable :: q0(:), u0(:), y(:), matrix(:, :), values(:)
+        logical, allocatable :: kept(:, :)
+        integer, allocatable :: state_blocks(:)
+        integer :: n, i, j, e, ierr, missed
+
+        call problem_of(name, text, problem, q0, u0, error)
+        if (allocated(error)) return
+        call ode%init(problem)
+        n = ode%state_size()
+        state_blocks = ode%state_blocks(n)
+        call check(error, size(unique(state_blocks)), blocks, name // ": state blocks")
+        if (allocated(error)) return
+        ! every rate nonzero and the coordinates moved off the start: a generic state
+        allocate(y(n), matrix(n, n), kept(n, n))
+        y(:size(q0)) = q0 + [(1.0e-3_wp*cos(real(i, wp)), i = 1, size(q0))]
+        y(size(q0) + 1:) = u0 + [(0.1_wp*sin(real(i, wp)), i = 1, size(u0))]
+        ierr = ode%ode_jacobian(0.0_wp, y, matrix)
+        call check(error, ierr, 0, name // ": the dense Newton matrix " // ode%failure_text())
+        if (allocated(error)) return
+        pattern = pattern_of_blocks(state_blocks)
+        allocate(values(pattern%entries()))
+        values = huge(1.0_wp)
+        ierr = ode%ode_sparse_jacobian(0.0_wp, y, pattern%starts, pattern%rows, values)
+        call check(error, ierr, 0, name // ": the sparse Newton matrix " // ode%failure_text())
+        if (allocated(error)) return
+        kept = .false.
+        missed = 0
+        do j = 1, n
+            do e = pattern%starts(j) + 1, pattern%starts(j + 1)
+                kept(pattern%rows(e) + 1, j) = .true.
+                if (.not. same_bits(values(e), matrix(pattern%rows(e) + 1, j))) &
+                    & missed = missed + 1
+            end do
+        end do
+        call check(error, missed, 0, name // ": entries of the sparse Newton matrix not the " &
+            & // "dense one's (of " // to_text(pattern%entries()) // ")")
+        if (allocated(error)) return
+        call check(error, count(matrix /= 0.0_wp .and. .not. kept), 0, name &
+            & // ": nonzero entries of the dense matrix outside the blocks")
+        if (allocated(error)) return
+        ! no n x 2n right-hand sides held for it (the dense matrix's first evaluation sized
+        ! them: a form whose first is sparse never does, cvode-sparse-holds-no-square)
+        call check(error, allocated(problem%eq%work%block_top) .and. &
+            & size(problem%eq%work%block_top, 1) <= 6*maxval(block_sizes(state_blocks)), &
+            & name // ": the blocks' right-hand sides larger than the largest block")
+    end subroutine check_ode_blocks
+
+    !> The independent speeds' sparse Newton matrix (ode_sparse_jacobian: rollcon_independent_
+    !> speeds' jacobian_blocks, no n_y x n_y array) against their dense one at a generic state,
+    !> as test_cvode_blocks: bit for bit over the state blocks' pattern, zero outside it; on
+    !> the same three models in FORMULATION=MAGGI.
+    subroutine test_speeds_blocks(error)
+        type(error_type), allocatable, intent(out) :: error
+        character(len=*), parameter :: maggi = "FORMULATION=MAGGI, METHOD=ADAMS, " &
+            & // "DRIFT=BAUMGARTE, SOLVER=SPARSE"
+        character(len=:), allocatable :: disks
+        integer :: at
+
+        disks = disk_fleet_dataset(3, 0.5_wp, 0.2_wp, 0.1_wp, maggi)
+        at = index(disks, "ACCGRAV/")
+        disks = disks(:at - 1) // "SPRINGDAMPER/1, TRANSLATIONAL, I = 20, J = 30, K = 200, " &
+            & // "C = 4, LENGTH = 0.5" // new_line("a") // disks(at:)
+        call check_speeds_blocks("fleet_spring_maggi", disks, 2, error)
+        if (allocated(error)) return
+        call check_speeds_blocks("chain_maggi_3", link_chain_dataset(3, 0.1_wp, 0.05_wp, maggi), &
+            & 1, error)
+        if (allocated(error)) return
+        call check_speeds_blocks("chain_maggi_9", link_chain_dataset(9, 0.1_wp, 0.05_wp, maggi), &
+            & 1, error)
+    end subroutine test_speeds_blocks
+
+    !> The independent speeds' sparse Newton matrix against their dense one
+    !> (test_speeds_blocks), on a dataset whose states fall in `blocks` blocks.
+    subroutine check_speeds_blocks(name, text, blocks, error)
+        character(len=*), intent(in) :: name, text
+        integer, intent(in) :: blocks
+        type(error_type), allocatable, intent(out) :: error
+        type(problem_type), target :: problem
+        type(speeds_form_type) :: speeds
+        type(newton_pattern_type) :: pattern
+        real(wp), allocatable :: q0(:), u0(:), y(:), yp(:), matrix(:, :), values(:)
+        logical, allocatable :: kept(:, :)
+        integer, allocatable :: state_blocks(:)
+        integer :: n, i, j, e, ierr, missed
+
+        call problem_of(name, text, problem, q0, u0, error)
+        if (.not. allocated(error)) call problem%prepare(error)
+        if (allocated(error)) return
+        call speeds%init(problem)
+        call problem%accelerations(0.0_wp, q0, u0, error)
+        if (allocated(error)) return
+        n = speeds%state_size()
+        allocate(y(n), yp(n), matrix(n, n), kept(n, n))
+        call speeds%pack_state(q0, u0, y, yp)
+        state_blocks = speeds%state_blocks(n)
+        call check(error, size(unique(state_blocks)), blocks, name // ": state blocks")
+        if (allocated(error)) return
+        ! the coordinates moved off the start and every speed changed: a generic state
+        y(:size(q0)) = y(:size(q0)) + [(1.0e-3_wp*cos(real(i, wp)), i = 1, size(q0))]
+        y(size(q0) + 1:) = y(size(q0) + 1:) + [(0.1_wp*sin(real(i, wp)), i = 1, n - size(q0))]
+        ierr = speeds%ode_jacobian(0.0_wp, y, matrix)
+        call check(error, ierr, 0, name // ": the dense Newton matrix " // speeds%failure_text())
+        if (allocated(error)) return
+        pattern = pattern_of_blocks(state_blocks)
+        allocate(values(pattern%entries()))
+        values = huge(1.0_wp)
+        ierr = speeds%ode_sparse_jacobian(0.0_wp, y, pattern%starts, pattern%rows, values)
+        call check(error, ierr, 0, name // ": the sparse Newton matrix " &
+            & // speeds%failure_text())
+        if (allocated(error)) return
+        kept = .false.
+        missed = 0
+        do j = 1, n
+            do e = pattern%starts(j) + 1, pattern%starts(j + 1)
+                kept(pattern%rows(e) + 1, j) = .true.
+                if (.not. same_bits(values(e), matrix(pattern%rows(e) + 1, j))) &
+                    & missed = missed + 1
+            end do
+        end do
+        call check(error, missed, 0, name // ": entries of the sparse Newton matrix not the " &
+            & // "dense one's (of " // to_text(pattern%entries()) // ")")
+        if (allocated(error)) return
+        call check(error, count(matrix /= 0.0_wp .and. .not. kept), 0, name &
+            & // ": nonzero entries of the dense matrix outside the blocks")
+        if (allocated(error)) return
+        call check(error, .not. allocated(speeds%dense_jacobian), name // ": the sparse " &
+            & // "matrix went through the dense one")
+    end subroutine check_speeds_blocks
+
+    !> The distinct values of v.
+    pure function unique(v) result(kept)
+        integer, intent(in) :: v(:)
+        integer, allocatable :: kept(:)
+        integer :: i
+
+        allocate(kept(0))
+        do i = 1, size(v)
+            if (.not. any(kept == v(i))) kept = [kept, v(i)]
+        end do
+    end function unique
+
+    !> Each block's parts (a block's states: 12 per part, the coordinates and their rates).
+    pure function block_sizes(v) result(sizes)
+        integer, intent(in) :: v(:)
+        integer, allocatable :: sizes(:)
+        integer, allocatable :: ids(:)
+        integer :: i
+
+        ids = unique(v)
+        allocate(sizes(size(ids)))
+        do i = 1, size(ids)
+            sizes(i) = count(v == ids(i))/12
+        end do
+    end function block_sizes
+
     !> IDA with the sparse Newton matrix (KLU) against the dense one, on a chain of 4 links
     !> over 0.2 s and on 2 disks over 0.3 s: the same motion. Only the Newton matrix's LU
     !> differs (its sums in another order), so the runs differ by where a step's tests fall:
@@ -476,5 +674,33 @@ contains
 
         same_bits = transfer(a, 1_int64) == transfer(b, 1_int64)
     end function same_bits
+
+    !> What a run of the chain takes per link is flat (`bench scaling`'s measure: the run's peak
+    !> resident memory over what the process held before it, per link, the heap's free memory
+    !> returned first), on the default (IDA, KLU at this size) from 128 to 512 links. Measured
+    !> (release build, 2026-11-30): 97 kB a link at 128, 98 at 256, 83 at 640; a storage of
+    !> 30 N^2 reals (C when it was dense, nc x n) adds 240 N bytes a link, 31 kB at 128 and
+    !> 123 at 512, so 512's figure would be 1.7 times 128's; any array of nc x n or n x n
+    !> grows at least so. 1.3 times lets the per-run overhead and the allocator's rounding vary
+    !> and catches such a term. Memory does not depend on the machine's load.
+    subroutine test_memory_flat(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(scaling_row_type), allocatable :: rows(:)
+
+        call make_folders(folder // "/memory", error)
+        if (allocated(error)) return
+        call measure_scaling(folder // "/memory", [128, 512], 0.2_wp, rows, error, &
+            & only=[character(len=30) :: "chain-default"])
+        if (allocated(error)) return
+        call check(error, size(rows) == 2, "two runs measured, got " // to_text(size(rows)))
+        if (allocated(error)) return
+        call check(error, rows(1)%memory_per_part > 0.0_wp .and. rows(2)%memory_per_part > &
+            & 0.0_wp .and. rows(2)%memory_per_part <= 1.3_wp*rows(1)%memory_per_part, &
+            & "memory per link " // to_text(rows(1)%memory_per_part) // " kB at 128 links, " &
+            & // to_text(rows(2)%memory_per_part) // " kB at 512")
+        if (allocated(error)) return
+        call check(error, rows(1)%status == "completed" .and. rows(2)%status == "completed", &
+            & "the chains' runs: " // rows(1)%status // "; " // rows(2)%status)
+    end subroutine test_memory_flat
 
 end module test_link_chain

@@ -7,8 +7,8 @@
 !> lift-off event function no saddle-point solve under CVODE, a time-free UCON no time-partial
 !> calls, a threaded BLAS no second thread.
 module test_allocations
-    use, intrinsic :: iso_c_binding, only : c_int, c_long, c_ptr, c_null_ptr, c_funptr, c_char, &
-        & c_null_char, c_associated, c_f_procpointer
+    use, intrinsic :: iso_c_binding, only : c_int, c_long, c_long_long, c_ptr, c_null_ptr, &
+        & c_funptr, c_char, c_null_char, c_associated, c_f_procpointer
     use rollcon_lapack, only : use_one_blas_thread
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type
@@ -21,6 +21,7 @@ module test_allocations
     use rollcon_dae, only : dae_size, dae_residual, dae_jacobian
     use rollcon_user_forces, only : set_system_constraint_forces, system_multipliers
     use rollcon_cvode, only : cvode_integrator_type
+    use rollcon_integrator, only : integrator_statistics_type
     use rollcon_ida, only : ida_integrator_type
     use rollcon_contact_watch, only : contact_watch_type
     use rollcon_model, only : model_type, setup_model
@@ -31,6 +32,12 @@ module test_allocations
     use rollcon_disk_scene, only : build_disk_problem
     use rollcon_disk_reference, only : rolling_disk_ucosub
     use rollcon_gen_turntable_disk, only : turntable_disk_ucosub, turntable_disk_par
+    use rollcon_output_files, only : write_text_file, make_folders
+    use rollcon_disk_fleet, only : disk_fleet_dataset
+    use rollcon_adm_model, only : adm_model_type
+    use rollcon_adm_reader, only : read_adm
+    use rollcon_adm_build, only : build_adm_problem
+    use rollcon_ucosub_contract, only : ucosub_interface
     use rollcon_testing, only : unittest_type, new_unittest, check, skip_test
     implicit none
     private
@@ -49,6 +56,16 @@ module test_allocations
             import :: c_int
             integer(c_int) :: counting
         end function malloc_counting
+
+        !> The largest single request to malloc, calloc or realloc since the last reset [bytes]
+        function malloc_largest() result(bytes) bind(c, name="rollcon_malloc_largest")
+            import :: c_long_long
+            integer(c_long_long) :: bytes
+        end function malloc_largest
+
+        !> Forget the largest request so far
+        subroutine malloc_reset_largest() bind(c, name="rollcon_malloc_reset_largest")
+        end subroutine malloc_reset_largest
 
         !> A symbol of the loaded libraries (POSIX; c_null_ptr is glibc's RTLD_DEFAULT)
         function dlsym(handle, symbol) result(address) bind(c, name="dlsym")
@@ -84,6 +101,7 @@ contains
             & new_unittest("cvode-run-allocates-nothing", test_cvode_run), &
             & new_unittest("ida-run-allocates-nothing", test_ida_run), &
             & new_unittest("independent-speeds-allocate-nothing", test_independent_speeds), &
+            & new_unittest("cvode-sparse-holds-no-square", test_cvode_sparse_memory), &
             & new_unittest("dissipated-powers-allocate-nothing", test_powers), &
             & new_unittest("constraint-forces-set-allocate-nothing", test_constraint_forces), &
             & new_unittest("liftoff-root-without-solve", test_liftoff_root), &
@@ -167,8 +185,15 @@ contains
         y = [q, u]
         m = dae_size(problem%eq)
         allocate(yd(m), ypd(m), r(m), jd(m, m), source=0.0_wp)
-        ! one call of each first: anything allocated on a first use only is not counted
+        ! one call of each first: anything allocated on a first use only is not counted (the
+        ! Jacobian's right-hand sides are sized by its first evaluation, rollcon_ode_form)
         ierr = ode%ode_rhs(0.0_wp, y, ydot)
+        call problem%eq%ode_jacobian(0.0_wp, q, u, problem%settings%baumgarte(), jac, failure)
+        if (.not. allocated(failure)) call problem%eq%project(0.0_wp, q, u, dq, du, failure)
+        if (allocated(failure)) then
+            call move_alloc(failure, error)
+            return
+        end if
         yd(:12) = y
         yd(13:) = problem%lambda
         ypd(:12) = ydot
@@ -285,7 +310,9 @@ contains
         call problem%accelerations(0.0_wp, q, u, error)
         if (allocated(error)) return
         call speeds%pack_state(q, u, y, yp)
+        ! one call of each first: the Newton matrix's arrays are sized by its first evaluation
         ierr = speeds%ode_rhs(0.0_wp, y, ydot)
+        ierr = ierr + speeds%ode_jacobian(0.0_wp, y, jac)
         start = malloc_count()
         do i = 1, repeats
             ierr = ierr + speeds%ode_rhs(0.0_wp, y, ydot)
@@ -313,11 +340,104 @@ contains
         call cvode%destroy()
     end subroutine test_independent_speeds
 
-    !> The powers a dissipating coin's three forms integrate with their state (friction,
-    !> rolling resistance, air: the one routine of rollcon_problem, state_powers) allocate
-    !> nothing per call, and the three forms give the same powers at the same (q, u): the ODE
-    !> and DAE forms read it from y exactly, the independent speeds solve the dependent rates
-    !> from y = (q, v) to round-off of a solve of condition ~1e3 (tol_reaction's reasoning).
+    !> CVODE's sparse Newton matrix (KLU) on 64 independent disks (384 coordinates; 64 blocks
+    !> of 12 states in the ODE form, 768 states, of 9 in independent speeds, 576) holds
+    !> nothing that grows as the model's square: its Newton matrix formed block by block
+    !> (rollcon_ode_form and the equations' ode_jacobian_blocks; rollcon_speeds_form and
+    !> rollcon_independent_speeds' jacobian_blocks), no single request to the allocator while
+    !> CVODE starts and steps reaches the bound of sparse_run; and its steps allocate nothing.
+    subroutine test_cvode_sparse_memory(error)
+        type(error_type), allocatable, intent(out) :: error
+
+        if (malloc_counting() == 0) then
+            call skip_test(error, "malloc is not interposed on this C library")
+            return
+        end if
+        call sparse_run("CVODE", error)
+        if (allocated(error)) return
+        call sparse_run("MAGGI", error)
+    end subroutine test_cvode_sparse_memory
+
+    !> One run of test_cvode_sparse_memory, in the FORMULATION given (CVODE: the ODE form,
+    !> MAGGI: independent speeds).
+    subroutine sparse_run(formulation, error)
+        character(len=*), intent(in) :: formulation
+        type(error_type), allocatable, intent(out) :: error
+        integer, parameter :: disks = 64
+        !> An eighth of the ODE form's n_y x n_y array of reals (n_y = 12 x 64 = 768: 590 kB).
+        !> A run by blocks asks for at most 230 kB at once, linear in the model (115 kB with
+        !> 32 disks, measured 2026-11-30: SUNDIALS' and KLU's arrays over the states and the
+        !> blocks' entries); the dense ODE Jacobian's n x 2n right-hand sides (2.4 MB) are 4
+        !> times the bound, its n_y x n_y matrix (4.7 MB) 8 times, the independent speeds'
+        !> (576 square, 2.7 MB) 4.5 times and their ODE form's Jacobian (2n square) 8 times
+        integer(c_long_long), parameter :: bound = 8_c_long_long*(12_c_long_long*disks)**2/8
+        character(len=*), parameter :: folder = "build/rollcon-test/allocations"
+        type(problem_type), target :: problem
+        type(ode_form_type), target :: ode
+        type(speeds_form_type), target :: speeds
+        type(cvode_integrator_type), target :: cvode
+        type(adm_model_type) :: adm
+        procedure(ucosub_interface), pointer :: disk
+        real(wp), allocatable :: q0(:), u0(:), y(:), yp(:)
+        real(wp) :: t
+        integer(c_long_long) :: largest
+        integer(c_long) :: start, calls
+        type(integrator_statistics_type) :: counts
+        integer :: k, root
+        logical :: in_speeds
+
+        in_speeds = formulation == "MAGGI"
+        call make_folders(folder, error)
+        if (allocated(error)) return
+        call write_text_file(folder // "/fleet_klu.adm", disk_fleet_dataset(disks, 0.5_wp, &
+            & 1.0_wp, 0.05_wp, "FORMULATION=" // formulation // ", METHOD=ADAMS, " &
+            & // "DRIFT=BAUMGARTE, RTOL=1e-8, ATOL=1e-10, SOLVER=SPARSE"), error)
+        if (allocated(error)) return
+        call read_adm(folder // "/fleet_klu.adm", adm, error)
+        if (allocated(error)) return
+        disk => rolling_disk_ucosub
+        call build_adm_problem(adm, disk, problem, q0, u0, error)
+        if (.not. allocated(error)) call problem%prepare(error)
+        if (allocated(error)) return
+        if (in_speeds) then
+            call speeds%init(problem)
+            call problem%accelerations(0.0_wp, q0, u0, error)
+            if (allocated(error)) return
+            allocate(y(speeds%state_size()), yp(speeds%state_size()), source=0.0_wp)
+            call speeds%pack_state(q0, u0, y, yp)
+        else
+            call ode%init(problem)
+            y = [q0, u0]
+            allocate(yp(size(y)), source=0.0_wp)
+        end if
+        call malloc_reset_largest()
+        if (in_speeds) then
+            call cvode%start(speeds, problem%settings, 0.0_wp, y, yp, 1.0_wp, error)
+        else
+            call cvode%start(ode, problem%settings, 0.0_wp, y, yp, 1.0_wp, error)
+        end if
+        if (.not. allocated(error)) call cvode%advance(0.05_wp, 1.0_wp, t, y, yp, root, error)
+        largest = malloc_largest()
+        start = malloc_count()
+        do k = 2, 4
+            if (allocated(error) .or. root /= 0) exit
+            call cvode%advance(0.05_wp*k, 1.0_wp, t, y, yp, root, error)
+        end do
+        calls = malloc_count() - start
+        if (allocated(error)) return
+        counts = cvode%statistics()
+        call check(error, counts%sparse .and. counts%jacobians > 0, formulation // ": the " &
+            & // "run formed no sparse Newton matrix")
+        if (.not. allocated(error)) call check(error, largest < bound, formulation &
+            & // " with KLU on " // to_text(disks) // " disks asked for " &
+            & // to_text(int(largest)) // " bytes at once, bound " // to_text(int(bound)))
+        if (.not. allocated(error)) call check_none(error, calls, formulation // " Adams " &
+            & // "with KLU on " // to_text(disks) // " disks from t = 0.05 s to " &
+            & // to_text(t) // " s")
+        call cvode%destroy()
+        call problem%release()
+    end subroutine sparse_run
+
     !> The constraint rows and multipliers SYSFNC's force measures read, set at every
     !> evaluation of the algebraic loop's iterates and of IDA's residuals
     !> (set_system_constraint_forces): after the first call, a call with the same rows copies
@@ -359,6 +479,11 @@ contains
             & "the multipliers kept are not the last ones given")
     end subroutine test_constraint_forces
 
+    !> The powers a dissipating coin's three forms integrate with their state (friction,
+    !> rolling resistance, air: the one routine of rollcon_problem, state_powers) allocate
+    !> nothing per call, and the three forms give the same powers at the same (q, u): the ODE
+    !> and DAE forms read it from y exactly, the independent speeds solve the dependent rates
+    !> from y = (q, v) to round-off of a solve of condition ~1e3 (tol_reaction's reasoning).
     subroutine test_powers(error)
         type(error_type), allocatable, intent(out) :: error
         type(problem_type), target :: problem

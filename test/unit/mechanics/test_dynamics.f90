@@ -409,8 +409,9 @@ contains
     !> C as the equations hold it (rollcon_constraint_matrix: rows over each UCON's own
     !> coordinates) against the UCONs' first partials read densely (dF/du, or dF/dq for a
     !> position UCON: rollcon_constraints' fill rows, an independent accessor): every entry,
-    !> exact zeros off a UCON's part included, and each row operation (entry, gather, row_dot,
-    !> add_row, times, transpose_times, dense) against the same sums on the dense rows. The
+    !> exact zeros off a UCON's part included, and each row operation (entry, entry_along,
+    !> gather, row_dot, add_row, times, transpose_times, dense) against the same sums on the
+    !> dense rows. The
     !> entries agree exactly; the sums run over the same nonzero terms, in an order a vectorised
     !> dot_product or matmul may change: 1e-15 (products) and 1e-14 (sums of n terms) of their
     !> scale is rounding, a wrong or missing entry is O(1) of it.
@@ -418,8 +419,8 @@ contains
         type(problem_type), intent(in) :: problem
         type(error_type), allocatable, intent(out) :: error
         real(wp), allocatable :: rows(:, :), d(:, :), y(:), z(:)
-        real(wp) :: v(problem%eq%n), w(problem%eq%nc), part_slice(6)
-        integer :: k, j, n, nc
+        real(wp) :: v(problem%eq%n), w(problem%eq%nc), part_slice(6), along
+        integer :: k, j, n, nc, x
 
         n = problem%eq%n
         nc = problem%eq%nc
@@ -446,6 +447,13 @@ contains
             do j = 1, n
                 call check(error, problem%eq%cm%entry(k, j) == rows(k, j), "entry (" &
                     & // to_text(k) // ", " // to_text(j) // ")")
+                if (allocated(error)) return
+            end do
+            x = problem%eq%cm%start(k)
+            do j = 1, n
+                call problem%eq%cm%entry_along(k, j, x, along)
+                call check(error, along == rows(k, j), "entry_along (" // to_text(k) // ", " &
+                    & // to_text(j) // ")")
                 if (allocated(error)) return
             end do
             do j = 1, n/6

@@ -1,14 +1,21 @@
 /* SPDX-License-Identifier: MIT */
-/* Counts the calls to malloc, calloc and realloc of the whole test program and the bytes they
- * ask for, for the allocation tests (test_allocations.f90, test_adm_text.f90): defining these
- * symbols in the executable interposes them for every caller (gfortran's ALLOCATE, array
- * temporaries, libgfortran, SUNDIALS). glibc exports the real allocator as __libc_malloc &
- * co.; elsewhere nothing is interposed and rollcon_malloc_counting() says so, and the tests
- * skip. */
+/* Counts the calls to malloc, calloc and realloc of the whole test program, the bytes they
+ * ask for and the largest single request, for the allocation tests (test_allocations.f90,
+ * test_adm_text.f90): defining these symbols in the executable interposes them for every
+ * caller (gfortran's ALLOCATE, array temporaries, libgfortran, SUNDIALS). glibc exports the
+ * real allocator as __libc_malloc & co.; elsewhere nothing is interposed and
+ * rollcon_malloc_counting() says so, and the tests skip. */
 #include <stdlib.h>
 
 static long calls = 0;
 static long long bytes = 0;
+static long long largest = 0;
+
+/* The largest single request so far (since rollcon_malloc_reset_largest). */
+static void note_size(long long size)
+{
+    if (size > largest) largest = size;
+}
 
 #ifdef __GLIBC__
 extern void *__libc_malloc(size_t size);
@@ -19,6 +26,7 @@ void *malloc(size_t size)
 {
     calls++;
     bytes += (long long)size;
+    note_size((long long)size);
     return __libc_malloc(size);
 }
 
@@ -26,6 +34,7 @@ void *calloc(size_t count, size_t size)
 {
     calls++;
     bytes += (long long)(count * size);
+    note_size((long long)(count * size));
     return __libc_calloc(count, size);
 }
 
@@ -33,6 +42,7 @@ void *realloc(void *pointer, size_t size)
 {
     calls++;
     bytes += (long long)size;
+    note_size((long long)size);
     return __libc_realloc(pointer, size);
 }
 
@@ -47,3 +57,10 @@ long rollcon_malloc_count(void) { return calls; }
 /* Bytes asked of the allocator since the program started (a realloc counts its new size):
  * a list grown by concatenation asks for quadratically many (test_adm_text.f90). */
 long long rollcon_malloc_bytes(void) { return bytes; }
+
+/* The largest single request of malloc, calloc or realloc since the last reset [bytes]: a run
+ * that holds no n x n array asks for none that large (test_allocations.f90). */
+long long rollcon_malloc_largest(void) { return largest; }
+
+/* Forget the largest request: the next rollcon_malloc_largest counts from here. */
+void rollcon_malloc_reset_largest(void) { largest = 0; }
