@@ -178,13 +178,13 @@ contains
             now%jacobian = 0.0_wp
             ! f + C^T lambda, C by rows over each UCON's coordinates (its entries alone: the
             ! same sums as the dense product's, less exact zeros)
-            call eq%cm%transpose_times(lambda, now%residual(:n))
+            call eq%c%transpose_times(lambda, now%residual(:n))
             now%residual(:n) = eq%force + now%residual(:n)
             now%jacobian(:n, :n) = dfdq
             do k = 1, nc
                 ! C^T's column k: row k's entries
-                do x_c = eq%cm%start(k), eq%cm%start(k + 1) - 1
-                    now%jacobian(eq%cm%column(x_c), n + k) = eq%cm%value(x_c)
+                do x_c = eq%c%start(k), eq%c%start(k + 1) - 1
+                    now%jacobian(eq%c%column(x_c), n + k) = eq%c%value(x_c)
                 end do
             end do
             do k = 1, nc

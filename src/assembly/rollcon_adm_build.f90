@@ -257,7 +257,7 @@ contains
         ! set them at every evaluation)
         call problem%eq%constraint_matrix_at(0.0_wp, q0, u0, error)
         if (allocated(error)) return
-        call set_system_constraint_forces(problem%eq%cm, [(0.0_wp, i = 1, problem%eq%nc)])
+        call set_system_constraint_forces(problem%eq%c, [(0.0_wp, i = 1, problem%eq%nc)])
         ! the VARSUBs first: a force may read their values
         if (user_variables) then
             call declare_user_variables(0.0_wp, q0, u0, error)

@@ -505,9 +505,9 @@ contains
         matrix(:problem%eq%n, problem%eq%n + 1:) = 0.0_wp
         matrix(problem%eq%n + 1:, :) = 0.0_wp
         do i = 1, problem%eq%nc
-            do j = problem%eq%cm%start(i), problem%eq%cm%start(i + 1) - 1
-                matrix(problem%eq%cm%column(j), problem%eq%n + i) = -problem%eq%cm%value(j)
-                matrix(problem%eq%n + i, problem%eq%cm%column(j)) = problem%eq%cm%value(j)
+            do j = problem%eq%c%start(i), problem%eq%c%start(i + 1) - 1
+                matrix(problem%eq%c%column(j), problem%eq%n + i) = -problem%eq%c%value(j)
+                matrix(problem%eq%n + i, problem%eq%c%column(j)) = problem%eq%c%value(j)
             end do
         end do
         allocate(lu(n, n), b(n, 1), pivots(n))

@@ -412,8 +412,8 @@ contains
                 end if
                 associate (at => bl%ucon_coordinates(bl%ucon_start(k):bl%ucon_start(k + 1) - 1))
                     ! -C^T's column: row k's entries (C by rows over the UCON's coordinates)
-                    do x = eq%cm%start(k), eq%cm%start(k + 1) - 1
-                        call put(n + eq%cm%column(x), row, -eq%cm%value(x))
+                    do x = eq%c%start(k), eq%c%start(k + 1) - 1
+                        call put(n + eq%c%column(x), row, -eq%c%value(x))
                     end do
                     ! a force reading this row's reaction: its partials in lambda_k (on the
                     ! parts it loads; the DAE form's pattern keeps them)
@@ -523,7 +523,7 @@ contains
                             i = at(ia)
                             ! C(t_a, i): row t_a's entry ia (C's pattern is the rows' own
                             ! coordinates, the same ascending list as at)
-                            c_ti = eq%cm%value(eq%cm%start(t(a)) + ia - 1)
+                            c_ti = eq%c%value(eq%c%start(t(a)) + ia - 1)
                             ! d(-c_ta m_a)/d lambda_n = mu c_nz s_a c_ta
                             call subtract(n + i, column, -contact%mu*c_nz*s(a)*c_ti)
                             do b = 1, 2
@@ -624,9 +624,9 @@ contains
 
         call eq%constraint_matrix()
         if (eq%redundancy%set_aside > 0) then
-            call set_system_constraint_forces(eq%cm, merge(lambda, 0.0_wp, eq%redundancy%active))
+            call set_system_constraint_forces(eq%c, merge(lambda, 0.0_wp, eq%redundancy%active))
         else
-            call set_system_constraint_forces(eq%cm, lambda)
+            call set_system_constraint_forces(eq%c, lambda)
         end if
     end subroutine set_reactions
 

@@ -64,7 +64,7 @@ module rollcon_equations
         !> The constraint matrix C (nc x n), held by rows over each UCON's own coordinates
         !> (rollcon_constraint_matrix; the other entries are exact zeros, not stored): filled
         !> by constraint_matrix
-        type(constraint_matrix_type) :: cm
+        type(constraint_matrix_type) :: c
         !> The constraints' blocks (UCONs sharing parts), and the saddle-point system's factors,
         !> as the last accelerations call left them
         type(constraint_blocks_type) :: blocks
@@ -147,7 +147,7 @@ contains
         call self%constraints%allocate(model)
         call self%blocks%init(model)
         call self%saddle%init(self%n, self%nc, self%blocks)
-        call self%cm%init(self%n, self%nc, self%blocks%ucon_start, self%blocks%ucon_coordinates)
+        call self%c%init(self%n, self%nc, self%blocks%ucon_start, self%blocks%ucon_coordinates)
         associate (n => self%n, nc => self%nc)
             if (allocated(self%mass)) deallocate(self%mass, self%force, self%gamma)
             allocate(self%mass(6, 6, size(model%parts)), self%force(n), &
@@ -230,10 +230,10 @@ contains
         if (allocated(error)) return
         call self%assemble(time, q, u)
         call self%constraint_matrix()
-        call self%redundancy%choose(self%cm, self%mass, self%blocks, &
+        call self%redundancy%choose(self%c, self%mass, self%blocks, &
             & self%model%holonomic_number > 0, error)
         if (allocated(error)) return
-        self%redundancy%words = set_aside_words(self%model, self%redundancy, self%cm, self%mass, &
+        self%redundancy%words = set_aside_words(self%model, self%redundancy, self%c, self%mass, &
             & self%blocks, self%redundancy%involved, error)
     end subroutine choose_active
 
@@ -250,7 +250,7 @@ contains
         call self%constraint_matrix_at(time, q, u, error)
         if (allocated(error)) return
         call self%assemble(time, q, u)
-        call self%redundancy%rechoose(b, self%cm, self%mass, self%blocks, &
+        call self%redundancy%rechoose(b, self%c, self%mass, self%blocks, &
             & self%model%holonomic_number > 0, changed, error)
     end subroutine choose_block_again
 
@@ -270,7 +270,7 @@ contains
         do b = 1, self%blocks%count
             if (.not. self%redundancy%redundant(b)) cycle
             i = i + 1
-            g(i) = self%redundancy%margin(b, self%cm, self%mass, self%blocks, error)
+            g(i) = self%redundancy%margin(b, self%c, self%mass, self%blocks, error)
             if (allocated(error)) return
         end do
     end subroutine redundancy_margins
@@ -286,7 +286,7 @@ contains
 
         reported = lambda
         if (self%redundancy%set_aside == 0) return
-        call self%redundancy%multipliers(self%cm, self%mass, self%blocks, reported, error)
+        call self%redundancy%multipliers(self%c, self%mass, self%blocks, reported, error)
     end subroutine reported_multipliers
 
     !> Whether row k is active (every row is until a choice sets some aside).
@@ -469,9 +469,9 @@ contains
                 ! its place among the UCON's own coordinates (the same ascending list)
                 a = i - self%blocks%ucon_start(k) + 1
                 if (self%model%ucons(k)%holonomic) then
-                    self%cm%value(i) = self%constraints%grad_q_local(a, k)
+                    self%c%value(i) = self%constraints%grad_q_local(a, k)
                 else
-                    self%cm%value(i) = self%constraints%grad_u_local(a, k)
+                    self%c%value(i) = self%constraints%grad_u_local(a, k)
                 end if
             end do
         end do
@@ -525,13 +525,13 @@ contains
         ! M^-1 f in the factorisation's own LAPACK calls (those of M^-1 C^T)
         a = self%force
         if (self%masked()) then
-            call self%saddle%factor(self%mass, self%cm, nc, error, a, self%active_rows())
+            call self%saddle%factor(self%mass, self%c, nc, error, a, self%active_rows())
         else
-            call self%saddle%factor(self%mass, self%cm, nc, error, a)
+            call self%saddle%factor(self%mass, self%c, nc, error, a)
         end if
         if (allocated(error)) return
         lambda = self%gamma
-        call self%saddle%solve(self%cm, a, lambda, 1, error, scaled=.true.)
+        call self%saddle%solve(self%c, a, lambda, 1, error, scaled=.true.)
         if (allocated(error)) return
         if (self%dissipation%held .or. self%dissipation%rolling_resistance > 0.0_wp) then
             ! the rim's (the contact's) laws, then any further contact's sliding friction:
@@ -577,12 +577,12 @@ contains
             if (contact%sliding) then
                 contact%slip = [self%constraints%value(t(1)), self%constraints%value(t(2))]
                 s = contact%direction(contact%slip)
-                call combine_rows(self%cm, t, s, g, contact%mu)
+                call combine_rows(self%c, t, s, g, contact%mu)
             end if
             g_lambda = 0.0_wp
-            call self%saddle%solve(self%cm, g, g_lambda, 1, error)
+            call self%saddle%solve(self%c, g, g_lambda, 1, error)
             if (allocated(error)) return
-            c_nz = self%cm%entry(n_row, diss%height_column)
+            c_nz = self%c%entry(n_row, diss%height_column)
             denominator = 1.0_wp + c_nz*g_lambda(n_row)
             if (.not. denominator >= painleve_margin) then
                 call fatal_error(error, "the normal force is ill-posed at t = " &
@@ -666,7 +666,7 @@ contains
         moved = huge(1.0_wp)
         do iteration = 1, most_iterations
             call set_system_accelerations(a)
-            if (multipliers) call set_system_constraint_forces(self%cm, lambda)
+            if (multipliers) call set_system_constraint_forces(self%c, lambda)
             call self%assemble(time, q, u)
             call take_user_force_error(error)
             if (allocated(error)) return
@@ -689,7 +689,7 @@ contains
         end do
         ! the forces and the routines' accelerations and reactions at the solution
         call set_system_accelerations(a)
-        if (multipliers) call set_system_constraint_forces(self%cm, lambda)
+        if (multipliers) call set_system_constraint_forces(self%c, lambda)
         call self%assemble(time, q, u)
         call take_user_force_error(error)
         if (allocated(error)) return
@@ -747,7 +747,7 @@ contains
             end do
             do k = 1, self%nc
                 if (active(k)) then
-                    call self%cm%fill_row(k, m(n + k, :n))
+                    call self%c%fill_row(k, m(n + k, :n))
                     do j = 1, n
                         m(j, n + k) = -m(n + k, j) + self%work%dm_dlambda(j, k)
                     end do
@@ -875,7 +875,7 @@ contains
             g = 0.0_wp
             g(phi_column) = 1.0_wp
             g_lambda = 0.0_wp
-            call self%saddle%solve(self%cm, g, g_lambda, 1, error)
+            call self%saddle%solve(self%c, g, g_lambda, 1, error)
             if (allocated(error)) return
             if (.not. g(phi_column) > 0.0_wp) then
                 call fatal_error(error, "at t = " // to_text(time) // " s (theta = " &
@@ -888,7 +888,7 @@ contains
             a(phi_column) = 0.0_wp
             lambda = lambda + moment*g_lambda
             diss%held_moment = moment
-            diss%normal_force = self%cm%entry(diss%normal, diss%height_column) &
+            diss%normal_force = self%c%entry(diss%normal, diss%height_column) &
                 & *lambda(diss%normal)
             diss%rolling_power = 0.0_wp
         end associate
@@ -911,11 +911,11 @@ contains
                 & n_row => self%contact%normal)
             contact%slip = [self%constraints%value(t(1)), self%constraints%value(t(2))]
             s = contact%direction(contact%slip)
-            call combine_rows(self%cm, t, s, contact%unit_a)
+            call combine_rows(self%c, t, s, contact%unit_a)
             contact%unit_lambda = 0.0_wp
-            call self%saddle%solve(self%cm, contact%unit_a, contact%unit_lambda, 1, error)
+            call self%saddle%solve(self%c, contact%unit_a, contact%unit_lambda, 1, error)
             if (allocated(error)) return
-            c_nz = self%cm%entry(n_row, contact%height_column)
+            c_nz = self%c%entry(n_row, contact%height_column)
             contact%denominator = 1.0_wp + contact%mu*c_nz*contact%unit_lambda(n_row)
             if (.not. contact%denominator >= painleve_margin) then
                 call fatal_error(error, "sliding is ill-posed at t = " // to_text(time) &
@@ -971,24 +971,24 @@ contains
         if (self%contact%sliding .and. .not. only_more) then
             m = 1
             which(1) = 0
-            call unit_response(self%contact, self%saddle, self%cm, self%constraints%value, error)
+            call unit_response(self%contact, self%saddle, self%c, self%constraints%value, error)
             if (allocated(error)) return
         end if
         do j = 1, size(self%more_contacts)
             if (.not. self%more_contacts(j)%sliding) cycle
             m = m + 1
             which(m) = j
-            call unit_response(self%more_contacts(j), self%saddle, self%cm, &
+            call unit_response(self%more_contacts(j), self%saddle, self%c, &
                 & self%constraints%value, error)
             if (allocated(error)) return
         end do
         do i = 1, m
             if (which(i) == 0) then
                 rows(i) = self%contact%normal
-                c_nz(i) = self%cm%entry(rows(i), self%contact%height_column)
+                c_nz(i) = self%c%entry(rows(i), self%contact%height_column)
             else
                 rows(i) = self%more_contacts(which(i))%normal
-                c_nz(i) = self%cm%entry(rows(i), self%more_contacts(which(i))%height_column)
+                c_nz(i) = self%c%entry(rows(i), self%more_contacts(which(i))%height_column)
             end if
             forces(i) = c_nz(i)*lambda(rows(i))
         end do
@@ -1254,7 +1254,7 @@ contains
                 if (allocated(error)) return
                 call loop_solve(self, error)
             else
-                call self%saddle%solve(self%cm, w%rhs_top, w%rhs_bottom, 2*n, error)
+                call self%saddle%solve(self%c, w%rhs_top, w%rhs_bottom, 2*n, error)
             end if
         end associate
         if (allocated(error)) return
@@ -1428,7 +1428,7 @@ contains
             if (.not. allocated(w%block_top)) allocate(w%block_top(nb, 2*nb), &
                 & w%block_bottom(max(m, 1), 2*nb), source=0.0_wp)
             call block_right_hand_sides(self, first, nb, listed, u, w%a, baumgarte)
-            call self%saddle%solve_local(self%cm, w%block_coordinates(:nb), w%block_place, &
+            call self%saddle%solve_local(self%c, w%block_coordinates(:nb), w%block_place, &
                 & w%block_list(:listed), w%block_top, w%block_bottom, 2*nb, error)
         end associate
     end subroutine jacobian_block
@@ -1636,11 +1636,11 @@ contains
                     self%work%rhs_bottom(k, 1) = 0.0_wp
                     if (held(k)) self%work%rhs_bottom(k, 1) = -self%constraints%value(k)
                 end do
-                call self%saddle%factor(self%mass, self%cm, self%nc, error, active=held)
+                call self%saddle%factor(self%mass, self%c, self%nc, error, active=held)
             end associate
             if (allocated(error)) return
             self%work%rhs_top(:, 1) = 0.0_wp
-            call self%saddle%solve(self%cm, self%work%rhs_top(:, 1), self%work%rhs_bottom(:, 1), &
+            call self%saddle%solve(self%c, self%work%rhs_top(:, 1), self%work%rhs_bottom(:, 1), &
                 & 1, error)
             if (allocated(error)) return
             dq = self%work%rhs_top(:, 1)
@@ -1661,14 +1661,14 @@ contains
             end do
         end associate
         if (self%masked()) then
-            call self%saddle%factor(self%mass, self%cm, self%nc, error, &
+            call self%saddle%factor(self%mass, self%c, self%nc, error, &
                 & active=self%active_rows())
         else
-            call self%saddle%factor(self%mass, self%cm, self%nc, error)
+            call self%saddle%factor(self%mass, self%c, self%nc, error)
         end if
         if (allocated(error)) return
         self%work%rhs_top(:, 1) = 0.0_wp
-        call self%saddle%solve(self%cm, self%work%rhs_top(:, 1), self%work%rhs_bottom(:, 1), 1, &
+        call self%saddle%solve(self%c, self%work%rhs_top(:, 1), self%work%rhs_bottom(:, 1), 1, &
             & error)
         if (allocated(error)) return
         du = self%work%rhs_top(:, 1)
@@ -1759,7 +1759,7 @@ contains
 
         force = 0.0_wp
         do k = 1, size(lambda)
-            call self%cm%gather(k, 6*(p - 1) + 1, translational)
+            call self%c%gather(k, 6*(p - 1) + 1, translational)
             force = force + lambda(k)*translational
         end do
     end function constraint_force

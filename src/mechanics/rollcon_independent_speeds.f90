@@ -98,7 +98,7 @@ contains
         state_size = self%n + self%ni
     end function state_size
 
-    !> Choose the partition at (q, u) from the constraint matrix eq%cm (C by rows over each
+    !> Choose the partition at (q, u) from the constraint matrix eq%c (C by rows over each
     !> UCON's own coordinates) as the last evaluation left it (an accelerations call at that
     !> state).
     subroutine choose(self, eq, error)
@@ -106,7 +106,7 @@ contains
         type(equations_type), intent(in) :: eq
         type(error_type), allocatable, intent(out) :: error
 
-        call self%partition%choose(eq%cm, error)
+        call self%partition%choose(eq%c, error)
     end subroutine choose
 
     !> y = (q, u_i) for the partition chosen.
@@ -121,7 +121,7 @@ contains
 
     !> The rates u at (t, q) from the independent speeds v: the dependent ones solved from the
     !> velocity-level constraints (module text), alpha the Baumgarte rate in effect [1/s].
-    !> Leaves eq%cm (C by rows) and C_d's factors at q.
+    !> Leaves eq%c (C by rows) and C_d's factors at q.
     subroutine speeds(self, eq, time, q, v, alpha, u, error)
         class(independent_speeds_type), intent(inout) :: self
         type(equations_type), intent(inout) :: eq
@@ -149,7 +149,7 @@ contains
                 end if
             end do
         end associate
-        call self%partition%factor(eq%cm, error)
+        call self%partition%factor(eq%c, error)
         if (allocated(error)) return
         call self%partition%solve(self%r, 1, error)
         if (allocated(error)) return
@@ -225,9 +225,9 @@ contains
                     do j = 1, ni
                         self%dud_dv(k, j) = -0.0_wp
                     end do
-                    do x = eq%cm%start(k), eq%cm%start(k + 1) - 1
-                        j = independent_slot(self%partition%independent, eq%cm%column(x))
-                        if (j > 0) self%dud_dv(k, j) = -eq%cm%value(x)
+                    do x = eq%c%start(k), eq%c%start(k + 1) - 1
+                        j = independent_slot(self%partition%independent, eq%c%column(x))
+                        if (j > 0) self%dud_dv(k, j) = -eq%c%value(x)
                     end do
                 end do
             end associate
@@ -381,7 +381,7 @@ contains
                             end if
                         end associate
                         do t = 1, nv
-                            self%block_dv(r, t) = -eq%cm%entry(k, self%block_speeds(t))
+                            self%block_dv(r, t) = -eq%c%entry(k, self%block_speeds(t))
                         end do
                     end do
                 end do

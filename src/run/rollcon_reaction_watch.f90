@@ -102,7 +102,7 @@ contains
 
         do i = 1, size(self%sites)
             associate (wrench => values(6*i - 5:6*i))
-                wrench = site_wrench(eq%model, self%sites(i), eq%cm, lambda, q)
+                wrench = site_wrench(eq%model, self%sites(i), eq%c, lambda, q)
                 self%largest(1, i) = max(self%largest(1, i), norm2(wrench(1:3)))
                 self%largest(2, i) = max(self%largest(2, i), norm2(wrench(4:6)))
             end associate

@@ -123,7 +123,7 @@ contains
         if (self%problem%eq%nc == 0) return
         call self%unpack_state(time, y, self%q, self%u, error)
         worn = allocated(error)
-        if (.not. worn) worn = self%speeds%partition%worn(self%problem%eq%cm)
+        if (.not. worn) worn = self%speeds%partition%worn(self%problem%eq%c)
     end function worn
 
     !> y' = (u, a_i); ierr 0 on success, -1 on failure (kept as the problem's failure; a

@@ -778,7 +778,7 @@ contains
         rows = [self%tangential(1), self%tangential(2), self%normal]
         ! the contact's three rows of C (held by rows over each UCON's coordinates), dense
         do i = 1, 3
-            call eq%cm%fill_row(rows(i), jacobian(i, :))
+            call eq%c%fill_row(rows(i), jacobian(i, :))
         end do
         minv_jt = transpose(jacobian)
         call eq%saddle%apply_inverse_mass(minv_jt, 3, error)

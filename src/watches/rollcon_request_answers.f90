@@ -362,7 +362,7 @@ contains
                 case (answer_user)
                     ! the reactions its SYSFNC force measures read: the row's
                     call set_force_measure_model(eq%model)
-                    call set_system_constraint_forces(eq%cm, lambda)
+                    call set_system_constraint_forces(eq%c, lambda)
                     call call_user_request(request%routine, request%id, request%name, &
                         & request%par, self%time_unit, time, q, u, request%declared, &
                         & request%declared_rates, result, accelerations=self%a)
@@ -518,13 +518,13 @@ contains
             case (element_joint, element_jprim)
                 s = findloc(self%sites%statement, element%place, dim=1)
                 if (s == 0) return
-                wrench = site_wrench(eq%model, self%sites(s), eq%cm, lambda, q)
+                wrench = site_wrench(eq%model, self%sites(s), eq%c, lambda, q)
                 if (at_j) wrench = swapped_wrench(eq%model, self%sites(s), wrench, q)
             case (element_motion)
                 if (at_j) then
-                    wrench = rows_wrench(eq%cm, lambda, element%place, element%j, element%i, q)
+                    wrench = rows_wrench(eq%c, lambda, element%place, element%j, element%i, q)
                 else
-                    wrench = rows_wrench(eq%cm, lambda, element%place, element%i, element%j, q)
+                    wrench = rows_wrench(eq%c, lambda, element%place, element%i, element%j, q)
                 end if
             case default
                 wrench = force_wrench(eq%model%forces(element%place)%statement, at_j, time, q, u)

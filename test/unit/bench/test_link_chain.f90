@@ -170,11 +170,11 @@ contains
                 & .and. problem%eq%blocks%most_rows == 60 .and. problem%eq%saddle%block_sparse(1), &
                 & "12 links (one block of 60 rows): the sparse path")
             if (allocated(error)) return
-            call dense%factor(problem%eq%mass, problem%eq%cm, nc, error)
+            call dense%factor(problem%eq%mass, problem%eq%c, nc, error)
             if (allocated(error)) return
             a = problem%eq%force
             lambda = problem%eq%gamma
-            call dense%solve(problem%eq%cm, a, lambda, 1, error)
+            call dense%solve(problem%eq%c, a, lambda, 1, error)
             if (allocated(error)) return
             worst = max(worst, maxval(abs(problem%a - a))/maxval(abs(a)), &
                 & maxval(abs(problem%lambda - lambda))/maxval(abs(lambda)))
@@ -186,9 +186,9 @@ contains
             end do
             s1 = r1
             s2 = r2
-            call problem%eq%saddle%solve(problem%eq%cm, r1, r2, 2, error)
+            call problem%eq%saddle%solve(problem%eq%c, r1, r2, 2, error)
             if (allocated(error)) return
-            call dense%solve(problem%eq%cm, s1, s2, 2, error)
+            call dense%solve(problem%eq%c, s1, s2, 2, error)
             if (allocated(error)) return
             worst = max(worst, maxval(abs(r1 - s1))/maxval(abs(s1)), &
                 & maxval(abs(r2 - s2))/maxval(abs(s2)))

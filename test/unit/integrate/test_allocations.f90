@@ -459,16 +459,16 @@ contains
         call problem%accelerations(0.0_wp, q, u, error)
         if (allocated(error)) return
         lambda = problem%lambda
-        call check(error, size(lambda) == problem%eq%cm%nc .and. size(lambda) > 0, &
+        call check(error, size(lambda) == problem%eq%c%nc .and. size(lambda) > 0, &
             & "the coin's multipliers: " // to_text(size(lambda)) // ", its rows: " &
-            & // to_text(problem%eq%cm%nc))
+            & // to_text(problem%eq%c%nc))
         if (allocated(error)) return
         ! the first call takes the rows' pattern
-        call set_system_constraint_forces(problem%eq%cm, lambda)
+        call set_system_constraint_forces(problem%eq%c, lambda)
         start = malloc_count()
         do i = 1, repeats
             lambda(1) = lambda(1) + 1.0_wp
-            call set_system_constraint_forces(problem%eq%cm, lambda)
+            call set_system_constraint_forces(problem%eq%c, lambda)
         end do
         calls = malloc_count() - start
         call check_none(error, calls, "set_system_constraint_forces, " // to_text(repeats) &

@@ -259,7 +259,7 @@ contains
         kkt = 0.0_wp
         kkt(:6, :6) = problem%eq%mass(:, :, 1)
         do k = 1, 3
-            call problem%eq%cm%fill_row(k, row)
+            call problem%eq%c%fill_row(k, row)
             kkt(:6, 6 + k) = -row
             kkt(6 + k, :6) = row
         end do
@@ -341,11 +341,11 @@ contains
                 call check_constraint_rows(problem, error)
                 if (allocated(error)) return
                 call dense%init(18, 6)
-                call dense%factor(problem%eq%mass, problem%eq%cm, 6, error)
+                call dense%factor(problem%eq%mass, problem%eq%c, 6, error)
                 if (allocated(error)) return
                 a = problem%eq%force
                 lambda = problem%eq%gamma
-                call dense%solve(problem%eq%cm, a, lambda, 1, error)
+                call dense%solve(problem%eq%c, a, lambda, 1, error)
                 if (allocated(error)) return
                 call check(error, all(problem%a == a) .and. all(problem%lambda == lambda), &
                     & "accelerations or multipliers by blocks differ from the dense path's, " &
@@ -360,20 +360,20 @@ contains
                 r2(:, 2) = [(cos(real(i, wp)), i = 1, 6)]
                 s1 = r1
                 s2 = r2
-                call problem%eq%saddle%solve(problem%eq%cm, r1, r2, 2, error)
+                call problem%eq%saddle%solve(problem%eq%c, r1, r2, 2, error)
                 if (allocated(error)) return
-                call dense%solve(problem%eq%cm, s1, s2, 2, error)
+                call dense%solve(problem%eq%c, s1, s2, 2, error)
                 if (allocated(error)) return
                 call check(error, all(r1 == s1) .and. all(r2 == s2), "two right-hand sides by " &
                     & // "blocks differ from the dense path's, order " // to_text(order))
                 if (allocated(error)) return
                 keep = [(k /= 2 .and. k /= 5, k = 1, 6)]
-                call problem%eq%saddle%factor(problem%eq%mass, problem%eq%cm, 6, error, &
+                call problem%eq%saddle%factor(problem%eq%mass, problem%eq%c, 6, error, &
                     & active=keep)
                 if (allocated(error)) return
                 a = problem%eq%force
                 lambda = problem%eq%gamma
-                call problem%eq%saddle%solve(problem%eq%cm, a, lambda, 1, error)
+                call problem%eq%saddle%solve(problem%eq%c, a, lambda, 1, error)
                 if (allocated(error)) return
                 kkt = 0.0_wp
                 do i = 1, 3
@@ -384,7 +384,7 @@ contains
                 do k = 1, 6
                     if (.not. keep(k)) cycle
                     i = i + 1
-                    call problem%eq%cm%fill_row(k, row)
+                    call problem%eq%c%fill_row(k, row)
                     kkt(:18, i) = -row
                     kkt(i, :18) = row
                     b(i, 1) = problem%eq%gamma(k)
@@ -435,51 +435,51 @@ contains
         end do
         v = [(sin(1.3_wp*j) + 0.1_wp*j, j = 1, n)]
         w = [(cos(0.7_wp*j), j = 1, nc)]
-        call problem%eq%cm%dense(d)
+        call problem%eq%c%dense(d)
         call check(error, all(d == rows), "C by rows differs from the UCONs' partials")
         if (allocated(error)) return
-        call check(error, count(rows /= 0.0_wp) <= size(problem%eq%cm%value) .and. &
-            & size(problem%eq%cm%value) < n*nc, "C by rows holds " &
-            & // to_text(size(problem%eq%cm%value)) // " entries for " &
+        call check(error, count(rows /= 0.0_wp) <= size(problem%eq%c%value) .and. &
+            & size(problem%eq%c%value) < n*nc, "C by rows holds " &
+            & // to_text(size(problem%eq%c%value)) // " entries for " &
             & // to_text(count(rows /= 0.0_wp)) // " nonzeros of " // to_text(n*nc))
         if (allocated(error)) return
         do k = 1, nc
             do j = 1, n
-                call check(error, problem%eq%cm%entry(k, j) == rows(k, j), "entry (" &
+                call check(error, problem%eq%c%entry(k, j) == rows(k, j), "entry (" &
                     & // to_text(k) // ", " // to_text(j) // ")")
                 if (allocated(error)) return
             end do
-            x = problem%eq%cm%start(k)
+            x = problem%eq%c%start(k)
             do j = 1, n
-                call problem%eq%cm%entry_along(k, j, x, along)
+                call problem%eq%c%entry_along(k, j, x, along)
                 call check(error, along == rows(k, j), "entry_along (" // to_text(k) // ", " &
                     & // to_text(j) // ")")
                 if (allocated(error)) return
             end do
             do j = 1, n/6
-                call problem%eq%cm%gather(k, 6*(j - 1) + 1, part_slice)
+                call problem%eq%c%gather(k, 6*(j - 1) + 1, part_slice)
                 call check(error, all(part_slice == rows(k, 6*j - 5:6*j)), "gather of row " &
                     & // to_text(k) // " at part " // to_text(j))
                 if (allocated(error)) return
             end do
-            call check(error, abs(problem%eq%cm%row_dot(k, v) - dot_product(rows(k, :), v)) &
+            call check(error, abs(problem%eq%c%row_dot(k, v) - dot_product(rows(k, :), v)) &
                 & <= 1.0e-15_wp*sum(abs(rows(k, :)*v)), "row_dot of row " // to_text(k))
             if (allocated(error)) return
-            call problem%eq%cm%fill_row(k, y)
+            call problem%eq%c%fill_row(k, y)
             call check(error, all(y == rows(k, :)), "fill_row of row " // to_text(k))
             if (allocated(error)) return
             y = v
-            call problem%eq%cm%add_row(k, 0.5_wp, y)
+            call problem%eq%c%add_row(k, 0.5_wp, y)
             call check(error, all(abs(y - (v + 0.5_wp*rows(k, :))) <= spacing(abs(y))), &
                 & "add_row of row " // to_text(k))
             if (allocated(error)) return
         end do
-        call problem%eq%cm%times(v, w)
+        call problem%eq%c%times(v, w)
         call check(error, maxval(abs(w - matmul(rows, v))) <= 1.0e-14_wp*maxval(abs(rows)) &
             & *sum(abs(v)), "C v")
         if (allocated(error)) return
         w = [(cos(0.7_wp*j), j = 1, nc)]
-        call problem%eq%cm%transpose_times(w, z)
+        call problem%eq%c%transpose_times(w, z)
         call check(error, maxval(abs(z - matmul(w, rows))) <= 1.0e-14_wp*maxval(abs(rows)) &
             & *sum(abs(w)), "C^T lambda")
     end subroutine check_constraint_rows

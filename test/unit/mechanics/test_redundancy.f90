@@ -694,7 +694,7 @@ contains
                 & vectors(nc, nc))
             allocate(c_rows(n, nc))
             do k = 1, nc
-                call eq%cm%fill_row(k, row)
+                call eq%c%fill_row(k, row)
                 c_rows(:, k) = row
                 all_rows(:, k) = row/norm2(row)
             end do
@@ -716,7 +716,7 @@ contains
             if (allocated(error)) return
             do k = 1, nc
                 if (eq%redundancy%active(k)) cycle
-                call eq%cm%fill_row(k, row)
+                call eq%c%fill_row(k, row)
                 row = row/norm2(row)
                 call minimum_norm_solve(kept, row, 1.0e-8_wp, x, rank, error)
                 if (allocated(error)) return
@@ -756,7 +756,7 @@ contains
             end do
             force = matmul(c_rows, lambda)
             split = lambda
-            call eq%redundancy%multipliers(eq%cm, eq%mass, eq%blocks, split, error)
+            call eq%redundancy%multipliers(eq%c, eq%mass, eq%blocks, split, error)
             if (allocated(error)) return
             call check(error, norm2(matmul(c_rows, split) - force) <= tol_force &
                 & *norm2(force), path // ": the split's force differs from C^T lambda's by " &
@@ -777,7 +777,7 @@ contains
             weights = sqrt(weights)
             do k = 1, nc
                 if (eq%redundancy%active(k)) cycle
-                call eq%redundancy%dependency(k, eq%cm, eq%mass, eq%blocks, coefficients, error)
+                call eq%redundancy%dependency(k, eq%c, eq%mass, eq%blocks, coefficients, error)
                 if (allocated(error)) return
                 null = -coefficients
                 null(k) = 1.0_wp
