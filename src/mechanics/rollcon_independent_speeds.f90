@@ -311,8 +311,7 @@ contains
         integer, intent(in) :: starts(:), rows(:)
         real(wp), intent(out) :: values(:)
         type(error_type), allocatable, intent(out) :: error
-        integer :: n, j, nb, nv, listed, m, i, b, r, x, k, c, s, t, a, slot, v0, place
-        real(wp) :: total, slope
+        integer :: n, j, nb, nv, listed, m, i, b, r, x, k, c, s, t, a, slot, v0
 
         n = self%n
         call self%speeds(eq, time, y(:n), y(n + 1:), alpha, u, error)
@@ -406,15 +405,7 @@ contains
                         if (slot > 0) values(v0 + i) = self%block_dq(self%local_row(slot), c)
                     end do
                     do t = 1, nv
-                        place = w%block_place(self%block_speeds(t))
-                        total = w%block_top(place, c)
-                        do x = 1, m
-                            slope = w%block_top(place, nb + w%block_place( &
-                                & self%partition%dependent(slot_at(x))))
-                            if (slope == 0.0_wp) cycle
-                            total = total + slope*self%block_dq(x, c)
-                        end do
-                        values(v0 + nb + t) = total
+                        values(v0 + nb + t) = chain_total(t, c, self%block_dq(:m, c))
                     end do
                 end do
                 ! columns of the independent speeds: q' rows (du_d/dv, the identity), v' rows
@@ -430,21 +421,34 @@ contains
                         end if
                     end do
                     do t = 1, nv
-                        place = w%block_place(self%block_speeds(t))
-                        total = w%block_top(place, nb + w%block_place(self%block_speeds(s)))
-                        do x = 1, m
-                            slope = w%block_top(place, nb + w%block_place( &
-                                & self%partition%dependent(slot_at(x))))
-                            if (slope == 0.0_wp) cycle
-                            total = total + slope*self%block_dv(x, s)
-                        end do
-                        values(v0 + nb + t) = total
+                        values(v0 + nb + t) = chain_total(t, nb + w%block_place( &
+                            & self%block_speeds(s)), self%block_dv(:m, s))
                     end do
                 end do
             end do
         end associate
 
     contains
+
+        !> The chain rule's v' row of the block's independent speed t in the ODE form's column
+        !> `column` (block_top): its own entry plus its slopes to the block's dependent speeds
+        !> times their partials d (the block's rows in order), the zero slopes skipped
+        real(wp) function chain_total(t, column, d) result(total)
+            integer, intent(in) :: t, column
+            real(wp), intent(in) :: d(:)
+            real(wp) :: slope
+            integer :: place, x
+
+            associate (top => eq%work%block_top, places => eq%work%block_place)
+                place = places(self%block_speeds(t))
+                total = top(place, column)
+                do x = 1, size(d)
+                    slope = top(place, nb + places(self%partition%dependent(slot_at(x))))
+                    if (slope == 0.0_wp) cycle
+                    total = total + slope*d(x)
+                end do
+            end associate
+        end function chain_total
 
         !> The slot of the block's x-th row (its constraints' blocks' slots, in order)
         integer function slot_at(x) result(slot)

@@ -409,20 +409,7 @@ contains
         ierr = ode%ode_sparse_jacobian(0.0_wp, y, pattern%starts, pattern%rows, values)
         call check(error, ierr, 0, name // ": the sparse Newton matrix " // ode%failure_text())
         if (allocated(error)) return
-        kept = .false.
-        missed = 0
-        do j = 1, n
-            do e = pattern%starts(j) + 1, pattern%starts(j + 1)
-                kept(pattern%rows(e) + 1, j) = .true.
-                if (.not. same_bits(values(e), matrix(pattern%rows(e) + 1, j))) &
-                    & missed = missed + 1
-            end do
-        end do
-        call check(error, missed, 0, name // ": entries of the sparse Newton matrix not the " &
-            & // "dense one's (of " // to_text(pattern%entries()) // ")")
-        if (allocated(error)) return
-        call check(error, count(matrix /= 0.0_wp .and. .not. kept), 0, name &
-            & // ": nonzero entries of the dense matrix outside the blocks")
+        call check_as_dense(name, pattern, values, matrix, kept, error)
         if (allocated(error)) return
         ! no n x 2n right-hand sides held for it (the dense matrix's first evaluation sized
         ! them: a form whose first is sparse never does, cvode-sparse-holds-no-square)
@@ -494,20 +481,7 @@ contains
         call check(error, ierr, 0, name // ": the sparse Newton matrix " &
             & // speeds%failure_text())
         if (allocated(error)) return
-        kept = .false.
-        missed = 0
-        do j = 1, n
-            do e = pattern%starts(j) + 1, pattern%starts(j + 1)
-                kept(pattern%rows(e) + 1, j) = .true.
-                if (.not. same_bits(values(e), matrix(pattern%rows(e) + 1, j))) &
-                    & missed = missed + 1
-            end do
-        end do
-        call check(error, missed, 0, name // ": entries of the sparse Newton matrix not the " &
-            & // "dense one's (of " // to_text(pattern%entries()) // ")")
-        if (allocated(error)) return
-        call check(error, count(matrix /= 0.0_wp .and. .not. kept), 0, name &
-            & // ": nonzero entries of the dense matrix outside the blocks")
+        call check_as_dense(name, pattern, values, matrix, kept, error)
         if (allocated(error)) return
         call check(error, .not. allocated(speeds%dense_jacobian), name // ": the sparse " &
             & // "matrix went through the dense one")
@@ -702,5 +676,32 @@ contains
         call check(error, rows(1)%status == "completed" .and. rows(2)%status == "completed", &
             & "the chains' runs: " // rows(1)%status // "; " // rows(2)%status)
     end subroutine test_memory_flat
+
+    !> A sparse Newton matrix (values over pattern, compressed columns, 0-based) against the
+    !> dense one: each entry its dense twin bit for bit, no nonzero of the dense matrix outside
+    !> the pattern; kept (n x n) marks the pattern's places.
+    subroutine check_as_dense(name, pattern, values, matrix, kept, error)
+        character(len=*), intent(in) :: name
+        type(newton_pattern_type), intent(in) :: pattern
+        real(wp), intent(in) :: values(:), matrix(:, :)
+        logical, intent(out) :: kept(:, :)
+        type(error_type), allocatable, intent(out) :: error
+        integer :: j, e, missed
+
+        kept = .false.
+        missed = 0
+        do j = 1, size(matrix, 2)
+            do e = pattern%starts(j) + 1, pattern%starts(j + 1)
+                kept(pattern%rows(e) + 1, j) = .true.
+                if (.not. same_bits(values(e), matrix(pattern%rows(e) + 1, j))) &
+                    & missed = missed + 1
+            end do
+        end do
+        call check(error, missed, 0, name // ": entries of the sparse Newton matrix not the " &
+            & // "dense one's (of " // to_text(pattern%entries()) // ")")
+        if (allocated(error)) return
+        call check(error, count(matrix /= 0.0_wp .and. .not. kept), 0, name &
+            & // ": nonzero entries of the dense matrix outside the blocks")
+    end subroutine check_as_dense
 
 end module test_link_chain
