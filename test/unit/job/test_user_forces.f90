@@ -25,7 +25,7 @@ module test_user_forces
     use rollcon_ucosub_audit, only : ucon_request_type, user_check_options_type, &
         & user_check_report_type
     use rollcon_dataset_ucon_check, only : check_dataset_ucons
-    use command_runs, only : file_text, rollcon_program, run_rollcon
+    use command_runs, only : file_text, rollcon_program, run_rollcon, count_of
     use rollcon_integrator, only : chunk_steps_default
     use rollcon_grind_watch, only : grinds
     use rollcon_run_check, only : check_at_start
@@ -1451,21 +1451,6 @@ contains
             & // to_text(steps) // " steps, not more than a chunk's " &
             & // to_text(chunk_steps_default) // ": no chunk was watched")
     end subroutine test_sound_run_no_grinding
-
-    !> Occurrences of part in text.
-    pure integer function count_of(text, part)
-        character(len=*), intent(in) :: text, part
-        integer :: from, at
-
-        count_of = 0
-        from = 1
-        do
-            at = index(text(from:), part)
-            if (at == 0) exit
-            count_of = count_of + 1
-            from = from + at + len(part) - 1
-        end do
-    end function count_of
 
     !> check_user_routines of folder//file on spring.adm, the tests' cache, seed 1.
     subroutine check_file(file, findings, count, error)

@@ -16,6 +16,7 @@ module test_redundancy
     use rollcon_linear_job, only : linearise_job
     use rollcon_simulation, only : history_type, status_completed
     use rollcon_testing, only : unittest_type, new_unittest, check
+    use command_runs, only : count_of
     use rollcon_problem, only : problem_type
     use rollcon_ucosub_contract, only : ucosub_interface
     use rollcon_least_squares, only : minimum_norm_solve, smallest_singular_value
@@ -889,21 +890,6 @@ contains
             words = words(first + last:)
         end do
     end function count_rows
-
-    !> How often text holds piece.
-    pure integer function count_of(text, piece)
-        character(len=*), intent(in) :: text, piece
-        integer :: at, found
-
-        count_of = 0
-        at = 1
-        do
-            found = index(text(at:), piece)
-            if (found == 0) exit
-            count_of = count_of + 1
-            at = at + found + len(piece) - 1
-        end do
-    end function count_of
 
     !> The summary's words of the rows set aside (its warning line, "" without one).
     function set_aside_words(summary) result(words)
