@@ -44,6 +44,7 @@ program tester
     use test_ucon_request_fuzz, only : collect_ucon_request_fuzz
     use test_allocations, only : collect_allocations
     use test_ida_first_step, only : collect_ida_first_step
+    use test_cvode_event_rates, only : collect_cvode_event_rates
     use test_newton_pattern, only : collect_newton_pattern
     use test_int_buffer, only : collect_int_buffer
     use test_reduced, only : collect_reduced
@@ -171,6 +172,7 @@ program tester
         & new_testsuite("ucon-request-fuzz", collect_ucon_request_fuzz), &
         & new_testsuite("allocations", collect_allocations), &
         & new_testsuite("ida-first-step", collect_ida_first_step), &
+        & new_testsuite("cvode-event-rates", collect_cvode_event_rates), &
         & new_testsuite("newton-pattern", collect_newton_pattern), &
         & new_testsuite("int-buffer", collect_int_buffer), &
         & new_testsuite("reduced", collect_reduced), &

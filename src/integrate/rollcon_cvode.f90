@@ -34,7 +34,7 @@ module rollcon_cvode
         & FCVodeGetNumSteps, FCVodeGetNumRhsEvals, FCVodeGetNumJacEvals, &
         & FCVodeGetNumLinRhsEvals, FCVodeGetNumErrTestFails, FCVodeGetNumNonlinSolvConvFails, &
         & FCVodeGetNumGEvals, FCVodeGetDky, FCVodeGetCurrentTime, &
-        & FCVodeSetErrFile, &
+        & FCVodeGetNonlinearSystemData, FCVodeGetLastStep, FCVodeSetErrFile, &
         & FCVodeReInit, &
         & CV_BDF, CV_ADAMS, CV_NORMAL, &
         & CV_SUCCESS, CV_ROOT_RETURN, CV_TSTOP_RETURN, CV_TOO_MUCH_WORK, CV_TOO_MUCH_ACC, &
@@ -42,7 +42,7 @@ module rollcon_cvode
     implicit none
     private
 
-    public :: cvode_integrator_type
+    public :: cvode_integrator_type, step_end_rates
 
     ! SUNDIALS' fixed-point solver, from the C library itself (libsundials_cvode holds it): its
     ! Fortran module is a library rollcon does not otherwise link
@@ -73,7 +73,7 @@ module rollcon_cvode
     type :: callback_data_type
         class(ode_system_type), pointer :: system => null()
         type(c_ptr) :: memory = c_null_ptr
-        !> y'(t) from CVodeGetDky, and its storage
+        !> y'(t) from CVodeGetDky (or step_end_rates), and its storage
         type(N_Vector), pointer :: rates => null()
         real(c_double), allocatable :: rate_values(:)
         !> The system's event functions (fixed for a run, as CVodeRootInit was told) and
@@ -655,10 +655,14 @@ contains
         yv => FN_VGetArrayPointer(y)
         associate (nroots => data%root_count)
             ! y' at t from CVODE's own polynomial, when the event functions use it: the system
-            ! need not evaluate its right-hand side. Outside the last step (the start-up check
+            ! need not evaluate its right-hand side. At the end of the step just taken (most
+            ! evaluations) read off its Nordsieck array (step_end_rates: CVodeGetDky's numbers
+            ! without its sum over every column). Outside the last step (the start-up check
             ! just past t0) CVODE refuses; then the system works it out itself.
             if (.not. data%roots_use_rates) then
                 ierr = int(data%system%roots(t, yv, gout(:nroots)), c_int)
+            else if (step_end_rates(data%memory, t, data%rate_values)) then
+                ierr = int(data%system%roots(t, yv, gout(:nroots), data%rate_values), c_int)
             else if (FCVodeGetDky(data%memory, t, 1_c_int, data%rates) == CV_SUCCESS) then
                 ierr = int(data%system%roots(t, yv, gout(:nroots), data%rate_values), c_int)
             else
@@ -666,5 +670,49 @@ contains
             end if
         end associate
     end function events
+
+    !> y'(t) [the state's units / s] into rates (size of the state) when t [s] is exactly t_n,
+    !> the end of the step CVODE (memory) just completed: zn[1] (1/h), zn[1] = h y'(t_n) the
+    !> Nordsieck array's first-derivative column and h the step taken (CVodeGetLastStep), read
+    !> through CVodeGetNonlinearSystemData. It is CVodeGetDky(t_n, 1)'s result to the last bit
+    !> (SUNDIALS 6.4.1, cvode.c): there s = (t - t_n)/h = 0, so its sum gives zn[2..q] the
+    !> weights j s^(j-1) = 0 and zn[1] the weight 1 (the sum of those zeros and zn[1]'s entry
+    !> is that entry, when it is not 0), and scales it by r = 1/h (SUNRpowerI(h, -1), then
+    !> N_VScale: each entry times r). Where CVODE calls the event functions (cvRcheck1 at t0,
+    !> before any step: CVodeGetLastStep is 0 there; cvRcheck2 and cvRcheck3, after a completed
+    !> step) h is the step just taken: CVODE rescales zn and changes h only inside its next
+    !> step (cvAdjustParams, the error test and the corrector's failures). False, rates left
+    !> as they were, when t is not t_n, before the first step, or when an entry of zn[1] is 0
+    !> (CVodeGetDky's sum of zeros then takes its sign from the columns not read here): the
+    !> caller then asks CVodeGetDky.
+    logical function step_end_rates(memory, t, rates) result(done)
+        type(c_ptr), intent(in) :: memory
+        real(c_double), intent(in) :: t
+        real(c_double), intent(inout) :: rates(:)
+        real(c_double) :: t_n(1), gamma(1), rl1(1), h(1), r
+        type(c_ptr), target :: ypred, yn, fn, zn1, user_data
+        type(N_Vector), pointer :: column
+        real(c_double), pointer :: values(:)
+        integer :: i
+
+        done = .false.
+        if (FCVodeGetNonlinearSystemData(memory, t_n, c_loc(ypred), c_loc(yn), c_loc(fn), &
+            & gamma, rl1, c_loc(zn1), user_data) /= CV_SUCCESS) return
+        if (t /= t_n(1)) return
+        if (FCVodeGetLastStep(memory, h) /= CV_SUCCESS) return
+        if (h(1) == 0.0_c_double) return
+        call c_f_pointer(zn1, column)
+        values => FN_VGetArrayPointer(column)
+        if (size(values) /= size(rates)) return
+        do i = 1, size(values)
+            if (values(i) == 0.0_c_double) return
+        end do
+        ! as SUNRpowerI(h, -1) computes it: 1/(1 h), 1 h being h
+        r = 1.0_c_double/h(1)
+        do i = 1, size(values)
+            rates(i) = values(i)*r
+        end do
+        done = .true.
+    end function step_end_rates
 
 end module rollcon_cvode
