@@ -502,10 +502,11 @@ contains
     !> are clones of its state vector and inherit them, so this comes before CVodeInit): the
     !> Nordsieck array's updates (N_VScaleAddMulti after every step and at order changes,
     !> N_VScaleVectorArray at step-size changes) and the interpolation (N_VLinearCombination,
-    !> CVodeGetDky: an event function's y', the output's y) in one call each, in place of one
-    !> N_VLinearSum or N_VScale per column. Element by element they compute what those calls
-    !> compute (y + a x with the same a, x, y; a x alone for a column that is scaled), so the
-    !> integration is the same to the last bit. flag: 0, or the first call's failure.
+    !> CVodeGetDky: an event function's y' inside a step, the output's y) in one call each, in
+    !> place of one N_VLinearSum or N_VScale per column. Element by element they compute what
+    !> those calls compute (y + a x with the same a, x, y; a x alone for a column that is
+    !> scaled), so the integration is the same to the last bit. flag: 0, or the first call's
+    !> failure.
     subroutine enable_fused_operations(vector, flag)
         type(N_Vector), intent(inout) :: vector
         integer(c_int), intent(out) :: flag
