@@ -37,15 +37,31 @@ static const char pairs[201] =
     "40414243444546474849505152535455565758596061626364656667686970717273747576777879"
     "8081828384858687888990919293949596979899";
 
-/* value (< 10^8) as eight digits */
-static void put_eight(uint32_t value, char *out)
+/* value (< 10^8) as eight digits. On a little-endian machine all in one 64-bit word, its lanes
+ * divided together by multiplications by scaled reciprocals (exact in these ranges): the two
+ * halves of four digits in lanes of 32 bits, each split at 100 into lanes of 16 bits
+ * (floor(a / 100) = floor(10486 a / 2^20) for a < 10^4), each of those at 10 into bytes
+ * (floor(a / 10) = floor(103 a / 2^10) for a < 100), the first digit in the lowest byte: a
+ * third of the instructions of two digits at a time (as on other machines). */
+static inline __attribute__((always_inline)) void put_eight(uint32_t value, char *out)
 {
+#if defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__
+    uint64_t x = (uint64_t)(value / 10000u) | (uint64_t)(value % 10000u) << 32, high;
+
+    high = (x * 10486u) >> 20 & UINT64_C(0x0000007f0000007f);
+    x = high | (x - high * 100u) << 16;
+    high = (x * 103u) >> 10 & UINT64_C(0x000f000f000f000f);
+    x = high | (x - high * 10u) << 8;
+    x |= UINT64_C(0x3030303030303030);
+    memcpy(out, &x, 8);
+#else
     int i;
 
     for (i = 6; i >= 0; i -= 2) {
         memcpy(out + i, pairs + 2 * (value % 100), 2);
         value /= 100;
     }
+#endif
 }
 
 /* The sign's character, then d.dddddddddddddddd (digits: 17 of them, 10^16 <= digits < 10^17),
@@ -64,8 +80,7 @@ static void put_digits(int negative, uint64_t digits, int exponent, char *out)
     out[19] = 'E';
     out[20] = exponent < 0 ? '-' : '+';
     out[21] = (char)('0' + size / 100);
-    out[22] = (char)('0' + size / 10 % 10);
-    out[23] = (char)('0' + size % 10);
+    memcpy(out + 22, pairs + 2 * (size % 100), 2);
 }
 
 /* Words of a multi-word integer: m 5^k for k <= 340 (53 + 790 bits) */
@@ -73,8 +88,9 @@ static void put_digits(int negative, uint64_t digits, int exponent, char *out)
 
 /* The digits of m 5^k 2^-shift (k > 27, shift > 0) rounded to the nearest integer, ties to
  * even, if they are below 2^64; *overflow set when they are not (the caller then takes one
- * more decimal exponent). */
-static uint64_t round_wide(uint64_t m, int k, int shift, int *overflow)
+ * more decimal exponent). Not inlined: the rare tiny numbers' path, whose registers inlined
+ * cost the usual path a tenth of its instructions. */
+static __attribute__((noinline)) uint64_t round_wide(uint64_t m, int k, int shift, int *overflow)
 {
     uint64_t n[WORDS + 1] = {0}, digits, below;
     unsigned __int128 product;
@@ -115,7 +131,7 @@ static int put_exact(double x, char *out)
     const uint64_t ten16 = 10000000000000000u, ten17 = 100000000000000000u;
     uint64_t bits, m, digits;
     int biased, e, exponent, k, shift, overflow;
-    unsigned __int128 scaled, rest, half;
+    unsigned __int128 scaled, below;
 
     memcpy(&bits, &x, sizeof bits);
     biased = (int)((bits >> 52) & 0x7ff);
@@ -180,9 +196,10 @@ static int put_exact(double x, char *out)
             exponent++;
             continue;
         }
-        rest = scaled & ((((unsigned __int128)1) << shift) - 1);
-        half = ((unsigned __int128)1) << (shift - 1);
-        if (rest > half || (rest == half && (digits & 1))) digits++;
+        /* the bits below the digits moved to the top (0 < shift < 128): the highest is the
+         * half, any other set makes it more than half */
+        below = scaled << (128 - shift);
+        if ((below >> 127) && ((below << 1) != 0 || (digits & 1))) digits++;
         if (digits == ten17) {
             digits = ten16;
             exponent++;
@@ -235,16 +252,20 @@ static void put_special(double x, char *out)
  * line(1:capacity); returns its length, or -1 when capacity (25 per number) is too small. */
 int rollcon_row_text(const double *values, int count, char *line, int capacity)
 {
-    int i, used = 0;
+    int i;
+    char *out = line;
 
     if (capacity < (FIELD + 1) * count) return -1;
-    for (i = 0; i < count; i++) {
-        if (i > 0) line[used++] = ',';
-        if (!isfinite(values[i]))
-            put_special(values[i], line + used);
-        else if (!put_exact(values[i], line + used))
-            put_library(values[i], line + used);
-        used += FIELD;
+    if (count == 0) return 0;
+    /* each number and a comma after it, the last comma then left out of the length */
+    for (i = 0; i < count; i++, out += FIELD + 1) {
+        if (!put_exact(values[i], out)) {
+            if (isfinite(values[i]))
+                put_library(values[i], out);
+            else
+                put_special(values[i], out);
+        }
+        out[FIELD] = ',';
     }
-    return used;
+    return (FIELD + 1) * count - 1;
 }
