@@ -17,7 +17,7 @@ module rollcon_reactions
     use, intrinsic :: ieee_arithmetic, only : ieee_is_finite
     use rollcon_kinds, only : wp
     use rollcon_text, only : to_text, lower_case
-    use rollcon_rotation, only : rotation_matrix, times, cross
+    use rollcon_rotation, only : rotation_matrix, rotation_of_sines, times, cross
     use rollcon_marker, only : marker_type
     use rollcon_model, only : model_type, statement_type, statement_joint, statement_jprim, &
         & statement_element
@@ -61,14 +61,18 @@ contains
         real(wp), intent(in) :: q(:)
         integer, intent(in) :: p
         type(part_attitude_type) :: attitude
+        real(wp) :: cos_psi, sin_psi
         integer :: i0
 
         i0 = 6*(p - 1)
-        attitude%rotation = rotation_matrix(q(i0 + 4), q(i0 + 5), q(i0 + 6))
-        attitude%sin_theta = sin(q(i0 + 5))
+        cos_psi = cos(q(i0 + 4))
+        sin_psi = sin(q(i0 + 4))
         attitude%cos_theta = cos(q(i0 + 5))
-        attitude%sin_phi = sin(q(i0 + 6))
+        attitude%sin_theta = sin(q(i0 + 5))
         attitude%cos_phi = cos(q(i0 + 6))
+        attitude%sin_phi = sin(q(i0 + 6))
+        attitude%rotation = rotation_of_sines(cos_psi, sin_psi, attitude%cos_theta, &
+            & attitude%sin_theta, attitude%cos_phi, attitude%sin_phi)
     end function part_attitude
 
     !> The reaction sites of a set-up model, in the order of its statements: one per JOINT and
