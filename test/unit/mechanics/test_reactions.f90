@@ -199,14 +199,14 @@ contains
             & // result%summary%watch_lines)
     end subroutine test_held
 
-    !> Run a dataset without files, its rows kept; a run that does not complete is an error.
-    !> data/bicycle.adm at its initial state, each part's angles turned: the reaction watch makes each part's attitude once
-    !> a row for all its sites (rollcon_reactions' part_attitude) and reads the sites' rows of C
-    !> in place; every site's six columns must be, bit for bit, the wrench as the definition
-    !> makes it for the site alone (reference_wrench), with the multipliers reported,
-    !> and again with one multiplier NaN (a failed least-norm split): every site holding that
-    !> row then NaN in all six, as the dense product makes it, the others unchanged. Several
-    !> sites share a part there (the frame and each wheel's joints and contact UCONs).
+    !> data/bicycle.adm at its initial state, each part's angles turned: the reaction watch makes
+    !> each part's attitude once a row for all its sites (rollcon_reactions' part_attitude) and
+    !> reads the sites' rows of C in place; every site's six columns must be, bit for bit, the
+    !> wrench as the definition makes it for the site alone (reference_wrench), with the
+    !> multipliers reported, and again with one multiplier NaN (a failed least-norm split):
+    !> every site holding that row then NaN in all six, as the dense product makes it, the
+    !> others unchanged. Several sites share a part there (checked: the sharing is what is
+    !> tested).
     subroutine test_shared_part(error)
         type(error_type), allocatable, intent(out) :: error
         type(adm_model_type) :: adm
@@ -321,6 +321,7 @@ contains
         b = transfer(x, 0_int64, size(x))
     end function bits
 
+    !> Run a dataset without files, its rows kept; a run that does not complete is an error.
     subroutine run_dataset(path, result, rows, error)
         character(len=*), intent(in) :: path
         type(job_result_type), intent(out) :: result
