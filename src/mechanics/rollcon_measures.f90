@@ -325,16 +325,35 @@ contains
         type(marker_type), intent(in) :: markers(:)
         real(wp), intent(in) :: length_unit, time_unit, q(:), u(:)
         logical, intent(in) :: restart
-        real(wp) :: values(size(expression%inputs))
+        integer :: k
 
         if (.not. allocated(expression%inputs)) return
-        if (.not. any(counts_turns(expression%inputs%quantity))) return
+        ! input by input, and the inputs' values (an automatic array) made only for an
+        ! expression that counts turns: a mask of expression%inputs%quantity is a temporary,
+        ! and either was an allocation at every output row of every expression
+        do k = 1, size(expression%inputs)
+            if (counts_turns(expression%inputs(k)%quantity)) exit
+        end do
+        if (k > size(expression%inputs)) return
         if (.not. allocated(expression%anchors)) &
             & allocate(expression%anchors(size(expression%inputs)), source=0.0_wp)
         if (restart) expression%anchors = 0.0_wp
-        call expression_input_values(expression, markers, length_unit, time_unit, q, u, values)
-        where (counts_turns(expression%inputs%quantity)) expression%anchors = values
+        call take_anchors(expression, markers, length_unit, time_unit, q, u)
     end subroutine count_turns
+
+    !> count_turns' anchors set: each AX, AY, AZ input's value at (q, u).
+    pure subroutine take_anchors(expression, markers, length_unit, time_unit, q, u)
+        type(expression_type), intent(inout) :: expression
+        type(marker_type), intent(in) :: markers(:)
+        real(wp), intent(in) :: length_unit, time_unit, q(:), u(:)
+        real(wp) :: values(size(expression%inputs))
+        integer :: k
+
+        call expression_input_values(expression, markers, length_unit, time_unit, q, u, values)
+        do k = 1, size(expression%inputs)
+            if (counts_turns(expression%inputs(k)%quantity)) expression%anchors(k) = values(k)
+        end do
+    end subroutine take_anchors
 
     !> DX(i) ... PHI(i): one marker from ground in ground axes (rollcon_marker's marker_quantity,
     !> which reads a principal CM marker's angles as its part's coordinates).

@@ -14,9 +14,10 @@
 !> and moment's about I (the joint's equations depend on the two markers' relative pose only,
 !> so the pair is equal and opposite).
 module rollcon_reactions
+    use, intrinsic :: ieee_arithmetic, only : ieee_is_finite
     use rollcon_kinds, only : wp
     use rollcon_text, only : to_text, lower_case
-    use rollcon_rotation, only : rotation_matrix, times, cross
+    use rollcon_rotation, only : rotation_matrix, rotation_of_sines, times, cross
     use rollcon_marker, only : marker_type
     use rollcon_model, only : model_type, statement_type, statement_joint, statement_jprim, &
         & statement_element
@@ -25,6 +26,7 @@ module rollcon_reactions
     private
 
     public :: reaction_site_type, reaction_sites, site_wrench, swapped_wrench, body_moment
+    public :: part_attitude_type, part_attitude
 
     !> Where one statement's reaction is reported, and the rows that make it
     type :: reaction_site_type
@@ -42,7 +44,36 @@ module rollcon_reactions
         character(len=:), allocatable :: stem
     end type reaction_site_type
 
+    !> What a reaction needs of a part's Euler angles at a state: R(psi, theta, phi) (principal
+    !> axes to ground) and the sine and cosine of theta and phi (B's entries, body_moment);
+    !> made once a row for all the sites on the part (part_attitude)
+    type :: part_attitude_type
+        real(wp) :: rotation(3, 3) = 0.0_wp
+        real(wp) :: sin_theta = 0.0_wp, cos_theta = 1.0_wp, sin_phi = 0.0_wp, cos_phi = 1.0_wp
+    end type part_attitude_type
+
 contains
+
+    !> The attitude of part p (model order) at the coordinates q (n) [rad]: R and the sines and
+    !> cosines of its angles theta and phi, the same numbers as rotation_matrix and body_moment
+    !> make of them.
+    pure function part_attitude(q, p) result(attitude)
+        real(wp), intent(in) :: q(:)
+        integer, intent(in) :: p
+        type(part_attitude_type) :: attitude
+        real(wp) :: cos_psi, sin_psi
+        integer :: i0
+
+        i0 = 6*(p - 1)
+        cos_psi = cos(q(i0 + 4))
+        sin_psi = sin(q(i0 + 4))
+        attitude%cos_theta = cos(q(i0 + 5))
+        attitude%sin_theta = sin(q(i0 + 5))
+        attitude%cos_phi = cos(q(i0 + 6))
+        attitude%sin_phi = sin(q(i0 + 6))
+        attitude%rotation = rotation_of_sines(cos_psi, sin_psi, attitude%cos_theta, &
+            & attitude%sin_theta, attitude%cos_phi, attitude%sin_phi)
+    end function part_attitude
 
     !> The reaction sites of a set-up model, in the order of its statements: one per JOINT and
     !> JPRIM, one per part a UCON holds (in model order); none for a dataset's CONTACT (its
@@ -133,25 +164,65 @@ contains
     !> marker I at marker I (a JOINT or JPRIM), or on the part at its centre of mass (a UCON);
     !> from the constraint rows c (C, nc x n: dF/du, or dF/dq for a position UCON, by rows over
     !> each UCON's coordinates; the site's rows read on the part's six) and the multipliers
-    !> lambda (nc) at the coordinates q (n).
-    pure function site_wrench(model, site, c, lambda, q) result(wrench)
+    !> lambda (nc) at the coordinates q (n); attitude: the site's part's at q (part_attitude),
+    !> when the caller has it already (several sites on one part), else made here.
+    pure function site_wrench(model, site, c, lambda, q, attitude) result(wrench)
         type(model_type), intent(in) :: model
         type(reaction_site_type), intent(in) :: site
         type(constraint_matrix_type), intent(in) :: c
         real(wp), intent(in) :: lambda(:), q(:)
+        type(part_attitude_type), intent(in), optional :: attitude
         real(wp) :: wrench(6)
-        real(wp) :: generalised(6), row(6), rotation(3, 3), force(3), moment(3)
-        integer :: i0, i
+        real(wp) :: generalised(6), row(6), s
+        type(part_attitude_type) :: made
+        integer :: i0, i, k, x, j
 
         i0 = 6*(site%part - 1)
         generalised = 0.0_wp
         do i = 1, size(site%rows)
-            call c%gather(site%rows(i), i0 + 1, row)
-            generalised = generalised + lambda(site%rows(i))*row
+            k = site%rows(i)
+            s = lambda(k)
+            if (ieee_is_finite(s)) then
+                ! the row's entries on the part's six alone (C's columns ascend in a row, as
+                ! gather reads them): an entry absent would add s 0 = +-0, which changes
+                ! nothing (each sum starts at +0, so is never -0)
+                do x = c%start(k), c%start(k + 1) - 1
+                    if (c%column(x) > i0) exit
+                end do
+                do x = x, c%start(k + 1) - 1
+                    j = c%column(x) - i0
+                    if (j > 6) exit
+                    generalised(j) = generalised(j) + s*c%value(x)
+                end do
+            else
+                ! a multiplier not finite: the whole row's product (s 0 is NaN)
+                call c%gather(k, i0 + 1, row)
+                generalised = generalised + s*row
+            end if
         end do
-        rotation = rotation_matrix(q(i0 + 4), q(i0 + 5), q(i0 + 6))
+        if (present(attitude)) then
+            wrench = attitude_wrench(model, site, attitude, generalised, q)
+        else
+            made = part_attitude(q, site%part)
+            wrench = attitude_wrench(model, site, made, generalised, q)
+        end if
+    end function site_wrench
+
+    !> site_wrench's force and torque from the generalised constraint forces on the part's six
+    !> coordinates [N, N m] and the part's attitude at q.
+    pure function attitude_wrench(model, site, attitude, generalised, q) result(wrench)
+        type(model_type), intent(in) :: model
+        type(reaction_site_type), intent(in) :: site
+        type(part_attitude_type), intent(in) :: attitude
+        real(wp), intent(in) :: generalised(6), q(:)
+        real(wp) :: wrench(6)
+        real(wp) :: force(3), moment(3)
+        integer :: i0
+
+        i0 = 6*(site%part - 1)
         force = generalised(1:3)
-        moment = times(rotation, body_moment(q(i0 + 5), q(i0 + 6), generalised(4:6)))
+        moment = times(attitude%rotation, angles_moment(attitude%sin_theta, attitude%cos_theta, &
+            & attitude%sin_phi, attitude%cos_phi, generalised(4:6)))
         if (site%at_marker) then
             associate (marker => model%statements(site%statement)%i)
                 if (site%on_ground) then
@@ -159,13 +230,13 @@ contains
                     moment = -(moment + cross(q(i0 + 1:i0 + 3) - marker%point, force))
                     force = -force
                 else
-                    moment = moment - cross(times(rotation, marker%point), force)
+                    moment = moment - cross(times(attitude%rotation, marker%point), force)
                 end if
             end associate
         end if
         wrench(1:3) = force
         wrench(4:6) = moment
-    end function site_wrench
+    end function attitude_wrench
 
     !> The reaction on the part of a JOINT's or JPRIM's marker J, at J [N, N m], ground axes,
     !> from its reaction `wrench` on the part of marker I at I (site_wrench): equal and
@@ -205,13 +276,21 @@ contains
     pure function body_moment(theta, phi, q_angles) result(moment)
         real(wp), intent(in) :: theta, phi, q_angles(3)
         real(wp) :: moment(3)
+
+        moment = angles_moment(sin(theta), cos(theta), sin(phi), cos(phi), q_angles)
+    end function body_moment
+
+    !> body_moment from the sines and cosines of theta and phi.
+    pure function angles_moment(sin_theta, cos_theta, sin_phi, cos_phi, q_angles) result(moment)
+        real(wp), intent(in) :: sin_theta, cos_theta, sin_phi, cos_phi, q_angles(3)
+        real(wp) :: moment(3)
         real(wp) :: across
 
         ! B^T = [s_theta s_phi, s_theta c_phi, c_theta; c_phi, -s_phi, 0; 0, 0, 1]
         moment(3) = q_angles(3)
-        across = (q_angles(1) - cos(theta)*q_angles(3))/sin(theta)
-        moment(1) = sin(phi)*across + cos(phi)*q_angles(2)
-        moment(2) = cos(phi)*across - sin(phi)*q_angles(2)
-    end function body_moment
+        across = (q_angles(1) - cos_theta*q_angles(3))/sin_theta
+        moment(1) = sin_phi*across + cos_phi*q_angles(2)
+        moment(2) = cos_phi*across - sin_phi*q_angles(2)
+    end function angles_moment
 
 end module rollcon_reactions

@@ -6,7 +6,7 @@ module rollcon_rotation
     implicit none
     private
 
-    public :: rotation_matrix, rate_matrix, rate_matrix_dtheta, rate_matrix_dphi
+    public :: rotation_matrix, rotation_of_sines, rate_matrix, rate_matrix_dtheta, rate_matrix_dphi
     public :: rate_matrix_dtheta2, rate_matrix_dtheta_dphi, rate_matrix_dphi2, cross
     public :: times, transpose_times, rate_matrices, euler_angles
 
@@ -25,10 +25,29 @@ contains
         sth = sin(theta)
         cph = cos(phi)
         sph = sin(phi)
+        r = sines_rotation(cps, sps, cth, sth, cph, sph)
+    end function rotation_matrix
+
+    !> rotation_matrix from the cosines and sines of the angles, for a caller that needs them
+    !> too (rollcon_reactions' part_attitude): the same numbers.
+    pure function rotation_of_sines(cps, sps, cth, sth, cph, sph) result(r)
+        !> cos and sin of psi, theta and phi
+        real(wp), intent(in) :: cps, sps, cth, sth, cph, sph
+        real(wp) :: r(3, 3)
+
+        r = sines_rotation(cps, sps, cth, sth, cph, sph)
+    end function rotation_of_sines
+
+    !> rotation_matrix's and rotation_of_sines' R from the cosines and sines (private: inlined
+    !> into both, as an exported procedure of a shared library is not)
+    pure function sines_rotation(cps, sps, cth, sth, cph, sph) result(r)
+        real(wp), intent(in) :: cps, sps, cth, sth, cph, sph
+        real(wp) :: r(3, 3)
+
         r(1, :) = [cps*cph - sps*cth*sph, -cps*sph - sps*cth*cph, sps*sth]
         r(2, :) = [sps*cph + cps*cth*sph, -sps*sph + cps*cth*cph, -cps*sth]
         r(3, :) = [sth*sph, sth*cph, cth]
-    end function rotation_matrix
+    end function sines_rotation
 
     !> B with omega' = B (psidot, thetadot, phidot): body components of the angular velocity.
     !> Singular where sin(theta) = 0.

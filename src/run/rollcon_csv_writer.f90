@@ -113,7 +113,8 @@ contains
         class(csv_writer_type), intent(inout) :: self
         real(wp), intent(in) :: values(:)
         type(error_type), allocatable, intent(out) :: error
-        character(len=number_bytes*size(values)) :: line
+        ! the row's text and its line end, appended at once (no concatenation's copy)
+        character(len=number_bytes*size(values) + 1) :: line
         integer(int64) :: now
         integer :: length
 
@@ -127,7 +128,8 @@ contains
             return
         end if
         call row_text(values, line, length)
-        call append(self, line(:length) // new_line("a"), error)
+        line(length + 1:length + 1) = new_line("a")
+        call append(self, line(:length + 1), error)
         if (allocated(error)) return
         call system_clock(now)
         if (real(now - self%last_flush, wp) >= flush_seconds*real(self%clock_rate, wp)) then

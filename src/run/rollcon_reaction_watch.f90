@@ -17,7 +17,7 @@ module rollcon_reaction_watch
     use rollcon_text, only : to_text
     use rollcon_equations, only : equations_type
     use rollcon_reactions, only : reaction_site_type, reaction_sites, site_wrench, &
-        & swapped_wrench
+        & swapped_wrench, part_attitude_type, part_attitude
     use rollcon_run_settings, only : run_settings_type
     use rollcon_output_layout, only : name_length
     use rollcon_watch_columns, only : suffixes => reaction_suffixes
@@ -34,6 +34,10 @@ module rollcon_reaction_watch
         real(wp), allocatable :: largest(:, :)
         !> For each of the model's force requests, the site of its statement
         integer, allocatable :: request_sites(:)
+        !> The parts the sites are on (model order, each once), their attitudes at the row
+        !> (made once a row for all the sites on a part), and each site's entry in them
+        integer, allocatable :: parts(:), site_part(:)
+        type(part_attitude_type), allocatable :: attitudes(:)
     contains
         procedure :: prepare
         procedure :: column_names
@@ -50,11 +54,23 @@ contains
         type(run_settings_type), intent(in) :: settings
         type(error_type), allocatable, intent(out) :: error
 
-        integer :: r, i
+        integer :: r, i, p
+        logical :: used(size(eq%model%parts))
 
         self%sites = reaction_sites(eq%model)
         if (allocated(self%largest)) deallocate(self%largest)
         allocate(self%largest(2, size(self%sites)), source=0.0_wp)
+        used = .false.
+        do i = 1, size(self%sites)
+            p = self%sites(i)%part
+            if (p >= 1 .and. p <= size(used)) used(p) = .true.
+        end do
+        self%parts = pack([(p, p = 1, size(used))], used)
+        ! each site's entry in parts; 0 for a site on no part (site_wrench then makes its own)
+        self%site_part = [(findloc(self%parts, self%sites(i)%part, dim=1), &
+            & i = 1, size(self%sites))]
+        if (allocated(self%attitudes)) deallocate(self%attitudes)
+        allocate(self%attitudes(size(self%parts)))
         allocate(self%request_sites(0))
         if (.not. allocated(eq%model%force_requests)) return
         do r = 1, size(eq%model%force_requests)
@@ -100,9 +116,17 @@ contains
         real(wp), intent(out) :: values(:)
         integer :: i, n
 
+        do i = 1, size(self%parts)
+            self%attitudes(i) = part_attitude(q, self%parts(i))
+        end do
         do i = 1, size(self%sites)
             associate (wrench => values(6*i - 5:6*i))
-                wrench = site_wrench(eq%model, self%sites(i), eq%c, lambda, q)
+                if (self%site_part(i) > 0) then
+                    wrench = site_wrench(eq%model, self%sites(i), eq%c, lambda, q, &
+                        & self%attitudes(self%site_part(i)))
+                else
+                    wrench = site_wrench(eq%model, self%sites(i), eq%c, lambda, q)
+                end if
                 self%largest(1, i) = max(self%largest(1, i), norm2(wrench(1:3)))
                 self%largest(2, i) = max(self%largest(2, i), norm2(wrench(4:6)))
             end associate

@@ -4,9 +4,12 @@
 !> by hand: a pendulum's hinge force along the bar, m (g cos(theta) + L theta'^2), at every row;
 !> parts held still against gravity by an ATPOINT at the centre of mass (m g up) and by a
 !> FIXED joint off it (m g up and the torque that balances the weight's), each with marker I
-!> on the part and on the ground (the ground then feels the opposite). Datasets:
-!> test/reactions/.
+!> on the part and on the ground (the ground then feels the opposite); and the row's sites that
+!> share a part (its attitude made once a row) as each site alone. Datasets: test/reactions/,
+!> data/bicycle.adm.
 module test_reactions
+    use, intrinsic :: iso_fortran_env, only : int64
+    use, intrinsic :: ieee_arithmetic, only : ieee_value, ieee_quiet_nan, ieee_is_nan
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type
     use rollcon_text, only : to_text
@@ -14,6 +17,15 @@ module test_reactions
     use rollcon_job, only : job_type
     use rollcon_run_job, only : run_job, job_result_type
     use rollcon_simulation, only : history_type, status_completed
+    use rollcon_adm_model, only : adm_model_type
+    use rollcon_adm_reader, only : read_adm
+    use rollcon_adm_build, only : build_adm_problem
+    use rollcon_problem, only : problem_type
+    use rollcon_reaction_watch, only : reaction_watch_type
+    use rollcon_reactions, only : reaction_site_type, body_moment
+    use rollcon_rotation, only : rotation_matrix, times, cross
+    use rollcon_model, only : model_type
+    use rollcon_constraint_matrix, only : constraint_matrix_type
     use rollcon_testing, only : unittest_type, new_unittest, check
     implicit none
     private
@@ -30,7 +42,8 @@ contains
 
         tests = [new_unittest("pendulum-hinge-force-along-the-bar", test_pendulum), &
             & new_unittest("parts-held-against-gravity", test_held), &
-            & new_unittest("force-requests-answered", test_force_requests)]
+            & new_unittest("force-requests-answered", test_force_requests), &
+            & new_unittest("shared-part-sites-as-alone", test_shared_part)]
     end subroutine collect_reactions
 
     !> test/reactions/pendulum.adm: a bar of m = 2 kg, centre of mass L = 0.8 m below a REVOLUTE
@@ -185,6 +198,128 @@ contains
             & // "5.8860E+00 N m") > 0, "the summary's largest reactions: " &
             & // result%summary%watch_lines)
     end subroutine test_held
+
+    !> data/bicycle.adm at its initial state, each part's angles turned: the reaction watch makes
+    !> each part's attitude once a row for all its sites (rollcon_reactions' part_attitude) and
+    !> reads the sites' rows of C in place; every site's six columns must be, bit for bit, the
+    !> wrench as the definition makes it for the site alone (reference_wrench), with the
+    !> multipliers reported, and again with one multiplier NaN (a failed least-norm split):
+    !> every site holding that row then NaN in all six, as the dense product makes it, the
+    !> others unchanged. Several sites share a part there (checked: the sharing is what is
+    !> tested).
+    subroutine test_shared_part(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(adm_model_type) :: adm
+        type(problem_type), target :: problem
+        real(wp), allocatable :: q0(:), u0(:), lambda(:), values(:), first(:)
+        real(wp) :: alone(6)
+        logical :: same, shared, holds
+        integer :: k, i, nan_row, checked
+
+        call read_adm("data/bicycle.adm", adm, error)
+        if (allocated(error)) return
+        call build_adm_problem(adm, problem=problem, q0=q0, u0=u0, error=error)
+        if (allocated(error)) return
+        call problem%prepare(error)
+        if (allocated(error)) return
+        ! every Euler angle turned off its start (many are 0 or a right angle there, whose sines
+        ! and cosines would hide an attitude's wrong entry)
+        do i = 1, size(q0)/6
+            q0(6*i - 2:6*i) = q0(6*i - 2:6*i) + 0.1_wp*real(i, wp)*[0.3_wp, 0.2_wp, 0.7_wp]
+        end do
+        call problem%accelerations(0.0_wp, q0, u0, error)
+        if (allocated(error)) return
+        checked = 0
+        do k = 1, size(problem%watches)
+            select type (watch => problem%watches(k)%watch)
+            type is (reaction_watch_type)
+                allocate(lambda(problem%eq%nc))
+                call problem%eq%reported_multipliers(problem%lambda, lambda, error)
+                if (allocated(error)) return
+                allocate(values(6*(size(watch%sites) + size(watch%request_sites))))
+                call watch%fill_columns(problem%eq, 0.0_wp, q0, u0, lambda, values)
+                first = values
+                shared = .false.
+                same = .true.
+                do i = 1, size(watch%sites)
+                    shared = shared .or. count(watch%site_part == watch%site_part(i)) > 1
+                    alone = reference_wrench(problem%eq%model, watch%sites(i), problem%eq%c, &
+                        & lambda, q0)
+                    same = same .and. all(bits(values(6*i - 5:6*i)) == bits(alone))
+                end do
+                call check(error, size(watch%sites) > 1 .and. shared .and. same, &
+                    & "bicycle: " // to_text(size(watch%sites)) // " sites, a part shared: " &
+                    & // merge("yes", "no ", shared) // ", every site's columns as the site "&
+                    & // "alone makes them: " // merge("yes", "no ", same))
+                if (allocated(error)) return
+                ! a multiplier of the first site's, NaN
+                nan_row = watch%sites(1)%rows(1)
+                lambda(nan_row) = ieee_value(1.0_wp, ieee_quiet_nan)
+                call watch%fill_columns(problem%eq, 0.0_wp, q0, u0, lambda, values)
+                same = .true.
+                do i = 1, size(watch%sites)
+                    holds = any(watch%sites(i)%rows == nan_row)
+                    if (holds) then
+                        same = same .and. all(ieee_is_nan(values(6*i - 5:6*i)))
+                    else
+                        same = same .and. all(bits(values(6*i - 5:6*i)) &
+                            & == bits(first(6*i - 5:6*i)))
+                    end if
+                end do
+                call check(error, same, "bicycle, multiplier " // to_text(nan_row) // " NaN: " &
+                    & // "the sites holding its row not NaN in all six, or another site's " &
+                    & // "columns changed")
+                if (allocated(error)) return
+                checked = checked + 1
+            end select
+        end do
+        call check(error, checked == 1, "bicycle: " // to_text(checked) // " reaction watches")
+    end subroutine test_shared_part
+
+    !> A site's wrench as the definition gives it, each quantity made anew (docs/outputs.md,
+    !> "Reactions"): the generalised forces sum_k lambda_k C(k, :) on the part's six coordinates
+    !> (C's dense rows), the force their first three, the moment about the centre of mass
+    !> R B^-T of the last three (R and B from the part's angles), about marker I for a JOINT or
+    !> JPRIM (the opposite pair for marker I on the ground).
+    pure function reference_wrench(model, site, c, lambda, q) result(wrench)
+        type(model_type), intent(in) :: model
+        type(reaction_site_type), intent(in) :: site
+        type(constraint_matrix_type), intent(in) :: c
+        real(wp), intent(in) :: lambda(:), q(:)
+        real(wp) :: wrench(6)
+        real(wp) :: generalised(6), row(6), rotation(3, 3), force(3), moment(3)
+        integer :: i0, i
+
+        i0 = 6*(site%part - 1)
+        generalised = 0.0_wp
+        do i = 1, size(site%rows)
+            call c%gather(site%rows(i), i0 + 1, row)
+            generalised = generalised + lambda(site%rows(i))*row
+        end do
+        rotation = rotation_matrix(q(i0 + 4), q(i0 + 5), q(i0 + 6))
+        force = generalised(1:3)
+        moment = times(rotation, body_moment(q(i0 + 5), q(i0 + 6), generalised(4:6)))
+        if (site%at_marker) then
+            associate (marker => model%statements(site%statement)%i)
+                if (site%on_ground) then
+                    moment = -(moment + cross(q(i0 + 1:i0 + 3) - marker%point, force))
+                    force = -force
+                else
+                    moment = moment - cross(times(rotation, marker%point), force)
+                end if
+            end associate
+        end if
+        wrench(1:3) = force
+        wrench(4:6) = moment
+    end function reference_wrench
+
+    !> The bits of each number (a comparison that tells -0 from 0 and compares NaNs).
+    pure function bits(x) result(b)
+        real(wp), intent(in) :: x(:)
+        integer(int64) :: b(size(x))
+
+        b = transfer(x, 0_int64, size(x))
+    end function bits
 
     !> Run a dataset without files, its rows kept; a run that does not complete is an error.
     subroutine run_dataset(path, result, rows, error)
