@@ -76,7 +76,7 @@ contains
         !> Number of constants the spec needs
         integer, intent(in) :: npar_needed
         !> Codes the spec declares, in UCOVAR order (PAR(2:) must hold them)
-        integer, intent(in) :: codes(:)
+        integer, contiguous, intent(in) :: codes(:)
         !> Start of the message of a short PAR (what NPAR must be and why); NPAR follows
         character(len=*), intent(in) :: npar_text
         !> Part id of every variable; 0 when PAR(1) is not one
@@ -149,7 +149,7 @@ contains
         !> PAR index of the second part's id
         integer, intent(in) :: index
         !> Codes of the second part's variables, in UCOVAR order
-        integer, intent(in) :: codes(:)
+        integer, contiguous, intent(in) :: codes(:)
         !> The first part's id (PAR(1))
         integer, intent(in) :: part
         !> The second part's id; 0 when PAR(index) is not one
