@@ -96,7 +96,7 @@ contains
         finite = .true.
         if (idrsel(1) /= 0) finite = ieee_is_finite(scalar)
         if (idrsel(2) /= 0) finite = finite .and. all(ieee_is_finite(array(:n)))
-        if (idrsel(3) /= 0) finite = finite .and. all(ieee_is_finite(xmatrx(:n, :n)))
+        if (idrsel(3) /= 0 .and. finite) finite = all_finite(xmatrx, n)
         if (.not. finite) then
             call ucon_error(error, id, "UCOSUB returned a non-finite value at time " &
                 & // to_text(time) // " with IDRSEL = (" // to_text(idrsel(1)) // ", " &
@@ -104,5 +104,32 @@ contains
             error%stat = stat_non_finite
         end if
     end subroutine evaluate_ucon
+
+    !> True when every entry of x(:n, :n) is finite: all(ieee_is_finite(x(:n, :n))), its
+    !> verdict reached more cheaply (it runs at every evaluation that asks for XMATRX). The
+    !> sum of the entries, taken as column sums of each row, is finite only when every entry
+    !> is (an Infinity or a NaN among the terms leaves every partial sum it enters non-finite);
+    !> when it is not (a non-finite entry, or finite ones whose sum overflows) the entries are
+    !> tested one by one.
+    pure function all_finite(x, n) result(finite)
+        real(wp), intent(in) :: x(max_ucon_vars, max_ucon_vars)
+        !> Order of the block tested
+        integer, intent(in) :: n
+        logical :: finite
+        real(wp) :: rows(max_ucon_vars)
+        integer :: j
+
+        if (n < 2) then
+            finite = .true.
+            if (n == 1) finite = ieee_is_finite(x(1, 1))
+            return
+        end if
+        rows(:n) = x(:n, 1) + x(:n, 2)
+        do j = 3, n
+            rows(:n) = rows(:n) + x(:n, j)
+        end do
+        finite = ieee_is_finite(sum(rows(:n)))
+        if (.not. finite) finite = all(ieee_is_finite(x(:n, :n)))
+    end function all_finite
 
 end module rollcon_ucon_call

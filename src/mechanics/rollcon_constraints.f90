@@ -51,10 +51,18 @@ module rollcon_constraints
         !> For each UCON: every variable a coordinate (none a rate), declared in ascending order
         !> of its coordinates: its XMATRX is its d2F/dq dq as it stands (place_hessian)
         logical, allocatable :: plain_hessian(:)
+        !> For each UCON: every variable a coordinate, none a rate (its grad_u_local, dt_grad_u
+        !> and hqu are never written: zeros since allocate_state)
+        logical, allocatable :: position_only(:)
         !> Second partials over each UCON's own coordinates (docs/design.md §4): hqq(a, b, k) is
         !> d2F_k/dq_i dq_j and hqu(a, b, k) d2F_k/dq_i du_j with i = local(a, k), j = local(b, k);
         !> d2F/du du is zero (docs/design.md §2). The rest of the n x n matrices are zeros, not
         !> stored: memory and time grow as the number of UCONs, not as n^2 of them.
+        !>
+        !> Which entries of grad_q_local, grad_u_local, dt_grad_q, dt_grad_u, hqq and hqu a UCON's
+        !> evaluation writes depends on its variables alone (their kinds and slots), not on the
+        !> state: place_row and place_hessian overwrite those entries at each call and never
+        !> touch the others, which stay the zeros of allocate_state (no clearing per call).
         real(wp), allocatable :: hqq(:, :, :), hqu(:, :, :)
         !> Scratch for one UCOSUB call
         real(wp) :: local_q(max_ucon_vars) = 0.0_wp
@@ -79,7 +87,7 @@ contains
             if (allocated(self%value)) deallocate(self%value, self%dt, self%dtt, &
                 & self%grad_q_local, self%grad_u_local, self%dt_grad_q, self%dt_grad_u, &
                 & self%hqq, self%hqu, self%local, self%local_count, self%slot, &
-                & self%plain_hessian)
+                & self%plain_hessian, self%position_only)
             allocate(self%value(nc), self%dt(nc), self%dtt(nc), source=0.0_wp)
             rates = .false.
             do k = 1, nc
@@ -88,7 +96,7 @@ contains
             self%rates = rates
             allocate(self%local(max_ucon_vars, nc), self%slot(max_ucon_vars, nc), &
                 & self%local_count(nc), source=0)
-            allocate(self%plain_hessian(nc), source=.false.)
+            allocate(self%plain_hessian(nc), self%position_only(nc), source=.false.)
             ! each UCON's distinct coordinates in ascending order (insertion), then the slots
             self%width = 0
             do k = 1, nc
@@ -111,7 +119,8 @@ contains
                     end do
                     self%local_count(k) = count
                     self%width = max(self%width, count)
-                    self%plain_hessian(k) = .not. any(ucon%velocity(:ucon%nvars)) &
+                    self%position_only(k) = .not. any(ucon%velocity(:ucon%nvars))
+                    self%plain_hessian(k) = self%position_only(k) &
                         & .and. all(self%slot(:ucon%nvars, k) == [(i, i = 1, ucon%nvars)])
                 end associate
             end do
@@ -137,30 +146,37 @@ contains
         real(wp) :: scalar, array(max_ucon_vars), xmatrx(max_ucon_vars, max_ucon_vars)
         real(wp) :: ucon_time, h(0:2), user_values(0:2)
         integer :: k, i, idrsel(3)
-        logical :: first, second
+        logical :: first, second, selected
 
         first = iand(needs, need_first) /= 0
         second = iand(needs, need_second) /= 0
+        idrsel = [scalar_none, array_none, xmatrx_none]
+        if (iand(needs, need_value) /= 0) idrsel(1) = scalar_value
+        if (first) idrsel(2) = array_dq
+        if (second) idrsel(3) = xmatrx_dqdq
+        selected = any(idrsel /= 0)
         do k = 1, model%nc
             associate (ucon => model%ucons(k))
-                do i = 1, ucon%nvars
-                    if (ucon%velocity(i)) then
-                        self%local_q(i) = u(ucon%coordinate(i))
-                    else
+                if (self%position_only(k)) then
+                    do i = 1, ucon%nvars
                         self%local_q(i) = q(ucon%coordinate(i))
-                    end if
-                end do
+                    end do
+                else
+                    do i = 1, ucon%nvars
+                        if (ucon%velocity(i)) then
+                            self%local_q(i) = u(ucon%coordinate(i))
+                        else
+                            self%local_q(i) = q(ucon%coordinate(i))
+                        end if
+                    end do
+                end if
                 ! a routine in the model's units gets the state and the time in them
                 ucon_time = time
                 if (ucon%converted) then
                     self%local_q(:ucon%nvars) = ucon%scales*self%local_q(:ucon%nvars)
                     ucon_time = ucon%time_scale*time
                 end if
-                idrsel = [scalar_none, array_none, xmatrx_none]
-                if (iand(needs, need_value) /= 0) idrsel(1) = scalar_value
-                if (first) idrsel(2) = array_dq
-                if (second) idrsel(3) = xmatrx_dqdq
-                if (any(idrsel /= 0)) then
+                if (selected) then
                     call evaluate_one(ucon, ucon_time, self%local_q, idrsel, scalar, array, &
                         & xmatrx, error)
                     if (allocated(error)) call in_user_words(model, k, error)
@@ -184,10 +200,11 @@ contains
                             if (allocated(error)) return
                         end if
                     end if
-                    if (first) call place_row(ucon, self%slot(:, k), array, &
-                        & self%grad_q_local(:, k), self%grad_u_local(:, k))
+                    if (first) call place_row(ucon, self%slot(:, k), self%position_only(k), &
+                        & array, self%grad_q_local(:, k), self%grad_u_local(:, k))
                     if (second) call place_hessian(ucon, self%slot(:, k), self%local_count(k), &
-                        & self%plain_hessian(k), xmatrx, self%hqq(:, :, k), self%hqu(:, :, k))
+                        & self%plain_hessian(k), self%position_only(k), xmatrx, &
+                        & self%hqq(:, :, k), self%hqu(:, :, k))
                 end if
                 ! a MOTION's time partials are its time part's: dF/dt = -h', d2F/dt2 = -h'',
                 ! d2F/dt dq = 0 (its routine is time-free)
@@ -217,8 +234,8 @@ contains
                     if (ucon%converted) call to_si(ucon, 1, [.true., .true., .false.], scalar, &
                         & array, xmatrx)
                     self%dt(k) = scalar
-                    call place_row(ucon, self%slot(:, k), array, self%dt_grad_q(:, k), &
-                        & self%dt_grad_u(:, k))
+                    call place_row(ucon, self%slot(:, k), self%position_only(k), array, &
+                        & self%dt_grad_q(:, k), self%dt_grad_u(:, k))
                     if (ucon%holonomic) then
                         call evaluate_one(ucon, ucon_time, self%local_q, [scalar_dtt, &
                             & array_none, xmatrx_none], scalar, array, xmatrx, error)
@@ -372,20 +389,26 @@ contains
     end subroutine fill_local_row
 
     !> Place a UCON's partials ARRAY over its own coordinates (`slot` gives each variable's
-    !> place): its coordinates' d/dq and its rates' d/du, each place's other kind zero, as
-    !> a dense row would over the system's.
-    pure subroutine place_row(ucon, slot, array, local_q, local_u)
+    !> place): its coordinates' d/dq and its rates' d/du, as a dense row would over the
+    !> system's. Only the places of its variables of each kind are written, the same at every
+    !> call: the other kind's entry at a place stays the zero of allocate_state
+    !> (constraint_state_type's hqq), as a dense row's would be.
+    pure subroutine place_row(ucon, slot, position_only, array, local_q, local_u)
         type(ucon_statement_type), intent(in) :: ucon
-        integer, intent(in) :: slot(:)
-        real(wp), intent(in) :: array(:)
+        integer, contiguous, intent(in) :: slot(:)
+        !> No variable is a rate (constraint_state_type's position_only)
+        logical, intent(in) :: position_only
+        real(wp), contiguous, intent(in) :: array(:)
         !> d/dq and d/du over the UCON's own coordinates (width)
-        real(wp), intent(inout) :: local_q(:), local_u(:)
+        real(wp), contiguous, intent(inout) :: local_q(:), local_u(:)
         integer :: i
 
-        do i = 1, ucon%nvars
-            local_q(slot(i)) = 0.0_wp
-            local_u(slot(i)) = 0.0_wp
-        end do
+        if (position_only) then
+            do i = 1, ucon%nvars
+                local_q(slot(i)) = array(i)
+            end do
+            return
+        end if
         do i = 1, ucon%nvars
             if (ucon%velocity(i)) then
                 local_u(slot(i)) = array(i)
@@ -398,36 +421,46 @@ contains
     !> Place a UCON's second partials (XMATRX) in its compact d2F/dq dq and d2F/dq du (over its
     !> own coordinates: `slot` gives each variable's place; d2F/du du is zero: F is linear in
     !> the rates, docs/design.md §2). A plain UCON (plain_hessian: coordinates only, in
-    !> ascending order) has its XMATRX copied whole, every entry of its corner written, and its
-    !> hqu never written (zero since allocate_state); another has the count x count corner of
-    !> its own coordinates cleared (the rest is never written and stays zero), then set, as
-    !> place_row does: no two variables of one kind share a slot, so the entries set do not
-    !> overlap.
-    pure subroutine place_hessian(ucon, slot, count, plain, xmatrx, hqq, hqu)
+    !> ascending order) has its XMATRX's count x count corner copied whole; another has the
+    !> entries of its variables' places written, coordinate rows against coordinate columns in
+    !> hqq and against rate columns in hqu, in the order of its variables (a place two
+    !> variables of one kind share takes the later's). The entries written are the same at
+    !> every call; the others are never written and stay the zeros of allocate_state
+    !> (constraint_state_type's hqq), so nothing is cleared. A UCON without rates
+    !> (position_only) never writes hqu.
+    pure subroutine place_hessian(ucon, slot, count, plain, position_only, xmatrx, hqq, hqu)
         type(ucon_statement_type), intent(in) :: ucon
-        integer, intent(in) :: slot(:)
+        integer, contiguous, intent(in) :: slot(:)
         !> Number of the UCON's own coordinates
         integer, intent(in) :: count
-        !> Its plain_hessian
-        logical, intent(in) :: plain
-        real(wp), intent(in) :: xmatrx(:, :)
-        real(wp), intent(inout) :: hqq(:, :), hqu(:, :)
-        integer :: i, j
+        !> Its plain_hessian and its position_only
+        logical, intent(in) :: plain, position_only
+        real(wp), contiguous, intent(in) :: xmatrx(:, :)
+        real(wp), contiguous, intent(inout) :: hqq(:, :), hqu(:, :)
+        integer :: i, j, b
 
         if (plain) then
             hqq(:count, :count) = xmatrx(:count, :count)
             return
         end if
-        hqq(:count, :count) = 0.0_wp
-        hqu(:count, :count) = 0.0_wp
+        if (position_only) then
+            do j = 1, ucon%nvars
+                b = slot(j)
+                do i = 1, ucon%nvars
+                    hqq(slot(i), b) = xmatrx(i, j)
+                end do
+            end do
+            return
+        end if
         do j = 1, ucon%nvars
+            b = slot(j)
             if (ucon%velocity(j)) then
                 do i = 1, ucon%nvars
-                    if (.not. ucon%velocity(i)) hqu(slot(i), slot(j)) = xmatrx(i, j)
+                    if (.not. ucon%velocity(i)) hqu(slot(i), b) = xmatrx(i, j)
                 end do
             else
                 do i = 1, ucon%nvars
-                    if (.not. ucon%velocity(i)) hqq(slot(i), slot(j)) = xmatrx(i, j)
+                    if (.not. ucon%velocity(i)) hqq(slot(i), b) = xmatrx(i, j)
                 end do
             end if
         end do

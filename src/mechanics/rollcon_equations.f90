@@ -30,6 +30,7 @@ module rollcon_equations
     use rollcon_lapack, only : factor_dense, solve_factored
     use rollcon_constraints, only : constraint_state_type, local_dot, need_value, need_first, &
         & need_second, need_time
+    use rollcon_ucosub_contract, only : max_ucon_vars
     use rollcon_saddle_point, only : saddle_point_type
     use rollcon_constraint_blocks, only : constraint_blocks_type
     use rollcon_constraint_matrix, only : constraint_matrix_type
@@ -436,23 +437,29 @@ contains
         !> alpha^2 F (position); 0 without Baumgarte terms
         real(wp), intent(in) :: alpha
         real(wp) :: rate
-        integer :: k, first, last
+        ! u over UCON k's own coordinates, gathered once for its three sums
+        real(wp) :: u_local(max_ucon_vars)
+        integer :: k, first, count, i
 
         call self%constraint_matrix()
         ! sums over each UCON's own coordinates (ascending): the dense sums' terms that are
-        ! not exact zeros, in their order
+        ! not exact zeros, in their order (those of grad_q_dot and local_dot, on u gathered
+        ! once: the same products in the same order)
         associate (cs => self%constraints, at => self%blocks%ucon_coordinates)
             do k = 1, self%nc
                 first = self%blocks%ucon_start(k)
-                last = self%blocks%ucon_start(k + 1) - 1
+                count = self%blocks%ucon_start(k + 1) - first
+                do i = 1, count
+                    u_local(i) = u(at(first + i - 1))
+                end do
                 if (self%model%ucons(k)%holonomic) then
-                    rate = cs%grad_q_dot(k, u) + cs%dt(k)
-                    self%gamma(k) = -local_quadratic_form(cs%hqq(:, :, k), u, at(first:last)) &
-                        & - 2.0_wp*local_dot(cs%dt_grad_q(:, k), u, at(first:last)) &
+                    rate = gathered_dot(cs%grad_q_local(:, k), u_local, count) + cs%dt(k)
+                    self%gamma(k) = -local_quadratic_form(cs%hqq(:, :, k), u_local, count) &
+                        & - 2.0_wp*gathered_dot(cs%dt_grad_q(:, k), u_local, count) &
                         & - cs%dtt(k) - 2.0_wp*alpha*rate - alpha**2*cs%value(k)
                 else
-                    self%gamma(k) = -cs%grad_q_dot(k, u) - cs%dt(k) &
-                        & - alpha*cs%value(k)
+                    self%gamma(k) = -gathered_dot(cs%grad_q_local(:, k), u_local, count) &
+                        & - cs%dt(k) - alpha*cs%value(k)
                 end if
             end do
         end associate
@@ -1674,25 +1681,53 @@ contains
         du = self%work%rhs_top(:, 1)
     end subroutine project
 
-    !> u^T H u with H over a UCON's own coordinates `at` (ascending; h(i, j) belongs to at(i),
-    !> at(j)), summed as the dense quadratic form.
-    pure function local_quadratic_form(h, u, at) result(value)
-        real(wp), intent(in) :: h(:, :), u(:)
-        integer, intent(in) :: at(:)
+    !> u^T H u with H over a UCON's own coordinates (ascending; h(i, j) belongs to the i-th
+    !> and j-th) and u_local u on them (its first count), summed as the dense quadratic form.
+    pure function local_quadratic_form(h, u_local, count) result(value)
+        real(wp), contiguous, intent(in) :: h(:, :), u_local(:)
+        !> Number of the UCON's own coordinates
+        integer, intent(in) :: count
         real(wp) :: value
-        real(wp) :: column
+        real(wp) :: column, next
         integer :: i, j
 
-        ! local_dot of each column, written out (a call per column cost more than its sum)
+        ! local_dot of each column, written out (a call per column cost more than its sum),
+        ! two columns in one pass over u_local: each column's sum and their order in value
+        ! as one column at a time
         value = 0.0_wp
-        do j = 1, size(at)
+        do j = 1, count - 1, 2
             column = 0.0_wp
-            do i = 1, size(at)
-                column = column + h(i, j)*u(at(i))
+            next = 0.0_wp
+            do i = 1, count
+                column = column + h(i, j)*u_local(i)
+                next = next + h(i, j + 1)*u_local(i)
             end do
-            value = value + u(at(j))*column
+            value = value + u_local(j)*column
+            value = value + u_local(j + 1)*next
         end do
+        if (mod(count, 2) == 1) then
+            column = 0.0_wp
+            do i = 1, count
+                column = column + h(i, count)*u_local(i)
+            end do
+            value = value + u_local(count)*column
+        end if
     end function local_quadratic_form
+
+    !> h . x over a UCON's own coordinates, x on them (gathered): the first count terms summed
+    !> in order from zero, as local_dot sums them.
+    pure function gathered_dot(h, x, count) result(total)
+        real(wp), contiguous, intent(in) :: h(:), x(:)
+        !> Number of the UCON's own coordinates
+        integer, intent(in) :: count
+        real(wp) :: total
+        integer :: i
+
+        total = 0.0_wp
+        do i = 1, count
+            total = total + h(i)*x(i)
+        end do
+    end function gathered_dot
 
     !> Gravitational potential energy, sum of -m g . r over the parts [J] (zero at ground's
     !> origin).

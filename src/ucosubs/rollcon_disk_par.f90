@@ -50,14 +50,18 @@ contains
         ! the usual case, a valid PAR, in one test (the routine reads PAR at every call): the
         ! checks below, without their messages
         if (npar >= disk_npar) then
-            if (par(1) >= 1.0_wp .and. par(1) < real(huge(1), wp) .and. par(1) == aint(par(1)) &
-                & .and. all(par(2:1 + disk_nvars) == real(disk_codes, wp)) &
-                & .and. par(10) > 0.0_wp .and. par(10) <= huge(par(10)) &
-                & .and. (par(11) == 1.0_wp .or. par(11) == 2.0_wp .or. par(11) == 3.0_wp)) then
-                part = int(par(1))
-                radius = par(10)
-                component = int(par(11))
-                return
+            if (par(1) >= 1.0_wp .and. par(1) < real(huge(1), wp)) then
+                ! in int's range: int truncates as aint does, without aint's library call
+                if (par(1) == real(int(par(1)), wp) &
+                    & .and. all(par(2:1 + disk_nvars) == real(disk_codes, wp)) &
+                    & .and. par(10) > 0.0_wp .and. par(10) <= huge(par(10)) &
+                    & .and. (par(11) == 1.0_wp .or. par(11) == 2.0_wp .or. par(11) == 3.0_wp)) &
+                    & then
+                    part = int(par(1))
+                    radius = par(10)
+                    component = int(par(11))
+                    return
+                end if
             end if
         end if
         part = 0
