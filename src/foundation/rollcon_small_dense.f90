@@ -5,9 +5,9 @@
 !> LAPACK's dgetf2, dgetrs, dpotf2 ("L") and dpotrs ("L") with the reference BLAS they call
 !> (idamax, dswap, dscal, dger, dlaswp, dtrsm, ddot, dgemv), operation for operation and in the
 !> same order, without the cost of a library call per column (on the bicycle's 21 rows the calls
-!> cost more than the arithmetic; a part's dpotf2 cost more than its 3 x 3 arithmetic). With the reference
-!> LAPACK and BLAS, as the published figures use (docs/benchmark.md), the numbers are theirs bit
-!> for bit; with another LAPACK they are those of the reference one.
+!> cost more than the arithmetic; a part's dpotf2 cost more than its 3 x 3 arithmetic). With the
+!> reference LAPACK and BLAS, as the published figures use (docs/benchmark.md), the numbers are
+!> theirs bit for bit; with another LAPACK they are those of the reference one.
 module rollcon_small_dense
     use, intrinsic :: ieee_arithmetic, only : ieee_is_nan
     use rollcon_kinds, only : wp

@@ -123,6 +123,8 @@ module rollcon_saddle_point
         !> exact zeros there, set by init and never written again (set by init)
         integer, allocatable :: column_start(:), column_ucon(:), column_offset(:), &
             & column_first(:), column_last(:)
+        !> Each column's UCON's place among its block's rows (1 for the first)
+        integer, allocatable :: column_row(:)
         !> Whether the current factorisation went block by block
         logical :: by_blocks = .false.
         !> Whether the current factorisation sets rows aside, and which rows are active (nc)
@@ -186,7 +188,8 @@ contains
             & self%coordinate_place)
         if (allocated(self%schur)) deallocate(self%schur)
         if (allocated(self%term_start)) deallocate(self%term_start, self%term_value, &
-            & self%term_minv, self%column_start, self%column_ucon, self%column_offset, &
+            & self%term_minv, self%column_start, self%column_ucon, self%column_row, &
+            & self%column_offset, &
             & self%column_first, self%column_last)
         allocate(self%part_mass(self%parts), source=0.0_wp)
         allocate(self%rotational(3, 3, self%parts), source=0.0_wp)
@@ -329,6 +332,7 @@ contains
                         columns = columns + 1
                         if (pass == 1) cycle
                         self%column_ucon(columns) = k
+                        self%column_row(columns) = i - blocks%row_start(b) + 1
                         self%column_offset(columns) = part_offset(self, p, k)
                         self%column_first(columns) = first
                         self%column_last(columns) = last
@@ -336,7 +340,8 @@ contains
                 end do
                 self%column_start(self%parts + 1) = columns + 1
                 if (pass == 1) allocate(self%term_value(terms), self%term_minv(terms), &
-                    & self%column_ucon(columns), self%column_offset(columns), &
+                    & self%column_ucon(columns), self%column_row(columns), &
+                    & self%column_offset(columns), &
                     & self%column_first(columns), self%column_last(columns))
             end do
         end associate
@@ -782,14 +787,13 @@ contains
                 ! kj's parts), and an exact zero where k and kj share no part (no terms): the
                 ! terms the block's dense sum has beyond these are exact zeros, which change no
                 ! sum
-                ! S = C M^-1 C^T is symmetric: the entries with k < kj (UCON numbers) are those
-                ! with k and kj exchanged, copied below
+                ! S = C M^-1 C^T is symmetric: the entries with k < kj (UCON numbers; i < j, a
+                ! block's rows ascending) are those with k and kj exchanged, copied below
                 do j = 1, m
                     kj = blocks%rows(blocks%row_start(b) + j - 1)
-                    do i = 1, m
+                    do i = j, m
                         e = s0 + i + m*(j - 1)
                         k = blocks%rows(blocks%row_start(b) + i - 1)
-                        if (k < kj) cycle
                         ! a row set aside: its own row and column of S are those of the identity
                         if (self%masked) then
                             if (.not. (self%active(k) .and. self%active(kj))) then
@@ -805,12 +809,10 @@ contains
                         self%block_schur(e) = total
                     end do
                 end do
-                do j = 1, m
-                    kj = blocks%rows(blocks%row_start(b) + j - 1)
-                    do i = 1, m
-                        k = blocks%rows(blocks%row_start(b) + i - 1)
-                        if (k < kj) self%block_schur(s0 + i + m*(j - 1)) = &
-                            & self%block_schur(s0 + j + m*(i - 1))
+                do j = 2, m
+                    do i = 1, j - 1
+                        self%block_schur(s0 + i + m*(j - 1)) = self%block_schur(s0 + j &
+                            & + m*(i - 1))
                     end do
                 end do
                 call factor_lu(m, self%block_schur(self%schur_start(b)), m, &
@@ -865,7 +867,7 @@ contains
         integer, intent(in) :: coordinates(:), place(:), blocks(:), ld1, ld2, m
         real(wp), intent(inout) :: r1(ld1, m), r2(ld2, m)
         type(error_type), allocatable, intent(out) :: error
-        integer :: i, l, p, b, k, x, j, col, first, width, offset, rows_b, r0, il
+        integer :: i, l, p, b, k, x, j, col, first, width, rows_b, r0, il
 
         ! r1 := M^-1 r1, part by part, as apply_inverse_mass
         do l = 1, size(coordinates), 6
@@ -907,27 +909,33 @@ contains
             end do
             ! a = M^-1 (r1 + C^T lambda): each row's column of M^-1 C^T over its block, a
             ! block's rows ascending as solve_blocks adds them (the other blocks' columns are
-            ! zero on these coordinates)
+            ! zero on these coordinates); a dense block's part by part over init's columns, as
+            ! solve_blocks
             do col = 1, m
                 r0 = 0
                 do i = 1, size(blocks)
                     b = blocks(i)
+                    if (.not. self%block_sparse(b)) then
+                        do j = bl%coordinate_start(b), bl%coordinate_start(b + 1) - 1, 6
+                            p = (bl%coordinates(j) - 1)/6 + 1
+                            l = place(bl%coordinates(j))
+                            do il = self%column_start(p), self%column_start(p + 1) - 1
+                                x = self%column_offset(il)
+                                r1(l:l + 5, col) = r1(l:l + 5, col) + r2(r0 &
+                                    & + self%column_row(il), col)*self%minv_values(x + 1:x + 6)
+                            end do
+                        end do
+                        r0 = r0 + bl%row_start(b + 1) - bl%row_start(b)
+                        cycle
+                    end if
                     do il = bl%row_start(b), bl%row_start(b + 1) - 1
                         k = bl%rows(il)
                         r0 = r0 + 1
-                        if (self%block_sparse(b)) then
-                            do j = self%ucon_part_start(k), self%ucon_part_start(k + 1) - 1
-                                l = place(6*(self%ucon_parts(j) - 1) + 1)
-                                x = self%minv_start(k) - 1 + 6*(j - self%ucon_part_start(k))
-                                r1(l:l + 5, col) = r1(l:l + 5, col) &
-                                    & + r2(r0, col)*self%minv_values(x + 1:x + 6)
-                            end do
-                            cycle
-                        end if
-                        offset = self%minv_start(k) - bl%coordinate_start(b)
-                        do j = bl%coordinate_start(b), bl%coordinate_start(b + 1) - 1
-                            l = place(bl%coordinates(j))
-                            r1(l, col) = r1(l, col) + r2(r0, col)*self%minv_values(offset + j)
+                        do j = self%ucon_part_start(k), self%ucon_part_start(k + 1) - 1
+                            l = place(6*(self%ucon_parts(j) - 1) + 1)
+                            x = self%minv_start(k) - 1 + 6*(j - self%ucon_part_start(k))
+                            r1(l:l + 5, col) = r1(l:l + 5, col) &
+                                & + r2(r0, col)*self%minv_values(x + 1:x + 6)
                         end do
                     end do
                 end do
@@ -969,7 +977,7 @@ contains
         integer, intent(in) :: m
         real(wp), intent(inout) :: r1(self%n, m), r2(self%rows, m)
         type(error_type), allocatable, intent(out) :: error
-        integer :: b, i, j, k, rows_b, first, last, col, x
+        integer :: b, i, j, k, rows_b, first, last, col, x, p, i0
 
         associate (blocks => self%blocks)
             do b = 1, blocks%count
@@ -996,24 +1004,31 @@ contains
                 call scatter_rows(blocks, b, self%gathered, m, r2)
             end do
             ! a = M^-1 (r1 + C^T lambda): each row's column of M^-1 C^T over its block, rows in
-            ! ascending order as the dense path adds them
+            ! ascending order as the dense path adds them; a dense block's part by part, over
+            ! the UCONs with a coordinate on it (init's columns, ascending: the others' columns
+            ! are exact zeros there)
             do col = 1, m
+                do b = 1, blocks%count
+                    if (self%block_sparse(b)) cycle
+                    do j = blocks%coordinate_start(b), blocks%coordinate_start(b + 1) - 1, 6
+                        p = (blocks%coordinates(j) - 1)/6 + 1
+                        i0 = 6*(p - 1)
+                        do i = self%column_start(p), self%column_start(p + 1) - 1
+                            x = self%column_offset(i)
+                            r1(i0 + 1:i0 + 6, col) = r1(i0 + 1:i0 + 6, col) &
+                                & + r2(self%column_ucon(i), col)*self%minv_values(x + 1:x + 6)
+                        end do
+                    end do
+                end do
                 do k = 1, self%rows
                     b = blocks%row_block(k)
-                    if (self%block_sparse(b)) then
-                        ! a sparse block's column of M^-1 C^T is over its UCON's parts only
-                        do j = self%ucon_part_start(k), self%ucon_part_start(k + 1) - 1
-                            i = 6*(self%ucon_parts(j) - 1)
-                            x = self%minv_start(k) - 1 + 6*(j - self%ucon_part_start(k))
-                            r1(i + 1:i + 6, col) = r1(i + 1:i + 6, col) &
-                                & + r2(k, col)*self%minv_values(x + 1:x + 6)
-                        end do
-                        cycle
-                    end if
-                    x = self%minv_start(k) - blocks%coordinate_start(b)
-                    do j = blocks%coordinate_start(b), blocks%coordinate_start(b + 1) - 1
-                        i = blocks%coordinates(j)
-                        r1(i, col) = r1(i, col) + r2(k, col)*self%minv_values(x + j)
+                    if (.not. self%block_sparse(b)) cycle
+                    ! a sparse block's column of M^-1 C^T is over its UCON's parts only
+                    do j = self%ucon_part_start(k), self%ucon_part_start(k + 1) - 1
+                        i = 6*(self%ucon_parts(j) - 1)
+                        x = self%minv_start(k) - 1 + 6*(j - self%ucon_part_start(k))
+                        r1(i + 1:i + 6, col) = r1(i + 1:i + 6, col) &
+                            & + r2(k, col)*self%minv_values(x + 1:x + 6)
                     end do
                 end do
             end do
