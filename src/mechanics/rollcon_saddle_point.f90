@@ -110,17 +110,18 @@ module rollcon_saddle_point
         !> share a part (else the entry is an exact zero, not summed)
         logical, allocatable :: block_shares(:)
         !> The terms of each entry e of a dense block's S, row k and column l (packed as
-        !> block_schur), k >= l (the others are copied from their mirror image: none):
-        !> terms term_start(e) : term_start(e + 1) - 1, each the product of C's
+        !> block_schur): terms term_start(e) : term_start(e + 1) - 1, each the product of C's
         !> entry term_value(t) (c's index: C(k, j) on a coordinate j of k's on a part of l's,
-        !> ascending) with M^-1 c_l^T's entry minv_values(term_minv(t)) there (set by init)
+        !> ascending) with M^-1 c_l^T's entry minv_values(term_minv(t)) there; none for k < l
+        !> (copied from S(l, k)) or for UCONs that share no part (set by init)
         integer, allocatable :: term_start(:), term_value(:), term_minv(:)
-        !> For each part of a dense block, the UCONs of the block with a coordinate on it, in
-        !> the block's order: columns column_start(p) : column_start(p + 1) - 1, each with its
-        !> UCON column_ucon(i), the place of its part's six rows of M^-1 c_k^T in minv_values
-        !> (column_offset(i) + 1 : + 6) and C's entries on the part (column_first(i) :
-        !> column_last(i), c's index). A block's UCON with no coordinate on the part has
-        !> exact zeros there, set by init and never written again (set by init)
+        !> For each part of a dense block, the UCONs of the block with a coordinate on it,
+        !> ascending (the block's order): columns column_start(p) : column_start(p + 1) - 1,
+        !> each with its UCON column_ucon(i), the place of its part's six rows of M^-1 c_k^T in
+        !> minv_values (column_offset(i) + 1 : + 6) and C's entries on the part
+        !> (column_first(i) : column_last(i), c's index); set by init. A block's UCON with no
+        !> coordinate on a part has exact zeros there in minv_values: init's, which the
+        !> factorisations leave as they are
         integer, allocatable :: column_start(:), column_ucon(:), column_offset(:), &
             & column_first(:), column_last(:)
         !> Each column's UCON's place among its block's rows (1 for the first)
@@ -189,8 +190,7 @@ contains
         if (allocated(self%schur)) deallocate(self%schur)
         if (allocated(self%term_start)) deallocate(self%term_start, self%term_value, &
             & self%term_minv, self%column_start, self%column_ucon, self%column_row, &
-            & self%column_offset, &
-            & self%column_first, self%column_last)
+            & self%column_offset, self%column_first, self%column_last)
         allocate(self%part_mass(self%parts), source=0.0_wp)
         allocate(self%rotational(3, 3, self%parts), source=0.0_wp)
         allocate(self%pivots(max(nc, 1)), source=0)
@@ -265,7 +265,8 @@ contains
     !> each of its parts (column_start, ...): found once, so that a factorisation sums only
     !> the products that can be nonzero, with their places looked up here and not in its loops.
     !> The terms left out are C(k, j) times an exact zero of M^-1 c_l^T (j on a part l has no
-    !> coordinate on), which change no sum (it starts at +0, which a zero added leaves +0).
+    !> coordinate on): a sum that starts at +0 is never -0, so adding such a zero (C finite)
+    !> leaves it as it is.
     subroutine dense_terms(self)
         type(saddle_point_type), intent(inout) :: self
         logical :: touches(self%parts)
