@@ -10,10 +10,7 @@
 !> M^-1 costs a division and a 3 x 3 Cholesky solve per part (dpotf2's and dpotrs's arithmetic
 !> in rollcon_small_dense) and only the small Schur complement S is factored with
 !> pivoting (dgetf2's and dgetrs's arithmetic, rollcon_small_dense), in place of
-!> the whole (n + nc) x (n + nc) matrix. S is symmetric: on the dense path and a dense block's,
-!> its entries S(k, l) with k >= l (UCON numbers) are summed and the others copied from them
-!> (the sums of the entries above the diagonal would differ from their mirror images only by
-!> rounding). Given the constraints' blocks (rollcon_constraint_blocks:
+!> the whole (n + nc) x (n + nc) matrix. Given the constraints' blocks (rollcon_constraint_blocks:
 !> UCONs that share no part do not couple), S is block diagonal and every step goes block by
 !> block, each row over its block's coordinates only, so N independent disks cost N times one:
 !> the sums are those of the dense path without its terms that are exact zeros, in the same
@@ -112,8 +109,8 @@ module rollcon_saddle_point
         !> The terms of each entry e of a dense block's S, row k and column l (packed as
         !> block_schur): terms term_start(e) : term_start(e + 1) - 1, each the product of C's
         !> entry term_value(t) (c's index: C(k, j) on a coordinate j of k's on a part of l's,
-        !> ascending) with M^-1 c_l^T's entry minv_values(term_minv(t)) there; none for k < l
-        !> (copied from S(l, k)) or for UCONs that share no part (set by init)
+        !> ascending) with M^-1 c_l^T's entry minv_values(term_minv(t)) there; none for UCONs
+        !> that share no part (set by init)
         integer, allocatable :: term_start(:), term_value(:), term_minv(:)
         !> For each part of a dense block, the UCONs of the block with a coordinate on it,
         !> ascending (the block's order): columns column_start(p) : column_start(p + 1) - 1,
@@ -299,9 +296,7 @@ contains
                             k = blocks%rows(blocks%row_start(b) + i - 1)
                             e = self%schur_start(b) + i - 1 + m*(j - 1)
                             self%term_start(e) = terms + 1
-                            ! S is symmetric: the entries above its diagonal (by UCON number)
-                            ! are copied from those below, and have no terms of their own
-                            if (k < l .or. .not. self%block_shares(e)) cycle
+                            if (.not. self%block_shares(e)) cycle
                             do x = blocks%ucon_start(k), blocks%ucon_start(k + 1) - 1
                                 if (.not. touches((blocks%ucon_coordinates(x) - 1)/6 + 1)) cycle
                                 terms = terms + 1
@@ -657,28 +652,20 @@ contains
                 if (.not. self%active(k)) self%minv_ct(:, k) = 0.0_wp
             end do
         end if
-        ! row k of C written whole once, then its products with the columns of M^-1 C^T up to
-        ! the k-th: S is symmetric, its entries above the diagonal copied from below (after a
-        ! row set aside has become the identity's: its column is zero below the diagonal, as
-        ! M^-1 C^T's column)
+        ! row k of C written whole once, then its products with every column of M^-1 C^T
         do k = 1, rows
             call whole_row(self, k, c, d)
-            do j = 1, k
+            do j = 1, rows
                 self%schur(k, j) = dot_product(self%row_scratch, self%minv_ct(:, j))
             end do
         end do
         if (self%masked) then
             do k = 1, rows
                 if (self%active(k)) cycle
-                self%schur(k, :k) = 0.0_wp
+                self%schur(k, :rows) = 0.0_wp
                 self%schur(k, k) = 1.0_wp
             end do
         end if
-        do j = 2, rows
-            do k = 1, j - 1
-                self%schur(k, j) = self%schur(j, k)
-            end do
-        end do
         call factor_lu(rows, self%schur, self%nc, self%pivots, info)
         call lapack_info_error("dgetf2 (constraint Schur complement)", info, error)
     end subroutine factor_dense
@@ -788,11 +775,11 @@ contains
                 ! kj's parts), and an exact zero where k and kj share no part (no terms): the
                 ! terms the block's dense sum has beyond these are exact zeros, which change no
                 ! sum
-                ! S = C M^-1 C^T is symmetric: the entries with k < kj (UCON numbers; i < j, a
-                ! block's rows ascending) are those with k and kj exchanged, copied below
+                ! (S = C M^-1 C^T is symmetric, but both S(k, kj) and S(kj, k) are summed: the two
+                ! sums differ by rounding, and a copy of one moves the outputs, see docs/design.md)
                 do j = 1, m
                     kj = blocks%rows(blocks%row_start(b) + j - 1)
-                    do i = j, m
+                    do i = 1, m
                         e = s0 + i + m*(j - 1)
                         k = blocks%rows(blocks%row_start(b) + i - 1)
                         ! a row set aside: its own row and column of S are those of the identity
@@ -808,12 +795,6 @@ contains
                                 & *self%minv_values(self%term_minv(t))
                         end do
                         self%block_schur(e) = total
-                    end do
-                end do
-                do j = 2, m
-                    do i = 1, j - 1
-                        self%block_schur(s0 + i + m*(j - 1)) = self%block_schur(s0 + j &
-                            & + m*(i - 1))
                     end do
                 end do
                 call factor_lu(m, self%block_schur(self%schur_start(b)), m, &
