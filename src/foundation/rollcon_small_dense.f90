@@ -1,18 +1,20 @@
 ! SPDX-License-Identifier: MIT
-!> LU factors with partial pivoting, their solves, and the solve with a 3 x 3 Cholesky factor, for
-!> the small dense matrices of the saddle-point system (a part's rotational mass, a block's Schur
-!> complement of at most a few dozen rows): the arithmetic of the reference LAPACK's dgetf2,
-!> dgetrs and dpotrs ("L") with the reference BLAS they call (idamax, dswap, dscal, dger, dlaswp,
-!> dtrsm), operation for operation and in the same order, without the cost of a library call per
-!> column (on the bicycle's 21 rows the calls cost more than the arithmetic). With the reference
-!> LAPACK and BLAS, as the published figures use (docs/benchmark.md), the numbers are theirs bit
-!> for bit; with another LAPACK they are those of the reference one.
+!> LU factors with partial pivoting, their solves, and the Cholesky factor of a 3 x 3 matrix and
+!> its solve, for the small dense matrices of the saddle-point system (a part's rotational mass,
+!> a block's Schur complement of at most a few dozen rows): the arithmetic of the reference
+!> LAPACK's dgetf2, dgetrs, dpotf2 ("L") and dpotrs ("L") with the reference BLAS they call
+!> (idamax, dswap, dscal, dger, dlaswp, dtrsm, ddot, dgemv), operation for operation and in the
+!> same order, without the cost of a library call per column (on the bicycle's 21 rows the calls
+!> cost more than the arithmetic; a part's dpotf2 cost more than its 3 x 3 arithmetic). With the
+!> reference LAPACK and BLAS, as the published figures use (docs/benchmark.md), the numbers are
+!> theirs bit for bit; with another LAPACK they are those of the reference one.
 module rollcon_small_dense
+    use, intrinsic :: ieee_arithmetic, only : ieee_is_nan
     use rollcon_kinds, only : wp
     implicit none
     private
 
-    public :: factor_lu, solve_lu, solve_cholesky3
+    public :: factor_lu, solve_lu, factor_cholesky3, solve_cholesky3
 
 contains
 
@@ -114,6 +116,48 @@ contains
             end do
         end do
     end subroutine solve_lu
+
+    !> The lower Cholesky factor l l^T = a of a symmetric 3 x 3 matrix (lower triangle read,
+    !> the factor written over it; the upper triangle untouched), as dpotf2 ("L") with the
+    !> reference BLAS: column j's diagonal a(j, j) less the sum (from zero, in order) of the
+    !> squares of row j's factor, its square root, the entries below less row j's factor times
+    !> theirs (dgemv: each earlier column's term added in turn), times the root's reciprocal
+    !> (dscal). info: 0, or the first column whose diagonal is not positive (or NaN) before its
+    !> root: that diagonal is left there, the later columns untouched.
+    pure subroutine factor_cholesky3(a, info)
+        real(wp), intent(inout) :: a(3, 3)
+        integer, intent(out) :: info
+        real(wp) :: ajj, dot, temp, reciprocal
+        integer :: i, j, k
+
+        info = 0
+        do j = 1, 3
+            dot = 0.0_wp
+            do k = 1, j - 1
+                dot = dot + a(j, k)*a(j, k)
+            end do
+            ajj = a(j, j) - dot
+            if (ajj <= 0.0_wp .or. ieee_is_nan(ajj)) then
+                a(j, j) = ajj
+                info = j
+                return
+            end if
+            ajj = sqrt(ajj)
+            a(j, j) = ajj
+            if (j < 3) then
+                do k = 1, j - 1
+                    temp = -a(j, k)
+                    do i = j + 1, 3
+                        a(i, j) = a(i, j) + temp*a(i, k)
+                    end do
+                end do
+                reciprocal = 1.0_wp/ajj
+                do i = j + 1, 3
+                    a(i, j) = reciprocal*a(i, j)
+                end do
+            end if
+        end do
+    end subroutine factor_cholesky3
 
     !> Solve l l^T x = b for nrhs columns, l the lower Cholesky factor of a 3 x 3 matrix (its
     !> upper triangle not read), as dpotrs ("L"): l y = b (an exact zero of y skipped as dtrsm

@@ -7,8 +7,8 @@
 !>
 !> M is block diagonal, one 6 x 6 block per part, and each block is m I (translation) beside
 !> the 3 x 3 rotational block B^T J B (principal axes at the centre of mass: no coupling). So
-!> M^-1 costs a division and a 3 x 3 Cholesky solve per part (LAPACK dpotf2, and dpotrs's
-!> arithmetic in rollcon_small_dense) and only the small Schur complement S is factored with
+!> M^-1 costs a division and a 3 x 3 Cholesky solve per part (dpotf2's and dpotrs's arithmetic
+!> in rollcon_small_dense) and only the small Schur complement S is factored with
 !> pivoting (dgetf2's and dgetrs's arithmetic, rollcon_small_dense), in place of
 !> the whole (n + nc) x (n + nc) matrix. Given the constraints' blocks (rollcon_constraint_blocks:
 !> UCONs that share no part do not couple), S is block diagonal and every step goes block by
@@ -36,8 +36,8 @@ module rollcon_saddle_point
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type, fatal_error, stat_lapack
     use rollcon_text, only : to_text
-    use rollcon_lapack, only : dpotf2, lapack_info_error
-    use rollcon_small_dense, only : factor_lu, solve_lu, solve_cholesky3
+    use rollcon_lapack, only : lapack_info_error
+    use rollcon_small_dense, only : factor_lu, solve_lu, factor_cholesky3, solve_cholesky3
     use rollcon_sparse_lu, only : sparse_lu_type
     use rollcon_constraint_blocks, only : constraint_blocks_type, ascending
     use rollcon_constraint_matrix, only : constraint_matrix_type
@@ -106,6 +106,23 @@ module rollcon_saddle_point
         !> For each entry of a dense block's S (packed as block_schur): whether its two UCONs
         !> share a part (else the entry is an exact zero, not summed)
         logical, allocatable :: block_shares(:)
+        !> The terms of each entry e of a dense block's S, row k and column l (packed as
+        !> block_schur): terms term_start(e) : term_start(e + 1) - 1, each the product of C's
+        !> entry term_value(t) (c's index: C(k, j) on a coordinate j of k's on a part of l's,
+        !> ascending) with M^-1 c_l^T's entry minv_values(term_minv(t)) there; none for UCONs
+        !> that share no part (set by init)
+        integer, allocatable :: term_start(:), term_value(:), term_minv(:)
+        !> For each part of a dense block, the UCONs of the block with a coordinate on it,
+        !> ascending (the block's order): columns column_start(p) : column_start(p + 1) - 1,
+        !> each with its UCON column_ucon(i), the place of its part's six rows of M^-1 c_k^T in
+        !> minv_values (column_offset(i) + 1 : + 6) and C's entries on the part
+        !> (column_first(i) : column_last(i), c's index); set by init. A block's UCON with no
+        !> coordinate on a part has exact zeros there in minv_values: init's, which the
+        !> factorisations leave as they are
+        integer, allocatable :: column_start(:), column_ucon(:), column_offset(:), &
+            & column_first(:), column_last(:)
+        !> Each column's UCON's place among its block's rows (1 for the first)
+        integer, allocatable :: column_row(:)
         !> Whether the current factorisation went block by block
         logical :: by_blocks = .false.
         !> Whether the current factorisation sets rows aside, and which rows are active (nc)
@@ -168,6 +185,9 @@ contains
         if (allocated(self%minv_values)) deallocate(self%minv_values, self%minv_start, &
             & self%coordinate_place)
         if (allocated(self%schur)) deallocate(self%schur)
+        if (allocated(self%term_start)) deallocate(self%term_start, self%term_value, &
+            & self%term_minv, self%column_start, self%column_ucon, self%column_row, &
+            & self%column_offset, self%column_first, self%column_last)
         allocate(self%part_mass(self%parts), source=0.0_wp)
         allocate(self%rotational(3, 3, self%parts), source=0.0_wp)
         allocate(self%pivots(max(nc, 1)), source=0)
@@ -235,7 +255,93 @@ contains
             end if
         end if
         call size_columns(self)
+        call dense_terms(self)
     end subroutine init
+
+    !> The terms of each dense block's S (term_start, term_value, term_minv) and the UCONs of
+    !> each of its parts (column_start, ...): found once, so that a factorisation sums only
+    !> the products that can be nonzero, with their places looked up here and not in its loops.
+    !> The terms left out are C(k, j) times an exact zero of M^-1 c_l^T (j on a part l has no
+    !> coordinate on): a sum that starts at +0 is never -0, so adding such a zero (C finite)
+    !> leaves it as it is.
+    subroutine dense_terms(self)
+        type(saddle_point_type), intent(inout) :: self
+        logical :: touches(self%parts)
+        integer :: part_block(self%parts)
+        integer :: b, i, j, k, l, m, p, x, e, terms, columns, first, last, pass
+
+        allocate(self%term_start(size(self%block_schur) + 1), source=1)
+        allocate(self%column_start(self%parts + 1), source=1)
+        part_block = 0
+        associate (blocks => self%blocks)
+            do b = 1, blocks%count
+                if (self%block_sparse(b)) cycle
+                do j = blocks%coordinate_start(b), blocks%coordinate_start(b + 1) - 1, 6
+                    part_block((blocks%coordinates(j) - 1)/6 + 1) = b
+                end do
+            end do
+            ! the first pass counts, the second fills
+            do pass = 1, 2
+                terms = 0
+                do b = 1, blocks%count
+                    if (self%block_sparse(b)) cycle
+                    m = blocks%row_start(b + 1) - blocks%row_start(b)
+                    do j = 1, m
+                        l = blocks%rows(blocks%row_start(b) + j - 1)
+                        touches = .false.
+                        do x = blocks%ucon_start(l), blocks%ucon_start(l + 1) - 1
+                            touches((blocks%ucon_coordinates(x) - 1)/6 + 1) = .true.
+                        end do
+                        do i = 1, m
+                            k = blocks%rows(blocks%row_start(b) + i - 1)
+                            e = self%schur_start(b) + i - 1 + m*(j - 1)
+                            self%term_start(e) = terms + 1
+                            if (.not. self%block_shares(e)) cycle
+                            do x = blocks%ucon_start(k), blocks%ucon_start(k + 1) - 1
+                                if (.not. touches((blocks%ucon_coordinates(x) - 1)/6 + 1)) cycle
+                                terms = terms + 1
+                                if (pass == 1) cycle
+                                self%term_value(terms) = x
+                                self%term_minv(terms) = self%minv_start(l) - 1 &
+                                    & + self%coordinate_place(blocks%ucon_coordinates(x))
+                            end do
+                        end do
+                    end do
+                end do
+                self%term_start(size(self%term_start)) = terms + 1
+                ! each part's columns: its block's UCONs with a coordinate on it
+                columns = 0
+                do p = 1, self%parts
+                    self%column_start(p) = columns + 1
+                    b = part_block(p)
+                    if (b == 0) cycle
+                    do i = blocks%row_start(b), blocks%row_start(b + 1) - 1
+                        k = blocks%rows(i)
+                        first = 0
+                        last = 0
+                        do x = blocks%ucon_start(k), blocks%ucon_start(k + 1) - 1
+                            if ((blocks%ucon_coordinates(x) - 1)/6 + 1 /= p) cycle
+                            if (first == 0) first = x
+                            last = x
+                        end do
+                        if (first == 0) cycle
+                        columns = columns + 1
+                        if (pass == 1) cycle
+                        self%column_ucon(columns) = k
+                        self%column_row(columns) = i - blocks%row_start(b) + 1
+                        self%column_offset(columns) = part_offset(self, p, k)
+                        self%column_first(columns) = first
+                        self%column_last(columns) = last
+                    end do
+                end do
+                self%column_start(self%parts + 1) = columns + 1
+                if (pass == 1) allocate(self%term_value(terms), self%term_minv(terms), &
+                    & self%column_ucon(columns), self%column_row(columns), &
+                    & self%column_offset(columns), &
+                    & self%column_first(columns), self%column_last(columns))
+            end do
+        end associate
+    end subroutine dense_terms
 
     !> The places of M^-1 C^T's columns by blocks (minv_start, coordinate_place) and their
     !> values, zero.
@@ -483,7 +589,8 @@ contains
     end subroutine factor
 
     !> factor's first step: the rows taken, those set aside (active, as factor's) and the
-    !> Cholesky factors of the parts' rotational mass blocks (dpotf2).
+    !> Cholesky factors of the parts' rotational mass blocks (dpotf2's arithmetic:
+    !> factor_cholesky3).
     subroutine factor_mass(self, mass, rows, error, active)
         type(saddle_point_type), intent(inout) :: self
         real(wp), intent(in) :: mass(:, :, :)
@@ -500,15 +607,13 @@ contains
         do p = 1, self%parts
             self%part_mass(p) = mass(1, 1, p)
             self%rotational(:, :, p) = mass(4:6, 4:6, p)
-            call dpotf2("L", 3, self%rotational(1, 1, p), 3, info)
+            call factor_cholesky3(self%rotational(:, :, p), info)
             if (info > 0) then
                 call fatal_error(error, "the rotational mass matrix of part number " &
                     & // to_text(p) // " is singular (Euler angles at sin(theta) " &
                     & // "= 0?): dpotf2 info " // to_text(info), stat_lapack)
                 return
             end if
-            call lapack_info_error("dpotf2", info, error)
-            if (allocated(error)) return
         end do
     end subroutine factor_mass
 
@@ -646,7 +751,7 @@ contains
         type(error_type), allocatable, intent(out) :: error
         real(wp), intent(inout), optional :: r1(:)
         real(wp) :: total
-        integer :: b, i, j, k, kj, m, first, last, info, s0, e, x, jj
+        integer :: b, i, j, k, kj, m, first, last, info, s0, e, t
 
         associate (blocks => self%blocks)
             do b = 1, blocks%count
@@ -657,20 +762,21 @@ contains
                 end if
                 first = blocks%coordinate_start(b)
                 last = blocks%coordinate_start(b + 1) - 1
-                ! M^-1 c_k^T over the block's parts, for every UCON of the block
+                ! M^-1 c_k^T over the block's parts, for every UCON of the block with a
+                ! coordinate on the part (the others' are exact zeros there, set by init)
                 do j = first, last, 6
-                    call part_inverse_mass(self, (blocks%coordinates(j) - 1)/6 + 1, &
-                        & blocks%rows(blocks%row_start(b):blocks%row_start(b + 1) - 1), c, &
-                        & error, r1)
-                    if (allocated(error)) return
+                    call part_columns(self, (blocks%coordinates(j) - 1)/6 + 1, c, r1)
                 end do
                 m = blocks%row_start(b + 1) - blocks%row_start(b)
                 s0 = self%schur_start(b) - 1
                 if (self%masked) call set_aside_columns(self, b)
-                ! each entry over UCON k's own coordinates (C(k, :) is zero elsewhere: c's entry
-                ! x is C(k, ucon_coordinates(x))), and an exact zero where k and kj share no
-                ! part: the terms the block's dense sum has beyond these are exact zeros, which
-                ! change no sum
+                ! each entry over UCON k's own coordinates on kj's parts (C(k, :) is zero off
+                ! k's coordinates: c's entry x is C(k, ucon_coordinates(x)); M^-1 c_kj^T off
+                ! kj's parts), and an exact zero where k and kj share no part (no terms): the
+                ! terms the block's dense sum has beyond these are exact zeros, which change no
+                ! sum
+                ! (S = C M^-1 C^T is symmetric, but both S(k, kj) and S(kj, k) are summed: the two
+                ! sums differ by rounding, and a copy of one moves the outputs, see docs/design.md)
                 do j = 1, m
                     kj = blocks%rows(blocks%row_start(b) + j - 1)
                     do i = 1, m
@@ -683,15 +789,10 @@ contains
                                 cycle
                             end if
                         end if
-                        if (.not. self%block_shares(e)) then
-                            self%block_schur(e) = 0.0_wp
-                            cycle
-                        end if
                         total = 0.0_wp
-                        do x = blocks%ucon_start(k), blocks%ucon_start(k + 1) - 1
-                            jj = blocks%ucon_coordinates(x)
-                            total = total + c%value(x)*self%minv_values(self%minv_start(kj) - 1 &
-                                & + self%coordinate_place(jj))
+                        do t = self%term_start(e), self%term_start(e + 1) - 1
+                            total = total + c%value(self%term_value(t)) &
+                                & *self%minv_values(self%term_minv(t))
                         end do
                         self%block_schur(e) = total
                     end do
@@ -748,7 +849,7 @@ contains
         integer, intent(in) :: coordinates(:), place(:), blocks(:), ld1, ld2, m
         real(wp), intent(inout) :: r1(ld1, m), r2(ld2, m)
         type(error_type), allocatable, intent(out) :: error
-        integer :: i, l, p, b, k, x, j, col, first, width, offset, rows_b, r0, il
+        integer :: i, l, p, b, k, x, j, col, first, width, rows_b, r0, il
 
         ! r1 := M^-1 r1, part by part, as apply_inverse_mass
         do l = 1, size(coordinates), 6
@@ -790,27 +891,33 @@ contains
             end do
             ! a = M^-1 (r1 + C^T lambda): each row's column of M^-1 C^T over its block, a
             ! block's rows ascending as solve_blocks adds them (the other blocks' columns are
-            ! zero on these coordinates)
+            ! zero on these coordinates); a dense block's part by part over init's columns, as
+            ! solve_blocks
             do col = 1, m
                 r0 = 0
                 do i = 1, size(blocks)
                     b = blocks(i)
+                    if (.not. self%block_sparse(b)) then
+                        do j = bl%coordinate_start(b), bl%coordinate_start(b + 1) - 1, 6
+                            p = (bl%coordinates(j) - 1)/6 + 1
+                            l = place(bl%coordinates(j))
+                            do il = self%column_start(p), self%column_start(p + 1) - 1
+                                x = self%column_offset(il)
+                                r1(l:l + 5, col) = r1(l:l + 5, col) + r2(r0 &
+                                    & + self%column_row(il), col)*self%minv_values(x + 1:x + 6)
+                            end do
+                        end do
+                        r0 = r0 + bl%row_start(b + 1) - bl%row_start(b)
+                        cycle
+                    end if
                     do il = bl%row_start(b), bl%row_start(b + 1) - 1
                         k = bl%rows(il)
                         r0 = r0 + 1
-                        if (self%block_sparse(b)) then
-                            do j = self%ucon_part_start(k), self%ucon_part_start(k + 1) - 1
-                                l = place(6*(self%ucon_parts(j) - 1) + 1)
-                                x = self%minv_start(k) - 1 + 6*(j - self%ucon_part_start(k))
-                                r1(l:l + 5, col) = r1(l:l + 5, col) &
-                                    & + r2(r0, col)*self%minv_values(x + 1:x + 6)
-                            end do
-                            cycle
-                        end if
-                        offset = self%minv_start(k) - bl%coordinate_start(b)
-                        do j = bl%coordinate_start(b), bl%coordinate_start(b + 1) - 1
-                            l = place(bl%coordinates(j))
-                            r1(l, col) = r1(l, col) + r2(r0, col)*self%minv_values(offset + j)
+                        do j = self%ucon_part_start(k), self%ucon_part_start(k + 1) - 1
+                            l = place(6*(self%ucon_parts(j) - 1) + 1)
+                            x = self%minv_start(k) - 1 + 6*(j - self%ucon_part_start(k))
+                            r1(l:l + 5, col) = r1(l:l + 5, col) &
+                                & + r2(r0, col)*self%minv_values(x + 1:x + 6)
                         end do
                     end do
                 end do
@@ -852,7 +959,7 @@ contains
         integer, intent(in) :: m
         real(wp), intent(inout) :: r1(self%n, m), r2(self%rows, m)
         type(error_type), allocatable, intent(out) :: error
-        integer :: b, i, j, k, rows_b, first, last, col, x
+        integer :: b, i, j, k, rows_b, first, last, col, x, p, i0
 
         associate (blocks => self%blocks)
             do b = 1, blocks%count
@@ -879,24 +986,31 @@ contains
                 call scatter_rows(blocks, b, self%gathered, m, r2)
             end do
             ! a = M^-1 (r1 + C^T lambda): each row's column of M^-1 C^T over its block, rows in
-            ! ascending order as the dense path adds them
+            ! ascending order as the dense path adds them; a dense block's part by part, over
+            ! the UCONs with a coordinate on it (init's columns, ascending: the others' columns
+            ! are exact zeros there)
             do col = 1, m
+                do b = 1, blocks%count
+                    if (self%block_sparse(b)) cycle
+                    do j = blocks%coordinate_start(b), blocks%coordinate_start(b + 1) - 1, 6
+                        p = (blocks%coordinates(j) - 1)/6 + 1
+                        i0 = 6*(p - 1)
+                        do i = self%column_start(p), self%column_start(p + 1) - 1
+                            x = self%column_offset(i)
+                            r1(i0 + 1:i0 + 6, col) = r1(i0 + 1:i0 + 6, col) &
+                                & + r2(self%column_ucon(i), col)*self%minv_values(x + 1:x + 6)
+                        end do
+                    end do
+                end do
                 do k = 1, self%rows
                     b = blocks%row_block(k)
-                    if (self%block_sparse(b)) then
-                        ! a sparse block's column of M^-1 C^T is over its UCON's parts only
-                        do j = self%ucon_part_start(k), self%ucon_part_start(k + 1) - 1
-                            i = 6*(self%ucon_parts(j) - 1)
-                            x = self%minv_start(k) - 1 + 6*(j - self%ucon_part_start(k))
-                            r1(i + 1:i + 6, col) = r1(i + 1:i + 6, col) &
-                                & + r2(k, col)*self%minv_values(x + 1:x + 6)
-                        end do
-                        cycle
-                    end if
-                    x = self%minv_start(k) - blocks%coordinate_start(b)
-                    do j = blocks%coordinate_start(b), blocks%coordinate_start(b + 1) - 1
-                        i = blocks%coordinates(j)
-                        r1(i, col) = r1(i, col) + r2(k, col)*self%minv_values(x + j)
+                    if (.not. self%block_sparse(b)) cycle
+                    ! a sparse block's column of M^-1 C^T is over its UCON's parts only
+                    do j = self%ucon_part_start(k), self%ucon_part_start(k + 1) - 1
+                        i = 6*(self%ucon_parts(j) - 1)
+                        x = self%minv_start(k) - 1 + 6*(j - self%ucon_part_start(k))
+                        r1(i + 1:i + 6, col) = r1(i + 1:i + 6, col) &
+                            & + r2(k, col)*self%minv_values(x + 1:x + 6)
                     end do
                 end do
             end do
@@ -950,6 +1064,48 @@ contains
             end do
         end associate
     end subroutine part_inverse_mass
+
+    !> part_inverse_mass for part p of a dense block, over the columns init found
+    !> (column_start): M^-1 c_k^T over the part for each UCON k of the block with a coordinate
+    !> on it, and M^-1 r1 there with r1, in one dpotrs as part_inverse_mass (the same numbers:
+    !> each column is solved alone). C(k, :) over the part is read from c's entries
+    !> column_first(i) : column_last(i).
+    subroutine part_columns(self, p, c, r1)
+        type(saddle_point_type), intent(inout) :: self
+        integer, intent(in) :: p
+        type(constraint_matrix_type), intent(in) :: c
+        real(wp), intent(inout), optional :: r1(:)
+        real(wp) :: part_row(6)
+        integer :: i, i0, col, extra, o, x
+
+        extra = merge(1, 0, present(r1))
+        i0 = 6*(p - 1)
+        associate (rot => self%rotational_rows)
+            if (present(r1)) then
+                r1(i0 + 1:i0 + 3) = r1(i0 + 1:i0 + 3)/self%part_mass(p)
+                rot(:, 1) = r1(i0 + 4:i0 + 6)
+            end if
+            col = extra
+            do i = self%column_start(p), self%column_start(p + 1) - 1
+                o = self%column_offset(i)
+                part_row = 0.0_wp
+                do x = self%column_first(i), self%column_last(i)
+                    part_row(c%column(x) - i0) = c%value(x)
+                end do
+                self%minv_values(o + 1:o + 3) = part_row(1:3)/self%part_mass(p)
+                col = col + 1
+                rot(:, col) = part_row(4:6)
+            end do
+            call solve_cholesky3(self%rotational(:, :, p), col, rot, 3)
+            if (present(r1)) r1(i0 + 4:i0 + 6) = rot(:, 1)
+            col = extra
+            do i = self%column_start(p), self%column_start(p + 1) - 1
+                col = col + 1
+                o = self%column_offset(i)
+                self%minv_values(o + 4:o + 6) = rot(:, col)
+            end do
+        end associate
+    end subroutine part_columns
 
     !> factor_blocks for a sparse block b: M^-1 C^T over each part's own UCONs (and M^-1 r1
     !> there, with r1), S's nonzeros (UCONs sharing a part) and their KLU factors.

@@ -1,13 +1,14 @@
 ! SPDX-License-Identifier: MIT
 !> The small dense solves of the saddle-point system (rollcon_small_dense) against LAPACK's
-!> dgetf2, dgetrs and dpotrs, whose arithmetic they repeat, and on matrices whose answers are
-!> known: a pivoting permutation, a singular matrix, a Cholesky factor.
+!> dgetf2, dgetrs, dpotf2 and dpotrs, whose arithmetic they repeat, and on matrices whose
+!> answers are known: a pivoting permutation, a singular matrix, a Cholesky factor.
 module test_small_dense
+    use, intrinsic :: ieee_arithmetic, only : ieee_value, ieee_quiet_nan
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type
     use rollcon_text, only : to_text
     use rollcon_lapack, only : dgetf2, dgetrs, dpotf2, dpotrs
-    use rollcon_small_dense, only : factor_lu, solve_lu, solve_cholesky3
+    use rollcon_small_dense, only : factor_lu, solve_lu, factor_cholesky3, solve_cholesky3
     use rollcon_testing, only : unittest_type, new_unittest, check
     use disk_states, only : seed_random
     implicit none
@@ -28,7 +29,8 @@ contains
         tests = [new_unittest("lu-equals-lapack", test_lu_lapack), &
             & new_unittest("lu-pivots-and-solves", test_lu_known), &
             & new_unittest("lu-singular-column", test_singular), &
-            & new_unittest("cholesky3-equals-lapack", test_cholesky)]
+            & new_unittest("cholesky3-equals-lapack", test_cholesky), &
+            & new_unittest("cholesky3-factor-equals-lapack", test_cholesky_factor)]
     end subroutine collect_small_dense
 
     !> Random matrices of 1 to 25 rows, diagonally weighted: factors, pivots and the solution of
@@ -137,5 +139,79 @@ contains
             if (allocated(error)) return
         end do
     end subroutine test_cholesky
+
+    !> The 3 x 3 Cholesky factor (factor_cholesky3) of random positive definite matrices, some
+    !> with exact zeros off the diagonal (a part on its principal axes), as dpotf2's ("L"),
+    !> l l^T = m, and the upper triangle untouched; of matrices that are not positive definite
+    !> (a zero, a negative and a NaN pivot in the first, second or third column), info as
+    !> dpotf2's.
+    subroutine test_cholesky_factor(error)
+        type(error_type), allocatable, intent(out) :: error
+        real(wp) :: m(3, 3), l(3, 3), reference(3, 3), lower(3, 3)
+        integer :: trial, info, reference_info, i, j
+
+        call seed_random(41)
+        do trial = 1, 60
+            call random_number(l)
+            l = l - 0.5_wp
+            m = matmul(l, transpose(l))
+            do i = 1, 3
+                m(i, i) = m(i, i) + 0.1_wp
+            end do
+            ! exact zeros off the diagonal in every third trial, a pattern per trial
+            if (mod(trial, 3) == 0) then
+                m(2, 1) = 0.0_wp
+                m(1, 2) = 0.0_wp
+                if (mod(trial, 2) == 0) then
+                    m(3, 1) = 0.0_wp
+                    m(1, 3) = 0.0_wp
+                end if
+            end if
+            l = m
+            reference = m
+            call factor_cholesky3(l, info)
+            call dpotf2("L", 3, reference, 3, reference_info)
+            call check(error, info == 0 .and. reference_info == 0, "trial " &
+                & // to_text(trial) // ": info of a positive definite matrix")
+            if (allocated(error)) return
+            call check(error, reshape(l, [9]), reshape(reference, [9]), "trial " &
+                & // to_text(trial) // ": factor", abs_tol=tol, rel_tol=tol)
+            if (allocated(error)) return
+            lower = 0.0_wp
+            do j = 1, 3
+                lower(j:, j) = l(j:, j)
+            end do
+            call check(error, reshape(matmul(lower, transpose(lower)), [9]), reshape(m, [9]), &
+                & "trial " // to_text(trial) // ": l l^T", abs_tol=tol, rel_tol=tol)
+            if (allocated(error)) return
+            call check(error, l(1, 2) == m(1, 2) .and. l(1, 3) == m(1, 3) .and. l(2, 3) &
+                & == m(2, 3), "trial " // to_text(trial) // ": upper triangle touched")
+            if (allocated(error)) return
+        end do
+        ! not positive definite: column 1 zero, column 2 negative after column 1's share,
+        ! column 3 NaN
+        do trial = 1, 3
+            m = reshape([4.0_wp, 2.0_wp, 1.0_wp, 2.0_wp, 5.0_wp, 1.0_wp, 1.0_wp, 1.0_wp, &
+                & 6.0_wp], [3, 3])
+            select case (trial)
+            case (1)
+                m(1, 1) = 0.0_wp
+            case (2)
+                m(2, 2) = 0.5_wp
+            case (3)
+                m(3, 3) = ieee_value(1.0_wp, ieee_quiet_nan)
+            end select
+            l = m
+            reference = m
+            call factor_cholesky3(l, info)
+            call dpotf2("L", 3, reference, 3, reference_info)
+            call check(error, info, trial, "info of a matrix not positive definite in column " &
+                & // to_text(trial))
+            if (allocated(error)) return
+            call check(error, reference_info, trial, "dpotf2's info (column " &
+                & // to_text(trial) // ")")
+            if (allocated(error)) return
+        end do
+    end subroutine test_cholesky_factor
 
 end module test_small_dense
