@@ -71,6 +71,8 @@ contains
             & i = 1, size(self%sites))]
         if (allocated(self%attitudes)) deallocate(self%attitudes)
         allocate(self%attitudes(size(self%parts)))
+        ! a second prepare (the bench prepares one problem twice) starts again from none
+        if (allocated(self%request_sites)) deallocate(self%request_sites)
         allocate(self%request_sites(0))
         if (.not. allocated(eq%model%force_requests)) return
         do r = 1, size(eq%model%force_requests)

@@ -76,6 +76,8 @@ contains
         type(watched_expression_type) :: one
         integer :: i, k
 
+        ! a second prepare (the bench prepares one problem twice) starts again from none
+        if (allocated(self%watched)) deallocate(self%watched)
         allocate(self%watched(0))
         self%total = 0
         do i = 1, size(eq%model%forces)

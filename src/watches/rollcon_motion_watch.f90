@@ -53,6 +53,8 @@ contains
         type(error_type), allocatable, intent(out) :: error
         integer :: k
 
+        ! a second prepare (the bench prepares one problem twice) starts again from none
+        if (allocated(self%ucon)) deallocate(self%ucon, self%id, self%rotational)
         allocate(self%ucon(0), self%id(0), self%rotational(0))
         if (.not. allocated(eq%model%ucons)) return
         do k = 1, size(eq%model%ucons)

@@ -28,6 +28,10 @@ module test_layout
     use layout_models, only : two_part_model, two_part_problem, disk_id, free_id, disk_radius, &
         & disk_speed, free_spin, free_start, free_velocity, gravity, read_csv, failing_disk_ucosub
     use layout_headers, only : test_good_headers, test_bad_headers
+    use rollcon_load, only : load_job
+    use rollcon_ucosub_contract, only : ucosub_interface
+    use rollcon_output_rows, only : output_layout
+    use rollcon_output_layout, only : name_length
     implicit none
     private
 
@@ -58,7 +62,8 @@ contains
             & new_unittest("summary-text-any-model", test_summary_text), &
             & new_unittest("read-layout-good-headers", test_good_headers), &
             & new_unittest("read-layout-bad-headers", test_bad_headers), &
-            & new_unittest("model-built-in-code-runs-as-a-job", test_model_source)]
+            & new_unittest("model-built-in-code-runs-as-a-job", test_model_source), &
+            & new_unittest("problem-prepared-twice-same-columns", test_prepared_twice)]
     end subroutine collect_layout
 
     subroutine test_two_parts_cvode(error)
@@ -393,5 +398,65 @@ contains
         if (allocated(error)) return
         call check(error, result%summary%steps == summary%steps, "the steps")
     end subroutine test_model_source
+
+    !> A problem prepared a second time (rollcon bench prepares one problem for the ODE form,
+    !> then again for the independent speeds) starts its watches again: the same columns, no
+    !> error. A model with every kind of watch that lists what it finds at prepare: reaction
+    !> sites (two JOINTs and a MOTION), a MOTION, a REQUEST, an SFORCE switched on a speed.
+    !> Before the fix the second prepare stopped the program (a runtime error: an array
+    !> allocated twice), which fails this suite.
+    subroutine test_prepared_twice(error)
+        type(error_type), allocatable, intent(out) :: error
+        character(len=*), parameter :: dir = "build/rollcon-test", nl = new_line("a")
+        character(len=*), parameter :: text = "prepared twice" // nl // "PART/1, GROUND" // nl &
+            & // "MARKER/10, PART = 1, QP = 0, 0, 0" // nl // "PART/2, MASS = 2, CM = 22, " &
+            & // "IP = 0.1, 0.1, 0.1, QG = 0, 0, 0, WZ = 1.5" // nl &
+            & // "MARKER/20, PART = 2, QP = 0, 0, 0" // nl &
+            & // "MARKER/22, PART = 2, QP = 0.8660254037844386, -0.5, 0" // nl &
+            & // "PART/3, MASS = 1, CM = 30, IP = 0.1, 0.1, 0.1, QG = 2, 0, 0" // nl &
+            & // "MARKER/30, PART = 3, QP = 2, 0, 0" // nl // "MARKER/31, PART = 1, QP = 2, 0, 0" &
+            & // nl // "JOINT/1, REVOLUTE, I = 20, J = 10" // nl &
+            & // "JOINT/2, REVOLUTE, I = 30, J = 31" // nl &
+            & // "MOTION/7, JOINT = 1, ROTATION, FUNCTION = 1.5*TIME + 0.5*TIME**2" // nl &
+            & // "SFORCE/3, ROTATION, I = 30, J = 31, FUNCTION = IF(WZ(30) - 0.5: 0, 0, -0.1)" &
+            & // nl // "ACCGRAV/JGRAV = -9.81" // nl &
+            & // "REQUEST/6, F2 = TZ(20, 10), F3 = MOTION(7, 0, 8, 0)" // nl &
+            & // "SIMULATE/DYNAMIC, END = 1, STEPS = 10" // nl // "END"
+        type(job_type) :: job
+        type(problem_type) :: problem
+        procedure(ucosub_interface), pointer :: routine
+        real(wp), allocatable :: q0(:), u0(:)
+        character(len=:), allocatable :: report
+        character(len=name_length), allocatable :: first(:), second(:)
+        type(output_layout_type) :: layout
+        integer :: unit
+
+        call execute_command_line("mkdir -p " // dir)
+        open(newunit=unit, file=dir // "/prepared_twice.adm", status="replace", action="write")
+        write(unit, '(a)') text
+        close(unit)
+        call load_job(dir // "/prepared_twice.adm", job, error)
+        if (allocated(error)) return
+        routine => job%routine
+        call job%source%build(routine, problem, q0, u0, report, error)
+        if (allocated(error)) return
+        call problem%prepare(error)
+        if (allocated(error)) return
+        layout = output_layout(problem)
+        first = layout%header()
+        call problem%prepare(error)
+        if (allocated(error)) return
+        layout = output_layout(problem)
+        second = layout%header()
+        ! the reactions of both joints and of the MOTION, and the REQUEST's two columns
+        call check(error, any(first == "joint2_tz") .and. any(first == "motion7_tz") &
+            & .and. any(first == "req6_f3"), "the columns of every watch, " &
+            & // to_text(size(first)) // " columns")
+        if (allocated(error)) return
+        call check(error, size(second) == size(first), "as many columns after a second " &
+            & // "prepare: " // to_text(size(second)) // " against " // to_text(size(first)))
+        if (allocated(error)) return
+        call check(error, all(second == first), "the same columns after a second prepare")
+    end subroutine test_prepared_twice
 
 end module test_layout
