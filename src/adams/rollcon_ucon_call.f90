@@ -95,7 +95,11 @@ contains
         end if
         finite = .true.
         if (idrsel(1) /= 0) finite = ieee_is_finite(scalar)
-        if (idrsel(2) /= 0) finite = finite .and. all(ieee_is_finite(array(:n)))
+        ! the sum is finite only when every entry is (all_finite's reasoning); else one by one
+        if (idrsel(2) /= 0 .and. finite) then
+            finite = ieee_is_finite(sum(array(:n)))
+            if (.not. finite) finite = all(ieee_is_finite(array(:n)))
+        end if
         if (idrsel(3) /= 0 .and. finite) finite = all_finite(xmatrx, n)
         if (.not. finite) then
             call ucon_error(error, id, "UCOSUB returned a non-finite value at time " &

@@ -66,6 +66,13 @@ module rollcon_cvode
             type(c_ptr), value :: solver
             integer(c_int) :: flag
         end function c_free_nonlinear_solver
+        !> N_VGetArrayPointer(v): the data of a serial vector, called directly (the callbacks'
+        !> vectors, whose length the callback data holds: state_values)
+        function c_array_pointer(v) result(data) bind(c, name="N_VGetArrayPointer")
+            import :: c_ptr
+            type(c_ptr), value :: v
+            type(c_ptr) :: data
+        end function c_array_pointer
     end interface
 
     !> What the callbacks receive as user data: the system, and what the event function needs
@@ -80,6 +87,8 @@ module rollcon_cvode
         !> whether they use y' (roots_use_rates): the interpolation is made only then
         integer :: root_count = 0
         logical :: roots_use_rates = .false.
+        !> Length of the state (of every vector CVODE hands the callbacks: its clones of y)
+        integer :: states = 0
         !> Sparse Newton matrices: each state's block (entries kept: those of one block) and
         !> their pattern by columns (rollcon_newton_pattern), which the system fills
         !> (ode_sparse_jacobian): no size(y)-square array
@@ -151,6 +160,7 @@ contains
         flag = FCVodeInit(self%memory, c_funloc(rhs), t0, self%y)
         if (check(flag, "CVodeInit", error)) return
         allocate(self%data%rate_values(size(y0)), source=0.0_wp)
+        self%data%states = size(y0)
         self%data%rates => FN_VMake_Serial(int(size(y0), c_int64_t), self%data%rate_values, &
             & self%context)
         if (.not. associated(self%data%rates)) then
@@ -551,14 +561,14 @@ contains
     integer(c_int) function rhs(t, y, ydot, user_data) result(ierr) &
             & bind(c, name="rollcon_cvode_rhs")
         real(c_double), value :: t
-        type(N_Vector) :: y, ydot
+        type(N_Vector), target :: y, ydot
         type(c_ptr), value :: user_data
         type(callback_data_type), pointer :: data
         real(c_double), pointer :: yv(:), ydv(:)
 
         call c_f_pointer(user_data, data)
-        yv => FN_VGetArrayPointer(y)
-        ydv => FN_VGetArrayPointer(ydot)
+        call c_f_pointer(c_array_pointer(c_loc(y)), yv, [data%states])
+        call c_f_pointer(c_array_pointer(c_loc(ydot)), ydv, [data%states])
         ierr = int(data%system%ode_rhs(t, yv, ydv), c_int)
     end function rhs
 
@@ -646,14 +656,14 @@ contains
     integer(c_int) function events(t, y, gout, user_data) result(ierr) &
             & bind(c, name="rollcon_cvode_events")
         real(c_double), value :: t
-        type(N_Vector) :: y
+        type(N_Vector), target :: y
         real(c_double) :: gout(*)
         type(c_ptr), value :: user_data
         type(callback_data_type), pointer :: data
         real(c_double), pointer :: yv(:)
 
         call c_f_pointer(user_data, data)
-        yv => FN_VGetArrayPointer(y)
+        call c_f_pointer(c_array_pointer(c_loc(y)), yv, [data%states])
         associate (nroots => data%root_count)
             ! y' at t from CVODE's own polynomial, when the event functions use it: the system
             ! need not evaluate its right-hand side. At the end of the step just taken (most
@@ -692,7 +702,6 @@ contains
         real(c_double), intent(inout) :: rates(:)
         real(c_double) :: t_n(1), gamma(1), rl1(1), h(1), r
         type(c_ptr), target :: ypred, yn, fn, zn1, user_data
-        type(N_Vector), pointer :: column
         real(c_double), pointer :: values(:)
         integer :: i
 
@@ -702,9 +711,8 @@ contains
         if (t /= t_n(1)) return
         if (FCVodeGetLastStep(memory, h) /= CV_SUCCESS) return
         if (h(1) == 0.0_c_double) return
-        call c_f_pointer(zn1, column)
-        values => FN_VGetArrayPointer(column)
-        if (size(values) /= size(rates)) return
+        ! zn[1] is a clone of the state vector: rates' length (N_VGetArrayPointer directly)
+        call c_f_pointer(c_array_pointer(zn1), values, [size(rates)])
         do i = 1, size(values)
             if (values(i) == 0.0_c_double) return
         end do

@@ -469,18 +469,21 @@ contains
     !> row over its UCON's coordinates, the pattern C is held on.
     subroutine constraint_matrix(self)
         class(equations_type), intent(inout) :: self
-        integer :: k, i, a
+        integer :: k, a, first, count
 
+        ! entry first + a - 1 of row k is the UCON's own coordinate a (the same ascending list)
         do k = 1, self%nc
-            do i = self%blocks%ucon_start(k), self%blocks%ucon_start(k + 1) - 1
-                ! its place among the UCON's own coordinates (the same ascending list)
-                a = i - self%blocks%ucon_start(k) + 1
-                if (self%model%ucons(k)%holonomic) then
-                    self%c%value(i) = self%constraints%grad_q_local(a, k)
-                else
-                    self%c%value(i) = self%constraints%grad_u_local(a, k)
-                end if
-            end do
+            first = self%blocks%ucon_start(k)
+            count = self%blocks%ucon_start(k + 1) - first
+            if (self%model%ucons(k)%holonomic) then
+                do a = 1, count
+                    self%c%value(first + a - 1) = self%constraints%grad_q_local(a, k)
+                end do
+            else
+                do a = 1, count
+                    self%c%value(first + a - 1) = self%constraints%grad_u_local(a, k)
+                end do
+            end if
         end do
     end subroutine constraint_matrix
 

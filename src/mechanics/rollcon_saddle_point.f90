@@ -1088,12 +1088,20 @@ contains
             col = extra
             do i = self%column_start(p), self%column_start(p + 1) - 1
                 o = self%column_offset(i)
+                x = self%column_first(i)
+                col = col + 1
+                if (self%column_last(i) - x == 5) then
+                    ! all six of the part's coordinates (ascending): C(k, i0 + 1 : i0 + 6) are
+                    ! c's entries x : x + 5 as they are
+                    self%minv_values(o + 1:o + 3) = c%value(x:x + 2)/self%part_mass(p)
+                    rot(:, col) = c%value(x + 3:x + 5)
+                    cycle
+                end if
                 part_row = 0.0_wp
                 do x = self%column_first(i), self%column_last(i)
                     part_row(c%column(x) - i0) = c%value(x)
                 end do
                 self%minv_values(o + 1:o + 3) = part_row(1:3)/self%part_mass(p)
-                col = col + 1
                 rot(:, col) = part_row(4:6)
             end do
             call solve_cholesky3(self%rotational(:, :, p), col, rot, 3)
