@@ -288,10 +288,7 @@ contains
                     m = blocks%row_start(b + 1) - blocks%row_start(b)
                     do j = 1, m
                         l = blocks%rows(blocks%row_start(b) + j - 1)
-                        touches = .false.
-                        do x = blocks%ucon_start(l), blocks%ucon_start(l + 1) - 1
-                            touches((blocks%ucon_coordinates(x) - 1)/6 + 1) = .true.
-                        end do
+                        call parts_touched(blocks, l, touches)
                         do i = 1, m
                             k = blocks%rows(blocks%row_start(b) + i - 1)
                             e = self%schur_start(b) + i - 1 + m*(j - 1)
@@ -418,10 +415,7 @@ contains
                 m = blocks%row_start(b + 1) - blocks%row_start(b)
                 do j = 1, m
                     l = blocks%rows(blocks%row_start(b) + j - 1)
-                    touches = .false.
-                    do x = blocks%ucon_start(l), blocks%ucon_start(l + 1) - 1
-                        touches((blocks%ucon_coordinates(x) - 1)/6 + 1) = .true.
-                    end do
+                    call parts_touched(blocks, l, touches)
                     do i = 1, m
                         k = blocks%rows(blocks%row_start(b) + i - 1)
                         do x = blocks%ucon_start(k), blocks%ucon_start(k + 1) - 1
@@ -1269,5 +1263,19 @@ contains
             call self%sparse(b)%release()
         end do
     end subroutine release
+
+    !> Which parts (touches, one entry per part, model order) UCON l has a coordinate on:
+    !> every part of its own coordinates (blocks' ucon_coordinates, six a part).
+    pure subroutine parts_touched(blocks, l, touches)
+        type(constraint_blocks_type), intent(in) :: blocks
+        integer, intent(in) :: l
+        logical, intent(out) :: touches(:)
+        integer :: x
+
+        touches = .false.
+        do x = blocks%ucon_start(l), blocks%ucon_start(l + 1) - 1
+            touches((blocks%ucon_coordinates(x) - 1)/6 + 1) = .true.
+        end do
+    end subroutine parts_touched
 
 end module rollcon_saddle_point
