@@ -8,6 +8,7 @@ module test_bench
     use, intrinsic :: ieee_arithmetic, only : ieee_is_finite
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type
+    use rollcon_text, only : to_text
     use rollcon_bench_process, only : process_cost_type, measure_process, &
         & write_scene_with_settings, write_dataset_with_settings
     use rollcon_run_settings, only : run_settings_type, formulation_cvode, method_adams, &
@@ -19,7 +20,7 @@ module test_bench
     use rollcon_benchmark, only : benchmark_methods, benchmark_row_type, split_costs
     use rollcon_bench_costs, only : part_costs_type
     use rollcon_testing, only : unittest_type, new_unittest, check
-    use command_runs, only : rollcon_program, file_text
+    use command_runs, only : rollcon_program, file_text, run_rollcon, count_of
     use picture_files, only : make_folder, remove_folder, write_lines
     use study_map_files, only : have_gnuplot, png_file
     implicit none
@@ -43,7 +44,8 @@ contains
             & new_unittest("dataset-with-a-row-settings", test_dataset_settings), &
             & new_unittest("coordinator-cpu-per-row-from-log", test_row_us), &
             & new_unittest("work-precision-plot-per-scene", test_plots), &
-            & new_unittest("split-by-formulation", test_split)]
+            & new_unittest("split-by-formulation", test_split), &
+            & new_unittest("bicycle-bench-through-the-program", test_bicycle_bench)]
     end subroutine collect_bench
 
     !> A scene file written with a benchmark row's settings loads as the same scene with exactly
@@ -268,5 +270,32 @@ contains
             if (allocated(error)) return
         end do
     end subroutine test_split
+
+    !> `rollcon bench --quick --scenes bicycle` through the built program: every method at both
+    !> quick tolerances completes and the command exits 0. The bench prepares one problem twice
+    !> (the ODE form's unit costs, then the independent speeds'); the bicycle's reaction watch
+    !> allocated its list a second time, and the program stopped with a runtime error (exit 2)
+    !> after its first line.
+    subroutine test_bicycle_bench(error)
+        type(error_type), allocatable, intent(out) :: error
+        character(len=:), allocatable :: program, table
+        integer :: status
+
+        call rollcon_program(program, error)
+        if (allocated(error)) return
+        call remove_folder(scratch)
+        call make_folder(scratch)
+        call run_rollcon(program, "bench --quick --scenes bicycle --end-time 0.1 --output " &
+            & // scratch, scratch // "/bench.out", scratch // "/bench.err", status)
+        call check(error, status == 0, "exit status " // to_text(status) // ": " &
+            & // file_text(scratch // "/bench.err"))
+        if (allocated(error)) return
+        table = file_text(scratch // "/bench.csv")
+        ! 12 methods (rollcon's nine, the reduced ODE's three) at rtol 1e-4 and 1e-6
+        call check(error, count_of(table, ",completed") == 24 .and. count_of(table, &
+            & new_line("a") // "bicycle,") == 24, "24 completed rows of the bicycle: " // table)
+        if (allocated(error)) return
+        call remove_folder(scratch)
+    end subroutine test_bicycle_bench
 
 end module test_bench

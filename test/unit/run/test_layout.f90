@@ -32,6 +32,7 @@ module test_layout
     use rollcon_ucosub_contract, only : ucosub_interface
     use rollcon_output_rows, only : output_layout
     use rollcon_output_layout, only : name_length
+    use dataset_texts, only : write_text, texts_dir
     implicit none
     private
 
@@ -407,7 +408,7 @@ contains
     !> allocated twice), which fails this suite.
     subroutine test_prepared_twice(error)
         type(error_type), allocatable, intent(out) :: error
-        character(len=*), parameter :: dir = "build/rollcon-test", nl = new_line("a")
+        character(len=*), parameter :: nl = new_line("a")
         character(len=*), parameter :: text = "prepared twice" // nl // "PART/1, GROUND" // nl &
             & // "MARKER/10, PART = 1, QP = 0, 0, 0" // nl // "PART/2, MASS = 2, CM = 22, " &
             & // "IP = 0.1, 0.1, 0.1, QG = 0, 0, 0, WZ = 1.5" // nl &
@@ -429,13 +430,9 @@ contains
         character(len=:), allocatable :: report
         character(len=name_length), allocatable :: first(:), second(:)
         type(output_layout_type) :: layout
-        integer :: unit
 
-        call execute_command_line("mkdir -p " // dir)
-        open(newunit=unit, file=dir // "/prepared_twice.adm", status="replace", action="write")
-        write(unit, '(a)') text
-        close(unit)
-        call load_job(dir // "/prepared_twice.adm", job, error)
+        call write_text("prepared_twice.adm", text)
+        call load_job(texts_dir // "/prepared_twice.adm", job, error)
         if (allocated(error)) return
         routine => job%routine
         call job%source%build(routine, problem, q0, u0, report, error)
