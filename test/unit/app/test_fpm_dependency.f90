@@ -8,7 +8,7 @@ module test_fpm_dependency
     use rollcon_text, only : to_text
     use rollcon_version, only : version_text
     use rollcon_testing, only : unittest_type, new_unittest, check, skip_test
-    use command_runs, only : file_text
+    use command_runs, only : file_text, rollcon_program
     implicit none
     private
 
@@ -27,7 +27,8 @@ contains
     subroutine collect_fpm_dependency(tests)
         type(unittest_type), allocatable, intent(out) :: tests(:)
 
-        tests = [new_unittest("plain-fpm-build-of-a-dependent", test_plain_build)]
+        tests = [new_unittest("plain-fpm-build-of-a-dependent", test_plain_build), &
+            & new_unittest("programs-without-the-tests-allocator", test_no_test_allocator)]
     end subroutine collect_fpm_dependency
 
     !> The files git would put in a clone of this working tree (tracked, and untracked files
@@ -104,6 +105,44 @@ contains
             & // "        & result%summary%rows, "" rows""" // nl &
             & // "end program dependent")
     end subroutine write_project
+
+    !> The programs fpm builds beside the tester (rollcon, rollcon-sweep) hold none of the
+    !> tests' code: test/malloc_counter.c defines malloc, calloc and realloc, and linked into a
+    !> program it would replace the allocator of every run. Their symbol tables (binutils' nm,
+    !> which gfortran needs) name neither the counter's functions nor a malloc of their own.
+    !> Skipped without nm, or when the programs are not built.
+    subroutine test_no_test_allocator(error)
+        type(error_type), allocatable, intent(out) :: error
+        character(len=:), allocatable :: program, folder, symbols
+        character(len=*), parameter :: programs(2) = [character(len=13) :: "rollcon", &
+            & "rollcon-sweep"]
+        integer :: status, i, cut
+
+        call execute_command_line("mkdir -p " // scratch)
+        if (.not. have_command("nm")) then
+            call skip_test(error, "nm (binutils) is not on PATH")
+            return
+        end if
+        call rollcon_program(program, error)
+        if (allocated(error)) return
+        cut = index(program, "/", back=.true.)
+        folder = program(:cut)
+        do i = 1, size(programs)
+            associate (path => folder // trim(programs(i)))
+                call shell("nm " // path, scratch // "/nm.log", status)
+                call check(error, status == 0, "nm " // path // " failed: " &
+                    & // first_lines(file_text(scratch // "/nm.log")))
+                if (allocated(error)) return
+                symbols = file_text(scratch // "/nm.log")
+                call check(error, index(symbols, " rollcon_malloc_count") == 0, path &
+                    & // " holds the tests' allocator counter (test/malloc_counter.c)")
+                if (allocated(error)) return
+                call check(error, index(symbols, " T malloc" // new_line("a")) == 0, path &
+                    & // " defines malloc: the tests' counter replaces the allocator")
+                if (allocated(error)) return
+            end associate
+        end do
+    end subroutine test_no_test_allocator
 
     !> Run a shell command with its stdout and stderr in log; status is its exit status.
     subroutine shell(command, log, status)

@@ -1,7 +1,7 @@
 ! SPDX-License-Identifier: MIT
 !> The integrators' hot path allocates nothing: right-hand side, residual, root functions,
 !> Jacobians and projection, called alone and inside CVODE and IDA runs, make no call to
-!> malloc, calloc or realloc (counted by malloc_counter.c, which interposes them). Array
+!> malloc, calloc or realloc (counted by test/malloc_counter.c, which interposes them). Array
 !> temporaries, automatic arrays and reallocation on assignment all go through malloc, so
 !> these tests catch every one of them, in any build. Also what else the hot path costs: the
 !> lift-off event function no saddle-point solve under CVODE, a time-free UCON no time-partial

@@ -4,7 +4,11 @@
  * test_adm_text.f90): defining these symbols in the executable interposes them for every
  * caller (gfortran's ALLOCATE, array temporaries, libgfortran, SUNDIALS). glibc exports the
  * real allocator as __libc_malloc & co.; elsewhere nothing is interposed and
- * rollcon_malloc_counting() says so, and the tests skip. */
+ * rollcon_malloc_counting() says so, and the tests skip.
+ * It lives beside test/main.f90, not in the suites' package (test/unit): fpm 0.12 links a C
+ * source of the [[test]]'s own folder into that program alone, but one of a dev-dependency
+ * into every program it builds, rollcon and rollcon-sweep included, whose malloc it then
+ * replaced (suite fpm-dependency, programs-without-the-tests-allocator). */
 #include <stdlib.h>
 
 static long calls = 0;
