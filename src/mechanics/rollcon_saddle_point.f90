@@ -816,9 +816,10 @@ contains
     !> run_start(e) : run_start(e + 1) - 1, as saddle_point_type's, here from the block's
     !> first entry), each the products of C's values (c's value) by M^-1 C^T's (minv_values)
     !> at consecutive places. Explicit-shape arrays, so that the loops hold their places in
-    !> registers (read through the derived type, each entry loaded them again), and the runs,
-    !> a few terms each, summed one term after another (the terms' order is the sum's; the
-    !> directives only spare a short run the set-up of a vector or long unrolled loop).
+    !> registers (read through the derived type, each entry loaded them again); a run of a
+    !> part's three or six coordinates (most of them) written out, the others summed one term
+    !> after another (the terms' order is the sum's in every case; the directives only spare
+    !> a short run the set-up of a vector or long unrolled loop).
     pure subroutine schur_entries(count, run_start, run_value, run_minv, run_length, value, &
             & minv, schur)
         integer, intent(in) :: count, run_start(count + 1), run_value(*), run_minv(*), &
@@ -831,13 +832,27 @@ contains
         do e = 1, count
             total = 0.0_wp
             do r = run_start(e), run_start(e + 1) - 1
-                x = run_value(r) - 1
-                o = run_minv(r) - 1
-                !GCC$ novector
-                !GCC$ unroll 2
-                do t = 1, run_length(r)
-                    total = total + value(x + t)*minv(o + t)
-                end do
+                x = run_value(r)
+                o = run_minv(r)
+                select case (run_length(r))
+                case (3)
+                    total = total + value(x)*minv(o)
+                    total = total + value(x + 1)*minv(o + 1)
+                    total = total + value(x + 2)*minv(o + 2)
+                case (6)
+                    total = total + value(x)*minv(o)
+                    total = total + value(x + 1)*minv(o + 1)
+                    total = total + value(x + 2)*minv(o + 2)
+                    total = total + value(x + 3)*minv(o + 3)
+                    total = total + value(x + 4)*minv(o + 4)
+                    total = total + value(x + 5)*minv(o + 5)
+                case default
+                    !GCC$ novector
+                    !GCC$ unroll 2
+                    do t = 0, run_length(r) - 1
+                        total = total + value(x + t)*minv(o + t)
+                    end do
+                end select
             end do
             schur(e) = total
         end do
