@@ -187,8 +187,8 @@ contains
             & self%coordinate_place)
         if (allocated(self%schur)) deallocate(self%schur)
         if (allocated(self%run_start)) deallocate(self%run_start, self%run_value, &
-            & self%run_minv, self%run_length, self%column_start, self%column_ucon, self%column_row, &
-            & self%column_offset, self%column_first, self%column_last)
+            & self%run_minv, self%run_length, self%column_start, self%column_ucon, &
+            & self%column_row, self%column_offset, self%column_first, self%column_last)
         allocate(self%part_mass(self%parts), source=0.0_wp)
         allocate(self%rotational(3, 3, self%parts), source=0.0_wp)
         allocate(self%pivots(max(nc, 1)), source=0)
