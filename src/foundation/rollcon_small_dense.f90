@@ -67,10 +67,15 @@ contains
                 info = j
             end if
             ! the trailing matrix less the outer product (dger with alpha = -1: a column whose
-            ! row j entry is an exact zero is left as it is)
+            ! row j entry is an exact zero is left as it is). The directives change no
+            ! operation: column k is not column j (lda >= n), so no row's update depends on
+            ! another's, and a column of a few dozen rows is cheaper without gfortran's
+            ! eight-fold unrolling (its set-up cost more than it saved on the bicycle's S)
             do k = j + 1, n
                 if (a(j, k) /= 0.0_wp) then
                     temp = -a(j, k)
+                    !GCC$ ivdep
+                    !GCC$ unroll 2
                     do i = j + 1, n
                         a(i, k) = a(i, k) + a(i, j)*temp
                     end do
@@ -98,9 +103,12 @@ contains
                 b(pivots(k), j) = swap
             end do
         end do
+        ! (the directives as factor_lu's: row i is not row k, each row's update is its own)
         do j = 1, nrhs
             do k = 1, n
                 if (b(k, j) /= 0.0_wp) then
+                    !GCC$ ivdep
+                    !GCC$ unroll 2
                     do i = k + 1, n
                         b(i, j) = b(i, j) - b(k, j)*a(i, k)
                     end do
@@ -109,6 +117,8 @@ contains
             do k = n, 1, -1
                 if (b(k, j) /= 0.0_wp) then
                     b(k, j) = b(k, j)/a(k, k)
+                    !GCC$ ivdep
+                    !GCC$ unroll 2
                     do i = 1, k - 1
                         b(i, j) = b(i, j) - b(k, j)*a(i, k)
                     end do

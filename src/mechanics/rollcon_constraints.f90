@@ -437,19 +437,31 @@ contains
         logical, intent(in) :: plain, position_only
         real(wp), contiguous, intent(in) :: xmatrx(:, :)
         real(wp), contiguous, intent(inout) :: hqq(:, :), hqu(:, :)
-        integer :: i, j, b
+        integer :: i, j, a, b, b2
 
         if (plain) then
             hqq(:count, :count) = xmatrx(:count, :count)
             return
         end if
         if (position_only) then
-            do j = 1, ucon%nvars
+            ! two columns a pass (each row's place looked up once): where two variables share
+            ! a place, the entry still ends as the later row's of the later column, as one
+            ! column at a time leaves it
+            do j = 1, ucon%nvars - 1, 2
                 b = slot(j)
+                b2 = slot(j + 1)
                 do i = 1, ucon%nvars
-                    hqq(slot(i), b) = xmatrx(i, j)
+                    a = slot(i)
+                    hqq(a, b) = xmatrx(i, j)
+                    hqq(a, b2) = xmatrx(i, j + 1)
                 end do
             end do
+            if (mod(ucon%nvars, 2) == 1) then
+                b = slot(ucon%nvars)
+                do i = 1, ucon%nvars
+                    hqq(slot(i), b) = xmatrx(i, ucon%nvars)
+                end do
+            end if
             return
         end if
         do j = 1, ucon%nvars

@@ -107,11 +107,12 @@ module rollcon_saddle_point
         !> share a part (else the entry is an exact zero, not summed)
         logical, allocatable :: block_shares(:)
         !> The terms of each entry e of a dense block's S, row k and column l (packed as
-        !> block_schur): terms term_start(e) : term_start(e + 1) - 1, each the product of C's
-        !> entry term_value(t) (c's index: C(k, j) on a coordinate j of k's on a part of l's,
-        !> ascending) with M^-1 c_l^T's entry minv_values(term_minv(t)) there; none for UCONs
-        !> that share no part (set by init)
-        integer, allocatable :: term_start(:), term_value(:), term_minv(:)
+        !> block_schur), in runs: runs run_start(e) : run_start(e + 1) - 1, run r the
+        !> run_length(r) terms t = 0, 1, ..., each the product of C's entry run_value(r) + t
+        !> (c's index: C(k, j) on a coordinate j of k's on a part of l's, ascending) with
+        !> M^-1 c_l^T's entry minv_values(run_minv(r) + t) there (a run ends where either
+        !> index jumps); none for UCONs that share no part (set by init)
+        integer, allocatable :: run_start(:), run_value(:), run_minv(:), run_length(:)
         !> For each part of a dense block, the UCONs of the block with a coordinate on it,
         !> ascending (the block's order): columns column_start(p) : column_start(p + 1) - 1,
         !> each with its UCON column_ucon(i), the place of its part's six rows of M^-1 c_k^T in
@@ -185,9 +186,9 @@ contains
         if (allocated(self%minv_values)) deallocate(self%minv_values, self%minv_start, &
             & self%coordinate_place)
         if (allocated(self%schur)) deallocate(self%schur)
-        if (allocated(self%term_start)) deallocate(self%term_start, self%term_value, &
-            & self%term_minv, self%column_start, self%column_ucon, self%column_row, &
-            & self%column_offset, self%column_first, self%column_last)
+        if (allocated(self%run_start)) deallocate(self%run_start, self%run_value, &
+            & self%run_minv, self%run_length, self%column_start, self%column_ucon, &
+            & self%column_row, self%column_offset, self%column_first, self%column_last)
         allocate(self%part_mass(self%parts), source=0.0_wp)
         allocate(self%rotational(3, 3, self%parts), source=0.0_wp)
         allocate(self%pivots(max(nc, 1)), source=0)
@@ -258,19 +259,20 @@ contains
         call dense_terms(self)
     end subroutine init
 
-    !> The terms of each dense block's S (term_start, term_value, term_minv) and the UCONs of
-    !> each of its parts (column_start, ...): found once, so that a factorisation sums only
-    !> the products that can be nonzero, with their places looked up here and not in its loops.
-    !> The terms left out are C(k, j) times an exact zero of M^-1 c_l^T (j on a part l has no
-    !> coordinate on): a sum that starts at +0 is never -0, so adding such a zero (C finite)
-    !> leaves it as it is.
+    !> The terms of each dense block's S (run_start, run_value, run_minv, run_length) and the
+    !> UCONs of each of its parts (column_start, ...): found once, so that a factorisation sums
+    !> only the products that can be nonzero, with their places looked up here and not in its
+    !> loops, consecutive ones by a run's first places. The terms left out are C(k, j) times
+    !> an exact zero of M^-1 c_l^T (j on a part l has no coordinate on): a sum that starts at
+    !> +0 is never -0, so adding such a zero (C finite) leaves it as it is.
     subroutine dense_terms(self)
         type(saddle_point_type), intent(inout) :: self
         logical :: touches(self%parts)
         integer :: part_block(self%parts)
-        integer :: b, i, j, k, l, m, p, x, e, terms, columns, first, last, pass
+        integer :: b, i, j, k, l, m, p, x, e, runs, columns, first, last, pass, place, &
+            & previous_x, previous_place
 
-        allocate(self%term_start(size(self%block_schur) + 1), source=1)
+        allocate(self%run_start(size(self%block_schur) + 1), source=1)
         allocate(self%column_start(self%parts + 1), source=1)
         part_block = 0
         associate (blocks => self%blocks)
@@ -282,7 +284,7 @@ contains
             end do
             ! the first pass counts, the second fills
             do pass = 1, 2
-                terms = 0
+                runs = 0
                 do b = 1, blocks%count
                     if (self%block_sparse(b)) cycle
                     m = blocks%row_start(b + 1) - blocks%row_start(b)
@@ -292,20 +294,33 @@ contains
                         do i = 1, m
                             k = blocks%rows(blocks%row_start(b) + i - 1)
                             e = self%schur_start(b) + i - 1 + m*(j - 1)
-                            self%term_start(e) = terms + 1
+                            self%run_start(e) = runs + 1
                             if (.not. self%block_shares(e)) cycle
+                            ! (no index is -1: the entry's first term starts a run)
+                            previous_x = -2
+                            previous_place = -2
                             do x = blocks%ucon_start(k), blocks%ucon_start(k + 1) - 1
                                 if (.not. touches((blocks%ucon_coordinates(x) - 1)/6 + 1)) cycle
-                                terms = terms + 1
-                                if (pass == 1) cycle
-                                self%term_value(terms) = x
-                                self%term_minv(terms) = self%minv_start(l) - 1 &
+                                place = self%minv_start(l) - 1 &
                                     & + self%coordinate_place(blocks%ucon_coordinates(x))
+                                if (x == previous_x + 1 .and. place == previous_place + 1) then
+                                    if (pass == 2) self%run_length(runs) = &
+                                        & self%run_length(runs) + 1
+                                else
+                                    runs = runs + 1
+                                    if (pass == 2) then
+                                        self%run_value(runs) = x
+                                        self%run_minv(runs) = place
+                                        self%run_length(runs) = 1
+                                    end if
+                                end if
+                                previous_x = x
+                                previous_place = place
                             end do
                         end do
                     end do
                 end do
-                self%term_start(size(self%term_start)) = terms + 1
+                self%run_start(size(self%run_start)) = runs + 1
                 ! each part's columns: its block's UCONs with a coordinate on it
                 columns = 0
                 do p = 1, self%parts
@@ -332,7 +347,8 @@ contains
                     end do
                 end do
                 self%column_start(self%parts + 1) = columns + 1
-                if (pass == 1) allocate(self%term_value(terms), self%term_minv(terms), &
+                if (pass == 1) allocate(self%run_value(runs), self%run_minv(runs), &
+                    & self%run_length(runs), &
                     & self%column_ucon(columns), self%column_row(columns), &
                     & self%column_offset(columns), &
                     & self%column_first(columns), self%column_last(columns))
@@ -744,8 +760,7 @@ contains
         type(constraint_matrix_type), intent(in) :: c
         type(error_type), allocatable, intent(out) :: error
         real(wp), intent(inout), optional :: r1(:)
-        real(wp) :: total
-        integer :: b, i, j, k, kj, m, first, last, info, s0, e, t
+        integer :: b, i, j, k, kj, m, first, last, info, s0
 
         associate (blocks => self%blocks)
             do b = 1, blocks%count
@@ -771,26 +786,22 @@ contains
                 ! sum
                 ! (S = C M^-1 C^T is symmetric, but both S(k, kj) and S(kj, k) are summed: the two
                 ! sums differ by rounding, and a copy of one moves the outputs, see docs/design.md)
-                do j = 1, m
-                    kj = blocks%rows(blocks%row_start(b) + j - 1)
-                    do i = 1, m
-                        e = s0 + i + m*(j - 1)
-                        k = blocks%rows(blocks%row_start(b) + i - 1)
-                        ! a row set aside: its own row and column of S are those of the identity
-                        if (self%masked) then
-                            if (.not. (self%active(k) .and. self%active(kj))) then
-                                self%block_schur(e) = merge(1.0_wp, 0.0_wp, k == kj)
-                                cycle
-                            end if
-                        end if
-                        total = 0.0_wp
-                        do t = self%term_start(e), self%term_start(e + 1) - 1
-                            total = total + c%value(self%term_value(t)) &
-                                & *self%minv_values(self%term_minv(t))
+                call schur_entries(m*m, self%run_start(s0 + 1), self%run_value, &
+                    & self%run_minv, self%run_length, c%value, self%minv_values, &
+                    & self%block_schur(s0 + 1))
+                ! a row set aside: its own row and column of S are the identity's (written over
+                ! the sums, which have no other effect)
+                if (self%masked) then
+                    do j = 1, m
+                        kj = blocks%rows(blocks%row_start(b) + j - 1)
+                        do i = 1, m
+                            k = blocks%rows(blocks%row_start(b) + i - 1)
+                            if (.not. (self%active(k) .and. self%active(kj))) &
+                                & self%block_schur(s0 + i + m*(j - 1)) = merge(1.0_wp, 0.0_wp, &
+                                & k == kj)
                         end do
-                        self%block_schur(e) = total
                     end do
-                end do
+                end if
                 call factor_lu(m, self%block_schur(self%schur_start(b)), m, &
                     & self%pivots(blocks%row_start(b)), info)
                 call lapack_info_error("dgetf2 (constraint Schur complement, a block)", info, &
@@ -799,6 +810,53 @@ contains
             end do
         end associate
     end subroutine factor_blocks
+
+    !> The count entries of a dense block's S (schur, packed as block_schur), each the sum from
+    !> zero of its terms in order, an exact zero when it has none: init's runs (entry e's are
+    !> run_start(e) : run_start(e + 1) - 1, as saddle_point_type's, here from the block's
+    !> first entry), each the products of C's values (c's value) by M^-1 C^T's (minv_values)
+    !> at consecutive places. Explicit-shape arrays, so that the loops hold their places in
+    !> registers (read through the derived type, each entry loaded them again); a run of a
+    !> part's three or six coordinates (most of them) written out, the others summed one term
+    !> after another (the terms' order is the sum's in every case; the directives only spare
+    !> a short run the set-up of a vector or long unrolled loop).
+    pure subroutine schur_entries(count, run_start, run_value, run_minv, run_length, value, &
+            & minv, schur)
+        integer, intent(in) :: count, run_start(count + 1), run_value(*), run_minv(*), &
+            & run_length(*)
+        real(wp), intent(in) :: value(*), minv(*)
+        real(wp), intent(out) :: schur(count)
+        real(wp) :: total
+        integer :: e, r, t, x, o
+
+        do e = 1, count
+            total = 0.0_wp
+            do r = run_start(e), run_start(e + 1) - 1
+                x = run_value(r)
+                o = run_minv(r)
+                select case (run_length(r))
+                case (3)
+                    total = total + value(x)*minv(o)
+                    total = total + value(x + 1)*minv(o + 1)
+                    total = total + value(x + 2)*minv(o + 2)
+                case (6)
+                    total = total + value(x)*minv(o)
+                    total = total + value(x + 1)*minv(o + 1)
+                    total = total + value(x + 2)*minv(o + 2)
+                    total = total + value(x + 3)*minv(o + 3)
+                    total = total + value(x + 4)*minv(o + 4)
+                    total = total + value(x + 5)*minv(o + 5)
+                case default
+                    !GCC$ novector
+                    !GCC$ unroll 2
+                    do t = 0, run_length(r) - 1
+                        total = total + value(x + t)*minv(o + t)
+                    end do
+                end select
+            end do
+            schur(e) = total
+        end do
+    end subroutine schur_entries
 
     !> solve (after factor by blocks, all nc rows) for right-hand sides that are nonzero only
     !> over some of the constraints' blocks and their parts (a state block of the ODE form's
@@ -953,6 +1011,7 @@ contains
         integer, intent(in) :: m
         real(wp), intent(inout) :: r1(self%n, m), r2(self%rows, m)
         type(error_type), allocatable, intent(out) :: error
+        real(wp) :: total
         integer :: b, i, j, k, rows_b, first, last, col, x, p, i0
 
         associate (blocks => self%blocks)
@@ -968,8 +1027,13 @@ contains
                 do col = 1, m
                     do i = 1, rows_b
                         k = blocks%rows(blocks%row_start(b) + i - 1)
-                        self%gathered(i, col) = r2(k, col) - c%row_dot(k, &
-                            & r1(:, col))
+                        ! C's row k times r1 (c%row_dot's sum, written out: a call a row cost
+                        ! more than its few terms)
+                        total = 0.0_wp
+                        do x = c%start(k), c%start(k + 1) - 1
+                            total = total + c%value(x)*r1(c%column(x), col)
+                        end do
+                        self%gathered(i, col) = r2(k, col) - total
                         if (self%masked) then
                             if (.not. self%active(k)) self%gathered(i, col) = 0.0_wp
                         end if

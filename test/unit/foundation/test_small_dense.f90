@@ -1,7 +1,8 @@
 ! SPDX-License-Identifier: MIT
 !> The small dense solves of the saddle-point system (rollcon_small_dense) against LAPACK's
 !> dgetf2, dgetrs, dpotf2 and dpotrs, whose arithmetic they repeat, and on matrices whose
-!> answers are known: a pivoting permutation, a singular matrix, a Cholesky factor.
+!> answers are known: a pivoting permutation, a singular matrix, a Cholesky factor; and on the
+!> pattern of the bicycle's Schur complement (exact zeros, columns empty below a few rows).
 module test_small_dense
     use, intrinsic :: ieee_arithmetic, only : ieee_value, ieee_quiet_nan
     use rollcon_kinds, only : wp
@@ -28,6 +29,7 @@ contains
 
         tests = [new_unittest("lu-equals-lapack", test_lu_lapack), &
             & new_unittest("lu-pivots-and-solves", test_lu_known), &
+            & new_unittest("lu-bicycle-pattern-equals-lapack", test_lu_pattern), &
             & new_unittest("lu-singular-column", test_singular), &
             & new_unittest("cholesky3-equals-lapack", test_cholesky), &
             & new_unittest("cholesky3-factor-equals-lapack", test_cholesky_factor)]
@@ -68,6 +70,66 @@ contains
             deallocate(a, b, pivots, reference_pivots)
         end do
     end subroutine test_lu_lapack
+
+    !> Random matrices on the pattern of data/bicycle.adm's S (21 rows: rear wheel, frame, fork,
+    !> front wheel; UCONs couple through shared parts only), whose columns have exact zeros
+    !> below a few rows and whose small diagonal makes rows interchange: factors, pivots and
+    !> two right-hand sides' solutions (one with exact zeros) as dgetf2's and dgetrs's, and
+    !> every exact zero of LAPACK's factors one of factor_lu's (a zero multiplier changes no
+    !> entry, in any LAPACK).
+    subroutine test_lu_pattern(error)
+        type(error_type), allocatable, intent(out) :: error
+        integer, parameter :: n = 21
+        character(len=n), parameter :: pattern(n) = [character(len=n) :: &
+            & "X.....X..XX..........", ".XX....X.XX..........", ".XX.....XXX..........", &
+            & "...X............X..XX", "....XX...........X.XX", "....XX............XXX", &
+            & "X.....XXXXXXXXXX.....", ".X....XXXXXXXXXX.....", "..X...XXXXXXXXXX.....", &
+            & "XXX...XXXXXXXXXX.....", "XXX...XXXXXXXXXX.....", "......XXXXXXXXXXXXXXX", &
+            & "......XXXXXXXXXXXXXXX", "......XXXXXXXXXXXXXXX", "......XXXXXXXXXXXXXXX", &
+            & "......XXXXXXXXXXXXXXX", "...X.......XXXXXXXXXX", "....X......XXXXXXXXXX", &
+            & ".....X.....XXXXXXXXXX", "...XXX.....XXXXXXXXXX", "...XXX.....XXXXXXXXXX"]
+        real(wp) :: a(n, n), lu(n, n), reference(n, n), b(n, 2), x(n, 2)
+        integer :: pivots(n), reference_pivots(n), info, reference_info, trial, i, j
+        logical :: interchanged
+
+        call seed_random(43)
+        interchanged = .false.
+        do trial = 1, 20
+            call random_number(a)
+            a = a - 0.5_wp
+            do j = 1, n
+                do i = 1, n
+                    if (pattern(i)(j:j) == ".") a(i, j) = 0.0_wp
+                end do
+                ! a diagonal of about a tenth of the rest: rows interchange, none singular
+                a(j, j) = a(j, j)*0.2_wp + sign(0.05_wp, a(j, j))
+            end do
+            lu = a
+            reference = a
+            call factor_lu(n, lu, n, pivots, info)
+            call dgetf2(n, n, reference, n, reference_pivots, reference_info)
+            call check(error, info == 0 .and. reference_info == 0 .and. all(pivots &
+                & == reference_pivots), "trial " // to_text(trial) &
+                & // ": pivots or info differ from dgetf2's")
+            if (allocated(error)) return
+            interchanged = interchanged .or. any(pivots /= [(i, i = 1, n)])
+            call check(error, reshape(lu, [n*n]), reshape(reference, [n*n]), "trial " &
+                & // to_text(trial) // ": factors", abs_tol=tol, rel_tol=tol)
+            if (allocated(error)) return
+            call check(error, all(reference /= 0.0_wp .or. lu == 0.0_wp), "trial " &
+                & // to_text(trial) // ": an exact zero of dgetf2's factors is not one")
+            if (allocated(error)) return
+            call random_number(b)
+            b(2:n:3, 2) = 0.0_wp
+            x = b
+            call solve_lu(n, 2, lu, n, pivots, x, n)
+            call dgetrs("N", n, 2, reference, n, reference_pivots, b, n, info)
+            call check(error, reshape(x, [2*n]), reshape(b, [2*n]), "trial " // to_text(trial) &
+                & // ": solutions", abs_tol=tol, rel_tol=tol)
+            if (allocated(error)) return
+        end do
+        call check(error, interchanged, "no trial interchanged rows")
+    end subroutine test_lu_pattern
 
     !> A matrix whose pivots are its second, then third row: P a = L U with the known factors,
     !> and the solution of a x = (1, 2, 3).

@@ -1,6 +1,7 @@
 ! SPDX-License-Identifier: MIT
 !> Tests of the rigid-body equations and the Newton matrices built from the UCOSUB's partials,
-!> and of the integrator each formulation gets.
+!> and of the integrator each formulation gets; and of a UCOSUB's second partials placed over
+!> its own coordinates whatever the order of its variables.
 module test_dynamics
     use rollcon_kinds, only : wp
     use rollcon_error, only : error_type
@@ -27,6 +28,8 @@ module test_dynamics
     use rollcon_disk_par, only : disk_par
     use rollcon_model, only : model_type, setup_model
     use rollcon_saddle_point, only : saddle_point_type
+    use rollcon_ucosub_contract, only : ucovar, iflag_init, xmatrx_dqdq
+    use rollcon_constraints, only : constraint_state_type, need_value, need_second
     use rollcon_testing, only : unittest_type, new_unittest, check
     implicit none
     private
@@ -57,8 +60,90 @@ contains
             & new_unittest("saddle-point-vs-dense-lu", test_saddle_point), &
             & new_unittest("saddle-point-blocks-as-dense", test_saddle_blocks), &
             & new_unittest("equations-use-problem-model", test_problem_model), &
-            & new_unittest("formulation-chooses-the-integrator", test_integrator_choice)]
+            & new_unittest("formulation-chooses-the-integrator", test_integrator_choice), &
+            & new_unittest("second-partials-in-declared-order", test_hessian_places)]
     end subroutine collect_dynamics
+
+    !> Two position UCONs whose variables are not in ascending order of their coordinates
+    !> (three: theta, X, Z; four: phi, Z, X, psi): d2F/dq dq held over each UCON's own
+    !> coordinates (ascending: X, Z, theta and X, Z, psi, phi) has XMATRX(i, j) at the places of
+    !> variables i and j, every entry. The routine returns 10 i + j, so that any entry put in
+    !> another's place, or transposed, or left out, shows; a placement is a copy: equal exactly.
+    subroutine test_hessian_places(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(model_type) :: model
+        type(constraint_state_type) :: state
+        real(wp) :: q(6), u(6)
+        ! each variable's place among its UCON's own coordinates
+        integer, parameter :: places_three(3) = [3, 1, 2], places_four(4) = [4, 2, 1, 3]
+        integer :: i, j
+
+        call model%add_part(part_type(id=7, mass=1.0_wp, inertia=[1.0_wp, 1.0_wp, 2.0_wp]))
+        call model%add_ucon(1, [7.0_wp, 3.0_wp], shuffled_ucosub)
+        call model%add_ucon(2, [7.0_wp, 4.0_wp], shuffled_ucosub)
+        call setup_model(model, error)
+        if (allocated(error)) return
+        call state%allocate(model)
+        q = [0.1_wp, 0.2_wp, 0.3_wp, 0.4_wp, 1.1_wp, 0.6_wp]
+        u = 0.0_wp
+        call state%evaluate(model, 0.0_wp, q, u, need_value + need_second, error)
+        if (allocated(error)) return
+        call check(error, all(state%local(:3, 1) == [1, 3, 5]) .and. all(state%local(:4, 2) &
+            & == [1, 3, 4, 6]), "the UCONs' own coordinates")
+        if (allocated(error)) return
+        do j = 1, 3
+            do i = 1, 3
+                call check(error, state%hqq(places_three(i), places_three(j), 1) &
+                    & == 10.0_wp*i + j, "three variables: XMATRX(" // to_text(i) // ", " &
+                    & // to_text(j) // ") not in its place")
+                if (allocated(error)) return
+            end do
+        end do
+        do j = 1, 4
+            do i = 1, 4
+                call check(error, state%hqq(places_four(i), places_four(j), 2) &
+                    & == 10.0_wp*i + j, "four variables: XMATRX(" // to_text(i) // ", " &
+                    & // to_text(j) // ") not in its place")
+                if (allocated(error)) return
+            end do
+        end do
+    end subroutine test_hessian_places
+
+    !> A position UCON on part PAR(1) over PAR(2) = 3 variables (theta, X, Z) or 4 (phi, Z, X,
+    !> psi), in that order: F = 0 and XMATRX(i, j) = 10 i + j, entries told apart by their
+    !> value (test_hessian_places).
+    subroutine shuffled_ucosub(id, time, q, par, npar, idrsel, iflag, scalar, array, xmatrx)
+        integer, intent(in) :: id
+        real(wp), intent(in) :: time
+        real(wp), intent(in) :: q(30)
+        real(wp), intent(in) :: par(*)
+        integer, intent(in) :: npar
+        integer, intent(in) :: idrsel(3)
+        integer, intent(in) :: iflag
+        real(wp), intent(inout) :: scalar
+        real(wp), intent(inout) :: array(30)
+        real(wp), intent(inout) :: xmatrx(30, 30)
+        integer :: n, i, j
+
+        if (npar < 2) return
+        n = nint(par(2))
+        if (iflag == iflag_init) then
+            if (n == 3) then
+                call ucovar(id, 3, spread(nint(par(1)), 1, 3), 3, [15, 11, 13])
+            else
+                call ucovar(id, 4, spread(nint(par(1)), 1, 4), 4, [16, 13, 11, 14])
+            end if
+            return
+        end if
+        if (idrsel(1) /= 0) scalar = 0.0_wp
+        if (idrsel(3) == xmatrx_dqdq) then
+            do j = 1, n
+                do i = 1, n
+                    xmatrx(i, j) = 10.0_wp*i + j
+                end do
+            end do
+        end if
+    end subroutine shuffled_ucosub
 
     !> A generic state of the paper's disk: tilted, turning, no angle at a special value.
     subroutine generic_problem(problem, q, u, drift)
