@@ -45,6 +45,7 @@ module rollcon_momentum_partials
         procedure :: subtract_q
         procedure :: subtract_u
         procedure :: subtract_q_entry
+        procedure :: subtract_q_over
         procedure :: q_at
         procedure :: u_at
         procedure :: scatter_negated
@@ -308,6 +309,64 @@ contains
             self%dq(i, j) = self%dq(i, j) - value
         end if
     end subroutine subtract_q_entry
+
+    !> dm/dq's entries (at(ii), at(jj)) (coordinate numbers: a UCON's own coordinates, each
+    !> once, ascending) less weight*second(ii, jj), or weight*second(jj, ii) when transposed
+    !> (second: at least size(at) square): subtract_q_entry's operations on every pair of at,
+    !> each entry's once, with each pair of parts' block found once per run of at's
+    !> coordinates in one part rather than per entry. A pair not held is noted (missed).
+    pure subroutine subtract_q_over(self, at, weight, second, transposed)
+        class(momentum_partials_type), intent(inout) :: self
+        integer, intent(in) :: at(:)
+        real(wp), intent(in) :: weight, second(:, :)
+        logical, intent(in) :: transposed
+        real(wp) :: value
+        integer :: ii, jj, j, a, b, kb, e, first, last, m
+
+        m = size(at)
+        do jj = 1, m
+            j = at(jj)
+            if (.not. self%blocked) then
+                do ii = 1, m
+                    if (transposed) then
+                        value = weight*second(jj, ii)
+                    else
+                        value = weight*second(ii, jj)
+                    end if
+                    self%dq(at(ii), j) = self%dq(at(ii), j) - value
+                end do
+                cycle
+            end if
+            b = (j - 1)/6 + 1
+            kb = j - 6*(b - 1)
+            first = 1
+            do while (first <= m)
+                ! the run first .. last of at's coordinates in part a
+                a = (at(first) - 1)/6 + 1
+                last = first
+                do while (last < m)
+                    if ((at(last + 1) - 1)/6 + 1 /= a) exit
+                    last = last + 1
+                end do
+                e = self%pair(a, b)
+                if (e == 0) then
+                    call note_missed(self, a, b)
+                else
+                    do ii = first, last
+                        if (transposed) then
+                            value = weight*second(jj, ii)
+                        else
+                            value = weight*second(ii, jj)
+                        end if
+                        associate (entry => self%block_q(at(ii) - 6*(a - 1), kb, e))
+                            entry = entry - value
+                        end associate
+                    end do
+                end if
+                first = last + 1
+            end do
+        end do
+    end subroutine subtract_q_over
 
     !> dm/dq's entry (i, j) (coordinate numbers; 0 off the pairs).
     pure real(wp) function q_at(self, i, j) result(value)
