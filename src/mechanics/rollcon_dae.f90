@@ -35,6 +35,21 @@ module rollcon_dae
     private
 
     public :: dae_size, dae_residual, dae_jacobian, dae_sparse_jacobian, dae_differential
+    public :: newton_places_type
+
+    !> Where the writes of the sparse Newton matrix (dae_sparse_jacobian) went at its last
+    !> evaluation: for each entry written or subtracted into, in the order the routine makes
+    !> them, its place in the compressed columns' values (0 outside the pattern). The next
+    !> evaluation makes the same writes in the same order (the same model, contact modes and
+    !> rows set aside) and tries each remembered place first, checked against the pattern
+    !> itself (the place lies in the entry's column and holds its row): a write that differs
+    !> (another mode, another pattern) is found by bisection as without places, and its place
+    !> remembered. Memory O(writes): no search for a write that repeats.
+    type :: newton_places_type
+        !> The places, in the order of the writes (grown, doubling, when an evaluation makes
+        !> more writes than any before)
+        integer, allocatable :: place(:)
+    end type newton_places_type
 
 contains
 
@@ -256,30 +271,35 @@ contains
     !> routine writes must be in the pattern (the DAE form's dae_pattern), the others are zero.
     !> No (2n + nc + nh)-square array: memory O(entries), time O(entries log(column length)).
     !> The entries are those of dae_jacobian's dense matrix, bit for bit (the same operations).
+    !> With places (held by the caller from one evaluation to the next: newton_places_type),
+    !> each write tries the place it had at the last evaluation before any search.
     !> Error: an entry outside the pattern (a pattern that misses an element's block).
-    subroutine dae_sparse_jacobian(eq, time, cj, y, yp, starts, rows, values, error)
+    subroutine dae_sparse_jacobian(eq, time, cj, y, yp, starts, rows, values, error, places)
         type(equations_type), intent(inout) :: eq
         real(wp), intent(in) :: time, cj, y(:), yp(:)
         integer, intent(in) :: starts(:), rows(:)
         real(wp), intent(out) :: values(:)
         type(error_type), allocatable, intent(out) :: error
+        type(newton_places_type), intent(inout), optional :: places
 
         values = 0.0_wp
         call write_jacobian(eq, time, cj, y, yp, error, starts=starts, rows=rows, &
-            & values=values)
+            & values=values, places=places)
     end subroutine dae_sparse_jacobian
 
     !> dae_jacobian's entries into the dense jac, or into the compressed-column (starts, rows,
-    !> values), already zero.
-    subroutine write_jacobian(eq, time, cj, y, yp, error, jac, starts, rows, values)
+    !> values), already zero (with the places of the last evaluation's writes, if given:
+    !> dae_sparse_jacobian).
+    subroutine write_jacobian(eq, time, cj, y, yp, error, jac, starts, rows, values, places)
         type(equations_type), intent(inout) :: eq
         real(wp), intent(in) :: time, cj, y(:), yp(:)
         type(error_type), allocatable, intent(out) :: error
         real(wp), intent(inout), optional :: jac(:, :)
         integer, intent(in), optional :: starts(:), rows(:)
         real(wp), intent(inout), optional :: values(:)
-        logical :: aside, dense, loop, multipliers
-        integer :: n, nc, k, h, i, j, row, ii, jj, i0, outside(2), x
+        type(newton_places_type), intent(inout), optional :: places
+        logical :: aside, dense, loop, multipliers, placed
+        integer :: n, nc, k, h, i, j, row, ii, jj, i0, outside(2), x, writes
         real(wp) :: m(2), s(2), slip(2)
 
         loop = .false.
@@ -291,6 +311,8 @@ contains
         n = eq%n
         nc = eq%nc
         dense = present(jac)
+        placed = present(places)
+        writes = 0
         outside = 0
         associate (q => y(:n), u => y(n + 1:2*n), lambda => y(2*n + 1:2*n + nc), &
             & mu => y(2*n + nc + 1:), up => yp(n + 1:2*n), cs => eq%constraints, &
@@ -390,10 +412,13 @@ contains
                     end do
                 end do
             end if
+            ! the UCONs' terms between two parts (those within one part are the part's block,
+            ! already written above with the same value: dm is complete)
             do k = 1, nc
                 associate (at => bl%ucon_coordinates(bl%ucon_start(k):bl%ucon_start(k + 1) - 1))
                     do jj = 1, size(at)
                         do ii = 1, size(at)
+                            if ((at(ii) - 1)/6 == (at(jj) - 1)/6) cycle
                             call put(n + at(ii), at(jj), dm%q_at(at(ii), at(jj)))
                         end do
                     end do
@@ -575,9 +600,30 @@ contains
             if (e > 0) values(e) = values(e) - value
         end subroutine subtract
 
+        !> Where entry (i, j) is in values, 0 outside the pattern (the first such entry kept
+        !> for the message): the place this write had at the last evaluation if it still
+        !> holds (i, j), else by bisection of column j's rows (and remembered).
+        integer function located(i, j) result(e)
+            integer, intent(in) :: i, j
+
+            if (placed) then
+                writes = writes + 1
+                if (allocated(places%place)) then
+                    if (writes <= size(places%place)) then
+                        e = places%place(writes)
+                        if (e > starts(j) .and. e <= starts(j + 1)) then
+                            if (rows(e) == i - 1) return
+                        end if
+                    end if
+                end if
+            end if
+            e = searched(i, j)
+            if (placed) call remember(e)
+        end function located
+
         !> Where entry (i, j) is in values (bisection of column j's rows), 0 outside the
         !> pattern (the first such entry kept for the message).
-        integer function located(i, j) result(e)
+        integer function searched(i, j) result(e)
             integer, intent(in) :: i, j
             integer :: low, high, middle
 
@@ -596,7 +642,23 @@ contains
             end do
             e = 0
             if (outside(1) == 0) outside = [i, j]
-        end function located
+        end function searched
+
+        !> Place e is that of write number writes (places grown, doubling, on a first use or
+        !> an evaluation with more writes than any before).
+        subroutine remember(e)
+            integer, intent(in) :: e
+            integer, allocatable :: more(:)
+
+            if (.not. allocated(places%place)) allocate(places%place(max(64, writes)), source=0)
+            if (writes > size(places%place)) then
+                allocate(more(max(2*size(places%place), writes)))
+                more(:size(places%place)) = places%place
+                more(size(places%place) + 1:) = 0
+                call move_alloc(more, places%place)
+            end if
+            places%place(writes) = e
+        end subroutine remember
 
         !> The momentum rows of part a by the coordinates and rates of part b (a SPRINGDAMPER's
         !> or BUSHING's partials between its two parts).
