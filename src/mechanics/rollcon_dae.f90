@@ -31,6 +31,7 @@ module rollcon_dae
     use rollcon_constraints, only : local_dot, need_value, need_first, need_second, need_time
     use rollcon_equations, only : equations_type
     use rollcon_sliding_contact, only : sliding_contact_type
+    use rollcon_momentum_partials, only : part_run_end
     implicit none
     private
 
@@ -299,8 +300,9 @@ contains
         real(wp), intent(inout), optional :: values(:)
         type(newton_places_type), intent(inout), optional :: places
         logical :: aside, dense, loop, multipliers, placed
-        integer :: n, nc, k, h, i, j, row, ii, jj, i0, outside(2), x, writes
-        real(wp) :: m(2), s(2), slip(2)
+        integer :: n, nc, k, h, i, j, row, ii, jj, i0, j0, outside(2), x, writes
+        integer :: first_a, last_a, first_b, last_b
+        real(wp) :: m(2), s(2), slip(2), block_q(6, 6), block_u(6, 6)
 
         loop = .false.
         multipliers = .false.
@@ -385,15 +387,17 @@ contains
             ! the momentum rows: each part's 6 by 6 blocks (M, its forces), then the UCONs'
             ! terms of dm/dq over their coordinates (rollcon_equations' momentum_jacobian)
             do i0 = 0, n - 6, 6
+                call dm%q_block(i0/6 + 1, i0/6 + 1, block_q)
+                call dm%u_block(i0/6 + 1, i0/6 + 1, block_u)
                 do j = i0 + 1, i0 + 6
                     do i = i0 + 1, i0 + 6
-                        call put(n + i, j, dm%q_at(i, j))
+                        call put(n + i, j, block_q(i - i0, j - i0))
                         if (loop) then
-                            call put(n + i, n + j, dm%u_at(i, j) + cj*(eq%mass(i - i0, &
+                            call put(n + i, n + j, block_u(i - i0, j - i0) + cj*(eq%mass(i - i0, &
                                 & j - i0, i0/6 + 1) + eq%work%dm_da(i, j)))
                         else
-                            call put(n + i, n + j, dm%u_at(i, j) + cj*eq%mass(i - i0, j - i0, &
-                                & i0/6 + 1))
+                            call put(n + i, n + j, block_u(i - i0, j - i0) + cj*eq%mass(i - i0, &
+                                & j - i0, i0/6 + 1))
                         end if
                     end do
                 end do
@@ -412,15 +416,31 @@ contains
                     end do
                 end do
             end if
-            ! the UCONs' terms between two parts (those within one part are the part's block,
-            ! already written above with the same value: dm is complete)
+            ! the UCONs' terms between two parts, each pair of parts' block read once (those
+            ! within one part are the part's block, already written above with the same
+            ! value: dm is complete)
             do k = 1, nc
                 associate (at => bl%ucon_coordinates(bl%ucon_start(k):bl%ucon_start(k + 1) - 1))
-                    do jj = 1, size(at)
-                        do ii = 1, size(at)
-                            if ((at(ii) - 1)/6 == (at(jj) - 1)/6) cycle
-                            call put(n + at(ii), at(jj), dm%q_at(at(ii), at(jj)))
+                    first_b = 1
+                    do while (first_b <= size(at))
+                        last_b = part_run_end(at, first_b)
+                        first_a = 1
+                        do while (first_a <= size(at))
+                            last_a = part_run_end(at, first_a)
+                            i0 = 6*((at(first_a) - 1)/6)
+                            j0 = 6*((at(first_b) - 1)/6)
+                            if (i0 /= j0) then
+                                call dm%q_block(i0/6 + 1, j0/6 + 1, block_q)
+                                do jj = first_b, last_b
+                                    do ii = first_a, last_a
+                                        call put(n + at(ii), at(jj), &
+                                            & block_q(at(ii) - i0, at(jj) - j0))
+                                    end do
+                                end do
+                            end if
+                            first_a = last_a + 1
                         end do
+                        first_b = last_b + 1
                     end do
                 end associate
             end do
@@ -665,13 +685,16 @@ contains
         subroutine copy_coupling(a, b)
             integer, intent(in) :: a, b
             integer :: r0, c0, ia, jb
+            real(wp) :: by_q(6, 6), by_u(6, 6)
 
             r0 = 6*(a - 1)
             c0 = 6*(b - 1)
+            call eq%work%dm%q_block(a, b, by_q)
+            call eq%work%dm%u_block(a, b, by_u)
             do jb = 1, 6
                 do ia = 1, 6
-                    call put(n + r0 + ia, c0 + jb, eq%work%dm%q_at(r0 + ia, c0 + jb))
-                    call put(n + r0 + ia, n + c0 + jb, eq%work%dm%u_at(r0 + ia, c0 + jb))
+                    call put(n + r0 + ia, c0 + jb, by_q(ia, jb))
+                    call put(n + r0 + ia, n + c0 + jb, by_u(ia, jb))
                 end do
             end do
         end subroutine copy_coupling
