@@ -300,7 +300,8 @@ contains
         real(wp), intent(inout), optional :: values(:)
         type(newton_places_type), intent(inout), optional :: places
         logical :: aside, dense, loop, multipliers, placed
-        integer :: n, nc, k, h, i, j, row, ii, jj, i0, j0, outside(2), x, writes
+        integer :: n, nc, k, h, i, j, row, ii, jj, i0, j0, outside(2), x, writes, remembered
+        integer :: e_q, e_u
         integer :: first_a, last_a, first_b, last_b
         real(wp) :: m(2), s(2), slip(2), block_q(6, 6), block_u(6, 6)
 
@@ -315,6 +316,11 @@ contains
         dense = present(jac)
         placed = present(places)
         writes = 0
+        ! how many writes have a place remembered
+        remembered = 0
+        if (placed) then
+            if (allocated(places%place)) remembered = size(places%place)
+        end if
         outside = 0
         associate (q => y(:n), u => y(n + 1:2*n), lambda => y(2*n + 1:2*n + nc), &
             & mu => y(2*n + nc + 1:), up => yp(n + 1:2*n), cs => eq%constraints, &
@@ -390,14 +396,17 @@ contains
                 call dm%q_block(i0/6 + 1, i0/6 + 1, block_q)
                 call dm%u_block(i0/6 + 1, i0/6 + 1, block_u)
                 do j = i0 + 1, i0 + 6
+                    e_q = 0
+                    e_u = 0
                     do i = i0 + 1, i0 + 6
-                        call put(n + i, j, block_q(i - i0, j - i0))
+                        call put_next(n + i, j, block_q(i - i0, j - i0), e_q)
                         if (loop) then
-                            call put(n + i, n + j, block_u(i - i0, j - i0) + cj*(eq%mass(i - i0, &
-                                & j - i0, i0/6 + 1) + eq%work%dm_da(i, j)))
+                            call put_next(n + i, n + j, block_u(i - i0, j - i0) &
+                                & + cj*(eq%mass(i - i0, j - i0, i0/6 + 1) + eq%work%dm_da(i, j)), &
+                                & e_u)
                         else
-                            call put(n + i, n + j, block_u(i - i0, j - i0) + cj*eq%mass(i - i0, &
-                                & j - i0, i0/6 + 1))
+                            call put_next(n + i, n + j, block_u(i - i0, j - i0) &
+                                & + cj*eq%mass(i - i0, j - i0, i0/6 + 1), e_u)
                         end if
                     end do
                 end do
@@ -432,9 +441,10 @@ contains
                             if (i0 /= j0) then
                                 call dm%q_block(i0/6 + 1, j0/6 + 1, block_q)
                                 do jj = first_b, last_b
+                                    e_q = 0
                                     do ii = first_a, last_a
-                                        call put(n + at(ii), at(jj), &
-                                            & block_q(at(ii) - i0, at(jj) - j0))
+                                        call put_next(n + at(ii), at(jj), &
+                                            & block_q(at(ii) - i0, at(jj) - j0), e_q)
                                     end do
                                 end do
                             end if
@@ -457,8 +467,9 @@ contains
                 end if
                 associate (at => bl%ucon_coordinates(bl%ucon_start(k):bl%ucon_start(k + 1) - 1))
                     ! -C^T's column: row k's entries (C by rows over the UCON's coordinates)
+                    e_q = 0
                     do x = eq%c%start(k), eq%c%start(k + 1) - 1
-                        call put(n + eq%c%column(x), row, -eq%c%value(x))
+                        call put_next(n + eq%c%column(x), row, -eq%c%value(x), e_q)
                     end do
                     ! a force reading this row's reaction: its partials in lambda_k (on the
                     ! parts it loads; the DAE form's pattern keeps them)
@@ -472,9 +483,10 @@ contains
                         ! mu_h G_h's partials and G_h u's
                         do jj = 1, size(at)
                             j = at(jj)
+                            e_q = 0
                             do ii = 1, size(at)
                                 i = at(ii)
-                                call subtract(i, j, mu(h)*cs%hqq(ii, jj, k))
+                                call subtract_next(i, j, mu(h)*cs%hqq(ii, jj, k), e_q)
                             end do
                         end do
                         do jj = 1, size(at)
@@ -620,26 +632,74 @@ contains
             if (e > 0) values(e) = values(e) - value
         end subroutine subtract
 
+        !> Entry (i, j) = value, where e is the place of the write before it in column j (0:
+        !> none) and becomes this one's: the next place when it holds (i, j) (a column's rows
+        !> written in ascending order), else located.
+        subroutine put_next(i, j, value, e)
+            integer, intent(in) :: i, j
+            real(wp), intent(in) :: value
+            integer, intent(inout) :: e
+
+            if (dense) then
+                jac(i, j) = value
+                return
+            end if
+            e = following(i, j, e)
+            if (e > 0) values(e) = value
+        end subroutine put_next
+
+        !> Entry (i, j) = entry (i, j) - value, e as put_next's.
+        subroutine subtract_next(i, j, value, e)
+            integer, intent(in) :: i, j
+            real(wp), intent(in) :: value
+            integer, intent(inout) :: e
+
+            if (dense) then
+                jac(i, j) = jac(i, j) - value
+                return
+            end if
+            e = following(i, j, e)
+            if (e > 0) values(e) = values(e) - value
+        end subroutine subtract_next
+
+        !> Where entry (i, j) is in values, given the place e of the write before it in column
+        !> j (0: none): e + 1 when that holds row i, else located.
+        integer function following(i, j, e) result(next)
+            integer, intent(in) :: i, j, e
+
+            if (e > 0 .and. e < starts(j + 1)) then
+                if (rows(e + 1) == i - 1) then
+                    next = e + 1
+                    return
+                end if
+            end if
+            next = located(i, j)
+        end function following
+
         !> Where entry (i, j) is in values, 0 outside the pattern (the first such entry kept
         !> for the message): the place this write had at the last evaluation if it still
-        !> holds (i, j), else by bisection of column j's rows (and remembered).
+        !> holds (i, j), else found (and remembered).
         integer function located(i, j) result(e)
             integer, intent(in) :: i, j
 
-            if (placed) then
-                writes = writes + 1
-                if (allocated(places%place)) then
-                    if (writes <= size(places%place)) then
-                        e = places%place(writes)
-                        if (e > starts(j) .and. e <= starts(j + 1)) then
-                            if (rows(e) == i - 1) return
-                        end if
-                    end if
-                end if
+            writes = writes + 1
+            e = 0
+            if (writes <= remembered) e = places%place(writes)
+            if (e <= starts(j) .or. e > starts(j + 1)) then
+                e = found(i, j)
+            else if (rows(e) /= i - 1) then
+                e = found(i, j)
             end if
+        end function located
+
+        !> Where entry (i, j) is in values, by bisection, remembered as this write's place
+        !> (with places).
+        integer function found(i, j) result(e)
+            integer, intent(in) :: i, j
+
             e = searched(i, j)
             if (placed) call remember(e)
-        end function located
+        end function found
 
         !> Where entry (i, j) is in values (bisection of column j's rows), 0 outside the
         !> pattern (the first such entry kept for the message).
@@ -677,6 +737,7 @@ contains
                 more(size(places%place) + 1:) = 0
                 call move_alloc(more, places%place)
             end if
+            remembered = size(places%place)
             places%place(writes) = e
         end subroutine remember
 
@@ -684,7 +745,7 @@ contains
         !> or BUSHING's partials between its two parts).
         subroutine copy_coupling(a, b)
             integer, intent(in) :: a, b
-            integer :: r0, c0, ia, jb
+            integer :: r0, c0, ia, jb, e_q, e_u
             real(wp) :: by_q(6, 6), by_u(6, 6)
 
             r0 = 6*(a - 1)
@@ -692,9 +753,11 @@ contains
             call eq%work%dm%q_block(a, b, by_q)
             call eq%work%dm%u_block(a, b, by_u)
             do jb = 1, 6
+                e_q = 0
+                e_u = 0
                 do ia = 1, 6
-                    call put(n + r0 + ia, c0 + jb, by_q(ia, jb))
-                    call put(n + r0 + ia, n + c0 + jb, by_u(ia, jb))
+                    call put_next(n + r0 + ia, c0 + jb, by_q(ia, jb), e_q)
+                    call put_next(n + r0 + ia, n + c0 + jb, by_u(ia, jb), e_u)
                 end do
             end do
         end subroutine copy_coupling
