@@ -489,11 +489,12 @@ contains
                                 call subtract_next(i, j, mu(h)*cs%hqq(ii, jj, k), e_q)
                             end do
                         end do
+                        e_u = 0
                         do jj = 1, size(at)
                             j = at(jj)
                             call put(row, j, local_dot(cs%hqq(:, jj, k), u, at) &
                                 & + cs%dt_grad_q(jj, k))
-                            call put(j, 2*n + nc + h, -cs%grad_q_local(jj, k))
+                            call put_next(j, 2*n + nc + h, -cs%grad_q_local(jj, k), e_u)
                             call put(row, n + j, cs%grad_q_local(jj, k))
                             call put(2*n + nc + h, j, cs%grad_q_local(jj, k))
                         end do
