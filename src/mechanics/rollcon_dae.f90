@@ -78,7 +78,7 @@ contains
         real(wp), intent(out) :: r(:)
         type(error_type), allocatable, intent(out) :: error
         integer :: n, nc, needs, k, h, j, i0, jj
-        logical :: aside, loop, multipliers
+        logical :: aside, loop, multipliers, drops
 
         loop = .false.
         multipliers = .false.
@@ -88,6 +88,8 @@ contains
         end if
         n = eq%n
         nc = eq%nc
+        ! a contact's mode drops rows only while it slides or flies (mode_drops)
+        drops = mode_dropping(eq)
         needs = need_value + need_first
         if (eq%nh > 0) needs = needs + need_time
         associate (q => y(:n), u => y(n + 1:2*n), lambda => y(2*n + 1:2*n + nc), &
@@ -118,7 +120,9 @@ contains
                 aside = .false.
                 if (eq%redundancy%set_aside > 0) aside = .not. eq%redundancy%active(k)
                 ! a row the contact's mode drops (sliding, flight) is set aside alike
-                if (eq%mode_drops(k)) aside = .true.
+                if (drops) then
+                    if (eq%mode_drops(k)) aside = .true.
+                end if
                 if (aside) then
                     r(2*n + k) = lambda(k)
                     if (h > 0) r(2*n + nc + h) = mu(h)
@@ -154,6 +158,15 @@ contains
         mode_forces = eq%contact%sliding .or. eq%more_sliding() .or. (eq%dissipation%part > 0 &
             & .and. (eq%dissipation%rolling_resistance > 0.0_wp .or. eq%dissipation%held))
     end function mode_forces
+
+    !> A contact slides or flies: only then may its mode drop rows (rollcon_equations'
+    !> mode_drops; rollcon_sliding_contact's dropped).
+    pure logical function mode_dropping(eq)
+        type(equations_type), intent(in) :: eq
+
+        mode_dropping = eq%contact%sliding .or. eq%contact%flying .or. eq%more_sliding() &
+            & .or. eq%more_flying()
+    end function mode_dropping
 
     !> Row k's gradient in C at coordinate j, from the last evaluation (dF/dq for a position
     !> UCON, dF/du for a velocity UCON).
@@ -299,7 +312,7 @@ contains
         integer, intent(in), optional :: starts(:), rows(:)
         real(wp), intent(inout), optional :: values(:)
         type(newton_places_type), intent(inout), optional :: places
-        logical :: aside, dense, loop, multipliers, placed
+        logical :: aside, dense, loop, multipliers, placed, drops
         integer :: n, nc, k, h, i, j, row, ii, jj, i0, j0, outside(2), x, writes, remembered
         integer :: e_q, e_u
         integer :: first_a, last_a, first_b, last_b
@@ -340,8 +353,8 @@ contains
             if (multipliers) call set_reactions(eq, lambda)
             call eq%assemble(time, q, u)
             call eq%constraint_rows(u, 0.0_wp)  ! the DAE form keeps F itself: no Baumgarte terms
-            if (eq%contact%sliding .or. eq%contact%flying .or. eq%more_sliding() &
-                & .or. eq%more_flying()) then
+            drops = mode_dropping(eq)
+            if (drops) then
                 ! the rows the mode drops carry no force, sliding's friction its multipliers
                 ! on the tangential rows (friction_multipliers): their second partials in
                 ! dm/dq as a constraint force's (into the equations' scratch multipliers, free
@@ -459,7 +472,9 @@ contains
                 row = 2*n + k
                 aside = .false.
                 if (eq%redundancy%set_aside > 0) aside = .not. eq%redundancy%active(k)
-                if (eq%mode_drops(k)) aside = .true.
+                if (drops) then
+                    if (eq%mode_drops(k)) aside = .true.
+                end if
                 if (aside) then
                     call put(row, row, 1.0_wp)
                     if (h > 0) call put(2*n + nc + h, 2*n + nc + h, 1.0_wp)
