@@ -31,10 +31,26 @@ module rollcon_dae
     use rollcon_constraints, only : local_dot, need_value, need_first, need_second, need_time
     use rollcon_equations, only : equations_type
     use rollcon_sliding_contact, only : sliding_contact_type
+    use rollcon_momentum_partials, only : part_run_end
     implicit none
     private
 
     public :: dae_size, dae_residual, dae_jacobian, dae_sparse_jacobian, dae_differential
+    public :: newton_places_type
+
+    !> Where the writes of the sparse Newton matrix (dae_sparse_jacobian) went at its last
+    !> evaluation: for each entry written or subtracted into, in the order the routine makes
+    !> them, its place in the compressed columns' values (0 outside the pattern). The next
+    !> evaluation makes the same writes in the same order (the same model, contact modes and
+    !> rows set aside) and tries each remembered place first, checked against the pattern
+    !> itself (the place lies in the entry's column and holds its row): a write that differs
+    !> (another mode, another pattern) is found by bisection as without places, and its place
+    !> remembered. Memory O(writes): no search for a write that repeats.
+    type :: newton_places_type
+        !> The places, in the order of the writes (grown, doubling, when an evaluation makes
+        !> more writes than any before)
+        integer, allocatable :: place(:)
+    end type newton_places_type
 
 contains
 
@@ -62,7 +78,7 @@ contains
         real(wp), intent(out) :: r(:)
         type(error_type), allocatable, intent(out) :: error
         integer :: n, nc, needs, k, h, j, i0, jj
-        logical :: aside, loop, multipliers
+        logical :: aside, loop, multipliers, drops
 
         loop = .false.
         multipliers = .false.
@@ -72,6 +88,8 @@ contains
         end if
         n = eq%n
         nc = eq%nc
+        ! a contact's mode drops rows only while it slides or flies (mode_drops)
+        drops = mode_dropping(eq)
         needs = need_value + need_first
         if (eq%nh > 0) needs = needs + need_time
         associate (q => y(:n), u => y(n + 1:2*n), lambda => y(2*n + 1:2*n + nc), &
@@ -102,7 +120,9 @@ contains
                 aside = .false.
                 if (eq%redundancy%set_aside > 0) aside = .not. eq%redundancy%active(k)
                 ! a row the contact's mode drops (sliding, flight) is set aside alike
-                if (eq%mode_drops(k)) aside = .true.
+                if (drops) then
+                    if (eq%mode_drops(k)) aside = .true.
+                end if
                 if (aside) then
                     r(2*n + k) = lambda(k)
                     if (h > 0) r(2*n + nc + h) = mu(h)
@@ -138,6 +158,15 @@ contains
         mode_forces = eq%contact%sliding .or. eq%more_sliding() .or. (eq%dissipation%part > 0 &
             & .and. (eq%dissipation%rolling_resistance > 0.0_wp .or. eq%dissipation%held))
     end function mode_forces
+
+    !> A contact slides or flies: only then may its mode drop rows (rollcon_equations'
+    !> mode_drops; rollcon_sliding_contact's dropped).
+    pure logical function mode_dropping(eq)
+        type(equations_type), intent(in) :: eq
+
+        mode_dropping = eq%contact%sliding .or. eq%contact%flying .or. eq%more_sliding() &
+            & .or. eq%more_flying()
+    end function mode_dropping
 
     !> Row k's gradient in C at coordinate j, from the last evaluation (dF/dq for a position
     !> UCON, dF/du for a velocity UCON).
@@ -256,31 +285,38 @@ contains
     !> routine writes must be in the pattern (the DAE form's dae_pattern), the others are zero.
     !> No (2n + nc + nh)-square array: memory O(entries), time O(entries log(column length)).
     !> The entries are those of dae_jacobian's dense matrix, bit for bit (the same operations).
+    !> With places (held by the caller from one evaluation to the next: newton_places_type),
+    !> each write tries the place it had at the last evaluation before any search.
     !> Error: an entry outside the pattern (a pattern that misses an element's block).
-    subroutine dae_sparse_jacobian(eq, time, cj, y, yp, starts, rows, values, error)
+    subroutine dae_sparse_jacobian(eq, time, cj, y, yp, starts, rows, values, error, places)
         type(equations_type), intent(inout) :: eq
         real(wp), intent(in) :: time, cj, y(:), yp(:)
         integer, intent(in) :: starts(:), rows(:)
         real(wp), intent(out) :: values(:)
         type(error_type), allocatable, intent(out) :: error
+        type(newton_places_type), intent(inout), optional :: places
 
         values = 0.0_wp
         call write_jacobian(eq, time, cj, y, yp, error, starts=starts, rows=rows, &
-            & values=values)
+            & values=values, places=places)
     end subroutine dae_sparse_jacobian
 
     !> dae_jacobian's entries into the dense jac, or into the compressed-column (starts, rows,
-    !> values), already zero.
-    subroutine write_jacobian(eq, time, cj, y, yp, error, jac, starts, rows, values)
+    !> values), already zero (with the places of the last evaluation's writes, if given:
+    !> dae_sparse_jacobian).
+    subroutine write_jacobian(eq, time, cj, y, yp, error, jac, starts, rows, values, places)
         type(equations_type), intent(inout) :: eq
         real(wp), intent(in) :: time, cj, y(:), yp(:)
         type(error_type), allocatable, intent(out) :: error
         real(wp), intent(inout), optional :: jac(:, :)
         integer, intent(in), optional :: starts(:), rows(:)
         real(wp), intent(inout), optional :: values(:)
-        logical :: aside, dense, loop, multipliers
-        integer :: n, nc, k, h, i, j, row, ii, jj, i0, outside(2), x
-        real(wp) :: m(2), s(2), slip(2)
+        type(newton_places_type), intent(inout), optional :: places
+        logical :: aside, dense, loop, multipliers, placed, drops
+        integer :: n, nc, k, h, i, j, row, ii, jj, i0, j0, outside(2), x, writes, remembered
+        integer :: e_q, e_u
+        integer :: first_a, last_a, first_b, last_b
+        real(wp) :: m(2), s(2), slip(2), block_q(6, 6), block_u(6, 6)
 
         loop = .false.
         multipliers = .false.
@@ -291,6 +327,13 @@ contains
         n = eq%n
         nc = eq%nc
         dense = present(jac)
+        placed = present(places)
+        writes = 0
+        ! how many writes have a place remembered
+        remembered = 0
+        if (placed) then
+            if (allocated(places%place)) remembered = size(places%place)
+        end if
         outside = 0
         associate (q => y(:n), u => y(n + 1:2*n), lambda => y(2*n + 1:2*n + nc), &
             & mu => y(2*n + nc + 1:), up => yp(n + 1:2*n), cs => eq%constraints, &
@@ -310,8 +353,8 @@ contains
             if (multipliers) call set_reactions(eq, lambda)
             call eq%assemble(time, q, u)
             call eq%constraint_rows(u, 0.0_wp)  ! the DAE form keeps F itself: no Baumgarte terms
-            if (eq%contact%sliding .or. eq%contact%flying .or. eq%more_sliding() &
-                & .or. eq%more_flying()) then
+            drops = mode_dropping(eq)
+            if (drops) then
                 ! the rows the mode drops carry no force, sliding's friction its multipliers
                 ! on the tangential rows (friction_multipliers): their second partials in
                 ! dm/dq as a constraint force's (into the equations' scratch multipliers, free
@@ -363,15 +406,20 @@ contains
             ! the momentum rows: each part's 6 by 6 blocks (M, its forces), then the UCONs'
             ! terms of dm/dq over their coordinates (rollcon_equations' momentum_jacobian)
             do i0 = 0, n - 6, 6
+                call dm%q_block(i0/6 + 1, i0/6 + 1, block_q)
+                call dm%u_block(i0/6 + 1, i0/6 + 1, block_u)
                 do j = i0 + 1, i0 + 6
+                    e_q = 0
+                    e_u = 0
                     do i = i0 + 1, i0 + 6
-                        call put(n + i, j, dm%q_at(i, j))
+                        call put_next(n + i, j, block_q(i - i0, j - i0), e_q)
                         if (loop) then
-                            call put(n + i, n + j, dm%u_at(i, j) + cj*(eq%mass(i - i0, &
-                                & j - i0, i0/6 + 1) + eq%work%dm_da(i, j)))
+                            call put_next(n + i, n + j, block_u(i - i0, j - i0) &
+                                & + cj*(eq%mass(i - i0, j - i0, i0/6 + 1) + eq%work%dm_da(i, j)), &
+                                & e_u)
                         else
-                            call put(n + i, n + j, dm%u_at(i, j) + cj*eq%mass(i - i0, j - i0, &
-                                & i0/6 + 1))
+                            call put_next(n + i, n + j, block_u(i - i0, j - i0) &
+                                & + cj*eq%mass(i - i0, j - i0, i0/6 + 1), e_u)
                         end if
                     end do
                 end do
@@ -390,12 +438,32 @@ contains
                     end do
                 end do
             end if
+            ! the UCONs' terms between two parts, each pair of parts' block read once (those
+            ! within one part are the part's block, already written above with the same
+            ! value: dm is complete)
             do k = 1, nc
                 associate (at => bl%ucon_coordinates(bl%ucon_start(k):bl%ucon_start(k + 1) - 1))
-                    do jj = 1, size(at)
-                        do ii = 1, size(at)
-                            call put(n + at(ii), at(jj), dm%q_at(at(ii), at(jj)))
+                    first_b = 1
+                    do while (first_b <= size(at))
+                        last_b = part_run_end(at, first_b)
+                        first_a = 1
+                        do while (first_a <= size(at))
+                            last_a = part_run_end(at, first_a)
+                            i0 = 6*((at(first_a) - 1)/6)
+                            j0 = 6*((at(first_b) - 1)/6)
+                            if (i0 /= j0) then
+                                call dm%q_block(i0/6 + 1, j0/6 + 1, block_q)
+                                do jj = first_b, last_b
+                                    e_q = 0
+                                    do ii = first_a, last_a
+                                        call put_next(n + at(ii), at(jj), &
+                                            & block_q(at(ii) - i0, at(jj) - j0), e_q)
+                                    end do
+                                end do
+                            end if
+                            first_a = last_a + 1
                         end do
+                        first_b = last_b + 1
                     end do
                 end associate
             end do
@@ -404,7 +472,9 @@ contains
                 row = 2*n + k
                 aside = .false.
                 if (eq%redundancy%set_aside > 0) aside = .not. eq%redundancy%active(k)
-                if (eq%mode_drops(k)) aside = .true.
+                if (drops) then
+                    if (eq%mode_drops(k)) aside = .true.
+                end if
                 if (aside) then
                     call put(row, row, 1.0_wp)
                     if (h > 0) call put(2*n + nc + h, 2*n + nc + h, 1.0_wp)
@@ -412,8 +482,9 @@ contains
                 end if
                 associate (at => bl%ucon_coordinates(bl%ucon_start(k):bl%ucon_start(k + 1) - 1))
                     ! -C^T's column: row k's entries (C by rows over the UCON's coordinates)
+                    e_q = 0
                     do x = eq%c%start(k), eq%c%start(k + 1) - 1
-                        call put(n + eq%c%column(x), row, -eq%c%value(x))
+                        call put_next(n + eq%c%column(x), row, -eq%c%value(x), e_q)
                     end do
                     ! a force reading this row's reaction: its partials in lambda_k (on the
                     ! parts it loads; the DAE form's pattern keeps them)
@@ -427,16 +498,18 @@ contains
                         ! mu_h G_h's partials and G_h u's
                         do jj = 1, size(at)
                             j = at(jj)
+                            e_q = 0
                             do ii = 1, size(at)
                                 i = at(ii)
-                                call subtract(i, j, mu(h)*cs%hqq(ii, jj, k))
+                                call subtract_next(i, j, mu(h)*cs%hqq(ii, jj, k), e_q)
                             end do
                         end do
+                        e_u = 0
                         do jj = 1, size(at)
                             j = at(jj)
                             call put(row, j, local_dot(cs%hqq(:, jj, k), u, at) &
                                 & + cs%dt_grad_q(jj, k))
-                            call put(j, 2*n + nc + h, -cs%grad_q_local(jj, k))
+                            call put_next(j, 2*n + nc + h, -cs%grad_q_local(jj, k), e_u)
                             call put(row, n + j, cs%grad_q_local(jj, k))
                             call put(2*n + nc + h, j, cs%grad_q_local(jj, k))
                         end do
@@ -575,9 +648,78 @@ contains
             if (e > 0) values(e) = values(e) - value
         end subroutine subtract
 
+        !> Entry (i, j) = value, where e is the place of the write before it in column j (0:
+        !> none) and becomes this one's: the next place when it holds (i, j) (a column's rows
+        !> written in ascending order), else located.
+        subroutine put_next(i, j, value, e)
+            integer, intent(in) :: i, j
+            real(wp), intent(in) :: value
+            integer, intent(inout) :: e
+
+            if (dense) then
+                jac(i, j) = value
+                return
+            end if
+            e = following(i, j, e)
+            if (e > 0) values(e) = value
+        end subroutine put_next
+
+        !> Entry (i, j) = entry (i, j) - value, e as put_next's.
+        subroutine subtract_next(i, j, value, e)
+            integer, intent(in) :: i, j
+            real(wp), intent(in) :: value
+            integer, intent(inout) :: e
+
+            if (dense) then
+                jac(i, j) = jac(i, j) - value
+                return
+            end if
+            e = following(i, j, e)
+            if (e > 0) values(e) = values(e) - value
+        end subroutine subtract_next
+
+        !> Where entry (i, j) is in values, given the place e of the write before it in column
+        !> j (0: none): e + 1 when that holds row i, else located.
+        integer function following(i, j, e) result(next)
+            integer, intent(in) :: i, j, e
+
+            if (e > 0 .and. e < starts(j + 1)) then
+                if (rows(e + 1) == i - 1) then
+                    next = e + 1
+                    return
+                end if
+            end if
+            next = located(i, j)
+        end function following
+
+        !> Where entry (i, j) is in values, 0 outside the pattern (the first such entry kept
+        !> for the message): the place this write had at the last evaluation if it still
+        !> holds (i, j), else found (and remembered).
+        integer function located(i, j) result(e)
+            integer, intent(in) :: i, j
+
+            writes = writes + 1
+            e = 0
+            if (writes <= remembered) e = places%place(writes)
+            if (e <= starts(j) .or. e > starts(j + 1)) then
+                e = found(i, j)
+            else if (rows(e) /= i - 1) then
+                e = found(i, j)
+            end if
+        end function located
+
+        !> Where entry (i, j) is in values, by bisection, remembered as this write's place
+        !> (with places).
+        integer function found(i, j) result(e)
+            integer, intent(in) :: i, j
+
+            e = searched(i, j)
+            if (placed) call remember(e)
+        end function found
+
         !> Where entry (i, j) is in values (bisection of column j's rows), 0 outside the
         !> pattern (the first such entry kept for the message).
-        integer function located(i, j) result(e)
+        integer function searched(i, j) result(e)
             integer, intent(in) :: i, j
             integer :: low, high, middle
 
@@ -596,20 +738,42 @@ contains
             end do
             e = 0
             if (outside(1) == 0) outside = [i, j]
-        end function located
+        end function searched
+
+        !> Place e is that of write number writes (places grown, doubling, on a first use or
+        !> an evaluation with more writes than any before).
+        subroutine remember(e)
+            integer, intent(in) :: e
+            integer, allocatable :: more(:)
+
+            if (.not. allocated(places%place)) allocate(places%place(max(64, writes)), source=0)
+            if (writes > size(places%place)) then
+                allocate(more(max(2*size(places%place), writes)))
+                more(:size(places%place)) = places%place
+                more(size(places%place) + 1:) = 0
+                call move_alloc(more, places%place)
+            end if
+            remembered = size(places%place)
+            places%place(writes) = e
+        end subroutine remember
 
         !> The momentum rows of part a by the coordinates and rates of part b (a SPRINGDAMPER's
         !> or BUSHING's partials between its two parts).
         subroutine copy_coupling(a, b)
             integer, intent(in) :: a, b
-            integer :: r0, c0, ia, jb
+            integer :: r0, c0, ia, jb, e_q, e_u
+            real(wp) :: by_q(6, 6), by_u(6, 6)
 
             r0 = 6*(a - 1)
             c0 = 6*(b - 1)
+            call eq%work%dm%q_block(a, b, by_q)
+            call eq%work%dm%u_block(a, b, by_u)
             do jb = 1, 6
+                e_q = 0
+                e_u = 0
                 do ia = 1, 6
-                    call put(n + r0 + ia, c0 + jb, eq%work%dm%q_at(r0 + ia, c0 + jb))
-                    call put(n + r0 + ia, n + c0 + jb, eq%work%dm%u_at(r0 + ia, c0 + jb))
+                    call put_next(n + r0 + ia, c0 + jb, by_q(ia, jb), e_q)
+                    call put_next(n + r0 + ia, n + c0 + jb, by_u(ia, jb), e_u)
                 end do
             end do
         end subroutine copy_coupling

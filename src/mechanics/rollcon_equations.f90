@@ -1169,7 +1169,7 @@ contains
         real(wp), intent(in) :: lambda(:)
         real(wp), intent(in) :: time
         real(wp) :: part_dq(6, 6), part_du(6, 6)
-        integer :: p, i0, k, j, i, jj, ii
+        integer :: p, i0, k
 
         call self%work%dm%clear()
         do p = 1, size(self%model%parts)
@@ -1192,23 +1192,11 @@ contains
             associate (at => self%blocks%ucon_coordinates(self%blocks%ucon_start(k): &
                     & self%blocks%ucon_start(k + 1) - 1))
                 if (self%model%ucons(k)%holonomic) then
-                    do jj = 1, size(at)
-                        j = at(jj)
-                        do ii = 1, size(at)
-                            i = at(ii)
-                            call self%work%dm%subtract_q_entry(i, j, &
-                                & lambda(k)*self%constraints%hqq(ii, jj, k))
-                        end do
-                    end do
+                    call self%work%dm%subtract_q_over(at, lambda(k), &
+                        & self%constraints%hqq(:, :, k), .false.)
                 else
-                    do jj = 1, size(at)
-                        j = at(jj)
-                        do ii = 1, size(at)
-                            i = at(ii)
-                            call self%work%dm%subtract_q_entry(i, j, &
-                                & lambda(k)*self%constraints%hqu(jj, ii, k))
-                        end do
-                    end do
+                    call self%work%dm%subtract_q_over(at, lambda(k), &
+                        & self%constraints%hqu(:, :, k), .true.)
                 end if
             end associate
         end do

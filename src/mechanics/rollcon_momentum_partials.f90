@@ -17,7 +17,7 @@ module rollcon_momentum_partials
     implicit none
     private
 
-    public :: momentum_partials_type
+    public :: momentum_partials_type, part_run_end
 
     !> dm/dq and dm/du, dense or on pairs of parts
     type :: momentum_partials_type
@@ -45,6 +45,9 @@ module rollcon_momentum_partials
         procedure :: subtract_q
         procedure :: subtract_u
         procedure :: subtract_q_entry
+        procedure :: subtract_q_over
+        procedure :: q_block
+        procedure :: u_block
         procedure :: q_at
         procedure :: u_at
         procedure :: scatter_negated
@@ -308,6 +311,118 @@ contains
             self%dq(i, j) = self%dq(i, j) - value
         end if
     end subroutine subtract_q_entry
+
+    !> dm/dq's entries (at(ii), at(jj)) (coordinate numbers: a UCON's own coordinates, each
+    !> once, ascending) less weight*second(ii, jj), or weight*second(jj, ii) when transposed
+    !> (second: at least size(at) square): subtract_q_entry's operations on every pair of at,
+    !> each entry's once, with each pair of parts' block found once per pair of runs of at's
+    !> coordinates in one part (part_run_end) rather than per entry. A pair not held is noted
+    !> (missed).
+    pure subroutine subtract_q_over(self, at, weight, second, transposed)
+        class(momentum_partials_type), intent(inout) :: self
+        integer, intent(in) :: at(:)
+        real(wp), intent(in) :: weight, second(:, :)
+        logical, intent(in) :: transposed
+        real(wp) :: value
+        integer :: ii, jj, a, b, e, first_a, last_a, first_b, last_b, m
+
+        m = size(at)
+        if (.not. self%blocked) then
+            do jj = 1, m
+                do ii = 1, m
+                    if (transposed) then
+                        value = weight*second(jj, ii)
+                    else
+                        value = weight*second(ii, jj)
+                    end if
+                    self%dq(at(ii), at(jj)) = self%dq(at(ii), at(jj)) - value
+                end do
+            end do
+            return
+        end if
+        ! the columns first_b .. last_b (part b) by the rows first_a .. last_a (part a)
+        first_b = 1
+        do while (first_b <= m)
+            b = (at(first_b) - 1)/6 + 1
+            last_b = part_run_end(at, first_b)
+            first_a = 1
+            do while (first_a <= m)
+                a = (at(first_a) - 1)/6 + 1
+                last_a = part_run_end(at, first_a)
+                e = self%pair(a, b)
+                if (e == 0) then
+                    call note_missed(self, a, b)
+                else
+                    associate (block => self%block_q(:, :, e))
+                        do jj = first_b, last_b
+                            do ii = first_a, last_a
+                                if (transposed) then
+                                    value = weight*second(jj, ii)
+                                else
+                                    value = weight*second(ii, jj)
+                                end if
+                                block(at(ii) - 6*(a - 1), at(jj) - 6*(b - 1)) &
+                                    & = block(at(ii) - 6*(a - 1), at(jj) - 6*(b - 1)) - value
+                            end do
+                        end do
+                    end associate
+                end if
+                first_a = last_a + 1
+            end do
+            first_b = last_b + 1
+        end do
+    end subroutine subtract_q_over
+
+    !> The last of the run of coordinates at(first:) in first's part (at ascending: a UCON's
+    !> own coordinates): at(first : part_run_end) are all the part's in at.
+    pure integer function part_run_end(at, first) result(last)
+        integer, intent(in) :: at(:), first
+
+        last = first
+        do while (last < size(at))
+            if ((at(last + 1) - 1)/6 /= (at(first) - 1)/6) exit
+            last = last + 1
+        end do
+    end function part_run_end
+
+    !> dm/dq's 6 x 6 block of rows of part a by columns of part b (zeros off the pairs).
+    pure subroutine q_block(self, a, b, block)
+        class(momentum_partials_type), intent(in) :: self
+        integer, intent(in) :: a, b
+        real(wp), intent(out) :: block(6, 6)
+        integer :: e
+
+        if (self%blocked) then
+            e = self%pair(a, b)
+            if (e > 0) then
+                block = self%block_q(:, :, e)
+            else
+                block = 0.0_wp
+            end if
+        else
+            block = self%dq(6*(a - 1) + 1:6*a, 6*(b - 1) + 1:6*b)
+        end if
+    end subroutine q_block
+
+    !> dm/du's block, as q_block.
+    pure subroutine u_block(self, a, b, block)
+        class(momentum_partials_type), intent(in) :: self
+        integer, intent(in) :: a, b
+        real(wp), intent(out) :: block(6, 6)
+        integer :: e
+
+        if (self%blocked) then
+            e = self%pair(a, b)
+            if (e > 0) then
+                block = self%block_u(:, :, e)
+            else
+                block = 0.0_wp
+            end if
+        else
+            block = self%du(6*(a - 1) + 1:6*a, 6*(b - 1) + 1:6*b)
+        end if
+    end subroutine u_block
+
 
     !> dm/dq's entry (i, j) (coordinate numbers; 0 off the pairs).
     pure real(wp) function q_at(self, i, j) result(value)

@@ -12,7 +12,7 @@ module rollcon_dae_form
     use rollcon_error, only : error_type
     use rollcon_dae, only : dae_size, dae_differential_kinds => dae_differential, &
         & residual_of_dae => dae_residual, jacobian_of_dae => dae_jacobian, &
-        & sparse_jacobian_of_dae => dae_sparse_jacobian
+        & sparse_jacobian_of_dae => dae_sparse_jacobian, newton_places_type
     use rollcon_int_buffer, only : append
     use rollcon_dynamic_system, only : dae_system_type
     use rollcon_newton_pattern, only : newton_pattern_type
@@ -32,6 +32,8 @@ module rollcon_dae_form
     type, extends(dae_system_type) :: dae_form_type
         !> The problem it integrates: its model, equations, settings and watches
         type(problem_type), pointer :: problem => null()
+        !> Where the sparse Newton matrix's writes went at its last evaluation (rollcon_dae)
+        type(newton_places_type) :: places
     contains
         procedure :: init
         procedure :: state_size
@@ -178,11 +180,11 @@ contains
         associate (m => dae_size(self%problem%eq), diffs => self%problem%model%diffs)
             if (diffs%count() == 0) then
                 call sparse_jacobian_of_dae(self%problem%eq, time, cj, y, yp, starts, rows, &
-                    & values, error)
+                    & values, error, self%places)
             else
                 call self%problem%model%set_diff_state(y(m + 1:), yp(m + 1:)*diffs%time_unit)
                 call sparse_jacobian_of_dae(self%problem%eq, time, cj, y(:m), yp(:m), starts, &
-                    & rows, values, error)
+                    & rows, values, error, self%places)
                 if (.not. allocated(error)) call diff_entries(self, time, cj, y, yp, &
                     & starts=starts, rows=rows, values=values)
             end if

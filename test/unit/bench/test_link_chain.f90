@@ -58,6 +58,7 @@ contains
             & new_unittest("chain-start", test_start), &
             & new_unittest("sparse-schur-as-dense", test_sparse_schur), &
             & new_unittest("pattern-holds-the-jacobian", test_pattern), &
+            & new_unittest("sparse-newton-matrix-by-places", test_places), &
             & new_unittest("cvode-sparse-jacobian-as-dense", test_cvode_blocks), &
             & new_unittest("speeds-sparse-jacobian-as-dense", test_speeds_blocks), &
             & new_unittest("ida-klu-same-motion", test_klu_motion), &
@@ -347,6 +348,99 @@ contains
             & // to_text(entries) // " of " // to_text(n*n) // " entries, the blocks " &
             & // to_text(blocks%entries()))
     end subroutine check_pattern
+
+    !> IDA's sparse Newton matrix written again by the places of its last evaluation's writes
+    !> (rollcon_dae's newton_places_type, held by the DAE form): at a second state and cj, on
+    !> data/bicycle.adm and on 3 disks, every entry the dense matrix's, bit for bit; over a
+    !> pattern that lacks an entry the matrix writes, the places are checked against that
+    !> pattern: the error names the entry; over the whole pattern again, the dense one's.
+    subroutine test_places(error)
+        type(error_type), allocatable, intent(out) :: error
+
+        call check_places("bicycle_places", file_text("data/bicycle.adm"), error)
+        if (allocated(error)) return
+        call check_places("fleet_places", disk_fleet_dataset(3, 0.5_wp, 0.1_wp, 0.05_wp, &
+            & "FORMULATION=IDA"), error)
+    end subroutine test_places
+
+    !> test_places on one dataset.
+    subroutine check_places(name, text, error)
+        character(len=*), intent(in) :: name, text
+        type(error_type), allocatable, intent(out) :: error
+        type(problem_type), target :: problem
+        type(dae_form_type) :: dae
+        type(newton_pattern_type) :: pattern
+        real(wp), allocatable :: q0(:), u0(:), y(:), yp(:), matrix(:, :), values(:)
+        integer, allocatable :: starts(:), rows(:)
+        integer :: n, nq, i, e, ierr, pass, left_out
+        character(len=:), allocatable :: expected
+
+        call problem_of(name, text, problem, q0, u0, error)
+        if (allocated(error)) return
+        call dae%init(problem)
+        n = dae%state_size()
+        nq = size(q0)
+        call dae%dae_pattern(n, pattern)
+        allocate(y(n), yp(n), matrix(n, n), values(pattern%entries()))
+        ! the first pass learns the places, the second writes by them, at another state
+        do pass = 1, 2
+            y(:nq) = q0
+            y(nq + 1:) = [(0.1_wp*pass*sin(real(i*pass, wp)), i = 1, n - nq)]
+            yp = [(0.2_wp*cos(real(i + pass, wp)), i = 1, n)]
+            call compare(1.0e3_wp*pass, pattern%starts, pattern%rows, "pass " &
+                & // to_text(pass))
+            if (allocated(error)) return
+        end do
+        ! the pattern without entry (nq + 1, 1) (part 1's first momentum row by its first
+        ! coordinate: its block's), which the matrix writes
+        left_out = 0
+        do e = pattern%starts(1) + 1, pattern%starts(2)
+            if (pattern%rows(e) == nq) left_out = e
+        end do
+        call check(error, left_out > 0, name // ": the pattern keeps entry (" &
+            & // to_text(nq + 1) // ", 1)")
+        if (allocated(error)) return
+        rows = [pattern%rows(:left_out - 1), pattern%rows(left_out + 1:)]
+        starts = pattern%starts
+        starts(2:) = starts(2:) - 1
+        deallocate(values)
+        allocate(values(size(rows)))
+        ierr = dae%dae_sparse_jacobian(0.0_wp, 1.0e3_wp, y, yp, starts, rows, values)
+        expected = "the DAE's Newton matrix has entry (" // to_text(nq + 1) // ", 1) outside " &
+            & // "its sparse pattern"
+        call check(error, ierr /= 0 .and. index(dae%failure_text(), expected) > 0, name &
+            & // ": over a pattern without an entry, '" // expected // "' expected, ierr " &
+            & // to_text(ierr) // ", '" // dae%failure_text() // "'")
+        if (allocated(error)) return
+        deallocate(values)
+        allocate(values(pattern%entries()))
+        call compare(3.0e3_wp, pattern%starts, pattern%rows, "the whole pattern again")
+
+    contains
+
+        !> The sparse Newton matrix at (y, yp, cj) over (starts, rows) against the dense one,
+        !> bit for bit.
+        subroutine compare(cj, starts, rows, what)
+            real(wp), intent(in) :: cj
+            integer, intent(in) :: starts(:), rows(:)
+            character(len=*), intent(in) :: what
+            integer :: j, differ
+
+            ierr = dae%dae_jacobian(0.0_wp, cj, y, yp, matrix)
+            if (ierr == 0) ierr = dae%dae_sparse_jacobian(0.0_wp, cj, y, yp, starts, rows, &
+                & values)
+            call check(error, ierr, 0, name // ", " // what // ": the Newton matrices")
+            if (allocated(error)) return
+            differ = 0
+            do j = 1, n
+                do e = starts(j) + 1, starts(j + 1)
+                    if (.not. same_bits(values(e), matrix(rows(e) + 1, j))) differ = differ + 1
+                end do
+            end do
+            call check(error, differ, 0, name // ", " // what // ": entries of the sparse " &
+                & // "Newton matrix not the dense one's")
+        end subroutine compare
+    end subroutine check_places
 
     !> CVODE's sparse Newton matrix of the ODE form, formed block by block (ode_sparse_jacobian:
     !> the equations' ode_jacobian_blocks, no n x 2n array) over the pattern of its state

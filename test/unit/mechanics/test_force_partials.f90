@@ -686,15 +686,18 @@ contains
     !> dm/dq and dm/du held on pairs of parts (rollcon_momentum_partials: the equations'
     !> storage, linear in the model) against the same writes into dense n x n matrices: every
     !> entry of a held pair equal bit for bit (the same operations), every other entry of the
-    !> dense matrices an exact zero, scatter_negated the dense matrices negated; a write to a
-    !> pair not held is noted as missed (not lost silently) and grow holds it from then on,
-    !> keeping the pairs held before.
+    !> dense matrices an exact zero, scatter_negated the dense matrices negated, each pair's
+    !> blocks read whole (q_block, u_block) the dense matrices' (a UCON's second partials
+    !> written by pairs of parts, subtract_q_over, among the writes); a write to a pair not
+    !> held is noted as missed (not lost silently; subtract_q_over's both ways round) and grow
+    !> holds it from then on, keeping the pairs held before.
     subroutine test_pairs_as_dense(error)
         type(error_type), allocatable, intent(out) :: error
         integer, parameter :: parts = 4, n = 6*parts
         type(momentum_partials_type) :: blocks, dense
-        real(wp) :: x(n, 2*n), values(6), block(6, 6)
-        integer :: i, j, k, a, b, step
+        real(wp) :: x(n, 2*n), values(6), block(6, 6), second(4, 4), held(6, 6), full(6, 6), &
+            & before
+        integer :: i, j, k, a, b, step, at(4)
 
         call blocks%init_blocks(parts, reshape([1, 2, 3, 2, 2, 1, 0, 4], [2, 4]))
         call dense%init_dense(n)
@@ -728,6 +731,14 @@ contains
             case (2)
                 call blocks%subtract_q_entry(6*(a - 1) + k, 6*(b - 1) + 7 - k, values(2))
                 call dense%subtract_q_entry(6*(a - 1) + k, 6*(b - 1) + 7 - k, values(2))
+                ! a UCON's second partials over some coordinates of parts a and b, ascending
+                ! (both of part a when b = a), straight and transposed
+                at = [6*(min(a, b) - 1) + 2, 6*(min(a, b) - 1) + 5, 6*(max(a, b) - 1) + 1, &
+                    & 6*(max(a, b) - 1) + 6]
+                if (a == b) at = 6*(a - 1) + [1, 3, 4, 6]
+                second = reshape([(sin(0.3_wp*step + 0.2_wp*i), i = 1, 16)], [4, 4])
+                call blocks%subtract_q_over(at, values(3), second, mod(step, 8) == 6)
+                call dense%subtract_q_over(at, values(3), second, mod(step, 8) == 6)
             case default
                 if (step < 10) then
                     call blocks%set_part(a, block, -block)
@@ -758,6 +769,24 @@ contains
         call check(error, all(x(:, :n) == -dense%dq) .and. all(x(:, n + 1:) == -dense%du), &
             & "scatter_negated gives -dm/dq, -dm/du")
         if (allocated(error)) return
+        ! each pair's blocks read whole (q_block, u_block) as the dense matrices hold them,
+        ! zeros off the pairs
+        do b = 1, parts
+            do a = 1, parts
+                call blocks%q_block(a, b, held)
+                call dense%q_block(a, b, full)
+                call check(error, all(held == dense%dq(6*a - 5:6*a, 6*b - 5:6*b)) .and. &
+                    & all(full == held), "dm/dq's block (" // to_text(a) // ", " &
+                    & // to_text(b) // ") as dense")
+                if (allocated(error)) return
+                call blocks%u_block(a, b, held)
+                call dense%u_block(a, b, full)
+                call check(error, all(held == dense%du(6*a - 5:6*a, 6*b - 5:6*b)) .and. &
+                    & all(full == held), "dm/du's block (" // to_text(a) // ", " &
+                    & // to_text(b) // ") as dense")
+                if (allocated(error)) return
+            end do
+        end do
         ! part 4 joins no other part: a write to (1, 4) is missed, then held after grow (both
         ! ways round: 10 blocks)
         call blocks%subtract_q(1, 4, 2, 1, [1.0_wp])
@@ -769,6 +798,14 @@ contains
         call check(error, blocks%missed_count == 0 .and. blocks%q_at(1, 20) == -1.0_wp .and. &
             & size(blocks%block_q, 3) == 10 .and. blocks%pair(2, 3) > 0, "grow holds the " &
             & // "missed pair and the pairs before")
+        if (allocated(error)) return
+        ! a UCON over parts 3 and 4, which no pair joins: both ways round noted as missed, each
+        ! part's own entries written
+        before = blocks%q_at(19, 19)
+        call blocks%subtract_q_over([13, 19], 1.0_wp, reshape([1.0_wp, 2.0_wp, 3.0_wp, &
+            & 4.0_wp], [2, 2]), .false.)
+        call check(error, blocks%missed_count == 2 .and. blocks%q_at(19, 19) == before - 4.0_wp, &
+            & "subtract_q_over notes the pairs not held: " // to_text(blocks%missed_count))
     end subroutine test_pairs_as_dense
 
 end module test_force_partials
