@@ -2,6 +2,7 @@
 !> Short decimal text of numbers, for messages and tables; ASCII case of names.
 module rollcon_text
     use, intrinsic :: iso_fortran_env, only : int64
+    use, intrinsic :: iso_c_binding, only : c_double, c_char, c_int
     use rollcon_kinds, only : wp
     use, intrinsic :: ieee_arithmetic, only : ieee_is_finite, ieee_is_nan
     implicit none
@@ -22,6 +23,20 @@ module rollcon_text
     interface number_list
         module procedure real_list, integer_list
     end interface number_list
+
+    interface
+        !> The fewest significant digits (1 to 17) of the finite, nonzero |value| that read back
+        !> as it, written by snprintf's "%.*e" and read by strtod as libgfortran's es format and
+        !> list-directed read do: the digits (no point, no sign) into digits, the decimal
+        !> exponent of the first into exponent, their number into count (rollcon_real_text.c).
+        pure subroutine c_shortest_digits(value, digits, exponent, count) &
+                & bind(c, name="rollcon_shortest_digits")
+            import :: c_double, c_char, c_int
+            real(c_double), value :: value
+            character(kind=c_char), intent(out) :: digits(17)
+            integer(c_int), intent(out) :: exponent, count
+        end subroutine c_shortest_digits
+    end interface
 
 contains
 
@@ -48,16 +63,16 @@ contains
     end function long_to_text
 
     !> Shortest decimal text that reads back as the same real (at most 17 digits): plain
-    !> notation for 1e-5 <= |value| < 1e15 ("0.1", "-2.5", "7800"), else "1.5e-300".
+    !> notation for 1e-5 <= |value| < 1e15 ("0.1", "-2.5", "7800"), else "1.5e-300". The
+    !> digits are the fewest that Fortran's es format writes and a list-directed read reads
+    !> back as value (found in C: rollcon_real_text.c).
     pure function real_to_text(value) result(text)
         !> Value to print
         real(wp), intent(in) :: value
         character(len=:), allocatable :: text
-        character(len=40) :: buffer
-        character(len=16) :: form
+        character(len=17) :: digits
         character(len=:), allocatable :: digits_text, sign
-        real(wp) :: back
-        integer :: digits, stat, exponent, e
+        integer :: count, exponent
 
         if (ieee_is_nan(value)) then
             text = "NaN"
@@ -69,26 +84,14 @@ contains
             text = "0"
             return
         end if
-        do digits = 1, 17
-            write(form, '("(es40.", i0, "e3)")') digits - 1
-            write(buffer, form) value
-            read(buffer, *, iostat=stat) back
-            if (stat == 0 .and. back == value) exit
-        end do
-        buffer = adjustl(buffer)
+        call c_shortest_digits(value, digits, exponent, count)
         sign = ""
-        if (buffer(1:1) == "-") then
-            sign = "-"
-            buffer = buffer(2:)
-        end if
-        e = scan(buffer, "Ee")
-        read(buffer(e + 1:), *) exponent
-        ! digits without the point, trailing zeros removed
-        digits_text = buffer(1:1) // buffer(3:e - 1)
-        if (e == 2) digits_text = buffer(1:1)
-        do while (len(digits_text) > 1 .and. digits_text(len(digits_text):) == "0")
-            digits_text = digits_text(:len(digits_text) - 1)
+        if (value < 0.0_wp) sign = "-"
+        ! trailing zeros removed
+        do while (count > 1 .and. digits(count:count) == "0")
+            count = count - 1
         end do
+        digits_text = digits(:count)
         if (exponent >= -5 .and. exponent < 15) then
             if (exponent < 0) then
                 text = sign // "0." // repeat("0", -exponent - 1) // digits_text

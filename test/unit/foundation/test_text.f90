@@ -5,7 +5,8 @@ module test_text
     use rollcon_kinds, only : wp
     use rollcon_text, only : to_text
     use rollcon_testing, only : error_type, unittest_type, new_unittest, check
-    use, intrinsic :: ieee_arithmetic, only : ieee_value, ieee_quiet_nan
+    use, intrinsic :: ieee_arithmetic, only : ieee_value, ieee_quiet_nan, ieee_is_finite, &
+        & ieee_next_after
     implicit none
     private
 
@@ -20,6 +21,7 @@ contains
         allocate(tests(0))
         tests = [new_unittest("shortest-round-trip", test_round_trip), &
             & new_unittest("integers-and-nan", test_special), &
+            & new_unittest("digits-as-fortran-io", test_fortran_io_digits), &
             & new_unittest("check-fails-on-nan", test_nan_fails, should_fail=.true.)]
     end subroutine collect_text
 
@@ -56,6 +58,157 @@ contains
         if (allocated(error)) return
         call check(error, to_text(ieee_value(1.0_wp, ieee_quiet_nan)) == "NaN", "NaN text")
     end subroutine test_special
+
+    !> to_text finds its digits in C (rollcon_real_text.c); they must be those of the search by
+    !> Fortran's formatted I/O it replaced (reference_text, written here as it was), character
+    !> for character, over 19,000 numbers: random bit patterns (both signs), subnormals, every
+    !> power of 2 and of 10 with both neighbours, short decimals and their neighbours, the
+    !> extremes and integers. Exact: a single digit that differs fails.
+    subroutine test_fortran_io_digits(error)
+        type(error_type), allocatable, intent(out) :: error
+        character(len=40) :: buffer
+        integer(int64) :: state, bits
+        real(wp) :: x
+        integer :: i, k, checked
+
+        state = 88172645463325252_int64
+        checked = 0
+        ! random bit patterns: every sign, exponent and significand (non-finite ones skipped)
+        do i = 1, 6000
+            bits = next_bits(state)
+            x = transfer(bits, x)
+            if (.not. ieee_is_finite(x)) cycle
+            call compare(x)
+            if (allocated(error)) return
+        end do
+        ! subnormals: random significands with a zero exponent field, and the two ends
+        do i = 1, 1000
+            bits = iand(next_bits(state), 4503599627370495_int64)
+            if (i == 1) bits = 1_int64
+            if (i == 2) bits = 4503599627370495_int64
+            if (bits == 0_int64) cycle
+            x = transfer(bits, x)
+            if (mod(i, 2) == 0) x = -x
+            call compare(x)
+            if (allocated(error)) return
+        end do
+        ! every power of 2, with the doubles either side
+        do k = -1074, 1023
+            call compare_with_neighbours(2.0_wp**k)
+            if (allocated(error)) return
+        end do
+        ! every power of 10 (as read from "1e<k>"), with the doubles either side
+        do k = -323, 308
+            write(buffer, '("1e", i0)') k
+            read(buffer, *) x
+            call compare_with_neighbours(x)
+            if (allocated(error)) return
+        end do
+        ! short decimals d.ddd 10^k (0.1, 2.5e-7, ...), with the doubles either side
+        do i = 1, 1500
+            write(buffer, '(i0, "e", i0)') 1 + modulo(next_bits(state), 999999_int64), &
+                & int(modulo(next_bits(state), 81_int64)) - 40
+            read(buffer, *) x
+            call compare_with_neighbours(x)
+            if (allocated(error)) return
+        end do
+        ! extremes, and integers: small ones, round ones, random ones up to 2^63
+        call compare_with_neighbours(huge(x))
+        call compare_with_neighbours(tiny(x))
+        call compare_with_neighbours(epsilon(x))
+        do i = 1, 1000
+            call compare(real(i, wp))
+            call compare(-real(i * 1000, wp))
+            call compare(real(ishft(next_bits(state), -int(modulo(next_bits(state), 64_int64))), &
+                & wp))
+            if (allocated(error)) return
+        end do
+        call check(error, checked > 19000, "too few numbers compared: " // to_text(checked))
+
+    contains
+
+        !> Next 64 bits of a xorshift sequence (Marsaglia): the same numbers every run.
+        function next_bits(s) result(b)
+            integer(int64), intent(inout) :: s
+            integer(int64) :: b
+
+            s = ieor(s, ishft(s, 13))
+            s = ieor(s, ishft(s, -7))
+            s = ieor(s, ishft(s, 17))
+            b = s
+        end function next_bits
+
+        subroutine compare_with_neighbours(value)
+            real(wp), intent(in) :: value
+
+            call compare(value)
+            if (allocated(error)) return
+            call compare(ieee_next_after(value, -huge(value)))
+            if (allocated(error)) return
+            call compare(ieee_next_after(value, huge(value)))
+        end subroutine compare_with_neighbours
+
+        subroutine compare(value)
+            real(wp), intent(in) :: value
+            character(len=:), allocatable :: text, expected
+
+            text = to_text(value)
+            expected = reference_text(value)
+            checked = checked + 1
+            call check(error, text == expected, "to_text(" // expected // ") gives " // text)
+        end subroutine compare
+    end subroutine test_fortran_io_digits
+
+    !> real_to_text as it was (before rollcon_real_text.c), for a finite value: the fewest digits
+    !> written by es40.(d-1)e3 that a list-directed read reads back as value, laid out as
+    !> to_text does.
+    function reference_text(value) result(text)
+        real(wp), intent(in) :: value
+        character(len=:), allocatable :: text
+        character(len=40) :: buffer
+        character(len=16) :: form
+        character(len=:), allocatable :: digits_text, sign
+        real(wp) :: back
+        integer :: digits, stat, exponent, e
+
+        if (value == 0.0_wp) then
+            text = "0"
+            return
+        end if
+        do digits = 1, 17
+            write(form, '("(es40.", i0, "e3)")') digits - 1
+            write(buffer, form) value
+            read(buffer, *, iostat=stat) back
+            if (stat == 0 .and. back == value) exit
+        end do
+        buffer = adjustl(buffer)
+        sign = ""
+        if (buffer(1:1) == "-") then
+            sign = "-"
+            buffer = buffer(2:)
+        end if
+        e = scan(buffer, "Ee")
+        read(buffer(e + 1:), *) exponent
+        digits_text = buffer(1:1) // buffer(3:e - 1)
+        if (e == 2) digits_text = buffer(1:1)
+        do while (len(digits_text) > 1 .and. digits_text(len(digits_text):) == "0")
+            digits_text = digits_text(:len(digits_text) - 1)
+        end do
+        if (exponent >= -5 .and. exponent < 15) then
+            if (exponent < 0) then
+                text = sign // "0." // repeat("0", -exponent - 1) // digits_text
+            else if (len(digits_text) > exponent + 1) then
+                text = sign // digits_text(:exponent + 1) // "." // digits_text(exponent + 2:)
+            else
+                text = sign // digits_text // repeat("0", exponent + 1 - len(digits_text))
+            end if
+        else
+            text = sign // digits_text(1:1)
+            if (len(digits_text) > 1) text = text // "." // digits_text(2:)
+            write(buffer, '(i0)') exponent
+            text = text // "e" // trim(buffer)
+        end if
+    end function reference_text
 
     !> The harness must reject NaN even with an infinite tolerance.
     subroutine test_nan_fails(error)
