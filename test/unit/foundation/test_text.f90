@@ -22,6 +22,7 @@ contains
         tests = [new_unittest("shortest-round-trip", test_round_trip), &
             & new_unittest("integers-and-nan", test_special), &
             & new_unittest("digits-as-fortran-io", test_fortran_io_digits), &
+            & new_unittest("integers-as-i0", test_integers_as_i0), &
             & new_unittest("check-fails-on-nan", test_nan_fails, should_fail=.true.)]
     end subroutine collect_text
 
@@ -58,6 +59,64 @@ contains
         if (allocated(error)) return
         call check(error, to_text(ieee_value(1.0_wp, ieee_quiet_nan)) == "NaN", "NaN text")
     end subroutine test_special
+
+    !> to_text of an integer (made digit by digit) must be what Fortran's i0 writes: zero, both
+    !> extremes of both kinds, every power of 10 and its neighbours, both signs, and random
+    !> values of every length.
+    subroutine test_integers_as_i0(error)
+        type(error_type), allocatable, intent(out) :: error
+        integer(int64) :: state, power
+        integer :: i, k
+
+        call compare_long(0_int64)
+        call compare_long(huge(0_int64))
+        call compare_long(-huge(0_int64) - 1_int64)
+        call compare_default(huge(0))
+        call compare_default(-huge(0) - 1)
+        if (allocated(error)) return
+        power = 1_int64
+        do k = 0, 18
+            do i = -1, 1
+                call compare_long(power + i)
+                call compare_long(-power - i)
+                if (power + i <= huge(0)) call compare_default(int(power + i))
+                if (power + i <= huge(0)) call compare_default(-int(power + i))
+            end do
+            if (allocated(error)) return
+            if (k < 18) power = power * 10_int64
+        end do
+        state = 88172645463325252_int64
+        do i = 1, 2000
+            state = ieor(state, ishft(state, 13))
+            state = ieor(state, ishft(state, -7))
+            state = ieor(state, ishft(state, 17))
+            call compare_long(ishft(state, -mod(i, 64)))
+            call compare_default(int(ishft(state, -33 - mod(i, 31))) * merge(-1, 1, mod(i, 2) == 1))
+            if (allocated(error)) return
+        end do
+
+    contains
+
+        subroutine compare_long(value)
+            integer(int64), intent(in) :: value
+            character(len=24) :: buffer
+
+            if (allocated(error)) return
+            write(buffer, '(i0)') value
+            call check(error, to_text(value) == trim(buffer), "to_text(" // trim(buffer) &
+                & // ") gives " // to_text(value))
+        end subroutine compare_long
+
+        subroutine compare_default(value)
+            integer, intent(in) :: value
+            character(len=24) :: buffer
+
+            if (allocated(error)) return
+            write(buffer, '(i0)') value
+            call check(error, to_text(value) == trim(buffer), "to_text(" // trim(buffer) &
+                & // ") gives " // to_text(value))
+        end subroutine compare_default
+    end subroutine test_integers_as_i0
 
     !> to_text finds its digits in C (rollcon_real_text.c); they must be those of the search by
     !> Fortran's formatted I/O it replaced (reference_text, written here as it was), character
