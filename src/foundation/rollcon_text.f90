@@ -10,7 +10,7 @@ module rollcon_text
 
     public :: to_text, fixed_text, single_quoted, shell_quote, lower_case, upper_case, unquoted
     public :: comma_list, number_list
-    public :: place
+    public :: place, decimal_value
 
     !> Decimal text of an integer or a real
     interface to_text
@@ -36,6 +36,17 @@ module rollcon_text
             character(kind=c_char), intent(out) :: digits(17)
             integer(c_int), intent(out) :: exponent, count
         end subroutine c_shortest_digits
+
+        !> The double of a decimal text by strtod, D taken as E (rollcon_real_text.c): read_all
+        !> is 1 when every character was read.
+        subroutine c_decimal_value(text, length, value, read_all) &
+                & bind(c, name="rollcon_decimal_value")
+            import :: c_double, c_char, c_int
+            character(kind=c_char), intent(in) :: text(*)
+            integer(c_int), value :: length
+            real(c_double), intent(out) :: value
+            integer(c_int), intent(out) :: read_all
+        end subroutine c_decimal_value
     end interface
 
 contains
@@ -250,6 +261,28 @@ contains
             text = text // to_text(values(k))
         end do
     end function integer_list
+
+    !> The real a decimal text stands for ("-1.5", "2.5E-3", "7.", ".5", "1D3"), the double
+    !> that Fortran's list-directed read gives for it (libgfortran reads a real by strtod, as
+    !> this does: rollcon_real_text.c); blanks around it are ignored. ok is false when the text
+    !> is not one number as a whole. Out of range: +-Infinity or 0, as the read gives.
+    subroutine decimal_value(text, value, ok)
+        !> Digits with an optional sign, point and exponent (letter E or D)
+        character(len=*), intent(in) :: text
+        real(wp), intent(out) :: value
+        logical, intent(out) :: ok
+        integer :: first, last, read_all
+
+        first = verify(text, " ")
+        last = len_trim(text)
+        if (first == 0) then
+            value = 0.0_wp
+            ok = .false.
+            return
+        end if
+        call c_decimal_value(text(first:last), last - first + 1, value, read_all)
+        ok = read_all == 1
+    end subroutine decimal_value
 
     !> Where a statement of an input file stands, as messages begin: "data/coin.adm:12".
     pure function place(path, line) result(text)

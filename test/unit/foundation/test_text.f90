@@ -3,7 +3,7 @@
 module test_text
     use, intrinsic :: iso_fortran_env, only : int64
     use rollcon_kinds, only : wp
-    use rollcon_text, only : to_text
+    use rollcon_text, only : to_text, decimal_value
     use rollcon_testing, only : error_type, unittest_type, new_unittest, check
     use, intrinsic :: ieee_arithmetic, only : ieee_value, ieee_quiet_nan, ieee_is_finite, &
         & ieee_next_after
@@ -23,6 +23,7 @@ contains
             & new_unittest("integers-and-nan", test_special), &
             & new_unittest("digits-as-fortran-io", test_fortran_io_digits), &
             & new_unittest("integers-as-i0", test_integers_as_i0), &
+            & new_unittest("decimal-value-as-read", test_decimal_value), &
             & new_unittest("check-fails-on-nan", test_nan_fails, should_fail=.true.)]
     end subroutine collect_text
 
@@ -117,6 +118,99 @@ contains
                 & // ") gives " // to_text(value))
         end subroutine compare_default
     end subroutine test_integers_as_i0
+
+    !> decimal_value (strtod, in C) must give the double Fortran's list-directed read gives, bit
+    !> for bit, for every form a dataset's number takes: signs, no digits before or after the
+    !> point, long significands (past 17 digits: rounding decided far down), E and D exponents
+    !> with and without sign, long and out-of-range exponents (Infinity, 0, subnormals), and
+    !> halfway cases at the bottom and top of the range; and it must refuse what is not one
+    !> number.
+    subroutine test_decimal_value(error)
+        type(error_type), allocatable, intent(out) :: error
+        character(len=*), parameter :: edges(*) = [character(len=40) :: "1E400", "1E-400", &
+            & "1D-320", "0.0", "-0", "5.", ".5", "+.5E3", "  2.5 ", "4.9406564584124654E-324", &
+            & "2.4703282292062328E-324", "2.4703282292062329E-324", "1.7976931348623159E308", &
+            & "1.797693134862315807E308", "-1.7976931348623158E+308", "9007199254740993", &
+            & "0.1000000000000000055511151231257827", "1e0000000000000000000000000000001"]
+        integer(int64) :: state
+        character(len=:), allocatable :: text
+        real(wp) :: value
+        logical :: ok
+        integer :: i, k, digits
+
+        do i = 1, size(edges)
+            call compare(edges(i))
+            if (allocated(error)) return
+        end do
+        state = 88172645463325252_int64
+        do i = 1, 20000
+            text = ""
+            if (draw(3) == 0) text = "-"
+            if (draw(5) == 0 .and. len(text) == 0) text = "+"
+            digits = draw(25)
+            if (draw(10) == 0) digits = 40 + draw(30)
+            do k = 1, digits
+                text = text // achar(iachar("0") + draw(10))
+            end do
+            if (draw(2) == 0) then
+                text = text // "."
+                digits = draw(20)
+                if (draw(10) == 0) digits = 30 + draw(40)
+                do k = 1, digits
+                    text = text // achar(iachar("0") + draw(10))
+                end do
+            end if
+            if (verify(text, "+-.") == 0) text = text // "7"
+            if (draw(2) == 0) then
+                text = text // merge("E", "D", draw(2) == 0)
+                k = draw(4)
+                if (k == 0) text = text // "-"
+                if (k == 1) text = text // "+"
+                digits = 1 + draw(3)
+                if (draw(20) == 0) digits = 5 + draw(20)
+                do k = 1, digits
+                    text = text // achar(iachar("0") + draw(10))
+                end do
+            end if
+            call compare(text)
+            if (allocated(error)) return
+        end do
+        ! not one number: refused
+        call decimal_value("1.5 2", value, ok)
+        call check(error, .not. ok, "'1.5 2' taken as one number")
+        if (allocated(error)) return
+        call decimal_value("1.5E", value, ok)
+        call check(error, .not. ok, "'1.5E' taken as a number")
+        if (allocated(error)) return
+        call decimal_value("  ", value, ok)
+        call check(error, .not. ok, "blanks taken as a number")
+
+    contains
+
+        !> 0 to n - 1 from a 64-bit xorshift sequence: the same texts every run.
+        integer function draw(n)
+            integer, intent(in) :: n
+
+            state = ieor(state, ishft(state, 13))
+            state = ieor(state, ishft(state, -7))
+            state = ieor(state, ishft(state, 17))
+            draw = int(modulo(state, int(n, int64)))
+        end function draw
+
+        subroutine compare(number)
+            character(len=*), intent(in) :: number
+            real(wp) :: expected
+            integer :: stat
+
+            read(number, *, iostat=stat) expected
+            call decimal_value(number, value, ok)
+            call check(error, stat == 0 .and. ok, "'" // number // "' not read")
+            if (allocated(error)) return
+            call check(error, transfer(value, 0_int64) == transfer(expected, 0_int64), "'" &
+                & // number // "' read as " // to_text(value) // ", Fortran's read gives " &
+                & // to_text(expected))
+        end subroutine compare
+    end subroutine test_decimal_value
 
     !> to_text finds its digits in C (rollcon_real_text.c); they must be those of the search by
     !> Fortran's formatted I/O it replaced (reference_text, written here as it was), character
