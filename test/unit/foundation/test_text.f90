@@ -3,10 +3,10 @@
 module test_text
     use, intrinsic :: iso_fortran_env, only : int64
     use rollcon_kinds, only : wp
-    use rollcon_text, only : to_text, decimal_value
+    use rollcon_text, only : to_text, decimal_value, es_text
     use rollcon_testing, only : error_type, unittest_type, new_unittest, check
     use, intrinsic :: ieee_arithmetic, only : ieee_value, ieee_quiet_nan, ieee_is_finite, &
-        & ieee_next_after
+        & ieee_next_after, ieee_positive_inf, ieee_negative_inf
     implicit none
     private
 
@@ -24,6 +24,7 @@ contains
             & new_unittest("digits-as-fortran-io", test_fortran_io_digits), &
             & new_unittest("integers-as-i0", test_integers_as_i0), &
             & new_unittest("decimal-value-as-read", test_decimal_value), &
+            & new_unittest("es-as-fortran-write", test_es_text), &
             & new_unittest("check-fails-on-nan", test_nan_fails, should_fail=.true.)]
     end subroutine collect_text
 
@@ -118,6 +119,74 @@ contains
                 & // ") gives " // to_text(value))
         end subroutine compare_default
     end subroutine test_integers_as_i0
+
+    !> es_text (digits from C) must be character for character what Fortran's write with
+    !> es<w>.<d>e3 writes, for the summary's three formats and a field too narrow for a sign
+    !> (asterisks): random bit patterns of both signs, subnormals, zeros of both signs, values
+    !> that round up to the next power of 10 (9.9995 -> 1.000E+001), every power of 10 and its
+    !> neighbours, the extremes, NaN and both infinities.
+    subroutine test_es_text(error)
+        type(error_type), allocatable, intent(out) :: error
+        integer, parameter :: widths(4) = [23, 11, 10, 9], decimals(4) = [15, 3, 3, 3]
+        integer(int64) :: state
+        character(len=40) :: buffer
+        real(wp) :: x
+        integer :: i, k
+
+        call compare(0.0_wp)
+        call compare(-0.0_wp)
+        call compare(huge(x))
+        call compare(-huge(x))
+        call compare(tiny(x))
+        call compare(ieee_value(x, ieee_quiet_nan))
+        call compare(ieee_value(x, ieee_positive_inf))
+        call compare(ieee_value(x, ieee_negative_inf))
+        call compare(9.9995_wp)
+        call compare(-9.99949999_wp)
+        call compare(0.99999999999999999_wp)
+        if (allocated(error)) return
+        state = 88172645463325252_int64
+        do i = 1, 5000
+            state = ieor(state, ishft(state, 13))
+            state = ieor(state, ishft(state, -7))
+            state = ieor(state, ishft(state, 17))
+            x = transfer(state, x)
+            call compare(x)
+            x = transfer(ishft(state, -12), x)
+            call compare(x)
+            if (allocated(error)) return
+        end do
+        do k = -323, 308
+            write(buffer, '("9.9995e", i0)') k
+            read(buffer, *) x
+            call compare(x)
+            call compare(ieee_next_after(x, 0.0_wp))
+            write(buffer, '("1e", i0)') k
+            read(buffer, *) x
+            call compare(x)
+            call compare(ieee_next_after(x, 0.0_wp))
+            call compare(-ieee_next_after(x, huge(x)))
+            if (allocated(error)) return
+        end do
+
+    contains
+
+        subroutine compare(value)
+            real(wp), intent(in) :: value
+            character(len=40) :: expected
+            character(len=16) :: form
+            integer :: j
+
+            do j = 1, size(widths)
+                write(form, '("(es", i0, ".", i0, "e3)")') widths(j), decimals(j)
+                write(expected, form) value
+                call check(error, es_text(value, widths(j), decimals(j)) &
+                    & == expected(:widths(j)), trim(form) // " writes '" // expected(:widths(j)) &
+                    & // "', es_text gives '" // es_text(value, widths(j), decimals(j)) // "'")
+                if (allocated(error)) return
+            end do
+        end subroutine compare
+    end subroutine test_es_text
 
     !> decimal_value (strtod, in C) must give the double Fortran's list-directed read gives, bit
     !> for bit, for every form a dataset's number takes: signs, no digits before or after the
