@@ -33,6 +33,9 @@ module rollcon_dataset_source
     type, extends(model_source_type) :: dataset_source_type
         !> The dataset as read (its run settings are the source's `settings` from here on)
         type(adm_model_type) :: adm
+        !> principal_axes_text of adm, made once for the notes and the report (its parts do not
+        !> change after new_dataset_source)
+        character(len=:), allocatable :: principal_axes
     contains
         procedure :: build
     end type dataset_source_type
@@ -54,7 +57,8 @@ contains
         source%settings = adm%run%settings
         source%warning = ""
         if (allocated(adm%warning)) source%warning = adm%warning
-        source%notes = principal_axes_text(adm) // request_comments_text(adm)
+        source%principal_axes = principal_axes_text(adm)
+        source%notes = source%principal_axes // request_comments_text(adm)
         source%own_routines = all_named(adm)
         source%no_ucons = .true.
         if (allocated(adm%ucons)) source%no_ucons = size(adm%ucons) == 0
@@ -82,7 +86,9 @@ contains
             error%message = self%path // ": " // error%message
             return
         end if
-        report = principal_axes_text(self%adm) // ic_report_text(analysis)
+        if (.not. allocated(self%principal_axes)) &
+            & self%principal_axes = principal_axes_text(self%adm)
+        report = self%principal_axes // ic_report_text(analysis)
         ! the equations the run sets aside as redundant, chosen at this start: said once here,
         ! before the run (a contradictory set is refused), and in the summary
         call problem%choose_rows(0.0_wp, q0, u0, error)

@@ -6,7 +6,7 @@
 !> time and the output file.
 module rollcon_summary_text
     use rollcon_kinds, only : wp
-    use rollcon_text, only : to_text
+    use rollcon_text, only : to_text, es_text
     use rollcon_run_summary, only : run_summary_type, status_completed, status_stopped, &
         & status_inaccurate
     implicit none
@@ -144,9 +144,9 @@ contains
                 & // to_text(summary%layout%part_ids(p)) // ":" // nl)
             i0 = 6*(p - 1)
             do i = 1, 6
-                write(value, '(es23.15e3)') summary%q(i0 + i)
+                value = es_text(summary%q(i0 + i), 23, 15)
                 call append_text(lines, used, "  " // quantity_names(i) // trim(value))
-                write(value, '(es23.15e3)') summary%u(i0 + i)
+                value = es_text(summary%u(i0 + i), 23, 15)
                 call append_text(lines, used, "    " // quantity_names(6 + i) // trim(value) &
                     & // nl)
             end do
@@ -248,7 +248,7 @@ contains
 
         phrase = ""
         if (bound <= 0.0_wp) return
-        write(value, '(es10.3e3)') bound
+        value = es_text(bound, 10, 3)
         phrase = ", allowed " // trim(adjustl(value)) // unit
     end function allowed
 
@@ -258,7 +258,7 @@ contains
         character(len=:), allocatable :: text
         character(len=32) :: value
 
-        write(value, '(es11.3e3)') x
+        value = es_text(x, 11, 3)
         text = trim(adjustl(value))
     end function scientific
 

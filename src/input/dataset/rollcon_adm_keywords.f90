@@ -11,7 +11,7 @@ module rollcon_adm_keywords
     use rollcon_kinds, only : wp
     use rollcon_constants, only : degree
     use rollcon_error, only : error_type, fatal_error, stat_input
-    use rollcon_text, only : to_text, comma_list, place
+    use rollcon_text, only : to_text, comma_list, place, decimal_value
     use rollcon_adm_lexer, only : adm_argument_type, adm_statement_type, is_number_text, &
         & is_nonfinite_text, &
         & upper_case
@@ -180,7 +180,8 @@ contains
         !> The value of the dataset's unit in SI (kilometre: 1000)
         real(wp), intent(in), optional :: factor
         character(len=:), allocatable :: text, expected
-        integer :: i, stat, n
+        integer :: i, n
+        logical :: whole
 
         expected = to_text(least) // " number" // trim(merge("s", " ", least > 1))
         if (most > least) expected = "from " // to_text(least) // " to " // to_text(most) &
@@ -212,12 +213,12 @@ contains
                         & // "': D (degrees) is for angles only", stat_input)
                     return
                 end if
-                read(text(:len(text) - 1), *, iostat=stat) values(i)
+                call decimal_value(text(:len(text) - 1), values(i), whole)
                 values(i) = values(i)*degree
             else
-                read(text, *, iostat=stat) values(i)
+                call decimal_value(text, values(i), whole)
             end if
-            if (stat /= 0 .or. .not. ieee_is_finite(values(i))) then
+            if (.not. whole .or. .not. ieee_is_finite(values(i))) then
                 call fatal_error(error, where // ": '" // argument%values(i)%text &
                     & // "' is not a finite number", stat_input)
                 return
