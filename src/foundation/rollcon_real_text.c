@@ -31,11 +31,39 @@
  * when 15 fails, 16 then 17 (17 always reads back). Subnormals, which have fewer than 53 bits,
  * are searched one d at a time as before. The text suite compares every digit with the old
  * Fortran search over random bit patterns, subnormals, powers of 2 and 10 and their
- * neighbours, short decimals, extremes and integers. */
+ * neighbours, short decimals, extremes and integers.
+ *
+ * snprintf and strtod follow the thread's LC_NUMERIC, which a program using the library may
+ * have set (a decimal comma: "1,5"); libgfortran's I/O does not. Each function here works in
+ * the "C" locale (uselocale, POSIX 2008: the calling thread's alone, put back on return), so
+ * a dataset's "1.5" reads and the texts hold a point whatever the host set (test
+ * text/numbers-under-a-decimal-comma-locale). */
 #include <float.h>
+#include <locale.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
+
+/* The "C" locale, made once ((locale_t)0 when it cannot be made: the thread's own is kept) */
+static locale_t c_locale(void)
+{
+    static locale_t made = (locale_t)0;
+    if (made == (locale_t)0) made = newlocale(LC_ALL_MASK, "C", (locale_t)0);
+    return made;
+}
+
+/* Make the "C" locale the calling thread's; what to give leave_c_locale */
+static locale_t enter_c_locale(void)
+{
+    locale_t c = c_locale();
+    return c == (locale_t)0 ? (locale_t)0 : uselocale(c);
+}
+
+/* Give the thread back the locale enter_c_locale found */
+static void leave_c_locale(locale_t before)
+{
+    if (before != (locale_t)0) uselocale(before);
+}
 
 /* Room for "-d.ddddddddddddddddde-308" and its terminating zero */
 #define ROOM 40
@@ -57,6 +85,7 @@ void rollcon_shortest_digits(double value, char *digits, int *exponent, int *cou
     char text[ROOM];
     int count, low, high, middle, printed, i, n;
     char *e;
+    locale_t before = enter_c_locale();
 
     value = fabs(value);
     if (value < DBL_MIN) {
@@ -89,6 +118,7 @@ void rollcon_shortest_digits(double value, char *digits, int *exponent, int *cou
     e = text + i;
     *exponent = (*e == 'e') ? (int)strtol(e + 1, NULL, 10) : 0;
     *count_out = n;
+    leave_c_locale(before);
 }
 
 /* The double of the decimal text (length characters, not terminated; D or d taken as the
@@ -98,6 +128,7 @@ void rollcon_decimal_value(const char *text, int length, double *value, int *rea
 {
     char room[64], *copy = room, *end;
     int i;
+    locale_t before;
 
     *read_all = 0;
     *value = 0.0;
@@ -109,7 +140,9 @@ void rollcon_decimal_value(const char *text, int length, double *value, int *rea
     for (i = 0; i < length; ++i)
         copy[i] = (text[i] == 'D' || text[i] == 'd') ? 'E' : text[i];
     copy[length] = '\0';
+    before = enter_c_locale();
     *value = strtod(copy, &end);
+    leave_c_locale(before);
     *read_all = length > 0 && end == copy + length;
     if (copy != room) free(copy);
 }
@@ -122,8 +155,10 @@ void rollcon_es_compact(double value, int decimals, char *out, int *length)
 {
     char text[64];
     int n = 0, i, exponent;
+    locale_t before = enter_c_locale();
 
     snprintf(text, sizeof text, "%#.*e", decimals, value);
+    leave_c_locale(before);
     for (i = 0; text[i] != 'e' && text[i] != '\0'; ++i) out[n++] = text[i];
     exponent = (text[i] == 'e') ? (int)strtol(text + i + 1, NULL, 10) : 0;
     out[n++] = 'E';

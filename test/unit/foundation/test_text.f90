@@ -4,13 +4,48 @@ module test_text
     use, intrinsic :: iso_fortran_env, only : int64
     use rollcon_kinds, only : wp
     use rollcon_text, only : to_text, decimal_value, es_text
-    use rollcon_testing, only : error_type, unittest_type, new_unittest, check
+    use rollcon_testing, only : error_type, unittest_type, new_unittest, check, skip_test
+    use, intrinsic :: iso_c_binding, only : c_char, c_int, c_ptr, c_null_char, c_associated, &
+        & c_f_pointer, c_size_t
     use, intrinsic :: ieee_arithmetic, only : ieee_value, ieee_quiet_nan, ieee_is_finite, &
         & ieee_next_after, ieee_positive_inf, ieee_negative_inf
     implicit none
     private
 
     public :: collect_text
+
+    !> glibc's LC_ALL (locale.h)
+    integer(c_int), parameter :: lc_all = 6
+
+    !> The first member of C's struct lconv: the decimal point's text
+    type, bind(c) :: lconv_head
+        type(c_ptr) :: decimal_point
+    end type lconv_head
+
+    interface
+        function setlocale(category, locale) bind(c, name="setlocale") result(name)
+            import :: c_int, c_char, c_ptr
+            integer(c_int), value :: category
+            character(kind=c_char), intent(in) :: locale(*)
+            type(c_ptr) :: name
+        end function setlocale
+        function localeconv() bind(c, name="localeconv") result(conventions)
+            import :: c_ptr
+            type(c_ptr) :: conventions
+        end function localeconv
+        function c_getcwd(buffer, size) bind(c, name="getcwd") result(path)
+            import :: c_char, c_ptr, c_size_t
+            character(kind=c_char), intent(out) :: buffer(*)
+            integer(c_size_t), value :: size
+            type(c_ptr) :: path
+        end function c_getcwd
+        function setenv(name, value, overwrite) bind(c, name="setenv") result(status)
+            import :: c_char, c_int
+            character(kind=c_char), intent(in) :: name(*), value(*)
+            integer(c_int), value :: overwrite
+            integer(c_int) :: status
+        end function setenv
+    end interface
 
 contains
 
@@ -25,6 +60,7 @@ contains
             & new_unittest("integers-as-i0", test_integers_as_i0), &
             & new_unittest("decimal-value-as-read", test_decimal_value), &
             & new_unittest("es-as-fortran-write", test_es_text), &
+            & new_unittest("numbers-under-a-decimal-comma-locale", test_comma_locale), &
             & new_unittest("check-fails-on-nan", test_nan_fails, should_fail=.true.)]
     end subroutine collect_text
 
@@ -280,6 +316,73 @@ contains
                 & // to_text(expected))
         end subroutine compare
     end subroutine test_decimal_value
+
+    !> A program using the library may set a locale whose decimal mark is a comma (German);
+    !> snprintf and strtod follow it, Fortran's I/O does not. Under de_DE (compiled by localedef
+    !> into build/locales, found through LOCPATH) to_text, es_text and decimal_value must give
+    !> what they give under "C": "1.5", a point in the ES field, "2.25" read whole. Without the
+    !> C code's own "C" locale, to_text(1.5) is "15" and "2.25" is not read. The process's
+    !> locale is "C" again at the end. Skipped when localedef or de_DE's sources are missing.
+    subroutine test_comma_locale(error)
+        type(error_type), allocatable, intent(out) :: error
+        character(len=*), parameter :: folder = "build/locales"
+        character(kind=c_char) :: here(4096)
+        character(len=:), allocatable :: folder_path
+        type(lconv_head), pointer :: conventions
+        character(kind=c_char), pointer :: mark
+        character(len=:), allocatable :: field
+        real(wp) :: value
+        logical :: ok
+        integer :: status
+
+        call execute_command_line("mkdir -p " // folder // " && (test -d " // folder &
+            & // "/de_DE.UTF-8 || localedef -i de_DE -f UTF-8 " // folder // "/de_DE.UTF-8)" &
+            & // " > " // folder // ".log 2>&1", exitstat=status)
+        if (status /= 0) then
+            call skip_test(error, "cannot compile the de_DE locale (localedef, the locales " &
+                & // "package's sources)")
+            return
+        end if
+        if (.not. c_associated(c_getcwd(here, size(here, kind=c_size_t)))) then
+            call skip_test(error, "getcwd failed")
+            return
+        end if
+        folder_path = ""
+        do status = 1, size(here)
+            if (here(status) == c_null_char) exit
+            folder_path = folder_path // here(status)
+        end do
+        folder_path = folder_path // "/" // folder
+        if (setenv("LOCPATH" // c_null_char, folder_path // c_null_char, &
+            & 1_c_int) /= 0 .or. .not. c_associated(setlocale(lc_all, "de_DE.UTF-8" &
+            & // c_null_char))) then
+            call skip_test(error, "the de_DE locale compiled in " // folder_path &
+                & // " does not load")
+            return
+        end if
+        call c_f_pointer(localeconv(), conventions)
+        call c_f_pointer(conventions%decimal_point, mark)
+        call check(error, mark == ",", "de_DE's decimal mark is a comma, got " // mark)
+        if (.not. allocated(error)) then
+            call check(error, to_text(1.5_wp) == "1.5" .and. to_text(-0.1_wp) == "-0.1" &
+                & .and. to_text(6.02214076e23_wp) == "6.02214076e23", "to_text under de_DE: " &
+                & // to_text(1.5_wp) // ", " // to_text(-0.1_wp) // ", " &
+                & // to_text(6.02214076e23_wp))
+        end if
+        if (.not. allocated(error)) then
+            field = es_text(1.25_wp, 23, 15)
+            call check(error, field == " 1.250000000000000E+000", "es_text under de_DE: '" &
+                & // field // "'")
+        end if
+        if (.not. allocated(error)) then
+            call decimal_value("2.25", value, ok)
+            call check(error, ok .and. value == 2.25_wp, "decimal_value('2.25') under de_DE: " &
+                & // merge("read    ", "not read", ok) // " " // to_text(value))
+        end if
+        if (.not. c_associated(setlocale(lc_all, "C" // c_null_char))) then
+            if (.not. allocated(error)) call check(error, .false., "the C locale back")
+        end if
+    end subroutine test_comma_locale
 
     !> to_text finds its digits in C (rollcon_real_text.c); they must be those of the search by
     !> Fortran's formatted I/O it replaced (reference_text, written here as it was), character
