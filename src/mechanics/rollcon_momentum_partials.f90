@@ -390,18 +390,8 @@ contains
         class(momentum_partials_type), intent(in) :: self
         integer, intent(in) :: a, b
         real(wp), intent(out) :: block(6, 6)
-        integer :: e
 
-        if (self%blocked) then
-            e = self%pair(a, b)
-            if (e > 0) then
-                block = self%block_q(:, :, e)
-            else
-                block = 0.0_wp
-            end if
-        else
-            block = self%dq(6*(a - 1) + 1:6*a, 6*(b - 1) + 1:6*b)
-        end if
+        call pair_block(self, a, b, self%block_q, self%dq, block)
     end subroutine q_block
 
     !> dm/du's block, as q_block.
@@ -409,19 +399,30 @@ contains
         class(momentum_partials_type), intent(in) :: self
         integer, intent(in) :: a, b
         real(wp), intent(out) :: block(6, 6)
+
+        call pair_block(self, a, b, self%block_u, self%du, block)
+    end subroutine u_block
+
+    !> q_block's and u_block's block of rows of part a by columns of part b: from the pairs'
+    !> blocks (by_pairs) when the partials are held by blocks, else from the dense matrix.
+    pure subroutine pair_block(self, a, b, by_pairs, dense, block)
+        class(momentum_partials_type), intent(in) :: self
+        integer, intent(in) :: a, b
+        real(wp), allocatable, intent(in) :: by_pairs(:, :, :), dense(:, :)
+        real(wp), intent(out) :: block(6, 6)
         integer :: e
 
         if (self%blocked) then
             e = self%pair(a, b)
             if (e > 0) then
-                block = self%block_u(:, :, e)
+                block = by_pairs(:, :, e)
             else
                 block = 0.0_wp
             end if
         else
-            block = self%du(6*(a - 1) + 1:6*a, 6*(b - 1) + 1:6*b)
+            block = dense(6*(a - 1) + 1:6*a, 6*(b - 1) + 1:6*b)
         end if
-    end subroutine u_block
+    end subroutine pair_block
 
 
     !> dm/dq's entry (i, j) (coordinate numbers; 0 off the pairs).
