@@ -113,8 +113,9 @@ module rollcon_saddle_point
         !> M^-1 c_l^T's entry minv_values(run_minv(r) + t) there (a run ends where either
         !> index jumps); none for UCONs that share no part (set by init)
         integer, allocatable :: run_start(:), run_value(:), run_minv(:), run_length(:)
-        !> For each part of a dense block, the UCONs of the block with a coordinate on it,
-        !> ascending (the block's order): columns column_start(p) : column_start(p + 1) - 1,
+        !> For each part, the UCONs with a coordinate on it, ascending (a dense block's in its
+        !> rows' order, a sparse block's as part_ucons): columns column_start(p) :
+        !> column_start(p + 1) - 1,
         !> each with its UCON column_ucon(i), the place of its part's six rows of M^-1 c_k^T in
         !> minv_values (column_offset(i) + 1 : + 6) and C's entries on the part
         !> (column_first(i) : column_last(i), c's index); set by init. A block's UCON with no
@@ -122,7 +123,8 @@ module rollcon_saddle_point
         !> factorisations leave as they are
         integer, allocatable :: column_start(:), column_ucon(:), column_offset(:), &
             & column_first(:), column_last(:)
-        !> Each column's UCON's place among its block's rows (1 for the first)
+        !> Each column's UCON's place among its dense block's rows (1 for the first; 0 in a
+        !> sparse block)
         integer, allocatable :: column_row(:)
         !> Whether the current factorisation went block by block
         logical :: by_blocks = .false.
@@ -260,7 +262,8 @@ contains
     end subroutine init
 
     !> The terms of each dense block's S (run_start, run_value, run_minv, run_length) and the
-    !> UCONs of each of its parts (column_start, ...): found once, so that a factorisation sums
+    !> UCONs of each part (column_start, ...; a sparse block's parts too, for part_columns):
+    !> found once, so that a factorisation sums
     !> only the products that can be nonzero, with their places looked up here and not in its
     !> loops, consecutive ones by a run's first places. The terms left out are C(k, j) times
     !> an exact zero of M^-1 c_l^T (j on a part l has no coordinate on): a sum that starts at
@@ -321,12 +324,16 @@ contains
                     end do
                 end do
                 self%run_start(size(self%run_start)) = runs + 1
-                ! each part's columns: its block's UCONs with a coordinate on it
+                ! each part's columns: its block's UCONs with a coordinate on it (a dense
+                ! block's by its rows, a sparse block's by the part's own UCONs, part_ucons)
                 columns = 0
                 do p = 1, self%parts
                     self%column_start(p) = columns + 1
                     b = part_block(p)
-                    if (b == 0) cycle
+                    if (b == 0) then
+                        if (allocated(self%part_ucon_start)) call sparse_part_columns(p)
+                        cycle
+                    end if
                     do i = blocks%row_start(b), blocks%row_start(b + 1) - 1
                         k = blocks%rows(i)
                         first = 0
@@ -354,6 +361,37 @@ contains
                     & self%column_first(columns), self%column_last(columns))
             end do
         end associate
+
+    contains
+
+        !> Part p's columns when it is in a sparse block (or in none: no UCON then): each of
+        !> its UCONs (part_ucons, ascending) with C's entries on it; column_row is not used
+        !> there (the sparse blocks' S goes through KLU).
+        subroutine sparse_part_columns(p)
+            integer, intent(in) :: p
+            integer :: y, k, x, first, last
+
+            associate (blocks => self%blocks)
+                do y = self%part_ucon_start(p), self%part_ucon_start(p + 1) - 1
+                    k = self%part_ucons(y)
+                    first = 0
+                    last = 0
+                    do x = blocks%ucon_start(k), blocks%ucon_start(k + 1) - 1
+                        if ((blocks%ucon_coordinates(x) - 1)/6 + 1 /= p) cycle
+                        if (first == 0) first = x
+                        last = x
+                    end do
+                    if (first == 0) cycle
+                    columns = columns + 1
+                    if (pass == 1) cycle
+                    self%column_ucon(columns) = k
+                    self%column_row(columns) = 0
+                    self%column_offset(columns) = part_offset(self, p, k)
+                    self%column_first(columns) = first
+                    self%column_last(columns) = last
+                end do
+            end associate
+        end subroutine sparse_part_columns
     end subroutine dense_terms
 
     !> The places of M^-1 C^T's columns by blocks (minv_start, coordinate_place) and their
@@ -1075,59 +1113,12 @@ contains
         end associate
     end subroutine solve_blocks
 
-    !> M^-1 c_k^T over part p for each UCON k of ucons (zero elsewhere, as the dense path
-    !> leaves it), and M^-1 r1 there with r1: the translational rows divided by the mass, the
-    !> rotational rows of every UCON (and of r1) in one dpotrs, column by column the solves of
-    !> one call per UCON. c: C by rows, each UCON's row over its own coordinates (zeros off
-    !> them, as the dense row's).
-    subroutine part_inverse_mass(self, p, ucons, c, error, r1)
-        type(saddle_point_type), intent(inout) :: self
-        integer, intent(in) :: p, ucons(:)
-        type(constraint_matrix_type), intent(in) :: c
-        type(error_type), allocatable, intent(out) :: error
-        real(wp), intent(inout), optional :: r1(:)
-        real(wp) :: part_row(6)
-        integer :: i, k, i0, col, extra, o, x, j
-
-        extra = merge(1, 0, present(r1))
-        i0 = 6*(p - 1)
-        associate (rot => self%rotational_rows)
-            if (present(r1)) then
-                r1(i0 + 1:i0 + 3) = r1(i0 + 1:i0 + 3)/self%part_mass(p)
-                rot(:, 1) = r1(i0 + 4:i0 + 6)
-            end if
-            col = extra
-            do i = 1, size(ucons)
-                k = ucons(i)
-                o = part_offset(self, p, k)
-                ! C(k, i0 + 1 : i0 + 6), zero where UCON k has no coordinate of part p (gather,
-                ! written out: a call per part and UCON cost 4 % of a bicycle's run)
-                part_row = 0.0_wp
-                do x = c%start(k), c%start(k + 1) - 1
-                    j = c%column(x) - i0
-                    if (j > 6) exit
-                    if (j >= 1) part_row(j) = c%value(x)
-                end do
-                self%minv_values(o + 1:o + 3) = part_row(1:3)/self%part_mass(p)
-                col = col + 1
-                rot(:, col) = part_row(4:6)
-            end do
-            call solve_cholesky3(self%rotational(:, :, p), col, rot, 3)
-            if (present(r1)) r1(i0 + 4:i0 + 6) = rot(:, 1)
-            col = extra
-            do i = 1, size(ucons)
-                col = col + 1
-                o = part_offset(self, p, ucons(i))
-                self%minv_values(o + 4:o + 6) = rot(:, col)
-            end do
-        end associate
-    end subroutine part_inverse_mass
-
-    !> part_inverse_mass for part p of a dense block, over the columns init found
-    !> (column_start): M^-1 c_k^T over the part for each UCON k of the block with a coordinate
-    !> on it, and M^-1 r1 there with r1, in one dpotrs as part_inverse_mass (the same numbers:
-    !> each column is solved alone). C(k, :) over the part is read from c's entries
-    !> column_first(i) : column_last(i).
+    !> M^-1 c_k^T over part p (zero elsewhere, as the dense path leaves it) for each UCON k
+    !> with a coordinate on it (init's columns, column_start), and M^-1 r1 there with r1: the
+    !> translational rows divided by the mass, the rotational rows of every UCON (and of r1)
+    !> in one solve_cholesky3 (each column solved alone: the numbers of one solve per UCON).
+    !> C(k, :) over the part is read from c's entries column_first(i) : column_last(i). For
+    !> the parts of dense and of sparse blocks alike.
     subroutine part_columns(self, p, c, r1)
         type(saddle_point_type), intent(inout) :: self
         integer, intent(in) :: p
@@ -1187,10 +1178,7 @@ contains
         associate (blocks => self%blocks)
             do j = blocks%coordinate_start(b), blocks%coordinate_start(b + 1) - 1, 6
                 p = (blocks%coordinates(j) - 1)/6 + 1
-                call part_inverse_mass(self, p, &
-                    & self%part_ucons(self%part_ucon_start(p):self%part_ucon_start(p + 1) - 1), &
-                    & c, error, r1)
-                if (allocated(error)) return
+                call part_columns(self, p, c, r1)
             end do
             if (self%masked) call set_aside_columns(self, b)
             associate (lu => self%sparse(b))
