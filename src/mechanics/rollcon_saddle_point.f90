@@ -331,26 +331,15 @@ contains
                     self%column_start(p) = columns + 1
                     b = part_block(p)
                     if (b == 0) then
-                        if (allocated(self%part_ucon_start)) call sparse_part_columns(p)
+                        ! a sparse block's part (or one in no block: no UCON then)
+                        if (.not. allocated(self%part_ucon_start)) cycle
+                        do i = self%part_ucon_start(p), self%part_ucon_start(p + 1) - 1
+                            call add_column(p, self%part_ucons(i), 0)
+                        end do
                         cycle
                     end if
                     do i = blocks%row_start(b), blocks%row_start(b + 1) - 1
-                        k = blocks%rows(i)
-                        first = 0
-                        last = 0
-                        do x = blocks%ucon_start(k), blocks%ucon_start(k + 1) - 1
-                            if ((blocks%ucon_coordinates(x) - 1)/6 + 1 /= p) cycle
-                            if (first == 0) first = x
-                            last = x
-                        end do
-                        if (first == 0) cycle
-                        columns = columns + 1
-                        if (pass == 1) cycle
-                        self%column_ucon(columns) = k
-                        self%column_row(columns) = i - blocks%row_start(b) + 1
-                        self%column_offset(columns) = part_offset(self, p, k)
-                        self%column_first(columns) = first
-                        self%column_last(columns) = last
+                        call add_column(p, blocks%rows(i), i - blocks%row_start(b) + 1)
                     end do
                 end do
                 self%column_start(self%parts + 1) = columns + 1
@@ -364,34 +353,29 @@ contains
 
     contains
 
-        !> Part p's columns when it is in a sparse block (or in none: no UCON then): each of
-        !> its UCONs (part_ucons, ascending) with C's entries on it; column_row is not used
-        !> there (the sparse blocks' S goes through KLU).
-        subroutine sparse_part_columns(p)
-            integer, intent(in) :: p
-            integer :: y, k, x, first, last
+        !> Part p's column of UCON k, when k has a coordinate on p: C's entries on the part
+        !> (first, last) and its place in minv_values; row, k's place among its dense block's
+        !> rows (0 in a sparse block, whose S goes through KLU). The first pass counts.
+        subroutine add_column(p, k, row)
+            integer, intent(in) :: p, k, row
+            integer :: x, first, last
 
-            associate (blocks => self%blocks)
-                do y = self%part_ucon_start(p), self%part_ucon_start(p + 1) - 1
-                    k = self%part_ucons(y)
-                    first = 0
-                    last = 0
-                    do x = blocks%ucon_start(k), blocks%ucon_start(k + 1) - 1
-                        if ((blocks%ucon_coordinates(x) - 1)/6 + 1 /= p) cycle
-                        if (first == 0) first = x
-                        last = x
-                    end do
-                    if (first == 0) cycle
-                    columns = columns + 1
-                    if (pass == 1) cycle
-                    self%column_ucon(columns) = k
-                    self%column_row(columns) = 0
-                    self%column_offset(columns) = part_offset(self, p, k)
-                    self%column_first(columns) = first
-                    self%column_last(columns) = last
-                end do
-            end associate
-        end subroutine sparse_part_columns
+            first = 0
+            last = 0
+            do x = self%blocks%ucon_start(k), self%blocks%ucon_start(k + 1) - 1
+                if ((self%blocks%ucon_coordinates(x) - 1)/6 + 1 /= p) cycle
+                if (first == 0) first = x
+                last = x
+            end do
+            if (first == 0) return
+            columns = columns + 1
+            if (pass == 1) return
+            self%column_ucon(columns) = k
+            self%column_row(columns) = row
+            self%column_offset(columns) = part_offset(self, p, k)
+            self%column_first(columns) = first
+            self%column_last(columns) = last
+        end subroutine add_column
     end subroutine dense_terms
 
     !> The places of M^-1 C^T's columns by blocks (minv_start, coordinate_place) and their
