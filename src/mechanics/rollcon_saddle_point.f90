@@ -786,18 +786,19 @@ contains
 
         associate (blocks => self%blocks)
             do b = 1, blocks%count
-                if (self%block_sparse(b)) then
-                    call factor_sparse_block(self, b, c, error, r1)
-                    if (allocated(error)) return
-                    cycle
-                end if
                 first = blocks%coordinate_start(b)
                 last = blocks%coordinate_start(b + 1) - 1
                 ! M^-1 c_k^T over the block's parts, for every UCON of the block with a
-                ! coordinate on the part (the others' are exact zeros there, set by init)
+                ! coordinate on the part (the others' are exact zeros there, set by init): a
+                ! dense block's and a sparse one's alike (one call here, which gfortran inlines)
                 do j = first, last, 6
                     call part_columns(self, (blocks%coordinates(j) - 1)/6 + 1, c, r1)
                 end do
+                if (self%block_sparse(b)) then
+                    call factor_sparse_block(self, b, c, error)
+                    if (allocated(error)) return
+                    cycle
+                end if
                 m = blocks%row_start(b + 1) - blocks%row_start(b)
                 s0 = self%schur_start(b) - 1
                 if (self%masked) call set_aside_columns(self, b)
@@ -1148,22 +1149,17 @@ contains
         end associate
     end subroutine part_columns
 
-    !> factor_blocks for a sparse block b: M^-1 C^T over each part's own UCONs (and M^-1 r1
-    !> there, with r1), S's nonzeros (UCONs sharing a part) and their KLU factors.
-    subroutine factor_sparse_block(self, b, c, error, r1)
+    !> factor_blocks for a sparse block b, after its parts' M^-1 C^T (part_columns): S's
+    !> nonzeros (UCONs sharing a part) and their KLU factors.
+    subroutine factor_sparse_block(self, b, c, error)
         type(saddle_point_type), intent(inout) :: self
         integer, intent(in) :: b
         type(constraint_matrix_type), intent(in) :: c
         type(error_type), allocatable, intent(out) :: error
-        real(wp), intent(inout), optional :: r1(:)
         real(wp) :: total
-        integer :: j, k, p, e, l, x, q
+        integer :: j, k, e, l, x, q
 
         associate (blocks => self%blocks)
-            do j = blocks%coordinate_start(b), blocks%coordinate_start(b + 1) - 1, 6
-                p = (blocks%coordinates(j) - 1)/6 + 1
-                call part_columns(self, p, c, r1)
-            end do
             if (self%masked) call set_aside_columns(self, b)
             associate (lu => self%sparse(b))
                 do e = self%entry_start(b), self%entry_start(b + 1) - 1
