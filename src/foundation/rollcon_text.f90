@@ -303,7 +303,9 @@ contains
     !> The real a decimal text stands for ("-1.5", "2.5E-3", "7.", ".5", "1D3"), the double
     !> that Fortran's list-directed read gives for it (libgfortran reads a real by strtod, as
     !> this does: rollcon_real_text.c); blanks around it are ignored. ok is false when the text
-    !> is not one number as a whole. Out of range: +-Infinity or 0, as the read gives.
+    !> is not one number as a whole, or holds a character other than digits, signs, a point
+    !> and an exponent letter (strtod alone also takes "inf", "nan" and hexadecimal "0x1p3").
+    !> Out of range: +-Infinity or 0, as the read gives.
     subroutine decimal_value(text, value, ok)
         !> Digits with an optional sign, point and exponent (letter E or D)
         character(len=*), intent(in) :: text
@@ -313,11 +315,10 @@ contains
 
         first = verify(text, " ")
         last = len_trim(text)
-        if (first == 0) then
-            value = 0.0_wp
-            ok = .false.
-            return
-        end if
+        value = 0.0_wp
+        ok = .false.
+        if (first == 0) return
+        if (verify(text(first:last), "0123456789+-.EeDd") /= 0) return
         call c_decimal_value(text(first:last), last - first + 1, value, read_all)
         ok = read_all == 1
     end subroutine decimal_value

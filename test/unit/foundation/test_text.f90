@@ -232,6 +232,8 @@ contains
     !> number.
     subroutine test_decimal_value(error)
         type(error_type), allocatable, intent(out) :: error
+        character(len=*), parameter :: not_decimal(*) = [character(len=12) :: "inf", &
+            & "-Infinity", "nan", "NAN(1)", "0x10", "0x1p3", "1.5e3f"]
         character(len=*), parameter :: edges(*) = [character(len=40) :: "1E400", "1E-400", &
             & "1D-320", "0.0", "-0", "5.", ".5", "+.5E3", "  2.5 ", "4.9406564584124654E-324", &
             & "2.4703282292062328E-324", "2.4703282292062329E-324", "1.7976931348623159E308", &
@@ -289,6 +291,13 @@ contains
         if (allocated(error)) return
         call decimal_value("  ", value, ok)
         call check(error, .not. ok, "blanks taken as a number")
+        if (allocated(error)) return
+        ! what strtod takes and a number's digits, signs, point and exponent letter do not hold
+        do k = 1, size(not_decimal)
+            call decimal_value(trim(not_decimal(k)), value, ok)
+            call check(error, .not. ok, "'" // trim(not_decimal(k)) // "' taken as a number")
+            if (allocated(error)) return
+        end do
 
     contains
 
