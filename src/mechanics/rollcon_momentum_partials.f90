@@ -424,7 +424,6 @@ contains
         end if
     end subroutine pair_block
 
-
     !> dm/dq's entry (i, j) (coordinate numbers; 0 off the pairs).
     pure real(wp) function q_at(self, i, j) result(value)
         class(momentum_partials_type), intent(in) :: self
