@@ -135,7 +135,9 @@ contains
                 if (allocated(error)) return
                 symbols = file_text(scratch // "/nm.log")
                 call check(error, index(symbols, " rollcon_malloc_count") == 0, path &
-                    & // " holds the tests' allocator counter (test/malloc_counter.c)")
+                    & // " holds the tests' allocator counter (test/malloc_counter.c; built " &
+                    & // "by plain fpm in a checkout updated in place, fpm's archive may keep " &
+                    & // "an old object: .ci/test drops the archive, or rm -rf build)")
                 if (allocated(error)) return
                 call check(error, index(symbols, " T malloc" // new_line("a")) == 0, path &
                     & // " defines malloc: the tests' counter replaces the allocator")
