@@ -532,8 +532,9 @@ contains
 
         !> The partials of add_mode_forces' terms not in dm/dq: sliding's friction by the normal
         !> multiplier (F_n = c_nz lambda_n) and by u and q through the slip's direction
-        !> (ds/dv = (I - s s^T) / |v|, dv/du and dv/dq the tangential rows' gradients; none at
-        !> zero slip, where s is the reference), exact; rolling resistance's by the normal
+        !> (ds/dv = (I - s s^T) / |w|, w = v + slip_floor r as rollcon_sliding_contact's
+        !> direction, dv/du and dv/dq the tangential rows' gradients; none where w is zero,
+        !> where s is the reference), exact; rolling resistance's by the normal
         !> multiplier; a held phidot's row, phidot' alone. c_nz's own partials in q (zero for
         !> a rim: the normal row's Z' coefficient is 1) are left out.
         subroutine mode_entries(u, lambda)
@@ -581,12 +582,12 @@ contains
                 call friction_multipliers(eq, contact, lambda, m, s, slip)
                 c_nz = row_gradient(eq, contact%normal, contact%height_column)
                 column = 2*n + contact%normal
-                speed = norm2(slip)
+                speed = contact%turning_speed(slip)
                 projector = 0.0_wp
                 if (speed > 0.0_wp) then
                     projector = -reshape([1.0_wp - s(1)**2, -s(1)*s(2), -s(1)*s(2), &
                         & 1.0_wp - s(2)**2], [2, 2])/speed
-                    ! d m / d v = -mu F_n (I - s s^T) / |v|
+                    ! d m / d v = -mu F_n (I - s s^T) / |w|
                     projector = contact%mu*c_nz*lambda(contact%normal)*projector
                 end if
                 do a = 1, 2

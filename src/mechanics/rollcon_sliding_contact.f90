@@ -43,6 +43,10 @@ module rollcon_sliding_contact
         !> Slip direction used where the slip speed is exactly zero (the start of a slide,
         !> unit, ground X and Y)
         real(wp) :: reference(2) = [1.0_wp, 0.0_wp]
+        !> The slip speed [m/s] within which the friction's direction turns smoothly to the
+        !> reference (direction): the watch's, half the slip's integration error at the
+        !> slide's start (0: the direction is the slip's own wherever it is not zero)
+        real(wp) :: slip_floor = 0.0_wp
         !> At the last sliding solve: the slip velocity [m/s], the normal force [N], the
         !> friction force on the part [N] (ground X and Y), the power it dissipates [W] >= 0,
         !> and the Painlevé denominator 1 + mu c_nz lambda1_n [-]
@@ -58,26 +62,43 @@ module rollcon_sliding_contact
         real(wp), allocatable :: unit_a(:), unit_lambda(:)
     contains
         procedure :: direction
+        procedure :: turning_speed
         procedure :: dropped
     end type sliding_contact_type
 
 contains
 
-    !> Unit slip direction for the slip velocity slip (ground X, Y) [m/s]: slip / |slip|, or
-    !> the reference where the slip is exactly zero.
+    !> Unit direction of the friction's opposite for the slip velocity v = slip (ground X, Y)
+    !> [m/s]: w / |w| with w = v + slip_floor r, r the reference, or r where w is exactly zero.
+    !> Where |v| is far above the floor this is v / |v| to within slip_floor / |v|; within it,
+    !> where the slip is not known better than its integration error and its direction is
+    !> the rounding's (the first steps of a slide from rest, whose Newton iterations met a
+    !> direction that turned with each iterate and failed: docs/design.md section 5), it
+    !> turns smoothly to r, the slide's own direction. Along r (a straight slide) it is r
+    !> exactly. Without a floor: v / |v|, or r at zero slip.
     pure function direction(self, slip) result(s)
         class(sliding_contact_type), intent(in) :: self
         real(wp), intent(in) :: slip(2)
         real(wp) :: s(2)
-        real(wp) :: speed
+        real(wp) :: w(2), speed
 
-        speed = norm2(slip)
+        w = slip + self%slip_floor*self%reference
+        speed = norm2(w)
         if (speed > 0.0_wp) then
-            s = slip/speed
+            s = w/speed
         else
             s = self%reference
         end if
     end function direction
+
+    !> |w| of direction (w = v + slip_floor r) [m/s]: the direction's partials in v are
+    !> (I - s s^T) / |w| (none where it is zero).
+    pure real(wp) function turning_speed(self, slip)
+        class(sliding_contact_type), intent(in) :: self
+        real(wp), intent(in) :: slip(2)
+
+        turning_speed = norm2(slip + self%slip_floor*self%reference)
+    end function turning_speed
 
     !> Whether the mode drops row k of the model's constraints: a tangential row while
     !> sliding or flying, the normal row while flying.

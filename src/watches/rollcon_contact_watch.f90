@@ -117,6 +117,10 @@ module rollcon_contact_watch
         !> The slip's direction at the last switch (or re-reference): its component along it
         !> is the event function of sliding
         real(wp) :: slip_reference(2) = [1.0_wp, 0.0_wp]
+        !> The slip speed within which the friction's direction turns to slip_reference [m/s]:
+        !> guard_second times the slip's integration error where the reference was last set
+        !> (rollcon_sliding_contact's slip_floor; 0 before any)
+        real(wp) :: slip_floor = 0.0_wp
         !> The guard of a stop in effect (guard_first or guard_second)
         real(wp) :: guard = guard_first
         !> A slide is starting from rest: its slip not yet past the first guard (no stop is
@@ -226,6 +230,7 @@ contains
         self%atol = settings%atol
         self%baumgarte = settings%baumgarte()
         self%slip_reference = self%initial_direction
+        self%slip_floor = 0.0_wp
         self%guard = guard_first
         self%starting = .false.
         if (self%slot == 0) then
@@ -262,6 +267,7 @@ contains
         contact%height_column = 6*(self%part - 1) + 3
         contact%mu = self%mu_kinetic
         contact%reference = self%initial_direction
+        contact%slip_floor = self%slip_floor
         contact%sliding = self%initial_mode == mode_sliding
         contact%flying = self%initial_mode == mode_flight
         contact%impact_loss = 0.0_wp
@@ -322,15 +328,18 @@ contains
         end if
     end subroutine set_mode_flags
 
-    !> Its contact's slip direction at zero slip: the watch's slip_reference.
+    !> Its contact's slip direction at zero slip, and the floor within which the friction's
+    !> direction turns to it: the watch's slip_reference and slip_floor.
     pure subroutine set_reference(self, eq)
         class(contact_watch_type), intent(in) :: self
         type(equations_type), intent(inout) :: eq
 
         if (self%slot == 0) then
             eq%contact%reference = self%slip_reference
+            eq%contact%slip_floor = self%slip_floor
         else
             eq%more_contacts(self%slot)%reference = self%slip_reference
+            eq%more_contacts(self%slot)%slip_floor = self%slip_floor
         end if
     end subroutine set_reference
 
@@ -699,6 +708,7 @@ contains
         real(wp), intent(in) :: slip(2), u(:)
 
         self%slip_reference = slip/norm2(slip)
+        self%slip_floor = guard_second*self%slip_error(u)
         call self%set_reference(eq)
         self%guard = merge(guard_second, guard_first, norm2(slip) <= guard_first &
             & *self%slip_error(u))
@@ -722,6 +732,7 @@ contains
         if (norm2(force(1:2)) > 0.0_wp) then
             self%slip_reference = -force(1:2)/norm2(force(1:2))
         end if
+        self%slip_floor = guard_second*self%slip_error(u)
         call self%set_reference(eq)
         call self%set_mode_flags(eq, .true., .false.)
         self%guard = guard_first

@@ -18,7 +18,7 @@ module test_contact_modes
     use rollcon_run_summary, only : judge_drift
     use rollcon_output_layout, only : coord_x, coord_xdot
     use rollcon_contact_watch, only : contact_watch_type, mode_rolling, mode_sliding
-    use rollcon_sliding_contact, only : painleve_margin
+    use rollcon_sliding_contact, only : painleve_margin, sliding_contact_type
     use rollcon_run_settings, only : formulation_cvode, formulation_ida
     use rollcon_testing, only : unittest_type, new_unittest, check
     implicit none
@@ -39,6 +39,10 @@ contains
             & new_unittest("no-contact-keys-no-mode-columns", test_no_contact_columns), &
             & new_unittest("sliding-coin-rolls-at-t-star-on-ida", test_sliding_coin_ida), &
             & new_unittest("struck-coin-on-ida-switches-as-on-cvode", test_slipping_ida), &
+            & new_unittest("struck-coin-on-ida-slides-whatever-the-last-digits", &
+            & test_slipping_ida_digits), &
+            & new_unittest("slip-direction-turns-to-reference-within-floor", &
+            & test_slip_direction), &
             & new_unittest("painleve-refused-on-ida", test_painleve_ida)]
     end subroutine collect_contact_modes
 
@@ -371,7 +375,7 @@ contains
         ! (at rtol 1e-7, atol 1e-9 the two runs' first switches are 2.3e-7 s apart)
         real(wp), parameter :: first_tol = 1.0e-7_wp
         ! Every later switch's time [s]: the runs' global errors grow through each slide
-        ! (the spin reaches 360 rad/s before theta_min), measured at most 2.7e-7 s apart
+        ! (the spin reaches 360 rad/s before theta_min), measured at most 2.4e-7 s apart
         ! (the ninth switch), bound 2e-6 s (at rtol 1e-7, atol 1e-9: up to 3.8e-6 s apart)
         real(wp), parameter :: later_tol = 2.0e-6_wp
         ! A rise of the energy between sliding rows [J]: test_coin_slipping's bound
@@ -418,6 +422,101 @@ contains
             if (allocated(error)) return
         end do
     end subroutine test_slipping_ida
+
+    !> data/coin_slipping.nml on IDA with the strike's impulse moved in its last digits,
+    !> 0.01 (1 + k 3e-14) N s: each run ends as the given one does (theta at its limit, after
+    !> its slides). Before the friction's direction had its floor (rollcon_sliding_contact),
+    !> these seven of forty such impulses failed right after a slide from rest began
+    !> (IDA_CONV_FAIL six times, IDA_TOO_MUCH_WORK once, within 1e-12 s of the switch): the
+    !> slip there is at its rounding's level, and its direction, which the friction takes,
+    !> turned with each Newton iterate.
+    subroutine test_slipping_ida_digits(error)
+        type(error_type), allocatable, intent(out) :: error
+        integer, parameter :: moved(7) = [1, 9, 10, 18, 26, 32, 35]
+        type(scene_type) :: scene
+        type(history_type) :: history
+        type(run_summary_type) :: given, summary
+        type(contact_watch_type) :: contact
+        integer :: i
+
+        call read_scene("data/coin_slipping.nml", scene, error)
+        if (allocated(error)) return
+        scene%run%formulation = formulation_ida
+        call run_scene(scene, history, given, contact, error)
+        if (allocated(error)) return
+        call check(error, given%status == status_stopped .and. size(contact%switch_times) >= 2, &
+            & "the given impulse: " // given%message)
+        if (allocated(error)) return
+        do i = 1, size(moved)
+            scene%strike%impulse = 0.01_wp*(1.0_wp + (moved(i) - 20)*3.0e-14_wp)
+            call run_scene(scene, history, summary, contact, error)
+            if (allocated(error)) return
+            call check(error, summary%status == given%status .and. summary%limit == given%limit &
+                & .and. size(contact%switch_times) >= 2, "impulse " &
+                & // to_text(scene%strike%impulse) // " N s: " // summary%message)
+            if (allocated(error)) return
+        end do
+    end subroutine test_slipping_ida_digits
+
+    !> The friction's direction (rollcon_sliding_contact's direction) with a floor f and a
+    !> reference r: r where the slip is zero or far below f; the slip's own direction to within
+    !> f / |v| far above it; r exactly along r; and its partials (I - s s^T) / |v + f r| (the
+    !> DAE form's Newton matrix, turning_speed) against central differences at a slip of f.
+    subroutine test_slip_direction(error)
+        type(error_type), allocatable, intent(out) :: error
+        ! a few roundings of numbers of order one
+        real(wp), parameter :: exact = 4.0_wp*epsilon(1.0_wp)
+        ! central differences of step h = 1e-4 f: truncation (h/f)^2 ~ 1e-8 relative, roundoff
+        ! eps f / h ~ 2e-12: the partials, of order 1/f, to 1e-7 of it
+        real(wp), parameter :: tol_fd = 1.0e-7_wp
+        type(sliding_contact_type) :: contact
+        real(wp) :: v(2), s(2), r(2), f, h, fd(2, 2), partials(2, 2), w
+        integer :: j
+
+        f = 1.0e-9_wp
+        r = [0.6_wp, -0.8_wp]
+        contact%reference = r
+        contact%slip_floor = f
+        call check(error, contact%direction([0.0_wp, 0.0_wp]), r, "at zero slip", &
+            & abs_tol=exact)
+        if (allocated(error)) return
+        ! rounding's slip, 1e-17 m/s across r: turned 1e-17 / f = 1e-8 rad from r
+        call check(error, contact%direction([0.8e-17_wp, 0.6e-17_wp]), r, "at a slip of " &
+            & // "1e-17 m/s", abs_tol=2.0e-8_wp)
+        if (allocated(error)) return
+        v = [3.0e-3_wp, 4.0e-3_wp]
+        call check(error, contact%direction(v), v/norm2(v), "at 5e-3 m/s", &
+            & abs_tol=f/norm2(v))
+        if (allocated(error)) return
+        call check(error, contact%direction(2.5e-12_wp*r), r, "along r", abs_tol=exact)
+        if (allocated(error)) return
+        call check(error, contact%direction(-7.0_wp*r), -r, "against r", abs_tol=exact)
+        if (allocated(error)) return
+        ! the partials at a slip of f across r
+        v = f*[0.8_wp, 0.6_wp]
+        s = contact%direction(v)
+        w = contact%turning_speed(v)
+        call check(error, w, norm2(v + f*r), "turning speed", rel_tol=exact)
+        if (allocated(error)) return
+        partials = reshape([1.0_wp - s(1)**2, -s(1)*s(2), -s(1)*s(2), 1.0_wp - s(2)**2], &
+            & [2, 2])/w
+        h = 1.0e-4_wp*f
+        do j = 1, 2
+            fd(:, j) = (contact%direction(v + h*[merge(1.0_wp, 0.0_wp, j == 1), &
+                & merge(1.0_wp, 0.0_wp, j == 2)]) - contact%direction(v - h*[merge(1.0_wp, &
+                & 0.0_wp, j == 1), merge(1.0_wp, 0.0_wp, j == 2)]))/(2.0_wp*h)
+        end do
+        call check(error, reshape(partials, [4]), reshape(fd, [4]), "partials in the slip", &
+            & abs_tol=tol_fd/f)
+        if (allocated(error)) return
+        ! without a floor: the slip's own direction, r at zero
+        contact%slip_floor = 0.0_wp
+        call check(error, contact%direction([0.8e-17_wp, 0.6e-17_wp]), [0.8_wp, 0.6_wp], &
+            & "no floor", abs_tol=exact)
+        if (allocated(error)) return
+        call check(error, contact%direction([0.0_wp, 0.0_wp]), r, "no floor, zero slip", &
+            & abs_tol=exact)
+    end subroutine test_slip_direction
 
     !> A thin disk at rest at tilt theta, slipping along -e_y2's horizontal part (away from its
     !> centre's side), with no spin: the normal force of sliding solves
