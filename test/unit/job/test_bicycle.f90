@@ -45,7 +45,10 @@ module test_bicycle
     !> weave reaches 0.04 rad in its window, 1e-3 (measured 8.8e-4)
     real(wp), parameter :: tol_rate = 1.0e-4_wp, tol_rate_growing = 2.0e-3_wp
     !> The ride at 5 m/s on IDA at ERROR = 1e-10, 1e-11 and 1e-12 against CVODE at 1e-13 (which
-    !> agrees with CVODE at 1e-14 to 2.6e-12 m): the parts' centres [m] over the 10 s, measured
+    !> agrees with CVODE at 1e-14 to 6.6e-11 m on 2026-11-30; 2.6e-12 m when this was written;
+    !> at 1e-12 IDA's distance is decided by the last bits, 7.5e-11 to 1.0e-9 m from CVODE at
+    !> 1e-14 over eight rear-wheel spins moved in their last digits: docs/design.md, "Speed"):
+    !> the parts' centres [m] over the 10 s, measured
     !> 6.1e-8, 4.2e-9 and 2.8e-10 m (831, 1,122 and 1,690 steps), 14 and 15 times less for each
     !> tenfold ERROR. Stopped at the push's corners but going on on its history there, IDA's
     !> error stops falling: 3.7e-7, 3.6e-7 and 2.2e-8 m (889, 1,151 and 1,816 steps, at IDA's
