@@ -3,8 +3,9 @@
 !> INACCURATE (exit status 3: its CSV and summary are written, and its figures are wanted most)
 !> it draws the figures and the animation, and still exits 3; after a run that fails (exit 1)
 !> it draws nothing; run from another folder on a command file there, it finds the dataset and
-!> writes where it was asked. Through the script itself, which builds rollcon's release build
-!> (the first time this costs a few minutes; later runs reuse it).
+!> writes where it was asked; the struck coin on IDA with the generated rolling_disk (whose
+!> switches' restarts were failing) runs to its end. Through the script itself, which builds
+!> rollcon's release build (the first time this costs a few minutes; later runs reuse it).
 module test_main_script
     use rollcon_error, only : error_type
     use rollcon_text, only : to_text
@@ -36,7 +37,8 @@ contains
 
         tests = [new_unittest("inaccurate-run-drawn-exit-3", test_inaccurate_drawn), &
             & new_unittest("failed-run-not-drawn", test_failed_not_drawn), &
-            & new_unittest("command-file-from-its-folder", test_other_folder)]
+            & new_unittest("command-file-from-its-folder", test_other_folder), &
+            & new_unittest("struck-coin-slides-and-stops-on-ida", test_slides_on_ida)]
     end subroutine collect_main_script
 
     !> `bash .ci/main run SCENE -q -o DIR` on the inaccurate scene: exit status 3, the summary
@@ -103,6 +105,45 @@ contains
             & // " (expected 0), the CSV and the figures in " // away // "/out: " &
             & // last_lines(file_text(away // "/main.log")))
     end subroutine test_other_folder
+
+    !> `bash .ci/main run SCENE --ucosub rolling_disk -q -o DIR` on data/coin_slipping.nml in
+    !> the DAE form (IDA), with its strike as given and moved to 0.010000000000003 N s: each
+    !> ends as the scene does (exit 0, theta at its limit after ten switches). Before the
+    !> friction's direction had its floor the given strike failed right after a rolling ->
+    !> sliding switch (IDA_CONV_FAIL), and before the careful start had its step budget the
+    !> moved one failed after a sliding -> rolling one (IDA_TOO_MUCH_WORK, 500,000 steps within
+    !> 1e-15 s of the stop).
+    subroutine test_slides_on_ida(error)
+        type(error_type), allocatable, intent(out) :: error
+        character(len=*), parameter :: impulses(2) = ["0.01             ", &
+            & "0.010000000000003"]
+        character(len=:), allocatable :: out, summary
+        integer :: k, status
+
+        call execute_command_line("rm -rf " // scratch // " && mkdir -p " // scratch)
+        do k = 1, size(impulses)
+            out = scratch // "/slides" // to_text(k)
+            call execute_command_line("sed -e ""s/formulation = 'cvode'/formulation = 'ida'/"" " &
+                & // "-e ""s/impulse = 0.01 /impulse = " // trim(impulses(k)) // " /"" " &
+                & // "data/coin_slipping.nml > " // scratch // "/slides.nml", exitstat=status)
+            call check(error, status == 0 .and. index(file_text(scratch // "/slides.nml"), &
+                & "formulation = 'ida'") > 0 .and. index(file_text(scratch // "/slides.nml"), &
+                & "impulse = " // trim(impulses(k)) // " ") > 0, "the scene was not written")
+            if (allocated(error)) return
+            status = -1
+            call execute_command_line("bash .ci/main run " // scratch // "/slides.nml " &
+                & // "--ucosub rolling_disk -q -o " // out // " > " // scratch &
+                & // "/main.log 2>&1", exitstat=status)
+            summary = ""
+            if (file_exists(out // "/slides.summary.txt")) &
+                & summary = file_text(out // "/slides.summary.txt")
+            call check(error, status == 0 .and. index(summary, "status: stopped: theta fell " &
+                & // "to the limit") > 0 .and. index(summary, "10 switches") > 0, "impulse " &
+                & // trim(impulses(k)) // " N s: exit status " // to_text(status) // ": " &
+                & // last_lines(file_text(scratch // "/main.log")))
+            if (allocated(error)) return
+        end do
+    end subroutine test_slides_on_ida
 
     !> Write the inaccurate scene and run `bash .ci/main` on it into out.
     subroutine run_main(out, status)
